@@ -1,0 +1,83 @@
+#include "oit/mesh.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void oit_mesh_info_init(oit_mesh_info *info)
+{
+    memset(info, 0, sizeof *info);
+    for (int k = 0; k < 3; k++) {
+        info->bounds_min[k] = INFINITY;
+        info->bounds_max[k] = -INFINITY;
+    }
+}
+
+void oit_mesh_info_add(oit_mesh_info *info, const oit_triangle *tris, size_t count)
+{
+    for (size_t i = 0; i < count; i++)
+        for (int v = 0; v < 3; v++)
+            for (int k = 0; k < 3; k++) {
+                float x = tris[i].v[v].pos[k];
+                if (x < info->bounds_min[k]) info->bounds_min[k] = x;
+                if (x > info->bounds_max[k]) info->bounds_max[k] = x;
+            }
+    info->triangles += count;
+}
+
+int oit_triangle_is_finite(const oit_triangle *t)
+{
+    for (int v = 0; v < 3; v++)
+        for (int k = 0; k < 3; k++)
+            if (!isfinite(t->v[v].pos[k]))
+                return 0;
+    return 1;
+}
+
+oit_status oit_mesh_append(oit_mesh *m, const oit_triangle *tris, size_t count,
+                           oit_error *err)
+{
+    if (count > SIZE_MAX / sizeof(oit_triangle) / 2 - m->count)
+        return oit_error_set(err, OIT_ERR_NOMEM, "mesh of %zu + %zu triangles is too large",
+                             m->count, count);
+    size_t need = m->count + count;
+    if (need > m->capacity) {
+        size_t ncap = m->capacity ? m->capacity : 1024;
+        while (ncap < need)
+            ncap *= 2;
+        oit_triangle *p = realloc(m->tris, ncap * sizeof *p);
+        if (!p)
+            return oit_error_set(err, OIT_ERR_NOMEM, "cannot allocate %zu triangles (%zu bytes)",
+                                 ncap, ncap * sizeof *p);
+        m->tris = p;
+        m->capacity = ncap;
+    }
+    if (count)
+        memcpy(m->tris + m->count, tris, count * sizeof *tris);
+    m->count = need;
+    return OIT_OK;
+}
+
+static oit_status load_sink(void *user, const oit_triangle *tris, size_t count, oit_error *err)
+{
+    return oit_mesh_append((oit_mesh *)user, tris, count, err);
+}
+
+oit_status oit_mesh_load(const char *path, const oit_read_desc *desc, oit_mesh *out,
+                         oit_error *err)
+{
+    memset(out, 0, sizeof *out);
+    oit_status s = oit_mesh_read(path, desc, load_sink, out, &out->info, err);
+    if (s != OIT_OK)
+        oit_mesh_free(out);
+    return s;
+}
+
+void oit_mesh_free(oit_mesh *m)
+{
+    if (!m) return;
+    free(m->tris);
+    m->tris = NULL;
+    m->count = 0;
+    m->capacity = 0;
+}

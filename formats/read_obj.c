@@ -1,0 +1,2 @@
+/* placeholder: being written */
+typedef int oit_placeholder_read_obj;

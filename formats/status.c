@@ -1,0 +1,57 @@
+#include "oit/status.h"
+
+#include <stdio.h>
+#include <string.h>
+
+oit_status oit_error_setv(oit_error *err, oit_status s, const char *fmt, va_list ap)
+{
+    if (err) {
+        err->status = s;
+        vsnprintf(err->message, sizeof err->message, fmt, ap);
+    }
+    return s;
+}
+
+oit_status oit_error_set(oit_error *err, oit_status s, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    oit_error_setv(err, s, fmt, ap);
+    va_end(ap);
+    return s;
+}
+
+void oit_error_prefix(oit_error *err, const char *what)
+{
+    if (!err || !what)
+        return;
+    char tmp[sizeof err->message];
+    snprintf(tmp, sizeof tmp, "%s: %s", what, err->message);
+    memcpy(err->message, tmp, sizeof tmp);
+}
+
+const char *oit_status_name(oit_status s)
+{
+    switch (s) {
+    case OIT_OK: return "ok";
+    case OIT_ERR_IO: return "i/o error";
+    case OIT_ERR_FORMAT: return "bad input";
+    case OIT_ERR_NOMEM: return "out of memory";
+    case OIT_ERR_ARGUMENT: return "invalid argument";
+    case OIT_ERR_UNSUPPORTED: return "unsupported";
+    case OIT_ERR_GL: return "GL error";
+    case OIT_ERR_CALLBACK: return "stopped by callback";
+    }
+    return "unknown status";
+}
+
+int oit_status_exit_code(oit_status s)
+{
+    switch (s) {
+    case OIT_OK: return 0;
+    case OIT_ERR_ARGUMENT: return 2;
+    case OIT_ERR_FORMAT:
+    case OIT_ERR_UNSUPPORTED: return 3;
+    default: return 1;
+    }
+}

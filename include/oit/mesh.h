@@ -1,0 +1,102 @@
+/* Triangles as every reader produces them and every renderer consumes them.
+ *
+ * Readers stream: they call a sink with chunks of triangles, so a converter's
+ * memory is bounded by its chunk and vertex tables, not by the file. A
+ * triangle carries its three vertices by value (a "soup"): attribute lookups
+ * are resolved by the reader, and a chunk can be handed to any consumer
+ * without the file's index space.
+ *
+ * Colours are 8-bit sRGB-encoded values with straight (not premultiplied)
+ * alpha; all methods blend them in that encoding, as the OIT papers do.
+ * When the input has no colour (or no alpha) the reader writes 255 and clears
+ * the bit in oit_mesh_info.attributes; the renderer then substitutes its
+ * default colour or --alpha.
+ */
+#ifndef OIT_MESH_H
+#define OIT_MESH_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct oit_vertex {
+    float pos[3];
+    uint8_t rgba[4];
+} oit_vertex; /* 16 bytes */
+
+typedef struct oit_triangle {
+    oit_vertex v[3];
+} oit_triangle; /* 48 bytes */
+
+enum {
+    OIT_ATTR_COLOR = 1u << 0, /* the input defines rgb  */
+    OIT_ATTR_ALPHA = 1u << 1  /* the input defines alpha */
+};
+
+typedef struct oit_mesh_info {
+    uint64_t triangles;          /* triangles delivered to the sink            */
+    uint64_t faces_in;           /* polygons read before triangulation         */
+    uint64_t vertices_in;        /* vertices declared/read                     */
+    uint64_t nonfinite_dropped;  /* triangles dropped: NaN/inf coordinate      */
+    uint32_t attributes;         /* OIT_ATTR_* bits                            */
+    float bounds_min[3];         /* of delivered triangles; +inf when empty    */
+    float bounds_max[3];
+} oit_mesh_info;
+
+/* Descriptor for a read; zero means default for every field. */
+typedef struct oit_read_desc {
+    size_t chunk_triangles; /* triangles per sink call; default 65536        */
+    size_t memory_budget;   /* bytes a reader may hold for vertex tables and
+                               buffers; default 2 GiB. A file that needs more
+                               fails with OIT_ERR_NOMEM naming the need.     */
+} oit_read_desc;
+
+/* Called with each chunk; return OIT_OK to continue. Any other status stops
+ * the read and is returned by the reader (err is passed through). */
+typedef oit_status (*oit_triangle_sink)(void *user, const oit_triangle *tris,
+                                        size_t count, oit_error *err);
+
+/* Reads any supported file; the format is chosen by extension (.ply .obj
+ * .off .stl .gltf .glb, case-insensitive). info may be NULL. On failure the
+ * message names the file and the line or byte offset where it went wrong. */
+oit_status oit_mesh_read(const char *path, const oit_read_desc *desc,
+                         oit_triangle_sink sink, void *user,
+                         oit_mesh_info *info, oit_error *err);
+
+/* The individual readers, for callers that know the format. */
+oit_status oit_read_ply(const char *path, const oit_read_desc *desc, oit_triangle_sink sink, void *user, oit_mesh_info *info, oit_error *err);
+oit_status oit_read_obj(const char *path, const oit_read_desc *desc, oit_triangle_sink sink, void *user, oit_mesh_info *info, oit_error *err);
+oit_status oit_read_off(const char *path, const oit_read_desc *desc, oit_triangle_sink sink, void *user, oit_mesh_info *info, oit_error *err);
+oit_status oit_read_stl(const char *path, const oit_read_desc *desc, oit_triangle_sink sink, void *user, oit_mesh_info *info, oit_error *err);
+oit_status oit_read_gltf(const char *path, const oit_read_desc *desc, oit_triangle_sink sink, void *user, oit_mesh_info *info, oit_error *err);
+
+/* An in-core triangle array, for renderers that need the whole scene. */
+typedef struct oit_mesh {
+    oit_triangle *tris;
+    size_t count;
+    size_t capacity;
+    oit_mesh_info info;
+} oit_mesh;
+
+oit_status oit_mesh_load(const char *path, const oit_read_desc *desc,
+                         oit_mesh *out, oit_error *err);
+/* Appends triangles, growing geometrically; for generators and tests. */
+oit_status oit_mesh_append(oit_mesh *m, const oit_triangle *tris, size_t count,
+                           oit_error *err);
+void oit_mesh_free(oit_mesh *m);
+
+/* Bounds helpers used by readers so that every reader counts the same way. */
+void oit_mesh_info_init(oit_mesh_info *info);
+void oit_mesh_info_add(oit_mesh_info *info, const oit_triangle *tris, size_t count);
+/* 1 when all nine coordinates are finite. */
+int oit_triangle_is_finite(const oit_triangle *t);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

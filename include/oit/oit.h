@@ -1,0 +1,6 @@
+/* liboit umbrella header. */
+#ifndef OIT_OIT_H
+#define OIT_OIT_H
+#include "status.h"
+#include "mesh.h"
+#endif

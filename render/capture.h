@@ -1,0 +1,51 @@
+/* Capture of one batch of geometry into a bounded K-fragment A-buffer, then
+ * per-pixel sort and front-to-back composite into the frame's accumulation
+ * (seed 004's transmittance formulation), restricted to the batch's screen
+ * rectangle. Two backends behind this one interface:
+ *  - OIT_CAPTURE_ARRAY: K slots per pixel filled through an atomic counter;
+ *    portable, and counts overflow exactly.
+ *  - OIT_CAPTURE_STENCIL: stencil routing over K MSAA samples (seed 002);
+ *    only offered when a start-up self-test shows the driver routes per
+ *    sample (it does not on llvmpipe, see DESIGN.md).
+ * A pixel that receives more than K fragments in one batch counts once in
+ * overflow_pixels; its extra fragments are lost, which is why a correct part
+ * file must give zero. */
+#ifndef OIT_RENDER_CAPTURE_H
+#define OIT_RENDER_CAPTURE_H
+
+#include "gpu_mesh.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum oit_capture_kind {
+    OIT_CAPTURE_AUTO = 0, /* stencil when its self-test passes, else array */
+    OIT_CAPTURE_ARRAY,
+    OIT_CAPTURE_STENCIL
+} oit_capture_kind;
+
+typedef struct oit_capture oit_capture;
+
+/* K in [2, 16]. Fails with OIT_ERR_UNSUPPORTED when STENCIL is asked for and
+ * the self-test (or the sample count) rules it out; the message says which. */
+oit_status oit_capture_create(oit_capture_kind kind, int K, oit_capture **out,
+                              oit_error *err);
+void oit_capture_destroy(oit_capture *c);
+oit_capture_kind oit_capture_backend(const oit_capture *c);
+
+/* Starts a frame: C = 0, T = 1, translucency state cleared. */
+oit_status oit_capture_begin(oit_capture *c, const oit_view *view, oit_error *err);
+/* Captures meshes[0..n) as one batch and composites it behind what the frame
+ * already holds. rect = {x0, y0, x1, y1} in pixels, row 0 at the top, x1/y1
+ * exclusive; NULL means the whole frame. */
+oit_status oit_capture_batch(oit_capture *c, const oit_gpu_mesh *const *meshes,
+                             int n, const int rect[4], oit_error *err);
+/* Resolves the frame into out (allocated by the call) and fills stats. */
+oit_status oit_capture_end(oit_capture *c, oit_image *out,
+                           oit_frame_stats *stats, oit_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

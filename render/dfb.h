@@ -1,0 +1,31 @@
+/* Dynamic Fragment Buffer (seed 000): count fragments per pixel, prefix-sum
+ * the counts in a compute shader, store every fragment at its pixel's offset,
+ * sort per pixel and composite. The fragment store is sized to the frame's
+ * exact fragment count and grown when a frame needs more; nothing is ever
+ * dropped. The in-core exact renderer and the fallback of the streaming path. */
+#ifndef OIT_RENDER_DFB_H
+#define OIT_RENDER_DFB_H
+
+#include "gpu_mesh.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct oit_dfb oit_dfb;
+
+oit_status oit_dfb_create(oit_dfb **out, oit_error *err);
+void oit_dfb_destroy(oit_dfb *d);
+
+/* Renders meshes[0..n) as one scene. out is allocated by the call (free with
+ * oit_image_free). counts, when non-NULL, receives width*height fragment
+ * counts, row 0 at the top (for the layer heat map). */
+oit_status oit_dfb_render(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n,
+                          const oit_view *view, oit_image *out,
+                          uint32_t *counts, oit_frame_stats *stats,
+                          oit_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

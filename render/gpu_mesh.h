@@ -1,0 +1,30 @@
+/* Triangles resident on the GPU, drawn by every GL method with the same
+ * vertex layout and the same fragment-generation shader (frag_glsl.h), so
+ * that all methods produce bit-identical fragments. */
+#ifndef OIT_RENDER_GPU_MESH_H
+#define OIT_RENDER_GPU_MESH_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "view.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct oit_gpu_mesh oit_gpu_mesh;
+
+/* Uploads count triangles. Their primitive indices (the tie-break key) are
+ * first_prim + i. Requires a current GL context. */
+oit_status oit_gpu_mesh_create(const oit_triangle *tris, size_t count,
+                               uint32_t first_prim, oit_gpu_mesh **out,
+                               oit_error *err);
+void oit_gpu_mesh_destroy(oit_gpu_mesh *m);
+size_t oit_gpu_mesh_triangles(const oit_gpu_mesh *m);
+uint64_t oit_gpu_mesh_bytes(const oit_gpu_mesh *m);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

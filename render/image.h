@@ -1,0 +1,50 @@
+/* Frame images on disk and their comparison: 8-bit sRGB PNG for looking,
+ * PFM (float) for measuring error, a layer heat map, and the error figures
+ * every test and benchmark prints. */
+#ifndef OIT_RENDER_IMAGE_H
+#define OIT_RENDER_IMAGE_H
+
+#include <stdint.h>
+
+#include "view.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+oit_status oit_image_alloc(oit_image *img, int width, int height, oit_error *err);
+void oit_image_free(oit_image *img);
+
+/* PNG: 8-bit RGB, values clamped to [0,1] and rounded, tagged sRGB. */
+oit_status oit_image_write_png(const oit_image *img, const char *path, oit_error *err);
+/* PFM: little-endian RGB float ("PF", negative scale), bottom row first as
+ * the format requires. */
+oit_status oit_image_write_pfm(const oit_image *img, const char *path, oit_error *err);
+/* Reads .png (8- or 16-bit, gray/RGB/RGBA) or .pfm, chosen by extension. */
+oit_status oit_image_read(const char *path, oit_image *img, oit_error *err);
+/* Writes .png or .pfm by extension. */
+oit_status oit_image_write(const oit_image *img, const char *path, oit_error *err);
+
+typedef struct oit_image_diff {
+    double rmse;            /* over rgb channels, values in [0,1]          */
+    double max_abs;         /* largest per-channel difference              */
+    double pct_over_1_255;  /* % of pixels with any channel off by > 1/255 */
+    double psnr;            /* dB; INFINITY for identical images           */
+    uint64_t pixels_over;   /* count behind pct_over_1_255                 */
+} oit_image_diff;
+
+/* Compares rgb of two images of equal size. When diff_img is non-NULL it is
+ * allocated and filled with |a - b| scaled by 'gain' (clamped). */
+oit_status oit_image_compare(const oit_image *a, const oit_image *b,
+                             oit_image_diff *d, oit_image *diff_img, float gain,
+                             oit_error *err);
+
+/* Heat map of fragments per pixel (counts: width*height, row 0 at the top),
+ * with a legend bar and its scale drawn into the image's bottom rows. */
+oit_status oit_image_heatmap(const uint32_t *counts, int width, int height,
+                             oit_image *out, oit_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

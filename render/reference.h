@@ -1,0 +1,26 @@
+/* The exact reference, independent of GL: an Embree ray through every pixel
+ * centre collects every hit (filter callback, no early exit), hits are sorted
+ * by (t, prim) and composited in double precision with shade.h. */
+#ifndef OIT_RENDER_REFERENCE_H
+#define OIT_RENDER_REFERENCE_H
+
+#include "view.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct oit_reference_desc {
+    int threads; /* 0: all cores */
+} oit_reference_desc;
+
+/* out is allocated by the call. counts (optional) receives hits per pixel. */
+oit_status oit_reference_render(const oit_mesh *mesh, const oit_view *view,
+                                const oit_reference_desc *desc, oit_image *out,
+                                uint32_t *counts, oit_frame_stats *stats,
+                                oit_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,93 @@
+/* What every renderer agrees on: the camera, the shading parameters, the
+ * output image and the per-frame figures.
+ *
+ * Conventions shared by all methods (DFB, capture backends, streaming and the
+ * Embree reference), so that their images can be compared pixel by pixel:
+ * - Perspective camera, vertical field of view fovy_deg, aspect width/height.
+ *   Pixel (x, y), y = 0 the TOP row, is sampled at its centre: NDC
+ *   ((x + 0.5) / w * 2 - 1, 1 - (y + 0.5) / h * 2).
+ * - A fragment is kept when its view-space depth (distance along the view
+ *   direction) lies in [znear, zfar], as GL clipping does.
+ * - The sort key of a fragment is t, its distance from the eye (the ray
+ *   parameter of a unit-length ray through the pixel centre); ties are broken
+ *   by primitive index (the triangle's position in the mesh), ascending.
+ * - Shading and compositing are defined once in shade.h.
+ */
+#ifndef OIT_RENDER_VIEW_H
+#define OIT_RENDER_VIEW_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "oit/mesh.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct oit_camera {
+    float eye[3];
+    float target[3];
+    float up[3];
+    float fovy_deg; /* default 45 */
+    float znear;    /* > 0 */
+    float zfar;     /* > znear */
+} oit_camera;
+
+typedef enum oit_shading_mode {
+    OIT_SHADING_TRANSPARENT = 0,
+    OIT_SHADING_TRANSLUCENT = 1
+} oit_shading_mode;
+
+/* Zero means default for every field but mode. */
+typedef struct oit_shading {
+    oit_shading_mode mode;
+    float alpha;          /* alpha for inputs without one; default 0.35      */
+    float default_rgb[3]; /* colour for inputs without one; default .85,.55,.2 */
+    float background[3];  /* default 1,1,1 (white), set all <0 for black     */
+    float absorption;     /* translucent: optical depth across scene_scale;
+                             default 4                                        */
+    float scene_scale;    /* length that absorption refers to (the model's
+                             bounding-box diagonal); must be > 0 for
+                             translucent shading                              */
+    uint32_t attributes;  /* OIT_ATTR_* of the mesh: which vertex data is real */
+} oit_shading;
+
+typedef struct oit_view {
+    oit_camera camera;
+    int width, height;
+    oit_shading shading;
+} oit_view;
+
+/* RGBA float image, row 0 at the top, values in [0,1] (alpha is 1 for a
+ * composited frame). */
+typedef struct oit_image {
+    int width, height;
+    float *rgba;
+} oit_image;
+
+typedef struct oit_frame_stats {
+    double ms;                /* wall time of the frame, GPU work included     */
+    uint64_t fragments;       /* fragments generated (all layers)              */
+    uint32_t max_layers;      /* most fragments on one pixel                   */
+    uint64_t overflow_pixels; /* pixels that got more than K in one batch      */
+    uint64_t gpu_bytes_peak;  /* GPU buffers/textures allocated by the method  */
+    uint32_t batches;         /* capture batches (packs) drawn                 */
+} oit_frame_stats;
+
+/* Camera helpers. */
+void oit_camera_default(oit_camera *cam, const float bmin[3], const float bmax[3],
+                        float azimuth_deg, float elevation_deg);
+/* 4x4 column-major matrices, as GL expects. */
+void oit_camera_view_matrix(const oit_camera *cam, float m[16]);
+void oit_camera_proj_matrix(const oit_camera *cam, float aspect, float m[16]);
+/* Parses "ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy"; returns 0 on success. */
+int oit_camera_parse(oit_camera *cam, const char *text);
+
+/* Fills defaults for zero fields of the shading descriptor. */
+void oit_shading_resolve_defaults(oit_shading *s);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
