@@ -1,2 +1,61 @@
-/* placeholder: being written */
-typedef int oit_placeholder_read_mesh;
+/* oit_mesh_read: picks the reader by file extension (case-insensitive), and
+ * the file-path entries of the streaming readers. */
+#include "formats/readers_internal.h"
+
+#include <ctype.h>
+#include <string.h>
+
+static int ext_is(const char *ext, const char *want)
+{
+    for (; *ext && *want; ext++, want++)
+        if (tolower((unsigned char)*ext) != *want)
+            return 0;
+    return *ext == '\0' && *want == '\0';
+}
+
+oit_status oit_mesh_read(const char *path, const oit_read_desc *desc, oit_triangle_sink sink,
+                         void *user, oit_mesh_info *info, oit_error *err)
+{
+    if (!path)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_mesh_read: no path given");
+    const char *dot = strrchr(path, '.');
+    const char *slash = strrchr(path, '/');
+    const char *ext = dot && (!slash || dot > slash) ? dot + 1 : "";
+    if (ext_is(ext, "ply"))
+        return oit_read_ply(path, desc, sink, user, info, err);
+    if (ext_is(ext, "obj"))
+        return oit_read_obj(path, desc, sink, user, info, err);
+    if (ext_is(ext, "off"))
+        return oit_read_off(path, desc, sink, user, info, err);
+    if (ext_is(ext, "stl"))
+        return oit_read_stl(path, desc, sink, user, info, err);
+    if (ext_is(ext, "gltf") || ext_is(ext, "glb"))
+        return oit_read_gltf(path, desc, sink, user, info, err);
+    return oit_error_set(err, OIT_ERR_UNSUPPORTED,
+                         "%s: unknown mesh format '.%s' (expected .ply .obj .off .stl .gltf .glb)",
+                         path, ext);
+}
+
+oit_status oit_read_ply(const char *path, const oit_read_desc *desc, oit_triangle_sink sink,
+                        void *user, oit_mesh_info *info, oit_error *err)
+{
+    return oit_rd_with_file(path, oit_read_ply_stream, desc, sink, user, info, err);
+}
+
+oit_status oit_read_obj(const char *path, const oit_read_desc *desc, oit_triangle_sink sink,
+                        void *user, oit_mesh_info *info, oit_error *err)
+{
+    return oit_rd_with_file(path, oit_read_obj_stream, desc, sink, user, info, err);
+}
+
+oit_status oit_read_off(const char *path, const oit_read_desc *desc, oit_triangle_sink sink,
+                        void *user, oit_mesh_info *info, oit_error *err)
+{
+    return oit_rd_with_file(path, oit_read_off_stream, desc, sink, user, info, err);
+}
+
+oit_status oit_read_stl(const char *path, const oit_read_desc *desc, oit_triangle_sink sink,
+                        void *user, oit_mesh_info *info, oit_error *err)
+{
+    return oit_rd_with_file(path, oit_read_stl_stream, desc, sink, user, info, err);
+}

@@ -1,2 +1,438 @@
-/* placeholder: being written */
-typedef int oit_placeholder_capture;
+/* Batch capture into a K-fragment A-buffer (capture.h). Per batch: draw
+ * (scissored to the batch rect) into the backend's K slots while counting
+ * fragments per pixel, then a compute resolve over the rect sorts each
+ * pixel's <= K fragments and composites them into the per-pixel state of
+ * shade.h that the frame carries across batches; it also resets the counts.
+ * Buffers are in GL row order (bottom first); the rect and the output image
+ * are flipped at the interface. */
+#include "render/capture.h"
+
+#include "render/capture_glsl.h"
+#include "render/capture_stencil.h"
+#include "render/frag_glsl.h"
+#include "render/image.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+enum { BUF_COUNTS, BUF_SLOTS, BUF_STATE, BUF_OUT, BUF_TOTALS, BUF_N };
+
+struct oit_capture {
+    oit_capture_kind backend;
+    int K;
+    GLuint fill_prog, resolve_prog, begin_prog, end_prog;
+    GLuint fbo; /* attachment-less, for the array backend */
+    GLuint buf[BUF_N];
+    uint64_t cap[BUF_N];
+    oit_stencil_target stencil;
+    oit_view view;
+    int in_frame;
+    uint32_t batches;
+    uint64_t bytes_peak;
+    double t0;
+};
+
+static oit_status build_programs(oit_capture *c, oit_error *err)
+{
+    int stencil = c->backend == OIT_CAPTURE_STENCIL;
+    const char *vs[] = {oit_glsl_version, oit_glsl_vertex, NULL};
+    const char *fs[] = {oit_glsl_version, oit_glsl_fragment_gen,
+                        stencil ? oit_capture_stencil_fs : oit_capture_array_fs, NULL};
+    const char *rcs[] = {oit_glsl_version, stencil ? "#define OIT_STENCIL 1\n" : "",
+                         oit_glsl_composite, oit_capture_resolve_cs, NULL};
+    const char *bcs[] = {oit_glsl_version, oit_glsl_composite, oit_capture_begin_cs, NULL};
+    const char *ecs[] = {oit_glsl_version, oit_glsl_composite, oit_capture_end_cs, NULL};
+    oit_status s = oit_gl_program_graphics("capture fill", vs, fs, &c->fill_prog, err);
+    if (s == OIT_OK)
+        s = oit_gl_program_compute("capture resolve", rcs, &c->resolve_prog, err);
+    if (s == OIT_OK)
+        s = oit_gl_program_compute("capture begin", bcs, &c->begin_prog, err);
+    if (s == OIT_OK)
+        s = oit_gl_program_compute("capture end", ecs, &c->end_prog, err);
+    return s;
+}
+
+static void release(oit_capture *c)
+{
+    GLuint progs[4] = {c->fill_prog, c->resolve_prog, c->begin_prog, c->end_prog};
+    for (int i = 0; i < 4; i++)
+        glDeleteProgram(progs[i]);
+    glDeleteFramebuffers(1, &c->fbo);
+    glDeleteBuffers(BUF_N, c->buf);
+    if (c->stencil.fbo)
+        oit_stencil_target_release(&c->stencil);
+    free(c);
+}
+
+void oit_capture_destroy(oit_capture *c)
+{
+    if (c)
+        release(c);
+}
+
+oit_capture_kind oit_capture_backend(const oit_capture *c)
+{
+    return c->backend;
+}
+
+static oit_status make(oit_capture_kind backend, int K, oit_capture **out, oit_error *err)
+{
+    oit_capture *c = calloc(1, sizeof *c);
+    if (!c)
+        return oit_error_set(err, OIT_ERR_NOMEM, "capture: out of memory");
+    c->backend = backend;
+    c->K = K;
+    oit_status s = OIT_OK;
+    if (backend == OIT_CAPTURE_STENCIL) {
+        s = oit_stencil_check_limits(K, err);
+        if (s == OIT_OK)
+            s = oit_stencil_target_init(&c->stencil, K, err);
+    }
+    if (s == OIT_OK)
+        s = build_programs(c, err);
+    if (s == OIT_OK) {
+        glCreateFramebuffers(1, &c->fbo);
+        s = oit_gl_check("capture: set-up", err);
+    }
+    if (s != OIT_OK) {
+        release(c);
+        return s;
+    }
+    *out = c;
+    return OIT_OK;
+}
+
+static oit_status stencil_self_test(oit_capture *c, oit_error *err);
+
+oit_status oit_capture_create(oit_capture_kind kind, int K, oit_capture **out,
+                              oit_error *err)
+{
+    *out = NULL;
+    if (K < 2 || K > 16)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: K=%d is outside [2, 16]", K);
+    if (kind == OIT_CAPTURE_ARRAY)
+        return make(OIT_CAPTURE_ARRAY, K, out, err);
+    oit_capture *c = NULL;
+    oit_status s = make(OIT_CAPTURE_STENCIL, K, &c, err);
+    if (s == OIT_OK) {
+        s = stencil_self_test(c, err);
+        if (s != OIT_OK) {
+            release(c);
+            c = NULL;
+        }
+    }
+    if (s == OIT_OK) {
+        *out = c;
+        return OIT_OK;
+    }
+    if (kind == OIT_CAPTURE_AUTO)
+        return make(OIT_CAPTURE_ARRAY, K, out, err);
+    /* A driver error while setting stencil routing up means it is not
+     * offered here, which the caller reads as UNSUPPORTED. */
+    if (s == OIT_ERR_GL && err) {
+        char why[sizeof err->message];
+        memcpy(why, err->message, sizeof why);
+        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "%s", why);
+    }
+    return s == OIT_ERR_GL ? OIT_ERR_UNSUPPORTED : s;
+}
+
+static uint64_t held_bytes(const oit_capture *c)
+{
+    uint64_t b = oit_stencil_target_bytes(&c->stencil);
+    for (int i = 0; i < BUF_N; i++)
+        b += c->cap[i];
+    return b;
+}
+
+static oit_status reserve(oit_capture *c, int which, uint64_t bytes, oit_error *err)
+{
+    static const char *names[BUF_N] = {"capture counts", "capture slots", "capture state",
+                                       "capture output", "capture totals"};
+    oit_status s = oit_gl_buffer_reserve(&c->buf[which], &c->cap[which], bytes, names[which], err);
+    uint64_t held = held_bytes(c);
+    c->bytes_peak = held > c->bytes_peak ? held : c->bytes_peak;
+    return s;
+}
+
+static oit_status allocate(oit_capture *c, const oit_view *v, oit_error *err)
+{
+    uint64_t pixels = (uint64_t)v->width * v->height;
+    int array = c->backend == OIT_CAPTURE_ARRAY;
+    oit_status s = oit_gl_check_ssbo_size(pixels * (array ? (uint64_t)c->K * 16 : 48),
+                                          "capture: the frame's largest buffer", err);
+    if (s == OIT_OK)
+        s = reserve(c, BUF_COUNTS, pixels * 4, err);
+    if (s == OIT_OK && array)
+        s = reserve(c, BUF_SLOTS, pixels * (uint64_t)c->K * 16, err);
+    if (s == OIT_OK)
+        s = reserve(c, BUF_STATE, pixels * 48, err);
+    if (s == OIT_OK)
+        s = reserve(c, BUF_OUT, pixels * 16, err);
+    if (s == OIT_OK)
+        s = reserve(c, BUF_TOTALS, 16, err);
+    if (s == OIT_OK && !array)
+        s = oit_stencil_target_resize(&c->stencil, v->width, v->height, err);
+    if (s == OIT_OK && !array) {
+        uint64_t held = held_bytes(c);
+        c->bytes_peak = held > c->bytes_peak ? held : c->bytes_peak;
+    }
+    return s;
+}
+
+static void set_uniforms(oit_capture *c)
+{
+    GLuint progs[4] = {c->fill_prog, c->resolve_prog, c->begin_prog, c->end_prog};
+    for (int i = 0; i < 4; i++) {
+        oit_glsl_set_view(progs[i], &c->view);
+        glProgramUniform1i(progs[i], glGetUniformLocation(progs[i], "u_K"), c->K);
+        glProgramUniform1ui(progs[i], glGetUniformLocation(progs[i], "u_count"),
+                            (GLuint)((uint64_t)c->view.width * c->view.height));
+    }
+}
+
+static void bind_buffers(const oit_capture *c)
+{
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, c->buf[BUF_COUNTS]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_TOTALS, c->buf[BUF_TOTALS]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_STATE, c->buf[BUF_STATE]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, c->buf[BUF_OUT]);
+    if (c->buf[BUF_SLOTS])
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_FRAGS, c->buf[BUF_SLOTS]);
+}
+
+oit_status oit_capture_begin(oit_capture *c, const oit_view *view, oit_error *err)
+{
+    GLint max_size = 0;
+    glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &max_size);
+    if (view->width <= 0 || view->height <= 0 || view->width > max_size ||
+        view->height > max_size)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: frame %dx%d is not renderable "
+                             "(at most %d pixels a side)", view->width, view->height, max_size);
+    c->t0 = oit_time_ms();
+    c->view = *view;
+    oit_shading_resolve_defaults(&c->view.shading);
+    c->batches = 0;
+    c->in_frame = 0;
+    oit_status s = allocate(c, &c->view, err);
+    if (s != OIT_OK)
+        return s;
+    static const GLuint zero = 0;
+    glClearNamedBufferData(c->buf[BUF_COUNTS], GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glClearNamedBufferData(c->buf[BUF_TOTALS], GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glNamedFramebufferParameteri(c->fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH, view->width);
+    glNamedFramebufferParameteri(c->fbo, GL_FRAMEBUFFER_DEFAULT_HEIGHT, view->height);
+    set_uniforms(c);
+    bind_buffers(c);
+    glUseProgram(c->begin_prog);
+    glDispatchCompute(oit_gl_groups((uint64_t)view->width * view->height, 64), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    s = oit_gl_check("capture: begin", err);
+    c->in_frame = s == OIT_OK;
+    return s;
+}
+
+/* The caller's rect (top rows first, exclusive ends) clamped to the frame
+ * and turned into GL rows; returns 0 when it is empty. */
+static int gl_rect(const oit_capture *c, const int rect[4], int out[4])
+{
+    int w = c->view.width, h = c->view.height;
+    int r[4] = {0, 0, w, h};
+    if (rect)
+        memcpy(r, rect, sizeof r);
+    r[0] = r[0] < 0 ? 0 : r[0];
+    r[1] = r[1] < 0 ? 0 : r[1];
+    r[2] = r[2] > w ? w : r[2];
+    r[3] = r[3] > h ? h : r[3];
+    out[0] = r[0];
+    out[1] = h - r[3];
+    out[2] = r[2];
+    out[3] = h - r[1];
+    return r[2] > r[0] && r[3] > r[1];
+}
+
+static void fill(oit_capture *c, const oit_gpu_mesh *const *meshes, int n, const int r[4])
+{
+    if (c->backend == OIT_CAPTURE_STENCIL) {
+        oit_stencil_target_route(&c->stencil, r);
+        oit_stencil_target_begin_draw(&c->stencil, r);
+    } else {
+        oit_glsl_raster_begin(c->fbo, c->view.width, c->view.height);
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(r[0], r[1], r[2] - r[0], r[3] - r[1]);
+    }
+    glUseProgram(c->fill_prog);
+    for (int i = 0; i < n; i++)
+        oit_gpu_mesh_draw(meshes[i], c->fill_prog);
+    if (c->backend == OIT_CAPTURE_STENCIL)
+        oit_stencil_target_end_draw();
+    glDisable(GL_SCISSOR_TEST);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+oit_status oit_capture_batch(oit_capture *c, const oit_gpu_mesh *const *meshes,
+                             int n, const int rect[4], oit_error *err)
+{
+    if (!c->in_frame)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: batch outside "
+                             "oit_capture_begin/oit_capture_end");
+    c->batches++;
+    int r[4];
+    if (!gl_rect(c, rect, r) || n <= 0)
+        return OIT_OK;
+    bind_buffers(c);
+    fill(c, meshes, n, r);
+    glUseProgram(c->resolve_prog);
+    glProgramUniform4i(c->resolve_prog, glGetUniformLocation(c->resolve_prog, "u_rect"),
+                       r[0], r[1], r[2], r[3]);
+    if (c->backend == OIT_CAPTURE_STENCIL)
+        glBindTextureUnit(0, c->stencil.colour);
+    glDispatchCompute(oit_gl_groups((uint64_t)(r[2] - r[0]), 8),
+                      oit_gl_groups((uint64_t)(r[3] - r[1]), 8), 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    return oit_gl_check("capture: batch", err);
+}
+
+static oit_status read_output(oit_capture *c, oit_image *out, GLuint totals[4], oit_error *err)
+{
+    int w = c->view.width, h = c->view.height;
+    oit_status s = oit_image_alloc(out, w, h, err);
+    if (s != OIT_OK)
+        return s;
+    size_t row = (size_t)w * 16;
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    /* GL rows are bottom first: read each row into its flipped place. */
+    for (int y = 0; y < h; y++)
+        glGetNamedBufferSubData(c->buf[BUF_OUT], (GLintptr)((size_t)(h - 1 - y) * row),
+                                (GLsizeiptr)row, out->rgba + (size_t)y * w * 4);
+    glGetNamedBufferSubData(c->buf[BUF_TOTALS], 0, 16, totals);
+    s = oit_gl_check("capture: readback", err);
+    if (s != OIT_OK)
+        oit_image_free(out);
+    return s;
+}
+
+oit_status oit_capture_end(oit_capture *c, oit_image *out, oit_frame_stats *stats,
+                           oit_error *err)
+{
+    if (!c->in_frame)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: end without begin");
+    c->in_frame = 0;
+    bind_buffers(c);
+    glUseProgram(c->end_prog);
+    glDispatchCompute(oit_gl_groups((uint64_t)c->view.width * c->view.height, 64), 1, 1);
+    GLuint totals[4];
+    oit_status s = read_output(c, out, totals, err);
+    glFinish();
+    if (s != OIT_OK || !stats)
+        return s;
+    memset(stats, 0, sizeof *stats);
+    stats->ms = oit_time_ms() - c->t0;
+    stats->overflow_pixels = totals[0];
+    stats->fragments = (uint64_t)totals[2] << 32 | totals[1];
+    stats->max_layers = totals[3];
+    stats->gpu_bytes_peak = c->bytes_peak;
+    stats->batches = c->batches;
+    return OIT_OK;
+}
+
+/* Stencil routing self-test: K full-frame quads at distinct depths over a
+ * small frame; every pixel's K samples must hold the K distinct quads. */
+static const char dump_cs[] =
+    "layout(local_size_x = 1) in;\n"
+    "layout(binding = 0) uniform usampler2DMS u_samples;\n"
+    "layout(std430, binding = 4) writeonly buffer Out { uint prims[]; };\n"
+    "layout(location = 10) uniform int u_K;\n"
+    "void main() {\n"
+    "    ivec2 px = ivec2(gl_WorkGroupID.xy);\n"
+    "    uint p = uint(px.y) * gl_NumWorkGroups.x + uint(px.x);\n"
+    "    for (int i = 0; i < u_K; i++)\n"
+    "        prims[p * uint(u_K) + uint(i)] = texelFetch(u_samples, px, i).y & 0x7fffffffu;\n"
+    "}\n";
+
+enum { TEST_SIZE = 4 };
+
+static oit_status self_test_scene(oit_capture *c, oit_gpu_mesh **mesh, oit_error *err)
+{
+    oit_triangle tris[32];
+    for (int q = 0; q < c->K; q++) {
+        float z = -2.0f - (float)q, h = 4.0f * -z;
+        const float corner[4][2] = {{-h, -h}, {h, -h}, {h, h}, {-h, h}};
+        const int idx[2][3] = {{0, 1, 2}, {0, 2, 3}};
+        for (int t = 0; t < 2; t++)
+            for (int k = 0; k < 3; k++) {
+                oit_vertex *v = &tris[2 * q + t].v[k];
+                v->pos[0] = corner[idx[t][k]][0];
+                v->pos[1] = corner[idx[t][k]][1];
+                v->pos[2] = z;
+                memset(v->rgba, 255, 4);
+            }
+    }
+    oit_view v;
+    memset(&v, 0, sizeof v);
+    v.camera.target[2] = -1.0f;
+    v.camera.up[1] = 1.0f;
+    v.camera.fovy_deg = 60.0f;
+    v.camera.znear = 0.5f;
+    v.camera.zfar = 100.0f;
+    v.width = v.height = TEST_SIZE;
+    oit_status s = oit_gpu_mesh_create(tris, 2 * (size_t)c->K, 0, mesh, err);
+    if (s == OIT_OK)
+        s = oit_capture_begin(c, &v, err);
+    const oit_gpu_mesh *list[1] = {*mesh};
+    if (s == OIT_OK)
+        s = oit_capture_batch(c, list, 1, NULL, err);
+    return s;
+}
+
+/* The first pixel and sample whose quad repeats, or -1. */
+static int first_repeat(const GLuint *prims, int K, int pixels)
+{
+    for (int p = 0; p < pixels; p++) {
+        unsigned seen = 0;
+        for (int i = 0; i < K; i++) {
+            unsigned bit = 1u << ((prims[p * K + i] / 2) & 31);
+            if (prims[p * K + i] / 2 >= (GLuint)K || (seen & bit))
+                return p * K + i;
+            seen |= bit;
+        }
+    }
+    return -1;
+}
+
+static oit_status stencil_self_test(oit_capture *c, oit_error *err)
+{
+    oit_gpu_mesh *mesh = NULL;
+    GLuint prog = 0;
+    oit_status s = self_test_scene(c, &mesh, err);
+    const char *src[] = {oit_glsl_version, dump_cs, NULL};
+    if (s == OIT_OK)
+        s = oit_gl_program_compute("stencil self-test", src, &prog, err);
+    GLuint prims[TEST_SIZE * TEST_SIZE * 16];
+    uint64_t dump_bytes = sizeof(GLuint) * TEST_SIZE * TEST_SIZE * (uint64_t)c->K;
+    if (s == OIT_OK)
+        s = reserve(c, BUF_OUT, dump_bytes, err);
+    if (s == OIT_OK) {
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, c->buf[BUF_OUT]);
+        glUseProgram(prog);
+        glProgramUniform1i(prog, OIT_LOC_K, c->K);
+        glBindTextureUnit(0, c->stencil.colour);
+        glDispatchCompute(TEST_SIZE, TEST_SIZE, 1);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        glGetNamedBufferSubData(c->buf[BUF_OUT], 0, (GLsizeiptr)dump_bytes, prims);
+        s = oit_gl_check("stencil self-test", err);
+    }
+    if (s == OIT_OK) {
+        int bad = first_repeat(prims, c->K, TEST_SIZE * TEST_SIZE);
+        if (bad >= 0)
+            s = oit_error_set(err, OIT_ERR_UNSUPPORTED,
+                              "stencil capture: self-test failed: pixel %d sample %d holds "
+                              "fragment of quad %u again; the driver does not route "
+                              "fragments per sample with the stencil", bad / c->K,
+                              bad % c->K, prims[bad] / 2);
+    }
+    c->in_frame = 0;
+    glDeleteProgram(prog);
+    oit_gpu_mesh_destroy(mesh);
+    return s;
+}

@@ -1,2 +1,305 @@
-/* placeholder: being written */
-typedef int oit_placeholder_dfb;
+/* Dynamic Fragment Buffer (dfb.h, seed 000). Four passes per frame:
+ * count (atomic per pixel), exclusive scan of the counts (scan_glsl.h),
+ * store (each fragment at its pixel's offset, slot by atomic decrement of the
+ * count), resolve (sort each pixel's segment and composite per shade.h).
+ * Buffers are in GL row order (bottom first); rows are flipped on readback. */
+#include "render/dfb.h"
+
+#include "render/frag_glsl.h"
+#include "render/image.h"
+#include "render/scan_glsl.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+enum { BUF_COUNTS, BUF_OFFSETS, BUF_FRAGS, BUF_OUT, BUF_N };
+
+struct oit_dfb {
+    GLuint count_prog, store_prog, resolve_prog;
+    GLuint fbo;
+    GLuint buf[BUF_N];
+    uint64_t cap[BUF_N];
+    oit_scan scan;
+    uint64_t bytes_peak;
+};
+
+static const char count_fs[] =
+    "layout(std430, binding = 1) buffer Counts { uint counts[]; };\n"
+    "void main() { atomicAdd(counts[oit_pixel_index()], 1u); }\n";
+
+/* The count pass ran the same rasterization, so every fragment finds its
+ * slot; the bounds check only guards against a driver breaking invariance. */
+static const char store_fs[] =
+    "layout(std430, binding = 1) buffer Counts { uint counts[]; };\n"
+    "layout(std430, binding = 2) readonly buffer Offsets { uint offsets[]; };\n"
+    "layout(std430, binding = 3) writeonly buffer Frags { uvec4 frags[]; };\n"
+    "void main() {\n"
+    "    uint p = oit_pixel_index();\n"
+    "    uint c = atomicAdd(counts[p], 0xffffffffu);\n"
+    "    uint slot = offsets[p] + c - 1u;\n"
+    "    if (c != 0u && slot < offsets[p + 1u]) frags[slot] = oit_fragment();\n"
+    "}\n";
+
+/* Short lists sort in registers; long ones are heap-sorted in place in their
+ * own segment, so no layer count is ever cut off. */
+static const char resolve_cs[] =
+    "layout(local_size_x = 8, local_size_y = 8) in;\n"
+    "layout(location = 11) uniform ivec2 u_size;\n"
+    "layout(std430, binding = 2) readonly buffer Offsets { uint offsets[]; };\n"
+    "layout(std430, binding = 3) buffer Frags { uvec4 frags[]; };\n"
+    "layout(std430, binding = 4) writeonly buffer Out { vec4 out_rgba[]; };\n"
+    "#define LOCAL_MAX 32u\n"
+    "void sift(uint b, uint root, uint n) {\n"
+    "    for (;;) {\n"
+    "        uint child = 2u * root + 1u;\n"
+    "        if (child >= n) return;\n"
+    "        if (child + 1u < n && oit_frag_less(frags[b + child], frags[b + child + 1u])) child++;\n"
+    "        if (!oit_frag_less(frags[b + root], frags[b + child])) return;\n"
+    "        uvec4 tmp = frags[b + root]; frags[b + root] = frags[b + child]; frags[b + child] = tmp;\n"
+    "        root = child;\n"
+    "    }\n"
+    "}\n"
+    "void heap_sort(uint b, uint n) {\n"
+    "    for (uint i = n / 2u; i > 0u; i--) sift(b, i - 1u, n);\n"
+    "    for (uint e = n - 1u; e > 0u; e--) {\n"
+    "        uvec4 tmp = frags[b]; frags[b] = frags[b + e]; frags[b + e] = tmp;\n"
+    "        sift(b, 0u, e);\n"
+    "    }\n"
+    "}\n"
+    "void main() {\n"
+    "    ivec2 px = ivec2(gl_GlobalInvocationID.xy);\n"
+    "    if (px.x >= u_size.x || px.y >= u_size.y) return;\n"
+    "    uint p = uint(px.y * u_size.x + px.x);\n"
+    "    uint b = offsets[p], n = offsets[p + 1u] - b;\n"
+    "    oit_state s = oit_state_begin();\n"
+    "    if (n <= LOCAL_MAX) {\n"
+    "        uvec4 f[LOCAL_MAX];\n"
+    "        for (uint i = 0u; i < n; i++) {\n"
+    "            uvec4 x = frags[b + i];\n"
+    "            uint j = i;\n"
+    "            while (j > 0u) {\n"
+    "                if (!oit_frag_less(x, f[j - 1u])) break;\n"
+    "                f[j] = f[j - 1u];\n"
+    "                j--;\n"
+    "            }\n"
+    "            f[j] = x;\n"
+    "        }\n"
+    "        for (uint i = 0u; i < n; i++) oit_composite(s, f[i]);\n"
+    "    } else {\n"
+    "        heap_sort(b, n);\n"
+    "        for (uint i = 0u; i < n; i++) oit_composite(s, frags[b + i]);\n"
+    "    }\n"
+    "    out_rgba[p] = oit_state_final(s);\n"
+    "}\n";
+
+static oit_status build_programs(oit_dfb *d, oit_error *err)
+{
+    const char *vs[] = {oit_glsl_version, oit_glsl_vertex, NULL};
+    const char *cfs[] = {oit_glsl_version, oit_glsl_fragment_gen, count_fs, NULL};
+    const char *sfs[] = {oit_glsl_version, oit_glsl_fragment_gen, store_fs, NULL};
+    const char *rcs[] = {oit_glsl_version, oit_glsl_composite, resolve_cs, NULL};
+    oit_status s = oit_gl_program_graphics("DFB count pass", vs, cfs, &d->count_prog, err);
+    if (s == OIT_OK)
+        s = oit_gl_program_graphics("DFB store pass", vs, sfs, &d->store_prog, err);
+    if (s == OIT_OK)
+        s = oit_gl_program_compute("DFB resolve", rcs, &d->resolve_prog, err);
+    return s;
+}
+
+oit_status oit_dfb_create(oit_dfb **out, oit_error *err)
+{
+    *out = NULL;
+    oit_dfb *d = calloc(1, sizeof *d);
+    if (!d)
+        return oit_error_set(err, OIT_ERR_NOMEM, "DFB: out of memory");
+    oit_status s = build_programs(d, err);
+    if (s == OIT_OK)
+        s = oit_scan_init(&d->scan, err);
+    if (s == OIT_OK) {
+        glCreateFramebuffers(1, &d->fbo);
+        s = oit_gl_check("DFB: glCreateFramebuffers", err);
+    }
+    if (s != OIT_OK) {
+        oit_dfb_destroy(d);
+        return s;
+    }
+    *out = d;
+    return OIT_OK;
+}
+
+void oit_dfb_destroy(oit_dfb *d)
+{
+    if (!d)
+        return;
+    glDeleteProgram(d->count_prog);
+    glDeleteProgram(d->store_prog);
+    glDeleteProgram(d->resolve_prog);
+    glDeleteFramebuffers(1, &d->fbo);
+    glDeleteBuffers(BUF_N, d->buf);
+    oit_scan_release(&d->scan);
+    free(d);
+}
+
+static uint64_t held_bytes(const oit_dfb *d)
+{
+    uint64_t b = oit_scan_bytes(&d->scan);
+    for (int i = 0; i < BUF_N; i++)
+        b += d->cap[i];
+    return b;
+}
+
+static oit_status reserve(oit_dfb *d, int which, uint64_t bytes, oit_error *err)
+{
+    static const char *names[BUF_N] = {"DFB counts", "DFB offsets", "DFB fragment store",
+                                       "DFB output"};
+    oit_status s = oit_gl_buffer_reserve(&d->buf[which], &d->cap[which], bytes,
+                                         names[which], err);
+    uint64_t held = held_bytes(d);
+    if (held > d->bytes_peak)
+        d->bytes_peak = held;
+    return s;
+}
+
+static void draw_meshes(GLuint prog, const oit_gpu_mesh *const *meshes, int n)
+{
+    glUseProgram(prog);
+    for (int i = 0; i < n; i++)
+        oit_gpu_mesh_draw(meshes[i], prog);
+}
+
+/* Copies a GL-ordered buffer of w*h items of 'item' bytes to top-first rows. */
+static void flip_rows(const void *src, void *dst, int w, int h, size_t item)
+{
+    size_t row = (size_t)w * item;
+    for (int y = 0; y < h; y++)
+        memcpy((char *)dst + (size_t)y * row, (const char *)src + (size_t)(h - 1 - y) * row, row);
+}
+
+static oit_status read_flipped(GLuint buf, int w, int h, size_t item, void *dst,
+                               oit_error *err)
+{
+    size_t bytes = (size_t)w * h * item;
+    void *tmp = malloc(bytes);
+    if (!tmp)
+        return oit_error_set(err, OIT_ERR_NOMEM, "DFB: cannot allocate %zu bytes for "
+                             "readback", bytes);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(buf, 0, (GLsizeiptr)bytes, tmp);
+    flip_rows(tmp, dst, w, h, item);
+    free(tmp);
+    return oit_gl_check("DFB: glGetNamedBufferSubData", err);
+}
+
+/* Count pass plus scan: offsets[0..n] with offsets[n] = total. */
+static oit_status count_and_scan(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n,
+                                 uint64_t pixels, oit_scan_result *res, oit_error *err)
+{
+    static const GLuint zero = 0;
+    glClearNamedBufferData(d->buf[BUF_COUNTS], GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, d->buf[BUF_COUNTS]);
+    draw_meshes(d->count_prog, meshes, n);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    glCopyNamedBufferSubData(d->buf[BUF_COUNTS], d->buf[BUF_OFFSETS], 0, 0,
+                             (GLsizeiptr)((pixels + 1) * 4));
+    return oit_scan_run(&d->scan, d->buf[BUF_OFFSETS], pixels + 1, res, err);
+}
+
+static oit_status check_store_size(uint64_t total, oit_error *err)
+{
+    GLint64 max_block = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+    if (total > UINT32_MAX || total * 16 > (uint64_t)max_block)
+        return oit_error_set(err, OIT_ERR_NOMEM,
+                             "DFB: the frame has %llu fragments (%llu bytes), more than "
+                             "one storage buffer holds here (%lld bytes)",
+                             (unsigned long long)total, (unsigned long long)total * 16,
+                             (long long)max_block);
+    return OIT_OK;
+}
+
+static oit_status render_passes(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n,
+                                const oit_view *v, uint32_t *counts,
+                                oit_scan_result *res, oit_error *err)
+{
+    uint64_t pixels = (uint64_t)v->width * v->height;
+    oit_status s = count_and_scan(d, meshes, n, pixels, res, err);
+    if (s == OIT_OK && counts)
+        s = read_flipped(d->buf[BUF_COUNTS], v->width, v->height, 4, counts, err);
+    if (s == OIT_OK)
+        s = check_store_size(res->total, err);
+    if (s == OIT_OK)
+        s = reserve(d, BUF_FRAGS, res->total * 16, err);
+    if (s != OIT_OK)
+        return s;
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, d->buf[BUF_COUNTS]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OFFSETS, d->buf[BUF_OFFSETS]);
+    /* The store may be larger than one block can span after growth; the
+     * frame uses only its first total * 16 bytes. */
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_FRAGS, d->buf[BUF_FRAGS], 0,
+                      (GLsizeiptr)(res->total ? res->total * 16 : 16));
+    draw_meshes(d->store_prog, meshes, n);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(d->resolve_prog);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, d->buf[BUF_OUT]);
+    glDispatchCompute(oit_gl_groups((uint64_t)v->width, 8), oit_gl_groups((uint64_t)v->height, 8), 1);
+    return oit_gl_check("DFB: passes", err);
+}
+
+static oit_status prepare(oit_dfb *d, const oit_view *v, oit_error *err)
+{
+    uint64_t pixels = (uint64_t)v->width * v->height;
+    oit_status s = oit_gl_check_ssbo_size(pixels * 16, "DFB: the frame's output", err);
+    if (s == OIT_OK)
+        s = reserve(d, BUF_COUNTS, (pixels + 1) * 4, err);
+    if (s == OIT_OK)
+        s = reserve(d, BUF_OFFSETS, (pixels + 1) * 4, err);
+    if (s == OIT_OK)
+        s = reserve(d, BUF_OUT, pixels * 16, err);
+    if (s != OIT_OK)
+        return s;
+    glNamedFramebufferParameteri(d->fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH, v->width);
+    glNamedFramebufferParameteri(d->fbo, GL_FRAMEBUFFER_DEFAULT_HEIGHT, v->height);
+    oit_glsl_raster_begin(d->fbo, v->width, v->height);
+    oit_glsl_set_view(d->count_prog, v);
+    oit_glsl_set_view(d->store_prog, v);
+    oit_glsl_set_view(d->resolve_prog, v);
+    return oit_gl_check("DFB: frame set-up", err);
+}
+
+oit_status oit_dfb_render(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n,
+                          const oit_view *view, oit_image *out,
+                          uint32_t *counts, oit_frame_stats *stats,
+                          oit_error *err)
+{
+    GLint max_size = 0;
+    glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &max_size);
+    if (view->width <= 0 || view->height <= 0 || view->width > max_size ||
+        view->height > max_size || n < 0)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "DFB: frame %dx%d (with %d meshes) is "
+                             "not renderable (at most %d pixels a side)", view->width,
+                             view->height, n, max_size);
+    double t0 = oit_time_ms();
+    oit_view v = *view;
+    oit_shading_resolve_defaults(&v.shading);
+    oit_scan_result res = {0, 0};
+    oit_status s = prepare(d, &v, err);
+    if (s == OIT_OK)
+        s = render_passes(d, meshes, n, &v, counts, &res, err);
+    if (s == OIT_OK)
+        s = oit_image_alloc(out, v.width, v.height, err);
+    if (s == OIT_OK) {
+        s = read_flipped(d->buf[BUF_OUT], v.width, v.height, 16, out->rgba, err);
+        if (s != OIT_OK)
+            oit_image_free(out);
+    }
+    glFinish();
+    if (s != OIT_OK || !stats)
+        return s;
+    memset(stats, 0, sizeof *stats);
+    stats->ms = oit_time_ms() - t0;
+    stats->fragments = res.total;
+    stats->max_layers = res.max;
+    stats->gpu_bytes_peak = d->bytes_peak;
+    stats->batches = 1;
+    return OIT_OK;
+}

@@ -1,2 +1,169 @@
-/* placeholder: being written */
-typedef int oit_placeholder_gl_context;
+/* GL 4.5 core contexts (gl_context.h). Headless contexts come from EGL with
+ * no surface: the GL methods render into their own FBOs, so a pbuffer would
+ * only cost memory. The display is chosen so that a machine with an NVIDIA
+ * GPU uses it even when Mesa's EGL is also installed. */
+#include "render/gl_context.h"
+
+#include "render/gl_util.h"
+
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <GLFW/glfw3.h>
+#include <stdlib.h>
+#include <string.h>
+
+struct oit_gl {
+    EGLDisplay dpy;
+    EGLContext ctx;
+    GLFWwindow *window;
+    char renderer[256];
+};
+
+/* An NVIDIA device of EGL_EXT_device_enumeration, or EGL_NO_DEVICE_EXT. */
+static EGLDeviceEXT find_nvidia_device(void)
+{
+    PFNEGLQUERYDEVICESEXTPROC query_devices =
+        (PFNEGLQUERYDEVICESEXTPROC)eglGetProcAddress("eglQueryDevicesEXT");
+    PFNEGLQUERYDEVICESTRINGEXTPROC query_string =
+        (PFNEGLQUERYDEVICESTRINGEXTPROC)eglGetProcAddress("eglQueryDeviceStringEXT");
+    if (!query_devices || !query_string)
+        return EGL_NO_DEVICE_EXT;
+    EGLDeviceEXT devices[16];
+    EGLint n = 0;
+    if (!query_devices(16, devices, &n))
+        return EGL_NO_DEVICE_EXT;
+    for (EGLint i = 0; i < n; i++) {
+        const char *ext = query_string(devices[i], EGL_EXTENSIONS);
+        /* glvnd reports the vendor library's extensions per device; only
+         * NVIDIA's driver exposes EGL_NV_device_cuda. */
+        if (ext && strstr(ext, "EGL_NV_device_cuda"))
+            return devices[i];
+    }
+    return EGL_NO_DEVICE_EXT;
+}
+
+static EGLDisplay open_display(void)
+{
+    PFNEGLGETPLATFORMDISPLAYEXTPROC get_display =
+        (PFNEGLGETPLATFORMDISPLAYEXTPROC)eglGetProcAddress("eglGetPlatformDisplayEXT");
+    EGLDisplay dpy = EGL_NO_DISPLAY;
+    if (get_display) {
+        EGLDeviceEXT dev = find_nvidia_device();
+        if (dev != EGL_NO_DEVICE_EXT)
+            dpy = get_display(EGL_PLATFORM_DEVICE_EXT, dev, NULL);
+        if (dpy == EGL_NO_DISPLAY)
+            dpy = get_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
+    }
+    if (dpy == EGL_NO_DISPLAY)
+        dpy = eglGetDisplay(EGL_DEFAULT_DISPLAY);
+    return dpy;
+}
+
+static oit_status create_egl(const oit_gl_desc *desc, oit_gl *gl, oit_error *err)
+{
+    gl->dpy = open_display();
+    EGLint major = 0, minor = 0;
+    if (gl->dpy == EGL_NO_DISPLAY || !eglInitialize(gl->dpy, &major, &minor))
+        return oit_error_set(err, OIT_ERR_GL, "EGL: no display could be initialised "
+                             "(eglInitialize error 0x%x)", eglGetError());
+    if (!eglBindAPI(EGL_OPENGL_API))
+        return oit_error_set(err, OIT_ERR_GL, "EGL %d.%d: desktop OpenGL is not offered",
+                             major, minor);
+    const EGLint cfg_attr[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+    EGLConfig cfg = NULL;
+    EGLint ncfg = 0;
+    /* A config is only needed to create the context: with
+     * EGL_KHR_no_config_context it may be absent. */
+    if (!eglChooseConfig(gl->dpy, cfg_attr, &cfg, 1, &ncfg) || ncfg < 1)
+        cfg = NULL;
+    const EGLint ctx_attr[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                               EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                               EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                               EGL_CONTEXT_OPENGL_DEBUG, desc->debug ? EGL_TRUE : EGL_FALSE,
+                               EGL_NONE};
+    gl->ctx = eglCreateContext(gl->dpy, cfg, EGL_NO_CONTEXT, ctx_attr);
+    if (gl->ctx == EGL_NO_CONTEXT)
+        return oit_error_set(err, OIT_ERR_GL, "EGL: cannot create an OpenGL 4.5 core "
+                             "context (error 0x%x)", eglGetError());
+    if (!eglMakeCurrent(gl->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, gl->ctx))
+        return oit_error_set(err, OIT_ERR_GL, "EGL: surfaceless eglMakeCurrent failed "
+                             "(error 0x%x; EGL_KHR_surfaceless_context missing?)",
+                             eglGetError());
+    return OIT_OK;
+}
+
+static oit_status create_window(const oit_gl_desc *desc, oit_gl *gl, oit_error *err)
+{
+    if (!glfwInit()) {
+        const char *why = NULL;
+        glfwGetError(&why);
+        return oit_error_set(err, OIT_ERR_GL, "GLFW: cannot initialise (%s); is there a "
+                             "display (DISPLAY / WAYLAND_DISPLAY)?", why ? why : "no reason given");
+    }
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, desc->debug ? GLFW_TRUE : GLFW_FALSE);
+    int w = desc->width > 0 ? desc->width : 1024, h = desc->height > 0 ? desc->height : 768;
+    gl->window = glfwCreateWindow(w, h, desc->title ? desc->title : "oitstream", NULL, NULL);
+    if (!gl->window) {
+        const char *why = NULL;
+        glfwGetError(&why);
+        glfwTerminate();
+        return oit_error_set(err, OIT_ERR_GL, "GLFW: cannot open a %dx%d OpenGL 4.5 core "
+                             "window: %s", w, h, why ? why : "no reason given");
+    }
+    glfwMakeContextCurrent(gl->window);
+    return OIT_OK;
+}
+
+oit_status oit_gl_create(const oit_gl_desc *desc, oit_gl **out, oit_error *err)
+{
+    static const oit_gl_desc zero;
+    if (!desc)
+        desc = &zero;
+    *out = NULL;
+    oit_gl *gl = calloc(1, sizeof *gl);
+    if (!gl)
+        return oit_error_set(err, OIT_ERR_NOMEM, "GL context: out of memory");
+    gl->dpy = EGL_NO_DISPLAY;
+    gl->ctx = EGL_NO_CONTEXT;
+    oit_status s = desc->window ? create_window(desc, gl, err) : create_egl(desc, gl, err);
+    if (s != OIT_OK) {
+        oit_gl_destroy(gl);
+        return s;
+    }
+    const char *r = (const char *)glGetString(GL_RENDERER);
+    strncpy(gl->renderer, r ? r : "unknown", sizeof gl->renderer - 1);
+    *out = gl;
+    return OIT_OK;
+}
+
+void oit_gl_destroy(oit_gl *gl)
+{
+    if (!gl)
+        return;
+    if (gl->window) {
+        glfwDestroyWindow(gl->window);
+        glfwTerminate();
+    }
+    if (gl->dpy != EGL_NO_DISPLAY) {
+        eglMakeCurrent(gl->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        if (gl->ctx != EGL_NO_CONTEXT)
+            eglDestroyContext(gl->dpy, gl->ctx);
+        /* No eglTerminate: the display is shared by every context of the
+         * process (one per thread), and terminating it would pull theirs. */
+    }
+    free(gl);
+}
+
+const char *oit_gl_renderer(const oit_gl *gl)
+{
+    return gl->renderer;
+}
+
+void *oit_gl_window(oit_gl *gl)
+{
+    return gl->window;
+}

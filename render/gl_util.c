@@ -1,2 +1,173 @@
-/* placeholder: being written */
-typedef int oit_placeholder_gl_util;
+/* GL helpers (gl_util.h). */
+#include "render/gl_util.h"
+
+#include <string.h>
+#include <time.h>
+
+static const char *gl_error_name(GLenum e)
+{
+    switch (e) {
+    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
+    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
+    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
+    case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
+    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
+    case GL_STACK_OVERFLOW: return "GL_STACK_OVERFLOW";
+    case GL_STACK_UNDERFLOW: return "GL_STACK_UNDERFLOW";
+    default: return "unknown GL error";
+    }
+}
+
+oit_status oit_gl_check(const char *call, oit_error *err)
+{
+    GLenum e = glGetError();
+    if (e == GL_NO_ERROR)
+        return OIT_OK;
+    for (int i = 0; i < 16 && glGetError() != GL_NO_ERROR; i++)
+        ;
+    oit_status s = e == GL_OUT_OF_MEMORY ? OIT_ERR_NOMEM : OIT_ERR_GL;
+    return oit_error_set(err, s, "%s: %s (0x%04x)", call, gl_error_name(e), e);
+}
+
+/* Joins the log's lines so the error stays one line. */
+static void one_line(char *log)
+{
+    for (char *p = log; *p; p++)
+        if (*p == '\n' || *p == '\r')
+            *p = ' ';
+}
+
+static oit_status compile(const char *what, GLenum stage, const char *const *src,
+                          GLuint *out, oit_error *err)
+{
+    GLsizei n = 0;
+    while (src[n])
+        n++;
+    GLuint sh = glCreateShader(stage);
+    glShaderSource(sh, n, (const GLchar *const *)src, NULL);
+    glCompileShader(sh);
+    GLint ok = 0;
+    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[440] = "";
+        glGetShaderInfoLog(sh, sizeof log, NULL, log);
+        glDeleteShader(sh);
+        one_line(log);
+        const char *kind = stage == GL_VERTEX_SHADER ? "vertex"
+                         : stage == GL_FRAGMENT_SHADER ? "fragment" : "compute";
+        return oit_error_set(err, OIT_ERR_GL, "%s: %s shader does not compile: %s",
+                             what, kind, log);
+    }
+    *out = sh;
+    return OIT_OK;
+}
+
+static oit_status link(const char *what, GLuint prog, oit_error *err)
+{
+    glLinkProgram(prog);
+    GLint ok = 0;
+    glGetProgramiv(prog, GL_LINK_STATUS, &ok);
+    if (ok)
+        return OIT_OK;
+    char log[440] = "";
+    glGetProgramInfoLog(prog, sizeof log, NULL, log);
+    one_line(log);
+    return oit_error_set(err, OIT_ERR_GL, "%s: program does not link: %s", what, log);
+}
+
+oit_status oit_gl_program_graphics(const char *what, const char *const *vs,
+                                   const char *const *fs, GLuint *out, oit_error *err)
+{
+    GLuint v = 0, f = 0;
+    oit_status s = compile(what, GL_VERTEX_SHADER, vs, &v, err);
+    if (s == OIT_OK && fs)
+        s = compile(what, GL_FRAGMENT_SHADER, fs, &f, err);
+    GLuint prog = 0;
+    if (s == OIT_OK) {
+        prog = glCreateProgram();
+        glAttachShader(prog, v);
+        if (f)
+            glAttachShader(prog, f);
+        s = link(what, prog, err);
+    }
+    glDeleteShader(v);
+    glDeleteShader(f);
+    if (s != OIT_OK) {
+        glDeleteProgram(prog);
+        return s;
+    }
+    *out = prog;
+    return OIT_OK;
+}
+
+oit_status oit_gl_program_compute(const char *what, const char *const *cs, GLuint *out,
+                                  oit_error *err)
+{
+    GLuint c = 0;
+    oit_status s = compile(what, GL_COMPUTE_SHADER, cs, &c, err);
+    if (s != OIT_OK)
+        return s;
+    GLuint prog = glCreateProgram();
+    glAttachShader(prog, c);
+    s = link(what, prog, err);
+    glDeleteShader(c);
+    if (s != OIT_OK) {
+        glDeleteProgram(prog);
+        return s;
+    }
+    *out = prog;
+    return OIT_OK;
+}
+
+oit_status oit_gl_buffer_reserve(GLuint *buf, uint64_t *cap, uint64_t bytes,
+                                 const char *what, oit_error *err)
+{
+    if (*buf && *cap >= bytes)
+        return OIT_OK;
+    uint64_t grown = *cap + *cap / 2;
+    uint64_t want = bytes > grown ? bytes : grown;
+    if (want == 0)
+        want = 16;
+    if (!*buf)
+        glCreateBuffers(1, buf);
+    glNamedBufferData(*buf, (GLsizeiptr)want, NULL, GL_DYNAMIC_COPY);
+    GLenum e = glGetError();
+    /* The geometric margin is a convenience: without room for it, the
+     * exact size still serves this frame. */
+    if (e != GL_NO_ERROR && want > bytes) {
+        want = bytes;
+        glNamedBufferData(*buf, (GLsizeiptr)want, NULL, GL_DYNAMIC_COPY);
+        e = glGetError();
+    }
+    if (e != GL_NO_ERROR) {
+        *cap = 0;
+        return oit_error_set(err, OIT_ERR_NOMEM,
+                             "%s: cannot allocate a GPU buffer of %llu bytes", what,
+                             (unsigned long long)want);
+    }
+    *cap = want;
+    return OIT_OK;
+}
+
+oit_status oit_gl_check_ssbo_size(uint64_t bytes, const char *what, oit_error *err)
+{
+    GLint64 max_block = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+    if (bytes > (uint64_t)max_block)
+        return oit_error_set(err, OIT_ERR_NOMEM, "%s: needs %llu bytes in one storage buffer, "
+                             "more than this driver binds (%lld)", what,
+                             (unsigned long long)bytes, (long long)max_block);
+    return OIT_OK;
+}
+
+GLuint oit_gl_groups(uint64_t n, GLuint local)
+{
+    return (GLuint)((n + local - 1) / local);
+}
+
+double oit_time_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}

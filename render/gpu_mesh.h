@@ -23,6 +23,12 @@ oit_status oit_gpu_mesh_create(const oit_triangle *tris, size_t count,
 void oit_gpu_mesh_destroy(oit_gpu_mesh *m);
 size_t oit_gpu_mesh_triangles(const oit_gpu_mesh *m);
 uint64_t oit_gpu_mesh_bytes(const oit_gpu_mesh *m);
+uint32_t oit_gpu_mesh_first_prim(const oit_gpu_mesh *m);
+
+/* For the GL methods: draws the triangles with the bound program built from
+ * frag_glsl.h, binding them for vertex pulling and setting the first-prim
+ * uniform; large meshes are drawn in windows that fit the SSBO limit. */
+void oit_gpu_mesh_draw(const oit_gpu_mesh *m, unsigned program);
 
 #ifdef __cplusplus
 }

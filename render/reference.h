@@ -12,6 +12,14 @@ extern "C" {
 
 typedef struct oit_reference_desc {
     int threads; /* 0: all cores */
+    /* Optional, width*height bytes: set to 1 where the pixel is ambiguous
+     * between rasterization and ray casting, i.e. the set of triangles hit
+     * changes when the ray moves by ambiguity_px pixels in x or y (the
+     * centre lies on a triangle edge or a silhouette), or two hits lie
+     * within a relative 1e-5 in t (their order hinges on rounding). Costs
+     * four more rays per pixel. */
+    uint8_t *ambiguous;
+    float ambiguity_px; /* default 1/64 pixel */
 } oit_reference_desc;
 
 /* out is allocated by the call. counts (optional) receives hits per pixel. */

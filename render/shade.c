@@ -1,2 +1,138 @@
-/* placeholder: being written */
-typedef int oit_placeholder_shade;
+/* Shading and compositing as defined in shade.h. Geometry and the running
+ * pixel state are kept in double so that the reference is the more accurate
+ * side of every comparison; the shaded fragment is stored in float because
+ * that is what the GL methods carry. */
+#include "render/shade.h"
+
+#include <math.h>
+#include <string.h>
+
+static void sub3(const float a[3], const float b[3], double out[3])
+{
+    for (int k = 0; k < 3; k++)
+        out[k] = (double)a[k] - (double)b[k];
+}
+
+static double dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* Returns 0 for a zero vector (left unchanged) so that degenerate input
+ * shades as edge-on instead of producing NaN. */
+static int normalize3(double v[3])
+{
+    double len = sqrt(dot3(v, v));
+    if (!(len > 0.0))
+        return 0;
+    for (int k = 0; k < 3; k++)
+        v[k] /= len;
+    return 1;
+}
+
+static void interpolate_base(const oit_shading *s, const oit_triangle *tri,
+                             const float bary[3], float base_rgb[3], float *base_a)
+{
+    double rgba[4] = {0, 0, 0, 0};
+    for (int v = 0; v < 3; v++)
+        for (int c = 0; c < 4; c++)
+            rgba[c] += (double)bary[v] * tri->v[v].rgba[c];
+    for (int c = 0; c < 3; c++)
+        base_rgb[c] = (s->attributes & OIT_ATTR_COLOR) ? (float)(rgba[c] / 255.0)
+                                                       : s->default_rgb[c];
+    *base_a = (s->attributes & OIT_ATTR_ALPHA) ? (float)(rgba[3] / 255.0) : s->alpha;
+}
+
+void oit_shade_fragment(const oit_shading *s, const oit_triangle *tri,
+                        uint32_t prim, const float bary[3], const float eye[3],
+                        double t, oit_shaded_fragment *out)
+{
+    double e1[3], e2[3], n[3], v[3];
+    sub3(tri->v[1].pos, tri->v[0].pos, e1);
+    sub3(tri->v[2].pos, tri->v[0].pos, e2);
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    for (int k = 0; k < 3; k++) {
+        double p = 0.0;
+        for (int j = 0; j < 3; j++)
+            p += (double)bary[j] * tri->v[j].pos[k];
+        v[k] = (double)eye[k] - p;
+    }
+    double ndv_signed = 0.0;
+    if (normalize3(n) && normalize3(v))
+        ndv_signed = dot3(n, v);
+    double ndv = fabs(ndv_signed);
+    double light = OIT_SHADE_AMBIENT + OIT_SHADE_DIFFUSE * ndv;
+
+    memset(out, 0, sizeof *out);
+    out->t = t;
+    out->prim = prim;
+    out->front = ndv_signed > 0.0;
+    float base_a;
+    interpolate_base(s, tri, bary, out->base, &base_a);
+    if (s->mode == OIT_SHADING_TRANSLUCENT) {
+        for (int c = 0; c < 3; c++)
+            out->colour[c] = (float)light;
+        out->alpha = (float)(OIT_SHADE_F0 + (1.0 - OIT_SHADE_F0) * pow(1.0 - ndv, 5.0));
+    } else {
+        for (int c = 0; c < 3; c++)
+            out->colour[c] = (float)(out->base[c] * light);
+        out->alpha = base_a;
+    }
+}
+
+void oit_pixel_begin(oit_pixel_state *st)
+{
+    memset(st, 0, sizeof *st);
+    for (int c = 0; c < 3; c++)
+        st->T[c] = 1.0;
+}
+
+/* Beer-Lambert over the distance travelled inside the open medium. */
+static void absorb(oit_pixel_state *st, const oit_shading *s, double t)
+{
+    double per_length = (double)s->absorption / (double)s->scene_scale;
+    double d = t - st->t_prev;
+    for (int c = 0; c < 3; c++)
+        st->T[c] *= exp(-per_length * (1.0 - (double)st->medium[c]) * d);
+}
+
+void oit_pixel_add(oit_pixel_state *st, const oit_shading *s,
+                   const oit_shaded_fragment *f)
+{
+    int translucent = s->mode == OIT_SHADING_TRANSLUCENT;
+    if (translucent && st->nest > 0)
+        absorb(st, s, f->t);
+    double a = f->alpha;
+    for (int c = 0; c < 3; c++) {
+        st->C[c] += st->T[c] * a * f->colour[c];
+        st->T[c] *= 1.0 - a;
+    }
+    if (translucent) {
+        if (f->front) {
+            st->nest += 1;
+            memcpy(st->medium, f->base, sizeof st->medium);
+        } else if (st->nest > 0) {
+            st->nest -= 1;
+        }
+        st->t_prev = f->t;
+    }
+}
+
+void oit_pixel_end(const oit_pixel_state *st, const oit_shading *s, float rgb[3])
+{
+    for (int c = 0; c < 3; c++) {
+        /* A negative background means black (view.h). */
+        double bg = s->background[c] > 0.0f ? s->background[c] : 0.0;
+        rgb[c] = (float)(st->C[c] + st->T[c] * bg);
+    }
+}
+
+int oit_shaded_fragment_cmp(const void *a, const void *b)
+{
+    const oit_shaded_fragment *x = a, *y = b;
+    if (x->t < y->t) return -1;
+    if (x->t > y->t) return 1;
+    return (x->prim > y->prim) - (x->prim < y->prim);
+}

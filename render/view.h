@@ -81,7 +81,8 @@ void oit_camera_default(oit_camera *cam, const float bmin[3], const float bmax[3
 /* 4x4 column-major matrices, as GL expects. */
 void oit_camera_view_matrix(const oit_camera *cam, float m[16]);
 void oit_camera_proj_matrix(const oit_camera *cam, float aspect, float m[16]);
-/* Parses "ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy"; returns 0 on success. */
+/* Parses "ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy"; returns 0 on success. Two more
+ * numbers ",znear,zfar" may follow; without them cam's clip planes are kept. */
 int oit_camera_parse(oit_camera *cam, const char *text);
 
 /* Fills defaults for zero fields of the shading descriptor. */

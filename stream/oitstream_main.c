@@ -1,6 +1,350 @@
+/* oitstream: renders a model with one of the exact methods of
+ * render_methods.h from one view, a given camera or an orbit, and writes the
+ * image (or the layer heat map) and per-frame figures; or compares two
+ * images (--compare). Errors are one line on stderr; the exit status follows
+ * oit_status_exit_code. */
+#include <errno.h>
+#include <math.h>
 #include <stdio.h>
-int main(void)
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
+
+#include "render/image.h"
+#include "stream/cli_args.h"
+#include "stream/render_methods.h"
+#include "stream/stats_json.h"
+
+static int fail(const oit_error *err)
 {
-    fprintf(stderr, "oitstream: not built yet\n");
-    return 1;
+    fprintf(stderr, "oitstream: %s\n", err->message);
+    return oit_status_exit_code(err->status);
+}
+
+/* ---- --compare ---- */
+
+static void print_diff(const oit_image_diff *d, uint64_t pixels, int json)
+{
+    if (json) {
+        /* JSON has no infinity: identical images report psnr null. */
+        char psnr[32];
+        if (isfinite(d->psnr)) snprintf(psnr, sizeof psnr, "%.4f", d->psnr);
+        else snprintf(psnr, sizeof psnr, "null");
+        printf("{\"rmse\": %.9g, \"max_abs\": %.9g, \"pct_over_1_255\": %.6f, \"psnr\": %s, "
+               "\"pixels_over\": %llu, \"pixels\": %llu}\n",
+               d->rmse, d->max_abs, d->pct_over_1_255, psnr,
+               (unsigned long long)d->pixels_over, (unsigned long long)pixels);
+    } else {
+        printf("rmse %.6g  max_abs %.6g  over 1/255: %.4f%% (%llu of %llu pixels)  psnr %.2f dB\n",
+               d->rmse, d->max_abs, d->pct_over_1_255, (unsigned long long)d->pixels_over,
+               (unsigned long long)pixels, d->psnr);
+    }
+}
+
+/* Figures over the pixels where the mask is black: masked pixels of b take
+ * a's values, so they contribute no error; pct is taken over the rest. */
+static oit_status compare_outside_mask(const oit_stream_args *a, const oit_image img[2],
+                                       oit_error *err)
+{
+    oit_image mask = {0}, b = {0};
+    oit_status s = oit_image_read(a->mask, &mask, err);
+    if (s == OIT_OK && (mask.width != img[0].width || mask.height != img[0].height))
+        s = oit_error_set(err, OIT_ERR_FORMAT, "%s is %dx%d, the images are %dx%d", a->mask,
+                          mask.width, mask.height, img[0].width, img[0].height);
+    if (s == OIT_OK)
+        s = oit_image_alloc(&b, img[1].width, img[1].height, err);
+    uint64_t n = (uint64_t)img[0].width * (uint64_t)img[0].height, masked = 0;
+    for (uint64_t i = 0; s == OIT_OK && i < n; i++) {
+        const float *m = mask.rgba + i * 4;
+        int in_mask = m[0] > 0.0f || m[1] > 0.0f || m[2] > 0.0f;
+        memcpy(b.rgba + i * 4, (in_mask ? img[0].rgba : img[1].rgba) + i * 4, 4 * sizeof(float));
+        masked += (uint64_t)in_mask;
+    }
+    oit_image_diff d;
+    if (s == OIT_OK)
+        s = oit_image_compare(&img[0], &b, &d, NULL, 1.0f, err);
+    if (s == OIT_OK) {
+        double pct = n > masked ? 100.0 * (double)d.pixels_over / (double)(n - masked) : 0.0;
+        if (a->json)
+            printf("{\"masked_pixels\": %llu, \"pct_over_1_255_outside_mask\": %.6f, "
+                   "\"max_abs_outside_mask\": %.9g, \"pixels_over_outside_mask\": %llu}\n",
+                   (unsigned long long)masked, pct, d.max_abs, (unsigned long long)d.pixels_over);
+        else
+            printf("outside %s (%llu pixels masked): over 1/255: %.4f%% (%llu pixels)  max_abs %.6g\n",
+                   a->mask, (unsigned long long)masked, pct, (unsigned long long)d.pixels_over,
+                   d.max_abs);
+    }
+    oit_image_free(&mask);
+    oit_image_free(&b);
+    return s;
+}
+
+static int run_compare(const oit_stream_args *a)
+{
+    oit_image img[2] = {{0}, {0}}, diff = {0};
+    oit_error err = {0};
+    oit_image_diff d;
+    oit_status s = oit_image_read(a->compare_a, &img[0], &err);
+    if (s == OIT_OK)
+        s = oit_image_read(a->compare_b, &img[1], &err);
+    if (s == OIT_OK && (img[0].width != img[1].width || img[0].height != img[1].height))
+        s = oit_error_set(&err, OIT_ERR_FORMAT, "%s is %dx%d but %s is %dx%d", a->compare_a,
+                          img[0].width, img[0].height, a->compare_b, img[1].width, img[1].height);
+    if (s == OIT_OK)
+        s = oit_image_compare(&img[0], &img[1], &d, a->out ? &diff : NULL, a->gain, &err);
+    if (s == OIT_OK && a->out)
+        s = oit_image_write(&diff, a->out, &err);
+    if (s == OIT_OK)
+        print_diff(&d, (uint64_t)img[0].width * (uint64_t)img[0].height, a->json);
+    if (s == OIT_OK && a->mask)
+        s = compare_outside_mask(a, img, &err);
+    oit_image_free(&img[0]);
+    oit_image_free(&img[1]);
+    oit_image_free(&diff);
+    return s == OIT_OK ? 0 : fail(&err);
+}
+
+/* ---- views ---- */
+
+/* Clip planes that enclose the model's bounding sphere, for a --view given
+ * without them. */
+static void fit_clip_planes(oit_camera *cam, const oit_mesh_info *info)
+{
+    double c[3], r2 = 0.0, f[3], flen = 0.0;
+    for (int k = 0; k < 3; k++) {
+        c[k] = 0.5 * ((double)info->bounds_min[k] + info->bounds_max[k]);
+        r2 += 0.25 * pow((double)info->bounds_max[k] - info->bounds_min[k], 2.0);
+        f[k] = (double)cam->target[k] - cam->eye[k];
+        flen += f[k] * f[k];
+    }
+    double r = sqrt(r2) > 0.0 && isfinite(r2) ? sqrt(r2) : 1.0, dc = 0.0;
+    for (int k = 0; k < 3; k++)
+        dc += (c[k] - cam->eye[k]) * f[k] / sqrt(flen);
+    double far = dc + 1.05 * r;
+    cam->zfar = (float)(far > 0.0 ? far : r);
+    cam->znear = (float)fmax(dc - 1.05 * r, 1e-4 * cam->zfar);
+}
+
+static oit_status make_views(const oit_stream_args *a, const oit_mesh_info *info,
+                             oit_camera **out, int *count, oit_error *err)
+{
+    int n = a->orbit > 0 ? a->orbit : 1;
+    oit_camera *cams = calloc((size_t)n, sizeof *cams);
+    if (!cams)
+        return oit_error_set(err, OIT_ERR_NOMEM, "cannot allocate %d views", n);
+    for (int i = 0; i < n; i++) {
+        if (a->have_view) {
+            cams[i] = a->view;
+            if (!(cams[i].znear > 0.0f && cams[i].zfar > cams[i].znear))
+                fit_clip_planes(&cams[i], info);
+        } else if (a->orbit > 0) {
+            oit_camera_default(&cams[i], info->bounds_min, info->bounds_max,
+                               (float)(i * 360.0 / n), 20.0f);
+        } else {
+            oit_camera_default(&cams[i], info->bounds_min, info->bounds_max, a->azimuth,
+                               a->elevation);
+        }
+    }
+    *out = cams;
+    *count = n;
+    return OIT_OK;
+}
+
+static oit_shading make_shading(const oit_stream_args *a, const oit_mesh_info *info)
+{
+    oit_shading s = a->shading;
+    s.attributes = info->attributes;
+    double d2 = 0.0;
+    for (int k = 0; k < 3; k++)
+        d2 += pow((double)info->bounds_max[k] - info->bounds_min[k], 2.0);
+    s.scene_scale = d2 > 0.0 && isfinite(d2) ? (float)sqrt(d2) : 1.0f;
+    oit_shading_resolve_defaults(&s);
+    return s;
+}
+
+/* ---- output ---- */
+
+static int has_image_ext(const char *p)
+{
+    size_t n = strlen(p);
+    return n > 4 && (!strcasecmp(p + n - 4, ".png") || !strcasecmp(p + n - 4, ".pfm"));
+}
+
+/* FILE.png for one view, FILE_007.png for several, DIR/frame_007.png for a
+ * folder (created when missing). */
+static oit_status output_path(const char *out, int index, int views, char *buf, size_t cap,
+                              oit_error *err)
+{
+    if (has_image_ext(out)) {
+        size_t n = strlen(out);
+        if (views == 1)
+            snprintf(buf, cap, "%s", out);
+        else
+            snprintf(buf, cap, "%.*s_%03d%s", (int)(n - 4), out, index, out + n - 4);
+        return OIT_OK;
+    }
+    if (mkdir(out, 0777) != 0 && errno != EEXIST)
+        return oit_error_set(err, OIT_ERR_IO, "%s: cannot create folder: %s", out, strerror(errno));
+    snprintf(buf, cap, "%s/frame_%03d.png", out, index);
+    return OIT_OK;
+}
+
+static oit_status write_frame(const oit_stream_args *a, int index, int views,
+                              const oit_image *colour, const uint32_t *counts, oit_error *err)
+{
+    char path[4096];
+    oit_status s = output_path(a->out, index, views, path, sizeof path, err);
+    if (s != OIT_OK || !a->show_layers)
+        return s != OIT_OK ? s : oit_image_write(colour, path, err);
+    oit_image heat;
+    s = oit_image_heatmap(counts, colour->width, colour->height, &heat, err);
+    if (s == OIT_OK)
+        s = oit_image_write(&heat, path, err);
+    oit_image_free(&heat);
+    return s;
+}
+
+static oit_status write_ambiguity(const oit_stream_args *a, int index, int views,
+                                  const uint8_t *amb, int w, int h, oit_error *err)
+{
+    char path[4096];
+    oit_image img;
+    oit_status s = output_path(a->ambiguity_out, index, views, path, sizeof path, err);
+    if (s == OIT_OK)
+        s = oit_image_alloc(&img, w, h, err);
+    if (s != OIT_OK)
+        return s;
+    for (size_t i = 0; i < (size_t)w * (size_t)h; i++)
+        for (int c = 0; c < 4; c++)
+            img.rgba[i * 4 + c] = (c == 3 || amb[i]) ? 1.0f : 0.0f;
+    s = oit_image_write(&img, path, err);
+    oit_image_free(&img);
+    return s;
+}
+
+/* ---- rendering ---- */
+
+typedef struct run_ctx {
+    const oit_stream_args *args;
+    const oit_render_method *method;
+    oit_method_state *state;
+    oit_view view;
+    uint32_t *counts;
+    uint8_t *ambiguous;
+} run_ctx;
+
+static oit_status render_one(run_ctx *rc, int index, int views, oit_stats_frame *fr,
+                             oit_error *err)
+{
+    oit_image img = {0};
+    memset(&fr->st, 0, sizeof fr->st);
+    oit_status s = rc->method->render(rc->state, &rc->view, &img, rc->counts, rc->ambiguous,
+                                      &fr->st, err);
+    if (s == OIT_OK && rc->args->out)
+        s = write_frame(rc->args, index, views, &img, rc->counts, err);
+    if (s == OIT_OK && rc->ambiguous)
+        s = write_ambiguity(rc->args, index, views, rc->ambiguous, img.width, img.height, err);
+    oit_image_free(&img);
+    fr->method = rc->method->name;
+    oit_stats_format_view(&rc->view.camera, fr->view, sizeof fr->view);
+    if (s == OIT_OK && !rc->args->quiet)
+        printf("frame %d: %s %dx%d %.2f ms, %llu fragments, max %u layers, %llu overflow pixels\n",
+               index, rc->method->name, rc->view.width, rc->view.height, fr->st.ms,
+               (unsigned long long)fr->st.fragments, fr->st.max_layers,
+               (unsigned long long)fr->st.overflow_pixels);
+    return s;
+}
+
+static oit_status render_all(run_ctx *rc, const oit_mesh *mesh, const oit_camera *cams, int n,
+                             oit_error *err)
+{
+    const oit_stream_args *a = rc->args;
+    oit_stats_frame *frames = calloc((size_t)n, sizeof *frames);
+    if (!frames)
+        return oit_error_set(err, OIT_ERR_NOMEM, "cannot allocate %d frame records", n);
+    oit_status s = OIT_OK;
+    for (int i = 0; i < n && s == OIT_OK; i++) {
+        rc->view.camera = cams[i];
+        s = render_one(rc, i, n, &frames[i], err);
+    }
+    if (s == OIT_OK && a->stats_path) {
+        oit_stats_run run = {a->model, (unsigned long long)mesh->count,
+                             rc->method->renderer(rc->state), a->width, a->height, frames,
+                             (size_t)n};
+        s = oit_stats_json_write(a->stats_path, &run, err);
+    }
+    free(frames);
+    return s;
+}
+
+static oit_status check_method(const oit_stream_args *a, const oit_render_method **out,
+                               oit_error *err)
+{
+    char names[128];
+    oit_render_method_names(names, sizeof names);
+    *out = oit_render_method_find(a->method);
+    if (!*out)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "--method '%s': expected one of %s", a->method,
+                             names);
+    if (a->show_layers && !(*out)->has_counts)
+        return oit_error_set(err, OIT_ERR_ARGUMENT,
+                             "--show layers needs a method that counts fragments per pixel "
+                             "(dfb or reference), not %s", a->method);
+    if (a->ambiguity_out && !(*out)->has_ambiguity)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "--ambiguity needs --method reference, not %s",
+                             a->method);
+    return OIT_OK;
+}
+
+static int run_render(const oit_stream_args *a)
+{
+    oit_error err = {0};
+    run_ctx rc = {.args = a};
+    oit_status s = check_method(a, &rc.method, &err);
+    if (s != OIT_OK)
+        return fail(&err);
+    oit_mesh mesh;
+    s = oit_mesh_load(a->model, NULL, &mesh, &err);
+    if (s != OIT_OK)
+        return fail(&err);
+    oit_camera *cams = NULL;
+    int n = 0;
+    oit_method_options opt = {a->max_layers};
+    rc.view.width = a->width;
+    rc.view.height = a->height;
+    rc.view.shading = make_shading(a, &mesh.info);
+    s = make_views(a, &mesh.info, &cams, &n, &err);
+    if (s == OIT_OK && a->show_layers &&
+        !(rc.counts = calloc((size_t)a->width * (size_t)a->height, sizeof *rc.counts)))
+        s = oit_error_set(&err, OIT_ERR_NOMEM, "cannot allocate the layer count buffer");
+    if (s == OIT_OK && a->ambiguity_out &&
+        !(rc.ambiguous = calloc((size_t)a->width * (size_t)a->height, 1)))
+        s = oit_error_set(&err, OIT_ERR_NOMEM, "cannot allocate the ambiguity mask");
+    if (s == OIT_OK)
+        s = rc.method->open(&mesh, &opt, &rc.state, &err);
+    if (s == OIT_OK) {
+        s = render_all(&rc, &mesh, cams, n, &err);
+        rc.method->close(rc.state);
+    }
+    free(rc.counts);
+    free(rc.ambiguous);
+    free(cams);
+    oit_mesh_free(&mesh);
+    return s == OIT_OK ? 0 : fail(&err);
+}
+
+int main(int argc, char **argv)
+{
+    oit_stream_args a;
+    oit_error err = {0};
+    if (oit_stream_args_parse(argc, argv, &a, &err) != OIT_OK)
+        return fail(&err);
+    if (a.help) {
+        char names[128];
+        oit_render_method_names(names, sizeof names);
+        oit_stream_usage(stdout, names);
+        return 0;
+    }
+    return a.compare ? run_compare(&a) : run_render(&a);
 }

@@ -1,0 +1,1064 @@
+/* Part file reader (docs/part-file.md).
+ *
+ * Nothing in the file is trusted: open checks the header, the section table,
+ * every checksum and every record and cross-reference, in that order, so a
+ * later check may rely on the earlier ones (e.g. a part's blob range is known
+ * to lie inside PART_DATA before its bytes are read). Management sections are
+ * copied into aligned host arrays, which also keeps later changes to the file
+ * from reaching validated records; part blobs are used in place.
+ * Sizes are compared by division or after bounding each count by the section
+ * size, so no product or sum below can wrap.
+ */
+#include "oit/mesh.h"
+#include "oit/partfile.h"
+
+#include "formats/checksum.h"
+#include "formats/partfile_layout.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+struct oit_partfile {
+    char *name;
+    const uint8_t *base;
+    size_t size;
+    void *map; /* owned mapping, or NULL for open_memory */
+    pf_header hdr;
+    pf_section sec[PF_SECTION_COUNT]; /* indexed by type - 1 */
+    pf_meta meta;
+    char *source_name, *options;
+    oit_partfile_part *parts;
+    oit_partfile_piece *pieces;
+    uint64_t piece_count;
+    oit_partfile_grid *grids; /* unified: 0 = top, then SUBGRIDS */
+    uint32_t grid_count;
+    oit_partfile_cell *cells; /* unified; subgrid list_first shifted */
+    uint64_t cell_count;
+    uint32_t *lists;
+    uint64_t list_count;
+    oit_partfile_slab *slabs;
+    uint32_t slab_count;
+    uint32_t *slab_list;
+    uint64_t slab_list_count;
+    unsigned char *part_ok; /* per part, with defer_part_data only */
+    oit_partfile_summary summary;
+};
+
+#if defined(__GNUC__)
+__attribute__((format(printf, 3, 4)))
+#endif
+static oit_status bad(const oit_partfile *pf, oit_error *err, const char *fmt, ...)
+{
+    char msg[sizeof err->message];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    return oit_error_set(err, OIT_ERR_FORMAT, "%s: %s", pf->name, msg);
+}
+
+static const uint8_t *sec_data(const oit_partfile *pf, uint32_t type)
+{
+    return pf->base + pf->sec[type - 1].offset;
+}
+
+static uint64_t sec_size(const oit_partfile *pf, uint32_t type)
+{
+    return pf->sec[type - 1].size;
+}
+
+static void *copy_out(const uint8_t *p, uint64_t count, size_t size)
+{
+    void *d = malloc(count ? count * size : 1);
+    if (d && count)
+        memcpy(d, p, count * size);
+    return d;
+}
+
+static oit_status nomem(const oit_partfile *pf, oit_error *err)
+{
+    return oit_error_set(err, OIT_ERR_NOMEM, "%s: out of memory", pf->name);
+}
+
+static bool finite3(const float v[3])
+{
+    return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
+}
+
+static bool box_ok(const float lo[3], const float hi[3])
+{
+    return finite3(lo) && finite3(hi) && lo[0] <= hi[0] && lo[1] <= hi[1] && lo[2] <= hi[2];
+}
+
+static bool box_inside(const float lo[3], const float hi[3], const float olo[3], const float ohi[3])
+{
+    for (int k = 0; k < 3; k++)
+        if (lo[k] < olo[k] || hi[k] > ohi[k])
+            return false;
+    return true;
+}
+
+/* ---- header, table, checksums ------------------------------------------ */
+
+static oit_status check_header(oit_partfile *pf, oit_error *err)
+{
+    if (pf->size == 0)
+        return bad(pf, err, "empty file, not a part file");
+    if (pf->size < PF_HEADER_BYTES)
+        return bad(pf, err, "file is %zu bytes, shorter than the %u-byte header", pf->size,
+                   PF_HEADER_BYTES);
+    memcpy(&pf->hdr, pf->base, sizeof pf->hdr);
+    const pf_header *h = &pf->hdr;
+    if (memcmp(h->magic, PF_MAGIC, sizeof h->magic) != 0)
+        return bad(pf, err, "not a part file (no OITPART magic)");
+    if (h->version != OIT_PARTFILE_VERSION)
+        return bad(pf, err, "part file version %u, this build reads version %u", h->version,
+                   OIT_PARTFILE_VERSION);
+    if (h->flags || h->reserved || h->header_bytes != PF_HEADER_BYTES ||
+        h->section_count != PF_SECTION_COUNT)
+        return bad(pf, err, "header: flags 0x%x, header size %u, %u sections: expected 0, %u, %u",
+                   h->flags, h->header_bytes, h->section_count, PF_HEADER_BYTES,
+                   PF_SECTION_COUNT);
+    if (h->K < 2 || h->K > PF_K_MAX || h->K % 2)
+        return bad(pf, err, "header: K %u is not an even number in 2..%u", h->K, PF_K_MAX);
+    if (h->part_align < PF_ALIGN_MIN || h->part_align > PF_ALIGN_MAX ||
+        (h->part_align & (h->part_align - 1)))
+        return bad(pf, err, "header: part alignment %u is not a power of two in %u..%u",
+                   h->part_align, PF_ALIGN_MIN, PF_ALIGN_MAX);
+    if (h->file_bytes != pf->size)
+        return bad(pf, err, "file is %zu bytes, its header says %llu (truncated or appended to)",
+                   pf->size, (unsigned long long)h->file_bytes);
+    if (pf->size < PF_TABLE_END)
+        return bad(pf, err, "file is %zu bytes, shorter than header and section table (%u)",
+                   pf->size, PF_TABLE_END);
+    memcpy(pf->sec, pf->base + PF_HEADER_BYTES, sizeof pf->sec);
+    uint32_t crc = oit_crc32c(oit_crc32c(0, pf->base, offsetof(pf_header, table_crc)),
+                              pf->base + PF_HEADER_BYTES, sizeof pf->sec);
+    if (crc != h->table_crc)
+        return bad(pf, err, "header: checksum 0x%08x, stored 0x%08x (corrupt header or table)",
+                   crc, h->table_crc);
+    return OIT_OK;
+}
+
+static oit_status check_entry(const oit_partfile *pf, uint32_t i, oit_error *err)
+{
+    const pf_section *s = &pf->sec[i];
+    if (s->type != i + 1 || s->flags || s->reserved)
+        return bad(pf, err, "section table: entry %u: type %u flags 0x%x: expected type %u (%s), "
+                   "no flags", i, s->type, s->flags, i + 1, pf_section_name(i + 1));
+    uint64_t align = s->type == PF_SEC_PART_DATA ? pf->hdr.part_align : PF_SECTION_ALIGN;
+    const char *name = pf_section_name(s->type);
+    if (s->offset % align)
+        return bad(pf, err, "section %s: offset %llu is not a multiple of %llu", name,
+                   (unsigned long long)s->offset, (unsigned long long)align);
+    if (s->offset < PF_TABLE_END || s->offset > pf->size || s->size > pf->size - s->offset)
+        return bad(pf, err, "section %s: bytes %llu..+%llu lie outside the file's data "
+                   "(%u..%zu)", name, (unsigned long long)s->offset,
+                   (unsigned long long)s->size, PF_TABLE_END, pf->size);
+    return OIT_OK;
+}
+
+static oit_status check_table(const oit_partfile *pf, oit_error *err)
+{
+    for (uint32_t i = 0; i < PF_SECTION_COUNT; i++) {
+        oit_status s = check_entry(pf, i, err);
+        if (s)
+            return s;
+    }
+    for (uint32_t i = 0; i < PF_SECTION_COUNT; i++)
+        for (uint32_t j = i + 1; j < PF_SECTION_COUNT; j++) {
+            const pf_section *a = &pf->sec[i], *b = &pf->sec[j];
+            if (a->size && b->size && a->offset < b->offset + b->size &&
+                b->offset < a->offset + a->size)
+                return bad(pf, err, "sections %s and %s overlap", pf_section_name(a->type),
+                           pf_section_name(b->type));
+        }
+    return OIT_OK;
+}
+
+static oit_status check_checksums(const oit_partfile *pf, bool with_data, oit_error *err)
+{
+    for (uint32_t t = 1; t <= PF_SECTION_COUNT; t++) {
+        if (t == PF_SEC_PART_DATA && !with_data)
+            continue; /* each part's own checksum covers it when it is validated */
+        uint32_t crc = oit_crc32c(0, sec_data(pf, t), sec_size(pf, t));
+        if (crc != pf->sec[t - 1].crc)
+            return bad(pf, err, "section %s: checksum 0x%08x, stored 0x%08x (corrupt)",
+                       pf_section_name(t), crc, pf->sec[t - 1].crc);
+    }
+    return OIT_OK;
+}
+
+/* ---- META --------------------------------------------------------------- */
+
+static char *copy_string(const uint8_t *p, uint32_t n)
+{
+    char *s = malloc((size_t)n + 1);
+    if (s) {
+        memcpy(s, p, n);
+        s[n] = 0;
+    }
+    return s;
+}
+
+static oit_status load_meta(oit_partfile *pf, oit_error *err)
+{
+    uint64_t size = sec_size(pf, PF_SEC_META);
+    if (size < sizeof pf->meta)
+        return bad(pf, err, "section META: %llu bytes, shorter than its %zu-byte record",
+                   (unsigned long long)size, sizeof pf->meta);
+    memcpy(&pf->meta, sec_data(pf, PF_SEC_META), sizeof pf->meta);
+    const pf_meta *m = &pf->meta;
+    if (size != sizeof *m + (uint64_t)m->source_name_bytes + m->options_bytes)
+        return bad(pf, err, "section META: %llu bytes, its record says %llu",
+                   (unsigned long long)size,
+                   (unsigned long long)(sizeof *m + (uint64_t)m->source_name_bytes +
+                                        m->options_bytes));
+    if (m->reserved || (m->attributes & ~(uint32_t)(OIT_ATTR_COLOR | OIT_ATTR_ALPHA)))
+        return bad(pf, err, "section META: unknown attribute bits 0x%x", m->attributes);
+    if (!box_ok(m->bounds_min, m->bounds_max))
+        return bad(pf, err, "section META: scene bounds are not finite or min > max");
+    const uint8_t *text = sec_data(pf, PF_SEC_META) + sizeof *m;
+    pf->source_name = copy_string(text, m->source_name_bytes);
+    pf->options = copy_string(text + m->source_name_bytes, m->options_bytes);
+    if (!pf->source_name || !pf->options)
+        return nomem(pf, err);
+    if (strlen(pf->source_name) != m->source_name_bytes ||
+        strlen(pf->options) != m->options_bytes)
+        return bad(pf, err, "section META: source name or options contain a NUL byte");
+    return OIT_OK;
+}
+
+/* ---- PARTS and PIECES ----------------------------------------------------- */
+
+static oit_status load_records(oit_partfile *pf, uint32_t type, size_t record, void **out,
+                               uint64_t *count, oit_error *err)
+{
+    uint64_t size = sec_size(pf, type);
+    if (size % record)
+        return bad(pf, err, "section %s: %llu bytes is not a whole number of %zu-byte records",
+                   pf_section_name(type), (unsigned long long)size, record);
+    *count = size / record;
+    *out = copy_out(sec_data(pf, type), *count, record);
+    return *out ? OIT_OK : nomem(pf, err);
+}
+
+static oit_status load_parts(oit_partfile *pf, oit_error *err)
+{
+    uint64_t n;
+    oit_status s = load_records(pf, PF_SEC_PARTS, sizeof(oit_partfile_part), (void **)&pf->parts,
+                                &n, err);
+    if (s)
+        return s;
+    if (n != pf->hdr.part_count)
+        return bad(pf, err, "section PARTS: holds %llu records, the header claims %llu parts",
+                   (unsigned long long)n, (unsigned long long)pf->hdr.part_count);
+    if (n > UINT32_MAX - 1)
+        return bad(pf, err, "section PARTS: %llu parts, at most %u allowed",
+                   (unsigned long long)n, UINT32_MAX - 1);
+    return load_records(pf, PF_SEC_PIECES, sizeof(oit_partfile_piece), (void **)&pf->pieces,
+                        &pf->piece_count, err);
+}
+
+/* Fields that do not depend on the PART_DATA layout. */
+static oit_status check_part_fields(const oit_partfile *pf, uint32_t i, oit_error *err)
+{
+    const oit_partfile_part *p = &pf->parts[i];
+    uint32_t max_layers = p->piece_count > pf->hdr.K / 2 ? pf->hdr.K : 2 * p->piece_count;
+    if (p->reserved || !box_ok(p->bounds_min, p->bounds_max))
+        return bad(pf, err, "section PARTS: record %u: bounds not finite or min > max", i);
+    if (p->attributes & ~pf->meta.attributes)
+        return bad(pf, err, "section PARTS: record %u: attributes 0x%x, the file has 0x%x", i,
+                   p->attributes, pf->meta.attributes);
+    if (!p->piece_count || p->layer_bound < 1 || p->layer_bound > max_layers)
+        return bad(pf, err, "section PARTS: record %u: layer bound %u with %u pieces, K %u", i,
+                   p->layer_bound, p->piece_count, pf->hdr.K);
+    if (!p->vertex_count || !p->index_count || p->index_count % 3)
+        return bad(pf, err, "section PARTS: record %u: %u vertices, %llu indices", i,
+                   p->vertex_count, (unsigned long long)p->index_count);
+    if (p->index_bits != 32 && (p->index_bits != 16 || p->vertex_count > PF_INDEX16_MAX_VERTICES))
+        return bad(pf, err, "section PARTS: record %u: %u-bit indices for %u vertices", i,
+                   p->index_bits, p->vertex_count);
+    return OIT_OK;
+}
+
+/* The blob's layout, and that it lies in PART_DATA after the previous one. */
+static oit_status check_part_blob(const oit_partfile *pf, uint32_t i, uint64_t prev_end,
+                                  oit_error *err)
+{
+    const oit_partfile_part *p = &pf->parts[i];
+    const pf_section *d = &pf->sec[PF_SEC_PART_DATA - 1];
+    uint64_t vbytes = (uint64_t)p->vertex_count * pf_vertex_stride(p->attributes);
+    if (p->vertex_offset != 0 || p->vertex_bytes != vbytes ||
+        p->index_offset != pf_align_up(vbytes, 4))
+        return bad(pf, err, "section PARTS: record %u: vertex bytes %llu at %llu, indices at "
+                   "%llu: expected %llu at 0, indices at %llu", i,
+                   (unsigned long long)p->vertex_bytes, (unsigned long long)p->vertex_offset,
+                   (unsigned long long)p->index_offset, (unsigned long long)vbytes,
+                   (unsigned long long)pf_align_up(vbytes, 4));
+    if (p->index_count > d->size / 2 || p->index_bytes != p->index_count * (p->index_bits / 8) ||
+        p->data_bytes != p->index_offset + p->index_bytes)
+        return bad(pf, err, "section PARTS: record %u: %llu indices do not fit %llu index "
+                   "bytes in a %llu-byte blob", i, (unsigned long long)p->index_count,
+                   (unsigned long long)p->index_bytes, (unsigned long long)p->data_bytes);
+    if (p->data_offset % pf->hdr.part_align || p->data_offset < prev_end ||
+        p->data_offset > d->offset + d->size || p->data_bytes > d->offset + d->size - p->data_offset)
+        return bad(pf, err, "section PARTS: record %u: blob %llu..+%llu is unaligned, out of "
+                   "order or outside PART_DATA", i, (unsigned long long)p->data_offset,
+                   (unsigned long long)p->data_bytes);
+    return OIT_OK;
+}
+
+static oit_status check_pieces_of(const oit_partfile *pf, uint32_t i, oit_error *err)
+{
+    const oit_partfile_part *p = &pf->parts[i];
+    uint64_t tri = 0;
+    for (uint32_t k = 0; k < p->piece_count; k++) {
+        uint64_t j = (uint64_t)p->piece_first + k;
+        const oit_partfile_piece *pc = &pf->pieces[j];
+        if (pc->part != i || pc->triangle_first != tri || !pc->triangle_count ||
+            pc->triangle_count > p->index_count / 3 - tri)
+            return bad(pf, err, "section PIECES: record %llu: part %u triangles %llu..+%llu, "
+                       "expected part %u from triangle %llu within %llu", (unsigned long long)j,
+                       pc->part, (unsigned long long)pc->triangle_first,
+                       (unsigned long long)pc->triangle_count, i, (unsigned long long)tri,
+                       (unsigned long long)(p->index_count / 3));
+        if (!pc->plane_count || pc->plane_count > pc->triangle_count ||
+            !box_ok(pc->bounds_min, pc->bounds_max) ||
+            !box_inside(pc->bounds_min, pc->bounds_max, p->bounds_min, p->bounds_max))
+            return bad(pf, err, "section PIECES: record %llu: %u planes for %llu triangles, or "
+                       "bounds outside part %u", (unsigned long long)j, pc->plane_count,
+                       (unsigned long long)pc->triangle_count, i);
+        tri += pc->triangle_count;
+    }
+    if (tri != p->index_count / 3)
+        return bad(pf, err, "section PIECES: part %u: pieces cover %llu of %llu triangles", i,
+                   (unsigned long long)tri, (unsigned long long)(p->index_count / 3));
+    return OIT_OK;
+}
+
+static oit_status check_parts(const oit_partfile *pf, oit_error *err)
+{
+    uint64_t pieces = 0, triangles = 0, prev_end = 0;
+    uint32_t n = (uint32_t)pf->hdr.part_count;
+    for (uint32_t i = 0; i < n; i++) {
+        const oit_partfile_part *p = &pf->parts[i];
+        oit_status s = check_part_fields(pf, i, err);
+        if (!s && (p->piece_first != pieces || p->piece_count > pf->piece_count - pieces))
+            s = bad(pf, err, "section PARTS: record %u: pieces %u..+%u, expected from %llu "
+                    "within %llu", i, p->piece_first, p->piece_count,
+                    (unsigned long long)pieces, (unsigned long long)pf->piece_count);
+        if (!s)
+            s = check_part_blob(pf, i, prev_end, err);
+        if (!s)
+            s = check_pieces_of(pf, i, err);
+        if (s)
+            return s;
+        pieces += p->piece_count;
+        triangles += p->index_count / 3;
+        prev_end = p->data_offset + p->data_bytes;
+    }
+    if (pieces != pf->piece_count)
+        return bad(pf, err, "section PIECES: %llu records, the parts own %llu",
+                   (unsigned long long)pf->piece_count, (unsigned long long)pieces);
+    if (triangles != pf->hdr.triangle_count)
+        return bad(pf, err, "header: %llu triangles, the parts hold %llu",
+                   (unsigned long long)pf->hdr.triangle_count, (unsigned long long)triangles);
+    return OIT_OK;
+}
+
+static oit_status check_scene_bounds(const oit_partfile *pf, oit_error *err)
+{
+    float lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    for (uint32_t i = 0; i < pf->hdr.part_count; i++)
+        for (int k = 0; k < 3; k++) {
+            const oit_partfile_part *p = &pf->parts[i];
+            lo[k] = i == 0 || p->bounds_min[k] < lo[k] ? p->bounds_min[k] : lo[k];
+            hi[k] = i == 0 || p->bounds_max[k] > hi[k] ? p->bounds_max[k] : hi[k];
+        }
+    if (memcmp(lo, pf->meta.bounds_min, sizeof lo) || memcmp(hi, pf->meta.bounds_max, sizeof hi))
+        return bad(pf, err, "section META: scene bounds differ from the union of part bounds");
+    return OIT_OK;
+}
+
+/* ---- part blobs ------------------------------------------------------------ */
+
+static uint32_t index_at(const uint8_t *idx, uint32_t bits, uint64_t i)
+{
+    if (bits == 16) {
+        uint16_t v;
+        memcpy(&v, idx + i * 2, 2);
+        return v;
+    }
+    uint32_t v;
+    memcpy(&v, idx + i * 4, 4);
+    return v;
+}
+
+static void vertex_at(const uint8_t *blob, uint32_t stride, uint32_t v, float out[3])
+{
+    memcpy(out, blob + (size_t)v * stride, 12);
+}
+
+/* Bounds are stored exactly (min/max of the data), so compare for equality. */
+static oit_status check_vertices(const oit_partfile *pf, uint32_t i, const uint8_t *blob,
+                                 oit_error *err)
+{
+    const oit_partfile_part *p = &pf->parts[i];
+    uint32_t stride = pf_vertex_stride(p->attributes);
+    float lo[3], hi[3], v[3];
+    vertex_at(blob, stride, 0, lo);
+    memcpy(hi, lo, sizeof hi);
+    for (uint32_t j = 0; j < p->vertex_count; j++) {
+        vertex_at(blob, stride, j, v);
+        if (!finite3(v))
+            return bad(pf, err, "section PART_DATA: part %u: vertex %u is not finite", i, j);
+        for (int k = 0; k < 3; k++) {
+            lo[k] = v[k] < lo[k] ? v[k] : lo[k];
+            hi[k] = v[k] > hi[k] ? v[k] : hi[k];
+        }
+    }
+    if (memcmp(lo, p->bounds_min, sizeof lo) || memcmp(hi, p->bounds_max, sizeof hi))
+        return bad(pf, err, "section PART_DATA: part %u: vertices span (%g %g %g)..(%g %g %g), "
+                   "the record says (%g %g %g)..(%g %g %g)", i, lo[0], lo[1], lo[2], hi[0],
+                   hi[1], hi[2], p->bounds_min[0], p->bounds_min[1], p->bounds_min[2],
+                   p->bounds_max[0], p->bounds_max[1], p->bounds_max[2]);
+    return OIT_OK;
+}
+
+static oit_status check_indices(const oit_partfile *pf, uint32_t i, const uint8_t *blob,
+                                oit_error *err)
+{
+    const oit_partfile_part *p = &pf->parts[i];
+    const uint8_t *idx = blob + p->index_offset;
+    for (uint64_t j = 0; j < p->index_count; j++) {
+        uint32_t v = index_at(idx, p->index_bits, j);
+        if (v >= p->vertex_count)
+            return bad(pf, err, "section PART_DATA: part %u: triangle %llu: index %u >= %u "
+                       "vertices", i, (unsigned long long)(j / 3), v, p->vertex_count);
+    }
+    return OIT_OK;
+}
+
+/* Runs after check_indices: every index is in range. */
+static oit_status check_piece_bounds(const oit_partfile *pf, uint32_t i, const uint8_t *blob,
+                                     oit_error *err)
+{
+    const oit_partfile_part *p = &pf->parts[i];
+    uint32_t stride = pf_vertex_stride(p->attributes);
+    const uint8_t *idx = blob + p->index_offset;
+    for (uint32_t k = 0; k < p->piece_count; k++) {
+        const oit_partfile_piece *pc = &pf->pieces[p->piece_first + k];
+        float lo[3], hi[3], v[3];
+        uint64_t first = pc->triangle_first * 3, end = first + pc->triangle_count * 3;
+        vertex_at(blob, stride, index_at(idx, p->index_bits, first), lo);
+        memcpy(hi, lo, sizeof hi);
+        for (uint64_t j = first; j < end; j++) {
+            vertex_at(blob, stride, index_at(idx, p->index_bits, j), v);
+            for (int c = 0; c < 3; c++) {
+                lo[c] = v[c] < lo[c] ? v[c] : lo[c];
+                hi[c] = v[c] > hi[c] ? v[c] : hi[c];
+            }
+        }
+        if (memcmp(lo, pc->bounds_min, sizeof lo) || memcmp(hi, pc->bounds_max, sizeof hi))
+            return bad(pf, err, "section PIECES: record %u: bounds differ from its triangles' "
+                       "(part %u)", p->piece_first + k, i);
+    }
+    return OIT_OK;
+}
+
+static oit_status validate_blob(const oit_partfile *pf, uint32_t i, oit_error *err)
+{
+    const oit_partfile_part *p = &pf->parts[i];
+    const uint8_t *blob = pf->base + p->data_offset;
+    uint32_t crc = oit_crc32c(0, blob, p->data_bytes);
+    if (crc != p->data_crc)
+        return bad(pf, err, "section PART_DATA: part %u: checksum 0x%08x, stored 0x%08x "
+                   "(corrupt)", i, crc, p->data_crc);
+    oit_status s = check_vertices(pf, i, blob, err);
+    if (!s)
+        s = check_indices(pf, i, blob, err);
+    if (!s)
+        s = check_piece_bounds(pf, i, blob, err);
+    return s;
+}
+
+/* ---- GRID and SUBGRIDS -------------------------------------------------------- */
+
+static oit_status check_grid(const oit_partfile *pf, uint32_t g, uint64_t cell_first,
+                             oit_error *err)
+{
+    const oit_partfile_grid *gr = &pf->grids[g];
+    const char *sec = g ? "SUBGRIDS" : "GRID";
+    uint64_t xy = (uint64_t)gr->dims[0] * gr->dims[1];
+    if (!gr->dims[0] || !gr->dims[1] || !gr->dims[2] || xy > UINT64_MAX / gr->dims[2] ||
+        xy * gr->dims[2] != gr->cell_count || gr->cell_first != cell_first)
+        return bad(pf, err, "section %s: grid %u: %ux%ux%u dims, %llu cells from %llu", sec, g,
+                   gr->dims[0], gr->dims[1], gr->dims[2], (unsigned long long)gr->cell_count,
+                   (unsigned long long)gr->cell_first);
+    if (!finite3(gr->origin) || !finite3(gr->cell_size) || !(gr->cell_size[0] > 0) ||
+        !(gr->cell_size[1] > 0) || !(gr->cell_size[2] > 0))
+        return bad(pf, err, "section %s: grid %u: origin or cell size not finite or <= 0", sec,
+                   g);
+    if (g == 0 && (gr->depth || gr->parent_grid != OIT_PARTFILE_NONE ||
+                   gr->parent_cell != OIT_PARTFILE_NONE))
+        return bad(pf, err, "section GRID: the top grid has depth %u, parent %u", gr->depth,
+                   gr->parent_grid);
+    if (g > 0 && (gr->parent_grid >= g ||
+                  gr->parent_cell >= pf->grids[gr->parent_grid].cell_count ||
+                  gr->depth != pf->grids[gr->parent_grid].depth + 1))
+        return bad(pf, err, "section SUBGRIDS: record %u: parent grid %u cell %u depth %u: the "
+                   "parent must be an earlier grid, one level up", g - 1, gr->parent_grid,
+                   gr->parent_cell, gr->depth);
+    return OIT_OK;
+}
+
+static oit_status check_cell_list(const oit_partfile *pf, const char *sec, uint64_t c,
+                                  const uint32_t *list, uint64_t list_first,
+                                  const oit_partfile_cell *cell, oit_error *err)
+{
+    if (cell->reserved || cell->list_first != list_first)
+        return bad(pf, err, "section %s: cell %llu: list from %llu, expected %llu", sec,
+                   (unsigned long long)c, (unsigned long long)cell->list_first,
+                   (unsigned long long)list_first);
+    for (uint32_t k = 0; k < cell->list_count; k++) {
+        uint32_t part = list[cell->list_first + k];
+        if (part >= pf->hdr.part_count || (k && part <= list[cell->list_first + k - 1]))
+            return bad(pf, err, "section %s: cell %llu: part %u is missing or out of order (%llu "
+                       "parts)", sec, (unsigned long long)c, part,
+                       (unsigned long long)pf->hdr.part_count);
+    }
+    return OIT_OK;
+}
+
+typedef struct grid_block {
+    pf_grid_block head;
+    const uint8_t *grids, *cells, *list;
+} grid_block;
+
+static oit_status parse_block(const oit_partfile *pf, uint32_t type, grid_block *b,
+                              oit_error *err)
+{
+    const char *sec = pf_section_name(type);
+    uint64_t size = sec_size(pf, type);
+    const uint8_t *p = sec_data(pf, type);
+    if (size < sizeof b->head)
+        return bad(pf, err, "section %s: %llu bytes, shorter than its head", sec,
+                   (unsigned long long)size);
+    memcpy(&b->head, p, sizeof b->head);
+    const pf_grid_block *h = &b->head;
+    /* Bounding each count by the size keeps the byte total below 2^64. */
+    if (h->reserved || h->grid_count > size / sizeof(oit_partfile_grid) ||
+        h->cell_count > size / sizeof(oit_partfile_cell) || h->list_count > size / 4 ||
+        size != pf_grid_block_bytes(h->grid_count, h->cell_count, h->list_count) ||
+        (type == PF_SEC_GRID && h->grid_count != 1))
+        return bad(pf, err, "section %s: %llu bytes cannot hold the %u grids, %llu cells and "
+                   "%llu list entries its head claims", sec, (unsigned long long)size,
+                   h->grid_count, (unsigned long long)h->cell_count,
+                   (unsigned long long)h->list_count);
+    b->grids = p + sizeof *h;
+    b->cells = b->grids + h->grid_count * sizeof(oit_partfile_grid);
+    b->list = b->cells + h->cell_count * sizeof(oit_partfile_cell);
+    return OIT_OK;
+}
+
+/* Appends a block to the unified grid, cell and list arrays. */
+static oit_status append_block(oit_partfile *pf, const grid_block *b, oit_error *err)
+{
+    const pf_grid_block *h = &b->head;
+    uint64_t grids = (uint64_t)pf->grid_count + h->grid_count;
+    if (grids > UINT32_MAX)
+        return bad(pf, err, "section SUBGRIDS: too many grids");
+    void *g = realloc(pf->grids, grids * sizeof *pf->grids);
+    if (g)
+        pf->grids = g;
+    void *c = realloc(pf->cells, (pf->cell_count + h->cell_count + 1) * sizeof *pf->cells);
+    if (c)
+        pf->cells = c;
+    void *l = realloc(pf->lists, (pf->list_count + h->list_count + 1) * sizeof *pf->lists);
+    if (l)
+        pf->lists = l;
+    if (!g || !c || !l)
+        return nomem(pf, err);
+    memcpy(pf->grids + pf->grid_count, b->grids, h->grid_count * sizeof *pf->grids);
+    memcpy(pf->cells + pf->cell_count, b->cells, h->cell_count * sizeof *pf->cells);
+    memcpy(pf->lists + pf->list_count, b->list, h->list_count * sizeof *pf->lists);
+    return OIT_OK;
+}
+
+/* Checks the block just appended, then shifts its offsets to unified ones. */
+static oit_status check_block(oit_partfile *pf, uint32_t type, const pf_grid_block *h,
+                              oit_error *err)
+{
+    const char *sec = pf_section_name(type);
+    uint32_t g0 = pf->grid_count;
+    uint64_t cells = 0, list = 0;
+    for (uint32_t g = g0; g < g0 + h->grid_count; g++) {
+        oit_status s = check_grid(pf, g, cells, err);
+        if (s)
+            return s;
+        cells += pf->grids[g].cell_count;
+        if (cells > h->cell_count)
+            break;
+    }
+    if (cells != h->cell_count)
+        return bad(pf, err, "section %s: grids own %llu cells, the head says %llu", sec,
+                   (unsigned long long)cells, (unsigned long long)h->cell_count);
+    oit_partfile_cell *cell = pf->cells + pf->cell_count;
+    const uint32_t *lst = pf->lists + pf->list_count;
+    for (uint64_t c = 0; c < h->cell_count; c++) {
+        if (cell[c].list_count > h->list_count - list)
+            return bad(pf, err, "section %s: cell %llu: list runs past the %llu entries", sec,
+                       (unsigned long long)c, (unsigned long long)h->list_count);
+        oit_status s = check_cell_list(pf, sec, c, lst, list, &cell[c], err);
+        if (s)
+            return s;
+        list += cell[c].list_count;
+    }
+    if (list != h->list_count)
+        return bad(pf, err, "section %s: cells use %llu of %llu list entries", sec,
+                   (unsigned long long)list, (unsigned long long)h->list_count);
+    for (uint32_t g = g0; g < g0 + h->grid_count; g++)
+        pf->grids[g].cell_first += pf->cell_count;
+    for (uint64_t c = 0; c < h->cell_count; c++)
+        cell[c].list_first += pf->list_count;
+    pf->grid_count += h->grid_count;
+    pf->cell_count += h->cell_count;
+    pf->list_count += h->list_count;
+    return OIT_OK;
+}
+
+static oit_status load_grids(oit_partfile *pf, oit_error *err)
+{
+    static const uint32_t types[2] = {PF_SEC_GRID, PF_SEC_SUBGRIDS};
+    for (int i = 0; i < 2; i++) {
+        grid_block b;
+        oit_status s = parse_block(pf, types[i], &b, err);
+        if (!s)
+            s = append_block(pf, &b, err);
+        if (!s)
+            s = check_block(pf, types[i], &b.head, err);
+        if (s)
+            return s;
+    }
+    return OIT_OK;
+}
+
+/* ---- SLABS ------------------------------------------------------------------ */
+
+static oit_status load_slabs(oit_partfile *pf, oit_error *err)
+{
+    uint64_t size = sec_size(pf, PF_SEC_SLABS);
+    const uint8_t *p = sec_data(pf, PF_SEC_SLABS);
+    pf_slab_block h;
+    if (size < sizeof h)
+        return bad(pf, err, "section SLABS: %llu bytes, shorter than its head",
+                   (unsigned long long)size);
+    memcpy(&h, p, sizeof h);
+    if (h.reserved || h.slab_count > size / sizeof(oit_partfile_slab) || h.list_count > size / 4 ||
+        size != pf_slab_block_bytes(h.slab_count, h.list_count))
+        return bad(pf, err, "section SLABS: %llu bytes cannot hold the %u slabs and %llu list "
+                   "entries its head claims", (unsigned long long)size, h.slab_count,
+                   (unsigned long long)h.list_count);
+    pf->slab_count = h.slab_count;
+    pf->slab_list_count = h.list_count;
+    pf->slabs = copy_out(p + sizeof h, h.slab_count, sizeof *pf->slabs);
+    pf->slab_list = copy_out(p + sizeof h + h.slab_count * sizeof *pf->slabs, h.list_count,
+                             sizeof *pf->slab_list);
+    return pf->slabs && pf->slab_list ? OIT_OK : nomem(pf, err);
+}
+
+static bool cell_has_part(const oit_partfile *pf, const oit_partfile_cell *cell, uint32_t part)
+{
+    const uint32_t *l = pf->lists + cell->list_first;
+    uint32_t lo = 0, hi = cell->list_count;
+    while (lo < hi) {
+        uint32_t mid = lo + (hi - lo) / 2;
+        if (l[mid] < part)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo < cell->list_count && l[lo] == part;
+}
+
+static oit_status check_slab(const oit_partfile *pf, uint32_t i, uint64_t list_first,
+                             oit_error *err)
+{
+    const oit_partfile_slab *s = &pf->slabs[i];
+    float len2 = s->normal[0] * s->normal[0] + s->normal[1] * s->normal[1] +
+                 s->normal[2] * s->normal[2];
+    if (!finite3(s->normal) || !(fabsf(len2 - 1.0f) <= 1e-3f) || !isfinite(s->d0) ||
+        !isfinite(s->d1) || s->d0 > s->d1)
+        return bad(pf, err, "section SLABS: record %u: normal not unit or planes d0 %g > d1 %g",
+                   i, s->d0, s->d1);
+    if (s->grid >= pf->grid_count || s->cell >= pf->grids[s->grid].cell_count)
+        return bad(pf, err, "section SLABS: record %u: grid %u cell %u does not exist", i,
+                   s->grid, s->cell);
+    const oit_partfile_cell *cell = &pf->cells[pf->grids[s->grid].cell_first + s->cell];
+    if (cell->slab != i + 1)
+        return bad(pf, err, "section SLABS: record %u: its cell names slab %u", i, cell->slab);
+    if (s->inside_first != list_first || s->inside_count > pf->slab_list_count - list_first)
+        return bad(pf, err, "section SLABS: record %u: list %llu..+%u, expected from %llu "
+                   "within %llu", i, (unsigned long long)s->inside_first, s->inside_count,
+                   (unsigned long long)list_first, (unsigned long long)pf->slab_list_count);
+    if (s->part_below == s->part_above || !cell_has_part(pf, cell, s->part_below) ||
+        !cell_has_part(pf, cell, s->part_above))
+        return bad(pf, err, "section SLABS: record %u: parts %u and %u are not two parts of its "
+                   "cell", i, s->part_below, s->part_above);
+    for (uint32_t k = 0; k < s->inside_count; k++) {
+        uint32_t p = pf->slab_list[list_first + k];
+        if ((k && p <= pf->slab_list[list_first + k - 1]) || p == s->part_below ||
+            p == s->part_above || !cell_has_part(pf, cell, p))
+            return bad(pf, err, "section SLABS: record %u: inside part %u is out of order, "
+                       "repeated or not in its cell", i, p);
+    }
+    return OIT_OK;
+}
+
+static oit_status check_slabs(const oit_partfile *pf, oit_error *err)
+{
+    uint64_t list = 0;
+    for (uint32_t i = 0; i < pf->slab_count; i++) {
+        oit_status s = check_slab(pf, i, list, err);
+        if (s)
+            return s;
+        list += pf->slabs[i].inside_count;
+    }
+    if (list != pf->slab_list_count)
+        return bad(pf, err, "section SLABS: slabs use %llu of %llu list entries",
+                   (unsigned long long)list, (unsigned long long)pf->slab_list_count);
+    return OIT_OK;
+}
+
+/* ---- links between grids, cells, slabs and parts ------------------------------ */
+
+/* A subgrid covers exactly its parent cell (to rounding). */
+static bool subgrid_fits(const oit_partfile_grid *parent, uint64_t cell,
+                         const oit_partfile_grid *sub)
+{
+    uint64_t idx[3] = {cell % parent->dims[0], cell / parent->dims[0] % parent->dims[1],
+                       cell / parent->dims[0] / parent->dims[1]};
+    for (int k = 0; k < 3; k++) {
+        double cs = parent->cell_size[k], tol = 1e-4 * cs;
+        double lo = parent->origin[k] + (double)idx[k] * cs;
+        double slo = sub->origin[k], shi = slo + (double)sub->dims[k] * sub->cell_size[k];
+        if (fabs(slo - lo) > tol || fabs(shi - (lo + cs)) > tol)
+            return false;
+    }
+    return true;
+}
+
+static oit_status check_cell_links(const oit_partfile *pf, uint32_t g, uint64_t c,
+                                   oit_error *err)
+{
+    const oit_partfile_cell *cell = &pf->cells[pf->grids[g].cell_first + c];
+    uint32_t sg = cell->subgrid;
+    if (sg && (sg >= pf->grid_count || pf->grids[sg].parent_grid != g ||
+               pf->grids[sg].parent_cell != c || !subgrid_fits(&pf->grids[g], c, &pf->grids[sg])))
+        return bad(pf, err, "section %s: grid %u cell %llu: subgrid %u does not refine this cell",
+                   g ? "SUBGRIDS" : "GRID", g, (unsigned long long)c, sg);
+    if (cell->slab > pf->slab_count)
+        return bad(pf, err, "section %s: grid %u cell %llu: slab %u of %u does not exist",
+                   g ? "SUBGRIDS" : "GRID", g, (unsigned long long)c, cell->slab - 1,
+                   pf->slab_count);
+    return OIT_OK;
+}
+
+static oit_status check_links(const oit_partfile *pf, oit_error *err)
+{
+    for (uint32_t g = 0; g < pf->grid_count; g++)
+        for (uint64_t c = 0; c < pf->grids[g].cell_count; c++) {
+            oit_status s = check_cell_links(pf, g, c, err);
+            if (s)
+                return s;
+        }
+    for (uint32_t g = 1; g < pf->grid_count; g++) {
+        const oit_partfile_grid *gr = &pf->grids[g];
+        const oit_partfile_grid *parent = &pf->grids[gr->parent_grid];
+        if (pf->cells[parent->cell_first + gr->parent_cell].subgrid != g)
+            return bad(pf, err, "section SUBGRIDS: record %u: its parent cell does not name it",
+                       g - 1);
+    }
+    return OIT_OK;
+}
+
+/* A part in no cell would never be ordered, so never drawn. */
+static oit_status check_coverage(const oit_partfile *pf, oit_error *err)
+{
+    uint32_t n = (uint32_t)pf->hdr.part_count;
+    unsigned char *seen = calloc(n ? n : 1, 1);
+    if (!seen)
+        return nomem(pf, err);
+    for (uint64_t i = 0; i < pf->list_count; i++)
+        seen[pf->lists[i]] = 1;
+    uint32_t missing = n;
+    for (uint32_t i = 0; i < n && missing == n; i++)
+        if (!seen[i])
+            missing = i;
+    free(seen);
+    if (missing != n)
+        return bad(pf, err, "section PARTS: record %u: the part is in no grid cell", missing);
+    return OIT_OK;
+}
+
+/* ---- open ------------------------------------------------------------------------ */
+
+static void fill_summary(oit_partfile *pf)
+{
+    oit_partfile_summary *s = &pf->summary;
+    s->version = pf->hdr.version;
+    s->K = pf->hdr.K;
+    s->triangles = pf->hdr.triangle_count;
+    s->triangles_in = pf->meta.triangles_in;
+    s->triangles_dropped = pf->meta.triangles_dropped;
+    s->triangles_split = pf->meta.triangles_split;
+    s->parts = pf->hdr.part_count;
+    s->pieces = pf->piece_count;
+    s->slabs = pf->slab_count;
+    s->cells = pf->cell_count;
+    s->subgrids = pf->grid_count - 1;
+    s->attributes = pf->meta.attributes;
+    s->part_align = pf->hdr.part_align;
+    s->bytes = pf->size;
+    s->data_bytes = sec_size(pf, PF_SEC_PART_DATA);
+    memcpy(s->bounds_min, pf->meta.bounds_min, sizeof s->bounds_min);
+    memcpy(s->bounds_max, pf->meta.bounds_max, sizeof s->bounds_max);
+    for (uint32_t g = 0; g < pf->grid_count; g++)
+        s->subgrid_depth = pf->grids[g].depth > s->subgrid_depth ? pf->grids[g].depth
+                                                                  : s->subgrid_depth;
+    for (uint32_t i = 0; i < pf->hdr.part_count; i++) {
+        const oit_partfile_part *p = &pf->parts[i];
+        s->layer_bound = p->layer_bound > s->layer_bound ? p->layer_bound : s->layer_bound;
+        s->parts_index16 += p->index_bits == 16;
+        s->parts_index32 += p->index_bits == 32;
+    }
+}
+
+static oit_status validate_all(oit_partfile *pf, bool deferred, oit_error *err)
+{
+    oit_status s = check_header(pf, err);
+    if (!s)
+        s = check_table(pf, err);
+    if (!s)
+        s = check_checksums(pf, !deferred, err);
+    if (!s)
+        s = load_meta(pf, err);
+    if (!s)
+        s = load_parts(pf, err);
+    if (!s)
+        s = check_parts(pf, err);
+    if (!s)
+        s = check_scene_bounds(pf, err);
+    if (!s)
+        s = load_grids(pf, err);
+    if (!s)
+        s = load_slabs(pf, err);
+    if (!s)
+        s = check_slabs(pf, err);
+    if (!s)
+        s = check_links(pf, err);
+    if (!s)
+        s = check_coverage(pf, err);
+    for (uint32_t i = 0; !s && !deferred && i < pf->hdr.part_count; i++)
+        s = validate_blob(pf, i, err);
+    return s;
+}
+
+static oit_status open_common(oit_partfile *pf, const oit_partfile_open_desc *desc,
+                              oit_partfile **out, oit_error *err)
+{
+    bool deferred = desc && desc->defer_part_data;
+    oit_status s = validate_all(pf, deferred, err);
+    if (!s && deferred) {
+        pf->part_ok = calloc(pf->hdr.part_count ? pf->hdr.part_count : 1, 1);
+        if (!pf->part_ok)
+            s = nomem(pf, err);
+    }
+    if (s) {
+        oit_partfile_close(pf);
+        return s;
+    }
+    fill_summary(pf);
+    *out = pf;
+    return OIT_OK;
+}
+
+static oit_partfile *new_handle(const char *name)
+{
+    oit_partfile *pf = calloc(1, sizeof *pf);
+    if (!pf)
+        return NULL;
+    size_t n = strlen(name) + 1;
+    pf->name = malloc(n);
+    if (!pf->name) {
+        free(pf);
+        return NULL;
+    }
+    memcpy(pf->name, name, n);
+    return pf;
+}
+
+oit_status oit_partfile_open_memory(const void *data, size_t size, const char *name,
+                                    const oit_partfile_open_desc *desc, oit_partfile **out,
+                                    oit_error *err)
+{
+    *out = NULL;
+    name = name ? name : "(memory)";
+    oit_partfile *pf = new_handle(name);
+    if (!pf)
+        return oit_error_set(err, OIT_ERR_NOMEM, "%s: out of memory", name);
+    pf->base = data;
+    pf->size = data ? size : 0;
+    return open_common(pf, desc, out, err);
+}
+
+oit_status oit_partfile_open(const char *path, const oit_partfile_open_desc *desc,
+                             oit_partfile **out, oit_error *err)
+{
+    *out = NULL;
+    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (fd < 0)
+        return oit_error_set(err, OIT_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+    struct stat st;
+    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        close(fd);
+        return oit_error_set(err, OIT_ERR_IO, "%s: not a regular file", path);
+    }
+    oit_partfile *pf = new_handle(path);
+    if (!pf) {
+        close(fd);
+        return oit_error_set(err, OIT_ERR_NOMEM, "%s: out of memory", path);
+    }
+    pf->size = (size_t)st.st_size;
+    if (pf->size) {
+        void *m = mmap(NULL, pf->size, PROT_READ, MAP_PRIVATE, fd, 0);
+        if (m == MAP_FAILED) {
+            oit_error_set(err, OIT_ERR_IO, "%s: cannot map %zu bytes: %s", path, pf->size,
+                          strerror(errno));
+            close(fd);
+            oit_partfile_close(pf);
+            return OIT_ERR_IO;
+        }
+        pf->map = m;
+        pf->base = m;
+    }
+    close(fd);
+    return open_common(pf, desc, out, err);
+}
+
+void oit_partfile_close(oit_partfile *pf)
+{
+    if (!pf)
+        return;
+    if (pf->map)
+        munmap(pf->map, pf->size);
+    free(pf->name);
+    free(pf->source_name);
+    free(pf->options);
+    free(pf->parts);
+    free(pf->pieces);
+    free(pf->grids);
+    free(pf->cells);
+    free(pf->lists);
+    free(pf->slabs);
+    free(pf->slab_list);
+    free(pf->part_ok);
+    free(pf);
+}
+
+/* ---- accessors ---------------------------------------------------------------- */
+
+void oit_partfile_get_summary(const oit_partfile *pf, oit_partfile_summary *out)
+{
+    *out = pf->summary;
+}
+
+const char *oit_partfile_name(const oit_partfile *pf) { return pf->name; }
+const char *oit_partfile_source_name(const oit_partfile *pf) { return pf->source_name; }
+const char *oit_partfile_options(const oit_partfile *pf) { return pf->options; }
+uint32_t oit_partfile_part_count(const oit_partfile *pf) { return (uint32_t)pf->hdr.part_count; }
+const oit_partfile_part *oit_partfile_parts(const oit_partfile *pf) { return pf->parts; }
+uint64_t oit_partfile_piece_count(const oit_partfile *pf) { return pf->piece_count; }
+const oit_partfile_piece *oit_partfile_pieces(const oit_partfile *pf) { return pf->pieces; }
+uint32_t oit_partfile_grid_count(const oit_partfile *pf) { return pf->grid_count; }
+uint32_t oit_partfile_slab_count(const oit_partfile *pf) { return pf->slab_count; }
+
+oit_status oit_partfile_validate_part(oit_partfile *pf, uint32_t part, oit_error *err)
+{
+    if (part >= pf->hdr.part_count)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: part %u of %llu does not exist",
+                             pf->name, part, (unsigned long long)pf->hdr.part_count);
+    if (!pf->part_ok || pf->part_ok[part])
+        return OIT_OK;
+    oit_status s = validate_blob(pf, part, err);
+    if (!s)
+        pf->part_ok[part] = 1;
+    return s;
+}
+
+oit_status oit_partfile_part_data(const oit_partfile *pf, uint32_t part,
+                                  oit_partfile_part_view *out, oit_error *err)
+{
+    memset(out, 0, sizeof *out);
+    if (part >= pf->hdr.part_count)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: part %u of %llu does not exist",
+                             pf->name, part, (unsigned long long)pf->hdr.part_count);
+    if (pf->part_ok && !pf->part_ok[part])
+        return oit_error_set(err, OIT_ERR_ARGUMENT,
+                             "%s: part %u has not passed oit_partfile_validate_part", pf->name,
+                             part);
+    const oit_partfile_part *p = &pf->parts[part];
+    const uint8_t *blob = pf->base + p->data_offset;
+    out->blob = blob;
+    out->positions = (const float *)(const void *)blob;
+    out->rgba = p->attributes ? blob + 12 : NULL;
+    out->stride = pf_vertex_stride(p->attributes);
+    out->index_bits = p->index_bits;
+    out->indices = blob + p->index_offset;
+    out->index_count = p->index_count;
+    return OIT_OK;
+}
+
+const oit_partfile_grid *oit_partfile_grid_at(const oit_partfile *pf, uint32_t grid)
+{
+    return grid < pf->grid_count ? &pf->grids[grid] : NULL;
+}
+
+const oit_partfile_cell *oit_partfile_cells(const oit_partfile *pf, uint32_t grid)
+{
+    return grid < pf->grid_count ? &pf->cells[pf->grids[grid].cell_first] : NULL;
+}
+
+const uint32_t *oit_partfile_cell_parts(const oit_partfile *pf, uint32_t grid, uint64_t cell,
+                                        uint32_t *count)
+{
+    *count = 0;
+    if (grid >= pf->grid_count || cell >= pf->grids[grid].cell_count)
+        return NULL;
+    const oit_partfile_cell *c = &pf->cells[pf->grids[grid].cell_first + cell];
+    *count = c->list_count;
+    return pf->lists + c->list_first;
+}
+
+const oit_partfile_slab *oit_partfile_slab_at(const oit_partfile *pf, uint32_t slab)
+{
+    return slab < pf->slab_count ? &pf->slabs[slab] : NULL;
+}
+
+const uint32_t *oit_partfile_slab_inside(const oit_partfile *pf, uint32_t slab, uint32_t *count)
+{
+    *count = 0;
+    if (slab >= pf->slab_count)
+        return NULL;
+    *count = pf->slabs[slab].inside_count;
+    return pf->slab_list + pf->slabs[slab].inside_first;
+}

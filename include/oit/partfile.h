@@ -1,0 +1,283 @@
+/* The part file: a converted scene as oitstream reads it (docs/part-file.md).
+ *
+ * A part is at most K/2 convex pieces, so it yields at most K fragments per
+ * pixel from any viewpoint; grids, subgrids and slabs order the parts per
+ * view. One part's vertices and indices are one contiguous, aligned byte
+ * range, so a streaming loader reads a part with one pread.
+ *
+ * Writer: parts are appended one at a time (their data goes to disk at once,
+ * only the small records stay in memory); grids, subgrids and slabs follow;
+ * oit_partfile_writer_finish writes the management sections and the header to
+ * "<path>.tmp", validates that file with the reader and renames it to <path>.
+ * The same calls give the same bytes.
+ *
+ * Reader: maps the file read-only and validates every byte that it will hand
+ * out before oit_partfile_open returns: header, section table, checksums,
+ * record counts and every cross-reference. With defer_part_data the per-part
+ * vertex/index blobs are validated instead by oit_partfile_validate_part,
+ * which the loader calls before it first uses a part; oit_partfile_part_data
+ * refuses a part that has not passed it. The records returned below are
+ * decoded copies; the vertex and index pointers point into the mapping.
+ *
+ * The reader and writer need a little-endian host with IEEE-754 floats (the
+ * file is little-endian and vertex data is handed to GL as stored).
+ */
+#ifndef OIT_PARTFILE_H
+#define OIT_PARTFILE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define OIT_PARTFILE_VERSION 1u
+#define OIT_PARTFILE_NONE 0xFFFFFFFFu /* "no grid / no cell" in parent links */
+
+/* Decoded records. Their layout is the file's record layout (the reader
+ * copies sections into them); see docs/part-file.md for every invariant. */
+typedef struct oit_partfile_part {
+    float bounds_min[3];    /* of the part's vertices, exactly              */
+    float bounds_max[3];
+    uint32_t layer_bound;   /* 1..min(K, 2*piece_count): fragments per pixel */
+    uint32_t attributes;    /* OIT_ATTR_* stored per vertex (rgba8 if != 0)  */
+    uint32_t piece_first;   /* range in the piece array                     */
+    uint32_t piece_count;
+    uint32_t index_bits;    /* 16 or 32                                     */
+    uint32_t vertex_count;
+    uint64_t index_count;   /* 3 per triangle                               */
+    uint64_t data_offset;   /* file offset of the part's blob (aligned)     */
+    uint64_t data_bytes;    /* the blob: vertices, pad to 4, indices        */
+    uint64_t vertex_offset; /* within the blob (0)                          */
+    uint64_t vertex_bytes;
+    uint64_t index_offset;  /* within the blob                              */
+    uint64_t index_bytes;
+    uint32_t data_crc;      /* CRC-32C of the blob                          */
+    uint32_t reserved;
+} oit_partfile_part; /* 112 bytes */
+
+typedef struct oit_partfile_piece {
+    float bounds_min[3];     /* of the piece's triangles, exactly      */
+    float bounds_max[3];
+    uint32_t part;           /* owning part                           */
+    uint32_t plane_count;    /* distinct supporting planes, >= 1      */
+    uint64_t triangle_first; /* within the part's triangles           */
+    uint64_t triangle_count;
+} oit_partfile_piece; /* 48 bytes */
+
+/* Grid 0 is the top grid; grid g >= 1 is subgrid g-1 of the SUBGRIDS
+ * section. Cells are x-fastest: cell = x + dims[0]*(y + dims[1]*z). */
+typedef struct oit_partfile_grid {
+    uint32_t dims[3];
+    uint32_t depth;       /* 0 for the top grid, parent depth + 1 otherwise */
+    float origin[3];
+    float cell_size[3];
+    uint32_t parent_grid; /* OIT_PARTFILE_NONE for the top grid            */
+    uint32_t parent_cell;
+    uint64_t cell_first;  /* into the reader's unified cell array          */
+    uint64_t cell_count;  /* dims[0]*dims[1]*dims[2]                       */
+} oit_partfile_grid; /* 64 bytes */
+
+typedef struct oit_partfile_cell {
+    uint64_t list_first; /* into the section's part-index list     */
+    uint32_t list_count; /* parts overlapping the cell (ascending) */
+    uint32_t subgrid;    /* 0: none; g: grid g refines this cell   */
+    uint32_t slab;       /* 0: none; s+1: slab s separates the cell */
+    uint32_t reserved;
+} oit_partfile_cell; /* 24 bytes */
+
+/* Two parallel planes n.x = d0 <= d1 in one cell: part_below lies in
+ * n.x <= d0, part_above in n.x >= d1, the inside parts between them. */
+typedef struct oit_partfile_slab {
+    float normal[3];
+    float d0, d1;
+    uint32_t grid, cell;
+    uint32_t part_below, part_above;
+    uint32_t inside_count;
+    uint64_t inside_first; /* into the SLABS part-index list */
+} oit_partfile_slab; /* 48 bytes */
+
+typedef struct oit_partfile_summary {
+    uint32_t version;
+    uint32_t K;
+    uint64_t triangles;     /* stored (after dropping and splitting)        */
+    uint64_t triangles_in;  /* read from the source                         */
+    uint64_t triangles_dropped;
+    uint64_t triangles_split;
+    uint64_t parts;
+    uint64_t pieces;
+    uint64_t slabs;
+    uint64_t cells;         /* top grid and subgrids together               */
+    uint64_t subgrids;
+    uint32_t subgrid_depth; /* deepest subgrid; 0 without subgrids          */
+    uint32_t layer_bound;   /* max over parts                               */
+    uint32_t attributes;    /* OIT_ATTR_* of the source                     */
+    uint32_t part_align;
+    uint64_t parts_index16;
+    uint64_t parts_index32;
+    uint64_t bytes;         /* file size                                    */
+    uint64_t data_bytes;    /* PART_DATA section size                       */
+    float bounds_min[3];
+    float bounds_max[3];
+} oit_partfile_summary;
+
+/* ---- reader ------------------------------------------------------------ */
+
+typedef struct oit_partfile oit_partfile;
+
+typedef struct oit_partfile_open_desc {
+    /* false (default): open validates every part's blob (checksum, index
+     * values, vertices inside bounds). true: open reads only the management
+     * sections, and each part must pass oit_partfile_validate_part before
+     * oit_partfile_part_data hands it out. */
+    bool defer_part_data;
+} oit_partfile_open_desc;
+
+/* desc may be NULL. On failure *out is NULL and err names the file. */
+oit_status oit_partfile_open(const char *path, const oit_partfile_open_desc *desc,
+                             oit_partfile **out, oit_error *err);
+/* The same over bytes already in memory (not copied: they must outlive the
+ * handle). name is used in messages. */
+oit_status oit_partfile_open_memory(const void *data, size_t size, const char *name,
+                                    const oit_partfile_open_desc *desc,
+                                    oit_partfile **out, oit_error *err);
+void oit_partfile_close(oit_partfile *pf);
+
+void oit_partfile_get_summary(const oit_partfile *pf, oit_partfile_summary *out);
+const char *oit_partfile_name(const oit_partfile *pf);
+const char *oit_partfile_source_name(const oit_partfile *pf); /* NUL-terminated */
+const char *oit_partfile_options(const oit_partfile *pf);     /* NUL-terminated */
+
+uint32_t oit_partfile_part_count(const oit_partfile *pf);
+const oit_partfile_part *oit_partfile_parts(const oit_partfile *pf);
+uint64_t oit_partfile_piece_count(const oit_partfile *pf);
+const oit_partfile_piece *oit_partfile_pieces(const oit_partfile *pf);
+
+/* Checks part's blob: checksum, index values < vertex_count, vertices
+ * finite and inside the part bounds, triangles inside their piece bounds.
+ * Idempotent; distinct parts may be validated from different threads. */
+oit_status oit_partfile_validate_part(oit_partfile *pf, uint32_t part, oit_error *err);
+
+typedef struct oit_partfile_part_view {
+    const void *blob;     /* data_bytes at data_offset: the one read      */
+    const float *positions; /* vertex i at (const char*)positions + i*stride */
+    const uint8_t *rgba;  /* NULL when the part stores no colour           */
+    uint32_t stride;      /* 12, or 16 with rgba                          */
+    uint32_t index_bits;  /* 16 or 32                                     */
+    const void *indices;
+    uint64_t index_count;
+} oit_partfile_part_view;
+
+/* Fails with OIT_ERR_ARGUMENT for an index out of range, or for a part not
+ * validated yet when the file was opened with defer_part_data. */
+oit_status oit_partfile_part_data(const oit_partfile *pf, uint32_t part,
+                                  oit_partfile_part_view *out, oit_error *err);
+
+/* Grids: index 0 is the top grid, 1..grid_count-1 the subgrids. NULL when
+ * out of range. */
+uint32_t oit_partfile_grid_count(const oit_partfile *pf);
+const oit_partfile_grid *oit_partfile_grid_at(const oit_partfile *pf, uint32_t grid);
+/* The cells of a grid (cell_count of them), NULL when out of range. */
+const oit_partfile_cell *oit_partfile_cells(const oit_partfile *pf, uint32_t grid);
+/* The ascending part indices of one cell; *count set (0 when out of range). */
+const uint32_t *oit_partfile_cell_parts(const oit_partfile *pf, uint32_t grid,
+                                        uint64_t cell, uint32_t *count);
+
+uint32_t oit_partfile_slab_count(const oit_partfile *pf);
+const oit_partfile_slab *oit_partfile_slab_at(const oit_partfile *pf, uint32_t slab);
+const uint32_t *oit_partfile_slab_inside(const oit_partfile *pf, uint32_t slab,
+                                         uint32_t *count);
+
+/* ---- writer ------------------------------------------------------------ */
+
+typedef struct oit_partfile_writer oit_partfile_writer;
+
+typedef struct oit_partfile_writer_desc {
+    uint32_t K;             /* layers per part; even, 2..1024; default 8      */
+    uint32_t part_align;    /* blob alignment; power of two, 8..1 MiB;
+                               default 4096 (page: one read, no split page) */
+    uint32_t attributes;    /* OIT_ATTR_* of the source                       */
+    const char *source_name; /* recorded in META; default ""                  */
+    const char *options;     /* converter options, recorded; default ""       */
+    bool skip_verify;        /* default false: finish re-opens the file with the
+                                reader before renaming it into place         */
+} oit_partfile_writer_desc;
+
+/* Creates "<path>.tmp". desc may be NULL. */
+oit_status oit_partfile_writer_create(const char *path, const oit_partfile_writer_desc *desc,
+                                      oit_partfile_writer **out, oit_error *err);
+
+typedef struct oit_partfile_piece_desc {
+    uint64_t triangle_count; /* consecutive triangles of the part */
+    uint32_t plane_count;
+} oit_partfile_piece_desc;
+
+typedef struct oit_partfile_part_desc {
+    const float *positions;  /* vertex_count x 3                         */
+    const uint8_t *rgba;     /* vertex_count x 4, or NULL: not stored    */
+    uint32_t vertex_count;
+    const uint32_t *indices; /* index_count, 3 per triangle; stored as 16-bit
+                                when vertex_count <= 65536                */
+    uint64_t index_count;
+    const oit_partfile_piece_desc *pieces; /* cover the triangles in order */
+    uint32_t piece_count;
+    uint32_t layer_bound;    /* 0: min(K, 2*piece_count)                  */
+    uint32_t attributes;     /* OIT_ATTR_* the rgba holds; 0 with rgba
+                                means OIT_ATTR_COLOR|OIT_ATTR_ALPHA      */
+} oit_partfile_part_desc;
+
+/* Writes the part's blob now; bounds are computed from the data. */
+oit_status oit_partfile_writer_add_part(oit_partfile_writer *w, const oit_partfile_part_desc *part,
+                                        uint32_t *index, oit_error *err);
+
+typedef struct oit_partfile_grid_desc {
+    uint32_t dims[3];
+    float origin[3];
+    float cell_size[3];
+    uint32_t parent_grid;        /* subgrids only: grid index (0 = top)  */
+    uint32_t parent_cell;
+    const uint32_t *cell_counts; /* parts per cell, dims product of them */
+    const uint32_t *cell_parts;  /* the lists, concatenated, ascending   */
+} oit_partfile_grid_desc;
+
+/* Exactly once, before subgrids and slabs. */
+oit_status oit_partfile_writer_set_grid(oit_partfile_writer *w, const oit_partfile_grid_desc *g,
+                                        oit_error *err);
+/* Returns the new grid's index (1, 2, ...). Parents come before children. */
+oit_status oit_partfile_writer_add_subgrid(oit_partfile_writer *w, const oit_partfile_grid_desc *g,
+                                           uint32_t *grid, oit_error *err);
+
+typedef struct oit_partfile_slab_desc {
+    float normal[3];
+    float d0, d1;
+    uint32_t grid, cell;
+    uint32_t part_below, part_above;
+    const uint32_t *inside; /* ascending */
+    uint32_t inside_count;
+} oit_partfile_slab_desc;
+
+oit_status oit_partfile_writer_add_slab(oit_partfile_writer *w, const oit_partfile_slab_desc *s,
+                                        uint32_t *slab, oit_error *err);
+
+typedef struct oit_partfile_stats {
+    uint64_t triangles_in;
+    uint64_t triangles_dropped; /* degenerate or non-finite */
+    uint64_t triangles_split;   /* added by splitting       */
+} oit_partfile_stats;
+
+/* Writes management sections and header, verifies, renames. Consumes w on
+ * success and on failure (the .tmp file is removed on failure). stats may be
+ * NULL. */
+oit_status oit_partfile_writer_finish(oit_partfile_writer *w, const oit_partfile_stats *stats,
+                                      oit_error *err);
+/* Discards w and its .tmp file. NULL is allowed. */
+void oit_partfile_writer_abort(oit_partfile_writer *w);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,95 @@
+/* GLSL of the capture backends (capture_glsl.h). Totals buffer layout:
+ * uint overflow, fragments lo, fragments hi, max layers. */
+#include "render/capture_glsl.h"
+
+#define COUNT_AND_FLAG                                                      \
+    "layout(std430, binding = 1) buffer Counts { uint counts[]; };\n"      \
+    "layout(std430, binding = 5) buffer Totals { uint overflow; uint f_lo; uint f_hi; uint f_max; };\n" \
+    "layout(location = 10) uniform int u_K;\n"
+
+const char oit_capture_array_fs[] =
+    COUNT_AND_FLAG
+    "layout(std430, binding = 3) writeonly buffer Slots { uvec4 slots[]; };\n"
+    "void main() {\n"
+    "    uint p = oit_pixel_index();\n"
+    "    uint c = atomicAdd(counts[p], 1u);\n"
+    "    if (c < uint(u_K)) slots[p * uint(u_K) + c] = oit_fragment();\n"
+    "    else if (c == uint(u_K)) atomicAdd(overflow, 1u);\n"
+    "}\n";
+
+const char oit_capture_stencil_fs[] =
+    COUNT_AND_FLAG
+    "layout(location = 0) out uvec4 o_frag;\n"
+    "void main() {\n"
+    "    uint c = atomicAdd(counts[oit_pixel_index()], 1u);\n"
+    "    if (c == uint(u_K)) atomicAdd(overflow, 1u);\n"
+    "    o_frag = oit_fragment();\n"
+    "}\n";
+
+const char oit_capture_resolve_cs[] =
+    "layout(local_size_x = 8, local_size_y = 8) in;\n"
+    COUNT_AND_FLAG
+    "layout(location = 11) uniform ivec2 u_size;\n"
+    "layout(location = 12) uniform ivec4 u_rect;\n"
+    "layout(std430, binding = 6) buffer State { oit_state states[]; };\n"
+    "#ifdef OIT_STENCIL\n"
+    "layout(binding = 0) uniform usampler2DMS u_samples;\n"
+    "#define LOAD(px, p, i) texelFetch(u_samples, px, int(i))\n"
+    "#else\n"
+    "layout(std430, binding = 3) readonly buffer Slots { uvec4 slots[]; };\n"
+    "#define LOAD(px, p, i) slots[p * uint(u_K) + i]\n"
+    "#endif\n"
+    "void main() {\n"
+    "    ivec2 px = u_rect.xy + ivec2(gl_GlobalInvocationID.xy);\n"
+    "    if (px.x >= u_rect.z || px.y >= u_rect.w) return;\n"
+    "    uint p = uint(px.y * u_size.x + px.x);\n"
+    "    uint n = counts[p];\n"
+    "    uint m = min(n, uint(u_K));\n"
+    "    uvec4 f[16];\n"
+    "    for (uint i = 0u; i < m; i++) {\n"
+    "        uvec4 x = LOAD(px, p, i);\n"
+    "        uint j = i;\n"
+    "        while (j > 0u) {\n"
+    "            if (!oit_frag_less(x, f[j - 1u])) break;\n"
+    "            f[j] = f[j - 1u];\n"
+    "            j--;\n"
+    "        }\n"
+    "        f[j] = x;\n"
+    "    }\n"
+    "    oit_state s = states[p];\n"
+    "    for (uint i = 0u; i < m; i++) oit_composite(s, f[i]);\n"
+    "    s.nfrag += n;\n"
+    "    states[p] = s;\n"
+    "    counts[p] = 0u;\n"
+    "}\n";
+
+const char oit_capture_begin_cs[] =
+    "layout(local_size_x = 64) in;\n"
+    "layout(std430, binding = 6) writeonly buffer State { oit_state states[]; };\n"
+    "layout(location = 13) uniform uint u_count;\n"
+    "void main() {\n"
+    "    uint p = gl_GlobalInvocationID.x;\n"
+    "    if (p < u_count) states[p] = oit_state_begin();\n"
+    "}\n";
+
+const char oit_capture_end_cs[] =
+    "layout(local_size_x = 64) in;\n"
+    COUNT_AND_FLAG
+    "layout(std430, binding = 6) readonly buffer State { oit_state states[]; };\n"
+    "layout(std430, binding = 4) writeonly buffer Out { vec4 out_rgba[]; };\n"
+    "layout(location = 13) uniform uint u_count;\n"
+    "void main() {\n"
+    "    uint p = gl_GlobalInvocationID.x;\n"
+    "    if (p >= u_count) return;\n"
+    "    oit_state s = states[p];\n"
+    "    out_rgba[p] = oit_state_final(s);\n"
+    "    atomicMax(f_max, s.nfrag);\n"
+    "    uint old = atomicAdd(f_lo, s.nfrag);\n"
+    "    if (old + s.nfrag < old) atomicAdd(f_hi, 1u);\n"
+    "}\n";
+
+const char oit_capture_fullscreen_vs[] =
+    "void main() {\n"
+    "    vec2 p = vec2((gl_VertexID & 1) * 4 - 1, (gl_VertexID & 2) * 2 - 1);\n"
+    "    gl_Position = vec4(p, 0.0, 1.0);\n"
+    "}\n";

@@ -1,0 +1,26 @@
+/* GLSL of the capture backends (capture.h): the fragment stages that fill
+ * the K-fragment A-buffer (array slots or routed MSAA samples), the per-batch
+ * resolve that sorts and composites into the carried per-pixel state, and
+ * the begin/end passes over that state. */
+#ifndef OIT_RENDER_CAPTURE_GLSL_H
+#define OIT_RENDER_CAPTURE_GLSL_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Array backend: slot by atomic counter, overflow counted once per pixel. */
+extern const char oit_capture_array_fs[];
+/* Stencil backend: the fragment is the colour output; counts as above. */
+extern const char oit_capture_stencil_fs[];
+/* Resolve over the batch rect; prefix "#define OIT_STENCIL 1" for samples. */
+extern const char oit_capture_resolve_cs[];
+extern const char oit_capture_begin_cs[];
+extern const char oit_capture_end_cs[];
+/* Full-screen triangle for the stencil initialisation. */
+extern const char oit_capture_fullscreen_vs[];
+
+#ifdef __cplusplus
+}
+#endif
+#endif

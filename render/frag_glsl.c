@@ -1,0 +1,156 @@
+/* Shared GLSL (frag_glsl.h). Every line of shading and compositing here
+ * mirrors shade.h / shade.c; keep them in step. */
+#include "render/frag_glsl.h"
+
+#include <math.h>
+
+const char oit_glsl_version[] = "#version 450 core\n";
+
+const char oit_glsl_vertex[] =
+    "layout(std430, binding = 0) readonly buffer Verts { uvec4 verts[]; };\n"
+    "layout(location = 0) uniform mat4 u_view;\n"
+    "layout(location = 1) uniform mat4 u_proj;\n"
+    "out vec3 v_pos;\n"
+    "out vec4 v_rgba;\n"
+    "flat out vec3 v_normal;\n"
+    "invariant gl_Position;\n"
+    "void main() {\n"
+    "    int tri = gl_VertexID / 3;\n"
+    "    vec3 p0 = uintBitsToFloat(verts[tri * 3].xyz);\n"
+    "    vec3 p1 = uintBitsToFloat(verts[tri * 3 + 1].xyz);\n"
+    "    vec3 p2 = uintBitsToFloat(verts[tri * 3 + 2].xyz);\n"
+    "    uvec4 me = verts[gl_VertexID];\n"
+    /* Geometric normal in world space, then rotated: dot products with
+     * view-space vectors equal the world-space ones of shade.h. */
+    "    v_normal = mat3(u_view) * cross(p1 - p0, p2 - p0);\n"
+    "    vec4 vp = u_view * vec4(uintBitsToFloat(me.xyz), 1.0);\n"
+    "    v_pos = vp.xyz;\n"
+    "    v_rgba = unpackUnorm4x8(me.w);\n"
+    "    gl_Position = u_proj * vp;\n"
+    "}\n";
+
+const char oit_glsl_fragment_gen[] =
+    "layout(location = 2) uniform uint u_first_prim;\n"
+    "layout(location = 3) uniform int u_mode;\n"
+    "layout(location = 4) uniform uint u_attrs;\n"
+    "layout(location = 5) uniform float u_alpha;\n"
+    "layout(location = 6) uniform vec3 u_default_rgb;\n"
+    "layout(location = 7) uniform int u_width;\n"
+    "in vec3 v_pos;\n"
+    "in vec4 v_rgba;\n"
+    "flat in vec3 v_normal;\n"
+    "uint oit_pixel_index() {\n"
+    "    return uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x);\n"
+    "}\n"
+    "uint oit_pack_111110(vec3 c) {\n"
+    "    uvec3 q = uvec3(round(clamp(c, 0.0, 1.0) * vec3(2047.0, 2047.0, 1023.0)));\n"
+    "    return q.x | (q.y << 11) | (q.z << 22);\n"
+    "}\n"
+    "uvec4 oit_fragment() {\n"
+    "    float t = length(v_pos);\n"
+    "    vec3 v = -v_pos / t;\n"
+    /* Degenerate triangles shade as edge-on, like shade.c. */
+    "    float nn = dot(v_normal, v_normal);\n"
+    "    float nv = nn > 0.0 ? dot(v_normal * inversesqrt(nn), v) : 0.0;\n"
+    "    float ndv = abs(nv);\n"
+    "    float light = 0.3 + 0.7 * ndv;\n"
+    "    vec3 base = (u_attrs & 1u) != 0u ? v_rgba.rgb : u_default_rgb;\n"
+    "    float a = (u_attrs & 2u) != 0u ? v_rgba.a : u_alpha;\n"
+    "    uint prim = u_first_prim + uint(gl_PrimitiveID);\n"
+    "    uvec4 f;\n"
+    "    f.x = floatBitsToUint(t);\n"
+    "    f.y = (prim & 0x7fffffffu) | (nv > 0.0 ? 0x80000000u : 0u);\n"
+    "    if (u_mode == 1) {\n"
+    "        float fresnel = 0.04 + 0.96 * pow(1.0 - ndv, 5.0);\n"
+    "        f.z = packUnorm2x16(vec2(light, fresnel));\n"
+    "        f.w = oit_pack_111110(base);\n"
+    "    } else {\n"
+    "        vec3 c = base * light;\n"
+    "        f.z = packUnorm2x16(c.rg);\n"
+    "        f.w = packUnorm2x16(vec2(c.b, a));\n"
+    "    }\n"
+    "    return f;\n"
+    "}\n";
+
+const char oit_glsl_composite[] =
+    "layout(location = 3) uniform int u_mode;\n"
+    "layout(location = 8) uniform float u_sigma;\n"
+    "layout(location = 9) uniform vec3 u_background;\n"
+    "struct oit_state { vec3 C; float t_prev; vec3 T; int nest; vec3 medium; uint nfrag; };\n"
+    "oit_state oit_state_begin() {\n"
+    "    return oit_state(vec3(0.0), 0.0, vec3(1.0), 0, vec3(0.0), 0u);\n"
+    "}\n"
+    "bool oit_frag_less(uvec4 a, uvec4 b) {\n"
+    "    return a.x < b.x || (a.x == b.x && (a.y & 0x7fffffffu) < (b.y & 0x7fffffffu));\n"
+    "}\n"
+    "vec3 oit_unpack_111110(uint w) {\n"
+    "    return vec3(float(w & 0x7ffu) / 2047.0, float((w >> 11) & 0x7ffu) / 2047.0,\n"
+    "                float(w >> 22) / 1023.0);\n"
+    "}\n"
+    "void oit_composite(inout oit_state s, uvec4 f) {\n"
+    "    float t = uintBitsToFloat(f.x);\n"
+    "    bool translucent = u_mode == 1;\n"
+    "    vec3 colour; float a;\n"
+    "    if (translucent) {\n"
+    "        vec2 la = unpackUnorm2x16(f.z);\n"
+    "        colour = vec3(la.x); a = la.y;\n"
+    "        if (s.nest > 0)\n"
+    "            s.T *= exp(-u_sigma * (vec3(1.0) - s.medium) * (t - s.t_prev));\n"
+    "    } else {\n"
+    "        vec2 rg = unpackUnorm2x16(f.z), ba = unpackUnorm2x16(f.w);\n"
+    "        colour = vec3(rg, ba.x); a = ba.y;\n"
+    "    }\n"
+    "    s.C += s.T * a * colour;\n"
+    "    s.T *= 1.0 - a;\n"
+    "    if (translucent) {\n"
+    "        if ((f.y & 0x80000000u) != 0u) { s.nest += 1; s.medium = oit_unpack_111110(f.w); }\n"
+    "        else s.nest = max(s.nest - 1, 0);\n"
+    "        s.t_prev = t;\n"
+    "    }\n"
+    "}\n"
+    "vec4 oit_state_final(oit_state s) {\n"
+    "    return vec4(s.C + s.T * u_background, 1.0);\n"
+    "}\n";
+
+/* Uniforms are set by name: a location a program does not use is -1, which
+ * GL ignores, whereas an unused explicit location is an error. */
+static GLint loc(GLuint prog, const char *name)
+{
+    return glGetUniformLocation(prog, name);
+}
+
+void oit_glsl_set_view(GLuint prog, const oit_view *view)
+{
+    float m[16];
+    const oit_shading *s = &view->shading;
+    oit_camera_view_matrix(&view->camera, m);
+    glProgramUniformMatrix4fv(prog, loc(prog, "u_view"), 1, GL_FALSE, m);
+    oit_camera_proj_matrix(&view->camera, (float)view->width / (float)view->height, m);
+    glProgramUniformMatrix4fv(prog, loc(prog, "u_proj"), 1, GL_FALSE, m);
+    glProgramUniform1i(prog, loc(prog, "u_mode"), (GLint)s->mode);
+    glProgramUniform1ui(prog, loc(prog, "u_attrs"), s->attributes);
+    glProgramUniform1f(prog, loc(prog, "u_alpha"), s->alpha);
+    glProgramUniform3fv(prog, loc(prog, "u_default_rgb"), 1, s->default_rgb);
+    glProgramUniform1i(prog, loc(prog, "u_width"), view->width);
+    float sigma = s->scene_scale > 0.0f ? s->absorption / s->scene_scale : 0.0f;
+    glProgramUniform1f(prog, loc(prog, "u_sigma"), sigma);
+    float bg[3];
+    for (int c = 0; c < 3; c++)
+        bg[c] = fmaxf(s->background[c], 0.0f);
+    glProgramUniform3fv(prog, loc(prog, "u_background"), 1, bg);
+    glProgramUniform2i(prog, loc(prog, "u_size"), view->width, view->height);
+}
+
+void oit_glsl_raster_begin(GLuint fbo, int w, int h)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glViewport(0, 0, w, h);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_STENCIL_TEST);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_MULTISAMPLE);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glDepthMask(GL_FALSE);
+}

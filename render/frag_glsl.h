@@ -1,0 +1,84 @@
+/* The GLSL that every GL method shares, so that DFB and both capture
+ * backends generate bit-identical fragments and composite them the same way
+ * (shade.h is the definition; this is its mirror).
+ *
+ * Vertex stage: vertex pulling. The triangle soup (16-byte vertices) is bound
+ * as an SSBO at binding OIT_BIND_VERTS; each vertex reads all three vertices
+ * of its triangle and computes the geometric normal with the same operations
+ * in the same order, so the flat normal is identical whichever vertex is
+ * provoking. This keeps the 16-byte layout (no per-vertex normal) and avoids
+ * a geometry shader, which costs throughput on every GPU.
+ *
+ * A fragment is packed into one uvec4 (16 bytes):
+ *   x  floatBitsToUint(t)               t = distance from the eye (> 0)
+ *   y  prim (31 bits) | front << 31
+ *   transparent: z = unorm16(colour.r, colour.g), w = unorm16(colour.b, alpha)
+ *   translucent: z = unorm16(light, fresnel alpha)  (the colour is grey)
+ *                w = base rgb as unorm 11/11/10    (the medium colour)
+ * so translucency needs no second word. Sort key: (x, y & 0x7fffffff)
+ * ascending; t > 0 makes its bit pattern order like the float.
+ */
+#ifndef OIT_RENDER_FRAG_GLSL_H
+#define OIT_RENDER_FRAG_GLSL_H
+
+#include "render/gl_util.h"
+#include "render/view.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Explicit uniform locations shared by all programs. A program may leave
+ * some unused: set those through glGetUniformLocation (-1 is ignored). */
+enum {
+    OIT_LOC_VIEW = 0,        /* mat4 */
+    OIT_LOC_PROJ = 1,        /* mat4 */
+    OIT_LOC_FIRST_PRIM = 2,  /* uint: prim of the draw's first triangle */
+    OIT_LOC_MODE = 3,        /* int: oit_shading_mode */
+    OIT_LOC_ATTRS = 4,       /* uint: OIT_ATTR_* */
+    OIT_LOC_ALPHA = 5,       /* float */
+    OIT_LOC_DEFAULT_RGB = 6, /* vec3 */
+    OIT_LOC_WIDTH = 7,       /* int: frame width (pixel index) */
+    OIT_LOC_SIGMA = 8,       /* float: absorption / scene_scale */
+    OIT_LOC_BACKGROUND = 9,  /* vec3, negative clamped to 0 */
+    OIT_LOC_K = 10,          /* int: capture slots per pixel */
+    OIT_LOC_SIZE = 11,       /* ivec2: frame size */
+    OIT_LOC_RECT = 12,       /* ivec4: GL-oriented rect x0,y0,x1,y1 */
+    OIT_LOC_COUNT = 13,      /* uint: element count (scans) */
+    OIT_LOC_FIRST_LEVEL = 14 /* int: scan level 0 accumulates totals */
+};
+
+/* Buffer bindings shared by all programs. */
+enum {
+    OIT_BIND_VERTS = 0,
+    OIT_BIND_COUNTS = 1,
+    OIT_BIND_OFFSETS = 2,
+    OIT_BIND_FRAGS = 3,
+    OIT_BIND_OUT = 4,
+    OIT_BIND_TOTALS = 5,
+    OIT_BIND_STATE = 6,
+    OIT_BIND_SUMS = 7
+};
+
+extern const char oit_glsl_version[];   /* "#version 450" and extensions   */
+extern const char oit_glsl_vertex[];    /* the vertex-pulling vertex shader */
+/* Fragment-stage library: oit_fragment() returns the packed fragment and
+ * oit_pixel_index() the pixel's linear index (GL rows, bottom first). */
+extern const char oit_glsl_fragment_gen[];
+/* Any stage: oit_state, oit_state_begin(), oit_frag_less(a, b),
+ * oit_composite(inout oit_state, uvec4 frag), oit_state_final(). */
+extern const char oit_glsl_composite[];
+
+/* Sets the view and shading uniforms of a program built from the pieces
+ * above (uniforms that a program does not use are skipped). */
+void oit_glsl_set_view(GLuint prog, const oit_view *view);
+
+/* Binds fbo (no attachments needed) for fragment generation: viewport
+ * w x h, no depth, stencil, blending, culling or colour writes, so the
+ * fragment shader sees every fragment of every triangle, both faces. */
+void oit_glsl_raster_begin(GLuint fbo, int w, int h);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,52 @@
+/* Small GL helpers shared by the GL methods: program building whose errors
+ * carry the driver's info log, a GL error check that names the failed call,
+ * buffer allocation that reports its size, and a wall-clock timer. All need
+ * a current GL 4.5 context; none keeps state. */
+#ifndef OIT_RENDER_GL_UTIL_H
+#define OIT_RENDER_GL_UTIL_H
+
+#define GL_GLEXT_PROTOTYPES 1
+#include <GL/glcorearb.h>
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "oit/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Builds a vertex+fragment program from NULL-terminated lists of source
+ * strings (concatenated, as glShaderSource does). 'what' names the program
+ * in the error, which quotes the info log. */
+oit_status oit_gl_program_graphics(const char *what, const char *const *vs,
+                                   const char *const *fs, GLuint *out, oit_error *err);
+oit_status oit_gl_program_compute(const char *what, const char *const *cs, GLuint *out,
+                                  oit_error *err);
+
+/* OIT_OK when glGetError reports nothing; otherwise OIT_ERR_GL naming 'call'
+ * and the error (later errors are drained so they do not blame the next
+ * call). */
+oit_status oit_gl_check(const char *call, oit_error *err);
+
+/* Makes *buf a buffer of at least 'bytes' (GL_DYNAMIC_COPY), keeping *cap in
+ * bytes; when it must grow it allocates max(bytes, 1.5 * *cap) so repeated
+ * growth is geometric. Contents are not preserved. */
+oit_status oit_gl_buffer_reserve(GLuint *buf, uint64_t *cap, uint64_t bytes,
+                                 const char *what, oit_error *err);
+
+/* OIT_ERR_NOMEM naming 'what' when one shader storage block cannot span
+ * 'bytes' on this driver (GL_MAX_SHADER_STORAGE_BLOCK_SIZE). */
+oit_status oit_gl_check_ssbo_size(uint64_t bytes, const char *what, oit_error *err);
+
+/* Workgroups of 'local' threads covering n items. */
+GLuint oit_gl_groups(uint64_t n, GLuint local);
+
+/* Milliseconds on a monotonic clock. */
+double oit_time_ms(void);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,39 @@
+/* Exclusive prefix sum of a GPU uint buffer in compute shaders: blocks of
+ * 1024 elements scanned in shared memory, block sums scanned recursively,
+ * then added back (work-efficient, O(n)). The first level also accumulates
+ * the 64-bit total and the maximum element, which callers read back to size
+ * their fragment store and fill stats. */
+#ifndef OIT_RENDER_SCAN_GLSL_H
+#define OIT_RENDER_SCAN_GLSL_H
+
+#include "render/gl_util.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define OIT_SCAN_LEVELS 4 /* 1024^4 elements */
+
+typedef struct oit_scan {
+    GLuint block, add;                  /* programs */
+    GLuint sums[OIT_SCAN_LEVELS];       /* block sums per level */
+    uint64_t sums_cap[OIT_SCAN_LEVELS];
+    GLuint totals;                      /* uint lo, hi, max, pad */
+} oit_scan;
+
+typedef struct oit_scan_result {
+    uint64_t total;
+    uint32_t max;
+} oit_scan_result;
+
+oit_status oit_scan_init(oit_scan *s, oit_error *err);
+void oit_scan_release(oit_scan *s);
+/* Scans buf[0..n) in place (exclusive) and reads back total and maximum. */
+oit_status oit_scan_run(oit_scan *s, GLuint buf, uint64_t n, oit_scan_result *res,
+                        oit_error *err);
+uint64_t oit_scan_bytes(const oit_scan *s);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

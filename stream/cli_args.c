@@ -1,0 +1,203 @@
+/* oitstream option parsing (cli_args.h). */
+#include "stream/cli_args.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int parse_float(const char *s, float *out)
+{
+    char *end;
+    double v = strtod(s, &end);
+    if (end == s || *end || !isfinite(v))
+        return 0;
+    *out = (float)v;
+    return 1;
+}
+
+static int parse_int(const char *s, int *out, int lo, int hi)
+{
+    char *end;
+    long v = strtol(s, &end, 10);
+    if (end == s || *end || v < lo || v > hi)
+        return 0;
+    *out = (int)v;
+    return 1;
+}
+
+static int parse_size(const char *s, int *w, int *h)
+{
+    char buf[64];
+    snprintf(buf, sizeof buf, "%s", s);
+    char *x = strchr(buf, 'x');
+    if (!x)
+        return 0;
+    *x = 0;
+    return parse_int(buf, w, 1, 16384) && parse_int(x + 1, h, 1, 16384);
+}
+
+static int parse_rgb(const char *s, float rgb[3])
+{
+    char *end;
+    const char *p = s;
+    for (int c = 0; c < 3; c++) {
+        double v = strtod(p, &end);
+        if (end == p || !isfinite(v) || v < 0.0 || v > 1.0)
+            return 0;
+        rgb[c] = (float)v;
+        if (c < 2 && *end != ',')
+            return 0;
+        p = end + 1;
+    }
+    if (*end)
+        return 0;
+    /* view.h reads all-zero as "default"; black is spelled negative. */
+    if (rgb[0] == 0.0f && rgb[1] == 0.0f && rgb[2] == 0.0f)
+        rgb[0] = rgb[1] = rgb[2] = -1.0f;
+    return 1;
+}
+
+static oit_status bad(oit_error *err, const char *opt, const char *val, const char *want)
+{
+    return oit_error_set(err, OIT_ERR_ARGUMENT, "%s '%s': expected %s", opt, val ? val : "",
+                         want);
+}
+
+/* Options that take a value; returns 0 when opt is not one of them. */
+static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_status *s,
+                        oit_error *err)
+{
+    *s = OIT_OK;
+    if (!strcmp(opt, "--method")) a->method = v;
+    else if (!strcmp(opt, "--out")) a->out = v;
+    else if (!strcmp(opt, "--stats")) a->stats_path = v;
+    else if (!strcmp(opt, "--mask")) a->mask = v;
+    else if (!strcmp(opt, "--ambiguity")) a->ambiguity_out = v;
+    else if (!strcmp(opt, "--size")) {
+        if (!parse_size(v, &a->width, &a->height)) *s = bad(err, opt, v, "WxH, 1..16384");
+    } else if (!strcmp(opt, "--view")) {
+        if (oit_camera_parse(&a->view, v) != 0)
+            *s = bad(err, opt, v, "ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy[,znear,zfar]");
+        a->have_view = 1;
+    } else if (!strcmp(opt, "--azimuth")) {
+        if (!parse_float(v, &a->azimuth)) *s = bad(err, opt, v, "degrees");
+    } else if (!strcmp(opt, "--elevation")) {
+        if (!parse_float(v, &a->elevation) || fabsf(a->elevation) > 90.0f)
+            *s = bad(err, opt, v, "degrees in [-90, 90]");
+    } else if (!strcmp(opt, "--orbit")) {
+        if (!parse_int(v, &a->orbit, 1, 100000)) *s = bad(err, opt, v, "a view count >= 1");
+    } else if (!strcmp(opt, "--shading")) {
+        if (!strcmp(v, "transparent")) a->shading.mode = OIT_SHADING_TRANSPARENT;
+        else if (!strcmp(v, "translucent")) a->shading.mode = OIT_SHADING_TRANSLUCENT;
+        else *s = bad(err, opt, v, "transparent or translucent");
+    } else if (!strcmp(opt, "--alpha")) {
+        if (!parse_float(v, &a->shading.alpha) || !(a->shading.alpha > 0.0f) ||
+            a->shading.alpha > 1.0f)
+            *s = bad(err, opt, v, "a number in (0, 1]");
+    } else if (!strcmp(opt, "--absorption")) {
+        if (!parse_float(v, &a->shading.absorption) || !(a->shading.absorption > 0.0f))
+            *s = bad(err, opt, v, "a number > 0");
+    } else if (!strcmp(opt, "--background")) {
+        if (!parse_rgb(v, a->shading.background)) *s = bad(err, opt, v, "r,g,b in [0, 1]");
+    } else if (!strcmp(opt, "--max-layers")) {
+        if (!parse_int(v, &a->max_layers, 2, 16)) *s = bad(err, opt, v, "K in [2, 16]");
+    } else if (!strcmp(opt, "--show")) {
+        if (!strcmp(v, "layers")) a->show_layers = 1;
+        else if (strcmp(v, "colour") && strcmp(v, "color")) *s = bad(err, opt, v, "layers or colour");
+    } else if (!strcmp(opt, "--gain")) {
+        if (!parse_float(v, &a->gain) || !(a->gain > 0.0f)) *s = bad(err, opt, v, "a number > 0");
+    } else
+        return 0;
+    return 1;
+}
+
+static oit_status positional(oit_stream_args *a, const char *arg, oit_error *err)
+{
+    if (a->compare && !a->compare_a) a->compare_a = arg;
+    else if (a->compare && !a->compare_b) a->compare_b = arg;
+    else if (!a->compare && !a->model) a->model = arg;
+    else return oit_error_set(err, OIT_ERR_ARGUMENT, "unexpected argument '%s'", arg);
+    return OIT_OK;
+}
+
+static oit_status check_combination(const oit_stream_args *a, oit_error *err)
+{
+    if (a->help)
+        return OIT_OK;
+    if (a->compare && (!a->compare_a || !a->compare_b))
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "--compare needs two images");
+    if (!a->compare && !a->model)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "no model given (see --help)");
+    if (a->have_view && a->orbit)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "--view and --orbit exclude each other");
+    return OIT_OK;
+}
+
+oit_status oit_stream_args_parse(int argc, char **argv, oit_stream_args *a, oit_error *err)
+{
+    memset(a, 0, sizeof *a);
+    a->method = "dfb";
+    a->width = a->height = 1024;
+    a->elevation = 20.0f;
+    a->gain = 1.0f;
+    a->max_layers = 16;
+    for (int i = 1; i < argc; i++) {
+        const char *arg = argv[i];
+        oit_status s = OIT_OK;
+        if (!strcmp(arg, "--help") || !strcmp(arg, "-h")) a->help = 1;
+        else if (!strcmp(arg, "--compare")) a->compare = 1;
+        else if (!strcmp(arg, "--json")) a->json = 1;
+        else if (!strcmp(arg, "--quiet")) a->quiet = 1;
+        else if (!strncmp(arg, "--", 2)) {
+            const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+            if (!value_option(a, arg, v ? v : "", &s, err))
+                return oit_error_set(err, OIT_ERR_ARGUMENT, "unknown option '%s' (see --help)", arg);
+            if (!v)
+                return oit_error_set(err, OIT_ERR_ARGUMENT, "%s needs a value", arg);
+            i++;
+        } else
+            s = positional(a, arg, err);
+        if (s != OIT_OK)
+            return s;
+    }
+    return check_combination(a, err);
+}
+
+void oit_stream_usage(FILE *f, const char *method_list)
+{
+    fprintf(f,
+        "usage: oitstream MODEL [options]\n"
+        "       oitstream --compare A B [--json] [--out DIFF.png] [--gain G]\n"
+        "\n"
+        "Renders MODEL (.ply .obj .off .stl .gltf .glb) with exact order-independent\n"
+        "transparency and writes the image.\n"
+        "\n"
+        "  --method M          %s (default dfb)\n"
+        "  --size WxH          image size (default 1024x1024)\n"
+        "  --view ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy[,znear,zfar]\n"
+        "                      camera; without it --azimuth/--elevation frame the model\n"
+        "  --azimuth DEG       default 0\n"
+        "  --elevation DEG     default 20\n"
+        "  --orbit N           N views around the model (azimuth i*360/N, elevation 20)\n"
+        "  --out PATH          FILE.png or FILE.pfm, or a folder (frame_000.png ...)\n"
+        "  --shading S         transparent (default) or translucent\n"
+        "  --alpha A           alpha for models without one (default 0.35)\n"
+        "  --absorption X      translucent optical depth across the model (default 4)\n"
+        "  --background r,g,b  default 1,1,1\n"
+        "  --max-layers K      fragments per pixel per batch for array/stencil, 2..16\n"
+        "                      (default 16); pixels with more count as overflow\n"
+        "  --show layers       write the fragments-per-pixel heat map (dfb, reference)\n"
+        "  --stats FILE.json   per-frame figures\n"
+        "  --ambiguity PATH    (reference) also write a mask, named like --out, that is\n"
+        "                      white where rasterization and ray casting may disagree:\n"
+        "                      the hit set changes within 1/64 pixel of the centre, or\n"
+        "                      two hits tie in depth\n"
+        "  --quiet             no per-frame lines\n"
+        "  --compare A B       print RMSE, max abs error, %% of pixels off by more than\n"
+        "                      1/255 and PSNR of two images (.png/.pfm); --json for JSON,\n"
+        "                      --out DIFF.png writes |A-B| * gain (--gain, default 1);\n"
+        "                      --mask M adds the figures outside M's non-black pixels\n"
+        "\n"
+        "Exit status: 0 ok, 1 runtime failure, 2 usage error, 3 bad input.\n",
+        method_list);
+}

@@ -1,0 +1,41 @@
+/* oitstream's command line: what the user asked for, validated, with no
+ * I/O done yet. Parsing never prints; a usage error comes back as
+ * OIT_ERR_ARGUMENT with a one-line message. */
+#ifndef OIT_STREAM_CLI_ARGS_H
+#define OIT_STREAM_CLI_ARGS_H
+
+#include <stdio.h>
+
+#include "render/view.h"
+
+typedef struct oit_stream_args {
+    int help;
+    /* --compare A B */
+    int compare;
+    const char *compare_a, *compare_b;
+    int json;
+    float gain;
+    const char *mask; /* --mask: figures also outside its non-black pixels */
+    /* rendering */
+    const char *model;
+    const char *method; /* a name from render_methods.h; checked there */
+    int width, height;
+    int have_view;
+    oit_camera view; /* --view, clip planes 0 unless given */
+    float azimuth, elevation;
+    int orbit; /* 0: one view */
+    const char *out;
+    const char *stats_path;
+    oit_shading shading; /* fields the user set; the rest 0 (defaults) */
+    int max_layers;
+    int show_layers;
+    const char *ambiguity_out; /* --ambiguity: mask of ambiguous pixels */
+    int quiet;
+} oit_stream_args;
+
+oit_status oit_stream_args_parse(int argc, char **argv, oit_stream_args *a, oit_error *err);
+
+/* The --help text; method_list names the methods that exist. */
+void oit_stream_usage(FILE *f, const char *method_list);
+
+#endif

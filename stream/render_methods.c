@@ -1,0 +1,167 @@
+/* The method table (render_methods.h): the in-core DFB, the Embree
+ * reference, and the two capture backends drawing the whole mesh as one
+ * batch (which is where their overflow count means something). */
+#include "stream/render_methods.h"
+
+#include <embree3/rtcore_config.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "render/capture.h"
+#include "render/dfb.h"
+#include "render/gl_context.h"
+#include "render/reference.h"
+
+struct oit_method_state {
+    const oit_mesh *mesh;
+    oit_gl *gl;
+    oit_gpu_mesh *gpu;
+    oit_dfb *dfb;
+    oit_capture *cap;
+    oit_reference_desc ref;
+};
+
+static void close_state(oit_method_state *st)
+{
+    if (!st)
+        return;
+    /* GL objects go before the context that owns them. */
+    if (st->cap) oit_capture_destroy(st->cap);
+    if (st->dfb) oit_dfb_destroy(st->dfb);
+    if (st->gpu) oit_gpu_mesh_destroy(st->gpu);
+    if (st->gl) oit_gl_destroy(st->gl);
+    free(st);
+}
+
+static oit_status new_state(const oit_mesh *mesh, int with_gl, oit_method_state **out,
+                            oit_error *err)
+{
+    oit_method_state *st = calloc(1, sizeof *st);
+    if (!st)
+        return oit_error_set(err, OIT_ERR_NOMEM, "cannot allocate renderer state");
+    st->mesh = mesh;
+    *out = st;
+    if (!with_gl)
+        return OIT_OK;
+    oit_gl_desc desc;
+    memset(&desc, 0, sizeof desc);
+    oit_status s = oit_gl_create(&desc, &st->gl, err);
+    if (s == OIT_OK)
+        s = oit_gpu_mesh_create(mesh->tris, mesh->count, 0, &st->gpu, err);
+    if (s != OIT_OK) {
+        close_state(st);
+        *out = NULL;
+    }
+    return s;
+}
+
+static const char *gl_renderer(const oit_method_state *st)
+{
+    return oit_gl_renderer(st->gl);
+}
+
+/* ---- dfb ---- */
+
+static oit_status dfb_open(const oit_mesh *mesh, const oit_method_options *opt,
+                           oit_method_state **out, oit_error *err)
+{
+    oit_status s = new_state(mesh, 1, out, err);
+    if (s == OIT_OK && (s = oit_dfb_create(&(*out)->dfb, err)) != OIT_OK) {
+        close_state(*out);
+        *out = NULL;
+    }
+    return s;
+}
+
+static oit_status dfb_render(oit_method_state *st, const oit_view *view, oit_image *out,
+                             uint32_t *counts, uint8_t *ambiguous, oit_frame_stats *stats,
+                             oit_error *err)
+{
+    const oit_gpu_mesh *meshes[1] = {st->gpu};
+    return oit_dfb_render(st->dfb, meshes, 1, view, out, counts, stats, err);
+}
+
+/* ---- capture backends ---- */
+
+static oit_status capture_open(oit_capture_kind kind, const oit_mesh *mesh,
+                               const oit_method_options *opt, oit_method_state **out,
+                               oit_error *err)
+{
+    oit_status s = new_state(mesh, 1, out, err);
+    if (s == OIT_OK && (s = oit_capture_create(kind, opt->max_layers, &(*out)->cap, err)) != OIT_OK) {
+        close_state(*out);
+        *out = NULL;
+    }
+    return s;
+}
+
+static oit_status array_open(const oit_mesh *mesh, const oit_method_options *opt,
+                             oit_method_state **out, oit_error *err)
+{
+    return capture_open(OIT_CAPTURE_ARRAY, mesh, opt, out, err);
+}
+
+static oit_status stencil_open(const oit_mesh *mesh, const oit_method_options *opt,
+                               oit_method_state **out, oit_error *err)
+{
+    return capture_open(OIT_CAPTURE_STENCIL, mesh, opt, out, err);
+}
+
+static oit_status capture_render(oit_method_state *st, const oit_view *view, oit_image *out,
+                                 uint32_t *counts, uint8_t *ambiguous, oit_frame_stats *stats,
+                             oit_error *err)
+{
+    const oit_gpu_mesh *meshes[1] = {st->gpu};
+    oit_status s = oit_capture_begin(st->cap, view, err);
+    if (s == OIT_OK)
+        s = oit_capture_batch(st->cap, meshes, 1, NULL, err);
+    if (s == OIT_OK)
+        s = oit_capture_end(st->cap, out, stats, err);
+    return s;
+}
+
+/* ---- reference ---- */
+
+static oit_status reference_open(const oit_mesh *mesh, const oit_method_options *opt,
+                                 oit_method_state **out, oit_error *err)
+{
+    return new_state(mesh, 0, out, err);
+}
+
+static oit_status reference_render(oit_method_state *st, const oit_view *view, oit_image *out,
+                                   uint32_t *counts, uint8_t *ambiguous, oit_frame_stats *stats,
+                             oit_error *err)
+{
+    oit_reference_desc desc = st->ref;
+    desc.ambiguous = ambiguous;
+    return oit_reference_render(st->mesh, view, &desc, out, counts, stats, err);
+}
+
+static const char *reference_renderer(const oit_method_state *st)
+{
+    return "Embree " RTC_VERSION_STRING " (CPU reference)";
+}
+
+static const oit_render_method methods[] = {
+    {"dfb", 1, 1, 0, dfb_open, dfb_render, gl_renderer, close_state},
+    {"reference", 0, 1, 1, reference_open, reference_render, reference_renderer, close_state},
+    {"array", 1, 0, 0, array_open, capture_render, gl_renderer, close_state},
+    {"stencil", 1, 0, 0, stencil_open, capture_render, gl_renderer, close_state},
+};
+
+const oit_render_method *oit_render_method_find(const char *name)
+{
+    for (size_t i = 0; i < sizeof methods / sizeof methods[0]; i++)
+        if (!strcmp(methods[i].name, name))
+            return &methods[i];
+    return NULL;
+}
+
+void oit_render_method_names(char *buf, size_t cap)
+{
+    size_t used = 0;
+    buf[0] = 0;
+    for (size_t i = 0; i < sizeof methods / sizeof methods[0] && used < cap; i++)
+        used += (size_t)snprintf(buf + used, cap - used, "%s%s", i ? "|" : "", methods[i].name);
+}

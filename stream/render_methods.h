@@ -1,0 +1,39 @@
+/* The rendering methods oitstream offers, behind one small interface so that
+ * a new method (the part-file streamer) is one more table entry. A method
+ * is opened once per run (context, uploads), renders any number of views,
+ * and is closed. Only methods with uses_gl create a GL context. */
+#ifndef OIT_STREAM_RENDER_METHODS_H
+#define OIT_STREAM_RENDER_METHODS_H
+
+#include "render/view.h"
+
+typedef struct oit_method_state oit_method_state;
+
+typedef struct oit_method_options {
+    int max_layers; /* K of the capture backends */
+} oit_method_options;
+
+typedef struct oit_render_method {
+    const char *name;
+    int uses_gl;
+    int has_counts; /* can fill per-pixel fragment counts (--show layers) */
+    int has_ambiguity; /* can flag raster-vs-ray ambiguous pixels (--ambiguity) */
+    oit_status (*open)(const oit_mesh *mesh, const oit_method_options *opt,
+                       oit_method_state **out, oit_error *err);
+    /* out is allocated by the call; counts and ambiguous (width*height) may
+     * be NULL, and are only passed where has_counts / has_ambiguity. */
+    oit_status (*render)(oit_method_state *st, const oit_view *view, oit_image *out,
+                         uint32_t *counts, uint8_t *ambiguous, oit_frame_stats *stats,
+                         oit_error *err);
+    /* "llvmpipe (LLVM 15.0.6, 256 bits)", "Embree 3.13.5 (CPU)", ... */
+    const char *(*renderer)(const oit_method_state *st);
+    void (*close)(oit_method_state *st);
+} oit_render_method;
+
+/* NULL when no method has that name. */
+const oit_render_method *oit_render_method_find(const char *name);
+/* Writes "dfb|reference|array|stencil" (the table's names) into buf, for
+ * --help and error messages. */
+void oit_render_method_names(char *buf, size_t cap);
+
+#endif

@@ -1,0 +1,61 @@
+/* JSON writer for oitstream --stats (stats_json.h). */
+#include "stream/stats_json.h"
+
+#include <math.h>
+#include <stdio.h>
+
+void oit_stats_format_view(const oit_camera *c, char *buf, size_t cap)
+{
+    snprintf(buf, cap, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g",
+             c->eye[0], c->eye[1], c->eye[2], c->target[0], c->target[1], c->target[2],
+             c->up[0], c->up[1], c->up[2], c->fovy_deg, c->znear, c->zfar);
+}
+
+static void put_string(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (; s && *s; s++) {
+        unsigned char ch = (unsigned char)*s;
+        if (ch == '"' || ch == '\\')
+            fprintf(f, "\\%c", ch);
+        else if (ch < 0x20)
+            fprintf(f, "\\u%04x", ch);
+        else
+            fputc(ch, f);
+    }
+    fputc('"', f);
+}
+
+static void put_frame(FILE *f, const oit_stats_frame *fr, int last)
+{
+    const oit_frame_stats *s = &fr->st;
+    fprintf(f, "    {\"method\": ");
+    put_string(f, fr->method);
+    fprintf(f, ", \"view\": ");
+    put_string(f, fr->view);
+    fprintf(f,
+            ", \"ms\": %.3f, \"fragments\": %llu, \"max_layers\": %u, \"overflow_pixels\": %llu, "
+            "\"gpu_bytes_peak\": %llu, \"batches\": %u}%s\n",
+            isfinite(s->ms) ? s->ms : -1.0, (unsigned long long)s->fragments, s->max_layers,
+            (unsigned long long)s->overflow_pixels, (unsigned long long)s->gpu_bytes_peak,
+            s->batches, last ? "" : ",");
+}
+
+oit_status oit_stats_json_write(const char *path, const oit_stats_run *run, oit_error *err)
+{
+    FILE *f = fopen(path, "w");
+    if (!f)
+        return oit_error_set(err, OIT_ERR_IO, "%s: cannot open for writing", path);
+    fprintf(f, "{\n  \"model\": ");
+    put_string(f, run->model);
+    fprintf(f, ",\n  \"triangles\": %llu,\n  \"renderer\": ", run->triangles);
+    put_string(f, run->renderer);
+    fprintf(f, ",\n  \"width\": %d,\n  \"height\": %d,\n  \"frames\": [\n", run->width,
+            run->height);
+    for (size_t i = 0; i < run->frame_count; i++)
+        put_frame(f, &run->frames[i], i + 1 == run->frame_count);
+    fprintf(f, "  ]\n}\n");
+    if (ferror(f) | (fclose(f) != 0))
+        return oit_error_set(err, OIT_ERR_IO, "%s: write failed", path);
+    return OIT_OK;
+}

@@ -1,0 +1,30 @@
+/* --stats FILE.json for oitstream: the run (model, triangles, renderer,
+ * size) and one object per frame with its figures and camera. */
+#ifndef OIT_STREAM_STATS_JSON_H
+#define OIT_STREAM_STATS_JSON_H
+
+#include <stddef.h>
+
+#include "render/view.h"
+
+typedef struct oit_stats_frame {
+    const char *method;
+    char view[320]; /* the camera as --view accepts it (with znear,zfar) */
+    oit_frame_stats st;
+} oit_stats_frame;
+
+typedef struct oit_stats_run {
+    const char *model;
+    unsigned long long triangles;
+    const char *renderer;
+    int width, height;
+    const oit_stats_frame *frames;
+    size_t frame_count;
+} oit_stats_run;
+
+/* The camera in --view syntax, round-trippable (%.9g). */
+void oit_stats_format_view(const oit_camera *cam, char *buf, size_t cap);
+
+oit_status oit_stats_json_write(const char *path, const oit_stats_run *run, oit_error *err);
+
+#endif

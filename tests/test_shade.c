@@ -1,0 +1,195 @@
+/* shade.h against hand-computed values: the fragment shading terms, the
+ * front-to-back composite, Beer-Lambert absorption inside a medium and the
+ * (t, prim) order. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "render/shade.h"
+
+static int failures;
+
+#define CHECK_NEAR(got, want, tol, what)                                                  \
+    do {                                                                                  \
+        double g_ = (got), w_ = (want);                                                   \
+        if (!(fabs(g_ - w_) <= (tol))) {                                                  \
+            fprintf(stderr, "FAIL %s:%d %s: got %.9g want %.9g\n", __FILE__, __LINE__,    \
+                    (what), g_, w_);                                                      \
+            failures++;                                                                   \
+        }                                                                                 \
+    } while (0)
+
+static oit_shading shading(oit_shading_mode mode)
+{
+    oit_shading s;
+    memset(&s, 0, sizeof s);
+    s.mode = mode;
+    s.alpha = 0.35f;
+    s.default_rgb[0] = 0.85f, s.default_rgb[1] = 0.55f, s.default_rgb[2] = 0.2f;
+    s.background[0] = s.background[1] = s.background[2] = 1.0f;
+    s.absorption = 4.0f;
+    s.scene_scale = 2.0f;
+    return s;
+}
+
+static oit_shaded_fragment frag(double t, uint32_t prim, float r, float g, float b, float a)
+{
+    oit_shaded_fragment f;
+    memset(&f, 0, sizeof f);
+    f.t = t;
+    f.prim = prim;
+    f.front = 1;
+    f.colour[0] = r, f.colour[1] = g, f.colour[2] = b;
+    f.alpha = a;
+    return f;
+}
+
+static void test_composite(void)
+{
+    oit_shading s = shading(OIT_SHADING_TRANSPARENT);
+    oit_shaded_fragment f[3] = {frag(1, 0, 1, 0, 0, 0.5f), frag(2, 1, 0, 0, 1, 0.5f),
+                                frag(3, 2, 0, 1, 0, 0.25f)};
+    oit_pixel_state st;
+    oit_pixel_begin(&st);
+    for (int i = 0; i < 3; i++)
+        oit_pixel_add(&st, &s, &f[i]);
+    float rgb[3];
+    oit_pixel_end(&st, &s, rgb);
+    /* C = .5 red + .25 blue + .0625 green, T = .1875 */
+    double want[3] = {0.5 + 0.1875, 0.0625 + 0.1875, 0.25 + 0.1875};
+    printf("composite: %.6f %.6f %.6f (want %.6f %.6f %.6f)\n", rgb[0], rgb[1], rgb[2],
+           want[0], want[1], want[2]);
+    for (int c = 0; c < 3; c++)
+        CHECK_NEAR(rgb[c], want[c], 1e-7, "three-fragment composite");
+
+    s.background[0] = s.background[1] = s.background[2] = -1.0f;
+    oit_pixel_end(&st, &s, rgb);
+    CHECK_NEAR(rgb[0], 0.5, 1e-7, "black background (negative) adds nothing");
+}
+
+static oit_triangle tri_z0(void)
+{
+    /* Counter-clockwise seen from +z: its normal is +z. */
+    oit_triangle t;
+    memset(&t, 0, sizeof t);
+    float p[3][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    unsigned char c[3][4] = {{255, 0, 0, 255}, {0, 255, 0, 128}, {0, 0, 255, 0}};
+    for (int v = 0; v < 3; v++) {
+        memcpy(t.v[v].pos, p[v], sizeof p[v]);
+        memcpy(t.v[v].rgba, c[v], 4);
+    }
+    return t;
+}
+
+static void test_shade_terms(void)
+{
+    oit_triangle t = tri_z0();
+    float bary[3] = {0.2f, 0.3f, 0.5f}; /* point (0.3, 0.5, 0) */
+    /* The eye sits 4 above and 3 beside the point: ndv = 4/5. */
+    float eye[3] = {0.3f + 3.0f, 0.5f, 4.0f};
+    oit_shading s = shading(OIT_SHADING_TRANSPARENT);
+    oit_shaded_fragment f;
+    oit_shade_fragment(&s, &t, 7, bary, eye, 5.0, &f);
+    double light = 0.3 + 0.7 * 0.8;
+    printf("transparent default colour: %.6f %.6f %.6f a %.3f front %d\n", f.colour[0],
+           f.colour[1], f.colour[2], f.alpha, f.front);
+    CHECK_NEAR(f.colour[0], 0.85 * light, 1e-6, "default r * light");
+    CHECK_NEAR(f.colour[2], 0.2 * light, 1e-6, "default b * light");
+    CHECK_NEAR(f.alpha, 0.35, 1e-7, "default alpha");
+    if (!f.front || f.prim != 7 || f.t != 5.0) {
+        fprintf(stderr, "FAIL front/prim/t not carried\n");
+        failures++;
+    }
+
+    s.attributes = OIT_ATTR_COLOR | OIT_ATTR_ALPHA;
+    oit_shade_fragment(&s, &t, 7, bary, eye, 5.0, &f);
+    CHECK_NEAR(f.colour[0], 0.2 * light, 1e-6, "interpolated r");
+    CHECK_NEAR(f.colour[1], 0.3 * light, 1e-6, "interpolated g");
+    CHECK_NEAR(f.colour[2], 0.5 * light, 1e-6, "interpolated b");
+    CHECK_NEAR(f.alpha, (0.2 * 255 + 0.3 * 128) / 255.0, 1e-6, "interpolated alpha");
+
+    float below[3] = {0.3f, 0.5f - 3.0f, -4.0f};
+    oit_shade_fragment(&s, &t, 7, bary, below, 5.0, &f);
+    if (f.front) {
+        fprintf(stderr, "FAIL triangle seen from -z must be a back face\n");
+        failures++;
+    }
+    CHECK_NEAR(f.colour[0], 0.2 * light, 1e-6, "back face lit by |n.v|");
+
+    s = shading(OIT_SHADING_TRANSLUCENT);
+    s.attributes = OIT_ATTR_COLOR;
+    oit_shade_fragment(&s, &t, 7, bary, eye, 5.0, &f);
+    double fresnel = 0.04 + 0.96 * pow(1.0 - 0.8, 5.0);
+    printf("translucent: colour %.6f alpha %.6f (want %.6f %.6f)\n", f.colour[0], f.alpha,
+           light, fresnel);
+    CHECK_NEAR(f.colour[1], light, 1e-6, "translucent white");
+    CHECK_NEAR(f.alpha, fresnel, 1e-6, "Schlick alpha");
+    CHECK_NEAR(f.base[2], 0.5, 1e-6, "medium colour");
+}
+
+static void test_absorption(void)
+{
+    oit_shading s = shading(OIT_SHADING_TRANSLUCENT);
+    oit_shaded_fragment in = frag(1.5, 0, 0, 0, 0, 0.0f), out = frag(4.0, 1, 0, 0, 0, 0.0f),
+                        later = frag(9.0, 2, 0, 0, 0, 0.0f);
+    in.base[0] = 0.2f, in.base[1] = 0.5f, in.base[2] = 1.0f;
+    out.front = 0;
+    later.front = 0; /* a stray back face after the medium closed: no absorption */
+    oit_pixel_state st;
+    oit_pixel_begin(&st);
+    oit_pixel_add(&st, &s, &in);
+    oit_pixel_add(&st, &s, &out);
+    oit_pixel_add(&st, &s, &later);
+    double d = 2.5, per = 4.0 / 2.0;
+    for (int c = 0; c < 3; c++) {
+        double want = exp(-per * (1.0 - in.base[c]) * d);
+        printf("absorption channel %d: T %.9f want %.9f\n", c, st.T[c], want);
+        CHECK_NEAR(st.T[c], want, 1e-12, "exp(-sigma d)");
+    }
+    if (st.nest != 0) {
+        fprintf(stderr, "FAIL nest %d after leaving the medium\n", st.nest);
+        failures++;
+    }
+}
+
+static void test_tie_order(void)
+{
+    oit_shaded_fragment f[5] = {frag(2, 9, 0, 0, 1, .5f), frag(1, 5, 1, 0, 0, .5f),
+                                frag(1, 2, 0, 1, 0, .5f), frag(0.5, 40, 1, 1, 1, .5f),
+                                frag(1, 3, 0, 0, 0, .5f)};
+    qsort(f, 5, sizeof f[0], oit_shaded_fragment_cmp);
+    uint32_t want[5] = {40, 2, 3, 5, 9};
+    printf("sorted prims:");
+    for (int i = 0; i < 5; i++) {
+        printf(" %u", f[i].prim);
+        if (f[i].prim != want[i])
+            failures++;
+    }
+    printf("\n");
+
+    /* Equal depth, different colour: order decides the pixel. */
+    oit_shading s = shading(OIT_SHADING_TRANSPARENT);
+    oit_pixel_state st;
+    oit_pixel_begin(&st);
+    oit_pixel_add(&st, &s, &f[1]); /* green, prim 2 */
+    oit_pixel_add(&st, &s, &f[3]); /* red, prim 5 */
+    float rgb[3];
+    oit_pixel_end(&st, &s, rgb);
+    CHECK_NEAR(rgb[1], 0.5 + 0.25, 1e-7, "lower prim composited first");
+    CHECK_NEAR(rgb[0], 0.25 + 0.25, 1e-7, "higher prim behind");
+}
+
+int main(void)
+{
+    test_composite();
+    test_shade_terms();
+    test_absorption();
+    test_tie_order();
+    if (failures) {
+        fprintf(stderr, "test_shade: %d failure(s)\n", failures);
+        return 1;
+    }
+    printf("test_shade: ok\n");
+    return 0;
+}
