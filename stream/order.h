@@ -1,0 +1,42 @@
+/* Per-view visibility order of the parts of a part file.
+ *
+ * Contract with the converter (docs/part-file.md): every part lies inside the
+ * closed box of each leaf cell that lists it, and a leaf cell lists at most
+ * one part, or two parts separated by the cell's slab (part_below in
+ * n.x <= d0, part_above in n.x >= d1, the slab's inside parts between). Under
+ * that contract the order below is a valid visibility order from ANY eye
+ * position (outside the model, inside it, on a cell boundary): grids are
+ * traversed as implicit kd-trees (index ranges halved, near half first
+ * relative to the eye), subgrids recursively in place of their parent cell,
+ * slab cells by the eye's side of the slab planes. A part listed by several
+ * leaf cells is emitted once, at its first cell in the traversal; that is
+ * only valid when the cells it spans are consecutive in every order, which
+ * the converter guarantees by listing each part in exactly one leaf cell.
+ * Work per call is O(cells + parts); no O(parts^2) work. */
+#ifndef OIT_STREAM_ORDER_H
+#define OIT_STREAM_ORDER_H
+
+#include <stdint.h>
+
+#include "oit/partfile.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct oit_order oit_order;
+
+/* pf must outlive the order object. */
+oit_status oit_order_create(const oit_partfile *pf, oit_order **out, oit_error *err);
+void oit_order_destroy(oit_order *o);
+
+/* Writes the parts front to back as seen from eye into parts (capacity
+ * oit_partfile_part_count(pf)); *count receives how many were written (all
+ * parts that some cell lists). */
+oit_status oit_order_compute(oit_order *o, const float eye[3], uint32_t *parts,
+                             uint32_t *count, oit_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
