@@ -654,7 +654,7 @@ oit_status walk_scene(Ctx &c, const std::vector<int> &roots)
             return fail(c, OIT_ERR_FORMAT, "node %d does not exist (%zu nodes)", node, nnodes);
         if (seen[size_t(node)]++)
             return fail(c, OIT_ERR_FORMAT, "node %d is reached twice: nodes must form trees", node);
-        Mat4 local;
+        Mat4 local = Mat4::identity();
         oit_status s = node_matrix(c, node, &local);
         Mat4 world = parent * local;
         const tinygltf::Node &n = c.model->nodes[size_t(node)];

@@ -253,7 +253,7 @@ static oit_status load_records(oit_partfile *pf, uint32_t type, size_t record, v
 
 static oit_status load_parts(oit_partfile *pf, oit_error *err)
 {
-    uint64_t n;
+    uint64_t n = 0;
     oit_status s = load_records(pf, PF_SEC_PARTS, sizeof(oit_partfile_part), (void **)&pf->parts,
                                 &n, err);
     if (s)

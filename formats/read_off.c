@@ -63,12 +63,14 @@ static oit_status off_color(oit_rd_ctx *c, char *p, int skip_tail, uint8_t rgba[
         n++;
     }
     n -= skip_tail;
-    *has = n >= 3 ? n : 0;
     if (n == 2 || n > 4)
         return oit_rd_fail_line(&c->in, OIT_ERR_FORMAT,
                                 "expected 3 or 4 colour components, found %d", n);
-    for (int k = 0; k < *has; k++)
+    /* 0 or 1 value: a colour-map index, which carries no colour. */
+    const int channels = n >= 3 ? n : 0;
+    for (int k = 0; k < channels && k < 4; k++)
         rgba[k] = is_float || all_unit ? oit_rd_unit_to_u8(v[k]) : oit_rd_clamp_u8(v[k]);
+    *has = channels;
     return OIT_OK;
 }
 
@@ -207,7 +209,7 @@ static oit_status off_header(oit_rd_ctx *c, off_layout *lay, uint64_t *nv, uint6
 static oit_status off_parse(oit_rd_ctx *c)
 {
     off_layout lay;
-    uint64_t nv, nf;
+    uint64_t nv = 0, nf = 0;
     oit_status st = off_header(c, &lay, &nv, &nf);
     oit_rd_vtable tab = {0};
     for (uint64_t i = 0; st == OIT_OK && i < nv; i++)

@@ -25,8 +25,17 @@ void oit_error_prefix(oit_error *err, const char *what)
 {
     if (!err || !what)
         return;
+    /* The prefix goes in front; the old message may lose its tail. */
     char tmp[sizeof err->message];
-    snprintf(tmp, sizeof tmp, "%s: %s", what, err->message);
+    size_t n = strlen(what);
+    if (n > sizeof tmp - 3)
+        n = sizeof tmp - 3;
+    memcpy(tmp, what, n);
+    tmp[n] = ':';
+    tmp[n + 1] = ' ';
+    size_t rest = sizeof tmp - n - 2;
+    memcpy(tmp + n + 2, err->message, rest - 1);
+    tmp[sizeof tmp - 1] = '\0';
     memcpy(err->message, tmp, sizeof tmp);
 }
 

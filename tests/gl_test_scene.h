@@ -19,7 +19,7 @@ typedef struct quad_spec {
     int front;        /* 1: counter-clockwise seen from the eye */
 } quad_spec;
 
-static void scene_view(oit_view *v, int w, int h, oit_shading_mode mode)
+static inline void scene_view(oit_view *v, int w, int h, oit_shading_mode mode)
 {
     memset(v, 0, sizeof *v);
     v->camera.target[2] = -1.0f;
@@ -39,7 +39,7 @@ static void scene_view(oit_view *v, int w, int h, oit_shading_mode mode)
 }
 
 /* Two triangles (prims 2i, 2i+1 when written at tris[2i]). */
-static void quad_tris(const quad_spec *q, oit_triangle out[2])
+static inline void quad_tris(const quad_spec *q, oit_triangle out[2])
 {
     const float h = q->half;
     const float c[4][2] = {{-h, -h}, {h, -h}, {h, h}, {-h, h}};
@@ -55,7 +55,7 @@ static void quad_tris(const quad_spec *q, oit_triangle out[2])
         }
 }
 
-static oit_triangle *scene_tris(const quad_spec *q, int n)
+static inline oit_triangle *scene_tris(const quad_spec *q, int n)
 {
     oit_triangle *t = malloc(sizeof *t * 2 * (size_t)n);
     for (int i = 0; t && i < n; i++)
@@ -69,7 +69,7 @@ typedef struct hand_frag {
     const quad_spec *q;
 } hand_frag;
 
-static int hand_frag_cmp(const void *a, const void *b)
+static inline int hand_frag_cmp(const void *a, const void *b)
 {
     const hand_frag *x = a, *y = b;
     if (x->t != y->t)
@@ -85,13 +85,13 @@ typedef struct hand_state {
     int nest;
 } hand_state;
 
-static void hand_begin(hand_state *s)
+static inline void hand_begin(hand_state *s)
 {
     memset(s, 0, sizeof *s);
     s->T[0] = s->T[1] = s->T[2] = 1.0;
 }
 
-static void hand_add(hand_state *s, const oit_view *v, const quad_spec *q, int n,
+static inline void hand_add(hand_state *s, const oit_view *v, const quad_spec *q, int n,
                      int px, int py)
 {
     double tanh = tan(0.5 * v->camera.fovy_deg * 3.14159265358979323846 / 180.0);
@@ -144,14 +144,14 @@ static void hand_add(hand_state *s, const oit_view *v, const quad_spec *q, int n
     free(f);
 }
 
-static void hand_end(const hand_state *s, const oit_view *v, double rgb[3])
+static inline void hand_end(const hand_state *s, const oit_view *v, double rgb[3])
 {
     for (int c = 0; c < 3; c++)
         rgb[c] = s->C[c] + s->T[c] * fmax(v->shading.background[c], 0.0);
 }
 
 /* Largest channel difference over the image between it and the hand result. */
-static double hand_max_diff(const oit_image *img, const oit_view *v, const quad_spec *q,
+static inline double hand_max_diff(const oit_image *img, const oit_view *v, const quad_spec *q,
                             int n)
 {
     double worst = 0.0;
@@ -170,7 +170,7 @@ static double hand_max_diff(const oit_image *img, const oit_view *v, const quad_
 }
 
 /* Deterministic shuffle (xorshift), so failures reproduce. */
-static void shuffle_quads(quad_spec *q, int n, uint32_t seed)
+static inline void shuffle_quads(quad_spec *q, int n, uint32_t seed)
 {
     for (int i = n - 1; i > 0; i--) {
         seed ^= seed << 13;

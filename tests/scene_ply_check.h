@@ -18,7 +18,7 @@ typedef struct test_ply {
     uint8_t *vrgba;   /* 4 per vertex when vertex_rgba */
     uint32_t *idx;    /* 3 per face */
     uint8_t *frgba;   /* 4 per face when face_rgba */
-    char why[256];    /* what failed */
+    char why[1024];   /* what failed */
 } test_ply;
 
 static inline uint8_t *test_read_file(const char *path, size_t *size)

@@ -7,13 +7,14 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include <GLFW/glfw3.h>
-
 #include "gl_test_scene.h"
 #include "render/dfb.h"
 #include "render/gl_context.h"
 #include "render/gl_util.h"
 #include "render/image.h"
+
+#define GLFW_INCLUDE_NONE /* GL comes from gl_util.h (core profile prototypes) */
+#include <GLFW/glfw3.h>
 
 enum { W = 96, H = 64 };
 

@@ -217,7 +217,7 @@ static void check_scene(const char *label, const collect *c, const oit_mesh_info
         {{{10, 1, 5}, {9, 1, 5}, {10, 0, 5}}, {opaque[0], opaque[1], opaque[2], opaque[3]}},
         {{{10, 0, 5}, {9, 1, 5}, {9, 0, 5}}, {opaque[0], opaque[1], opaque[2], opaque[3]}},
     };
-    const uint8_t tri_rgb[3][3] = {{255, 0, 0}, {0, 255, 0}, {0, 0, 255}};
+    const uint8_t tri_rgb[3][4] = {{255, 0, 0, 255}, {0, 255, 0, 255}, {0, 0, 255, 255}};
     printf("%s: %zu triangles in %zu sink calls (largest %zu), %llu vertices, attributes %u\n", label,
            c->mesh.count, c->calls, c->max_chunk, (unsigned long long)info->vertices_in,
            info->attributes);
