@@ -6,6 +6,9 @@ oit_add_test_exe(test_readers_real SOURCES test_readers_real.c LIBS oit_formats)
 oit_add_test(NAME readers_real COMMAND test_readers_real LABELS unit TIMEOUT 120)
 
 foreach(fmt ply obj off stl)
-  oit_add_fuzzer(fuzz_${fmt} fuzz_${fmt}.c LIBS oit_formats
+  oit_add_fuzzer(fuzz_${fmt} fuzz_reader.c LIBS oit_formats
                  CORPUS ${CMAKE_CURRENT_SOURCE_DIR}/corpus/${fmt})
+  if(TARGET fuzz_${fmt})
+    target_compile_definitions(fuzz_${fmt} PRIVATE OIT_FUZZ_FORMAT=${fmt})
+  endif()
 endforeach()

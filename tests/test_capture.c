@@ -10,18 +10,8 @@
 #include "render/dfb.h"
 #include "render/gl_context.h"
 #include "render/image.h"
+#include "test_check.h"
 
-static int failures;
-
-#define CHECK(cond, ...)                                         \
-    do {                                                         \
-        if (!(cond)) {                                           \
-            fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__); \
-            fprintf(stderr, __VA_ARGS__);                        \
-            fputc('\n', stderr);                                 \
-            failures++;                                          \
-        }                                                        \
-    } while (0)
 
 /* Renders q split into batches [start[i], start[i+1]); rect[i] may be NULL. */
 static int capture_scene(oit_capture *c, const oit_view *v, const quad_spec *q,
@@ -120,7 +110,7 @@ static void test_equals_dfb(oit_capture *c, const char *name, int nq)
     oit_frame_stats sa, sb;
     int one[2] = {0, nq};
     if (!capture_scene(c, &v, q, one, 1, NULL, &a, &sa) || !dfb_scene(&v, q, nq, &b, &sb)) {
-        failures++;
+        test_failures++;
         return;
     }
     double d = image_diff(&a, &b), h = hand_max_diff(&a, &v, q, nq);
@@ -169,7 +159,7 @@ static void test_batches(oit_capture *c, const char *name, oit_shading_mode mode
         CHECK(sn.fragments == s1.fragments && sn.batches == (uint32_t)nb, "%s: stats", name);
         CHECK(sn.overflow_pixels == 0, "%s: overflow", name);
     } else {
-        failures++;
+        test_failures++;
     }
     free(rects);
     oit_image_free(&one);
@@ -208,7 +198,7 @@ static void test_overflow(oit_capture *c, int K, const char *name)
         CHECK(P > 0 && st.overflow_pixels == 2 * P, "%s: overflow count", name);
         CHECK(st.max_layers == (uint32_t)(2 * n), "%s: max_layers counts dropped ones", name);
     } else {
-        failures++;
+        test_failures++;
     }
     oit_image_free(&img);
 }
@@ -275,6 +265,6 @@ int main(void)
         oit_capture_destroy(a);
     }
     oit_gl_destroy(gl);
-    printf("%s\n", failures ? "FAILED" : "ok");
-    return failures != 0;
+    printf("%s\n", test_failures ? "FAILED" : "ok");
+    return test_failures != 0;
 }

@@ -8,18 +8,8 @@
 #include "render/dfb.h"
 #include "render/gl_context.h"
 #include "render/image.h"
+#include "test_check.h"
 
-static int failures;
-
-#define CHECK(cond, ...)                                         \
-    do {                                                         \
-        if (!(cond)) {                                           \
-            fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__); \
-            fprintf(stderr, __VA_ARGS__);                        \
-            fputc('\n', stderr);                                 \
-            failures++;                                          \
-        }                                                        \
-    } while (0)
 
 typedef struct frame {
     oit_image img;
@@ -60,7 +50,7 @@ static uint64_t check_scene(oit_dfb *d, const char *name, const quad_spec *q, in
 {
     frame f = {0};
     if (!render(d, q, n, v, &f)) {
-        failures++;
+        test_failures++;
         return 0;
     }
     uint64_t expect_frags = 0;
@@ -177,6 +167,6 @@ int main(void)
     CHECK(again == big, "a smaller frame changed the held bytes (%llu)", (unsigned long long)again);
     oit_dfb_destroy(d);
     oit_gl_destroy(gl);
-    printf("%s\n", failures ? "FAILED" : "ok");
-    return failures != 0;
+    printf("%s\n", test_failures ? "FAILED" : "ok");
+    return test_failures != 0;
 }

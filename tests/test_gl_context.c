@@ -5,18 +5,8 @@
 
 #include "render/gl_context.h"
 #include "render/gl_util.h"
+#include "test_check.h"
 
-static int failures;
-
-#define CHECK(cond, ...)                                      \
-    do {                                                      \
-        if (!(cond)) {                                        \
-            fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__); \
-            fprintf(stderr, __VA_ARGS__);                     \
-            fputc('\n', stderr);                              \
-            failures++;                                       \
-        }                                                     \
-    } while (0)
 
 int main(void)
 {
@@ -58,6 +48,6 @@ int main(void)
         printf("window without display: %s: %s\n", oit_status_name(s), err.message);
         CHECK(s == OIT_ERR_GL && gl == NULL, "window without a display did not fail");
     }
-    printf("%s\n", failures ? "FAILED" : "ok");
-    return failures != 0;
+    printf("%s\n", test_failures ? "FAILED" : "ok");
+    return test_failures != 0;
 }

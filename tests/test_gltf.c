@@ -10,6 +10,7 @@
  * world-space vertex is worked out by hand below. Malformed variants must
  * fail with OIT_ERR_FORMAT and name the file. */
 #include "oit/mesh.h"
+#include "test_check.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -17,17 +18,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static int failures;
-
-#define CHECK(cond, ...)                                                      \
-    do {                                                                      \
-        if (!(cond)) {                                                        \
-            fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__);              \
-            fprintf(stderr, __VA_ARGS__);                                     \
-            fputc('\n', stderr);                                              \
-            failures++;                                                       \
-        }                                                                     \
-    } while (0)
 
 /* ------------------------------------------------------------ the scene */
 
@@ -109,7 +99,7 @@ static char *replace(const char *s, const char *from, const char *to)
     const char *at = strstr(s, from);
     if (!at || strstr(at + 1, from)) {
         fprintf(stderr, "FAIL: test edit \"%s\" matches %s\n", from, at ? "twice" : "nothing");
-        failures++;
+        test_failures++;
         return strdup(s);
     }
     size_t head = (size_t)(at - s), nf = strlen(from), nt = strlen(to);
@@ -404,6 +394,6 @@ int main(int argc, char **argv)
     s = read_path(path, 0, &c, &info, &err);
     CHECK(s == OIT_ERR_IO, "missing file: %s", oit_status_name(s));
 
-    printf("%s (%d failures)\n", failures ? "FAILED" : "ok", failures);
-    return failures ? 1 : 0;
+    printf("%s (%d failures)\n", test_failures ? "FAILED" : "ok", test_failures);
+    return test_failures ? 1 : 0;
 }

@@ -8,18 +8,8 @@
 #include <string.h>
 
 #include "render/image.h"
+#include "test_check.h"
 
-static int failures;
-
-#define CHECK(cond, ...)                                                   \
-    do {                                                                   \
-        if (!(cond)) {                                                     \
-            fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__);           \
-            fprintf(stderr, __VA_ARGS__);                                  \
-            fprintf(stderr, "\n");                                         \
-            failures++;                                                    \
-        }                                                                  \
-    } while (0)
 
 static char tmpdir[512];
 
@@ -253,8 +243,8 @@ int main(void)
     test_compare();
     test_heatmap();
     test_bad_files();
-    if (failures) {
-        fprintf(stderr, "test_image: %d failure(s)\n", failures);
+    if (test_failures) {
+        fprintf(stderr, "test_image: %d failure(s)\n", test_failures);
         return 1;
     }
     printf("test_image: ok\n");

@@ -19,19 +19,10 @@
 
 #include "oit/mesh.h"
 #include "scene_ply_check.h"
+#include "test_check.h"
 
 #define PROBE_PI 3.14159265358979323846
 
-static int failures;
-#define CHECK(cond, ...)                                        \
-    do {                                                        \
-        if (!(cond)) {                                          \
-            fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__); \
-            fprintf(stderr, __VA_ARGS__);                       \
-            fprintf(stderr, "\n");                              \
-            failures++;                                         \
-        }                                                       \
-    } while (0)
 
 static char bin[512], tmp[512];
 
@@ -355,7 +346,7 @@ int main(int argc, char **argv)
             return fprintf(stderr, "%s\n", p.why), 1;
         check_solids(argv[2], &p);
         test_ply_free(&p);
-        return failures != 0;
+        return test_failures != 0;
     }
     if (argc >= 3 && !strcmp(argv[1], "--depth"))
         return depth_probe(argv[2], argc > 3 ? strtof(argv[3], NULL) : 30, argc > 4 ? strtof(argv[4], NULL) : 20);
@@ -377,6 +368,6 @@ int main(int argc, char **argv)
     }
     test_plant();
     depth_probe(tmp_path("plant_a.ply"), 30, 20);
-    printf("%s (%d failures)\n", failures ? "FAILED" : "ok", failures);
-    return failures != 0;
+    printf("%s (%d failures)\n", test_failures ? "FAILED" : "ok", test_failures);
+    return test_failures != 0;
 }

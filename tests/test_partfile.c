@@ -14,6 +14,7 @@
 #include "formats/checksum.h"
 #include "formats/partfile_layout.h"
 #include "tests/partfile_reseal.h"
+#include "test_check.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -21,17 +22,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-static int failures;
-
-#define CHECK(cond, ...)                                                                  \
-    do {                                                                                  \
-        if (!(cond)) {                                                                    \
-            failures++;                                                                   \
-            fprintf(stderr, "FAIL %s:%d: %s: ", __FILE__, __LINE__, #cond);               \
-            fprintf(stderr, __VA_ARGS__);                                                 \
-            fputc('\n', stderr);                                                          \
-        }                                                                                 \
-    } while (0)
 
 /* ---- the synthetic scene ---------------------------------------------------- */
 
@@ -772,6 +762,6 @@ int main(int argc, char **argv)
     free(ba);
     free(bb);
     scene_free(&s);
-    printf("%s: %d failures\n", failures ? "FAIL" : "ok", failures);
-    return failures ? 1 : 0;
+    printf("%s: %d failures\n", test_failures ? "FAIL" : "ok", test_failures);
+    return test_failures ? 1 : 0;
 }

@@ -8,17 +8,8 @@
 
 #include "formats/ply_writer.h"
 #include "scene_ply_check.h"
+#include "test_check.h"
 
-static int failures;
-#define CHECK(cond, ...)                                             \
-    do {                                                             \
-        if (!(cond)) {                                               \
-            fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__);      \
-            fprintf(stderr, __VA_ARGS__);                            \
-            fprintf(stderr, "\n");                                   \
-            failures++;                                              \
-        }                                                            \
-    } while (0)
 
 static char tmpdir[512];
 
@@ -165,6 +156,6 @@ int main(void)
     bad_index_leaves_nothing();
     abort_leaves_nothing();
     unwritable_path_is_named();
-    printf("%s (%d failures)\n", failures ? "FAILED" : "ok", failures);
-    return failures != 0;
+    printf("%s (%d failures)\n", test_failures ? "FAILED" : "ok", test_failures);
+    return test_failures != 0;
 }

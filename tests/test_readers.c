@@ -3,6 +3,7 @@
  * coordinates, colours, attribute bits, bounds, chunking and every error path
  * (status, file name and line/offset in the message) are checked. */
 #include "oit/mesh.h"
+#include "test_check.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -10,17 +11,6 @@
 #include <string.h>
 #include <time.h>
 
-static int failures;
-
-#define CHECK(cond, ...)                                                   \
-    do {                                                                   \
-        if (!(cond)) {                                                     \
-            failures++;                                                    \
-            printf("FAIL %s:%d: %s: ", __FILE__, __LINE__, #cond);         \
-            printf(__VA_ARGS__);                                           \
-            printf("\n");                                                  \
-        }                                                                  \
-    } while (0)
 
 static char tmpdir[1024];
 
@@ -567,6 +557,6 @@ int main(void)
     test_stl();
     test_stream();
     test_large();
-    printf("%s: %d failure(s)\n", failures ? "FAILED" : "passed", failures);
-    return failures ? 1 : 0;
+    printf("%s: %d failure(s)\n", test_failures ? "FAILED" : "passed", test_failures);
+    return test_failures ? 1 : 0;
 }

@@ -11,18 +11,8 @@
 #include "render/image.h"
 #include "render/reference.h"
 #include "render/shade.h"
+#include "test_check.h"
 
-static int failures;
-
-#define CHECK(cond, ...)                                                   \
-    do {                                                                   \
-        if (!(cond)) {                                                     \
-            fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__);           \
-            fprintf(stderr, __VA_ARGS__);                                  \
-            fprintf(stderr, "\n");                                         \
-            failures++;                                                    \
-        }                                                                  \
-    } while (0)
 
 enum { W = 7, H = 5 };
 
@@ -476,8 +466,8 @@ int main(void)
     test_brute_force(OIT_SHADING_TRANSLUCENT);
     test_ambiguity();
     test_bad_camera();
-    if (failures) {
-        fprintf(stderr, "test_reference: %d failure(s)\n", failures);
+    if (test_failures) {
+        fprintf(stderr, "test_reference: %d failure(s)\n", test_failures);
         return 1;
     }
     printf("test_reference: ok\n");

@@ -11,17 +11,8 @@
 
 #include "scene_ply_check.h"
 #include "scenes/shapes.h"
+#include "test_check.h"
 
-static int failures;
-#define CHECK(cond, ...)                                        \
-    do {                                                        \
-        if (!(cond)) {                                          \
-            fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__); \
-            fprintf(stderr, __VA_ARGS__);                       \
-            fprintf(stderr, "\n");                              \
-            failures++;                                         \
-        }                                                       \
-    } while (0)
 
 typedef void (*shape_fn)(oit_emit *e, int seg);
 
@@ -108,6 +99,6 @@ int main(void)
         check_shape("pipe", pipe_fn, s, oit_shape_pipe_cost(5, s), 1, pf * OIT_PI * 0.04 * len, 0.03);
     }
     remove(path);
-    printf("%s (%d failures)\n", failures ? "FAILED" : "ok", failures);
-    return failures != 0;
+    printf("%s (%d failures)\n", test_failures ? "FAILED" : "ok", test_failures);
+    return test_failures != 0;
 }
