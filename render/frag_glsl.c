@@ -83,6 +83,11 @@ const char oit_glsl_composite[] =
     "bool oit_frag_less(uvec4 a, uvec4 b) {\n"
     "    return a.x < b.x || (a.x == b.x && (a.y & 0x7fffffffu) < (b.y & 0x7fffffffu));\n"
     "}\n"
+    /* One insertion-sort step: x joins the sorted f[0..i). A while loop with
+     * a break, because llvmpipe miscompiles the for-loop form whose
+     * condition calls oit_frag_less. */
+    "#define OIT_SORTED_INSERT(f, i, x) { uint j_ = (i); while (j_ > 0u) { "
+    "if (!oit_frag_less((x), f[j_ - 1u])) break; f[j_] = f[j_ - 1u]; j_--; } f[j_] = (x); }\n"
     "vec3 oit_unpack_111110(uint w) {\n"
     "    return vec3(float(w & 0x7ffu) / 2047.0, float((w >> 11) & 0x7ffu) / 2047.0,\n"
     "                float(w >> 22) / 1023.0);\n"
