@@ -14,6 +14,8 @@ struct oit_gpu_mesh {
     size_t count;
     uint32_t first_prim;
     size_t window; /* triangles per draw: SSBO size limit and alignment */
+    uint64_t offset; /* of the first triangle in buffer */
+    int owns_buffer;
 };
 
 /* Triangles per draw window: the SSBO binding limit, rounded down so that
@@ -50,6 +52,7 @@ oit_status oit_gpu_mesh_create(const oit_triangle *tris, size_t count,
     m->count = count;
     m->first_prim = first_prim;
     m->window = draw_window();
+    m->owns_buffer = 1;
     glCreateVertexArrays(1, &m->vao);
     glCreateBuffers(1, &m->buffer);
     uint64_t bytes = (uint64_t)count * sizeof(oit_triangle);
@@ -69,11 +72,37 @@ oit_status oit_gpu_mesh_create(const oit_triangle *tris, size_t count,
     return OIT_OK;
 }
 
+oit_status oit_gpu_mesh_create_view(unsigned buffer, oit_gpu_mesh **out, oit_error *err)
+{
+    oit_gpu_mesh *m = calloc(1, sizeof *m);
+    *out = NULL;
+    if (!m)
+        return oit_error_set(err, OIT_ERR_NOMEM, "GPU mesh view: out of memory");
+    m->buffer = buffer;
+    m->window = draw_window();
+    glCreateVertexArrays(1, &m->vao);
+    oit_status s = oit_gl_check("GPU mesh view", err);
+    if (s != OIT_OK) {
+        oit_gpu_mesh_destroy(m);
+        return s;
+    }
+    *out = m;
+    return OIT_OK;
+}
+
+void oit_gpu_mesh_set_range(oit_gpu_mesh *m, uint64_t offset, size_t count, uint32_t first_prim)
+{
+    m->offset = offset;
+    m->count = count;
+    m->first_prim = first_prim;
+}
+
 void oit_gpu_mesh_destroy(oit_gpu_mesh *m)
 {
     if (!m)
         return;
-    glDeleteBuffers(1, &m->buffer);
+    if (m->owns_buffer)
+        glDeleteBuffers(1, &m->buffer);
     glDeleteVertexArrays(1, &m->vao);
     free(m);
 }
@@ -101,7 +130,7 @@ void oit_gpu_mesh_draw(const oit_gpu_mesh *m, unsigned program)
     for (size_t start = 0; start < m->count; start += m->window) {
         size_t n = m->count - start < m->window ? m->count - start : m->window;
         glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_VERTS, m->buffer,
-                          (GLintptr)(start * sizeof(oit_triangle)),
+                          (GLintptr)(m->offset + start * sizeof(oit_triangle)),
                           (GLsizeiptr)(n * sizeof(oit_triangle)));
         glProgramUniform1ui(program, first_loc, m->first_prim + (uint32_t)start);
         glDrawArrays(GL_TRIANGLES, 0, (GLsizei)(n * 3));

@@ -20,6 +20,13 @@ typedef struct oit_gpu_mesh oit_gpu_mesh;
 oit_status oit_gpu_mesh_create(const oit_triangle *tris, size_t count,
                                uint32_t first_prim, oit_gpu_mesh **out,
                                oit_error *err);
+/* A mesh over triangles the caller places in its own GL buffer (a streaming
+ * ring): it does not own the buffer, and oit_gpu_mesh_set_range re-points it
+ * without allocating. Empty until set. */
+oit_status oit_gpu_mesh_create_view(unsigned buffer, oit_gpu_mesh **out, oit_error *err);
+/* count oit_triangle records at byte offset (a multiple of
+ * GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT) of a view's buffer. */
+void oit_gpu_mesh_set_range(oit_gpu_mesh *m, uint64_t offset, size_t count, uint32_t first_prim);
 void oit_gpu_mesh_destroy(oit_gpu_mesh *m);
 size_t oit_gpu_mesh_triangles(const oit_gpu_mesh *m);
 uint64_t oit_gpu_mesh_bytes(const oit_gpu_mesh *m);

@@ -57,6 +57,20 @@ static int parse_rgb(const char *s, float rgb[3])
     return 1;
 }
 
+/* Bytes with an optional K, M or G (binary) suffix. */
+static int parse_bytes(const char *s, unsigned long long *out)
+{
+    char *end;
+    double v = strtod(s, &end);
+    double unit = *end == 'K' ? 1024.0 : *end == 'M' ? 1048576.0 : *end == 'G' ? 1073741824.0 : 1.0;
+    if (unit > 1.0)
+        end++;
+    if (end == s || *end || !(v > 0.0) || v * unit > 1099511627776.0)
+        return 0;
+    *out = (unsigned long long)(v * unit);
+    return 1;
+}
+
 static oit_status bad(oit_error *err, const char *opt, const char *val, const char *want)
 {
     return oit_error_set(err, OIT_ERR_ARGUMENT, "%s '%s': expected %s", opt, val ? val : "",
@@ -104,6 +118,13 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
     } else if (!strcmp(opt, "--show")) {
         if (!strcmp(v, "layers")) a->show_layers = 1;
         else if (strcmp(v, "colour") && strcmp(v, "color")) *s = bad(err, opt, v, "layers or colour");
+    } else if (!strcmp(opt, "--pack")) {
+        if (!strcmp(v, "disjoint")) a->pack_disjoint = 1;
+        else if (!strcmp(v, "budget")) a->pack_disjoint = 0;
+        else *s = bad(err, opt, v, "budget or disjoint");
+    } else if (!strcmp(opt, "--upload-budget")) {
+        if (!parse_bytes(v, &a->upload_budget) || a->upload_budget < 65536)
+            *s = bad(err, opt, v, "bytes >= 64K, with an optional K, M or G suffix");
     } else if (!strcmp(opt, "--gain")) {
         if (!parse_float(v, &a->gain) || !(a->gain > 0.0f)) *s = bad(err, opt, v, "a number > 0");
     } else
@@ -136,11 +157,12 @@ static oit_status check_combination(const oit_stream_args *a, oit_error *err)
 oit_status oit_stream_args_parse(int argc, char **argv, oit_stream_args *a, oit_error *err)
 {
     memset(a, 0, sizeof *a);
-    a->method = "dfb";
+    a->method = NULL;
     a->width = a->height = 1024;
     a->elevation = 20.0f;
     a->gain = 1.0f;
     a->max_layers = 16;
+    a->pack_disjoint = 1; /* measured faster than budget on llvmpipe (smaller resolve rects) */
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i];
         oit_status s = OIT_OK;
@@ -169,10 +191,17 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "usage: oitstream MODEL [options]\n"
         "       oitstream --compare A B [--json] [--out DIFF.png] [--gain G]\n"
         "\n"
-        "Renders MODEL (.ply .obj .off .stl .gltf .glb) with exact order-independent\n"
-        "transparency and writes the image.\n"
+        "Renders MODEL (.ply .obj .off .stl .gltf .glb, or a part file .oitp made by\n"
+        "oitprep) with exact order-independent transparency and writes the image.\n"
         "\n"
-        "  --method M          %s (default dfb)\n"
+        "  --method M          %s (default: stream for\n"
+        "                      a part file, dfb otherwise; dfb, reference, array and\n"
+        "                      stencil load a part file's triangles in core)\n"
+        "  --pack P            stream: disjoint (default; a part joins a pack while its\n"
+        "                      screen rectangle misses the pack's) or budget (parts\n"
+        "                      share a pack while the sum of their layer bounds per\n"
+        "                      32x32 tile stays <= K: fewer, larger packs)\n"
+        "  --upload-budget B   stream: bytes of the GPU upload ring (default 64M)\n"
         "  --size WxH          image size (default 1024x1024)\n"
         "  --view ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy[,znear,zfar]\n"
         "                      camera; without it --azimuth/--elevation frame the model\n"
@@ -184,7 +213,8 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "  --alpha A           alpha for models without one (default 0.35)\n"
         "  --absorption X      translucent optical depth across the model (default 4)\n"
         "  --background r,g,b  default 1,1,1\n"
-        "  --max-layers K      fragments per pixel per batch for array/stencil, 2..16\n"
+        "  --max-layers K      fragments per pixel per batch for array/stencil/stream,\n"
+        "                      2..16\n"
         "                      (default 16); pixels with more count as overflow\n"
         "  --show layers       write the fragments-per-pixel heat map (dfb, reference)\n"
         "  --stats FILE.json   per-frame figures\n"

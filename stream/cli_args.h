@@ -18,7 +18,8 @@ typedef struct oit_stream_args {
     const char *mask; /* --mask: figures also outside its non-black pixels */
     /* rendering */
     const char *model;
-    const char *method; /* a name from render_methods.h; checked there */
+    const char *method; /* a name from render_methods.h; checked there; NULL:
+                           stream for a part file, dfb otherwise */
     int width, height;
     int have_view;
     oit_camera view; /* --view, clip planes 0 unless given */
@@ -31,6 +32,8 @@ typedef struct oit_stream_args {
     int show_layers;
     const char *ambiguity_out; /* --ambiguity: mask of ambiguous pixels */
     int quiet;
+    int pack_disjoint;                 /* --pack: 1 disjoint (default), 0 budget */
+    unsigned long long upload_budget;  /* --upload-budget; 0: default */
 } oit_stream_args;
 
 oit_status oit_stream_args_parse(int argc, char **argv, oit_stream_args *a, oit_error *err);

@@ -13,6 +13,7 @@
 
 #include "render/image.h"
 #include "stream/cli_args.h"
+#include "stream/part_triangles.h"
 #include "stream/render_methods.h"
 #include "stream/stats_json.h"
 
@@ -248,11 +249,23 @@ static oit_status render_one(run_ctx *rc, int index, int views, oit_stats_frame 
     oit_image_free(&img);
     fr->method = rc->method->name;
     oit_stats_format_view(&rc->view.camera, fr->view, sizeof fr->view);
+    if (s == OIT_OK && rc->method->stream_stats) {
+        fr->has_stream = 1;
+        fr->stream = *rc->method->stream_stats(rc->state);
+    }
     if (s == OIT_OK && !rc->args->quiet)
         printf("frame %d: %s %dx%d %.2f ms, %llu fragments, max %u layers, %llu overflow pixels\n",
                index, rc->method->name, rc->view.width, rc->view.height, fr->st.ms,
                (unsigned long long)fr->st.fragments, fr->st.max_layers,
                (unsigned long long)fr->st.overflow_pixels);
+    if (s == OIT_OK && !rc->args->quiet && fr->has_stream)
+        printf("frame %d: %.2f ms, %u packs, %llu parts (%llu culled), %.2f MiB uploaded, "
+               "%llu overflow pixels, %.1f MiB GPU at peak\n",
+               index, fr->st.ms, fr->stream.packs, (unsigned long long)fr->stream.parts_drawn,
+               (unsigned long long)fr->stream.parts_culled,
+               (double)fr->stream.bytes_uploaded / 1048576.0,
+               (unsigned long long)fr->st.overflow_pixels,
+               (double)fr->stream.gpu_bytes_peak / 1048576.0);
     return s;
 }
 
@@ -269,13 +282,19 @@ static oit_status render_all(run_ctx *rc, const oit_mesh *mesh, const oit_camera
         s = render_one(rc, i, n, &frames[i], err);
     }
     if (s == OIT_OK && a->stats_path) {
-        oit_stats_run run = {a->model, (unsigned long long)mesh->count,
+        oit_stats_run run = {a->model, (unsigned long long)mesh->info.triangles,
                              rc->method->renderer(rc->state), a->width, a->height, frames,
                              (size_t)n};
         s = oit_stats_json_write(a->stats_path, &run, err);
     }
     free(frames);
     return s;
+}
+
+static int is_part_file(const char *path)
+{
+    size_t n = strlen(path);
+    return n > 5 && !strcasecmp(path + n - 5, ".oitp");
 }
 
 static oit_status check_method(const oit_stream_args *a, const oit_render_method **out,
@@ -297,20 +316,50 @@ static oit_status check_method(const oit_stream_args *a, const oit_render_method
     return OIT_OK;
 }
 
-static int run_render(const oit_stream_args *a)
+/* The scene: a mesh file loaded in core, or a part file, which the streamer
+ * reads part by part and the other methods load in core. */
+static oit_status load_scene(const oit_stream_args *a, const oit_render_method *m,
+                             oit_partfile **pf, oit_mesh *mesh, oit_error *err)
+{
+    memset(mesh, 0, sizeof *mesh);
+    *pf = NULL;
+    if (!is_part_file(a->model)) {
+        if (m->needs_partfile)
+            return oit_error_set(err, OIT_ERR_ARGUMENT, "--method %s renders a part file "
+                                 "(.oitp); convert %s with oitprep first", m->name, a->model);
+        return oit_mesh_load(a->model, NULL, mesh, err);
+    }
+    oit_partfile_open_desc desc = {m->needs_partfile};
+    oit_status s = oit_partfile_open(a->model, &desc, pf, err);
+    if (s == OIT_OK && m->needs_partfile)
+        oit_partfile_mesh_info(*pf, &mesh->info);
+    else if (s == OIT_OK)
+        s = oit_partfile_load_mesh(*pf, mesh, err);
+    return s;
+}
+
+static int run_render(const oit_stream_args *args)
 {
     oit_error err = {0};
+    oit_stream_args resolved = *args;
+    const oit_stream_args *a = &resolved;
+    if (!resolved.method)
+        resolved.method = is_part_file(args->model) ? "stream" : "dfb";
     run_ctx rc = {.args = a};
     oit_status s = check_method(a, &rc.method, &err);
     if (s != OIT_OK)
         return fail(&err);
     oit_mesh mesh;
-    s = oit_mesh_load(a->model, NULL, &mesh, &err);
-    if (s != OIT_OK)
+    oit_partfile *pf = NULL;
+    s = load_scene(a, rc.method, &pf, &mesh, &err);
+    if (s != OIT_OK) {
+        oit_partfile_close(pf);
         return fail(&err);
+    }
     oit_camera *cams = NULL;
     int n = 0;
-    oit_method_options opt = {a->max_layers};
+    oit_method_options opt = {a->max_layers, pf, a->pack_disjoint ? OIT_PACK_DISJOINT : OIT_PACK_BUDGET,
+                              a->upload_budget};
     rc.view.width = a->width;
     rc.view.height = a->height;
     rc.view.shading = make_shading(a, &mesh.info);
@@ -331,6 +380,7 @@ static int run_render(const oit_stream_args *a)
     free(rc.ambiguous);
     free(cams);
     oit_mesh_free(&mesh);
+    oit_partfile_close(pf);
     return s == OIT_OK ? 0 : fail(&err);
 }
 

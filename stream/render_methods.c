@@ -20,6 +20,8 @@ struct oit_method_state {
     oit_dfb *dfb;
     oit_capture *cap;
     oit_reference_desc ref;
+    oit_streamer *streamer;
+    oit_stream_frame_stats stream_stats;
 };
 
 static void close_state(oit_method_state *st)
@@ -27,6 +29,7 @@ static void close_state(oit_method_state *st)
     if (!st)
         return;
     /* GL objects go before the context that owns them. */
+    if (st->streamer) oit_streamer_destroy(st->streamer);
     if (st->cap) oit_capture_destroy(st->cap);
     if (st->dfb) oit_dfb_destroy(st->dfb);
     if (st->gpu) oit_gpu_mesh_destroy(st->gpu);
@@ -143,11 +146,47 @@ static const char *reference_renderer(const oit_method_state *st)
     return "Embree " RTC_VERSION_STRING " (CPU reference)";
 }
 
+/* ---- stream: the part file through order, packs and the upload ring ---- */
+
+static oit_status stream_open(const oit_mesh *mesh, const oit_method_options *opt,
+                              oit_method_state **out, oit_error *err)
+{
+    if (!opt->partfile)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "--method stream renders a part file "
+                             "(.oitp, made by oitprep); convert the model first");
+    oit_status s = new_state(mesh, 0, out, err);
+    oit_gl_desc desc;
+    memset(&desc, 0, sizeof desc);
+    if (s == OIT_OK)
+        s = oit_gl_create(&desc, &(*out)->gl, err);
+    oit_streamer_desc sd = {opt->max_layers, OIT_CAPTURE_ARRAY, opt->pack, opt->upload_budget};
+    if (s == OIT_OK)
+        s = oit_streamer_create(opt->partfile, &sd, &(*out)->streamer, err);
+    if (s != OIT_OK && *out) {
+        close_state(*out);
+        *out = NULL;
+    }
+    return s;
+}
+
+static oit_status stream_render(oit_method_state *st, const oit_view *view, oit_image *out,
+                                uint32_t *counts, uint8_t *ambiguous, oit_frame_stats *stats,
+                                oit_error *err)
+{
+    return oit_streamer_render(st->streamer, view, out, stats, &st->stream_stats, err);
+}
+
+static const oit_stream_frame_stats *stream_figures(const oit_method_state *st)
+{
+    return &st->stream_stats;
+}
+
 static const oit_render_method methods[] = {
-    {"dfb", 1, 1, 0, dfb_open, dfb_render, gl_renderer, close_state},
-    {"reference", 0, 1, 1, reference_open, reference_render, reference_renderer, close_state},
-    {"array", 1, 0, 0, array_open, capture_render, gl_renderer, close_state},
-    {"stencil", 1, 0, 0, stencil_open, capture_render, gl_renderer, close_state},
+    {"dfb", 1, 1, 0, dfb_open, dfb_render, gl_renderer, close_state, 0, NULL},
+    {"reference", 0, 1, 1, reference_open, reference_render, reference_renderer, close_state, 0, NULL},
+    {"array", 1, 0, 0, array_open, capture_render, gl_renderer, close_state, 0, NULL},
+    {"stencil", 1, 0, 0, stencil_open, capture_render, gl_renderer, close_state, 0, NULL},
+    {"stream", 1, 0, 0, stream_open, stream_render, gl_renderer, close_state, 1, stream_figures},
 };
 
 const oit_render_method *oit_render_method_find(const char *name)

@@ -6,11 +6,16 @@
 #define OIT_STREAM_RENDER_METHODS_H
 
 #include "render/view.h"
+#include "stream/streamer.h"
 
 typedef struct oit_method_state oit_method_state;
 
 typedef struct oit_method_options {
     int max_layers; /* K of the capture backends */
+    /* the part-file streamer (methods with needs_partfile) */
+    oit_partfile *partfile;
+    oit_pack_mode pack;
+    unsigned long long upload_budget; /* bytes; 0: default */
 } oit_method_options;
 
 typedef struct oit_render_method {
@@ -28,11 +33,15 @@ typedef struct oit_render_method {
     /* "llvmpipe (LLVM 15.0.6, 256 bits)", "Embree 3.13.5 (CPU)", ... */
     const char *(*renderer)(const oit_method_state *st);
     void (*close)(oit_method_state *st);
+    /* Renders opt->partfile (mesh is then empty) instead of the mesh. */
+    int needs_partfile;
+    /* The streamer's figures of the last frame; NULL for other methods. */
+    const oit_stream_frame_stats *(*stream_stats)(const oit_method_state *st);
 } oit_render_method;
 
 /* NULL when no method has that name. */
 const oit_render_method *oit_render_method_find(const char *name);
-/* Writes "dfb|reference|array|stencil" (the table's names) into buf, for
+/* Writes "dfb|reference|array|stencil|stream" (the table's names) into buf, for
  * --help and error messages. */
 void oit_render_method_names(char *buf, size_t cap);
 

@@ -35,10 +35,18 @@ static void put_frame(FILE *f, const oit_stats_frame *fr, int last)
     put_string(f, fr->view);
     fprintf(f,
             ", \"ms\": %.3f, \"fragments\": %llu, \"max_layers\": %u, \"overflow_pixels\": %llu, "
-            "\"gpu_bytes_peak\": %llu, \"batches\": %u}%s\n",
+            "\"gpu_bytes_peak\": %llu, \"batches\": %u",
             isfinite(s->ms) ? s->ms : -1.0, (unsigned long long)s->fragments, s->max_layers,
             (unsigned long long)s->overflow_pixels, (unsigned long long)s->gpu_bytes_peak,
-            s->batches, last ? "" : ",");
+            s->batches);
+    if (fr->has_stream)
+        fprintf(f, ", \"packs\": %u, \"parts_drawn\": %llu, \"parts_culled\": %llu, "
+                "\"parts_skipped\": %llu, \"bytes_uploaded\": %llu",
+                fr->stream.packs, (unsigned long long)fr->stream.parts_drawn,
+                (unsigned long long)fr->stream.parts_culled,
+                (unsigned long long)fr->stream.parts_skipped,
+                (unsigned long long)fr->stream.bytes_uploaded);
+    fprintf(f, "}%s\n", last ? "" : ",");
 }
 
 oit_status oit_stats_json_write(const char *path, const oit_stats_run *run, oit_error *err)

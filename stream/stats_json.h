@@ -6,11 +6,14 @@
 #include <stddef.h>
 
 #include "render/view.h"
+#include "stream/streamer.h"
 
 typedef struct oit_stats_frame {
     const char *method;
     char view[320]; /* the camera as --view accepts it (with znear,zfar) */
     oit_frame_stats st;
+    int has_stream;               /* the part-file streamer's figures follow */
+    oit_stream_frame_stats stream;
 } oit_stats_frame;
 
 typedef struct oit_stats_run {

@@ -1,0 +1,239 @@
+/* Packing (pack.h). Per frame O(parts + tiles touched); the tile grid is
+ * reset by stamping tiles with the pack number instead of clearing it. */
+#include "stream/pack.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { TILE = 32 };
+
+struct oit_packer {
+    const oit_partfile *pf;
+    oit_pack_mode mode;
+    uint32_t K;
+    uint64_t budget;
+    uint32_t *parts, *pack_first;
+    int (*rects)[4];
+    uint64_t *bytes;
+    uint32_t *tile_sum, *tile_stamp;
+    int tiles_x, tiles_y;
+    uint32_t stamp;
+};
+
+uint64_t oit_pack_part_bytes(const oit_partfile_part *p)
+{
+    uint64_t b = p->index_count / 3 * 48u;
+    return (b + OIT_PACK_ALIGN - 1) / OIT_PACK_ALIGN * OIT_PACK_ALIGN;
+}
+
+void oit_packer_destroy(oit_packer *pk)
+{
+    if (!pk)
+        return;
+    free(pk->parts);
+    free(pk->pack_first);
+    free(pk->rects);
+    free(pk->bytes);
+    free(pk->tile_sum);
+    free(pk->tile_stamp);
+    free(pk);
+}
+
+static oit_status check_parts(const oit_partfile *pf, uint32_t K, uint64_t budget, oit_error *err)
+{
+    const oit_partfile_part *parts = oit_partfile_parts(pf);
+    for (uint32_t i = 0; i < oit_partfile_part_count(pf); i++) {
+        if (parts[i].layer_bound > K)
+            return oit_error_set(err, OIT_ERR_UNSUPPORTED, "%s: part %u has up to %u layers, "
+                                 "more than the capture's K=%u (use --max-layers)",
+                                 oit_partfile_name(pf), i, parts[i].layer_bound, K);
+        if (oit_pack_part_bytes(&parts[i]) > budget)
+            return oit_error_set(err, OIT_ERR_UNSUPPORTED, "%s: part %u needs %llu bytes, more "
+                                 "than the upload budget of %llu", oit_partfile_name(pf), i,
+                                 (unsigned long long)oit_pack_part_bytes(&parts[i]),
+                                 (unsigned long long)budget);
+    }
+    return OIT_OK;
+}
+
+oit_status oit_packer_create(const oit_partfile *pf, oit_pack_mode mode, int K,
+                             uint64_t byte_budget, oit_packer **out, oit_error *err)
+{
+    *out = NULL;
+    oit_status s = check_parts(pf, (uint32_t)K, byte_budget, err);
+    if (s != OIT_OK)
+        return s;
+    uint32_t n = oit_partfile_part_count(pf);
+    oit_packer *pk = calloc(1, sizeof *pk);
+    if (pk) {
+        pk->parts = calloc((size_t)n + 1, sizeof *pk->parts);
+        pk->pack_first = calloc((size_t)n + 2, sizeof *pk->pack_first);
+        pk->rects = calloc((size_t)n + 1, sizeof *pk->rects);
+        pk->bytes = calloc((size_t)n + 1, sizeof *pk->bytes);
+    }
+    if (!pk || !pk->parts || !pk->pack_first || !pk->rects || !pk->bytes) {
+        oit_packer_destroy(pk);
+        return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot allocate packing for %u parts",
+                             oit_partfile_name(pf), n);
+    }
+    pk->pf = pf;
+    pk->mode = mode;
+    pk->K = (uint32_t)K;
+    pk->budget = byte_budget;
+    *out = pk;
+    return OIT_OK;
+}
+
+static oit_status fit_tiles(oit_packer *pk, const oit_view *v, oit_error *err)
+{
+    int tx = (v->width + TILE - 1) / TILE, ty = (v->height + TILE - 1) / TILE;
+    if (tx == pk->tiles_x && ty == pk->tiles_y)
+        return OIT_OK;
+    free(pk->tile_sum);
+    free(pk->tile_stamp);
+    pk->tile_sum = calloc((size_t)tx * ty, sizeof *pk->tile_sum);
+    pk->tile_stamp = calloc((size_t)tx * ty, sizeof *pk->tile_stamp);
+    pk->tiles_x = pk->tile_sum && pk->tile_stamp ? tx : 0;
+    pk->tiles_y = pk->tile_sum && pk->tile_stamp ? ty : 0;
+    pk->stamp = 0;
+    if (!pk->tiles_x)
+        return oit_error_set(err, OIT_ERR_NOMEM, "packing: cannot allocate %dx%d tiles", tx, ty);
+    return OIT_OK;
+}
+
+/* The screen rectangle of the part's box; 0 when the box lies outside the
+ * view volume (culled). */
+static int project_box(const oit_partfile_part *p, const oit_view *v, const float m[16],
+                       int rect[4])
+{
+    const oit_camera *c = &v->camera;
+    double f = 1.0 / tan(0.5 * (c->fovy_deg > 0.0f ? c->fovy_deg : 45.0) * 3.14159265358979 / 180.0);
+    double aspect = (double)v->width / v->height, lo[2] = {HUGE_VAL, HUGE_VAL},
+           hi[2] = {-HUGE_VAL, -HUGE_VAL};
+    int near_cross = 0, before_near = 0, beyond_far = 0;
+    for (int k = 0; k < 8; k++) {
+        double x = k & 1 ? p->bounds_max[0] : p->bounds_min[0];
+        double y = k & 2 ? p->bounds_max[1] : p->bounds_min[1];
+        double z = k & 4 ? p->bounds_max[2] : p->bounds_min[2];
+        double vx = m[0] * x + m[4] * y + m[8] * z + m[12];
+        double vy = m[1] * x + m[5] * y + m[9] * z + m[13];
+        double depth = -(m[2] * x + m[6] * y + m[10] * z + m[14]);
+        before_near += depth < c->znear;
+        beyond_far += depth > c->zfar;
+        if (depth <= 0.5 * c->znear) {
+            near_cross = 1;
+            continue;
+        }
+        double px = (f / aspect * vx / depth + 1.0) * 0.5 * v->width;
+        double py = (1.0 - f * vy / depth) * 0.5 * v->height;
+        lo[0] = fmin(lo[0], px), hi[0] = fmax(hi[0], px);
+        lo[1] = fmin(lo[1], py), hi[1] = fmax(hi[1], py);
+    }
+    if (before_near == 8 || beyond_far == 8)
+        return 0;
+    if (near_cross) {
+        rect[0] = rect[1] = 0;
+        rect[2] = v->width;
+        rect[3] = v->height;
+        return 1;
+    }
+    /* One pixel of margin covers rounding between this and the rasterizer. */
+    rect[0] = (int)fmax(floor(lo[0]) - 1.0, 0.0);
+    rect[1] = (int)fmax(floor(lo[1]) - 1.0, 0.0);
+    rect[2] = (int)fmin(ceil(hi[0]) + 1.0, (double)v->width);
+    rect[3] = (int)fmin(ceil(hi[1]) + 1.0, (double)v->height);
+    return rect[2] > rect[0] && rect[3] > rect[1];
+}
+
+static int overlaps(const int a[4], const int b[4])
+{
+    return a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3];
+}
+
+/* Budget rule: adds the part's layers to its tiles if all stay <= K. */
+static int tiles_take(oit_packer *pk, const int r[4], uint32_t layers)
+{
+    int x0 = r[0] / TILE, x1 = (r[2] - 1) / TILE, y0 = r[1] / TILE, y1 = (r[3] - 1) / TILE;
+    for (int pass = 0; pass < 2; pass++)
+        for (int y = y0; y <= y1; y++)
+            for (int x = x0; x <= x1; x++) {
+                size_t t = (size_t)y * pk->tiles_x + x;
+                uint32_t cur = pk->tile_stamp[t] == pk->stamp ? pk->tile_sum[t] : 0;
+                if (pass == 0 && cur + layers > pk->K)
+                    return 0;
+                if (pass == 1) {
+                    pk->tile_stamp[t] = pk->stamp;
+                    pk->tile_sum[t] = cur + layers;
+                }
+            }
+    return 1;
+}
+
+static int joins(oit_packer *pk, uint32_t pack, const int r[4], uint32_t layers, uint64_t bytes)
+{
+    if (pk->bytes[pack] + bytes > pk->budget)
+        return 0;
+    if (pk->mode == OIT_PACK_DISJOINT)
+        return !overlaps(pk->rects[pack], r);
+    return tiles_take(pk, r, layers);
+}
+
+static void grow_rect(int acc[4], const int r[4])
+{
+    acc[0] = r[0] < acc[0] ? r[0] : acc[0];
+    acc[1] = r[1] < acc[1] ? r[1] : acc[1];
+    acc[2] = r[2] > acc[2] ? r[2] : acc[2];
+    acc[3] = r[3] > acc[3] ? r[3] : acc[3];
+}
+
+static void open_pack(oit_packer *pk, uint32_t pack, uint32_t first)
+{
+    pk->pack_first[pack] = first;
+    pk->bytes[pack] = 0;
+    pk->rects[pack][0] = pk->rects[pack][1] = 0x7fffffff;
+    pk->rects[pack][2] = pk->rects[pack][3] = -1;
+    if (++pk->stamp == 0) { /* wrapped: clear the stale stamps once */
+        memset(pk->tile_stamp, 0, (size_t)pk->tiles_x * pk->tiles_y * sizeof *pk->tile_stamp);
+        pk->stamp = 1;
+    }
+}
+
+oit_status oit_packer_run(oit_packer *pk, const oit_view *view, const uint32_t *order,
+                          uint32_t n, oit_packing *out, oit_error *err)
+{
+    memset(out, 0, sizeof *out);
+    oit_status s = fit_tiles(pk, view, err);
+    if (s != OIT_OK)
+        return s;
+    float m[16];
+    oit_camera_view_matrix(&view->camera, m);
+    const oit_partfile_part *parts = oit_partfile_parts(pk->pf);
+    uint32_t drawn = 0, packs = 0, culled = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        const oit_partfile_part *p = &parts[order[i]];
+        int r[4];
+        if (!project_box(p, view, m, r)) {
+            culled++;
+            continue;
+        }
+        uint64_t bytes = oit_pack_part_bytes(p);
+        if (packs == 0 || !joins(pk, packs - 1, r, p->layer_bound, bytes)) {
+            open_pack(pk, packs++, drawn);
+            if (pk->mode == OIT_PACK_BUDGET)
+                tiles_take(pk, r, p->layer_bound);
+        }
+        grow_rect(pk->rects[packs - 1], r);
+        pk->bytes[packs - 1] += bytes;
+        pk->parts[drawn++] = order[i];
+    }
+    pk->pack_first[packs] = drawn;
+    out->parts = pk->parts;
+    out->part_count = drawn;
+    out->pack_first = pk->pack_first;
+    out->rects = (const int(*)[4])pk->rects;
+    out->bytes = pk->bytes;
+    out->pack_count = packs;
+    out->culled = culled;
+    return OIT_OK;
+}

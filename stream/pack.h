@@ -1,0 +1,51 @@
+/* Cutting the per-view part order into packs (seed 002, 5.1): consecutive
+ * parts of the order that are drawn as one capture batch. A pack is exact
+ * when no pixel can receive more than K fragments from it, since the batch's
+ * per-pixel sort then orders its fragments as the whole order would (parts
+ * earlier in the order are never behind later ones along a ray).
+ *  - OIT_PACK_BUDGET: a screen grid of 32x32-pixel tiles holds the sum of the
+ *    layer bounds of the pack's parts whose rectangle touches the tile; a
+ *    part joins while every tile it touches stays <= K.
+ *  - OIT_PACK_DISJOINT (the paper's rule): a part joins while its rectangle
+ *    does not overlap the bounding rectangle of the pack so far.
+ * Rectangles are the projections of the parts' bounding boxes (a box that
+ * reaches in front of the near plane covers the screen); a box wholly outside
+ * the view volume yields no fragment and is culled. A pack is also cut where
+ * its expanded triangle data would exceed the upload budget. */
+#ifndef OIT_STREAM_PACK_H
+#define OIT_STREAM_PACK_H
+
+#include "oit/partfile.h"
+#include "render/view.h"
+
+typedef enum oit_pack_mode { OIT_PACK_BUDGET = 0, OIT_PACK_DISJOINT } oit_pack_mode;
+
+/* GPU bytes a part takes in the upload ring: its triangles expanded to the
+ * 48-byte oit_triangle, rounded up to OIT_PACK_ALIGN. */
+#define OIT_PACK_ALIGN 256u
+uint64_t oit_pack_part_bytes(const oit_partfile_part *p);
+
+typedef struct oit_packing {
+    const uint32_t *parts;      /* the parts to draw, in order (culled ones left out) */
+    uint32_t part_count;
+    const uint32_t *pack_first; /* pack i: parts[pack_first[i] .. pack_first[i+1]) */
+    const int (*rects)[4];      /* pack i's screen rectangle, as oit_capture_batch reads */
+    const uint64_t *bytes;      /* pack i's upload bytes */
+    uint32_t pack_count;
+    uint32_t culled;
+} oit_packing;
+
+typedef struct oit_packer oit_packer;
+
+/* Fails (OIT_ERR_UNSUPPORTED) when a part's layer bound exceeds K or a part
+ * alone exceeds byte_budget, naming the part. */
+oit_status oit_packer_create(const oit_partfile *pf, oit_pack_mode mode, int K,
+                             uint64_t byte_budget, oit_packer **out, oit_error *err);
+void oit_packer_destroy(oit_packer *pk);
+
+/* Packs order[0..n) for view. The arrays in out belong to the packer and
+ * stay valid until the next call. */
+oit_status oit_packer_run(oit_packer *pk, const oit_view *view, const uint32_t *order,
+                          uint32_t n, oit_packing *out, oit_error *err);
+
+#endif

@@ -1,0 +1,42 @@
+/* The per-frame driver of the part-file renderer: order the parts for the
+ * eye (order.h), cut the order into packs (pack.h), and per pack upload its
+ * parts through the bounded ring (upload.h) and capture them as one batch
+ * (render/capture.h), composited behind the packs before it. Requires a
+ * current GL context for its whole life. */
+#ifndef OIT_STREAM_STREAMER_H
+#define OIT_STREAM_STREAMER_H
+
+#include "oit/partfile.h"
+#include "render/capture.h"
+#include "stream/pack.h"
+
+typedef struct oit_streamer_desc {
+    int K;                    /* capture layers, 2..16; every part's bound <= K */
+    oit_capture_kind capture; /* backend */
+    oit_pack_mode pack;
+    uint64_t upload_budget;   /* ring bytes; 0: 64 MiB */
+} oit_streamer_desc;
+
+/* The streamer's own per-frame figures, beside oit_frame_stats. */
+typedef struct oit_stream_frame_stats {
+    uint32_t packs;
+    uint64_t parts_drawn;
+    uint64_t parts_culled;   /* boxes outside the view volume: no fragment */
+    uint64_t parts_skipped;  /* early termination: none yet, always 0     */
+    uint64_t bytes_uploaded;
+    uint64_t gpu_bytes_peak; /* capture buffers + upload ring              */
+} oit_stream_frame_stats;
+
+typedef struct oit_streamer oit_streamer;
+
+/* pf must outlive the streamer; parts are validated on first use, so pf may
+ * be opened with defer_part_data. */
+oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
+                               oit_streamer **out, oit_error *err);
+void oit_streamer_destroy(oit_streamer *s);
+
+/* Renders one view into out (allocated by the call). fs and ss may be NULL. */
+oit_status oit_streamer_render(oit_streamer *s, const oit_view *view, oit_image *out,
+                               oit_frame_stats *fs, oit_stream_frame_stats *ss, oit_error *err);
+
+#endif

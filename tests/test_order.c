@@ -1,0 +1,399 @@
+/* stream/order.h: the part order is a visibility order from every eye.
+ *
+ * A part file is written with the writer: a 4x3x2 top grid of unequal cell
+ * sizes with one tilted quad per cell, two cells refined by 2x1x1 subgrids
+ * (one subcell refined again by a 1x2x1 subgrid), one cell holding a slab
+ * (tilted normal: a part below, two inside, one above) and one empty cell.
+ * For eyes outside on every side, inside, on cell boundaries and on the
+ * slab planes, rays are cast from the eye through points sampled on every
+ * part's triangles; the parts hit along each ray, in distance order, must
+ * have non-decreasing rank in the order. The checker is shown to catch a
+ * reversed order, so the test can fail. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "oit/partfile.h"
+#include "stream/order.h"
+
+#define MAX_PARTS 64
+#define SQ2 1.41421356f
+
+typedef struct quad {
+    float p[4][3];
+} quad;
+
+typedef struct scene {
+    quad parts[MAX_PARTS];
+    uint32_t n;
+} scene;
+
+static int failures;
+
+static void check(int ok, const char *what)
+{
+    if (!ok) {
+        fprintf(stderr, "FAIL: %s\n", what);
+        failures++;
+    }
+}
+
+/* A quad spanning the box shrunk by 10%, tilted across it; orient picks
+ * which axis the quad contains, so quads of neighbouring cells differ. */
+static quad cell_quad(const float lo[3], const float hi[3], int orient)
+{
+    float a[3], b[3];
+    for (int k = 0; k < 3; k++) {
+        float m = 0.1f * (hi[k] - lo[k]);
+        a[k] = lo[k] + m;
+        b[k] = hi[k] - m;
+    }
+    int u = orient % 3, w = (u + 1) % 3, v = (u + 2) % 3; /* spans u and (v, w) */
+    quad q;
+    for (int c = 0; c < 4; c++) {
+        int su = c == 1 || c == 2, sv = c >= 2;
+        q.p[c][u] = su ? b[u] : a[u];
+        q.p[c][v] = sv ? b[v] : a[v];
+        q.p[c][w] = sv ? b[w] : a[w];
+    }
+    return q;
+}
+
+/* A quad in the plane x + z = s (the slab's frame), y in [y0, y1], clipped
+ * to x in [x0, x1] and z in [z0, z1]. */
+static quad slab_quad(float s, float y0, float y1, float x0, float x1, float z0, float z1)
+{
+    float xa = fmaxf(x0, s - z1), xb = fminf(x1, s - z0);
+    quad q = {{{xa, y0, s - xa}, {xb, y0, s - xb}, {xb, y1, s - xb}, {xa, y1, s - xa}}};
+    return q;
+}
+
+static int add_quad(oit_partfile_writer *w, scene *sc, const quad *q, oit_error *err)
+{
+    static const uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
+    oit_partfile_piece_desc piece = {2, 1};
+    oit_partfile_part_desc d = {0};
+    d.positions = &q->p[0][0];
+    d.vertex_count = 4;
+    d.indices = idx;
+    d.index_count = 6;
+    d.pieces = &piece;
+    d.piece_count = 1;
+    uint32_t index;
+    if (oit_partfile_writer_add_part(w, &d, &index, err) != OIT_OK)
+        return -1;
+    sc->parts[sc->n++] = *q;
+    return (int)index;
+}
+
+static const float CELL[3] = {1.0f, 1.5f, 2.0f};
+enum { SUB_A = 1 + 3 * 1 + 12 * 0, SUB_B = 2 + 12 * 1, SLAB_CELL = 3 + 4 * 2 + 12 * 1,
+       EMPTY_CELL = 0 + 4 * 2 + 12 * 1 };
+
+static void cell_box(const float origin[3], const float size[3], const uint32_t dims[3],
+                     uint32_t c, float lo[3], float hi[3])
+{
+    uint32_t i[3] = {c % dims[0], c / dims[0] % dims[1], c / (dims[0] * dims[1])};
+    for (int k = 0; k < 3; k++) {
+        lo[k] = origin[k] + (float)i[k] * size[k];
+        hi[k] = lo[k] + size[k];
+    }
+}
+
+/* Writes a grid whose cells hold one quad each (none where skip says),
+ * returning the part of each cell in cell_parts. */
+static int quad_grid(oit_partfile_writer *w, scene *sc, const oit_partfile_grid_desc *g,
+                     const int *skip, uint32_t *counts, uint32_t *list, oit_error *err)
+{
+    uint32_t n = g->dims[0] * g->dims[1] * g->dims[2], used = 0;
+    for (uint32_t c = 0; c < n; c++) {
+        counts[c] = 0;
+        if (skip && skip[c])
+            continue;
+        float lo[3], hi[3];
+        cell_box(g->origin, g->cell_size, g->dims, c, lo, hi);
+        quad q = cell_quad(lo, hi, (int)(c + sc->n));
+        int p = add_quad(w, sc, &q, err);
+        if (p < 0)
+            return -1;
+        counts[c] = 1;
+        list[used++] = (uint32_t)p;
+    }
+    return (int)used;
+}
+
+typedef struct sub_desc {
+    oit_partfile_grid_desc g;
+    uint32_t counts[8], list[8];
+} sub_desc;
+
+/* The subgrid's parts are written now; its record later (parts come first). */
+static int make_subgrid(oit_partfile_writer *w, scene *sc, sub_desc *d, uint32_t parent_grid,
+                        uint32_t parent_cell, const float lo[3], const uint32_t dims[3],
+                        const float size[3], const int *skip, oit_error *err)
+{
+    oit_partfile_grid_desc g = {{dims[0], dims[1], dims[2]}, {lo[0], lo[1], lo[2]},
+                                {size[0], size[1], size[2]}, parent_grid, parent_cell,
+                                d->counts, d->list};
+    d->g = g;
+    return quad_grid(w, sc, &d->g, skip, d->counts, d->list, err);
+}
+
+static oit_status write_slab(oit_partfile_writer *w, scene *sc, uint32_t *cell_list,
+                             oit_error *err)
+{
+    float lo[3], hi[3];
+    static const uint32_t dims[3] = {4, 3, 2};
+    static const float origin[3] = {0, 0, 0};
+    cell_box(origin, CELL, dims, SLAB_CELL, lo, hi);
+    /* x + z over the cell spans [lo0+lo2, hi0+hi2]; four sheets across it. */
+    float s0 = lo[0] + lo[2], span = hi[0] + hi[2] - s0;
+    float ym = 0.5f * (lo[1] + hi[1]);
+    quad qs[4] = {
+        slab_quad(s0 + 0.3f * span, lo[1] + 0.1f, hi[1] - 0.1f, lo[0], hi[0], lo[2], hi[2]),
+        slab_quad(s0 + 0.5f * span, lo[1] + 0.1f, ym - 0.05f, lo[0], hi[0], lo[2], hi[2]),
+        slab_quad(s0 + 0.5f * span, ym + 0.05f, hi[1] - 0.1f, lo[0], hi[0], lo[2], hi[2]),
+        slab_quad(s0 + 0.7f * span, lo[1] + 0.1f, hi[1] - 0.1f, lo[0], hi[0], lo[2], hi[2])};
+    for (int i = 0; i < 4; i++) {
+        int p = add_quad(w, sc, &qs[i], err);
+        if (p < 0)
+            return err->status;
+        cell_list[i] = (uint32_t)p;
+    }
+    return OIT_OK;
+}
+
+static oit_status finish_slab(oit_partfile_writer *w, const uint32_t *parts, oit_error *err)
+{
+    float lo[3], hi[3];
+    static const uint32_t dims[3] = {4, 3, 2};
+    static const float origin[3] = {0, 0, 0};
+    cell_box(origin, CELL, dims, SLAB_CELL, lo, hi);
+    float s0 = lo[0] + lo[2], span = hi[0] + hi[2] - s0;
+    oit_partfile_slab_desc sl = {{1.0f / SQ2, 0.0f, 1.0f / SQ2},
+                                 (s0 + 0.4f * span) / SQ2, (s0 + 0.6f * span) / SQ2,
+                                 0, SLAB_CELL, parts[0], parts[3], parts + 1, 2};
+    uint32_t index;
+    return oit_partfile_writer_add_slab(w, &sl, &index, err);
+}
+
+/* Parts are written before grids, so every cell's quad is added first; the
+ * grid records follow in parent-before-child order. */
+static oit_status build(const char *path, scene *sc, oit_error *err)
+{
+    oit_partfile_writer *w = NULL;
+    oit_status s = oit_partfile_writer_create(path, NULL, &w, err);
+    if (s != OIT_OK)
+        return s;
+    static const uint32_t dims[3] = {4, 3, 2};
+    int skip[24] = {0};
+    skip[SUB_A] = skip[SUB_B] = skip[SLAB_CELL] = skip[EMPTY_CELL] = 1;
+    uint32_t counts[24], list[40];
+    oit_partfile_grid_desc top = {{4, 3, 2}, {0, 0, 0}, {CELL[0], CELL[1], CELL[2]},
+                                  OIT_PARTFILE_NONE, OIT_PARTFILE_NONE, counts, list};
+    int used = quad_grid(w, sc, &top, skip, counts, list, err);
+    if (used < 0) {
+        oit_partfile_writer_abort(w);
+        return err->status;
+    }
+    /* The slab cell's four parts join the top list in cell order. */
+    uint32_t slab_parts[4];
+    s = write_slab(w, sc, slab_parts, err);
+    if (s == OIT_OK) {
+        counts[SLAB_CELL] = 4;
+        uint32_t at = 0;
+        for (uint32_t c = 0; c < SLAB_CELL; c++)
+            at += counts[c];
+        memmove(list + at + 4, list + at, (size_t)(used - (int)at) * sizeof *list);
+        memcpy(list + at, slab_parts, sizeof slab_parts);
+    }
+    /* Subgrid parts: grid 1 refines SUB_A, grid 2 SUB_B, grid 3 grid 2's cell 1. */
+    static sub_desc sub[3];
+    float lo[3], hi[3];
+    static const uint32_t d211[3] = {2, 1, 1}, d121[3] = {1, 2, 1};
+    static const int skip_b[2] = {0, 1};
+    const float half[3] = {CELL[0] / 2, CELL[1], CELL[2]};
+    const float quarter[3] = {CELL[0] / 2, CELL[1] / 2, CELL[2]};
+    cell_box(top.origin, CELL, dims, SUB_A, lo, hi);
+    if (s == OIT_OK && make_subgrid(w, sc, &sub[0], 0, SUB_A, lo, d211, half, NULL, err) < 0)
+        s = err->status;
+    cell_box(top.origin, CELL, dims, SUB_B, lo, hi);
+    if (s == OIT_OK && make_subgrid(w, sc, &sub[1], 0, SUB_B, lo, d211, half, skip_b, err) < 0)
+        s = err->status;
+    lo[0] += half[0];
+    if (s == OIT_OK && make_subgrid(w, sc, &sub[2], 2, 1, lo, d121, quarter, NULL, err) < 0)
+        s = err->status;
+    if (s == OIT_OK)
+        s = oit_partfile_writer_set_grid(w, &top, err);
+    for (int i = 0; i < 3 && s == OIT_OK; i++) {
+        uint32_t g = 0;
+        s = oit_partfile_writer_add_subgrid(w, &sub[i].g, &g, err);
+    }
+    if (s == OIT_OK)
+        s = finish_slab(w, slab_parts, err);
+    if (s != OIT_OK) {
+        oit_partfile_writer_abort(w);
+        return s;
+    }
+    return oit_partfile_writer_finish(w, NULL, err);
+}
+
+/* Ray/triangle distance (Moller-Trumbore, double); <0 when missed. */
+static double hit(const double o[3], const double d[3], const float *a, const float *b,
+                  const float *c)
+{
+    double e1[3], e2[3], p[3], t[3], q[3];
+    for (int k = 0; k < 3; k++) {
+        e1[k] = (double)b[k] - a[k];
+        e2[k] = (double)c[k] - a[k];
+        t[k] = o[k] - a[k];
+    }
+    p[0] = d[1] * e2[2] - d[2] * e2[1];
+    p[1] = d[2] * e2[0] - d[0] * e2[2];
+    p[2] = d[0] * e2[1] - d[1] * e2[0];
+    double det = e1[0] * p[0] + e1[1] * p[1] + e1[2] * p[2];
+    if (fabs(det) < 1e-14)
+        return -1.0;
+    double u = (t[0] * p[0] + t[1] * p[1] + t[2] * p[2]) / det;
+    q[0] = t[1] * e1[2] - t[2] * e1[1];
+    q[1] = t[2] * e1[0] - t[0] * e1[2];
+    q[2] = t[0] * e1[1] - t[1] * e1[0];
+    double v = (d[0] * q[0] + d[1] * q[1] + d[2] * q[2]) / det;
+    if (u < -1e-9 || v < -1e-9 || u + v > 1 + 1e-9)
+        return -1.0;
+    return (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]) / det;
+}
+
+static double quad_hit(const double o[3], const double d[3], const quad *q)
+{
+    double t0 = hit(o, d, q->p[0], q->p[1], q->p[2]), t1 = hit(o, d, q->p[0], q->p[2], q->p[3]);
+    return t0 > 0 ? t0 : t1;
+}
+
+/* Rays through points of every quad: returns the violations (a part hit
+ * clearly before another but ranked after it). */
+static int violations(const scene *sc, const float eye[3], const uint32_t *rank)
+{
+    int bad = 0;
+    double o[3] = {eye[0], eye[1], eye[2]};
+    for (uint32_t p = 0; p < sc->n; p++)
+        for (int s = 0; s < 9; s++) {
+            double u = 0.1 + 0.4 * (s % 3), v = 0.1 + 0.4 * (s / 3), d[3], len = 0;
+            const quad *q = &sc->parts[p];
+            for (int k = 0; k < 3; k++) {
+                double a = q->p[0][k] + u * (q->p[1][k] - q->p[0][k]);
+                double b = q->p[3][k] + u * (q->p[2][k] - q->p[3][k]);
+                d[k] = a + v * (b - a) - o[k];
+                len += d[k] * d[k];
+            }
+            if (len < 1e-12)
+                continue;
+            /* Every pair of hits along the ray, by distance. */
+            for (uint32_t r = 0; r < sc->n; r++) {
+                double t = quad_hit(o, d, &sc->parts[r]);
+                if (t <= 1e-9)
+                    continue;
+                for (uint32_t x = 0; x < sc->n; x++) {
+                    double tx = quad_hit(o, d, &sc->parts[x]);
+                    if (tx > 1e-9 && tx < t - 1e-6 && rank[x] > rank[r])
+                        bad++;
+                }
+            }
+        }
+    return bad;
+}
+
+static int eyes(float out[][3], int cap)
+{
+    int n = 0;
+    const float c[3] = {2.0f, 2.25f, 2.0f};
+    for (int dx = -1; dx <= 1; dx++)
+        for (int dy = -1; dy <= 1; dy++)
+            for (int dz = -1; dz <= 1; dz++)
+                if ((dx || dy || dz) && n < cap) {
+                    float e[3] = {c[0] + 9.0f * dx, c[1] + 8.0f * dy, c[2] + 7.0f * dz};
+                    memcpy(out[n++], e, sizeof e);
+                }
+    uint32_t r = 12345u;
+    for (int i = 0; i < 40 && n < cap; i++)
+        for (int k = 0; k < 3; k++) {
+            r = r * 1664525u + 1013904223u;
+            out[n][k] = -0.5f + (float)(r >> 8) / 16777216.0f * (k == 0 ? 5.0f : k == 1 ? 5.5f : 5.0f);
+            if (k == 2)
+                n++;
+        }
+    /* On cell planes, subgrid planes, corners and the slab planes. */
+    const float on[][3] = {{1, 1.5f, 2}, {2, 3, 2}, {3, 0.7f, 1}, {1.5f, 1.2f, 0.5f},
+                           {2.5f, 0.2f, 3}, {2.75f, 0.375f, 3}, {0, 0, 0}, {4, 4.5f, 4},
+                           {3.5f, 3.7f, 2 + 0.5f * 3}, {3.2f, 3.5f, 3.4f}, {3.5f, 3.2f, 3.0f},
+                           {1.5f, 2.25f, -3}, {2, -2, 2}, {-1, 3, 2.0f}};
+    for (size_t i = 0; i < sizeof on / sizeof on[0] && n < cap; i++)
+        memcpy(out[n++], on[i], sizeof on[i]);
+    return n;
+}
+
+int main(void)
+{
+    const char *tmp = getenv("OIT_TEST_TMP");
+    char path[4096];
+    snprintf(path, sizeof path, "%s/test_order.oitp", tmp ? tmp : ".");
+    static scene sc;
+    oit_error err = {0};
+    if (build(path, &sc, &err) != OIT_OK) {
+        fprintf(stderr, "FAIL: writing %s: %s\n", path, err.message);
+        return 1;
+    }
+    oit_partfile *pf = NULL;
+    oit_order *o = NULL;
+    if (oit_partfile_open(path, NULL, &pf, &err) != OIT_OK ||
+        oit_order_create(pf, &o, &err) != OIT_OK) {
+        fprintf(stderr, "FAIL: %s\n", err.message);
+        return 1;
+    }
+    uint32_t n = oit_partfile_part_count(pf), order[MAX_PARTS], rank[MAX_PARTS], count = 0;
+    oit_partfile_summary sum;
+    oit_partfile_get_summary(pf, &sum);
+    printf("part file: %u parts, %llu cells, %llu subgrids (depth %u), %llu slabs\n", n,
+           (unsigned long long)sum.cells, (unsigned long long)sum.subgrids, sum.subgrid_depth,
+           (unsigned long long)sum.slabs);
+    check(n == sc.n && sum.subgrid_depth == 2 && sum.slabs == 1, "scene shape");
+    float ev[128][3];
+    int ne = eyes(ev, 128), total_bad = 0, rays_checked = 0;
+    for (int i = 0; i < ne; i++) {
+        if (oit_order_compute(o, ev[i], order, &count, &err) != OIT_OK) {
+            fprintf(stderr, "FAIL: %s\n", err.message);
+            return 1;
+        }
+        char what[160];
+        snprintf(what, sizeof what, "eye %g,%g,%g: %u of %u parts ordered", ev[i][0], ev[i][1],
+                 ev[i][2], count, n);
+        check(count == n, what);
+        memset(rank, 0xff, sizeof rank);
+        for (uint32_t k = 0; k < count; k++) {
+            check(order[k] < n && rank[order[k]] == 0xffffffffu, "a part emitted twice");
+            if (order[k] < n)
+                rank[order[k]] = k;
+        }
+        int bad = violations(&sc, ev[i], rank);
+        snprintf(what, sizeof what, "eye %g,%g,%g: %d ray order violations", ev[i][0], ev[i][1],
+                 ev[i][2], bad);
+        check(bad == 0, what);
+        total_bad += bad;
+        rays_checked += (int)n * 9;
+    }
+    printf("%d eyes, %d rays: %d order violations\n", ne, rays_checked, total_bad);
+    /* The checker must see a wrong order: the reverse of a valid one. */
+    float far_eye[3] = {-7.0f, 2.25f, 2.0f};
+    oit_order_compute(o, far_eye, order, &count, &err);
+    for (uint32_t k = 0; k < count; k++)
+        rank[order[k]] = count - 1 - k;
+    int rev = violations(&sc, far_eye, rank);
+    printf("reversed order from %g,%g,%g: %d violations (must be > 0)\n", far_eye[0], far_eye[1],
+           far_eye[2], rev);
+    check(rev > 0, "the checker misses a reversed order");
+    oit_order_destroy(o);
+    oit_partfile_close(pf);
+    remove(path);
+    return failures ? 1 : 0;
+}

@@ -1,0 +1,102 @@
+#!/bin/sh
+# oitstream --method stream against --method dfb on the same part file.
+# Usage: test_streamer.sh grid WRITER   (WRITER: test_streamer, writes the file)
+#        test_streamer.sh demo          (`oitgen demo` converted by oitprep)
+#        test_streamer.sh bunny         ($OIT_MESH_CACHE/bunny00.off converted)
+# Same triangles, same fragments, same tie-break: the images must agree to
+# 1/255 on >= 99.9% of pixels, with zero overflow, at least one pack and
+# bytes uploaded, from 3 orbit views and one eye inside the model, in both
+# shading modes, with both packing rules and with an upload ring small
+# enough to wrap many times per frame.
+set -u
+: "${OIT_BIN:?OIT_BIN must name the tools folder}"
+: "${OIT_TEST_TMP:?OIT_TEST_TMP must name a scratch folder}"
+MODE=${1:-grid}
+S="$OIT_BIN/oitstream"
+T="$OIT_TEST_TMP/streamer_$MODE"
+rm -rf "$T" && mkdir -p "$T" || exit 1
+FAILS=0
+fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
+json_num() { sed -n "s/.*\"$1\": \([-0-9.e+]*\).*/\1/p" | head -n 1; }
+# json_all KEY < json: every value of KEY, one a line
+json_all() { grep -o "\"$1\": [-0-9.e+]*" | sed 's/.*: //'; }
+
+P="$T/scene.oitp"
+case "$MODE" in
+grid)
+    "$2" "$P" || { echo "FAIL: cannot write the part file"; exit 1; } ;;
+demo)
+    [ -x "$OIT_BIN/oitgen" ] && [ -x "$OIT_BIN/oitprep" ] || { echo "skip: oitgen/oitprep not built"; exit 77; }
+    "$OIT_BIN/oitgen" demo -o "$T/demo.ply" >/dev/null || exit 1
+    "$OIT_BIN/oitprep" "$T/demo.ply" -o "$P" >"$T/prep.txt" 2>&1 ||
+        { echo "skip: oitprep cannot convert yet: $(tail -n 1 "$T/prep.txt")"; exit 77; } ;;
+bunny)
+    M="${OIT_MESH_CACHE:-}/bunny00.off"
+    [ -f "$M" ] || { echo "skip: $M missing (run data_scripts/fetch_meshes.sh)"; exit 77; }
+    [ -x "$OIT_BIN/oitprep" ] || { echo "skip: oitprep not built"; exit 77; }
+    "$OIT_BIN/oitprep" "$M" -o "$P" >"$T/prep.txt" 2>&1 ||
+        { echo "skip: oitprep cannot convert yet: $(tail -n 1 "$T/prep.txt")"; exit 77; } ;;
+*) echo "usage: $0 grid WRITER | demo | bunny" >&2; exit 2 ;;
+esac
+
+# agree NAME STREAM_OPTS...: stream and dfb on 3 orbit views, compared
+agree() {
+    name=$1; shift
+    "$S" "$P" --size 128x128 --orbit 3 --out "$T/${name}_s.png" --stats "$T/${name}_s.json" \
+        --quiet "$@" || { fail "$name: stream exited $?"; return; }
+    "$S" "$P" --method dfb --size 128x128 --orbit 3 --out "$T/${name}_d.png" --quiet \
+        $(echo "$@" | sed -n 's/.*\(--shading [a-z]*\).*/\1/p') ||
+        { fail "$name: dfb exited $?"; return; }
+    for i in 000 001 002; do
+        cmp_view "$name view $i" "$T/${name}_s_$i.png" "$T/${name}_d_$i.png"
+    done
+    check_stats "$name" "$T/${name}_s.json"
+}
+
+cmp_view() {
+    d=$("$S" --compare "$2" "$3" --json) || { fail "$1: compare failed"; return; }
+    pct=$(echo "$d" | json_num pct_over_1_255)
+    echo "$1: stream vs dfb: max_abs $(echo "$d" | json_num max_abs), over 1/255 $pct%"
+    awk "BEGIN{exit !($pct <= 0.1)}" || fail "$1: $pct% of pixels differ by more than 1/255"
+}
+
+check_stats() {
+    for o in $(json_all overflow_pixels < "$2"); do
+        [ "$o" -eq 0 ] || fail "$1: $o overflow pixels"
+    done
+    for p in $(json_all packs < "$2"); do
+        [ "$p" -ge 1 ] || fail "$1: $p packs"
+    done
+    for b in $(json_all bytes_uploaded < "$2"); do
+        [ "$b" -gt 0 ] || fail "$1: $b bytes uploaded"
+    done
+    for f in $(json_all fragments < "$2"); do
+        [ "$f" -gt 0 ] || fail "$1: $f fragments (blank frame)"
+    done
+    echo "$1: packs per frame: $(json_all packs < "$2" | tr '\n' ' ')" \
+         "bytes uploaded: $(json_all bytes_uploaded < "$2" | tr '\n' ' ')" \
+         "GPU peak: $(json_all gpu_bytes_peak < "$2" | head -n 1)"
+}
+
+agree budget --pack budget
+agree disjoint
+agree ring --upload-budget 64K
+agree translucent --shading translucent
+
+# An eye inside the model: boxes crossing the near plane cover the screen.
+C=$("$OIT_BIN/oitprep" info "$P" --json 2>/dev/null | tr -d '\n ')
+VIEW=$(awk -v s="$("$S" "$P" --size 8x8 --stats "$T/v.json" --quiet >/dev/null && sed -n 's/.*"view": "\([^"]*\)".*/\1/p' "$T/v.json")" \
+    'BEGIN{split(s, v, ","); ex=v[4]+0.15*(v[1]-v[4]); ey=v[5]+0.15*(v[2]-v[5]); ez=v[6]+0.15*(v[3]-v[6]);
+     printf "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,0,1,0,60", ex, ey, ez, v[4]-(v[1]-v[4]), v[5], v[6]-(v[3]-v[6])}')
+"$S" "$P" --size 128x128 --view "$VIEW" --out "$T/in_s.png" --stats "$T/in_s.json" --quiet ||
+    fail "inside: stream exited $?"
+"$S" "$P" --method dfb --size 128x128 --view "$VIEW" --out "$T/in_d.png" --quiet ||
+    fail "inside: dfb exited $?"
+cmp_view "inside ($VIEW)" "$T/in_s.png" "$T/in_d.png"
+check_stats inside "$T/in_s.json"
+
+# A K too small for the parts is refused (exit 3), not rendered with overflow.
+"$S" "$P" --max-layers 2 --size 16x16 --quiet >/dev/null 2>"$T/err.txt"; rc=$?
+[ "$rc" -eq 3 ] && grep -q "layers" "$T/err.txt" || fail "--max-layers 2: exit $rc: $(cat "$T/err.txt")"
+
+[ "$FAILS" -eq 0 ] && echo "PASS" || { echo "$FAILS failure(s)"; exit 1; }
