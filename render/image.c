@@ -323,9 +323,17 @@ oit_status oit_image_read(const char *path, oit_image *img, oit_error *err)
     FILE *f = fopen(path, "rb");
     if (!f)
         return oit_error_set(err, OIT_ERR_IO, "%s: cannot open", path);
-    oit_status s = png ? read_png(path, f, img, err) : read_pfm(path, f, img, err);
+    oit_status s = oit_image_read_stream(f, path, png, img, err);
     fclose(f);
     return s;
+}
+
+oit_status oit_image_read_stream(FILE *f, const char *name, int png, oit_image *img,
+                                 oit_error *err)
+{
+    img->width = img->height = 0;
+    img->rgba = NULL;
+    return png ? read_png(name, f, img, err) : read_pfm(name, f, img, err);
 }
 
 oit_status oit_image_write(const oit_image *img, const char *path, oit_error *err)

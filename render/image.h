@@ -5,6 +5,7 @@
 #define OIT_RENDER_IMAGE_H
 
 #include <stdint.h>
+#include <stdio.h>
 
 #include "view.h"
 
@@ -22,6 +23,10 @@ oit_status oit_image_write_png(const oit_image *img, const char *path, oit_error
 oit_status oit_image_write_pfm(const oit_image *img, const char *path, oit_error *err);
 /* Reads .png (8- or 16-bit, gray/RGB/RGBA) or .pfm, chosen by extension. */
 oit_status oit_image_read(const char *path, oit_image *img, oit_error *err);
+/* The same from an open, seekable stream (fmemopen for bytes in memory);
+ * png selects the format, name is used in messages. */
+oit_status oit_image_read_stream(FILE *f, const char *name, int png, oit_image *img,
+                                 oit_error *err);
 /* Writes .png or .pfm by extension. */
 oit_status oit_image_write(const oit_image *img, const char *path, oit_error *err);
 

@@ -13,3 +13,8 @@ foreach(part cli scene meshes)
   oit_add_test(NAME oitstream_${part} LABELS integration TIMEOUT 120
     COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_oitstream.sh ${part})
 endforeach()
+
+# The image readers behind --compare: the corpus files start with one byte
+# that selects the format (odd: PNG, even: PFM).
+oit_add_fuzzer(fuzz_image fuzz_image.c LIBS oit_image
+               CORPUS ${CMAKE_CURRENT_SOURCE_DIR}/corpus/image)
