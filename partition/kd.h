@@ -1,0 +1,78 @@
+/* Subdivision of one grid cell into parts (DESIGN.md "Layer bound",
+ * "Visibility order").
+ *
+ * The cell's triangles arrive clustered into convex pieces. A node holding at
+ * most max_pieces pieces becomes one part; otherwise it is split at the
+ * midplane of the axis that minimises the larger child's piece count, the
+ * pieces' triangles are clipped to the two closed halves (a clipped convex
+ * piece stays convex; a piece with nothing left vanishes) and both halves
+ * recurse. Every split is a 2x1x1 (1x2x1, 1x1x2) subgrid of its node, so the
+ * result is a kd-tree of regular subgrids with at most one part per leaf,
+ * each part inside its leaf's closed box: the contract of stream/order.h.
+ * A node still above max_pieces at max_depth is re-clustered with a flatness
+ * tolerance (float rounding can make a flat surface exactly non-convex, so
+ * many exact pieces meet at one vertex); if that fails too it is refused.
+ */
+#ifndef OIT_PARTITION_KD_H
+#define OIT_PARTITION_KD_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "oit/mesh.h"
+#include "oit/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct oit_kd_params {
+    uint32_t max_pieces; /* K/2 */
+    uint32_t max_depth;  /* splits below the cell; 0: 48 (16 halvings an axis) */
+} oit_kd_params;
+
+typedef struct oit_kd_node {
+    float lo[3], hi[3];
+    int32_t axis;   /* -1: leaf; else split at the midplane of this axis */
+    uint32_t child; /* split: nodes child (below) and child + 1 (above) */
+    int32_t part;   /* leaf: index into parts, or -1 when empty */
+    uint32_t depth; /* root 0 */
+} oit_kd_node;
+
+typedef struct oit_kd_piece {
+    uint64_t triangle_count; /* consecutive triangles of the part */
+    uint32_t plane_count;
+} oit_kd_piece;
+
+typedef struct oit_kd_part {
+    size_t tri_first, tri_count;   /* into tris */
+    uint32_t piece_first, piece_count;
+} oit_kd_part;
+
+typedef struct oit_kd_result {
+    oit_kd_node *nodes; /* nodes[0] is the cell; children follow parents */
+    size_t node_count, node_cap;
+    oit_kd_part *parts; /* in leaf order */
+    size_t part_count, part_cap;
+    oit_kd_piece *pieces;
+    size_t piece_count, piece_cap;
+    oit_triangle *tris; /* parts' triangles, piece by piece */
+    size_t tri_count, tri_cap;
+    uint64_t split_added;  /* triangles added by the midplane clips */
+    uint32_t depth;        /* deepest node */
+    uint32_t tolerant_parts; /* parts clustered with the flatness tolerance */
+} oit_kd_result;
+
+/* Subdivides the box [lo, hi] holding tris[0..n) with piece[i] (< piece_count)
+ * and plane[i] (the triangle's plane id within its piece, < n) per triangle.
+ * The arrays are only read. Fails with OIT_ERR_UNSUPPORTED (message names the
+ * box and the piece count) when the depth cap is reached, or OIT_ERR_NOMEM. */
+oit_status oit_kd_build(const float lo[3], const float hi[3], const oit_triangle *tris, size_t n,
+                        const uint32_t *piece, const uint32_t *plane, uint32_t piece_count,
+                        const oit_kd_params *params, oit_kd_result *out, oit_error *err);
+void oit_kd_result_free(oit_kd_result *r);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,69 @@
+/* Per-cell partition (cell.h). */
+#include "preprocess/cell.h"
+
+#include <stdlib.h>
+
+#include "partition/clip.h"
+#include "partition/convex.h"
+
+static int flat_on_shared_face(const oit_cell_params *p, const oit_triangle *t)
+{
+    for (int k = 0; k < 3; k++)
+        if (p->lo_shared[k] && t->v[0].pos[k] == p->lo[k] && t->v[1].pos[k] == p->lo[k] &&
+            t->v[2].pos[k] == p->lo[k])
+            return 1;
+    return 0;
+}
+
+static oit_status clip_to_cell(const oit_cell_params *p, const oit_triangle *tris, size_t n,
+                               oit_triangle **out, size_t *count, oit_error *err)
+{
+    size_t cap = n + n / 4 + 16, m = 0;
+    oit_triangle *o = malloc(cap * sizeof *o);
+    for (size_t i = 0; i < n && o; i++) {
+        if (m + OIT_CLIP_MAX_TRIS > cap) {
+            cap *= 2;
+            oit_triangle *q = realloc(o, cap * sizeof *q);
+            if (!q) {
+                free(o);
+                o = NULL;
+                break;
+            }
+            o = q;
+        }
+        int k = oit_clip_triangle_box(&tris[i], p->lo, p->hi, o + m);
+        size_t w = m;
+        for (int j = 0; j < k; j++)
+            if (!flat_on_shared_face(p, &o[m + j]))
+                o[w++] = o[m + j];
+        m = w;
+    }
+    if (!o)
+        return oit_error_set(err, OIT_ERR_NOMEM, "cell clip of %zu triangles: out of memory", n);
+    *out = o;
+    *count = m;
+    return OIT_OK;
+}
+
+oit_status oit_cell_partition(const oit_cell_params *p, const oit_triangle *tris, size_t n,
+                              oit_kd_result *out, oit_cell_counts *counts, oit_error *err)
+{
+    oit_triangle *clipped = NULL;
+    size_t m = 0;
+    oit_status s = clip_to_cell(p, tris, n, &clipped, &m, err);
+    if (s)
+        return s;
+    oit_convex_params cp = {p->max_piece_triangles, 0};
+    oit_convex_result cr = {0};
+    s = oit_convex_cluster(clipped, m, &cp, &cr, err);
+    if (!s) {
+        oit_kd_params kp = {p->K / 2, p->max_depth};
+        s = oit_kd_build(p->lo, p->hi, clipped, m, cr.piece_of, cr.plane_of, cr.piece_count, &kp,
+                         out, err);
+        counts->clipped = m;
+        counts->pieces_cell = cr.piece_count;
+    }
+    oit_convex_result_free(&cr);
+    free(clipped);
+    return s;
+}

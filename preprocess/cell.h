@@ -1,0 +1,34 @@
+/* One top-grid cell of the conversion: clip its binned triangles to the
+ * cell's closed box, cluster them into convex pieces, subdivide into parts
+ * (partition/kd.h). Independent of every other cell, so cells run in
+ * parallel. */
+#ifndef OIT_PREPROCESS_CELL_H
+#define OIT_PREPROCESS_CELL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "oit/mesh.h"
+#include "oit/status.h"
+#include "partition/kd.h"
+
+typedef struct oit_cell_params {
+    float lo[3], hi[3];
+    /* Per axis: the lower face is shared with a cell below. A triangle lying
+     * in such a face belongs to the cell below (as in kd splits), so no
+     * surface is stored twice. */
+    int lo_shared[3];
+    uint32_t K;
+    uint32_t max_piece_triangles;
+    uint32_t max_depth;
+} oit_cell_params;
+
+typedef struct oit_cell_counts {
+    uint64_t clipped;      /* triangles after the box clip */
+    uint64_t pieces_cell;  /* convex pieces before subdivision */
+} oit_cell_counts;
+
+oit_status oit_cell_partition(const oit_cell_params *p, const oit_triangle *tris, size_t n,
+                              oit_kd_result *out, oit_cell_counts *counts, oit_error *err);
+
+#endif

@@ -1,0 +1,40 @@
+/* oitprep's conversion: mesh file in, part file out (DESIGN.md).
+ *
+ * Pass 1 streams the input for bounds and count; pass 2 bins triangles into
+ * a regular top grid (preprocess/bin.h), dropping degenerate ones; cells are
+ * partitioned in parallel (preprocess/cell.h) and written in cell order, so
+ * the file is byte-identical for any thread count; every kd split becomes a
+ * 2x1x1-style subgrid of its cell; each leaf cell lists its one part.
+ */
+#ifndef OIT_PREPROCESS_CONVERT_H
+#define OIT_PREPROCESS_CONVERT_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "oit/status.h"
+
+typedef struct oit_convert_options {
+    const char *input, *output;
+    uint32_t K;                   /* even, 2..1024 */
+    size_t memory;                /* bin budget in bytes */
+    uint32_t threads;             /* >= 1 */
+    uint32_t grid;                /* cells along the longest axis; 0: ~64K triangles a cell */
+    uint32_t max_piece_triangles; /* 0: convex.h default */
+    int progress;                 /* draw progress bars on stderr */
+} oit_convert_options;
+
+typedef struct oit_convert_stats {
+    uint64_t triangles_in, triangles_out, degenerate_dropped, nonfinite_dropped;
+    int64_t split_added;
+    uint64_t pieces, parts, cells, subgrids, spilled_bytes;
+    uint32_t subgrid_depth, grid_dims[3], threads, K;
+    double seconds_total, seconds_bounds, seconds_bin, seconds_partition, seconds_write;
+    uint64_t peak_rss_bytes;
+} oit_convert_stats;
+
+/* Exit-code mapping as usual: OIT_ERR_FORMAT / OIT_ERR_UNSUPPORTED are bad
+ * input (3). The message names the input or output file. */
+oit_status oit_convert(const oit_convert_options *o, oit_convert_stats *st, oit_error *err);
+
+#endif

@@ -1,0 +1,33 @@
+/* Conversion statistics as JSON (stats_json.h). */
+#include "preprocess/stats_json.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <string.h>
+
+oit_status oit_convert_stats_write_json(const char *path, const oit_convert_options *o,
+                                        const oit_convert_stats *s, oit_error *err)
+{
+    FILE *f = fopen(path, "w");
+    if (!f)
+        return oit_error_set(err, OIT_ERR_IO, "%s: cannot write stats: %s", path, strerror(errno));
+    fprintf(f,
+            "{\"triangles_in\": %llu, \"triangles_out\": %llu, \"degenerate_dropped\": %llu, "
+            "\"nonfinite_dropped\": %llu, \"split_added\": %lld, \"pieces\": %llu, "
+            "\"parts\": %llu, \"slabs\": 0, \"cells\": %llu, \"subgrids\": %llu, "
+            "\"subgrid_depth\": %u, \"grid\": [%u, %u, %u], \"spilled_bytes\": %llu, "
+            "\"seconds\": {\"total\": %.3f, \"stages\": {\"bounds\": %.3f, \"bin\": %.3f, "
+            "\"partition\": %.3f, \"write\": %.3f}}, \"peak_rss_bytes\": %llu, "
+            "\"threads\": %u, \"K\": %u, \"memory\": %zu}\n",
+            (unsigned long long)s->triangles_in, (unsigned long long)s->triangles_out,
+            (unsigned long long)s->degenerate_dropped, (unsigned long long)s->nonfinite_dropped,
+            (long long)s->split_added, (unsigned long long)s->pieces,
+            (unsigned long long)s->parts, (unsigned long long)s->cells,
+            (unsigned long long)s->subgrids, s->subgrid_depth, s->grid_dims[0], s->grid_dims[1],
+            s->grid_dims[2], (unsigned long long)s->spilled_bytes, s->seconds_total,
+            s->seconds_bounds, s->seconds_bin, s->seconds_partition, s->seconds_write,
+            (unsigned long long)s->peak_rss_bytes, s->threads, s->K, o->memory);
+    if (fclose(f))
+        return oit_error_set(err, OIT_ERR_IO, "%s: cannot write stats: %s", path, strerror(errno));
+    return OIT_OK;
+}

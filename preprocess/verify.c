@@ -1,0 +1,396 @@
+/* Ray-cast verification of a part file (verify.h). */
+#include "preprocess/verify.h"
+
+#include <embree3/rtcore.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "oit/partfile.h"
+#include "stream/order.h"
+
+typedef struct vhit {
+    float t;
+    uint32_t part;
+} vhit;
+
+/* The filter gets the context pointer we pass to rtcIntersect1; the hit list
+ * rides behind the RTCIntersectContext it starts with. */
+typedef struct vray_ctx {
+    struct RTCIntersectContext rtc;
+    const uint32_t *part_of_prim;
+    vhit *hits;
+    size_t n, cap;
+    int oom;
+} vray_ctx;
+
+static void record_hit(const struct RTCFilterFunctionNArguments *args)
+{
+    vray_ctx *rc = (vray_ctx *)args->context;
+    for (unsigned i = 0; i < args->N; i++) {
+        if (args->valid[i] != -1)
+            continue;
+        args->valid[i] = 0; /* reject: traversal continues to every hit */
+        if (rc->n == rc->cap) {
+            size_t cap = rc->cap ? 2 * rc->cap : 64;
+            vhit *p = realloc(rc->hits, cap * sizeof *p);
+            if (!p) {
+                rc->oom = 1;
+                continue;
+            }
+            rc->hits = p;
+            rc->cap = cap;
+        }
+        /* SOA layout of RTCRayN / RTCHitN: tfar is float array 8, primID uint array 5. */
+        float t = ((const float *)args->ray)[8 * args->N + i];
+        uint32_t prim = ((const uint32_t *)args->hit)[5 * args->N + i];
+        rc->hits[rc->n++] = (vhit){t, rc->part_of_prim[prim]};
+    }
+}
+
+typedef struct verifier {
+    oit_partfile *pf;
+    oit_order *order;
+    RTCDevice dev;
+    RTCScene scene;
+    uint32_t *part_of_prim;
+    uint32_t *rank, *ordered, *count, *touched, *bound;
+    uint8_t *reached;
+    uint32_t nparts;
+    float lo[3], hi[3], centre[3], radius, tie;
+    vray_ctx ray;
+    oit_verify_report *rep;
+} verifier;
+
+static uint64_t rng_next(uint64_t *s)
+{
+    /* splitmix64: fixed seed, so a run is reproducible. */
+    uint64_t z = (*s += 0x9e3779b97f4a7c15ull);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+}
+
+static double rng_unit(uint64_t *s)
+{
+    return (rng_next(s) >> 11) * (1.0 / 9007199254740992.0);
+}
+
+static void random_direction(uint64_t *s, float d[3])
+{
+    double z = 2 * rng_unit(s) - 1, a = 6.283185307179586 * rng_unit(s), r = sqrt(fmax(0, 1 - z * z));
+    d[0] = (float)(r * cos(a));
+    d[1] = (float)(r * sin(a));
+    d[2] = (float)z;
+}
+
+static oit_status build_scene(verifier *v, oit_error *err)
+{
+    uint32_t np = v->nparts;
+    uint64_t tris = 0, verts = 0;
+    for (uint32_t p = 0; p < np; p++) {
+        tris += oit_partfile_parts(v->pf)[p].index_count / 3;
+        verts += oit_partfile_parts(v->pf)[p].vertex_count;
+    }
+    v->part_of_prim = malloc((tris ? tris : 1) * sizeof *v->part_of_prim);
+    RTCGeometry geom = rtcNewGeometry(v->dev, RTC_GEOMETRY_TYPE_TRIANGLE);
+    float *vb = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                        12, verts ? verts : 1);
+    uint32_t *ib = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 12,
+                                           tris ? tris : 1);
+    if (!v->part_of_prim || !vb || !ib) {
+        rtcReleaseGeometry(geom);
+        return oit_error_set(err, OIT_ERR_NOMEM, "%s: Embree scene: out of memory",
+                             oit_partfile_name(v->pf));
+    }
+    uint64_t vo = 0, to = 0;
+    for (uint32_t p = 0; p < np; p++) {
+        oit_partfile_part_view pv;
+        oit_status s = oit_partfile_part_data(v->pf, p, &pv, err);
+        if (s) {
+            rtcReleaseGeometry(geom);
+            return s;
+        }
+        uint32_t nv = oit_partfile_parts(v->pf)[p].vertex_count;
+        for (uint32_t i = 0; i < nv; i++)
+            memcpy(vb + 3 * (vo + i), (const char *)pv.positions + (size_t)i * pv.stride, 12);
+        for (uint64_t i = 0; i < pv.index_count; i++) {
+            uint32_t x = pv.index_bits == 16 ? ((const uint16_t *)pv.indices)[i]
+                                             : ((const uint32_t *)pv.indices)[i];
+            ib[3 * to + i] = (uint32_t)vo + x;
+        }
+        for (uint64_t i = 0; i < pv.index_count / 3; i++)
+            v->part_of_prim[to + i] = p;
+        vo += nv;
+        to += pv.index_count / 3;
+    }
+    rtcSetGeometryIntersectFilterFunction(geom, record_hit);
+    rtcCommitGeometry(geom);
+    v->scene = rtcNewScene(v->dev);
+    rtcSetSceneFlags(v->scene, RTC_SCENE_FLAG_ROBUST);
+    rtcAttachGeometry(v->scene, geom);
+    rtcReleaseGeometry(geom);
+    rtcCommitScene(v->scene);
+    return OIT_OK;
+}
+
+static int cmp_hit_t(const void *a, const void *b)
+{
+    const vhit *x = a, *y = b;
+    if (x->t != y->t)
+        return x->t < y->t ? -1 : 1;
+    return (x->part > y->part) - (x->part < y->part);
+}
+
+static void note(verifier *v, const char *fmt, double a, double b, double c, unsigned p,
+                 unsigned q)
+{
+    if (v->rep->first_violation[0])
+        return;
+    snprintf(v->rep->first_violation, sizeof v->rep->first_violation, fmt, a, b, c, p, q);
+}
+
+/* Checks (1) hits per part against the layer bound. */
+static void check_layers(verifier *v, const float org[3])
+{
+    uint32_t nt = 0;
+    for (size_t i = 0; i < v->ray.n; i++) {
+        uint32_t p = v->ray.hits[i].part;
+        if (v->count[p]++ == 0)
+            v->touched[nt++] = p;
+    }
+    for (uint32_t i = 0; i < nt; i++) {
+        uint32_t p = v->touched[i], c = v->count[p];
+        if (c > v->rep->max_hits_per_part) {
+            v->rep->max_hits_per_part = c;
+            v->rep->worst_part_bound = v->bound[p];
+        }
+        if (c >= v->bound[p] && !v->reached[p]) {
+            v->reached[p] = 1;
+            v->rep->parts_at_bound++;
+        }
+        if (c > v->bound[p]) {
+            v->rep->layer_violations++;
+            note(v, "ray from (%g %g %g): part %u gives %u hits, more than its bound", org[0],
+                 org[1], org[2], p, c);
+        }
+        v->count[p] = 0;
+    }
+}
+
+/* Checks (2): along the ray (hits sorted by t) no part comes later whose rank
+ * is below that of a part met more than `tie` earlier. */
+static void check_order(verifier *v, const float org[3])
+{
+    vhit *h = v->ray.hits;
+    size_t n = v->ray.n, j = 0;
+    if (n < 2)
+        return;
+    qsort(h, n, sizeof *h, cmp_hit_t);
+    uint32_t max_rank = 0, max_part = 0;
+    int have = 0;
+    for (size_t i = 0; i < n; i++) {
+        for (; j < i && h[j].t < h[i].t - v->tie; j++)
+            if (!have || v->rank[h[j].part] > max_rank) {
+                max_rank = v->rank[h[j].part];
+                max_part = h[j].part;
+                have = 1;
+            }
+        uint32_t r = v->rank[h[i].part];
+        if (r == UINT32_MAX || (have && r < max_rank)) {
+            v->rep->order_violations++;
+            note(v, "ray from (%g %g %g): part %u is met after part %u but ordered before it",
+                 org[0], org[1], org[2], h[i].part, max_part);
+            return;
+        }
+    }
+}
+
+static oit_status cast(verifier *v, const float org[3], const float dir[3], oit_error *err)
+{
+    struct RTCRayHit rh;
+    memset(&rh, 0, sizeof rh);
+    rh.ray.org_x = org[0];
+    rh.ray.org_y = org[1];
+    rh.ray.org_z = org[2];
+    rh.ray.dir_x = dir[0];
+    rh.ray.dir_y = dir[1];
+    rh.ray.dir_z = dir[2];
+    rh.ray.tnear = 0;
+    rh.ray.tfar = INFINITY;
+    rh.ray.mask = UINT32_MAX;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    v->ray.n = 0;
+    rtcIntersect1(v->scene, &v->ray.rtc, &rh);
+    if (v->ray.oom)
+        return oit_error_set(err, OIT_ERR_NOMEM, "%s: ray hits: out of memory",
+                             oit_partfile_name(v->pf));
+    v->rep->rays++;
+    v->rep->hits += v->ray.n;
+    v->rep->rays_hitting += v->ray.n > 0;
+    check_layers(v, org);
+    check_order(v, org);
+    return OIT_OK;
+}
+
+static oit_status order_from(verifier *v, const float eye[3], oit_error *err)
+{
+    uint32_t n = 0;
+    oit_status s = oit_order_compute(v->order, eye, v->ordered, &n, err);
+    if (s)
+        return s;
+    for (uint32_t p = 0; p < v->nparts; p++)
+        v->rank[p] = UINT32_MAX;
+    for (uint32_t i = 0; i < n; i++)
+        v->rank[v->ordered[i]] = i;
+    return OIT_OK;
+}
+
+static void basis(const float d[3], float u[3], float w[3])
+{
+    float a[3] = {fabsf(d[0]) < 0.6f ? 1.0f : 0.0f, fabsf(d[0]) < 0.6f ? 0.0f : 1.0f, 0};
+    u[0] = d[1] * a[2] - d[2] * a[1];
+    u[1] = d[2] * a[0] - d[0] * a[2];
+    u[2] = d[0] * a[1] - d[1] * a[0];
+    float l = sqrtf(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    for (int k = 0; k < 3; k++)
+        u[k] /= l;
+    w[0] = d[1] * u[2] - d[2] * u[1];
+    w[1] = d[2] * u[0] - d[0] * u[2];
+    w[2] = d[0] * u[1] - d[1] * u[0];
+}
+
+static oit_status bundles(verifier *v, const oit_verify_options *o, uint64_t *rng,
+                          oit_error *err)
+{
+    uint32_t side = o->bundle_side ? o->bundle_side : 24;
+    for (uint32_t b = 0; b < o->directions; b++) {
+        float d[3], u[3], w[3], eye[3];
+        random_direction(rng, d);
+        basis(d, u, w);
+        for (int k = 0; k < 3; k++)
+            eye[k] = v->centre[k] - d[k] * v->radius * 1e4f;
+        oit_status s = order_from(v, eye, err);
+        for (uint32_t i = 0; i < side * side && !s; i++) {
+            double a = ((i % side) + rng_unit(rng)) / side * 2 - 1;
+            double c = ((i / side) + rng_unit(rng)) / side * 2 - 1;
+            float org[3];
+            for (int k = 0; k < 3; k++)
+                org[k] = (float)(v->centre[k] - d[k] * 2 * v->radius +
+                                 v->radius * (a * u[k] + c * w[k]));
+            s = cast(v, org, d, err);
+        }
+        if (s)
+            return s;
+    }
+    return OIT_OK;
+}
+
+static oit_status points(verifier *v, const oit_verify_options *o, uint64_t *rng,
+                         oit_error *err)
+{
+    uint32_t rays = o->rays_per_point ? o->rays_per_point : 1024;
+    for (uint32_t p = 0; p < o->viewpoints; p++) {
+        float eye[3];
+        for (int k = 0; k < 3; k++) {
+            /* The centre first; then points in the bounds grown by half. */
+            double ext = v->hi[k] - v->lo[k];
+            eye[k] = p == 0 ? v->centre[k]
+                            : (float)(v->lo[k] - ext * 0.25 + rng_unit(rng) * ext * 1.5);
+        }
+        oit_status s = order_from(v, eye, err);
+        for (uint32_t i = 0; i < rays && !s; i++) {
+            float d[3];
+            random_direction(rng, d);
+            s = cast(v, eye, d, err);
+        }
+        if (s)
+            return s;
+    }
+    return OIT_OK;
+}
+
+static oit_status verify_open(verifier *v, const char *path, oit_error *err)
+{
+    oit_status s = oit_partfile_open(path, NULL, &v->pf, err);
+    if (s)
+        return s;
+    s = oit_order_create(v->pf, &v->order, err);
+    if (s)
+        return s;
+    oit_partfile_summary sum;
+    oit_partfile_get_summary(v->pf, &sum);
+    v->nparts = oit_partfile_part_count(v->pf);
+    size_t n = v->nparts ? v->nparts : 1;
+    v->rank = malloc(n * sizeof *v->rank);
+    v->ordered = malloc(n * sizeof *v->ordered);
+    v->count = calloc(n, sizeof *v->count);
+    v->touched = malloc(n * sizeof *v->touched);
+    v->bound = malloc(n * sizeof *v->bound);
+    v->reached = calloc(n, 1);
+    if (!v->rank || !v->ordered || !v->count || !v->touched || !v->bound || !v->reached)
+        return oit_error_set(err, OIT_ERR_NOMEM, "%s: out of memory", path);
+    for (uint32_t p = 0; p < v->nparts; p++) {
+        v->bound[p] = oit_partfile_parts(v->pf)[p].layer_bound;
+        v->rep->max_layer_bound =
+            v->bound[p] > v->rep->max_layer_bound ? v->bound[p] : v->rep->max_layer_bound;
+    }
+    double r2 = 0;
+    for (int k = 0; k < 3; k++) {
+        v->lo[k] = sum.bounds_min[k];
+        v->hi[k] = sum.bounds_max[k];
+        v->centre[k] = 0.5f * (v->lo[k] + v->hi[k]);
+        r2 += 0.25 * ((double)v->hi[k] - v->lo[k]) * ((double)v->hi[k] - v->lo[k]);
+    }
+    v->radius = (float)fmax(sqrt(r2), 1e-6);
+    v->tie = v->radius * 1e-5f;
+    v->rep->parts = v->nparts;
+    v->dev = rtcNewDevice("threads=1");
+    if (!v->dev)
+        return oit_error_set(err, OIT_ERR_IO, "%s: cannot create an Embree device", path);
+    return build_scene(v, err);
+}
+
+oit_status oit_verify(const char *path, const oit_verify_options *o, oit_verify_report *rep,
+                      oit_error *err)
+{
+    memset(rep, 0, sizeof *rep);
+    verifier v = {.rep = rep};
+    rtcInitIntersectContext(&v.ray.rtc);
+    oit_status s = verify_open(&v, path, err);
+    v.ray.part_of_prim = v.part_of_prim;
+    uint64_t rng = o->seed ? o->seed : 0x6f69747072657031ull;
+    if (!s)
+        s = bundles(&v, o, &rng, err);
+    if (!s)
+        s = points(&v, o, &rng, err);
+    if (v.scene)
+        rtcReleaseScene(v.scene);
+    if (v.dev)
+        rtcReleaseDevice(v.dev);
+    oit_order_destroy(v.order);
+    oit_partfile_close(v.pf);
+    free(v.part_of_prim);
+    free(v.rank);
+    free(v.ordered);
+    free(v.count);
+    free(v.touched);
+    free(v.bound);
+    free(v.reached);
+    free(v.ray.hits);
+    return s;
+}
+
+void oit_verify_print(FILE *f, const char *path, const oit_verify_report *r)
+{
+    fprintf(f, "%s: %llu rays (%llu hitting), %llu hits, %u parts\n", path,
+            (unsigned long long)r->rays, (unsigned long long)r->rays_hitting,
+            (unsigned long long)r->hits, r->parts);
+    fprintf(f, "  layers: most hits of one part on one ray %u (its bound %u; max bound %u); "
+               "%llu parts reached their bound; %llu violations\n",
+            r->max_hits_per_part, r->worst_part_bound, r->max_layer_bound,
+            (unsigned long long)r->parts_at_bound, (unsigned long long)r->layer_violations);
+    fprintf(f, "  order: %llu violations\n", (unsigned long long)r->order_violations);
+    if (r->first_violation[0])
+        fprintf(f, "  first violation: %s\n", r->first_violation);
+}
