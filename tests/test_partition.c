@@ -1,0 +1,384 @@
+/* partition/ kernels: exact orient3d where the double filter cannot decide,
+ * watertight plane splitting of a closed mesh, and greedy convex clustering
+ * on shapes whose piece counts are known. */
+#include <math.h>
+#include <stdio.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "partition/clip.h"
+#include "partition/convex.h"
+#include "partition/predicates.h"
+#include "test_check.h"
+
+/* ---------------------------------------------------------------- predicates */
+
+static const double PI = 3.14159265358979323846;
+
+static int sign_i64(int64_t v) { return (v > 0) - (v < 0); }
+
+/* For a = e_x, b = e_y, c = e_z, det[b-a; c-a; d-a] = dx + dy + dz - 1. With
+ * every coordinate a multiple of 2^-55 below 1, the sum is exact in int64. */
+static int plane_sign_exact(const double d[3])
+{
+    int64_t s = -((int64_t)1 << 55);
+    for (int k = 0; k < 3; k++)
+        s += (int64_t)ldexp(d[k], 55);
+    return sign_i64(s);
+}
+
+static int naive_orient3d(const double a[3], const double b[3], const double c[3],
+                          const double d[3])
+{
+    double u[3], v[3], w[3];
+    for (int k = 0; k < 3; k++) {
+        u[k] = b[k] - a[k];
+        v[k] = c[k] - a[k];
+        w[k] = d[k] - a[k];
+    }
+    double det = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+                 u[2] * (v[0] * w[1] - v[1] * w[0]);
+    return (det > 0) - (det < 0);
+}
+
+static void test_predicates(void)
+{
+    const double o[3] = {0, 0, 0}, ex[3] = {1, 0, 0}, ey[3] = {0, 1, 0}, ez[3] = {0, 0, 1};
+    const double below[3] = {0.25, 0.25, -0.5}, on[3] = {3, -7, 0};
+    CHECK(oit_orient3d(o, ex, ey, ez) == 1, "unit tetrahedron must be +1");
+    CHECK(oit_orient3d(o, ey, ex, ez) == -1, "swapped tetrahedron must be -1");
+    CHECK(oit_orient3d(o, ex, ey, below) == -1, "point below z=0 must be -1");
+    CHECK(oit_orient3d(o, ex, ey, on) == 0, "point in z=0 must be 0");
+
+    /* d = (x, y, 1 - x - y rounded, then nudged by -1..+1 ulp): within 1e-16
+     * of the plane x+y+z=1, where the double determinant's error bound
+     * (~1e-15) exceeds its value. */
+    int counts[3] = {0, 0, 0}, naive_wrong = 0, cases = 0;
+    for (int i = 0; i < 40; i++)
+        for (int j = 0; j < 40; j++)
+            for (int nudge = -1; nudge <= 1; nudge++) {
+                double d[3];
+                d[0] = 0.125 + i * (0.1 / 40.0);
+                d[1] = 0.125 + j * (0.1 / 41.0);
+                d[2] = 1.0 - d[0] - d[1];
+                if (nudge)
+                    d[2] = nextafter(d[2], nudge > 0 ? 2.0 : 0.0);
+                int want = plane_sign_exact(d);
+                int got = oit_orient3d(ex, ey, ez, d);
+                CHECK(got == want, "orient3d(e_x,e_y,e_z,(%.17g,%.17g,%.17g)) = %d, exact %d",
+                      d[0], d[1], d[2], got, want);
+                CHECK(oit_orient3d_exact(ex, ey, ez, d) == want, "exact fallback disagrees");
+                counts[want + 1]++;
+                naive_wrong += naive_orient3d(ex, ey, ez, d) != want;
+                cases++;
+            }
+    printf("predicates: %d near-coplanar cases: %d negative, %d zero, %d positive; "
+           "naive double determinant wrong on %d\n",
+           cases, counts[0], counts[1], counts[2], naive_wrong);
+    CHECK(counts[0] > 0 && counts[1] > 0 && counts[2] > 0, "cases must cover all three signs");
+    CHECK(naive_wrong > 0, "cases must include some the plain double determinant gets wrong");
+
+    const double p[3] = {0.1, 0.2, 0.3}, q[3] = {0.2, 0.4, 0.6}, r[3] = {0.4, 0.8, 1.2};
+    const double r2[3] = {0.4, 0.8, nextafter(1.2, 2.0)};
+    /* 0.1*2, 0.2*2, ... are exact doublings, so p, q, r are exactly collinear. */
+    CHECK(oit_triangle_degenerate(p, q, r) == 1, "exactly collinear points");
+    CHECK(oit_triangle_degenerate(p, q, r2) == 0, "collinear up to one ulp is not degenerate");
+}
+
+/* ---------------------------------------------------------------- meshes */
+
+typedef struct tri_list {
+    oit_triangle *t;
+    size_t n, cap;
+} tri_list;
+
+static void push(tri_list *l, const oit_triangle *t)
+{
+    if (l->n == l->cap) {
+        l->cap = l->cap ? 2 * l->cap : 64;
+        l->t = realloc(l->t, l->cap * sizeof *l->t);
+        if (!l->t) {
+            fprintf(stderr, "out of memory\n");
+            exit(1);
+        }
+    }
+    l->t[l->n++] = *t;
+}
+
+static oit_vertex vtx(float x, float y, float z)
+{
+    oit_vertex v = {{x, y, z}, {200, 100, 50, 128}};
+    return v;
+}
+
+static void push3(tri_list *l, oit_vertex a, oit_vertex b, oit_vertex c)
+{
+    oit_triangle t = {{a, b, c}};
+    push(l, &t);
+}
+
+/* Cube [lo, hi]^3, 12 triangles, outward counter-clockwise. */
+static void make_cube(tri_list *l, float lo, float hi)
+{
+    static const int quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                                    {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+    oit_vertex c[8];
+    for (int i = 0; i < 8; i++)
+        c[i] = vtx(i & 1 ? hi : lo, i & 2 ? hi : lo, i & 4 ? hi : lo);
+    for (int f = 0; f < 6; f++) {
+        const int *q = quads[f];
+        push3(l, c[q[0]], c[q[1]], c[q[2]]);
+        push3(l, c[q[0]], c[q[2]], c[q[3]]);
+    }
+}
+
+/* A closed surface from a periodic grid of vertices: g[i * nv + j]. */
+static void push_grid(tri_list *l, const oit_vertex *g, int nu, int nv, int wrap_u)
+{
+    for (int i = 0; i + (wrap_u ? 0 : 1) < nu; i++)
+        for (int j = 0; j < nv; j++) {
+            int i1 = (i + 1) % nu, j1 = (j + 1) % nv;
+            oit_vertex a = g[i * nv + j], b = g[i1 * nv + j], c = g[i1 * nv + j1],
+                       d = g[i * nv + j1];
+            if (!oit_triangle_is_degenerate(&(oit_triangle){{a, b, c}}))
+                push3(l, a, b, c);
+            if (!oit_triangle_is_degenerate(&(oit_triangle){{a, c, d}}))
+                push3(l, a, c, d);
+        }
+}
+
+static void make_torus(tri_list *l, int nu, int nv)
+{
+    oit_vertex *g = malloc((size_t)nu * nv * sizeof *g);
+    for (int i = 0; i < nu; i++)
+        for (int j = 0; j < nv; j++) {
+            double u = 2 * PI * i / nu, v = 2 * PI * j / nv, r = 1.0 + 0.35 * cos(v);
+            g[i * nv + j] = vtx((float)(r * cos(u)), (float)(r * sin(u)), (float)(0.35 * sin(v)));
+        }
+    push_grid(l, g, nu, nv, 1);
+    free(g);
+}
+
+/* UV sphere off the origin; each pole is one vertex repeated along its ring,
+ * whose collapsed triangles push_grid drops, so the surface stays closed. */
+static void make_sphere(tri_list *l, int rings, int segs)
+{
+    oit_vertex *g = malloc((size_t)(rings + 1) * segs * sizeof *g);
+    for (int i = 0; i <= rings; i++)
+        for (int j = 0; j < segs; j++) {
+            double th = PI * i / rings, ph = 2 * PI * j / segs;
+            double s = (i == 0 || i == rings) ? 0.0 : sin(th);
+            g[i * segs + j] = vtx((float)(0.1 + s * cos(ph)), (float)(0.2 + s * sin(ph)),
+                                  (float)(0.3 + cos(th)));
+        }
+    push_grid(l, g, rings + 1, segs, 0);
+    free(g);
+}
+
+static double tri_area(const oit_triangle *t)
+{
+    double u[3], v[3];
+    for (int k = 0; k < 3; k++) {
+        u[k] = (double)t->v[1].pos[k] - t->v[0].pos[k];
+        v[k] = (double)t->v[2].pos[k] - t->v[0].pos[k];
+    }
+    double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2],
+           z = u[0] * v[1] - u[1] * v[0];
+    return 0.5 * sqrt(x * x + y * y + z * z);
+}
+
+/* ---------------------------------------------------------------- clip */
+
+typedef struct edge_key {
+    float p[6];
+} edge_key;
+
+static int edge_cmp(const void *a, const void *b) { return memcmp(a, b, sizeof(edge_key)); }
+
+/* Closed and consistently oriented means every directed edge (bit-exact
+ * endpoints) has its reverse: a cut point computed differently from the two
+ * triangles sharing an edge leaves both halves unmatched. */
+static size_t unmatched_edges(const tri_list *l)
+{
+    size_t n = 3 * l->n, bad = 0;
+    edge_key *e = calloc(n ? n : 1, sizeof *e);
+    for (size_t i = 0; i < l->n; i++)
+        for (int k = 0; k < 3; k++) {
+            memcpy(e[3 * i + k].p, l->t[i].v[k].pos, 12);
+            memcpy(e[3 * i + k].p + 3, l->t[i].v[(k + 1) % 3].pos, 12);
+        }
+    qsort(e, n, sizeof *e, edge_cmp);
+    for (size_t i = 0; i < n; i++) {
+        edge_key r;
+        memcpy(r.p, e[i].p + 3, 12);
+        memcpy(r.p + 3, e[i].p, 12);
+        bad += bsearch(&r, e, n, sizeof *e, edge_cmp) == NULL;
+    }
+    free(e);
+    return bad;
+}
+
+static int is_input_vertex(const oit_triangle *t, const oit_vertex *v)
+{
+    for (int i = 0; i < 3; i++)
+        if (memcmp(t->v[i].pos, v->pos, 12) == 0)
+            return 1;
+    return 0;
+}
+
+/* Splits mesh at pos[axis] = c; checks sides, new vertices, area and
+ * watertightness; returns the relative area error. */
+static double check_split(const char *name, const tri_list *mesh, int axis, float c)
+{
+    tri_list below = {0}, above = {0}, both = {0};
+    double area_in = 0, area_out = 0;
+    size_t new_vertices = 0, off_plane = 0, wrong_side = 0;
+    for (size_t i = 0; i < mesh->n; i++) {
+        oit_triangle b[2], a[2];
+        int nb, na;
+        oit_clip_triangle_split(&mesh->t[i], axis, c, b, &nb, a, &na);
+        area_in += tri_area(&mesh->t[i]);
+        for (int s = 0; s < 2; s++) {
+            const oit_triangle *out = s ? a : b;
+            for (int j = 0; j < (s ? na : nb); j++) {
+                area_out += tri_area(&out[j]);
+                push(s ? &above : &below, &out[j]);
+                push(&both, &out[j]);
+                for (int k = 0; k < 3; k++) {
+                    float x = out[j].v[k].pos[axis];
+                    wrong_side += s ? x < c : x > c;
+                    if (!is_input_vertex(&mesh->t[i], &out[j].v[k])) {
+                        new_vertices++;
+                        off_plane += x != c;
+                    }
+                }
+            }
+        }
+    }
+    double rel = fabs(area_out - area_in) / area_in;
+    size_t bad = unmatched_edges(&both);
+    printf("clip %s: %zu triangles -> %zu below + %zu above, %zu new vertex uses, "
+           "area rel. error %.3g, unmatched edges %zu\n",
+           name, mesh->n, below.n, above.n, new_vertices, rel, bad);
+    CHECK(below.n > 0 && above.n > 0, "%s: the plane must cut the mesh", name);
+    CHECK(new_vertices > 0, "%s: the cut must create vertices", name);
+    CHECK(off_plane == 0, "%s: %zu new vertices off the plane", name, off_plane);
+    CHECK(wrong_side == 0, "%s: %zu vertices on the wrong side", name, wrong_side);
+    CHECK(bad == 0, "%s: %zu directed edges without their reverse (not watertight)", name, bad);
+    CHECK(unmatched_edges(mesh) == 0, "%s: input mesh must be closed", name);
+    free(below.t);
+    free(above.t);
+    free(both.t);
+    return rel;
+}
+
+static void test_clip(void)
+{
+    tri_list cube = {0}, sphere = {0};
+    make_cube(&cube, -1.0f, 1.0f);
+    /* Dyadic cut: every cut point is exact in float, so area is preserved to
+     * rounding of the area sums only. */
+    double rel = check_split("cube z=0.25", &cube, 2, 0.25f);
+    CHECK(rel < 1e-12, "cube area changed by %.3g relative", rel);
+
+    /* Generic cut: cut points round to float, moving the boundary by half an
+     * ulp, so area is preserved to float precision, not better. */
+    make_sphere(&sphere, 9, 13);
+    rel = check_split("sphere x=0.1234", &sphere, 0, 0.1234f);
+    CHECK(rel < 1e-6, "sphere area changed by %.3g relative", rel);
+    rel = check_split("sphere z=0.7071", &sphere, 2, 0.7071f);
+    CHECK(rel < 1e-6, "sphere area changed by %.3g relative", rel);
+    free(cube.t);
+    free(sphere.t);
+}
+
+/* ---------------------------------------------------------------- convex */
+
+/* Clusters l; checks every triangle has a piece and every piece passes the
+ * brute-force check; returns the piece count (0 on failure). */
+static uint32_t cluster(const char *name, const tri_list *l)
+{
+    oit_convex_result r;
+    oit_error err = {0};
+    if (oit_convex_cluster(l->t, l->n, NULL, &r, &err) != OIT_OK) {
+        CHECK(0, "%s: oit_convex_cluster failed: %s", name, err.message);
+        return 0;
+    }
+    uint32_t *idx = malloc((l->n ? l->n : 1) * sizeof *idx);
+    size_t non_convex = 0, assigned = 0, max_size = 0;
+    for (uint32_t p = 0; p < r.piece_count; p++) {
+        size_t m = 0;
+        for (size_t i = 0; i < l->n; i++)
+            if (r.piece_of[i] == p)
+                idx[m++] = (uint32_t)i;
+        assigned += m;
+        max_size = m > max_size ? m : max_size;
+        CHECK(m > 0, "%s: piece %u is empty", name, p);
+        non_convex += !oit_convex_check(l->t, idx, m);
+    }
+    printf("convex %s: %zu triangles -> %u pieces (largest %zu)\n", name, l->n, r.piece_count,
+           max_size);
+    CHECK(assigned == l->n, "%s: %zu of %zu triangles in a piece", name, assigned, l->n);
+    CHECK(non_convex == 0, "%s: %zu pieces fail oit_convex_check", name, non_convex);
+    uint32_t count = r.piece_count;
+    oit_convex_result_free(&r);
+    free(idx);
+    return count;
+}
+
+static int whole_is_convex(const tri_list *l)
+{
+    uint32_t *idx = malloc(l->n * sizeof *idx);
+    for (size_t i = 0; i < l->n; i++)
+        idx[i] = (uint32_t)i;
+    int ok = oit_convex_check(l->t, idx, l->n);
+    free(idx);
+    return ok;
+}
+
+static void test_convex(void)
+{
+    tri_list cube = {0}, torus = {0}, opp = {0}, overlap = {0}, adjacent = {0};
+    make_cube(&cube, -0.5f, 1.5f);
+    CHECK(whole_is_convex(&cube), "the cube must pass oit_convex_check");
+    uint32_t n = cluster("cube", &cube);
+    CHECK(n == 1, "closed cube: %u pieces, want 1", n);
+
+    make_torus(&torus, 12, 8);
+    CHECK(!whole_is_convex(&torus), "the torus must fail oit_convex_check");
+    n = cluster("torus 12x8", &torus);
+    CHECK(n > 1 && n < torus.n, "torus: %u pieces, want several (2..%zu)", n, torus.n - 1);
+
+    oit_vertex a = vtx(0, 0, 0), b = vtx(1, 0, 0), c = vtx(0, 1, 0), d = vtx(1, 1, 0);
+    push3(&opp, a, b, c);
+    push3(&opp, a, c, b);
+    n = cluster("coincident opposite-facing", &opp);
+    CHECK(n == 2, "coincident opposite-facing triangles: %u pieces, want 2", n);
+
+    push3(&overlap, a, b, c);
+    push3(&overlap, vtx(0.25f, 0.25f, 0), vtx(1.25f, 0.25f, 0), vtx(0.25f, 1.25f, 0));
+    n = cluster("overlapping coplanar", &overlap);
+    CHECK(n == 2, "overlapping coplanar same-facing triangles: %u pieces, want 2", n);
+
+    push3(&adjacent, a, b, c);
+    push3(&adjacent, b, d, c);
+    n = cluster("adjacent coplanar", &adjacent);
+    CHECK(n == 1, "adjacent coplanar same-facing triangles: %u pieces, want 1", n);
+
+    free(cube.t);
+    free(torus.t);
+    free(opp.t);
+    free(overlap.t);
+    free(adjacent.t);
+}
+
+int main(void)
+{
+    test_predicates();
+    test_clip();
+    test_convex();
+    if (test_failures)
+        fprintf(stderr, "%d check(s) failed\n", test_failures);
+    return test_failures != 0;
+}

@@ -1,0 +1,127 @@
+#!/bin/sh
+# oitprep end to end on a generated plant (oitgen plant, 10K triangles):
+#   convert at --max-layers 16 with --stats (every documented key present,
+#   triangles conserved), `info` and `verify` (0 violations); the file is
+#   byte-identical for --threads 1/2 and under a --memory small enough to
+#   spill; oitstream --method stream equals --method dfb on it (2 views, no
+#   pixel over 1/255, no overflow); bad inputs exit 3 naming the file, a
+#   missing one exits 1. `oitgen demo` at the default K is reported, not
+#   asserted, while issue 4 (refusals at K = 8) is open.
+set -u
+: "${OIT_BIN:?OIT_BIN must name the tools folder}"
+: "${OIT_TEST_TMP:?OIT_TEST_TMP must name a scratch folder}"
+P="$OIT_BIN/oitprep"
+G="$OIT_BIN/oitgen"
+S="$OIT_BIN/oitstream"
+for tool in "$P" "$G" "$S"; do
+    [ -x "$tool" ] || { echo "skip: $tool not built"; exit 77; }
+done
+T="$OIT_TEST_TMP/prep"
+rm -rf "$T" && mkdir -p "$T" || exit 1
+FAILS=0
+fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
+# json_num KEY < json: the number after "KEY": (first occurrence)
+json_num() { sed -n "s/.*\"$1\": \([-0-9.e+]*\).*/\1/p" | head -n 1; }
+
+# expect_rc WANT CMD...: runs CMD (stdout/stderr to $T/out.txt, $T/err.txt)
+expect_rc() {
+    want=$1; shift
+    "$@" >"$T/out.txt" 2>"$T/err.txt"; rc=$?
+    [ "$rc" -eq "$want" ] ||
+        fail "'$*' exited $rc, want $want: $(tail -n 2 "$T/err.txt")"
+}
+
+# (a) conversion, its figures, info and verify
+M="$T/plant.ply"
+"$G" plant --triangles 10000 -o "$M" >/dev/null || { echo "FAIL: oitgen plant"; exit 1; }
+expect_rc 0 "$P" "$M" -o "$T/t0.oitp" --max-layers 16 --stats "$T/s.json"
+for key in triangles_in triangles_out degenerate_dropped split_added pieces parts slabs \
+    cells subgrid_depth seconds stages peak_rss_bytes; do
+    grep -q "\"$key\":" "$T/s.json" || fail "stats JSON lacks \"$key\""
+done
+tin=$(json_num triangles_in <"$T/s.json")
+tout=$(json_num triangles_out <"$T/s.json")
+drop=$(json_num degenerate_dropped <"$T/s.json")
+split=$(json_num split_added <"$T/s.json")
+parts=$(json_num parts <"$T/s.json")
+pieces=$(json_num pieces <"$T/s.json")
+secs=$(json_num total <"$T/s.json")
+echo "plant: triangles in $tin, out $tout (split +$split, degenerate -$drop)," \
+    "$pieces pieces, $parts parts, $secs s"
+# Every input triangle is stored or accounted for: nothing may be lost.
+[ -n "$tin" ] && [ "$tin" -ge 9990 ] && [ "$tin" -le 10010 ] ||
+    fail "triangles_in $tin, want 10000 +- 0.1%"
+[ -n "$tout" ] && [ "$tout" -eq $((tin + split - drop)) ] ||
+    fail "triangles_out $tout != in $tin + split $split - dropped $drop"
+[ -n "$parts" ] && [ "$parts" -ge 1 ] || fail "parts $parts"
+
+expect_rc 0 "$P" info "$T/t0.oitp" --json
+itri=$(json_num triangles <"$T/out.txt")
+iparts=$(json_num parts <"$T/out.txt")
+[ "$itri" = "$tout" ] && [ "$iparts" = "$parts" ] ||
+    fail "info says $itri triangles / $iparts parts, stats $tout / $parts"
+expect_rc 0 "$P" verify "$T/t0.oitp"
+cat "$T/out.txt"
+grep -q "; 0 violations" "$T/out.txt" || fail "verify: layer violations"
+grep -q "order: 0 violations" "$T/out.txt" || fail "verify: order violations"
+
+# (b), (c) determinism across threads and the spill path
+expect_rc 0 "$P" "$M" -o "$T/t1.oitp" --max-layers 16 --threads 1
+expect_rc 0 "$P" "$M" -o "$T/t2.oitp" --max-layers 16 --threads 2
+cmp -s "$T/t1.oitp" "$T/t2.oitp" || fail "--threads 1 and --threads 2 differ"
+cmp -s "$T/t0.oitp" "$T/t1.oitp" || fail "--threads 1 differs from the default"
+expect_rc 0 "$P" "$M" -o "$T/m.oitp" --max-layers 16 --threads 2 --memory 64K \
+    --stats "$T/m.json"
+cmp -s "$T/t1.oitp" "$T/m.oitp" || fail "--memory 64K (spill) changes the file"
+spilled=$(json_num spilled_bytes <"$T/m.json")
+[ -n "$spilled" ] && [ "$spilled" -gt 0 ] || fail "--memory 64K did not spill ($spilled bytes)"
+echo "determinism: threads 1/2 and --memory 64K (spilled $spilled bytes) byte-identical" \
+    "($(wc -c <"$T/t1.oitp") bytes)"
+
+# (d) streamed image equals DFB on the converted file
+if "$S" "$T/t0.oitp" --method stream --max-layers 16 --size 96x96 --orbit 2 \
+        --out "$T/s.png" --stats "$T/st.json" --quiet >"$T/out.txt" 2>&1 &&
+    "$S" "$T/t0.oitp" --method dfb --size 96x96 --orbit 2 --out "$T/d.png" --quiet \
+        >>"$T/out.txt" 2>&1; then
+    for o in $(grep -o '"overflow_pixels": [0-9]*' "$T/st.json" | sed 's/.*: //'); do
+        [ "$o" -eq 0 ] || fail "stream: $o overflow pixels"
+    done
+    grep -q '"overflow_pixels"' "$T/st.json" || fail "stream stats lack overflow_pixels"
+    for i in 000 001; do
+        j=$("$S" --compare "$T/s_$i.png" "$T/d_$i.png" --json) ||
+            { fail "compare view $i"; continue; }
+        pct=$(echo "$j" | json_num pct_over_1_255)
+        echo "view $i: stream vs dfb max_abs $(echo "$j" | json_num max_abs), over 1/255 $pct%"
+        awk "BEGIN { exit !($pct == 0) }" || fail "view $i: $pct% of pixels over 1/255"
+    done
+else
+    fail "oitstream on the part file: $(tail -n 2 "$T/out.txt")"
+fi
+
+# (e) bad and missing inputs
+# Cut in the middle of the binary body, not in the header.
+head -c $(($(wc -c <"$M") / 2)) "$M" >"$T/trunc.ply"
+expect_rc 3 "$P" "$T/trunc.ply" -o "$T/x.oitp" --max-layers 16
+grep -q "trunc.ply" "$T/err.txt" || fail "truncated input: stderr does not name the file"
+echo "truncated input: $(head -n 1 "$T/err.txt")"
+printf 'ply\nformat ascii 1.0\nelement vertex 3\nend_header\n1 2 zz\n' >"$T/garbage.ply"
+expect_rc 3 "$P" "$T/garbage.ply" -o "$T/x.oitp" --max-layers 16
+grep -q "garbage.ply" "$T/err.txt" || fail "garbage input: stderr does not name the file"
+expect_rc 1 "$P" "$T/missing.ply" -o "$T/x.oitp"
+grep -q "missing.ply" "$T/err.txt" || fail "missing input: stderr does not name the file"
+expect_rc 2 "$P" "$M" -o "$T/x.oitp" --max-layers 7
+
+# (f) issue 4: the default K refuses most real inputs; report, do not assert
+if "$G" demo -o "$T/demo.ply" >/dev/null; then
+    "$P" "$T/demo.ply" -o "$T/demo.oitp" >"$T/out.txt" 2>"$T/err.txt"; rc=$?
+    case $rc in
+    0) echo "oitgen demo converts at the default K" ;;
+    3) echo "KNOWN LIMITATION (issue 4): oitgen demo at default K: $(tail -n 1 "$T/err.txt")" ;;
+    *) fail "oitgen demo at default K exited $rc: $(tail -n 1 "$T/err.txt")" ;;
+    esac
+else
+    fail "oitgen demo"
+fi
+
+[ "$FAILS" -eq 0 ] || { echo "$FAILS failure(s)"; exit 1; }
+echo "oitprep: all checks passed"
