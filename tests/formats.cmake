@@ -2,8 +2,6 @@
 oit_add_test_exe(test_readers SOURCES test_readers.c LIBS oit_formats)
 oit_add_test(NAME readers COMMAND test_readers LABELS unit TIMEOUT 60)
 
-oit_add_test_exe(test_readers_real SOURCES test_readers_real.c LIBS oit_formats)
-oit_add_test(NAME readers_real COMMAND test_readers_real LABELS unit TIMEOUT 120)
 
 foreach(fmt ply obj off stl)
   oit_add_fuzzer(fuzz_${fmt} fuzz_reader.c LIBS oit_formats
