@@ -436,3 +436,31 @@ static oit_status stencil_self_test(oit_capture *c, oit_error *err)
     oit_gpu_mesh_destroy(mesh);
     return s;
 }
+
+oit_status oit_capture_end_gpu(oit_capture *c, unsigned *state, oit_frame_stats *stats,
+                               oit_error *err)
+{
+    if (!c->in_frame)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: end without begin");
+    c->in_frame = 0;
+    bind_buffers(c);
+    glUseProgram(c->end_prog);
+    glDispatchCompute(oit_gl_groups((uint64_t)c->view.width * c->view.height, 64), 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    GLuint totals[4];
+    glGetNamedBufferSubData(c->buf[BUF_TOTALS], 0, 16, totals);
+    oit_status s = oit_gl_check("capture: end on the GPU", err);
+    if (s != OIT_OK)
+        return s;
+    *state = c->buf[BUF_STATE];
+    if (!stats)
+        return OIT_OK;
+    memset(stats, 0, sizeof *stats);
+    stats->ms = oit_time_ms() - c->t0;
+    stats->overflow_pixels = totals[0];
+    stats->fragments = (uint64_t)totals[2] << 32 | totals[1];
+    stats->max_layers = totals[3];
+    stats->gpu_bytes_peak = c->bytes_peak;
+    stats->batches = c->batches;
+    return OIT_OK;
+}

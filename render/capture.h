@@ -44,6 +44,12 @@ oit_status oit_capture_batch(oit_capture *c, const oit_gpu_mesh *const *meshes,
 /* Resolves the frame into out (allocated by the call) and fills stats. */
 oit_status oit_capture_end(oit_capture *c, oit_image *out,
                            oit_frame_stats *stats, oit_error *err);
+/* Ends the frame without reading the image back: *state receives the GL
+ * buffer holding width*height oit_state records (frag_glsl.h: C and T before
+ * the background; GL rows, bottom first), owned by c and valid until the
+ * next oit_capture_begin. Only the 16-byte totals are read back for stats. */
+oit_status oit_capture_end_gpu(oit_capture *c, unsigned *state, oit_frame_stats *stats,
+                               oit_error *err);
 
 #ifdef __cplusplus
 }

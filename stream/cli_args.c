@@ -125,7 +125,11 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
     } else if (!strcmp(opt, "--upload-budget")) {
         if (!parse_bytes(v, &a->upload_budget) || a->upload_budget < 65536)
             *s = bad(err, opt, v, "bytes >= 64K, with an optional K, M or G suffix");
-    } else if (!strcmp(opt, "--gain")) {
+    } else if (!strcmp(opt, "--window-frames")) {
+        if (!parse_int(v, &a->window_frames, 1, 100000000)) *s = bad(err, opt, v, "a frame count >= 1");
+    } else if (!strcmp(opt, "--window-script")) a->window_script = v;
+    else if (!strcmp(opt, "--window-screenshot")) a->window_screenshot = v;
+    else if (!strcmp(opt, "--gain")) {
         if (!parse_float(v, &a->gain) || !(a->gain > 0.0f)) *s = bad(err, opt, v, "a number > 0");
     } else
         return 0;
@@ -149,6 +153,13 @@ static oit_status check_combination(const oit_stream_args *a, oit_error *err)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--compare needs two images");
     if (!a->compare && !a->model)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "no model given (see --help)");
+    if ((a->window_frames || a->window_script || a->window_screenshot || a->no_overlay) &&
+        !a->window)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "--window-frames, --window-script, "
+                             "--window-screenshot and --no-overlay need --window");
+    if (a->window && (a->orbit || a->out || a->stats_path || a->ambiguity_out))
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "--window shows one interactive view: "
+                             "it excludes --orbit, --out, --stats and --ambiguity");
     if (a->have_view && a->orbit)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--view and --orbit exclude each other");
     return OIT_OK;
@@ -170,6 +181,8 @@ oit_status oit_stream_args_parse(int argc, char **argv, oit_stream_args *a, oit_
         else if (!strcmp(arg, "--compare")) a->compare = 1;
         else if (!strcmp(arg, "--json")) a->json = 1;
         else if (!strcmp(arg, "--quiet")) a->quiet = 1;
+        else if (!strcmp(arg, "--window")) a->window = 1;
+        else if (!strcmp(arg, "--no-overlay")) a->no_overlay = 1;
         else if (!strncmp(arg, "--", 2)) {
             const char *v = i + 1 < argc ? argv[i + 1] : NULL;
             if (!value_option(a, arg, v ? v : "", &s, err))
@@ -223,6 +236,16 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "                      the hit set changes within 1/64 pixel of the centre, or\n"
         "                      two hits tie in depth\n"
         "  --quiet             no per-frame lines\n"
+        "  --window            open an interactive window instead of writing images:\n"
+        "                      left-drag orbits, right-drag/wheel zooms, W/A/S/D and\n"
+        "                      Space/C fly, 1..9 pick a method (listed at start), L\n"
+        "                      layer heat map, T transparent/translucent, E early\n"
+        "                      termination, R resets the view, P saves\n"
+        "                      oitstream_NNN.png, Esc/Q quits; --size is the window's\n"
+        "  --window-frames N   stop after N frames\n"
+        "  --window-script K   press the keys K, one per frame (e.g. 2LT), then stop\n"
+        "  --window-screenshot PATH  write the last frame shown (PNG) when stopping\n"
+        "  --no-overlay        no status line in the window's image\n"
         "  --compare A B       print RMSE, max abs error, %% of pixels off by more than\n"
         "                      1/255 and PSNR of two images (.png/.pfm); --json for JSON,\n"
         "                      --out DIFF.png writes |A-B| * gain (--gain, default 1);\n"

@@ -34,6 +34,12 @@ typedef struct oit_stream_args {
     int quiet;
     int pack_disjoint;                 /* --pack: 1 disjoint (default), 0 budget */
     unsigned long long upload_budget;  /* --upload-budget; 0: default */
+    /* --window: the interactive viewer (viewer.h) */
+    int window;
+    int window_frames;             /* --window-frames N; 0: until quit */
+    const char *window_script;     /* --window-script KEYS */
+    const char *window_screenshot; /* --window-screenshot PATH */
+    int no_overlay;                /* --no-overlay: no status line in the image */
 } oit_stream_args;
 
 oit_status oit_stream_args_parse(int argc, char **argv, oit_stream_args *a, oit_error *err);

@@ -16,6 +16,7 @@
 #include "stream/part_triangles.h"
 #include "stream/render_methods.h"
 #include "stream/stats_json.h"
+#include "stream/viewer.h"
 
 static int fail(const oit_error *err)
 {
@@ -329,13 +330,26 @@ static oit_status load_scene(const oit_stream_args *a, const oit_render_method *
                                  "(.oitp); convert %s with oitprep first", m->name, a->model);
         return oit_mesh_load(a->model, NULL, mesh, err);
     }
-    oit_partfile_open_desc desc = {m->needs_partfile};
+    /* The viewer switches between the streamer and the in-core methods, so
+     * it wants both the streamable file and its triangles. */
+    oit_partfile_open_desc desc = {m->needs_partfile || a->window};
     oit_status s = oit_partfile_open(a->model, &desc, pf, err);
-    if (s == OIT_OK && m->needs_partfile)
+    if (s == OIT_OK && m->needs_partfile && !a->window)
         oit_partfile_mesh_info(*pf, &mesh->info);
     else if (s == OIT_OK)
         s = oit_partfile_load_mesh(*pf, mesh, err);
     return s;
+}
+
+static oit_status run_window(const run_ctx *rc, const oit_mesh *mesh, oit_partfile *pf,
+                             const oit_method_options *opt, const oit_camera *cam,
+                             oit_error *err)
+{
+    const oit_stream_args *a = rc->args;
+    oit_viewer_desc d = {mesh, pf, *opt, rc->method->name, a->width, a->height, *cam,
+                         rc->view.shading, a->show_layers, !a->no_overlay, a->window_frames,
+                         a->window_script, a->window_screenshot};
+    return oit_viewer_run(&d, err);
 }
 
 static int run_render(const oit_stream_args *args)
@@ -359,7 +373,7 @@ static int run_render(const oit_stream_args *args)
     oit_camera *cams = NULL;
     int n = 0;
     oit_method_options opt = {a->max_layers, pf, a->pack_disjoint ? OIT_PACK_DISJOINT : OIT_PACK_BUDGET,
-                              a->upload_budget};
+                              a->upload_budget, NULL};
     rc.view.width = a->width;
     rc.view.height = a->height;
     rc.view.shading = make_shading(a, &mesh.info);
@@ -370,9 +384,11 @@ static int run_render(const oit_stream_args *args)
     if (s == OIT_OK && a->ambiguity_out &&
         !(rc.ambiguous = calloc((size_t)a->width * (size_t)a->height, 1)))
         s = oit_error_set(&err, OIT_ERR_NOMEM, "cannot allocate the ambiguity mask");
-    if (s == OIT_OK)
+    if (s == OIT_OK && a->window)
+        s = run_window(&rc, &mesh, pf, &opt, &cams[0], &err);
+    else if (s == OIT_OK)
         s = rc.method->open(&mesh, &opt, &rc.state, &err);
-    if (s == OIT_OK) {
+    if (s == OIT_OK && !a->window) {
         s = render_all(&rc, &mesh, cams, n, &err);
         rc.method->close(rc.state);
     }

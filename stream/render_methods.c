@@ -1,6 +1,7 @@
 /* The method table (render_methods.h): the in-core DFB, the Embree
  * reference, and the two capture backends drawing the whole mesh as one
- * batch (which is where their overflow count means something). */
+ * batch (which is where their overflow count means something), and the
+ * baselines of stream/baseline_methods.h (unsorted, wboit, pll, dp). */
 #include "stream/render_methods.h"
 
 #include <embree3/rtcore_config.h>
@@ -9,6 +10,7 @@
 #include <string.h>
 
 #include "render/capture.h"
+#include "stream/baseline_methods.h"
 #include "render/dfb.h"
 #include "render/gl_context.h"
 #include "render/reference.h"
@@ -16,9 +18,11 @@
 struct oit_method_state {
     const oit_mesh *mesh;
     oit_gl *gl;
+    int gl_borrowed; /* gl is the caller's (oit_method_options.gl): not ours to destroy */
     oit_gpu_mesh *gpu;
     oit_dfb *dfb;
     oit_capture *cap;
+    oit_baseline *baseline;
     oit_reference_desc ref;
     oit_streamer *streamer;
     oit_stream_frame_stats stream_stats;
@@ -31,14 +35,29 @@ static void close_state(oit_method_state *st)
     /* GL objects go before the context that owns them. */
     if (st->streamer) oit_streamer_destroy(st->streamer);
     if (st->cap) oit_capture_destroy(st->cap);
+    if (st->baseline) oit_baseline_destroy(st->baseline);
     if (st->dfb) oit_dfb_destroy(st->dfb);
     if (st->gpu) oit_gpu_mesh_destroy(st->gpu);
-    if (st->gl) oit_gl_destroy(st->gl);
+    if (st->gl && !st->gl_borrowed) oit_gl_destroy(st->gl);
     free(st);
 }
 
-static oit_status new_state(const oit_mesh *mesh, int with_gl, oit_method_state **out,
-                            oit_error *err)
+/* The caller's context when it gives one (the viewer's window), else a
+ * headless one of our own. */
+static oit_status attach_gl(oit_method_state *st, const oit_method_options *opt, oit_error *err)
+{
+    if (opt && opt->gl) {
+        st->gl = opt->gl;
+        st->gl_borrowed = 1;
+        return OIT_OK;
+    }
+    oit_gl_desc desc;
+    memset(&desc, 0, sizeof desc);
+    return oit_gl_create(&desc, &st->gl, err);
+}
+
+static oit_status new_state(const oit_mesh *mesh, const oit_method_options *opt, int with_gl,
+                            oit_method_state **out, oit_error *err)
 {
     oit_method_state *st = calloc(1, sizeof *st);
     if (!st)
@@ -47,9 +66,7 @@ static oit_status new_state(const oit_mesh *mesh, int with_gl, oit_method_state 
     *out = st;
     if (!with_gl)
         return OIT_OK;
-    oit_gl_desc desc;
-    memset(&desc, 0, sizeof desc);
-    oit_status s = oit_gl_create(&desc, &st->gl, err);
+    oit_status s = attach_gl(st, opt, err);
     if (s == OIT_OK)
         s = oit_gpu_mesh_create(mesh->tris, mesh->count, 0, &st->gpu, err);
     if (s != OIT_OK) {
@@ -69,7 +86,7 @@ static const char *gl_renderer(const oit_method_state *st)
 static oit_status dfb_open(const oit_mesh *mesh, const oit_method_options *opt,
                            oit_method_state **out, oit_error *err)
 {
-    oit_status s = new_state(mesh, 1, out, err);
+    oit_status s = new_state(mesh, opt, 1, out, err);
     if (s == OIT_OK && (s = oit_dfb_create(&(*out)->dfb, err)) != OIT_OK) {
         close_state(*out);
         *out = NULL;
@@ -91,7 +108,7 @@ static oit_status capture_open(oit_capture_kind kind, const oit_mesh *mesh,
                                const oit_method_options *opt, oit_method_state **out,
                                oit_error *err)
 {
-    oit_status s = new_state(mesh, 1, out, err);
+    oit_status s = new_state(mesh, opt, 1, out, err);
     if (s == OIT_OK && (s = oit_capture_create(kind, opt->max_layers, &(*out)->cap, err)) != OIT_OK) {
         close_state(*out);
         *out = NULL;
@@ -124,12 +141,58 @@ static oit_status capture_render(oit_method_state *st, const oit_view *view, oit
     return s;
 }
 
+/* ---- baselines: unsorted, WBOIT, PLL, depth peeling ---- */
+
+static oit_status baseline_open(oit_baseline_kind kind, const oit_mesh *mesh,
+                                const oit_method_options *opt, oit_method_state **out,
+                                oit_error *err)
+{
+    oit_status s = new_state(mesh, opt, 1, out, err);
+    if (s == OIT_OK && (s = oit_baseline_create(kind, &(*out)->baseline, err)) != OIT_OK) {
+        close_state(*out);
+        *out = NULL;
+    }
+    return s;
+}
+
+static oit_status unsorted_open(const oit_mesh *mesh, const oit_method_options *opt,
+                                oit_method_state **out, oit_error *err)
+{
+    return baseline_open(OIT_BASELINE_UNSORTED, mesh, opt, out, err);
+}
+
+static oit_status wboit_open(const oit_mesh *mesh, const oit_method_options *opt,
+                             oit_method_state **out, oit_error *err)
+{
+    return baseline_open(OIT_BASELINE_WBOIT, mesh, opt, out, err);
+}
+
+static oit_status pll_open(const oit_mesh *mesh, const oit_method_options *opt,
+                           oit_method_state **out, oit_error *err)
+{
+    return baseline_open(OIT_BASELINE_PLL, mesh, opt, out, err);
+}
+
+static oit_status dp_open(const oit_mesh *mesh, const oit_method_options *opt,
+                          oit_method_state **out, oit_error *err)
+{
+    return baseline_open(OIT_BASELINE_DEPTH_PEEL, mesh, opt, out, err);
+}
+
+static oit_status baseline_render(oit_method_state *st, const oit_view *view, oit_image *out,
+                                  uint32_t *counts, uint8_t *ambiguous,
+                                  oit_frame_stats *stats, oit_error *err)
+{
+    const oit_gpu_mesh *meshes[1] = {st->gpu};
+    return oit_baseline_render(st->baseline, meshes, 1, view, out, stats, err);
+}
+
 /* ---- reference ---- */
 
 static oit_status reference_open(const oit_mesh *mesh, const oit_method_options *opt,
                                  oit_method_state **out, oit_error *err)
 {
-    return new_state(mesh, 0, out, err);
+    return new_state(mesh, opt, 0, out, err);
 }
 
 static oit_status reference_render(oit_method_state *st, const oit_view *view, oit_image *out,
@@ -154,11 +217,9 @@ static oit_status stream_open(const oit_mesh *mesh, const oit_method_options *op
     if (!opt->partfile)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--method stream renders a part file "
                              "(.oitp, made by oitprep); convert the model first");
-    oit_status s = new_state(mesh, 0, out, err);
-    oit_gl_desc desc;
-    memset(&desc, 0, sizeof desc);
+    oit_status s = new_state(mesh, opt, 0, out, err);
     if (s == OIT_OK)
-        s = oit_gl_create(&desc, &(*out)->gl, err);
+        s = attach_gl(*out, opt, err);
     oit_streamer_desc sd = {opt->max_layers, OIT_CAPTURE_ARRAY, opt->pack, opt->upload_budget};
     if (s == OIT_OK)
         s = oit_streamer_create(opt->partfile, &sd, &(*out)->streamer, err);
@@ -187,6 +248,10 @@ static const oit_render_method methods[] = {
     {"array", 1, 0, 0, array_open, capture_render, gl_renderer, close_state, 0, NULL},
     {"stencil", 1, 0, 0, stencil_open, capture_render, gl_renderer, close_state, 0, NULL},
     {"stream", 1, 0, 0, stream_open, stream_render, gl_renderer, close_state, 1, stream_figures},
+    {"unsorted", 1, 0, 0, unsorted_open, baseline_render, gl_renderer, close_state, 0, NULL},
+    {"wboit", 1, 0, 0, wboit_open, baseline_render, gl_renderer, close_state, 0, NULL},
+    {"pll", 1, 0, 0, pll_open, baseline_render, gl_renderer, close_state, 0, NULL},
+    {"dp", 1, 0, 0, dp_open, baseline_render, gl_renderer, close_state, 0, NULL},
 };
 
 const oit_render_method *oit_render_method_find(const char *name)

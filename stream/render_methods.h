@@ -16,6 +16,10 @@ typedef struct oit_method_options {
     oit_partfile *partfile;
     oit_pack_mode pack;
     unsigned long long upload_budget; /* bytes; 0: default */
+    /* NULL: GL methods make their own headless context. Else they render in
+     * this one, current on the calling thread (the viewer's window), and do
+     * not destroy it. */
+    struct oit_gl *gl;
 } oit_method_options;
 
 typedef struct oit_render_method {
@@ -41,7 +45,7 @@ typedef struct oit_render_method {
 
 /* NULL when no method has that name. */
 const oit_render_method *oit_render_method_find(const char *name);
-/* Writes "dfb|reference|array|stencil|stream" (the table's names) into buf, for
+/* Writes "dfb|reference|array|...|dp" (the table's names) into buf, for
  * --help and error messages. */
 void oit_render_method_names(char *buf, size_t cap);
 

@@ -138,6 +138,38 @@ static oit_status draw_pack(oit_streamer *s, const oit_packing *pk, uint32_t i,
     return st;
 }
 
+/* Captures every pack of the view; on failure the frame is ended and
+ * discarded. */
+static oit_status capture_frame(oit_streamer *s, const oit_view *view, oit_packing *pk,
+                                oit_stream_frame_stats *ss, oit_error *err)
+{
+    memset(ss, 0, sizeof *ss);
+    uint32_t count = 0;
+    oit_status st = oit_capture_begin(s->capture, view, err);
+    if (st == OIT_OK)
+        st = oit_order_compute(s->order, view->camera.eye, s->ordered, &count, err);
+    if (st == OIT_OK)
+        st = oit_packer_run(s->packer, view, s->ordered, count, pk, err);
+    for (uint32_t i = 0; st == OIT_OK && i < pk->pack_count; i++)
+        st = draw_pack(s, pk, i, ss, err);
+    if (st != OIT_OK) {
+        oit_image discard = {0};
+        oit_capture_end(s->capture, &discard, NULL, NULL);
+        oit_image_free(&discard);
+    }
+    return st;
+}
+
+static void finish_stats(const oit_streamer *s, const oit_packing *pk, oit_frame_stats *fs,
+                         oit_stream_frame_stats *ss)
+{
+    ss->packs = pk->pack_count;
+    ss->parts_drawn = pk->part_count;
+    ss->parts_culled = pk->culled;
+    ss->gpu_bytes_peak = fs->gpu_bytes_peak + oit_upload_gpu_bytes(s->upload);
+    fs->gpu_bytes_peak = ss->gpu_bytes_peak;
+}
+
 oit_status oit_streamer_render(oit_streamer *s, const oit_view *view, oit_image *out,
                                oit_frame_stats *fs, oit_stream_frame_stats *ss, oit_error *err)
 {
@@ -145,29 +177,28 @@ oit_status oit_streamer_render(oit_streamer *s, const oit_view *view, oit_image 
     oit_frame_stats flocal;
     ss = ss ? ss : &local;
     fs = fs ? fs : &flocal;
-    memset(ss, 0, sizeof *ss);
-    uint32_t count = 0;
     oit_packing pk;
-    oit_status st = oit_capture_begin(s->capture, view, err);
+    oit_status st = capture_frame(s, view, &pk, ss, err);
     if (st == OIT_OK)
-        st = oit_order_compute(s->order, view->camera.eye, s->ordered, &count, err);
+        st = oit_capture_end(s->capture, out, fs, err);
     if (st == OIT_OK)
-        st = oit_packer_run(s->packer, view, s->ordered, count, &pk, err);
-    for (uint32_t i = 0; st == OIT_OK && i < pk.pack_count; i++)
-        st = draw_pack(s, &pk, i, ss, err);
-    if (st != OIT_OK) {
-        oit_image discard = {0};
-        oit_capture_end(s->capture, &discard, NULL, NULL);
-        oit_image_free(&discard);
-        return st;
-    }
-    st = oit_capture_end(s->capture, out, fs, err);
-    if (st != OIT_OK)
-        return st;
-    ss->packs = pk.pack_count;
-    ss->parts_drawn = pk.part_count;
-    ss->parts_culled = pk.culled;
-    ss->gpu_bytes_peak = fs->gpu_bytes_peak + oit_upload_gpu_bytes(s->upload);
-    fs->gpu_bytes_peak = ss->gpu_bytes_peak;
-    return OIT_OK;
+        finish_stats(s, &pk, fs, ss);
+    return st;
+}
+
+oit_status oit_streamer_render_gpu(oit_streamer *s, const oit_view *view, unsigned *state,
+                                   oit_frame_stats *fs, oit_stream_frame_stats *ss,
+                                   oit_error *err)
+{
+    oit_stream_frame_stats local;
+    oit_frame_stats flocal;
+    ss = ss ? ss : &local;
+    fs = fs ? fs : &flocal;
+    oit_packing pk;
+    oit_status st = capture_frame(s, view, &pk, ss, err);
+    if (st == OIT_OK)
+        st = oit_capture_end_gpu(s->capture, state, fs, err);
+    if (st == OIT_OK)
+        finish_stats(s, &pk, fs, ss);
+    return st;
 }

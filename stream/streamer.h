@@ -38,5 +38,10 @@ void oit_streamer_destroy(oit_streamer *s);
 /* Renders one view into out (allocated by the call). fs and ss may be NULL. */
 oit_status oit_streamer_render(oit_streamer *s, const oit_view *view, oit_image *out,
                                oit_frame_stats *fs, oit_stream_frame_stats *ss, oit_error *err);
+/* The same without the read-back: *state receives the capture's per-pixel
+ * state buffer (oit_capture_end_gpu), valid until the next render. */
+oit_status oit_streamer_render_gpu(oit_streamer *s, const oit_view *view, unsigned *state,
+                                   oit_frame_stats *fs, oit_stream_frame_stats *ss,
+                                   oit_error *err);
 
 #endif

@@ -3,4 +3,5 @@
 #define OIT_OIT_H
 #include "status.h"
 #include "mesh.h"
+#include "liboit.h"
 #endif

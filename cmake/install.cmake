@@ -1,0 +1,29 @@
+# Install rules of liboit: the public headers, the shared library, a CMake
+# package exporting oit::oit and a pkg-config file, all relocatable (nothing
+# records the configure-time prefix), so `cmake --install B --prefix P` works
+# for any P.
+include(CMakePackageConfigHelpers)
+
+install(TARGETS oit EXPORT oitTargets
+        LIBRARY DESTINATION lib
+        ARCHIVE DESTINATION lib
+        RUNTIME DESTINATION bin)
+install(FILES
+        ${CMAKE_SOURCE_DIR}/include/oit/oit.h
+        ${CMAKE_SOURCE_DIR}/include/oit/status.h
+        ${CMAKE_SOURCE_DIR}/include/oit/mesh.h
+        ${CMAKE_SOURCE_DIR}/include/oit/partfile.h
+        ${CMAKE_SOURCE_DIR}/include/oit/liboit.h
+        DESTINATION include/oit)
+install(EXPORT oitTargets NAMESPACE oit:: DESTINATION lib/cmake/oit)
+
+configure_package_config_file(${CMAKE_SOURCE_DIR}/cmake/oitConfig.cmake.in
+  ${CMAKE_BINARY_DIR}/cmake/oitConfig.cmake INSTALL_DESTINATION lib/cmake/oit)
+write_basic_package_version_file(${CMAKE_BINARY_DIR}/cmake/oitConfigVersion.cmake
+  VERSION ${PROJECT_VERSION} COMPATIBILITY SameMinorVersion)
+install(FILES ${CMAKE_BINARY_DIR}/cmake/oitConfig.cmake
+              ${CMAKE_BINARY_DIR}/cmake/oitConfigVersion.cmake
+        DESTINATION lib/cmake/oit)
+
+configure_file(${CMAKE_SOURCE_DIR}/cmake/oit.pc.in ${CMAKE_BINARY_DIR}/cmake/oit.pc @ONLY)
+install(FILES ${CMAKE_BINARY_DIR}/cmake/oit.pc DESTINATION lib/pkgconfig)

@@ -1,0 +1,145 @@
+/* liboit: exact order-independent transparency of a converted part file,
+ * drawn into the caller's own GL framebuffer with the caller's matrices.
+ *
+ *   oit_scene_open     opens a part file (no GL needed)
+ *   oit_renderer_create needs the caller's current GL 4.5 core context
+ *   oit_renderer_draw  composites the scene over the caller's framebuffer
+ *
+ * Conventions. Handles are opaque; every create has one matching destroy or
+ * close, which accepts NULL. Descriptors may be NULL and zero fields mean the
+ * documented default. Every fallible call returns an oit_status and, on
+ * failure, fills err (when non-NULL) with one line naming the input.
+ *
+ * Threads: no global state. A scene may be shared by renderers of one thread;
+ * a renderer belongs to the GL context that was current at its creation and
+ * must be used and destroyed on a thread where that context is current.
+ *
+ * Result: the frame is composited OVER the target's existing content with
+ * premultiplied colour C and per-channel transmittance T (DESIGN.md):
+ *     dst.rgb = C + T * dst.rgb,   dst.a = (1 - t) + t * dst.a, t = mean(T)
+ * through dual-source blending (GL_ONE, GL_SRC1_COLOR), so whatever the
+ * caller drew before (a sky, opaque geometry without depth interaction) shows
+ * through; where no fragment falls the target is left as it was. Colour is
+ * written as computed (no sRGB conversion by liboit; GL_FRAMEBUFFER_SRGB is
+ * left as the caller set it).
+ *
+ * GL state: oit_renderer_draw saves and restores the draw framebuffer
+ * binding, viewport, current program, vertex array, blend enable / function /
+ * equation, depth, stencil, cull and scissor enables, colour and depth write
+ * masks. It does NOT restore indexed shader-storage buffer bindings 0..7, the
+ * texture bound to unit 0, or the framebuffer default-size parameters of its
+ * own objects; callers that rely on those must rebind them.
+ */
+#ifndef OIT_LIBOIT_H
+#define OIT_LIBOIT_H
+
+#include <stdint.h>
+
+#include "status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct oit_scene oit_scene;
+typedef struct oit_renderer oit_renderer;
+
+/* ---- scene ------------------------------------------------------------- */
+
+typedef struct oit_scene_desc {
+    /* 0 (default): every part's data is checked at open. 1: only the
+     * management sections; each part is checked when first drawn. */
+    int defer_validation;
+} oit_scene_desc;
+
+typedef struct oit_scene_info {
+    uint64_t triangles;
+    uint64_t parts;
+    float bounds_min[3];
+    float bounds_max[3];
+    uint32_t K;          /* layers per part the file was converted for */
+    uint32_t attributes; /* OIT_ATTR_* stored per vertex               */
+} oit_scene_info;
+
+/* A missing or unreadable file fails with OIT_ERR_IO, a malformed one with
+ * OIT_ERR_FORMAT; the message names path. */
+oit_status oit_scene_open(const char *path, const oit_scene_desc *desc, oit_scene **out,
+                          oit_error *err);
+oit_status oit_scene_get_info(const oit_scene *scene, oit_scene_info *info, oit_error *err);
+/* Lifetime: a renderer keeps GPU state for the last scene it drew and
+ * remembers that scene by address. Close a scene only after every renderer
+ * that drew it last has been destroyed or has drawn another scene. */
+void oit_scene_close(oit_scene *scene);
+
+/* ---- renderer ---------------------------------------------------------- */
+
+typedef enum oit_render_shading_mode {
+    OIT_RENDER_TRANSPARENT = 0, /* per-vertex or default colour and alpha     */
+    OIT_RENDER_TRANSLUCENT = 1  /* Fresnel surfaces over an absorbing medium  */
+} oit_render_shading_mode;
+
+/* Mirrors the renderer's shading (DESIGN.md); zero means default. There is
+ * no background: the caller's framebuffer is the background. */
+typedef struct oit_render_shading {
+    oit_render_shading_mode mode;
+    float alpha;          /* for files without alpha; default 0.35          */
+    float default_rgb[3]; /* for files without colour; default .85,.55,.2   */
+    float absorption;     /* translucent; default 4                         */
+    float scene_scale;    /* translucent; default: the scene's diagonal     */
+} oit_render_shading;
+
+typedef enum oit_render_pack {
+    OIT_RENDER_PACK_BUDGET = 0, /* fill each pack up to the upload budget   */
+    OIT_RENDER_PACK_DISJOINT    /* packs of parts with disjoint screen rects */
+} oit_render_pack;
+
+typedef struct oit_renderer_desc {
+    uint32_t K;             /* capture layers 2..16; 0: the scene's K        */
+    uint64_t upload_budget; /* GPU bytes of the upload ring; 0: 64 MiB       */
+    oit_render_pack pack;
+    oit_render_shading shading;
+} oit_renderer_desc;
+
+/* Needs a current GL 4.5 core context (GL objects are created lazily, at the
+ * first draw of each scene). */
+oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out,
+                               oit_error *err);
+void oit_renderer_destroy(oit_renderer *r);
+
+typedef struct oit_frame {
+    /* Column-major 4x4, as glUniformMatrix4fv(..., GL_FALSE, m) takes.
+     * view: a rigid world-to-eye transform (rotation and translation; no
+     * scale). projection: a symmetric perspective with finite near and far
+     * planes (gluPerspective / glm::perspective form) whose aspect matches
+     * viewport_width / viewport_height; anything else is OIT_ERR_UNSUPPORTED
+     * (orthographic and off-centre frusta are not supported yet). */
+    float view[16];
+    float projection[16];
+    int viewport_x, viewport_y; /* lower-left corner in the target, pixels */
+    int viewport_width, viewport_height;
+    unsigned framebuffer;       /* GL framebuffer name; 0: the default one */
+} oit_frame;
+
+typedef struct oit_draw_stats {
+    double ms;               /* wall time of the call; the capture is finished
+                                (its totals are read back), the final blend not */
+    uint64_t fragments;
+    uint32_t max_layers;     /* most fragments on one pixel in one pack         */
+    uint64_t overflow_pixels; /* > K fragments in a pack: 0 for a correct file  */
+    uint32_t packs;
+    uint64_t parts_drawn;
+    uint64_t parts_culled;
+    uint64_t bytes_uploaded;
+    uint64_t gpu_bytes_peak;
+} oit_draw_stats;
+
+/* Draws scene as seen through frame into frame->framebuffer (see Result
+ * above). The scene must stay open while r draws it; drawing a different
+ * scene rebuilds r's per-scene GPU state. stats may be NULL. */
+oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame *frame,
+                             oit_draw_stats *stats, oit_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

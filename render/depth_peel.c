@@ -1,0 +1,308 @@
+/* Depth peeling (depth_peel.h). Two layer targets (RGBA32UI, the packed
+ * fragment) ping-pong: one is written, the other read as the layer before.
+ * A pass clears its target to t = +inf (EXHAUSTED), so a pixel where it
+ * keeps nothing discards everything from then on; before the first pass
+ * the previous layer reads t bits 0, below every fragment's. The composite state
+ * is the GLSL oit_state per pixel in a buffer, GL row order. */
+#include "render/depth_peel.h"
+
+#include "render/baseline_common.h"
+#include "render/image.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { BUF_STATE, BUF_COUNT, BUF_OUT, BUF_N };
+enum { STATE_BYTES = 48 }; /* std430 size of oit_state */
+#define EXHAUSTED 0x7f800000u /* bits of +inf */
+#define MAX_PASSES 1000000u
+
+struct oit_depth_peel {
+    GLuint peel_prog, merge_prog, final_prog;
+    GLuint fbo[2], layer[2], depth, query;
+    int w, h;
+    GLuint buf[BUF_N];
+    uint64_t cap[BUF_N];
+    uint64_t bytes_peak;
+};
+
+static const char peel_fs[] =
+    "layout(binding = 0) uniform usampler2D u_prev;\n"
+    "uniform float u_depth_scale;\n"
+    "layout(location = 0) out uvec4 o_frag;\n"
+    "void main() {\n"
+    "    uvec4 f = oit_fragment();\n"
+    "    uint prev = texelFetch(u_prev, ivec2(gl_FragCoord.xy), 0).x;\n"
+    "    if (f.x <= prev) discard;\n"
+    "    gl_FragDepth = uintBitsToFloat(f.x) * u_depth_scale;\n"
+    "    o_frag = f;\n"
+    "}\n";
+
+/* The layer joins the state of its pixel; 'first' starts the state. */
+static const char merge_cs[] =
+    "layout(local_size_x = 8, local_size_y = 8) in;\n"
+    "layout(location = 11) uniform ivec2 u_size;\n"
+    "uniform int u_first;\n"
+    "layout(binding = 0) uniform usampler2D u_layer;\n"
+    "layout(std430, binding = 6) buffer State { oit_state states[]; };\n"
+    "layout(std430, binding = 1) buffer Count { uint count; };\n"
+    "void main() {\n"
+    "    ivec2 px = ivec2(gl_GlobalInvocationID.xy);\n"
+    "    if (px.x >= u_size.x || px.y >= u_size.y) return;\n"
+    "    uint p = uint(px.y * u_size.x + px.x);\n"
+    "    oit_state s = u_first != 0 ? oit_state_begin() : states[p];\n"
+    "    uvec4 f = texelFetch(u_layer, px, 0);\n"
+    "    if (f.x != 0x7f800000u) { oit_composite(s, f); atomicAdd(count, 1u); }\n"
+    "    states[p] = s;\n"
+    "}\n";
+
+static const char final_cs[] =
+    "layout(local_size_x = 8, local_size_y = 8) in;\n"
+    "layout(location = 11) uniform ivec2 u_size;\n"
+    "layout(std430, binding = 6) readonly buffer State { oit_state states[]; };\n"
+    "layout(std430, binding = 4) writeonly buffer Out { vec4 out_rgba[]; };\n"
+    "void main() {\n"
+    "    ivec2 px = ivec2(gl_GlobalInvocationID.xy);\n"
+    "    if (px.x >= u_size.x || px.y >= u_size.y) return;\n"
+    "    uint p = uint(px.y * u_size.x + px.x);\n"
+    "    out_rgba[p] = oit_state_final(states[p]);\n"
+    "}\n";
+
+static oit_status build_programs(oit_depth_peel *d, oit_error *err)
+{
+    const char *vs[] = {oit_glsl_version, oit_glsl_vertex, NULL};
+    const char *pfs[] = {oit_glsl_version, oit_glsl_fragment_gen, peel_fs, NULL};
+    const char *mcs[] = {oit_glsl_version, oit_glsl_composite, merge_cs, NULL};
+    const char *fcs[] = {oit_glsl_version, oit_glsl_composite, final_cs, NULL};
+    oit_status s = oit_gl_program_graphics("depth peeling pass", vs, pfs, &d->peel_prog, err);
+    if (s == OIT_OK)
+        s = oit_gl_program_compute("depth peeling merge", mcs, &d->merge_prog, err);
+    if (s == OIT_OK)
+        s = oit_gl_program_compute("depth peeling final", fcs, &d->final_prog, err);
+    return s;
+}
+
+oit_status oit_depth_peel_create(oit_depth_peel **out, oit_error *err)
+{
+    *out = NULL;
+    oit_depth_peel *d = calloc(1, sizeof *d);
+    if (!d)
+        return oit_error_set(err, OIT_ERR_NOMEM, "depth peeling: out of memory");
+    oit_status s = build_programs(d, err);
+    if (s == OIT_OK) {
+        glCreateFramebuffers(2, d->fbo);
+        glCreateQueries(GL_ANY_SAMPLES_PASSED, 1, &d->query);
+        s = oit_gl_check("depth peeling: framebuffers and query", err);
+    }
+    if (s != OIT_OK) {
+        oit_depth_peel_destroy(d);
+        return s;
+    }
+    *out = d;
+    return OIT_OK;
+}
+
+static void release_targets(oit_depth_peel *d)
+{
+    glDeleteTextures(2, d->layer);
+    glDeleteTextures(1, &d->depth);
+    d->layer[0] = d->layer[1] = d->depth = 0;
+}
+
+void oit_depth_peel_destroy(oit_depth_peel *d)
+{
+    if (!d)
+        return;
+    glDeleteProgram(d->peel_prog);
+    glDeleteProgram(d->merge_prog);
+    glDeleteProgram(d->final_prog);
+    glDeleteFramebuffers(2, d->fbo);
+    glDeleteQueries(1, &d->query);
+    release_targets(d);
+    glDeleteBuffers(BUF_N, d->buf);
+    free(d);
+}
+
+static void note_bytes(oit_depth_peel *d)
+{
+    uint64_t held = (uint64_t)d->w * d->h * (2 * 16 + 4);
+    for (int i = 0; i < BUF_N; i++)
+        held += d->cap[i];
+    if (held > d->bytes_peak)
+        d->bytes_peak = held;
+}
+
+static oit_status resize_targets(oit_depth_peel *d, int w, int h, oit_error *err)
+{
+    if (d->depth && d->w == w && d->h == h)
+        return OIT_OK;
+    release_targets(d);
+    glCreateTextures(GL_TEXTURE_2D, 2, d->layer);
+    glCreateTextures(GL_TEXTURE_2D, 1, &d->depth);
+    glTextureStorage2D(d->depth, 1, GL_DEPTH_COMPONENT32F, w, h);
+    for (int i = 0; i < 2; i++) {
+        glTextureStorage2D(d->layer[i], 1, GL_RGBA32UI, w, h);
+        /* An integer texture with a linear filter is incomplete and reads 0. */
+        glTextureParameteri(d->layer[i], GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(d->layer[i], GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glNamedFramebufferTexture(d->fbo[i], GL_COLOR_ATTACHMENT0, d->layer[i], 0);
+        glNamedFramebufferTexture(d->fbo[i], GL_DEPTH_ATTACHMENT, d->depth, 0);
+    }
+    d->w = w;
+    d->h = h;
+    if (glCheckNamedFramebufferStatus(d->fbo[0], GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        return oit_error_set(err, OIT_ERR_GL, "depth peeling: the RGBA32UI + DEPTH32F "
+                             "target of %dx%d is not renderable here", w, h);
+    return oit_gl_check("depth peeling: layer targets", err);
+}
+
+static oit_status reserve(oit_depth_peel *d, int which, uint64_t bytes, oit_error *err)
+{
+    static const char *names[BUF_N] = {"depth peeling state", "depth peeling counter",
+                                       "depth peeling output"};
+    oit_status s = oit_gl_buffer_reserve(&d->buf[which], &d->cap[which], bytes,
+                                         names[which], err);
+    note_bytes(d);
+    return s;
+}
+
+/* The inverse of a power of two above twice the largest t a kept fragment
+ * can have (view depth <= zfar, along the steepest corner ray; twice for
+ * rounding at the clip planes), so that t times it lies in [0, 1) and keeps
+ * t's order exactly: a depth clamped to 1 would make ties. */
+static float depth_scale(const oit_view *v)
+{
+    double tanh = tan(0.5 * v->camera.fovy_deg * 3.14159265358979323846 / 180.0);
+    double aspect = (double)v->width / v->height;
+    double t_max = v->camera.zfar * sqrt(1.0 + tanh * tanh * (1.0 + aspect * aspect));
+    int e = 0;
+    frexp(t_max, &e);
+    return (float)ldexp(1.0, -(e + 1));
+}
+
+static oit_status prepare(oit_depth_peel *d, const oit_view *v, oit_error *err)
+{
+    uint64_t pixels = (uint64_t)v->width * v->height;
+    oit_status s = oit_gl_check_ssbo_size(pixels * STATE_BYTES, "depth peeling: the "
+                                          "frame's composite state", err);
+    if (s == OIT_OK)
+        s = resize_targets(d, v->width, v->height, err);
+    if (s == OIT_OK)
+        s = reserve(d, BUF_STATE, pixels * STATE_BYTES, err);
+    if (s == OIT_OK)
+        s = reserve(d, BUF_COUNT, 16, err);
+    if (s == OIT_OK)
+        s = reserve(d, BUF_OUT, pixels * 16, err);
+    if (s != OIT_OK)
+        return s;
+    oit_glsl_set_view(d->peel_prog, v);
+    oit_glsl_set_view(d->merge_prog, v);
+    oit_glsl_set_view(d->final_prog, v);
+    glProgramUniform1f(d->peel_prog, glGetUniformLocation(d->peel_prog, "u_depth_scale"),
+                       depth_scale(v));
+    static const GLuint zero[4] = {0, 0, 0, 0};
+    glClearTexImage(d->layer[1], 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT, zero);
+    glClearNamedBufferData(d->buf[BUF_COUNT], GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, zero);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_STATE, d->buf[BUF_STATE]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, d->buf[BUF_COUNT]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, d->buf[BUF_OUT]);
+    return oit_gl_check("depth peeling: frame set-up", err);
+}
+
+/* Peels the layer behind layer[1 - cur] into layer[cur]; returns whether any
+ * fragment was kept. */
+static int peel(oit_depth_peel *d, int cur, const oit_gpu_mesh *const *meshes, int n)
+{
+    static const GLuint exhausted[4] = {EXHAUSTED, 0, 0, 0};
+    static const float far_depth = 1.0f;
+    oit_glsl_raster_begin(d->fbo[cur], d->w, d->h);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthMask(GL_TRUE);
+    glClearNamedFramebufferuiv(d->fbo[cur], GL_COLOR, 0, exhausted);
+    glClearNamedFramebufferfv(d->fbo[cur], GL_DEPTH, 0, &far_depth);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glBindTextureUnit(0, d->layer[1 - cur]);
+    glUseProgram(d->peel_prog);
+    glBeginQuery(GL_ANY_SAMPLES_PASSED, d->query);
+    for (int i = 0; i < n; i++)
+        oit_gpu_mesh_draw(meshes[i], d->peel_prog);
+    glEndQuery(GL_ANY_SAMPLES_PASSED);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    GLuint any = 0;
+    glGetQueryObjectuiv(d->query, GL_QUERY_RESULT, &any);
+    return any != 0;
+}
+
+static void merge(oit_depth_peel *d, int cur, int first)
+{
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+    glBindTextureUnit(0, d->layer[cur]);
+    glUseProgram(d->merge_prog);
+    glProgramUniform1i(d->merge_prog, glGetUniformLocation(d->merge_prog, "u_first"), first);
+    glDispatchCompute(oit_gl_groups((uint64_t)d->w, 8), oit_gl_groups((uint64_t)d->h, 8), 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+/* Peels until a pass keeps nothing; the first merge always runs so that an
+ * empty frame still starts every pixel's state. Each pass moves every
+ * unfinished pixel strictly further back, so the loop ends after
+ * max_layers + 1 passes; the cap only turns a driver that broke that into
+ * an error instead of a hang. */
+static oit_status peel_all(oit_depth_peel *d, const oit_gpu_mesh *const *meshes, int n,
+                           uint32_t *layers, uint32_t *passes, oit_error *err)
+{
+    int cur = 0, more = 1;
+    *layers = 0;
+    *passes = 0;
+    while (more) {
+        if (*passes == MAX_PASSES)
+            return oit_error_set(err, OIT_ERR_GL, "depth peeling: fragments still pass "
+                                 "after %u layers; the driver does not keep t's order",
+                                 (unsigned)MAX_PASSES);
+        more = peel(d, cur, meshes, n);
+        ++*passes;
+        if (more || *passes == 1)
+            merge(d, cur, *passes == 1);
+        *layers += (uint32_t)more;
+        cur = 1 - cur;
+    }
+    glUseProgram(d->final_prog);
+    glDispatchCompute(oit_gl_groups((uint64_t)d->w, 8), oit_gl_groups((uint64_t)d->h, 8), 1);
+    return oit_gl_check("depth peeling: passes", err);
+}
+
+oit_status oit_depth_peel_render(oit_depth_peel *d, const oit_gpu_mesh *const *meshes, int n,
+                                 const oit_view *view, oit_image *out,
+                                 oit_frame_stats *stats, oit_error *err)
+{
+    oit_status s = oit_baseline_check_frame("depth peeling", view, n, err);
+    if (s != OIT_OK)
+        return s;
+    double t0 = oit_time_ms();
+    oit_view v = *view;
+    oit_shading_resolve_defaults(&v.shading);
+    s = prepare(d, &v, err);
+    if (s != OIT_OK)
+        return s;
+    uint32_t layers = 0, passes = 0;
+    s = peel_all(d, meshes, n, &layers, &passes, err);
+    GLuint fragments = 0;
+    if (s == OIT_OK) {
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        glGetNamedBufferSubData(d->buf[BUF_COUNT], 0, 4, &fragments);
+        s = oit_baseline_read_buffer("depth peeling", d->buf[BUF_OUT], v.width, v.height,
+                                     out, err);
+    }
+    if (s != OIT_OK || !stats)
+        return s;
+    memset(stats, 0, sizeof *stats);
+    stats->ms = oit_time_ms() - t0;
+    stats->fragments = fragments;
+    stats->max_layers = layers;
+    stats->gpu_bytes_peak = d->bytes_peak;
+    stats->batches = passes;
+    return OIT_OK;
+}

@@ -1,0 +1,41 @@
+/* Depth peeling, front to back (Everitt 2001). Each geometry pass keeps, per
+ * pixel, the nearest fragment strictly behind the layer peeled before: the
+ * fragment shader discards t <= t_prev (read from the previous layer) and
+ * the depth test (LESS, depth = t scaled by a power of two, so the scaling
+ * is exact and the test orders exactly like t) keeps the nearest of the
+ * rest. A compute pass composites the new layer into a per-pixel state
+ * (shade.h), and peeling stops when an occlusion query reports that a pass
+ * kept no fragment. Cost: max_layers + 1 geometry passes.
+ *
+ * Exact, equal to DFB's (t, prim) order, whenever no pixel has two fragments
+ * at bitwise-equal t. Where it has (coplanar or shared-edge fragments), the
+ * pass keeps the first one rasterized (the depth test is LESS, and GL
+ * rasterizes in primitive order: the lowest prim, as (t, prim) would) and
+ * the next pass discards the others since their t is not > t_prev: those
+ * fragments are LOST, the known limitation of depth peeling.
+ *
+ * Stats: fragments = fragments composited (ties lost are not counted),
+ * max_layers = layers peeled, batches = geometry passes, gpu_bytes_peak. */
+#ifndef OIT_RENDER_DEPTH_PEEL_H
+#define OIT_RENDER_DEPTH_PEEL_H
+
+#include "render/gpu_mesh.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct oit_depth_peel oit_depth_peel;
+
+oit_status oit_depth_peel_create(oit_depth_peel **out, oit_error *err);
+void oit_depth_peel_destroy(oit_depth_peel *d);
+
+/* Renders meshes[0..n) as one scene; out is allocated by the call. */
+oit_status oit_depth_peel_render(oit_depth_peel *d, const oit_gpu_mesh *const *meshes, int n,
+                                 const oit_view *view, oit_image *out,
+                                 oit_frame_stats *stats, oit_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,346 @@
+/* The public embedding API (include/oit/liboit.h) over the streamer: the
+ * caller's matrices become an oit_camera, the streamer captures the frame on
+ * the GPU, and one fullscreen pass blends its per-pixel (C, T) state over the
+ * caller's framebuffer. */
+#include "oit/liboit.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "render/capture_glsl.h"
+#include "render/frag_glsl.h"
+#include "stream/streamer.h"
+
+struct oit_scene {
+    oit_partfile *pf;
+    oit_scene_info info;
+};
+
+struct oit_renderer {
+    oit_renderer_desc desc;
+    const oit_scene *scene; /* the scene the streamer was built for */
+    oit_streamer *streamer;
+    GLuint blend_prog, vao;
+};
+
+/* ---- scene ------------------------------------------------------------- */
+
+oit_status oit_scene_open(const char *path, const oit_scene_desc *desc, oit_scene **out,
+                          oit_error *err)
+{
+    *out = NULL;
+    if (!path)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_scene_open: path is NULL");
+    oit_scene *s = calloc(1, sizeof *s);
+    if (!s)
+        return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot allocate the scene", path);
+    oit_partfile_open_desc od = {.defer_part_data = desc && desc->defer_validation};
+    oit_status st = oit_partfile_open(path, &od, &s->pf, err);
+    if (st != OIT_OK) {
+        free(s);
+        return st;
+    }
+    oit_partfile_summary sum;
+    oit_partfile_get_summary(s->pf, &sum);
+    s->info.triangles = sum.triangles;
+    s->info.parts = sum.parts;
+    memcpy(s->info.bounds_min, sum.bounds_min, sizeof sum.bounds_min);
+    memcpy(s->info.bounds_max, sum.bounds_max, sizeof sum.bounds_max);
+    s->info.K = sum.K;
+    s->info.attributes = sum.attributes;
+    *out = s;
+    return OIT_OK;
+}
+
+oit_status oit_scene_get_info(const oit_scene *scene, oit_scene_info *info, oit_error *err)
+{
+    if (!scene || !info)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_scene_get_info: NULL argument");
+    *info = scene->info;
+    return OIT_OK;
+}
+
+void oit_scene_close(oit_scene *scene)
+{
+    if (!scene)
+        return;
+    oit_partfile_close(scene->pf);
+    free(scene);
+}
+
+/* ---- caller matrices -> camera ------------------------------------------ */
+
+/* A rigid view matrix: rows of its rotation are the camera's right, up and
+ * backward axes; the eye is -R^T t. */
+static oit_status camera_from_view(const float *m, oit_camera *cam, oit_error *err)
+{
+    double r[3][3], t[3] = {m[12], m[13], m[14]};
+    for (int row = 0; row < 3; row++)
+        for (int col = 0; col < 3; col++)
+            r[row][col] = m[col * 4 + row];
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++) {
+            double d = r[a][0] * r[b][0] + r[a][1] * r[b][1] + r[a][2] * r[b][2];
+            if (fabs(d - (a == b)) > 1e-3)
+                return oit_error_set(err, OIT_ERR_UNSUPPORTED, "oit_frame.view: not a rigid "
+                                     "transform (rows %d,%d dot %.4g); scale belongs in the "
+                                     "model, not the view", a, b, d);
+        }
+    if (m[3] != 0.0f || m[7] != 0.0f || m[11] != 0.0f || m[15] != 1.0f)
+        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "oit_frame.view: last row is not "
+                             "(0, 0, 0, 1)");
+    for (int k = 0; k < 3; k++) {
+        double eye = -(r[0][k] * t[0] + r[1][k] * t[1] + r[2][k] * t[2]);
+        cam->eye[k] = (float)eye;
+        cam->target[k] = (float)(eye - r[2][k]);
+        cam->up[k] = (float)r[1][k];
+    }
+    return OIT_OK;
+}
+
+/* A symmetric perspective (gluPerspective form): only fovy, near and far are
+ * free once the aspect is the viewport's. */
+static oit_status camera_from_projection(const float *m, double aspect, oit_camera *cam,
+                                         oit_error *err)
+{
+    int zeros[] = {1, 2, 3, 4, 6, 7, 8, 9, 12, 13, 15};
+    for (size_t i = 0; i < sizeof zeros / sizeof *zeros; i++)
+        if (m[zeros[i]] != 0.0f)
+            return oit_error_set(err, OIT_ERR_UNSUPPORTED, "oit_frame.projection[%d] = %g: "
+                                 "only symmetric perspective projections are supported",
+                                 zeros[i], m[zeros[i]]);
+    double f = m[5], n = m[14] / (m[10] - 1.0), fa = m[14] / (m[10] + 1.0);
+    if (m[11] != -1.0f || !(f > 0.0) || !(m[0] > 0.0f) || !(n > 0.0) || !(fa > n) ||
+        !isfinite(fa))
+        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "oit_frame.projection: not a "
+                             "perspective with 0 < near < far < inf (near %g, far %g)", n, fa);
+    double a = f / m[0];
+    if (fabs(a - aspect) > 1e-3 * aspect)
+        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "oit_frame.projection: aspect %.5g "
+                             "differs from the viewport's %.5g (non-square pixels are not "
+                             "supported)", a, aspect);
+    cam->fovy_deg = (float)(2.0 * atan(1.0 / f) * 180.0 / 3.14159265358979323846);
+    cam->znear = (float)n;
+    cam->zfar = (float)fa;
+    return OIT_OK;
+}
+
+/* ---- renderer ---------------------------------------------------------- */
+
+static const char blend_fs[] =
+    "layout(std430, binding = 6) readonly buffer State { oit_state states[]; };\n"
+    "layout(location = 11) uniform ivec2 u_size;\n"
+    "layout(location = 12) uniform ivec2 u_origin;\n"
+    "layout(location = 0, index = 0) out vec4 o_colour;\n"
+    "layout(location = 0, index = 1) out vec4 o_transmit;\n"
+    "void main() {\n"
+    "    ivec2 px = ivec2(gl_FragCoord.xy) - u_origin;\n"
+    "    oit_state s = states[px.y * u_size.x + px.x];\n"
+    "    float t = (s.T.r + s.T.g + s.T.b) / 3.0;\n"
+    "    o_colour = vec4(s.C, 1.0 - t);\n"
+    "    o_transmit = vec4(s.T, t);\n"
+    "}\n";
+
+void oit_renderer_destroy(oit_renderer *r)
+{
+    if (!r)
+        return;
+    oit_streamer_destroy(r->streamer);
+    glDeleteProgram(r->blend_prog);
+    glDeleteVertexArrays(1, &r->vao);
+    free(r);
+}
+
+oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out,
+                               oit_error *err)
+{
+    *out = NULL;
+    oit_renderer *r = calloc(1, sizeof *r);
+    if (!r)
+        return oit_error_set(err, OIT_ERR_NOMEM, "oit_renderer_create: out of memory");
+    if (desc)
+        r->desc = *desc;
+    if (r->desc.K != 0 && (r->desc.K < 2 || r->desc.K > 16)) {
+        uint32_t K = r->desc.K;
+        free(r);
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_desc.K = %u is outside "
+                             "[2, 16]", K);
+    }
+    const char *vs[] = {oit_glsl_version, oit_capture_fullscreen_vs, NULL};
+    const char *fs[] = {oit_glsl_version, oit_glsl_composite, blend_fs, NULL};
+    oit_status st = oit_gl_program_graphics("liboit blend", vs, fs, &r->blend_prog, err);
+    if (st == OIT_OK) {
+        glCreateVertexArrays(1, &r->vao);
+        st = oit_gl_check("oit_renderer_create", err);
+    }
+    if (st != OIT_OK) {
+        oit_renderer_destroy(r);
+        return st;
+    }
+    *out = r;
+    return OIT_OK;
+}
+
+/* (Re)builds the streamer when r draws a scene it was not built for. */
+static oit_status bind_scene(oit_renderer *r, const oit_scene *scene, oit_error *err)
+{
+    if (r->scene == scene && r->streamer)
+        return OIT_OK;
+    oit_streamer_destroy(r->streamer);
+    r->streamer = NULL;
+    r->scene = NULL;
+    oit_streamer_desc sd = {0};
+    sd.K = r->desc.K ? (int)r->desc.K : (int)scene->info.K;
+    sd.capture = OIT_CAPTURE_AUTO;
+    sd.pack = r->desc.pack == OIT_RENDER_PACK_DISJOINT ? OIT_PACK_DISJOINT : OIT_PACK_BUDGET;
+    sd.upload_budget = r->desc.upload_budget;
+    oit_status st = oit_streamer_create(scene->pf, &sd, &r->streamer, err);
+    if (st == OIT_OK)
+        r->scene = scene;
+    return st;
+}
+
+static void make_shading(const oit_renderer *r, const oit_scene *scene, oit_shading *s)
+{
+    const oit_render_shading *in = &r->desc.shading;
+    memset(s, 0, sizeof *s);
+    s->mode = in->mode == OIT_RENDER_TRANSLUCENT ? OIT_SHADING_TRANSLUCENT
+                                                  : OIT_SHADING_TRANSPARENT;
+    s->alpha = in->alpha;
+    memcpy(s->default_rgb, in->default_rgb, sizeof s->default_rgb);
+    s->absorption = in->absorption;
+    s->attributes = scene->info.attributes;
+    double d2 = 0.0;
+    for (int k = 0; k < 3; k++) {
+        double e = (double)scene->info.bounds_max[k] - scene->info.bounds_min[k];
+        d2 += e * e;
+    }
+    s->scene_scale = in->scene_scale > 0.0f ? in->scene_scale
+                     : d2 > 0.0 && isfinite(d2) ? (float)sqrt(d2) : 1.0f;
+    oit_shading_resolve_defaults(s);
+}
+
+/* The state oit_renderer_draw promises to give back (liboit.h). */
+typedef struct gl_saved {
+    GLint draw_fb, read_fb, viewport[4], program, vao;
+    GLint src_rgb, dst_rgb, src_a, dst_a, eq_rgb, eq_a;
+    GLboolean colour_mask[4], depth_mask;
+    GLboolean enabled[6];
+} gl_saved;
+
+static const GLenum kToggles[6] = {GL_BLEND, GL_DEPTH_TEST, GL_STENCIL_TEST, GL_CULL_FACE,
+                                   GL_SCISSOR_TEST, GL_MULTISAMPLE};
+
+static void gl_save(gl_saved *g)
+{
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &g->draw_fb);
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &g->read_fb);
+    glGetIntegerv(GL_VIEWPORT, g->viewport);
+    glGetIntegerv(GL_CURRENT_PROGRAM, &g->program);
+    glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &g->vao);
+    glGetIntegerv(GL_BLEND_SRC_RGB, &g->src_rgb);
+    glGetIntegerv(GL_BLEND_DST_RGB, &g->dst_rgb);
+    glGetIntegerv(GL_BLEND_SRC_ALPHA, &g->src_a);
+    glGetIntegerv(GL_BLEND_DST_ALPHA, &g->dst_a);
+    glGetIntegerv(GL_BLEND_EQUATION_RGB, &g->eq_rgb);
+    glGetIntegerv(GL_BLEND_EQUATION_ALPHA, &g->eq_a);
+    glGetBooleanv(GL_COLOR_WRITEMASK, g->colour_mask);
+    glGetBooleanv(GL_DEPTH_WRITEMASK, &g->depth_mask);
+    for (int i = 0; i < 6; i++)
+        g->enabled[i] = glIsEnabled(kToggles[i]);
+}
+
+static void gl_restore(const gl_saved *g)
+{
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)g->draw_fb);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)g->read_fb);
+    glViewport(g->viewport[0], g->viewport[1], g->viewport[2], g->viewport[3]);
+    glUseProgram((GLuint)g->program);
+    glBindVertexArray((GLuint)g->vao);
+    glBlendFuncSeparate((GLenum)g->src_rgb, (GLenum)g->dst_rgb, (GLenum)g->src_a,
+                        (GLenum)g->dst_a);
+    glBlendEquationSeparate((GLenum)g->eq_rgb, (GLenum)g->eq_a);
+    glColorMask(g->colour_mask[0], g->colour_mask[1], g->colour_mask[2], g->colour_mask[3]);
+    glDepthMask(g->depth_mask);
+    for (int i = 0; i < 6; i++)
+        (g->enabled[i] ? glEnable : glDisable)(kToggles[i]);
+}
+
+/* dst = C + T * dst through dual-source blending, one fragment per pixel. */
+static void blend_over(const oit_renderer *r, const oit_frame *f, GLuint state)
+{
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, f->framebuffer);
+    glViewport(f->viewport_x, f->viewport_y, f->viewport_width, f->viewport_height);
+    for (int i = 1; i < 5; i++)
+        glDisable(kToggles[i]);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFunc(GL_ONE, GL_SRC1_COLOR);
+    glUseProgram(r->blend_prog);
+    glProgramUniform2i(r->blend_prog, OIT_LOC_SIZE, f->viewport_width, f->viewport_height);
+    glProgramUniform2i(r->blend_prog, OIT_LOC_RECT, f->viewport_x, f->viewport_y);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_STATE, state);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glBindVertexArray(r->vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+static oit_status frame_view(const oit_renderer *r, const oit_scene *scene,
+                             const oit_frame *f, oit_view *v, oit_error *err)
+{
+    if (f->viewport_width <= 0 || f->viewport_height <= 0)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_frame: viewport %dx%d is empty",
+                             f->viewport_width, f->viewport_height);
+    memset(v, 0, sizeof *v);
+    v->width = f->viewport_width;
+    v->height = f->viewport_height;
+    make_shading(r, scene, &v->shading);
+    oit_status st = camera_from_view(f->view, &v->camera, err);
+    if (st == OIT_OK)
+        st = camera_from_projection(f->projection, (double)v->width / v->height, &v->camera,
+                                    err);
+    return st;
+}
+
+oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame *frame,
+                             oit_draw_stats *stats, oit_error *err)
+{
+    if (!r || !scene || !frame)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_draw: NULL argument");
+    double t0 = oit_time_ms();
+    oit_view view;
+    oit_status st = frame_view(r, scene, frame, &view, err);
+    if (st != OIT_OK)
+        return st;
+    gl_saved saved;
+    gl_save(&saved);
+    oit_frame_stats fs = {0};
+    oit_stream_frame_stats ss = {0};
+    GLuint state = 0;
+    st = bind_scene(r, scene, err);
+    if (st == OIT_OK)
+        st = oit_streamer_render_gpu(r->streamer, &view, &state, &fs, &ss, err);
+    if (st == OIT_OK) {
+        blend_over(r, frame, state);
+        st = oit_gl_check("oit_renderer_draw: blend", err);
+    }
+    gl_restore(&saved);
+    if (st != OIT_OK) {
+        const char *name = oit_partfile_name(scene->pf);
+        if (err && strncmp(err->message, name, strlen(name)) != 0)
+            oit_error_prefix(err, name);
+        return st;
+    }
+    if (stats) {
+        *stats = (oit_draw_stats){.ms = oit_time_ms() - t0, .fragments = fs.fragments,
+                                  .max_layers = fs.max_layers,
+                                  .overflow_pixels = fs.overflow_pixels, .packs = ss.packs,
+                                  .parts_drawn = ss.parts_drawn,
+                                  .parts_culled = ss.parts_culled,
+                                  .bytes_uploaded = ss.bytes_uploaded,
+                                  .gpu_bytes_peak = ss.gpu_bytes_peak};
+    }
+    return OIT_OK;
+}

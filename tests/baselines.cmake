@@ -1,0 +1,7 @@
+# tests for the baseline methods (unsorted, WBOIT, PLL, depth peeling) against DFB
+oit_add_test_exe(test_baselines SOURCES test_baselines.c LIBS oit_render)
+oit_add_test(NAME baselines COMMAND test_baselines LABELS unit TIMEOUT 60)
+
+# The four methods through oitstream --method, against --method dfb.
+oit_add_test(NAME baselines_cli LABELS integration TIMEOUT 60
+  COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_baselines_cli.sh)

@@ -1,0 +1,22 @@
+# tests for liboit, the public embedding API: drawing into a caller's FBO
+# against DFB, and installing then linking from an outside project.
+oit_add_test_exe(test_liboit SOURCES test_liboit.c LIBS oit oit_stream)
+add_dependencies(test_liboit test_streamer)
+set(liboit_grid ${CMAKE_BINARY_DIR}/test-tmp/liboit_grid.oitp)
+oit_add_test(NAME liboit LABELS unit TIMEOUT 60
+  COMMAND sh -c "$<TARGET_FILE:test_streamer> ${liboit_grid} && $<TARGET_FILE:test_liboit> ${liboit_grid}")
+
+# An instrumented liboit.so needs the sanitizer runtime in the executable
+# that loads it, so the outside project links with the same flags.
+set(liboit_consumer_flags "")
+if(OIT_SANITIZE)
+  # liboit.so holds C++ (the glTF adapter): its UBSan checks need the C++ runtime.
+  set(liboit_consumer_flags "-fsanitize=address,undefined -fsanitize-link-c++-runtime -lstdc++")
+endif()
+oit_add_test(NAME liboit_install LABELS integration TIMEOUT 180
+  COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_install.sh ${CMAKE_BINARY_DIR} "${CMAKE_C_COMPILER}" "${liboit_consumer_flags}")
+
+# The example must keep working: it is the API's documentation.
+set(liboit_example_grid ${CMAKE_BINARY_DIR}/test-tmp/liboit_example.oitp)
+oit_add_test(NAME liboit_example LABELS integration TIMEOUT 60
+  COMMAND sh -c "$<TARGET_FILE:test_streamer> ${liboit_example_grid} && $<TARGET_FILE:embed_liboit> ${liboit_example_grid} ${CMAKE_BINARY_DIR}/test-tmp/liboit_example.png 160 120")

@@ -1,0 +1,256 @@
+/* liboit against DFB: a part file drawn through the public API into an FBO
+ * the test owns, pre-cleared to a known colour, must equal DFB's image of the
+ * same triangles with that colour as background (dst = C + T * clear), in
+ * transparent and translucent shading (per-channel T) and at a viewport
+ * offset; pixels outside the viewport stay untouched; the caller's GL state
+ * comes back; bad inputs fail with the documented status.
+ *
+ * usage: test_liboit FILE.oitp (a part file, e.g. from test_streamer) */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "oit/liboit.h"
+#include "render/dfb.h"
+#include "render/gl_context.h"
+#include "render/gl_util.h"
+#include "render/image.h"
+#include "stream/part_triangles.h"
+#include "test_check.h"
+
+enum { W = 160, H = 120, PAD_X = 8, PAD_Y = 4, FW = W + 2 * PAD_X, FH = H + 2 * PAD_Y };
+static const float kClear[4] = {0.2f, 0.4f, 0.6f, 1.0f};
+
+typedef struct target {
+    GLuint fbo, tex;
+} target;
+
+static target target_make(void)
+{
+    target t;
+    glCreateTextures(GL_TEXTURE_2D, 1, &t.tex);
+    glTextureStorage2D(t.tex, 1, GL_RGBA32F, FW, FH);
+    glCreateFramebuffers(1, &t.fbo);
+    glNamedFramebufferTexture(t.fbo, GL_COLOR_ATTACHMENT0, t.tex, 0);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE); /* DFB leaves it off */
+    glClearNamedFramebufferfv(t.fbo, GL_COLOR, 0, kClear);
+    return t;
+}
+
+static void target_free(target *t)
+{
+    glDeleteFramebuffers(1, &t->fbo);
+    glDeleteTextures(1, &t->tex);
+}
+
+static void camera_for(const oit_scene_info *info, oit_camera *cam)
+{
+    oit_camera_default(cam, info->bounds_min, info->bounds_max, 35.0f, 25.0f);
+}
+
+/* DFB's image of the whole file with the clear colour as background. */
+static int reference(oit_partfile *pf, const oit_view *v, oit_image *out,
+                     oit_frame_stats *fs)
+{
+    oit_error err = {0};
+    oit_mesh mesh = {0};
+    oit_dfb *d = NULL;
+    oit_gpu_mesh *gm = NULL;
+    oit_status s = oit_partfile_load_mesh(pf, &mesh, &err);
+    if (s == OIT_OK)
+        s = oit_dfb_create(&d, &err);
+    if (s == OIT_OK)
+        s = oit_gpu_mesh_create(mesh.tris, mesh.count, 0, &gm, &err);
+    if (s == OIT_OK) {
+        const oit_gpu_mesh *list[1] = {gm};
+        s = oit_dfb_render(d, list, 1, v, out, NULL, fs, &err);
+    }
+    oit_gpu_mesh_destroy(gm);
+    oit_dfb_destroy(d);
+    oit_mesh_free(&mesh);
+    CHECK(s == OIT_OK, "reference: %s", err.message);
+    return s == OIT_OK;
+}
+
+/* Compares the viewport of the target with ref; the border must still hold
+ * the clear colour. */
+static void compare(const char *name, const target *t, const oit_image *ref)
+{
+    float *px = malloc((size_t)FW * FH * 4 * sizeof *px);
+    glGetTextureImage(t->tex, 0, GL_RGBA, GL_FLOAT, FW * FH * 4 * sizeof *px, px);
+    uint64_t over = 0, covered = 0, border_bad = 0;
+    double max_abs = 0.0;
+    for (int y = 0; y < FH; y++)
+        for (int x = 0; x < FW; x++) {
+            const float *p = px + ((size_t)y * FW + x) * 4;
+            int vx = x - PAD_X, vy = y - PAD_Y;
+            if (vx < 0 || vy < 0 || vx >= W || vy >= H) {
+                border_bad += memcmp(p, kClear, sizeof kClear) != 0;
+                continue;
+            }
+            const float *r = ref->rgba + ((size_t)(H - 1 - vy) * W + vx) * 4;
+            double d = 0.0;
+            for (int c = 0; c < 3; c++)
+                d = fmax(d, fabs((double)p[c] - r[c]));
+            max_abs = fmax(max_abs, d);
+            over += d > 1.0 / 255.0;
+            covered += fabsf(r[0] - kClear[0]) + fabsf(r[1] - kClear[1]) +
+                       fabsf(r[2] - kClear[2]) > 1.0f / 255.0f;
+        }
+    free(px);
+    double pct = 100.0 * (double)over / (W * H), cov = 100.0 * (double)covered / (W * H);
+    printf("%s: max_abs %.5f, %.4f%% pixels over 1/255, %.1f%% covered, border pixels "
+           "changed %llu\n", name, max_abs, pct, cov, (unsigned long long)border_bad);
+    CHECK(pct <= 0.1, "%s: %.4f%% of pixels differ from DFB by more than 1/255", name, pct);
+    CHECK(cov >= 10.0, "%s: only %.1f%% of the frame is covered: the view misses the scene",
+          name, cov);
+    CHECK(border_bad == 0, "%s: %llu pixels outside the viewport changed", name,
+          (unsigned long long)border_bad);
+}
+
+static void check_state_restored(GLuint fbo)
+{
+    GLint bound = 0, vp[4], src = 0, blend = 0, prog = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &bound);
+    glGetIntegerv(GL_VIEWPORT, vp);
+    glGetIntegerv(GL_BLEND_SRC_RGB, &src);
+    glGetIntegerv(GL_CURRENT_PROGRAM, &prog);
+    blend = glIsEnabled(GL_BLEND);
+    CHECK((GLuint)bound == fbo && vp[0] == 1 && vp[1] == 2 && vp[2] == 3 && vp[3] == 4 &&
+              src == GL_SRC_ALPHA && blend && prog == 0,
+          "GL state not restored: fbo %d viewport %d,%d,%d,%d blend %d src 0x%x program %d",
+          bound, vp[0], vp[1], vp[2], vp[3], blend, src, prog);
+}
+
+static void draw_and_compare(const char *name, oit_scene *scene, oit_partfile *pf,
+                             oit_render_shading_mode mode)
+{
+    oit_error err = {0};
+    oit_scene_info info;
+    oit_scene_get_info(scene, &info, &err);
+    oit_renderer_desc rd = {0};
+    rd.shading.mode = mode;
+    oit_renderer *r = NULL;
+    if (oit_renderer_create(&rd, &r, &err) != OIT_OK) {
+        CHECK(0, "%s: oit_renderer_create: %s", name, err.message);
+        return;
+    }
+    oit_view v = {0};
+    camera_for(&info, &v.camera);
+    v.width = W;
+    v.height = H;
+    oit_frame f = {0};
+    oit_camera_view_matrix(&v.camera, f.view);
+    oit_camera_proj_matrix(&v.camera, (float)W / H, f.projection);
+    f.viewport_x = PAD_X;
+    f.viewport_y = PAD_Y;
+    f.viewport_width = W;
+    f.viewport_height = H;
+    target t = target_make();
+    f.framebuffer = t.fbo;
+
+    /* A caller's state that the draw must give back. */
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(1, 2, 3, 4);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    glUseProgram(0);
+    oit_draw_stats st = {0};
+    oit_status s = oit_renderer_draw(r, scene, &f, &st, &err);
+    CHECK(s == OIT_OK, "%s: draw: %s", name, err.message);
+    check_state_restored(0);
+    glDisable(GL_BLEND);
+    printf("%s: %.2f ms, %llu fragments, max %u layers, %llu overflow, %u packs, %llu parts "
+           "drawn, %llu culled, %llu bytes uploaded\n", name, st.ms,
+           (unsigned long long)st.fragments, st.max_layers,
+           (unsigned long long)st.overflow_pixels, st.packs,
+           (unsigned long long)st.parts_drawn, (unsigned long long)st.parts_culled,
+           (unsigned long long)st.bytes_uploaded);
+
+    oit_image ref = {0};
+    oit_frame_stats rs = {0};
+    v.shading = (oit_shading){0};
+    v.shading.mode = (oit_shading_mode)mode;
+    v.shading.attributes = info.attributes;
+    double d2 = 0.0;
+    for (int k = 0; k < 3; k++)
+        d2 += pow((double)info.bounds_max[k] - info.bounds_min[k], 2.0);
+    v.shading.scene_scale = (float)sqrt(d2);
+    memcpy(v.shading.background, kClear, sizeof v.shading.background);
+    if (s == OIT_OK && reference(pf, &v, &ref, &rs)) {
+        printf("%s: DFB %llu fragments\n", name, (unsigned long long)rs.fragments);
+        CHECK(st.fragments == rs.fragments, "%s: %llu fragments, DFB %llu: lost or extra "
+              "triangles", name, (unsigned long long)st.fragments,
+              (unsigned long long)rs.fragments);
+        CHECK(st.overflow_pixels == 0, "%s: %llu overflow pixels", name,
+              (unsigned long long)st.overflow_pixels);
+        compare(name, &t, &ref);
+    }
+    oit_image_free(&ref);
+    target_free(&t);
+    oit_renderer_destroy(r);
+}
+
+static void check_errors(oit_scene *scene)
+{
+    oit_error err = {0};
+    oit_scene *none = NULL;
+    const char *bad = "/nonexistent/liboit-missing.oitp";
+    oit_status s = oit_scene_open(bad, NULL, &none, &err);
+    printf("missing file: %s: %s\n", oit_status_name(s), err.message);
+    CHECK(s == OIT_ERR_IO && none == NULL && strstr(err.message, bad),
+          "missing file gave %s: %s", oit_status_name(s), err.message);
+
+    oit_renderer *r = NULL;
+    oit_renderer_desc rd = {.K = 32};
+    s = oit_renderer_create(&rd, &r, &err);
+    CHECK(s == OIT_ERR_ARGUMENT && r == NULL, "K=32 gave %s", oit_status_name(s));
+
+    rd.K = 0;
+    s = oit_renderer_create(&rd, &r, &err);
+    CHECK(s == OIT_OK, "renderer: %s", err.message);
+    oit_frame f = {0};
+    for (int i = 0; i < 4; i++)
+        f.view[i * 5] = 1.0f;
+    f.projection[0] = f.projection[5] = f.projection[15] = 1.0f; /* orthographic */
+    f.projection[10] = -1.0f;
+    f.viewport_width = f.viewport_height = 8;
+    s = oit_renderer_draw(r, scene, &f, NULL, &err);
+    printf("orthographic: %s: %s\n", oit_status_name(s), err.message);
+    CHECK(s == OIT_ERR_UNSUPPORTED, "orthographic projection gave %s", oit_status_name(s));
+    oit_renderer_destroy(r);
+}
+
+int main(int argc, char **argv)
+{
+    if (argc != 2) {
+        fprintf(stderr, "usage: test_liboit FILE.oitp\n");
+        return 2;
+    }
+    oit_error err = {0};
+    oit_gl *gl = NULL;
+    if (oit_gl_create(NULL, &gl, &err) != OIT_OK) {
+        fprintf(stderr, "FAIL: context: %s\n", err.message);
+        return 1;
+    }
+    printf("renderer: %s\n", oit_gl_renderer(gl));
+    oit_scene *scene = NULL;
+    oit_partfile *pf = NULL;
+    if (oit_scene_open(argv[1], NULL, &scene, &err) != OIT_OK ||
+        oit_partfile_open(argv[1], NULL, &pf, &err) != OIT_OK) {
+        fprintf(stderr, "FAIL: %s\n", err.message);
+        return 1;
+    }
+    oit_scene_info info;
+    oit_scene_get_info(scene, &info, &err);
+    printf("scene: %llu triangles, %llu parts, K %u\n", (unsigned long long)info.triangles,
+           (unsigned long long)info.parts, info.K);
+    CHECK(info.triangles > 0 && info.parts > 0, "empty scene");
+    check_errors(scene);
+    draw_and_compare("transparent", scene, pf, OIT_RENDER_TRANSPARENT);
+    draw_and_compare("translucent", scene, pf, OIT_RENDER_TRANSLUCENT);
+    oit_partfile_close(pf);
+    oit_scene_close(scene);
+    oit_gl_destroy(gl);
+    return test_failures != 0;
+}

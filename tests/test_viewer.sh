@@ -1,0 +1,86 @@
+#!/bin/sh
+# oitstream --window under a virtual X display (run by xvfb-run): the window
+# shows exactly what the headless renderer writes, and each scripted key
+# changes the frame the way the matching command-line option does:
+#   - the window's screenshot (no overlay) equals `--out` of the same view
+#   - the status line changes the top rows only, and some of them
+#   - L equals `--show layers`, T equals `--shading translucent`, the key
+#     of "array" equals `--method array`, W moves the view and R restores it
+#   - Q stops the loop early with exit status 0; E reports no early termination
+# Equal means within half an 8-bit step (the window quantises to 8 bits).
+set -u
+: "${OIT_BIN:?OIT_BIN must name the tools folder}"
+: "${OIT_TEST_TMP:?OIT_TEST_TMP must name a scratch folder}"
+[ -n "${DISPLAY:-}" ] || { echo "SKIP: no DISPLAY (run under xvfb-run)"; exit 77; }
+S="$OIT_BIN/oitstream"
+T="$OIT_TEST_TMP/viewer"
+rm -rf "$T" && mkdir -p "$T" && cd "$T" || exit 1
+FAILS=0
+SIZE=160x120
+EQUAL=0.002 # 0.5/255 plus float slack
+
+fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
+json_num() { sed -n "s/.*\"$1\": \([-0-9.e+]*\).*/\1/p" | head -n 1; }
+# compare NAME A B: prints the figures, sets MAX and OVER
+compare() {
+    j=$("$S" --compare "$2" "$3" --json) || { fail "$1: cannot compare $2 $3"; MAX=9; OVER=0; return; }
+    MAX=$(echo "$j" | json_num max_abs)
+    OVER=$(echo "$j" | json_num pixels_over)
+    echo "$1: max_abs $MAX, $OVER pixels over 1/255"
+}
+expect_equal() { compare "$@"; awk "BEGIN{exit !($MAX <= $EQUAL)}" || fail "$1: $2 differs from $3 (max_abs $MAX)"; }
+expect_differ() { compare "$@"; [ "$OVER" -ge "$4" ] || fail "$1: $2 too close to $3 ($OVER pixels over, want >= $4)"; }
+
+# 0. Usage errors (exit 2) before any window opens.
+for bad in "--window-frames 3" "--window --orbit 4" "--window --out x.png"; do
+    # shellcheck disable=SC2086 # the options are meant to split
+    "$S" quads.ply $bad >/dev/null 2>&1; rc=$?
+    [ "$rc" -eq 2 ] || fail "oitstream quads.ply $bad: exit $rc, want 2"
+done
+"$S" --help | grep -q -- "--window-script" || fail "--help does not document --window-script"
+
+# 24 overlapping translucent squares: every pixel of the centre has many
+# layers, and few triangles keep llvmpipe frames fast.
+"$OIT_BIN/oitgen" quads --count 24 -o quads.ply >/dev/null || { fail "oitgen quads"; exit 1; }
+
+# 1. The overlay run: 3 frames, screenshot of the last.
+"$S" quads.ply --window --size $SIZE --window-frames 3 --window-screenshot overlay.png >overlay.txt 2>&1 ||
+    { cat overlay.txt; fail "--window exited with $?"; exit 1; }
+cat overlay.txt
+grep -q "^viewer: 3 frames" overlay.txt || fail "the overlay run did not show 3 frames"
+[ -f overlay.png ] || fail "no overlay.png"
+ARRAY_KEY=$(sed -n 's/^viewer: key \([1-9]\): array$/\1/p' overlay.txt)
+[ -n "$ARRAY_KEY" ] || fail "no key lists the array method"
+
+# 2. The scripted run, no overlay: P saves oitstream_NNN.png after the next frame.
+#    000 home, 001 heat map, 002 translucent, 003 after W, 004 array after R.
+SCRIPT="PLPLTPTWPR${ARRAY_KEY}PEQ"
+"$S" quads.ply --window --no-overlay --size $SIZE --window-frames 100 --window-script "$SCRIPT" \
+    >script.txt 2>&1 || { cat script.txt; fail "the scripted run exited with $?"; }
+cat script.txt
+FRAMES=$(sed -n 's/^viewer: \([0-9]*\) frames.*/\1/p' script.txt)
+[ "$FRAMES" = "$(( ${#SCRIPT} - 1 ))" ] || fail "Q should stop after $(( ${#SCRIPT} - 1 )) frames, not '$FRAMES'"
+grep -q "early termination: not available" script.txt || fail "E did not report early termination"
+for i in 000 001 002 003 004; do [ -f oitstream_$i.png ] || fail "P did not save oitstream_$i.png"; done
+
+# 3. The same views headless.
+"$S" quads.ply --size $SIZE --quiet --out ref.png || fail "headless dfb"
+"$S" quads.ply --size $SIZE --quiet --show layers --out heat.png || fail "headless heat map"
+"$S" quads.ply --size $SIZE --quiet --shading translucent --out translucent.png || fail "headless translucent"
+"$S" quads.ply --size $SIZE --quiet --method array --out array.png || fail "headless array"
+
+expect_equal "window vs headless" oitstream_000.png ref.png
+expect_equal "L vs --show layers" oitstream_001.png heat.png
+expect_differ "L vs colour" oitstream_001.png ref.png 1000
+expect_equal "T vs --shading translucent" oitstream_002.png translucent.png
+expect_differ "T vs transparent" oitstream_002.png ref.png 100
+expect_differ "W vs home" oitstream_003.png ref.png 100
+expect_equal "R then array key vs --method array" oitstream_004.png array.png
+
+# 4. The status line: some pixels change, all within its band (11 rows).
+compare "overlay vs none" overlay.png oitstream_000.png
+[ "$OVER" -ge 50 ] && [ "$OVER" -le $((160 * 11)) ] ||
+    fail "the status line changed $OVER pixels, want 50..$((160 * 11)) (the top 11 rows)"
+
+[ "$FAILS" -eq 0 ] && echo ok || echo "$FAILS failure(s)"
+exit $((FAILS != 0))
