@@ -312,8 +312,9 @@ static oit_status read_output(oit_capture *c, oit_image *out, GLuint totals[4], 
     return s;
 }
 
-oit_status oit_capture_end(oit_capture *c, oit_image *out, oit_frame_stats *stats,
-                           oit_error *err)
+/* Both ends of a frame: resolve the carried state against the background
+ * (end_prog), then report from the GPU's totals. */
+static oit_status finish_frame(oit_capture *c, oit_error *err)
 {
     if (!c->in_frame)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: end without begin");
@@ -321,11 +322,13 @@ oit_status oit_capture_end(oit_capture *c, oit_image *out, oit_frame_stats *stat
     bind_buffers(c);
     glUseProgram(c->end_prog);
     glDispatchCompute(oit_gl_groups((uint64_t)c->view.width * c->view.height, 64), 1, 1);
-    GLuint totals[4];
-    oit_status s = read_output(c, out, totals, err);
-    glFinish();
-    if (s != OIT_OK || !stats)
-        return s;
+    return OIT_OK;
+}
+
+static void fill_stats(const oit_capture *c, const GLuint totals[4], oit_frame_stats *stats)
+{
+    if (!stats)
+        return;
     memset(stats, 0, sizeof *stats);
     stats->ms = oit_time_ms() - c->t0;
     stats->overflow_pixels = totals[0];
@@ -333,7 +336,20 @@ oit_status oit_capture_end(oit_capture *c, oit_image *out, oit_frame_stats *stat
     stats->max_layers = totals[3];
     stats->gpu_bytes_peak = c->bytes_peak;
     stats->batches = c->batches;
-    return OIT_OK;
+}
+
+oit_status oit_capture_end(oit_capture *c, oit_image *out, oit_frame_stats *stats,
+                           oit_error *err)
+{
+    oit_status s = finish_frame(c, err);
+    if (s != OIT_OK)
+        return s;
+    GLuint totals[4];
+    s = read_output(c, out, totals, err);
+    glFinish();
+    if (s == OIT_OK)
+        fill_stats(c, totals, stats);
+    return s;
 }
 
 /* Stencil routing self-test: K full-frame quads at distinct depths over a
@@ -440,27 +456,16 @@ static oit_status stencil_self_test(oit_capture *c, oit_error *err)
 oit_status oit_capture_end_gpu(oit_capture *c, unsigned *state, oit_frame_stats *stats,
                                oit_error *err)
 {
-    if (!c->in_frame)
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: end without begin");
-    c->in_frame = 0;
-    bind_buffers(c);
-    glUseProgram(c->end_prog);
-    glDispatchCompute(oit_gl_groups((uint64_t)c->view.width * c->view.height, 64), 1, 1);
+    oit_status s = finish_frame(c, err);
+    if (s != OIT_OK)
+        return s;
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     GLuint totals[4];
     glGetNamedBufferSubData(c->buf[BUF_TOTALS], 0, 16, totals);
-    oit_status s = oit_gl_check("capture: end on the GPU", err);
+    s = oit_gl_check("capture: end on the GPU", err);
     if (s != OIT_OK)
         return s;
     *state = c->buf[BUF_STATE];
-    if (!stats)
-        return OIT_OK;
-    memset(stats, 0, sizeof *stats);
-    stats->ms = oit_time_ms() - c->t0;
-    stats->overflow_pixels = totals[0];
-    stats->fragments = (uint64_t)totals[2] << 32 | totals[1];
-    stats->max_layers = totals[3];
-    stats->gpu_bytes_peak = c->bytes_peak;
-    stats->batches = c->batches;
+    fill_stats(c, totals, stats);
     return OIT_OK;
 }
