@@ -161,3 +161,11 @@ void oit_shading_resolve_defaults(oit_shading *s)
     if (s->absorption == 0.0f)
         s->absorption = 4.0f;
 }
+
+float oit_scene_scale(const float bmin[3], const float bmax[3])
+{
+    double d2 = 0.0;
+    for (int k = 0; k < 3; k++)
+        d2 += ((double)bmax[k] - bmin[k]) * ((double)bmax[k] - bmin[k]);
+    return d2 > 0.0 && isfinite(d2) ? (float)sqrt(d2) : 1.0f;
+}

@@ -85,6 +85,10 @@ void oit_camera_proj_matrix(const oit_camera *cam, float aspect, float m[16]);
  * numbers ",znear,zfar" may follow; without them cam's clip planes are kept. */
 int oit_camera_parse(oit_camera *cam, const char *text);
 
+/* The length translucent absorption refers to: the bounds' diagonal, or 1
+ * for empty or non-finite bounds. */
+float oit_scene_scale(const float bmin[3], const float bmax[3]);
+
 /* Fills defaults for zero fields of the shading descriptor. */
 void oit_shading_resolve_defaults(oit_shading *s);
 

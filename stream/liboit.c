@@ -211,13 +211,9 @@ static void make_shading(const oit_renderer *r, const oit_scene *scene, oit_shad
     memcpy(s->default_rgb, in->default_rgb, sizeof s->default_rgb);
     s->absorption = in->absorption;
     s->attributes = scene->info.attributes;
-    double d2 = 0.0;
-    for (int k = 0; k < 3; k++) {
-        double e = (double)scene->info.bounds_max[k] - scene->info.bounds_min[k];
-        d2 += e * e;
-    }
-    s->scene_scale = in->scene_scale > 0.0f ? in->scene_scale
-                     : d2 > 0.0 && isfinite(d2) ? (float)sqrt(d2) : 1.0f;
+    s->scene_scale = in->scene_scale > 0.0f
+                         ? in->scene_scale
+                         : oit_scene_scale(scene->info.bounds_min, scene->info.bounds_max);
     oit_shading_resolve_defaults(s);
 }
 

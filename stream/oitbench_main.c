@@ -1,6 +1,119 @@
+/* oitbench: measures rendering methods side by side on one model over an
+ * orbit of views (speed, memory, layers, error against the Embree
+ * reference) and writes results.csv, results.json and report.md. Errors are
+ * one line on stderr; the exit status follows oit_status_exit_code, except
+ * that a run in which no method could render at all exits 1. */
 #include <stdio.h>
-int main(void)
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <unistd.h>
+
+#include "stream/bench_args.h"
+#include "stream/bench_report.h"
+#include "stream/bench_run.h"
+#include "stream/part_triangles.h"
+
+static int fail(const oit_error *err)
 {
-    fprintf(stderr, "oitbench: not built yet\n");
-    return 1;
+    fprintf(stderr, "oitbench: %s\n", err->message);
+    return oit_status_exit_code(err->status);
+}
+
+static int is_part_file(const char *path)
+{
+    size_t n = strlen(path);
+    return n > 5 && !strcasecmp(path + n - 5, ".oitp");
+}
+
+/* A mesh file in core, or a part file: the streamer reads it part by part,
+ * the reference and the other methods render its triangles in core. */
+static oit_status load_scene(const oit_bench_args *a, oit_partfile **pf, oit_mesh *mesh,
+                             oit_error *err)
+{
+    memset(mesh, 0, sizeof *mesh);
+    *pf = NULL;
+    if (!is_part_file(a->model))
+        return oit_mesh_load(a->model, NULL, mesh, err);
+    int streams = 0;
+    for (int i = 0; i < a->method_count; i++)
+        streams |= oit_render_method_find(a->methods[i])->needs_partfile;
+    oit_partfile_open_desc desc = {streams};
+    oit_status s = oit_partfile_open(a->model, &desc, pf, err);
+    return s == OIT_OK ? oit_partfile_load_mesh(*pf, mesh, err) : s;
+}
+
+/* The command line as one string, for the report. */
+static void join_args(int argc, char **argv, char *buf, size_t cap)
+{
+    size_t used = 0;
+    buf[0] = 0;
+    for (int i = 0; i < argc && used < cap; i++)
+        used += (size_t)snprintf(buf + used, cap - used, "%s%s", i ? " " : "", argv[i]);
+}
+
+static int any_ran(const oit_bench_result *r)
+{
+    for (int i = 0; i < r->method_count; i++)
+        if (r->methods[i].ms_count > 0)
+            return 1;
+    return 0;
+}
+
+static void report_unrunnable(const oit_bench_result *r)
+{
+    for (int i = 0; i < r->method_count; i++)
+        if (!r->methods[i].runnable)
+            fprintf(stderr, "oitbench: %s not runnable: %s\n", r->methods[i].method->name,
+                    r->methods[i].reason);
+}
+
+static int run(const oit_bench_args *a, const char *command_line)
+{
+    oit_error err = {0};
+    oit_partfile *pf = NULL;
+    oit_mesh mesh;
+    oit_bench_result r = {0};
+    oit_status s = load_scene(a, &pf, &mesh, &err);
+    oit_bench_desc d = {&mesh, pf, a->methods, a->method_count, a->orbit, a->width,
+                        a->height, a->frames, a->warmup, a->max_layers, stderr};
+    if (s == OIT_OK) {
+        fprintf(stderr, "oitbench: %s: %llu triangles, %d methods, %d views\n", a->model,
+                (unsigned long long)mesh.info.triangles, a->method_count, a->orbit);
+        s = oit_bench_run(&d, &r, &err);
+    }
+    oit_bench_context ctx = {a->model, command_line, a->width, a->height, a->frames,
+                             a->warmup, sysconf(_SC_NPROCESSORS_ONLN)};
+    if (s == OIT_OK)
+        s = oit_bench_write_reports(a->out, &ctx, &r, &err);
+    int code = s == OIT_OK ? 0 : fail(&err);
+    if (s == OIT_OK) {
+        report_unrunnable(&r);
+        fprintf(stderr, "oitbench: wrote %s/results.csv, results.json, report.md\n", a->out);
+        if (!any_ran(&r)) {
+            fprintf(stderr, "oitbench: no method could render %s\n", a->model);
+            code = 1;
+        }
+    }
+    oit_bench_result_free(&r);
+    oit_mesh_free(&mesh);
+    oit_partfile_close(pf);
+    return code;
+}
+
+int main(int argc, char **argv)
+{
+    oit_bench_args a;
+    oit_error err = {0};
+    char methods[512], line[4096];
+    if (oit_bench_args_parse(argc, argv, &a, methods, sizeof methods, &err) != OIT_OK)
+        return fail(&err);
+    if (a.help) {
+        char names[160];
+        oit_render_method_names(names, sizeof names);
+        oit_bench_usage(stdout, names);
+        return 0;
+    }
+    join_args(argc, argv, line, sizeof line);
+    return run(&a, line);
 }

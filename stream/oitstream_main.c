@@ -157,10 +157,7 @@ static oit_shading make_shading(const oit_stream_args *a, const oit_mesh_info *i
 {
     oit_shading s = a->shading;
     s.attributes = info->attributes;
-    double d2 = 0.0;
-    for (int k = 0; k < 3; k++)
-        d2 += pow((double)info->bounds_max[k] - info->bounds_min[k], 2.0);
-    s.scene_scale = d2 > 0.0 && isfinite(d2) ? (float)sqrt(d2) : 1.0f;
+    s.scene_scale = oit_scene_scale(info->bounds_min, info->bounds_max);
     oit_shading_resolve_defaults(&s);
     return s;
 }

@@ -1,0 +1,234 @@
+/* oitbench's output files (bench_report.h). */
+#include "stream/bench_report.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
+
+/* ---- small formatting helpers ---- */
+
+/* A number, or the given text when it is not finite. */
+static const char *num(char *buf, size_t cap, double x, const char *fmt, const char *nonfinite)
+{
+    if (isfinite(x))
+        snprintf(buf, cap, fmt, x);
+    else
+        snprintf(buf, cap, "%s", nonfinite);
+    return buf;
+}
+
+static void csv_text(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (; *s; s++) {
+        if (*s == '"') fputc('"', f);
+        fputc(*s == '\n' ? ' ' : *s, f);
+    }
+    fputc('"', f);
+}
+
+static void json_text(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (; *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\') fprintf(f, "\\%c", c);
+        else if (c < 0x20) fprintf(f, "\\u%04x", c);
+        else fputc(c, f);
+    }
+    fputc('"', f);
+}
+
+static oit_status open_out(const char *dir, const char *name, FILE **f, char *path, size_t cap,
+                           oit_error *err)
+{
+    snprintf(path, cap, "%s/%s", dir, name);
+    *f = fopen(path, "w");
+    if (!*f)
+        return oit_error_set(err, OIT_ERR_IO, "%s: cannot write: %s", path, strerror(errno));
+    return OIT_OK;
+}
+
+static oit_status close_out(FILE *f, const char *path, oit_error *err)
+{
+    int bad = ferror(f);
+    if (fclose(f) != 0 || bad)
+        return oit_error_set(err, OIT_ERR_IO, "%s: write failed", path);
+    return OIT_OK;
+}
+
+/* ---- results.csv ---- */
+
+static void csv_row(FILE *f, const char *row, const char *method, int view, int ok,
+                    double med, double p95, uint64_t gpu, uint32_t layers, double rmse,
+                    double max_abs, double pct, double psnr, const char *reason)
+{
+    char b[8][40];
+    fprintf(f, "%s,%s,", row, method);
+    if (view >= 0) fprintf(f, "%d", view);
+    fprintf(f, ",%s,%s,%s,", ok ? "ok" : "not_runnable", num(b[0], 40, med, "%.4f", ""),
+            num(b[1], 40, p95, "%.4f", ""));
+    if (ok) fprintf(f, "%llu,%u", (unsigned long long)gpu, layers);
+    else fprintf(f, ",");
+    fprintf(f, ",%s,%s,%s,%s,", num(b[2], 40, ok ? rmse : NAN, "%.9g", ""),
+            num(b[3], 40, ok ? max_abs : NAN, "%.9g", ""), num(b[4], 40, ok ? pct : NAN, "%.6f", ""),
+            num(b[5], 40, ok ? psnr : NAN, "%.4f", ok ? "inf" : ""));
+    csv_text(f, ok ? "" : reason);
+    fputc('\n', f);
+}
+
+static void write_csv(FILE *f, const oit_bench_result *r)
+{
+    fprintf(f, "row,method,view,status,ms_median,ms_p95,gpu_bytes_peak,max_layers,rmse,"
+               "max_abs,pct_over_1_255,psnr,reason\n");
+    for (int v = 0; v < r->views; v++)
+        for (int i = 0; i < r->method_count; i++) {
+            const oit_bench_method *m = &r->methods[i];
+            const oit_bench_cell *c = &m->cells[v];
+            csv_row(f, "view", m->method->name, v, c->ok, c->ok ? c->ms_median : NAN,
+                    c->ok ? c->ms_p95 : NAN, c->gpu_bytes_peak, c->max_layers, c->diff.rmse,
+                    c->diff.max_abs, c->diff.pct_over_1_255, c->diff.psnr, m->reason);
+        }
+    for (int i = 0; i < r->method_count; i++) {
+        const oit_bench_method *m = &r->methods[i];
+        csv_row(f, "summary", m->method->name, -1, m->runnable, m->ms_median, m->ms_p95,
+                m->gpu_bytes_peak, m->max_layers, m->rmse_mean, m->max_abs_worst,
+                m->pct_over_worst, m->psnr_min, m->reason);
+    }
+}
+
+/* ---- results.json ---- */
+
+static void json_cell(FILE *f, int v, const oit_bench_cell *c)
+{
+    char b[6][40];
+    fprintf(f, "{\"view\": %d, \"ok\": %s, \"ms_median\": %s, \"ms_p95\": %s, "
+               "\"gpu_bytes_peak\": %llu, \"max_layers\": %u, \"fragments\": %llu, "
+               "\"rmse\": %s, \"max_abs\": %s, \"pct_over_1_255\": %s, \"psnr\": %s}",
+            v, c->ok ? "true" : "false", num(b[0], 40, c->ok ? c->ms_median : NAN, "%.4f", "null"),
+            num(b[1], 40, c->ok ? c->ms_p95 : NAN, "%.4f", "null"),
+            (unsigned long long)c->gpu_bytes_peak, c->max_layers,
+            (unsigned long long)c->fragments,
+            num(b[2], 40, c->ok ? c->diff.rmse : NAN, "%.9g", "null"),
+            num(b[3], 40, c->ok ? c->diff.max_abs : NAN, "%.9g", "null"),
+            num(b[4], 40, c->ok ? c->diff.pct_over_1_255 : NAN, "%.6f", "null"),
+            num(b[5], 40, c->ok ? c->diff.psnr : NAN, "%.4f", "null"));
+}
+
+static void json_method(FILE *f, const oit_bench_method *m, int views)
+{
+    char b[6][40];
+    fprintf(f, "    {\"name\": \"%s\", \"runnable\": %s, \"reason\": ", m->method->name,
+            m->runnable ? "true" : "false");
+    json_text(f, m->reason);
+    fprintf(f, ", \"timed_frames\": %zu, \"ms_median\": %s, \"ms_p95\": %s, "
+               "\"gpu_bytes_peak\": %llu, \"max_layers\": %u, \"rmse_mean\": %s, "
+               "\"max_abs_worst\": %s, \"pct_over_1_255_worst\": %s, \"psnr_min\": %s,\n"
+               "     \"views\": [",
+            m->ms_count, num(b[0], 40, m->ms_median, "%.4f", "null"),
+            num(b[1], 40, m->ms_p95, "%.4f", "null"), (unsigned long long)m->gpu_bytes_peak,
+            m->max_layers, num(b[2], 40, m->runnable ? m->rmse_mean : NAN, "%.9g", "null"),
+            num(b[3], 40, m->runnable ? m->max_abs_worst : NAN, "%.9g", "null"),
+            num(b[4], 40, m->runnable ? m->pct_over_worst : NAN, "%.6f", "null"),
+            num(b[5], 40, m->runnable ? m->psnr_min : NAN, "%.4f", "null"));
+    for (int v = 0; v < views; v++) {
+        fprintf(f, "%s", v ? ",\n       " : "");
+        json_cell(f, v, &m->cells[v]);
+    }
+    fprintf(f, "]}");
+}
+
+static void write_json(FILE *f, const oit_bench_context *ctx, const oit_bench_result *r)
+{
+    fprintf(f, "{\n  \"model\": ");
+    json_text(f, ctx->model);
+    fprintf(f, ",\n  \"command\": ");
+    json_text(f, ctx->command_line);
+    fprintf(f, ",\n  \"renderer\": ");
+    json_text(f, r->renderer);
+    fprintf(f, ",\n  \"cpus\": %ld, \"width\": %d, \"height\": %d, \"views\": %d, "
+               "\"frames\": %d, \"warmup\": %d,\n  \"reference_ms\": [",
+            ctx->cpus, ctx->width, ctx->height, r->views, ctx->frames, ctx->warmup);
+    for (int v = 0; v < r->views; v++)
+        fprintf(f, "%s%.4f", v ? ", " : "", r->ref_ms[v]);
+    fprintf(f, "],\n  \"methods\": [\n");
+    for (int i = 0; i < r->method_count; i++) {
+        json_method(f, &r->methods[i], r->views);
+        fprintf(f, "%s\n", i + 1 < r->method_count ? "," : "");
+    }
+    fprintf(f, "  ]\n}\n");
+}
+
+/* ---- report.md ---- */
+
+static void md_method(FILE *f, const oit_bench_method *m, int views)
+{
+    char b[8][40];
+    fprintf(f, "## %s\n\n", m->method->name);
+    if (!m->runnable && m->ms_count == 0) {
+        fprintf(f, "Not runnable: %s\n\n", m->reason);
+        return;
+    }
+    if (!m->runnable)
+        fprintf(f, "Stopped: %s (figures below are over the views it rendered)\n\n", m->reason);
+    fprintf(f, "| view | ms median | ms p95 | GPU MiB peak | max layers | rmse | max_abs | "
+               "%% over 1/255 | PSNR dB |\n|---|---|---|---|---|---|---|---|---|\n");
+    for (int v = 0; v < views; v++) {
+        const oit_bench_cell *c = &m->cells[v];
+        if (!c->ok) {
+            fprintf(f, "| %d | - | - | - | - | - | - | - | - |\n", v);
+            continue;
+        }
+        fprintf(f, "| %d | %.3f | %.3f | %.2f | %u | %.3g | %.3g | %.4f | %s |\n", v,
+                c->ms_median, c->ms_p95, (double)c->gpu_bytes_peak / 1048576.0, c->max_layers,
+                c->diff.rmse, c->diff.max_abs, c->diff.pct_over_1_255,
+                num(b[0], 40, c->diff.psnr, "%.2f", "inf"));
+    }
+    fprintf(f, "| **all** | **%s** | **%s** | %.2f | %u | %s (mean) | %s (worst) | %s (worst) | "
+               "%s (min) |\n\n",
+            num(b[1], 40, m->ms_median, "%.3f", "-"), num(b[2], 40, m->ms_p95, "%.3f", "-"),
+            (double)m->gpu_bytes_peak / 1048576.0, m->max_layers,
+            num(b[3], 40, m->rmse_mean, "%.3g", "-"), num(b[4], 40, m->max_abs_worst, "%.3g", "-"),
+            num(b[5], 40, m->pct_over_worst, "%.4f", "-"), num(b[6], 40, m->psnr_min, "%.2f", "inf"));
+}
+
+static void write_md(FILE *f, const oit_bench_context *ctx, const oit_bench_result *r)
+{
+    fprintf(f, "# oitbench: %s\n\n", ctx->model);
+    fprintf(f, "- GL renderer: %s\n- CPUs: %ld\n- command: `%s`\n", r->renderer, ctx->cpus,
+            ctx->command_line);
+    fprintf(f, "- %d views (orbit, elevation 20 deg), %dx%d, %d warm-up + %d timed frames per "
+               "method per view, methods interleaved round-robin\n",
+            r->views, ctx->width, ctx->height, ctx->warmup, ctx->frames);
+    fprintf(f, "- errors are against the Embree reference of the same view\n\n");
+    fprintf(f, "Absolute times are only meaningful from a GPU (a software renderer such as "
+               "llvmpipe says nothing about GPU speed); ratios between methods were measured "
+               "side by side in one run.\n\n");
+    for (int i = 0; i < r->method_count; i++)
+        md_method(f, &r->methods[i], r->views);
+}
+
+oit_status oit_bench_write_reports(const char *dir, const oit_bench_context *ctx,
+                                   const oit_bench_result *r, oit_error *err)
+{
+    if (mkdir(dir, 0777) != 0 && errno != EEXIST)
+        return oit_error_set(err, OIT_ERR_IO, "%s: cannot create folder: %s", dir, strerror(errno));
+    char path[4096];
+    FILE *f;
+    oit_status s = open_out(dir, "results.csv", &f, path, sizeof path, err);
+    if (s == OIT_OK) {
+        write_csv(f, r);
+        s = close_out(f, path, err);
+    }
+    if (s == OIT_OK && (s = open_out(dir, "results.json", &f, path, sizeof path, err)) == OIT_OK) {
+        write_json(f, ctx, r);
+        s = close_out(f, path, err);
+    }
+    if (s == OIT_OK && (s = open_out(dir, "report.md", &f, path, sizeof path, err)) == OIT_OK) {
+        write_md(f, ctx, r);
+        s = close_out(f, path, err);
+    }
+    return s;
+}

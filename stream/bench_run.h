@@ -1,0 +1,64 @@
+/* oitbench's measurement: every method of a list over an orbit of views,
+ * interleaved view-major (warm-up then timed frames per method, methods
+ * round-robin) so that clock or thermal drift hits all methods alike, each
+ * view's image compared with the Embree reference of that view. A method
+ * that cannot open, or fails on a view, is kept with the reason. */
+#ifndef OIT_STREAM_BENCH_RUN_H
+#define OIT_STREAM_BENCH_RUN_H
+
+#include <stdint.h>
+
+#include "render/image.h"
+#include "stream/render_methods.h"
+
+/* One method on one view. */
+typedef struct oit_bench_cell {
+    int ok;                  /* rendered all its frames of this view */
+    double ms_median, ms_p95;
+    uint64_t gpu_bytes_peak;
+    uint32_t max_layers;
+    uint64_t fragments;      /* of the last timed frame */
+    oit_image_diff diff;     /* last timed frame against the reference */
+} oit_bench_cell;
+
+typedef struct oit_bench_method {
+    const oit_render_method *method;
+    oit_method_state *state;
+    int runnable;            /* opened and rendered every view */
+    char reason[512];        /* why not, when !runnable */
+    double *ms;              /* every timed frame, all views */
+    size_t ms_count;
+    oit_bench_cell *cells;   /* one per view */
+    /* summary over views that rendered */
+    double ms_median, ms_p95;
+    uint64_t gpu_bytes_peak;
+    uint32_t max_layers;
+    double rmse_mean, max_abs_worst, pct_over_worst, psnr_min;
+} oit_bench_method;
+
+typedef struct oit_bench_desc {
+    const oit_mesh *mesh;        /* in core; the reference renders it */
+    oit_partfile *partfile;      /* NULL for a mesh file */
+    const char *const *methods;
+    int method_count;
+    int views, width, height, frames, warmup, max_layers;
+    /* progress lines ("oitbench: ...") go here; NULL: silent */
+    FILE *progress;
+} oit_bench_desc;
+
+typedef struct oit_bench_result {
+    oit_bench_method *methods;
+    int method_count, views;
+    char renderer[256];          /* GL renderer, or why there is none */
+    double *ref_ms;              /* reference time per view */
+} oit_bench_result;
+
+/* Fails only when the reference cannot render (nothing to measure against)
+ * or memory runs out; a method's failure is recorded in its entry. */
+oit_status oit_bench_run(const oit_bench_desc *d, oit_bench_result *out, oit_error *err);
+void oit_bench_result_free(oit_bench_result *r);
+
+/* Nearest-rank percentile (0..100) of v (n > 0), sorted in place. */
+double oit_bench_percentile(double *v, size_t n, double pct);
+
+#endif
