@@ -115,9 +115,7 @@ static oit_status build_scene(verifier *v, oit_error *err)
         for (uint32_t i = 0; i < nv; i++)
             memcpy(vb + 3 * (vo + i), (const char *)pv.positions + (size_t)i * pv.stride, 12);
         for (uint64_t i = 0; i < pv.index_count; i++) {
-            uint32_t x = pv.index_bits == 16 ? ((const uint16_t *)pv.indices)[i]
-                                             : ((const uint32_t *)pv.indices)[i];
-            ib[3 * to + i] = (uint32_t)vo + x;
+            ib[3 * to + i] = (uint32_t)vo + oit_partfile_index(&pv, i);
         }
         for (uint64_t i = 0; i < pv.index_count / 3; i++)
             v->part_of_prim[to + i] = p;

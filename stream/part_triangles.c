@@ -5,12 +5,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static uint32_t index_at(const oit_partfile_part_view *v, uint64_t i)
-{
-    return v->index_bits == 16 ? ((const uint16_t *)v->indices)[i]
-                               : ((const uint32_t *)v->indices)[i];
-}
-
 oit_status oit_part_expand(const oit_partfile *pf, uint32_t part, oit_triangle *dst,
                            oit_error *err)
 {
@@ -20,7 +14,7 @@ oit_status oit_part_expand(const oit_partfile *pf, uint32_t part, oit_triangle *
         return s;
     const char *base = (const char *)v.positions;
     for (uint64_t i = 0; i < v.index_count; i++) {
-        uint32_t k = index_at(&v, i);
+        uint32_t k = oit_partfile_index(&v, i);
         oit_vertex *out = &dst[i / 3].v[i % 3];
         memcpy(out->pos, base + (size_t)k * v.stride, sizeof out->pos);
         if (v.rgba)

@@ -25,14 +25,7 @@ static void walk_part(const oit_partfile *pf, uint32_t i)
     oit_partfile_part_view v;
     REQUIRE(oit_partfile_part_data(pf, i, &v, NULL) == OIT_OK);
     for (uint64_t j = 0; j < v.index_count; j++) {
-        uint32_t x;
-        if (v.index_bits == 16) {
-            uint16_t h;
-            memcpy(&h, (const uint8_t *)v.indices + j * 2, 2);
-            x = h;
-        } else {
-            memcpy(&x, (const uint8_t *)v.indices + j * 4, 4);
-        }
+        uint32_t x = oit_partfile_index(&v, j);
         REQUIRE(x < p->vertex_count);
         float pos[3];
         memcpy(pos, (const uint8_t *)v.positions + (size_t)x * v.stride, sizeof pos);

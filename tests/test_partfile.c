@@ -246,14 +246,7 @@ static void check_part_bytes(const oit_partfile *pf, uint32_t i, const part_in *
             bad_rgba += memcmp(v.rgba + (size_t)j * v.stride, in->rgba + (size_t)j * 4, 4) != 0;
     }
     for (uint64_t j = 0; j < v.index_count; j++) {
-        uint32_t x;
-        if (v.index_bits == 16) {
-            uint16_t h;
-            memcpy(&h, (const uint8_t *)v.indices + j * 2, 2);
-            x = h;
-        } else {
-            memcpy(&x, (const uint8_t *)v.indices + j * 4, 4);
-        }
+        uint32_t x = oit_partfile_index(&v, j);
         bad_idx += x != in->idx[j];
     }
     CHECK(bad_pos == 0 && bad_rgba == 0 && bad_idx == 0,

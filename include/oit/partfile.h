@@ -28,6 +28,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 
 #include "status.h"
 
@@ -176,6 +177,21 @@ typedef struct oit_partfile_part_view {
  * validated yet when the file was opened with defer_part_data. */
 oit_status oit_partfile_part_data(const oit_partfile *pf, uint32_t part,
                                   oit_partfile_part_view *out, oit_error *err);
+
+/* Index i (< index_count) of a part view, whatever its width. Loads through
+ * memcpy: a file opened from a caller's buffer (oit_partfile_open_memory)
+ * need not be aligned even though offsets inside it are. */
+static inline uint32_t oit_partfile_index(const oit_partfile_part_view *v, uint64_t i)
+{
+    if (v->index_bits == 16) {
+        uint16_t h;
+        memcpy(&h, (const uint8_t *)v->indices + i * 2, sizeof h);
+        return h;
+    }
+    uint32_t x;
+    memcpy(&x, (const uint8_t *)v->indices + i * 4, sizeof x);
+    return x;
+}
 
 /* Grids: index 0 is the top grid, 1..grid_count-1 the subgrids. NULL when
  * out of range. */
