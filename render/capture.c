@@ -20,6 +20,7 @@ enum { BUF_COUNTS, BUF_SLOTS, BUF_STATE, BUF_OUT, BUF_TOTALS, BUF_N };
 struct oit_capture {
     oit_capture_kind backend;
     int K;
+    float epsilon; /* early termination threshold; 0: exact */
     GLuint fill_prog, resolve_prog, begin_prog, end_prog;
     GLuint fbo; /* attachment-less, for the array backend */
     GLuint buf[BUF_N];
@@ -189,6 +190,15 @@ static void set_uniforms(oit_capture *c)
         glProgramUniform1ui(progs[i], glGetUniformLocation(progs[i], "u_count"),
                             (GLuint)((uint64_t)c->view.width * c->view.height));
     }
+    glProgramUniform1f(c->fill_prog, glGetUniformLocation(c->fill_prog, "u_epsilon"),
+                       c->epsilon);
+}
+
+void oit_capture_set_epsilon(oit_capture *c, float epsilon)
+{
+    c->epsilon = epsilon > 0.0f ? epsilon : 0.0f;
+    glProgramUniform1f(c->fill_prog, glGetUniformLocation(c->fill_prog, "u_epsilon"),
+                       c->epsilon);
 }
 
 static void bind_buffers(const oit_capture *c)

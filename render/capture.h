@@ -34,6 +34,12 @@ oit_status oit_capture_create(oit_capture_kind kind, int K, oit_capture **out,
 void oit_capture_destroy(oit_capture *c);
 oit_capture_kind oit_capture_backend(const oit_capture *c);
 
+/* Early termination (DESIGN.md): from the next batch on, a pixel whose
+ * carried transmittance is below epsilon in every channel drops its
+ * fragments, so the image differs from the exact one by at most epsilon per
+ * channel. 0 (the default; negatives read as 0) keeps the image exact. */
+void oit_capture_set_epsilon(oit_capture *c, float epsilon);
+
 /* Starts a frame: C = 0, T = 1, translucency state cleared. */
 oit_status oit_capture_begin(oit_capture *c, const oit_view *view, oit_error *err);
 /* Captures meshes[0..n) as one batch and composites it behind what the frame

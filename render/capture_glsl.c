@@ -1,17 +1,35 @@
 /* GLSL of the capture backends (capture_glsl.h). Totals buffer layout:
  * uint overflow, fragments lo, fragments hi, max layers. */
 #include "render/capture_glsl.h"
+#include "render/frag_glsl.h"
 
 #define COUNT_AND_FLAG                                                      \
     "layout(std430, binding = 1) buffer Counts { uint counts[]; };\n"      \
     "layout(std430, binding = 5) buffer Totals { uint overflow; uint f_lo; uint f_hi; uint f_max; };\n" \
     "layout(location = 10) uniform int u_K;\n"
 
+/* Early termination: a pixel whose carried transmittance is below
+ * u_epsilon in every channel can gain at most epsilon from anything behind
+ * it, so its later fragments are dropped before they take a slot. The fill
+ * stage cannot include oit_glsl_composite (its uniforms clash with the
+ * fragment generator's), so it declares only the state struct. */
+#define SATURATED                                                           \
+    OIT_GLSL_STATE_STRUCT                                                   \
+    "layout(std430, binding = 6) readonly buffer State { oit_state carried[]; };\n" \
+    "uniform float u_epsilon;\n"                                          \
+    "bool oit_saturated(uint p) {\n"                                      \
+    "    if (u_epsilon <= 0.0) return false;\n"                           \
+    "    vec3 T = carried[p].T;\n"                                        \
+    "    return max(T.r, max(T.g, T.b)) < u_epsilon;\n"                   \
+    "}\n"
+
 const char oit_capture_array_fs[] =
     COUNT_AND_FLAG
+    SATURATED
     "layout(std430, binding = 3) writeonly buffer Slots { uvec4 slots[]; };\n"
     "void main() {\n"
     "    uint p = oit_pixel_index();\n"
+    "    if (oit_saturated(p)) discard;\n"
     "    uint c = atomicAdd(counts[p], 1u);\n"
     "    if (c < uint(u_K)) slots[p * uint(u_K) + c] = oit_fragment();\n"
     "    else if (c == uint(u_K)) atomicAdd(overflow, 1u);\n"
@@ -19,8 +37,10 @@ const char oit_capture_array_fs[] =
 
 const char oit_capture_stencil_fs[] =
     COUNT_AND_FLAG
+    SATURATED
     "layout(location = 0) out uvec4 o_frag;\n"
     "void main() {\n"
+    "    if (oit_saturated(oit_pixel_index())) discard;\n"
     "    uint c = atomicAdd(counts[oit_pixel_index()], 1u);\n"
     "    if (c == uint(u_K)) atomicAdd(overflow, 1u);\n"
     "    o_frag = oit_fragment();\n"

@@ -76,7 +76,7 @@ const char oit_glsl_composite[] =
     "layout(location = 3) uniform int u_mode;\n"
     "layout(location = 8) uniform float u_sigma;\n"
     "layout(location = 9) uniform vec3 u_background;\n"
-    "struct oit_state { vec3 C; float t_prev; vec3 T; int nest; vec3 medium; uint nfrag; };\n"
+    OIT_GLSL_STATE_STRUCT
     "oit_state oit_state_begin() {\n"
     "    return oit_state(vec3(0.0), 0.0, vec3(1.0), 0, vec3(0.0), 0u);\n"
     "}\n"

@@ -69,6 +69,11 @@ extern const char oit_glsl_fragment_gen[];
  * oit_composite(inout oit_state, uvec4 frag), oit_state_final(). */
 extern const char oit_glsl_composite[];
 
+/* The per-pixel state carried across batches (std430): one declaration for
+ * every shader that reads or writes it. */
+#define OIT_GLSL_STATE_STRUCT \
+    "struct oit_state { vec3 C; float t_prev; vec3 T; int nest; vec3 medium; uint nfrag; };\n"
+
 /* Sets the view and shading uniforms of a program built from the pieces
  * above (uniforms that a program does not use are skipped). */
 void oit_glsl_set_view(GLuint prog, const oit_view *view);

@@ -125,6 +125,9 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
     } else if (!strcmp(opt, "--upload-budget")) {
         if (!parse_bytes(v, &a->upload_budget) || a->upload_budget < 65536)
             *s = bad(err, opt, v, "bytes >= 64K, with an optional K, M or G suffix");
+    } else if (!strcmp(opt, "--epsilon")) {
+        if (!parse_float(v, &a->epsilon) || !(a->epsilon >= 0.0f) || !(a->epsilon < 1.0f))
+            *s = bad(err, opt, v, "a transmittance in [0, 1)");
     } else if (!strcmp(opt, "--window-frames")) {
         if (!parse_int(v, &a->window_frames, 1, 100000000)) *s = bad(err, opt, v, "a frame count >= 1");
     } else if (!strcmp(opt, "--window-script")) a->window_script = v;
@@ -160,6 +163,9 @@ static oit_status check_combination(const oit_stream_args *a, oit_error *err)
     if (a->window && (a->orbit || a->out || a->stats_path || a->ambiguity_out))
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--window shows one interactive view: "
                              "it excludes --orbit, --out, --stats and --ambiguity");
+    if (a->epsilon > 0.0f && a->method && strcmp(a->method, "stream"))
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "--epsilon is early termination of "
+                             "--method stream; method '%s' has none", a->method);
     if (a->have_view && a->orbit)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--view and --orbit exclude each other");
     return OIT_OK;
@@ -215,6 +221,8 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "                      share a pack while the sum of their layer bounds per\n"
         "                      32x32 tile stays <= K: fewer, larger packs)\n"
         "  --upload-budget B   stream: bytes of the GPU upload ring (default 64M)\n"
+        "  --epsilon E         stream: drop fragments behind pixels whose transmittance\n"
+        "                      fell below E (error <= E per channel; default 0: exact)\n"
         "  --size WxH          image size (default 1024x1024)\n"
         "  --view ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy[,znear,zfar]\n"
         "                      camera; without it --azimuth/--elevation frame the model\n"

@@ -370,7 +370,7 @@ static int run_render(const oit_stream_args *args)
     oit_camera *cams = NULL;
     int n = 0;
     oit_method_options opt = {a->max_layers, pf, a->pack_disjoint ? OIT_PACK_DISJOINT : OIT_PACK_BUDGET,
-                              a->upload_budget, NULL};
+                              a->upload_budget, NULL, a->epsilon};
     rc.view.width = a->width;
     rc.view.height = a->height;
     rc.view.shading = make_shading(a, &mesh.info);

@@ -20,6 +20,7 @@ typedef struct oit_method_options {
      * this one, current on the calling thread (the viewer's window), and do
      * not destroy it. */
     struct oit_gl *gl;
+    float epsilon; /* the streamer's early termination; 0: exact */
 } oit_method_options;
 
 typedef struct oit_render_method {

@@ -15,6 +15,7 @@ struct oit_streamer {
     oit_packer *packer;
     oit_upload *upload;
     oit_capture *capture;
+    float epsilon;
     uint32_t *ordered;
     uint32_t *first_prim; /* per part: its first triangle across the file */
     uint8_t *validated;
@@ -86,6 +87,10 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
         st = oit_upload_create(budget, max_part, &s->upload, err);
     if (st == OIT_OK)
         st = oit_capture_create(desc->capture, desc->K, &s->capture, err);
+    if (st == OIT_OK && desc->epsilon > 0.0f) {
+        s->epsilon = desc->epsilon;
+        oit_capture_set_epsilon(s->capture, desc->epsilon);
+    }
     if (st != OIT_OK) {
         oit_streamer_destroy(s);
         return st;
@@ -166,6 +171,7 @@ static void finish_stats(const oit_streamer *s, const oit_packing *pk, oit_frame
     ss->packs = pk->pack_count;
     ss->parts_drawn = pk->part_count;
     ss->parts_culled = pk->culled;
+    ss->epsilon = s->epsilon;
     ss->gpu_bytes_peak = fs->gpu_bytes_peak + oit_upload_gpu_bytes(s->upload);
     fs->gpu_bytes_peak = ss->gpu_bytes_peak;
 }

@@ -15,6 +15,7 @@ typedef struct oit_streamer_desc {
     oit_capture_kind capture; /* backend */
     oit_pack_mode pack;
     uint64_t upload_budget;   /* ring bytes; 0: 64 MiB */
+    float epsilon;            /* early termination (oit_capture_set_epsilon); 0: exact */
 } oit_streamer_desc;
 
 /* The streamer's own per-frame figures, beside oit_frame_stats. */
@@ -22,9 +23,10 @@ typedef struct oit_stream_frame_stats {
     uint32_t packs;
     uint64_t parts_drawn;
     uint64_t parts_culled;   /* boxes outside the view volume: no fragment */
-    uint64_t parts_skipped;  /* early termination: none yet, always 0     */
+    uint64_t parts_skipped;  /* saturated footprint: not yet, always 0    */
     uint64_t bytes_uploaded;
     uint64_t gpu_bytes_peak; /* capture buffers + upload ring              */
+    float epsilon;           /* the early-termination threshold it ran with */
 } oit_stream_frame_stats;
 
 typedef struct oit_streamer oit_streamer;

@@ -1,0 +1,64 @@
+#!/bin/sh
+# oitstream --method stream --epsilon E (early termination) against DFB on
+# the test_streamer grid, 3 orbit views, both shading modes.
+# Usage: test_epsilon.sh WRITER   (WRITER: test_streamer, writes the file)
+# E = 0 must equal DFB exactly (max_abs 0). E > 0 drops only what lies
+# behind pixels whose transmittance fell below E, so the error stays within
+# E + 1/255 (the PNG rounding) and the fragment count must fall, more for
+# larger E; the stats must report the E they ran with.
+set -u
+: "${OIT_BIN:?OIT_BIN must name the tools folder}"
+: "${OIT_TEST_TMP:?OIT_TEST_TMP must name a scratch folder}"
+S="$OIT_BIN/oitstream"
+T="$OIT_TEST_TMP/epsilon"
+rm -rf "$T" && mkdir -p "$T" || exit 1
+FAILS=0
+fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
+json_num() { sed -n "s/.*\"$1\": \([-0-9.e+]*\).*/\1/p" | head -n 1; }
+json_sum() { grep -o "\"$1\": [-0-9.e+]*" | sed 's/.*: //' | awk '{s += $1} END {print s + 0}'; }
+
+P="$T/grid.oitp"
+"$1" "$P" || { echo "FAIL: cannot write the part file"; exit 1; }
+
+# run SHADING E: stream with early termination E, compared view by view
+# with DFB; prints the figures and sets FRAGS to the fragments of all views.
+run() {
+    sh=$1 e=$2 d="$T/${1}_$2"
+    "$S" "$P" --size 128x128 --orbit 3 --shading "$sh" --epsilon "$e" --out "$d" \
+        --stats "$d.json" --quiet || { fail "$sh E=$e: stream exited $?"; FRAGS=0; return; }
+    FRAGS=$(json_sum fragments < "$d.json")
+    ms=$(json_sum ms < "$d.json")
+    [ "$(grep -o '"epsilon": [-0-9.e+]*' "$d.json" | sed 's/.*: //' |
+         awk -v e="$e" '$1 - e > 1e-6 || e - $1 > 1e-6 {bad = 1} END {print bad + 0}')" -eq 0 ] ||
+        fail "$sh E=$e: stats report another epsilon: $(grep -o '"epsilon": [^,}]*' "$d.json" | head -n 1)"
+    worst=0
+    for i in 000 001 002; do
+        c=$("$S" --compare "$d/frame_$i.png" "$T/${sh}_dfb/frame_$i.png" --json) ||
+            { fail "$sh E=$e view $i: compare failed"; continue; }
+        m=$(echo "$c" | json_num max_abs)
+        worst=$(awk -v a="$m" -v b="$worst" 'BEGIN{print (a > b) ? a : b}')
+    done
+    bound=$(awk -v e="$e" 'BEGIN{print e + 1.0 / 255 + 1e-6}')
+    [ "$e" = 0 ] && bound=0
+    echo "$sh E=$e: fragments $FRAGS, ms $ms (3 views), max_abs vs dfb $worst (bound $bound)"
+    awk -v m="$worst" -v b="$bound" 'BEGIN{exit !(m <= b)}' ||
+        fail "$sh E=$e: max_abs $worst exceeds $bound"
+}
+
+for sh in transparent translucent; do
+    "$S" "$P" --method dfb --size 128x128 --orbit 3 --shading "$sh" --out "$T/${sh}_dfb" \
+        --quiet || { fail "$sh: dfb exited $?"; continue; }
+    run "$sh" 0; f0=$FRAGS
+    run "$sh" 0.01; f1=$FRAGS
+    run "$sh" 0.05; f5=$FRAGS
+    [ "$f0" -gt 0 ] && [ "$f1" -le "$f0" ] && [ "$f5" -lt "$f0" ] && [ "$f5" -le "$f1" ] ||
+        fail "$sh: fragments do not fall with epsilon: $f0 (E=0), $f1 (0.01), $f5 (0.05)"
+done
+
+# Early termination belongs to the streamer, and E = 1 would drop everything.
+"$S" "$P" --epsilon 1 --size 16x16 --quiet >/dev/null 2>&1
+[ $? -eq 2 ] || fail "--epsilon 1 was not refused as a usage error"
+"$S" "$P" --method dfb --epsilon 0.1 --size 16x16 --quiet >/dev/null 2>&1
+[ $? -eq 2 ] || fail "--method dfb --epsilon 0.1 was not refused as a usage error"
+
+[ "$FAILS" -eq 0 ] && echo "PASS" || { echo "$FAILS failure(s)"; exit 1; }
