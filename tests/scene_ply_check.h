@@ -6,6 +6,7 @@
 #ifndef OIT_TESTS_SCENE_PLY_CHECK_H
 #define OIT_TESTS_SCENE_PLY_CHECK_H
 
+#include "test_files.h"
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,24 +21,6 @@ typedef struct test_ply {
     uint8_t *frgba;   /* 4 per face when face_rgba */
     char why[1024];   /* what failed */
 } test_ply;
-
-static inline uint8_t *test_read_file(const char *path, size_t *size)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    uint8_t *b = malloc(n > 0 ? (size_t)n : 1);
-    if (b && fread(b, 1, (size_t)n, f) != (size_t)n) {
-        free(b);
-        b = NULL;
-    }
-    fclose(f);
-    *size = (size_t)n;
-    return b;
-}
 
 static inline uint32_t test_u32(const uint8_t *p)
 {

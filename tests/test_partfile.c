@@ -15,6 +15,7 @@
 #include "formats/partfile_layout.h"
 #include "tests/partfile_reseal.h"
 #include "test_check.h"
+#include "test_files.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -389,20 +390,6 @@ static void check_round_trip(const oit_partfile *pf, const scene *s, size_t byte
 
 /* ---- files ------------------------------------------------------------------- */
 
-static uint8_t *slurp(const char *path, size_t *size)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    uint8_t *b = malloc(n > 0 ? (size_t)n : 1);
-    *size = b && fread(b, 1, (size_t)n, f) == (size_t)n ? (size_t)n : 0;
-    fclose(f);
-    return b;
-}
-
 static int spill(const char *path, const uint8_t *b, size_t n)
 {
     FILE *f = fopen(path, "wb");
@@ -704,10 +691,10 @@ static void check_small(const char *tmp, const char *corpus, int write_corpus)
     oit_error err = {0};
     CHECK(write_scene(&s, path, 8, &err) == OIT_OK, "%s", err.message);
     size_t n = 0, gn = 0;
-    uint8_t *b = slurp(path, &n);
+    uint8_t *b = test_read_file(path, &n);
     if (write_corpus && b)
         CHECK(spill(golden, b, n) == 0, "cannot write %s", golden);
-    uint8_t *g = slurp(golden, &gn);
+    uint8_t *g = test_read_file(golden, &gn);
     printf("  small scene: %zu bytes, %s %s\n", n, golden,
            g && gn == n && !memcmp(b, g, n) ? "identical" : "DIFFERENT");
     CHECK(g && gn == n && !memcmp(b, g, n),
@@ -739,7 +726,7 @@ int main(int argc, char **argv)
     CHECK(write_scene(&s, a, 0, &err) == OIT_OK, "%s", err.message);
     CHECK(write_scene(&s, b, 0, &err) == OIT_OK, "%s", err.message);
     size_t na = 0, nb = 0;
-    uint8_t *ba = slurp(a, &na), *bb = slurp(b, &nb);
+    uint8_t *ba = test_read_file(a, &na), *bb = test_read_file(b, &nb);
     printf("  big scene: %zu and %zu bytes, %s\n", na, nb,
            na == nb && ba && bb && !memcmp(ba, bb, na) ? "byte-identical" : "DIFFERENT");
     CHECK(ba && bb && na == nb && na > 0 && !memcmp(ba, bb, na), "two writes differ");
