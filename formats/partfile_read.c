@@ -272,7 +272,8 @@ static oit_status load_parts(oit_partfile *pf, oit_error *err)
 static oit_status check_part_fields(const oit_partfile *pf, uint32_t i, oit_error *err)
 {
     const oit_partfile_part *p = &pf->parts[i];
-    uint32_t max_layers = p->piece_count > pf->hdr.K / 2 ? pf->hdr.K : 2 * p->piece_count;
+    uint32_t max_layers = 2 * p->piece_count < OIT_PARTFILE_MAX_LAYERS ? 2 * p->piece_count
+                                                                        : OIT_PARTFILE_MAX_LAYERS;
     if (p->reserved || !box_ok(p->bounds_min, p->bounds_max))
         return bad(pf, err, "section PARTS: record %u: bounds not finite or min > max", i);
     if (p->attributes & ~pf->meta.attributes)
@@ -741,29 +742,44 @@ static oit_status check_slabs(const oit_partfile *pf, oit_error *err)
 
 /* ---- links between grids, cells, slabs and parts ------------------------------ */
 
-/* A subgrid covers exactly its parent cell (to rounding). */
-static bool subgrid_fits(const oit_partfile_grid *parent, uint64_t cell,
-                         const oit_partfile_grid *sub)
+static void cell_box(const oit_partfile_grid *g, uint64_t cell, double lo[3], double hi[3])
 {
-    uint64_t idx[3] = {cell % parent->dims[0], cell / parent->dims[0] % parent->dims[1],
-                       cell / parent->dims[0] / parent->dims[1]};
+    uint64_t idx[3] = {cell % g->dims[0], cell / g->dims[0] % g->dims[1],
+                       cell / g->dims[0] / g->dims[1]};
     for (int k = 0; k < 3; k++) {
-        double cs = parent->cell_size[k], tol = 1e-4 * cs;
-        double lo = parent->origin[k] + (double)idx[k] * cs;
+        lo[k] = g->origin[k] + (double)idx[k] * g->cell_size[k];
+        hi[k] = lo[k] + g->cell_size[k];
+    }
+}
+
+/* A subgrid covers the region its parent cell stands for: the cell's box
+ * within its own grid's region (to rounding). It may reach beyond it, so a
+ * two-cell subgrid can put its one boundary anywhere inside. region holds 6
+ * doubles per grid, filled in grid order (parents come first). */
+static bool subgrid_fits(const oit_partfile *pf, uint32_t sg, double *region)
+{
+    const oit_partfile_grid *sub = &pf->grids[sg];
+    const oit_partfile_grid *parent = &pf->grids[sub->parent_grid];
+    double lo[3], hi[3], *r = &region[6 * sg], *pr = &region[6 * sub->parent_grid];
+    cell_box(parent, sub->parent_cell, lo, hi);
+    for (int k = 0; k < 3; k++) {
+        r[k] = lo[k] > pr[k] ? lo[k] : pr[k];
+        r[3 + k] = hi[k] < pr[3 + k] ? hi[k] : pr[3 + k];
+        double tol = 1e-4 * (hi[k] - lo[k]);
         double slo = sub->origin[k], shi = slo + (double)sub->dims[k] * sub->cell_size[k];
-        if (fabs(slo - lo) > tol || fabs(shi - (lo + cs)) > tol)
+        if (!(r[k] < r[3 + k]) || slo > r[k] + tol || shi < r[3 + k] - tol)
             return false;
     }
     return true;
 }
 
 static oit_status check_cell_links(const oit_partfile *pf, uint32_t g, uint64_t c,
-                                   oit_error *err)
+                                   double *region, oit_error *err)
 {
     const oit_partfile_cell *cell = &pf->cells[pf->grids[g].cell_first + c];
     uint32_t sg = cell->subgrid;
     if (sg && (sg >= pf->grid_count || pf->grids[sg].parent_grid != g ||
-               pf->grids[sg].parent_cell != c || !subgrid_fits(&pf->grids[g], c, &pf->grids[sg])))
+               pf->grids[sg].parent_cell != c || !subgrid_fits(pf, sg, region)))
         return bad(pf, err, "section %s: grid %u cell %llu: subgrid %u does not refine this cell",
                    g ? "SUBGRIDS" : "GRID", g, (unsigned long long)c, sg);
     if (cell->slab > pf->slab_count)
@@ -775,12 +791,25 @@ static oit_status check_cell_links(const oit_partfile *pf, uint32_t g, uint64_t 
 
 static oit_status check_links(const oit_partfile *pf, oit_error *err)
 {
+    if (!pf->grid_count)
+        return OIT_OK;
+    double *region = malloc(6 * sizeof *region * pf->grid_count);
+    if (!region)
+        return oit_error_set(err, OIT_ERR_NOMEM, "%s: grid regions: out of memory", pf->name);
+    const oit_partfile_grid *top = &pf->grids[0];
+    for (int k = 0; k < 3; k++) {
+        region[k] = top->origin[k];
+        region[3 + k] = top->origin[k] + (double)top->dims[k] * top->cell_size[k];
+    }
     for (uint32_t g = 0; g < pf->grid_count; g++)
         for (uint64_t c = 0; c < pf->grids[g].cell_count; c++) {
-            oit_status s = check_cell_links(pf, g, c, err);
-            if (s)
+            oit_status s = check_cell_links(pf, g, c, region, err);
+            if (s) {
+                free(region);
                 return s;
+            }
         }
+    free(region);
     for (uint32_t g = 1; g < pf->grid_count; g++) {
         const oit_partfile_grid *gr = &pf->grids[g];
         const oit_partfile_grid *parent = &pf->grids[gr->parent_grid];

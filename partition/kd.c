@@ -7,6 +7,7 @@
 
 #include "partition/clip.h"
 #include "partition/convex.h"
+#include "partition/kd_split.h"
 
 typedef struct node_set {
     oit_triangle *tris;
@@ -20,6 +21,8 @@ typedef struct kd_ctx {
     uint32_t *above_stamp; /* the same for the upper half of a trial split */
     uint32_t *piece_slot;  /* per piece id: leaf-local slot */
     uint32_t *plane_stamp; /* per plane id: last stamp that counted it */
+    uint32_t *first_plane[2]; /* per piece id and side: plane first seen */
+    uint8_t *two_planes[2];   /* per piece id and side: a second plane seen */
     size_t plane_cap;
     const uint32_t *root_piece;
     uint32_t stamp;
@@ -68,15 +71,33 @@ static void set_free(node_set *s)
     free(s->plane);
 }
 
-static uint32_t count_pieces(kd_ctx *c, const uint32_t *piece, size_t n)
+/* A piece contributes one layer while everything of it in the node lies in
+ * one plane (a line crosses a plane once; shared edges rasterize once) and
+ * two once it has two planes (convexity). side selects the stamp set. */
+static void layers_add(kd_ctx *c, uint32_t *stamp, int side, uint32_t k, uint32_t piece,
+                       uint32_t plane, uint32_t *layers)
 {
-    uint32_t k = ++c->stamp, count = 0;
-    for (size_t i = 0; i < n; i++)
-        if (c->piece_stamp[piece[i]] != k) {
-            c->piece_stamp[piece[i]] = k;
-            count++;
-        }
-    return count;
+    if (stamp[piece] != k) {
+        stamp[piece] = k;
+        c->first_plane[side][piece] = plane;
+        c->two_planes[side][piece] = 0;
+        (*layers)++;
+    } else if (!c->two_planes[side][piece] && c->first_plane[side][piece] != plane) {
+        c->two_planes[side][piece] = 1;
+        (*layers)++;
+    }
+}
+
+/* The node's layer bound: the sum over its pieces of 1 or 2 (above). */
+static uint32_t node_layers(kd_ctx *c, const node_set *s, uint32_t *npieces)
+{
+    uint32_t k = ++c->stamp, layers = 0, count = 0;
+    for (size_t i = 0; i < s->n; i++) {
+        count += c->piece_stamp[s->piece[i]] != k;
+        layers_add(c, c->piece_stamp, 0, k, s->piece[i], s->plane[i], &layers);
+    }
+    *npieces = count;
+    return layers;
 }
 
 static void tri_range(const oit_triangle *t, int axis, float *mn, float *mx)
@@ -85,9 +106,9 @@ static void tri_range(const oit_triangle *t, int axis, float *mn, float *mx)
     *mx = fmaxf(fmaxf(t->v[0].pos[axis], t->v[1].pos[axis]), t->v[2].pos[axis]);
 }
 
-/* Pieces that would reach each half of a split (an upper bound: clipped
- * slivers that round to nothing are not foreseen), per clip.h's rules. */
-static void split_counts(kd_ctx *c, const node_set *s, int axis, float m, uint32_t *below,
+/* Layer bounds of the two halves of a split (upper bounds: clipped slivers
+ * that round to nothing are not foreseen), per clip.h's rules. */
+static void split_layers(kd_ctx *c, const node_set *s, int axis, float m, uint32_t *below,
                          uint32_t *above)
 {
     uint32_t k = ++c->stamp;
@@ -95,29 +116,56 @@ static void split_counts(kd_ctx *c, const node_set *s, int axis, float m, uint32
     for (size_t i = 0; i < s->n; i++) {
         float mn, mx;
         tri_range(&s->tris[i], axis, &mn, &mx);
-        uint32_t p = s->piece[i];
-        if ((mn < m || mx <= m) && c->piece_stamp[p] != k) {
-            c->piece_stamp[p] = k;
-            (*below)++;
-        }
-        if (mx > m && c->above_stamp[p] != k) {
-            c->above_stamp[p] = k;
-            (*above)++;
-        }
+        if (mn < m || mx <= m)
+            layers_add(c, c->piece_stamp, 0, k, s->piece[i], s->plane[i], below);
+        if (mx > m)
+            layers_add(c, c->above_stamp, 1, k, s->piece[i], s->plane[i], above);
     }
 }
 
-static int choose_axis(kd_ctx *c, const node_set *s, const float lo[3], const float hi[3])
+/* The node's pieces as boxes with their weights, for kd_split.h. */
+static oit_status piece_boxes(kd_ctx *c, const node_set *s, uint32_t npieces,
+                              oit_kd_piece_box **out)
+{
+    oit_kd_piece_box *b = malloc(npieces * sizeof *b);
+    if (!b)
+        return OIT_ERR_NOMEM;
+    uint32_t k = ++c->stamp, count = 0, unused = 0;
+    for (size_t i = 0; i < s->n; i++) {
+        uint32_t p = s->piece[i];
+        if (c->piece_stamp[p] != k) {
+            c->piece_slot[p] = count;
+            b[count] = (oit_kd_piece_box){{INFINITY, INFINITY, INFINITY},
+                                          {-INFINITY, -INFINITY, -INFINITY}, 0};
+            count++;
+        }
+        layers_add(c, c->piece_stamp, 0, k, p, s->plane[i], &unused);
+        oit_kd_piece_box *pb = &b[c->piece_slot[p]];
+        pb->weight = c->two_planes[0][p] ? 2 : 1;
+        for (int a = 0; a < 3; a++) {
+            float mn, mx;
+            tri_range(&s->tris[i], a, &mn, &mx);
+            pb->lo[a] = fminf(pb->lo[a], mn);
+            pb->hi[a] = fmaxf(pb->hi[a], mx);
+        }
+    }
+    *out = b;
+    return OIT_OK;
+}
+
+/* Fallback: the midplane of the axis that most lowers the larger half. */
+static int choose_axis(kd_ctx *c, const node_set *s, const float lo[3], const float hi[3],
+                       uint32_t *larger)
 {
     int best = -1;
     uint32_t best_max = 0;
     float best_ext = 0;
     for (int a = 0; a < 3; a++) {
-        float m = 0.5f * (lo[a] + hi[a]);
-        if (!(m > lo[a] && m < hi[a]))
+        float m = 0.5f * (lo[a] + hi[a]), origin[3], cell[3];
+        if (!(m > lo[a] && m < hi[a]) || !oit_kd_split_cells(lo, hi, a, m, origin, cell))
             continue; /* the box is too thin to halve in float */
         uint32_t b, t;
-        split_counts(c, s, a, m, &b, &t);
+        split_layers(c, s, a, m, &b, &t);
         uint32_t mx = b > t ? b : t;
         float ext = hi[a] - lo[a];
         if (best < 0 || mx < best_max || (mx == best_max && ext > best_ext)) {
@@ -126,6 +174,7 @@ static int choose_axis(kd_ctx *c, const node_set *s, const float lo[3], const fl
             best_ext = ext;
         }
     }
+    *larger = best_max;
     return best;
 }
 
@@ -173,88 +222,45 @@ static oit_status emit_part(kd_ctx *c, const node_set *s, uint32_t npieces, int3
                 pc[p].plane_count++;
             }
     }
+    part->layer_bound = 0;
+    for (uint32_t p = 0; p < npieces; p++)
+        part->layer_bound += pc[p].plane_count > 1 ? 2 : 1;
     r->tri_count += s->n;
     r->piece_count += npieces;
     *part_index = (int32_t)r->part_count++;
     return OIT_OK;
 }
 
-static oit_status split_set(const node_set *s, int axis, float m, node_set *below,
-                            node_set *above, uint64_t *added)
+/* One half of a split (side 0 below, 1 above). The halves are built one at
+ * a time so that a path down the tree holds one set per level, not two.
+ * added counts the triangles the clip adds, on the below pass only. */
+static oit_status split_set(const node_set *s, int axis, float m, int side, node_set *out,
+                            uint64_t *added)
 {
     for (size_t i = 0; i < s->n; i++) {
-        oit_triangle b[2], a[2];
-        int nb, na;
-        oit_clip_triangle_split(&s->tris[i], axis, m, b, &nb, a, &na);
-        for (int k = 0; k < nb; k++)
-            if (set_push(below, &b[k], s->piece[i], s->plane[i]))
+        oit_triangle h[2][2];
+        int n[2];
+        oit_clip_triangle_split(&s->tris[i], axis, m, h[0], &n[0], h[1], &n[1]);
+        for (int k = 0; k < n[side]; k++)
+            if (set_push(out, &h[side][k], s->piece[i], s->plane[i]))
                 return OIT_ERR_NOMEM;
-        for (int k = 0; k < na; k++)
-            if (set_push(above, &a[k], s->piece[i], s->plane[i]))
-                return OIT_ERR_NOMEM;
-        *added += (uint64_t)(nb + na) - 1;
+        if (side == 0)
+            *added += (uint64_t)(n[0] + n[1]) - 1;
     }
     return OIT_OK;
 }
 
 static oit_status build_node(kd_ctx *c, size_t node, const node_set *s);
 
-/* Last resort at the depth cap: float rounding can make a flat or gently
- * curved surface exactly non-convex at the scale of an ulp, so that more
- * than K/2 exact pieces meet at one vertex and no box separates them. In such
- * a (tiny) box the triangles are re-clustered with a flatness tolerance; when
- * that gives few enough pieces they replace the exact ones (counted in
- * tolerant_parts). Returns OIT_ERR_UNSUPPORTED when it does not. The node's
- * arrays are rewritten in place (they are the node's own copies). */
-static oit_status recluster_tolerant(kd_ctx *c, const node_set *s, uint32_t *npieces)
-{
-    if (s->piece == c->root_piece)
-        return OIT_ERR_UNSUPPORTED; /* the caller's arrays: never rewritten */
-    oit_convex_params cp = {0, 1e-5};
-    oit_convex_result r;
-    if (oit_convex_cluster(s->tris, s->n, &cp, &r, NULL))
-        return OIT_ERR_NOMEM;
-    if (r.piece_count > c->p->max_pieces || r.piece_count > *npieces) {
-        oit_convex_result_free(&r);
-        return OIT_ERR_UNSUPPORTED;
-    }
-    /* Reuse the node's old piece ids (there are more of them) so the ids stay
-     * inside the stamp arrays; plane ids are below s->n. */
-    uint32_t ids[512], k = ++c->stamp, m = 0;
-    for (size_t i = 0; i < s->n && m < r.piece_count; i++)
-        if (c->piece_stamp[s->piece[i]] != k) {
-            c->piece_stamp[s->piece[i]] = k;
-            ids[m++] = s->piece[i];
-        }
-    if (s->n + 1 > c->plane_cap) {
-        uint32_t *p = realloc(c->plane_stamp, (s->n + 1) * sizeof *p);
-        if (!p) {
-            oit_convex_result_free(&r);
-            return OIT_ERR_NOMEM;
-        }
-        memset(p + c->plane_cap, 0, (s->n + 1 - c->plane_cap) * sizeof *p);
-        c->plane_stamp = p;
-        c->plane_cap = s->n + 1;
-    }
-    for (size_t i = 0; i < s->n; i++) {
-        s->piece[i] = ids[r.piece_of[i]];
-        s->plane[i] = r.plane_of[i];
-    }
-    *npieces = r.piece_count;
-    c->out->tolerant_parts++;
-    oit_convex_result_free(&r);
-    return OIT_OK;
-}
-
-static oit_status split_node(kd_ctx *c, size_t node, const node_set *s, int axis)
+static oit_status split_node(kd_ctx *c, size_t node, const node_set *s, int axis, float m)
 {
     oit_kd_result *r = c->out;
     GROW(r->nodes, r->node_count, r->node_cap, 2);
     oit_kd_node *nd = &r->nodes[node];
-    float m = 0.5f * (nd->lo[axis] + nd->hi[axis]);
     size_t child = r->node_count;
     r->node_count += 2;
     nd->axis = axis;
+    nd->split = m;
     nd->child = (uint32_t)child;
     for (int h = 0; h < 2; h++) {
         oit_kd_node *ch = &r->nodes[child + h];
@@ -269,38 +275,112 @@ static oit_status split_node(kd_ctx *c, size_t node, const node_set *s, int axis
     }
     if (nd->depth + 1 > r->depth)
         r->depth = nd->depth + 1;
-    node_set below = {0}, above = {0};
-    oit_status st = split_set(s, axis, m, &below, &above, &r->split_added);
-    if (!st)
-        st = build_node(c, child, &below);
-    set_free(&below);
-    if (!st)
-        st = build_node(c, child + 1, &above);
-    set_free(&above);
+    oit_status st = OIT_OK;
+    for (int side = 0; side < 2 && !st; side++) {
+        node_set half = {0};
+        st = split_set(s, axis, m, side, &half, &r->split_added);
+        if (!st)
+            st = build_node(c, child + side, &half);
+        set_free(&half);
+    }
     return st;
+}
+
+static int same_pos(const oit_vertex *a, const float p[3])
+{
+    return a->pos[0] == p[0] && a->pos[1] == p[1] && a->pos[2] == p[2];
+}
+
+/* Whether every piece of the node has a triangle with a corner at p. */
+static int all_pieces_touch(kd_ctx *c, const node_set *s, const float p[3], uint32_t npieces)
+{
+    uint32_t k = ++c->stamp, hit = 0;
+    for (size_t i = 0; i < s->n; i++) {
+        const oit_triangle *t = &s->tris[i];
+        if (c->piece_stamp[s->piece[i]] != k &&
+            (same_pos(&t->v[0], p) || same_pos(&t->v[1], p) || same_pos(&t->v[2], p))) {
+            c->piece_stamp[s->piece[i]] = k;
+            hit++;
+        }
+    }
+    return hit == npieces;
+}
+
+/* A star: all pieces of the node meet at one vertex. A box around that
+ * vertex holds all of them however small it gets, so halving is futile.
+ * Clipping keeps a vertex inside the box as a corner of some sub-triangle,
+ * so testing the corners of the first piece's triangles finds it. */
+static int node_is_star(kd_ctx *c, const node_set *s, uint32_t npieces)
+{
+    if (s->n > 64u * npieces)
+        return 0; /* a star's triangles are few: each piece holds a fan */
+    /* Candidates: the corners of the piece with the fewest triangles, which
+     * in a star is a small fan; a piece of many is not part of one. */
+    uint32_t k = ++c->stamp, best = 0, best_count = UINT32_MAX;
+    for (size_t i = 0; i < s->n; i++) {
+        uint32_t p = s->piece[i];
+        if (c->piece_stamp[p] != k) {
+            c->piece_stamp[p] = k;
+            c->piece_slot[p] = 0;
+        }
+        c->piece_slot[p]++;
+    }
+    for (size_t i = 0; i < s->n; i++)
+        if (c->piece_slot[s->piece[i]] < best_count) {
+            best_count = c->piece_slot[s->piece[i]];
+            best = s->piece[i];
+        }
+    if (best_count > 16)
+        return 0;
+    for (size_t i = 0; i < s->n; i++)
+        for (int v = 0; v < 3 && s->piece[i] == best; v++)
+            if (all_pieces_touch(c, s, s->tris[i].v[v].pos, npieces))
+                return 1;
+    return 0;
 }
 
 static oit_status build_node(kd_ctx *c, size_t node, const node_set *s)
 {
-    uint32_t npieces = count_pieces(c, s->piece, s->n);
+    uint32_t npieces, layers = node_layers(c, s, &npieces);
     oit_kd_node *nd = &c->out->nodes[node];
     if (npieces == 0)
         return OIT_OK;
-    if (npieces <= c->p->max_pieces)
-        return emit_part(c, s, npieces, &c->out->nodes[node].part);
     uint32_t max_depth = c->p->max_depth ? c->p->max_depth : 48;
-    int axis = nd->depth < max_depth ? choose_axis(c, s, nd->lo, nd->hi) : -1;
-    if (axis < 0) {
-        oit_status st = recluster_tolerant(c, s, &npieces);
-        if (st != OIT_ERR_UNSUPPORTED)
-            return st ? st : emit_part(c, s, npieces, &c->out->nodes[node].part);
-        return oit_error_set(c->err, OIT_ERR_UNSUPPORTED,
-                             "%u convex pieces still meet in the box (%g %g %g)..(%g %g %g) "
-                             "after %u subdivisions: more than K/2 = %u layers there",
-                             npieces, nd->lo[0], nd->lo[1], nd->lo[2], nd->hi[0], nd->hi[1],
-                             nd->hi[2], nd->depth, c->p->max_pieces);
+    int axis = -1;
+    float m = 0;
+    if (layers > c->p->max_layers && nd->depth < max_depth) {
+        int star = node_is_star(c, s, npieces), found = 0;
+        if (!star) {
+            oit_kd_piece_box *boxes;
+            if (piece_boxes(c, s, npieces, &boxes))
+                return OIT_ERR_NOMEM;
+            found = oit_kd_choose_split(boxes, npieces, nd->lo, nd->hi, c->p->max_layers, &axis,
+                                        &m);
+            free(boxes);
+        }
+        if (!found) {
+            /* A star may still hold triangles away from its vertex (a piece's
+             * second plane): halve while that lowers the bound. */
+            uint32_t larger = 0;
+            axis = choose_axis(c, s, nd->lo, nd->hi, &larger);
+            if (star && larger >= layers)
+                axis = -1;
+            m = axis >= 0 ? 0.5f * (nd->lo[axis] + nd->hi[axis]) : 0;
+        }
     }
-    return split_node(c, node, s, axis);
+    if (axis >= 0)
+        return split_node(c, node, s, axis, m);
+    if (layers > c->p->max_layers) {
+        if (layers > OIT_KD_MAX_WIDE_LAYERS)
+            return oit_error_set(c->err, OIT_ERR_UNSUPPORTED,
+                                 "%u convex pieces (%u layers) meet in the box "
+                                 "(%g %g %g)..(%g %g %g) after %u subdivisions: more than the "
+                                 "%u layers a wide part may have",
+                                 npieces, layers, nd->lo[0], nd->lo[1], nd->lo[2], nd->hi[0],
+                                 nd->hi[1], nd->hi[2], nd->depth, OIT_KD_MAX_WIDE_LAYERS);
+        c->out->wide_parts++;
+    }
+    return emit_part(c, s, npieces, &c->out->nodes[node].part);
 }
 
 oit_status oit_kd_build(const float lo[3], const float hi[3], const oit_triangle *tris, size_t n,
@@ -309,14 +389,20 @@ oit_status oit_kd_build(const float lo[3], const float hi[3], const oit_triangle
 {
     memset(out, 0, sizeof *out);
     kd_ctx c = {.p = params, .out = out, .err = err};
+    oit_status st = OIT_OK;
     c.piece_stamp = calloc(piece_count + 1, sizeof *c.piece_stamp);
     c.above_stamp = calloc(piece_count + 1, sizeof *c.above_stamp);
     c.piece_slot = calloc(piece_count + 1, sizeof *c.piece_slot);
     c.plane_stamp = calloc(n + 1, sizeof *c.plane_stamp);
     c.plane_cap = n + 1;
+    for (int h = 0; h < 2; h++) {
+        c.first_plane[h] = calloc(piece_count + 1, sizeof *c.first_plane[h]);
+        c.two_planes[h] = calloc(piece_count + 1, 1);
+        if (!c.first_plane[h] || !c.two_planes[h])
+            st = OIT_ERR_NOMEM;
+    }
     c.root_piece = piece;
     out->nodes = malloc(16 * sizeof *out->nodes);
-    oit_status st = OIT_OK;
     if (!c.piece_stamp || !c.above_stamp || !c.piece_slot || !c.plane_stamp || !out->nodes)
         st = OIT_ERR_NOMEM;
     if (!st) {
@@ -336,6 +422,10 @@ oit_status oit_kd_build(const float lo[3], const float hi[3], const oit_triangle
     free(c.above_stamp);
     free(c.piece_slot);
     free(c.plane_stamp);
+    for (int h = 0; h < 2; h++) {
+        free(c.first_plane[h]);
+        free(c.two_planes[h]);
+    }
     if (st == OIT_ERR_NOMEM)
         oit_error_set(err, st, "cell subdivision of %zu triangles: out of memory", n);
     if (st)

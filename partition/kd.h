@@ -1,17 +1,25 @@
 /* Subdivision of one grid cell into parts (DESIGN.md "Layer bound",
  * "Visibility order").
  *
- * The cell's triangles arrive clustered into convex pieces. A node holding at
- * most max_pieces pieces becomes one part; otherwise it is split at the
- * midplane of the axis that minimises the larger child's piece count, the
- * pieces' triangles are clipped to the two closed halves (a clipped convex
- * piece stays convex; a piece with nothing left vanishes) and both halves
- * recurse. Every split is a 2x1x1 (1x2x1, 1x1x2) subgrid of its node, so the
- * result is a kd-tree of regular subgrids with at most one part per leaf,
- * each part inside its leaf's closed box: the contract of stream/order.h.
- * A node still above max_pieces at max_depth is re-clustered with a flatness
- * tolerance (float rounding can make a flat surface exactly non-convex, so
- * many exact pieces meet at one vertex); if that fails too it is refused.
+ * The cell's triangles arrive clustered into convex pieces. A node's layer
+ * bound is the sum over its pieces of 1 (everything of the piece in the node
+ * lies in one plane: a line crosses a plane once) or 2 (convex: a line meets
+ * it at most twice). A node whose bound is at most K becomes one part;
+ * otherwise it is split at the midplane of the axis that minimises the larger
+ * child's bound, the triangles are clipped to the two closed halves (a
+ * clipped convex piece stays convex; a piece with nothing left vanishes) and
+ * both halves recurse. Every split is a 2x1x1 (1x2x1, 1x1x2) subgrid of its
+ * node, so the result is a kd-tree of regular subgrids with at most one part
+ * per leaf, each part inside its leaf's closed box: the contract of
+ * stream/order.h.
+ *
+ * Where more than K layers meet at one vertex (a saddle of high valence, a
+ * fan of many non-convex sheets) no box separates them: halving only clips
+ * the same star again. A node whose pieces all have a corner at one point
+ * (or that reaches max_depth) therefore becomes a wide part: its bound
+ * exceeds K, up to OIT_KD_MAX_WIDE_LAYERS, and the renderer captures it with
+ * more slots per pixel over a smaller screen tile (stream/pack.h). Only a
+ * node above that limit is refused.
  */
 #ifndef OIT_PARTITION_KD_H
 #define OIT_PARTITION_KD_H
@@ -20,6 +28,7 @@
 #include <stdint.h>
 
 #include "oit/mesh.h"
+#include "oit/partfile.h"
 #include "oit/status.h"
 
 #ifdef __cplusplus
@@ -27,13 +36,17 @@ extern "C" {
 #endif
 
 typedef struct oit_kd_params {
-    uint32_t max_pieces; /* K/2 */
+    uint32_t max_layers; /* K */
     uint32_t max_depth;  /* splits below the cell; 0: 48 (16 halvings an axis) */
 } oit_kd_params;
 
+/* The most layers a wide part may have (the renderer's widest capture). */
+#define OIT_KD_MAX_WIDE_LAYERS OIT_PARTFILE_MAX_LAYERS
+
 typedef struct oit_kd_node {
     float lo[3], hi[3];
-    int32_t axis;   /* -1: leaf; else split at the midplane of this axis */
+    int32_t axis;   /* -1: leaf; else split on this axis at split */
+    float split;
     uint32_t child; /* split: nodes child (below) and child + 1 (above) */
     int32_t part;   /* leaf: index into parts, or -1 when empty */
     uint32_t depth; /* root 0 */
@@ -47,6 +60,7 @@ typedef struct oit_kd_piece {
 typedef struct oit_kd_part {
     size_t tri_first, tri_count;   /* into tris */
     uint32_t piece_first, piece_count;
+    uint32_t layer_bound; /* sum over pieces: 1 when planar, else 2 */
 } oit_kd_part;
 
 typedef struct oit_kd_result {
@@ -60,7 +74,7 @@ typedef struct oit_kd_result {
     size_t tri_count, tri_cap;
     uint64_t split_added;  /* triangles added by the midplane clips */
     uint32_t depth;        /* deepest node */
-    uint32_t tolerant_parts; /* parts clustered with the flatness tolerance */
+    uint32_t wide_parts;   /* parts whose layer bound exceeds K */
 } oit_kd_result;
 
 /* Subdivides the box [lo, hi] holding tris[0..n) with piece[i] (< piece_count)

@@ -13,6 +13,7 @@
 #include "oit/mesh.h"
 #include "oit/partfile.h"
 #include "partition/clip.h"
+#include "partition/kd_split.h"
 #include "preprocess/bin.h"
 #include "preprocess/cell.h"
 #include "preprocess/progress.h"
@@ -256,6 +257,7 @@ static oit_status write_parts(oit_partfile_writer *w, part_buf *b, const oit_kd_
             .index_count = 3 * (uint64_t)part->tri_count,
             .pieces = b->pieces,
             .piece_count = part->piece_count,
+            .layer_bound = part->layer_bound,
             .attributes = attributes,
         };
         uint32_t index;
@@ -287,14 +289,12 @@ static oit_status write_subgrids(oit_partfile_writer *w, const cell_out *c, uint
         const oit_kd_node *n = &kd->nodes[i];
         if (n->axis < 0)
             continue;
-        const oit_kd_node *lo = &kd->nodes[n->child];
         oit_partfile_grid_desc g = {.dims = {1, 1, 1}, .parent_grid = loc[2 * i],
                                     .parent_cell = loc[2 * i + 1]};
         g.dims[n->axis] = 2;
-        for (int k = 0; k < 3; k++) {
-            g.origin[k] = n->lo[k];
-            g.cell_size[k] = lo->hi[k] - lo->lo[k];
-        }
+        if (!oit_kd_split_cells(n->lo, n->hi, n->axis, n->split, g.origin, g.cell_size))
+            return oit_error_set(err, OIT_ERR_UNSUPPORTED, "cell %llu: split at %g is not a subgrid "
+                                 "boundary in float", (unsigned long long)cell, n->split);
         uint32_t counts[2], parts[2], np = 0;
         for (int h = 0; h < 2; h++) {
             counts[h] = leaf_list(c, n->child + h, &parts[np]);
@@ -384,6 +384,11 @@ static oit_status partition_and_write(cell_run *r, oit_partfile_writer *w, uint3
         co->part_base = part_base;
         part_base += (uint32_t)co->kd.part_count;
         st->pieces += co->kd.piece_count;
+        st->pieces_clustered += co->counts.pieces_cell;
+        st->wide_parts += co->kd.wide_parts;
+        for (size_t q = 0; q < co->kd.part_count; q++)
+            if (co->kd.parts[q].layer_bound > st->max_layer_bound)
+                st->max_layer_bound = co->kd.parts[q].layer_bound;
         st->triangles_out += co->kd.tri_count;
         st->subgrids += co->kd.node_count / 2;
         st->subgrid_depth = co->kd.depth > st->subgrid_depth ? co->kd.depth : st->subgrid_depth;

@@ -14,6 +14,7 @@ oit_status oit_convert_stats_write_json(const char *path, const oit_convert_opti
     fprintf(f,
             "{\"triangles_in\": %llu, \"triangles_out\": %llu, \"degenerate_dropped\": %llu, "
             "\"nonfinite_dropped\": %llu, \"split_added\": %lld, \"pieces\": %llu, "
+            "\"pieces_clustered\": %llu, \"wide_parts\": %llu, \"max_layer_bound\": %u, "
             "\"parts\": %llu, \"slabs\": 0, \"cells\": %llu, \"subgrids\": %llu, "
             "\"subgrid_depth\": %u, \"grid\": [%u, %u, %u], \"spilled_bytes\": %llu, "
             "\"seconds\": {\"total\": %.3f, \"stages\": {\"bounds\": %.3f, \"bin\": %.3f, "
@@ -22,6 +23,8 @@ oit_status oit_convert_stats_write_json(const char *path, const oit_convert_opti
             (unsigned long long)s->triangles_in, (unsigned long long)s->triangles_out,
             (unsigned long long)s->degenerate_dropped, (unsigned long long)s->nonfinite_dropped,
             (long long)s->split_added, (unsigned long long)s->pieces,
+            (unsigned long long)s->pieces_clustered, (unsigned long long)s->wide_parts,
+            s->max_layer_bound,
             (unsigned long long)s->parts, (unsigned long long)s->cells,
             (unsigned long long)s->subgrids, s->subgrid_depth, s->grid_dims[0], s->grid_dims[1],
             s->grid_dims[2], (unsigned long long)s->spilled_bytes, s->seconds_total,

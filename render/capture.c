@@ -22,6 +22,7 @@ struct oit_capture {
     int K;
     float epsilon; /* early termination threshold; 0: exact */
     GLuint fill_prog, resolve_prog, begin_prog, end_prog;
+    GLuint wide_fill_prog, wide_resolve_prog; /* built on the first wide batch */
     GLuint fbo; /* attachment-less, for the array backend */
     GLuint buf[BUF_N];
     uint64_t cap[BUF_N];
@@ -55,8 +56,9 @@ static oit_status build_programs(oit_capture *c, oit_error *err)
 
 static void release(oit_capture *c)
 {
-    GLuint progs[4] = {c->fill_prog, c->resolve_prog, c->begin_prog, c->end_prog};
-    for (int i = 0; i < 4; i++)
+    GLuint progs[6] = {c->fill_prog,  c->resolve_prog,   c->begin_prog,
+                       c->end_prog,   c->wide_fill_prog, c->wide_resolve_prog};
+    for (int i = 0; i < 6; i++)
         glDeleteProgram(progs[i]);
     glDeleteFramebuffers(1, &c->fbo);
     glDeleteBuffers(BUF_N, c->buf);
@@ -301,6 +303,99 @@ oit_status oit_capture_batch(oit_capture *c, const oit_gpu_mesh *const *meshes,
                       oit_gl_groups((uint64_t)(r[3] - r[1]), 8), 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     return oit_gl_check("capture: batch", err);
+}
+
+/* ---- wide batches ------------------------------------------------------------ */
+
+#define STR_(x) #x
+#define STR(x) STR_(x)
+
+static oit_status wide_programs(oit_capture *c, oit_error *err)
+{
+    if (!c->wide_fill_prog) {
+        const char *vs[] = {oit_glsl_version, oit_glsl_vertex, NULL};
+        const char *fs[] = {oit_glsl_version, oit_glsl_fragment_gen, oit_capture_wide_fs, NULL};
+        const char *rcs[] = {oit_glsl_version,
+                             "#define OIT_WIDE " STR(OIT_CAPTURE_MAX_LAYERS) "\n",
+                             oit_glsl_composite, oit_capture_resolve_cs, NULL};
+        oit_status s = oit_gl_program_graphics("capture wide fill", vs, fs, &c->wide_fill_prog,
+                                               err);
+        if (s == OIT_OK)
+            s = oit_gl_program_compute("capture wide resolve", rcs, &c->wide_resolve_prog, err);
+        if (s != OIT_OK)
+            return s;
+    }
+    GLuint progs[2] = {c->wide_fill_prog, c->wide_resolve_prog};
+    for (int i = 0; i < 2; i++) {
+        oit_glsl_set_view(progs[i], &c->view);
+        glProgramUniform1i(progs[i], glGetUniformLocation(progs[i], "u_K"), c->K);
+    }
+    glProgramUniform1f(c->wide_fill_prog, glGetUniformLocation(c->wide_fill_prog, "u_epsilon"),
+                       c->epsilon);
+    return OIT_OK;
+}
+
+/* One tile of a wide batch: fill its pixels' W slots, then resolve them. */
+static void wide_tile(oit_capture *c, const oit_gpu_mesh *const *meshes, int n, int W,
+                      const int t[4])
+{
+    oit_glsl_raster_begin(c->fbo, c->view.width, c->view.height);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(t[0], t[1], t[2] - t[0], t[3] - t[1]);
+    glUseProgram(c->wide_fill_prog);
+    glProgramUniform1i(c->wide_fill_prog, glGetUniformLocation(c->wide_fill_prog, "u_W"), W);
+    glProgramUniform4i(c->wide_fill_prog, glGetUniformLocation(c->wide_fill_prog, "u_tile"),
+                       t[0], t[1], t[2], t[3]);
+    for (int i = 0; i < n; i++)
+        oit_gpu_mesh_draw(meshes[i], c->wide_fill_prog);
+    glDisable(GL_SCISSOR_TEST);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(c->wide_resolve_prog);
+    glProgramUniform1i(c->wide_resolve_prog, glGetUniformLocation(c->wide_resolve_prog, "u_W"),
+                       W);
+    glProgramUniform4i(c->wide_resolve_prog, glGetUniformLocation(c->wide_resolve_prog, "u_rect"),
+                       t[0], t[1], t[2], t[3]);
+    glDispatchCompute(oit_gl_groups((uint64_t)(t[2] - t[0]), 8),
+                      oit_gl_groups((uint64_t)(t[3] - t[1]), 8), 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+oit_status oit_capture_batch_layers(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
+                                    const int rect[4], int layers, oit_error *err)
+{
+    if (layers <= c->K)
+        return oit_capture_batch(c, meshes, n, rect, err);
+    if (layers > OIT_CAPTURE_MAX_LAYERS)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: a batch of %d layers, more than "
+                             "%d", layers, OIT_CAPTURE_MAX_LAYERS);
+    if (!c->in_frame)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: batch outside "
+                             "oit_capture_begin/oit_capture_end");
+    c->batches++;
+    int r[4];
+    if (!gl_rect(c, rect, r) || n <= 0)
+        return OIT_OK;
+    /* The frame's K slots per pixel, or at least one tile row's worth. */
+    uint64_t pixels = (uint64_t)c->view.width * c->view.height;
+    uint64_t slots = pixels * (uint64_t)c->K;
+    slots = slots > (uint64_t)layers ? slots : (uint64_t)layers;
+    oit_status s = reserve(c, BUF_SLOTS, slots * 16, err);
+    if (s == OIT_OK)
+        s = wide_programs(c, err);
+    if (s != OIT_OK)
+        return s;
+    bind_buffers(c);
+    uint64_t tile_pixels = c->cap[BUF_SLOTS] / 16 / (uint64_t)layers;
+    int rw = r[2] - r[0];
+    int tw = (uint64_t)rw < tile_pixels ? rw : (int)tile_pixels;
+    uint64_t rows = tile_pixels / (uint64_t)tw;
+    int th = rows < (uint64_t)(r[3] - r[1]) ? (int)rows : r[3] - r[1];
+    for (int y = r[1]; y < r[3]; y += th)
+        for (int x = r[0]; x < r[2]; x += tw) {
+            int t[4] = {x, y, x + tw < r[2] ? x + tw : r[2], y + th < r[3] ? y + th : r[3]};
+            wide_tile(c, meshes, n, layers, t);
+        }
+    return oit_gl_check("capture: wide batch", err);
 }
 
 static oit_status read_output(oit_capture *c, oit_image *out, GLuint totals[4], oit_error *err)

@@ -47,6 +47,18 @@ oit_status oit_capture_begin(oit_capture *c, const oit_view *view, oit_error *er
  * exclusive; NULL means the whole frame. */
 oit_status oit_capture_batch(oit_capture *c, const oit_gpu_mesh *const *meshes,
                              int n, const int rect[4], oit_error *err);
+/* The widest batch oit_capture_batch_layers takes. */
+#define OIT_CAPTURE_MAX_LAYERS 64
+
+/* As oit_capture_batch for a batch that may give up to `layers` fragments
+ * per pixel. layers <= K is an ordinary batch. A wider one (a wide part,
+ * partition/kd.h) is captured in screen tiles small enough that `layers`
+ * slots per pixel fit the frame's K slots per pixel: the same bytes, one
+ * extra draw of the batch per tile. Exact as long as no pixel gets more than
+ * `layers` (overflow counts it as usual). Both backends use array slots for
+ * it. */
+oit_status oit_capture_batch_layers(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
+                                    const int rect[4], int layers, oit_error *err);
 /* Resolves the frame into out (allocated by the call) and fills stats. */
 oit_status oit_capture_end(oit_capture *c, oit_image *out,
                            oit_frame_stats *stats, oit_error *err);

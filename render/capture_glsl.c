@@ -35,6 +35,25 @@ const char oit_capture_array_fs[] =
     "    else if (c == uint(u_K)) atomicAdd(overflow, 1u);\n"
     "}\n";
 
+/* Wide batches: u_W slots per pixel of the current tile u_tile (GL rows,
+ * exclusive ends), so a part with more than K layers fits the same slots
+ * buffer over fewer pixels. */
+const char oit_capture_wide_fs[] =
+    COUNT_AND_FLAG
+    SATURATED
+    "layout(std430, binding = 3) writeonly buffer Slots { uvec4 slots[]; };\n"
+    "uniform int u_W;\n"
+    "uniform ivec4 u_tile;\n"
+    "void main() {\n"
+    "    uint p = oit_pixel_index();\n"
+    "    if (oit_saturated(p)) discard;\n"
+    "    ivec2 px = ivec2(gl_FragCoord.xy) - u_tile.xy;\n"
+    "    uint q = uint(px.y * (u_tile.z - u_tile.x) + px.x);\n"
+    "    uint c = atomicAdd(counts[p], 1u);\n"
+    "    if (c < uint(u_W)) slots[q * uint(u_W) + c] = oit_fragment();\n"
+    "    else if (c == uint(u_W)) atomicAdd(overflow, 1u);\n"
+    "}\n";
+
 const char oit_capture_stencil_fs[] =
     COUNT_AND_FLAG
     SATURATED
@@ -52,20 +71,30 @@ const char oit_capture_resolve_cs[] =
     "layout(location = 11) uniform ivec2 u_size;\n"
     "layout(location = 12) uniform ivec4 u_rect;\n"
     "layout(std430, binding = 6) buffer State { oit_state states[]; };\n"
-    "#ifdef OIT_STENCIL\n"
+    "#if defined(OIT_STENCIL)\n"
     "layout(binding = 0) uniform usampler2DMS u_samples;\n"
     "#define LOAD(px, p, i) texelFetch(u_samples, px, int(i))\n"
+    "#define SLOTS uint(u_K)\n"
+    "#define LIST 16\n"
+    "#elif defined(OIT_WIDE)\n"
+    "layout(std430, binding = 3) readonly buffer Slots { uvec4 slots[]; };\n"
+    "uniform int u_W;\n"
+    "#define LOAD(px, p, i) slots[uint((px.y - u_rect.y) * (u_rect.z - u_rect.x) + px.x - u_rect.x) * uint(u_W) + i]\n"
+    "#define SLOTS uint(u_W)\n"
+    "#define LIST OIT_WIDE\n"
     "#else\n"
     "layout(std430, binding = 3) readonly buffer Slots { uvec4 slots[]; };\n"
     "#define LOAD(px, p, i) slots[p * uint(u_K) + i]\n"
+    "#define SLOTS uint(u_K)\n"
+    "#define LIST 16\n"
     "#endif\n"
     "void main() {\n"
     "    ivec2 px = u_rect.xy + ivec2(gl_GlobalInvocationID.xy);\n"
     "    if (px.x >= u_rect.z || px.y >= u_rect.w) return;\n"
     "    uint p = uint(px.y * u_size.x + px.x);\n"
     "    uint n = counts[p];\n"
-    "    uint m = min(n, uint(u_K));\n"
-    "    uvec4 f[16];\n"
+    "    uint m = min(n, SLOTS);\n"
+    "    uvec4 f[LIST];\n"
     "    for (uint i = 0u; i < m; i++) {\n"
     "        uvec4 x = LOAD(px, p, i);\n"
     "        OIT_SORTED_INSERT(f, i, x)\n"

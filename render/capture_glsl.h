@@ -11,9 +11,12 @@ extern "C" {
 
 /* Array backend: slot by atomic counter, overflow counted once per pixel. */
 extern const char oit_capture_array_fs[];
+/* Wide batches: u_W slots per pixel of the tile u_tile (capture.h). */
+extern const char oit_capture_wide_fs[];
 /* Stencil backend: the fragment is the colour output; counts as above. */
 extern const char oit_capture_stencil_fs[];
-/* Resolve over the batch rect; prefix "#define OIT_STENCIL 1" for samples. */
+/* Resolve over the batch rect; prefix "#define OIT_STENCIL 1" for samples,
+ * "#define OIT_WIDE N" for a wide tile (u_rect is the tile, N >= u_W). */
 extern const char oit_capture_resolve_cs[];
 extern const char oit_capture_begin_cs[];
 extern const char oit_capture_end_cs[];

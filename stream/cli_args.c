@@ -178,7 +178,7 @@ oit_status oit_stream_args_parse(int argc, char **argv, oit_stream_args *a, oit_
     a->width = a->height = 1024;
     a->elevation = 20.0f;
     a->gain = 1.0f;
-    a->max_layers = 16;
+    a->max_layers = 0; /* the part file's K, else 16 */
     a->pack_disjoint = 1; /* measured faster than budget on llvmpipe (smaller resolve rects) */
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i];
@@ -235,8 +235,10 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "  --absorption X      translucent optical depth across the model (default 4)\n"
         "  --background r,g,b  default 1,1,1\n"
         "  --max-layers K      fragments per pixel per batch for array/stencil/stream,\n"
-        "                      2..16\n"
-        "                      (default 16); pixels with more count as overflow\n"
+        "                      2..16 (default: the part file's K, else 16); pixels\n"
+        "                      with more count as overflow. stream: a part with more\n"
+        "                      layers than K (a wide part) is captured with more\n"
+        "                      slots per pixel over smaller screen tiles\n"
         "  --show layers       write the fragments-per-pixel heat map (dfb, reference)\n"
         "  --stats FILE.json   per-frame figures\n"
         "  --ambiguity PATH    (reference) also write a mask, named like --out, that is\n"

@@ -369,7 +369,14 @@ static int run_render(const oit_stream_args *args)
     }
     oit_camera *cams = NULL;
     int n = 0;
-    oit_method_options opt = {a->max_layers, pf, a->pack_disjoint ? OIT_PACK_DISJOINT : OIT_PACK_BUDGET,
+    int K = a->max_layers;
+    if (!K) { /* the file's K: its parts were cut for it */
+        oit_partfile_summary sum = {0};
+        if (pf)
+            oit_partfile_get_summary(pf, &sum);
+        K = pf ? (int)sum.K : 16;
+    }
+    oit_method_options opt = {K, pf, a->pack_disjoint ? OIT_PACK_DISJOINT : OIT_PACK_BUDGET,
                               a->upload_budget, NULL, a->epsilon};
     rc.view.width = a->width;
     rc.view.height = a->height;

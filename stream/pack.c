@@ -13,7 +13,7 @@ struct oit_packer {
     oit_pack_mode mode;
     uint32_t K;
     uint64_t budget;
-    uint32_t *parts, *pack_first;
+    uint32_t *parts, *pack_first, *layers;
     int (*rects)[4];
     uint64_t *bytes;
     uint32_t *tile_sum, *tile_stamp;
@@ -33,6 +33,7 @@ void oit_packer_destroy(oit_packer *pk)
         return;
     free(pk->parts);
     free(pk->pack_first);
+    free(pk->layers);
     free(pk->rects);
     free(pk->bytes);
     free(pk->tile_sum);
@@ -44,10 +45,10 @@ static oit_status check_parts(const oit_partfile *pf, uint32_t K, uint64_t budge
 {
     const oit_partfile_part *parts = oit_partfile_parts(pf);
     for (uint32_t i = 0; i < oit_partfile_part_count(pf); i++) {
-        if (parts[i].layer_bound > K)
+        if (parts[i].layer_bound > OIT_PACK_MAX_LAYERS)
             return oit_error_set(err, OIT_ERR_UNSUPPORTED, "%s: part %u has up to %u layers, "
-                                 "more than the capture's K=%u (use --max-layers)",
-                                 oit_partfile_name(pf), i, parts[i].layer_bound, K);
+                                 "more than the widest capture (%u)", oit_partfile_name(pf), i,
+                                 parts[i].layer_bound, OIT_PACK_MAX_LAYERS);
         if (oit_pack_part_bytes(&parts[i]) > budget)
             return oit_error_set(err, OIT_ERR_UNSUPPORTED, "%s: part %u needs %llu bytes, more "
                                  "than the upload budget of %llu", oit_partfile_name(pf), i,
@@ -70,9 +71,10 @@ oit_status oit_packer_create(const oit_partfile *pf, oit_pack_mode mode, int K,
         pk->parts = calloc((size_t)n + 1, sizeof *pk->parts);
         pk->pack_first = calloc((size_t)n + 2, sizeof *pk->pack_first);
         pk->rects = calloc((size_t)n + 1, sizeof *pk->rects);
+        pk->layers = calloc((size_t)n + 1, sizeof *pk->layers);
         pk->bytes = calloc((size_t)n + 1, sizeof *pk->bytes);
     }
-    if (!pk || !pk->parts || !pk->pack_first || !pk->rects || !pk->bytes) {
+    if (!pk || !pk->parts || !pk->pack_first || !pk->rects || !pk->layers || !pk->bytes) {
         oit_packer_destroy(pk);
         return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot allocate packing for %u parts",
                              oit_partfile_name(pf), n);
@@ -172,8 +174,8 @@ static int tiles_take(oit_packer *pk, const int r[4], uint32_t layers)
 
 static int joins(oit_packer *pk, uint32_t pack, const int r[4], uint32_t layers, uint64_t bytes)
 {
-    if (pk->bytes[pack] + bytes > pk->budget)
-        return 0;
+    if (pk->bytes[pack] + bytes > pk->budget || layers > pk->K || pk->layers[pack] > pk->K)
+        return 0; /* a wide part is a pack of its own */
     if (pk->mode == OIT_PACK_DISJOINT)
         return !overlaps(pk->rects[pack], r);
     return tiles_take(pk, r, layers);
@@ -187,9 +189,10 @@ static void grow_rect(int acc[4], const int r[4])
     acc[3] = r[3] > acc[3] ? r[3] : acc[3];
 }
 
-static void open_pack(oit_packer *pk, uint32_t pack, uint32_t first)
+static void open_pack(oit_packer *pk, uint32_t pack, uint32_t first, uint32_t layers)
 {
     pk->pack_first[pack] = first;
+    pk->layers[pack] = layers > pk->K ? layers : pk->K;
     pk->bytes[pack] = 0;
     pk->rects[pack][0] = pk->rects[pack][1] = 0x7fffffff;
     pk->rects[pack][2] = pk->rects[pack][3] = -1;
@@ -219,8 +222,8 @@ oit_status oit_packer_run(oit_packer *pk, const oit_view *view, const uint32_t *
         }
         uint64_t bytes = oit_pack_part_bytes(p);
         if (packs == 0 || !joins(pk, packs - 1, r, p->layer_bound, bytes)) {
-            open_pack(pk, packs++, drawn);
-            if (pk->mode == OIT_PACK_BUDGET)
+            open_pack(pk, packs++, drawn, p->layer_bound);
+            if (pk->mode == OIT_PACK_BUDGET && p->layer_bound <= pk->K)
                 tiles_take(pk, r, p->layer_bound);
         }
         grow_rect(pk->rects[packs - 1], r);
@@ -233,6 +236,7 @@ oit_status oit_packer_run(oit_packer *pk, const oit_view *view, const uint32_t *
     out->pack_first = pk->pack_first;
     out->rects = (const int(*)[4])pk->rects;
     out->bytes = pk->bytes;
+    out->layers = pk->layers;
     out->pack_count = packs;
     out->culled = culled;
     return OIT_OK;

@@ -11,7 +11,9 @@
  * Rectangles are the projections of the parts' bounding boxes (a box that
  * reaches in front of the near plane covers the screen); a box wholly outside
  * the view volume yields no fragment and is culled. A pack is also cut where
- * its expanded triangle data would exceed the upload budget. */
+ * its expanded triangle data would exceed the upload budget.
+ * A wide part (layer bound above K, partition/kd.h) is always a pack of its
+ * own, captured with that many slots per pixel (oit_capture_batch_layers). */
 #ifndef OIT_STREAM_PACK_H
 #define OIT_STREAM_PACK_H
 
@@ -31,14 +33,17 @@ typedef struct oit_packing {
     const uint32_t *pack_first; /* pack i: parts[pack_first[i] .. pack_first[i+1]) */
     const int (*rects)[4];      /* pack i's screen rectangle, as oit_capture_batch reads */
     const uint64_t *bytes;      /* pack i's upload bytes */
+    const uint32_t *layers;     /* pack i's fragments per pixel at most: K, or a wide part's */
     uint32_t pack_count;
     uint32_t culled;
 } oit_packing;
 
 typedef struct oit_packer oit_packer;
 
-/* Fails (OIT_ERR_UNSUPPORTED) when a part's layer bound exceeds K or a part
- * alone exceeds byte_budget, naming the part. */
+#define OIT_PACK_MAX_LAYERS 64u /* = OIT_CAPTURE_MAX_LAYERS */
+
+/* Fails (OIT_ERR_UNSUPPORTED) when a part's layer bound exceeds
+ * OIT_PACK_MAX_LAYERS or a part alone exceeds byte_budget, naming the part. */
 oit_status oit_packer_create(const oit_partfile *pf, oit_pack_mode mode, int K,
                              uint64_t byte_budget, oit_packer **out, oit_error *err);
 void oit_packer_destroy(oit_packer *pk);

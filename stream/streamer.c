@@ -9,6 +9,10 @@
 #include "stream/order.h"
 #include "stream/upload.h"
 
+_Static_assert(OIT_PACK_MAX_LAYERS == OIT_CAPTURE_MAX_LAYERS &&
+                   OIT_PACK_MAX_LAYERS == OIT_PARTFILE_MAX_LAYERS,
+               "a wide part the file allows must fit the packer and the capture");
+
 struct oit_streamer {
     oit_partfile *pf;
     oit_order *order;
@@ -138,8 +142,8 @@ static oit_status draw_pack(oit_streamer *s, const oit_packing *pk, uint32_t i,
         ss->bytes_uploaded += parts[p].index_count / 3 * sizeof(oit_triangle);
     }
     if (st == OIT_OK)
-        st = oit_capture_batch(s->capture, (const oit_gpu_mesh *const *)s->views, (int)n,
-                               pk->rects[i], err);
+        st = oit_capture_batch_layers(s->capture, (const oit_gpu_mesh *const *)s->views, (int)n,
+                                      pk->rects[i], (int)pk->layers[i], err);
     return st;
 }
 

@@ -5,9 +5,8 @@ oit_add_test_exe(test_streamer SOURCES test_streamer.c LIBS oit_formats)
 add_dependencies(test_streamer oitstream)
 oit_add_test(NAME stream_parts_grid LABELS integration TIMEOUT 120
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_streamer.sh grid $<TARGET_FILE:test_streamer>)
-# oitprep is not a dependency: the demo and bunny tests skip until it converts.
-add_dependencies(test_streamer oitgen)
-oit_add_test(NAME stream_parts_demo LABELS integration TIMEOUT 120
+add_dependencies(test_streamer oitgen oitprep)
+oit_add_test(NAME stream_parts_demo LABELS integration TIMEOUT 300
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_streamer.sh demo)
-oit_add_test(NAME stream_parts_bunny LABELS integration TIMEOUT 120
+oit_add_test(NAME stream_parts_bunny LABELS integration TIMEOUT 300
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_streamer.sh bunny)

@@ -9,6 +9,8 @@
 
 #include "partition/clip.h"
 #include "partition/convex.h"
+#include "partition/kd.h"
+#include "partition/kd_split.h"
 #include "partition/predicates.h"
 #include "test_check.h"
 
@@ -373,11 +375,119 @@ static void test_convex(void)
     free(adjacent.t);
 }
 
+/* ---------------------------------------------------------------- kd */
+
+/* Ten separate pieces along x: the chosen plane must cut none of them, leave
+ * ceil(20/8) = 3 parts' worth, and be exactly a subgrid boundary. */
+static void test_kd_split(void)
+{
+    oit_kd_piece_box b[10];
+    for (int i = 0; i < 10; i++)
+        b[i] = (oit_kd_piece_box){{(float)i, 0, 0}, {(float)i + 0.5f, 1, 1}, 2};
+    float lo[3] = {0, 0, 0}, hi[3] = {16, 16, 16}, pos = 0, origin[3], cell[3];
+    int axis = -1;
+    CHECK(oit_kd_choose_split(b, 10, lo, hi, 8, &axis, &pos), "no split for 10 pieces");
+    CHECK(axis == 0, "split on axis %d, want x", axis);
+    uint32_t below = 0, above = 0;
+    for (int i = 0; i < 10; i++) {
+        CHECK(!(b[i].lo[0] < pos && b[i].hi[0] > pos), "split at %g cuts piece %d", pos, i);
+        below += b[i].hi[0] <= pos ? 2 : 0;
+        above += b[i].lo[0] >= pos ? 2 : 0;
+    }
+    CHECK((below + 7) / 8 + (above + 7) / 8 == 3, "split at %g leaves %u | %u layers", pos,
+          below, above);
+    CHECK(oit_kd_split_cells(lo, hi, 0, pos, origin, cell) && origin[0] + cell[0] == pos &&
+              origin[0] <= lo[0] && origin[0] + 2 * cell[0] >= hi[0],
+          "split at %g is not one subgrid boundary", pos);
+    printf("kd split: 10 pieces -> x = %g, %u | %u layers, none cut\n", pos, below, above);
+}
+
+static oit_status kd_of(const tri_list *l, uint32_t K, oit_kd_result *r, oit_error *err)
+{
+    float lo[3] = {-4, -4, -4}, hi[3] = {4, 4, 4};
+    oit_convex_result cr;
+    if (oit_convex_cluster(l->t, l->n, NULL, &cr, err))
+        return OIT_ERR_NOMEM;
+    oit_kd_params kp = {K, 0};
+    oit_status s = oit_kd_build(lo, hi, l->t, l->n, cr.piece_of, cr.plane_of, cr.piece_count,
+                                &kp, r, err);
+    oit_convex_result_free(&cr);
+    return s;
+}
+
+/* Every part within K (or wide), its bound the sum of 1 or 2 per piece,
+ * inside its leaf's box, and no area lost or gained. */
+static void check_kd(const char *name, const tri_list *l, const oit_kd_result *r, uint32_t K)
+{
+    double area_in = 0, area_out = 0;
+    for (size_t i = 0; i < l->n; i++)
+        area_in += tri_area(&l->t[i]);
+    for (size_t i = 0; i < r->tri_count; i++)
+        area_out += tri_area(&r->tris[i]);
+    CHECK(fabs(area_out - area_in) <= 1e-5 * area_in, "%s: area %.9g in, %.9g out", name,
+          area_in, area_out);
+    uint32_t wide = 0;
+    for (size_t p = 0; p < r->part_count; p++) {
+        const oit_kd_part *pt = &r->parts[p];
+        uint32_t sum = 0;
+        for (uint32_t q = 0; q < pt->piece_count; q++)
+            sum += r->pieces[pt->piece_first + q].plane_count > 1 ? 2 : 1;
+        CHECK(pt->layer_bound == sum, "%s: part %zu bound %u, pieces say %u", name, p,
+              pt->layer_bound, sum);
+        wide += pt->layer_bound > K;
+    }
+    CHECK(wide == r->wide_parts, "%s: %u wide parts, result says %u", name, wide, r->wide_parts);
+    for (size_t n = 0; n < r->node_count; n++) {
+        const oit_kd_node *nd = &r->nodes[n];
+        if (nd->axis >= 0 || nd->part < 0)
+            continue;
+        const oit_kd_part *pt = &r->parts[nd->part];
+        for (size_t i = pt->tri_first; i < pt->tri_first + pt->tri_count; i++)
+            for (int v = 0; v < 3; v++)
+                for (int k = 0; k < 3; k++) {
+                    float x = r->tris[i].v[v].pos[k];
+                    CHECK(x >= nd->lo[k] && x <= nd->hi[k], "%s: part %d leaves its box",
+                          name, nd->part);
+                }
+    }
+    printf("kd %s: %zu triangles -> %zu, %zu parts (%u wide), depth %u\n", name, l->n,
+           r->tri_count, r->part_count, wide, r->depth);
+}
+
+static void test_kd(void)
+{
+    tri_list torus = {0}, saddle = {0};
+    make_torus(&torus, 24, 12);
+    /* 16 sectors around one vertex, alternately up and down: 8 two-plane
+     * pieces meet there (16 layers), so it ends as one wide part. */
+    oit_vertex c = vtx(0.31f, 0.17f, 0.05f);
+    for (int i = 0; i < 16; i++) {
+        double a0 = 2 * PI * i / 16, a1 = 2 * PI * (i + 1) / 16;
+        push3(&saddle, c, vtx(0.31f + (float)cos(a0), 0.17f + (float)sin(a0), i % 2 ? -0.55f : 0.65f),
+              vtx(0.31f + (float)cos(a1), 0.17f + (float)sin(a1), i % 2 ? 0.65f : -0.55f));
+    }
+    oit_kd_result r;
+    oit_error err = {0};
+    CHECK(kd_of(&torus, 8, &r, &err) == OIT_OK, "torus: %s", err.message);
+    check_kd("torus", &torus, &r, 8);
+    CHECK(r.wide_parts == 0, "torus: %u wide parts, it has no vertex of > 8 layers",
+          r.wide_parts);
+    oit_kd_result_free(&r);
+    CHECK(kd_of(&saddle, 8, &r, &err) == OIT_OK, "saddle: %s", err.message);
+    check_kd("saddle", &saddle, &r, 8);
+    CHECK(r.wide_parts == 1, "saddle: %u wide parts, want 1 (the centre)", r.wide_parts);
+    oit_kd_result_free(&r);
+    free(torus.t);
+    free(saddle.t);
+}
+
 int main(void)
 {
     test_predicates();
     test_clip();
     test_convex();
+    test_kd_split();
+    test_kd();
     if (test_failures)
         fprintf(stderr, "%d check(s) failed\n", test_failures);
     return test_failures != 0;

@@ -5,8 +5,8 @@
 #   byte-identical for --threads 1/2 and under a --memory small enough to
 #   spill; oitstream --method stream equals --method dfb on it (2 views, no
 #   pixel over 1/255, no overflow); bad inputs exit 3 naming the file, a
-#   missing one exits 1. `oitgen demo` at the default K is reported, not
-#   asserted, while issue 4 (refusals at K = 8) is open.
+#   missing one exits 1. At the default K = 8, `oitgen demo` and a
+#   16-sector saddle (a wide part) convert, verify, and stream exactly.
 set -u
 : "${OIT_BIN:?OIT_BIN must name the tools folder}"
 : "${OIT_TEST_TMP:?OIT_TEST_TMP must name a scratch folder}"
@@ -111,17 +111,40 @@ expect_rc 1 "$P" "$T/missing.ply" -o "$T/x.oitp"
 grep -q "missing.ply" "$T/err.txt" || fail "missing input: stderr does not name the file"
 expect_rc 2 "$P" "$M" -o "$T/x.oitp" --max-layers 7
 
-# (f) issue 4: the default K refuses most real inputs; report, do not assert
-if "$G" demo -o "$T/demo.ply" >/dev/null; then
-    "$P" "$T/demo.ply" -o "$T/demo.oitp" >"$T/out.txt" 2>"$T/err.txt"; rc=$?
-    case $rc in
-    0) echo "oitgen demo converts at the default K" ;;
-    3) echo "KNOWN LIMITATION (issue 4): oitgen demo at default K: $(tail -n 1 "$T/err.txt")" ;;
-    *) fail "oitgen demo at default K exited $rc: $(tail -n 1 "$T/err.txt")" ;;
-    esac
-else
-    fail "oitgen demo"
-fi
+# (f) the default K (8): `oitgen demo`, and a saddle of 16 sectors around one
+# vertex, alternately up and down. No box around that vertex holds fewer
+# than its 8 two-plane pieces (16 layers), so it must become a wide part:
+# converted, verified, and streamed exactly with zero overflow.
+# The centre is off every grid and kd plane (those would cut it into
+# quadrants, each with few enough sectors).
+awk 'BEGIN { n = 16; print "OFF"; print n + 1, n, 0; print 0.31, 0.17, 0.05;
+    for (i = 0; i < n; i++) { a = 2 * 3.14159265358979 * i / n;
+        printf "%.9f %.9f %.9f\n", 0.31 + cos(a), 0.17 + sin(a), (i % 2 ? -0.55 : 0.65) }
+    for (i = 0; i < n; i++) print 3, 0, 1 + i, 1 + (i + 1) % n }' >"$T/saddle.off"
+"$G" demo -o "$T/demo.ply" >/dev/null || fail "oitgen demo"
+for case in demo.ply saddle.off; do
+    expect_rc 0 "$P" "$T/$case" -o "$T/$case.oitp" --stats "$T/$case.json"
+    expect_rc 0 "$P" verify "$T/$case.oitp"
+    grep -q "; 0 violations" "$T/out.txt" && grep -q "order: 0 violations" "$T/out.txt" ||
+        fail "$case: verify: $(cat "$T/out.txt")"
+    wide=$(json_num wide_parts <"$T/$case.json")
+    lb=$(json_num max_layer_bound <"$T/$case.json")
+    echo "$case at K=8: $(json_num triangles_in <"$T/$case.json") -> " \
+        "$(json_num triangles_out <"$T/$case.json") triangles," \
+        "$(json_num pieces_clustered <"$T/$case.json") pieces clustered," \
+        "$(json_num parts <"$T/$case.json") parts, $wide wide (max bound $lb)"
+    "$S" "$T/$case.oitp" --size 96x96 --azimuth 30 --elevation 60 --out "$T/ws.png" \
+        --stats "$T/ws.json" --quiet && "$S" "$T/$case.oitp" --method dfb --size 96x96 \
+        --azimuth 30 --elevation 60 --out "$T/wd.png" --quiet || fail "$case: oitstream"
+    grep -q '"overflow_pixels": 0,' "$T/ws.json" || fail "$case: stream overflow"
+    j=$("$S" --compare "$T/ws.png" "$T/wd.png" --json)
+    pct=$(echo "$j" | json_num pct_over_1_255)
+    echo "$case: stream vs dfb max_abs $(echo "$j" | json_num max_abs), over 1/255 $pct%"
+    awk "BEGIN { exit !($pct <= 0.1) }" || fail "$case: $pct% of pixels over 1/255"
+done
+[ "$(json_num wide_parts <"$T/saddle.off.json")" -ge 1 ] &&
+    [ "$(json_num max_layer_bound <"$T/saddle.off.json")" -gt 8 ] ||
+    fail "saddle: no wide part (the star was split or refused)"
 
 [ "$FAILS" -eq 0 ] || { echo "$FAILS failure(s)"; exit 1; }
 echo "oitprep: all checks passed"

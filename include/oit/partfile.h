@@ -38,13 +38,17 @@ extern "C" {
 
 #define OIT_PARTFILE_VERSION 1u
 #define OIT_PARTFILE_NONE 0xFFFFFFFFu /* "no grid / no cell" in parent links */
+/* A part's layer bound is at most K, except for a wide part: where more than
+ * K layers meet at one vertex no box separates them, so the part keeps its
+ * bound (up to this) and the renderer captures it over smaller tiles. */
+#define OIT_PARTFILE_MAX_LAYERS 64u
 
 /* Decoded records. Their layout is the file's record layout (the reader
  * copies sections into them); see docs/part-file.md for every invariant. */
 typedef struct oit_partfile_part {
     float bounds_min[3];    /* of the part's vertices, exactly              */
     float bounds_max[3];
-    uint32_t layer_bound;   /* 1..min(K, 2*piece_count): fragments per pixel */
+    uint32_t layer_bound;   /* 1..2*piece_count: fragments per pixel; > K: wide */
     uint32_t attributes;    /* OIT_ATTR_* stored per vertex (rgba8 if != 0)  */
     uint32_t piece_first;   /* range in the piece array                     */
     uint32_t piece_count;
