@@ -183,6 +183,12 @@ static int choose_axis(kd_ctx *c, const node_set *s, const float lo[3], const fl
 static oit_status emit_part(kd_ctx *c, const node_set *s, uint32_t npieces, int32_t *part_index)
 {
     oit_kd_result *r = c->out;
+    if (c->p->max_triangles && r->tri_count + s->n > c->p->max_triangles)
+        return oit_error_set(c->err, OIT_ERR_NOMEM, "cell subdivision: clipping into parts of "
+                             "at most K = %u layers needs more than %llu triangles (the "
+                             "memory budget's share of this cell); the geometry crosses "
+                             "itself densely: try a larger --max-layers or --memory",
+                             c->p->max_layers, (unsigned long long)c->p->max_triangles);
     GROW(r->parts, r->part_count, r->part_cap, 1);
     GROW(r->pieces, r->piece_count, r->piece_cap, npieces);
     GROW(r->tris, r->tri_count, r->tri_cap, s->n);
@@ -426,7 +432,7 @@ oit_status oit_kd_build(const float lo[3], const float hi[3], const oit_triangle
         free(c.first_plane[h]);
         free(c.two_planes[h]);
     }
-    if (st == OIT_ERR_NOMEM)
+    if (st == OIT_ERR_NOMEM && !(err && err->message[0]))
         oit_error_set(err, st, "cell subdivision of %zu triangles: out of memory", n);
     if (st)
         oit_kd_result_free(out);

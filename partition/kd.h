@@ -38,6 +38,10 @@ extern "C" {
 typedef struct oit_kd_params {
     uint32_t max_layers; /* K */
     uint32_t max_depth;  /* splits below the cell; 0: 48 (16 halvings an axis) */
+    /* Triangles the parts may hold in all (0: no limit): clipping dense,
+     * mutually crossing geometry into K-layer boxes can multiply it many
+     * times, and a clear refusal beats exhausting memory. */
+    uint64_t max_triangles;
 } oit_kd_params;
 
 /* The most layers a wide part may have (the renderer's widest capture). */
@@ -80,7 +84,9 @@ typedef struct oit_kd_result {
 /* Subdivides the box [lo, hi] holding tris[0..n) with piece[i] (< piece_count)
  * and plane[i] (the triangle's plane id within its piece, < n) per triangle.
  * The arrays are only read. Fails with OIT_ERR_UNSUPPORTED (message names the
- * box and the piece count) when the depth cap is reached, or OIT_ERR_NOMEM. */
+ * box and the piece count) when a node of more than OIT_KD_MAX_WIDE_LAYERS
+ * layers remains, or OIT_ERR_NOMEM (also when the parts would exceed
+ * max_triangles; the message says so). */
 oit_status oit_kd_build(const float lo[3], const float hi[3], const oit_triangle *tris, size_t n,
                         const uint32_t *piece, const uint32_t *plane, uint32_t piece_count,
                         const oit_kd_params *params, oit_kd_result *out, oit_error *err);

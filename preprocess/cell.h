@@ -21,6 +21,7 @@ typedef struct oit_cell_params {
     uint32_t K;
     uint32_t max_piece_triangles;
     uint32_t max_depth;
+    uint64_t max_triangles; /* of the cell's parts; 0: no limit (kd.h) */
 } oit_cell_params;
 
 typedef struct oit_cell_counts {

@@ -127,6 +127,9 @@ static void cell_params(const cell_run *r, uint64_t c, oit_cell_params *p)
     }
     p->K = r->o->K;
     p->max_piece_triangles = r->o->max_piece_triangles;
+    /* Cells in flight (one per thread, plus those waiting for the writer)
+     * share the memory budget; a part triangle is 48 bytes. */
+    p->max_triangles = r->o->memory / sizeof(oit_triangle) / (2u * r->o->threads + 2u);
 }
 
 static void run_cell(cell_run *r, uint64_t c)
@@ -377,8 +380,9 @@ static oit_status partition_and_write(cell_run *r, oit_partfile_writer *w, uint3
         pthread_mutex_unlock(&r->lock);
         cell_out *co = &r->res[c];
         if (co->status) {
-            *err = co->err;
-            s = co->status;
+            /* The cell's message does not know the file or the cell. */
+            s = oit_error_set(err, co->status, "%s: top cell %llu: %s", r->o->input,
+                              (unsigned long long)c, co->err.message);
             break;
         }
         co->part_base = part_base;

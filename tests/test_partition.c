@@ -408,7 +408,7 @@ static oit_status kd_of(const tri_list *l, uint32_t K, oit_kd_result *r, oit_err
     oit_convex_result cr;
     if (oit_convex_cluster(l->t, l->n, NULL, &cr, err))
         return OIT_ERR_NOMEM;
-    oit_kd_params kp = {K, 0};
+    oit_kd_params kp = {K, 0, 0};
     oit_status s = oit_kd_build(lo, hi, l->t, l->n, cr.piece_of, cr.plane_of, cr.piece_count,
                                 &kp, r, err);
     oit_convex_result_free(&cr);
