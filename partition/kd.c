@@ -184,10 +184,9 @@ static oit_status emit_part(kd_ctx *c, const node_set *s, uint32_t npieces, int3
 {
     oit_kd_result *r = c->out;
     if (c->p->max_triangles && r->tri_count + s->n > c->p->max_triangles)
-        return oit_error_set(c->err, OIT_ERR_NOMEM, "cell subdivision: clipping into parts of "
-                             "at most K = %u layers needs more than %llu triangles (the "
-                             "memory budget's share of this cell); the geometry crosses "
-                             "itself densely: try a larger --max-layers or --memory",
+        return oit_error_set(c->err, OIT_ERR_UNSUPPORTED, "cell subdivision: clipping into "
+                             "parts of at most K = %u layers needs more than %llu triangles; "
+                             "the geometry crosses itself too densely for boxes of K layers",
                              c->p->max_layers, (unsigned long long)c->p->max_triangles);
     GROW(r->parts, r->part_count, r->part_cap, 1);
     GROW(r->pieces, r->piece_count, r->piece_cap, npieces);

@@ -85,8 +85,8 @@ typedef struct oit_kd_result {
  * and plane[i] (the triangle's plane id within its piece, < n) per triangle.
  * The arrays are only read. Fails with OIT_ERR_UNSUPPORTED (message names the
  * box and the piece count) when a node of more than OIT_KD_MAX_WIDE_LAYERS
- * layers remains, or OIT_ERR_NOMEM (also when the parts would exceed
- * max_triangles; the message says so). */
+ * layers remains or when the parts would exceed max_triangles (the message
+ * says which), or OIT_ERR_NOMEM. */
 oit_status oit_kd_build(const float lo[3], const float hi[3], const oit_triangle *tris, size_t n,
                         const uint32_t *piece, const uint32_t *plane, uint32_t piece_count,
                         const oit_kd_params *params, oit_kd_result *out, oit_error *err);

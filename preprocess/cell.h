@@ -21,8 +21,12 @@ typedef struct oit_cell_params {
     uint32_t K;
     uint32_t max_piece_triangles;
     uint32_t max_depth;
-    uint64_t max_triangles; /* of the cell's parts; 0: no limit (kd.h) */
 } oit_cell_params;
+
+/* The cell's parts may hold at most this many times its clipped triangles,
+ * plus 2^20 (partition/kd.h max_triangles). A fixed ratio, not a share of
+ * --memory, so the file stays the same whatever --memory and --threads. */
+#define OIT_CELL_MAX_GROWTH 64u
 
 typedef struct oit_cell_counts {
     uint64_t clipped;      /* triangles after the box clip */

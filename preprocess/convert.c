@@ -127,9 +127,6 @@ static void cell_params(const cell_run *r, uint64_t c, oit_cell_params *p)
     }
     p->K = r->o->K;
     p->max_piece_triangles = r->o->max_piece_triangles;
-    /* Cells in flight (one per thread, plus those waiting for the writer)
-     * share the memory budget; a part triangle is 48 bytes. */
-    p->max_triangles = r->o->memory / sizeof(oit_triangle) / (2u * r->o->threads + 2u);
 }
 
 static void run_cell(cell_run *r, uint64_t c)
