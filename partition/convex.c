@@ -142,7 +142,6 @@ typedef struct piece_plane {
 
 typedef struct grower {
     const mesh_graph *g;
-    double tol;
     uint32_t *vstamp;       /* per vertex: piece stamp when in the piece */
     uint32_t *vslot;        /* per vertex: index in verts when in piece */
     uint32_t *verts;        /* the piece's vertices */
@@ -158,31 +157,6 @@ typedef struct grower {
 static const double *gpos(const grower *w, uint32_t v)
 {
     return w->g->pos[v];
-}
-
-/* Exact orient3d, or with flat_tolerance: 0 within tol times the
- * coordinates' magnitude of the plane (rounding noise is relative to it). */
-static int orient(const grower *w, const double *a, const double *b, const double *c,
-                  const double *d)
-{
-    if (w->tol > 0) {
-        double u[3], v[3], n[3], e = 0, nn = 0, dist = 0;
-        for (int k = 0; k < 3; k++) {
-            u[k] = b[k] - a[k];
-            v[k] = c[k] - a[k];
-        }
-        n[0] = u[1] * v[2] - u[2] * v[1];
-        n[1] = u[2] * v[0] - u[0] * v[2];
-        n[2] = u[0] * v[1] - u[1] * v[0];
-        for (int k = 0; k < 3; k++) {
-            nn += n[k] * n[k];
-            dist += n[k] * (d[k] - a[k]);
-            e = fmax(e, fmax(fabs(a[k]), fmax(fabs(b[k]), fabs(c[k]))));
-        }
-        if (fabs(dist) <= w->tol * e * sqrt(nn))
-            return 0;
-    }
-    return oit_orient3d(a, b, c, d);
 }
 
 /* The axis whose projection keeps the plane's orientation (normal component
@@ -242,7 +216,7 @@ static int accept_test(grower *w, const uint32_t tv[3], uint32_t *coplanar, int 
     const double *ta = gpos(w, tv[0]), *tb = gpos(w, tv[1]), *tc = gpos(w, tv[2]);
     int side = 0;
     for (uint32_t i = 0; i < w->nverts; i++) {
-        int s = orient(w, ta, tb, tc, gpos(w, w->verts[i]));
+        int s = oit_orient3d(ta, tb, tc, gpos(w, w->verts[i]));
         w->vsign[i] = (int8_t)s;
         if (s && side && s != side)
             return 0;
@@ -272,7 +246,7 @@ static int accept_test(grower *w, const uint32_t tv[3], uint32_t *coplanar, int 
         }
         int qside = q->side;
         for (uint32_t i = 0; i < nnew; i++) {
-            int s = orient(w, gpos(w, q->v[0]), gpos(w, q->v[1]), gpos(w, q->v[2]),
+            int s = oit_orient3d(gpos(w, q->v[0]), gpos(w, q->v[1]), gpos(w, q->v[2]),
                                  gpos(w, newv[i]));
             if (s && qside && s != qside)
                 return 0;
@@ -363,12 +337,11 @@ static oit_status grow_piece(cluster_job *j, uint32_t seed, uint32_t max_tris,
     return OIT_OK;
 }
 
-static oit_status cluster_all(const oit_triangle *tris, size_t n, uint32_t max_tris, double tol,
+static oit_status cluster_all(const oit_triangle *tris, size_t n, uint32_t max_tris,
                               const mesh_graph *g, oit_convex_result *r)
 {
     cluster_job j = {0};
     j.w.g = g;
-    j.w.tol = tol;
     j.w.vstamp = calloc(g->vcount ? g->vcount : 1, sizeof *j.w.vstamp);
     j.w.vslot = malloc((g->vcount ? g->vcount : 1) * sizeof *j.w.vslot);
     j.w.verts = malloc((g->vcount ? g->vcount : 1) * sizeof *j.w.verts);
@@ -417,7 +390,7 @@ oit_status oit_convex_cluster(const oit_triangle *tris, size_t n, const oit_conv
             memset(out->piece_of, 0xff, n * sizeof *out->piece_of);
     }
     if (!s)
-        s = cluster_all(tris, n, max_tris, params ? params->flat_tolerance : 0, &g, out);
+        s = cluster_all(tris, n, max_tris, &g, out);
     graph_free(&g);
     if (s) {
         oit_convex_result_free(out);

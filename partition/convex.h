@@ -33,12 +33,6 @@ typedef struct oit_convex_params {
      * costs O(its vertices + planes) per candidate, so the cap bounds the
      * work per triangle on large convex regions. */
     uint32_t max_piece_triangles;
-    /* 0: exact. > 0: a vertex whose distance to a plane is below
-     * flat_tolerance times the magnitude of the plane's triangle's
-     * coordinates counts as on the plane.
-     * Used only as the last resort of kd.h, in boxes so small that float
-     * rounding has made a flat or gently curved surface non-convex. */
-    double flat_tolerance;
 } oit_convex_params;
 
 typedef struct oit_convex_result {

@@ -23,8 +23,6 @@ typedef struct kd_ctx {
     uint32_t *plane_stamp; /* per plane id: last stamp that counted it */
     uint32_t *first_plane[2]; /* per piece id and side: plane first seen */
     uint8_t *two_planes[2];   /* per piece id and side: a second plane seen */
-    size_t plane_cap;
-    const uint32_t *root_piece;
     uint32_t stamp;
     oit_kd_result *out;
     oit_error *err;
@@ -399,14 +397,12 @@ oit_status oit_kd_build(const float lo[3], const float hi[3], const oit_triangle
     c.above_stamp = calloc(piece_count + 1, sizeof *c.above_stamp);
     c.piece_slot = calloc(piece_count + 1, sizeof *c.piece_slot);
     c.plane_stamp = calloc(n + 1, sizeof *c.plane_stamp);
-    c.plane_cap = n + 1;
     for (int h = 0; h < 2; h++) {
         c.first_plane[h] = calloc(piece_count + 1, sizeof *c.first_plane[h]);
         c.two_planes[h] = calloc(piece_count + 1, 1);
         if (!c.first_plane[h] || !c.two_planes[h])
             st = OIT_ERR_NOMEM;
     }
-    c.root_piece = piece;
     out->nodes = malloc(16 * sizeof *out->nodes);
     if (!c.piece_stamp || !c.above_stamp || !c.piece_slot || !c.plane_stamp || !out->nodes)
         st = OIT_ERR_NOMEM;

@@ -53,7 +53,7 @@ oit_status oit_cell_partition(const oit_cell_params *p, const oit_triangle *tris
     oit_status s = clip_to_cell(p, tris, n, &clipped, &m, err);
     if (s)
         return s;
-    oit_convex_params cp = {p->max_piece_triangles, 0};
+    oit_convex_params cp = {p->max_piece_triangles};
     oit_convex_result cr = {0};
     s = oit_convex_cluster(clipped, m, &cp, &cr, err);
     if (!s) {

@@ -263,45 +263,71 @@ static int gl_rect(const oit_capture *c, const int rect[4], int out[4])
     return r[2] > r[0] && r[3] > r[1];
 }
 
+/* Draws the meshes with prog into the attachment-less framebuffer, clipped
+ * to the GL rect r (array slots: the fill shader writes the buffers). */
+static void draw_scissored(oit_capture *c, GLuint prog, const oit_gpu_mesh *const *meshes, int n,
+                           const int r[4])
+{
+    oit_glsl_raster_begin(c->fbo, c->view.width, c->view.height);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(r[0], r[1], r[2] - r[0], r[3] - r[1]);
+    glUseProgram(prog);
+    for (int i = 0; i < n; i++)
+        oit_gpu_mesh_draw(meshes[i], prog);
+    glDisable(GL_SCISSOR_TEST);
+}
+
 static void fill(oit_capture *c, const oit_gpu_mesh *const *meshes, int n, const int r[4])
 {
     if (c->backend == OIT_CAPTURE_STENCIL) {
         oit_stencil_target_route(&c->stencil, r);
         oit_stencil_target_begin_draw(&c->stencil, r);
-    } else {
-        oit_glsl_raster_begin(c->fbo, c->view.width, c->view.height);
-        glEnable(GL_SCISSOR_TEST);
-        glScissor(r[0], r[1], r[2] - r[0], r[3] - r[1]);
-    }
-    glUseProgram(c->fill_prog);
-    for (int i = 0; i < n; i++)
-        oit_gpu_mesh_draw(meshes[i], c->fill_prog);
-    if (c->backend == OIT_CAPTURE_STENCIL)
+        glUseProgram(c->fill_prog);
+        for (int i = 0; i < n; i++)
+            oit_gpu_mesh_draw(meshes[i], c->fill_prog);
         oit_stencil_target_end_draw();
-    glDisable(GL_SCISSOR_TEST);
+        glDisable(GL_SCISSOR_TEST);
+    } else {
+        draw_scissored(c, c->fill_prog, meshes, n, r);
+    }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
-oit_status oit_capture_batch(oit_capture *c, const oit_gpu_mesh *const *meshes,
-                             int n, const int rect[4], oit_error *err)
+/* Sorts and composites the GL rect r with a resolve program. */
+static void resolve(GLuint prog, const int r[4])
+{
+    glUseProgram(prog);
+    glProgramUniform4i(prog, glGetUniformLocation(prog, "u_rect"), r[0], r[1], r[2], r[3]);
+    glDispatchCompute(oit_gl_groups((uint64_t)(r[2] - r[0]), 8),
+                      oit_gl_groups((uint64_t)(r[3] - r[1]), 8), 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+/* The start every batch shares: it must be inside a frame, it counts, and
+ * its rect is clamped into GL rows in r; *empty when nothing is drawn. */
+static oit_status batch_start(oit_capture *c, const int rect[4], int n, int r[4], int *empty,
+                              oit_error *err)
 {
     if (!c->in_frame)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: batch outside "
                              "oit_capture_begin/oit_capture_end");
     c->batches++;
-    int r[4];
-    if (!gl_rect(c, rect, r) || n <= 0)
-        return OIT_OK;
+    *empty = !gl_rect(c, rect, r) || n <= 0;
+    return OIT_OK;
+}
+
+oit_status oit_capture_batch(oit_capture *c, const oit_gpu_mesh *const *meshes,
+                             int n, const int rect[4], oit_error *err)
+{
+    int r[4] = {0}, empty = 1;
+    oit_status s = batch_start(c, rect, n, r, &empty, err);
+    if (s != OIT_OK || empty)
+        return s;
     bind_buffers(c);
     fill(c, meshes, n, r);
-    glUseProgram(c->resolve_prog);
-    glProgramUniform4i(c->resolve_prog, glGetUniformLocation(c->resolve_prog, "u_rect"),
-                       r[0], r[1], r[2], r[3]);
     if (c->backend == OIT_CAPTURE_STENCIL)
         glBindTextureUnit(0, c->stencil.colour);
-    glDispatchCompute(oit_gl_groups((uint64_t)(r[2] - r[0]), 8),
-                      oit_gl_groups((uint64_t)(r[3] - r[1]), 8), 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    resolve(c->resolve_prog, r);
     return oit_gl_check("capture: batch", err);
 }
 
@@ -339,25 +365,13 @@ static oit_status wide_programs(oit_capture *c, oit_error *err)
 static void wide_tile(oit_capture *c, const oit_gpu_mesh *const *meshes, int n, int W,
                       const int t[4])
 {
-    oit_glsl_raster_begin(c->fbo, c->view.width, c->view.height);
-    glEnable(GL_SCISSOR_TEST);
-    glScissor(t[0], t[1], t[2] - t[0], t[3] - t[1]);
-    glUseProgram(c->wide_fill_prog);
-    glProgramUniform1i(c->wide_fill_prog, glGetUniformLocation(c->wide_fill_prog, "u_W"), W);
-    glProgramUniform4i(c->wide_fill_prog, glGetUniformLocation(c->wide_fill_prog, "u_tile"),
-                       t[0], t[1], t[2], t[3]);
-    for (int i = 0; i < n; i++)
-        oit_gpu_mesh_draw(meshes[i], c->wide_fill_prog);
-    glDisable(GL_SCISSOR_TEST);
+    GLuint fp = c->wide_fill_prog, rp = c->wide_resolve_prog;
+    glProgramUniform1i(fp, glGetUniformLocation(fp, "u_W"), W);
+    glProgramUniform1i(rp, glGetUniformLocation(rp, "u_W"), W);
+    glProgramUniform4i(fp, glGetUniformLocation(fp, "u_tile"), t[0], t[1], t[2], t[3]);
+    draw_scissored(c, c->wide_fill_prog, meshes, n, t);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    glUseProgram(c->wide_resolve_prog);
-    glProgramUniform1i(c->wide_resolve_prog, glGetUniformLocation(c->wide_resolve_prog, "u_W"),
-                       W);
-    glProgramUniform4i(c->wide_resolve_prog, glGetUniformLocation(c->wide_resolve_prog, "u_rect"),
-                       t[0], t[1], t[2], t[3]);
-    glDispatchCompute(oit_gl_groups((uint64_t)(t[2] - t[0]), 8),
-                      oit_gl_groups((uint64_t)(t[3] - t[1]), 8), 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    resolve(c->wide_resolve_prog, t);
 }
 
 oit_status oit_capture_batch_layers(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
@@ -368,18 +382,15 @@ oit_status oit_capture_batch_layers(oit_capture *c, const oit_gpu_mesh *const *m
     if (layers > OIT_CAPTURE_MAX_LAYERS)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: a batch of %d layers, more than "
                              "%d", layers, OIT_CAPTURE_MAX_LAYERS);
-    if (!c->in_frame)
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: batch outside "
-                             "oit_capture_begin/oit_capture_end");
-    c->batches++;
-    int r[4];
-    if (!gl_rect(c, rect, r) || n <= 0)
-        return OIT_OK;
+    int r[4] = {0}, empty = 1;
+    oit_status s = batch_start(c, rect, n, r, &empty, err);
+    if (s != OIT_OK || empty)
+        return s;
     /* The frame's K slots per pixel, or at least one tile row's worth. */
     uint64_t pixels = (uint64_t)c->view.width * c->view.height;
     uint64_t slots = pixels * (uint64_t)c->K;
     slots = slots > (uint64_t)layers ? slots : (uint64_t)layers;
-    oit_status s = reserve(c, BUF_SLOTS, slots * 16, err);
+    s = reserve(c, BUF_SLOTS, slots * 16, err);
     if (s == OIT_OK)
         s = wide_programs(c, err);
     if (s != OIT_OK)
