@@ -17,6 +17,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <float.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -765,7 +766,9 @@ static bool subgrid_fits(const oit_partfile *pf, uint32_t sg, double *region)
     for (int k = 0; k < 3; k++) {
         r[k] = lo[k] > pr[k] ? lo[k] : pr[k];
         r[3 + k] = hi[k] < pr[3 + k] ? hi[k] : pr[3 + k];
-        double tol = 1e-4 * (hi[k] - lo[k]);
+        /* Float origins and sizes: deep cells are only a few ulps wide. */
+        double mag = fabs(lo[k]) > fabs(hi[k]) ? fabs(lo[k]) : fabs(hi[k]);
+        double tol = 1e-4 * (hi[k] - lo[k]) + 8.0 * FLT_EPSILON * mag;
         double slo = sub->origin[k], shi = slo + (double)sub->dims[k] * sub->cell_size[k];
         if (!(r[k] < r[3 + k]) || slo > r[k] + tol || shi < r[3 + k] - tol)
             return false;

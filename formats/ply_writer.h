@@ -9,6 +9,7 @@
  *
  * Layout written:
  *   element vertex N: float x y z [uchar red green blue alpha]
+ *                     (double x y z when the descriptor asks for doubles)
  *   element face   M: list uchar int vertex_indices (always 3)
  *                     [uchar red green blue alpha]
  * Colour properties appear only when the descriptor asks for them. Indices are
@@ -44,6 +45,11 @@ typedef struct oit_ply_writer_desc {
     int vertex_rgba;     /* vertices carry red green blue alpha (uchar)    */
     int face_rgba;       /* faces carry red green blue alpha (uchar)       */
     const char *comment; /* optional one-line header comment (no newline)  */
+    /* Georeferenced output: positions are written as doubles equal to
+     * offset + the float given, so a scene can sit far from the origin with
+     * features finer than a float could keep there. */
+    int vertex_double;
+    double offset[3];
 } oit_ply_writer_desc;
 
 typedef struct oit_ply_writer_stats {

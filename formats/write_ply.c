@@ -106,6 +106,14 @@ static uint8_t *put_f32(uint8_t *p, float f)
     return put_u32(p, v);
 }
 
+static uint8_t *put_f64(uint8_t *p, double d)
+{
+    uint64_t v;
+    memcpy(&v, &d, 8);
+    p = put_u32(p, (uint32_t)v);
+    return put_u32(p, (uint32_t)(v >> 32));
+}
+
 /* The header for the given counts, padded to exactly `size` bytes when size
  * is nonzero; returns its length (0 when it does not fit). */
 static size_t format_header(const oit_ply_writer *w, uint64_t nv, uint64_t nf,
@@ -113,15 +121,16 @@ static size_t format_header(const oit_ply_writer *w, uint64_t nv, uint64_t nf,
 {
     static const char *rgba = "property uchar red\nproperty uchar green\n"
                               "property uchar blue\nproperty uchar alpha\n";
+    const char *pos = w->desc.vertex_double ? "double" : "float";
     char head[MAX_HEADER], tail[MAX_HEADER];
     int nh = snprintf(head, sizeof head, "ply\nformat binary_little_endian 1.0\n%s%s%s",
                       w->comment ? "comment " : "", w->comment ? w->comment : "",
                       w->comment ? "\n" : "");
     int nt = snprintf(tail, sizeof tail,
-                      "element vertex %llu\nproperty float x\nproperty float y\n"
-                      "property float z\n%selement face %llu\n"
+                      "element vertex %llu\nproperty %s x\nproperty %s y\n"
+                      "property %s z\n%selement face %llu\n"
                       "property list uchar int vertex_indices\n%send_header\n",
-                      (unsigned long long)nv, w->desc.vertex_rgba ? rgba : "",
+                      (unsigned long long)nv, pos, pos, pos, w->desc.vertex_rgba ? rgba : "",
                       (unsigned long long)nf, w->desc.face_rgba ? rgba : "");
     static const char pad_open[] = "comment pad";
     size_t fixed = (size_t)nh + (size_t)nt + sizeof pad_open; /* + newline */
@@ -209,14 +218,14 @@ oit_status oit_ply_writer_add_vertices(oit_ply_writer *w, const float *xyz,
     if (w->desc.vertex_rgba && !rgba && count)
         return fail(w, oit_error_set(err, OIT_ERR_ARGUMENT, "%s: vertex colours missing",
                                      w->final_path));
-    size_t stride = w->desc.vertex_rgba ? 16 : 12;
+    size_t stride = (w->desc.vertex_double ? 24 : 12) + (w->desc.vertex_rgba ? 4 : 0);
     for (size_t i = 0; i < count; i++) {
         uint8_t *p = wfile_reserve(&w->main, stride, err);
         if (!p)
             return fail(w, err ? err->status : OIT_ERR_IO);
-        p = put_f32(p, xyz[3 * i]);
-        p = put_f32(p, xyz[3 * i + 1]);
-        p = put_f32(p, xyz[3 * i + 2]);
+        for (int k = 0; k < 3; k++)
+            p = w->desc.vertex_double ? put_f64(p, w->desc.offset[k] + (double)xyz[3 * i + k])
+                                      : put_f32(p, xyz[3 * i + k]);
         if (w->desc.vertex_rgba)
             memcpy(p, rgba + 4 * i, 4);
     }

@@ -148,12 +148,26 @@ static void note(verifier *v, const char *fmt, double a, double b, double c, uns
     snprintf(v->rep->first_violation, sizeof v->rep->first_violation, fmt, a, b, c, p, q);
 }
 
-/* Checks (1) hits per part against the layer bound. */
+/* Checks (1) hits per part against the layer bound, on hits sorted by t. A
+ * ray through an edge or vertex hits every triangle there at one depth, where
+ * a rasterizer's fill rule makes one fragment: hits of one part within `tie`
+ * of each other count as one layer. */
+static int same_layer(const verifier *v, size_t i)
+{
+    const vhit *h = v->ray.hits;
+    for (size_t j = i; j-- > 0 && h[j].t >= h[i].t - v->tie;)
+        if (h[j].part == h[i].part)
+            return 1;
+    return 0;
+}
+
 static void check_layers(verifier *v, const float org[3])
 {
     uint32_t nt = 0;
     for (size_t i = 0; i < v->ray.n; i++) {
         uint32_t p = v->ray.hits[i].part;
+        if (same_layer(v, i))
+            continue;
         if (v->count[p]++ == 0)
             v->touched[nt++] = p;
     }
@@ -177,14 +191,18 @@ static void check_layers(verifier *v, const float org[3])
 }
 
 /* Checks (2): along the ray (hits sorted by t) no part comes later whose rank
- * is below that of a part met more than `tie` earlier. */
+ * is below that of a part met more than `tie` earlier. Hits within `tie` of
+ * the eye are skipped: an eye lying on a surface sees it edge-on (no
+ * fragment, and the near plane clips it), so its part has no place in the
+ * order from there. */
 static void check_order(verifier *v, const float org[3])
 {
     vhit *h = v->ray.hits;
     size_t n = v->ray.n, j = 0;
     if (n < 2)
         return;
-    qsort(h, n, sizeof *h, cmp_hit_t);
+    while (n > 0 && h[0].t <= v->tie)
+        h++, n--;
     uint32_t max_rank = 0, max_part = 0;
     int have = 0;
     for (size_t i = 0; i < n; i++) {
@@ -226,6 +244,7 @@ static oit_status cast(verifier *v, const float org[3], const float dir[3], oit_
     v->rep->rays++;
     v->rep->hits += v->ray.n;
     v->rep->rays_hitting += v->ray.n > 0;
+    qsort(v->ray.hits, v->ray.n, sizeof *v->ray.hits, cmp_hit_t);
     check_layers(v, org);
     check_order(v, org);
     return OIT_OK;

@@ -28,16 +28,18 @@ static const char count_fs[] =
     "void main() { atomicAdd(counts[oit_pixel_index()], 1u); }\n";
 
 /* The count pass ran the same rasterization, so every fragment finds its
- * slot; the bounds check only guards against a driver breaking invariance. */
+ * slot; the bounds check only guards against a driver breaking invariance.
+ * The store holds one band of rows (the scissor) from offset u_base on. */
 static const char store_fs[] =
     "layout(std430, binding = 1) buffer Counts { uint counts[]; };\n"
     "layout(std430, binding = 2) readonly buffer Offsets { uint offsets[]; };\n"
     "layout(std430, binding = 3) writeonly buffer Frags { uvec4 frags[]; };\n"
+    "layout(location = 12) uniform uint u_base;\n"
     "void main() {\n"
     "    uint p = oit_pixel_index();\n"
     "    uint c = atomicAdd(counts[p], 0xffffffffu);\n"
     "    uint slot = offsets[p] + c - 1u;\n"
-    "    if (c != 0u && slot < offsets[p + 1u]) frags[slot] = oit_fragment();\n"
+    "    if (c != 0u && slot < offsets[p + 1u] && slot >= u_base) frags[slot - u_base] = oit_fragment();\n"
     "}\n";
 
 /* Short lists sort in registers; long ones are heap-sorted in place in their
@@ -45,6 +47,8 @@ static const char store_fs[] =
 static const char resolve_cs[] =
     "layout(local_size_x = 8, local_size_y = 8) in;\n"
     "layout(location = 11) uniform ivec2 u_size;\n"
+    "layout(location = 12) uniform uint u_base;\n"
+    "layout(location = 13) uniform ivec2 u_rows;\n"
     "layout(std430, binding = 2) readonly buffer Offsets { uint offsets[]; };\n"
     "layout(std430, binding = 3) buffer Frags { uvec4 frags[]; };\n"
     "layout(std430, binding = 4) writeonly buffer Out { vec4 out_rgba[]; };\n"
@@ -67,10 +71,10 @@ static const char resolve_cs[] =
     "    }\n"
     "}\n"
     "void main() {\n"
-    "    ivec2 px = ivec2(gl_GlobalInvocationID.xy);\n"
-    "    if (px.x >= u_size.x || px.y >= u_size.y) return;\n"
+    "    ivec2 px = ivec2(gl_GlobalInvocationID.xy) + ivec2(0, u_rows.x);\n"
+    "    if (px.x >= u_size.x || px.y >= u_rows.y) return;\n"
     "    uint p = uint(px.y * u_size.x + px.x);\n"
-    "    uint b = offsets[p], n = offsets[p + 1u] - b;\n"
+    "    uint b = offsets[p] - u_base, n = offsets[p + 1u] - offsets[p];\n"
     "    oit_state s = oit_state_begin();\n"
     "    if (n <= LOCAL_MAX) {\n"
     "        uvec4 f[LOCAL_MAX];\n"
@@ -198,45 +202,111 @@ static oit_status count_and_scan(oit_dfb *d, const oit_gpu_mesh *const *meshes, 
     return oit_scan_run(&d->scan, d->buf[BUF_OFFSETS], pixels + 1, res, err);
 }
 
-static oit_status check_store_size(uint64_t total, oit_error *err)
+/* Fragments one storage buffer binding can hold here. */
+static uint64_t store_capacity(void)
 {
     GLint64 max_block = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
-    if (total > UINT32_MAX || total * 16 > (uint64_t)max_block)
-        return oit_error_set(err, OIT_ERR_NOMEM,
-                             "DFB: the frame has %llu fragments (%llu bytes), more than "
-                             "one storage buffer holds here (%lld bytes)",
-                             (unsigned long long)total, (unsigned long long)total * 16,
-                             (long long)max_block);
-    return OIT_OK;
+    uint64_t cap = (uint64_t)max_block / 16;
+    return cap < UINT32_MAX ? cap : UINT32_MAX;
 }
 
+/* Splits the rows into bands whose fragments fit cap: band i covers GL rows
+ * [rows[i], rows[i+1]) and fragments [base[i], base[i+1]). One band when the
+ * frame fits; otherwise the offsets are read back to find where to cut. A
+ * single row over cap cannot be stored and is an error. Returns the band
+ * count, 0 on failure. rows and base need height + 1 entries. */
+static int plan_bands(oit_dfb *d, const oit_view *v, uint64_t total, uint64_t cap, int *rows,
+                      uint32_t *base, oit_error *err)
+{
+    int w = v->width, h = v->height, nb = 0;
+    rows[0] = 0, base[0] = 0;
+    if (total <= cap) {
+        rows[1] = h, base[1] = (uint32_t)total;
+        return 1;
+    }
+    uint32_t *off = malloc(sizeof *off * ((size_t)w * h + 1));
+    if (!off) {
+        oit_error_set(err, OIT_ERR_NOMEM, "DFB: cannot read back %dx%d offsets", w, h);
+        return 0;
+    }
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(d->buf[BUF_OFFSETS], 0, (GLsizeiptr)(sizeof *off * ((size_t)w * h + 1)),
+                            off);
+    for (int y = 0; y < h; y++) {
+        uint32_t end = off[(size_t)(y + 1) * w];
+        if (end - off[(size_t)y * w] > cap) {
+            oit_error_set(err, OIT_ERR_NOMEM, "DFB: row %d has %llu fragments, more than one "
+                          "storage buffer holds here (%llu)", h - 1 - y,
+                          (unsigned long long)(end - off[(size_t)y * w]), (unsigned long long)cap);
+            free(off);
+            return 0;
+        }
+        if (end - base[nb] > cap) {
+            nb++;
+            rows[nb] = y, base[nb] = off[(size_t)y * w];
+        }
+    }
+    free(off);
+    nb++;
+    rows[nb] = h, base[nb] = (uint32_t)total;
+    return nb;
+}
+
+/* Stores and resolves rows [y0, y1) whose fragments start at base. */
+static void band_pass(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n, const oit_view *v,
+                      int y0, int y1, uint32_t base, uint64_t frags)
+{
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(0, y0, v->width, y1 - y0);
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_FRAGS, d->buf[BUF_FRAGS], 0,
+                      (GLsizeiptr)(frags ? frags * 16 : 16));
+    glProgramUniform1ui(d->store_prog, 12, base);
+    draw_meshes(d->store_prog, meshes, n);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(d->resolve_prog);
+    glProgramUniform1ui(d->resolve_prog, 12, base);
+    glProgramUniform2i(d->resolve_prog, 13, y0, y1);
+    glDispatchCompute(oit_gl_groups((uint64_t)v->width, 8), oit_gl_groups((uint64_t)(y1 - y0), 8), 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glDisable(GL_SCISSOR_TEST);
+}
+
+/* A frame whose fragments exceed one storage buffer is stored and resolved
+ * in bands of rows (the count pass covers the whole frame once), so depth
+ * is limited by what one row holds, not the frame. */
 static oit_status render_passes(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n,
                                 const oit_view *v, uint32_t *counts,
-                                oit_scan_result *res, oit_error *err)
+                                oit_scan_result *res, int *bands, oit_error *err)
 {
     uint64_t pixels = (uint64_t)v->width * v->height;
     oit_status s = count_and_scan(d, meshes, n, pixels, res, err);
     if (s == OIT_OK && counts)
         s = read_flipped(d->buf[BUF_COUNTS], v->width, v->height, 4, counts, err);
-    if (s == OIT_OK)
-        s = check_store_size(res->total, err);
-    if (s == OIT_OK)
-        s = reserve(d, BUF_FRAGS, res->total * 16, err);
     if (s != OIT_OK)
         return s;
+    if (res->total > UINT32_MAX)
+        return oit_error_set(err, OIT_ERR_NOMEM, "DFB: the frame has %llu fragments, more "
+                             "than 32-bit offsets address", (unsigned long long)res->total);
+    int *rows = malloc(sizeof *rows * ((size_t)v->height + 1));
+    uint32_t *base = malloc(sizeof *base * ((size_t)v->height + 1));
+    int nb = rows && base ? plan_bands(d, v, res->total, store_capacity(), rows, base, err) : 0;
+    uint64_t most = 0;
+    for (int b = 0; b < nb; b++)
+        most = base[b + 1] - base[b] > most ? base[b + 1] - base[b] : most;
+    if (!rows || !base)
+        s = oit_error_set(err, OIT_ERR_NOMEM, "DFB: cannot allocate the band plan");
+    else
+        s = nb ? reserve(d, BUF_FRAGS, most * 16, err) : OIT_ERR_NOMEM;
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, d->buf[BUF_COUNTS]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OFFSETS, d->buf[BUF_OFFSETS]);
-    /* The store may be larger than one block can span after growth; the
-     * frame uses only its first total * 16 bytes. */
-    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_FRAGS, d->buf[BUF_FRAGS], 0,
-                      (GLsizeiptr)(res->total ? res->total * 16 : 16));
-    draw_meshes(d->store_prog, meshes, n);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    glUseProgram(d->resolve_prog);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, d->buf[BUF_OUT]);
-    glDispatchCompute(oit_gl_groups((uint64_t)v->width, 8), oit_gl_groups((uint64_t)v->height, 8), 1);
-    return oit_gl_check("DFB: passes", err);
+    for (int b = 0; s == OIT_OK && b < nb; b++)
+        band_pass(d, meshes, n, v, rows[b], rows[b + 1], base[b], base[b + 1] - base[b]);
+    free(rows);
+    free(base);
+    *bands = nb;
+    return s == OIT_OK ? oit_gl_check("DFB: passes", err) : s;
 }
 
 static oit_status prepare(oit_dfb *d, const oit_view *v, oit_error *err)
@@ -276,9 +346,10 @@ oit_status oit_dfb_render(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n,
     oit_view v = *view;
     oit_shading_resolve_defaults(&v.shading);
     oit_scan_result res = {0, 0};
+    int bands = 0;
     oit_status s = prepare(d, &v, err);
     if (s == OIT_OK)
-        s = render_passes(d, meshes, n, &v, counts, &res, err);
+        s = render_passes(d, meshes, n, &v, counts, &res, &bands, err);
     if (s == OIT_OK)
         s = oit_image_alloc(out, v.width, v.height, err);
     if (s == OIT_OK) {
@@ -294,6 +365,6 @@ oit_status oit_dfb_render(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n,
     stats->fragments = res.total;
     stats->max_layers = res.max;
     stats->gpu_bytes_peak = d->bytes_peak;
-    stats->batches = 1;
+    stats->batches = (uint32_t)bands;
     return OIT_OK;
 }

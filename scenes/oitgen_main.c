@@ -33,6 +33,24 @@ static const char USAGE[] =
     "                      the output has T triangles within 0.1%)\n"
     "  demo       about 100K triangles: linked rings, nested spheres and a\n"
     "             twisted band (ignores --seed)\n"
+    "  hard       a small scene that breaks naive pipelines; --case NAME:\n"
+    "               coplanar     coincident faces of opposite orientation, a box\n"
+    "                            duplicated exactly, quads overlapping in one plane\n"
+    "               rings        a chain of five interlocking rings and a trefoil knot\n"
+    "               sticks       three sticks overlapping cyclically seen from above\n"
+    "               moebius      a Moebius strip and a self-intersecting Klein bottle\n"
+    "               degenerate   slivers (aspect 1e6), zero-area, collinear and\n"
+    "                            repeated-vertex triangles over a sphere\n"
+    "               nearflat     three crossing sheets whose neighbours meet within\n"
+    "                            1e-9 rad of flat\n"
+    "               far          centimetre features at (1e7, 1e7, 1e7), written as\n"
+    "                            double coordinates\n"
+    "               tiny         the same features scaled by 1e-6\n"
+    "               thin         64 slivers 1e-3 wide crossing the whole scene\n"
+    "               nonmanifold  T-junctions, a six-page book on one edge, cubes\n"
+    "                            sharing an edge and a corner\n"
+    "               stack        600 parallel squares (600 layers)\n"
+    "               dense        a 12^3 lattice of tilted boxes, to look from inside\n"
     "\n"
     "options:\n"
     "  -o, --output FILE   output PLY (required); written via FILE.tmp, then renamed\n"
@@ -43,7 +61,7 @@ static const char USAGE[] =
     "Progress goes to stderr when it is a terminal.\n"
     "exit codes: 0 ok, 1 runtime failure, 2 usage error, 3 bad input\n";
 
-enum { OPT_COUNT = 1, OPT_COVERAGE = 2, OPT_TRIANGLES = 4, OPT_INPUT = 8 };
+enum { OPT_COUNT = 1, OPT_COVERAGE = 2, OPT_TRIANGLES = 4, OPT_INPUT = 8, OPT_CASE = 16 };
 
 typedef struct scene_entry {
     const char *name;
@@ -57,6 +75,7 @@ static const scene_entry SCENES[] = {
     {"instances", OPT_COUNT | OPT_INPUT, oit_scene_instances, NULL},
     {"plant", OPT_TRIANGLES, oit_scene_plant, oit_scene_plant_estimate},
     {"demo", 0, oit_scene_demo, NULL},
+    {"hard", OPT_CASE, oit_scene_hard, NULL},
 };
 
 typedef struct cli {
@@ -131,6 +150,14 @@ static int parse_option(cli *c, int argc, char **argv, int *i)
             c->args.triangles > 50000000)
             return usage_error("--triangles: '%s' is not an integer in [10000, 50000000]", v);
         c->given |= OPT_TRIANGLES;
+    } else if (!strcmp(o, "--case")) {
+        int known = 0;
+        for (int k = 0; oit_scene_hard_case_name(k); k++)
+            known |= !strcmp(v, oit_scene_hard_case_name(k));
+        if (!known)
+            return usage_error("--case: unknown case '%s'", v);
+        c->args.hard_case = v;
+        c->given |= OPT_CASE;
     } else if (!strcmp(o, "--input")) {
         c->args.input = v;
         c->given |= OPT_INPUT;
@@ -157,7 +184,7 @@ static int parse_cli(cli *c, int argc, char **argv)
             if (!strcmp(a, SCENES[k].name))
                 c->scene = &SCENES[k];
         if (!c->scene)
-            return usage_error("unknown scene '%s' (quads, instances, plant, demo)", a);
+            return usage_error("unknown scene '%s' (quads, instances, plant, demo, hard)", a);
     }
     if (!c->scene)
         return usage_error("no scene given");
@@ -165,12 +192,14 @@ static int parse_cli(cli *c, int argc, char **argv)
         return usage_error("no output file given (-o FILE.ply)");
     static const struct { unsigned bit; const char *name; } names[] = {
         {OPT_COUNT, "--count"}, {OPT_COVERAGE, "--coverage"},
-        {OPT_TRIANGLES, "--triangles"}, {OPT_INPUT, "--input"}};
+        {OPT_TRIANGLES, "--triangles"}, {OPT_INPUT, "--input"}, {OPT_CASE, "--case"}};
     for (size_t k = 0; k < sizeof names / sizeof names[0]; k++)
         if (c->given & ~c->scene->options & names[k].bit)
             return usage_error("%s does not apply to scene '%s'", names[k].name, c->scene->name);
     if ((c->scene->options & OPT_INPUT) && !c->args.input)
         return usage_error("scene '%s' needs --input MESH", c->scene->name);
+    if ((c->scene->options & OPT_CASE) && !c->args.hard_case)
+        return usage_error("scene '%s' needs --case NAME", c->scene->name);
     if (!(c->given & OPT_COUNT))
         c->args.count = c->scene->options & OPT_INPUT ? 16 : 64;
     return 0;
@@ -205,9 +234,11 @@ static void show_progress(void *user, uint64_t triangles)
 static oit_status generate(const cli *c, oit_ply_writer_stats *st, oit_error *err)
 {
     char comment[200];
-    snprintf(comment, sizeof comment, "oitgen %s seed %llu", c->scene->name,
+    snprintf(comment, sizeof comment, "oitgen %s%s%s seed %llu", c->scene->name,
+             c->args.hard_case ? " " : "", c->args.hard_case ? c->args.hard_case : "",
              (unsigned long long)c->args.seed);
     oit_ply_writer_desc d = {.path = c->output, .vertex_rgba = 1, .comment = comment};
+    d.vertex_double = oit_scene_hard_offset(&c->args, d.offset);
     oit_ply_writer *w;
     oit_status s = oit_ply_writer_open(&d, &w, err);
     if (s)

@@ -16,6 +16,7 @@ typedef struct oit_scene_args {
     double coverage;    /* quads: fraction of the [-1,1]^2 square per quad */
     uint64_t triangles; /* plant: target triangle count */
     const char *input;  /* instances: mesh to replicate */
+    const char *hard_case; /* hard: which case (oit_scene_hard_case_name) */
 } oit_scene_args;
 
 /* Triangles a scene will make, for progress; 0 when unknown. */
@@ -26,6 +27,11 @@ oit_status oit_scene_quads(oit_emit *e, const oit_scene_args *a, oit_error *err)
 oit_status oit_scene_instances(oit_emit *e, const oit_scene_args *a, oit_error *err);
 oit_status oit_scene_plant(oit_emit *e, const oit_scene_args *a, oit_error *err);
 oit_status oit_scene_demo(oit_emit *e, const oit_scene_args *a, oit_error *err);
+oit_status oit_scene_hard(oit_emit *e, const oit_scene_args *a, oit_error *err);
+/* The hard cases by index, NULL past the last. */
+const char *oit_scene_hard_case_name(int i);
+/* 1 when the case must be written as doubles offset by offset[] (far). */
+int oit_scene_hard_offset(const oit_scene_args *a, double offset[3]);
 
 /* HSV (h in turns, s and v in 0..1) to 8-bit RGB, for scene palettes. */
 void oit_scene_hsv(float h, float s, float v, uint8_t rgb[3]);
