@@ -66,6 +66,7 @@ struct Ctx {
     void *user;
     oit_mesh_info *info;
     oit_error *err;
+    bool origin_set; // info->origin picked from the first vertex
     std::vector<oit_triangle> chunk;
     size_t chunk_cap;
     const tinygltf::Model *model;
@@ -480,17 +481,6 @@ void shade_vertex(const Shade &sh, const float *rgba, uint8_t out[4])
 
 // --------------------------------------------------------------- emitting
 
-// double -> float without undefined behaviour: out of range becomes +-inf
-// (and the triangle is then dropped as non-finite).
-float to_float(double v)
-{
-    if (v > FLT_MAX)
-        return INFINITY;
-    if (v < -FLT_MAX)
-        return -INFINITY;
-    return float(v);
-}
-
 struct Mat4 {
     double m[16]; // column-major, as glTF stores it
 
@@ -509,10 +499,10 @@ struct Mat4 {
                     r.m[col * 4 + row] += m[k * 4 + row] * b.m[col * 4 + k];
         return r;
     }
-    void apply(const float *p, float *out) const
+    void apply(const float *p, double *out) const
     {
         for (int row = 0; row < 3; row++)
-            out[row] = to_float(m[row] * p[0] + m[4 + row] * p[1] + m[8 + row] * p[2] + m[12 + row]);
+            out[row] = m[row] * p[0] + m[4 + row] * p[1] + m[8 + row] * p[2] + m[12 + row];
     }
     // A mirroring transform turns counter-clockwise faces clockwise.
     bool mirrors() const
@@ -546,7 +536,13 @@ oit_status emit_geometry(Ctx &c, const Geometry &g, const Shade &sh, int mode, c
                         what, g.idx[i], i, g.nverts);
     std::vector<oit_vertex> verts(g.nverts);
     for (size_t i = 0; i < g.nverts; i++) {
-        world.apply(&g.xyz[3 * i], verts[i].pos);
+        double p[3];
+        world.apply(&g.xyz[3 * i], p);
+        if (!c.origin_set) {
+            oit_mesh_origin_pick(p, c.info->origin);
+            c.origin_set = true;
+        }
+        oit_mesh_position(c.info->origin, p, verts[i].pos);
         shade_vertex(sh, g.rgba.empty() ? nullptr : &g.rgba[4 * i], verts[i].rgba);
     }
     c.info->vertices_in += g.nverts;

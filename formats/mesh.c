@@ -1,5 +1,6 @@
 #include "oit/mesh.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -10,6 +11,21 @@ void oit_mesh_info_init(oit_mesh_info *info)
     for (int k = 0; k < 3; k++) {
         info->bounds_min[k] = INFINITY;
         info->bounds_max[k] = -INFINITY;
+    }
+}
+
+void oit_mesh_origin_pick(const double first[3], double origin[3])
+{
+    for (int k = 0; k < 3; k++)
+        origin[k] = fabs(first[k]) < 65536.0 || !isfinite(first[k]) ? 0.0
+                                                                     : nearbyint(first[k]);
+}
+
+void oit_mesh_position(const double origin[3], const double in[3], float out[3])
+{
+    for (int k = 0; k < 3; k++) {
+        double d = in[k] - origin[k];
+        out[k] = d > FLT_MAX ? INFINITY : d < -FLT_MAX ? -INFINITY : (float)d;
     }
 }
 

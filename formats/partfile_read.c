@@ -35,6 +35,7 @@ struct oit_partfile {
     pf_header hdr;
     pf_section sec[PF_SECTION_COUNT]; /* indexed by type - 1 */
     pf_meta meta;
+    double origin[3]; /* version 2 on; 0 before */
     char *source_name, *options;
     oit_partfile_part *parts;
     oit_partfile_piece *pieces;
@@ -120,9 +121,9 @@ static oit_status check_header(oit_partfile *pf, oit_error *err)
     const pf_header *h = &pf->hdr;
     if (memcmp(h->magic, PF_MAGIC, sizeof h->magic) != 0)
         return bad(pf, err, "not a part file (no OITPART magic)");
-    if (h->version != OIT_PARTFILE_VERSION)
-        return bad(pf, err, "part file version %u, this build reads version %u", h->version,
-                   OIT_PARTFILE_VERSION);
+    if (h->version < OIT_PARTFILE_VERSION_MIN || h->version > OIT_PARTFILE_VERSION)
+        return bad(pf, err, "part file version %u, this build reads versions %u to %u",
+                   h->version, OIT_PARTFILE_VERSION_MIN, OIT_PARTFILE_VERSION);
     if (h->flags || h->reserved || h->header_bytes != PF_HEADER_BYTES ||
         h->section_count != PF_SECTION_COUNT)
         return bad(pf, err, "header: flags 0x%x, header size %u, %u sections: expected 0, %u, %u",
@@ -218,16 +219,20 @@ static oit_status load_meta(oit_partfile *pf, oit_error *err)
                    (unsigned long long)size, sizeof pf->meta);
     memcpy(&pf->meta, sec_data(pf, PF_SEC_META), sizeof pf->meta);
     const pf_meta *m = &pf->meta;
-    if (size != sizeof *m + (uint64_t)m->source_name_bytes + m->options_bytes)
+    uint64_t head = sizeof *m + (pf->hdr.version >= 2 ? sizeof pf->origin : 0);
+    if (size != head + (uint64_t)m->source_name_bytes + m->options_bytes)
         return bad(pf, err, "section META: %llu bytes, its record says %llu",
                    (unsigned long long)size,
-                   (unsigned long long)(sizeof *m + (uint64_t)m->source_name_bytes +
-                                        m->options_bytes));
+                   (unsigned long long)(head + (uint64_t)m->source_name_bytes + m->options_bytes));
     if (m->reserved || (m->attributes & ~(uint32_t)(OIT_ATTR_COLOR | OIT_ATTR_ALPHA)))
         return bad(pf, err, "section META: unknown attribute bits 0x%x", m->attributes);
     if (!box_ok(m->bounds_min, m->bounds_max))
         return bad(pf, err, "section META: scene bounds are not finite or min > max");
-    const uint8_t *text = sec_data(pf, PF_SEC_META) + sizeof *m;
+    memcpy(pf->origin, sec_data(pf, PF_SEC_META) + sizeof *m, head - sizeof *m);
+    for (int k = 0; k < 3; k++)
+        if (!isfinite(pf->origin[k]))
+            return bad(pf, err, "section META: origin is not finite");
+    const uint8_t *text = sec_data(pf, PF_SEC_META) + head;
     pf->source_name = copy_string(text, m->source_name_bytes);
     pf->options = copy_string(text + m->source_name_bytes, m->options_bytes);
     if (!pf->source_name || !pf->options)
@@ -863,6 +868,7 @@ static void fill_summary(oit_partfile *pf)
     s->bytes = pf->size;
     s->data_bytes = sec_size(pf, PF_SEC_PART_DATA);
     memcpy(s->bounds_min, pf->meta.bounds_min, sizeof s->bounds_min);
+    memcpy(s->origin, pf->origin, sizeof s->origin);
     memcpy(s->bounds_max, pf->meta.bounds_max, sizeof s->bounds_max);
     for (uint32_t g = 0; g < pf->grid_count; g++)
         s->subgrid_depth = pf->grids[g].depth > s->subgrid_depth ? pf->grids[g].depth

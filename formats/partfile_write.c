@@ -30,6 +30,7 @@ struct oit_partfile_writer {
     char *path, *tmp_path;
     FILE *file;
     uint32_t K, part_align, attributes;
+    double origin[3];
     char *source_name, *options;
     bool skip_verify, have_grid;
     uint64_t pos;        /* bytes written so far            */
@@ -145,12 +146,15 @@ oit_status oit_partfile_writer_create(const char *path, const oit_partfile_write
     if (d.attributes & ~(uint32_t)(OIT_ATTR_COLOR | OIT_ATTR_ALPHA))
         return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: unknown attribute bits 0x%x", path,
                              d.attributes);
+    if (!isfinite(d.origin[0]) || !isfinite(d.origin[1]) || !isfinite(d.origin[2]))
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: origin is not finite", path);
     oit_partfile_writer *w = calloc(1, sizeof *w);
     if (!w)
         return oit_error_set(err, OIT_ERR_NOMEM, "%s: out of memory", path);
     w->K = d.K;
     w->part_align = d.part_align;
     w->attributes = d.attributes;
+    memcpy(w->origin, d.origin, sizeof w->origin);
     w->skip_verify = d.skip_verify;
     w->path = dup_string(path);
     w->tmp_path = malloc(strlen(path) + 5);
@@ -522,6 +526,8 @@ static oit_status write_meta(oit_partfile_writer *w, pf_section *table,
     oit_status s = begin_section(w, table, PF_SEC_META, &so, err);
     if (!s)
         s = put(w, &so, &m, sizeof m, err);
+    if (!s)
+        s = put(w, &so, w->origin, sizeof w->origin, err);
     if (!s)
         s = put(w, &so, w->source_name, m.source_name_bytes, err);
     if (!s)

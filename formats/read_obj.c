@@ -174,9 +174,11 @@ static oit_status obj_vertex(obj_reader *r, char *p)
 {
     oit_vertex v;
     memset(v.rgba, 255, sizeof v.rgba);
+    double in[3];
     for (int k = 0; k < 3; k++)
-        if (!oit_rd_float(&p, &v.pos[k]))
+        if (!oit_rd_double(&p, &in[k]))
             return oit_rd_fail_line(&r->c->in, OIT_ERR_FORMAT, "bad vertex coordinate: '%.40s'", p);
+    oit_rd_position(r->c, in, v.pos);
     double extra[3];
     int n = 0;
     while (n < 3 && oit_rd_double(&p, &extra[n]))

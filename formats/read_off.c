@@ -92,9 +92,11 @@ static oit_status off_vertex(oit_rd_ctx *c, const off_layout *lay, oit_rd_vtable
     oit_vertex v;
     memset(v.rgba, 255, sizeof v.rgba);
     float skip;
+    double in[3];
     for (int k = 0; k < 3; k++)
-        if (!oit_rd_float(&p, &v.pos[k]))
+        if (!oit_rd_double(&p, &in[k]))
             return oit_rd_fail_line(&c->in, OIT_ERR_FORMAT, "vertex %" PRIu64 ": bad coordinate", i);
+    oit_rd_position(c, in, v.pos);
     for (int k = 0; lay->normals && k < 3; k++)
         if (!oit_rd_float(&p, &skip))
             return oit_rd_fail_line(&c->in, OIT_ERR_FORMAT, "vertex %" PRIu64 ": bad normal", i);

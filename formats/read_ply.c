@@ -393,8 +393,10 @@ static oit_status ply_check_count(ply_reader *r, const ply_element *e)
 static oit_status ply_vertex(ply_reader *r, const ply_element *e, const double *vals)
 {
     oit_vertex v;
+    double in[3];
     for (int k = 0; k < 3; k++)
-        v.pos[k] = (float)vals[e->role_prop[ROLE_X + k]];
+        in[k] = vals[e->role_prop[ROLE_X + k]];
+    oit_rd_position(r->c, in, v.pos);
     memset(v.rgba, 255, sizeof v.rgba);
     ply_apply_color(e, vals, v.rgba);
     return oit_rd_vtable_push(&r->tab, &r->c->budget, &v, r->c->name, r->c->err);

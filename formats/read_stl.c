@@ -27,8 +27,12 @@ static oit_status stl_binary(oit_rd_ctx *c, uint32_t n)
     for (uint32_t i = 0; st == OIT_OK && i < n; i++) {
         if ((st = oit_rd_bytes(&c->in, STL_RECORD, "triangle record", &b)) != OIT_OK)
             break;
-        for (int k = 0; k < 9; k++) /* skip the 12-byte facet normal */
-            v[k / 3].pos[k % 3] = oit_rd_f32(b + 12 + 4 * k, 0);
+        for (int j = 0; j < 3; j++) { /* skip the 12-byte facet normal */
+            double in[3];
+            for (int k = 0; k < 3; k++)
+                in[k] = oit_rd_f32(b + 12 + 12 * j + 4 * k, 0);
+            oit_rd_position(c, in, v[j].pos);
+        }
         c->info->faces_in++;
         c->info->vertices_in += 3;
         st = oit_rd_emit(&c->out, &v[0], &v[1], &v[2]);
@@ -49,9 +53,11 @@ static oit_status stl_vertex(oit_rd_ctx *c, stl_loop *loop, char *p)
     memset(v.rgba, 255, sizeof v.rgba);
     if (!loop->open)
         return oit_rd_fail_line(&c->in, OIT_ERR_FORMAT, "'vertex' outside 'outer loop'");
+    double in[3];
     for (int k = 0; k < 3; k++)
-        if (!oit_rd_float(&p, &v.pos[k]))
+        if (!oit_rd_double(&p, &in[k]))
             return oit_rd_fail_line(&c->in, OIT_ERR_FORMAT, "expected three numbers after 'vertex'");
+    oit_rd_position(c, in, v.pos);
     if (oit_rd_skip_blanks(&p) != '\0')
         return oit_rd_fail_line(&c->in, OIT_ERR_FORMAT, "unexpected text after vertex: '%.40s'", p);
     c->info->vertices_in++;

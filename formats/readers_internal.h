@@ -239,7 +239,19 @@ typedef struct oit_rd_ctx {
     oit_mesh_info local_info;
     const char *name;
     oit_error *err;
+    int origin_set; /* info->origin picked from the first vertex */
 } oit_rd_ctx;
+
+/* A position as read (double) to the float the reader delivers, relative to
+ * the origin the first call picks (oit_mesh_origin_pick). */
+static inline void oit_rd_position(oit_rd_ctx *c, const double in[3], float out[3])
+{
+    if (!c->origin_set) {
+        oit_mesh_origin_pick(in, c->info->origin);
+        c->origin_set = 1;
+    }
+    oit_mesh_position(c->info->origin, in, out);
+}
 
 oit_status oit_rd_ctx_open(oit_rd_ctx *c, FILE *f, const char *name, const oit_read_desc *desc,
                            oit_triangle_sink sink, void *user, oit_mesh_info *info,

@@ -466,7 +466,8 @@ static oit_status convert_binned(const oit_convert_options *o, const oit_mesh_in
              r->grid.dims[0], r->grid.dims[1], r->grid.dims[2], r->grid.cell,
              o->max_piece_triangles);
     oit_partfile_writer_desc wd = {.K = o->K, .attributes = info->attributes,
-                                   .source_name = base_name(o->input), .options = options};
+                                   .source_name = base_name(o->input), .options = options,
+                                   .origin = {info->origin[0], info->origin[1], info->origin[2]}};
     oit_partfile_writer *w = NULL;
     oit_status s = oit_partfile_writer_create(o->output, &wd, &w, err);
     if (s)

@@ -97,9 +97,9 @@ static void print_json(const oit_partfile *pf, const oit_partfile_summary *s)
     if (s->attributes & OIT_ATTR_ALPHA)
         printf("%s\"alpha\"", sep);
     printf("], \"bounds_min\": [%.9g, %.9g, %.9g], \"bounds_max\": [%.9g, %.9g, %.9g], "
-           "\"source\": ",
+           "\"origin\": [%.17g, %.17g, %.17g], \"source\": ",
            s->bounds_min[0], s->bounds_min[1], s->bounds_min[2], s->bounds_max[0],
-           s->bounds_max[1], s->bounds_max[2]);
+           s->bounds_max[1], s->bounds_max[2], s->origin[0], s->origin[1], s->origin[2]);
     json_string(oit_partfile_source_name(pf));
     printf("}\n");
 }
@@ -125,8 +125,11 @@ static void print_human(const oit_partfile *pf, const oit_partfile_summary *s)
     printf("  attributes %s\n", attr);
     printf("  bytes      %llu (part data %llu, parts aligned to %u)\n",
            (unsigned long long)s->bytes, (unsigned long long)s->data_bytes, s->part_align);
-    printf("  bounds     (%g %g %g) .. (%g %g %g)\n", s->bounds_min[0], s->bounds_min[1],
+    printf("  bounds     (%g %g %g) .. (%g %g %g)", s->bounds_min[0], s->bounds_min[1],
            s->bounds_min[2], s->bounds_max[0], s->bounds_max[1], s->bounds_max[2]);
+    if (s->origin[0] || s->origin[1] || s->origin[2])
+        printf(" relative to origin (%.17g %.17g %.17g)", s->origin[0], s->origin[1], s->origin[2]);
+    printf("\n");
 }
 
 static int cmd_info(int argc, char **argv)

@@ -2,7 +2,13 @@
  * the counts in a compute shader, store every fragment at its pixel's offset,
  * sort per pixel and composite. The fragment store is sized to the frame's
  * exact fragment count and grown when a frame needs more; nothing is ever
- * dropped. The in-core exact renderer and the fallback of the streaming path. */
+ * dropped. The in-core exact renderer and the fallback of the streaming path.
+ *
+ * Depth: unlimited on a GPU. llvmpipe stops a shader's loops after 65535
+ * iterations in all, which the resolve's heap sort (about 1.5 n log2 n
+ * steps) reaches near 3000 fragments on one pixel; beyond that the pixel is
+ * wrong there, silently. Frames whose fragments exceed one storage buffer
+ * are stored and resolved in bands of rows (stats: batches = bands). */
 #ifndef OIT_RENDER_DFB_H
 #define OIT_RENDER_DFB_H
 

@@ -10,9 +10,10 @@
  * once more. A fragment is never dropped, and the capacity never shrinks.
  *
  * Resolve: lists of up to 32 fragments are insertion-sorted in registers;
- * longer ones are composited by repeatedly walking the list for the
- * successor of the last (t, prim) key, O(n^2) but without a layer limit
- * ((t, prim) is unique per pixel, a triangle covers a pixel centre once).
+ * longer ones are merge-sorted in place by relinking (stable, O(n log n),
+ * no layer limit of its own). On llvmpipe, which stops a shader's loops
+ * after 65535 iterations in all, that holds to about 2500 fragments a pixel;
+ * the quadratic walk it replaces broke at about 256.
  *
  * Stats: fragments (the counter), max_layers (longest list), batches = the
  * geometry passes drawn (1, or 2 after an overflow), gpu_bytes_peak. */

@@ -118,7 +118,7 @@ static int parse_numbers(const char *text, double *v, int max)
     return -1; /* more numbers than allowed */
 }
 
-int oit_camera_parse(oit_camera *cam, const char *text)
+int oit_camera_parse(oit_camera *cam, const char *text, const double origin[3])
 {
     double v[12];
     int n = text ? parse_numbers(text, v, 12) : -1;
@@ -133,8 +133,9 @@ int oit_camera_parse(oit_camera *cam, const char *text)
     if (n == 12 && !(v[10] > 0.0 && v[11] > v[10]))
         return -1;
     for (int k = 0; k < 3; k++) {
-        cam->eye[k] = (float)v[k];
-        cam->target[k] = (float)v[3 + k];
+        double o = origin ? origin[k] : 0.0;
+        cam->eye[k] = (float)(v[k] - o);
+        cam->target[k] = (float)(v[3 + k] - o);
         cam->up[k] = (float)v[6 + k];
     }
     cam->fovy_deg = (float)v[9];

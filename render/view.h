@@ -82,8 +82,11 @@ void oit_camera_default(oit_camera *cam, const float bmin[3], const float bmax[3
 void oit_camera_view_matrix(const oit_camera *cam, float m[16]);
 void oit_camera_proj_matrix(const oit_camera *cam, float aspect, float m[16]);
 /* Parses "ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy"; returns 0 on success. Two more
- * numbers ",znear,zfar" may follow; without them cam's clip planes are kept. */
-int oit_camera_parse(oit_camera *cam, const char *text);
+ * numbers ",znear,zfar" may follow; without them cam's clip planes are kept.
+ * Eye and target are in the file's coordinates: origin (NULL: 0), the one
+ * the model's positions are relative to (oit_mesh_info), is subtracted in
+ * double before they become floats. */
+int oit_camera_parse(oit_camera *cam, const char *text, const double origin[3]);
 
 /* The length translucent absorption refers to: the bounds' diagonal, or 1
  * for empty or non-finite bounds. */

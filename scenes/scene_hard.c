@@ -97,10 +97,10 @@ static void case_rings(oit_emit *e, uint64_t seed)
     for (int i = 0; i < 5; i++) {
         hard_color(e, 0.2f * (float)i, 140);
         oit_shape_torus(e, oit_v3_make(-3.6f + 1.8f * (float)i, 0, 0), i & 1 ? y : z, 1.2f, 0.2f,
-                        1.0f, 0, 96, 24);
+                        1.0f, 0, 64, 16);
     }
     hard_color(e, 0.55f, 150);
-    tube_loop(e, trefoil, 384, 0.18f, 20);
+    tube_loop(e, trefoil, 192, 0.18f, 12);
 }
 
 /* Three sticks, each lying over the next one where they cross: no order of

@@ -23,6 +23,7 @@ typedef struct oit_stream_args {
     int width, height;
     int have_view;
     oit_camera view; /* --view, clip planes 0 unless given */
+    const char *view_text; /* --view as given, re-read against the model's origin */
     float azimuth, elevation;
     int orbit; /* 0: one view */
     const char *out;

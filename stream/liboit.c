@@ -49,6 +49,7 @@ oit_status oit_scene_open(const char *path, const oit_scene_desc *desc, oit_scen
     memcpy(s->info.bounds_max, sum.bounds_max, sizeof sum.bounds_max);
     s->info.K = sum.K;
     s->info.attributes = sum.attributes;
+    memcpy(s->info.origin, sum.origin, sizeof s->info.origin);
     *out = s;
     return OIT_OK;
 }

@@ -138,6 +138,7 @@ static oit_status make_views(const oit_stream_args *a, const oit_mesh_info *info
     for (int i = 0; i < n; i++) {
         if (a->have_view) {
             cams[i] = a->view;
+            oit_camera_parse(&cams[i], a->view_text, info->origin);
             if (!(cams[i].znear > 0.0f && cams[i].zfar > cams[i].znear))
                 fit_clip_planes(&cams[i], info);
         } else if (a->orbit > 0) {
@@ -229,6 +230,7 @@ typedef struct run_ctx {
     const oit_render_method *method;
     oit_method_state *state;
     oit_view view;
+    const double *origin; /* the model's (oit_mesh_info): views print in file coordinates */
     uint32_t *counts;
     uint8_t *ambiguous;
 } run_ctx;
@@ -246,7 +248,7 @@ static oit_status render_one(run_ctx *rc, int index, int views, oit_stats_frame 
         s = write_ambiguity(rc->args, index, views, rc->ambiguous, img.width, img.height, err);
     oit_image_free(&img);
     fr->method = rc->method->name;
-    oit_stats_format_view(&rc->view.camera, fr->view, sizeof fr->view);
+    oit_stats_format_view(&rc->view.camera, rc->origin, fr->view, sizeof fr->view);
     if (s == OIT_OK && rc->method->stream_stats) {
         fr->has_stream = 1;
         fr->stream = *rc->method->stream_stats(rc->state);
@@ -380,6 +382,7 @@ static int run_render(const oit_stream_args *args)
                               a->upload_budget, NULL, a->epsilon};
     rc.view.width = a->width;
     rc.view.height = a->height;
+    rc.origin = mesh.info.origin;
     rc.view.shading = make_shading(a, &mesh.info);
     s = make_views(a, &mesh.info, &cams, &n, &err);
     if (s == OIT_OK && a->show_layers &&

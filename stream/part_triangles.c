@@ -33,6 +33,7 @@ void oit_partfile_mesh_info(const oit_partfile *pf, oit_mesh_info *info)
     info->triangles = sum.triangles;
     info->faces_in = sum.triangles_in;
     info->attributes = sum.attributes;
+    memcpy(info->origin, sum.origin, sizeof info->origin);
     if (sum.parts) {
         memcpy(info->bounds_min, sum.bounds_min, sizeof info->bounds_min);
         memcpy(info->bounds_max, sum.bounds_max, sizeof info->bounds_max);

@@ -3,11 +3,16 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
-void oit_stats_format_view(const oit_camera *c, char *buf, size_t cap)
+void oit_stats_format_view(const oit_camera *c, const double origin[3], char *buf, size_t cap)
 {
-    snprintf(buf, cap, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g",
-             c->eye[0], c->eye[1], c->eye[2], c->target[0], c->target[1], c->target[2],
+    double o[3] = {0, 0, 0};
+    if (origin)
+        memcpy(o, origin, sizeof o);
+    snprintf(buf, cap, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g",
+             o[0] + c->eye[0], o[1] + c->eye[1], o[2] + c->eye[2], o[0] + c->target[0],
+             o[1] + c->target[1], o[2] + c->target[2],
              c->up[0], c->up[1], c->up[2], c->fovy_deg, c->znear, c->zfar);
 }
 

@@ -26,7 +26,7 @@ typedef struct oit_stats_run {
 } oit_stats_run;
 
 /* The camera in --view syntax, round-trippable (%.9g). */
-void oit_stats_format_view(const oit_camera *cam, char *buf, size_t cap);
+void oit_stats_format_view(const oit_camera *cam, const double origin[3], char *buf, size_t cap);
 
 oit_status oit_stats_json_write(const char *path, const oit_stats_run *run, oit_error *err);
 

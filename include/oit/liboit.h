@@ -59,6 +59,11 @@ typedef struct oit_scene_info {
     float bounds_max[3];
     uint32_t K;          /* layers per part the file was converted for */
     uint32_t attributes; /* OIT_ATTR_* stored per vertex               */
+    /* Positions (and bounds) are relative to this point of the source's
+     * coordinates, non-zero for georeferenced models (oit_mesh_info).
+     * Build the view matrix relative to it too: subtract it from the eye in
+     * double, so that float matrices stay precise far from zero. */
+    double origin[3];
 } oit_scene_info;
 
 /* A missing or unreadable file fails with OIT_ERR_IO, a malformed one with

@@ -46,7 +46,21 @@ typedef struct oit_mesh_info {
     uint32_t attributes;         /* OIT_ATTR_* bits                            */
     float bounds_min[3];         /* of delivered triangles; +inf when empty    */
     float bounds_max[3];
+    double origin[3];            /* positions are relative to it: a vertex's
+                                    place in the file is origin + pos       */
 } oit_mesh_info;
+
+/* The origin every reader picks from the first vertex it reads (then
+ * subtracts, in double, from every position before rounding to float): 0 on
+ * an axis where that vertex lies within 2^16 of zero, where a float still
+ * resolves 1/128; else its coordinate rounded to an integer. So a model near
+ * the origin is read as it is, and a georeferenced one (UTM or ECEF
+ * coordinates, 1e5 to 1e7) keeps its sub-millimetre detail instead of
+ * collapsing onto the float grid of 1 that 1e7 has. */
+void oit_mesh_origin_pick(const double first[3], double origin[3]);
+/* in - origin rounded to float; beyond the float range it becomes +-inf
+ * (the readers then drop the triangle as non-finite). */
+void oit_mesh_position(const double origin[3], const double in[3], float out[3]);
 
 /* Descriptor for a read; zero means default for every field. */
 typedef struct oit_read_desc {

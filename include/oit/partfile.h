@@ -36,7 +36,9 @@
 extern "C" {
 #endif
 
-#define OIT_PARTFILE_VERSION 1u
+#define OIT_PARTFILE_VERSION 2u
+/* The oldest version this build still reads (1: no origin in META). */
+#define OIT_PARTFILE_VERSION_MIN 1u
 #define OIT_PARTFILE_NONE 0xFFFFFFFFu /* "no grid / no cell" in parent links */
 /* A part's layer bound is at most K, except for a wide part: where more than
  * K layers meet at one vertex no box separates them, so the part keeps its
@@ -128,6 +130,7 @@ typedef struct oit_partfile_summary {
     uint64_t data_bytes;    /* PART_DATA section size                       */
     float bounds_min[3];
     float bounds_max[3];
+    double origin[3];       /* positions are relative to it (oit_mesh_info) */
 } oit_partfile_summary;
 
 /* ---- reader ------------------------------------------------------------ */
@@ -223,6 +226,8 @@ typedef struct oit_partfile_writer_desc {
     uint32_t attributes;    /* OIT_ATTR_* of the source                       */
     const char *source_name; /* recorded in META; default ""                  */
     const char *options;     /* converter options, recorded; default ""       */
+    double origin[3];        /* of the source's positions (oit_mesh_info);
+                                finite; default 0                            */
     bool skip_verify;        /* default false: finish re-opens the file with the
                                 reader before renaming it into place         */
 } oit_partfile_writer_desc;

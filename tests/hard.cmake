@@ -1,0 +1,7 @@
+# Numerical hard cases (issue 8): each `oitgen hard --case` scene through
+# oitprep, verify and every exact method (tests/test_hard.sh).
+foreach(case coplanar rings sticks moebius degenerate nearflat far tiny thin nonmanifold
+        stack dense)
+  oit_add_test(NAME hard_${case} LABELS integration TIMEOUT 240
+    COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_hard.sh ${case})
+endforeach()
