@@ -209,7 +209,8 @@ static oit_status write_scene(const scene *s, const char *path, uint32_t align, 
 {
     oit_partfile_writer *w;
     oit_partfile_writer_desc wd = {.part_align = align, .source_name = "synthetic \"scene\"",
-                                   .options = "-K 8", .attributes = OIT_ATTR_COLOR | OIT_ATTR_ALPHA};
+                                   .options = "-K 8", .attributes = OIT_ATTR_COLOR | OIT_ATTR_ALPHA,
+                                   .origin = {1e7, -2500000.5, 0.125}};
     oit_status st = oit_partfile_writer_create(path, &wd, &w, err);
     for (uint32_t i = 0; !st && i < s->nparts; i++) {
         const part_in *p = &s->parts[i];
@@ -358,7 +359,10 @@ static void check_summary(const oit_partfile *pf, const scene *s, size_t bytes)
            (unsigned long long)sum.parts_index16, (unsigned long long)sum.pieces,
            (unsigned long long)sum.cells, (unsigned long long)sum.subgrids, sum.subgrid_depth,
            (unsigned long long)sum.slabs, sum.layer_bound, (unsigned long long)sum.bytes);
-    CHECK(sum.version == 1 && sum.K == 8 && sum.triangles == tris && sum.parts == s->nparts &&
+    CHECK(sum.origin[0] == 1e7 && sum.origin[1] == -2500000.5 && sum.origin[2] == 0.125,
+          "origin (%.17g %.17g %.17g) did not round-trip", sum.origin[0], sum.origin[1],
+          sum.origin[2]);
+    CHECK(sum.version == OIT_PARTFILE_VERSION && sum.K == 8 && sum.triangles == tris && sum.parts == s->nparts &&
               sum.pieces == pieces && sum.cells == cells && sum.subgrids == s->ngrids - 1u &&
               sum.subgrid_depth == s->ngrids - 1u && sum.slabs == s->nslabs &&
               sum.layer_bound == layers && sum.parts_index16 == idx16 &&
@@ -510,8 +514,11 @@ static void corrupt_index(corrupt_ctx *c, uint8_t *b, uint32_t part, uint32_t va
 static void corrupt_semantics(corrupt_ctx *c, uint8_t *b)
 {
     memcpy(b, c->good, c->size);
-    set_u32(b, offsetof(pf_header, version), 2);
-    expect_refused(c, "version 2", b, c->size, "part file version 2, this build reads version 1");
+    set_u32(b, offsetof(pf_header, version), 3);
+    expect_refused(c, "version 3", b, c->size, "part file version 3, this build reads versions 1 to 2");
+    memcpy(b, c->good, c->size);
+    set_u32(b, offsetof(pf_header, version), 0);
+    expect_refused(c, "version 0", b, c->size, "part file version 0, this build reads versions 1 to 2");
 
     corrupt_index(c, b, 2, 70000, "index 70000 >= 70000 vertices");
     corrupt_index(c, b, 0, 9, "index 9 >= 4 vertices");
@@ -606,7 +613,7 @@ static void check_tool(const char *tmp, const char *good, const uint8_t *bytes, 
     static const char *keys[] = {"\"triangles\": 138956", "\"parts\": 4", "\"pieces\": 5",
                                  "\"slabs\": 2", "\"cells\": 8", "\"subgrid_depth\": 2",
                                  "\"bytes\": ", "\"layer_bound\": 4",
-                                 "\"attributes\": [\"color\", \"alpha\"]", "\"version\": 1",
+                                 "\"attributes\": [\"color\", \"alpha\"]", "\"version\": 2",
                                  "\"K\": 8"};
     for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
         CHECK(strstr(text, keys[i]), "--json lacks %s", keys[i]);
@@ -681,6 +688,26 @@ static void check_writer_refuses(const char *tmp)
     scene_free(&s);
 }
 
+/* A version-1 file (written before META held the origin) still opens, with
+ * origin 0 and everything else as written then. */
+static void check_version1(const char *corpus)
+{
+    char path[600];
+    snprintf(path, sizeof path, "%s/small-v1.oitp", corpus);
+    oit_partfile *pf = NULL;
+    oit_error err = {0};
+    CHECK(oit_partfile_open(path, NULL, &pf, &err) == OIT_OK, "%s", err.message);
+    if (!pf)
+        return;
+    oit_partfile_summary sum;
+    oit_partfile_get_summary(pf, &sum);
+    printf("  version 1 file: version %u, %llu parts, origin (%g %g %g)\n", sum.version,
+           (unsigned long long)sum.parts, sum.origin[0], sum.origin[1], sum.origin[2]);
+    CHECK(sum.version == 1 && sum.parts == 2 && sum.origin[0] == 0 && sum.origin[1] == 0 &&
+              sum.origin[2] == 0, "version 1 file read wrongly");
+    oit_partfile_close(pf);
+}
+
 static void check_small(const char *tmp, const char *corpus, int write_corpus)
 {
     scene s;
@@ -708,6 +735,7 @@ static void check_small(const char *tmp, const char *corpus, int write_corpus)
     free(b);
     free(g);
     scene_free(&s);
+    check_version1(corpus);
 }
 
 int main(int argc, char **argv)

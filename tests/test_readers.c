@@ -547,6 +547,43 @@ static void test_large(void)
     }
 }
 
+/* Georeferenced input: positions near 1e7 with centimetre detail keep it,
+ * relative to an origin picked from the first vertex (oit_mesh_origin_pick);
+ * a model near zero keeps origin 0. Text formats parse doubles, so the same
+ * holds for OBJ and OFF as for double PLY. */
+static void test_far(void)
+{
+    oit_mesh m;
+    oit_error err;
+    write_text("far.obj", "v 10000000.25 -4000000 12\nv 10000000.26 -4000000 12\n"
+                          "v 10000000.25 -3999999.99 12.01\nf 1 2 3\n");
+    write_text("far.off", "OFF\n3 1 0\n65536 0 -70000.5\n65536.01 0 -70000.5\n"
+                          "65536 0.01 -70000.5\n3 0 1 2\n");
+    write_text("near.off", "OFF\n3 1 0\n65535 0 0\n65535.01 0 0\n65535 0.01 0\n3 0 1 2\n");
+    CHECK(load("far.obj", NULL, &m, &err) == OIT_OK && m.count == 1, "%s", err.message);
+    if (m.count == 1) {
+        printf("  far.obj origin (%.17g %.17g %.17g)\n", m.info.origin[0], m.info.origin[1],
+               m.info.origin[2]);
+        CHECK(m.info.origin[0] == 1e7 && m.info.origin[1] == -4e6 && m.info.origin[2] == 0,
+              "far.obj: origin not picked from the first vertex");
+        const float *a = m.tris[0].v[0].pos, *b = m.tris[0].v[1].pos, *c = m.tris[0].v[2].pos;
+        CHECK(a[0] == 0.25f && fabsf(b[0] - 0.26f) < 1e-6f && fabsf(c[1] - 0.01f) < 1e-6f &&
+                  c[2] == 12.01f, "far.obj: centimetre detail lost");
+    }
+    oit_mesh_free(&m);
+    CHECK(load("far.off", NULL, &m, &err) == OIT_OK && m.count == 1, "%s", err.message);
+    if (m.count == 1)
+        CHECK(m.info.origin[0] == 65536 && m.info.origin[1] == 0 && m.info.origin[2] == -70000 &&
+                  fabsf(m.tris[0].v[1].pos[0] - 0.01f) < 1e-6f && m.tris[0].v[0].pos[2] == -0.5f,
+              "far.off: origin (%g %g %g)", m.info.origin[0], m.info.origin[1], m.info.origin[2]);
+    oit_mesh_free(&m);
+    CHECK(load("near.off", NULL, &m, &err) == OIT_OK && m.count == 1, "%s", err.message);
+    if (m.count == 1)
+        CHECK(m.info.origin[0] == 0 && m.tris[0].v[0].pos[0] == 65535.0f,
+              "near.off: a model within 2^16 of zero must not move");
+    oit_mesh_free(&m);
+}
+
 int main(void)
 {
     const char *t = getenv("OIT_TEST_TMP");
@@ -555,6 +592,7 @@ int main(void)
     test_obj();
     test_off();
     test_stl();
+    test_far();
     test_stream();
     test_large();
     printf("%s: %d failure(s)\n", test_failures ? "FAILED" : "passed", test_failures);
