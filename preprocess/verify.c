@@ -244,7 +244,8 @@ static oit_status cast(verifier *v, const float org[3], const float dir[3], oit_
     v->rep->rays++;
     v->rep->hits += v->ray.n;
     v->rep->rays_hitting += v->ray.n > 0;
-    qsort(v->ray.hits, v->ray.n, sizeof *v->ray.hits, cmp_hit_t);
+    if (v->ray.n > 1)
+        qsort(v->ray.hits, v->ray.n, sizeof *v->ray.hits, cmp_hit_t);
     check_layers(v, org);
     check_order(v, org);
     return OIT_OK;

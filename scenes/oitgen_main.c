@@ -50,7 +50,7 @@ static const char USAGE[] =
     "               nonmanifold  T-junctions, a six-page book on one edge, cubes\n"
     "                            sharing an edge and a corner\n"
     "               stack        600 parallel squares (600 layers)\n"
-    "               dense        a 12^3 lattice of tilted boxes, to look from inside\n"
+    "               dense        a 10^3 lattice of tilted boxes, to look from inside\n"
     "\n"
     "options:\n"
     "  -o, --output FILE   output PLY (required); written via FILE.tmp, then renamed\n"

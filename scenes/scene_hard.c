@@ -170,11 +170,11 @@ static void case_moebius(oit_emit *e, uint64_t seed)
 {
     (void)seed;
     hard_color(e, 0.08f, 140);
-    param_grid(e, moebius, -0.8f, 0.8f, 160, 12, 1);
+    param_grid(e, moebius, -0.8f, 0.8f, 96, 8, 1);
     hard_color(e, 0.6f, 120);
     /* v spans one full turn, so the figure-8 section closes on itself; its
      * u seam needs the flip (the bottle is not orientable). */
-    param_grid(e, klein8, 0.0f, 2.0f * (float)OIT_PI, 96, 48, 1);
+    param_grid(e, klein8, 0.0f, 2.0f * (float)OIT_PI, 64, 24, 1);
 }
 
 /* Slivers (aspect 1e6), zero-area, collinear and repeated-vertex triangles,
@@ -220,7 +220,7 @@ static void case_degenerate(oit_emit *e, uint64_t seed)
 static void case_nearflat(oit_emit *e, uint64_t seed)
 {
     (void)seed;
-    const int n = 40;
+    const int n = 24;
     for (int axis = 0; axis < 3; axis++) {
         hard_color(e, (float)axis / 3.0f, 120);
         uint32_t base = 0;
@@ -255,10 +255,10 @@ static void fine_features(oit_emit *e, float s)
     for (int i = 0; i < 3; i++) {
         hard_color(e, 0.6f + 0.1f * (float)i, 140);
         oit_shape_torus(e, oit_v3_make((0.2f + 0.06f * (float)i) * s, 0, 0), i & 1 ? y : z, 0.04f * s,
-                        0.01f * s, 1.0f, 0, 48, 12);
+                        0.01f * s, 1.0f, 0, 32, 8);
     }
     hard_color(e, 0.9f, 90);
-    oit_shape_sphere(e, oit_v3_make(0, 0, 0.02f * s), 0.25f * s, 48);
+    oit_shape_sphere(e, oit_v3_make(0, 0, 0.02f * s), 0.25f * s, 32);
 }
 
 static void case_far(oit_emit *e, uint64_t seed)
@@ -343,12 +343,12 @@ static void case_stack(oit_emit *e, uint64_t seed)
     }
 }
 
-/* A 12^3 lattice of small tilted boxes filling [-1,1]^3: from the centre
+/* A 10^3 lattice of small tilted boxes filling [-1,1]^3: from the centre
  * the eye is inside dense geometry and the near plane cuts boxes. */
 static void case_dense(oit_emit *e, uint64_t seed)
 {
     oit_rng r = oit_rng_make(seed, 0x4a5d);
-    const int n = 12;
+    const int n = 10;
     for (int i = 0; i < n * n * n; i++) {
         oit_v3 c = oit_v3_make(-1 + (2.0f * (float)(i % n) + 1) / (float)n,
                                -1 + (2.0f * (float)(i / n % n) + 1) / (float)n,
