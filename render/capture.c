@@ -213,6 +213,11 @@ static void bind_buffers(const oit_capture *c)
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_FRAGS, c->buf[BUF_SLOTS]);
 }
 
+unsigned oit_capture_state_buffer(const oit_capture *c)
+{
+    return c->buf[BUF_STATE];
+}
+
 oit_status oit_capture_begin(oit_capture *c, const oit_view *view, oit_error *err)
 {
     GLint max_size = 0;

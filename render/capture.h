@@ -40,6 +40,11 @@ oit_capture_kind oit_capture_backend(const oit_capture *c);
  * channel. 0 (the default; negatives read as 0) keeps the image exact. */
 void oit_capture_set_epsilon(oit_capture *c, float epsilon);
 
+/* The GL buffer of the frame's width*height oit_state records (frag_glsl.h;
+ * GL rows, bottom first), for passes that read the carried transmittance
+ * between batches (saturation.h). Valid until the next oit_capture_begin. */
+unsigned oit_capture_state_buffer(const oit_capture *c);
+
 /* Starts a frame: C = 0, T = 1, translucency state cleared. */
 oit_status oit_capture_begin(oit_capture *c, const oit_view *view, oit_error *err);
 /* Captures meshes[0..n) as one batch and composites it behind what the frame

@@ -168,6 +168,12 @@ oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out
         return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_desc.K = %u is outside "
                              "[2, 16]", K);
     }
+    if (!(r->desc.epsilon >= 0.0f && r->desc.epsilon < 1.0f)) {
+        double e = r->desc.epsilon;
+        free(r);
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_desc.epsilon = %g is outside "
+                             "[0, 1)", e);
+    }
     const char *vs[] = {oit_glsl_version, oit_capture_fullscreen_vs, NULL};
     const char *fs[] = {oit_glsl_version, oit_glsl_composite, blend_fs, NULL};
     oit_status st = oit_gl_program_graphics("liboit blend", vs, fs, &r->blend_prog, err);
@@ -196,6 +202,7 @@ static oit_status bind_scene(oit_renderer *r, const oit_scene *scene, oit_error 
     sd.capture = OIT_CAPTURE_AUTO;
     sd.pack = r->desc.pack == OIT_RENDER_PACK_DISJOINT ? OIT_PACK_DISJOINT : OIT_PACK_BUDGET;
     sd.upload_budget = r->desc.upload_budget;
+    sd.epsilon = r->desc.epsilon;
     oit_status st = oit_streamer_create(scene->pf, &sd, &r->streamer, err);
     if (st == OIT_OK)
         r->scene = scene;
@@ -336,6 +343,7 @@ oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame 
                                   .overflow_pixels = fs.overflow_pixels, .packs = ss.packs,
                                   .parts_drawn = ss.parts_drawn,
                                   .parts_culled = ss.parts_culled,
+                                  .parts_skipped = ss.parts_skipped,
                                   .bytes_uploaded = ss.bytes_uploaded,
                                   .gpu_bytes_peak = ss.gpu_bytes_peak};
     }

@@ -14,7 +14,7 @@ struct oit_packer {
     uint32_t K;
     uint64_t budget;
     uint32_t *parts, *pack_first, *layers;
-    int (*rects)[4];
+    int (*rects)[4], (*part_rects)[4];
     uint64_t *bytes;
     uint32_t *tile_sum, *tile_stamp;
     int tiles_x, tiles_y;
@@ -35,6 +35,7 @@ void oit_packer_destroy(oit_packer *pk)
     free(pk->pack_first);
     free(pk->layers);
     free(pk->rects);
+    free(pk->part_rects);
     free(pk->bytes);
     free(pk->tile_sum);
     free(pk->tile_stamp);
@@ -71,10 +72,12 @@ oit_status oit_packer_create(const oit_partfile *pf, oit_pack_mode mode, int K,
         pk->parts = calloc((size_t)n + 1, sizeof *pk->parts);
         pk->pack_first = calloc((size_t)n + 2, sizeof *pk->pack_first);
         pk->rects = calloc((size_t)n + 1, sizeof *pk->rects);
+        pk->part_rects = calloc((size_t)n + 1, sizeof *pk->part_rects);
         pk->layers = calloc((size_t)n + 1, sizeof *pk->layers);
         pk->bytes = calloc((size_t)n + 1, sizeof *pk->bytes);
     }
-    if (!pk || !pk->parts || !pk->pack_first || !pk->rects || !pk->layers || !pk->bytes) {
+    if (!pk || !pk->parts || !pk->pack_first || !pk->rects || !pk->part_rects || !pk->layers ||
+        !pk->bytes) {
         oit_packer_destroy(pk);
         return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot allocate packing for %u parts",
                              oit_partfile_name(pf), n);
@@ -228,6 +231,7 @@ oit_status oit_packer_run(oit_packer *pk, const oit_view *view, const uint32_t *
         }
         grow_rect(pk->rects[packs - 1], r);
         pk->bytes[packs - 1] += bytes;
+        memcpy(pk->part_rects[drawn], r, sizeof r);
         pk->parts[drawn++] = order[i];
     }
     pk->pack_first[packs] = drawn;
@@ -235,6 +239,7 @@ oit_status oit_packer_run(oit_packer *pk, const oit_view *view, const uint32_t *
     out->part_count = drawn;
     out->pack_first = pk->pack_first;
     out->rects = (const int(*)[4])pk->rects;
+    out->part_rects = (const int(*)[4])pk->part_rects;
     out->bytes = pk->bytes;
     out->layers = pk->layers;
     out->pack_count = packs;

@@ -32,6 +32,7 @@ typedef struct oit_packing {
     uint32_t part_count;
     const uint32_t *pack_first; /* pack i: parts[pack_first[i] .. pack_first[i+1]) */
     const int (*rects)[4];      /* pack i's screen rectangle, as oit_capture_batch reads */
+    const int (*part_rects)[4]; /* parts[j]'s own screen rectangle */
     const uint64_t *bytes;      /* pack i's upload bytes */
     const uint32_t *layers;     /* pack i's fragments per pixel at most: K, or a wide part's */
     uint32_t pack_count;

@@ -6,6 +6,7 @@
 
 #include "render/gpu_mesh.h"
 #include "render/image.h"
+#include "render/saturation.h"
 #include "stream/order.h"
 #include "stream/upload.h"
 
@@ -19,6 +20,7 @@ struct oit_streamer {
     oit_packer *packer;
     oit_upload *upload;
     oit_capture *capture;
+    oit_saturation *saturation; /* only with epsilon > 0 */
     float epsilon;
     uint32_t *ordered;
     uint32_t *first_prim; /* per part: its first triangle across the file */
@@ -34,6 +36,7 @@ void oit_streamer_destroy(oit_streamer *s)
     for (uint32_t i = 0; i < s->view_count; i++)
         oit_gpu_mesh_destroy(s->views[i]);
     free(s->views);
+    oit_saturation_destroy(s->saturation);
     oit_capture_destroy(s->capture);
     oit_upload_destroy(s->upload);
     oit_packer_destroy(s->packer);
@@ -94,6 +97,7 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
     if (st == OIT_OK && desc->epsilon > 0.0f) {
         s->epsilon = desc->epsilon;
         oit_capture_set_epsilon(s->capture, desc->epsilon);
+        st = oit_saturation_create(&s->saturation, err);
     }
     if (st != OIT_OK) {
         oit_streamer_destroy(s);
@@ -122,28 +126,40 @@ static oit_status reserve_views(oit_streamer *s, uint32_t n, oit_error *err)
     return OIT_OK;
 }
 
+/* Uploads and captures pack i, leaving out the parts whose footprint is
+ * saturated (saturation.h: the capture would drop all their fragments). */
 static oit_status draw_pack(oit_streamer *s, const oit_packing *pk, uint32_t i,
                             oit_stream_frame_stats *ss, oit_error *err)
 {
-    uint32_t first = pk->pack_first[i], n = pk->pack_first[i + 1] - first;
+    uint32_t first = pk->pack_first[i], n = pk->pack_first[i + 1] - first, drawn = 0;
     oit_status st = reserve_views(s, n, err);
     if (st == OIT_OK)
         st = oit_upload_begin_pack(s->upload, pk->bytes[i], err);
     const oit_partfile_part *parts = oit_partfile_parts(s->pf);
     for (uint32_t k = 0; k < n && st == OIT_OK; k++) {
         uint32_t p = pk->parts[first + k];
+        if (s->saturation && oit_saturation_covered(s->saturation, pk->part_rects[first + k],
+                                                    s->epsilon)) {
+            ss->parts_skipped++;
+            continue;
+        }
         uint64_t offset = 0;
         if (!s->validated[p] && (st = oit_partfile_validate_part(s->pf, p, err)) != OIT_OK)
             break;
         s->validated[p] = 1;
         st = oit_upload_part(s->upload, s->pf, p, &offset, err);
-        oit_gpu_mesh_set_range(s->views[k], offset, (size_t)(parts[p].index_count / 3),
+        oit_gpu_mesh_set_range(s->views[drawn++], offset, (size_t)(parts[p].index_count / 3),
                                s->first_prim[p]);
         ss->bytes_uploaded += parts[p].index_count / 3 * sizeof(oit_triangle);
     }
-    if (st == OIT_OK)
-        st = oit_capture_batch_layers(s->capture, (const oit_gpu_mesh *const *)s->views, (int)n,
-                                      pk->rects[i], (int)pk->layers[i], err);
+    if (st != OIT_OK || drawn == 0)
+        return st;
+    ss->packs++;
+    st = oit_capture_batch_layers(s->capture, (const oit_gpu_mesh *const *)s->views, (int)drawn,
+                                  pk->rects[i], (int)pk->layers[i], err);
+    if (st == OIT_OK && s->saturation)
+        st = oit_saturation_update(s->saturation, oit_capture_state_buffer(s->capture),
+                                   pk->rects[i], err);
     return st;
 }
 
@@ -159,6 +175,8 @@ static oit_status capture_frame(oit_streamer *s, const oit_view *view, oit_packi
         st = oit_order_compute(s->order, view->camera.eye, s->ordered, &count, err);
     if (st == OIT_OK)
         st = oit_packer_run(s->packer, view, s->ordered, count, pk, err);
+    if (st == OIT_OK && s->saturation)
+        st = oit_saturation_begin(s->saturation, view->width, view->height, err);
     for (uint32_t i = 0; st == OIT_OK && i < pk->pack_count; i++)
         st = draw_pack(s, pk, i, ss, err);
     if (st != OIT_OK) {
@@ -172,11 +190,11 @@ static oit_status capture_frame(oit_streamer *s, const oit_view *view, oit_packi
 static void finish_stats(const oit_streamer *s, const oit_packing *pk, oit_frame_stats *fs,
                          oit_stream_frame_stats *ss)
 {
-    ss->packs = pk->pack_count;
-    ss->parts_drawn = pk->part_count;
+    ss->parts_drawn = pk->part_count - ss->parts_skipped;
     ss->parts_culled = pk->culled;
     ss->epsilon = s->epsilon;
-    ss->gpu_bytes_peak = fs->gpu_bytes_peak + oit_upload_gpu_bytes(s->upload);
+    ss->gpu_bytes_peak = fs->gpu_bytes_peak + oit_upload_gpu_bytes(s->upload) +
+                         (s->saturation ? oit_saturation_gpu_bytes(s->saturation) : 0);
     fs->gpu_bytes_peak = ss->gpu_bytes_peak;
 }
 

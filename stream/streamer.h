@@ -20,10 +20,11 @@ typedef struct oit_streamer_desc {
 
 /* The streamer's own per-frame figures, beside oit_frame_stats. */
 typedef struct oit_stream_frame_stats {
-    uint32_t packs;
+    uint32_t packs;          /* captured (a pack whose parts were all skipped is not) */
     uint64_t parts_drawn;
     uint64_t parts_culled;   /* boxes outside the view volume: no fragment */
-    uint64_t parts_skipped;  /* saturated footprint: not yet, always 0    */
+    uint64_t parts_skipped;  /* epsilon > 0: footprint saturated (render/saturation.h),
+                                neither uploaded nor drawn */
     uint64_t bytes_uploaded;
     uint64_t gpu_bytes_peak; /* capture buffers + upload ring              */
     float epsilon;           /* the early-termination threshold it ran with */

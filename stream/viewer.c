@@ -38,6 +38,7 @@ typedef struct viewer {
     oit_frame_stats st;
     int frames, screenshots;
     int save_pending; /* P: save after the next frame is shown */
+    float epsilon;    /* early termination the methods open with (E toggles) */
     char status[160];
 } viewer;
 
@@ -204,6 +205,7 @@ static oit_status switch_method(viewer *v, int i, oit_error *err)
 {
     oit_method_options opt = v->desc->options;
     opt.gl = v->gl;
+    opt.epsilon = v->epsilon;
     oit_method_state *st = NULL;
     oit_status s = v->methods[i]->open(v->desc->mesh, &opt, &st, err);
     if (s != OIT_OK)
@@ -238,6 +240,26 @@ static void save_screenshot(viewer *v)
         printf("viewer: screenshot %s\n", path);
 }
 
+/* E: early termination off, or on at --epsilon (1/255 when none was given:
+ * an error no 8-bit display shows). Only the streamer uses it; the method
+ * is reopened so that it takes effect from the next frame. */
+static void toggle_epsilon(viewer *v)
+{
+    float on = v->desc->options.epsilon > 0.0f ? v->desc->options.epsilon : 1.0f / 255.0f;
+    float was = v->epsilon;
+    oit_error err = {0};
+    v->epsilon = was > 0.0f ? 0.0f : on;
+    if (switch_method(v, v->current, &err) != OIT_OK) {
+        v->epsilon = was;
+        printf("viewer: early termination: %s\n", err.message);
+    } else if (v->epsilon > 0.0f) {
+        printf("viewer: early termination on, epsilon %g%s\n", v->epsilon,
+               v->methods[v->current]->stream_stats ? "" : " (used by the stream method only)");
+    } else {
+        printf("viewer: early termination off (exact)\n");
+    }
+}
+
 static void toggle_shading(viewer *v)
 {
     oit_shading *s = &v->view.shading;
@@ -267,9 +289,7 @@ static void handle_key(viewer *v, char key)
                    ? " (not available for this method: it counts no layers per pixel)" : "");
         break;
     case 'E':
-        /* No method skips work on opaque-enough pixels yet
-         * (oit_stream_frame_stats.parts_skipped is always 0). */
-        printf("viewer: early termination: not available\n");
+        toggle_epsilon(v);
         break;
     default:
         if (key >= '1' && key <= '9')
@@ -299,7 +319,11 @@ static void format_status(viewer *v)
     if (m->stream_stats && n > 0 && (size_t)n < sizeof v->status) {
         const oit_stream_frame_stats *ss = m->stream_stats(v->state);
         human((double)ss->bytes_uploaded, bytes, sizeof bytes);
-        snprintf(v->status + n, sizeof v->status - (size_t)n, " %u packs %sB up", ss->packs, bytes);
+        int k = snprintf(v->status + n, sizeof v->status - (size_t)n, " %u packs %sB up",
+                         ss->packs, bytes);
+        if (k > 0 && ss->epsilon > 0.0f && (size_t)(n + k) < sizeof v->status)
+            snprintf(v->status + n + k, sizeof v->status - (size_t)(n + k), " eps %.3g skip %llu",
+                     ss->epsilon, (unsigned long long)ss->parts_skipped);
     }
 }
 
@@ -487,6 +511,7 @@ oit_status oit_viewer_run(const oit_viewer_desc *desc, oit_error *err)
     viewer v;
     memset(&v, 0, sizeof v);
     v.desc = desc;
+    v.epsilon = desc->options.epsilon;
     oit_status s = open_viewer(&v, err);
     int limit = frame_limit(desc);
     size_t script_len = desc->script ? strlen(desc->script) : 0;

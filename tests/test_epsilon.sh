@@ -55,6 +55,28 @@ for sh in transparent translucent; do
         fail "$sh: fragments do not fall with epsilon: $f0 (E=0), $f1 (0.01), $f5 (0.05)"
 done
 
+# Whole parts behind saturated tiles (render/saturation.h): on 600 stacked
+# squares seen head on, E = 0.02 saturates every pixel after ~123 layers, so
+# parts must be skipped (neither uploaded nor drawn), drawn + skipped must
+# be the parts E = 0 draws, uploads must fall, and the error stays in bound.
+"$OIT_BIN/oitgen" hard --case stack -o "$T/stack.ply" >/dev/null &&
+    "$OIT_BIN/oitprep" "$T/stack.ply" -o "$T/stack.oitp" >/dev/null ||
+    fail "cannot make the stack part file"
+V=0,0,5,0,0,0,0,1,0,18
+for e in 0 0.02; do
+    "$S" "$T/stack.oitp" --size 128x128 --view $V --epsilon $e --out "$T/stack_$e.pfm" \
+        --stats "$T/stack_$e.json" --quiet || fail "stack E=$e: stream exited $?"
+done
+d0=$(json_num parts_drawn < "$T/stack_0.json") s0=$(json_num parts_skipped < "$T/stack_0.json")
+d2=$(json_num parts_drawn < "$T/stack_0.02.json") s2=$(json_num parts_skipped < "$T/stack_0.02.json")
+b0=$(json_num bytes_uploaded < "$T/stack_0.json") b2=$(json_num bytes_uploaded < "$T/stack_0.02.json")
+m=$("$S" --compare "$T/stack_0.02.pfm" "$T/stack_0.pfm" --json | json_num max_abs)
+echo "stack E=0: $d0 parts drawn, $s0 skipped, $b0 bytes; E=0.02: $d2 drawn, $s2 skipped, $b2 bytes, max_abs $m"
+[ "$s0" = 0 ] || fail "stack E=0 skipped $s0 parts"
+[ "${s2:-0}" -gt 0 ] && [ $((d2 + s2)) -eq "$d0" ] && [ "$b2" -lt "$b0" ] ||
+    fail "stack E=0.02: no parts skipped, or drawn + skipped != $d0, or uploads did not fall"
+awk -v m="$m" 'BEGIN{exit !(m <= 0.02 + 1e-6)}' || fail "stack E=0.02: max_abs $m exceeds 0.02"
+
 # Early termination belongs to the streamer, and E = 1 would drop everything.
 "$S" "$P" --epsilon 1 --size 16x16 --quiet >/dev/null 2>&1
 [ $? -eq 2 ] || fail "--epsilon 1 was not refused as a usage error"

@@ -207,6 +207,13 @@ static void check_errors(oit_scene *scene)
     CHECK(s == OIT_ERR_ARGUMENT && r == NULL, "K=32 gave %s", oit_status_name(s));
 
     rd.K = 0;
+    rd.epsilon = 1.0f;
+    s = oit_renderer_create(&rd, &r, &err);
+    printf("epsilon 1: %s: %s\n", oit_status_name(s), err.message);
+    CHECK(s == OIT_ERR_ARGUMENT && r == NULL && strstr(err.message, "epsilon"),
+          "epsilon = 1 gave %s", oit_status_name(s));
+
+    rd.epsilon = 0.0f;
     s = oit_renderer_create(&rd, &r, &err);
     CHECK(s == OIT_OK, "renderer: %s", err.message);
     oit_frame f = {0};

@@ -103,6 +103,12 @@ typedef struct oit_renderer_desc {
     uint64_t upload_budget; /* GPU bytes of the upload ring; 0: 64 MiB       */
     oit_render_pack pack;
     oit_render_shading shading;
+    /* Early termination; 0 (default): exact. In [0, 1): fragments behind
+     * pixels whose transmittance fell below epsilon in every channel are
+     * dropped, and parts whose whole footprint did are neither uploaded nor
+     * drawn (oit_draw_stats.parts_skipped); the image then differs from the
+     * exact one by at most epsilon per channel. */
+    float epsilon;
 } oit_renderer_desc;
 
 /* Needs a current GL 4.5 core context (GL objects are created lazily, at the
@@ -134,6 +140,7 @@ typedef struct oit_draw_stats {
     uint32_t packs;
     uint64_t parts_drawn;
     uint64_t parts_culled;
+    uint64_t parts_skipped;  /* epsilon > 0: footprint saturated, not drawn   */
     uint64_t bytes_uploaded;
     uint64_t gpu_bytes_peak;
 } oit_draw_stats;
