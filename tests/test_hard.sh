@@ -70,10 +70,20 @@ view() {
     "$S" "$T/in.oitp" --method stream --size "$SIZE" "$@" --out "$v-stream.pfm" \
         --stats "$v-stream.json" --quiet || { fail "$name: stream"; return; }
     cam=$(json_str view "$v-stream.json")
-    for m in dfb pll; do
-        "$S" "$T/in.oitp" --method $m --size "$SIZE" --view "$cam" --out "$v-$m.pfm" \
-            --stats "$v-$m.json" --quiet || fail "$name: $m"
-    done
+    "$S" "$T/in.oitp" --method dfb --size "$SIZE" --view "$cam" --out "$v-dfb.pfm" \
+        --stats "$v-dfb.json" --quiet || fail "$name: dfb"
+    # A linked list lives in one storage buffer: deeper than the driver binds
+    # it cannot run (reported, as oitbench does), which is not a wrong image.
+    pll=1
+    if ! "$S" "$T/in.oitp" --method pll --size "$SIZE" --view "$cam" --out "$v-pll.pfm" \
+        --quiet 2>"$T/pll.err"; then
+        if grep -q "more than this driver binds" "$T/pll.err"; then
+            echo "    pll: cannot run here: $(cat "$T/pll.err")"
+            pll=0
+        else
+            fail "$name: pll: $(cat "$T/pll.err")"
+        fi
+    fi
     "$S" "$T/in.oitp" --method reference --size "$SIZE" --view "$cam" --out "$v-ref.pfm" \
         --ambiguity "$v-mask.png" --quiet || fail "$name: reference"
     "$S" "$T/in.ply" --method dfb --size "$SIZE" --view "$cam" --out "$v-mesh.pfm" --quiet ||
@@ -93,7 +103,7 @@ view() {
     echo "  view $name: layers $(json_num max_layers "$v-dfb.json"), packs $(json_num packs "$v-stream.json"), overflow $ovf"
     [ "$ovf" = 0 ] || fail "$name: $ovf overflow pixels"
     compare "stream vs dfb" "$v-stream.pfm" "$v-dfb.pfm" 0.1
-    compare "pll vs dfb" "$v-pll.pfm" "$v-dfb.pfm" 0.1
+    [ $pll = 1 ] && compare "pll vs dfb" "$v-pll.pfm" "$v-dfb.pfm" 0.1
     if [ "$name" != az30 ]; then
         :
     elif [ "$CASE" = coplanar ]; then
