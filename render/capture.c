@@ -22,7 +22,13 @@ struct oit_capture {
     int K;
     float epsilon; /* early termination threshold; 0: exact */
     GLuint fill_prog, resolve_prog, begin_prog, end_prog;
-    GLuint wide_fill_prog, wide_resolve_prog; /* built on the first wide batch */
+    /* Tiled batches (tile-local slots: wide parts, or a slot budget below
+     * the full frame), built on first use: [0] sorts up to 16, [1] up to
+     * OIT_CAPTURE_MAX_LAYERS. */
+    GLuint tile_fill_prog[2], tile_resolve_prog[2];
+    uint64_t slot_budget; /* bytes; 0: K slots for every pixel of the frame */
+    int tiled;            /* this frame: every batch goes through tiles */
+    GLuint out_buf;       /* this frame's output: BUF_OUT, or the idle slots */
     GLuint fbo; /* attachment-less, for the array backend */
     GLuint buf[BUF_N];
     uint64_t cap[BUF_N];
@@ -56,9 +62,10 @@ static oit_status build_programs(oit_capture *c, oit_error *err)
 
 static void release(oit_capture *c)
 {
-    GLuint progs[6] = {c->fill_prog,  c->resolve_prog,   c->begin_prog,
-                       c->end_prog,   c->wide_fill_prog, c->wide_resolve_prog};
-    for (int i = 0; i < 6; i++)
+    GLuint progs[8] = {c->fill_prog,          c->resolve_prog,         c->begin_prog,
+                       c->end_prog,           c->tile_fill_prog[0],    c->tile_fill_prog[1],
+                       c->tile_resolve_prog[0], c->tile_resolve_prog[1]};
+    for (int i = 0; i < 8; i++)
         glDeleteProgram(progs[i]);
     glDeleteFramebuffers(1, &c->fbo);
     glDeleteBuffers(BUF_N, c->buf);
@@ -158,20 +165,28 @@ static oit_status reserve(oit_capture *c, int which, uint64_t bytes, oit_error *
     return s;
 }
 
+/* The array backend holds K slots for every pixel, or, under a slot budget
+ * smaller than that, the budget's worth (at least one row), and then takes
+ * every batch in tiles. The output, needed only at the frame's end, then
+ * passes through the idle slots, in bands of rows when they hold less. */
 static oit_status allocate(oit_capture *c, const oit_view *v, oit_error *err)
 {
     uint64_t pixels = (uint64_t)v->width * v->height;
     int array = c->backend == OIT_CAPTURE_ARRAY;
-    oit_status s = oit_gl_check_ssbo_size(pixels * (array ? (uint64_t)c->K * 16 : 48),
+    uint64_t full = pixels * (uint64_t)c->K * 16, row = (uint64_t)v->width * c->K * 16;
+    c->tiled = array && c->slot_budget && full > c->slot_budget;
+    uint64_t slots = !c->tiled ? full : c->slot_budget > row ? c->slot_budget : row;
+    oit_status s = oit_gl_check_ssbo_size(array && slots > pixels * 48 ? slots : pixels * 48,
                                           "capture: the frame's largest buffer", err);
     if (s == OIT_OK)
         s = reserve(c, BUF_COUNTS, pixels * 4, err);
     if (s == OIT_OK && array)
-        s = reserve(c, BUF_SLOTS, pixels * (uint64_t)c->K * 16, err);
+        s = reserve(c, BUF_SLOTS, slots, err);
     if (s == OIT_OK)
         s = reserve(c, BUF_STATE, pixels * 48, err);
-    if (s == OIT_OK)
+    if (s == OIT_OK && !c->tiled)
         s = reserve(c, BUF_OUT, pixels * 16, err);
+    c->out_buf = c->tiled ? c->buf[BUF_SLOTS] : c->buf[BUF_OUT];
     if (s == OIT_OK)
         s = reserve(c, BUF_TOTALS, 16, err);
     if (s == OIT_OK && !array)
@@ -181,6 +196,11 @@ static oit_status allocate(oit_capture *c, const oit_view *v, oit_error *err)
         c->bytes_peak = held > c->bytes_peak ? held : c->bytes_peak;
     }
     return s;
+}
+
+void oit_capture_set_slot_budget(oit_capture *c, uint64_t bytes)
+{
+    c->slot_budget = bytes;
 }
 
 static void set_uniforms(oit_capture *c)
@@ -208,7 +228,7 @@ static void bind_buffers(const oit_capture *c)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, c->buf[BUF_COUNTS]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_TOTALS, c->buf[BUF_TOTALS]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_STATE, c->buf[BUF_STATE]);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, c->buf[BUF_OUT]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, c->out_buf);
     if (c->buf[BUF_SLOTS])
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_FRAGS, c->buf[BUF_SLOTS]);
 }
@@ -324,6 +344,8 @@ static oit_status batch_start(oit_capture *c, const int rect[4], int n, int r[4]
 oit_status oit_capture_batch(oit_capture *c, const oit_gpu_mesh *const *meshes,
                              int n, const int rect[4], oit_error *err)
 {
+    if (c->tiled)
+        return oit_capture_batch_layers(c, meshes, n, rect, c->K, err);
     int r[4] = {0}, empty = 1;
     oit_status s = batch_start(c, rect, n, r, &empty, err);
     if (s != OIT_OK || empty)
@@ -336,53 +358,84 @@ oit_status oit_capture_batch(oit_capture *c, const oit_gpu_mesh *const *meshes,
     return oit_gl_check("capture: batch", err);
 }
 
-/* ---- wide batches ------------------------------------------------------------ */
+/* ---- tiled batches ----------------------------------------------------------- */
 
 #define STR_(x) #x
 #define STR(x) STR_(x)
 
-static oit_status wide_programs(oit_capture *c, oit_error *err)
+/* Program pair i: 0 sorts up to 16 fragments a pixel, 1 up to
+ * OIT_CAPTURE_MAX_LAYERS (registers a GPU would rather not spend on K). */
+static oit_status tiled_programs(oit_capture *c, int i, oit_error *err)
 {
-    if (!c->wide_fill_prog) {
+    if (!c->tile_fill_prog[i]) {
         const char *vs[] = {oit_glsl_version, oit_glsl_vertex, NULL};
         const char *fs[] = {oit_glsl_version, oit_glsl_fragment_gen, oit_capture_wide_fs, NULL};
         const char *rcs[] = {oit_glsl_version,
-                             "#define OIT_WIDE " STR(OIT_CAPTURE_MAX_LAYERS) "\n",
+                             i ? "#define OIT_WIDE " STR(OIT_CAPTURE_MAX_LAYERS) "\n"
+                               : "#define OIT_WIDE 16\n",
                              oit_glsl_composite, oit_capture_resolve_cs, NULL};
-        oit_status s = oit_gl_program_graphics("capture wide fill", vs, fs, &c->wide_fill_prog,
-                                               err);
+        oit_status s = oit_gl_program_graphics("capture tiled fill", vs, fs,
+                                               &c->tile_fill_prog[i], err);
         if (s == OIT_OK)
-            s = oit_gl_program_compute("capture wide resolve", rcs, &c->wide_resolve_prog, err);
+            s = oit_gl_program_compute("capture tiled resolve", rcs, &c->tile_resolve_prog[i],
+                                       err);
         if (s != OIT_OK)
             return s;
     }
-    GLuint progs[2] = {c->wide_fill_prog, c->wide_resolve_prog};
-    for (int i = 0; i < 2; i++) {
-        oit_glsl_set_view(progs[i], &c->view);
-        glProgramUniform1i(progs[i], glGetUniformLocation(progs[i], "u_K"), c->K);
+    GLuint progs[2] = {c->tile_fill_prog[i], c->tile_resolve_prog[i]};
+    for (int k = 0; k < 2; k++) {
+        oit_glsl_set_view(progs[k], &c->view);
+        glProgramUniform1i(progs[k], glGetUniformLocation(progs[k], "u_K"), c->K);
     }
-    glProgramUniform1f(c->wide_fill_prog, glGetUniformLocation(c->wide_fill_prog, "u_epsilon"),
-                       c->epsilon);
+    glProgramUniform1f(progs[0], glGetUniformLocation(progs[0], "u_epsilon"), c->epsilon);
     return OIT_OK;
 }
 
-/* One tile of a wide batch: fill its pixels' W slots, then resolve them. */
-static void wide_tile(oit_capture *c, const oit_gpu_mesh *const *meshes, int n, int W,
+/* One tile: fill its pixels' W slots, then resolve them. */
+static void tile_pass(oit_capture *c, const oit_gpu_mesh *const *meshes, int n, int W, int i,
                       const int t[4])
 {
-    GLuint fp = c->wide_fill_prog, rp = c->wide_resolve_prog;
+    GLuint fp = c->tile_fill_prog[i], rp = c->tile_resolve_prog[i];
     glProgramUniform1i(fp, glGetUniformLocation(fp, "u_W"), W);
     glProgramUniform1i(rp, glGetUniformLocation(rp, "u_W"), W);
     glProgramUniform4i(fp, glGetUniformLocation(fp, "u_tile"), t[0], t[1], t[2], t[3]);
-    draw_scissored(c, c->wide_fill_prog, meshes, n, t);
+    draw_scissored(c, fp, meshes, n, t);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    resolve(c->wide_resolve_prog, t);
+    resolve(rp, t);
+}
+
+/* The batch over tiles of the GL rect r small enough that W slots a pixel
+ * fit the slots buffer: one draw of the batch per tile. */
+static oit_status tiled_batch(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
+                              const int r[4], int W, oit_error *err)
+{
+    uint64_t slots = c->tiled ? c->cap[BUF_SLOTS] / 16
+                              : (uint64_t)c->view.width * c->view.height * (uint64_t)c->K;
+    slots = slots > (uint64_t)W ? slots : (uint64_t)W;
+    int i = W > 16;
+    oit_status s = reserve(c, BUF_SLOTS, slots * 16, err);
+    if (s == OIT_OK)
+        s = tiled_programs(c, i, err);
+    if (s != OIT_OK)
+        return s;
+    bind_buffers(c);
+    uint64_t tile_pixels = c->cap[BUF_SLOTS] / 16 / (uint64_t)W;
+    int rw = r[2] - r[0];
+    int tw = (uint64_t)rw < tile_pixels ? rw : (int)tile_pixels;
+    uint64_t rows = tile_pixels / (uint64_t)tw;
+    int th = rows < (uint64_t)(r[3] - r[1]) ? (int)rows : r[3] - r[1];
+    for (int y = r[1]; y < r[3]; y += th)
+        for (int x = r[0]; x < r[2]; x += tw) {
+            int t[4] = {x, y, x + tw < r[2] ? x + tw : r[2], y + th < r[3] ? y + th : r[3]};
+            tile_pass(c, meshes, n, W, i, t);
+        }
+    return oit_gl_check("capture: tiled batch", err);
 }
 
 oit_status oit_capture_batch_layers(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
                                     const int rect[4], int layers, oit_error *err)
 {
-    if (layers <= c->K)
+    if (layers <= c->K && !c->tiled)
         return oit_capture_batch(c, meshes, n, rect, err);
     if (layers > OIT_CAPTURE_MAX_LAYERS)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: a batch of %d layers, more than "
@@ -391,29 +444,24 @@ oit_status oit_capture_batch_layers(oit_capture *c, const oit_gpu_mesh *const *m
     oit_status s = batch_start(c, rect, n, r, &empty, err);
     if (s != OIT_OK || empty)
         return s;
-    /* The frame's K slots per pixel, or at least one tile row's worth. */
-    uint64_t pixels = (uint64_t)c->view.width * c->view.height;
-    uint64_t slots = pixels * (uint64_t)c->K;
-    slots = slots > (uint64_t)layers ? slots : (uint64_t)layers;
-    s = reserve(c, BUF_SLOTS, slots * 16, err);
-    if (s == OIT_OK)
-        s = wide_programs(c, err);
-    if (s != OIT_OK)
-        return s;
-    bind_buffers(c);
-    uint64_t tile_pixels = c->cap[BUF_SLOTS] / 16 / (uint64_t)layers;
-    int rw = r[2] - r[0];
-    int tw = (uint64_t)rw < tile_pixels ? rw : (int)tile_pixels;
-    uint64_t rows = tile_pixels / (uint64_t)tw;
-    int th = rows < (uint64_t)(r[3] - r[1]) ? (int)rows : r[3] - r[1];
-    for (int y = r[1]; y < r[3]; y += th)
-        for (int x = r[0]; x < r[2]; x += tw) {
-            int t[4] = {x, y, x + tw < r[2] ? x + tw : r[2], y + th < r[3] ? y + th : r[3]};
-            wide_tile(c, meshes, n, layers, t);
-        }
-    return oit_gl_check("capture: wide batch", err);
+    return tiled_batch(c, meshes, n, r, layers > c->K ? layers : c->K, err);
 }
 
+/* Totals (and with write_out the final colours, into out_buf from its
+ * start) of the pixels [first, first + count). */
+static void end_pass(oit_capture *c, uint64_t first, uint64_t count, int write_out)
+{
+    GLuint p = c->end_prog;
+    glUseProgram(p);
+    glProgramUniform1ui(p, glGetUniformLocation(p, "u_first"), (GLuint)first);
+    glProgramUniform1ui(p, glGetUniformLocation(p, "u_count"), (GLuint)count);
+    glProgramUniform1i(p, glGetUniformLocation(p, "u_out"), write_out);
+    glDispatchCompute(oit_gl_groups(count, 64), 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+/* Resolves the carried state against the background into out, in bands of
+ * GL rows as many as out_buf holds, then reads the totals. */
 static oit_status read_output(oit_capture *c, oit_image *out, GLuint totals[4], oit_error *err)
 {
     int w = c->view.width, h = c->view.height;
@@ -421,11 +469,16 @@ static oit_status read_output(oit_capture *c, oit_image *out, GLuint totals[4], 
     if (s != OIT_OK)
         return s;
     size_t row = (size_t)w * 16;
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    /* GL rows are bottom first: read each row into its flipped place. */
-    for (int y = 0; y < h; y++)
-        glGetNamedBufferSubData(c->buf[BUF_OUT], (GLintptr)((size_t)(h - 1 - y) * row),
-                                (GLsizeiptr)row, out->rgba + (size_t)y * w * 4);
+    uint64_t held = c->out_buf == c->buf[BUF_SLOTS] ? c->cap[BUF_SLOTS] : c->cap[BUF_OUT];
+    int band = (int)(held / row < (uint64_t)h ? held / row : (uint64_t)h);
+    for (int y0 = 0; y0 < h; y0 += band) {
+        int y1 = y0 + band < h ? y0 + band : h;
+        end_pass(c, (uint64_t)y0 * w, (uint64_t)(y1 - y0) * w, 1);
+        /* GL rows are bottom first: each row goes to its flipped place. */
+        for (int y = y0; y < y1; y++)
+            glGetNamedBufferSubData(c->out_buf, (GLintptr)((size_t)(y - y0) * row),
+                                    (GLsizeiptr)row, out->rgba + (size_t)(h - 1 - y) * w * 4);
+    }
     glGetNamedBufferSubData(c->buf[BUF_TOTALS], 0, 16, totals);
     s = oit_gl_check("capture: readback", err);
     if (s != OIT_OK)
@@ -433,16 +486,12 @@ static oit_status read_output(oit_capture *c, oit_image *out, GLuint totals[4], 
     return s;
 }
 
-/* Both ends of a frame: resolve the carried state against the background
- * (end_prog), then report from the GPU's totals. */
 static oit_status finish_frame(oit_capture *c, oit_error *err)
 {
     if (!c->in_frame)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: end without begin");
     c->in_frame = 0;
     bind_buffers(c);
-    glUseProgram(c->end_prog);
-    glDispatchCompute(oit_gl_groups((uint64_t)c->view.width * c->view.height, 64), 1, 1);
     return OIT_OK;
 }
 
@@ -580,7 +629,7 @@ oit_status oit_capture_end_gpu(oit_capture *c, unsigned *state, oit_frame_stats 
     oit_status s = finish_frame(c, err);
     if (s != OIT_OK)
         return s;
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    end_pass(c, 0, (uint64_t)c->view.width * c->view.height, 0);
     GLuint totals[4];
     glGetNamedBufferSubData(c->buf[BUF_TOTALS], 0, 16, totals);
     s = oit_gl_check("capture: end on the GPU", err);

@@ -45,6 +45,14 @@ void oit_capture_set_epsilon(oit_capture *c, float epsilon);
  * between batches (saturation.h). Valid until the next oit_capture_begin. */
 unsigned oit_capture_state_buffer(const oit_capture *c);
 
+/* GPU memory: from the next frame on, the array backend's slots take at
+ * most `bytes` (at least one row of K), instead of K slots for every pixel
+ * (K x 16 bytes a pixel: 128 MiB at 1024x1024, K = 8). A frame whose full
+ * slots exceed it captures every batch in screen tiles that fit, one draw of
+ * the batch per tile, and writes its output into the idle slots. 0 (the
+ * default): no limit. The image is the same either way. */
+void oit_capture_set_slot_budget(oit_capture *c, uint64_t bytes);
+
 /* Starts a frame: C = 0, T = 1, translucency state cleared. */
 oit_status oit_capture_begin(oit_capture *c, const oit_view *view, oit_error *err);
 /* Captures meshes[0..n) as one batch and composites it behind what the frame

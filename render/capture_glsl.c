@@ -115,17 +115,22 @@ const char oit_capture_begin_cs[] =
     "    if (p < u_count) states[p] = oit_state_begin();\n"
     "}\n";
 
+/* Pixels [u_first, u_first + u_count): their totals, and (u_out) their
+ * final colour at out_rgba[0..u_count), so a frame's output can be read in
+ * bands through a buffer smaller than the frame. */
 const char oit_capture_end_cs[] =
     "layout(local_size_x = 64) in;\n"
     COUNT_AND_FLAG
     "layout(std430, binding = 6) readonly buffer State { oit_state states[]; };\n"
     "layout(std430, binding = 4) writeonly buffer Out { vec4 out_rgba[]; };\n"
     "layout(location = 13) uniform uint u_count;\n"
+    "uniform uint u_first;\n"
+    "uniform int u_out;\n"
     "void main() {\n"
-    "    uint p = gl_GlobalInvocationID.x;\n"
-    "    if (p >= u_count) return;\n"
-    "    oit_state s = states[p];\n"
-    "    out_rgba[p] = oit_state_final(s);\n"
+    "    uint i = gl_GlobalInvocationID.x;\n"
+    "    if (i >= u_count) return;\n"
+    "    oit_state s = states[u_first + i];\n"
+    "    if (u_out != 0) out_rgba[i] = oit_state_final(s);\n"
     "    atomicMax(f_max, s.nfrag);\n"
     "    uint old = atomicAdd(f_lo, s.nfrag);\n"
     "    if (old + s.nfrag < old) atomicAdd(f_hi, 1u);\n"

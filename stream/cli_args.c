@@ -126,6 +126,9 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
     } else if (!strcmp(opt, "--upload-budget")) {
         if (!parse_bytes(v, &a->upload_budget) || a->upload_budget < 65536)
             *s = bad(err, opt, v, "bytes >= 64K, with an optional K, M or G suffix");
+    } else if (!strcmp(opt, "--slot-budget")) {
+        if (!parse_bytes(v, &a->slot_budget) || a->slot_budget < 65536)
+            *s = bad(err, opt, v, "bytes >= 64K, with an optional K, M or G suffix");
     } else if (!strcmp(opt, "--epsilon")) {
         if (!parse_float(v, &a->epsilon) || !(a->epsilon >= 0.0f) || !(a->epsilon < 1.0f))
             *s = bad(err, opt, v, "a transmittance in [0, 1)");
@@ -222,6 +225,8 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "                      share a pack while the sum of their layer bounds per\n"
         "                      32x32 tile stays <= K: fewer, larger packs)\n"
         "  --upload-budget B   stream: bytes of the GPU upload ring (default 64M)\n"
+        "  --slot-budget B     stream: bytes of the K-fragment capture slots (default\n"
+        "                      32M); a larger frame is captured in screen tiles\n"
         "  --epsilon E         stream: drop fragments behind pixels whose transmittance\n"
         "                      fell below E, and neither upload nor draw parts whose\n"
         "                      whole footprint did (error <= E per channel; default\n"

@@ -35,6 +35,7 @@ typedef struct oit_stream_args {
     int quiet;
     int pack_disjoint;                 /* --pack: 1 disjoint (default), 0 budget */
     unsigned long long upload_budget;  /* --upload-budget; 0: default */
+    unsigned long long slot_budget;    /* --slot-budget; 0: default */
     float epsilon;                     /* --epsilon: stream early termination; 0: exact */
     /* --window: the interactive viewer (viewer.h) */
     int window;

@@ -378,8 +378,10 @@ static int run_render(const oit_stream_args *args)
             oit_partfile_get_summary(pf, &sum);
         K = pf ? (int)sum.K : 16;
     }
-    oit_method_options opt = {K, pf, a->pack_disjoint ? OIT_PACK_DISJOINT : OIT_PACK_BUDGET,
-                              a->upload_budget, NULL, a->epsilon};
+    oit_method_options opt = {.max_layers = K, .partfile = pf,
+                              .pack = a->pack_disjoint ? OIT_PACK_DISJOINT : OIT_PACK_BUDGET,
+                              .upload_budget = a->upload_budget, .epsilon = a->epsilon,
+                              .slot_budget = a->slot_budget};
     rc.view.width = a->width;
     rc.view.height = a->height;
     rc.origin = mesh.info.origin;

@@ -220,8 +220,9 @@ static oit_status stream_open(const oit_mesh *mesh, const oit_method_options *op
     oit_status s = new_state(mesh, opt, 0, out, err);
     if (s == OIT_OK)
         s = attach_gl(*out, opt, err);
-    oit_streamer_desc sd = {opt->max_layers, OIT_CAPTURE_ARRAY, opt->pack, opt->upload_budget,
-                            opt->epsilon};
+    oit_streamer_desc sd = {.K = opt->max_layers, .capture = OIT_CAPTURE_ARRAY, .pack = opt->pack,
+                            .upload_budget = opt->upload_budget,
+                            .slot_budget = opt->slot_budget, .epsilon = opt->epsilon};
     if (s == OIT_OK)
         s = oit_streamer_create(opt->partfile, &sd, &(*out)->streamer, err);
     if (s != OIT_OK && *out) {

@@ -21,6 +21,7 @@ typedef struct oit_method_options {
      * not destroy it. */
     struct oit_gl *gl;
     float epsilon; /* the streamer's early termination; 0: exact */
+    unsigned long long slot_budget; /* the streamer's capture slots, bytes; 0: default */
 } oit_method_options;
 
 typedef struct oit_render_method {

@@ -94,6 +94,9 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
         st = oit_upload_create(budget, max_part, &s->upload, err);
     if (st == OIT_OK)
         st = oit_capture_create(desc->capture, desc->K, &s->capture, err);
+    if (st == OIT_OK)
+        oit_capture_set_slot_budget(s->capture, desc->slot_budget ? desc->slot_budget
+                                                                  : 32ull << 20);
     if (st == OIT_OK && desc->epsilon > 0.0f) {
         s->epsilon = desc->epsilon;
         oit_capture_set_epsilon(s->capture, desc->epsilon);

@@ -15,6 +15,8 @@ typedef struct oit_streamer_desc {
     oit_capture_kind capture; /* backend */
     oit_pack_mode pack;
     uint64_t upload_budget;   /* ring bytes; 0: 64 MiB */
+    uint64_t slot_budget;     /* capture slot bytes (oit_capture_set_slot_budget);
+                                 0: 32 MiB */
     float epsilon;            /* early termination (oit_capture_set_epsilon); 0: exact */
 } oit_streamer_desc;
 

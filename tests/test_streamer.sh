@@ -88,6 +88,18 @@ if [ "$MODE" = grid ]; then
     # K = 2 turns every part into a wide part (layer bound > K): captured
     # with more slots per pixel over smaller tiles, still exact.
     agree wide --max-layers 2
+    # A slot budget of 64K (512 pixels of K = 8 slots) at 128x128 captures
+    # every pack in many screen tiles, the output in the idle slots.
+    agree tiled --slot-budget 64K
+    agree tiled_wide --slot-budget 64K --max-layers 2
+    # GPU memory at 1024x1024 outside the two budgets stays below 64 MB
+    # (per-pixel counts and state), whatever the model (issue 6).
+    "$S" "$P" --size 1024x1024 --upload-budget 1M --slot-budget 8M --out "$T/big.png" \
+        --stats "$T/big.json" --quiet || fail "1024x1024: stream exited $?"
+    g=$(json_num gpu_bytes_peak < "$T/big.json")
+    echo "1024x1024, upload budget 1M, slot budget 8M: GPU peak $g bytes"
+    [ -n "$g" ] && [ "$g" -le $((64000000 + 9 * 1048576)) ] ||
+        fail "1024x1024: GPU peak $g bytes, more than 64 MB beyond the budgets"
 fi
 
 # An eye inside the model: boxes crossing the near plane cover the screen.
