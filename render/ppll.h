@@ -3,19 +3,16 @@
  * into its pixel's list (atomic exchange of the head); a compute pass walks
  * each list, sorts by (t, prim) and composites per shade.h.
  *
- * Node buffer sizing: a frame starts with the capacity the previous frames
- * needed (at first one node per pixel). The counter keeps counting past the
- * capacity, so after the pass the frame's true fragment count is known; when
- * it overflowed, the node buffer grows to that count and the frame is drawn
- * once more. A fragment is never dropped, and the capacity never shrinks.
+ * Built on list_store.h, which holds the policy it shares with ppll4.h and
+ * guarded.h: node buffer sizing (at first one node per pixel; an overflowing
+ * frame grows the buffer to its true fragment count and is drawn once more,
+ * so a fragment is never dropped, and the capacity never shrinks) and the
+ * resolve (oit_glsl_sorted_resolve: up to 32 fragments sorted in registers,
+ * longer lists composited in O(n^2) walks, no layer limit).
  *
- * Resolve: lists of up to 32 fragments are insertion-sorted in registers;
- * longer ones are composited by repeatedly walking the list for the
- * successor of the last (t, prim) key, O(n^2) but without a layer limit
- * ((t, prim) is unique per pixel, a triangle covers a pixel centre once).
- *
- * Stats: fragments (the counter), max_layers (longest list), batches = the
- * geometry passes drawn (1, or 2 after an overflow), gpu_bytes_peak. */
+ * Stats: fragments (stored: all of them), max_layers (longest list),
+ * batches = the geometry passes drawn (1, or 2 after an overflow),
+ * gpu_bytes_peak. */
 #ifndef OIT_RENDER_PPLL_H
 #define OIT_RENDER_PPLL_H
 
@@ -25,7 +22,8 @@
 extern "C" {
 #endif
 
-typedef struct oit_pll oit_pll;
+/* A list store (list_store.h) with this method's shaders. */
+typedef struct oit_list_store oit_pll;
 
 oit_status oit_pll_create(oit_pll **out, oit_error *err);
 void oit_pll_destroy(oit_pll *p);

@@ -61,7 +61,8 @@ static void open_methods(const oit_bench_desc *d, oit_bench_result *r, oit_gl **
         snprintf(r->renderer, sizeof r->renderer, "%s", oit_gl_renderer(*gl));
     else if (need_gl)
         snprintf(r->renderer, sizeof r->renderer, "none (no GL context: %.200s)", err.message);
-    oit_method_options opt = {d->max_layers, d->partfile, OIT_PACK_DISJOINT, 0, *gl, 0.0f};
+    /* epsilon -1: every method at its default (exact, or its seed's threshold). */
+    oit_method_options opt = {d->max_layers, d->partfile, OIT_PACK_DISJOINT, 0, *gl, -1.0f};
     for (int i = 0; i < r->method_count; i++) {
         oit_bench_method *m = &r->methods[i];
         m->runnable = 1;
