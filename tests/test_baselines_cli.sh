@@ -13,22 +13,31 @@ S="$OIT_BIN/oitstream"
 G="$OIT_BIN/oitgen"
 B="$OIT_BIN/oitbench"
 T="$OIT_TEST_TMP/baselines_cli"
+rm -rf "$T"
 mkdir -p "$T"
 FAILS=0
 fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
 json_num() { sed -n "s/.*\"$1\": \([-0-9.e+]*\).*/\1/p" | head -n 1; }
 
-# vs_dfb MODEL METHOD MAX [OPTION...]: renders both with the options,
-# prints the comparison, checks max_abs <= MAX.
+# render MODEL METHOD OUT [OPTION...]
+render() {
+    model=$1; x=$2; out=$3; shift 3
+    "$S" "$model" --method "$x" --size 160x120 --out "$out" --quiet "$@" 2>"$T/err.txt" ||
+        { fail "$(basename "$out"): $(cat "$T/err.txt")"; return 1; }
+}
+
+# vs_dfb MODEL METHOD MAX [OPTION...]: renders the method with the options
+# (and DFB, once per model and options other than --epsilon), prints the
+# comparison, checks max_abs <= MAX.
 vs_dfb() {
     model=$1; m=$2; max=$3; shift 3
+    opts=$(echo "$*" | sed 's/--epsilon [^ ]*//' | tr -c 'a-z0-9.\n' '_')
+    ref="$T/$(basename "$model" .ply)$opts.dfb.pfm"
     tag=$(basename "$model" .ply)_$m$(echo "$*" | tr -c 'a-z0-9.\n' '_')
-    for x in dfb "$m"; do
-        "$S" "$model" --method "$x" --size 160x120 --out "$T/${tag}_$x.pfm" \
-            --stats "$T/${tag}_$x.json" --quiet "$@" 2>"$T/err.txt" ||
-            { fail "$tag: --method $x: $(cat "$T/err.txt")"; return; }
-    done
-    j=$("$S" --compare "$T/${tag}_dfb.pfm" "$T/${tag}_$m.pfm" --json) ||
+    [ -s "$ref" ] || render "$model" dfb "$ref" $(echo "$*" | sed 's/--epsilon [^ ]*//') ||
+        return
+    render "$model" "$m" "$T/$tag.pfm" "$@" || return
+    j=$("$S" --compare "$ref" "$T/$tag.pfm" --json) ||
         { fail "$tag: compare $m"; return; }
     echo "$tag $m vs dfb: $j" | tr '\n' ' '; echo
     got=$(echo "$j" | json_num max_abs)
