@@ -59,8 +59,11 @@ static const char walk_glsl[] =
 
 oit_status oit_guarded_create(oit_guarded **out, oit_error *err)
 {
-    /* 0xffffffff means no node, so it is no node index. */
-    static const oit_list_desc d = {"guarded OIT", append_fs, walk_glsl, 1, 2, 0xfffffffeull};
+    /* 0xffffffff means no node, so it is no node index. A pass that
+     * overflows counts as if guards past the pool never culled, so the pool
+     * doubles at most per pass rather than growing to PLL's size at once. */
+    static const oit_list_desc d = {"guarded OIT", append_fs, walk_glsl, 1, 2, 0xfffffffeull,
+                                    2};
     oit_status s = oit_list_store_create(&d, out, err);
     if (s == OIT_OK)
         s = oit_guarded_set_threshold(*out, OIT_GUARDED_DEFAULT_THRESHOLD, err);

@@ -37,8 +37,11 @@
  * surfaces (a culled face also changes the nesting).
  *
  * Memory: PLL's, minus the culled fragments, plus one word per pixel.
- * Sizing as PLL (list_store.h); culling depends on what earlier fragments
- * stored, so a frame that overflowed may need more than one regrowth.
+ * Sizing as PLL (list_store.h), except that a pass which overflowed counts
+ * too much (guards whose nodes fell past the pool could not cull), so the
+ * pool at most doubles per pass instead of growing to that count: the first
+ * deep frame takes a few passes, and the pool ends near the culled need
+ * (within 2x) instead of near PLL's.
  *
  * Stats: fragments = fragments stored (generated minus culled), max_layers
  * (longest list), batches = geometry passes, gpu_bytes_peak. */

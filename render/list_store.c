@@ -142,7 +142,7 @@ static oit_status prepare(oit_list_store *ls, const oit_view *v, oit_error *err)
             [BUF_HEADS] = pixels * 4 * ls->d.words_per_pixel, [BUF_STATS] = 16,
             [BUF_OUT] = pixels * 16}, err);
     if (s == OIT_OK && ls->units == 0)
-        s = reserve_units(ls, pixels, err);
+        s = reserve_units(ls, (pixels + ls->d.slots_per_unit - 1) / ls->d.slots_per_unit, err);
     if (s != OIT_OK)
         return s;
     glNamedFramebufferParameteri(ls->fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH, v->width);
@@ -165,7 +165,8 @@ static oit_status build_lists(oit_list_store *ls, const oit_gpu_mesh *const *mes
             return s;
         if (*passes == OIT_LIST_MAX_PASSES)
             break;
-        s = reserve_units(ls, need, err);
+        uint64_t cap = ls->units * ls->d.growth_cap;
+        s = reserve_units(ls, ls->d.growth_cap && need > cap ? cap : need, err);
     }
     if (s != OIT_OK)
         return s;

@@ -7,14 +7,17 @@
  * a page of nodes), with one link word per unit; one atomic unit counter.
  *
  * Sizing, the same policy for all three: a frame starts with the capacity
- * the previous frames needed (at first one unit per pixel). The append
+ * the previous frames needed (at first one fragment slot per pixel, so every
+ * method starts with the same bytes whatever its unit). The append
  * shader takes units from the counter, which keeps counting past the
  * capacity (the shader writes no unit at or beyond u_capacity), so after the
  * pass the frame's need is known; when it overflowed, the pool grows to that
  * need and the frame is drawn again. A fragment is never dropped, and the
  * capacity never shrinks. A method whose need can change between passes
  * (units wasted under contention, culling that depends on what was stored)
- * may take a few passes; more than OIT_LIST_MAX_PASSES is an error.
+ * may take a few passes; one whose count overstates the need (growth_cap)
+ * grows by at most that factor a pass; more than OIT_LIST_MAX_PASSES is an
+ * error.
  *
  * Resolve: oit_glsl_sorted_resolve (baseline_common.h) with the method's
  * walk, so every list method sorts and composites exactly like the others.
@@ -38,7 +41,7 @@
 extern "C" {
 #endif
 
-#define OIT_LIST_MAX_PASSES 4
+#define OIT_LIST_MAX_PASSES 16
 
 typedef struct oit_list_desc {
     const char *method;       /* names the method in errors: "PLL" */
@@ -47,6 +50,8 @@ typedef struct oit_list_desc {
     uint32_t slots_per_unit;  /* 1: nodes; 4: pages of four */
     uint32_t words_per_pixel; /* head words per pixel */
     uint64_t max_units;       /* the most units the method's indices address */
+    uint32_t growth_cap;      /* 0: an overflowing pass grows the pool to its
+                                 count; g: to at most g times the pool */
 } oit_list_desc;
 
 typedef struct oit_list_store oit_list_store;

@@ -29,7 +29,7 @@ static const char walk_glsl[] =
 oit_status oit_pll_create(oit_pll **out, oit_error *err)
 {
     /* 0xffffffff ends a list, so it is no node index. */
-    static const oit_list_desc d = {"PLL", append_fs, walk_glsl, 1, 1, 0xfffffffeull};
+    static const oit_list_desc d = {"PLL", append_fs, walk_glsl, 1, 1, 0xfffffffeull, 0};
     return oit_list_store_create(&d, out, err);
 }
 

@@ -52,7 +52,7 @@ static const char walk_glsl[] =
 oit_status oit_ppll4_create(oit_ppll4 **out, oit_error *err)
 {
     /* Page indices take the head word's upper 30 bits; the top one is NO_PAGE. */
-    static const oit_list_desc d = {"PPLL4", append_fs, walk_glsl, 4, 1, 0x3ffffffeull};
+    static const oit_list_desc d = {"PPLL4", append_fs, walk_glsl, 4, 1, 0x3ffffffeull, 0};
     return oit_list_store_create(&d, out, err);
 }
 

@@ -16,7 +16,7 @@
  * loser's stays unused (counted, never linked).
  *
  * Sizing and resolve are PLL's (list_store.h): the page pool starts at one
- * page per pixel, an overflowing frame (the page counter keeps counting
+ * page per four pixels, an overflowing frame (the page counter keeps counting
  * past the pool) grows the pool to the frame's need and is drawn again, so
  * no fragment is dropped; the resolve sorts by (t, prim) and composites
  * exactly like PLL. Memory: 68 bytes per page (4 x 16-byte slots + a link),

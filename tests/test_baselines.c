@@ -371,8 +371,9 @@ static uint64_t capacity(const methods *m, enum method which)
 }
 
 /* PLL's nodes or PPLL4's pages, on a fresh instance: frame 1 has one layer
- * and fits the initial pool (one unit per pixel); frame 2 has 40 and must
- * overflow it, grow it and be drawn again, still exact. */
+ * over a sixth of the frame and fits the initial pool (one fragment slot per
+ * pixel: a page per four pixels for PPLL4); frame 2 has 40 and must overflow
+ * it, grow it and be drawn again, still exact. */
 static void test_growth(enum method which)
 {
     const char *name = method_names[which];
@@ -385,7 +386,7 @@ static void test_growth(enum method which)
     }
     oit_view v;
     scene_view(&v, 96, 64, OIT_SHADING_TRANSPARENT);
-    quad_spec one = {-3.0f, 10.0f, {200, 100, 50, 128}, 1};
+    quad_spec one = {-3.0f, 1.5f, {200, 100, 50, 128}, 1};
     oit_triangle tris1[2];
     quad_tris(&one, tris1);
     check_exact(&m, which, "growth frame 1", tris1, 2, &v, &one, 1);
@@ -678,6 +679,35 @@ static void test_guarded(methods *m)
     free(deep);
 }
 
+/* Fresh instances, so the pools are what this scene makes them: on 40
+ * nearly opaque layers guarded OIT's pool must end smaller than PLL's
+ * (the paper's point: culled fragments take no memory). */
+static void test_guarded_memory(void)
+{
+    oit_error err = {0};
+    methods m = {0};
+    quad_spec *deep = full_stack(40, 0.25f, 247, 99u);
+    oit_triangle *td = scene_tris(deep, 40);
+    if (methods_create(&m, &err) != OIT_OK) {
+        CHECK(0, "create: %s", err.message);
+    } else {
+        oit_view v;
+        scene_view(&v, 96, 64, OIT_SHADING_TRANSPARENT);
+        oit_frame_stats g, p;
+        versus_dfb(&m, M_GUARDED, "opaque40 fresh pool", td, 80, &v, &g, NULL);
+        versus_dfb(&m, M_PLL, "opaque40 fresh pool", td, 80, &v, &p, NULL);
+        printf("opaque40 pools: guarded %llu bytes (%u passes), pll %llu bytes\n",
+               (unsigned long long)g.gpu_bytes_peak, g.batches,
+               (unsigned long long)p.gpu_bytes_peak);
+        CHECK(g.gpu_bytes_peak < p.gpu_bytes_peak * 3 / 4, "guarded's pool (%llu bytes) is "
+              "not smaller than PLL's (%llu)", (unsigned long long)g.gpu_bytes_peak,
+              (unsigned long long)p.gpu_bytes_peak);
+    }
+    methods_destroy(&m);
+    free(td);
+    free(deep);
+}
+
 /* Per pixel, F2B (threshold thr) against DFB: where the hand result's
  * final transmittance stays at or above thr nothing can have been
  * discarded, so those pixels are exact; elsewhere the error is below thr. */
@@ -788,6 +818,7 @@ int main(void)
         test_wboit(&m);
         check_threshold_range(&m);
         test_guarded(&m);
+        test_guarded_memory();
         test_f2b(&m);
         test_growth(M_PLL);
         test_growth(M_PPLL4);
