@@ -1,11 +1,14 @@
-/* What the baseline methods (unsorted.h, wboit.h, ppll.h, depth_peel.h)
- * share beyond frag_glsl.h: the premultiplied colour of a packed fragment,
- * frame-size validation, and readback of a GL-ordered (bottom row first)
- * RGBA float result into a top-first oit_image. None keeps state. */
+/* What the baseline methods (unsorted.h, wboit.h, ppll.h, ppll4.h, b3d.h,
+ * guarded.h, depth_peel.h, dual_peel.h, f2b.h) share beyond frag_glsl.h: the
+ * premultiplied colour of a packed fragment, the sort-and-composite resolve
+ * of the methods that store every fragment, frame-size validation, and
+ * readback of a GL-ordered (bottom row first) RGBA float result into a
+ * top-first oit_image. None keeps state. */
 #ifndef OIT_RENDER_BASELINE_COMMON_H
 #define OIT_RENDER_BASELINE_COMMON_H
 
 #include "render/frag_glsl.h"
+#include "render/gpu_mesh.h"
 #include "render/view.h"
 
 #ifdef __cplusplus
@@ -18,10 +21,90 @@ extern "C" {
  * Translucent absorption needs the order and is not part of it. */
 extern const char oit_glsl_premultiplied[];
 
-/* OIT_ERR_ARGUMENT naming 'method' when the frame cannot be rendered here
- * (non-positive or larger than GL_MAX_FRAMEBUFFER_WIDTH/HEIGHT, n < 0). */
-oit_status oit_baseline_check_frame(const char *method, const oit_view *v, int n,
-                                    oit_error *err);
+/* Compute-stage GLSL (8x8 groups), placed after oit_glsl_composite: per
+ * pixel, sorts the stored fragments by (t, prim) and composites them per
+ * shade.h into out_rgba[p] (binding OIT_BIND_OUT, GL rows), and adds the
+ * pixel's count to max_len (atomicMax) and total (atomicAdd) of the block
+ * Stats { uint counter; uint max_len; uint total; } at OIT_BIND_STATE. The
+ * method's GLSL follows it and defines how a pixel's fragments are walked
+ * (any order; OIT_LIST_END ends a walk):
+ *   uint oit_list_first(uint p)  the first of pixel p (GL-row linear index)
+ *   uint oit_list_next(uint it)  the one after it
+ *   uvec4 oit_list_load(uint it) its packed fragment (frag_glsl.h)
+ *   bool oit_list_can_relink()   whether every fragment has its own link
+ *   void oit_list_relink(uint it, uint next)  sets it (when it can)
+ * Up to 32 fragments sort in registers. Longer lists are merge-sorted by
+ * relinking when the store can (O(n log n)); otherwise composited by walking
+ * again for the successor of the last (t, prim) key, O(n^2) ((t, prim) is
+ * unique per pixel: a triangle covers a pixel centre once). llvmpipe stops a
+ * shader's loops after 65535 iterations in all, silently: the quadratic
+ * walk is right there only up to about 256 fragments a pixel (paged lists,
+ * B3D), the merge sort to about 2500. */
+extern const char oit_glsl_sorted_resolve[];
+
+/* A method's GPU buffers and its footprint at peak (gpu_bytes_peak): every
+ * buffer's capacity plus the texture bytes it declares. Buffers grow by
+ * oit_gl_buffer_reserve; errors name "method names[which]". */
+#define OIT_GPU_BUFFERS_MAX 6
+typedef struct oit_gpu_buffers {
+    const char *method;
+    const char *const *names;
+    GLuint buf[OIT_GPU_BUFFERS_MAX];
+    uint64_t cap[OIT_GPU_BUFFERS_MAX];
+    uint64_t texture_bytes;
+    uint64_t peak;
+} oit_gpu_buffers;
+
+oit_status oit_gpu_buffers_reserve(oit_gpu_buffers *b, int which, uint64_t bytes,
+                                   oit_error *err);
+/* Buffers 0..n-1 to at least bytes[i] each (0: leave that one as it is),
+ * up to the first failure. */
+oit_status oit_gpu_buffers_reserve_all(oit_gpu_buffers *b, int n, const uint64_t *bytes,
+                                       oit_error *err);
+/* Takes a new texture_bytes into the peak. */
+void oit_gpu_buffers_note(oit_gpu_buffers *b);
+void oit_gpu_buffers_release(oit_gpu_buffers *b);
+
+/* What both peeling methods (depth_peel.h, dual_peel.h) hold besides
+ * their targets: the geometry pass (oit_glsl_vertex; oit_glsl_fragment_gen
+ * and peel_fs), the merge and final compute passes (the NULL-terminated
+ * sources given, oit_glsl_version first), two framebuffers to ping-pong and
+ * the any-samples query that ends the peeling loop. Errors name 'method'. */
+typedef struct oit_peel_passes {
+    GLuint peel, merge, final, fbo[2], query;
+} oit_peel_passes;
+
+oit_status oit_peel_passes_create(oit_peel_passes *p, const char *method, const char *peel_fs,
+                                  const char *const *merge_cs, const char *const *final_cs,
+                                  oit_error *err);
+void oit_peel_passes_release(oit_peel_passes *p);
+/* oit_glsl_set_view on the three programs. */
+void oit_peel_passes_set_view(const oit_peel_passes *p, const oit_view *v);
+/* One geometry pass (bound target and state are the caller's); returns
+ * whether any fragment passed, waiting for the query. */
+int oit_peel_passes_draw(const oit_peel_passes *p, const oit_gpu_mesh *const *meshes, int n);
+/* The merge pass over a w x h frame, its uniform u_first set to first. */
+void oit_peel_passes_merge(const oit_peel_passes *p, int first, int w, int h);
+
+/* Draws meshes[0..n) with prog; a non-zero query (of query_target,
+ * GL_SAMPLES_PASSED or GL_ANY_SAMPLES_PASSED) counts the draws' samples. */
+void oit_baseline_draw(GLuint prog, GLenum query_target, GLuint query,
+                       const oit_gpu_mesh *const *meshes, int n);
+
+/* Runs compute prog over a w x h frame in 8x8 groups. */
+void oit_baseline_dispatch_frame(GLuint prog, int w, int h);
+
+/* Fills stats with the wall time since t0 (oit_time_ms) and the figures
+ * given; overflow_pixels is 0 (no baseline has a per-batch K). */
+void oit_baseline_stats(oit_frame_stats *stats, double t0, uint64_t fragments,
+                        uint32_t max_layers, uint64_t bytes_peak, uint32_t batches);
+
+/* Starts a frame: OIT_ERR_ARGUMENT naming 'method' when it cannot be
+ * rendered here (non-positive or larger than GL_MAX_FRAMEBUFFER_WIDTH/HEIGHT,
+ * n < 0); else *v is view with its shading defaults filled in and *t0 the
+ * start time (oit_time_ms) for oit_baseline_stats. */
+oit_status oit_baseline_begin(const char *method, const oit_view *view, int n, oit_view *v,
+                              double *t0, oit_error *err);
 
 /* Allocates out and fills it from an RGBA32F texture or from a buffer of
  * w*h vec4, both bottom row first; alpha is set to 1 (a composited frame). */

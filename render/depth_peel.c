@@ -11,7 +11,6 @@
 
 #include <math.h>
 #include <stdlib.h>
-#include <string.h>
 
 enum { BUF_STATE, BUF_COUNT, BUF_OUT, BUF_N };
 enum { STATE_BYTES = 48 }; /* std430 size of oit_state */
@@ -19,13 +18,13 @@ enum { STATE_BYTES = 48 }; /* std430 size of oit_state */
 #define MAX_PASSES 1000000u
 
 struct oit_depth_peel {
-    GLuint peel_prog, merge_prog, final_prog;
-    GLuint fbo[2], layer[2], depth, query;
+    oit_peel_passes pp;
+    GLuint layer[2], depth;
     int w, h;
-    GLuint buf[BUF_N];
-    uint64_t cap[BUF_N];
-    uint64_t bytes_peak;
+    oit_gpu_buffers b;
 };
+
+static const char *const buffer_names[BUF_N] = {"state", "counter", "output"};
 
 static const char peel_fs[] =
     "layout(binding = 0) uniform usampler2D u_prev;\n"
@@ -69,32 +68,17 @@ static const char final_cs[] =
     "    out_rgba[p] = oit_state_final(states[p]);\n"
     "}\n";
 
-static oit_status build_programs(oit_depth_peel *d, oit_error *err)
-{
-    const char *vs[] = {oit_glsl_version, oit_glsl_vertex, NULL};
-    const char *pfs[] = {oit_glsl_version, oit_glsl_fragment_gen, peel_fs, NULL};
-    const char *mcs[] = {oit_glsl_version, oit_glsl_composite, merge_cs, NULL};
-    const char *fcs[] = {oit_glsl_version, oit_glsl_composite, final_cs, NULL};
-    oit_status s = oit_gl_program_graphics("depth peeling pass", vs, pfs, &d->peel_prog, err);
-    if (s == OIT_OK)
-        s = oit_gl_program_compute("depth peeling merge", mcs, &d->merge_prog, err);
-    if (s == OIT_OK)
-        s = oit_gl_program_compute("depth peeling final", fcs, &d->final_prog, err);
-    return s;
-}
-
 oit_status oit_depth_peel_create(oit_depth_peel **out, oit_error *err)
 {
     *out = NULL;
     oit_depth_peel *d = calloc(1, sizeof *d);
     if (!d)
         return oit_error_set(err, OIT_ERR_NOMEM, "depth peeling: out of memory");
-    oit_status s = build_programs(d, err);
-    if (s == OIT_OK) {
-        glCreateFramebuffers(2, d->fbo);
-        glCreateQueries(GL_ANY_SAMPLES_PASSED, 1, &d->query);
-        s = oit_gl_check("depth peeling: framebuffers and query", err);
-    }
+    d->b.method = "depth peeling";
+    d->b.names = buffer_names;
+    const char *mcs[] = {oit_glsl_version, oit_glsl_composite, merge_cs, NULL};
+    const char *fcs[] = {oit_glsl_version, oit_glsl_composite, final_cs, NULL};
+    oit_status s = oit_peel_passes_create(&d->pp, "depth peeling", peel_fs, mcs, fcs, err);
     if (s != OIT_OK) {
         oit_depth_peel_destroy(d);
         return s;
@@ -114,23 +98,10 @@ void oit_depth_peel_destroy(oit_depth_peel *d)
 {
     if (!d)
         return;
-    glDeleteProgram(d->peel_prog);
-    glDeleteProgram(d->merge_prog);
-    glDeleteProgram(d->final_prog);
-    glDeleteFramebuffers(2, d->fbo);
-    glDeleteQueries(1, &d->query);
+    oit_peel_passes_release(&d->pp);
     release_targets(d);
-    glDeleteBuffers(BUF_N, d->buf);
+    oit_gpu_buffers_release(&d->b);
     free(d);
-}
-
-static void note_bytes(oit_depth_peel *d)
-{
-    uint64_t held = (uint64_t)d->w * d->h * (2 * 16 + 4);
-    for (int i = 0; i < BUF_N; i++)
-        held += d->cap[i];
-    if (held > d->bytes_peak)
-        d->bytes_peak = held;
 }
 
 static oit_status resize_targets(oit_depth_peel *d, int w, int h, oit_error *err)
@@ -146,25 +117,17 @@ static oit_status resize_targets(oit_depth_peel *d, int w, int h, oit_error *err
         /* An integer texture with a linear filter is incomplete and reads 0. */
         glTextureParameteri(d->layer[i], GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTextureParameteri(d->layer[i], GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        glNamedFramebufferTexture(d->fbo[i], GL_COLOR_ATTACHMENT0, d->layer[i], 0);
-        glNamedFramebufferTexture(d->fbo[i], GL_DEPTH_ATTACHMENT, d->depth, 0);
+        glNamedFramebufferTexture(d->pp.fbo[i], GL_COLOR_ATTACHMENT0, d->layer[i], 0);
+        glNamedFramebufferTexture(d->pp.fbo[i], GL_DEPTH_ATTACHMENT, d->depth, 0);
     }
     d->w = w;
     d->h = h;
-    if (glCheckNamedFramebufferStatus(d->fbo[0], GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    d->b.texture_bytes = (uint64_t)w * h * (2 * 16 + 4);
+    oit_gpu_buffers_note(&d->b);
+    if (glCheckNamedFramebufferStatus(d->pp.fbo[0], GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         return oit_error_set(err, OIT_ERR_GL, "depth peeling: the RGBA32UI + DEPTH32F "
                              "target of %dx%d is not renderable here", w, h);
     return oit_gl_check("depth peeling: layer targets", err);
-}
-
-static oit_status reserve(oit_depth_peel *d, int which, uint64_t bytes, oit_error *err)
-{
-    static const char *names[BUF_N] = {"depth peeling state", "depth peeling counter",
-                                       "depth peeling output"};
-    oit_status s = oit_gl_buffer_reserve(&d->buf[which], &d->cap[which], bytes,
-                                         names[which], err);
-    note_bytes(d);
-    return s;
 }
 
 /* The inverse of a power of two above twice the largest t a kept fragment
@@ -189,24 +152,19 @@ static oit_status prepare(oit_depth_peel *d, const oit_view *v, oit_error *err)
     if (s == OIT_OK)
         s = resize_targets(d, v->width, v->height, err);
     if (s == OIT_OK)
-        s = reserve(d, BUF_STATE, pixels * STATE_BYTES, err);
-    if (s == OIT_OK)
-        s = reserve(d, BUF_COUNT, 16, err);
-    if (s == OIT_OK)
-        s = reserve(d, BUF_OUT, pixels * 16, err);
+        s = oit_gpu_buffers_reserve_all(
+            &d->b, BUF_N, (const uint64_t[BUF_N]){pixels * STATE_BYTES, 16, pixels * 16}, err);
     if (s != OIT_OK)
         return s;
-    oit_glsl_set_view(d->peel_prog, v);
-    oit_glsl_set_view(d->merge_prog, v);
-    oit_glsl_set_view(d->final_prog, v);
-    glProgramUniform1f(d->peel_prog, glGetUniformLocation(d->peel_prog, "u_depth_scale"),
+    oit_peel_passes_set_view(&d->pp, v);
+    glProgramUniform1f(d->pp.peel, glGetUniformLocation(d->pp.peel, "u_depth_scale"),
                        depth_scale(v));
     static const GLuint zero[4] = {0, 0, 0, 0};
     glClearTexImage(d->layer[1], 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT, zero);
-    glClearNamedBufferData(d->buf[BUF_COUNT], GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, zero);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_STATE, d->buf[BUF_STATE]);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, d->buf[BUF_COUNT]);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, d->buf[BUF_OUT]);
+    glClearNamedBufferData(d->b.buf[BUF_COUNT], GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, zero);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_STATE, d->b.buf[BUF_STATE]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, d->b.buf[BUF_COUNT]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, d->b.buf[BUF_OUT]);
     return oit_gl_check("depth peeling: frame set-up", err);
 }
 
@@ -216,33 +174,25 @@ static int peel(oit_depth_peel *d, int cur, const oit_gpu_mesh *const *meshes, i
 {
     static const GLuint exhausted[4] = {EXHAUSTED, 0, 0, 0};
     static const float far_depth = 1.0f;
-    oit_glsl_raster_begin(d->fbo[cur], d->w, d->h);
+    oit_glsl_raster_begin(d->pp.fbo[cur], d->w, d->h);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDepthMask(GL_TRUE);
-    glClearNamedFramebufferuiv(d->fbo[cur], GL_COLOR, 0, exhausted);
-    glClearNamedFramebufferfv(d->fbo[cur], GL_DEPTH, 0, &far_depth);
+    glClearNamedFramebufferuiv(d->pp.fbo[cur], GL_COLOR, 0, exhausted);
+    glClearNamedFramebufferfv(d->pp.fbo[cur], GL_DEPTH, 0, &far_depth);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glBindTextureUnit(0, d->layer[1 - cur]);
-    glUseProgram(d->peel_prog);
-    glBeginQuery(GL_ANY_SAMPLES_PASSED, d->query);
-    for (int i = 0; i < n; i++)
-        oit_gpu_mesh_draw(meshes[i], d->peel_prog);
-    glEndQuery(GL_ANY_SAMPLES_PASSED);
+    int any = oit_peel_passes_draw(&d->pp, meshes, n);
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
-    GLuint any = 0;
-    glGetQueryObjectuiv(d->query, GL_QUERY_RESULT, &any);
-    return any != 0;
+    return any;
 }
 
 static void merge(oit_depth_peel *d, int cur, int first)
 {
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
     glBindTextureUnit(0, d->layer[cur]);
-    glUseProgram(d->merge_prog);
-    glProgramUniform1i(d->merge_prog, glGetUniformLocation(d->merge_prog, "u_first"), first);
-    glDispatchCompute(oit_gl_groups((uint64_t)d->w, 8), oit_gl_groups((uint64_t)d->h, 8), 1);
+    oit_peel_passes_merge(&d->pp, first, d->w, d->h);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
@@ -269,8 +219,7 @@ static oit_status peel_all(oit_depth_peel *d, const oit_gpu_mesh *const *meshes,
         *layers += (uint32_t)more;
         cur = 1 - cur;
     }
-    glUseProgram(d->final_prog);
-    glDispatchCompute(oit_gl_groups((uint64_t)d->w, 8), oit_gl_groups((uint64_t)d->h, 8), 1);
+    oit_baseline_dispatch_frame(d->pp.final, d->w, d->h);
     return oit_gl_check("depth peeling: passes", err);
 }
 
@@ -278,12 +227,11 @@ oit_status oit_depth_peel_render(oit_depth_peel *d, const oit_gpu_mesh *const *m
                                  const oit_view *view, oit_image *out,
                                  oit_frame_stats *stats, oit_error *err)
 {
-    oit_status s = oit_baseline_check_frame("depth peeling", view, n, err);
+    oit_view v;
+    double t0;
+    oit_status s = oit_baseline_begin("depth peeling", view, n, &v, &t0, err);
     if (s != OIT_OK)
         return s;
-    double t0 = oit_time_ms();
-    oit_view v = *view;
-    oit_shading_resolve_defaults(&v.shading);
     s = prepare(d, &v, err);
     if (s != OIT_OK)
         return s;
@@ -292,17 +240,12 @@ oit_status oit_depth_peel_render(oit_depth_peel *d, const oit_gpu_mesh *const *m
     GLuint fragments = 0;
     if (s == OIT_OK) {
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-        glGetNamedBufferSubData(d->buf[BUF_COUNT], 0, 4, &fragments);
-        s = oit_baseline_read_buffer("depth peeling", d->buf[BUF_OUT], v.width, v.height,
+        glGetNamedBufferSubData(d->b.buf[BUF_COUNT], 0, 4, &fragments);
+        s = oit_baseline_read_buffer("depth peeling", d->b.buf[BUF_OUT], v.width, v.height,
                                      out, err);
     }
     if (s != OIT_OK || !stats)
         return s;
-    memset(stats, 0, sizeof *stats);
-    stats->ms = oit_time_ms() - t0;
-    stats->fragments = fragments;
-    stats->max_layers = layers;
-    stats->gpu_bytes_peak = d->bytes_peak;
-    stats->batches = passes;
+    oit_baseline_stats(stats, t0, fragments, layers, d->b.peak, passes);
     return OIT_OK;
 }

@@ -20,7 +20,7 @@ struct oit_gpu_mesh {
 
 /* Triangles per draw window: the SSBO binding limit, rounded down so that
  * window offsets keep the SSBO offset alignment. */
-static size_t draw_window(void)
+size_t oit_gpu_triangle_window(void)
 {
     GLint max_block = 0, align = 16;
     glGetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
@@ -51,7 +51,7 @@ oit_status oit_gpu_mesh_create(const oit_triangle *tris, size_t count,
         return oit_error_set(err, OIT_ERR_NOMEM, "GPU mesh: out of memory");
     m->count = count;
     m->first_prim = first_prim;
-    m->window = draw_window();
+    m->window = oit_gpu_triangle_window();
     m->owns_buffer = 1;
     glCreateVertexArrays(1, &m->vao);
     glCreateBuffers(1, &m->buffer);
@@ -79,7 +79,7 @@ oit_status oit_gpu_mesh_create_view(unsigned buffer, oit_gpu_mesh **out, oit_err
     if (!m)
         return oit_error_set(err, OIT_ERR_NOMEM, "GPU mesh view: out of memory");
     m->buffer = buffer;
-    m->window = draw_window();
+    m->window = oit_gpu_triangle_window();
     glCreateVertexArrays(1, &m->vao);
     oit_status s = oit_gl_check("GPU mesh view", err);
     if (s != OIT_OK) {
@@ -134,5 +134,22 @@ void oit_gpu_mesh_draw(const oit_gpu_mesh *m, unsigned program)
                           (GLsizeiptr)(n * sizeof(oit_triangle)));
         glProgramUniform1ui(program, first_loc, m->first_prim + (uint32_t)start);
         glDrawArrays(GL_TRIANGLES, 0, (GLsizei)(n * 3));
+    }
+}
+
+void oit_gpu_mesh_dispatch(const oit_gpu_mesh *m, unsigned program, unsigned local)
+{
+    GLint first_loc = glGetUniformLocation(program, "u_window_first");
+    GLint count_loc = glGetUniformLocation(program, "u_window_count");
+    glUseProgram(program);
+    for (size_t start = 0; start < m->count; start += m->window) {
+        size_t n = m->count - start < m->window ? m->count - start : m->window;
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_VERTS, m->buffer,
+                          (GLintptr)(m->offset + start * sizeof(oit_triangle)),
+                          (GLsizeiptr)(n * sizeof(oit_triangle)));
+        glProgramUniform1ui(program, first_loc, (GLuint)start);
+        glProgramUniform1ui(program, count_loc, (GLuint)n);
+        GLuint groups = oit_gl_groups(n, local);
+        glDispatchCompute(groups < 65535 ? groups : 65535, oit_gl_groups(groups, 65535), 1);
     }
 }

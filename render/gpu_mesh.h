@@ -37,6 +37,19 @@ uint32_t oit_gpu_mesh_first_prim(const oit_gpu_mesh *m);
  * uniform; large meshes are drawn in windows that fit the SSBO limit. */
 void oit_gpu_mesh_draw(const oit_gpu_mesh *m, unsigned program);
 
+/* For compute passes with one invocation per triangle: binds each of those
+ * windows at OIT_BIND_VERTS, sets the uints u_window_first (the window's
+ * first triangle, counted within the mesh) and u_window_count, and
+ * dispatches groups of 'local' invocations over it, in rows of at most
+ * 65535 groups: invocation i = gl_GlobalInvocationID.y * 65535 * local +
+ * gl_GlobalInvocationID.x handles triangle i of the window (skip
+ * i >= u_window_count). */
+void oit_gpu_mesh_dispatch(const oit_gpu_mesh *m, unsigned program, unsigned local);
+
+/* Triangles one storage binding holds with its offset aligned: the window
+ * size of the two calls above, for buffers laid out like a mesh's. */
+size_t oit_gpu_triangle_window(void);
+
 #ifdef __cplusplus
 }
 #endif

@@ -3,20 +3,18 @@
  * into its pixel's list (atomic exchange of the head); a compute pass walks
  * each list, sorts by (t, prim) and composites per shade.h.
  *
- * Node buffer sizing: a frame starts with the capacity the previous frames
- * needed (at first one node per pixel). The counter keeps counting past the
- * capacity, so after the pass the frame's true fragment count is known; when
- * it overflowed, the node buffer grows to that count and the frame is drawn
- * once more. A fragment is never dropped, and the capacity never shrinks.
+ * Built on list_store.h, which holds the policy it shares with ppll4.h and
+ * guarded.h: node buffer sizing (at first one node per pixel; an overflowing
+ * frame grows the buffer to its true fragment count and is drawn once more,
+ * so a fragment is never dropped, and the capacity never shrinks) and the
+ * resolve (oit_glsl_sorted_resolve: up to 32 fragments sorted in registers,
+ * longer lists merge-sorted by relinking, O(n log n); on llvmpipe, which
+ * stops a shader's loops after 65535 iterations in all, that holds to about
+ * 2500 fragments a pixel).
  *
- * Resolve: lists of up to 32 fragments are insertion-sorted in registers;
- * longer ones are merge-sorted in place by relinking (stable, O(n log n),
- * no layer limit of its own). On llvmpipe, which stops a shader's loops
- * after 65535 iterations in all, that holds to about 2500 fragments a pixel;
- * the quadratic walk it replaces broke at about 256.
- *
- * Stats: fragments (the counter), max_layers (longest list), batches = the
- * geometry passes drawn (1, or 2 after an overflow), gpu_bytes_peak. */
+ * Stats: fragments (stored: all of them), max_layers (longest list),
+ * batches = the geometry passes drawn (1, or 2 after an overflow),
+ * gpu_bytes_peak. */
 #ifndef OIT_RENDER_PPLL_H
 #define OIT_RENDER_PPLL_H
 
@@ -26,7 +24,8 @@
 extern "C" {
 #endif
 
-typedef struct oit_pll oit_pll;
+/* A list store (list_store.h) with this method's shaders. */
+typedef struct oit_list_store oit_pll;
 
 oit_status oit_pll_create(oit_pll **out, oit_error *err);
 void oit_pll_destroy(oit_pll *p);

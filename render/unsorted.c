@@ -6,7 +6,6 @@
 #include "render/image.h"
 
 #include <stdlib.h>
-#include <string.h>
 
 struct oit_unsorted {
     GLuint prog, fbo, tex, query;
@@ -79,11 +78,7 @@ static void draw(oit_unsorted *u, const oit_gpu_mesh *const *meshes, int n,
     glClearNamedFramebufferfv(u->fbo, GL_COLOR, 0, bg);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-    glUseProgram(u->prog);
-    glBeginQuery(GL_SAMPLES_PASSED, u->query);
-    for (int i = 0; i < n; i++)
-        oit_gpu_mesh_draw(meshes[i], u->prog);
-    glEndQuery(GL_SAMPLES_PASSED);
+    oit_baseline_draw(u->prog, GL_SAMPLES_PASSED, u->query, meshes, n);
     glDisable(GL_BLEND);
 }
 
@@ -91,12 +86,11 @@ oit_status oit_unsorted_render(oit_unsorted *u, const oit_gpu_mesh *const *meshe
                                const oit_view *view, oit_image *out,
                                oit_frame_stats *stats, oit_error *err)
 {
-    oit_status s = oit_baseline_check_frame("unsorted", view, n, err);
+    oit_view v;
+    double t0;
+    oit_status s = oit_baseline_begin("unsorted", view, n, &v, &t0, err);
     if (s != OIT_OK)
         return s;
-    double t0 = oit_time_ms();
-    oit_view v = *view;
-    oit_shading_resolve_defaults(&v.shading);
     s = resize(u, v.width, v.height, err);
     if (s != OIT_OK)
         return s;
@@ -109,10 +103,6 @@ oit_status oit_unsorted_render(oit_unsorted *u, const oit_gpu_mesh *const *meshe
     glGetQueryObjectui64v(u->query, GL_QUERY_RESULT, &samples);
     if (s != OIT_OK || !stats)
         return s;
-    memset(stats, 0, sizeof *stats);
-    stats->ms = oit_time_ms() - t0;
-    stats->fragments = samples;
-    stats->gpu_bytes_peak = u->bytes_peak;
-    stats->batches = 1;
+    oit_baseline_stats(stats, t0, samples, 0, u->bytes_peak, 1);
     return OIT_OK;
 }

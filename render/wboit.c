@@ -6,7 +6,6 @@
 #include "render/image.h"
 
 #include <stdlib.h>
-#include <string.h>
 
 enum { TEX_ACCUM, TEX_REVEAL, TEX_OUT, TEX_N };
 
@@ -122,11 +121,7 @@ static void accumulate(oit_wboit *w, const oit_gpu_mesh *const *meshes, int n)
     glEnable(GL_BLEND);
     glBlendFunci(0, GL_ONE, GL_ONE);
     glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_COLOR);
-    glUseProgram(w->accum_prog);
-    glBeginQuery(GL_SAMPLES_PASSED, w->query);
-    for (int i = 0; i < n; i++)
-        oit_gpu_mesh_draw(meshes[i], w->accum_prog);
-    glEndQuery(GL_SAMPLES_PASSED);
+    oit_baseline_draw(w->accum_prog, GL_SAMPLES_PASSED, w->query, meshes, n);
     glDisable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ZERO);
 }
@@ -137,8 +132,7 @@ static void resolve(oit_wboit *w)
     glBindTextureUnit(0, w->tex[TEX_ACCUM]);
     glBindTextureUnit(1, w->tex[TEX_REVEAL]);
     glBindImageTexture(0, w->tex[TEX_OUT], 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    glUseProgram(w->resolve_prog);
-    glDispatchCompute(oit_gl_groups((uint64_t)w->w, 8), oit_gl_groups((uint64_t)w->h, 8), 1);
+    oit_baseline_dispatch_frame(w->resolve_prog, w->w, w->h);
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
 }
 
@@ -146,12 +140,11 @@ oit_status oit_wboit_render(oit_wboit *w, const oit_gpu_mesh *const *meshes, int
                             const oit_view *view, oit_image *out,
                             oit_frame_stats *stats, oit_error *err)
 {
-    oit_status s = oit_baseline_check_frame("WBOIT", view, n, err);
+    oit_view v;
+    double t0;
+    oit_status s = oit_baseline_begin("WBOIT", view, n, &v, &t0, err);
     if (s != OIT_OK)
         return s;
-    double t0 = oit_time_ms();
-    oit_view v = *view;
-    oit_shading_resolve_defaults(&v.shading);
     s = resize(w, v.width, v.height, err);
     if (s != OIT_OK)
         return s;
@@ -166,10 +159,6 @@ oit_status oit_wboit_render(oit_wboit *w, const oit_gpu_mesh *const *meshes, int
     glGetQueryObjectui64v(w->query, GL_QUERY_RESULT, &samples);
     if (s != OIT_OK || !stats)
         return s;
-    memset(stats, 0, sizeof *stats);
-    stats->ms = oit_time_ms() - t0;
-    stats->fragments = samples;
-    stats->gpu_bytes_peak = w->bytes_peak;
-    stats->batches = 1;
+    oit_baseline_stats(stats, t0, samples, 0, w->bytes_peak, 1);
     return OIT_OK;
 }

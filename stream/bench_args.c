@@ -34,7 +34,7 @@ static int parse_size(const char *v, int *w, int *h)
 static oit_status split_methods(const char *list, oit_bench_args *a, char *buf, size_t cap,
                                 oit_error *err)
 {
-    char names[160];
+    char names[OIT_METHOD_NAMES_MAX];
     oit_render_method_names(names, sizeof names);
     if (strlen(list) >= cap)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--methods '%s' is too long", list);
@@ -134,6 +134,8 @@ void oit_bench_usage(FILE *f, const char *method_list)
         "  memory, no GL) is reported with the reason, not dropped.\n"
         "options:\n"
         "  --methods LIST   comma-separated, from %s\n"
+        "                   (guarded and f2b run at their seeds' thresholds, 0.0025\n"
+        "                   and 0.02; see oitstream --help for each method)\n"
         "  --out DIR        writes DIR/results.csv, DIR/results.json, DIR/report.md\n"
         "  --orbit N        N views around the model, elevation 20 deg (default 8)\n"
         "  --size WxH       image size (default 512x512)\n"

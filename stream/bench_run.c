@@ -61,8 +61,9 @@ static void open_methods(const oit_bench_desc *d, oit_bench_result *r, oit_gl **
         snprintf(r->renderer, sizeof r->renderer, "%s", oit_gl_renderer(*gl));
     else if (need_gl)
         snprintf(r->renderer, sizeof r->renderer, "none (no GL context: %.200s)", err.message);
+    /* epsilon -1: every method at its default (exact, or its seed's threshold). */
     oit_method_options opt = {.max_layers = d->max_layers, .partfile = d->partfile,
-                              .pack = OIT_PACK_DISJOINT, .gl = *gl};
+                              .pack = OIT_PACK_DISJOINT, .gl = *gl, .epsilon = -1.0f};
     for (int i = 0; i < r->method_count; i++) {
         oit_bench_method *m = &r->methods[i];
         m->runnable = 1;

@@ -167,9 +167,11 @@ static oit_status check_combination(const oit_stream_args *a, oit_error *err)
     if (a->window && (a->orbit || a->out || a->stats_path || a->ambiguity_out))
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--window shows one interactive view: "
                              "it excludes --orbit, --out, --stats and --ambiguity");
-    if (a->epsilon > 0.0f && a->method && strcmp(a->method, "stream"))
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "--epsilon is early termination of "
-                             "--method stream; method '%s' has none", a->method);
+    if (a->epsilon > 0.0f && a->method && strcmp(a->method, "stream") &&
+        strcmp(a->method, "f2b") && strcmp(a->method, "guarded"))
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "--epsilon is the early termination of "
+                             "--method stream and the threshold of f2b and guarded; method "
+                             "'%s' has none", a->method);
     if (a->have_view && a->orbit)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--view and --orbit exclude each other");
     return OIT_OK;
@@ -183,6 +185,7 @@ oit_status oit_stream_args_parse(int argc, char **argv, oit_stream_args *a, oit_
     a->elevation = 20.0f;
     a->gain = 1.0f;
     a->max_layers = 0; /* the part file's K, else 16 */
+    a->epsilon = -1.0f; /* not given: each method's default */
     a->pack_disjoint = 1; /* measured faster than budget on llvmpipe (smaller resolve rects) */
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i];
@@ -217,9 +220,14 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "Renders MODEL (.ply .obj .off .stl .gltf .glb, or a part file .oitp made by\n"
         "oitprep) with exact order-independent transparency and writes the image.\n"
         "\n"
-        "  --method M          %s (default: stream for\n"
-        "                      a part file, dfb otherwise; dfb, reference, array and\n"
-        "                      stencil load a part file's triangles in core)\n"
+        "  --method M          %s\n"
+        "                      (default: stream for a part file, dfb otherwise; the\n"
+        "                      others load a part file's triangles in core). Exact:\n"
+        "                      dfb, reference, array, stencil, stream, pll, ppll4 (paged\n"
+        "                      lists), b3d (fixed per-pixel arrays); dp and ddp (dual\n"
+        "                      depth peeling) without depth ties, ddp transparent only.\n"
+        "                      Approximate: guarded, f2b (see --epsilon), wboit,\n"
+        "                      unsorted\n"
         "  --pack P            stream: disjoint (default; a part joins a pack while its\n"
         "                      screen rectangle misses the pack's) or budget (parts\n"
         "                      share a pack while the sum of their layer bounds per\n"
@@ -230,7 +238,9 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "  --epsilon E         stream: drop fragments behind pixels whose transmittance\n"
         "                      fell below E, and neither upload nor draw parts whose\n"
         "                      whole footprint did (error <= E per channel; default\n"
-        "                      0: exact)\n"
+        "                      0: exact); f2b: its alpha threshold, the same test\n"
+        "                      (default 0.02); guarded: its contribution threshold\n"
+        "                      (default 0.0025); 0 discards nothing\n"
         "  --size WxH          image size (default 1024x1024)\n"
         "  --view ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy[,znear,zfar]\n"
         "                      camera; without it --azimuth/--elevation frame the model\n"

@@ -36,7 +36,7 @@ typedef struct oit_stream_args {
     int pack_disjoint;                 /* --pack: 1 disjoint (default), 0 budget */
     unsigned long long upload_budget;  /* --upload-budget; 0: default */
     unsigned long long slot_budget;    /* --slot-budget; 0: default */
-    float epsilon;                     /* --epsilon: stream early termination; 0: exact */
+    float epsilon;                     /* --epsilon (stream, f2b, guarded); < 0: not given */
     /* --window: the interactive viewer (viewer.h) */
     int window;
     int window_frames;             /* --window-frames N; 0: until quit */

@@ -109,7 +109,7 @@ int main(int argc, char **argv)
     if (oit_bench_args_parse(argc, argv, &a, methods, sizeof methods, &err) != OIT_OK)
         return fail(&err);
     if (a.help) {
-        char names[160];
+        char names[OIT_METHOD_NAMES_MAX];
         oit_render_method_names(names, sizeof names);
         oit_bench_usage(stdout, names);
         return 0;

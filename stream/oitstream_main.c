@@ -300,7 +300,7 @@ static int is_part_file(const char *path)
 static oit_status check_method(const oit_stream_args *a, const oit_render_method **out,
                                oit_error *err)
 {
-    char names[128];
+    char names[OIT_METHOD_NAMES_MAX];
     oit_render_method_names(names, sizeof names);
     *out = oit_render_method_find(a->method);
     if (!*out)
@@ -416,7 +416,7 @@ int main(int argc, char **argv)
     if (oit_stream_args_parse(argc, argv, &a, &err) != OIT_OK)
         return fail(&err);
     if (a.help) {
-        char names[128];
+        char names[OIT_METHOD_NAMES_MAX];
         oit_render_method_names(names, sizeof names);
         oit_stream_usage(stdout, names);
         return 0;

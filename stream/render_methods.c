@@ -1,7 +1,8 @@
 /* The method table (render_methods.h): the in-core DFB, the Embree
  * reference, and the two capture backends drawing the whole mesh as one
  * batch (which is where their overflow count means something), and the
- * baselines of stream/baseline_methods.h (unsorted, wboit, pll, dp). */
+ * baselines of stream/baseline_methods.h (unsorted, wboit, pll, dp, ppll4,
+ * b3d, ddp, guarded, f2b). */
 #include "stream/render_methods.h"
 
 #include <embree3/rtcore_config.h>
@@ -141,14 +142,20 @@ static oit_status capture_render(oit_method_state *st, const oit_view *view, oit
     return s;
 }
 
-/* ---- baselines: unsorted, WBOIT, PLL, depth peeling ---- */
+/* ---- baselines ---- */
 
+/* The approximate baselines take opt->epsilon as their threshold. */
 static oit_status baseline_open(oit_baseline_kind kind, const oit_mesh *mesh,
                                 const oit_method_options *opt, oit_method_state **out,
                                 oit_error *err)
 {
+    int thresholded = kind == OIT_BASELINE_GUARDED || kind == OIT_BASELINE_F2B;
     oit_status s = new_state(mesh, opt, 1, out, err);
-    if (s == OIT_OK && (s = oit_baseline_create(kind, &(*out)->baseline, err)) != OIT_OK) {
+    if (s == OIT_OK)
+        s = oit_baseline_create(kind, &(*out)->baseline, err);
+    if (s == OIT_OK && thresholded && opt && opt->epsilon >= 0.0f)
+        s = oit_baseline_set_threshold((*out)->baseline, opt->epsilon, err);
+    if (s != OIT_OK && *out) {
         close_state(*out);
         *out = NULL;
     }
@@ -177,6 +184,36 @@ static oit_status dp_open(const oit_mesh *mesh, const oit_method_options *opt,
                           oit_method_state **out, oit_error *err)
 {
     return baseline_open(OIT_BASELINE_DEPTH_PEEL, mesh, opt, out, err);
+}
+
+static oit_status ppll4_open(const oit_mesh *mesh, const oit_method_options *opt,
+                             oit_method_state **out, oit_error *err)
+{
+    return baseline_open(OIT_BASELINE_PPLL4, mesh, opt, out, err);
+}
+
+static oit_status b3d_open(const oit_mesh *mesh, const oit_method_options *opt,
+                           oit_method_state **out, oit_error *err)
+{
+    return baseline_open(OIT_BASELINE_B3D, mesh, opt, out, err);
+}
+
+static oit_status ddp_open(const oit_mesh *mesh, const oit_method_options *opt,
+                           oit_method_state **out, oit_error *err)
+{
+    return baseline_open(OIT_BASELINE_DUAL_PEEL, mesh, opt, out, err);
+}
+
+static oit_status guarded_open(const oit_mesh *mesh, const oit_method_options *opt,
+                               oit_method_state **out, oit_error *err)
+{
+    return baseline_open(OIT_BASELINE_GUARDED, mesh, opt, out, err);
+}
+
+static oit_status f2b_open(const oit_mesh *mesh, const oit_method_options *opt,
+                           oit_method_state **out, oit_error *err)
+{
+    return baseline_open(OIT_BASELINE_F2B, mesh, opt, out, err);
 }
 
 static oit_status baseline_render(oit_method_state *st, const oit_view *view, oit_image *out,
@@ -222,7 +259,8 @@ static oit_status stream_open(const oit_mesh *mesh, const oit_method_options *op
         s = attach_gl(*out, opt, err);
     oit_streamer_desc sd = {.K = opt->max_layers, .capture = OIT_CAPTURE_ARRAY, .pack = opt->pack,
                             .upload_budget = opt->upload_budget,
-                            .slot_budget = opt->slot_budget, .epsilon = opt->epsilon};
+                            .slot_budget = opt->slot_budget,
+                            .epsilon = opt->epsilon > 0.0f ? opt->epsilon : 0.0f};
     if (s == OIT_OK)
         s = oit_streamer_create(opt->partfile, &sd, &(*out)->streamer, err);
     if (s != OIT_OK && *out) {
@@ -254,6 +292,11 @@ static const oit_render_method methods[] = {
     {"wboit", 1, 0, 0, wboit_open, baseline_render, gl_renderer, close_state, 0, NULL},
     {"pll", 1, 0, 0, pll_open, baseline_render, gl_renderer, close_state, 0, NULL},
     {"dp", 1, 0, 0, dp_open, baseline_render, gl_renderer, close_state, 0, NULL},
+    {"ppll4", 1, 0, 0, ppll4_open, baseline_render, gl_renderer, close_state, 0, NULL},
+    {"b3d", 1, 0, 0, b3d_open, baseline_render, gl_renderer, close_state, 0, NULL},
+    {"ddp", 1, 0, 0, ddp_open, baseline_render, gl_renderer, close_state, 0, NULL},
+    {"guarded", 1, 0, 0, guarded_open, baseline_render, gl_renderer, close_state, 0, NULL},
+    {"f2b", 1, 0, 0, f2b_open, baseline_render, gl_renderer, close_state, 0, NULL},
 };
 
 const oit_render_method *oit_render_method_find(const char *name)

@@ -20,7 +20,10 @@ typedef struct oit_method_options {
      * this one, current on the calling thread (the viewer's window), and do
      * not destroy it. */
     struct oit_gl *gl;
-    float epsilon; /* the streamer's early termination; 0: exact */
+    /* The streamer's early termination, f2b's alpha threshold, guarded's
+     * contribution threshold (0: none); < 0: the method's default (stream:
+     * 0, exact; f2b, guarded: their seed's values). */
+    float epsilon;
     unsigned long long slot_budget; /* the streamer's capture slots, bytes; 0: default */
 } oit_method_options;
 
@@ -47,8 +50,9 @@ typedef struct oit_render_method {
 
 /* NULL when no method has that name. */
 const oit_render_method *oit_render_method_find(const char *name);
-/* Writes "dfb|reference|array|...|dp" (the table's names) into buf, for
- * --help and error messages. */
+/* Writes "dfb|reference|array|...|f2b" (the table's names) into buf, for
+ * --help and error messages; OIT_METHOD_NAMES_MAX bytes hold them all. */
+#define OIT_METHOD_NAMES_MAX 256
 void oit_render_method_names(char *buf, size_t cap);
 
 #endif

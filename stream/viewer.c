@@ -16,7 +16,8 @@
 #define GLFW_INCLUDE_NONE /* GL comes from gl_util.h (core profile prototypes) */
 #include <GLFW/glfw3.h>
 
-enum { MAX_METHODS = 9, KEY_QUEUE = 64, KEY_ESC = 27 };
+/* Keys 1..9 reach the first KEYED_METHODS; the rest only start with --method. */
+enum { MAX_METHODS = 16, KEYED_METHODS = 9, KEY_QUEUE = 64, KEY_ESC = 27 };
 
 typedef struct viewer {
     const oit_viewer_desc *desc;
@@ -189,7 +190,7 @@ static void on_scroll(GLFWwindow *w, double dx, double dy)
 /* The table's methods that can render this input, in the table's order. */
 static void list_methods(viewer *v)
 {
-    char names[256];
+    char names[OIT_METHOD_NAMES_MAX];
     oit_render_method_names(names, sizeof names);
     for (char *tok = strtok(names, "|"); tok && v->method_count < MAX_METHODS;
          tok = strtok(NULL, "|")) {
@@ -478,7 +479,10 @@ static oit_status open_viewer(viewer *v, oit_error *err)
     glfwSetScrollCallback(v->win, on_scroll);
     glfwGetCursorPos(v->win, &v->mouse_x, &v->mouse_y);
     for (int i = 0; i < v->method_count; i++)
-        printf("viewer: key %d: %s\n", i + 1, v->methods[i]->name);
+        if (i < KEYED_METHODS)
+            printf("viewer: key %d: %s\n", i + 1, v->methods[i]->name);
+        else
+            printf("viewer: no key: %s (start it with --method)\n", v->methods[i]->name);
     return switch_method(v, first, err);
 }
 

@@ -1,6 +1,10 @@
 /* The baseline methods against DFB (the exact in-core method, itself tested
  * against hand results in test_dfb.c) and against the hand result of
- * gl_test_scene.h: PLL and depth peeling must match within 1/255; unsorted
+ * gl_test_scene.h: PLL, paged PLL, B3D, depth peeling and dual depth
+ * peeling must match within 1/255 (the peelers only without depth ties);
+ * guarded OIT and F2B must match at threshold 0 (F2B where its primitive
+ * order is the depth order) and stay within what their thresholds promise
+ * otherwise, while doing less work on deep, nearly opaque scenes; unsorted
  * blending must be right only when the order happens to be back to front;
  * WBOIT's error is printed and bounded loosely. Every figure is printed. */
 #include <math.h>
@@ -8,11 +12,16 @@
 #include <stdlib.h>
 
 #include "gl_test_scene.h"
+#include "render/b3d.h"
 #include "render/depth_peel.h"
 #include "render/dfb.h"
+#include "render/dual_peel.h"
+#include "render/f2b.h"
 #include "render/gl_context.h"
+#include "render/guarded.h"
 #include "render/image.h"
 #include "render/ppll.h"
+#include "render/ppll4.h"
 #include "render/unsorted.h"
 #include "render/wboit.h"
 #include "test_check.h"
@@ -24,13 +33,21 @@
 #define WBOIT_MAX_BOUND 0.3
 #define WBOIT_RMSE_BOUND 0.03
 
-enum method { M_DFB, M_PLL, M_DP, M_WBOIT, M_UNSORTED, M_N };
-static const char *const method_names[M_N] = {"dfb", "pll", "dp", "wboit", "unsorted"};
+enum method {
+    M_DFB, M_PLL, M_PPLL4, M_B3D, M_DP, M_DDP, M_GUARDED, M_F2B, M_WBOIT, M_UNSORTED, M_N
+};
+static const char *const method_names[M_N] = {"dfb", "pll", "ppll4", "b3d", "dp", "ddp",
+                                              "guarded", "f2b", "wboit", "unsorted"};
 
 typedef struct methods {
     oit_dfb *dfb;
     oit_pll *pll;
+    oit_ppll4 *ppll4;
+    oit_b3d *b3d;
     oit_depth_peel *dp;
+    oit_dual_peel *ddp;
+    oit_guarded *guarded;
+    oit_f2b *f2b;
     oit_wboit *wb;
     oit_unsorted *un;
 } methods;
@@ -53,7 +70,14 @@ static result render(methods *m, enum method which, const oit_triangle *tris, si
         switch (which) {
         case M_DFB: s = oit_dfb_render(m->dfb, list, 1, v, &r.img, NULL, &r.st, &err); break;
         case M_PLL: s = oit_pll_render(m->pll, list, 1, v, &r.img, &r.st, &err); break;
+        case M_PPLL4: s = oit_ppll4_render(m->ppll4, list, 1, v, &r.img, &r.st, &err); break;
+        case M_B3D: s = oit_b3d_render(m->b3d, list, 1, v, &r.img, &r.st, &err); break;
         case M_DP: s = oit_depth_peel_render(m->dp, list, 1, v, &r.img, &r.st, &err); break;
+        case M_DDP: s = oit_dual_peel_render(m->ddp, list, 1, v, &r.img, &r.st, &err); break;
+        case M_GUARDED:
+            s = oit_guarded_render(m->guarded, list, 1, v, &r.img, &r.st, &err);
+            break;
+        case M_F2B: s = oit_f2b_render(m->f2b, list, 1, v, &r.img, &r.st, &err); break;
         case M_WBOIT: s = oit_wboit_render(m->wb, list, 1, v, &r.img, &r.st, &err); break;
         default: s = oit_unsorted_render(m->un, list, 1, v, &r.img, &r.st, &err); break;
         }
@@ -220,6 +244,64 @@ static size_t shapes_scene(oit_triangle *t)
 
 /* ---- tests ---- */
 
+static oit_status methods_create(methods *m, oit_error *err)
+{
+    oit_status s = oit_dfb_create(&m->dfb, err);
+    if (s == OIT_OK)
+        s = oit_pll_create(&m->pll, err);
+    if (s == OIT_OK)
+        s = oit_ppll4_create(&m->ppll4, err);
+    if (s == OIT_OK)
+        s = oit_b3d_create(&m->b3d, err);
+    if (s == OIT_OK)
+        s = oit_depth_peel_create(&m->dp, err);
+    if (s == OIT_OK)
+        s = oit_dual_peel_create(&m->ddp, err);
+    if (s == OIT_OK)
+        s = oit_guarded_create(&m->guarded, err);
+    if (s == OIT_OK)
+        s = oit_f2b_create(&m->f2b, err);
+    if (s == OIT_OK)
+        s = oit_wboit_create(&m->wb, err);
+    if (s == OIT_OK)
+        s = oit_unsorted_create(&m->un, err);
+    return s;
+}
+
+static void methods_destroy(methods *m)
+{
+    oit_dfb_destroy(m->dfb);
+    oit_pll_destroy(m->pll);
+    oit_ppll4_destroy(m->ppll4);
+    oit_b3d_destroy(m->b3d);
+    oit_depth_peel_destroy(m->dp);
+    oit_dual_peel_destroy(m->ddp);
+    oit_guarded_destroy(m->guarded);
+    oit_f2b_destroy(m->f2b);
+    oit_wboit_destroy(m->wb);
+    oit_unsorted_destroy(m->un);
+}
+
+/* The methods that store every fragment, and so are exact with ties too
+ * and with translucent shading. */
+static const enum method storing[] = {M_PLL, M_PPLL4, M_B3D};
+#define N_STORING (int)(sizeof storing / sizeof storing[0])
+
+/* n full-frame quads at distinct depths, shuffled: n layers on every
+ * pixel. alpha 0 keeps quad_stack's varied alphas. */
+static quad_spec *full_stack(int n, float dz, uint8_t alpha, uint32_t seed)
+{
+    quad_spec *q = quad_stack(n, -1.0f, dz);
+    for (int i = 0; q && i < n; i++) {
+        q[i].half = 30.0f;
+        if (alpha)
+            q[i].rgba[3] = alpha;
+    }
+    if (q)
+        shuffle_quads(q, n, seed);
+    return q;
+}
+
 static void test_exact_quads(methods *m)
 {
     const int n = 12;
@@ -228,13 +310,38 @@ static void test_exact_quads(methods *m)
     oit_triangle *tris = scene_tris(q, n);
     oit_view v;
     scene_view(&v, 96, 64, OIT_SHADING_TRANSPARENT);
-    check_exact(m, M_PLL, "quads12 shuffled", tris, 2 * (size_t)n, &v, q, n);
+    for (int i = 0; i < N_STORING; i++)
+        check_exact(m, storing[i], "quads12 shuffled", tris, 2 * (size_t)n, &v, q, n);
     check_exact(m, M_DP, "quads12 shuffled", tris, 2 * (size_t)n, &v, q, n);
+    check_exact(m, M_DDP, "quads12 shuffled", tris, 2 * (size_t)n, &v, q, n);
     scene_view(&v, 96, 64, OIT_SHADING_TRANSLUCENT);
-    check_exact(m, M_PLL, "quads12 translucent", tris, 2 * (size_t)n, &v, q, n);
+    for (int i = 0; i < N_STORING; i++)
+        check_exact(m, storing[i], "quads12 translucent", tris, 2 * (size_t)n, &v, q, n);
     check_exact(m, M_DP, "quads12 translucent", tris, 2 * (size_t)n, &v, q, n);
     free(tris);
     free(q);
+}
+
+/* Dual peeling composites the back half back to front, where translucent
+ * absorption is not defined: it must refuse, not draw something else. */
+static void test_ddp_translucent(methods *m)
+{
+    quad_spec q = {-3.0f, 1.0f, {200, 100, 50, 128}, 1};
+    oit_triangle tris[2];
+    quad_tris(&q, tris);
+    oit_view v;
+    scene_view(&v, 32, 32, OIT_SHADING_TRANSLUCENT);
+    oit_error err = {0};
+    oit_gpu_mesh *mesh = NULL;
+    oit_image img = {0};
+    oit_status s = oit_gpu_mesh_create(tris, 2, 0, &mesh, &err);
+    const oit_gpu_mesh *list[1] = {mesh};
+    if (s == OIT_OK)
+        s = oit_dual_peel_render(m->ddp, list, 1, &v, &img, NULL, &err);
+    printf("ddp translucent: status %d: %s\n", (int)s, err.message);
+    CHECK(s == OIT_ERR_UNSUPPORTED, "ddp should refuse translucent shading, got %d", (int)s);
+    oit_image_free(&img);
+    oit_gpu_mesh_destroy(mesh);
 }
 
 static void test_exact_shapes(methods *m)
@@ -243,10 +350,13 @@ static void test_exact_shapes(methods *m)
     size_t n = shapes_scene(tris);
     oit_view v;
     scene_view(&v, 96, 64, OIT_SHADING_TRANSPARENT);
-    check_exact(m, M_PLL, "shapes", tris, n, &v, NULL, 0);
+    for (int i = 0; i < N_STORING; i++)
+        check_exact(m, storing[i], "shapes", tris, n, &v, NULL, 0);
     check_exact(m, M_DP, "shapes", tris, n, &v, NULL, 0);
+    check_exact(m, M_DDP, "shapes", tris, n, &v, NULL, 0);
     scene_view(&v, 96, 64, OIT_SHADING_TRANSLUCENT);
-    check_exact(m, M_PLL, "shapes translucent", tris, n, &v, NULL, 0);
+    for (int i = 0; i < N_STORING; i++)
+        check_exact(m, storing[i], "shapes translucent", tris, n, &v, NULL, 0);
     check_exact(m, M_DP, "shapes translucent", tris, n, &v, NULL, 0);
     /* Different shapes must actually overlap, or the test shows nothing. */
     oit_frame_stats st;
@@ -255,59 +365,63 @@ static void test_exact_shapes(methods *m)
     CHECK(st.max_layers >= 6, "shapes: only %u layers", st.max_layers);
 }
 
-/* Frame 1 has one layer and fits the initial node buffer; frame 2 has 40
- * and must overflow it, grow it and be drawn again, still exact. */
-static void test_pll_growth(void)
+static uint64_t capacity(const methods *m, enum method which)
 {
+    return which == M_PLL ? oit_pll_capacity(m->pll) : oit_ppll4_capacity(m->ppll4);
+}
+
+/* PLL's nodes or PPLL4's pages, on a fresh instance: frame 1 has one layer
+ * over a sixth of the frame and fits the initial pool (one fragment slot per
+ * pixel: a page per four pixels for PPLL4); frame 2 has 40 and must overflow
+ * it, grow it and be drawn again, still exact. */
+static void test_growth(enum method which)
+{
+    const char *name = method_names[which];
     oit_error err = {0};
     methods m = {0};
-    if (oit_pll_create(&m.pll, &err) != OIT_OK || oit_dfb_create(&m.dfb, &err) != OIT_OK) {
+    if (methods_create(&m, &err) != OIT_OK) {
         CHECK(0, "create: %s", err.message);
-        oit_pll_destroy(m.pll);
-        oit_dfb_destroy(m.dfb);
+        methods_destroy(&m);
         return;
     }
     oit_view v;
     scene_view(&v, 96, 64, OIT_SHADING_TRANSPARENT);
-    quad_spec one = {-3.0f, 10.0f, {200, 100, 50, 128}, 1};
+    quad_spec one = {-3.0f, 1.5f, {200, 100, 50, 128}, 1};
     oit_triangle tris1[2];
     quad_tris(&one, tris1);
-    oit_frame_stats st1, st2;
-    check_exact(&m, M_PLL, "growth frame 1", tris1, 2, &v, &one, 1);
-    result r1 = render(&m, M_PLL, tris1, 2, &v);
-    st1 = r1.st;
-    uint64_t cap1 = oit_pll_capacity(m.pll);
+    check_exact(&m, which, "growth frame 1", tris1, 2, &v, &one, 1);
+    result r1 = render(&m, which, tris1, 2, &v);
+    oit_frame_stats st1 = r1.st;
+    uint64_t cap1 = capacity(&m, which);
     oit_image_free(&r1.img);
     const int n = 40;
-    quad_spec *q = quad_stack(n, -1.0f, 0.25f);
-    for (int i = 0; i < n; i++)
-        q[i].half = 30.0f; /* every quad covers the frame: 40 layers everywhere */
-    shuffle_quads(q, n, 77u);
+    quad_spec *q = full_stack(n, 0.25f, 0, 77u);
     oit_triangle *tris2 = scene_tris(q, n);
-    result r2 = render(&m, M_PLL, tris2, 2 * (size_t)n, &v);
-    st2 = r2.st;
-    uint64_t cap2 = oit_pll_capacity(m.pll);
+    result r2 = render(&m, which, tris2, 2 * (size_t)n, &v);
+    oit_frame_stats st2 = r2.st;
+    uint64_t cap2 = capacity(&m, which);
     double hand = r2.ok ? hand_max_diff(&r2.img, &v, q, n) : INFINITY;
-    printf("pll growth: frame 1 fragments=%llu passes=%u capacity=%llu bytes=%llu; "
-           "frame 2 fragments=%llu passes=%u capacity=%llu bytes=%llu vs hand max_abs=%.6f\n",
-           (unsigned long long)st1.fragments, st1.batches, (unsigned long long)cap1,
+    printf("%s growth: frame 1 fragments=%llu passes=%u capacity=%llu bytes=%llu; frame 2 "
+           "fragments=%llu layers=%u passes=%u capacity=%llu bytes=%llu vs hand max_abs=%.6f\n",
+           name, (unsigned long long)st1.fragments, st1.batches, (unsigned long long)cap1,
            (unsigned long long)st1.gpu_bytes_peak, (unsigned long long)st2.fragments,
-           st2.batches, (unsigned long long)cap2, (unsigned long long)st2.gpu_bytes_peak, hand);
-    CHECK(st1.batches == 1, "frame 1 should fit the first node buffer");
-    CHECK(st2.batches == 2, "frame 2 should have overflowed and been drawn again");
-    CHECK(st2.fragments == 40ull * 96 * 64, "frame 2: %llu fragments",
+           st2.max_layers, st2.batches, (unsigned long long)cap2,
+           (unsigned long long)st2.gpu_bytes_peak, hand);
+    CHECK(st1.batches == 1, "%s: frame 1 should fit the first pool", name);
+    CHECK(st2.batches == 2, "%s: frame 2 should have overflowed and been drawn again", name);
+    CHECK(st2.fragments == 40ull * 96 * 64, "%s: frame 2: %llu fragments", name,
           (unsigned long long)st2.fragments);
-    CHECK(cap2 >= st2.fragments && cap2 > cap1, "node buffer did not grow");
-    CHECK(hand <= TOL, "frame 2 differs from the hand result by %.6f", hand);
+    CHECK(st2.max_layers == 40, "%s: frame 2: max_layers %u", name, st2.max_layers);
+    CHECK(cap2 >= st2.fragments && cap2 > cap1, "%s: pool did not grow", name);
+    CHECK(hand <= TOL, "%s: frame 2 differs from the hand result by %.6f", name, hand);
     oit_image_free(&r2.img);
     /* The next frame of that size fits at once. */
-    result r3 = render(&m, M_PLL, tris2, 2 * (size_t)n, &v);
-    CHECK(r3.st.batches == 1, "frame 3 drew %u passes", r3.st.batches);
+    result r3 = render(&m, which, tris2, 2 * (size_t)n, &v);
+    CHECK(r3.st.batches == 1, "%s: frame 3 drew %u passes", name, r3.st.batches);
     oit_image_free(&r3.img);
     free(tris2);
     free(q);
-    oit_pll_destroy(m.pll);
-    oit_dfb_destroy(m.dfb);
+    methods_destroy(&m);
 }
 
 static void test_unsorted(methods *m)
@@ -376,53 +490,76 @@ static void test_wboit(methods *m)
 
 /* 100 layers: PLL (long lists, past the 32 sorted in registers) and DP
  * exact; PLL's and DFB's storage grows with the depth, DP's does not. */
+/* 100 layers on every pixel: the storing methods (long lists, past the 32
+ * sorted in registers), DP and DDP exact, with max_layers 100 and every
+ * fragment counted; the storing methods' and DFB's memory grows with the
+ * depth, the peelers' does not, and DDP needs half DP's passes. */
 static void test_deep(void)
 {
+    enum { SHALLOW, DEEP };
+    static const enum method all[] = {M_DFB, M_PLL, M_PPLL4, M_B3D, M_DP, M_DDP};
+    enum { N_ALL = sizeof all / sizeof all[0] };
     oit_error err = {0};
     methods m = {0};
-    if (oit_pll_create(&m.pll, &err) != OIT_OK || oit_dfb_create(&m.dfb, &err) != OIT_OK ||
-        oit_depth_peel_create(&m.dp, &err) != OIT_OK) {
+    if (methods_create(&m, &err) != OIT_OK) {
         CHECK(0, "create: %s", err.message);
-    } else {
-        oit_view v;
-        scene_view(&v, 96, 64, OIT_SHADING_TRANSPARENT);
-        quad_spec *shallow = quad_stack(3, -2.0f, 1.0f), *deep = quad_stack(100, -1.0f, 0.1f);
-        for (int i = 0; i < 3; i++)
-            shallow[i].half = 30.0f;
-        for (int i = 0; i < 100; i++)
-            deep[i].half = 30.0f;
-        shuffle_quads(deep, 100, 4242u);
-        oit_triangle *ts = scene_tris(shallow, 3), *td = scene_tris(deep, 100);
-        oit_frame_stats pll_s, dfb_s, pll_d, dfb_d, dp_s, dp_d;
-        versus_dfb(&m, M_PLL, "3 layers", ts, 6, &v, &pll_s, &dfb_s);
-        versus_dfb(&m, M_DP, "3 layers", ts, 6, &v, &dp_s, NULL);
-        check_exact(&m, M_PLL, "100 layers", td, 200, &v, deep, 100);
-        check_exact(&m, M_DP, "100 layers", td, 200, &v, deep, 100);
-        versus_dfb(&m, M_PLL, "100 layers (bytes)", td, 200, &v, &pll_d, &dfb_d);
-        versus_dfb(&m, M_DP, "100 layers (bytes)", td, 200, &v, &dp_d, NULL);
-        printf("gpu_bytes_peak 3 -> 100 layers: pll %llu -> %llu, dfb %llu -> %llu, "
-               "dp %llu -> %llu (dp passes %u)\n", (unsigned long long)pll_s.gpu_bytes_peak,
-               (unsigned long long)pll_d.gpu_bytes_peak, (unsigned long long)dfb_s.gpu_bytes_peak,
-               (unsigned long long)dfb_d.gpu_bytes_peak, (unsigned long long)dp_s.gpu_bytes_peak,
-               (unsigned long long)dp_d.gpu_bytes_peak, dp_d.batches);
-        CHECK(pll_d.gpu_bytes_peak >= pll_s.gpu_bytes_peak + 90ull * 96 * 64 * 20,
-              "pll bytes did not grow with depth");
-        CHECK(dfb_d.gpu_bytes_peak >= dfb_s.gpu_bytes_peak + 90ull * 96 * 64 * 16,
-              "dfb bytes did not grow with depth");
-        CHECK(dp_d.gpu_bytes_peak == dp_s.gpu_bytes_peak, "dp bytes grew with depth");
-        CHECK(dp_d.batches == 101, "dp drew %u passes for 100 layers", dp_d.batches);
-        free(ts);
-        free(td);
-        free(shallow);
-        free(deep);
+        methods_destroy(&m);
+        return;
     }
-    oit_pll_destroy(m.pll);
-    oit_dfb_destroy(m.dfb);
-    oit_depth_peel_destroy(m.dp);
+    const uint64_t px = 96 * 64;
+    oit_view v;
+    scene_view(&v, 96, 64, OIT_SHADING_TRANSPARENT);
+    quad_spec *q[2] = {full_stack(3, 1.0f, 0, 1u), full_stack(100, 0.1f, 0, 4242u)};
+    oit_triangle *t[2] = {scene_tris(q[0], 3), scene_tris(q[1], 100)};
+    oit_frame_stats st[2][N_ALL];
+    for (int i = 0; i < N_ALL; i++)
+        versus_dfb(&m, all[i], "3 layers (bytes)", t[SHALLOW], 6, &v, &st[SHALLOW][i], NULL);
+    for (int i = 1; i < N_ALL; i++)
+        check_exact(&m, all[i], "100 layers", t[DEEP], 200, &v, q[DEEP], 100);
+    for (int i = 0; i < N_ALL; i++) {
+        versus_dfb(&m, all[i], "100 layers (bytes)", t[DEEP], 200, &v, &st[DEEP][i], NULL);
+        printf("gpu_bytes_peak 3 -> 100 layers: %-8s %llu -> %llu (passes %u)\n",
+               method_names[all[i]], (unsigned long long)st[SHALLOW][i].gpu_bytes_peak,
+               (unsigned long long)st[DEEP][i].gpu_bytes_peak, st[DEEP][i].batches);
+        CHECK(st[DEEP][i].max_layers == 100 && st[DEEP][i].fragments == 100 * px,
+              "%s: 100 full-frame quads gave max_layers %u, %llu fragments",
+              method_names[all[i]], st[DEEP][i].max_layers,
+              (unsigned long long)st[DEEP][i].fragments);
+    }
+    /* Per fragment: DFB 16 bytes, PLL 20, PPLL4 17, B3D 16 per pixel-layer. */
+    static const unsigned growth[N_ALL] = {16, 20, 17, 16, 0, 0};
+    for (int i = 0; i < N_ALL; i++) {
+        uint64_t lo = st[SHALLOW][i].gpu_bytes_peak, hi = st[DEEP][i].gpu_bytes_peak;
+        if (growth[i])
+            CHECK(hi >= lo + 90ull * px * growth[i], "%s bytes did not grow with depth",
+                  method_names[all[i]]);
+        else
+            CHECK(hi == lo, "%s bytes grew with depth", method_names[all[i]]);
+    }
+    CHECK(st[DEEP][4].batches == 101, "dp drew %u passes for 100 layers", st[DEEP][4].batches);
+    CHECK(st[DEEP][5].batches == 51, "ddp drew %u passes for 100 layers", st[DEEP][5].batches);
+    for (int k = 0; k < 2; k++) {
+        free(t[k]);
+        free(q[k]);
+    }
+    methods_destroy(&m);
 }
 
-/* Coplanar quads: DP keeps one fragment of each tie and loses the rest,
- * exactly the pixels both cover; PLL keeps them all. */
+/* Pixels inside the smaller of test_ties' coplanar quads. */
+static uint64_t tied_pixels(const oit_view *v)
+{
+    uint64_t tied = 0;
+    for (int y = 0; y < v->height; y++)
+        for (int x = 0; x < v->width; x++) {
+            double dx = ((x + 0.5) / v->width * 2 - 1) * v->width / v->height;
+            double dy = 1 - (y + 0.5) / v->height * 2;
+            tied += fabs(dx * 3.0) < 0.6 && fabs(dy * 3.0) < 0.6;
+        }
+    return tied;
+}
+
+/* Coplanar quads: the peelers keep one fragment of each tie and lose the
+ * rest, exactly the pixels both cover; the storing methods keep them all. */
 static void test_ties(methods *m)
 {
     quad_spec q[3] = {{-3.0f, 1.2f, {200, 40, 40, 120}, 1},
@@ -431,22 +568,233 @@ static void test_ties(methods *m)
     oit_triangle *tris = scene_tris(q, 3);
     oit_view v;
     scene_view(&v, 96, 64, OIT_SHADING_TRANSPARENT);
-    check_exact(m, M_PLL, "coplanar ties", tris, 6, &v, q, 3);
-    oit_frame_stats st, ref;
-    oit_image_diff d = versus_dfb(m, M_DP, "coplanar ties", tris, 6, &v, &st, &ref);
-    /* Pixels inside the smaller quad see both coplanar ones. */
-    uint64_t tied = 0;
-    for (int y = 0; y < v.height; y++)
-        for (int x = 0; x < v.width; x++) {
-            double dx = ((x + 0.5) / v.width * 2 - 1) * v.width / v.height;
-            double dy = 1 - (y + 0.5) / v.height * 2;
-            tied += fabs(dx * 3.0) < 0.6 && fabs(dy * 3.0) < 0.6;
-        }
-    printf("dp on ties: lost %llu fragments (expect %llu), max_abs=%.6f\n",
-           (unsigned long long)(ref.fragments - st.fragments), (unsigned long long)tied, d.max_abs);
-    CHECK(ref.fragments - st.fragments == tied, "dp should lose exactly the tied fragments");
-    CHECK(d.max_abs > 0.05, "dp should differ where fragments tie: %.6f", d.max_abs);
+    for (int i = 0; i < N_STORING; i++)
+        check_exact(m, storing[i], "coplanar ties", tris, 6, &v, q, 3);
+    uint64_t tied = tied_pixels(&v);
+    static const enum method peelers[] = {M_DP, M_DDP};
+    for (int i = 0; i < 2; i++) {
+        const char *name = method_names[peelers[i]];
+        oit_frame_stats st, ref;
+        oit_image_diff d = versus_dfb(m, peelers[i], "coplanar ties", tris, 6, &v, &st, &ref);
+        printf("%s on ties: lost %llu fragments (expect %llu), max_abs=%.6f\n", name,
+               (unsigned long long)(ref.fragments - st.fragments), (unsigned long long)tied,
+               d.max_abs);
+        CHECK(ref.fragments - st.fragments == tied, "%s should lose exactly the tied "
+              "fragments", name);
+        CHECK(d.max_abs > 0.05, "%s should differ where fragments tie: %.6f", name, d.max_abs);
+    }
     free(tris);
+}
+
+/* ---- the approximate methods ---- */
+
+static void check_threshold_range(methods *m)
+{
+    oit_error err = {0};
+    static const float bad[] = {-0.01f, 1.0f, NAN};
+    for (int i = 0; i < 3; i++) {
+        CHECK(oit_guarded_set_threshold(m->guarded, bad[i], &err) == OIT_ERR_ARGUMENT,
+              "guarded accepted threshold %g", (double)bad[i]);
+        CHECK(oit_f2b_set_threshold(m->f2b, bad[i], &err) == OIT_ERR_ARGUMENT,
+              "f2b accepted threshold %g", (double)bad[i]);
+    }
+    printf("threshold range: %s\n", err.message);
+}
+
+static void set_threshold(methods *m, enum method which, float threshold)
+{
+    oit_error err = {0};
+    oit_status s = which == M_GUARDED ? oit_guarded_set_threshold(m->guarded, threshold, &err)
+                                      : oit_f2b_set_threshold(m->f2b, threshold, &err);
+    CHECK(s == OIT_OK, "%s: threshold %g: %s", method_names[which], (double)threshold,
+          err.message);
+}
+
+/* Guarded OIT. Threshold 0 culls nothing: PLL, exact, every fragment. At
+ * the default, on 40 nearly opaque full-frame layers in shuffled order, it
+ * must cull (store fewer fragments, a shorter longest list) and each culled
+ * fragment may move its pixel by less than the threshold: at most
+ * (layers - 1) culled per pixel, since the first fragment drawn is always
+ * stored. Where no guard can fall below the threshold it must cull
+ * nothing. */
+static void test_guarded(methods *m)
+{
+    const int n = 12;
+    quad_spec *q = quad_stack(n, -2.0f, 0.7f);
+    shuffle_quads(q, n, 0x2545f491u);
+    oit_triangle *tris = scene_tris(q, n), shapes[48];
+    size_t ns = shapes_scene(shapes);
+    quad_spec *deep = full_stack(40, 0.25f, 247, 99u);
+    oit_triangle *td = scene_tris(deep, 40);
+    oit_view v;
+    scene_view(&v, 96, 64, OIT_SHADING_TRANSPARENT);
+    set_threshold(m, M_GUARDED, 0.0f);
+    check_exact(m, M_GUARDED, "quads12 threshold 0", tris, 2 * (size_t)n, &v, q, n);
+    check_exact(m, M_GUARDED, "shapes threshold 0", shapes, ns, &v, NULL, 0);
+    check_exact(m, M_GUARDED, "opaque40 threshold 0", td, 80, &v, deep, 40);
+    scene_view(&v, 96, 64, OIT_SHADING_TRANSLUCENT);
+    check_exact(m, M_GUARDED, "quads12 translucent thr 0", tris, 2 * (size_t)n, &v, q, n);
+    scene_view(&v, 96, 64, OIT_SHADING_TRANSPARENT);
+    set_threshold(m, M_GUARDED, OIT_GUARDED_DEFAULT_THRESHOLD);
+    oit_frame_stats st, ref;
+    oit_image_diff d = versus_dfb(m, M_GUARDED, "quads12 default", tris, 2 * (size_t)n, &v,
+                                  &st, &ref);
+    CHECK(d.max_abs <= (ref.max_layers - 1) * OIT_GUARDED_DEFAULT_THRESHOLD + TOL,
+          "guarded on quads12: max_abs %.6f", d.max_abs);
+    d = versus_dfb(m, M_GUARDED, "opaque40 default", td, 80, &v, &st, &ref);
+    double bound = (ref.max_layers - 1) * OIT_GUARDED_DEFAULT_THRESHOLD + TOL;
+    printf("guarded opaque40: stored %.1f%% of %llu fragments, error bound %.4f\n",
+           100.0 * (double)st.fragments / (double)ref.fragments,
+           (unsigned long long)ref.fragments, bound);
+    CHECK(ref.max_layers == 40, "opaque40: dfb max_layers %u", ref.max_layers);
+    CHECK(d.max_abs <= bound, "guarded on opaque40: max_abs %.6f above %.6f", d.max_abs,
+          bound);
+    CHECK(st.fragments < ref.fragments / 2, "guarded culled too little: %llu of %llu stored",
+          (unsigned long long)st.fragments, (unsigned long long)ref.fragments);
+    CHECK(st.max_layers < ref.max_layers, "guarded: longest list %u", st.max_layers);
+    /* At alpha 230/255 the least importance a guard can see is
+     * a (1 - a)^2 = 0.0087, above the default: nothing may be culled. */
+    quad_spec *mid = full_stack(40, 0.25f, 230, 5u);
+    oit_triangle *tm = scene_tris(mid, 40);
+    d = versus_dfb(m, M_GUARDED, "alpha0.9 x40 default", tm, 80, &v, &st, &ref);
+    CHECK(st.fragments == ref.fragments && d.max_abs <= TOL, "guarded culled fragments of "
+          "importance above the threshold: %llu of %llu stored, max_abs %.6f",
+          (unsigned long long)st.fragments, (unsigned long long)ref.fragments, d.max_abs);
+    /* Drawn nearest, farthest, middle: the newest stored node is then
+     * behind the middle one and must not guard it. */
+    quad_spec hks[3] = {{-2.0f, 30.0f, {200, 60, 40, 77}, 1},
+                        {-4.0f, 30.0f, {40, 60, 200, 255}, 1},
+                        {-3.0f, 30.0f, {60, 200, 40, 128}, 1}};
+    oit_triangle t3[6];
+    for (int i = 0; i < 3; i++)
+        quad_tris(&hks[i], &t3[2 * i]);
+    d = versus_dfb(m, M_GUARDED, "guard behind default", t3, 6, &v, &st, &ref);
+    CHECK(st.fragments == ref.fragments && d.max_abs <= TOL, "guarded culled a fragment "
+          "with a node behind it as its guard: max_abs %.6f", d.max_abs);
+    free(tm);
+    free(mid);
+    free(tris);
+    free(q);
+    free(td);
+    free(deep);
+}
+
+/* Fresh instances, so the pools are what this scene makes them: on 40
+ * nearly opaque layers guarded OIT's pool must end smaller than PLL's
+ * (the paper's point: culled fragments take no memory). */
+static void test_guarded_memory(void)
+{
+    oit_error err = {0};
+    methods m = {0};
+    quad_spec *deep = full_stack(40, 0.25f, 247, 99u);
+    oit_triangle *td = scene_tris(deep, 40);
+    if (methods_create(&m, &err) != OIT_OK) {
+        CHECK(0, "create: %s", err.message);
+    } else {
+        oit_view v;
+        scene_view(&v, 96, 64, OIT_SHADING_TRANSPARENT);
+        oit_frame_stats g, p;
+        versus_dfb(&m, M_GUARDED, "opaque40 fresh pool", td, 80, &v, &g, NULL);
+        versus_dfb(&m, M_PLL, "opaque40 fresh pool", td, 80, &v, &p, NULL);
+        printf("opaque40 pools: guarded %llu bytes (%u passes), pll %llu bytes\n",
+               (unsigned long long)g.gpu_bytes_peak, g.batches,
+               (unsigned long long)p.gpu_bytes_peak);
+        CHECK(g.gpu_bytes_peak < p.gpu_bytes_peak * 3 / 4, "guarded's pool (%llu bytes) is "
+              "not smaller than PLL's (%llu)", (unsigned long long)g.gpu_bytes_peak,
+              (unsigned long long)p.gpu_bytes_peak);
+    }
+    methods_destroy(&m);
+    free(td);
+    free(deep);
+}
+
+/* Per pixel, F2B (threshold thr) against DFB: where the hand result's
+ * final transmittance stays at or above thr nothing can have been
+ * discarded, so those pixels are exact; elsewhere the error is below thr. */
+static void check_f2b_pixels(methods *m, const char *scene, const quad_spec *q, int n,
+                             const oit_view *v, float thr)
+{
+    oit_triangle *tris = scene_tris(q, n);
+    result a = render(m, M_F2B, tris, 2 * (size_t)n, v), ref = render(m, M_DFB, tris,
+                                                                        2 * (size_t)n, v);
+    double worst[2] = {0.0, 0.0}; /* pixels kept exact, pixels that may discard */
+    uint64_t count[2] = {0, 0};
+    for (int y = 0; a.ok && ref.ok && y < v->height; y++)
+        for (int x = 0; x < v->width; x++) {
+            hand_state h;
+            hand_begin(&h);
+            hand_add(&h, v, q, n, x, y);
+            int k = h.T[0] < thr;
+            const float *p = &a.img.rgba[4 * ((size_t)y * v->width + x)];
+            const float *r = &ref.img.rgba[4 * ((size_t)y * v->width + x)];
+            for (int c = 0; c < 3; c++)
+                worst[k] = fmax(worst[k], fabs(p[c] - r[c]));
+            count[k]++;
+        }
+    printf("f2b %-22s thr=%.3f exact pixels %llu max_abs=%.6f, discarding pixels %llu "
+           "max_abs=%.6f, fragments %llu (dfb %llu)\n", scene, (double)thr,
+           (unsigned long long)count[0], worst[0], (unsigned long long)count[1], worst[1],
+           (unsigned long long)a.st.fragments, (unsigned long long)ref.st.fragments);
+    CHECK(count[0] > 0 && worst[0] <= TOL, "f2b %s: pixels above the threshold differ by "
+          "%.6f", scene, worst[0]);
+    CHECK(worst[1] <= thr + TOL, "f2b %s: error %.6f above the threshold", scene, worst[1]);
+    if (thr == 0.0f)
+        CHECK(a.st.fragments == ref.st.fragments, "f2b %s: threshold 0 discarded", scene);
+    else
+        CHECK(count[1] > 0 && a.st.fragments < ref.st.fragments,
+              "f2b %s: nothing discarded", scene);
+    oit_image_free(&a.img);
+    oit_image_free(&ref.img);
+    free(tris);
+}
+
+/* F2B. Its order (view depth of triangle centroids) is exact for quads
+ * facing the camera, so at threshold 0 it must equal DFB there; on the
+ * interlocking shapes it need not (printed). At the default threshold, on
+ * quads dense enough that some pixels fall below it, the per-pixel promise
+ * of check_f2b_pixels; on 40 nearly opaque layers it must blend far fewer
+ * fragments. */
+static void test_f2b(methods *m)
+{
+    const int n = 12;
+    quad_spec *q = quad_stack(n, -2.0f, 0.7f);
+    shuffle_quads(q, n, 0x2545f491u);
+    oit_view v;
+    scene_view(&v, 96, 64, OIT_SHADING_TRANSPARENT);
+    set_threshold(m, M_F2B, 0.0f);
+    check_f2b_pixels(m, "quads12", q, n, &v, 0.0f);
+    oit_triangle *tris = scene_tris(q, n), shapes[48];
+    double hand = INFINITY;
+    result r = render(m, M_F2B, tris, 2 * (size_t)n, &v);
+    if (r.ok)
+        hand = hand_max_diff(&r.img, &v, q, n);
+    oit_image_free(&r.img);
+    printf("f2b quads12 threshold 0 vs hand max_abs=%.6f\n", hand);
+    CHECK(hand <= TOL, "f2b quads12 threshold 0: differs from the hand result by %.6f", hand);
+    size_t ns = shapes_scene(shapes);
+    oit_image_diff d = versus_dfb(m, M_F2B, "shapes thr 0 (unordered)", shapes, ns, &v, NULL,
+                                  NULL);
+    CHECK(isfinite(d.max_abs), "f2b shapes: max_abs %.6f", d.max_abs);
+    quad_spec *dense = quad_stack(24, -2.0f, 0.3f);
+    for (int i = 0; i < 24; i++)
+        dense[i].rgba[3] = 200;
+    shuffle_quads(dense, 24, 31u);
+    check_f2b_pixels(m, "dense24", dense, 24, &v, 0.0f);
+    set_threshold(m, M_F2B, OIT_F2B_DEFAULT_THRESHOLD);
+    check_f2b_pixels(m, "dense24", dense, 24, &v, OIT_F2B_DEFAULT_THRESHOLD);
+    quad_spec *deep = full_stack(40, 0.25f, 247, 99u);
+    oit_triangle *td = scene_tris(deep, 40);
+    oit_frame_stats st, ref;
+    d = versus_dfb(m, M_F2B, "opaque40 default", td, 80, &v, &st, &ref);
+    CHECK(d.max_abs <= OIT_F2B_DEFAULT_THRESHOLD + TOL, "f2b opaque40: max_abs %.6f",
+          d.max_abs);
+    CHECK(st.fragments < ref.fragments / 4, "f2b opaque40 blended %llu of %llu fragments",
+          (unsigned long long)st.fragments, (unsigned long long)ref.fragments);
+    free(td);
+    free(deep);
+    free(dense);
+    free(tris);
+    free(q);
 }
 
 int main(void)
@@ -459,30 +807,24 @@ int main(void)
     }
     printf("renderer: %s\n", oit_gl_renderer(gl));
     methods m = {0};
-    oit_status s = oit_dfb_create(&m.dfb, &err);
-    if (s == OIT_OK)
-        s = oit_pll_create(&m.pll, &err);
-    if (s == OIT_OK)
-        s = oit_depth_peel_create(&m.dp, &err);
-    if (s == OIT_OK)
-        s = oit_wboit_create(&m.wb, &err);
-    if (s == OIT_OK)
-        s = oit_unsorted_create(&m.un, &err);
+    oit_status s = methods_create(&m, &err);
     CHECK(s == OIT_OK, "create: %s", err.message);
     if (s == OIT_OK) {
         test_exact_quads(&m);
         test_exact_shapes(&m);
+        test_ddp_translucent(&m);
         test_ties(&m);
         test_unsorted(&m);
         test_wboit(&m);
-        test_pll_growth();
+        check_threshold_range(&m);
+        test_guarded(&m);
+        test_guarded_memory();
+        test_f2b(&m);
+        test_growth(M_PLL);
+        test_growth(M_PPLL4);
         test_deep();
     }
-    oit_dfb_destroy(m.dfb);
-    oit_pll_destroy(m.pll);
-    oit_depth_peel_destroy(m.dp);
-    oit_wboit_destroy(m.wb);
-    oit_unsorted_destroy(m.un);
+    methods_destroy(&m);
     oit_gl_destroy(gl);
     printf("%s\n", test_failures ? "FAILED" : "ok");
     return test_failures != 0;

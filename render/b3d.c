@@ -1,0 +1,248 @@
+/* Fixed per-pixel arrays (b3d.h). Counts and output are buffers in GL row
+ * order; slot s of pixel (x, y) is texel (x, y, s) of the layer array. */
+#include "render/b3d.h"
+
+#include "render/baseline_common.h"
+#include "render/image.h"
+
+#include <stdlib.h>
+
+enum { BUF_COUNTS, BUF_STATS, BUF_OUT, BUF_N };
+
+struct oit_b3d {
+    GLuint count_prog, max_prog, store_prog, resolve_prog, fbo;
+    GLuint slots;     /* RGBA32UI 2D array, w x h x layers */
+    int w, h, layers; /* its size */
+    oit_gpu_buffers b;
+};
+
+static const char *const buffer_names[BUF_N] = {"counts", "counters", "output"};
+
+static const char count_fs[] =
+    "layout(std430, binding = 1) buffer Counts { uint counts[]; };\n"
+    "void main() { atomicAdd(counts[oit_pixel_index()], 1u); }\n";
+
+/* One global atomic per group rather than per pixel. */
+static const char max_cs[] =
+    "layout(local_size_x = 8, local_size_y = 8) in;\n"
+    "layout(location = 11) uniform ivec2 u_size;\n"
+    "layout(std430, binding = 1) readonly buffer Counts { uint counts[]; };\n"
+    "layout(std430, binding = 6) buffer Stats { uint counter; uint max_len; uint total; };\n"
+    "shared uint group_max;\n"
+    "void main() {\n"
+    "    if (gl_LocalInvocationIndex == 0u) group_max = 0u;\n"
+    "    barrier();\n"
+    "    ivec2 px = ivec2(gl_GlobalInvocationID.xy);\n"
+    "    if (px.x < u_size.x && px.y < u_size.y)\n"
+    "        atomicMax(group_max, counts[px.y * u_size.x + px.x]);\n"
+    "    barrier();\n"
+    "    if (gl_LocalInvocationIndex == 0u) atomicMax(max_len, group_max);\n"
+    "}\n";
+
+/* Counts start again from 0, so after this pass they hold the pixel's
+ * fragment count once more, for the walk. The bound only guards against a
+ * driver rasterizing the two passes differently. */
+static const char store_fs[] =
+    "layout(std430, binding = 1) buffer Counts { uint counts[]; };\n"
+    "layout(rgba32ui, binding = 0) writeonly uniform uimage2DArray u_slots;\n"
+    "layout(location = 10) uniform int u_k;\n"
+    "void main() {\n"
+    "    uint s = atomicAdd(counts[oit_pixel_index()], 1u);\n"
+    "    if (s < uint(u_k)) imageStore(u_slots, ivec3(ivec2(gl_FragCoord.xy), s), oit_fragment());\n"
+    "}\n";
+
+/* A walk position is slot * pixels + pixel, from the pixel's last slot down. */
+static const char walk_glsl[] =
+    "layout(std430, binding = 1) readonly buffer Counts { uint counts[]; };\n"
+    "layout(rgba32ui, binding = 0) readonly uniform uimage2DArray u_slots;\n"
+    "layout(location = 10) uniform int u_k;\n"
+    "uint pixels() { return uint(u_size.x * u_size.y); }\n"
+    "uint oit_list_first(uint p) {\n"
+    "    uint n = min(counts[p], uint(u_k));\n"
+    "    return n == 0u ? OIT_LIST_END : (n - 1u) * pixels() + p;\n"
+    "}\n"
+    "uint oit_list_next(uint i) { return i >= pixels() ? i - pixels() : OIT_LIST_END; }\n"
+    "uvec4 oit_list_load(uint i) {\n"
+    "    uint p = i % pixels();\n"
+    "    return imageLoad(u_slots, ivec3(int(p % uint(u_size.x)), int(p / uint(u_size.x)),\n"
+    "                                    int(i / pixels())));\n"
+    "}\n"
+    /* Fragments share a page (or an array): no link of their own to sort
+     * by, so long lists take the quadratic walk (baseline_common.h). */
+    "bool oit_list_can_relink() { return false; }\n"
+    "void oit_list_relink(uint i, uint n) {}\n";
+
+static oit_status build_programs(oit_b3d *b, oit_error *err)
+{
+    const char *vs[] = {oit_glsl_version, oit_glsl_vertex, NULL};
+    const char *cfs[] = {oit_glsl_version, oit_glsl_fragment_gen, count_fs, NULL};
+    const char *sfs[] = {oit_glsl_version, oit_glsl_fragment_gen, store_fs, NULL};
+    const char *mcs[] = {oit_glsl_version, max_cs, NULL};
+    const char *rcs[] = {oit_glsl_version, oit_glsl_composite, oit_glsl_sorted_resolve,
+                         walk_glsl, NULL};
+    oit_status s = oit_gl_program_graphics("B3D count pass", vs, cfs, &b->count_prog, err);
+    if (s == OIT_OK)
+        s = oit_gl_program_graphics("B3D store pass", vs, sfs, &b->store_prog, err);
+    if (s == OIT_OK)
+        s = oit_gl_program_compute("B3D layer maximum", mcs, &b->max_prog, err);
+    if (s == OIT_OK)
+        s = oit_gl_program_compute("B3D resolve", rcs, &b->resolve_prog, err);
+    return s;
+}
+
+oit_status oit_b3d_create(oit_b3d **out, oit_error *err)
+{
+    *out = NULL;
+    oit_b3d *b = calloc(1, sizeof *b);
+    if (!b)
+        return oit_error_set(err, OIT_ERR_NOMEM, "B3D: out of memory");
+    b->b.method = "B3D";
+    b->b.names = buffer_names;
+    oit_status s = build_programs(b, err);
+    if (s == OIT_OK) {
+        glCreateFramebuffers(1, &b->fbo);
+        s = oit_gl_check("B3D: glCreateFramebuffers", err);
+    }
+    if (s != OIT_OK) {
+        oit_b3d_destroy(b);
+        return s;
+    }
+    *out = b;
+    return OIT_OK;
+}
+
+void oit_b3d_destroy(oit_b3d *b)
+{
+    if (!b)
+        return;
+    glDeleteProgram(b->count_prog);
+    glDeleteProgram(b->max_prog);
+    glDeleteProgram(b->store_prog);
+    glDeleteProgram(b->resolve_prog);
+    glDeleteFramebuffers(1, &b->fbo);
+    glDeleteTextures(1, &b->slots);
+    oit_gpu_buffers_release(&b->b);
+    free(b);
+}
+
+/* Slots for 'layers' per pixel, grown only. */
+static oit_status reserve_slots(oit_b3d *b, int w, int h, uint32_t layers, oit_error *err)
+{
+    if (layers < 1)
+        layers = 1;
+    if (b->slots && b->w == w && b->h == h && (uint32_t)b->layers >= layers)
+        return OIT_OK;
+    GLint max_layers = 0;
+    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &max_layers);
+    uint64_t positions = (uint64_t)w * h * layers;
+    if (layers > (uint32_t)max_layers || positions >= 0xffffffffull)
+        return oit_error_set(err, OIT_ERR_NOMEM, "B3D: %u layers of %dx%d slots exceed this "
+                             "driver's %d array layers or 2^32 slots", layers, w, h, max_layers);
+    glDeleteTextures(1, &b->slots);
+    b->layers = 0;
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &b->slots);
+    glTextureStorage3D(b->slots, 1, GL_RGBA32UI, w, h, (GLsizei)layers);
+    if (glGetError() != GL_NO_ERROR)
+        return oit_error_set(err, OIT_ERR_NOMEM, "B3D: cannot allocate %u layers of %dx%d "
+                             "slots (%llu bytes)", layers, w, h,
+                             (unsigned long long)positions * 16);
+    b->w = w;
+    b->h = h;
+    b->layers = (int)layers;
+    b->b.texture_bytes = positions * 16;
+    oit_gpu_buffers_note(&b->b);
+    return OIT_OK;
+}
+
+static oit_status prepare(oit_b3d *b, const oit_view *v, oit_error *err)
+{
+    uint64_t pixels = (uint64_t)v->width * v->height;
+    oit_status s = oit_gl_check_ssbo_size(pixels * 16, "B3D: the frame's output", err);
+    if (s == OIT_OK)
+        s = oit_gpu_buffers_reserve_all(&b->b, BUF_N,
+                                        (const uint64_t[BUF_N]){pixels * 4, 16, pixels * 16},
+                                        err);
+    if (s != OIT_OK)
+        return s;
+    glNamedFramebufferParameteri(b->fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH, v->width);
+    glNamedFramebufferParameteri(b->fbo, GL_FRAMEBUFFER_DEFAULT_HEIGHT, v->height);
+    oit_glsl_raster_begin(b->fbo, v->width, v->height);
+    oit_glsl_set_view(b->count_prog, v);
+    oit_glsl_set_view(b->store_prog, v);
+    oit_glsl_set_view(b->max_prog, v);
+    oit_glsl_set_view(b->resolve_prog, v);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, b->b.buf[BUF_COUNTS]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_STATE, b->b.buf[BUF_STATS]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, b->b.buf[BUF_OUT]);
+    return oit_gl_check("B3D: frame set-up", err);
+}
+
+static void clear_u32(GLuint buf)
+{
+    static const GLuint zero = 0;
+    glClearNamedBufferData(buf, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+}
+
+static void draw(GLuint prog, const oit_gpu_mesh *const *meshes, int n)
+{
+    oit_baseline_draw(prog, 0, 0, meshes, n);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
+                    GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+static void dispatch_frame(GLuint prog, const oit_view *v)
+{
+    oit_baseline_dispatch_frame(prog, v->width, v->height);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+/* Count pass and its maximum: the layers the slot array needs. */
+static oit_status count(oit_b3d *b, const oit_gpu_mesh *const *meshes, int n,
+                        const oit_view *v, GLuint *layers, oit_error *err)
+{
+    clear_u32(b->b.buf[BUF_COUNTS]);
+    clear_u32(b->b.buf[BUF_STATS]);
+    draw(b->count_prog, meshes, n);
+    dispatch_frame(b->max_prog, v);
+    glGetNamedBufferSubData(b->b.buf[BUF_STATS], 4, 4, layers);
+    return oit_gl_check("B3D: count pass", err);
+}
+
+static oit_status store_and_resolve(oit_b3d *b, const oit_gpu_mesh *const *meshes, int n,
+                                    const oit_view *v, GLuint figures[3], oit_error *err)
+{
+    glProgramUniform1i(b->store_prog, OIT_LOC_K, b->layers);
+    glProgramUniform1i(b->resolve_prog, OIT_LOC_K, b->layers);
+    glBindImageTexture(0, b->slots, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32UI);
+    clear_u32(b->b.buf[BUF_COUNTS]);
+    clear_u32(b->b.buf[BUF_STATS]);
+    draw(b->store_prog, meshes, n);
+    dispatch_frame(b->resolve_prog, v);
+    glGetNamedBufferSubData(b->b.buf[BUF_STATS], 0, 12, figures);
+    return oit_gl_check("B3D: store pass and resolve", err);
+}
+
+oit_status oit_b3d_render(oit_b3d *b, const oit_gpu_mesh *const *meshes, int n,
+                          const oit_view *view, oit_image *out, oit_frame_stats *stats,
+                          oit_error *err)
+{
+    oit_view v;
+    double t0;
+    oit_status s = oit_baseline_begin("B3D", view, n, &v, &t0, err);
+    if (s != OIT_OK)
+        return s;
+    GLuint layers = 0, figures[3] = {0, 0, 0}; /* counter, max_len, total */
+    s = prepare(b, &v, err);
+    if (s == OIT_OK)
+        s = count(b, meshes, n, &v, &layers, err);
+    if (s == OIT_OK)
+        s = reserve_slots(b, v.width, v.height, layers, err);
+    if (s == OIT_OK)
+        s = store_and_resolve(b, meshes, n, &v, figures, err);
+    if (s == OIT_OK)
+        s = oit_baseline_read_buffer("B3D", b->b.buf[BUF_OUT], v.width, v.height, out, err);
+    if (s != OIT_OK || !stats)
+        return s;
+    oit_baseline_stats(stats, t0, figures[2], figures[1], b->b.peak, 2);
+    return OIT_OK;
+}

@@ -1,0 +1,277 @@
+/* Dual depth peeling (dual_peel.h). Two RG32F (-nearest, farthest) targets
+ * ping-pong: a pass reads one and writes the next pairs into the other,
+ * cleared to -inf (no fragment: the MAX identity). A pixel whose pair reads
+ * (-inf, -inf) has nothing left: every fragment is outside the interval. */
+#include "render/dual_peel.h"
+
+#include "render/baseline_common.h"
+#include "render/image.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { BUF_FRONT, BUF_BACK, BUF_COUNT, BUF_OUT, BUF_N };
+enum { IMG_FRONT, IMG_BACK, IMG_N };
+enum { STATE_BYTES = 48, BACK_BYTES = 32 }; /* std430 sizes of oit_state, back_acc */
+#define MAX_PASSES 1000000u
+
+struct oit_dual_peel {
+    oit_peel_passes pp;
+    GLuint minmax[2], layer[IMG_N];
+    int w, h;
+    oit_gpu_buffers b;
+};
+
+static const char *const buffer_names[BUF_N] = {"front state", "back state", "counters",
+                                                "output"};
+
+/* u_init: the first pass, which only gathers every fragment's pair. A
+ * layer fragment stores and is discarded, so the query counts only the
+ * fragments left inside, and image stores before a discard still land. */
+static const char peel_fs[] =
+    "layout(binding = 0) uniform sampler2D u_minmax;\n"
+    "layout(rgba32ui, binding = 0) writeonly uniform uimage2D u_front;\n"
+    "layout(rgba32ui, binding = 1) writeonly uniform uimage2D u_back;\n"
+    "uniform int u_init;\n"
+    "layout(location = 0) out vec2 o_minmax;\n"
+    "void main() {\n"
+    "    uvec4 f = oit_fragment();\n"
+    "    float t = uintBitsToFloat(f.x);\n"
+    "    ivec2 px = ivec2(gl_FragCoord.xy);\n"
+    "    vec2 nf = u_init != 0 ? vec2(-t, t) : texelFetch(u_minmax, px, 0).xy;\n"
+    "    float near = -nf.x, far = nf.y;\n"
+    "    if (t < near || t > far) discard;\n"
+    "    if (u_init != 0 || (t > near && t < far)) { o_minmax = vec2(-t, t); return; }\n"
+    "    if (t == near) imageStore(u_front, px, f); else imageStore(u_back, px, f);\n"
+    "    discard;\n"
+    "}\n";
+
+#define BACK_DECL "struct back_acc { vec3 C; float T; uint n; };\n"
+
+/* The pair read is the one the pass peeled against: its nearest names the
+ * front layer, its farthest the back one unless both are the same. */
+static const char merge_cs[] =
+    "layout(local_size_x = 8, local_size_y = 8) in;\n"
+    "layout(location = 11) uniform ivec2 u_size;\n"
+    "uniform int u_first;\n"
+    "layout(binding = 0) uniform sampler2D u_minmax;\n"
+    "layout(rgba32ui, binding = 0) readonly uniform uimage2D u_front;\n"
+    "layout(rgba32ui, binding = 1) readonly uniform uimage2D u_back;\n"
+    BACK_DECL
+    "layout(std430, binding = 6) buffer State { oit_state states[]; };\n"
+    "layout(std430, binding = 7) buffer Back { back_acc backs[]; };\n"
+    "void main() {\n"
+    "    ivec2 px = ivec2(gl_GlobalInvocationID.xy);\n"
+    "    if (px.x >= u_size.x || px.y >= u_size.y) return;\n"
+    "    uint p = uint(px.y * u_size.x + px.x);\n"
+    "    oit_state s = u_first != 0 ? oit_state_begin() : states[p];\n"
+    "    back_acc b = u_first != 0 ? back_acc(vec3(0.0), 1.0, 0u) : backs[p];\n"
+    "    vec2 nf = texelFetch(u_minmax, px, 0).xy;\n"
+    "    if (-nf.x <= nf.y) {\n"
+    "        oit_composite(s, imageLoad(u_front, px));\n"
+    "        b.n++;\n"
+    "        if (nf.y > -nf.x) {\n"
+    "            vec4 c = oit_premultiplied(imageLoad(u_back, px));\n"
+    "            b.C = c.rgb + (1.0 - c.a) * b.C;\n"
+    "            b.T *= 1.0 - c.a;\n"
+    "            b.n++;\n"
+    "        }\n"
+    "    }\n"
+    "    states[p] = s;\n"
+    "    backs[p] = b;\n"
+    "}\n";
+
+static const char final_cs[] =
+    "layout(local_size_x = 8, local_size_y = 8) in;\n"
+    "layout(location = 11) uniform ivec2 u_size;\n"
+    BACK_DECL
+    "layout(std430, binding = 6) readonly buffer State { oit_state states[]; };\n"
+    "layout(std430, binding = 7) readonly buffer Back { back_acc backs[]; };\n"
+    "layout(std430, binding = 1) buffer Count { uint fragments; uint max_len; };\n"
+    "layout(std430, binding = 4) writeonly buffer Out { vec4 out_rgba[]; };\n"
+    "void main() {\n"
+    "    ivec2 px = ivec2(gl_GlobalInvocationID.xy);\n"
+    "    if (px.x >= u_size.x || px.y >= u_size.y) return;\n"
+    "    uint p = uint(px.y * u_size.x + px.x);\n"
+    "    oit_state s = states[p];\n"
+    "    back_acc b = backs[p];\n"
+    "    atomicAdd(fragments, b.n);\n"
+    "    atomicMax(max_len, b.n);\n"
+    "    out_rgba[p] = vec4(s.C + s.T * (b.C + b.T * u_background), 1.0);\n"
+    "}\n";
+
+oit_status oit_dual_peel_create(oit_dual_peel **out, oit_error *err)
+{
+    *out = NULL;
+    oit_dual_peel *d = calloc(1, sizeof *d);
+    if (!d)
+        return oit_error_set(err, OIT_ERR_NOMEM, "dual peeling: out of memory");
+    d->b.method = "dual peeling";
+    d->b.names = buffer_names;
+    const char *mcs[] = {oit_glsl_version, oit_glsl_composite, oit_glsl_premultiplied,
+                         merge_cs, NULL};
+    const char *fcs[] = {oit_glsl_version, oit_glsl_composite, final_cs, NULL};
+    oit_status s = oit_peel_passes_create(&d->pp, "dual peeling", peel_fs, mcs, fcs, err);
+    if (s != OIT_OK) {
+        oit_dual_peel_destroy(d);
+        return s;
+    }
+    *out = d;
+    return OIT_OK;
+}
+
+static void release_targets(oit_dual_peel *d)
+{
+    glDeleteTextures(2, d->minmax);
+    glDeleteTextures(IMG_N, d->layer);
+    memset(d->minmax, 0, sizeof d->minmax);
+    memset(d->layer, 0, sizeof d->layer);
+}
+
+void oit_dual_peel_destroy(oit_dual_peel *d)
+{
+    if (!d)
+        return;
+    oit_peel_passes_release(&d->pp);
+    release_targets(d);
+    oit_gpu_buffers_release(&d->b);
+    free(d);
+}
+
+static GLuint texture(GLenum format, int w, int h)
+{
+    GLuint t = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &t);
+    glTextureStorage2D(t, 1, format, w, h);
+    glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    return t;
+}
+
+static oit_status resize_targets(oit_dual_peel *d, int w, int h, oit_error *err)
+{
+    if (d->minmax[0] && d->w == w && d->h == h)
+        return OIT_OK;
+    release_targets(d);
+    for (int i = 0; i < 2; i++) {
+        d->minmax[i] = texture(GL_RG32F, w, h);
+        glNamedFramebufferTexture(d->pp.fbo[i], GL_COLOR_ATTACHMENT0, d->minmax[i], 0);
+    }
+    for (int i = 0; i < IMG_N; i++)
+        d->layer[i] = texture(GL_RGBA32UI, w, h);
+    d->w = w;
+    d->h = h;
+    d->b.texture_bytes = (uint64_t)w * h * (2 * 8 + IMG_N * 16);
+    oit_gpu_buffers_note(&d->b);
+    if (glCheckNamedFramebufferStatus(d->pp.fbo[0], GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        return oit_error_set(err, OIT_ERR_GL, "dual peeling: the RG32F target of %dx%d is "
+                             "not renderable here", w, h);
+    return oit_gl_check("dual peeling: targets", err);
+}
+
+static oit_status prepare(oit_dual_peel *d, const oit_view *v, oit_error *err)
+{
+    if (v->shading.mode != OIT_SHADING_TRANSPARENT)
+        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "dual peeling: translucent shading is "
+                             "not supported (absorption needs all layers in front-to-back "
+                             "order; the back half is composited back to front)");
+    uint64_t pixels = (uint64_t)v->width * v->height;
+    oit_status s = oit_gl_check_ssbo_size(pixels * STATE_BYTES, "dual peeling: the "
+                                          "frame's front state", err);
+    if (s == OIT_OK)
+        s = resize_targets(d, v->width, v->height, err);
+    if (s == OIT_OK)
+        s = oit_gpu_buffers_reserve_all(&d->b, BUF_N, (const uint64_t[BUF_N]){
+            pixels * STATE_BYTES, pixels * BACK_BYTES, 16, pixels * 16}, err);
+    if (s != OIT_OK)
+        return s;
+    oit_peel_passes_set_view(&d->pp, v);
+    static const GLuint zero = 0;
+    glClearNamedBufferData(d->b.buf[BUF_COUNT], GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_STATE, d->b.buf[BUF_FRONT]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_SUMS, d->b.buf[BUF_BACK]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, d->b.buf[BUF_COUNT]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, d->b.buf[BUF_OUT]);
+    glBindImageTexture(0, d->layer[IMG_FRONT], 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32UI);
+    glBindImageTexture(1, d->layer[IMG_BACK], 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32UI);
+    return oit_gl_check("dual peeling: frame set-up", err);
+}
+
+/* Draws into minmax[cur], peeling against minmax[1 - cur] unless init;
+ * returns whether any fragment was left inside. */
+static int peel(oit_dual_peel *d, int cur, int init, const oit_gpu_mesh *const *meshes, int n)
+{
+    const float none[4] = {-INFINITY, -INFINITY, 0.0f, 0.0f};
+    oit_glsl_raster_begin(d->pp.fbo[cur], d->w, d->h);
+    glColorMask(GL_TRUE, GL_TRUE, GL_FALSE, GL_FALSE);
+    glClearNamedFramebufferfv(d->pp.fbo[cur], GL_COLOR, 0, none);
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_MAX);
+    glBindTextureUnit(0, d->minmax[1 - cur]);
+    glProgramUniform1i(d->pp.peel, glGetUniformLocation(d->pp.peel, "u_init"), init);
+    int any = oit_peel_passes_draw(&d->pp, meshes, n);
+    glBlendEquation(GL_FUNC_ADD);
+    glDisable(GL_BLEND);
+    return any;
+}
+
+/* Composites the layers peeled against minmax[prev]. */
+static void merge(oit_dual_peel *d, int prev, int first)
+{
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    glBindTextureUnit(0, d->minmax[prev]);
+    oit_peel_passes_merge(&d->pp, first, d->w, d->h);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
+/* The first pass gathers the pairs; each later one peels two layers and
+ * leaves every unfinished pixel a strictly narrower interval, so the loop
+ * ends; the cap only turns a driver that broke that into an error. A frame
+ * without fragments still merges once, to start every pixel's state. */
+static oit_status peel_all(oit_dual_peel *d, const oit_gpu_mesh *const *meshes, int n,
+                           uint32_t *passes, oit_error *err)
+{
+    int prev = 0, first = 1;
+    int more = peel(d, 0, 1, meshes, n);
+    for (*passes = 1; more; ++*passes) {
+        if (*passes == MAX_PASSES)
+            return oit_error_set(err, OIT_ERR_GL, "dual peeling: fragments still left "
+                                 "after %u passes; the driver does not keep t's order",
+                                 (unsigned)MAX_PASSES);
+        more = peel(d, 1 - prev, 0, meshes, n);
+        merge(d, prev, first);
+        first = 0;
+        prev = 1 - prev;
+    }
+    if (first)
+        merge(d, prev, 1);
+    oit_baseline_dispatch_frame(d->pp.final, d->w, d->h);
+    return oit_gl_check("dual peeling: passes", err);
+}
+
+oit_status oit_dual_peel_render(oit_dual_peel *d, const oit_gpu_mesh *const *meshes, int n,
+                                const oit_view *view, oit_image *out,
+                                oit_frame_stats *stats, oit_error *err)
+{
+    oit_view v;
+    double t0;
+    oit_status s = oit_baseline_begin("dual peeling", view, n, &v, &t0, err);
+    if (s != OIT_OK)
+        return s;
+    uint32_t passes = 0;
+    GLuint figures[2] = {0, 0}; /* fragments, max_len */
+    s = prepare(d, &v, err);
+    if (s == OIT_OK)
+        s = peel_all(d, meshes, n, &passes, err);
+    if (s == OIT_OK) {
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        glGetNamedBufferSubData(d->b.buf[BUF_COUNT], 0, 8, figures);
+        s = oit_baseline_read_buffer("dual peeling", d->b.buf[BUF_OUT], v.width, v.height,
+                                     out, err);
+    }
+    if (s != OIT_OK || !stats)
+        return s;
+    oit_baseline_stats(stats, t0, figures[0], figures[1], d->b.peak, passes);
+    return OIT_OK;
+}

@@ -1,0 +1,341 @@
+/* Front-to-back blending with early discarding (f2b.h). Per frame: key
+ * pass, CPU sort, gather pass, blend pass, final pass. Triangle indices
+ * count across the frame's meshes (u_mesh_base: triangles of the meshes
+ * before). */
+#include "render/f2b.h"
+
+#include "render/baseline_common.h"
+#include "render/image.h"
+
+#include <stdlib.h>
+
+enum { BUF_KEYS, BUF_RANK, BUF_SORTED, BUF_N };
+enum { TEX_ACCUM, TEX_OUT, TEX_N };
+enum { TRI_BYTES = 48 };
+
+struct oit_f2b {
+    GLuint key_prog, gather_prog, blend_prog, final_prog, fbo, query;
+    GLuint tex[TEX_N];
+    int w, h;
+    oit_gpu_buffers b;
+    oit_gpu_mesh *sorted;       /* a view of buf[BUF_SORTED] */
+    uint64_t *pairs, *scratch;  /* CPU sort: key << 32 | triangle */
+    uint32_t *words;            /* keys read back, then ranks sent */
+    size_t host_cap;            /* entries of the three above */
+};
+
+static const char *const buffer_names[BUF_N] = {"sort keys", "ranks", "sorted triangles"};
+
+#define PER_TRIANGLE                                                        \
+    "layout(local_size_x = 64) in;\n"                                       \
+    "layout(std430, binding = 0) readonly buffer Verts { uvec4 verts[]; };\n" \
+    "uniform uint u_window_first, u_window_count, u_mesh_base;\n"          \
+    "uint triangle() { return gl_GlobalInvocationID.y * 65535u * 64u + gl_GlobalInvocationID.x; }\n"
+
+/* The key orders like the float view depth (sign flipped into order), so
+ * the CPU sorts plain integers. */
+static const char key_cs[] =
+    PER_TRIANGLE
+    "layout(std430, binding = 1) writeonly buffer Keys { uint keys[]; };\n"
+    "layout(location = 0) uniform mat4 u_view;\n"
+    "vec3 corner(uint v) { return uintBitsToFloat(verts[v].xyz); }\n"
+    "void main() {\n"
+    "    uint i = triangle();\n"
+    "    if (i >= u_window_count) return;\n"
+    "    vec3 c = (corner(3u * i) + corner(3u * i + 1u) + corner(3u * i + 2u)) / 3.0;\n"
+    "    uint b = floatBitsToUint(-(u_view * vec4(c, 1.0)).z);\n"
+    "    keys[u_mesh_base + u_window_first + i] = (b & 0x80000000u) != 0u ? ~b : b | 0x80000000u;\n"
+    "}\n";
+
+/* One window of the sorted copy per dispatch (u_out_first..+u_out_count). */
+static const char gather_cs[] =
+    PER_TRIANGLE
+    "layout(std430, binding = 2) readonly buffer Rank { uint rank[]; };\n"
+    "layout(std430, binding = 3) writeonly buffer Sorted { uvec4 sorted[]; };\n"
+    "uniform uint u_out_first, u_out_count;\n"
+    "void main() {\n"
+    "    uint i = triangle();\n"
+    "    if (i >= u_window_count) return;\n"
+    "    uint r = rank[u_mesh_base + u_window_first + i] - u_out_first;\n"
+    "    if (r >= u_out_count) return;\n"
+    "    for (uint k = 0u; k < 3u; k++) sorted[3u * r + k] = verts[3u * i + k];\n"
+    "}\n";
+
+/* Seed 004's shader: the test comes before any shading work. */
+static const char blend_fs[] =
+    "layout(binding = 0) uniform sampler2D u_accum;\n"
+    "uniform float u_threshold;\n"
+    "layout(location = 0) out vec4 o_colour;\n"
+    "void main() {\n"
+    "    if (texelFetch(u_accum, ivec2(gl_FragCoord.xy), 0).a < u_threshold) discard;\n"
+    "    vec4 c = oit_premultiplied(oit_fragment());\n"
+    "    o_colour = vec4(c.rgb, 1.0 - c.a);\n"
+    "}\n";
+
+static const char final_cs[] =
+    "layout(local_size_x = 8, local_size_y = 8) in;\n"
+    "layout(location = 11) uniform ivec2 u_size;\n"
+    "layout(location = 9) uniform vec3 u_background;\n"
+    "layout(binding = 0) uniform sampler2D u_accum;\n"
+    "layout(rgba32f, binding = 0) writeonly uniform image2D u_out;\n"
+    "void main() {\n"
+    "    ivec2 px = ivec2(gl_GlobalInvocationID.xy);\n"
+    "    if (px.x >= u_size.x || px.y >= u_size.y) return;\n"
+    "    vec4 a = texelFetch(u_accum, px, 0);\n"
+    "    imageStore(u_out, px, vec4(a.rgb + a.a * u_background, 1.0));\n"
+    "}\n";
+
+static oit_status build_programs(oit_f2b *f, oit_error *err)
+{
+    const char *vs[] = {oit_glsl_version, oit_glsl_vertex, NULL};
+    const char *bfs[] = {oit_glsl_version, oit_glsl_fragment_gen, oit_glsl_premultiplied,
+                         blend_fs, NULL};
+    const char *kcs[] = {oit_glsl_version, key_cs, NULL};
+    const char *gcs[] = {oit_glsl_version, gather_cs, NULL};
+    const char *fcs[] = {oit_glsl_version, final_cs, NULL};
+    oit_status s = oit_gl_program_graphics("F2B blend pass", vs, bfs, &f->blend_prog, err);
+    if (s == OIT_OK)
+        s = oit_gl_program_compute("F2B sort keys", kcs, &f->key_prog, err);
+    if (s == OIT_OK)
+        s = oit_gl_program_compute("F2B gather", gcs, &f->gather_prog, err);
+    if (s == OIT_OK)
+        s = oit_gl_program_compute("F2B final", fcs, &f->final_prog, err);
+    return s;
+}
+
+oit_status oit_f2b_create(oit_f2b **out, oit_error *err)
+{
+    *out = NULL;
+    oit_f2b *f = calloc(1, sizeof *f);
+    if (!f)
+        return oit_error_set(err, OIT_ERR_NOMEM, "F2B: out of memory");
+    f->b.method = "F2B";
+    f->b.names = buffer_names;
+    oit_status s = build_programs(f, err);
+    if (s == OIT_OK) {
+        glCreateFramebuffers(1, &f->fbo);
+        glCreateQueries(GL_SAMPLES_PASSED, 1, &f->query);
+        s = oit_gl_check("F2B: framebuffer and query", err);
+    }
+    if (s == OIT_OK)
+        s = oit_f2b_set_threshold(f, OIT_F2B_DEFAULT_THRESHOLD, err);
+    if (s != OIT_OK) {
+        oit_f2b_destroy(f);
+        return s;
+    }
+    *out = f;
+    return OIT_OK;
+}
+
+void oit_f2b_destroy(oit_f2b *f)
+{
+    if (!f)
+        return;
+    glDeleteProgram(f->key_prog);
+    glDeleteProgram(f->gather_prog);
+    glDeleteProgram(f->blend_prog);
+    glDeleteProgram(f->final_prog);
+    glDeleteFramebuffers(1, &f->fbo);
+    glDeleteQueries(1, &f->query);
+    glDeleteTextures(TEX_N, f->tex);
+    oit_gpu_mesh_destroy(f->sorted);
+    oit_gpu_buffers_release(&f->b);
+    free(f->pairs);
+    free(f->scratch);
+    free(f->words);
+    free(f);
+}
+
+oit_status oit_f2b_set_threshold(oit_f2b *f, float threshold, oit_error *err)
+{
+    if (!(threshold >= 0.0f && threshold < 1.0f))
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "F2B: alpha threshold %g is outside "
+                             "[0, 1)", (double)threshold);
+    glProgramUniform1f(f->blend_prog, glGetUniformLocation(f->blend_prog, "u_threshold"),
+                       threshold);
+    return oit_gl_check("F2B: threshold", err);
+}
+
+static oit_status resize_targets(oit_f2b *f, int w, int h, oit_error *err)
+{
+    if (f->tex[0] && f->w == w && f->h == h)
+        return OIT_OK;
+    glDeleteTextures(TEX_N, f->tex);
+    glCreateTextures(GL_TEXTURE_2D, TEX_N, f->tex);
+    for (int i = 0; i < TEX_N; i++) {
+        glTextureStorage2D(f->tex[i], 1, GL_RGBA32F, w, h);
+        glTextureParameteri(f->tex[i], GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(f->tex[i], GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    }
+    glNamedFramebufferTexture(f->fbo, GL_COLOR_ATTACHMENT0, f->tex[TEX_ACCUM], 0);
+    f->w = w;
+    f->h = h;
+    f->b.texture_bytes = (uint64_t)w * h * 16 * TEX_N;
+    oit_gpu_buffers_note(&f->b);
+    return oit_gl_check("F2B: RGBA32F targets", err);
+}
+
+static oit_status reserve_host(oit_f2b *f, size_t n, oit_error *err)
+{
+    if (n <= f->host_cap)
+        return OIT_OK;
+    uint64_t *p = realloc(f->pairs, n * sizeof *p);
+    if (p)
+        f->pairs = p;
+    uint64_t *q = p ? realloc(f->scratch, n * sizeof *q) : NULL;
+    if (q)
+        f->scratch = q;
+    uint32_t *w = q ? realloc(f->words, n * sizeof *w) : NULL;
+    if (!w)
+        return oit_error_set(err, OIT_ERR_NOMEM, "F2B: cannot allocate the sort of %zu "
+                             "triangles", n);
+    f->words = w;
+    f->host_cap = n;
+    return OIT_OK;
+}
+
+/* Buffers for 'tris' triangles; the keys and ranks must fit one binding. */
+static oit_status reserve_triangles(oit_f2b *f, uint64_t tris, oit_error *err)
+{
+    if (tris >= 0xffffffffull)
+        return oit_error_set(err, OIT_ERR_NOMEM, "F2B: %llu triangles exceed 32-bit ranks",
+                             (unsigned long long)tris);
+    oit_status s = oit_gl_check_ssbo_size(tris * 4, "F2B sort keys", err);
+    if (s == OIT_OK)
+        s = reserve_host(f, (size_t)tris, err);
+    if (s == OIT_OK)
+        s = oit_gpu_buffers_reserve_all(&f->b, BUF_N, (const uint64_t[BUF_N]){
+            tris * 4, tris * 4, tris * TRI_BYTES}, err);
+    if (s == OIT_OK && !f->sorted)
+        s = oit_gpu_mesh_create_view(f->b.buf[BUF_SORTED], &f->sorted, err);
+    return s;
+}
+
+/* Runs prog once per triangle of every mesh. */
+static void per_triangle(GLuint prog, const oit_gpu_mesh *const *meshes, int n)
+{
+    GLint base_loc = glGetUniformLocation(prog, "u_mesh_base");
+    uint64_t base = 0;
+    for (int i = 0; i < n; i++) {
+        glProgramUniform1ui(prog, base_loc, (GLuint)base);
+        oit_gpu_mesh_dispatch(meshes[i], prog, 64);
+        base += oit_gpu_mesh_triangles(meshes[i]);
+    }
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+/* Stable LSD radix sort of v[0..n) by bits 32..63; an even number of
+ * passes leaves the result in v. */
+static void sort_by_key(uint64_t *v, uint64_t *tmp, size_t n)
+{
+    for (int shift = 32; shift < 64; shift += 8) {
+        size_t start[257] = {0};
+        for (size_t i = 0; i < n; i++)
+            start[((v[i] >> shift) & 255) + 1]++;
+        for (int b = 0; b < 256; b++)
+            start[b + 1] += start[b];
+        for (size_t i = 0; i < n; i++)
+            tmp[start[(v[i] >> shift) & 255]++] = v[i];
+        uint64_t *swap = v;
+        v = tmp;
+        tmp = swap;
+    }
+}
+
+/* Keys down, ranks up: rank[triangle] = its place front to back. */
+static oit_status sort_triangles(oit_f2b *f, size_t tris, oit_error *err)
+{
+    glGetNamedBufferSubData(f->b.buf[BUF_KEYS], 0, (GLsizeiptr)(tris * 4), f->words);
+    for (size_t i = 0; i < tris; i++)
+        f->pairs[i] = (uint64_t)f->words[i] << 32 | i;
+    sort_by_key(f->pairs, f->scratch, tris);
+    for (size_t j = 0; j < tris; j++)
+        f->words[(uint32_t)f->pairs[j]] = (uint32_t)j;
+    glNamedBufferSubData(f->b.buf[BUF_RANK], 0, (GLsizeiptr)(tris * 4), f->words);
+    return oit_gl_check("F2B: sort", err);
+}
+
+static oit_status order(oit_f2b *f, const oit_gpu_mesh *const *meshes, int n, oit_error *err)
+{
+    uint64_t tris = 0;
+    for (int i = 0; i < n; i++)
+        tris += oit_gpu_mesh_triangles(meshes[i]);
+    oit_status s = reserve_triangles(f, tris, err);
+    if (s != OIT_OK)
+        return s;
+    oit_gpu_mesh_set_range(f->sorted, 0, (size_t)tris, 0);
+    if (tris == 0)
+        return OIT_OK;
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, f->b.buf[BUF_KEYS]);
+    per_triangle(f->key_prog, meshes, n);
+    s = sort_triangles(f, (size_t)tris, err);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OFFSETS, f->b.buf[BUF_RANK]);
+    size_t window = oit_gpu_triangle_window();
+    for (uint64_t lo = 0; s == OIT_OK && lo < tris; lo += window) {
+        uint64_t count = tris - lo < window ? tris - lo : window;
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_FRAGS, f->b.buf[BUF_SORTED],
+                          (GLintptr)(lo * TRI_BYTES), (GLsizeiptr)(count * TRI_BYTES));
+        glProgramUniform1ui(f->gather_prog, glGetUniformLocation(f->gather_prog, "u_out_first"),
+                            (GLuint)lo);
+        glProgramUniform1ui(f->gather_prog, glGetUniformLocation(f->gather_prog, "u_out_count"),
+                            (GLuint)count);
+        per_triangle(f->gather_prog, meshes, n);
+    }
+    return s == OIT_OK ? oit_gl_check("F2B: ordering passes", err) : s;
+}
+
+static void blend(oit_f2b *f)
+{
+    static const float clear[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+    oit_glsl_raster_begin(f->fbo, f->w, f->h);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glClearNamedFramebufferfv(f->fbo, GL_COLOR, 0, clear);
+    glTextureBarrier();
+    glBindTextureUnit(0, f->tex[TEX_ACCUM]);
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE, GL_ZERO, GL_SRC_ALPHA);
+    const oit_gpu_mesh *sorted[1] = {f->sorted};
+    oit_baseline_draw(f->blend_prog, GL_SAMPLES_PASSED, f->query, sorted, 1);
+    glDisable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ZERO);
+}
+
+static void finish(oit_f2b *f)
+{
+    glTextureBarrier();
+    glBindTextureUnit(0, f->tex[TEX_ACCUM]);
+    glBindImageTexture(0, f->tex[TEX_OUT], 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    oit_baseline_dispatch_frame(f->final_prog, f->w, f->h);
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+}
+
+oit_status oit_f2b_render(oit_f2b *f, const oit_gpu_mesh *const *meshes, int n,
+                          const oit_view *view, oit_image *out, oit_frame_stats *stats,
+                          oit_error *err)
+{
+    oit_view v;
+    double t0;
+    oit_status s = oit_baseline_begin("F2B", view, n, &v, &t0, err);
+    if (s != OIT_OK)
+        return s;
+    s = resize_targets(f, v.width, v.height, err);
+    if (s != OIT_OK)
+        return s;
+    oit_glsl_set_view(f->key_prog, &v);
+    oit_glsl_set_view(f->blend_prog, &v);
+    oit_glsl_set_view(f->final_prog, &v);
+    s = order(f, meshes, n, err);
+    if (s != OIT_OK)
+        return s;
+    blend(f);
+    finish(f);
+    s = oit_gl_check("F2B: passes", err);
+    if (s == OIT_OK)
+        s = oit_baseline_read_texture("F2B", f->tex[TEX_OUT], v.width, v.height, out, err);
+    GLuint64 samples = 0;
+    glGetQueryObjectui64v(f->query, GL_QUERY_RESULT, &samples);
+    if (s != OIT_OK || !stats)
+        return s;
+    oit_baseline_stats(stats, t0, samples, 0, f->b.peak, 1);
+    return OIT_OK;
+}

@@ -1,0 +1,78 @@
+/* The frame machinery the list baselines share: per-pixel linked lists
+ * (ppll.h), paged lists (ppll4.h) and guarded OIT (guarded.h). They differ
+ * only in their append shader and in how a pixel's list is walked.
+ *
+ * Storage: per pixel, words_per_pixel head words (cleared to 0xffffffff each
+ * pass); a pool of units, each of slots_per_unit fragment slots (a node, or
+ * a page of nodes), with one link word per unit; one atomic unit counter.
+ *
+ * Sizing, the same policy for all three: a frame starts with the capacity
+ * the previous frames needed (at first one fragment slot per pixel, so every
+ * method starts with the same bytes whatever its unit). The append
+ * shader takes units from the counter, which keeps counting past the
+ * capacity (the shader writes no unit at or beyond u_capacity), so after the
+ * pass the frame's need is known; when it overflowed, the pool grows to that
+ * need and the frame is drawn again. A fragment is never dropped, and the
+ * capacity never shrinks. A method whose need can change between passes
+ * (units wasted under contention, culling that depends on what was stored)
+ * may take a few passes; one whose count overstates the need (growth_cap)
+ * grows by at most that factor a pass; more than OIT_LIST_MAX_PASSES is an
+ * error.
+ *
+ * Resolve: oit_glsl_sorted_resolve (baseline_common.h) with the method's
+ * walk, so every list method sorts and composites exactly like the others.
+ *
+ * GLSL interface, for both the append and the walk: heads at OIT_BIND_COUNTS
+ * (uint; pixel p's words at p * words_per_pixel), slots at OIT_BIND_FRAGS
+ * (uvec4; unit u's at u * slots_per_unit), links at OIT_BIND_TOTALS (uint per
+ * unit), Stats { uint counter; uint max_len; uint total; } at OIT_BIND_STATE,
+ * and the append shader's `layout(location = 13) uniform uint u_capacity`
+ * (units). The append program is built from oit_glsl_fragment_gen,
+ * oit_glsl_premultiplied and the method's fragment stage.
+ *
+ * Stats: fragments (stored, counted by the resolve), max_layers (longest
+ * list), batches = geometry passes drawn, gpu_bytes_peak. */
+#ifndef OIT_RENDER_LIST_STORE_H
+#define OIT_RENDER_LIST_STORE_H
+
+#include "render/gpu_mesh.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define OIT_LIST_MAX_PASSES 16
+
+typedef struct oit_list_desc {
+    const char *method;       /* names the method in errors: "PLL" */
+    const char *append_fs;    /* the fragment stage's main */
+    const char *walk_glsl;    /* oit_list_first/next/load and their buffers */
+    uint32_t slots_per_unit;  /* 1: nodes; 4: pages of four */
+    uint32_t words_per_pixel; /* head words per pixel */
+    uint64_t max_units;       /* the most units the method's indices address */
+    uint32_t growth_cap;      /* 0: an overflowing pass grows the pool to its
+                                 count; g: to at most g times the pool */
+} oit_list_desc;
+
+typedef struct oit_list_store oit_list_store;
+
+/* desc's strings must outlive the store. */
+oit_status oit_list_store_create(const oit_list_desc *desc, oit_list_store **out,
+                                 oit_error *err);
+void oit_list_store_destroy(oit_list_store *ls);
+
+/* For the method's own uniforms (a threshold). */
+unsigned oit_list_store_append_program(const oit_list_store *ls);
+
+/* Fragment slots the pool holds now (units * slots_per_unit). */
+uint64_t oit_list_store_capacity(const oit_list_store *ls);
+
+/* Renders meshes[0..n) as one scene; out is allocated by the call. */
+oit_status oit_list_store_render(oit_list_store *ls, const oit_gpu_mesh *const *meshes, int n,
+                                 const oit_view *view, oit_image *out,
+                                 oit_frame_stats *stats, oit_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

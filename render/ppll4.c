@@ -1,0 +1,78 @@
+/* Paged per-pixel linked lists (ppll4.h) on the list store (list_store.h):
+ * a unit is a page of four slots, a pixel's one head word packs the newest
+ * page and its fill. */
+#include "render/ppll4.h"
+
+#include "render/list_store.h"
+
+
+/* A page taken but not swapped in (another fragment filled the pixel first)
+ * is kept for the next full page this fragment meets, so one fragment
+ * wastes at most one page. Pages at or past u_capacity exist only in the
+ * count: nothing is written to them, and the frame is drawn again. */
+static const char append_fs[] =
+    "layout(std430, binding = 1) buffer Heads { uint heads[]; };\n"
+    "layout(std430, binding = 3) writeonly buffer Slots { uvec4 slots[]; };\n"
+    "layout(std430, binding = 5) writeonly buffer Links { uint links[]; };\n"
+    "layout(std430, binding = 6) buffer Stats { uint counter; uint max_len; uint total; };\n"
+    "layout(location = 13) uniform uint u_capacity;\n"
+    "#define NO_PAGE 0x3fffffffu\n"
+    "void main() {\n"
+    "    uint p = oit_pixel_index();\n"
+    "    uint spare = NO_PAGE, w = heads[p], want;\n"
+    "    for (;;) {\n"
+    "        if ((w & 3u) == 3u) {\n"
+    "            if (spare == NO_PAGE) spare = min(atomicAdd(counter, 1u), NO_PAGE - 1u);\n"
+    "            want = spare << 2;\n"
+    "        } else {\n"
+    "            want = w + 1u;\n"
+    "        }\n"
+    "        uint seen = atomicCompSwap(heads[p], w, want);\n"
+    "        if (seen == w) break;\n"
+    "        w = seen;\n"
+    "    }\n"
+    "    uint page = want >> 2;\n"
+    "    if (page >= u_capacity) return;\n"
+    "    if ((want & 3u) == 0u) links[page] = w >> 2;\n"
+    "    slots[want] = oit_fragment();\n"
+    "}\n";
+
+/* Newest first: down the slots of a page, then to slot 3 of the page it
+ * links to; NO_PAGE * 4 + 3 is OIT_LIST_END. */
+static const char walk_glsl[] =
+    "layout(std430, binding = 1) readonly buffer Heads { uint heads[]; };\n"
+    "layout(std430, binding = 3) readonly buffer Slots { uvec4 slots[]; };\n"
+    "layout(std430, binding = 5) readonly buffer Links { uint links[]; };\n"
+    "uint oit_list_first(uint p) { return heads[p]; }\n"
+    "uint oit_list_next(uint i) {\n"
+    "    return (i & 3u) != 0u ? i - 1u : links[i >> 2] * 4u + 3u;\n"
+    "}\n"
+    "uvec4 oit_list_load(uint i) { return slots[i]; }\n"
+    /* Fragments share a page (or an array): no link of their own to sort
+     * by, so long lists take the quadratic walk (baseline_common.h). */
+    "bool oit_list_can_relink() { return false; }\n"
+    "void oit_list_relink(uint i, uint n) {}\n";
+
+oit_status oit_ppll4_create(oit_ppll4 **out, oit_error *err)
+{
+    /* Page indices take the head word's upper 30 bits; the top one is NO_PAGE. */
+    static const oit_list_desc d = {"PPLL4", append_fs, walk_glsl, 4, 1, 0x3ffffffeull, 0};
+    return oit_list_store_create(&d, out, err);
+}
+
+void oit_ppll4_destroy(oit_ppll4 *p)
+{
+    oit_list_store_destroy(p);
+}
+
+uint64_t oit_ppll4_capacity(const oit_ppll4 *p)
+{
+    return oit_list_store_capacity(p);
+}
+
+oit_status oit_ppll4_render(oit_ppll4 *p, const oit_gpu_mesh *const *meshes, int n,
+                            const oit_view *view, oit_image *out, oit_frame_stats *stats,
+                            oit_error *err)
+{
+    return oit_list_store_render(p, meshes, n, view, out, stats, err);
+}
