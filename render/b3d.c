@@ -54,7 +54,7 @@ static const char store_fs[] =
 /* A walk position is slot * pixels + pixel, from the pixel's last slot down. */
 static const char walk_glsl[] =
     "layout(std430, binding = 1) readonly buffer Counts { uint counts[]; };\n"
-    "layout(rgba32ui, binding = 0) readonly uniform uimage2DArray u_slots;\n"
+    "layout(rgba32ui, binding = 0) uniform uimage2DArray u_slots;\n"
     "layout(location = 10) uniform int u_k;\n"
     "uint pixels() { return uint(u_size.x * u_size.y); }\n"
     "uint oit_list_first(uint p) {\n"
@@ -67,10 +67,18 @@ static const char walk_glsl[] =
     "    return imageLoad(u_slots, ivec3(int(p % uint(u_size.x)), int(p / uint(u_size.x)),\n"
     "                                    int(i / pixels())));\n"
     "}\n"
-    /* Fragments share a page (or an array): no link of their own to sort
-     * by, so long lists take the quadratic walk (baseline_common.h). */
+    /* An array: the k-th of the walk is slot n-1-k, so a heap sort sorts
+     * it in place. */
     "bool oit_list_can_relink() { return false; }\n"
-    "void oit_list_relink(uint i, uint n) {}\n";
+    "void oit_list_relink(uint i, uint n) {}\n"
+    "uint oit_first;\n"
+    "bool oit_list_index(uint first, uint n) { oit_first = first; return true; }\n"
+    "uint oit_list_at(uint k) { return oit_first - k * pixels(); }\n"
+    "void oit_list_store(uint i, uvec4 f) {\n"
+    "    uint p = i % pixels();\n"
+    "    imageStore(u_slots, ivec3(int(p % uint(u_size.x)), int(p / uint(u_size.x)),\n"
+    "                              int(i / pixels())), f);\n"
+    "}\n";
 
 static oit_status build_programs(oit_b3d *b, oit_error *err)
 {

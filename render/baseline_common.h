@@ -33,13 +33,18 @@ extern const char oit_glsl_premultiplied[];
  *   uvec4 oit_list_load(uint it) its packed fragment (frag_glsl.h)
  *   bool oit_list_can_relink()   whether every fragment has its own link
  *   void oit_list_relink(uint it, uint next)  sets it (when it can)
+ *   bool oit_list_index(uint first, uint n)  prepares direct access to the
+ *                                 k-th of the walk; false when it cannot
+ *   uint oit_list_at(uint k)     that position
+ *   void oit_list_store(uint it, uvec4 f)    writes a fragment there
  * Up to 32 fragments sort in registers. Longer lists are merge-sorted by
- * relinking when the store can (O(n log n)); otherwise composited by walking
- * again for the successor of the last (t, prim) key, O(n^2) ((t, prim) is
- * unique per pixel: a triangle covers a pixel centre once). llvmpipe stops a
- * shader's loops after 65535 iterations in all, silently: the quadratic
- * walk is right there only up to about 256 fragments a pixel (paged lists,
- * B3D), the merge sort to about 2500. */
+ * relinking (PLL, guarded) or heap-sorted in place through direct access
+ * (paged lists up to 1024 fragments, B3D), both O(n log n); otherwise
+ * composited by walking again for the successor of the last (t, prim) key,
+ * O(n^2) ((t, prim) is unique per pixel: a triangle covers a pixel centre
+ * once). llvmpipe stops a shader's loops after 65535 iterations in all,
+ * silently: the quadratic walk is right there only up to about 256
+ * fragments a pixel, the sorts to about 2500. */
 extern const char oit_glsl_sorted_resolve[];
 
 /* A method's GPU buffers and its footprint at peak (gpu_bytes_peak): every

@@ -24,6 +24,9 @@ static const char walk_glsl[] =
     "layout(std430, binding = 5) buffer Next { uint next[]; };\n"
     "bool oit_list_can_relink() { return true; }\n"
     "void oit_list_relink(uint i, uint n) { next[i] = n; }\n"
+    "bool oit_list_index(uint first, uint n) { return false; }\n"
+    "uint oit_list_at(uint k) { return OIT_LIST_END; }\n"
+    "void oit_list_store(uint i, uvec4 f) {}\n"
     "uint oit_list_first(uint p) { return heads[p]; }\n"
     "uint oit_list_next(uint i) { return next[i]; }\n"
     "uvec4 oit_list_load(uint i) { return nodes[i]; }\n";

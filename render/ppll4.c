@@ -41,17 +41,37 @@ static const char append_fs[] =
  * links to; NO_PAGE * 4 + 3 is OIT_LIST_END. */
 static const char walk_glsl[] =
     "layout(std430, binding = 1) readonly buffer Heads { uint heads[]; };\n"
-    "layout(std430, binding = 3) readonly buffer Slots { uvec4 slots[]; };\n"
+    "layout(std430, binding = 3) buffer Slots { uvec4 slots[]; };\n"
     "layout(std430, binding = 5) readonly buffer Links { uint links[]; };\n"
     "uint oit_list_first(uint p) { return heads[p]; }\n"
     "uint oit_list_next(uint i) {\n"
     "    return (i & 3u) != 0u ? i - 1u : links[i >> 2] * 4u + 3u;\n"
     "}\n"
     "uvec4 oit_list_load(uint i) { return slots[i]; }\n"
-    /* Fragments share a page (or an array): no link of their own to sort
-     * by, so long lists take the quadratic walk (baseline_common.h). */
+    /* Fragments share a page: no link of their own to sort by. A table of
+     * the pixel's pages (up to 256, 1024 fragments) reaches the k-th one
+     * directly for a heap sort; longer lists take the quadratic walk. */
     "bool oit_list_can_relink() { return false; }\n"
-    "void oit_list_relink(uint i, uint n) {}\n";
+    "void oit_list_relink(uint i, uint n) {}\n"
+    "uint oit_pages[256];\n"
+    "uint oit_head, oit_in_head;\n"
+    "bool oit_list_index(uint first, uint n) {\n"
+    "    oit_head = first;\n"
+    "    oit_in_head = (first & 3u) + 1u;\n"
+    "    if (n > oit_in_head + 4u * 256u) return false;\n"
+    "    uint page = first >> 2;\n"
+    "    for (uint j = 0u; j * 4u < n - min(n, oit_in_head); j++) {\n"
+    "        page = links[page];\n"
+    "        oit_pages[j] = page;\n"
+    "    }\n"
+    "    return true;\n"
+    "}\n"
+    "uint oit_list_at(uint k) {\n"
+    "    if (k < oit_in_head) return oit_head - k;\n"
+    "    uint r = k - oit_in_head;\n"
+    "    return oit_pages[r >> 2] * 4u + 3u - (r & 3u);\n"
+    "}\n"
+    "void oit_list_store(uint i, uvec4 f) { slots[i] = f; }\n";
 
 oit_status oit_ppll4_create(oit_ppll4 **out, oit_error *err)
 {

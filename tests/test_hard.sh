@@ -6,8 +6,9 @@
 #   stream (part file) == DFB (part file), zero overflow;
 #   DFB == the Embree reference on the same triangles, outside the pixels
 #     the reference flags as ambiguous (edges, depth ties);
-#   PLL == DFB; on the first view depth peeling == DFB on the source mesh,
-#     except on coplanar, where it
+#   PLL, paged lists (ppll4) and B3D == DFB; on the first view depth
+#     peeling and dual depth peeling == DFB on the source mesh, except on
+#     coplanar, where they
 #     must DIFFER: it loses all but one of fragments tied in depth (a known
 #     flaw of the method, render/depth_peel.h), and the check shows that
 #     these views really hold ties;
@@ -72,18 +73,20 @@ view() {
     cam=$(json_str view "$v-stream.json")
     "$S" "$T/in.oitp" --method dfb --size "$SIZE" --view "$cam" --out "$v-dfb.pfm" \
         --stats "$v-dfb.json" --quiet || fail "$name: dfb"
-    # A linked list lives in one storage buffer: deeper than the driver binds
-    # it cannot run (reported, as oitbench does), which is not a wrong image.
-    pll=1
-    if ! "$S" "$T/in.oitp" --method pll --size "$SIZE" --view "$cam" --out "$v-pll.pfm" \
-        --quiet 2>"$T/pll.err"; then
-        if grep -q "more than this driver binds" "$T/pll.err"; then
-            echo "    pll: cannot run here: $(cat "$T/pll.err")"
-            pll=0
+    # The other exact baselines. A list or array lives in one storage buffer:
+    # deeper than the driver binds it cannot run (reported, as oitbench
+    # does), which is not a wrong image.
+    ran=""
+    for m in pll ppll4 b3d; do
+        if "$S" "$T/in.oitp" --method $m --size "$SIZE" --view "$cam" --out "$v-$m.pfm" \
+            --quiet 2>"$T/$m.err"; then
+            ran="$ran $m"
+        elif grep -q "more than this driver binds\|more than one storage buffer" "$T/$m.err"; then
+            echo "    $m: cannot run here: $(cat "$T/$m.err")"
         else
-            fail "$name: pll: $(cat "$T/pll.err")"
+            fail "$name: $m: $(cat "$T/$m.err")"
         fi
-    fi
+    done
     "$S" "$T/in.oitp" --method reference --size "$SIZE" --view "$cam" --out "$v-ref.pfm" \
         --ambiguity "$v-mask.png" --quiet || fail "$name: reference"
     "$S" "$T/in.ply" --method dfb --size "$SIZE" --view "$cam" --out "$v-mesh.pfm" --quiet ||
@@ -96,6 +99,8 @@ view() {
         [ "$CASE" = stack ] && dps=48x48
         "$S" "$T/in.ply" --method dp --size $dps --view "$cam" --out "$v-dp.pfm" --quiet ||
             fail "$name: dp"
+        "$S" "$T/in.ply" --method ddp --size $dps --view "$cam" --out "$v-ddp.pfm" --quiet ||
+            fail "$name: ddp"
         "$S" "$T/in.ply" --method dfb --size $dps --view "$cam" --out "$v-dpref.pfm" --quiet ||
             fail "$name: dfb at $dps"
     fi
@@ -103,16 +108,19 @@ view() {
     echo "  view $name: layers $(json_num max_layers "$v-dfb.json"), packs $(json_num packs "$v-stream.json"), overflow $ovf"
     [ "$ovf" = 0 ] || fail "$name: $ovf overflow pixels"
     compare "stream vs dfb" "$v-stream.pfm" "$v-dfb.pfm" 0.1
-    [ $pll = 1 ] && compare "pll vs dfb" "$v-pll.pfm" "$v-dfb.pfm" 0.1
+    for m in $ran; do compare "$m vs dfb" "$v-$m.pfm" "$v-dfb.pfm" 0.1; done
     if [ "$name" != az30 ]; then
         :
     elif [ "$CASE" = coplanar ]; then
-        "$S" --compare "$v-dp.pfm" "$v-dpref.pfm" --json >"$T/cmp.json" || fail "dp: compare"
-        p=$(json_num pct_over_1_255 "$T/cmp.json")
-        echo "    dp vs dfb: over 1/255 $p% (expected > 1%: depth peeling loses tied fragments)"
-        at_most 1 "$p" || fail "depth peeling agrees with DFB: the views hold no depth ties"
+        for m in dp ddp; do
+            "$S" --compare "$v-$m.pfm" "$v-dpref.pfm" --json >"$T/cmp.json" || fail "$m: compare"
+            p=$(json_num pct_over_1_255 "$T/cmp.json")
+            echo "    $m vs dfb: over 1/255 $p% (expected > 1%: peeling loses tied fragments)"
+            at_most 1 "$p" || fail "$m agrees with DFB: the views hold no depth ties"
+        done
     else
         compare "dp vs dfb (mesh)" "$v-dp.pfm" "$v-dpref.pfm" 0.1
+        compare "ddp vs dfb (mesh)" "$v-ddp.pfm" "$v-dpref.pfm" 0.1
     fi
     compare "dfb vs reference" "$v-dfb.pfm" "$v-ref.pfm" "$v-mask.png" 0.1
     compare "part file vs mesh" "$v-dfb.pfm" "$v-mesh.pfm" "$v-mask.png" 0.5
