@@ -50,17 +50,8 @@ static const char append_fs[] =
     "}\n";
 
 static const char walk_glsl[] =
-    "layout(std430, binding = 1) readonly buffer Heads { uint heads[]; };\n"
-    "layout(std430, binding = 3) readonly buffer Nodes { uvec4 nodes[]; };\n"
-    "layout(std430, binding = 5) buffer Next { uint next[]; };\n"
-    "bool oit_list_can_relink() { return true; }\n"
-    "void oit_list_relink(uint i, uint n) { next[i] = n; }\n"
-    "bool oit_list_index(uint first, uint n) { return false; }\n"
-    "uint oit_list_at(uint k) { return OIT_LIST_END; }\n"
-    "void oit_list_store(uint i, uvec4 f) {}\n"
-    "uint oit_list_first(uint p) { return heads[2u * p]; }\n"
-    "uint oit_list_next(uint i) { return next[i]; }\n"
-    "uvec4 oit_list_load(uint i) { return nodes[i]; }\n";
+    OIT_LIST_NODE_WALK
+    "uint oit_list_first(uint p) { return heads[2u * p]; }\n";
 
 oit_status oit_guarded_create(oit_guarded **out, oit_error *err)
 {
