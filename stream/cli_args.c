@@ -99,6 +99,8 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
     } else if (!strcmp(opt, "--elevation")) {
         if (!parse_float(v, &a->elevation) || fabsf(a->elevation) > 90.0f)
             *s = bad(err, opt, v, "degrees in [-90, 90]");
+    } else if (!strcmp(opt, "--walk")) {
+        a->walk = v;
     } else if (!strcmp(opt, "--orbit")) {
         if (!parse_int(v, &a->orbit, 1, 100000)) *s = bad(err, opt, v, "a view count >= 1");
     } else if (!strcmp(opt, "--shading")) {
@@ -172,8 +174,12 @@ static oit_status check_combination(const oit_stream_args *a, oit_error *err)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--epsilon is the early termination of "
                              "--method stream and the threshold of f2b and guarded; method "
                              "'%s' has none", a->method);
-    if (a->have_view && a->orbit)
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "--view and --orbit exclude each other");
+    if ((a->have_view != 0) + (a->orbit != 0) + (a->walk != NULL) > 1)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "--view, --orbit and --walk exclude each "
+                             "other");
+    if (a->window && a->walk)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "--window shows one interactive view: it "
+                             "excludes --walk");
     return OIT_OK;
 }
 
@@ -247,6 +253,9 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "  --azimuth DEG       default 0\n"
         "  --elevation DEG     default 20\n"
         "  --orbit N           N views around the model (azimuth i*360/N, elevation 20)\n"
+        "  --walk FILE         a camera path: one view a line in --view syntax (file\n"
+        "                      coordinates; # comments and blank lines skipped);\n"
+        "                      frames are written and reported as for --orbit\n"
         "  --out PATH          FILE.png or FILE.pfm, or a folder (frame_000.png ...)\n"
         "  --shading S         transparent (default) or translucent\n"
         "  --alpha A           alpha for models without one (default 0.35)\n"

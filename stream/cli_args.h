@@ -24,6 +24,7 @@ typedef struct oit_stream_args {
     int have_view;
     oit_camera view; /* --view, clip planes 0 unless given */
     const char *view_text; /* --view as given, re-read against the model's origin */
+    const char *walk;      /* --walk FILE: a camera path, one view a line */
     float azimuth, elevation;
     int orbit; /* 0: one view */
     const char *out;

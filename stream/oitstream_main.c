@@ -128,9 +128,63 @@ static void fit_clip_planes(oit_camera *cam, const oit_mesh_info *info)
     cam->znear = (float)fmax(dc - 1.05 * r, 1e-4 * cam->zfar);
 }
 
+/* --walk FILE: one camera a line; a bad line is bad input naming it. */
+static oit_status read_walk(const char *path, const oit_mesh_info *info, oit_camera **out,
+                            int *count, oit_error *err)
+{
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return oit_error_set(err, OIT_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+    oit_camera *cams = NULL;
+    int n = 0, cap = 0, line_no = 0;
+    char line[1024];
+    oit_status s = OIT_OK;
+    while (s == OIT_OK && fgets(line, sizeof line, f)) {
+        line_no++;
+        char *t = line + strspn(line, " \t");
+        size_t len = strcspn(t, "#\r\n");
+        while (len > 0 && (t[len - 1] == ' ' || t[len - 1] == '\t'))
+            len--;
+        t[len] = '\0';
+        if (!*t)
+            continue;
+        if (n == cap) {
+            cap = cap ? 2 * cap : 16;
+            oit_camera *c = realloc(cams, (size_t)cap * sizeof *c);
+            if (!c) {
+                s = oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot hold %d views", path, cap);
+                break;
+            }
+            cams = c;
+        }
+        memset(&cams[n], 0, sizeof cams[n]);
+        if (oit_camera_parse(&cams[n], t, info->origin) != 0)
+            s = oit_error_set(err, OIT_ERR_FORMAT, "%s: line %d: not a view "
+                              "(ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy[,znear,zfar]): '%.60s'",
+                              path, line_no, t);
+        else if (!(cams[n].znear > 0.0f && cams[n].zfar > cams[n].znear))
+            fit_clip_planes(&cams[n], info);
+        n += s == OIT_OK;
+    }
+    if (s == OIT_OK && ferror(f))
+        s = oit_error_set(err, OIT_ERR_IO, "%s: read error", path);
+    if (s == OIT_OK && n == 0)
+        s = oit_error_set(err, OIT_ERR_FORMAT, "%s: no views", path);
+    fclose(f);
+    if (s != OIT_OK) {
+        free(cams);
+        return s;
+    }
+    *out = cams;
+    *count = n;
+    return OIT_OK;
+}
+
 static oit_status make_views(const oit_stream_args *a, const oit_mesh_info *info,
                              oit_camera **out, int *count, oit_error *err)
 {
+    if (a->walk)
+        return read_walk(a->walk, info, out, count, err);
     int n = a->orbit > 0 ? a->orbit : 1;
     oit_camera *cams = calloc((size_t)n, sizeof *cams);
     if (!cams)

@@ -145,6 +145,23 @@ run_cli() {
     expect_rc 0 "$S" "$T/boxes.ply" --method reference --size 32x24 --orbit 2 --out "$T/orbit" --quiet
     [ -f "$T/orbit/frame_000.png" ] && [ -f "$T/orbit/frame_001.png" ] || fail "orbit frames missing"
 
+    # --walk: a camera path, comments and blank lines skipped; its second
+    # frame is the --view of its second line; a bad line names file and line.
+    printf '# path\n0,0.5,4,0,0,0,0,1,0,45\n\n  2,1,3,0,0,0,0,1,0,50,1,10  # clip planes given\n' \
+        >"$T/walk.txt"
+    expect_rc 0 "$S" "$T/boxes.ply" --method reference --size 32x24 --walk "$T/walk.txt" \
+        --out "$T/walk" --quiet
+    expect_rc 0 "$S" "$T/boxes.ply" --method reference --size 32x24 \
+        --view 2,1,3,0,0,0,0,1,0,50,1,10 --out "$T/walk_view.png" --quiet
+    [ -f "$T/walk/frame_000.png" ] && [ ! -f "$T/walk/frame_002.png" ] ||
+        fail "--walk of 2 views did not write exactly 2 frames"
+    w=$("$S" --compare "$T/walk/frame_001.png" "$T/walk_view.png" --json | json_num max_abs)
+    [ "$w" = 0 ] || fail "--walk frame 1 differs from its --view (max_abs $w)"
+    printf '0,0,4,0,0,0,0,1,0,45\nnot a view\n' >"$T/badwalk.txt"
+    expect_rc 3 "$S" "$T/boxes.ply" --method reference --walk "$T/badwalk.txt" --quiet
+    grep -q "badwalk.txt: line 2" "$T/err.txt" || fail "a bad --walk line is not named: $(cat "$T/err.txt")"
+    expect_rc 2 "$S" "$T/boxes.ply" --walk "$T/walk.txt" --orbit 2
+
     # --compare on images whose difference is known: another view of the
     # scene differs a lot, the same image not at all, sizes must match.
     expect_rc 0 "$S" "$T/boxes.ply" --method reference --size 96x72 --azimuth 40 --out "$T/ref40.pfm"
