@@ -19,7 +19,6 @@ struct oit_saturation {
     uint32_t *cpu;        /* the newest read-back that landed */
     size_t cpu_cap;
     int w, h, tx, ty;
-    uint64_t readbacks;
 };
 
 /* One workgroup per tile: the largest channel of T over its pixels. T >= 0,
@@ -145,7 +144,6 @@ static void poll(oit_saturation *s)
     memcpy(s->cpu, s->mapped, (size_t)s->tx * s->ty * sizeof *s->cpu);
     glDeleteSync(s->fence);
     s->fence = 0;
-    s->readbacks++;
 }
 
 /* rect (row 0 at the top) to the tiles it touches, GL rows. */
@@ -199,11 +197,6 @@ int oit_saturation_covered(oit_saturation *s, const int rect[4], float epsilon)
             if (s->cpu[(size_t)y * s->tx + x] >= limit)
                 return 0;
     return 1;
-}
-
-uint64_t oit_saturation_readbacks(const oit_saturation *s)
-{
-    return s->readbacks;
 }
 
 uint64_t oit_saturation_gpu_bytes(const oit_saturation *s)

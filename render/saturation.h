@@ -36,8 +36,7 @@ oit_status oit_saturation_update(oit_saturation *s, unsigned state, const int re
 /* 1 when, in the newest read-back, every tile rect touches has a largest
  * transmittance below epsilon; 0 otherwise (and always for epsilon <= 0). */
 int oit_saturation_covered(oit_saturation *s, const int rect[4], float epsilon);
-/* Tiles read back so far this frame, and GPU bytes held. */
-uint64_t oit_saturation_readbacks(const oit_saturation *s);
+/* GPU bytes held. */
 uint64_t oit_saturation_gpu_bytes(const oit_saturation *s);
 
 #endif

@@ -15,18 +15,13 @@ typedef void (*hard_fn)(oit_emit *e, uint64_t seed);
 /* Box with centre c and half-axes a, b, d (a right-handed frame). */
 static void hard_box(oit_emit *e, oit_v3 c, oit_v3 a, oit_v3 b, oit_v3 d)
 {
-    uint32_t v[8];
+    oit_v3 v[8];
     for (int i = 0; i < 8; i++) {
-        oit_v3 p = c;
-        p = oit_v3_add(p, oit_v3_scale(a, i & 1 ? 1.0f : -1.0f));
-        p = oit_v3_add(p, oit_v3_scale(b, i & 2 ? 1.0f : -1.0f));
-        p = oit_v3_add(p, oit_v3_scale(d, i & 4 ? 1.0f : -1.0f));
-        v[i] = oit_emit_vertex(e, p);
+        v[i] = oit_v3_add(c, oit_v3_scale(a, i & 1 ? 1.0f : -1.0f));
+        v[i] = oit_v3_add(v[i], oit_v3_scale(b, i & 2 ? 1.0f : -1.0f));
+        v[i] = oit_v3_add(v[i], oit_v3_scale(d, i & 4 ? 1.0f : -1.0f));
     }
-    static const int quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
-                                     {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
-    for (int f = 0; f < 6; f++)
-        oit_emit_quad(e, v[quads[f][0]], v[quads[f][1]], v[quads[f][2]], v[quads[f][3]]);
+    oit_shape_hexahedron(e, v);
 }
 
 /* Quad from corner o spanned by u and v, one-sided (front along u x v). */

@@ -3,18 +3,25 @@
 
 #include <math.h>
 
-void oit_shape_box(oit_emit *e, oit_v3 lo, oit_v3 hi)
+void oit_shape_hexahedron(oit_emit *e, const oit_v3 corner[8])
 {
     uint32_t c[8];
     for (int i = 0; i < 8; i++)
-        c[i] = oit_emit_vertex(e, oit_v3_make(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y,
-                                              i & 4 ? hi.z : lo.z));
+        c[i] = oit_emit_vertex(e, corner[i]);
     /* Corner i has bit 0 = x, bit 1 = y, bit 2 = z; each quad is
      * counter-clockwise seen from outside. */
     static const int quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
                                      {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
     for (int f = 0; f < 6; f++)
         oit_emit_quad(e, c[quads[f][0]], c[quads[f][1]], c[quads[f][2]], c[quads[f][3]]);
+}
+
+void oit_shape_box(oit_emit *e, oit_v3 lo, oit_v3 hi)
+{
+    oit_v3 c[8];
+    for (int i = 0; i < 8; i++)
+        c[i] = oit_v3_make(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
+    oit_shape_hexahedron(e, c);
 }
 
 static float *axis_ref(oit_v3 *v, int axis)
