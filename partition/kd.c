@@ -360,6 +360,8 @@ static oit_status build_node(kd_ctx *c, size_t node, const node_set *s)
             found = oit_kd_choose_split(boxes, npieces, nd->lo, nd->hi, c->p->max_layers, &axis,
                                         &m);
             free(boxes);
+            if (found < 0)
+                return OIT_ERR_NOMEM;
         }
         if (!found) {
             /* A star may still hold triangles away from its vertex (a piece's

@@ -1,19 +1,34 @@
 /* Split choice for the kd subdivision (kd_split.h). */
 #include "partition/kd_split.h"
 
-int oit_kd_split_cells(const float lo[3], const float hi[3], int axis, float pos,
-                       float origin[3], float cell_size[3])
+#include <math.h>
+#include <stdlib.h>
+
+/* One try at a two-cell grid of half-width w whose inner boundary is pos. */
+static int cells_with(const float lo[3], const float hi[3], int axis, float pos, float w,
+                      float origin[3], float cell_size[3])
 {
     for (int k = 0; k < 3; k++) {
         origin[k] = lo[k];
         cell_size[k] = hi[k] - lo[k];
     }
-    float below = pos - lo[axis], above = hi[axis] - pos;
-    float w = below > above ? below : above;
     origin[axis] = pos - w;
     cell_size[axis] = w;
     volatile float plane = origin[axis] + w; /* as stream/order.c computes it */
     return w > 0 && plane == pos && origin[axis] <= lo[axis] && plane + w >= hi[axis];
+}
+
+int oit_kd_split_cells(const float lo[3], const float hi[3], int axis, float pos,
+                       float origin[3], float cell_size[3])
+{
+    float below = pos - lo[axis], above = hi[axis] - pos;
+    float w = below > above ? below : above;
+    /* pos - w rounds for most positions that are not dyadic fractions of the
+     * box; a half-width a few ulps wider usually makes the sum exact again. */
+    for (int i = 0; i < 32; i++, w = nextafterf(w, INFINITY))
+        if (cells_with(lo, hi, axis, pos, w, origin, cell_size))
+            return 1;
+    return 0;
 }
 
 typedef struct split_score {
@@ -29,17 +44,101 @@ static int better(split_score a, split_score b)
     return a.imbalance < b.imbalance;
 }
 
-static int score(const oit_kd_piece_box *pieces, uint32_t count, int axis, float m,
-                 uint32_t max_layers, uint32_t total, split_score *out)
+typedef struct event {
+    float v;
+    uint32_t w;
+} event;
+
+/* One axis's piece bounds, sorted, with prefix weights: pre[i] is the weight
+ * of events [0, i). Flat pieces (lo == hi on the axis) are listed again in
+ * flat because a plane through them sends them below. */
+typedef struct axis_events {
+    event *lo, *hi, *flat;
+    uint32_t *pre_lo, *pre_hi, *pre_flat;
+    uint32_t n, nflat;
+} axis_events;
+
+static int event_cmp(const void *a, const void *b)
 {
-    uint32_t below = 0, above = 0, cut = 0;
+    const event *x = a, *y = b;
+    return (x->v > y->v) - (x->v < y->v);
+}
+
+/* Index of the first event with v >= m (strict 0) or v > m (strict 1). */
+static uint32_t bound(const event *e, uint32_t n, float m, int after_equal)
+{
+    uint32_t a = 0, b = n;
+    while (a < b) {
+        uint32_t mid = a + (b - a) / 2;
+        if (e[mid].v < m || (after_equal && e[mid].v == m))
+            a = mid + 1;
+        else
+            b = mid;
+    }
+    return a;
+}
+
+static void prefix(const event *e, uint32_t n, uint32_t *pre)
+{
+    pre[0] = 0;
+    for (uint32_t i = 0; i < n; i++)
+        pre[i + 1] = pre[i] + e[i].w;
+}
+
+static int events_build(const oit_kd_piece_box *pieces, uint32_t count, int axis,
+                        axis_events *ev)
+{
+    ev->lo = malloc(3 * (size_t)count * sizeof *ev->lo + 1);
+    ev->pre_lo = malloc(3 * ((size_t)count + 1) * sizeof *ev->pre_lo);
+    if (!ev->lo || !ev->pre_lo)
+        return 0;
+    ev->hi = ev->lo + count;
+    ev->flat = ev->hi + count;
+    ev->pre_hi = ev->pre_lo + count + 1;
+    ev->pre_flat = ev->pre_hi + count + 1;
+    ev->n = count;
+    ev->nflat = 0;
     for (uint32_t i = 0; i < count; i++) {
         const oit_kd_piece_box *p = &pieces[i];
-        int b = p->lo[axis] < m || p->hi[axis] <= m, a = p->hi[axis] > m;
-        below += b ? p->weight : 0;
-        above += a ? p->weight : 0;
-        cut += a && b ? p->weight : 0;
+        ev->lo[i] = (event){p->lo[axis], p->weight};
+        ev->hi[i] = (event){p->hi[axis], p->weight};
+        if (p->lo[axis] == p->hi[axis])
+            ev->flat[ev->nflat++] = ev->lo[i];
     }
+    qsort(ev->lo, count, sizeof *ev->lo, event_cmp);
+    qsort(ev->hi, count, sizeof *ev->hi, event_cmp);
+    qsort(ev->flat, ev->nflat, sizeof *ev->flat, event_cmp);
+    prefix(ev->lo, count, ev->pre_lo);
+    prefix(ev->hi, count, ev->pre_hi);
+    prefix(ev->flat, ev->nflat, ev->pre_flat);
+    return 1;
+}
+
+static void events_free(axis_events *ev)
+{
+    free(ev->lo);
+    free(ev->pre_lo);
+}
+
+/* The weights each side of a plane at m, by the rule of kd_split.h: a piece
+ * goes below when it starts below m or ends on it, above when it ends above. */
+static void sides(const axis_events *ev, float m, uint32_t total, uint32_t *below,
+                  uint32_t *above, uint32_t *cut)
+{
+    uint32_t starts_below = ev->pre_lo[bound(ev->lo, ev->n, m, 0)];
+    uint32_t ends_by = ev->pre_hi[bound(ev->hi, ev->n, m, 1)];
+    uint32_t flat_on = ev->pre_flat[bound(ev->flat, ev->nflat, m, 1)] -
+                       ev->pre_flat[bound(ev->flat, ev->nflat, m, 0)];
+    *below = starts_below + flat_on;
+    *above = total - ends_by;
+    *cut = starts_below + flat_on - ends_by;
+}
+
+static int score(const axis_events *ev, float m, uint32_t max_layers, uint32_t total,
+                 split_score *out)
+{
+    uint32_t below, above, cut;
+    sides(ev, m, total, &below, &above, &cut);
     uint32_t larger = below > above ? below : above;
     if (larger >= total)
         return 0;
@@ -54,29 +153,56 @@ static int score(const oit_kd_piece_box *pieces, uint32_t count, int axis, float
     return 1;
 }
 
+typedef struct split_best {
+    int found, axis;
+    float pos;
+    split_score s;
+} split_best;
+
+static void consider(const axis_events *ev, const float lo[3], const float hi[3], int axis,
+                     float m, uint32_t max_layers, uint32_t total, split_best *best)
+{
+    float origin[3], cell[3];
+    split_score s;
+    if (!(m > lo[axis] && m < hi[axis]) || !score(ev, m, max_layers, total, &s) ||
+        (best->found && !better(s, best->s)) ||
+        !oit_kd_split_cells(lo, hi, axis, m, origin, cell))
+        return;
+    *best = (split_best){1, axis, m, s};
+}
+
 int oit_kd_choose_split(const oit_kd_piece_box *pieces, uint32_t count, const float lo[3],
                         const float hi[3], uint32_t max_layers, int *axis, float *pos)
 {
     uint32_t total = 0;
     for (uint32_t i = 0; i < count; i++)
         total += pieces[i].weight;
-    int found = 0;
-    split_score best = {0, 0, 0};
+    split_best best = {0};
     for (int a = 0; a < 3; a++) {
+        axis_events ev;
+        if (!events_build(pieces, count, a, &ev)) {
+            events_free(&ev);
+            return -1;
+        }
         for (int j = 1; j < 16; j++) {
             double md = (double)lo[a] + ((double)hi[a] - lo[a]) * j / 16.0;
-            float m = (float)md, origin[3], cell[3];
-            if ((double)m != md || !(m > lo[a] && m < hi[a]) ||
-                !oit_kd_split_cells(lo, hi, a, m, origin, cell))
-                continue;
-            split_score s;
-            if (score(pieces, count, a, m, max_layers, total, &s) && (!found || better(s, best))) {
-                best = s;
-                *axis = a;
-                *pos = m;
-                found = 1;
-            }
+            if ((double)(float)md == md)
+                consider(&ev, lo, hi, a, (float)md, max_layers, total, &best);
         }
+        /* Planes through the pieces' own bounds cut nothing that ends or
+         * starts there: in CAD models (beams, pipes, boxes on a lattice)
+         * they slip between objects where the dyadic planes cut through. */
+        for (uint32_t i = 0; i < count; i++) {
+            if (i == 0 || ev.lo[i].v != ev.lo[i - 1].v)
+                consider(&ev, lo, hi, a, ev.lo[i].v, max_layers, total, &best);
+            if (i == 0 || ev.hi[i].v != ev.hi[i - 1].v)
+                consider(&ev, lo, hi, a, ev.hi[i].v, max_layers, total, &best);
+        }
+        events_free(&ev);
     }
-    return found;
+    if (best.found) {
+        *axis = best.axis;
+        *pos = best.pos;
+    }
+    return best.found;
 }

@@ -1,11 +1,12 @@
 /* Where to split a kd node (kd.h): the choice of axis and position.
  *
- * Candidates are the 15 positions lo + (hi - lo) * j / 16 on each axis that
- * are exact floats and leave a subgrid record whose plane origin + cell_size
- * is exactly the position (docs/part-file.md: a two-cell subgrid may be
- * larger than its parent cell, so an off-centre plane is still one cell
- * boundary). Dyadic fractions of dyadic boxes stay exact for as long as the
- * box is not thinner than a few ulps of its coordinates.
+ * Candidates on each axis are the 15 positions lo + (hi - lo) * j / 16 that
+ * are exact floats, and every start and end of a piece's box: a plane there
+ * cuts nothing that starts or ends on it, so in models of beams, pipes and
+ * boxes it slips between objects. A candidate counts only when it leaves a
+ * subgrid record whose plane origin + cell_size is exactly the position
+ * (docs/part-file.md: a two-cell subgrid may be larger than its parent cell,
+ * so an off-centre plane is still one cell boundary).
  *
  * Each piece is summarised by its box and weight (its layers in the node);
  * a candidate sends a piece below when it starts below the plane or ends on
@@ -29,13 +30,15 @@ typedef struct oit_kd_piece_box {
     uint32_t weight; /* 1 (planar in the node) or 2 */
 } oit_kd_piece_box;
 
-/* Returns 1 and sets *axis, *pos when a candidate qualifies, else 0. */
+/* Returns 1 and sets *axis, *pos when a candidate qualifies, 0 when none
+ * does, -1 when memory runs out. O(count log count) per axis. */
 int oit_kd_choose_split(const oit_kd_piece_box *pieces, uint32_t count, const float lo[3],
                         const float hi[3], uint32_t max_layers, int *axis, float *pos);
 
 /* The subgrid record of a split: a two-cell grid along axis whose inner
- * boundary is pos and which contains [lo, hi]. Returns 0 when float rounding
- * keeps origin + cell_size from being exactly pos. */
+ * boundary is pos and which contains [lo, hi]: the half-width is the larger
+ * side widened by up to 31 ulps until origin + cell_size rounds to exactly
+ * pos. Returns 0 when none does. */
 int oit_kd_split_cells(const float lo[3], const float hi[3], int axis, float pos,
                        float origin[3], float cell_size[3]);
 

@@ -402,6 +402,28 @@ static void test_kd_split(void)
     printf("kd split: 10 pieces -> x = %g, %u | %u layers, none cut\n", pos, below, above);
 }
 
+/* Every dyadic plane of [0, 16] falls inside some piece; only a plane at a
+ * piece's own end or start (5.5 or 5.6) separates them without a cut. */
+static void test_kd_split_events(void)
+{
+    static const float x[5][2] = {{0.5f, 5.5f}, {5.6f, 8.5f}, {8.6f, 11.5f}, {11.6f, 15.5f},
+                                  {1.5f, 4.5f}};
+    oit_kd_piece_box b[5];
+    for (int i = 0; i < 5; i++)
+        b[i] = (oit_kd_piece_box){{x[i][0], 0, 0}, {x[i][1], 1, 1}, 2};
+    float lo[3] = {0, 0, 0}, hi[3] = {16, 16, 16}, pos = 0, origin[3], cell[3];
+    int axis = -1;
+    CHECK(oit_kd_choose_split(b, 5, lo, hi, 8, &axis, &pos) == 1, "no split for 5 pieces");
+    CHECK(axis == 0 && pos >= 5.5f && pos <= 5.6f, "split on axis %d at %g, want x in "
+          "[5.5, 5.6]", axis, pos);
+    for (int i = 0; i < 5; i++)
+        CHECK(!(b[i].lo[0] < pos && b[i].hi[0] > pos), "split at %g cuts piece %d", pos, i);
+    CHECK(oit_kd_split_cells(lo, hi, 0, pos, origin, cell) && origin[0] + cell[0] == pos,
+          "split at %.9g is not one subgrid boundary", pos);
+    printf("kd split at piece bounds: x = %.9g, cell origin %.9g size %.9g, none cut\n", pos,
+           origin[0], cell[0]);
+}
+
 static oit_status kd_of(const tri_list *l, uint32_t K, oit_kd_result *r, oit_error *err)
 {
     float lo[3] = {-4, -4, -4}, hi[3] = {4, 4, 4};
@@ -487,6 +509,7 @@ int main(void)
     test_clip();
     test_convex();
     test_kd_split();
+    test_kd_split_events();
     test_kd();
     if (test_failures)
         fprintf(stderr, "%d check(s) failed\n", test_failures);
