@@ -125,6 +125,10 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
         if (!strcmp(v, "disjoint")) a->pack_disjoint = 1;
         else if (!strcmp(v, "budget")) a->pack_disjoint = 0;
         else *s = bad(err, opt, v, "budget or disjoint");
+    } else if (!strcmp(opt, "--schedule")) {
+        if (!strcmp(v, "wave")) a->schedule_wave = 1;
+        else if (!strcmp(v, "tree")) a->schedule_wave = 0;
+        else *s = bad(err, opt, v, "wave or tree");
     } else if (!strcmp(opt, "--upload-budget")) {
         if (!parse_bytes(v, &a->upload_budget) || a->upload_budget < 65536)
             *s = bad(err, opt, v, "bytes >= 64K, with an optional K, M or G suffix");
@@ -238,6 +242,11 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "                      screen rectangle misses the pack's) or budget (parts\n"
         "                      share a pack while the sum of their layer bounds per\n"
         "                      32x32 tile stays <= K: fewer, larger packs)\n"
+        "  --schedule S        stream: tree (default: packs of consecutive parts in the\n"
+        "                      management tree's depth-first order) or wave (packs\n"
+        "                      filled front to back across the whole screen, keeping\n"
+        "                      the order only between parts whose rectangles overlap:\n"
+        "                      fewer packs, larger resolve rectangles)\n"
         "  --upload-budget B   stream: bytes of the GPU upload ring (default 64M)\n"
         "  --slot-budget B     stream: bytes of the K-fragment capture slots (default\n"
         "                      32M); a larger frame is captured in screen tiles\n"

@@ -434,6 +434,7 @@ static int run_render(const oit_stream_args *args)
     }
     oit_method_options opt = {.max_layers = K, .partfile = pf,
                               .pack = a->pack_disjoint ? OIT_PACK_DISJOINT : OIT_PACK_BUDGET,
+                              .schedule = a->schedule_wave ? OIT_SCHEDULE_WAVE : OIT_SCHEDULE_TREE,
                               .upload_budget = a->upload_budget, .epsilon = a->epsilon,
                               .slot_budget = a->slot_budget};
     rc.view.width = a->width;

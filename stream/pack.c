@@ -2,6 +2,8 @@
  * reset by stamping tiles with the pack number instead of clearing it. */
 #include "stream/pack.h"
 
+#include "stream/schedule.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,6 +21,15 @@ struct oit_packer {
     uint32_t *tile_sum, *tile_stamp;
     int tiles_x, tiles_y;
     uint32_t stamp;
+    oit_pack_schedule schedule;
+    oit_scheduler *scheduler;
+    /* the parts that survive culling, in the tree's order, and the order
+     * in which they are packed (perm indexes them) */
+    uint32_t *kept, *perm;
+    int (*kept_rects)[4];
+    float *kept_near;
+    uint32_t drawn, packs; /* of the frame being packed */
+    int open_empty;        /* wave: the open pack has no part yet */
 };
 
 uint64_t oit_pack_part_bytes(const oit_partfile_part *p)
@@ -39,7 +50,17 @@ void oit_packer_destroy(oit_packer *pk)
     free(pk->bytes);
     free(pk->tile_sum);
     free(pk->tile_stamp);
+    oit_scheduler_destroy(pk->scheduler);
+    free(pk->kept);
+    free(pk->perm);
+    free(pk->kept_rects);
+    free(pk->kept_near);
     free(pk);
+}
+
+void oit_packer_set_schedule(oit_packer *pk, oit_pack_schedule schedule)
+{
+    pk->schedule = schedule;
 }
 
 static oit_status check_parts(const oit_partfile *pf, uint32_t K, uint64_t budget, oit_error *err)
@@ -75,9 +96,13 @@ oit_status oit_packer_create(const oit_partfile *pf, oit_pack_mode mode, int K,
         pk->part_rects = calloc((size_t)n + 1, sizeof *pk->part_rects);
         pk->layers = calloc((size_t)n + 1, sizeof *pk->layers);
         pk->bytes = calloc((size_t)n + 1, sizeof *pk->bytes);
+        pk->kept = calloc((size_t)n + 1, sizeof *pk->kept);
+        pk->perm = calloc((size_t)n + 1, sizeof *pk->perm);
+        pk->kept_rects = calloc((size_t)n + 1, sizeof *pk->kept_rects);
+        pk->kept_near = calloc((size_t)n + 1, sizeof *pk->kept_near);
     }
     if (!pk || !pk->parts || !pk->pack_first || !pk->rects || !pk->part_rects || !pk->layers ||
-        !pk->bytes) {
+        !pk->bytes || !pk->kept || !pk->perm || !pk->kept_rects || !pk->kept_near) {
         oit_packer_destroy(pk);
         return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot allocate packing for %u parts",
                              oit_partfile_name(pf), n);
@@ -86,6 +111,11 @@ oit_status oit_packer_create(const oit_partfile *pf, oit_pack_mode mode, int K,
     pk->mode = mode;
     pk->K = (uint32_t)K;
     pk->budget = byte_budget;
+    s = oit_scheduler_create(n, &pk->scheduler, err);
+    if (s != OIT_OK) {
+        oit_packer_destroy(pk);
+        return s;
+    }
     *out = pk;
     return OIT_OK;
 }
@@ -107,16 +137,17 @@ static oit_status fit_tiles(oit_packer *pk, const oit_view *v, oit_error *err)
     return OIT_OK;
 }
 
-/* The screen rectangle of the part's box; 0 when the box lies outside the
- * view volume (culled). */
+/* The screen rectangle of the part's box and the nearest depth of its
+ * corners; 0 when the box lies outside the view volume (culled). */
 static int project_box(const oit_partfile_part *p, const oit_view *v, const float m[16],
-                       int rect[4])
+                       int rect[4], float *near)
 {
     const oit_camera *c = &v->camera;
     double f = 1.0 / tan(0.5 * (c->fovy_deg > 0.0f ? c->fovy_deg : 45.0) * 3.14159265358979 / 180.0);
     double aspect = (double)v->width / v->height, lo[2] = {HUGE_VAL, HUGE_VAL},
            hi[2] = {-HUGE_VAL, -HUGE_VAL};
     int near_cross = 0, before_near = 0, beyond_far = 0;
+    double nearest = HUGE_VAL;
     for (int k = 0; k < 8; k++) {
         double x = k & 1 ? p->bounds_max[0] : p->bounds_min[0];
         double y = k & 2 ? p->bounds_max[1] : p->bounds_min[1];
@@ -124,6 +155,7 @@ static int project_box(const oit_partfile_part *p, const oit_view *v, const floa
         double vx = m[0] * x + m[4] * y + m[8] * z + m[12];
         double vy = m[1] * x + m[5] * y + m[9] * z + m[13];
         double depth = -(m[2] * x + m[6] * y + m[10] * z + m[14]);
+        nearest = fmin(nearest, depth);
         before_near += depth < c->znear;
         beyond_far += depth > c->zfar;
         if (depth <= 0.5 * c->znear) {
@@ -137,6 +169,7 @@ static int project_box(const oit_partfile_part *p, const oit_view *v, const floa
     }
     if (before_near == 8 || beyond_far == 8)
         return 0;
+    *near = (float)nearest;
     if (near_cross) {
         rect[0] = rect[1] = 0;
         rect[2] = v->width;
@@ -205,6 +238,74 @@ static void open_pack(oit_packer *pk, uint32_t pack, uint32_t first, uint32_t la
     }
 }
 
+/* Culls and projects order[0..n) into pk->kept, in order. */
+static uint32_t cull(oit_packer *pk, const oit_view *view, const uint32_t *order, uint32_t n)
+{
+    float m[16];
+    oit_camera_view_matrix(&view->camera, m);
+    const oit_partfile_part *parts = oit_partfile_parts(pk->pf);
+    uint32_t k = 0;
+    for (uint32_t i = 0; i < n; i++)
+        if (project_box(&parts[order[i]], view, m, pk->kept_rects[k], &pk->kept_near[k]))
+            pk->kept[k++] = order[i];
+    return k;
+}
+
+static void place(oit_packer *pk, uint32_t pack, uint32_t id, const int r[4])
+{
+    grow_rect(pk->rects[pack], r);
+    pk->bytes[pack] += oit_pack_part_bytes(&oit_partfile_parts(pk->pf)[id]);
+    memcpy(pk->part_rects[pk->drawn], r, sizeof pk->part_rects[pk->drawn]);
+    pk->parts[pk->drawn++] = id;
+}
+
+/* Tree schedule: a pack takes consecutive parts while they fit. */
+static void pack_in_order(oit_packer *pk, uint32_t kept)
+{
+    const oit_partfile_part *parts = oit_partfile_parts(pk->pf);
+    for (uint32_t i = 0; i < kept; i++) {
+        const oit_partfile_part *p = &parts[pk->kept[i]];
+        const int *r = pk->kept_rects[i];
+        if (pk->packs == 0 ||
+            !joins(pk, pk->packs - 1, r, p->layer_bound, oit_pack_part_bytes(p))) {
+            open_pack(pk, pk->packs++, pk->drawn, p->layer_bound);
+            if (pk->mode == OIT_PACK_BUDGET && p->layer_bound <= pk->K)
+                tiles_take(pk, r, p->layer_bound);
+        }
+        place(pk, pk->packs - 1, pk->kept[i], r);
+    }
+}
+
+/* Wave schedule (schedule.h): packs are filled from the front of the wave.
+ * Parts of one pack may lie anywhere on screen, so the disjoint rule works
+ * per tile (a tile holds one part) rather than on the pack's bounding
+ * rectangle, which scattered parts would soon make the whole screen. */
+static void wave_open(void *ctx)
+{
+    ((oit_packer *)ctx)->open_empty = 1;
+}
+
+static int wave_join(void *ctx, uint32_t k)
+{
+    oit_packer *pk = ctx;
+    const oit_partfile_part *p = &oit_partfile_parts(pk->pf)[pk->kept[k]];
+    const int *r = pk->kept_rects[k];
+    uint32_t cost = pk->mode == OIT_PACK_DISJOINT ? pk->K : p->layer_bound;
+    if (pk->open_empty) {
+        open_pack(pk, pk->packs++, pk->drawn, p->layer_bound);
+        if (p->layer_bound <= pk->K)
+            tiles_take(pk, r, cost);
+        pk->open_empty = 0;
+    } else {
+        uint32_t pack = pk->packs - 1;
+        if (pk->bytes[pack] + oit_pack_part_bytes(p) > pk->budget || p->layer_bound > pk->K ||
+            pk->layers[pack] > pk->K || !tiles_take(pk, r, cost))
+            return 0;
+    }
+    place(pk, pk->packs - 1, pk->kept[k], r);
+    return 1;
+}
+
 oit_status oit_packer_run(oit_packer *pk, const oit_view *view, const uint32_t *order,
                           uint32_t n, oit_packing *out, oit_error *err)
 {
@@ -212,37 +313,26 @@ oit_status oit_packer_run(oit_packer *pk, const oit_view *view, const uint32_t *
     oit_status s = fit_tiles(pk, view, err);
     if (s != OIT_OK)
         return s;
-    float m[16];
-    oit_camera_view_matrix(&view->camera, m);
-    const oit_partfile_part *parts = oit_partfile_parts(pk->pf);
-    uint32_t drawn = 0, packs = 0, culled = 0;
-    for (uint32_t i = 0; i < n; i++) {
-        const oit_partfile_part *p = &parts[order[i]];
-        int r[4];
-        if (!project_box(p, view, m, r)) {
-            culled++;
-            continue;
-        }
-        uint64_t bytes = oit_pack_part_bytes(p);
-        if (packs == 0 || !joins(pk, packs - 1, r, p->layer_bound, bytes)) {
-            open_pack(pk, packs++, drawn, p->layer_bound);
-            if (pk->mode == OIT_PACK_BUDGET && p->layer_bound <= pk->K)
-                tiles_take(pk, r, p->layer_bound);
-        }
-        grow_rect(pk->rects[packs - 1], r);
-        pk->bytes[packs - 1] += bytes;
-        memcpy(pk->part_rects[drawn], r, sizeof r);
-        pk->parts[drawn++] = order[i];
+    uint32_t kept = cull(pk, view, order, n);
+    pk->drawn = pk->packs = 0;
+    if (pk->schedule == OIT_SCHEDULE_WAVE) {
+        oit_schedule_packer sp = {pk, wave_open, wave_join};
+        s = oit_schedule_run(pk->scheduler, kept, (const int(*)[4])pk->kept_rects,
+                             pk->kept_near, view->width, view->height, &sp, pk->perm, err);
+        if (s != OIT_OK)
+            return s;
+    } else {
+        pack_in_order(pk, kept);
     }
-    pk->pack_first[packs] = drawn;
+    pk->pack_first[pk->packs] = pk->drawn;
     out->parts = pk->parts;
-    out->part_count = drawn;
+    out->part_count = pk->drawn;
     out->pack_first = pk->pack_first;
     out->rects = (const int(*)[4])pk->rects;
     out->part_rects = (const int(*)[4])pk->part_rects;
     out->bytes = pk->bytes;
     out->layers = pk->layers;
-    out->pack_count = packs;
-    out->culled = culled;
+    out->pack_count = pk->packs;
+    out->culled = n - kept;
     return OIT_OK;
 }

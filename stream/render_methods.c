@@ -258,6 +258,7 @@ static oit_status stream_open(const oit_mesh *mesh, const oit_method_options *op
     if (s == OIT_OK)
         s = attach_gl(*out, opt, err);
     oit_streamer_desc sd = {.K = opt->max_layers, .capture = OIT_CAPTURE_ARRAY, .pack = opt->pack,
+                            .schedule = opt->schedule,
                             .upload_budget = opt->upload_budget,
                             .slot_budget = opt->slot_budget,
                             .epsilon = opt->epsilon > 0.0f ? opt->epsilon : 0.0f};

@@ -15,6 +15,7 @@ typedef struct oit_method_options {
     /* the part-file streamer (methods with needs_partfile) */
     oit_partfile *partfile;
     oit_pack_mode pack;
+    oit_pack_schedule schedule;
     unsigned long long upload_budget; /* bytes; 0: default */
     /* NULL: GL methods make their own headless context. Else they render in
      * this one, current on the calling thread (the viewer's window), and do

@@ -91,6 +91,8 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
     if (st == OIT_OK)
         st = oit_packer_create(pf, desc->pack, desc->K, budget, &s->packer, err);
     if (st == OIT_OK)
+        oit_packer_set_schedule(s->packer, desc->schedule);
+    if (st == OIT_OK)
         st = oit_upload_create(budget, max_part, &s->upload, err);
     if (st == OIT_OK)
         st = oit_capture_create(desc->capture, desc->K, &s->capture, err);

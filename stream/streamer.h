@@ -14,6 +14,7 @@ typedef struct oit_streamer_desc {
     int K;                    /* capture layers, 2..16; every part's bound <= K */
     oit_capture_kind capture; /* backend */
     oit_pack_mode pack;
+    oit_pack_schedule schedule; /* 0: the tree's order (pack.h) */
     uint64_t upload_budget;   /* ring bytes; 0: 64 MiB */
     uint64_t slot_budget;     /* capture slot bytes (oit_capture_set_slot_budget);
                                  0: 32 MiB */

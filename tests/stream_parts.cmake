@@ -10,3 +10,5 @@ oit_add_test(NAME stream_parts_demo LABELS integration TIMEOUT 300
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_streamer.sh demo)
 oit_add_test(NAME stream_parts_bunny LABELS integration TIMEOUT 300
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_streamer.sh bunny)
+oit_add_test_exe(test_schedule SOURCES test_schedule.c LIBS oit_stream)
+oit_add_test(NAME stream_schedule COMMAND $<TARGET_FILE:test_schedule> LABELS unit TIMEOUT 60)

@@ -80,10 +80,14 @@ check_stats() {
 
 agree budget --pack budget
 agree translucent --shading translucent --pack budget
+# Packs filled front to back across the screen (stream/schedule.h): the
+# same image from a different pack order.
+agree wave --schedule wave --pack budget
 if [ "$MODE" = grid ]; then
     # Converted models have ~10^4 parts, so the other rules run on the
     # small file only, where they are cheap.
     agree disjoint
+    agree wave_disjoint --schedule wave
     agree ring --upload-budget 64K
     # K = 2 turns every part into a wide part (layer bound > K): captured
     # with more slots per pixel over smaller tiles, still exact.
