@@ -134,7 +134,7 @@ static oit_status piece_boxes(kd_ctx *c, const node_set *s, uint32_t npieces,
         if (c->piece_stamp[p] != k) {
             c->piece_slot[p] = count;
             b[count] = (oit_kd_piece_box){{INFINITY, INFINITY, INFINITY},
-                                          {-INFINITY, -INFINITY, -INFINITY}, 0};
+                                          {-INFINITY, -INFINITY, -INFINITY}, 0, 0, 0};
             count++;
         }
         layers_add(c, c->piece_stamp, 0, k, p, s->plane[i], &unused);
@@ -145,6 +145,15 @@ static oit_status piece_boxes(kd_ctx *c, const node_set *s, uint32_t npieces,
             tri_range(&s->tris[i], a, &mn, &mx);
             pb->lo[a] = fminf(pb->lo[a], mn);
             pb->hi[a] = fmaxf(pb->hi[a], mx);
+        }
+    }
+    for (size_t i = 0; i < s->n; i++) {
+        oit_kd_piece_box *pb = &b[c->piece_slot[s->piece[i]]];
+        for (int a = 0; a < 3; a++) {
+            float mn, mx;
+            tri_range(&s->tris[i], a, &mn, &mx);
+            pb->face_lo |= (uint8_t)((mn == mx && mn == pb->lo[a]) << a);
+            pb->face_hi |= (uint8_t)((mn == mx && mx == pb->hi[a]) << a);
         }
     }
     *out = b;

@@ -51,11 +51,13 @@ typedef struct event {
 
 /* One axis's piece bounds, sorted, with prefix weights: pre[i] is the weight
  * of events [0, i). Flat pieces (lo == hi on the axis) are listed again in
- * flat because a plane through them sends them below. */
+ * flat because a plane through them sends them below; face_hi lists the
+ * pieces with a triangle in their upper face (they go below a plane there),
+ * face_lo the others with one in their lower face (they go above). */
 typedef struct axis_events {
-    event *lo, *hi, *flat;
+    event *lo, *hi, *flat, *face_hi, *face_lo;
     uint32_t *pre_lo, *pre_hi, *pre_flat;
-    uint32_t n, nflat;
+    uint32_t n, nflat, nface_hi, nface_lo;
 } axis_events;
 
 static int event_cmp(const void *a, const void *b)
@@ -88,26 +90,34 @@ static void prefix(const event *e, uint32_t n, uint32_t *pre)
 static int events_build(const oit_kd_piece_box *pieces, uint32_t count, int axis,
                         axis_events *ev)
 {
-    ev->lo = malloc(3 * (size_t)count * sizeof *ev->lo + 1);
+    ev->lo = malloc(5 * (size_t)count * sizeof *ev->lo + 1);
     ev->pre_lo = malloc(3 * ((size_t)count + 1) * sizeof *ev->pre_lo);
     if (!ev->lo || !ev->pre_lo)
         return 0;
     ev->hi = ev->lo + count;
     ev->flat = ev->hi + count;
+    ev->face_hi = ev->flat + count;
+    ev->face_lo = ev->face_hi + count;
     ev->pre_hi = ev->pre_lo + count + 1;
     ev->pre_flat = ev->pre_hi + count + 1;
     ev->n = count;
-    ev->nflat = 0;
+    ev->nflat = ev->nface_hi = ev->nface_lo = 0;
     for (uint32_t i = 0; i < count; i++) {
         const oit_kd_piece_box *p = &pieces[i];
         ev->lo[i] = (event){p->lo[axis], p->weight};
         ev->hi[i] = (event){p->hi[axis], p->weight};
         if (p->lo[axis] == p->hi[axis])
             ev->flat[ev->nflat++] = ev->lo[i];
+        if (p->face_hi >> axis & 1)
+            ev->face_hi[ev->nface_hi++] = ev->hi[i];
+        if ((p->face_lo >> axis & 1) && p->lo[axis] < p->hi[axis])
+            ev->face_lo[ev->nface_lo++] = ev->lo[i];
     }
     qsort(ev->lo, count, sizeof *ev->lo, event_cmp);
     qsort(ev->hi, count, sizeof *ev->hi, event_cmp);
     qsort(ev->flat, ev->nflat, sizeof *ev->flat, event_cmp);
+    qsort(ev->face_hi, ev->nface_hi, sizeof *ev->face_hi, event_cmp);
+    qsort(ev->face_lo, ev->nface_lo, sizeof *ev->face_lo, event_cmp);
     prefix(ev->lo, count, ev->pre_lo);
     prefix(ev->hi, count, ev->pre_hi);
     prefix(ev->flat, ev->nflat, ev->pre_flat);
@@ -134,9 +144,19 @@ static void sides(const axis_events *ev, float m, uint32_t total, uint32_t *belo
     *cut = starts_below + flat_on - ends_by;
 }
 
+/* Whether a piece with a triangle in its upper face and another with one in
+ * its lower face meet at m (kd_split.h: their faces may coincide). */
+static int touching(const axis_events *ev, float m)
+{
+    return bound(ev->face_hi, ev->nface_hi, m, 1) > bound(ev->face_hi, ev->nface_hi, m, 0) &&
+           bound(ev->face_lo, ev->nface_lo, m, 1) > bound(ev->face_lo, ev->nface_lo, m, 0);
+}
+
 static int score(const axis_events *ev, float m, uint32_t max_layers, uint32_t total,
                  split_score *out)
 {
+    if (touching(ev, m))
+        return 0;
     uint32_t below, above, cut;
     sides(ev, m, total, &below, &above, &cut);
     uint32_t larger = below > above ? below : above;

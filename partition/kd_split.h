@@ -8,6 +8,11 @@
  * (docs/part-file.md: a two-cell subgrid may be larger than its parent cell,
  * so an off-centre plane is still one cell boundary).
  *
+ * A plane where one piece has a triangle in its upper face and another one
+ * in its lower face does not qualify: the two may coincide, and as two
+ * parts their tie would be resolved by pack order rather than by primitive
+ * id as in every other exact method.
+ *
  * Each piece is summarised by its box and weight (its layers in the node);
  * a candidate sends a piece below when it starts below the plane or ends on
  * it, above when it ends above it, both when it straddles. The cost of a
@@ -28,6 +33,9 @@
 typedef struct oit_kd_piece_box {
     float lo[3], hi[3];
     uint32_t weight; /* 1 (planar in the node) or 2 */
+    /* bit a: a triangle of the piece lies in its box's lower (upper) face
+     * on axis a */
+    uint8_t face_lo, face_hi;
 } oit_kd_piece_box;
 
 /* Returns 1 and sets *axis, *pos when a candidate qualifies, 0 when none
