@@ -93,6 +93,8 @@ const char oit_capture_resolve_cs[] =
     "    if (px.x >= u_rect.z || px.y >= u_rect.w) return;\n"
     "    uint p = uint(px.y * u_size.x + px.x);\n"
     "    uint n = counts[p];\n"
+    /* most pixels of a pack's rectangle get nothing: leave their state */
+    "    if (n == 0u) return;\n"
     "    uint m = min(n, SLOTS);\n"
     "    uvec4 f[LIST];\n"
     "    for (uint i = 0u; i < m; i++) {\n"
