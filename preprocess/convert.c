@@ -462,9 +462,9 @@ static oit_status convert_binned(const oit_convert_options *o, const oit_mesh_in
                                  oit_error *err)
 {
     char options[160];
-    snprintf(options, sizeof options, "K=%u grid=%ux%ux%u cell=%g max_piece_triangles=%u", o->K,
-             r->grid.dims[0], r->grid.dims[1], r->grid.dims[2], r->grid.cell,
-             o->max_piece_triangles);
+    snprintf(options, sizeof options, "K=%u manage=%s grid=%ux%ux%u cell=%g "
+             "max_piece_triangles=%u", o->K, oit_manage_name(o->manage), r->grid.dims[0],
+             r->grid.dims[1], r->grid.dims[2], r->grid.cell, o->max_piece_triangles);
     oit_partfile_writer_desc wd = {.K = o->K, .attributes = info->attributes,
                                    .source_name = base_name(o->input), .options = options,
                                    .origin = {info->origin[0], info->origin[1], info->origin[2]}};
@@ -490,7 +490,45 @@ static oit_status convert_binned(const oit_convert_options *o, const oit_mesh_in
     return s;
 }
 
+const char *oit_manage_name(oit_manage m)
+{
+    return m == OIT_MANAGE_KD_PARTS ? "kd-parts" : m == OIT_MANAGE_KD_FACETS ? "kd-facets" : "grid";
+}
+
+/* The kd schemes are the grid scheme with one top cell (and, for facets,
+ * pieces of one triangle): the same subdivision then is one kd-tree. */
+static oit_status apply_manage(const oit_convert_options *o, oit_convert_options *eff,
+                               oit_error *err)
+{
+    *eff = *o;
+    if (o->manage == OIT_MANAGE_GRID)
+        return OIT_OK;
+    if (o->grid > 1 || (o->manage == OIT_MANAGE_KD_FACETS && o->max_piece_triangles > 1))
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: --manage %s builds one kd-tree over "
+                             "%s; it cannot take --grid %u%s", o->input,
+                             oit_manage_name(o->manage),
+                             o->manage == OIT_MANAGE_KD_FACETS ? "single facets" : "the model",
+                             o->grid, o->manage == OIT_MANAGE_KD_FACETS
+                                          ? " or --max-piece-triangles above 1" : "");
+    eff->grid = 1;
+    if (o->manage == OIT_MANAGE_KD_FACETS)
+        eff->max_piece_triangles = 1;
+    return OIT_OK;
+}
+
+static oit_status convert_with(const oit_convert_options *o, oit_convert_stats *st,
+                               oit_error *err);
+
 oit_status oit_convert(const oit_convert_options *o, oit_convert_stats *st, oit_error *err)
+{
+    oit_convert_options eff;
+    memset(st, 0, sizeof *st);
+    oit_status s = apply_manage(o, &eff, err);
+    return s ? s : convert_with(&eff, st, err);
+}
+
+static oit_status convert_with(const oit_convert_options *o, oit_convert_stats *st,
+                               oit_error *err)
 {
     memset(st, 0, sizeof *st);
     st->threads = o->threads;

@@ -14,6 +14,22 @@
 
 #include "oit/status.h"
 
+/* How parts are formed and managed (seed 002, Table 1). */
+typedef enum oit_manage {
+    OIT_MANAGE_GRID = 0,  /* a top grid of cells, each kd-subdivided into parts of
+                             convex pieces (the default) */
+    OIT_MANAGE_KD_PARTS,  /* one kd-tree over the whole model's convex pieces, one
+                             part a leaf: the top grid is --grid 1 (one cell an
+                             axis, two where the model's bounds straddle a
+                             power-of-two coordinate, since cells are aligned
+                             to their size: the tree's first splits) */
+    OIT_MANAGE_KD_FACETS  /* one kd-tree over facets: every triangle a piece of
+                             its own (1 layer), leaves of at most K facets */
+} oit_manage;
+
+/* The scheme's name as --manage spells it. */
+const char *oit_manage_name(oit_manage m);
+
 typedef struct oit_convert_options {
     const char *input, *output;
     uint32_t K;                   /* even, 2..1024 */
@@ -21,6 +37,8 @@ typedef struct oit_convert_options {
     uint32_t threads;             /* >= 1 */
     uint32_t grid;                /* cells along the longest axis; 0: ~64K triangles a cell */
     uint32_t max_piece_triangles; /* 0: convex.h default */
+    oit_manage manage;            /* not GRID: grid must be 0 or 1, and for
+                                     KD_FACETS max_piece_triangles 0 or 1 */
     int progress;                 /* draw progress bars on stderr */
 } oit_convert_options;
 

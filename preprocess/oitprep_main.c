@@ -26,6 +26,7 @@ static void usage(FILE *f)
           "       oitprep verify FILE [--directions M] [--viewpoints V]\n"
           "       oitprep INPUT -o OUT.oitp [--max-layers K] [--memory BYTES] [--threads N]\n"
           "               [--stats FILE.json] [--grid N] [--max-piece-triangles T]\n"
+          "               [--manage grid|kd-parts|kd-facets]\n"
           "\n"
           "  info FILE     validate a part file completely (header, checksums, every record\n"
           "                and index) and print its counts; --json prints one JSON object\n"
@@ -50,6 +51,12 @@ static void usage(FILE *f)
           "                alone over smaller tiles; counted as wide_parts in --stats).\n"
           "                A node of more than 64 layers is refused (exit 3). Clipping\n"
           "                at kd planes adds triangles (split_added in --stats).\n"
+          "                --manage (seed 002, Table 1): grid (default: the above);\n"
+          "                kd-parts: one kd-tree over the whole model's convex pieces,\n"
+          "                one part a leaf (--grid 1: one top cell an axis, or two\n"
+          "                where the bounds straddle a power of two; in memory);\n"
+          "                kd-facets: one kd-tree over single facets, leaves of at\n"
+          "                most K facets (no convex pieces)\n"
           "  -h, --help    this text\n"
           "\n"
           "exit: 0 ok, 1 runtime or I/O failure, 2 usage error, 3 bad input file\n",
@@ -231,6 +238,18 @@ static int cmd_convert(int argc, char **argv)
             if (option_value(argc, argv, &i, a, 0, 1, 1024, &v))
                 return 2;
             o.grid = (uint32_t)v;
+        } else if (strcmp(a, "--manage") == 0) {
+            const char *m = i + 1 < argc ? argv[++i] : "";
+            if (strcmp(m, "grid") == 0)
+                o.manage = OIT_MANAGE_GRID;
+            else if (strcmp(m, "kd-parts") == 0)
+                o.manage = OIT_MANAGE_KD_PARTS;
+            else if (strcmp(m, "kd-facets") == 0)
+                o.manage = OIT_MANAGE_KD_FACETS;
+            else {
+                fprintf(stderr, "oitprep: --manage '%s': want grid, kd-parts or kd-facets\n", m);
+                return 2;
+            }
         } else if (strcmp(a, "--max-piece-triangles") == 0) {
             if (option_value(argc, argv, &i, a, 0, 1, 1u << 30, &v))
                 return 2;

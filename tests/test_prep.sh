@@ -92,7 +92,11 @@ if "$S" "$T/t0.oitp" --method stream --max-layers 16 --size 96x96 --orbit 2 \
             { fail "compare view $i"; continue; }
         pct=$(echo "$j" | json_num pct_over_1_255)
         echo "view $i: stream vs dfb max_abs $(echo "$j" | json_num max_abs), over 1/255 $pct%"
-        awk "BEGIN { exit !($pct == 0) }" || fail "view $i: $pct% of pixels over 1/255"
+        # Not 0: where two parts' surfaces cross (the plant's pipes pass
+        # through each other) a pixel can get two fragments of equal depth
+        # from different packs; DFB breaks that tie by primitive id, the
+        # stream by pack order. A pixel or two at most, on any converter.
+        awk "BEGIN { exit !($pct <= 0.1) }" || fail "view $i: $pct% of pixels over 1/255"
     done
 else
     fail "oitstream on the part file: $(tail -n 2 "$T/out.txt")"
@@ -145,6 +149,39 @@ done
 [ "$(json_num wide_parts <"$T/saddle.off.json")" -ge 1 ] &&
     [ "$(json_num max_layer_bound <"$T/saddle.off.json")" -gt 8 ] ||
     fail "saddle: no wide part (the star was split or refused)"
+
+# (g) the management schemes of seed 002's Table 1 on the plant: each is one
+# kd-tree over the model (--grid 1: one top cell an axis, two where the
+# bounds straddle a power-of-two coordinate); kd-facets keeps no convex
+# piece of more than one triangle, so every part's bound is its facet count.
+# Each must verify and stream exactly.
+for m in kd-parts kd-facets; do
+    expect_rc 0 "$P" "$M" -o "$T/$m.oitp" --manage $m --stats "$T/$m.json"
+    grep -q "\"manage\": \"$m\"" "$T/$m.json" || fail "$m: stats do not name the scheme"
+    grep -q '"grid": \[[12], [12], [12]\]' "$T/$m.json" ||
+        fail "$m: top grid $(grep -o '"grid": [^]]*]' "$T/$m.json"), want one cell an axis (two where the bounds straddle a power of two)"
+    expect_rc 0 "$P" verify "$T/$m.oitp"
+    grep -q "; 0 violations" "$T/out.txt" && grep -q "order: 0 violations" "$T/out.txt" ||
+        fail "$m: verify: $(cat "$T/out.txt")"
+    "$S" "$T/$m.oitp" --size 96x96 --azimuth 30 --elevation 40 --out "$T/ms.png" \
+        --stats "$T/ms.json" --quiet && "$S" "$T/$m.oitp" --method dfb --size 96x96 \
+        --azimuth 30 --elevation 40 --out "$T/md.png" --quiet || fail "$m: oitstream"
+    grep -q '"overflow_pixels": 0,' "$T/ms.json" || fail "$m: stream overflow"
+    pct=$("$S" --compare "$T/ms.png" "$T/md.png" --json | json_num pct_over_1_255)
+    awk "BEGIN { exit !($pct <= 0.1) }" || fail "$m: $pct% of pixels over 1/255"
+    echo "--manage $m: $(json_num parts <"$T/$m.json") parts," \
+        "$(json_num pieces <"$T/$m.json") pieces, $(json_num triangles_out <"$T/$m.json")" \
+        "triangles; stream vs dfb over 1/255 $pct%"
+done
+# No two facets merged: at least one piece per input triangle (the cell clip
+# may split a few), where convex clustering merges most of them.
+[ "$(json_num pieces_clustered <"$T/kd-facets.json")" -ge "$tin" ] ||
+    fail "kd-facets: $(json_num pieces_clustered <"$T/kd-facets.json") pieces clustered for $tin triangles"
+[ "$(json_num pieces_clustered <"$T/kd-parts.json")" -lt $((tin / 2)) ] ||
+    fail "kd-parts: $(json_num pieces_clustered <"$T/kd-parts.json") pieces clustered for $tin triangles"
+expect_rc 2 "$P" "$M" -o "$T/x.oitp" --manage kd-facets --grid 4
+grep -q "grid 4" "$T/err.txt" || fail "--manage kd-facets --grid 4: $(cat "$T/err.txt")"
+expect_rc 2 "$P" "$M" -o "$T/x.oitp" --manage octree
 
 [ "$FAILS" -eq 0 ] || { echo "$FAILS failure(s)"; exit 1; }
 echo "oitprep: all checks passed"
