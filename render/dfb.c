@@ -42,8 +42,6 @@ static const char store_fs[] =
     "    if (c != 0u && slot < offsets[p + 1u] && slot >= u_base) frags[slot - u_base] = oit_fragment();\n"
     "}\n";
 
-/* Short lists sort in registers; long ones are heap-sorted in place in their
- * own segment, so no layer count is ever cut off. */
 static const char resolve_cs[] =
     "layout(local_size_x = 8, local_size_y = 8) in;\n"
     "layout(location = 11) uniform ivec2 u_size;\n"
@@ -51,42 +49,15 @@ static const char resolve_cs[] =
     "layout(location = 13) uniform ivec2 u_rows;\n"
     "layout(std430, binding = 2) readonly buffer Offsets { uint offsets[]; };\n"
     "layout(std430, binding = 3) buffer Frags { uvec4 frags[]; };\n"
-    "layout(std430, binding = 4) writeonly buffer Out { vec4 out_rgba[]; };\n"
-    "#define LOCAL_MAX 32u\n"
-    "void sift(uint b, uint root, uint n) {\n"
-    "    for (;;) {\n"
-    "        uint child = 2u * root + 1u;\n"
-    "        if (child >= n) return;\n"
-    "        if (child + 1u < n && oit_frag_less(frags[b + child], frags[b + child + 1u])) child++;\n"
-    "        if (!oit_frag_less(frags[b + root], frags[b + child])) return;\n"
-    "        uvec4 tmp = frags[b + root]; frags[b + root] = frags[b + child]; frags[b + child] = tmp;\n"
-    "        root = child;\n"
-    "    }\n"
-    "}\n"
-    "void heap_sort(uint b, uint n) {\n"
-    "    for (uint i = n / 2u; i > 0u; i--) sift(b, i - 1u, n);\n"
-    "    for (uint e = n - 1u; e > 0u; e--) {\n"
-    "        uvec4 tmp = frags[b]; frags[b] = frags[b + e]; frags[b + e] = tmp;\n"
-    "        sift(b, 0u, e);\n"
-    "    }\n"
-    "}\n"
+    "layout(std430, binding = 4) writeonly buffer Out { vec4 out_rgba[]; };\n";
+
+static const char resolve_main_cs[] =
     "void main() {\n"
     "    ivec2 px = ivec2(gl_GlobalInvocationID.xy) + ivec2(0, u_rows.x);\n"
     "    if (px.x >= u_size.x || px.y >= u_rows.y) return;\n"
     "    uint p = uint(px.y * u_size.x + px.x);\n"
-    "    uint b = offsets[p] - u_base, n = offsets[p + 1u] - offsets[p];\n"
     "    oit_state s = oit_state_begin();\n"
-    "    if (n <= LOCAL_MAX) {\n"
-    "        uvec4 f[LOCAL_MAX];\n"
-    "        for (uint i = 0u; i < n; i++) {\n"
-    "            uvec4 x = frags[b + i];\n"
-    "            OIT_SORTED_INSERT(f, i, x)\n"
-    "        }\n"
-    "        for (uint i = 0u; i < n; i++) oit_composite(s, f[i]);\n"
-    "    } else {\n"
-    "        heap_sort(b, n);\n"
-    "        for (uint i = 0u; i < n; i++) oit_composite(s, frags[b + i]);\n"
-    "    }\n"
+    "    oit_segment_composite(s, offsets[p] - u_base, offsets[p + 1u] - offsets[p]);\n"
     "    out_rgba[p] = oit_state_final(s);\n"
     "}\n";
 
@@ -95,7 +66,8 @@ static oit_status build_programs(oit_dfb *d, oit_error *err)
     const char *vs[] = {oit_glsl_version, oit_glsl_vertex, NULL};
     const char *cfs[] = {oit_glsl_version, oit_glsl_fragment_gen, count_fs, NULL};
     const char *sfs[] = {oit_glsl_version, oit_glsl_fragment_gen, store_fs, NULL};
-    const char *rcs[] = {oit_glsl_version, oit_glsl_composite, resolve_cs, NULL};
+    const char *rcs[] = {oit_glsl_version, oit_glsl_composite, resolve_cs,
+                         oit_glsl_segment_composite, resolve_main_cs, NULL};
     oit_status s = oit_gl_program_graphics("DFB count pass", vs, cfs, &d->count_prog, err);
     if (s == OIT_OK)
         s = oit_gl_program_graphics("DFB store pass", vs, sfs, &d->store_prog, err);

@@ -159,3 +159,33 @@ void oit_glsl_raster_begin(GLuint fbo, int w, int h)
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     glDepthMask(GL_FALSE);
 }
+
+const char oit_glsl_segment_composite[] =
+    "#define OIT_SEGMENT_LOCAL 32u\n"
+    "void oit_segment_sift(uint b, uint root, uint n) {\n"
+    "    for (;;) {\n"
+    "        uint child = 2u * root + 1u;\n"
+    "        if (child >= n) return;\n"
+    "        if (child + 1u < n && oit_frag_less(frags[b + child], frags[b + child + 1u])) child++;\n"
+    "        if (!oit_frag_less(frags[b + root], frags[b + child])) return;\n"
+    "        uvec4 tmp = frags[b + root]; frags[b + root] = frags[b + child]; frags[b + child] = tmp;\n"
+    "        root = child;\n"
+    "    }\n"
+    "}\n"
+    "void oit_segment_composite(inout oit_state s, uint b, uint n) {\n"
+    "    if (n <= OIT_SEGMENT_LOCAL) {\n"
+    "        uvec4 f[OIT_SEGMENT_LOCAL];\n"
+    "        for (uint i = 0u; i < n; i++) {\n"
+    "            uvec4 x = frags[b + i];\n"
+    "            OIT_SORTED_INSERT(f, i, x)\n"
+    "        }\n"
+    "        for (uint i = 0u; i < n; i++) oit_composite(s, f[i]);\n"
+    "        return;\n"
+    "    }\n"
+    "    for (uint i = n / 2u; i > 0u; i--) oit_segment_sift(b, i - 1u, n);\n"
+    "    for (uint e = n - 1u; e > 0u; e--) {\n"
+    "        uvec4 tmp = frags[b]; frags[b] = frags[b + e]; frags[b + e] = tmp;\n"
+    "        oit_segment_sift(b, 0u, e);\n"
+    "    }\n"
+    "    for (uint i = 0u; i < n; i++) oit_composite(s, frags[b + i]);\n"
+    "}\n";

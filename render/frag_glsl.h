@@ -68,6 +68,12 @@ extern const char oit_glsl_fragment_gen[];
 /* Any stage: oit_state, oit_state_begin(), oit_frag_less(a, b),
  * oit_composite(inout oit_state, uvec4 frag), oit_state_final(). */
 extern const char oit_glsl_composite[];
+/* After oit_glsl_composite and a read-write `uvec4 frags[]` buffer:
+ * oit_segment_composite(inout oit_state s, uint b, uint n) composites
+ * frags[b .. b+n) front to back. Short lists sort in registers; long ones
+ * are heap-sorted in place in their own segment, so no layer count is ever
+ * cut off (DFB and the counted capture). */
+extern const char oit_glsl_segment_composite[];
 
 /* The per-pixel state carried across batches (std430): one declaration for
  * every shader that reads or writes it. */
