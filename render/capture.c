@@ -7,6 +7,7 @@
  * are flipped at the interface. */
 #include "render/capture.h"
 
+#include "render/capture_counted.h"
 #include "render/capture_glsl.h"
 #include "render/capture_stencil.h"
 #include "render/frag_glsl.h"
@@ -33,6 +34,7 @@ struct oit_capture {
     GLuint buf[BUF_N];
     uint64_t cap[BUF_N];
     oit_stencil_target stencil;
+    oit_counted counted; /* OIT_CAPTURE_COUNTED */
     oit_view view;
     int in_frame;
     uint32_t batches;
@@ -71,6 +73,8 @@ static void release(oit_capture *c)
     glDeleteBuffers(BUF_N, c->buf);
     if (c->stencil.fbo)
         oit_stencil_target_release(&c->stencil);
+    if (c->backend == OIT_CAPTURE_COUNTED)
+        oit_counted_release(&c->counted);
     free(c);
 }
 
@@ -100,6 +104,8 @@ static oit_status make(oit_capture_kind backend, int K, oit_capture **out, oit_e
     }
     if (s == OIT_OK)
         s = build_programs(c, err);
+    if (s == OIT_OK && backend == OIT_CAPTURE_COUNTED)
+        s = oit_counted_init(&c->counted, err);
     if (s == OIT_OK) {
         glCreateFramebuffers(1, &c->fbo);
         s = oit_gl_check("capture: set-up", err);
@@ -120,8 +126,8 @@ oit_status oit_capture_create(oit_capture_kind kind, int K, oit_capture **out,
     *out = NULL;
     if (K < 2 || K > 16)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: K=%d is outside [2, 16]", K);
-    if (kind == OIT_CAPTURE_ARRAY)
-        return make(OIT_CAPTURE_ARRAY, K, out, err);
+    if (kind == OIT_CAPTURE_ARRAY || kind == OIT_CAPTURE_COUNTED)
+        return make(kind, K, out, err);
     oit_capture *c = NULL;
     oit_status s = make(OIT_CAPTURE_STENCIL, K, &c, err);
     if (s == OIT_OK) {
@@ -150,6 +156,8 @@ oit_status oit_capture_create(oit_capture_kind kind, int K, oit_capture **out,
 static uint64_t held_bytes(const oit_capture *c)
 {
     uint64_t b = oit_stencil_target_bytes(&c->stencil);
+    if (c->backend == OIT_CAPTURE_COUNTED)
+        b += oit_counted_bytes(&c->counted);
     for (int i = 0; i < BUF_N; i++)
         b += c->cap[i];
     return b;
@@ -172,7 +180,7 @@ static oit_status reserve(oit_capture *c, int which, uint64_t bytes, oit_error *
 static oit_status allocate(oit_capture *c, const oit_view *v, oit_error *err)
 {
     uint64_t pixels = (uint64_t)v->width * v->height;
-    int array = c->backend == OIT_CAPTURE_ARRAY;
+    int array = c->backend == OIT_CAPTURE_ARRAY, stencil = c->backend == OIT_CAPTURE_STENCIL;
     uint64_t full = pixels * (uint64_t)c->K * 16, row = (uint64_t)v->width * c->K * 16;
     c->tiled = array && c->slot_budget && full > c->slot_budget;
     uint64_t slots = !c->tiled ? full : c->slot_budget > row ? c->slot_budget : row;
@@ -189,7 +197,7 @@ static oit_status allocate(oit_capture *c, const oit_view *v, oit_error *err)
     c->out_buf = c->tiled ? c->buf[BUF_SLOTS] : c->buf[BUF_OUT];
     if (s == OIT_OK)
         s = reserve(c, BUF_TOTALS, 16, err);
-    if (s == OIT_OK && !array)
+    if (s == OIT_OK && stencil)
         s = oit_stencil_target_resize(&c->stencil, v->width, v->height, err);
     if (s == OIT_OK && !array) {
         uint64_t held = held_bytes(c);
@@ -214,6 +222,8 @@ static void set_uniforms(oit_capture *c)
     }
     glProgramUniform1f(c->fill_prog, glGetUniformLocation(c->fill_prog, "u_epsilon"),
                        c->epsilon);
+    if (c->backend == OIT_CAPTURE_COUNTED)
+        oit_counted_set_view(&c->counted, &c->view, c->epsilon);
 }
 
 void oit_capture_set_epsilon(oit_capture *c, float epsilon)
@@ -221,6 +231,8 @@ void oit_capture_set_epsilon(oit_capture *c, float epsilon)
     c->epsilon = epsilon > 0.0f ? epsilon : 0.0f;
     glProgramUniform1f(c->fill_prog, glGetUniformLocation(c->fill_prog, "u_epsilon"),
                        c->epsilon);
+    if (c->backend == OIT_CAPTURE_COUNTED)
+        oit_counted_set_view(&c->counted, &c->view, c->epsilon);
 }
 
 static void bind_buffers(const oit_capture *c)
@@ -341,9 +353,28 @@ static oit_status batch_start(oit_capture *c, const int rect[4], int n, int r[4]
     return OIT_OK;
 }
 
+/* The counted backend's batch: the slot budget bounds its fragment store. */
+static oit_status counted_batch(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
+                                const int r[4], oit_error *err)
+{
+    oit_counted_frame f = {c->fbo, c->buf[BUF_COUNTS], c->buf[BUF_STATE], c->view.width,
+                           c->view.height};
+    c->counted.budget = c->slot_budget ? c->slot_budget : UINT64_MAX;
+    oit_status s = oit_counted_batch(&c->counted, &f, meshes, n, r, err);
+    uint64_t held = held_bytes(c);
+    c->bytes_peak = held > c->bytes_peak ? held : c->bytes_peak;
+    bind_buffers(c);
+    return s;
+}
+
 oit_status oit_capture_batch(oit_capture *c, const oit_gpu_mesh *const *meshes,
                              int n, const int rect[4], oit_error *err)
 {
+    if (c->backend == OIT_CAPTURE_COUNTED) {
+        int r[4] = {0}, empty = 1;
+        oit_status s = batch_start(c, rect, n, r, &empty, err);
+        return s != OIT_OK || empty ? s : counted_batch(c, meshes, n, r, err);
+    }
     if (c->tiled)
         return oit_capture_batch_layers(c, meshes, n, rect, c->K, err);
     int r[4] = {0}, empty = 1;
@@ -435,7 +466,7 @@ static oit_status tiled_batch(oit_capture *c, const oit_gpu_mesh *const *meshes,
 oit_status oit_capture_batch_layers(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
                                     const int rect[4], int layers, oit_error *err)
 {
-    if (layers <= c->K && !c->tiled)
+    if ((layers <= c->K && !c->tiled) || c->backend == OIT_CAPTURE_COUNTED)
         return oit_capture_batch(c, meshes, n, rect, err);
     if (layers > OIT_CAPTURE_MAX_LAYERS)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: a batch of %d layers, more than "
@@ -505,7 +536,7 @@ static void fill_stats(const oit_capture *c, const GLuint totals[4], oit_frame_s
     stats->fragments = (uint64_t)totals[2] << 32 | totals[1];
     stats->max_layers = totals[3];
     stats->gpu_bytes_peak = c->bytes_peak;
-    stats->batches = c->batches;
+    stats->batches = c->batches + (c->backend == OIT_CAPTURE_COUNTED ? c->counted.splits : 0);
 }
 
 oit_status oit_capture_end(oit_capture *c, oit_image *out, oit_frame_stats *stats,

@@ -22,7 +22,10 @@ extern "C" {
 typedef enum oit_capture_kind {
     OIT_CAPTURE_AUTO = 0, /* stencil when its self-test passes, else array */
     OIT_CAPTURE_ARRAY,
-    OIT_CAPTURE_STENCIL
+    OIT_CAPTURE_STENCIL,
+    /* no per-pixel limit: each batch counted, stored and sorted as DFB does,
+     * within the slot budget as a fragment budget (capture_counted.h) */
+    OIT_CAPTURE_COUNTED
 } oit_capture_kind;
 
 typedef struct oit_capture oit_capture;

@@ -143,3 +143,50 @@ const char oit_capture_fullscreen_vs[] =
     "    vec2 p = vec2((gl_VertexID & 1) * 4 - 1, (gl_VertexID & 2) * 2 - 1);\n"
     "    gl_Position = vec4(p, 0.0, 1.0);\n"
     "}\n";
+
+/* The counted capture (capture_counted.h). Count and store run the same
+ * rasterization with the same saturation test, so every counted fragment
+ * finds its slot; the store counts each pixel back down to 0. */
+const char oit_capture_counted_count_fs[] =
+    "layout(std430, binding = 1) buffer Counts { uint counts[]; };\n"
+    SATURATED
+    "void main() {\n"
+    "    uint p = oit_pixel_index();\n"
+    "    if (oit_saturated(p)) discard;\n"
+    "    atomicAdd(counts[p], 1u);\n"
+    "}\n";
+
+const char oit_capture_counted_store_fs[] =
+    "layout(std430, binding = 1) buffer Counts { uint counts[]; };\n"
+    "layout(std430, binding = 2) readonly buffer Offsets { uint offsets[]; };\n"
+    "layout(std430, binding = 3) writeonly buffer Frags { uvec4 frags[]; };\n"
+    SATURATED
+    "void main() {\n"
+    "    uint p = oit_pixel_index();\n"
+    "    if (oit_saturated(p)) discard;\n"
+    "    uint c = atomicAdd(counts[p], 0xffffffffu);\n"
+    "    uint slot = offsets[p] + c - 1u;\n"
+    "    if (c != 0u && slot < offsets[p + 1u]) frags[slot] = oit_fragment();\n"
+    "}\n";
+
+/* Before oit_glsl_segment_composite; oit_capture_counted_resolve_main after. */
+const char oit_capture_counted_resolve_cs[] =
+    "layout(local_size_x = 8, local_size_y = 8) in;\n"
+    "layout(location = 11) uniform ivec2 u_size;\n"
+    "layout(location = 12) uniform ivec4 u_rect;\n"
+    "layout(std430, binding = 2) readonly buffer Offsets { uint offsets[]; };\n"
+    "layout(std430, binding = 3) buffer Frags { uvec4 frags[]; };\n"
+    "layout(std430, binding = 6) buffer State { oit_state states[]; };\n";
+
+const char oit_capture_counted_resolve_main[] =
+    "void main() {\n"
+    "    ivec2 px = u_rect.xy + ivec2(gl_GlobalInvocationID.xy);\n"
+    "    if (px.x >= u_rect.z || px.y >= u_rect.w) return;\n"
+    "    uint p = uint(px.y * u_size.x + px.x);\n"
+    "    uint n = offsets[p + 1u] - offsets[p];\n"
+    "    if (n == 0u) return;\n"
+    "    oit_state s = states[p];\n"
+    "    oit_segment_composite(s, offsets[p], n);\n"
+    "    s.nfrag += n;\n"
+    "    states[p] = s;\n"
+    "}\n";

@@ -22,6 +22,13 @@ extern const char oit_capture_begin_cs[];
 extern const char oit_capture_end_cs[];
 /* Full-screen triangle for the stencil initialisation. */
 extern const char oit_capture_fullscreen_vs[];
+/* The counted capture (capture_counted.h): count and store fragment stages
+ * (after oit_glsl_fragment_gen), and the resolve in two halves around
+ * oit_glsl_segment_composite (after oit_glsl_composite). */
+extern const char oit_capture_counted_count_fs[];
+extern const char oit_capture_counted_store_fs[];
+extern const char oit_capture_counted_resolve_cs[];
+extern const char oit_capture_counted_resolve_main[];
 
 #ifdef __cplusplus
 }

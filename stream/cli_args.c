@@ -122,9 +122,10 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
         if (!strcmp(v, "layers")) a->show_layers = 1;
         else if (strcmp(v, "colour") && strcmp(v, "color")) *s = bad(err, opt, v, "layers or colour");
     } else if (!strcmp(opt, "--pack")) {
+        a->pack_counted = !strcmp(v, "counted");
         if (!strcmp(v, "disjoint")) a->pack_disjoint = 1;
-        else if (!strcmp(v, "budget")) a->pack_disjoint = 0;
-        else *s = bad(err, opt, v, "budget or disjoint");
+        else if (!strcmp(v, "budget") || a->pack_counted) a->pack_disjoint = 0;
+        else *s = bad(err, opt, v, "budget, disjoint or counted");
     } else if (!strcmp(opt, "--schedule")) {
         if (!strcmp(v, "wave")) a->schedule_wave = 1;
         else if (!strcmp(v, "tree")) a->schedule_wave = 0;
@@ -241,7 +242,11 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "  --pack P            stream: disjoint (default; a part joins a pack while its\n"
         "                      screen rectangle misses the pack's) or budget (parts\n"
         "                      share a pack while the sum of their layer bounds per\n"
-        "                      32x32 tile stays <= K: fewer, larger packs)\n"
+        "                      32x32 tile stays <= K: fewer, larger packs) or counted\n"
+        "                      (packs cut by upload bytes only; each is counted,\n"
+        "                      stored and sorted per pixel as DFB does, with no layer\n"
+        "                      limit, halved while its fragments exceed the slot\n"
+        "                      budget)\n"
         "  --schedule S        stream: tree (default: packs of consecutive parts in the\n"
         "                      management tree's depth-first order) or wave (packs\n"
         "                      filled front to back across the whole screen, keeping\n"

@@ -35,6 +35,7 @@ typedef struct oit_stream_args {
     const char *ambiguity_out; /* --ambiguity: mask of ambiguous pixels */
     int quiet;
     int pack_disjoint;                 /* --pack: 1 disjoint (default), 0 budget */
+    int pack_counted;                  /* --pack counted */
     int schedule_wave;                 /* --schedule: 0 tree (default), 1 wave */
     unsigned long long upload_budget;  /* --upload-budget; 0: default */
     unsigned long long slot_budget;    /* --slot-budget; 0: default */

@@ -208,10 +208,21 @@ static int tiles_take(oit_packer *pk, const int r[4], uint32_t layers)
     return 1;
 }
 
+/* Bytes and wide parts: a wide part (layer bound above K) is a pack of its
+ * own, except for the counted capture, which has no per-pixel limit. */
+static int fits(const oit_packer *pk, uint32_t pack, uint32_t layers, uint64_t bytes)
+{
+    if (pk->bytes[pack] + bytes > pk->budget)
+        return 0;
+    return pk->mode == OIT_PACK_COUNTED || (layers <= pk->K && pk->layers[pack] <= pk->K);
+}
+
 static int joins(oit_packer *pk, uint32_t pack, const int r[4], uint32_t layers, uint64_t bytes)
 {
-    if (pk->bytes[pack] + bytes > pk->budget || layers > pk->K || pk->layers[pack] > pk->K)
-        return 0; /* a wide part is a pack of its own */
+    if (!fits(pk, pack, layers, bytes))
+        return 0;
+    if (pk->mode == OIT_PACK_COUNTED)
+        return 1;
     if (pk->mode == OIT_PACK_DISJOINT)
         return !overlaps(pk->rects[pack], r);
     return tiles_take(pk, r, layers);
@@ -290,7 +301,8 @@ static int wave_join(void *ctx, uint32_t k)
     oit_packer *pk = ctx;
     const oit_partfile_part *p = &oit_partfile_parts(pk->pf)[pk->kept[k]];
     const int *r = pk->kept_rects[k];
-    uint32_t cost = pk->mode == OIT_PACK_DISJOINT ? pk->K : p->layer_bound;
+    uint32_t cost = pk->mode == OIT_PACK_DISJOINT ? pk->K
+                    : pk->mode == OIT_PACK_COUNTED ? 0 : p->layer_bound;
     if (pk->open_empty) {
         open_pack(pk, pk->packs++, pk->drawn, p->layer_bound);
         if (p->layer_bound <= pk->K)
@@ -298,8 +310,7 @@ static int wave_join(void *ctx, uint32_t k)
         pk->open_empty = 0;
     } else {
         uint32_t pack = pk->packs - 1;
-        if (pk->bytes[pack] + oit_pack_part_bytes(p) > pk->budget || p->layer_bound > pk->K ||
-            pk->layers[pack] > pk->K || !tiles_take(pk, r, cost))
+        if (!fits(pk, pack, p->layer_bound, oit_pack_part_bytes(p)) || !tiles_take(pk, r, cost))
             return 0;
     }
     place(pk, pk->packs - 1, pk->kept[k], r);

@@ -8,6 +8,9 @@
  *    part joins while every tile it touches stays <= K.
  *  - OIT_PACK_DISJOINT (the paper's rule): a part joins while its rectangle
  *    does not overlap the bounding rectangle of the pack so far.
+ *  - OIT_PACK_COUNTED: no layer rule at all, for the counted capture
+ *    (render/capture_counted.h), which has no per-pixel limit and measures
+ *    each pack's fragments before storing them; wide parts join too.
  * The parts are first culled; see oit_pack_schedule for the order the packs
  * are then cut from.
  * Rectangles are the projections of the parts' bounding boxes (a box that
@@ -22,7 +25,7 @@
 #include "oit/partfile.h"
 #include "render/view.h"
 
-typedef enum oit_pack_mode { OIT_PACK_BUDGET = 0, OIT_PACK_DISJOINT } oit_pack_mode;
+typedef enum oit_pack_mode { OIT_PACK_BUDGET = 0, OIT_PACK_DISJOINT, OIT_PACK_COUNTED } oit_pack_mode;
 
 /* The order packs are cut from. OIT_SCHEDULE_TREE (default): consecutive
  * parts of stream/order.h's order. OIT_SCHEDULE_WAVE: packs filled from a

@@ -3,7 +3,8 @@
 # pipeline: oitprep converts it (every case must convert: each has a right
 # answer, none is input we should refuse), oitprep verify finds no layer or
 # order violation, and on every view the exact methods agree:
-#   stream (part file) == DFB (part file), zero overflow;
+#   stream (part file) == DFB (part file), zero overflow, with the K-slot
+#   capture and with the counted one (--pack counted, split packs);
 #   DFB == the Embree reference on the same triangles, outside the pixels
 #     the reference flags as ambiguous (edges, depth ties);
 #   PLL, paged lists (ppll4) and B3D == DFB; on the first view depth
@@ -71,6 +72,11 @@ view() {
     "$S" "$T/in.oitp" --method stream --size "$SIZE" "$@" --out "$v-stream.pfm" \
         --stats "$v-stream.json" --quiet || { fail "$name: stream"; return; }
     cam=$(json_str view "$v-stream.json")
+    # The counted capture, with a fragment budget small enough (16K) that
+    # most packs are split before they are stored.
+    "$S" "$T/in.oitp" --method stream --pack counted --slot-budget 256K --size "$SIZE" \
+        --view "$cam" --out "$v-counted.pfm" --stats "$v-counted.json" --quiet ||
+        fail "$name: stream --pack counted"
     "$S" "$T/in.oitp" --method dfb --size "$SIZE" --view "$cam" --out "$v-dfb.pfm" \
         --stats "$v-dfb.json" --quiet || fail "$name: dfb"
     # The other exact baselines. A list or array lives in one storage buffer:
@@ -108,6 +114,8 @@ view() {
     echo "  view $name: layers $(json_num max_layers "$v-dfb.json"), packs $(json_num packs "$v-stream.json"), overflow $ovf"
     [ "$ovf" = 0 ] || fail "$name: $ovf overflow pixels"
     compare "stream vs dfb" "$v-stream.pfm" "$v-dfb.pfm" 0.1
+    echo "    counted: packs $(json_num packs "$v-counted.json"), batches $(json_num batches "$v-counted.json")"
+    compare "stream --pack counted vs dfb" "$v-counted.pfm" "$v-dfb.pfm" 0.1
     for m in $ran; do compare "$m vs dfb" "$v-$m.pfm" "$v-dfb.pfm" 0.1; done
     if [ "$name" != az30 ]; then
         :

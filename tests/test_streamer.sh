@@ -83,6 +83,10 @@ agree translucent --shading translucent --pack budget
 # Packs filled front to back across the screen (stream/schedule.h): the
 # same image from a different pack order.
 agree wave --schedule wave --pack budget
+# The counted capture (render/capture_counted.h): no layer limit, packs cut
+# by bytes only, and halved where they exceed the fragment budget.
+agree counted --pack counted
+agree counted_split --pack counted --slot-budget 64K
 if [ "$MODE" = grid ]; then
     # Converted models have ~10^4 parts, so the other rules run on the
     # small file only, where they are cheap.

@@ -1,0 +1,140 @@
+/* The counted capture (capture_counted.h). */
+#include "render/capture_counted.h"
+
+#include "render/capture_glsl.h"
+#include "render/frag_glsl.h"
+
+#include <string.h>
+
+oit_status oit_counted_init(oit_counted *k, oit_error *err)
+{
+    memset(k, 0, sizeof *k);
+    const char *vs[] = {oit_glsl_version, oit_glsl_vertex, NULL};
+    const char *cfs[] = {oit_glsl_version, oit_glsl_fragment_gen, oit_capture_counted_count_fs,
+                         NULL};
+    const char *sfs[] = {oit_glsl_version, oit_glsl_fragment_gen, oit_capture_counted_store_fs,
+                         NULL};
+    const char *rcs[] = {oit_glsl_version, oit_glsl_composite, oit_capture_counted_resolve_cs,
+                         oit_glsl_segment_composite, oit_capture_counted_resolve_main, NULL};
+    oit_status s = oit_gl_program_graphics("counted capture count", vs, cfs, &k->count_prog,
+                                           err);
+    if (s == OIT_OK)
+        s = oit_gl_program_graphics("counted capture store", vs, sfs, &k->store_prog, err);
+    if (s == OIT_OK)
+        s = oit_gl_program_compute("counted capture resolve", rcs, &k->resolve_prog, err);
+    if (s == OIT_OK)
+        s = oit_scan_init(&k->scan, err);
+    return s;
+}
+
+void oit_counted_release(oit_counted *k)
+{
+    glDeleteProgram(k->count_prog);
+    glDeleteProgram(k->store_prog);
+    glDeleteProgram(k->resolve_prog);
+    glDeleteBuffers(1, &k->offsets);
+    glDeleteBuffers(1, &k->frags);
+    oit_scan_release(&k->scan);
+    memset(k, 0, sizeof *k);
+}
+
+void oit_counted_set_view(oit_counted *k, const oit_view *v, float epsilon)
+{
+    GLuint progs[3] = {k->count_prog, k->store_prog, k->resolve_prog};
+    for (int i = 0; i < 3; i++)
+        oit_glsl_set_view(progs[i], v);
+    for (int i = 0; i < 2; i++)
+        glProgramUniform1f(progs[i], glGetUniformLocation(progs[i], "u_epsilon"), epsilon);
+    k->splits = 0;
+}
+
+uint64_t oit_counted_bytes(const oit_counted *k)
+{
+    return k->offsets_cap + k->frags_cap + oit_scan_bytes(&k->scan);
+}
+
+static void draw(const oit_counted_frame *f, GLuint prog, const oit_gpu_mesh *const *meshes,
+                 int n, const int r[4])
+{
+    oit_glsl_raster_begin(f->fbo, f->width, f->height);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(r[0], r[1], r[2] - r[0], r[3] - r[1]);
+    glUseProgram(prog);
+    for (int i = 0; i < n; i++)
+        oit_gpu_mesh_draw(meshes[i], prog);
+    glDisable(GL_SCISSOR_TEST);
+}
+
+/* Count pass, then offsets = exclusive scan of the counts (pixels + 1
+ * entries, the last = the batch's fragments). */
+static oit_status count(oit_counted *k, const oit_counted_frame *f,
+                        const oit_gpu_mesh *const *meshes, int n, const int r[4],
+                        oit_scan_result *res, oit_error *err)
+{
+    uint64_t pixels = (uint64_t)f->width * f->height;
+    oit_status s = oit_gl_buffer_reserve(&k->offsets, &k->offsets_cap, (pixels + 1) * 4,
+                                         "counted capture offsets", err);
+    if (s != OIT_OK)
+        return s;
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, f->counts);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_STATE, f->state);
+    draw(f, k->count_prog, meshes, n, r);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    static const GLuint zero = 0;
+    glCopyNamedBufferSubData(f->counts, k->offsets, 0, 0, (GLsizeiptr)(pixels * 4));
+    glClearNamedBufferSubData(k->offsets, GL_R32UI, (GLintptr)(pixels * 4), 4, GL_RED_INTEGER,
+                              GL_UNSIGNED_INT, &zero);
+    return oit_scan_run(&k->scan, k->offsets, pixels + 1, res, err);
+}
+
+static oit_status store_and_resolve(oit_counted *k, const oit_counted_frame *f,
+                                    const oit_gpu_mesh *const *meshes, int n, const int r[4],
+                                    uint64_t total, oit_error *err)
+{
+    oit_status s = oit_gl_check_ssbo_size(total * 16, "counted capture: one part's fragments",
+                                          err);
+    if (s == OIT_OK)
+        s = oit_gl_buffer_reserve(&k->frags, &k->frags_cap, total ? total * 16 : 16,
+                                  "counted capture fragments", err);
+    if (s != OIT_OK)
+        return s;
+    /* the scan bound its data at the counts' binding */
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, f->counts);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OFFSETS, k->offsets);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_FRAGS, k->frags);
+    draw(f, k->store_prog, meshes, n, r);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(k->resolve_prog);
+    glProgramUniform2i(k->resolve_prog, 11, f->width, f->height);
+    glProgramUniform4i(k->resolve_prog, 12, r[0], r[1], r[2], r[3]);
+    glDispatchCompute(oit_gl_groups((uint64_t)(r[2] - r[0]), 8),
+                      oit_gl_groups((uint64_t)(r[3] - r[1]), 8), 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    return oit_gl_check("counted capture: batch", err);
+}
+
+oit_status oit_counted_batch(oit_counted *k, const oit_counted_frame *f,
+                             const oit_gpu_mesh *const *meshes, int n, const int r[4],
+                             oit_error *err)
+{
+    oit_scan_result res = {0, 0};
+    oit_status s = count(k, f, meshes, n, r, &res, err);
+    if (s != OIT_OK)
+        return s;
+    if (res.total > UINT32_MAX)
+        return oit_error_set(err, OIT_ERR_NOMEM, "counted capture: %llu fragments in one "
+                             "batch, more than 32-bit offsets address",
+                             (unsigned long long)res.total);
+    if (res.total == 0)
+        return OIT_OK; /* nothing drawn here: the counts are still zero */
+    if (n > 1 && (res.total * 16 > k->budget || res.max > OIT_COUNTED_MAX_SORTED)) {
+        /* Over budget, or lists too long to sort in registers: forget the
+         * counts and take the two halves in turn. */
+        static const GLuint zero = 0;
+        glClearNamedBufferData(f->counts, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+        k->splits++;
+        s = oit_counted_batch(k, f, meshes, n / 2, r, err);
+        return s == OIT_OK ? oit_counted_batch(k, f, meshes + n / 2, n - n / 2, r, err) : s;
+    }
+    return store_and_resolve(k, f, meshes, n, r, res.total, err);
+}

@@ -1,0 +1,52 @@
+/* The counted capture (OIT_CAPTURE_COUNTED, capture.h): a batch is captured
+ * as DFB captures a frame (seed 000: count fragments per pixel, prefix-sum,
+ * store each at its pixel's offset, sort per pixel) and composited into the
+ * state the frame carries across batches. No per-pixel layer limit: a batch
+ * is bounded by its fragments instead, which a count pass measures before
+ * anything is stored. A batch over the fragment budget, or with a pixel of
+ * more than OIT_COUNTED_MAX_SORTED fragments (longer lists are heap-sorted
+ * in memory, several times slower a fragment than in registers), is split
+ * in two halves of its meshes, in order (the meshes of a batch are in
+ * visibility order, so the halves are too), down to one mesh, whose
+ * fragments are then stored whatever their number.
+ *
+ * Internal to render/capture.c, which owns the frame's counts and state
+ * buffers and the framebuffer; the counts are zero between batches (the
+ * store pass counts them back down). */
+#ifndef OIT_RENDER_CAPTURE_COUNTED_H
+#define OIT_RENDER_CAPTURE_COUNTED_H
+
+#include "render/gpu_mesh.h"
+#include "render/scan_glsl.h"
+
+#define OIT_COUNTED_MAX_SORTED 32u /* = OIT_SEGMENT_LOCAL in frag_glsl.c */
+
+typedef struct oit_counted {
+    GLuint count_prog, store_prog, resolve_prog;
+    GLuint offsets, frags;
+    uint64_t offsets_cap, frags_cap;
+    oit_scan scan;
+    uint64_t budget;   /* fragment store bytes a batch may take before it splits */
+    uint32_t splits;   /* batches split this frame */
+} oit_counted;
+
+oit_status oit_counted_init(oit_counted *k, oit_error *err);
+void oit_counted_release(oit_counted *k);
+/* View and early-termination uniforms for the frame. */
+void oit_counted_set_view(oit_counted *k, const oit_view *v, float epsilon);
+uint64_t oit_counted_bytes(const oit_counted *k);
+
+/* The frame's buffers, owned by capture.c. */
+typedef struct oit_counted_frame {
+    GLuint fbo, counts, state;
+    int width, height;
+} oit_counted_frame;
+
+/* Captures meshes[0..n) over the GL rect r (bottom rows first, exclusive
+ * ends) and composites them behind the state. oit_counted_bytes tells the
+ * caller what the module holds afterwards. */
+oit_status oit_counted_batch(oit_counted *k, const oit_counted_frame *f,
+                             const oit_gpu_mesh *const *meshes, int n, const int r[4],
+                             oit_error *err);
+
+#endif
