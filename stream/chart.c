@@ -286,14 +286,15 @@ static oit_status layout(oit_chart *c, const oit_chart_desc *d, oit_error *err)
     return OIT_OK;
 }
 
+/* Rounded the same way as place() below, so lines meet markers. */
 static int axis_pixel_x(const oit_chart *c, double v)
 {
-    return c->plot.x0 + (int)lround(axis_fraction(&c->x, v) * (c->plot.x1 - c->plot.x0));
+    return (int)lround(c->plot.x0 + axis_fraction(&c->x, v) * (c->plot.x1 - c->plot.x0));
 }
 
 static int axis_pixel_y(const oit_chart *c, double v)
 {
-    return c->plot.y1 - (int)lround(axis_fraction(&c->y, v) * (c->plot.y1 - c->plot.y0));
+    return (int)lround(c->plot.y1 - axis_fraction(&c->y, v) * (c->plot.y1 - c->plot.y0));
 }
 
 static void draw_x_ticks(oit_chart *c)
