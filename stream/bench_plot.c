@@ -101,12 +101,17 @@ static int note_lines(notes *ns)
     return ns->n;
 }
 
+/* Errors name the chart's file (writing errors already do). */
 static oit_status open_chart(oit_chart *c, const char *title, const char *subtitle,
-                             oit_chart_axis x, oit_chart_axis y, notes *ns, oit_error *err)
+                             oit_chart_axis x, oit_chart_axis y, notes *ns, const char *path,
+                             oit_error *err)
 {
     int lines = note_lines(ns);
     oit_chart_desc d = {WIDTH, HEIGHT + lines * NOTE_H, title, subtitle, x, y, lines, LEGEND_W};
-    return oit_chart_create(c, &d, err);
+    oit_status s = oit_chart_create(c, &d, err);
+    if (s != OIT_OK)
+        oit_error_prefix(err, path);
+    return s;
 }
 
 static oit_status finish(oit_chart *c, const char *path, oit_error *err)
@@ -162,8 +167,7 @@ static oit_status speed_collect(const oit_bench_table *t, double floor_y, speed_
     p->front = malloc(cap);
     p->n = 0;
     if (!p->row || !p->ms || !p->err || !p->front)
-        return oit_error_set(err, OIT_ERR_NOMEM, "speed_vs_error: cannot allocate %zu points",
-                             cap);
+        return oit_error_set(err, OIT_ERR_NOMEM, "speed chart: cannot allocate %zu points", cap);
     for (size_t i = 0; i < t->count; i++) {
         const oit_bench_row *r = &t->rows[i];
         if (!r->summary)
@@ -242,6 +246,19 @@ static void speed_draw(oit_chart *c, const speed_points *p, int zeros, double fl
         oit_chart_legend(c, "RMSE 0 floor", OIT_CHART_NO_MARKER, grey, 2);
 }
 
+/* Log axes around the points, and around the floor line when it is drawn. */
+static void speed_axes(const speed_points *p, double floor_y, oit_chart_axis *x,
+                       oit_chart_axis *y)
+{
+    *x = (oit_chart_axis){"median ms per frame (log)", OIT_CHART_LOG10, 0, 0};
+    *y = (oit_chart_axis){"mean RMSE vs Embree reference (log)", OIT_CHART_LOG10, 0, 0};
+    double lo, hi;
+    range(p->ms, p->n, &lo, &hi);
+    oit_chart_axis_fit(x, lo, hi, 0);
+    range(p->err, p->n, &lo, &hi);
+    oit_chart_axis_fit(y, isfinite(floor_y) ? fmin(lo, floor_y) : lo, hi, 0);
+}
+
 oit_status oit_bench_plot_speed_error(const oit_bench_table *t, const char *title,
                                       const char *subtitle, const char *path, oit_error *err)
 {
@@ -250,6 +267,8 @@ oit_status oit_bench_plot_speed_error(const oit_bench_table *t, const char *titl
     note(&ns, 0, "Pareto front (dashed black): no other entry is both faster and more exact.");
     speed_points p = {0};
     oit_status s = speed_collect(t, floor_y, &p, &ns, err);
+    if (s != OIT_OK)
+        oit_error_prefix(err, path);
     int zeros = 0;
     for (int i = 0; s == OIT_OK && i < p.n; i++)
         zeros |= p.row[i]->rmse <= 0.0;
@@ -258,22 +277,15 @@ oit_status oit_bench_plot_speed_error(const oit_bench_table *t, const char *titl
                   "grey line.", floor_y);
     if (s == OIT_OK && p.n == 0)
         note(&ns, 0, "no entry rendered: nothing to plot");
-    oit_chart_axis x = {"median ms per frame (log)", OIT_CHART_LOG10, 0, 0};
-    oit_chart_axis y = {"mean RMSE vs Embree reference (log)", OIT_CHART_LOG10, 0, 0};
-    double lo, hi;
-    range(p.ms, p.n, &lo, &hi);
-    oit_chart_axis_fit(&x, lo, hi, 0);
-    range(p.err, p.n, &lo, &hi);
-    oit_chart_axis_fit(&y, zeros ? fmin(lo, floor_y) : lo, hi, 0);
+    oit_chart_axis x, y;
+    speed_axes(&p, zeros ? floor_y : NAN, &x, &y);
     oit_chart c;
-    if (s == OIT_OK && (s = open_chart(&c, title, subtitle, x, y, &ns, err)) == OIT_OK) {
+    if (s == OIT_OK && (s = open_chart(&c, title, subtitle, x, y, &ns, path, err)) == OIT_OK) {
         speed_draw(&c, &p, zeros, floor_y);
         draw_notes(&c, &ns);
         s = finish(&c, path, err);
     }
     speed_free(&p);
-    if (s != OIT_OK)
-        oit_error_prefix(err, path);
     return s;
 }
 
@@ -368,14 +380,12 @@ static oit_status series_chart(series_set *set, const char *title, const char *s
                                oit_error *err)
 {
     oit_chart c;
-    oit_status s = open_chart(&c, title, subtitle, x, y, ns, err);
+    oit_status s = open_chart(&c, title, subtitle, x, y, ns, path, err);
     if (s == OIT_OK) {
         draw_series(&c, set);
         draw_notes(&c, ns);
         s = finish(&c, path, err);
     }
-    if (s != OIT_OK)
-        oit_error_prefix(err, path);
     return s;
 }
 

@@ -143,7 +143,8 @@ static void md_method(FILE *f, const oit_bench_method *m, const oit_bench_result
             continue;
         }
         fprintf(f, "| %d | %u | %.3f | %.3f | %.2f | %u | %.3g | %.3g | %.4f | %s |\n", v,
-                r->ref_layers[v], c->ms_median, c->ms_p95, (double)c->gpu_bytes_peak / 1048576.0, c->max_layers,
+                r->ref_layers[v], c->ms_median, c->ms_p95, (double)c->gpu_bytes_peak / 1048576.0,
+                c->max_layers,
                 c->diff.rmse, c->diff.max_abs, c->diff.pct_over_1_255,
                 num(b[0], 40, c->diff.psnr, "%.2f", "inf"));
     }

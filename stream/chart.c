@@ -345,15 +345,21 @@ static void draw_frame(oit_chart *c)
     fill_rect(&c->img, p->x1, p->y0, p->x1, p->y1, ink);
 }
 
+static void fit_text(const char *text, int width, char *buf, size_t cap);
+
 static void draw_labels(oit_chart *c, const oit_chart_desc *d)
 {
     int th = oit_text_height(TEXT_SCALE), y = PAD;
+    char b[512];
     if (d->title) {
-        oit_text_draw(&c->img, PAD, y, d->title, ink, TEXT_SCALE);
+        fit_text(d->title, d->width - 2 * PAD, b, sizeof b);
+        oit_text_draw(&c->img, PAD, y, b, ink, TEXT_SCALE);
         y += th + 8;
     }
-    if (d->subtitle)
-        oit_text_draw(&c->img, PAD, y, d->subtitle, ink, TEXT_SCALE);
+    if (d->subtitle) {
+        fit_text(d->subtitle, d->width - 2 * PAD, b, sizeof b);
+        oit_text_draw(&c->img, PAD, y, b, ink, TEXT_SCALE);
+    }
     if (d->x.label) {
         int w = oit_text_width(d->x.label, TEXT_SCALE);
         oit_text_draw(&c->img, (c->plot.x0 + c->plot.x1 - w) / 2,

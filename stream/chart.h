@@ -28,9 +28,10 @@ typedef struct oit_chart_axis {
 /* Widens [data_lo, data_hi] by a small margin (3% of a linear range, a
  * twentieth of a decade on a log one; none at a 0 that include_zero asked
  * for) and then to round values (decades on a log axis, multiples of a
- * 1-2-5 step on a linear one), and stores it in a->lo, a->hi. Non-finite bounds (or <= 0 ones on a log axis)
- * are ignored; with nothing left the range is [0, 1] or [1, 10].
- * include_zero (linear only) stretches the range to take in 0. */
+ * 1-2-5 step on a linear one), and stores it in a->lo, a->hi. Non-finite
+ * bounds (or <= 0 ones on a log axis) are ignored; with nothing left the
+ * range is [0, 1] or [1, 10]. include_zero (linear only) stretches the
+ * range to take in 0. */
 void oit_chart_axis_fit(oit_chart_axis *a, double data_lo, double data_hi, int include_zero);
 
 /* Tick values of an axis in increasing order, at most cap of them: every
@@ -63,7 +64,7 @@ oit_chart_marker oit_chart_series_marker(int i);
 
 typedef struct oit_chart_desc {
     int width, height;       /* pixels; at least 320 x 240 */
-    const char *title;       /* may be NULL */
+    const char *title;       /* may be NULL; both cut with "..." to the width */
     const char *subtitle;    /* may be NULL */
     oit_chart_axis x, y;     /* label strings must outlive the chart */
     int note_lines;          /* text lines reserved under the plot */

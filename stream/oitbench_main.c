@@ -113,14 +113,29 @@ static int run(const oit_bench_args *a, const char *command_line)
     return code;
 }
 
+/* The last component of a folder name, trailing slashes ignored. */
+static const char *base_name(const char *path, char *buf, size_t cap)
+{
+    size_t n = strlen(path);
+    while (n > 1 && path[n - 1] == '/')
+        n--;
+    size_t start = n;
+    while (start > 0 && path[start - 1] != '/')
+        start--;
+    snprintf(buf, cap, "%.*s", (int)(n - start), path + start);
+    return buf;
+}
+
 /* oitbench plot: every run's results.csv, then the two cross-run charts. */
 static oit_status plot_runs(const oit_bench_args *a, oit_bench_table *runs, oit_error *err)
 {
     char path[4096], title[128], sub[512] = "runs:";
     oit_status s = OIT_OK;
     for (int i = 0; i < a->run_count; i++) {
+        char name[256];
         size_t used = strlen(sub);
-        snprintf(sub + used, sizeof sub - used, "%s %s", i ? "," : "", a->runs[i]);
+        snprintf(sub + used, sizeof sub - used, "%s %s", i ? "," : "",
+                 base_name(a->runs[i], name, sizeof name));
     }
     for (int i = 0; i < a->run_count && s == OIT_OK; i++) {
         snprintf(path, sizeof path, "%s/results.csv", a->runs[i]);
