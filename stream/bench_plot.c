@@ -173,7 +173,8 @@ static oit_status speed_collect(const oit_bench_table *t, double floor_y, speed_
         if (!r->summary)
             continue;
         if (!ran(r)) {
-            note(ns, 1, "%s not run: %s", r->method, r->reason[0] ? r->reason : "no reason given");
+            note(ns, 1, "%s %s: %s", r->method, isfinite(r->ms_median) ? "stopped" : "not run",
+                 r->reason[0] ? r->reason : "no reason given");
             continue;
         }
         p->row[p->n] = r;
@@ -235,10 +236,17 @@ static void speed_draw(oit_chart *c, const speed_points *p, int zeros, double fl
         oit_chart_series_colour(i, rgb);
         oit_chart_point(c, p->ms[i], p->err[i], oit_chart_series_marker(i), rgb);
     }
+    /* the front's names first: where points crowd, they keep theirs */
+    for (int pass = 0; pass < 2; pass++)
+        for (int i = 0; i < p->n; i++) {
+            float rgb[3];
+            oit_chart_series_colour(i, rgb);
+            if (p->front[i] == !pass)
+                oit_chart_point_label(c, p->ms[i], p->err[i], p->row[i]->method, rgb);
+        }
     for (int i = 0; i < p->n; i++) {
         float rgb[3];
         oit_chart_series_colour(i, rgb);
-        oit_chart_point_label(c, p->ms[i], p->err[i], p->row[i]->method, rgb);
         oit_chart_legend(c, p->row[i]->method, oit_chart_series_marker(i), rgb, 0);
     }
     oit_chart_legend(c, "Pareto front", OIT_CHART_NO_MARKER, black, 2);
@@ -364,14 +372,38 @@ static void draw_series(oit_chart *c, series_set *set)
     }
 }
 
-/* Entries that never rendered, named once each across runs. */
+/* The summary row of method in t when it never rendered, else NULL. */
+static const oit_bench_row *never_ran(const oit_bench_table *t, const char *method)
+{
+    for (size_t i = 0; i < t->count; i++) {
+        const oit_bench_row *row = &t->rows[i];
+        if (row->summary && !strcmp(row->method, method))
+            return !row->ok && !isfinite(row->ms_median) ? row : NULL;
+    }
+    return NULL;
+}
+
+/* Entries that never rendered: a line per method, in how many runs, and
+ * the reason of the first. */
 static void note_not_run(const oit_bench_table *runs, int n, notes *ns)
 {
     for (int r = 0; r < n; r++)
         for (size_t i = 0; i < runs[r].count; i++) {
             const oit_bench_row *row = &runs[r].rows[i];
-            if (row->summary && !row->ok && !isfinite(row->ms_median))
+            int missed = 0, earlier = 0;
+            if (!row->summary || never_ran(&runs[r], row->method) != row)
+                continue;
+            for (int q = 0; q < n; q++) {
+                missed += never_ran(&runs[q], row->method) != NULL;
+                earlier |= q < r && never_ran(&runs[q], row->method) != NULL;
+            }
+            if (earlier)
+                continue;
+            if (n == 1)
                 note(ns, 1, "%s not run: %s", row->method, row->reason);
+            else
+                note(ns, 1, "%s not run in %d of %d runs: %s", row->method, missed, n,
+                     row->reason);
         }
 }
 

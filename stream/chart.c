@@ -482,32 +482,50 @@ static int free_spot(const oit_chart *c, const oit_chart_rect *r)
     return 1;
 }
 
-void oit_chart_point_label(oit_chart *c, double x, double y, const char *text,
-                           const float rgb[3])
+/* Where a label may go: beside, above and below the point, then stacked
+ * further up and down beside it (with a leader line), nearest first. */
+static int label_spots(int px, int py, int w, int h, int spot[16][2])
 {
-    int px, py;
-    if (!oit_chart_map(c, x, y, &px, &py))
-        return;
-    int w = oit_text_width(text, TEXT_SCALE), h = oit_text_height(TEXT_SCALE);
-    int off = MARKER_R + 4;
-    const int cand[6][2] = {{px + off, py - h / 2},     {px - off - w, py - h / 2},
-                            {px - w / 2, py - off - h}, {px - w / 2, py + off},
-                            {px + off, py - off - h},   {px + off, py + off}};
-    int pick = 0;
-    for (int i = 0; i < 6; i++) {
-        oit_chart_rect r = {cand[i][0], cand[i][1], cand[i][0] + w - 1, cand[i][1] + h - 1};
-        if (free_spot(c, &r)) {
-            pick = i;
-            break;
-        }
+    int off = MARKER_R + 4, n = 0;
+    const int near[4][2] = {{px + off, py - h / 2}, {px - off - w, py - h / 2},
+                            {px - w / 2, py - off - h}, {px - w / 2, py + off}};
+    for (int i = 0; i < 4; i++, n++) {
+        spot[n][0] = near[i][0];
+        spot[n][1] = near[i][1];
     }
-    oit_chart_rect r = {cand[pick][0], cand[pick][1], cand[pick][0] + w - 1,
-                        cand[pick][1] + h - 1};
-    /* a white box keeps the text readable over grid and data lines */
-    static const float white[3] = {1.0f, 1.0f, 1.0f};
-    fill_rect(&c->img, r.x0 - 1, r.y0 - 1, r.x1 + 1, r.y1 + 1, white);
-    oit_text_draw(&c->img, r.x0, r.y0, text, rgb, TEXT_SCALE);
-    remember(c, r);
+    for (int k = 1; k <= 3; k++)
+        for (int side = 0; side < 4; side++, n++) {
+            spot[n][0] = side & 1 ? px - off - w : px + off;
+            spot[n][1] = py - h / 2 + (side & 2 ? k : -k) * (h + 4);
+        }
+    return n;
+}
+
+int oit_chart_point_label(oit_chart *c, double x, double y, const char *text,
+                          const float rgb[3])
+{
+    int px, py, spot[16][2];
+    if (!oit_chart_map(c, x, y, &px, &py))
+        return 0;
+    int w = oit_text_width(text, TEXT_SCALE), h = oit_text_height(TEXT_SCALE);
+    int n = label_spots(px, py, w, h, spot);
+    for (int i = 0; i < n; i++) {
+        oit_chart_rect r = {spot[i][0], spot[i][1], spot[i][0] + w - 1, spot[i][1] + h - 1};
+        if (!free_spot(c, &r))
+            continue;
+        if (i >= 4) {
+            static const float leader[3] = {0.6f, 0.6f, 0.6f};
+            int phase = 0, lx = r.x0 > px ? r.x0 - 2 : r.x1 + 2;
+            segment(&c->img, &c->plot, px, py, lx, (r.y0 + r.y1) / 2, leader, 0, &phase);
+        }
+        /* a white box keeps the text readable over grid and data lines */
+        static const float white[3] = {1.0f, 1.0f, 1.0f};
+        fill_rect(&c->img, r.x0 - 1, r.y0 - 1, r.x1 + 1, r.y1 + 1, white);
+        oit_text_draw(&c->img, r.x0, r.y0, text, rgb, TEXT_SCALE);
+        remember(c, r);
+        return 1;
+    }
+    return 0;
 }
 
 /* text cut to at most width pixels, ending in "..." when cut */
@@ -527,9 +545,16 @@ static void fit_text(const char *text, int width, char *buf, size_t cap)
 int oit_chart_legend(oit_chart *c, const char *text, oit_chart_marker shape,
                      const float rgb[3], int line)
 {
-    int th = oit_text_height(TEXT_SCALE);
-    if (c->legend_y + LINE_H > c->img.height - PAD)
+    int th = oit_text_height(TEXT_SCALE), bottom = c->img.height - PAD;
+    if (c->legend_full)
         return 0;
+    if (c->legend_y + 2 * LINE_H > bottom) {
+        /* the last line that fits says that entries are missing */
+        oit_text_draw(&c->img, c->legend_x, c->legend_y + (LINE_H - th) / 2, "(more not shown)",
+                      ink, TEXT_SCALE);
+        c->legend_full = 1;
+        return 0;
+    }
     int cy = c->legend_y + LINE_H / 2, x = c->legend_x;
     if (line) {
         int phase = 0;

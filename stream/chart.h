@@ -82,6 +82,7 @@ typedef struct oit_chart {
     oit_chart_axis x, y;
     oit_chart_rect plot;          /* the data area, frame included */
     int legend_x, legend_y;       /* where the next legend entry goes */
+    int legend_full;              /* entries were dropped */
     int note_y, notes_free;       /* the next note line, lines left */
     /* what labels must not cover: placed labels and markers */
     oit_chart_rect placed[OIT_CHART_MAX_PLACED];
@@ -108,16 +109,18 @@ void oit_chart_point(oit_chart *c, double x, double y, oit_chart_marker shape,
 void oit_chart_polyline(oit_chart *c, const double *x, const double *y, int n,
                         const float rgb[3], int dashed);
 
-/* Text on a white box next to a data point, on the first side (right,
- * left, above, below, then the corners) where it covers no earlier label or
- * marker and stays in the plot area; where none is free, on the right.
- * Nothing when the point does not map. */
-void oit_chart_point_label(oit_chart *c, double x, double y, const char *text,
-                           const float rgb[3]);
+/* Text on a white box next to a data point, on the first place (beside,
+ * above, below, then stacked up and down beside it with a leader line)
+ * where it covers no earlier label or marker and stays in the plot area.
+ * Returns 0 and draws nothing where no place is free (crowded points: the
+ * legend still names them) or the point does not map. */
+int oit_chart_point_label(oit_chart *c, double x, double y, const char *text,
+                          const float rgb[3]);
 
 /* One legend entry: a marker (or none), a line sample when line is 1 (solid)
  * or 2 (dashed), and the text, cut to the legend's width. Entries that do
- * not fit under the previous ones are dropped; returns 0 then. */
+ * not fit under the previous ones are dropped (returning 0), and the last
+ * line that fits says "(more not shown)". */
 int oit_chart_legend(oit_chart *c, const char *text, oit_chart_marker shape,
                      const float rgb[3], int line);
 

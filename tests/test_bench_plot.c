@@ -171,6 +171,14 @@ static void test_marker_and_line(void)
     for (int dy = -1; dy <= 1; dy++)
         CHECK(!is_colour(&c.img, c.plot.x0 - 5, row + dy, blue) &&
               !is_colour(&c.img, c.plot.x1 + 5, row + dy, blue), "line not clipped to the plot");
+    /* labels of one crowded point: the first beside it, then stacked, then none */
+    int placed = 0, first = oit_chart_point_label(&c, 2, 1, "label", red);
+    for (int i = 0; i < 30; i++)
+        placed += oit_chart_point_label(&c, 2, 1, "label", red);
+    printf("crowded point: %d of 31 labels placed\n", first + placed);
+    CHECK(first && placed >= 4 && placed < 30, "crowded labels: first %d, then %d of 30", first,
+          placed);
+    CHECK(!oit_chart_point_label(&c, 20, 1, "off", red), "label of a point off the axes drawn");
     CHECK(oit_chart_note(&c, "one", red) && oit_chart_note(&c, "two", red) &&
           !oit_chart_note(&c, "three", red), "note lines not as reserved");
     oit_chart_free(&c);
@@ -178,6 +186,32 @@ static void test_marker_and_line(void)
     CHECK(oit_chart_create(&c, &small, &err) == OIT_ERR_ARGUMENT, "12 notes fit in 300 rows");
     oit_chart_desc bad_axis = {800, 600, NULL, NULL, d.x, {NULL, OIT_CHART_LOG10, 0, 1}, 0, 0};
     CHECK(oit_chart_create(&c, &bad_axis, &err) == OIT_ERR_ARGUMENT, "log axis from 0 accepted");
+}
+
+/* A legend longer than the chart stops with a line saying so. */
+static void test_legend_overflow(void)
+{
+    oit_chart c;
+    oit_error err;
+    oit_chart_desc d = {800, 400, NULL, NULL, {NULL, OIT_CHART_LINEAR, 0, 1},
+                        {NULL, OIT_CHART_LINEAR, 0, 1}, 0, 0};
+    if (oit_chart_create(&c, &d, &err) != OIT_OK) {
+        CHECK(0, "create: %s", err.message);
+        return;
+    }
+    int shown = 0;
+    for (int i = 0; i < 40; i++)
+        shown += oit_chart_legend(&c, "series", OIT_CHART_CIRCLE, red, 1);
+    printf("legend: %d of 40 entries fit in 400 rows\n", shown);
+    CHECK(shown > 5 && shown < 40, "%d legend entries shown in 400 rows", shown);
+    CHECK(!oit_chart_legend(&c, "late", OIT_CHART_CIRCLE, red, 0), "entry after a full legend");
+    const float ink[3] = {0.1f, 0.1f, 0.1f};
+    int marked = 0;
+    for (int y = c.legend_y; y < c.legend_y + 22 && y < c.img.height; y++)
+        for (int x = c.legend_x; x < c.img.width; x++)
+            marked |= is_colour(&c.img, x, y, ink);
+    CHECK(marked, "no \"(more not shown)\" line under the last entry");
+    oit_chart_free(&c);
 }
 
 static void test_pareto(void)
@@ -376,6 +410,7 @@ int main(void)
     test_status_line_upper_case();
     test_axes();
     test_marker_and_line();
+    test_legend_overflow();
     test_pareto();
     test_csv_round_trip();
     test_csv_malformed();
