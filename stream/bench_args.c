@@ -3,6 +3,7 @@
 
 #include <errno.h>
 #include <limits.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -62,6 +63,66 @@ static oit_status bad(oit_error *err, const char *opt, const char *v, const char
     return oit_error_set(err, OIT_ERR_ARGUMENT, "%s '%s': expected %s", opt, v, want);
 }
 
+/* "0,0.01,0.1": each in [0, 1), none twice (as the float the method gets). */
+static oit_status split_epsilons(const char *list, oit_bench_args *a, oit_error *err)
+{
+    const char *p = list;
+    a->epsilon_count = 0;
+    for (;;) {
+        char *end;
+        errno = 0;
+        double v = strtod(p, &end);
+        if (end == p || errno || (*end && *end != ',') || !(v >= 0.0 && v < 1.0) ||
+            !strchr("0123456789.", *p))
+            return bad(err, "--epsilon", list, "comma-separated thresholds, each in [0, 1)");
+        for (int i = 0; i < a->epsilon_count; i++)
+            if (a->epsilons[i] == (float)v)
+                return oit_error_set(err, OIT_ERR_ARGUMENT, "--epsilon '%s': %g given twice",
+                                     list, v);
+        if (a->epsilon_count == OIT_BENCH_MAX_EPSILONS)
+            return oit_error_set(err, OIT_ERR_ARGUMENT, "--epsilon '%s': more than %d values",
+                                 list, OIT_BENCH_MAX_EPSILONS);
+        a->epsilons[a->epsilon_count++] = (float)v;
+        if (!*end)
+            return OIT_OK;
+        p = end + 1;
+    }
+}
+
+static oit_status add_entry(oit_bench_args *a, const char *method, float epsilon,
+                            oit_error *err)
+{
+    if (a->entry_count == OIT_BENCH_MAX_ENTRIES)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "--methods x --epsilon: more than %d entries",
+                             OIT_BENCH_MAX_ENTRIES);
+    oit_bench_entry *e = &a->entries[a->entry_count++];
+    e->method = method;
+    e->epsilon = epsilon;
+    if (epsilon >= 0.0f)
+        snprintf(e->name, sizeof e->name, "%s@%g", method, (double)epsilon);
+    else
+        snprintf(e->name, sizeof e->name, "%s", method);
+    return OIT_OK;
+}
+
+/* Every method once, a method that takes a threshold once per --epsilon. */
+static oit_status expand_entries(oit_bench_args *a, oit_error *err)
+{
+    int swept = 0;
+    oit_status s = OIT_OK;
+    a->entry_count = 0;
+    for (int i = 0; i < a->method_count && s == OIT_OK; i++) {
+        int sweep = a->epsilon_count > 0 && oit_render_method_find(a->methods[i])->takes_epsilon;
+        swept |= sweep;
+        for (int k = 0; k < (sweep ? a->epsilon_count : 1) && s == OIT_OK; k++)
+            s = add_entry(a, a->methods[i], sweep ? a->epsilons[k] : -1.0f, err);
+    }
+    if (s == OIT_OK && a->epsilon_count > 0 && !swept)
+        s = oit_error_set(err, OIT_ERR_ARGUMENT, "--epsilon applies to stream, guarded and "
+                          "f2b; --methods names none of them");
+    return s;
+}
+
 /* One "--name value" option; 0 when the name is unknown. */
 static int value_option(oit_bench_args *a, const char *opt, const char *v, char *buf, size_t cap,
                         oit_status *s, oit_error *err)
@@ -77,15 +138,48 @@ static int value_option(oit_bench_args *a, const char *opt, const char *v, char 
         if (!parse_int(v, &a->warmup, 0, 100000)) *s = bad(err, opt, v, "a frame count >= 0");
     } else if (!strcmp(opt, "--max-layers")) {
         if (!parse_int(v, &a->max_layers, 2, 16)) *s = bad(err, opt, v, "K in [2, 16]");
+    } else if (!strcmp(opt, "--epsilon")) *s = split_epsilons(v, a, err);
+    else if (!strcmp(opt, "--shading")) {
+        if (!strcmp(v, "transparent")) a->shading = OIT_SHADING_TRANSPARENT;
+        else if (!strcmp(v, "translucent")) a->shading = OIT_SHADING_TRANSLUCENT;
+        else *s = bad(err, opt, v, "transparent or translucent");
     } else if (!strcmp(opt, "--out")) a->out = v;
     else return 0;
     return 1;
+}
+
+/* oitbench plot OUT_DIR RUN_DIR... */
+static oit_status parse_plot(int argc, char **argv, oit_bench_args *a, oit_error *err)
+{
+    a->plot = 1;
+    for (int i = 2; i < argc; i++) {
+        const char *arg = argv[i];
+        if (!strcmp(arg, "--help") || !strcmp(arg, "-h"))
+            a->help = 1;
+        else if (!strncmp(arg, "--", 2))
+            return oit_error_set(err, OIT_ERR_ARGUMENT, "plot: unknown option '%s' (see "
+                                 "oitbench --help)", arg);
+        else if (!a->plot_out)
+            a->plot_out = arg;
+        else if (a->run_count == OIT_BENCH_MAX_RUNS)
+            return oit_error_set(err, OIT_ERR_ARGUMENT, "plot: more than %d run folders",
+                                 OIT_BENCH_MAX_RUNS);
+        else
+            a->runs[a->run_count++] = arg;
+    }
+    if (!a->help && a->run_count == 0)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "plot needs OUT_DIR and at least one "
+                             "RUN_DIR (see oitbench --help)");
+    return OIT_OK;
 }
 
 oit_status oit_bench_args_parse(int argc, char **argv, oit_bench_args *a, char *buf, size_t cap,
                                 oit_error *err)
 {
     memset(a, 0, sizeof *a);
+    if (argc >= 2 && !strcmp(argv[1], "plot"))
+        return parse_plot(argc, argv, a, err);
+    a->shading = OIT_SHADING_TRANSPARENT;
     a->orbit = 8;
     a->width = a->height = 512;
     a->frames = 5;
@@ -119,13 +213,14 @@ oit_status oit_bench_args_parse(int argc, char **argv, oit_bench_args *a, char *
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--methods is required (see --help)");
     if (!a->out)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--out DIR is required (see --help)");
-    return OIT_OK;
+    return expand_entries(a, err);
 }
 
 void oit_bench_usage(FILE *f, const char *method_list)
 {
     fprintf(f,
         "usage: oitbench MODEL_OR_PARTFILE --methods LIST --out DIR [options]\n"
+        "       oitbench plot OUT_DIR RUN_DIR [RUN_DIR...]\n"
         "  Renders MODEL (a mesh, or a .oitp part file) from an orbit of views with\n"
         "  every method of LIST, interleaved view by view (warm-up frames, then timed\n"
         "  frames per method, methods round-robin, so that drift hits all alike), and\n"
@@ -135,21 +230,38 @@ void oit_bench_usage(FILE *f, const char *method_list)
         "options:\n"
         "  --methods LIST   comma-separated, from %s\n"
         "                   (guarded and f2b run at their seeds' thresholds, 0.0025\n"
-        "                   and 0.02; see oitstream --help for each method)\n"
-        "  --out DIR        writes DIR/results.csv, DIR/results.json, DIR/report.md\n"
+        "                   and 0.02, unless --epsilon; see oitstream --help)\n"
+        "  --epsilon LIST   comma-separated thresholds, each in [0, 1): every method\n"
+        "                   of LIST that takes one (stream: early termination at\n"
+        "                   transmittance E, exact at 0; guarded: contribution\n"
+        "                   threshold; f2b: alpha threshold) runs once per value, as\n"
+        "                   its own entry NAME@E (e.g. stream@0.01), so each value is\n"
+        "                   a point on the speed-against-error chart. Default: each\n"
+        "                   method once at its default (stream exact)\n"
+        "  --out DIR        writes DIR/results.csv, results.json, speed_vs_error.png,\n"
+        "                   memory_vs_depth.png and report.md (which shows the PNGs)\n"
         "  --orbit N        N views around the model, elevation 20 deg (default 8)\n"
         "  --size WxH       image size (default 512x512)\n"
         "  --frames F       timed frames per method per view (default 5)\n"
         "  --warmup W       untimed frames per method per view first (default 1)\n"
         "  --max-layers K   K of the capture backends, 2..16 (default 16)\n"
+        "  --shading S      transparent (default) or translucent (Beer-Lambert and\n"
+        "                   Fresnel, as oitstream --shading)\n"
         "  --help           this text\n"
-        "figures per method: median and 95th-percentile ms per frame over all timed\n"
+        "figures per entry: median and 95th-percentile ms per frame over all timed\n"
         "frames, GPU bytes at peak, most layers seen, and against the reference per\n"
-        "view: mean rmse, worst max_abs, worst %% of pixels off by > 1/255, least PSNR.\n"
+        "view: mean rmse, worst max_abs, worst %% of pixels off by > 1/255, least PSNR;\n"
+        "per view its depth complexity (the most surfaces the reference ray met at\n"
+        "one pixel); results.csv carries the model's triangle count on every row.\n"
         "Absolute times mean something only from a GPU; ratios are side by side.\n"
+        "plot: reads RUN_DIR/results.csv of each earlier run (this oitbench's format;\n"
+        "  a malformed file is named with its line) and writes OUT_DIR/\n"
+        "  time_vs_triangles.png (median ms against the run's triangles, log-log, a\n"
+        "  line per method) and OUT_DIR/memory_vs_depth.png (GPU MiB at peak against\n"
+        "  each view's depth, every run). A model file named 'plot' needs ./plot.\n"
         "progress goes to stderr.\n"
         "exit: 0 results written (even when some methods could not run), 1 runtime\n"
         "failure (reference failed, no method ran, output not writable), 2 usage\n"
-        "error, 3 bad input model.\n",
+        "error, 3 bad input model or results.csv.\n",
         method_list);
 }

@@ -1,6 +1,9 @@
 /* oitbench's output files (bench_report.h). */
 #include "stream/bench_report.h"
 
+#include "stream/bench_csv.h"
+#include "stream/bench_plot.h"
+
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -17,16 +20,6 @@ static const char *num(char *buf, size_t cap, double x, const char *fmt, const c
     else
         snprintf(buf, cap, "%s", nonfinite);
     return buf;
-}
-
-static void csv_text(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (; *s; s++) {
-        if (*s == '"') fputc('"', f);
-        fputc(*s == '\n' ? ' ' : *s, f);
-    }
-    fputc('"', f);
 }
 
 static void json_text(FILE *f, const char *s)
@@ -59,46 +52,6 @@ static oit_status close_out(FILE *f, const char *path, oit_error *err)
     return OIT_OK;
 }
 
-/* ---- results.csv ---- */
-
-static void csv_row(FILE *f, const char *row, const char *method, int view, int ok,
-                    double med, double p95, uint64_t gpu, uint32_t layers, double rmse,
-                    double max_abs, double pct, double psnr, const char *reason)
-{
-    char b[8][40];
-    fprintf(f, "%s,%s,", row, method);
-    if (view >= 0) fprintf(f, "%d", view);
-    fprintf(f, ",%s,%s,%s,", ok ? "ok" : "not_runnable", num(b[0], 40, med, "%.4f", ""),
-            num(b[1], 40, p95, "%.4f", ""));
-    if (ok) fprintf(f, "%llu,%u", (unsigned long long)gpu, layers);
-    else fprintf(f, ",");
-    fprintf(f, ",%s,%s,%s,%s,", num(b[2], 40, ok ? rmse : NAN, "%.9g", ""),
-            num(b[3], 40, ok ? max_abs : NAN, "%.9g", ""), num(b[4], 40, ok ? pct : NAN, "%.6f", ""),
-            num(b[5], 40, ok ? psnr : NAN, "%.4f", ok ? "inf" : ""));
-    csv_text(f, ok ? "" : reason);
-    fputc('\n', f);
-}
-
-static void write_csv(FILE *f, const oit_bench_result *r)
-{
-    fprintf(f, "row,method,view,status,ms_median,ms_p95,gpu_bytes_peak,max_layers,rmse,"
-               "max_abs,pct_over_1_255,psnr,reason\n");
-    for (int v = 0; v < r->views; v++)
-        for (int i = 0; i < r->method_count; i++) {
-            const oit_bench_method *m = &r->methods[i];
-            const oit_bench_cell *c = &m->cells[v];
-            csv_row(f, "view", m->method->name, v, c->ok, c->ok ? c->ms_median : NAN,
-                    c->ok ? c->ms_p95 : NAN, c->gpu_bytes_peak, c->max_layers, c->diff.rmse,
-                    c->diff.max_abs, c->diff.pct_over_1_255, c->diff.psnr, m->reason);
-        }
-    for (int i = 0; i < r->method_count; i++) {
-        const oit_bench_method *m = &r->methods[i];
-        csv_row(f, "summary", m->method->name, -1, m->runnable, m->ms_median, m->ms_p95,
-                m->gpu_bytes_peak, m->max_layers, m->rmse_mean, m->max_abs_worst,
-                m->pct_over_worst, m->psnr_min, m->reason);
-    }
-}
-
 /* ---- results.json ---- */
 
 static void json_cell(FILE *f, int v, const oit_bench_cell *c)
@@ -120,8 +73,10 @@ static void json_cell(FILE *f, int v, const oit_bench_cell *c)
 static void json_method(FILE *f, const oit_bench_method *m, int views)
 {
     char b[6][40];
-    fprintf(f, "    {\"name\": \"%s\", \"runnable\": %s, \"reason\": ", m->method->name,
-            m->runnable ? "true" : "false");
+    fprintf(f, "    {\"name\": \"%s\", \"method\": \"%s\", \"epsilon\": %s, "
+               "\"runnable\": %s, \"reason\": ",
+            m->name, m->method->name, num(b[0], 40, m->epsilon >= 0.0f ? m->epsilon : NAN, "%g",
+                                          "null"), m->runnable ? "true" : "false");
     json_text(f, m->reason);
     fprintf(f, ", \"timed_frames\": %zu, \"ms_median\": %s, \"ms_p95\": %s, "
                "\"gpu_bytes_peak\": %llu, \"max_layers\": %u, \"rmse_mean\": %s, "
@@ -148,11 +103,16 @@ static void write_json(FILE *f, const oit_bench_context *ctx, const oit_bench_re
     json_text(f, ctx->command_line);
     fprintf(f, ",\n  \"renderer\": ");
     json_text(f, r->renderer);
-    fprintf(f, ",\n  \"cpus\": %ld, \"width\": %d, \"height\": %d, \"views\": %d, "
-               "\"frames\": %d, \"warmup\": %d,\n  \"reference_ms\": [",
-            ctx->cpus, ctx->width, ctx->height, r->views, ctx->frames, ctx->warmup);
+    fprintf(f, ",\n  \"cpus\": %ld, \"triangles\": %llu, \"shading\": \"%s\", "
+               "\"width\": %d, \"height\": %d, \"views\": %d, \"frames\": %d, "
+               "\"warmup\": %d,\n  \"reference_ms\": [",
+            ctx->cpus, (unsigned long long)ctx->triangles, ctx->shading, ctx->width, ctx->height,
+            r->views, ctx->frames, ctx->warmup);
     for (int v = 0; v < r->views; v++)
         fprintf(f, "%s%.4f", v ? ", " : "", r->ref_ms[v]);
+    fprintf(f, "],\n  \"reference_max_layers\": [");
+    for (int v = 0; v < r->views; v++)
+        fprintf(f, "%s%u", v ? ", " : "", r->ref_layers[v]);
     fprintf(f, "],\n  \"methods\": [\n");
     for (int i = 0; i < r->method_count; i++) {
         json_method(f, &r->methods[i], r->views);
@@ -163,30 +123,32 @@ static void write_json(FILE *f, const oit_bench_context *ctx, const oit_bench_re
 
 /* ---- report.md ---- */
 
-static void md_method(FILE *f, const oit_bench_method *m, int views)
+static void md_method(FILE *f, const oit_bench_method *m, const oit_bench_result *r)
 {
+    int views = r->views;
     char b[8][40];
-    fprintf(f, "## %s\n\n", m->method->name);
+    fprintf(f, "## %s\n\n", m->name);
     if (!m->runnable && m->ms_count == 0) {
         fprintf(f, "Not runnable: %s\n\n", m->reason);
         return;
     }
     if (!m->runnable)
         fprintf(f, "Stopped: %s (figures below are over the views it rendered)\n\n", m->reason);
-    fprintf(f, "| view | ms median | ms p95 | GPU MiB peak | max layers | rmse | max_abs | "
-               "%% over 1/255 | PSNR dB |\n|---|---|---|---|---|---|---|---|---|\n");
+    fprintf(f, "| view | depth | ms median | ms p95 | GPU MiB peak | max layers | rmse | "
+               "max_abs | %% over 1/255 | PSNR dB |\n|---|---|---|---|---|---|---|---|---|---|\n");
     for (int v = 0; v < views; v++) {
         const oit_bench_cell *c = &m->cells[v];
         if (!c->ok) {
-            fprintf(f, "| %d | - | - | - | - | - | - | - | - |\n", v);
+            fprintf(f, "| %d | %u | - | - | - | - | - | - | - | - |\n", v, r->ref_layers[v]);
             continue;
         }
-        fprintf(f, "| %d | %.3f | %.3f | %.2f | %u | %.3g | %.3g | %.4f | %s |\n", v,
-                c->ms_median, c->ms_p95, (double)c->gpu_bytes_peak / 1048576.0, c->max_layers,
+        fprintf(f, "| %d | %u | %.3f | %.3f | %.2f | %u | %.3g | %.3g | %.4f | %s |\n", v,
+                r->ref_layers[v], c->ms_median, c->ms_p95, (double)c->gpu_bytes_peak / 1048576.0,
+                c->max_layers,
                 c->diff.rmse, c->diff.max_abs, c->diff.pct_over_1_255,
                 num(b[0], 40, c->diff.psnr, "%.2f", "inf"));
     }
-    fprintf(f, "| **all** | **%s** | **%s** | %.2f | %u | %s (mean) | %s (worst) | %s (worst) | "
+    fprintf(f, "| **all** | | **%s** | **%s** | %.2f | %u | %s (mean) | %s (worst) | %s (worst) | "
                "%s (min) |\n\n",
             num(b[1], 40, m->ms_median, "%.3f", "-"), num(b[2], 40, m->ms_p95, "%.3f", "-"),
             (double)m->gpu_bytes_peak / 1048576.0, m->max_layers,
@@ -199,15 +161,52 @@ static void write_md(FILE *f, const oit_bench_context *ctx, const oit_bench_resu
     fprintf(f, "# oitbench: %s\n\n", ctx->model);
     fprintf(f, "- GL renderer: %s\n- CPUs: %ld\n- command: `%s`\n", r->renderer, ctx->cpus,
             ctx->command_line);
+    fprintf(f, "- model: %llu triangles, %s shading\n", (unsigned long long)ctx->triangles,
+            ctx->shading);
     fprintf(f, "- %d views (orbit, elevation 20 deg), %dx%d, %d warm-up + %d timed frames per "
                "method per view, methods interleaved round-robin\n",
             r->views, ctx->width, ctx->height, ctx->warmup, ctx->frames);
-    fprintf(f, "- errors are against the Embree reference of the same view\n\n");
+    fprintf(f, "- errors are against the Embree reference of the same view; a view's depth is "
+               "the most surfaces the reference ray met at one pixel\n");
+    fprintf(f, "- NAME@E: the method with threshold E (stream: early termination at "
+               "transmittance E; guarded: contribution threshold; f2b: alpha threshold); "
+               "NAME alone: its default\n\n");
     fprintf(f, "Absolute times are only meaningful from a GPU (a software renderer such as "
                "llvmpipe says nothing about GPU speed); ratios between methods were measured "
                "side by side in one run.\n\n");
+    fprintf(f, "## Plots\n\n![speed against error](speed_vs_error.png)\n\n"
+               "![memory against depth](memory_vs_depth.png)\n\n");
     for (int i = 0; i < r->method_count; i++)
-        md_method(f, &r->methods[i], r->views);
+        md_method(f, &r->methods[i], r);
+}
+
+static const char *base_name(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    return slash ? slash + 1 : path;
+}
+
+/* The charts are drawn from results.csv as written, read back. */
+static oit_status write_plots(const char *dir, const oit_bench_context *ctx,
+                              const oit_bench_result *r, oit_error *err)
+{
+    char path[4096], title[256], sub[512];
+    oit_bench_table t;
+    snprintf(path, sizeof path, "%s/results.csv", dir);
+    oit_status s = oit_bench_csv_load(path, &t, err);
+    if (s != OIT_OK)
+        return s;
+    snprintf(title, sizeof title, "%s: %llu triangles, %s", base_name(ctx->model),
+             (unsigned long long)ctx->triangles, ctx->shading);
+    snprintf(sub, sizeof sub, "%dx%d, %d views, %s", ctx->width, ctx->height, r->views,
+             r->renderer);
+    snprintf(path, sizeof path, "%s/speed_vs_error.png", dir);
+    s = oit_bench_plot_speed_error(&t, title, sub, path, err);
+    snprintf(path, sizeof path, "%s/memory_vs_depth.png", dir);
+    if (s == OIT_OK)
+        s = oit_bench_plot_memory_depth(&t, 1, title, sub, path, err);
+    oit_bench_table_free(&t);
+    return s;
 }
 
 oit_status oit_bench_write_reports(const char *dir, const oit_bench_context *ctx,
@@ -219,13 +218,15 @@ oit_status oit_bench_write_reports(const char *dir, const oit_bench_context *ctx
     FILE *f;
     oit_status s = open_out(dir, "results.csv", &f, path, sizeof path, err);
     if (s == OIT_OK) {
-        write_csv(f, r);
+        oit_bench_csv_write(f, r, ctx->triangles);
         s = close_out(f, path, err);
     }
     if (s == OIT_OK && (s = open_out(dir, "results.json", &f, path, sizeof path, err)) == OIT_OK) {
         write_json(f, ctx, r);
         s = close_out(f, path, err);
     }
+    if (s == OIT_OK)
+        s = write_plots(dir, ctx, r, err);
     if (s == OIT_OK && (s = open_out(dir, "report.md", &f, path, sizeof path, err)) == OIT_OK) {
         write_md(f, ctx, r);
         s = close_out(f, path, err);

@@ -1,8 +1,11 @@
 /* oitbench's output files from one measurement (bench_run.h):
- * DIR/results.csv  one row per method per view, then one summary row per
- *                  method (column "row": view | summary);
- * DIR/results.json the same figures nested, for data_scripts/plot_bench.py;
- * DIR/report.md    a table per method, the machine and the command line.
+ * DIR/results.csv          one row per entry per view, then one summary row
+ *                          per entry (bench_csv.h has the columns);
+ * DIR/results.json         the same figures nested, with the run's settings;
+ * DIR/speed_vs_error.png   and DIR/memory_vs_depth.png, drawn from
+ *                          results.csv as written (bench_plot.h);
+ * DIR/report.md            a table per entry, the machine, the command line
+ *                          and the two charts.
  * Non-finite figures (psnr of identical images, a method that never ran)
  * are empty in CSV, null in JSON, "-" or "inf" in the report. */
 #ifndef OIT_STREAM_BENCH_REPORT_H
@@ -15,6 +18,8 @@ typedef struct oit_bench_context {
     const char *command_line;
     int width, height, frames, warmup;
     long cpus;
+    unsigned long long triangles;   /* of the model as rendered */
+    const char *shading;            /* "transparent" or "translucent" */
 } oit_bench_context;
 
 /* Creates dir when missing. */

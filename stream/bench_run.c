@@ -61,12 +61,12 @@ static void open_methods(const oit_bench_desc *d, oit_bench_result *r, oit_gl **
         snprintf(r->renderer, sizeof r->renderer, "%s", oit_gl_renderer(*gl));
     else if (need_gl)
         snprintf(r->renderer, sizeof r->renderer, "none (no GL context: %.200s)", err.message);
-    /* epsilon -1: every method at its default (exact, or its seed's threshold). */
     oit_method_options opt = {.max_layers = d->max_layers, .partfile = d->partfile,
-                              .pack = OIT_PACK_DISJOINT, .gl = *gl, .epsilon = -1.0f};
+                              .pack = OIT_PACK_DISJOINT, .gl = *gl};
     for (int i = 0; i < r->method_count; i++) {
         oit_bench_method *m = &r->methods[i];
         m->runnable = 1;
+        opt.epsilon = m->epsilon;
         if (m->method->uses_gl && gs != OIT_OK)
             mark_failed(m, -1, r->renderer);
         else if (m->method->needs_partfile && !d->partfile)
@@ -77,9 +77,10 @@ static void open_methods(const oit_bench_desc *d, oit_bench_result *r, oit_gl **
     }
 }
 
-static oit_shading bench_shading(const oit_mesh_info *info)
+static oit_shading bench_shading(const oit_mesh_info *info, oit_shading_mode mode)
 {
     oit_shading s = {0};
+    s.mode = mode;
     s.attributes = info->attributes;
     s.scene_scale = oit_scene_scale(info->bounds_min, info->bounds_max);
     oit_shading_resolve_defaults(&s);
@@ -168,10 +169,10 @@ static void print_view(FILE *f, const oit_bench_result *r, int v)
     for (int i = 0; i < r->method_count; i++) {
         const oit_bench_method *m = &r->methods[i];
         if (m->cells[v].ok)
-            fprintf(f, "; %s %.2f ms rmse %.3g", m->method->name, m->cells[v].ms_median,
+            fprintf(f, "; %s %.2f ms rmse %.3g", m->name, m->cells[v].ms_median,
                     m->cells[v].diff.rmse);
         else
-            fprintf(f, "; %s not run", m->method->name);
+            fprintf(f, "; %s not run", m->name);
     }
     fprintf(f, "\n");
 }
@@ -200,21 +201,24 @@ static void summarise(oit_bench_method *m, int views)
 static oit_status alloc_result(const oit_bench_desc *d, oit_bench_result *r, oit_error *err)
 {
     memset(r, 0, sizeof *r);
-    r->method_count = d->method_count;
+    r->method_count = d->entry_count;
     r->views = d->views;
-    r->methods = calloc((size_t)d->method_count, sizeof *r->methods);
+    r->methods = calloc((size_t)d->entry_count, sizeof *r->methods);
     r->ref_ms = calloc((size_t)d->views, sizeof *r->ref_ms);
-    int ok = r->methods && r->ref_ms;
-    for (int i = 0; ok && i < d->method_count; i++) {
+    r->ref_layers = calloc((size_t)d->views, sizeof *r->ref_layers);
+    int ok = r->methods && r->ref_ms && r->ref_layers;
+    for (int i = 0; ok && i < d->entry_count; i++) {
         oit_bench_method *m = &r->methods[i];
-        m->method = oit_render_method_find(d->methods[i]);
+        m->method = oit_render_method_find(d->entries[i].method);
+        m->epsilon = d->entries[i].epsilon;
+        snprintf(m->name, sizeof m->name, "%s", d->entries[i].name);
         m->ms = malloc((size_t)d->views * (size_t)d->frames * sizeof *m->ms);
         m->cells = calloc((size_t)d->views, sizeof *m->cells);
         ok = m->method && m->ms && m->cells;
     }
     if (!ok)
         return oit_error_set(err, OIT_ERR_NOMEM, "cannot allocate results for %d methods x %d "
-                             "views (or a method name is unknown)", d->method_count, d->views);
+                             "views (or a method name is unknown)", d->entry_count, d->views);
     return OIT_OK;
 }
 
@@ -226,7 +230,7 @@ static oit_status run_views(const oit_bench_desc *d, oit_bench_result *r, oit_er
     oit_status s = last ? refm->open(d->mesh, NULL, &ref_state, err)
                         : oit_error_set(err, OIT_ERR_NOMEM, "cannot allocate image slots");
     oit_view view = {.width = d->width, .height = d->height,
-                     .shading = bench_shading(&d->mesh->info)};
+                     .shading = bench_shading(&d->mesh->info, d->shading)};
     for (int v = 0; v < d->views && s == OIT_OK; v++) {
         oit_image ref = {0};
         oit_frame_stats st = {0};
@@ -238,6 +242,7 @@ static oit_status run_views(const oit_bench_desc *d, oit_bench_result *r, oit_er
             break;
         }
         r->ref_ms[v] = st.ms;
+        r->ref_layers[v] = st.max_layers;
         measure_view(d, r, v, &view, last);
         compare_view(r, v, &ref, last);
         oit_image_free(&ref);
@@ -278,5 +283,6 @@ void oit_bench_result_free(oit_bench_result *r)
     }
     free(r->methods);
     free(r->ref_ms);
+    free(r->ref_layers);
     memset(r, 0, sizeof *r);
 }

@@ -1,8 +1,9 @@
-/* oitbench's measurement: every method of a list over an orbit of views,
- * interleaved view-major (warm-up then timed frames per method, methods
- * round-robin) so that clock or thermal drift hits all methods alike, each
- * view's image compared with the Embree reference of that view. A method
- * that cannot open, or fails on a view, is kept with the reason. */
+/* oitbench's measurement: every entry of a list (a method, at a threshold
+ * for those that take one) over an orbit of views, interleaved view-major
+ * (warm-up then timed frames per entry, entries round-robin) so that clock
+ * or thermal drift hits all alike, each view's image compared with the
+ * Embree reference of that view. An entry that cannot open, or fails on a
+ * view, is kept with the reason. */
 #ifndef OIT_STREAM_BENCH_RUN_H
 #define OIT_STREAM_BENCH_RUN_H
 
@@ -21,8 +22,20 @@ typedef struct oit_bench_cell {
     oit_image_diff diff;     /* last timed frame against the reference */
 } oit_bench_cell;
 
+/* What to run: a method, and the threshold oit_method_options.epsilon
+ * passes it (< 0: the method's default); name labels it in every output
+ * ("stream", "stream@0.01"). */
+#define OIT_BENCH_NAME_MAX 64
+typedef struct oit_bench_entry {
+    const char *method;
+    float epsilon;
+    char name[OIT_BENCH_NAME_MAX];
+} oit_bench_entry;
+
 typedef struct oit_bench_method {
     const oit_render_method *method;
+    char name[OIT_BENCH_NAME_MAX];
+    float epsilon;           /* as oit_bench_entry */
     oit_method_state *state;
     int runnable;            /* opened and rendered every view */
     char reason[512];        /* why not, when !runnable */
@@ -39,9 +52,10 @@ typedef struct oit_bench_method {
 typedef struct oit_bench_desc {
     const oit_mesh *mesh;        /* in core; the reference renders it */
     oit_partfile *partfile;      /* NULL for a mesh file */
-    const char *const *methods;
-    int method_count;
+    const oit_bench_entry *entries;
+    int entry_count;
     int views, width, height, frames, warmup, max_layers;
+    oit_shading_mode shading;    /* transparent or translucent */
     /* progress lines ("oitbench: ...") go here; NULL: silent */
     FILE *progress;
 } oit_bench_desc;
@@ -51,6 +65,9 @@ typedef struct oit_bench_result {
     int method_count, views;
     char renderer[256];          /* GL renderer, or why there is none */
     double *ref_ms;              /* reference time per view */
+    /* per view, the most hits the reference ray met at one pixel: the
+     * view's depth complexity, whatever the methods report */
+    uint32_t *ref_layers;
 } oit_bench_result;
 
 /* Fails only when the reference cannot render (nothing to measure against)

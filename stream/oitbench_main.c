@@ -1,6 +1,7 @@
 /* oitbench: measures rendering methods side by side on one model over an
  * orbit of views (speed, memory, layers, error against the Embree
- * reference) and writes results.csv, results.json and report.md. Errors are
+ * reference) and writes results.csv, results.json, two PNG charts and
+ * report.md; "oitbench plot" draws charts across earlier runs. Errors are
  * one line on stderr; the exit status follows oit_status_exit_code, except
  * that a run in which no method could render at all exits 1. */
 #include <stdio.h>
@@ -9,7 +10,12 @@
 #include <strings.h>
 #include <unistd.h>
 
+#include <errno.h>
+#include <sys/stat.h>
+
 #include "stream/bench_args.h"
+#include "stream/bench_csv.h"
+#include "stream/bench_plot.h"
 #include "stream/bench_report.h"
 #include "stream/bench_run.h"
 #include "stream/part_triangles.h"
@@ -64,7 +70,7 @@ static void report_unrunnable(const oit_bench_result *r)
 {
     for (int i = 0; i < r->method_count; i++)
         if (!r->methods[i].runnable)
-            fprintf(stderr, "oitbench: %s not runnable: %s\n", r->methods[i].method->name,
+            fprintf(stderr, "oitbench: %s not runnable: %s\n", r->methods[i].name,
                     r->methods[i].reason);
 }
 
@@ -75,21 +81,27 @@ static int run(const oit_bench_args *a, const char *command_line)
     oit_mesh mesh;
     oit_bench_result r = {0};
     oit_status s = load_scene(a, &pf, &mesh, &err);
-    oit_bench_desc d = {&mesh, pf, a->methods, a->method_count, a->orbit, a->width,
-                        a->height, a->frames, a->warmup, a->max_layers, stderr};
+    oit_bench_desc d = {.mesh = &mesh, .partfile = pf, .entries = a->entries,
+                        .entry_count = a->entry_count, .views = a->orbit, .width = a->width,
+                        .height = a->height, .frames = a->frames, .warmup = a->warmup,
+                        .max_layers = a->max_layers, .shading = a->shading, .progress = stderr};
     if (s == OIT_OK) {
-        fprintf(stderr, "oitbench: %s: %llu triangles, %d methods, %d views\n", a->model,
-                (unsigned long long)mesh.info.triangles, a->method_count, a->orbit);
+        fprintf(stderr, "oitbench: %s: %llu triangles, %d entries, %d views\n", a->model,
+                (unsigned long long)mesh.info.triangles, a->entry_count, a->orbit);
         s = oit_bench_run(&d, &r, &err);
     }
     oit_bench_context ctx = {a->model, command_line, a->width, a->height, a->frames,
-                             a->warmup, sysconf(_SC_NPROCESSORS_ONLN)};
+                             a->warmup, sysconf(_SC_NPROCESSORS_ONLN),
+                             (unsigned long long)mesh.info.triangles,
+                             a->shading == OIT_SHADING_TRANSLUCENT ? "translucent"
+                                                                   : "transparent"};
     if (s == OIT_OK)
         s = oit_bench_write_reports(a->out, &ctx, &r, &err);
     int code = s == OIT_OK ? 0 : fail(&err);
     if (s == OIT_OK) {
         report_unrunnable(&r);
-        fprintf(stderr, "oitbench: wrote %s/results.csv, results.json, report.md\n", a->out);
+        fprintf(stderr, "oitbench: wrote %s/results.csv, results.json, speed_vs_error.png, "
+                "memory_vs_depth.png, report.md\n", a->out);
         if (!any_ran(&r)) {
             fprintf(stderr, "oitbench: no method could render %s\n", a->model);
             code = 1;
@@ -99,6 +111,64 @@ static int run(const oit_bench_args *a, const char *command_line)
     oit_mesh_free(&mesh);
     oit_partfile_close(pf);
     return code;
+}
+
+/* The last component of a folder name, trailing slashes ignored. */
+static const char *base_name(const char *path, char *buf, size_t cap)
+{
+    size_t n = strlen(path);
+    while (n > 1 && path[n - 1] == '/')
+        n--;
+    size_t start = n;
+    while (start > 0 && path[start - 1] != '/')
+        start--;
+    snprintf(buf, cap, "%.*s", (int)(n - start), path + start);
+    return buf;
+}
+
+/* oitbench plot: every run's results.csv, then the two cross-run charts. */
+static oit_status plot_runs(const oit_bench_args *a, oit_bench_table *runs, oit_error *err)
+{
+    char path[4096], title[128], sub[512] = "runs:";
+    oit_status s = OIT_OK;
+    for (int i = 0; i < a->run_count; i++) {
+        char name[256];
+        size_t used = strlen(sub);
+        snprintf(sub + used, sizeof sub - used, "%s %s", i ? "," : "",
+                 base_name(a->runs[i], name, sizeof name));
+    }
+    for (int i = 0; i < a->run_count && s == OIT_OK; i++) {
+        snprintf(path, sizeof path, "%s/results.csv", a->runs[i]);
+        s = oit_bench_csv_load(path, &runs[i], err);
+    }
+    if (s == OIT_OK && mkdir(a->plot_out, 0777) != 0 && errno != EEXIST)
+        s = oit_error_set(err, OIT_ERR_IO, "%s: cannot create folder: %s", a->plot_out,
+                          strerror(errno));
+    snprintf(title, sizeof title, "oitbench: %d run%s", a->run_count, a->run_count > 1 ? "s" : "");
+    snprintf(path, sizeof path, "%s/time_vs_triangles.png", a->plot_out);
+    if (s == OIT_OK)
+        s = oit_bench_plot_time_triangles(runs, a->run_count, title, sub, path, err);
+    snprintf(path, sizeof path, "%s/memory_vs_depth.png", a->plot_out);
+    if (s == OIT_OK)
+        s = oit_bench_plot_memory_depth(runs, a->run_count, title, sub, path, err);
+    return s;
+}
+
+static int plot(const oit_bench_args *a)
+{
+    oit_error err = {0};
+    oit_bench_table *runs = calloc((size_t)a->run_count, sizeof *runs);
+    oit_status s = runs ? plot_runs(a, runs, &err)
+                        : oit_error_set(&err, OIT_ERR_NOMEM, "cannot allocate %d runs",
+                                        a->run_count);
+    for (int i = 0; runs && i < a->run_count; i++)
+        oit_bench_table_free(&runs[i]);
+    free(runs);
+    if (s != OIT_OK)
+        return fail(&err);
+    fprintf(stderr, "oitbench: wrote %s/time_vs_triangles.png, memory_vs_depth.png from %d "
+            "runs\n", a->plot_out, a->run_count);
+    return 0;
 }
 
 int main(int argc, char **argv)
@@ -114,6 +184,8 @@ int main(int argc, char **argv)
         oit_bench_usage(stdout, names);
         return 0;
     }
+    if (a.plot)
+        return plot(&a);
     join_args(argc, argv, line, sizeof line);
     return run(&a, line);
 }

@@ -285,20 +285,20 @@ static const oit_stream_frame_stats *stream_figures(const oit_method_state *st)
 }
 
 static const oit_render_method methods[] = {
-    {"dfb", 1, 1, 0, dfb_open, dfb_render, gl_renderer, close_state, 0, NULL},
-    {"reference", 0, 1, 1, reference_open, reference_render, reference_renderer, close_state, 0, NULL},
-    {"array", 1, 0, 0, array_open, capture_render, gl_renderer, close_state, 0, NULL},
-    {"stencil", 1, 0, 0, stencil_open, capture_render, gl_renderer, close_state, 0, NULL},
-    {"stream", 1, 0, 0, stream_open, stream_render, gl_renderer, close_state, 1, stream_figures},
-    {"unsorted", 1, 0, 0, unsorted_open, baseline_render, gl_renderer, close_state, 0, NULL},
-    {"wboit", 1, 0, 0, wboit_open, baseline_render, gl_renderer, close_state, 0, NULL},
-    {"pll", 1, 0, 0, pll_open, baseline_render, gl_renderer, close_state, 0, NULL},
-    {"dp", 1, 0, 0, dp_open, baseline_render, gl_renderer, close_state, 0, NULL},
-    {"ppll4", 1, 0, 0, ppll4_open, baseline_render, gl_renderer, close_state, 0, NULL},
-    {"b3d", 1, 0, 0, b3d_open, baseline_render, gl_renderer, close_state, 0, NULL},
-    {"ddp", 1, 0, 0, ddp_open, baseline_render, gl_renderer, close_state, 0, NULL},
-    {"guarded", 1, 0, 0, guarded_open, baseline_render, gl_renderer, close_state, 0, NULL},
-    {"f2b", 1, 0, 0, f2b_open, baseline_render, gl_renderer, close_state, 0, NULL},
+    {"dfb", 1, 1, 0, dfb_open, dfb_render, gl_renderer, close_state, 0, NULL, 0},
+    {"reference", 0, 1, 1, reference_open, reference_render, reference_renderer, close_state, 0, NULL, 0},
+    {"array", 1, 0, 0, array_open, capture_render, gl_renderer, close_state, 0, NULL, 0},
+    {"stencil", 1, 0, 0, stencil_open, capture_render, gl_renderer, close_state, 0, NULL, 0},
+    {"stream", 1, 0, 0, stream_open, stream_render, gl_renderer, close_state, 1, stream_figures, 1},
+    {"unsorted", 1, 0, 0, unsorted_open, baseline_render, gl_renderer, close_state, 0, NULL, 0},
+    {"wboit", 1, 0, 0, wboit_open, baseline_render, gl_renderer, close_state, 0, NULL, 0},
+    {"pll", 1, 0, 0, pll_open, baseline_render, gl_renderer, close_state, 0, NULL, 0},
+    {"dp", 1, 0, 0, dp_open, baseline_render, gl_renderer, close_state, 0, NULL, 0},
+    {"ppll4", 1, 0, 0, ppll4_open, baseline_render, gl_renderer, close_state, 0, NULL, 0},
+    {"b3d", 1, 0, 0, b3d_open, baseline_render, gl_renderer, close_state, 0, NULL, 0},
+    {"ddp", 1, 0, 0, ddp_open, baseline_render, gl_renderer, close_state, 0, NULL, 0},
+    {"guarded", 1, 0, 0, guarded_open, baseline_render, gl_renderer, close_state, 0, NULL, 1},
+    {"f2b", 1, 0, 0, f2b_open, baseline_render, gl_renderer, close_state, 0, NULL, 1},
 };
 
 const oit_render_method *oit_render_method_find(const char *name)

@@ -47,6 +47,9 @@ typedef struct oit_render_method {
     int needs_partfile;
     /* The streamer's figures of the last frame; NULL for other methods. */
     const oit_stream_frame_stats *(*stream_stats)(const oit_method_state *st);
+    /* Takes oit_method_options.epsilon as a threshold (early termination or
+     * fragment culling), so a benchmark can sweep it. */
+    int takes_epsilon;
 } oit_render_method;
 
 /* NULL when no method has that name. */

@@ -1,5 +1,7 @@
 /* The 5x7 font of text_overlay.h: one byte per row, bit 4 the leftmost
- * column (the HD44780 character shapes). */
+ * column (the HD44780 character shapes); an eighth row carries the
+ * descenders of g, j, p, q, y, which the status line never shows (it
+ * draws upper case). */
 #include "stream/text_overlay.h"
 
 #include <ctype.h>
@@ -7,7 +9,7 @@
 
 typedef struct glyph {
     char c;
-    unsigned char rows[7];
+    unsigned char rows[8];
 } glyph;
 
 static const glyph font[] = {
@@ -35,13 +37,36 @@ static const glyph font[] = {
     {'%', {0x18, 0x19, 0x02, 0x04, 0x08, 0x13, 0x03}}, {'(', {0x02, 0x04, 0x08, 0x08, 0x08, 0x04, 0x02}},
     {')', {0x08, 0x04, 0x02, 0x02, 0x02, 0x04, 0x08}}, {'=', {0x00, 0x00, 0x1F, 0x00, 0x1F, 0x00, 0x00}},
     {'|', {0x04, 0x04, 0x04, 0x04, 0x04, 0x04, 0x04}}, {'?', {0x0E, 0x11, 0x01, 0x02, 0x04, 0x00, 0x04}},
+    {'@', {0x0E, 0x11, 0x01, 0x0D, 0x15, 0x15, 0x0E}}, {'_', {0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x1F}},
+    {'+', {0x00, 0x04, 0x04, 0x1F, 0x04, 0x04, 0x00}}, {'<', {0x02, 0x04, 0x08, 0x10, 0x08, 0x04, 0x02}},
+    {'>', {0x08, 0x04, 0x02, 0x01, 0x02, 0x04, 0x08}}, {'[', {0x0E, 0x08, 0x08, 0x08, 0x08, 0x08, 0x0E}},
+    {']', {0x0E, 0x02, 0x02, 0x02, 0x02, 0x02, 0x0E}}, {'*', {0x00, 0x04, 0x15, 0x0E, 0x15, 0x04, 0x00}},
+    {'\'', {0x0C, 0x04, 0x08, 0x00, 0x00, 0x00, 0x00}}, {'!', {0x04, 0x04, 0x04, 0x04, 0x00, 0x00, 0x04}},
+    {';', {0x00, 0x0C, 0x0C, 0x00, 0x0C, 0x04, 0x08}}, {'#', {0x0A, 0x0A, 0x1F, 0x0A, 0x1F, 0x0A, 0x0A}},
+    {'"', {0x0A, 0x0A, 0x0A, 0x00, 0x00, 0x00, 0x00}}, {'&', {0x0C, 0x12, 0x14, 0x08, 0x15, 0x12, 0x0D}},
+    {'~', {0x00, 0x00, 0x08, 0x15, 0x02, 0x00, 0x00}}, {'^', {0x04, 0x0A, 0x11, 0x00, 0x00, 0x00, 0x00}},
+    {'a', {0x00, 0x00, 0x0E, 0x01, 0x0F, 0x11, 0x0F}}, {'b', {0x10, 0x10, 0x16, 0x19, 0x11, 0x11, 0x1E}},
+    {'c', {0x00, 0x00, 0x0E, 0x10, 0x10, 0x11, 0x0E}}, {'d', {0x01, 0x01, 0x0D, 0x13, 0x11, 0x11, 0x0F}},
+    {'e', {0x00, 0x00, 0x0E, 0x11, 0x1F, 0x10, 0x0E}}, {'f', {0x06, 0x09, 0x08, 0x1C, 0x08, 0x08, 0x08}},
+    {'g', {0x00, 0x00, 0x0F, 0x11, 0x11, 0x0F, 0x01, 0x0E}}, {'h', {0x10, 0x10, 0x16, 0x19, 0x11, 0x11, 0x11}},
+    {'i', {0x04, 0x00, 0x0C, 0x04, 0x04, 0x04, 0x0E}}, {'j', {0x02, 0x00, 0x06, 0x02, 0x02, 0x02, 0x12, 0x0C}},
+    {'k', {0x10, 0x10, 0x12, 0x14, 0x18, 0x14, 0x12}}, {'l', {0x0C, 0x04, 0x04, 0x04, 0x04, 0x04, 0x0E}},
+    {'m', {0x00, 0x00, 0x1A, 0x15, 0x15, 0x11, 0x11}}, {'n', {0x00, 0x00, 0x16, 0x19, 0x11, 0x11, 0x11}},
+    {'o', {0x00, 0x00, 0x0E, 0x11, 0x11, 0x11, 0x0E}}, {'p', {0x00, 0x00, 0x1E, 0x11, 0x11, 0x1E, 0x10, 0x10}},
+    {'q', {0x00, 0x00, 0x0F, 0x11, 0x11, 0x0F, 0x01, 0x01}}, {'r', {0x00, 0x00, 0x16, 0x19, 0x10, 0x10, 0x10}},
+    {'s', {0x00, 0x00, 0x0E, 0x10, 0x0E, 0x01, 0x1E}}, {'t', {0x08, 0x08, 0x1C, 0x08, 0x08, 0x09, 0x06}},
+    {'u', {0x00, 0x00, 0x11, 0x11, 0x11, 0x13, 0x0D}}, {'v', {0x00, 0x00, 0x11, 0x11, 0x11, 0x0A, 0x04}},
+    {'w', {0x00, 0x00, 0x11, 0x11, 0x15, 0x15, 0x0A}}, {'x', {0x00, 0x00, 0x11, 0x0A, 0x04, 0x0A, 0x11}},
+    {'y', {0x00, 0x00, 0x11, 0x11, 0x11, 0x0F, 0x01, 0x0E}}, {'z', {0x00, 0x00, 0x1F, 0x02, 0x04, 0x08, 0x1F}},
 };
 
-enum { GLYPH_W = 5, GLYPH_H = 7, ADVANCE = 6, MARGIN = 2 };
+enum { GLYPH_W = 5, GLYPH_H = 7, GLYPH_ROWS = 8, ADVANCE = 6, MARGIN = 2 };
 
-static const unsigned char *glyph_rows(char c)
+/* fold: the status line's upper-case look, kept so its screenshots stay the
+ * same now that the font has lower-case shapes. */
+static const unsigned char *glyph_rows(char c, int fold)
 {
-    char u = (char)toupper((unsigned char)c);
+    char u = fold ? (char)toupper((unsigned char)c) : c;
     const unsigned char *unknown = NULL;
     for (size_t i = 0; i < sizeof font / sizeof font[0]; i++) {
         if (font[i].c == u)
@@ -52,42 +77,93 @@ static const unsigned char *glyph_rows(char c)
     return unknown;
 }
 
-int oit_text_line_height(int scale)
+static int clamp_scale(int scale)
 {
-    return (GLYPH_H + 2 * MARGIN) * (scale > 0 ? scale : 1);
+    return scale > 0 ? scale : 1;
 }
 
-static void set_pixel(oit_image *img, int x, int y, float v)
+int oit_text_line_height(int scale)
+{
+    return (GLYPH_H + 2 * MARGIN) * clamp_scale(scale);
+}
+
+int oit_text_width(const char *text, int scale)
+{
+    size_t n = strlen(text);
+    return n ? (int)(n * ADVANCE - (ADVANCE - GLYPH_W)) * clamp_scale(scale) : 0;
+}
+
+int oit_text_height(int scale)
+{
+    return GLYPH_ROWS * clamp_scale(scale);
+}
+
+static void set_pixel(oit_image *img, int x, int y, const float rgb[3])
 {
     if (x < 0 || y < 0 || x >= img->width || y >= img->height)
         return;
     float *p = img->rgba + 4 * ((size_t)y * (size_t)img->width + (size_t)x);
-    p[0] = p[1] = p[2] = v;
+    p[0] = rgb[0];
+    p[1] = rgb[1];
+    p[2] = rgb[2];
     p[3] = 1.0f;
 }
 
-static void draw_glyph(oit_image *img, int x0, int y0, char c, int scale)
+typedef struct pen {
+    oit_image *img;
+    const float *rgb;
+    int scale, fold, up;
+} pen;
+
+/* Font pixel (u along the text, v down a glyph) at origin (x0, y0); turned
+ * upwards, u runs to -y and v to +x. */
+static void font_pixel(const pen *p, int x0, int y0, int u, int v)
 {
-    const unsigned char *rows = glyph_rows(c);
-    for (int r = 0; r < GLYPH_H; r++)
-        for (int b = 0; b < GLYPH_W; b++)
-            if (rows[r] & (0x10 >> b))
-                for (int dy = 0; dy < scale; dy++)
-                    for (int dx = 0; dx < scale; dx++)
-                        set_pixel(img, x0 + b * scale + dx, y0 + r * scale + dy, 1.0f);
+    for (int a = 0; a < p->scale; a++)
+        for (int b = 0; b < p->scale; b++) {
+            int du = u * p->scale + a, dv = v * p->scale + b;
+            if (p->up)
+                set_pixel(p->img, x0 + dv, y0 - du, p->rgb);
+            else
+                set_pixel(p->img, x0 + du, y0 + dv, p->rgb);
+        }
+}
+
+static void draw_string(const pen *p, int x0, int y0, const char *text)
+{
+    for (size_t i = 0; text[i]; i++) {
+        const unsigned char *rows = glyph_rows(text[i], p->fold);
+        int u0 = (int)i * ADVANCE;
+        for (int r = 0; r < GLYPH_ROWS; r++)
+            for (int b = 0; b < GLYPH_W; b++)
+                if (rows[r] & (0x10 >> b))
+                    font_pixel(p, x0, y0, u0 + b, r);
+    }
+}
+
+void oit_text_draw(oit_image *img, int x, int y, const char *text, const float rgb[3], int scale)
+{
+    pen p = {img, rgb, clamp_scale(scale), 0, 0};
+    draw_string(&p, x, y, text);
+}
+
+void oit_text_draw_up(oit_image *img, int x, int y, const char *text, const float rgb[3],
+                      int scale)
+{
+    pen p = {img, rgb, clamp_scale(scale), 0, 1};
+    draw_string(&p, x, y, text);
 }
 
 void oit_text_status_line(oit_image *img, const char *text, int scale)
 {
-    if (scale < 1)
-        scale = 1;
+    static const float band_grey[3] = {0.1f, 0.1f, 0.1f}, white[3] = {1.0f, 1.0f, 1.0f};
+    scale = clamp_scale(scale);
     int band = oit_text_line_height(scale);
     /* A dark band keeps the text readable over a white background; it is
      * drawn opaque so screenshots compare equal on every platform. */
     for (int y = 0; y < band && y < img->height; y++)
         for (int x = 0; x < img->width; x++)
-            set_pixel(img, x, y, 0.1f);
-    int x = MARGIN * scale;
-    for (size_t i = 0; text[i] && x < img->width; i++, x += ADVANCE * scale)
-        draw_glyph(img, x, MARGIN * scale, text[i], scale);
+            set_pixel(img, x, y, band_grey);
+    pen p = {img, white, scale, 1, 0};
+    draw_string(&p, MARGIN * scale, MARGIN * scale, text);
 }
