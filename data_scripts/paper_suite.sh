@@ -167,8 +167,8 @@ table1() {
     [ -f "$DRAGON" ] || { say "Table 1 skipped: $DRAGON missing"; return; }
     prep t1_default "$DRAGON"
     prep t1_grid16 "$DRAGON" --grid 16
-    prep t1_kd "$DRAGON" --grid 1
-    prep t1_facets "$DRAGON" --grid 1 --max-piece-triangles 1
+    prep t1_kd "$DRAGON" --manage kd-parts
+    prep t1_facets "$DRAGON" --manage kd-facets
     for v in default grid16 kd facets; do
         [ -s "$SCENES/t1_$v.oitp" ] && bench "t1_$v" "$SCENES/t1_$v.oitp" --methods stream $COMMON
     done
@@ -188,17 +188,17 @@ table1_md() {
     echo
     echo "Here: ChineseDragon-10kv.off ($(json triangles_in "$PREP/t1_default.json" 2>/dev/null)"
     echo "triangles, a 44th of the paper's Dragon), $SIZE, stream only, oitprep on"
-    echo "$(json threads "$PREP/t1_default.json" 2>/dev/null) threads. oitprep has no --manage switch: it always"
-    echo "kd-subdivides the cells of a top grid until a cell's parts can be ordered."
-    echo "The nearest configurations are a finer top grid (--grid 16, grid-led), one top"
-    echo "cell (--grid 1: a kd-tree over parts) and one-triangle pieces in one top cell"
-    echo "(--grid 1 --max-piece-triangles 1: parts of at most K = 8 facets in a kd-tree,"
-    echo "the paper's facet tree). The file holds everything (vertices included), and"
-    echo "the kd clipping splits triangles, so \"triangles out\" exceeds the input."
+    echo "$(json threads "$PREP/t1_default.json" 2>/dev/null) threads. --manage grid (the default) kd-subdivides"
+    echo "the cells of a top grid until a cell's parts can be ordered; --manage kd-parts"
+    echo "builds one kd-tree over the model's convex pieces, one part a leaf; --manage"
+    echo "kd-facets one over single facets, leaves of at most K = 8 (the paper's facet"
+    echo "tree). --grid 16 adds a finer top grid. The file holds everything (vertices"
+    echo "included), and the kd clipping splits triangles, so \"triangles out\" exceeds"
+    echo "the input."
     echo
     echo "| oitprep options | parts | triangles out | file MB | preprocessing s | stream ms per frame |"
     echo "|---|---|---|---|---|---|"
-    for v in "default:(default)" "grid16:--grid 16" "kd:--grid 1" "facets:--grid 1 --max-piece-triangles 1"; do
+    for v in "default:--manage grid" "grid16:--grid 16" "kd:--manage kd-parts" "facets:--manage kd-facets"; do
         k=${v%%:*} opts=${v#*:}
         j="$PREP/t1_$k.json"
         if [ ! -s "$j" ]; then echo "| $opts | not run | | | | |"; continue; fi

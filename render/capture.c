@@ -192,7 +192,9 @@ static oit_status allocate(oit_capture *c, const oit_view *v, oit_error *err)
         s = reserve(c, BUF_SLOTS, slots, err);
     if (s == OIT_OK)
         s = reserve(c, BUF_STATE, pixels * 48, err);
-    if (s == OIT_OK && !c->tiled)
+    /* The counted backend's output passes through its fragment store, idle
+     * at the frame's end (read_output), as the tiled slots do. */
+    if (s == OIT_OK && !c->tiled && c->backend != OIT_CAPTURE_COUNTED)
         s = reserve(c, BUF_OUT, pixels * 16, err);
     c->out_buf = c->tiled ? c->buf[BUF_SLOTS] : c->buf[BUF_OUT];
     if (s == OIT_OK)
@@ -500,7 +502,21 @@ static oit_status read_output(oit_capture *c, oit_image *out, GLuint totals[4], 
     if (s != OIT_OK)
         return s;
     size_t row = (size_t)w * 16;
-    uint64_t held = c->out_buf == c->buf[BUF_SLOTS] ? c->cap[BUF_SLOTS] : c->cap[BUF_OUT];
+    if (c->backend == OIT_CAPTURE_COUNTED) {
+        s = oit_gl_buffer_reserve(&c->counted.frags, &c->counted.frags_cap, row,
+                                  "counted capture fragments", err);
+        uint64_t held = held_bytes(c);
+        c->bytes_peak = held > c->bytes_peak ? held : c->bytes_peak;
+        c->out_buf = c->counted.frags;
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, c->out_buf);
+        if (s != OIT_OK) {
+            oit_image_free(out);
+            return s;
+        }
+    }
+    uint64_t held = c->out_buf == c->buf[BUF_SLOTS]       ? c->cap[BUF_SLOTS]
+                    : c->backend == OIT_CAPTURE_COUNTED ? c->counted.frags_cap
+                                                        : c->cap[BUF_OUT];
     int band = (int)(held / row < (uint64_t)h ? held / row : (uint64_t)h);
     for (int y0 = 0; y0 < h; y0 += band) {
         int y1 = y0 + band < h ? y0 + band : h;

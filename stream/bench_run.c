@@ -62,7 +62,7 @@ static void open_methods(const oit_bench_desc *d, oit_bench_result *r, oit_gl **
     else if (need_gl)
         snprintf(r->renderer, sizeof r->renderer, "none (no GL context: %.200s)", err.message);
     oit_method_options opt = {.max_layers = d->max_layers, .partfile = d->partfile,
-                              .pack = OIT_PACK_DISJOINT, .gl = *gl};
+                              .pack = OIT_PACK_AUTO, .gl = *gl};
     for (int i = 0; i < r->method_count; i++) {
         oit_bench_method *m = &r->methods[i];
         m->runnable = 1;

@@ -122,10 +122,11 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
         if (!strcmp(v, "layers")) a->show_layers = 1;
         else if (strcmp(v, "colour") && strcmp(v, "color")) *s = bad(err, opt, v, "layers or colour");
     } else if (!strcmp(opt, "--pack")) {
-        a->pack_counted = !strcmp(v, "counted");
-        if (!strcmp(v, "disjoint")) a->pack_disjoint = 1;
-        else if (!strcmp(v, "budget") || a->pack_counted) a->pack_disjoint = 0;
-        else *s = bad(err, opt, v, "budget, disjoint or counted");
+        if (!strcmp(v, "auto")) a->pack = OIT_PACK_AUTO;
+        else if (!strcmp(v, "counted")) a->pack = OIT_PACK_COUNTED;
+        else if (!strcmp(v, "disjoint")) a->pack = OIT_PACK_DISJOINT;
+        else if (!strcmp(v, "budget")) a->pack = OIT_PACK_BUDGET;
+        else *s = bad(err, opt, v, "auto, counted, budget or disjoint");
     } else if (!strcmp(opt, "--schedule")) {
         if (!strcmp(v, "wave")) a->schedule_wave = 1;
         else if (!strcmp(v, "tree")) a->schedule_wave = 0;
@@ -197,7 +198,6 @@ oit_status oit_stream_args_parse(int argc, char **argv, oit_stream_args *a, oit_
     a->gain = 1.0f;
     a->max_layers = 0; /* the part file's K, else 16 */
     a->epsilon = -1.0f; /* not given: each method's default */
-    a->pack_disjoint = 1; /* measured faster than budget on llvmpipe (smaller resolve rects) */
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i];
         oit_status s = OIT_OK;
@@ -239,14 +239,15 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "                      depth peeling) without depth ties, ddp transparent only.\n"
         "                      Approximate: guarded, f2b (see --epsilon), wboit,\n"
         "                      unsorted\n"
-        "  --pack P            stream: disjoint (default; a part joins a pack while its\n"
-        "                      screen rectangle misses the pack's) or budget (parts\n"
-        "                      share a pack while the sum of their layer bounds per\n"
-        "                      32x32 tile stays <= K: fewer, larger packs) or counted\n"
-        "                      (packs cut by upload bytes only; each is counted,\n"
-        "                      stored and sorted per pixel as DFB does, with no layer\n"
-        "                      limit, halved while its fragments exceed the slot\n"
-        "                      budget)\n"
+        "  --pack P            stream: counted (packs cut by upload bytes only, each\n"
+        "                      counted, stored and sorted per pixel as DFB does, with\n"
+        "                      no layer limit, halved while its fragments exceed the\n"
+        "                      slot budget or a pixel gets more than 32), or K slots a\n"
+        "                      pixel: disjoint (a part joins a pack while its screen\n"
+        "                      rectangle misses the pack's) or budget (the sum of the\n"
+        "                      layer bounds per 32x32 tile stays <= K). auto (default):\n"
+        "                      counted, or disjoint with --epsilon, since skipping\n"
+        "                      whole parts needs the many packs of the K-slot rules\n"
         "  --schedule S        stream: tree (default: packs of consecutive parts in the\n"
         "                      management tree's depth-first order) or wave (packs\n"
         "                      filled front to back across the whole screen, keeping\n"

@@ -7,6 +7,7 @@
 #include <stdio.h>
 
 #include "render/view.h"
+#include "stream/pack.h"
 
 typedef struct oit_stream_args {
     int help;
@@ -34,8 +35,7 @@ typedef struct oit_stream_args {
     int show_layers;
     const char *ambiguity_out; /* --ambiguity: mask of ambiguous pixels */
     int quiet;
-    int pack_disjoint;                 /* --pack: 1 disjoint (default), 0 budget */
-    int pack_counted;                  /* --pack counted */
+    oit_pack_mode pack;                /* --pack; 0: auto */
     int schedule_wave;                 /* --schedule: 0 tree (default), 1 wave */
     unsigned long long upload_budget;  /* --upload-budget; 0: default */
     unsigned long long slot_budget;    /* --slot-budget; 0: default */

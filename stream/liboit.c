@@ -200,7 +200,10 @@ static oit_status bind_scene(oit_renderer *r, const oit_scene *scene, oit_error 
     oit_streamer_desc sd = {0};
     sd.K = r->desc.K ? (int)r->desc.K : (int)scene->info.K;
     sd.capture = OIT_CAPTURE_AUTO;
-    sd.pack = r->desc.pack == OIT_RENDER_PACK_DISJOINT ? OIT_PACK_DISJOINT : OIT_PACK_BUDGET;
+    sd.pack = r->desc.pack == OIT_RENDER_PACK_DISJOINT  ? OIT_PACK_DISJOINT
+              : r->desc.pack == OIT_RENDER_PACK_BUDGET  ? OIT_PACK_BUDGET
+              : r->desc.pack == OIT_RENDER_PACK_COUNTED ? OIT_PACK_COUNTED
+                                                        : OIT_PACK_AUTO;
     sd.upload_budget = r->desc.upload_budget;
     sd.epsilon = r->desc.epsilon;
     oit_status st = oit_streamer_create(scene->pf, &sd, &r->streamer, err);

@@ -433,9 +433,7 @@ static int run_render(const oit_stream_args *args)
         K = pf ? (int)sum.K : 16;
     }
     oit_method_options opt = {.max_layers = K, .partfile = pf,
-                              .pack = a->pack_counted    ? OIT_PACK_COUNTED
-                                      : a->pack_disjoint ? OIT_PACK_DISJOINT
-                                                         : OIT_PACK_BUDGET,
+                              .pack = a->pack,
                               .schedule = a->schedule_wave ? OIT_SCHEDULE_WAVE : OIT_SCHEDULE_TREE,
                               .upload_budget = a->upload_budget, .epsilon = a->epsilon,
                               .slot_budget = a->slot_budget};

@@ -84,6 +84,9 @@ oit_status oit_packer_create(const oit_partfile *pf, oit_pack_mode mode, int K,
                              uint64_t byte_budget, oit_packer **out, oit_error *err)
 {
     *out = NULL;
+    if (mode == OIT_PACK_AUTO)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: the packer needs a resolved pack "
+                             "mode, not auto", oit_partfile_name(pf));
     oit_status s = check_parts(pf, (uint32_t)K, byte_budget, err);
     if (s != OIT_OK)
         return s;

@@ -25,7 +25,15 @@
 #include "oit/partfile.h"
 #include "render/view.h"
 
-typedef enum oit_pack_mode { OIT_PACK_BUDGET = 0, OIT_PACK_DISJOINT, OIT_PACK_COUNTED } oit_pack_mode;
+/* OIT_PACK_COUNTED takes the counted capture, BUDGET and DISJOINT the K-slot
+ * array. OIT_PACK_AUTO (0) is for the streamer to resolve (streamer.h); the
+ * packer takes only the other three. */
+typedef enum oit_pack_mode {
+    OIT_PACK_AUTO = 0,
+    OIT_PACK_COUNTED,
+    OIT_PACK_BUDGET,
+    OIT_PACK_DISJOINT
+} oit_pack_mode;
 
 /* The order packs are cut from. OIT_SCHEDULE_TREE (default): consecutive
  * parts of stream/order.h's order. OIT_SCHEDULE_WAVE: packs filled from a

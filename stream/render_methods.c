@@ -257,8 +257,7 @@ static oit_status stream_open(const oit_mesh *mesh, const oit_method_options *op
     oit_status s = new_state(mesh, opt, 0, out, err);
     if (s == OIT_OK)
         s = attach_gl(*out, opt, err);
-    oit_capture_kind kind = opt->pack == OIT_PACK_COUNTED ? OIT_CAPTURE_COUNTED : OIT_CAPTURE_ARRAY;
-    oit_streamer_desc sd = {.K = opt->max_layers, .capture = kind, .pack = opt->pack,
+    oit_streamer_desc sd = {.K = opt->max_layers, .capture = OIT_CAPTURE_ARRAY, .pack = opt->pack,
                             .schedule = opt->schedule,
                             .upload_budget = opt->upload_budget,
                             .slot_budget = opt->slot_budget,

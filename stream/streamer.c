@@ -85,17 +85,21 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
                              oit_partfile_name(pf), n);
     }
     uint64_t budget = desc->upload_budget ? desc->upload_budget : 64ull << 20, max_part = 0;
+    oit_pack_mode mode = desc->pack != OIT_PACK_AUTO ? desc->pack
+                         : desc->epsilon > 0.0f ? OIT_PACK_DISJOINT
+                                                : OIT_PACK_COUNTED;
     oit_status st = number_triangles(s, &max_part, err);
     if (st == OIT_OK)
         st = oit_order_create(pf, &s->order, err);
     if (st == OIT_OK)
-        st = oit_packer_create(pf, desc->pack, desc->K, budget, &s->packer, err);
+        st = oit_packer_create(pf, mode, desc->K, budget, &s->packer, err);
     if (st == OIT_OK)
         oit_packer_set_schedule(s->packer, desc->schedule);
     if (st == OIT_OK)
         st = oit_upload_create(budget, max_part, &s->upload, err);
     if (st == OIT_OK)
-        st = oit_capture_create(desc->capture, desc->K, &s->capture, err);
+        st = oit_capture_create(mode == OIT_PACK_COUNTED ? OIT_CAPTURE_COUNTED : desc->capture,
+                                desc->K, &s->capture, err);
     if (st == OIT_OK)
         oit_capture_set_slot_budget(s->capture, desc->slot_budget ? desc->slot_budget
                                                                   : 32ull << 20);

@@ -59,12 +59,15 @@ done
 # squares seen head on, E = 0.02 saturates every pixel after ~123 layers, so
 # parts must be skipped (neither uploaded nor drawn), drawn + skipped must
 # be the parts E = 0 draws, uploads must fall, and the error stays in bound.
+# K-slot packs (--pack disjoint): the counted capture takes the stack in
+# one pack, before any tile can saturate.
 "$OIT_BIN/oitgen" hard --case stack -o "$T/stack.ply" >/dev/null &&
     "$OIT_BIN/oitprep" "$T/stack.ply" -o "$T/stack.oitp" >/dev/null ||
     fail "cannot make the stack part file"
 V=0,0,5,0,0,0,0,1,0,18
 for e in 0 0.02; do
-    "$S" "$T/stack.oitp" --size 128x128 --view $V --epsilon $e --out "$T/stack_$e.pfm" \
+    "$S" "$T/stack.oitp" --size 128x128 --view $V --epsilon $e --pack disjoint \
+        --out "$T/stack_$e.pfm" \
         --stats "$T/stack_$e.json" --quiet || fail "stack E=$e: stream exited $?"
 done
 d0=$(json_num parts_drawn < "$T/stack_0.json") s0=$(json_num parts_skipped < "$T/stack_0.json")

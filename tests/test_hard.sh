@@ -3,8 +3,8 @@
 # pipeline: oitprep converts it (every case must convert: each has a right
 # answer, none is input we should refuse), oitprep verify finds no layer or
 # order violation, and on every view the exact methods agree:
-#   stream (part file) == DFB (part file), zero overflow, with the K-slot
-#   capture and with the counted one (--pack counted, split packs);
+#   stream (part file) == DFB (part file): the counted capture (default, and
+#   with a budget that splits packs) and the K-slot one with zero overflow;
 #   DFB == the Embree reference on the same triangles, outside the pixels
 #     the reference flags as ambiguous (edges, depth ties);
 #   PLL, paged lists (ppll4) and B3D == DFB; on the first view depth
@@ -72,11 +72,14 @@ view() {
     "$S" "$T/in.oitp" --method stream --size "$SIZE" "$@" --out "$v-stream.pfm" \
         --stats "$v-stream.json" --quiet || { fail "$name: stream"; return; }
     cam=$(json_str view "$v-stream.json")
-    # The counted capture, with a fragment budget small enough (16K) that
-    # most packs are split before they are stored.
-    "$S" "$T/in.oitp" --method stream --pack counted --slot-budget 256K --size "$SIZE" \
+    # The default is the counted capture (no layer limit); here with a
+    # fragment budget small enough (16K) that most packs are split before
+    # they are stored. Then the K-slot capture (--pack disjoint).
+    "$S" "$T/in.oitp" --method stream --slot-budget 256K --size "$SIZE" \
         --view "$cam" --out "$v-counted.pfm" --stats "$v-counted.json" --quiet ||
-        fail "$name: stream --pack counted"
+        fail "$name: stream, 16K-fragment budget"
+    "$S" "$T/in.oitp" --method stream --pack disjoint --size "$SIZE" --view "$cam" \
+        --out "$v-slots.pfm" --stats "$v-slots.json" --quiet || fail "$name: stream --pack disjoint"
     "$S" "$T/in.oitp" --method dfb --size "$SIZE" --view "$cam" --out "$v-dfb.pfm" \
         --stats "$v-dfb.json" --quiet || fail "$name: dfb"
     # The other exact baselines. A list or array lives in one storage buffer:
@@ -110,12 +113,14 @@ view() {
         "$S" "$T/in.ply" --method dfb --size $dps --view "$cam" --out "$v-dpref.pfm" --quiet ||
             fail "$name: dfb at $dps"
     fi
-    ovf=$(json_num overflow_pixels "$v-stream.json")
-    echo "  view $name: layers $(json_num max_layers "$v-dfb.json"), packs $(json_num packs "$v-stream.json"), overflow $ovf"
+    ovf=$(json_num overflow_pixels "$v-slots.json")
+    echo "  view $name: layers $(json_num max_layers "$v-dfb.json"), packs $(json_num packs "$v-stream.json")," \
+        "16K-fragment budget: batches $(json_num batches "$v-counted.json"), K slots: packs" \
+        "$(json_num packs "$v-slots.json"), overflow $ovf"
     [ "$ovf" = 0 ] || fail "$name: $ovf overflow pixels"
     compare "stream vs dfb" "$v-stream.pfm" "$v-dfb.pfm" 0.1
-    echo "    counted: packs $(json_num packs "$v-counted.json"), batches $(json_num batches "$v-counted.json")"
-    compare "stream --pack counted vs dfb" "$v-counted.pfm" "$v-dfb.pfm" 0.1
+    compare "stream, 16K-fragment budget, vs dfb" "$v-counted.pfm" "$v-dfb.pfm" 0.1
+    compare "stream --pack disjoint vs dfb" "$v-slots.pfm" "$v-dfb.pfm" 0.1
     for m in $ran; do compare "$m vs dfb" "$v-$m.pfm" "$v-dfb.pfm" 0.1; done
     if [ "$name" != az30 ]; then
         :

@@ -137,7 +137,8 @@ for case in demo.ply saddle.off; do
         "$(json_num triangles_out <"$T/$case.json") triangles," \
         "$(json_num pieces_clustered <"$T/$case.json") pieces clustered," \
         "$(json_num parts <"$T/$case.json") parts, $wide wide (max bound $lb)"
-    "$S" "$T/$case.oitp" --size 96x96 --azimuth 30 --elevation 60 --out "$T/ws.png" \
+    "$S" "$T/$case.oitp" --size 96x96 --azimuth 30 --elevation 60 --pack disjoint \
+        --out "$T/ws.png" \
         --stats "$T/ws.json" --quiet && "$S" "$T/$case.oitp" --method dfb --size 96x96 \
         --azimuth 30 --elevation 60 --out "$T/wd.png" --quiet || fail "$case: oitstream"
     grep -q '"overflow_pixels": 0,' "$T/ws.json" || fail "$case: stream overflow"

@@ -80,34 +80,40 @@ check_stats() {
 
 agree budget --pack budget
 agree translucent --shading translucent --pack budget
+agree translucent_counted --shading translucent
 # Packs filled front to back across the screen (stream/schedule.h): the
 # same image from a different pack order.
 agree wave --schedule wave --pack budget
-# The counted capture (render/capture_counted.h): no layer limit, packs cut
-# by bytes only, and halved where they exceed the fragment budget.
-agree counted --pack counted
-agree counted_split --pack counted --slot-budget 64K
+# The default is the counted capture (render/capture_counted.h): no layer
+# limit, packs cut by bytes only, halved where they exceed the fragment
+# budget; the K-slot packs are the two rules above and below.
+agree counted
+agree counted_split --slot-budget 64K
 if [ "$MODE" = grid ]; then
     # Converted models have ~10^4 parts, so the other rules run on the
     # small file only, where they are cheap.
-    agree disjoint
+    agree disjoint --pack disjoint
     agree wave_disjoint --schedule wave
     agree ring --upload-budget 64K
     # K = 2 turns every part into a wide part (layer bound > K): captured
     # with more slots per pixel over smaller tiles, still exact.
-    agree wide --max-layers 2
+    agree wide --max-layers 2 --pack disjoint
     # A slot budget of 64K (512 pixels of K = 8 slots) at 128x128 captures
     # every pack in many screen tiles, the output in the idle slots.
-    agree tiled --slot-budget 64K
-    agree tiled_wide --slot-budget 64K --max-layers 2
+    agree tiled --slot-budget 64K --pack disjoint
+    agree tiled_wide --slot-budget 64K --max-layers 2 --pack disjoint
     # GPU memory at 1024x1024 outside the two budgets stays below 64 MB
     # (per-pixel counts and state), whatever the model (issue 6).
-    "$S" "$P" --size 1024x1024 --upload-budget 1M --slot-budget 8M --out "$T/big.png" \
-        --stats "$T/big.json" --quiet || fail "1024x1024: stream exited $?"
-    g=$(json_num gpu_bytes_peak < "$T/big.json")
-    echo "1024x1024, upload budget 1M, slot budget 8M: GPU peak $g bytes"
-    [ -n "$g" ] && [ "$g" -le $((64000000 + 9 * 1048576)) ] ||
-        fail "1024x1024: GPU peak $g bytes, more than 64 MB beyond the budgets"
+    # Both captures: the counted one's fragment store is the slot budget.
+    for pk in counted disjoint; do
+        "$S" "$P" --size 1024x1024 --upload-budget 1M --slot-budget 8M --pack $pk \
+            --out "$T/big.png" --stats "$T/big.json" --quiet ||
+            fail "1024x1024 --pack $pk: stream exited $?"
+        g=$(json_num gpu_bytes_peak < "$T/big.json")
+        echo "1024x1024 --pack $pk, upload budget 1M, slot budget 8M: GPU peak $g bytes"
+        [ -n "$g" ] && [ "$g" -le $((64000000 + 9 * 1048576)) ] ||
+            fail "1024x1024 --pack $pk: GPU peak $g bytes, more than 64 MB beyond the budgets"
+    done
 fi
 
 # An eye inside the model: boxes crossing the near plane cover the screen.

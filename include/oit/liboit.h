@@ -94,8 +94,13 @@ typedef struct oit_render_shading {
 } oit_render_shading;
 
 typedef enum oit_render_pack {
-    OIT_RENDER_PACK_BUDGET = 0, /* fill each pack up to the upload budget   */
-    OIT_RENDER_PACK_DISJOINT    /* packs of parts with disjoint screen rects */
+    OIT_RENDER_PACK_AUTO = 0,    /* COUNTED, or DISJOINT when epsilon > 0 */
+    OIT_RENDER_PACK_COUNTED,     /* packs cut by upload bytes only, each counted,
+                                    stored and sorted per pixel (no layer limit) */
+    OIT_RENDER_PACK_BUDGET,      /* K slots a pixel: parts share a pack while
+                                    their layer bounds per tile stay <= K */
+    OIT_RENDER_PACK_DISJOINT     /* K slots a pixel: parts with disjoint screen
+                                    rects */
 } oit_render_pack;
 
 typedef struct oit_renderer_desc {
