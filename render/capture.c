@@ -307,13 +307,7 @@ static int gl_rect(const oit_capture *c, const int rect[4], int out[4])
 static void draw_scissored(oit_capture *c, GLuint prog, const oit_gpu_mesh *const *meshes, int n,
                            const int r[4])
 {
-    oit_glsl_raster_begin(c->fbo, c->view.width, c->view.height);
-    glEnable(GL_SCISSOR_TEST);
-    glScissor(r[0], r[1], r[2] - r[0], r[3] - r[1]);
-    glUseProgram(prog);
-    for (int i = 0; i < n; i++)
-        oit_gpu_mesh_draw(meshes[i], prog);
-    glDisable(GL_SCISSOR_TEST);
+    oit_glsl_draw_scissored(c->fbo, c->view.width, c->view.height, prog, meshes, n, r);
 }
 
 static void fill(oit_capture *c, const oit_gpu_mesh *const *meshes, int n, const int r[4])

@@ -53,17 +53,6 @@ uint64_t oit_counted_bytes(const oit_counted *k)
     return k->offsets_cap + k->frags_cap + oit_scan_bytes(&k->scan);
 }
 
-static void draw(const oit_counted_frame *f, GLuint prog, const oit_gpu_mesh *const *meshes,
-                 int n, const int r[4])
-{
-    oit_glsl_raster_begin(f->fbo, f->width, f->height);
-    glEnable(GL_SCISSOR_TEST);
-    glScissor(r[0], r[1], r[2] - r[0], r[3] - r[1]);
-    glUseProgram(prog);
-    for (int i = 0; i < n; i++)
-        oit_gpu_mesh_draw(meshes[i], prog);
-    glDisable(GL_SCISSOR_TEST);
-}
 
 /* Count pass, then offsets = exclusive scan of the counts (pixels + 1
  * entries, the last = the batch's fragments). */
@@ -78,7 +67,7 @@ static oit_status count(oit_counted *k, const oit_counted_frame *f,
         return s;
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, f->counts);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_STATE, f->state);
-    draw(f, k->count_prog, meshes, n, r);
+    oit_glsl_draw_scissored(f->fbo, f->width, f->height, k->count_prog, meshes, n, r);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     static const GLuint zero = 0;
     glCopyNamedBufferSubData(f->counts, k->offsets, 0, 0, (GLsizeiptr)(pixels * 4));
@@ -102,7 +91,7 @@ static oit_status store_and_resolve(oit_counted *k, const oit_counted_frame *f,
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, f->counts);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OFFSETS, k->offsets);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_FRAGS, k->frags);
-    draw(f, k->store_prog, meshes, n, r);
+    oit_glsl_draw_scissored(f->fbo, f->width, f->height, k->store_prog, meshes, n, r);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(k->resolve_prog);
     glProgramUniform2i(k->resolve_prog, 11, f->width, f->height);

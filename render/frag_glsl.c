@@ -2,6 +2,8 @@
  * mirrors shade.h / shade.c; keep them in step. */
 #include "render/frag_glsl.h"
 
+#include "render/gpu_mesh.h"
+
 #include <math.h>
 
 const char oit_glsl_version[] = "#version 450 core\n";
@@ -189,3 +191,15 @@ const char oit_glsl_segment_composite[] =
     "    }\n"
     "    for (uint i = 0u; i < n; i++) oit_composite(s, frags[b + i]);\n"
     "}\n";
+
+void oit_glsl_draw_scissored(GLuint fbo, int w, int h, GLuint prog,
+                             const struct oit_gpu_mesh *const *meshes, int n, const int r[4])
+{
+    oit_glsl_raster_begin(fbo, w, h);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(r[0], r[1], r[2] - r[0], r[3] - r[1]);
+    glUseProgram(prog);
+    for (int i = 0; i < n; i++)
+        oit_gpu_mesh_draw(meshes[i], prog);
+    glDisable(GL_SCISSOR_TEST);
+}

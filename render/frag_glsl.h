@@ -89,6 +89,12 @@ void oit_glsl_set_view(GLuint prog, const oit_view *view);
  * fragment shader sees every fragment of every triangle, both faces. */
 void oit_glsl_raster_begin(GLuint fbo, int w, int h);
 
+struct oit_gpu_mesh;
+/* oit_glsl_raster_begin, then draws meshes[0..n) with prog clipped to the
+ * GL rect r (bottom rows first, exclusive ends). */
+void oit_glsl_draw_scissored(GLuint fbo, int w, int h, GLuint prog,
+                             const struct oit_gpu_mesh *const *meshes, int n, const int r[4]);
+
 #ifdef __cplusplus
 }
 #endif

@@ -516,3 +516,14 @@ oit_status oit_image_heatmap(const uint32_t *counts, int width, int height,
         draw_legend(out, max_count, scale);
     return OIT_OK;
 }
+
+void oit_image_put_rgb(oit_image *img, int x, int y, const float rgb[3])
+{
+    if (x < 0 || y < 0 || x >= img->width || y >= img->height)
+        return;
+    float *p = img->rgba + 4 * ((size_t)y * (size_t)img->width + (size_t)x);
+    p[0] = rgb[0];
+    p[1] = rgb[1];
+    p[2] = rgb[2];
+    p[3] = 1.0f;
+}

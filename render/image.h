@@ -17,6 +17,8 @@ oit_status oit_image_alloc(oit_image *img, int width, int height, oit_error *err
 void oit_image_free(oit_image *img);
 
 /* PNG: 8-bit RGB, values clamped to [0,1] and rounded, tagged sRGB. */
+/* Sets pixel (x, y), row 0 at the top, to opaque rgb; outside: nothing. */
+void oit_image_put_rgb(oit_image *img, int x, int y, const float rgb[3]);
 oit_status oit_image_write_png(const oit_image *img, const char *path, oit_error *err);
 /* PFM: little-endian RGB float ("PF", negative scale), bottom row first as
  * the format requires. */

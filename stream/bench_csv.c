@@ -11,8 +11,8 @@ enum { FIELDS = 15, LINE_MAX_BYTES = 4096, ROWS_MAX = 1 << 20 };
 
 /* ---- writing ---- */
 
-/* A number, or the given text when it is not finite. */
-static const char *num(char *buf, size_t cap, double x, const char *fmt, const char *nonfinite)
+const char *oit_bench_number(char *buf, size_t cap, double x, const char *fmt,
+                             const char *nonfinite)
 {
     if (isfinite(x))
         snprintf(buf, cap, fmt, x);
@@ -47,14 +47,14 @@ static void csv_row(FILE *f, const char *row, const char *method, int view, cons
     int ok = x->ok;
     fprintf(f, "%s,%s,", row, method);
     if (view >= 0) fprintf(f, "%d", view);
-    fprintf(f, ",%s,%s,%s,", ok ? "ok" : "not_runnable", num(b[0], 40, x->med, "%.4f", ""),
-            num(b[1], 40, x->p95, "%.4f", ""));
+    fprintf(f, ",%s,%s,%s,", ok ? "ok" : "not_runnable", oit_bench_number(b[0], 40, x->med, "%.4f", ""),
+            oit_bench_number(b[1], 40, x->p95, "%.4f", ""));
     if (ok) fprintf(f, "%llu,%u", (unsigned long long)x->gpu, x->layers);
     else fprintf(f, ",");
-    fprintf(f, ",%s,%s,%s,%s,", num(b[2], 40, ok ? x->rmse : NAN, "%.9g", ""),
-            num(b[3], 40, ok ? x->max_abs : NAN, "%.9g", ""),
-            num(b[4], 40, ok ? x->pct : NAN, "%.6f", ""),
-            num(b[5], 40, ok ? x->psnr : NAN, "%.4f", ok ? "inf" : ""));
+    fprintf(f, ",%s,%s,%s,%s,", oit_bench_number(b[2], 40, ok ? x->rmse : NAN, "%.9g", ""),
+            oit_bench_number(b[3], 40, ok ? x->max_abs : NAN, "%.9g", ""),
+            oit_bench_number(b[4], 40, ok ? x->pct : NAN, "%.6f", ""),
+            oit_bench_number(b[5], 40, ok ? x->psnr : NAN, "%.4f", ok ? "inf" : ""));
     csv_text(f, ok ? "" : reason);
     fprintf(f, ",%llu,%u\n", (unsigned long long)triangles, x->view_layers);
 }

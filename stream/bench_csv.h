@@ -50,6 +50,10 @@ typedef struct oit_bench_table {
 
 /* Writes the whole file for r; triangles is the model's count. */
 void oit_bench_csv_write(FILE *f, const oit_bench_result *r, uint64_t triangles);
+/* x printed with fmt into buf, or nonfinite when x is not finite (CSV and
+ * JSON spell a missing figure differently). Returns buf. */
+const char *oit_bench_number(char *buf, size_t cap, double x, const char *fmt,
+                             const char *nonfinite);
 
 /* Reads a file as oit_bench_csv_write writes it, and nothing else: the
  * exact header, 15 fields a row, every field checked (row kind, method

@@ -12,15 +12,6 @@
 
 /* ---- small formatting helpers ---- */
 
-/* A number, or the given text when it is not finite. */
-static const char *num(char *buf, size_t cap, double x, const char *fmt, const char *nonfinite)
-{
-    if (isfinite(x))
-        snprintf(buf, cap, fmt, x);
-    else
-        snprintf(buf, cap, "%s", nonfinite);
-    return buf;
-}
 
 static void json_text(FILE *f, const char *s)
 {
@@ -60,14 +51,14 @@ static void json_cell(FILE *f, int v, const oit_bench_cell *c)
     fprintf(f, "{\"view\": %d, \"ok\": %s, \"ms_median\": %s, \"ms_p95\": %s, "
                "\"gpu_bytes_peak\": %llu, \"max_layers\": %u, \"fragments\": %llu, "
                "\"rmse\": %s, \"max_abs\": %s, \"pct_over_1_255\": %s, \"psnr\": %s}",
-            v, c->ok ? "true" : "false", num(b[0], 40, c->ok ? c->ms_median : NAN, "%.4f", "null"),
-            num(b[1], 40, c->ok ? c->ms_p95 : NAN, "%.4f", "null"),
+            v, c->ok ? "true" : "false", oit_bench_number(b[0], 40, c->ok ? c->ms_median : NAN, "%.4f", "null"),
+            oit_bench_number(b[1], 40, c->ok ? c->ms_p95 : NAN, "%.4f", "null"),
             (unsigned long long)c->gpu_bytes_peak, c->max_layers,
             (unsigned long long)c->fragments,
-            num(b[2], 40, c->ok ? c->diff.rmse : NAN, "%.9g", "null"),
-            num(b[3], 40, c->ok ? c->diff.max_abs : NAN, "%.9g", "null"),
-            num(b[4], 40, c->ok ? c->diff.pct_over_1_255 : NAN, "%.6f", "null"),
-            num(b[5], 40, c->ok ? c->diff.psnr : NAN, "%.4f", "null"));
+            oit_bench_number(b[2], 40, c->ok ? c->diff.rmse : NAN, "%.9g", "null"),
+            oit_bench_number(b[3], 40, c->ok ? c->diff.max_abs : NAN, "%.9g", "null"),
+            oit_bench_number(b[4], 40, c->ok ? c->diff.pct_over_1_255 : NAN, "%.6f", "null"),
+            oit_bench_number(b[5], 40, c->ok ? c->diff.psnr : NAN, "%.4f", "null"));
 }
 
 static void json_method(FILE *f, const oit_bench_method *m, int views)
@@ -75,19 +66,19 @@ static void json_method(FILE *f, const oit_bench_method *m, int views)
     char b[6][40];
     fprintf(f, "    {\"name\": \"%s\", \"method\": \"%s\", \"epsilon\": %s, "
                "\"runnable\": %s, \"reason\": ",
-            m->name, m->method->name, num(b[0], 40, m->epsilon >= 0.0f ? m->epsilon : NAN, "%g",
+            m->name, m->method->name, oit_bench_number(b[0], 40, m->epsilon >= 0.0f ? m->epsilon : NAN, "%g",
                                           "null"), m->runnable ? "true" : "false");
     json_text(f, m->reason);
     fprintf(f, ", \"timed_frames\": %zu, \"ms_median\": %s, \"ms_p95\": %s, "
                "\"gpu_bytes_peak\": %llu, \"max_layers\": %u, \"rmse_mean\": %s, "
                "\"max_abs_worst\": %s, \"pct_over_1_255_worst\": %s, \"psnr_min\": %s,\n"
                "     \"views\": [",
-            m->ms_count, num(b[0], 40, m->ms_median, "%.4f", "null"),
-            num(b[1], 40, m->ms_p95, "%.4f", "null"), (unsigned long long)m->gpu_bytes_peak,
-            m->max_layers, num(b[2], 40, m->runnable ? m->rmse_mean : NAN, "%.9g", "null"),
-            num(b[3], 40, m->runnable ? m->max_abs_worst : NAN, "%.9g", "null"),
-            num(b[4], 40, m->runnable ? m->pct_over_worst : NAN, "%.6f", "null"),
-            num(b[5], 40, m->runnable ? m->psnr_min : NAN, "%.4f", "null"));
+            m->ms_count, oit_bench_number(b[0], 40, m->ms_median, "%.4f", "null"),
+            oit_bench_number(b[1], 40, m->ms_p95, "%.4f", "null"), (unsigned long long)m->gpu_bytes_peak,
+            m->max_layers, oit_bench_number(b[2], 40, m->runnable ? m->rmse_mean : NAN, "%.9g", "null"),
+            oit_bench_number(b[3], 40, m->runnable ? m->max_abs_worst : NAN, "%.9g", "null"),
+            oit_bench_number(b[4], 40, m->runnable ? m->pct_over_worst : NAN, "%.6f", "null"),
+            oit_bench_number(b[5], 40, m->runnable ? m->psnr_min : NAN, "%.4f", "null"));
     for (int v = 0; v < views; v++) {
         fprintf(f, "%s", v ? ",\n       " : "");
         json_cell(f, v, &m->cells[v]);
@@ -146,14 +137,14 @@ static void md_method(FILE *f, const oit_bench_method *m, const oit_bench_result
                 r->ref_layers[v], c->ms_median, c->ms_p95, (double)c->gpu_bytes_peak / 1048576.0,
                 c->max_layers,
                 c->diff.rmse, c->diff.max_abs, c->diff.pct_over_1_255,
-                num(b[0], 40, c->diff.psnr, "%.2f", "inf"));
+                oit_bench_number(b[0], 40, c->diff.psnr, "%.2f", "inf"));
     }
     fprintf(f, "| **all** | | **%s** | **%s** | %.2f | %u | %s (mean) | %s (worst) | %s (worst) | "
                "%s (min) |\n\n",
-            num(b[1], 40, m->ms_median, "%.3f", "-"), num(b[2], 40, m->ms_p95, "%.3f", "-"),
+            oit_bench_number(b[1], 40, m->ms_median, "%.3f", "-"), oit_bench_number(b[2], 40, m->ms_p95, "%.3f", "-"),
             (double)m->gpu_bytes_peak / 1048576.0, m->max_layers,
-            num(b[3], 40, m->rmse_mean, "%.3g", "-"), num(b[4], 40, m->max_abs_worst, "%.3g", "-"),
-            num(b[5], 40, m->pct_over_worst, "%.4f", "-"), num(b[6], 40, m->psnr_min, "%.2f", "inf"));
+            oit_bench_number(b[3], 40, m->rmse_mean, "%.3g", "-"), oit_bench_number(b[4], 40, m->max_abs_worst, "%.3g", "-"),
+            oit_bench_number(b[5], 40, m->pct_over_worst, "%.4f", "-"), oit_bench_number(b[6], 40, m->psnr_min, "%.2f", "inf"));
 }
 
 static void write_md(FILE *f, const oit_bench_context *ctx, const oit_bench_result *r)

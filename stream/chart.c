@@ -160,22 +160,12 @@ static double axis_fraction(const oit_chart_axis *a, double v)
 
 /* ---- pixels ---- */
 
-static void put(oit_image *img, int x, int y, const float rgb[3])
-{
-    if (x < 0 || y < 0 || x >= img->width || y >= img->height)
-        return;
-    float *p = img->rgba + 4 * ((size_t)y * (size_t)img->width + (size_t)x);
-    p[0] = rgb[0];
-    p[1] = rgb[1];
-    p[2] = rgb[2];
-    p[3] = 1.0f;
-}
 
 static void fill_rect(oit_image *img, int x0, int y0, int x1, int y1, const float rgb[3])
 {
     for (int y = y0; y <= y1; y++)
         for (int x = x0; x <= x1; x++)
-            put(img, x, y, rgb);
+            oit_image_put_rgb(img, x, y, rgb);
 }
 
 static int inside(const oit_chart_rect *r, int x, int y)
@@ -195,7 +185,7 @@ static void segment(oit_image *img, const oit_chart_rect *clip, int x0, int y0, 
         for (int k = 0; on && k < 4; k++) {
             int px = x0 + (k & 1), py = y0 + (k >> 1);
             if (!clip || inside(clip, px, py))
-                put(img, px, py, rgb);
+                oit_image_put_rgb(img, px, py, rgb);
         }
         if (x0 == x1 && y0 == y1)
             break;
@@ -222,7 +212,7 @@ static void marker_at(oit_image *img, int cx, int cy, oit_chart_marker shape, co
             default: break;
             }
             if (on)
-                put(img, cx + dx, cy + dy, rgb);
+                oit_image_put_rgb(img, cx + dx, cy + dy, rgb);
         }
 }
 

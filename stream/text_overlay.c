@@ -4,6 +4,8 @@
  * draws upper case). */
 #include "stream/text_overlay.h"
 
+#include "render/image.h"
+
 #include <ctype.h>
 #include <string.h>
 
@@ -98,16 +100,6 @@ int oit_text_height(int scale)
     return GLYPH_ROWS * clamp_scale(scale);
 }
 
-static void set_pixel(oit_image *img, int x, int y, const float rgb[3])
-{
-    if (x < 0 || y < 0 || x >= img->width || y >= img->height)
-        return;
-    float *p = img->rgba + 4 * ((size_t)y * (size_t)img->width + (size_t)x);
-    p[0] = rgb[0];
-    p[1] = rgb[1];
-    p[2] = rgb[2];
-    p[3] = 1.0f;
-}
 
 typedef struct pen {
     oit_image *img;
@@ -123,9 +115,9 @@ static void font_pixel(const pen *p, int x0, int y0, int u, int v)
         for (int b = 0; b < p->scale; b++) {
             int du = u * p->scale + a, dv = v * p->scale + b;
             if (p->up)
-                set_pixel(p->img, x0 + dv, y0 - du, p->rgb);
+                oit_image_put_rgb(p->img, x0 + dv, y0 - du, p->rgb);
             else
-                set_pixel(p->img, x0 + du, y0 + dv, p->rgb);
+                oit_image_put_rgb(p->img, x0 + du, y0 + dv, p->rgb);
         }
 }
 
@@ -163,7 +155,7 @@ void oit_text_status_line(oit_image *img, const char *text, int scale)
      * drawn opaque so screenshots compare equal on every platform. */
     for (int y = 0; y < band && y < img->height; y++)
         for (int x = 0; x < img->width; x++)
-            set_pixel(img, x, y, band_grey);
+            oit_image_put_rgb(img, x, y, band_grey);
     pen p = {img, white, scale, 1, 0};
     draw_string(&p, MARGIN * scale, MARGIN * scale, text);
 }

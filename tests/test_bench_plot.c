@@ -260,7 +260,8 @@ static void fake_result(oit_bench_result *r, oit_bench_method m[2], oit_bench_ce
     r->ref_ms = ref_ms;
 }
 
-static void test_csv_round_trip(void)
+/* The fake result written as results.csv (1234 triangles) and read back. */
+static oit_status fake_table(const char *name, oit_bench_table *t, oit_error *err)
 {
     oit_bench_result r;
     oit_bench_method m[2];
@@ -270,13 +271,19 @@ static void test_csv_round_trip(void)
     fake_result(&r, m, cells, layers, ref_ms);
     FILE *f = tmpfile();
     if (!f)
-        return;
+        return oit_error_set(err, OIT_ERR_IO, "%s: no temporary file", name);
     oit_bench_csv_write(f, &r, 1234);
     rewind(f);
+    oit_status s = oit_bench_csv_read(f, name, t, err);
+    fclose(f);
+    return s;
+}
+
+static void test_csv_round_trip(void)
+{
     oit_bench_table t;
     oit_error err;
-    CHECK(oit_bench_csv_read(f, "round-trip.csv", &t, &err) == OIT_OK, "%s", err.message);
-    fclose(f);
+    CHECK(fake_table("round-trip.csv", &t, &err) == OIT_OK, "%s", err.message);
     CHECK(t.count == 6, "%zu rows, expected 6", t.count);
     if (t.count != 6)
         return;
@@ -360,21 +367,9 @@ static void test_csv_malformed(void)
 
 static void test_speed_chart_file(const char *dir)
 {
-    oit_bench_result r;
-    oit_bench_method m[2];
-    oit_bench_cell cells[4];
-    uint32_t layers[2];
-    double ref_ms[2] = {1, 1};
-    fake_result(&r, m, cells, layers, ref_ms);
-    FILE *f = tmpfile();
-    if (!f)
-        return;
-    oit_bench_csv_write(f, &r, 1234);
-    rewind(f);
     oit_bench_table t;
     oit_error err;
-    oit_status s = oit_bench_csv_read(f, "chart.csv", &t, &err);
-    fclose(f);
+    oit_status s = fake_table("chart.csv", &t, &err);
     CHECK(s == OIT_OK, "%s", err.message);
     char path[1024];
     snprintf(path, sizeof path, "%s/test_bench_plot_speed.png", dir);
