@@ -10,3 +10,6 @@ oit_add_test(NAME stream_parts_demo LABELS integration TIMEOUT 300
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_streamer.sh demo)
 oit_add_test(NAME stream_parts_bunny LABELS integration TIMEOUT 300
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_streamer.sh bunny)
+# the residency cache's bookkeeping (no GL)
+oit_add_test_exe(test_residency SOURCES test_residency.c LIBS oit_stream)
+oit_add_test(NAME stream_residency COMMAND $<TARGET_FILE:test_residency> LABELS unit TIMEOUT 60)
