@@ -304,14 +304,17 @@ static oit_status retire_region(oit_streamer *s, const oit_packing *pk, uint32_t
 
 /* Collects pack i from the reader and captures it, leaving out the parts
  * whose footprint is saturated (saturation.h: the capture would drop all
- * their fragments); they may have saturated since the pack was prepared. */
+ * their fragments); they may have saturated since the pack was prepared.
+ * Once collected, the region is retired even when the capture fails: GL
+ * may already read it. */
 static oit_status draw_pack(oit_streamer *s, const oit_packing *pk, uint32_t i,
                             oit_stream_frame_stats *ss, oit_error *err)
 {
     uint32_t first = pk->pack_first[i], n = pk->pack_first[i + 1] - first, drawn = 0;
     oit_status st = s->plans[i].ring_bytes ? oit_reader_collect(s->reader, err) : OIT_OK;
-    if (st == OIT_OK)
-        st = reserve_views(s, n, err);
+    if (st != OIT_OK)
+        return st;
+    st = reserve_views(s, n, err);
     for (uint32_t j = first; j < first + n && st == OIT_OK; j++) {
         if (s->source[j] == SRC_SKIP || saturated(s, pk, j)) {
             ss->parts_skipped++;
@@ -327,9 +330,8 @@ static oit_status draw_pack(oit_streamer *s, const oit_packing *pk, uint32_t i,
     if (st == OIT_OK && drawn > 0 && s->saturation)
         st = oit_saturation_update(s->saturation, oit_capture_state_buffer(s->capture),
                                    pk->rects[i], err);
-    if (st == OIT_OK)
-        st = retire_region(s, pk, i, ss, err);
-    return st;
+    oit_status rs = retire_region(s, pk, i, ss, st == OIT_OK ? err : NULL);
+    return st != OIT_OK ? st : rs;
 }
 
 /* Prepares packs from *next on while they stay within `ahead` of pack i
@@ -354,7 +356,7 @@ static oit_status prepare_ahead(oit_streamer *s, const oit_packing *pk, uint32_t
 
 /* Draws every pack of the view, preparing later ones while earlier ones
  * draw. On failure the reader's outstanding work is dropped and the ring
- * forgets the regions it was given. */
+ * forgets the regions of the packs that never reached GL. */
 static oit_status draw_packs(oit_streamer *s, const oit_packing *pk,
                              oit_stream_frame_stats *ss, oit_error *err)
 {
