@@ -129,6 +129,10 @@ residency() {
     off=$(json_all bytes_uploaded < "$T/orbit_0.json" | awk '{s += $1} END {print s + 0}')
     echo "orbit 8: $on bytes uploaded with the cache, $off without"
     [ "$on" -gt 0 ] && [ "$on" -lt "$off" ] || fail "orbit 8: cache uploads $on, none $off"
+    for bad in "--cache-budget 1K" "--cache-budget -1" "--upload-threads 2"; do
+        "$S" "$P" --size 8x8 --quiet $bad >/dev/null 2>&1
+        [ $? -eq 2 ] || fail "$bad was not refused as a usage error"
+    done
 }
 
 agree budget --pack budget
