@@ -275,6 +275,10 @@ oit_status oit_capture_begin(oit_capture *c, const oit_view *view, oit_error *er
     glNamedFramebufferParameteri(c->fbo, GL_FRAMEBUFFER_DEFAULT_HEIGHT, view->height);
     set_uniforms(c);
     bind_buffers(c);
+    /* The state buffer of the frame before may still be read by a pass the
+     * caller issued after oit_capture_end_gpu (liboit's blend): order those
+     * reads before this frame's first shader write to it. */
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(c->begin_prog);
     glDispatchCompute(oit_gl_groups((uint64_t)view->width * view->height, 64), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);

@@ -97,6 +97,12 @@ void oit_gpu_mesh_set_range(oit_gpu_mesh *m, uint64_t offset, size_t count, uint
     m->first_prim = first_prim;
 }
 
+void oit_gpu_mesh_set_buffer(oit_gpu_mesh *m, unsigned buffer)
+{
+    if (!m->owns_buffer)
+        m->buffer = buffer;
+}
+
 void oit_gpu_mesh_destroy(oit_gpu_mesh *m)
 {
     if (!m)

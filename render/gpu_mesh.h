@@ -27,6 +27,9 @@ oit_status oit_gpu_mesh_create_view(unsigned buffer, oit_gpu_mesh **out, oit_err
 /* count oit_triangle records at byte offset (a multiple of
  * GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT) of a view's buffer. */
 void oit_gpu_mesh_set_range(oit_gpu_mesh *m, uint64_t offset, size_t count, uint32_t first_prim);
+/* Re-points a view at another buffer of the caller's (a streamer draws a part
+ * from its upload ring or from its residency cache). Only for views. */
+void oit_gpu_mesh_set_buffer(oit_gpu_mesh *m, unsigned buffer);
 void oit_gpu_mesh_destroy(oit_gpu_mesh *m);
 size_t oit_gpu_mesh_triangles(const oit_gpu_mesh *m);
 uint64_t oit_gpu_mesh_bytes(const oit_gpu_mesh *m);

@@ -1,6 +1,8 @@
 /* oitstream option parsing (cli_args.h). */
 #include "stream/cli_args.h"
 
+#include "stream/streamer.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -134,6 +136,14 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
     } else if (!strcmp(opt, "--upload-budget")) {
         if (!parse_bytes(v, &a->upload_budget) || a->upload_budget < 65536)
             *s = bad(err, opt, v, "bytes >= 64K, with an optional K, M or G suffix");
+    } else if (!strcmp(opt, "--cache-budget")) {
+        /* 0 turns the cache off: the default needs no spelling. */
+        if (!strcmp(v, "0"))
+            a->cache_budget = OIT_STREAM_CACHE_OFF;
+        else if (!parse_bytes(v, &a->cache_budget) || a->cache_budget < 65536)
+            *s = bad(err, opt, v, "0 (off) or bytes >= 64K, with an optional K, M or G suffix");
+    } else if (!strcmp(opt, "--upload-threads")) {
+        if (!parse_int(v, &a->upload_threads, 0, 1)) *s = bad(err, opt, v, "0 or 1");
     } else if (!strcmp(opt, "--slot-budget")) {
         if (!parse_bytes(v, &a->slot_budget) || a->slot_budget < 65536)
             *s = bad(err, opt, v, "bytes >= 64K, with an optional K, M or G suffix");
@@ -198,6 +208,7 @@ oit_status oit_stream_args_parse(int argc, char **argv, oit_stream_args *a, oit_
     a->gain = 1.0f;
     a->max_layers = 0; /* the part file's K, else 16 */
     a->epsilon = -1.0f; /* not given: each method's default */
+    a->upload_threads = 1;
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i];
         oit_status s = OIT_OK;
@@ -253,9 +264,19 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "                      filled front to back across the whole screen, keeping\n"
         "                      the order only between parts whose rectangles overlap:\n"
         "                      fewer packs, larger resolve rectangles)\n"
-        "  --upload-budget B   stream: bytes of the GPU upload ring (default 64M)\n"
+        "  --upload-budget B   stream: bytes of the upload ring, a persistently mapped\n"
+        "                      GPU buffer that a reader thread fills with the parts\n"
+        "                      of later packs while the GPU draws earlier ones\n"
+        "                      (default 64M); a pack never exceeds it\n"
+        "  --cache-budget B    stream: bytes of GPU memory that keep parts uploaded in\n"
+        "                      one frame for the next ones, drawn without reading or\n"
+        "                      uploading them again (default 256M, never more than\n"
+        "                      the file's parts take; 0: no cache)\n"
+        "  --upload-threads N  stream: 1 (default) reads parts on a thread of their\n"
+        "                      own; 0 reads them on the render thread, no overlap\n"
         "  --slot-budget B     stream: bytes of the K-fragment capture slots (default\n"
-        "                      32M); a larger frame is captured in screen tiles\n"
+        "                      32M), a larger frame captured in screen tiles; for the\n"
+        "                      counted capture, its fragment store (packs split to fit)\n"
         "  --epsilon E         stream: drop fragments behind pixels whose transmittance\n"
         "                      fell below E, and neither upload nor draw parts whose\n"
         "                      whole footprint did (error <= E per channel; default\n"

@@ -206,6 +206,9 @@ static oit_status bind_scene(oit_renderer *r, const oit_scene *scene, oit_error 
                                                         : OIT_PACK_AUTO;
     sd.upload_budget = r->desc.upload_budget;
     sd.epsilon = r->desc.epsilon;
+    _Static_assert(OIT_RENDER_CACHE_OFF == OIT_STREAM_CACHE_OFF, "one spelling of 'no cache'");
+    sd.cache_budget = r->desc.cache_budget;
+    sd.read_inline = r->desc.read_on_draw_thread != 0;
     oit_status st = oit_streamer_create(scene->pf, &sd, &r->streamer, err);
     if (st == OIT_OK)
         r->scene = scene;
@@ -348,7 +351,9 @@ oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame 
                                   .parts_culled = ss.parts_culled,
                                   .parts_skipped = ss.parts_skipped,
                                   .bytes_uploaded = ss.bytes_uploaded,
-                                  .gpu_bytes_peak = ss.gpu_bytes_peak};
+                                  .gpu_bytes_peak = ss.gpu_bytes_peak,
+                                  .cache_hits = ss.cache_hits,
+                                  .cache_bytes = ss.cache_bytes};
     }
     return OIT_OK;
 }

@@ -314,10 +314,13 @@ static oit_status render_one(run_ctx *rc, int index, int views, oit_stats_frame 
                (unsigned long long)fr->st.overflow_pixels);
     if (s == OIT_OK && !rc->args->quiet && fr->has_stream)
         printf("frame %d: %.2f ms, %u packs, %llu parts (%llu culled), %.2f MiB uploaded, "
-               "%llu overflow pixels, %.1f MiB GPU at peak\n",
+               "%llu from the cache (%.2f MiB resident), %llu overflow pixels, %.1f MiB GPU at "
+               "peak\n",
                index, fr->st.ms, fr->stream.packs, (unsigned long long)fr->stream.parts_drawn,
                (unsigned long long)fr->stream.parts_culled,
                (double)fr->stream.bytes_uploaded / 1048576.0,
+               (unsigned long long)fr->stream.cache_hits,
+               (double)fr->stream.cache_bytes / 1048576.0,
                (unsigned long long)fr->st.overflow_pixels,
                (double)fr->stream.gpu_bytes_peak / 1048576.0);
     return s;
@@ -436,7 +439,9 @@ static int run_render(const oit_stream_args *args)
                               .pack = a->pack,
                               .schedule = a->schedule_wave ? OIT_SCHEDULE_WAVE : OIT_SCHEDULE_TREE,
                               .upload_budget = a->upload_budget, .epsilon = a->epsilon,
-                              .slot_budget = a->slot_budget};
+                              .slot_budget = a->slot_budget,
+                              .cache_budget = a->cache_budget,
+                              .read_inline = a->upload_threads == 0};
     rc.view.width = a->width;
     rc.view.height = a->height;
     rc.origin = mesh.info.origin;

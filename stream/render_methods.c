@@ -261,6 +261,8 @@ static oit_status stream_open(const oit_mesh *mesh, const oit_method_options *op
                             .schedule = opt->schedule,
                             .upload_budget = opt->upload_budget,
                             .slot_budget = opt->slot_budget,
+                            .cache_budget = opt->cache_budget,
+                            .read_inline = opt->read_inline,
                             .epsilon = opt->epsilon > 0.0f ? opt->epsilon : 0.0f};
     if (s == OIT_OK)
         s = oit_streamer_create(opt->partfile, &sd, &(*out)->streamer, err);

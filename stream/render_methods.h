@@ -26,6 +26,10 @@ typedef struct oit_method_options {
      * 0, exact; f2b, guarded: their seed's values). */
     float epsilon;
     unsigned long long slot_budget; /* the streamer's capture slots, bytes; 0: default */
+    /* The streamer's residency cache, bytes; 0: default (OIT_STREAM_CACHE_DEFAULT);
+     * OIT_STREAM_CACHE_OFF: none. */
+    unsigned long long cache_budget;
+    int read_inline; /* the streamer reads parts on the render thread, no reader thread */
 } oit_method_options;
 
 typedef struct oit_render_method {

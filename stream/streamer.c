@@ -7,24 +7,52 @@
 #include "render/gpu_mesh.h"
 #include "render/image.h"
 #include "render/saturation.h"
+#include "stream/fence_queue.h"
 #include "stream/order.h"
+#include "stream/reader.h"
+#include "stream/residency.h"
 #include "stream/upload.h"
 
 _Static_assert(OIT_PACK_MAX_LAYERS == OIT_CAPTURE_MAX_LAYERS &&
                    OIT_PACK_MAX_LAYERS == OIT_PARTFILE_MAX_LAYERS,
                "a wide part the file allows must fit the packer and the capture");
 
+/* Packs prepared ahead of the one being drawn. Without early termination
+ * the ring's free space is the real bound; with it, a part read far ahead
+ * misses the saturation of the packs between, so read one pack ahead only
+ * (reading is wasted, not wrong, when a part turns out saturated). */
+#define AHEAD_EXACT OIT_READER_QUEUE
+#define AHEAD_EPSILON 1u
+
+/* Where a part of the frame's packing comes from. */
+enum { SRC_SKIP, SRC_CACHE, SRC_RING };
+
+/* Per pack of the frame: what its preparation reserved and queued. */
+typedef struct pack_plan {
+    uint64_t ring_bytes; /* 0: nothing read, no region, no reader job */
+} pack_plan;
+
 struct oit_streamer {
     oit_partfile *pf;
     oit_order *order;
     oit_packer *packer;
+    oit_fence_queue *fences;
     oit_upload *upload;
+    oit_reader *reader;
+    oit_residency *cache; /* NULL: no cache */
+    GLuint cache_buffer;
     oit_capture *capture;
     oit_saturation *saturation; /* only with epsilon > 0 */
     float epsilon;
+    uint32_t ahead;
     uint32_t *ordered;
     uint32_t *first_prim; /* per part: its first triangle across the file */
-    uint8_t *validated;
+    /* Per position of the frame's packing (pk->parts[j]): */
+    uint8_t *source;
+    uint64_t *offset;     /* in the cache or the ring */
+    oit_read_item *items; /* a pack's reader job: its ring parts, in order */
+    pack_plan *plans;     /* per pack */
+    uint64_t fence_every, unfenced; /* ring bytes between fences, and since the last */
     oit_gpu_mesh **views; /* one per part of the largest pack so far */
     uint32_t view_count;
 };
@@ -33,32 +61,41 @@ void oit_streamer_destroy(oit_streamer *s)
 {
     if (!s)
         return;
+    /* The reader first: it may still write into the ring's mapping. */
+    oit_reader_destroy(s->reader);
     for (uint32_t i = 0; i < s->view_count; i++)
         oit_gpu_mesh_destroy(s->views[i]);
     free(s->views);
     oit_saturation_destroy(s->saturation);
     oit_capture_destroy(s->capture);
+    if (s->cache_buffer)
+        glDeleteBuffers(1, &s->cache_buffer);
+    oit_residency_destroy(s->cache);
     oit_upload_destroy(s->upload);
+    oit_fence_queue_destroy(s->fences);
     oit_packer_destroy(s->packer);
     oit_order_destroy(s->order);
     free(s->ordered);
     free(s->first_prim);
-    free(s->validated);
+    free(s->source);
+    free(s->offset);
+    free(s->items);
+    free(s->plans);
     free(s);
 }
 
 /* Primitive ids follow the file's triangle order, as in the in-core mesh
- * (part_triangles.h); they must fit the 31 bits a fragment carries. */
-static oit_status number_triangles(oit_streamer *s, uint64_t *max_part_bytes, oit_error *err)
+ * (part_triangles.h); they must fit the 31 bits a fragment carries.
+ * *all_bytes: what every part takes in the ring, the most a cache needs. */
+static oit_status number_triangles(oit_streamer *s, uint64_t *all_bytes, oit_error *err)
 {
     const oit_partfile_part *parts = oit_partfile_parts(s->pf);
     uint64_t first = 0;
-    *max_part_bytes = 0;
+    *all_bytes = 0;
     for (uint32_t i = 0; i < oit_partfile_part_count(s->pf); i++) {
         s->first_prim[i] = (uint32_t)first;
         first += parts[i].index_count / 3;
-        uint64_t b = parts[i].index_count / 3 * sizeof(oit_triangle);
-        *max_part_bytes = b > *max_part_bytes ? b : *max_part_bytes;
+        *all_bytes += oit_pack_part_bytes(&parts[i]);
         if (first > 0x80000000ull)
             return oit_error_set(err, OIT_ERR_UNSUPPORTED, "%s: more than 2^31 triangles; "
                                  "primitive ids would not fit a fragment",
@@ -67,28 +104,75 @@ static oit_status number_triangles(oit_streamer *s, uint64_t *max_part_bytes, oi
     return OIT_OK;
 }
 
+static oit_status alloc_arrays(oit_streamer *s, uint32_t n, oit_error *err)
+{
+    size_t m = (size_t)n + 1;
+    s->ordered = calloc(m, sizeof *s->ordered);
+    s->first_prim = calloc(m, sizeof *s->first_prim);
+    s->source = calloc(m, sizeof *s->source);
+    s->offset = calloc(m, sizeof *s->offset);
+    s->items = calloc(m, sizeof *s->items);
+    s->plans = calloc(m, sizeof *s->plans);
+    if (!s->ordered || !s->first_prim || !s->source || !s->offset || !s->items || !s->plans)
+        return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot allocate the streamer (%u parts)",
+                             oit_partfile_name(s->pf), n);
+    return OIT_OK;
+}
+
+/* The cache buffer lives in GPU memory (no CPU access): it is filled by GL
+ * copies from the ring, so a discrete GPU draws cached parts from its own
+ * memory rather than across the bus. */
+static oit_status create_cache(oit_streamer *s, uint64_t budget, uint64_t all_bytes,
+                               oit_error *err)
+{
+    if (budget == OIT_STREAM_CACHE_OFF)
+        return OIT_OK;
+    budget = budget ? budget : OIT_STREAM_CACHE_DEFAULT;
+    uint64_t bytes = budget < all_bytes ? budget : all_bytes;
+    bytes -= bytes % OIT_PACK_ALIGN;
+    if (bytes == 0)
+        return OIT_OK;
+    oit_status st = oit_residency_create(bytes, oit_partfile_part_count(s->pf), &s->cache, err);
+    if (st != OIT_OK)
+        return st;
+    glCreateBuffers(1, &s->cache_buffer);
+    glNamedBufferStorage(s->cache_buffer, (GLsizeiptr)bytes, NULL, 0);
+    return oit_gl_check("residency cache: glNamedBufferStorage", err);
+}
+
+static oit_status create_upload(oit_streamer *s, const oit_streamer_desc *desc, uint64_t budget,
+                                uint64_t all_bytes, oit_error *err)
+{
+    oit_status st = oit_fence_queue_create(&s->fences, err);
+    if (st == OIT_OK)
+        st = oit_upload_create(budget, &s->upload, err);
+    if (st == OIT_OK)
+        st = oit_reader_create(s->pf, oit_upload_map(s->upload), !desc->read_inline,
+                               &s->reader, err);
+    if (st == OIT_OK)
+        st = create_cache(s, desc->cache_budget, all_bytes, err);
+    /* A few fences per lap of the ring: enough that reclaiming a region
+     * waits for little more than its own pack. */
+    s->fence_every = budget / 4;
+    return st;
+}
+
 oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
                                oit_streamer **out, oit_error *err)
 {
     *out = NULL;
-    uint32_t n = oit_partfile_part_count(pf);
     oit_streamer *s = calloc(1, sizeof *s);
-    if (s) {
-        s->pf = pf;
-        s->ordered = calloc((size_t)n + 1, sizeof *s->ordered);
-        s->first_prim = calloc((size_t)n + 1, sizeof *s->first_prim);
-        s->validated = calloc((size_t)n + 1, 1);
-    }
-    if (!s || !s->ordered || !s->first_prim || !s->validated) {
-        oit_streamer_destroy(s);
-        return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot allocate the streamer (%u parts)",
-                             oit_partfile_name(pf), n);
-    }
-    uint64_t budget = desc->upload_budget ? desc->upload_budget : 64ull << 20, max_part = 0;
+    if (!s)
+        return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot allocate the streamer",
+                             oit_partfile_name(pf));
+    s->pf = pf;
+    uint64_t budget = desc->upload_budget ? desc->upload_budget : 64ull << 20, all_bytes = 0;
     oit_pack_mode mode = desc->pack != OIT_PACK_AUTO ? desc->pack
                          : desc->epsilon > 0.0f ? OIT_PACK_DISJOINT
                                                 : OIT_PACK_COUNTED;
-    oit_status st = number_triangles(s, &max_part, err);
+    oit_status st = alloc_arrays(s, oit_partfile_part_count(pf), err);
+    if (st == OIT_OK)
+        st = number_triangles(s, &all_bytes, err);
     if (st == OIT_OK)
         st = oit_order_create(pf, &s->order, err);
     if (st == OIT_OK)
@@ -96,15 +180,17 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
     if (st == OIT_OK)
         oit_packer_set_schedule(s->packer, desc->schedule);
     if (st == OIT_OK)
-        st = oit_upload_create(budget, max_part, &s->upload, err);
+        st = create_upload(s, desc, budget, all_bytes, err);
     if (st == OIT_OK)
         st = oit_capture_create(mode == OIT_PACK_COUNTED ? OIT_CAPTURE_COUNTED : desc->capture,
                                 desc->K, &s->capture, err);
     if (st == OIT_OK)
         oit_capture_set_slot_budget(s->capture, desc->slot_budget ? desc->slot_budget
                                                                   : 32ull << 20);
+    s->ahead = AHEAD_EXACT;
     if (st == OIT_OK && desc->epsilon > 0.0f) {
         s->epsilon = desc->epsilon;
+        s->ahead = AHEAD_EPSILON;
         oit_capture_set_epsilon(s->capture, desc->epsilon);
         st = oit_saturation_create(&s->saturation, err);
     }
@@ -135,40 +221,162 @@ static oit_status reserve_views(oit_streamer *s, uint32_t n, oit_error *err)
     return OIT_OK;
 }
 
-/* Uploads and captures pack i, leaving out the parts whose footprint is
- * saturated (saturation.h: the capture would drop all their fragments). */
+static int saturated(oit_streamer *s, const oit_packing *pk, uint32_t j)
+{
+    return s->saturation &&
+           oit_saturation_covered(s->saturation, pk->part_rects[j], s->epsilon);
+}
+
+/* Decides where pack i's parts come from; returns the ring bytes the read
+ * ones need (their offsets relative to the pack's region). Repeatable: a
+ * preparation that found no room runs it again later. */
+static uint64_t plan_sources(oit_streamer *s, const oit_packing *pk, uint32_t i)
+{
+    const oit_partfile_part *parts = oit_partfile_parts(s->pf);
+    uint64_t bytes = 0;
+    for (uint32_t j = pk->pack_first[i]; j < pk->pack_first[i + 1]; j++) {
+        uint32_t p = pk->parts[j];
+        if (saturated(s, pk, j)) {
+            s->source[j] = SRC_SKIP;
+        } else if (s->cache && oit_residency_lookup(s->cache, p, &s->offset[j])) {
+            s->source[j] = SRC_CACHE;
+        } else {
+            s->source[j] = SRC_RING;
+            s->offset[j] = bytes;
+            bytes += oit_pack_part_bytes(&parts[p]);
+        }
+    }
+    return bytes;
+}
+
+/* Prepares pack i: sources, ring region, reader job. With wait it blocks
+ * until the ring has room; without, *got = 0 when it has none yet. */
+static oit_status prepare_pack(oit_streamer *s, const oit_packing *pk, uint32_t i, int wait,
+                               int *got, oit_error *err)
+{
+    uint64_t bytes = plan_sources(s, pk, i), base = 0;
+    s->plans[i].ring_bytes = bytes;
+    *got = 1;
+    if (bytes == 0)
+        return OIT_OK;
+    oit_status st = oit_upload_reserve(s->upload, s->fences, bytes, wait, &base, got, err);
+    if (st != OIT_OK || !*got)
+        return st;
+    uint32_t first = pk->pack_first[i], n = 0;
+    for (uint32_t j = first; j < pk->pack_first[i + 1]; j++)
+        if (s->source[j] == SRC_RING) {
+            s->offset[j] += base;
+            s->items[first + n++] = (oit_read_item){pk->parts[j], s->offset[j]};
+        }
+    return oit_reader_submit(s->reader, &s->items[first], n, err);
+}
+
+/* Points the next view at part j of the packing and, for a part read in
+ * this frame, copies it into the cache when there is room. */
+static void use_part(oit_streamer *s, const oit_packing *pk, uint32_t j, oit_gpu_mesh *view,
+                     oit_stream_frame_stats *ss)
+{
+    const oit_partfile_part *part = &oit_partfile_parts(s->pf)[pk->parts[j]];
+    uint64_t tri_bytes = part->index_count / 3 * sizeof(oit_triangle), at = 0;
+    int cached = s->source[j] == SRC_CACHE;
+    oit_gpu_mesh_set_buffer(view, cached ? s->cache_buffer : oit_upload_buffer(s->upload));
+    oit_gpu_mesh_set_range(view, s->offset[j], (size_t)(part->index_count / 3),
+                           s->first_prim[pk->parts[j]]);
+    ss->cache_hits += (uint64_t)cached;
+    if (!cached && s->cache &&
+        oit_residency_insert(s->cache, pk->parts[j], oit_pack_part_bytes(part), &at))
+        glCopyNamedBufferSubData(oit_upload_buffer(s->upload), s->cache_buffer,
+                                 (GLintptr)s->offset[j], (GLintptr)at, (GLsizeiptr)tri_bytes);
+}
+
+/* Counts what pack i read, and lets its ring region go once the work issued
+ * so far completes, fencing every fence_every bytes. */
+static oit_status retire_region(oit_streamer *s, const oit_packing *pk, uint32_t i,
+                                oit_stream_frame_stats *ss, oit_error *err)
+{
+    const oit_partfile_part *parts = oit_partfile_parts(s->pf);
+    if (s->plans[i].ring_bytes == 0)
+        return OIT_OK;
+    for (uint32_t j = pk->pack_first[i]; j < pk->pack_first[i + 1]; j++)
+        if (s->source[j] == SRC_RING)
+            ss->bytes_uploaded += parts[pk->parts[j]].index_count / 3 * sizeof(oit_triangle);
+    oit_upload_drawn(s->upload, oit_fence_queue_tag(s->fences));
+    s->unfenced += s->plans[i].ring_bytes;
+    if (s->unfenced < s->fence_every)
+        return OIT_OK;
+    s->unfenced = 0;
+    return oit_fence_queue_insert(s->fences, err);
+}
+
+/* Collects pack i from the reader and captures it, leaving out the parts
+ * whose footprint is saturated (saturation.h: the capture would drop all
+ * their fragments); they may have saturated since the pack was prepared.
+ * Once collected, the region is retired even when the capture fails: GL
+ * may already read it. */
 static oit_status draw_pack(oit_streamer *s, const oit_packing *pk, uint32_t i,
                             oit_stream_frame_stats *ss, oit_error *err)
 {
     uint32_t first = pk->pack_first[i], n = pk->pack_first[i + 1] - first, drawn = 0;
-    oit_status st = reserve_views(s, n, err);
-    if (st == OIT_OK)
-        st = oit_upload_begin_pack(s->upload, pk->bytes[i], err);
-    const oit_partfile_part *parts = oit_partfile_parts(s->pf);
-    for (uint32_t k = 0; k < n && st == OIT_OK; k++) {
-        uint32_t p = pk->parts[first + k];
-        if (s->saturation && oit_saturation_covered(s->saturation, pk->part_rects[first + k],
-                                                    s->epsilon)) {
+    oit_status st = s->plans[i].ring_bytes ? oit_reader_collect(s->reader, err) : OIT_OK;
+    if (st != OIT_OK)
+        return st;
+    st = reserve_views(s, n, err);
+    for (uint32_t j = first; j < first + n && st == OIT_OK; j++) {
+        if (s->source[j] == SRC_SKIP || saturated(s, pk, j)) {
             ss->parts_skipped++;
             continue;
         }
-        uint64_t offset = 0;
-        if (!s->validated[p] && (st = oit_partfile_validate_part(s->pf, p, err)) != OIT_OK)
-            break;
-        s->validated[p] = 1;
-        st = oit_upload_part(s->upload, s->pf, p, &offset, err);
-        oit_gpu_mesh_set_range(s->views[drawn++], offset, (size_t)(parts[p].index_count / 3),
-                               s->first_prim[p]);
-        ss->bytes_uploaded += parts[p].index_count / 3 * sizeof(oit_triangle);
+        use_part(s, pk, j, s->views[drawn++], ss);
     }
-    if (st != OIT_OK || drawn == 0)
-        return st;
-    ss->packs++;
-    st = oit_capture_batch_layers(s->capture, (const oit_gpu_mesh *const *)s->views, (int)drawn,
-                                  pk->rects[i], (int)pk->layers[i], err);
-    if (st == OIT_OK && s->saturation)
+    if (st == OIT_OK && drawn > 0) {
+        ss->packs++;
+        st = oit_capture_batch_layers(s->capture, (const oit_gpu_mesh *const *)s->views,
+                                      (int)drawn, pk->rects[i], (int)pk->layers[i], err);
+    }
+    if (st == OIT_OK && drawn > 0 && s->saturation)
         st = oit_saturation_update(s->saturation, oit_capture_state_buffer(s->capture),
                                    pk->rects[i], err);
+    oit_status rs = retire_region(s, pk, i, ss, st == OIT_OK ? err : NULL);
+    return st != OIT_OK ? st : rs;
+}
+
+/* Prepares packs from *next on while they stay within `ahead` of pack i
+ * and the ring has room; pack i itself is waited for. */
+static oit_status prepare_ahead(oit_streamer *s, const oit_packing *pk, uint32_t i,
+                                uint32_t *next, oit_error *err)
+{
+    while (*next < pk->pack_count && *next - i <= s->ahead &&
+           oit_reader_outstanding(s->reader) < OIT_READER_QUEUE) {
+        int got = 0;
+        oit_status st = prepare_pack(s, pk, *next, *next == i, &got, err);
+        if (st != OIT_OK)
+            return st;
+        if (!got)
+            break;
+        ++*next;
+    }
+    if (*next <= i)
+        return oit_error_set(err, OIT_ERR_GL, "upload: pack %u found no room in the ring", i);
+    return OIT_OK;
+}
+
+/* Draws every pack of the view, preparing later ones while earlier ones
+ * draw. On failure the reader's outstanding work is dropped and the ring
+ * forgets the regions of the packs that never reached GL. */
+static oit_status draw_packs(oit_streamer *s, const oit_packing *pk,
+                             oit_stream_frame_stats *ss, oit_error *err)
+{
+    uint32_t next = 0;
+    oit_status st = OIT_OK;
+    for (uint32_t i = 0; st == OIT_OK && i < pk->pack_count; i++) {
+        st = prepare_ahead(s, pk, i, &next, err);
+        if (st == OIT_OK)
+            st = draw_pack(s, pk, i, ss, err);
+    }
+    if (st != OIT_OK) {
+        oit_reader_cancel(s->reader);
+        oit_upload_release_undrawn(s->upload);
+    }
     return st;
 }
 
@@ -179,6 +387,8 @@ static oit_status capture_frame(oit_streamer *s, const oit_view *view, oit_packi
 {
     memset(ss, 0, sizeof *ss);
     uint32_t count = 0;
+    if (s->cache)
+        oit_residency_begin_frame(s->cache);
     oit_status st = oit_capture_begin(s->capture, view, err);
     if (st == OIT_OK)
         st = oit_order_compute(s->order, view->camera.eye, s->ordered, &count, err);
@@ -186,8 +396,8 @@ static oit_status capture_frame(oit_streamer *s, const oit_view *view, oit_packi
         st = oit_packer_run(s->packer, view, s->ordered, count, pk, err);
     if (st == OIT_OK && s->saturation)
         st = oit_saturation_begin(s->saturation, view->width, view->height, err);
-    for (uint32_t i = 0; st == OIT_OK && i < pk->pack_count; i++)
-        st = draw_pack(s, pk, i, ss, err);
+    if (st == OIT_OK)
+        st = draw_packs(s, pk, ss, err);
     if (st != OIT_OK) {
         oit_image discard = {0};
         oit_capture_end(s->capture, &discard, NULL, NULL);
@@ -202,7 +412,9 @@ static void finish_stats(const oit_streamer *s, const oit_packing *pk, oit_frame
     ss->parts_drawn = pk->part_count - ss->parts_skipped;
     ss->parts_culled = pk->culled;
     ss->epsilon = s->epsilon;
+    ss->cache_bytes = s->cache ? oit_residency_bytes(s->cache) : 0;
     ss->gpu_bytes_peak = fs->gpu_bytes_peak + oit_upload_gpu_bytes(s->upload) +
+                         (s->cache ? oit_residency_capacity(s->cache) : 0) +
                          (s->saturation ? oit_saturation_gpu_bytes(s->saturation) : 0);
     fs->gpu_bytes_peak = ss->gpu_bytes_peak;
 }

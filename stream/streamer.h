@@ -1,8 +1,18 @@
 /* The per-frame driver of the part-file renderer: order the parts for the
- * eye (order.h), cut the order into packs (pack.h), and per pack upload its
- * parts through the bounded ring (upload.h) and capture them as one batch
- * (render/capture.h), composited behind the packs before it. Requires a
- * current GL context for its whole life. */
+ * eye (order.h), cut the order into packs (pack.h), and per pack get its
+ * parts onto the GPU and capture them as one batch (render/capture.h),
+ * composited behind the packs before it.
+ *
+ * Upload pipeline. The order is known before the first draw, so packs are
+ * prepared ahead: the render thread decides each part's source (skipped:
+ * its footprint is saturated; cached: resident from an earlier frame,
+ * residency.h; otherwise read), reserves the read parts a region of the
+ * persistently mapped ring (upload.h) and queues them to the reader thread
+ * (reader.h), which validates and expands them into the ring while the GPU
+ * draws earlier packs. Draws collect packs in order; a part read in this
+ * frame is copied on the GPU into the residency cache when it finds room
+ * there. Requires a current GL context for its whole life, on the thread
+ * that calls every function here. */
 #ifndef OIT_STREAM_STREAMER_H
 #define OIT_STREAM_STREAMER_H
 
@@ -23,7 +33,18 @@ typedef struct oit_streamer_desc {
     uint64_t slot_budget;     /* capture slot bytes (oit_capture_set_slot_budget);
                                  0: 32 MiB */
     float epsilon;            /* early termination (oit_capture_set_epsilon); 0: exact */
+    uint64_t cache_budget;    /* residency cache bytes; 0: OIT_STREAM_CACHE_DEFAULT;
+                                 OIT_STREAM_CACHE_OFF: no cache */
+    int read_inline;          /* 1: parts are read on the render thread, no reader
+                                 thread (for comparison and debugging) */
 } oit_streamer_desc;
+
+/* 256 MiB: ~5.6 M triangles at 48 bytes, the visible working set of most
+ * views of multi-million-triangle models, and a small share of any GL 4.5
+ * GPU. The buffer never exceeds the file's own part bytes, so small files
+ * pay only for what they hold. */
+#define OIT_STREAM_CACHE_DEFAULT (256ull << 20)
+#define OIT_STREAM_CACHE_OFF UINT64_MAX
 
 /* The streamer's own per-frame figures, beside oit_frame_stats. */
 typedef struct oit_stream_frame_stats {
@@ -32,8 +53,11 @@ typedef struct oit_stream_frame_stats {
     uint64_t parts_culled;   /* boxes outside the view volume: no fragment */
     uint64_t parts_skipped;  /* epsilon > 0: footprint saturated (render/saturation.h),
                                 neither uploaded nor drawn */
-    uint64_t bytes_uploaded;
-    uint64_t gpu_bytes_peak; /* capture buffers + upload ring              */
+    uint64_t bytes_uploaded; /* part bytes the CPU wrote into the upload ring,
+                                read-ahead of parts then skipped included  */
+    uint64_t cache_hits;     /* parts drawn from the residency cache        */
+    uint64_t cache_bytes;    /* bytes resident in the cache after the frame */
+    uint64_t gpu_bytes_peak; /* capture buffers + upload ring + cache       */
     float epsilon;           /* the early-termination threshold it ran with */
 } oit_stream_frame_stats;
 

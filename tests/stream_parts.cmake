@@ -12,3 +12,12 @@ oit_add_test(NAME stream_parts_bunny LABELS integration TIMEOUT 300
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_streamer.sh bunny)
 oit_add_test_exe(test_schedule SOURCES test_schedule.c LIBS oit_stream)
 oit_add_test(NAME stream_schedule COMMAND $<TARGET_FILE:test_schedule> LABELS unit TIMEOUT 60)
+# the residency cache's bookkeeping (no GL)
+oit_add_test_exe(test_residency SOURCES test_residency.c LIBS oit_stream)
+oit_add_test(NAME stream_residency COMMAND $<TARGET_FILE:test_residency> LABELS unit TIMEOUT 60)
+# the upload pipeline through the streamer API: residency, identical images
+# across ring, cache and thread settings, a corrupt part, clean teardown
+oit_add_test_exe(test_upload SOURCES test_upload.c LIBS oit_stream)
+set(upload_grid ${CMAKE_BINARY_DIR}/test-tmp/upload_grid.oitp)
+oit_add_test(NAME stream_upload LABELS integration TIMEOUT 60
+  COMMAND sh -c "$<TARGET_FILE:test_streamer> ${upload_grid} && $<TARGET_FILE:test_upload> ${upload_grid}")

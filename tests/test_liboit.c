@@ -167,6 +167,25 @@ static void draw_and_compare(const char *name, oit_scene *scene, oit_partfile *p
            (unsigned long long)st.parts_drawn, (unsigned long long)st.parts_culled,
            (unsigned long long)st.bytes_uploaded);
 
+    /* Again into a fresh target: the parts now come from the residency
+     * cache (nothing uploaded), and the image must not change. */
+    target t2 = target_make();
+    f.framebuffer = t2.fbo;
+    oit_draw_stats st2 = {0};
+    if (s == OIT_OK) {
+        s = oit_renderer_draw(r, scene, &f, &st2, &err);
+        CHECK(s == OIT_OK, "%s: second draw: %s", name, err.message);
+        printf("%s: second draw: %llu bytes uploaded, %llu parts from the cache, %llu bytes "
+               "resident\n", name, (unsigned long long)st2.bytes_uploaded,
+               (unsigned long long)st2.cache_hits, (unsigned long long)st2.cache_bytes);
+        CHECK(st.bytes_uploaded > 0 && st2.bytes_uploaded == 0 &&
+                  st2.cache_hits == st2.parts_drawn && st2.cache_bytes > 0,
+              "%s: second draw uploaded %llu bytes (first %llu), %llu of %llu parts cached",
+              name, (unsigned long long)st2.bytes_uploaded,
+              (unsigned long long)st.bytes_uploaded, (unsigned long long)st2.cache_hits,
+              (unsigned long long)st2.parts_drawn);
+    }
+
     oit_image ref = {0};
     oit_frame_stats rs = {0};
     v.shading = (oit_shading){0};
@@ -185,9 +204,11 @@ static void draw_and_compare(const char *name, oit_scene *scene, oit_partfile *p
         CHECK(st.overflow_pixels == 0, "%s: %llu overflow pixels", name,
               (unsigned long long)st.overflow_pixels);
         compare(name, &t, &ref);
+        compare(name, &t2, &ref);
     }
     oit_image_free(&ref);
     target_free(&t);
+    target_free(&t2);
     oit_renderer_destroy(r);
 }
 

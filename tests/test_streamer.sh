@@ -4,10 +4,12 @@
 #        test_streamer.sh demo          (`oitgen demo` converted by oitprep)
 #        test_streamer.sh bunny         ($OIT_MESH_CACHE/bunny00.off converted)
 # Same triangles, same fragments, same tie-break: the images must agree to
-# 1/255 on >= 99.9% of pixels, with zero overflow, at least one pack and
-# bytes uploaded, from 3 orbit views and one eye inside the model, in both
-# shading modes; on the small file also with the disjoint rule, an upload
-# ring small enough to wrap many times per frame, and K = 2 (wide parts).
+# 1/255 on >= 99.9% of pixels, with zero overflow, at least one pack, bytes
+# uploaded in the first frame and every later frame's parts uploaded or
+# drawn from the residency cache, from 3 orbit views and one eye inside the
+# model, in both shading modes; on the small file also with the disjoint
+# rule, an upload ring small enough to wrap many times per frame, and K = 2
+# (wide parts), and the upload pipeline's own checks (residency below).
 set -u
 : "${OIT_BIN:?OIT_BIN must name the tools folder}"
 : "${OIT_TEST_TMP:?OIT_TEST_TMP must name a scratch folder}"
@@ -20,6 +22,10 @@ fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
 json_num() { sed -n "s/.*\"$1\": \([-0-9.e+]*\).*/\1/p" | head -n 1; }
 # json_all KEY < json: every value of KEY, one a line
 json_all() { grep -o "\"$1\": [-0-9.e+]*" | sed 's/.*: //'; }
+# frame_figures JSON: "parts_drawn bytes_uploaded cache_hits", one frame a line
+frame_figures() {
+    sed -n 's/.*"parts_drawn": \([0-9]*\).*"bytes_uploaded": \([0-9]*\), "cache_hits": \([0-9]*\).*/\1 \2 \3/p' "$1"
+}
 
 P="$T/scene.oitp"
 case "$MODE" in
@@ -67,15 +73,66 @@ check_stats() {
     for p in $(json_all packs < "$2"); do
         [ "$p" -ge 1 ] || fail "$1: $p packs"
     done
-    for b in $(json_all bytes_uploaded < "$2"); do
-        [ "$b" -gt 0 ] || fail "$1: $b bytes uploaded"
-    done
+    b=$(json_num bytes_uploaded < "$2")
+    [ "${b:-0}" -gt 0 ] || fail "$1: ${b:-no} bytes uploaded in the first frame"
+    # A later frame may draw everything from the cache, but not nothing.
+    frame_figures "$2" | awk '$2 == 0 && $3 != $1 {bad = 1} END {exit bad}' ||
+        fail "$1: a frame uploaded nothing yet drew parts the cache did not hold" \
+             "(drawn, uploaded, hits: $(frame_figures "$2" | tr '\n' ';'))"
     for f in $(json_all fragments < "$2"); do
         [ "$f" -gt 0 ] || fail "$1: $f fragments (blank frame)"
     done
     echo "$1: packs per frame: $(json_all packs < "$2" | tr '\n' ' ')" \
          "bytes uploaded: $(json_all bytes_uploaded < "$2" | tr '\n' ' ')" \
          "GPU peak: $(json_all gpu_bytes_peak < "$2" | head -n 1)"
+}
+
+# The upload pipeline (issue 6) on one view drawn twice (--walk with the
+# same line twice): with the residency cache the second frame uploads
+# nothing and draws every part from the cache; without it, it uploads what
+# the first did; so does reading on the render thread (--upload-threads 0)
+# and a 64K ring that wraps and waits on fences many times a frame; a cache
+# smaller than the file keeps part of it. Every image is the same bit for
+# bit (PFM, cmp). On an orbit the cache uploads less than no cache.
+residency() {
+    sed -n 's/.*"view": "\([^"]*\)".*/\1/p' "$T/budget_s.json" | head -n 1 > "$T/twice.txt"
+    cat "$T/twice.txt" "$T/twice.txt" > "$T/twice2.txt"
+    for cfg in "cache" "nocache --cache-budget 0" "inline --upload-threads 0 --cache-budget 0" \
+               "ring --upload-budget 64K --cache-budget 0" "small --cache-budget 64K"; do
+        set -- $cfg
+        n=$1; shift
+        "$S" "$P" --size 128x128 --walk "$T/twice2.txt" --out "$T/res_$n.pfm" \
+            --stats "$T/res_$n.json" --quiet "$@" || { fail "residency $n: exited $?"; continue; }
+        for i in 000 001; do
+            cmp -s "$T/res_cache_000.pfm" "$T/res_${n}_$i.pfm" ||
+                fail "residency $n frame $i: image differs from the cached run's first frame"
+        done
+        set -- $(frame_figures "$T/res_$n.json" | tr '\n' ' ')
+        echo "residency $n: frame 0: $1 parts, $2 bytes, $3 hits; frame 1: $4 parts, $5 bytes, $6 hits"
+        case $n in
+        cache) b0=$2
+            [ "$2" -gt 0 ] && [ "$5" -eq 0 ] && [ "$6" -eq "$4" ] && [ "$3" -eq 0 ] ||
+                fail "residency cache: the second frame uploaded $5 bytes, $6 of $4 parts cached" ;;
+        small)
+            [ "$2" -eq "$b0" ] && [ "$5" -gt 0 ] && [ "$5" -lt "$2" ] && [ "$6" -gt 0 ] ||
+                fail "residency small: frame 1 uploaded $5 of $2 bytes with $6 hits" ;;
+        *)
+            [ "$2" -eq "$b0" ] && [ "$5" -eq "$2" ] && [ "$3" -eq 0 ] && [ "$6" -eq 0 ] ||
+                fail "residency $n: uploads $2 then $5 bytes (cached run: $b0), hits $3, $6" ;;
+        esac
+    done
+    for c in 256M 0; do
+        "$S" "$P" --size 64x64 --orbit 8 --cache-budget $c --stats "$T/orbit_$c.json" --quiet ||
+            fail "orbit, cache $c: exited $?"
+    done
+    on=$(json_all bytes_uploaded < "$T/orbit_256M.json" | awk '{s += $1} END {print s + 0}')
+    off=$(json_all bytes_uploaded < "$T/orbit_0.json" | awk '{s += $1} END {print s + 0}')
+    echo "orbit 8: $on bytes uploaded with the cache, $off without"
+    [ "$on" -gt 0 ] && [ "$on" -lt "$off" ] || fail "orbit 8: cache uploads $on, none $off"
+    for bad in "--cache-budget 1K" "--cache-budget -1" "--upload-threads 2"; do
+        "$S" "$P" --size 8x8 --quiet $bad >/dev/null 2>&1
+        [ $? -eq 2 ] || fail "$bad was not refused as a usage error"
+    done
 }
 
 agree budget --pack budget
@@ -94,7 +151,7 @@ if [ "$MODE" = grid ]; then
     # small file only, where they are cheap.
     agree disjoint --pack disjoint
     agree wave_disjoint --schedule wave
-    agree ring --upload-budget 64K
+    agree ring --upload-budget 64K --cache-budget 0
     # K = 2 turns every part into a wide part (layer bound > K): captured
     # with more slots per pixel over smaller tiles, still exact.
     agree wide --max-layers 2 --pack disjoint
@@ -102,16 +159,17 @@ if [ "$MODE" = grid ]; then
     # every pack in many screen tiles, the output in the idle slots.
     agree tiled --slot-budget 64K --pack disjoint
     agree tiled_wide --slot-budget 64K --max-layers 2 --pack disjoint
-    # GPU memory at 1024x1024 outside the two budgets stays below 64 MB
-    # (per-pixel counts and state), whatever the model (issue 6).
-    # Both captures: the counted one's fragment store is the slot budget.
+    residency
+    # GPU memory at 1024x1024 outside the three budgets stays below 64 MB
+    # (per-pixel counts and state), whatever the model (issue 6), with both
+    # captures: the counted one's fragment store is the slot budget.
     for pk in counted disjoint; do
-        "$S" "$P" --size 1024x1024 --upload-budget 1M --slot-budget 8M --pack $pk \
-            --out "$T/big.png" --stats "$T/big.json" --quiet ||
+        "$S" "$P" --size 1024x1024 --upload-budget 1M --slot-budget 8M --cache-budget 1M \
+            --pack $pk --out "$T/big.png" --stats "$T/big.json" --quiet ||
             fail "1024x1024 --pack $pk: stream exited $?"
         g=$(json_num gpu_bytes_peak < "$T/big.json")
-        echo "1024x1024 --pack $pk, upload budget 1M, slot budget 8M: GPU peak $g bytes"
-        [ -n "$g" ] && [ "$g" -le $((64000000 + 9 * 1048576)) ] ||
+        echo "1024x1024 --pack $pk, upload budget 1M, slot budget 8M, cache budget 1M: GPU peak $g bytes"
+        [ -n "$g" ] && [ "$g" -le $((64000000 + 10 * 1048576)) ] ||
             fail "1024x1024 --pack $pk: GPU peak $g bytes, more than 64 MB beyond the budgets"
     done
 fi

@@ -12,7 +12,11 @@
  *
  * Threads: no global state. A scene may be shared by renderers of one thread;
  * a renderer belongs to the GL context that was current at its creation and
- * must be used and destroyed on a thread where that context is current.
+ * must be used and destroyed on a thread where that context is current. A
+ * renderer starts one reader thread of its own at its first draw (see
+ * read_on_draw_thread), which touches only the scene's file and memory the
+ * renderer mapped, never GL; it is idle between oit_renderer_draw calls and
+ * joined by oit_renderer_destroy.
  *
  * Result: the frame is composited OVER the target's existing content with
  * premultiplied colour C and per-channel transmittance T (DESIGN.md):
@@ -114,7 +118,18 @@ typedef struct oit_renderer_desc {
      * drawn (oit_draw_stats.parts_skipped); the image then differs from the
      * exact one by at most epsilon per channel. */
     float epsilon;
+    /* GPU bytes that keep parts drawn in one frame resident for the next
+     * ones, drawn without reading or uploading them again
+     * (oit_draw_stats.cache_hits); 0: 256 MiB (never more than the scene's
+     * parts take); OIT_RENDER_CACHE_OFF: no cache. */
+    uint64_t cache_budget;
+    /* 0 (default): a reader thread of the renderer's own reads the parts of
+     * later packs while the GPU draws earlier ones (it never calls GL). 1:
+     * parts are read on the drawing thread; for comparison and debugging. */
+    int read_on_draw_thread;
 } oit_renderer_desc;
+
+#define OIT_RENDER_CACHE_OFF UINT64_MAX
 
 /* Needs a current GL 4.5 core context (GL objects are created lazily, at the
  * first draw of each scene). */
@@ -146,8 +161,10 @@ typedef struct oit_draw_stats {
     uint64_t parts_drawn;
     uint64_t parts_culled;
     uint64_t parts_skipped;  /* epsilon > 0: footprint saturated, not drawn   */
-    uint64_t bytes_uploaded;
-    uint64_t gpu_bytes_peak;
+    uint64_t bytes_uploaded; /* part bytes written for the GPU in this call    */
+    uint64_t gpu_bytes_peak; /* capture, upload ring and cache together        */
+    uint64_t cache_hits;     /* parts drawn from the cache, not uploaded again */
+    uint64_t cache_bytes;    /* bytes resident in the cache after the call     */
 } oit_draw_stats;
 
 /* Draws scene as seen through frame into frame->framebuffer (see Result
