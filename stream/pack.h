@@ -1,8 +1,8 @@
-/* Cutting the per-view part order into packs (seed 002, 5.1): consecutive
- * parts of the order that are drawn as one capture batch. A pack is exact
- * when no pixel can receive more than K fragments from it, since the batch's
- * per-pixel sort then orders its fragments as the whole order would (parts
- * earlier in the order are never behind later ones along a ray).
+/* Cutting the per-view part order into packs (seed 002, 5.1): parts of the
+ * order drawn as one capture batch, earlier packs in front of later ones
+ * along every ray. A K-slot pack is exact when no pixel can receive more
+ * than K fragments from it, since the batch's per-pixel sort then orders its
+ * fragments as the whole order would.
  *  - OIT_PACK_BUDGET: a screen grid of 32x32-pixel tiles holds the sum of the
  *    layer bounds of the pack's parts whose rectangle touches the tile; a
  *    part joins while every tile it touches stays <= K.
@@ -17,8 +17,9 @@
  * reaches in front of the near plane covers the screen); a box wholly outside
  * the view volume yields no fragment and is culled. A pack is also cut where
  * its expanded triangle data would exceed the upload budget.
- * A wide part (layer bound above K, partition/kd.h) is always a pack of its
- * own, captured with that many slots per pixel (oit_capture_batch_layers). */
+ * Under the K-slot rules a wide part (layer bound above K, partition/kd.h)
+ * is a pack of its own, captured with that many slots per pixel
+ * (oit_capture_batch_layers). */
 #ifndef OIT_STREAM_PACK_H
 #define OIT_STREAM_PACK_H
 
