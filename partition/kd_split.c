@@ -87,8 +87,8 @@ static void prefix(const event *e, uint32_t n, uint32_t *pre)
         pre[i + 1] = pre[i] + e[i].w;
 }
 
-static int events_build(const oit_kd_piece_box *pieces, uint32_t count, int axis,
-                        axis_events *ev)
+/* Room for count pieces, shared by the three axes of one choice. */
+static int events_alloc(uint32_t count, axis_events *ev)
 {
     ev->lo = malloc(5 * (size_t)count * sizeof *ev->lo + 1);
     ev->pre_lo = malloc(3 * ((size_t)count + 1) * sizeof *ev->pre_lo);
@@ -101,6 +101,12 @@ static int events_build(const oit_kd_piece_box *pieces, uint32_t count, int axis
     ev->pre_hi = ev->pre_lo + count + 1;
     ev->pre_flat = ev->pre_hi + count + 1;
     ev->n = count;
+    return 1;
+}
+
+static void events_fill(const oit_kd_piece_box *pieces, uint32_t count, int axis,
+                        axis_events *ev)
+{
     ev->nflat = ev->nface_hi = ev->nface_lo = 0;
     for (uint32_t i = 0; i < count; i++) {
         const oit_kd_piece_box *p = &pieces[i];
@@ -121,7 +127,6 @@ static int events_build(const oit_kd_piece_box *pieces, uint32_t count, int axis
     prefix(ev->lo, count, ev->pre_lo);
     prefix(ev->hi, count, ev->pre_hi);
     prefix(ev->flat, ev->nflat, ev->pre_flat);
-    return 1;
 }
 
 static void events_free(axis_events *ev)
@@ -198,12 +203,13 @@ int oit_kd_choose_split(const oit_kd_piece_box *pieces, uint32_t count, const fl
     for (uint32_t i = 0; i < count; i++)
         total += pieces[i].weight;
     split_best best = {0};
+    axis_events ev;
+    if (!events_alloc(count, &ev)) {
+        events_free(&ev);
+        return -1;
+    }
     for (int a = 0; a < 3; a++) {
-        axis_events ev;
-        if (!events_build(pieces, count, a, &ev)) {
-            events_free(&ev);
-            return -1;
-        }
+        events_fill(pieces, count, a, &ev);
         for (int j = 1; j < 16; j++) {
             double md = (double)lo[a] + ((double)hi[a] - lo[a]) * j / 16.0;
             if ((double)(float)md == md)
@@ -218,8 +224,8 @@ int oit_kd_choose_split(const oit_kd_piece_box *pieces, uint32_t count, const fl
             if (i == 0 || ev.hi[i].v != ev.hi[i - 1].v)
                 consider(&ev, lo, hi, a, ev.hi[i].v, max_layers, total, &best);
         }
-        events_free(&ev);
     }
+    events_free(&ev);
     if (best.found) {
         *axis = best.axis;
         *pos = best.pos;

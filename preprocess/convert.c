@@ -516,21 +516,11 @@ static oit_status apply_manage(const oit_convert_options *o, oit_convert_options
     return OIT_OK;
 }
 
-static oit_status convert_with(const oit_convert_options *o, oit_convert_stats *st,
-                               oit_error *err);
-
-oit_status oit_convert(const oit_convert_options *o, oit_convert_stats *st, oit_error *err)
-{
-    oit_convert_options eff;
-    memset(st, 0, sizeof *st);
-    oit_status s = apply_manage(o, &eff, err);
-    return s ? s : convert_with(&eff, st, err);
-}
-
+/* The conversion itself, with the scheme already applied to the options;
+ * st is zeroed by the caller. */
 static oit_status convert_with(const oit_convert_options *o, oit_convert_stats *st,
                                oit_error *err)
 {
-    memset(st, 0, sizeof *st);
     st->threads = o->threads;
     st->K = o->K;
     double t0 = now_s();
@@ -589,4 +579,12 @@ static oit_status convert_with(const oit_convert_options *o, oit_convert_stats *
         !strstr(err->message, o->output))
         oit_error_prefix(err, o->input);
     return s;
+}
+
+oit_status oit_convert(const oit_convert_options *o, oit_convert_stats *st, oit_error *err)
+{
+    oit_convert_options eff;
+    memset(st, 0, sizeof *st);
+    oit_status s = apply_manage(o, &eff, err);
+    return s ? s : convert_with(&eff, st, err);
 }

@@ -163,13 +163,18 @@ static uint64_t held_bytes(const oit_capture *c)
     return b;
 }
 
+static void note_peak(oit_capture *c)
+{
+    uint64_t held = held_bytes(c);
+    c->bytes_peak = held > c->bytes_peak ? held : c->bytes_peak;
+}
+
 static oit_status reserve(oit_capture *c, int which, uint64_t bytes, oit_error *err)
 {
     static const char *names[BUF_N] = {"capture counts", "capture slots", "capture state",
                                        "capture output", "capture totals"};
     oit_status s = oit_gl_buffer_reserve(&c->buf[which], &c->cap[which], bytes, names[which], err);
-    uint64_t held = held_bytes(c);
-    c->bytes_peak = held > c->bytes_peak ? held : c->bytes_peak;
+    note_peak(c);
     return s;
 }
 
@@ -201,16 +206,24 @@ static oit_status allocate(oit_capture *c, const oit_view *v, oit_error *err)
         s = reserve(c, BUF_TOTALS, 16, err);
     if (s == OIT_OK && stencil)
         s = oit_stencil_target_resize(&c->stencil, v->width, v->height, err);
-    if (s == OIT_OK && !array) {
-        uint64_t held = held_bytes(c);
-        c->bytes_peak = held > c->bytes_peak ? held : c->bytes_peak;
-    }
+    if (s == OIT_OK && !array)
+        note_peak(c);
     return s;
 }
 
 void oit_capture_set_slot_budget(oit_capture *c, uint64_t bytes)
 {
     c->slot_budget = bytes;
+}
+
+/* The threshold in every program that tests it, effective from the next
+ * batch on. */
+static void apply_epsilon(oit_capture *c)
+{
+    glProgramUniform1f(c->fill_prog, glGetUniformLocation(c->fill_prog, "u_epsilon"),
+                       c->epsilon);
+    if (c->backend == OIT_CAPTURE_COUNTED)
+        oit_counted_set_epsilon(&c->counted, c->epsilon);
 }
 
 static void set_uniforms(oit_capture *c)
@@ -222,19 +235,15 @@ static void set_uniforms(oit_capture *c)
         glProgramUniform1ui(progs[i], glGetUniformLocation(progs[i], "u_count"),
                             (GLuint)((uint64_t)c->view.width * c->view.height));
     }
-    glProgramUniform1f(c->fill_prog, glGetUniformLocation(c->fill_prog, "u_epsilon"),
-                       c->epsilon);
     if (c->backend == OIT_CAPTURE_COUNTED)
-        oit_counted_set_view(&c->counted, &c->view, c->epsilon);
+        oit_counted_set_view(&c->counted, &c->view);
+    apply_epsilon(c);
 }
 
 void oit_capture_set_epsilon(oit_capture *c, float epsilon)
 {
     c->epsilon = epsilon > 0.0f ? epsilon : 0.0f;
-    glProgramUniform1f(c->fill_prog, glGetUniformLocation(c->fill_prog, "u_epsilon"),
-                       c->epsilon);
-    if (c->backend == OIT_CAPTURE_COUNTED)
-        oit_counted_set_view(&c->counted, &c->view, c->epsilon);
+    apply_epsilon(c);
 }
 
 static void bind_buffers(const oit_capture *c)
@@ -264,6 +273,7 @@ oit_status oit_capture_begin(oit_capture *c, const oit_view *view, oit_error *er
     c->view = *view;
     oit_shading_resolve_defaults(&c->view.shading);
     c->batches = 0;
+    c->counted.splits = 0;
     c->in_frame = 0;
     oit_status s = allocate(c, &c->view, err);
     if (s != OIT_OK)
@@ -361,8 +371,7 @@ static oit_status counted_batch(oit_capture *c, const oit_gpu_mesh *const *meshe
                            c->view.height};
     c->counted.budget = c->slot_budget ? c->slot_budget : UINT64_MAX;
     oit_status s = oit_counted_batch(&c->counted, &f, meshes, n, r, err);
-    uint64_t held = held_bytes(c);
-    c->bytes_peak = held > c->bytes_peak ? held : c->bytes_peak;
+    note_peak(c);
     bind_buffers(c);
     return s;
 }
@@ -503,8 +512,7 @@ static oit_status read_output(oit_capture *c, oit_image *out, GLuint totals[4], 
     if (c->backend == OIT_CAPTURE_COUNTED) {
         s = oit_gl_buffer_reserve(&c->counted.frags, &c->counted.frags_cap, row,
                                   "counted capture fragments", err);
-        uint64_t held = held_bytes(c);
-        c->bytes_peak = held > c->bytes_peak ? held : c->bytes_peak;
+        note_peak(c);
         c->out_buf = c->counted.frags;
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, c->out_buf);
         if (s != OIT_OK) {

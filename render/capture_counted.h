@@ -27,13 +27,15 @@ typedef struct oit_counted {
     uint64_t offsets_cap, frags_cap;
     oit_scan scan;
     uint64_t budget;   /* fragment store bytes a batch may take before it splits */
-    uint32_t splits;   /* batches split this frame */
+    uint32_t splits;   /* batches split this frame (the caller resets it) */
 } oit_counted;
 
 oit_status oit_counted_init(oit_counted *k, oit_error *err);
 void oit_counted_release(oit_counted *k);
-/* View and early-termination uniforms for the frame. */
-void oit_counted_set_view(oit_counted *k, const oit_view *v, float epsilon);
+/* View uniforms for the frame; the early-termination threshold (the count
+ * and store passes drop fragments of saturated pixels alike). */
+void oit_counted_set_view(oit_counted *k, const oit_view *v);
+void oit_counted_set_epsilon(oit_counted *k, float epsilon);
 uint64_t oit_counted_bytes(const oit_counted *k);
 
 /* The frame's buffers, owned by capture.c. */

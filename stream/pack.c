@@ -23,9 +23,8 @@ struct oit_packer {
     uint32_t stamp;
     oit_pack_schedule schedule;
     oit_scheduler *scheduler;
-    /* the parts that survive culling, in the tree's order, and the order
-     * in which they are packed (perm indexes them) */
-    uint32_t *kept, *perm;
+    /* the parts that survive culling, in the tree's order */
+    uint32_t *kept;
     int (*kept_rects)[4];
     float *kept_near;
     uint32_t drawn, packs; /* of the frame being packed */
@@ -52,7 +51,6 @@ void oit_packer_destroy(oit_packer *pk)
     free(pk->tile_stamp);
     oit_scheduler_destroy(pk->scheduler);
     free(pk->kept);
-    free(pk->perm);
     free(pk->kept_rects);
     free(pk->kept_near);
     free(pk);
@@ -100,12 +98,11 @@ oit_status oit_packer_create(const oit_partfile *pf, oit_pack_mode mode, int K,
         pk->layers = calloc((size_t)n + 1, sizeof *pk->layers);
         pk->bytes = calloc((size_t)n + 1, sizeof *pk->bytes);
         pk->kept = calloc((size_t)n + 1, sizeof *pk->kept);
-        pk->perm = calloc((size_t)n + 1, sizeof *pk->perm);
         pk->kept_rects = calloc((size_t)n + 1, sizeof *pk->kept_rects);
         pk->kept_near = calloc((size_t)n + 1, sizeof *pk->kept_near);
     }
     if (!pk || !pk->parts || !pk->pack_first || !pk->rects || !pk->part_rects || !pk->layers ||
-        !pk->bytes || !pk->kept || !pk->perm || !pk->kept_rects || !pk->kept_near) {
+        !pk->bytes || !pk->kept || !pk->kept_rects || !pk->kept_near) {
         oit_packer_destroy(pk);
         return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot allocate packing for %u parts",
                              oit_partfile_name(pf), n);
@@ -332,7 +329,7 @@ oit_status oit_packer_run(oit_packer *pk, const oit_view *view, const uint32_t *
     if (pk->schedule == OIT_SCHEDULE_WAVE) {
         oit_schedule_packer sp = {pk, wave_open, wave_join};
         s = oit_schedule_run(pk->scheduler, kept, (const int(*)[4])pk->kept_rects,
-                             pk->kept_near, view->width, view->height, &sp, pk->perm, err);
+                             pk->kept_near, view->width, view->height, &sp, NULL, err);
         if (s != OIT_OK)
             return s;
     } else {

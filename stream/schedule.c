@@ -181,7 +181,9 @@ static oit_status build_graph(oit_scheduler *s, uint32_t n, const int (*rects)[4
 static void emit(oit_scheduler *s, const float *near, uint32_t i, uint32_t *perm,
                  uint32_t *emitted, uint32_t *avail)
 {
-    perm[(*emitted)++] = i;
+    if (perm)
+        perm[*emitted] = i;
+    (*emitted)++;
     for (uint32_t e = s->out_first[i]; e < s->out_first[i + 1]; e++)
         if (--s->indeg[s->edges[e]] == 0)
             heap_push(s->heap, avail, near, s->edges[e]);

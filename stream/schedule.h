@@ -46,8 +46,9 @@ typedef struct oit_schedule_packer {
 /* rects[i] (x0, y0, x1, y1, exclusive, inside width x height) and near[i]
  * (the nearest depth of part i's box, the priority) describe input part i;
  * the input order 0..n-1 must be a visibility order. perm[k] receives the
- * input index of the k-th part to draw; with a packer, each pack's parts
- * are consecutive in perm. Ties in near go to the earlier input, so the
+ * input index of the k-th part to draw (perm may be NULL when the packer's
+ * joins are all the caller needs); with a packer, each pack's parts are
+ * consecutive in perm. Ties in near go to the earlier input, so the
  * result is deterministic. */
 oit_status oit_schedule_run(oit_scheduler *s, uint32_t n, const int (*rects)[4],
                             const float *near, int width, int height,
