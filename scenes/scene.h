@@ -15,6 +15,7 @@ typedef struct oit_scene_args {
     uint64_t count;     /* quads, instances */
     double coverage;    /* quads: fraction of the [-1,1]^2 square per quad */
     uint64_t triangles; /* plant: target triangle count */
+    int clashes;        /* plant: 1 lets objects run through each other */
     const char *input;  /* instances: mesh to replicate */
     const char *hard_case; /* hard: which case (oit_scene_hard_case_name) */
 } oit_scene_args;

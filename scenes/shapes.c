@@ -29,24 +29,50 @@ static float *axis_ref(oit_v3 *v, int axis)
     return axis == 0 ? &v->x : axis == 1 ? &v->y : &v->z;
 }
 
+/* The I-profile as one closed prism: a solid of three boxes would have the
+ * web's faces lying on the flanges', coincident faces that no transparency
+ * method can order and that a partitioner must not split between. */
 void oit_shape_ibeam(oit_emit *e, oit_v3 lo, oit_v3 hi, int along, int up)
 {
     int w = 3 - along - up;
     float h0 = *axis_ref(&lo, up), h1 = *axis_ref(&hi, up);
     float w0 = *axis_ref(&lo, w), w1 = *axis_ref(&hi, w);
     float tf = 0.15f * (h1 - h0), tw = 0.06f * (w1 - w0), wc = 0.5f * (w0 + w1);
-    oit_v3 a = lo, b = hi; /* bottom flange */
-    *axis_ref(&b, up) = h0 + tf;
-    oit_shape_box(e, a, b);
-    a = lo, b = hi; /* top flange */
-    *axis_ref(&a, up) = h1 - tf;
-    oit_shape_box(e, a, b);
-    a = lo, b = hi; /* web between them */
-    *axis_ref(&a, up) = h0 + tf;
-    *axis_ref(&b, up) = h1 - tf;
-    *axis_ref(&a, w) = wc - tw;
-    *axis_ref(&b, w) = wc + tw;
-    oit_shape_box(e, a, b);
+    /* Outline counter-clockwise in (w, up): bottom flange, web, top flange. */
+    const float prof[12][2] = {{w0, h0},      {w1, h0},      {w1, h0 + tf}, {wc + tw, h0 + tf},
+                               {wc + tw, h1 - tf}, {w1, h1 - tf}, {w1, h1},  {w0, h1},
+                               {w0, h1 - tf}, {wc - tw, h1 - tf}, {wc - tw, h0 + tf}, {w0, h0 + tf}};
+    /* The web's corners lie on the flanges' inner edges: fanning each
+     * flange from its outer corner uses them, so no T-junction appears. */
+    static const int cap[10][3] = {{0, 1, 2}, {0, 2, 3}, {0, 3, 10}, {0, 10, 11}, {10, 3, 4},
+                                   {10, 4, 9}, {6, 7, 8}, {6, 8, 9}, {6, 9, 4}, {6, 4, 5}};
+    /* (w, up, along) may be a left-handed frame: then every face flips. */
+    int flip = up != (w + 1) % 3;
+    uint32_t v[2][12];
+    for (int end = 0; end < 2; end++)
+        for (int i = 0; i < 12; i++) {
+            oit_v3 p = end ? hi : lo;
+            *axis_ref(&p, w) = prof[i][0];
+            *axis_ref(&p, up) = prof[i][1];
+            v[end][i] = oit_emit_vertex(e, p);
+        }
+    for (int t = 0; t < 10; t++) {
+        const int *c = cap[t];
+        if (flip) {
+            oit_emit_tri(e, v[1][c[0]], v[1][c[2]], v[1][c[1]]);
+            oit_emit_tri(e, v[0][c[0]], v[0][c[1]], v[0][c[2]]);
+        } else {
+            oit_emit_tri(e, v[1][c[0]], v[1][c[1]], v[1][c[2]]);
+            oit_emit_tri(e, v[0][c[0]], v[0][c[2]], v[0][c[1]]);
+        }
+    }
+    for (int i = 0; i < 12; i++) {
+        int j = (i + 1) % 12;
+        if (flip)
+            oit_emit_quad(e, v[0][i], v[1][i], v[1][j], v[0][j]);
+        else
+            oit_emit_quad(e, v[0][i], v[0][j], v[1][j], v[1][i]);
+    }
 }
 
 uint64_t oit_shape_cylinder_cost(int seg)

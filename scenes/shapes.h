@@ -10,7 +10,7 @@
 #include "scenes/emit.h"
 
 /* Axis-aligned box. */
-enum { OIT_BOX_TRIS = 12, OIT_IBEAM_TRIS = 36 };
+enum { OIT_BOX_TRIS = 12, OIT_IBEAM_TRIS = 44 };
 void oit_shape_box(oit_emit *e, oit_v3 lo, oit_v3 hi);
 /* A box on 8 corners: corner i lies on the +x side of its frame when bit 0
  * is set, +y for bit 1, +z for bit 2; the frame must be right-handed for the
@@ -18,7 +18,7 @@ void oit_shape_box(oit_emit *e, oit_v3 lo, oit_v3 hi);
 void oit_shape_hexahedron(oit_emit *e, const oit_v3 corner[8]);
 
 /* I-profile filling the box lo..hi: flanges stacked along axis `up`, running
- * along axis `along` (0 x, 1 y, 2 z, different). Three boxes. */
+ * along axis `along` (0 x, 1 y, 2 z, different). One closed prism. */
 void oit_shape_ibeam(oit_emit *e, oit_v3 lo, oit_v3 hi, int along, int up);
 
 /* Cylinder p0..p1 with flat caps. */

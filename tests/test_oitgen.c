@@ -241,6 +241,79 @@ static void test_instances(const char *mesh, const test_ply *src)
     test_ply_free(&p);
 }
 
+/* Pairs of triangles of different solids whose boxes overlap by more than
+ * a tenth of a millimetre on every axis. A clash-free plant has none: each
+ * of its objects lies inside boxes kept apart from every other object's
+ * (scene_plant.c), and a triangle's box lies inside one of them. Boxes are
+ * hashed into cells; a pair counts in the cell holding its overlap's lowest
+ * corner only. */
+typedef struct cell_entry {
+    uint64_t key;
+    uint32_t tri;
+} cell_entry;
+
+static int cmp_entry(const void *a, const void *b)
+{
+    const cell_entry *x = a, *y = b;
+    return x->key < y->key ? -1 : x->key > y->key ? 1 : (x->tri > y->tri) - (x->tri < y->tri);
+}
+
+static size_t plant_clashes(const test_ply *p)
+{
+    const float cell = 0.25f, tol = 1e-4f;
+    size_t n = p->faces, cap = 0, m = 0, clashes = 0;
+    float (*lo)[3] = malloc(n * sizeof *lo), (*hi)[3] = malloc(n * sizeof *hi), base[3] = {1e30f, 1e30f, 1e30f};
+    uint32_t *solid = malloc(n * sizeof *solid), *parent = malloc((p->vertices + 1) * sizeof *parent);
+    cell_entry *e = NULL;
+    for (size_t v = 0; v < p->vertices; v++)
+        parent[v] = (uint32_t)v;
+    for (size_t f = 0; f < n; f++)
+        for (int k = 1; k < 3; k++)
+            parent[test_find(parent, p->idx[3 * f + k])] = test_find(parent, p->idx[3 * f]);
+    for (size_t f = 0; f < n; f++) {
+        solid[f] = test_find(parent, p->idx[3 * f]);
+        for (int a = 0; a < 3; a++) {
+            lo[f][a] = 1e30f, hi[f][a] = -1e30f;
+            for (int k = 0; k < 3; k++) {
+                float x = p->xyz[3 * p->idx[3 * f + k] + a];
+                lo[f][a] = fminf(lo[f][a], x), hi[f][a] = fmaxf(hi[f][a], x);
+            }
+            base[a] = fminf(base[a], lo[f][a]);
+        }
+    }
+    for (size_t f = 0; f < n; f++) {
+        int c0[3], c1[3];
+        for (int a = 0; a < 3; a++)
+            c0[a] = (int)((lo[f][a] - base[a]) / cell), c1[a] = (int)((hi[f][a] - base[a]) / cell);
+        for (int z = c0[2]; z <= c1[2]; z++)
+            for (int y = c0[1]; y <= c1[1]; y++)
+                for (int x = c0[0]; x <= c1[0]; x++) {
+                    if (m == cap)
+                        e = realloc(e, (cap = cap ? 2 * cap : 1 << 16) * sizeof *e);
+                    e[m++] = (cell_entry){(uint64_t)z << 42 | (uint64_t)y << 21 | (uint64_t)x, (uint32_t)f};
+                }
+    }
+    qsort(e, m, sizeof *e, cmp_entry);
+    for (size_t g = 0, h; g < m; g = h) {
+        for (h = g; h < m && e[h].key == e[g].key; h++)
+            ;
+        for (size_t i = g; i < h; i++)
+            for (size_t j = i + 1; j < h; j++) {
+                uint32_t s = e[i].tri, t = e[j].tri;
+                int overlap = solid[s] != solid[t];
+                uint64_t key = 0;
+                for (int a = 2; a >= 0 && overlap; a--) {
+                    float l = fmaxf(lo[s][a], lo[t][a]), u = fminf(hi[s][a], hi[t][a]);
+                    overlap = u - l > tol;
+                    key = key << 21 | (uint64_t)(int)((l - base[a]) / cell);
+                }
+                clashes += overlap && key == e[g].key;
+            }
+    }
+    free(lo), free(hi), free(solid), free(parent), free(e);
+    return clashes;
+}
+
 static void test_plant(void)
 {
     const char *a = tmp_path("plant_a.ply"), *b = tmp_path("plant_b.ply"), *c = tmp_path("plant_c.ply");
@@ -263,7 +336,18 @@ static void test_plant(void)
         CHECK(alpha_out == 0, "plant: %zu vertices with alpha outside 0.2..0.6", alpha_out);
         if (i == 1)
             check_with_reader(a, &p);
+        size_t clashes = plant_clashes(&p);
+        printf("plant %s: %zu clashing triangle pairs\n", t, clashes);
+        CHECK(clashes == 0, "plant %s: %zu pairs of triangles of different solids overlap", t, clashes);
         test_ply_free(&p);
+    }
+    /* The stress case does clash, which shows the check above can fail. */
+    test_ply q;
+    if (!generate((const char *[]){"plant", "--triangles", "60000", "--clashes", "allow", "-o", a, NULL}, a, &q)) {
+        size_t clashes = plant_clashes(&q);
+        printf("plant 60000 --clashes allow: %zu clashing triangle pairs\n", clashes);
+        CHECK(clashes > 1000, "plant --clashes allow: only %zu clashing pairs", clashes);
+        test_ply_free(&q);
     }
     run((const char *[]){"plant", "--triangles", "60000", "--seed", "7", "-o", a, NULL});
     run((const char *[]){"plant", "--seed", "7", "--triangles", "60000", "-o", b, NULL});

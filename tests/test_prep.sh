@@ -92,11 +92,11 @@ if "$S" "$T/t0.oitp" --method stream --max-layers 16 --size 96x96 --orbit 2 \
             { fail "compare view $i"; continue; }
         pct=$(echo "$j" | json_num pct_over_1_255)
         echo "view $i: stream vs dfb max_abs $(echo "$j" | json_num max_abs), over 1/255 $pct%"
-        # Not 0: where two parts' surfaces cross (the plant's pipes pass
-        # through each other) a pixel can get two fragments of equal depth
-        # from different packs; DFB breaks that tie by primitive id, the
-        # stream by pack order. A pixel or two at most, on any converter.
-        awk "BEGIN { exit !($pct <= 0.1) }" || fail "view $i: $pct% of pixels over 1/255"
+        # The plant is clash-free, so no two parts' surfaces cross. Where
+        # they do (oitgen plant --clashes allow), a pixel can get fragments
+        # of equal depth from two packs, which DFB orders by primitive id
+        # and the stream by pack order: a pixel or two, never more.
+        awk "BEGIN { exit !($pct <= 0.01) }" || fail "view $i: $pct% of pixels over 1/255"
     done
 else
     fail "oitstream on the part file: $(tail -n 2 "$T/out.txt")"

@@ -20,6 +20,8 @@ static char path[600];
 
 static void box_fn(oit_emit *e, int seg) { oit_shape_box(e, oit_v3_make(-1, 2, 3), oit_v3_make(1, 2.5f, 7)); }
 static void ibeam_fn(oit_emit *e, int seg) { oit_shape_ibeam(e, oit_v3_make(0, 0, 0), oit_v3_make(4, 1, 2), 0, 1); }
+/* (width z, up x, along y) is right-handed, the one above is not. */
+static void ibeam_up_x_fn(oit_emit *e, int seg) { oit_shape_ibeam(e, oit_v3_make(0, 0, 0), oit_v3_make(1, 4, 2), 1, 0); }
 static void cyl_fn(oit_emit *e, int seg) { oit_shape_cylinder(e, oit_v3_make(1, 1, 1), oit_v3_make(1, 4, 1), 0.5f, seg); }
 static void cyl_diag_fn(oit_emit *e, int seg) { oit_shape_cylinder(e, oit_v3_make(0, 0, 0), oit_v3_make(2, 2, 1), 0.5f, seg); }
 static void sphere_fn(oit_emit *e, int seg) { oit_shape_sphere(e, oit_v3_make(3, 0, 0), 2.0f, seg); }
@@ -74,7 +76,8 @@ int main(void)
     snprintf(path, sizeof path, "%s/scene_shape.ply", t ? t : "/tmp");
     check_shape("box", box_fn, 0, OIT_BOX_TRIS, 1, 2 * 0.5 * 4, 1e-6);
     /* flanges 0.15 of the height each, web 0.12 of the width, 4 long */
-    check_shape("ibeam", ibeam_fn, 0, OIT_IBEAM_TRIS, 3, 4 * (2 * 0.15 * 2 + 0.7 * 0.12 * 2), 1e-5);
+    check_shape("ibeam", ibeam_fn, 0, OIT_IBEAM_TRIS, 1, 4 * (2 * 0.15 * 2 + 0.7 * 0.12 * 2), 1e-5);
+    check_shape("ibeam/up x", ibeam_up_x_fn, 0, OIT_IBEAM_TRIS, 1, 4 * (2 * 0.15 * 2 + 0.7 * 0.12 * 2), 1e-5);
     static const int segs[] = {3, 8, 24};
     for (int i = 0; i < 3; i++) {
         int s = segs[i];
