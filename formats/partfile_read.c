@@ -9,6 +9,8 @@
  * Sizes are compared by division or after bounding each count by the section
  * size, so no product or sum below can wrap.
  */
+/* madvise (drop_checked) is not POSIX. */
+#define _DEFAULT_SOURCE
 #include "oit/mesh.h"
 #include "oit/partfile.h"
 
@@ -186,12 +188,42 @@ static oit_status check_table(const oit_partfile *pf, oit_error *err)
     return OIT_OK;
 }
 
+/* Bytes of mapped part data checked between drops (drop_checked). */
+#define PF_DROP_CHUNK ((size_t)64 << 20)
+
+/* A mapped file's pages that were read only to be checked are dropped from
+ * the process once checked: validating a file of many GB must not hold it
+ * resident (oitprep's peak RSS would be the file). They stay in the page
+ * cache and fault back in when read. Harmless beyond the range: the mapping
+ * is private and read-only, so a dropped page is only ever re-read. */
+static void drop_checked(const oit_partfile *pf, const uint8_t *from, size_t n)
+{
+    long page = sysconf(_SC_PAGESIZE);
+    if (!pf->map || n == 0 || page <= 0)
+        return;
+    uintptr_t a = (uintptr_t)from / (uintptr_t)page * (uintptr_t)page;
+    uintptr_t b = (uintptr_t)(from + n);
+    madvise((void *)a, b - a, MADV_DONTNEED);
+}
+
+static uint32_t data_checksum(const oit_partfile *pf, const uint8_t *p, uint64_t n)
+{
+    uint32_t crc = 0;
+    for (uint64_t at = 0; at < n; at += PF_DROP_CHUNK) {
+        size_t k = n - at < PF_DROP_CHUNK ? (size_t)(n - at) : PF_DROP_CHUNK;
+        crc = oit_crc32c(crc, p + at, k);
+        drop_checked(pf, p + at, k);
+    }
+    return crc;
+}
+
 static oit_status check_checksums(const oit_partfile *pf, bool with_data, oit_error *err)
 {
     for (uint32_t t = 1; t <= PF_SECTION_COUNT; t++) {
         if (t == PF_SEC_PART_DATA && !with_data)
             continue; /* each part's own checksum covers it when it is validated */
-        uint32_t crc = oit_crc32c(0, sec_data(pf, t), sec_size(pf, t));
+        uint32_t crc = t == PF_SEC_PART_DATA ? data_checksum(pf, sec_data(pf, t), sec_size(pf, t))
+                                             : oit_crc32c(0, sec_data(pf, t), sec_size(pf, t));
         if (crc != pf->sec[t - 1].crc)
             return bad(pf, err, "section %s: checksum 0x%08x, stored 0x%08x (corrupt)",
                        pf_section_name(t), crc, pf->sec[t - 1].crc);
@@ -906,8 +938,15 @@ static oit_status validate_all(oit_partfile *pf, bool deferred, oit_error *err)
         s = check_links(pf, err);
     if (!s)
         s = check_coverage(pf, err);
-    for (uint32_t i = 0; !s && !deferred && i < pf->hdr.part_count; i++)
+    const uint8_t *checked = s ? NULL : sec_data(pf, PF_SEC_PART_DATA);
+    for (uint32_t i = 0; !s && !deferred && i < pf->hdr.part_count; i++) {
         s = validate_blob(pf, i, err);
+        const uint8_t *end = pf->base + pf->parts[i].data_offset + pf->parts[i].data_bytes;
+        if (end - checked >= (ptrdiff_t)PF_DROP_CHUNK || i + 1 == pf->hdr.part_count) {
+            drop_checked(pf, checked, (size_t)(end - checked));
+            checked = end;
+        }
+    }
     return s;
 }
 

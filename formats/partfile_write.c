@@ -79,12 +79,21 @@ static char *dup_string(const char *s)
     return d;
 }
 
-static void writer_free(oit_partfile_writer *w)
+/* The tables, once written: freed before the written file is verified, so
+ * that the verifying reader's copies do not come on top of them. */
+static void free_tables(oit_partfile_writer *w)
 {
     vec *vecs[] = {&w->parts,    &w->pieces,   &w->grids, &w->top_cells, &w->sub_cells,
                    &w->top_list, &w->sub_list, &w->slabs, &w->slab_list};
-    for (size_t i = 0; i < sizeof vecs / sizeof vecs[0]; i++)
+    for (size_t i = 0; i < sizeof vecs / sizeof vecs[0]; i++) {
         free(vecs[i]->data);
+        *vecs[i] = (vec){0};
+    }
+}
+
+static void writer_free(oit_partfile_writer *w)
+{
+    free_tables(w);
     free(w->path);
     free(w->tmp_path);
     free(w->source_name);
@@ -672,6 +681,7 @@ oit_status oit_partfile_writer_finish(oit_partfile_writer *w, const oit_partfile
     if (fclose(w->file) != 0 && !s)
         s = oit_error_set(err, OIT_ERR_IO, "%s: close failed: %s", w->tmp_path, strerror(errno));
     w->file = NULL;
+    free_tables(w);
     if (!s && !w->skip_verify)
         s = verify(w, err);
     if (!s && rename(w->tmp_path, w->path) != 0)

@@ -207,6 +207,11 @@ oit_status oit_bins_read_cell(oit_bins *b, uint64_t cell, oit_triangle **tris, s
     }
     if (cb->n)
         memcpy(t + at, cb->tris, cb->n * sizeof *t);
+    /* Each cell is read once: its memory goes back as the partition goes
+     * on, instead of all bins staying to the end. */
+    free(cb->tris);
+    cb->tris = NULL;
+    cb->n = cb->cap = 0;
     *tris = t;
     return OIT_OK;
 }

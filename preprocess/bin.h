@@ -31,7 +31,9 @@ typedef struct oit_bins oit_bins;
 oit_status oit_bins_create(const oit_bin_grid *grid, size_t memory_budget, const char *spill_path,
                            oit_bins **out, oit_error *err);
 oit_status oit_bins_add(oit_bins *b, const oit_triangle *tris, size_t count, oit_error *err);
-/* The cell's triangles in a new malloc'd array (NULL when empty). */
+/* The cell's triangles in a new malloc'd array (NULL when empty). A cell is
+ * read once: its in-memory part is released (a second read finds only what
+ * was spilled). */
 oit_status oit_bins_read_cell(oit_bins *b, uint64_t cell, oit_triangle **tris, size_t *count,
                               oit_error *err);
 uint64_t oit_bins_spilled_bytes(const oit_bins *b);
