@@ -16,12 +16,10 @@ const char oit_glsl_vertex[] =
     "out vec3 v_pos;\n"
     "out vec4 v_rgba;\n"
     "flat out vec3 v_normal;\n"
-    "flat out uint v_prim;\n"
+    "flat out uint v_first_prim;\n"
     "invariant gl_Position;\n"
     "void main() {\n"
-    /* The draw's triangles start at vertex a_draw.x of the binding; all
-     * three vertices of a triangle compute the same prim, so whichever is
-     * provoking passes it on. */
+    /* The draw's triangles start at vertex a_draw.x of the binding. */
     "    uint tri = (uint(gl_VertexID) - a_draw.x) / 3u;\n"
     "    int v0 = int(a_draw.x + tri * 3u);\n"
     "    vec3 p0 = uintBitsToFloat(verts[v0].xyz);\n"
@@ -31,7 +29,7 @@ const char oit_glsl_vertex[] =
     /* Geometric normal in world space, then rotated: dot products with
      * view-space vectors equal the world-space ones of shade.h. */
     "    v_normal = mat3(u_view) * cross(p1 - p0, p2 - p0);\n"
-    "    v_prim = a_draw.y + tri;\n"
+    "    v_first_prim = a_draw.y;\n"
     "    vec4 vp = u_view * vec4(uintBitsToFloat(me.xyz), 1.0);\n"
     "    v_pos = vp.xyz;\n"
     "    v_rgba = unpackUnorm4x8(me.w);\n"
@@ -47,7 +45,7 @@ const char oit_glsl_fragment_gen[] =
     "in vec3 v_pos;\n"
     "in vec4 v_rgba;\n"
     "flat in vec3 v_normal;\n"
-    "flat in uint v_prim;\n"
+    "flat in uint v_first_prim;\n"
     "uint oit_pixel_index() {\n"
     "    return uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x);\n"
     "}\n"
@@ -65,7 +63,7 @@ const char oit_glsl_fragment_gen[] =
     "    float light = 0.3 + 0.7 * ndv;\n"
     "    vec3 base = (u_attrs & 1u) != 0u ? v_rgba.rgb : u_default_rgb;\n"
     "    float a = (u_attrs & 2u) != 0u ? v_rgba.a : u_alpha;\n"
-    "    uint prim = v_prim;\n"
+    "    uint prim = v_first_prim + uint(gl_PrimitiveID);\n"
     "    uvec4 f;\n"
     "    f.x = floatBitsToUint(t);\n"
     "    f.y = (prim & 0x7fffffffu) | (nv > 0.0 ? 0x80000000u : 0u);\n"

@@ -6,9 +6,9 @@
  * index in the shader (gl_DrawID needs ARB_shader_draw_parameters, core only
  * in 4.6), so every command carries its index as baseInstance, and a vertex
  * attribute with divisor 1 fetches that command's record, (first vertex,
- * first prim), from which the vertex shader derives the primitive id
- * (frag_glsl.h). The commands of one group share one SSBO binding, hence
- * the grouping by buffer and window. */
+ * first prim): where its triangles start in the binding, and what to add to
+ * gl_PrimitiveID (frag_glsl.h). The commands of one group share one SSBO
+ * binding, hence the grouping by buffer and window. */
 #include "render/gpu_mesh.h"
 
 #include "render/frag_glsl.h"
