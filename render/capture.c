@@ -35,6 +35,8 @@ struct oit_capture {
     uint64_t cap[BUF_N];
     oit_stencil_target stencil;
     oit_counted counted; /* OIT_CAPTURE_COUNTED */
+    oit_gpu_draws *draws; /* every geometry draw goes through it */
+    uint64_t calls0;      /* its draw calls at the frame's begin */
     oit_view view;
     int in_frame;
     uint32_t batches;
@@ -75,6 +77,7 @@ static void release(oit_capture *c)
         oit_stencil_target_release(&c->stencil);
     if (c->backend == OIT_CAPTURE_COUNTED)
         oit_counted_release(&c->counted);
+    oit_gpu_draws_destroy(c->draws);
     free(c);
 }
 
@@ -104,6 +107,8 @@ static oit_status make(oit_capture_kind backend, int K, oit_capture **out, oit_e
     }
     if (s == OIT_OK)
         s = build_programs(c, err);
+    if (s == OIT_OK)
+        s = oit_gpu_draws_create(&c->draws, err);
     if (s == OIT_OK && backend == OIT_CAPTURE_COUNTED)
         s = oit_counted_init(&c->counted, err);
     if (s == OIT_OK) {
@@ -261,6 +266,11 @@ unsigned oit_capture_state_buffer(const oit_capture *c)
     return c->buf[BUF_STATE];
 }
 
+uint64_t oit_capture_draw_calls(const oit_capture *c)
+{
+    return oit_gpu_draws_calls(c->draws) - c->calls0;
+}
+
 oit_status oit_capture_begin(oit_capture *c, const oit_view *view, oit_error *err)
 {
     GLint max_size = 0;
@@ -274,6 +284,7 @@ oit_status oit_capture_begin(oit_capture *c, const oit_view *view, oit_error *er
     oit_shading_resolve_defaults(&c->view.shading);
     c->batches = 0;
     c->counted.splits = 0;
+    c->calls0 = oit_gpu_draws_calls(c->draws);
     c->in_frame = 0;
     oit_status s = allocate(c, &c->view, err);
     if (s != OIT_OK)
@@ -321,7 +332,7 @@ static int gl_rect(const oit_capture *c, const int rect[4], int out[4])
 static void draw_scissored(oit_capture *c, GLuint prog, const oit_gpu_mesh *const *meshes, int n,
                            const int r[4])
 {
-    oit_glsl_draw_scissored(c->fbo, c->view.width, c->view.height, prog, meshes, n, r);
+    oit_glsl_draw_scissored(c->fbo, c->view.width, c->view.height, prog, c->draws, meshes, n, r);
 }
 
 static void fill(oit_capture *c, const oit_gpu_mesh *const *meshes, int n, const int r[4])
@@ -330,8 +341,7 @@ static void fill(oit_capture *c, const oit_gpu_mesh *const *meshes, int n, const
         oit_stencil_target_route(&c->stencil, r);
         oit_stencil_target_begin_draw(&c->stencil, r);
         glUseProgram(c->fill_prog);
-        for (int i = 0; i < n; i++)
-            oit_gpu_mesh_draw(meshes[i], c->fill_prog);
+        oit_gpu_mesh_draw_many(c->draws, meshes, n);
         oit_stencil_target_end_draw();
         glDisable(GL_SCISSOR_TEST);
     } else {
@@ -368,7 +378,7 @@ static oit_status counted_batch(oit_capture *c, const oit_gpu_mesh *const *meshe
                                 const int r[4], oit_error *err)
 {
     oit_counted_frame f = {c->fbo, c->buf[BUF_COUNTS], c->buf[BUF_STATE], c->view.width,
-                           c->view.height};
+                           c->view.height, c->draws};
     c->counted.budget = c->slot_budget ? c->slot_budget : UINT64_MAX;
     oit_status s = oit_counted_batch(&c->counted, &f, meshes, n, r, err);
     note_peak(c);

@@ -48,6 +48,12 @@ void oit_capture_set_epsilon(oit_capture *c, float epsilon);
  * between batches (saturation.h). Valid until the next oit_capture_begin. */
 unsigned oit_capture_state_buffer(const oit_capture *c);
 
+/* GL draw calls made for geometry since the frame's oit_capture_begin: the
+ * meshes of a batch are drawn with oit_gpu_mesh_draw_many, once per fill
+ * (twice for the counted capture: count and store; once per tile when
+ * tiled), a multi-draw counting 1. */
+uint64_t oit_capture_draw_calls(const oit_capture *c);
+
 /* GPU memory: from the next frame on, the array backend's slots take at
  * most `bytes` (at least one row of K), instead of K slots for every pixel
  * (K x 16 bytes a pixel: 128 MiB at 1024x1024, K = 8). A frame whose full

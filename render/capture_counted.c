@@ -71,7 +71,8 @@ static oit_status count(oit_counted *k, const oit_counted_frame *f,
         return s;
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, f->counts);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_STATE, f->state);
-    oit_glsl_draw_scissored(f->fbo, f->width, f->height, k->count_prog, meshes, n, r);
+    oit_glsl_draw_scissored(f->fbo, f->width, f->height, k->count_prog, f->draws, meshes,
+                            n, r);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     static const GLuint zero = 0;
     glCopyNamedBufferSubData(f->counts, k->offsets, 0, 0, (GLsizeiptr)(pixels * 4));
@@ -95,7 +96,8 @@ static oit_status store_and_resolve(oit_counted *k, const oit_counted_frame *f,
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, f->counts);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OFFSETS, k->offsets);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_FRAGS, k->frags);
-    oit_glsl_draw_scissored(f->fbo, f->width, f->height, k->store_prog, meshes, n, r);
+    oit_glsl_draw_scissored(f->fbo, f->width, f->height, k->store_prog, f->draws, meshes,
+                            n, r);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(k->resolve_prog);
     glProgramUniform2i(k->resolve_prog, 11, f->width, f->height);

@@ -38,10 +38,11 @@ void oit_counted_set_view(oit_counted *k, const oit_view *v);
 void oit_counted_set_epsilon(oit_counted *k, float epsilon);
 uint64_t oit_counted_bytes(const oit_counted *k);
 
-/* The frame's buffers, owned by capture.c. */
+/* The frame's buffers and draw scratch, owned by capture.c. */
 typedef struct oit_counted_frame {
     GLuint fbo, counts, state;
     int width, height;
+    oit_gpu_draws *draws;
 } oit_counted_frame;
 
 /* Captures meshes[0..n) over the GL rect r (bottom rows first, exclusive

@@ -12,19 +12,24 @@ const char oit_glsl_vertex[] =
     "layout(std430, binding = 0) readonly buffer Verts { uvec4 verts[]; };\n"
     "layout(location = 0) uniform mat4 u_view;\n"
     "layout(location = 1) uniform mat4 u_proj;\n"
+    "layout(location = 0) in uvec2 a_draw;\n"
     "out vec3 v_pos;\n"
     "out vec4 v_rgba;\n"
     "flat out vec3 v_normal;\n"
+    "flat out uint v_first_prim;\n"
     "invariant gl_Position;\n"
     "void main() {\n"
-    "    int tri = gl_VertexID / 3;\n"
-    "    vec3 p0 = uintBitsToFloat(verts[tri * 3].xyz);\n"
-    "    vec3 p1 = uintBitsToFloat(verts[tri * 3 + 1].xyz);\n"
-    "    vec3 p2 = uintBitsToFloat(verts[tri * 3 + 2].xyz);\n"
+    /* The draw's triangles start at vertex a_draw.x of the binding. */
+    "    uint tri = (uint(gl_VertexID) - a_draw.x) / 3u;\n"
+    "    int v0 = int(a_draw.x + tri * 3u);\n"
+    "    vec3 p0 = uintBitsToFloat(verts[v0].xyz);\n"
+    "    vec3 p1 = uintBitsToFloat(verts[v0 + 1].xyz);\n"
+    "    vec3 p2 = uintBitsToFloat(verts[v0 + 2].xyz);\n"
     "    uvec4 me = verts[gl_VertexID];\n"
     /* Geometric normal in world space, then rotated: dot products with
      * view-space vectors equal the world-space ones of shade.h. */
     "    v_normal = mat3(u_view) * cross(p1 - p0, p2 - p0);\n"
+    "    v_first_prim = a_draw.y;\n"
     "    vec4 vp = u_view * vec4(uintBitsToFloat(me.xyz), 1.0);\n"
     "    v_pos = vp.xyz;\n"
     "    v_rgba = unpackUnorm4x8(me.w);\n"
@@ -32,7 +37,6 @@ const char oit_glsl_vertex[] =
     "}\n";
 
 const char oit_glsl_fragment_gen[] =
-    "layout(location = 2) uniform uint u_first_prim;\n"
     "layout(location = 3) uniform int u_mode;\n"
     "layout(location = 4) uniform uint u_attrs;\n"
     "layout(location = 5) uniform float u_alpha;\n"
@@ -41,6 +45,7 @@ const char oit_glsl_fragment_gen[] =
     "in vec3 v_pos;\n"
     "in vec4 v_rgba;\n"
     "flat in vec3 v_normal;\n"
+    "flat in uint v_first_prim;\n"
     "uint oit_pixel_index() {\n"
     "    return uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x);\n"
     "}\n"
@@ -58,7 +63,7 @@ const char oit_glsl_fragment_gen[] =
     "    float light = 0.3 + 0.7 * ndv;\n"
     "    vec3 base = (u_attrs & 1u) != 0u ? v_rgba.rgb : u_default_rgb;\n"
     "    float a = (u_attrs & 2u) != 0u ? v_rgba.a : u_alpha;\n"
-    "    uint prim = u_first_prim + uint(gl_PrimitiveID);\n"
+    "    uint prim = v_first_prim + uint(gl_PrimitiveID);\n"
     "    uvec4 f;\n"
     "    f.x = floatBitsToUint(t);\n"
     "    f.y = (prim & 0x7fffffffu) | (nv > 0.0 ? 0x80000000u : 0u);\n"
@@ -192,14 +197,13 @@ const char oit_glsl_segment_composite[] =
     "    for (uint i = 0u; i < n; i++) oit_composite(s, frags[b + i]);\n"
     "}\n";
 
-void oit_glsl_draw_scissored(GLuint fbo, int w, int h, GLuint prog,
+void oit_glsl_draw_scissored(GLuint fbo, int w, int h, GLuint prog, struct oit_gpu_draws *draws,
                              const struct oit_gpu_mesh *const *meshes, int n, const int r[4])
 {
     oit_glsl_raster_begin(fbo, w, h);
     glEnable(GL_SCISSOR_TEST);
     glScissor(r[0], r[1], r[2] - r[0], r[3] - r[1]);
     glUseProgram(prog);
-    for (int i = 0; i < n; i++)
-        oit_gpu_mesh_draw(meshes[i], prog);
+    oit_gpu_mesh_draw_many(draws, meshes, n);
     glDisable(GL_SCISSOR_TEST);
 }

@@ -9,6 +9,22 @@
  * provoking. This keeps the 16-byte layout (no per-vertex normal) and avoids
  * a geometry shader, which costs throughput on every GPU.
  *
+ * Primitive id (the tie-break key): prim = first prim + gl_PrimitiveID. The
+ * first prim comes per draw through the one vertex input, a uvec2 at
+ * OIT_IN_DRAW = (the draw's first vertex in the binding, the prim of its
+ * first triangle), passed flat; the first vertex tells each vertex where its
+ * triangle starts (tri = (gl_VertexID - x) / 3). gl_PrimitiveID restarts at
+ * 0 with every command of a multi-draw (GL 4.5, 10.4: MultiDrawArraysIndirect
+ * behaves as DrawArraysIndirect called once per command, and the id counts
+ * from the last drawing command), so the id is the same whether a mesh is
+ * drawn alone or in a group. gpu_mesh.c sets the input: the current
+ * attribute value for a single draw, a per-instance array indexed by each
+ * command's baseInstance in a multi-draw (core GL 4.5 has no gl_DrawID).
+ * Why gl_PrimitiveID and not first prim + tri from the vertex stage (the
+ * same number): on llvmpipe a fragment shader that does not read
+ * gl_PrimitiveID rasterized a dense model twice as slowly (DFB, 99K
+ * triangles at 256x256: 120 ms instead of 60; cause not found).
+ *
  * A fragment is packed into one uvec4 (16 bytes):
  *   x  floatBitsToUint(t)               t = distance from the eye (> 0)
  *   y  prim (31 bits) | front << 31
@@ -33,7 +49,7 @@ extern "C" {
 enum {
     OIT_LOC_VIEW = 0,        /* mat4 */
     OIT_LOC_PROJ = 1,        /* mat4 */
-    OIT_LOC_FIRST_PRIM = 2,  /* uint: prim of the draw's first triangle */
+    /* 2: free (was the first prim, now the vertex input OIT_IN_DRAW) */
     OIT_LOC_MODE = 3,        /* int: oit_shading_mode */
     OIT_LOC_ATTRS = 4,       /* uint: OIT_ATTR_* */
     OIT_LOC_ALPHA = 5,       /* float */
@@ -47,6 +63,9 @@ enum {
     OIT_LOC_COUNT = 13,      /* uint: element count (scans) */
     OIT_LOC_FIRST_LEVEL = 14 /* int: scan level 0 accumulates totals */
 };
+
+/* The vertex input of oit_glsl_vertex (uvec2, see above). */
+enum { OIT_IN_DRAW = 0 };
 
 /* Buffer bindings shared by all programs. */
 enum {
@@ -90,9 +109,11 @@ void oit_glsl_set_view(GLuint prog, const oit_view *view);
 void oit_glsl_raster_begin(GLuint fbo, int w, int h);
 
 struct oit_gpu_mesh;
+struct oit_gpu_draws;
 /* oit_glsl_raster_begin, then draws meshes[0..n) with prog clipped to the
- * GL rect r (bottom rows first, exclusive ends). */
-void oit_glsl_draw_scissored(GLuint fbo, int w, int h, GLuint prog,
+ * GL rect r (bottom rows first, exclusive ends), in as few draw calls as
+ * oit_gpu_mesh_draw_many makes of them with the scratch of draws. */
+void oit_glsl_draw_scissored(GLuint fbo, int w, int h, GLuint prog, struct oit_gpu_draws *draws,
                              const struct oit_gpu_mesh *const *meshes, int n, const int r[4]);
 
 #ifdef __cplusplus

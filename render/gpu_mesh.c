@@ -1,7 +1,9 @@
 /* Triangles on the GPU (gpu_mesh.h). The soup is uploaded as is (16-byte
  * vertices) and read by the vertex-pulling shader of frag_glsl.h, which
- * needs no vertex array attributes: one empty VAO per context suffices, and
- * GL core requires one to be bound, so each mesh owns its own. */
+ * needs no vertex array attributes (its one input, the per-draw record, is
+ * the current attribute value in a single draw): one empty VAO per context
+ * suffices, and GL core requires one to be bound, so each mesh owns its own.
+ * Multi-draws are in gpu_mesh_many.c. */
 #include "render/gpu_mesh.h"
 
 #include "render/frag_glsl.h"
@@ -128,17 +130,28 @@ uint32_t oit_gpu_mesh_first_prim(const oit_gpu_mesh *m)
     return m->first_prim;
 }
 
+unsigned oit_gpu_mesh_buffer(const oit_gpu_mesh *m)
+{
+    return m->buffer;
+}
+
+uint64_t oit_gpu_mesh_offset(const oit_gpu_mesh *m)
+{
+    return m->offset;
+}
+
 void oit_gpu_mesh_draw(const oit_gpu_mesh *m, unsigned program)
 {
-    /* By name: a pass that does not shade has no active u_first_prim. */
-    GLint first_loc = glGetUniformLocation(program, "u_first_prim");
+    (void)program;
+    /* The mesh's vertex array enables no attribute, so the shader's
+     * per-draw input reads the current value set here. */
     glBindVertexArray(m->vao);
     for (size_t start = 0; start < m->count; start += m->window) {
         size_t n = m->count - start < m->window ? m->count - start : m->window;
         glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_VERTS, m->buffer,
                           (GLintptr)(m->offset + start * sizeof(oit_triangle)),
                           (GLsizeiptr)(n * sizeof(oit_triangle)));
-        glProgramUniform1ui(program, first_loc, m->first_prim + (uint32_t)start);
+        glVertexAttribI2ui(OIT_IN_DRAW, 0, m->first_prim + (uint32_t)start);
         glDrawArrays(GL_TRIANGLES, 0, (GLsizei)(n * 3));
     }
 }

@@ -34,11 +34,51 @@ void oit_gpu_mesh_destroy(oit_gpu_mesh *m);
 size_t oit_gpu_mesh_triangles(const oit_gpu_mesh *m);
 uint64_t oit_gpu_mesh_bytes(const oit_gpu_mesh *m);
 uint32_t oit_gpu_mesh_first_prim(const oit_gpu_mesh *m);
+/* The GL buffer the triangles live in, and the byte offset of the first. */
+unsigned oit_gpu_mesh_buffer(const oit_gpu_mesh *m);
+uint64_t oit_gpu_mesh_offset(const oit_gpu_mesh *m);
 
 /* For the GL methods: draws the triangles with the bound program built from
- * frag_glsl.h, binding them for vertex pulling and setting the first-prim
- * uniform; large meshes are drawn in windows that fit the SSBO limit. */
+ * frag_glsl.h, binding them for vertex pulling and setting the per-draw
+ * input OIT_IN_DRAW (frag_glsl.h) as the current attribute value; large
+ * meshes are drawn in windows that fit the SSBO limit, one glDrawArrays
+ * each. It binds m's own vertex array. program is not read (the first prim
+ * used to be its uniform); kept so callers need not change. */
 void oit_gpu_mesh_draw(const oit_gpu_mesh *m, unsigned program);
+
+/* Scratch for oit_gpu_mesh_draw_many: the indirect commands and per-draw
+ * records it uploads (grown geometrically, never shrunk), the vertex array
+ * that reads the records, and a count of the draw calls made through it.
+ * One per owner (a capture); requires a current GL context, which destroy
+ * needs too. */
+typedef struct oit_gpu_draws oit_gpu_draws;
+oit_status oit_gpu_draws_create(oit_gpu_draws **out, oit_error *err);
+void oit_gpu_draws_destroy(oit_gpu_draws *d);
+/* GL draw commands issued through d since its creation (a multi-draw
+ * counts 1). */
+uint64_t oit_gpu_draws_calls(const oit_gpu_draws *d);
+/* For tests: the triangles one group may span, rounded down to keep window
+ * offsets aligned (at least the alignment's step); 0 restores the driver's
+ * window (oit_gpu_triangle_window). Lets a test split groups and window
+ * large meshes without buffers of GL_MAX_SHADER_STORAGE_BLOCK_SIZE. */
+void oit_gpu_draws_set_window(oit_gpu_draws *d, size_t triangles);
+
+/* Draws meshes[0..n), in that order, with the bound program built from
+ * frag_glsl.h, in few draw calls: consecutive meshes in one GL buffer whose
+ * bytes, from the lowest offset rounded down to a multiple of 16 and of
+ * GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT to the furthest end, fit one
+ * window (oit_gpu_triangle_window) form a group, bound once at
+ * OIT_BIND_VERTS and drawn by one glMultiDrawArraysIndirect. A streamer's
+ * pack drawn from one ring region, or from its cache, is one group; parts
+ * alternating between two buffers make one group per run. A mesh larger
+ * than a window is cut into windows that join groups like meshes. Fragments
+ * and primitive ids are those of oit_gpu_mesh_draw on each mesh in turn.
+ * Empty meshes draw nothing. Mesh offsets must keep the alignment (as
+ * oit_gpu_mesh_set_range requires). Leaves d's vertex array and indirect
+ * buffer bound, and the current value of the per-draw input untouched.
+ * Never an error: should d's scratch not grow to the call's commands, it
+ * draws them in runs that fit (more calls, same fragments). */
+void oit_gpu_mesh_draw_many(oit_gpu_draws *d, const oit_gpu_mesh *const *meshes, int n);
 
 /* For compute passes with one invocation per triangle: binds each of those
  * windows at OIT_BIND_VERTS, sets the uints u_window_first (the window's
@@ -50,7 +90,8 @@ void oit_gpu_mesh_draw(const oit_gpu_mesh *m, unsigned program);
 void oit_gpu_mesh_dispatch(const oit_gpu_mesh *m, unsigned program, unsigned local);
 
 /* Triangles one storage binding holds with its offset aligned: the window
- * size of the two calls above, for buffers laid out like a mesh's. */
+ * of oit_gpu_mesh_draw, oit_gpu_mesh_dispatch and (unless a test set
+ * another) oit_gpu_mesh_draw_many, for buffers laid out like a mesh's. */
 size_t oit_gpu_triangle_window(void);
 
 #ifdef __cplusplus

@@ -233,7 +233,7 @@ static void make_shading(const oit_renderer *r, const oit_scene *scene, oit_shad
 
 /* The state oit_renderer_draw promises to give back (liboit.h). */
 typedef struct gl_saved {
-    GLint draw_fb, read_fb, viewport[4], program, vao;
+    GLint draw_fb, read_fb, viewport[4], program, vao, indirect;
     GLint src_rgb, dst_rgb, src_a, dst_a, eq_rgb, eq_a;
     GLboolean colour_mask[4], depth_mask;
     GLboolean enabled[6];
@@ -249,6 +249,7 @@ static void gl_save(gl_saved *g)
     glGetIntegerv(GL_VIEWPORT, g->viewport);
     glGetIntegerv(GL_CURRENT_PROGRAM, &g->program);
     glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &g->vao);
+    glGetIntegerv(GL_DRAW_INDIRECT_BUFFER_BINDING, &g->indirect);
     glGetIntegerv(GL_BLEND_SRC_RGB, &g->src_rgb);
     glGetIntegerv(GL_BLEND_DST_RGB, &g->dst_rgb);
     glGetIntegerv(GL_BLEND_SRC_ALPHA, &g->src_a);
@@ -268,6 +269,7 @@ static void gl_restore(const gl_saved *g)
     glViewport(g->viewport[0], g->viewport[1], g->viewport[2], g->viewport[3]);
     glUseProgram((GLuint)g->program);
     glBindVertexArray((GLuint)g->vao);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, (GLuint)g->indirect);
     glBlendFuncSeparate((GLenum)g->src_rgb, (GLenum)g->dst_rgb, (GLenum)g->src_a,
                         (GLenum)g->dst_a);
     glBlendEquationSeparate((GLenum)g->eq_rgb, (GLenum)g->eq_a);

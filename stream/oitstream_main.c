@@ -313,11 +313,12 @@ static oit_status render_one(run_ctx *rc, int index, int views, oit_stats_frame 
                (unsigned long long)fr->st.fragments, fr->st.max_layers,
                (unsigned long long)fr->st.overflow_pixels);
     if (s == OIT_OK && !rc->args->quiet && fr->has_stream)
-        printf("frame %d: %.2f ms, %u packs, %llu parts (%llu culled), %.2f MiB uploaded, "
-               "%llu from the cache (%.2f MiB resident), %llu overflow pixels, %.1f MiB GPU at "
-               "peak\n",
+        printf("frame %d: %.2f ms, %u packs, %llu parts (%llu culled), %llu draw calls, %.2f "
+               "MiB uploaded, %llu from the cache (%.2f MiB resident), %llu overflow pixels, "
+               "%.1f MiB GPU at peak\n",
                index, fr->st.ms, fr->stream.packs, (unsigned long long)fr->stream.parts_drawn,
                (unsigned long long)fr->stream.parts_culled,
+               (unsigned long long)fr->stream.draw_calls,
                (double)fr->stream.bytes_uploaded / 1048576.0,
                (unsigned long long)fr->stream.cache_hits,
                (double)fr->stream.cache_bytes / 1048576.0,

@@ -412,6 +412,7 @@ static void finish_stats(const oit_streamer *s, const oit_packing *pk, oit_frame
     ss->parts_drawn = pk->part_count - ss->parts_skipped;
     ss->parts_culled = pk->culled;
     ss->epsilon = s->epsilon;
+    ss->draw_calls = oit_capture_draw_calls(s->capture);
     ss->cache_bytes = s->cache ? oit_residency_bytes(s->cache) : 0;
     ss->gpu_bytes_peak = fs->gpu_bytes_peak + oit_upload_gpu_bytes(s->upload) +
                          (s->cache ? oit_residency_capacity(s->cache) : 0) +

@@ -58,6 +58,8 @@ typedef struct oit_stream_frame_stats {
     uint64_t cache_hits;     /* parts drawn from the residency cache        */
     uint64_t cache_bytes;    /* bytes resident in the cache after the frame */
     uint64_t gpu_bytes_peak; /* capture buffers + upload ring + cache       */
+    uint64_t draw_calls;     /* GL draw commands for geometry (a multi-draw
+                                is 1): oit_capture_draw_calls                */
     float epsilon;           /* the early-termination threshold it ran with */
 } oit_stream_frame_stats;
 

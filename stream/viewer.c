@@ -320,8 +320,10 @@ static void format_status(viewer *v)
     if (m->stream_stats && n > 0 && (size_t)n < sizeof v->status) {
         const oit_stream_frame_stats *ss = m->stream_stats(v->state);
         human((double)ss->bytes_uploaded, bytes, sizeof bytes);
-        int k = snprintf(v->status + n, sizeof v->status - (size_t)n, " %u packs %sB up %llu hit",
-                         ss->packs, bytes, (unsigned long long)ss->cache_hits);
+        int k = snprintf(v->status + n, sizeof v->status - (size_t)n,
+                         " %u packs %llu draws %sB up %llu hit", ss->packs,
+                         (unsigned long long)ss->draw_calls, bytes,
+                         (unsigned long long)ss->cache_hits);
         if (k > 0 && ss->epsilon > 0.0f && (size_t)(n + k) < sizeof v->status)
             snprintf(v->status + n + k, sizeof v->status - (size_t)(n + k), " eps %.3g skip %llu",
                      ss->epsilon, (unsigned long long)ss->parts_skipped);

@@ -9,6 +9,10 @@ oit_add_test(NAME dfb COMMAND test_dfb LABELS unit TIMEOUT 60)
 oit_add_test_exe(test_capture SOURCES test_capture.c LIBS oit_render)
 oit_add_test(NAME capture COMMAND test_capture LABELS unit TIMEOUT 60)
 
+# multi-draw grouping against drawing mesh by mesh (gpu_mesh.h)
+oit_add_test_exe(test_gpu_draws SOURCES test_gpu_draws.c LIBS oit_render)
+oit_add_test(NAME gpu_draws COMMAND test_gpu_draws LABELS unit TIMEOUT 60)
+
 # The GLFW window path, under a virtual X display (xvfb-run from the xvfb
 # package, installed by setup/install-deps.sh). Skipped when xvfb-run is absent.
 oit_add_test_exe(test_gl_window SOURCES test_gl_window.c LIBS oit_render)

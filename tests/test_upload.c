@@ -5,7 +5,11 @@
  *    uploads what the first did;
  *  - every image is bit-identical to the first: cache on or off, reader
  *    thread or none, an 8K upload ring (a dozen wraps and fence waits a
- *    frame), a cache smaller than the file;
+ *    frame), a cache smaller than the file (packs whose parts alternate
+ *    between the ring and the cache);
+ *  - draw calls: one multi-draw a pack when its parts all lie in the ring
+ *    (one region) or all in the cache; with both, one per run of parts in
+ *    one buffer, so between the packs and the parts;
  *  - a part corrupted in the file (one byte of its blob flipped, opened with
  *    defer_part_data) fails the render with OIT_ERR_FORMAT naming the file
  *    and the part, with and without the thread, again on a second render;
@@ -77,6 +81,17 @@ static int render_twice(oit_partfile *pf, const oit_view *v, const oit_streamer_
         st = oit_streamer_render(s, v, &out->img[f], NULL, &out->ss[f], &err);
     oit_streamer_destroy(s);
     CHECK(st == OIT_OK, "%s: %s", name, err.message);
+    for (int f = 0; f < 2 && st == OIT_OK; f++) {
+        const oit_stream_frame_stats *ss = &out->ss[f];
+        int one_source = ss->cache_hits == 0 || ss->cache_hits == ss->parts_drawn;
+        printf("%s: frame %d: %u packs, %llu parts, %llu draw calls\n", name, f, ss->packs,
+               (unsigned long long)ss->parts_drawn, (unsigned long long)ss->draw_calls);
+        CHECK(one_source ? ss->draw_calls == ss->packs
+                         : ss->draw_calls >= ss->packs && ss->draw_calls <= ss->parts_drawn,
+              "%s: frame %d: %llu draw calls for %u packs of %llu parts, %llu from the cache",
+              name, f, (unsigned long long)ss->draw_calls, ss->packs,
+              (unsigned long long)ss->parts_drawn, (unsigned long long)ss->cache_hits);
+    }
     if (st == OIT_OK)
         printf("%s: frame 0: %llu parts, %llu bytes, %llu hits; frame 1: %llu parts, %llu "
                "bytes, %llu hits, %llu bytes cached; GPU peak %llu\n", name,

@@ -1,0 +1,247 @@
+/* Many meshes in few draw calls (oit_gpu_mesh_draw_many, gpu_mesh.h).
+ *
+ * Per draw call a driver validates state and sets up the pipeline; on
+ * llvmpipe that is ~55 us, which a pack of thousands of small parts paid
+ * per part. A multi-draw pays it once per group. Core GL 4.5 has no draw
+ * index in the shader (gl_DrawID needs ARB_shader_draw_parameters, core only
+ * in 4.6), so every command carries its index as baseInstance, and a vertex
+ * attribute with divisor 1 fetches that command's record, (first vertex,
+ * first prim): where its triangles start in the binding, and what to add to
+ * gl_PrimitiveID (frag_glsl.h). The commands of one group share one SSBO
+ * binding, hence the grouping by buffer and window. */
+#include "render/gpu_mesh.h"
+
+#include "render/frag_glsl.h"
+
+#include <stdlib.h>
+
+/* GL's DrawArraysIndirectCommand. */
+typedef struct draw_cmd {
+    GLuint count, instances, first, base_instance;
+} draw_cmd;
+
+/* What OIT_IN_DRAW reads per command: its first vertex in the binding and
+ * the prim of its first triangle. */
+typedef struct draw_rec {
+    GLuint first_vertex, first_prim;
+} draw_rec;
+
+/* Commands [first, first + count) drawn with buffer bound from lo, rounded
+ * down to the unit, to hi. A solo group is bound from lo itself: its one
+ * command starts off the 16-byte grid that first vertices count in. */
+typedef struct draw_group {
+    GLuint buffer;
+    uint64_t lo, hi;
+    size_t first, count;
+    int solo;
+} draw_group;
+
+struct oit_gpu_draws {
+    GLuint vao, cmd_buf, rec_buf;
+    uint64_t cmd_bytes, rec_bytes; /* capacities of the GL buffers */
+    /* CPU staging, cap commands each: at[k] is command k's byte offset in
+     * its buffer until its group's base is known. */
+    draw_cmd *cmds;
+    draw_rec *recs;
+    uint64_t *at;
+    draw_group *groups;
+    size_t cap;
+    size_t window, driver_window; /* triangles a group may span */
+    /* Group bases: multiples of the SSBO offset alignment and of the 16
+     * bytes of a vertex, which first vertices count in. */
+    uint64_t unit;
+    uint64_t calls;
+};
+
+enum { INITIAL_DRAWS = 256 };
+
+static oit_status reserve_gl(oit_gpu_draws *d, size_t n, oit_error *err)
+{
+    oit_status s = oit_gl_buffer_reserve(&d->cmd_buf, &d->cmd_bytes, n * sizeof(draw_cmd),
+                                         "multi-draw commands", err);
+    if (s == OIT_OK)
+        s = oit_gl_buffer_reserve(&d->rec_buf, &d->rec_bytes, n * sizeof(draw_rec),
+                                  "multi-draw records", err);
+    return s;
+}
+
+/* Room for n commands, CPU and GL; on failure the room stays as it was
+ * (the buffer names stay too, so the vertex array's binding of the records
+ * holds). */
+static int reserve(oit_gpu_draws *d, size_t n)
+{
+    if (n <= d->cap)
+        return 1;
+    size_t want = d->cap + d->cap / 2 > n ? d->cap + d->cap / 2 : n;
+    draw_cmd *c = realloc(d->cmds, want * sizeof *c);
+    if (c)
+        d->cmds = c;
+    draw_rec *r = c ? realloc(d->recs, want * sizeof *r) : NULL;
+    if (r)
+        d->recs = r;
+    uint64_t *a = r ? realloc(d->at, want * sizeof *a) : NULL;
+    if (a)
+        d->at = a;
+    draw_group *g = a ? realloc(d->groups, want * sizeof *g) : NULL;
+    if (g)
+        d->groups = g;
+    if (!g || reserve_gl(d, want, NULL) != OIT_OK)
+        return 0;
+    d->cap = want;
+    return 1;
+}
+
+oit_status oit_gpu_draws_create(oit_gpu_draws **out, oit_error *err)
+{
+    *out = NULL;
+    oit_gpu_draws *d = calloc(1, sizeof *d);
+    if (!d)
+        return oit_error_set(err, OIT_ERR_NOMEM, "multi-draw: out of memory");
+    GLint align = 16;
+    glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &align);
+    uint64_t a = align > 0 ? (uint64_t)align : 16;
+    for (d->unit = a; d->unit % 16 != 0;)
+        d->unit += a;
+    d->driver_window = d->window = oit_gpu_triangle_window();
+    glCreateVertexArrays(1, &d->vao);
+    oit_status s = reserve(d, INITIAL_DRAWS)
+                       ? OIT_OK
+                       : oit_error_set(err, OIT_ERR_NOMEM, "multi-draw: cannot allocate room "
+                                       "for %d draws", INITIAL_DRAWS);
+    if (s == OIT_OK) {
+        glEnableVertexArrayAttrib(d->vao, OIT_IN_DRAW);
+        glVertexArrayAttribIFormat(d->vao, OIT_IN_DRAW, 2, GL_UNSIGNED_INT, 0);
+        glVertexArrayAttribBinding(d->vao, OIT_IN_DRAW, 0);
+        glVertexArrayVertexBuffer(d->vao, 0, d->rec_buf, 0, sizeof(draw_rec));
+        glVertexArrayBindingDivisor(d->vao, 0, 1);
+        s = oit_gl_check("multi-draw: vertex array", err);
+    }
+    if (s == OIT_OK && d->window == 0)
+        s = oit_error_set(err, OIT_ERR_GL, "multi-draw: GL_MAX_SHADER_STORAGE_BLOCK_SIZE is "
+                          "smaller than one triangle");
+    if (s != OIT_OK) {
+        oit_gpu_draws_destroy(d);
+        return s;
+    }
+    *out = d;
+    return OIT_OK;
+}
+
+void oit_gpu_draws_destroy(oit_gpu_draws *d)
+{
+    if (!d)
+        return;
+    glDeleteVertexArrays(1, &d->vao);
+    glDeleteBuffers(1, &d->cmd_buf);
+    glDeleteBuffers(1, &d->rec_buf);
+    free(d->cmds);
+    free(d->recs);
+    free(d->at);
+    free(d->groups);
+    free(d);
+}
+
+uint64_t oit_gpu_draws_calls(const oit_gpu_draws *d)
+{
+    return d->calls;
+}
+
+void oit_gpu_draws_set_window(oit_gpu_draws *d, size_t triangles)
+{
+    if (triangles == 0 || triangles > d->driver_window) {
+        d->window = d->driver_window;
+        return;
+    }
+    /* Window starts inside a mesh must stay on the unit, as the driver's
+     * stay aligned. */
+    size_t step = 1;
+    while ((step * sizeof(oit_triangle)) % d->unit != 0)
+        step++;
+    d->window = triangles > step ? triangles / step * step : step;
+}
+
+/* Adds command k for `count` triangles at byte offset `at` of buffer, to the
+ * last group when the group's span stays within a window, else to a new
+ * one. */
+static void add_command(oit_gpu_draws *d, size_t *groups, size_t k, GLuint buffer, uint64_t at,
+                        size_t count, uint32_t first_prim)
+{
+    uint64_t end = at + (uint64_t)count * sizeof(oit_triangle);
+    d->cmds[k] = (draw_cmd){(GLuint)(count * 3), 1, 0, (GLuint)k};
+    d->recs[k] = (draw_rec){0, first_prim};
+    d->at[k] = at;
+    draw_group *g = *groups ? &d->groups[*groups - 1] : NULL;
+    int solo = at % 16 != 0;
+    if (g && !g->solo && !solo && g->buffer == buffer) {
+        uint64_t lo = at < g->lo ? at : g->lo, hi = end > g->hi ? end : g->hi;
+        if (hi - (lo - lo % d->unit) <= (uint64_t)d->window * sizeof(oit_triangle)) {
+            g->lo = lo;
+            g->hi = hi;
+            g->count++;
+            return;
+        }
+    }
+    d->groups[(*groups)++] = (draw_group){buffer, at, end, k, 1, solo};
+}
+
+static uint64_t group_base(const oit_gpu_draws *d, const draw_group *g)
+{
+    return g->solo ? g->lo : g->lo - g->lo % d->unit;
+}
+
+/* Draws commands [0, k) in their groups [0, groups): first vertices from
+ * each group's base, one upload, one multi-draw a group. */
+static void flush(oit_gpu_draws *d, size_t k, size_t groups)
+{
+    if (k == 0)
+        return;
+    for (size_t g = 0; g < groups; g++) {
+        const draw_group *gr = &d->groups[g];
+        uint64_t base = group_base(d, gr);
+        for (size_t c = gr->first; c < gr->first + gr->count; c++) {
+            GLuint first = (GLuint)((d->at[c] - base) / 16);
+            d->cmds[c].first = first;
+            d->recs[c].first_vertex = first;
+        }
+    }
+    /* Rewriting the buffers between groups could make a driver wait for
+     * the draws before: all of them go up at once. */
+    glNamedBufferSubData(d->cmd_buf, 0, (GLsizeiptr)(k * sizeof(draw_cmd)), d->cmds);
+    glNamedBufferSubData(d->rec_buf, 0, (GLsizeiptr)(k * sizeof(draw_rec)), d->recs);
+    glBindVertexArray(d->vao);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, d->cmd_buf);
+    for (size_t g = 0; g < groups; g++) {
+        const draw_group *gr = &d->groups[g];
+        uint64_t base = group_base(d, gr);
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_VERTS, gr->buffer, (GLintptr)base,
+                          (GLsizeiptr)(gr->hi - base));
+        glMultiDrawArraysIndirect(GL_TRIANGLES,
+                                  (const void *)(uintptr_t)(gr->first * sizeof(draw_cmd)),
+                                  (GLsizei)gr->count, 0);
+        d->calls++;
+    }
+}
+
+void oit_gpu_mesh_draw_many(oit_gpu_draws *d, const oit_gpu_mesh *const *meshes, int n)
+{
+    size_t total = 0, k = 0, groups = 0;
+    for (int i = 0; i < n; i++)
+        total += (oit_gpu_mesh_triangles(meshes[i]) + d->window - 1) / d->window;
+    /* Without room for all, it draws what fits at a time. */
+    reserve(d, total);
+    for (int i = 0; i < n; i++) {
+        const oit_gpu_mesh *m = meshes[i];
+        size_t count = oit_gpu_mesh_triangles(m);
+        for (size_t start = 0; start < count; start += d->window) {
+            if (k == d->cap) {
+                flush(d, k, groups);
+                k = groups = 0;
+            }
+            add_command(d, &groups, k++, oit_gpu_mesh_buffer(m),
+                        oit_gpu_mesh_offset(m) + start * sizeof(oit_triangle),
+                        count - start < d->window ? count - start : d->window,
+                        oit_gpu_mesh_first_prim(m) + (uint32_t)start);
+        }
+    }
+    flush(d, k, groups);
+}
