@@ -141,7 +141,7 @@ static void test_cli(void)
     run_result r = run((const char *[]){"--help", NULL});
     CHECK(r.code == 0, "--help exit %d", r.code);
     const char *words[] = {"quads", "instances", "plant", "demo", "--count", "--coverage",
-                           "--triangles", "--input", "--seed", "-o"};
+                           "--triangles", "--input", "--seed", "-o", "--clashes"};
     for (size_t i = 0; i < sizeof words / sizeof words[0]; i++)
         CHECK(strstr(r.out, words[i]), "--help does not mention %s", words[i]);
     const char *const bad[][8] = {
@@ -153,6 +153,8 @@ static void test_cli(void)
         {"quads", "--triangles", "20000", "-o", "x.ply", NULL},
         {"plant", "--triangles", "5", "-o", "x.ply", NULL},
         {"instances", "-o", "x.ply", NULL},
+        {"plant", "--clashes", "sometimes", "-o", "x.ply", NULL},
+        {"quads", "--clashes", "allow", "-o", "x.ply", NULL},
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         r = run(bad[i]);
