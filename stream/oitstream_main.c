@@ -313,10 +313,11 @@ static oit_status render_one(run_ctx *rc, int index, int views, oit_stats_frame 
                (unsigned long long)fr->st.fragments, fr->st.max_layers,
                (unsigned long long)fr->st.overflow_pixels);
     if (s == OIT_OK && !rc->args->quiet && fr->has_stream)
-        printf("frame %d: %.2f ms, %u packs, %llu parts (%llu culled), %llu draw calls, %.2f "
-               "MiB uploaded, %llu from the cache (%.2f MiB resident), %llu overflow pixels, "
-               "%.1f MiB GPU at peak\n",
-               index, fr->st.ms, fr->stream.packs, (unsigned long long)fr->stream.parts_drawn,
+        printf("frame %d: %.2f ms (order %.1f, pack %.1f), %u packs, %llu parts (%llu culled), "
+               "%llu draw calls, %.2f MiB uploaded, %llu from the cache (%.2f MiB resident), "
+               "%llu overflow pixels, %.1f MiB GPU at peak\n",
+               index, fr->st.ms, fr->stream.order_ms, fr->stream.pack_ms, fr->stream.packs,
+               (unsigned long long)fr->stream.parts_drawn,
                (unsigned long long)fr->stream.parts_culled,
                (unsigned long long)fr->stream.draw_calls,
                (double)fr->stream.bytes_uploaded / 1048576.0,

@@ -47,14 +47,16 @@ static void put_frame(FILE *f, const oit_stats_frame *fr, int last)
     if (fr->has_stream)
         fprintf(f, ", \"packs\": %u, \"parts_drawn\": %llu, \"parts_culled\": %llu, "
                 "\"parts_skipped\": %llu, \"bytes_uploaded\": %llu, \"cache_hits\": %llu, "
-                "\"cache_bytes\": %llu, \"epsilon\": %.9g, \"draw_calls\": %llu",
+                "\"cache_bytes\": %llu, \"epsilon\": %.9g, \"draw_calls\": %llu, "
+                "\"order_ms\": %.3f, \"pack_ms\": %.3f",
                 fr->stream.packs, (unsigned long long)fr->stream.parts_drawn,
                 (unsigned long long)fr->stream.parts_culled,
                 (unsigned long long)fr->stream.parts_skipped,
                 (unsigned long long)fr->stream.bytes_uploaded,
                 (unsigned long long)fr->stream.cache_hits,
                 (unsigned long long)fr->stream.cache_bytes, (double)fr->stream.epsilon,
-                (unsigned long long)fr->stream.draw_calls);
+                (unsigned long long)fr->stream.draw_calls, fr->stream.order_ms,
+                fr->stream.pack_ms);
     fprintf(f, "}%s\n", last ? "" : ",");
 }
 

@@ -390,10 +390,14 @@ static oit_status capture_frame(oit_streamer *s, const oit_view *view, oit_packi
     if (s->cache)
         oit_residency_begin_frame(s->cache);
     oit_status st = oit_capture_begin(s->capture, view, err);
+    double t0 = oit_time_ms();
     if (st == OIT_OK)
         st = oit_order_compute(s->order, view->camera.eye, s->ordered, &count, err);
+    double t1 = oit_time_ms();
     if (st == OIT_OK)
         st = oit_packer_run(s->packer, view, s->ordered, count, pk, err);
+    ss->order_ms = t1 - t0;
+    ss->pack_ms = oit_time_ms() - t1;
     if (st == OIT_OK && s->saturation)
         st = oit_saturation_begin(s->saturation, view->width, view->height, err);
     if (st == OIT_OK)

@@ -60,6 +60,10 @@ typedef struct oit_stream_frame_stats {
     uint64_t gpu_bytes_peak; /* capture buffers + upload ring + cache       */
     uint64_t draw_calls;     /* GL draw commands for geometry (a multi-draw
                                 is 1): oit_capture_draw_calls                */
+    /* CPU milliseconds of the per-view work that does not wait for GL: the
+     * visibility order of the parts and their packing. On a GPU fast
+     * enough to hide the rest, these bound the frame rate. */
+    double order_ms, pack_ms;
     float epsilon;           /* the early-termination threshold it ran with */
 } oit_stream_frame_stats;
 

@@ -128,6 +128,11 @@ residency() {
     on=$(json_all bytes_uploaded < "$T/orbit_256M.json" | awk '{s += $1} END {print s + 0}')
     off=$(json_all bytes_uploaded < "$T/orbit_0.json" | awk '{s += $1} END {print s + 0}')
     echo "orbit 8: $on bytes uploaded with the cache, $off without"
+    # Every frame times its ordering and packing: 8 figures each, none negative.
+    for k in order_ms pack_ms; do
+        n=$(json_all $k < "$T/orbit_0.json" | awk '$1 >= 0 {n++} END {print n + 0}')
+        [ "$n" -eq 8 ] || fail "orbit 8: $n frames with a $k >= 0, want 8"
+    done
     [ "$on" -gt 0 ] && [ "$on" -lt "$off" ] || fail "orbit 8: cache uploads $on, none $off"
     for bad in "--cache-budget 1K" "--cache-budget -1" "--upload-threads 2"; do
         "$S" "$P" --size 8x8 --quiet $bad >/dev/null 2>&1
