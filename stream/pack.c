@@ -137,15 +137,34 @@ static oit_status fit_tiles(oit_packer *pk, const oit_view *v, oit_error *err)
     return OIT_OK;
 }
 
-/* The screen rectangle of the part's box and the nearest depth of its
- * corners; 0 when the box lies outside the view volume (culled). */
-static int project_box(const oit_partfile_part *p, const oit_view *v, const float m[16],
-                       int rect[4], float *near)
+/* What projecting a box needs from the view, worked out once a frame: a
+ * converted model has 10^5-10^6 parts. */
+typedef struct box_projector {
+    float m[16];               /* world to eye */
+    double fx, fy, w, h;       /* pixels per unit of x/depth, y/depth */
+    double znear, zfar;
+} box_projector;
+
+static void projector_init(box_projector *pr, const oit_view *v)
 {
     const oit_camera *c = &v->camera;
+    oit_camera_view_matrix(c, pr->m);
     double f = 1.0 / tan(0.5 * (c->fovy_deg > 0.0f ? c->fovy_deg : 45.0) * 3.14159265358979 / 180.0);
-    double aspect = (double)v->width / v->height, lo[2] = {HUGE_VAL, HUGE_VAL},
-           hi[2] = {-HUGE_VAL, -HUGE_VAL};
+    pr->w = v->width;
+    pr->h = v->height;
+    pr->fx = f / (pr->w / pr->h) * 0.5 * pr->w;
+    pr->fy = f * 0.5 * pr->h;
+    pr->znear = c->znear;
+    pr->zfar = c->zfar;
+}
+
+/* The screen rectangle of the part's box and the nearest depth of its
+ * corners; 0 when the box lies outside the view volume (culled). */
+static int project_box(const oit_partfile_part *p, const box_projector *pr, int rect[4],
+                       float *near)
+{
+    const float *m = pr->m;
+    double lo[2] = {HUGE_VAL, HUGE_VAL}, hi[2] = {-HUGE_VAL, -HUGE_VAL};
     int near_cross = 0, before_near = 0, beyond_far = 0;
     double nearest = HUGE_VAL;
     for (int k = 0; k < 8; k++) {
@@ -156,14 +175,14 @@ static int project_box(const oit_partfile_part *p, const oit_view *v, const floa
         double vy = m[1] * x + m[5] * y + m[9] * z + m[13];
         double depth = -(m[2] * x + m[6] * y + m[10] * z + m[14]);
         nearest = fmin(nearest, depth);
-        before_near += depth < c->znear;
-        beyond_far += depth > c->zfar;
-        if (depth <= 0.5 * c->znear) {
+        before_near += depth < pr->znear;
+        beyond_far += depth > pr->zfar;
+        if (depth <= 0.5 * pr->znear) {
             near_cross = 1;
             continue;
         }
-        double px = (f / aspect * vx / depth + 1.0) * 0.5 * v->width;
-        double py = (1.0 - f * vy / depth) * 0.5 * v->height;
+        double px = pr->fx * vx / depth + 0.5 * pr->w;
+        double py = 0.5 * pr->h - pr->fy * vy / depth;
         lo[0] = fmin(lo[0], px), hi[0] = fmax(hi[0], px);
         lo[1] = fmin(lo[1], py), hi[1] = fmax(hi[1], py);
     }
@@ -172,15 +191,15 @@ static int project_box(const oit_partfile_part *p, const oit_view *v, const floa
     *near = (float)nearest;
     if (near_cross) {
         rect[0] = rect[1] = 0;
-        rect[2] = v->width;
-        rect[3] = v->height;
+        rect[2] = (int)pr->w;
+        rect[3] = (int)pr->h;
         return 1;
     }
     /* One pixel of margin covers rounding between this and the rasterizer. */
     rect[0] = (int)fmax(floor(lo[0]) - 1.0, 0.0);
     rect[1] = (int)fmax(floor(lo[1]) - 1.0, 0.0);
-    rect[2] = (int)fmin(ceil(hi[0]) + 1.0, (double)v->width);
-    rect[3] = (int)fmin(ceil(hi[1]) + 1.0, (double)v->height);
+    rect[2] = (int)fmin(ceil(hi[0]) + 1.0, pr->w);
+    rect[3] = (int)fmin(ceil(hi[1]) + 1.0, pr->h);
     return rect[2] > rect[0] && rect[3] > rect[1];
 }
 
@@ -252,12 +271,12 @@ static void open_pack(oit_packer *pk, uint32_t pack, uint32_t first, uint32_t la
 /* Culls and projects order[0..n) into pk->kept, in order. */
 static uint32_t cull(oit_packer *pk, const oit_view *view, const uint32_t *order, uint32_t n)
 {
-    float m[16];
-    oit_camera_view_matrix(&view->camera, m);
+    box_projector pr;
+    projector_init(&pr, view);
     const oit_partfile_part *parts = oit_partfile_parts(pk->pf);
     uint32_t k = 0;
     for (uint32_t i = 0; i < n; i++)
-        if (project_box(&parts[order[i]], view, m, pk->kept_rects[k], &pk->kept_near[k]))
+        if (project_box(&parts[order[i]], &pr, pk->kept_rects[k], &pk->kept_near[k]))
             pk->kept[k++] = order[i];
     return k;
 }
