@@ -98,6 +98,29 @@ void oit_camera_proj_matrix(const oit_camera *cam, float aspect, float m[16])
     m[14] = (float)(2.0 * fa * n / (n - fa));
 }
 
+void oit_camera_frustum(const oit_camera *cam, float aspect, float planes[6][4])
+{
+    double fovy = cam->fovy_deg > 0.0f ? cam->fovy_deg : 45.0;
+    double f = 1.0 / tan(0.5 * fovy * kPi / 180.0), slack = 1.001;
+    double a = aspect / f * slack, b = 1.0 / f * slack;
+    /* Eye space (looking down -z, depth d = -z): |x| <= a d, |y| <= b d,
+     * znear / 2 <= d <= zfar * slack. */
+    const double eye_planes[6][4] = {{1, 0, -a, 0},  {-1, 0, -a, 0},
+                                     {0, 1, -b, 0},  {0, -1, -b, 0},
+                                     {0, 0, -1, -0.5 * cam->znear},
+                                     {0, 0, 1, (double)cam->zfar * slack}};
+    float m[16];
+    oit_camera_view_matrix(cam, m);
+    /* A plane p on eye coordinates M x is the plane M^T p on x. */
+    for (int i = 0; i < 6; i++)
+        for (int j = 0; j < 4; j++) {
+            double v = 0;
+            for (int r = 0; r < 4; r++)
+                v += eye_planes[i][r] * m[j * 4 + r];
+            planes[i][j] = (float)v;
+        }
+}
+
 /* Reads up to max comma-separated finite numbers; returns how many. */
 static int parse_numbers(const char *text, double *v, int max)
 {

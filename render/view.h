@@ -81,6 +81,12 @@ void oit_camera_default(oit_camera *cam, const float bmin[3], const float bmax[3
 /* 4x4 column-major matrices, as GL expects. */
 void oit_camera_view_matrix(const oit_camera *cam, float m[16]);
 void oit_camera_proj_matrix(const oit_camera *cam, float aspect, float m[16]);
+/* World-space planes bounding what the camera sees at this aspect: a point x
+ * can be visible only if p[0] x + p[1] y + p[2] z + p[3] >= 0 for all six
+ * (left, right, bottom, top, near, far). Deliberately a little wider than
+ * the view volume (0.1% in angle and depth, near plane at znear / 2), so
+ * that rounding never culls what the rasterizer would draw. */
+void oit_camera_frustum(const oit_camera *cam, float aspect, float planes[6][4]);
 /* Parses "ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy"; returns 0 on success. Two more
  * numbers ",znear,zfar" may follow; without them cam's clip planes are kept.
  * Eye and target are in the file's coordinates: origin (NULL: 0), the one

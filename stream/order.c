@@ -11,12 +11,14 @@
  * clearing is needed either. */
 #include "stream/order.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 typedef struct order_node {
     uint32_t grid;
     uint32_t lo[3], hi[3]; /* cell index range, hi exclusive */
+    int inside;            /* wholly inside the planes: no more tests below */
 } order_node;
 
 struct oit_order {
@@ -30,6 +32,7 @@ struct oit_order {
     size_t stack_cap;
     uint32_t *scratch; /* slab inside parts, sorted per view */
     uint32_t scratch_cap;
+    double *reach; /* per grid: how far parts under it may lie beyond a range's box */
 };
 
 static uint32_t ceil_log2(uint32_t v)
@@ -63,6 +66,35 @@ static uint32_t max_inside(const oit_partfile *pf)
     return m;
 }
 
+/* A subgrid may be larger than its parent cell (docs/part-file.md), and the
+ * parts in its cells need only lie in those cells. So a range of cells holds
+ * its parts within its box grown by reach[g]: the most any subgrid of g, with
+ * its own reach, sticks out of its parent cell. Children have larger indices
+ * than their parents (the reader checks it), so one backward pass does. */
+static void compute_reach(oit_order *o)
+{
+    for (uint32_t g = o->grid_count; g-- > 0;)
+        o->reach[g] = 0.0;
+    for (uint32_t g = o->grid_count; g-- > 1;) {
+        const oit_partfile_grid *s = o->grids[g];
+        if (s->parent_grid >= g)
+            continue;
+        const oit_partfile_grid *p = o->grids[s->parent_grid];
+        uint32_t c = s->parent_cell, idx[3] = {c % p->dims[0], c / p->dims[0] % p->dims[1],
+                                               c / p->dims[0] / p->dims[1]};
+        double out = 0.0;
+        for (int k = 0; k < 3; k++) {
+            double clo = (double)p->origin[k] + (double)idx[k] * p->cell_size[k];
+            double chi = clo + p->cell_size[k];
+            double slo = s->origin[k], shi = slo + (double)s->dims[k] * s->cell_size[k];
+            out = fmax(out, fmax(clo - slo, shi - chi));
+        }
+        out += o->reach[g];
+        if (out > o->reach[s->parent_grid])
+            o->reach[s->parent_grid] = out;
+    }
+}
+
 oit_status oit_order_create(const oit_partfile *pf, oit_order **out, oit_error *err)
 {
     *out = NULL;
@@ -80,7 +112,8 @@ oit_status oit_order_create(const oit_partfile *pf, oit_order **out, oit_error *
     o->stamp = calloc(parts ? parts : 1, sizeof *o->stamp);
     o->stack = calloc(o->stack_cap, sizeof *o->stack);
     o->scratch = calloc(o->scratch_cap ? o->scratch_cap : 1, sizeof *o->scratch);
-    if (!o->grids || !o->cells || !o->stamp || !o->stack || !o->scratch) {
+    o->reach = calloc(o->grid_count ? o->grid_count : 1, sizeof *o->reach);
+    if (!o->grids || !o->cells || !o->stamp || !o->stack || !o->scratch || !o->reach) {
         oit_order_destroy(o);
         return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot allocate the part order "
                              "(%u grids, %u parts)", oit_partfile_name(pf), o->grid_count, parts);
@@ -89,6 +122,7 @@ oit_status oit_order_create(const oit_partfile *pf, oit_order **out, oit_error *
         o->grids[g] = oit_partfile_grid_at(pf, g);
         o->cells[g] = oit_partfile_cells(pf, g);
     }
+    compute_reach(o);
     *out = o;
     return OIT_OK;
 }
@@ -102,6 +136,7 @@ void oit_order_destroy(oit_order *o)
     free(o->stamp);
     free(o->stack);
     free(o->scratch);
+    free(o->reach);
     free(o);
 }
 
@@ -211,10 +246,11 @@ static void emit_cell(emit_ctx *e, uint32_t grid, uint64_t cell)
 }
 
 static void push(oit_order *o, size_t *top, uint32_t grid, const uint32_t lo[3],
-                 const uint32_t hi[3])
+                 const uint32_t hi[3], int inside)
 {
     order_node *nd = &o->stack[(*top)++];
     nd->grid = grid;
+    nd->inside = inside;
     memcpy(nd->lo, lo, sizeof nd->lo);
     memcpy(nd->hi, hi, sizeof nd->hi);
 }
@@ -242,22 +278,57 @@ static void split(oit_order *o, size_t *top, const order_node *nd, const float e
     hi1[axis] = mid;
     order_node a = *nd; /* nd points into the stack, which push overwrites */
     if (eye[axis] < plane) {
-        push(o, top, a.grid, lo2, a.hi);
-        push(o, top, a.grid, a.lo, hi1);
+        push(o, top, a.grid, lo2, a.hi, a.inside);
+        push(o, top, a.grid, a.lo, hi1, a.inside);
     } else {
-        push(o, top, a.grid, a.lo, hi1);
-        push(o, top, a.grid, lo2, a.hi);
+        push(o, top, a.grid, a.lo, hi1, a.inside);
+        push(o, top, a.grid, lo2, a.hi, a.inside);
     }
 }
 
-static void push_grid(oit_order *o, size_t *top, uint32_t grid)
+static void push_grid(oit_order *o, size_t *top, uint32_t grid, int inside)
 {
     static const uint32_t zero[3] = {0, 0, 0};
-    push(o, top, grid, zero, o->grids[grid]->dims);
+    push(o, top, grid, zero, o->grids[grid]->dims, inside);
+}
+
+/* Where a range's parts lie against the planes: -1 wholly outside one of
+ * them, 1 inside all, 0 across. In double, with the box grown by the grid's
+ * reach and a relative margin for the floats its corners were made of. */
+static int classify(const oit_order *o, const order_node *nd, const float (*planes)[4])
+{
+    const oit_partfile_grid *g = o->grids[nd->grid];
+    double lo[3], hi[3];
+    for (int k = 0; k < 3; k++) {
+        lo[k] = (double)g->origin[k] + (double)nd->lo[k] * g->cell_size[k];
+        hi[k] = (double)g->origin[k] + (double)nd->hi[k] * g->cell_size[k];
+        double grow = o->reach[nd->grid] + 1e-5 * (hi[k] - lo[k] + fabs(lo[k]) + fabs(hi[k]));
+        lo[k] -= grow;
+        hi[k] += grow;
+    }
+    int inside = 1;
+    for (int i = 0; i < 6; i++) {
+        double most = planes[i][3], least = planes[i][3];
+        for (int k = 0; k < 3; k++) {
+            double a = planes[i][k] * lo[k], b = planes[i][k] * hi[k];
+            most += fmax(a, b);
+            least += fmin(a, b);
+        }
+        if (most < 0)
+            return -1;
+        inside &= least >= 0;
+    }
+    return inside;
 }
 
 oit_status oit_order_compute(oit_order *o, const float eye[3], uint32_t *parts,
                              uint32_t *count, oit_error *err)
+{
+    return oit_order_compute_culled(o, eye, NULL, parts, count, err);
+}
+
+oit_status oit_order_compute_culled(oit_order *o, const float eye[3], const float (*planes)[4],
+                                    uint32_t *parts, uint32_t *count, oit_error *err)
 {
     *count = 0;
     if (!(eye[0] == eye[0] && eye[1] == eye[1] && eye[2] == eye[2]))
@@ -270,9 +341,15 @@ oit_status oit_order_compute(oit_order *o, const float eye[3], uint32_t *parts,
     emit_ctx e = {o, eye, parts, 0, oit_partfile_part_count(o->pf)};
     size_t top = 0;
     if (o->grid_count)
-        push_grid(o, &top, 0);
+        push_grid(o, &top, 0, planes == NULL);
     while (top > 0) {
         order_node nd = o->stack[--top];
+        if (!nd.inside) {
+            int c = classify(o, &nd, planes);
+            if (c < 0)
+                continue;
+            nd.inside = c > 0;
+        }
         const oit_partfile_grid *g = o->grids[nd.grid];
         uint64_t cells = (uint64_t)(nd.hi[0] - nd.lo[0]) * (nd.hi[1] - nd.lo[1]) *
                          (nd.hi[2] - nd.lo[2]);
@@ -289,7 +366,7 @@ oit_status oit_order_compute(oit_order *o, const float eye[3], uint32_t *parts,
         uint32_t sub = o->cells[nd.grid][cell].subgrid;
         /* The reader checked sub > nd.grid, so a chain of subgrids ends. */
         if (sub && sub < o->grid_count)
-            push_grid(o, &top, sub);
+            push_grid(o, &top, sub, nd.inside);
         else
             emit_cell(&e, nd.grid, cell);
     }

@@ -35,6 +35,15 @@ void oit_order_destroy(oit_order *o);
  * parts that some cell lists). */
 oit_status oit_order_compute(oit_order *o, const float eye[3], uint32_t *parts,
                              uint32_t *count, oit_error *err);
+/* The same, leaving out every grid range whose box lies wholly outside one
+ * of the planes (a x + b y + c z + d >= 0 inside; oit_camera_frustum): none
+ * of its parts can be seen. Boxes are grown by how far nested subgrids reach
+ * beyond their parent cells, so the test holds under the file's contract
+ * alone. The parts kept are in the same relative order; a view inside a
+ * large model then orders only what lies in front of it. planes NULL: the
+ * full order. */
+oit_status oit_order_compute_culled(oit_order *o, const float eye[3], const float (*planes)[4],
+                                    uint32_t *parts, uint32_t *count, oit_error *err);
 
 #ifdef __cplusplus
 }

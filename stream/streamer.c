@@ -390,13 +390,20 @@ static oit_status capture_frame(oit_streamer *s, const oit_view *view, oit_packi
     if (s->cache)
         oit_residency_begin_frame(s->cache);
     oit_status st = oit_capture_begin(s->capture, view, err);
+    /* Whole grid ranges outside the view are left out of the order; the
+     * packer still culls part by part what remains. */
+    float planes[6][4];
+    oit_camera_frustum(&view->camera, (float)view->width / (float)view->height, planes);
     double t0 = oit_time_ms();
     if (st == OIT_OK)
-        st = oit_order_compute(s->order, view->camera.eye, s->ordered, &count, err);
+        st = oit_order_compute_culled(s->order, view->camera.eye, (const float(*)[4])planes,
+                                      s->ordered, &count, err);
     double t1 = oit_time_ms();
     if (st == OIT_OK)
         st = oit_packer_run(s->packer, view, s->ordered, count, pk, err);
     ss->order_ms = t1 - t0;
+    /* Parts the order left out lie outside the view, as the packer's do. */
+    ss->parts_culled = oit_partfile_part_count(s->pf) - count;
     ss->pack_ms = oit_time_ms() - t1;
     if (st == OIT_OK && s->saturation)
         st = oit_saturation_begin(s->saturation, view->width, view->height, err);
@@ -414,7 +421,7 @@ static void finish_stats(const oit_streamer *s, const oit_packing *pk, oit_frame
                          oit_stream_frame_stats *ss)
 {
     ss->parts_drawn = pk->part_count - ss->parts_skipped;
-    ss->parts_culled = pk->culled;
+    ss->parts_culled += pk->culled;
     ss->epsilon = s->epsilon;
     ss->draw_calls = oit_capture_draw_calls(s->capture);
     ss->cache_bytes = s->cache ? oit_residency_bytes(s->cache) : 0;

@@ -1,5 +1,5 @@
 # tests for the part-file streamer: order, packing, upload, oitstream --method stream
-oit_add_test_exe(test_order SOURCES test_order.c LIBS oit_order)
+oit_add_test_exe(test_order SOURCES test_order.c LIBS oit_order oit_image)
 oit_add_test(NAME stream_order COMMAND $<TARGET_FILE:test_order> LABELS unit TIMEOUT 60)
 oit_add_test_exe(test_streamer SOURCES test_streamer.c LIBS oit_formats)
 add_dependencies(test_streamer oitstream)

@@ -15,6 +15,7 @@
 #include <string.h>
 
 #include "oit/partfile.h"
+#include "render/view.h"
 #include "stream/order.h"
 
 #define MAX_PARTS 64
@@ -333,6 +334,105 @@ static int eyes(float out[][3], int cap)
     return n;
 }
 
+/* The frustum planes against the projection they stand for: a point well
+ * inside the clip volume passes every plane, one well outside fails one. */
+static void check_frustum_planes(void)
+{
+    oit_camera cam = {{1, 2, 3}, {-2, 0.5f, -1}, {0, 1, 0}, 50, 0.1f, 40};
+    float aspect = 1.5f, view[16], proj[16], planes[6][4];
+    oit_camera_view_matrix(&cam, view);
+    oit_camera_proj_matrix(&cam, aspect, proj);
+    oit_camera_frustum(&cam, aspect, planes);
+    uint32_t r = 12345;
+    int wrong = 0, inside = 0, outside = 0;
+    for (int i = 0; i < 20000; i++) {
+        double p[4] = {0, 0, 0, 1}, e[4] = {0}, c[4] = {0};
+        /* A cube of 40 around a point 20 ahead: inside, outside and across
+         * every plane, the far one included. */
+        double dir[3] = {cam.target[0] - cam.eye[0], cam.target[1] - cam.eye[1], cam.target[2] - cam.eye[2]};
+        double len = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+        for (int k = 0; k < 3; k++) {
+            r = r * 1664525u + 1013904223u;
+            p[k] = cam.eye[k] + 20.0 * dir[k] / len + 40.0 * ((double)(r >> 8) / 16777216.0 - 0.5);
+        }
+        for (int row = 0; row < 4; row++)
+            for (int k = 0; k < 4; k++)
+                e[row] += view[k * 4 + row] * p[k];
+        for (int row = 0; row < 4; row++)
+            for (int k = 0; k < 4; k++)
+                c[row] += proj[k * 4 + row] * e[k];
+        double m = 0; /* how far inside the clip volume, in units of w */
+        m = c[3] > 0 ? fmin(fmin(c[3] - fabs(c[0]), c[3] - fabs(c[1])), c[3] - fabs(c[2])) / c[3] : -1;
+        int pass = 1;
+        for (int j = 0; j < 6; j++)
+            pass &= planes[j][0] * p[0] + planes[j][1] * p[1] + planes[j][2] * p[2] + planes[j][3] >= 0;
+        if (m > 0.01) {
+            inside++;
+            wrong += !pass;
+        } else if (m < -0.05 && -e[2] > cam.znear) {
+            outside++;
+            wrong += pass;
+        }
+    }
+    printf("frustum planes: %d points inside, %d outside, %d on the wrong side\n", inside, outside,
+           wrong);
+    check(wrong == 0 && inside > 100 && outside > 100, "frustum planes disagree with the projection");
+}
+
+/* Culled orders: the kept parts in the full order's relative order, and
+ * every part left out outside one plane (tested on its own box corners). */
+static void check_culled(oit_order *o, const oit_partfile *pf, const float (*ev)[3], int ne)
+{
+    enum { MAXP = MAX_PARTS };
+    uint32_t full[MAXP], kept[MAXP], n = oit_partfile_part_count(pf), nf = 0, nk = 0;
+    const oit_partfile_part *parts = oit_partfile_parts(pf);
+    static const float dirs[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 0, 1}, {0, 0, -1}, {0.6f, 0.3f, 0.7f}, {-0.5f, -0.2f, 0.8f}};
+    int views = 0, some_culled = 0, none_culled = 0, bad = 0;
+    oit_error err = {0};
+    for (int i = 0; i < ne; i++)
+        for (int d = 0; d < 6; d++) {
+            oit_camera cam = {{ev[i][0], ev[i][1], ev[i][2]},
+                              {ev[i][0] + dirs[d][0], ev[i][1] + dirs[d][1], ev[i][2] + dirs[d][2]},
+                              {0, 1, 0}, d & 1 ? 30.0f : 70.0f, 0.05f, d == 3 ? 2.0f : 100.0f};
+            float planes[6][4];
+            oit_camera_frustum(&cam, 1.3f, planes);
+            if (oit_order_compute(o, cam.eye, full, &nf, &err) ||
+                oit_order_compute_culled(o, cam.eye, (const float(*)[4])planes, kept, &nk, &err)) {
+                check(0, err.message);
+                return;
+            }
+            uint32_t j = 0;
+            for (uint32_t k = 0; k < nf; k++) {
+                if (j < nk && kept[j] == full[k]) {
+                    j++;
+                    continue;
+                }
+                const oit_partfile_part *p = &parts[full[k]];
+                int out = 0;
+                for (int q = 0; q < 6 && !out; q++) {
+                    int all = 1;
+                    for (int c = 0; c < 8; c++) {
+                        double x = c & 1 ? p->bounds_max[0] : p->bounds_min[0];
+                        double y = c & 2 ? p->bounds_max[1] : p->bounds_min[1];
+                        double z = c & 4 ? p->bounds_max[2] : p->bounds_min[2];
+                        all &= planes[q][0] * x + planes[q][1] * y + planes[q][2] * z + planes[q][3] < 0;
+                    }
+                    out = all;
+                }
+                bad += !out;
+            }
+            bad += j != nk; /* a kept part out of order or not in the full order */
+            views++;
+            some_culled += nk < nf;
+            none_culled += nk == nf;
+        }
+    printf("culled orders: %d views (%d with parts left out, %d with none), %d wrong\n", views,
+           some_culled, none_culled, bad);
+    check(bad == 0, "a culled order drops a part inside the view or reorders the rest");
+    check(some_culled > 0 && none_culled > 0, "culling never (or always) leaves parts out");
+    (void)n;
+}
+
 int main(void)
 {
     const char *tmp = getenv("OIT_TEST_TMP");
@@ -383,6 +483,8 @@ int main(void)
         rays_checked += (int)n * 9;
     }
     printf("%d eyes, %d rays: %d order violations\n", ne, rays_checked, total_bad);
+    check_frustum_planes();
+    check_culled(o, pf, (const float(*)[3])ev, ne);
     /* The checker must see a wrong order: the reverse of a valid one. */
     float far_eye[3] = {-7.0f, 2.25f, 2.0f};
     oit_order_compute(o, far_eye, order, &count, &err);
