@@ -33,15 +33,16 @@ mkdir -p "$(dirname "$out")"
     echo "# oitprep at the default K = 8"
     echo
     echo "Machine: $(uname -m), $(nproc) cores, $(free -g | awk '/Mem:/{print $2}') GiB."
-    echo "Command: `data_scripts/prep_table.sh $bin $out \"$plants\"`"
+    printf 'Command: `data_scripts/prep_table.sh %s %s "%s"`\n' "$bin" "$out" "$plants"
     echo
     echo "pieces: convex pieces the clustering found / after the kd clip cut them."
     echo "wide: parts whose layer bound exceeds K (pieces meeting at one vertex)."
-    echo "verify: `oitprep verify` (64 directions, 16 viewpoints): layer and order"
-    echo "violations."
+    echo 'verify: `oitprep verify` (64 directions, 16 viewpoints): layer, order and'
+    echo 'slab violations.'
+    echo 'slabs: kd leaves split by a separating slab instead of an axis plane.'
     echo
-    echo "| model | triangles in | out | x | pieces | parts | wide (max bound) | s | tri/s | peak RSS MB | verify |"
-    echo "|---|---|---|---|---|---|---|---|---|---|---|"
+    echo "| model | triangles in | out | x | pieces | parts | slabs | wide (max bound) | s | tri/s | peak RSS MB | verify |"
+    echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
 } > "$out"
 for m in $models; do
     name=$(basename "$m")
@@ -51,16 +52,17 @@ for m in $models; do
         tout=$(field triangles_out "$work/s.json")
         secs=$(field total "$work/s.json")
         ver=$("$bin/oitprep" verify "$work/p.oitp" 2>&1 |
-            awk '/layers:/{l=$NF=="violations"?$(NF-1):"?"} /order:/{o=$2} END{print l" / "o}')
+            awk '/layers:/{l=$NF=="violations"?$(NF-1):"?"} /order:/{o=$2} /slabs:/{b=$3}
+                 END{print l" / "o" / "b}')
         echo "| $name | $tin | $tout | $(awk "BEGIN{printf \"%.1f\", $tout/$tin}") |" \
             "$(field pieces_clustered "$work/s.json") / $(field pieces "$work/s.json") |" \
-            "$(field parts "$work/s.json") |" \
+            "$(field parts "$work/s.json") | $(field slabs "$work/s.json") |" \
             "$(field wide_parts "$work/s.json") ($(field max_layer_bound "$work/s.json")) |" \
             "$secs | $(awk "BEGIN{printf \"%.0f\", $tin/$secs}") |" \
             "$(awk "BEGIN{printf \"%.0f\", $(field peak_rss_bytes "$work/s.json")/1048576}") |" \
             "$ver |" >> "$out"
     else
-        echo "| $name | refused: $(tail -n 1 "$work/err.txt" | sed 's/|/\\|/g') ||||||||||" >> "$out"
+        echo "| $name | refused: $(tail -n 1 "$work/err.txt" | sed 's/|/\\|/g') |||||||||||" >> "$out"
     fi
     rm -f "$work/p.oitp"
 done

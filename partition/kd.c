@@ -9,6 +9,11 @@
 #include "partition/convex.h"
 #include "partition/kd_split.h"
 
+/* fminf/fmaxf are library calls without -ffinite-math-only, and these run
+ * per vertex; coordinates here are finite. */
+static inline float min_f(float a, float b) { return b < a ? b : a; }
+static inline float max_f(float a, float b) { return b > a ? b : a; }
+
 typedef struct node_set {
     oit_triangle *tris;
     uint32_t *piece, *plane;
@@ -100,8 +105,8 @@ static uint32_t node_layers(kd_ctx *c, const node_set *s, uint32_t *npieces)
 
 static void tri_range(const oit_triangle *t, int axis, float *mn, float *mx)
 {
-    *mn = fminf(fminf(t->v[0].pos[axis], t->v[1].pos[axis]), t->v[2].pos[axis]);
-    *mx = fmaxf(fmaxf(t->v[0].pos[axis], t->v[1].pos[axis]), t->v[2].pos[axis]);
+    *mn = min_f(min_f(t->v[0].pos[axis], t->v[1].pos[axis]), t->v[2].pos[axis]);
+    *mx = max_f(max_f(t->v[0].pos[axis], t->v[1].pos[axis]), t->v[2].pos[axis]);
 }
 
 /* Layer bounds of the two halves of a split (upper bounds: clipped slivers
@@ -143,8 +148,8 @@ static oit_status piece_boxes(kd_ctx *c, const node_set *s, uint32_t npieces,
         for (int a = 0; a < 3; a++) {
             float mn, mx;
             tri_range(&s->tris[i], a, &mn, &mx);
-            pb->lo[a] = fminf(pb->lo[a], mn);
-            pb->hi[a] = fmaxf(pb->hi[a], mx);
+            pb->lo[a] = min_f(pb->lo[a], mn);
+            pb->hi[a] = max_f(pb->hi[a], mx);
         }
     }
     for (size_t i = 0; i < s->n; i++) {
@@ -279,6 +284,7 @@ static oit_status split_node(kd_ctx *c, size_t node, const node_set *s, int axis
         *ch = *nd;
         ch->axis = -1;
         ch->part = -1;
+        ch->slab = -1;
         ch->depth = nd->depth + 1;
         if (h == 0)
             ch->hi[axis] = m;
@@ -351,6 +357,73 @@ static int node_is_star(kd_ctx *c, const node_set *s, uint32_t npieces)
     return 0;
 }
 
+/* Whether the axis split leaves both halves within K without cutting a
+ * piece (kd_split.h's rule for which side a piece goes to). */
+static int split_is_clean(const oit_kd_piece_box *b, uint32_t npieces, int axis, float m,
+                          uint32_t K)
+{
+    uint32_t below = 0, above = 0;
+    for (uint32_t p = 0; p < npieces; p++) {
+        if (b[p].lo[axis] < m && b[p].hi[axis] > m)
+            return 0;
+        if (b[p].hi[axis] > m)
+            above += b[p].weight;
+        else
+            below += b[p].weight;
+    }
+    return below <= K && above <= K;
+}
+
+static oit_status push_slab(oit_kd_result *r, size_t node, const oit_kd_slab *planes,
+                            const int32_t part[2])
+{
+    GROW(r->slabs, r->slab_count, r->slab_cap, 1);
+    r->slabs[r->slab_count] = (oit_kd_slab_leaf){*planes, (uint32_t)part[0], (uint32_t)part[1]};
+    r->nodes[node].part = part[0];
+    r->nodes[node].slab = (int32_t)r->slab_count++;
+    return OIT_OK;
+}
+
+/* The node as two parts on either side of a slab (kd_slab.h), when one
+ * separates its pieces; *done tells whether it did. piece_slot must still
+ * be piece_boxes' numbering. */
+static oit_status try_slab(kd_ctx *c, size_t node, const node_set *s, const oit_kd_piece_box *b,
+                           uint32_t npieces, int *done)
+{
+    uint32_t *slot = malloc(s->n * sizeof *slot), *weight = malloc(npieces * sizeof *weight);
+    uint8_t *side = malloc(npieces);
+    node_set half[2] = {{0}, {0}};
+    oit_kd_slab planes;
+    oit_status st = slot && weight && side ? OIT_OK : OIT_ERR_NOMEM;
+    int found = 0;
+    if (!st) {
+        for (size_t i = 0; i < s->n; i++)
+            slot[i] = c->piece_slot[s->piece[i]];
+        for (uint32_t p = 0; p < npieces; p++)
+            weight[p] = b[p].weight;
+        found = oit_kd_find_slab(s->tris, s->n, slot, weight, npieces, c->p->max_layers,
+                                 &planes, side);
+        st = found < 0 ? OIT_ERR_NOMEM : OIT_OK;
+    }
+    uint32_t count[2] = {0, 0};
+    for (uint32_t p = 0; found > 0 && p < npieces; p++)
+        count[side[p]]++;
+    for (size_t i = 0; found > 0 && !st && i < s->n; i++)
+        st = set_push(&half[side[slot[i]]], &s->tris[i], s->piece[i], s->plane[i]);
+    int32_t part[2];
+    for (int h = 0; h < 2 && found > 0 && !st; h++)
+        st = emit_part(c, &half[h], count[h], &part[h]);
+    if (found > 0 && !st)
+        st = push_slab(c->out, node, &planes, part);
+    *done = found > 0 && !st;
+    set_free(&half[0]);
+    set_free(&half[1]);
+    free(slot);
+    free(weight);
+    free(side);
+    return st;
+}
+
 static oit_status build_node(kd_ctx *c, size_t node, const node_set *s)
 {
     uint32_t npieces, layers = node_layers(c, s, &npieces);
@@ -368,9 +441,14 @@ static oit_status build_node(kd_ctx *c, size_t node, const node_set *s)
                 return OIT_ERR_NOMEM;
             found = oit_kd_choose_split(boxes, npieces, nd->lo, nd->hi, c->p->max_layers, &axis,
                                         &m);
+            int slab = 0;
+            oit_status st = found < 0 ? OIT_ERR_NOMEM : OIT_OK;
+            if (!st && layers <= 2 * c->p->max_layers &&
+                !(found && split_is_clean(boxes, npieces, axis, m, c->p->max_layers)))
+                st = try_slab(c, node, s, boxes, npieces, &slab);
             free(boxes);
-            if (found < 0)
-                return OIT_ERR_NOMEM;
+            if (st || slab)
+                return st;
         }
         if (!found) {
             /* A star may still hold triangles away from its vertex (a piece's
@@ -425,6 +503,7 @@ oit_status oit_kd_build(const float lo[3], const float hi[3], const oit_triangle
         memcpy(root->hi, hi, sizeof root->hi);
         root->axis = -1;
         root->part = -1;
+        root->slab = -1;
         root->depth = 0;
         /* The root reads the caller's arrays; build_node never writes them. */
         node_set s = {(oit_triangle *)tris, (uint32_t *)piece, (uint32_t *)plane, n, n};
@@ -451,5 +530,6 @@ void oit_kd_result_free(oit_kd_result *r)
     free(r->parts);
     free(r->pieces);
     free(r->tris);
+    free(r->slabs);
     memset(r, 0, sizeof *r);
 }

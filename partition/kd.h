@@ -20,6 +20,11 @@
  * exceeds K, up to OIT_KD_MAX_WIDE_LAYERS, and the renderer captures it with
  * more slots per pixel over a smaller screen tile (stream/pack.h). Only a
  * node above that limit is refused.
+ *
+ * A node of at most 2K layers that no axis plane splits cleanly (without
+ * cutting a piece, into halves of at most K) tries a separating slab first
+ * (kd_slab.h): when one exists the node becomes a leaf with two parts on
+ * either side of it, again the contract of stream/order.h.
  */
 #ifndef OIT_PARTITION_KD_H
 #define OIT_PARTITION_KD_H
@@ -30,6 +35,7 @@
 #include "oit/mesh.h"
 #include "oit/partfile.h"
 #include "oit/status.h"
+#include "partition/kd_slab.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -52,7 +58,9 @@ typedef struct oit_kd_node {
     int32_t axis;   /* -1: leaf; else split on this axis at split */
     float split;
     uint32_t child; /* split: nodes child (below) and child + 1 (above) */
-    int32_t part;   /* leaf: index into parts, or -1 when empty */
+    int32_t part;   /* leaf: index into parts, or -1 when empty; with a slab,
+                     * the part below it */
+    int32_t slab;   /* leaf: index into slabs, or -1 */
     uint32_t depth; /* root 0 */
 } oit_kd_node;
 
@@ -67,6 +75,12 @@ typedef struct oit_kd_part {
     uint32_t layer_bound; /* sum over pieces: 1 when planar, else 2 */
 } oit_kd_part;
 
+/* A leaf holding two parts on either side of a slab. */
+typedef struct oit_kd_slab_leaf {
+    oit_kd_slab planes;
+    uint32_t part_below, part_above; /* into parts */
+} oit_kd_slab_leaf;
+
 typedef struct oit_kd_result {
     oit_kd_node *nodes; /* nodes[0] is the cell; children follow parents */
     size_t node_count, node_cap;
@@ -76,6 +90,8 @@ typedef struct oit_kd_result {
     size_t piece_count, piece_cap;
     oit_triangle *tris; /* parts' triangles, piece by piece */
     size_t tri_count, tri_cap;
+    oit_kd_slab_leaf *slabs;
+    size_t slab_count, slab_cap;
     uint64_t split_added;  /* triangles added by the midplane clips */
     uint32_t depth;        /* deepest node */
     uint32_t wide_parts;   /* parts whose layer bound exceeds K */

@@ -270,13 +270,47 @@ static oit_status write_parts(oit_partfile_writer *w, part_buf *b, const oit_kd_
 
 /* ---- writing grids ----------------------------------------------------------- */
 
+/* A leaf's part list, ascending: none, its part, or a slab's two parts. */
 static uint32_t leaf_list(const cell_out *c, uint32_t node, uint32_t *entry)
 {
     const oit_kd_node *n = &c->kd.nodes[node];
     if (n->axis >= 0 || n->part < 0)
         return 0;
-    *entry = c->part_base + (uint32_t)n->part;
-    return 1;
+    if (n->slab < 0) {
+        *entry = c->part_base + (uint32_t)n->part;
+        return 1;
+    }
+    const oit_kd_slab_leaf *sl = &c->kd.slabs[n->slab];
+    uint32_t a = c->part_base + sl->part_below, b = c->part_base + sl->part_above;
+    entry[0] = a < b ? a : b;
+    entry[1] = a < b ? b : a;
+    return 2;
+}
+
+/* The cell's slab leaves, once their grids exist (loc: grid and cell per
+ * node, as write_subgrids fills it). */
+static oit_status write_slabs(oit_partfile_writer *w, const cell_out *c, const uint32_t *loc,
+                              oit_error *err)
+{
+    for (size_t i = 0; i < c->kd.node_count; i++) {
+        const oit_kd_node *n = &c->kd.nodes[i];
+        if (n->axis >= 0 || n->slab < 0)
+            continue;
+        const oit_kd_slab_leaf *sl = &c->kd.slabs[n->slab];
+        oit_partfile_slab_desc d = {
+            .normal = {sl->planes.normal[0], sl->planes.normal[1], sl->planes.normal[2]},
+            .d0 = sl->planes.d0,
+            .d1 = sl->planes.d1,
+            .grid = loc[2 * i],
+            .cell = loc[2 * i + 1],
+            .part_below = c->part_base + sl->part_below,
+            .part_above = c->part_base + sl->part_above,
+        };
+        oit_status s = oit_partfile_writer_add_slab(w, &d, NULL, err);
+        if (s)
+            return s;
+    }
+    return OIT_OK;
 }
 
 static oit_status write_subgrids(oit_partfile_writer *w, const cell_out *c, uint64_t cell,
@@ -295,7 +329,7 @@ static oit_status write_subgrids(oit_partfile_writer *w, const cell_out *c, uint
         if (!oit_kd_split_cells(n->lo, n->hi, n->axis, n->split, g.origin, g.cell_size))
             return oit_error_set(err, OIT_ERR_UNSUPPORTED, "cell %llu: split at %g is not a subgrid "
                                  "boundary in float", (unsigned long long)cell, n->split);
-        uint32_t counts[2], parts[2], np = 0;
+        uint32_t counts[2], parts[4], np = 0;
         for (int h = 0; h < 2; h++) {
             counts[h] = leaf_list(c, n->child + h, &parts[np]);
             np += counts[h];
@@ -311,13 +345,13 @@ static oit_status write_subgrids(oit_partfile_writer *w, const cell_out *c, uint
             loc[2 * (n->child + h) + 1] = (uint32_t)h;
         }
     }
-    return OIT_OK;
+    return write_slabs(w, c, loc, err);
 }
 
 static oit_status write_grids(oit_partfile_writer *w, const cell_run *r, oit_error *err)
 {
     uint32_t *counts = calloc(r->ncells, sizeof *counts);
-    uint32_t *parts = calloc(r->ncells, sizeof *parts);
+    uint32_t *parts = calloc(2 * r->ncells, sizeof *parts); /* two in a slab cell */
     size_t maxnodes = 1;
     for (uint64_t c = 0; c < r->ncells; c++)
         maxnodes = r->res[c].kd.node_count > maxnodes ? r->res[c].kd.node_count : maxnodes;
@@ -387,6 +421,7 @@ static oit_status partition_and_write(cell_run *r, oit_partfile_writer *w, uint3
         st->pieces += co->kd.piece_count;
         st->pieces_clustered += co->counts.pieces_cell;
         st->wide_parts += co->kd.wide_parts;
+        st->slabs += co->kd.slab_count;
         for (size_t q = 0; q < co->kd.part_count; q++)
             if (co->kd.parts[q].layer_bound > st->max_layer_bound)
                 st->max_layer_bound = co->kd.parts[q].layer_bound;

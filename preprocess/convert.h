@@ -48,6 +48,7 @@ typedef struct oit_convert_stats {
     uint64_t pieces, parts, cells, subgrids, spilled_bytes;
     uint64_t pieces_clustered; /* convex pieces before subdivision clipped them */
     uint64_t wide_parts;       /* parts whose layer bound exceeds K (kd.h) */
+    uint64_t slabs;            /* leaves split by a slab (kd_slab.h)     */
     uint32_t max_layer_bound;
     uint32_t subgrid_depth, grid_dims[3], threads, K;
     double seconds_total, seconds_bounds, seconds_bin, seconds_partition, seconds_write;

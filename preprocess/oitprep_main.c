@@ -317,7 +317,7 @@ static int cmd_verify(int argc, char **argv)
         return oit_status_exit_code(s);
     }
     oit_verify_print(stdout, path, &rep);
-    return rep.layer_violations || rep.order_violations ? 1 : 0;
+    return rep.layer_violations || rep.order_violations || rep.slab_violations ? 1 : 0;
 }
 
 int main(int argc, char **argv)

@@ -372,6 +372,45 @@ static oit_status verify_open(verifier *v, const char *path, oit_error *err)
     return build_scene(v, err);
 }
 
+/* Vertices of part p outside lo <= n.x <= hi (slab i's planes). */
+static oit_status count_outside(verifier *v, uint32_t i, uint32_t p, double lo, double hi,
+                                oit_error *err)
+{
+    const float *n = oit_partfile_slab_at(v->pf, i)->normal;
+    oit_partfile_part_view pv;
+    oit_status s = oit_partfile_part_data(v->pf, p, &pv, err);
+    uint32_t nv = s ? 0 : oit_partfile_parts(v->pf)[p].vertex_count;
+    for (uint32_t i = 0; i < nv; i++) {
+        float q[3];
+        memcpy(q, (const char *)pv.positions + (size_t)i * pv.stride, sizeof q);
+        double x = (double)n[0] * q[0] + (double)n[1] * q[1] + (double)n[2] * q[2];
+        if (x < lo || x > hi) {
+            note(v, "a vertex at n.x = %.9g, outside %.9g..%.9g (slab %u, part %u)", x, lo, hi, i,
+                 p);
+            v->rep->slab_violations++;
+        }
+    }
+    return s;
+}
+
+static oit_status check_slabs(verifier *v, oit_error *err)
+{
+    uint32_t ns = oit_partfile_slab_count(v->pf);
+    v->rep->slabs = ns;
+    oit_status s = OIT_OK;
+    for (uint32_t i = 0; i < ns && !s; i++) {
+        const oit_partfile_slab *sl = oit_partfile_slab_at(v->pf, i);
+        uint32_t m = 0;
+        const uint32_t *in = oit_partfile_slab_inside(v->pf, i, &m);
+        s = count_outside(v, i, sl->part_below, -INFINITY, sl->d0, err);
+        if (!s)
+            s = count_outside(v, i, sl->part_above, sl->d1, INFINITY, err);
+        for (uint32_t k = 0; k < m && !s; k++)
+            s = count_outside(v, i, in[k], sl->d0, sl->d1, err);
+    }
+    return s;
+}
+
 oit_status oit_verify(const char *path, const oit_verify_options *o, oit_verify_report *rep,
                       oit_error *err)
 {
@@ -381,6 +420,8 @@ oit_status oit_verify(const char *path, const oit_verify_options *o, oit_verify_
     oit_status s = verify_open(&v, path, err);
     v.ray.part_of_prim = v.part_of_prim;
     uint64_t rng = o->seed ? o->seed : 0x6f69747072657031ull;
+    if (!s)
+        s = check_slabs(&v, err);
     if (!s)
         s = bundles(&v, o, &rng, err);
     if (!s)
@@ -412,6 +453,8 @@ void oit_verify_print(FILE *f, const char *path, const oit_verify_report *r)
             r->max_hits_per_part, r->worst_part_bound, r->max_layer_bound,
             (unsigned long long)r->parts_at_bound, (unsigned long long)r->layer_violations);
     fprintf(f, "  order: %llu violations\n", (unsigned long long)r->order_violations);
+    fprintf(f, "  slabs: %u, %llu vertices on the wrong side\n", r->slabs,
+            (unsigned long long)r->slab_violations);
     if (r->first_violation[0])
         fprintf(f, "  first violation: %s\n", r->first_violation);
 }

@@ -10,7 +10,9 @@
  * (1) no part yields more hits along a ray than its layer_bound; (2) the
  * parts met along a ray, sorted by distance, never go back in the order that
  * stream/order.h computes for the ray's origin (hits closer than a tolerance,
- * e.g. on a shared cell face, are ties).
+ * e.g. on a shared cell face, are ties); (3) every slab's part_below lies in
+ * n.x <= d0 and its part_above in n.x >= d1, vertex by vertex in double,
+ * and its inside parts between (docs/part-file.md leaves this to us).
  */
 #ifndef OIT_PREPROCESS_VERIFY_H
 #define OIT_PREPROCESS_VERIFY_H
@@ -35,6 +37,8 @@ typedef struct oit_verify_report {
     uint32_t worst_part_bound;         /* layer bound of the part that gave most */
     uint64_t parts_at_bound;           /* parts that reached their bound somewhere */
     uint64_t layer_violations, order_violations;
+    uint32_t slabs;
+    uint64_t slab_violations; /* vertices on the wrong side of a slab plane */
     char first_violation[256];
 } oit_verify_report;
 

@@ -499,8 +499,86 @@ static void check_kd(const char *name, const tri_list *l, const oit_kd_result *r
                           name, nd->part);
                 }
     }
-    printf("kd %s: %zu triangles -> %zu, %zu parts (%u wide), depth %u\n", name, l->n,
-           r->tri_count, r->part_count, wide, r->depth);
+    for (size_t i = 0; i < r->slab_count; i++) {
+        const oit_kd_slab_leaf *sl = &r->slabs[i];
+        const float *n = sl->planes.normal;
+        CHECK(sl->planes.d0 <= sl->planes.d1, "%s: slab %zu planes %g > %g", name, i,
+              sl->planes.d0, sl->planes.d1);
+        for (int h = 0; h < 2; h++) {
+            const oit_kd_part *pt = &r->parts[h ? sl->part_above : sl->part_below];
+            CHECK(pt->layer_bound <= K, "%s: slab %zu: a part of %u layers", name, i,
+                  pt->layer_bound);
+            for (size_t t = pt->tri_first; t < pt->tri_first + pt->tri_count; t++)
+                for (int v = 0; v < 3; v++) {
+                    const float *q = r->tris[t].v[v].pos;
+                    double x = (double)n[0] * q[0] + (double)n[1] * q[1] + (double)n[2] * q[2];
+                    CHECK(h ? x >= sl->planes.d1 : x <= sl->planes.d0,
+                          "%s: slab %zu: a vertex at %.9g is on the wrong side of %g..%g", name,
+                          i, x, sl->planes.d0, sl->planes.d1);
+                }
+        }
+    }
+    printf("kd %s: %zu triangles -> %zu, %zu parts (%u wide, %zu slabs), depth %u\n", name,
+           l->n, r->tri_count, r->part_count, wide, r->slab_count, r->depth);
+}
+
+/* A closed box bar: centre c, half-extents h along the right-handed frame
+ * (u, v, u x v). */
+static void make_bar(tri_list *l, const double c[3], const double u[3], const double v[3],
+                     const double h[3])
+{
+    static const int quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                                    {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+    double w[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    oit_vertex k[8];
+    for (int i = 0; i < 8; i++) {
+        double a = i & 1 ? h[0] : -h[0], b = i & 2 ? h[1] : -h[1], e = i & 4 ? h[2] : -h[2];
+        k[i] = vtx((float)(c[0] + a * u[0] + b * v[0] + e * w[0]),
+                   (float)(c[1] + a * u[1] + b * v[1] + e * w[1]),
+                   (float)(c[2] + a * u[2] + b * v[2] + e * w[2]));
+    }
+    for (int f = 0; f < 6; f++) {
+        const int *q = quads[f];
+        push3(l, k[q[0]], k[q[1]], k[q[2]]);
+        push3(l, k[q[0]], k[q[2]], k[q[3]]);
+    }
+}
+
+/* Two parallel diagonal bars side by side: every axis plane through their
+ * common box cuts one, a diagonal plane separates them, so at K = 2 the
+ * node becomes a slab leaf and nothing is clipped. Two crossing bars have
+ * no separating plane: they are clipped, as before. */
+static void test_kd_slab(void)
+{
+    const double r2 = sqrt(0.5), u[3] = {r2, r2, 0}, v[3] = {-r2, r2, 0}, h[3] = {2, 0.15, 0.5};
+    tri_list side = {0}, cross = {0};
+    for (int i = 0; i < 2; i++)
+        make_bar(&side, (const double[3]){v[0] * (i ? 0.4 : -0.4), v[1] * (i ? 0.4 : -0.4), 0.1},
+                 u, v, h);
+    make_bar(&cross, (const double[3]){0, 0, 0.1}, u, v, h);
+    make_bar(&cross, (const double[3]){0, 0, 0.1}, v, (const double[3]){-r2, -r2, 0}, h);
+    oit_kd_result r;
+    oit_error err = {0};
+    CHECK(kd_of(&side, 2, &r, &err) == OIT_OK, "side by side: %s", err.message);
+    check_kd("side by side", &side, &r, 2);
+    CHECK(r.slab_count == 1 && r.part_count == 2 && r.tri_count == side.n && r.split_added == 0,
+          "side by side: %zu slabs, %zu parts, %zu of %zu triangles, want 1 slab, 2 parts and "
+          "nothing clipped", r.slab_count, r.part_count, r.tri_count, side.n);
+    if (r.slab_count) {
+        const float *n = r.slabs[0].planes.normal;
+        CHECK(fabs(fabs(n[0] * v[0] + n[1] * v[1] + n[2] * v[2]) - 1) < 1e-3,
+              "side by side: slab normal (%g %g %g), want +-(%g %g 0)", n[0], n[1], n[2], v[0],
+              v[1]);
+    }
+    oit_kd_result_free(&r);
+    CHECK(kd_of(&cross, 2, &r, &err) == OIT_OK, "crossing: %s", err.message);
+    check_kd("crossing", &cross, &r, 2);
+    CHECK(r.slab_count == 0 && r.split_added > 0, "crossing: %zu slabs, %llu triangles added; "
+          "crossing bars have no separating plane", r.slab_count,
+          (unsigned long long)r.split_added);
+    oit_kd_result_free(&r);
+    free(side.t);
+    free(cross.t);
 }
 
 static void test_kd(void)
@@ -539,6 +617,7 @@ int main(void)
     test_kd_split_events();
     test_kd_split_touching();
     test_kd();
+    test_kd_slab();
     if (test_failures)
         fprintf(stderr, "%d check(s) failed\n", test_failures);
     return test_failures != 0;
