@@ -185,38 +185,44 @@ expect_rc 2 "$P" "$M" -o "$T/x.oitp" --manage kd-facets --grid 4
 grep -q "grid 4" "$T/err.txt" || fail "--manage kd-facets --grid 4: $(cat "$T/err.txt")"
 expect_rc 2 "$P" "$M" -o "$T/x.oitp" --manage octree
 
-# (h) separating slabs: 8 closed bars side by side, all running diagonally in
-# x-y. Every axis plane through their common box cuts some, so before slabs
-# the kd clip cut them up; a diagonal plane separates 4 from 4 (16 layers,
-# 2K). Expected: a slab, no triangle added, verify (slab sides included) and
-# the stream agreeing with DFB from a view through the slab.
-awk 'BEGIN { r = sqrt(0.5); nb = 8; print "OFF"; print 8 * nb, 12 * nb, 0;
-    split("0 4 6 2 1 3 7 5 0 1 5 4 2 6 7 3 0 2 3 1 4 5 7 6", q, " ");
-    for (i = 0; i < nb; i++) { o = (i - 3.5) * 0.09;
-        for (k = 0; k < 8; k++) { a = k % 2 ? 0.3 : -0.3; b = int(k / 2) % 2 ? 0.03 : -0.03;
-            e = k >= 4 ? 0.2 : -0.2;
-            printf "%.9f %.9f %.9f\n", 0.5 + a * r - (o + b) * r, 0.5 + a * r + (o + b) * r, 0.5 + e } }
-    for (i = 0; i < nb; i++) for (f = 0; f < 6; f++) { c = 8 * i;
-        print 3, c + q[4 * f + 1], c + q[4 * f + 2], c + q[4 * f + 3];
-        print 3, c + q[4 * f + 1], c + q[4 * f + 3], c + q[4 * f + 4] } }' >"$T/bars.off"
-expect_rc 0 "$P" "$T/bars.off" -o "$T/bars.oitp" --grid 1 --stats "$T/bars.json"
-slabs=$(json_num slabs <"$T/bars.json")
-echo "diagonal bars: $(json_num triangles_in <"$T/bars.json") -> $(json_num triangles_out <"$T/bars.json")" \
-    "triangles, $(json_num parts <"$T/bars.json") parts, $slabs slabs"
-[ "$slabs" -ge 1 ] && [ "$(json_num split_added <"$T/bars.json")" -eq 0 ] ||
-    fail "diagonal bars: $slabs slabs, $(json_num split_added <"$T/bars.json") triangles added; want a slab and no clip"
-expect_rc 0 "$P" verify "$T/bars.oitp"
-grep -q "; 0 violations" "$T/out.txt" && grep -q "order: 0 violations" "$T/out.txt" &&
-    grep -q "slabs: $slabs, 0 vertices" "$T/out.txt" || fail "bars: verify: $(cat "$T/out.txt")"
-for view in "--azimuth 45 --elevation 10" "--azimuth 135 --elevation 30" "--azimuth 300 --elevation -20"; do
-    # shellcheck disable=SC2086
-    "$S" "$T/bars.oitp" --size 96x96 $view --out "$T/bs.png" --stats "$T/bs.json" --quiet &&
-        "$S" "$T/bars.oitp" --method dfb --size 96x96 $view --out "$T/bd.png" --quiet ||
-        fail "bars: oitstream $view"
-    grep -q '"overflow_pixels": 0,' "$T/bs.json" || fail "bars: stream overflow ($view)"
-    pct=$("$S" --compare "$T/bs.png" "$T/bd.png" --json | json_num pct_over_1_255)
-    echo "bars $view: stream vs dfb over 1/255 $pct%"
-    awk "BEGIN { exit !($pct <= 0.1) }" || fail "bars: $pct% of pixels over 1/255 ($view)"
+# (h) separating slabs: 8 closed bars side by side (16 layers, 2K), all
+# running diagonally in x-y. Every axis plane through their common box cuts
+# some, so before slabs the kd clip cut them up; a diagonal plane parts 4
+# from 4. Expected: a slab, 2 parts, no triangle added, verify (slab sides
+# included) and the stream agreeing with DFB from views on both sides and
+# from the gap between the groups, looking along the bars.
+for nb in 8; do
+    awk -v nb=$nb 'BEGIN { r = sqrt(0.5); print "OFF"; print 8 * nb, 12 * nb, 0;
+        split("0 4 6 2 1 3 7 5 0 1 5 4 2 6 7 3 0 2 3 1 4 5 7 6", q, " ");
+        for (i = 0; i < nb; i++) { o = (i - (nb - 1) / 2) * 0.07;
+            for (k = 0; k < 8; k++) { a = k % 2 ? 0.3 : -0.3; b = int(k / 2) % 2 ? 0.02 : -0.02;
+                e = k >= 4 ? 0.2 : -0.2;
+                printf "%.9f %.9f %.9f\n", 0.5 + a * r - (o + b) * r, 0.5 + a * r + (o + b) * r, 0.5 + e } }
+        for (i = 0; i < nb; i++) for (f = 0; f < 6; f++) { c = 8 * i;
+            print 3, c + q[4 * f + 1], c + q[4 * f + 2], c + q[4 * f + 3];
+            print 3, c + q[4 * f + 1], c + q[4 * f + 3], c + q[4 * f + 4] } }' >"$T/bars.off"
+    expect_rc 0 "$P" "$T/bars.off" -o "$T/bars.oitp" --grid 1 --stats "$T/bars.json"
+    slabs=$(json_num slabs <"$T/bars.json")
+    parts=$(json_num parts <"$T/bars.json")
+    echo "$nb diagonal bars: $(json_num triangles_in <"$T/bars.json") -> $(json_num triangles_out <"$T/bars.json")" \
+        "triangles, $parts parts, $slabs slabs"
+    [ "$slabs" -ge 1 ] && [ "$(json_num split_added <"$T/bars.json")" -eq 0 ] &&
+        [ "$parts" -eq $((nb / 4)) ] ||
+        fail "$nb bars: $slabs slabs, $parts parts, $(json_num split_added <"$T/bars.json") triangles added; want a slab, $((nb / 4)) parts, no clip"
+    expect_rc 0 "$P" verify "$T/bars.oitp"
+    grep -q "; 0 violations" "$T/out.txt" && grep -q "order: 0 violations" "$T/out.txt" &&
+        grep -q "slabs: $slabs, 0 vertices" "$T/out.txt" || fail "$nb bars: verify: $(cat "$T/out.txt")"
+    for view in "--azimuth 45 --elevation 10" "--azimuth 135 --elevation 30" \
+        "--azimuth 300 --elevation -20" "--view 0.5,0.5,0.5,1.5,1.5,0.5,0,0,1,60"; do
+        # shellcheck disable=SC2086
+        "$S" "$T/bars.oitp" --size 96x96 $view --out "$T/bs.png" --stats "$T/bs.json" --quiet &&
+            "$S" "$T/bars.oitp" --method dfb --size 96x96 $view --out "$T/bd.png" --quiet ||
+            fail "$nb bars: oitstream $view"
+        grep -q '"overflow_pixels": 0,' "$T/bs.json" || fail "$nb bars: stream overflow ($view)"
+        pct=$("$S" --compare "$T/bs.png" "$T/bd.png" --json | json_num pct_over_1_255)
+        echo "$nb bars $view: stream vs dfb over 1/255 $pct%"
+        awk "BEGIN { exit !($pct <= 0.1) }" || fail "$nb bars: $pct% of pixels over 1/255 ($view)"
+    done
 done
 
 [ "$FAILS" -eq 0 ] || { echo "$FAILS failure(s)"; exit 1; }
