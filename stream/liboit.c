@@ -355,7 +355,8 @@ oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame 
                                   .bytes_uploaded = ss.bytes_uploaded,
                                   .gpu_bytes_peak = ss.gpu_bytes_peak,
                                   .cache_hits = ss.cache_hits,
-                                  .cache_bytes = ss.cache_bytes};
+                                  .cache_bytes = ss.cache_bytes,
+                                  .draw_calls = ss.draw_calls};
     }
     return OIT_OK;
 }

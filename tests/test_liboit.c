@@ -161,11 +161,11 @@ static void draw_and_compare(const char *name, oit_scene *scene, oit_partfile *p
     check_state_restored(0);
     glDisable(GL_BLEND);
     printf("%s: %.2f ms, %llu fragments, max %u layers, %llu overflow, %u packs, %llu parts "
-           "drawn, %llu culled, %llu bytes uploaded\n", name, st.ms,
+           "drawn, %llu culled, %llu bytes uploaded, %llu draw calls\n", name, st.ms,
            (unsigned long long)st.fragments, st.max_layers,
            (unsigned long long)st.overflow_pixels, st.packs,
            (unsigned long long)st.parts_drawn, (unsigned long long)st.parts_culled,
-           (unsigned long long)st.bytes_uploaded);
+           (unsigned long long)st.bytes_uploaded, (unsigned long long)st.draw_calls);
 
     /* Again into a fresh target: the parts now come from the residency
      * cache (nothing uploaded), and the image must not change. */
@@ -176,8 +176,18 @@ static void draw_and_compare(const char *name, oit_scene *scene, oit_partfile *p
         s = oit_renderer_draw(r, scene, &f, &st2, &err);
         CHECK(s == OIT_OK, "%s: second draw: %s", name, err.message);
         printf("%s: second draw: %llu bytes uploaded, %llu parts from the cache, %llu bytes "
-               "resident\n", name, (unsigned long long)st2.bytes_uploaded,
-               (unsigned long long)st2.cache_hits, (unsigned long long)st2.cache_bytes);
+               "resident, %llu draw calls\n", name, (unsigned long long)st2.bytes_uploaded,
+               (unsigned long long)st2.cache_hits, (unsigned long long)st2.cache_bytes,
+               (unsigned long long)st2.draw_calls);
+        /* Everything from the cache: one multi-draw a pack and geometry
+         * pass (the counted capture has two: count, then store), however
+         * many parts the pack holds. */
+        CHECK(st.draw_calls >= st.packs && st2.draw_calls >= st2.packs &&
+                  st2.draw_calls <= 2 * (uint64_t)st2.packs && st2.parts_drawn > 2 * st2.packs,
+              "%s: %llu draw calls for %u packs (second draw %llu for %u packs, %llu parts)",
+              name, (unsigned long long)st.draw_calls, st.packs,
+              (unsigned long long)st2.draw_calls, st2.packs,
+              (unsigned long long)st2.parts_drawn);
         CHECK(st.bytes_uploaded > 0 && st2.bytes_uploaded == 0 &&
                   st2.cache_hits == st2.parts_drawn && st2.cache_bytes > 0,
               "%s: second draw uploaded %llu bytes (first %llu), %llu of %llu parts cached",

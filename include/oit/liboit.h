@@ -165,6 +165,8 @@ typedef struct oit_draw_stats {
     uint64_t gpu_bytes_peak; /* capture, upload ring and cache together        */
     uint64_t cache_hits;     /* parts drawn from the cache, not uploaded again */
     uint64_t cache_bytes;    /* bytes resident in the cache after the call     */
+    uint64_t draw_calls;     /* GL geometry draws; a pack's parts go in one
+                                multi-draw per run from the ring or the cache */
 } oit_draw_stats;
 
 /* Draws scene as seen through frame into frame->framebuffer (see Result
