@@ -32,7 +32,7 @@ mkdir -p "$(dirname "$out")"
 {
     echo "# oitprep at the default K = 8"
     echo
-    echo "Machine: $(uname -m), $(nproc) cores, $(free -g | awk '/Mem:/{print $2}') GiB."
+    echo "Machine: $(uname -m) ($(sed -n 's/^model name[^:]*: *//p' /proc/cpuinfo | head -n 1)), $(nproc) cores, $(free -g | awk '/Mem:/{print $2}') GiB; $(date -u +%Y-%m-%d)."
     printf 'Command: `data_scripts/prep_table.sh %s %s "%s"`\n' "$bin" "$out" "$plants"
     echo
     echo "pieces: convex pieces the clustering found / after the kd clip cut them."

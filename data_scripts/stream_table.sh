@@ -38,7 +38,7 @@ mkdir -p "$(dirname "$out")"
 {
     echo "# Streamed rendering against DFB"
     echo
-    echo "Machine: $(uname -m), $(nproc) cores, $(awk '/MemTotal/ { printf "%.0f GiB", $2 / 1048576 }' /proc/meminfo)."
+    echo "Machine: $(uname -m) ($(sed -n 's/^model name[^:]*: *//p' /proc/cpuinfo | head -n 1)), $(nproc) cores, $(awk '/MemTotal/ { printf "%.0f GiB", $2 / 1048576 }' /proc/meminfo); $(date -u +%Y-%m-%d)."
     echo "Command: \`data_scripts/stream_table.sh $bin $out $size $views \"$plants\"\`"
     echo
     echo "Both methods render the same part file on the same $views orbit views at"
