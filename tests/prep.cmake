@@ -4,3 +4,7 @@ oit_add_test(NAME partition COMMAND test_partition LABELS unit TIMEOUT 30)
 
 oit_add_test(NAME prep LABELS integration TIMEOUT 120
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_prep.sh)
+
+# oitprep verify's slab-side check on a hand-written file, good and bad.
+oit_add_test(NAME verify_slab LABELS integration TIMEOUT 60
+  COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_verify_slab.sh $<TARGET_FILE:test_streamer>)

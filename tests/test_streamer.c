@@ -8,7 +8,9 @@
  * and alphas vary per shape; extents are jittered so no two faces are
  * coplanar.
  *
- * usage: test_streamer OUT.oitp */
+ * usage: test_streamer OUT.oitp [--bad-slab]
+ * --bad-slab moves the slab's planes 0.05 up, so the inside box reaches
+ * below d0: a file oitprep verify must reject (tests/test_verify_slab.sh). */
 #include <stdio.h>
 #include <string.h>
 
@@ -133,7 +135,7 @@ static int cell_part(oit_partfile_writer *w, const float lo[3], const float hi[3
 
 static const uint32_t SUB_CELL = 2 + NX * (2 + NY * 1), SLAB_CELL = 4 + NX * (1 + NY * 2);
 
-static int write_scene(const char *path, oit_error *err)
+static int write_scene(const char *path, int bad_slab, oit_error *err)
 {
     oit_partfile_writer_desc wd = {0};
     wd.K = 8;
@@ -183,7 +185,7 @@ static int write_scene(const char *path, oit_error *err)
     float slo[3] = {(float)(SUB_CELL % NX), (float)(SUB_CELL / NX % NY), (float)(SUB_CELL / (NX * NY))};
     oit_partfile_grid_desc sub = {{2, 2, 1}, {slo[0], slo[1], slo[2]}, {0.5f, 0.5f, 1.0f}, 0,
                                   SUB_CELL, sub_counts, sub_list};
-    float zc = (float)(SLAB_CELL / (NX * NY));
+    float zc = (float)(SLAB_CELL / (NX * NY)) + (bad_slab ? 0.05f : 0.0f);
     oit_partfile_slab_desc slab = {{0, 0, 1}, zc + 0.4f - 0.01f, zc + 0.6f - 0.01f, 0, SLAB_CELL,
                                    slab_parts[0], slab_parts[2], &slab_parts[1], 1};
     uint32_t g = 0, sl = 0;
@@ -198,12 +200,13 @@ static int write_scene(const char *path, oit_error *err)
 
 int main(int argc, char **argv)
 {
-    if (argc != 2) {
-        fprintf(stderr, "usage: test_streamer OUT.oitp\n");
+    int bad = argc == 3 && !strcmp(argv[2], "--bad-slab");
+    if (argc != 2 && !bad) {
+        fprintf(stderr, "usage: test_streamer OUT.oitp [--bad-slab]\n");
         return 2;
     }
     oit_error err = {0};
-    if (write_scene(argv[1], &err) != 0) {
+    if (write_scene(argv[1], bad, &err) != 0) {
         fprintf(stderr, "test_streamer: %s\n", err.message);
         return 1;
     }

@@ -1,0 +1,33 @@
+#!/bin/sh
+# oitprep verify's slab check, on test_streamer's grid file (one slab, normal
+# +z, with a box below, a thin box inside and a box above): the file passes
+# with 0 vertices on the wrong side; with the slab's planes moved 0.05 up
+# (the inside box then reaches below d0) verify exits 1 and names the slab.
+# usage: test_verify_slab.sh TEST_STREAMER
+set -u
+: "${OIT_BIN:?OIT_BIN must name the tools folder}"
+: "${OIT_TEST_TMP:?OIT_TEST_TMP must name a scratch folder}"
+W=$1
+T="$OIT_TEST_TMP/verify_slab"
+rm -rf "$T" && mkdir -p "$T" || exit 1
+FAILS=0
+fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
+"$W" "$T/good.oitp" && "$W" "$T/bad.oitp" --bad-slab || { echo "FAIL: test_streamer"; exit 1; }
+
+"$OIT_BIN/oitprep" verify "$T/good.oitp" >"$T/good.txt" 2>&1 ||
+    fail "verify rejects the good file: $(cat "$T/good.txt")"
+grep -q "slabs: 1, 0 vertices on the wrong side" "$T/good.txt" ||
+    fail "good file: $(grep slabs "$T/good.txt")"
+grep slabs "$T/good.txt"
+
+"$OIT_BIN/oitprep" verify "$T/bad.oitp" >"$T/bad.txt" 2>&1
+rc=$?
+[ "$rc" -eq 1 ] || fail "verify exits $rc on the bad slab, want 1"
+grep -q "slabs: 1, [1-9][0-9]* vertices on the wrong side" "$T/bad.txt" ||
+    fail "bad file: $(grep slabs "$T/bad.txt")"
+grep -q "first violation: .*(slab 0, part" "$T/bad.txt" ||
+    fail "bad file: the first violation does not name the slab: $(cat "$T/bad.txt")"
+grep "slabs\|first violation" "$T/bad.txt"
+
+[ "$FAILS" -eq 0 ] || { echo "$FAILS failure(s)"; exit 1; }
+echo "verify slab check: all checks passed"
