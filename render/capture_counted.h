@@ -3,12 +3,13 @@
  * store each at its pixel's offset, sort per pixel) and composited into the
  * state the frame carries across batches. No per-pixel layer limit: a batch
  * is bounded by its fragments instead, which a count pass measures before
- * anything is stored. A batch over the fragment budget, or with a pixel of
- * more than OIT_COUNTED_MAX_SORTED fragments (longer lists are heap-sorted
- * in memory, several times slower a fragment than in registers), is split
- * in two halves of its meshes, in order (the meshes of a batch are in
- * visibility order, so the halves are too), down to one mesh, whose
- * fragments are then stored whatever their number.
+ * anything is stored. A batch over the fragment budget, or with a quarter or
+ * more of its fragments in lists longer than OIT_COUNTED_MAX_SORTED (those
+ * are heap-sorted in memory, several times slower a fragment than in
+ * registers, while a split draws the batch again), is split in two halves of its
+ * meshes, in order (the meshes of a batch are in visibility order, so the
+ * halves are too), down to one mesh, whose fragments are then stored
+ * whatever their number.
  *
  * Internal to render/capture.c, which owns the frame's counts and state
  * buffers and the framebuffer; the counts are zero between batches (the
@@ -19,7 +20,7 @@
 #include "render/gpu_mesh.h"
 #include "render/scan_glsl.h"
 
-#define OIT_COUNTED_MAX_SORTED 32u /* = OIT_SEGMENT_LOCAL in frag_glsl.c */
+#define OIT_COUNTED_MAX_SORTED 32u /* = OIT_SEGMENT_LOCAL in frag_glsl.c, OIT_SCAN_LONG */
 
 typedef struct oit_counted {
     GLuint count_prog, store_prog, resolve_prog;

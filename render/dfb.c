@@ -317,7 +317,7 @@ oit_status oit_dfb_render(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n,
     double t0 = oit_time_ms();
     oit_view v = *view;
     oit_shading_resolve_defaults(&v.shading);
-    oit_scan_result res = {0, 0};
+    oit_scan_result res = {0};
     int bands = 0;
     oit_status s = prepare(d, &v, err);
     if (s == OIT_OK)

@@ -7,21 +7,26 @@
 
 #define BLOCK 1024u
 
+#define STR2(x) #x
+#define STR(x) STR2(x)
+
 static const char scan_block_src[] =
+    "#define OIT_SCAN_LONG " STR(OIT_SCAN_LONG) "u\n"
     "layout(local_size_x = 256) in;\n"
     "layout(std430, binding = 1) buffer Data { uint data[]; };\n"
     "layout(std430, binding = 7) writeonly buffer Sums { uint sums[]; };\n"
-    "layout(std430, binding = 5) buffer Totals { uint t_lo; uint t_hi; uint t_max; };\n"
+    "layout(std430, binding = 5) buffer Totals { uint t_lo; uint t_hi; uint t_max; uint t_long; };\n"
     "layout(location = 13) uniform uint u_count;\n"
     "layout(location = 14) uniform int u_first_level;\n"
     "shared uint part[256];\n"
     "void main() {\n"
     "    uint lid = gl_LocalInvocationID.x;\n"
     "    uint base = gl_WorkGroupID.x * 1024u + lid * 4u;\n"
-    "    uint v[4]; uint sum = 0u, mx = 0u;\n"
+    "    uint v[4]; uint sum = 0u, mx = 0u, lng = 0u;\n"
     "    for (uint i = 0u; i < 4u; i++) {\n"
     "        v[i] = base + i < u_count ? data[base + i] : 0u;\n"
     "        sum += v[i]; mx = max(mx, v[i]);\n"
+    "        if (v[i] > OIT_SCAN_LONG) lng += v[i];\n"
     "    }\n"
     "    part[lid] = sum;\n"
     "    barrier();\n"
@@ -38,6 +43,7 @@ static const char scan_block_src[] =
     "    }\n"
     "    if (u_first_level != 0) {\n"
     "        atomicMax(t_max, mx);\n"
+    "        if (lng != 0u) atomicAdd(t_long, lng);\n"
     /* 64-bit total from 32-bit atomics: a wrap of the low word carries. */
     "        if (lid == 255u) {\n"
     "            uint old = atomicAdd(t_lo, part[255]);\n"
@@ -141,5 +147,6 @@ oit_status oit_scan_run(oit_scan *s, GLuint buf, uint64_t n, oit_scan_result *re
     glGetNamedBufferSubData(s->totals, 0, sizeof t, t);
     res->total = (uint64_t)t[1] << 32 | t[0];
     res->max = t[2];
+    res->long_fragments = t[3];
     return oit_gl_check("prefix sum", err);
 }

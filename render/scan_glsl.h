@@ -1,8 +1,10 @@
 /* Exclusive prefix sum of a GPU uint buffer in compute shaders: blocks of
  * 1024 elements scanned in shared memory, block sums scanned recursively,
  * then added back (work-efficient, O(n)). The first level also accumulates
- * the 64-bit total and the maximum element, which callers read back to size
- * their fragment store and fill stats. */
+ * the 64-bit total, the maximum element and the sum of the elements over
+ * OIT_SCAN_LONG, which callers read back to size their fragment store, fill
+ * stats and (capture_counted.h) weigh how much of a batch would sort
+ * outside registers. */
 #ifndef OIT_RENDER_SCAN_GLSL_H
 #define OIT_RENDER_SCAN_GLSL_H
 
@@ -13,6 +15,9 @@ extern "C" {
 #endif
 
 #define OIT_SCAN_LEVELS 4 /* 1024^4 elements */
+/* Lists longer than this leave the per-pixel sort's registers
+ * (OIT_SEGMENT_LOCAL in frag_glsl.c). */
+#define OIT_SCAN_LONG 32
 
 typedef struct oit_scan {
     GLuint block, add;                  /* programs */
@@ -24,6 +29,9 @@ typedef struct oit_scan {
 typedef struct oit_scan_result {
     uint64_t total;
     uint32_t max;
+    /* Sum of the elements over OIT_SCAN_LONG (32-bit: exact while total
+     * fits in 32 bits, which the counted capture requires). */
+    uint32_t long_fragments;
 } oit_scan_result;
 
 oit_status oit_scan_init(oit_scan *s, oit_error *err);
