@@ -1105,6 +1105,18 @@ oit_status oit_partfile_part_data(const oit_partfile *pf, uint32_t part,
     return OIT_OK;
 }
 
+void oit_partfile_drop_part_data(const oit_partfile *pf, uint32_t first, uint32_t count)
+{
+    uint64_t n = pf->hdr.part_count;
+    if (first >= n || count == 0)
+        return;
+    uint64_t last = count > n - first ? n - 1 : (uint64_t)first + count - 1;
+    const oit_partfile_part *a = &pf->parts[first], *b = &pf->parts[last];
+    uint64_t end = b->data_offset + b->data_bytes;
+    if (end > a->data_offset)
+        drop_checked(pf, pf->base + a->data_offset, (size_t)(end - a->data_offset));
+}
+
 const oit_partfile_grid *oit_partfile_grid_at(const oit_partfile *pf, uint32_t grid)
 {
     return grid < pf->grid_count ? &pf->grids[grid] : NULL;

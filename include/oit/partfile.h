@@ -184,6 +184,13 @@ typedef struct oit_partfile_part_view {
  * validated yet when the file was opened with defer_part_data. */
 oit_status oit_partfile_part_data(const oit_partfile *pf, uint32_t part,
                                   oit_partfile_part_view *out, oit_error *err);
+/* A hint that parts [first, first + count) will not be read for a while:
+ * the pages of a mapped file that hold their data leave the process (they
+ * stay in the page cache and fault back in when read), so a tool that reads
+ * every part once does not end holding the whole file. Views handed out
+ * stay valid. No effect on a file read into memory; out-of-range parts are
+ * ignored. */
+void oit_partfile_drop_part_data(const oit_partfile *pf, uint32_t first, uint32_t count);
 
 /* Index i (< index_count) of a part view, whatever its width. Loads through
  * memcpy: a file opened from a caller's buffer (oit_partfile_open_memory)
