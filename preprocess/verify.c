@@ -391,9 +391,9 @@ static oit_status count_outside(verifier *v, uint32_t i, uint32_t p, double lo, 
     oit_partfile_part_view pv;
     oit_status s = oit_partfile_part_data(v->pf, p, &pv, err);
     uint32_t nv = s ? 0 : oit_partfile_parts(v->pf)[p].vertex_count;
-    for (uint32_t i = 0; i < nv; i++) {
+    for (uint32_t k = 0; k < nv; k++) {
         float q[3];
-        memcpy(q, (const char *)pv.positions + (size_t)i * pv.stride, sizeof q);
+        memcpy(q, (const char *)pv.positions + (size_t)k * pv.stride, sizeof q);
         double x = (double)n[0] * q[0] + (double)n[1] * q[1] + (double)n[2] * q[2];
         if (x < lo || x > hi) {
             note(v, "a vertex at n.x = %.9g, outside %.9g..%.9g (slab %u, part %u)", x, lo, hi, i,
