@@ -5,11 +5,8 @@
 #include <string.h>
 
 #include "partition/predicates.h"
+#include "partition/minmax.h"
 
-/* fminf/fmaxf are library calls without -ffinite-math-only, and these run
- * per vertex; coordinates here are finite. */
-static inline float min_f(float a, float b) { return b < a ? b : a; }
-static inline float max_f(float a, float b) { return b > a ? b : a; }
 
 /* Lexicographic order on position, then colour: the canonical edge order. */
 static int vertex_less(const oit_vertex *a, const oit_vertex *b)
@@ -119,8 +116,8 @@ void oit_clip_triangle_split(const oit_triangle *t, int axis, float c, oit_trian
 {
     float mn = t->v[0].pos[axis], mx = mn;
     for (int i = 1; i < 3; i++) {
-        mn = min_f(mn, t->v[i].pos[axis]);
-        mx = max_f(mx, t->v[i].pos[axis]);
+        mn = oit_min_f(mn, t->v[i].pos[axis]);
+        mx = oit_max_f(mx, t->v[i].pos[axis]);
     }
     *n_below = *n_above = 0;
     if (mx <= c) {

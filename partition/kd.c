@@ -8,11 +8,8 @@
 #include "partition/clip.h"
 #include "partition/convex.h"
 #include "partition/kd_split.h"
+#include "partition/minmax.h"
 
-/* fminf/fmaxf are library calls without -ffinite-math-only, and these run
- * per vertex; coordinates here are finite. */
-static inline float min_f(float a, float b) { return b < a ? b : a; }
-static inline float max_f(float a, float b) { return b > a ? b : a; }
 
 typedef struct node_set {
     oit_triangle *tris;
@@ -105,8 +102,8 @@ static uint32_t node_layers(kd_ctx *c, const node_set *s, uint32_t *npieces)
 
 static void tri_range(const oit_triangle *t, int axis, float *mn, float *mx)
 {
-    *mn = min_f(min_f(t->v[0].pos[axis], t->v[1].pos[axis]), t->v[2].pos[axis]);
-    *mx = max_f(max_f(t->v[0].pos[axis], t->v[1].pos[axis]), t->v[2].pos[axis]);
+    *mn = oit_min_f(oit_min_f(t->v[0].pos[axis], t->v[1].pos[axis]), t->v[2].pos[axis]);
+    *mx = oit_max_f(oit_max_f(t->v[0].pos[axis], t->v[1].pos[axis]), t->v[2].pos[axis]);
 }
 
 /* Layer bounds of the two halves of a split (upper bounds: clipped slivers
@@ -148,8 +145,8 @@ static oit_status piece_boxes(kd_ctx *c, const node_set *s, uint32_t npieces,
         for (int a = 0; a < 3; a++) {
             float mn, mx;
             tri_range(&s->tris[i], a, &mn, &mx);
-            pb->lo[a] = min_f(pb->lo[a], mn);
-            pb->hi[a] = max_f(pb->hi[a], mx);
+            pb->lo[a] = oit_min_f(pb->lo[a], mn);
+            pb->hi[a] = oit_max_f(pb->hi[a], mx);
         }
     }
     for (size_t i = 0; i < s->n; i++) {

@@ -1,17 +1,12 @@
 /* Separating slabs for kd nodes (kd_slab.h). */
 #include "partition/kd_slab.h"
+#include "partition/minmax.h"
 
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* fminf/fmaxf are library calls without -ffinite-math-only, and these run
- * per vertex; coordinates here are finite. */
-static inline float min_f(float a, float b) { return b < a ? b : a; }
-static inline float max_f(float a, float b) { return b > a ? b : a; }
-static inline double min_d(double a, double b) { return b < a ? b : a; }
-static inline double max_d(double a, double b) { return b > a ? b : a; }
 
 /* Directions times vertices per node: a dense node tries fewer directions
  * (fixed ones first) rather than stall the cell. */
@@ -67,8 +62,9 @@ static float round_down(double x)
 }
 
 /* The fixed directions, then the line between every two groups' box
- * centres (box[group]), then up to OIT_KD_SLAB_PLANES_PER_PIECE triangle normals a piece
- * (distinct ones: a pipe's facets all differ, a box's repeat). */
+ * centres (box[group]), then the normals of a piece's first
+ * OIT_KD_SLAB_PLANES_PER_PIECE non-degenerate triangles (not deduplicated:
+ * a box's repeat, which only costs a direction tried twice). */
 static void candidate_dirs(dir_set *ds, const oit_triangle *tris, size_t n, const uint32_t *slot,
                            uint32_t np, uint32_t ng, const float (*box)[2][3], uint32_t *taken)
 {
@@ -93,7 +89,8 @@ static void candidate_dirs(dir_set *ds, const oit_triangle *tris, size_t n, cons
             v[k] = (double)c[k] - a[k];
         }
         uint32_t before = ds->count;
-        add_dir(ds, u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]);
+        add_dir(ds, u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                u[0] * v[1] - u[1] * v[0]);
         taken[p] += ds->count > before;
     }
 }
@@ -113,7 +110,7 @@ static int sweep(span *sp, uint32_t np, const uint32_t *weight, uint32_t total, 
     uint32_t below = 0;
     int improved = 0;
     for (uint32_t k = 1; k < np; k++) {
-        maxhi = max_d(maxhi, sp[k - 1].hi);
+        maxhi = oit_max_d(maxhi, sp[k - 1].hi);
         below += weight[sp[k - 1].slot];
         if (below > K || total - below > K)
             continue;
@@ -195,8 +192,8 @@ typedef struct slab_work {
 
 static void work_free(slab_work *w)
 {
-    free(w->c), free(w->sup), free(w->ext), free(w->comp), free(w->weight), free(w->taken), free(w->box);
-    free(w->sp), free(w->keep), free(w->ds.d);
+    free(w->c), free(w->sup), free(w->ext), free(w->comp), free(w->weight);
+    free(w->taken), free(w->box), free(w->sp), free(w->keep), free(w->ds.d);
 }
 
 static int work_alloc(slab_work *w, size_t n, uint32_t np)
@@ -212,7 +209,8 @@ static int work_alloc(slab_work *w, size_t n, uint32_t np)
     w->sp = malloc(np * sizeof *w->sp);
     w->keep = malloc(np * sizeof *w->keep);
     w->ds = (dir_set){malloc(cap * sizeof *w->ds.d), 0, cap};
-    return w->c && w->sup && w->ext && w->comp && w->weight && w->taken && w->box && w->sp && w->keep && w->ds.d;
+    return w->c && w->sup && w->ext && w->comp && w->weight && w->taken && w->box && w->sp &&
+           w->keep && w->ds.d;
 }
 
 /* Group boxes, the largest |x|+|y|+|z| (for the rounding margin) and the
@@ -227,20 +225,20 @@ static void group_boxes(slab_work *w, size_t nc, uint32_t ng, double *scale, dou
     *scale = 0;
     for (size_t i = 0; i < nc; i++) {
         const float *q = w->c[i].p;
-        *scale = max_d(*scale, fabs(q[0]) + fabs(q[1]) + fabs(q[2]));
+        *scale = oit_max_d(*scale, fabs(q[0]) + fabs(q[1]) + fabs(q[2]));
         for (int k = 0; k < 3; k++) {
-            w->box[w->c[i].slot][0][k] = min_f(w->box[w->c[i].slot][0][k], q[k]);
-            w->box[w->c[i].slot][1][k] = max_f(w->box[w->c[i].slot][1][k], q[k]);
+            w->box[w->c[i].slot][0][k] = oit_min_f(w->box[w->c[i].slot][0][k], q[k]);
+            w->box[w->c[i].slot][1][k] = oit_max_f(w->box[w->c[i].slot][1][k], q[k]);
         }
     }
     *extent = 0;
     for (int k = 0; k < 3; k++) {
         float lo = INFINITY, hi = -INFINITY;
         for (uint32_t g = 0; g < ng; g++) {
-            lo = min_f(lo, w->box[g][0][k]);
-            hi = max_f(hi, w->box[g][1][k]);
+            lo = oit_min_f(lo, w->box[g][0][k]);
+            hi = oit_max_f(hi, w->box[g][1][k]);
         }
-        *extent = max_d(*extent, (double)hi - lo);
+        *extent = oit_max_d(*extent, (double)hi - lo);
     }
 }
 
@@ -277,8 +275,8 @@ static void spans_of(const slab_work *w, const float n[3], const uint32_t *idx, 
         const corner *c = &w->c[idx ? idx[j] : j];
         double x = dotd(n, c->p);
         span *s = &sp[c->slot];
-        s->lo = min_d(s->lo, x);
-        s->hi = max_d(s->hi, x);
+        s->lo = oit_min_d(s->lo, x);
+        s->hi = oit_max_d(s->hi, x);
     }
 }
 

@@ -16,11 +16,17 @@
  * that only touch (a gap below rounding) do not qualify: a pixel where two
  * parts coincide would be ordered by pack, not by primitive id.
  *
+ * Pieces that share a vertex cannot be parted by a gap, so they form one
+ * group (union-find over exact positions); a node of one group, or with a
+ * group over K, has no slab.
+ *
  * Directions tried: the 13 axis, face-diagonal and body-diagonal directions,
- * the line between every two pieces' box centres, and the normals of up to
- * OIT_KD_SLAB_PLANES_PER_PIECE planes of each piece (for convex polyhedra a
- * face normal separates whenever anything does). The widest gap, relative to
- * the node's size, wins. */
+ * the line between every two groups' box centres, and the normals of up to
+ * OIT_KD_SLAB_PLANES_PER_PIECE triangles of each piece (for convex polyhedra
+ * a face normal separates whenever anything does). A direction is skipped
+ * unseen when the spans of each group's 26 corners extreme along the fixed
+ * directions (inside its true span) cannot beat the best gap so far. The
+ * widest gap, relative to the node's size, wins. */
 #ifndef OIT_PARTITION_KD_SLAB_H
 #define OIT_PARTITION_KD_SLAB_H
 
@@ -40,7 +46,8 @@ typedef struct oit_kd_slab {
  * layers in the node are weight[slot]. On success (1) side[slot] is 0 for
  * the group below the slab and 1 above, and both groups weigh at most
  * max_layers. Returns 0 when no direction separates such groups, -1 when
- * memory runs out. O(directions * (n + npieces log npieces)). */
+ * memory runs out. O(n log n) to group, then per direction O(npieces) to
+ * rule it out, O(n) to measure it. */
 int oit_kd_find_slab(const oit_triangle *tris, size_t n, const uint32_t *slot,
                      const uint32_t *weight, uint32_t npieces, uint32_t max_layers,
                      oit_kd_slab *slab, uint8_t *side);

@@ -1,5 +1,6 @@
 /* Out-of-core binning (bin.h). */
 #include "preprocess/bin.h"
+#include "partition/minmax.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -8,10 +9,6 @@
 #include <string.h>
 #include <unistd.h>
 
-/* fminf/fmaxf are library calls without -ffinite-math-only, and these run
- * per vertex; coordinates here are finite. */
-static inline float min_f(float a, float b) { return b < a ? b : a; }
-static inline float max_f(float a, float b) { return b > a ? b : a; }
 
 typedef struct bin_chunk {
     uint64_t offset; /* of the triangles, after the record header */
@@ -153,8 +150,8 @@ oit_status oit_bins_add(oit_bins *b, const oit_triangle *tris, size_t count, oit
         const oit_triangle *t = &tris[i];
         float mn[3], mx[3];
         for (int k = 0; k < 3; k++) {
-            mn[k] = min_f(min_f(t->v[0].pos[k], t->v[1].pos[k]), t->v[2].pos[k]);
-            mx[k] = max_f(max_f(t->v[0].pos[k], t->v[1].pos[k]), t->v[2].pos[k]);
+            mn[k] = oit_min_f(oit_min_f(t->v[0].pos[k], t->v[1].pos[k]), t->v[2].pos[k]);
+            mx[k] = oit_max_f(oit_max_f(t->v[0].pos[k], t->v[1].pos[k]), t->v[2].pos[k]);
         }
         uint32_t lo[3], hi[3];
         oit_bin_cell_range(g, mn, mx, lo, hi);
