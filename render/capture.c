@@ -410,9 +410,6 @@ oit_status oit_capture_batch(oit_capture *c, const oit_gpu_mesh *const *meshes,
 
 /* ---- tiled batches ----------------------------------------------------------- */
 
-#define STR_(x) #x
-#define STR(x) STR_(x)
-
 /* Program pair i: 0 sorts up to 16 fragments a pixel, 1 up to
  * OIT_CAPTURE_MAX_LAYERS (registers a GPU would rather not spend on K). */
 static oit_status tiled_programs(oit_capture *c, int i, oit_error *err)
@@ -421,7 +418,7 @@ static oit_status tiled_programs(oit_capture *c, int i, oit_error *err)
         const char *vs[] = {oit_glsl_version, oit_glsl_vertex, NULL};
         const char *fs[] = {oit_glsl_version, oit_glsl_fragment_gen, oit_capture_wide_fs, NULL};
         const char *rcs[] = {oit_glsl_version,
-                             i ? "#define OIT_WIDE " STR(OIT_CAPTURE_MAX_LAYERS) "\n"
+                             i ? "#define OIT_WIDE " OIT_GLSL_STR(OIT_CAPTURE_MAX_LAYERS) "\n"
                                : "#define OIT_WIDE 16\n",
                              oit_glsl_composite, oit_capture_resolve_cs, NULL};
         oit_status s = oit_gl_program_graphics("capture tiled fill", vs, fs,

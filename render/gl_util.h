@@ -17,6 +17,10 @@
 extern "C" {
 #endif
 
+/* A C constant spelled into GLSL source: "#define N " OIT_GLSL_STR(C_N). */
+#define OIT_GLSL_STR_(x) #x
+#define OIT_GLSL_STR(x) OIT_GLSL_STR_(x)
+
 /* Builds a vertex+fragment program from NULL-terminated lists of source
  * strings (concatenated, as glShaderSource does). 'what' names the program
  * in the error, which quotes the info log. */

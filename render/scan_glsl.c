@@ -7,15 +7,14 @@
 
 #define BLOCK 1024u
 
-#define STR2(x) #x
-#define STR(x) STR2(x)
-
 static const char scan_block_src[] =
-    "#define OIT_SCAN_LONG " STR(OIT_SCAN_LONG) "u\n"
+    "#define OIT_SCAN_LONG " OIT_GLSL_STR(OIT_SCAN_LONG) "u\n"
     "layout(local_size_x = 256) in;\n"
     "layout(std430, binding = 1) buffer Data { uint data[]; };\n"
     "layout(std430, binding = 7) writeonly buffer Sums { uint sums[]; };\n"
-    "layout(std430, binding = 5) buffer Totals { uint t_lo; uint t_hi; uint t_max; uint t_long; };\n"
+    "layout(std430, binding = 5) buffer Totals {\n"
+    "    uint t_lo; uint t_hi; uint t_max; uint t_long;\n"
+    "};\n"
     "layout(location = 13) uniform uint u_count;\n"
     "layout(location = 14) uniform int u_first_level;\n"
     "shared uint part[256];\n"
