@@ -114,8 +114,6 @@ static oit_status store_and_resolve(oit_counted *k, const oit_counted_frame *f,
  * long lists hold much of the batch, a stack hundreds of layers deep, not
  * where a few pixels of a wide view pass 32 (the 1M-triangle plant at
  * 1024x1024: 3.4-3.7 s a frame unsplit against 6.7-6.9 s split). */
-_Static_assert(OIT_COUNTED_MAX_SORTED == OIT_SCAN_LONG, "the scan counts what the sort leaves");
-
 static int mostly_deep(const oit_scan_result *res)
 {
     return res->max > OIT_COUNTED_MAX_SORTED && (uint64_t)res->long_fragments * 4 >= res->total;

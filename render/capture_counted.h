@@ -20,7 +20,7 @@
 #include "render/gpu_mesh.h"
 #include "render/scan_glsl.h"
 
-#define OIT_COUNTED_MAX_SORTED 32u /* = OIT_SEGMENT_LOCAL in frag_glsl.c, OIT_SCAN_LONG */
+#define OIT_COUNTED_MAX_SORTED OIT_GLSL_SEGMENT_LOCAL
 
 typedef struct oit_counted {
     GLuint count_prog, store_prog, resolve_prog;

@@ -168,7 +168,7 @@ void oit_glsl_raster_begin(GLuint fbo, int w, int h)
 }
 
 const char oit_glsl_segment_composite[] =
-    "#define OIT_SEGMENT_LOCAL 32u\n"
+    "#define OIT_SEGMENT_LOCAL " OIT_GLSL_STR(OIT_GLSL_SEGMENT_LOCAL) "u\n"
     "void oit_segment_sift(uint b, uint root, uint n) {\n"
     "    for (;;) {\n"
     "        uint child = 2u * root + 1u;\n"

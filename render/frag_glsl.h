@@ -93,6 +93,9 @@ extern const char oit_glsl_composite[];
  * are heap-sorted in place in their own segment, so no layer count is ever
  * cut off (DFB and the counted capture). */
 extern const char oit_glsl_segment_composite[];
+/* The longest list it sorts in registers; the scan (scan_glsl.h) counts the
+ * fragments in longer ones, the counted capture weighs them. */
+#define OIT_GLSL_SEGMENT_LOCAL 32
 
 /* The per-pixel state carried across batches (std430): one declaration for
  * every shader that reads or writes it. */

@@ -8,7 +8,7 @@
 #define BLOCK 1024u
 
 static const char scan_block_src[] =
-    "#define OIT_SCAN_LONG " OIT_GLSL_STR(OIT_SCAN_LONG) "u\n"
+    "#define OIT_SCAN_LONG " OIT_GLSL_STR(OIT_GLSL_SEGMENT_LOCAL) "u\n"
     "layout(local_size_x = 256) in;\n"
     "layout(std430, binding = 1) buffer Data { uint data[]; };\n"
     "layout(std430, binding = 7) writeonly buffer Sums { uint sums[]; };\n"

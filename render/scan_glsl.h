@@ -2,12 +2,13 @@
  * 1024 elements scanned in shared memory, block sums scanned recursively,
  * then added back (work-efficient, O(n)). The first level also accumulates
  * the 64-bit total, the maximum element and the sum of the elements over
- * OIT_SCAN_LONG, which callers read back to size their fragment store, fill
+ * OIT_GLSL_SEGMENT_LOCAL, which callers read back to size their fragment store, fill
  * stats and (capture_counted.h) weigh how much of a batch would sort
  * outside registers. */
 #ifndef OIT_RENDER_SCAN_GLSL_H
 #define OIT_RENDER_SCAN_GLSL_H
 
+#include "render/frag_glsl.h"
 #include "render/gl_util.h"
 
 #ifdef __cplusplus
@@ -15,9 +16,6 @@ extern "C" {
 #endif
 
 #define OIT_SCAN_LEVELS 4 /* 1024^4 elements */
-/* Lists longer than this leave the per-pixel sort's registers
- * (OIT_SEGMENT_LOCAL in frag_glsl.c). */
-#define OIT_SCAN_LONG 32
 
 typedef struct oit_scan {
     GLuint block, add;                  /* programs */
@@ -29,7 +27,8 @@ typedef struct oit_scan {
 typedef struct oit_scan_result {
     uint64_t total;
     uint32_t max;
-    /* Sum of the elements over OIT_SCAN_LONG (32-bit: exact while total
+    /* Sum of the elements over OIT_GLSL_SEGMENT_LOCAL, the lists the
+     * per-pixel sort cannot keep in registers (32-bit: exact while total
      * fits in 32 bits, which the counted capture requires). */
     uint32_t long_fragments;
 } oit_scan_result;
