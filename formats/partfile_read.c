@@ -735,10 +735,16 @@ static oit_status check_slab(const oit_partfile *pf, uint32_t i, uint64_t list_f
     const oit_partfile_slab *s = &pf->slabs[i];
     float len2 = s->normal[0] * s->normal[0] + s->normal[1] * s->normal[1] +
                  s->normal[2] * s->normal[2];
-    if (!finite3(s->normal) || !(fabsf(len2 - 1.0f) <= 1e-3f) || !isfinite(s->d0) ||
-        !isfinite(s->d1) || s->d0 > s->d1)
-        return bad(pf, err, "section SLABS: record %u: normal not unit or planes d0 %g > d1 %g",
-                   i, s->d0, s->d1);
+    /* Version 3 lets a cutting plane keep its integer normal (partfile.h). */
+    int normal_ok = pf->hdr.version >= 3 ? len2 > 0 && isfinite(len2)
+                                         : fabsf(len2 - 1.0f) <= 1e-3f;
+    if (!finite3(s->normal) || !normal_ok)
+        return bad(pf, err, "section SLABS: record %u: normal (%g %g %g) %s", i, s->normal[0],
+                   s->normal[1], s->normal[2],
+                   pf->hdr.version >= 3 ? "zero or not finite" : "not unit");
+    if (!isfinite(s->d0) || !isfinite(s->d1) || s->d0 > s->d1)
+        return bad(pf, err, "section SLABS: record %u: planes d0 %g > d1 %g or not finite", i,
+                   s->d0, s->d1);
     if (s->grid >= pf->grid_count || s->cell >= pf->grids[s->grid].cell_count)
         return bad(pf, err, "section SLABS: record %u: grid %u cell %u does not exist", i,
                    s->grid, s->cell);

@@ -9,7 +9,7 @@
 
 
 /* Lexicographic order on position, then colour: the canonical edge order. */
-static int vertex_less(const oit_vertex *a, const oit_vertex *b)
+int oit_vertex_less(const oit_vertex *a, const oit_vertex *b)
 {
     for (int k = 0; k < 3; k++)
         if (a->pos[k] != b->pos[k])
@@ -28,7 +28,7 @@ static float clamp_between(double x, float a, float b)
  * opposite sides. */
 static oit_vertex edge_point(const oit_vertex *p, const oit_vertex *q, int axis, float c)
 {
-    const oit_vertex *a = vertex_less(p, q) ? p : q;
+    const oit_vertex *a = oit_vertex_less(p, q) ? p : q;
     const oit_vertex *b = a == p ? q : p;
     double t = ((double)c - a->pos[axis]) / ((double)b->pos[axis] - a->pos[axis]);
     oit_vertex r;

@@ -48,6 +48,11 @@ int oit_clip_triangle_box(const oit_triangle *t, const float lo[3], const float 
 void oit_clip_triangle_split(const oit_triangle *t, int axis, float c, oit_triangle *below,
                              int *n_below, oit_triangle *above, int *n_above);
 
+/* Lexicographic order on position, then colour: the canonical order in
+ * which an edge's new vertex is computed, so both triangles sharing the
+ * edge get the same bits. */
+int oit_vertex_less(const oit_vertex *a, const oit_vertex *b);
+
 /* 1 when the three positions are collinear (exact). */
 int oit_triangle_is_degenerate(const oit_triangle *t);
 

@@ -7,6 +7,7 @@
 
 #include "partition/clip.h"
 #include "partition/convex.h"
+#include "partition/kd_cut.h"
 #include "partition/kd_split.h"
 #include "partition/minmax.h"
 
@@ -421,6 +422,104 @@ static oit_status try_slab(kd_ctx *c, size_t node, const node_set *s, const oit_
     return st;
 }
 
+/* Triangles the axis plane crosses, and whether its halves stay within K
+ * (then it already makes two parts, which a cut must beat on crossings). */
+static uint32_t axis_crossings(kd_ctx *c, const node_set *s, int axis, float m, int *two_parts)
+{
+    uint32_t crossed = 0, below, above;
+    for (size_t i = 0; i < s->n; i++) {
+        float mn, mx;
+        tri_range(&s->tris[i], axis, &mn, &mx);
+        crossed += mn < m && mx > m;
+    }
+    split_layers(c, s, axis, m, &below, &above);
+    *two_parts = below <= c->p->max_layers && above <= c->p->max_layers;
+    return crossed;
+}
+
+/* The node cut by a plane of another direction into two parts (kd_cut.h),
+ * when one crosses fewer than max_cut triangles; *done tells whether it did.
+ * piece_slot must still be piece_boxes' numbering. */
+static oit_status try_cut(kd_ctx *c, size_t node, const node_set *s, const oit_kd_piece_box *b,
+                          uint32_t npieces, uint32_t max_cut, int *done)
+{
+    oit_kd_node *nd = &c->out->nodes[node];
+    uint32_t *slot = malloc(s->n * sizeof *slot), *weight = malloc(npieces * sizeof *weight);
+    node_set half[2] = {{0}, {0}};
+    oit_kd_cut cut;
+    oit_status st = slot && weight ? OIT_OK : OIT_ERR_NOMEM;
+    int found = 0;
+    *done = 0;
+    if (!st) {
+        for (size_t i = 0; i < s->n; i++)
+            slot[i] = c->piece_slot[s->piece[i]];
+        for (uint32_t p = 0; p < npieces; p++)
+            weight[p] = b[p].weight;
+        found = oit_kd_find_cut(s->tris, s->n, slot, weight, npieces, c->p->max_layers, nd->lo,
+                                nd->hi, max_cut, &cut);
+        st = found < 0 ? OIT_ERR_NOMEM : OIT_OK;
+    }
+    uint64_t added = 0;
+    for (size_t i = 0; found > 0 && !st && i < s->n; i++) {
+        oit_triangle h[2][2];
+        int n[2];
+        if (!oit_plane_exact_split(&cut.plane, &s->tris[i], nd->lo, nd->hi, h[0], &n[0], h[1],
+                                   &n[1])) {
+            found = 0; /* a seam would leave the box: let the axis split go on */
+            break;
+        }
+        for (int side = 0; side < 2 && !st; side++)
+            for (int k = 0; k < n[side] && !st; k++)
+                st = set_push(&half[side], &h[side][k], s->piece[i], s->plane[i]);
+        added += (uint64_t)(n[0] + n[1]) - 1;
+    }
+    uint32_t count[2], layers[2];
+    for (int h = 0; h < 2 && found > 0 && !st; h++) {
+        layers[h] = node_layers(c, &half[h], &count[h]);
+        found = count[h] && layers[h] <= c->p->max_layers;
+    }
+    int32_t part[2];
+    for (int h = 0; h < 2 && found > 0 && !st; h++)
+        st = emit_part(c, &half[h], count[h], &part[h]);
+    if (found > 0 && !st) {
+        oit_kd_slab planes = {{(float)cut.plane.n[0], (float)cut.plane.n[1],
+                               (float)cut.plane.n[2]},
+                              (float)cut.plane.d, (float)cut.plane.d};
+        st = push_slab(c->out, node, &planes, part);
+        c->out->split_added += added;
+        c->out->cuts++;
+        *done = !st;
+    }
+    set_free(&half[0]);
+    set_free(&half[1]);
+    free(slot);
+    free(weight);
+    return st;
+}
+
+/* A cut replaces the axis split (found: kd_split's; else the midplane
+ * fallback's) when it crosses fewer triangles, or when the axis split's
+ * halves would need splitting again. */
+static oit_status try_cut_instead(kd_ctx *c, size_t node, const node_set *s,
+                                  const oit_kd_piece_box *b, uint32_t npieces, int found,
+                                  int axis, float m, int *done)
+{
+    const oit_kd_node *nd = &c->out->nodes[node];
+    uint32_t larger, max_cut = UINT32_MAX;
+    if (!found) {
+        axis = choose_axis(c, s, nd->lo, nd->hi, &larger);
+        m = axis >= 0 ? 0.5f * (nd->lo[axis] + nd->hi[axis]) : 0;
+    }
+    if (axis >= 0) {
+        int two_parts;
+        uint32_t crossed = axis_crossings(c, s, axis, m, &two_parts);
+        if (two_parts)
+            max_cut = crossed ? crossed - 1 : 0;
+    }
+    *done = 0;
+    return max_cut || axis < 0 ? try_cut(c, node, s, b, npieces, max_cut, done) : OIT_OK;
+}
+
 static oit_status build_node(kd_ctx *c, size_t node, const node_set *s)
 {
     uint32_t npieces, layers = node_layers(c, s, &npieces);
@@ -441,8 +540,12 @@ static oit_status build_node(kd_ctx *c, size_t node, const node_set *s)
             int slab = 0;
             oit_status st = found < 0 ? OIT_ERR_NOMEM : OIT_OK;
             if (!st && layers <= 2 * c->p->max_layers &&
-                !(found && split_is_clean(boxes, npieces, axis, m, c->p->max_layers)))
-                st = try_slab(c, node, s, boxes, npieces, &slab);
+                !(found && split_is_clean(boxes, npieces, axis, m, c->p->max_layers))) {
+                if (c->p->slabs != OIT_KD_SLABS_NONE)
+                    st = try_slab(c, node, s, boxes, npieces, &slab);
+                if (!st && !slab && c->p->slabs == OIT_KD_SLABS_ALL)
+                    st = try_cut_instead(c, node, s, boxes, npieces, found, axis, m, &slab);
+            }
             free(boxes);
             if (st || slab)
                 return st;

@@ -24,7 +24,12 @@
  * A node of at most 2K layers that no axis plane splits cleanly (without
  * cutting a piece, into halves of at most K) tries a separating slab first
  * (kd_slab.h): when one exists the node becomes a leaf with two parts on
- * either side of it, again the contract of stream/order.h.
+ * either side of it, again the contract of stream/order.h. Failing that, a
+ * cutting plane of another direction (kd_cut.h) that leaves both halves
+ * within K replaces the axis split when it crosses fewer triangles, or when
+ * the axis split's halves would need splitting again: the leaf is then a
+ * slab whose two planes coincide, its clipped vertices exactly on them
+ * (plane_exact.h).
  */
 #ifndef OIT_PARTITION_KD_H
 #define OIT_PARTITION_KD_H
@@ -41,6 +46,13 @@
 extern "C" {
 #endif
 
+/* Which slabs a node may become instead of being split on an axis. */
+typedef enum oit_kd_slabs {
+    OIT_KD_SLABS_ALL = 0,    /* separating (kd_slab.h), else cutting (kd_cut.h) */
+    OIT_KD_SLABS_SEPARATING, /* only separating: nothing clipped off-axis */
+    OIT_KD_SLABS_NONE        /* axis splits only */
+} oit_kd_slabs;
+
 typedef struct oit_kd_params {
     uint32_t max_layers; /* K */
     uint32_t max_depth;  /* splits below the cell; 0: 48 (16 halvings an axis) */
@@ -48,6 +60,7 @@ typedef struct oit_kd_params {
      * mutually crossing geometry into K-layer boxes can multiply it many
      * times, and a clear refusal beats exhausting memory. */
     uint64_t max_triangles;
+    oit_kd_slabs slabs; /* which slab kinds may end a node (0: both) */
 } oit_kd_params;
 
 /* The most layers a wide part may have (the renderer's widest capture). */
@@ -95,6 +108,7 @@ typedef struct oit_kd_result {
     uint64_t split_added;  /* triangles added by the midplane clips */
     uint32_t depth;        /* deepest node */
     uint32_t wide_parts;   /* parts whose layer bound exceeds K */
+    uint32_t cuts;         /* slabs that are cutting planes (kd_cut.h) */
 } oit_kd_result;
 
 /* Subdivides the box [lo, hi] holding tris[0..n) with piece[i] (< piece_count)

@@ -57,7 +57,8 @@ oit_status oit_cell_partition(const oit_cell_params *p, const oit_triangle *tris
     oit_convex_result cr = {0};
     s = oit_convex_cluster(clipped, m, &cp, &cr, err);
     if (!s) {
-        oit_kd_params kp = {p->K, p->max_depth, (uint64_t)OIT_CELL_MAX_GROWTH * m + (1u << 20)};
+        oit_kd_params kp = {p->K, p->max_depth, (uint64_t)OIT_CELL_MAX_GROWTH * m + (1u << 20),
+                            p->slabs};
         s = oit_kd_build(p->lo, p->hi, clipped, m, cr.piece_of, cr.plane_of, cr.piece_count, &kp,
                          out, err);
         counts->clipped = m;

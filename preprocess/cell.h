@@ -21,6 +21,7 @@ typedef struct oit_cell_params {
     uint32_t K;
     uint32_t max_piece_triangles;
     uint32_t max_depth;
+    oit_kd_slabs slabs;
 } oit_cell_params;
 
 /* The cell's parts may hold at most this many times its clipped triangles,

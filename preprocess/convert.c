@@ -127,6 +127,7 @@ static void cell_params(const cell_run *r, uint64_t c, oit_cell_params *p)
     }
     p->K = r->o->K;
     p->max_piece_triangles = r->o->max_piece_triangles;
+    p->slabs = r->o->slabs;
 }
 
 static void run_cell(cell_run *r, uint64_t c)
@@ -422,6 +423,7 @@ static oit_status partition_and_write(cell_run *r, oit_partfile_writer *w, uint3
         st->pieces_clustered += co->counts.pieces_cell;
         st->wide_parts += co->kd.wide_parts;
         st->slabs += co->kd.slab_count;
+        st->cut_slabs += co->kd.cuts;
         for (size_t q = 0; q < co->kd.part_count; q++)
             if (co->kd.parts[q].layer_bound > st->max_layer_bound)
                 st->max_layer_bound = co->kd.parts[q].layer_bound;
@@ -498,8 +500,9 @@ static oit_status convert_binned(const oit_convert_options *o, const oit_mesh_in
 {
     char options[160];
     snprintf(options, sizeof options, "K=%u manage=%s grid=%ux%ux%u cell=%g "
-             "max_piece_triangles=%u", o->K, oit_manage_name(o->manage), r->grid.dims[0],
-             r->grid.dims[1], r->grid.dims[2], r->grid.cell, o->max_piece_triangles);
+             "max_piece_triangles=%u slabs=%s", o->K, oit_manage_name(o->manage),
+             r->grid.dims[0], r->grid.dims[1], r->grid.dims[2], r->grid.cell,
+             o->max_piece_triangles, oit_slabs_name(o->slabs));
     /* Parts average a few KB: page-aligned blobs would make padding most of
      * the file (80% on a 12M-triangle plant), and the reader gains nothing
      * from pages, reading each part with one pread into its own memory. */
@@ -526,6 +529,11 @@ static oit_status convert_binned(const oit_convert_options *o, const oit_mesh_in
         oit_partfile_writer_abort(w);
     *t_write = now_s() - t0;
     return s;
+}
+
+const char *oit_slabs_name(oit_kd_slabs s)
+{
+    return s == OIT_KD_SLABS_NONE ? "none" : s == OIT_KD_SLABS_SEPARATING ? "separating" : "all";
 }
 
 const char *oit_manage_name(oit_manage m)

@@ -13,6 +13,7 @@
 #include <stdint.h>
 
 #include "oit/status.h"
+#include "partition/kd.h"
 
 /* How parts are formed and managed (seed 002, Table 1). */
 typedef enum oit_manage {
@@ -29,6 +30,8 @@ typedef enum oit_manage {
 
 /* The scheme's name as --manage spells it. */
 const char *oit_manage_name(oit_manage m);
+/* The slab kinds' name as --slabs spells it. */
+const char *oit_slabs_name(oit_kd_slabs s);
 
 typedef struct oit_convert_options {
     const char *input, *output;
@@ -39,6 +42,7 @@ typedef struct oit_convert_options {
     uint32_t max_piece_triangles; /* 0: convex.h default */
     oit_manage manage;            /* not GRID: grid must be 0 or 1, and for
                                      KD_FACETS max_piece_triangles 0 or 1 */
+    oit_kd_slabs slabs;           /* --slabs: all (default), separating, none */
     int progress;                 /* draw progress bars on stderr */
 } oit_convert_options;
 
@@ -49,6 +53,7 @@ typedef struct oit_convert_stats {
     uint64_t pieces_clustered; /* convex pieces before subdivision clipped them */
     uint64_t wide_parts;       /* parts whose layer bound exceeds K (kd.h) */
     uint64_t slabs;            /* leaves split by a slab (kd_slab.h)     */
+    uint64_t cut_slabs;        /* of them, cutting planes (kd_cut.h)     */
     uint32_t max_layer_bound;
     uint32_t subgrid_depth, grid_dims[3], threads, K;
     double seconds_total, seconds_bounds, seconds_bin, seconds_partition, seconds_write;

@@ -26,7 +26,7 @@ static void usage(FILE *f)
           "       oitprep verify FILE [--directions M] [--viewpoints V]\n"
           "       oitprep INPUT -o OUT.oitp [--max-layers K] [--memory BYTES] [--threads N]\n"
           "               [--stats FILE.json] [--grid N] [--max-piece-triangles T]\n"
-          "               [--manage grid|kd-parts|kd-facets]\n"
+          "               [--manage grid|kd-parts|kd-facets] [--slabs all|separating|none]\n"
           "\n"
           "  info FILE     validate a part file completely (header, checksums, every record\n"
           "                and index) and print its counts; --json prints one JSON object\n"
@@ -41,8 +41,14 @@ static void usage(FILE *f)
           "  INPUT -o OUT  convert a mesh (PLY, OBJ, OFF, STL, glTF/GLB) into a part file:\n"
           "                convex pieces grouped into parts of at most K layers (1 per\n"
           "                planar piece, 2 per other), in a grid of kd-subdivided cells;\n"
-          "                a cell no axis plane splits without cutting may instead be\n"
-          "                split by a slab (two parts, any normal, nothing clipped).\n"
+          "                a node of at most 2K layers that no axis plane splits without\n"
+          "                cutting may instead become two parts on either side of a\n"
+          "                slab: a separating one (a gap, any normal, nothing clipped),\n"
+          "                else a cutting plane (one of 49 integer normals; it clips,\n"
+          "                seams exactly on the plane) when it crosses fewer triangles\n"
+          "                than the axis split or spares that split's further splits.\n"
+          "                --slabs all (default), separating (no cutting planes) or\n"
+          "                none (axis splits only): for comparisons; cut_slabs in --stats.\n"
           "                --max-layers K (even, default 8), --memory BYTES for the\n"
           "                binning (suffix K/M/G, default 2G; beyond it bins spill to\n"
           "                OUT.spill), --threads N (default: all cores), --grid N top cells\n"
@@ -251,6 +257,18 @@ static int cmd_convert(int argc, char **argv)
                 o.manage = OIT_MANAGE_KD_FACETS;
             else {
                 fprintf(stderr, "oitprep: --manage '%s': want grid, kd-parts or kd-facets\n", m);
+                return 2;
+            }
+        } else if (strcmp(a, "--slabs") == 0) {
+            const char *m = i + 1 < argc ? argv[++i] : "";
+            if (strcmp(m, "all") == 0)
+                o.slabs = OIT_KD_SLABS_ALL;
+            else if (strcmp(m, "separating") == 0)
+                o.slabs = OIT_KD_SLABS_SEPARATING;
+            else if (strcmp(m, "none") == 0)
+                o.slabs = OIT_KD_SLABS_NONE;
+            else {
+                fprintf(stderr, "oitprep: --slabs '%s': want all, separating or none\n", m);
                 return 2;
             }
         } else if (strcmp(a, "--max-piece-triangles") == 0) {

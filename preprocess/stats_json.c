@@ -15,7 +15,7 @@ oit_status oit_convert_stats_write_json(const char *path, const oit_convert_opti
             "{\"triangles_in\": %llu, \"triangles_out\": %llu, \"degenerate_dropped\": %llu, "
             "\"nonfinite_dropped\": %llu, \"split_added\": %lld, \"pieces\": %llu, "
             "\"pieces_clustered\": %llu, \"wide_parts\": %llu, \"max_layer_bound\": %u, "
-            "\"parts\": %llu, \"slabs\": %llu, \"cells\": %llu, \"subgrids\": %llu, "
+            "\"parts\": %llu, \"slabs\": %llu, \"cut_slabs\": %llu, \"cells\": %llu, \"subgrids\": %llu, "
             "\"subgrid_depth\": %u, \"grid\": [%u, %u, %u], \"spilled_bytes\": %llu, "
             "\"seconds\": {\"total\": %.3f, \"stages\": {\"bounds\": %.3f, \"bin\": %.3f, "
             "\"partition\": %.3f, \"write\": %.3f}}, \"peak_rss_bytes\": %llu, "
@@ -25,7 +25,8 @@ oit_status oit_convert_stats_write_json(const char *path, const oit_convert_opti
             (long long)s->split_added, (unsigned long long)s->pieces,
             (unsigned long long)s->pieces_clustered, (unsigned long long)s->wide_parts,
             s->max_layer_bound,
-            (unsigned long long)s->parts, (unsigned long long)s->slabs, (unsigned long long)s->cells,
+            (unsigned long long)s->parts, (unsigned long long)s->slabs,
+            (unsigned long long)s->cut_slabs, (unsigned long long)s->cells,
             (unsigned long long)s->subgrids, s->subgrid_depth, s->grid_dims[0], s->grid_dims[1],
             s->grid_dims[2], (unsigned long long)s->spilled_bytes, s->seconds_total,
             s->seconds_bounds, s->seconds_bin, s->seconds_partition, s->seconds_write,

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "oit/partfile.h"
+#include "partition/plane_exact.h"
 #include "stream/order.h"
 
 typedef struct vhit {
@@ -383,7 +384,8 @@ static oit_status verify_open(verifier *v, const char *path, oit_error *err)
     return build_scene(v, err);
 }
 
-/* Vertices of part p outside lo <= n.x <= hi (slab i's planes). */
+/* Vertices of part p outside lo <= n.x <= hi (slab i's planes), judged
+ * exactly: a cutting plane's seam vertices lie on it to the last bit. */
 static oit_status count_outside(verifier *v, uint32_t i, uint32_t p, double lo, double hi,
                                 oit_error *err)
 {
@@ -395,7 +397,8 @@ static oit_status count_outside(verifier *v, uint32_t i, uint32_t p, double lo, 
         float q[3];
         memcpy(q, (const char *)pv.positions + (size_t)k * pv.stride, sizeof q);
         double x = (double)n[0] * q[0] + (double)n[1] * q[1] + (double)n[2] * q[2];
-        if (x < lo || x > hi) {
+        if ((lo > -INFINITY && oit_plane_side_exact(n, lo, q) < 0) ||
+            (hi < INFINITY && oit_plane_side_exact(n, hi, q) > 0)) {
             note(v, "a vertex at n.x = %.9g, outside %.9g..%.9g (slab %u, part %u)", x, lo, hi, i,
                  p);
             v->rep->slab_violations++;

@@ -214,7 +214,10 @@ static void emit_inside(emit_ctx *e, const oit_partfile_slab *sl, uint32_t slab)
 static void emit_slab_cell(emit_ctx *e, uint32_t slab)
 {
     const oit_partfile_slab *sl = oit_partfile_slab_at(e->o->pf, slab);
-    float side = dot3(sl->normal, e->eye);
+    /* In double: a cutting plane (d0 = d1) has geometry on it, and the eye
+     * should be put on its side to far below a float's rounding. */
+    double side = (double)sl->normal[0] * e->eye[0] + (double)sl->normal[1] * e->eye[1] +
+                  (double)sl->normal[2] * e->eye[2];
     if (side <= sl->d0) {
         emit(e, sl->part_below);
         emit_inside(e, sl, slab);

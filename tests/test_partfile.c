@@ -514,11 +514,11 @@ static void corrupt_index(corrupt_ctx *c, uint8_t *b, uint32_t part, uint32_t va
 static void corrupt_semantics(corrupt_ctx *c, uint8_t *b)
 {
     memcpy(b, c->good, c->size);
-    set_u32(b, offsetof(pf_header, version), 3);
-    expect_refused(c, "version 3", b, c->size, "part file version 3, this build reads versions 1 to 2");
+    set_u32(b, offsetof(pf_header, version), 4);
+    expect_refused(c, "version 4", b, c->size, "part file version 4, this build reads versions 1 to 3");
     memcpy(b, c->good, c->size);
     set_u32(b, offsetof(pf_header, version), 0);
-    expect_refused(c, "version 0", b, c->size, "part file version 0, this build reads versions 1 to 2");
+    expect_refused(c, "version 0", b, c->size, "part file version 0, this build reads versions 1 to 3");
 
     corrupt_index(c, b, 2, 70000, "index 70000 >= 70000 vertices");
     corrupt_index(c, b, 0, 9, "index 9 >= 4 vertices");
@@ -553,6 +553,27 @@ static void corrupt_semantics(corrupt_ctx *c, uint8_t *b)
             4000000000u);
     reseal(b, c->size);
     expect_refused(c, "SLABS claims 4e9 slabs", b, c->size, "4000000000");
+
+    /* A cutting plane's integer normal (1,-1,0): valid from version 3 on,
+     * refused as "not unit" in a file that says version 2, and a zero
+     * normal refused in any. */
+    size_t normal = get_section(b, PF_SEC_SLABS).offset + sizeof(pf_slab_block);
+    const float integer_normal[3] = {1, -1, 0}, zero[3] = {0, 0, 0};
+    memcpy(b, c->good, c->size);
+    memcpy(b + normal, integer_normal, sizeof integer_normal);
+    reseal(b, c->size);
+    oit_partfile *pf = NULL;
+    oit_error err = {0};
+    CHECK(spill(c->path, b, c->size) == 0 && oit_partfile_open(c->path, NULL, &pf, &err) == OIT_OK,
+          "slab normal (1,-1,0) in version 3: %s", err.message);
+    oit_partfile_close(pf);
+    set_u32(b, offsetof(pf_header, version), 2);
+    reseal(b, c->size);
+    expect_refused(c, "version 2, slab normal (1,-1,0)", b, c->size, "not unit");
+    memcpy(b, c->good, c->size);
+    memcpy(b + normal, zero, sizeof zero);
+    reseal(b, c->size);
+    expect_refused(c, "slab normal zero", b, c->size, "zero");
 
     memcpy(b, c->good, c->size);
     pf_section ps = get_section(b, PF_SEC_PARTS);
@@ -613,7 +634,7 @@ static void check_tool(const char *tmp, const char *good, const uint8_t *bytes, 
     static const char *keys[] = {"\"triangles\": 138956", "\"parts\": 4", "\"pieces\": 5",
                                  "\"slabs\": 2", "\"cells\": 8", "\"subgrid_depth\": 2",
                                  "\"bytes\": ", "\"layer_bound\": 4",
-                                 "\"attributes\": [\"color\", \"alpha\"]", "\"version\": 2",
+                                 "\"attributes\": [\"color\", \"alpha\"]", "\"version\": 3",
                                  "\"K\": 8"};
     for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
         CHECK(strstr(text, keys[i]), "--json lacks %s", keys[i]);

@@ -10,6 +10,8 @@
 #include "partition/clip.h"
 #include "partition/convex.h"
 #include "partition/kd.h"
+#include "partition/kd_cut.h"
+#include "partition/plane_exact.h"
 #include "partition/kd_split.h"
 #include "partition/predicates.h"
 #include "test_check.h"
@@ -457,7 +459,7 @@ static oit_status kd_of(const tri_list *l, uint32_t K, oit_kd_result *r, oit_err
     oit_convex_result cr;
     if (oit_convex_cluster(l->t, l->n, NULL, &cr, err))
         return OIT_ERR_NOMEM;
-    oit_kd_params kp = {K, 0, 0};
+    oit_kd_params kp = {K, 0, 0, OIT_KD_SLABS_ALL};
     oit_status s = oit_kd_build(lo, hi, l->t, l->n, cr.piece_of, cr.plane_of, cr.piece_count,
                                 &kp, r, err);
     oit_convex_result_free(&cr);
@@ -512,7 +514,8 @@ static void check_kd(const char *name, const tri_list *l, const oit_kd_result *r
                 for (int v = 0; v < 3; v++) {
                     const float *q = r->tris[t].v[v].pos;
                     double x = (double)n[0] * q[0] + (double)n[1] * q[1] + (double)n[2] * q[2];
-                    CHECK(h ? x >= sl->planes.d1 : x <= sl->planes.d0,
+                    CHECK(h ? oit_plane_side_exact(n, sl->planes.d1, q) >= 0
+                            : oit_plane_side_exact(n, sl->planes.d0, q) <= 0,
                           "%s: slab %zu: a vertex at %.9g is on the wrong side of %g..%g", name,
                           i, x, sl->planes.d0, sl->planes.d1);
                 }
@@ -581,6 +584,163 @@ static void test_kd_slab(void)
     free(cross.t);
 }
 
+
+/* ------------------------------------------------------ cutting planes */
+
+static uint32_t lcg_next(uint32_t *s)
+{
+    *s = *s * 1664525u + 1013904223u;
+    return *s >> 8;
+}
+
+static float lcg_coord(uint32_t *s, float lo, float hi)
+{
+    return lo + (hi - lo) * (float)lcg_next(s) / (float)(1u << 24);
+}
+
+/* Exact sides where double rounding loses the sign; seam vertices on the
+ * plane to the last bit, inside the box, the same from either end of the
+ * edge and near the true edge point; split halves on their sides with the
+ * area kept. */
+static void test_plane_exact(void)
+{
+    const float big = 1152921504606846976.0f; /* 2^60 */
+    const float n1[3] = {1, 1, 1}, p1[3] = {big, 1, -big};
+    double naive = (double)p1[0] + p1[1] + p1[2];
+    CHECK(oit_plane_side_exact(n1, 0, p1) == 1 && naive == 0,
+          "2^60 + 1 - 2^60: exact side %d (want 1), plain double %g (the case needs 0)",
+          oit_plane_side_exact(n1, 0, p1), naive);
+    CHECK(oit_plane_side_exact(n1, 1, p1) == 0 && oit_plane_side_exact(n1, 2, p1) == -1,
+          "2^60 + 1 - 2^60 against d = 1 and 2");
+
+    const float lo[3] = {-3, -2, 0.5f}, hi[3] = {5, 4, 1000};
+    int dirs[][3] = {{1, 0, 0}, {1, 1, 0}, {1, -2, 1}, {2, 1, -1}, {1, 2, 2}, {0, 1, -2}};
+    uint32_t seed = 12345;
+    int seams = 0, worst_grains = 0;
+    double area_in = 0, area_out = 0;
+    for (int k = 0; k < (int)(sizeof dirs / sizeof dirs[0]); k++) {
+        oit_plane_exact pl;
+        oit_plane_exact_init(&pl, dirs[k], lo, hi);
+        for (int i = 0; i < 400; i++) {
+            oit_triangle t;
+            for (int v = 0; v < 3; v++)
+                t.v[v] = vtx(lcg_coord(&seed, lo[0], hi[0]), lcg_coord(&seed, lo[1], hi[1]),
+                             lcg_coord(&seed, lo[2], i % 2 ? 2.0f : hi[2]));
+            double x[3], mn = INFINITY, mx = -INFINITY;
+            for (int v = 0; v < 3; v++) {
+                x[v] = dirs[k][0] * (double)t.v[v].pos[0] + dirs[k][1] * (double)t.v[v].pos[1] +
+                       dirs[k][2] * (double)t.v[v].pos[2];
+                mn = fmin(mn, x[v]);
+                mx = fmax(mx, x[v]);
+            }
+            pl.d = floor(0.5 * (mn + mx) / pl.grain) * pl.grain;
+            for (int v = 0; v < 3; v++) {
+                int w = (v + 1) % 3, sv = oit_plane_exact_side(&pl, t.v[v].pos),
+                    sw = oit_plane_exact_side(&pl, t.v[w].pos);
+                if (sv * sw >= 0)
+                    continue;
+                oit_vertex a, b;
+                CHECK(oit_plane_exact_seam(&pl, &t.v[v], &t.v[w], lo, hi, &a) &&
+                          oit_plane_exact_seam(&pl, &t.v[w], &t.v[v], lo, hi, &b),
+                      "dir %d: no seam vertex", k);
+                CHECK(memcmp(a.pos, b.pos, sizeof a.pos) == 0, "dir %d: the seam depends on "
+                      "the edge's direction", k);
+                CHECK(oit_plane_exact_side(&pl, a.pos) == 0, "dir %d: seam vertex off the plane",
+                      k);
+                double tt = (pl.d - x[v]) / (x[w] - x[v]), off = 0;
+                for (int c = 0; c < 3; c++) {
+                    double e = t.v[v].pos[c] + tt * ((double)t.v[w].pos[c] - t.v[v].pos[c]);
+                    CHECK(a.pos[c] >= lo[c] && a.pos[c] <= hi[c], "dir %d: seam leaves the box",
+                          k);
+                    off = fmax(off, fabs(a.pos[c] - e));
+                }
+                int grains = (int)ceil(off / pl.grain);
+                worst_grains = grains > worst_grains ? grains : worst_grains;
+                seams++;
+            }
+            oit_triangle below[2], above[2];
+            int nb, na;
+            CHECK(oit_plane_exact_split(&pl, &t, lo, hi, below, &nb, above, &na),
+                  "dir %d: split failed", k);
+            double area = 0;
+            for (int h = 0; h < nb + na; h++) {
+                const oit_triangle *q = h < nb ? &below[h] : &above[h - nb];
+                area += tri_area(q);
+                for (int v = 0; v < 3; v++) {
+                    int side = oit_plane_exact_side(&pl, q->v[v].pos);
+                    CHECK(h < nb ? side <= 0 : side >= 0, "dir %d: a split vertex on the wrong "
+                          "side", k);
+                }
+            }
+            area_in += tri_area(&t);
+            area_out += area;
+        }
+    }
+    double area_err = fabs(area_out - area_in) / area_in;
+    printf("exact planes: %d seam vertices on their planes, at most %d grains from the edge "
+           "point; split area error %.2g\n", seams, worst_grains, area_err);
+    CHECK(seams > 1000, "only %d seams tested", seams);
+    CHECK(worst_grains <= 4, "a seam vertex %d grains from its edge point", worst_grains);
+    CHECK(area_err < 1e-5, "split area off by %.3g", area_err);
+}
+
+/* A quad of the plane z = h in the frame u = (1,1,0)/sqrt2, v = (-1,1,0)/sqrt2. */
+static void push_uv_quad(tri_list *l, double u0, double u1, double v0, double v1, float h)
+{
+    const double r = sqrt(0.5);
+    oit_vertex c[4];
+    for (int i = 0; i < 4; i++) {
+        double u = i & 1 ? u1 : u0, v = i & 2 ? v1 : v0;
+        c[i] = vtx((float)(r * (u - v)), (float)(r * (u + v)), h);
+    }
+    push3(l, c[0], c[1], c[3]);
+    push3(l, c[0], c[3], c[2]);
+}
+
+/* Three long pieces side by side along a diagonal, weights 2 (K = 4),
+ * each of the last two with a triangle reaching back across the gap before
+ * it: every axis plane, and every plane tilted out of the diagonal, crosses
+ * long triangles, the plane of normal (1,-1,0) in the first gap crosses
+ * only one (in the second gap, the third piece would count below too). */
+static void test_kd_cut(void)
+{
+    tri_list l = {0};
+    uint32_t slot[16];
+    const double r = sqrt(0.5);
+    push_uv_quad(&l, -3, 3, -1, -0.1, 0);
+    push_uv_quad(&l, -3, 3, -1, -0.1, 2);
+    size_t zero = l.n, first = 0;
+    for (int piece = 1; piece <= 2; piece++) {
+        double v0 = piece == 1 ? 0.1 : 1.2, v1 = piece == 1 ? 1 : 2, back = v0 - 0.5;
+        push_uv_quad(&l, -3, 3, v0, v1, 0);
+        push_uv_quad(&l, -3, 3, v0, v1, 2);
+        push3(&l, vtx((float)(r * -back), (float)(r * back), 0),
+              vtx((float)(r * -back), (float)(r * back), 2),
+              vtx((float)(r * -(v0 + 0.4)), (float)(r * (v0 + 0.4)), 1));
+        if (piece == 1)
+            first = l.n;
+    }
+    for (size_t i = 0; i < l.n; i++)
+        slot[i] = i < zero ? 0 : i < first ? 1 : 2;
+    const uint32_t weight[3] = {2, 2, 2};
+    const float lo[3] = {-4, -4, -1}, hi[3] = {4, 4, 3};
+    oit_kd_cut cut;
+    int found = oit_kd_find_cut(l.t, l.n, slot, weight, 3, 4, lo, hi, UINT32_MAX, &cut);
+    const int *n = cut.plane.n;
+    double v = cut.plane.d / sqrt(2.0);
+    printf("kd cut: found %d, normal (%d %d %d), d %g (v = %g), %u crossed\n", found, n[0], n[1],
+           n[2], cut.plane.d, v, cut.cut);
+    CHECK(found == 1 && cut.cut == 1 && n[0] == 1 && n[1] == -1 && n[2] == 0,
+          "want the plane of normal (1,-1,0) crossing 1 triangle");
+    CHECK(found == 1 && -v > -0.1 && -v < 0.1, "plane at v = %g, want inside the gap (-0.1, 0.1)",
+          -v);
+    CHECK(oit_kd_find_cut(l.t, l.n, slot, weight, 3, 4, lo, hi, 0, &cut) == 0,
+          "max_cut 0: a plane crossing nothing does not exist");
+    CHECK(oit_kd_find_cut(l.t, l.n, slot, weight, 3, 2, lo, hi, UINT32_MAX, &cut) == 0,
+          "K = 2: a half of 2 pieces cannot be within 2 layers");
+    free(l.t);
+}
+
 static void test_kd(void)
 {
     tri_list torus = {0}, saddle = {0};
@@ -618,6 +778,8 @@ int main(void)
     test_kd_split_touching();
     test_kd();
     test_kd_slab();
+    test_plane_exact();
+    test_kd_cut();
     if (test_failures)
         fprintf(stderr, "%d check(s) failed\n", test_failures);
     return test_failures != 0;

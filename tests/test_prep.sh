@@ -7,8 +7,10 @@
 #   pixel over 1/255, no overflow); bad inputs exit 3 naming the file, a
 #   missing one exits 1. At the default K = 8, `oitgen demo` and a
 #   16-sector saddle (a wide part) convert, verify, and stream exactly, and
-#   8 diagonal bars side by side become a slab cell with nothing clipped; a
-#   100K plant streams unsplit though a few pixels pass 32 layers.
+#   8 diagonal bars side by side become a slab cell with nothing clipped;
+#   the demo has cutting planes, which save triangles over --slabs
+#   separating; a 100K plant streams unsplit though a few pixels pass 32
+#   layers.
 set -u
 : "${OIT_BIN:?OIT_BIN must name the tools folder}"
 : "${OIT_TEST_TMP:?OIT_TEST_TMP must name a scratch folder}"
@@ -149,6 +151,26 @@ for case in demo.ply saddle.off; do
     echo "$case: stream vs dfb max_abs $(echo "$j" | json_num max_abs), over 1/255 $pct%"
     awk "BEGIN { exit !($pct <= 0.1) }" || fail "$case: $pct% of pixels over 1/255"
 done
+# (f2) cutting planes (partition/kd_cut.h): the demo has nodes of at most
+# 2K layers that no axis plane splits cleanly and no gap separates; some
+# become two parts either side of an integer-normal plane. verify above
+# checked their seam vertices exactly on the plane and the stream equal to
+# DFB; here: there are some, and without them (--slabs separating) the kd's
+# axis splits clip more triangles into more parts.
+cuts=$(json_num cut_slabs <"$T/demo.ply.json")
+expect_rc 0 "$P" verify "$T/demo.ply.oitp"
+grep -q "slabs: $(json_num slabs <"$T/demo.ply.json"), 0 vertices" "$T/out.txt" ||
+    fail "demo: verify slab sides: $(cat "$T/out.txt")"
+expect_rc 0 "$P" "$T/demo.ply" -o "$T/sep.oitp" --slabs separating --stats "$T/sep.json"
+t_cut=$(json_num triangles_out <"$T/demo.ply.json")
+t_sep=$(json_num triangles_out <"$T/sep.json")
+echo "demo: $cuts cutting planes; $t_cut triangles, $t_sep with --slabs separating"
+[ "$cuts" -gt 0 ] && [ "$(json_num cut_slabs <"$T/sep.json")" -eq 0 ] &&
+    [ "$t_cut" -lt "$t_sep" ] ||
+    fail "demo: $cuts cutting planes, $t_cut triangles; --slabs separating: $t_sep"
+expect_rc 2 "$P" "$T/demo.ply" -o "$T/x.oitp" --slabs some
+grep -q "want all, separating or none" "$T/err.txt" || fail "--slabs some: $(cat "$T/err.txt")"
+
 [ "$(json_num wide_parts <"$T/saddle.off.json")" -ge 1 ] &&
     [ "$(json_num max_layer_bound <"$T/saddle.off.json")" -gt 8 ] ||
     fail "saddle: no wide part (the star was split or refused)"

@@ -36,8 +36,9 @@
 extern "C" {
 #endif
 
-#define OIT_PARTFILE_VERSION 2u
-/* The oldest version this build still reads (1: no origin in META). */
+#define OIT_PARTFILE_VERSION 3u
+/* The oldest version this build still reads (1: no origin in META; 1 and 2:
+ * slab normals of unit length). */
 #define OIT_PARTFILE_VERSION_MIN 1u
 #define OIT_PARTFILE_NONE 0xFFFFFFFFu /* "no grid / no cell" in parent links */
 /* A part's layer bound is at most K, except for a wide part: where more than
@@ -98,7 +99,9 @@ typedef struct oit_partfile_cell {
 } oit_partfile_cell; /* 24 bytes */
 
 /* Two parallel planes n.x = d0 <= d1 in one cell: part_below lies in
- * n.x <= d0, part_above in n.x >= d1, the inside parts between them. */
+ * n.x <= d0, part_above in n.x >= d1, the inside parts between them. The
+ * normal need not be unit (version 3): a cutting plane (d0 = d1) has an
+ * integer normal so that its seam vertices lie on it exactly. */
 typedef struct oit_partfile_slab {
     float normal[3];
     float d0, d1;
