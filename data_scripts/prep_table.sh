@@ -39,10 +39,13 @@ mkdir -p "$(dirname "$out")"
     echo "wide: parts whose layer bound exceeds K (pieces meeting at one vertex)."
     echo 'verify: `oitprep verify` (64 directions, 16 viewpoints): layer, order and'
     echo 'slab violations.'
-    echo 'slabs: kd leaves split by a separating slab instead of an axis plane.'
+    echo 'slabs: kd leaves split by a slab instead of an axis plane, of them (cut)'
+    echo 'cutting planes that clip (partition/kd_cut.h); the rest separate with a gap.'
+    echo 'out, separating: triangles out of the same conversion with `--slabs'
+    echo 'separating` (no cutting planes), for comparison.'
     echo
-    echo "| model | triangles in | out | x | pieces | parts | slabs | wide (max bound) | s | tri/s | peak RSS MB | verify |"
-    echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
+    echo "| model | triangles in | out | x | out, separating | pieces | parts | slabs (cut) | wide (max bound) | s | tri/s | peak RSS MB | verify |"
+    echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 } > "$out"
 for m in $models; do
     name=$(basename "$m")
@@ -51,18 +54,22 @@ for m in $models; do
         tin=$(field triangles_in "$work/s.json")
         tout=$(field triangles_out "$work/s.json")
         secs=$(field total "$work/s.json")
+        sep=$("$bin/oitprep" "$m" -o "$work/q.oitp" --slabs separating --stats "$work/q.json" \
+            >/dev/null 2>&1 && field triangles_out "$work/q.json" || echo "?")
+        rm -f "$work/q.oitp"
         ver=$("$bin/oitprep" verify "$work/p.oitp" 2>&1 |
             awk '/layers:/{l=$NF=="violations"?$(NF-1):"?"} /order:/{o=$2} /slabs:/{b=$3}
                  END{print l" / "o" / "b}')
-        echo "| $name | $tin | $tout | $(awk "BEGIN{printf \"%.1f\", $tout/$tin}") |" \
+        echo "| $name | $tin | $tout | $(awk "BEGIN{printf \"%.1f\", $tout/$tin}") | $sep |" \
             "$(field pieces_clustered "$work/s.json") / $(field pieces "$work/s.json") |" \
-            "$(field parts "$work/s.json") | $(field slabs "$work/s.json") |" \
+            "$(field parts "$work/s.json") |" \
+            "$(field slabs "$work/s.json") ($(field cut_slabs "$work/s.json")) |" \
             "$(field wide_parts "$work/s.json") ($(field max_layer_bound "$work/s.json")) |" \
             "$secs | $(awk "BEGIN{printf \"%.0f\", $tin/$secs}") |" \
             "$(awk "BEGIN{printf \"%.0f\", $(field peak_rss_bytes "$work/s.json")/1048576}") |" \
             "$ver |" >> "$out"
     else
-        echo "| $name | refused: $(tail -n 1 "$work/err.txt" | sed 's/|/\\|/g') |||||||||||" >> "$out"
+        echo "| $name | refused: $(tail -n 1 "$work/err.txt" | sed 's/|/\\|/g') ||||||||||||" >> "$out"
     fi
     rm -f "$work/p.oitp"
 done
