@@ -48,7 +48,9 @@ int oit_plane_exact_seam(const oit_plane_exact *pl, const oit_vertex *p, const o
 
 /* Splits t into its closed halves below (n.x <= d) and above, at most 2
  * triangles each, with seams from oit_plane_exact_seam. A triangle lying in
- * the plane goes below only. Returns 0 when a seam could not be placed. */
+ * the plane goes below only. Returns 0 when a seam could not be placed or
+ * a piece would face the other way from t (a sliver folded by the seam's
+ * rounding). */
 int oit_plane_exact_split(const oit_plane_exact *pl, const oit_triangle *t, const float lo[3],
                           const float hi[3], oit_triangle *below, int *n_below,
                           oit_triangle *above, int *n_above);
