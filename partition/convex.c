@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "partition/predicates.h"
+#include "partition/sort.h"
 
 /* ---- shared vertices and edge adjacency ------------------------------------ */
 
@@ -66,13 +67,15 @@ typedef struct edge_rec {
     uint32_t a, b, tri;
 } edge_rec;
 
-static int cmp_edge(const void *x, const void *y)
+static int edge_less(const edge_rec *p, const edge_rec *q)
 {
-    const edge_rec *p = x, *q = y;
-    if (p->a != q->a) return p->a < q->a ? -1 : 1;
-    if (p->b != q->b) return p->b < q->b ? -1 : 1;
-    return (p->tri > q->tri) - (p->tri < q->tri);
+    if (p->a != q->a)
+        return p->a < q->a;
+    if (p->b != q->b)
+        return p->b < q->b;
+    return p->tri < q->tri;
 }
+OIT_SORT_DEFINE(sort_edges, edge_rec, edge_less)
 
 /* Neighbours over shared edges, in a deterministic order (by edge, then
  * triangle index). */
@@ -89,7 +92,7 @@ static oit_status build_adjacency(size_t n, mesh_graph *g)
             uint32_t a = g->vid[3 * t + k], b = g->vid[3 * t + (k + 1) % 3];
             e[3 * t + k] = (edge_rec){a < b ? a : b, a < b ? b : a, (uint32_t)t};
         }
-    qsort(e, 3 * n, sizeof *e, cmp_edge);
+    sort_edges(e, 3 * n);
     /* Two passes over runs of equal edges: count, then fill. */
     size_t total = 0;
     for (int pass = 0; pass < 2; pass++) {

@@ -1,5 +1,6 @@
 /* Cutting planes for kd nodes (kd_cut.h). */
 #include "partition/kd_cut.h"
+#include "partition/sort.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -30,54 +31,10 @@ typedef struct weighted {
     uint32_t weight;
 } weighted;
 
-/* Sorting is most of a cut search's time: plain quicksort on doubles,
- * insertion below 16 (qsort's callback per compare cost 5x more). */
-static void sort_doubles(double *a, size_t n)
-{
-    while (n > 16) {
-        double x = a[0], y = a[n / 2], z = a[n - 1];
-        double pivot = x < y ? (y < z ? y : x < z ? z : x) : (x < z ? x : y < z ? z : y);
-        size_t i = 0, j = n - 1;
-        for (;;) {
-            while (a[i] < pivot)
-                i++;
-            while (a[j] > pivot)
-                j--;
-            if (i >= j)
-                break;
-            double t = a[i];
-            a[i++] = a[j];
-            a[j--] = t;
-        }
-        /* Recurse into the smaller side, loop on the larger. */
-        if (j + 1 < n - j - 1) {
-            sort_doubles(a, j + 1);
-            a += j + 1;
-            n -= j + 1;
-        } else {
-            sort_doubles(a + j + 1, n - j - 1);
-            n = j + 1;
-        }
-    }
-    for (size_t i = 1; i < n; i++) {
-        double x = a[i];
-        size_t j = i;
-        for (; j > 0 && a[j - 1] > x; j--)
-            a[j] = a[j - 1];
-        a[j] = x;
-    }
-}
-
-static void sort_weighted(weighted *a, uint32_t n)
-{
-    for (uint32_t i = 1; i < n; i++) {
-        weighted x = a[i];
-        uint32_t j = i;
-        for (; j > 0 && a[j - 1].at > x.at; j--)
-            a[j] = a[j - 1];
-        a[j] = x;
-    }
-}
+#define DOUBLE_LESS(x, y) (*(x) < *(y))
+#define WEIGHTED_LESS(x, y) ((x)->at < (y)->at)
+OIT_SORT_DEFINE(sort_doubles, double, DOUBLE_LESS)
+OIT_SORT_DEFINE(sort_weighted, weighted, WEIGHTED_LESS)
 
 typedef struct cut_work {
     float (*inner)[6][3]; /* per piece: its vertices extreme on each axis */

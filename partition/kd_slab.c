@@ -1,6 +1,7 @@
 /* Separating slabs for kd nodes (kd_slab.h). */
 #include "partition/kd_slab.h"
 #include "partition/minmax.h"
+#include "partition/sort.h"
 
 #include <float.h>
 #include <math.h>
@@ -43,11 +44,8 @@ static double dotd(const float n[3], const float p[3])
     return (double)n[0] * p[0] + (double)n[1] * p[1] + (double)n[2] * p[2];
 }
 
-static int span_cmp(const void *a, const void *b)
-{
-    const span *x = a, *y = b;
-    return (x->lo > y->lo) - (x->lo < y->lo);
-}
+#define SPAN_LESS(x, y) ((x)->lo < (y)->lo)
+OIT_SORT_DEFINE(sort_spans, span, SPAN_LESS)
 
 static float round_up(double x)
 {
@@ -105,7 +103,7 @@ typedef struct best_slab {
 static int sweep(span *sp, uint32_t np, const uint32_t *weight, uint32_t total, uint32_t K,
                  double margin, double extent, best_slab *best, oit_kd_slab *out)
 {
-    qsort(sp, np, sizeof *sp, span_cmp);
+    sort_spans(sp, np);
     double maxhi = -INFINITY;
     uint32_t below = 0;
     int improved = 0;
@@ -141,6 +139,9 @@ static int corner_cmp(const void *a, const void *b)
     return 0;
 }
 
+#define CORNER_LESS(x, y) (corner_cmp((x), (y)) < 0)
+OIT_SORT_DEFINE(sort_corners, corner, CORNER_LESS)
+
 static uint32_t find_root(uint32_t *parent, uint32_t i)
 {
     while (parent[i] != i)
@@ -155,7 +156,7 @@ static uint32_t find_root(uint32_t *parent, uint32_t i)
  * piece's group. Returns the group count. */
 static uint32_t group_pieces(corner *c, size_t *nc, uint32_t np, uint32_t *comp)
 {
-    qsort(c, *nc, sizeof *c, corner_cmp);
+    sort_corners(c, *nc);
     for (uint32_t p = 0; p < np; p++)
         comp[p] = p;
     for (size_t i = 1; i < *nc; i++)

@@ -4,6 +4,8 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "partition/sort.h"
+
 /* One try at a two-cell grid of half-width w whose inner boundary is pos. */
 static int cells_with(const float lo[3], const float hi[3], int axis, float pos, float w,
                       float origin[3], float cell_size[3])
@@ -60,11 +62,8 @@ typedef struct axis_events {
     uint32_t n, nflat, nface_hi, nface_lo;
 } axis_events;
 
-static int event_cmp(const void *a, const void *b)
-{
-    const event *x = a, *y = b;
-    return (x->v > y->v) - (x->v < y->v);
-}
+#define EVENT_LESS(x, y) ((x)->v < (y)->v)
+OIT_SORT_DEFINE(sort_events, event, EVENT_LESS)
 
 /* Index of the first event with v >= m (strict 0) or v > m (strict 1). */
 static uint32_t bound(const event *e, uint32_t n, float m, int after_equal)
@@ -119,11 +118,11 @@ static void events_fill(const oit_kd_piece_box *pieces, uint32_t count, int axis
         if ((p->face_lo >> axis & 1) && p->lo[axis] < p->hi[axis])
             ev->face_lo[ev->nface_lo++] = ev->lo[i];
     }
-    qsort(ev->lo, count, sizeof *ev->lo, event_cmp);
-    qsort(ev->hi, count, sizeof *ev->hi, event_cmp);
-    qsort(ev->flat, ev->nflat, sizeof *ev->flat, event_cmp);
-    qsort(ev->face_hi, ev->nface_hi, sizeof *ev->face_hi, event_cmp);
-    qsort(ev->face_lo, ev->nface_lo, sizeof *ev->face_lo, event_cmp);
+    sort_events(ev->lo, count);
+    sort_events(ev->hi, count);
+    sort_events(ev->flat, ev->nflat);
+    sort_events(ev->face_hi, ev->nface_hi);
+    sort_events(ev->face_lo, ev->nface_lo);
     prefix(ev->lo, count, ev->pre_lo);
     prefix(ev->hi, count, ev->pre_hi);
     prefix(ev->flat, ev->nflat, ev->pre_flat);

@@ -14,6 +14,7 @@
 #include "partition/plane_exact.h"
 #include "partition/kd_split.h"
 #include "partition/predicates.h"
+#include "partition/sort.h"
 #include "test_check.h"
 
 /* ---------------------------------------------------------------- predicates */
@@ -684,6 +685,34 @@ static void test_plane_exact(void)
     CHECK(area_err < 1e-5, "split area off by %.3g", area_err);
 }
 
+/* ------------------------------------------------------------- sorting */
+
+typedef struct keyed {
+    uint32_t key, order;
+} keyed;
+#define KEYED_LESS(x, y) ((x)->key < (y)->key)
+OIT_SORT_DEFINE(sort_keyed, keyed, KEYED_LESS)
+
+/* Sorted and stable at every size around the insertion threshold and far
+ * above it, with many equal keys. */
+static void test_sort(void)
+{
+    uint32_t seed = 7;
+    const size_t sizes[] = {0, 1, 2, 23, 24, 25, 48, 49, 1000, 4097};
+    keyed *a = malloc(4097 * sizeof *a);
+    for (size_t s = 0; s < sizeof sizes / sizeof sizes[0]; s++) {
+        size_t n = sizes[s];
+        for (size_t i = 0; i < n; i++)
+            a[i] = (keyed){lcg_next(&seed) % 17, (uint32_t)i};
+        sort_keyed(a, n);
+        for (size_t i = 1; i < n; i++)
+            CHECK(a[i - 1].key < a[i].key ||
+                      (a[i - 1].key == a[i].key && a[i - 1].order < a[i].order),
+                  "sort of %zu: element %zu out of order or unstable", n, i);
+    }
+    free(a);
+}
+
 /* A quad of the plane z = h in the frame u = (1,1,0)/sqrt2, v = (-1,1,0)/sqrt2. */
 static void push_uv_quad(tri_list *l, double u0, double u1, double v0, double v1, float h)
 {
@@ -778,6 +807,7 @@ int main(void)
     test_kd_split_touching();
     test_kd();
     test_kd_slab();
+    test_sort();
     test_plane_exact();
     test_kd_cut();
     if (test_failures)
