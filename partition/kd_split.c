@@ -65,18 +65,23 @@ typedef struct axis_events {
 #define EVENT_LESS(x, y) ((x)->v < (y)->v)
 OIT_SORT_DEFINE(sort_events, event, EVENT_LESS)
 
-/* Index of the first event with v >= m (strict 0) or v > m (strict 1). */
-static uint32_t bound(const event *e, uint32_t n, float m, int after_equal)
+/* Positions in the sorted event arrays for a non-decreasing sequence of
+ * planes m: each index only moves forward, so scoring all of a node's
+ * candidates costs one pass over its events rather than a binary search
+ * per array per candidate. */
+typedef struct cursor {
+    uint32_t lo_ge, lo_gt, hi_ge, hi_gt, flat_ge, flat_gt, fhi_ge, fhi_gt, flo_ge, flo_gt;
+} cursor;
+
+/* Advances *ge to the first event with v >= m and *gt to the first v > m. */
+static void advance(const event *e, uint32_t n, float m, uint32_t *ge, uint32_t *gt)
 {
-    uint32_t a = 0, b = n;
-    while (a < b) {
-        uint32_t mid = a + (b - a) / 2;
-        if (e[mid].v < m || (after_equal && e[mid].v == m))
-            a = mid + 1;
-        else
-            b = mid;
-    }
-    return a;
+    while (*ge < n && e[*ge].v < m)
+        (*ge)++;
+    if (*gt < *ge)
+        *gt = *ge;
+    while (*gt < n && e[*gt].v <= m)
+        (*gt)++;
 }
 
 static void prefix(const event *e, uint32_t n, uint32_t *pre)
@@ -135,34 +140,31 @@ static void events_free(axis_events *ev)
 }
 
 /* The weights each side of a plane at m, by the rule of kd_split.h: a piece
- * goes below when it starts below m or ends on it, above when it ends above. */
-static void sides(const axis_events *ev, float m, uint32_t total, uint32_t *below,
-                  uint32_t *above, uint32_t *cut)
+ * goes below when it starts below m or ends on it, above when it ends above;
+ * and whether a piece with a triangle in its upper face and another with one
+ * in its lower face meet at m (kd_split.h: their faces may coincide). */
+static int sides(const axis_events *ev, cursor *c, float m, uint32_t total, uint32_t *below,
+                 uint32_t *above, uint32_t *cut)
 {
-    uint32_t starts_below = ev->pre_lo[bound(ev->lo, ev->n, m, 0)];
-    uint32_t ends_by = ev->pre_hi[bound(ev->hi, ev->n, m, 1)];
-    uint32_t flat_on = ev->pre_flat[bound(ev->flat, ev->nflat, m, 1)] -
-                       ev->pre_flat[bound(ev->flat, ev->nflat, m, 0)];
+    advance(ev->lo, ev->n, m, &c->lo_ge, &c->lo_gt);
+    advance(ev->hi, ev->n, m, &c->hi_ge, &c->hi_gt);
+    advance(ev->flat, ev->nflat, m, &c->flat_ge, &c->flat_gt);
+    advance(ev->face_hi, ev->nface_hi, m, &c->fhi_ge, &c->fhi_gt);
+    advance(ev->face_lo, ev->nface_lo, m, &c->flo_ge, &c->flo_gt);
+    uint32_t starts_below = ev->pre_lo[c->lo_ge], ends_by = ev->pre_hi[c->hi_gt];
+    uint32_t flat_on = ev->pre_flat[c->flat_gt] - ev->pre_flat[c->flat_ge];
     *below = starts_below + flat_on;
     *above = total - ends_by;
     *cut = starts_below + flat_on - ends_by;
+    return c->fhi_gt > c->fhi_ge && c->flo_gt > c->flo_ge;
 }
 
-/* Whether a piece with a triangle in its upper face and another with one in
- * its lower face meet at m (kd_split.h: their faces may coincide). */
-static int touching(const axis_events *ev, float m)
-{
-    return bound(ev->face_hi, ev->nface_hi, m, 1) > bound(ev->face_hi, ev->nface_hi, m, 0) &&
-           bound(ev->face_lo, ev->nface_lo, m, 1) > bound(ev->face_lo, ev->nface_lo, m, 0);
-}
-
-static int score(const axis_events *ev, float m, uint32_t max_layers, uint32_t total,
+static int score(const axis_events *ev, cursor *c, float m, uint32_t max_layers, uint32_t total,
                  split_score *out)
 {
-    if (touching(ev, m))
-        return 0;
     uint32_t below, above, cut;
-    sides(ev, m, total, &below, &above, &cut);
+    if (sides(ev, c, m, total, &below, &above, &cut))
+        return 0; /* touching faces */
     uint32_t larger = below > above ? below : above;
     if (larger >= total)
         return 0;
@@ -183,12 +185,13 @@ typedef struct split_best {
     split_score s;
 } split_best;
 
-static void consider(const axis_events *ev, const float lo[3], const float hi[3], int axis,
-                     float m, uint32_t max_layers, uint32_t total, split_best *best)
+/* c: the cursor of the candidate sequence m belongs to (non-decreasing). */
+static void consider(const axis_events *ev, cursor *c, const float lo[3], const float hi[3],
+                     int axis, float m, uint32_t max_layers, uint32_t total, split_best *best)
 {
     float origin[3], cell[3];
     split_score s;
-    if (!(m > lo[axis] && m < hi[axis]) || !score(ev, m, max_layers, total, &s) ||
+    if (!(m > lo[axis] && m < hi[axis]) || !score(ev, c, m, max_layers, total, &s) ||
         (best->found && !better(s, best->s)) ||
         !oit_kd_split_cells(lo, hi, axis, m, origin, cell))
         return;
@@ -209,19 +212,20 @@ int oit_kd_choose_split(const oit_kd_piece_box *pieces, uint32_t count, const fl
     }
     for (int a = 0; a < 3; a++) {
         events_fill(pieces, count, a, &ev);
+        cursor dyadic = {0}, at_lo = {0}, at_hi = {0};
         for (int j = 1; j < 16; j++) {
             double md = (double)lo[a] + ((double)hi[a] - lo[a]) * j / 16.0;
             if ((double)(float)md == md)
-                consider(&ev, lo, hi, a, (float)md, max_layers, total, &best);
+                consider(&ev, &dyadic, lo, hi, a, (float)md, max_layers, total, &best);
         }
         /* Planes through the pieces' own bounds cut nothing that ends or
          * starts there: in CAD models (beams, pipes, boxes on a lattice)
          * they slip between objects where the dyadic planes cut through. */
         for (uint32_t i = 0; i < count; i++) {
             if (i == 0 || ev.lo[i].v != ev.lo[i - 1].v)
-                consider(&ev, lo, hi, a, ev.lo[i].v, max_layers, total, &best);
+                consider(&ev, &at_lo, lo, hi, a, ev.lo[i].v, max_layers, total, &best);
             if (i == 0 || ev.hi[i].v != ev.hi[i - 1].v)
-                consider(&ev, lo, hi, a, ev.hi[i].v, max_layers, total, &best);
+                consider(&ev, &at_hi, lo, hi, a, ev.hi[i].v, max_layers, total, &best);
         }
     }
     events_free(&ev);
