@@ -322,6 +322,46 @@ static int all_pieces_touch(kd_ctx *c, const node_set *s, const float p[3], uint
     return hit == npieces;
 }
 
+/* The intersection of the pieces' boxes: a vertex every piece touches lies
+ * in it, so it rules out most candidates before all_pieces_touch scans the
+ * node for them. Without memory for the boxes it is everything. */
+static void common_box(kd_ctx *c, const node_set *s, uint32_t npieces, float lo[3], float hi[3])
+{
+    float(*b)[6] = malloc(npieces * sizeof *b);
+    for (int a = 0; a < 3; a++) {
+        lo[a] = -INFINITY;
+        hi[a] = INFINITY;
+    }
+    if (!b)
+        return;
+    uint32_t k = ++c->stamp, count = 0;
+    for (size_t i = 0; i < s->n; i++) {
+        uint32_t p = s->piece[i];
+        if (c->piece_stamp[p] != k) {
+            c->piece_stamp[p] = k;
+            c->piece_slot[p] = count;
+            for (int a = 0; a < 3; a++) {
+                b[count][a] = INFINITY;
+                b[count][3 + a] = -INFINITY;
+            }
+            count++;
+        }
+        float *pb = b[c->piece_slot[p]];
+        for (int a = 0; a < 3; a++) {
+            float mn, mx;
+            tri_range(&s->tris[i], a, &mn, &mx);
+            pb[a] = oit_min_f(pb[a], mn);
+            pb[3 + a] = oit_max_f(pb[3 + a], mx);
+        }
+    }
+    for (uint32_t p = 0; p < count; p++)
+        for (int a = 0; a < 3; a++) {
+            lo[a] = oit_max_f(lo[a], b[p][a]);
+            hi[a] = oit_min_f(hi[a], b[p][3 + a]);
+        }
+    free(b);
+}
+
 /* A star: all pieces of the node meet at one vertex. A box around that
  * vertex holds all of them however small it gets, so halving is futile.
  * Clipping keeps a vertex inside the box as a corner of some sub-triangle,
@@ -348,10 +388,15 @@ static int node_is_star(kd_ctx *c, const node_set *s, uint32_t npieces)
         }
     if (best_count > 16)
         return 0;
+    float lo[3], hi[3];
+    common_box(c, s, npieces, lo, hi);
     for (size_t i = 0; i < s->n; i++)
-        for (int v = 0; v < 3 && s->piece[i] == best; v++)
-            if (all_pieces_touch(c, s, s->tris[i].v[v].pos, npieces))
+        for (int v = 0; v < 3 && s->piece[i] == best; v++) {
+            const float *p = s->tris[i].v[v].pos;
+            if (p[0] >= lo[0] && p[0] <= hi[0] && p[1] >= lo[1] && p[1] <= hi[1] &&
+                p[2] >= lo[2] && p[2] <= hi[2] && all_pieces_touch(c, s, p, npieces))
                 return 1;
+        }
     return 0;
 }
 
