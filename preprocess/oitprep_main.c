@@ -23,7 +23,7 @@
 static void usage(FILE *f)
 {
     fputs("usage: oitprep info FILE [--json]\n"
-          "       oitprep verify FILE [--directions M] [--viewpoints V]\n"
+          "       oitprep verify FILE [--directions M] [--viewpoints V] [--chunk-triangles T]\n"
           "       oitprep INPUT -o OUT.oitp [--max-layers K] [--memory BYTES] [--threads N]\n"
           "               [--stats FILE.json] [--grid N] [--max-piece-triangles T]\n"
           "               [--manage grid|kd-parts|kd-facets] [--slabs all|separating|none]\n"
@@ -37,7 +37,10 @@ static void usage(FILE *f)
           "                the centre among them); fails (exit 1) when a part yields more\n"
           "                hits than its layer bound, parts are met out of the order\n"
           "                stream/order.h computes for the ray's origin, or a slab's\n"
-          "                parts have a vertex on the wrong side of its planes\n"
+          "                parts have a vertex on the wrong side of its planes (exact).\n"
+          "                The parts go into Embree scenes of at most T triangles\n"
+          "                (default 4M, suffix K/M/G), built and cast one at a time:\n"
+          "                memory holds one scene (about 100 bytes a triangle)\n"
           "  INPUT -o OUT  convert a mesh (PLY, OBJ, OFF, STL, glTF/GLB) into a part file:\n"
           "                convex pieces grouped into parts of at most K layers (1 per\n"
           "                planar piece, 2 per other), in a grid of kd-subdivided cells;\n"
@@ -320,6 +323,10 @@ static int cmd_verify(int argc, char **argv)
             if (option_value(argc, argv, &i, argv[i], 0, 0, 100000, &v))
                 return 2;
             o.viewpoints = (uint32_t)v;
+        } else if (strcmp(argv[i], "--chunk-triangles") == 0) {
+            if (option_value(argc, argv, &i, argv[i], 1, 1, 1ull << 32, &v))
+                return 2;
+            o.chunk_triangles = v;
         } else if (argv[i][0] == '-' || path) {
             fprintf(stderr, "oitprep verify: unexpected argument '%s'\n", argv[i]);
             return 2;

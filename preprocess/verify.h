@@ -1,8 +1,10 @@
 /* `oitprep verify`: checks a part file against the oracles of DESIGN.md with
  * rays, independently of the converter.
  *
- * Every part goes into one Embree scene (primitive -> part map); an intersect
- * filter records every hit and rejects it, so each ray sees all surfaces.
+ * The parts go into Embree scenes of at most chunk_triangles triangles, built,
+ * cast and released one at a time (primitive -> part map); an intersect
+ * filter records every hit and rejects it, so each ray sees all surfaces,
+ * and the hits of all chunks are merged per ray before the checks.
  * Rays: (a) parallel bundles from M directions spread over the sphere,
  * covering the scene bounds, ordered for an eye far back along the
  * direction; (b) rays in random directions from V viewpoints inside and
@@ -11,7 +13,7 @@
  * parts met along a ray, sorted by distance, never go back in the order that
  * stream/order.h computes for the ray's origin (hits closer than a tolerance,
  * e.g. on a shared cell face, are ties); (3) every slab's part_below lies in
- * n.x <= d0 and its part_above in n.x >= d1, vertex by vertex in double,
+ * n.x <= d0 and its part_above in n.x >= d1, vertex by vertex and exactly,
  * and its inside parts between (docs/part-file.md leaves this to us).
  */
 #ifndef OIT_PREPROCESS_VERIFY_H
@@ -28,7 +30,13 @@ typedef struct oit_verify_options {
     uint32_t bundle_side;     /* rays per bundle = side^2; 0: 24 */
     uint32_t rays_per_point;  /* 0: 1024 */
     uint64_t seed;            /* 0: a fixed default */
+    uint64_t chunk_triangles; /* most triangles in one Embree scene; 0: default */
 } oit_verify_options;
+
+/* Scenes of at most this many triangles (whole parts) are built, cast and
+ * released one after another: memory holds one chunk's BVH, not the file's.
+ * About 100 bytes a triangle while a chunk is held. */
+#define OIT_VERIFY_CHUNK_TRIANGLES (4u << 20)
 
 typedef struct oit_verify_report {
     uint64_t rays, hits, rays_hitting;
@@ -39,6 +47,7 @@ typedef struct oit_verify_report {
     uint64_t layer_violations, order_violations;
     uint32_t slabs;
     uint64_t slab_violations; /* vertices on the wrong side of a slab plane */
+    uint32_t chunks;          /* Embree scenes built one after another */
     char first_violation[256];
 } oit_verify_report;
 

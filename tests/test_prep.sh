@@ -9,7 +9,7 @@
 #   16-sector saddle (a wide part) convert, verify, and stream exactly, and
 #   8 diagonal bars side by side become a slab cell with nothing clipped;
 #   the demo has cutting planes, which save triangles over --slabs
-#   separating; a 100K plant streams unsplit though a few pixels pass 32
+#   separating, and verifies alike in one Embree scene or many; a 100K plant streams unsplit though a few pixels pass 32
 #   layers.
 set -u
 : "${OIT_BIN:?OIT_BIN must name the tools folder}"
@@ -168,6 +168,16 @@ echo "demo: $cuts cutting planes; $t_cut triangles, $t_sep with --slabs separati
 [ "$cuts" -gt 0 ] && [ "$(json_num cut_slabs <"$T/sep.json")" -eq 0 ] &&
     [ "$t_cut" -lt "$t_sep" ] ||
     fail "demo: $cuts cutting planes, $t_cut triangles; --slabs separating: $t_sep"
+# verify in Embree scenes of at most 20K triangles, built one at a time,
+# gives the same figures as one scene (hits merged per ray across scenes).
+"$P" verify "$T/demo.ply.oitp" >"$T/v1.txt" 2>&1
+"$P" verify "$T/demo.ply.oitp" --chunk-triangles 20K >"$T/vc.txt" 2>&1
+scenes=$(sed -n 's/.*parts (\([0-9]*\) Embree scenes*).*/\1/p' "$T/vc.txt")
+sed 's/ ([0-9]* Embree scenes*)//' "$T/v1.txt" >"$T/v1s.txt"
+sed 's/ ([0-9]* Embree scenes*)//' "$T/vc.txt" >"$T/vcs.txt"
+echo "demo: verify in $scenes scenes of <= 20K triangles: $(head -n 1 "$T/vcs.txt")"
+[ -n "$scenes" ] && [ "$scenes" -gt 1 ] && cmp -s "$T/v1s.txt" "$T/vcs.txt" ||
+    fail "verify --chunk-triangles 20K ($scenes scenes) differs: $(diff "$T/v1s.txt" "$T/vcs.txt")"
 expect_rc 2 "$P" "$T/demo.ply" -o "$T/x.oitp" --slabs some
 grep -q "want all, separating or none" "$T/err.txt" || fail "--slabs some: $(cat "$T/err.txt")"
 
