@@ -899,6 +899,9 @@ static void fill_summary(oit_partfile *pf)
     s->parts = pf->hdr.part_count;
     s->pieces = pf->piece_count;
     s->slabs = pf->slab_count;
+    s->cut_slabs = 0;
+    for (uint32_t i = 0; i < pf->slab_count; i++)
+        s->cut_slabs += pf->slabs[i].d0 == pf->slabs[i].d1;
     s->cells = pf->cell_count;
     s->subgrids = pf->grid_count - 1;
     s->attributes = pf->meta.attributes;

@@ -30,7 +30,7 @@ static void usage(FILE *f)
           "\n"
           "  info FILE     validate a part file completely (header, checksums, every record\n"
           "                and index) and print its counts; --json prints one JSON object\n"
-          "                (triangles, parts, pieces, slabs, cells, subgrid_depth, bytes,\n"
+          "                (triangles, parts, pieces, slabs, cut_slabs, cells, subgrid_depth, bytes,\n"
           "                layer_bound, attributes, version, K, ...)\n"
           "  verify FILE   cast rays through every part (Embree): parallel bundles from M\n"
           "                directions (default 64) and rays from V viewpoints (default 16,\n"
@@ -96,7 +96,8 @@ static void print_json(const oit_partfile *pf, const oit_partfile_summary *s)
     json_string(oit_partfile_name(pf));
     printf(", \"version\": %u, \"K\": %u, \"triangles\": %llu, \"triangles_in\": %llu, "
            "\"triangles_dropped\": %llu, \"triangles_split\": %llu, \"parts\": %llu, "
-           "\"pieces\": %llu, \"slabs\": %llu, \"cells\": %llu, \"subgrids\": %llu, "
+           "\"pieces\": %llu, \"slabs\": %llu, \"cut_slabs\": %llu, \"cells\": %llu, "
+           "\"subgrids\": %llu, "
            "\"subgrid_depth\": %u, \"layer_bound\": %u, \"parts_index16\": %llu, "
            "\"parts_index32\": %llu, \"bytes\": %llu, \"data_bytes\": %llu, "
            "\"part_align\": %u, \"attributes\": [",
@@ -104,7 +105,7 @@ static void print_json(const oit_partfile *pf, const oit_partfile_summary *s)
            (unsigned long long)s->triangles_in, (unsigned long long)s->triangles_dropped,
            (unsigned long long)s->triangles_split, (unsigned long long)s->parts,
            (unsigned long long)s->pieces, (unsigned long long)s->slabs,
-           (unsigned long long)s->cells, (unsigned long long)s->subgrids, s->subgrid_depth,
+           (unsigned long long)s->cut_slabs, (unsigned long long)s->cells, (unsigned long long)s->subgrids, s->subgrid_depth,
            s->layer_bound, (unsigned long long)s->parts_index16,
            (unsigned long long)s->parts_index32, (unsigned long long)s->bytes,
            (unsigned long long)s->data_bytes, s->part_align);
@@ -138,9 +139,9 @@ static void print_human(const oit_partfile *pf, const oit_partfile_summary *s)
            (unsigned long long)s->parts, (unsigned long long)s->parts_index16,
            (unsigned long long)s->parts_index32, s->layer_bound);
     printf("  pieces     %llu\n", (unsigned long long)s->pieces);
-    printf("  cells      %llu (subgrids %llu, subgrid depth %u), slabs %llu\n",
+    printf("  cells      %llu (subgrids %llu, subgrid depth %u), slabs %llu (%llu cutting)\n",
            (unsigned long long)s->cells, (unsigned long long)s->subgrids, s->subgrid_depth,
-           (unsigned long long)s->slabs);
+           (unsigned long long)s->slabs, (unsigned long long)s->cut_slabs);
     printf("  attributes %s\n", attr);
     printf("  bytes      %llu (part data %llu, parts aligned to %u)\n",
            (unsigned long long)s->bytes, (unsigned long long)s->data_bytes, s->part_align);

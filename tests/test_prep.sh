@@ -178,6 +178,9 @@ sed 's/ ([0-9]* Embree scenes*)//' "$T/vc.txt" >"$T/vcs.txt"
 echo "demo: verify in $scenes scenes of <= 20K triangles: $(head -n 1 "$T/vcs.txt")"
 [ -n "$scenes" ] && [ "$scenes" -gt 1 ] && cmp -s "$T/v1s.txt" "$T/vcs.txt" ||
     fail "verify --chunk-triangles 20K ($scenes scenes) differs: $(diff "$T/v1s.txt" "$T/vcs.txt")"
+"$P" info "$T/demo.ply.oitp" --json >"$T/info.json" 2>&1
+[ "$(json_num cut_slabs <"$T/info.json")" = "$cuts" ] ||
+    fail "info --json: cut_slabs $(json_num cut_slabs <"$T/info.json"), the conversion made $cuts"
 expect_rc 2 "$P" "$T/demo.ply" -o "$T/x.oitp" --slabs some
 grep -q "want all, separating or none" "$T/err.txt" || fail "--slabs some: $(cat "$T/err.txt")"
 

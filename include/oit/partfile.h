@@ -134,6 +134,7 @@ typedef struct oit_partfile_summary {
     float bounds_min[3];
     float bounds_max[3];
     double origin[3];       /* positions are relative to it (oit_mesh_info) */
+    uint64_t cut_slabs;     /* of slabs, cutting planes (d0 = d1)           */
 } oit_partfile_summary;
 
 /* ---- reader ------------------------------------------------------------ */
