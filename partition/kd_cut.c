@@ -77,7 +77,9 @@ static int feasible_span(const cut_work *w, uint32_t npieces, uint32_t total, ui
 
 /* Whether a placement may be feasible along n, judged from each piece's
  * six axis-extreme vertices: their span lies inside the piece's, so fewer
- * pieces reach either side and a direction infeasible here is infeasible. */
+ * pieces reach either side and a direction infeasible here is infeasible.
+ * (Where the narrower spans leave a side empty, the true ones put every
+ * piece on the other side, more than K since total > K.) */
 static int may_be_feasible(cut_work *w, const int n[3], const uint32_t *weight,
                            uint32_t npieces, uint32_t total, uint32_t K)
 {
@@ -97,11 +99,14 @@ static int may_be_feasible(cut_work *w, const int n[3], const uint32_t *weight,
     return feasible_span(w, npieces, total, K, &from, &to);
 }
 
-static void inner_points(cut_work *w, const oit_triangle *tris, size_t count,
-                         const uint32_t *slot, uint32_t npieces)
+/* Returns 0 (no prefilter) when memory runs out. */
+static int inner_points(cut_work *w, const oit_triangle *tris, size_t count,
+                        const uint32_t *slot, uint32_t npieces)
 {
     uint8_t *seen = calloc(npieces, 1);
-    for (size_t i = 0; seen && i < count; i++)
+    if (!seen)
+        return 0;
+    for (size_t i = 0; i < count; i++)
         for (int v = 0; v < 3; v++) {
             const float *q = tris[i].v[v].pos;
             float (*in)[3] = w->inner[slot[i]];
@@ -114,6 +119,7 @@ static void inner_points(cut_work *w, const oit_triangle *tris, size_t count,
             seen[slot[i]] = 1;
         }
     free(seen);
+    return 1;
 }
 
 /* Projects the node along n and keeps, sorted, the ends of the triangles
@@ -219,23 +225,25 @@ int oit_kd_find_cut(const oit_triangle *tris, size_t n, const uint32_t *slot,
 {
     int dirs[OIT_KD_CUT_DIRS][3];
     int ndirs = cut_dirs(dirs);
+    uint32_t total = 0, spread = 0;
+    for (uint32_t p = 0; p < npieces; p++)
+        total += weight[p];
+    if (total <= max_layers)
+        return 0; /* one part already: nothing to cut */
     size_t room = n + npieces;
-    cut_work w = {malloc(npieces * sizeof *w.inner), malloc(n * sizeof *w.tl),         malloc(n * sizeof *w.th),
-                  malloc(room * sizeof *w.tlo),     malloc(room * sizeof *w.thi),
-                  malloc(2 * room * sizeof *w.events), malloc(npieces * sizeof *w.plo),
-                  malloc(npieces * sizeof *w.phi)};
+    cut_work w = {malloc(npieces * sizeof *w.inner), malloc(n * sizeof *w.tl),
+                  malloc(n * sizeof *w.th),          malloc(room * sizeof *w.tlo),
+                  malloc(room * sizeof *w.thi),      malloc(2 * room * sizeof *w.events),
+                  malloc(npieces * sizeof *w.plo),   malloc(npieces * sizeof *w.phi)};
     int found = -1;
     if (w.inner && w.tl && w.th && w.tlo && w.thi && w.events && w.plo && w.phi) {
-        uint32_t total = 0, spread = 0;
-        for (uint32_t p = 0; p < npieces; p++)
-            total += weight[p];
         found = 0;
         cut->cut = max_cut;
-        inner_points(&w, tris, n, slot, npieces);
+        int prefilter = inner_points(&w, tris, n, slot, npieces);
         for (int k = 0; k < ndirs; k++) {
             oit_plane_exact pl;
             oit_plane_exact_init(&pl, dirs[k], lo, hi);
-            if (!may_be_feasible(&w, dirs[k], weight, npieces, total, max_layers))
+            if (prefilter && !may_be_feasible(&w, dirs[k], weight, npieces, total, max_layers))
                 continue;
             size_t kept = 0;
             size_t events = project_all(&w, dirs[k], tris, n, slot, weight, npieces, total,
