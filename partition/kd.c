@@ -427,24 +427,45 @@ static oit_status push_slab(oit_kd_result *r, size_t node, const oit_kd_slab *pl
     return OIT_OK;
 }
 
+/* The node's pieces as the slab and cut searches take them: each
+ * triangle's piece slot (piece_boxes' numbering) and each slot's weight. */
+typedef struct slab_input {
+    uint32_t *slot, *weight;
+} slab_input;
+
+static oit_status slab_input_make(const kd_ctx *c, const node_set *s, const oit_kd_piece_box *b,
+                                  uint32_t npieces, slab_input *in)
+{
+    in->slot = malloc(s->n * sizeof *in->slot);
+    in->weight = malloc(npieces * sizeof *in->weight);
+    if (!in->slot || !in->weight)
+        return OIT_ERR_NOMEM;
+    for (size_t i = 0; i < s->n; i++)
+        in->slot[i] = c->piece_slot[s->piece[i]];
+    for (uint32_t p = 0; p < npieces; p++)
+        in->weight[p] = b[p].weight;
+    return OIT_OK;
+}
+
+static void slab_input_free(slab_input *in)
+{
+    free(in->slot);
+    free(in->weight);
+}
+
 /* The node as two parts on either side of a slab (kd_slab.h), when one
- * separates its pieces; *done tells whether it did. piece_slot must still
- * be piece_boxes' numbering. */
-static oit_status try_slab(kd_ctx *c, size_t node, const node_set *s, const oit_kd_piece_box *b,
+ * separates its pieces; *done tells whether it did. */
+static oit_status try_slab(kd_ctx *c, size_t node, const node_set *s, const slab_input *in,
                            uint32_t npieces, int *done)
 {
-    uint32_t *slot = malloc(s->n * sizeof *slot), *weight = malloc(npieces * sizeof *weight);
+    const uint32_t *slot = in->slot;
     uint8_t *side = malloc(npieces);
     node_set half[2] = {{0}, {0}};
     oit_kd_slab planes;
-    oit_status st = slot && weight && side ? OIT_OK : OIT_ERR_NOMEM;
+    oit_status st = side ? OIT_OK : OIT_ERR_NOMEM;
     int found = 0;
     if (!st) {
-        for (size_t i = 0; i < s->n; i++)
-            slot[i] = c->piece_slot[s->piece[i]];
-        for (uint32_t p = 0; p < npieces; p++)
-            weight[p] = b[p].weight;
-        found = oit_kd_find_slab(s->tris, s->n, slot, weight, npieces, c->p->max_layers,
+        found = oit_kd_find_slab(s->tris, s->n, slot, in->weight, npieces, c->p->max_layers,
                                  &planes, side);
         st = found < 0 ? OIT_ERR_NOMEM : OIT_OK;
     }
@@ -461,8 +482,6 @@ static oit_status try_slab(kd_ctx *c, size_t node, const node_set *s, const oit_
     *done = found > 0 && !st;
     set_free(&half[0]);
     set_free(&half[1]);
-    free(slot);
-    free(weight);
     free(side);
     return st;
 }
@@ -483,27 +502,19 @@ static uint32_t axis_crossings(kd_ctx *c, const node_set *s, int axis, float m, 
 }
 
 /* The node cut by a plane of another direction into two parts (kd_cut.h),
- * when one crosses fewer than max_cut triangles; *done tells whether it did.
- * piece_slot must still be piece_boxes' numbering. */
-static oit_status try_cut(kd_ctx *c, size_t node, const node_set *s, const oit_kd_piece_box *b,
+ * when one crosses at most max_cut triangles; *done tells whether it did. */
+static oit_status try_cut(kd_ctx *c, size_t node, const node_set *s, const slab_input *in,
                           uint32_t npieces, uint32_t max_cut, int *done)
 {
     oit_kd_node *nd = &c->out->nodes[node];
-    uint32_t *slot = malloc(s->n * sizeof *slot), *weight = malloc(npieces * sizeof *weight);
     node_set half[2] = {{0}, {0}};
     oit_kd_cut cut;
-    oit_status st = slot && weight ? OIT_OK : OIT_ERR_NOMEM;
-    int found = 0;
+    oit_status st = OIT_OK;
     *done = 0;
-    if (!st) {
-        for (size_t i = 0; i < s->n; i++)
-            slot[i] = c->piece_slot[s->piece[i]];
-        for (uint32_t p = 0; p < npieces; p++)
-            weight[p] = b[p].weight;
-        found = oit_kd_find_cut(s->tris, s->n, slot, weight, npieces, c->p->max_layers, nd->lo,
-                                nd->hi, max_cut, &cut);
-        st = found < 0 ? OIT_ERR_NOMEM : OIT_OK;
-    }
+    int found = oit_kd_find_cut(s->tris, s->n, in->slot, in->weight, npieces, c->p->max_layers,
+                                nd->lo, nd->hi, max_cut, &cut);
+    if (found < 0)
+        st = OIT_ERR_NOMEM;
     uint64_t added = 0;
     for (size_t i = 0; found > 0 && !st && i < s->n; i++) {
         oit_triangle h[2][2];
@@ -537,8 +548,6 @@ static oit_status try_cut(kd_ctx *c, size_t node, const node_set *s, const oit_k
     }
     set_free(&half[0]);
     set_free(&half[1]);
-    free(slot);
-    free(weight);
     return st;
 }
 
@@ -546,8 +555,8 @@ static oit_status try_cut(kd_ctx *c, size_t node, const node_set *s, const oit_k
  * fallback's) when it crosses fewer triangles, or when the axis split's
  * halves would need splitting again. */
 static oit_status try_cut_instead(kd_ctx *c, size_t node, const node_set *s,
-                                  const oit_kd_piece_box *b, uint32_t npieces, int found,
-                                  int axis, float m, int *done)
+                                  const slab_input *in, uint32_t npieces, int found, int axis,
+                                  float m, int *done)
 {
     const oit_kd_node *nd = &c->out->nodes[node];
     uint32_t larger, max_cut = UINT32_MAX;
@@ -562,7 +571,7 @@ static oit_status try_cut_instead(kd_ctx *c, size_t node, const node_set *s,
             max_cut = crossed ? crossed - 1 : 0;
     }
     *done = 0;
-    return max_cut || axis < 0 ? try_cut(c, node, s, b, npieces, max_cut, done) : OIT_OK;
+    return max_cut || axis < 0 ? try_cut(c, node, s, in, npieces, max_cut, done) : OIT_OK;
 }
 
 static oit_status build_node(kd_ctx *c, size_t node, const node_set *s)
@@ -585,11 +594,15 @@ static oit_status build_node(kd_ctx *c, size_t node, const node_set *s)
             int slab = 0;
             oit_status st = found < 0 ? OIT_ERR_NOMEM : OIT_OK;
             if (!st && layers <= 2 * c->p->max_layers &&
-                !(found && split_is_clean(boxes, npieces, axis, m, c->p->max_layers))) {
-                if (c->p->slabs != OIT_KD_SLABS_NONE)
-                    st = try_slab(c, node, s, boxes, npieces, &slab);
+                !(found && split_is_clean(boxes, npieces, axis, m, c->p->max_layers)) &&
+                c->p->slabs != OIT_KD_SLABS_NONE) {
+                slab_input in = {0};
+                st = slab_input_make(c, s, boxes, npieces, &in);
+                if (!st)
+                    st = try_slab(c, node, s, &in, npieces, &slab);
                 if (!st && !slab && c->p->slabs == OIT_KD_SLABS_ALL)
-                    st = try_cut_instead(c, node, s, boxes, npieces, found, axis, m, &slab);
+                    st = try_cut_instead(c, node, s, &in, npieces, found, axis, m, &slab);
+                slab_input_free(&in);
             }
             free(boxes);
             if (st || slab)

@@ -219,6 +219,19 @@ static int option_value(int argc, char **argv, int *i, const char *name, int suf
     return 0;
 }
 
+/* The index of the word after argv[*i] among names (NULL-terminated), or
+ * -1 with a message listing `want`. */
+static int option_choice(int argc, char **argv, int *i, const char *name,
+                         const char *const *names, const char *want)
+{
+    const char *m = *i + 1 < argc ? argv[++*i] : "";
+    for (int k = 0; names[k]; k++)
+        if (strcmp(m, names[k]) == 0)
+            return k;
+    fprintf(stderr, "oitprep: %s '%s': want %s\n", name, m, want);
+    return -1;
+}
+
 static int cmd_convert(int argc, char **argv)
 {
     long cores = sysconf(_SC_NPROCESSORS_ONLN);
@@ -252,29 +265,17 @@ static int cmd_convert(int argc, char **argv)
                 return 2;
             o.grid = (uint32_t)v;
         } else if (strcmp(a, "--manage") == 0) {
-            const char *m = i + 1 < argc ? argv[++i] : "";
-            if (strcmp(m, "grid") == 0)
-                o.manage = OIT_MANAGE_GRID;
-            else if (strcmp(m, "kd-parts") == 0)
-                o.manage = OIT_MANAGE_KD_PARTS;
-            else if (strcmp(m, "kd-facets") == 0)
-                o.manage = OIT_MANAGE_KD_FACETS;
-            else {
-                fprintf(stderr, "oitprep: --manage '%s': want grid, kd-parts or kd-facets\n", m);
+            static const char *const names[] = {"grid", "kd-parts", "kd-facets", NULL};
+            int k = option_choice(argc, argv, &i, a, names, "grid, kd-parts or kd-facets");
+            if (k < 0)
                 return 2;
-            }
+            o.manage = (oit_manage)k; /* in oit_manage's order */
         } else if (strcmp(a, "--slabs") == 0) {
-            const char *m = i + 1 < argc ? argv[++i] : "";
-            if (strcmp(m, "all") == 0)
-                o.slabs = OIT_KD_SLABS_ALL;
-            else if (strcmp(m, "separating") == 0)
-                o.slabs = OIT_KD_SLABS_SEPARATING;
-            else if (strcmp(m, "none") == 0)
-                o.slabs = OIT_KD_SLABS_NONE;
-            else {
-                fprintf(stderr, "oitprep: --slabs '%s': want all, separating or none\n", m);
+            static const char *const names[] = {"all", "separating", "none", NULL};
+            int k = option_choice(argc, argv, &i, a, names, "all, separating or none");
+            if (k < 0)
                 return 2;
-            }
+            o.slabs = (oit_kd_slabs)k; /* in oit_kd_slabs' order */
         } else if (strcmp(a, "--max-piece-triangles") == 0) {
             if (option_value(argc, argv, &i, a, 0, 1, 1u << 30, &v))
                 return 2;
