@@ -564,7 +564,8 @@ static oit_status check_slabs(verifier *v, oit_error *err)
         for (uint32_t k = 0; k < m; k++)
             list[n++] = (slab_side){in[k], i, sl->d0, sl->d1};
     }
-    qsort(list, n, sizeof *list, side_cmp);
+    if (n > 1)
+        qsort(list, n, sizeof *list, side_cmp);
     oit_status s = OIT_OK;
     const oit_partfile_part *parts = oit_partfile_parts(v->pf);
     uint32_t drop_from = 0;
