@@ -10,7 +10,7 @@ SIZE   ?= 1024x1024
 all: build
 
 help:
-	@echo "make demo   install deps, build Release, generate + render the demo scene -> demo/frame.png"
+	@echo "make demo   install deps, build Release, generate, convert, verify and stream the demo scene -> demo/frame.png"
 	@echo "make test   install deps, build with ASan+UBSan (clang), fetch meshes, run ctest"
 	@echo "make build  Release build into $(BUILD)/ (tools in $(BUILD)/bin)"
 	@echo "make fetch  fetch the real test meshes into data_scripts/cache"

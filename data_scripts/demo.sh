@@ -1,15 +1,25 @@
 #!/bin/sh
-# Generates the built-in demo scene, renders it headless and prints where the
-# image is. Usage: demo.sh BINDIR OUTDIR [WxH]
-# Until the streaming path (issue 6) lands, the frame is rendered with DFB,
-# the in-core exact method.
+# The product end to end on the built-in demo scene: generate it, convert it
+# into a part file (oitprep), check the file (oitprep verify), render it with
+# the streaming renderer (oitstream, headless), render the same file with
+# DFB, the in-core exact method, and print how far the two images differ.
+# Usage: demo.sh BINDIR OUTDIR [WxH]
 set -eu
 bin=$1 out=$2 size=${3:-1024x1024}
+export EGL_PLATFORM=${EGL_PLATFORM:-surfaceless}
 mkdir -p "$out"
 echo "demo: generating the demo scene -> $out/demo.ply"
 "$bin/oitgen" demo -o "$out/demo.ply"
-echo "demo: rendering $size with DFB (exact) -> $out/frame.png"
-EGL_PLATFORM=${EGL_PLATFORM:-surfaceless} \
-"$bin/oitstream" "$out/demo.ply" --method dfb --size "$size" \
-    --out "$out/frame.png" --stats "$out/frame.json"
-echo "demo: wrote $(pwd)/$out/frame.png (figures in $out/frame.json)"
+echo "demo: converting -> $out/demo.oitp (figures in $out/prep.json)"
+"$bin/oitprep" "$out/demo.ply" -o "$out/demo.oitp" --stats "$out/prep.json"
+echo "demo: verifying the part file"
+"$bin/oitprep" verify "$out/demo.oitp"
+echo "demo: streaming $size -> $out/frame.png"
+"$bin/oitstream" "$out/demo.oitp" --size "$size" --out "$out/frame.png" \
+    --stats "$out/frame.json"
+echo "demo: the same view with DFB -> $out/dfb.png"
+"$bin/oitstream" "$out/demo.oitp" --method dfb --size "$size" --out "$out/dfb.png" \
+    --stats "$out/dfb.json"
+echo "demo: stream against DFB: $("$bin/oitstream" --compare "$out/frame.png" "$out/dfb.png" --json)"
+case $out in /*) dir=$out ;; *) dir=$(pwd)/$out ;; esac
+echo "demo: wrote $dir/frame.png (figures in $dir/frame.json)"
