@@ -181,6 +181,18 @@ echo "demo: verify in $scenes scenes of <= 20K triangles: $(head -n 1 "$T/vcs.tx
 "$P" info "$T/demo.ply.oitp" --json >"$T/info.json" 2>&1
 [ "$(json_num cut_slabs <"$T/info.json")" = "$cuts" ] ||
     fail "info --json: cut_slabs $(json_num cut_slabs <"$T/info.json"), the conversion made $cuts"
+# oitprep parts: every stored triangle written once, coloured by kind, and
+# the PLY renders.
+expect_rc 0 "$P" parts "$T/demo.ply.oitp" -o "$T/parts.ply" --colour kind
+echo "demo parts: $(cat "$T/out.txt")"
+grep -q "$(json_num parts <"$T/demo.ply.json") parts, $t_cut triangles" "$T/out.txt" &&
+    ! grep -q " 0 of cutting planes" "$T/out.txt" ||
+    fail "oitprep parts: $(cat "$T/out.txt"), want $t_cut triangles and cutting-plane parts"
+"$S" "$T/parts.ply" --method dfb --size 64x64 --out "$T/parts.png" --quiet ||
+    fail "oitstream cannot render the parts PLY"
+expect_rc 2 "$P" parts "$T/demo.ply.oitp" -o "$T/parts.ply" --colour hue
+expect_rc 2 "$P" parts "$T/demo.ply.oitp"
+expect_rc 3 "$P" parts "$T/demo.ply" -o "$T/parts.ply"
 expect_rc 2 "$P" "$T/demo.ply" -o "$T/x.oitp" --slabs some
 grep -q "want all, separating or none" "$T/err.txt" || fail "--slabs some: $(cat "$T/err.txt")"
 
