@@ -19,9 +19,11 @@
  * components in [-2, 2] (the axes, the face and body diagonals, and 36
  * directions between them, at most 18 degrees from any direction).
  *
- * The plane is placed strictly between two consecutive values of n.v over
- * the node's vertices, so no vertex lies on it and every cut triangle is
- * crossed properly. Among the placements that leave both halves at most K
+ * The plane is placed strictly between two consecutive ends of the
+ * triangles' spans along n, so it crosses every triangle it cuts properly
+ * (a middle vertex may still lie on it: sides are decided exactly, and such
+ * a vertex belongs to both halves). Among the placements that leave both
+ * halves at most K
  * layers (a cut piece counts in both, with its weight in the node), the one
  * that cuts fewest triangles wins, then the most even one. */
 #ifndef OIT_PARTITION_KD_CUT_H
