@@ -322,74 +322,40 @@ static int all_pieces_touch(kd_ctx *c, const node_set *s, const float p[3], uint
     return hit == npieces;
 }
 
-/* The intersection of the pieces' boxes: a vertex every piece touches lies
- * in it, so it rules out most candidates before all_pieces_touch scans the
- * node for them. Without memory for the boxes it is everything. */
-static void common_box(kd_ctx *c, const node_set *s, uint32_t npieces, float lo[3], float hi[3])
-{
-    float(*b)[6] = malloc(npieces * sizeof *b);
-    for (int a = 0; a < 3; a++) {
-        lo[a] = -INFINITY;
-        hi[a] = INFINITY;
-    }
-    if (!b)
-        return;
-    uint32_t k = ++c->stamp, count = 0;
-    for (size_t i = 0; i < s->n; i++) {
-        uint32_t p = s->piece[i];
-        if (c->piece_stamp[p] != k) {
-            c->piece_stamp[p] = k;
-            c->piece_slot[p] = count;
-            for (int a = 0; a < 3; a++) {
-                b[count][a] = INFINITY;
-                b[count][3 + a] = -INFINITY;
-            }
-            count++;
-        }
-        float *pb = b[c->piece_slot[p]];
-        for (int a = 0; a < 3; a++) {
-            float mn, mx;
-            tri_range(&s->tris[i], a, &mn, &mx);
-            pb[a] = oit_min_f(pb[a], mn);
-            pb[3 + a] = oit_max_f(pb[3 + a], mx);
-        }
-    }
-    for (uint32_t p = 0; p < count; p++)
-        for (int a = 0; a < 3; a++) {
-            lo[a] = oit_max_f(lo[a], b[p][a]);
-            hi[a] = oit_min_f(hi[a], b[p][3 + a]);
-        }
-    free(b);
-}
-
 /* A star: all pieces of the node meet at one vertex. A box around that
  * vertex holds all of them however small it gets, so halving is futile.
  * Clipping keeps a vertex inside the box as a corner of some sub-triangle,
- * so testing the corners of the first piece's triangles finds it. */
-static int node_is_star(kd_ctx *c, const node_set *s, uint32_t npieces)
+ * so testing the corners of the first piece's triangles finds it. b and
+ * piece_slot are piece_boxes' (left as they are). Returns 1, 0, or -1 when
+ * memory runs out. */
+static int node_is_star(kd_ctx *c, const node_set *s, const oit_kd_piece_box *b,
+                        uint32_t npieces)
 {
     if (s->n > 64u * npieces)
         return 0; /* a star's triangles are few: each piece holds a fan */
     /* Candidates: the corners of the piece with the fewest triangles, which
      * in a star is a small fan; a piece of many is not part of one. */
-    uint32_t k = ++c->stamp, best = 0, best_count = UINT32_MAX;
-    for (size_t i = 0; i < s->n; i++) {
-        uint32_t p = s->piece[i];
-        if (c->piece_stamp[p] != k) {
-            c->piece_stamp[p] = k;
-            c->piece_slot[p] = 0;
-        }
-        c->piece_slot[p]++;
-    }
+    uint32_t *count = calloc(npieces, sizeof *count), best = 0, best_count = UINT32_MAX;
+    if (!count)
+        return -1;
     for (size_t i = 0; i < s->n; i++)
-        if (c->piece_slot[s->piece[i]] < best_count) {
-            best_count = c->piece_slot[s->piece[i]];
+        count[c->piece_slot[s->piece[i]]]++;
+    for (size_t i = 0; i < s->n; i++)
+        if (count[c->piece_slot[s->piece[i]]] < best_count) {
+            best_count = count[c->piece_slot[s->piece[i]]];
             best = s->piece[i];
         }
+    free(count);
     if (best_count > 16)
         return 0;
-    float lo[3], hi[3];
-    common_box(c, s, npieces, lo, hi);
+    /* The centre lies in every piece's box: that rules out most candidates
+     * before all_pieces_touch scans the node for them. */
+    float lo[3] = {-INFINITY, -INFINITY, -INFINITY}, hi[3] = {INFINITY, INFINITY, INFINITY};
+    for (uint32_t p = 0; p < npieces; p++)
+        for (int a = 0; a < 3; a++) {
+            lo[a] = oit_max_f(lo[a], b[p].lo[a]);
+            hi[a] = oit_min_f(hi[a], b[p].hi[a]);
+        }
     for (size_t i = 0; i < s->n; i++)
         for (int v = 0; v < 3 && s->piece[i] == best; v++) {
             const float *p = s->tris[i].v[v].pos;
@@ -584,15 +550,15 @@ static oit_status build_node(kd_ctx *c, size_t node, const node_set *s)
     int axis = -1;
     float m = 0;
     if (layers > c->p->max_layers && nd->depth < max_depth) {
-        int star = node_is_star(c, s, npieces), found = 0;
-        if (!star) {
-            oit_kd_piece_box *boxes;
-            if (piece_boxes(c, s, npieces, &boxes))
-                return OIT_ERR_NOMEM;
+        oit_kd_piece_box *boxes;
+        if (piece_boxes(c, s, npieces, &boxes))
+            return OIT_ERR_NOMEM;
+        int star = node_is_star(c, s, boxes, npieces), found = 0, slab = 0;
+        oit_status st = star < 0 ? OIT_ERR_NOMEM : OIT_OK;
+        if (!st && !star) {
             found = oit_kd_choose_split(boxes, npieces, nd->lo, nd->hi, c->p->max_layers, &axis,
                                         &m);
-            int slab = 0;
-            oit_status st = found < 0 ? OIT_ERR_NOMEM : OIT_OK;
+            st = found < 0 ? OIT_ERR_NOMEM : OIT_OK;
             if (!st && layers <= 2 * c->p->max_layers &&
                 !(found && split_is_clean(boxes, npieces, axis, m, c->p->max_layers)) &&
                 c->p->slabs != OIT_KD_SLABS_NONE) {
@@ -604,10 +570,10 @@ static oit_status build_node(kd_ctx *c, size_t node, const node_set *s)
                     st = try_cut_instead(c, node, s, &in, npieces, found, axis, m, &slab);
                 slab_input_free(&in);
             }
-            free(boxes);
-            if (st || slab)
-                return st;
         }
+        free(boxes);
+        if (st || slab)
+            return st;
         if (!found) {
             /* A star may still hold triangles away from its vertex (a piece's
              * second plane): halve while that lowers the bound. */
