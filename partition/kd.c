@@ -383,9 +383,18 @@ static int split_is_clean(const oit_kd_piece_box *b, uint32_t npieces, int axis,
     return below <= K && above <= K;
 }
 
-static oit_status push_slab(oit_kd_result *r, size_t node, const oit_kd_slab *planes,
-                            const int32_t part[2])
+/* The node as a slab leaf: the two halves emitted as parts (count[h]
+ * pieces each), below then above, and the slab recorded. */
+static oit_status emit_slab_leaf(kd_ctx *c, size_t node, const node_set half[2],
+                                 const uint32_t count[2], const oit_kd_slab *planes)
 {
+    int32_t part[2];
+    for (int h = 0; h < 2; h++) {
+        oit_status st = emit_part(c, &half[h], count[h], &part[h]);
+        if (st)
+            return st;
+    }
+    oit_kd_result *r = c->out;
     GROW(r->slabs, r->slab_count, r->slab_cap, 1);
     r->slabs[r->slab_count] = (oit_kd_slab_leaf){*planes, (uint32_t)part[0], (uint32_t)part[1]};
     r->nodes[node].part = part[0];
@@ -440,11 +449,8 @@ static oit_status try_slab(kd_ctx *c, size_t node, const node_set *s, const slab
         count[side[p]]++;
     for (size_t i = 0; found > 0 && !st && i < s->n; i++)
         st = set_push(&half[side[slot[i]]], &s->tris[i], s->piece[i], s->plane[i]);
-    int32_t part[2];
-    for (int h = 0; h < 2 && found > 0 && !st; h++)
-        st = emit_part(c, &half[h], count[h], &part[h]);
     if (found > 0 && !st)
-        st = push_slab(c->out, node, &planes, part);
+        st = emit_slab_leaf(c, node, half, count, &planes);
     *done = found > 0 && !st;
     set_free(&half[0]);
     set_free(&half[1]);
@@ -500,14 +506,11 @@ static oit_status try_cut(kd_ctx *c, size_t node, const node_set *s, const slab_
         layers[h] = node_layers(c, &half[h], &count[h]);
         found = count[h] && layers[h] <= c->p->max_layers;
     }
-    int32_t part[2];
-    for (int h = 0; h < 2 && found > 0 && !st; h++)
-        st = emit_part(c, &half[h], count[h], &part[h]);
     if (found > 0 && !st) {
         oit_kd_slab planes = {{(float)cut.plane.n[0], (float)cut.plane.n[1],
                                (float)cut.plane.n[2]},
                               (float)cut.plane.d, (float)cut.plane.d};
-        st = push_slab(c->out, node, &planes, part);
+        st = emit_slab_leaf(c, node, half, count, &planes);
         c->out->split_added += added;
         c->out->cuts++;
         *done = !st;
