@@ -3,7 +3,9 @@
  * A part file is written with the writer: a 4x3x2 top grid of unequal cell
  * sizes with one tilted quad per cell, two cells refined by 2x1x1 subgrids
  * (one subcell refined again by a 1x2x1 subgrid), one cell holding a slab
- * (tilted normal: a part below, two inside, one above) and one empty cell.
+ * (tilted normal: a part below, five inside, one above) and one empty cell.
+ * Stacked inside parts seen from below, above and between the planes catch
+ * a wrong eye-side test in the inside parts' order.
  * For eyes outside on every side, inside, on cell boundaries and on the
  * slab planes, rays are cast from the eye through points sampled on every
  * part's triangles; the parts hit along each ray, in distance order, must
@@ -70,6 +72,16 @@ static quad slab_quad(float s, float y0, float y1, float x0, float x1, float z0,
     return q;
 }
 
+/* A level quad (y = const) covering the band x + z in [s0, s1] of the box's
+ * x and z ranges, the band's ends clipped to the box. */
+static quad level_quad(float y, float s0, float s1, float x0, float x1, float z0, float z1)
+{
+    float xa = fmaxf(x0, s0 - z1), xb = fminf(x1, s1 - z0);
+    quad q = {{{xa, y, fmaxf(z0, s0 - xa)}, {xb, y, fmaxf(z0, s0 - xb)},
+               {xb, y, fminf(z1, s1 - xb)}, {xa, y, fminf(z1, s1 - xa)}}};
+    return q;
+}
+
 static int add_quad(oit_partfile_writer *w, scene *sc, const quad *q, oit_error *err)
 {
     static const uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
@@ -90,7 +102,7 @@ static int add_quad(oit_partfile_writer *w, scene *sc, const quad *q, oit_error 
 
 static const float CELL[3] = {1.0f, 1.5f, 2.0f};
 enum { SUB_A = 1 + 3 * 1 + 12 * 0, SUB_B = 2 + 12 * 1, SLAB_CELL = 3 + 4 * 2 + 12 * 1,
-       EMPTY_CELL = 0 + 4 * 2 + 12 * 1 };
+       EMPTY_CELL = 0 + 4 * 2 + 12 * 1, SLAB_PARTS = 7 };
 
 static void cell_box(const float origin[3], const float size[3], const uint32_t dims[3],
                      uint32_t c, float lo[3], float hi[3])
@@ -151,12 +163,19 @@ static oit_status write_slab(oit_partfile_writer *w, scene *sc, uint32_t *cell_l
     /* x + z over the cell spans [lo0+lo2, hi0+hi2]; four sheets across it. */
     float s0 = lo[0] + lo[2], span = hi[0] + hi[2] - s0;
     float ym = 0.5f * (lo[1] + hi[1]);
-    quad qs[4] = {
+    /* Inside: two sheets side by side in the slab's middle plane (y 3.1..3.25
+     * and 4.25..4.4), and three level sheets (y 3.45, 3.75, 4.05) stacked
+     * between them and the slab planes, written middle, top, bottom so that
+     * both of must_precede's eye tests decide an insertion. */
+    quad qs[SLAB_PARTS] = {
         slab_quad(s0 + 0.3f * span, lo[1] + 0.1f, hi[1] - 0.1f, lo[0], hi[0], lo[2], hi[2]),
-        slab_quad(s0 + 0.5f * span, lo[1] + 0.1f, ym - 0.05f, lo[0], hi[0], lo[2], hi[2]),
-        slab_quad(s0 + 0.5f * span, ym + 0.05f, hi[1] - 0.1f, lo[0], hi[0], lo[2], hi[2]),
+        slab_quad(s0 + 0.5f * span, lo[1] + 0.1f, lo[1] + 0.25f, lo[0], hi[0], lo[2], hi[2]),
+        slab_quad(s0 + 0.5f * span, hi[1] - 0.25f, hi[1] - 0.1f, lo[0], hi[0], lo[2], hi[2]),
+        level_quad(ym, s0 + 0.42f * span, s0 + 0.58f * span, lo[0], hi[0], lo[2], hi[2]),
+        level_quad(ym + 0.3f, s0 + 0.42f * span, s0 + 0.58f * span, lo[0], hi[0], lo[2], hi[2]),
+        level_quad(ym - 0.3f, s0 + 0.42f * span, s0 + 0.58f * span, lo[0], hi[0], lo[2], hi[2]),
         slab_quad(s0 + 0.7f * span, lo[1] + 0.1f, hi[1] - 0.1f, lo[0], hi[0], lo[2], hi[2])};
-    for (int i = 0; i < 4; i++) {
+    for (int i = 0; i < SLAB_PARTS; i++) {
         int p = add_quad(w, sc, &qs[i], err);
         if (p < 0)
             return err->status;
@@ -174,7 +193,8 @@ static oit_status finish_slab(oit_partfile_writer *w, const uint32_t *parts, oit
     float s0 = lo[0] + lo[2], span = hi[0] + hi[2] - s0;
     oit_partfile_slab_desc sl = {{1.0f / SQ2, 0.0f, 1.0f / SQ2},
                                  (s0 + 0.4f * span) / SQ2, (s0 + 0.6f * span) / SQ2,
-                                 0, SLAB_CELL, parts[0], parts[3], parts + 1, 2};
+                                 0, SLAB_CELL, parts[0], parts[SLAB_PARTS - 1], parts + 1,
+                                 SLAB_PARTS - 2};
     uint32_t index;
     return oit_partfile_writer_add_slab(w, &sl, &index, err);
 }
@@ -199,14 +219,14 @@ static oit_status build(const char *path, scene *sc, oit_error *err)
         return err->status;
     }
     /* The slab cell's four parts join the top list in cell order. */
-    uint32_t slab_parts[4];
+    uint32_t slab_parts[SLAB_PARTS];
     s = write_slab(w, sc, slab_parts, err);
     if (s == OIT_OK) {
-        counts[SLAB_CELL] = 4;
+        counts[SLAB_CELL] = SLAB_PARTS;
         uint32_t at = 0;
         for (uint32_t c = 0; c < SLAB_CELL; c++)
             at += counts[c];
-        memmove(list + at + 4, list + at, (size_t)(used - (int)at) * sizeof *list);
+        memmove(list + at + SLAB_PARTS, list + at, (size_t)(used - (int)at) * sizeof *list);
         memcpy(list + at, slab_parts, sizeof slab_parts);
     }
     /* Subgrid parts: grid 1 refines SUB_A, grid 2 SUB_B, grid 3 grid 2's cell 1. */
@@ -331,6 +351,16 @@ static int eyes(float out[][3], int cap)
                            {1.5f, 2.25f, -3}, {2, -2, 2}, {-1, 3, 2.0f}};
     for (size_t i = 0; i < sizeof on / sizeof on[0] && n < cap; i++)
         memcpy(out[n++], on[i], sizeof on[i]);
+    /* The slab's stacked inside sheets seen from below, between and above
+     * them in y, each from below, between and above the slab planes
+     * (x + z = 6.2 and 6.8). */
+    const float xz[3][2] = {{3.2f, 2.5f}, {3.4f, 2.95f}, {3.8f, 3.5f}};
+    const float ys[4] = {2.0f, 3.6f, 3.9f, 5.5f};
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 4 && n < cap; b++) {
+            float e[3] = {xz[a][0], ys[b], xz[a][1]};
+            memcpy(out[n++], e, sizeof e);
+        }
     return n;
 }
 
