@@ -3,7 +3,9 @@
  * protection (parts used in this frame or the one before are never
  * evicted), eviction of idle parts, one failed sweep marking the frame
  * full, and a seeded random workload of orbit-like frames checked against
- * those invariants after every call. */
+ * those invariants after every call. Every lookup is checked against the
+ * cache's own view (peek), so a lookup that hands out an evicted part's
+ * stale offset fails. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -70,6 +72,17 @@ static void protection(void)
     CHECK(oit_residency_lookup(r, 3, &off) && oit_residency_lookup(r, 4, &off),
           "frame 3: evicted parts used in frame 2");
     CHECK(oit_residency_lookup(r, 10, &off), "frame 3: part 10 not resident after insert");
+    /* Part 10's two units came from evicting idle parts: looking those up
+     * must miss, or the caller would draw whatever overwrote their bytes. */
+    uint32_t gone = 0;
+    for (uint32_t p = 0; p < 10; p++) {
+        uint64_t at;
+        if (!oit_residency_peek(r, p, &at)) {
+            gone++;
+            CHECK(!oit_residency_lookup(r, p, &off), "frame 3: evicted part %u still hits", p);
+        }
+    }
+    CHECK(gone >= 2, "frame 3: %u parts evicted for a two-unit part", gone);
     bytes[10] = 2 * UNIT;
     check_layout(r, bytes, "frame 3");
     CHECK(!oit_residency_insert(r, 12, 11 * UNIT, &off), "a part larger than the cache fitted");
@@ -117,10 +130,16 @@ static void random_frames(uint32_t seed0, uint64_t capacity_units, int expect_mo
             uint32_t p = order[k];
             uint64_t off;
             used[p] = 1;
+            uint64_t seen = 0;
+            int resident = oit_residency_peek(r, p, &seen);
             if (oit_residency_lookup(r, p, &off)) {
+                CHECK(resident && off == seen, "seed %u frame %d: part %u hits at %llu, the "
+                      "cache holds it %s", seed0, f, p, (unsigned long long)off,
+                      resident ? "elsewhere" : "nowhere");
                 hits++;
                 continue;
             }
+            CHECK(!resident, "seed %u frame %d: resident part %u missed", seed0, f, p);
             misses++;
             CHECK(!kept[p], "seed %u frame %d: part %u, used and resident in the frame "
                   "before, was evicted", seed0, f, p);

@@ -134,10 +134,42 @@ residency() {
         [ "$n" -eq 8 ] || fail "orbit 8: $n frames with a $k >= 0, want 8"
     done
     [ "$on" -gt 0 ] && [ "$on" -lt "$off" ] || fail "orbit 8: cache uploads $on, none $off"
+    look_around "$b0"
+
     for bad in "--cache-budget 1K" "--cache-budget -1" "--upload-threads 2"; do
         "$S" "$P" --size 8x8 --quiet $bad >/dev/null 2>&1
         [ $? -eq 2 ] || fail "$bad was not refused as a usage error"
     done
+}
+
+# A walk that turns on the spot inside the model (fov 100: a frame draws
+# about half the file, a 64K cache holds less than two), so each frame culls
+# parts the one before drew and parts come back after idling two frames: a tiny
+# cache evicts and refills, and every frame must equal the cache-off frame
+# bit for bit (a lookup that handed out an evicted part's stale bytes
+# would draw another part's triangles there).
+look_around() {
+    sed -n 's/.*"view": "\([^"]*\)".*/\1/p' "$T/budget_s.json" | head -n 1 |
+        awk -F, '{r = 0.02 * sqrt(($1-$4)^2 + ($2-$5)^2 + ($3-$6)^2)
+             split("1 0 -1 0 1 0 0 -1 1 0 0 1 -1 0 0 -1", d, " ")
+             for (i = 0; i < 12; i++) { j = (i * 3) % 8
+                 printf "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,0,1,0,100\n", $4, $5, $6,
+                        $4 + r * d[2*j+1], $5, $6 + r * d[2*j+2] }}' > "$T/around.txt"
+    for c in 64K 0; do
+        "$S" "$P" --size 96x96 --walk "$T/around.txt" --cache-budget $c --out "$T/around_$c.pfm" \
+            --stats "$T/around_$c.json" --quiet || fail "look-around, cache $c: exited $?"
+    done
+    for i in 000 001 002 003 004 005 006 007 008 009 010 011; do
+        cmp -s "$T/around_64K_$i.pfm" "$T/around_0_$i.pfm" ||
+            fail "look-around frame $i: a 64K cache changes the image (or a frame is missing)"
+    done
+    hits=$(frame_figures "$T/around_64K.json" | awk 'NR > 2 {s += $3} END {print s + 0}')
+    up=$(frame_figures "$T/around_64K.json" | awk '{s += $2} END {print s + 0}')
+    echo "look-around, 12 frames, cache 64K: $hits cache hits after frame 2, $up bytes" \
+         "uploaded (the file's parts: $1)"
+    # More bytes than the file holds: some part was evicted and uploaded again.
+    [ "$hits" -gt 0 ] && [ "$up" -gt "$1" ] ||
+        fail "look-around: the 64K cache never hit after frame 2, or never evicted"
 }
 
 agree budget --pack budget
