@@ -80,6 +80,44 @@ echo "stack E=0: $d0 parts drawn, $s0 skipped, $b0 bytes; E=0.02: $d2 drawn, $s2
     fail "stack E=0.02: no parts skipped, or drawn + skipped != $d0, or uploads did not fall"
 awk -v m="$m" 'BEGIN{exit !(m <= 0.02 + 1e-6)}' || fail "stack E=0.02: max_abs $m exceeds 0.02"
 
+# A strongly coloured translucent shell: eight closed red boxes in a row,
+# seen end on over black. The medium absorbs green and blue (optical depth
+# about 3 a box) but not red, so after the first box T is tiny in green and
+# blue while red keeps 0.96 a face: no pixel is saturated in every channel,
+# E = 0.05 may drop nothing, and the image must equal DFB's (PFM, per
+# channel). A test on the smallest channel instead of the largest drops
+# everything behind the first box and loses the red.
+awk 'BEGIN {
+    n = 8; print "ply\nformat ascii 1.0\nelement vertex", 8 * n
+    print "property float x\nproperty float y\nproperty float z"
+    print "property uchar red\nproperty uchar green\nproperty uchar blue\nproperty uchar alpha"
+    print "element face", 12 * n; print "property list uchar int vertex_indices\nend_header"
+    for (b = 0; b < n; b++)
+        for (c = 0; c < 8; c++)
+            printf "%g %g %g 255 0 0 255\n", c % 2 ? 1 : -1, int(c / 2) % 2 ? 1 : -1, 1.5 * b + (c >= 4)
+    split("0 2 3 1 4 5 7 6 0 1 5 4 2 6 7 3 0 4 6 2 1 3 7 5", f, " ")
+    for (b = 0; b < n; b++)
+        for (q = 0; q < 6; q++) {
+            a = f[4 * q + 1] + 8 * b; e = f[4 * q + 2] + 8 * b
+            c = f[4 * q + 3] + 8 * b; d = f[4 * q + 4] + 8 * b
+            print 3, a, e, c; print 3, a, c, d
+        }
+}' > "$T/shell.ply" && "$OIT_BIN/oitprep" "$T/shell.ply" -o "$T/shell.oitp" >/dev/null ||
+    fail "cannot make the red shell part file"
+V=0.3,0.2,-6,0,0,6,0,1,0,30
+SH="--size 96x96 --view $V --shading translucent --absorption 40 --background 0,0,0 --quiet"
+"$S" "$T/shell.oitp" --method dfb $SH --out "$T/shell_dfb.pfm" || fail "red shell: dfb exited $?"
+for e in 0 0.05; do
+    "$S" "$T/shell.oitp" $SH --epsilon $e --out "$T/shell_$e.pfm" --stats "$T/shell_$e.json" ||
+        fail "red shell E=$e: stream exited $?"
+done
+f0=$(json_sum fragments < "$T/shell_0.json") f5=$(json_sum fragments < "$T/shell_0.05.json")
+m=$("$S" --compare "$T/shell_0.05.pfm" "$T/shell_dfb.pfm" --json | json_num max_abs)
+echo "red shell: E=0 $f0 fragments, E=0.05 $f5 fragments, max_abs vs dfb $m (per channel)"
+[ "${f0:-0}" -gt 0 ] && [ "$f5" = "$f0" ] ||
+    fail "red shell: E=0.05 dropped fragments ($f5 of $f0) though red is never saturated"
+awk -v m="${m:-1}" 'BEGIN{exit !(m <= 1e-6)}' || fail "red shell E=0.05: max_abs $m against DFB"
+
 # Early termination belongs to the streamer, and E = 1 would drop everything.
 "$S" "$P" --epsilon 1 --size 16x16 --quiet >/dev/null 2>&1
 [ $? -eq 2 ] || fail "--epsilon 1 was not refused as a usage error"
