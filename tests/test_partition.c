@@ -1,6 +1,8 @@
 /* partition/ kernels: exact orient3d where the double filter cannot decide,
  * watertight plane splitting of a closed mesh, and greedy convex clustering
- * on shapes whose piece counts are known. */
+ * on shapes whose piece counts are known; seams that two triangles walking
+ * an edge in opposite directions must share bit for bit; a planar fan whose
+ * last triangle overlaps its first. */
 #include <math.h>
 #include <stdio.h>
 #include <stdint.h>
@@ -298,6 +300,74 @@ static void test_clip(void)
     free(sphere.t);
 }
 
+/* The point of p-q at pos[axis] = c computed from p's end, as a clipper that
+ * ignores the canonical order would (float result, double arithmetic). */
+static void naive_edge_point(const oit_vertex *p, const oit_vertex *q, int axis, float c,
+                             float out[3])
+{
+    double t = ((double)c - p->pos[axis]) / ((double)q->pos[axis] - p->pos[axis]);
+    for (int k = 0; k < 3; k++)
+        out[k] = (float)(p->pos[k] + t * ((double)q->pos[k] - p->pos[k]));
+    out[axis] = c;
+}
+
+/* The vertex on the plane nearest to near (the seam vertex of one edge). */
+static const float *seam_vertex(const oit_vertex *v, int n, int axis, float c, const float near[3])
+{
+    const float *best = NULL;
+    double bd = INFINITY;
+    for (int i = 0; i < n; i++) {
+        double d = fabs(v[i].pos[0] - near[0]) + fabs(v[i].pos[1] - near[1]) +
+                   fabs(v[i].pos[2] - near[2]);
+        if (v[i].pos[axis] == c && d < bd) {
+            bd = d;
+            best = v[i].pos;
+        }
+    }
+    return best;
+}
+
+/* Edges whose two directions give seam points that differ in the last bit:
+ * the two triangles sharing such an edge, walking it in opposite
+ * directions, must still get the same seam vertex bit for bit. */
+static void test_clip_direction(void)
+{
+    uint32_t seed = 2024, found = 0, tried = 0, cracked = 0;
+    for (; found < 64 && tried < 100000; tried++) {
+        float r[6];
+        for (int k = 0; k < 6; k++) {
+            seed = seed * 1664525u + 1013904223u;
+            r[k] = (float)(seed >> 8) / 16777216.0f * 2.0f - 1.0f;
+        }
+        /* The edge's y and z cross near zero at the plane, where the
+         * rounding of p + t (q - p) is largest against the result's ulp. */
+        const float c = 0.0123f;
+        float px = -fabsf(r[0]) - 0.01f, qx = fabsf(r[3]) + 0.01f;
+        double t = ((double)c - px) / ((double)qx - px);
+        float dy = (float)(r[1] + t * (r[4] - r[1])) - 1e-6f * r[2];
+        float dz = (float)(r[2] + t * (r[5] - r[2])) - 1e-6f * r[1];
+        oit_vertex p = vtx(px, r[1] - dy, r[2] - dz), q = vtx(qx, r[4] - dy, r[5] - dz);
+        float fwd[3], back[3];
+        naive_edge_point(&p, &q, 0, c, fwd);
+        naive_edge_point(&q, &p, 0, c, back);
+        if (memcmp(fwd, back, sizeof fwd) == 0)
+            continue;
+        found++;
+        /* Two triangles on either side of the edge, p->q in one, q->p in
+         * the other. */
+        oit_vertex a[3] = {p, q, vtx(0.0f, 5.0f, 0.0f)}, b[3] = {q, p, vtx(0.0f, -5.0f, 0.0f)};
+        oit_vertex ca[4], cb[4];
+        int na = oit_clip_polygon(a, 3, 0, c, 1, ca), nb = oit_clip_polygon(b, 3, 0, c, 1, cb);
+        const float *sa = seam_vertex(ca, na, 0, c, fwd), *sb = seam_vertex(cb, nb, 0, c, fwd);
+        cracked += !sa || !sb || memcmp(sa, sb, 3 * sizeof *sa) != 0;
+    }
+    printf("clip direction: %u of %u random edges round differently from each end; "
+           "%u seams differ between the two triangles\n", found, tried, cracked);
+    CHECK(found == 64, "only %u direction-sensitive edges in %u tries", found, tried);
+    CHECK(cracked == 0, "%u of %u shared edges got different seam vertices from their two "
+          "triangles (a crack)", cracked, found);
+}
+
 /* ---------------------------------------------------------------- convex */
 
 /* Clusters l; checks every triangle has a piece and every piece passes the
@@ -344,7 +414,7 @@ static int whole_is_convex(const tri_list *l)
 
 static void test_convex(void)
 {
-    tri_list cube = {0}, torus = {0}, opp = {0}, overlap = {0}, adjacent = {0};
+    tri_list cube = {0}, torus = {0}, opp = {0}, overlap = {0}, adjacent = {0}, fan = {0};
     make_cube(&cube, -0.5f, 1.5f);
     CHECK(whole_is_convex(&cube), "the cube must pass oit_convex_check");
     uint32_t n = cluster("cube", &cube);
@@ -366,6 +436,19 @@ static void test_convex(void)
     n = cluster("overlapping coplanar", &overlap);
     CHECK(n == 2, "overlapping coplanar same-facing triangles: %u pieces, want 2", n);
 
+    /* An edge-connected fan of eight 50-degree triangles round one centre,
+     * 400 degrees in all: the last overlaps the first but shares no edge
+     * with it, and the breadth-first growth reaches it through the chain,
+     * so only a check against every triangle on the plane (not just the
+     * newest, its neighbour) keeps it out of the first piece. */
+    for (int i = 0; i < 8; i++) {
+        double a0 = (50.0 * i) * PI / 180.0, a1 = (50.0 * (i + 1)) * PI / 180.0;
+        push3(&fan, vtx(0, 0, 0), vtx((float)cos(a0), (float)sin(a0), 0),
+              vtx((float)cos(a1), (float)sin(a1), 0));
+    }
+    n = cluster("overlapping planar fan", &fan);
+    CHECK(n == 2, "a planar fan whose last triangle overlaps its first: %u pieces, want 2", n);
+
     push3(&adjacent, a, b, c);
     push3(&adjacent, b, d, c);
     n = cluster("adjacent coplanar", &adjacent);
@@ -376,6 +459,7 @@ static void test_convex(void)
     free(opp.t);
     free(overlap.t);
     free(adjacent.t);
+    free(fan.t);
 }
 
 /* ---------------------------------------------------------------- kd */
@@ -801,6 +885,7 @@ int main(void)
 {
     test_predicates();
     test_clip();
+    test_clip_direction();
     test_convex();
     test_kd_split();
     test_kd_split_events();
