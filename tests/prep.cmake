@@ -8,3 +8,7 @@ oit_add_test(NAME prep LABELS integration TIMEOUT 120
 # oitprep verify's slab-side check on a hand-written file, good and bad.
 oit_add_test(NAME verify_slab LABELS integration TIMEOUT 60
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_verify_slab.sh $<TARGET_FILE:test_streamer>)
+
+# Pinned piece and part counts (and the file's hash) on CAD-like fetched meshes.
+oit_add_test(NAME prep_pinned LABELS integration TIMEOUT 60
+  COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_prep_pinned.sh)

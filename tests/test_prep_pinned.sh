@@ -1,0 +1,46 @@
+#!/bin/sh
+# Pinned conversion figures of two CAD-like fetched meshes (fandisk.off,
+# turbine.off) with oitprep's defaults, with 1 and 2 threads: triangles out,
+# clustered convex pieces, pieces after splitting, parts, slabs, cutting
+# planes, wide parts, and the part file's SHA-256. A change to clustering,
+# splitting or the kd that alters any of them fails here, also one that is
+# only conservative (more pieces, still valid), which no validity check can
+# see. When a change is meant to alter them, update the line below and say
+# in the commit message why the new figures are right.
+# Skips (77) without the fetched meshes.
+set -u
+: "${OIT_BIN:?OIT_BIN must name the tools folder}"
+: "${OIT_TEST_TMP:?OIT_TEST_TMP must name a scratch folder}"
+T="$OIT_TEST_TMP/prep_pinned"
+rm -rf "$T" && mkdir -p "$T" || exit 1
+FAILS=0
+fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
+
+# mesh: triangles_out pieces_clustered pieces parts slabs cut_slabs wide_parts sha256 (first 16)
+PINNED="fandisk.off 42372 2116 7346 1946 154 153 0 b654571d9a57e06c
+turbine.off 50634 4525 10425 2867 256 223 1 ceb4ec329845425d"
+
+KEYS="triangles_out pieces_clustered pieces parts slabs cut_slabs wide_parts"
+figures() {
+    for k in $KEYS; do
+        sed -n "s/.*\"$k\": \([0-9]*\).*/\1/p" "$1"
+    done | tr '\n' ' '
+}
+
+echo "$PINNED" | while read -r m want_line; do
+    M="${OIT_MESH_CACHE:-}/$m"
+    [ -f "$M" ] || { echo "skip: $M missing (run data_scripts/fetch_meshes.sh)"; exit 77; }
+    want="$want_line"
+    for th in 1 2; do
+        "$OIT_BIN/oitprep" "$M" -o "$T/$m.oitp" --threads $th --stats "$T/$m.json" >/dev/null 2>&1 ||
+            { fail "$m --threads $th: oitprep exited $?"; continue; }
+        got="$(figures "$T/$m.json")$(sha256sum "$T/$m.oitp" | cut -c1-16)"
+        echo "$m --threads $th: $got"
+        [ "$got" = "$want" ] || fail "$m --threads $th: got $got, pinned $want ($KEYS sha256)"
+    done
+    [ "$FAILS" -eq 0 ] || exit 1
+done
+rc=$?
+[ $rc -eq 77 ] && exit 77
+rm -rf "$T"
+[ $rc -eq 0 ] && echo "PASS" || { echo "pinned figures differ"; exit 1; }
