@@ -590,6 +590,53 @@ static void corrupt_semantics(corrupt_ctx *c, uint8_t *b)
     expect_refused(c, "cell names part 7 of 4", b, c->size, "part 7");
 }
 
+/* The last part's blob reaching past PART_DATA's end, its index count grown
+ * to match and every checksum resealed: only the blob bounds can see it. */
+static void corrupt_blob_bounds(corrupt_ctx *c, uint8_t *b)
+{
+    memcpy(b, c->good, c->size);
+    pf_section ps = get_section(b, PF_SEC_PARTS), ds = get_section(b, PF_SEC_PART_DATA);
+    pf_header h;
+    memcpy(&h, b, sizeof h);
+    oit_partfile_part p;
+    size_t at = ps.offset + (size_t)(h.part_count - 1) * sizeof p;
+    memcpy(&p, b + at, sizeof p);
+    uint64_t ib = p.index_bits / 8, slack = ds.offset + ds.size - (p.data_offset + p.data_bytes);
+    uint64_t grow = 3 * (slack / (3 * ib) + 1);
+    p.index_count += grow;
+    p.index_bytes += grow * ib;
+    p.data_bytes += grow * ib;
+    memcpy(b + at, &p, sizeof p);
+    reseal(b, c->size);
+    expect_refused(c, "last blob past PART_DATA, resealed", b, c->size, "outside PART_DATA");
+}
+
+/* With deferred part data the section checksum is skipped, so a flipped byte
+ * in one part's blob must be found by that part's own checksum when it is
+ * validated, and only there. */
+static void corrupt_deferred(corrupt_ctx *c, uint8_t *b)
+{
+    memcpy(b, c->good, c->size);
+    pf_section ps = get_section(b, PF_SEC_PARTS);
+    oit_partfile_part p;
+    memcpy(&p, b + ps.offset + sizeof p, sizeof p);
+    b[p.data_offset + p.data_bytes / 2] ^= 0x04;
+    oit_partfile *pf = NULL;
+    oit_error err = {0};
+    oit_partfile_open_desc od = {.defer_part_data = true};
+    CHECK(spill(c->path, b, c->size) == 0 && oit_partfile_open(c->path, &od, &pf, &err) == OIT_OK,
+          "deferred open of a file with a flipped blob byte: %s", err.message);
+    if (!pf)
+        return;
+    c->cases++;
+    CHECK(oit_partfile_validate_part(pf, 0, &err) == OIT_OK, "deferred part 0: %s", err.message);
+    oit_status st = oit_partfile_validate_part(pf, 1, &err);
+    CHECK(st == OIT_ERR_FORMAT && strstr(err.message, "part 1: checksum"),
+          "deferred part 1 with a flipped byte: status %s, %s", oit_status_name(st), err.message);
+    printf("  refused %-34s %s\n", "flipped blob byte, deferred", err.message);
+    oit_partfile_close(pf);
+}
+
 static void check_corruptions(const char *tmp, const uint8_t *good, size_t size)
 {
     corrupt_ctx c = {.good = good, .size = size};
@@ -598,6 +645,8 @@ static void check_corruptions(const char *tmp, const uint8_t *good, size_t size)
     corrupt_truncations(&c);
     corrupt_flips(&c, b);
     corrupt_semantics(&c, b);
+    corrupt_blob_bounds(&c, b);
+    corrupt_deferred(&c, b);
     free(b);
     printf("  %d corrupt files refused\n", c.cases);
     remove(c.path);

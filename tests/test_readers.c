@@ -417,6 +417,9 @@ static void test_stl(void)
 
     expect_error("wrongsize.stl", (const char *)buf, stl_binary(buf, "binary", 3, 4),
                  OIT_ERR_FORMAT, "byte offset 80");
+    /* More records than declared: trailing bytes are not silently dropped. */
+    expect_error("trailing.stl", (const char *)buf, stl_binary(buf, "binary", 3, 2),
+                 OIT_ERR_FORMAT, "declares 2 triangles");
     expect_error("trunc.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n", 0,
                  OIT_ERR_FORMAT, "line 4");
     expect_error("badvertex.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0\n", 0,

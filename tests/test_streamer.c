@@ -8,9 +8,11 @@
  * and alphas vary per shape; extents are jittered so no two faces are
  * coplanar.
  *
- * usage: test_streamer OUT.oitp [--bad-slab]
+ * usage: test_streamer OUT.oitp [--bad-slab | --understated-bound]
  * --bad-slab moves the slab's planes 0.05 up, so the inside box reaches
- * below d0: a file oitprep verify must reject (tests/test_verify_slab.sh). */
+ * below d0; --understated-bound records the slab's lower box with layer
+ * bound 1, though rays meet it twice: files oitprep verify
+ * must reject (tests/test_verify_slab.sh). */
 #include <stdio.h>
 #include <string.h>
 
@@ -26,6 +28,7 @@ typedef struct shape {
     uint32_t nv, ni;
     oit_partfile_piece_desc pieces[2];
     uint32_t piece_count;
+    uint32_t layer_bound; /* 0: the writer's default */
 } shape;
 
 static uint32_t rng_next(uint32_t *r)
@@ -110,6 +113,7 @@ static int write_shape(oit_partfile_writer *w, const shape *s, uint32_t *index, 
     d.index_count = s->ni;
     d.pieces = s->pieces;
     d.piece_count = s->piece_count;
+    d.layer_bound = s->layer_bound;
     d.attributes = OIT_ATTR_COLOR | OIT_ATTR_ALPHA;
     return oit_partfile_writer_add_part(w, &d, index, err) == OIT_OK ? 0 : -1;
 }
@@ -135,8 +139,12 @@ static int cell_part(oit_partfile_writer *w, const float lo[3], const float hi[3
 
 static const uint32_t SUB_CELL = 2 + NX * (2 + NY * 1), SLAB_CELL = 4 + NX * (1 + NY * 2);
 
-static int write_scene(const char *path, int bad_slab, oit_error *err)
+/* Deliberate flaws for oitprep verify's tests. */
+enum { FLAW_NONE, FLAW_SLAB, FLAW_BOUND };
+
+static int write_scene(const char *path, int flaw, oit_error *err)
 {
+    int bad_slab = flaw == FLAW_SLAB;
     oit_partfile_writer_desc wd = {0};
     wd.K = 8;
     wd.attributes = OIT_ATTR_COLOR | OIT_ATTR_ALPHA;
@@ -165,6 +173,8 @@ static int write_scene(const char *path, int bad_slab, oit_error *err)
                 float shi[3] = {hi[0] - 0.08f - 0.02f * k, hi[1] - 0.1f + 0.01f * k,
                                 lo[2] + z[k + 1] - 0.02f};
                 add_box(&s, slo, shi, &r);
+                if (flaw == FLAW_BOUND && k == 0)
+                    s.layer_bound = 1; /* a ray meets the closed box twice */
                 ok = write_shape(w, &s, &slab_parts[k], err);
             }
             counts[c] = 3;
@@ -200,13 +210,15 @@ static int write_scene(const char *path, int bad_slab, oit_error *err)
 
 int main(int argc, char **argv)
 {
-    int bad = argc == 3 && !strcmp(argv[2], "--bad-slab");
-    if (argc != 2 && !bad) {
-        fprintf(stderr, "usage: test_streamer OUT.oitp [--bad-slab]\n");
+    int flaw = argc == 3 && !strcmp(argv[2], "--bad-slab")          ? FLAW_SLAB
+               : argc == 3 && !strcmp(argv[2], "--understated-bound") ? FLAW_BOUND
+                                                                      : FLAW_NONE;
+    if (argc != 2 && flaw == FLAW_NONE) {
+        fprintf(stderr, "usage: test_streamer OUT.oitp [--bad-slab | --understated-bound]\n");
         return 2;
     }
     oit_error err = {0};
-    if (write_scene(argv[1], bad, &err) != 0) {
+    if (write_scene(argv[1], flaw, &err) != 0) {
         fprintf(stderr, "test_streamer: %s\n", err.message);
         return 1;
     }

@@ -29,5 +29,15 @@ grep -q "first violation: .*(slab 0, part" "$T/bad.txt" ||
     fail "bad file: the first violation does not name the slab: $(cat "$T/bad.txt")"
 grep "slabs\|first violation" "$T/bad.txt"
 
+# A part whose recorded layer bound is one less than the hits a ray gets
+# (a closed box recorded with bound 1: 2 hits) fails the bound check.
+"$W" "$T/bound.oitp" --understated-bound || { echo "FAIL: test_streamer"; exit 1; }
+"$OIT_BIN/oitprep" verify "$T/bound.oitp" >"$T/bound.txt" 2>&1
+rc=$?
+[ "$rc" -eq 1 ] || fail "verify exits $rc on a bound one too low, want 1"
+grep -q "gives 2 hits, more than its bound" "$T/bound.txt" ||
+    fail "understated bound: no part named with 2 hits over its bound: $(cat "$T/bound.txt")"
+grep "hits\|violation" "$T/bound.txt" | head -n 3
+
 [ "$FAILS" -eq 0 ] || { echo "$FAILS failure(s)"; exit 1; }
 echo "verify slab check: all checks passed"
