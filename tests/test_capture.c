@@ -166,13 +166,14 @@ static void test_batches(oit_capture *c, const char *name, oit_shading_mode mode
     oit_image_free(&many);
 }
 
-static void test_overflow(oit_capture *c, int K, const char *name)
+static void test_overflow(oit_capture *c, int K, int extra, const char *name)
 {
-    /* K+3 equal quads on a rectangle, twice: every covered pixel overflows
-     * once per batch. */
+    /* K+extra equal quads on a rectangle, twice: every covered pixel
+     * overflows once per batch; extra = 1 is the boundary (one fragment
+     * more than the slots). */
     enum { MAXQ = 19 };
     quad_spec q[2 * MAXQ];
-    int n = K + 3;
+    int n = K + extra;
     for (int i = 0; i < 2 * n; i++)
         q[i] = mk(-2.0f - 0.25f * i, 0.43f * (2.0f + 0.25f * i), 200, 100, 50, 100, 1);
     oit_view v;
@@ -219,7 +220,8 @@ static void run_all(oit_capture *c, int K, const char *name)
                       mk(-4.5f, 1.7f, 30, 90, 230, 255, 0), mk(-6.0f, 20.0f, 200, 120, 40, 255, 0)};
     int tstart[4] = {0, 2, 3, 4};
     test_batches(c, name, OIT_SHADING_TRANSLUCENT, t, 4, tstart, 3, 1);
-    test_overflow(c, K, name);
+    test_overflow(c, K, 3, name);
+    test_overflow(c, K, 1, name);
 }
 
 int main(void)
