@@ -17,6 +17,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "formats/paths.h"
 #include "preprocess/convert.h"
 #include "preprocess/stats_json.h"
 #include "preprocess/export_parts.h"
@@ -240,6 +241,20 @@ static int option_choice(int argc, char **argv, int *i, const char *name,
     return -1;
 }
 
+/* Before any work: neither output may be the input (or each other), and
+ * both must be creatable, so a typo never costs the model or the run. */
+static oit_status check_outputs(const char *input, const char *out, const char *stats,
+                                oit_error *err)
+{
+    const char *ins[2] = {input, out};
+    oit_status s = oit_output_check(out, "-o", ins, 1, err);
+    if (!s && stats && strcmp(stats, out) == 0)
+        s = oit_error_set(err, OIT_ERR_ARGUMENT, "%s: --stats and -o name the same file", stats);
+    if (!s && stats)
+        s = oit_output_check(stats, "--stats", ins, 2, err);
+    return s;
+}
+
 static int cmd_convert(int argc, char **argv)
 {
     long cores = sysconf(_SC_NPROCESSORS_ONLN);
@@ -298,9 +313,14 @@ static int cmd_convert(int argc, char **argv)
         fprintf(stderr, "oitprep: conversion needs INPUT and -o OUT (see oitprep --help)\n");
         return 2;
     }
-    oit_convert_stats st;
     oit_error err = {0};
-    oit_status s = oit_convert(&o, &st, &err);
+    oit_status s = check_outputs(o.input, o.output, stats, &err);
+    if (s) {
+        fprintf(stderr, "oitprep: %s\n", err.message);
+        return oit_status_exit_code(s);
+    }
+    oit_convert_stats st;
+    s = oit_convert(&o, &st, &err);
     if (s) {
         fprintf(stderr, "oitprep: %s\n", err.message);
         return oit_status_exit_code(s);
@@ -389,7 +409,9 @@ static int cmd_parts(int argc, char **argv)
     }
     oit_export_counts c;
     oit_error err = {0};
-    oit_status s = oit_export_parts(path, out, colour, alpha, &c, &err);
+    oit_status s = oit_output_check(out, "-o", &path, 1, &err);
+    if (!s)
+        s = oit_export_parts(path, out, colour, alpha, &c, &err);
     if (s) {
         fprintf(stderr, "oitprep: %s\n", err.message);
         return oit_status_exit_code(s);

@@ -8,6 +8,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "formats/paths.h"
 #include "formats/ply_writer.h"
 #include "scenes/scene.h"
 
@@ -288,7 +289,9 @@ int main(int argc, char **argv)
     double t0 = now_s();
     oit_error err = {0};
     oit_ply_writer_stats st = {0};
-    oit_status s = generate(&c, &st, &err);
+    oit_status s = oit_output_check(c.output, "-o", &c.args.input, 1, &err);
+    if (!s)
+        s = generate(&c, &st, &err);
     if (s) {
         fprintf(stderr, "oitgen: %s\n", err.message);
         return oit_status_exit_code(s);

@@ -13,6 +13,7 @@
 #include <errno.h>
 #include <sys/stat.h>
 
+#include "formats/paths.h"
 #include "stream/bench_args.h"
 #include "stream/bench_csv.h"
 #include "stream/bench_plot.h"
@@ -184,6 +185,11 @@ int main(int argc, char **argv)
         oit_bench_usage(stdout, names);
         return 0;
     }
+    /* The output folder is made and tested before the run, not after it. */
+    const char *out = a.plot ? a.plot_out : a.out;
+    const char *in = a.plot ? NULL : a.model;
+    if (oit_output_dir_check(out, a.plot ? "plot OUT" : "--out", &in, 1, &err) != OIT_OK)
+        return fail(&err);
     if (a.plot)
         return plot(&a);
     join_args(argc, argv, line, sizeof line);

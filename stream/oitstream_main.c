@@ -11,6 +11,7 @@
 #include <strings.h>
 #include <sys/stat.h>
 
+#include "formats/paths.h"
 #include "render/image.h"
 #include "stream/cli_args.h"
 #include "stream/part_triangles.h"
@@ -79,6 +80,60 @@ static oit_status compare_outside_mask(const oit_stream_args *a, const oit_image
     }
     oit_image_free(&mask);
     oit_image_free(&b);
+    return s;
+}
+
+
+/* ---- output paths, checked before any work ---- */
+
+/* The file extension of the last path component: 2 to 5 letters after a
+ * dot ("" otherwise), so "x.jpg" is a file but "run_0.01" a folder. */
+static const char *path_ext(const char *p)
+{
+    const char *slash = strrchr(p, '/'), *base = slash ? slash + 1 : p;
+    const char *dot = strrchr(base, '.');
+    if (!dot || dot == base)
+        return "";
+    size_t n = 0;
+    for (const char *c = dot + 1; *c; c++, n++)
+        if (!((*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z')))
+            return "";
+    return n >= 2 && n <= 5 ? dot : "";
+}
+
+/* An --out with an extension must be an image format we write; one without
+ * is a folder (created now, as it would be at the first frame). */
+static oit_status check_image_out(const char *out, const char *what, const char *const *ins,
+                                  size_t n, int folder_ok, oit_error *err)
+{
+    const char *ext = out ? path_ext(out) : "";
+    if (out && *out && out[strlen(out) - 1] != '/' && *ext) {
+        if (strcasecmp(ext, ".png") && strcasecmp(ext, ".pfm"))
+            return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: %s: unknown image extension '%s' "
+                                 "(want .png or .pfm%s)", out, what, ext,
+                                 folder_ok ? ", or a folder without an extension" : "");
+        return oit_output_check(out, what, ins, n, err);
+    }
+    if (!folder_ok)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: %s needs FILE.png or FILE.pfm",
+                             out && *out ? out : "\"\"", what);
+    return oit_output_dir_check(out, what, ins, n, err);
+}
+
+static oit_status check_outputs(const oit_stream_args *a, oit_error *err)
+{
+    const char *ins[4] = {a->compare ? a->compare_a : a->model, a->compare_b, a->walk,
+                          a->mask};
+    oit_status s = OIT_OK;
+    if (a->out)
+        s = check_image_out(a->out, "--out", ins, 4, !a->compare, err);
+    if (!s && a->ambiguity_out)
+        s = check_image_out(a->ambiguity_out, "--ambiguity", ins, 4, 1, err);
+    if (!s && a->stats_path)
+        s = oit_output_check(a->stats_path, "--stats", ins, 4, err);
+    if (!s && a->out && a->stats_path && !strcmp(a->out, a->stats_path))
+        s = oit_error_set(err, OIT_ERR_ARGUMENT, "%s: --out and --stats name the same file",
+                          a->out);
     return s;
 }
 
@@ -340,6 +395,9 @@ static oit_status render_all(run_ctx *rc, const oit_mesh *mesh, const oit_camera
         rc->view.camera = cams[i];
         s = render_one(rc, i, n, &frames[i], err);
     }
+    if (s == OIT_OK && !a->out && !a->quiet) /* say where nothing went */
+        fprintf(stderr, "oitstream: %s: %d view%s rendered; no --out given, so no image was "
+                "written\n", a->model, n, n == 1 ? "" : "s");
     if (s == OIT_OK && a->stats_path) {
         oit_stats_run run = {a->model, (unsigned long long)mesh->info.triangles,
                              rc->method->renderer(rc->state), a->width, a->height, frames,
@@ -483,5 +541,7 @@ int main(int argc, char **argv)
         oit_stream_usage(stdout, names);
         return 0;
     }
+    if (check_outputs(&a, &err) != OIT_OK)
+        return fail(&err);
     return a.compare ? run_compare(&a) : run_render(&a);
 }
