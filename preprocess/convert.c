@@ -593,6 +593,10 @@ static oit_status convert_with(const oit_convert_options *o, oit_convert_stats *
     bin_sink_ctx bctx = {0};
     s = bin_input(o, &r.grid, info.triangles, &r.bins, &bctx, err);
     st->degenerate_dropped = bctx.degenerate;
+    if (!s && bctx.degenerate == info.triangles) /* the reader's test is coarser than ours */
+        s = oit_error_set(err, OIT_ERR_FORMAT, "%s: all %llu triangles are degenerate (no "
+                          "plane): nothing to convert", o->input,
+                          (unsigned long long)info.triangles);
     double t2 = now_s();
     st->seconds_bin = t2 - t1;
     double t_write = 0;
