@@ -18,6 +18,7 @@
 #include <unistd.h>
 
 #include "formats/paths.h"
+#include "formats/tool_signals.h"
 #include "preprocess/convert.h"
 #include "preprocess/stats_json.h"
 #include "preprocess/export_parts.h"
@@ -319,6 +320,8 @@ static int cmd_convert(int argc, char **argv)
         fprintf(stderr, "oitprep: %s\n", err.message);
         return oit_status_exit_code(s);
     }
+    static const char *const tmp[] = {".tmp", NULL}; /* partfile_write.c */
+    oit_tool_signals_install("oitprep", o.output, tmp);
     oit_convert_stats st;
     s = oit_convert(&o, &st, &err);
     if (s) {
@@ -410,6 +413,9 @@ static int cmd_parts(int argc, char **argv)
     oit_export_counts c;
     oit_error err = {0};
     oit_status s = oit_output_check(out, "-o", &path, 1, &err);
+    static const char *const tmp[] = {".tmp", ".faces.tmp", NULL}; /* write_ply.c */
+    if (!s)
+        oit_tool_signals_install("oitprep", out, tmp);
     if (!s)
         s = oit_export_parts(path, out, colour, alpha, &c, &err);
     if (s) {

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "formats/paths.h"
+#include "formats/tool_signals.h"
 #include "formats/ply_writer.h"
 #include "scenes/scene.h"
 
@@ -290,6 +291,9 @@ int main(int argc, char **argv)
     oit_error err = {0};
     oit_ply_writer_stats st = {0};
     oit_status s = oit_output_check(c.output, "-o", &c.args.input, 1, &err);
+    static const char *const tmp[] = {".tmp", ".faces.tmp", NULL}; /* write_ply.c */
+    if (!s)
+        oit_tool_signals_install("oitgen", c.output, tmp);
     if (!s)
         s = generate(&c, &st, &err);
     if (s) {
