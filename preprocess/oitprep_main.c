@@ -62,7 +62,8 @@ static void usage(FILE *f)
           "                than the axis split or spares that split's further splits.\n"
           "                --slabs all (default), separating (no cutting planes) or\n"
           "                none (axis splits only): for comparisons; cut_slabs in --stats.\n"
-          "                --max-layers K (even, default 8), --memory BYTES for the\n"
+          "                --max-layers K (even, 2..64, default 8; above 16 the streamer\n"
+          "                captures parts over tiles), --memory BYTES for the\n"
           "                binning (suffix K/M/G, default 2G; beyond it bins spill to\n"
           "                OUT.spill), --threads N (default: all cores), --grid N top cells\n"
           "                along the longest axis (default: ~64K triangles a cell; cells are\n"
@@ -271,8 +272,9 @@ static int cmd_convert(int argc, char **argv)
         else if (strcmp(a, "--stats") == 0 && i + 1 < argc)
             stats = argv[++i];
         else if (strcmp(a, "--max-layers") == 0) {
-            if (option_value(argc, argv, &i, a, 0, 2, 1024, &v) || v % 2) {
-                fprintf(stderr, "oitprep: --max-layers must be even, 2..1024\n");
+            /* 64: the widest part the streamer captures (over tiles) */
+            if (option_value(argc, argv, &i, a, 0, 2, 64, &v) || v % 2) {
+                fprintf(stderr, "oitprep: --max-layers must be even, 2..64\n");
                 return 2;
             }
             o.K = (uint32_t)v;

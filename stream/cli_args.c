@@ -92,8 +92,10 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
     else if (!strcmp(opt, "--size")) {
         if (!parse_size(v, &a->width, &a->height)) *s = bad(err, opt, v, "WxH, 1..16384");
     } else if (!strcmp(opt, "--view")) {
-        if (oit_camera_parse(&a->view, v, NULL) != 0)
-            *s = bad(err, opt, v, "ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy[,znear,zfar]");
+        int code = oit_camera_parse(&a->view, v, NULL);
+        if (code != 0)
+            *s = oit_error_set(err, OIT_ERR_ARGUMENT, "%s '%s': %s", opt, v,
+                               oit_camera_parse_error(code));
         a->have_view = 1;
         a->view_text = v;
     } else if (!strcmp(opt, "--azimuth")) {

@@ -25,6 +25,16 @@ static int fail(const oit_error *err)
     return oit_status_exit_code(err->status);
 }
 
+/* The stencil method's "unsupported" is the driver's limit (it does not
+ * route per sample, or has fewer samples than K), not bad input: a runtime
+ * failure, exit 1. The capture layer keeps UNSUPPORTED, which its callers
+ * read as "not offered here". */
+static int fail_rendering(const oit_error *err, const oit_render_method *m)
+{
+    int code = fail(err);
+    return err->status == OIT_ERR_UNSUPPORTED && m && !strcmp(m->name, "stencil") ? 1 : code;
+}
+
 /* ---- --compare ---- */
 
 static void print_diff(const oit_image_diff *d, uint64_t pixels, int json)
@@ -213,10 +223,10 @@ static oit_status read_walk(const char *path, const oit_mesh_info *info, oit_cam
             cams = c;
         }
         memset(&cams[n], 0, sizeof cams[n]);
-        if (oit_camera_parse(&cams[n], t, info->origin) != 0)
-            s = oit_error_set(err, OIT_ERR_FORMAT, "%s: line %d: not a view "
-                              "(ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy[,znear,zfar]): '%.60s'",
-                              path, line_no, t);
+        int code = oit_camera_parse(&cams[n], t, info->origin);
+        if (code != 0)
+            s = oit_error_set(err, OIT_ERR_FORMAT, "%s: line %d: not a view (%s): '%.60s'",
+                              path, line_no, oit_camera_parse_error(code), t);
         else if (!(cams[n].znear > 0.0f && cams[n].zfar > cams[n].znear))
             fit_clip_planes(&cams[n], info);
         n += s == OIT_OK;
@@ -493,7 +503,9 @@ static int run_render(const oit_stream_args *args)
         oit_partfile_summary sum = {0};
         if (pf)
             oit_partfile_get_summary(pf, &sum);
-        K = pf ? (int)sum.K : 16;
+        /* A file cut for more than the K-slot capture holds streams as parts
+         * wider than K: captured alone over tiles (oit_capture_batch_layers). */
+        K = pf && sum.K < 16 ? (int)sum.K : 16;
     }
     oit_method_options opt = {.max_layers = K, .partfile = pf,
                               .pack = a->pack,
@@ -526,7 +538,7 @@ static int run_render(const oit_stream_args *args)
     free(cams);
     oit_mesh_free(&mesh);
     oit_partfile_close(pf);
-    return s == OIT_OK ? 0 : fail(&err);
+    return s == OIT_OK ? 0 : fail_rendering(&err, rc.method);
 }
 
 int main(int argc, char **argv)
