@@ -68,8 +68,10 @@ oit_status oit_output_check(const char *out, const char *what, const char *const
 }
 
 oit_status oit_output_dir_check(const char *dir, const char *what, const char *const *inputs,
-                                size_t n, oit_error *err)
+                                size_t n, int *created, oit_error *err)
 {
+    if (created)
+        *created = 0;
     oit_status s = check_named(dir, what, err);
     if (s)
         return s;
@@ -79,8 +81,12 @@ oit_status oit_output_dir_check(const char *dir, const char *what, const char *c
                              what ? what : "output");
     if ((s = check_not_input(dir, what ? what : "output", inputs, n, err)))
         return s;
-    if (mkdir(dir, 0777) != 0 && errno != EEXIST)
+    if (mkdir(dir, 0777) == 0) {
+        if (created)
+            *created = 1;
+    } else if (errno != EEXIST) {
         return oit_error_set(err, OIT_ERR_IO, "%s: cannot create folder: %s", dir, strerror(errno));
+    }
     if (access(dir, W_OK | X_OK) != 0)
         return oit_error_set(err, OIT_ERR_IO, "%s: cannot write into folder: %s", dir,
                              strerror(errno));

@@ -29,8 +29,10 @@ extern "C" {
  * name ("--stats"), for messages. */
 oit_status oit_output_check(const char *out, const char *what, const char *const *inputs,
                             size_t n, oit_error *err);
+/* *created (may be NULL) says whether the folder was made now, so that a
+ * tool whose run then fails can remove it again (rmdir: only when empty). */
 oit_status oit_output_dir_check(const char *dir, const char *what, const char *const *inputs,
-                                size_t n, oit_error *err);
+                                size_t n, int *created, oit_error *err);
 /* 1 when a and b name the same existing file (device and inode). */
 int oit_same_file(const char *a, const char *b);
 

@@ -188,10 +188,17 @@ int main(int argc, char **argv)
     /* The output folder is made and tested before the run, not after it. */
     const char *out = a.plot ? a.plot_out : a.out;
     const char *in = a.plot ? NULL : a.model;
-    if (oit_output_dir_check(out, a.plot ? "plot OUT" : "--out", &in, 1, &err) != OIT_OK)
+    int created = 0;
+    if (oit_output_dir_check(out, a.plot ? "plot OUT" : "--out", &in, 1, &created, &err) != OIT_OK)
         return fail(&err);
-    if (a.plot)
-        return plot(&a);
-    join_args(argc, argv, line, sizeof line);
-    return run(&a, line);
+    int code;
+    if (a.plot) {
+        code = plot(&a);
+    } else {
+        join_args(argc, argv, line, sizeof line);
+        code = run(&a, line);
+    }
+    if (code != 0 && created)
+        rmdir(out); /* the folder this run made, when nothing went into it */
+    return code;
 }

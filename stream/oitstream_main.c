@@ -10,6 +10,7 @@
 #include <string.h>
 #include <strings.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "formats/paths.h"
 #include "render/image.h"
@@ -114,7 +115,7 @@ static const char *path_ext(const char *p)
 /* An --out with an extension must be an image format we write; one without
  * is a folder (created now, as it would be at the first frame). */
 static oit_status check_image_out(const char *out, const char *what, const char *const *ins,
-                                  size_t n, int folder_ok, oit_error *err)
+                                  size_t n, int folder_ok, int *created, oit_error *err)
 {
     const char *ext = out ? path_ext(out) : "";
     if (out && *out && out[strlen(out) - 1] != '/' && *ext) {
@@ -127,18 +128,19 @@ static oit_status check_image_out(const char *out, const char *what, const char 
     if (!folder_ok)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: %s needs FILE.png or FILE.pfm",
                              out && *out ? out : "\"\"", what);
-    return oit_output_dir_check(out, what, ins, n, err);
+    return oit_output_dir_check(out, what, ins, n, created, err);
 }
 
-static oit_status check_outputs(const oit_stream_args *a, oit_error *err)
+/* created[0], created[1]: --out and --ambiguity folders made by the check. */
+static oit_status check_outputs(const oit_stream_args *a, int created[2], oit_error *err)
 {
     const char *ins[4] = {a->compare ? a->compare_a : a->model, a->compare_b, a->walk,
                           a->mask};
     oit_status s = OIT_OK;
     if (a->out)
-        s = check_image_out(a->out, "--out", ins, 4, !a->compare, err);
+        s = check_image_out(a->out, "--out", ins, 4, !a->compare, &created[0], err);
     if (!s && a->ambiguity_out)
-        s = check_image_out(a->ambiguity_out, "--ambiguity", ins, 4, 1, err);
+        s = check_image_out(a->ambiguity_out, "--ambiguity", ins, 4, 1, &created[1], err);
     if (!s && a->stats_path)
         s = oit_output_check(a->stats_path, "--stats", ins, 4, err);
     if (!s && a->out && a->stats_path && !strcmp(a->out, a->stats_path))
@@ -553,7 +555,13 @@ int main(int argc, char **argv)
         oit_stream_usage(stdout, names);
         return 0;
     }
-    if (check_outputs(&a, &err) != OIT_OK)
+    int created[2] = {0, 0};
+    if (check_outputs(&a, created, &err) != OIT_OK)
         return fail(&err);
-    return a.compare ? run_compare(&a) : run_render(&a);
+    int code = a.compare ? run_compare(&a) : run_render(&a);
+    if (code != 0 && created[0])
+        rmdir(a.out); /* folders this run made, when nothing went into them */
+    if (code != 0 && created[1])
+        rmdir(a.ambiguity_out);
+    return code;
 }
