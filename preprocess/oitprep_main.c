@@ -273,10 +273,12 @@ static int cmd_convert(int argc, char **argv)
             stats = argv[++i];
         else if (strcmp(a, "--max-layers") == 0) {
             /* 64: the widest part the streamer captures (over tiles) */
-            if (option_value(argc, argv, &i, a, 0, 2, 64, &v) || v % 2) {
-                fprintf(stderr, "oitprep: --max-layers must be even, 2..64\n");
+            if (i + 1 >= argc || parse_size(argv[i + 1], 0, 64, &v) || v < 2 || v % 2) {
+                fprintf(stderr, "oitprep: --max-layers '%s': must be even, 2..64\n",
+                        i + 1 < argc ? argv[i + 1] : "");
                 return 2;
             }
+            i++;
             o.K = (uint32_t)v;
         } else if (strcmp(a, "--memory") == 0) {
             if (option_value(argc, argv, &i, a, 1, 1 << 16, SIZE_MAX, &v))
