@@ -37,14 +37,17 @@ static void usage(FILE *f)
           "                and index) and print its counts; --json prints one JSON object\n"
           "                (triangles, parts, pieces, slabs, cut_slabs, cells,\n"
           "                subgrid_depth, bytes, layer_bound, attributes, version, K, ...)\n"
-          "  verify FILE   cast rays through every part (Embree): parallel bundles from M\n"
-          "                directions (default 64) and rays from V viewpoints (default 16,\n"
-          "                the centre among them); fails (exit 1) when a part yields more\n"
+          "  verify FILE   cast rays through every part (Embree): parallel bundles from\n"
+          "                --directions M (0..100000, default 64) and rays from\n"
+          "                --viewpoints V (0..100000, default 16, the centre among them;\n"
+          "                M or V above 0);\n"
+          "                fails (exit 1) when a part yields more\n"
           "                hits than its layer bound, parts are met out of the order\n"
           "                stream/order.h computes for the ray's origin, or a slab's\n"
           "                parts have a vertex on the wrong side of its planes (exact).\n"
-          "                The parts go into Embree scenes of at most T triangles\n"
-          "                (default 4M, suffix K/M/G), built and cast one at a time:\n"
+          "                The parts go into Embree scenes of at most --chunk-triangles T\n"
+          "                triangles\n"
+          "                (1..4G, default 4M, suffix K/M/G), built and cast one at a time:\n"
           "                memory holds one scene (about 100 bytes a triangle)\n"
           "  parts FILE    write FILE's parts as a PLY to look at (render it with oitstream):\n"
           "                --colour part (default) gives each part a hue of its own; kind\n"
@@ -64,10 +67,12 @@ static void usage(FILE *f)
           "                none (axis splits only): for comparisons; cut_slabs in --stats.\n"
           "                --max-layers K (even, 2..64, default 8; above 16 the streamer\n"
           "                captures parts over tiles), --memory BYTES for the\n"
-          "                binning (suffix K/M/G, default 2G; beyond it bins spill to\n"
-          "                OUT.spill), --threads N (default: all cores), --grid N top cells\n"
-          "                along the longest axis (default: ~64K triangles a cell; cells are\n"
-          "                rounded to a power-of-two size), --stats FILE.json figures.\n"
+          "                binning (>= 64K, suffix K/M/G, default 2G; beyond it bins spill\n"
+          "                to OUT.spill), --threads N (1..1024, default: all cores), --grid N\n"
+          "                top cells along the longest axis (1..1024, default: ~64K\n"
+          "                triangles a cell; cells are rounded to a power-of-two size),\n"
+          "                --max-piece-triangles T stops a convex piece at T triangles\n"
+          "                (1..1073741824, default 4096), --stats FILE.json figures.\n"
           "                The output is byte-identical for any --threads and --memory.\n"
           "                Where more than K layers meet at one vertex no box separates\n"
           "                them: that node becomes a wide part (bound up to 64, streamed\n"
@@ -372,6 +377,11 @@ static int cmd_verify(int argc, char **argv)
     }
     if (!path) {
         fprintf(stderr, "oitprep verify: no FILE given (see oitprep --help)\n");
+        return 2;
+    }
+    if (o.directions == 0 && o.viewpoints == 0) { /* no ray: nothing verified */
+        fprintf(stderr, "oitprep verify: --directions 0 and --viewpoints 0 cast no ray; "
+                "give one of them above 0\n");
         return 2;
     }
     oit_verify_report rep;
