@@ -48,6 +48,7 @@
 #include <vector>
 
 #include "formats/gltf_internal.h"
+#include "formats/gzip_input.h"
 #include "oit/mesh.h"
 
 namespace {
@@ -851,7 +852,7 @@ oit_status parse(Ctx &c, const unsigned char *bytes, size_t size, tinygltf::Mode
     return OIT_OK;
 }
 
-oit_status read_memory(Ctx &c, const unsigned char *bytes, size_t size)
+oit_status read_plain(Ctx &c, const unsigned char *bytes, size_t size)
 {
     tinygltf::Model model;
     oit_status s = parse(c, bytes, size, &model);
@@ -866,6 +867,26 @@ oit_status read_memory(Ctx &c, const unsigned char *bytes, size_t size)
     c.chunk.reserve(c.chunk_cap);
     s = walk_model(c);
     return s == OIT_OK ? flush(c) : s;
+}
+
+/* tinygltf parses from memory: gzip bytes are inflated first, within the
+ * budget, and the model must yield a triangle like every other format's. */
+oit_status read_memory(Ctx &c, const unsigned char *bytes, size_t size)
+{
+    oit_status s;
+    if (oit_gz_magic(bytes, size)) {
+        unsigned char *plain = nullptr;
+        size_t n = 0;
+        s = oit_gunzip(bytes, size, c.budget_limit - c.budget_used, c.name, &plain, &n, c.err);
+        if (s == OIT_OK && (s = charge(c, n, "the inflated gzip data")) == OIT_OK) {
+            s = read_plain(c, plain, n);
+            release(c, n);
+        }
+        std::free(plain);
+    } else {
+        s = read_plain(c, bytes, size);
+    }
+    return s == OIT_OK ? oit_rd_require_triangles(c.name, c.info, c.err) : s;
 }
 
 oit_status read_file(Ctx &c, const char *path, std::vector<unsigned char> *bytes)

@@ -18,6 +18,10 @@
 extern "C" {
 #endif
 
+/* read_common.c's check that a read delivered a triangle (readers_internal.h). */
+oit_status oit_rd_require_triangles(const char *name, const oit_mesh_info *info,
+                                    oit_error *err);
+
 oit_status oit_read_gltf_memory(const unsigned char *bytes, size_t size, const char *name,
                                 const char *dir, const oit_read_desc *desc,
                                 oit_triangle_sink sink, void *user, oit_mesh_info *info,

@@ -29,8 +29,20 @@ void oit_mesh_position(const double origin[3], const double in[3], float out[3])
     }
 }
 
+/* Zero cross product of two float edges: no plane, no fragment. */
+static int zero_area(const oit_triangle *t)
+{
+    const float *a = t->v[0].pos, *b = t->v[1].pos, *c = t->v[2].pos;
+    float u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    float w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    return u[1] * w[2] - u[2] * w[1] == 0.0f && u[2] * w[0] - u[0] * w[2] == 0.0f &&
+           u[0] * w[1] - u[1] * w[0] == 0.0f;
+}
+
 void oit_mesh_info_add(oit_mesh_info *info, const oit_triangle *tris, size_t count)
 {
+    for (size_t i = 0; i < count; i++)
+        info->zero_area += (uint64_t)zero_area(&tris[i]);
     for (size_t i = 0; i < count; i++)
         for (int v = 0; v < 3; v++)
             for (int k = 0; k < 3; k++) {

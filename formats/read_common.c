@@ -1,6 +1,7 @@
 /* Buffered input, budgeted allocation, chunked output and number parsing
  * shared by the mesh readers; see readers_internal.h for the contract. */
 #include "formats/readers_internal.h"
+#include "formats/gzip_input.h"
 
 #include <errno.h>
 #include <inttypes.h>
@@ -112,6 +113,10 @@ static oit_status rd_fill(oit_rd_stream *s, size_t need)
     while (!s->eof && s->end < need) {
         size_t n = fread(s->buf + s->end, 1, s->cap - 1 - s->end, s->f);
         if (n == 0) {
+            if (ferror(s->f) && s->gz && oit_gz_message(s->gz)[0])
+                return oit_error_set(s->err, OIT_ERR_FORMAT, "%s: %s, after %llu inflated bytes",
+                                     s->name, oit_gz_message(s->gz),
+                                     (unsigned long long)(s->base + s->end));
             if (ferror(s->f))
                 return oit_rd_fail_offset(s, s->base + s->end, OIT_ERR_IO, "read error: %s",
                                           strerror(errno));
@@ -267,6 +272,66 @@ oit_status oit_rd_fail_offset(oit_rd_stream *s, uint64_t offset, oit_status st,
     return oit_error_set(s->err, st, "%s: byte offset %" PRIu64 ": %s", s->name, offset, msg);
 }
 
+/* ---- text and content checks ------------------------------------------ */
+
+#define RD_TEXT_PROBE ((size_t)4096)
+
+oit_status oit_rd_skip_bom(oit_rd_stream *s)
+{
+    const unsigned char *b;
+    size_t avail;
+    oit_status st = oit_rd_peek(s, 3, &b, &avail);
+    if (st == OIT_OK && avail >= 3 && b[0] == 0xef && b[1] == 0xbb && b[2] == 0xbf)
+        s->pos += 3;
+    return st;
+}
+
+static int rd_is_binary_byte(unsigned char c)
+{
+    return c < 0x20 && c != '\t' && c != '\n' && c != '\r' && c != '\f' && c != '\v' &&
+           c != 0x1b;
+}
+
+oit_status oit_rd_text_begin(oit_rd_stream *s, const char *format)
+{
+    oit_status st = oit_rd_skip_bom(s);
+    const unsigned char *b;
+    size_t avail;
+    if (st == OIT_OK)
+        st = oit_rd_peek(s, RD_TEXT_PROBE, &b, &avail);
+    if (st != OIT_OK)
+        return st;
+    for (size_t i = 0; i < avail && i < RD_TEXT_PROBE; i++)
+        if (rd_is_binary_byte(b[i]))
+            return oit_rd_fail_offset(s, oit_rd_offset(s) + i, OIT_ERR_FORMAT,
+                                      "byte 0x%02x: binary data, not a text %s file", b[i],
+                                      format);
+    return OIT_OK;
+}
+
+oit_status oit_rd_require_triangles(const char *name, const oit_mesh_info *info,
+                                    oit_error *err)
+{
+    unsigned long long t = info->triangles, nf = info->nonfinite_dropped;
+    unsigned long long v = info->vertices_in, f = info->faces_in;
+    if (t > 0 && info->zero_area < t)
+        return OIT_OK;
+    if (t > 0)
+        return oit_error_set(err, OIT_ERR_FORMAT, "%s: all %llu triangles are degenerate (zero "
+                             "area): nothing to draw", name, t);
+    if (nf > 0)
+        return oit_error_set(err, OIT_ERR_FORMAT, "%s: all %llu triangles have a non-finite "
+                             "coordinate (NaN or inf): nothing to draw", name, nf);
+    if (f > 0)
+        return oit_error_set(err, OIT_ERR_FORMAT, "%s: %llu faces but none with three "
+                             "vertices: no triangle to draw", name, f);
+    if (v > 0)
+        return oit_error_set(err, OIT_ERR_FORMAT, "%s: %llu vertices but no faces: no triangle "
+                             "to draw (a point cloud?)", name, v);
+    return oit_error_set(err, OIT_ERR_FORMAT, "%s: no vertices and no faces: no model in this "
+                         "file", name);
+}
+
 /* ---- numbers ---------------------------------------------------------- */
 
 static int rd_ends_token(char c, const char *stops)
@@ -369,10 +434,23 @@ oit_status oit_rd_ctx_open(oit_rd_ctx *c, FILE *f, const char *name, const oit_r
     oit_mesh_info_init(c->info);
     c->name = name;
     c->err = err;
-    oit_status st = oit_rd_emitter_init(&c->out, desc, &c->budget, sink, user, c->info, name, err);
+    oit_status st = oit_gz_open(f, name, &c->gz_file, &c->gz, err);
     if (st != OIT_OK)
         return st;
-    return oit_rd_open(&c->in, f, name, &c->budget, err);
+    if (c->gz_file) {
+        size_t n = strlen(name);
+        int named = n >= 3 && (name[n - 1] == 'z' || name[n - 1] == 'Z') &&
+                    (name[n - 2] == 'g' || name[n - 2] == 'G') && name[n - 3] == '.';
+        snprintf(c->gz_name, sizeof c->gz_name, "%s%s", name, named ? "" : " (gzip)");
+        c->name = name = c->gz_name;
+        f = c->gz_file;
+    }
+    st = oit_rd_emitter_init(&c->out, desc, &c->budget, sink, user, c->info, name, err);
+    if (st != OIT_OK)
+        return st;
+    st = oit_rd_open(&c->in, f, name, &c->budget, err);
+    c->in.gz = c->gz;
+    return st;
 }
 
 oit_status oit_rd_ctx_close(oit_rd_ctx *c, oit_status st)
@@ -381,6 +459,9 @@ oit_status oit_rd_ctx_close(oit_rd_ctx *c, oit_status st)
         st = oit_rd_flush(&c->out);
     oit_rd_close(&c->in);
     oit_rd_emitter_free(&c->out);
+    if (c->gz_file)
+        fclose(c->gz_file);
+    c->gz_file = NULL;
     return st;
 }
 
@@ -398,7 +479,9 @@ oit_status oit_rd_with_file(const char *path, oit_rd_file_fn fn, const oit_read_
     FILE *f = fopen(path, "rb");
     if (!f)
         return oit_error_set(err, OIT_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
-    oit_status st = fn(f, path, dir, desc, sink, user, info, err);
+    oit_mesh_info local;
+    oit_mesh_info *in = info ? info : &local;
+    oit_status st = fn(f, path, dir, desc, sink, user, in, err);
     fclose(f);
-    return st;
+    return st == OIT_OK ? oit_rd_require_triangles(path, in, err) : st;
 }

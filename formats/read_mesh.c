@@ -13,14 +13,32 @@ static int ext_is(const char *ext, const char *want)
     return *ext == '\0' && *want == '\0';
 }
 
+/* The extension that names the format, a trailing ".gz" set aside. */
+static const char *mesh_ext(const char *path, char *buf, size_t cap)
+{
+    const char *slash = strrchr(path, '/'), *base = slash ? slash + 1 : path;
+    size_t n = strlen(base);
+    if (n > 3 && base[n - 3] == '.' && tolower((unsigned char)base[n - 2]) == 'g' &&
+        tolower((unsigned char)base[n - 1]) == 'z')
+        n -= 3;
+    size_t d = n;
+    while (d > 0 && base[d - 1] != '.')
+        d--;
+    if (d == 0 || n - d >= cap)
+        return "";
+    memcpy(buf, base + d, n - d);
+    buf[n - d] = '\0';
+    return buf;
+}
+
 oit_status oit_mesh_read(const char *path, const oit_read_desc *desc, oit_triangle_sink sink,
                          void *user, oit_mesh_info *info, oit_error *err)
 {
     if (!path)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_mesh_read: no path given");
-    const char *dot = strrchr(path, '.');
-    const char *slash = strrchr(path, '/');
-    const char *ext = dot && (!slash || dot > slash) ? dot + 1 : "";
+    /* NAME.obj.gz is an OBJ: the readers inflate gzip whatever the name. */
+    char ext_buf[16];
+    const char *ext = mesh_ext(path, ext_buf, sizeof ext_buf);
     if (ext_is(ext, "ply"))
         return oit_read_ply(path, desc, sink, user, info, err);
     if (ext_is(ext, "obj"))

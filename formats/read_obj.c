@@ -257,7 +257,7 @@ static oit_status obj_parse(obj_reader *r)
 {
     oit_rd_ctx *c = r->c;
     c->in.continuation = 1;
-    oit_status st = OIT_OK;
+    oit_status st = oit_rd_text_begin(&c->in, "OBJ");
     while (st == OIT_OK) {
         char *line;
         int got;

@@ -212,7 +212,9 @@ static oit_status off_parse(oit_rd_ctx *c)
 {
     off_layout lay;
     uint64_t nv = 0, nf = 0;
-    oit_status st = off_header(c, &lay, &nv, &nf);
+    oit_status st = oit_rd_text_begin(&c->in, "OFF");
+    if (st == OIT_OK)
+        st = off_header(c, &lay, &nv, &nf);
     oit_rd_vtable tab = {0};
     for (uint64_t i = 0; st == OIT_OK && i < nv; i++)
         st = off_vertex(c, &lay, &tab, i, nv);

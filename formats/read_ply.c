@@ -465,8 +465,10 @@ oit_status oit_read_ply_stream(FILE *f, const char *name, const char *dir,
     if (!r)
         return oit_error_set(err, OIT_ERR_NOMEM, "%s: out of memory", name);
     r->c = &c;
-    r->file_size = oit_rd_file_size(f);
     oit_status st = oit_rd_ctx_open(&c, f, name, desc, sink, user, info, err);
+    r->file_size = st == OIT_OK ? oit_rd_file_size(c.in.f) : -1; /* -1: gzip */
+    if (st == OIT_OK)
+        st = oit_rd_skip_bom(&c.in);
     if (st == OIT_OK)
         st = ply_parse(r);
     oit_rd_release(&c.budget, (void **)&r->tab.v, &r->tab.cap, sizeof *r->tab.v);

@@ -117,9 +117,22 @@ static oit_status stl_ascii(oit_rd_ctx *c)
     return OIT_OK;
 }
 
+/* A header of printable text, as an ASCII file's first block is: with the
+ * size unknown (gzip input) it tells "solid" text from a binary header that
+ * happens to start with the word. */
+static int stl_is_text(const unsigned char *b, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        if (b[i] < 0x20 && b[i] != '\t' && b[i] != '\n' && b[i] != '\r')
+            return 0;
+    return 1;
+}
+
 static int stl_starts_with_solid(const unsigned char *b, size_t n)
 {
     size_t i = 0;
+    if (n >= 3 && b[0] == 0xef && b[1] == 0xbb && b[2] == 0xbf)
+        i = 3; /* a UTF-8 byte-order mark before "solid" */
     while (i < n && (b[i] == ' ' || b[i] == '\t' || b[i] == '\r' || b[i] == '\n'))
         i++;
     return n - i >= 5 && oit_rd_word_eq_nocase((const char *)b + i, 5, "solid");
@@ -129,14 +142,14 @@ static oit_status stl_parse(oit_rd_ctx *c, int64_t size)
 {
     const unsigned char *b;
     size_t avail;
-    oit_status st = oit_rd_peek(&c->in, STL_HEADER, &b, &avail);
+    oit_status st = oit_rd_peek(&c->in, STL_HEADER + STL_RECORD, &b, &avail);
     if (st != OIT_OK)
         return st;
     int solid = stl_starts_with_solid(b, avail);
     if (avail >= STL_HEADER) {
         uint32_t n = oit_rd_u32(b + 80, 0);
         uint64_t want = STL_HEADER + (uint64_t)STL_RECORD * n;
-        if (size < 0 ? !solid : (uint64_t)size == want)
+        if (size < 0 ? !solid || !stl_is_text(b, avail) : (uint64_t)size == want)
             return stl_binary(c, n);
         if (!solid)
             return oit_rd_fail_offset(&c->in, 80, OIT_ERR_FORMAT,
@@ -147,6 +160,8 @@ static oit_status stl_parse(oit_rd_ctx *c, int64_t size)
         return oit_rd_fail_offset(&c->in, avail, OIT_ERR_FORMAT,
                                   "file too short for binary STL and not ASCII (no 'solid')");
     }
+    if ((st = oit_rd_skip_bom(&c->in)) != OIT_OK)
+        return st;
     return stl_ascii(c);
 }
 
@@ -155,8 +170,8 @@ oit_status oit_read_stl_stream(FILE *f, const char *name, const char *dir,
                                oit_mesh_info *info, oit_error *err)
 {
     oit_rd_ctx c;
-    int64_t size = oit_rd_file_size(f);
     oit_status st = oit_rd_ctx_open(&c, f, name, desc, sink, user, info, err);
+    int64_t size = st == OIT_OK ? oit_rd_file_size(c.in.f) : -1; /* -1: gzip */
     if (st == OIT_OK)
         st = stl_parse(&c, size);
     return oit_rd_ctx_close(&c, st);

@@ -54,6 +54,8 @@ typedef struct oit_rd_stream {
     uint64_t tok_line; /* line of the last line or token handed out       */
     int eof;
     int continuation;  /* OBJ: a line ending in '\' continues             */
+    const struct oit_gz *gz; /* set when f inflates a gzip file: read
+                                errors then say what zlib found       */
 } oit_rd_stream;
 
 oit_status oit_rd_open(oit_rd_stream *s, FILE *f, const char *name, oit_rd_budget *b,
@@ -103,6 +105,21 @@ oit_status oit_rd_fail_offset(oit_rd_stream *s, uint64_t offset, oit_status st,
     __attribute__((format(printf, 4, 5)))
 #endif
     ;
+
+/* The start of a text format: skips a UTF-8 byte-order mark (editors on
+ * Windows write one) and refuses, naming the offset, a first block that
+ * holds bytes no text has (NUL and other C0 controls but tab, CR, LF, FF,
+ * VT and ESC), so that binary data given a text extension fails at once
+ * instead of "parsing" into nothing. `format` names it ("OBJ"). */
+oit_status oit_rd_text_begin(oit_rd_stream *s, const char *format);
+/* Skips a UTF-8 byte-order mark at the current position, if there is one. */
+oit_status oit_rd_skip_bom(oit_rd_stream *s);
+
+/* A read that delivered no triangle is bad input (exit 3), with the reason:
+ * no vertices and no faces, vertices but no faces, faces too small to make a
+ * triangle, every triangle non-finite, or every triangle of zero area. */
+oit_status oit_rd_require_triangles(const char *name, const oit_mesh_info *info,
+                                    oit_error *err);
 
 /* Text number parsing on NUL-terminated buffers. Each skips leading blanks,
  * advances *p past the number and returns 0 when no number is there or when
@@ -240,6 +257,9 @@ typedef struct oit_rd_ctx {
     const char *name;
     oit_error *err;
     int origin_set; /* info->origin picked from the first vertex */
+    FILE *gz_file;  /* the inflating stream over the caller's FILE*, or NULL */
+    struct oit_gz *gz;
+    char gz_name[4096]; /* name + " (gzip)" for messages, unless it ends in .gz */
 } oit_rd_ctx;
 
 /* A position as read (double) to the float the reader delivers, relative to
@@ -253,6 +273,8 @@ static inline void oit_rd_position(oit_rd_ctx *c, const double in[3], float out[
     oit_mesh_position(c->info->origin, in, out);
 }
 
+/* Opens the context over f; a gzip file is inflated as it is read (the
+ * readers see the inflated bytes: c->in.f is then not f). */
 oit_status oit_rd_ctx_open(oit_rd_ctx *c, FILE *f, const char *name, const oit_read_desc *desc,
                            oit_triangle_sink sink, void *user, oit_mesh_info *info,
                            oit_error *err);

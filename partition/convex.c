@@ -378,7 +378,8 @@ oit_status oit_convex_cluster(const oit_triangle *tris, size_t n, const oit_conv
                               oit_convex_result *out, oit_error *err)
 {
     memset(out, 0, sizeof *out);
-    uint32_t max_tris = params && params->max_piece_triangles ? params->max_piece_triangles : 4096;
+    uint32_t max_tris = params && params->max_piece_triangles ? params->max_piece_triangles
+                                                          : OIT_CONVEX_MAX_PIECE_DEFAULT;
     mesh_graph g = {0};
     oit_status s = assign_vertex_ids(tris, n, &g);
     if (!s)

@@ -28,6 +28,8 @@
 extern "C" {
 #endif
 
+#define OIT_CONVEX_MAX_PIECE_DEFAULT 4096u
+
 typedef struct oit_convex_params {
     /* Stop growing a piece at this many triangles (0: 4096). A piece's test
      * costs O(its vertices + planes) per candidate, so the cap bounds the

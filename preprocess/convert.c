@@ -11,6 +11,7 @@
 #include <time.h>
 
 #include "oit/mesh.h"
+#include "partition/convex.h"
 #include "oit/partfile.h"
 #include "partition/clip.h"
 #include "partition/kd_split.h"
@@ -502,7 +503,9 @@ static oit_status convert_binned(const oit_convert_options *o, const oit_mesh_in
     snprintf(options, sizeof options, "K=%u manage=%s grid=%ux%ux%u cell=%g "
              "max_piece_triangles=%u slabs=%s", o->K, oit_manage_name(o->manage),
              r->grid.dims[0], r->grid.dims[1], r->grid.dims[2], r->grid.cell,
-             o->max_piece_triangles, oit_slabs_name(o->slabs));
+             /* the effective cap, so that the default and its value record alike */
+             o->max_piece_triangles ? o->max_piece_triangles : OIT_CONVEX_MAX_PIECE_DEFAULT,
+             oit_slabs_name(o->slabs));
     /* Parts average a few KB: page-aligned blobs would make padding most of
      * the file (80% on a 12M-triangle plant), and the reader gains nothing
      * from pages, reading each part with one pread into its own memory. */
@@ -593,6 +596,10 @@ static oit_status convert_with(const oit_convert_options *o, oit_convert_stats *
     bin_sink_ctx bctx = {0};
     s = bin_input(o, &r.grid, info.triangles, &r.bins, &bctx, err);
     st->degenerate_dropped = bctx.degenerate;
+    if (!s && bctx.degenerate == info.triangles) /* the reader's test is coarser than ours */
+        s = oit_error_set(err, OIT_ERR_FORMAT, "%s: all %llu triangles are degenerate (no "
+                          "plane): nothing to convert", o->input,
+                          (unsigned long long)info.triangles);
     double t2 = now_s();
     st->seconds_bin = t2 - t1;
     double t_write = 0;

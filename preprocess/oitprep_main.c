@@ -17,6 +17,8 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "formats/paths.h"
+#include "formats/tool_signals.h"
 #include "preprocess/convert.h"
 #include "preprocess/stats_json.h"
 #include "preprocess/export_parts.h"
@@ -35,14 +37,17 @@ static void usage(FILE *f)
           "                and index) and print its counts; --json prints one JSON object\n"
           "                (triangles, parts, pieces, slabs, cut_slabs, cells,\n"
           "                subgrid_depth, bytes, layer_bound, attributes, version, K, ...)\n"
-          "  verify FILE   cast rays through every part (Embree): parallel bundles from M\n"
-          "                directions (default 64) and rays from V viewpoints (default 16,\n"
-          "                the centre among them); fails (exit 1) when a part yields more\n"
+          "  verify FILE   cast rays through every part (Embree): parallel bundles from\n"
+          "                --directions M (0..100000, default 64) and rays from\n"
+          "                --viewpoints V (0..100000, default 16, the centre among them;\n"
+          "                M or V above 0);\n"
+          "                fails (exit 1) when a part yields more\n"
           "                hits than its layer bound, parts are met out of the order\n"
           "                stream/order.h computes for the ray's origin, or a slab's\n"
           "                parts have a vertex on the wrong side of its planes (exact).\n"
-          "                The parts go into Embree scenes of at most T triangles\n"
-          "                (default 4M, suffix K/M/G), built and cast one at a time:\n"
+          "                The parts go into Embree scenes of at most --chunk-triangles T\n"
+          "                triangles\n"
+          "                (1..4G, default 4M, suffix K/M/G), built and cast one at a time:\n"
           "                memory holds one scene (about 100 bytes a triangle)\n"
           "  parts FILE    write FILE's parts as a PLY to look at (render it with oitstream):\n"
           "                --colour part (default) gives each part a hue of its own; kind\n"
@@ -60,11 +65,14 @@ static void usage(FILE *f)
           "                than the axis split or spares that split's further splits.\n"
           "                --slabs all (default), separating (no cutting planes) or\n"
           "                none (axis splits only): for comparisons; cut_slabs in --stats.\n"
-          "                --max-layers K (even, default 8), --memory BYTES for the\n"
-          "                binning (suffix K/M/G, default 2G; beyond it bins spill to\n"
-          "                OUT.spill), --threads N (default: all cores), --grid N top cells\n"
-          "                along the longest axis (default: ~64K triangles a cell; cells are\n"
-          "                rounded to a power-of-two size), --stats FILE.json figures.\n"
+          "                --max-layers K (even, 2..64, default 8; above 16 the streamer\n"
+          "                captures parts over tiles), --memory BYTES for the\n"
+          "                binning (>= 64K, suffix K/M/G, default 2G; beyond it bins spill\n"
+          "                to OUT.spill), --threads N (1..1024, default: all cores), --grid N\n"
+          "                top cells along the longest axis (1..1024, default: ~64K\n"
+          "                triangles a cell; cells are rounded to a power-of-two size),\n"
+          "                --max-piece-triangles T stops a convex piece at T triangles\n"
+          "                (1..1073741824, default 4096), --stats FILE.json figures.\n"
           "                The output is byte-identical for any --threads and --memory.\n"
           "                Where more than K layers meet at one vertex no box separates\n"
           "                them: that node becomes a wide part (bound up to 64, streamed\n"
@@ -240,6 +248,20 @@ static int option_choice(int argc, char **argv, int *i, const char *name,
     return -1;
 }
 
+/* Before any work: neither output may be the input (or each other), and
+ * both must be creatable, so a typo never costs the model or the run. */
+static oit_status check_outputs(const char *input, const char *out, const char *stats,
+                                oit_error *err)
+{
+    const char *ins[2] = {input, out};
+    oit_status s = oit_output_check(out, "-o", ins, 1, err);
+    if (!s && stats && strcmp(stats, out) == 0)
+        s = oit_error_set(err, OIT_ERR_ARGUMENT, "%s: --stats and -o name the same file", stats);
+    if (!s && stats)
+        s = oit_output_check(stats, "--stats", ins, 2, err);
+    return s;
+}
+
 static int cmd_convert(int argc, char **argv)
 {
     long cores = sysconf(_SC_NPROCESSORS_ONLN);
@@ -255,10 +277,13 @@ static int cmd_convert(int argc, char **argv)
         else if (strcmp(a, "--stats") == 0 && i + 1 < argc)
             stats = argv[++i];
         else if (strcmp(a, "--max-layers") == 0) {
-            if (option_value(argc, argv, &i, a, 0, 2, 1024, &v) || v % 2) {
-                fprintf(stderr, "oitprep: --max-layers must be even, 2..1024\n");
+            /* 64: the widest part the streamer captures (over tiles) */
+            if (i + 1 >= argc || parse_size(argv[i + 1], 0, 64, &v) || v < 2 || v % 2) {
+                fprintf(stderr, "oitprep: --max-layers '%s': must be even, 2..64\n",
+                        i + 1 < argc ? argv[i + 1] : "");
                 return 2;
             }
+            i++;
             o.K = (uint32_t)v;
         } else if (strcmp(a, "--memory") == 0) {
             if (option_value(argc, argv, &i, a, 1, 1 << 16, SIZE_MAX, &v))
@@ -298,9 +323,16 @@ static int cmd_convert(int argc, char **argv)
         fprintf(stderr, "oitprep: conversion needs INPUT and -o OUT (see oitprep --help)\n");
         return 2;
     }
-    oit_convert_stats st;
     oit_error err = {0};
-    oit_status s = oit_convert(&o, &st, &err);
+    oit_status s = check_outputs(o.input, o.output, stats, &err);
+    if (s) {
+        fprintf(stderr, "oitprep: %s\n", err.message);
+        return oit_status_exit_code(s);
+    }
+    static const char *const tmp[] = {".tmp", NULL}; /* partfile_write.c */
+    oit_tool_signals_install("oitprep", o.output, tmp);
+    oit_convert_stats st;
+    s = oit_convert(&o, &st, &err);
     if (s) {
         fprintf(stderr, "oitprep: %s\n", err.message);
         return oit_status_exit_code(s);
@@ -347,6 +379,11 @@ static int cmd_verify(int argc, char **argv)
         fprintf(stderr, "oitprep verify: no FILE given (see oitprep --help)\n");
         return 2;
     }
+    if (o.directions == 0 && o.viewpoints == 0) { /* no ray: nothing verified */
+        fprintf(stderr, "oitprep verify: --directions 0 and --viewpoints 0 cast no ray; "
+                "give one of them above 0\n");
+        return 2;
+    }
     oit_verify_report rep;
     oit_error err = {0};
     oit_status s = oit_verify(path, &o, &rep, &err);
@@ -389,7 +426,12 @@ static int cmd_parts(int argc, char **argv)
     }
     oit_export_counts c;
     oit_error err = {0};
-    oit_status s = oit_export_parts(path, out, colour, alpha, &c, &err);
+    oit_status s = oit_output_check(out, "-o", &path, 1, &err);
+    static const char *const tmp[] = {".tmp", ".faces.tmp", NULL}; /* write_ply.c */
+    if (!s)
+        oit_tool_signals_install("oitprep", out, tmp);
+    if (!s)
+        s = oit_export_parts(path, out, colour, alpha, &c, &err);
     if (s) {
         fprintf(stderr, "oitprep: %s\n", err.message);
         return oit_status_exit_code(s);

@@ -141,6 +141,17 @@ static int parse_numbers(const char *text, double *v, int max)
     return -1; /* more numbers than allowed */
 }
 
+const char *oit_camera_parse_error(int code)
+{
+    switch (code) {
+    case -2: return "the eye and the target are the same point (no direction to look in)";
+    case -3: return "the up vector is zero or parallel to the viewing direction";
+    case -4: return "fovy must lie in (0, 180) degrees";
+    case -5: return "znear must be > 0 and zfar > znear";
+    default: return "expected ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy[,znear,zfar]";
+    }
+}
+
 int oit_camera_parse(oit_camera *cam, const char *text, const double origin[3])
 {
     double v[12];
@@ -151,10 +162,14 @@ int oit_camera_parse(oit_camera *cam, const char *text, const double origin[3])
         return -1;
     double f[3] = {v[3] - v[0], v[4] - v[1], v[5] - v[2]}, up[3] = {v[6], v[7], v[8]}, s[3];
     cross3(f, up, s);
-    if (!(s[0] * s[0] + s[1] * s[1] + s[2] * s[2] > 0.0) || !(v[9] > 0.0 && v[9] < 180.0))
-        return -1;
+    if (!(f[0] * f[0] + f[1] * f[1] + f[2] * f[2] > 0.0))
+        return -2;
+    if (!(s[0] * s[0] + s[1] * s[1] + s[2] * s[2] > 0.0))
+        return -3;
+    if (!(v[9] > 0.0 && v[9] < 180.0))
+        return -4;
     if (n == 12 && !(v[10] > 0.0 && v[11] > v[10]))
-        return -1;
+        return -5;
     for (int k = 0; k < 3; k++) {
         double o = origin ? origin[k] : 0.0;
         cam->eye[k] = (float)(v[k] - o);

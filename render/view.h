@@ -93,6 +93,9 @@ void oit_camera_frustum(const oit_camera *cam, float aspect, float planes[6][4])
  * the model's positions are relative to (oit_mesh_info), is subtracted in
  * double before they become floats. */
 int oit_camera_parse(oit_camera *cam, const char *text, const double origin[3]);
+/* Why oit_camera_parse returned code (< 0): the syntax, or which value of a
+ * well-formed view cannot make a camera, for the user's message. */
+const char *oit_camera_parse_error(int code);
 
 /* The length translucent absorption refers to: the bounds' diagonal, or 1
  * for empty or non-finite bounds. */

@@ -8,6 +8,8 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "formats/paths.h"
+#include "formats/tool_signals.h"
 #include "formats/ply_writer.h"
 #include "scenes/scene.h"
 
@@ -21,16 +23,17 @@ static const char USAGE[] =
     "  quads      N squares in the XY plane facing +Z, at N depths in [-1,1],\n"
     "             each covering C of the [-1,1]^2 square (jittered about the\n"
     "             centre, which every quad covers); colour and alpha per quad\n"
-    "             options: --count N (default 64), --coverage C in (0,1] (default 0.5)\n"
+    "             options: --count N in 1..100000000 (default 64),\n"
+    "                      --coverage C in (0, 1] (default 0.5)\n"
     "  instances  N copies of a mesh in a near-square grid on the XZ plane,\n"
     "             spaced 1.1x the mesh's extent, one colour and alpha per copy\n"
     "             options: --input MESH (required; .ply .obj .off .stl .gltf .glb),\n"
-    "                      --count N (default 16)\n"
+    "                      --count N in 1..100000000 (default 16)\n"
     "  plant      procedural power plant: steel frames, catwalks, stairs, tanks,\n"
     "             ducts, pipe racks and pipe runs with elbows; closed solids,\n"
     "             alpha 0.2-0.6 per object; about 100K triangles per 24 m\n"
     "             block, so the plant grows in area with T; bounded memory\n"
-    "             options: --triangles T in [10000, 50000000] (default 1000000;\n"
+    "             options: --triangles T in 10000..50000000 (default 1000000;\n"
     "                      the output has T triangles within 0.1%)\n"
     "                      --clashes avoid|allow (default avoid: objects keep\n"
     "                      2 cm apart, as in a clash-checked design; allow:\n"
@@ -58,7 +61,7 @@ static const char USAGE[] =
     "\n"
     "options:\n"
     "  -o, --output FILE   output PLY (required); written via FILE.tmp, then renamed\n"
-    "  --seed S            random seed, unsigned integer (default 1)\n"
+    "  --seed S            random seed, 0..18446744073709551615 (default 1)\n"
     "  -h, --help          this text\n"
     "\n"
     "Prints one line to stdout at the end: triangles, vertices, bytes, seconds.\n"
@@ -288,7 +291,12 @@ int main(int argc, char **argv)
     double t0 = now_s();
     oit_error err = {0};
     oit_ply_writer_stats st = {0};
-    oit_status s = generate(&c, &st, &err);
+    oit_status s = oit_output_check(c.output, "-o", &c.args.input, 1, &err);
+    static const char *const tmp[] = {".tmp", ".faces.tmp", NULL}; /* write_ply.c */
+    if (!s)
+        oit_tool_signals_install("oitgen", c.output, tmp);
+    if (!s)
+        s = generate(&c, &st, &err);
     if (s) {
         fprintf(stderr, "oitgen: %s\n", err.message);
         return oit_status_exit_code(s);

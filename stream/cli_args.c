@@ -92,8 +92,10 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
     else if (!strcmp(opt, "--size")) {
         if (!parse_size(v, &a->width, &a->height)) *s = bad(err, opt, v, "WxH, 1..16384");
     } else if (!strcmp(opt, "--view")) {
-        if (oit_camera_parse(&a->view, v, NULL) != 0)
-            *s = bad(err, opt, v, "ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy[,znear,zfar]");
+        int code = oit_camera_parse(&a->view, v, NULL);
+        if (code != 0)
+            *s = oit_error_set(err, OIT_ERR_ARGUMENT, "%s '%s': %s", opt, v,
+                               oit_camera_parse_error(code));
         a->have_view = 1;
         a->view_text = v;
     } else if (!strcmp(opt, "--azimuth")) {
@@ -268,35 +270,37 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "  --upload-budget B   stream: bytes of the upload ring, a persistently mapped\n"
         "                      GPU buffer that a reader thread fills with the parts\n"
         "                      of later packs while the GPU draws earlier ones\n"
-        "                      (default 64M); a pack never exceeds it\n"
+        "                      (>= 64K, default 64M); a pack never exceeds it\n"
         "  --cache-budget B    stream: bytes of GPU memory that keep parts uploaded in\n"
         "                      one frame for the next ones, drawn without reading or\n"
-        "                      uploading them again (default 256M, never more than\n"
-        "                      the file's parts take; 0: no cache)\n"
+        "                      uploading them again (0 or >= 64K, default 256M, never\n"
+        "                      more than the file's parts take; 0: no cache)\n"
         "  --upload-threads N  stream: 1 (default) reads parts on a thread of their\n"
-        "                      own; 0 reads them on the render thread, no overlap\n"
-        "  --slot-budget B     stream: bytes of the K-fragment capture slots (default\n"
-        "                      32M), a larger frame captured in screen tiles; for the\n"
+        "                      own; 0 reads them on the render thread, no overlap (0..1)\n"
+        "  --slot-budget B     stream: bytes of the K-fragment capture slots (>= 64K,\n"
+        "                      default 32M), a larger frame captured in screen tiles; for the\n"
         "                      counted capture, its fragment store (packs split to fit)\n"
-        "  --epsilon E         stream: drop fragments behind pixels whose transmittance\n"
-        "                      fell below E, and neither upload nor draw parts whose\n"
-        "                      whole footprint did (error <= E per channel; default\n"
-        "                      0: exact); f2b: its alpha threshold, the same test\n"
+        "  --epsilon E         in [0, 1). stream: drop fragments behind pixels whose\n"
+        "                      transmittance fell below E, and neither upload nor draw\n"
+        "                      parts whose whole footprint did (error <= E per channel;\n"
+        "                      default 0: exact); f2b: its alpha threshold, the same\n"
+        "                      test\n"
         "                      (default 0.02); guarded: its contribution threshold\n"
         "                      (default 0.0025); 0 discards nothing\n"
-        "  --size WxH          image size (default 1024x1024)\n"
+        "  --size WxH          image size, W and H in 1..16384 (default 1024x1024)\n"
         "  --view ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy[,znear,zfar]\n"
         "                      camera; without it --azimuth/--elevation frame the model\n"
-        "  --azimuth DEG       default 0\n"
-        "  --elevation DEG     default 20\n"
-        "  --orbit N           N views around the model (azimuth i*360/N, elevation 20)\n"
+        "  --azimuth DEG       any angle (default 0)\n"
+        "  --elevation DEG     in [-90, 90] (default 20)\n"
+        "  --orbit N           N views around the model, 1..100000 (azimuth i*360/N,\n"
+        "                      elevation 20)\n"
         "  --walk FILE         a camera path: one view a line in --view syntax (file\n"
         "                      coordinates; # comments and blank lines skipped);\n"
         "                      frames are written and reported as for --orbit\n"
         "  --out PATH          FILE.png or FILE.pfm, or a folder (frame_000.png ...)\n"
         "  --shading S         transparent (default) or translucent\n"
-        "  --alpha A           alpha for models without one (default 0.35)\n"
-        "  --absorption X      translucent optical depth across the model (default 4)\n"
+        "  --alpha A           alpha for models without one, in (0, 1] (default 0.35)\n"
+        "  --absorption X      translucent optical depth across the model, > 0 (default 4)\n"
         "  --background r,g,b  default 1,1,1\n"
         "  --max-layers K      fragments per pixel per batch for array/stencil/stream,\n"
         "                      2..16 (default: the part file's K, else 16); pixels\n"
@@ -316,13 +320,13 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "                      layer heat map, T transparent/translucent, E early\n"
         "                      termination, R resets the view, P saves\n"
         "                      oitstream_NNN.png, Esc/Q quits; --size is the window's\n"
-        "  --window-frames N   stop after N frames\n"
+        "  --window-frames N   stop after N frames, 1..100000000\n"
         "  --window-script K   press the keys K, one per frame (e.g. 2LT), then stop\n"
         "  --window-screenshot PATH  write the last frame shown (PNG) when stopping\n"
         "  --no-overlay        no status line in the window's image\n"
         "  --compare A B       print RMSE, max abs error, %% of pixels off by more than\n"
         "                      1/255 and PSNR of two images (.png/.pfm); --json for JSON,\n"
-        "                      --out DIFF.png writes |A-B| * gain (--gain, default 1);\n"
+        "                      --out DIFF.png writes |A-B| * gain (--gain G > 0, default 1);\n"
         "                      --mask M adds the figures outside M's non-black pixels\n"
         "\n"
         "Exit status: 0 ok, 1 runtime failure, 2 usage error, 3 bad input.\n",

@@ -198,7 +198,9 @@ static oit_status bind_scene(oit_renderer *r, const oit_scene *scene, oit_error 
     r->streamer = NULL;
     r->scene = NULL;
     oit_streamer_desc sd = {0};
-    sd.K = r->desc.K ? (int)r->desc.K : (int)scene->info.K;
+    /* A file cut for more than the K-slot capture holds streams its parts as
+     * wider than K, captured alone over tiles, as oitstream does. */
+    sd.K = r->desc.K ? (int)r->desc.K : scene->info.K < 16 ? (int)scene->info.K : 16;
     sd.capture = OIT_CAPTURE_AUTO;
     sd.pack = r->desc.pack == OIT_RENDER_PACK_DISJOINT  ? OIT_PACK_DISJOINT
               : r->desc.pack == OIT_RENDER_PACK_BUDGET  ? OIT_PACK_BUDGET

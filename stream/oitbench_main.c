@@ -13,6 +13,7 @@
 #include <errno.h>
 #include <sys/stat.h>
 
+#include "formats/paths.h"
 #include "stream/bench_args.h"
 #include "stream/bench_csv.h"
 #include "stream/bench_plot.h"
@@ -184,8 +185,20 @@ int main(int argc, char **argv)
         oit_bench_usage(stdout, names);
         return 0;
     }
-    if (a.plot)
-        return plot(&a);
-    join_args(argc, argv, line, sizeof line);
-    return run(&a, line);
+    /* The output folder is made and tested before the run, not after it. */
+    const char *out = a.plot ? a.plot_out : a.out;
+    const char *in = a.plot ? NULL : a.model;
+    int created = 0;
+    if (oit_output_dir_check(out, a.plot ? "plot OUT" : "--out", &in, 1, &created, &err) != OIT_OK)
+        return fail(&err);
+    int code;
+    if (a.plot) {
+        code = plot(&a);
+    } else {
+        join_args(argc, argv, line, sizeof line);
+        code = run(&a, line);
+    }
+    if (code != 0 && created)
+        rmdir(out); /* the folder this run made, when nothing went into it */
+    return code;
 }

@@ -10,7 +10,9 @@
 #include <string.h>
 #include <strings.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
+#include "formats/paths.h"
 #include "render/image.h"
 #include "stream/cli_args.h"
 #include "stream/part_triangles.h"
@@ -22,6 +24,16 @@ static int fail(const oit_error *err)
 {
     fprintf(stderr, "oitstream: %s\n", err->message);
     return oit_status_exit_code(err->status);
+}
+
+/* The stencil method's "unsupported" is the driver's limit (it does not
+ * route per sample, or has fewer samples than K), not bad input: a runtime
+ * failure, exit 1. The capture layer keeps UNSUPPORTED, which its callers
+ * read as "not offered here". */
+static int fail_rendering(const oit_error *err, const oit_render_method *m)
+{
+    int code = fail(err);
+    return err->status == OIT_ERR_UNSUPPORTED && m && !strcmp(m->name, "stencil") ? 1 : code;
 }
 
 /* ---- --compare ---- */
@@ -79,6 +91,61 @@ static oit_status compare_outside_mask(const oit_stream_args *a, const oit_image
     }
     oit_image_free(&mask);
     oit_image_free(&b);
+    return s;
+}
+
+
+/* ---- output paths, checked before any work ---- */
+
+/* The file extension of the last path component: 2 to 5 letters after a
+ * dot ("" otherwise), so "x.jpg" is a file but "run_0.01" a folder. */
+static const char *path_ext(const char *p)
+{
+    const char *slash = strrchr(p, '/'), *base = slash ? slash + 1 : p;
+    const char *dot = strrchr(base, '.');
+    if (!dot || dot == base)
+        return "";
+    size_t n = 0;
+    for (const char *c = dot + 1; *c; c++, n++)
+        if (!((*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z')))
+            return "";
+    return n >= 2 && n <= 5 ? dot : "";
+}
+
+/* An --out with an extension must be an image format we write; one without
+ * is a folder (created now, as it would be at the first frame). */
+static oit_status check_image_out(const char *out, const char *what, const char *const *ins,
+                                  size_t n, int folder_ok, int *created, oit_error *err)
+{
+    const char *ext = out ? path_ext(out) : "";
+    if (out && *out && out[strlen(out) - 1] != '/' && *ext) {
+        if (strcasecmp(ext, ".png") && strcasecmp(ext, ".pfm"))
+            return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: %s: unknown image extension '%s' "
+                                 "(want .png or .pfm%s)", out, what, ext,
+                                 folder_ok ? ", or a folder without an extension" : "");
+        return oit_output_check(out, what, ins, n, err);
+    }
+    if (!folder_ok)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: %s needs FILE.png or FILE.pfm",
+                             out && *out ? out : "\"\"", what);
+    return oit_output_dir_check(out, what, ins, n, created, err);
+}
+
+/* created[0], created[1]: --out and --ambiguity folders made by the check. */
+static oit_status check_outputs(const oit_stream_args *a, int created[2], oit_error *err)
+{
+    const char *ins[4] = {a->compare ? a->compare_a : a->model, a->compare_b, a->walk,
+                          a->mask};
+    oit_status s = OIT_OK;
+    if (a->out)
+        s = check_image_out(a->out, "--out", ins, 4, !a->compare, &created[0], err);
+    if (!s && a->ambiguity_out)
+        s = check_image_out(a->ambiguity_out, "--ambiguity", ins, 4, 1, &created[1], err);
+    if (!s && a->stats_path)
+        s = oit_output_check(a->stats_path, "--stats", ins, 4, err);
+    if (!s && a->out && a->stats_path && !strcmp(a->out, a->stats_path))
+        s = oit_error_set(err, OIT_ERR_ARGUMENT, "%s: --out and --stats name the same file",
+                          a->out);
     return s;
 }
 
@@ -158,10 +225,10 @@ static oit_status read_walk(const char *path, const oit_mesh_info *info, oit_cam
             cams = c;
         }
         memset(&cams[n], 0, sizeof cams[n]);
-        if (oit_camera_parse(&cams[n], t, info->origin) != 0)
-            s = oit_error_set(err, OIT_ERR_FORMAT, "%s: line %d: not a view "
-                              "(ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy[,znear,zfar]): '%.60s'",
-                              path, line_no, t);
+        int code = oit_camera_parse(&cams[n], t, info->origin);
+        if (code != 0)
+            s = oit_error_set(err, OIT_ERR_FORMAT, "%s: line %d: not a view (%s): '%.60s'",
+                              path, line_no, oit_camera_parse_error(code), t);
         else if (!(cams[n].znear > 0.0f && cams[n].zfar > cams[n].znear))
             fit_clip_planes(&cams[n], info);
         n += s == OIT_OK;
@@ -340,6 +407,9 @@ static oit_status render_all(run_ctx *rc, const oit_mesh *mesh, const oit_camera
         rc->view.camera = cams[i];
         s = render_one(rc, i, n, &frames[i], err);
     }
+    if (s == OIT_OK && !a->out && !a->quiet) /* say where nothing went */
+        fprintf(stderr, "oitstream: %s: %d view%s rendered; no --out given, so no image was "
+                "written\n", a->model, n, n == 1 ? "" : "s");
     if (s == OIT_OK && a->stats_path) {
         oit_stats_run run = {a->model, (unsigned long long)mesh->info.triangles,
                              rc->method->renderer(rc->state), a->width, a->height, frames,
@@ -435,7 +505,9 @@ static int run_render(const oit_stream_args *args)
         oit_partfile_summary sum = {0};
         if (pf)
             oit_partfile_get_summary(pf, &sum);
-        K = pf ? (int)sum.K : 16;
+        /* A file cut for more than the K-slot capture holds streams as parts
+         * wider than K: captured alone over tiles (oit_capture_batch_layers). */
+        K = pf && sum.K < 16 ? (int)sum.K : 16;
     }
     oit_method_options opt = {.max_layers = K, .partfile = pf,
                               .pack = a->pack,
@@ -468,7 +540,7 @@ static int run_render(const oit_stream_args *args)
     free(cams);
     oit_mesh_free(&mesh);
     oit_partfile_close(pf);
-    return s == OIT_OK ? 0 : fail(&err);
+    return s == OIT_OK ? 0 : fail_rendering(&err, rc.method);
 }
 
 int main(int argc, char **argv)
@@ -483,5 +555,13 @@ int main(int argc, char **argv)
         oit_stream_usage(stdout, names);
         return 0;
     }
-    return a.compare ? run_compare(&a) : run_render(&a);
+    int created[2] = {0, 0};
+    if (check_outputs(&a, created, &err) != OIT_OK)
+        return fail(&err);
+    int code = a.compare ? run_compare(&a) : run_render(&a);
+    if (code != 0 && created[0])
+        rmdir(a.out); /* folders this run made, when nothing went into them */
+    if (code != 0 && created[1])
+        rmdir(a.ambiguity_out);
+    return code;
 }

@@ -48,6 +48,9 @@ typedef struct oit_mesh_info {
     float bounds_max[3];
     double origin[3];            /* positions are relative to it: a vertex's
                                     place in the file is origin + pos       */
+    uint64_t zero_area;          /* delivered triangles of zero area (kept:
+                                    they draw nothing; all of them is bad
+                                    input for the path readers)             */
 } oit_mesh_info;
 
 /* The origin every reader picks from the first vertex it reads (then
