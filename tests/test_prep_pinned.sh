@@ -17,8 +17,8 @@ FAILS=0
 fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
 
 # mesh: triangles_out pieces_clustered pieces parts slabs cut_slabs wide_parts sha256 (first 16)
-PINNED="fandisk.off 42372 2116 7346 1946 154 153 0 b654571d9a57e06c
-turbine.off 50634 4525 10425 2867 256 223 1 ceb4ec329845425d"
+PINNED="fandisk.off 42372 2116 7346 1946 154 153 0 f77d3b7446fff123
+turbine.off 50634 4525 10425 2867 256 223 1 239fb7fb1a12a8ad"
 
 KEYS="triangles_out pieces_clustered pieces parts slabs cut_slabs wide_parts"
 figures() {
