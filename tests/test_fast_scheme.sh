@@ -56,6 +56,23 @@ if [ "$ratio_check" = 1 ]; then
     at_most "$parts * 1000" "$tin" || fail "$parts parts for $tin triangles: parts are not large"
 fi
 
+if [ "$NAME" = demo ]; then
+    # The scheme's own options: a bad name and a scheme that builds its own
+    # trees under --manage kd-parts are usage errors (2), naming the option.
+    "$P" "$IN" -o "$T/x.oitp" --scheme quick >/dev/null 2>"$T/err.txt"; rc=$?
+    [ $rc = 2 ] && grep -q "want guaranteed or fast" "$T/err.txt" || fail "--scheme quick: exit $rc, $(cat "$T/err.txt")"
+    "$P" "$IN" -o "$T/x.oitp" --scheme fast --manage kd-parts >/dev/null 2>"$T/err.txt"; rc=$?
+    [ $rc = 2 ] && grep -q "cannot take --manage kd-parts" "$T/err.txt" || fail "--scheme fast --manage kd-parts: exit $rc, $(cat "$T/err.txt")"
+    "$P" "$IN" -o "$T/x.oitp" --scheme fast --part-triangles 0 >/dev/null 2>"$T/err.txt"; rc=$?
+    [ $rc = 2 ] || fail "--part-triangles 0: exit $rc"
+    # Smaller parts: more of them, each within T (the stats' most per part
+    # is not reported, so: at least in / T parts).
+    "$P" "$IN" -o "$T/s.oitp" --scheme fast --part-triangles 4096 --stats "$T/s.json" >/dev/null 2>&1 ||
+        fail "--part-triangles 4096"
+    sp=$(json_num parts "$T/s.json")
+    echo "demo at --part-triangles 4096: $sp parts, $(json_num triangles_out "$T/s.json") triangles"
+    [ "$sp" -ge $((tin / 4096)) ] && [ "$sp" -gt "$parts" ] || fail "--part-triangles 4096: $sp parts"
+fi
 "$P" info "$T/f.oitp" --json >"$T/info.json" 2>"$T/info.err" || fail "info: $(cat "$T/info.err")"
 grep -q '"measured_bounds": true' "$T/info.json" || fail "info: not flagged as measured bounds"
 [ "$(json_num triangles "$T/info.json")" = "$tout" ] || fail "info: triangles differ from the stats"
