@@ -61,11 +61,13 @@ mkdir -p "$(dirname "$out")"
     echo
     echo "fast T = --scheme fast --part-triangles T; \"fast\" columns at T = $fast_d. \"off %\" = worst"
     echo "view's share of pixels off by more than 1/255 between that stream and DFB on the source mesh."
-    echo "conv s = oitprep wall seconds (2 threads)."
+    echo "conv s = oitprep wall seconds (2 threads); ratio T = triangles out / in at part size T."
+    echo "Load average at the start: $(cut -d' ' -f1-3 /proc/loadavg) (the machine is shared)."
     echo
     h="| model | tris in | fast: tris out | ratio | parts | conv s | guaranteed: tris out | parts | conv s |"
     sep="|---|---|---|---|---|---|---|---|---|"
     for t in $fast_t; do h="$h stream fast $t ms |"; sep="$sep---|"; done
+    for t in $fast_t; do h="$h ratio $t |"; sep="$sep---|"; done
     echo "$h stream guaranteed ms | DFB mesh ms | fast / DFB | off % |"
     echo "$sep---|---|---|---|"
 } >"$out"
@@ -80,12 +82,14 @@ for m in $models; do
     "$bin/oitprep" "$m" -o "$work/g.oitp" --stats "$work/g.json" 2>/dev/null
     render "$work/g.oitp" "$work/gs.json" "$work/gi"
     render "$m" "$work/d.json" "$work/di" --method dfb
-    row_t=""
+    row_t="" row_r=""
     for t in $fast_t; do
         "$bin/oitprep" "$m" -o "$work/f$t.oitp" --scheme fast --part-triangles "$t" \
             --stats "$work/f$t.json" 2>/dev/null
         render "$work/f$t.oitp" "$work/fs$t.json" "$work/fi$t"
         row_t="$row_t $(warm_ms "$work/fs$t.json") |"
+        row_r="$row_r $(awk -v a="$(num triangles_out "$work/f$t.json")" \
+            -v b="$(num triangles_in "$work/f$t.json")" 'BEGIN { printf "%.3f", a / b }') |"
     done
     off=0
     for i in 001 003 005 007; do
@@ -100,7 +104,7 @@ for m in $models; do
     fms=$(warm_ms "$work/fs$fast_d.json")
     speed=$(awk -v a="$fms" -v b="$dms" 'BEGIN { printf "%.2f", a / b }')
     echo "| $name | $tin | $(num triangles_out "$f") | $ratio | $(num parts "$f") | $(num total "$f") |" \
-        "$(num triangles_out "$g") | $(num parts "$g") | $(num total "$g") |$row_t" \
+        "$(num triangles_out "$g") | $(num parts "$g") | $(num total "$g") |$row_t$row_r" \
         "$(warm_ms "$work/gs.json") | $dms | $speed | $off |" >>"$out"
     tail -n 1 "$out" >&2
 done
