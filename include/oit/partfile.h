@@ -1,7 +1,9 @@
 /* The part file: a converted scene as oitstream reads it (docs/part-file.md).
  *
  * A part is at most K/2 convex pieces, so it yields at most K fragments per
- * pixel from any viewpoint; grids, subgrids and slabs order the parts per
+ * pixel from any viewpoint (in a file flagged OIT_PARTFILE_FLAG_MEASURED_BOUNDS,
+ * oitprep --scheme fast, a part's bound is measured instead, not
+ * guaranteed); grids, subgrids and slabs order the parts per
  * view. One part's vertices and indices are one contiguous, aligned byte
  * range, so a streaming loader reads a part with one pread.
  *
