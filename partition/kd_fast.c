@@ -85,20 +85,23 @@ static int midplane(const oit_kd_node *nd, int *axis, float *m)
     return best >= 0;
 }
 
-/* kd_split.h's choice with parts counted in quarters of T: its rule that a
- * node of more than 4 "K" keeps at most 3/4 a half then holds for every
- * node split here (n > T), so a node a little over T is halved, not peeled
- * one sliver at a time. Falls back to the midplane. Returns 1, 0 (no plane
- * splits the box in float) or -1 (memory). */
+/* kd_split.h's choice with "K" = 1: its part count is then the triangles
+ * of both halves, n plus the crossed ones, so it picks the plane that
+ * crosses fewest triangles (then balance), and its rule that a node of more
+ * than 4 K keeps at most 3/4 a half holds for every node, so a node a little
+ * over T is halved, not peeled one sliver at a time. (Counting parts in
+ * quarters of T instead made as many parts and clipped 1-3% more: 1M plant
+ * 1.136x against 1.124x, 2CylinderEngine 0.963x against 0.947x.) Falls back
+ * to the midplane. Returns 1, 0 (no plane splits the box in float) or -1
+ * (memory). */
 static int choose_plane(fast_ctx *c, const oit_kd_node *nd, const tri_set *s, int *axis,
                         float *m)
 {
     oit_kd_piece_box *b = triangle_boxes(s);
     if (!b)
         return -1;
-    uint32_t quarter = c->p->part_triangles / 4 ? c->p->part_triangles / 4 : 1;
     uint32_t count = s->n > UINT32_MAX ? UINT32_MAX : (uint32_t)s->n;
-    int found = oit_kd_choose_split(b, count, nd->lo, nd->hi, quarter, axis, m);
+    int found = oit_kd_choose_split(b, count, nd->lo, nd->hi, 1, axis, m);
     free(b);
     if (found < 0)
         return -1;

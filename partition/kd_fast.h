@@ -6,7 +6,7 @@
  * plane (kd_split.h's candidates: sixteenths of the node and the triangles'
  * own coordinates, where a plane crosses nothing that ends on it; its
  * larger half keeps at most 3/4 of the node, so the depth stays
- * logarithmic; fewest parts, then fewest crossed triangles, then balance),
+ * logarithmic; fewest crossed triangles, then balance),
  * the triangles crossing it are clipped to the two closed halves (clip.h:
  * canonical new vertices, a triangle in the plane goes below), and both
  * halves recurse. A node of at most part_triangles triangles is one part.
