@@ -6,7 +6,7 @@
 # second, warm frame is timed, as a viewer sees a still view):
 #   triangles in / out and parts of each scheme, conversion seconds,
 #   stream ms (median of the 4 warm frames) of the fast scheme at each part
-#   size of FAST_T (default 2048 8192 32768) and of the guaranteed scheme,
+#   size of FAST_T (default 8192 32768 131072) and of the guaranteed scheme,
 #   DFB on the source mesh (the user's alternative), and the worst share of
 #   pixels off by > 1/255 between the fast stream (default part size) and DFB
 #   on the source mesh.
@@ -16,9 +16,9 @@
 set -eu
 bin=${1:-build/bin} out=${2:-bench/fast-scheme-$(hostname).md} size=${3:-512x512}
 cache=${OIT_MESH_CACHE:-data_scripts/cache}
-fast_t=${FAST_T:-2048 8192 32768}
+fast_t=${FAST_T:-8192 32768 131072}
 # The T of the ratio, off % and DFB columns: oitprep's default (convert.h).
-fast_d=${FAST_DEFAULT:-32768}
+fast_d=${FAST_DEFAULT:-131072}
 work=$(mktemp -d) && trap 'rm -rf "$work"' EXIT
 export EGL_PLATFORM=${EGL_PLATFORM:-surfaceless}
 

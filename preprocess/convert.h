@@ -38,9 +38,13 @@ typedef enum oit_scheme {
 } oit_scheme;
 
 /* Triangles a fast-scheme part may hold unless --part-triangles says
- * otherwise: of 2K, 8K and 32K the fastest stream on the large models, and
- * the fewest clipped triangles (bench/fast-scheme-llvmpipe.md). */
-#define OIT_FAST_PART_TRIANGLES 32768u
+ * otherwise. Measured (bench/fast-scheme-llvmpipe.md, 512x512 llvmpipe):
+ * 32K streamed faster than 2K and 8K on the large models, and 128K faster
+ * than 32K on the 1M plant in both runs that had it (482 against 559 ms),
+ * where it also clips nothing (1.000x against 1.124x: its planes fall
+ * between the plant's blocks); models below 128K triangles become 1-2
+ * parts either way. */
+#define OIT_FAST_PART_TRIANGLES 131072u
 
 /* The scheme's name as --scheme spells it. */
 const char *oit_scheme_name(oit_scheme s);

@@ -85,7 +85,7 @@ static void usage(FILE *f)
           "                bound of K layers a part) or fast: built for streaming speed,\n"
           "                no convex pieces and no slabs; in each top cell a kd node\n"
           "                stops splitting when it holds at most T triangles\n"
-          "                (--part-triangles, default 32768; 1..16M), clipped only where\n"
+          "                (--part-triangles, default 131072; 1..16M), clipped only where\n"
           "                a tree plane crosses a triangle, so parts stay exactly ordered\n"
           "                per view. Each part's layer bound is MEASURED, not guaranteed:\n"
           "                the most triangles one line crosses among 64x64 parallel lines\n"
