@@ -126,11 +126,13 @@ static oit_status check_header(oit_partfile *pf, oit_error *err)
     if (h->version < OIT_PARTFILE_VERSION_MIN || h->version > OIT_PARTFILE_VERSION)
         return bad(pf, err, "part file version %u, this build reads versions %u to %u",
                    h->version, OIT_PARTFILE_VERSION_MIN, OIT_PARTFILE_VERSION);
-    if (h->flags || h->reserved || h->header_bytes != PF_HEADER_BYTES ||
+    /* Version 3 defines one flag; earlier versions none. */
+    uint32_t known = h->version >= 3 ? OIT_PARTFILE_FLAG_MEASURED_BOUNDS : 0;
+    if ((h->flags & ~known) || h->reserved || h->header_bytes != PF_HEADER_BYTES ||
         h->section_count != PF_SECTION_COUNT)
-        return bad(pf, err, "header: flags 0x%x, header size %u, %u sections: expected 0, %u, %u",
-                   h->flags, h->header_bytes, h->section_count, PF_HEADER_BYTES,
-                   PF_SECTION_COUNT);
+        return bad(pf, err, "header: flags 0x%x, header size %u, %u sections: expected flags "
+                   "within 0x%x, %u, %u", h->flags, h->header_bytes, h->section_count, known,
+                   PF_HEADER_BYTES, PF_SECTION_COUNT);
     if (h->K < 2 || h->K > PF_K_MAX || h->K % 2)
         return bad(pf, err, "header: K %u is not an even number in 2..%u", h->K, PF_K_MAX);
     if (h->part_align < PF_ALIGN_MIN || h->part_align > PF_ALIGN_MAX ||
@@ -310,8 +312,11 @@ static oit_status load_parts(oit_partfile *pf, oit_error *err)
 static oit_status check_part_fields(const oit_partfile *pf, uint32_t i, oit_error *err)
 {
     const oit_partfile_part *p = &pf->parts[i];
-    uint32_t max_layers = 2 * p->piece_count < OIT_PARTFILE_MAX_LAYERS ? 2 * p->piece_count
-                                                                        : OIT_PARTFILE_MAX_LAYERS;
+    /* Measured bounds are not sums over pieces: only the file's limit holds. */
+    uint32_t max_layers = 2 * p->piece_count < OIT_PARTFILE_MAX_LAYERS &&
+                                  !(pf->hdr.flags & OIT_PARTFILE_FLAG_MEASURED_BOUNDS)
+                              ? 2 * p->piece_count
+                              : OIT_PARTFILE_MAX_LAYERS;
     if (p->reserved || !box_ok(p->bounds_min, p->bounds_max))
         return bad(pf, err, "section PARTS: record %u: bounds not finite or min > max", i);
     if (p->attributes & ~pf->meta.attributes)
@@ -900,6 +905,7 @@ static void fill_summary(oit_partfile *pf)
     s->pieces = pf->piece_count;
     s->slabs = pf->slab_count;
     s->cut_slabs = 0;
+    s->measured_bounds = (pf->hdr.flags & OIT_PARTFILE_FLAG_MEASURED_BOUNDS) != 0;
     for (uint32_t i = 0; i < pf->slab_count; i++)
         s->cut_slabs += pf->slabs[i].d0 == pf->slabs[i].d1;
     s->cells = pf->cell_count;

@@ -32,7 +32,7 @@ struct oit_partfile_writer {
     uint32_t K, part_align, attributes;
     double origin[3];
     char *source_name, *options;
-    bool skip_verify, have_grid;
+    bool skip_verify, have_grid, measured_bounds;
     uint64_t pos;        /* bytes written so far            */
     uint64_t data_start; /* PART_DATA offset                */
     uint32_t data_crc;   /* running CRC of PART_DATA        */
@@ -165,6 +165,7 @@ oit_status oit_partfile_writer_create(const char *path, const oit_partfile_write
     w->attributes = d.attributes;
     memcpy(w->origin, d.origin, sizeof w->origin);
     w->skip_verify = d.skip_verify;
+    w->measured_bounds = d.measured_bounds;
     w->path = dup_string(path);
     w->tmp_path = malloc(strlen(path) + 5);
     w->source_name = dup_string(d.source_name);
@@ -609,6 +610,7 @@ static oit_status write_header(oit_partfile_writer *w, pf_section *table, oit_er
     memset(&h, 0, sizeof h);
     memcpy(h.magic, PF_MAGIC, sizeof h.magic);
     h.version = OIT_PARTFILE_VERSION;
+    h.flags = w->measured_bounds ? OIT_PARTFILE_FLAG_MEASURED_BOUNDS : 0;
     h.header_bytes = PF_HEADER_BYTES;
     h.section_count = PF_SECTION_COUNT;
     h.K = w->K;

@@ -109,6 +109,12 @@ typedef struct oit_kd_result {
     uint32_t depth;        /* deepest node */
     uint32_t wide_parts;   /* parts whose layer bound exceeds K */
     uint32_t cuts;         /* slabs that are cutting planes (kd_cut.h) */
+    /* The fast scheme (kd_fast.h) only: parts whose measured layer count
+     * exceeded OIT_PARTFILE_MAX_LAYERS after every extra split allowed,
+     * recorded at that limit, and the largest count measured before the
+     * clamp. 0 in this scheme. */
+    uint32_t clamped_parts;
+    uint32_t max_measured;
 } oit_kd_result;
 
 /* Subdivides the box [lo, hi] holding tris[0..n) with piece[i] (< piece_count)

@@ -5,6 +5,7 @@
 
 #include "partition/clip.h"
 #include "partition/convex.h"
+#include "partition/kd_fast.h"
 
 static int flat_on_shared_face(const oit_cell_params *p, const oit_triangle *t)
 {
@@ -53,6 +54,15 @@ oit_status oit_cell_partition(const oit_cell_params *p, const oit_triangle *tris
     oit_status s = clip_to_cell(p, tris, n, &clipped, &m, err);
     if (s)
         return s;
+    if (p->fast_part_triangles) {
+        oit_kd_fast_params fp = {p->fast_part_triangles, p->K, p->max_depth,
+                                 (uint64_t)OIT_CELL_MAX_GROWTH * m + (1u << 20)};
+        s = oit_kd_build_fast(p->lo, p->hi, clipped, m, &fp, out, err);
+        counts->clipped = m;
+        counts->pieces_cell = 0;
+        free(clipped);
+        return s;
+    }
     oit_convex_params cp = {p->max_piece_triangles};
     oit_convex_result cr = {0};
     s = oit_convex_cluster(clipped, m, &cp, &cr, err);

@@ -1,6 +1,7 @@
 /* One top-grid cell of the conversion: clip its binned triangles to the
  * cell's closed box, cluster them into convex pieces, subdivide into parts
- * (partition/kd.h). Independent of every other cell, so cells run in
+ * (partition/kd.h); or, in the fast scheme, subdivide the clipped triangles
+ * into large parts with measured layer counts (partition/kd_fast.h). Independent of every other cell, so cells run in
  * parallel. */
 #ifndef OIT_PREPROCESS_CELL_H
 #define OIT_PREPROCESS_CELL_H
@@ -22,6 +23,10 @@ typedef struct oit_cell_params {
     uint32_t max_piece_triangles;
     uint32_t max_depth;
     oit_kd_slabs slabs;
+    /* 0: seed 002's guaranteed scheme (convex pieces, partition/kd.h); else
+     * the fast scheme (partition/kd_fast.h) with parts of at most this many
+     * triangles and no convex clustering. */
+    uint32_t fast_part_triangles;
 } oit_cell_params;
 
 /* The cell's parts may hold at most this many times its clipped triangles,

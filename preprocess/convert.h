@@ -28,6 +28,26 @@ typedef enum oit_manage {
                              its own (1 layer), leaves of at most K facets */
 } oit_manage;
 
+/* How cells become parts (--scheme). */
+typedef enum oit_scheme {
+    OIT_SCHEME_GUARANTEED = 0, /* seed 002: convex pieces, at most K layers a part
+                                  (partition/kd.h); the default for now */
+    OIT_SCHEME_FAST            /* large parts of at most part_triangles triangles,
+                                  measured layer counts, no convexity
+                                  (partition/kd_fast.h); --manage grid only */
+} oit_scheme;
+
+/* Triangles a fast-scheme part may hold unless --part-triangles says
+ * otherwise. Measured (bench/fast-scheme-llvmpipe.md, 512x512 llvmpipe):
+ * 32K streamed faster than 2K and 8K on the large models, and 128K faster
+ * than 32K on the 1M plant in both runs that had it (482 against 559 ms),
+ * where it also clips nothing (1.000x against 1.124x: its planes fall
+ * between the plant's blocks); models below 128K triangles become 1-2
+ * parts either way. */
+#define OIT_FAST_PART_TRIANGLES 131072u
+
+/* The scheme's name as --scheme spells it. */
+const char *oit_scheme_name(oit_scheme s);
 /* The scheme's name as --manage spells it. */
 const char *oit_manage_name(oit_manage m);
 /* The slab kinds' name as --slabs spells it. */
@@ -42,7 +62,10 @@ typedef struct oit_convert_options {
     uint32_t max_piece_triangles; /* 0: convex.h default */
     oit_manage manage;            /* not GRID: grid must be 0 or 1, and for
                                      KD_FACETS max_piece_triangles 0 or 1 */
-    oit_kd_slabs slabs;           /* --slabs: all (default), separating, none */
+    oit_kd_slabs slabs;           /* --slabs: all (default), separating, none;
+                                     the fast scheme has no slabs */
+    oit_scheme scheme;            /* --scheme */
+    uint32_t part_triangles;      /* fast scheme: 0 = OIT_FAST_PART_TRIANGLES */
     int progress;                 /* draw progress bars on stderr */
 } oit_convert_options;
 
@@ -55,6 +78,8 @@ typedef struct oit_convert_stats {
     uint64_t slabs;            /* leaves split by a slab (kd_slab.h)     */
     uint64_t cut_slabs;        /* of them, cutting planes (kd_cut.h)     */
     uint32_t max_layer_bound;
+    uint64_t clamped_parts;    /* fast scheme: measured above the file's 64, stored as 64 */
+    uint32_t max_measured;     /* fast scheme: largest measured count before clamping */
     uint32_t subgrid_depth, grid_dims[3], threads, K;
     double seconds_total, seconds_bounds, seconds_bin, seconds_partition, seconds_write;
     uint64_t peak_rss_bytes;

@@ -32,6 +32,7 @@ static void usage(FILE *f)
           "       oitprep INPUT -o OUT.oitp [--max-layers K] [--memory BYTES] [--threads N]\n"
           "               [--stats FILE.json] [--grid N] [--max-piece-triangles T]\n"
           "               [--manage grid|kd-parts|kd-facets] [--slabs all|separating|none]\n"
+          "               [--scheme guaranteed|fast] [--part-triangles T]\n"
           "\n"
           "  info FILE     validate a part file completely (header, checksums, every record\n"
           "                and index) and print its counts; --json prints one JSON object\n"
@@ -45,6 +46,9 @@ static void usage(FILE *f)
           "                hits than its layer bound, parts are met out of the order\n"
           "                stream/order.h computes for the ray's origin, or a slab's\n"
           "                parts have a vertex on the wrong side of its planes (exact).\n"
+          "                A file of measured bounds (--scheme fast) guarantees none: its\n"
+          "                hits over a part's bound are reported, not failed; order and\n"
+          "                slab violations fail it as for any file.\n"
           "                The parts go into Embree scenes of at most --chunk-triangles T\n"
           "                triangles\n"
           "                (1..4G, default 4M, suffix K/M/G), built and cast one at a time:\n"
@@ -85,6 +89,20 @@ static void usage(FILE *f)
           "                where the bounds straddle a power of two; in memory);\n"
           "                kd-facets: one kd-tree over single facets, leaves of at\n"
           "                most K facets (no convex pieces)\n"
+          "                --scheme guaranteed (default: all of the above, seed 002's\n"
+          "                bound of K layers a part) or fast: built for streaming speed,\n"
+          "                no convex pieces and no slabs; in each top cell a kd node\n"
+          "                stops splitting when it holds at most --part-triangles T\n"
+          "                triangles (1..16M, default 131072), clipped only where\n"
+          "                a tree plane crosses a triangle, so parts stay exactly ordered\n"
+          "                per view. Each part's layer bound is MEASURED, not guaranteed:\n"
+          "                the most triangles one line crosses among 64x64 parallel lines\n"
+          "                in each of 13 fixed directions (partition/layers_measured.h).\n"
+          "                A part measured above 64 is split further (up to 12 levels),\n"
+          "                else stored as 64 and counted (clamped_parts in --stats). The\n"
+          "                default capture (counted packs) needs no bound; --pack\n"
+          "                disjoint|budget count any excess as overflow. The file is\n"
+          "                flagged as of measured bounds; --manage and --slabs do not apply\n"
           "  -h, --help    this text\n"
           "\n"
           "exit: 0 ok, 1 runtime or I/O failure, 2 usage error, 3 bad input file\n",
@@ -116,7 +134,7 @@ static void print_json(const oit_partfile *pf, const oit_partfile_summary *s)
            "\"subgrids\": %llu, "
            "\"subgrid_depth\": %u, \"layer_bound\": %u, \"parts_index16\": %llu, "
            "\"parts_index32\": %llu, \"bytes\": %llu, \"data_bytes\": %llu, "
-           "\"part_align\": %u, \"attributes\": [",
+           "\"part_align\": %u, \"measured_bounds\": %s, \"attributes\": [",
            s->version, s->K, (unsigned long long)s->triangles,
            (unsigned long long)s->triangles_in, (unsigned long long)s->triangles_dropped,
            (unsigned long long)s->triangles_split, (unsigned long long)s->parts,
@@ -124,7 +142,8 @@ static void print_json(const oit_partfile *pf, const oit_partfile_summary *s)
            (unsigned long long)s->cut_slabs, (unsigned long long)s->cells, (unsigned long long)s->subgrids, s->subgrid_depth,
            s->layer_bound, (unsigned long long)s->parts_index16,
            (unsigned long long)s->parts_index32, (unsigned long long)s->bytes,
-           (unsigned long long)s->data_bytes, s->part_align);
+           (unsigned long long)s->data_bytes, s->part_align,
+           s->measured_bounds ? "true" : "false");
     const char *sep = "";
     if (s->attributes & OIT_ATTR_COLOR) {
         printf("\"color\"");
@@ -151,9 +170,10 @@ static void print_human(const oit_partfile *pf, const oit_partfile_summary *s)
     printf("  triangles  %llu (read %llu, dropped %llu, added by splitting %llu)\n",
            (unsigned long long)s->triangles, (unsigned long long)s->triangles_in,
            (unsigned long long)s->triangles_dropped, (unsigned long long)s->triangles_split);
-    printf("  parts      %llu (16-bit indices %llu, 32-bit %llu), layer bound %u\n",
+    printf("  parts      %llu (16-bit indices %llu, 32-bit %llu), layer bound %u%s\n",
            (unsigned long long)s->parts, (unsigned long long)s->parts_index16,
-           (unsigned long long)s->parts_index32, s->layer_bound);
+           (unsigned long long)s->parts_index32, s->layer_bound,
+           s->measured_bounds ? " (measured, not guaranteed)" : "");
     printf("  pieces     %llu\n", (unsigned long long)s->pieces);
     printf("  cells      %llu (subgrids %llu, subgrid depth %u), slabs %llu (%llu cutting)\n",
            (unsigned long long)s->cells, (unsigned long long)s->subgrids, s->subgrid_depth,
@@ -309,6 +329,16 @@ static int cmd_convert(int argc, char **argv)
             if (k < 0)
                 return 2;
             o.slabs = (oit_kd_slabs)k; /* in oit_kd_slabs' order */
+        } else if (strcmp(a, "--scheme") == 0) {
+            static const char *const names[] = {"guaranteed", "fast", NULL};
+            int k = option_choice(argc, argv, &i, a, names, "guaranteed or fast");
+            if (k < 0)
+                return 2;
+            o.scheme = (oit_scheme)k; /* in oit_scheme's order */
+        } else if (strcmp(a, "--part-triangles") == 0) {
+            if (option_value(argc, argv, &i, a, 1, 1, 1u << 24, &v))
+                return 2;
+            o.part_triangles = (uint32_t)v;
         } else if (strcmp(a, "--max-piece-triangles") == 0) {
             if (option_value(argc, argv, &i, a, 0, 1, 1u << 30, &v))
                 return 2;
@@ -337,6 +367,11 @@ static int cmd_convert(int argc, char **argv)
         fprintf(stderr, "oitprep: %s\n", err.message);
         return oit_status_exit_code(s);
     }
+    if (o.scheme == OIT_SCHEME_FAST && st.clamped_parts)
+        fprintf(stderr, "oitprep: %s: %llu parts measured more than %u layers (most %u) after "
+                "every extra split; stored as %u\n", o.output,
+                (unsigned long long)st.clamped_parts, OIT_PARTFILE_MAX_LAYERS, st.max_measured,
+                OIT_PARTFILE_MAX_LAYERS);
     fprintf(stderr,
             "oitprep: %s: %llu triangles in, %llu out (dropped %llu degenerate, %llu non-finite; "
             "split %+lld), %llu pieces, %llu parts, %llu cells, %.2f s\n",

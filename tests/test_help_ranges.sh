@@ -164,6 +164,7 @@ check prep --memory
 check prep --threads
 check prep --grid
 check prep --max-piece-triangles
+check prep --part-triangles "--scheme fast"
 check verify --directions "" V nohi
 check verify --viewpoints "" V nohi
 check verify --chunk-triangles "" V nohi

@@ -13,6 +13,8 @@
 #include "partition/convex.h"
 #include "partition/kd.h"
 #include "partition/kd_cut.h"
+#include "partition/kd_fast.h"
+#include "partition/layers_measured.h"
 #include "partition/plane_exact.h"
 #include "partition/kd_split.h"
 #include "partition/predicates.h"
@@ -881,6 +883,114 @@ static void test_kd(void)
     free(saddle.t);
 }
 
+/* ------------------------------------------- the fast scheme (kd_fast.h) */
+
+/* n parallel unit squares at z = 0.05 i: every line near the z axis
+ * crosses all of them. */
+static void make_stack(tri_list *l, int n)
+{
+    for (int i = 0; i < n; i++) {
+        float z = 0.05f * (float)i;
+        push3(l, vtx(0, 0, z), vtx(1, 0, z), vtx(1, 1, z));
+        push3(l, vtx(0, 0, z), vtx(1, 1, z), vtx(0, 1, z));
+    }
+}
+
+static uint32_t measured(const tri_list *l)
+{
+    uint32_t layers = 0;
+    oit_error err = {0};
+    CHECK(oit_layers_measure(l->t, l->n, &layers, &err) == OIT_OK, "measure: %s", err.message);
+    return layers;
+}
+
+static void test_layers_measured(void)
+{
+    tri_list cube = {0}, sphere = {0}, torus = {0}, stack = {0};
+    make_cube(&cube, 0, 1);
+    make_sphere(&sphere, 16, 24);
+    make_torus(&torus, 48, 24);
+    make_stack(&stack, 20);
+    /* A closed convex surface: two crossings; a torus: four along its axis
+     * plane; the stack: one a sheet. */
+    CHECK(measured(&cube) == 2, "cube: %u layers, want 2", measured(&cube));
+    CHECK(measured(&sphere) == 2, "sphere: %u layers, want 2", measured(&sphere));
+    CHECK(measured(&torus) == 4, "torus: %u layers, want 4", measured(&torus));
+    CHECK(measured(&stack) == 20, "stack of 20: %u layers", measured(&stack));
+    CHECK(oit_layers_measure(NULL, 0, &(uint32_t){0}, NULL) == OIT_OK, "empty part");
+    free(cube.t);
+    free(sphere.t);
+    free(torus.t);
+    free(stack.t);
+}
+
+/* Every part within T triangles and inside its leaf's box, bounds equal to
+ * the measured count, few triangles added. */
+static void check_fast(const char *name, const tri_list *l, uint32_t T, const oit_kd_result *r)
+{
+    size_t tris = 0;
+    for (size_t i = 0; i < r->node_count; i++) {
+        const oit_kd_node *nd = &r->nodes[i];
+        if (nd->axis >= 0 || nd->part < 0)
+            continue;
+        const oit_kd_part *p = &r->parts[nd->part];
+        tris += p->tri_count;
+        CHECK(p->tri_count <= T || p->layer_bound > OIT_PARTFILE_MAX_LAYERS / 2,
+              "%s: part of %zu triangles > %u", name, p->tri_count, T);
+        uint32_t want = 0;
+        oit_layers_measure(r->tris + p->tri_first, p->tri_count, &want, NULL);
+        CHECK(p->layer_bound == (want < OIT_PARTFILE_MAX_LAYERS ? want : OIT_PARTFILE_MAX_LAYERS),
+              "%s: part bound %u, measured %u", name, p->layer_bound, want);
+        for (size_t t = p->tri_first; t < p->tri_first + p->tri_count; t++)
+            for (int v = 0; v < 3; v++)
+                for (int a = 0; a < 3; a++) {
+                    float x = r->tris[t].v[v].pos[a];
+                    CHECK(x >= nd->lo[a] && x <= nd->hi[a], "%s: vertex outside its leaf",
+                          name);
+                }
+    }
+    CHECK(tris == r->tri_count, "%s: leaves hold %zu of %zu triangles", name, tris, r->tri_count);
+    CHECK(r->tri_count <= l->n + l->n / 5, "%s: %zu -> %zu triangles", name, l->n, r->tri_count);
+    CHECK(r->slab_count == 0 && r->piece_count == r->part_count, "%s: slabs or pieces", name);
+}
+
+static void test_kd_fast(void)
+{
+    tri_list torus = {0}, stack = {0};
+    make_torus(&torus, 64, 32);
+    make_stack(&stack, 100);
+    float lo[3] = {-2, -2, -2}, hi[3] = {2, 2, 2};
+    oit_kd_fast_params p = {500, 8, 0, 0};
+    oit_kd_result r;
+    oit_error err = {0};
+    CHECK(oit_kd_build_fast(lo, hi, torus.t, torus.n, &p, &r, &err) == OIT_OK, "%s", err.message);
+    CHECK(r.part_count >= torus.n / 500 && r.part_count <= torus.n / 50,
+          "torus of %zu: %zu parts at T = 500", torus.n, r.part_count);
+    printf("kd fast torus: %zu triangles -> %zu, %zu parts at T = 500, most measured %u\n",
+           torus.n, r.tri_count, r.part_count, r.max_measured);
+    check_fast("torus", &torus, 500, &r);
+    oit_kd_result_free(&r);
+    /* 100 sheets in one node of 200 triangles: above the file's 64 layers,
+     * so it is split further (along z) until every part is within it. */
+    float slo[3] = {0, 0, 0}, shi[3] = {8, 8, 8};
+    p.part_triangles = 100000;
+    CHECK(oit_kd_build_fast(slo, shi, stack.t, stack.n, &p, &r, &err) == OIT_OK, "%s",
+          err.message);
+    CHECK(r.part_count >= 2 && r.clamped_parts == 0 && r.max_measured <= 64 &&
+              r.tri_count == stack.n,
+          "stack of 100: %zu parts, %u clamped, max %u, %zu triangles", r.part_count,
+          r.clamped_parts, r.max_measured, r.tri_count);
+    printf("kd fast stack of 100 sheets: %zu parts, most measured %u\n", r.part_count,
+           r.max_measured);
+    check_fast("stack", &stack, 100000, &r);
+    oit_kd_result_free(&r);
+    p.part_triangles = 0;
+    CHECK(oit_kd_build_fast(lo, hi, torus.t, torus.n, &p, &r, &err) == OIT_ERR_ARGUMENT,
+          "parts of 0 triangles must be refused");
+    free(torus.t);
+    free(stack.t);
+}
+
 int main(void)
 {
     test_predicates();
@@ -895,6 +1005,8 @@ int main(void)
     test_sort();
     test_plane_exact();
     test_kd_cut();
+    test_layers_measured();
+    test_kd_fast();
     if (test_failures)
         fprintf(stderr, "%d check(s) failed\n", test_failures);
     return test_failures != 0;

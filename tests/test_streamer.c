@@ -8,11 +8,16 @@
  * and alphas vary per shape; extents are jittered so no two faces are
  * coplanar.
  *
- * usage: test_streamer OUT.oitp [--bad-slab | --understated-bound]
+ * usage: test_streamer OUT.oitp [--bad-slab | --understated-bound | --measured |
+ *                                --measured-swapped]
  * --bad-slab moves the slab's planes 0.05 up, so the inside box reaches
  * below d0; --understated-bound records the slab's lower box with layer
  * bound 1, though rays meet it twice: files oitprep verify
- * must reject (tests/test_verify_slab.sh). */
+ * must reject (tests/test_verify_slab.sh). --measured writes that bound in a
+ * file flagged as of measured bounds, which verify must pass, reporting the
+ * excess; --measured-swapped also swaps the slab's two parts, so the lower
+ * box is drawn as if above: order and slab violations verify must fail even
+ * with measured bounds. */
 #include <stdio.h>
 #include <string.h>
 
@@ -140,7 +145,7 @@ static int cell_part(oit_partfile_writer *w, const float lo[3], const float hi[3
 static const uint32_t SUB_CELL = 2 + NX * (2 + NY * 1), SLAB_CELL = 4 + NX * (1 + NY * 2);
 
 /* Deliberate flaws for oitprep verify's tests. */
-enum { FLAW_NONE, FLAW_SLAB, FLAW_BOUND };
+enum { FLAW_NONE, FLAW_SLAB, FLAW_BOUND, FLAW_MEASURED, FLAW_MEASURED_SWAPPED };
 
 static int write_scene(const char *path, int flaw, oit_error *err)
 {
@@ -149,6 +154,7 @@ static int write_scene(const char *path, int flaw, oit_error *err)
     wd.K = 8;
     wd.attributes = OIT_ATTR_COLOR | OIT_ATTR_ALPHA;
     wd.source_name = "test_streamer grid of convex shapes";
+    wd.measured_bounds = flaw == FLAW_MEASURED || flaw == FLAW_MEASURED_SWAPPED;
     oit_partfile_writer *w = NULL;
     if (oit_partfile_writer_create(path, &wd, &w, err) != OIT_OK)
         return -1;
@@ -173,7 +179,7 @@ static int write_scene(const char *path, int flaw, oit_error *err)
                 float shi[3] = {hi[0] - 0.08f - 0.02f * k, hi[1] - 0.1f + 0.01f * k,
                                 lo[2] + z[k + 1] - 0.02f};
                 add_box(&s, slo, shi, &r);
-                if (flaw == FLAW_BOUND && k == 0)
+                if ((flaw == FLAW_BOUND || wd.measured_bounds) && k == 0)
                     s.layer_bound = 1; /* a ray meets the closed box twice */
                 ok = write_shape(w, &s, &slab_parts[k], err);
             }
@@ -196,8 +202,10 @@ static int write_scene(const char *path, int flaw, oit_error *err)
     oit_partfile_grid_desc sub = {{2, 2, 1}, {slo[0], slo[1], slo[2]}, {0.5f, 0.5f, 1.0f}, 0,
                                   SUB_CELL, sub_counts, sub_list};
     float zc = (float)(SLAB_CELL / (NX * NY)) + (bad_slab ? 0.05f : 0.0f);
+    int swap = flaw == FLAW_MEASURED_SWAPPED;
     oit_partfile_slab_desc slab = {{0, 0, 1}, zc + 0.4f - 0.01f, zc + 0.6f - 0.01f, 0, SLAB_CELL,
-                                   slab_parts[0], slab_parts[2], &slab_parts[1], 1};
+                                   slab_parts[swap ? 2 : 0], slab_parts[swap ? 0 : 2],
+                                   &slab_parts[1], 1};
     uint32_t g = 0, sl = 0;
     if (oit_partfile_writer_set_grid(w, &top, err) != OIT_OK ||
         oit_partfile_writer_add_subgrid(w, &sub, &g, err) != OIT_OK ||
@@ -210,11 +218,14 @@ static int write_scene(const char *path, int flaw, oit_error *err)
 
 int main(int argc, char **argv)
 {
-    int flaw = argc == 3 && !strcmp(argv[2], "--bad-slab")          ? FLAW_SLAB
-               : argc == 3 && !strcmp(argv[2], "--understated-bound") ? FLAW_BOUND
-                                                                      : FLAW_NONE;
+    int flaw = argc == 3 && !strcmp(argv[2], "--bad-slab")           ? FLAW_SLAB
+               : argc == 3 && !strcmp(argv[2], "--understated-bound")  ? FLAW_BOUND
+               : argc == 3 && !strcmp(argv[2], "--measured")           ? FLAW_MEASURED
+               : argc == 3 && !strcmp(argv[2], "--measured-swapped")   ? FLAW_MEASURED_SWAPPED
+                                                                       : FLAW_NONE;
     if (argc != 2 && flaw == FLAW_NONE) {
-        fprintf(stderr, "usage: test_streamer OUT.oitp [--bad-slab | --understated-bound]\n");
+        fprintf(stderr, "usage: test_streamer OUT.oitp [--bad-slab | --understated-bound | "
+                        "--measured | --measured-swapped]\n");
         return 2;
     }
     oit_error err = {0};

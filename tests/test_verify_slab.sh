@@ -39,5 +39,25 @@ grep -q "gives 2 hits, more than its bound" "$T/bound.txt" ||
     fail "understated bound: no part named with 2 hits over its bound: $(cat "$T/bound.txt")"
 grep "hits\|violation" "$T/bound.txt" | head -n 3
 
+# The same bound in a file of measured bounds (oitprep --scheme fast's flag):
+# an estimate, so verify passes and reports the excess; with the slab's two
+# parts swapped as well, its order and slab violations still fail it.
+"$W" "$T/measured.oitp" --measured && "$W" "$T/swapped.oitp" --measured-swapped ||
+    { echo "FAIL: test_streamer --measured"; exit 1; }
+"$OIT_BIN/oitprep" verify "$T/measured.oitp" >"$T/measured.txt" 2>&1
+rc=$?
+[ "$rc" -eq 0 ] || fail "verify exits $rc on a measured bound one too low, want 0: $(cat "$T/measured.txt")"
+grep -q "measured bounds, not guaranteed.*; [1-9][0-9]* part-rays over it, by at most 1 " "$T/measured.txt" &&
+    grep -q "order: 0 violations" "$T/measured.txt" ||
+    fail "measured bound: excess not reported: $(cat "$T/measured.txt")"
+grep "layers" "$T/measured.txt"
+"$OIT_BIN/oitprep" verify "$T/swapped.oitp" >"$T/swapped.txt" 2>&1
+rc=$?
+[ "$rc" -eq 1 ] || fail "verify exits $rc on swapped slab parts with measured bounds, want 1"
+grep -q "order: [1-9][0-9]* violations" "$T/swapped.txt" &&
+    grep -q "slabs: 1, [1-9][0-9]* vertices on the wrong side" "$T/swapped.txt" ||
+    fail "swapped slab parts: $(cat "$T/swapped.txt")"
+grep "order\|slabs" "$T/swapped.txt"
+
 [ "$FAILS" -eq 0 ] || { echo "$FAILS failure(s)"; exit 1; }
 echo "verify slab check: all checks passed"

@@ -1,7 +1,9 @@
 /* The part file: a converted scene as oitstream reads it (docs/part-file.md).
  *
  * A part is at most K/2 convex pieces, so it yields at most K fragments per
- * pixel from any viewpoint; grids, subgrids and slabs order the parts per
+ * pixel from any viewpoint (in a file flagged OIT_PARTFILE_FLAG_MEASURED_BOUNDS,
+ * oitprep --scheme fast, a part's bound is measured instead, not
+ * guaranteed); grids, subgrids and slabs order the parts per
  * view. One part's vertices and indices are one contiguous, aligned byte
  * range, so a streaming loader reads a part with one pread.
  *
@@ -45,13 +47,21 @@ extern "C" {
  * K layers meet at one vertex no box separates them, so the part keeps its
  * bound (up to this) and the renderer captures it over smaller tiles. */
 #define OIT_PARTFILE_MAX_LAYERS 64u
+/* Header flag (version 3): the parts' layer bounds are measured (oitprep
+ * --scheme fast, partition/layers_measured.h), not guaranteed. A part's
+ * bound is then 1..OIT_PARTFILE_MAX_LAYERS whatever its pieces, and a ray
+ * may meet more of its surfaces. Files without it are seed 002's guarantee.
+ * Builds before this flag refuse such a file (unknown flag), which is
+ * right: they would take the bounds for guarantees. */
+#define OIT_PARTFILE_FLAG_MEASURED_BOUNDS 1u
 
 /* Decoded records. Their layout is the file's record layout (the reader
  * copies sections into them); see docs/part-file.md for every invariant. */
 typedef struct oit_partfile_part {
     float bounds_min[3];    /* of the part's vertices, exactly              */
     float bounds_max[3];
-    uint32_t layer_bound;   /* 1..2*piece_count: fragments per pixel; > K: wide */
+    uint32_t layer_bound;   /* 1..2*piece_count: fragments per pixel; > K: wide;
+                               measured bounds (header flag): 1..64, measured */
     uint32_t attributes;    /* OIT_ATTR_* stored per vertex (rgba8 if != 0)  */
     uint32_t piece_first;   /* range in the piece array                     */
     uint32_t piece_count;
@@ -135,6 +145,7 @@ typedef struct oit_partfile_summary {
     float bounds_max[3];
     double origin[3];       /* positions are relative to it (oit_mesh_info) */
     uint64_t cut_slabs;     /* of slabs, cutting planes (d0 = d1)           */
+    bool measured_bounds;   /* OIT_PARTFILE_FLAG_MEASURED_BOUNDS is set     */
 } oit_partfile_summary;
 
 /* ---- reader ------------------------------------------------------------ */
@@ -241,6 +252,9 @@ typedef struct oit_partfile_writer_desc {
                                 finite; default 0                            */
     bool skip_verify;        /* default false: finish re-opens the file with the
                                 reader before renaming it into place         */
+    bool measured_bounds;    /* sets OIT_PARTFILE_FLAG_MEASURED_BOUNDS: every
+                                part gives its layer_bound (1..64), not
+                                bounded by its pieces                        */
 } oit_partfile_writer_desc;
 
 /* Creates "<path>.tmp". desc may be NULL. */
@@ -261,7 +275,8 @@ typedef struct oit_partfile_part_desc {
     uint64_t index_count;
     const oit_partfile_piece_desc *pieces; /* cover the triangles in order */
     uint32_t piece_count;
-    uint32_t layer_bound;    /* 0: min(K, 2*piece_count)                  */
+    uint32_t layer_bound;    /* 0: min(K, 2*piece_count); with measured
+                                bounds 1..64, required                    */
     uint32_t attributes;     /* OIT_ATTR_* the rgba holds; 0 with rgba
                                 means OIT_ATTR_COLOR|OIT_ATTR_ALPHA      */
 } oit_partfile_part_desc;

@@ -1,0 +1,59 @@
+/* The fast scheme's subdivision of one grid cell into parts (DESIGN.md
+ * "Visibility order"; oitprep --scheme fast).
+ *
+ * Built for streaming speed, not for a layer guarantee: no convex pieces.
+ * A node holding more than part_triangles triangles is split by an axis
+ * plane (kd_split.h's candidates: sixteenths of the node and the triangles'
+ * own coordinates, where a plane crosses nothing that ends on it; its
+ * larger half keeps at most 3/4 of the node, so the depth stays
+ * logarithmic; fewest crossed triangles, then balance),
+ * the triangles crossing it are clipped to the two closed halves (clip.h:
+ * canonical new vertices, a triangle in the plane goes below), and both
+ * halves recurse. A node of at most part_triangles triangles is one part.
+ * The result is the same kd-tree of 2x1x1 subgrids as partition/kd.h's, at
+ * most one part a leaf, each part inside its leaf's closed box: the
+ * contract of stream/order.h, so the parts are exactly ordered per view.
+ * Triangles are clipped only where a tree plane crosses them.
+ *
+ * Each part's layer_bound is its measured layer count (layers_measured.h:
+ * sampled, not a guarantee). A part measured above OIT_PARTFILE_MAX_LAYERS
+ * is split further, whatever its size, up to OIT_KD_FAST_EXTRA_DEPTH more
+ * levels (a stack of many sheets halves its layers a level); one still
+ * above then is recorded at that limit and counted in clamped_parts (a star
+ * of sheets around one vertex keeps its layers in every box around it).
+ * The result has one piece a part (plane_count = its triangle count: the
+ * planes are not counted) and no slabs; wide_parts counts the parts whose
+ * measured count exceeds K, as the K-slot packs will see them.
+ */
+#ifndef OIT_PARTITION_KD_FAST_H
+#define OIT_PARTITION_KD_FAST_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "partition/kd.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define OIT_KD_FAST_EXTRA_DEPTH 12u
+
+typedef struct oit_kd_fast_params {
+    uint32_t part_triangles; /* T: a node of at most T triangles is a part; >= 1 */
+    uint32_t max_layers;     /* K of the file (for wide_parts only) */
+    uint32_t max_depth;      /* splits below the cell; 0: 48 */
+    uint64_t max_triangles;  /* the parts may hold in all; 0: no limit */
+} oit_kd_fast_params;
+
+/* Subdivides the box [lo, hi] holding tris[0..n) (only read). Fails with
+ * OIT_ERR_UNSUPPORTED when the parts would exceed max_triangles (the message
+ * says so), OIT_ERR_ARGUMENT for part_triangles 0, or OIT_ERR_NOMEM. */
+oit_status oit_kd_build_fast(const float lo[3], const float hi[3], const oit_triangle *tris,
+                             size_t n, const oit_kd_fast_params *params, oit_kd_result *out,
+                             oit_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
