@@ -267,18 +267,17 @@ static oit_status split_set(const node_set *s, int axis, float m, int side, node
 
 static oit_status build_node(kd_ctx *c, size_t node, const node_set *s);
 
-static oit_status split_node(kd_ctx *c, size_t node, const node_set *s, int axis, float m)
+oit_status oit_kd_add_children(oit_kd_result *r, size_t node, int axis, float m, size_t *child)
 {
-    oit_kd_result *r = c->out;
     GROW(r->nodes, r->node_count, r->node_cap, 2);
     oit_kd_node *nd = &r->nodes[node];
-    size_t child = r->node_count;
+    *child = r->node_count;
     r->node_count += 2;
     nd->axis = axis;
     nd->split = m;
-    nd->child = (uint32_t)child;
+    nd->child = (uint32_t)*child;
     for (int h = 0; h < 2; h++) {
-        oit_kd_node *ch = &r->nodes[child + h];
+        oit_kd_node *ch = &r->nodes[*child + h];
         *ch = *nd;
         ch->axis = -1;
         ch->part = -1;
@@ -291,6 +290,15 @@ static oit_status split_node(kd_ctx *c, size_t node, const node_set *s, int axis
     }
     if (nd->depth + 1 > r->depth)
         r->depth = nd->depth + 1;
+    return OIT_OK;
+}
+
+static oit_status split_node(kd_ctx *c, size_t node, const node_set *s, int axis, float m)
+{
+    oit_kd_result *r = c->out;
+    size_t child;
+    if (oit_kd_add_children(r, node, axis, m, &child))
+        return OIT_ERR_NOMEM;
     oit_status st = OIT_OK;
     for (int side = 0; side < 2 && !st; side++) {
         node_set half = {0};

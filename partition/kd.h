@@ -128,6 +128,12 @@ oit_status oit_kd_build(const float lo[3], const float hi[3], const oit_triangle
                         const oit_kd_params *params, oit_kd_result *out, oit_error *err);
 void oit_kd_result_free(oit_kd_result *r);
 
+/* Splits leaf `node` of r at pos[axis] = m into two empty leaves, below at
+ * *child and above at *child + 1, one level deeper (r->depth follows); the
+ * node becomes their parent. Shared by every scheme that builds r's tree
+ * (kd.c, kd_fast.c). Fails only with OIT_ERR_NOMEM, r unchanged. */
+oit_status oit_kd_add_children(oit_kd_result *r, size_t node, int axis, float m, size_t *child);
+
 #ifdef __cplusplus
 }
 #endif

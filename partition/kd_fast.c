@@ -159,27 +159,9 @@ static oit_status split_node(fast_ctx *c, size_t node, const tri_set *s, int axi
                              uint32_t extra)
 {
     oit_kd_result *r = c->out;
-    if (grow((void **)&r->nodes, sizeof *r->nodes, r->node_count, &r->node_cap, 2))
+    size_t child;
+    if (oit_kd_add_children(r, node, axis, m, &child))
         return OIT_ERR_NOMEM;
-    oit_kd_node *nd = &r->nodes[node];
-    size_t child = r->node_count;
-    r->node_count += 2;
-    nd->axis = axis;
-    nd->split = m;
-    nd->child = (uint32_t)child;
-    for (int h = 0; h < 2; h++) {
-        oit_kd_node *ch = &r->nodes[child + h];
-        *ch = *nd;
-        ch->axis = -1;
-        ch->part = -1;
-        ch->slab = -1;
-        ch->depth = nd->depth + 1;
-        if (h == 0)
-            ch->hi[axis] = m;
-        else
-            ch->lo[axis] = m;
-    }
-    r->depth = nd->depth + 1 > r->depth ? nd->depth + 1 : r->depth;
     oit_status st = OIT_OK;
     /* One half at a time: a path down the tree holds one set a level. */
     for (int side = 0; side < 2 && !st; side++) {
