@@ -41,6 +41,8 @@ static int grow(void **arr, size_t size, size_t count, size_t *cap, size_t need)
 
 static oit_status set_push(tri_set *s, const oit_triangle *t, int k)
 {
+    if (k == 0)
+        return OIT_OK; /* a clip that left nothing: s->t may still be NULL */
     if (grow((void **)&s->t, sizeof *s->t, s->n, &s->cap, (size_t)k))
         return OIT_ERR_NOMEM;
     memcpy(s->t + s->n, t, (size_t)k * sizeof *t);
