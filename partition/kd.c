@@ -7,6 +7,7 @@
 
 #include "partition/clip.h"
 #include "partition/convex.h"
+#include "partition/grow.h"
 #include "partition/kd_cut.h"
 #include "partition/kd_split.h"
 #include "partition/minmax.h"
@@ -33,16 +34,8 @@ typedef struct kd_ctx {
 
 #define GROW(arr, count, cap, need)                                                   \
     do {                                                                              \
-        if ((count) + (need) > (cap)) {                                               \
-            size_t nc_ = (cap) ? (cap) : 16;                                          \
-            while (nc_ < (count) + (need))                                            \
-                nc_ *= 2;                                                             \
-            void *p_ = realloc((arr), nc_ * sizeof *(arr));                           \
-            if (!p_)                                                                  \
-                return OIT_ERR_NOMEM;                                                 \
-            (arr) = p_;                                                               \
-            (cap) = nc_;                                                              \
-        }                                                                             \
+        if (oit_grow((void **)&(arr), sizeof *(arr), (count), &(cap), (need)))        \
+            return OIT_ERR_NOMEM;                                                     \
     } while (0)
 
 static oit_status set_push(node_set *s, const oit_triangle *t, uint32_t piece, uint32_t plane)

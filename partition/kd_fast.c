@@ -7,6 +7,7 @@
 
 #include "oit/partfile.h"
 #include "partition/clip.h"
+#include "partition/grow.h"
 #include "partition/kd_split.h"
 #include "partition/layers_measured.h"
 #include "partition/minmax.h"
@@ -23,27 +24,11 @@ typedef struct fast_ctx {
     oit_error *err;
 } fast_ctx;
 
-/* Grows arr (count used, cap allocated) to hold need more. */
-static int grow(void **arr, size_t size, size_t count, size_t *cap, size_t need)
-{
-    if (count + need <= *cap)
-        return 0;
-    size_t nc = *cap ? *cap : 16;
-    while (nc < count + need)
-        nc *= 2;
-    void *q = realloc(*arr, nc * size);
-    if (!q)
-        return -1;
-    *arr = q;
-    *cap = nc;
-    return 0;
-}
-
 static oit_status set_push(tri_set *s, const oit_triangle *t, int k)
 {
     if (k == 0)
         return OIT_OK; /* a clip that left nothing: s->t may still be NULL */
-    if (grow((void **)&s->t, sizeof *s->t, s->n, &s->cap, (size_t)k))
+    if (oit_grow((void **)&s->t, sizeof *s->t, s->n, &s->cap, (size_t)k))
         return OIT_ERR_NOMEM;
     memcpy(s->t + s->n, t, (size_t)k * sizeof *t);
     s->n += (size_t)k;
@@ -117,9 +102,9 @@ static oit_status emit_part(fast_ctx *c, size_t node, const tri_set *s, uint32_t
         return oit_error_set(c->err, OIT_ERR_UNSUPPORTED, "cell subdivision (fast scheme): "
                              "the parts would need more than %llu triangles",
                              (unsigned long long)c->p->max_triangles);
-    if (grow((void **)&r->parts, sizeof *r->parts, r->part_count, &r->part_cap, 1) ||
-        grow((void **)&r->pieces, sizeof *r->pieces, r->piece_count, &r->piece_cap, 1) ||
-        grow((void **)&r->tris, sizeof *r->tris, r->tri_count, &r->tri_cap, s->n))
+    if (oit_grow((void **)&r->parts, sizeof *r->parts, r->part_count, &r->part_cap, 1) ||
+        oit_grow((void **)&r->pieces, sizeof *r->pieces, r->piece_count, &r->piece_cap, 1) ||
+        oit_grow((void **)&r->tris, sizeof *r->tris, r->tri_count, &r->tri_cap, s->n))
         return OIT_ERR_NOMEM;
     r->max_measured = layers > r->max_measured ? layers : r->max_measured;
     if (layers > OIT_PARTFILE_MAX_LAYERS) {
@@ -214,7 +199,7 @@ oit_status oit_kd_build_fast(const float lo[3], const float hi[3], const oit_tri
                              "parts of 0 triangles");
     fast_ctx c = {params, params->max_depth ? params->max_depth : 48, out, err};
     oit_status st = OIT_OK;
-    if (grow((void **)&out->nodes, sizeof *out->nodes, 0, &out->node_cap, 16))
+    if (oit_grow((void **)&out->nodes, sizeof *out->nodes, 0, &out->node_cap, 16))
         st = OIT_ERR_NOMEM;
     if (!st) {
         out->node_count = 1;
