@@ -134,7 +134,8 @@ for n in $ids; do
     printf '%-30s %-28s %-9s %s\n' "$id" "$file" "$result" "$failing"
     git -C "$SRC" checkout -q -- "$file"
 done
-cmake --build "$B" -j "$JOBS" >/dev/null 2>&1
+# A kept clone is left built from clean sources; a removed one needs no rebuild.
+[ "$KEEP" -eq 1 ] && cmake --build "$B" -j "$JOBS" >/dev/null 2>&1
 
 rate=$(awk -v k=$killed -v t=$total 'BEGIN{printf "%.1f", t ? 100 * k / t : 0}')
 echo "mutate: $killed of $total planted bugs killed ($rate%), $survived survived," \

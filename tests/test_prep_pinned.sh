@@ -27,10 +27,9 @@ figures() {
     done | tr '\n' ' '
 }
 
-echo "$PINNED" | while read -r m want_line; do
+echo "$PINNED" | while read -r m want; do
     M="${OIT_MESH_CACHE:-}/$m"
     [ -f "$M" ] || { echo "skip: $M missing (run data_scripts/fetch_meshes.sh)"; exit 77; }
-    want="$want_line"
     for th in 1 2; do
         "$OIT_BIN/oitprep" "$M" -o "$T/$m.oitp" --threads $th --stats "$T/$m.json" >/dev/null 2>&1 ||
             { fail "$m --threads $th: oitprep exited $?"; continue; }
