@@ -1,9 +1,10 @@
 #!/bin/sh
 # The product end to end on the built-in demo scene: generate it, convert it
 # into a part file (oitprep), check the file (oitprep verify), render it with
-# the streaming renderer (oitstream, headless), render the same file with
-# DFB, the in-core exact method, print how far the two images differ, and
-# draw the decomposition (oitprep parts, coloured by kind of part).
+# the streaming renderer (oitstream, headless), render the same file and the
+# source mesh with DFB, the in-core exact method (the mesh is what a user
+# would render without converting), print how far the stream is from each,
+# and draw the decomposition (oitprep parts, a hue per part).
 # Usage: demo.sh BINDIR OUTDIR [WxH]
 set -eu
 bin=$1 out=$2 size=${3:-1024x1024}
@@ -21,10 +22,14 @@ echo "demo: streaming $size -> $out/frame.png"
 echo "demo: the same view with DFB -> $out/dfb.png"
 "$bin/oitstream" "$out/demo.oitp" --method dfb --size "$size" --out "$out/dfb.png" \
     --stats "$out/dfb.json"
+echo "demo: DFB on the source mesh -> $out/dfb_mesh.png"
+"$bin/oitstream" "$out/demo.ply" --method dfb --size "$size" --out "$out/dfb_mesh.png" \
+    --stats "$out/dfb_mesh.json" --quiet
 echo "demo: stream against DFB: $("$bin/oitstream" --compare "$out/frame.png" "$out/dfb.png" --json)"
-echo "demo: the decomposition -> $out/parts.png (grey: axis splits, blue: separating slabs,"
-echo "      orange: cutting planes, red: wide parts)"
-"$bin/oitprep" parts "$out/demo.oitp" -o "$out/parts.ply" --colour kind
+echo "demo: stream against DFB on the source mesh:" \
+    "$("$bin/oitstream" --compare "$out/frame.png" "$out/dfb_mesh.png" --json)"
+echo "demo: the decomposition -> $out/parts.png (a hue per part)"
+"$bin/oitprep" parts "$out/demo.oitp" -o "$out/parts.ply" --colour part
 "$bin/oitstream" "$out/parts.ply" --size "$size" --azimuth 30 --elevation 35 \
     --out "$out/parts.png" --quiet
 case $out in /*) dir=$out ;; *) dir=$(pwd)/$out ;; esac

@@ -82,6 +82,33 @@ static void choose_grid(const float mn[3], const float mx[3], uint64_t triangles
     }
 }
 
+static uint64_t cell_count(const oit_bin_grid *g)
+{
+    return (uint64_t)g->dims[0] * g->dims[1] * g->dims[2];
+}
+
+/* The fast scheme's grid, when the user gave no --grid: a model whose
+ * extent is its power-of-two cell size, or that straddles a face of every
+ * shift, still spans two cells an axis (a bounds maximum on a cell face
+ * counts in the next cell), and every face clips. A twice or four times
+ * larger cell of fewer cells has faces that are as exact, and costs the
+ * kd below nothing: it splits by triangle counts, not by cell size. */
+static void fewest_cells(const float mn[3], const float mx[3], oit_bin_grid *g)
+{
+    for (int d = 1; d <= 2; d++) {
+        oit_bin_grid c = *g;
+        c.cell = g->cell * 2.0f;
+        for (int k = 0; k < 3; k++) {
+            double o = floor(mn[k] / c.cell) * c.cell;
+            c.origin[k] = (float)o;
+            c.dims[k] = (uint32_t)floor((mx[k] - o) / c.cell) + 1;
+        }
+        shift_origin(mn, mx, &c);
+        if (cell_count(&c) < cell_count(g))
+            *g = c;
+    }
+}
+
 /* ---- passes over the input ------------------------------------------------- */
 
 static oit_status count_sink(void *user, const oit_triangle *t, size_t n, oit_error *err)
@@ -635,6 +662,8 @@ static oit_status convert_with(const oit_convert_options *o, oit_convert_stats *
         double per_cell = fmax(FAST_TRIANGLES_PER_CELL, 8.0 * o->part_triangles);
         choose_grid(info.bounds_min, info.bounds_max, info.triangles, o->grid, per_cell, &r.grid);
         shift_origin(info.bounds_min, info.bounds_max, &r.grid);
+        if (!o->grid)
+            fewest_cells(info.bounds_min, info.bounds_max, &r.grid);
     } else if (info.triangles)
         choose_grid(info.bounds_min, info.bounds_max, info.triangles, o->grid,
                     TRIANGLES_PER_CELL, &r.grid);

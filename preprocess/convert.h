@@ -30,11 +30,11 @@ typedef enum oit_manage {
 
 /* How cells become parts (--scheme). */
 typedef enum oit_scheme {
-    OIT_SCHEME_GUARANTEED = 0, /* seed 002: convex pieces, at most K layers a part
-                                  (partition/kd.h); the default for now */
-    OIT_SCHEME_FAST            /* large parts of at most part_triangles triangles,
-                                  measured layer counts, no convexity
-                                  (partition/kd_fast.h); --manage grid only */
+    OIT_SCHEME_FAST = 0,  /* the default: large parts of at most part_triangles
+                             triangles, measured layer counts, no convexity
+                             (partition/kd_fast.h); --manage grid only */
+    OIT_SCHEME_GUARANTEED /* seed 002: convex pieces, at most K layers a part
+                             (partition/kd.h), for the paper's comparisons */
 } oit_scheme;
 
 /* Triangles a fast-scheme part may hold unless --part-triangles says

@@ -32,7 +32,7 @@ static void usage(FILE *f)
           "       oitprep INPUT -o OUT.oitp [--max-layers K] [--memory BYTES] [--threads N]\n"
           "               [--stats FILE.json] [--grid N] [--max-piece-triangles T]\n"
           "               [--manage grid|kd-parts|kd-facets] [--slabs all|separating|none]\n"
-          "               [--scheme guaranteed|fast] [--part-triangles T]\n"
+          "               [--scheme fast|guaranteed] [--part-triangles T]\n"
           "\n"
           "  info FILE     validate a part file completely (header, checksums, every record\n"
           "                and index) and print its counts; --json prints one JSON object\n"
@@ -58,51 +58,55 @@ static void usage(FILE *f)
           "                paints parts of axis splits grey, of separating slabs blue, of\n"
           "                cutting planes orange, wide parts red. --alpha A (1..255) for\n"
           "                every triangle, else the file's alpha\n"
-          "  INPUT -o OUT  convert a mesh (PLY, OBJ, OFF, STL, glTF/GLB) into a part file:\n"
-          "                convex pieces grouped into parts of at most K layers (1 per\n"
-          "                planar piece, 2 per other), in a grid of kd-subdivided cells;\n"
-          "                a node of at most 2K layers that no axis plane splits without\n"
-          "                cutting may instead become two parts on either side of a\n"
-          "                slab: a separating one (a gap, any normal, nothing clipped),\n"
-          "                else a cutting plane (one of 49 integer normals; it clips,\n"
-          "                seams exactly on the plane) when it crosses fewer triangles\n"
-          "                than the axis split or spares that split's further splits.\n"
-          "                --slabs all (default), separating (no cutting planes) or\n"
-          "                none (axis splits only): for comparisons; cut_slabs in --stats.\n"
-          "                --max-layers K (even, 2..64, default 8; above 16 the streamer\n"
-          "                captures parts over tiles), --memory BYTES for the\n"
-          "                binning (>= 64K, suffix K/M/G, default 2G; beyond it bins spill\n"
-          "                to OUT.spill), --threads N (1..1024, default: all cores), --grid N\n"
-          "                top cells along the longest axis (1..1024, default: ~64K\n"
-          "                triangles a cell; cells are rounded to a power-of-two size),\n"
-          "                --max-piece-triangles T stops a convex piece at T triangles\n"
-          "                (1..1073741824, default 4096), --stats FILE.json figures.\n"
-          "                The output is byte-identical for any --threads and --memory.\n"
-          "                Where more than K layers meet at one vertex no box separates\n"
-          "                them: that node becomes a wide part (bound up to 64, streamed\n"
-          "                alone over smaller tiles; counted as wide_parts in --stats).\n"
-          "                A node of more than 64 layers is refused (exit 3). Clipping\n"
-          "                at kd planes adds triangles (split_added in --stats).\n"
-          "                --manage (seed 002, Table 1): grid (default: the above);\n"
-          "                kd-parts: one kd-tree over the whole model's convex pieces,\n"
-          "                one part a leaf (--grid 1: one top cell an axis, or two\n"
-          "                where the bounds straddle a power of two; in memory);\n"
-          "                kd-facets: one kd-tree over single facets, leaves of at\n"
-          "                most K facets (no convex pieces)\n"
-          "                --scheme guaranteed (default: all of the above, seed 002's\n"
-          "                bound of K layers a part) or fast: built for streaming speed,\n"
-          "                no convex pieces and no slabs; in each top cell a kd node\n"
-          "                stops splitting when it holds at most --part-triangles T\n"
-          "                triangles (1..16M, default 131072), clipped only where\n"
-          "                a tree plane crosses a triangle, so parts stay exactly ordered\n"
-          "                per view. Each part's layer bound is MEASURED, not guaranteed:\n"
-          "                the most triangles one line crosses among 64x64 parallel lines\n"
-          "                in each of 13 fixed directions (partition/layers_measured.h).\n"
-          "                A part measured above 64 is split further (up to 12 levels),\n"
-          "                else stored as 64 and counted (clamped_parts in --stats). The\n"
-          "                default capture (counted packs) needs no bound; --pack\n"
-          "                disjoint|budget count any excess as overflow. The file is\n"
-          "                flagged as of measured bounds; --manage and --slabs do not apply\n"
+          "  INPUT -o OUT  convert a mesh (PLY, OBJ, OFF, STL, glTF/GLB) into a part file,\n"
+          "                out of core: the model is binned into a grid of top cells (--grid\n"
+          "                N along the longest axis, 1..1024, default: ~64K triangles a\n"
+          "                cell; cells are rounded to a power-of-two size) and each cell\n"
+          "                is subdivided into parts by a kd-tree, so that the parts are\n"
+          "                exactly ordered per view. Two schemes (--scheme):\n"
+          "                fast (default), built for streaming speed: a kd node stops\n"
+          "                splitting when it holds at most --part-triangles T triangles\n"
+          "                (1..16M, default 131072); triangles are clipped only where a\n"
+          "                tree plane crosses them and keep their source order within a\n"
+          "                part (depth ties resolve as in the source mesh). A part's layer\n"
+          "                bound is MEASURED, not guaranteed: the most triangles one line\n"
+          "                crosses among 64x64 parallel lines in each of 13 fixed\n"
+          "                directions (partition/layers_measured.h); a part measured above\n"
+          "                64 is split further (up to 12 levels), else stored as 64 and\n"
+          "                counted (clamped_parts in --stats). The default capture\n"
+          "                (counted packs) needs no bound; --pack disjoint|budget count\n"
+          "                any excess as overflow. The file is flagged as of measured\n"
+          "                bounds.\n"
+          "                guaranteed: seed 002's scheme, for its comparisons: convex\n"
+          "                pieces (--max-piece-triangles T stops one at T triangles,\n"
+          "                1..1073741824, default 4096) grouped into parts of at most K\n"
+          "                layers (1 per planar piece, 2 per other); a node of at most 2K\n"
+          "                layers that no axis plane splits without cutting may instead\n"
+          "                become two parts on either side of a slab: a separating one (a\n"
+          "                gap, any normal, nothing clipped), else a cutting plane (one of\n"
+          "                49 integer normals; it clips, seams exactly on the plane) when\n"
+          "                it crosses fewer triangles than the axis split or spares that\n"
+          "                split's further splits. --slabs all (default), separating (no\n"
+          "                cutting planes) or none (axis splits only): cut_slabs in\n"
+          "                --stats. Where more than K layers meet at one vertex no box\n"
+          "                separates them: that node becomes a wide part (bound up to 64,\n"
+          "                streamed alone over smaller tiles; wide_parts in --stats); a\n"
+          "                node of more than 64 layers is refused (exit 3). --manage\n"
+          "                (seed 002, Table 1): grid (default: the above); kd-parts: one\n"
+          "                kd-tree over the whole model's convex pieces, one part a leaf\n"
+          "                (--grid 1: one top cell an axis, or two where the bounds\n"
+          "                straddle a power of two; in memory); kd-facets: one kd-tree\n"
+          "                over single facets, leaves of at most K facets (no convex\n"
+          "                pieces). --max-piece-triangles, --slabs and --manage other\n"
+          "                than grid select this scheme when --scheme is not given, and\n"
+          "                are usage errors with --scheme fast.\n"
+          "                Both: --max-layers K (even, 2..64, default 8: the capture's\n"
+          "                slots a pixel; above 16 the streamer captures parts over tiles),\n"
+          "                --memory BYTES for the binning (>= 64K, suffix K/M/G, default\n"
+          "                2G; beyond it bins spill to OUT.spill), --threads N (1..1024,\n"
+          "                default: all cores), --stats FILE.json figures. Clipping at kd\n"
+          "                planes adds triangles (split_added in --stats). The output is\n"
+          "                byte-identical for any --threads and --memory.\n"
           "  -h, --help    this text\n"
           "\n"
           "exit: 0 ok, 1 runtime or I/O failure, 2 usage error, 3 bad input file\n",
@@ -289,6 +293,10 @@ static int cmd_convert(int argc, char **argv)
                              .threads = cores > 0 ? (uint32_t)cores : 1,
                              .progress = isatty(2)};
     const char *stats = NULL;
+    /* Options only seed 002's scheme has: without --scheme they select it,
+     * so its comparisons keep their command lines. */
+    const char *guaranteed_only = NULL;
+    int scheme_given = 0;
     for (int i = 1; i < argc; i++) {
         unsigned long long v;
         const char *a = argv[i];
@@ -323,18 +331,22 @@ static int cmd_convert(int argc, char **argv)
             if (k < 0)
                 return 2;
             o.manage = (oit_manage)k; /* in oit_manage's order */
+            if (o.manage != OIT_MANAGE_GRID)
+                guaranteed_only = a;
         } else if (strcmp(a, "--slabs") == 0) {
             static const char *const names[] = {"all", "separating", "none", NULL};
             int k = option_choice(argc, argv, &i, a, names, "all, separating or none");
             if (k < 0)
                 return 2;
             o.slabs = (oit_kd_slabs)k; /* in oit_kd_slabs' order */
+            guaranteed_only = a;
         } else if (strcmp(a, "--scheme") == 0) {
-            static const char *const names[] = {"guaranteed", "fast", NULL};
-            int k = option_choice(argc, argv, &i, a, names, "guaranteed or fast");
+            static const char *const names[] = {"fast", "guaranteed", NULL};
+            int k = option_choice(argc, argv, &i, a, names, "fast or guaranteed");
             if (k < 0)
                 return 2;
             o.scheme = (oit_scheme)k; /* in oit_scheme's order */
+            scheme_given = 1;
         } else if (strcmp(a, "--part-triangles") == 0) {
             if (option_value(argc, argv, &i, a, 1, 1, 1u << 24, &v))
                 return 2;
@@ -343,6 +355,7 @@ static int cmd_convert(int argc, char **argv)
             if (option_value(argc, argv, &i, a, 0, 1, 1u << 30, &v))
                 return 2;
             o.max_piece_triangles = (uint32_t)v;
+            guaranteed_only = a;
         } else if (a[0] == '-' || o.input) {
             fprintf(stderr, "oitprep: unexpected argument '%s' (see oitprep --help)\n", a);
             return 2;
@@ -351,6 +364,13 @@ static int cmd_convert(int argc, char **argv)
     }
     if (!o.input || !o.output) {
         fprintf(stderr, "oitprep: conversion needs INPUT and -o OUT (see oitprep --help)\n");
+        return 2;
+    }
+    if (guaranteed_only && !scheme_given)
+        o.scheme = OIT_SCHEME_GUARANTEED;
+    else if (guaranteed_only && o.scheme == OIT_SCHEME_FAST) {
+        fprintf(stderr, "oitprep: %s applies to --scheme guaranteed only (the fast scheme has "
+                "no convex pieces and no slabs)\n", guaranteed_only);
         return 2;
     }
     oit_error err = {0};

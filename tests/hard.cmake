@@ -1,7 +1,10 @@
 # Numerical hard cases (issue 8): each `oitgen hard --case` scene through
-# oitprep, verify and every exact method (tests/test_hard.sh).
+# oitprep, verify and every exact method (tests/test_hard.sh), in the
+# default fast scheme (hard_CASE) and in seed 002's (hard_CASE_guaranteed).
 foreach(case coplanar rings sticks moebius degenerate nearflat far tiny thin nonmanifold
         stack dense)
   oit_add_test(NAME hard_${case} LABELS integration TIMEOUT 240
-    COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_hard.sh ${case})
+    COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_hard.sh ${case} fast)
+  oit_add_test(NAME hard_${case}_guaranteed LABELS integration TIMEOUT 240
+    COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_hard.sh ${case} guaranteed)
 endforeach()

@@ -163,8 +163,8 @@ check prep --max-layers "" V even
 check prep --memory
 check prep --threads
 check prep --grid
-check prep --max-piece-triangles
-check prep --part-triangles "--scheme fast"
+check prep --max-piece-triangles "--scheme guaranteed"
+check prep --part-triangles
 check verify --directions "" V nohi
 check verify --viewpoints "" V nohi
 check verify --chunk-triangles "" V nohi

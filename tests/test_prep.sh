@@ -1,9 +1,10 @@
 #!/bin/sh
-# oitprep end to end on a generated plant (oitgen plant, 10K triangles):
+# oitprep end to end on a generated plant (oitgen plant, 10K triangles),
+# seed 002's guaranteed scheme unless said otherwise:
 #   convert at --max-layers 16 with --stats (every documented key present,
 #   triangles conserved), `info` and `verify` (0 violations); the file is
 #   byte-identical for --threads 1/2 and under a --memory small enough to
-#   spill; oitstream --method stream equals --method dfb on it (2 views, no
+#   spill, in both schemes; oitstream --method stream equals --method dfb on it (2 views, no
 #   pixel over 1/255, no overflow); bad inputs exit 3 naming the file, a
 #   missing one exits 1. At the default K = 8, `oitgen demo` and a
 #   16-sector saddle (a wide part) convert, verify, and stream exactly, and
@@ -15,6 +16,10 @@ set -u
 : "${OIT_BIN:?OIT_BIN must name the tools folder}"
 : "${OIT_TEST_TMP:?OIT_TEST_TMP must name a scratch folder}"
 P="$OIT_BIN/oitprep"
+# Seed 002's scheme, whose guarantees (layer bounds, slabs, wide parts) this
+# file checks; the default fast scheme has tests/test_fast_scheme.sh, and
+# here its determinism (b, c).
+GUAR="--scheme guaranteed"
 G="$OIT_BIN/oitgen"
 S="$OIT_BIN/oitstream"
 for tool in "$P" "$G" "$S"; do
@@ -38,7 +43,7 @@ expect_rc() {
 # (a) conversion, its figures, info and verify
 M="$T/plant.ply"
 "$G" plant --triangles 10000 -o "$M" >/dev/null || { echo "FAIL: oitgen plant"; exit 1; }
-expect_rc 0 "$P" "$M" -o "$T/t0.oitp" --max-layers 16 --stats "$T/s.json"
+expect_rc 0 "$P" "$M" $GUAR -o "$T/t0.oitp" --max-layers 16 --stats "$T/s.json"
 for key in triangles_in triangles_out degenerate_dropped split_added pieces parts slabs \
     cells subgrid_depth seconds stages peak_rss_bytes; do
     grep -q "\"$key\":" "$T/s.json" || fail "stats JSON lacks \"$key\""
@@ -70,17 +75,23 @@ grep -q "; 0 violations" "$T/out.txt" || fail "verify: layer violations"
 grep -q "order: 0 violations" "$T/out.txt" || fail "verify: order violations"
 
 # (b), (c) determinism across threads and the spill path
-expect_rc 0 "$P" "$M" -o "$T/t1.oitp" --max-layers 16 --threads 1
-expect_rc 0 "$P" "$M" -o "$T/t2.oitp" --max-layers 16 --threads 2
+expect_rc 0 "$P" "$M" $GUAR -o "$T/t1.oitp" --max-layers 16 --threads 1
+expect_rc 0 "$P" "$M" $GUAR -o "$T/t2.oitp" --max-layers 16 --threads 2
 cmp -s "$T/t1.oitp" "$T/t2.oitp" || fail "--threads 1 and --threads 2 differ"
 cmp -s "$T/t0.oitp" "$T/t1.oitp" || fail "--threads 1 differs from the default"
-expect_rc 0 "$P" "$M" -o "$T/m.oitp" --max-layers 16 --threads 2 --memory 64K \
+expect_rc 0 "$P" "$M" $GUAR -o "$T/m.oitp" --max-layers 16 --threads 2 --memory 64K \
     --stats "$T/m.json"
 cmp -s "$T/t1.oitp" "$T/m.oitp" || fail "--memory 64K (spill) changes the file"
 spilled=$(json_num spilled_bytes <"$T/m.json")
 [ -n "$spilled" ] && [ "$spilled" -gt 0 ] || fail "--memory 64K did not spill ($spilled bytes)"
 echo "determinism: threads 1/2 and --memory 64K (spilled $spilled bytes) byte-identical" \
     "($(wc -c <"$T/t1.oitp") bytes)"
+expect_rc 0 "$P" "$M" -o "$T/f1.oitp" --threads 1
+expect_rc 0 "$P" "$M" -o "$T/f2.oitp" --threads 2 --memory 64K --stats "$T/f.json"
+cmp -s "$T/f1.oitp" "$T/f2.oitp" || fail "fast scheme: --threads 2 --memory 64K changes the file"
+grep -q '"scheme": "fast"' "$T/f.json" || fail "the default scheme is not fast"
+[ "$(json_num spilled_bytes <"$T/f.json")" -gt 0 ] || fail "fast scheme: --memory 64K did not spill"
+cmp -s "$T/f1.oitp" "$T/t1.oitp" && fail "the fast and guaranteed files are the same"
 
 # (d) streamed image equals DFB on the converted file
 if "$S" "$T/t0.oitp" --method stream --max-layers 16 --size 96x96 --orbit 2 \
@@ -131,7 +142,7 @@ awk 'BEGIN { n = 16; print "OFF"; print n + 1, n, 0; print 0.31, 0.17, 0.05;
     for (i = 0; i < n; i++) print 3, 0, 1 + i, 1 + (i + 1) % n }' >"$T/saddle.off"
 "$G" demo -o "$T/demo.ply" >/dev/null || fail "oitgen demo"
 for case in demo.ply saddle.off; do
-    expect_rc 0 "$P" "$T/$case" -o "$T/$case.oitp" --stats "$T/$case.json"
+    expect_rc 0 "$P" "$T/$case" $GUAR -o "$T/$case.oitp" --stats "$T/$case.json"
     expect_rc 0 "$P" verify "$T/$case.oitp"
     grep -q "; 0 violations" "$T/out.txt" && grep -q "order: 0 violations" "$T/out.txt" ||
         fail "$case: verify: $(cat "$T/out.txt")"
@@ -161,7 +172,7 @@ cuts=$(json_num cut_slabs <"$T/demo.ply.json")
 expect_rc 0 "$P" verify "$T/demo.ply.oitp"
 grep -q "slabs: $(json_num slabs <"$T/demo.ply.json"), 0 vertices" "$T/out.txt" ||
     fail "demo: verify slab sides: $(cat "$T/out.txt")"
-expect_rc 0 "$P" "$T/demo.ply" -o "$T/sep.oitp" --slabs separating --stats "$T/sep.json"
+expect_rc 0 "$P" "$T/demo.ply" $GUAR -o "$T/sep.oitp" --slabs separating --stats "$T/sep.json"
 t_cut=$(json_num triangles_out <"$T/demo.ply.json")
 t_sep=$(json_num triangles_out <"$T/sep.json")
 echo "demo: $cuts cutting planes; $t_cut triangles, $t_sep with --slabs separating"
@@ -193,7 +204,7 @@ grep -q "$(json_num parts <"$T/demo.ply.json") parts, $t_cut triangles" "$T/out.
 expect_rc 2 "$P" parts "$T/demo.ply.oitp" -o "$T/parts.ply" --colour hue
 expect_rc 2 "$P" parts "$T/demo.ply.oitp"
 expect_rc 3 "$P" parts "$T/demo.ply" -o "$T/parts.ply"
-expect_rc 2 "$P" "$T/demo.ply" -o "$T/x.oitp" --slabs some
+expect_rc 2 "$P" "$T/demo.ply" $GUAR -o "$T/x.oitp" --slabs some
 grep -q "want all, separating or none" "$T/err.txt" || fail "--slabs some: $(cat "$T/err.txt")"
 
 [ "$(json_num wide_parts <"$T/saddle.off.json")" -ge 1 ] &&
@@ -249,7 +260,7 @@ for nb in 8; do
         for (i = 0; i < nb; i++) for (f = 0; f < 6; f++) { c = 8 * i;
             print 3, c + q[4 * f + 1], c + q[4 * f + 2], c + q[4 * f + 3];
             print 3, c + q[4 * f + 1], c + q[4 * f + 3], c + q[4 * f + 4] } }' >"$T/bars.off"
-    expect_rc 0 "$P" "$T/bars.off" -o "$T/bars.oitp" --grid 1 --stats "$T/bars.json"
+    expect_rc 0 "$P" "$T/bars.off" $GUAR -o "$T/bars.oitp" --grid 1 --stats "$T/bars.json"
     slabs=$(json_num slabs <"$T/bars.json")
     parts=$(json_num parts <"$T/bars.json")
     echo "$nb diagonal bars: $(json_num triangles_in <"$T/bars.json") -> $(json_num triangles_out <"$T/bars.json")" \
@@ -278,7 +289,7 @@ done
 # past 32 layers among thousands of shallow ones, so its pack is one batch
 # (a split would draw it again, then its halves), and still equals DFB.
 "$G" plant --triangles 100000 -o "$T/p100k.ply" >/dev/null || fail "oitgen plant 100K"
-expect_rc 0 "$P" "$T/p100k.ply" -o "$T/p100k.oitp"
+expect_rc 0 "$P" "$T/p100k.ply" $GUAR -o "$T/p100k.oitp"
 "$S" "$T/p100k.oitp" --size 128x128 --azimuth 30 --elevation 10 --out "$T/ps.png" \
     --stats "$T/ps.json" --quiet && "$S" "$T/p100k.oitp" --method dfb --size 128x128 \
     --azimuth 30 --elevation 10 --out "$T/pd.png" --quiet || fail "plant 100K: oitstream"

@@ -1,6 +1,7 @@
 #!/bin/sh
 # Pinned conversion figures of two CAD-like fetched meshes (fandisk.off,
-# turbine.off) with oitprep's defaults, with 1 and 2 threads: triangles out,
+# turbine.off) with oitprep's defaults in each scheme (fast, the default, and
+# seed 002's guaranteed), with 1 and 2 threads: triangles out,
 # clustered convex pieces, pieces after splitting, parts, slabs, cutting
 # planes, wide parts, and the part file's SHA-256. A change to clustering,
 # splitting or the kd that alters any of them fails here, also one that is
@@ -16,9 +17,11 @@ rm -rf "$T" && mkdir -p "$T" || exit 1
 FAILS=0
 fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
 
-# mesh: triangles_out pieces_clustered pieces parts slabs cut_slabs wide_parts sha256 (first 16)
-PINNED="fandisk.off 42372 2116 7346 1946 154 153 0 f77d3b7446fff123
-turbine.off 50634 4525 10425 2867 256 223 1 239fb7fb1a12a8ad"
+# scheme mesh: triangles_out pieces_clustered pieces parts slabs cut_slabs wide_parts sha256 (first 16)
+PINNED="guaranteed fandisk.off 42372 2116 7346 1946 154 153 0 f77d3b7446fff123
+guaranteed turbine.off 50634 4525 10425 2867 256 223 1 239fb7fb1a12a8ad
+fast fandisk.off 12946 0 1 1 0 0 0 126958e74a3df20f
+fast turbine.off 18460 0 1 1 0 0 0 04f01a8210adb46b"
 
 KEYS="triangles_out pieces_clustered pieces parts slabs cut_slabs wide_parts"
 figures() {
@@ -27,15 +30,17 @@ figures() {
     done | tr '\n' ' '
 }
 
-echo "$PINNED" | while read -r m want; do
+echo "$PINNED" | while read -r scheme m want; do
     M="${OIT_MESH_CACHE:-}/$m"
     [ -f "$M" ] || { echo "skip: $M missing (run data_scripts/fetch_meshes.sh)"; exit 77; }
     for th in 1 2; do
-        "$OIT_BIN/oitprep" "$M" -o "$T/$m.oitp" --threads $th --stats "$T/$m.json" >/dev/null 2>&1 ||
-            { fail "$m --threads $th: oitprep exited $?"; continue; }
+        "$OIT_BIN/oitprep" "$M" -o "$T/$m.oitp" --scheme "$scheme" --threads $th \
+            --stats "$T/$m.json" >/dev/null 2>&1 ||
+            { fail "$scheme $m --threads $th: oitprep exited $?"; continue; }
         got="$(figures "$T/$m.json")$(sha256sum "$T/$m.oitp" | cut -c1-16)"
-        echo "$m --threads $th: $got"
-        [ "$got" = "$want" ] || fail "$m --threads $th: got $got, pinned $want ($KEYS sha256)"
+        echo "$scheme $m --threads $th: $got"
+        [ "$got" = "$want" ] ||
+            fail "$scheme $m --threads $th: got $got, pinned $want ($KEYS sha256)"
     done
     [ "$FAILS" -eq 0 ] || exit 1
 done

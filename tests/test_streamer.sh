@@ -1,7 +1,10 @@
 #!/bin/sh
 # oitstream --method stream against --method dfb on the same part file.
 # Usage: test_streamer.sh grid WRITER   (WRITER: test_streamer, writes the file)
-#        test_streamer.sh demo          (`oitgen demo` converted by oitprep)
+#        test_streamer.sh demo          (`oitgen demo` converted by oitprep in
+#                                       parts of 2K triangles: the default
+#                                       128K makes it one part, and the
+#                                       ring, cache and packs need many)
 #        test_streamer.sh bunny         ($OIT_MESH_CACHE/bunny00.off converted)
 # Same triangles, same fragments, same tie-break: the images must agree to
 # 1/255 on >= 99.9% of pixels, with zero overflow, at least one pack, bytes
@@ -34,7 +37,7 @@ grid)
 demo)
     [ -x "$OIT_BIN/oitgen" ] && [ -x "$OIT_BIN/oitprep" ] || { echo "skip: oitgen/oitprep not built"; exit 77; }
     "$OIT_BIN/oitgen" demo -o "$T/demo.ply" >/dev/null || exit 1
-    "$OIT_BIN/oitprep" "$T/demo.ply" -o "$P" >"$T/prep.txt" 2>&1 ||
+    "$OIT_BIN/oitprep" "$T/demo.ply" -o "$P" --part-triangles 2048 >"$T/prep.txt" 2>&1 ||
         { echo "FAIL: oitprep: $(tail -n 1 "$T/prep.txt")"; exit 1; } ;;
 bunny)
     M="${OIT_MESH_CACHE:-}/bunny00.off"
