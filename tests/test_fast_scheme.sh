@@ -63,6 +63,16 @@ if [ "$NAME" = demo ]; then
     [ $rc = 2 ] && grep -q "want fast or guaranteed" "$T/err.txt" || fail "--scheme quick: exit $rc, $(cat "$T/err.txt")"
     "$P" "$IN" -o "$T/x.oitp" --scheme fast --manage kd-parts >/dev/null 2>"$T/err.txt"; rc=$?
     [ $rc = 2 ] && grep -q -- "--manage applies to --scheme guaranteed only" "$T/err.txt" || fail "--scheme fast --manage kd-parts: exit $rc, $(cat "$T/err.txt")"
+    for opt in "--slabs none" "--max-piece-triangles 64"; do
+        # shellcheck disable=SC2086
+        "$P" "$IN" -o "$T/x.oitp" --scheme fast $opt >/dev/null 2>"$T/err.txt"; rc=$?
+        [ $rc = 2 ] && grep -q -- "${opt% *} applies to --scheme guaranteed only" "$T/err.txt" ||
+            fail "--scheme fast $opt: exit $rc, $(cat "$T/err.txt")"
+    done
+    # Without --scheme, seed 002's options select its scheme.
+    "$P" "$IN" -o "$T/g.oitp" --slabs none --stats "$T/g.json" >/dev/null 2>&1 &&
+        grep -q '"scheme": "guaranteed"' "$T/g.json" || fail "--slabs none did not select guaranteed"
+    [ -f "$T/x.oitp" ] && fail "a refused conversion wrote $T/x.oitp"
     "$P" "$IN" -o "$T/x.oitp" --scheme fast --part-triangles 0 >/dev/null 2>"$T/err.txt"; rc=$?
     [ $rc = 2 ] || fail "--part-triangles 0: exit $rc"
     # Smaller parts: more of them, each within T (the stats' most per part
