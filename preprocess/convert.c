@@ -90,10 +90,11 @@ static uint64_t cell_count(const oit_bin_grid *g)
 /* The fast scheme's grid, when the user gave no --grid: a model whose
  * extent is its power-of-two cell size, or that straddles a face of every
  * shift, still spans two cells an axis (a bounds maximum on a cell face
- * counts in the next cell), and every face clips. A twice or four times
- * larger cell of fewer cells has faces that are as exact, and costs the
- * kd below nothing: it splits by triangle counts, not by cell size. */
-static void fewest_cells(const float mn[3], const float mx[3], oit_bin_grid *g)
+ * counts in the next cell), more than the `want` cells its triangles need,
+ * and every face clips. A twice or four times larger cell that still gives
+ * at least `want` has faces that are as exact, and costs the kd below
+ * nothing: it splits by triangle counts, not by cell size. */
+static void fewest_cells(const float mn[3], const float mx[3], uint64_t want, oit_bin_grid *g)
 {
     for (int d = 1; d <= 2; d++) {
         oit_bin_grid c = *g;
@@ -104,7 +105,7 @@ static void fewest_cells(const float mn[3], const float mx[3], oit_bin_grid *g)
             c.dims[k] = (uint32_t)floor((mx[k] - o) / c.cell) + 1;
         }
         shift_origin(mn, mx, &c);
-        if (cell_count(&c) < cell_count(g))
+        if (cell_count(&c) < cell_count(g) && cell_count(&c) >= want)
             *g = c;
     }
 }
@@ -663,7 +664,8 @@ static oit_status convert_with(const oit_convert_options *o, oit_convert_stats *
         choose_grid(info.bounds_min, info.bounds_max, info.triangles, o->grid, per_cell, &r.grid);
         shift_origin(info.bounds_min, info.bounds_max, &r.grid);
         if (!o->grid)
-            fewest_cells(info.bounds_min, info.bounds_max, &r.grid);
+            fewest_cells(info.bounds_min, info.bounds_max,
+                         (uint64_t)ceil((double)info.triangles / per_cell), &r.grid);
     } else if (info.triangles)
         choose_grid(info.bounds_min, info.bounds_max, info.triangles, o->grid,
                     TRIANGLES_PER_CELL, &r.grid);
