@@ -63,7 +63,47 @@ typedef struct axis_events {
 } axis_events;
 
 #define EVENT_LESS(x, y) ((x)->v < (y)->v)
-OIT_SORT_DEFINE(sort_events, event, EVENT_LESS)
+OIT_SORT_DEFINE(sort_events_merge_sort, event, EVENT_LESS)
+
+/* The float's bits as an unsigned key in the float's order, -0 as +0 (they
+ * compare equal, so equal keys keep their input order as in the merge sort). */
+static uint32_t event_key(float v)
+{
+    union { float f; uint32_t u; } b = {v == 0 ? 0.0f : v};
+    return b.u >> 31 ? ~b.u : b.u | 0x80000000u;
+}
+
+/* A stable LSD radix sort, 4 passes of 8 bits: the same order as the merge
+ * sort (stable, same key), in linear time. The fast scheme sorts every
+ * node's triangle bounds on three axes, millions of events at the top of a
+ * cell, where the merge sort took a quarter of a conversion. */
+static void sort_events(event *a, size_t n)
+{
+    event *t = n > 256 ? malloc(n * sizeof *t) : NULL;
+    if (!t) {
+        sort_events_merge_sort(a, n);
+        return;
+    }
+    event *src = a, *dst = t;
+    for (int shift = 0; shift < 32; shift += 8) {
+        size_t count[257] = {0};
+        for (size_t i = 0; i < n; i++)
+            count[(event_key(src[i].v) >> shift & 0xffu) + 1]++;
+        if (count[(event_key(src[0].v) >> shift & 0xffu) + 1] == n)
+            continue; /* every key has this byte: the pass would copy */
+        for (int b = 0; b < 256; b++)
+            count[b + 1] += count[b];
+        for (size_t i = 0; i < n; i++)
+            dst[count[event_key(src[i].v) >> shift & 0xffu]++] = src[i];
+        event *x = src;
+        src = dst;
+        dst = x;
+    }
+    if (src != a)
+        for (size_t i = 0; i < n; i++)
+            a[i] = src[i];
+    free(t);
+}
 
 /* Positions in the sorted event arrays for a non-decreasing sequence of
  * planes m: each index only moves forward, so scoring all of a node's

@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "partition/minmax.h"
+
 /* Centres sit at (i + CENTRE_U, j + CENTRE_V) cells: fractions of sqrt(2)
  * and sqrt(3), which no dyadic CAD coordinate hits. */
 #define CENTRE_U 0.41421356237
@@ -63,8 +65,8 @@ static void grid_fit(grid *g, const frame *f, const oit_triangle *tris, size_t n
         for (int k = 0; k < 3; k++) {
             double x, y;
             project(f, tris[i].v[k].pos, &x, &y);
-            lo[0] = fmin(lo[0], x), hi[0] = fmax(hi[0], x);
-            lo[1] = fmin(lo[1], y), hi[1] = fmax(hi[1], y);
+            lo[0] = oit_min_d(lo[0], x), hi[0] = oit_max_d(hi[0], x);
+            lo[1] = oit_min_d(lo[1], y), hi[1] = oit_max_d(hi[1], y);
         }
     g->x0 = lo[0];
     g->y0 = lo[1];
@@ -97,8 +99,10 @@ static void grid_add(grid *g, const frame *f, const oit_triangle *t)
     if (area == 0)
         return; /* edge-on */
     double s = area > 0 ? 1 : -1;
-    double mnx = fmin(fmin(p[0][0], p[1][0]), p[2][0]), mxx = fmax(fmax(p[0][0], p[1][0]), p[2][0]);
-    double mny = fmin(fmin(p[0][1], p[1][1]), p[2][1]), mxy = fmax(fmax(p[0][1], p[1][1]), p[2][1]);
+    double mnx = oit_min_d(oit_min_d(p[0][0], p[1][0]), p[2][0]);
+    double mxx = oit_max_d(oit_max_d(p[0][0], p[1][0]), p[2][0]);
+    double mny = oit_min_d(oit_min_d(p[0][1], p[1][1]), p[2][1]);
+    double mxy = oit_max_d(oit_max_d(p[0][1], p[1][1]), p[2][1]);
     long i0 = first_at(mnx, g->x0, g->cx, CENTRE_U), j0 = first_at(mny, g->y0, g->cy, CENTRE_V);
     for (long j = j0; j < OIT_LAYERS_GRID; j++) {
         double y = g->y0 + (j + CENTRE_V) * g->cy;
