@@ -1,6 +1,8 @@
 # partition/ kernels and oitprep end to end (tests/test_prep.sh says what it checks).
 oit_add_test_exe(test_partition SOURCES test_partition.c LIBS oit_partition)
 oit_add_test(NAME partition COMMAND test_partition LABELS unit TIMEOUT 30)
+oit_add_test_exe(test_grid_phase SOURCES test_grid_phase.c LIBS oit_preprocess)
+oit_add_test(NAME grid_phase COMMAND test_grid_phase LABELS unit TIMEOUT 30)
 
 oit_add_test(NAME prep LABELS integration TIMEOUT 120
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_prep.sh)
