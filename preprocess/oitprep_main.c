@@ -284,10 +284,9 @@ static oit_status check_outputs(const char *input, const char *out, const char *
 
 static int cmd_convert(int argc, char **argv)
 {
-    long cores = sysconf(_SC_NPROCESSORS_ONLN);
-    oit_convert_options o = {.K = 8, .memory = (size_t)2 << 30,
-                             .threads = cores > 0 ? (uint32_t)cores : 1,
-                             .progress = isatty(2)};
+    oit_convert_options o;
+    oit_convert_options_init(&o);
+    o.progress = isatty(2);
     const char *stats = NULL;
     for (int i = 1; i < argc; i++) {
         unsigned long long v;

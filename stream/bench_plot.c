@@ -52,6 +52,26 @@ double oit_bench_rmse_floor(const oit_bench_table *t)
     return isfinite(least) ? pow(10.0, floor(log10(least)) - 1.0) : 1e-6;
 }
 
+/* "dfb: source mesh, 98.3K tris" for a legend (with_count), "dfb (mesh)" as
+ * a series' key across runs; the name alone for a file without geometry. */
+static const char *row_label(const oit_bench_row *r, int with_count, char *buf, size_t cap)
+{
+    const char *g = r->geometry == OIT_BENCH_GEOMETRY_PART_FILE ? "part file" : "source mesh";
+    double t = (double)r->drawn_triangles;
+    if (r->geometry < 0)
+        snprintf(buf, cap, "%s", r->method);
+    else if (!with_count)
+        snprintf(buf, cap, "%s (%s)", r->method,
+                 r->geometry == OIT_BENCH_GEOMETRY_PART_FILE ? "parts" : "mesh");
+    else if (t >= 1e6)
+        snprintf(buf, cap, "%s: %s, %.2fM tris", r->method, g, t / 1e6);
+    else if (t >= 1e3)
+        snprintf(buf, cap, "%s: %s, %.1fK tris", r->method, g, t / 1e3);
+    else
+        snprintf(buf, cap, "%s: %s, %.0f tris", r->method, g, t);
+    return buf;
+}
+
 /* ---- notes: collected first, because the chart reserves their lines ---- */
 
 typedef struct notes {
@@ -124,7 +144,7 @@ static oit_status finish(oit_chart *c, const char *path, oit_error *err)
 /* ---- series: points of one method ---- */
 
 typedef struct series {
-    char name[OIT_BENCH_NAME_MAX];
+    char name[2 * OIT_BENCH_NAME_MAX];
     double *x, *y;
     int n, cap;
 } series;
@@ -246,8 +266,10 @@ static void speed_draw(oit_chart *c, const speed_points *p, int zeros, double fl
         }
     for (int i = 0; i < p->n; i++) {
         float rgb[3];
+        char label[2 * OIT_BENCH_NAME_MAX];
         oit_chart_series_colour(i, rgb);
-        oit_chart_legend(c, p->row[i]->method, oit_chart_series_marker(i), rgb, 0);
+        oit_chart_legend(c, row_label(p->row[i], 1, label, sizeof label),
+                         oit_chart_series_marker(i), rgb, 0);
     }
     oit_chart_legend(c, "Pareto front", OIT_CHART_NO_MARKER, black, 2);
     if (zeros)
@@ -435,12 +457,13 @@ oit_status oit_bench_plot_memory_depth(const oit_bench_table *runs, int n, const
     notes ns = {.n = 0};
     note(&ns, 0, "x: the most surfaces the Embree reference ray met at one pixel of the view");
     note(&ns, 0, "y: the GPU buffers and textures the method held at its peak");
+    char key[2 * OIT_BENCH_NAME_MAX];
     int ok = 1;
     for (int r = 0; r < n; r++)
         for (size_t i = 0; ok && i < runs[r].count; i++) {
             const oit_bench_row *row = &runs[r].rows[i];
             if (!row->summary && row->ok)
-                ok = add_point(&set, row->method, row->view_max_layers,
+                ok = add_point(&set, row_label(row, 0, key, sizeof key), row->view_max_layers,
                                (double)row->gpu_bytes_peak / 1048576.0);
         }
     note_not_run(runs, n, &ns);
@@ -471,6 +494,7 @@ oit_status oit_bench_plot_time_triangles(const oit_bench_table *runs, int n, con
     notes ns = {.n = 0};
     note(&ns, 0, "one point per run and method: the run's median over all its views and timed "
               "frames");
+    char key[2 * OIT_BENCH_NAME_MAX];
     int ok = 1, models = 0;
     for (int r = 0; r < n; r++) {
         int distinct = runs[r].count > 0;
@@ -480,7 +504,8 @@ oit_status oit_bench_plot_time_triangles(const oit_bench_table *runs, int n, con
         for (size_t i = 0; ok && i < runs[r].count; i++) {
             const oit_bench_row *row = &runs[r].rows[i];
             if (row->summary && ran(row))
-                ok = add_point(&set, row->method, (double)row->triangles, row->ms_median);
+                ok = add_point(&set, row_label(row, 0, key, sizeof key), (double)row->triangles,
+                               row->ms_median);
         }
     }
     if (models < 2)
