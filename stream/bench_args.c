@@ -6,15 +6,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 
+#include "stream/bench_models.h"
 #include "stream/render_methods.h"
-
-int oit_bench_is_part_file(const char *path)
-{
-    size_t n = strlen(path);
-    return n > 5 && !strcasecmp(path + n - 5, ".oitp");
-}
 
 static int parse_int(const char *v, int *out, long lo, long hi)
 {

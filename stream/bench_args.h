@@ -48,9 +48,6 @@ typedef struct oit_bench_args {
     int run_count;
 } oit_bench_args;
 
-/* 1 when path names a part file (.oitp, any case). */
-int oit_bench_is_part_file(const char *path);
-
 /* buf receives the split copy of --methods; args->methods point into it,
  * the other strings into argv. */
 oit_status oit_bench_args_parse(int argc, char **argv, oit_bench_args *args, char *buf,

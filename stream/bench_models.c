@@ -11,7 +11,7 @@
 #include "stream/bench_match.h"
 #include "stream/part_triangles.h"
 
-static int is_part_file(const char *path)
+int oit_bench_is_part_file(const char *path)
 {
     size_t n = strlen(path);
     return n > 5 && !strcasecmp(path + n - 5, ".oitp");
@@ -169,6 +169,24 @@ static void beside(const char *parts, const char *source, char *out, size_t cap)
         snprintf(out, cap, "%s", source);
 }
 
+/* A source found beside the part file is a guess, not the user's word: one
+ * that cannot be read or does not match is noted and not used. */
+static oit_status found_beside(oit_bench_models *m, const oit_bench_models_desc *d,
+                               const char *path, oit_error *err)
+{
+    int usable = 0;
+    oit_error why = {0};
+    if (load_source(m, path, &why) != OIT_OK) {
+        add_note(m, d->progress, "the source beside %s cannot be read (%s): the in-core "
+                 "methods draw the part file's clipped triangles", m->parts_path, why.message);
+        return OIT_OK;
+    }
+    oit_status s = check_pair(m, d, path, 0, &usable, err);
+    if (s == OIT_OK && !usable)
+        drop_source(m);
+    return s;
+}
+
 /* MODEL is a part file: the in-core methods draw its source when there is
  * one that matches, else its own triangles. */
 static oit_status open_part_model(oit_bench_models *m, const oit_bench_models_desc *d,
@@ -184,11 +202,8 @@ static oit_status open_part_model(oit_bench_models *m, const oit_bench_models_de
     if (d->mesh) {
         if ((s = load_source(m, d->mesh, err)) == OIT_OK)
             s = check_pair(m, d, d->mesh, 1, &usable, err);
-    } else if (*recorded && access(path, R_OK) == 0) {
-        if ((s = load_source(m, path, err)) == OIT_OK)
-            s = check_pair(m, d, path, 0, &usable, err);
-        if (s == OIT_OK && !usable)
-            drop_source(m);
+    } else if (*recorded && !strchr(recorded, '/') && access(path, R_OK) == 0) {
+        s = found_beside(m, d, path, err);
     } else {
         add_note(m, d->progress, "the source mesh '%s' recorded in %s is not beside it and "
                  "no --mesh was given: the in-core methods and the reference draw the part "
@@ -208,7 +223,7 @@ oit_status oit_bench_models_open(const oit_bench_models_desc *d, oit_bench_model
                                  oit_error *err)
 {
     memset(m, 0, sizeof *m);
-    oit_status s = is_part_file(d->model) ? open_part_model(m, d, err)
+    oit_status s = oit_bench_is_part_file(d->model) ? open_part_model(m, d, err)
                                           : open_mesh_model(m, d, err);
     if (s != OIT_OK)
         oit_bench_models_close(m);

@@ -74,6 +74,9 @@ oit_status oit_bench_models_open(const oit_bench_models_desc *d, oit_bench_model
                                  oit_error *err);
 void oit_bench_models_close(oit_bench_models *m);
 
+/* 1 when path names a part file (.oitp, any case); else it is a mesh. */
+int oit_bench_is_part_file(const char *path);
+
 /* The mesh the in-core methods draw, its geometry, and the reference's. */
 const oit_mesh *oit_bench_models_in_core(const oit_bench_models *m);
 oit_bench_geometry oit_bench_models_in_core_geometry(const oit_bench_models *m);

@@ -162,6 +162,11 @@ cp "$T/Q9.ply" "$T/alone/Q.ply"
     fail "a wrong mesh beside the file exited $?"
 is "$T/AW/results.csv" dfb part_file "$PART_TRIS"
 grep -q 'is not its source' "$T/errw.txt" || fail "a wrong mesh beside the file: not said"
+echo 'ply garbage' >"$T/alone/Q.ply"
+"$B" "$T/alone/Q.oitp" --methods dfb --orbit 1 --size 16x16 --frames 1 --out "$T/AG" >/dev/null 2>"$T/errg.txt" ||
+    fail "an unreadable mesh beside the file exited $?"
+is "$T/AG/results.csv" dfb part_file "$PART_TRIS"
+grep -q 'source beside .*cannot be read' "$T/errg.txt" || fail "an unreadable mesh beside the file: not said"
 
 # ---- the conversion's options ----
 "$B" "$T/Q.ply" --methods stream --scheme fast --part-triangles 8 --save-parts "$T/kept.oitp" \
