@@ -1,6 +1,8 @@
 /* oitbench: measures rendering methods side by side on one model over an
  * orbit of views (speed, memory, layers, error against the Embree
- * reference) and writes results.csv, results.json, two PNG charts and
+ * reference): the in-core methods on the source mesh, the stream on its
+ * part file, converted now when none is given (bench_models.h); writes
+ * results.csv, results.json, two PNG charts and
  * report.md; "oitbench plot" draws charts across earlier runs. Errors are
  * one line on stderr; the exit status follows oit_status_exit_code, except
  * that a run in which no method could render at all exits 1. */
