@@ -61,7 +61,7 @@ static int streams(const oit_bench_args *a)
 static oit_status conversion_output(const oit_bench_args *a, oit_bench_models_desc *d,
                                     char *tmp, size_t cap, oit_error *err)
 {
-    static const char *const temp_files[] = {"", ".tmp", ".spill", NULL};
+    static const char *const temp_files[] = {".tmp", "", ".spill", NULL};
     static const char *const kept_files[] = {".tmp", ".spill", NULL};
     if (oit_bench_is_part_file(a->model) || a->parts || !d->need_parts)
         return OIT_OK;
