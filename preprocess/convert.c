@@ -9,6 +9,7 @@
 #include <string.h>
 #include <sys/resource.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "oit/mesh.h"
 #include "partition/convex.h"
@@ -636,6 +637,15 @@ static oit_status convert_binned(const oit_convert_options *o, const oit_mesh_in
 const char *oit_slabs_name(oit_kd_slabs s)
 {
     return s == OIT_KD_SLABS_NONE ? "none" : s == OIT_KD_SLABS_SEPARATING ? "separating" : "all";
+}
+
+void oit_convert_options_init(oit_convert_options *o)
+{
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    memset(o, 0, sizeof *o);
+    o->K = 8;
+    o->memory = (size_t)2 << 30;
+    o->threads = cores > 0 ? (uint32_t)cores : 1;
 }
 
 const char *oit_scheme_name(oit_scheme s)

@@ -85,6 +85,12 @@ typedef struct oit_convert_stats {
     uint64_t peak_rss_bytes;
 } oit_convert_stats;
 
+/* oitprep's defaults for a conversion, so that a tool converting on the fly
+ * (oitbench) makes the file oitprep would and follows it when a default
+ * changes: K 8, 2G of bins, every online core, the default scheme and
+ * management, no progress bars; input and output NULL. */
+void oit_convert_options_init(oit_convert_options *o);
+
 /* Exit-code mapping as usual: OIT_ERR_FORMAT / OIT_ERR_UNSUPPORTED are bad
  * input (3). The message names the input or output file. */
 oit_status oit_convert(const oit_convert_options *o, oit_convert_stats *st, oit_error *err);

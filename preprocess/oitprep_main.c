@@ -288,10 +288,9 @@ static oit_status check_outputs(const char *input, const char *out, const char *
 
 static int cmd_convert(int argc, char **argv)
 {
-    long cores = sysconf(_SC_NPROCESSORS_ONLN);
-    oit_convert_options o = {.K = 8, .memory = (size_t)2 << 30,
-                             .threads = cores > 0 ? (uint32_t)cores : 1,
-                             .progress = isatty(2)};
+    oit_convert_options o;
+    oit_convert_options_init(&o);
+    o.progress = isatty(2);
     const char *stats = NULL;
     /* Options only seed 002's scheme has: without --scheme they select it,
      * so its comparisons keep their command lines. */

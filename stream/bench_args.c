@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "stream/bench_models.h"
 #include "stream/render_methods.h"
 
 static int parse_int(const char *v, int *out, long lo, long hi)
@@ -144,8 +145,51 @@ static int value_option(oit_bench_args *a, const char *opt, const char *v, char 
         else if (!strcmp(v, "translucent")) a->shading = OIT_SHADING_TRANSLUCENT;
         else *s = bad(err, opt, v, "transparent or translucent");
     } else if (!strcmp(opt, "--out")) a->out = v;
-    else return 0;
+    else if (!strcmp(opt, "--parts")) a->parts = v;
+    else if (!strcmp(opt, "--mesh")) a->mesh = v;
+    else if (!strcmp(opt, "--save-parts")) a->save_parts = v;
+    else if (!strcmp(opt, "--scheme")) {
+        if (strcmp(v, "guaranteed") && strcmp(v, "fast")) *s = bad(err, opt, v, "guaranteed or fast");
+        else a->scheme = v;
+    } else if (!strcmp(opt, "--part-triangles")) {
+        int t = 0;
+        if (!parse_int(v, &t, 1, 1 << 24)) *s = bad(err, opt, v, "a triangle count in 1..16777216");
+        a->part_triangles = (unsigned)t;
+    } else return 0;
     return 1;
+}
+
+/* The first conversion option given, or NULL. */
+static const char *conversion_option(const oit_bench_args *a)
+{
+    return a->scheme ? "--scheme" : a->part_triangles ? "--part-triangles"
+           : a->save_parts ? "--save-parts" : NULL;
+}
+
+/* --parts, --mesh and the conversion's options fit MODEL and the methods. */
+static oit_status check_geometry_options(const oit_bench_args *a, oit_error *err)
+{
+    int streams = 0;
+    const char *conv = conversion_option(a);
+    for (int i = 0; i < a->method_count; i++)
+        streams |= oit_render_method_find(a->methods[i])->needs_partfile;
+    if (oit_bench_is_part_file(a->model)) {
+        const char *o = a->parts ? "--parts" : conv;
+        if (o)
+            return oit_error_set(err, OIT_ERR_ARGUMENT, "%s applies to a mesh MODEL; %s is "
+                                 "already a part file", o, a->model);
+        return OIT_OK;
+    }
+    if (a->mesh)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "--mesh names a part file's source; %s "
+                             "is a mesh already (for its part file: --parts FILE.oitp)", a->model);
+    if (!streams && (a->parts || conv))
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s is for the stream's part file, and "
+                             "--methods has no stream", a->parts ? "--parts" : conv);
+    if (a->parts && conv)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s applies to the conversion; with "
+                             "--parts %s nothing is converted", conv, a->parts);
+    return OIT_OK;
 }
 
 /* oitbench plot OUT_DIR RUN_DIR... */
@@ -213,10 +257,12 @@ oit_status oit_bench_args_parse(int argc, char **argv, oit_bench_args *a, char *
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--methods is required (see --help)");
     if (!a->out)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--out DIR is required (see --help)");
-    return expand_entries(a, err);
+    oit_status s = expand_entries(a, err);
+    return s == OIT_OK ? check_geometry_options(a, err) : s;
 }
 
-void oit_bench_usage(FILE *f, const char *method_list)
+void oit_bench_usage(FILE *f, const char *method_list, const char *default_scheme,
+                     unsigned default_part_triangles)
 {
     fprintf(f,
         "usage: oitbench MODEL_OR_PARTFILE --methods LIST --out DIR [options]\n"
@@ -225,8 +271,26 @@ void oit_bench_usage(FILE *f, const char *method_list)
         "  every method of LIST, interleaved view by view (warm-up frames, then timed\n"
         "  frames per method, methods round-robin, so that drift hits all alike), and\n"
         "  compares each method's image with the Embree reference of the same view.\n"
-        "  A method that cannot open or render the case (stream on a mesh, out of\n"
-        "  memory, no GL) is reported with the reason, not dropped.\n"
+        "  A method that cannot open or render the case (out of memory, no GL) is\n"
+        "  reported with the reason, not dropped.\n"
+        "what each method draws (the choice a user makes: the mesh in core, or its\n"
+        "part file streamed):\n"
+        "  MODEL a mesh (PLY, OBJ, OFF, STL, glTF/GLB): the in-core methods and the\n"
+        "    reference draw its triangles; stream draws the part file of --parts, or\n"
+        "    one converted now as oitprep would (progress on stderr; its seconds and\n"
+        "    triangles in and out reported) into a temporary file in $TMPDIR or /tmp,\n"
+        "    removed once opened, or into --save-parts FILE, kept\n"
+        "  MODEL a .oitp: stream draws it; the in-core methods and the reference draw\n"
+        "    the source mesh of --mesh, else the source named in the file's META when\n"
+        "    it lies beside the file and matches, else the part file's own triangles,\n"
+        "    clipped at part boundaries (the report, results.csv and charts say so)\n"
+        "  A part file matches a mesh when it read as many triangles as the mesh has,\n"
+        "  from the same origin, within 1/1000 of the mesh's bounds, and its surface\n"
+        "  has the mesh's area and centroid (clipping keeps both): --parts or --mesh\n"
+        "  of another model is refused (exit 3), a mismatched source beside the file\n"
+        "  is not used (and said so); a different recorded source name alone is\n"
+        "  noted. Errors are always against the reference, which draws the source\n"
+        "  mesh whenever there is one.\n"
         "options:\n"
         "  --methods LIST   comma-separated, from %s\n"
         "                   (guarded and f2b run at their seeds' thresholds, 0.0025\n"
@@ -247,12 +311,20 @@ void oit_bench_usage(FILE *f, const char *method_list)
         "  --max-layers K   K of the capture backends, 2..16 (default 16)\n"
         "  --shading S      transparent (default) or translucent (Beer-Lambert and\n"
         "                   Fresnel, as oitstream --shading)\n"
+        "  --parts FILE     MODEL (a mesh)'s part file for stream, instead of converting\n"
+        "  --mesh SRC       the source mesh of MODEL (a .oitp) for the in-core methods\n"
+        "  --scheme S       the conversion's scheme, guaranteed or fast (default:\n"
+        "                   oitprep's, now %s; see oitprep --help)\n"
+        "  --part-triangles T  the fast scheme's part size, 1..16777216 (default %u)\n"
+        "  --save-parts FILE   keep the converted part file as FILE (default: temporary)\n"
         "  --help           this text\n"
         "figures per entry: median and 95th-percentile ms per frame over all timed\n"
         "frames, GPU bytes at peak, most layers seen, and against the reference per\n"
         "view: mean rmse, worst max_abs, worst %% of pixels off by > 1/255, least PSNR;\n"
         "per view its depth complexity (the most surfaces the reference ray met at\n"
-        "one pixel); results.csv carries the model's triangle count on every row.\n"
+        "one pixel); results.csv carries the source model's triangle count on every\n"
+        "row, and per entry which triangles it drew (geometry: source_mesh or\n"
+        "part_file) and how many (drawn_triangles); stdout gets a summary table.\n"
         "Absolute times mean something only from a GPU; ratios are side by side.\n"
         "plot: reads RUN_DIR/results.csv of each earlier run (this oitbench's format;\n"
         "  a malformed file is named with its line) and writes OUT_DIR/\n"
@@ -262,6 +334,7 @@ void oit_bench_usage(FILE *f, const char *method_list)
         "progress goes to stderr.\n"
         "exit: 0 results written (even when some methods could not run), 1 runtime\n"
         "failure (reference failed, no method ran, output not writable), 2 usage\n"
-        "error, 3 bad input model or results.csv.\n",
-        method_list);
+        "error, 3 bad input model or results.csv, or a part file not made from the\n"
+        "mesh it was given with.\n",
+        method_list, default_scheme, default_part_triangles);
 }

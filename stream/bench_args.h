@@ -36,6 +36,12 @@ typedef struct oit_bench_args {
     int frames, warmup; /* per method per view; default 5 and 1 */
     int max_layers;     /* K of the capture backends; default 16 */
     const char *out;    /* folder, created when missing */
+    /* which triangles the methods draw (bench_models.h) */
+    const char *parts;      /* --parts: MODEL's part file (MODEL a mesh) */
+    const char *mesh;       /* --mesh: the part file's source (MODEL a .oitp) */
+    const char *save_parts; /* --save-parts: keep the conversion there */
+    const char *scheme;     /* --scheme guaranteed|fast; NULL: oitprep's default */
+    unsigned part_triangles; /* --part-triangles; 0: the scheme's default */
     /* the plot form */
     const char *plot_out;
     const char *runs[OIT_BENCH_MAX_RUNS];
@@ -47,6 +53,9 @@ typedef struct oit_bench_args {
 oit_status oit_bench_args_parse(int argc, char **argv, oit_bench_args *args, char *buf,
                                 size_t cap, oit_error *err);
 
-void oit_bench_usage(FILE *f, const char *method_list);
+/* default_scheme and default_part_triangles: the conversion's, as oitprep
+ * has them (preprocess/convert.h). */
+void oit_bench_usage(FILE *f, const char *method_list, const char *default_scheme,
+                     unsigned default_part_triangles);
 
 #endif

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { FIELDS = 15, LINE_MAX_BYTES = 4096, ROWS_MAX = 1 << 20 };
+enum { FIELDS = 17, OLD_FIELDS = 15, LINE_MAX_BYTES = 4096, ROWS_MAX = 1 << 20 };
 
 /* ---- writing ---- */
 
@@ -40,9 +40,15 @@ typedef struct row_figures {
     uint32_t view_layers;
 } row_figures;
 
-static void csv_row(FILE *f, const char *row, const char *method, int view, const row_figures *x,
-                    const char *reason, uint64_t triangles)
+static const char *geometry_token(oit_bench_geometry g)
 {
+    return g == OIT_BENCH_GEOMETRY_PART_FILE ? "part_file" : "source_mesh";
+}
+
+static void csv_row(FILE *f, const char *row, const oit_bench_method *m, int view,
+                    const row_figures *x, uint64_t triangles)
+{
+    const char *method = m->name, *reason = m->reason;
     char b[8][40];
     int ok = x->ok;
     fprintf(f, "%s,%s,", row, method);
@@ -56,7 +62,8 @@ static void csv_row(FILE *f, const char *row, const char *method, int view, cons
             oit_bench_number(b[4], 40, ok ? x->pct : NAN, "%.6f", ""),
             oit_bench_number(b[5], 40, ok ? x->psnr : NAN, "%.4f", ok ? "inf" : ""));
     csv_text(f, ok ? "" : reason);
-    fprintf(f, ",%llu,%u\n", (unsigned long long)triangles, x->view_layers);
+    fprintf(f, ",%llu,%u,%s,%llu\n", (unsigned long long)triangles, x->view_layers,
+            geometry_token(m->geometry), (unsigned long long)m->triangles);
 }
 
 void oit_bench_csv_write(FILE *f, const oit_bench_result *r, uint64_t triangles)
@@ -71,14 +78,14 @@ void oit_bench_csv_write(FILE *f, const oit_bench_result *r, uint64_t triangles)
             row_figures x = {c->ok, c->ok ? c->ms_median : NAN, c->ok ? c->ms_p95 : NAN,
                              c->gpu_bytes_peak, c->max_layers, c->diff.rmse, c->diff.max_abs,
                              c->diff.pct_over_1_255, c->diff.psnr, r->ref_layers[v]};
-            csv_row(f, "view", m->name, v, &x, m->reason, triangles);
+            csv_row(f, "view", m, v, &x, triangles);
         }
     }
     for (int i = 0; i < r->method_count; i++) {
         const oit_bench_method *m = &r->methods[i];
         row_figures x = {m->runnable, m->ms_median, m->ms_p95, m->gpu_bytes_peak, m->max_layers,
                          m->rmse_mean, m->max_abs_worst, m->pct_over_worst, m->psnr_min, deepest};
-        csv_row(f, "summary", m->name, -1, &x, m->reason, triangles);
+        csv_row(f, "summary", m, -1, &x, triangles);
     }
 }
 
@@ -93,6 +100,7 @@ typedef struct reader {
     const char *name;
     size_t line;
     oit_error *err;
+    int fields; /* FIELDS, or OLD_FIELDS after the older header */
 } reader;
 
 static oit_status bad(const reader *rd, const char *fmt, ...)
@@ -163,14 +171,14 @@ static char *unquote(char *p, field *out)
     return *r == ',' || *r == 0 ? r : NULL;
 }
 
-/* Splits line into at most FIELDS fields in place. */
+/* Splits line into at most rd->fields fields in place. */
 static oit_status split(char *line, field *fs, int *count, const reader *rd)
 {
     char *p = line;
     *count = 0;
     for (;;) {
-        if (*count == FIELDS)
-            return bad(rd, "more than %d fields (the header has %d)", FIELDS, FIELDS);
+        if (*count == rd->fields)
+            return bad(rd, "more than %d fields (the header has %d)", rd->fields, rd->fields);
         field *fd = &fs[(*count)++];
         if (*p == '"') {
             if (!(p = unquote(p, fd)))
@@ -300,6 +308,21 @@ static oit_status row_tail(const field *fs, oit_bench_row *row, const reader *rd
     if (!parse_uint(fs[14].s, UINT32_MAX, &layers))
         return bad(rd, "column view_max_layers: '%.40s' is not a layer count", fs[14].s);
     row->view_max_layers = (uint32_t)layers;
+    row->geometry = -1;
+    row->drawn_triangles = row->triangles;
+    return OIT_OK;
+}
+
+static oit_status row_geometry(const field *fs, oit_bench_row *row, const reader *rd)
+{
+    if (rd->fields == OLD_FIELDS)
+        return OIT_OK;
+    if (!strcmp(fs[15].s, "source_mesh")) row->geometry = OIT_BENCH_GEOMETRY_SOURCE_MESH;
+    else if (!strcmp(fs[15].s, "part_file")) row->geometry = OIT_BENCH_GEOMETRY_PART_FILE;
+    else return bad(rd, "column geometry: '%.40s' is neither source_mesh nor part_file",
+                    fs[15].s);
+    if (!parse_uint(fs[16].s, UINT64_MAX, &row->drawn_triangles))
+        return bad(rd, "column drawn_triangles: '%.40s' is not a triangle count", fs[16].s);
     return OIT_OK;
 }
 
@@ -311,14 +334,15 @@ static oit_status parse_row(char *line, oit_bench_row *row, const reader *rd)
     oit_status s = split(line, fs, &n, rd);
     if (s != OIT_OK)
         return s;
-    if (n != FIELDS)
-        return bad(rd, "%d fields, expected %d (%s)", n, FIELDS, OIT_BENCH_CSV_HEADER);
-    for (int i = 0; i < FIELDS; i++)
+    if (n != rd->fields)
+        return bad(rd, "%d fields, expected %d (%s)", n, rd->fields,
+                   rd->fields == FIELDS ? OIT_BENCH_CSV_HEADER : OIT_BENCH_CSV_HEADER_15);
+    for (int i = 0; i < n; i++)
         if (i != 12 && fs[i].quoted)
             return bad(rd, "field %d is quoted; only reason (field 13) is", i + 1);
     if ((s = row_identity(fs, row, rd)) == OIT_OK && (s = row_memory(fs, row, rd)) == OIT_OK &&
-        (s = row_figures_read(fs, row, rd)) == OIT_OK)
-        s = row_tail(fs, row, rd);
+        (s = row_figures_read(fs, row, rd)) == OIT_OK && (s = row_tail(fs, row, rd)) == OIT_OK)
+        s = row_geometry(fs, row, rd);
     return s;
 }
 
@@ -346,7 +370,9 @@ static oit_status check_header(FILE *f, char *buf, size_t cap, reader *rd)
     if (!read_line(f, buf, cap, rd, &s))
         return s != OIT_OK ? s : bad(rd, "empty file, expected the header '%s'",
                                      OIT_BENCH_CSV_HEADER);
-    if (strcmp(buf, OIT_BENCH_CSV_HEADER))
+    rd->fields = !strcmp(buf, OIT_BENCH_CSV_HEADER) ? FIELDS
+                 : !strcmp(buf, OIT_BENCH_CSV_HEADER_15) ? OLD_FIELDS : 0;
+    if (!rd->fields)
         return bad(rd, "not the header of this oitbench's results.csv (written by an older "
                    "oitbench? run it again); expected '%s'", OIT_BENCH_CSV_HEADER);
     return OIT_OK;
@@ -379,7 +405,7 @@ oit_status oit_bench_csv_read(FILE *f, const char *name, oit_bench_table *t, oit
     char *buf = malloc(LINE_MAX_BYTES);
     if (!buf)
         return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot allocate a line buffer", name);
-    reader rd = {name, 0, err};
+    reader rd = {name, 0, err, FIELDS};
     oit_status s = check_header(f, buf, LINE_MAX_BYTES, &rd);
     if (s == OIT_OK)
         s = read_rows(f, t, buf, &rd);

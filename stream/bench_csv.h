@@ -8,9 +8,17 @@
  * Figures a row does not have are empty: every figure of an entry that did
  * not run; ms of a view it failed on; psnr of identical images is "inf".
  * reason is the only quoted field ("" inside stands for "); it is empty
- * unless status is not_runnable. triangles (the model's) is on every row;
- * view_max_layers is the depth complexity of the view (the most hits the
- * reference met at one pixel), on a summary row the most over the views. */
+ * unless status is not_runnable. triangles (the source model's, the one
+ * count of the file) is on every row; view_max_layers is the depth
+ * complexity of the view (the most hits the reference met at one pixel), on
+ * a summary row the most over the views. geometry says which triangles the
+ * entry drew (source_mesh, or part_file: the part file's, clipped at part
+ * boundaries) and drawn_triangles how many, on not_runnable rows too (what
+ * it would have drawn).
+ *
+ * The reader also takes the file of the oitbench before geometry
+ * (OIT_BENCH_CSV_HEADER_15, 15 fields); its rows read with geometry -1 and
+ * drawn_triangles = triangles. */
 #ifndef OIT_STREAM_BENCH_CSV_H
 #define OIT_STREAM_BENCH_CSV_H
 
@@ -19,9 +27,10 @@
 
 #include "stream/bench_run.h"
 
-#define OIT_BENCH_CSV_HEADER                                                             \
+#define OIT_BENCH_CSV_HEADER_15                                                          \
     "row,method,view,status,ms_median,ms_p95,gpu_bytes_peak,max_layers,rmse,max_abs,"    \
     "pct_over_1_255,psnr,reason,triangles,view_max_layers"
+#define OIT_BENCH_CSV_HEADER OIT_BENCH_CSV_HEADER_15 ",geometry,drawn_triangles"
 
 #define OIT_BENCH_CSV_REASON_MAX 512
 
@@ -41,6 +50,8 @@ typedef struct oit_bench_row {
     char reason[OIT_BENCH_CSV_REASON_MAX];
     uint64_t triangles;
     uint32_t view_max_layers;
+    int geometry;                   /* oit_bench_geometry; -1: an older file */
+    uint64_t drawn_triangles;
 } oit_bench_row;
 
 typedef struct oit_bench_table {
@@ -48,7 +59,7 @@ typedef struct oit_bench_table {
     size_t count;
 } oit_bench_table;
 
-/* Writes the whole file for r; triangles is the model's count. */
+/* Writes the whole file for r; triangles is the source model's count. */
 void oit_bench_csv_write(FILE *f, const oit_bench_result *r, uint64_t triangles);
 /* x printed with fmt into buf, or nonfinite when x is not finite (CSV and
  * JSON spell a missing figure differently). Returns buf. */
@@ -56,7 +67,7 @@ const char *oit_bench_number(char *buf, size_t cap, double x, const char *fmt,
                              const char *nonfinite);
 
 /* Reads a file as oit_bench_csv_write writes it, and nothing else: the
- * exact header, 15 fields a row, every field checked (row kind, method
+ * exact header, 17 fields a row (15 after the older header), every field checked (row kind, method
  * name, view number, status, numbers finite and >= 0, figures present
  * exactly where the status says, reason quoted, one triangle count in the
  * whole file). A failure is OIT_ERR_FORMAT (OIT_ERR_IO when reading fails)

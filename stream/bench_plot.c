@@ -52,6 +52,18 @@ double oit_bench_rmse_floor(const oit_bench_table *t)
     return isfinite(least) ? pow(10.0, floor(log10(least)) - 1.0) : 1e-6;
 }
 
+/* "dfb (mesh)", "stream (parts)": an entry's name with what it drew, short
+ * enough for a legend; the name alone for a file without geometry. */
+static const char *row_label(const oit_bench_row *r, char *buf, size_t cap)
+{
+    if (r->geometry < 0)
+        snprintf(buf, cap, "%s", r->method);
+    else
+        snprintf(buf, cap, "%s (%s)", r->method,
+                 r->geometry == OIT_BENCH_GEOMETRY_PART_FILE ? "parts" : "mesh");
+    return buf;
+}
+
 /* ---- notes: collected first, because the chart reserves their lines ---- */
 
 typedef struct notes {
@@ -124,7 +136,7 @@ static oit_status finish(oit_chart *c, const char *path, oit_error *err)
 /* ---- series: points of one method ---- */
 
 typedef struct series {
-    char name[OIT_BENCH_NAME_MAX];
+    char name[2 * OIT_BENCH_NAME_MAX];
     double *x, *y;
     int n, cap;
 } series;
@@ -246,8 +258,10 @@ static void speed_draw(oit_chart *c, const speed_points *p, int zeros, double fl
         }
     for (int i = 0; i < p->n; i++) {
         float rgb[3];
+        char label[2 * OIT_BENCH_NAME_MAX];
         oit_chart_series_colour(i, rgb);
-        oit_chart_legend(c, p->row[i]->method, oit_chart_series_marker(i), rgb, 0);
+        oit_chart_legend(c, row_label(p->row[i], label, sizeof label),
+                         oit_chart_series_marker(i), rgb, 0);
     }
     oit_chart_legend(c, "Pareto front", OIT_CHART_NO_MARKER, black, 2);
     if (zeros)
@@ -267,12 +281,40 @@ static void speed_axes(const speed_points *p, double floor_y, oit_chart_axis *x,
     oit_chart_axis_fit(y, isfinite(floor_y) ? fmin(lo, floor_y) : lo, hi, 0);
 }
 
+/* A note per kind of triangles the entries drew ("drew the source mesh,
+ * 100448 triangles: dfb, wboit"), as the legend has no room for it; none
+ * for a file of the oitbench before geometry. */
+static void note_geometry(const oit_bench_table *t, notes *ns)
+{
+    for (size_t i = 0; i < t->count; i++) {
+        const oit_bench_row *r = &t->rows[i];
+        int first = r->summary && r->geometry >= 0;
+        for (size_t j = 0; first && j < i; j++)
+            first = !(t->rows[j].summary && t->rows[j].geometry == r->geometry &&
+                      t->rows[j].drawn_triangles == r->drawn_triangles);
+        if (!first)
+            continue;
+        char line[sizeof ns->text[0]];
+        size_t used = (size_t)snprintf(line, sizeof line, "drew the %s, %llu triangles:",
+                                       r->geometry == OIT_BENCH_GEOMETRY_PART_FILE
+                                           ? "part file (clipped)" : "source mesh",
+                                       (unsigned long long)r->drawn_triangles);
+        for (size_t j = i; j < t->count && used < sizeof line; j++)
+            if (t->rows[j].summary && t->rows[j].geometry == r->geometry &&
+                t->rows[j].drawn_triangles == r->drawn_triangles)
+                used += (size_t)snprintf(line + used, sizeof line - used, "%s %s",
+                                         j > i ? "," : "", t->rows[j].method);
+        note(ns, 0, "%s", line);
+    }
+}
+
 oit_status oit_bench_plot_speed_error(const oit_bench_table *t, const char *title,
                                       const char *subtitle, const char *path, oit_error *err)
 {
     double floor_y = oit_bench_rmse_floor(t);
     notes ns = {.n = 0};
     note(&ns, 0, "Pareto front (dashed black): no other entry is both faster and more exact.");
+    note_geometry(t, &ns);
     speed_points p = {0};
     oit_status s = speed_collect(t, floor_y, &p, &ns, err);
     if (s != OIT_OK)
@@ -435,12 +477,15 @@ oit_status oit_bench_plot_memory_depth(const oit_bench_table *runs, int n, const
     notes ns = {.n = 0};
     note(&ns, 0, "x: the most surfaces the Embree reference ray met at one pixel of the view");
     note(&ns, 0, "y: the GPU buffers and textures the method held at its peak");
+    if (n == 1)
+        note_geometry(&runs[0], &ns);
+    char key[2 * OIT_BENCH_NAME_MAX];
     int ok = 1;
     for (int r = 0; r < n; r++)
         for (size_t i = 0; ok && i < runs[r].count; i++) {
             const oit_bench_row *row = &runs[r].rows[i];
             if (!row->summary && row->ok)
-                ok = add_point(&set, row->method, row->view_max_layers,
+                ok = add_point(&set, row_label(row, key, sizeof key), row->view_max_layers,
                                (double)row->gpu_bytes_peak / 1048576.0);
         }
     note_not_run(runs, n, &ns);
@@ -471,6 +516,7 @@ oit_status oit_bench_plot_time_triangles(const oit_bench_table *runs, int n, con
     notes ns = {.n = 0};
     note(&ns, 0, "one point per run and method: the run's median over all its views and timed "
               "frames");
+    char key[2 * OIT_BENCH_NAME_MAX];
     int ok = 1, models = 0;
     for (int r = 0; r < n; r++) {
         int distinct = runs[r].count > 0;
@@ -480,7 +526,8 @@ oit_status oit_bench_plot_time_triangles(const oit_bench_table *runs, int n, con
         for (size_t i = 0; ok && i < runs[r].count; i++) {
             const oit_bench_row *row = &runs[r].rows[i];
             if (row->summary && ran(row))
-                ok = add_point(&set, row->method, (double)row->triangles, row->ms_median);
+                ok = add_point(&set, row_label(row, key, sizeof key), (double)row->triangles,
+                               row->ms_median);
         }
     }
     if (models < 2)

@@ -65,9 +65,11 @@ static void json_method(FILE *f, const oit_bench_method *m, int views)
 {
     char b[6][40];
     fprintf(f, "    {\"name\": \"%s\", \"method\": \"%s\", \"epsilon\": %s, "
-               "\"runnable\": %s, \"reason\": ",
+               "\"geometry\": \"%s\", \"triangles\": %llu, \"runnable\": %s, \"reason\": ",
             m->name, m->method->name, oit_bench_number(b[0], 40, m->epsilon >= 0.0f ? m->epsilon : NAN, "%g",
-                                          "null"), m->runnable ? "true" : "false");
+                                          "null"),
+            m->geometry == OIT_BENCH_GEOMETRY_PART_FILE ? "part_file" : "source_mesh",
+            (unsigned long long)m->triangles, m->runnable ? "true" : "false");
     json_text(f, m->reason);
     fprintf(f, ", \"timed_frames\": %zu, \"ms_median\": %s, \"ms_p95\": %s, "
                "\"gpu_bytes_peak\": %llu, \"max_layers\": %u, \"rmse_mean\": %s, "
@@ -86,10 +88,44 @@ static void json_method(FILE *f, const oit_bench_method *m, int views)
     fprintf(f, "]}");
 }
 
+/* The source mesh, the part file and the conversion, as JSON members. */
+static void json_models(FILE *f, const oit_bench_models *m)
+{
+    fprintf(f, ",\n  \"source_mesh\": ");
+    if (m->have_source)
+        json_text(f, m->source_path);
+    else
+        fprintf(f, "null");
+    fprintf(f, ", \"source_triangles\": %llu,\n  \"part_file\": ",
+            (unsigned long long)m->source_triangles);
+    if (m->conv.done && !m->conv.kept)
+        fprintf(f, "\"(temporary, removed)\"");
+    else if (m->parts_path[0])
+        json_text(f, m->parts_path);
+    else
+        fprintf(f, "null");
+    fprintf(f, ", \"part_file_triangles\": %llu", (unsigned long long)m->part_triangles);
+    if (m->conv.done)
+        fprintf(f, ",\n  \"conversion\": {\"scheme\": \"%s\", \"part_triangles\": %u, "
+                   "\"seconds\": %.3f, \"triangles_in\": %llu, \"triangles_out\": %llu, "
+                   "\"parts\": %llu}", m->conv.scheme, m->conv.part_triangles, m->conv.seconds,
+                (unsigned long long)m->conv.triangles_in,
+                (unsigned long long)m->conv.triangles_out, (unsigned long long)m->conv.parts);
+    fprintf(f, ",\n  \"reference_geometry\": \"%s\",\n  \"notes\": [",
+            m->have_source ? "source_mesh" : "part_file");
+    for (int i = 0; i < m->note_count; i++) {
+        fprintf(f, "%s", i ? ", " : "");
+        json_text(f, m->notes[i]);
+    }
+    fprintf(f, "]");
+}
+
 static void write_json(FILE *f, const oit_bench_context *ctx, const oit_bench_result *r)
 {
     fprintf(f, "{\n  \"model\": ");
     json_text(f, ctx->model);
+    if (ctx->models)
+        json_models(f, ctx->models);
     fprintf(f, ",\n  \"command\": ");
     json_text(f, ctx->command_line);
     fprintf(f, ",\n  \"renderer\": ");
@@ -118,7 +154,8 @@ static void md_method(FILE *f, const oit_bench_method *m, const oit_bench_result
 {
     int views = r->views;
     char b[8][40];
-    fprintf(f, "## %s\n\n", m->name);
+    fprintf(f, "## %s\n\nDrew the %s: %llu triangles.\n\n", m->name,
+            oit_bench_geometry_label(m->geometry), (unsigned long long)m->triangles);
     if (!m->runnable && m->ms_count == 0) {
         fprintf(f, "Not runnable: %s\n\n", m->reason);
         return;
@@ -147,6 +184,56 @@ static void md_method(FILE *f, const oit_bench_method *m, const oit_bench_result
             oit_bench_number(b[5], 40, m->pct_over_worst, "%.4f", "-"), oit_bench_number(b[6], 40, m->psnr_min, "%.2f", "inf"));
 }
 
+/* What the methods drew: the source mesh, the part file, the conversion. */
+static void md_models(FILE *f, const oit_bench_models *m)
+{
+    if (m->have_source)
+        fprintf(f, "- source mesh: %s, %llu triangles; the in-core methods and the reference "
+                   "draw it\n", m->source_path, (unsigned long long)m->source.count);
+    else
+        fprintf(f, "- source mesh: not at hand; the in-core methods and the reference draw "
+                   "the part file's clipped triangles (the source had %llu)\n",
+                (unsigned long long)m->source_triangles);
+    if (m->conv.done)
+        fprintf(f, "- part file: converted in this run (%s%s), scheme %s, %.2f s, %llu "
+                   "triangles in, %llu out, %llu parts\n",
+                m->conv.kept ? "kept as " : "temporary, removed",
+                m->conv.kept ? m->parts_path : "", m->conv.scheme, m->conv.seconds,
+                (unsigned long long)m->conv.triangles_in,
+                (unsigned long long)m->conv.triangles_out, (unsigned long long)m->conv.parts);
+    else if (m->parts_path[0])
+        fprintf(f, "- part file: %s, %llu triangles (clipped at part boundaries)\n",
+                m->parts_path, (unsigned long long)m->part_triangles);
+    for (int i = 0; i < m->note_count; i++)
+        fprintf(f, "- **note**: %s\n", m->notes[i]);
+}
+
+void oit_bench_print_summary(FILE *f, const oit_bench_result *r, int markdown)
+{
+    char b[5][40];
+    if (markdown)
+        fprintf(f, "| entry | drew | triangles | ms median | ms p95 | rmse mean | "
+                   "worst %% over 1/255 | GPU MiB |\n|---|---|---|---|---|---|---|---|\n");
+    else
+        fprintf(f, "%-14s  %-19s  %10s  %9s  %9s  %10s  %9s  %8s\n", "entry", "drew",
+                "triangles", "ms median", "ms p95", "rmse mean", "% >1/255", "GPU MiB");
+    for (int i = 0; i < r->method_count; i++) {
+        const oit_bench_method *m = &r->methods[i];
+        int ran = m->ms_count > 0;
+        fprintf(f, markdown ? "| %s | %s | %llu | %s | %s | %s | %s | %s |\n"
+                            : "%-14s  %-19s  %10llu  %9s  %9s  %10s  %9s  %8s\n",
+                m->name, oit_bench_geometry_label(m->geometry), (unsigned long long)m->triangles,
+                oit_bench_number(b[0], 40, m->ms_median, "%.2f", "not run"),
+                oit_bench_number(b[1], 40, m->ms_p95, "%.2f", "-"),
+                oit_bench_number(b[2], 40, ran ? m->rmse_mean : NAN, "%.3g", "-"),
+                oit_bench_number(b[3], 40, ran ? m->pct_over_worst : NAN, "%.4f", "-"),
+                oit_bench_number(b[4], 40, ran ? (double)m->gpu_bytes_peak / 1048576.0 : NAN,
+                                 "%.1f", "-"));
+    }
+    if (markdown)
+        fprintf(f, "\n");
+}
+
 static void write_md(FILE *f, const oit_bench_context *ctx, const oit_bench_result *r)
 {
     fprintf(f, "# oitbench: %s\n\n", ctx->model);
@@ -154,6 +241,8 @@ static void write_md(FILE *f, const oit_bench_context *ctx, const oit_bench_resu
             ctx->command_line);
     fprintf(f, "- model: %llu triangles, %s shading\n", (unsigned long long)ctx->triangles,
             ctx->shading);
+    if (ctx->models)
+        md_models(f, ctx->models);
     fprintf(f, "- %d views (orbit, elevation 20 deg), %dx%d, %d warm-up + %d timed frames per "
                "method per view, methods interleaved round-robin\n",
             r->views, ctx->width, ctx->height, ctx->warmup, ctx->frames);
@@ -165,6 +254,8 @@ static void write_md(FILE *f, const oit_bench_context *ctx, const oit_bench_resu
     fprintf(f, "Absolute times are only meaningful from a GPU (a software renderer such as "
                "llvmpipe says nothing about GPU speed); ratios between methods were measured "
                "side by side in one run.\n\n");
+    fprintf(f, "## Summary\n\n");
+    oit_bench_print_summary(f, r, 1);
     fprintf(f, "## Plots\n\n![speed against error](speed_vs_error.png)\n\n"
                "![memory against depth](memory_vs_depth.png)\n\n");
     for (int i = 0; i < r->method_count; i++)

@@ -4,13 +4,16 @@
  * DIR/results.json         the same figures nested, with the run's settings;
  * DIR/speed_vs_error.png   and DIR/memory_vs_depth.png, drawn from
  *                          results.csv as written (bench_plot.h);
- * DIR/report.md            a table per entry, the machine, the command line
+ * DIR/report.md            what each entry drew (source mesh or part file,
+ *                          triangles), the conversion, a summary table, a
+ *                          table per entry, the machine, the command line
  *                          and the two charts.
  * Non-finite figures (psnr of identical images, a method that never ran)
  * are empty in CSV, null in JSON, "-" or "inf" in the report. */
 #ifndef OIT_STREAM_BENCH_REPORT_H
 #define OIT_STREAM_BENCH_REPORT_H
 
+#include "stream/bench_models.h"
 #include "stream/bench_run.h"
 
 typedef struct oit_bench_context {
@@ -18,9 +21,16 @@ typedef struct oit_bench_context {
     const char *command_line;
     int width, height, frames, warmup;
     long cpus;
-    unsigned long long triangles;   /* of the model as rendered */
+    unsigned long long triangles;   /* of the source model */
     const char *shading;            /* "transparent" or "translucent" */
+    /* the source mesh, part file, conversion and notes; NULL: none said */
+    const oit_bench_models *models;
 } oit_bench_context;
+
+/* One line per entry: name, geometry, triangles drawn, median and p95 ms,
+ * mean rmse and worst %% of pixels off against the reference, GPU MiB; the
+ * table oitbench prints on stdout and report.md starts with. */
+void oit_bench_print_summary(FILE *f, const oit_bench_result *r, int markdown);
 
 /* Creates dir when missing. */
 oit_status oit_bench_write_reports(const char *dir, const oit_bench_context *ctx,

@@ -8,6 +8,11 @@
 
 #include "render/gl_context.h"
 
+const char *oit_bench_geometry_label(oit_bench_geometry g)
+{
+    return g == OIT_BENCH_GEOMETRY_PART_FILE ? "part file (clipped)" : "source mesh";
+}
+
 static int cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
@@ -70,8 +75,7 @@ static void open_methods(const oit_bench_desc *d, oit_bench_result *r, oit_gl **
         if (m->method->uses_gl && gs != OIT_OK)
             mark_failed(m, -1, r->renderer);
         else if (m->method->needs_partfile && !d->partfile)
-            mark_failed(m, -1, "renders a part file (.oitp), not a mesh; convert the "
-                        "model with oitprep");
+            mark_failed(m, -1, "renders a part file (.oitp), and this run has none");
         else if (m->method->open(d->mesh, &opt, &m->state, &err) != OIT_OK)
             mark_failed(m, -1, err.message);
     }
@@ -212,6 +216,9 @@ static oit_status alloc_result(const oit_bench_desc *d, oit_bench_result *r, oit
         m->method = oit_render_method_find(d->entries[i].method);
         m->epsilon = d->entries[i].epsilon;
         snprintf(m->name, sizeof m->name, "%s", d->entries[i].name);
+        int parts = m->method && m->method->needs_partfile;
+        m->geometry = parts ? OIT_BENCH_GEOMETRY_PART_FILE : d->mesh_geometry;
+        m->triangles = parts ? d->partfile_triangles : (uint64_t)d->mesh->count;
         m->ms = malloc((size_t)d->views * (size_t)d->frames * sizeof *m->ms);
         m->cells = calloc((size_t)d->views, sizeof *m->cells);
         ok = m->method && m->ms && m->cells;
@@ -225,16 +232,18 @@ static oit_status alloc_result(const oit_bench_desc *d, oit_bench_result *r, oit
 static oit_status run_views(const oit_bench_desc *d, oit_bench_result *r, oit_error *err)
 {
     const oit_render_method *refm = oit_render_method_find("reference");
+    const oit_mesh *refmesh = d->reference_mesh ? d->reference_mesh : d->mesh;
     oit_method_state *ref_state = NULL;
     oit_image *last = calloc((size_t)r->method_count, sizeof *last);
-    oit_status s = last ? refm->open(d->mesh, NULL, &ref_state, err)
+    oit_status s = last ? refm->open(refmesh, NULL, &ref_state, err)
                         : oit_error_set(err, OIT_ERR_NOMEM, "cannot allocate image slots");
+    /* one view for every method, framed on the reference's mesh */
     oit_view view = {.width = d->width, .height = d->height,
-                     .shading = bench_shading(&d->mesh->info, d->shading)};
+                     .shading = bench_shading(&refmesh->info, d->shading)};
     for (int v = 0; v < d->views && s == OIT_OK; v++) {
         oit_image ref = {0};
         oit_frame_stats st = {0};
-        oit_camera_default(&view.camera, d->mesh->info.bounds_min, d->mesh->info.bounds_max,
+        oit_camera_default(&view.camera, refmesh->info.bounds_min, refmesh->info.bounds_max,
                            (float)(v * 360.0 / d->views), 20.0f);
         s = refm->render(ref_state, &view, &ref, NULL, NULL, &st, err);
         if (s != OIT_OK) {

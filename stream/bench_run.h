@@ -12,6 +12,18 @@
 #include "render/image.h"
 #include "stream/render_methods.h"
 
+/* Which triangles a method drew (bench_models.h): the source mesh in core,
+ * or the part file's, clipped at its part boundaries (the stream's, or an
+ * in-core method's when the source mesh is not at hand). */
+typedef enum oit_bench_geometry {
+    OIT_BENCH_GEOMETRY_SOURCE_MESH = 0,
+    OIT_BENCH_GEOMETRY_PART_FILE
+} oit_bench_geometry;
+
+/* "source mesh" or "part file (clipped)", for reports; the CSV spells them
+ * source_mesh and part_file. */
+const char *oit_bench_geometry_label(oit_bench_geometry g);
+
 /* One method on one view. */
 typedef struct oit_bench_cell {
     int ok;                  /* rendered all its frames of this view */
@@ -36,6 +48,8 @@ typedef struct oit_bench_method {
     const oit_render_method *method;
     char name[OIT_BENCH_NAME_MAX];
     float epsilon;           /* as oit_bench_entry */
+    oit_bench_geometry geometry; /* what it draws */
+    uint64_t triangles;      /* how many triangles that is */
     oit_method_state *state;
     int runnable;            /* opened and rendered every view */
     char reason[512];        /* why not, when !runnable */
@@ -50,8 +64,13 @@ typedef struct oit_bench_method {
 } oit_bench_method;
 
 typedef struct oit_bench_desc {
-    const oit_mesh *mesh;        /* in core; the reference renders it */
-    oit_partfile *partfile;      /* NULL for a mesh file */
+    const oit_mesh *mesh;        /* what the in-core methods draw */
+    oit_bench_geometry mesh_geometry; /* and what it is */
+    /* what the reference draws and the views frame: the source mesh when
+     * there is one; NULL: mesh */
+    const oit_mesh *reference_mesh;
+    oit_partfile *partfile;      /* the stream's; NULL when there is none */
+    uint64_t partfile_triangles; /* its stored triangles */
     const oit_bench_entry *entries;
     int entry_count;
     int views, width, height, frames, warmup, max_layers;

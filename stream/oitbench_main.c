@@ -1,25 +1,29 @@
 /* oitbench: measures rendering methods side by side on one model over an
  * orbit of views (speed, memory, layers, error against the Embree
- * reference) and writes results.csv, results.json, two PNG charts and
+ * reference): the in-core methods on the source mesh, the stream on its
+ * part file, converted now when none is given (bench_models.h); writes
+ * results.csv, results.json, two PNG charts and
  * report.md; "oitbench plot" draws charts across earlier runs. Errors are
  * one line on stderr; the exit status follows oit_status_exit_code, except
  * that a run in which no method could render at all exits 1. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 #include <unistd.h>
 
 #include <errno.h>
+#include <signal.h>
 #include <sys/stat.h>
 
 #include "formats/paths.h"
+#include "formats/tool_signals.h"
+#include "preprocess/convert.h"
 #include "stream/bench_args.h"
 #include "stream/bench_csv.h"
+#include "stream/bench_models.h"
 #include "stream/bench_plot.h"
 #include "stream/bench_report.h"
 #include "stream/bench_run.h"
-#include "stream/part_triangles.h"
 
 static int fail(const oit_error *err)
 {
@@ -27,27 +31,69 @@ static int fail(const oit_error *err)
     return oit_status_exit_code(err->status);
 }
 
-static int is_part_file(const char *path)
+/* oitprep's conversion options, with the run's --scheme and --part-triangles. */
+static oit_status convert_options(const oit_bench_args *a, oit_convert_options *o,
+                                  oit_error *err)
 {
-    size_t n = strlen(path);
-    return n > 5 && !strcasecmp(path + n - 5, ".oitp");
+    oit_convert_options_init(o);
+    o->progress = isatty(2);
+    if (a->scheme)
+        o->scheme = strcmp(a->scheme, "fast") ? OIT_SCHEME_GUARANTEED : OIT_SCHEME_FAST;
+    o->part_triangles = a->part_triangles;
+    if (a->part_triangles && o->scheme != OIT_SCHEME_FAST)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "--part-triangles %u applies to the fast "
+                             "scheme, and the conversion's is %s (add --scheme fast)",
+                             a->part_triangles, oit_scheme_name(o->scheme));
+    return OIT_OK;
 }
 
-/* A mesh file in core, or a part file: the streamer reads it part by part,
- * the reference and the other methods render its triangles in core. */
-static oit_status load_scene(const oit_bench_args *a, oit_partfile **pf, oit_mesh *mesh,
-                             oit_error *err)
+static int streams(const oit_bench_args *a)
 {
-    memset(mesh, 0, sizeof *mesh);
-    *pf = NULL;
-    if (!is_part_file(a->model))
-        return oit_mesh_load(a->model, NULL, mesh, err);
-    int streams = 0;
+    int any = 0;
     for (int i = 0; i < a->method_count; i++)
-        streams |= oit_render_method_find(a->methods[i])->needs_partfile;
-    oit_partfile_open_desc desc = {streams};
-    oit_status s = oit_partfile_open(a->model, &desc, pf, err);
-    return s == OIT_OK ? oit_partfile_load_mesh(*pf, mesh, err) : s;
+        any |= oit_render_method_find(a->methods[i])->needs_partfile;
+    return any;
+}
+
+/* The part file the conversion writes: --save-parts, else a temporary file,
+ * made now so that SIGINT and SIGTERM can remove it (and the writer's
+ * OUT.tmp and OUT.spill) during the conversion. */
+static oit_status conversion_output(const oit_bench_args *a, oit_bench_models_desc *d,
+                                    char *tmp, size_t cap, oit_error *err)
+{
+    static const char *const temp_files[] = {".tmp", "", ".spill", NULL};
+    static const char *const kept_files[] = {".tmp", ".spill", NULL};
+    if (oit_bench_is_part_file(a->model) || a->parts || !d->need_parts)
+        return OIT_OK;
+    oit_status s = OIT_OK;
+    if (a->save_parts) {
+        d->convert.output = a->save_parts;
+    } else if ((s = oit_bench_temp_part_file(tmp, cap, err)) == OIT_OK) {
+        d->convert.output = tmp;
+        d->output_is_temp = 1;
+    }
+    if (s == OIT_OK)
+        oit_tool_signals_install("oitbench", d->convert.output,
+                                 d->output_is_temp ? temp_files : kept_files);
+    return s;
+}
+
+static oit_status open_models(const oit_bench_args *a, oit_bench_models *m, oit_error *err)
+{
+    char tmp[OIT_BENCH_PATH_MAX];
+    oit_bench_models_desc d = {.model = a->model, .parts = a->parts, .mesh = a->mesh,
+                               .need_parts = streams(a), .progress = stderr};
+    oit_status s = convert_options(a, &d.convert, err);
+    if (s == OIT_OK)
+        s = conversion_output(a, &d, tmp, sizeof tmp, err);
+    if (s == OIT_OK)
+        s = oit_bench_models_open(&d, m, err);
+    else if (d.output_is_temp)
+        unlink(tmp);
+    /* the temporary file is gone (or kept): nothing left for a handler */
+    signal(SIGINT, SIG_DFL);
+    signal(SIGTERM, SIG_DFL);
+    return s;
 }
 
 /* The command line as one string, for the report. */
@@ -75,31 +121,50 @@ static void report_unrunnable(const oit_bench_result *r)
                     r->methods[i].reason);
 }
 
+static void print_geometry(const oit_bench_models *m, const oit_bench_args *a)
+{
+    if (m->have_source)
+        fprintf(stderr, "oitbench: in-core methods and the reference draw the source mesh %s "
+                "(%zu triangles)\n", m->source_path, m->source.count);
+    else
+        fprintf(stderr, "oitbench: in-core methods and the reference draw %s's clipped "
+                "triangles (%zu)\n", a->model, m->clipped.count);
+    if (m->pf)
+        fprintf(stderr, "oitbench: stream draws %s (%llu triangles)\n",
+                m->conv.done && !m->conv.kept ? "the converted part file" : m->parts_path,
+                (unsigned long long)m->part_triangles);
+}
+
 static int run(const oit_bench_args *a, const char *command_line)
 {
     oit_error err = {0};
-    oit_partfile *pf = NULL;
-    oit_mesh mesh;
+    oit_bench_models models;
     oit_bench_result r = {0};
-    oit_status s = load_scene(a, &pf, &mesh, &err);
-    oit_bench_desc d = {.mesh = &mesh, .partfile = pf, .entries = a->entries,
+    oit_status s = open_models(a, &models, &err);
+    if (s != OIT_OK)
+        return fail(&err);
+    const oit_mesh *mesh = oit_bench_models_in_core(&models);
+    oit_bench_desc d = {.mesh = mesh, .mesh_geometry = oit_bench_models_in_core_geometry(&models),
+                        .reference_mesh = mesh, .partfile = models.pf,
+                        .partfile_triangles = models.part_triangles, .entries = a->entries,
                         .entry_count = a->entry_count, .views = a->orbit, .width = a->width,
                         .height = a->height, .frames = a->frames, .warmup = a->warmup,
                         .max_layers = a->max_layers, .shading = a->shading, .progress = stderr};
-    if (s == OIT_OK) {
-        fprintf(stderr, "oitbench: %s: %llu triangles, %d entries, %d views\n", a->model,
-                (unsigned long long)mesh.info.triangles, a->entry_count, a->orbit);
-        s = oit_bench_run(&d, &r, &err);
-    }
+    print_geometry(&models, a);
+    fprintf(stderr, "oitbench: %s: %llu triangles, %d entries, %d views\n", a->model,
+            (unsigned long long)models.source_triangles, a->entry_count, a->orbit);
+    s = oit_bench_run(&d, &r, &err);
     oit_bench_context ctx = {a->model, command_line, a->width, a->height, a->frames,
                              a->warmup, sysconf(_SC_NPROCESSORS_ONLN),
-                             (unsigned long long)mesh.info.triangles,
+                             (unsigned long long)models.source_triangles,
                              a->shading == OIT_SHADING_TRANSLUCENT ? "translucent"
-                                                                   : "transparent"};
+                                                                   : "transparent",
+                             &models};
     if (s == OIT_OK)
         s = oit_bench_write_reports(a->out, &ctx, &r, &err);
     int code = s == OIT_OK ? 0 : fail(&err);
     if (s == OIT_OK) {
+        oit_bench_print_summary(stdout, &r, 0);
         report_unrunnable(&r);
         fprintf(stderr, "oitbench: wrote %s/results.csv, results.json, speed_vs_error.png, "
                 "memory_vs_depth.png, report.md\n", a->out);
@@ -109,8 +174,7 @@ static int run(const oit_bench_args *a, const char *command_line)
         }
     }
     oit_bench_result_free(&r);
-    oit_mesh_free(&mesh);
-    oit_partfile_close(pf);
+    oit_bench_models_close(&models);
     return code;
 }
 
@@ -181,16 +245,25 @@ int main(int argc, char **argv)
         return fail(&err);
     if (a.help) {
         char names[OIT_METHOD_NAMES_MAX];
+        oit_convert_options o;
+        oit_convert_options_init(&o);
         oit_render_method_names(names, sizeof names);
-        oit_bench_usage(stdout, names);
+        oit_bench_usage(stdout, names, oit_scheme_name(o.scheme), OIT_FAST_PART_TRIANGLES);
         return 0;
     }
     /* The output folder is made and tested before the run, not after it. */
     const char *out = a.plot ? a.plot_out : a.out;
-    const char *in = a.plot ? NULL : a.model;
+    const char *in[3] = {a.plot ? NULL : a.model, a.parts, a.mesh};
     int created = 0;
-    if (oit_output_dir_check(out, a.plot ? "plot OUT" : "--out", &in, 1, &created, &err) != OIT_OK)
+    if (oit_output_dir_check(out, a.plot ? "plot OUT" : "--out", in, 3, &created, &err) != OIT_OK)
         return fail(&err);
+    /* --save-parts is checked before the conversion, as oitprep checks -o */
+    if (!a.plot && a.save_parts &&
+        oit_output_check(a.save_parts, "--save-parts", in, 3, &err) != OIT_OK) {
+        if (created)
+            rmdir(out);
+        return fail(&err);
+    }
     int code;
     if (a.plot) {
         code = plot(&a);

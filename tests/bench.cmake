@@ -1,5 +1,7 @@
-# oitbench: methods side by side against the reference, its files and exit codes.
-oit_add_test(NAME oitbench LABELS integration TIMEOUT 60
+# oitbench: methods side by side against the reference, its files and exit codes;
+# the in-core methods on the mesh and the stream on its part file (converted,
+# given with --parts, or the input, with and without its source).
+oit_add_test(NAME oitbench LABELS integration TIMEOUT 240
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_oitbench.sh)
 
 # The chart module, the Pareto front, results.csv round trip and malformed

@@ -249,7 +249,10 @@ static void fake_result(oit_bench_result *r, oit_bench_method m[2], oit_bench_ce
     m[0].max_layers = 12;
     m[0].rmse_mean = 0.001;
     m[0].psnr_min = 40.0;
+    m[0].triangles = 1234;
     snprintf(m[1].name, sizeof m[1].name, "stream@0.1");
+    m[1].geometry = OIT_BENCH_GEOMETRY_PART_FILE;
+    m[1].triangles = 5678;
     snprintf(m[1].reason, sizeof m[1].reason, "needs a \"part file\", not a mesh");
     m[1].cells = cells + 2;
     m[1].ms_median = m[1].ms_p95 = m[1].rmse_mean = m[1].psnr_min = NAN;
@@ -297,13 +300,20 @@ static void test_csv_round_trip(void)
           !strcmp(sum_stream->reason, "needs a \"part file\", not a mesh") &&
           isnan(sum_stream->rmse) && !sum_stream->has_gpu && sum_stream->view_max_layers == 12,
           "summary row stream@0.1 read back wrong (reason '%s')", sum_stream->reason);
+    CHECK(v1->geometry == OIT_BENCH_GEOMETRY_SOURCE_MESH && v1->drawn_triangles == 1234 &&
+          sum_stream->geometry == OIT_BENCH_GEOMETRY_PART_FILE &&
+          sum_stream->drawn_triangles == 5678,
+          "geometry read back wrong (%d %llu, %d %llu)", v1->geometry,
+          (unsigned long long)v1->drawn_triangles, sum_stream->geometry,
+          (unsigned long long)sum_stream->drawn_triangles);
     CHECK(oit_bench_rmse_floor(&t) == 1e-4, "rmse floor %g, expected 1e-4 (least 0.001)",
           oit_bench_rmse_floor(&t));
     oit_bench_table_free(&t);
 }
 
 #define HDR OIT_BENCH_CSV_HEADER "\n"
-#define OK_ROW "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3\n"
+#define OK_ROW "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16\n"
+#define OLD_ROW "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3\n"
 
 /* Every malformed text must fail with OIT_ERR_FORMAT naming file and line. */
 static void test_csv_malformed(void)
@@ -313,22 +323,28 @@ static void test_csv_malformed(void)
         {"row,method\n", 0, 1, "header"},
         {HDR, 0, 2, "no rows"},
         {HDR "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16\n", 0, 2, "14 fields"},
-        {HDR "view,dfb,0,maybe,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3\n", 0, 2, "status"},
-        {HDR "view,dfb,0,ok,,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3\n", 0, 2, "ms_median"},
-        {HDR "view,dfb,0,ok,-1,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3\n", 0, 2, "ms_median"},
-        {HDR "view,dfb,0,ok,nan,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3\n", 0, 2, "ms_median"},
-        {HDR "view,dfb,0,ok,1.0,2.0,1e3,3,0.01,0.1,0.5,40.0,\"\",16,3\n", 0, 2, "gpu_bytes_peak"},
-        {HDR "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"oops,16,3\n", 0, 2, "quoted"},
-        {HDR "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\"x,16,3\n", 0, 2, "quoted"},
-        {HDR "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,,16,3\n", 0, 2, "not quoted"},
-        {HDR "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"why\",16,3\n", 0, 2, "ok row"},
-        {HDR "summary,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3\n", 0, 2, "summary"},
-        {HDR "view,d f b,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3\n", 0, 2, "method"},
-        {HDR "view,pll,0,not_runnable,,,100,3,,,,,\"no\",16,3\n", 0, 2, "gpu_bytes_peak"},
-        {HDR OK_ROW "view,pll,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,inf,\"\",17,3\n", 0, 3, "triangles"},
+        {HDR "view,dfb,0,maybe,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16\n", 0, 2, "status"},
+        {HDR "view,dfb,0,ok,,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16\n", 0, 2, "ms_median"},
+        {HDR "view,dfb,0,ok,-1,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16\n", 0, 2, "ms_median"},
+        {HDR "view,dfb,0,ok,nan,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16\n", 0, 2, "ms_median"},
+        {HDR "view,dfb,0,ok,1.0,2.0,1e3,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16\n", 0, 2, "gpu_bytes_peak"},
+        {HDR "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"oops,16,3,source_mesh,16\n", 0, 2, "quoted"},
+        {HDR "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\"x,16,3,source_mesh,16\n", 0, 2, "quoted"},
+        {HDR "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,,16,3,source_mesh,16\n", 0, 2, "not quoted"},
+        {HDR "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"why\",16,3,source_mesh,16\n", 0, 2, "ok row"},
+        {HDR "summary,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16\n", 0, 2, "summary"},
+        {HDR "view,d f b,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16\n", 0, 2, "method"},
+        {HDR "view,pll,0,not_runnable,,,100,3,,,,,\"no\",16,3,source_mesh,16\n", 0, 2, "gpu_bytes_peak"},
+        {HDR OK_ROW "view,pll,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,inf,\"\",17,3,source_mesh,16\n", 0, 3, "triangles"},
         {HDR OK_ROW "\n", 0, 3, "empty line"},
-        {HDR "view,dfb,0,ok,1.0\0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3\n",
-         sizeof(HDR "view,dfb,0,ok,1.0\0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3\n") - 1, 2, "NUL"},
+        {HDR "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,mesh,16\n", 0, 2, "geometry"},
+        {HDR "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,part_file,-4\n", 0, 2,
+         "drawn_triangles"},
+        {HDR "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3\n", 0, 2, "15 fields"},
+        {OIT_BENCH_CSV_HEADER_15 "\n" OLD_ROW "view,pll,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,inf,\"\",16,3,"
+         "source_mesh,16\n", 0, 3, "more than 15 fields"},
+        {HDR "view,dfb,0,ok,1.0\0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16\n",
+         sizeof(HDR "view,dfb,0,ok,1.0\0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16\n") - 1, 2, "NUL"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         size_t len = cases[i].len ? cases[i].len : strlen(cases[i].text);
@@ -365,6 +381,25 @@ static void test_csv_malformed(void)
           strstr(err.message, "/nonexistent/results.csv"), "missing file: '%s'", err.message);
 }
 
+/* A file of the oitbench before the geometry columns still reads: its rows
+ * say no geometry (-1) and drew the file's triangle count. */
+static void test_csv_old_format(void)
+{
+    static const char text[] = OIT_BENCH_CSV_HEADER_15 "\n" OLD_ROW;
+    char copy[sizeof text];
+    memcpy(copy, text, sizeof text);
+    FILE *f = fmemopen(copy, sizeof text - 1, "rb");
+    oit_bench_table t = {0};
+    oit_error err = {0};
+    oit_status s = f ? oit_bench_csv_read(f, "old.csv", &t, &err) : OIT_ERR_IO;
+    CHECK(s == OIT_OK && t.count == 1 && t.rows[0].geometry == -1 &&
+          t.rows[0].drawn_triangles == 16, "older results.csv: status %d '%s'", (int)s,
+          err.message);
+    oit_bench_table_free(&t);
+    if (f)
+        fclose(f);
+}
+
 static void test_speed_chart_file(const char *dir)
 {
     oit_bench_table t;
@@ -380,8 +415,9 @@ static void test_speed_chart_file(const char *dir)
         oit_bench_table_free(&t);
         return;
     }
-    /* two note lines (the front, stream@0.1 not run) under 720 rows */
-    CHECK(img.width == 1100 && img.height == 720 + 2 * 22, "speed chart %dx%d", img.width,
+    /* four note lines (the front, what dfb and stream@0.1 drew, stream@0.1
+     * not run) under 720 rows */
+    CHECK(img.width == 1100 && img.height == 720 + 4 * 22, "speed chart %dx%d", img.width,
           img.height);
     float c0[3];
     oit_chart_series_colour(0, c0);
@@ -409,6 +445,7 @@ int main(void)
     test_pareto();
     test_csv_round_trip();
     test_csv_malformed();
+    test_csv_old_format();
     test_speed_chart_file(dir ? dir : "/tmp");
     if (test_failures)
         fprintf(stderr, "test_bench_plot: %d failure(s)\n", test_failures);

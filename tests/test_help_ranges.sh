@@ -188,6 +188,7 @@ check bench --size "" Vx8 nohi,nodefault
 check bench --frames "" V nohi,nodefault
 check bench --warmup "" V nohi,nodefault
 check bench --max-layers "" V nodefault
+check bench --part-triangles "--methods stream --scheme fast" V nodefault
 check quads --count
 check quads --coverage
 check instances --count "" V second

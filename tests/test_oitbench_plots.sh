@@ -19,9 +19,10 @@ rm -rf "$T" && mkdir -p "$T" || exit 1
 FAILS=0
 fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
 
-# part file of N quads: stream runs on it, the other methods on its triangles.
-# Seed 002's scheme: its many small parts let early termination drop whole
-# parts between packs, where the fast scheme makes one part of the quads.
+# part file of N quads beside its mesh: stream runs on the file, the other
+# methods on the mesh (found through the file's META). Seed 002's scheme:
+# its many small parts let early termination drop whole parts between
+# packs, where the fast scheme makes one part of the quads.
 prep() {
     "$OIT_BIN/oitgen" quads --count "$1" -o "$T/q$1.ply" >/dev/null &&
         "$OIT_BIN/oitprep" "$T/q$1.ply" -o "$T/q$1.oitp" --scheme guaranteed --threads 1 \
@@ -50,7 +51,8 @@ cat "$T/err1.txt"
 CSV="$T/R1/results.csv"
 [ -s "$CSV" ] || { fail "no results.csv"; exit 1; }
 cat "$CSV"
-head -n 1 "$CSV" | grep -q ',reason,triangles,view_max_layers$' || fail "header lacks triangles, view_max_layers"
+head -n 1 "$CSV" | grep -q ',reason,triangles,view_max_layers,geometry,drawn_triangles$' ||
+    fail "header lacks triangles, view_max_layers, geometry, drawn_triangles"
 for m in stream@0 stream@0.1 dfb; do
     [ "$(grep -c "^view,$m,[01],ok," "$CSV")" -eq 2 ] || fail "expected 2 ok view rows of $m"
     grep -q "^summary,$m,,ok," "$CSV" || fail "no ok summary row of $m"
