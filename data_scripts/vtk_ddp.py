@@ -9,13 +9,15 @@ Usage (VTK's X render window needs a display even offscreen):
   xvfb-run -a -s "-screen 0 1280x1024x24" /usr/bin/python3 data_scripts/vtk_ddp.py \\
       MESH --walk WALK.txt --size 1024x1024 --peels 1000 --out DIR/ [--stats S.json]
 
-MESH: .ply and .stl go to VTK's own readers; .off and .obj(+.mtl) are
-converted here to a binary PLY (vertices de-indexed, one colour a vertex),
-mirroring formats/read_off.c and formats/read_obj.c (fan triangulation, MTL
-Kd/d/Tr, white for faces without Kd in a coloured file); --keep-ply PATH keeps
-it, so that `oitstream PATH --method dfb` can check it renders as MESH does.
-glTF/GLB are refused (exit 3): VTK's importer shades them PBR, and no tool of
-the project writes a mesh as read (see the report in stream_vs_dfb.sh).
+MESH: .ply and .stl go to VTK's own readers; .off, .obj(+.mtl) and
+uncompressed .gltf/.glb are converted here to a binary PLY (vertices
+de-indexed, one colour a vertex), mirroring formats/read_off.c,
+formats/read_obj.c (fan triangulation, MTL Kd/d/Tr, white for faces without
+Kd in a coloured file) and formats/gltf_adapter.cpp (node transforms,
+baseColorFactor x COLOR_0 encoded sRGB, alphaMode; VTK's own glTF importer
+would shade PBR), because no tool of the project writes a mesh as it reads
+it; --keep-ply PATH keeps it, so that `oitstream PATH --method dfb` can check
+that it renders as MESH does. Draco-compressed glTF is refused (exit 3).
 
 The walk: one camera a line in oitstream's --view syntax,
 ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy[,znear,zfar] in file coordinates (what
@@ -271,6 +273,172 @@ def read_obj(path):
     return tris, (cols if has_colour or has_alpha else None), has_alpha
 
 
+GLTF_COMP = {5120: "b", 5121: "B", 5122: "h", 5123: "H", 5125: "I", 5126: "f"}
+GLTF_NCOMP = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT4": 16}
+
+
+def srgb_u8(linear):
+    """formats/gltf_adapter.cpp srgb_u8."""
+    v = 12.92 * linear if linear <= 0.0031308 else 1.055 * math.pow(linear, 1.0 / 2.4) - 0.055
+    return 0 if not v > 0.0 else 255 if v >= 1.0 else int(v * 255.0 + 0.5)
+
+
+def mat_mul(a, b):  # column-major 4x4
+    r = [0.0] * 16
+    for col in range(4):
+        for row in range(4):
+            r[col * 4 + row] = sum(a[k * 4 + row] * b[col * 4 + k] for k in range(4))
+    return r
+
+
+def node_matrix(n):
+    if "matrix" in n:
+        return [float(x) for x in n["matrix"]]
+    t = n.get("translation", [0, 0, 0])
+    x, y, z, w = n.get("rotation", [0, 0, 0, 1])
+    sc = n.get("scale", [1, 1, 1])
+    r = [1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w),
+         2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w),
+         2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y)]
+    m = [0.0] * 16
+    for col in range(3):
+        for row in range(3):
+            m[col * 4 + row] = r[col * 3 + row] * sc[col]
+    for row in range(3):
+        m[12 + row] = t[row]
+    m[15] = 1.0
+    return m
+
+
+def read_gltf(path):
+    """formats/gltf_adapter.cpp for uncompressed glTF/GLB: the default scene's
+    node tree (matrix or TRS), triangle lists/strips/fans, COLOR_0 times
+    baseColorFactor, sRGB-encoded, alpha by alphaMode; mirroring transforms
+    flip the winding. Draco, sparse and quantized accessors are refused."""
+    raw = open(path, "rb").read()
+    bins = []
+    if raw[:4] == b"glTF":
+        jlen, jtype = struct.unpack_from("<II", raw, 12)
+        if jtype != 0x4E4F534A:
+            fail(3, "%s: first GLB chunk is not JSON" % path)
+        doc = json.loads(raw[20:20 + jlen])
+        off = 20 + jlen
+        if off + 8 <= len(raw):
+            blen, btype = struct.unpack_from("<II", raw, off)
+            if btype == 0x004E4942:
+                bins.append(raw[off + 8:off + 8 + blen])
+    else:
+        doc = json.loads(raw)
+    folder = os.path.dirname(os.path.abspath(path))
+    buffers = []
+    for i, b in enumerate(doc.get("buffers", [])):
+        uri = b.get("uri")
+        if uri is None:
+            buffers.append(bins[0] if bins else b"")
+        elif uri.startswith("data:"):
+            import base64
+            buffers.append(base64.b64decode(uri.split(",", 1)[1]))
+        else:
+            from urllib.parse import unquote
+            buffers.append(open(os.path.join(folder, unquote(uri)), "rb").read())
+
+    def accessor(index):
+        a = doc["accessors"][index]
+        if "sparse" in a:
+            fail(3, "%s: sparse accessor %d is not converted by vtk_ddp.py" % (path, index))
+        ct, nc, count = a["componentType"], GLTF_NCOMP[a["type"]], a["count"]
+        fmt = GLTF_COMP[ct]
+        csize = struct.calcsize(fmt)
+        bv = doc["bufferViews"][a["bufferView"]]
+        data = buffers[bv["buffer"]]
+        base = bv.get("byteOffset", 0) + a.get("byteOffset", 0)
+        stride = bv.get("byteStride") or csize * nc
+        st = struct.Struct("<%d%s" % (nc, fmt))
+        out = [st.unpack_from(data, base + i * stride) for i in range(count)]
+        return out, ct, a.get("normalized", False)
+
+    materials = doc.get("materials", [])
+    tris, cols = [], []
+    has_colour = has_alpha = False
+    scenes = doc.get("scenes", [])
+    if "scene" in doc:
+        roots = [list(scenes[doc["scene"]]["nodes"])]
+    elif scenes:
+        roots = [list(sc.get("nodes", [])) for sc in scenes]
+    else:
+        child = {c for n in doc.get("nodes", []) for c in n.get("children", [])}
+        roots = [[i for i in range(len(doc.get("nodes", []))) if i not in child]]
+    ident = [1.0, 0, 0, 0, 0, 1.0, 0, 0, 0, 0, 1.0, 0, 0, 0, 0, 1.0]
+    for root in roots:
+        stack = [(r, ident) for r in reversed(root)]
+        while stack:
+            node, parent = stack.pop()
+            n = doc["nodes"][node]
+            world = mat_mul(parent, node_matrix(n))
+            if "mesh" in n:
+                m = world
+                det = m[0] * (m[5] * m[10] - m[9] * m[6]) - m[4] * (m[1] * m[10] - m[9] * m[2]) + \
+                    m[8] * (m[1] * m[6] - m[5] * m[2])
+                flip = det < 0.0
+                for prim in doc["meshes"][n["mesh"]]["primitives"]:
+                    mode = prim.get("mode", 4)
+                    if mode not in (4, 5, 6):
+                        continue
+                    if "KHR_draco_mesh_compression" in prim.get("extensions", {}):
+                        fail(3, "%s: Draco-compressed glTF is not converted by vtk_ddp.py" % path)
+                    base, amode, cutoff = [1.0, 1.0, 1.0, 1.0], "OPAQUE", 0.5
+                    if prim.get("material", -1) >= 0:
+                        mat = materials[prim["material"]]
+                        base = list(mat.get("pbrMetallicRoughness", {}).get(
+                            "baseColorFactor", [1.0, 1.0, 1.0, 1.0]))
+                        amode = mat.get("alphaMode", "OPAQUE")
+                        cutoff = mat.get("alphaCutoff", 0.5)
+                        has_colour = True
+                        has_alpha |= amode != "OPAQUE"
+                    pos, ct, _ = accessor(prim["attributes"]["POSITION"])
+                    if ct != 5126:
+                        fail(3, "%s: quantized POSITION is not converted by vtk_ddp.py" % path)
+                    vc = None
+                    if "COLOR_0" in prim["attributes"]:
+                        vc, cct, _ = accessor(prim["attributes"]["COLOR_0"])
+                        scale = {5126: 1.0, 5121: 255.0, 5123: 65535.0}[cct]
+                        vc = [tuple(x / scale for x in c) + ((1.0,) if len(c) == 3 else ())
+                              for c in vc]
+                        has_colour = True
+                    verts, vcols = [], []
+                    for i, p in enumerate(pos):
+                        p = [float(struct.unpack("<f", struct.pack("<f", x))[0]) for x in p]
+                        q = tuple(m[row] * p[0] + m[4 + row] * p[1] + m[8 + row] * p[2] +
+                                  m[12 + row] for row in range(3))
+                        verts.append(q)
+                        c = [base[k] * (vc[i][k] if vc else 1.0) for k in range(4)]
+                        a = c[3] if amode == "BLEND" else float(c[3] >= cutoff) \
+                            if amode == "MASK" else 1.0
+                        vcols.append(tuple(srgb_u8(x) for x in c[:3]) + (unit_to_u8(a),))
+                    if "indices" in prim:
+                        idx = [t[0] for t in accessor(prim["indices"])[0]]
+                    else:
+                        idx = list(range(len(pos)))
+                    nidx = len(idx)
+                    ntri = nidx // 3 if mode == 4 else max(nidx - 2, 0)
+                    for t in range(ntri):
+                        if mode == 4:
+                            k = [3 * t, 3 * t + 1, 3 * t + 2]
+                        elif mode == 5:
+                            k = [t + (t & 1), t + 1 - (t & 1), t + 2]
+                        else:
+                            k = [0, t + 1, t + 2]
+                        if flip:
+                            k = [k[0], k[2], k[1]]
+                        tri = tuple(verts[idx[j]] for j in k)
+                        if all(finite(p) for p in tri):
+                            tris.append(tri)
+                            cols.append(tuple(vcols[idx[j]] for j in k))
+            for c in reversed(n.get("children", [])):
+                stack.append((c, world))
+    return tris, (cols if has_colour or has_alpha else None), has_alpha
+
+
 def parse_view(line):
     v = [float(x) for x in line.split(",")]
     if len(v) not in (10, 12):
@@ -314,9 +482,9 @@ def main():
     conversion = None
     tmpdir = None
     path = a.mesh
-    if ext in (".off", ".obj"):
+    if ext in (".off", ".obj", ".gltf", ".glb"):
         t0 = time.perf_counter()
-        tris, cols, alpha = (read_off if ext == ".off" else read_obj)(a.mesh)
+        tris, cols, alpha = {".off": read_off, ".obj": read_obj}.get(ext, read_gltf)(a.mesh)
         if a.keep_ply:
             path = a.keep_ply
         else:
@@ -332,9 +500,6 @@ def main():
     elif ext == ".stl":
         reader = vtk.vtkSTLReader()
         reader.MergingOff()
-    elif ext in (".gltf", ".glb"):
-        fail(3, "%s: glTF is not rendered by vtk_ddp.py (VTK's importer shades it "
-             "PBR; convert it to PLY with its material colours first)" % a.mesh)
     else:
         fail(3, "%s: unknown mesh format %r" % (a.mesh, ext))
     reader.SetFileName(path)
