@@ -43,6 +43,10 @@
 # removed at the end (the 12M plant: ~1 GB of PLY, ~2 GB of part file).
 # Exits non-zero, naming the model and step, when a tool is missing or any
 # render, conversion or comparison fails: no row is printed for it.
+# Duration on a loaded 2-core llvmpipe machine at 1024x1024: demo ~1 min,
+# 1M plant ~5 min (VTK exact DDP ~20 s a frame); the 12M plant's conversion
+# ~90 s and stream ~25 s a frame, and VTK on it likely tens of minutes
+# (CMP_VTK_SKIP=plant12M leaves it out).
 set -eu
 bin=${1:-build/bin} size=${3:-1024x1024}
 out=${2:-bench/stream-vs-dfb-$(hostname).md}
@@ -165,8 +169,8 @@ fi
 mkdir -p "$(dirname "$out")"
 commit=$(git -C "$here" rev-parse --short HEAD 2>/dev/null || echo '?')
 git -C "$here" diff --quiet HEAD -- 2>/dev/null || commit="$commit (+ uncommitted changes)"
-t1="| model | views | tris in | tris out | out/in | parts | conv s | in tris/s | conv RSS MB | stream RSS MB | stream GPU MB | DFB GPU MB | overflow | 2nd-pass px | 2nd-pass packs |"
-s1="|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+t1="| model | views | tris in | tris out | out/in | parts | conv s | in tris/s | conv RSS MB | stream RSS MB | stream GPU MB | DFB capture GPU MB | DFB + mesh GPU MB | overflow | 2nd-pass px | 2nd-pass packs |"
+s1="|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 t2="| model | stream ms | DFB mesh ms | unsorted ms | stream / DFB | stream / unsorted | stream off % (max) |"
 s2="|---|---|---|---|---|---|---|"
 for p in $peels; do
@@ -230,12 +234,14 @@ for model in $models; do
     tout=$(num triangles_out "$work/prep.json")
     [ -n "$conv" ] && [ -n "$tout" ] || die "$name: oitprep --stats has no total/triangles_out"
     sms=$(warm_ms "$work/s.json") dms=$(warm_ms "$work/d.json") ums=$(warm_ms "$work/u.json")
+    dcap=$(key_max gpu_bytes_peak "$work/d.json")
+    [ "$dcap" != - ] || die "$name: dfb: no gpu_bytes_peak in $work/d.json"
     r=$(compare_dirs "$work/s" "$work/d" "stream vs dfb")
     off="${r% *} (${r#* })"
     echo "| $name | $nv | $tin | $tout | $(ratio "$tout" "$tin") | $(num parts "$work/prep.json") |" \
         "$conv | $(awk -v n="$tin" -v s="$conv" 'BEGIN { printf "%.0f", (s > 0 ? n / s : 0) }') |" \
         "$(rss_mb "$work/prep.time") | $(rss_mb "$work/s.time") |" \
-        "$(mb "$(key_max gpu_bytes_peak "$work/s.json")") | $(mb "$(key_max gpu_bytes_peak "$work/d.json")") |" \
+        "$(mb "$(key_max gpu_bytes_peak "$work/s.json")") | $(mb "$dcap") | $(mb "$((dcap + 48 * tin))") |" \
         "$(key_sum overflow_pixels "$work/s.json") | $(key_max second_pass_pixels "$work/s.json") |" \
         "$(key_max second_pass_packs "$work/s.json") |" >>"$work/rows1"
     row="| $name | $sms | $dms | $ums | $(ratio "$sms" "$dms") | $(ratio "$sms" "$ums") | $off |"
@@ -310,7 +316,9 @@ done
     echo "off % = worst view's share of pixels off by more than 1/255 against DFB on the source mesh; (max) = largest"
     echo "absolute difference in 1/255. overflow = sum over all frames; 2nd-pass px / packs = worst frame"
     echo "(stats keys second_pass_pixels / second_pass_packs, '-' where this oitstream does not write them);"
-    echo "RSS = peak host resident set (/usr/bin/time -v); GPU MB = gpu_bytes_peak, worst frame (1 MB = 10^6 bytes)."
+    echo "RSS = peak host resident set (/usr/bin/time -v); GPU MB = gpu_bytes_peak, worst frame (1 MB = 10^6 bytes):"
+    echo "the stream's counts its ring, cache and capture; DFB's counts its fragment buffers only, so \"DFB + mesh\""
+    echo "adds the source mesh's vertex buffer, triangles x 48 bytes (sizeof(oit_triangle), render/gpu_mesh.c)."
     echo
     echo "## Conversion and stream"
     echo
