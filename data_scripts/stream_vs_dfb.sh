@@ -169,8 +169,8 @@ fi
 mkdir -p "$(dirname "$out")"
 commit=$(git -C "$here" rev-parse --short HEAD 2>/dev/null || echo '?')
 git -C "$here" diff --quiet HEAD -- 2>/dev/null || commit="$commit (+ uncommitted changes)"
-t1="| model | views | tris in | tris out | out/in | parts | conv s | in tris/s | conv RSS MB | stream RSS MB | stream GPU MB | DFB capture GPU MB | DFB + mesh GPU MB | overflow | 2nd-pass px | 2nd-pass packs |"
-s1="|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+t1="| model | scheme | views | tris in | tris out | out/in | parts | conv s | in tris/s | conv RSS MB | stream RSS MB | stream GPU MB | DFB capture GPU MB | DFB + mesh GPU MB | overflow | 2nd-pass px | 2nd-pass packs |"
+s1="|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 t2="| model | stream ms | DFB mesh ms | unsorted ms | stream / DFB | stream / unsorted | stream off % (max) |"
 s2="|---|---|---|---|---|---|---|"
 for p in $peels; do
@@ -238,7 +238,8 @@ for model in $models; do
     [ "$dcap" != - ] || die "$name: dfb: no gpu_bytes_peak in $work/d.json"
     r=$(compare_dirs "$work/s" "$work/d" "stream vs dfb")
     off="${r% *} (${r#* })"
-    echo "| $name | $nv | $tin | $tout | $(ratio "$tout" "$tin") | $(num parts "$work/prep.json") |" \
+    scheme=$(sed -n 's/.*"scheme": *"\([^"]*\)".*/\1/p' "$work/prep.json" | head -n 1)
+    echo "| $name | ${scheme:-?} | $nv | $tin | $tout | $(ratio "$tout" "$tin") | $(num parts "$work/prep.json") |" \
         "$conv | $(awk -v n="$tin" -v s="$conv" 'BEGIN { printf "%.0f", (s > 0 ? n / s : 0) }') |" \
         "$(rss_mb "$work/prep.time") | $(rss_mb "$work/s.time") |" \
         "$(mb "$(key_max gpu_bytes_peak "$work/s.json")") | $(mb "$dcap") | $(mb "$((dcap + 48 * tin))") |" \
@@ -302,13 +303,13 @@ done
     echo "$(awk '/MemTotal/ { printf "%.0f GiB", $2 / 1048576 }' /proc/meminfo) RAM; load average at the start $load_start, at the end $(cut -d' ' -f1-3 /proc/loadavg) (shared machine: timings are noisy)."
     echo "GL (oitstream, EGL): $gl_renderer."
     [ "$use_vtk" = 0 ] || echo "GL (VTK $("$py" -c 'import vtkmodules.vtkCommonCore as c; print(c.vtkVersion.GetVTKVersion())'), GLX under Xvfb): ${vtk_renderer:-not run}."
-    echo "Commit: $commit. Size $size."
+    echo "Commit (this checkout): $commit; tools from $bin. Size $size."
     echo "Command: \`$cmdline\`"
     env | grep '^CMP_' | sed 's/^/  env: /; s/$//' || true
     echo
     echo "Views: an orbit of $views views at elevation 20 (framing the source mesh; $big_views for models over $big_tris triangles),"
     echo "each rendered twice; ms = median of the warm (second) frames. All methods read the same walk file."
-    echo "stream: \`oitprep MESH -o M.oitp\` (default scheme and options), \`oitstream M.oitp --epsilon 0\` (default options);"
+    echo "stream: \`oitprep MESH -o M.oitp\` (default scheme, named in the scheme column, and options), \`oitstream M.oitp --epsilon 0\` (default options);"
     echo "DFB / unsorted: \`oitstream MESH --method dfb|unsorted\` on the source mesh."
     echo "VTK DDP: data_scripts/vtk_ddp.py (vtkDualDepthPeelingPass, occlusion ratio 0, multisampling off, offscreen under Xvfb)"
     echo "at ${peels% *} peels (exact) and ${peels#* } (VTK's default); same cameras and shading (positional light at the eye,"
