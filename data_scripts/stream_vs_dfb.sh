@@ -13,7 +13,7 @@
 # every method reads, each view twice: the second (warm) frame is timed, as a
 # viewer sees a still view; ms = median of the warm frames.
 #
-# Columns: triangles in/out, parts (oitprep --stats), conversion seconds and
+# Columns: the scheme, triangles in/out, parts (oitprep --stats), conversion s and
 # input triangles/s, peak host RSS of the conversion and of the stream
 # (/usr/bin/time -v), GPU bytes at peak (stream; DFB), overflow pixels (sum
 # over all frames), second-pass pixels and packs (stats keys
@@ -40,7 +40,7 @@
 # Needs: the tools in BINDIR, /usr/bin/time; for VTK: python3-vtk9, xvfb-run
 # (setup/install-deps.sh setup/bench-packages.txt installs them; the script
 # runs it when they are missing). Big files go to a folder under /tmp that is
-# removed at the end (the 12M plant: ~1 GB of PLY, ~2 GB of part file).
+# removed at the end (the 12M plant: 0.26 GB of PLY, 1.3 GB of part file).
 # Exits non-zero, naming the model and step, when a tool is missing or any
 # render, conversion or comparison fails: no row is printed for it.
 # Duration on a loaded 2-core llvmpipe machine at 1024x1024: demo ~1 min,
