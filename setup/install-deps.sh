@@ -2,10 +2,19 @@
 # Installs the Debian packages of setup/debian-packages.txt that are missing.
 # Idempotent: does nothing (and needs no root) when all are present; runs
 # `apt-get update` only when an install fails for want of package lists.
+# Usage: install-deps.sh [LIST]   LIST: another package list of the same form
+# (one package a line, '#' comments), e.g. setup/bench-packages.txt for the
+# peer renderers of data_scripts/stream_vs_dfb.sh; default
+# setup/debian-packages.txt.
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
+list=${1:-$here/debian-packages.txt}
+if [ ! -r "$list" ]; then
+    echo "install-deps: $list: no such package list" >&2
+    exit 2
+fi
 missing=""
-for p in $(grep -v '^#' "$here/debian-packages.txt"); do
+for p in $(grep -v '^#' "$list"); do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" ||
         missing="$missing $p"
 done
