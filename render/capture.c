@@ -22,7 +22,7 @@ struct oit_capture {
     oit_capture_kind backend;
     int K;
     float epsilon; /* early termination threshold; 0: exact */
-    GLuint fill_prog, resolve_prog, begin_prog, end_prog;
+    GLuint fill_prog, resolve_prog, end_prog;
     /* Tiled batches (tile-local slots: wide parts, or a slot budget below
      * the full frame), built on first use: [0] sorts up to 16, [1] up to
      * OIT_CAPTURE_MAX_LAYERS. */
@@ -48,17 +48,15 @@ static oit_status build_programs(oit_capture *c, oit_error *err)
 {
     int stencil = c->backend == OIT_CAPTURE_STENCIL;
     const char *vs[] = {oit_glsl_version, oit_glsl_vertex, NULL};
-    const char *fs[] = {oit_glsl_version, oit_glsl_fragment_gen,
+    const char *fs[] = {oit_glsl_version, oit_glsl_fragment_gen, oit_glsl_state_io,
                         stencil ? oit_capture_stencil_fs : oit_capture_array_fs, NULL};
     const char *rcs[] = {oit_glsl_version, stencil ? "#define OIT_STENCIL 1\n" : "",
-                         oit_glsl_composite, oit_capture_resolve_cs, NULL};
-    const char *bcs[] = {oit_glsl_version, oit_glsl_composite, oit_capture_begin_cs, NULL};
-    const char *ecs[] = {oit_glsl_version, oit_glsl_composite, oit_capture_end_cs, NULL};
+                         oit_glsl_composite, oit_glsl_state_io, oit_capture_resolve_cs, NULL};
+    const char *ecs[] = {oit_glsl_version, oit_glsl_composite, oit_glsl_state_io,
+                         oit_capture_end_cs, NULL};
     oit_status s = oit_gl_program_graphics("capture fill", vs, fs, &c->fill_prog, err);
     if (s == OIT_OK)
         s = oit_gl_program_compute("capture resolve", rcs, &c->resolve_prog, err);
-    if (s == OIT_OK)
-        s = oit_gl_program_compute("capture begin", bcs, &c->begin_prog, err);
     if (s == OIT_OK)
         s = oit_gl_program_compute("capture end", ecs, &c->end_prog, err);
     return s;
@@ -66,10 +64,10 @@ static oit_status build_programs(oit_capture *c, oit_error *err)
 
 static void release(oit_capture *c)
 {
-    GLuint progs[8] = {c->fill_prog,          c->resolve_prog,         c->begin_prog,
-                       c->end_prog,           c->tile_fill_prog[0],    c->tile_fill_prog[1],
-                       c->tile_resolve_prog[0], c->tile_resolve_prog[1]};
-    for (int i = 0; i < 8; i++)
+    GLuint progs[7] = {c->fill_prog,          c->resolve_prog,           c->end_prog,
+                       c->tile_fill_prog[0],  c->tile_fill_prog[1],      c->tile_resolve_prog[0],
+                       c->tile_resolve_prog[1]};
+    for (int i = 0; i < 7; i++)
         glDeleteProgram(progs[i]);
     glDeleteFramebuffers(1, &c->fbo);
     glDeleteBuffers(BUF_N, c->buf);
@@ -194,14 +192,15 @@ static oit_status allocate(oit_capture *c, const oit_view *v, oit_error *err)
     uint64_t full = pixels * (uint64_t)c->K * 16, row = (uint64_t)v->width * c->K * 16;
     c->tiled = array && c->slot_budget && full > c->slot_budget;
     uint64_t slots = !c->tiled ? full : c->slot_budget > row ? c->slot_budget : row;
-    oit_status s = oit_gl_check_ssbo_size(array && slots > pixels * 48 ? slots : pixels * 48,
+    uint64_t state = pixels * oit_state_bytes(v->shading.mode == OIT_SHADING_TRANSLUCENT);
+    oit_status s = oit_gl_check_ssbo_size(array && slots > state ? slots : state,
                                           "capture: the frame's largest buffer", err);
     if (s == OIT_OK)
         s = reserve(c, BUF_COUNTS, pixels * 4, err);
     if (s == OIT_OK && array)
         s = reserve(c, BUF_SLOTS, slots, err);
     if (s == OIT_OK)
-        s = reserve(c, BUF_STATE, pixels * 48, err);
+        s = reserve(c, BUF_STATE, state, err);
     /* The counted backend's output passes through its fragment store, idle
      * at the frame's end (read_output), as the tiled slots do. */
     if (s == OIT_OK && !c->tiled && c->backend != OIT_CAPTURE_COUNTED)
@@ -233,8 +232,8 @@ static void apply_epsilon(oit_capture *c)
 
 static void set_uniforms(oit_capture *c)
 {
-    GLuint progs[4] = {c->fill_prog, c->resolve_prog, c->begin_prog, c->end_prog};
-    for (int i = 0; i < 4; i++) {
+    GLuint progs[3] = {c->fill_prog, c->resolve_prog, c->end_prog};
+    for (int i = 0; i < 3; i++) {
         oit_glsl_set_view(progs[i], &c->view);
         glProgramUniform1i(progs[i], glGetUniformLocation(progs[i], "u_K"), c->K);
         glProgramUniform1ui(progs[i], glGetUniformLocation(progs[i], "u_count"),
@@ -300,8 +299,12 @@ oit_status oit_capture_begin(oit_capture *c, const oit_view *view, oit_error *er
      * caller issued after oit_capture_end_gpu (liboit's blend): order those
      * reads before this frame's first shader write to it. */
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    glUseProgram(c->begin_prog);
-    glDispatchCompute(oit_gl_groups((uint64_t)view->width * view->height, 64), 1, 1);
+    /* All zero is the state of a pixel nothing has reached (frag_glsl.h). */
+    uint64_t pixels = (uint64_t)view->width * view->height;
+    glClearNamedBufferSubData(c->buf[BUF_STATE], GL_R32UI, 0,
+                              (GLsizeiptr)(pixels * oit_state_bytes(c->view.shading.mode ==
+                                                                    OIT_SHADING_TRANSLUCENT)),
+                              GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     s = oit_gl_check("capture: begin", err);
     c->in_frame = s == OIT_OK;
@@ -416,11 +419,13 @@ static oit_status tiled_programs(oit_capture *c, int i, oit_error *err)
 {
     if (!c->tile_fill_prog[i]) {
         const char *vs[] = {oit_glsl_version, oit_glsl_vertex, NULL};
-        const char *fs[] = {oit_glsl_version, oit_glsl_fragment_gen, oit_capture_wide_fs, NULL};
+        const char *fs[] = {oit_glsl_version, oit_glsl_fragment_gen, oit_glsl_state_io,
+                            oit_capture_wide_fs, NULL};
         const char *rcs[] = {oit_glsl_version,
                              i ? "#define OIT_WIDE " OIT_GLSL_STR(OIT_CAPTURE_MAX_LAYERS) "\n"
                                : "#define OIT_WIDE 16\n",
-                             oit_glsl_composite, oit_capture_resolve_cs, NULL};
+                             oit_glsl_composite, oit_glsl_state_io, oit_capture_resolve_cs,
+                             NULL};
         oit_status s = oit_gl_program_graphics("capture tiled fill", vs, fs,
                                                &c->tile_fill_prog[i], err);
         if (s == OIT_OK)

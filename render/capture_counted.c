@@ -10,11 +10,14 @@ oit_status oit_counted_init(oit_counted *k, oit_error *err)
 {
     memset(k, 0, sizeof *k);
     const char *vs[] = {oit_glsl_version, oit_glsl_vertex, NULL};
-    const char *cfs[] = {oit_glsl_version, oit_glsl_fragment_gen, oit_capture_counted_count_fs,
+    const char *cfs[] = {oit_glsl_version, oit_glsl_fragment_gen, oit_glsl_state_io,
+                         oit_capture_counted_count_fs,
                          NULL};
-    const char *sfs[] = {oit_glsl_version, oit_glsl_fragment_gen, oit_capture_counted_store_fs,
+    const char *sfs[] = {oit_glsl_version, oit_glsl_fragment_gen, oit_glsl_state_io,
+                         oit_capture_counted_store_fs,
                          NULL};
-    const char *rcs[] = {oit_glsl_version, oit_glsl_composite, oit_capture_counted_resolve_cs,
+    const char *rcs[] = {oit_glsl_version, oit_glsl_composite, oit_glsl_state_io,
+                         oit_capture_counted_resolve_cs,
                          oit_glsl_segment_composite, oit_capture_counted_resolve_main, NULL};
     oit_status s = oit_gl_program_graphics("counted capture count", vs, cfs, &k->count_prog,
                                            err);

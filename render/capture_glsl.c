@@ -12,14 +12,12 @@
  * u_epsilon in every channel can gain at most epsilon from anything behind
  * it, so its later fragments are dropped before they take a slot. The fill
  * stage cannot include oit_glsl_composite (its uniforms clash with the
- * fragment generator's), so it declares only the state struct. */
+ * fragment generator's); its program puts oit_glsl_state_io before this. */
 #define SATURATED                                                           \
-    OIT_GLSL_STATE_STRUCT                                                   \
-    "layout(std430, binding = 6) readonly buffer State { oit_state carried[]; };\n" \
     "uniform float u_epsilon;\n"                                          \
     "bool oit_saturated(uint p) {\n"                                      \
     "    if (u_epsilon <= 0.0) return false;\n"                           \
-    "    vec3 T = carried[p].T;\n"                                        \
+    "    vec3 T = oit_state_T(p);\n"                                      \
     "    return max(T.r, max(T.g, T.b)) < u_epsilon;\n"                   \
     "}\n"
 
@@ -70,7 +68,6 @@ const char oit_capture_resolve_cs[] =
     COUNT_AND_FLAG
     "layout(location = 11) uniform ivec2 u_size;\n"
     "layout(location = 12) uniform ivec4 u_rect;\n"
-    "layout(std430, binding = 6) buffer State { oit_state states[]; };\n"
     "#if defined(OIT_STENCIL)\n"
     "layout(binding = 0) uniform usampler2DMS u_samples;\n"
     "#define LOAD(px, p, i) texelFetch(u_samples, px, int(i))\n"
@@ -101,41 +98,43 @@ const char oit_capture_resolve_cs[] =
     "        uvec4 x = LOAD(px, p, i);\n"
     "        OIT_SORTED_INSERT(f, i, x)\n"
     "    }\n"
-    "    oit_state s = states[p];\n"
+    "    oit_state s = oit_state_load(p);\n"
     "    for (uint i = 0u; i < m; i++) oit_composite(s, f[i]);\n"
     "    s.nfrag += n;\n"
-    "    states[p] = s;\n"
+    "    oit_state_store(p, s);\n"
     "    counts[p] = 0u;\n"
-    "}\n";
-
-const char oit_capture_begin_cs[] =
-    "layout(local_size_x = 64) in;\n"
-    "layout(std430, binding = 6) writeonly buffer State { oit_state states[]; };\n"
-    "layout(location = 13) uniform uint u_count;\n"
-    "void main() {\n"
-    "    uint p = gl_GlobalInvocationID.x;\n"
-    "    if (p < u_count) states[p] = oit_state_begin();\n"
     "}\n";
 
 /* Pixels [u_first, u_first + u_count): their totals, and (u_out) their
  * final colour at out_rgba[0..u_count), so a frame's output can be read in
- * bands through a buffer smaller than the frame. */
+ * bands through a buffer smaller than the frame. The totals are summed in
+ * the workgroup first: a million invocations adding to one word serialise
+ * on it. */
 const char oit_capture_end_cs[] =
     "layout(local_size_x = 64) in;\n"
     COUNT_AND_FLAG
-    "layout(std430, binding = 6) readonly buffer State { oit_state states[]; };\n"
     "layout(std430, binding = 4) writeonly buffer Out { vec4 out_rgba[]; };\n"
     "layout(location = 13) uniform uint u_count;\n"
     "uniform uint u_first;\n"
     "uniform int u_out;\n"
+    "shared uint g_lo, g_hi, g_max;\n"
     "void main() {\n"
+    "    if (gl_LocalInvocationIndex == 0u) { g_lo = 0u; g_hi = 0u; g_max = 0u; }\n"
+    "    barrier();\n"
     "    uint i = gl_GlobalInvocationID.x;\n"
-    "    if (i >= u_count) return;\n"
-    "    oit_state s = states[u_first + i];\n"
-    "    if (u_out != 0) out_rgba[i] = oit_state_final(s);\n"
-    "    atomicMax(f_max, s.nfrag);\n"
-    "    uint old = atomicAdd(f_lo, s.nfrag);\n"
-    "    if (old + s.nfrag < old) atomicAdd(f_hi, 1u);\n"
+    "    if (i < u_count) {\n"
+    "        oit_state s = oit_state_load(u_first + i);\n"
+    "        if (u_out != 0) out_rgba[i] = oit_state_final(s);\n"
+    "        atomicMax(g_max, s.nfrag);\n"
+    "        uint old = atomicAdd(g_lo, s.nfrag);\n"
+    "        if (old + s.nfrag < old) atomicAdd(g_hi, 1u);\n"
+    "    }\n"
+    "    barrier();\n"
+    "    if (gl_LocalInvocationIndex == 0u && (g_lo | g_hi) != 0u) {\n"
+    "        atomicMax(f_max, g_max);\n"
+    "        uint old = atomicAdd(f_lo, g_lo);\n"
+    "        atomicAdd(f_hi, g_hi + (old + g_lo < old ? 1u : 0u));\n"
+    "    }\n"
     "}\n";
 
 const char oit_capture_fullscreen_vs[] =
@@ -176,7 +175,7 @@ const char oit_capture_counted_resolve_cs[] =
     "layout(location = 12) uniform ivec4 u_rect;\n"
     "layout(std430, binding = 2) readonly buffer Offsets { uint offsets[]; };\n"
     "layout(std430, binding = 3) buffer Frags { uvec4 frags[]; };\n"
-    "layout(std430, binding = 6) buffer State { oit_state states[]; };\n";
+    ;
 
 const char oit_capture_counted_resolve_main[] =
     "void main() {\n"
@@ -185,8 +184,8 @@ const char oit_capture_counted_resolve_main[] =
     "    uint p = uint(px.y * u_size.x + px.x);\n"
     "    uint n = offsets[p + 1u] - offsets[p];\n"
     "    if (n == 0u) return;\n"
-    "    oit_state s = states[p];\n"
+    "    oit_state s = oit_state_load(p);\n"
     "    oit_segment_composite(s, offsets[p], n);\n"
     "    s.nfrag += n;\n"
-    "    states[p] = s;\n"
+    "    oit_state_store(p, s);\n"
     "}\n";

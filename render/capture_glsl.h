@@ -18,7 +18,6 @@ extern const char oit_capture_stencil_fs[];
 /* Resolve over the batch rect; prefix "#define OIT_STENCIL 1" for samples,
  * "#define OIT_WIDE N" for a wide tile (u_rect is the tile, N >= u_W). */
 extern const char oit_capture_resolve_cs[];
-extern const char oit_capture_begin_cs[];
 extern const char oit_capture_end_cs[];
 /* Full-screen triangle for the stencil initialisation. */
 extern const char oit_capture_fullscreen_vs[];

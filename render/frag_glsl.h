@@ -97,10 +97,31 @@ extern const char oit_glsl_segment_composite[];
  * fragments in longer ones, the counted capture weighs them. */
 #define OIT_GLSL_SEGMENT_LOCAL 32
 
-/* The per-pixel state carried across batches (std430): one declaration for
- * every shader that reads or writes it. */
+/* The per-pixel state carried across batches, in registers. Depth peeling
+ * keeps its own buffer of these (std430, 48 bytes). */
 #define OIT_GLSL_STATE_STRUCT \
-    "struct oit_state { vec3 C; float t_prev; vec3 T; int nest; vec3 medium; uint nfrag; };\n"
+    "#ifndef OIT_STATE_STRUCT\n#define OIT_STATE_STRUCT 1\n" \
+    "struct oit_state { vec3 C; float t_prev; vec3 T; int nest; vec3 medium; uint nfrag; };\n" \
+    "#endif\n"
+
+/* The capture's state buffer, `uint state_words[]`, holds a pixel in
+ * oit_state_words(mode) words: transparent shading carries C, one T (its
+ * channels are equal: alpha is one number) and the fragment count, 20
+ * bytes; translucent all of oit_state, 48. Floats are stored as their bits,
+ * so carrying the state across batches changes no bit of the result, and T
+ * as its bits XOR those of 1.0, so an all-zero buffer is the state of a
+ * pixel nothing has reached (C = 0, T = 1): a frame starts with a buffer
+ * clear, not a pass over every pixel. After `uniform int u_mode` (1:
+ * translucent), it declares oit_state and the buffer (binding 6) and
+ * defines oit_state_load(p), oit_state_store(p, s), oit_state_T(p). */
+extern const char oit_glsl_state_io[];
+#define OIT_STATE_WORDS_TRANSPARENT 5u
+#define OIT_STATE_WORDS_TRANSLUCENT 12u
+/* Bytes a pixel's state takes in the capture's state buffer. */
+static inline unsigned oit_state_bytes(int translucent)
+{
+    return 4u * (translucent ? OIT_STATE_WORDS_TRANSLUCENT : OIT_STATE_WORDS_TRANSPARENT);
+}
 
 /* Sets the view and shading uniforms of a program built from the pieces
  * above (uniforms that a program does not use are skipped). */

@@ -25,8 +25,6 @@ struct oit_saturation {
  * so its float bits order like the floats and atomicMax on uint works. */
 static const char tiles_cs[] =
     "layout(local_size_x = 16, local_size_y = 16) in;\n"
-    OIT_GLSL_STATE_STRUCT
-    "layout(std430, binding = 6) readonly buffer State { oit_state states[]; };\n"
     "layout(std430, binding = 7) writeonly buffer Tiles { uint tiles[]; };\n"
     "layout(location = 0) uniform ivec2 u_size;\n"
     "layout(location = 1) uniform ivec3 u_tile0;\n" /* x, y of the first tile; tiles a row */
@@ -37,7 +35,7 @@ static const char tiles_cs[] =
     "    ivec2 tile = ivec2(gl_WorkGroupID.xy) + u_tile0.xy;\n"
     "    ivec2 px = tile * 16 + ivec2(gl_LocalInvocationID.xy);\n"
     "    if (px.x < u_size.x && px.y < u_size.y) {\n"
-    "        vec3 T = states[px.y * u_size.x + px.x].T;\n"
+    "        vec3 T = oit_state_T(uint(px.y * u_size.x + px.x));\n"
     "        atomicMax(m, floatBitsToUint(max(T.x, max(T.y, T.z))));\n"
     "    }\n"
     "    barrier();\n"
@@ -50,7 +48,8 @@ oit_status oit_saturation_create(oit_saturation **out, oit_error *err)
     oit_saturation *s = calloc(1, sizeof *s);
     if (!s)
         return oit_error_set(err, OIT_ERR_NOMEM, "saturation tiles: out of memory");
-    const char *cs[] = {oit_glsl_version, tiles_cs, NULL};
+    const char *cs[] = {oit_glsl_version, "uniform int u_mode;\n", oit_glsl_state_io, tiles_cs,
+                        NULL};
     oit_status st = oit_gl_program_compute("saturation tiles", cs, &s->prog, err);
     if (st != OIT_OK) {
         oit_saturation_destroy(s);
@@ -104,8 +103,10 @@ static oit_status make_readback(oit_saturation *s, uint64_t bytes, oit_error *er
     return OIT_OK;
 }
 
-oit_status oit_saturation_begin(oit_saturation *s, int w, int h, oit_error *err)
+oit_status oit_saturation_begin(oit_saturation *s, int w, int h, int translucent,
+                                 oit_error *err)
 {
+    glProgramUniform1i(s->prog, glGetUniformLocation(s->prog, "u_mode"), translucent ? 1 : 0);
     int T = OIT_SATURATION_TILE;
     s->w = w, s->h = h, s->tx = (w + T - 1) / T, s->ty = (h + T - 1) / T;
     size_t n = (size_t)s->tx * s->ty;

@@ -26,10 +26,12 @@ typedef struct oit_saturation oit_saturation;
 oit_status oit_saturation_create(oit_saturation **out, oit_error *err);
 void oit_saturation_destroy(oit_saturation *s);
 
-/* Starts a frame of w x h pixels: no tile saturated. */
-oit_status oit_saturation_begin(oit_saturation *s, int w, int h, oit_error *err);
-/* After a batch was composited into state (w*h oit_state records, GL rows
- * bottom first): recomputes the tiles under rect ({x0, y0, x1, y1}, row 0 at
+/* Starts a frame of w x h pixels, in the shading whose state layout the
+ * capture's buffer has (translucent or not: frag_glsl.h): no tile saturated. */
+oit_status oit_saturation_begin(oit_saturation *s, int w, int h, int translucent,
+                                oit_error *err);
+/* After a batch was composited into state (the capture's state buffer of
+ * w*h pixels, GL rows bottom first): recomputes the tiles under rect ({x0, y0, x1, y1}, row 0 at
  * the top, exclusive ends) and starts a read-back when none is in flight. */
 oit_status oit_saturation_update(oit_saturation *s, unsigned state, const int rect[4],
                                  oit_error *err);

@@ -130,14 +130,13 @@ static oit_status camera_from_projection(const float *m, double aspect, oit_came
 /* ---- renderer ---------------------------------------------------------- */
 
 static const char blend_fs[] =
-    "layout(std430, binding = 6) readonly buffer State { oit_state states[]; };\n"
     "layout(location = 11) uniform ivec2 u_size;\n"
     "layout(location = 12) uniform ivec2 u_origin;\n"
     "layout(location = 0, index = 0) out vec4 o_colour;\n"
     "layout(location = 0, index = 1) out vec4 o_transmit;\n"
     "void main() {\n"
     "    ivec2 px = ivec2(gl_FragCoord.xy) - u_origin;\n"
-    "    oit_state s = states[px.y * u_size.x + px.x];\n"
+    "    oit_state s = oit_state_load(uint(px.y * u_size.x + px.x));\n"
     "    float t = (s.T.r + s.T.g + s.T.b) / 3.0;\n"
     "    o_colour = vec4(s.C, 1.0 - t);\n"
     "    o_transmit = vec4(s.T, t);\n"
@@ -175,7 +174,7 @@ oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out
                              "[0, 1)", e);
     }
     const char *vs[] = {oit_glsl_version, oit_capture_fullscreen_vs, NULL};
-    const char *fs[] = {oit_glsl_version, oit_glsl_composite, blend_fs, NULL};
+    const char *fs[] = {oit_glsl_version, oit_glsl_composite, oit_glsl_state_io, blend_fs, NULL};
     oit_status st = oit_gl_program_graphics("liboit blend", vs, fs, &r->blend_prog, err);
     if (st == OIT_OK) {
         glCreateVertexArrays(1, &r->vao);
@@ -282,7 +281,8 @@ static void gl_restore(const gl_saved *g)
 }
 
 /* dst = C + T * dst through dual-source blending, one fragment per pixel. */
-static void blend_over(const oit_renderer *r, const oit_frame *f, GLuint state)
+static void blend_over(const oit_renderer *r, const oit_frame *f, const oit_view *v,
+                       GLuint state)
 {
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, f->framebuffer);
     glViewport(f->viewport_x, f->viewport_y, f->viewport_width, f->viewport_height);
@@ -295,6 +295,9 @@ static void blend_over(const oit_renderer *r, const oit_frame *f, GLuint state)
     glUseProgram(r->blend_prog);
     glProgramUniform2i(r->blend_prog, OIT_LOC_SIZE, f->viewport_width, f->viewport_height);
     glProgramUniform2i(r->blend_prog, OIT_LOC_RECT, f->viewport_x, f->viewport_y);
+    /* The state buffer's layout follows the shading (frag_glsl.h). */
+    glProgramUniform1i(r->blend_prog, glGetUniformLocation(r->blend_prog, "u_mode"),
+                       v->shading.mode == OIT_SHADING_TRANSLUCENT);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_STATE, state);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glBindVertexArray(r->vao);
@@ -337,7 +340,7 @@ oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame 
     if (st == OIT_OK)
         st = oit_streamer_render_gpu(r->streamer, &view, &state, &fs, &ss, err);
     if (st == OIT_OK) {
-        blend_over(r, frame, state);
+        blend_over(r, frame, &view, state);
         st = oit_gl_check("oit_renderer_draw: blend", err);
     }
     gl_restore(&saved);

@@ -406,7 +406,8 @@ static oit_status capture_frame(oit_streamer *s, const oit_view *view, oit_packi
     ss->parts_culled = oit_partfile_part_count(s->pf) - count;
     ss->pack_ms = oit_time_ms() - t1;
     if (st == OIT_OK && s->saturation)
-        st = oit_saturation_begin(s->saturation, view->width, view->height, err);
+        st = oit_saturation_begin(s->saturation, view->width, view->height,
+                                  view->shading.mode == OIT_SHADING_TRANSLUCENT, err);
     if (st == OIT_OK)
         st = draw_packs(s, pk, ss, err);
     if (st != OIT_OK) {
