@@ -8,10 +8,13 @@
 
 #include <string.h>
 
-/* The pass-2 totals (overflowed pixels, their fragments as 64 bits) at a
- * binding no other program of a pack uses while they are live. */
-#define TOTALS_BLOCK \
-    "layout(std430, binding = 7) buffer Spill { uint spill_pixels; uint spill_lo; uint spill_hi; };\n"
+/* The pass-2 totals at a binding no other program of a pack uses while
+ * they are live: overflowed pixels, their fragments as 64 bits, and the GL
+ * rect that holds them (x0, y0, x1, y1; exclusive ends), so that pass 2
+ * rasterizes only there. */
+#define TOTALS_BLOCK                                                        \
+    "layout(std430, binding = 7) buffer Spill { uint spill_pixels; uint spill_lo; "    \
+    "uint spill_hi; uint pad; uint box[4]; };\n"
 #define RECT_INDEX                                                          \
     "uint oit_rect_index(ivec2 px, ivec4 r) {\n"                          \
     "    return uint((px.y - r.y) * (r.z - r.x) + (px.x - r.x));\n"       \
@@ -30,7 +33,12 @@ static const char fill_fs[] =
     "    uint q = oit_rect_index(ivec2(gl_FragCoord.xy), u_tile);\n"
     "    uint c = atomicAdd(counts[p], 1u);\n"
     "    if (c < uint(u_W)) slots[q * uint(u_W) + c] = oit_fragment();\n"
-    "    else if (c == uint(u_W)) atomicAdd(spill_pixels, 1u);\n"
+    "    else if (c == uint(u_W)) {\n"
+    "        atomicAdd(spill_pixels, 1u);\n"
+    "        uvec2 px = uvec2(gl_FragCoord.xy);\n"
+    "        atomicMin(box[0], px.x); atomicMin(box[1], px.y);\n"
+    "        atomicMax(box[2], px.x + 1u); atomicMax(box[3], px.y + 1u);\n"
+    "    }\n"
     "}\n";
 
 /* Pass 1's resolve: pixels of at most u_W fragments, from their slots. An
@@ -156,7 +164,7 @@ oit_status oit_firstk_init(oit_firstk *k, int K, oit_error *err)
     oit_status s = build(k, err);
     if (s == OIT_OK) {
         glCreateBuffers(1, &k->totals);
-        glNamedBufferData(k->totals, 16, NULL, GL_DYNAMIC_COPY);
+        glNamedBufferData(k->totals, 32, NULL, GL_DYNAMIC_COPY);
         s = oit_gl_check("first-k capture: set-up", err);
     }
     return s;
@@ -190,7 +198,7 @@ void oit_firstk_set_epsilon(oit_firstk *k, float epsilon)
 
 uint64_t oit_firstk_bytes(const oit_firstk *k)
 {
-    return k->store_cap + k->table_cap + 16;
+    return k->store_cap + k->table_cap + 32;
 }
 
 static uint64_t rect_pixels(const int r[4])
@@ -233,17 +241,18 @@ static void bind_frame(const oit_firstk *k, const oit_counted_frame *f)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OFFSETS, k->table);
 }
 
+/* Zero counts, an empty box. */
 static void clear_totals(const oit_firstk *k)
 {
-    static const GLuint zero = 0;
-    glClearNamedBufferData(k->totals, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    static const GLuint start[8] = {0, 0, 0, 0, 0xffffffffu, 0xffffffffu, 0, 0};
+    glNamedBufferSubData(k->totals, 0, sizeof start, start);
 }
 
-/* Pass 1 over r with W slots a pixel, and its resolve; *spilled receives the
- * pixels that got more than W (a read-back: whether pass 2 is needed). */
+/* Pass 1 over r with W slots a pixel, and its resolve; t receives the
+ * totals (a read-back: whether pass 2 is needed, and where). */
 static oit_status first_pass(oit_firstk *k, const oit_counted_frame *f,
                              const oit_gpu_mesh *const *meshes, int n, const int r[4], int W,
-                             GLuint *spilled, oit_error *err)
+                             GLuint t[8], oit_error *err)
 {
     oit_status s = oit_gl_buffer_reserve(&k->store, &k->store_cap, rect_pixels(r) * 16 * W,
                                          "first-k capture slots", err);
@@ -257,7 +266,7 @@ static oit_status first_pass(oit_firstk *k, const oit_counted_frame *f,
     oit_glsl_draw_scissored(f->fbo, f->width, f->height, k->fill_prog, f->draws, meshes, n, r);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     dispatch_rect(k->resolve_prog, r);
-    glGetNamedBufferSubData(k->totals, 0, 4, spilled);
+    glGetNamedBufferSubData(k->totals, 0, 32, t);
     return oit_gl_check("first-k capture: pass 1", err);
 }
 
@@ -341,11 +350,17 @@ oit_status oit_firstk_batch(oit_firstk *k, const oit_counted_frame *f,
         return oit_error_set(err, OIT_ERR_ARGUMENT, "first-k capture: a %dx%d rectangle "
                              "leaves fewer than 2 slots a pixel in the slot budget",
                              r[2] - r[0], r[3] - r[1]);
-    GLuint spilled = 0;
-    oit_status s = first_pass(k, f, meshes, n, r, W, &spilled, err);
-    if (s != OIT_OK || spilled == 0)
+    GLuint t[8] = {0};
+    oit_status s = first_pass(k, f, meshes, n, r, W, t, err);
+    if (s != OIT_OK || t[0] == 0)
         return s;
-    k->second_pixels += spilled;
+    k->second_pixels += t[0];
     k->second_packs++;
-    return second_passes(k, f, meshes, n, r, W, err);
+    /* the overflowed pixels' box, within r (it is, unless GL misbehaved) */
+    int box[4] = {(int)t[4] > r[0] ? (int)t[4] : r[0], (int)t[5] > r[1] ? (int)t[5] : r[1],
+                  (int)t[6] < r[2] ? (int)t[6] : r[2], (int)t[7] < r[3] ? (int)t[7] : r[3]};
+    if (box[2] <= box[0] || box[3] <= box[1])
+        return oit_error_set(err, OIT_ERR_GL, "first-k capture: %u overflowed pixels outside "
+                             "the pack's rectangle", t[0]);
+    return second_passes(k, f, meshes, n, box, W, err);
 }
