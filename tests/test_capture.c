@@ -264,6 +264,7 @@ typedef struct firstk_case {
     uint64_t slot_budget;   /* 0: none */
     int W;                  /* the slots the capture must pick (0: counted fallback) */
     int min_draws;          /* the geometry draws the frame must at least make */
+    int tiny;               /* 1: every other quad covers only the 4 centre pixels */
 } firstk_case;
 
 static void test_firstk(const firstk_case *fc)
@@ -277,6 +278,8 @@ static void test_firstk(const firstk_case *fc)
     oit_capture_set_slot_budget(c, fc->slot_budget);
     quad_spec q[24];
     deep_scene(q);
+    for (int i = 0; fc->tiny && i < 24; i += 2)
+        q[i].half = 0.03f * -q[i].z;
     oit_view v;
     scene_view(&v, 48, 40, fc->mode);
     int start[5] = {0};
@@ -320,16 +323,19 @@ static void test_firstk_all(void)
 {
     const uint64_t two_slots = 48u * 40u * 16u * 2u; /* W = 2 over the frame */
     const firstk_case cases[] = {
-        {"deep", OIT_SHADING_TRANSPARENT, 24, 4, 1, 0, 4, 2},
-        {"deep K=16", OIT_SHADING_TRANSPARENT, 24, 16, 1, 0, 16, 2},
-        {"deep batches", OIT_SHADING_TRANSPARENT, 24, 4, 3, 0, 4, 4},
-        {"deep translucent", OIT_SHADING_TRANSLUCENT, 24, 4, 4, 0, 4, 5},
+        {"deep", OIT_SHADING_TRANSPARENT, 24, 4, 1, 0, 4, 2, 0},
+        {"deep K=16", OIT_SHADING_TRANSPARENT, 24, 16, 1, 0, 16, 2, 0},
+        {"deep batches", OIT_SHADING_TRANSPARENT, 24, 4, 3, 0, 4, 4, 0},
+        {"deep translucent", OIT_SHADING_TRANSLUCENT, 24, 4, 4, 0, 4, 5, 0},
         /* the overflowed fragments exceed the budget: pass 2 in bands */
-        {"bands", OIT_SHADING_TRANSPARENT, 24, 8, 1, two_slots, 2, 4},
-        {"shallow", OIT_SHADING_TRANSPARENT, 4, 4, 1, 0, 4, 1},
-        {"shallow batches", OIT_SHADING_TRANSLUCENT, 12, 8, 3, 0, 8, 3},
+        {"bands", OIT_SHADING_TRANSPARENT, 24, 8, 1, two_slots, 2, 4, 0},
+        /* only the 4 centre pixels get more than 16 (24): a second pass
+         * for 4 pixels */
+        {"4 pixels over", OIT_SHADING_TRANSPARENT, 24, 16, 1, 0, 16, 2, 1},
+        {"shallow", OIT_SHADING_TRANSPARENT, 4, 4, 1, 0, 4, 1, 0},
+        {"shallow batches", OIT_SHADING_TRANSLUCENT, 12, 8, 3, 0, 8, 3, 0},
         /* fewer than 2 slots fit: counted packs, still exact */
-        {"fallback", OIT_SHADING_TRANSPARENT, 24, 8, 2, two_slots / 2, 0, 4},
+        {"fallback", OIT_SHADING_TRANSPARENT, 24, 8, 2, two_slots / 2, 0, 4, 0},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
         test_firstk(&cases[i]);
