@@ -17,8 +17,8 @@
  * does (registers up to 32, heap beyond) and composites it. Every pixel is
  * thus composited exactly once per pack, behind the packs before it, and
  * nothing is lost. Pass 2 covers only the box of the overflowed pixels,
- * which pass 1 measures. The store reuses the slots' buffer (idle by then); where
- * the overflowed pixels of the rectangle need more than the slot budget,
+ * which pass 1 measures. Its store reuses the slots' buffer (idle by
+ * then); where the box's overflowed pixels need more than the slot budget,
  * pass 2 runs over bands of rows that fit (one draw each), and a single row
  * that needs more grows the store to what it needs.
  *
