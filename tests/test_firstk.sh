@@ -16,6 +16,14 @@
 set -u
 : "${OIT_BIN:?OIT_BIN must name the tools folder}"
 : "${OIT_TEST_TMP:?OIT_TEST_TMP must name a scratch folder}"
+# Under the sanitizer build, LeakSanitizer's exit scan crashed ("Tracer
+# caught signal 11") on the 4-quad first-k run, every time, after the run had
+# passed: its log showed a main-thread DTLS range of 0xd9b-0x1800001e9d, the
+# runtime's known misreading of glibc's dynamic TLS (google/sanitizers#1322,
+# allocation-layout dependent). Its workaround leaves dynamic TLS out of the
+# scan; leaks everywhere else are still reported. No effect without ASan.
+ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}intercept_tls_get_addr=0"
+export ASAN_OPTIONS
 S="$OIT_BIN/oitstream"
 T="$OIT_TEST_TMP/firstk"
 rm -rf "$T" && mkdir -p "$T" || exit 1
