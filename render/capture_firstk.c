@@ -254,8 +254,10 @@ static oit_status first_pass(oit_firstk *k, const oit_counted_frame *f,
                              const oit_gpu_mesh *const *meshes, int n, const int r[4], int W,
                              GLuint t[8], oit_error *err)
 {
-    oit_status s = oit_gl_buffer_reserve(&k->store, &k->store_cap, rect_pixels(r) * 16 * W,
-                                         "first-k capture slots", err);
+    uint64_t bytes = rect_pixels(r) * 16 * (uint64_t)W;
+    oit_status s = oit_gl_check_ssbo_size(bytes, "first-k capture: a pack's slots", err);
+    if (s == OIT_OK)
+        s = oit_gl_buffer_reserve(&k->store, &k->store_cap, bytes, "first-k capture slots", err);
     if (s != OIT_OK)
         return s;
     clear_totals(k);
