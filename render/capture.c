@@ -8,6 +8,7 @@
 #include "render/capture.h"
 
 #include "render/capture_counted.h"
+#include "render/capture_firstk.h"
 #include "render/capture_glsl.h"
 #include "render/capture_stencil.h"
 #include "render/frag_glsl.h"
@@ -34,7 +35,8 @@ struct oit_capture {
     GLuint buf[BUF_N];
     uint64_t cap[BUF_N];
     oit_stencil_target stencil;
-    oit_counted counted; /* OIT_CAPTURE_COUNTED */
+    oit_counted counted; /* OIT_CAPTURE_COUNTED, and FIRSTK's packs too wide for it */
+    oit_firstk firstk;   /* OIT_CAPTURE_FIRSTK */
     oit_gpu_draws *draws; /* every geometry draw goes through it */
     uint64_t calls0;      /* its draw calls at the frame's begin */
     oit_view view;
@@ -43,6 +45,13 @@ struct oit_capture {
     uint64_t bytes_peak;
     double t0;
 };
+
+/* The backends whose packs are counted and stored (capture_counted.h), in
+ * every pack or in the packs too wide for first-K slots. */
+static int uses_counted(const oit_capture *c)
+{
+    return c->backend == OIT_CAPTURE_COUNTED || c->backend == OIT_CAPTURE_FIRSTK;
+}
 
 static oit_status build_programs(oit_capture *c, oit_error *err)
 {
@@ -73,8 +82,10 @@ static void release(oit_capture *c)
     glDeleteBuffers(BUF_N, c->buf);
     if (c->stencil.fbo)
         oit_stencil_target_release(&c->stencil);
-    if (c->backend == OIT_CAPTURE_COUNTED)
+    if (uses_counted(c))
         oit_counted_release(&c->counted);
+    if (c->backend == OIT_CAPTURE_FIRSTK)
+        oit_firstk_release(&c->firstk);
     oit_gpu_draws_destroy(c->draws);
     free(c);
 }
@@ -107,8 +118,10 @@ static oit_status make(oit_capture_kind backend, int K, oit_capture **out, oit_e
         s = build_programs(c, err);
     if (s == OIT_OK)
         s = oit_gpu_draws_create(&c->draws, err);
-    if (s == OIT_OK && backend == OIT_CAPTURE_COUNTED)
+    if (s == OIT_OK && uses_counted(c))
         s = oit_counted_init(&c->counted, err);
+    if (s == OIT_OK && backend == OIT_CAPTURE_FIRSTK)
+        s = oit_firstk_init(&c->firstk, K, err);
     if (s == OIT_OK) {
         glCreateFramebuffers(1, &c->fbo);
         s = oit_gl_check("capture: set-up", err);
@@ -129,7 +142,7 @@ oit_status oit_capture_create(oit_capture_kind kind, int K, oit_capture **out,
     *out = NULL;
     if (K < 2 || K > 16)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: K=%d is outside [2, 16]", K);
-    if (kind == OIT_CAPTURE_ARRAY || kind == OIT_CAPTURE_COUNTED)
+    if (kind == OIT_CAPTURE_ARRAY || kind == OIT_CAPTURE_COUNTED || kind == OIT_CAPTURE_FIRSTK)
         return make(kind, K, out, err);
     oit_capture *c = NULL;
     oit_status s = make(OIT_CAPTURE_STENCIL, K, &c, err);
@@ -159,8 +172,10 @@ oit_status oit_capture_create(oit_capture_kind kind, int K, oit_capture **out,
 static uint64_t held_bytes(const oit_capture *c)
 {
     uint64_t b = oit_stencil_target_bytes(&c->stencil);
-    if (c->backend == OIT_CAPTURE_COUNTED)
+    if (uses_counted(c))
         b += oit_counted_bytes(&c->counted);
+    if (c->backend == OIT_CAPTURE_FIRSTK)
+        b += oit_firstk_bytes(&c->firstk);
     for (int i = 0; i < BUF_N; i++)
         b += c->cap[i];
     return b;
@@ -201,9 +216,10 @@ static oit_status allocate(oit_capture *c, const oit_view *v, oit_error *err)
         s = reserve(c, BUF_SLOTS, slots, err);
     if (s == OIT_OK)
         s = reserve(c, BUF_STATE, state, err);
-    /* The counted backend's output passes through its fragment store, idle
-     * at the frame's end (read_output), as the tiled slots do. */
-    if (s == OIT_OK && !c->tiled && c->backend != OIT_CAPTURE_COUNTED)
+    /* The counted and first-K backends' output passes through their
+     * fragment store, idle at the frame's end (read_output), as the tiled
+     * slots do. */
+    if (s == OIT_OK && !c->tiled && !uses_counted(c))
         s = reserve(c, BUF_OUT, pixels * 16, err);
     c->out_buf = c->tiled ? c->buf[BUF_SLOTS] : c->buf[BUF_OUT];
     if (s == OIT_OK)
@@ -226,8 +242,10 @@ static void apply_epsilon(oit_capture *c)
 {
     glProgramUniform1f(c->fill_prog, glGetUniformLocation(c->fill_prog, "u_epsilon"),
                        c->epsilon);
-    if (c->backend == OIT_CAPTURE_COUNTED)
+    if (uses_counted(c))
         oit_counted_set_epsilon(&c->counted, c->epsilon);
+    if (c->backend == OIT_CAPTURE_FIRSTK)
+        oit_firstk_set_epsilon(&c->firstk, c->epsilon);
 }
 
 static void set_uniforms(oit_capture *c)
@@ -239,8 +257,10 @@ static void set_uniforms(oit_capture *c)
         glProgramUniform1ui(progs[i], glGetUniformLocation(progs[i], "u_count"),
                             (GLuint)((uint64_t)c->view.width * c->view.height));
     }
-    if (c->backend == OIT_CAPTURE_COUNTED)
+    if (uses_counted(c))
         oit_counted_set_view(&c->counted, &c->view);
+    if (c->backend == OIT_CAPTURE_FIRSTK)
+        oit_firstk_set_view(&c->firstk, &c->view);
     apply_epsilon(c);
 }
 
@@ -283,6 +303,8 @@ oit_status oit_capture_begin(oit_capture *c, const oit_view *view, oit_error *er
     oit_shading_resolve_defaults(&c->view.shading);
     c->batches = 0;
     c->counted.splits = 0;
+    c->firstk.second_pixels = 0;
+    c->firstk.second_packs = c->firstk.second_draws = 0;
     c->calls0 = oit_gpu_draws_calls(c->draws);
     c->in_frame = 0;
     oit_status s = allocate(c, &c->view, err);
@@ -389,13 +411,32 @@ static oit_status counted_batch(oit_capture *c, const oit_gpu_mesh *const *meshe
     return s;
 }
 
+/* The first-K backend's batch: W slots a pixel within the slot budget, or,
+ * where fewer than 2 fit, the counted capture's batch. */
+static oit_status firstk_batch(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
+                               const int r[4], oit_error *err)
+{
+    c->firstk.budget = c->slot_budget ? c->slot_budget : UINT64_MAX;
+    if (oit_firstk_slots(&c->firstk, r) == 0)
+        return counted_batch(c, meshes, n, r, err);
+    oit_counted_frame f = {c->fbo, c->buf[BUF_COUNTS], c->buf[BUF_STATE], c->view.width,
+                           c->view.height, c->draws};
+    oit_status s = oit_firstk_batch(&c->firstk, &f, meshes, n, r, err);
+    note_peak(c);
+    bind_buffers(c);
+    return s;
+}
+
 oit_status oit_capture_batch(oit_capture *c, const oit_gpu_mesh *const *meshes,
                              int n, const int rect[4], oit_error *err)
 {
-    if (c->backend == OIT_CAPTURE_COUNTED) {
+    if (uses_counted(c)) {
         int r[4] = {0}, empty = 1;
         oit_status s = batch_start(c, rect, n, r, &empty, err);
-        return s != OIT_OK || empty ? s : counted_batch(c, meshes, n, r, err);
+        if (s != OIT_OK || empty)
+            return s;
+        return c->backend == OIT_CAPTURE_FIRSTK ? firstk_batch(c, meshes, n, r, err)
+                                                 : counted_batch(c, meshes, n, r, err);
     }
     if (c->tiled)
         return oit_capture_batch_layers(c, meshes, n, rect, c->K, err);
@@ -487,7 +528,7 @@ static oit_status tiled_batch(oit_capture *c, const oit_gpu_mesh *const *meshes,
 oit_status oit_capture_batch_layers(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
                                     const int rect[4], int layers, oit_error *err)
 {
-    if ((layers <= c->K && !c->tiled) || c->backend == OIT_CAPTURE_COUNTED)
+    if ((layers <= c->K && !c->tiled) || uses_counted(c))
         return oit_capture_batch(c, meshes, n, rect, err);
     if (layers > OIT_CAPTURE_MAX_LAYERS)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: a batch of %d layers, more than "
@@ -521,20 +562,24 @@ static oit_status read_output(oit_capture *c, oit_image *out, GLuint totals[4], 
     if (s != OIT_OK)
         return s;
     size_t row = (size_t)w * 16;
-    if (c->backend == OIT_CAPTURE_COUNTED) {
-        s = oit_gl_buffer_reserve(&c->counted.frags, &c->counted.frags_cap, row,
-                                  "counted capture fragments", err);
+    int firstk = c->backend == OIT_CAPTURE_FIRSTK;
+    if (uses_counted(c)) {
+        s = firstk ? oit_gl_buffer_reserve(&c->firstk.store, &c->firstk.store_cap, row,
+                                           "first-k capture fragments", err)
+                   : oit_gl_buffer_reserve(&c->counted.frags, &c->counted.frags_cap, row,
+                                           "counted capture fragments", err);
         note_peak(c);
-        c->out_buf = c->counted.frags;
+        c->out_buf = firstk ? c->firstk.store : c->counted.frags;
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, c->out_buf);
         if (s != OIT_OK) {
             oit_image_free(out);
             return s;
         }
     }
-    uint64_t held = c->out_buf == c->buf[BUF_SLOTS]       ? c->cap[BUF_SLOTS]
-                    : c->backend == OIT_CAPTURE_COUNTED ? c->counted.frags_cap
-                                                        : c->cap[BUF_OUT];
+    uint64_t held = c->out_buf == c->buf[BUF_SLOTS] ? c->cap[BUF_SLOTS]
+                    : firstk                        ? c->firstk.store_cap
+                    : uses_counted(c)               ? c->counted.frags_cap
+                                                    : c->cap[BUF_OUT];
     int band = (int)(held / row < (uint64_t)h ? held / row : (uint64_t)h);
     for (int y0 = 0; y0 < h; y0 += band) {
         int y1 = y0 + band < h ? y0 + band : h;
@@ -570,7 +615,9 @@ static void fill_stats(const oit_capture *c, const GLuint totals[4], oit_frame_s
     stats->fragments = (uint64_t)totals[2] << 32 | totals[1];
     stats->max_layers = totals[3];
     stats->gpu_bytes_peak = c->bytes_peak;
-    stats->batches = c->batches + (c->backend == OIT_CAPTURE_COUNTED ? c->counted.splits : 0);
+    stats->batches = c->batches + (uses_counted(c) ? c->counted.splits : 0);
+    stats->second_pass_pixels = c->firstk.second_pixels;
+    stats->second_pass_packs = c->firstk.second_packs;
 }
 
 oit_status oit_capture_end(oit_capture *c, oit_image *out, oit_frame_stats *stats,

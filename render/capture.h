@@ -25,7 +25,12 @@ typedef enum oit_capture_kind {
     OIT_CAPTURE_STENCIL,
     /* no per-pixel limit: each batch counted, stored and sorted as DFB does,
      * within the slot budget as a fragment budget (capture_counted.h) */
-    OIT_CAPTURE_COUNTED
+    OIT_CAPTURE_COUNTED,
+    /* no per-pixel limit either: each batch drawn once into up to K slots a
+     * pixel within the slot budget while every fragment is counted; only
+     * the pixels that got more are drawn again, stored and sorted
+     * (capture_firstk.h); a batch too wide for 2 slots a pixel is counted */
+    OIT_CAPTURE_FIRSTK
 } oit_capture_kind;
 
 typedef struct oit_capture oit_capture;
@@ -51,7 +56,8 @@ unsigned oit_capture_state_buffer(const oit_capture *c);
 /* GL draw calls made for geometry since the frame's oit_capture_begin: the
  * meshes of a batch are drawn with oit_gpu_mesh_draw_many, once per fill
  * (twice for the counted capture: count and store; once per tile when
- * tiled), a multi-draw counting 1. */
+ * tiled; first-K: once, and once more per band where pixels overflowed),
+ * a multi-draw counting 1. */
 uint64_t oit_capture_draw_calls(const oit_capture *c);
 
 /* GPU memory: from the next frame on, the array backend's slots take at

@@ -21,6 +21,8 @@
     "    return max(T.r, max(T.g, T.b)) < u_epsilon;\n"                   \
     "}\n"
 
+const char oit_capture_saturated[] = SATURATED;
+
 const char oit_capture_array_fs[] =
     COUNT_AND_FLAG
     SATURATED

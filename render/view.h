@@ -73,6 +73,12 @@ typedef struct oit_frame_stats {
     uint64_t overflow_pixels; /* pixels that got more than K in one batch      */
     uint64_t gpu_bytes_peak;  /* GPU buffers/textures allocated by the method  */
     uint32_t batches;         /* capture batches (packs) drawn                 */
+    /* The first-K capture (render/capture_firstk.h): pixels that got more
+     * fragments in one pack than its slots hold, summed over the packs, and
+     * the packs that had any, so took the second geometry pass; 0 for every
+     * other method and capture. */
+    uint64_t second_pass_pixels;
+    uint32_t second_pass_packs;
 } oit_frame_stats;
 
 /* Camera helpers. */

@@ -130,7 +130,8 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
         else if (!strcmp(v, "counted")) a->pack = OIT_PACK_COUNTED;
         else if (!strcmp(v, "disjoint")) a->pack = OIT_PACK_DISJOINT;
         else if (!strcmp(v, "budget")) a->pack = OIT_PACK_BUDGET;
-        else *s = bad(err, opt, v, "auto, counted, budget or disjoint");
+        else if (!strcmp(v, "first-k")) a->pack = OIT_PACK_FIRSTK;
+        else *s = bad(err, opt, v, "auto, counted, first-k, budget or disjoint");
     } else if (!strcmp(opt, "--schedule")) {
         if (!strcmp(v, "wave")) a->schedule_wave = 1;
         else if (!strcmp(v, "tree")) a->schedule_wave = 0;
@@ -259,9 +260,17 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "                      than 32, which sort outside registers), or K slots a\n"
         "                      pixel: disjoint (a part joins a pack while its screen\n"
         "                      rectangle misses the pack's) or budget (the sum of the\n"
-        "                      layer bounds per 32x32 tile stays <= K). auto (default):\n"
-        "                      counted, or disjoint with --epsilon, since skipping\n"
-        "                      whole parts needs the many packs of the K-slot rules\n"
+        "                      layer bounds per 32x32 tile stays <= K; a pixel that\n"
+        "                      gets more loses them and counts as overflow), or\n"
+        "                      first-k (packs as counted, each drawn once into up to\n"
+        "                      K slots a pixel of its rectangle within --slot-budget\n"
+        "                      while every fragment is counted; only if some pixel got\n"
+        "                      more, the pack is drawn again for those pixels alone,\n"
+        "                      stored and sorted as counted does: exact, no limit;\n"
+        "                      --stats reports second_pass_pixels/_packs). auto\n"
+        "                      (default): counted, or disjoint with --epsilon, since\n"
+        "                      skipping whole parts needs the many packs of the K-slot\n"
+        "                      rules\n"
         "  --schedule S        stream: tree (default: packs of consecutive parts in the\n"
         "                      management tree's depth-first order) or wave (packs\n"
         "                      filled front to back across the whole screen, keeping\n"
@@ -279,7 +288,10 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "                      own; 0 reads them on the render thread, no overlap (0..1)\n"
         "  --slot-budget B     stream: bytes of the K-fragment capture slots (>= 64K,\n"
         "                      default 32M), a larger frame captured in screen tiles; for the\n"
-        "                      counted capture, its fragment store (packs split to fit)\n"
+        "                      counted capture, its fragment store (packs split to fit);\n"
+        "                      for first-k, the slots of a pack's rectangle (K shrinks\n"
+        "                      to fit, a pack too wide for 2 is captured counted) and\n"
+        "                      its second pass's store (in bands of rows that fit)\n"
         "  --epsilon E         in [0, 1). stream: drop fragments behind pixels whose\n"
         "                      transmittance fell below E, and neither upload nor draw\n"
         "                      parts whose whole footprint did (error <= E per channel;\n"

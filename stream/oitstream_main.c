@@ -382,7 +382,8 @@ static oit_status render_one(run_ctx *rc, int index, int views, oit_stats_frame 
     if (s == OIT_OK && !rc->args->quiet && fr->has_stream)
         printf("frame %d: %.2f ms (order %.1f, pack %.1f), %u packs, %llu parts (%llu culled), "
                "%llu draw calls, %.2f MiB uploaded, %llu from the cache (%.2f MiB resident), "
-               "%llu overflow pixels, %.1f MiB GPU at peak\n",
+               "%llu overflow pixels, %llu second-pass pixels in %u packs, "
+               "%.1f MiB GPU at peak\n",
                index, fr->st.ms, fr->stream.order_ms, fr->stream.pack_ms, fr->stream.packs,
                (unsigned long long)fr->stream.parts_drawn,
                (unsigned long long)fr->stream.parts_culled,
@@ -391,6 +392,7 @@ static oit_status render_one(run_ctx *rc, int index, int views, oit_stats_frame 
                (unsigned long long)fr->stream.cache_hits,
                (double)fr->stream.cache_bytes / 1048576.0,
                (unsigned long long)fr->st.overflow_pixels,
+               (unsigned long long)fr->st.second_pass_pixels, fr->st.second_pass_packs,
                (double)fr->stream.gpu_bytes_peak / 1048576.0);
     return s;
 }

@@ -227,20 +227,26 @@ static int tiles_take(oit_packer *pk, const int r[4], uint32_t layers)
     return 1;
 }
 
+/* The modes whose capture has no per-pixel limit: packs cut by bytes only. */
+static int unbounded(const oit_packer *pk)
+{
+    return pk->mode == OIT_PACK_COUNTED || pk->mode == OIT_PACK_FIRSTK;
+}
+
 /* Bytes and wide parts: a wide part (layer bound above K) is a pack of its
- * own, except for the counted capture, which has no per-pixel limit. */
+ * own, except for the captures without a per-pixel limit. */
 static int fits(const oit_packer *pk, uint32_t pack, uint32_t layers, uint64_t bytes)
 {
     if (pk->bytes[pack] + bytes > pk->budget)
         return 0;
-    return pk->mode == OIT_PACK_COUNTED || (layers <= pk->K && pk->layers[pack] <= pk->K);
+    return unbounded(pk) || (layers <= pk->K && pk->layers[pack] <= pk->K);
 }
 
 static int joins(oit_packer *pk, uint32_t pack, const int r[4], uint32_t layers, uint64_t bytes)
 {
     if (!fits(pk, pack, layers, bytes))
         return 0;
-    if (pk->mode == OIT_PACK_COUNTED)
+    if (unbounded(pk))
         return 1;
     if (pk->mode == OIT_PACK_DISJOINT)
         return !overlaps(pk->rects[pack], r);
@@ -321,7 +327,7 @@ static int wave_join(void *ctx, uint32_t k)
     const oit_partfile_part *p = &oit_partfile_parts(pk->pf)[pk->kept[k]];
     const int *r = pk->kept_rects[k];
     uint32_t cost = pk->mode == OIT_PACK_DISJOINT ? pk->K
-                    : pk->mode == OIT_PACK_COUNTED ? 0 : p->layer_bound;
+                    : unbounded(pk) ? 0 : p->layer_bound;
     if (pk->open_empty) {
         open_pack(pk, pk->packs++, pk->drawn, p->layer_bound);
         if (p->layer_bound <= pk->K)

@@ -11,6 +11,8 @@
  *  - OIT_PACK_COUNTED: no layer rule at all, for the counted capture
  *    (render/capture_counted.h), which has no per-pixel limit and measures
  *    each pack's fragments before storing them; wide parts join too.
+ *  - OIT_PACK_FIRSTK: the same packs, for the first-K capture
+ *    (render/capture_firstk.h), also without a per-pixel limit.
  * The parts are first culled; see oit_pack_schedule for the order the packs
  * are then cut from.
  * Rectangles are the projections of the parts' bounding boxes (a box that
@@ -26,14 +28,15 @@
 #include "oit/partfile.h"
 #include "render/view.h"
 
-/* OIT_PACK_COUNTED takes the counted capture, BUDGET and DISJOINT the K-slot
- * array. OIT_PACK_AUTO (0) is for the streamer to resolve (streamer.h); the
- * packer takes only the other three. */
+/* OIT_PACK_COUNTED takes the counted capture, OIT_PACK_FIRSTK the first-K
+ * capture, BUDGET and DISJOINT the K-slot array. OIT_PACK_AUTO (0) is for the streamer to resolve (streamer.h); the
+ * packer takes only the others. */
 typedef enum oit_pack_mode {
     OIT_PACK_AUTO = 0,
     OIT_PACK_COUNTED,
     OIT_PACK_BUDGET,
-    OIT_PACK_DISJOINT
+    OIT_PACK_DISJOINT,
+    OIT_PACK_FIRSTK
 } oit_pack_mode;
 
 /* The order packs are cut from. OIT_SCHEDULE_TREE (default): consecutive

@@ -40,10 +40,11 @@ static void put_frame(FILE *f, const oit_stats_frame *fr, int last)
     put_string(f, fr->view);
     fprintf(f,
             ", \"ms\": %.3f, \"fragments\": %llu, \"max_layers\": %u, \"overflow_pixels\": %llu, "
-            "\"gpu_bytes_peak\": %llu, \"batches\": %u",
+            "\"gpu_bytes_peak\": %llu, \"batches\": %u, \"second_pass_pixels\": %llu, "
+            "\"second_pass_packs\": %u",
             isfinite(s->ms) ? s->ms : -1.0, (unsigned long long)s->fragments, s->max_layers,
             (unsigned long long)s->overflow_pixels, (unsigned long long)s->gpu_bytes_peak,
-            s->batches);
+            s->batches, (unsigned long long)s->second_pass_pixels, s->second_pass_packs);
     if (fr->has_stream)
         fprintf(f, ", \"packs\": %u, \"parts_drawn\": %llu, \"parts_culled\": %llu, "
                 "\"parts_skipped\": %llu, \"bytes_uploaded\": %llu, \"cache_hits\": %llu, "

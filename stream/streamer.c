@@ -182,7 +182,9 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
     if (st == OIT_OK)
         st = create_upload(s, desc, budget, all_bytes, err);
     if (st == OIT_OK)
-        st = oit_capture_create(mode == OIT_PACK_COUNTED ? OIT_CAPTURE_COUNTED : desc->capture,
+        st = oit_capture_create(mode == OIT_PACK_COUNTED  ? OIT_CAPTURE_COUNTED
+                                : mode == OIT_PACK_FIRSTK ? OIT_CAPTURE_FIRSTK
+                                                          : desc->capture,
                                 desc->K, &s->capture, err);
     if (st == OIT_OK)
         oit_capture_set_slot_budget(s->capture, desc->slot_budget ? desc->slot_budget

@@ -23,7 +23,8 @@
 typedef struct oit_streamer_desc {
     int K;                    /* capture layers, 2..16; every part's bound <= K */
     oit_capture_kind capture; /* backend of the K-slot packs; OIT_PACK_COUNTED
-                                 always takes OIT_CAPTURE_COUNTED */
+                                 always takes OIT_CAPTURE_COUNTED, OIT_PACK_FIRSTK
+                                 OIT_CAPTURE_FIRSTK (K: its most slots a pixel) */
     /* OIT_PACK_AUTO (0): counted when epsilon is 0; with early termination
      * disjoint K-slot packs, since skipping whole parts needs the many packs
      * of the K-slot rules (the counted capture takes a frame in a few) */

@@ -23,3 +23,7 @@ oit_add_test_exe(test_upload SOURCES test_upload.c LIBS oit_stream)
 set(upload_grid ${CMAKE_BINARY_DIR}/test-tmp/upload_grid.oitp)
 oit_add_test(NAME stream_upload LABELS integration TIMEOUT 60
   COMMAND sh -c "$<TARGET_FILE:test_streamer> ${upload_grid} && $<TARGET_FILE:test_upload> ${upload_grid}")
+# the first-K capture (--pack first-k): pixels far over its slots exact, the
+# second pass reported, none without overflow, early termination
+oit_add_test(NAME stream_firstk LABELS integration TIMEOUT 300
+  COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_firstk.sh $<TARGET_FILE:test_streamer>)

@@ -1,7 +1,12 @@
 /* Capture backends against DFB and hand compositing: one batch of <= K
  * layers, the same scene in several front-to-back batches (transparent and
  * translucent, with a closed object split across batches), exact overflow
- * counts, and the stencil backend either agreeing or saying why not. */
+ * counts, and the stencil backend either agreeing or saying why not. The
+ * first-K capture: pixels far over its slots composited exactly once (the
+ * fragment totals equal DFB's, the image DFB's and the hand result), the
+ * exact count of pixels that took the second pass, none where nothing
+ * overflows, pass 2 in bands under a small slot budget, and the counted
+ * fallback where 2 slots a pixel do not fit. */
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -224,6 +229,118 @@ static void run_all(oit_capture *c, int K, const char *name)
     test_overflow(c, K, 1, name);
 }
 
+/* 24 quads of 5 sizes front to back: from 0 to 24 layers a pixel. */
+static void deep_scene(quad_spec q[24])
+{
+    for (int i = 0; i < 24; i++) {
+        float z = -1.5f - 0.4f * i;
+        float half = (0.25f + 0.2f * (float)(i % 5)) * -z;
+        q[i] = mk(z, half, (i * 71) % 256, (i * 37 + 90) % 256, 255 - i * 9, 50 + 7 * i, i % 4 != 2);
+    }
+}
+
+/* Pixels (by centre, as the rasterizer samples) covered by more than W of
+ * the quads of batch [first, first + n). */
+static uint64_t pixels_over(const oit_view *v, const quad_spec *q, int first, int n, int W)
+{
+    uint64_t P = 0;
+    for (int y = 0; y < v->height; y++)
+        for (int x = 0; x < v->width; x++) {
+            double dx = ((x + 0.5) / v->width * 2 - 1) * v->width / v->height;
+            double dy = 1 - (y + 0.5) / v->height * 2;
+            int cov = 0;
+            for (int i = first; i < first + n; i++)
+                cov += fabs(dx * q[i].z) < q[i].half && fabs(dy * q[i].z) < q[i].half;
+            P += cov > W;
+        }
+    return P;
+}
+
+typedef struct firstk_case {
+    const char *name;
+    oit_shading_mode mode;
+    int nq, K;              /* quads of deep_scene, slots */
+    int nb;                 /* batches: nq split evenly, front to back */
+    uint64_t slot_budget;   /* 0: none */
+    int W;                  /* the slots the capture must pick (0: counted fallback) */
+    int min_draws;          /* the geometry draws the frame must at least make */
+    int tiny;               /* 1: every other quad covers only the 4 centre pixels */
+} firstk_case;
+
+static void test_firstk(const firstk_case *fc)
+{
+    oit_error err = {0};
+    oit_capture *c = NULL;
+    if (oit_capture_create(OIT_CAPTURE_FIRSTK, fc->K, &c, &err) != OIT_OK) {
+        CHECK(0, "%s: first-k capture: %s", fc->name, err.message);
+        return;
+    }
+    oit_capture_set_slot_budget(c, fc->slot_budget);
+    quad_spec q[24];
+    deep_scene(q);
+    for (int i = 0; fc->tiny && i < 24; i += 2)
+        q[i].half = 0.03f * -q[i].z;
+    oit_view v;
+    scene_view(&v, 48, 40, fc->mode);
+    int start[5] = {0};
+    uint64_t want = 0;
+    for (int b = 1; b <= fc->nb; b++)
+        start[b] = fc->nq * b / fc->nb;
+    for (int b = 0; fc->W && b < fc->nb; b++)
+        want += pixels_over(&v, q, start[b], start[b + 1] - start[b], fc->W);
+    oit_image a = {0}, d = {0};
+    oit_frame_stats sa, sd;
+    if (capture_scene(c, &v, q, start, fc->nb, NULL, &a, &sa) && dfb_scene(&v, q, fc->nq, &d, &sd)) {
+        double diff = image_diff(&a, &d), h = hand_max_diff(&a, &v, q, fc->nq);
+        uint64_t draws = oit_capture_draw_calls(c);
+        printf("first-k %s: %d quads in %d batches, K=%d: vs DFB %.6f, vs hand %.6f, fragments "
+               "%llu/%llu, max_layers %u/%u, second pass %llu pixels (want %llu) in %u packs, "
+               "%llu draws, overflow %llu\n", fc->name, fc->nq, fc->nb, fc->K, diff, h,
+               (unsigned long long)sa.fragments, (unsigned long long)sd.fragments, sa.max_layers,
+               sd.max_layers, (unsigned long long)sa.second_pass_pixels,
+               (unsigned long long)want, sa.second_pass_packs, (unsigned long long)draws,
+               (unsigned long long)sa.overflow_pixels);
+        CHECK(diff <= 1.0 / 255 && h <= 1.0 / 255, "%s: image differs from DFB/hand", fc->name);
+        /* a pixel composited twice or skipped changes the total */
+        CHECK(sa.fragments == sd.fragments && sa.max_layers == sd.max_layers,
+              "%s: fragments or max layers differ from DFB", fc->name);
+        CHECK(sa.overflow_pixels == 0, "%s: overflow", fc->name);
+        CHECK(sa.second_pass_pixels == want, "%s: second-pass pixels", fc->name);
+        CHECK((sa.second_pass_packs > 0) == (want > 0), "%s: second-pass packs", fc->name);
+        CHECK(draws >= (uint64_t)fc->min_draws, "%s: %llu draws, want >= %d", fc->name,
+              (unsigned long long)draws, fc->min_draws);
+        CHECK(want > 0 || draws == (uint64_t)fc->nb * (fc->W ? 1 : 2),
+              "%s: %llu draws without overflow", fc->name, (unsigned long long)draws);
+    } else {
+        test_failures++;
+    }
+    oit_image_free(&a);
+    oit_image_free(&d);
+    oit_capture_destroy(c);
+}
+
+static void test_firstk_all(void)
+{
+    const uint64_t two_slots = 48u * 40u * 16u * 2u; /* W = 2 over the frame */
+    const firstk_case cases[] = {
+        {"deep", OIT_SHADING_TRANSPARENT, 24, 4, 1, 0, 4, 2, 0},
+        {"deep K=16", OIT_SHADING_TRANSPARENT, 24, 16, 1, 0, 16, 2, 0},
+        {"deep batches", OIT_SHADING_TRANSPARENT, 24, 4, 3, 0, 4, 4, 0},
+        {"deep translucent", OIT_SHADING_TRANSLUCENT, 24, 4, 4, 0, 4, 5, 0},
+        /* the overflowed fragments exceed the budget: pass 2 in bands */
+        {"bands", OIT_SHADING_TRANSPARENT, 24, 8, 1, two_slots, 2, 4, 0},
+        /* only the 4 centre pixels get more than 16 (24): a second pass
+         * for 4 pixels */
+        {"4 pixels over", OIT_SHADING_TRANSPARENT, 24, 16, 1, 0, 16, 2, 1},
+        {"shallow", OIT_SHADING_TRANSPARENT, 4, 4, 1, 0, 4, 1, 0},
+        {"shallow batches", OIT_SHADING_TRANSLUCENT, 12, 8, 3, 0, 8, 3, 0},
+        /* fewer than 2 slots fit: counted packs, still exact */
+        {"fallback", OIT_SHADING_TRANSPARENT, 24, 8, 2, two_slots / 2, 0, 4, 0},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
+        test_firstk(&cases[i]);
+}
+
 int main(void)
 {
     oit_error err = {0};
@@ -266,6 +383,7 @@ int main(void)
         run_all(a, 4, "auto K=4");
         oit_capture_destroy(a);
     }
+    test_firstk_all();
     oit_gl_destroy(gl);
     printf("%s\n", test_failures ? "FAILED" : "ok");
     return test_failures != 0;

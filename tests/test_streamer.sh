@@ -76,6 +76,13 @@ check_stats() {
     for p in $(json_all packs < "$2"); do
         [ "$p" -ge 1 ] || fail "$1: $p packs"
     done
+    # Only the first-K capture takes a second pass; every other mode says 0.
+    case $1 in
+    firstk*) ;;
+    *) [ "$(json_all second_pass_pixels < "$2" | awk '{s += $1} END {print s + 0}')" -eq 0 ] &&
+           [ "$(json_all second_pass_packs < "$2" | awk '{s += $1} END {print s + 0}')" -eq 0 ] ||
+           fail "$1: second_pass_pixels/packs not 0 outside first-k" ;;
+    esac
     b=$(json_num bytes_uploaded < "$2")
     [ "${b:-0}" -gt 0 ] || fail "$1: ${b:-no} bytes uploaded in the first frame"
     # A later frame may draw everything from the cache, but not nothing.
@@ -186,12 +193,21 @@ agree wave --schedule wave --pack budget
 # budget; the K-slot packs are the two rules above and below.
 agree counted
 agree counted_split --slot-budget 64K
+# The first-K capture (render/capture_firstk.h): the counted packs, drawn
+# once into K slots a pixel, again only for the pixels that got more; with
+# a 64K slot budget its packs are too wide for 2 slots a pixel and are
+# captured counted instead.
+agree firstk --pack first-k
+agree firstk_translucent --pack first-k --shading translucent
+agree firstk_counted --pack first-k --slot-budget 64K
 if [ "$MODE" = grid ]; then
     # Converted models have ~10^4 parts, so the other rules run on the
     # small file only, where they are cheap.
     agree disjoint --pack disjoint
     agree wave_disjoint --schedule wave
     agree ring --upload-budget 64K --cache-budget 0
+    # K = 2: many pixels overflow the slots and take the second pass.
+    agree firstk_k2 --pack first-k --max-layers 2
     # K = 2 turns every part into a wide part (layer bound > K): captured
     # with more slots per pixel over smaller tiles, still exact.
     agree wide --max-layers 2 --pack disjoint
@@ -203,7 +219,7 @@ if [ "$MODE" = grid ]; then
     # GPU memory at 1024x1024 outside the three budgets stays below 64 MB
     # (per-pixel counts and state), whatever the model (issue 6), with both
     # captures: the counted one's fragment store is the slot budget.
-    for pk in counted disjoint; do
+    for pk in counted disjoint first-k; do
         "$S" "$P" --size 1024x1024 --upload-budget 1M --slot-budget 8M --cache-budget 1M \
             --pack $pk --out "$T/big.png" --stats "$T/big.json" --quiet ||
             fail "1024x1024 --pack $pk: stream exited $?"
