@@ -37,6 +37,7 @@ struct oit_capture {
     oit_stencil_target stencil;
     oit_counted counted; /* OIT_CAPTURE_COUNTED, and FIRSTK's packs too wide for it */
     oit_firstk firstk;   /* OIT_CAPTURE_FIRSTK */
+    int firstk_off;      /* FIRSTK capturing as COUNTED (oit_capture_set_first_k) */
     oit_gpu_draws *draws; /* every geometry draw goes through it */
     uint64_t calls0;      /* its draw calls at the frame's begin */
     oit_view view;
@@ -231,6 +232,11 @@ static oit_status allocate(oit_capture *c, const oit_view *v, oit_error *err)
     return s;
 }
 
+void oit_capture_set_first_k(oit_capture *c, int on)
+{
+    c->firstk_off = !on;
+}
+
 void oit_capture_set_slot_budget(oit_capture *c, uint64_t bytes)
 {
     c->slot_budget = bytes;
@@ -417,7 +423,7 @@ static oit_status firstk_batch(oit_capture *c, const oit_gpu_mesh *const *meshes
                                const int r[4], oit_error *err)
 {
     c->firstk.budget = c->slot_budget ? c->slot_budget : UINT64_MAX;
-    if (oit_firstk_slots(&c->firstk, r) == 0)
+    if (c->firstk_off || oit_firstk_slots(&c->firstk, r) == 0)
         return counted_batch(c, meshes, n, r, err);
     oit_counted_frame f = {c->fbo, c->buf[BUF_COUNTS], c->buf[BUF_STATE], c->view.width,
                            c->view.height, c->draws};

@@ -68,6 +68,14 @@ uint64_t oit_capture_draw_calls(const oit_capture *c);
  * default): no limit. The image is the same either way. */
 void oit_capture_set_slot_budget(oit_capture *c, uint64_t bytes);
 
+/* OIT_CAPTURE_FIRSTK only: 0 captures every batch from the next one on as
+ * OIT_CAPTURE_COUNTED does (count, store, sort: no slots), 1 (the default)
+ * goes back to first-K. Deep views overflow most pixels' slots and pay both
+ * passes of first-K and then the store again; counted packs pay two passes
+ * whatever the depth. The streamer's automatic mode switches by the
+ * frame's figures (streamer.h). The image is the same either way. */
+void oit_capture_set_first_k(oit_capture *c, int on);
+
 /* Starts a frame: C = 0, T = 1, translucency state cleared. */
 oit_status oit_capture_begin(oit_capture *c, const oit_view *view, oit_error *err);
 /* Captures meshes[0..n) as one batch and composites it behind what the frame

@@ -49,7 +49,7 @@ static void put_frame(FILE *f, const oit_stats_frame *fr, int last)
         fprintf(f, ", \"packs\": %u, \"parts_drawn\": %llu, \"parts_culled\": %llu, "
                 "\"parts_skipped\": %llu, \"bytes_uploaded\": %llu, \"cache_hits\": %llu, "
                 "\"cache_bytes\": %llu, \"epsilon\": %.9g, \"draw_calls\": %llu, "
-                "\"order_ms\": %.3f, \"pack_ms\": %.3f",
+                "\"order_ms\": %.3f, \"pack_ms\": %.3f, \"auto_first_k\": %d",
                 fr->stream.packs, (unsigned long long)fr->stream.parts_drawn,
                 (unsigned long long)fr->stream.parts_culled,
                 (unsigned long long)fr->stream.parts_skipped,
@@ -57,7 +57,7 @@ static void put_frame(FILE *f, const oit_stats_frame *fr, int last)
                 (unsigned long long)fr->stream.cache_hits,
                 (unsigned long long)fr->stream.cache_bytes, (double)fr->stream.epsilon,
                 (unsigned long long)fr->stream.draw_calls, fr->stream.order_ms,
-                fr->stream.pack_ms);
+                fr->stream.pack_ms, fr->stream.first_k);
     fprintf(f, "}%s\n", last ? "" : ",");
 }
 

@@ -55,6 +55,10 @@ struct oit_streamer {
     uint64_t fence_every, unfenced; /* ring bytes between fences, and since the last */
     oit_gpu_mesh **views; /* one per part of the largest pack so far */
     uint32_t view_count;
+    /* OIT_PACK_AUTO without early termination: first-K packs while they
+     * mostly take one pass, counted ones while a view is deep (adapt). */
+    int adaptive, first_k;
+    uint32_t counted_frames;
 };
 
 void oit_streamer_destroy(oit_streamer *s)
@@ -169,7 +173,9 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
     uint64_t budget = desc->upload_budget ? desc->upload_budget : 64ull << 20, all_bytes = 0;
     oit_pack_mode mode = desc->pack != OIT_PACK_AUTO ? desc->pack
                          : desc->epsilon > 0.0f ? OIT_PACK_DISJOINT
-                                                : OIT_PACK_COUNTED;
+                                                : OIT_PACK_FIRSTK;
+    s->adaptive = desc->pack == OIT_PACK_AUTO && mode == OIT_PACK_FIRSTK;
+    s->first_k = 1;
     oit_status st = alloc_arrays(s, oit_partfile_part_count(pf), err);
     if (st == OIT_OK)
         st = number_triangles(s, &all_bytes, err);
@@ -186,9 +192,14 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
                                 : mode == OIT_PACK_FIRSTK ? OIT_CAPTURE_FIRSTK
                                                           : desc->capture,
                                 desc->K, &s->capture, err);
+    /* The counted and first-K captures store fragments beside their slots;
+     * 32 MiB (2 a pixel at 1024x1024) split the packs of dense views, which
+     * then drew again (bench/stream-vs-dfb-llvmpipe.md). */
+    int stores = mode == OIT_PACK_COUNTED || mode == OIT_PACK_FIRSTK;
     if (st == OIT_OK)
         oit_capture_set_slot_budget(s->capture, desc->slot_budget ? desc->slot_budget
-                                                                  : 32ull << 20);
+                                                : stores ? OIT_STREAM_STORE_DEFAULT
+                                                         : OIT_STREAM_SLOTS_DEFAULT);
     s->ahead = AHEAD_EXACT;
     if (st == OIT_OK && desc->epsilon > 0.0f) {
         s->epsilon = desc->epsilon;
@@ -420,6 +431,27 @@ static oit_status capture_frame(oit_streamer *s, const oit_view *view, oit_packi
     return st;
 }
 
+/* The automatic mode's choice for the next frame. More than 1 pixel in 50
+ * through the second pass means a deep view (measured at 1024x1024: the
+ * demo and the bunny, 10 layers at most, send under 1.3% and stream at
+ * 0.8x DFB's time in first-K; the engine and the 1M plant, 26-64 layers,
+ * send 5-16% and are 20-30% faster counted); a counted run tries first-K
+ * again every OIT_STREAM_PROBE_FRAMES frames, in case the view has become
+ * shallow. */
+static void adapt(oit_streamer *s, const oit_view *view, const oit_frame_stats *fs,
+                  oit_stream_frame_stats *ss)
+{
+    ss->first_k = s->adaptive ? s->first_k : 0;
+    if (!s->adaptive)
+        return;
+    uint64_t pixels = (uint64_t)view->width * view->height;
+    if (s->first_k && fs->second_pass_pixels * 50 > pixels)
+        s->first_k = 0, s->counted_frames = 0;
+    else if (!s->first_k && ++s->counted_frames >= OIT_STREAM_PROBE_FRAMES)
+        s->first_k = 1;
+    oit_capture_set_first_k(s->capture, s->first_k);
+}
+
 static void finish_stats(const oit_streamer *s, const oit_packing *pk, oit_frame_stats *fs,
                          oit_stream_frame_stats *ss)
 {
@@ -447,6 +479,8 @@ oit_status oit_streamer_render(oit_streamer *s, const oit_view *view, oit_image 
         st = oit_capture_end(s->capture, out, fs, err);
     if (st == OIT_OK)
         finish_stats(s, &pk, fs, ss);
+    if (st == OIT_OK)
+        adapt(s, view, fs, ss);
     return st;
 }
 
@@ -464,5 +498,7 @@ oit_status oit_streamer_render_gpu(oit_streamer *s, const oit_view *view, unsign
         st = oit_capture_end_gpu(s->capture, state, fs, err);
     if (st == OIT_OK)
         finish_stats(s, &pk, fs, ss);
+    if (st == OIT_OK)
+        adapt(s, view, fs, ss);
     return st;
 }

@@ -25,14 +25,18 @@ typedef struct oit_streamer_desc {
     oit_capture_kind capture; /* backend of the K-slot packs; OIT_PACK_COUNTED
                                  always takes OIT_CAPTURE_COUNTED, OIT_PACK_FIRSTK
                                  OIT_CAPTURE_FIRSTK (K: its most slots a pixel) */
-    /* OIT_PACK_AUTO (0): counted when epsilon is 0; with early termination
+    /* OIT_PACK_AUTO (0): when epsilon is 0, first-K packs, switched to
+     * counted for the next frames when more than 1 pixel in 50 took the
+     * second pass, and tried again every OIT_STREAM_PROBE_FRAMES counted
+     * frames (the image is the same either way); with early termination
      * disjoint K-slot packs, since skipping whole parts needs the many packs
      * of the K-slot rules (the counted capture takes a frame in a few) */
     oit_pack_mode pack;
     oit_pack_schedule schedule; /* 0: the tree's order (pack.h) */
     uint64_t upload_budget;   /* ring bytes; 0: 64 MiB */
     uint64_t slot_budget;     /* capture slot bytes (oit_capture_set_slot_budget);
-                                 0: 32 MiB */
+                                 0: OIT_STREAM_STORE_DEFAULT for counted and
+                                 first-K packs, else OIT_STREAM_SLOTS_DEFAULT */
     float epsilon;            /* early termination (oit_capture_set_epsilon); 0: exact */
     uint64_t cache_budget;    /* residency cache bytes; 0: OIT_STREAM_CACHE_DEFAULT;
                                  OIT_STREAM_CACHE_OFF: no cache */
@@ -46,6 +50,11 @@ typedef struct oit_streamer_desc {
  * pay only for what they hold. */
 #define OIT_STREAM_CACHE_DEFAULT (256ull << 20)
 #define OIT_STREAM_CACHE_OFF UINT64_MAX
+/* Slot budgets: 64 MiB of fragment store and first-K slots (4 fragments a
+ * pixel at 1024x1024), 32 MiB of K-slot array slots. */
+#define OIT_STREAM_STORE_DEFAULT (64ull << 20)
+#define OIT_STREAM_SLOTS_DEFAULT (32ull << 20)
+#define OIT_STREAM_PROBE_FRAMES 8u
 
 /* The streamer's own per-frame figures, beside oit_frame_stats. */
 typedef struct oit_stream_frame_stats {
@@ -66,6 +75,8 @@ typedef struct oit_stream_frame_stats {
      * enough to hide the rest, these bound the frame rate. */
     double order_ms, pack_ms;
     float epsilon;           /* the early-termination threshold it ran with */
+    int first_k;             /* the automatic mode took first-K packs (else
+                                counted, or a fixed --pack: 0) */
 } oit_stream_frame_stats;
 
 typedef struct oit_streamer oit_streamer;

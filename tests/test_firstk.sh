@@ -10,6 +10,11 @@
 #    composited twice or skipped would change them), overflow 0 and
 #    second_pass_pixels > 0; counted packs report 0 for both figures.
 #  - 4 stacked quads: nothing over K, so no pack takes the second pass.
+#  - the automatic mode (the default): on the stack, head on, the first frame
+#    takes first-K, sends far more than 1 pixel in 50 through the second
+#    pass, and the next ones are counted until the probe frame tries first-K
+#    again; on the 4 quads every frame stays first-K; every frame's image is
+#    bit for bit the first's, whichever capture took it.
 #  - the grid in many packs (64K upload ring), K = 2 so pixels overflow,
 #    exact and with early termination: bit for bit the counted capture's
 #    image, which composites the same fragments of the same packs.
@@ -91,6 +96,23 @@ echo "4 quads: max layers $(json_all max_layers < "$T/quads.json" | tr '\n' ' ')
 [ "$(json_sum second_pass_packs < "$T/quads.json")" -eq 0 ] &&
     [ "$(json_sum second_pass_pixels < "$T/quads.json")" -eq 0 ] ||
     fail "4 quads: a second pass where no pixel gets more than 4"
+
+# The automatic mode: 10 frames of one view (the probe comes at frame 9).
+for i in 1 2 3 4 5 6 7 8 9 10; do echo "0,0,5,0,0,0,0,1,0,18"; done > "$T/still.txt"
+"$S" "$T/stack.oitp" --size 128x128 --walk "$T/still.txt" --quiet --out "$T/auto/" \
+    --stats "$T/auto.json" || fail "stack: auto exited $?"
+seq_auto=$(json_all auto_first_k < "$T/auto.json" | tr -d '\n')
+echo "stack, automatic mode, 10 frames of one view: first-K per frame $seq_auto," \
+     "second-pass pixels $(json_all second_pass_pixels < "$T/auto.json" | tr '\n' ' ')"
+[ "$seq_auto" = 1000000001 ] || fail "stack: automatic mode took $seq_auto, want 1000000001"
+for i in 001 002 008 009; do
+    cmp -s "$T/auto/frame_000.png" "$T/auto/frame_$i.png" ||
+        fail "stack: automatic mode frame $i differs from frame 0"
+done
+"$S" "$T/quads.oitp" --size 96x96 --walk "$T/still.txt" --quiet --stats "$T/quads_auto.json" \
+    --out "$T/quads_auto/" || fail "4 quads: auto exited $?"
+[ "$(json_all auto_first_k < "$T/quads_auto.json" | tr -d '\n')" = 1111111111 ] ||
+    fail "4 quads: the automatic mode left first-K"
 
 P="$T/grid.oitp"
 "$1" "$P" || { echo "FAIL: cannot write the grid part file"; exit 1; }

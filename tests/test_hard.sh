@@ -4,8 +4,9 @@
 # guaranteed): oitprep converts it (every case must convert: each has a right
 # answer, none is input we should refuse), oitprep verify finds no layer or
 # order violation, and on every view the exact methods agree:
-#   stream (part file) == DFB (part file): the counted capture (default, and
-#   with a budget that splits packs) and the K-slot one with zero overflow;
+#   stream (part file) == DFB (part file): the default (auto: first-K or
+#   counted packs), the counted capture (alone, and with a budget that
+#   splits packs) and the K-slot one with zero overflow;
 #   DFB == the Embree reference on the same triangles, outside the pixels
 #     the reference flags as ambiguous (edges, depth ties);
 #   PLL, paged lists (ppll4) and B3D == DFB; on the first view depth
@@ -78,10 +79,14 @@ view() {
     "$S" "$T/in.oitp" --method stream --size "$SIZE" "$@" --out "$v-stream.pfm" \
         --stats "$v-stream.json" --quiet || { fail "$name: stream"; return; }
     cam=$(json_str view "$v-stream.json")
-    # The default is the counted capture (no layer limit); here with a
-    # fragment budget small enough (16K) that most packs are split before
-    # they are stored. Then the K-slot capture (--pack disjoint).
-    "$S" "$T/in.oitp" --method stream --slot-budget 256K --size "$SIZE" \
+    # The default (auto) takes first-K packs, or counted ones after a frame
+    # that sent many pixels through first-K's second pass. Then the counted
+    # capture (no layer limit) itself, and with a fragment budget small
+    # enough (16K) that most packs are split before they are stored; then
+    # the K-slot capture (--pack disjoint).
+    "$S" "$T/in.oitp" --method stream --pack counted --size "$SIZE" --view "$cam" \
+        --out "$v-cnt.pfm" --stats "$v-cnt.json" --quiet || fail "$name: stream --pack counted"
+    "$S" "$T/in.oitp" --method stream --pack counted --slot-budget 256K --size "$SIZE" \
         --view "$cam" --out "$v-counted.pfm" --stats "$v-counted.json" --quiet ||
         fail "$name: stream, 16K-fragment budget"
     "$S" "$T/in.oitp" --method stream --pack disjoint --size "$SIZE" --view "$cam" \
@@ -127,10 +132,11 @@ view() {
     # Hundreds of layers on every pixel: the counted capture splits the pack
     # until its lists sort in registers (capture_counted.h), down to one
     # part, so only the guaranteed scheme's many small parts get there.
-    sb=$(json_num batches "$v-stream.json")
+    sb=$(json_num batches "$v-cnt.json")
     [ "$CASE" != stack ] || [ "$SCHEME" != guaranteed ] || [ "$sb" -ge 10 ] ||
         fail "$name: the stack streamed in $sb batches; lists of hundreds want splitting"
     compare "stream vs dfb" "$v-stream.pfm" "$v-dfb.pfm" 0.1
+    compare "stream --pack counted vs dfb" "$v-cnt.pfm" "$v-dfb.pfm" 0.1
     compare "stream, 16K-fragment budget, vs dfb" "$v-counted.pfm" "$v-dfb.pfm" 0.1
     compare "stream --pack disjoint vs dfb" "$v-slots.pfm" "$v-dfb.pfm" 0.1
     for m in $ran; do compare "$m vs dfb" "$v-$m.pfm" "$v-dfb.pfm" 0.1; done

@@ -76,12 +76,14 @@ check_stats() {
     for p in $(json_all packs < "$2"); do
         [ "$p" -ge 1 ] || fail "$1: $p packs"
     done
-    # Only the first-K capture takes a second pass; every other mode says 0.
+    # Only the first-K capture takes a second pass; every other mode says 0,
+    # and so does a frame the automatic mode took counted (auto_first_k 0).
     case $1 in
     firstk*) ;;
-    *) [ "$(json_all second_pass_pixels < "$2" | awk '{s += $1} END {print s + 0}')" -eq 0 ] &&
-           [ "$(json_all second_pass_packs < "$2" | awk '{s += $1} END {print s + 0}')" -eq 0 ] ||
-           fail "$1: second_pass_pixels/packs not 0 outside first-k" ;;
+    *) bad=$(sed -n 's/.*"second_pass_pixels": \([0-9]*\), "second_pass_packs": \([0-9]*\).*"auto_first_k": \([01]\).*/\1 \2 \3/p' "$2" |
+             awk '$3 == 0 && ($1 + $2) > 0' | wc -l)
+       [ "$(grep -c '"auto_first_k"' "$2")" -eq "$(grep -c '"ms"' "$2")" ] && [ "$bad" -eq 0 ] ||
+           fail "$1: second_pass_pixels/packs not 0 outside first-k ($bad frames)" ;;
     esac
     b=$(json_num bytes_uploaded < "$2")
     [ "${b:-0}" -gt 0 ] || fail "$1: ${b:-no} bytes uploaded in the first frame"
@@ -184,15 +186,18 @@ look_around() {
 
 agree budget --pack budget
 agree translucent --shading translucent --pack budget
-agree translucent_counted --shading translucent
+agree translucent_counted --shading translucent --pack counted
+agree translucent_auto --shading translucent
 # Packs filled front to back across the screen (stream/schedule.h): the
 # same image from a different pack order.
 agree wave --schedule wave --pack budget
-# The default is the counted capture (render/capture_counted.h): no layer
-# limit, packs cut by bytes only, halved where they exceed the fragment
-# budget; the K-slot packs are the two rules above and below.
-agree counted
-agree counted_split --slot-budget 64K
+# The counted capture (render/capture_counted.h): no layer limit, packs cut
+# by bytes only, halved where they exceed the fragment budget; the K-slot
+# packs are the two rules above and below. The default (auto) takes
+# first-K packs or counted ones by the frame before (stream/streamer.h).
+agree counted --pack counted
+agree counted_split --pack counted --slot-budget 64K
+agree auto
 # The first-K capture (render/capture_firstk.h): the counted packs, drawn
 # once into K slots a pixel, again only for the pixels that got more; with
 # a 64K slot budget its packs are too wide for 2 slots a pixel and are
@@ -204,7 +209,7 @@ if [ "$MODE" = grid ]; then
     # Converted models have ~10^4 parts, so the other rules run on the
     # small file only, where they are cheap.
     agree disjoint --pack disjoint
-    agree wave_disjoint --schedule wave
+    agree wave_counted --schedule wave --pack counted
     agree ring --upload-budget 64K --cache-budget 0
     # K = 2: many pixels overflow the slots and take the second pass.
     agree firstk_k2 --pack first-k --max-layers 2
