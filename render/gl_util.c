@@ -119,6 +119,13 @@ oit_status oit_gl_program_compute(const char *what, const char *const *cs, GLuin
     return OIT_OK;
 }
 
+void oit_gl_buffer_release(GLuint *buf, uint64_t *cap)
+{
+    glDeleteBuffers(1, buf);
+    *buf = 0;
+    *cap = 0;
+}
+
 oit_status oit_gl_buffer_reserve(GLuint *buf, uint64_t *cap, uint64_t bytes,
                                  const char *what, oit_error *err)
 {

@@ -39,6 +39,8 @@ oit_status oit_gl_check(const char *call, oit_error *err);
  * growth is geometric. Contents are not preserved. */
 oit_status oit_gl_buffer_reserve(GLuint *buf, uint64_t *cap, uint64_t bytes,
                                  const char *what, oit_error *err);
+/* Deletes *buf (0 is fine) and sets *buf and *cap to 0. */
+void oit_gl_buffer_release(GLuint *buf, uint64_t *cap);
 
 /* OIT_ERR_NOMEM naming 'what' when one shader storage block cannot span
  * 'bytes' on this driver (GL_MAX_SHADER_STORAGE_BLOCK_SIZE). */
