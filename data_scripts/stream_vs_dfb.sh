@@ -110,7 +110,7 @@ key_sum() {
 }
 key_max() {
     grep -o "\"$1\": [0-9]*" "$2" | sed 's/.*: //' |
-        awk '{ if ($1 > m) m = $1; n++ } END { if (n) print m; else print "-" }'
+        awk '{ if ($1 > m) m = $1; n++ } END { if (n) print m + 0; else print "-" }'
 }
 rss_mb() { sed -n 's/.*Maximum resident set size (kbytes): *\([0-9]*\).*/\1/p' "$1" |
     awk '{ printf "%.0f\n", $1 / 1024 }'; }
