@@ -48,8 +48,9 @@ oit_capture_kind oit_capture_backend(const oit_capture *c);
  * channel. 0 (the default; negatives read as 0) keeps the image exact. */
 void oit_capture_set_epsilon(oit_capture *c, float epsilon);
 
-/* The GL buffer of the frame's width*height oit_state records (frag_glsl.h;
- * GL rows, bottom first), for passes that read the carried transmittance
+/* The GL buffer of the frame's width*height per-pixel states (packed as
+ * frag_glsl.h's oit_glsl_state_io reads them, in the frame's shading; GL
+ * rows, bottom first), for passes that read the carried transmittance
  * between batches (saturation.h). Valid until the next oit_capture_begin. */
 unsigned oit_capture_state_buffer(const oit_capture *c);
 
@@ -99,8 +100,9 @@ oit_status oit_capture_batch_layers(oit_capture *c, const oit_gpu_mesh *const *m
 oit_status oit_capture_end(oit_capture *c, oit_image *out,
                            oit_frame_stats *stats, oit_error *err);
 /* Ends the frame without reading the image back: *state receives the GL
- * buffer holding width*height oit_state records (frag_glsl.h: C and T before
- * the background; GL rows, bottom first), owned by c and valid until the
+ * buffer holding width*height per-pixel states (oit_glsl_state_io reads
+ * them: C and T before the background; GL rows, bottom first), owned by c
+ * and valid until the
  * next oit_capture_begin. Only the 16-byte totals are read back for stats. */
 oit_status oit_capture_end_gpu(oit_capture *c, unsigned *state, oit_frame_stats *stats,
                                oit_error *err);

@@ -44,15 +44,13 @@ void oit_counted_release(oit_counted *k)
 void oit_counted_set_view(oit_counted *k, const oit_view *v)
 {
     GLuint progs[3] = {k->count_prog, k->store_prog, k->resolve_prog};
-    for (int i = 0; i < 3; i++)
-        oit_glsl_set_view(progs[i], v);
+    oit_glsl_set_view_all(progs, 3, v);
 }
 
 void oit_counted_set_epsilon(oit_counted *k, float epsilon)
 {
     GLuint progs[2] = {k->count_prog, k->store_prog};
-    for (int i = 0; i < 2; i++)
-        glProgramUniform1f(progs[i], glGetUniformLocation(progs[i], "u_epsilon"), epsilon);
+    oit_glsl_set_epsilon_all(progs, 2, epsilon);
 }
 
 uint64_t oit_counted_bytes(const oit_counted *k)

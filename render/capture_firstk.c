@@ -190,15 +190,13 @@ void oit_firstk_set_view(oit_firstk *k, const oit_view *v)
 {
     GLuint progs[5] = {k->fill_prog, k->resolve_prog, k->alloc_prog, k->store_prog,
                        k->segment_prog};
-    for (int i = 0; i < 5; i++)
-        oit_glsl_set_view(progs[i], v);
+    oit_glsl_set_view_all(progs, 5, v);
 }
 
 void oit_firstk_set_epsilon(oit_firstk *k, float epsilon)
 {
     GLuint progs[2] = {k->fill_prog, k->store_prog};
-    for (int i = 0; i < 2; i++)
-        glProgramUniform1f(progs[i], glGetUniformLocation(progs[i], "u_epsilon"), epsilon);
+    oit_glsl_set_epsilon_all(progs, 2, epsilon);
 }
 
 uint64_t oit_firstk_bytes(const oit_firstk *k)

@@ -201,6 +201,18 @@ void oit_glsl_set_view(GLuint prog, const oit_view *view)
     glProgramUniform2i(prog, loc(prog, "u_size"), view->width, view->height);
 }
 
+void oit_glsl_set_view_all(const GLuint *progs, int n, const oit_view *view)
+{
+    for (int i = 0; i < n; i++)
+        oit_glsl_set_view(progs[i], view);
+}
+
+void oit_glsl_set_epsilon_all(const GLuint *progs, int n, float epsilon)
+{
+    for (int i = 0; i < n; i++)
+        glProgramUniform1f(progs[i], loc(progs[i], "u_epsilon"), epsilon);
+}
+
 void oit_glsl_raster_begin(GLuint fbo, int w, int h)
 {
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);

@@ -126,6 +126,10 @@ static inline unsigned oit_state_bytes(int translucent)
 /* Sets the view and shading uniforms of a program built from the pieces
  * above (uniforms that a program does not use are skipped). */
 void oit_glsl_set_view(GLuint prog, const oit_view *view);
+/* The same for progs[0..n); and their early-termination threshold
+ * (`u_epsilon`, where a program has it). */
+void oit_glsl_set_view_all(const GLuint *progs, int n, const oit_view *view);
+void oit_glsl_set_epsilon_all(const GLuint *progs, int n, float epsilon);
 
 /* Binds fbo (no attachments needed) for fragment generation: viewport
  * w x h, no depth, stencil, blending, culling or colour writes, so the
