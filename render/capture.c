@@ -580,9 +580,14 @@ static oit_status read_output(oit_capture *c, oit_image *out, GLuint totals[4], 
     size_t row = (size_t)w * 16;
     int firstk = c->backend == OIT_CAPTURE_FIRSTK && !c->firstk_off;
     if (uses_counted(c)) {
-        s = firstk ? oit_gl_buffer_reserve(&c->firstk.store, &c->firstk.store_cap, row,
+        /* The whole frame in one band where the budget allows: each band is
+         * a pass and a read-back of its own. */
+        uint64_t frame = (uint64_t)row * h, want = frame;
+        if (c->slot_budget && frame > c->slot_budget)
+            want = c->slot_budget > row ? c->slot_budget : row;
+        s = firstk ? oit_gl_buffer_reserve(&c->firstk.store, &c->firstk.store_cap, want,
                                            "first-k capture fragments", err)
-                   : oit_gl_buffer_reserve(&c->counted.frags, &c->counted.frags_cap, row,
+                   : oit_gl_buffer_reserve(&c->counted.frags, &c->counted.frags_cap, want,
                                            "counted capture fragments", err);
         note_peak(c);
         c->out_buf = firstk ? c->firstk.store : c->counted.frags;

@@ -248,4 +248,30 @@ cmp_view "inside ($VIEW)" "$T/in_s.png" "$T/in_d.png"
 check_stats inside "$T/in_s.json"
 
 
+# The counted capture splits a pack only when its fragments need more store
+# than the budget: the demo's one pack with a budget of exactly its store
+# stays one batch, at 3/4 of it is split (drawn again in halves), and
+# equals DFB either way.
+if [ "$MODE" = demo ]; then
+    V="--size 192x192 --azimuth 30 --elevation 35 --pack counted --quiet"
+    # shellcheck disable=SC2086
+    "$S" "$P" $V --stats "$T/cb.json" --out "$T/cb.png" || fail "counted budget: exited $?"
+    F=$(json_num fragments < "$T/cb.json") packs=$(json_num packs < "$T/cb.json")
+    [ "$packs" = 1 ] || fail "counted budget: the demo took $packs packs, the check wants 1"
+    for k in roomy tight; do
+        case $k in roomy) b=$((F * 16)) ;; tight) b=$((F * 12)) ;; esac
+        [ "$b" -ge 65536 ] || fail "counted budget: $F fragments are too few for the check"
+        # shellcheck disable=SC2086
+        "$S" "$P" $V --slot-budget "$b" --stats "$T/cb_$k.json" --out "$T/cb_$k.png" ||
+            fail "counted budget $k: exited $?"
+        nb=$(json_num batches < "$T/cb_$k.json")
+        echo "counted budget: $F fragments, store budget $b bytes ($k): $nb batches"
+        case $k in
+        roomy) [ "$nb" = 1 ] || fail "counted budget: $nb batches where the store fits" ;;
+        tight) [ "$nb" -gt 1 ] || fail "counted budget: 1 batch over twice the budget" ;;
+        esac
+        cmp_view "counted budget $k" "$T/cb_$k.png" "$T/cb.png"
+    done
+fi
+
 [ "$FAILS" -eq 0 ] && echo "PASS" || { echo "$FAILS failure(s)"; exit 1; }
