@@ -179,6 +179,10 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
     oit_status st = alloc_arrays(s, oit_partfile_part_count(pf), err);
     if (st == OIT_OK)
         st = number_triangles(s, &all_bytes, err);
+    /* A ring as large as all the parts holds any pack, and the whole file
+     * in one lap: a small model needs no 64 MiB of GPU memory for it. */
+    if (all_bytes < budget)
+        budget = all_bytes > OIT_STREAM_RING_MIN ? all_bytes : OIT_STREAM_RING_MIN;
     if (st == OIT_OK)
         st = oit_order_create(pf, &s->order, err);
     if (st == OIT_OK)

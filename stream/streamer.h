@@ -33,7 +33,8 @@ typedef struct oit_streamer_desc {
      * of the K-slot rules (the counted capture takes a frame in a few) */
     oit_pack_mode pack;
     oit_pack_schedule schedule; /* 0: the tree's order (pack.h) */
-    uint64_t upload_budget;   /* ring bytes; 0: 64 MiB */
+    uint64_t upload_budget;   /* ring bytes; 0: 64 MiB; never more than the
+                                 file's parts take (at least OIT_STREAM_RING_MIN) */
     uint64_t slot_budget;     /* capture slot bytes (oit_capture_set_slot_budget);
                                  0: OIT_STREAM_STORE_DEFAULT for counted and
                                  first-K packs, else OIT_STREAM_SLOTS_DEFAULT */
@@ -55,6 +56,7 @@ typedef struct oit_streamer_desc {
 #define OIT_STREAM_STORE_DEFAULT (64ull << 20)
 #define OIT_STREAM_SLOTS_DEFAULT (32ull << 20)
 #define OIT_STREAM_PROBE_FRAMES 8u
+#define OIT_STREAM_RING_MIN (64ull << 10)
 
 /* The streamer's own per-frame figures, beside oit_frame_stats. */
 typedef struct oit_stream_frame_stats {

@@ -257,6 +257,11 @@ if [ "$MODE" = demo ]; then
     # shellcheck disable=SC2086
     "$S" "$P" $V --stats "$T/cb.json" --out "$T/cb.png" || fail "counted budget: exited $?"
     F=$(json_num fragments < "$T/cb.json") packs=$(json_num packs < "$T/cb.json")
+    # The ring is never larger than the file's parts (4.6 MiB expanded), nor
+    # the cache: the whole stream of this 192x192 frame fits in 16 MiB.
+    g=$(json_num gpu_bytes_peak < "$T/cb.json")
+    echo "demo at 192x192: $g GPU bytes at peak (ring, cache and capture)"
+    [ "$g" -lt 16777216 ] || fail "demo: $g GPU bytes at peak, a 64 MiB ring for a 4.6 MiB file?"
     [ "$packs" = 1 ] || fail "counted budget: the demo took $packs packs, the check wants 1"
     for k in roomy tight; do
         case $k in roomy) b=$((F * 16)) ;; tight) b=$((F * 12)) ;; esac
