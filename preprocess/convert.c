@@ -56,6 +56,17 @@ static void shift_origin(const float mn[3], const float mx[3], oit_bin_grid *g)
         }
 }
 
+/* Cells of edge `cell` from the face at or below mn, as many as reach mx. */
+static void grid_at_cell(const float mn[3], const float mx[3], double cell, oit_bin_grid *g)
+{
+    g->cell = (float)cell;
+    for (int k = 0; k < 3; k++) {
+        double o = floor(mn[k] / cell) * cell;
+        g->origin[k] = (float)o;
+        g->dims[k] = (uint32_t)floor((mx[k] - o) / cell) + 1;
+    }
+}
+
 static void choose_grid(const float mn[3], const float mx[3], uint64_t triangles, uint32_t want,
                         double per_cell, oit_bin_grid *g)
 {
@@ -75,13 +86,7 @@ static void choose_grid(const float mn[3], const float mx[3], uint64_t triangles
                 break;
         }
     }
-    double cell = longest > 0 ? exp2(ceil(log2(longest / n))) : 1.0;
-    g->cell = (float)cell;
-    for (int k = 0; k < 3; k++) {
-        double o = floor(mn[k] / cell) * cell;
-        g->origin[k] = (float)o;
-        g->dims[k] = (uint32_t)floor((mx[k] - o) / cell) + 1;
-    }
+    grid_at_cell(mn, mx, longest > 0 ? exp2(ceil(log2(longest / n))) : 1.0, g);
 }
 
 static uint64_t cell_count(const oit_bin_grid *g)
@@ -99,13 +104,8 @@ static uint64_t cell_count(const oit_bin_grid *g)
 static void fewest_cells(const float mn[3], const float mx[3], uint64_t want, oit_bin_grid *g)
 {
     for (int d = 1; d <= 2; d++) {
-        oit_bin_grid c = *g;
-        c.cell = g->cell * 2.0f;
-        for (int k = 0; k < 3; k++) {
-            double o = floor(mn[k] / c.cell) * c.cell;
-            c.origin[k] = (float)o;
-            c.dims[k] = (uint32_t)floor((mx[k] - o) / c.cell) + 1;
-        }
+        oit_bin_grid c;
+        grid_at_cell(mn, mx, (double)g->cell * 2.0, &c);
         shift_origin(mn, mx, &c);
         if (cell_count(&c) < cell_count(g) && cell_count(&c) >= want)
             *g = c;
@@ -152,7 +152,7 @@ static oit_status fast_grid(const oit_convert_options *o, const oit_mesh_info *i
                           "then %llu)", o->input, (unsigned long long)info->triangles,
                           (unsigned long long)again.triangles);
     if (!s)
-        oit_grid_phase_apply(ph, info->bounds_min, info->bounds_max, g, NULL);
+        oit_grid_phase_apply(ph, info->bounds_min, info->bounds_max, g);
     free(ph);
     return s;
 }

@@ -4,6 +4,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "partition/minmax.h"
+
 void oit_grid_phase_init(oit_grid_phase *p, const oit_bin_grid *g)
 {
     memset(p, 0, sizeof *p);
@@ -18,10 +20,8 @@ static void add_interval(oit_grid_phase *p, int k, double lo, double hi)
 {
     const double n = OIT_GRID_PHASES;
     double u = (lo - p->base[k]) / p->cell * n, w = (hi - p->base[k]) / p->cell * n;
-    if (w - u >= n) {
-        p->every[k]++;
-        return;
-    }
+    if (w - u >= n)
+        return; /* crosses a face at every phase: it weighs on no choice */
     double b0 = floor(u) + 1, b1 = ceil(w) - 1;
     if (b0 > b1)
         return; /* no phase strictly inside: nothing crosses it */
@@ -42,10 +42,9 @@ void oit_grid_phase_add(oit_grid_phase *p, const oit_triangle *t, size_t n)
 {
     for (size_t i = 0; i < n; i++)
         for (int k = 0; k < 3; k++) {
-            float a = t[i].v[0].pos[k], b = t[i].v[1].pos[k], c = t[i].v[2].pos[k];
-            float lo = a < b ? a : b, hi = a < b ? b : a;
-            lo = c < lo ? c : lo;
-            hi = c > hi ? c : hi;
+            const float *a = t[i].v[0].pos, *b = t[i].v[1].pos, *c = t[i].v[2].pos;
+            float lo = oit_min_f(oit_min_f(a[k], b[k]), c[k]);
+            float hi = oit_max_f(oit_max_f(a[k], b[k]), c[k]);
             if (lo < hi)
                 add_interval(p, k, lo, hi);
         }
@@ -63,9 +62,8 @@ static void axis_at(const oit_grid_phase *p, int k, int b, float mn, float mx, f
 }
 
 void oit_grid_phase_apply(const oit_grid_phase *p, const float mn[3], const float mx[3],
-                          oit_bin_grid *g, uint64_t *crossed)
+                          oit_bin_grid *g)
 {
-    uint64_t total = 0;
     for (int k = 0; k < 3; k++) {
         int64_t run = 0, best = -1;
         int best_b = 0;
@@ -85,8 +83,5 @@ void oit_grid_phase_apply(const oit_grid_phase *p, const float mn[3], const floa
             }
         }
         axis_at(p, k, best_b, mn[k], mx[k], &g->origin[k], &g->dims[k]);
-        total += (uint64_t)best + (g->dims[k] > 1 ? p->every[k] : 0);
     }
-    if (crossed)
-        *crossed = total;
 }

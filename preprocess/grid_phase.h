@@ -24,16 +24,14 @@
 typedef struct oit_grid_phase {
     double base[3], cell;                   /* phase 0 lies at base + i cell */
     int64_t diff[3][OIT_GRID_PHASES + 1];   /* crossings, as differences over phases */
-    uint64_t every[3];                      /* triangles of a cell's extent or more */
 } oit_grid_phase;
 
 /* For the grid g (its cell size; its origin is replaced by _apply). */
 void oit_grid_phase_init(oit_grid_phase *p, const oit_bin_grid *g);
 void oit_grid_phase_add(oit_grid_phase *p, const oit_triangle *t, size_t n);
 /* Sets g's origin and dims: per axis the phase of fewest crossings whose
- * grid still covers [mn, mx]; *crossed receives the crossings it counted
- * (a triangle crossing faces of two axes counts twice), may be NULL. */
+ * grid still covers [mn, mx]. */
 void oit_grid_phase_apply(const oit_grid_phase *p, const float mn[3], const float mx[3],
-                          oit_bin_grid *g, uint64_t *crossed);
+                          oit_bin_grid *g);
 
 #endif

@@ -197,6 +197,13 @@ static oit_status reserve(oit_capture *c, int which, uint64_t bytes, oit_error *
     return s;
 }
 
+/* The state buffer's bytes for the frame v: its layout follows the shading. */
+static uint64_t state_bytes(const oit_view *v)
+{
+    return (uint64_t)v->width * v->height *
+           oit_state_bytes(v->shading.mode == OIT_SHADING_TRANSLUCENT);
+}
+
 /* The array backend holds K slots for every pixel, or, under a slot budget
  * smaller than that, the budget's worth (at least one row), and then takes
  * every batch in tiles. The output, needed only at the frame's end, then
@@ -208,7 +215,7 @@ static oit_status allocate(oit_capture *c, const oit_view *v, oit_error *err)
     uint64_t full = pixels * (uint64_t)c->K * 16, row = (uint64_t)v->width * c->K * 16;
     c->tiled = array && c->slot_budget && full > c->slot_budget;
     uint64_t slots = !c->tiled ? full : c->slot_budget > row ? c->slot_budget : row;
-    uint64_t state = pixels * oit_state_bytes(v->shading.mode == OIT_SHADING_TRANSLUCENT);
+    uint64_t state = state_bytes(v);
     oit_status s = oit_gl_check_ssbo_size(array && slots > state ? slots : state,
                                           "capture: the frame's largest buffer", err);
     if (s == OIT_OK)
@@ -338,10 +345,7 @@ oit_status oit_capture_begin(oit_capture *c, const oit_view *view, oit_error *er
      * reads before this frame's first shader write to it. */
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     /* All zero is the state of a pixel nothing has reached (frag_glsl.h). */
-    uint64_t pixels = (uint64_t)view->width * view->height;
-    glClearNamedBufferSubData(c->buf[BUF_STATE], GL_R32UI, 0,
-                              (GLsizeiptr)(pixels * oit_state_bytes(c->view.shading.mode ==
-                                                                    OIT_SHADING_TRANSLUCENT)),
+    glClearNamedBufferSubData(c->buf[BUF_STATE], GL_R32UI, 0, (GLsizeiptr)state_bytes(&c->view),
                               GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     s = oit_gl_check("capture: begin", err);

@@ -49,7 +49,7 @@ static void run(uint32_t seed, size_t n, float width)
     oit_grid_phase ph;
     oit_grid_phase_init(&ph, &g);
     oit_grid_phase_add(&ph, t, n);
-    oit_grid_phase_apply(&ph, mn, mx, &g, NULL);
+    oit_grid_phase_apply(&ph, mn, mx, &g);
     for (int k = 0; k < 3; k++) {
         uint64_t best = UINT64_MAX;
         for (int b = 0; b < OIT_GRID_PHASES; b++) {
