@@ -60,7 +60,9 @@ static void walk(const oit_partfile *pf)
     }
     oit_partfile_summary sum;
     oit_partfile_get_summary(pf, &sum);
-    REQUIRE(sum.layer_bound <= sum.K);
+    /* Above K a part is wide (docs/part-file.md, PARTS): the file's limit is
+     * OIT_PARTFILE_MAX_LAYERS, not K. */
+    REQUIRE(sum.layer_bound <= OIT_PARTFILE_MAX_LAYERS);
 }
 
 static void open_and_walk(const uint8_t *data, size_t size, bool deferred)
