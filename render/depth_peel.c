@@ -32,8 +32,10 @@ static const char peel_fs[] =
     "layout(location = 0) out uvec4 o_frag;\n"
     "void main() {\n"
     "    uvec4 f = oit_fragment();\n"
-    "    uint prev = texelFetch(u_prev, ivec2(gl_FragCoord.xy), 0).x;\n"
-    "    if (f.x <= prev) discard;\n"
+    "    uvec2 prev = texelFetch(u_prev, ivec2(gl_FragCoord.xy), 0).xy;\n"
+    /* Keep only fragments after the previous layer in (key, prim) order. */
+    "    uint pf = f.y & 0x7fffffffu, pp = prev.y & 0x7fffffffu;\n"
+    "    if (f.x < prev.x || (f.x == prev.x && pf <= pp)) discard;\n"
     "    gl_FragDepth = uintBitsToFloat(f.x) * u_depth_scale;\n"
     "    o_frag = f;\n"
     "}\n";

@@ -7,14 +7,15 @@
  * (shade.h), and peeling stops when an occlusion query reports that a pass
  * kept no fragment. Cost: max_layers + 1 geometry passes.
  *
- * Exact, equal to DFB's (t, prim) order, whenever no pixel has two fragments
- * at bitwise-equal t. Where it has (coplanar or shared-edge fragments), the
- * pass keeps the first one rasterized (the depth test is LESS, and GL
- * rasterizes in primitive order: the lowest prim, as (t, prim) would) and
- * the next pass discards the others since their t is not > t_prev: those
- * fragments are LOST, the known limitation of depth peeling.
+ * Exact, equal to DFB's (key, prim) order (the tie rule, shade.h), ties
+ * included: a pass discards every fragment at or before the previous layer
+ * in (key, prim) order, which the layer target holds whole, and of the rest
+ * the depth test (LESS on the key) keeps the nearest key and, among tied
+ * keys, the first fragment rasterized: GL rasterizes in primitive order, so
+ * the lowest prim, as (key, prim) puts first. The next pass then finds the
+ * other tied fragments after this one and peels them in turn.
  *
- * Stats: fragments = fragments composited (ties lost are not counted),
+ * Stats: fragments = fragments composited,
  * max_layers = layers peeled, batches = geometry passes, gpu_bytes_peak. */
 #ifndef OIT_RENDER_DEPTH_PEEL_H
 #define OIT_RENDER_DEPTH_PEEL_H

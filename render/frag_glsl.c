@@ -3,6 +3,7 @@
 #include "render/frag_glsl.h"
 
 #include "render/gpu_mesh.h"
+#include "render/shade.h"
 
 #include <math.h>
 
@@ -17,7 +18,20 @@ const char oit_glsl_vertex[] =
     "out vec4 v_rgba;\n"
     "flat out vec3 v_normal;\n"
     "flat out uint v_first_prim;\n"
+    "layout(location = 15) uniform dvec3 u_eye;\n"
+    "flat out vec4 v_plane;\n"
     "invariant gl_Position;\n"
+    /* The tie rule's plane (shade.h, oit_depth_plane): in double from the
+     * float vertices, rounded to float, so that every triangle of one plane
+     * carries the same numbers; the normal is then rotated into view space. */
+    "vec4 oit_tie_plane(vec3 p0, vec3 p1, vec3 p2) {\n"
+    "    dvec3 q0 = dvec3(p0);\n"
+    "    dvec3 nn = cross(dvec3(p1) - q0, dvec3(p2) - q0);\n"
+    "    double len = sqrt(dot(nn, nn));\n"
+    "    if (!(len > 0.0lf)) return vec4(0.0);\n"
+    "    dvec3 nu = nn / len;\n"
+    "    return vec4(mat3(u_view) * vec3(nu), float(dot(nu, q0 - u_eye)));\n"
+    "}\n"
     "void main() {\n"
     /* The draw's triangles start at vertex a_draw.x of the binding. */
     "    uint tri = (uint(gl_VertexID) - a_draw.x) / 3u;\n"
@@ -30,6 +44,7 @@ const char oit_glsl_vertex[] =
      * view-space vectors equal the world-space ones of shade.h. */
     "    v_normal = mat3(u_view) * cross(p1 - p0, p2 - p0);\n"
     "    v_first_prim = a_draw.y;\n"
+    "    v_plane = oit_tie_plane(p0, p1, p2);\n"
     "    vec4 vp = u_view * vec4(uintBitsToFloat(me.xyz), 1.0);\n"
     "    v_pos = vp.xyz;\n"
     "    v_rgba = unpackUnorm4x8(me.w);\n"
@@ -46,6 +61,8 @@ const char oit_glsl_fragment_gen[] =
     "in vec4 v_rgba;\n"
     "flat in vec3 v_normal;\n"
     "flat in uint v_first_prim;\n"
+    "flat in vec4 v_plane;\n"
+    "layout(location = 16) uniform vec4 u_ray;\n"
     "uint oit_pixel_index() {\n"
     "    return uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x);\n"
     "}\n"
@@ -53,9 +70,23 @@ const char oit_glsl_fragment_gen[] =
     "    uvec3 q = uvec3(round(clamp(c, 0.0, 1.0) * vec3(2047.0, 2047.0, 1023.0)));\n"
     "    return q.x | (q.y << 11) | (q.z << 22);\n"
     "}\n"
+    /* The tie rule's key (shade.h, oit_depth_key): t of the triangle's
+     * plane along the pixel centre's unit ray, which every triangle at this
+     * pixel shares, with the low mantissa bits cleared. */
+    "uint oit_depth_key(float t_interp) {\n"
+    "    vec3 dir = normalize(vec3(gl_FragCoord.x * u_ray.x + u_ray.z,\n"
+    "                              gl_FragCoord.y * u_ray.y + u_ray.w, -1.0));\n"
+    "    float nd = dot(v_plane.xyz, dir);\n"
+    "    float t = t_interp;\n"
+    "    if (abs(nd) >= " OIT_GLSL_STR(OIT_DEPTH_GRAZING) ") {\n"
+    "        float tp = v_plane.w / nd;\n"
+    "        if (tp > 0.0 && !isinf(tp)) t = tp;\n"
+    "    }\n"
+    "    return floatBitsToUint(t) & ~" OIT_GLSL_STR(OIT_DEPTH_KEY_MASK) "u;\n"
+    "}\n"
     "uvec4 oit_fragment() {\n"
-    "    float t = length(v_pos);\n"
-    "    vec3 v = -v_pos / t;\n"
+    "    float t_interp = length(v_pos);\n"
+    "    vec3 v = -v_pos / t_interp;\n"
     /* Degenerate triangles shade as edge-on, like shade.c. */
     "    float nn = dot(v_normal, v_normal);\n"
     "    float nv = nn > 0.0 ? dot(v_normal * inversesqrt(nn), v) : 0.0;\n"
@@ -65,7 +96,7 @@ const char oit_glsl_fragment_gen[] =
     "    float a = (u_attrs & 2u) != 0u ? v_rgba.a : u_alpha;\n"
     "    uint prim = v_first_prim + uint(gl_PrimitiveID);\n"
     "    uvec4 f;\n"
-    "    f.x = floatBitsToUint(t);\n"
+    "    f.x = oit_depth_key(t_interp);\n"
     "    f.y = (prim & 0x7fffffffu) | (nv > 0.0 ? 0x80000000u : 0u);\n"
     "    if (u_mode == 1) {\n"
     "        float fresnel = 0.04 + 0.96 * pow(1.0 - ndv, 5.0);\n"
@@ -199,6 +230,11 @@ void oit_glsl_set_view(GLuint prog, const oit_view *view)
         bg[c] = fmaxf(s->background[c], 0.0f);
     glProgramUniform3fv(prog, loc(prog, "u_background"), 1, bg);
     glProgramUniform2i(prog, loc(prog, "u_size"), view->width, view->height);
+    const float *e = view->camera.eye;
+    glProgramUniform3d(prog, loc(prog, "u_eye"), e[0], e[1], e[2]);
+    float ray[4];
+    oit_view_ray_map(view, ray);
+    glProgramUniform4fv(prog, loc(prog, "u_ray"), 1, ray);
 }
 
 void oit_glsl_set_view_all(const GLuint *progs, int n, const oit_view *view)

@@ -26,7 +26,8 @@
  * triangles at 256x256: 120 ms instead of 60; cause not found).
  *
  * A fragment is packed into one uvec4 (16 bytes):
- *   x  floatBitsToUint(t)               t = distance from the eye (> 0)
+ *   x  the tie rule's key (shade.h): floatBitsToUint(t) of the plane's
+ *      distance along the pixel's ray, low bits cleared (t > 0)
  *   y  prim (31 bits) | front << 31
  *   transparent: z = unorm16(colour.r, colour.g), w = unorm16(colour.b, alpha)
  *   translucent: z = unorm16(light, fresnel alpha)  (the colour is grey)
@@ -61,7 +62,9 @@ enum {
     OIT_LOC_SIZE = 11,       /* ivec2: frame size */
     OIT_LOC_RECT = 12,       /* ivec4: GL-oriented rect x0,y0,x1,y1 */
     OIT_LOC_COUNT = 13,      /* uint: element count (scans) */
-    OIT_LOC_FIRST_LEVEL = 14 /* int: scan level 0 accumulates totals */
+    OIT_LOC_FIRST_LEVEL = 14, /* int: scan level 0 accumulates totals */
+    OIT_LOC_EYE = 15,        /* dvec3: the eye in the vertices' coordinates */
+    OIT_LOC_RAY = 16         /* vec4: window coordinates to view-space ray */
 };
 
 /* The vertex input of oit_glsl_vertex (uvec2, see above). */

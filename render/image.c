@@ -132,9 +132,13 @@ oit_status oit_image_write_png(const oit_image *img, const char *path, oit_error
 /* Deflate cannot expand data by more than about 1032:1, so a header that
  * promises more pixel bytes than that is lying (or a bomb); refusing it
  * keeps a tiny bogus file from triggering a huge allocation. */
-static int png_size_plausible(png_uint_32 w, png_uint_32 h, long long file_bytes)
+/* zlib inflates at most 1032:1, so a file that holds its rows (the file's own
+ * row bytes, as its IHDR declares them, and a filter byte each) is at least
+ * that much smaller: a mostly black 8-bit mask compresses far beyond what a
+ * 16-bit RGBA row count would allow. */
+static int png_size_plausible(png_uint_32 w, png_uint_32 h, size_t row_bytes, long long file_bytes)
 {
-    double raw = ((double)w * 8.0 + 1.0) * (double)h; /* 16-bit RGBA + filter byte */
+    double raw = ((double)row_bytes + 1.0) * (double)h;
     return w <= OIT_IMAGE_MAX_SIDE && h <= OIT_IMAGE_MAX_SIDE &&
            raw <= 1032.0 * (double)file_bytes + 65536.0;
 }
@@ -171,7 +175,7 @@ static oit_status read_png(const char *path, FILE *f, oit_image *img, oit_error 
     png_init_io(png, f);
     png_read_info(png, info);
     png_uint_32 w = png_get_image_width(png, info), h = png_get_image_height(png, info);
-    if (!png_size_plausible(w, h, bytes))
+    if (!png_size_plausible(w, h, png_get_rowbytes(png, info), bytes))
         png_error(png, "image size does not fit the file");
     int bit16 = png_get_bit_depth(png, info) == 16;
     /* Everything becomes RGBA of the file's depth (8 or 16). */

@@ -1,7 +1,7 @@
 /* The Embree reference (reference.h). One ray per pixel centre; an intersect
  * filter records every hit and rejects it, so traversal visits the whole
  * ray. Hits are de-duplicated (spatial splits may report a triangle twice),
- * clipped to [znear, zfar] in view depth like GL, sorted by (t, prim) and
+ * clipped to [znear, zfar] in view depth like GL, sorted by (key, prim) and
  * composited in double precision with shade.h. Rows are shared among
  * pthreads through an atomic row counter. */
 #include "render/reference.h"
@@ -20,8 +20,9 @@
 #include "render/shade.h"
 
 typedef struct hit_rec {
-    float t, u, v;
+    float t, u, v; /* Embree's hit; t decides the view-depth clip, as in GL */
     uint32_t prim;
+    float key;     /* the tie rule's sort key (shade.h) */
 } hit_rec;
 
 /* Embree hands the filter the context pointer we pass to rtcIntersect1, so
@@ -56,6 +57,8 @@ typedef struct ref_job {
     uint32_t *counts;
     uint8_t *ambiguous;
     double ambiguity_px;
+    uint32_t *ties;
+    float view_matrix[16], ray_map[4];
     atomic_int next_row;
     atomic_int oom;
 } ref_job;
@@ -127,10 +130,10 @@ static int cmp_prim_t(const void *a, const void *b)
     return (x->t > y->t) - (x->t < y->t);
 }
 
-static int cmp_t_prim(const void *a, const void *b)
+static int cmp_key_prim(const void *a, const void *b)
 {
     const hit_rec *x = a, *y = b;
-    if (x->t != y->t) return x->t < y->t ? -1 : 1;
+    if (x->key != y->key) return x->key < y->key ? -1 : 1;
     return (x->prim > y->prim) - (x->prim < y->prim);
 }
 
@@ -190,18 +193,22 @@ static int depth_kept(const ref_job *job, double t, const double dir[3])
 /* Composites hits already in (t, prim) order that pass the view-depth clip;
  * returns how many were kept. */
 static uint32_t composite_hits(const ref_job *job, const hit_rec *hits, size_t n,
-                               const double dir[3], float rgb[3])
+                               const double dir[3], float rgb[3], uint32_t *ties)
 {
     oit_pixel_state st;
     oit_pixel_begin(&st);
     uint32_t kept = 0;
+    float last_key = -1.0f;
+    *ties = 0;
     for (size_t i = 0; i < n; i++) {
         if (!depth_kept(job, hits[i].t, dir))
             continue;
+        *ties += kept > 0 && hits[i].key - last_key <= hits[i].key * 0x1p-18f;
+        last_key = hits[i].key;
         float bary[3] = {1.0f - hits[i].u - hits[i].v, hits[i].u, hits[i].v};
         oit_shaded_fragment f;
         oit_shade_fragment(&job->shading, &job->mesh->tris[hits[i].prim], hits[i].prim, bary,
-                           job->cam->eye, hits[i].t, &f);
+                           job->cam->eye, hits[i].key, &f);
         oit_pixel_add(&st, &job->shading, &f);
         kept++;
     }
@@ -266,12 +273,22 @@ static int hit_set_changes(ref_worker *wk, int x, int y, size_t centre_n)
     return 0;
 }
 
-static int t_ties(const hit_rec *h, size_t n)
+/* Each hit's sort key from its triangle's plane (shade.h), computed as the
+ * GL methods do: the normal rotated into view space by the float view
+ * matrix, the pixel's view-space ray from the ray map, so that both sides
+ * round alike where they can. */
+static void key_hits(const ref_job *job, hit_rec *h, size_t n, int x, int y)
 {
-    for (size_t i = 1; i < n; i++)
-        if ((double)h[i].t - h[i - 1].t <= 1e-5 * h[i].t)
-            return 1;
-    return 0;
+    float dir[3];
+    oit_view_pixel_ray(job->ray_map, x, y, job->out->height, dir);
+    const float *m = job->view_matrix;
+    for (size_t i = 0; i < n; i++) {
+        float nw[3], nv[3], d;
+        oit_depth_plane(&job->mesh->tris[h[i].prim], job->cam->eye, nw, &d);
+        for (int r = 0; r < 3; r++)
+            nv[r] = m[r] * nw[0] + m[4 + r] * nw[1] + m[8 + r] * nw[2];
+        h[i].key = oit_depth_key(nv, d, dir, h[i].t);
+    }
 }
 
 static void trace_pixel(ref_worker *wk, int x, int y)
@@ -283,10 +300,14 @@ static void trace_pixel(ref_worker *wk, int x, int y)
     size_t centre_n = job->ambiguous ? kept_prims(wk, n, dir, NULL) : 0;
     if (job->ambiguous && !save_centre_prims(wk, n, dir))
         wk->ray.oom = 1;
+    key_hits(job, wk->ray.hits, n, x, y);
     if (n > 1)
-        qsort(wk->ray.hits, n, sizeof *wk->ray.hits, cmp_t_prim);
+        qsort(wk->ray.hits, n, sizeof *wk->ray.hits, cmp_key_prim);
     float *px = job->out->rgba + ((size_t)y * w + x) * 4;
-    uint32_t kept = composite_hits(job, wk->ray.hits, n, dir, px);
+    uint32_t ties;
+    uint32_t kept = composite_hits(job, wk->ray.hits, n, dir, px, &ties);
+    if (job->ties)
+        job->ties[(size_t)y * w + x] = ties;
     px[3] = 1.0f;
     if (job->counts)
         job->counts[(size_t)y * w + x] = kept;
@@ -295,7 +316,7 @@ static void trace_pixel(ref_worker *wk, int x, int y)
         wk->max_layers = kept;
     if (job->ambiguous)
         job->ambiguous[(size_t)y * w + x] =
-            (uint8_t)(t_ties(wk->ray.hits, n) || (!wk->ray.oom && hit_set_changes(wk, x, y, centre_n)));
+            (uint8_t)(!wk->ray.oom && hit_set_changes(wk, x, y, centre_n));
 }
 
 static void *render_rows(void *arg)
@@ -491,6 +512,9 @@ oit_status oit_reference_render(const oit_mesh *mesh, const oit_view *view,
     job.shading = view->shading;
     job.counts = counts;
     job.ambiguous = desc ? desc->ambiguous : NULL;
+    job.ties = desc ? desc->ties : NULL;
+    oit_camera_view_matrix(&view->camera, job.view_matrix);
+    oit_view_ray_map(view, job.ray_map);
     job.ambiguity_px = desc && desc->ambiguity_px > 0.0f ? desc->ambiguity_px : 1.0 / 64.0;
     atomic_init(&job.next_row, 0);
     atomic_init(&job.oom, 0);

@@ -1,6 +1,7 @@
 /* The exact reference, independent of GL: an Embree ray through every pixel
  * centre collects every hit (filter callback, no early exit), hits are sorted
- * by (t, prim) and composited in double precision with shade.h. */
+ * by the tie rule's (key, prim) (shade.h) and composited in double precision
+ * with shade.h. */
 #ifndef OIT_RENDER_REFERENCE_H
 #define OIT_RENDER_REFERENCE_H
 
@@ -15,11 +16,17 @@ typedef struct oit_reference_desc {
     /* Optional, width*height bytes: set to 1 where the pixel is ambiguous
      * between rasterization and ray casting, i.e. the set of triangles hit
      * changes when the ray moves by ambiguity_px pixels in x or y (the
-     * centre lies on a triangle edge or a silhouette), or two hits lie
-     * within a relative 1e-5 in t (their order hinges on rounding). Costs
+     * centre lies on a triangle edge or a silhouette). Hits that tie in
+     * depth are not ambiguous: the tie rule (shade.h) orders them. Costs
      * four more rays per pixel. */
     uint8_t *ambiguous;
     float ambiguity_px; /* default 1/64 pixel */
+    /* Optional, width*height counts: kept hits whose key is within 2^-18 of
+     * their t (a few steps of the key's grid, shade.h) of the key of the
+     * kept hit before them on the pixel's ray: ties, and near ties that a
+     * GL method's rounding may turn into ties. A method unable to order
+     * ties (dual depth peeling) loses at most these fragments. */
+    uint32_t *ties;
 } oit_reference_desc;
 
 /* out is allocated by the call. counts (optional) receives hits per pixel. */

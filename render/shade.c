@@ -82,6 +82,46 @@ void oit_shade_fragment(const oit_shading *s, const oit_triangle *tri,
     }
 }
 
+int oit_depth_plane(const oit_triangle *tri, const float eye[3], float n[3], float *d)
+{
+    double e1[3], e2[3], nn[3], q[3];
+    sub3(tri->v[1].pos, tri->v[0].pos, e1);
+    sub3(tri->v[2].pos, tri->v[0].pos, e2);
+    nn[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    nn[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    nn[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    sub3(tri->v[0].pos, eye, q);
+    *d = 0.0f;
+    n[0] = n[1] = n[2] = 0.0f;
+    if (!normalize3(nn) || !isfinite(nn[0] + nn[1] + nn[2]))
+        return 0;
+    for (int k = 0; k < 3; k++)
+        n[k] = (float)nn[k];
+    *d = (float)dot3(nn, q);
+    return 1;
+}
+
+float oit_depth_quantise(float t)
+{
+    uint32_t bits;
+    memcpy(&bits, &t, sizeof bits);
+    bits &= ~((1u << OIT_DEPTH_KEY_DROP_BITS) - 1u);
+    memcpy(&t, &bits, sizeof t);
+    return t;
+}
+
+float oit_depth_key(const float n[3], float d, const float dir[3], float t_interp)
+{
+    float nd = n[0] * dir[0] + n[1] * dir[1] + n[2] * dir[2];
+    float t = t_interp;
+    if (fabsf(nd) >= OIT_DEPTH_GRAZING) {
+        float tp = d / nd;
+        if (tp > 0.0f && isfinite(tp))
+            t = tp;
+    }
+    return oit_depth_quantise(t);
+}
+
 void oit_pixel_begin(oit_pixel_state *st)
 {
     memset(st, 0, sizeof *st);

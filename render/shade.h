@@ -15,7 +15,9 @@
  *               the medium behind a front face absorbs with
  *               sigma_c = absorption / scene_scale * (1 - base_c), c in rgb.
  *
- * Per pixel, fragments sorted by (t, prim) ascending, with state
+ * Per pixel, fragments sorted by (key, prim) ascending (the tie rule below;
+ * prim is the SOURCE triangle's index, its position in the input file, kept
+ * through conversion), with state
  * C = 0, T = (1,1,1), nest = 0:
  *   translucent and nest > 0:  T *= exp(-sigma(medium) * (t - t_prev))
  *   C += T * a * colour;   T *= (1 - a)
@@ -25,6 +27,43 @@
  * The state (C, T, nest, medium, t_prev) is what crosses batch boundaries
  * when a frame is captured in several batches.
  */
+/* The tie rule (docs/ties.md), used by every exact method: DFB, the stream,
+ * the exact baselines and the Embree reference.
+ *
+ * Depth. A fragment's t is taken from its triangle's PLANE, not from
+ * interpolation: the plane's unit normal n and its signed distance from the
+ * eye d = n . (p0 - eye) are computed in double from the float vertices and
+ * then rounded to float, and t = d / (n . dir) in float along the pixel's
+ * unit ray dir. Two triangles of one plane (a face exported twice, the
+ * same face wound the other way, coplanar decals and CAD faces built on one
+ * plane) get the same float n and d up to the sign, because the double
+ * computation is within 1e-15 of the exact plane and the rounding to float
+ * then lands on the same value; a sign flip changes no bit of t. So they
+ * get the same t at every pixel, whichever way each method rasterizes or
+ * casts rays. Interpolated depth differs between such triangles by a few
+ * float ulps, which is what made the order of coincident faces change with
+ * the method, the conversion and the view. Where the plane gives no usable t
+ * (a degenerate triangle, or a ray within 2^-12 of grazing it, where
+ * d / (n . dir) amplifies rounding) the interpolated t is used.
+ *
+ * Key. The key is t with its OIT_DEPTH_KEY_DROP_BITS lowest mantissa bits
+ * cleared: a grid of 2^-19 of t's binade (16 float ulps), so depths within
+ * about 1e-6 of t of each other usually share a key (faces that are
+ * coplanar only up to the rounding of their float vertices, clipped pieces
+ * whose new vertices were rounded, the last-bit differences between two
+ * drivers), while faces further apart than 2^-19 of their distance never
+ * do: a decal 1e-5 of a unit model in front of its surface stays in front
+ * seen from up to 8 model sizes away. (key, prim) is a strict weak order,
+ * as sorting needs; a tolerance compare would not be one. The Embree
+ * reference computes the key with the same float operations as the GL
+ * shaders (normal rotated by the float view matrix, the ray from the ray
+ * map, view.h), so that near ties round alike where the hardware lets
+ * them. Compositing uses the key as the fragment's t (translucent
+ * absorption): an error of at most 2e-6 t in path length. */
+#define OIT_DEPTH_KEY_DROP_BITS 4
+#define OIT_DEPTH_KEY_MASK 15 /* (1 << OIT_DEPTH_KEY_DROP_BITS) - 1, spelled for GLSL */
+#define OIT_DEPTH_GRAZING 2.44140625e-4f /* 2^-12 */
+
 #ifndef OIT_RENDER_SHADE_H
 #define OIT_RENDER_SHADE_H
 
@@ -41,8 +80,8 @@ extern "C" {
 #define OIT_SHADE_F0 0.04f
 
 typedef struct oit_shaded_fragment {
-    double t;        /* distance from the eye */
-    uint32_t prim;   /* triangle index        */
+    double t;        /* sort key: distance from the eye, quantised (above) */
+    uint32_t prim;   /* source triangle index */
     int front;       /* 1 when front-facing   */
     float colour[3]; /* shaded colour         */
     float alpha;     /* coverage / Fresnel    */
@@ -56,6 +95,16 @@ typedef struct oit_pixel_state {
     int nest;
 } oit_pixel_state;
 
+/* The triangle's plane as the tie rule defines it: unit normal n and signed
+ * distance d of the plane from eye along n, both rounded from double.
+ * Returns 0 (n = 0, d = 0) for a degenerate triangle. */
+int oit_depth_plane(const oit_triangle *tri, const float eye[3], float n[3], float *d);
+/* The sort key of a fragment on that plane seen along the unit ray dir
+ * (world space), or of t_interp where the plane gives no usable t. */
+float oit_depth_key(const float n[3], float d, const float dir[3], float t_interp);
+/* t with its low OIT_DEPTH_KEY_DROP_BITS mantissa bits cleared (t > 0). */
+float oit_depth_quantise(float t);
+
 /* Shades one hit: p0..p2 the triangle, bary (w0,w1,w2) the barycentric
  * weights of the hit, eye the camera position, t the hit distance. */
 void oit_shade_fragment(const oit_shading *s, const oit_triangle *tri,
@@ -63,7 +112,7 @@ void oit_shade_fragment(const oit_shading *s, const oit_triangle *tri,
                         double t, oit_shaded_fragment *out);
 
 void oit_pixel_begin(oit_pixel_state *st);
-/* Adds one fragment; fragments must arrive in (t, prim) order. */
+/* Adds one fragment; fragments must arrive in (t, prim) order, t the key. */
 void oit_pixel_add(oit_pixel_state *st, const oit_shading *s,
                    const oit_shaded_fragment *f);
 void oit_pixel_end(const oit_pixel_state *st, const oit_shading *s, float rgb[3]);

@@ -98,6 +98,28 @@ void oit_camera_proj_matrix(const oit_camera *cam, float aspect, float m[16])
     m[14] = (float)(2.0 * fa * n / (n - fa));
 }
 
+void oit_view_ray_map(const oit_view *view, float ray[4])
+{
+    double fovy = view->camera.fovy_deg > 0.0f ? view->camera.fovy_deg : 45.0;
+    double ty = tan(0.5 * fovy * kPi / 180.0);
+    double tx = ty * (double)view->width / (double)view->height;
+    ray[0] = (float)(2.0 * tx / view->width);
+    ray[1] = (float)(2.0 * ty / view->height);
+    ray[2] = (float)-tx;
+    ray[3] = (float)-ty;
+}
+
+void oit_view_pixel_ray(const float ray[4], int x, int y, int height, float dir[3])
+{
+    float fx = (float)x + 0.5f, fy = (float)(height - 1 - y) + 0.5f;
+    dir[0] = fx * ray[0] + ray[2];
+    dir[1] = fy * ray[1] + ray[3];
+    dir[2] = -1.0f;
+    float inv = 1.0f / sqrtf(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+    for (int k = 0; k < 3; k++)
+        dir[k] *= inv;
+}
+
 void oit_camera_frustum(const oit_camera *cam, float aspect, float planes[6][4])
 {
     double fovy = cam->fovy_deg > 0.0f ? cam->fovy_deg : 45.0;

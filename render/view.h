@@ -8,9 +8,9 @@
  *   ((x + 0.5) / w * 2 - 1, 1 - (y + 0.5) / h * 2).
  * - A fragment is kept when its view-space depth (distance along the view
  *   direction) lies in [znear, zfar], as GL clipping does.
- * - The sort key of a fragment is t, its distance from the eye (the ray
- *   parameter of a unit-length ray through the pixel centre); ties are broken
- *   by primitive index (the triangle's position in the mesh), ascending.
+ * - Fragments sort by the tie rule (shade.h): the key, the distance from the
+ *   eye along the pixel centre's unit ray to the triangle's plane with its
+ *   low bits cleared, then the source triangle's index, ascending.
  * - Shading and compositing are defined once in shade.h.
  */
 #ifndef OIT_RENDER_VIEW_H
@@ -87,6 +87,14 @@ void oit_camera_default(oit_camera *cam, const float bmin[3], const float bmax[3
 /* 4x4 column-major matrices, as GL expects. */
 void oit_camera_view_matrix(const oit_camera *cam, float m[16]);
 void oit_camera_proj_matrix(const oit_camera *cam, float aspect, float m[16]);
+/* The pixel ray map of a view (the tie rule, shade.h): the view-space ray
+ * through window point (x, y), GL orientation (y = 0 the BOTTOM row, pixel
+ * centres at +0.5), is (x * ray[0] + ray[2], y * ray[1] + ray[3], -1), so a
+ * pixel centre's ray is the same for every triangle drawn there. */
+void oit_view_ray_map(const oit_view *view, float ray[4]);
+/* The tie rule's unit view-space ray of pixel (x, y), y = 0 the TOP row, as
+ * the GL methods compute it from gl_FragCoord and the ray map. */
+void oit_view_pixel_ray(const float ray[4], int x, int y, int height, float dir[3]);
 /* World-space planes bounding what the camera sees at this aspect: a point x
  * can be visible only if p[0] x + p[1] y + p[2] z + p[3] >= 0 for all six
  * (left, right, bottom, top, near, far). Deliberately a little wider than

@@ -40,8 +40,11 @@ static void hard_color(oit_emit *e, float hue, uint8_t alpha)
     oit_emit_color(e, rgb[0], rgb[1], rgb[2], alpha);
 }
 
+static void coplanar_set(oit_emit *e, float s);
+
 /* Coincident faces of opposite orientation, a box duplicated exactly (as
- * CAD exports repeat parts), and three quads overlapping in one plane. */
+ * CAD exports repeat parts), three quads overlapping in one plane, and
+ * coplanar_set's faces. */
 static void case_coplanar(oit_emit *e, uint64_t seed)
 {
     (void)seed;
@@ -59,6 +62,94 @@ static void case_coplanar(oit_emit *e, uint64_t seed)
         hard_quad(e, oit_v3_make(-1.2f + 0.5f * i, -1.2f + 0.3f * i, 0.5f),
                   oit_v3_make(1.4f, 0, 0), oit_v3_make(0, 1.4f, 0));
     }
+    coplanar_set(e, 1.0f);
+}
+
+/* Overlapping coplanar faces at scale s: three quads in z = 0.3 s, three in
+ * the tilted plane z = (0.5 x + 0.25 y - 0.25) s (exact in float at s = 1,
+ * every corner a multiple of 1/16; at s = 1e-6 rounded), one quad drawn three times (colours
+ * differ, the middle copy wound the other way), and three quads in a plane
+ * turned 30 degrees about x, whose rounded corners lie only within float
+ * rounding of one plane. */
+static void coplanar_set(oit_emit *e, float s)
+{
+    for (int i = 0; i < 3; i++) {
+        hard_color(e, 0.15f + 0.25f * (float)i, 130);
+        hard_quad(e, oit_v3_make((-1.25f + 0.5f * (float)i) * s, (-1.25f + 0.25f * (float)i) * s, 0.3f * s),
+                  oit_v3_make(1.5f * s, 0, 0), oit_v3_make(0, 1.5f * s, 0));
+    }
+    for (int i = 0; i < 3; i++) {
+        float x = -1.0f + 0.5f * (float)i, y = -0.75f + 0.25f * (float)i;
+        hard_color(e, 0.05f + 0.3f * (float)i, 120);
+        hard_quad(e, oit_v3_make(x * s, y * s, (0.5f * x + 0.25f * y - 0.25f) * s),
+                  oit_v3_make(1.0f * s, 0, 0.5f * s), oit_v3_make(0, 1.0f * s, 0.25f * s));
+    }
+    for (int i = 0; i < 3; i++) {
+        hard_color(e, 0.7f + 0.1f * (float)i, 110);
+        oit_v3 o = oit_v3_make(-0.5f * s, 0.9f * s, -0.75f * s);
+        oit_v3 u = oit_v3_make(1.25f * s, 0, 0), v = oit_v3_make(0, 0, 1.0f * s);
+        if (i == 1)
+            hard_quad(e, o, v, u);
+        else
+            hard_quad(e, o, u, v);
+    }
+    const float c = 0.8660254f, sn = 0.5f; /* 30 degrees */
+    for (int i = 0; i < 3; i++) {
+        float a = -1.0f + 0.45f * (float)i, b = -0.9f + 0.35f * (float)i, l = 1.1f;
+        hard_color(e, 0.45f + 0.12f * (float)i, 125);
+        oit_v3 o = oit_v3_make(a * s, -1.4f * s + b * c * s, -1.0f * s + b * sn * s);
+        hard_quad(e, o, oit_v3_make(l * s, 0, 0), oit_v3_make(0, l * c * s, l * sn * s));
+    }
+}
+
+static void case_coplanar_tiny(oit_emit *e, uint64_t seed)
+{
+    (void)seed;
+    coplanar_set(e, 1e-6f);
+}
+
+static void case_coplanar_far(oit_emit *e, uint64_t seed)
+{
+    (void)seed;
+    coplanar_set(e, 1.0f); /* oitgen writes doubles offset by 1e7 */
+}
+
+/* A red surface and a blue decal 1e-5 above it (+y, the tools' up) with the
+ * same outline, emitted after it (so a depth tie would put the surface in
+ * front: ties go to the lower source index): once in y = 0, once in a plane
+ * tilted 20 degrees about z, the decal moved 1e-5 along the normal. Seen
+ * from above the decal must win on every pixel, from below the surface:
+ * 1e-5 of a unit model is no tie (shade.h). */
+static void case_decal(oit_emit *e, uint64_t seed)
+{
+    (void)seed;
+    const float gap = 1e-5f, c = 0.9396926f, sn = 0.3420201f; /* 20 degrees */
+    oit_v3 back = {0, 0, -1.2f};
+    oit_v3 u[2] = {{1.2f, 0, 0}, {1.2f * c, 1.2f * sn, 0}}, n[2] = {{0, 1, 0}, {-sn, c, 0}};
+    oit_v3 o[2] = {{-1.4f, 0, 0.6f}, {0.2f, -0.1f, 0.6f}};
+    for (int k = 0; k < 2; k++) {
+        oit_emit_color(e, 230, 20, 20, 200);
+        hard_quad(e, o[k], u[k], back);
+        oit_emit_color(e, 20, 20, 230, 200);
+        hard_quad(e, oit_v3_add(o[k], oit_v3_scale(n[k], gap)), u[k], back);
+    }
+}
+
+/* A 3 x 3 x 2 block of unit boxes touching face to face (each shared face
+ * twice, wound opposite ways, in different colours) and one box resting on
+ * top, half over an edge. */
+static void case_touching(oit_emit *e, uint64_t seed)
+{
+    (void)seed;
+    for (int z = 0; z < 2; z++)
+        for (int y = 0; y < 3; y++)
+            for (int x = 0; x < 3; x++) {
+                hard_color(e, (float)((x + 3 * y + 9 * z) % 7) / 7.0f, 90);
+                oit_v3 lo = oit_v3_make(0.5f * (float)x - 0.75f, 0.5f * (float)y - 0.75f, 0.5f * (float)z - 0.5f);
+                oit_shape_box(e, lo, oit_v3_add(lo, oit_v3_make(0.5f, 0.5f, 0.5f)));
+            }
+    hard_color(e, 0.95f, 120);
+    oit_shape_box(e, oit_v3_make(0.5f, -0.25f, 0.5f), oit_v3_make(1.0f, 0.25f, 1.0f));
 }
 
 /* A tube along the closed curve f (n samples), frames carried by parallel
@@ -369,6 +460,8 @@ static const hard_case CASES[] = {
     {"moebius", case_moebius},   {"degenerate", case_degenerate}, {"nearflat", case_nearflat},
     {"far", case_far},           {"tiny", case_tiny},         {"thin", case_thin},
     {"nonmanifold", case_nonmanifold}, {"stack", case_stack}, {"dense", case_dense},
+    {"coplanar_tiny", case_coplanar_tiny}, {"coplanar_far", case_coplanar_far},
+    {"decal", case_decal},       {"touching", case_touching},
 };
 
 const char *oit_scene_hard_case_name(int i)
@@ -378,7 +471,7 @@ const char *oit_scene_hard_case_name(int i)
 
 int oit_scene_hard_offset(const oit_scene_args *a, double offset[3])
 {
-    int far = a->hard_case && !strcmp(a->hard_case, "far");
+    int far = a->hard_case && (!strcmp(a->hard_case, "far") || !strcmp(a->hard_case, "coplanar_far"));
     for (int k = 0; k < 3; k++)
         offset[k] = far ? 1e7 : 0.0;
     return far;

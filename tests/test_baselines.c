@@ -18,6 +18,7 @@
 #include "render/dual_peel.h"
 #include "render/f2b.h"
 #include "render/gl_context.h"
+#include "render/reference.h"
 #include "render/guarded.h"
 #include "render/image.h"
 #include "render/ppll.h"
@@ -344,6 +345,44 @@ static void test_ddp_translucent(methods *m)
     oit_gpu_mesh_destroy(mesh);
 }
 
+/* Dual depth peeling cannot order fragments whose keys tie (dual_peel.h):
+ * it must equal DFB on every pixel where the Embree reference finds no tie
+ * or near tie (reference.h), and lose no more than those fragments. */
+static void check_loses_only_ties(methods *m, enum method which, const char *scene,
+                                  const oit_triangle *tris, size_t count, const oit_view *v)
+{
+    size_t np = (size_t)v->width * v->height;
+    uint32_t *ties = calloc(np, sizeof *ties);
+    oit_mesh mesh = {(oit_triangle *)tris, count, count, {0}};
+    oit_reference_desc rd = {0};
+    rd.ties = ties;
+    oit_image ref_img = {0};
+    oit_error err = {0};
+    CHECK(ties && oit_reference_render(&mesh, v, &rd, &ref_img, NULL, NULL, &err) == OIT_OK,
+          "reference on %s: %s", scene, err.message);
+    result ref = render(m, M_DFB, tris, count, v), r = render(m, which, tris, count, v);
+    uint64_t tied = 0, tie_pixels = 0;
+    double worst = 0.0;
+    for (size_t p = 0; ties && p < np; p++) {
+        tied += ties[p];
+        tie_pixels += ties[p] > 0;
+        for (int c = 0; c < 3 && !ties[p] && r.ok && ref.ok; c++)
+            worst = fmax(worst, fabs(r.img.rgba[p * 4 + c] - ref.img.rgba[p * 4 + c]));
+    }
+    uint64_t lost = ref.st.fragments - r.st.fragments;
+    printf("%-9s %-26s ties: %llu fragments on %llu pixels, lost %llu, max_abs elsewhere %.6f\n",
+           method_names[which], scene, (unsigned long long)tied, (unsigned long long)tie_pixels,
+           (unsigned long long)lost, worst);
+    CHECK(worst <= TOL, "%s on %s: differs from DFB by %.6f where nothing ties",
+          method_names[which], scene, worst);
+    CHECK(lost <= tied, "%s on %s: lost %llu fragments, only %llu tie", method_names[which],
+          scene, (unsigned long long)lost, (unsigned long long)tied);
+    oit_image_free(&r.img);
+    oit_image_free(&ref.img);
+    oit_image_free(&ref_img);
+    free(ties);
+}
+
 static void test_exact_shapes(methods *m)
 {
     oit_triangle tris[48];
@@ -353,7 +392,7 @@ static void test_exact_shapes(methods *m)
     for (int i = 0; i < N_STORING; i++)
         check_exact(m, storing[i], "shapes", tris, n, &v, NULL, 0);
     check_exact(m, M_DP, "shapes", tris, n, &v, NULL, 0);
-    check_exact(m, M_DDP, "shapes", tris, n, &v, NULL, 0);
+    check_loses_only_ties(m, M_DDP, "shapes", tris, n, &v);
     scene_view(&v, 96, 64, OIT_SHADING_TRANSLUCENT);
     for (int i = 0; i < N_STORING; i++)
         check_exact(m, storing[i], "shapes translucent", tris, n, &v, NULL, 0);
@@ -558,8 +597,9 @@ static uint64_t tied_pixels(const oit_view *v)
     return tied;
 }
 
-/* Coplanar quads: the peelers keep one fragment of each tie and lose the
- * rest, exactly the pixels both cover; the storing methods keep them all. */
+/* Coplanar quads: dual depth peeling keeps one fragment of each tie and
+ * loses the rest, exactly the pixels both cover; the storing methods and
+ * depth peeling (which peels in (key, prim) order) keep them all. */
 static void test_ties(methods *m)
 {
     quad_spec q[3] = {{-3.0f, 1.2f, {200, 40, 40, 120}, 1},
@@ -570,9 +610,10 @@ static void test_ties(methods *m)
     scene_view(&v, 96, 64, OIT_SHADING_TRANSPARENT);
     for (int i = 0; i < N_STORING; i++)
         check_exact(m, storing[i], "coplanar ties", tris, 6, &v, q, 3);
+    check_exact(m, M_DP, "coplanar ties", tris, 6, &v, q, 3);
     uint64_t tied = tied_pixels(&v);
-    static const enum method peelers[] = {M_DP, M_DDP};
-    for (int i = 0; i < 2; i++) {
+    static const enum method peelers[] = {M_DDP};
+    for (int i = 0; i < 1; i++) {
         const char *name = method_names[peelers[i]];
         oit_frame_stats st, ref;
         oit_image_diff d = versus_dfb(m, peelers[i], "coplanar ties", tris, 6, &v, &st, &ref);

@@ -395,8 +395,7 @@ static void test_brute_force(oit_shading_mode mode)
 
 /* Two triangles share an edge on the plane x = 0, which the centre column's
  * rays graze; a third lies behind them away from every edge. Only that
- * column may be flagged ambiguous. A coplanar duplicate makes every pixel
- * a t tie. */
+ * column may be flagged ambiguous. */
 static void test_ambiguity(void)
 {
     oit_triangle t[3];
@@ -428,14 +427,36 @@ static void test_ambiguity(void)
     CHECK(wrong == 0, "ambiguity mask wrong on %d pixels", wrong);
     oit_image_free(&img);
 
+    /* A duplicate of the back triangle in another colour: every pixel holds
+     * a tie, which the tie rule orders by source index (shade.h), so the
+     * mask still flags only the centre column and swapping the two
+     * colours changes the image. */
     oit_triangle dup = t[2];
+    for (int k = 0; k < 3; k++)
+        dup.v[k].rgba[0] = 250, dup.v[k].rgba[1] = 10;
     oit_mesh_append(&m, &dup, 1, NULL);
+    uint32_t ties[W * H];
+    desc.ties = ties;
+    v.shading.attributes = OIT_ATTR_COLOR;
     CHECK(oit_reference_render(&m, &v, &desc, &img, NULL, NULL, &err) == OIT_OK, "%s", err.message);
     flagged = 0;
+    int tie_px = 0;
     for (int i = 0; i < W * H; i++)
-        flagged += amb[i];
-    printf("ambiguity with a coplanar duplicate: %d of %d pixels flagged\n", flagged, W * H);
-    CHECK(flagged == W * H, "t ties not flagged");
+        flagged += amb[i], tie_px += ties[i] >= 1;
+    printf("ambiguity with a coplanar duplicate: %d of %d pixels flagged, %d hold a tie\n",
+           flagged, W * H, tie_px);
+    CHECK(flagged == H, "depth ties flagged ambiguous (%d pixels)", flagged);
+    CHECK(tie_px == W * H, "ties counted on %d of %d pixels", tie_px, W * H);
+    m.tris[2] = dup;
+    m.tris[3] = t[2];
+    oit_image swapped;
+    CHECK(oit_reference_render(&m, &v, &desc, &swapped, NULL, NULL, &err) == OIT_OK, "%s",
+          err.message);
+    /* Behind the front pair the red copy, first in order, keeps more red. */
+    const float *a = img.rgba, *b = swapped.rgba;
+    printf("tie order: red %.4f (grey first) vs %.4f (red first)\n", (double)a[0], (double)b[0]);
+    CHECK(b[0] > a[0] + 0.02f, "the tie is not ordered by source index");
+    oit_image_free(&swapped);
     oit_image_free(&img);
     oit_mesh_free(&m);
 }

@@ -180,12 +180,77 @@ static void test_tie_order(void)
     CHECK_NEAR(rgb[0], 0.25 + 0.25, 1e-7, "higher prim behind");
 }
 
+static void set_tri(oit_triangle *t, const float p[3][3])
+{
+    memset(t, 0, sizeof *t);
+    for (int v = 0; v < 3; v++)
+        memcpy(t->v[v].pos, p[v], sizeof p[v]);
+}
+
+static float key_along(const oit_triangle *t, const float eye[3], const float dir[3])
+{
+    float n[3], d;
+    oit_depth_plane(t, eye, n, &d);
+    return oit_depth_key(n, d, dir, 1.0f);
+}
+
+/* The tie rule's depth (shade.h): triangles of one plane with different
+ * vertices, either winding, give the same key along any ray, at scales
+ * from 2^-20 to 2^13; a face 1e-5 of the scale in front of it does not; the key clears
+ * exactly the low bits and keeps the order. */
+static void test_depth_key(void)
+{
+    int ties = 0, rays = 0, decal_ties = 0;
+    for (int si = 0; si < 3; si++) {
+        const float sc = si == 0 ? 0x1p-20f : si == 1 ? 1.0f : 0x1p13f;
+        /* Plane z = 0.5 x + 0.25 y - 0.25: every corner exact in float at
+         * these power-of-two scales. */
+        const float a[3][3] = {{-1, -1, -1}, {1, -1, 0}, {1, 1, 0.5f}};
+        const float b[3][3] = {{0.5f, 0.5f, 0.125f}, {-0.75f, 0.25f, -0.5625f}, {0.25f, -1, -0.375f}};
+        const float c[3][3] = {{0.5f, 0.5f, 0.125f}, {0.25f, -1, -0.375f}, {-0.75f, 0.25f, -0.5625f}};
+        float pa[3][3], pb[3][3], pc[3][3], pd[3][3];
+        for (int v = 0; v < 3; v++)
+            for (int k = 0; k < 3; k++) {
+                pa[v][k] = a[v][k] * sc, pb[v][k] = b[v][k] * sc, pc[v][k] = c[v][k] * sc;
+                pd[v][k] = pb[v][k] + (k == 2 ? 1e-5f * sc : 0.0f);
+            }
+        oit_triangle ta, tb, tc, td;
+        set_tri(&ta, pa), set_tri(&tb, pb), set_tri(&tc, pc), set_tri(&td, pd);
+        const float eye[3] = {0.3f * sc, -0.2f * sc, 3.0f * sc};
+        for (int i = 0; i < 200; i++) {
+            float dir[3] = {-0.1f + 0.002f * (float)i, 0.05f - 0.001f * (float)i, -1.0f};
+            float l = sqrtf(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+            for (int k = 0; k < 3; k++)
+                dir[k] /= l;
+            float ka = key_along(&ta, eye, dir), kb = key_along(&tb, eye, dir);
+            float kc = key_along(&tc, eye, dir), kd = key_along(&td, eye, dir);
+            rays++;
+            ties += ka == kb && kb == kc;
+            decal_ties += !(kd < kb);
+        }
+    }
+    printf("depth key: %d of %d rays tie three coplanar triangles, decal in front on %d\n", ties,
+           rays, rays - decal_ties);
+    if (ties != rays || decal_ties) {
+        fprintf(stderr, "FAIL %s:%d depth key: coplanar ties %d/%d, decal ties %d\n", __FILE__,
+                __LINE__, ties, rays, decal_ties);
+        failures++;
+    }
+    float t = 3.14159f, q = oit_depth_quantise(t);
+    uint32_t tb_, qb;
+    memcpy(&tb_, &t, 4), memcpy(&qb, &q, 4);
+    CHECK_NEAR(qb, tb_ & ~(uint32_t)OIT_DEPTH_KEY_MASK, 0, "quantise clears the low bits");
+    CHECK_NEAR(oit_depth_quantise(nextafterf(q, 10.0f)), q, 0, "a step up shares the key");
+    CHECK_NEAR(OIT_DEPTH_KEY_MASK, (1u << OIT_DEPTH_KEY_DROP_BITS) - 1u, 0, "mask and bits agree");
+}
+
 int main(void)
 {
     test_composite();
     test_shade_terms();
     test_absorption();
     test_tie_order();
+    test_depth_key();
     if (failures) {
         fprintf(stderr, "test_shade: %d failure(s)\n", failures);
         return 1;
