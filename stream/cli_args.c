@@ -89,6 +89,14 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
     else if (!strcmp(opt, "--stats")) a->stats_path = v;
     else if (!strcmp(opt, "--mask")) a->mask = v;
     else if (!strcmp(opt, "--ambiguity")) a->ambiguity_out = v;
+    else if (!strcmp(opt, "--ambiguity-px")) {
+        char *end = NULL;
+        double px = strtod(v, &end);
+        if (end == v || *end || !(px > 0.0 && px <= 4.0))
+            *s = bad(err, opt, v, "a radius in pixels, in (0, 4]");
+        else
+            a->ambiguity_px = (float)px;
+    }
     else if (!strcmp(opt, "--size")) {
         if (!parse_size(v, &a->width, &a->height)) *s = bad(err, opt, v, "WxH, 1..16384");
     } else if (!strcmp(opt, "--view")) {
@@ -329,8 +337,9 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "  --stats FILE.json   per-frame figures\n"
         "  --ambiguity PATH    (reference) also write a mask, named like --out, that is\n"
         "                      white where rasterization and ray casting may disagree:\n"
-        "                      the hit set changes within 1/64 pixel of the centre, or\n"
-        "                      two hits tie in depth\n"
+        "                      the hit set changes within 1/64 pixel of the centre\n"
+        "                      (depth ties are not ambiguous: the tie rule orders them)\n"
+        "  --ambiguity-px P    that radius in pixels instead, in (0, 4]\n"
         "  --quiet             no per-frame lines\n"
         "  --window            open an interactive window instead of writing images:\n"
         "                      left-drag orbits, right-drag/wheel zooms, W/A/S/D and\n"

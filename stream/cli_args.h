@@ -34,6 +34,7 @@ typedef struct oit_stream_args {
     int max_layers;
     int show_layers;
     const char *ambiguity_out; /* --ambiguity: mask of ambiguous pixels */
+    float ambiguity_px;        /* --ambiguity-px; 0: the reference's 1/64 */
     int quiet;
     oit_pack_mode pack;                /* --pack; 0: auto */
     int schedule_wave;                 /* --schedule: 0 tree (default), 1 wave */

@@ -517,7 +517,8 @@ static int run_render(const oit_stream_args *args)
                               .upload_budget = a->upload_budget, .epsilon = a->epsilon,
                               .slot_budget = a->slot_budget,
                               .cache_budget = a->cache_budget,
-                              .read_inline = a->upload_threads == 0};
+                              .read_inline = a->upload_threads == 0,
+                              .ambiguity_px = a->ambiguity_px};
     rc.view.width = a->width;
     rc.view.height = a->height;
     rc.origin = mesh.info.origin;

@@ -229,7 +229,10 @@ static oit_status baseline_render(oit_method_state *st, const oit_view *view, oi
 static oit_status reference_open(const oit_mesh *mesh, const oit_method_options *opt,
                                  oit_method_state **out, oit_error *err)
 {
-    return new_state(mesh, opt, 0, out, err);
+    oit_status s = new_state(mesh, opt, 0, out, err);
+    if (s == OIT_OK)
+        (*out)->ref.ambiguity_px = opt->ambiguity_px;
+    return s;
 }
 
 static oit_status reference_render(oit_method_state *st, const oit_view *view, oit_image *out,

@@ -30,6 +30,7 @@ typedef struct oit_method_options {
      * OIT_STREAM_CACHE_OFF: none. */
     unsigned long long cache_budget;
     int read_inline; /* the streamer reads parts on the render thread, no reader thread */
+    float ambiguity_px; /* the reference's ambiguity radius, pixels; 0: 1/64 */
 } oit_method_options;
 
 typedef struct oit_render_method {

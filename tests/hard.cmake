@@ -8,3 +8,7 @@ foreach(case coplanar rings sticks moebius degenerate nearflat far tiny thin non
   oit_add_test(NAME hard_${case}_guaranteed LABELS integration TIMEOUT 240
     COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_hard.sh ${case} guaranteed $<TARGET_FILE:png_figures>)
 endforeach()
+
+# Tie flicker over a 0.25-degree orbit (issue 20, tests/test_tie_orbit.sh).
+oit_add_test(NAME tie_orbit LABELS integration TIMEOUT 240
+  COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_tie_orbit.sh)
