@@ -73,9 +73,11 @@ const char oit_glsl_fragment_gen[] =
     /* The tie rule's key (shade.h, oit_depth_key): t of the triangle's
      * plane along the pixel centre's unit ray, which every triangle at this
      * pixel shares, with the low mantissa bits cleared. */
+    /* floor + 0.5: the centre even where a multisampled target lets
+     * gl_FragCoord lie anywhere in the pixel. */
     "uint oit_depth_key(float t_interp) {\n"
-    "    vec3 dir = normalize(vec3(gl_FragCoord.x * u_ray.x + u_ray.z,\n"
-    "                              gl_FragCoord.y * u_ray.y + u_ray.w, -1.0));\n"
+    "    vec2 c = floor(gl_FragCoord.xy) + 0.5;\n"
+    "    vec3 dir = normalize(vec3(c.x * u_ray.x + u_ray.z, c.y * u_ray.y + u_ray.w, -1.0));\n"
     "    float nd = dot(v_plane.xyz, dir);\n"
     "    float t = t_interp;\n"
     "    if (abs(nd) >= " OIT_GLSL_STR(OIT_DEPTH_GRAZING) ") {\n"
