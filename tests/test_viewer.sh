@@ -107,7 +107,7 @@ compare "overlay vs none" overlay.png oitstream_000.png
 "$S" quads.oitp --window --no-overlay --size $SIZE --window-script "1" >keys_part.txt 2>&1 ||
     { cat keys_part.txt; fail "the part-file run exited with $?"; }
 rm -f oitstream_00[0-9].png
-"$S" quads.ply --window --no-overlay --size $SIZE --window-script "P5P" >keys_mesh.txt 2>&1 ||
+"$S" quads.ply --window --no-overlay --size $SIZE --window-script "P5P4" >keys_mesh.txt 2>&1 ||
     { cat keys_mesh.txt; fail "the mesh key run exited with $?"; }
 cat keys_part.txt keys_mesh.txt
 for f in keys_part.txt keys_mesh.txt; do
@@ -119,6 +119,9 @@ grep -q "^viewer: method 1: dfb" keys_part.txt || fail "key 1 on a part file doe
 grep -q "^viewer: 5 stream cannot run on this input: needs a part file" keys_mesh.txt ||
     fail "key 5 on a mesh does not say why stream cannot run"
 grep -q "^viewer: method 5" keys_mesh.txt && fail "key 5 on a mesh switched method"
+#    4, stencil, runs or says why it cannot run here (llvmpipe: too few samples)
+grep -q "^viewer: method 4: stencil\|^viewer: 4 stencil cannot run here: ." keys_mesh.txt ||
+    fail "key 4 neither switched to stencil nor said why it cannot"
 expect_equal "before 5 vs headless" oitstream_000.png ref.png
 expect_differ "the message of 5 on the image" oitstream_001.png oitstream_000.png 100
 

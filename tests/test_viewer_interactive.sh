@@ -6,6 +6,7 @@
 #     image), and after --still ms of stillness the exact image (status
 #     "exact"), which equals `oitstream --out` of the view the window reports;
 #   - H shows the help overlay (pixels change), H again hides it;
+#   - O, a typed path and Enter open another file (a part file: stream);
 #   - Q quits with exit status 0 and the counters on stdout.
 # Equal means within half an 8-bit step (the window quantises to 8 bits).
 set -u
@@ -118,11 +119,20 @@ if start quads.ply --preview lowres --still $STILL; then
         fail "want 2 exact frames (the first, and after the drag) and some previews"
 fi
 
-# 2. A part file through the streamer (a reader thread of its own): idle.
-if start quads.oitp; then
-    grep -q "^viewer: method 5: stream" log.txt || fail "a part file does not open with key 5, stream"
-    idle "part file"
-    quit "part file"
+# 2. O on the mesh: type the part file's path, Enter: it opens with its
+#    default method (5, stream), which then idles too (a reader thread of
+#    its own).
+if start quads.ply; then
+    xdotool key --window "$WIN" o
+    xdotool type --window "$WIN" --delay 20 "quads.oitp"
+    xdotool key --window "$WIN" Return
+    wait_for 60 grep -q "^viewer: opened quads.oitp: [0-9]* triangles (part file), method stream" log.txt ||
+        fail "O did not open quads.oitp with the stream method"
+    wait_for 60 stat_at_least exact_frames 2 || fail "no exact frame of the opened part file"
+    [ "$(json_str method <st.json)" = stream ] || fail "the opened part file shows method '$(json_str method <st.json)'"
+    idle "part file opened with O"
+    quit "O"
+    grep -q "^viewer: method 5: stream" log.txt || fail "the part file did not switch to key 5, stream"
 fi
 
 [ "$FAILS" -eq 0 ] && echo ok || echo "$FAILS failure(s)"
