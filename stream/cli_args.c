@@ -372,7 +372,7 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "                      file on the window), P saves oitstream_NNN.png,\n"
         "                      Esc/Q quits\n"
         "  --preview P         --window, while the camera moves: lowres (the same\n"
-        "                      method at 1/2..1/8 of the resolution, upscaled, the\n"
+        "                      method at 1/2..1/4 of the resolution, upscaled, the\n"
         "                      scale adapted to frames near 30 ms), wboit or\n"
         "                      unsorted (those methods at full size), off (exact\n"
         "                      frames throughout); auto (default): lowres when an\n"

@@ -25,7 +25,7 @@
 /* Keys 1..9, 0 reach the first KEYED_METHODS of the table; M/N cycle all. */
 enum { MAX_METHODS = 16, KEYED_METHODS = 10, KEY_QUEUE = 64, KEY_ESC = 27 };
 enum { SHOWN_NONE = 0, SHOWN_EXACT = 1, SHOWN_PREVIEW = 2 };
-enum { DEFAULT_STILL_MS = 200, PREVIEW_MAX_SCALE = 8 };
+enum { DEFAULT_STILL_MS = 200, PREVIEW_MAX_SCALE = 4 };
 /* auto: preview when an exact frame takes longer than this (25 fps) */
 #define AUTO_PREVIEW_MS 40.0
 #define MESSAGE_SECONDS 5.0
@@ -71,6 +71,7 @@ typedef struct viewer {
     int preview_scale;
     double preview_ms_at[PREVIEW_MAX_SCALE + 2]; /* the last preview's ms at each scale */
     double last_exact_wall_ms, last_preview_wall_ms, last_wall_ms;
+    double last_present_ms; /* overlays, upload, blit and swap of the last image shown */
     int help;
     int entering, skip_char, open_pending;
     char entry[512];
@@ -569,6 +570,12 @@ static void handle_key(viewer *v, char key)
     case 'M': cycle_method(v, 1); break;
     case 'N': cycle_method(v, -1); break;
     case 'H': case '?': v->help = !v->help; v->recompose = 1; break;
+    case 'O': /* from a script; the window's own O key opens the prompt at once */
+        v->entering = 1;
+        v->entry_len = 0;
+        v->entry[0] = '\0';
+        v->recompose = 1;
+        break;
     case 'L':
         v->show_layers = !v->show_layers;
         v->changed = 1;
@@ -637,8 +644,10 @@ static void status_fields(viewer *v, fields *f)
     field(f, "frame %.*f ms", v->st.ms < 100.0 ? 1 : 0, v->st.ms);
     human((double)v->st.fragments, num, sizeof num);
     field(f, "fragments %s", num);
-    field(f, "layers %u", v->st.max_layers);
-    field(f, "overflow %llu", (unsigned long long)v->st.overflow_pixels);
+    if (!(v->shown_kind == SHOWN_PREVIEW && v->pv_method)) { /* wboit, unsorted count no layers */
+        field(f, "layers %u", v->st.max_layers);
+        field(f, "overflow %llu", (unsigned long long)v->st.overflow_pixels);
+    }
     if (m->stream_stats && v->state && !(v->shown_kind == SHOWN_PREVIEW && v->pv_method)) {
         const oit_stream_frame_stats *ss = m->stream_stats(v->state);
         field(f, "packs %u", ss->packs);
@@ -925,12 +934,13 @@ static int first_preview_scale(const viewer *v)
  * than 45 ms and the last step down in resolution paid (at least 25% less
  * time; below that the frame is bound by geometry, not pixels, and a
  * coarser one only blurs), finer when under 15 ms or when the coarser scale
- * proved no faster than this one. */
+ * proved no faster than this one. Times are smoothed per scale. */
 static void adapt_preview_scale(viewer *v, double wall_ms)
 {
     int f = v->preview_scale;
     double *ms = v->preview_ms_at;
-    ms[f] = wall_ms;
+    ms[f] = ms[f] > 0.0 ? 0.5 * (ms[f] + wall_ms) : wall_ms; /* smoothed: frames vary with the view */
+    wall_ms = ms[f];
     if (wall_ms > 45.0 && f < PREVIEW_MAX_SCALE &&
         (f == 2 || ms[f - 1] == 0.0 || ms[f] < 0.75 * ms[f - 1]) &&
         !(ms[f + 1] > 0.0 && ms[f + 1] > 0.85 * ms[f]))
@@ -1062,6 +1072,7 @@ static oit_status present(viewer *v, int want_shot, oit_error *err)
 {
     if (!v->base.rgba)
         return OIT_OK;
+    double t0 = glfwGetTime();
     oit_status s = compose(v, err);
     if (s != OIT_OK)
         return s;
@@ -1083,6 +1094,7 @@ static oit_status present(viewer *v, int want_shot, oit_error *err)
     snprintf(title, sizeof title, "oitstream %s: %s", v->model_name, v->status);
     glfwSetWindowTitle(v->win, title);
     glfwSwapBuffers(v->win);
+    v->last_present_ms = (glfwGetTime() - t0) * 1000.0;
     v->presents++;
     v->recompose = 0;
     if (s == OIT_OK && v->save_pending && v->shot.rgba)
@@ -1107,12 +1119,13 @@ static void write_stats(viewer *v)
             "{\"frames_rendered\": %d, \"exact_frames\": %d, \"preview_frames\": %d, "
             "\"presented\": %d, \"shown\": \"%s\", \"preview_scale\": %d, \"method\": \"%s\", "
             "\"width\": %d, \"height\": %d, \"frame_ms\": %.3f, \"last_exact_ms\": %.3f, "
-            "\"last_preview_ms\": %.3f, \"up\": \"%c\", \"view\": \"%s\"}\n",
+            "\"last_preview_ms\": %.3f, \"present_ms\": %.3f, \"up\": \"%c\", "
+            "\"view\": \"%s\"}\n",
             v->frames, v->exact_frames, v->preview_frames, v->presents,
             v->shown_kind == SHOWN_PREVIEW ? "preview" : "exact",
             v->shown_kind == SHOWN_PREVIEW ? v->shown_scale : 1, v->methods[v->current]->name,
             v->view.width, v->view.height, v->last_wall_ms, v->last_exact_wall_ms,
-            v->last_preview_wall_ms, axis_name[v->up_axis], view);
+            v->last_preview_wall_ms, v->last_present_ms, axis_name[v->up_axis], view);
     if (fclose(f) == 0)
         rename(tmp, path);
 }
@@ -1122,10 +1135,10 @@ static oit_status one_frame(viewer *v, int kind, int want_shot, oit_error *err)
 {
     int fb_w = 0, fb_h = 0;
     glfwGetFramebufferSize(v->win, &fb_w, &fb_h);
-    if (fb_w <= 0 || fb_h <= 0)
-        return OIT_OK; /* minimised: nothing to draw into */
     v->moved = 0;
     v->changed = 0;
+    if (fb_w <= 0 || fb_h <= 0)
+        return OIT_OK; /* minimised: nothing to draw into (restoring it resizes: on_resize) */
     oit_status s = render_frame(v, fb_w, fb_h, kind, err);
     if (s == OIT_OK)
         s = present(v, want_shot, err);
