@@ -6,7 +6,8 @@
 #     image), and after --still ms of stillness the exact image (status
 #     "exact"), which equals `oitstream --out` of the view the window reports;
 #   - H shows the help overlay (pixels change), H again hides it;
-#   - O, a typed path and Enter open another file (a part file: stream);
+#   - O, a typed path and Enter open another file (a part file: stream),
+#     which idles too, and after a drag shows the headless stream's image;
 #   - Q quits with exit status 0 and the counters on stdout.
 # Equal means within half an 8-bit step (the window quantises to 8 bits).
 set -u
@@ -122,7 +123,7 @@ fi
 # 2. O on the mesh: type the part file's path, Enter: it opens with its
 #    default method (5, stream), which then idles too (a reader thread of
 #    its own).
-if start quads.ply; then
+if start quads.ply --preview lowres --still 1000; then
     xdotool key --window "$WIN" o
     xdotool type --window "$WIN" --delay 20 "quads.oitp"
     xdotool key --window "$WIN" Return
@@ -131,8 +132,21 @@ if start quads.ply; then
     wait_for 60 stat_at_least exact_frames 2 || fail "no exact frame of the opened part file"
     [ "$(json_str method <st.json)" = stream ] || fail "the opened part file shows method '$(json_str method <st.json)'"
     idle "part file opened with O"
+    # a drag: streamed previews at a lower resolution, then the exact frame,
+    # which is the headless stream of the same view
+    e0=$(stat_of exact_frames) p0=$(stat_of preview_frames)
+    xdotool mousemove --window "$WIN" 100 75 mousedown 1 mousemove --window "$WIN" 80 60 \
+        mousemove --window "$WIN" 60 50 mouseup 1
+    wait_for 30 stat_at_least preview_frames $((p0 + 1)) || fail "the drag on the part file rendered no preview"
+    wait_for 30 stat_at_least exact_frames $((e0 + 1)) || fail "no exact frame after the drag on the part file"
+    VIEW=$(json_str view <st.json)
+    before=$(shots) # (wait_for's countdown is n)
+    xdotool key --window "$WIN" p
+    wait_for 10 sh -c "[ \$(grep -c '^viewer: screenshot' log.txt) -gt $before ]" || fail "P saved no screenshot of the part file"
     quit "O"
     grep -q "^viewer: method 5: stream" log.txt || fail "the part file did not switch to key 5, stream"
+    "$S" quads.oitp --size ${W}x$H --quiet --view "$VIEW" --out ref_stream.png || fail "headless stream of $VIEW"
+    expect_equal "stream exact after the drag vs headless" "$(printf 'oitstream_%03d.png' "$before")" ref_stream.png
 fi
 
 [ "$FAILS" -eq 0 ] && echo ok || echo "$FAILS failure(s)"
