@@ -521,7 +521,7 @@ static oit_status run_window(const run_ctx *rc, const oit_mesh *mesh, oit_partfi
     const oit_stream_args *a = rc->args;
     oit_viewer_desc d = {
         .mesh = mesh, .partfile = pf, .options = *opt, .method = rc->method->name,
-        .width = a->width, .height = a->height, .camera = *cam, .have_view = a->have_view,
+        .width = a->width, .height = a->height, .camera = *cam,
         .azimuth = a->azimuth, .elevation = a->elevation, .up_axis = a->up_axis,
         .shading = rc->view.shading, .show_layers = a->show_layers, .overlay = !a->no_overlay,
         .frames = a->window_frames, .script = a->window_script,

@@ -59,8 +59,7 @@ typedef struct oit_viewer_desc {
     oit_method_options options;   /* .gl is set to the window's context      */
     const char *method;           /* first method                            */
     int width, height;            /* window size                             */
-    oit_camera camera;            /* first view, and R's                     */
-    int have_view;                /* camera came from --view: R returns to it */
+    oit_camera camera;            /* first view, and R's (until U or O frame anew) */
     float azimuth, elevation;     /* the default view's, for U and O         */
     int up_axis;                  /* 0 x, 1 y, 2 z                           */
     oit_shading shading;
