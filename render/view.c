@@ -28,6 +28,12 @@ static void cross3(const double a[3], const double b[3], double out[3])
 void oit_camera_default(oit_camera *cam, const float bmin[3], const float bmax[3],
                         float azimuth_deg, float elevation_deg)
 {
+    oit_camera_default_up(cam, bmin, bmax, azimuth_deg, elevation_deg, 1);
+}
+
+void oit_camera_default_up(oit_camera *cam, const float bmin[3], const float bmax[3],
+                           float azimuth_deg, float elevation_deg, int up_axis)
+{
     double lo[3] = {-1, -1, -1}, hi[3] = {1, 1, 1};
     /* An empty mesh has +inf/-inf bounds: fall back to the unit cube so the
      * camera is still usable. */
@@ -47,16 +53,25 @@ void oit_camera_default(oit_camera *cam, const float bmin[3], const float bmax[3
     /* The bounding sphere fits the vertical field of view. */
     double dist = r / sin(0.5 * cam->fovy_deg * kPi / 180.0);
     double az = azimuth_deg * kPi / 180.0, el = elevation_deg * kPi / 180.0;
-    double dir[3] = {cos(el) * sin(az), sin(el), cos(el) * cos(az)};
+    /* up U, front F (the eye's side at azimuth 0), side S = U x F (azimuth
+     * 90): y up looks from +z with x to the right; z up (CAD) from -y with x
+     * to the right; x up from +z with -y to the right. */
+    static const double U[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    static const double F[3][3] = {{0, 0, 1}, {0, 0, 1}, {0, -1, 0}};
+    int a = up_axis >= 0 && up_axis <= 2 ? up_axis : 1;
+    double S[3];
+    cross3(U[a], F[a], S);
+    double dir[3];
+    for (int k = 0; k < 3; k++)
+        dir[k] = cos(el) * (sin(az) * S[k] + cos(az) * F[a][k]) + sin(el) * U[a][k];
     for (int k = 0; k < 3; k++) {
         cam->target[k] = (float)c[k];
         cam->eye[k] = (float)(c[k] + dist * dir[k]);
     }
-    /* Looking straight up or down: y cannot be the up vector. */
+    /* Looking straight up or down: the up axis cannot be the up vector. */
     int polar = fabs(cos(el)) < 1e-6;
-    cam->up[0] = 0.0f;
-    cam->up[1] = polar ? 0.0f : 1.0f;
-    cam->up[2] = polar ? -1.0f : 0.0f;
+    for (int k = 0; k < 3; k++)
+        cam->up[k] = (float)(polar ? 0.0 - F[a][k] : U[a][k]); /* +0, not -0 */
     /* The sphere lies within [dist - r, dist + r]; margins keep silhouettes
      * away from the clip planes. */
     cam->znear = (float)fmax(dist - 1.05 * r, 1e-4 * dist);

@@ -84,6 +84,11 @@ typedef struct oit_frame_stats {
 /* Camera helpers. */
 void oit_camera_default(oit_camera *cam, const float bmin[3], const float bmax[3],
                         float azimuth_deg, float elevation_deg);
+/* The same about another up axis (0 x, 1 y, 2 z; oit_camera_default is y):
+ * z up, as CAD models are, looks from -y at azimuth 0 with x to the right
+ * and z up; x up looks from +z with -y to the right. */
+void oit_camera_default_up(oit_camera *cam, const float bmin[3], const float bmax[3],
+                           float azimuth_deg, float elevation_deg, int up_axis);
 /* 4x4 column-major matrices, as GL expects. */
 void oit_camera_view_matrix(const oit_camera *cam, float m[16]);
 void oit_camera_proj_matrix(const oit_camera *cam, float aspect, float m[16]);

@@ -165,6 +165,24 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
         if (!parse_int(v, &a->window_frames, 1, 100000000)) *s = bad(err, opt, v, "a frame count >= 1");
     } else if (!strcmp(opt, "--window-script")) a->window_script = v;
     else if (!strcmp(opt, "--window-screenshot")) a->window_screenshot = v;
+    else if (!strcmp(opt, "--preview")) {
+        /* the values of oit_viewer_preview, in its order */
+        static const char *const names[] = {"auto", "lowres", "wboit", "unsorted", "off"};
+        int found = -1;
+        for (int i = 0; i < 5; i++)
+            if (!strcmp(v, names[i]))
+                found = i;
+        if (found < 0) *s = bad(err, opt, v, "auto, lowres, wboit, unsorted or off");
+        else a->preview = found;
+        a->have_preview = 1;
+    } else if (!strcmp(opt, "--still")) {
+        if (!parse_int(v, &a->still_ms, 1, 60000)) *s = bad(err, opt, v, "milliseconds, 1..60000");
+    } else if (!strcmp(opt, "--up")) {
+        if (!strcmp(v, "x")) a->up_axis = 0;
+        else if (!strcmp(v, "y")) a->up_axis = 1;
+        else if (!strcmp(v, "z")) a->up_axis = 2;
+        else *s = bad(err, opt, v, "x, y or z");
+    }
     else if (!strcmp(opt, "--gain")) {
         if (!parse_float(v, &a->gain) || !(a->gain > 0.0f)) *s = bad(err, opt, v, "a number > 0");
     } else
@@ -189,13 +207,15 @@ static oit_status check_combination(const oit_stream_args *a, oit_error *err)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--compare needs two images");
     if (!a->compare && !a->model)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "no model given (see --help)");
-    if ((a->window_frames || a->window_script || a->window_screenshot || a->no_overlay) &&
+    if ((a->window_frames || a->window_script || a->window_screenshot || a->no_overlay ||
+         a->have_preview || a->still_ms) &&
         !a->window)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--window-frames, --window-script, "
-                             "--window-screenshot and --no-overlay need --window");
-    if (a->window && (a->orbit || a->out || a->stats_path || a->ambiguity_out))
+                             "--window-screenshot, --no-overlay, --preview and --still need "
+                             "--window");
+    if (a->window && (a->orbit || a->out || a->ambiguity_out))
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--window shows one interactive view: "
-                             "it excludes --orbit, --out, --stats and --ambiguity");
+                             "it excludes --orbit, --out and --ambiguity");
     if (a->epsilon > 0.0f && a->method && strcmp(a->method, "stream") &&
         strcmp(a->method, "f2b") && strcmp(a->method, "guarded"))
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--epsilon is the early termination of "
@@ -220,6 +240,7 @@ oit_status oit_stream_args_parse(int argc, char **argv, oit_stream_args *a, oit_
     a->max_layers = 0; /* the part file's K, else 16 */
     a->epsilon = -1.0f; /* not given: each method's default */
     a->upload_threads = 1;
+    a->up_axis = 1;
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i];
         oit_status s = OIT_OK;
@@ -341,14 +362,40 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "                      (depth ties are not ambiguous: the tie rule orders them)\n"
         "  --ambiguity-px P    that radius in pixels instead, in (0, 4]\n"
         "  --quiet             no per-frame lines\n"
-        "  --window            open an interactive window instead of writing images:\n"
+        "  --up x|y|z          the model's up axis for the default views (default y;\n"
+        "                      z for CAD models: seen from -y, x to the right)\n"
+        "  --window            open an interactive window instead of writing images\n"
+        "                      (--size is the window's). It renders only when the\n"
+        "                      view or a setting changes: while the camera moves a\n"
+        "                      preview (see --preview), then the exact frame once\n"
+        "                      it was still for --still ms; the status line says\n"
+        "                      which. Keys (H or ? shows them in the window):\n"
         "                      left-drag orbits, right-drag/wheel zooms, W/A/S/D and\n"
-        "                      Space/C fly, 1..9 pick a method (listed at start), L\n"
+        "                      Space/C fly; 1..9, 0 pick the first ten methods above\n"
+        "                      in --method's order (the same key for every input; a\n"
+        "                      method this input or machine cannot run says why on\n"
+        "                      screen), M/N next/previous method (all of them); L\n"
         "                      layer heat map, T transparent/translucent, E early\n"
-        "                      termination, R resets the view, P saves\n"
-        "                      oitstream_NNN.png, Esc/Q quits; --size is the window's\n"
-        "  --window-frames N   stop after N frames, 1..100000000\n"
-        "  --window-script K   press the keys K, one per frame (e.g. 2LT), then stop\n"
+        "                      termination, U up axis y/z/x, R resets the view, O\n"
+        "                      opens another file (type its path, Enter; or drop a\n"
+        "                      file on the window), P saves oitstream_NNN.png,\n"
+        "                      Esc/Q quits\n"
+        "  --preview P         --window, while the camera moves: lowres (the same\n"
+        "                      method at 1/2..1/4 of the resolution, upscaled, the\n"
+        "                      scale adapted to frames near 30 ms), wboit or\n"
+        "                      unsorted (those methods at full size), off (exact\n"
+        "                      frames throughout); auto (default): lowres when an\n"
+        "                      exact frame takes more than 40 ms, else off\n"
+        "  --still MS          --window: stillness before the exact frame, 1..60000\n"
+        "                      (default 200)\n"
+        "  --stats FILE.json   with --window: frame counters (frames_rendered,\n"
+        "                      exact_frames, preview_frames, presented, shown, view),\n"
+        "                      rewritten after every frame\n"
+        "  --window-frames N   render N exact frames back to back, then stop,\n"
+        "                      1..100000000 (a benchmark: the window otherwise\n"
+        "                      renders only on changes)\n"
+        "  --window-script K   press the keys K, one per exact frame (e.g. 2LT), then\n"
+        "                      stop\n"
         "  --window-screenshot PATH  write the last frame shown (PNG) when stopping\n"
         "  --no-overlay        no status line in the window's image\n"
         "  --compare A B       print RMSE, max abs error, %% of pixels off by more than\n"

@@ -49,6 +49,10 @@ typedef struct oit_stream_args {
     const char *window_script;     /* --window-script KEYS */
     const char *window_screenshot; /* --window-screenshot PATH */
     int no_overlay;                /* --no-overlay: no status line in the image */
+    int preview;                   /* --preview: oit_viewer_preview (viewer.h); 0 auto */
+    int still_ms;                  /* --still MS: stillness before the exact frame; 0: 200 */
+    int up_axis;                   /* --up x|y|z: 0, 1 (default), 2 */
+    int have_preview;              /* --preview was given */
 } oit_stream_args;
 
 oit_status oit_stream_args_parse(int argc, char **argv, oit_stream_args *a, oit_error *err);

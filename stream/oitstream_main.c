@@ -263,11 +263,11 @@ static oit_status make_views(const oit_stream_args *a, const oit_mesh_info *info
             if (!(cams[i].znear > 0.0f && cams[i].zfar > cams[i].znear))
                 fit_clip_planes(&cams[i], info);
         } else if (a->orbit > 0) {
-            oit_camera_default(&cams[i], info->bounds_min, info->bounds_max,
-                               (float)(i * 360.0 / n), 20.0f);
+            oit_camera_default_up(&cams[i], info->bounds_min, info->bounds_max,
+                                  (float)(i * 360.0 / n), 20.0f, a->up_axis);
         } else {
-            oit_camera_default(&cams[i], info->bounds_min, info->bounds_max, a->azimuth,
-                               a->elevation);
+            oit_camera_default_up(&cams[i], info->bounds_min, info->bounds_max, a->azimuth,
+                                  a->elevation, a->up_axis);
         }
     }
     *out = cams;
@@ -471,14 +471,64 @@ static oit_status load_scene(const oit_stream_args *a, const oit_render_method *
     return s;
 }
 
+/* The captures' K: --max-layers, else the part file's (its parts were cut
+ * for it), else 16. */
+static int scene_max_layers(const oit_stream_args *a, oit_partfile *pf)
+{
+    if (a->max_layers)
+        return a->max_layers;
+    oit_partfile_summary sum = {0};
+    if (pf)
+        oit_partfile_get_summary(pf, &sum);
+    /* A file cut for more than the K-slot capture holds streams as parts
+     * wider than K: captured alone over tiles (oit_capture_batch_layers). */
+    return pf && sum.K < 16 ? (int)sum.K : 16;
+}
+
+/* The viewer's O: a mesh in core, or a part file with its triangles in core
+ * too (the viewer switches between the streamer and in-core methods). */
+static oit_status window_open_model(void *ctx, const char *path, oit_viewer_scene *out,
+                                    oit_error *err)
+{
+    const oit_stream_args *a = ctx;
+    oit_stream_args one = *a;
+    one.model = path;
+    memset(out, 0, sizeof *out);
+    const oit_render_method *m = oit_render_method_find(is_part_file(path) ? "stream" : "dfb");
+    oit_status s = load_scene(&one, m, &out->partfile, &out->mesh, err);
+    if (s != OIT_OK) {
+        oit_mesh_free(&out->mesh);
+        oit_partfile_close(out->partfile);
+        memset(out, 0, sizeof *out);
+        return s;
+    }
+    out->max_layers = scene_max_layers(a, out->partfile);
+    return OIT_OK;
+}
+
+static void window_close_model(void *ctx, oit_viewer_scene *scene)
+{
+    (void)ctx;
+    oit_mesh_free(&scene->mesh);
+    oit_partfile_close(scene->partfile);
+    memset(scene, 0, sizeof *scene);
+}
+
 static oit_status run_window(const run_ctx *rc, const oit_mesh *mesh, oit_partfile *pf,
                              const oit_method_options *opt, const oit_camera *cam,
                              oit_error *err)
 {
     const oit_stream_args *a = rc->args;
-    oit_viewer_desc d = {mesh, pf, *opt, rc->method->name, a->width, a->height, *cam,
-                         rc->view.shading, a->show_layers, !a->no_overlay, a->window_frames,
-                         a->window_script, a->window_screenshot};
+    oit_viewer_desc d = {
+        .mesh = mesh, .partfile = pf, .options = *opt, .method = rc->method->name,
+        .width = a->width, .height = a->height, .camera = *cam,
+        .azimuth = a->azimuth, .elevation = a->elevation, .up_axis = a->up_axis,
+        .shading = rc->view.shading, .show_layers = a->show_layers, .overlay = !a->no_overlay,
+        .frames = a->window_frames, .script = a->window_script,
+        .screenshot = a->window_screenshot, .preview = (oit_viewer_preview)a->preview,
+        .still_ms = a->still_ms, .stats_path = a->stats_path, .model_path = a->model,
+        .open_model = window_open_model, .close_model = window_close_model,
+        .model_ctx = (void *)a};
     return oit_viewer_run(&d, err);
 }
 
@@ -502,15 +552,7 @@ static int run_render(const oit_stream_args *args)
     }
     oit_camera *cams = NULL;
     int n = 0;
-    int K = a->max_layers;
-    if (!K) { /* the file's K: its parts were cut for it */
-        oit_partfile_summary sum = {0};
-        if (pf)
-            oit_partfile_get_summary(pf, &sum);
-        /* A file cut for more than the K-slot capture holds streams as parts
-         * wider than K: captured alone over tiles (oit_capture_batch_layers). */
-        K = pf && sum.K < 16 ? (int)sum.K : 16;
-    }
+    int K = scene_max_layers(a, pf);
     oit_method_options opt = {.max_layers = K, .partfile = pf,
                               .pack = a->pack,
                               .schedule = a->schedule_wave ? OIT_SCHEDULE_WAVE : OIT_SCHEDULE_TREE,

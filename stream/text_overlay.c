@@ -159,3 +159,50 @@ void oit_text_status_line(oit_image *img, const char *text, int scale)
     pen p = {img, white, scale, 1, 0};
     draw_string(&p, MARGIN * scale, MARGIN * scale, text);
 }
+
+void oit_text_box(oit_image *img, int x, int y, int w, int h, const float rgb[3])
+{
+    for (int j = y < 0 ? 0 : y; j < y + h && j < img->height; j++)
+        for (int i = x < 0 ? 0 : x; i < x + w && i < img->width; i++)
+            oit_image_put_rgb(img, i, j, rgb);
+}
+
+int oit_text_status_fields(oit_image *img, const char *const *fields, int n, int scale)
+{
+    static const float band_grey[3] = {0.1f, 0.1f, 0.1f}, white[3] = {1.0f, 1.0f, 1.0f};
+    scale = clamp_scale(scale);
+    if (n <= 0)
+        return 0;
+    int line_h = oit_text_line_height(scale), avail = img->width - 2 * MARGIN * scale;
+    int per_line = avail / (ADVANCE * scale) + 1; /* the last glyph needs no gap */
+    if (per_line < 1)
+        per_line = 1;
+    /* First pass: count the lines, so that the band is drawn before the text. */
+    int lines = 1, used = 0;
+    for (int i = 0; i < n; i++) {
+        int len = (int)strlen(fields[i]);
+        if (used > 0 && used + 2 + len > per_line) {
+            lines++;
+            used = 0;
+        }
+        used += (used > 0 ? 2 : 0) + len;
+    }
+    int band = lines * line_h;
+    oit_text_box(img, 0, 0, img->width, band, band_grey);
+    pen p = {img, white, scale, 1, 0};
+    int line = 0;
+    used = 0;
+    for (int i = 0; i < n; i++) {
+        int len = (int)strlen(fields[i]);
+        if (used > 0 && used + 2 + len > per_line) {
+            line++;
+            used = 0;
+        }
+        if (used > 0)
+            used += 2;
+        draw_string(&p, MARGIN * scale + used * ADVANCE * scale, MARGIN * scale + line * line_h,
+                    fields[i]);
+        used += len;
+    }
+    return band;
+}

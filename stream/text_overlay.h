@@ -21,6 +21,16 @@ int oit_text_height(int scale);
  * letters draw as upper case; characters outside the font draw as '?'. */
 void oit_text_status_line(oit_image *img, const char *text, int scale);
 
+/* The status line of named fields ("layers 26", "frame 32 ms"), joined by
+ * two spaces and wrapped between fields onto as many lines as the image's
+ * width needs (a field wider than the image is cut at its edge), on one
+ * dark band from row 0, in the same upper-case look. Returns the band's
+ * height in rows (0 for no fields). */
+int oit_text_status_fields(oit_image *img, const char *const *fields, int n, int scale);
+
+/* An opaque box of colour rgb over [x, x+w) x [y, y+h), clipped. */
+void oit_text_box(oit_image *img, int x, int y, int w, int h, const float rgb[3]);
+
 /* Writes text in colour rgb (each in [0,1]) with its glyphs' top-left corner
  * at (x, y), every font pixel a scale x scale block; only the glyphs' own
  * pixels are set (no background). Lower-case letters have their own shapes

@@ -1,5 +1,6 @@
 /* oitbench's charts below the command line: the font's placement and
- * colour (and the status line's upper case), chart axes (ranges, log and
+ * colour (and the status line's upper case, and its named fields wrapped
+ * to the width), chart axes (ranges, log and
  * linear tick positions, labels), that a marker lands on the pixel its data
  * maps to in its colour, polylines, the Pareto front and the rmse floor as
  * pure functions, results.csv written and read back, malformed CSV refused
@@ -58,6 +59,49 @@ static void test_text(void)
 }
 
 /* The viewer's status line keeps drawing lower case as upper case. */
+/* The status line of named fields wraps between fields to the image's
+ * width, one band of whole lines, and leaves the rows below alone. */
+static void test_status_fields(void)
+{
+    static const float grey[3] = {0.1f, 0.1f, 0.1f}, green[3] = {0.0f, 1.0f, 0.0f};
+    const char *f[] = {"ab", "cd", "efghij", "k"};
+    oit_image wide = {0}, narrow = {0};
+    oit_error err = {0};
+    CHECK(oit_image_alloc(&wide, 200, 40, &err) == OIT_OK &&
+              oit_image_alloc(&narrow, 60, 40, &err) == OIT_OK, "alloc: %s", err.message);
+    for (int y = 0; y < 40; y++)
+        for (int x = 0; x < 200; x++) {
+            oit_image_put_rgb(&wide, x, y, green);
+            if (x < 60)
+                oit_image_put_rgb(&narrow, x, y, green);
+        }
+    int line = oit_text_line_height(1);
+    /* "ab  cd  efghij  k" is 17 characters: one line at 200 px */
+    int band = oit_text_status_fields(&wide, f, 4, 1);
+    CHECK(band == line, "wide: band %d, want %d", band, line);
+    CHECK(is_colour(&wide, 199, line - 1, grey) && is_colour(&wide, 0, line, green),
+          "wide: band rows");
+    /* 60 px hold 10 characters: "ab  cd", then "efghij  k" */
+    band = oit_text_status_fields(&narrow, f, 4, 1);
+    CHECK(band == 2 * line, "narrow: band %d, want %d", band, 2 * line);
+    CHECK(is_colour(&narrow, 59, 2 * line - 1, grey) && is_colour(&narrow, 0, 2 * line, green),
+          "narrow: band rows");
+    int lit = 0;
+    for (int y = line; y < 2 * line; y++)
+        for (int x = 0; x < 60; x++)
+            lit += is_colour(&narrow, x, y, (const float[3]){1, 1, 1});
+    CHECK(lit > 0, "narrow: nothing written on the second line");
+    /* at the edge: 4 + 2 + 4 characters fit 10, 5 + 2 + 4 do not */
+    const char *fit[] = {"abcd", "efgh"}, *over[] = {"abcde", "efgh"};
+    band = oit_text_status_fields(&narrow, fit, 2, 1);
+    CHECK(band == line, "10 characters in 60 px: band %d, want %d", band, line);
+    band = oit_text_status_fields(&narrow, over, 2, 1);
+    CHECK(band == 2 * line, "11 characters in 60 px: band %d, want %d", band, 2 * line);
+    CHECK(oit_text_status_fields(&narrow, f, 0, 1) == 0, "no fields: a band");
+    oit_image_free(&wide);
+    oit_image_free(&narrow);
+}
+
 static void test_status_line_upper_case(void)
 {
     oit_image a, b;
@@ -439,6 +483,7 @@ int main(void)
     const char *dir = getenv("OIT_TEST_TMP");
     test_text();
     test_status_line_upper_case();
+    test_status_fields();
     test_axes();
     test_marker_and_line();
     test_legend_overflow();

@@ -10,7 +10,8 @@
  * slab planes, rays are cast from the eye through points sampled on every
  * part's triangles; the parts hit along each ray, in distance order, must
  * have non-decreasing rank in the order. The checker is shown to catch a
- * reversed order, so the test can fail. */
+ * reversed order, so the test can fail. The default camera's up axes
+ * (oit_camera_default_up) are checked here too. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -364,6 +365,50 @@ static int eyes(float out[][3], int cap)
     return n;
 }
 
+/* oit_camera_default_up: y up is oit_camera_default, bit for bit, and the
+ * formula it always had; z up (CAD) looks from -y at azimuth 0 with x to
+ * the right and z up, from +x at azimuth 90, and down from +z at elevation
+ * 90 with +y up on screen; x up looks from +z with x up. */
+static void check_camera_up(void)
+{
+    const float lo[3] = {-1, -2, -3}, hi[3] = {3, 2, 1};
+    const float az[] = {0, 30, 90, -135, 200}, el[] = {0, 20, -45, 90, -90};
+    for (int i = 0; i < 5; i++)
+        for (int j = 0; j < 5; j++) {
+            oit_camera a, b;
+            oit_camera_default(&a, lo, hi, az[i], el[j]);
+            oit_camera_default_up(&b, lo, hi, az[i], el[j], 1);
+            check(!memcmp(&a, &b, sizeof a), "camera: y up differs from oit_camera_default");
+            const double pi = 3.14159265358979323846;
+            double r = sqrt(4.0 + 4.0 + 4.0), d = r / sin(22.5 * pi / 180.0);
+            double A = az[i] * pi / 180.0, E = el[j] * pi / 180.0;
+            double want[3] = {1 + d * (cos(E) * sin(A)), 0 + d * sin(E), -1 + d * (cos(E) * cos(A))};
+            for (int k = 0; k < 3; k++)
+                check(a.eye[k] == (float)want[k], "camera: y-up eye moved");
+        }
+    oit_camera c;
+    oit_camera_default_up(&c, lo, hi, 0, 0, 2);
+    float off[3] = {c.eye[0] - c.target[0], c.eye[1] - c.target[1], c.eye[2] - c.target[2]};
+    check(fabsf(off[0]) < 1e-4f && off[1] < -1.0f && fabsf(off[2]) < 1e-4f,
+          "camera: z up, azimuth 0 is not seen from -y");
+    check(c.up[0] == 0 && c.up[1] == 0 && c.up[2] == 1, "camera: z up has not z up");
+    /* right = forward x up: forward is +y, so right must be +x */
+    float fwd[3] = {-off[0], -off[1], -off[2]};
+    float right[3] = {fwd[1] * c.up[2] - fwd[2] * c.up[1], fwd[2] * c.up[0] - fwd[0] * c.up[2],
+                      fwd[0] * c.up[1] - fwd[1] * c.up[0]};
+    check(right[0] > 1.0f && fabsf(right[1]) < 1e-4f && fabsf(right[2]) < 1e-4f,
+          "camera: z up, azimuth 0 has not x to the right");
+    oit_camera_default_up(&c, lo, hi, 90, 0, 2);
+    check(c.eye[0] - c.target[0] > 1.0f && fabsf(c.eye[1] - c.target[1]) < 1e-4f,
+          "camera: z up, azimuth 90 is not seen from +x");
+    oit_camera_default_up(&c, lo, hi, 0, 90, 2);
+    check(c.eye[2] - c.target[2] > 1.0f && c.up[1] == 1 && c.up[2] == 0,
+          "camera: z up, elevation 90 is not from +z with y up");
+    oit_camera_default_up(&c, lo, hi, 0, 0, 0);
+    check(c.up[0] == 1 && c.eye[2] - c.target[2] > 1.0f && fabsf(c.eye[0] - c.target[0]) < 1e-4f,
+          "camera: x up, azimuth 0 is not seen from +z with x up");
+}
+
 /* The frustum planes against the projection they stand for: a point well
  * inside the clip volume passes every plane, one well outside fails one. */
 static void check_frustum_planes(void)
@@ -514,6 +559,7 @@ int main(void)
     }
     printf("%d eyes, %d rays: %d order violations\n", ne, rays_checked, total_bad);
     check_frustum_planes();
+    check_camera_up();
     check_culled(o, pf, (const float(*)[3])ev, ne);
     /* The checker must see a wrong order: the reverse of a valid one. */
     float far_eye[3] = {-7.0f, 2.25f, 2.0f};

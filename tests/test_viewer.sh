@@ -7,6 +7,10 @@
 #   - L equals `--show layers`, T equals `--shading translucent`, the key
 #     of "array" equals `--method array`, W moves the view and R restores it
 #   - Q stops the loop early with exit status 0; E reports no early termination
+#   - one key map for meshes and part files: key 1 is dfb and key 5 stream for
+#     both; on a mesh, 5 puts a message on the image saying why it cannot run
+#   - --up z equals `--up z --out` and changes the default view
+#   - the status line of named fields wraps to the window's width
 # Equal means within half an 8-bit step (the window quantises to 8 bits).
 set -u
 : "${OIT_BIN:?OIT_BIN must name the tools folder}"
@@ -37,7 +41,13 @@ for bad in "--window-frames 3" "--window --orbit 4" "--window --out x.png"; do
     "$S" quads.ply $bad >/dev/null 2>&1; rc=$?
     [ "$rc" -eq 2 ] || fail "oitstream quads.ply $bad: exit $rc, want 2"
 done
-"$S" --help | grep -q -- "--window-script" || fail "--help does not document --window-script"
+for opt in --window-script --preview --still --up; do
+    "$S" --help | grep -q -- "$opt" || fail "--help does not document $opt"
+done
+"$S" quads.ply --preview lowres >/dev/null 2>&1; rc=$?
+[ "$rc" -eq 2 ] || fail "--preview without --window: exit $rc, want 2"
+"$S" quads.ply --window --up w >/dev/null 2>&1; rc=$?
+[ "$rc" -eq 2 ] || fail "--up w: exit $rc, want 2"
 
 # 24 overlapping translucent squares: every pixel of the centre has many
 # layers, and few triangles keep llvmpipe frames fast.
@@ -78,10 +88,54 @@ expect_differ "T vs transparent" oitstream_002.png ref.png 100
 expect_differ "W vs home" oitstream_003.png ref.png 100
 expect_equal "R then array key vs --method array" oitstream_004.png array.png
 
-# 4. The status line: some pixels change, all within its band (11 rows).
+# 4. The status line: some pixels change, all within its band, whose rows
+#    the viewer reports: whole lines of 11 rows (the named fields wrap at
+#    160 pixels: more than one line, fewer than would fill the window).
+BAND=$(sed -n 's/^viewer: .* status band \([0-9]*\) rows.*/\1/p' overlay.txt)
+echo "status band: $BAND rows"
+[ -n "$BAND" ] && [ $((BAND % 11)) -eq 0 ] && [ "$BAND" -ge 22 ] && [ "$BAND" -le 66 ] ||
+    fail "the status band is '$BAND' rows, want 2 to 6 lines of 11"
+grep -q "last: 1 dfb  exact  frame [0-9.]* ms  fragments [0-9.]*K  layers 24  overflow 0" overlay.txt ||
+    fail "the status line does not name its fields"
 compare "overlay vs none" overlay.png oitstream_000.png
-[ "$OVER" -ge 50 ] && [ "$OVER" -le $((160 * 11)) ] ||
-    fail "the status line changed $OVER pixels, want 50..$((160 * 11)) (the top 11 rows)"
+[ "$OVER" -ge 50 ] && [ "$OVER" -le $((160 * ${BAND:-11})) ] ||
+    fail "the status line changed $OVER pixels, want 50..$((160 * ${BAND:-11})) (the top $BAND rows)"
+
+# 5. One key map: 1 is dfb and 5 stream on a part file as on a mesh; on the
+#    mesh 5 leaves dfb on and says why on the image (000 before, 001 after).
+"$OIT_BIN/oitprep" quads.ply -o quads.oitp >/dev/null 2>&1 || fail "oitprep quads"
+"$S" quads.oitp --window --no-overlay --size $SIZE --window-script "1" >keys_part.txt 2>&1 ||
+    { cat keys_part.txt; fail "the part-file run exited with $?"; }
+rm -f oitstream_00[0-9].png
+"$S" quads.ply --window --no-overlay --size $SIZE --window-script "P5P4" >keys_mesh.txt 2>&1 ||
+    { cat keys_mesh.txt; fail "the mesh key run exited with $?"; }
+cat keys_part.txt keys_mesh.txt
+for f in keys_part.txt keys_mesh.txt; do
+    grep -q "^viewer: key 1: dfb$" $f || fail "$f: key 1 is not dfb"
+    grep -q "^viewer: key 5: stream" $f || fail "$f: key 5 is not stream"
+done
+grep -q "^viewer: method 5: stream" keys_part.txt || fail "a part file does not start with 5, stream"
+grep -q "^viewer: method 1: dfb" keys_part.txt || fail "key 1 on a part file does not switch to dfb"
+grep -q "^viewer: 5 stream cannot run on this input: needs a part file" keys_mesh.txt ||
+    fail "key 5 on a mesh does not say why stream cannot run"
+grep -q "^viewer: method 5" keys_mesh.txt && fail "key 5 on a mesh switched method"
+#    4, stencil, runs or says why it cannot run here (llvmpipe: too few samples)
+grep -q "^viewer: method 4: stencil\|^viewer: 4 stencil cannot run here: ." keys_mesh.txt ||
+    fail "key 4 neither switched to stencil nor said why it cannot"
+expect_equal "before 5 vs headless" oitstream_000.png ref.png
+expect_differ "the message of 5 on the image" oitstream_001.png oitstream_000.png 100
+
+# 6. --up z: the window's default view is the headless --up z view, and not
+#    the y-up one.
+"$S" quads.ply --window --no-overlay --size $SIZE --up z --window-screenshot upz.png >upz.txt 2>&1 ||
+    { cat upz.txt; fail "the --up z window exited with $?"; }
+"$S" quads.ply --size $SIZE --quiet --up z --out upz_ref.png || fail "headless --up z"
+expect_equal "--up z window vs headless" upz.png upz_ref.png
+expect_differ "--up z vs y" upz.png ref.png 1000
+#    U cycles y -> z: the same view
+"$S" quads.ply --window --no-overlay --size $SIZE --window-script "U" --window-screenshot upkey.png >upkey.txt 2>&1 ||
+    { cat upkey.txt; fail "the U run exited with $?"; }
+expect_equal "U vs --up z" upkey.png upz_ref.png
 
 [ "$FAILS" -eq 0 ] && echo ok || echo "$FAILS failure(s)"
 exit $((FAILS != 0))
