@@ -14,6 +14,7 @@ install(FILES
         ${CMAKE_SOURCE_DIR}/include/oit/mesh.h
         ${CMAKE_SOURCE_DIR}/include/oit/partfile.h
         ${CMAKE_SOURCE_DIR}/include/oit/liboit.h
+        ${CMAKE_SOURCE_DIR}/include/oit/offscreen.h
         DESTINATION include/oit)
 install(EXPORT oitTargets NAMESPACE oit:: DESTINATION lib/cmake/oit)
 

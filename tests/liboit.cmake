@@ -20,3 +20,9 @@ oit_add_test(NAME liboit_install LABELS integration TIMEOUT 180
 set(liboit_example_grid ${CMAKE_BINARY_DIR}/test-tmp/liboit_example.oitp)
 oit_add_test(NAME liboit_example LABELS integration TIMEOUT 60
   COMMAND sh -c "$<TARGET_FILE:test_streamer> ${liboit_example_grid} && $<TARGET_FILE:embed_liboit> ${liboit_example_grid} ${CMAKE_BINARY_DIR}/test-tmp/liboit_example.png 160 120")
+
+# In-core scenes (a mesh file, caller arrays) against the part file the
+# test converts with oitprep, and the offscreen API's pixels.
+oit_add_test_exe(test_liboit_incore SOURCES test_liboit_incore.c LIBS oit oit_formats)
+oit_add_test(NAME liboit_incore LABELS integration TIMEOUT 120
+  COMMAND $<TARGET_FILE:test_liboit_incore> $<TARGET_FILE:oitprep> ${CMAKE_BINARY_DIR}/test-tmp)

@@ -12,14 +12,14 @@ mkdir -p "$tmp/src"
 
 cmake --build "$build" --target oit > "$tmp/build.log" 2>&1 || { cat "$tmp/build.log"; exit 1; }
 cmake --install "$build" --prefix "$tmp/prefix" > "$tmp/install.log"
-for f in include/oit/oit.h include/oit/liboit.h include/oit/partfile.h \
+for f in include/oit/oit.h include/oit/liboit.h include/oit/offscreen.h include/oit/partfile.h \
          lib/pkgconfig/oit.pc lib/cmake/oit/oitConfig.cmake \
          lib/cmake/oit/oitConfigVersion.cmake; do
     [ -f "$tmp/prefix/$f" ] || { echo "FAIL: not installed: $f"; exit 1; }
 done
 # Only the public headers: render/ and stream/ internals must not leak.
 extra=$(find "$tmp/prefix/include" -name '*.h' | wc -l)
-[ "$extra" -eq 5 ] || { echo "FAIL: $extra headers installed, expected 5"; exit 1; }
+[ "$extra" -eq 6 ] || { echo "FAIL: $extra headers installed, expected 6"; exit 1; }
 
 cat > "$tmp/src/main.c" <<'C'
 #include <oit/oit.h>
