@@ -1,7 +1,8 @@
 # Install rules of liboit: the public headers, the shared library, a CMake
-# package exporting oit::oit and a pkg-config file, all relocatable (nothing
-# records the configure-time prefix), so `cmake --install B --prefix P` works
-# for any P.
+# package exporting oit::oit and a pkg-config file, the converter oitprep
+# (which the Python package's oit.prep runs) and the Python package, all
+# relocatable (nothing records the configure-time prefix), so
+# `cmake --install B --prefix P` works for any P.
 include(CMakePackageConfigHelpers)
 
 install(TARGETS oit EXPORT oitTargets
@@ -28,3 +29,7 @@ install(FILES ${CMAKE_BINARY_DIR}/cmake/oitConfig.cmake
 
 configure_file(${CMAKE_SOURCE_DIR}/cmake/oit.pc.in ${CMAKE_BINARY_DIR}/cmake/oit.pc @ONLY)
 install(FILES ${CMAKE_BINARY_DIR}/cmake/oit.pc DESTINATION lib/pkgconfig)
+
+# Only the converter: the other tools stay in the build tree.
+install(TARGETS oitprep RUNTIME DESTINATION bin)
+include(${CMAKE_SOURCE_DIR}/cmake/python.cmake)

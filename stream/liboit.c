@@ -351,6 +351,17 @@ oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out
     return OIT_OK;
 }
 
+void oit_renderer_release_scene(oit_renderer *r, const oit_scene *scene)
+{
+    if (!r || !scene || r->scene != scene)
+        return;
+    oit_streamer_destroy(r->streamer);
+    r->streamer = NULL;
+    oit_gpu_mesh_destroy(r->gpu_mesh);
+    r->gpu_mesh = NULL;
+    r->scene = NULL;
+}
+
 /* (Re)builds the streamer when r draws a scene it was not built for. */
 static oit_status bind_scene(oit_renderer *r, const oit_scene *scene, oit_error *err)
 {

@@ -54,6 +54,12 @@ oit_status oit_offscreen_create(const oit_offscreen_desc *desc, oit_offscreen **
     return OIT_OK;
 }
 
+void oit_offscreen_release_scene(oit_offscreen *o, const oit_scene *scene)
+{
+    if (o && scene && oit_gl_make_current(o->gl, NULL) == OIT_OK)
+        oit_renderer_release_scene(o->renderer, scene);
+}
+
 const char *oit_offscreen_gl_renderer(const oit_offscreen *o)
 {
     return o ? oit_gl_renderer(o->gl) : "";

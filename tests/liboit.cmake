@@ -14,7 +14,8 @@ if(OIT_SANITIZE)
   set(liboit_consumer_flags "-fsanitize=address,undefined -fsanitize-link-c++-runtime -lstdc++")
 endif()
 oit_add_test(NAME liboit_install LABELS integration TIMEOUT 180
-  COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_install.sh ${CMAKE_BINARY_DIR} "${CMAKE_C_COMPILER}" "${liboit_consumer_flags}")
+  COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_install.sh ${CMAKE_BINARY_DIR} "${CMAKE_C_COMPILER}"
+          ${OIT_PYTHON} "${liboit_consumer_flags}" "${OIT_PYTHON_PRELOAD}")
 
 # The example must keep working: it is the API's documentation.
 set(liboit_example_grid ${CMAKE_BINARY_DIR}/test-tmp/liboit_example.oitp)

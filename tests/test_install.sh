@@ -2,19 +2,25 @@
 # Installs liboit from a build folder into a temporary prefix, then builds a
 # tiny outside project against it twice (find_package(oit) and pkg-config)
 # and runs it: it must link, load liboit.so and print the library's error for
-# a missing part file.
-# usage: test_install.sh BUILD_DIR C_COMPILER "EXTRA_FLAGS"
+# a missing part file. Then the installed Python package: imported from the
+# prefix alone (no OIT_LIBRARY), it must load the prefix's liboit.so, render
+# pixels and convert with the prefix's oitprep.
+# usage: test_install.sh BUILD_DIR C_COMPILER PYTHON ["EXTRA_FLAGS" [PRELOAD]]
+# PRELOAD: the sanitizer runtime python needs to load an instrumented liboit.
+# (Empty arguments are dropped on the way from ctest: the optional ones last.)
 set -eu
-build=$1 cc=$2 flags=${3:-}
+build=$1 cc=$2 python=$3 flags=${4:-} preload=${5:-}
 tmp=${OIT_TEST_TMP:-/tmp}/liboit-install.$$
 trap 'rm -rf "$tmp"' EXIT
 mkdir -p "$tmp/src"
 
-cmake --build "$build" --target oit > "$tmp/build.log" 2>&1 || { cat "$tmp/build.log"; exit 1; }
+cmake --build "$build" --target oit oitprep > "$tmp/build.log" 2>&1 || { cat "$tmp/build.log"; exit 1; }
 cmake --install "$build" --prefix "$tmp/prefix" > "$tmp/install.log"
 for f in include/oit/oit.h include/oit/liboit.h include/oit/offscreen.h include/oit/partfile.h \
          lib/pkgconfig/oit.pc lib/cmake/oit/oitConfig.cmake \
-         lib/cmake/oit/oitConfigVersion.cmake; do
+         lib/cmake/oit/oitConfigVersion.cmake bin/oitprep \
+         lib/python3/dist-packages/oit/__init__.py \
+         lib/python3/dist-packages/oit/_install_paths.py; do
     [ -f "$tmp/prefix/$f" ] || { echo "FAIL: not installed: $f"; exit 1; }
 done
 # Only the public headers: render/ and stream/ internals must not leak.
@@ -61,4 +67,35 @@ echo "pkg-config: $pc_flags"
 # shellcheck disable=SC2086
 "$cc" $flags "$tmp/src/main.c" $pc_flags -o "$tmp/outside-pc"
 check_run pkg-config "$tmp/outside-pc"
+
+# The Python package, from the prefix alone.
+cat > "$tmp/py_check.py" <<'P'
+import os, sys
+import numpy as np
+os.environ.pop("LD_PRELOAD", None)  # for this process only; oitprep has its own runtime
+import oit
+prefix = os.path.realpath(sys.argv[1])
+lib = os.path.realpath(oit.lib_path())
+assert lib.startswith(prefix + "/lib/"), f"liboit from {lib}, not the prefix {prefix}"
+assert os.path.realpath(oit.prep_tool()) == prefix + "/bin/oitprep", oit.prep_tool()
+pos = [[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]]
+img = oit.render_arrays(pos, [[0, 1, 2], [0, 2, 3]], np.array([[255, 0, 0, 128]] * 2, np.uint8),
+                        size=(32, 32), view={"eye": (0, 0, 4), "target": (0, 0, 0), "fovy": 30})
+assert tuple(img[16, 16]) == (255, 127, 127, 255), img[16, 16]
+assert tuple(img[0, 0]) == (255, 255, 255, 255), img[0, 0]
+ply = os.path.join(sys.argv[2], "tri.ply")
+with open(ply, "w") as f:
+    f.write("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+            "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+            "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")
+oit.prep(ply, os.path.join(sys.argv[2], "tri.oitp"))
+with oit.Scene.open(os.path.join(sys.argv[2], "tri.oitp")) as s:
+    assert s.info["triangles"] == 1 and not s.info["in_core"], s.info
+print("python: liboit from", lib, "; pixels and oit.prep OK")
+P
+# shellcheck disable=SC2016
+env -u OIT_LIBRARY -u OIT_PREP PYTHONPATH="$tmp/prefix/lib/python3/dist-packages" \
+    PYTHONDONTWRITEBYTECODE=1 ${preload:+LD_PRELOAD="$preload" ASAN_OPTIONS=detect_leaks=0} \
+    "$python" "$tmp/py_check.py" "$tmp/prefix" "$tmp" || {
+    echo "FAIL (python): the installed package"; exit 1; }
 echo "install: OK"

@@ -256,6 +256,17 @@ static void check_square(oit_offscreen *o)
     CHECK(st != OIT_OK || (c[0] == 128 && c[1] == 0 && c[3] == 128 && px[3] == 0),
           "over transparent black: centre %u %u %u %u, corner alpha %u", c[0], c[1], c[2],
           c[3], px[3]);
+    /* Released, the scene's triangles are uploaded again at the next draw;
+     * kept, they are not. */
+    oit_draw_stats ds[3] = {{0}};
+    oit_offscreen_render(o, s, &v, px, sizeof px, &ds[0], &err);
+    oit_offscreen_release_scene(o, s);
+    oit_offscreen_render(o, s, &v, px, sizeof px, &ds[1], &err);
+    oit_offscreen_render(o, s, &v, px, sizeof px, &ds[2], &err);
+    CHECK(ds[0].bytes_uploaded == 0 && ds[1].bytes_uploaded == 2 * sizeof(oit_triangle) &&
+              ds[2].bytes_uploaded == 0,
+          "uploads kept, released, kept: %llu %llu %llu bytes", (unsigned long long)ds[0].bytes_uploaded,
+          (unsigned long long)ds[1].bytes_uploaded, (unsigned long long)ds[2].bytes_uploaded);
     /* Too small a buffer. */
     st = oit_offscreen_render(o, s, &v, px, sizeof px - 1, NULL, &err);
     CHECK(st == OIT_ERR_ARGUMENT && strstr(err.message, "bytes"), "short buffer gave %s: %s",

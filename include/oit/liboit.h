@@ -133,7 +133,8 @@ oit_status oit_scene_create_mesh(const oit_scene_mesh_desc *desc, oit_scene **ou
 oit_status oit_scene_get_info(const oit_scene *scene, oit_scene_info *info, oit_error *err);
 /* Lifetime: a renderer keeps GPU state for the last scene it drew and
  * remembers that scene by address. Close a scene only after every renderer
- * that drew it last has been destroyed or has drawn another scene. */
+ * that drew it last has been destroyed, has drawn another scene or has
+ * released it (oit_renderer_release_scene). */
 void oit_scene_close(oit_scene *scene);
 
 /* ---- renderer ---------------------------------------------------------- */
@@ -195,6 +196,11 @@ typedef struct oit_renderer_desc {
 oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out,
                                oit_error *err);
 void oit_renderer_destroy(oit_renderer *r);
+/* Frees r's GPU state for scene when r drew it last (else does nothing), so
+ * that scene may be closed while r lives on; the next draw of any scene
+ * builds its state anew. Needs r's GL context current, like every call on
+ * r. r or scene NULL: nothing. */
+void oit_renderer_release_scene(oit_renderer *r, const oit_scene *scene);
 
 typedef struct oit_frame {
     /* Column-major 4x4, as glUniformMatrix4fv(..., GL_FALSE, m) takes.

@@ -42,6 +42,9 @@ typedef struct oit_offscreen_desc {
 oit_status oit_offscreen_create(const oit_offscreen_desc *desc, oit_offscreen **out,
                                 oit_error *err);
 void oit_offscreen_destroy(oit_offscreen *o);
+/* oit_renderer_release_scene for o's renderer (liboit.h, Lifetime): call
+ * it before closing a scene that o drew last while o lives on. */
+void oit_offscreen_release_scene(oit_offscreen *o, const oit_scene *scene);
 /* The GL renderer string of the context ("llvmpipe (LLVM 15.0.6, 256 bits)"). */
 const char *oit_offscreen_gl_renderer(const oit_offscreen *o);
 
