@@ -330,6 +330,22 @@ oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out
         return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_desc.K = %u is outside "
                              "[2, 16]", K);
     }
+    /* The ranges oitstream's --upload-budget and --cache-budget take. */
+    uint64_t ub = r->desc.upload_budget, cb = r->desc.cache_budget;
+    if ((ub != 0 && ub < 65536) || (cb != 0 && cb != OIT_RENDER_CACHE_OFF && cb < 65536)) {
+        free(r);
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_desc.%s = %llu is below 64 "
+                             "KiB (0: the default%s)", ub != 0 && ub < 65536 ? "upload_budget"
+                                                                            : "cache_budget",
+                             (unsigned long long)(ub != 0 && ub < 65536 ? ub : cb),
+                             ub != 0 && ub < 65536 ? "" : "; OIT_RENDER_CACHE_OFF: no cache");
+    }
+    if ((unsigned)r->desc.pack > OIT_RENDER_PACK_FIRSTK) {
+        int p = (int)r->desc.pack;
+        free(r);
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_desc.pack = %d is not an "
+                             "oit_render_pack", p);
+    }
     if (!(r->desc.epsilon >= 0.0f && r->desc.epsilon < 1.0f)) {
         double e = r->desc.epsilon;
         free(r);
@@ -387,7 +403,8 @@ static oit_status bind_scene(oit_renderer *r, const oit_scene *scene, oit_error 
      * wider than K, captured alone over tiles, as oitstream does. */
     sd.K = r->desc.K ? (int)r->desc.K : scene->info.K < 16 ? (int)scene->info.K : 16;
     sd.capture = OIT_CAPTURE_AUTO;
-    sd.pack = r->desc.pack == OIT_RENDER_PACK_DISJOINT  ? OIT_PACK_DISJOINT
+    sd.pack = r->desc.pack == OIT_RENDER_PACK_FIRSTK    ? OIT_PACK_FIRSTK
+              : r->desc.pack == OIT_RENDER_PACK_DISJOINT  ? OIT_PACK_DISJOINT
               : r->desc.pack == OIT_RENDER_PACK_BUDGET  ? OIT_PACK_BUDGET
               : r->desc.pack == OIT_RENDER_PACK_COUNTED ? OIT_PACK_COUNTED
                                                         : OIT_PACK_AUTO;

@@ -125,13 +125,14 @@ static void check_state_restored(GLuint fbo)
 }
 
 static void draw_and_compare(const char *name, oit_scene *scene, oit_partfile *pf,
-                             oit_render_shading_mode mode)
+                             oit_render_shading_mode mode, oit_render_pack pack)
 {
     oit_error err = {0};
     oit_scene_info info;
     oit_scene_get_info(scene, &info, &err);
     oit_renderer_desc rd = {0};
     rd.shading.mode = mode;
+    rd.pack = pack;
     oit_renderer *r = NULL;
     if (oit_renderer_create(&rd, &r, &err) != OIT_OK) {
         CHECK(0, "%s: oit_renderer_create: %s", name, err.message);
@@ -257,6 +258,32 @@ static void check_errors(oit_scene *scene)
           "epsilon = 1 gave %s", oit_status_name(s));
 
     rd.epsilon = 0.0f;
+    /* The budgets take oitstream's ranges: 0 (default) or >= 64K; the
+     * cache also OIT_RENDER_CACHE_OFF. */
+    const struct { uint64_t upload, cache; oit_status want; } budgets[] = {
+        {1024, 0, OIT_ERR_ARGUMENT}, {0, 65535, OIT_ERR_ARGUMENT},
+        {65536, OIT_RENDER_CACHE_OFF, OIT_OK}, {0, 65536, OIT_OK}};
+    for (size_t i = 0; i < sizeof budgets / sizeof *budgets; i++) {
+        rd.upload_budget = budgets[i].upload;
+        rd.cache_budget = budgets[i].cache;
+        s = oit_renderer_create(&rd, &r, &err);
+        printf("upload %llu, cache %llu: %s%s%s\n", (unsigned long long)budgets[i].upload,
+               (unsigned long long)budgets[i].cache, oit_status_name(s), s ? ": " : "",
+               s ? err.message : "");
+        CHECK(s == budgets[i].want && (s == OIT_OK) == (r != NULL) &&
+                  (s == OIT_OK || strstr(err.message, budgets[i].upload ? "upload_budget"
+                                                                        : "cache_budget")),
+              "budgets %llu/%llu gave %s", (unsigned long long)budgets[i].upload,
+              (unsigned long long)budgets[i].cache, oit_status_name(s));
+        oit_renderer_destroy(r);
+        r = NULL;
+    }
+    rd.upload_budget = rd.cache_budget = 0;
+    rd.pack = (oit_render_pack)99;
+    s = oit_renderer_create(&rd, &r, &err);
+    CHECK(s == OIT_ERR_ARGUMENT && strstr(err.message, "pack"), "pack 99 gave %s",
+          oit_status_name(s));
+    rd.pack = OIT_RENDER_PACK_AUTO;
     s = oit_renderer_create(&rd, &r, &err);
     CHECK(s == OIT_OK, "renderer: %s", err.message);
     oit_frame f = {0};
@@ -297,8 +324,11 @@ int main(int argc, char **argv)
            (unsigned long long)info.parts, info.K);
     CHECK(info.triangles > 0 && info.parts > 0, "empty scene");
     check_errors(scene);
-    draw_and_compare("transparent", scene, pf, OIT_RENDER_TRANSPARENT);
-    draw_and_compare("translucent", scene, pf, OIT_RENDER_TRANSLUCENT);
+    draw_and_compare("transparent", scene, pf, OIT_RENDER_TRANSPARENT, OIT_RENDER_PACK_AUTO);
+    draw_and_compare("translucent", scene, pf, OIT_RENDER_TRANSLUCENT, OIT_RENDER_PACK_AUTO);
+    /* Each packing oitstream --pack offers, first-k and counted exact. */
+    draw_and_compare("first-k", scene, pf, OIT_RENDER_TRANSPARENT, OIT_RENDER_PACK_FIRSTK);
+    draw_and_compare("counted", scene, pf, OIT_RENDER_TRANSPARENT, OIT_RENDER_PACK_COUNTED);
 
     /* The same triangles as an in-core scene from arrays (a soup with
      * per-vertex colour), through the same draw: DFB's image, the caller's
@@ -337,8 +367,10 @@ int main(int argc, char **argv)
      * colour and alpha exactly when the file does. */
     CHECK(ci.attributes == info.attributes, "in-core attributes %u, file %u", ci.attributes,
           info.attributes);
-    draw_and_compare("in-core transparent", core, pf, OIT_RENDER_TRANSPARENT);
-    draw_and_compare("in-core translucent", core, pf, OIT_RENDER_TRANSLUCENT);
+    draw_and_compare("in-core transparent", core, pf, OIT_RENDER_TRANSPARENT,
+                     OIT_RENDER_PACK_AUTO);
+    draw_and_compare("in-core translucent", core, pf, OIT_RENDER_TRANSLUCENT,
+                     OIT_RENDER_PACK_AUTO);
     oit_scene_close(core);
 
     oit_partfile_close(pf);

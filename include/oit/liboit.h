@@ -154,14 +154,21 @@ typedef struct oit_render_shading {
     float scene_scale;    /* translucent; default: the scene's diagonal     */
 } oit_render_shading;
 
+/* oitstream --pack spells the same modes: auto, counted, budget, disjoint,
+ * first-k. */
 typedef enum oit_render_pack {
-    OIT_RENDER_PACK_AUTO = 0,    /* COUNTED, or DISJOINT when epsilon > 0 */
+    OIT_RENDER_PACK_AUTO = 0,    /* FIRSTK while K slots a pixel hold the view,
+                                    switched to COUNTED for deep views;
+                                    DISJOINT when epsilon > 0 */
     OIT_RENDER_PACK_COUNTED,     /* packs cut by upload bytes only, each counted,
                                     stored and sorted per pixel (no layer limit) */
     OIT_RENDER_PACK_BUDGET,      /* K slots a pixel: parts share a pack while
                                     their layer bounds per tile stay <= K */
-    OIT_RENDER_PACK_DISJOINT     /* K slots a pixel: parts with disjoint screen
+    OIT_RENDER_PACK_DISJOINT,    /* K slots a pixel: parts with disjoint screen
                                     rects */
+    OIT_RENDER_PACK_FIRSTK       /* packs as COUNTED, each drawn once into up to
+                                    K slots a pixel; pixels with more take a
+                                    second pass for themselves alone */
 } oit_render_pack;
 
 /* For part files. An in-core scene is drawn with DFB, which stores every
@@ -169,7 +176,8 @@ typedef enum oit_render_pack {
  * exact one), cache_budget and read_on_draw_thread do not apply to it. */
 typedef struct oit_renderer_desc {
     uint32_t K;             /* capture layers 2..16; 0: the scene's K        */
-    uint64_t upload_budget; /* GPU bytes of the upload ring; 0: 64 MiB       */
+    uint64_t upload_budget; /* GPU bytes of the upload ring, >= 64 KiB;
+                               0: 64 MiB (oitstream --upload-budget alike) */
     oit_render_pack pack;
     oit_render_shading shading;
     /* Early termination; 0 (default): exact. In [0, 1): fragments behind
@@ -180,8 +188,9 @@ typedef struct oit_renderer_desc {
     float epsilon;
     /* GPU bytes that keep parts drawn in one frame resident for the next
      * ones, drawn without reading or uploading them again
-     * (oit_draw_stats.cache_hits); 0: 256 MiB (never more than the scene's
-     * parts take); OIT_RENDER_CACHE_OFF: no cache. */
+     * (oit_draw_stats.cache_hits), >= 64 KiB; 0: 256 MiB (never more than
+     * the scene's parts take); OIT_RENDER_CACHE_OFF: no cache. oitstream's
+     * --cache-budget means the same: 0 the default, "off" no cache. */
     uint64_t cache_budget;
     /* 0 (default): a reader thread of the renderer's own reads the parts of
      * later packs while the GPU draws earlier ones (it never calls GL). 1:

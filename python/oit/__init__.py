@@ -163,6 +163,8 @@ class Scene:
 
 
 _SHADINGS = {"transparent": L.RENDER_TRANSPARENT, "translucent": L.RENDER_TRANSLUCENT}
+# oit_render_pack, spelt as oitstream --pack spells it
+_PACKS = {"auto": 0, "counted": 1, "budget": 2, "disjoint": 3, "first-k": 4}
 
 
 class Renderer:
@@ -171,12 +173,20 @@ class Renderer:
     library's default. Use it from one thread."""
 
     def __init__(self, shading="transparent", alpha=None, default_rgb=None, absorption=None,
-                 K=0, epsilon=0.0):
+                 K=0, epsilon=0.0, pack="auto", upload_budget=0, cache_budget=0):
+        """pack, upload_budget, cache_budget, K and epsilon take what
+        oitstream's --pack, --upload-budget, --cache-budget, --max-layers and
+        --epsilon take: 0 is the default, cache_budget="off" no cache."""
         if shading not in _SHADINGS:
             raise ValueError(f"shading: {shading!r}, expected transparent or translucent")
+        if pack not in _PACKS:
+            raise ValueError(f"pack: {pack!r}, expected one of {', '.join(_PACKS)}")
         d = L.OffscreenDesc()
         d.renderer.K = K
         d.renderer.epsilon = epsilon
+        d.renderer.pack = _PACKS[pack]
+        d.renderer.upload_budget = int(upload_budget)
+        d.renderer.cache_budget = L.RENDER_CACHE_OFF if cache_budget == "off" else int(cache_budget)
         d.renderer.shading.mode = _SHADINGS[shading]
         if alpha is not None:
             d.renderer.shading.alpha = alpha

@@ -121,6 +121,28 @@ def test_prep_then_part_file(tmp_path):
     assert "missing.ply" in str(e.value)
 
 
+def test_renderer_options(tmp_path):
+    pos, idx, col = layered_scene()
+    ply, part = tmp_path / "layers.ply", tmp_path / "layers.oitp"
+    write_ply(ply, pos, idx, col)
+    oit.prep(ply, part, part_triangles=2)
+    ref = oit.render(ply, size=(64, 48))
+    with oit.Scene.open(part) as s:
+        for opts in ({"pack": "first-k"}, {"pack": "counted", "cache_budget": "off"},
+                     {"upload_budget": 65536, "cache_budget": 0}):
+            with oit.Renderer(**opts) as r:
+                img = r.render(s, size=(64, 48))
+                assert (np.abs(img.astype(int) - ref).max(axis=2) > 1).mean() <= 0.001, opts
+                if opts.get("cache_budget") == "off":
+                    r.render(s, size=(64, 48))
+                    assert r.stats["cache_hits"] == 0 and r.stats["bytes_uploaded"] > 0
+    with pytest.raises(oit.OitError) as e:
+        oit.Renderer(cache_budget=1000)
+    assert "cache_budget = 1000" in e.value.message
+    with pytest.raises(ValueError):
+        oit.Renderer(pack="sideways")
+
+
 def test_views():
     pos, idx, col = layered_scene()
     default = oit.render_arrays(pos, idx, col, size=(64, 64))
