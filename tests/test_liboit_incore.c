@@ -267,6 +267,24 @@ static void check_square(oit_offscreen *o)
               ds[2].bytes_uploaded == 0,
           "uploads kept, released, kept: %llu %llu %llu bytes", (unsigned long long)ds[0].bytes_uploaded,
           (unsigned long long)ds[1].bytes_uploaded, (unsigned long long)ds[2].bytes_uploaded);
+    /* Row 0 is the top: a quad above the centre shows in the upper rows. */
+    const float upper[12] = {-1, 0.3f, 0, 1, 0.3f, 0, 1, 1, 0, -1, 1, 0};
+    oit_scene_mesh_desc ud = d;
+    ud.positions = upper;
+    ud.name = "upper quad";
+    oit_scene *us = from_arrays(&ud);
+    v.background[0] = v.background[1] = v.background[2] = v.background[3] = 0.0f;
+    if (us && oit_offscreen_render(o, us, &v, px, sizeof px, NULL, &err) == OIT_OK) {
+        unsigned top = px[((S / 4) * S + S / 2) * 4 + 1], bottom = px[((3 * S / 4) * S + S / 2) * 4 + 1];
+        printf("upper quad: green %u at row %d, %u at row %d\n", top, S / 4, bottom, 3 * S / 4);
+        CHECK(top == 127 && bottom == 255, "upper quad: green %u at the top, %u at the bottom: "
+              "rows upside down", top, bottom);
+    } else {
+        CHECK(0, "upper quad: %s", err.message);
+    }
+    oit_scene_close(us);
+    for (int k = 0; k < 4; k++)
+        v.background[k] = -1.0f;
     /* Too small a buffer. */
     st = oit_offscreen_render(o, s, &v, px, sizeof px - 1, NULL, &err);
     CHECK(st == OIT_ERR_ARGUMENT && strstr(err.message, "bytes"), "short buffer gave %s: %s",

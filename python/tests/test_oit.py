@@ -44,6 +44,13 @@ def test_red_square_over_white():
     assert f[24, 32, 1] == pytest.approx(127 / 255, abs=2e-3)
 
 
+def test_row_zero_is_the_top():
+    pos, idx, col = square()
+    pos[:, 1] = np.where(pos[:, 1] > 0, 1.0, 0.3)  # the square's upper part only
+    img = oit.render_arrays(pos, idx, col, size=(32, 32), view=FRONT)
+    assert img[8, 16, 1] == 127 and img[24, 16, 1] == 255
+
+
 def test_background_and_alpha():
     pos, idx, col = square()
     img = oit.render_arrays(pos, idx, col, size=(32, 32), view=FRONT,
