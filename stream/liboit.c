@@ -539,7 +539,7 @@ oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame 
     oit_frame_stats fs = {0};
     oit_stream_frame_stats ss = {0};
     GLuint state = 0;
-    int empty = scene->info.triangles == 0;
+    int empty = !scene->pf && scene->info.triangles == 0; /* in core: nothing to draw */
     st = empty ? OIT_OK : bind_scene(r, scene, err);
     if (st == OIT_OK && !empty && scene->pf) {
         st = oit_streamer_render_gpu(r->streamer, &view, &state, &fs, &ss, err);
