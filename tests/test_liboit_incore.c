@@ -6,6 +6,7 @@
  *   (at most 0.1% of pixels more than 1/255 apart), in both shadings;
  * - the same triangles from caller arrays (indexed and soup, per-vertex and
  *   per-triangle colour, 8-bit and float) give the file's image exactly;
+ *   an STL of them (no colour) gives the image of the arrays without colour;
  * - a red square of alpha 128/255 facing the camera, over white, is
  *   (255, 127, 127) at its centre and white elsewhere, in RGBA8 and float;
  * - bad arrays, unknown extensions and missing files fail naming the input.
@@ -75,6 +76,29 @@ static int write_ply(const scene_arrays *a, const char *path)
         oit_ply_writer_abort(w);
     CHECK(s == OIT_OK, "writing %s: %s", path, err.message);
     return s == OIT_OK;
+}
+
+/* The same triangles as a binary STL: no colour. */
+static int write_stl(const scene_arrays *a, const char *path)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f) {
+        CHECK(0, "cannot create %s", path);
+        return 0;
+    }
+    char header[80] = "liboit_incore";
+    uint32_t n = NT;
+    fwrite(header, 1, sizeof header, f);
+    fwrite(&n, 4, 1, f);
+    for (int t = 0; t < NT; t++) {
+        float rec[12] = {0};
+        for (int c = 0; c < 3; c++)
+            memcpy(rec + 3 + 3 * c, a->pos + a->idx[t * 3 + c] * 3, 12);
+        uint16_t attr = 0;
+        fwrite(rec, 4, 12, f);
+        fwrite(&attr, 2, 1, f);
+    }
+    return fclose(f) == 0;
 }
 
 static float *render(oit_offscreen *o, oit_scene *scene, const char *what)
@@ -391,6 +415,31 @@ int main(int argc, char **argv)
     compare("in core vs part file", file_img, part_img, 1.0 / 255.0);
     check_arrays(o, &a, file_img);
     free(part_img);
+
+    /* Another reader (STL, no colour: the default colour and alpha) gives
+     * the image of the same arrays without colours. */
+    char stl[1024];
+    snprintf(stl, sizeof stl, "%s/liboit_incore.stl", argv[2]);
+    oit_scene *stl_scene = NULL, *plain = NULL;
+    oit_scene_mesh_desc pd = {.positions = a.pos, .vertex_count = NV, .indices = a.idx,
+                              .index_count = NT * 3, .name = "indexed, no colour"};
+    if (write_stl(&a, stl) && oit_scene_open(stl, NULL, &stl_scene, &err) == OIT_OK &&
+        (plain = from_arrays(&pd)) != NULL) {
+        oit_scene_info si;
+        oit_scene_get_info(stl_scene, &si, &err);
+        CHECK(si.in_core && si.attributes == 0 && si.triangles == NT,
+              "STL info: in_core %u, attributes %u, %llu triangles", si.in_core, si.attributes,
+              (unsigned long long)si.triangles);
+        float *si_img = render(o, stl_scene, "STL file, in core");
+        float *pl_img = render(o, plain, "arrays without colour");
+        compare("STL vs arrays without colour", si_img, pl_img, -1.0);
+        free(si_img);
+        free(pl_img);
+    } else {
+        CHECK(0, "STL: %s", err.message);
+    }
+    oit_scene_close(stl_scene);
+    oit_scene_close(plain);
     oit_offscreen_destroy(o);
 
     /* Translucent shading, through a renderer descriptor. */
