@@ -1,7 +1,8 @@
 # Install rules of liboit: the public headers, the shared library, a CMake
-# package exporting oit::oit and a pkg-config file, all relocatable (nothing
-# records the configure-time prefix), so `cmake --install B --prefix P` works
-# for any P.
+# package exporting oit::oit and a pkg-config file, the converter oitprep
+# (which the Python package's oit.prep runs) and the Python package, all
+# relocatable (nothing records the configure-time prefix), so
+# `cmake --install B --prefix P` works for any P.
 include(CMakePackageConfigHelpers)
 
 install(TARGETS oit EXPORT oitTargets
@@ -14,6 +15,7 @@ install(FILES
         ${CMAKE_SOURCE_DIR}/include/oit/mesh.h
         ${CMAKE_SOURCE_DIR}/include/oit/partfile.h
         ${CMAKE_SOURCE_DIR}/include/oit/liboit.h
+        ${CMAKE_SOURCE_DIR}/include/oit/offscreen.h
         DESTINATION include/oit)
 install(EXPORT oitTargets NAMESPACE oit:: DESTINATION lib/cmake/oit)
 
@@ -27,3 +29,7 @@ install(FILES ${CMAKE_BINARY_DIR}/cmake/oitConfig.cmake
 
 configure_file(${CMAKE_SOURCE_DIR}/cmake/oit.pc.in ${CMAKE_BINARY_DIR}/cmake/oit.pc @ONLY)
 install(FILES ${CMAKE_BINARY_DIR}/cmake/oit.pc DESTINATION lib/pkgconfig)
+
+# Only the converter: the other tools stay in the build tree.
+install(TARGETS oitprep RUNTIME DESTINATION bin)
+include(${CMAKE_SOURCE_DIR}/cmake/python.cmake)

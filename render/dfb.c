@@ -12,10 +12,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { BUF_COUNTS, BUF_OFFSETS, BUF_FRAGS, BUF_OUT, BUF_N };
+enum { BUF_COUNTS, BUF_OFFSETS, BUF_FRAGS, BUF_OUT, BUF_STATE, BUF_N };
 
 struct oit_dfb {
     GLuint count_prog, store_prog, resolve_prog;
+    GLuint state_prog; /* resolve into the state buffer; built at first use */
     GLuint fbo;
     GLuint buf[BUF_N];
     uint64_t cap[BUF_N];
@@ -61,6 +62,26 @@ static const char resolve_main_cs[] =
     "    out_rgba[p] = oit_state_final(s);\n"
     "}\n";
 
+/* The same resolve, leaving each pixel's (C, T) state in oit_glsl_state_io's
+ * buffer instead of its colour over the background. */
+static const char resolve_state_cs[] =
+    "layout(local_size_x = 8, local_size_y = 8) in;\n"
+    "layout(location = 11) uniform ivec2 u_size;\n"
+    "layout(location = 12) uniform uint u_base;\n"
+    "layout(location = 13) uniform ivec2 u_rows;\n"
+    "layout(std430, binding = 2) readonly buffer Offsets { uint offsets[]; };\n"
+    "layout(std430, binding = 3) buffer Frags { uvec4 frags[]; };\n";
+
+static const char resolve_state_main_cs[] =
+    "void main() {\n"
+    "    ivec2 px = ivec2(gl_GlobalInvocationID.xy) + ivec2(0, u_rows.x);\n"
+    "    if (px.x >= u_size.x || px.y >= u_rows.y) return;\n"
+    "    uint p = uint(px.y * u_size.x + px.x);\n"
+    "    oit_state s = oit_state_begin();\n"
+    "    oit_segment_composite(s, offsets[p] - u_base, offsets[p + 1u] - offsets[p]);\n"
+    "    oit_state_store(p, s);\n"
+    "}\n";
+
 static oit_status build_programs(oit_dfb *d, oit_error *err)
 {
     const char *vs[] = {oit_glsl_version, oit_glsl_vertex, NULL};
@@ -104,6 +125,7 @@ void oit_dfb_destroy(oit_dfb *d)
     glDeleteProgram(d->count_prog);
     glDeleteProgram(d->store_prog);
     glDeleteProgram(d->resolve_prog);
+    glDeleteProgram(d->state_prog);
     glDeleteFramebuffers(1, &d->fbo);
     glDeleteBuffers(BUF_N, d->buf);
     oit_scan_release(&d->scan);
@@ -121,7 +143,7 @@ static uint64_t held_bytes(const oit_dfb *d)
 static oit_status reserve(oit_dfb *d, int which, uint64_t bytes, oit_error *err)
 {
     static const char *names[BUF_N] = {"DFB counts", "DFB offsets", "DFB fragment store",
-                                       "DFB output"};
+                                       "DFB output", "DFB state"};
     oit_status s = oit_gl_buffer_reserve(&d->buf[which], &d->cap[which], bytes,
                                          names[which], err);
     uint64_t held = held_bytes(d);
@@ -226,8 +248,8 @@ static int plan_bands(oit_dfb *d, const oit_view *v, uint64_t total, uint64_t ca
 }
 
 /* Stores and resolves rows [y0, y1) whose fragments start at base. */
-static void band_pass(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n, const oit_view *v,
-                      int y0, int y1, uint32_t base, uint64_t frags)
+static void band_pass(oit_dfb *d, GLuint resolve, const oit_gpu_mesh *const *meshes, int n,
+                      const oit_view *v, int y0, int y1, uint32_t base, uint64_t frags)
 {
     glEnable(GL_SCISSOR_TEST);
     glScissor(0, y0, v->width, y1 - y0);
@@ -236,9 +258,9 @@ static void band_pass(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n, cons
     glProgramUniform1ui(d->store_prog, 12, base);
     draw_meshes(d->store_prog, meshes, n);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    glUseProgram(d->resolve_prog);
-    glProgramUniform1ui(d->resolve_prog, 12, base);
-    glProgramUniform2i(d->resolve_prog, 13, y0, y1);
+    glUseProgram(resolve);
+    glProgramUniform1ui(resolve, 12, base);
+    glProgramUniform2i(resolve, 13, y0, y1);
     glDispatchCompute(oit_gl_groups((uint64_t)v->width, 8), oit_gl_groups((uint64_t)(y1 - y0), 8), 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glDisable(GL_SCISSOR_TEST);
@@ -247,8 +269,8 @@ static void band_pass(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n, cons
 /* A frame whose fragments exceed one storage buffer is stored and resolved
  * in bands of rows (the count pass covers the whole frame once), so depth
  * is limited by what one row holds, not the frame. */
-static oit_status render_passes(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n,
-                                const oit_view *v, uint32_t *counts,
+static oit_status render_passes(oit_dfb *d, GLuint resolve, const oit_gpu_mesh *const *meshes,
+                                int n, const oit_view *v, uint32_t *counts,
                                 oit_scan_result *res, int *bands, oit_error *err)
 {
     uint64_t pixels = (uint64_t)v->width * v->height;
@@ -272,25 +294,35 @@ static oit_status render_passes(oit_dfb *d, const oit_gpu_mesh *const *meshes, i
         s = nb ? reserve(d, BUF_FRAGS, most * 16, err) : OIT_ERR_NOMEM;
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, d->buf[BUF_COUNTS]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OFFSETS, d->buf[BUF_OFFSETS]);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, d->buf[BUF_OUT]);
+    if (resolve == d->state_prog)
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_STATE, d->buf[BUF_STATE]);
+    else
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, d->buf[BUF_OUT]);
     for (int b = 0; s == OIT_OK && b < nb; b++)
-        band_pass(d, meshes, n, v, rows[b], rows[b + 1], base[b], base[b + 1] - base[b]);
+        band_pass(d, resolve, meshes, n, v, rows[b], rows[b + 1], base[b],
+                  base[b + 1] - base[b]);
     free(rows);
     free(base);
     *bands = nb;
     return s == OIT_OK ? oit_gl_check("DFB: passes", err) : s;
 }
 
-static oit_status prepare(oit_dfb *d, const oit_view *v, oit_error *err)
+/* out: BUF_OUT (colour over the background) or BUF_STATE (the state). */
+static oit_status prepare(oit_dfb *d, const oit_view *v, int out, oit_error *err)
 {
     uint64_t pixels = (uint64_t)v->width * v->height;
-    oit_status s = oit_gl_check_ssbo_size(pixels * 16, "DFB: the frame's output", err);
+    uint64_t out_bytes = out == BUF_OUT ? pixels * 16
+                                        : pixels * oit_state_bytes(v->shading.mode ==
+                                                                   OIT_SHADING_TRANSLUCENT);
+    oit_status s = oit_gl_check_ssbo_size(out_bytes, out == BUF_OUT ? "DFB: the frame's output"
+                                                                    : "DFB: the frame's state",
+                                          err);
     if (s == OIT_OK)
         s = reserve(d, BUF_COUNTS, (pixels + 1) * 4, err);
     if (s == OIT_OK)
         s = reserve(d, BUF_OFFSETS, (pixels + 1) * 4, err);
     if (s == OIT_OK)
-        s = reserve(d, BUF_OUT, pixels * 16, err);
+        s = reserve(d, out, out_bytes, err);
     if (s != OIT_OK)
         return s;
     glNamedFramebufferParameteri(d->fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH, v->width);
@@ -298,14 +330,11 @@ static oit_status prepare(oit_dfb *d, const oit_view *v, oit_error *err)
     oit_glsl_raster_begin(d->fbo, v->width, v->height);
     oit_glsl_set_view(d->count_prog, v);
     oit_glsl_set_view(d->store_prog, v);
-    oit_glsl_set_view(d->resolve_prog, v);
+    oit_glsl_set_view(out == BUF_OUT ? d->resolve_prog : d->state_prog, v);
     return oit_gl_check("DFB: frame set-up", err);
 }
 
-oit_status oit_dfb_render(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n,
-                          const oit_view *view, oit_image *out,
-                          uint32_t *counts, oit_frame_stats *stats,
-                          oit_error *err)
+static oit_status check_frame(const oit_view *view, int n, oit_error *err)
 {
     GLint max_size = 0;
     glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &max_size);
@@ -314,14 +343,36 @@ oit_status oit_dfb_render(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n,
         return oit_error_set(err, OIT_ERR_ARGUMENT, "DFB: frame %dx%d (with %d meshes) is "
                              "not renderable (at most %d pixels a side)", view->width,
                              view->height, n, max_size);
+    return OIT_OK;
+}
+
+static void fill_stats(const oit_dfb *d, double t0, const oit_scan_result *res, int bands,
+                       oit_frame_stats *stats)
+{
+    memset(stats, 0, sizeof *stats);
+    stats->ms = oit_time_ms() - t0;
+    stats->fragments = res->total;
+    stats->max_layers = res->max;
+    stats->gpu_bytes_peak = d->bytes_peak;
+    stats->batches = (uint32_t)bands;
+}
+
+oit_status oit_dfb_render(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n,
+                          const oit_view *view, oit_image *out,
+                          uint32_t *counts, oit_frame_stats *stats,
+                          oit_error *err)
+{
+    oit_status s = check_frame(view, n, err);
+    if (s != OIT_OK)
+        return s;
     double t0 = oit_time_ms();
     oit_view v = *view;
     oit_shading_resolve_defaults(&v.shading);
     oit_scan_result res = {0};
     int bands = 0;
-    oit_status s = prepare(d, &v, err);
+    s = prepare(d, &v, BUF_OUT, err);
     if (s == OIT_OK)
-        s = render_passes(d, meshes, n, &v, counts, &res, &bands, err);
+        s = render_passes(d, d->resolve_prog, meshes, n, &v, counts, &res, &bands, err);
     if (s == OIT_OK)
         s = oit_image_alloc(out, v.width, v.height, err);
     if (s == OIT_OK) {
@@ -332,11 +383,39 @@ oit_status oit_dfb_render(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n,
     glFinish();
     if (s != OIT_OK || !stats)
         return s;
-    memset(stats, 0, sizeof *stats);
-    stats->ms = oit_time_ms() - t0;
-    stats->fragments = res.total;
-    stats->max_layers = res.max;
-    stats->gpu_bytes_peak = d->bytes_peak;
-    stats->batches = (uint32_t)bands;
+    fill_stats(d, t0, &res, bands, stats);
+    return OIT_OK;
+}
+
+oit_status oit_dfb_render_state(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n,
+                                const oit_view *view, unsigned *state,
+                                oit_frame_stats *stats, oit_error *err)
+{
+    *state = 0;
+    oit_status s = check_frame(view, n, err);
+    if (s == OIT_OK && !d->state_prog) {
+        const char *rcs[] = {oit_glsl_version, oit_glsl_composite, oit_glsl_state_io,
+                             resolve_state_cs, oit_glsl_segment_composite,
+                             resolve_state_main_cs, NULL};
+        s = oit_gl_program_compute("DFB resolve to state", rcs, &d->state_prog, err);
+    }
+    if (s != OIT_OK)
+        return s;
+    double t0 = oit_time_ms();
+    oit_view v = *view;
+    oit_shading_resolve_defaults(&v.shading);
+    oit_scan_result res = {0};
+    int bands = 0;
+    s = prepare(d, &v, BUF_STATE, err);
+    if (s == OIT_OK)
+        s = render_passes(d, d->state_prog, meshes, n, &v, NULL, &res, &bands, err);
+    if (s != OIT_OK)
+        return s;
+    *state = d->buf[BUF_STATE];
+    if (stats) {
+        /* The GPU has finished before the time is taken, as for the image. */
+        glFinish();
+        fill_stats(d, t0, &res, bands, stats);
+    }
     return OIT_OK;
 }

@@ -31,6 +31,17 @@ oit_status oit_dfb_render(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n,
                           uint32_t *counts, oit_frame_stats *stats,
                           oit_error *err);
 
+/* Renders as oit_dfb_render, but reads nothing back: each pixel's
+ * composited state (premultiplied colour C and transmittance T, before any
+ * background) is left in a GPU buffer in oit_glsl_state_io's layout for
+ * view->shading.mode (frag_glsl.h), width*height pixels, GL rows (bottom
+ * first). *state receives the buffer's name; it belongs to d and holds the
+ * frame until d renders again or is destroyed. view->shading.background is
+ * not used. For liboit, which blends the state over a caller's framebuffer. */
+oit_status oit_dfb_render_state(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n,
+                                const oit_view *view, unsigned *state,
+                                oit_frame_stats *stats, oit_error *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -158,6 +158,20 @@ void oit_gl_destroy(oit_gl *gl)
     free(gl);
 }
 
+oit_status oit_gl_make_current(oit_gl *gl, oit_error *err)
+{
+    if (gl->window) {
+        glfwMakeContextCurrent(gl->window);
+        return OIT_OK;
+    }
+    if (eglGetCurrentContext() == gl->ctx)
+        return OIT_OK;
+    if (!eglMakeCurrent(gl->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, gl->ctx))
+        return oit_error_set(err, OIT_ERR_GL, "EGL: eglMakeCurrent failed (error 0x%x)",
+                             eglGetError());
+    return OIT_OK;
+}
+
 const char *oit_gl_renderer(const oit_gl *gl)
 {
     return gl->renderer;

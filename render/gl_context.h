@@ -24,6 +24,9 @@ oit_status oit_gl_create(const oit_gl_desc *desc, oit_gl **out, oit_error *err);
 void oit_gl_destroy(oit_gl *gl);
 /* "llvmpipe (LLVM 15.0.6, 256 bits)" or the NVIDIA renderer string. */
 const char *oit_gl_renderer(const oit_gl *gl);
+/* Makes gl's context current on the calling thread again (after another
+ * context was made current there). */
+oit_status oit_gl_make_current(oit_gl *gl, oit_error *err);
 /* Window only (NULL when headless): the GLFWwindow*. */
 void *oit_gl_window(oit_gl *gl);
 

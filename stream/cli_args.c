@@ -145,14 +145,22 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
         else if (!strcmp(v, "tree")) a->schedule_wave = 0;
         else *s = bad(err, opt, v, "wave or tree");
     } else if (!strcmp(opt, "--upload-budget")) {
-        if (!parse_bytes(v, &a->upload_budget) || a->upload_budget < 65536)
-            *s = bad(err, opt, v, "bytes >= 64K, with an optional K, M or G suffix");
-    } else if (!strcmp(opt, "--cache-budget")) {
-        /* 0 turns the cache off: the default needs no spelling. */
+        /* 0 is the default, as oit_renderer_desc.upload_budget = 0 is. */
         if (!strcmp(v, "0"))
+            a->upload_budget = 0;
+        else if (!parse_bytes(v, &a->upload_budget) || a->upload_budget < 65536)
+            *s = bad(err, opt, v, "0 (default) or bytes >= 64K, with an optional K, M or G "
+                     "suffix");
+    } else if (!strcmp(opt, "--cache-budget")) {
+        /* As liboit's oit_renderer_desc.cache_budget: 0 is the default,
+         * "off" (OIT_RENDER_CACHE_OFF) no cache. */
+        if (!strcmp(v, "off"))
             a->cache_budget = OIT_STREAM_CACHE_OFF;
+        else if (!strcmp(v, "0"))
+            a->cache_budget = 0;
         else if (!parse_bytes(v, &a->cache_budget) || a->cache_budget < 65536)
-            *s = bad(err, opt, v, "0 (off) or bytes >= 64K, with an optional K, M or G suffix");
+            *s = bad(err, opt, v, "off, 0 (default) or bytes >= 64K, with an optional K, M or "
+                     "G suffix");
     } else if (!strcmp(opt, "--upload-threads")) {
         if (!parse_int(v, &a->upload_threads, 0, 1)) *s = bad(err, opt, v, "0 or 1");
     } else if (!strcmp(opt, "--slot-budget")) {
@@ -312,11 +320,12 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "                      GPU buffer that a reader thread fills with the parts\n"
         "                      of later packs while the GPU draws earlier ones\n"
         "                      (>= 64K, default 64M, never more than the file's parts\n"
-        "                      take); a pack never exceeds it\n"
+        "                      take; 0 also means the default); a pack never exceeds it\n"
         "  --cache-budget B    stream: bytes of GPU memory that keep parts uploaded in\n"
         "                      one frame for the next ones, drawn without reading or\n"
-        "                      uploading them again (0 or >= 64K, default 256M, never\n"
-        "                      more than the file's parts take; 0: no cache)\n"
+        "                      uploading them again (>= 64K, default 256M, never\n"
+        "                      more than the file's parts take; 0 also means the\n"
+        "                      default, as in liboit; off: no cache)\n"
         "  --upload-threads N  stream: 1 (default) reads parts on a thread of their\n"
         "                      own; 0 reads them on the render thread, no overlap (0..1)\n"
         "  --slot-budget B     stream: bytes of the K-fragment capture slots (>= 64K,\n"

@@ -38,9 +38,9 @@ typedef struct oit_stream_args {
     int quiet;
     oit_pack_mode pack;                /* --pack; 0: auto */
     int schedule_wave;                 /* --schedule: 0 tree (default), 1 wave */
-    unsigned long long upload_budget;  /* --upload-budget; 0: default */
+    unsigned long long upload_budget;  /* --upload-budget; 0 (or 0 given): default */
     unsigned long long slot_budget;    /* --slot-budget; 0: default */
-    unsigned long long cache_budget;   /* --cache-budget; 0: default; OIT_STREAM_CACHE_OFF: 0 given */
+    unsigned long long cache_budget;   /* --cache-budget; 0 (or 0 given): default; OIT_STREAM_CACHE_OFF: off */
     int upload_threads;                /* --upload-threads: 1 (default) or 0 */
     float epsilon;                     /* --epsilon (stream, f2b, guarded); < 0: not given */
     /* --window: the interactive viewer (viewer.h) */

@@ -1,37 +1,99 @@
-/* The public embedding API (include/oit/liboit.h) over the streamer: the
- * caller's matrices become an oit_camera, the streamer captures the frame on
- * the GPU, and one fullscreen pass blends its per-pixel (C, T) state over the
- * caller's framebuffer. */
+/* The public embedding API (include/oit/liboit.h) over the streamer and
+ * DFB: the caller's matrices become an oit_camera, the streamer (a part
+ * file) or DFB (an in-core mesh) leaves the frame's per-pixel (C, T) state
+ * in a GPU buffer, and one fullscreen pass blends it over the caller's
+ * framebuffer. */
 #include "oit/liboit.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "formats/readers_internal.h"
 #include "render/capture_glsl.h"
+#include "render/dfb.h"
 #include "render/frag_glsl.h"
 #include "stream/streamer.h"
 
 struct oit_scene {
-    oit_partfile *pf;
+    oit_partfile *pf; /* a part file, or NULL: in core */
+    oit_mesh mesh;    /* in core: the triangles */
+    char *name;       /* in core: the file or the descriptor's name */
     oit_scene_info info;
 };
 
 struct oit_renderer {
     oit_renderer_desc desc;
-    const oit_scene *scene; /* the scene the streamer was built for */
-    oit_streamer *streamer;
+    const oit_scene *scene; /* the scene the streamer or gpu_mesh holds */
+    oit_streamer *streamer; /* part files */
+    oit_dfb *dfb;           /* in-core scenes; kept across scenes */
+    oit_gpu_mesh *gpu_mesh; /* the in-core scene's triangles */
+    uint64_t pending_upload; /* bytes uploaded by bind_scene, for the stats */
     GLuint blend_prog, vao;
 };
 
+static const char *scene_name(const oit_scene *s)
+{
+    return s->pf ? oit_partfile_name(s->pf) : s->name;
+}
+
 /* ---- scene ------------------------------------------------------------- */
+
+/* 1 when path names a part file: its first bytes are the part-file magic,
+ * or (missing, unreadable, too short) its name ends in .oitp, so that the
+ * part-file reader names what is wrong with it. */
+static int is_part_file(const char *path)
+{
+    static const char magic[8] = "OITPART"; /* formats/partfile_layout.h */
+    char head[8];
+    FILE *f = fopen(path, "rb");
+    size_t got = f ? fread(head, 1, sizeof head, f) : 0;
+    if (f)
+        fclose(f);
+    if (got == sizeof head && memcmp(head, magic, sizeof head) == 0)
+        return 1;
+    size_t n = strlen(path);
+    return n >= 5 && strcmp(path + n - 5, ".oitp") == 0;
+}
+
+static oit_status mesh_scene(oit_mesh *mesh, const char *name, oit_scene **out,
+                             oit_error *err)
+{
+    oit_scene *s = calloc(1, sizeof *s);
+    char *copy = s ? malloc(strlen(name) + 1) : NULL;
+    if (!copy) {
+        free(s);
+        oit_mesh_free(mesh);
+        return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot allocate the scene", name);
+    }
+    strcpy(copy, name);
+    s->name = copy;
+    s->mesh = *mesh;
+    const oit_mesh_info *mi = &mesh->info;
+    s->info.triangles = mesh->count;
+    memcpy(s->info.bounds_min, mi->bounds_min, sizeof mi->bounds_min);
+    memcpy(s->info.bounds_max, mi->bounds_max, sizeof mi->bounds_max);
+    s->info.attributes = mi->attributes;
+    memcpy(s->info.origin, mi->origin, sizeof s->info.origin);
+    s->info.in_core = 1;
+    *out = s;
+    return OIT_OK;
+}
 
 oit_status oit_scene_open(const char *path, const oit_scene_desc *desc, oit_scene **out,
                           oit_error *err)
 {
+    if (!out)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_scene_open: out is NULL");
     *out = NULL;
     if (!path)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_scene_open: path is NULL");
+    if (!is_part_file(path)) {
+        oit_mesh mesh;
+        oit_status st = oit_mesh_load(path, NULL, &mesh, err);
+        return st == OIT_OK ? mesh_scene(&mesh, path, out, err) : st;
+    }
     oit_scene *s = calloc(1, sizeof *s);
     if (!s)
         return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot allocate the scene", path);
@@ -67,7 +129,106 @@ void oit_scene_close(oit_scene *scene)
     if (!scene)
         return;
     oit_partfile_close(scene->pf);
+    oit_mesh_free(&scene->mesh);
+    free(scene->name);
     free(scene);
+}
+
+/* Colour i of the descriptor's array as 8-bit RGBA. */
+static void desc_colour(const oit_scene_mesh_desc *d, uint64_t i, uint8_t rgba[4])
+{
+    if (d->color_type == OIT_COLOR_FLOAT) {
+        const float *c = (const float *)d->colors + 4 * i;
+        for (int k = 0; k < 4; k++)
+            rgba[k] = oit_rd_unit_to_u8(c[k]);
+    } else {
+        memcpy(rgba, (const uint8_t *)d->colors + 4 * i, 4);
+    }
+}
+
+static oit_status check_mesh_desc(const oit_scene_mesh_desc *d, const char *name,
+                                  uint64_t *triangles, oit_error *err)
+{
+    const char *D = "oit_scene_mesh_desc";
+    if (!d->positions)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: %s.positions is NULL", name, D);
+    if (d->vertex_count < 3)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: %s.vertex_count = %llu: fewer than "
+                             "one triangle's 3", name, D, (unsigned long long)d->vertex_count);
+    if (d->color_type != OIT_COLOR_UINT8 && d->color_type != OIT_COLOR_FLOAT)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: %s.color_type = %d is not an "
+                             "oit_color_type", name, D, (int)d->color_type);
+    if (d->color_rate != OIT_COLOR_PER_VERTEX && d->color_rate != OIT_COLOR_PER_TRIANGLE)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: %s.color_rate = %d is not an "
+                             "oit_color_rate", name, D, (int)d->color_rate);
+    if (d->indices) {
+        if (d->index_count == 0 || d->index_count % 3)
+            return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: %s.index_count = %llu is not a "
+                                 "positive multiple of 3", name, D,
+                                 (unsigned long long)d->index_count);
+        for (uint64_t i = 0; i < d->index_count; i++)
+            if (d->indices[i] >= d->vertex_count)
+                return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: %s.indices[%llu] = %u: not "
+                                     "below vertex_count %llu", name, D,
+                                     (unsigned long long)i, d->indices[i],
+                                     (unsigned long long)d->vertex_count);
+        *triangles = d->index_count / 3;
+    } else {
+        if (d->index_count != 0)
+            return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: %s.index_count = %llu without "
+                                 "indices", name, D, (unsigned long long)d->index_count);
+        if (d->vertex_count % 3)
+            return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: %s.vertex_count = %llu: a soup "
+                                 "(indices NULL) needs a multiple of 3", name, D,
+                                 (unsigned long long)d->vertex_count);
+        *triangles = d->vertex_count / 3;
+    }
+    for (uint64_t i = 0; i < 3 * d->vertex_count; i++)
+        if (!isfinite(d->positions[i]))
+            return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: %s.positions[%llu] (vertex "
+                                 "%llu) is not finite", name, D, (unsigned long long)i,
+                                 (unsigned long long)(i / 3));
+    if ((uint64_t)SIZE_MAX / sizeof(oit_triangle) < *triangles)
+        return oit_error_set(err, OIT_ERR_NOMEM, "%s: %llu triangles do not fit in memory",
+                             name, (unsigned long long)*triangles);
+    return OIT_OK;
+}
+
+oit_status oit_scene_create_mesh(const oit_scene_mesh_desc *d, oit_scene **out,
+                                 oit_error *err)
+{
+    if (!out)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_scene_create_mesh: out is NULL");
+    *out = NULL;
+    if (!d)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_scene_create_mesh: desc is NULL");
+    const char *name = d->name && d->name[0] ? d->name : "mesh";
+    uint64_t n = 0;
+    oit_status st = check_mesh_desc(d, name, &n, err);
+    if (st != OIT_OK)
+        return st;
+    oit_mesh mesh = {0};
+    mesh.tris = malloc((size_t)n * sizeof *mesh.tris);
+    if (!mesh.tris)
+        return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot allocate %llu triangles", name,
+                             (unsigned long long)n);
+    mesh.count = mesh.capacity = (size_t)n;
+    for (uint64_t t = 0; t < n; t++)
+        for (int c = 0; c < 3; c++) {
+            uint64_t v = d->indices ? d->indices[3 * t + c] : 3 * t + c;
+            oit_vertex *out_v = &mesh.tris[t].v[c];
+            memcpy(out_v->pos, d->positions + 3 * v, sizeof out_v->pos);
+            if (d->colors)
+                desc_colour(d, d->color_rate == OIT_COLOR_PER_TRIANGLE ? t : v, out_v->rgba);
+            else
+                memset(out_v->rgba, 255, sizeof out_v->rgba);
+        }
+    oit_mesh_info_init(&mesh.info);
+    oit_mesh_info_add(&mesh.info, mesh.tris, mesh.count);
+    mesh.info.vertices_in = d->vertex_count;
+    mesh.info.faces_in = n;
+    mesh.info.attributes = d->colors ? OIT_ATTR_COLOR | OIT_ATTR_ALPHA : 0;
+    return mesh_scene(&mesh, name, out, err);
 }
 
 /* ---- caller matrices -> camera ------------------------------------------ */
@@ -147,6 +308,8 @@ void oit_renderer_destroy(oit_renderer *r)
     if (!r)
         return;
     oit_streamer_destroy(r->streamer);
+    oit_gpu_mesh_destroy(r->gpu_mesh);
+    oit_dfb_destroy(r->dfb);
     glDeleteProgram(r->blend_prog);
     glDeleteVertexArrays(1, &r->vao);
     free(r);
@@ -166,6 +329,22 @@ oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out
         free(r);
         return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_desc.K = %u is outside "
                              "[2, 16]", K);
+    }
+    /* The ranges oitstream's --upload-budget and --cache-budget take. */
+    uint64_t ub = r->desc.upload_budget, cb = r->desc.cache_budget;
+    if ((ub != 0 && ub < 65536) || (cb != 0 && cb != OIT_RENDER_CACHE_OFF && cb < 65536)) {
+        free(r);
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_desc.%s = %llu is below 64 "
+                             "KiB (0: the default%s)", ub != 0 && ub < 65536 ? "upload_budget"
+                                                                            : "cache_budget",
+                             (unsigned long long)(ub != 0 && ub < 65536 ? ub : cb),
+                             ub != 0 && ub < 65536 ? "" : "; OIT_RENDER_CACHE_OFF: no cache");
+    }
+    if ((unsigned)r->desc.pack > OIT_RENDER_PACK_FIRSTK) {
+        int p = (int)r->desc.pack;
+        free(r);
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_desc.pack = %d is not an "
+                             "oit_render_pack", p);
     }
     if (!(r->desc.epsilon >= 0.0f && r->desc.epsilon < 1.0f)) {
         double e = r->desc.epsilon;
@@ -188,20 +367,44 @@ oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out
     return OIT_OK;
 }
 
+void oit_renderer_release_scene(oit_renderer *r, const oit_scene *scene)
+{
+    if (!r || !scene || r->scene != scene)
+        return;
+    oit_streamer_destroy(r->streamer);
+    r->streamer = NULL;
+    oit_gpu_mesh_destroy(r->gpu_mesh);
+    r->gpu_mesh = NULL;
+    r->scene = NULL;
+}
+
 /* (Re)builds the streamer when r draws a scene it was not built for. */
 static oit_status bind_scene(oit_renderer *r, const oit_scene *scene, oit_error *err)
 {
-    if (r->scene == scene && r->streamer)
+    if (r->scene == scene && (r->streamer || r->gpu_mesh))
         return OIT_OK;
     oit_streamer_destroy(r->streamer);
     r->streamer = NULL;
+    oit_gpu_mesh_destroy(r->gpu_mesh);
+    r->gpu_mesh = NULL;
     r->scene = NULL;
+    if (!scene->pf) {
+        oit_status st = r->dfb ? OIT_OK : oit_dfb_create(&r->dfb, err);
+        if (st == OIT_OK)
+            st = oit_gpu_mesh_create(scene->mesh.tris, scene->mesh.count, 0, &r->gpu_mesh, err);
+        if (st == OIT_OK) {
+            r->scene = scene;
+            r->pending_upload = (uint64_t)scene->mesh.count * sizeof(oit_triangle);
+        }
+        return st;
+    }
     oit_streamer_desc sd = {0};
     /* A file cut for more than the K-slot capture holds streams its parts as
      * wider than K, captured alone over tiles, as oitstream does. */
     sd.K = r->desc.K ? (int)r->desc.K : scene->info.K < 16 ? (int)scene->info.K : 16;
     sd.capture = OIT_CAPTURE_AUTO;
-    sd.pack = r->desc.pack == OIT_RENDER_PACK_DISJOINT  ? OIT_PACK_DISJOINT
+    sd.pack = r->desc.pack == OIT_RENDER_PACK_FIRSTK    ? OIT_PACK_FIRSTK
+              : r->desc.pack == OIT_RENDER_PACK_DISJOINT  ? OIT_PACK_DISJOINT
               : r->desc.pack == OIT_RENDER_PACK_BUDGET  ? OIT_PACK_BUDGET
               : r->desc.pack == OIT_RENDER_PACK_COUNTED ? OIT_PACK_COUNTED
                                                         : OIT_PACK_AUTO;
@@ -336,16 +539,27 @@ oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame 
     oit_frame_stats fs = {0};
     oit_stream_frame_stats ss = {0};
     GLuint state = 0;
-    st = bind_scene(r, scene, err);
-    if (st == OIT_OK)
+    int empty = !scene->pf && scene->info.triangles == 0; /* in core: nothing to draw */
+    st = empty ? OIT_OK : bind_scene(r, scene, err);
+    if (st == OIT_OK && !empty && scene->pf) {
         st = oit_streamer_render_gpu(r->streamer, &view, &state, &fs, &ss, err);
-    if (st == OIT_OK) {
+    } else if (st == OIT_OK && !empty) {
+        const oit_gpu_mesh *list[1] = {r->gpu_mesh};
+        st = oit_dfb_render_state(r->dfb, list, 1, &view, &state, &fs, err);
+        ss.packs = fs.batches;
+        ss.draw_calls = 1 + (uint64_t)fs.batches; /* the count pass; a store a band */
+        ss.bytes_uploaded = r->pending_upload;
+        ss.gpu_bytes_peak = fs.gpu_bytes_peak + (uint64_t)scene->mesh.count *
+                                                    sizeof(oit_triangle);
+        r->pending_upload = 0;
+    }
+    if (st == OIT_OK && !empty) {
         blend_over(r, frame, &view, state);
         st = oit_gl_check("oit_renderer_draw: blend", err);
     }
     gl_restore(&saved);
     if (st != OIT_OK) {
-        const char *name = oit_partfile_name(scene->pf);
+        const char *name = scene_name(scene);
         if (err && strncmp(err->message, name, strlen(name)) != 0)
             oit_error_prefix(err, name);
         return st;

@@ -14,9 +14,19 @@ if(OIT_SANITIZE)
   set(liboit_consumer_flags "-fsanitize=address,undefined -fsanitize-link-c++-runtime -lstdc++")
 endif()
 oit_add_test(NAME liboit_install LABELS integration TIMEOUT 180
-  COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_install.sh ${CMAKE_BINARY_DIR} "${CMAKE_C_COMPILER}" "${liboit_consumer_flags}")
+  COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_install.sh ${CMAKE_BINARY_DIR} "${CMAKE_C_COMPILER}"
+          ${OIT_PYTHON} "${liboit_consumer_flags}" "${OIT_PYTHON_PRELOAD}")
 
-# The example must keep working: it is the API's documentation.
+# The example must keep working: it is the API's documentation. A part file
+# and a mesh file (in core) through the same program; liboit_install builds
+# it again against the installed package alone.
 set(liboit_example_grid ${CMAKE_BINARY_DIR}/test-tmp/liboit_example.oitp)
+set(liboit_example_ply ${CMAKE_BINARY_DIR}/test-tmp/liboit_example.ply)
 oit_add_test(NAME liboit_example LABELS integration TIMEOUT 60
-  COMMAND sh -c "$<TARGET_FILE:test_streamer> ${liboit_example_grid} && $<TARGET_FILE:embed_liboit> ${liboit_example_grid} ${CMAKE_BINARY_DIR}/test-tmp/liboit_example.png 160 120")
+  COMMAND sh -c "$<TARGET_FILE:test_streamer> ${liboit_example_grid} && $<TARGET_FILE:embed_liboit> ${liboit_example_grid} ${CMAKE_BINARY_DIR}/test-tmp/liboit_example.ppm 160 120 && $<TARGET_FILE:oitgen> quads --count 16 -o ${liboit_example_ply} && $<TARGET_FILE:embed_liboit> ${liboit_example_ply} ${CMAKE_BINARY_DIR}/test-tmp/liboit_example_mesh.ppm 160 120")
+
+# In-core scenes (a mesh file, caller arrays) against the part file the
+# test converts with oitprep, and the offscreen API's pixels.
+oit_add_test_exe(test_liboit_incore SOURCES test_liboit_incore.c LIBS oit oit_formats)
+oit_add_test(NAME liboit_incore LABELS integration TIMEOUT 120
+  COMMAND $<TARGET_FILE:test_liboit_incore> $<TARGET_FILE:oitprep> ${CMAKE_BINARY_DIR}/test-tmp)

@@ -116,7 +116,7 @@ done
 
 P="$T/grid.oitp"
 "$1" "$P" || { echo "FAIL: cannot write the grid part file"; exit 1; }
-G="--size 96x96 --orbit 3 --max-layers 2 --upload-budget 64K --cache-budget 0 --quiet"
+G="--size 96x96 --orbit 3 --max-layers 2 --upload-budget 64K --cache-budget off --quiet"
 for e in 0 0.05; do
     for pk in counted first-k; do
         "$S" "$P" $G --pack $pk --epsilon $e --out "$T/grid_${pk}_$e.pfm" \

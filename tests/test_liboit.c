@@ -3,7 +3,9 @@
  * same triangles with that colour as background (dst = C + T * clear), in
  * transparent and translucent shading (per-channel T) and at a viewport
  * offset; pixels outside the viewport stay untouched; the caller's GL state
- * comes back; bad inputs fail with the documented status.
+ * comes back; bad inputs fail with the documented status. The same file's
+ * triangles as an in-core scene (oit_scene_create_mesh) pass the same
+ * checks through the same oit_renderer_draw.
  *
  * usage: test_liboit FILE.oitp (a part file, e.g. from test_streamer) */
 #include <math.h>
@@ -123,13 +125,14 @@ static void check_state_restored(GLuint fbo)
 }
 
 static void draw_and_compare(const char *name, oit_scene *scene, oit_partfile *pf,
-                             oit_render_shading_mode mode)
+                             oit_render_shading_mode mode, oit_render_pack pack)
 {
     oit_error err = {0};
     oit_scene_info info;
     oit_scene_get_info(scene, &info, &err);
     oit_renderer_desc rd = {0};
     rd.shading.mode = mode;
+    rd.pack = pack;
     oit_renderer *r = NULL;
     if (oit_renderer_create(&rd, &r, &err) != OIT_OK) {
         CHECK(0, "%s: oit_renderer_create: %s", name, err.message);
@@ -172,7 +175,17 @@ static void draw_and_compare(const char *name, oit_scene *scene, oit_partfile *p
     target t2 = target_make();
     f.framebuffer = t2.fbo;
     oit_draw_stats st2 = {0};
-    if (s == OIT_OK) {
+    if (s == OIT_OK && info.in_core) {
+        /* An in-core scene is uploaded once, at its first draw. */
+        s = oit_renderer_draw(r, scene, &f, &st2, &err);
+        CHECK(s == OIT_OK, "%s: second draw: %s", name, err.message);
+        CHECK(st.bytes_uploaded == info.triangles * sizeof(oit_triangle) &&
+                  st2.bytes_uploaded == 0 && st2.fragments == st.fragments && st.packs >= 1,
+              "%s: in core: uploaded %llu then %llu bytes for %llu triangles; %llu then %llu "
+              "fragments", name, (unsigned long long)st.bytes_uploaded,
+              (unsigned long long)st2.bytes_uploaded, (unsigned long long)info.triangles,
+              (unsigned long long)st.fragments, (unsigned long long)st2.fragments);
+    } else if (s == OIT_OK) {
         s = oit_renderer_draw(r, scene, &f, &st2, &err);
         CHECK(s == OIT_OK, "%s: second draw: %s", name, err.message);
         printf("%s: second draw: %llu bytes uploaded, %llu parts from the cache, %llu bytes "
@@ -245,6 +258,32 @@ static void check_errors(oit_scene *scene)
           "epsilon = 1 gave %s", oit_status_name(s));
 
     rd.epsilon = 0.0f;
+    /* The budgets take oitstream's ranges: 0 (default) or >= 64K; the
+     * cache also OIT_RENDER_CACHE_OFF. */
+    const struct { uint64_t upload, cache; oit_status want; } budgets[] = {
+        {1024, 0, OIT_ERR_ARGUMENT}, {0, 65535, OIT_ERR_ARGUMENT},
+        {65536, OIT_RENDER_CACHE_OFF, OIT_OK}, {0, 65536, OIT_OK}};
+    for (size_t i = 0; i < sizeof budgets / sizeof *budgets; i++) {
+        rd.upload_budget = budgets[i].upload;
+        rd.cache_budget = budgets[i].cache;
+        s = oit_renderer_create(&rd, &r, &err);
+        printf("upload %llu, cache %llu: %s%s%s\n", (unsigned long long)budgets[i].upload,
+               (unsigned long long)budgets[i].cache, oit_status_name(s), s ? ": " : "",
+               s ? err.message : "");
+        CHECK(s == budgets[i].want && (s == OIT_OK) == (r != NULL) &&
+                  (s == OIT_OK || strstr(err.message, budgets[i].upload ? "upload_budget"
+                                                                        : "cache_budget")),
+              "budgets %llu/%llu gave %s", (unsigned long long)budgets[i].upload,
+              (unsigned long long)budgets[i].cache, oit_status_name(s));
+        oit_renderer_destroy(r);
+        r = NULL;
+    }
+    rd.upload_budget = rd.cache_budget = 0;
+    rd.pack = (oit_render_pack)99;
+    s = oit_renderer_create(&rd, &r, &err);
+    CHECK(s == OIT_ERR_ARGUMENT && strstr(err.message, "pack"), "pack 99 gave %s",
+          oit_status_name(s));
+    rd.pack = OIT_RENDER_PACK_AUTO;
     s = oit_renderer_create(&rd, &r, &err);
     CHECK(s == OIT_OK, "renderer: %s", err.message);
     oit_frame f = {0};
@@ -285,8 +324,55 @@ int main(int argc, char **argv)
            (unsigned long long)info.parts, info.K);
     CHECK(info.triangles > 0 && info.parts > 0, "empty scene");
     check_errors(scene);
-    draw_and_compare("transparent", scene, pf, OIT_RENDER_TRANSPARENT);
-    draw_and_compare("translucent", scene, pf, OIT_RENDER_TRANSLUCENT);
+    draw_and_compare("transparent", scene, pf, OIT_RENDER_TRANSPARENT, OIT_RENDER_PACK_AUTO);
+    draw_and_compare("translucent", scene, pf, OIT_RENDER_TRANSLUCENT, OIT_RENDER_PACK_AUTO);
+    /* Each packing oitstream --pack offers, first-k and counted exact. */
+    draw_and_compare("first-k", scene, pf, OIT_RENDER_TRANSPARENT, OIT_RENDER_PACK_FIRSTK);
+    draw_and_compare("counted", scene, pf, OIT_RENDER_TRANSPARENT, OIT_RENDER_PACK_COUNTED);
+
+    /* The same triangles as an in-core scene from arrays (a soup with
+     * per-vertex colour), through the same draw: DFB's image, the caller's
+     * border and GL state kept as for the part file. */
+    oit_mesh mesh = {0};
+    if (oit_partfile_load_mesh(pf, &mesh, &err) != OIT_OK) {
+        fprintf(stderr, "FAIL: %s\n", err.message);
+        return 1;
+    }
+    float *pos = malloc(mesh.count * 9 * sizeof *pos);
+    uint8_t *rgba = malloc(mesh.count * 12);
+    for (size_t t = 0; t < mesh.count; t++)
+        for (int c = 0; c < 3; c++) {
+            memcpy(pos + (t * 3 + c) * 3, mesh.tris[t].v[c].pos, 12);
+            memcpy(rgba + (t * 3 + c) * 4, mesh.tris[t].v[c].rgba, 4);
+        }
+    oit_scene_mesh_desc md = {.positions = pos, .vertex_count = mesh.count * 3,
+                              .colors = (info.attributes & OIT_ATTR_COLOR) ? rgba : NULL,
+                              .name = "grid arrays"};
+    oit_scene *core = NULL;
+    if (oit_scene_create_mesh(&md, &core, &err) != OIT_OK) {
+        fprintf(stderr, "FAIL: %s\n", err.message);
+        return 1;
+    }
+    free(pos);
+    free(rgba);
+    oit_mesh_free(&mesh);
+    oit_scene_info ci;
+    oit_scene_get_info(core, &ci, &err);
+    CHECK(ci.in_core == 1 && ci.parts == 0 && ci.triangles == info.triangles &&
+              !info.in_core,
+          "in-core info: in_core %u, %llu parts, %llu triangles (file %llu)", ci.in_core,
+          (unsigned long long)ci.parts, (unsigned long long)ci.triangles,
+          (unsigned long long)info.triangles);
+    /* The reference shades with the file's attributes; the arrays carry
+     * colour and alpha exactly when the file does. */
+    CHECK(ci.attributes == info.attributes, "in-core attributes %u, file %u", ci.attributes,
+          info.attributes);
+    draw_and_compare("in-core transparent", core, pf, OIT_RENDER_TRANSPARENT,
+                     OIT_RENDER_PACK_AUTO);
+    draw_and_compare("in-core translucent", core, pf, OIT_RENDER_TRANSLUCENT,
+                     OIT_RENDER_PACK_AUTO);
+    oit_scene_close(core);
+
     oit_partfile_close(pf);
     oit_scene_close(scene);
     oit_gl_destroy(gl);

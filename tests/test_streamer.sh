@@ -109,8 +109,8 @@ check_stats() {
 residency() {
     sed -n 's/.*"view": "\([^"]*\)".*/\1/p' "$T/budget_s.json" | head -n 1 > "$T/twice.txt"
     cat "$T/twice.txt" "$T/twice.txt" > "$T/twice2.txt"
-    for cfg in "cache" "nocache --cache-budget 0" "inline --upload-threads 0 --cache-budget 0" \
-               "ring --upload-budget 64K --cache-budget 0" "small --cache-budget 64K"; do
+    for cfg in "cache" "zero --cache-budget 0" "nocache --cache-budget off" "inline --upload-threads 0 --cache-budget off" \
+               "ring --upload-budget 64K --cache-budget off" "small --cache-budget 64K"; do
         set -- $cfg
         n=$1; shift
         "$S" "$P" --size 128x128 --walk "$T/twice2.txt" --out "$T/res_$n.pfm" \
@@ -125,6 +125,9 @@ residency() {
         cache) b0=$2
             [ "$2" -gt 0 ] && [ "$5" -eq 0 ] && [ "$6" -eq "$4" ] && [ "$3" -eq 0 ] ||
                 fail "residency cache: the second frame uploaded $5 bytes, $6 of $4 parts cached" ;;
+        zero) # 0 is the default budget (liboit's meaning), not "off"
+            [ "$2" -eq "$b0" ] && [ "$5" -eq 0 ] && [ "$6" -eq "$4" ] ||
+                fail "residency zero: --cache-budget 0 uploaded $5 bytes in frame 1, $6 of $4 cached" ;;
         small)
             [ "$2" -eq "$b0" ] && [ "$5" -gt 0 ] && [ "$5" -lt "$2" ] && [ "$6" -gt 0 ] ||
                 fail "residency small: frame 1 uploaded $5 of $2 bytes with $6 hits" ;;
@@ -133,16 +136,16 @@ residency() {
                 fail "residency $n: uploads $2 then $5 bytes (cached run: $b0), hits $3, $6" ;;
         esac
     done
-    for c in 256M 0; do
+    for c in 256M off; do
         "$S" "$P" --size 64x64 --orbit 8 --cache-budget $c --stats "$T/orbit_$c.json" --quiet ||
             fail "orbit, cache $c: exited $?"
     done
     on=$(json_all bytes_uploaded < "$T/orbit_256M.json" | awk '{s += $1} END {print s + 0}')
-    off=$(json_all bytes_uploaded < "$T/orbit_0.json" | awk '{s += $1} END {print s + 0}')
+    off=$(json_all bytes_uploaded < "$T/orbit_off.json" | awk '{s += $1} END {print s + 0}')
     echo "orbit 8: $on bytes uploaded with the cache, $off without"
     # Every frame times its ordering and packing: 8 figures each, none negative.
     for k in order_ms pack_ms; do
-        n=$(json_all $k < "$T/orbit_0.json" | awk '$1 >= 0 {n++} END {print n + 0}')
+        n=$(json_all $k < "$T/orbit_off.json" | awk '$1 >= 0 {n++} END {print n + 0}')
         [ "$n" -eq 8 ] || fail "orbit 8: $n frames with a $k >= 0, want 8"
     done
     [ "$on" -gt 0 ] && [ "$on" -lt "$off" ] || fail "orbit 8: cache uploads $on, none $off"
@@ -167,12 +170,12 @@ look_around() {
              for (i = 0; i < 12; i++) { j = (i * 3) % 8
                  printf "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,0,1,0,100\n", $4, $5, $6,
                         $4 + r * d[2*j+1], $5, $6 + r * d[2*j+2] }}' > "$T/around.txt"
-    for c in 64K 0; do
+    for c in 64K off; do
         "$S" "$P" --size 96x96 --walk "$T/around.txt" --cache-budget $c --out "$T/around_$c.pfm" \
             --stats "$T/around_$c.json" --quiet || fail "look-around, cache $c: exited $?"
     done
     for i in 000 001 002 003 004 005 006 007 008 009 010 011; do
-        cmp -s "$T/around_64K_$i.pfm" "$T/around_0_$i.pfm" ||
+        cmp -s "$T/around_64K_$i.pfm" "$T/around_off_$i.pfm" ||
             fail "look-around frame $i: a 64K cache changes the image (or a frame is missing)"
     done
     hits=$(frame_figures "$T/around_64K.json" | awk 'NR > 2 {s += $3} END {print s + 0}')
@@ -210,7 +213,7 @@ if [ "$MODE" = grid ]; then
     # small file only, where they are cheap.
     agree disjoint --pack disjoint
     agree wave_counted --schedule wave --pack counted
-    agree ring --upload-budget 64K --cache-budget 0
+    agree ring --upload-budget 64K --cache-budget off
     # K = 2: many pixels overflow the slots and take the second pass.
     agree firstk_k2 --pack first-k --max-layers 2
     # K = 2 turns every part into a wide part (layer bound > K): captured

@@ -1,9 +1,18 @@
-/* liboit: exact order-independent transparency of a converted part file,
- * drawn into the caller's own GL framebuffer with the caller's matrices.
+/* liboit: exact order-independent transparency of a converted part file or
+ * of an in-core mesh, drawn into the caller's own GL framebuffer with the
+ * caller's matrices.
  *
- *   oit_scene_open     opens a part file (no GL needed)
+ *   oit_scene_open     opens a part file, or loads a mesh file (no GL needed)
+ *   oit_scene_create_mesh  an in-core scene from the caller's arrays
  *   oit_renderer_create needs the caller's current GL 4.5 core context
  *   oit_renderer_draw  composites the scene over the caller's framebuffer
+ *
+ * Both kinds of scene go through the same handle and the same draw: a part
+ * file is streamed (parts read, uploaded and captured pack by pack); an
+ * in-core scene is uploaded whole at its first draw and drawn with DFB, the
+ * in-core exact method (render/dfb.h). The images agree within the
+ * tolerance of stream against DFB; the Result paragraph holds for both.
+ * oit/offscreen.h renders a scene without a caller's context (scripts).
  *
  * Conventions. Handles are opaque; every create has one matching destroy or
  * close, which accepts NULL. Descriptors may be NULL and zero fields mean the
@@ -68,16 +77,64 @@ typedef struct oit_scene_info {
      * Build the view matrix relative to it too: subtract it from the eye in
      * double, so that float matrices stay precise far from zero. */
     double origin[3];
+    /* 1: an in-core scene (a mesh file or the caller's arrays), drawn with
+     * DFB; parts and K are then 0. 0: a part file, streamed. */
+    uint32_t in_core;
 } oit_scene_info;
 
-/* A missing or unreadable file fails with OIT_ERR_IO, a malformed one with
- * OIT_ERR_FORMAT; the message names path. */
+/* path: a part file (its content starts with the part-file magic, or its
+ * name ends in .oitp) is opened and streamed; any other name is read as a
+ * mesh by extension (.ply .obj .off .stl .gltf .glb, case-insensitive, a
+ * trailing .gz allowed: oit_mesh_read) and held in core, as
+ * oit_scene_create_mesh holds arrays. desc applies to part files only.
+ * A missing or unreadable file fails with OIT_ERR_IO, a malformed one with
+ * OIT_ERR_FORMAT, an unknown extension with OIT_ERR_UNSUPPORTED; the
+ * message names path. */
 oit_status oit_scene_open(const char *path, const oit_scene_desc *desc, oit_scene **out,
                           oit_error *err);
+
+/* Colour arrays of oit_scene_mesh_desc. */
+typedef enum oit_color_type {
+    OIT_COLOR_UINT8 = 0, /* 4 uint8_t a colour, 0..255                    */
+    OIT_COLOR_FLOAT = 1  /* 4 floats a colour, 0..1 (clamped; NaN is 0),
+                            rounded to 8 bits as the mesh readers do      */
+} oit_color_type;
+
+typedef enum oit_color_rate {
+    OIT_COLOR_PER_VERTEX = 0,  /* one colour a vertex: vertex_count colours */
+    OIT_COLOR_PER_TRIANGLE = 1 /* one colour a triangle, for its 3 corners  */
+} oit_color_rate;
+
+/* An in-core mesh from the caller's arrays; zero fields mean the default.
+ * Colours are RGBA, sRGB-encoded with straight alpha, as the mesh readers
+ * deliver them (oit/mesh.h): a scene with colours has OIT_ATTR_COLOR |
+ * OIT_ATTR_ALPHA, one without takes the renderer's default colour and
+ * alpha (oit_render_shading). */
+typedef struct oit_scene_mesh_desc {
+    const float *positions; /* x, y, z a vertex: 3 * vertex_count floats, finite */
+    uint64_t vertex_count;  /* >= 3                                            */
+    /* Triangle list, 3 a triangle, each < vertex_count; index_count a
+     * multiple of 3. NULL: a soup, vertices 3i, 3i+1, 3i+2 form triangle i
+     * (vertex_count a multiple of 3; index_count must be 0). */
+    const uint32_t *indices;
+    uint64_t index_count;
+    const void *colors;        /* NULL: none; else see color_type, color_rate */
+    oit_color_type color_type;
+    oit_color_rate color_rate;
+    const char *name;          /* the scene in messages; default "mesh"       */
+} oit_scene_mesh_desc;
+
+/* Copies the arrays (the caller may free them on return) into an in-core
+ * scene, drawn with DFB. Bad arrays fail with OIT_ERR_ARGUMENT naming the
+ * field and the element ("oit_scene_mesh_desc.indices[7] = 12: not below
+ * vertex_count 9"); OIT_ERR_NOMEM when the copy does not fit. No GL needed. */
+oit_status oit_scene_create_mesh(const oit_scene_mesh_desc *desc, oit_scene **out,
+                                 oit_error *err);
 oit_status oit_scene_get_info(const oit_scene *scene, oit_scene_info *info, oit_error *err);
 /* Lifetime: a renderer keeps GPU state for the last scene it drew and
  * remembers that scene by address. Close a scene only after every renderer
- * that drew it last has been destroyed or has drawn another scene. */
+ * that drew it last has been destroyed, has drawn another scene or has
+ * released it (oit_renderer_release_scene). */
 void oit_scene_close(oit_scene *scene);
 
 /* ---- renderer ---------------------------------------------------------- */
@@ -97,19 +154,30 @@ typedef struct oit_render_shading {
     float scene_scale;    /* translucent; default: the scene's diagonal     */
 } oit_render_shading;
 
+/* oitstream --pack spells the same modes: auto, counted, budget, disjoint,
+ * first-k. */
 typedef enum oit_render_pack {
-    OIT_RENDER_PACK_AUTO = 0,    /* COUNTED, or DISJOINT when epsilon > 0 */
+    OIT_RENDER_PACK_AUTO = 0,    /* FIRSTK while K slots a pixel hold the view,
+                                    switched to COUNTED for deep views;
+                                    DISJOINT when epsilon > 0 */
     OIT_RENDER_PACK_COUNTED,     /* packs cut by upload bytes only, each counted,
                                     stored and sorted per pixel (no layer limit) */
     OIT_RENDER_PACK_BUDGET,      /* K slots a pixel: parts share a pack while
                                     their layer bounds per tile stay <= K */
-    OIT_RENDER_PACK_DISJOINT     /* K slots a pixel: parts with disjoint screen
+    OIT_RENDER_PACK_DISJOINT,    /* K slots a pixel: parts with disjoint screen
                                     rects */
+    OIT_RENDER_PACK_FIRSTK       /* packs as COUNTED, each drawn once into up to
+                                    K slots a pixel; pixels with more take a
+                                    second pass for themselves alone */
 } oit_render_pack;
 
+/* For part files. An in-core scene is drawn with DFB, which stores every
+ * fragment of the frame: K, upload_budget, pack, epsilon (the image is the
+ * exact one), cache_budget and read_on_draw_thread do not apply to it. */
 typedef struct oit_renderer_desc {
     uint32_t K;             /* capture layers 2..16; 0: the scene's K        */
-    uint64_t upload_budget; /* GPU bytes of the upload ring; 0: 64 MiB       */
+    uint64_t upload_budget; /* GPU bytes of the upload ring, >= 64 KiB;
+                               0: 64 MiB (oitstream --upload-budget alike) */
     oit_render_pack pack;
     oit_render_shading shading;
     /* Early termination; 0 (default): exact. In [0, 1): fragments behind
@@ -120,8 +188,9 @@ typedef struct oit_renderer_desc {
     float epsilon;
     /* GPU bytes that keep parts drawn in one frame resident for the next
      * ones, drawn without reading or uploading them again
-     * (oit_draw_stats.cache_hits); 0: 256 MiB (never more than the scene's
-     * parts take); OIT_RENDER_CACHE_OFF: no cache. */
+     * (oit_draw_stats.cache_hits), >= 64 KiB; 0: 256 MiB (never more than
+     * the scene's parts take); OIT_RENDER_CACHE_OFF: no cache. oitstream's
+     * --cache-budget means the same: 0 the default, "off" no cache. */
     uint64_t cache_budget;
     /* 0 (default): a reader thread of the renderer's own reads the parts of
      * later packs while the GPU draws earlier ones (it never calls GL). 1:
@@ -136,6 +205,11 @@ typedef struct oit_renderer_desc {
 oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out,
                                oit_error *err);
 void oit_renderer_destroy(oit_renderer *r);
+/* Frees r's GPU state for scene when r drew it last (else does nothing), so
+ * that scene may be closed while r lives on; the next draw of any scene
+ * builds its state anew. Needs r's GL context current, like every call on
+ * r. r or scene NULL: nothing. */
+void oit_renderer_release_scene(oit_renderer *r, const oit_scene *scene);
 
 typedef struct oit_frame {
     /* Column-major 4x4, as glUniformMatrix4fv(..., GL_FALSE, m) takes.
@@ -171,7 +245,12 @@ typedef struct oit_draw_stats {
 
 /* Draws scene as seen through frame into frame->framebuffer (see Result
  * above). The scene must stay open while r draws it; drawing a different
- * scene rebuilds r's per-scene GPU state. stats may be NULL. */
+ * scene rebuilds r's per-scene GPU state (for an in-core scene: its
+ * triangles, uploaded at its first draw). stats may be NULL; for an
+ * in-core scene only ms, fragments, max_layers, packs (DFB's bands of rows,
+ * 1 unless the frame's fragments exceed one storage buffer), draw_calls,
+ * bytes_uploaded (the triangles, at the first draw) and gpu_bytes_peak are
+ * filled, the rest are 0. */
 oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame *frame,
                              oit_draw_stats *stats, oit_error *err);
 

@@ -4,4 +4,5 @@
 #include "status.h"
 #include "mesh.h"
 #include "liboit.h"
+#include "offscreen.h"
 #endif

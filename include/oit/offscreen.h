@@ -1,0 +1,91 @@
+/* liboit offscreen: a scene rendered into memory, for scripts and batch
+ * jobs that have no GL context of their own (the Python package, python/oit,
+ * calls this).
+ *
+ *   oit_offscreen_create  makes a headless EGL context (GL 4.5 core: an
+ *                         NVIDIA device when present, else Mesa's llvmpipe)
+ *                         and an oit_renderer in it
+ *   oit_offscreen_render  draws any scene (part file or in core) over a
+ *                         background into the caller's RGBA buffer
+ *
+ * The image is what oit_renderer_draw composites over a framebuffer cleared
+ * to the background (liboit.h, Result): rgb = C + T * bg.rgb,
+ * a = (1 - t) + t * bg.a with t = mean(T), so over an opaque background
+ * alpha is 1. Values are as computed (sRGB-encoded like the inputs; no
+ * conversion), 8-bit output rounds v * 255 as the tools' PNGs do.
+ *
+ * Threads: an oit_offscreen is used by one thread at a time. create and
+ * render make its context current on the calling thread and leave it
+ * current; a caller that also has a context of its own on that thread makes
+ * its own current again afterwards. destroy releases the context.
+ */
+#ifndef OIT_OFFSCREEN_H
+#define OIT_OFFSCREEN_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "liboit.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct oit_offscreen oit_offscreen;
+
+typedef struct oit_offscreen_desc {
+    oit_renderer_desc renderer; /* zero: liboit's defaults */
+} oit_offscreen_desc;
+
+/* desc may be NULL. Fails with OIT_ERR_GL when no EGL display or GL 4.5
+ * core context can be had (the message says which step). */
+oit_status oit_offscreen_create(const oit_offscreen_desc *desc, oit_offscreen **out,
+                                oit_error *err);
+void oit_offscreen_destroy(oit_offscreen *o);
+/* oit_renderer_release_scene for o's renderer (liboit.h, Lifetime): call
+ * it before closing a scene that o drew last while o lives on. */
+void oit_offscreen_release_scene(oit_offscreen *o, const oit_scene *scene);
+/* The GL renderer string of the context ("llvmpipe (LLVM 15.0.6, 256 bits)"). */
+const char *oit_offscreen_gl_renderer(const oit_offscreen *o);
+
+typedef enum oit_pixel_format {
+    OIT_PIXELS_RGBA8 = 0,  /* 4 uint8_t a pixel             */
+    OIT_PIXELS_RGBA32F = 1 /* 4 floats a pixel, 0..1 (as computed) */
+} oit_pixel_format;
+
+typedef struct oit_offscreen_view {
+    int width, height; /* pixels; required, each 1..the GL limit */
+    oit_pixel_format format;
+    /* The camera, in the scene's coordinates (its positions, which are
+     * relative to oit_scene_info.origin). One of:
+     * - use_matrices = 1: view and projection as oit_frame takes them
+     *   (rigid view, symmetric perspective of aspect width / height);
+     * - eye != target: a look-at camera; up 0: +y; fovy_deg 0: 45;
+     *   znear = zfar = 0: planes fitted to the scene's bounding sphere seen
+     *   from eye;
+     * - everything 0: the tools' default view (oitstream without --view:
+     *   oit_camera_default of the scene's bounds, azimuth 0, elevation 20,
+     *   fovy 45, the bounding sphere filling the height). */
+    int use_matrices;
+    float view[16], projection[16];
+    float eye[3], target[3], up[3];
+    float fovy_deg, znear, zfar;
+    /* Straight RGBA the scene is composited over. All 0 (default): opaque
+     * white, the tools' background. A negative component stands for 0, so
+     * {-1, -1, -1, -1} is transparent black. */
+    float background[4];
+} oit_offscreen_view;
+
+/* Renders scene into pixels: width * height pixels of 4 components (format),
+ * row 0 at the TOP (image order, unlike GL), pixels_bytes the buffer's size
+ * (at least width * height * 4 * component size, else OIT_ERR_ARGUMENT).
+ * stats may be NULL (see oit_renderer_draw). Errors name the scene or the
+ * field of view that is wrong. */
+oit_status oit_offscreen_render(oit_offscreen *o, oit_scene *scene,
+                                const oit_offscreen_view *view, void *pixels,
+                                size_t pixels_bytes, oit_draw_stats *stats, oit_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,361 @@
+"""oit: exact order-independent transparency of meshes, from Python.
+
+A thin ctypes layer over liboit (include/oit/liboit.h, oit/offscreen.h):
+scenes are mesh files (.ply .obj .off .stl .gltf .glb, held in core and
+drawn with DFB), part files (.oitp, streamed) or numpy arrays; images come
+back as numpy arrays (height, width, 4), row 0 at the top.
+
+    import oit
+    img = oit.render("bunny.ply", size=(800, 600))      # uint8 RGBA
+    oit.save_png("bunny.png", img)
+
+liboit.so is found through OIT_LIBRARY, the installed package's own
+location, or the system loader (see oit._lib). Rendering needs EGL with
+OpenGL 4.5 core (an NVIDIA driver or Mesa's llvmpipe).
+"""
+import os
+import shutil
+import subprocess
+import weakref
+
+import ctypes
+
+import numpy as np
+
+from . import _lib as L
+from ._lib import LibraryNotFound, lib_path
+from ._png import save_png
+
+__all__ = ["render", "render_arrays", "prep", "save_png", "Scene", "Renderer", "OitError",
+           "LibraryNotFound", "lib_path", "prep_tool"]
+
+
+class OitError(RuntimeError):
+    """A liboit call failed: .status is its oit_status name, .message the
+    library's one line naming the input."""
+
+    def __init__(self, status, message):
+        self.status = status
+        self.message = message
+        super().__init__(f"{status}: {message}")
+
+
+def _check(status, err):
+    if status != L.OIT_OK:
+        name = L.lib().oit_status_name(status).decode()
+        raise OitError(name, err.message.decode(errors="replace"))
+
+
+class Scene:
+    """A scene liboit draws: Scene.open(path) or Scene.from_arrays(...).
+    Close it (or use `with`) to free it; renderers that drew it let go of
+    it first."""
+
+    def __init__(self, handle, name):
+        self._h = handle
+        self.name = name
+        self._renderers = weakref.WeakSet()
+
+    @classmethod
+    def open(cls, path):
+        """A part file (streamed) or any mesh file the readers take (in core)."""
+        h, err = ctypes.c_void_p(), L.Error()
+        path = os.fspath(path)
+        _check(L.lib().oit_scene_open(path.encode(), None, ctypes.byref(h), ctypes.byref(err)),
+               err)
+        return cls(h, path)
+
+    @classmethod
+    def from_arrays(cls, positions, indices=None, colors=None, color_rate="auto",
+                    name="arrays"):
+        """positions: (n, 3) floats. indices: (m, 3) or (3m,) non-negative ints
+        below n, or None for a soup (n a multiple of 3). colors: None, or RGBA
+        (k, 4) uint8 (0..255) or floats (0..1), per vertex (k = n) or per
+        triangle (k = triangles); color_rate "vertex" or "triangle" says
+        which when both counts are equal ("auto" refuses to guess then).
+        The arrays are copied."""
+        pos = np.ascontiguousarray(positions, dtype=np.float32)
+        if pos.ndim != 2 or pos.shape[1] != 3:
+            raise ValueError(f"positions: shape {pos.shape}, expected (n, 3)")
+        d = L.SceneMeshDesc()
+        d.positions = pos.ctypes.data
+        d.vertex_count = pos.shape[0]
+        keep = [pos]
+        if indices is not None:
+            idx = np.asarray(indices)
+            if idx.size and (idx.min() < 0 or idx.max() > 0xFFFFFFFF):
+                raise ValueError("indices: values must lie in 0..2^32-1")
+            idx = np.ascontiguousarray(idx, dtype=np.uint32).reshape(-1)
+            if idx.size % 3:
+                raise ValueError(f"indices: {idx.size} values, not a multiple of 3")
+            d.indices = idx.ctypes.data
+            d.index_count = idx.size
+            keep.append(idx)
+            triangles = idx.size // 3
+        else:
+            triangles = pos.shape[0] // 3
+        if colors is not None:
+            col = np.asarray(colors)
+            if col.ndim != 2 or col.shape[1] != 4:
+                raise ValueError(f"colors: shape {col.shape}, expected (k, 4) RGBA")
+            if col.dtype == np.uint8:
+                d.color_type = L.COLOR_UINT8
+            else:
+                col = col.astype(np.float32)
+                d.color_type = L.COLOR_FLOAT
+            col = np.ascontiguousarray(col)
+            rate = color_rate
+            if rate == "auto":
+                if col.shape[0] == pos.shape[0] and col.shape[0] == triangles:
+                    raise ValueError("colors: as many vertices as triangles; say "
+                                     "color_rate='vertex' or 'triangle'")
+                rate = "vertex" if col.shape[0] == pos.shape[0] else "triangle"
+            if rate not in ("vertex", "triangle"):
+                raise ValueError(f"color_rate: {color_rate!r}, expected auto, vertex or "
+                                 "triangle")
+            want = pos.shape[0] if rate == "vertex" else triangles
+            if col.shape[0] != want:
+                raise ValueError(f"colors: {col.shape[0]} rows; {pos.shape[0]} vertices, "
+                                 f"{triangles} triangles")
+            d.color_rate = L.COLOR_PER_VERTEX if rate == "vertex" else L.COLOR_PER_TRIANGLE
+            d.colors = col.ctypes.data
+            keep.append(col)
+        d.name = name.encode()
+        h, err = ctypes.c_void_p(), L.Error()
+        _check(L.lib().oit_scene_create_mesh(ctypes.byref(d), ctypes.byref(h),
+                                             ctypes.byref(err)), err)
+        return cls(h, name)
+
+    @property
+    def info(self):
+        """oit_scene_info as a dict."""
+        info, err = L.SceneInfo(), L.Error()
+        _check(L.lib().oit_scene_get_info(self._handle(), ctypes.byref(info),
+                                          ctypes.byref(err)), err)
+        return {"triangles": info.triangles, "parts": info.parts,
+                "bounds_min": tuple(info.bounds_min), "bounds_max": tuple(info.bounds_max),
+                "K": info.K, "attributes": info.attributes, "origin": tuple(info.origin),
+                "in_core": bool(info.in_core)}
+
+    def _handle(self):
+        if not self._h:
+            raise ValueError(f"{self.name}: the scene is closed")
+        return self._h
+
+    def close(self):
+        if self._h:
+            for r in list(self._renderers):
+                r._release(self)
+            L.lib().oit_scene_close(self._h)
+            self._h = None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:
+            pass
+
+
+_SHADINGS = {"transparent": L.RENDER_TRANSPARENT, "translucent": L.RENDER_TRANSLUCENT}
+# oit_render_pack, spelt as oitstream --pack spells it
+_PACKS = {"auto": 0, "counted": 1, "budget": 2, "disjoint": 3, "first-k": 4}
+
+
+class Renderer:
+    """An offscreen renderer: its own headless GL context and an oit_renderer
+    (oit_offscreen_create). Options as in oit_renderer_desc; 0/None means the
+    library's default. Use it from one thread."""
+
+    def __init__(self, shading="transparent", alpha=None, default_rgb=None, absorption=None,
+                 K=0, epsilon=0.0, pack="auto", upload_budget=0, cache_budget=0):
+        """pack, upload_budget, cache_budget, K and epsilon take what
+        oitstream's --pack, --upload-budget, --cache-budget, --max-layers and
+        --epsilon take: 0 is the default, cache_budget="off" no cache."""
+        if shading not in _SHADINGS:
+            raise ValueError(f"shading: {shading!r}, expected transparent or translucent")
+        if pack not in _PACKS:
+            raise ValueError(f"pack: {pack!r}, expected one of {', '.join(_PACKS)}")
+        d = L.OffscreenDesc()
+        d.renderer.K = K
+        d.renderer.epsilon = epsilon
+        d.renderer.pack = _PACKS[pack]
+        d.renderer.upload_budget = int(upload_budget)
+        d.renderer.cache_budget = L.RENDER_CACHE_OFF if cache_budget == "off" else int(cache_budget)
+        d.renderer.shading.mode = _SHADINGS[shading]
+        if alpha is not None:
+            d.renderer.shading.alpha = alpha
+        if default_rgb is not None:
+            d.renderer.shading.default_rgb[:] = [float(c) for c in default_rgb]
+        if absorption is not None:
+            d.renderer.shading.absorption = absorption
+        h, err = ctypes.c_void_p(), L.Error()
+        _check(L.lib().oit_offscreen_create(ctypes.byref(d), ctypes.byref(h),
+                                            ctypes.byref(err)), err)
+        self._h = h
+        self.stats = None
+
+    @property
+    def gl_renderer(self):
+        return L.lib().oit_offscreen_gl_renderer(self._h).decode()
+
+    def render(self, scene, size=(512, 512), view=None, dtype=np.uint8, background=None):
+        """The image of scene (a Scene) as a (height, width, 4) array, uint8
+        or float32 (dtype). view: None (the tools' default view of the
+        scene's bounds), a dict with eye, target and optional up, fovy,
+        znear, zfar (the scene's coordinates), or a dict with view and
+        projection 4x4 matrices as numpy writes them (v' = M @ v).
+        background: RGBA, default opaque white."""
+        w, h = (int(size[0]), int(size[1]))
+        v = L.OffscreenView()
+        v.width, v.height = w, h
+        dtype = np.dtype(dtype)
+        if dtype == np.uint8:
+            v.format = L.PIXELS_RGBA8
+        elif dtype == np.float32:
+            v.format = L.PIXELS_RGBA32F
+        else:
+            raise ValueError(f"dtype: {dtype}, expected uint8 or float32")
+        _set_view(v, view)
+        if background is not None:
+            bg = [float(c) for c in background]
+            if len(bg) == 3:
+                bg.append(1.0)
+            if len(bg) != 4:
+                raise ValueError("background: 3 or 4 numbers")
+            # 0 means 0 here, not the library's "default": negative stands for 0.
+            v.background[:] = [c if c != 0.0 else -1.0 for c in bg]
+        out = np.empty((h, w, 4), dtype=dtype)
+        stats, err = L.DrawStats(), L.Error()
+        scene._renderers.add(self)
+        _check(L.lib().oit_offscreen_render(self._h, scene._handle(), ctypes.byref(v),
+                                            out.ctypes.data, out.nbytes, ctypes.byref(stats),
+                                            ctypes.byref(err)), err)
+        self.stats = {name: getattr(stats, name) for name, _ in L.DrawStats._fields_}
+        return out
+
+    def _release(self, scene):
+        if self._h and scene._h:
+            L.lib().oit_offscreen_release_scene(self._h, scene._h)
+
+    def close(self):
+        if self._h:
+            L.lib().oit_offscreen_destroy(self._h)
+            self._h = None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:
+            pass
+
+
+def _set_view(v, view):
+    if view is None:
+        return
+    if not isinstance(view, dict):
+        raise ValueError("view: None or a dict (eye/target/up/fovy/znear/zfar, or "
+                         "view/projection matrices)")
+    if "view" in view or "projection" in view:
+        for key in ("view", "projection"):
+            m = np.asarray(view[key], dtype=np.float32)
+            if m.shape != (4, 4):
+                raise ValueError(f"view[{key!r}]: shape {m.shape}, expected (4, 4)")
+            getattr(v, key)[:] = m.T.reshape(-1).tolist()  # column-major for GL
+        v.use_matrices = 1
+        return
+    unknown = set(view) - {"eye", "target", "up", "fovy", "znear", "zfar"}
+    if unknown:
+        raise ValueError(f"view: unknown keys {sorted(unknown)}")
+    for key in ("eye", "target", "up"):
+        if key in view:
+            vec = [float(c) for c in view[key]]
+            if len(vec) != 3:
+                raise ValueError(f"view[{key!r}]: 3 numbers")
+            getattr(v, key)[:] = vec
+    v.fovy_deg = float(view.get("fovy", 0.0))
+    v.znear = float(view.get("znear", 0.0))
+    v.zfar = float(view.get("zfar", 0.0))
+
+
+_renderers = {}
+
+
+def _default_renderer(shading):
+    """One Renderer a shading for the module-level functions, made at first use."""
+    r = _renderers.get(shading)
+    if r is None or not r._h:
+        r = _renderers[shading] = Renderer(shading=shading)
+    return r
+
+
+def render(model_path, size=(512, 512), view=None, dtype=np.uint8, background=None,
+           shading="transparent"):
+    """Renders a mesh file (in core) or part file (streamed) into a
+    (height, width, 4) array; see Renderer.render for view and background."""
+    r = _default_renderer(shading)
+    with Scene.open(model_path) as s:
+        return r.render(s, size=size, view=view, dtype=dtype, background=background)
+
+
+def render_arrays(positions, indices=None, colors=None, size=(512, 512), view=None,
+                  dtype=np.uint8, background=None, shading="transparent", color_rate="auto"):
+    """Renders triangles from arrays (see Scene.from_arrays) into a
+    (height, width, 4) array; see Renderer.render for view and background."""
+    r = _default_renderer(shading)
+    with Scene.from_arrays(positions, indices, colors, color_rate=color_rate) as s:
+        return r.render(s, size=size, view=view, dtype=dtype, background=background)
+
+
+def prep_tool():
+    """The oitprep executable prep() runs: OIT_PREP, else the one installed
+    beside liboit (PREFIX/bin), else oitprep on PATH."""
+    env = os.environ.get("OIT_PREP")
+    if env:
+        return env
+    try:
+        from . import _install_paths
+        here = os.path.dirname(os.path.abspath(__file__))
+        cand = os.path.normpath(os.path.join(here, _install_paths.BINDIR, "oitprep"))
+        if os.access(cand, os.X_OK):
+            return cand
+    except ImportError:
+        pass
+    found = shutil.which("oitprep")
+    if found:
+        return found
+    raise FileNotFoundError("oit.prep: no oitprep found: set OIT_PREP to the tool (e.g. "
+                            "build/bin/oitprep), install liboit with its tools, or put "
+                            "oitprep on PATH")
+
+
+def prep(src, dst, **options):
+    """Converts a mesh file into a part file by running oitprep (liboit has
+    no conversion entry: the converter is the tool's, with its thread pool
+    and CGAL predicates). Options become oitprep's flags: K=8 or
+    max_layers=8 -> --max-layers 8, part_triangles=24 -> --part-triangles
+    24, threads=2 -> --threads 2; True alone for a flag without a value.
+    Raises OitError with the tool's message when it fails; returns dst."""
+    cmd = [prep_tool(), os.fspath(src), "-o", os.fspath(dst)]
+    for key, value in options.items():
+        flag = "--max-layers" if key == "K" else "--" + key.replace("_", "-")
+        if value is True:
+            cmd.append(flag)
+        elif value is not False and value is not None:
+            cmd += [flag, str(value)]
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode != 0:
+        msg = (p.stderr.strip() or p.stdout.strip()).splitlines()
+        raise OitError(f"oitprep exit {p.returncode}", msg[-1] if msg else "failed")
+    return dst

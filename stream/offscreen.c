@@ -1,0 +1,248 @@
+/* Offscreen rendering (include/oit/offscreen.h): a headless context of its
+ * own, an RGBA32F framebuffer cleared to the background, oit_renderer_draw
+ * into it, and a readback flipped to image order. */
+#include "oit/offscreen.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "render/gl_context.h"
+#include "render/gl_util.h"
+#include "render/view.h"
+
+struct oit_offscreen {
+    oit_gl *gl;
+    oit_renderer *renderer;
+    GLuint fbo, tex;
+    int width, height; /* of tex; 0: none yet */
+    float *readback;   /* width * height * 4 */
+};
+
+void oit_offscreen_destroy(oit_offscreen *o)
+{
+    if (!o)
+        return;
+    if (o->gl && oit_gl_make_current(o->gl, NULL) == OIT_OK) {
+        oit_renderer_destroy(o->renderer);
+        glDeleteFramebuffers(1, &o->fbo);
+        glDeleteTextures(1, &o->tex);
+    }
+    oit_gl_destroy(o->gl);
+    free(o->readback);
+    free(o);
+}
+
+oit_status oit_offscreen_create(const oit_offscreen_desc *desc, oit_offscreen **out,
+                                oit_error *err)
+{
+    if (!out)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_offscreen_create: out is NULL");
+    *out = NULL;
+    oit_offscreen *o = calloc(1, sizeof *o);
+    if (!o)
+        return oit_error_set(err, OIT_ERR_NOMEM, "oit_offscreen_create: out of memory");
+    oit_status s = oit_gl_create(NULL, &o->gl, err);
+    if (s == OIT_OK)
+        s = oit_renderer_create(desc ? &desc->renderer : NULL, &o->renderer, err);
+    if (s != OIT_OK) {
+        oit_error_prefix(err, "oit_offscreen_create");
+        oit_offscreen_destroy(o);
+        return s;
+    }
+    *out = o;
+    return OIT_OK;
+}
+
+void oit_offscreen_release_scene(oit_offscreen *o, const oit_scene *scene)
+{
+    if (o && scene && oit_gl_make_current(o->gl, NULL) == OIT_OK)
+        oit_renderer_release_scene(o->renderer, scene);
+}
+
+const char *oit_offscreen_gl_renderer(const oit_offscreen *o)
+{
+    return o ? oit_gl_renderer(o->gl) : "";
+}
+
+/* The colour target, reallocated when the size changes. */
+static oit_status ensure_target(oit_offscreen *o, int w, int h, oit_error *err)
+{
+    if (o->width == w && o->height == h)
+        return OIT_OK;
+    glDeleteFramebuffers(1, &o->fbo);
+    glDeleteTextures(1, &o->tex);
+    free(o->readback);
+    o->fbo = o->tex = 0;
+    o->width = o->height = 0;
+    o->readback = malloc((size_t)w * h * 4 * sizeof *o->readback);
+    if (!o->readback)
+        return oit_error_set(err, OIT_ERR_NOMEM, "oit_offscreen_render: cannot allocate "
+                             "%dx%d pixels", w, h);
+    glCreateTextures(GL_TEXTURE_2D, 1, &o->tex);
+    glTextureStorage2D(o->tex, 1, GL_RGBA32F, w, h);
+    glCreateFramebuffers(1, &o->fbo);
+    glNamedFramebufferTexture(o->fbo, GL_COLOR_ATTACHMENT0, o->tex, 0);
+    oit_status s = oit_gl_check("oit_offscreen_render: framebuffer", err);
+    if (s == OIT_OK &&
+        glCheckNamedFramebufferStatus(o->fbo, GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        s = oit_error_set(err, OIT_ERR_GL, "oit_offscreen_render: a %dx%d RGBA32F "
+                          "framebuffer is incomplete", w, h);
+    if (s == OIT_OK) {
+        o->width = w;
+        o->height = h;
+    }
+    return s;
+}
+
+/* The bounding sphere of the scene (the unit sphere for empty bounds). */
+static void bounding_sphere(const oit_scene_info *info, double c[3], double *r)
+{
+    double r2 = 0.0;
+    int ok = isfinite(info->bounds_min[0]) && isfinite(info->bounds_max[0]) &&
+             info->bounds_min[0] <= info->bounds_max[0];
+    for (int k = 0; k < 3; k++) {
+        double lo = ok ? info->bounds_min[k] : -1.0, hi = ok ? info->bounds_max[k] : 1.0;
+        c[k] = 0.5 * (lo + hi);
+        r2 += 0.25 * (hi - lo) * (hi - lo);
+    }
+    *r = r2 > 0.0 ? sqrt(r2) : 1.0;
+}
+
+static int is_zero(const float *v, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (v[i] != 0.0f)
+            return 0;
+    return 1;
+}
+
+static oit_status make_frame(const oit_scene *scene, const oit_offscreen_view *v,
+                             oit_frame *f, oit_error *err)
+{
+    f->viewport_width = v->width;
+    f->viewport_height = v->height;
+    if (v->use_matrices) {
+        memcpy(f->view, v->view, sizeof f->view);
+        memcpy(f->projection, v->projection, sizeof f->projection);
+        return OIT_OK;
+    }
+    oit_scene_info info;
+    oit_status s = oit_scene_get_info(scene, &info, err);
+    if (s != OIT_OK)
+        return s;
+    oit_camera cam;
+    int look_at = !is_zero(v->eye, 3) || !is_zero(v->target, 3);
+    if (!look_at && is_zero(v->up, 3) && v->fovy_deg == 0.0f && v->znear == 0.0f &&
+        v->zfar == 0.0f) {
+        oit_camera_default(&cam, info.bounds_min, info.bounds_max, 0.0f, 20.0f);
+    } else {
+        double d2 = 0.0;
+        for (int k = 0; k < 3; k++)
+            d2 += ((double)v->eye[k] - v->target[k]) * ((double)v->eye[k] - v->target[k]);
+        if (!(d2 > 0.0))
+            return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_offscreen_view: eye and target "
+                                 "are the same point (%g, %g, %g): no view direction",
+                                 v->eye[0], v->eye[1], v->eye[2]);
+        memset(&cam, 0, sizeof cam);
+        memcpy(cam.eye, v->eye, sizeof cam.eye);
+        memcpy(cam.target, v->target, sizeof cam.target);
+        if (is_zero(v->up, 3))
+            cam.up[1] = 1.0f;
+        else
+            memcpy(cam.up, v->up, sizeof cam.up);
+        cam.fovy_deg = v->fovy_deg != 0.0f ? v->fovy_deg : 45.0f;
+        if (!(cam.fovy_deg > 0.0f && cam.fovy_deg < 180.0f))
+            return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_offscreen_view.fovy_deg = %g is "
+                                 "outside (0, 180)", v->fovy_deg);
+        if (v->znear == 0.0f && v->zfar == 0.0f) {
+            double c[3], r, e2 = 0.0;
+            bounding_sphere(&info, c, &r);
+            for (int k = 0; k < 3; k++)
+                e2 += (v->eye[k] - c[k]) * (v->eye[k] - c[k]);
+            double e = sqrt(e2);
+            cam.znear = (float)fmax(e - 1.05 * r, 1e-4 * fmax(e, r));
+            cam.zfar = (float)(e + 1.05 * r);
+        } else {
+            cam.znear = v->znear;
+            cam.zfar = v->zfar;
+        }
+        if (!(cam.znear > 0.0f && cam.zfar > cam.znear && isfinite(cam.zfar)))
+            return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_offscreen_view: znear %g, zfar "
+                                 "%g: need 0 < znear < zfar < inf", cam.znear, cam.zfar);
+    }
+    oit_camera_view_matrix(&cam, f->view);
+    oit_camera_proj_matrix(&cam, (float)v->width / (float)v->height, f->projection);
+    return OIT_OK;
+}
+
+static unsigned char to_byte(float v)
+{
+    if (!(v > 0.0f)) return 0; /* also NaN */
+    if (v >= 1.0f) return 255;
+    return (unsigned char)lrintf(v * 255.0f);
+}
+
+oit_status oit_offscreen_render(oit_offscreen *o, oit_scene *scene,
+                                const oit_offscreen_view *view, void *pixels,
+                                size_t pixels_bytes, oit_draw_stats *stats, oit_error *err)
+{
+    if (!o || !scene || !view || !pixels)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_offscreen_render: NULL argument");
+    int w = view->width, h = view->height;
+    if (w <= 0 || h <= 0 || w > 32768 || h > 32768)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_offscreen_view: size %dx%d is "
+                             "outside 1..32768 a side", w, h);
+    if (view->format != OIT_PIXELS_RGBA8 && view->format != OIT_PIXELS_RGBA32F)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_offscreen_view.format = %d is not an "
+                             "oit_pixel_format", (int)view->format);
+    size_t comp = view->format == OIT_PIXELS_RGBA8 ? 1 : sizeof(float);
+    size_t need = (size_t)w * h * 4 * comp;
+    if (pixels_bytes < need)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_offscreen_render: a %dx%d %s image "
+                             "needs %zu bytes, the buffer has %zu", w, h,
+                             comp == 1 ? "RGBA8" : "RGBA32F", need, pixels_bytes);
+    oit_frame frame = {0};
+    oit_status s = make_frame(scene, view, &frame, err);
+    if (s == OIT_OK)
+        s = oit_gl_make_current(o->gl, err);
+    if (s == OIT_OK) {
+        GLint max_size = 0;
+        glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+        if (w > max_size || h > max_size)
+            s = oit_error_set(err, OIT_ERR_ARGUMENT, "oit_offscreen_view: size %dx%d exceeds "
+                              "this GL's %d pixels a side", w, h, max_size);
+    }
+    if (s == OIT_OK)
+        s = ensure_target(o, w, h, err);
+    if (s != OIT_OK)
+        return s;
+    float bg[4];
+    int all_zero = is_zero(view->background, 4);
+    for (int c = 0; c < 4; c++)
+        bg[c] = all_zero ? 1.0f : fmaxf(view->background[c], 0.0f);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDisable(GL_SCISSOR_TEST);
+    glClearNamedFramebufferfv(o->fbo, GL_COLOR, 0, bg);
+    frame.framebuffer = o->fbo;
+    s = oit_renderer_draw(o->renderer, scene, &frame, stats, err);
+    if (s != OIT_OK)
+        return s;
+    glGetTextureImage(o->tex, 0, GL_RGBA, GL_FLOAT,
+                      (GLsizei)((size_t)w * h * 4 * sizeof *o->readback), o->readback);
+    s = oit_gl_check("oit_offscreen_render: readback", err);
+    if (s != OIT_OK)
+        return s;
+    size_t row = (size_t)w * 4;
+    for (int y = 0; y < h; y++) {
+        const float *src = o->readback + (size_t)(h - 1 - y) * row;
+        if (comp == 1) {
+            unsigned char *dst = (unsigned char *)pixels + (size_t)y * row;
+            for (size_t i = 0; i < row; i++)
+                dst[i] = to_byte(src[i]);
+        } else {
+            memcpy((float *)pixels + (size_t)y * row, src, row * sizeof *src);
+        }
+    }
+    return OIT_OK;
+}
