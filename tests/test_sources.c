@@ -17,7 +17,14 @@
  * every index s read as count - 1 - s (a shuffle) must find mismatches.
  *
  * usage: test_sources SOURCE FILE.oitp [--ascending]
- * Exit 0 when every check holds, 1 otherwise, 2 on usage, 3 on bad input. */
+ *        test_sources --write-tie FILE.oitp
+ * Exit 0 when every check holds, 1 otherwise, 2 on usage, 3 on bad input.
+ *
+ * --write-tie writes the part file of tests/test_source_prims.sh: the two
+ * unit boxes of its tie.ply (box A red, B blue, alpha 100, A's 12 triangles
+ * first in the source) as one part that stores B's triangles first, with
+ * their source indices (12..23, then A's 0..11): drawn by position, B would
+ * win every tie; drawn by source index, A does, as on the source mesh. */
 #include "oit/mesh.h"
 #include "oit/partfile.h"
 #include "partition/clip.h"
@@ -45,8 +52,63 @@ static void vertex(const oit_partfile_part_view *v, uint64_t i, float out[3])
     memcpy(out, (const char *)v->positions + (size_t)oit_partfile_index(v, i) * v->stride, 12);
 }
 
+/* The boxes' vertex i of 8 (as the test's awk writes them) and triangles. */
+static const uint32_t BOX_TRIS[36] = {0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6, 0, 1, 5, 0, 5, 4,
+                                      2, 6, 7, 2, 7, 3, 0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5};
+
+static int write_tie(const char *path)
+{
+    static const uint8_t colour[2][4] = {{230, 40, 40, 100}, {40, 60, 230, 100}};
+    float pos[16 * 3];
+    uint8_t rgba[16 * 4];
+    uint32_t idx[72], src[24];
+    /* Vertices 0..7: box B, 8..15: box A; triangles B's first. */
+    for (int b = 0; b < 2; b++)
+        for (int i = 0; i < 8; i++) {
+            float *p = pos + 3 * (8 * b + i);
+            p[0] = (float)(i % 2) - 0.5f;
+            p[1] = (float)(i / 2 % 2) - 0.5f;
+            p[2] = (float)(i / 4) - 0.5f;
+            memcpy(rgba + 4 * (8 * b + i), colour[1 - b], 4);
+        }
+    for (int b = 0; b < 2; b++)
+        for (int t = 0; t < 12; t++) {
+            for (int c = 0; c < 3; c++)
+                idx[36 * b + 3 * t + c] = (uint32_t)(8 * b) + BOX_TRIS[3 * t + c];
+            src[12 * b + t] = (uint32_t)(b ? t : 12 + t); /* A: 0..11, B: 12..23 */
+        }
+    oit_partfile_piece_desc pieces[2] = {{12, 6}, {12, 6}};
+    oit_partfile_part_desc d = {.positions = pos, .rgba = rgba, .vertex_count = 16,
+                                .indices = idx, .index_count = 72, .sources = src,
+                                .pieces = pieces, .piece_count = 2,
+                                .attributes = OIT_ATTR_COLOR | OIT_ATTR_ALPHA};
+    uint32_t counts[1] = {1}, parts[1] = {0};
+    oit_partfile_grid_desc g = {.dims = {1, 1, 1}, .origin = {-1, -1, -1},
+                                .cell_size = {2, 2, 2}, .cell_counts = counts,
+                                .cell_parts = parts};
+    oit_partfile_writer_desc wd = {.K = 8, .attributes = OIT_ATTR_COLOR | OIT_ATTR_ALPHA,
+                                   .source_name = "tie.ply"};
+    oit_partfile_stats st = {24, 0, 0};
+    oit_partfile_writer *w = NULL;
+    oit_error err = {0};
+    oit_status s = oit_partfile_writer_create(path, &wd, &w, &err);
+    if (!s)
+        s = oit_partfile_writer_add_part(w, &d, NULL, &err);
+    if (!s)
+        s = oit_partfile_writer_set_grid(w, &g, &err);
+    if (!s)
+        s = oit_partfile_writer_finish(w, &st, &err);
+    else
+        oit_partfile_writer_abort(w);
+    if (s)
+        fprintf(stderr, "%s\n", err.message);
+    return s ? 1 : 0;
+}
+
 int main(int argc, char **argv)
 {
+    if (argc == 3 && !strcmp(argv[1], "--write-tie"))
+        return write_tie(argv[2]);
     if (argc < 3 || (argc > 3 && strcmp(argv[3], "--ascending"))) {
         fprintf(stderr, "usage: test_sources SOURCE FILE.oitp [--ascending]\n");
         return 2;
