@@ -62,6 +62,68 @@ void oit_partfile_mesh_info(const oit_partfile *pf, oit_mesh_info *info)
     }
 }
 
+static int cmp_u64(const void *a, const void *b)
+{
+    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* The rare path of oit_partfile_load_mesh: triangles_in out of proportion
+ * to the triangles stored (a source mostly dropped, or a crafted file), so
+ * that a bucket per source index would cost more than the mesh. Every part
+ * expanded in file order, the keys source << 32 | position sorted (the
+ * position makes it stable), then the mesh permuted in place, cycle by
+ * cycle. */
+static oit_status load_sorted_by_keys(oit_partfile *pf, oit_mesh *out, oit_error *err)
+{
+    uint32_t n = oit_partfile_part_count(pf);
+    oit_partfile_part_view v;
+    oit_status s = OIT_OK;
+    for (uint32_t p = 0; p < n && s == OIT_OK; p++) {
+        s = oit_partfile_validate_part(pf, p, err);
+        if (s == OIT_OK)
+            s = oit_part_expand(pf, p, out->tris + out->count, err);
+        out->count += (size_t)(oit_partfile_parts(pf)[p].index_count / 3);
+    }
+    if (s != OIT_OK)
+        return s;
+    size_t count = out->count;
+    uint64_t *key = count <= UINT32_MAX ? malloc((count ? count : 1) * sizeof *key) : NULL;
+    uint8_t *done = key ? calloc(count / 8 + 1, 1) : NULL;
+    if (!done) {
+        free(key);
+        return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot sort %zu triangles by their "
+                             "source indices", oit_partfile_name(pf), count);
+    }
+    size_t at = 0;
+    for (uint32_t p = 0; p < n && s == OIT_OK; p++) {
+        s = oit_partfile_part_data(pf, p, &v, err);
+        for (uint64_t t = 0; s == OIT_OK && t < v.index_count / 3; t++, at++)
+            key[at] = (uint64_t)oit_partfile_source(&v, t) << 32 | at;
+    }
+    if (s == OIT_OK)
+        qsort(key, count, sizeof *key, cmp_u64);
+    /* Position i takes the triangle at key[i]'s position. */
+    for (size_t i = 0; s == OIT_OK && i < count; i++) {
+        if (done[i / 8] >> (i % 8) & 1)
+            continue;
+        oit_triangle first = out->tris[i];
+        for (size_t j = i;;) {
+            done[j / 8] |= (uint8_t)(1u << (j % 8));
+            size_t k = (size_t)(key[j] & 0xffffffffu);
+            if (k == i) {
+                out->tris[j] = first;
+                break;
+            }
+            out->tris[j] = out->tris[k];
+            j = k;
+        }
+    }
+    free(key);
+    free(done);
+    return s;
+}
+
 oit_status oit_partfile_load_mesh(oit_partfile *pf, oit_mesh *out, oit_error *err)
 {
     memset(out, 0, sizeof *out);
@@ -74,13 +136,21 @@ oit_status oit_partfile_load_mesh(oit_partfile *pf, oit_mesh *out, oit_error *er
         return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot hold %llu triangles in core",
                              oit_partfile_name(pf), (unsigned long long)sum.triangles);
     out->capacity = (size_t)sum.triangles;
+    oit_status s = OIT_OK;
+    if (sum.triangles_in > 2 * sum.triangles + 65536) {
+        s = load_sorted_by_keys(pf, out, err);
+        if (s != OIT_OK) {
+            oit_mesh_free(out);
+            return s;
+        }
+        oit_partfile_mesh_info(pf, &out->info);
+        return OIT_OK;
+    }
     /* A counting sort by source index (every index < triangles_in, checked
      * by validation): count, prefix sums, then each part's triangles go
      * straight to their places, parts and triangles in file order, which
      * keeps it stable. */
-    size_t *next = sum.triangles_in < SIZE_MAX / sizeof(size_t)
-                       ? calloc((size_t)sum.triangles_in + 1, sizeof *next)
-                       : NULL;
+    size_t *next = calloc((size_t)sum.triangles_in + 1, sizeof *next);
     if (!next) {
         oit_mesh_free(out);
         return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot sort %llu triangles by their %llu "
@@ -88,7 +158,6 @@ oit_status oit_partfile_load_mesh(oit_partfile *pf, oit_mesh *out, oit_error *er
                              (unsigned long long)sum.triangles,
                              (unsigned long long)sum.triangles_in);
     }
-    oit_status s = OIT_OK;
     oit_partfile_part_view v;
     for (uint32_t p = 0; p < n && s == OIT_OK; p++) {
         s = oit_partfile_validate_part(pf, p, err);

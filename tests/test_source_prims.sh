@@ -10,7 +10,9 @@
 #       the file (its in-core mesh sorted by source index), it equals DFB
 #       on tie.ply on every pixel of two views, no ambiguity mask. Drawn by
 #       position it would equal the B-first source instead, which differs
-#       (checked: the views hold ties that decide colours);
+#       (checked: the views hold ties that decide colours). The same file
+#       claiming 1M source triangles read (DFB's in-core mesh then sorted by
+#       keys, not by counting) renders alike;
 #   (b) the boxes with their triangles interleaved in the source (B's first,
 #       all of A's, the rest of B's) through oitprep, both schemes: stream
 #       and DFB on the file equal DFB on the source on every pixel but a
@@ -84,15 +86,16 @@ compare() {
 
 # (a) the hand-written file
 "$C" --write-tie "$T/tie.oitp" || { echo "FAIL: test_sources --write-tie"; exit 1; }
+"$C" --write-tie "$T/tie1m.oitp" 1000000 || { echo "FAIL: test_sources --write-tie 1M"; exit 1; }
 for az in 30 210; do
     v="$T/tie-$az"
     "$S" "$T/tie.oitp" --method stream --size "$SIZE" --azimuth $az --elevation 35 \
         --out "$v-stream.pfm" --stats "$v.json" --quiet || { fail "tie $az: stream"; continue; }
     cam=$(json_str view "$v.json")
-    for m in dfb; do
-        "$S" "$T/tie.oitp" --method $m --size "$SIZE" --view "$cam" --out "$v-$m.pfm" \
-            --quiet || fail "tie $az: $m on the part file"
-    done
+    "$S" "$T/tie.oitp" --method dfb --size "$SIZE" --view "$cam" --out "$v-dfb.pfm" \
+        --quiet || fail "tie $az: dfb on the part file"
+    "$S" "$T/tie1m.oitp" --method dfb --size "$SIZE" --view "$cam" --out "$v-dfb1m.pfm" \
+        --quiet || fail "tie $az: dfb on the part file claiming 1M source triangles"
     for src in tie b_first; do
         "$S" "$T/$src.ply" --method dfb --size "$SIZE" --view "$cam" --out "$v-$src.pfm" \
             --quiet || fail "tie $az: dfb on $src.ply"
@@ -100,6 +103,8 @@ for az in 30 210; do
     echo "  hand-written file (B stored first, A first in the source), azimuth $az:"
     compare "stream vs dfb (source mesh), no mask" "$v-stream.pfm" "$v-tie.pfm" 0
     compare "dfb (part file) vs dfb (source mesh), no mask" "$v-dfb.pfm" "$v-tie.pfm" 0
+    compare "dfb (part file, 1M source triangles) vs dfb (source mesh)" "$v-dfb1m.pfm" \
+        "$v-tie.pfm" 0
     "$S" --compare "$v-stream.pfm" "$v-b_first.pfm" --json >"$T/cmp.json"
     p=$(json_num pct_over_1_255 "$T/cmp.json")
     echo "    stream vs dfb (B-first source, what position prims give): over 1/255 $p% (must be > 1%)"

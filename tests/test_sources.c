@@ -17,14 +17,17 @@
  * every index s read as count - 1 - s (a shuffle) must find mismatches.
  *
  * usage: test_sources SOURCE FILE.oitp [--ascending]
- *        test_sources --write-tie FILE.oitp
+ *        test_sources --write-tie FILE.oitp [TRIANGLES_IN]
  * Exit 0 when every check holds, 1 otherwise, 2 on usage, 3 on bad input.
  *
  * --write-tie writes the part file of tests/test_source_prims.sh: the two
  * unit boxes of its tie.ply (box A red, B blue, alpha 100, A's 12 triangles
  * first in the source) as one part that stores B's triangles first, with
  * their source indices (12..23, then A's 0..11): drawn by position, B would
- * win every tie; drawn by source index, A does, as on the source mesh. */
+ * win every tie; drawn by source index, A does, as on the source mesh.
+ * TRIANGLES_IN (default 24) is what META records as read from the source:
+ * far more than the file holds sends oit_partfile_load_mesh down its sort
+ * by keys instead of its counting sort. */
 #include "oit/mesh.h"
 #include "oit/partfile.h"
 #include "partition/clip.h"
@@ -56,7 +59,7 @@ static void vertex(const oit_partfile_part_view *v, uint64_t i, float out[3])
 static const uint32_t BOX_TRIS[36] = {0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6, 0, 1, 5, 0, 5, 4,
                                       2, 6, 7, 2, 7, 3, 0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5};
 
-static int write_tie(const char *path)
+static int write_tie(const char *path, uint64_t triangles_in)
 {
     static const uint8_t colour[2][4] = {{230, 40, 40, 100}, {40, 60, 230, 100}};
     float pos[16 * 3];
@@ -88,7 +91,7 @@ static int write_tie(const char *path)
                                 .cell_parts = parts};
     oit_partfile_writer_desc wd = {.K = 8, .attributes = OIT_ATTR_COLOR | OIT_ATTR_ALPHA,
                                    .source_name = "tie.ply"};
-    oit_partfile_stats st = {24, 0, 0};
+    oit_partfile_stats st = {triangles_in, triangles_in - 24, 0};
     oit_partfile_writer *w = NULL;
     oit_error err = {0};
     oit_status s = oit_partfile_writer_create(path, &wd, &w, &err);
@@ -107,8 +110,8 @@ static int write_tie(const char *path)
 
 int main(int argc, char **argv)
 {
-    if (argc == 3 && !strcmp(argv[1], "--write-tie"))
-        return write_tie(argv[2]);
+    if ((argc == 3 || argc == 4) && !strcmp(argv[1], "--write-tie"))
+        return write_tie(argv[2], argc == 4 ? strtoull(argv[3], NULL, 10) : 24);
     if (argc < 3 || (argc > 3 && strcmp(argv[3], "--ascending"))) {
         fprintf(stderr, "usage: test_sources SOURCE FILE.oitp [--ascending]\n");
         return 2;
