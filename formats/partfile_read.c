@@ -37,7 +37,7 @@ struct oit_partfile {
     pf_header hdr;
     pf_section sec[PF_SECTION_COUNT]; /* indexed by type - 1 */
     pf_meta meta;
-    double origin[3]; /* version 2 on; 0 before */
+    double origin[3];
     char *source_name, *options;
     oit_partfile_part *parts;
     oit_partfile_piece *pieces;
@@ -123,11 +123,14 @@ static oit_status check_header(oit_partfile *pf, oit_error *err)
     const pf_header *h = &pf->hdr;
     if (memcmp(h->magic, PF_MAGIC, sizeof h->magic) != 0)
         return bad(pf, err, "not a part file (no OITPART magic)");
-    if (h->version < OIT_PARTFILE_VERSION_MIN || h->version > OIT_PARTFILE_VERSION)
-        return bad(pf, err, "part file version %u, this build reads versions %u to %u",
-                   h->version, OIT_PARTFILE_VERSION_MIN, OIT_PARTFILE_VERSION);
-    /* Version 3 defines one flag; earlier versions none. */
-    uint32_t known = h->version >= 3 ? OIT_PARTFILE_FLAG_MEASURED_BOUNDS : 0;
+    if (h->version >= 1 && h->version < OIT_PARTFILE_VERSION_MIN)
+        return bad(pf, err, "part file version %u has no source triangle indices, which this "
+                   "build needs (it reads version %u): convert the model again with oitprep",
+                   h->version, OIT_PARTFILE_VERSION);
+    if (h->version != OIT_PARTFILE_VERSION)
+        return bad(pf, err, "part file version %u, this build reads version %u", h->version,
+                   OIT_PARTFILE_VERSION);
+    uint32_t known = OIT_PARTFILE_FLAG_MEASURED_BOUNDS;
     if ((h->flags & ~known) || h->reserved || h->header_bytes != PF_HEADER_BYTES ||
         h->section_count != PF_SECTION_COUNT)
         return bad(pf, err, "header: flags 0x%x, header size %u, %u sections: expected flags "
@@ -253,7 +256,7 @@ static oit_status load_meta(oit_partfile *pf, oit_error *err)
                    (unsigned long long)size, sizeof pf->meta);
     memcpy(&pf->meta, sec_data(pf, PF_SEC_META), sizeof pf->meta);
     const pf_meta *m = &pf->meta;
-    uint64_t head = sizeof *m + (pf->hdr.version >= 2 ? sizeof pf->origin : 0);
+    uint64_t head = sizeof *m + sizeof pf->origin;
     if (size != head + (uint64_t)m->source_name_bytes + m->options_bytes)
         return bad(pf, err, "section META: %llu bytes, its record says %llu",
                    (unsigned long long)size,
@@ -348,11 +351,13 @@ static oit_status check_part_blob(const oit_partfile *pf, uint32_t i, uint64_t p
                    (unsigned long long)p->vertex_bytes, (unsigned long long)p->vertex_offset,
                    (unsigned long long)p->index_offset, (unsigned long long)vbytes,
                    (unsigned long long)pf_align_up(vbytes, 4));
+    /* index_count <= size / 2 bounds every product below. */
     if (p->index_count > d->size / 2 || p->index_bytes != p->index_count * (p->index_bits / 8) ||
-        p->data_bytes != p->index_offset + p->index_bytes)
+        p->data_bytes != oit_partfile_source_offset(p) + p->index_count / 3 * 4)
         return bad(pf, err, "section PARTS: record %u: %llu indices do not fit %llu index "
-                   "bytes in a %llu-byte blob", i, (unsigned long long)p->index_count,
-                   (unsigned long long)p->index_bytes, (unsigned long long)p->data_bytes);
+                   "bytes and %llu source indices in a %llu-byte blob", i,
+                   (unsigned long long)p->index_count, (unsigned long long)p->index_bytes,
+                   (unsigned long long)(p->index_count / 3), (unsigned long long)p->data_bytes);
     if (p->data_offset % pf->hdr.part_align || p->data_offset < prev_end ||
         p->data_offset > d->offset + d->size || p->data_bytes > d->offset + d->size - p->data_offset)
         return bad(pf, err, "section PARTS: record %u: blob %llu..+%llu is unaligned, out of "
@@ -492,6 +497,28 @@ static oit_status check_indices(const oit_partfile *pf, uint32_t i, const uint8_
     return OIT_OK;
 }
 
+/* Every source index names a triangle the source delivered; the pad
+ * before them is zero. */
+static oit_status check_sources(const oit_partfile *pf, uint32_t i, const uint8_t *blob,
+                                oit_error *err)
+{
+    const oit_partfile_part *p = &pf->parts[i];
+    uint64_t at = oit_partfile_source_offset(p);
+    for (uint64_t j = p->index_offset + p->index_bytes; j < at; j++)
+        if (blob[j])
+            return bad(pf, err, "section PART_DATA: part %u: non-zero pad before the source "
+                       "indices", i);
+    for (uint64_t t = 0; t < p->index_count / 3; t++) {
+        uint32_t v;
+        memcpy(&v, blob + at + t * 4, sizeof v);
+        if (v >= pf->meta.triangles_in)
+            return bad(pf, err, "section PART_DATA: part %u: triangle %llu: source index %u "
+                       ">= %llu source triangles", i, (unsigned long long)t, v,
+                       (unsigned long long)pf->meta.triangles_in);
+    }
+    return OIT_OK;
+}
+
 /* Runs after check_indices: every index is in range. */
 static oit_status check_piece_bounds(const oit_partfile *pf, uint32_t i, const uint8_t *blob,
                                      oit_error *err)
@@ -532,6 +559,8 @@ static oit_status validate_blob(const oit_partfile *pf, uint32_t i, oit_error *e
         s = check_indices(pf, i, blob, err);
     if (!s)
         s = check_piece_bounds(pf, i, blob, err);
+    if (!s)
+        s = check_sources(pf, i, blob, err);
     return s;
 }
 
@@ -740,13 +769,10 @@ static oit_status check_slab(const oit_partfile *pf, uint32_t i, uint64_t list_f
     const oit_partfile_slab *s = &pf->slabs[i];
     float len2 = s->normal[0] * s->normal[0] + s->normal[1] * s->normal[1] +
                  s->normal[2] * s->normal[2];
-    /* Version 3 lets a cutting plane keep its integer normal (partfile.h). */
-    int normal_ok = pf->hdr.version >= 3 ? len2 > 0 && isfinite(len2)
-                                         : fabsf(len2 - 1.0f) <= 1e-3f;
-    if (!finite3(s->normal) || !normal_ok)
-        return bad(pf, err, "section SLABS: record %u: normal (%g %g %g) %s", i, s->normal[0],
-                   s->normal[1], s->normal[2],
-                   pf->hdr.version >= 3 ? "zero or not finite" : "not unit");
+    /* A cutting plane keeps its integer normal (partfile.h). */
+    if (!finite3(s->normal) || !(len2 > 0) || !isfinite(len2))
+        return bad(pf, err, "section SLABS: record %u: normal (%g %g %g) zero or not finite", i,
+                   s->normal[0], s->normal[1], s->normal[2]);
     if (!isfinite(s->d0) || !isfinite(s->d1) || s->d0 > s->d1)
         return bad(pf, err, "section SLABS: record %u: planes d0 %g > d1 %g or not finite", i,
                    s->d0, s->d1);
@@ -1117,6 +1143,7 @@ oit_status oit_partfile_part_data(const oit_partfile *pf, uint32_t part,
     out->index_bits = p->index_bits;
     out->indices = blob + p->index_offset;
     out->index_count = p->index_count;
+    out->sources = blob + oit_partfile_source_offset(p);
     return OIT_OK;
 }
 

@@ -37,6 +37,7 @@ struct oit_partfile_writer {
     uint64_t data_start; /* PART_DATA offset                */
     uint32_t data_crc;   /* running CRC of PART_DATA        */
     uint64_t triangles;
+    uint64_t sources_end; /* 1 + the largest source index written, 0 before */
     vec parts, pieces;
     vec grids;                 /* oit_partfile_grid, 0 = top   */
     vec top_cells, sub_cells;  /* oit_partfile_cell            */
@@ -204,10 +205,10 @@ static oit_status check_part(const oit_partfile_writer *w, const oit_partfile_pa
 {
     uint32_t n = (uint32_t)w->parts.count;
     if (!p->positions || !p->vertex_count || !p->indices || !p->index_count ||
-        p->index_count % 3 || !p->pieces || !p->piece_count)
+        p->index_count % 3 || !p->sources || !p->pieces || !p->piece_count)
         return oit_error_set(err, OIT_ERR_ARGUMENT,
-                             "%s: part %u: needs vertices, a multiple of 3 indices and pieces",
-                             w->path, n);
+                             "%s: part %u: needs vertices, a multiple of 3 indices, their "
+                             "triangles' source indices and pieces", w->path, n);
     if (p->attributes & ~(uint32_t)(OIT_ATTR_COLOR | OIT_ATTR_ALPHA))
         return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: part %u: unknown attribute bits 0x%x",
                              w->path, n, p->attributes);
@@ -253,7 +254,8 @@ static void bounds_add(float lo[3], float hi[3], const float *p)
     }
 }
 
-/* Lays out vertices, zero pad to 4, indices: the blob as stored. */
+/* Lays out vertices, zero pad to 4, indices, zero pad to 4, source indices:
+ * the blob as stored. */
 static uint8_t *build_blob(const oit_partfile_part_desc *p, oit_partfile_part *rec)
 {
     uint32_t stride = pf_vertex_stride(rec->attributes);
@@ -274,6 +276,7 @@ static uint8_t *build_blob(const oit_partfile_part_desc *p, oit_partfile_part *r
             memcpy(idx + i * 4, &p->indices[i], 4);
         }
     }
+    memcpy(blob + oit_partfile_source_offset(rec), p->sources, p->index_count / 3 * 4);
     return blob;
 }
 
@@ -292,7 +295,7 @@ static oit_partfile_part part_record(const oit_partfile_writer *w, const oit_par
     r.vertex_bytes = (uint64_t)p->vertex_count * pf_vertex_stride(r.attributes);
     r.index_offset = pf_align_up(r.vertex_bytes, 4);
     r.index_bytes = p->index_count * (r.index_bits / 8);
-    r.data_bytes = r.index_offset + r.index_bytes;
+    r.data_bytes = oit_partfile_source_offset(&r) + p->index_count / 3 * 4;
     bounds_reset(r.bounds_min, r.bounds_max);
     for (uint32_t i = 0; i < p->vertex_count; i++)
         bounds_add(r.bounds_min, r.bounds_max, p->positions + (size_t)i * 3);
@@ -345,6 +348,9 @@ oit_status oit_partfile_writer_add_part(oit_partfile_writer *w, const oit_partfi
     free(blob);
     if (!s)
         s = add_pieces(w, p, n, err);
+    for (uint64_t t = 0; !s && t < p->index_count / 3; t++)
+        if (p->sources[t] >= w->sources_end)
+            w->sources_end = (uint64_t)p->sources[t] + 1;
     if (!s)
         s = vec_push(&w->parts, &rec, 1, sizeof rec, err);
     if (s)
@@ -674,10 +680,15 @@ static oit_status verify(oit_partfile_writer *w, oit_error *err)
 oit_status oit_partfile_writer_finish(oit_partfile_writer *w, const oit_partfile_stats *stats,
                                       oit_error *err)
 {
-    oit_partfile_stats st = stats ? *stats : (oit_partfile_stats){0};
+    oit_partfile_stats st = stats ? *stats : (oit_partfile_stats){w->triangles, 0, 0};
     oit_status s = OIT_OK;
     if (!w->have_grid)
         s = oit_error_set(err, OIT_ERR_ARGUMENT, "%s: no grid was set", w->path);
+    else if (w->sources_end > st.triangles_in)
+        s = oit_error_set(err, OIT_ERR_ARGUMENT, "%s: source index %llu >= %llu source "
+                          "triangles (triangles_in)", w->path,
+                          (unsigned long long)(w->sources_end - 1),
+                          (unsigned long long)st.triangles_in);
     if (!s)
         s = write_all(w, &st, err);
     if (fclose(w->file) != 0 && !s)

@@ -15,7 +15,7 @@
 
 typedef struct node_set {
     oit_triangle *tris;
-    uint32_t *piece, *plane;
+    uint32_t *src, *piece, *plane;
     size_t n, cap;
 } node_set;
 
@@ -38,8 +38,11 @@ typedef struct kd_ctx {
             return OIT_ERR_NOMEM;                                                     \
     } while (0)
 
-static oit_status set_push(node_set *s, const oit_triangle *t, uint32_t piece, uint32_t plane)
+/* Appends a triangle (or a clipped piece of one) with what it inherits
+ * from s's triangle i. */
+static oit_status set_push(node_set *s, const oit_triangle *t, const node_set *from, size_t i)
 {
+    uint32_t src = from->src[i], piece = from->piece[i], plane = from->plane[i];
     if (s->n == s->cap) {
         size_t nc = s->cap ? 2 * s->cap : 64;
         oit_triangle *a = realloc(s->tris, nc * sizeof *a);
@@ -48,11 +51,14 @@ static oit_status set_push(node_set *s, const oit_triangle *t, uint32_t piece, u
         if (b) s->piece = b;
         uint32_t *c = realloc(s->plane, nc * sizeof *c);
         if (c) s->plane = c;
-        if (!a || !b || !c)
+        uint32_t *d = realloc(s->src, nc * sizeof *d);
+        if (d) s->src = d;
+        if (!a || !b || !c || !d)
             return OIT_ERR_NOMEM;
         s->cap = nc;
     }
     s->tris[s->n] = *t;
+    s->src[s->n] = src;
     s->piece[s->n] = piece;
     s->plane[s->n++] = plane;
     return OIT_OK;
@@ -61,6 +67,7 @@ static oit_status set_push(node_set *s, const oit_triangle *t, uint32_t piece, u
 static void set_free(node_set *s)
 {
     free(s->tris);
+    free(s->src);
     free(s->piece);
     free(s->plane);
 }
@@ -194,6 +201,7 @@ static oit_status emit_part(kd_ctx *c, const node_set *s, uint32_t npieces, int3
     GROW(r->parts, r->part_count, r->part_cap, 1);
     GROW(r->pieces, r->piece_count, r->piece_cap, npieces);
     GROW(r->tris, r->tri_count, r->tri_cap, s->n);
+    GROW(r->src, r->tri_count, r->src_cap, s->n);
     oit_kd_part *part = &r->parts[r->part_count];
     part->tri_first = r->tri_count;
     part->tri_count = s->n;
@@ -218,8 +226,11 @@ static oit_status emit_part(kd_ctx *c, const node_set *s, uint32_t npieces, int3
         start[p] = at;
         at += pc[p].triangle_count;
     }
-    for (size_t i = 0; i < s->n; i++)
-        r->tris[start[c->piece_slot[s->piece[i]]]++] = s->tris[i];
+    for (size_t i = 0; i < s->n; i++) {
+        size_t at_i = start[c->piece_slot[s->piece[i]]]++;
+        r->tris[at_i] = s->tris[i];
+        r->src[at_i] = s->src[i];
+    }
     free(start);
     for (uint32_t p = 0; p < npieces; p++) {
         uint32_t kp = ++c->stamp;
@@ -250,7 +261,7 @@ static oit_status split_set(const node_set *s, int axis, float m, int side, node
         int n[2];
         oit_clip_triangle_split(&s->tris[i], axis, m, h[0], &n[0], h[1], &n[1]);
         for (int k = 0; k < n[side]; k++)
-            if (set_push(out, &h[side][k], s->piece[i], s->plane[i]))
+            if (set_push(out, &h[side][k], s, i))
                 return OIT_ERR_NOMEM;
         if (side == 0)
             *added += (uint64_t)(n[0] + n[1]) - 1;
@@ -449,7 +460,7 @@ static oit_status try_slab(kd_ctx *c, size_t node, const node_set *s, const slab
     for (uint32_t p = 0; found > 0 && p < npieces; p++)
         count[side[p]]++;
     for (size_t i = 0; found > 0 && !st && i < s->n; i++)
-        st = set_push(&half[side[slot[i]]], &s->tris[i], s->piece[i], s->plane[i]);
+        st = set_push(&half[side[slot[i]]], &s->tris[i], s, i);
     if (found > 0 && !st)
         st = emit_slab_leaf(c, node, half, count, &planes);
     *done = found > 0 && !st;
@@ -499,7 +510,7 @@ static oit_status try_cut(kd_ctx *c, size_t node, const node_set *s, const slab_
         }
         for (int side = 0; side < 2 && !st; side++)
             for (int k = 0; k < n[side] && !st; k++)
-                st = set_push(&half[side], &h[side][k], s->piece[i], s->plane[i]);
+                st = set_push(&half[side], &h[side][k], s, i);
         added += (uint64_t)(n[0] + n[1]) - 1;
     }
     uint32_t count[2], layers[2];
@@ -603,13 +614,27 @@ static oit_status build_node(kd_ctx *c, size_t node, const node_set *s)
     return emit_part(c, s, npieces, &c->out->nodes[node].part);
 }
 
-oit_status oit_kd_build(const float lo[3], const float hi[3], const oit_triangle *tris, size_t n,
-                        const uint32_t *piece, const uint32_t *plane, uint32_t piece_count,
+uint32_t *oit_kd_iota(size_t n)
+{
+    uint32_t *a = n ? malloc(n * sizeof *a) : NULL;
+    for (size_t i = 0; a && i < n; i++)
+        a[i] = (uint32_t)i;
+    return a;
+}
+
+oit_status oit_kd_build(const float lo[3], const float hi[3], const oit_triangle *tris,
+                        const uint32_t *src, size_t n, const uint32_t *piece,
+                        const uint32_t *plane, uint32_t piece_count,
                         const oit_kd_params *params, oit_kd_result *out, oit_error *err)
 {
     memset(out, 0, sizeof *out);
     kd_ctx c = {.p = params, .out = out, .err = err};
     oit_status st = OIT_OK;
+    uint32_t *own = src || !n ? NULL : oit_kd_iota(n);
+    if (!src)
+        src = own;
+    if (n && !src)
+        st = OIT_ERR_NOMEM;
     c.piece_stamp = calloc(piece_count + 1, sizeof *c.piece_stamp);
     c.above_stamp = calloc(piece_count + 1, sizeof *c.above_stamp);
     c.piece_slot = calloc(piece_count + 1, sizeof *c.piece_slot);
@@ -634,9 +659,11 @@ oit_status oit_kd_build(const float lo[3], const float hi[3], const oit_triangle
         root->slab = -1;
         root->depth = 0;
         /* The root reads the caller's arrays; build_node never writes them. */
-        node_set s = {(oit_triangle *)tris, (uint32_t *)piece, (uint32_t *)plane, n, n};
+        node_set s = {(oit_triangle *)tris, (uint32_t *)src, (uint32_t *)piece,
+                      (uint32_t *)plane, n, n};
         st = build_node(&c, 0, &s);
     }
+    free(own);
     free(c.piece_stamp);
     free(c.above_stamp);
     free(c.piece_slot);
@@ -658,6 +685,7 @@ void oit_kd_result_free(oit_kd_result *r)
     free(r->parts);
     free(r->pieces);
     free(r->tris);
+    free(r->src);
     free(r->slabs);
     memset(r, 0, sizeof *r);
 }

@@ -103,6 +103,12 @@ typedef struct oit_kd_result {
     size_t piece_count, piece_cap;
     oit_triangle *tris; /* parts' triangles, piece by piece */
     size_t tri_count, tri_cap;
+    /* Parallel to tris: each triangle's source index, that of the input
+     * triangle it was clipped from (the build's src). Within a piece (the
+     * fast scheme: a part) triangles keep their input order, so these
+     * ascend there when the input's did. */
+    uint32_t *src;
+    size_t src_cap;
     oit_kd_slab_leaf *slabs;
     size_t slab_count, slab_cap;
     uint64_t split_added;  /* triangles added by the midplane clips */
@@ -117,15 +123,20 @@ typedef struct oit_kd_result {
     uint32_t max_measured;
 } oit_kd_result;
 
-/* Subdivides the box [lo, hi] holding tris[0..n) with piece[i] (< piece_count)
- * and plane[i] (the triangle's plane id within its piece, < n) per triangle.
- * The arrays are only read. Fails with OIT_ERR_UNSUPPORTED (message names the
+/* Subdivides the box [lo, hi] holding tris[0..n) with src[i] (its source
+ * index, carried to every piece of it in out->src; NULL: i), piece[i]
+ * (< piece_count) and plane[i] (the triangle's plane id within its piece,
+ * < n) per triangle. The arrays are only read. Fails with OIT_ERR_UNSUPPORTED (message names the
  * box and the piece count) when a node of more than OIT_KD_MAX_WIDE_LAYERS
  * layers remains or when the parts would exceed max_triangles (the message
  * says which), or OIT_ERR_NOMEM. */
-oit_status oit_kd_build(const float lo[3], const float hi[3], const oit_triangle *tris, size_t n,
-                        const uint32_t *piece, const uint32_t *plane, uint32_t piece_count,
+oit_status oit_kd_build(const float lo[3], const float hi[3], const oit_triangle *tris,
+                        const uint32_t *src, size_t n, const uint32_t *piece,
+                        const uint32_t *plane, uint32_t piece_count,
                         const oit_kd_params *params, oit_kd_result *out, oit_error *err);
+/* src for a build whose triangles are their own sources: 0..n-1, malloc'd
+ * (NULL for n = 0 or no memory). */
+uint32_t *oit_kd_iota(size_t n);
 void oit_kd_result_free(oit_kd_result *r);
 
 /* Splits leaf `node` of r at pos[axis] = m into two empty leaves, below at

@@ -14,7 +14,8 @@
 
 typedef struct tri_set {
     oit_triangle *t;
-    size_t n, cap;
+    uint32_t *src; /* parallel to t: source indices */
+    size_t n, cap, src_cap;
 } tri_set;
 
 typedef struct fast_ctx {
@@ -24,13 +25,17 @@ typedef struct fast_ctx {
     oit_error *err;
 } fast_ctx;
 
-static oit_status set_push(tri_set *s, const oit_triangle *t, int k)
+/* k pieces of one triangle, all with its source index. */
+static oit_status set_push(tri_set *s, const oit_triangle *t, uint32_t src, int k)
 {
     if (k == 0)
         return OIT_OK; /* a clip that left nothing: s->t may still be NULL */
-    if (oit_grow((void **)&s->t, sizeof *s->t, s->n, &s->cap, (size_t)k))
+    if (oit_grow((void **)&s->t, sizeof *s->t, s->n, &s->cap, (size_t)k) ||
+        oit_grow((void **)&s->src, sizeof *s->src, s->n, &s->src_cap, (size_t)k))
         return OIT_ERR_NOMEM;
     memcpy(s->t + s->n, t, (size_t)k * sizeof *t);
+    for (int j = 0; j < k; j++)
+        s->src[s->n + (size_t)j] = src;
     s->n += (size_t)k;
     return OIT_OK;
 }
@@ -104,7 +109,8 @@ static oit_status emit_part(fast_ctx *c, size_t node, const tri_set *s, uint32_t
                              (unsigned long long)c->p->max_triangles);
     if (oit_grow((void **)&r->parts, sizeof *r->parts, r->part_count, &r->part_cap, 1) ||
         oit_grow((void **)&r->pieces, sizeof *r->pieces, r->piece_count, &r->piece_cap, 1) ||
-        oit_grow((void **)&r->tris, sizeof *r->tris, r->tri_count, &r->tri_cap, s->n))
+        oit_grow((void **)&r->tris, sizeof *r->tris, r->tri_count, &r->tri_cap, s->n) ||
+        oit_grow((void **)&r->src, sizeof *r->src, r->tri_count, &r->src_cap, s->n))
         return OIT_ERR_NOMEM;
     r->max_measured = layers > r->max_measured ? layers : r->max_measured;
     if (layers > OIT_PARTFILE_MAX_LAYERS) {
@@ -119,6 +125,7 @@ static oit_status emit_part(fast_ctx *c, size_t node, const tri_set *s, uint32_t
     r->pieces[r->piece_count++] = (oit_kd_piece){s->n, s->n > UINT32_MAX ? UINT32_MAX
                                                                          : (uint32_t)s->n};
     memcpy(r->tris + r->tri_count, s->t, s->n * sizeof *s->t);
+    memcpy(r->src + r->tri_count, s->src, s->n * sizeof *s->src);
     r->tri_count += s->n;
     r->nodes[node].part = (int32_t)r->part_count++;
     return OIT_OK;
@@ -134,7 +141,7 @@ static oit_status half_of(const tri_set *s, int axis, float m, int side, tri_set
         oit_triangle h[2][2];
         int k[2];
         oit_clip_triangle_split(&s->t[i], axis, m, h[0], &k[0], h[1], &k[1]);
-        if (set_push(out, h[side], k[side]))
+        if (set_push(out, h[side], s->src[i], k[side]))
             return OIT_ERR_NOMEM;
         if (side == 0)
             *added += (uint64_t)(k[0] + k[1]) - 1;
@@ -157,6 +164,7 @@ static oit_status split_node(fast_ctx *c, size_t node, const tri_set *s, int axi
         if (!st)
             st = build_node(c, child + side, &half, extra);
         free(half.t);
+        free(half.src);
     }
     return st;
 }
@@ -190,8 +198,8 @@ static oit_status build_node(fast_ctx *c, size_t node, const tri_set *s, uint32_
 }
 
 oit_status oit_kd_build_fast(const float lo[3], const float hi[3], const oit_triangle *tris,
-                             size_t n, const oit_kd_fast_params *params, oit_kd_result *out,
-                             oit_error *err)
+                             const uint32_t *src, size_t n, const oit_kd_fast_params *params,
+                             oit_kd_result *out, oit_error *err)
 {
     memset(out, 0, sizeof *out);
     if (!params->part_triangles)
@@ -199,7 +207,11 @@ oit_status oit_kd_build_fast(const float lo[3], const float hi[3], const oit_tri
                              "parts of 0 triangles");
     fast_ctx c = {params, params->max_depth ? params->max_depth : 48, out, err};
     oit_status st = OIT_OK;
-    if (oit_grow((void **)&out->nodes, sizeof *out->nodes, 0, &out->node_cap, 16))
+    uint32_t *own = src || !n ? NULL : oit_kd_iota(n);
+    if (!src)
+        src = own;
+    if (oit_grow((void **)&out->nodes, sizeof *out->nodes, 0, &out->node_cap, 16) ||
+        (n && !src))
         st = OIT_ERR_NOMEM;
     if (!st) {
         out->node_count = 1;
@@ -211,9 +223,10 @@ oit_status oit_kd_build_fast(const float lo[3], const float hi[3], const oit_tri
         root->part = -1;
         root->slab = -1;
         /* The root reads the caller's array; build_node never writes a set. */
-        tri_set s = {(oit_triangle *)tris, n, n};
+        tri_set s = {(oit_triangle *)tris, (uint32_t *)src, n, n, n};
         st = build_node(&c, 0, &s, 0);
     }
+    free(own);
     if (st == OIT_ERR_NOMEM && !(err && err->message[0]))
         oit_error_set(err, st, "cell subdivision (fast scheme) of %zu triangles: out of memory",
                       n);

@@ -46,12 +46,14 @@ typedef struct oit_kd_fast_params {
     uint64_t max_triangles;  /* the parts may hold in all; 0: no limit */
 } oit_kd_fast_params;
 
-/* Subdivides the box [lo, hi] holding tris[0..n) (only read). Fails with
+/* Subdivides the box [lo, hi] holding tris[0..n) with their source indices
+ * src[0..n) (NULL: i), both only read; out->src carries each one to the
+ * pieces of its triangle, in input order within a part. Fails with
  * OIT_ERR_UNSUPPORTED when the parts would exceed max_triangles (the message
  * says so), OIT_ERR_ARGUMENT for part_triangles 0, or OIT_ERR_NOMEM. */
 oit_status oit_kd_build_fast(const float lo[3], const float hi[3], const oit_triangle *tris,
-                             size_t n, const oit_kd_fast_params *params, oit_kd_result *out,
-                             oit_error *err);
+                             const uint32_t *src, size_t n, const oit_kd_fast_params *params,
+                             oit_kd_result *out, oit_error *err);
 
 #ifdef __cplusplus
 }

@@ -11,12 +11,14 @@
 
 
 typedef struct bin_chunk {
-    uint64_t offset; /* of the triangles, after the record header */
+    uint64_t offset; /* of the triangles, after the record header; their
+                        source indices follow them */
     uint64_t count;
 } bin_chunk;
 
 typedef struct cell_bin {
     oit_triangle *tris;
+    uint32_t *src; /* parallel to tris */
     size_t n, cap;
     bin_chunk *chunks;
     size_t nchunks, chunk_cap;
@@ -111,39 +113,49 @@ static oit_status spill(oit_bins *b, oit_error *err)
             cb->chunks = p;
             cb->chunk_cap = cap;
         }
-        uint64_t head[2] = {c, cb->n};
+        uint64_t head[2] = {c, cb->n}, tri_bytes = cb->n * sizeof *cb->tris;
         if (write_all(b->fd, head, sizeof head, b->spill_end) ||
-            write_all(b->fd, cb->tris, cb->n * sizeof *cb->tris, b->spill_end + sizeof head))
+            write_all(b->fd, cb->tris, tri_bytes, b->spill_end + sizeof head) ||
+            write_all(b->fd, cb->src, cb->n * sizeof *cb->src,
+                      b->spill_end + sizeof head + tri_bytes))
             return oit_error_set(err, OIT_ERR_IO, "%s: spill write failed: %s", b->spill_path,
                                  strerror(errno));
         cb->chunks[cb->nchunks++] = (bin_chunk){b->spill_end + sizeof head, cb->n};
-        b->spill_end += sizeof head + cb->n * sizeof *cb->tris;
+        b->spill_end += sizeof head + cb->n * (sizeof *cb->tris + sizeof *cb->src);
         free(cb->tris);
+        free(cb->src);
         cb->tris = NULL;
+        cb->src = NULL;
         cb->n = cb->cap = 0;
     }
     b->held = 0;
     return OIT_OK;
 }
 
-static oit_status push(oit_bins *b, uint64_t c, const oit_triangle *t, oit_error *err)
+static oit_status push(oit_bins *b, uint64_t c, const oit_triangle *t, uint32_t src,
+                       oit_error *err)
 {
     cell_bin *cb = &b->bins[c];
     if (cb->n == cb->cap) {
         size_t cap = cb->cap ? 2 * cb->cap : 64;
         oit_triangle *p = realloc(cb->tris, cap * sizeof *p);
-        if (!p)
+        if (p)
+            cb->tris = p;
+        uint32_t *q = p ? realloc(cb->src, cap * sizeof *q) : NULL;
+        if (!q)
             return oit_error_set(err, OIT_ERR_NOMEM, "bin of cell %llu: out of memory",
                                  (unsigned long long)c);
-        b->held += (cap - cb->cap) * sizeof *p;
-        cb->tris = p;
+        b->held += (cap - cb->cap) * (sizeof *p + sizeof *q);
+        cb->src = q;
         cb->cap = cap;
     }
+    cb->src[cb->n] = src;
     cb->tris[cb->n++] = *t;
     return b->held > b->memory ? spill(b, err) : OIT_OK;
 }
 
-oit_status oit_bins_add(oit_bins *b, const oit_triangle *tris, size_t count, oit_error *err)
+oit_status oit_bins_add(oit_bins *b, const oit_triangle *tris, const uint32_t *src, size_t count,
+                        oit_error *err)
 {
     const oit_bin_grid *g = &b->grid;
     for (size_t i = 0; i < count; i++) {
@@ -159,7 +171,8 @@ oit_status oit_bins_add(oit_bins *b, const oit_triangle *tris, size_t count, oit
             for (uint32_t y = lo[1]; y <= hi[1]; y++)
                 for (uint32_t x = lo[0]; x <= hi[0]; x++) {
                     oit_status s =
-                        push(b, x + (uint64_t)g->dims[0] * (y + (uint64_t)g->dims[1] * z), t, err);
+                        push(b, x + (uint64_t)g->dims[0] * (y + (uint64_t)g->dims[1] * z), t,
+                             src[i], err);
                     if (s)
                         return s;
                 }
@@ -183,38 +196,50 @@ static int read_all(int fd, void *p, size_t n, uint64_t off)
     return 0;
 }
 
-oit_status oit_bins_read_cell(oit_bins *b, uint64_t cell, oit_triangle **tris, size_t *count,
-                              oit_error *err)
+oit_status oit_bins_read_cell(oit_bins *b, uint64_t cell, oit_triangle **tris, uint32_t **src,
+                              size_t *count, oit_error *err)
 {
     cell_bin *cb = &b->bins[cell];
     size_t n = cb->n;
     for (size_t i = 0; i < cb->nchunks; i++)
         n += cb->chunks[i].count;
     *tris = NULL;
+    *src = NULL;
     *count = n;
     if (!n)
         return OIT_OK;
     oit_triangle *t = malloc(n * sizeof *t);
-    if (!t)
+    uint32_t *q = t ? malloc(n * sizeof *q) : NULL;
+    if (!q) {
+        free(t);
         return oit_error_set(err, OIT_ERR_NOMEM, "cell %llu: %zu triangles: out of memory",
                              (unsigned long long)cell, n);
+    }
     size_t at = 0;
     for (size_t i = 0; i < cb->nchunks; i++) {
-        if (read_all(b->fd, t + at, cb->chunks[i].count * sizeof *t, cb->chunks[i].offset)) {
+        uint64_t k = cb->chunks[i].count, off = cb->chunks[i].offset;
+        if (read_all(b->fd, t + at, k * sizeof *t, off) ||
+            read_all(b->fd, q + at, k * sizeof *q, off + k * sizeof *t)) {
             free(t);
+            free(q);
             return oit_error_set(err, OIT_ERR_IO, "%s: spill read failed: %s", b->spill_path,
                                  strerror(errno));
         }
-        at += cb->chunks[i].count;
+        at += k;
     }
-    if (cb->n)
+    if (cb->n) {
         memcpy(t + at, cb->tris, cb->n * sizeof *t);
+        memcpy(q + at, cb->src, cb->n * sizeof *q);
+    }
     /* Each cell is read once: its memory goes back as the partition goes
      * on, instead of all bins staying to the end. */
     free(cb->tris);
+    free(cb->src);
     cb->tris = NULL;
+    cb->src = NULL;
     cb->n = cb->cap = 0;
     *tris = t;
+    *src = q;
     return OIT_OK;
 }
 
@@ -229,6 +254,7 @@ void oit_bins_destroy(oit_bins *b)
         return;
     for (uint64_t c = 0; c < b->cells; c++) {
         free(b->bins[c].tris);
+        free(b->bins[c].src);
         free(b->bins[c].chunks);
     }
     free(b->bins);

@@ -16,51 +16,67 @@ static int flat_on_shared_face(const oit_cell_params *p, const oit_triangle *t)
     return 0;
 }
 
-static oit_status clip_to_cell(const oit_cell_params *p, const oit_triangle *tris, size_t n,
-                               oit_triangle **out, size_t *count, oit_error *err)
+/* The pieces of tris inside the cell, each with its triangle's source
+ * index. */
+static oit_status clip_to_cell(const oit_cell_params *p, const oit_triangle *tris,
+                               const uint32_t *src, size_t n, oit_triangle **out,
+                               uint32_t **out_src, size_t *count, oit_error *err)
 {
     size_t cap = n + n / 4 + 16, m = 0;
     oit_triangle *o = malloc(cap * sizeof *o);
-    for (size_t i = 0; i < n && o; i++) {
+    uint32_t *os = malloc(cap * sizeof *os);
+    for (size_t i = 0; i < n && o && os; i++) {
         if (m + OIT_CLIP_MAX_TRIS > cap) {
             cap *= 2;
             oit_triangle *q = realloc(o, cap * sizeof *q);
-            if (!q) {
+            if (q)
+                o = q;
+            uint32_t *qs = q ? realloc(os, cap * sizeof *qs) : NULL;
+            if (!qs) {
                 free(o);
                 o = NULL;
                 break;
             }
-            o = q;
+            os = qs;
         }
         int k = oit_clip_triangle_box(&tris[i], p->lo, p->hi, o + m);
         size_t w = m;
         for (int j = 0; j < k; j++)
-            if (!flat_on_shared_face(p, &o[m + j]))
+            if (!flat_on_shared_face(p, &o[m + j])) {
+                os[w] = src[i];
                 o[w++] = o[m + j];
+            }
         m = w;
     }
-    if (!o)
+    if (!o || !os) {
+        free(o);
+        free(os);
         return oit_error_set(err, OIT_ERR_NOMEM, "cell clip of %zu triangles: out of memory", n);
+    }
     *out = o;
+    *out_src = os;
     *count = m;
     return OIT_OK;
 }
 
-oit_status oit_cell_partition(const oit_cell_params *p, const oit_triangle *tris, size_t n,
-                              oit_kd_result *out, oit_cell_counts *counts, oit_error *err)
+oit_status oit_cell_partition(const oit_cell_params *p, const oit_triangle *tris,
+                              const uint32_t *src, size_t n, oit_kd_result *out,
+                              oit_cell_counts *counts, oit_error *err)
 {
     oit_triangle *clipped = NULL;
+    uint32_t *clipped_src = NULL;
     size_t m = 0;
-    oit_status s = clip_to_cell(p, tris, n, &clipped, &m, err);
+    oit_status s = clip_to_cell(p, tris, src, n, &clipped, &clipped_src, &m, err);
     if (s)
         return s;
     if (p->fast_part_triangles) {
         oit_kd_fast_params fp = {p->fast_part_triangles, p->K, p->max_depth,
                                  (uint64_t)OIT_CELL_MAX_GROWTH * m + (1u << 20)};
-        s = oit_kd_build_fast(p->lo, p->hi, clipped, m, &fp, out, err);
+        s = oit_kd_build_fast(p->lo, p->hi, clipped, clipped_src, m, &fp, out, err);
         counts->clipped = m;
         counts->pieces_cell = 0;
         free(clipped);
+        free(clipped_src);
         return s;
     }
     oit_convex_params cp = {p->max_piece_triangles};
@@ -69,12 +85,13 @@ oit_status oit_cell_partition(const oit_cell_params *p, const oit_triangle *tris
     if (!s) {
         oit_kd_params kp = {p->K, p->max_depth, (uint64_t)OIT_CELL_MAX_GROWTH * m + (1u << 20),
                             p->slabs};
-        s = oit_kd_build(p->lo, p->hi, clipped, m, cr.piece_of, cr.plane_of, cr.piece_count, &kp,
-                         out, err);
+        s = oit_kd_build(p->lo, p->hi, clipped, clipped_src, m, cr.piece_of, cr.plane_of,
+                         cr.piece_count, &kp, out, err);
         counts->clipped = m;
         counts->pieces_cell = cr.piece_count;
     }
     oit_convex_result_free(&cr);
     free(clipped);
+    free(clipped_src);
     return s;
 }

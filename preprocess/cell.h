@@ -39,7 +39,11 @@ typedef struct oit_cell_counts {
     uint64_t pieces_cell;  /* convex pieces before subdivision */
 } oit_cell_counts;
 
-oit_status oit_cell_partition(const oit_cell_params *p, const oit_triangle *tris, size_t n,
-                              oit_kd_result *out, oit_cell_counts *counts, oit_error *err);
+/* src[i]: triangle i's source index; every triangle of out carries its
+ * triangle's (out->src), a clipped piece that of the triangle it was cut
+ * from. */
+oit_status oit_cell_partition(const oit_cell_params *p, const oit_triangle *tris,
+                              const uint32_t *src, size_t n, oit_kd_result *out,
+                              oit_cell_counts *counts, oit_error *err);
 
 #endif

@@ -161,22 +161,31 @@ typedef struct bin_sink_ctx {
     oit_bins *bins;
     uint64_t seen, degenerate;
     oit_triangle *keep;
+    uint32_t *keep_src; /* the kept triangles' source indices */
     oit_progress *progress;
 } bin_sink_ctx;
 
+/* A triangle's source index is its position among the triangles the reader
+ * delivers (what oit_mesh_load's array index would be), so counted before
+ * dropping degenerate ones. */
 static oit_status bin_sink(void *user, const oit_triangle *t, size_t n, oit_error *err)
 {
     bin_sink_ctx *c = user;
+    if (c->seen + n > (uint64_t)UINT32_MAX + 1)
+        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "more than 2^32 triangles: their source "
+                             "indices would not fit the part file's 32 bits");
     size_t m = 0;
     for (size_t i = 0; i < n; i++) {
         if (oit_triangle_is_degenerate(&t[i]))
             c->degenerate++;
-        else
+        else {
+            c->keep_src[m] = (uint32_t)(c->seen + i);
             c->keep[m++] = t[i];
+        }
     }
     c->seen += n;
     oit_progress_update(c->progress, c->seen);
-    return oit_bins_add(c->bins, c->keep, m, err);
+    return oit_bins_add(c->bins, c->keep, c->keep_src, m, err);
 }
 
 /* ---- parallel cells, written in order ------------------------------------- */
@@ -224,14 +233,16 @@ static void run_cell(cell_run *r, uint64_t c)
 {
     cell_out *out = &r->res[c];
     oit_triangle *tris = NULL;
+    uint32_t *src = NULL;
     size_t n = 0;
-    out->status = oit_bins_read_cell(r->bins, c, &tris, &n, &out->err);
+    out->status = oit_bins_read_cell(r->bins, c, &tris, &src, &n, &out->err);
     if (!out->status) {
         oit_cell_params p;
         cell_params(r, c, &p);
-        out->status = oit_cell_partition(&p, tris, n, &out->kd, &out->counts, &out->err);
+        out->status = oit_cell_partition(&p, tris, src, n, &out->kd, &out->counts, &out->err);
     }
     free(tris);
+    free(src);
 }
 
 static void *cell_worker(void *arg)
@@ -346,6 +357,7 @@ static oit_status write_parts(oit_partfile_writer *w, part_buf *b, const oit_kd_
             .vertex_count = nv,
             .indices = b->idx,
             .index_count = 3 * (uint64_t)part->tri_count,
+            .sources = kd->src + part->tri_first,
             .pieces = b->pieces,
             .piece_count = part->piece_count,
             .layer_bound = part->layer_bound,
@@ -526,9 +538,11 @@ static oit_status partition_and_write(cell_run *r, oit_partfile_writer *w, uint3
         s = write_parts(w, &buf, &co->kd, attributes, err);
         /* Only the tree is needed from here on (for the grids). */
         free(co->kd.tris);
+        free(co->kd.src);
         free(co->kd.parts);
         free(co->kd.pieces);
         co->kd.tris = NULL;
+        co->kd.src = NULL;
         co->kd.parts = NULL;
         co->kd.pieces = NULL;
         pthread_mutex_lock(&r->lock);
@@ -575,8 +589,12 @@ static oit_status bin_input(const oit_convert_options *o, const oit_bin_grid *gr
     oit_read_desc rd = {0};
     ctx->bins = *bins;
     ctx->keep = malloc(65536 * sizeof *ctx->keep);
-    if (!ctx->keep)
+    ctx->keep_src = malloc(65536 * sizeof *ctx->keep_src);
+    if (!ctx->keep || !ctx->keep_src) {
+        free(ctx->keep);
+        free(ctx->keep_src);
         return oit_error_set(err, OIT_ERR_NOMEM, "out of memory");
+    }
     rd.chunk_triangles = 65536;
     oit_progress pg;
     oit_progress_start(&pg, "bin", total, o->progress);
@@ -584,6 +602,7 @@ static oit_status bin_input(const oit_convert_options *o, const oit_bin_grid *gr
     s = oit_mesh_read(o->input, &rd, bin_sink, ctx, NULL, err);
     oit_progress_end(&pg);
     free(ctx->keep);
+    free(ctx->keep_src);
     return s;
 }
 

@@ -1,7 +1,10 @@
 /* oitprep's conversion: mesh file in, part file out (DESIGN.md).
  *
  * Pass 1 streams the input for bounds and count; pass 2 bins triangles into
- * a regular top grid (preprocess/bin.h), dropping degenerate ones; cells are
+ * a regular top grid (preprocess/bin.h), dropping degenerate ones, each
+ * with its source index (its position among the triangles the reader
+ * delivers, counted before dropping), which every piece of it keeps to the
+ * part file (docs/part-file.md, PART_DATA); cells are
  * partitioned in parallel (preprocess/cell.h) and written in cell order, so
  * the file is byte-identical for any thread count; every kd split becomes a
  * 2x1x1-style subgrid of its cell; each leaf cell lists its one part.

@@ -45,10 +45,12 @@ static void usage(FILE *f)
           "                fails (exit 1) when a part yields more\n"
           "                hits than its layer bound, parts are met out of the order\n"
           "                stream/order.h computes for the ray's origin, or a slab's\n"
-          "                parts have a vertex on the wrong side of its planes (exact).\n"
+          "                parts have a vertex on the wrong side of its planes (exact),\n"
+          "                or a source triangle the converter kept (not degenerate, finite)\n"
+          "                is the source index of no part triangle (a triangle lost).\n"
           "                A file of measured bounds (--scheme fast) guarantees none: its\n"
           "                hits over a part's bound are reported, not failed; order and\n"
-          "                slab violations fail it as for any file.\n"
+          "                slab violations and lost triangles fail it as for any file.\n"
           "                The parts go into Embree scenes of at most --chunk-triangles T\n"
           "                triangles\n"
           "                (1..4G, default 4M, suffix K/M/G), built and cast one at a time:\n"
@@ -446,7 +448,10 @@ static int cmd_verify(int argc, char **argv)
         return oit_status_exit_code(s);
     }
     oit_verify_print(stdout, path, &rep);
-    return rep.layer_violations || rep.order_violations || rep.slab_violations ? 1 : 0;
+    return rep.layer_violations || rep.order_violations || rep.slab_violations ||
+                   rep.sources_lost
+               ? 1
+               : 0;
 }
 
 static int cmd_parts(int argc, char **argv)

@@ -590,6 +590,46 @@ static oit_status check_slabs(verifier *v, oit_error *err)
     return s;
 }
 
+/* Check (4): the distinct source indices of all parts, in a bitmap of
+ * triangles_in bits, against the triangles the converter kept. */
+static oit_status check_sources(verifier *v, oit_error *err)
+{
+    oit_partfile_summary sum;
+    oit_partfile_get_summary(v->pf, &sum);
+    uint64_t words = sum.triangles_in / 64 + 1;
+    uint64_t *seen = words <= SIZE_MAX / 8 ? calloc((size_t)words, 8) : NULL;
+    if (!seen)
+        return oit_error_set(err, OIT_ERR_NOMEM, "%s: source index map of %llu triangles: out "
+                             "of memory", oit_partfile_name(v->pf),
+                             (unsigned long long)sum.triangles_in);
+    uint64_t found = 0;
+    for (uint32_t p = 0; p < v->nparts; p++) {
+        oit_partfile_part_view pv;
+        oit_status s = oit_partfile_part_data(v->pf, p, &pv, err);
+        if (s) {
+            free(seen);
+            return s;
+        }
+        for (uint64_t t = 0; t < pv.index_count / 3; t++) {
+            uint32_t i = oit_partfile_source(&pv, t); /* < triangles_in: validated */
+            uint64_t bit = 1ull << (i % 64);
+            found += !(seen[i / 64] & bit);
+            seen[i / 64] |= bit;
+        }
+        oit_partfile_drop_part_data(v->pf, p, 1);
+    }
+    free(seen);
+    v->rep->sources_kept = sum.triangles_in - sum.triangles_dropped;
+    v->rep->sources_found = found;
+    v->rep->sources_lost = found < v->rep->sources_kept ? v->rep->sources_kept - found : 0;
+    if (v->rep->sources_lost && !v->rep->first_violation[0])
+        snprintf(v->rep->first_violation, sizeof v->rep->first_violation,
+                 "%llu of the %llu source triangles kept are in no part",
+                 (unsigned long long)v->rep->sources_lost,
+                 (unsigned long long)v->rep->sources_kept);
+    return OIT_OK;
+}
+
 oit_status oit_verify(const char *path, const oit_verify_options *o, oit_verify_report *rep,
                       oit_error *err)
 {
@@ -601,6 +641,8 @@ oit_status oit_verify(const char *path, const oit_verify_options *o, oit_verify_
     uint32_t cap = 0;
     if (!s)
         s = check_slabs(&v, err);
+    if (!s)
+        s = check_sources(&v, err);
     if (!s && !(bundles(&v, o, &rng, &cap) && points(&v, o, &rng, &cap)))
         s = oit_error_set(err, OIT_ERR_NOMEM, "%s: rays: out of memory", path);
     if (!s)
@@ -645,6 +687,9 @@ void oit_verify_print(FILE *f, const char *path, const oit_verify_report *r)
     fprintf(f, "  order: %llu violations\n", (unsigned long long)r->order_violations);
     fprintf(f, "  slabs: %u, %llu vertices on the wrong side\n", r->slabs,
             (unsigned long long)r->slab_violations);
+    fprintf(f, "  source triangles: %llu kept, %llu in the parts, %llu lost\n",
+            (unsigned long long)r->sources_kept, (unsigned long long)r->sources_found,
+            (unsigned long long)r->sources_lost);
     if (r->first_violation[0])
         fprintf(f, "  first violation: %s\n", r->first_violation);
 }

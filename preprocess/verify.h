@@ -16,7 +16,11 @@
  * stream/order.h computes for the ray's origin (hits closer than a tolerance,
  * e.g. on a shared cell face, are ties); (3) every slab's part_below lies in
  * n.x <= d0 and its part_above in n.x >= d1, vertex by vertex and exactly,
- * and its inside parts between (docs/part-file.md leaves this to us).
+ * and its inside parts between (docs/part-file.md leaves this to us);
+ * (4) no triangle lost: every source triangle the converter kept (META's
+ * triangles_in less triangles_dropped, the degenerate and non-finite ones)
+ * is the source index of at least one part triangle. A triangle wholly
+ * lost (all its clipped pieces rounded away) fails it.
  */
 #ifndef OIT_PREPROCESS_VERIFY_H
 #define OIT_PREPROCESS_VERIFY_H
@@ -55,6 +59,9 @@ typedef struct oit_verify_report {
     uint32_t most_over_bound;
     uint32_t slabs;
     uint64_t slab_violations; /* vertices on the wrong side of a slab plane */
+    uint64_t sources_kept;    /* triangles_in - triangles_dropped */
+    uint64_t sources_found;   /* distinct source indices in the parts */
+    uint64_t sources_lost;    /* kept source triangles no part carries */
     uint32_t chunks;          /* Embree scenes built one after another */
     char first_violation[256];
 } oit_verify_report;

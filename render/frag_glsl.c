@@ -14,6 +14,8 @@ const char oit_glsl_vertex[] =
     "layout(location = 0) uniform mat4 u_view;\n"
     "layout(location = 1) uniform mat4 u_proj;\n"
     "layout(location = 0) in uvec2 a_draw;\n"
+    /* Source indices of sourced draws (frag_glsl.h, "Primitive id"). */
+    "layout(std430, binding = 8) readonly buffer Prims { uint prims[]; };\n"
     "out vec3 v_pos;\n"
     "out vec4 v_rgba;\n"
     "flat out vec3 v_normal;\n"
@@ -43,7 +45,8 @@ const char oit_glsl_vertex[] =
     /* Geometric normal in world space, then rotated: dot products with
      * view-space vectors equal the world-space ones of shade.h. */
     "    v_normal = mat3(u_view) * cross(p1 - p0, p2 - p0);\n"
-    "    v_first_prim = a_draw.y;\n"
+    "    v_first_prim = (a_draw.y & 0x80000000u) != 0u\n"
+    "        ? prims[(a_draw.y & 0x7fffffffu) + tri] | 0x80000000u : a_draw.y;\n"
     "    v_plane = oit_tie_plane(p0, p1, p2);\n"
     "    vec4 vp = u_view * vec4(uintBitsToFloat(me.xyz), 1.0);\n"
     "    v_pos = vp.xyz;\n"
@@ -96,7 +99,8 @@ const char oit_glsl_fragment_gen[] =
     "    float light = 0.3 + 0.7 * ndv;\n"
     "    vec3 base = (u_attrs & 1u) != 0u ? v_rgba.rgb : u_default_rgb;\n"
     "    float a = (u_attrs & 2u) != 0u ? v_rgba.a : u_alpha;\n"
-    "    uint prim = v_first_prim + uint(gl_PrimitiveID);\n"
+    "    uint prim = (v_first_prim & 0x80000000u) != 0u ? v_first_prim\n"
+    "                                                   : v_first_prim + uint(gl_PrimitiveID);\n"
     "    uvec4 f;\n"
     "    f.x = oit_depth_key(t_interp);\n"
     "    f.y = (prim & 0x7fffffffu) | (nv > 0.0 ? 0x80000000u : 0u);\n"

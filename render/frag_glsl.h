@@ -25,6 +25,15 @@
  * gl_PrimitiveID rasterized a dense model twice as slowly (DFB, 99K
  * triangles at 256x256: 120 ms instead of 60; cause not found).
  *
+ * Sourced draws (a streamed part file's parts, gpu_mesh.h
+ * oit_gpu_mesh_set_range_sourced): the prim is each triangle's source
+ * index (part_triangles.h), a u32 per triangle in an SSBO at
+ * OIT_BIND_PRIMS. Such a draw's a_draw.y is 0x80000000 | the word index, in
+ * that binding, of its first triangle's source index; the vertex stage reads
+ * prims[that + tri] and passes it flat with bit 31 set, which tells the
+ * fragment stage to take it as the prim instead of adding gl_PrimitiveID
+ * (still read there on the other path). Prims are 31 bits either way.
+ *
  * A fragment is packed into one uvec4 (16 bytes):
  *   x  the tie rule's key (shade.h): floatBitsToUint(t) of the plane's
  *      distance along the pixel's ray, low bits cleared (t > 0)
@@ -79,7 +88,8 @@ enum {
     OIT_BIND_OUT = 4,
     OIT_BIND_TOTALS = 5,
     OIT_BIND_STATE = 6,
-    OIT_BIND_SUMS = 7
+    OIT_BIND_SUMS = 7,
+    OIT_BIND_PRIMS = 8 /* the source indices of sourced draws (above) */
 };
 
 extern const char oit_glsl_version[];   /* "#version 450" and extensions   */

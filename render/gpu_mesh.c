@@ -18,7 +18,17 @@ struct oit_gpu_mesh {
     size_t window; /* triangles per draw: SSBO size limit and alignment */
     uint64_t offset; /* of the first triangle in buffer */
     int owns_buffer;
+    int sourced;          /* prims are per-triangle u32 at prims_offset */
+    uint64_t prims_offset;
+    uint64_t align;       /* GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT */
 };
+
+static uint64_t ssbo_align(void)
+{
+    GLint align = 16;
+    glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &align);
+    return align > 0 ? (uint64_t)align : 16;
+}
 
 /* Triangles per draw window: the SSBO binding limit, rounded down so that
  * window offsets keep the SSBO offset alignment. */
@@ -54,6 +64,7 @@ oit_status oit_gpu_mesh_create(const oit_triangle *tris, size_t count,
     m->count = count;
     m->first_prim = first_prim;
     m->window = oit_gpu_triangle_window();
+    m->align = ssbo_align();
     m->owns_buffer = 1;
     glCreateVertexArrays(1, &m->vao);
     glCreateBuffers(1, &m->buffer);
@@ -82,6 +93,7 @@ oit_status oit_gpu_mesh_create_view(unsigned buffer, oit_gpu_mesh **out, oit_err
         return oit_error_set(err, OIT_ERR_NOMEM, "GPU mesh view: out of memory");
     m->buffer = buffer;
     m->window = oit_gpu_triangle_window();
+    m->align = ssbo_align();
     glCreateVertexArrays(1, &m->vao);
     oit_status s = oit_gl_check("GPU mesh view", err);
     if (s != OIT_OK) {
@@ -97,6 +109,23 @@ void oit_gpu_mesh_set_range(oit_gpu_mesh *m, uint64_t offset, size_t count, uint
     m->offset = offset;
     m->count = count;
     m->first_prim = first_prim;
+    m->sourced = 0;
+}
+
+void oit_gpu_mesh_set_range_sourced(oit_gpu_mesh *m, uint64_t offset, size_t count)
+{
+    m->offset = offset;
+    m->count = count;
+    m->first_prim = 0;
+    m->sourced = 1;
+    m->prims_offset = offset + (uint64_t)count * sizeof(oit_triangle);
+}
+
+int oit_gpu_mesh_sourced(const oit_gpu_mesh *m, uint64_t *prims_offset)
+{
+    if (m->sourced)
+        *prims_offset = m->prims_offset;
+    return m->sourced;
 }
 
 void oit_gpu_mesh_set_buffer(oit_gpu_mesh *m, unsigned buffer)
@@ -151,7 +180,14 @@ void oit_gpu_mesh_draw(const oit_gpu_mesh *m, unsigned program)
         glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_VERTS, m->buffer,
                           (GLintptr)(m->offset + start * sizeof(oit_triangle)),
                           (GLsizeiptr)(n * sizeof(oit_triangle)));
-        glVertexAttribI2ui(OIT_IN_DRAW, 0, m->first_prim + (uint32_t)start);
+        if (m->sourced) {
+            /* The window's prims, bound from the alignment below them. */
+            uint64_t at = m->prims_offset + start * 4, base = at - at % m->align;
+            glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_PRIMS, m->buffer,
+                              (GLintptr)base, (GLsizeiptr)(at + n * 4 - base));
+            glVertexAttribI2ui(OIT_IN_DRAW, 0, 0x80000000u | (uint32_t)((at - base) / 4));
+        } else
+            glVertexAttribI2ui(OIT_IN_DRAW, 0, m->first_prim + (uint32_t)start);
         glDrawArrays(GL_TRIANGLES, 0, (GLsizei)(n * 3));
     }
 }

@@ -25,8 +25,16 @@ oit_status oit_gpu_mesh_create(const oit_triangle *tris, size_t count,
  * without allocating. Empty until set. */
 oit_status oit_gpu_mesh_create_view(unsigned buffer, oit_gpu_mesh **out, oit_error *err);
 /* count oit_triangle records at byte offset (a multiple of
- * GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT) of a view's buffer. */
+ * GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT) of a view's buffer; their
+ * prims are first_prim + i. */
 void oit_gpu_mesh_set_range(oit_gpu_mesh *m, uint64_t offset, size_t count, uint32_t first_prim);
+/* The same for a sourced range (stream/part_triangles.h
+ * oit_part_expand_sourced): count triangles at offset, then count u32 at
+ * offset + 48 count, the triangles' prims (source indices, < 2^31): drawn
+ * with those as the fragments' prims (frag_glsl.h, "Sourced draws"). */
+void oit_gpu_mesh_set_range_sourced(oit_gpu_mesh *m, uint64_t offset, size_t count);
+/* 1 with the byte offset of the prims when m is a sourced range, else 0. */
+int oit_gpu_mesh_sourced(const oit_gpu_mesh *m, uint64_t *prims_offset);
 /* Re-points a view at another buffer of the caller's (a streamer draws a part
  * from its upload ring or from its residency cache). Only for views. */
 void oit_gpu_mesh_set_buffer(oit_gpu_mesh *m, unsigned buffer);
@@ -71,8 +79,10 @@ void oit_gpu_draws_set_window(oit_gpu_draws *d, size_t triangles);
  * OIT_BIND_VERTS and drawn by one glMultiDrawArraysIndirect. A streamer's
  * pack drawn from one ring region, or from its cache, is one group; parts
  * alternating between two buffers make one group per run. A mesh larger
- * than a window is cut into windows that join groups like meshes. Fragments
- * and primitive ids are those of oit_gpu_mesh_draw on each mesh in turn.
+ * than a window is cut into windows that join groups like meshes. A
+ * sourced mesh's prims join the group's binding at OIT_BIND_PRIMS under the
+ * same window rule. Fragments and primitive ids are those of
+ * oit_gpu_mesh_draw on each mesh in turn.
  * Empty meshes draw nothing. Mesh offsets must keep the alignment (as
  * oit_gpu_mesh_set_range requires). Leaves d's vertex array and indirect
  * buffer bound, and the current value of the per-draw input untouched.

@@ -7,8 +7,10 @@
  * in 4.6), so every command carries its index as baseInstance, and a vertex
  * attribute with divisor 1 fetches that command's record, (first vertex,
  * first prim): where its triangles start in the binding, and what to add to
- * gl_PrimitiveID (frag_glsl.h). The commands of one group share one SSBO
- * binding, hence the grouping by buffer and window. */
+ * gl_PrimitiveID (frag_glsl.h); for a sourced mesh, where its prims start
+ * in the group's OIT_BIND_PRIMS binding. The commands of one group share
+ * one SSBO binding (and one of prims), hence the grouping by buffer and
+ * window. */
 #include "render/gpu_mesh.h"
 
 #include "render/frag_glsl.h"
@@ -32,6 +34,7 @@ typedef struct draw_rec {
 typedef struct draw_group {
     GLuint buffer;
     uint64_t lo, hi;
+    uint64_t plo, phi; /* its sourced commands' prims; plo > phi: none */
     size_t first, count;
     int solo;
 } draw_group;
@@ -44,6 +47,7 @@ struct oit_gpu_draws {
     draw_cmd *cmds;
     draw_rec *recs;
     uint64_t *at;
+    uint64_t *prims_at; /* command k's prims' byte offset; NO_PRIMS: not sourced */
     draw_group *groups;
     size_t cap;
     size_t window, driver_window; /* triangles a group may span */
@@ -54,6 +58,7 @@ struct oit_gpu_draws {
 };
 
 enum { INITIAL_DRAWS = 256 };
+#define NO_PRIMS UINT64_MAX
 
 static oit_status reserve_gl(oit_gpu_draws *d, size_t n, oit_error *err)
 {
@@ -82,7 +87,10 @@ static int reserve(oit_gpu_draws *d, size_t n)
     uint64_t *a = r ? realloc(d->at, want * sizeof *a) : NULL;
     if (a)
         d->at = a;
-    draw_group *g = a ? realloc(d->groups, want * sizeof *g) : NULL;
+    uint64_t *pa = a ? realloc(d->prims_at, want * sizeof *pa) : NULL;
+    if (pa)
+        d->prims_at = pa;
+    draw_group *g = pa ? realloc(d->groups, want * sizeof *g) : NULL;
     if (g)
         d->groups = g;
     if (!g || reserve_gl(d, want, NULL) != OIT_OK)
@@ -137,6 +145,7 @@ void oit_gpu_draws_destroy(oit_gpu_draws *d)
     free(d->cmds);
     free(d->recs);
     free(d->at);
+    free(d->prims_at);
     free(d->groups);
     free(d);
 }
@@ -160,28 +169,35 @@ void oit_gpu_draws_set_window(oit_gpu_draws *d, size_t triangles)
     d->window = triangles > step ? triangles / step * step : step;
 }
 
-/* Adds command k for `count` triangles at byte offset `at` of buffer, to the
- * last group when the group's span stays within a window, else to a new
- * one. */
+/* Adds command k for `count` triangles at byte offset `at` of buffer (its
+ * prims at prims_at, or NO_PRIMS), to the last group when the group's spans
+ * stay within a window, else to a new one. */
 static void add_command(oit_gpu_draws *d, size_t *groups, size_t k, GLuint buffer, uint64_t at,
-                        size_t count, uint32_t first_prim)
+                        size_t count, uint32_t first_prim, uint64_t prims_at)
 {
-    uint64_t end = at + (uint64_t)count * sizeof(oit_triangle);
+    uint64_t end = at + (uint64_t)count * sizeof(oit_triangle),
+             window = (uint64_t)d->window * sizeof(oit_triangle);
+    uint64_t plo = prims_at, phi = prims_at == NO_PRIMS ? 0 : prims_at + (uint64_t)count * 4;
     d->cmds[k] = (draw_cmd){(GLuint)(count * 3), 1, 0, (GLuint)k};
     d->recs[k] = (draw_rec){0, first_prim};
     d->at[k] = at;
+    d->prims_at[k] = prims_at;
     draw_group *g = *groups ? &d->groups[*groups - 1] : NULL;
     int solo = at % 16 != 0;
     if (g && !g->solo && !solo && g->buffer == buffer) {
         uint64_t lo = at < g->lo ? at : g->lo, hi = end > g->hi ? end : g->hi;
-        if (hi - (lo - lo % d->unit) <= (uint64_t)d->window * sizeof(oit_triangle)) {
+        uint64_t pl = plo < g->plo ? plo : g->plo, ph = phi > g->phi ? phi : g->phi;
+        if (hi - (lo - lo % d->unit) <= window &&
+            (pl > ph || ph - (pl - pl % d->unit) <= window)) {
             g->lo = lo;
             g->hi = hi;
+            g->plo = pl;
+            g->phi = ph;
             g->count++;
             return;
         }
     }
-    d->groups[(*groups)++] = (draw_group){buffer, at, end, k, 1, solo};
+    d->groups[(*groups)++] = (draw_group){buffer, at, end, plo, phi, k, 1, solo};
 }
 
 static uint64_t group_base(const oit_gpu_draws *d, const draw_group *g)
@@ -198,10 +214,13 @@ static void flush(oit_gpu_draws *d, size_t k, size_t groups)
     for (size_t g = 0; g < groups; g++) {
         const draw_group *gr = &d->groups[g];
         uint64_t base = group_base(d, gr);
+        uint64_t pbase = gr->plo - gr->plo % d->unit;
         for (size_t c = gr->first; c < gr->first + gr->count; c++) {
             GLuint first = (GLuint)((d->at[c] - base) / 16);
             d->cmds[c].first = first;
             d->recs[c].first_vertex = first;
+            if (d->prims_at[c] != NO_PRIMS)
+                d->recs[c].first_prim = 0x80000000u | (GLuint)((d->prims_at[c] - pbase) / 4);
         }
     }
     /* Rewriting the buffers between groups could make a driver wait for
@@ -215,6 +234,11 @@ static void flush(oit_gpu_draws *d, size_t k, size_t groups)
         uint64_t base = group_base(d, gr);
         glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_VERTS, gr->buffer, (GLintptr)base,
                           (GLsizeiptr)(gr->hi - base));
+        if (gr->plo < gr->phi) {
+            uint64_t pbase = gr->plo - gr->plo % d->unit;
+            glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_PRIMS, gr->buffer,
+                              (GLintptr)pbase, (GLsizeiptr)(gr->phi - pbase));
+        }
         glMultiDrawArraysIndirect(GL_TRIANGLES,
                                   (const void *)(uintptr_t)(gr->first * sizeof(draw_cmd)),
                                   (GLsizei)gr->count, 0);
@@ -232,6 +256,8 @@ void oit_gpu_mesh_draw_many(oit_gpu_draws *d, const oit_gpu_mesh *const *meshes,
     for (int i = 0; i < n; i++) {
         const oit_gpu_mesh *m = meshes[i];
         size_t count = oit_gpu_mesh_triangles(m);
+        uint64_t prims = NO_PRIMS;
+        int sourced = oit_gpu_mesh_sourced(m, &prims);
         for (size_t start = 0; start < count; start += d->window) {
             if (k == d->cap) {
                 flush(d, k, groups);
@@ -240,7 +266,8 @@ void oit_gpu_mesh_draw_many(oit_gpu_draws *d, const oit_gpu_mesh *const *meshes,
             add_command(d, &groups, k++, oit_gpu_mesh_buffer(m),
                         oit_gpu_mesh_offset(m) + start * sizeof(oit_triangle),
                         count - start < d->window ? count - start : d->window,
-                        oit_gpu_mesh_first_prim(m) + (uint32_t)start);
+                        oit_gpu_mesh_first_prim(m) + (uint32_t)start,
+                        sourced ? prims + (uint64_t)start * 4 : NO_PRIMS);
         }
     }
     flush(d, k, groups);

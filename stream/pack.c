@@ -2,6 +2,7 @@
  * reset by stamping tiles with the pack number instead of clearing it. */
 #include "stream/pack.h"
 
+#include "stream/part_triangles.h"
 #include "stream/schedule.h"
 
 #include <math.h>
@@ -33,7 +34,7 @@ struct oit_packer {
 
 uint64_t oit_pack_part_bytes(const oit_partfile_part *p)
 {
-    uint64_t b = p->index_count / 3 * 48u;
+    uint64_t b = oit_part_sourced_bytes(p->index_count / 3);
     return (b + OIT_PACK_ALIGN - 1) / OIT_PACK_ALIGN * OIT_PACK_ALIGN;
 }
 

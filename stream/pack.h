@@ -49,7 +49,8 @@ typedef enum oit_pack_mode {
 typedef enum oit_pack_schedule { OIT_SCHEDULE_TREE = 0, OIT_SCHEDULE_WAVE } oit_pack_schedule;
 
 /* GPU bytes a part takes in the upload ring: its triangles expanded to the
- * 48-byte oit_triangle, rounded up to OIT_PACK_ALIGN. */
+ * 48-byte oit_triangle and their 4-byte source indices after them
+ * (oit_part_expand_sourced), rounded up to OIT_PACK_ALIGN. */
 #define OIT_PACK_ALIGN 256u
 uint64_t oit_pack_part_bytes(const oit_partfile_part *p);
 

@@ -48,8 +48,7 @@ static oit_status run_job(oit_reader *r, job *j, uint64_t n)
         const oit_read_item *it = &j->items[i];
         oit_status s = oit_partfile_validate_part(r->pf, it->part, &j->err);
         if (s == OIT_OK)
-            s = oit_part_expand(r->pf, it->part, (oit_triangle *)(void *)(r->dst + it->offset),
-                                &j->err);
+            s = oit_part_expand_sourced(r->pf, it->part, r->dst + it->offset, &j->err);
         if (s != OIT_OK)
             return s;
     }

@@ -9,6 +9,7 @@
 #include "render/saturation.h"
 #include "stream/fence_queue.h"
 #include "stream/order.h"
+#include "stream/part_triangles.h"
 #include "stream/reader.h"
 #include "stream/residency.h"
 #include "stream/upload.h"
@@ -46,7 +47,6 @@ struct oit_streamer {
     float epsilon;
     uint32_t ahead;
     uint32_t *ordered;
-    uint32_t *first_prim; /* per part: its first triangle across the file */
     /* Per position of the frame's packing (pk->parts[j]): */
     uint8_t *source;
     uint64_t *offset;     /* in the cache or the ring */
@@ -80,7 +80,6 @@ void oit_streamer_destroy(oit_streamer *s)
     oit_packer_destroy(s->packer);
     oit_order_destroy(s->order);
     free(s->ordered);
-    free(s->first_prim);
     free(s->source);
     free(s->offset);
     free(s->items);
@@ -88,23 +87,22 @@ void oit_streamer_destroy(oit_streamer *s)
     free(s);
 }
 
-/* Primitive ids follow the file's triangle order, as in the in-core mesh
- * (part_triangles.h); they must fit the 31 bits a fragment carries.
- * *all_bytes: what every part takes in the ring, the most a cache needs. */
+/* Primitive ids are the triangles' source indices, uploaded with them
+ * (part_triangles.h), as the in-core mesh's positions order; they must fit
+ * the 31 bits a fragment carries. *all_bytes: what every part takes in the
+ * ring, the most a cache needs. */
 static oit_status number_triangles(oit_streamer *s, uint64_t *all_bytes, oit_error *err)
 {
     const oit_partfile_part *parts = oit_partfile_parts(s->pf);
-    uint64_t first = 0;
+    oit_partfile_summary sum;
+    oit_partfile_get_summary(s->pf, &sum);
+    if (sum.triangles_in > 0x80000000ull)
+        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "%s: more than 2^31 source triangles; "
+                             "primitive ids would not fit a fragment",
+                             oit_partfile_name(s->pf));
     *all_bytes = 0;
-    for (uint32_t i = 0; i < oit_partfile_part_count(s->pf); i++) {
-        s->first_prim[i] = (uint32_t)first;
-        first += parts[i].index_count / 3;
+    for (uint32_t i = 0; i < oit_partfile_part_count(s->pf); i++)
         *all_bytes += oit_pack_part_bytes(&parts[i]);
-        if (first > 0x80000000ull)
-            return oit_error_set(err, OIT_ERR_UNSUPPORTED, "%s: more than 2^31 triangles; "
-                                 "primitive ids would not fit a fragment",
-                                 oit_partfile_name(s->pf));
-    }
     return OIT_OK;
 }
 
@@ -112,12 +110,11 @@ static oit_status alloc_arrays(oit_streamer *s, uint32_t n, oit_error *err)
 {
     size_t m = (size_t)n + 1;
     s->ordered = calloc(m, sizeof *s->ordered);
-    s->first_prim = calloc(m, sizeof *s->first_prim);
     s->source = calloc(m, sizeof *s->source);
     s->offset = calloc(m, sizeof *s->offset);
     s->items = calloc(m, sizeof *s->items);
     s->plans = calloc(m, sizeof *s->plans);
-    if (!s->ordered || !s->first_prim || !s->source || !s->offset || !s->items || !s->plans)
+    if (!s->ordered || !s->source || !s->offset || !s->items || !s->plans)
         return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot allocate the streamer (%u parts)",
                              oit_partfile_name(s->pf), n);
     return OIT_OK;
@@ -294,16 +291,15 @@ static void use_part(oit_streamer *s, const oit_packing *pk, uint32_t j, oit_gpu
                      oit_stream_frame_stats *ss)
 {
     const oit_partfile_part *part = &oit_partfile_parts(s->pf)[pk->parts[j]];
-    uint64_t tri_bytes = part->index_count / 3 * sizeof(oit_triangle), at = 0;
+    uint64_t bytes = oit_part_sourced_bytes(part->index_count / 3), at = 0;
     int cached = s->source[j] == SRC_CACHE;
     oit_gpu_mesh_set_buffer(view, cached ? s->cache_buffer : oit_upload_buffer(s->upload));
-    oit_gpu_mesh_set_range(view, s->offset[j], (size_t)(part->index_count / 3),
-                           s->first_prim[pk->parts[j]]);
+    oit_gpu_mesh_set_range_sourced(view, s->offset[j], (size_t)(part->index_count / 3));
     ss->cache_hits += (uint64_t)cached;
     if (!cached && s->cache &&
         oit_residency_insert(s->cache, pk->parts[j], oit_pack_part_bytes(part), &at))
         glCopyNamedBufferSubData(oit_upload_buffer(s->upload), s->cache_buffer,
-                                 (GLintptr)s->offset[j], (GLintptr)at, (GLsizeiptr)tri_bytes);
+                                 (GLintptr)s->offset[j], (GLintptr)at, (GLsizeiptr)bytes);
 }
 
 /* Counts what pack i read, and lets its ring region go once the work issued
@@ -316,7 +312,7 @@ static oit_status retire_region(oit_streamer *s, const oit_packing *pk, uint32_t
         return OIT_OK;
     for (uint32_t j = pk->pack_first[i]; j < pk->pack_first[i + 1]; j++)
         if (s->source[j] == SRC_RING)
-            ss->bytes_uploaded += parts[pk->parts[j]].index_count / 3 * sizeof(oit_triangle);
+            ss->bytes_uploaded += oit_part_sourced_bytes(parts[pk->parts[j]].index_count / 3);
     oit_upload_drawn(s->upload, oit_fence_queue_tag(s->fences));
     s->unfenced += s->plans[i].ring_bytes;
     if (s->unfenced < s->fence_every)

@@ -32,6 +32,12 @@ static void walk_part(const oit_partfile *pf, uint32_t i)
         for (int k = 0; k < 3; k++)
             REQUIRE(pos[k] >= p->bounds_min[k] && pos[k] <= p->bounds_max[k]);
     }
+    /* The source indices end the blob and name source triangles. */
+    oit_partfile_summary sum;
+    oit_partfile_get_summary(pf, &sum);
+    REQUIRE(oit_partfile_source_offset(p) + v.index_count / 3 * 4 == p->data_bytes);
+    for (uint64_t t = 0; t < v.index_count / 3; t++)
+        REQUIRE(oit_partfile_source(&v, t) < sum.triangles_in);
 }
 
 static void walk(const oit_partfile *pf)

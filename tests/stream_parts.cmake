@@ -27,3 +27,8 @@ oit_add_test(NAME stream_upload LABELS integration TIMEOUT 60
 # second pass reported, none without overflow, early termination
 oit_add_test(NAME stream_firstk LABELS integration TIMEOUT 300
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_firstk.sh $<TARGET_FILE:test_streamer>)
+
+# The stream's prim is the source triangle index: exact ties between
+# duplicated boxes decided as on the source mesh (tests/test_source_prims.sh).
+oit_add_test(NAME stream_source_prims LABELS integration TIMEOUT 120
+  COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_source_prims.sh $<TARGET_FILE:test_sources>)

@@ -12,6 +12,10 @@
  *    equal between the paths);
  *  - the draw calls are the number of groups the layout makes, worked out
  *    by hand below.
+ * The layouts run again with sourced views (oit_gpu_mesh_set_range_sourced,
+ * as the streamer draws parts): each mesh's prims stored after its
+ * triangles, reversed within the mesh, so the centre's prims are those
+ * values, not first prim + index.
  * A wrong group base, first vertex or per-draw record shows in the
  * fingerprints; a wrong grouping in the call count. */
 #include <stdio.h>
@@ -52,6 +56,14 @@ typedef struct scene {
     size_t count[N];
     uint32_t first_prim[N];
 } scene;
+
+/* 1: views are sourced, triangle j of mesh i has prim prim_of(s, i, j). */
+static int sourced;
+
+static uint32_t prim_of(const scene *s, int i, size_t j)
+{
+    return s->first_prim[i] + (uint32_t)(sourced ? s->count[i] - 1 - j : j);
+}
 
 static uint32_t rng(uint32_t *r)
 {
@@ -170,7 +182,17 @@ static void place(gl_state *g, const scene *s, const layout *l)
             glNamedBufferSubData(g->buf[l->buffer[i]], (GLintptr)l->offset[i],
                                  (GLsizeiptr)(s->count[i] * sizeof(oit_triangle)), s->tris[i]);
         oit_gpu_mesh_set_buffer(g->views[i], buf);
-        oit_gpu_mesh_set_range(g->views[i], l->offset[i], s->count[i], s->first_prim[i]);
+        if (!sourced) {
+            oit_gpu_mesh_set_range(g->views[i], l->offset[i], s->count[i], s->first_prim[i]);
+            continue;
+        }
+        uint32_t prims[64];
+        for (size_t j = 0; j < s->count[i] && j < 64; j++)
+            prims[j] = prim_of(s, i, j);
+        if (s->count[i])
+            glNamedBufferSubData(buf, (GLintptr)(l->offset[i] + s->count[i] * sizeof(oit_triangle)),
+                                 (GLsizeiptr)(s->count[i] * 4), prims);
+        oit_gpu_mesh_set_range_sourced(g->views[i], l->offset[i], s->count[i]);
     }
 }
 
@@ -200,7 +222,7 @@ static void center_of(const scene *s, int n, uint32_t out[3])
     memset(out, 0, 3 * sizeof *out);
     for (int i = 0; i < n; i++)
         for (size_t j = 0; j < s->count[i]; j += 2) {
-            uint32_t prim = s->first_prim[i] + (uint32_t)j;
+            uint32_t prim = prim_of(s, i, j);
             out[0]++;
             out[1] += prim;
             out[2] ^= prim * 2654435761u;
@@ -336,6 +358,9 @@ int main(void)
     } else {
         cases(&g, &s);
         big_meshes(&g);
+        sourced = 1;
+        printf("sourced views:\n");
+        cases(&g, &s);
     }
     teardown(&g);
     free_scene(&s);

@@ -86,8 +86,11 @@ static quad level_quad(float y, float s0, float s1, float x0, float x1, float z0
 static int add_quad(oit_partfile_writer *w, scene *sc, const quad *q, oit_error *err)
 {
     static const uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
+    /* Each quad's triangles are their own sources (file positions). */
+    uint32_t src[2] = {2 * sc->n, 2 * sc->n + 1};
     oit_partfile_piece_desc piece = {2, 1};
     oit_partfile_part_desc d = {0};
+    d.sources = src;
     d.positions = &q->p[0][0];
     d.vertex_count = 4;
     d.indices = idx;

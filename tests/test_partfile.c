@@ -32,6 +32,7 @@ typedef struct part_in {
     uint32_t nv;
     uint32_t *idx;
     uint64_t ni;
+    uint32_t *src; /* ni / 3 source indices, < the scene's 1000 triangles_in */
     oit_partfile_piece_desc pieces[4];
     uint32_t np;
 } part_in;
@@ -69,6 +70,9 @@ static void alloc_part(part_in *p, uint32_t nv, uint64_t ni, int colour)
     p->nv = nv;
     p->pos = calloc((size_t)nv * 3, sizeof *p->pos);
     p->idx = calloc(ni, sizeof *p->idx);
+    p->src = malloc((ni / 3 ? ni / 3 : 1) * sizeof *p->src);
+    for (uint64_t t = 0; t < ni / 3; t++)
+        p->src[t] = (uint32_t)((t * 7 + nv) % 997);
     p->rgba = colour ? malloc((size_t)nv * 4) : NULL;
     for (uint32_t i = 0; colour && i < nv * 4; i++)
         p->rgba[i] = (uint8_t)(i * 37 + 11);
@@ -202,6 +206,7 @@ static void scene_free(scene *s)
         free(s->parts[i].pos);
         free(s->parts[i].rgba);
         free(s->parts[i].idx);
+        free(s->parts[i].src);
     }
 }
 
@@ -216,7 +221,7 @@ static oit_status write_scene(const scene *s, const char *path, uint32_t align, 
         const part_in *p = &s->parts[i];
         oit_partfile_part_desc pd = {.positions = p->pos, .rgba = p->rgba, .vertex_count = p->nv,
                                      .indices = p->idx, .index_count = p->ni,
-                                     .pieces = p->pieces, .piece_count = p->np};
+                                     .sources = p->src, .pieces = p->pieces, .piece_count = p->np};
         st = oit_partfile_writer_add_part(w, &pd, NULL, err);
     }
     if (!st)
@@ -251,9 +256,13 @@ static void check_part_bytes(const oit_partfile *pf, uint32_t i, const part_in *
         uint32_t x = oit_partfile_index(&v, j);
         bad_idx += x != in->idx[j];
     }
-    CHECK(bad_pos == 0 && bad_rgba == 0 && bad_idx == 0,
-          "part %u: %llu positions, %llu colours, %llu indices differ", i,
-          (unsigned long long)bad_pos, (unsigned long long)bad_rgba, (unsigned long long)bad_idx);
+    uint64_t bad_src = 0;
+    for (uint64_t t = 0; t < v.index_count / 3; t++)
+        bad_src += oit_partfile_source(&v, t) != in->src[t];
+    CHECK(bad_pos == 0 && bad_rgba == 0 && bad_idx == 0 && bad_src == 0,
+          "part %u: %llu positions, %llu colours, %llu indices, %llu source indices differ", i,
+          (unsigned long long)bad_pos, (unsigned long long)bad_rgba, (unsigned long long)bad_idx,
+          (unsigned long long)bad_src);
     CHECK(v.index_count == in->ni, "part %u: %llu indices, wrote %llu", i,
           (unsigned long long)v.index_count, (unsigned long long)in->ni);
     CHECK((in->rgba != NULL) == (v.rgba != NULL) && v.stride == (in->rgba ? 16u : 12u),
@@ -511,17 +520,44 @@ static void corrupt_index(corrupt_ctx *c, uint8_t *b, uint32_t part, uint32_t va
     expect_refused(c, what, b, c->size, needle);
 }
 
+/* Edits the source index of triangle `tri` of part `part` and reseals
+ * every checksum. */
+static void corrupt_source(corrupt_ctx *c, uint8_t *b, uint32_t part, uint32_t tri,
+                           uint32_t value, const char *needle)
+{
+    memcpy(b, c->good, c->size);
+    pf_section ps = get_section(b, PF_SEC_PARTS);
+    oit_partfile_part p;
+    memcpy(&p, b + ps.offset + part * sizeof p, sizeof p);
+    set_u32(b, p.data_offset + oit_partfile_source_offset(&p) + 4 * (size_t)tri, value);
+    reseal_part(b, c->size, part);
+    reseal(b, c->size);
+    char what[80];
+    snprintf(what, sizeof what, "source index %u of part %u, resealed", value, part);
+    expect_refused(c, what, b, c->size, needle);
+}
+
 static void corrupt_semantics(corrupt_ctx *c, uint8_t *b)
 {
     memcpy(b, c->good, c->size);
-    set_u32(b, offsetof(pf_header, version), 4);
-    expect_refused(c, "version 4", b, c->size, "part file version 4, this build reads versions 1 to 3");
+    set_u32(b, offsetof(pf_header, version), 5);
+    expect_refused(c, "version 5", b, c->size, "part file version 5, this build reads version 4");
     memcpy(b, c->good, c->size);
     set_u32(b, offsetof(pf_header, version), 0);
-    expect_refused(c, "version 0", b, c->size, "part file version 0, this build reads versions 1 to 3");
+    expect_refused(c, "version 0", b, c->size, "part file version 0, this build reads version 4");
+    for (uint32_t v = 1; v <= 3; v++) {
+        memcpy(b, c->good, c->size);
+        set_u32(b, offsetof(pf_header, version), v);
+        char what[32];
+        snprintf(what, sizeof what, "version %u", v);
+        expect_refused(c, what, b, c->size, "convert the model again");
+    }
 
     corrupt_index(c, b, 2, 70000, "index 70000 >= 70000 vertices");
     corrupt_index(c, b, 0, 9, "index 9 >= 4 vertices");
+    /* triangles_in is 1000: 999 is the last valid source index. */
+    corrupt_source(c, b, 1, 5, 1000, "part 1: triangle 5: source index 1000 >= 1000 source");
+    corrupt_source(c, b, 3, 1, 0xFFFFFFFFu, "part 3: triangle 1: source index 4294967295");
 
     memcpy(b, c->good, c->size);
     pf_section s = get_section(b, PF_SEC_PIECES);
@@ -554,9 +590,9 @@ static void corrupt_semantics(corrupt_ctx *c, uint8_t *b)
     reseal(b, c->size);
     expect_refused(c, "SLABS claims 4e9 slabs", b, c->size, "4000000000");
 
-    /* A cutting plane's integer normal (1,-1,0): valid from version 3 on,
-     * refused as "not unit" in a file that says version 2, and a zero
-     * normal refused in any. */
+    /* A cutting plane's integer normal (1,-1,0) is valid (versions 1 and 2,
+     * which asked for unit normals, are no longer read); a zero normal is
+     * refused. */
     size_t normal = get_section(b, PF_SEC_SLABS).offset + sizeof(pf_slab_block);
     const float integer_normal[3] = {1, -1, 0}, zero[3] = {0, 0, 0};
     memcpy(b, c->good, c->size);
@@ -565,11 +601,8 @@ static void corrupt_semantics(corrupt_ctx *c, uint8_t *b)
     oit_partfile *pf = NULL;
     oit_error err = {0};
     CHECK(spill(c->path, b, c->size) == 0 && oit_partfile_open(c->path, NULL, &pf, &err) == OIT_OK,
-          "slab normal (1,-1,0) in version 3: %s", err.message);
+          "slab normal (1,-1,0): %s", err.message);
     oit_partfile_close(pf);
-    set_u32(b, offsetof(pf_header, version), 2);
-    reseal(b, c->size);
-    expect_refused(c, "version 2, slab normal (1,-1,0)", b, c->size, "not unit");
     memcpy(b, c->good, c->size);
     memcpy(b + normal, zero, sizeof zero);
     reseal(b, c->size);
@@ -605,7 +638,7 @@ static void corrupt_blob_bounds(corrupt_ctx *c, uint8_t *b)
     uint64_t grow = 3 * (slack / (3 * ib) + 1);
     p.index_count += grow;
     p.index_bytes += grow * ib;
-    p.data_bytes += grow * ib;
+    p.data_bytes = oit_partfile_source_offset(&p) + p.index_count / 3 * 4;
     memcpy(b + at, &p, sizeof p);
     reseal(b, c->size);
     expect_refused(c, "last blob past PART_DATA, resealed", b, c->size, "outside PART_DATA");
@@ -683,7 +716,7 @@ static void check_tool(const char *tmp, const char *good, const uint8_t *bytes, 
     static const char *keys[] = {"\"triangles\": 138956", "\"parts\": 4", "\"pieces\": 5",
                                  "\"slabs\": 2", "\"cells\": 8", "\"subgrid_depth\": 2",
                                  "\"bytes\": ", "\"layer_bound\": 4",
-                                 "\"attributes\": [\"color\", \"alpha\"]", "\"version\": 3",
+                                 "\"attributes\": [\"color\", \"alpha\"]", "\"version\": 4",
                                  "\"K\": 8"};
     for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
         CHECK(strstr(text, keys[i]), "--json lacks %s", keys[i]);
@@ -758,23 +791,20 @@ static void check_writer_refuses(const char *tmp)
     scene_free(&s);
 }
 
-/* A version-1 file (written before META held the origin) still opens, with
- * origin 0 and everything else as written then. */
+/* A file of an older version (small-v1.oitp: version 1, written before
+ * META held the origin) has no source indices: it is refused, the message
+ * naming the file and telling the user to convert the model again. */
 static void check_version1(const char *corpus)
 {
     char path[600];
     snprintf(path, sizeof path, "%s/small-v1.oitp", corpus);
     oit_partfile *pf = NULL;
     oit_error err = {0};
-    CHECK(oit_partfile_open(path, NULL, &pf, &err) == OIT_OK, "%s", err.message);
-    if (!pf)
-        return;
-    oit_partfile_summary sum;
-    oit_partfile_get_summary(pf, &sum);
-    printf("  version 1 file: version %u, %llu parts, origin (%g %g %g)\n", sum.version,
-           (unsigned long long)sum.parts, sum.origin[0], sum.origin[1], sum.origin[2]);
-    CHECK(sum.version == 1 && sum.parts == 2 && sum.origin[0] == 0 && sum.origin[1] == 0 &&
-              sum.origin[2] == 0, "version 1 file read wrongly");
+    oit_status st = oit_partfile_open(path, NULL, &pf, &err);
+    printf("  version 1 file: %s\n", err.message);
+    CHECK(st == OIT_ERR_FORMAT && !pf && strstr(err.message, "small-v1.oitp") &&
+              strstr(err.message, "version 1") && strstr(err.message, "convert the model again"),
+          "version 1 file: status %s, %s", oit_status_name(st), err.message);
     oit_partfile_close(pf);
 }
 

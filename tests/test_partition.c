@@ -540,6 +540,54 @@ static void test_kd_split_touching(void)
     printf("kd split with faces touching at x = 6: axis %d at %g instead\n", axis[1], pos[1]);
 }
 
+/* Source indices given to the builds: 2 i + 1, so that an index that is
+ * really a position (or a lost one, 0) shows. */
+static uint32_t *odd_sources(size_t n)
+{
+    uint32_t *src = malloc((n ? n : 1) * sizeof *src);
+    for (size_t i = 0; i < n; i++)
+        src[i] = (uint32_t)(2 * i + 1);
+    return src;
+}
+
+/* Every output triangle carries a source index of the input (2 i + 1), the
+ * pieces carrying one cover its triangle's area exactly (relative 1e-4:
+ * clipping only adds rounding), and within a piece the indices ascend (the
+ * input's order is kept). A wrong or shuffled index breaks the areas. */
+static void check_sources(const char *name, const tri_list *l, const oit_kd_result *r)
+{
+    double *area = calloc(l->n ? l->n : 1, sizeof *area);
+    size_t bad = 0, unordered = 0;
+    for (size_t i = 0; i < r->tri_count; i++) {
+        uint32_t s = r->src[i];
+        if (s % 2 == 0 || (s - 1) / 2 >= l->n) {
+            bad++;
+            continue;
+        }
+        area[(s - 1) / 2] += tri_area(&r->tris[i]);
+    }
+    size_t wrong = 0;
+    for (size_t i = 0; i < l->n; i++) {
+        double a = tri_area(&l->t[i]);
+        if (fabs(area[i] - a) > 1e-4 * a + 1e-12)
+            wrong++;
+    }
+    for (size_t p = 0; p < r->part_count; p++) {
+        size_t at = r->parts[p].tri_first;
+        for (uint32_t k = 0; k < r->parts[p].piece_count; k++) {
+            size_t n = r->pieces[r->parts[p].piece_first + k].triangle_count;
+            for (size_t j = at + 1; j < at + n; j++)
+                unordered += r->src[j] < r->src[j - 1];
+            at += n;
+        }
+    }
+    CHECK(bad == 0 && wrong == 0 && unordered == 0,
+          "%s: %zu source indices out of range, %zu of %zu source triangles whose pieces' "
+          "area differs, %zu descending steps within pieces", name, bad, wrong, l->n,
+          unordered);
+    free(area);
+}
+
 static oit_status kd_of(const tri_list *l, uint32_t K, oit_kd_result *r, oit_error *err)
 {
     float lo[3] = {-4, -4, -4}, hi[3] = {4, 4, 4};
@@ -547,9 +595,13 @@ static oit_status kd_of(const tri_list *l, uint32_t K, oit_kd_result *r, oit_err
     if (oit_convex_cluster(l->t, l->n, NULL, &cr, err))
         return OIT_ERR_NOMEM;
     oit_kd_params kp = {K, 0, 0, OIT_KD_SLABS_ALL};
-    oit_status s = oit_kd_build(lo, hi, l->t, l->n, cr.piece_of, cr.plane_of, cr.piece_count,
-                                &kp, r, err);
+    uint32_t *src = odd_sources(l->n);
+    oit_status s = oit_kd_build(lo, hi, l->t, src, l->n, cr.piece_of, cr.plane_of,
+                                cr.piece_count, &kp, r, err);
     oit_convex_result_free(&cr);
+    free(src);
+    if (s == OIT_OK)
+        check_sources("kd", l, r);
     return s;
 }
 
@@ -963,7 +1015,11 @@ static void test_kd_fast(void)
     oit_kd_fast_params p = {500, 8, 0, 0};
     oit_kd_result r;
     oit_error err = {0};
-    CHECK(oit_kd_build_fast(lo, hi, torus.t, torus.n, &p, &r, &err) == OIT_OK, "%s", err.message);
+    uint32_t *src = odd_sources(torus.n);
+    CHECK(oit_kd_build_fast(lo, hi, torus.t, src, torus.n, &p, &r, &err) == OIT_OK, "%s",
+          err.message);
+    free(src);
+    check_sources("kd fast torus", &torus, &r);
     CHECK(r.part_count >= torus.n / 500 && r.part_count <= torus.n / 50,
           "torus of %zu: %zu parts at T = 500", torus.n, r.part_count);
     printf("kd fast torus: %zu triangles -> %zu, %zu parts at T = 500, most measured %u\n",
@@ -974,8 +1030,11 @@ static void test_kd_fast(void)
      * so it is split further (along z) until every part is within it. */
     float slo[3] = {0, 0, 0}, shi[3] = {8, 8, 8};
     p.part_triangles = 100000;
-    CHECK(oit_kd_build_fast(slo, shi, stack.t, stack.n, &p, &r, &err) == OIT_OK, "%s",
+    src = odd_sources(stack.n);
+    CHECK(oit_kd_build_fast(slo, shi, stack.t, src, stack.n, &p, &r, &err) == OIT_OK, "%s",
           err.message);
+    free(src);
+    check_sources("kd fast stack", &stack, &r);
     CHECK(r.part_count >= 2 && r.clamped_parts == 0 && r.max_measured <= 64 &&
               r.tri_count == stack.n,
           "stack of 100: %zu parts, %u clamped, max %u, %zu triangles", r.part_count,
@@ -985,7 +1044,7 @@ static void test_kd_fast(void)
     check_fast("stack", &stack, 100000, &r);
     oit_kd_result_free(&r);
     p.part_triangles = 0;
-    CHECK(oit_kd_build_fast(lo, hi, torus.t, torus.n, &p, &r, &err) == OIT_ERR_ARGUMENT,
+    CHECK(oit_kd_build_fast(lo, hi, torus.t, NULL, torus.n, &p, &r, &err) == OIT_ERR_ARGUMENT,
           "parts of 0 triangles must be refused");
     free(torus.t);
     free(stack.t);

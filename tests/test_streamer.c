@@ -108,9 +108,22 @@ static void jitter_box(const float lo[3], const float hi[3], float out_lo[3], fl
     }
 }
 
+/* Triangles written to the file so far (reset per file): each part's
+ * source indices are its file positions, reversed within the part, so
+ * that they are a permutation of the file's triangles but not their
+ * order, and the stream's prim (the source index) and DFB's on the loaded
+ * mesh (its position, sorted by source index) agree only if both follow
+ * the indices. */
+static uint32_t written_triangles;
+
 static int write_shape(oit_partfile_writer *w, const shape *s, uint32_t *index, oit_error *err)
 {
+    uint32_t src[MAXI], n = s->ni / 3;
+    for (uint32_t t = 0; t < n; t++)
+        src[t] = written_triangles + (n - 1 - t);
+    written_triangles += n;
     oit_partfile_part_desc d = {0};
+    d.sources = src;
     d.positions = &s->pos[0][0];
     d.rgba = &s->rgba[0][0];
     d.vertex_count = s->nv;
@@ -156,6 +169,7 @@ static int write_scene(const char *path, int flaw, oit_error *err)
     wd.source_name = "test_streamer grid of convex shapes";
     wd.measured_bounds = flaw == FLAW_MEASURED || flaw == FLAW_MEASURED_SWAPPED;
     oit_partfile_writer *w = NULL;
+    written_triangles = 0;
     if (oit_partfile_writer_create(path, &wd, &w, err) != OIT_OK)
         return -1;
     uint32_t r = 2024u, counts[CELLS] = {0}, list[CELLS + 4], used = 0;

@@ -293,21 +293,31 @@ static void reader_alone(oit_partfile *pf)
     oit_read_item *items = calloc(n, sizeof *items);
     for (uint32_t p = 0; items && p < n; p++) {
         items[p] = (oit_read_item){p, total};
-        total += parts[p].index_count / 3 * sizeof(oit_triangle);
+        total += oit_part_sourced_bytes(parts[p].index_count / 3);
     }
     unsigned char *dst = malloc(total + 1), *want = malloc(total + 1);
     CHECK(items && dst && want, "out of memory");
     oit_error err = {0};
-    for (uint32_t p = 0; items && dst && want && p < n; p++)
+    /* What the GPU draws: the part's triangles as oit_part_expand gives them,
+     * then its source indices as the file stores them. */
+    for (uint32_t p = 0; items && dst && want && p < n; p++) {
+        uint64_t tris = parts[p].index_count / 3;
         CHECK(oit_part_expand(pf, p, (oit_triangle *)(void *)(want + items[p].offset), &err) ==
                   OIT_OK, "expand part %u: %s", p, err.message);
+        oit_partfile_part_view v;
+        CHECK(oit_partfile_part_data(pf, p, &v, &err) == OIT_OK, "%s", err.message);
+        for (uint64_t t = 0; t < tris; t++) {
+            uint32_t s = oit_partfile_source(&v, t);
+            memcpy(want + items[p].offset + tris * sizeof(oit_triangle) + 4 * t, &s, 4);
+        }
+    }
     oit_reader *r = NULL;
     if (items && dst && want && oit_reader_create(pf, dst, 1, &r, &err) == OIT_OK) {
         CHECK(oit_reader_collect(r, &err) == OIT_ERR_ARGUMENT, "collect with no job succeeded");
         CHECK(oit_reader_submit(r, items, n, &err) == OIT_OK, "submit: %s", err.message);
         CHECK(oit_reader_collect(r, &err) == OIT_OK, "collect: %s", err.message);
-        CHECK(memcmp(dst, want, total) == 0, "the reader's triangles differ from "
-              "oit_part_expand's");
+        CHECK(memcmp(dst, want, total) == 0, "the reader's triangles and source indices "
+              "differ from oit_part_expand's and the file's");
         uint32_t q = 0;
         while (q < OIT_READER_QUEUE && oit_reader_submit(r, items, n, &err) == OIT_OK)
             q++;

@@ -16,7 +16,7 @@
  * Reader: maps the file read-only and validates every byte that it will hand
  * out before oit_partfile_open returns: header, section table, checksums,
  * record counts and every cross-reference. With defer_part_data the per-part
- * vertex/index blobs are validated instead by oit_partfile_validate_part,
+ * vertex/index/source blobs are validated instead by oit_partfile_validate_part,
  * which the loader calls before it first uses a part; oit_partfile_part_data
  * refuses a part that has not passed it. The records returned below are
  * decoded copies; the vertex and index pointers point into the mapping.
@@ -38,10 +38,11 @@
 extern "C" {
 #endif
 
-#define OIT_PARTFILE_VERSION 3u
-/* The oldest version this build still reads (1: no origin in META; 1 and 2:
- * slab normals of unit length). */
-#define OIT_PARTFILE_VERSION_MIN 1u
+#define OIT_PARTFILE_VERSION 4u
+/* The oldest version this build reads. Versions 1 to 3 store no source
+ * triangle indices; they are refused with a message that says to convert
+ * the model again. */
+#define OIT_PARTFILE_VERSION_MIN 4u
 #define OIT_PARTFILE_NONE 0xFFFFFFFFu /* "no grid / no cell" in parent links */
 /* A part's layer bound is at most K, except for a wide part: where more than
  * K layers meet at one vertex no box separates them, so the part keeps its
@@ -69,7 +70,8 @@ typedef struct oit_partfile_part {
     uint32_t vertex_count;
     uint64_t index_count;   /* 3 per triangle                               */
     uint64_t data_offset;   /* file offset of the part's blob (aligned)     */
-    uint64_t data_bytes;    /* the blob: vertices, pad to 4, indices        */
+    uint64_t data_bytes;    /* the blob: vertices, pad to 4, indices, pad to
+                               4, source indices (oit_partfile_source_offset) */
     uint64_t vertex_offset; /* within the blob (0)                          */
     uint64_t vertex_bytes;
     uint64_t index_offset;  /* within the blob                              */
@@ -181,7 +183,8 @@ uint64_t oit_partfile_piece_count(const oit_partfile *pf);
 const oit_partfile_piece *oit_partfile_pieces(const oit_partfile *pf);
 
 /* Checks part's blob: checksum, index values < vertex_count, vertices
- * finite and inside the part bounds, triangles inside their piece bounds.
+ * finite and inside the part bounds, triangles inside their piece bounds,
+ * source indices < the file's triangles_in.
  * Idempotent; distinct parts may be validated from different threads. */
 oit_status oit_partfile_validate_part(oit_partfile *pf, uint32_t part, oit_error *err);
 
@@ -193,6 +196,12 @@ typedef struct oit_partfile_part_view {
     uint32_t index_bits;  /* 16 or 32                                     */
     const void *indices;
     uint64_t index_count;
+    /* index_count / 3 u32: each triangle's source index, its 0-based
+     * position among the triangles the mesh reader delivered for the source
+     * file (oit_mesh_read), < triangles_in. A clipped piece carries the index
+     * of the triangle it was cut from; a triangle in several parts carries
+     * it in each. Read with oit_partfile_source. */
+    const void *sources;
 } oit_partfile_part_view;
 
 /* Fails with OIT_ERR_ARGUMENT for an index out of range, or for a part not
@@ -220,6 +229,22 @@ static inline uint32_t oit_partfile_index(const oit_partfile_part_view *v, uint6
     uint32_t x;
     memcpy(&x, (const uint8_t *)v->indices + i * 4, sizeof x);
     return x;
+}
+
+/* Source index of triangle i (< index_count / 3) of a part view (memcpy,
+ * as oit_partfile_index). */
+static inline uint32_t oit_partfile_source(const oit_partfile_part_view *v, uint64_t i)
+{
+    uint32_t x;
+    memcpy(&x, (const uint8_t *)v->sources + i * 4, sizeof x);
+    return x;
+}
+
+/* Where a part's source indices start within its blob: after the index
+ * stream, rounded up to 4 (docs/part-file.md). */
+static inline uint64_t oit_partfile_source_offset(const oit_partfile_part *p)
+{
+    return (p->index_offset + p->index_bytes + 3u) & ~(uint64_t)3u;
 }
 
 /* Grids: index 0 is the top grid, 1..grid_count-1 the subgrids. NULL when
@@ -273,6 +298,9 @@ typedef struct oit_partfile_part_desc {
     const uint32_t *indices; /* index_count, 3 per triangle; stored as 16-bit
                                 when vertex_count <= 65536                */
     uint64_t index_count;
+    const uint32_t *sources; /* index_count / 3: each triangle's source index
+                                (oit_partfile_part_view.sources); required,
+                                each < the finish stats' triangles_in    */
     const oit_partfile_piece_desc *pieces; /* cover the triangles in order */
     uint32_t piece_count;
     uint32_t layer_bound;    /* 0: min(K, 2*piece_count); with measured
@@ -322,7 +350,8 @@ typedef struct oit_partfile_stats {
 
 /* Writes management sections and header, verifies, renames. Consumes w on
  * success and on failure (the .tmp file is removed on failure). stats may be
- * NULL. */
+ * NULL: then triangles_in is the file's triangle count (a synthetic file
+ * whose every triangle is its own source), nothing dropped or split. */
 oit_status oit_partfile_writer_finish(oit_partfile_writer *w, const oit_partfile_stats *stats,
                                       oit_error *err);
 /* Discards w and its .tmp file. NULL is allowed. */
