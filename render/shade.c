@@ -30,6 +30,19 @@ static int normalize3(double v[3])
     return 1;
 }
 
+/* (p1 - p0) x (p2 - p0) in double, where the float differences are exact
+ * and the products keep 53 bits: triangles of one plane get normals
+ * parallel to about 1e-16. */
+static void cross_normal(const oit_triangle *tri, double n[3])
+{
+    double e1[3], e2[3];
+    sub3(tri->v[1].pos, tri->v[0].pos, e1);
+    sub3(tri->v[2].pos, tri->v[0].pos, e2);
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+}
+
 static void interpolate_base(const oit_shading *s, const oit_triangle *tri,
                              const float bary[3], float base_rgb[3], float *base_a)
 {
@@ -47,12 +60,8 @@ void oit_shade_fragment(const oit_shading *s, const oit_triangle *tri,
                         uint32_t prim, const float bary[3], const float eye[3],
                         double t, oit_shaded_fragment *out)
 {
-    double e1[3], e2[3], n[3], v[3];
-    sub3(tri->v[1].pos, tri->v[0].pos, e1);
-    sub3(tri->v[2].pos, tri->v[0].pos, e2);
-    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    double n[3], v[3];
+    cross_normal(tri, n);
     for (int k = 0; k < 3; k++) {
         double p = 0.0;
         for (int j = 0; j < 3; j++)
@@ -84,12 +93,8 @@ void oit_shade_fragment(const oit_shading *s, const oit_triangle *tri,
 
 int oit_depth_plane(const oit_triangle *tri, const float eye[3], float n[3], float *d)
 {
-    double e1[3], e2[3], nn[3], q[3];
-    sub3(tri->v[1].pos, tri->v[0].pos, e1);
-    sub3(tri->v[2].pos, tri->v[0].pos, e2);
-    nn[0] = e1[1] * e2[2] - e1[2] * e2[1];
-    nn[1] = e1[2] * e2[0] - e1[0] * e2[2];
-    nn[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    double nn[3], q[3];
+    cross_normal(tri, nn);
     sub3(tri->v[0].pos, eye, q);
     *d = 0.0f;
     n[0] = n[1] = n[2] = 0.0f;
