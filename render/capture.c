@@ -23,6 +23,7 @@ struct oit_capture {
     oit_capture_kind backend;
     int K;
     float epsilon; /* early termination threshold; 0: exact */
+    oit_opaque_depth opaque; /* the caller's depth (oit_capture_set_opaque) */
     GLuint fill_prog, resolve_prog, end_prog;
     /* Tiled batches (tile-local slots: wide parts, or a slot budget below
      * the full frame), built on first use: [0] sorts up to 16, [1] up to
@@ -283,7 +284,19 @@ static void set_uniforms(oit_capture *c)
         oit_counted_set_view(&c->counted, &c->view);
     if (c->backend == OIT_CAPTURE_FIRSTK)
         oit_firstk_set_view(&c->firstk, &c->view);
+    oit_glsl_set_opaque_all(progs, 3, &c->opaque);
+    if (uses_counted(c))
+        oit_counted_set_opaque(&c->counted, &c->opaque);
+    if (c->backend == OIT_CAPTURE_FIRSTK)
+        oit_firstk_set_opaque(&c->firstk, &c->opaque);
     apply_epsilon(c);
+}
+
+void oit_capture_set_opaque(oit_capture *c, const oit_opaque_depth *o)
+{
+    memset(&c->opaque, 0, sizeof c->opaque);
+    if (o && o->enabled)
+        c->opaque = *o;
 }
 
 void oit_capture_set_epsilon(oit_capture *c, float epsilon)
@@ -498,6 +511,7 @@ static oit_status tiled_programs(oit_capture *c, int i, oit_error *err)
     GLuint progs[2] = {c->tile_fill_prog[i], c->tile_resolve_prog[i]};
     for (int k = 0; k < 2; k++) {
         oit_glsl_set_view(progs[k], &c->view);
+        oit_glsl_set_opaque(progs[k], &c->opaque);
         glProgramUniform1i(progs[k], glGetUniformLocation(progs[k], "u_K"), c->K);
     }
     glProgramUniform1f(progs[0], glGetUniformLocation(progs[0], "u_epsilon"), c->epsilon);

@@ -14,6 +14,7 @@
 #define OIT_RENDER_CAPTURE_H
 
 #include "gpu_mesh.h"
+#include "render/frag_glsl.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -47,6 +48,12 @@ oit_capture_kind oit_capture_backend(const oit_capture *c);
  * fragments, so the image differs from the exact one by at most epsilon per
  * channel. 0 (the default; negatives read as 0) keeps the image exact. */
 void oit_capture_set_epsilon(oit_capture *c, float epsilon);
+
+/* The caller's opaque depth (frag_glsl.h, oit_opaque_depth) from the next
+ * oit_capture_begin on; NULL: none (the default). Fragments behind it are
+ * neither counted nor stored; the texture must be bound at unit
+ * OIT_TEX_OPAQUE_DEPTH while the frame is captured. */
+void oit_capture_set_opaque(oit_capture *c, const oit_opaque_depth *o);
 
 /* The GL buffer of the frame's width*height per-pixel states (packed as
  * frag_glsl.h's oit_glsl_state_io reads them, in the frame's shading; GL

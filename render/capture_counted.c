@@ -47,6 +47,12 @@ void oit_counted_set_view(oit_counted *k, const oit_view *v)
     oit_glsl_set_view_all(progs, 3, v);
 }
 
+void oit_counted_set_opaque(oit_counted *k, const oit_opaque_depth *o)
+{
+    GLuint progs[3] = {k->count_prog, k->store_prog, k->resolve_prog};
+    oit_glsl_set_opaque_all(progs, 3, o);
+}
+
 void oit_counted_set_epsilon(oit_counted *k, float epsilon)
 {
     GLuint progs[2] = {k->count_prog, k->store_prog};

@@ -18,6 +18,7 @@
 #define OIT_RENDER_CAPTURE_COUNTED_H
 
 #include "render/gpu_mesh.h"
+#include "render/frag_glsl.h"
 #include "render/scan_glsl.h"
 
 #define OIT_COUNTED_MAX_SORTED OIT_GLSL_SEGMENT_LOCAL
@@ -36,6 +37,8 @@ void oit_counted_release(oit_counted *k);
 /* View uniforms for the frame; the early-termination threshold (the count
  * and store passes drop fragments of saturated pixels alike). */
 void oit_counted_set_view(oit_counted *k, const oit_view *v);
+/* After oit_counted_set_view (frag_glsl.h, oit_glsl_set_opaque). */
+void oit_counted_set_opaque(oit_counted *k, const oit_opaque_depth *o);
 void oit_counted_set_epsilon(oit_counted *k, float epsilon);
 uint64_t oit_counted_bytes(const oit_counted *k);
 

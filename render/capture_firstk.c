@@ -32,6 +32,7 @@ static const char fill_fs[] =
     "uniform int u_W;\n"
     "uniform ivec4 u_tile;\n"
     "void main() {\n"
+    "    if (oit_behind_opaque()) discard;\n"
     "    uint p = oit_pixel_index();\n"
     "    if (oit_saturated(p)) discard;\n"
     "    uint q = oit_rect_index(ivec2(gl_FragCoord.xy), u_tile);\n"
@@ -107,6 +108,7 @@ static const char store_fs[] =
     RECT_INDEX
     "uniform ivec4 u_tile;\n"
     "void main() {\n"
+    "    if (oit_behind_opaque()) discard;\n"
     "    uvec2 e = table[oit_rect_index(ivec2(gl_FragCoord.xy), u_tile)];\n"
     "    uint p = oit_pixel_index();\n"
     "    if (e.y == 0u || oit_saturated(p)) discard;\n"
@@ -191,6 +193,13 @@ void oit_firstk_set_view(oit_firstk *k, const oit_view *v)
     GLuint progs[5] = {k->fill_prog, k->resolve_prog, k->alloc_prog, k->store_prog,
                        k->segment_prog};
     oit_glsl_set_view_all(progs, 5, v);
+}
+
+void oit_firstk_set_opaque(oit_firstk *k, const oit_opaque_depth *o)
+{
+    GLuint progs[5] = {k->fill_prog, k->resolve_prog, k->alloc_prog, k->store_prog,
+                       k->segment_prog};
+    oit_glsl_set_opaque_all(progs, 5, o);
 }
 
 void oit_firstk_set_epsilon(oit_firstk *k, float epsilon)

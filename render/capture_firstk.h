@@ -35,6 +35,7 @@
 #define OIT_RENDER_CAPTURE_FIRSTK_H
 
 #include "render/capture_counted.h"
+#include "render/frag_glsl.h"
 #include "render/gpu_mesh.h"
 
 typedef struct oit_firstk {
@@ -54,6 +55,8 @@ typedef struct oit_firstk {
 oit_status oit_firstk_init(oit_firstk *k, int K, oit_error *err);
 void oit_firstk_release(oit_firstk *k);
 void oit_firstk_set_view(oit_firstk *k, const oit_view *v);
+/* After oit_firstk_set_view (frag_glsl.h, oit_glsl_set_opaque). */
+void oit_firstk_set_opaque(oit_firstk *k, const oit_opaque_depth *o);
 void oit_firstk_set_epsilon(oit_firstk *k, float epsilon);
 uint64_t oit_firstk_bytes(const oit_firstk *k);
 

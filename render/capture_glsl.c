@@ -29,6 +29,7 @@ const char oit_capture_array_fs[] =
     "layout(std430, binding = 3) writeonly buffer Slots { uvec4 slots[]; };\n"
     "void main() {\n"
     "    uint p = oit_pixel_index();\n"
+    "    if (oit_behind_opaque()) discard;\n"
     "    if (oit_saturated(p)) discard;\n"
     "    uint c = atomicAdd(counts[p], 1u);\n"
     "    if (c < uint(u_K)) slots[p * uint(u_K) + c] = oit_fragment();\n"
@@ -46,6 +47,7 @@ const char oit_capture_wide_fs[] =
     "uniform ivec4 u_tile;\n"
     "void main() {\n"
     "    uint p = oit_pixel_index();\n"
+    "    if (oit_behind_opaque()) discard;\n"
     "    if (oit_saturated(p)) discard;\n"
     "    ivec2 px = ivec2(gl_FragCoord.xy) - u_tile.xy;\n"
     "    uint q = uint(px.y * (u_tile.z - u_tile.x) + px.x);\n"
@@ -59,6 +61,7 @@ const char oit_capture_stencil_fs[] =
     SATURATED
     "layout(location = 0) out uvec4 o_frag;\n"
     "void main() {\n"
+    "    if (oit_behind_opaque()) discard;\n"
     "    if (oit_saturated(oit_pixel_index())) discard;\n"
     "    uint c = atomicAdd(counts[oit_pixel_index()], 1u);\n"
     "    if (c == uint(u_K)) atomicAdd(overflow, 1u);\n"
@@ -153,6 +156,7 @@ const char oit_capture_counted_count_fs[] =
     SATURATED
     "void main() {\n"
     "    uint p = oit_pixel_index();\n"
+    "    if (oit_behind_opaque()) discard;\n"
     "    if (oit_saturated(p)) discard;\n"
     "    atomicAdd(counts[p], 1u);\n"
     "}\n";
@@ -164,6 +168,7 @@ const char oit_capture_counted_store_fs[] =
     SATURATED
     "void main() {\n"
     "    uint p = oit_pixel_index();\n"
+    "    if (oit_behind_opaque()) discard;\n"
     "    if (oit_saturated(p)) discard;\n"
     "    uint c = atomicAdd(counts[p], 0xffffffffu);\n"
     "    uint slot = offsets[p] + c - 1u;\n"

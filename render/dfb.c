@@ -22,11 +22,22 @@ struct oit_dfb {
     uint64_t cap[BUF_N];
     oit_scan scan;
     uint64_t bytes_peak;
+    oit_opaque_depth opaque; /* oit_dfb_set_opaque */
 };
+
+void oit_dfb_set_opaque(oit_dfb *d, const oit_opaque_depth *o)
+{
+    memset(&d->opaque, 0, sizeof d->opaque);
+    if (o && o->enabled)
+        d->opaque = *o;
+}
 
 static const char count_fs[] =
     "layout(std430, binding = 1) buffer Counts { uint counts[]; };\n"
-    "void main() { atomicAdd(counts[oit_pixel_index()], 1u); }\n";
+    "void main() {\n"
+    "    if (oit_behind_opaque()) discard;\n"
+    "    atomicAdd(counts[oit_pixel_index()], 1u);\n"
+    "}\n";
 
 /* The count pass ran the same rasterization, so every fragment finds its
  * slot; the bounds check only guards against a driver breaking invariance.
@@ -37,6 +48,7 @@ static const char store_fs[] =
     "layout(std430, binding = 3) writeonly buffer Frags { uvec4 frags[]; };\n"
     "layout(location = 12) uniform uint u_base;\n"
     "void main() {\n"
+    "    if (oit_behind_opaque()) discard;\n"
     "    uint p = oit_pixel_index();\n"
     "    uint c = atomicAdd(counts[p], 0xffffffffu);\n"
     "    uint slot = offsets[p] + c - 1u;\n"
@@ -331,6 +343,8 @@ static oit_status prepare(oit_dfb *d, const oit_view *v, int out, oit_error *err
     oit_glsl_set_view(d->count_prog, v);
     oit_glsl_set_view(d->store_prog, v);
     oit_glsl_set_view(out == BUF_OUT ? d->resolve_prog : d->state_prog, v);
+    oit_glsl_set_opaque(d->count_prog, &d->opaque);
+    oit_glsl_set_opaque(d->store_prog, &d->opaque);
     return oit_gl_check("DFB: frame set-up", err);
 }
 

@@ -13,6 +13,7 @@
 #define OIT_RENDER_DFB_H
 
 #include "gpu_mesh.h"
+#include "render/frag_glsl.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -41,6 +42,12 @@ oit_status oit_dfb_render(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n,
 oit_status oit_dfb_render_state(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n,
                                 const oit_view *view, unsigned *state,
                                 oit_frame_stats *stats, oit_error *err);
+
+/* The caller's opaque depth (frag_glsl.h, oit_opaque_depth) for d's next
+ * frames; NULL: none (the default). Fragments behind it are neither counted
+ * nor stored; the texture must be bound at unit OIT_TEX_OPAQUE_DEPTH while
+ * d renders. */
+void oit_dfb_set_opaque(oit_dfb *d, const oit_opaque_depth *o);
 
 #ifdef __cplusplus
 }

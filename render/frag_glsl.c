@@ -54,7 +54,19 @@ const char oit_glsl_vertex[] =
     "    gl_Position = u_proj * vp;\n"
     "}\n";
 
+/* The caller's opaque depth (frag_glsl.h, oit_behind_opaque). */
+#define OIT_GLSL_OPAQUE                                                     \
+    "layout(binding = " OIT_GLSL_STR(OIT_TEX_OPAQUE_DEPTH) ") uniform sampler2D u_opaque_depth;\n" \
+    "layout(location = 17) uniform int u_opaque;\n"                       \
+    "layout(location = 18) uniform ivec2 u_opaque_origin;\n"              \
+    "bool oit_behind_opaque() {\n"                                        \
+    "    if (u_opaque == 0) return false;\n"                              \
+    "    ivec2 q = ivec2(gl_FragCoord.xy) + u_opaque_origin;\n"           \
+    "    return gl_FragCoord.z >= texelFetch(u_opaque_depth, q, 0).r;\n"  \
+    "}\n"
+
 const char oit_glsl_fragment_gen[] =
+    OIT_GLSL_OPAQUE
     "layout(location = 3) uniform int u_mode;\n"
     "layout(location = 4) uniform uint u_attrs;\n"
     "layout(location = 5) uniform float u_alpha;\n"
@@ -241,6 +253,22 @@ void oit_glsl_set_view(GLuint prog, const oit_view *view)
     float ray[4];
     oit_view_ray_map(view, ray);
     glProgramUniform4fv(prog, loc(prog, "u_ray"), 1, ray);
+}
+
+void oit_glsl_set_opaque(GLuint prog, const oit_opaque_depth *o)
+{
+    int on = o && o->enabled;
+    glProgramUniform1i(prog, loc(prog, "u_opaque"), on);
+    glProgramUniform2i(prog, loc(prog, "u_opaque_origin"), on ? o->origin[0] : 0,
+                       on ? o->origin[1] : 0);
+    if (on)
+        glProgramUniformMatrix4fv(prog, loc(prog, "u_proj"), 1, GL_FALSE, o->proj);
+}
+
+void oit_glsl_set_opaque_all(const GLuint *progs, int n, const oit_opaque_depth *o)
+{
+    for (int i = 0; i < n; i++)
+        oit_glsl_set_opaque(progs[i], o);
 }
 
 void oit_glsl_set_view_all(const GLuint *progs, int n, const oit_view *view)

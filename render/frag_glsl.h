@@ -73,8 +73,13 @@ enum {
     OIT_LOC_COUNT = 13,      /* uint: element count (scans) */
     OIT_LOC_FIRST_LEVEL = 14, /* int: scan level 0 accumulates totals */
     OIT_LOC_EYE = 15,        /* dvec3: the eye in the vertices' coordinates */
-    OIT_LOC_RAY = 16         /* vec4: window coordinates to view-space ray */
+    OIT_LOC_RAY = 16,        /* vec4: window coordinates to view-space ray */
+    OIT_LOC_OPAQUE = 17,     /* int: 1 tests the opaque depth (below) */
+    OIT_LOC_OPAQUE_ORIGIN = 18 /* ivec2: texel of frame pixel (0, 0) */
 };
+
+/* The texture unit of the caller's opaque depth (oit_behind_opaque). */
+#define OIT_TEX_OPAQUE_DEPTH 7
 
 /* The vertex input of oit_glsl_vertex (uvec2, see above). */
 enum { OIT_IN_DRAW = 0 };
@@ -97,6 +102,12 @@ extern const char oit_glsl_vertex[];    /* the vertex-pulling vertex shader */
 /* Fragment-stage library: oit_fragment() returns the packed fragment and
  * oit_pixel_index() the pixel's linear index (GL rows, bottom first). */
 extern const char oit_glsl_fragment_gen[];
+/* oit_glsl_fragment_gen also defines oit_behind_opaque(): true when an
+ * opaque depth is set (oit_glsl_set_opaque) and the fragment's window depth
+ * gl_FragCoord.z is >= the depth texel under it, a sampler2D at texture
+ * unit OIT_TEX_OPAQUE_DEPTH read with texelFetch at gl_FragCoord.xy +
+ * u_opaque_origin. Every fragment main that counts or stores fragments
+ * discards those first, so that counts and stores agree. */
 /* Any stage: oit_state, oit_state_begin(), oit_frag_less(a, b),
  * oit_composite(inout oit_state, uvec4 frag), oit_state_final(). */
 extern const char oit_glsl_composite[];
@@ -143,6 +154,19 @@ void oit_glsl_set_view(GLuint prog, const oit_view *view);
  * (`u_epsilon`, where a program has it). */
 void oit_glsl_set_view_all(const GLuint *progs, int n, const oit_view *view);
 void oit_glsl_set_epsilon_all(const GLuint *progs, int n, float epsilon);
+
+/* The caller's opaque depth (liboit's oit_frame.depth_texture). A program
+ * never given one (or given NULL or enabled 0) tests nothing: uniforms
+ * start at 0. proj replaces u_proj, so that gl_FragCoord.z is the depth
+ * the caller's projection gives; call it after oit_glsl_set_view, which
+ * sets u_proj from the camera. The texture is bound by whoever draws. */
+typedef struct oit_opaque_depth {
+    int enabled;
+    int origin[2];  /* texel of frame pixel (0, 0): the viewport's corner */
+    float proj[16]; /* column-major, the caller's projection */
+} oit_opaque_depth;
+void oit_glsl_set_opaque(GLuint prog, const oit_opaque_depth *o);
+void oit_glsl_set_opaque_all(const GLuint *progs, int n, const oit_opaque_depth *o);
 
 /* Binds fbo (no attachments needed) for fragment generation: viewport
  * w x h, no depth, stencil, blending, culling or colour writes, so the

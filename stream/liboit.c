@@ -31,6 +31,7 @@ struct oit_renderer {
     oit_gpu_mesh *gpu_mesh; /* the in-core scene's triangles */
     uint64_t pending_upload; /* bytes uploaded by bind_scene, for the stats */
     GLuint blend_prog, vao;
+    GLuint depth_sampler; /* reads oit_frame.depth_texture: no compare, nearest */
 };
 
 static const char *scene_name(const oit_scene *s)
@@ -312,6 +313,7 @@ void oit_renderer_destroy(oit_renderer *r)
     oit_dfb_destroy(r->dfb);
     glDeleteProgram(r->blend_prog);
     glDeleteVertexArrays(1, &r->vao);
+    glDeleteSamplers(1, &r->depth_sampler);
     free(r);
 }
 
@@ -357,6 +359,12 @@ oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out
     oit_status st = oit_gl_program_graphics("liboit blend", vs, fs, &r->blend_prog, err);
     if (st == OIT_OK) {
         glCreateVertexArrays(1, &r->vao);
+        glCreateSamplers(1, &r->depth_sampler);
+        glSamplerParameteri(r->depth_sampler, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+        glSamplerParameteri(r->depth_sampler, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glSamplerParameteri(r->depth_sampler, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glSamplerParameteri(r->depth_sampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glSamplerParameteri(r->depth_sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
         st = oit_gl_check("oit_renderer_create", err);
     }
     if (st != OIT_OK) {
@@ -524,6 +532,61 @@ static oit_status frame_view(const oit_renderer *r, const oit_scene *scene,
     return st;
 }
 
+/* oit_frame.depth_texture: a single-sample 2D depth texture covering the
+ * viewport, texel (x, y) the target's pixel (x, y). */
+static oit_status check_depth_texture(const oit_frame *f, oit_error *err)
+{
+    GLuint tex = f->depth_texture;
+    if (!glIsTexture(tex))
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_frame.depth_texture = %u is not a "
+                             "texture", tex);
+    GLint target = 0, bits = 0, w = 0, h = 0, mode = GL_DEPTH_COMPONENT;
+    glGetTextureParameteriv(tex, GL_TEXTURE_TARGET, &target);
+    if (target != GL_TEXTURE_2D)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_frame.depth_texture = %u: target "
+                             "0x%x is not GL_TEXTURE_2D", tex, (unsigned)target);
+    glGetTextureLevelParameteriv(tex, 0, GL_TEXTURE_DEPTH_SIZE, &bits);
+    glGetTextureLevelParameteriv(tex, 0, GL_TEXTURE_WIDTH, &w);
+    glGetTextureLevelParameteriv(tex, 0, GL_TEXTURE_HEIGHT, &h);
+    glGetTextureParameteriv(tex, GL_DEPTH_STENCIL_TEXTURE_MODE, &mode);
+    if (bits <= 0 || mode != GL_DEPTH_COMPONENT)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_frame.depth_texture = %u: level 0 "
+                             "holds no depth%s", tex,
+                             bits > 0 ? " (GL_DEPTH_STENCIL_TEXTURE_MODE reads stencil)" : "");
+    if (f->viewport_x < 0 || f->viewport_y < 0 || w < f->viewport_x + f->viewport_width ||
+        h < f->viewport_y + f->viewport_height)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_frame.depth_texture = %u: %dx%d does "
+                             "not cover the viewport %d,%d %dx%d (it is of the target's size)",
+                             tex, w, h, f->viewport_x, f->viewport_y, f->viewport_width,
+                             f->viewport_height);
+    return oit_gl_check("oit_frame.depth_texture", err);
+}
+
+/* The texture unit and sampler binding oit_renderer_draw takes for the
+ * depth texture, given back after the capture. */
+typedef struct depth_unit {
+    GLint active, tex, sampler;
+} depth_unit;
+
+static void depth_unit_bind(const oit_renderer *r, GLuint tex, depth_unit *u)
+{
+    glGetIntegerv(GL_ACTIVE_TEXTURE, &u->active);
+    glActiveTexture(GL_TEXTURE0 + OIT_TEX_OPAQUE_DEPTH);
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &u->tex);
+    glGetIntegerv(GL_SAMPLER_BINDING, &u->sampler);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glBindSampler(OIT_TEX_OPAQUE_DEPTH, r->depth_sampler);
+    glActiveTexture((GLenum)u->active);
+}
+
+static void depth_unit_restore(const depth_unit *u)
+{
+    glActiveTexture(GL_TEXTURE0 + OIT_TEX_OPAQUE_DEPTH);
+    glBindTexture(GL_TEXTURE_2D, (GLuint)u->tex);
+    glBindSampler(OIT_TEX_OPAQUE_DEPTH, (GLuint)u->sampler);
+    glActiveTexture((GLenum)u->active);
+}
+
 oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame *frame,
                              oit_draw_stats *stats, oit_error *err)
 {
@@ -532,19 +595,29 @@ oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame 
     double t0 = oit_time_ms();
     oit_view view;
     oit_status st = frame_view(r, scene, frame, &view, err);
+    if (st == OIT_OK && frame->depth_texture)
+        st = check_depth_texture(frame, err);
     if (st != OIT_OK)
         return st;
+    oit_opaque_depth opaque = {.enabled = frame->depth_texture != 0,
+                               .origin = {frame->viewport_x, frame->viewport_y}};
+    memcpy(opaque.proj, frame->projection, sizeof opaque.proj);
     gl_saved saved;
     gl_save(&saved);
+    depth_unit unit;
+    if (opaque.enabled)
+        depth_unit_bind(r, frame->depth_texture, &unit);
     oit_frame_stats fs = {0};
     oit_stream_frame_stats ss = {0};
     GLuint state = 0;
     int empty = !scene->pf && scene->info.triangles == 0; /* in core: nothing to draw */
     st = empty ? OIT_OK : bind_scene(r, scene, err);
     if (st == OIT_OK && !empty && scene->pf) {
+        oit_streamer_set_opaque(r->streamer, &opaque);
         st = oit_streamer_render_gpu(r->streamer, &view, &state, &fs, &ss, err);
     } else if (st == OIT_OK && !empty) {
         const oit_gpu_mesh *list[1] = {r->gpu_mesh};
+        oit_dfb_set_opaque(r->dfb, &opaque);
         st = oit_dfb_render_state(r->dfb, list, 1, &view, &state, &fs, err);
         ss.packs = fs.batches;
         ss.draw_calls = 1 + (uint64_t)fs.batches; /* the count pass; a store a band */
@@ -553,6 +626,9 @@ oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame 
                                                     sizeof(oit_triangle);
         r->pending_upload = 0;
     }
+    /* Not bound while the blend draws into a target it may be attached to. */
+    if (opaque.enabled)
+        depth_unit_restore(&unit);
     if (st == OIT_OK && !empty) {
         blend_over(r, frame, &view, state);
         st = oit_gl_check("oit_renderer_draw: blend", err);

@@ -393,6 +393,11 @@ static oit_status draw_packs(oit_streamer *s, const oit_packing *pk,
     return st;
 }
 
+void oit_streamer_set_opaque(oit_streamer *s, const oit_opaque_depth *o)
+{
+    oit_capture_set_opaque(s->capture, o);
+}
+
 /* Captures every pack of the view; on failure the frame is ended and
  * discarded. */
 static oit_status capture_frame(oit_streamer *s, const oit_view *view, oit_packing *pk,

@@ -89,6 +89,10 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
                                oit_streamer **out, oit_error *err);
 void oit_streamer_destroy(oit_streamer *s);
 
+/* The caller's opaque depth for the next frames (oit_capture_set_opaque);
+ * NULL: none. */
+void oit_streamer_set_opaque(oit_streamer *s, const oit_opaque_depth *o);
+
 /* Renders one view into out (allocated by the call). fs and ss may be NULL. */
 oit_status oit_streamer_render(oit_streamer *s, const oit_view *view, oit_image *out,
                                oit_frame_stats *fs, oit_stream_frame_stats *ss, oit_error *err);

@@ -30,3 +30,12 @@ oit_add_test(NAME liboit_example LABELS integration TIMEOUT 60
 oit_add_test_exe(test_liboit_incore SOURCES test_liboit_incore.c LIBS oit oit_formats)
 oit_add_test(NAME liboit_incore LABELS integration TIMEOUT 120
   COMMAND $<TARGET_FILE:test_liboit_incore> $<TARGET_FILE:oitprep> ${CMAKE_BINARY_DIR}/test-tmp)
+
+# The caller's opaque depth (oit_frame.depth_texture): an occluder drawn
+# with depth, then the part file (every packing) and the in-core scene,
+# against DFB of the scene with the occluder as alpha-1 triangles.
+oit_add_test_exe(test_liboit_depth SOURCES test_liboit_depth.c LIBS oit oit_stream)
+add_dependencies(test_liboit_depth test_streamer)
+set(liboit_depth_grid ${CMAKE_BINARY_DIR}/test-tmp/liboit_depth_grid.oitp)
+oit_add_test(NAME liboit_depth LABELS unit TIMEOUT 120
+  COMMAND sh -c "$<TARGET_FILE:test_streamer> ${liboit_depth_grid} && $<TARGET_FILE:test_liboit_depth> ${liboit_depth_grid}")

@@ -34,12 +34,19 @@
  * caller drew before (a sky, opaque geometry without depth interaction) shows
  * through; where no fragment falls the target is left as it was. Colour is
  * written as computed (no sRGB conversion by liboit; GL_FRAMEBUFFER_SRGB is
- * left as the caller set it).
+ * left as the caller set it). With oit_frame.depth_texture, transparent
+ * fragments at or behind the caller's opaque depth are dropped first, so
+ * C and T are those of the fragments strictly in front of it: the target
+ * shows what the scene with the opaque geometry included would, within the
+ * tolerance of the depth comparison (oit_frame.depth_texture). Without it,
+ * transparent surfaces cover everything drawn before, whatever its depth.
  *
  * GL state: oit_renderer_draw saves and restores the draw framebuffer
  * binding, viewport, current program, vertex array, draw-indirect buffer
  * binding, blend enable / function / equation, depth, stencil, cull and
- * scissor enables, colour and depth write masks. It does NOT restore indexed shader-storage buffer bindings 0..8, the
+ * scissor enables, colour and depth write masks, and (with a depth texture)
+ * the active texture unit and the 2D texture and sampler bound to texture
+ * unit 7 (OIT_TEX_OPAQUE_DEPTH), which it binds during the capture. It does NOT restore indexed shader-storage buffer bindings 0..8, the
  * texture bound to unit 0, or the framebuffer default-size parameters of its
  * own objects; callers that rely on those must rebind them.
  */
@@ -223,6 +230,25 @@ typedef struct oit_frame {
     int viewport_x, viewport_y; /* lower-left corner in the target, pixels */
     int viewport_width, viewport_height;
     unsigned framebuffer;       /* GL framebuffer name; 0: the default one */
+    /* The caller's opaque depth: the GL name of a single-sample
+     * GL_TEXTURE_2D depth texture (a depth or depth-stencil format, level
+     * 0, GL_DEPTH_STENCIL_TEXTURE_MODE left at GL_DEPTH_COMPONENT) of the
+     * TARGET's size: texel (x, y) is the target's pixel (x, y), and it must
+     * cover the viewport (else OIT_ERR_ARGUMENT). 0 (default): none.
+     * Transparent fragments whose window depth is >= the texel under them
+     * are dropped before they are stored or counted (streamed and in-core
+     * scenes alike), so the result is the transparent scene composited
+     * over the caller's opaque geometry as if that geometry were part of
+     * it. Window depth is gl_FragCoord.z of `projection` applied to the
+     * eye-space position (liboit then uses `projection` itself as its
+     * projection), with the default glDepthRange(0, 1) and
+     * glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE) assumed; a
+     * transparent surface within rounding (about 1e-6 of the depth range,
+     * the caller's own depth test alike) of an opaque one may go either
+     * way. liboit only reads the texture, through a sampler object of its
+     * own (nearest, no depth compare), so its filtering and compare mode do
+     * not matter; it may be the depth attachment of `framebuffer`. */
+    unsigned depth_texture;
 } oit_frame;
 
 typedef struct oit_draw_stats {
