@@ -6,6 +6,7 @@
 
 #include "render/gpu_mesh.h"
 #include "render/image.h"
+#include "render/opaque_tiles.h"
 #include "render/saturation.h"
 #include "stream/fence_queue.h"
 #include "stream/order.h"
@@ -44,6 +45,8 @@ struct oit_streamer {
     GLuint cache_buffer;
     oit_capture *capture;
     oit_saturation *saturation; /* only with epsilon > 0 */
+    oit_opaque_depth opaque;    /* the caller's depth (oit_streamer_set_opaque) */
+    oit_opaque_tiles *opaque_tiles; /* built at the first frame with one */
     float epsilon;
     uint32_t ahead;
     uint32_t *ordered;
@@ -71,6 +74,7 @@ void oit_streamer_destroy(oit_streamer *s)
         oit_gpu_mesh_destroy(s->views[i]);
     free(s->views);
     oit_saturation_destroy(s->saturation);
+    oit_opaque_tiles_destroy(s->opaque_tiles);
     oit_capture_destroy(s->capture);
     if (s->cache_buffer)
         glDeleteBuffers(1, &s->cache_buffer);
@@ -237,6 +241,12 @@ static oit_status reserve_views(oit_streamer *s, uint32_t n, oit_error *err)
 
 static int saturated(oit_streamer *s, const oit_packing *pk, uint32_t j)
 {
+    if (s->opaque.enabled) {
+        const oit_partfile_part *part = &oit_partfile_parts(s->pf)[pk->parts[j]];
+        if (oit_opaque_tiles_behind(s->opaque_tiles, part->bounds_min, part->bounds_max,
+                                    pk->part_rects[j]))
+            return 1;
+    }
     return s->saturation &&
            oit_saturation_covered(s->saturation, pk->part_rects[j], s->epsilon);
 }
@@ -396,6 +406,9 @@ static oit_status draw_packs(oit_streamer *s, const oit_packing *pk,
 void oit_streamer_set_opaque(oit_streamer *s, const oit_opaque_depth *o)
 {
     oit_capture_set_opaque(s->capture, o);
+    memset(&s->opaque, 0, sizeof s->opaque);
+    if (o && o->enabled)
+        s->opaque = *o;
 }
 
 /* Captures every pack of the view; on failure the frame is ended and
@@ -408,6 +421,12 @@ static oit_status capture_frame(oit_streamer *s, const oit_view *view, oit_packi
     if (s->cache)
         oit_residency_begin_frame(s->cache);
     oit_status st = oit_capture_begin(s->capture, view, err);
+    /* Parts wholly behind the caller's opaque depth are skipped as
+     * saturated ones are (opaque_tiles.h). */
+    if (st == OIT_OK && s->opaque.enabled && !s->opaque_tiles)
+        st = oit_opaque_tiles_create(&s->opaque_tiles, err);
+    if (st == OIT_OK && s->opaque_tiles)
+        st = oit_opaque_tiles_begin(s->opaque_tiles, view, &s->opaque, err);
     /* Whole grid ranges outside the view are left out of the order; the
      * packer still culls part by part what remains. */
     float planes[6][4];
@@ -467,7 +486,8 @@ static void finish_stats(const oit_streamer *s, const oit_packing *pk, oit_frame
     ss->cache_bytes = s->cache ? oit_residency_bytes(s->cache) : 0;
     ss->gpu_bytes_peak = fs->gpu_bytes_peak + oit_upload_gpu_bytes(s->upload) +
                          (s->cache ? oit_residency_capacity(s->cache) : 0) +
-                         (s->saturation ? oit_saturation_gpu_bytes(s->saturation) : 0);
+                         (s->saturation ? oit_saturation_gpu_bytes(s->saturation) : 0) +
+                         oit_opaque_tiles_gpu_bytes(s->opaque_tiles);
     fs->gpu_bytes_peak = ss->gpu_bytes_peak;
 }
 

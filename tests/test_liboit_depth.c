@@ -294,11 +294,32 @@ static void check_depth(const char *name, oit_scene *scene, oit_render_pack pack
               name, fpct);
         CHECK(bpct >= 5.0, "%s: without the depth texture only %.1f%% of the occluder's "
               "pixels change: the test cannot see surfaces behind it", name, bpct);
+        /* Every path keeps the same fragments: those in front of the
+         * occluder (a skipped part that had some would lose them). */
+        static uint64_t first_fragments;
+        if (!first_fragments)
+            first_fragments = sd.fragments;
+        CHECK(sd.fragments == first_fragments, "%s: %llu fragments with the depth texture, "
+              "the first scene drawn %llu", name, (unsigned long long)sd.fragments,
+              (unsigned long long)first_fragments);
         CHECK(sd.fragments < sn.fragments, "%s: %llu fragments with the depth texture, %llu "
               "without", name, (unsigned long long)sd.fragments,
               (unsigned long long)sn.fragments);
         CHECK(border == 0, "%s: %llu pixels outside the viewport changed", name,
               (unsigned long long)border);
+        /* Parts wholly behind the occluder are skipped (streamed scenes):
+         * the image above is the check that none in front was. */
+        oit_scene_info si;
+        oit_scene_get_info(scene, &si, &err);
+        printf("%s: %llu parts skipped with depth, %llu without; %llu drawn, %llu culled\n",
+               name, (unsigned long long)sd.parts_skipped, (unsigned long long)sn.parts_skipped,
+               (unsigned long long)sd.parts_drawn, (unsigned long long)sd.parts_culled);
+        CHECK(sn.parts_skipped == 0 && (si.in_core || sd.parts_skipped > 0) &&
+                  sd.parts_skipped + sd.parts_drawn == sn.parts_drawn,
+              "%s: %llu parts skipped with the depth texture (%llu drawn), %llu without (%llu "
+              "drawn)", name, (unsigned long long)sd.parts_skipped,
+              (unsigned long long)sd.parts_drawn, (unsigned long long)sn.parts_skipped,
+              (unsigned long long)sn.parts_drawn);
     }
     target_free(&with);
     target_free(&without);
