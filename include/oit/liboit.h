@@ -46,9 +46,10 @@
  * binding, blend enable / function / equation, depth, stencil, cull and
  * scissor enables, colour and depth write masks, and (with a depth texture)
  * the active texture unit and the 2D texture and sampler bound to texture
- * unit 7 (OIT_TEX_OPAQUE_DEPTH), which it binds during the capture. It does NOT restore indexed shader-storage buffer bindings 0..8, the
- * texture bound to unit 0, or the framebuffer default-size parameters of its
- * own objects; callers that rely on those must rebind them.
+ * unit 7, which it binds during the capture. It does NOT restore indexed
+ * shader-storage buffer bindings 0..9, the texture bound to unit 0, or the
+ * framebuffer default-size parameters of its own objects; callers that rely
+ * on those must rebind them.
  */
 #ifndef OIT_LIBOIT_H
 #define OIT_LIBOIT_H
@@ -247,7 +248,10 @@ typedef struct oit_frame {
      * the caller's own depth test alike) of an opaque one may go either
      * way. liboit only reads the texture, through a sampler object of its
      * own (nearest, no depth compare), so its filtering and compare mode do
-     * not matter; it may be the depth attachment of `framebuffer`. */
+     * not matter; it may be the depth attachment of `framebuffer`. A part
+     * file's draw reads back the texture's largest depth per 16x16 tile at
+     * its start (so waits for the caller's opaque pass) to skip parts
+     * wholly behind it (oit_draw_stats.parts_skipped). */
     unsigned depth_texture;
 } oit_frame;
 
@@ -260,7 +264,10 @@ typedef struct oit_draw_stats {
     uint32_t packs;
     uint64_t parts_drawn;
     uint64_t parts_culled;
-    uint64_t parts_skipped;  /* epsilon > 0: footprint saturated, not drawn   */
+    uint64_t parts_skipped;  /* epsilon > 0: footprint saturated, not drawn;
+                                with depth_texture: also parts whose box lies
+                                wholly behind it over their screen rectangle
+                                (neither uploaded nor drawn; same image)      */
     uint64_t bytes_uploaded; /* part bytes written for the GPU in this call    */
     uint64_t gpu_bytes_peak; /* capture, upload ring and cache together        */
     uint64_t cache_hits;     /* parts drawn from the cache, not uploaded again */
