@@ -32,9 +32,18 @@
  *     dst.rgb = C + T * dst.rgb,   dst.a = (1 - t) + t * dst.a, t = mean(T)
  * through dual-source blending (GL_ONE, GL_SRC1_COLOR), so whatever the
  * caller drew before (a sky, opaque geometry without depth interaction) shows
- * through; where no fragment falls the target is left as it was. Colour is
- * written as computed (no sRGB conversion by liboit; GL_FRAMEBUFFER_SRGB is
- * left as the caller set it).
+ * through; where no fragment falls the target is left as it was.
+ * Colour space. OIT_RENDER_COLOUR_SRGB (default): compositing happens on the
+ * sRGB-encoded values, C is written as computed (no sRGB conversion by
+ * liboit; GL_FRAMEBUFFER_SRGB is left as the caller set it, and should be
+ * off, or the target UNORM, for the encoded values to blend as such).
+ * OIT_RENDER_COLOUR_LINEAR: C and T are linear light, and liboit enables
+ * GL_FRAMEBUFFER_SRGB for its blend (restoring the caller's setting): on an
+ * sRGB target (GL_SRGB8_ALPHA8, or an sRGB-capable default framebuffer) GL
+ * decodes dst, blends in linear light and stores the sRGB encoding; on a
+ * float or UNORM target the stored values are linear light, for the caller
+ * to encode (oit/offscreen.h does so). So for 8-bit sRGB output give liboit
+ * an sRGB target; its existing content is then read as sRGB-encoded.
  *
  * GL state: oit_renderer_draw saves and restores the draw framebuffer
  * binding, viewport, current program, vertex array, draw-indirect buffer
@@ -144,6 +153,15 @@ typedef enum oit_render_shading_mode {
     OIT_RENDER_TRANSLUCENT = 1  /* Fresnel surfaces over an absorbing medium  */
 } oit_render_shading_mode;
 
+/* Where compositing happens (render/shade.h, "Colour space"). Colours
+ * (vertex colours, default_rgb) are 8-bit sRGB-encoded, straight alpha. */
+typedef enum oit_render_colour_space {
+    OIT_RENDER_COLOUR_SRGB = 0,  /* on the encoded values, as the OIT papers and
+                                    most viewers do (default)                    */
+    OIT_RENDER_COLOUR_LINEAR = 1 /* colours decoded with the exact sRGB EOTF,
+                                    composited in linear light (Result)          */
+} oit_render_colour_space;
+
 /* Mirrors the renderer's shading (DESIGN.md); zero means default. There is
  * no background: the caller's framebuffer is the background. */
 typedef struct oit_render_shading {
@@ -152,6 +170,7 @@ typedef struct oit_render_shading {
     float default_rgb[3]; /* for files without colour; default .85,.55,.2   */
     float absorption;     /* translucent; default 4                         */
     float scene_scale;    /* translucent; default: the scene's diagonal     */
+    oit_render_colour_space colour_space; /* default OIT_RENDER_COLOUR_SRGB */
 } oit_render_shading;
 
 /* oitstream --pack spells the same modes: auto, counted, budget, disjoint,

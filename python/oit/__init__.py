@@ -163,6 +163,8 @@ class Scene:
 
 
 _SHADINGS = {"transparent": L.RENDER_TRANSPARENT, "translucent": L.RENDER_TRANSLUCENT}
+# oit_render_colour_space (liboit.h): where compositing happens
+_COLOUR_SPACES = {"srgb": 0, "linear": 1}
 # oit_render_pack, spelt as oitstream --pack spells it
 _PACKS = {"auto": 0, "counted": 1, "budget": 2, "disjoint": 3, "first-k": 4}
 
@@ -173,10 +175,16 @@ class Renderer:
     library's default. Use it from one thread."""
 
     def __init__(self, shading="transparent", alpha=None, default_rgb=None, absorption=None,
-                 K=0, epsilon=0.0, pack="auto", upload_budget=0, cache_budget=0):
+                 K=0, epsilon=0.0, pack="auto", upload_budget=0, cache_budget=0,
+                 colour_space="srgb"):
         """pack, upload_budget, cache_budget, K and epsilon take what
         oitstream's --pack, --upload-budget, --cache-budget, --max-layers and
-        --epsilon take: 0 is the default, cache_budget="off" no cache."""
+        --epsilon take: 0 is the default, cache_budget="off" no cache.
+        colour_space: "srgb" (default) composites the sRGB-encoded colours as
+        given; "linear" decodes them (exact sRGB EOTF), composites in linear
+        light and returns the result sRGB-encoded (oitstream --colour-space)."""
+        if colour_space not in _COLOUR_SPACES:
+            raise ValueError(f"colour_space: {colour_space!r}, expected srgb or linear")
         if shading not in _SHADINGS:
             raise ValueError(f"shading: {shading!r}, expected transparent or translucent")
         if pack not in _PACKS:
@@ -188,6 +196,7 @@ class Renderer:
         d.renderer.upload_budget = int(upload_budget)
         d.renderer.cache_budget = L.RENDER_CACHE_OFF if cache_budget == "off" else int(cache_budget)
         d.renderer.shading.mode = _SHADINGS[shading]
+        d.renderer.shading.colour_space = _COLOUR_SPACES[colour_space]
         if alpha is not None:
             d.renderer.shading.alpha = alpha
         if default_rgb is not None:
