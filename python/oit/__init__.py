@@ -301,28 +301,33 @@ def _set_view(v, view):
 _renderers = {}
 
 
-def _default_renderer(shading):
-    """One Renderer a shading for the module-level functions, made at first use."""
-    r = _renderers.get(shading)
+def _default_renderer(shading, colour_space="srgb"):
+    """One Renderer a shading and colour space for the module-level
+    functions, made at first use."""
+    key = (shading, colour_space)
+    r = _renderers.get(key)
     if r is None or not r._h:
-        r = _renderers[shading] = Renderer(shading=shading)
+        r = _renderers[key] = Renderer(shading=shading, colour_space=colour_space)
     return r
 
 
 def render(model_path, size=(512, 512), view=None, dtype=np.uint8, background=None,
-           shading="transparent"):
+           shading="transparent", colour_space="srgb"):
     """Renders a mesh file (in core) or part file (streamed) into a
-    (height, width, 4) array; see Renderer.render for view and background."""
-    r = _default_renderer(shading)
+    (height, width, 4) array; see Renderer.render for view and background,
+    Renderer for colour_space."""
+    r = _default_renderer(shading, colour_space)
     with Scene.open(model_path) as s:
         return r.render(s, size=size, view=view, dtype=dtype, background=background)
 
 
 def render_arrays(positions, indices=None, colors=None, size=(512, 512), view=None,
-                  dtype=np.uint8, background=None, shading="transparent", color_rate="auto"):
+                  dtype=np.uint8, background=None, shading="transparent", color_rate="auto",
+                  colour_space="srgb"):
     """Renders triangles from arrays (see Scene.from_arrays) into a
-    (height, width, 4) array; see Renderer.render for view and background."""
-    r = _default_renderer(shading)
+    (height, width, 4) array; see Renderer.render for view and background,
+    Renderer for colour_space."""
+    r = _default_renderer(shading, colour_space)
     with Scene.from_arrays(positions, indices, colors, color_rate=color_rate) as s:
         return r.render(s, size=size, view=view, dtype=dtype, background=background)
 
