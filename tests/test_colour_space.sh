@@ -46,6 +46,16 @@ esac
 "$OIT_BIN/oitprep" "$IN" -o "$T/in.oitp" >"$T/prep.txt" 2>&1 ||
     { echo "FAIL: $NAME: oitprep: $(tail -n 1 "$T/prep.txt")"; exit 1; }
 
+# The option's spelling: srgb and linear only, a usage error (2) otherwise,
+# for oitstream and oitbench alike, and both list it in --help.
+for tool in oitstream oitbench; do
+    "$OIT_BIN/$tool" "$T/in.oitp" --colour-space gamma >"$T/bad.txt" 2>&1
+    rc=$?
+    [ $rc -eq 2 ] && grep -q "colour-space 'gamma'.*srgb or linear" "$T/bad.txt" ||
+        fail "$tool --colour-space gamma: exit $rc, $(head -n 1 "$T/bad.txt")"
+    "$OIT_BIN/$tool" --help 2>&1 | grep -q -- "--colour-space" || fail "$tool --help lacks --colour-space"
+done
+
 # compare NAME A B [MASK] LIMIT%: prints and checks the share off by > 1/255.
 compare() {
     if [ $# -eq 5 ]; then

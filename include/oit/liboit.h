@@ -203,7 +203,9 @@ typedef struct oit_renderer_desc {
      * pixels whose transmittance fell below epsilon in every channel are
      * dropped, and parts whose whole footprint did are neither uploaded nor
      * drawn (oit_draw_stats.parts_skipped); the image then differs from the
-     * exact one by at most epsilon per channel. */
+     * exact one by at most epsilon per channel (in the compositing space:
+     * in linear light for OIT_RENDER_COLOUR_LINEAR, where the encoding can
+     * magnify it near black). */
     float epsilon;
     /* GPU bytes that keep parts drawn in one frame resident for the next
      * ones, drawn without reading or uploading them again
