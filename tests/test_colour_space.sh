@@ -10,6 +10,8 @@
 #   (8-bit encoded steps: the images are sRGB-encoded in both spaces);
 #   linear DFB differs from sRGB-space DFB on >= 5% of pixels (the option
 #   is live), and DFB in the default space still equals the reference.
+#   On the hard case array, pll, ppll4, b3d, dp (and ddp without depth
+#   ties) == DFB in linear light on the source mesh.
 #   Three views in transparent shading, one in translucent (the decoded
 #   medium colour, Beer-Lambert in linear light).
 #   A PFM written and read back holds linear light that encodes to the
@@ -104,6 +106,20 @@ view() {
 }
 
 view az30 transparent --azimuth 30 --elevation 35
+# Every GL method composites through the shared GLSL (frag_glsl.h): on the
+# hard case the other exact methods equal DFB in linear light too (on the
+# source mesh, from az30; dp and ddp where ddp can order the case).
+if [ "$KIND" = hard ]; then
+    cam=$(json_str view "$T/az30-stream.json")
+    "$S" "$IN" --method dfb --colour-space linear --size "$SIZE" --view "$cam" \
+        --out "$T/m-dfb.pfm" --quiet || fail "dfb on the mesh"
+    for m in array pll ppll4 b3d dp ddp; do
+        case "$m:$NAME" in ddp:coplanar*|ddp:touching) continue ;; esac
+        "$S" "$IN" --method $m --colour-space linear --size "$SIZE" --view "$cam" \
+            --out "$T/m-$m.pfm" --quiet || { fail "$m (linear)"; continue; }
+        compare "linear: $m vs dfb (mesh)" "$T/m-$m.pfm" "$T/m-dfb.pfm" 0.1
+    done
+fi
 view az210 transparent --azimuth 210 --elevation 35
 view below transparent --azimuth 120 --elevation -25
 view tl30 translucent --azimuth 30 --elevation 35
