@@ -32,13 +32,14 @@
  *   OIT_COLOUR_SRGB (0, the default): everything above runs on the encoded
  *     values as given, as the OIT papers and most viewers do; final is the
  *     encoded result. 50% red (255,0,0,128) over white gives 255,127,127.
- *   OIT_COLOUR_LINEAR: base.rgb (vertex colour or default_rgb, so also the
+ *   OIT_COLOUR_LINEAR: each vertex's rgb (decoded before the barycentric
+ *     interpolation, in the vertex shader on GL), default_rgb (so also the
  *     translucent medium) and background are decoded with the exact sRGB
  *     EOTF (oit_srgb_decode: c/12.92 up to 0.04045, else
  *     ((c+0.055)/1.055)^2.4, not a 2.2 gamma) before shading; C, T and the
  *     background term are linear light; final = oit_srgb_encode(C + T * bg)
  *     per channel. Alpha is coverage and is never converted. 50% red over
- *     white gives 255,188,188.
+ *     white gives 255,187,187 (encode(127/255) = 187.19).
  * The state that crosses batches is in the compositing space; only final
  * encodes. liboit, which blends C and T into the caller's framebuffer,
  * documents what it writes (liboit.h, Result).
