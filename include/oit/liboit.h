@@ -47,8 +47,8 @@
  *
  * GL state: oit_renderer_draw saves and restores the draw framebuffer
  * binding, viewport, current program, vertex array, draw-indirect buffer
- * binding, blend enable / function / equation, depth, stencil, cull and
- * scissor enables, colour and depth write masks. It does NOT restore indexed shader-storage buffer bindings 0..8, the
+ * binding, blend enable / function / equation, depth, stencil, cull,
+ * scissor and GL_FRAMEBUFFER_SRGB enables, colour and depth write masks. It does NOT restore indexed shader-storage buffer bindings 0..8, the
  * texture bound to unit 0, or the framebuffer default-size parameters of its
  * own objects; callers that rely on those must rebind them.
  */
