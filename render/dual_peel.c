@@ -98,7 +98,7 @@ static const char final_cs[] =
     "    back_acc b = backs[p];\n"
     "    atomicAdd(fragments, b.n);\n"
     "    atomicMax(max_len, b.n);\n"
-    "    out_rgba[p] = vec4(s.C + s.T * (b.C + b.T * u_background), 1.0);\n"
+    "    out_rgba[p] = vec4(oit_output(s.C + s.T * (b.C + b.T * oit_background())), 1.0);\n"
     "}\n";
 
 oit_status oit_dual_peel_create(oit_dual_peel **out, oit_error *err)

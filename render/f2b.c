@@ -76,13 +76,16 @@ static const char final_cs[] =
     "layout(local_size_x = 8, local_size_y = 8) in;\n"
     "layout(location = 11) uniform ivec2 u_size;\n"
     "layout(location = 9) uniform vec3 u_background;\n"
+    "uniform int u_colour_space;\n"
+    OIT_GLSL_SRGB_FUNCS
+    OIT_GLSL_OUTPUT
     "layout(binding = 0) uniform sampler2D u_accum;\n"
     "layout(rgba32f, binding = 0) writeonly uniform image2D u_out;\n"
     "void main() {\n"
     "    ivec2 px = ivec2(gl_GlobalInvocationID.xy);\n"
     "    if (px.x >= u_size.x || px.y >= u_size.y) return;\n"
     "    vec4 a = texelFetch(u_accum, px, 0);\n"
-    "    imageStore(u_out, px, vec4(a.rgb + a.a * u_background, 1.0));\n"
+    "    imageStore(u_out, px, vec4(oit_output(a.rgb + a.a * oit_background()), 1.0));\n"
     "}\n";
 
 static oit_status build_programs(oit_f2b *f, oit_error *err)

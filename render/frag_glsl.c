@@ -22,6 +22,9 @@ const char oit_glsl_vertex[] =
     "flat out uint v_first_prim;\n"
     "layout(location = 15) uniform dvec3 u_eye;\n"
     "flat out vec4 v_plane;\n"
+    /* oit_shading.colour_space (shade.h, "Colour space"); set by name. */
+    "uniform int u_colour_space;\n"
+    OIT_GLSL_SRGB_FUNCS
     "invariant gl_Position;\n"
     /* The tie rule's plane (shade.h, oit_depth_plane): in double from the
      * float vertices, rounded to float, so that every triangle of one plane
@@ -51,6 +54,7 @@ const char oit_glsl_vertex[] =
     "    vec4 vp = u_view * vec4(uintBitsToFloat(me.xyz), 1.0);\n"
     "    v_pos = vp.xyz;\n"
     "    v_rgba = unpackUnorm4x8(me.w);\n"
+    "    if (u_colour_space == 1) v_rgba.rgb = oit_srgb_decode(v_rgba.rgb);\n"
     "    gl_Position = u_proj * vp;\n"
     "}\n";
 
@@ -178,8 +182,11 @@ const char oit_glsl_state_io[] =
 
 const char oit_glsl_composite[] =
     "layout(location = 3) uniform int u_mode;\n"
+    "uniform int u_colour_space;\n"
+    OIT_GLSL_SRGB_FUNCS
     "layout(location = 8) uniform float u_sigma;\n"
     "layout(location = 9) uniform vec3 u_background;\n"
+    OIT_GLSL_OUTPUT
     OIT_GLSL_STATE_STRUCT
     "oit_state oit_state_begin() {\n"
     "    return oit_state(vec3(0.0), 0.0, vec3(1.0), 0, vec3(0.0), 0u);\n"
@@ -218,7 +225,7 @@ const char oit_glsl_composite[] =
     "    }\n"
     "}\n"
     "vec4 oit_state_final(oit_state s) {\n"
-    "    return vec4(s.C + s.T * u_background, 1.0);\n"
+    "    return vec4(oit_output(s.C + s.T * oit_background()), 1.0);\n"
     "}\n";
 
 /* Uniforms are set by name: a location a program does not use is -1, which
@@ -237,9 +244,14 @@ void oit_glsl_set_view(GLuint prog, const oit_view *view)
     oit_camera_proj_matrix(&view->camera, (float)view->width / (float)view->height, m);
     glProgramUniformMatrix4fv(prog, loc(prog, "u_proj"), 1, GL_FALSE, m);
     glProgramUniform1i(prog, loc(prog, "u_mode"), (GLint)s->mode);
+    glProgramUniform1i(prog, loc(prog, "u_colour_space"), (GLint)s->colour_space);
     glProgramUniform1ui(prog, loc(prog, "u_attrs"), s->attributes);
     glProgramUniform1f(prog, loc(prog, "u_alpha"), s->alpha);
-    glProgramUniform3fv(prog, loc(prog, "u_default_rgb"), 1, s->default_rgb);
+    float drgb[3];
+    for (int c = 0; c < 3; c++)
+        drgb[c] = s->colour_space == OIT_COLOUR_LINEAR ? (float)oit_srgb_decode(s->default_rgb[c])
+                                                       : s->default_rgb[c];
+    glProgramUniform3fv(prog, loc(prog, "u_default_rgb"), 1, drgb);
     glProgramUniform1i(prog, loc(prog, "u_width"), view->width);
     float sigma = s->scene_scale > 0.0f ? s->absorption / s->scene_scale : 0.0f;
     glProgramUniform1f(prog, loc(prog, "u_sigma"), sigma);

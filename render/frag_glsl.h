@@ -123,6 +123,30 @@ extern const char oit_glsl_segment_composite[];
 
 /* The per-pixel state carried across batches, in registers. Depth peeling
  * keeps its own buffer of these (std430, 48 bytes). */
+/* shade.c's oit_srgb_decode / oit_srgb_encode, per channel. */
+#define OIT_GLSL_SRGB_FUNCS \
+    "vec3 oit_srgb_decode(vec3 c) {\n" \
+    "    c = max(c, vec3(0.0));\n" \
+    "    return mix(pow((c + 0.055) / 1.055, vec3(2.4)), c / 12.92,\n" \
+    "               lessThanEqual(c, vec3(0.04045)));\n" \
+    "}\n" \
+    "vec3 oit_srgb_encode(vec3 c) {\n" \
+    "    c = max(c, vec3(0.0));\n" \
+    "    return mix(1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, 12.92 * c,\n" \
+    "               lessThanEqual(c, vec3(0.0031308)));\n" \
+    "}\n"
+
+/* The background in the compositing space, and the compositing space's
+ * result in the image's encoding (shade.c, oit_pixel_end); they need u_colour_space and
+ * u_background declared, as oit_glsl_composite does. */
+#define OIT_GLSL_OUTPUT \
+    "vec3 oit_background() {\n" \
+    "    return u_colour_space == 1 ? oit_srgb_decode(u_background) : u_background;\n" \
+    "}\n" \
+    "vec3 oit_output(vec3 c) {\n" \
+    "    return u_colour_space == 1 ? oit_srgb_encode(c) : c;\n" \
+    "}\n"
+
 #define OIT_GLSL_STATE_STRUCT \
     "#ifndef OIT_STATE_STRUCT\n#define OIT_STATE_STRUCT 1\n" \
     "struct oit_state { vec3 C; float t_prev; vec3 T; int nest; vec3 medium; uint nfrag; };\n" \

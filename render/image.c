@@ -2,6 +2,7 @@
  * layer heat map. Readers trust nothing in a header: sizes are checked
  * against the file before anything is allocated from them. */
 #include "render/image.h"
+#include "render/shade.h"
 
 #include <math.h>
 #include <png.h>
@@ -208,6 +209,19 @@ static oit_status read_png(const char *path, FILE *f, oit_image *img, oit_error 
 
 /* ---- PFM -------------------------------------------------------------- */
 
+/* PFM holds linear light (image.h): images are sRGB-encoded in memory, so
+ * the writer decodes and the reader encodes, odd-symmetric so that any
+ * finite value survives the round trip to float rounding. */
+static float pfm_to_linear(float v)
+{
+    return v < 0.0f ? -(float)oit_srgb_decode(-(double)v) : (float)oit_srgb_decode(v);
+}
+
+static float pfm_to_encoded(float v)
+{
+    return v < 0.0f ? -(float)oit_srgb_encode(-(double)v) : (float)oit_srgb_encode(v);
+}
+
 oit_status oit_image_write_pfm(const oit_image *img, const char *path, oit_error *err)
 {
     FILE *f = fopen(path, "wb");
@@ -225,7 +239,8 @@ oit_status oit_image_write_pfm(const oit_image *img, const char *path, oit_error
     for (int y = img->height - 1; ok && y >= 0; y--) {
         const float *src = img->rgba + (size_t)y * img->width * 4;
         for (int x = 0; x < img->width; x++)
-            memcpy(row + (size_t)x * 3, src + (size_t)x * 4, 3 * sizeof(float));
+            for (int c = 0; c < 3; c++)
+                row[(size_t)x * 3 + c] = pfm_to_linear(src[(size_t)x * 4 + c]);
         ok = fwrite(row, sizeof(float) * 3, (size_t)img->width, f) == (size_t)img->width;
     }
     free(row);
@@ -310,6 +325,7 @@ static oit_status read_pfm(const char *path, FILE *f, oit_image *img, oit_error 
                 if (big_endian)
                     bits = swap32(bits);
                 memcpy(&dst[c], &bits, sizeof bits);
+                dst[c] = pfm_to_encoded(dst[c]);
             }
             dst[3] = 1.0f;
         }

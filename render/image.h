@@ -21,9 +21,17 @@ void oit_image_free(oit_image *img);
 void oit_image_put_rgb(oit_image *img, int x, int y, const float rgb[3]);
 oit_status oit_image_write_png(const oit_image *img, const char *path, oit_error *err);
 /* PFM: little-endian RGB float ("PF", negative scale), bottom row first as
- * the format requires. */
+ * the format requires, holding LINEAR light: an oit_image is sRGB-encoded
+ * (view.h) in both colour spaces, so the writer decodes each colour with the
+ * exact sRGB EOTF (oit_srgb_decode, render/shade.h; odd-symmetric for
+ * negative values) and the reader encodes it back. So every image in
+ * memory, and every comparison (oit_image_compare, oitstream --compare,
+ * PNG against PFM alike), is in the sRGB-encoded space, where the 1/255
+ * figures are 8-bit steps; a round trip returns each value to float
+ * rounding (a few 1e-8), and its 8-bit encoding exactly. */
 oit_status oit_image_write_pfm(const oit_image *img, const char *path, oit_error *err);
-/* Reads .png (8- or 16-bit, gray/RGB/RGBA) or .pfm, chosen by extension. */
+/* Reads .png (8- or 16-bit, gray/RGB/RGBA) or .pfm (linear light, encoded
+ * on reading: above), chosen by extension. */
 oit_status oit_image_read(const char *path, oit_image *img, oit_error *err);
 /* The same from an open, seekable stream (fmemopen for bytes in memory);
  * png selects the format, name is used in messages. */

@@ -43,16 +43,25 @@ static void cross_normal(const oit_triangle *tri, double n[3])
     n[2] = e1[0] * e2[1] - e1[1] * e2[0];
 }
 
+/* Linear mode decodes each vertex's colour (and default_rgb) before
+ * interpolation, as the GL vertex shader does: shading and the
+ * interpolation run in linear light (shade.h, "Colour space"). */
 static void interpolate_base(const oit_shading *s, const oit_triangle *tri,
                              const float bary[3], float base_rgb[3], float *base_a)
 {
+    int lin = s->colour_space == OIT_COLOUR_LINEAR;
     double rgba[4] = {0, 0, 0, 0};
     for (int v = 0; v < 3; v++)
-        for (int c = 0; c < 4; c++)
-            rgba[c] += (double)bary[v] * tri->v[v].rgba[c];
-    for (int c = 0; c < 3; c++)
-        base_rgb[c] = (s->attributes & OIT_ATTR_COLOR) ? (float)(rgba[c] / 255.0)
-                                                       : s->default_rgb[c];
+        for (int c = 0; c < 4; c++) {
+            double x = tri->v[v].rgba[c];
+            if (lin && c < 3)
+                x = 255.0 * oit_srgb_decode(x / 255.0);
+            rgba[c] += (double)bary[v] * x;
+        }
+    for (int c = 0; c < 3; c++) {
+        float d = lin ? (float)oit_srgb_decode(s->default_rgb[c]) : s->default_rgb[c];
+        base_rgb[c] = (s->attributes & OIT_ATTR_COLOR) ? (float)(rgba[c] / 255.0) : d;
+    }
     *base_a = (s->attributes & OIT_ATTR_ALPHA) ? (float)(rgba[3] / 255.0) : s->alpha;
 }
 
@@ -170,8 +179,25 @@ void oit_pixel_end(const oit_pixel_state *st, const oit_shading *s, float rgb[3]
     for (int c = 0; c < 3; c++) {
         /* A negative background means black (view.h). */
         double bg = s->background[c] > 0.0f ? s->background[c] : 0.0;
-        rgb[c] = (float)(st->C[c] + st->T[c] * bg);
+        if (s->colour_space == OIT_COLOUR_LINEAR)
+            rgb[c] = (float)oit_srgb_encode(st->C[c] + st->T[c] * oit_srgb_decode(bg));
+        else
+            rgb[c] = (float)(st->C[c] + st->T[c] * bg);
     }
+}
+
+double oit_srgb_decode(double c)
+{
+    if (!(c > 0.0))
+        return 0.0;
+    return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
+}
+
+double oit_srgb_encode(double c)
+{
+    if (!(c > 0.0))
+        return 0.0;
+    return c <= 0.0031308 ? 12.92 * c : 1.055 * pow(c, 1.0 / 2.4) - 0.055;
 }
 
 int oit_shaded_fragment_cmp(const void *a, const void *b)

@@ -26,6 +26,23 @@
  *   final = C + T * background
  * The state (C, T, nest, medium, t_prev) is what crosses batch boundaries
  * when a frame is captured in several batches.
+ *
+ * Colour space (oit_shading.colour_space). Vertex colours, default_rgb and
+ * background are sRGB-encoded (mesh.h: 8-bit sRGB, straight alpha).
+ *   OIT_COLOUR_SRGB (0, the default): everything above runs on the encoded
+ *     values as given, as the OIT papers and most viewers do; final is the
+ *     encoded result. 50% red (255,0,0,128) over white gives 255,127,127.
+ *   OIT_COLOUR_LINEAR: each vertex's rgb (decoded before the barycentric
+ *     interpolation, in the vertex shader on GL), default_rgb (so also the
+ *     translucent medium) and background are decoded with the exact sRGB
+ *     EOTF (oit_srgb_decode: c/12.92 up to 0.04045, else
+ *     ((c+0.055)/1.055)^2.4, not a 2.2 gamma) before shading; C, T and the
+ *     background term are linear light; final = oit_srgb_encode(C + T * bg)
+ *     per channel. Alpha is coverage and is never converted. 50% red over
+ *     white gives 255,187,187 (encode(127/255) = 187.19).
+ * The state that crosses batches is in the compositing space; only final
+ * encodes. liboit, which blends C and T into the caller's framebuffer,
+ * documents what it writes (liboit.h, Result).
  */
 /* The tie rule (docs/ties.md), used by every exact method: DFB, the stream,
  * the exact baselines and the Embree reference.
@@ -116,6 +133,12 @@ void oit_pixel_begin(oit_pixel_state *st);
 void oit_pixel_add(oit_pixel_state *st, const oit_shading *s,
                    const oit_shaded_fragment *f);
 void oit_pixel_end(const oit_pixel_state *st, const oit_shading *s, float rgb[3]);
+
+/* The exact sRGB transfer functions (IEC 61966-2-1), in double, for c in
+ * [0, 1] (negative input gives 0). decode: encoded -> linear light;
+ * encode: linear light -> encoded. */
+double oit_srgb_decode(double c);
+double oit_srgb_encode(double c);
 
 /* Sort comparator for oit_shaded_fragment by (t, prim). */
 int oit_shaded_fragment_cmp(const void *a, const void *b);

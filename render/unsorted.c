@@ -4,6 +4,7 @@
 
 #include "render/baseline_common.h"
 #include "render/image.h"
+#include "render/shade.h"
 
 #include <stdlib.h>
 
@@ -73,6 +74,10 @@ static void draw(oit_unsorted *u, const oit_gpu_mesh *const *meshes, int n,
     float bg[4] = {0, 0, 0, 0};
     for (int c = 0; c < 3; c++)
         bg[c] = v->shading.background[c] > 0.0f ? v->shading.background[c] : 0.0f;
+    /* Linear light (shade.h, "Colour space"): the float target blends in
+     * linear light over the decoded background; the readback is encoded. */
+    for (int c = 0; c < 3 && v->shading.colour_space == OIT_COLOUR_LINEAR; c++)
+        bg[c] = (float)oit_srgb_decode(bg[c]);
     oit_glsl_raster_begin(u->fbo, v->width, v->height);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glClearNamedFramebufferfv(u->fbo, GL_COLOR, 0, bg);
@@ -99,6 +104,10 @@ oit_status oit_unsorted_render(oit_unsorted *u, const oit_gpu_mesh *const *meshe
     s = oit_gl_check("unsorted: blend pass", err);
     if (s == OIT_OK)
         s = oit_baseline_read_texture("unsorted", u->tex, v.width, v.height, out, err);
+    if (s == OIT_OK && v.shading.colour_space == OIT_COLOUR_LINEAR)
+        for (size_t i = 0; i < (size_t)v.width * v.height * 4; i++)
+            if (i % 4 != 3)
+                out->rgba[i] = (float)oit_srgb_encode(out->rgba[i]);
     GLuint64 samples = 0;
     glGetQueryObjectui64v(u->query, GL_QUERY_RESULT, &samples);
     if (s != OIT_OK || !stats)

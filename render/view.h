@@ -39,6 +39,13 @@ typedef enum oit_shading_mode {
     OIT_SHADING_TRANSLUCENT = 1
 } oit_shading_mode;
 
+/* Where compositing happens (shade.h, "Colour space"). Zero is the space the
+ * OIT papers and most viewers use. */
+typedef enum oit_colour_space {
+    OIT_COLOUR_SRGB = 0,  /* on the sRGB-encoded values, as given             */
+    OIT_COLOUR_LINEAR = 1 /* in linear light, the result encoded back to sRGB */
+} oit_colour_space;
+
 /* Zero means default for every field but mode. */
 typedef struct oit_shading {
     oit_shading_mode mode;
@@ -51,6 +58,7 @@ typedef struct oit_shading {
                              bounding-box diagonal); must be > 0 for
                              translucent shading                              */
     uint32_t attributes;  /* OIT_ATTR_* of the mesh: which vertex data is real */
+    oit_colour_space colour_space; /* default OIT_COLOUR_SRGB (shade.h)        */
 } oit_shading;
 
 typedef struct oit_view {
@@ -60,7 +68,9 @@ typedef struct oit_view {
 } oit_view;
 
 /* RGBA float image, row 0 at the top, values in [0,1] (alpha is 1 for a
- * composited frame). */
+ * composited frame). Colour is sRGB-encoded in both colour spaces (the
+ * linear result is encoded by oit_pixel_end / oit_state_final), as PNG
+ * stores it; PFM files hold linear light (image.h). */
 typedef struct oit_image {
     int width, height;
     float *rgba;

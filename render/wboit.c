@@ -33,6 +33,9 @@ static const char resolve_cs[] =
     "layout(local_size_x = 8, local_size_y = 8) in;\n"
     "layout(location = 11) uniform ivec2 u_size;\n"
     "layout(location = 9) uniform vec3 u_background;\n"
+    "uniform int u_colour_space;\n"
+    OIT_GLSL_SRGB_FUNCS
+    OIT_GLSL_OUTPUT
     "layout(binding = 0) uniform sampler2D u_accum;\n"
     "layout(binding = 1) uniform sampler2D u_reveal;\n"
     "layout(rgba32f, binding = 0) writeonly uniform image2D u_out;\n"
@@ -42,7 +45,7 @@ static const char resolve_cs[] =
     "    vec4 acc = texelFetch(u_accum, px, 0);\n"
     "    float r = texelFetch(u_reveal, px, 0).r;\n"
     "    vec3 c = acc.rgb / max(acc.a, 1e-5);\n"
-    "    imageStore(u_out, px, vec4(c * (1.0 - r) + u_background * r, 1.0));\n"
+    "    imageStore(u_out, px, vec4(oit_output(c * (1.0 - r) + oit_background() * r), 1.0));\n"
     "}\n";
 
 static oit_status build_programs(oit_wboit *w, oit_error *err)

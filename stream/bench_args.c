@@ -144,6 +144,10 @@ static int value_option(oit_bench_args *a, const char *opt, const char *v, char 
         if (!strcmp(v, "transparent")) a->shading = OIT_SHADING_TRANSPARENT;
         else if (!strcmp(v, "translucent")) a->shading = OIT_SHADING_TRANSLUCENT;
         else *s = bad(err, opt, v, "transparent or translucent");
+    } else if (!strcmp(opt, "--colour-space") || !strcmp(opt, "--color-space")) {
+        if (!strcmp(v, "srgb")) a->colour_space = OIT_COLOUR_SRGB;
+        else if (!strcmp(v, "linear")) a->colour_space = OIT_COLOUR_LINEAR;
+        else *s = bad(err, opt, v, "srgb or linear");
     } else if (!strcmp(opt, "--out")) a->out = v;
     else if (!strcmp(opt, "--parts")) a->parts = v;
     else if (!strcmp(opt, "--mesh")) a->mesh = v;
@@ -311,6 +315,8 @@ void oit_bench_usage(FILE *f, const char *method_list, const char *default_schem
         "  --max-layers K   K of the capture backends, 2..16 (default 16)\n"
         "  --shading S      transparent (default) or translucent (Beer-Lambert and\n"
         "                   Fresnel, as oitstream --shading)\n"
+        "  --colour-space S srgb (default): composite the sRGB-encoded colours; linear:\n"
+        "                   in linear light, the result encoded (as oitstream)\n"
         "  --parts FILE     MODEL (a mesh)'s part file for stream, instead of converting\n"
         "  --mesh SRC       the source mesh of MODEL (a .oitp) for the in-core methods\n"
         "  --scheme S       the conversion's scheme, guaranteed or fast (default:\n"

@@ -81,10 +81,12 @@ static void open_methods(const oit_bench_desc *d, oit_bench_result *r, oit_gl **
     }
 }
 
-static oit_shading bench_shading(const oit_mesh_info *info, oit_shading_mode mode)
+static oit_shading bench_shading(const oit_mesh_info *info, oit_shading_mode mode,
+                                 oit_colour_space space)
 {
     oit_shading s = {0};
     s.mode = mode;
+    s.colour_space = space;
     s.attributes = info->attributes;
     s.scene_scale = oit_scene_scale(info->bounds_min, info->bounds_max);
     oit_shading_resolve_defaults(&s);
@@ -239,7 +241,7 @@ static oit_status run_views(const oit_bench_desc *d, oit_bench_result *r, oit_er
                         : oit_error_set(err, OIT_ERR_NOMEM, "cannot allocate image slots");
     /* one view for every method, framed on the reference's mesh */
     oit_view view = {.width = d->width, .height = d->height,
-                     .shading = bench_shading(&refmesh->info, d->shading)};
+                     .shading = bench_shading(&refmesh->info, d->shading, d->colour_space)};
     for (int v = 0; v < d->views && s == OIT_OK; v++) {
         oit_image ref = {0};
         oit_frame_stats st = {0};

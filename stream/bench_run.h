@@ -75,6 +75,7 @@ typedef struct oit_bench_desc {
     int entry_count;
     int views, width, height, frames, warmup, max_layers;
     oit_shading_mode shading;    /* transparent or translucent */
+    oit_colour_space colour_space; /* where compositing happens (shade.h) */
     /* progress lines ("oitbench: ...") go here; NULL: silent */
     FILE *progress;
 } oit_bench_desc;

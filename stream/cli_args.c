@@ -119,6 +119,10 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
         if (!strcmp(v, "transparent")) a->shading.mode = OIT_SHADING_TRANSPARENT;
         else if (!strcmp(v, "translucent")) a->shading.mode = OIT_SHADING_TRANSLUCENT;
         else *s = bad(err, opt, v, "transparent or translucent");
+    } else if (!strcmp(opt, "--colour-space") || !strcmp(opt, "--color-space")) {
+        if (!strcmp(v, "srgb")) a->shading.colour_space = OIT_COLOUR_SRGB;
+        else if (!strcmp(v, "linear")) a->shading.colour_space = OIT_COLOUR_LINEAR;
+        else *s = bad(err, opt, v, "srgb or linear");
     } else if (!strcmp(opt, "--alpha")) {
         if (!parse_float(v, &a->shading.alpha) || !(a->shading.alpha > 0.0f) ||
             a->shading.alpha > 1.0f)
@@ -353,8 +357,14 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "  --walk FILE         a camera path: one view a line in --view syntax (file\n"
         "                      coordinates; # comments and blank lines skipped);\n"
         "                      frames are written and reported as for --orbit\n"
-        "  --out PATH          FILE.png or FILE.pfm, or a folder (frame_000.png ...)\n"
+        "  --out PATH          FILE.png (8-bit sRGB) or FILE.pfm (float, linear light),\n"
+        "                      or a folder (frame_000.png ...)\n"
         "  --shading S         transparent (default) or translucent\n"
+        "  --colour-space S    where compositing happens: srgb (default) on the\n"
+        "                      sRGB-encoded colours as given; linear: colours and\n"
+        "                      --background decoded (exact sRGB EOTF), composited in\n"
+        "                      linear light, the result encoded to sRGB for PNG;\n"
+        "                      PFM holds linear light in both\n"
         "  --alpha A           alpha for models without one, in (0, 1] (default 0.35)\n"
         "  --absorption X      translucent optical depth across the model, > 0 (default 4)\n"
         "  --background r,g,b  default 1,1,1\n"
@@ -408,7 +418,9 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "  --window-screenshot PATH  write the last frame shown (PNG) when stopping\n"
         "  --no-overlay        no status line in the window's image\n"
         "  --compare A B       print RMSE, max abs error, %% of pixels off by more than\n"
-        "                      1/255 and PSNR of two images (.png/.pfm); --json for JSON,\n"
+        "                      1/255 and PSNR of two images (.png/.pfm), both in the\n"
+        "                      sRGB-encoded space (a PFM's linear light is encoded on\n"
+        "                      reading, so 1/255 is one 8-bit step); --json for JSON,\n"
         "                      --out DIFF.png writes |A-B| * gain (--gain G > 0, default 1);\n"
         "                      --mask M adds the figures outside M's non-black pixels\n"
         "\n"

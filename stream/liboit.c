@@ -436,6 +436,8 @@ static void make_shading(const oit_renderer *r, const oit_scene *scene, oit_shad
     s->alpha = in->alpha;
     memcpy(s->default_rgb, in->default_rgb, sizeof s->default_rgb);
     s->absorption = in->absorption;
+    s->colour_space = in->colour_space == OIT_RENDER_COLOUR_LINEAR ? OIT_COLOUR_LINEAR
+                                                                   : OIT_COLOUR_SRGB;
     s->attributes = scene->info.attributes;
     s->scene_scale = in->scene_scale > 0.0f
                          ? in->scene_scale
@@ -448,11 +450,11 @@ typedef struct gl_saved {
     GLint draw_fb, read_fb, viewport[4], program, vao, indirect;
     GLint src_rgb, dst_rgb, src_a, dst_a, eq_rgb, eq_a;
     GLboolean colour_mask[4], depth_mask;
-    GLboolean enabled[6];
+    GLboolean enabled[7];
 } gl_saved;
 
-static const GLenum kToggles[6] = {GL_BLEND, GL_DEPTH_TEST, GL_STENCIL_TEST, GL_CULL_FACE,
-                                   GL_SCISSOR_TEST, GL_MULTISAMPLE};
+static const GLenum kToggles[7] = {GL_BLEND, GL_DEPTH_TEST, GL_STENCIL_TEST, GL_CULL_FACE,
+                                   GL_SCISSOR_TEST, GL_MULTISAMPLE, GL_FRAMEBUFFER_SRGB};
 
 static void gl_save(gl_saved *g)
 {
@@ -470,7 +472,7 @@ static void gl_save(gl_saved *g)
     glGetIntegerv(GL_BLEND_EQUATION_ALPHA, &g->eq_a);
     glGetBooleanv(GL_COLOR_WRITEMASK, g->colour_mask);
     glGetBooleanv(GL_DEPTH_WRITEMASK, &g->depth_mask);
-    for (int i = 0; i < 6; i++)
+    for (int i = 0; i < 7; i++)
         g->enabled[i] = glIsEnabled(kToggles[i]);
 }
 
@@ -487,7 +489,7 @@ static void gl_restore(const gl_saved *g)
     glBlendEquationSeparate((GLenum)g->eq_rgb, (GLenum)g->eq_a);
     glColorMask(g->colour_mask[0], g->colour_mask[1], g->colour_mask[2], g->colour_mask[3]);
     glDepthMask(g->depth_mask);
-    for (int i = 0; i < 6; i++)
+    for (int i = 0; i < 7; i++)
         (g->enabled[i] ? glEnable : glDisable)(kToggles[i]);
 }
 
@@ -503,6 +505,11 @@ static void blend_over(const oit_renderer *r, const oit_frame *f, const oit_view
     glEnable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
     glBlendFunc(GL_ONE, GL_SRC1_COLOR);
+    /* Linear light: C and T are linear, so the blend must read and write
+     * linear values; GL decodes and encodes an sRGB target's values only
+     * with GL_FRAMEBUFFER_SRGB (liboit.h, Result). */
+    if (v->shading.colour_space == OIT_COLOUR_LINEAR)
+        glEnable(GL_FRAMEBUFFER_SRGB);
     glUseProgram(r->blend_prog);
     glProgramUniform2i(r->blend_prog, OIT_LOC_SIZE, f->viewport_width, f->viewport_height);
     glProgramUniform2i(r->blend_prog, OIT_LOC_RECT, f->viewport_x, f->viewport_y);

@@ -9,6 +9,7 @@
 
 #include "render/gl_context.h"
 #include "render/gl_util.h"
+#include "render/shade.h"
 #include "render/view.h"
 
 struct oit_offscreen {
@@ -17,6 +18,7 @@ struct oit_offscreen {
     GLuint fbo, tex;
     int width, height; /* of tex; 0: none yet */
     float *readback;   /* width * height * 4 */
+    int linear;        /* the renderer composites in linear light */
 };
 
 void oit_offscreen_destroy(oit_offscreen *o)
@@ -45,6 +47,7 @@ oit_status oit_offscreen_create(const oit_offscreen_desc *desc, oit_offscreen **
     oit_status s = oit_gl_create(NULL, &o->gl, err);
     if (s == OIT_OK)
         s = oit_renderer_create(desc ? &desc->renderer : NULL, &o->renderer, err);
+    o->linear = desc && desc->renderer.shading.colour_space == OIT_RENDER_COLOUR_LINEAR;
     if (s != OIT_OK) {
         oit_error_prefix(err, "oit_offscreen_create");
         oit_offscreen_destroy(o);
@@ -221,6 +224,11 @@ oit_status oit_offscreen_render(oit_offscreen *o, oit_scene *scene,
     int all_zero = is_zero(view->background, 4);
     for (int c = 0; c < 4; c++)
         bg[c] = all_zero ? 1.0f : fmaxf(view->background[c], 0.0f);
+    /* Linear light: the float target holds linear values (GL does not
+     * encode into a float target), so the background is decoded here and
+     * the result encoded after readback (offscreen.h). */
+    for (int c = 0; c < 3 && o->linear; c++)
+        bg[c] = (float)oit_srgb_decode(bg[c]);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDisable(GL_SCISSOR_TEST);
     glClearNamedFramebufferfv(o->fbo, GL_COLOR, 0, bg);
@@ -234,6 +242,10 @@ oit_status oit_offscreen_render(oit_offscreen *o, oit_scene *scene,
     if (s != OIT_OK)
         return s;
     size_t row = (size_t)w * 4;
+    if (o->linear)
+        for (size_t i = 0; i < (size_t)w * h * 4; i++)
+            if (i % 4 != 3)
+                o->readback[i] = (float)oit_srgb_encode(o->readback[i]);
     for (int y = 0; y < h; y++) {
         const float *src = o->readback + (size_t)(h - 1 - y) * row;
         if (comp == 1) {

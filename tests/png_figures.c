@@ -4,12 +4,21 @@
  * png_figures --red-blue IMAGE [MASK]: prints "RED BLUE": pixels where red
  * exceeds blue by more than 0.1, and the other way round, leaving out the
  * mask's non-black pixels (the decal test: which colour is in front).
+ * png_figures --pfm-linear FILE.pfm FILE.png (one frame written both ways):
+ * the PFM's raw floats are linear light (image.h): each, encoded with the
+ * exact sRGB OETF and rounded as the PNG writer rounds, must give the PNG's
+ * byte, and so must the PFM read back through oit_image_read; and where the
+ * PNG holds mid-tones the raw floats must differ from them (a PFM that held
+ * the encoded values would pass the first checks). Prints "VALUES
+ * RAW_MISMATCH READ_MISMATCH MIDTONES APART"; exit 1 on a mismatch.
  * Exit 3 when a file does not read as an image. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "render/image.h"
+#include "render/shade.h"
 
 enum { MAX_COLOURS = 4096 };
 
@@ -51,12 +60,67 @@ static int red_blue(const char *path, const char *mask_path)
     return 0;
 }
 
+static long to_byte(double v)
+{
+    return v <= 0.0 ? 0 : v >= 1.0 ? 255 : lrintf((float)v * 255.0f);
+}
+
+static int pfm_linear(const char *pfm, const char *png)
+{
+    oit_image img = {0}, back = {0};
+    oit_error err;
+    if (oit_image_read(png, &img, &err) != OIT_OK || oit_image_read(pfm, &back, &err) != OIT_OK) {
+        fprintf(stderr, "png_figures: %s\n", err.message);
+        return 3;
+    }
+    FILE *f = fopen(pfm, "rb");
+    int w = 0, h = 0;
+    char scale[32];
+    if (!f || fscanf(f, "PF %d %d %31s", &w, &h, scale) != 3 || fgetc(f) != '\n' ||
+        w != img.width || h != img.height || back.width != w || back.height != h ||
+        strtod(scale, NULL) >= 0.0) {
+        fprintf(stderr, "png_figures: %s: not a little-endian PFM of %s's size\n", pfm, png);
+        if (f) fclose(f);
+        return 3;
+    }
+    size_t n = (size_t)w * h * 3, raw_bad = 0, read_bad = 0, mid = 0, apart = 0;
+    float *raw = malloc(n * sizeof *raw);
+    if (!raw || fread(raw, sizeof *raw, n, f) != n) {
+        fprintf(stderr, "png_figures: %s: short read\n", pfm);
+        fclose(f);
+        free(raw);
+        return 3;
+    }
+    fclose(f);
+    for (int y = 0; y < h; y++) /* PFM rows bottom first */
+        for (int x = 0; x < w; x++)
+            for (int c = 0; c < 3; c++) {
+                float lin = raw[((size_t)(h - 1 - y) * w + x) * 3 + c];
+                size_t i = ((size_t)y * w + x) * 4 + c;
+                long want = to_byte(img.rgba[i]);
+                raw_bad += to_byte(oit_srgb_encode(lin)) != want;
+                read_bad += to_byte(back.rgba[i]) != want;
+                if (img.rgba[i] > 0.05f && img.rgba[i] < 0.95f) {
+                    mid++;
+                    apart += fabsf(lin - img.rgba[i]) > 0.01f;
+                }
+            }
+    printf("%zu %zu %zu %zu %zu\n", n, raw_bad, read_bad, mid, apart);
+    free(raw);
+    oit_image_free(&img);
+    oit_image_free(&back);
+    return raw_bad == 0 && read_bad == 0 && (mid == 0 || apart * 2 > mid) ? 0 : 1;
+}
+
 int main(int argc, char **argv)
 {
     if (argc >= 3 && argc <= 4 && !strcmp(argv[1], "--red-blue"))
         return red_blue(argv[2], argc == 4 ? argv[3] : NULL);
+    if (argc == 4 && !strcmp(argv[1], "--pfm-linear"))
+        return pfm_linear(argv[2], argv[3]);
     if (argc != 2) {
-        fprintf(stderr, "usage: png_figures FILE.png | --red-blue IMAGE [MASK]\n");
+        fprintf(stderr, "usage: png_figures FILE.png | --red-blue IMAGE [MASK] | "
+                        "--pfm-linear FILE.pfm FILE.png\n");
         return 2;
     }
     oit_image img;

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "render/image.h"
+#include "render/shade.h"
 #include "test_check.h"
 
 
@@ -68,12 +69,23 @@ static void test_pfm_round_trip(void)
     const char *path = tmp_path("rt.pfm");
     CHECK(oit_image_write(&a, path, &err) == OIT_OK, "%s", err.message);
     CHECK(oit_image_read(path, &b, &err) == OIT_OK, "%s", err.message);
-    int mismatches = 0;
+    /* The file holds linear light (image.h): the reader encodes it back to
+     * within float rounding, and to the same 8-bit value exactly. */
+    int mismatches = 0, byte_mismatches = 0;
+    double worst = 0.0;
     for (int y = 0; y < a.height && b.rgba; y++)
         for (int x = 0; x < a.width; x++)
-            mismatches += memcmp(px(&a, x, y), px(&b, x, y), 3 * sizeof(float)) != 0;
-    printf("pfm round trip: %d mismatching pixels\n", mismatches);
-    CHECK(b.rgba && mismatches == 0, "pfm not exact");
+            for (int c = 0; c < 3; c++) {
+                float va = px(&a, x, y)[c], vb = px(&b, x, y)[c];
+                double e = fabs((double)va - vb);
+                worst = e > worst ? e : worst;
+                mismatches += !(e <= 1e-6);
+                byte_mismatches += lrintf(fminf(fmaxf(va, 0.f), 1.f) * 255.f) !=
+                                   lrintf(fminf(fmaxf(vb, 0.f), 1.f) * 255.f);
+            }
+    printf("pfm round trip: %d values off by > 1e-6 (max %.3g), %d 8-bit values changed\n",
+           mismatches, worst, byte_mismatches);
+    CHECK(b.rgba && mismatches == 0 && byte_mismatches == 0, "pfm round trip not exact");
     /* Bottom row first on disk: the first float stored is pixel (0, h-1). */
     FILE *f = fopen(path, "rb");
     char hdr[32];
@@ -82,7 +94,26 @@ static void test_pfm_round_trip(void)
               fread(&first, sizeof first, 1, f) == 1,
           "cannot read back %s", path);
     if (f) fclose(f);
-    CHECK(first == px(&a, 0, a.height - 1)[0], "pfm row order: first float %g", first);
+    /* Encoded 0.5 is 0.2140 in linear light (the exact EOTF, not 0.5^2.2). */
+    oit_image g;
+    CHECK(oit_image_alloc(&g, 1, 1, &err) == OIT_OK, "%s", err.message);
+    g.rgba[0] = g.rgba[1] = g.rgba[2] = 0.5f, g.rgba[3] = 1.0f;
+    const char *gp = tmp_path("grey.pfm");
+    float lin[3] = {0};
+    CHECK(oit_image_write(&g, gp, &err) == OIT_OK, "%s", err.message);
+    FILE *gf = fopen(gp, "rb");
+    CHECK(gf && fgets(hdr, sizeof hdr, gf) && fgets(hdr, sizeof hdr, gf) &&
+              fgets(hdr, sizeof hdr, gf) && fread(lin, sizeof lin, 1, gf) == 1,
+          "cannot read back %s", gp);
+    if (gf) fclose(gf);
+    printf("pfm of sRGB 0.5 grey: %.6f %.6f %.6f linear\n", lin[0], lin[1], lin[2]);
+    CHECK(fabsf(lin[0] - 0.2140411f) < 1e-6f && lin[1] == lin[0] && lin[2] == lin[0],
+          "pfm of 0.5 grey holds %.7f, want linear 0.2140411", lin[0]);
+    oit_image_free(&g);
+    float v0 = px(&a, 0, a.height - 1)[0];
+    float want = v0 < 0.0f ? -(float)oit_srgb_decode(-(double)v0) : (float)oit_srgb_decode(v0);
+    CHECK(first == want, "pfm row order and linear light: first float %.9g, want %.9g "
+          "(decoded from %.9g)", first, want, px(&a, 0, a.height - 1)[0]);
     oit_image_free(&a);
     oit_image_free(&b);
 }

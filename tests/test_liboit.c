@@ -5,7 +5,9 @@
  * offset; pixels outside the viewport stay untouched; the caller's GL state
  * comes back; bad inputs fail with the documented status. The same file's
  * triangles as an in-core scene (oit_scene_create_mesh) pass the same
- * checks through the same oit_renderer_draw.
+ * checks through the same oit_renderer_draw. Linear-light compositing into
+ * an sRGB (GL_SRGB8_ALPHA8) target stores the bytes of DFB's linear-mode
+ * image (check_linear_srgb_target).
  *
  * usage: test_liboit FILE.oitp (a part file, e.g. from test_streamer) */
 #include <math.h>
@@ -235,6 +237,110 @@ static void draw_and_compare(const char *name, oit_scene *scene, oit_partfile *p
     oit_renderer_destroy(r);
 }
 
+/* Linear light into the caller's sRGB framebuffer (liboit.h, Result): a
+ * GL_SRGB8_ALPHA8 target holding kClear's bytes, drawn with
+ * OIT_RENDER_COLOUR_LINEAR, must hold the bytes of DFB's linear-mode image
+ * over kClear (within one 8-bit step: the target stores the blend's
+ * encoding in 8 bits) on all but 0.1% of pixels; GL_FRAMEBUFFER_SRGB comes
+ * back as the caller set it (off here, on in the second draw); the same
+ * target drawn in the default sRGB space differs (the option is live). */
+static void check_linear_srgb_target(oit_scene *scene, oit_partfile *pf)
+{
+    oit_error err = {0};
+    oit_scene_info info;
+    oit_scene_get_info(scene, &info, &err);
+    oit_view v = {0};
+    camera_for(&info, &v.camera);
+    v.width = W;
+    v.height = H;
+    oit_frame f = {0};
+    oit_camera_view_matrix(&v.camera, f.view);
+    oit_camera_proj_matrix(&v.camera, (float)W / H, f.projection);
+    f.viewport_width = W;
+    f.viewport_height = H;
+    uint8_t *got[2] = {malloc((size_t)W * H * 4), malloc((size_t)W * H * 4)};
+    for (int space = 0; space < 2; space++) {
+        oit_renderer_desc rd = {0};
+        rd.shading.colour_space = space ? OIT_RENDER_COLOUR_LINEAR : OIT_RENDER_COLOUR_SRGB;
+        oit_renderer *r = NULL;
+        if (oit_renderer_create(&rd, &r, &err) != OIT_OK) {
+            CHECK(0, "linear sRGB target: oit_renderer_create: %s", err.message);
+            free(got[0]);
+            free(got[1]);
+            return;
+        }
+        GLuint tex, fbo;
+        glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+        glTextureStorage2D(tex, 1, GL_SRGB8_ALPHA8, W, H);
+        glCreateFramebuffers(1, &fbo);
+        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, tex, 0);
+        GLint enc = 0;
+        glGetNamedFramebufferAttachmentParameteriv(fbo, GL_COLOR_ATTACHMENT0,
+                                                   GL_FRAMEBUFFER_ATTACHMENT_COLOR_ENCODING, &enc);
+        CHECK(enc == GL_SRGB, "the GL_SRGB8_ALPHA8 target's encoding is 0x%x", enc);
+        /* The last renderer's programs are gone: a deleted current program
+         * cannot be restored (see draw_and_compare's caller state). */
+        glUseProgram(0);
+        glDisable(GL_FRAMEBUFFER_SRGB); /* the clear stores kClear's bytes as given */
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        glClearNamedFramebufferfv(fbo, GL_COLOR, 0, kClear);
+        f.framebuffer = fbo;
+        oit_status s = oit_renderer_draw(r, scene, &f, NULL, &err);
+        CHECK(s == OIT_OK, "linear sRGB target: draw: %s", err.message);
+        CHECK(!glIsEnabled(GL_FRAMEBUFFER_SRGB), "GL_FRAMEBUFFER_SRGB left enabled");
+        if (space) {
+            /* The caller's enable survives too. */
+            glEnable(GL_FRAMEBUFFER_SRGB);
+            glClearNamedFramebufferfv(fbo, GL_COLOR, 0, kClear); /* encoded: not read */
+            s = oit_renderer_draw(r, scene, &f, NULL, &err);
+            CHECK(s == OIT_OK && glIsEnabled(GL_FRAMEBUFFER_SRGB),
+                  "GL_FRAMEBUFFER_SRGB not restored to enabled: %s", err.message);
+            glDisable(GL_FRAMEBUFFER_SRGB);
+            glClearNamedFramebufferfv(fbo, GL_COLOR, 0, kClear);
+            s = oit_renderer_draw(r, scene, &f, NULL, &err);
+        }
+        glGetTextureImage(tex, 0, GL_RGBA, GL_UNSIGNED_BYTE, W * H * 4, got[space]);
+        CHECK(glGetError() == GL_NO_ERROR, "linear sRGB target: a GL error");
+        glDeleteFramebuffers(1, &fbo);
+        glDeleteTextures(1, &tex);
+        oit_renderer_destroy(r);
+    }
+    oit_image ref = {0};
+    oit_frame_stats rs = {0};
+    v.shading = (oit_shading){0};
+    v.shading.attributes = info.attributes;
+    v.shading.colour_space = OIT_COLOUR_LINEAR;
+    v.shading.scene_scale = 1.0f;
+    memcpy(v.shading.background, kClear, sizeof v.shading.background);
+    if (reference(pf, &v, &ref, &rs)) {
+        uint64_t over = 0, differ = 0;
+        int max_d = 0;
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                const uint8_t *p = got[1] + ((size_t)y * W + x) * 4;
+                const uint8_t *q = got[0] + ((size_t)y * W + x) * 4;
+                const float *rr = ref.rgba + ((size_t)(H - 1 - y) * W + x) * 4;
+                int d = 0, dq = 0;
+                for (int c = 0; c < 3; c++) {
+                    int want = (int)lrintf(fminf(fmaxf(rr[c], 0.0f), 1.0f) * 255.0f);
+                    d = abs(p[c] - want) > d ? abs(p[c] - want) : d;
+                    dq = abs(q[c] - p[c]) > dq ? abs(q[c] - p[c]) : dq;
+                }
+                max_d = d > max_d ? d : max_d;
+                over += d > 1;
+                differ += dq > 1;
+            }
+        double pct = 100.0 * (double)over / (W * H), pd = 100.0 * (double)differ / (W * H);
+        printf("linear into an sRGB target: max %d steps from DFB (linear), %.4f%% pixels over "
+               "1 step; the sRGB-space draw differs on %.1f%%\n", max_d, pct, pd);
+        CHECK(pct <= 0.1, "linear sRGB target: %.4f%% of pixels more than 1/255 from DFB", pct);
+        CHECK(pd >= 10.0, "linear and sRGB compositing differ on only %.1f%% of pixels", pd);
+    }
+    oit_image_free(&ref);
+    free(got[0]);
+    free(got[1]);
+}
+
 static void check_errors(oit_scene *scene)
 {
     oit_error err = {0};
@@ -329,6 +435,7 @@ int main(int argc, char **argv)
     /* Each packing oitstream --pack offers, first-k and counted exact. */
     draw_and_compare("first-k", scene, pf, OIT_RENDER_TRANSPARENT, OIT_RENDER_PACK_FIRSTK);
     draw_and_compare("counted", scene, pf, OIT_RENDER_TRANSPARENT, OIT_RENDER_PACK_COUNTED);
+    check_linear_srgb_target(scene, pf);
 
     /* The same triangles as an in-core scene from arrays (a soup with
      * per-vertex colour), through the same draw: DFB's image, the caller's

@@ -9,6 +9,9 @@
  *   an STL of them (no colour) gives the image of the arrays without colour;
  * - a red square of alpha 128/255 facing the camera, over white, is
  *   (255, 127, 127) at its centre and white elsewhere, in RGBA8 and float;
+ * - in linear light (OIT_RENDER_COLOUR_LINEAR) the square's centre is
+ *   encode(1 - 128/255) = 187.19: (255, 187, 187) in RGBA8, 0.73406 in float
+ *   (sRGB-encoded in both), the white background still 255;
  * - bad arrays, unknown extensions and missing files fail naming the input.
  *
  * usage: test_liboit_incore OITPREP WORKDIR */
@@ -316,6 +319,49 @@ static void check_square(oit_offscreen *o)
     oit_scene_close(s);
 }
 
+/* The red square of check_square composited in linear light. */
+static void check_square_linear(void)
+{
+    oit_error err = {0};
+    oit_offscreen *o = NULL;
+    oit_offscreen_desc od = {.renderer.shading.colour_space = OIT_RENDER_COLOUR_LINEAR};
+    if (oit_offscreen_create(&od, &o, &err) != OIT_OK) {
+        CHECK(0, "linear offscreen: %s", err.message);
+        return;
+    }
+    const float pos[12] = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
+    const uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
+    const uint8_t red[8] = {255, 0, 0, 128, 255, 0, 0, 128};
+    oit_scene_mesh_desc d = {.positions = pos, .vertex_count = 4, .indices = idx,
+                             .index_count = 6, .colors = red,
+                             .color_rate = OIT_COLOR_PER_TRIANGLE, .name = "red square"};
+    oit_scene *s = from_arrays(&d);
+    enum { S = 64 };
+    static uint8_t px[S * S * 4];
+    static float pf[S * S * 4];
+    oit_offscreen_view v = {.width = S, .height = S, .eye = {0, 0, 4}, .fovy_deg = 30.0f};
+    if (s && oit_offscreen_render(o, s, &v, px, sizeof px, NULL, &err) == OIT_OK &&
+        (v.format = OIT_PIXELS_RGBA32F,
+         oit_offscreen_render(o, s, &v, pf, sizeof pf, NULL, &err) == OIT_OK)) {
+        const uint8_t *c = px + ((S / 2) * S + S / 2) * 4;
+        const float *cf = pf + ((S / 2) * S + S / 2) * 4;
+        double want = 1.055 * pow(127.0 / 255.0, 1.0 / 2.4) - 0.055;
+        printf("red square, linear light: centre %u %u %u %u (float %.5f %.5f, want %.5f), "
+               "corner %u %u %u\n", c[0], c[1], c[2], c[3], cf[0], cf[1], want, px[0], px[1],
+               px[2]);
+        CHECK(c[0] == 255 && c[1] == 187 && c[2] == 187 && c[3] == 255,
+              "linear: centre %u %u %u %u, expected 255 187 187 255", c[0], c[1], c[2], c[3]);
+        CHECK(fabs(cf[1] - want) < 1e-3 && fabsf(cf[0] - 1.0f) < 1e-5f && cf[3] == 1.0f,
+              "linear: float centre %.5f %.5f %.5f, want 1 %.5f 1", cf[0], cf[1], cf[3], want);
+        CHECK(px[0] == 255 && px[1] == 255 && px[2] == 255, "linear: corner %u %u %u", px[0],
+              px[1], px[2]);
+    } else {
+        CHECK(0, "linear red square: %s", err.message);
+    }
+    oit_scene_close(s);
+    oit_offscreen_destroy(o);
+}
+
 static void check_errors(const char *dir)
 {
     oit_error err = {0};
@@ -465,6 +511,7 @@ int main(int argc, char **argv)
         return 1;
     }
     check_square(o);
+    check_square_linear();
     check_errors(argv[2]);
     oit_offscreen_destroy(o);
     oit_scene_close(mesh);

@@ -244,6 +244,94 @@ static void test_depth_key(void)
     CHECK_NEAR(OIT_DEPTH_KEY_MASK, (1u << OIT_DEPTH_KEY_DROP_BITS) - 1u, 0, "mask and bits agree");
 }
 
+static unsigned char to_8bit(float v)
+{
+    return v <= 0.0f ? 0 : v >= 1.0f ? 255 : (unsigned char)lrintf(v * 255.0f);
+}
+
+/* The colour space (shade.h): the exact sRGB transfer functions, and 50%
+ * red (255,0,0,128) over white seen head-on (light 1): 255,127,127 on the
+ * encoded values, encode(1 - 128/255) = 187.19 -> 255,187,187 in linear
+ * light. The vertex colours are decoded per vertex, before interpolation. */
+static void test_colour_space(void)
+{
+    CHECK_NEAR(oit_srgb_decode(0.5), 0.214041140482232, 1e-12, "sRGB EOTF(0.5), not 0.5^2.2");
+    CHECK_NEAR(oit_srgb_decode(0.04045), 0.04045 / 12.92, 1e-15, "EOTF linear segment");
+    CHECK_NEAR(oit_srgb_decode(1.0), 1.0, 1e-15, "EOTF(1)");
+    CHECK_NEAR(oit_srgb_encode(0.0031308), 0.0031308 * 12.92, 1e-15, "OETF linear segment");
+    CHECK_NEAR(oit_srgb_encode(127.0 / 255.0) * 255.0, 187.186337819, 1e-6, "OETF(127/255)");
+    CHECK_NEAR(oit_srgb_decode(-0.5), 0.0, 0.0, "EOTF of a negative");
+    for (int i = 0; i <= 255; i++)
+        CHECK_NEAR(oit_srgb_encode(oit_srgb_decode(i / 255.0)), i / 255.0, 1e-12,
+                   "encode(decode(x)) = x");
+
+    oit_triangle t;
+    memset(&t, 0, sizeof t);
+    float p[3][3] = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}};
+    for (int v = 0; v < 3; v++) {
+        memcpy(t.v[v].pos, p[v], sizeof p[v]);
+        t.v[v].rgba[0] = 255, t.v[v].rgba[3] = 128;
+    }
+    float bary[3] = {0.25f, 0.25f, 0.5f}; /* (0, 0, 0) */
+    float eye[3] = {0, 0, 5};
+    const unsigned char want[2][3] = {{255, 127, 127}, {255, 187, 187}};
+    for (int lin = 0; lin < 2; lin++) {
+        oit_shading s = shading(OIT_SHADING_TRANSPARENT);
+        s.attributes = OIT_ATTR_COLOR | OIT_ATTR_ALPHA;
+        s.colour_space = lin ? OIT_COLOUR_LINEAR : OIT_COLOUR_SRGB;
+        oit_shaded_fragment f;
+        oit_shade_fragment(&s, &t, 0, bary, eye, 5.0, &f);
+        oit_pixel_state st;
+        oit_pixel_begin(&st);
+        oit_pixel_add(&st, &s, &f);
+        float rgb[3];
+        oit_pixel_end(&st, &s, rgb);
+        printf("50%% red over white, %s: %.6f %.6f %.6f -> %d,%d,%d\n", lin ? "linear" : "srgb",
+               rgb[0], rgb[1], rgb[2], to_8bit(rgb[0]), to_8bit(rgb[1]), to_8bit(rgb[2]));
+        for (int c = 0; c < 3; c++)
+            if (to_8bit(rgb[c]) != want[lin][c]) {
+                fprintf(stderr, "FAIL 50%% red over white (%s) channel %d: %d, want %d\n",
+                        lin ? "linear" : "srgb", c, to_8bit(rgb[c]), want[lin][c]);
+                failures++;
+            }
+    }
+
+    /* Per-vertex decoding: halfway between black and white vertices is
+     * decode(1) / 2 = 0.5 linear (encoded 0.735), not decode(0.5) = 0.214. */
+    t.v[0].rgba[0] = t.v[0].rgba[1] = t.v[0].rgba[2] = 0;
+    t.v[1].rgba[0] = t.v[1].rgba[1] = t.v[1].rgba[2] = 0;
+    t.v[2].rgba[0] = t.v[2].rgba[1] = t.v[2].rgba[2] = 255;
+    oit_shading s = shading(OIT_SHADING_TRANSPARENT);
+    s.attributes = OIT_ATTR_COLOR;
+    s.colour_space = OIT_COLOUR_LINEAR;
+    oit_shaded_fragment f;
+    oit_shade_fragment(&s, &t, 0, bary, eye, 5.0, &f);
+    CHECK_NEAR(f.colour[1], 0.5, 1e-6, "linear: vertex colours decoded before interpolation");
+
+    /* Default colour and background decoded, the result encoded: alpha
+     * .35 of default_rgb over a background of 0.5 grey. */
+    s.attributes = 0;
+    s.background[0] = s.background[1] = s.background[2] = 0.5f;
+    oit_shade_fragment(&s, &t, 0, bary, eye, 5.0, &f);
+    oit_pixel_state st;
+    oit_pixel_begin(&st);
+    oit_pixel_add(&st, &s, &f);
+    float rgb[3];
+    oit_pixel_end(&st, &s, rgb);
+    for (int c = 0; c < 3; c++) {
+        double d = oit_srgb_decode(s.default_rgb[c]);
+        CHECK_NEAR(f.colour[c], d, 1e-6, "linear: default_rgb decoded");
+        CHECK_NEAR(rgb[c], oit_srgb_encode(0.35 * d + 0.65 * oit_srgb_decode(0.5)), 1e-6,
+                   "linear: default colour over a decoded background, encoded");
+    }
+    s.colour_space = OIT_COLOUR_SRGB;
+    oit_shade_fragment(&s, &t, 0, bary, eye, 5.0, &f);
+    oit_pixel_begin(&st);
+    oit_pixel_add(&st, &s, &f);
+    oit_pixel_end(&st, &s, rgb);
+    CHECK_NEAR(rgb[0], 0.35 * 0.85 + 0.65 * 0.5, 1e-6, "srgb: the encoded values as given");
+}
+
 int main(void)
 {
     test_composite();
@@ -251,6 +339,7 @@ int main(void)
     test_absorption();
     test_tie_order();
     test_depth_key();
+    test_colour_space();
     if (failures) {
         fprintf(stderr, "test_shade: %d failure(s)\n", failures);
         return 1;

@@ -32,24 +32,34 @@
  *     dst.rgb = C + T * dst.rgb,   dst.a = (1 - t) + t * dst.a, t = mean(T)
  * through dual-source blending (GL_ONE, GL_SRC1_COLOR), so whatever the
  * caller drew before (a sky, opaque geometry without depth interaction) shows
- * through; where no fragment falls the target is left as it was. Colour is
- * written as computed (no sRGB conversion by liboit; GL_FRAMEBUFFER_SRGB is
- * left as the caller set it). With oit_frame.depth_texture, transparent
- * fragments at or behind the caller's opaque depth are dropped first, so
- * C and T are those of the fragments strictly in front of it: the target
- * shows what the scene with the opaque geometry included would, within the
- * tolerance of the depth comparison (oit_frame.depth_texture). Without it,
- * transparent surfaces cover everything drawn before, whatever its depth.
+ * through; where no fragment falls the target is left as it was. With
+ * oit_frame.depth_texture, transparent fragments at or behind the caller's
+ * opaque depth are dropped first, so C and T are those of the fragments
+ * strictly in front of it: the target shows what the scene with the opaque
+ * geometry included would, within the tolerance of the depth comparison
+ * (oit_frame.depth_texture). Without it, transparent surfaces cover
+ * everything drawn before, whatever its depth.
+ * Colour space. OIT_RENDER_COLOUR_SRGB (default): compositing happens on the
+ * sRGB-encoded values, C is written as computed (no sRGB conversion by
+ * liboit; GL_FRAMEBUFFER_SRGB is left as the caller set it, and should be
+ * off, or the target UNORM, for the encoded values to blend as such).
+ * OIT_RENDER_COLOUR_LINEAR: C and T are linear light, and liboit enables
+ * GL_FRAMEBUFFER_SRGB for its blend (restoring the caller's setting): on an
+ * sRGB target (GL_SRGB8_ALPHA8, or an sRGB-capable default framebuffer) GL
+ * decodes dst, blends in linear light and stores the sRGB encoding; on a
+ * float or UNORM target the stored values are linear light, for the caller
+ * to encode (oit/offscreen.h does so). So for 8-bit sRGB output give liboit
+ * an sRGB target; its existing content is then read as sRGB-encoded.
  *
  * GL state: oit_renderer_draw saves and restores the draw framebuffer
  * binding, viewport, current program, vertex array, draw-indirect buffer
- * binding, blend enable / function / equation, depth, stencil, cull and
- * scissor enables, colour and depth write masks, and (with a depth texture)
- * the active texture unit and the 2D texture and sampler bound to texture
- * unit 7, which it binds during the capture. It does NOT restore indexed
- * shader-storage buffer bindings 0..9, the texture bound to unit 0, or the
- * framebuffer default-size parameters of its own objects; callers that rely
- * on those must rebind them.
+ * binding, blend enable / function / equation, depth, stencil, cull,
+ * scissor and GL_FRAMEBUFFER_SRGB enables, colour and depth write masks,
+ * and (with a depth texture) the active texture unit and the 2D texture and
+ * sampler bound to texture unit 7, which it binds during the capture. It
+ * does NOT restore indexed shader-storage buffer bindings 0..9, the texture
+ * bound to unit 0, or the framebuffer default-size parameters of its own
+ * objects; callers that rely on those must rebind them.
  */
 #ifndef OIT_LIBOIT_H
 #define OIT_LIBOIT_H
@@ -152,6 +162,15 @@ typedef enum oit_render_shading_mode {
     OIT_RENDER_TRANSLUCENT = 1  /* Fresnel surfaces over an absorbing medium  */
 } oit_render_shading_mode;
 
+/* Where compositing happens (render/shade.h, "Colour space"). Colours
+ * (vertex colours, default_rgb) are 8-bit sRGB-encoded, straight alpha. */
+typedef enum oit_render_colour_space {
+    OIT_RENDER_COLOUR_SRGB = 0,  /* on the encoded values, as the OIT papers and
+                                    most viewers do (default)                    */
+    OIT_RENDER_COLOUR_LINEAR = 1 /* colours decoded with the exact sRGB EOTF,
+                                    composited in linear light (Result)          */
+} oit_render_colour_space;
+
 /* Mirrors the renderer's shading (DESIGN.md); zero means default. There is
  * no background: the caller's framebuffer is the background. */
 typedef struct oit_render_shading {
@@ -160,6 +179,7 @@ typedef struct oit_render_shading {
     float default_rgb[3]; /* for files without colour; default .85,.55,.2   */
     float absorption;     /* translucent; default 4                         */
     float scene_scale;    /* translucent; default: the scene's diagonal     */
+    oit_render_colour_space colour_space; /* default OIT_RENDER_COLOUR_SRGB */
 } oit_render_shading;
 
 /* oitstream --pack spells the same modes: auto, counted, budget, disjoint,
@@ -192,7 +212,9 @@ typedef struct oit_renderer_desc {
      * pixels whose transmittance fell below epsilon in every channel are
      * dropped, and parts whose whole footprint did are neither uploaded nor
      * drawn (oit_draw_stats.parts_skipped); the image then differs from the
-     * exact one by at most epsilon per channel. */
+     * exact one by at most epsilon per channel (in the compositing space:
+     * in linear light for OIT_RENDER_COLOUR_LINEAR, where the encoding can
+     * magnify it near black). */
     float epsilon;
     /* GPU bytes that keep parts drawn in one frame resident for the next
      * ones, drawn without reading or uploading them again

@@ -7,7 +7,12 @@
  * without the file's index space.
  *
  * Colours are 8-bit sRGB-encoded values with straight (not premultiplied)
- * alpha; all methods blend them in that encoding, as the OIT papers do.
+ * alpha. By default (oit_shading.colour_space OIT_COLOUR_SRGB) all methods
+ * blend them in that encoding, as the OIT papers and most viewers do: 50%
+ * red over white is 255,127,127. OIT_COLOUR_LINEAR (oitstream
+ * --colour-space linear) decodes them with the exact sRGB EOTF, composites
+ * in linear light and encodes the result: 255,187,187 (render/shade.h,
+ * "Colour space"). Alpha is coverage in both and never converted.
  * When the input has no colour (or no alpha) the reader writes 255 and clears
  * the bit in oit_mesh_info.attributes; the renderer then substitutes its
  * default colour or --alpha.

@@ -50,7 +50,7 @@ const char *oit_offscreen_gl_renderer(const oit_offscreen *o);
 
 typedef enum oit_pixel_format {
     OIT_PIXELS_RGBA8 = 0,  /* 4 uint8_t a pixel             */
-    OIT_PIXELS_RGBA32F = 1 /* 4 floats a pixel, 0..1 (as computed) */
+    OIT_PIXELS_RGBA32F = 1 /* 4 floats a pixel, 0..1, sRGB-encoded like RGBA8 */
 } oit_pixel_format;
 
 typedef struct oit_offscreen_view {
@@ -70,13 +70,18 @@ typedef struct oit_offscreen_view {
     float view[16], projection[16];
     float eye[3], target[3], up[3];
     float fovy_deg, znear, zfar;
-    /* Straight RGBA the scene is composited over. All 0 (default): opaque
+    /* Straight RGBA the scene is composited over, rgb sRGB-encoded (decoded
+     * to linear light when desc's shading.colour_space is
+     * OIT_RENDER_COLOUR_LINEAR). All 0 (default): opaque
      * white, the tools' background. A negative component stands for 0, so
      * {-1, -1, -1, -1} is transparent black. */
     float background[4];
 } oit_offscreen_view;
 
 /* Renders scene into pixels: width * height pixels of 4 components (format),
+ * colour sRGB-encoded in both colour spaces (in OIT_RENDER_COLOUR_LINEAR the
+ * linear result is encoded with the exact sRGB OETF before it is returned;
+ * alpha is never converted),
  * row 0 at the TOP (image order, unlike GL), pixels_bytes the buffer's size
  * (at least width * height * 4 * component size, else OIT_ERR_ARGUMENT).
  * stats may be NULL (see oit_renderer_draw). Errors name the scene or the

@@ -163,6 +163,8 @@ class Scene:
 
 
 _SHADINGS = {"transparent": L.RENDER_TRANSPARENT, "translucent": L.RENDER_TRANSLUCENT}
+# oit_render_colour_space (liboit.h): where compositing happens
+_COLOUR_SPACES = {"srgb": 0, "linear": 1}
 # oit_render_pack, spelt as oitstream --pack spells it
 _PACKS = {"auto": 0, "counted": 1, "budget": 2, "disjoint": 3, "first-k": 4}
 
@@ -173,10 +175,16 @@ class Renderer:
     library's default. Use it from one thread."""
 
     def __init__(self, shading="transparent", alpha=None, default_rgb=None, absorption=None,
-                 K=0, epsilon=0.0, pack="auto", upload_budget=0, cache_budget=0):
+                 K=0, epsilon=0.0, pack="auto", upload_budget=0, cache_budget=0,
+                 colour_space="srgb"):
         """pack, upload_budget, cache_budget, K and epsilon take what
         oitstream's --pack, --upload-budget, --cache-budget, --max-layers and
-        --epsilon take: 0 is the default, cache_budget="off" no cache."""
+        --epsilon take: 0 is the default, cache_budget="off" no cache.
+        colour_space: "srgb" (default) composites the sRGB-encoded colours as
+        given; "linear" decodes them (exact sRGB EOTF), composites in linear
+        light and returns the result sRGB-encoded (oitstream --colour-space)."""
+        if colour_space not in _COLOUR_SPACES:
+            raise ValueError(f"colour_space: {colour_space!r}, expected srgb or linear")
         if shading not in _SHADINGS:
             raise ValueError(f"shading: {shading!r}, expected transparent or translucent")
         if pack not in _PACKS:
@@ -188,6 +196,7 @@ class Renderer:
         d.renderer.upload_budget = int(upload_budget)
         d.renderer.cache_budget = L.RENDER_CACHE_OFF if cache_budget == "off" else int(cache_budget)
         d.renderer.shading.mode = _SHADINGS[shading]
+        d.renderer.shading.colour_space = _COLOUR_SPACES[colour_space]
         if alpha is not None:
             d.renderer.shading.alpha = alpha
         if default_rgb is not None:
@@ -292,28 +301,33 @@ def _set_view(v, view):
 _renderers = {}
 
 
-def _default_renderer(shading):
-    """One Renderer a shading for the module-level functions, made at first use."""
-    r = _renderers.get(shading)
+def _default_renderer(shading, colour_space="srgb"):
+    """One Renderer a shading and colour space for the module-level
+    functions, made at first use."""
+    key = (shading, colour_space)
+    r = _renderers.get(key)
     if r is None or not r._h:
-        r = _renderers[shading] = Renderer(shading=shading)
+        r = _renderers[key] = Renderer(shading=shading, colour_space=colour_space)
     return r
 
 
 def render(model_path, size=(512, 512), view=None, dtype=np.uint8, background=None,
-           shading="transparent"):
+           shading="transparent", colour_space="srgb"):
     """Renders a mesh file (in core) or part file (streamed) into a
-    (height, width, 4) array; see Renderer.render for view and background."""
-    r = _default_renderer(shading)
+    (height, width, 4) array; see Renderer.render for view and background,
+    Renderer for colour_space."""
+    r = _default_renderer(shading, colour_space)
     with Scene.open(model_path) as s:
         return r.render(s, size=size, view=view, dtype=dtype, background=background)
 
 
 def render_arrays(positions, indices=None, colors=None, size=(512, 512), view=None,
-                  dtype=np.uint8, background=None, shading="transparent", color_rate="auto"):
+                  dtype=np.uint8, background=None, shading="transparent", color_rate="auto",
+                  colour_space="srgb"):
     """Renders triangles from arrays (see Scene.from_arrays) into a
-    (height, width, 4) array; see Renderer.render for view and background."""
-    r = _default_renderer(shading)
+    (height, width, 4) array; see Renderer.render for view and background,
+    Renderer for colour_space."""
+    r = _default_renderer(shading, colour_space)
     with Scene.from_arrays(positions, indices, colors, color_rate=color_rate) as s:
         return r.render(s, size=size, view=view, dtype=dtype, background=background)
 

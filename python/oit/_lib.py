@@ -43,7 +43,7 @@ class SceneMeshDesc(ctypes.Structure):
 class RenderShading(ctypes.Structure):
     _fields_ = [("mode", ctypes.c_int), ("alpha", ctypes.c_float),
                 ("default_rgb", ctypes.c_float * 3), ("absorption", ctypes.c_float),
-                ("scene_scale", ctypes.c_float)]
+                ("scene_scale", ctypes.c_float), ("colour_space", ctypes.c_int)]
 
 
 class RendererDesc(ctypes.Structure):

@@ -44,6 +44,26 @@ def test_red_square_over_white():
     assert f[24, 32, 1] == pytest.approx(127 / 255, abs=2e-3)
 
 
+def test_linear_colour_space():
+    pos, idx, col = square()
+    img = oit.render_arrays(pos, idx, col, size=(64, 48), view=FRONT, colour_space="linear")
+    # In linear light: g = 1 - a = 127/255 linear, encoded 187.19.
+    assert tuple(img[24, 32]) == (255, 187, 187, 255)
+    assert tuple(img[0, 0]) == (255, 255, 255, 255)
+    f = oit.render_arrays(pos, idx, col, size=(64, 48), view=FRONT, dtype=np.float32,
+                          colour_space="linear")
+    assert f[24, 32, 1] == pytest.approx(1.055 * (127 / 255) ** (1 / 2.4) - 0.055, abs=1e-3)
+    # Over a grey background (sRGB 0.5, decoded to 0.214 before blending).
+    g = oit.render_arrays(pos, idx, col, size=(32, 32), view=FRONT, background=(0.5, 0.5, 0.5),
+                          colour_space="linear")
+    a = 128 / 255
+    lin = 0.5 / 1.055 + 0.055 / 1.055
+    want = 1.055 * ((1 - a) * lin ** 2.4) ** (1 / 2.4) - 0.055
+    assert abs(int(g[16, 16, 1]) - round(want * 255)) <= 1 and tuple(g[0, 0, :3]) == (128,) * 3
+    with pytest.raises(ValueError):
+        oit.Renderer(colour_space="gamma")
+
+
 def test_row_zero_is_the_top():
     pos, idx, col = square()
     pos[:, 1] = np.where(pos[:, 1] > 0, 1.0, 0.3)  # the square's upper part only
