@@ -66,6 +66,15 @@ const char oit_glsl_fragment_gen[] =
     "flat in uint v_first_prim;\n"
     "flat in vec4 v_plane;\n"
     "layout(location = 16) uniform vec4 u_ray;\n"
+    "layout(location = 24) uniform vec4 u_org;\n"
+    "layout(location = 25) uniform float u_org_z;\n"
+    /* The view-space origin of the pixel centre's ray (view.h,
+     * oit_view_origin_map): the eye, 0, for a perspective; the point of the
+     * near plane for an orthographic view. */
+    "vec3 oit_ray_origin() {\n"
+    "    vec2 c = floor(gl_FragCoord.xy) + 0.5;\n"
+    "    return vec3(c.x * u_org.x + u_org.z, c.y * u_org.y + u_org.w, u_org_z);\n"
+    "}\n"
     "uint oit_pixel_index() {\n"
     "    return uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x);\n"
     "}\n"
@@ -74,8 +83,10 @@ const char oit_glsl_fragment_gen[] =
     "    return q.x | (q.y << 11) | (q.z << 22);\n"
     "}\n"
     /* The tie rule's key (shade.h, oit_depth_key): t of the triangle's
-     * plane along the pixel centre's unit ray, which every triangle at this
-     * pixel shares, with the low mantissa bits cleared. */
+     * plane along the pixel centre's unit ray from its origin o, which every
+     * triangle at this pixel shares, with the low mantissa bits cleared:
+     * (d - n . o) / (n . dir), d - 0 = d for a perspective (o = 0); an
+     * orthographic ray map is 0, so dir = (0, 0, -1). */
     /* floor + 0.5: the centre even where a multisampled target lets
      * gl_FragCoord lie anywhere in the pixel. */
     "uint oit_depth_key(float t_interp) {\n"
@@ -84,14 +95,15 @@ const char oit_glsl_fragment_gen[] =
     "    float nd = dot(v_plane.xyz, dir);\n"
     "    float t = t_interp;\n"
     "    if (abs(nd) >= " OIT_GLSL_STR(OIT_DEPTH_GRAZING) ") {\n"
-    "        float tp = v_plane.w / nd;\n"
+    "        float tp = (v_plane.w - dot(v_plane.xyz, oit_ray_origin())) / nd;\n"
     "        if (tp > 0.0 && !isinf(tp)) t = tp;\n"
     "    }\n"
     "    return floatBitsToUint(t) & ~" OIT_GLSL_STR(OIT_DEPTH_KEY_MASK) "u;\n"
     "}\n"
     "uvec4 oit_fragment() {\n"
-    "    float t_interp = length(v_pos);\n"
-    "    vec3 v = -v_pos / t_interp;\n"
+    "    vec3 rel = v_pos - oit_ray_origin();\n"
+    "    float t_interp = length(rel);\n"
+    "    vec3 v = -rel / t_interp;\n"
     /* Degenerate triangles shade as edge-on, like shade.c. */
     "    float nn = dot(v_normal, v_normal);\n"
     "    float nv = nn > 0.0 ? dot(v_normal * inversesqrt(nn), v) : 0.0;\n"
@@ -241,6 +253,10 @@ void oit_glsl_set_view(GLuint prog, const oit_view *view)
     float ray[4];
     oit_view_ray_map(view, ray);
     glProgramUniform4fv(prog, loc(prog, "u_ray"), 1, ray);
+    float org[4], org_z;
+    oit_view_origin_map(view, org, &org_z);
+    glProgramUniform4fv(prog, loc(prog, "u_org"), 1, org);
+    glProgramUniform1f(prog, loc(prog, "u_org_z"), org_z);
 }
 
 void oit_glsl_set_view_all(const GLuint *progs, int n, const oit_view *view)

@@ -408,9 +408,17 @@ static oit_status capture_frame(oit_streamer *s, const oit_view *view, oit_packi
     float planes[6][4];
     oit_camera_frustum(&view->camera, (float)view->width / (float)view->height, planes);
     double t0 = oit_time_ms();
-    if (st == OIT_OK)
+    if (st == OIT_OK && view->camera.projection == OIT_PROJ_ORTHOGRAPHIC) {
+        /* Parallel rays: near sides by the view direction, not an eye. */
+        const oit_camera *c = &view->camera;
+        float dir[3] = {c->target[0] - c->eye[0], c->target[1] - c->eye[1],
+                        c->target[2] - c->eye[2]};
+        st = oit_order_compute_parallel(s->order, dir, (const float(*)[4])planes, s->ordered,
+                                        &count, err);
+    } else if (st == OIT_OK) {
         st = oit_order_compute_culled(s->order, view->camera.eye, (const float(*)[4])planes,
                                       s->ordered, &count, err);
+    }
     double t1 = oit_time_ms();
     if (st == OIT_OK)
         st = oit_packer_run(s->packer, view, s->ordered, count, pk, err);
