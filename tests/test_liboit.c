@@ -5,7 +5,8 @@
  * offset; pixels outside the viewport stay untouched; the caller's GL state
  * comes back; bad inputs fail with the documented status. The same file's
  * triangles as an in-core scene (oit_scene_create_mesh) pass the same
- * checks through the same oit_renderer_draw.
+ * checks through the same oit_renderer_draw, and both again through
+ * orthographic, off-centre and infinite-far projection matrices.
  *
  * usage: test_liboit FILE.oitp (a part file, e.g. from test_streamer) */
 #include <math.h>
@@ -45,9 +46,33 @@ static void target_free(target *t)
     glDeleteTextures(1, &t->tex);
 }
 
-static void camera_for(const oit_scene_info *info, oit_camera *cam)
+enum { PROJ_DEFAULT, PROJ_ORTHO, PROJ_OFFCENTRE, PROJ_INFINITE };
+static const char *const kProjName[] = {"", " ortho", " off-centre", " infinite far"};
+
+/* The default perspective, or the same view orthographic (the volume as
+ * high as the frustum at the target, its near plane behind the eye),
+ * off-centre (a window shifted right and down) or with an infinite far
+ * plane. */
+static void camera_for(const oit_scene_info *info, oit_camera *cam, int proj)
 {
     oit_camera_default(cam, info->bounds_min, info->bounds_max, 35.0f, 25.0f);
+    double dist = 0.0, ty = tan(0.5 * cam->fovy_deg * 3.14159265358979323846 / 180.0);
+    for (int k = 0; k < 3; k++)
+        dist += pow((double)cam->target[k] - cam->eye[k], 2.0);
+    dist = sqrt(dist);
+    double a = (double)W / H;
+    if (proj == PROJ_ORTHO) {
+        cam->projection = OIT_PROJ_ORTHOGRAPHIC;
+        cam->ortho_height = (float)(2.0 * dist * ty);
+        cam->znear = (float)(cam->znear - 0.5 * dist);
+    } else if (proj == PROJ_OFFCENTRE) {
+        cam->window[0] = (float)(-0.7 * ty * a);
+        cam->window[1] = (float)(1.3 * ty * a);
+        cam->window[2] = (float)(-1.2 * ty);
+        cam->window[3] = (float)(0.8 * ty);
+    } else if (proj == PROJ_INFINITE) {
+        cam->zfar = INFINITY;
+    }
 }
 
 /* DFB's image of the whole file with the clear colour as background. */
@@ -124,9 +149,11 @@ static void check_state_restored(GLuint fbo)
           bound, vp[0], vp[1], vp[2], vp[3], blend, src, prog);
 }
 
-static void draw_and_compare(const char *name, oit_scene *scene, oit_partfile *pf,
-                             oit_render_shading_mode mode, oit_render_pack pack)
+static void draw_and_compare_proj(const char *base, oit_scene *scene, oit_partfile *pf,
+                                  oit_render_shading_mode mode, oit_render_pack pack, int proj)
 {
+    char name[128];
+    snprintf(name, sizeof name, "%s%s", base, kProjName[proj]);
     oit_error err = {0};
     oit_scene_info info;
     oit_scene_get_info(scene, &info, &err);
@@ -139,7 +166,7 @@ static void draw_and_compare(const char *name, oit_scene *scene, oit_partfile *p
         return;
     }
     oit_view v = {0};
-    camera_for(&info, &v.camera);
+    camera_for(&info, &v.camera, proj);
     v.width = W;
     v.height = H;
     oit_frame f = {0};
@@ -235,6 +262,36 @@ static void draw_and_compare(const char *name, oit_scene *scene, oit_partfile *p
     oit_renderer_destroy(r);
 }
 
+static void draw_and_compare(const char *name, oit_scene *scene, oit_partfile *pf,
+                             oit_render_shading_mode mode, oit_render_pack pack)
+{
+    draw_and_compare_proj(name, scene, pf, mode, pack, PROJ_DEFAULT);
+}
+
+/* The caller's projection matrix classified back (liboit.h): the same
+ * fields as the camera it was made from. */
+static void check_classify(oit_scene *scene)
+{
+    oit_error err = {0};
+    oit_scene_info info;
+    oit_scene_get_info(scene, &info, &err);
+    for (int proj = PROJ_ORTHO; proj <= PROJ_INFINITE; proj++) {
+        oit_camera c;
+        camera_for(&info, &c, proj);
+        float m[16];
+        oit_camera_proj_matrix(&c, (float)W / H, m);
+        printf("projection%s: m[8] %g m[9] %g m[10] %g m[11] %g m[14] %g m[15] %g\n",
+               kProjName[proj], m[8], m[9], m[10], m[11], m[14], m[15]);
+        CHECK(proj == PROJ_ORTHO ? m[11] == 0.0f && m[15] == 1.0f
+                                 : m[11] == -1.0f && m[15] == 0.0f,
+              "projection%s: not of its kind", kProjName[proj]);
+        CHECK(proj != PROJ_OFFCENTRE || (m[8] != 0.0f && m[9] != 0.0f),
+              "off-centre projection with m[8] = %g, m[9] = %g", m[8], m[9]);
+        CHECK(proj != PROJ_INFINITE || (m[10] == -1.0f && m[14] == -2.0f * c.znear),
+              "infinite far: m[10] = %g, m[14] = %g", m[10], m[14]);
+    }
+}
+
 static void check_errors(oit_scene *scene)
 {
     oit_error err = {0};
@@ -291,10 +348,19 @@ static void check_errors(oit_scene *scene)
         f.view[i * 5] = 1.0f;
     f.projection[0] = f.projection[5] = f.projection[15] = 1.0f; /* orthographic */
     f.projection[10] = -1.0f;
+    f.projection[11] = -0.5f; /* but neither kind: m[11] -0.5, m[15] 1 */
     f.viewport_width = f.viewport_height = 8;
     s = oit_renderer_draw(r, scene, &f, NULL, &err);
-    printf("orthographic: %s: %s\n", oit_status_name(s), err.message);
-    CHECK(s == OIT_ERR_UNSUPPORTED, "orthographic projection gave %s", oit_status_name(s));
+    printf("neither projection: %s: %s\n", oit_status_name(s), err.message);
+    CHECK(s == OIT_ERR_UNSUPPORTED && strstr(err.message, "m[11] = -0.5"),
+          "a projection neither perspective nor orthographic gave %s: %s",
+          oit_status_name(s), err.message);
+    f.projection[11] = 0.0f;
+    f.projection[4] = 0.25f; /* skewed */
+    s = oit_renderer_draw(r, scene, &f, NULL, &err);
+    printf("skewed projection: %s: %s\n", oit_status_name(s), err.message);
+    CHECK(s == OIT_ERR_UNSUPPORTED && strstr(err.message, "projection[4]"),
+          "a skewed projection gave %s: %s", oit_status_name(s), err.message);
     oit_renderer_destroy(r);
 }
 
@@ -329,6 +395,13 @@ int main(int argc, char **argv)
     /* Each packing oitstream --pack offers, first-k and counted exact. */
     draw_and_compare("first-k", scene, pf, OIT_RENDER_TRANSPARENT, OIT_RENDER_PACK_FIRSTK);
     draw_and_compare("counted", scene, pf, OIT_RENDER_TRANSPARENT, OIT_RENDER_PACK_COUNTED);
+    /* Every projection a viewer uses, through the caller's matrices. */
+    check_classify(scene);
+    for (int proj = PROJ_ORTHO; proj <= PROJ_INFINITE; proj++)
+        draw_and_compare_proj("transparent", scene, pf, OIT_RENDER_TRANSPARENT,
+                              OIT_RENDER_PACK_AUTO, proj);
+    draw_and_compare_proj("translucent", scene, pf, OIT_RENDER_TRANSLUCENT,
+                          OIT_RENDER_PACK_AUTO, PROJ_ORTHO);
 
     /* The same triangles as an in-core scene from arrays (a soup with
      * per-vertex colour), through the same draw: DFB's image, the caller's
@@ -371,6 +444,9 @@ int main(int argc, char **argv)
                      OIT_RENDER_PACK_AUTO);
     draw_and_compare("in-core translucent", core, pf, OIT_RENDER_TRANSLUCENT,
                      OIT_RENDER_PACK_AUTO);
+    for (int proj = PROJ_ORTHO; proj <= PROJ_INFINITE; proj++)
+        draw_and_compare_proj("in-core transparent", core, pf, OIT_RENDER_TRANSPARENT,
+                              OIT_RENDER_PACK_AUTO, proj);
     oit_scene_close(core);
 
     oit_partfile_close(pf);
