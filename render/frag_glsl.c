@@ -21,6 +21,9 @@ const char oit_glsl_vertex[] =
     "flat out vec3 v_normal;\n"
     "flat out uint v_first_prim;\n"
     "layout(location = 15) uniform dvec3 u_eye;\n"
+    /* Model to world (oit_view.model; the identity changes no bit). */
+    "layout(location = 26) uniform mat4 u_model;\n"
+    "vec3 oit_world(uvec4 v) { return (u_model * vec4(uintBitsToFloat(v.xyz), 1.0)).xyz; }\n"
     "flat out vec4 v_plane;\n"
     "invariant gl_Position;\n"
     /* The tie rule's plane (shade.h, oit_depth_plane): in double from the
@@ -38,9 +41,9 @@ const char oit_glsl_vertex[] =
     /* The draw's triangles start at vertex a_draw.x of the binding. */
     "    uint tri = (uint(gl_VertexID) - a_draw.x) / 3u;\n"
     "    int v0 = int(a_draw.x + tri * 3u);\n"
-    "    vec3 p0 = uintBitsToFloat(verts[v0].xyz);\n"
-    "    vec3 p1 = uintBitsToFloat(verts[v0 + 1].xyz);\n"
-    "    vec3 p2 = uintBitsToFloat(verts[v0 + 2].xyz);\n"
+    "    vec3 p0 = oit_world(verts[v0]);\n"
+    "    vec3 p1 = oit_world(verts[v0 + 1]);\n"
+    "    vec3 p2 = oit_world(verts[v0 + 2]);\n"
     "    uvec4 me = verts[gl_VertexID];\n"
     /* Geometric normal in world space, then rotated: dot products with
      * view-space vectors equal the world-space ones of shade.h. */
@@ -48,7 +51,7 @@ const char oit_glsl_vertex[] =
     "    v_first_prim = (a_draw.y & 0x80000000u) != 0u\n"
     "        ? prims[(a_draw.y & 0x7fffffffu) + tri] | 0x80000000u : a_draw.y;\n"
     "    v_plane = oit_tie_plane(p0, p1, p2);\n"
-    "    vec4 vp = u_view * vec4(uintBitsToFloat(me.xyz), 1.0);\n"
+    "    vec4 vp = u_view * vec4(oit_world(me), 1.0);\n"
     "    v_pos = vp.xyz;\n"
     "    v_rgba = unpackUnorm4x8(me.w);\n"
     "    gl_Position = u_proj * vp;\n"
@@ -256,6 +259,11 @@ void oit_glsl_set_view(GLuint prog, const oit_view *view)
     float org[4], org_z;
     oit_view_origin_map(view, org, &org_z);
     glProgramUniform4fv(prog, loc(prog, "u_org"), 1, org);
+    double md[16];
+    oit_view_model(view, md);
+    for (int i = 0; i < 16; i++)
+        m[i] = (float)md[i];
+    glProgramUniformMatrix4fv(prog, loc(prog, "u_model"), 1, GL_FALSE, m);
     glProgramUniform1f(prog, loc(prog, "u_org_z"), org_z);
 }
 

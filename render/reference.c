@@ -563,6 +563,10 @@ oit_status oit_reference_render(const oit_mesh *mesh, const oit_view *view,
     if (job.shading.mode == OIT_SHADING_TRANSLUCENT && !(job.shading.scene_scale > 0.0f))
         return oit_error_set(err, OIT_ERR_ARGUMENT,
                              "reference: translucent shading needs scene_scale > 0");
+    double model[16];
+    if (oit_view_model(view, model))
+        return oit_error_set(err, OIT_ERR_UNSUPPORTED,
+                             "reference: a model matrix (pre-transform the mesh instead)");
     oit_status s = make_basis(view, &job.basis, err);
     if (s == OIT_OK)
         s = oit_image_alloc(out, view->width, view->height, err);

@@ -284,6 +284,63 @@ void oit_camera_frustum(const oit_camera *cam, float aspect, float planes[6][4])
     }
 }
 
+int oit_view_model(const oit_view *view, double m[16])
+{
+    int any = 0;
+    for (int i = 0; i < 16; i++) {
+        m[i] = view->model[i];
+        any |= view->model[i] != 0.0f;
+    }
+    if (!any) {
+        memset(m, 0, 16 * sizeof *m);
+        m[0] = m[5] = m[10] = m[15] = 1.0;
+        return 0;
+    }
+    return 1;
+}
+
+void oit_view_model_view_matrix(const oit_view *view, float m[16])
+{
+    oit_camera_view_matrix(&view->camera, m);
+    double mm[16];
+    if (!oit_view_model(view, mm))
+        return;
+    float v[16];
+    memcpy(v, m, sizeof v);
+    for (int c = 0; c < 4; c++)
+        for (int r = 0; r < 4; r++) {
+            double acc = 0.0;
+            for (int k = 0; k < 4; k++)
+                acc += (double)v[k * 4 + r] * mm[c * 4 + k];
+            m[c * 4 + r] = (float)acc;
+        }
+}
+
+int oit_view_model_eye(const oit_view *view, double eye[3], double dir[3])
+{
+    double m[16];
+    oit_view_model(view, m);
+    /* The linear part L (m[col * 4 + row]) and its inverse by cofactors. */
+    double a = m[0], b = m[4], c = m[8], d = m[1], e = m[5], f = m[9], g = m[2], h = m[6],
+           i = m[10];
+    double det = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g);
+    if (!(fabs(det) > 0.0) || !isfinite(det))
+        return 0;
+    double inv[3][3] = {{(e * i - f * h) / det, (c * h - b * i) / det, (b * f - c * e) / det},
+                        {(f * g - d * i) / det, (a * i - c * g) / det, (c * d - a * f) / det},
+                        {(d * h - e * g) / det, (b * g - a * h) / det, (a * e - b * d) / det}};
+    double pe[3], pd[3];
+    for (int k = 0; k < 3; k++) {
+        pe[k] = (double)view->camera.eye[k] - m[12 + k];
+        pd[k] = (double)view->camera.target[k] - view->camera.eye[k];
+    }
+    for (int r = 0; r < 3; r++) {
+        eye[r] = inv[r][0] * pe[0] + inv[r][1] * pe[1] + inv[r][2] * pe[2];
+        dir[r] = inv[r][0] * pd[0] + inv[r][1] * pd[1] + inv[r][2] * pd[2];
+    }
+    return 1;
+}
+
 /* Reads up to max comma-separated finite numbers; returns how many. */
 static int parse_numbers(const char *text, double *v, int max)
 {

@@ -79,6 +79,12 @@ typedef struct oit_view {
     oit_camera camera;
     int width, height;
     oit_shading shading;
+    /* Model to world, column-major, affine (last row 0, 0, 0, 1), any
+     * invertible linear part (non-uniform scale included); all 0: identity.
+     * The GL methods apply it to the vertices before anything else, so the
+     * tie rule sees the world-space float vertices, as if pre-transformed;
+     * the streamer culls and orders parts through it. */
+    float model[16];
 } oit_view;
 
 /* RGBA float image, row 0 at the top, values in [0,1] (alpha is 1 for a
@@ -141,6 +147,17 @@ void oit_view_pixel_ray(const float ray[4], int x, int y, int height, float dir[
  * the view volume (0.1% in angle and depth, near plane at znear / 2), so
  * that rounding never culls what the rasterizer would draw. */
 void oit_camera_frustum(const oit_camera *cam, float aspect, float planes[6][4]);
+/* The view's model matrix in double (identity for all 0); returns 0 for the
+ * identity, 1 otherwise. */
+int oit_view_model(const oit_view *view, double m[16]);
+/* Model to eye: the camera's view matrix times the model matrix, in double,
+ * rounded; exactly oit_camera_view_matrix for the identity. */
+void oit_view_model_view_matrix(const oit_view *view, float m[16]);
+/* The model-space eye (the affine inverse of the model applied to the eye)
+ * and the model-space view direction (the inverse linear part applied to
+ * target - eye), in double. Returns 0 when the model is singular. */
+int oit_view_model_eye(const oit_view *view, double eye[3], double dir[3]);
+
 /* Parses "ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy"; returns 0 on success. Two more
  * numbers ",znear,zfar" may follow; without them cam's clip planes are kept.
  * Projection fields may follow, each

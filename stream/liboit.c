@@ -552,6 +552,27 @@ static void blend_over(const oit_renderer *r, const oit_frame *f, const oit_view
     glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
+/* oit_frame.model (liboit.h): all 0 the identity, else affine, finite and
+ * invertible. */
+static oit_status model_from_frame(const float *m, oit_view *v, oit_error *err)
+{
+    for (int i = 0; i < 16; i++)
+        if (!isfinite(m[i]))
+            return oit_error_set(err, OIT_ERR_UNSUPPORTED, "oit_frame.model[%d] = %g is not "
+                                 "finite", i, m[i]);
+    memcpy(v->model, m, sizeof v->model);
+    double d[16], eye[3], dir[3];
+    if (!oit_view_model(v, d))
+        return OIT_OK;
+    if (m[3] != 0.0f || m[7] != 0.0f || m[11] != 0.0f || m[15] != 1.0f)
+        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "oit_frame.model: last row (%g, %g, %g, "
+                             "%g) is not (0, 0, 0, 1): not affine", m[3], m[7], m[11], m[15]);
+    if (!oit_view_model_eye(v, eye, dir))
+        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "oit_frame.model: the linear part is "
+                             "singular");
+    return OIT_OK;
+}
+
 static oit_status frame_view(const oit_renderer *r, const oit_scene *scene,
                              const oit_frame *f, oit_view *v, oit_error *err)
 {
@@ -566,6 +587,8 @@ static oit_status frame_view(const oit_renderer *r, const oit_scene *scene,
     if (st == OIT_OK)
         st = camera_from_projection(f->projection, (double)v->width / v->height, &v->camera,
                                     err);
+    if (st == OIT_OK)
+        st = model_from_frame(f->model, v, err);
     return st;
 }
 

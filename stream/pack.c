@@ -153,7 +153,7 @@ typedef struct box_projector {
 static void projector_init(box_projector *pr, const oit_view *v)
 {
     const oit_camera *c = &v->camera;
-    oit_camera_view_matrix(c, pr->m);
+    oit_view_model_view_matrix(v, pr->m); /* part boxes are in model space */
     double f = 1.0 / tan(0.5 * (c->fovy_deg > 0.0f ? c->fovy_deg : 45.0) * 3.14159265358979 / 180.0);
     pr->w = v->width;
     pr->h = v->height;

@@ -364,6 +364,155 @@ static void check_errors(oit_scene *scene)
     oit_renderer_destroy(r);
 }
 
+/* Draws scene with model (NULL: none) into a fresh target and reads the
+ * viewport back (rows bottom up); returns NULL on failure. */
+static float *draw_read(oit_renderer *r, oit_scene *scene, const oit_camera *cam,
+                        const float *model, const char *name)
+{
+    oit_error err = {0};
+    oit_frame f = {0};
+    oit_camera_view_matrix(cam, f.view);
+    oit_camera_proj_matrix(cam, (float)W / H, f.projection);
+    if (model)
+        memcpy(f.model, model, sizeof f.model);
+    f.viewport_x = PAD_X;
+    f.viewport_y = PAD_Y;
+    f.viewport_width = W;
+    f.viewport_height = H;
+    target t = target_make();
+    f.framebuffer = t.fbo;
+    /* As draw_and_compare: the program DFB's reference left current was
+     * deleted with it, and no caller expects that restored. */
+    glUseProgram(0);
+    oit_status s = oit_renderer_draw(r, scene, &f, NULL, &err);
+    CHECK(s == OIT_OK, "%s: draw: %s", name, err.message);
+    float *px = malloc((size_t)FW * FH * 4 * sizeof *px);
+    glGetTextureImage(t.tex, 0, GL_RGBA, GL_FLOAT, FW * FH * 4 * sizeof *px, px);
+    target_free(&t);
+    if (s != OIT_OK) {
+        free(px);
+        return NULL;
+    }
+    return px;
+}
+
+/* Percent of viewport pixels of a and b more than 1/255 apart, and of a's
+ * differing from the clear colour (covered). */
+static double differ(const float *a, const float *b, double *covered)
+{
+    uint64_t over = 0, cov = 0;
+    for (int y = PAD_Y; y < PAD_Y + H; y++)
+        for (int x = PAD_X; x < PAD_X + W; x++) {
+            const float *p = a + ((size_t)y * FW + x) * 4, *q = b + ((size_t)y * FW + x) * 4;
+            double d = 0.0, c = 0.0;
+            for (int k = 0; k < 3; k++) {
+                d = fmax(d, fabs((double)p[k] - q[k]));
+                c += fabs((double)p[k] - kClear[k]);
+            }
+            over += d > 1.0 / 255.0;
+            cov += c > 1.0 / 255.0;
+        }
+    *covered = 100.0 * (double)cov / (W * H);
+    return 100.0 * (double)over / (W * H);
+}
+
+/* oit_frame.model: a non-uniformly scaled, translated model through the
+ * model matrix, as an in-core scene and as the part file (culled and
+ * ordered through it), gives the image of the vertices transformed
+ * beforehand; without the matrix the image is far from it. */
+static void check_model(oit_partfile *pf, oit_scene *file_scene, const oit_scene_info *info)
+{
+    oit_error err = {0};
+    oit_mesh mesh = {0};
+    if (oit_partfile_load_mesh(pf, &mesh, &err) != OIT_OK) {
+        CHECK(0, "model: %s", err.message);
+        return;
+    }
+    static const float model[16] = {2.0f, 0, 0, 0, 0, 0.5f, 0, 0, 0, 0, 1.25f, 0,
+                                    0.3f, -0.2f, 0.1f, 1.0f};
+    size_t nv = mesh.count * 3;
+    float *pos = malloc(nv * 3 * sizeof *pos), *scaled = malloc(nv * 3 * sizeof *scaled);
+    uint8_t *rgba = malloc(nv * 4);
+    for (size_t t = 0; t < mesh.count; t++)
+        for (int c = 0; c < 3; c++) {
+            const float *p = mesh.tris[t].v[c].pos;
+            float *o = pos + (t * 3 + c) * 3, *q = scaled + (t * 3 + c) * 3;
+            memcpy(o, p, 12);
+            for (int k = 0; k < 3; k++)
+                q[k] = model[k] * p[0] + model[4 + k] * p[1] + model[8 + k] * p[2] + model[12 + k];
+            memcpy(rgba + (t * 3 + c) * 4, mesh.tris[t].v[c].rgba, 4);
+        }
+    oit_mesh_free(&mesh);
+    const uint8_t *colors = (info->attributes & OIT_ATTR_COLOR) ? rgba : NULL;
+    oit_scene_mesh_desc md = {.positions = pos, .vertex_count = nv, .colors = colors,
+                              .name = "model arrays"};
+    oit_scene_mesh_desc ms = {.positions = scaled, .vertex_count = nv, .colors = colors,
+                              .name = "pre-scaled arrays"};
+    oit_scene *plain = NULL, *pre = NULL;
+    oit_renderer *r = NULL;
+    oit_renderer_desc rd = {0};
+    if (oit_scene_create_mesh(&md, &plain, &err) != OIT_OK ||
+        oit_scene_create_mesh(&ms, &pre, &err) != OIT_OK ||
+        oit_renderer_create(&rd, &r, &err) != OIT_OK) {
+        CHECK(0, "model: %s", err.message);
+        goto done;
+    }
+    oit_scene_info si;
+    oit_scene_get_info(pre, &si, &err);
+    for (int proj = PROJ_DEFAULT; proj <= PROJ_ORTHO; proj++) {
+        oit_camera cam;
+        camera_for(&si, &cam, proj);
+        float *want = draw_read(r, pre, &cam, NULL, "pre-scaled");
+        float *core = draw_read(r, plain, &cam, model, "in-core model");
+        float *file = draw_read(r, file_scene, &cam, model, "part file model");
+        float *none = draw_read(r, plain, &cam, NULL, "no model");
+        if (want && core && file && none) {
+            double cov = 0.0, c2 = 0.0, c3 = 0.0;
+            double pc = differ(core, want, &cov), pf_ = differ(file, want, &c2);
+            double pn = differ(none, want, &c3);
+            printf("model matrix%s: in core %.4f%%, part file %.4f%% pixels over 1/255 from "
+                   "pre-scaled vertices (%.1f%% covered); without it %.2f%%\n",
+                   kProjName[proj], pc, pf_, cov, pn);
+            CHECK(pc <= 0.1 && pf_ <= 0.1 && cov >= 10.0,
+                  "model matrix%s: %.4f%% / %.4f%% of pixels differ from pre-scaled vertices",
+                  kProjName[proj], pc, pf_);
+            CHECK(pn > 5.0, "model matrix%s: the image without it differs on only %.2f%%",
+                  kProjName[proj], pn);
+        }
+        free(want);
+        free(core);
+        free(file);
+        free(none);
+    }
+    /* Not affine: refused, saying why. */
+    {
+        oit_camera cam;
+        camera_for(&si, &cam, PROJ_DEFAULT);
+        oit_frame f = {0};
+        oit_camera_view_matrix(&cam, f.view);
+        oit_camera_proj_matrix(&cam, (float)W / H, f.projection);
+        memcpy(f.model, model, sizeof f.model);
+        f.model[3] = 0.5f;
+        f.viewport_width = f.viewport_height = 8;
+        oit_status s = oit_renderer_draw(r, plain, &f, NULL, &err);
+        printf("projective model: %s: %s\n", oit_status_name(s), err.message);
+        CHECK(s == OIT_ERR_UNSUPPORTED && strstr(err.message, "affine"),
+              "a projective model matrix gave %s", oit_status_name(s));
+        f.model[3] = 0.0f;
+        f.model[0] = 0.0f; /* x collapses: singular */
+        s = oit_renderer_draw(r, plain, &f, NULL, &err);
+        CHECK(s == OIT_ERR_UNSUPPORTED && strstr(err.message, "singular"),
+              "a singular model matrix gave %s", oit_status_name(s));
+    }
+done:
+    oit_renderer_destroy(r);
+    oit_scene_close(plain);
+    oit_scene_close(pre);
+    free(pos);
+    free(scaled);
+    free(rgba);
+}
+
 int main(int argc, char **argv)
 {
     if (argc != 2) {
@@ -402,6 +551,7 @@ int main(int argc, char **argv)
                               OIT_RENDER_PACK_AUTO, proj);
     draw_and_compare_proj("translucent", scene, pf, OIT_RENDER_TRANSLUCENT,
                           OIT_RENDER_PACK_AUTO, PROJ_ORTHO);
+    check_model(pf, scene, &info);
 
     /* The same triangles as an in-core scene from arrays (a soup with
      * per-vertex colour), through the same draw: DFB's image, the caller's

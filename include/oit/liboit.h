@@ -232,6 +232,14 @@ typedef struct oit_frame {
     int viewport_x, viewport_y; /* lower-left corner in the target, pixels */
     int viewport_width, viewport_height;
     unsigned framebuffer;       /* GL framebuffer name; 0: the default one */
+    /* Model to world, column-major like view; all 16 zero: the identity.
+     * Affine (m[3] = m[7] = m[11] = 0, m[15] = 1), finite, with an
+     * invertible linear part: rotation, translation and uniform or
+     * non-uniform scale (a mirror too). It is applied to the vertices on the
+     * GPU before the tie rule, so the image is that of vertices transformed
+     * beforehand (in float), and the streamer culls and orders parts
+     * through it; anything else is OIT_ERR_UNSUPPORTED. */
+    float model[16];
 } oit_frame;
 
 typedef struct oit_draw_stats {
