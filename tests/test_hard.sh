@@ -194,7 +194,11 @@ case "$CASE" in
 coplanar|touching) # orthographic (--ortho, then :ortho=H in the view): the tie
        # rule along parallel rays from the near plane, every method and the
        # reference with per-pixel ray origins
-    view ortho30 --azimuth 30 --elevation 35 --ortho fit ;;
+    view ortho30 --azimuth 30 --elevation 35 --ortho fit
+    # az30 off-centre (a window shifted left and up), with an infinite far
+    # plane: the ray map's general form (view.h)
+    c=$(json_str view "$T/az30-stream.json")
+    view offaxis --view "$c:window=-0.5,0.3,-0.25,0.45:far=inf" ;;
 esac
 case "$CASE" in
 stack) # between layers 300 and 301, looking up the stack and along it; the
