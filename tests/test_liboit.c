@@ -366,8 +366,8 @@ static void check_errors(oit_scene *scene)
 
 /* Draws scene with model (NULL: none) into a fresh target and reads the
  * viewport back (rows bottom up); returns NULL on failure. */
-static float *draw_read(oit_renderer *r, oit_scene *scene, const oit_camera *cam,
-                        const float *model, const char *name)
+static float *draw_read_stats(oit_renderer *r, oit_scene *scene, const oit_camera *cam,
+                              const float *model, const char *name, oit_draw_stats *st)
 {
     oit_error err = {0};
     oit_frame f = {0};
@@ -384,7 +384,7 @@ static float *draw_read(oit_renderer *r, oit_scene *scene, const oit_camera *cam
     /* As draw_and_compare: the program DFB's reference left current was
      * deleted with it, and no caller expects that restored. */
     glUseProgram(0);
-    oit_status s = oit_renderer_draw(r, scene, &f, NULL, &err);
+    oit_status s = oit_renderer_draw(r, scene, &f, st, &err);
     CHECK(s == OIT_OK, "%s: draw: %s", name, err.message);
     float *px = malloc((size_t)FW * FH * 4 * sizeof *px);
     glGetTextureImage(t.tex, 0, GL_RGBA, GL_FLOAT, FW * FH * 4 * sizeof *px, px);
@@ -394,6 +394,12 @@ static float *draw_read(oit_renderer *r, oit_scene *scene, const oit_camera *cam
         return NULL;
     }
     return px;
+}
+
+static float *draw_read(oit_renderer *r, oit_scene *scene, const oit_camera *cam,
+                        const float *model, const char *name)
+{
+    return draw_read_stats(r, scene, cam, model, name, NULL);
 }
 
 /* Percent of viewport pixels of a and b more than 1/255 apart, and of a's
@@ -429,7 +435,7 @@ static void check_model(oit_partfile *pf, oit_scene *file_scene, const oit_scene
         return;
     }
     static const float model[16] = {2.0f, 0, 0, 0, 0, 0.5f, 0, 0, 0, 0, 1.25f, 0,
-                                    0.3f, -0.2f, 0.1f, 1.0f};
+                                    3.0f, -2.0f, 1.5f, 1.0f};
     size_t nv = mesh.count * 3;
     float *pos = malloc(nv * 3 * sizeof *pos), *scaled = malloc(nv * 3 * sizeof *scaled);
     uint8_t *rgba = malloc(nv * 4);
@@ -459,25 +465,39 @@ static void check_model(oit_partfile *pf, oit_scene *file_scene, const oit_scene
     }
     oit_scene_info si;
     oit_scene_get_info(pre, &si, &err);
-    for (int proj = PROJ_DEFAULT; proj <= PROJ_ORTHO; proj++) {
+    /* The last view: close up on a corner, so that the part file's parts
+     * are culled through the model matrix (planes taken to model space). */
+    for (int proj = PROJ_DEFAULT; proj <= PROJ_ORTHO + 1; proj++) {
         oit_camera cam;
-        camera_for(&si, &cam, proj);
+        camera_for(&si, &cam, proj <= PROJ_ORTHO ? proj : PROJ_DEFAULT);
+        if (proj > PROJ_ORTHO)
+            for (int k = 0; k < 3; k++) {
+                float to = si.bounds_max[k] - 0.2f * (si.bounds_max[k] - si.bounds_min[k]);
+                float sh = to - cam.target[k];
+                cam.target[k] += sh;
+                cam.eye[k] += sh + 0.6f * (cam.target[k] - cam.eye[k] - sh);
+            }
+        oit_draw_stats fst = {0};
         float *want = draw_read(r, pre, &cam, NULL, "pre-scaled");
         float *core = draw_read(r, plain, &cam, model, "in-core model");
-        float *file = draw_read(r, file_scene, &cam, model, "part file model");
+        float *file = draw_read_stats(r, file_scene, &cam, model, "part file model", &fst);
         float *none = draw_read(r, plain, &cam, NULL, "no model");
         if (want && core && file && none) {
             double cov = 0.0, c2 = 0.0, c3 = 0.0;
             double pc = differ(core, want, &cov), pf_ = differ(file, want, &c2);
             double pn = differ(none, want, &c3);
+            const char *pn_ = proj <= PROJ_ORTHO ? kProjName[proj] : " close up";
             printf("model matrix%s: in core %.4f%%, part file %.4f%% pixels over 1/255 from "
-                   "pre-scaled vertices (%.1f%% covered); without it %.2f%%\n",
-                   kProjName[proj], pc, pf_, cov, pn);
+                   "pre-scaled vertices (%.1f%% covered, %llu of %llu parts culled); without "
+                   "it %.2f%%\n", pn_, pc, pf_, cov, (unsigned long long)fst.parts_culled,
+                   (unsigned long long)(fst.parts_culled + fst.parts_drawn), pn);
+            CHECK(proj <= PROJ_ORTHO || fst.parts_culled > 0,
+                  "model matrix close up: no part culled, the planes are not tested");
             CHECK(pc <= 0.1 && pf_ <= 0.1 && cov >= 10.0,
                   "model matrix%s: %.4f%% / %.4f%% of pixels differ from pre-scaled vertices",
-                  kProjName[proj], pc, pf_);
-            CHECK(pn > 5.0, "model matrix%s: the image without it differs on only %.2f%%",
-                  kProjName[proj], pn);
+                  pn_, pc, pf_);
+            CHECK(pn > 5.0, "model matrix%s: the image without it differs on only %.2f%%", pn_,
+                  pn);
         }
         free(want);
         free(core);
