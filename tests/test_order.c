@@ -571,7 +571,7 @@ static void check_culled(oit_order *o, const oit_partfile *pf, const float (*ev)
     uint32_t full[MAXP], kept[MAXP], n = oit_partfile_part_count(pf), nf = 0, nk = 0;
     const oit_partfile_part *parts = oit_partfile_parts(pf);
     static const float dirs[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 0, 1}, {0, 0, -1}, {0.6f, 0.3f, 0.7f}, {-0.5f, -0.2f, 0.8f}};
-    int views = 0, some_culled = 0, none_culled = 0, bad = 0;
+    int views = 0, some_culled = 0, none_culled = 0, bad = 0, ortho_views = 0;
     oit_error err = {0};
     for (int i = 0; i < ne; i++)
         for (int d = 0; d < 6; d++) {
@@ -579,40 +579,55 @@ static void check_culled(oit_order *o, const oit_partfile *pf, const float (*ev)
                               {ev[i][0] + dirs[d][0], ev[i][1] + dirs[d][1], ev[i][2] + dirs[d][2]},
                               {0, 1, 0}, d & 1 ? 30.0f : 70.0f, 0.05f, d == 3 ? 2.0f : 100.0f,
                               .projection = 0};
-            float planes[6][4];
-            oit_camera_frustum(&cam, 1.3f, planes);
-            if (oit_order_compute(o, cam.eye, full, &nf, &err) ||
-                oit_order_compute_culled(o, cam.eye, (const float(*)[4])planes, kept, &nk, &err)) {
-                check(0, err.message);
-                return;
-            }
-            uint32_t j = 0;
-            for (uint32_t k = 0; k < nf; k++) {
-                if (j < nk && kept[j] == full[k]) {
-                    j++;
-                    continue;
+            /* Each view also orthographic (3 high, the near plane behind
+             * the eye): parallel orders, culled and full. */
+            for (int po = 0; po < 2; po++) {
+                if (po) {
+                    cam.projection = OIT_PROJ_ORTHOGRAPHIC;
+                    cam.ortho_height = 3.0f;
+                    cam.znear = -1.0f;
                 }
-                const oit_partfile_part *p = &parts[full[k]];
-                int out = 0;
-                for (int q = 0; q < 6 && !out; q++) {
-                    int all = 1;
-                    for (int c = 0; c < 8; c++) {
-                        double x = c & 1 ? p->bounds_max[0] : p->bounds_min[0];
-                        double y = c & 2 ? p->bounds_max[1] : p->bounds_min[1];
-                        double z = c & 4 ? p->bounds_max[2] : p->bounds_min[2];
-                        all &= planes[q][0] * x + planes[q][1] * y + planes[q][2] * z + planes[q][3] < 0;
+                float planes[6][4];
+                oit_camera_frustum(&cam, 1.3f, planes);
+                oit_status s1 = po ? oit_order_compute_parallel(o, dirs[d], NULL, full, &nf, &err)
+                                   : oit_order_compute(o, cam.eye, full, &nf, &err);
+                const float(*pl)[4] = (const float(*)[4])planes;
+                oit_status s2 = s1   ? s1
+                                : po ? oit_order_compute_parallel(o, dirs[d], pl, kept, &nk, &err)
+                                     : oit_order_compute_culled(o, cam.eye, pl, kept, &nk, &err);
+                if (s2) {
+                    check(0, err.message);
+                    return;
+                }
+                uint32_t j = 0;
+                for (uint32_t k = 0; k < nf; k++) {
+                    if (j < nk && kept[j] == full[k]) {
+                        j++;
+                        continue;
                     }
-                    out = all;
+                    const oit_partfile_part *p = &parts[full[k]];
+                    int out = 0;
+                    for (int q = 0; q < 6 && !out; q++) {
+                        int all = 1;
+                        for (int c = 0; c < 8; c++) {
+                            double x = c & 1 ? p->bounds_max[0] : p->bounds_min[0];
+                            double y = c & 2 ? p->bounds_max[1] : p->bounds_min[1];
+                            double z = c & 4 ? p->bounds_max[2] : p->bounds_min[2];
+                            all &= planes[q][0] * x + planes[q][1] * y + planes[q][2] * z + planes[q][3] < 0;
+                        }
+                        out = all;
+                    }
+                    bad += !out;
                 }
-                bad += !out;
+                bad += j != nk; /* a kept part out of order or not in the full order */
+                views++;
+                some_culled += nk < nf;
+                none_culled += nk == nf;
+                ortho_views += po;
             }
-            bad += j != nk; /* a kept part out of order or not in the full order */
-            views++;
-            some_culled += nk < nf;
-            none_culled += nk == nf;
         }
-    printf("culled orders: %d views (%d with parts left out, %d with none), %d wrong\n", views,
-           some_culled, none_culled, bad);
+    printf("culled orders: %d views (%d orthographic; %d with parts left out, %d with none), "
+           "%d wrong\n", views, ortho_views, some_culled, none_culled, bad);
     check(bad == 0, "a culled order drops a part inside the view or reorders the rest");
     check(some_culled > 0 && none_culled > 0, "culling never (or always) leaves parts out");
     (void)n;
