@@ -138,9 +138,17 @@ static oit_status resize_targets(oit_depth_peel *d, int w, int h, oit_error *err
  * t's order exactly: a depth clamped to 1 would make ties. */
 static float depth_scale(const oit_view *v)
 {
-    double tanh = tan(0.5 * v->camera.fovy_deg * 3.14159265358979323846 / 180.0);
-    double aspect = (double)v->width / v->height;
-    double t_max = v->camera.zfar * sqrt(1.0 + tanh * tanh * (1.0 + aspect * aspect));
+    const oit_camera *c = &v->camera;
+    double aspect = (double)v->width / v->height, t_max;
+    if (c->projection == OIT_PROJ_ORTHOGRAPHIC) {
+        t_max = (double)c->zfar - c->znear; /* parallel rays from the near plane */
+    } else {
+        /* The steepest corner ray of the window (oit_camera_window). */
+        double w[4];
+        oit_camera_window(c, aspect, w);
+        double sx = fmax(fabs(w[0]), fabs(w[1])), sy = fmax(fabs(w[2]), fabs(w[3]));
+        t_max = c->zfar * sqrt(1.0 + sx * sx + sy * sy);
+    }
     int e = 0;
     frexp(t_max, &e);
     return (float)ldexp(1.0, -(e + 1));
@@ -149,6 +157,10 @@ static float depth_scale(const oit_view *v)
 static oit_status prepare(oit_depth_peel *d, const oit_view *v, oit_error *err)
 {
     uint64_t pixels = (uint64_t)v->width * v->height;
+    /* The depth buffer holds t scaled into [0, 1): it needs a bound on t. */
+    if (isinf(v->camera.zfar))
+        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "depth peeling: an infinite far plane "
+                             "leaves no bound to scale depths by; give a finite zfar");
     oit_status s = oit_gl_check_ssbo_size(pixels * STATE_BYTES, "depth peeling: the "
                                           "frame's composite state", err);
     if (s == OIT_OK)

@@ -21,6 +21,9 @@ const char oit_glsl_vertex[] =
     "flat out vec3 v_normal;\n"
     "flat out uint v_first_prim;\n"
     "layout(location = 15) uniform dvec3 u_eye;\n"
+    /* Model to world (oit_view.model; the identity changes no bit). */
+    "layout(location = 26) uniform mat4 u_model;\n"
+    "vec3 oit_world(uvec4 v) { return (u_model * vec4(uintBitsToFloat(v.xyz), 1.0)).xyz; }\n"
     "flat out vec4 v_plane;\n"
     /* oit_shading.colour_space (shade.h, "Colour space"); set by name. */
     "uniform int u_colour_space;\n"
@@ -41,9 +44,9 @@ const char oit_glsl_vertex[] =
     /* The draw's triangles start at vertex a_draw.x of the binding. */
     "    uint tri = (uint(gl_VertexID) - a_draw.x) / 3u;\n"
     "    int v0 = int(a_draw.x + tri * 3u);\n"
-    "    vec3 p0 = uintBitsToFloat(verts[v0].xyz);\n"
-    "    vec3 p1 = uintBitsToFloat(verts[v0 + 1].xyz);\n"
-    "    vec3 p2 = uintBitsToFloat(verts[v0 + 2].xyz);\n"
+    "    vec3 p0 = oit_world(verts[v0]);\n"
+    "    vec3 p1 = oit_world(verts[v0 + 1]);\n"
+    "    vec3 p2 = oit_world(verts[v0 + 2]);\n"
     "    uvec4 me = verts[gl_VertexID];\n"
     /* Geometric normal in world space, then rotated: dot products with
      * view-space vectors equal the world-space ones of shade.h. */
@@ -51,7 +54,7 @@ const char oit_glsl_vertex[] =
     "    v_first_prim = (a_draw.y & 0x80000000u) != 0u\n"
     "        ? prims[(a_draw.y & 0x7fffffffu) + tri] | 0x80000000u : a_draw.y;\n"
     "    v_plane = oit_tie_plane(p0, p1, p2);\n"
-    "    vec4 vp = u_view * vec4(uintBitsToFloat(me.xyz), 1.0);\n"
+    "    vec4 vp = u_view * vec4(oit_world(me), 1.0);\n"
     "    v_pos = vp.xyz;\n"
     "    v_rgba = unpackUnorm4x8(me.w);\n"
     "    if (u_colour_space == 1) v_rgba.rgb = oit_srgb_decode(v_rgba.rgb);\n"
@@ -82,6 +85,15 @@ const char oit_glsl_fragment_gen[] =
     "flat in uint v_first_prim;\n"
     "flat in vec4 v_plane;\n"
     "layout(location = 16) uniform vec4 u_ray;\n"
+    "layout(location = 24) uniform vec4 u_org;\n"
+    "layout(location = 25) uniform float u_org_z;\n"
+    /* The view-space origin of the pixel centre's ray (view.h,
+     * oit_view_origin_map): the eye, 0, for a perspective; the point of the
+     * near plane for an orthographic view. */
+    "vec3 oit_ray_origin() {\n"
+    "    vec2 c = floor(gl_FragCoord.xy) + 0.5;\n"
+    "    return vec3(c.x * u_org.x + u_org.z, c.y * u_org.y + u_org.w, u_org_z);\n"
+    "}\n"
     "uint oit_pixel_index() {\n"
     "    return uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x);\n"
     "}\n"
@@ -90,8 +102,10 @@ const char oit_glsl_fragment_gen[] =
     "    return q.x | (q.y << 11) | (q.z << 22);\n"
     "}\n"
     /* The tie rule's key (shade.h, oit_depth_key): t of the triangle's
-     * plane along the pixel centre's unit ray, which every triangle at this
-     * pixel shares, with the low mantissa bits cleared. */
+     * plane along the pixel centre's unit ray from its origin o, which every
+     * triangle at this pixel shares, with the low mantissa bits cleared:
+     * (d - n . o) / (n . dir), d - 0 = d for a perspective (o = 0); an
+     * orthographic ray map is 0, so dir = (0, 0, -1). */
     /* floor + 0.5: the centre even where a multisampled target lets
      * gl_FragCoord lie anywhere in the pixel. */
     "uint oit_depth_key(float t_interp) {\n"
@@ -100,14 +114,15 @@ const char oit_glsl_fragment_gen[] =
     "    float nd = dot(v_plane.xyz, dir);\n"
     "    float t = t_interp;\n"
     "    if (abs(nd) >= " OIT_GLSL_STR(OIT_DEPTH_GRAZING) ") {\n"
-    "        float tp = v_plane.w / nd;\n"
+    "        float tp = (v_plane.w - dot(v_plane.xyz, oit_ray_origin())) / nd;\n"
     "        if (tp > 0.0 && !isinf(tp)) t = tp;\n"
     "    }\n"
     "    return floatBitsToUint(t) & ~" OIT_GLSL_STR(OIT_DEPTH_KEY_MASK) "u;\n"
     "}\n"
     "uvec4 oit_fragment() {\n"
-    "    float t_interp = length(v_pos);\n"
-    "    vec3 v = -v_pos / t_interp;\n"
+    "    vec3 rel = v_pos - oit_ray_origin();\n"
+    "    float t_interp = length(rel);\n"
+    "    vec3 v = -rel / t_interp;\n"
     /* Degenerate triangles shade as edge-on, like shade.c. */
     "    float nn = dot(v_normal, v_normal);\n"
     "    float nv = nn > 0.0 ? dot(v_normal * inversesqrt(nn), v) : 0.0;\n"
@@ -265,6 +280,15 @@ void oit_glsl_set_view(GLuint prog, const oit_view *view)
     float ray[4];
     oit_view_ray_map(view, ray);
     glProgramUniform4fv(prog, loc(prog, "u_ray"), 1, ray);
+    float org[4], org_z;
+    oit_view_origin_map(view, org, &org_z);
+    glProgramUniform4fv(prog, loc(prog, "u_org"), 1, org);
+    double md[16];
+    oit_view_model(view, md);
+    for (int i = 0; i < 16; i++)
+        m[i] = (float)md[i];
+    glProgramUniformMatrix4fv(prog, loc(prog, "u_model"), 1, GL_FALSE, m);
+    glProgramUniform1f(prog, loc(prog, "u_org_z"), org_z);
 }
 
 void oit_glsl_set_opaque(GLuint prog, const oit_opaque_depth *o)

@@ -45,6 +45,10 @@ typedef struct embree_errors {
 typedef struct ray_basis {
     double eye[3], forward[3], right[3], up[3];
     double tan_half_y, aspect;
+    /* Off-centre or orthographic (oit_camera_window): the window; ortho:
+     * rays along forward from the near plane (znear from the eye). */
+    int windowed, ortho;
+    double win[4], znear;
 } ray_basis;
 
 typedef struct ref_job {
@@ -58,7 +62,7 @@ typedef struct ref_job {
     uint8_t *ambiguous;
     double ambiguity_px;
     uint32_t *ties;
-    float view_matrix[16], ray_map[4];
+    float view_matrix[16], ray_map[4], org_map[4], org_z;
     atomic_int next_row;
     atomic_int oom;
 } ref_job;
@@ -151,14 +155,30 @@ static size_t dedupe_hits(hit_rec *h, size_t n)
     return m;
 }
 
-/* Unit direction through image point (px, py) in pixels; the centre of
- * pixel (x, y) is (x + 0.5, y + 0.5). */
-static void pixel_dir(const ray_basis *b, double px, double py, int w, int h, double dir[3])
+/* The ray through image point (px, py) in pixels, the centre of pixel
+ * (x, y) being (x + 0.5, y + 0.5): its origin (the eye; orthographic: the
+ * point of the near plane) and unit direction. */
+static void pixel_ray(const ray_basis *b, double px, double py, int w, int h, double org[3],
+                      double dir[3])
 {
-    double sx = (px / w * 2.0 - 1.0) * b->tan_half_y * b->aspect;
-    double sy = (1.0 - py / h * 2.0) * b->tan_half_y;
+    double sx, sy;
+    if (b->windowed || b->ortho) {
+        sx = b->win[0] + (b->win[1] - b->win[0]) * (px / w);
+        sy = b->win[3] - (b->win[3] - b->win[2]) * (py / h);
+    } else {
+        sx = (px / w * 2.0 - 1.0) * b->tan_half_y * b->aspect;
+        sy = (1.0 - py / h * 2.0) * b->tan_half_y;
+    }
+    if (b->ortho) {
+        for (int k = 0; k < 3; k++) {
+            org[k] = b->eye[k] + b->znear * b->forward[k] + sx * b->right[k] + sy * b->up[k];
+            dir[k] = b->forward[k];
+        }
+        return;
+    }
     double len2 = 0.0;
     for (int k = 0; k < 3; k++) {
+        org[k] = b->eye[k];
         dir[k] = b->forward[k] + sx * b->right[k] + sy * b->up[k];
         len2 += dir[k] * dir[k];
     }
@@ -167,12 +187,12 @@ static void pixel_dir(const ray_basis *b, double px, double py, int w, int h, do
         dir[k] *= inv;
 }
 
-static void make_ray(const float eye[3], const double dir[3], struct RTCRayHit *rh)
+static void make_ray(const double org[3], const double dir[3], struct RTCRayHit *rh)
 {
     memset(rh, 0, sizeof *rh);
-    rh->ray.org_x = eye[0];
-    rh->ray.org_y = eye[1];
-    rh->ray.org_z = eye[2];
+    rh->ray.org_x = (float)org[0];
+    rh->ray.org_y = (float)org[1];
+    rh->ray.org_z = (float)org[2];
     rh->ray.dir_x = (float)dir[0];
     rh->ray.dir_y = (float)dir[1];
     rh->ray.dir_z = (float)dir[2];
@@ -187,19 +207,27 @@ static int depth_kept(const ref_job *job, double t, const double dir[3])
 {
     const ray_basis *b = &job->basis;
     double depth = t * (dir[0] * b->forward[0] + dir[1] * b->forward[1] + dir[2] * b->forward[2]);
+    if (b->ortho)
+        depth += b->znear;
     return depth >= job->cam->znear && depth <= job->cam->zfar;
 }
 
 /* Composites hits already in (t, prim) order that pass the view-depth clip;
  * returns how many were kept. */
 static uint32_t composite_hits(const ref_job *job, const hit_rec *hits, size_t n,
-                               const double dir[3], float rgb[3], uint32_t *ties)
+                               const double org[3], const double dir[3], float rgb[3],
+                               uint32_t *ties)
 {
     oit_pixel_state st;
     oit_pixel_begin(&st);
     uint32_t kept = 0;
     float last_key = -1.0f;
     *ties = 0;
+    /* Shading looks back along the ray: from the eye, or (orthographic) from
+     * the ray's origin on the near plane. */
+    float from[3];
+    for (int k = 0; k < 3; k++)
+        from[k] = job->basis.ortho ? (float)org[k] : job->cam->eye[k];
     for (size_t i = 0; i < n; i++) {
         if (!depth_kept(job, hits[i].t, dir))
             continue;
@@ -208,7 +236,7 @@ static uint32_t composite_hits(const ref_job *job, const hit_rec *hits, size_t n
         float bary[3] = {1.0f - hits[i].u - hits[i].v, hits[i].u, hits[i].v};
         oit_shaded_fragment f;
         oit_shade_fragment(&job->shading, &job->mesh->tris[hits[i].prim], hits[i].prim, bary,
-                           job->cam->eye, hits[i].key, &f);
+                           from, hits[i].key, &f);
         oit_pixel_add(&st, &job->shading, &f);
         kept++;
     }
@@ -218,12 +246,12 @@ static uint32_t composite_hits(const ref_job *job, const hit_rec *hits, size_t n
 
 /* Traces one ray; leaves its de-duplicated hits in wk->ray sorted by prim
  * and returns their count. */
-static size_t trace_ray(ref_worker *wk, double px, double py, double dir[3])
+static size_t trace_ray(ref_worker *wk, double px, double py, double org[3], double dir[3])
 {
     ref_job *job = wk->job;
-    pixel_dir(&job->basis, px, py, job->out->width, job->out->height, dir);
+    pixel_ray(&job->basis, px, py, job->out->width, job->out->height, org, dir);
     struct RTCRayHit rh;
-    make_ray(job->cam->eye, dir, &rh);
+    make_ray(org, dir, &rh);
     wk->ray.n = 0;
     rtcIntersect1(job->scene, &wk->ray.rtc, &rh);
     return dedupe_hits(wk->ray.hits, wk->ray.n);
@@ -264,9 +292,9 @@ static int save_centre_prims(ref_worker *wk, size_t n, const double dir[3])
 static int hit_set_changes(ref_worker *wk, int x, int y, size_t centre_n)
 {
     static const int offs[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
-    double d = wk->job->ambiguity_px, dir[3];
+    double d = wk->job->ambiguity_px, org[3], dir[3];
     for (int k = 0; k < 4; k++) {
-        size_t n = trace_ray(wk, x + 0.5 + offs[k][0] * d, y + 0.5 + offs[k][1] * d, dir);
+        size_t n = trace_ray(wk, x + 0.5 + offs[k][0] * d, y + 0.5 + offs[k][1] * d, org, dir);
         if (kept_prims(wk, n, dir, NULL) != centre_n || kept_prims(wk, n, dir, wk->prims) != centre_n)
             return 1;
     }
@@ -279,15 +307,19 @@ static int hit_set_changes(ref_worker *wk, int x, int y, size_t centre_n)
  * round alike where they can. */
 static void key_hits(const ref_job *job, hit_rec *h, size_t n, int x, int y)
 {
-    float dir[3];
+    float dir[3], o[3];
     oit_view_pixel_ray(job->ray_map, x, y, job->out->height, dir);
+    oit_view_pixel_origin(job->org_map, job->org_z, x, y, job->out->height, o);
     const float *m = job->view_matrix;
     for (size_t i = 0; i < n; i++) {
         float nw[3], nv[3], d;
         oit_depth_plane(&job->mesh->tris[h[i].prim], job->cam->eye, nw, &d);
         for (int r = 0; r < 3; r++)
             nv[r] = m[r] * nw[0] + m[4 + r] * nw[1] + m[8 + r] * nw[2];
-        h[i].key = oit_depth_key(nv, d, dir, h[i].t);
+        /* d - n . o as the shaders compute it: d itself for a perspective
+         * (o = 0). */
+        float no = nv[0] * o[0] + nv[1] * o[1] + nv[2] * o[2];
+        h[i].key = oit_depth_key(nv, d - no, dir, h[i].t);
     }
 }
 
@@ -295,8 +327,8 @@ static void trace_pixel(ref_worker *wk, int x, int y)
 {
     ref_job *job = wk->job;
     int w = job->out->width;
-    double dir[3];
-    size_t n = trace_ray(wk, x + 0.5, y + 0.5, dir);
+    double org[3], dir[3];
+    size_t n = trace_ray(wk, x + 0.5, y + 0.5, org, dir);
     size_t centre_n = job->ambiguous ? kept_prims(wk, n, dir, NULL) : 0;
     if (job->ambiguous && !save_centre_prims(wk, n, dir))
         wk->ray.oom = 1;
@@ -305,7 +337,7 @@ static void trace_pixel(ref_worker *wk, int x, int y)
         qsort(wk->ray.hits, n, sizeof *wk->ray.hits, cmp_key_prim);
     float *px = job->out->rgba + ((size_t)y * w + x) * 4;
     uint32_t ties;
-    uint32_t kept = composite_hits(job, wk->ray.hits, n, dir, px, &ties);
+    uint32_t kept = composite_hits(job, wk->ray.hits, n, org, dir, px, &ties);
     if (job->ties)
         job->ties[(size_t)y * w + x] = ties;
     px[3] = 1.0f;
@@ -362,8 +394,9 @@ static void cross3(const double a[3], const double b[3], double out[3])
 static oit_status make_basis(const oit_view *view, ray_basis *b, oit_error *err)
 {
     const oit_camera *c = &view->camera;
-    if (!(c->fovy_deg > 0.0f && c->fovy_deg < 180.0f) || !(c->znear > 0.0f) ||
-        !(c->zfar > c->znear))
+    int ortho = c->projection == OIT_PROJ_ORTHOGRAPHIC;
+    if (!(ortho || (c->fovy_deg > 0.0f && c->fovy_deg < 180.0f)) ||
+        !(ortho || c->znear > 0.0f) || !(c->zfar > c->znear) || (ortho && isinf(c->zfar)))
         return oit_error_set(err, OIT_ERR_ARGUMENT,
                              "reference: bad camera (fovy %g, znear %g, zfar %g)",
                              c->fovy_deg, c->znear, c->zfar);
@@ -380,6 +413,13 @@ static oit_status make_basis(const oit_view *view, ray_basis *b, oit_error *err)
     cross3(b->right, b->forward, b->up);
     b->tan_half_y = tan(c->fovy_deg * (3.14159265358979323846 / 360.0));
     b->aspect = (double)view->width / (double)view->height;
+    b->ortho = ortho;
+    b->windowed = c->window[0] != 0.0f || c->window[1] != 0.0f || c->window[2] != 0.0f ||
+                  c->window[3] != 0.0f;
+    oit_camera_window(c, b->aspect, b->win);
+    b->znear = c->znear;
+    if (!(b->win[0] < b->win[1] && b->win[2] < b->win[3]))
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "reference: empty camera window");
     return OIT_OK;
 }
 
@@ -515,6 +555,7 @@ oit_status oit_reference_render(const oit_mesh *mesh, const oit_view *view,
     job.ties = desc ? desc->ties : NULL;
     oit_camera_view_matrix(&view->camera, job.view_matrix);
     oit_view_ray_map(view, job.ray_map);
+    oit_view_origin_map(view, job.org_map, &job.org_z);
     job.ambiguity_px = desc && desc->ambiguity_px > 0.0f ? desc->ambiguity_px : 1.0 / 64.0;
     atomic_init(&job.next_row, 0);
     atomic_init(&job.oom, 0);
@@ -522,6 +563,10 @@ oit_status oit_reference_render(const oit_mesh *mesh, const oit_view *view,
     if (job.shading.mode == OIT_SHADING_TRANSLUCENT && !(job.shading.scene_scale > 0.0f))
         return oit_error_set(err, OIT_ERR_ARGUMENT,
                              "reference: translucent shading needs scene_scale > 0");
+    double model[16];
+    if (oit_view_model(view, model))
+        return oit_error_set(err, OIT_ERR_UNSUPPORTED,
+                             "reference: a model matrix (pre-transform the mesh instead)");
     oit_status s = make_basis(view, &job.basis, err);
     if (s == OIT_OK)
         s = oit_image_alloc(out, view->width, view->height, err);

@@ -51,7 +51,9 @@
  * interpolation: the plane's unit normal n and its signed distance from the
  * eye d = n . (p0 - eye) are computed in double from the float vertices and
  * then rounded to float, and t = d / (n . dir) in float along the pixel's
- * unit ray dir. Two triangles of one plane (a face exported twice, the
+ * unit ray dir (from the eye; an orthographic view's rays start at the
+ * pixel's point o of the near plane: t = (d - n . o) / (n . dir), view.h,
+ * oit_view_origin_map). Two triangles of one plane (a face exported twice, the
  * same face wound the other way, coplanar decals and CAD faces built on one
  * plane) get the same float n and d up to the sign, because the double
  * computation is within 1e-15 of the exact plane and the rounding to float
@@ -117,7 +119,9 @@ typedef struct oit_pixel_state {
  * Returns 0 (n = 0, d = 0) for a degenerate triangle. */
 int oit_depth_plane(const oit_triangle *tri, const float eye[3], float n[3], float *d);
 /* The sort key of a fragment on that plane seen along the unit ray dir
- * (world space), or of t_interp where the plane gives no usable t. */
+ * (world space), or of t_interp where the plane gives no usable t. d is the
+ * plane's distance from the ray's origin: oit_depth_plane's d, less n . o
+ * for an orthographic ray from o. */
 float oit_depth_key(const float n[3], float d, const float dir[3], float t_interp);
 /* t with its low OIT_DEPTH_KEY_DROP_BITS mantissa bits cleared (t > 0). */
 float oit_depth_quantise(float t);

@@ -3,14 +3,16 @@
  *
  * Conventions shared by all methods (DFB, capture backends, streaming and the
  * Embree reference), so that their images can be compared pixel by pixel:
- * - Perspective camera, vertical field of view fovy_deg, aspect width/height.
+ * - Perspective camera, vertical field of view fovy_deg, aspect width/height,
+ *   or an off-centre frustum, or an orthographic view volume (oit_camera).
  *   Pixel (x, y), y = 0 the TOP row, is sampled at its centre: NDC
  *   ((x + 0.5) / w * 2 - 1, 1 - (y + 0.5) / h * 2).
  * - A fragment is kept when its view-space depth (distance along the view
  *   direction) lies in [znear, zfar], as GL clipping does.
  * - Fragments sort by the tie rule (shade.h): the key, the distance from the
- *   eye along the pixel centre's unit ray to the triangle's plane with its
- *   low bits cleared, then the source triangle's index, ascending.
+ *   pixel centre's ray origin (the eye; orthographic: the point of the near
+ *   plane) along its unit ray to the triangle's plane with its low bits
+ *   cleared, then the source triangle's index, ascending.
  * - Shading and compositing are defined once in shade.h.
  */
 #ifndef OIT_RENDER_VIEW_H
@@ -25,13 +27,33 @@
 extern "C" {
 #endif
 
+typedef enum oit_projection {
+    OIT_PROJ_PERSPECTIVE = 0,
+    OIT_PROJ_ORTHOGRAPHIC = 1
+} oit_projection;
+
+/* Zero means default for the fields after zfar: a symmetric perspective of
+ * fovy_deg, as before they existed (the same matrices bit for bit).
+ * - projection OIT_PROJ_PERSPECTIVE: rays from the eye. window all 0: the
+ *   symmetric frustum of fovy_deg at the view's aspect; else the frustum's
+ *   sides at distance 1 along the view direction (glFrustum's l, r, b, t
+ *   divided by its near), l < r, b < t: off-centre (stereo, tiles).
+ *   zfar = +INFINITY: an infinite far plane.
+ * - OIT_PROJ_ORTHOGRAPHIC: parallel rays along the view direction, from the
+ *   near plane. window all 0: the volume ortho_height high (> 0) and
+ *   ortho_height * aspect wide, centred on the view axis; else its sides in
+ *   view-space units (glOrtho's l, r, b, t). znear may be <= 0 (behind the
+ *   eye); zfar > znear, finite. fovy_deg is not used. */
 typedef struct oit_camera {
     float eye[3];
     float target[3];
     float up[3];
     float fovy_deg; /* default 45 */
-    float znear;    /* > 0 */
-    float zfar;     /* > znear */
+    float znear;    /* > 0 (orthographic: any, < zfar) */
+    float zfar;     /* > znear; +INFINITY: infinite far (perspective) */
+    int projection; /* oit_projection */
+    float ortho_height;
+    float window[4]; /* l, r, b, t; all 0: symmetric */
 } oit_camera;
 
 typedef enum oit_shading_mode {
@@ -65,6 +87,12 @@ typedef struct oit_view {
     oit_camera camera;
     int width, height;
     oit_shading shading;
+    /* Model to world, column-major, affine (last row 0, 0, 0, 1), any
+     * invertible linear part (non-uniform scale included); all 0: identity.
+     * The GL methods apply it to the vertices before anything else, so the
+     * tie rule sees the world-space float vertices, as if pre-transformed;
+     * the streamer culls and orders parts through it. */
+    float model[16];
 } oit_view;
 
 /* RGBA float image, row 0 at the top, values in [0,1] (alpha is 1 for a
@@ -107,6 +135,19 @@ void oit_camera_proj_matrix(const oit_camera *cam, float aspect, float m[16]);
  * centres at +0.5), is (x * ray[0] + ray[2], y * ray[1] + ray[3], -1), so a
  * pixel centre's ray is the same for every triangle drawn there. */
 void oit_view_ray_map(const oit_view *view, float ray[4]);
+/* The ray origin map: the view-space origin of window point (x, y)'s ray is
+ * (x * org[0] + org[2], y * org[1] + org[3], org_z). Perspective: all 0 (the
+ * eye), and ray[] is the direction map. Orthographic: the point on the near
+ * plane (org_z = -znear), and ray[] is (0, 0, 0, 0): direction (0, 0, -1).
+ * The tie rule's t is then (d - n . o) / (n . dir), d = n . (p0 - eye). */
+void oit_view_origin_map(const oit_view *view, float org[4], float *org_z);
+/* The view-space origin of pixel (x, y)'s ray, y = 0 the TOP row, as the GL
+ * methods compute it. */
+void oit_view_pixel_origin(const float org[4], float org_z, int x, int y, int height,
+                           float o[3]);
+/* The window (l, r, b, t) of cam at this aspect: perspective, the frustum's
+ * sides at distance 1; orthographic, the volume's sides (oit_camera). */
+void oit_camera_window(const oit_camera *cam, double aspect, double w[4]);
 /* The tie rule's unit view-space ray of pixel (x, y), y = 0 the TOP row, as
  * the GL methods compute it from gl_FragCoord and the ray map. */
 void oit_view_pixel_ray(const float ray[4], int x, int y, int height, float dir[3]);
@@ -116,8 +157,23 @@ void oit_view_pixel_ray(const float ray[4], int x, int y, int height, float dir[
  * the view volume (0.1% in angle and depth, near plane at znear / 2), so
  * that rounding never culls what the rasterizer would draw. */
 void oit_camera_frustum(const oit_camera *cam, float aspect, float planes[6][4]);
+/* The view's model matrix in double (identity for all 0); returns 0 for the
+ * identity, 1 otherwise. */
+int oit_view_model(const oit_view *view, double m[16]);
+/* Model to eye: the camera's view matrix times the model matrix, in double,
+ * rounded; exactly oit_camera_view_matrix for the identity. */
+void oit_view_model_view_matrix(const oit_view *view, float m[16]);
+/* The model-space eye (the affine inverse of the model applied to the eye)
+ * and the model-space view direction (the inverse linear part applied to
+ * target - eye), in double. Returns 0 when the model is singular. */
+int oit_view_model_eye(const oit_view *view, double eye[3], double dir[3]);
+
 /* Parses "ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy"; returns 0 on success. Two more
  * numbers ",znear,zfar" may follow; without them cam's clip planes are kept.
+ * Projection fields may follow, each
+ * after a ':': "ortho=H" (orthographic, H high), "window=l,r,b,t"
+ * (oit_camera.window), "far=inf"; without them the camera's projection is
+ * a symmetric perspective.
  * Eye and target are in the file's coordinates: origin (NULL: 0), the one
  * the model's positions are relative to (oit_mesh_info), is subtracted in
  * double before they become floats. */

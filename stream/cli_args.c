@@ -106,6 +106,13 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
                                oit_camera_parse_error(code));
         a->have_view = 1;
         a->view_text = v;
+    } else if (!strcmp(opt, "--ortho")) {
+        char *end = NULL;
+        double h = strcmp(v, "fit") ? strtod(v, &end) : -1.0;
+        if (end && (end == v || *end || !(h > 0.0) || !isfinite(h)))
+            *s = bad(err, opt, v, "a view height > 0, or fit");
+        else
+            a->ortho = (float)h;
     } else if (!strcmp(opt, "--azimuth")) {
         if (!parse_float(v, &a->azimuth)) *s = bad(err, opt, v, "degrees");
     } else if (!strcmp(opt, "--elevation")) {
@@ -348,8 +355,14 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "                      (default 0.02); guarded: its contribution threshold\n"
         "                      (default 0.0025); 0 discards nothing\n"
         "  --size WxH          image size, W and H in 1..16384 (default 1024x1024)\n"
-        "  --view ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy[,znear,zfar]\n"
-        "                      camera; without it --azimuth/--elevation frame the model\n"
+        "  --view ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy[,znear,zfar][:FIELD]...\n"
+        "                      camera; without it --azimuth/--elevation frame the model;\n"
+        "                      projection FIELDs: ortho=H (orthographic, H high; znear\n"
+        "                      may be <= 0), window=l,r,b,t (off-centre: the frustum's\n"
+        "                      sides at distance 1, or ortho's sides), far=inf\n"
+        "                      (infinite far plane)\n"
+        "  --ortho H|fit       orthographic, the view volume H high (fit: as high as the\n"
+        "                      perspective's frustum at the target), for any view\n"
         "  --azimuth DEG       any angle (default 0)\n"
         "  --elevation DEG     in [-90, 90] (default 20)\n"
         "  --orbit N           N views around the model, 1..100000 (azimuth i*360/N,\n"

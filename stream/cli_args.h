@@ -27,6 +27,7 @@ typedef struct oit_stream_args {
     const char *view_text; /* --view as given, re-read against the model's origin */
     const char *walk;      /* --walk FILE: a camera path, one view a line */
     float azimuth, elevation;
+    float ortho; /* --ortho: view height; -1 "fit": the perspective's framing; 0: none */
     int orbit; /* 0: one view */
     const char *out;
     const char *stats_path;

@@ -262,31 +262,76 @@ static oit_status camera_from_view(const float *m, oit_camera *cam, oit_error *e
     return OIT_OK;
 }
 
-/* A symmetric perspective (gluPerspective form): only fovy, near and far are
- * free once the aspect is the viewport's. */
+/* The projections a viewer uses, classified from the matrix (liboit.h,
+ * oit_frame): a perspective (m[11] = -1, m[15] = 0), symmetric or
+ * off-centre (m[8], m[9]), with a finite or an infinite far plane
+ * (m[10] = -1, m[14] = -2 near); or an orthographic one (m[11] = 0,
+ * m[15] = 1). A symmetric perspective whose aspect is the viewport's keeps
+ * the fovy form, as before the others were accepted. */
 static oit_status camera_from_projection(const float *m, double aspect, oit_camera *cam,
                                          oit_error *err)
 {
-    int zeros[] = {1, 2, 3, 4, 6, 7, 8, 9, 12, 13, 15};
+    static const int zeros[] = {1, 2, 3, 4, 6, 7};
     for (size_t i = 0; i < sizeof zeros / sizeof *zeros; i++)
         if (m[zeros[i]] != 0.0f)
             return oit_error_set(err, OIT_ERR_UNSUPPORTED, "oit_frame.projection[%d] = %g: "
-                                 "only symmetric perspective projections are supported",
-                                 zeros[i], m[zeros[i]]);
-    double f = m[5], n = m[14] / (m[10] - 1.0), fa = m[14] / (m[10] + 1.0);
-    if (m[11] != -1.0f || !(f > 0.0) || !(m[0] > 0.0f) || !(n > 0.0) || !(fa > n) ||
-        !isfinite(fa))
-        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "oit_frame.projection: not a "
-                             "perspective with 0 < near < far < inf (near %g, far %g)", n, fa);
-    double a = f / m[0];
-    if (fabs(a - aspect) > 1e-3 * aspect)
-        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "oit_frame.projection: aspect %.5g "
-                             "differs from the viewport's %.5g (non-square pixels are not "
-                             "supported)", a, aspect);
-    cam->fovy_deg = (float)(2.0 * atan(1.0 / f) * 180.0 / 3.14159265358979323846);
-    cam->znear = (float)n;
-    cam->zfar = (float)fa;
-    return OIT_OK;
+                                 "not a perspective or orthographic projection (a skewed or "
+                                 "rotated one)", zeros[i], m[zeros[i]]);
+    if (!(m[0] > 0.0f) || !(m[5] > 0.0f))
+        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "oit_frame.projection: m[0] = %g and "
+                             "m[5] = %g must be > 0 (a mirrored projection)", m[0], m[5]);
+    double w[4] = {(m[8] - 1.0) / m[0], (m[8] + 1.0) / m[0], (m[9] - 1.0) / m[5],
+                   (m[9] + 1.0) / m[5]};
+    if (m[11] == -1.0f && m[15] == 0.0f) {
+        if (m[12] != 0.0f || m[13] != 0.0f)
+            return oit_error_set(err, OIT_ERR_UNSUPPORTED, "oit_frame.projection: a perspective "
+                                 "with m[12] = %g, m[13] = %g (must be 0)", m[12], m[13]);
+        int infinite = m[10] == -1.0f;
+        double n = infinite ? -0.5 * m[14] : m[14] / (m[10] - 1.0);
+        double fa = infinite ? INFINITY : m[14] / (m[10] + 1.0);
+        if (!(n > 0.0) || !(fa > n) || !(infinite || isfinite(fa)))
+            return oit_error_set(err, OIT_ERR_UNSUPPORTED, "oit_frame.projection: a "
+                                 "perspective with near %g, far %g (m[10] = %g, m[14] = %g): "
+                                 "need 0 < near < far <= inf", n, fa, m[10], m[14]);
+        cam->projection = OIT_PROJ_PERSPECTIVE;
+        cam->znear = (float)n;
+        cam->zfar = infinite ? INFINITY : (float)fa;
+        double f = m[5], a = f / m[0];
+        if (m[8] == 0.0f && m[9] == 0.0f && fabs(a - aspect) <= 1e-3 * aspect) {
+            cam->fovy_deg = (float)(2.0 * atan(1.0 / f) * 180.0 / 3.14159265358979323846);
+            return OIT_OK;
+        }
+        cam->fovy_deg = (float)(2.0 * atan((w[3] - w[2]) / 2.0) * 180.0 / 3.14159265358979323846);
+        for (int k = 0; k < 4; k++)
+            cam->window[k] = (float)w[k];
+        return OIT_OK;
+    }
+    if (m[11] == 0.0f && m[15] == 1.0f) {
+        if (m[8] != 0.0f || m[9] != 0.0f)
+            return oit_error_set(err, OIT_ERR_UNSUPPORTED, "oit_frame.projection: an "
+                                 "orthographic projection with m[8] = %g, m[9] = %g (an "
+                                 "oblique one)", m[8], m[9]);
+        double depth = -2.0 / m[10]; /* far - near */
+        double n = -0.5 * depth * (m[14] + 1.0), fa = 0.5 * depth * (1.0 - m[14]);
+        if (!(m[10] < 0.0f) || !isfinite(n) || !isfinite(fa) || !(fa > n))
+            return oit_error_set(err, OIT_ERR_UNSUPPORTED, "oit_frame.projection: an "
+                                 "orthographic projection with near %g, far %g (m[10] = %g, "
+                                 "m[14] = %g): need near < far, both finite", n, fa, m[10],
+                                 m[14]);
+        double ow[4] = {(-1.0 - m[12]) / m[0], (1.0 - m[12]) / m[0], (-1.0 - m[13]) / m[5],
+                        (1.0 - m[13]) / m[5]};
+        cam->projection = OIT_PROJ_ORTHOGRAPHIC;
+        cam->fovy_deg = 45.0f; /* unused */
+        cam->znear = (float)n;
+        cam->zfar = (float)fa;
+        cam->ortho_height = (float)(ow[3] - ow[2]);
+        for (int k = 0; k < 4; k++)
+            cam->window[k] = (float)ow[k];
+        return OIT_OK;
+    }
+    return oit_error_set(err, OIT_ERR_UNSUPPORTED, "oit_frame.projection: m[11] = %g, m[15] = "
+                         "%g: neither a perspective (-1, 0) nor an orthographic projection "
+                         "(0, 1)", m[11], m[15]);
 }
 
 /* ---- renderer ---------------------------------------------------------- */
@@ -522,6 +567,27 @@ static void blend_over(const oit_renderer *r, const oit_frame *f, const oit_view
     glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
+/* oit_frame.model (liboit.h): all 0 the identity, else affine, finite and
+ * invertible. */
+static oit_status model_from_frame(const float *m, oit_view *v, oit_error *err)
+{
+    for (int i = 0; i < 16; i++)
+        if (!isfinite(m[i]))
+            return oit_error_set(err, OIT_ERR_UNSUPPORTED, "oit_frame.model[%d] = %g is not "
+                                 "finite", i, m[i]);
+    memcpy(v->model, m, sizeof v->model);
+    double d[16], eye[3], dir[3];
+    if (!oit_view_model(v, d))
+        return OIT_OK;
+    if (m[3] != 0.0f || m[7] != 0.0f || m[11] != 0.0f || m[15] != 1.0f)
+        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "oit_frame.model: last row (%g, %g, %g, "
+                             "%g) is not (0, 0, 0, 1): not affine", m[3], m[7], m[11], m[15]);
+    if (!oit_view_model_eye(v, eye, dir))
+        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "oit_frame.model: the linear part is "
+                             "singular");
+    return OIT_OK;
+}
+
 static oit_status frame_view(const oit_renderer *r, const oit_scene *scene,
                              const oit_frame *f, oit_view *v, oit_error *err)
 {
@@ -536,6 +602,8 @@ static oit_status frame_view(const oit_renderer *r, const oit_scene *scene,
     if (st == OIT_OK)
         st = camera_from_projection(f->projection, (double)v->width / v->height, &v->camera,
                                     err);
+    if (st == OIT_OK)
+        st = model_from_frame(f->model, v, err);
     return st;
 }
 

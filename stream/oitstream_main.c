@@ -193,6 +193,25 @@ static void fit_clip_planes(oit_camera *cam, const oit_mesh_info *info)
     double far = dc + 1.05 * r;
     cam->zfar = (float)(far > 0.0 ? far : r);
     cam->znear = (float)fmax(dc - 1.05 * r, 1e-4 * cam->zfar);
+    if (cam->projection == OIT_PROJ_ORTHOGRAPHIC) /* parallel rays: behind the eye too */
+        cam->znear = (float)(dc - 1.05 * r);
+}
+
+/* --ortho H|fit on a camera made by any other option. */
+static void apply_ortho(oit_camera *cam, float ortho)
+{
+    if (ortho == 0.0f)
+        return;
+    double d2 = 0.0;
+    for (int k = 0; k < 3; k++)
+        d2 += ((double)cam->target[k] - cam->eye[k]) * ((double)cam->target[k] - cam->eye[k]);
+    double fovy = cam->fovy_deg > 0.0f ? cam->fovy_deg : 45.0;
+    cam->projection = OIT_PROJ_ORTHOGRAPHIC;
+    cam->ortho_height = ortho > 0.0f ? ortho
+                                     : (float)(2.0 * sqrt(d2) *
+                                               tan(0.5 * fovy * 3.14159265358979323846 / 180.0));
+    if (isinf(cam->zfar))
+        cam->zfar = 2.0f * cam->znear + 1.0f;
 }
 
 /* --walk FILE: one camera a line; a bad line is bad input naming it. */
@@ -247,8 +266,21 @@ static oit_status read_walk(const char *path, const oit_mesh_info *info, oit_cam
     return OIT_OK;
 }
 
+static oit_status make_views_of(const oit_stream_args *a, const oit_mesh_info *info,
+                                oit_camera **out, int *count, oit_error *err);
+
 static oit_status make_views(const oit_stream_args *a, const oit_mesh_info *info,
                              oit_camera **out, int *count, oit_error *err)
+{
+    oit_status s = make_views_of(a, info, out, count, err);
+    if (s == OIT_OK)
+        for (int i = 0; i < *count; i++)
+            apply_ortho(&(*out)[i], a->ortho);
+    return s;
+}
+
+static oit_status make_views_of(const oit_stream_args *a, const oit_mesh_info *info,
+                                oit_camera **out, int *count, oit_error *err)
 {
     if (a->walk)
         return read_walk(a->walk, info, out, count, err);
@@ -260,7 +292,8 @@ static oit_status make_views(const oit_stream_args *a, const oit_mesh_info *info
         if (a->have_view) {
             cams[i] = a->view;
             oit_camera_parse(&cams[i], a->view_text, info->origin);
-            if (!(cams[i].znear > 0.0f && cams[i].zfar > cams[i].znear))
+            int ortho = cams[i].projection == OIT_PROJ_ORTHOGRAPHIC;
+            if (!((ortho || cams[i].znear > 0.0f) && cams[i].zfar > cams[i].znear))
                 fit_clip_planes(&cams[i], info);
         } else if (a->orbit > 0) {
             oit_camera_default_up(&cams[i], info->bounds_min, info->bounds_max,

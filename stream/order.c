@@ -143,6 +143,7 @@ void oit_order_destroy(oit_order *o)
 typedef struct emit_ctx {
     oit_order *o;
     const float *eye;
+    const float *dir; /* parallel rays along dir (orthographic); NULL: from eye */
     uint32_t *parts;
     uint32_t count, cap;
 } emit_ctx;
@@ -174,14 +175,23 @@ static void box_extent(const oit_partfile_part *p, const float n[3], float *lo, 
 /* 1 when a plane (a world axis or the slab normal) separates the boxes of a
  * and b with the eye on a's side, so a must come first. */
 static int must_precede(const oit_partfile_part *a, const oit_partfile_part *b,
-                        const float n[3], const float eye[3])
+                        const float n[3], const float eye[3], const float *dir)
 {
     static const float axes[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
     for (int k = 0; k < 4; k++) {
         const float *d = k < 3 ? axes[k] : n;
-        float alo, ahi, blo, bhi, e = dot3(d, eye);
+        float alo, ahi, blo, bhi;
         box_extent(a, d, &alo, &ahi);
         box_extent(b, d, &blo, &bhi);
+        if (dir) {
+            /* Parallel rays cross the plane in the direction of d . dir's
+             * sign; along it (0) they meet one side only. */
+            float s = dot3(d, dir);
+            if ((ahi <= blo && s > 0.0f) || (bhi <= alo && s < 0.0f))
+                return 1;
+            continue;
+        }
+        float e = dot3(d, eye);
         if ((ahi <= blo && e <= ahi) || (bhi <= alo && e >= alo))
             return 1;
     }
@@ -200,7 +210,7 @@ static void emit_inside(emit_ctx *e, const oit_partfile_slab *sl, uint32_t slab)
     for (uint32_t i = 0; i < m; i++) {
         uint32_t at = i;
         for (uint32_t j = 0; j < i; j++)
-            if (must_precede(&parts[in[i]], &parts[s[j]], sl->normal, e->eye)) {
+            if (must_precede(&parts[in[i]], &parts[s[j]], sl->normal, e->eye, e->dir)) {
                 at = j;
                 break;
             }
@@ -216,13 +226,19 @@ static void emit_slab_cell(emit_ctx *e, uint32_t slab)
     const oit_partfile_slab *sl = oit_partfile_slab_at(e->o->pf, slab);
     /* In double: a cutting plane (d0 = d1) has geometry on it, and the eye
      * should be put on its side to far below a float's rounding. */
-    double side = (double)sl->normal[0] * e->eye[0] + (double)sl->normal[1] * e->eye[1] +
-                  (double)sl->normal[2] * e->eye[2];
-    if (side <= sl->d0) {
+    const float *x = e->dir ? e->dir : e->eye;
+    double side = (double)sl->normal[0] * x[0] + (double)sl->normal[1] * x[1] +
+                  (double)sl->normal[2] * x[2];
+    /* Parallel rays: those going up n (side > 0) meet the part below first,
+     * those going down the part above; rays along the planes (side = 0)
+     * meet one side only, so either order holds. */
+    int below_first = e->dir ? side >= 0.0 : side <= sl->d0;
+    int above_first = e->dir ? side < 0.0 : side >= sl->d1;
+    if (below_first) {
         emit(e, sl->part_below);
         emit_inside(e, sl, slab);
         emit(e, sl->part_above);
-    } else if (side >= sl->d1) {
+    } else if (above_first) {
         emit(e, sl->part_above);
         emit_inside(e, sl, slab);
         emit(e, sl->part_below);
@@ -260,7 +276,8 @@ static void push(oit_order *o, size_t *top, uint32_t grid, const uint32_t lo[3],
 
 /* Splits nd at the middle of its longest side; pushes the far half, then the
  * near half (popped first). */
-static void split(oit_order *o, size_t *top, const order_node *nd, const float eye[3])
+static void split(oit_order *o, size_t *top, const order_node *nd, const float eye[3],
+                  const float *dir)
 {
     const oit_partfile_grid *g = o->grids[nd->grid];
     int axis = 0;
@@ -280,7 +297,10 @@ static void split(oit_order *o, size_t *top, const order_node *nd, const float e
     lo2[axis] = mid;
     hi1[axis] = mid;
     order_node a = *nd; /* nd points into the stack, which push overwrites */
-    if (eye[axis] < plane) {
+    /* The near half: the eye's side of the plane, or for parallel rays the
+     * side they come from (going up the axis: the lower half; along the
+     * plane they meet one half only, so either order holds). */
+    if (dir ? dir[axis] > 0.0f : eye[axis] < plane) {
         push(o, top, a.grid, lo2, a.hi, a.inside);
         push(o, top, a.grid, a.lo, hi1, a.inside);
     } else {
@@ -330,6 +350,10 @@ oit_status oit_order_compute(oit_order *o, const float eye[3], uint32_t *parts,
     return oit_order_compute_culled(o, eye, NULL, parts, count, err);
 }
 
+static oit_status order_compute(oit_order *o, const float eye[3], const float *dir,
+                                const float (*planes)[4], uint32_t *parts, uint32_t *count,
+                                oit_error *err);
+
 oit_status oit_order_compute_culled(oit_order *o, const float eye[3], const float (*planes)[4],
                                     uint32_t *parts, uint32_t *count, oit_error *err)
 {
@@ -337,11 +361,31 @@ oit_status oit_order_compute_culled(oit_order *o, const float eye[3], const floa
     if (!(eye[0] == eye[0] && eye[1] == eye[1] && eye[2] == eye[2]))
         return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: part order: eye is not a number",
                              oit_partfile_name(o->pf));
+    return order_compute(o, eye, NULL, planes, parts, count, err);
+}
+
+oit_status oit_order_compute_parallel(oit_order *o, const float dir[3],
+                                      const float (*planes)[4], uint32_t *parts,
+                                      uint32_t *count, oit_error *err)
+{
+    *count = 0;
+    if (!(isfinite(dir[0]) && isfinite(dir[1]) && isfinite(dir[2])) ||
+        (dir[0] == 0.0f && dir[1] == 0.0f && dir[2] == 0.0f))
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: part order: the view direction "
+                             "(%g, %g, %g) is zero or not a number", oit_partfile_name(o->pf),
+                             dir[0], dir[1], dir[2]);
+    return order_compute(o, dir, dir, planes, parts, count, err);
+}
+
+static oit_status order_compute(oit_order *o, const float eye[3], const float *dir,
+                                const float (*planes)[4], uint32_t *parts, uint32_t *count,
+                                oit_error *err)
+{
     if (++o->frame == 0) { /* the stamp wrapped: forget every old mark */
         memset(o->stamp, 0, (size_t)oit_partfile_part_count(o->pf) * sizeof *o->stamp);
         o->frame = 1;
     }
-    emit_ctx e = {o, eye, parts, 0, oit_partfile_part_count(o->pf)};
+    emit_ctx e = {o, eye, dir, parts, 0, oit_partfile_part_count(o->pf)};
     size_t top = 0;
     if (o->grid_count)
         push_grid(o, &top, 0, planes == NULL);
@@ -360,7 +404,7 @@ oit_status oit_order_compute_culled(oit_order *o, const float eye[3], const floa
             return oit_error_set(err, OIT_ERR_FORMAT, "%s: part order: grid %u nests deeper "
                                  "than its subgrid links allow", oit_partfile_name(o->pf), nd.grid);
         if (cells > 1) {
-            split(o, &top, &nd, eye);
+            split(o, &top, &nd, eye, dir);
             continue;
         }
         if (cells == 0)

@@ -44,6 +44,13 @@ oit_status oit_order_compute(oit_order *o, const float eye[3], uint32_t *parts,
  * full order. */
 oit_status oit_order_compute_culled(oit_order *o, const float eye[3], const float (*planes)[4],
                                     uint32_t *parts, uint32_t *count, oit_error *err);
+/* The same for parallel rays along dir (an orthographic view's direction,
+ * any length, not 0): a split or slab plane's near side is the one rays
+ * come from, by the sign of dir . n (0: rays along the plane meet one side
+ * only, either order holds); no eye point is involved. */
+oit_status oit_order_compute_parallel(oit_order *o, const float dir[3],
+                                      const float (*planes)[4], uint32_t *parts,
+                                      uint32_t *count, oit_error *err);
 
 #ifdef __cplusplus
 }

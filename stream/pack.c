@@ -144,12 +144,16 @@ typedef struct box_projector {
     float m[16];               /* world to eye */
     double fx, fy, w, h;       /* pixels per unit of x/depth, y/depth */
     double znear, zfar;
+    /* Off-centre or orthographic: the window (oit_camera_window); ortho
+     * projects x and y without dividing by depth. */
+    int windowed, ortho;
+    double win[4];
 } box_projector;
 
 static void projector_init(box_projector *pr, const oit_view *v)
 {
     const oit_camera *c = &v->camera;
-    oit_camera_view_matrix(c, pr->m);
+    oit_view_model_view_matrix(v, pr->m); /* part boxes are in model space */
     double f = 1.0 / tan(0.5 * (c->fovy_deg > 0.0f ? c->fovy_deg : 45.0) * 3.14159265358979 / 180.0);
     pr->w = v->width;
     pr->h = v->height;
@@ -157,6 +161,10 @@ static void projector_init(box_projector *pr, const oit_view *v)
     pr->fy = f * 0.5 * pr->h;
     pr->znear = c->znear;
     pr->zfar = c->zfar;
+    pr->ortho = c->projection == OIT_PROJ_ORTHOGRAPHIC;
+    pr->windowed = pr->ortho || c->window[0] != 0.0f || c->window[1] != 0.0f ||
+                   c->window[2] != 0.0f || c->window[3] != 0.0f;
+    oit_camera_window(c, pr->w / pr->h, pr->win);
 }
 
 /* The screen rectangle of the part's box and the nearest depth of its
@@ -178,12 +186,19 @@ static int project_box(const oit_partfile_part *p, const box_projector *pr, int 
         nearest = fmin(nearest, depth);
         before_near += depth < pr->znear;
         beyond_far += depth > pr->zfar;
-        if (depth <= 0.5 * pr->znear) {
+        if (!pr->ortho && depth <= 0.5 * pr->znear) {
             near_cross = 1;
             continue;
         }
-        double px = pr->fx * vx / depth + 0.5 * pr->w;
-        double py = 0.5 * pr->h - pr->fy * vy / depth;
+        double px, py;
+        if (pr->windowed) {
+            double sx = pr->ortho ? vx : vx / depth, sy = pr->ortho ? vy : vy / depth;
+            px = (sx - pr->win[0]) / (pr->win[1] - pr->win[0]) * pr->w;
+            py = (pr->win[3] - sy) / (pr->win[3] - pr->win[2]) * pr->h;
+        } else {
+            px = pr->fx * vx / depth + 0.5 * pr->w;
+            py = 0.5 * pr->h - pr->fy * vy / depth;
+        }
         lo[0] = fmin(lo[0], px), hi[0] = fmax(hi[0], px);
         lo[1] = fmin(lo[1], py), hi[1] = fmax(hi[1], py);
     }

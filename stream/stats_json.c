@@ -13,7 +13,18 @@ void oit_stats_format_view(const oit_camera *c, const double origin[3], char *bu
     snprintf(buf, cap, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g",
              o[0] + c->eye[0], o[1] + c->eye[1], o[2] + c->eye[2], o[0] + c->target[0],
              o[1] + c->target[1], o[2] + c->target[2],
-             c->up[0], c->up[1], c->up[2], c->fovy_deg, c->znear, c->zfar);
+             c->up[0], c->up[1], c->up[2], c->fovy_deg, c->znear,
+             isinf(c->zfar) ? 2.0f * c->znear + 1.0f : c->zfar);
+    /* The projection, as --view's fields (view.h, oit_camera_parse). */
+    size_t n = strlen(buf);
+    if (c->projection == OIT_PROJ_ORTHOGRAPHIC && n < cap)
+        n += (size_t)snprintf(buf + n, cap - n, ":ortho=%.9g", c->ortho_height);
+    if ((c->window[0] != 0.0f || c->window[1] != 0.0f || c->window[2] != 0.0f ||
+         c->window[3] != 0.0f) && n < cap)
+        n += (size_t)snprintf(buf + n, cap - n, ":window=%.9g,%.9g,%.9g,%.9g", c->window[0],
+                              c->window[1], c->window[2], c->window[3]);
+    if (isinf(c->zfar) && n < cap)
+        snprintf(buf + n, cap - n, ":far=inf");
 }
 
 static void put_string(FILE *f, const char *s)

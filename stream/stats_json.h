@@ -10,7 +10,7 @@
 
 typedef struct oit_stats_frame {
     const char *method;
-    char view[320]; /* the camera as --view accepts it (with znear,zfar) */
+    char view[512]; /* the camera as --view accepts it (with znear,zfar) */
     oit_frame_stats st;
     int has_stream;               /* the part-file streamer's figures follow */
     oit_stream_frame_stats stream;

@@ -431,10 +431,38 @@ static oit_status capture_frame(oit_streamer *s, const oit_view *view, oit_packi
      * packer still culls part by part what remains. */
     float planes[6][4];
     oit_camera_frustum(&view->camera, (float)view->width / (float)view->height, planes);
+    /* Parts are in model space: the planes, the eye and the view direction
+     * go there through the model matrix (a plane p on M x is M^T p on x;
+     * an affine map keeps which side of a plane a point lies on). */
+    double model[16], meye[3], mdir[3];
+    int modelled = oit_view_model(view, model);
+    if (modelled) {
+        for (int i = 0; i < 6; i++) {
+            double p[4];
+            for (int j = 0; j < 4; j++)
+                p[j] = planes[i][0] * model[j * 4] + planes[i][1] * model[j * 4 + 1] +
+                       planes[i][2] * model[j * 4 + 2] + planes[i][3] * model[j * 4 + 3];
+            for (int j = 0; j < 4; j++)
+                planes[i][j] = (float)p[j];
+        }
+        if (!oit_view_model_eye(view, meye, mdir) && st == OIT_OK)
+            st = oit_error_set(err, OIT_ERR_ARGUMENT, "the model matrix is singular");
+    }
+    const oit_camera *c = &view->camera;
+    float eye[3], dir[3];
+    for (int k = 0; k < 3; k++) {
+        eye[k] = modelled ? (float)meye[k] : c->eye[k];
+        dir[k] = modelled ? (float)mdir[k] : c->target[k] - c->eye[k];
+    }
     double t0 = oit_time_ms();
-    if (st == OIT_OK)
-        st = oit_order_compute_culled(s->order, view->camera.eye, (const float(*)[4])planes,
-                                      s->ordered, &count, err);
+    if (st == OIT_OK && view->camera.projection == OIT_PROJ_ORTHOGRAPHIC) {
+        /* Parallel rays: near sides by the view direction, not an eye. */
+        st = oit_order_compute_parallel(s->order, dir, (const float(*)[4])planes, s->ordered,
+                                        &count, err);
+    } else if (st == OIT_OK) {
+        st = oit_order_compute_culled(s->order, eye, (const float(*)[4])planes, s->ordered,
+                                      &count, err);
+    }
     double t1 = oit_time_ms();
     if (st == OIT_OK)
         st = oit_packer_run(s->packer, view, s->ordered, count, pk, err);

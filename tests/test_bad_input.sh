@@ -197,6 +197,14 @@ run "-o in /proc" oitprep 1 "$I/good.ply" "/proc/oit_no/x.oitp: cannot create" "
     "$P" "$I/good.ply" -o /proc/oit_no/x.oitp
 run "degenerate --view" oitstream 2 "$I/good.ply" "the eye and the target are the same" "" \
     "$S" "$I/good.ply" --size 16x16 --view 0,0,1,0,0,1,0,1,0,45 --out "$O/x.png"
+run "--view :ortho=-1" oitstream 2 "$I/good.ply" "bad projection field" "" \
+    "$S" "$I/good.ply" --size 16x16 --view 0,0,3,0,0,0,0,1,0,45:ortho=-1 --out "$O/x.png"
+run "--view :ortho with :far=inf" oitstream 2 "$I/good.ply" "bad projection field" "" \
+    "$S" "$I/good.ply" --size 16x16 --view 0,0,3,0,0,0,0,1,0,45:ortho=2:far=inf --out "$O/x.png"
+run "--ortho 0" oitstream 2 "$I/good.ply" "a view height > 0, or fit" "" \
+    "$S" "$I/good.ply" --size 16x16 --ortho 0 --out "$O/x.png"
+run "--view :ortho=2" oitstream 0 "$I/good.ply" "" "$O/ortho.png" \
+    "$S" "$I/good.ply" --size 16x16 --view 0,0,3,0,0,0,0,1,0,45:ortho=2 --out "$O/ortho.png" --quiet
 run "--max-layers 66" oitprep 2 "$I/good.ply" "--max-layers '66': must be even, 2..64" "" \
     "$P" "$I/good.ply" -o "$O/x.oitp" --max-layers 66
 run "--max-layers 64" oitprep 0 "$I/good.ply" "" "$O/k64.oitp" \

@@ -25,7 +25,8 @@
 #     above (0 pixels where the red surface is in front), the surface on
 #     every pixel seen from below.
 # "agree" is DESIGN.md's tolerance: at most 0.1% of pixels off by > 1/255.
-# Views: three from outside (two at elevation 35, one from below at -25);
+# Views: three from outside (two at elevation 35, one from below at -25),
+# coplanar and touching a fourth, orthographic;
 # stack and dense add eyes inside the geometry, where the near plane cuts
 # parts. Prints every figure. FIGURES (png_figures, third argument) counts
 # the decal's colours.
@@ -189,6 +190,16 @@ view() {
 view az30 --azimuth 30 --elevation 35
 view az210 --azimuth 210 --elevation 35
 view below --azimuth 120 --elevation -25
+case "$CASE" in
+coplanar|touching) # orthographic (--ortho, then :ortho=H in the view): the tie
+       # rule along parallel rays from the near plane, every method and the
+       # reference with per-pixel ray origins
+    view ortho30 --azimuth 30 --elevation 35 --ortho fit
+    # az30 off-centre (a window shifted left and up), with an infinite far
+    # plane: the ray map's general form (view.h)
+    c=$(json_str view "$T/az30-stream.json")
+    view offaxis --view "$c:window=-0.5,0.3,-0.25,0.45:far=inf" ;;
+esac
 case "$CASE" in
 stack) # between layers 300 and 301, looking up the stack and along it; the
        # near plane (0.05) cuts the next 15 layers away

@@ -5,9 +5,10 @@
  * offset; pixels outside the viewport stay untouched; the caller's GL state
  * comes back; bad inputs fail with the documented status. The same file's
  * triangles as an in-core scene (oit_scene_create_mesh) pass the same
- * checks through the same oit_renderer_draw. Linear-light compositing into
- * an sRGB (GL_SRGB8_ALPHA8) target stores the bytes of DFB's linear-mode
- * image (check_linear_srgb_target).
+ * checks through the same oit_renderer_draw, and both again through
+ * orthographic, off-centre and infinite-far projection matrices.
+ * Linear-light compositing into an sRGB (GL_SRGB8_ALPHA8) target stores the
+ * bytes of DFB's linear-mode image (check_linear_srgb_target).
  *
  * usage: test_liboit FILE.oitp (a part file, e.g. from test_streamer) */
 #include <math.h>
@@ -47,9 +48,33 @@ static void target_free(target *t)
     glDeleteTextures(1, &t->tex);
 }
 
-static void camera_for(const oit_scene_info *info, oit_camera *cam)
+enum { PROJ_DEFAULT, PROJ_ORTHO, PROJ_OFFCENTRE, PROJ_INFINITE };
+static const char *const kProjName[] = {"", " ortho", " off-centre", " infinite far"};
+
+/* The default perspective, or the same view orthographic (the volume as
+ * high as the frustum at the target, its near plane behind the eye),
+ * off-centre (a window shifted right and down) or with an infinite far
+ * plane. */
+static void camera_for(const oit_scene_info *info, oit_camera *cam, int proj)
 {
     oit_camera_default(cam, info->bounds_min, info->bounds_max, 35.0f, 25.0f);
+    double dist = 0.0, ty = tan(0.5 * cam->fovy_deg * 3.14159265358979323846 / 180.0);
+    for (int k = 0; k < 3; k++)
+        dist += pow((double)cam->target[k] - cam->eye[k], 2.0);
+    dist = sqrt(dist);
+    double a = (double)W / H;
+    if (proj == PROJ_ORTHO) {
+        cam->projection = OIT_PROJ_ORTHOGRAPHIC;
+        cam->ortho_height = (float)(2.0 * dist * ty);
+        cam->znear = (float)(cam->znear - 0.5 * dist);
+    } else if (proj == PROJ_OFFCENTRE) {
+        cam->window[0] = (float)(-0.7 * ty * a);
+        cam->window[1] = (float)(1.3 * ty * a);
+        cam->window[2] = (float)(-1.2 * ty);
+        cam->window[3] = (float)(0.8 * ty);
+    } else if (proj == PROJ_INFINITE) {
+        cam->zfar = INFINITY;
+    }
 }
 
 /* DFB's image of the whole file with the clear colour as background. */
@@ -126,9 +151,11 @@ static void check_state_restored(GLuint fbo)
           bound, vp[0], vp[1], vp[2], vp[3], blend, src, prog);
 }
 
-static void draw_and_compare(const char *name, oit_scene *scene, oit_partfile *pf,
-                             oit_render_shading_mode mode, oit_render_pack pack)
+static void draw_and_compare_proj(const char *base, oit_scene *scene, oit_partfile *pf,
+                                  oit_render_shading_mode mode, oit_render_pack pack, int proj)
 {
+    char name[128];
+    snprintf(name, sizeof name, "%s%s", base, kProjName[proj]);
     oit_error err = {0};
     oit_scene_info info;
     oit_scene_get_info(scene, &info, &err);
@@ -141,7 +168,7 @@ static void draw_and_compare(const char *name, oit_scene *scene, oit_partfile *p
         return;
     }
     oit_view v = {0};
-    camera_for(&info, &v.camera);
+    camera_for(&info, &v.camera, proj);
     v.width = W;
     v.height = H;
     oit_frame f = {0};
@@ -341,6 +368,36 @@ static void check_linear_srgb_target(oit_scene *scene, oit_partfile *pf)
     free(got[1]);
 }
 
+static void draw_and_compare(const char *name, oit_scene *scene, oit_partfile *pf,
+                             oit_render_shading_mode mode, oit_render_pack pack)
+{
+    draw_and_compare_proj(name, scene, pf, mode, pack, PROJ_DEFAULT);
+}
+
+/* The caller's projection matrix classified back (liboit.h): the same
+ * fields as the camera it was made from. */
+static void check_classify(oit_scene *scene)
+{
+    oit_error err = {0};
+    oit_scene_info info;
+    oit_scene_get_info(scene, &info, &err);
+    for (int proj = PROJ_ORTHO; proj <= PROJ_INFINITE; proj++) {
+        oit_camera c;
+        camera_for(&info, &c, proj);
+        float m[16];
+        oit_camera_proj_matrix(&c, (float)W / H, m);
+        printf("projection%s: m[8] %g m[9] %g m[10] %g m[11] %g m[14] %g m[15] %g\n",
+               kProjName[proj], m[8], m[9], m[10], m[11], m[14], m[15]);
+        CHECK(proj == PROJ_ORTHO ? m[11] == 0.0f && m[15] == 1.0f
+                                 : m[11] == -1.0f && m[15] == 0.0f,
+              "projection%s: not of its kind", kProjName[proj]);
+        CHECK(proj != PROJ_OFFCENTRE || (m[8] != 0.0f && m[9] != 0.0f),
+              "off-centre projection with m[8] = %g, m[9] = %g", m[8], m[9]);
+        CHECK(proj != PROJ_INFINITE || (m[10] == -1.0f && m[14] == -2.0f * c.znear),
+              "infinite far: m[10] = %g, m[14] = %g", m[10], m[14]);
+    }
+}
+
 static void check_errors(oit_scene *scene)
 {
     oit_error err = {0};
@@ -397,11 +454,189 @@ static void check_errors(oit_scene *scene)
         f.view[i * 5] = 1.0f;
     f.projection[0] = f.projection[5] = f.projection[15] = 1.0f; /* orthographic */
     f.projection[10] = -1.0f;
+    f.projection[11] = -0.5f; /* but neither kind: m[11] -0.5, m[15] 1 */
     f.viewport_width = f.viewport_height = 8;
     s = oit_renderer_draw(r, scene, &f, NULL, &err);
-    printf("orthographic: %s: %s\n", oit_status_name(s), err.message);
-    CHECK(s == OIT_ERR_UNSUPPORTED, "orthographic projection gave %s", oit_status_name(s));
+    printf("neither projection: %s: %s\n", oit_status_name(s), err.message);
+    CHECK(s == OIT_ERR_UNSUPPORTED && strstr(err.message, "m[11] = -0.5"),
+          "a projection neither perspective nor orthographic gave %s: %s",
+          oit_status_name(s), err.message);
+    f.projection[11] = 0.0f;
+    f.projection[4] = 0.25f; /* skewed */
+    s = oit_renderer_draw(r, scene, &f, NULL, &err);
+    printf("skewed projection: %s: %s\n", oit_status_name(s), err.message);
+    CHECK(s == OIT_ERR_UNSUPPORTED && strstr(err.message, "projection[4]"),
+          "a skewed projection gave %s: %s", oit_status_name(s), err.message);
     oit_renderer_destroy(r);
+}
+
+/* Draws scene with model (NULL: none) into a fresh target and reads the
+ * viewport back (rows bottom up); returns NULL on failure. */
+static float *draw_read_stats(oit_renderer *r, oit_scene *scene, const oit_camera *cam,
+                              const float *model, const char *name, oit_draw_stats *st)
+{
+    oit_error err = {0};
+    oit_frame f = {0};
+    oit_camera_view_matrix(cam, f.view);
+    oit_camera_proj_matrix(cam, (float)W / H, f.projection);
+    if (model)
+        memcpy(f.model, model, sizeof f.model);
+    f.viewport_x = PAD_X;
+    f.viewport_y = PAD_Y;
+    f.viewport_width = W;
+    f.viewport_height = H;
+    target t = target_make();
+    f.framebuffer = t.fbo;
+    /* As draw_and_compare: the program DFB's reference left current was
+     * deleted with it, and no caller expects that restored. */
+    glUseProgram(0);
+    oit_status s = oit_renderer_draw(r, scene, &f, st, &err);
+    CHECK(s == OIT_OK, "%s: draw: %s", name, err.message);
+    float *px = malloc((size_t)FW * FH * 4 * sizeof *px);
+    glGetTextureImage(t.tex, 0, GL_RGBA, GL_FLOAT, FW * FH * 4 * sizeof *px, px);
+    target_free(&t);
+    if (s != OIT_OK) {
+        free(px);
+        return NULL;
+    }
+    return px;
+}
+
+static float *draw_read(oit_renderer *r, oit_scene *scene, const oit_camera *cam,
+                        const float *model, const char *name)
+{
+    return draw_read_stats(r, scene, cam, model, name, NULL);
+}
+
+/* Percent of viewport pixels of a and b more than 1/255 apart, and of a's
+ * differing from the clear colour (covered). */
+static double differ(const float *a, const float *b, double *covered)
+{
+    uint64_t over = 0, cov = 0;
+    for (int y = PAD_Y; y < PAD_Y + H; y++)
+        for (int x = PAD_X; x < PAD_X + W; x++) {
+            const float *p = a + ((size_t)y * FW + x) * 4, *q = b + ((size_t)y * FW + x) * 4;
+            double d = 0.0, c = 0.0;
+            for (int k = 0; k < 3; k++) {
+                d = fmax(d, fabs((double)p[k] - q[k]));
+                c += fabs((double)p[k] - kClear[k]);
+            }
+            over += d > 1.0 / 255.0;
+            cov += c > 1.0 / 255.0;
+        }
+    *covered = 100.0 * (double)cov / (W * H);
+    return 100.0 * (double)over / (W * H);
+}
+
+/* oit_frame.model: a non-uniformly scaled, translated model through the
+ * model matrix, as an in-core scene and as the part file (culled and
+ * ordered through it), gives the image of the vertices transformed
+ * beforehand; without the matrix the image is far from it. */
+static void check_model(oit_partfile *pf, oit_scene *file_scene, const oit_scene_info *info)
+{
+    oit_error err = {0};
+    oit_mesh mesh = {0};
+    if (oit_partfile_load_mesh(pf, &mesh, &err) != OIT_OK) {
+        CHECK(0, "model: %s", err.message);
+        return;
+    }
+    static const float model[16] = {2.0f, 0, 0, 0, 0, 0.5f, 0, 0, 0, 0, 1.25f, 0,
+                                    3.0f, -2.0f, 1.5f, 1.0f};
+    size_t nv = mesh.count * 3;
+    float *pos = malloc(nv * 3 * sizeof *pos), *scaled = malloc(nv * 3 * sizeof *scaled);
+    uint8_t *rgba = malloc(nv * 4);
+    for (size_t t = 0; t < mesh.count; t++)
+        for (int c = 0; c < 3; c++) {
+            const float *p = mesh.tris[t].v[c].pos;
+            float *o = pos + (t * 3 + c) * 3, *q = scaled + (t * 3 + c) * 3;
+            memcpy(o, p, 12);
+            for (int k = 0; k < 3; k++)
+                q[k] = model[k] * p[0] + model[4 + k] * p[1] + model[8 + k] * p[2] + model[12 + k];
+            memcpy(rgba + (t * 3 + c) * 4, mesh.tris[t].v[c].rgba, 4);
+        }
+    oit_mesh_free(&mesh);
+    const uint8_t *colors = (info->attributes & OIT_ATTR_COLOR) ? rgba : NULL;
+    oit_scene_mesh_desc md = {.positions = pos, .vertex_count = nv, .colors = colors,
+                              .name = "model arrays"};
+    oit_scene_mesh_desc ms = {.positions = scaled, .vertex_count = nv, .colors = colors,
+                              .name = "pre-scaled arrays"};
+    oit_scene *plain = NULL, *pre = NULL;
+    oit_renderer *r = NULL;
+    oit_renderer_desc rd = {0};
+    if (oit_scene_create_mesh(&md, &plain, &err) != OIT_OK ||
+        oit_scene_create_mesh(&ms, &pre, &err) != OIT_OK ||
+        oit_renderer_create(&rd, &r, &err) != OIT_OK) {
+        CHECK(0, "model: %s", err.message);
+        goto done;
+    }
+    oit_scene_info si;
+    oit_scene_get_info(pre, &si, &err);
+    /* The last view: close up on a corner, so that the part file's parts
+     * are culled through the model matrix (planes taken to model space). */
+    for (int proj = PROJ_DEFAULT; proj <= PROJ_ORTHO + 1; proj++) {
+        oit_camera cam;
+        camera_for(&si, &cam, proj <= PROJ_ORTHO ? proj : PROJ_DEFAULT);
+        if (proj > PROJ_ORTHO)
+            for (int k = 0; k < 3; k++) {
+                float to = si.bounds_max[k] - 0.2f * (si.bounds_max[k] - si.bounds_min[k]);
+                float sh = to - cam.target[k];
+                cam.target[k] += sh;
+                cam.eye[k] += sh + 0.6f * (cam.target[k] - cam.eye[k] - sh);
+            }
+        oit_draw_stats fst = {0};
+        float *want = draw_read(r, pre, &cam, NULL, "pre-scaled");
+        float *core = draw_read(r, plain, &cam, model, "in-core model");
+        float *file = draw_read_stats(r, file_scene, &cam, model, "part file model", &fst);
+        float *none = draw_read(r, plain, &cam, NULL, "no model");
+        if (want && core && file && none) {
+            double cov = 0.0, c2 = 0.0, c3 = 0.0;
+            double pc = differ(core, want, &cov), pf_ = differ(file, want, &c2);
+            double pn = differ(none, want, &c3);
+            const char *pn_ = proj <= PROJ_ORTHO ? kProjName[proj] : " close up";
+            printf("model matrix%s: in core %.4f%%, part file %.4f%% pixels over 1/255 from "
+                   "pre-scaled vertices (%.1f%% covered, %llu of %llu parts culled); without "
+                   "it %.2f%%\n", pn_, pc, pf_, cov, (unsigned long long)fst.parts_culled,
+                   (unsigned long long)(fst.parts_culled + fst.parts_drawn), pn);
+            CHECK(proj <= PROJ_ORTHO || fst.parts_culled > 0,
+                  "model matrix close up: no part culled, the planes are not tested");
+            CHECK(pc <= 0.1 && pf_ <= 0.1 && cov >= 10.0,
+                  "model matrix%s: %.4f%% / %.4f%% of pixels differ from pre-scaled vertices",
+                  pn_, pc, pf_);
+            CHECK(pn > 5.0, "model matrix%s: the image without it differs on only %.2f%%", pn_,
+                  pn);
+        }
+        free(want);
+        free(core);
+        free(file);
+        free(none);
+    }
+    /* Not affine: refused, saying why. */
+    {
+        oit_camera cam;
+        camera_for(&si, &cam, PROJ_DEFAULT);
+        oit_frame f = {0};
+        oit_camera_view_matrix(&cam, f.view);
+        oit_camera_proj_matrix(&cam, (float)W / H, f.projection);
+        memcpy(f.model, model, sizeof f.model);
+        f.model[3] = 0.5f;
+        f.viewport_width = f.viewport_height = 8;
+        oit_status s = oit_renderer_draw(r, plain, &f, NULL, &err);
+        printf("projective model: %s: %s\n", oit_status_name(s), err.message);
+        CHECK(s == OIT_ERR_UNSUPPORTED && strstr(err.message, "affine"),
+              "a projective model matrix gave %s", oit_status_name(s));
+        f.model[3] = 0.0f;
+        f.model[0] = 0.0f; /* x collapses: singular */
+        s = oit_renderer_draw(r, plain, &f, NULL, &err);
+        CHECK(s == OIT_ERR_UNSUPPORTED && strstr(err.message, "singular"),
+              "a singular model matrix gave %s", oit_status_name(s));
+    }
+done:
+    oit_renderer_destroy(r);
+    oit_scene_close(plain);
+    oit_scene_close(pre);
+    free(pos);
+    free(scaled);
+    free(rgba);
 }
 
 int main(int argc, char **argv)
@@ -436,6 +671,14 @@ int main(int argc, char **argv)
     draw_and_compare("first-k", scene, pf, OIT_RENDER_TRANSPARENT, OIT_RENDER_PACK_FIRSTK);
     draw_and_compare("counted", scene, pf, OIT_RENDER_TRANSPARENT, OIT_RENDER_PACK_COUNTED);
     check_linear_srgb_target(scene, pf);
+    /* Every projection a viewer uses, through the caller's matrices. */
+    check_classify(scene);
+    for (int proj = PROJ_ORTHO; proj <= PROJ_INFINITE; proj++)
+        draw_and_compare_proj("transparent", scene, pf, OIT_RENDER_TRANSPARENT,
+                              OIT_RENDER_PACK_AUTO, proj);
+    draw_and_compare_proj("translucent", scene, pf, OIT_RENDER_TRANSLUCENT,
+                          OIT_RENDER_PACK_AUTO, PROJ_ORTHO);
+    check_model(pf, scene, &info);
 
     /* The same triangles as an in-core scene from arrays (a soup with
      * per-vertex colour), through the same draw: DFB's image, the caller's
@@ -478,6 +721,9 @@ int main(int argc, char **argv)
                      OIT_RENDER_PACK_AUTO);
     draw_and_compare("in-core translucent", core, pf, OIT_RENDER_TRANSLUCENT,
                      OIT_RENDER_PACK_AUTO);
+    for (int proj = PROJ_ORTHO; proj <= PROJ_INFINITE; proj++)
+        draw_and_compare_proj("in-core transparent", core, pf, OIT_RENDER_TRANSPARENT,
+                              OIT_RENDER_PACK_AUTO, proj);
     oit_scene_close(core);
 
     oit_partfile_close(pf);

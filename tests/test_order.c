@@ -329,6 +329,87 @@ static int violations(const scene *sc, const float eye[3], const uint32_t *rank)
     return bad;
 }
 
+/* The same for parallel rays along dir (orthographic): through points of
+ * every quad, from far behind them. */
+static int violations_parallel(const scene *sc, const float dir[3], const uint32_t *rank)
+{
+    int bad = 0;
+    double len = sqrt((double)dir[0] * dir[0] + (double)dir[1] * dir[1] + (double)dir[2] * dir[2]);
+    double d[3] = {dir[0] / len, dir[1] / len, dir[2] / len};
+    for (uint32_t p = 0; p < sc->n; p++)
+        for (int s = 0; s < 9; s++) {
+            double u = 0.1 + 0.4 * (s % 3), v = 0.1 + 0.4 * (s / 3), o[3];
+            const quad *q = &sc->parts[p];
+            for (int k = 0; k < 3; k++) {
+                double a = q->p[0][k] + u * (q->p[1][k] - q->p[0][k]);
+                double b = q->p[3][k] + u * (q->p[2][k] - q->p[3][k]);
+                o[k] = a + v * (b - a) - 100.0 * d[k];
+            }
+            for (uint32_t r = 0; r < sc->n; r++) {
+                double t = quad_hit(o, d, &sc->parts[r]);
+                if (t <= 1e-9)
+                    continue;
+                for (uint32_t x = 0; x < sc->n; x++) {
+                    double tx = quad_hit(o, d, &sc->parts[x]);
+                    if (tx > 1e-9 && tx < t - 1e-6 && rank[x] > rank[r])
+                        bad++;
+                }
+            }
+        }
+    return bad;
+}
+
+/* Orthographic orders (oit_order_compute_parallel) along the axes, the
+ * diagonals and random directions, some on the slab's planes (x + z): no
+ * violation on any parallel ray; the reverse of one is caught. */
+static void check_parallel(oit_order *o, const scene *sc, uint32_t n)
+{
+    float dirs[64][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1},
+                         {1, 0, -1}, {-1, 0, 1}, {1, 1, -1}, {-1, 2, 1}, {1, 1, 1}, {-1, -1, -1},
+                         {0.3f, -0.8f, 0.5f}, {-0.6f, 0.1f, -0.7f}};
+    int nd = 14;
+    uint32_t r = 777u;
+    while (nd < 64) {
+        for (int k = 0; k < 3; k++) {
+            r = r * 1664525u + 1013904223u;
+            dirs[nd][k] = (float)(r >> 8) / 16777216.0f * 2.0f - 1.0f;
+        }
+        nd++;
+    }
+    uint32_t order[MAX_PARTS], rank[MAX_PARTS], count = 0;
+    oit_error err = {0};
+    int total = 0, incomplete = 0;
+    for (int i = 0; i < nd; i++) {
+        if (oit_order_compute_parallel(o, dirs[i], NULL, order, &count, &err) != OIT_OK) {
+            check(0, err.message);
+            return;
+        }
+        incomplete += count != n;
+        memset(rank, 0xff, sizeof rank);
+        for (uint32_t k = 0; k < count; k++)
+            if (order[k] < n)
+                rank[order[k]] = k;
+        int bad = violations_parallel(sc, dirs[i], rank);
+        if (bad)
+            printf("parallel rays along %g,%g,%g: %d violations\n", dirs[i][0], dirs[i][1],
+                   dirs[i][2], bad);
+        total += bad;
+    }
+    printf("parallel orders: %d directions, %d order violations, %d incomplete\n", nd, total,
+           incomplete);
+    check(total == 0 && incomplete == 0, "parallel-ray (orthographic) order violations");
+    /* The checker sees a wrong parallel order: the reverse of a valid one. */
+    oit_order_compute_parallel(o, dirs[12], NULL, order, &count, &err);
+    for (uint32_t k = 0; k < count; k++)
+        rank[order[k]] = count - 1 - k;
+    int rev = violations_parallel(sc, dirs[12], rank);
+    printf("reversed parallel order: %d violations (must be > 0)\n", rev);
+    check(rev > 0, "the parallel checker misses a reversed order");
+    float zero[3] = {0, 0, 0};
+    check(oit_order_compute_parallel(o, zero, NULL, order, &count, &err) == OIT_ERR_ARGUMENT,
+          "a zero view direction is not refused");
+}
+
 static int eyes(float out[][3], int cap)
 {
     int n = 0;
@@ -414,9 +495,8 @@ static void check_camera_up(void)
 
 /* The frustum planes against the projection they stand for: a point well
  * inside the clip volume passes every plane, one well outside fails one. */
-static void check_frustum_planes(void)
+static void check_frustum_planes_of(oit_camera cam, const char *what)
 {
-    oit_camera cam = {{1, 2, 3}, {-2, 0.5f, -1}, {0, 1, 0}, 50, 0.1f, 40};
     float aspect = 1.5f, view[16], proj[16], planes[6][4];
     oit_camera_view_matrix(&cam, view);
     oit_camera_proj_matrix(&cam, aspect, proj);
@@ -452,9 +532,35 @@ static void check_frustum_planes(void)
             wrong += pass;
         }
     }
-    printf("frustum planes: %d points inside, %d outside, %d on the wrong side\n", inside, outside,
-           wrong);
+    printf("frustum planes (%s): %d points inside, %d outside, %d on the wrong side\n", what,
+           inside, outside, wrong);
     check(wrong == 0 && inside > 100 && outside > 100, "frustum planes disagree with the projection");
+}
+
+/* Every projection a camera can have: symmetric, off-centre, infinite far,
+ * orthographic (centred and off-centre). */
+static void check_frustum_planes(void)
+{
+    oit_camera cam = {{1, 2, 3}, {-2, 0.5f, -1}, {0, 1, 0}, 50, 0.1f, 40, .projection = 0};
+    check_frustum_planes_of(cam, "symmetric");
+    oit_camera off = cam;
+    off.window[0] = -0.2f;
+    off.window[1] = 0.6f;
+    off.window[2] = -0.5f;
+    off.window[3] = 0.1f;
+    check_frustum_planes_of(off, "off-centre");
+    oit_camera inf = off;
+    inf.zfar = INFINITY;
+    check_frustum_planes_of(inf, "off-centre, infinite far");
+    oit_camera ortho = cam;
+    ortho.projection = OIT_PROJ_ORTHOGRAPHIC;
+    ortho.ortho_height = 18.0f;
+    check_frustum_planes_of(ortho, "orthographic");
+    ortho.window[0] = -4.0f;
+    ortho.window[1] = 12.0f;
+    ortho.window[2] = -9.0f;
+    ortho.window[3] = 3.0f;
+    check_frustum_planes_of(ortho, "orthographic, off-centre");
 }
 
 /* Culled orders: the kept parts in the full order's relative order, and
@@ -465,47 +571,63 @@ static void check_culled(oit_order *o, const oit_partfile *pf, const float (*ev)
     uint32_t full[MAXP], kept[MAXP], n = oit_partfile_part_count(pf), nf = 0, nk = 0;
     const oit_partfile_part *parts = oit_partfile_parts(pf);
     static const float dirs[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 0, 1}, {0, 0, -1}, {0.6f, 0.3f, 0.7f}, {-0.5f, -0.2f, 0.8f}};
-    int views = 0, some_culled = 0, none_culled = 0, bad = 0;
+    int views = 0, some_culled = 0, none_culled = 0, bad = 0, ortho_views = 0;
     oit_error err = {0};
     for (int i = 0; i < ne; i++)
         for (int d = 0; d < 6; d++) {
             oit_camera cam = {{ev[i][0], ev[i][1], ev[i][2]},
                               {ev[i][0] + dirs[d][0], ev[i][1] + dirs[d][1], ev[i][2] + dirs[d][2]},
-                              {0, 1, 0}, d & 1 ? 30.0f : 70.0f, 0.05f, d == 3 ? 2.0f : 100.0f};
-            float planes[6][4];
-            oit_camera_frustum(&cam, 1.3f, planes);
-            if (oit_order_compute(o, cam.eye, full, &nf, &err) ||
-                oit_order_compute_culled(o, cam.eye, (const float(*)[4])planes, kept, &nk, &err)) {
-                check(0, err.message);
-                return;
-            }
-            uint32_t j = 0;
-            for (uint32_t k = 0; k < nf; k++) {
-                if (j < nk && kept[j] == full[k]) {
-                    j++;
-                    continue;
+                              {0, 1, 0}, d & 1 ? 30.0f : 70.0f, 0.05f, d == 3 ? 2.0f : 100.0f,
+                              .projection = 0};
+            /* Each view also orthographic (3 high, the near plane behind
+             * the eye): parallel orders, culled and full. */
+            for (int po = 0; po < 2; po++) {
+                if (po) {
+                    cam.projection = OIT_PROJ_ORTHOGRAPHIC;
+                    cam.ortho_height = 3.0f;
+                    cam.znear = -1.0f;
                 }
-                const oit_partfile_part *p = &parts[full[k]];
-                int out = 0;
-                for (int q = 0; q < 6 && !out; q++) {
-                    int all = 1;
-                    for (int c = 0; c < 8; c++) {
-                        double x = c & 1 ? p->bounds_max[0] : p->bounds_min[0];
-                        double y = c & 2 ? p->bounds_max[1] : p->bounds_min[1];
-                        double z = c & 4 ? p->bounds_max[2] : p->bounds_min[2];
-                        all &= planes[q][0] * x + planes[q][1] * y + planes[q][2] * z + planes[q][3] < 0;
+                float planes[6][4];
+                oit_camera_frustum(&cam, 1.3f, planes);
+                oit_status s1 = po ? oit_order_compute_parallel(o, dirs[d], NULL, full, &nf, &err)
+                                   : oit_order_compute(o, cam.eye, full, &nf, &err);
+                const float(*pl)[4] = (const float(*)[4])planes;
+                oit_status s2 = s1   ? s1
+                                : po ? oit_order_compute_parallel(o, dirs[d], pl, kept, &nk, &err)
+                                     : oit_order_compute_culled(o, cam.eye, pl, kept, &nk, &err);
+                if (s2) {
+                    check(0, err.message);
+                    return;
+                }
+                uint32_t j = 0;
+                for (uint32_t k = 0; k < nf; k++) {
+                    if (j < nk && kept[j] == full[k]) {
+                        j++;
+                        continue;
                     }
-                    out = all;
+                    const oit_partfile_part *p = &parts[full[k]];
+                    int out = 0;
+                    for (int q = 0; q < 6 && !out; q++) {
+                        int all = 1;
+                        for (int c = 0; c < 8; c++) {
+                            double x = c & 1 ? p->bounds_max[0] : p->bounds_min[0];
+                            double y = c & 2 ? p->bounds_max[1] : p->bounds_min[1];
+                            double z = c & 4 ? p->bounds_max[2] : p->bounds_min[2];
+                            all &= planes[q][0] * x + planes[q][1] * y + planes[q][2] * z + planes[q][3] < 0;
+                        }
+                        out = all;
+                    }
+                    bad += !out;
                 }
-                bad += !out;
+                bad += j != nk; /* a kept part out of order or not in the full order */
+                views++;
+                some_culled += nk < nf;
+                none_culled += nk == nf;
+                ortho_views += po;
             }
-            bad += j != nk; /* a kept part out of order or not in the full order */
-            views++;
-            some_culled += nk < nf;
-            none_culled += nk == nf;
         }
-    printf("culled orders: %d views (%d with parts left out, %d with none), %d wrong\n", views,
-           some_culled, none_culled, bad);
+    printf("culled orders: %d views (%d orthographic; %d with parts left out, %d with none), "
+           "%d wrong\n", views, ortho_views, some_culled, none_culled, bad);
     check(bad == 0, "a culled order drops a part inside the view or reorders the rest");
     check(some_culled > 0 && none_culled > 0, "culling never (or always) leaves parts out");
     (void)n;
@@ -564,6 +686,7 @@ int main(void)
     check_frustum_planes();
     check_camera_up();
     check_culled(o, pf, (const float(*)[3])ev, ne);
+    check_parallel(o, &sc, n);
     /* The checker must see a wrong order: the reverse of a valid one. */
     float far_eye[3] = {-7.0f, 2.25f, 2.0f};
     oit_order_compute(o, far_eye, order, &count, &err);

@@ -244,10 +244,19 @@ void oit_renderer_release_scene(oit_renderer *r, const oit_scene *scene);
 typedef struct oit_frame {
     /* Column-major 4x4, as glUniformMatrix4fv(..., GL_FALSE, m) takes.
      * view: a rigid world-to-eye transform (rotation and translation; no
-     * scale). projection: a symmetric perspective with finite near and far
-     * planes (gluPerspective / glm::perspective form) whose aspect matches
-     * viewport_width / viewport_height; anything else is OIT_ERR_UNSUPPORTED
-     * (orthographic and off-centre frusta are not supported yet). */
+     * scale: that belongs in model).
+     * projection, classified from the matrix (m[i] = column i / 4, row
+     * i % 4); m[1], m[2], m[3], m[4], m[6], m[7] must be 0, m[0], m[5] > 0:
+     * - perspective: m[11] = -1, m[15] = 0, m[12] = m[13] = 0 (glFrustum,
+     *   gluPerspective, glm::perspective / frustum / infinitePerspective).
+     *   Off-centre (stereo, tiles) through m[8], m[9]; the aspect need not
+     *   match the viewport's. Far plane finite (0 < near < far, from m[10],
+     *   m[14]) or infinite: m[10] = -1 exactly, m[14] = -2 near.
+     * - orthographic: m[11] = 0, m[15] = 1, m[8] = m[9] = 0 (glOrtho,
+     *   glm::ortho): any window (m[0], m[5], m[12], m[13]), near < far, both
+     *   finite, near may be <= 0.
+     * Anything else (reversed or [0,1] depth, oblique, skewed) is
+     * OIT_ERR_UNSUPPORTED, with the entries seen in the message. */
     float view[16];
     float projection[16];
     int viewport_x, viewport_y; /* lower-left corner in the target, pixels */
@@ -275,6 +284,14 @@ typedef struct oit_frame {
      * its start (so waits for the caller's opaque pass) to skip parts
      * wholly behind it (oit_draw_stats.parts_skipped). */
     unsigned depth_texture;
+    /* Model to world, column-major like view; all 16 zero: the identity.
+     * Affine (m[3] = m[7] = m[11] = 0, m[15] = 1), finite, with an
+     * invertible linear part: rotation, translation and uniform or
+     * non-uniform scale (a mirror too). It is applied to the vertices on the
+     * GPU before the tie rule, so the image is that of vertices transformed
+     * beforehand (in float), and the streamer culls and orders parts
+     * through it; anything else is OIT_ERR_UNSUPPORTED. */
+    float model[16];
 } oit_frame;
 
 typedef struct oit_draw_stats {

@@ -59,7 +59,8 @@ typedef struct oit_offscreen_view {
     /* The camera, in the scene's coordinates (its positions, which are
      * relative to oit_scene_info.origin). One of:
      * - use_matrices = 1: view and projection as oit_frame takes them
-     *   (rigid view, symmetric perspective of aspect width / height);
+     *   (rigid view; a perspective, symmetric, off-centre or with an
+     *   infinite far plane, or an orthographic projection: liboit.h);
      * - eye != target: a look-at camera; up 0: +y; fovy_deg 0: 45;
      *   znear = zfar = 0: planes fitted to the scene's bounding sphere seen
      *   from eye;
