@@ -277,7 +277,7 @@ static void check_linear_srgb_target(oit_scene *scene, oit_partfile *pf)
     oit_scene_info info;
     oit_scene_get_info(scene, &info, &err);
     oit_view v = {0};
-    camera_for(&info, &v.camera);
+    camera_for(&info, &v.camera, PROJ_DEFAULT);
     v.width = W;
     v.height = H;
     oit_frame f = {0};
