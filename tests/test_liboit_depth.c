@@ -8,7 +8,8 @@
  * triangles plus the occluder as alpha-1 triangles of the same colour: the
  * scene with the opaque geometry included. Checked for the part file
  * (streamed, every packing: the counted, first-k and K-slot captures) and
- * for the same triangles as an in-core scene (DFB), in perspective:
+ * for the same triangles as an in-core scene (DFB), in perspective and in
+ * the same view orthographic:
  *   - at most 0.1% of the viewport's pixels off by more than 1/255;
  *   - over the occluder, the reference differs from the occluder alone on a
  *     real share of pixels (surfaces in front of it), and liboit WITHOUT
@@ -99,8 +100,10 @@ static const char occ_fs[] =
     "layout(location = 3) uniform vec3 u_base;\n"
     "in vec3 v_pos;\n"
     "out vec4 o_colour;\n"
+    "layout(location = 4) uniform int u_ortho;\n"
     "void main() {\n"
-    "    vec3 v = -v_pos / length(v_pos);\n"
+    /* Orthographic rays all run along -z: the view vector is +z. */
+    "    vec3 v = u_ortho != 0 ? vec3(0.0, 0.0, 1.0) : -v_pos / length(v_pos);\n"
     "    float light = 0.3 + 0.7 * abs(dot(normalize(u_normal), v));\n"
     "    o_colour = vec4(u_base * light, 1.0);\n"
     "}\n";
@@ -186,6 +189,7 @@ static void occluder_draw(const occluder *o, const oit_frame *f, const target *t
     glProgramUniform3fv(o->prog, 2, 1, nv);
     float base[3] = {kOccluder[0] / 255.0f, kOccluder[1] / 255.0f, kOccluder[2] / 255.0f};
     glProgramUniform3fv(o->prog, 3, 1, base);
+    glProgramUniform1i(o->prog, 4, f->projection[11] == 0.0f); /* orthographic */
     glBindVertexArray(o->vao);
     glDrawArrays(GL_TRIANGLES, 0, 6);
     glBindVertexArray(0);
@@ -207,7 +211,7 @@ static double px_diff(const float *a, const float *b)
  * alpha-1 triangles) and occ (the occluder alone). */
 static void check_depth(const char *name, oit_scene *scene, oit_render_pack pack,
                         GLenum depth_format, const occluder *o, const oit_frame *f0,
-                        const float *ref, const float *occ)
+                        const float *ref, const float *occ, uint64_t *first_fragments)
 {
     oit_error err = {0};
     oit_renderer_desc rd = {.pack = pack};
@@ -296,12 +300,11 @@ static void check_depth(const char *name, oit_scene *scene, oit_render_pack pack
               "pixels change: the test cannot see surfaces behind it", name, bpct);
         /* Every path keeps the same fragments: those in front of the
          * occluder (a skipped part that had some would lose them). */
-        static uint64_t first_fragments;
-        if (!first_fragments)
-            first_fragments = sd.fragments;
-        CHECK(sd.fragments == first_fragments, "%s: %llu fragments with the depth texture, "
+        if (!*first_fragments)
+            *first_fragments = sd.fragments;
+        CHECK(sd.fragments == *first_fragments, "%s: %llu fragments with the depth texture, "
               "the first scene drawn %llu", name, (unsigned long long)sd.fragments,
-              (unsigned long long)first_fragments);
+              (unsigned long long)*first_fragments);
         CHECK(sd.fragments < sn.fragments, "%s: %llu fragments with the depth texture, %llu "
               "without", name, (unsigned long long)sd.fragments,
               (unsigned long long)sn.fragments);
@@ -356,34 +359,25 @@ static void check_bad_depth(oit_scene *scene, const oit_frame *f0)
     oit_renderer_destroy(r);
 }
 
-int main(int argc, char **argv)
+/* One projection (perspective, or the same view orthographic): the
+ * occluder, the reference and every path's checks. 0 when set-up failed. */
+static int run_projection(oit_scene *scene, oit_partfile *pf, const oit_scene_info *info,
+                          int ortho)
 {
-    if (argc != 2) {
-        fprintf(stderr, "usage: test_liboit_depth FILE.oitp\n");
-        return 2;
-    }
     oit_error err = {0};
-    oit_gl *gl = NULL;
-    if (oit_gl_create(NULL, &gl, &err) != OIT_OK) {
-        fprintf(stderr, "FAIL: context: %s\n", err.message);
-        return 1;
-    }
-    printf("renderer: %s\n", oit_gl_renderer(gl));
-    oit_scene *scene = NULL;
-    oit_partfile *pf = NULL;
-    if (oit_scene_open(argv[1], NULL, &scene, &err) != OIT_OK ||
-        oit_partfile_open(argv[1], NULL, &pf, &err) != OIT_OK) {
-        fprintf(stderr, "FAIL: %s\n", err.message);
-        return 1;
-    }
-    oit_scene_info info;
-    oit_scene_get_info(scene, &info, &err);
-    CHECK(info.triangles > 0 && (info.attributes & OIT_ATTR_ALPHA),
-          "the scene needs triangles with alpha (%llu triangles, attributes %u)",
-          (unsigned long long)info.triangles, info.attributes);
-
     oit_camera cam;
-    oit_camera_default(&cam, info.bounds_min, info.bounds_max, 35.0f, 25.0f);
+    oit_camera_default(&cam, info->bounds_min, info->bounds_max, 35.0f, 25.0f);
+    if (ortho) {
+        /* The same view orthographic: the volume as high as the frustum at
+         * the target, its near plane behind the eye. */
+        double dist = 0.0, ty = tan(0.5 * cam.fovy_deg * 3.14159265358979323846 / 180.0);
+        for (int k = 0; k < 3; k++)
+            dist += pow((double)cam.target[k] - cam.eye[k], 2.0);
+        dist = sqrt(dist);
+        cam.projection = OIT_PROJ_ORTHOGRAPHIC;
+        cam.ortho_height = (float)(2.0 * dist * ty);
+        cam.znear = (float)(cam.znear - 0.5 * dist);
+    }
     oit_frame f = {0};
     oit_camera_view_matrix(&cam, f.view);
     oit_camera_proj_matrix(&cam, (float)W / H, f.projection);
@@ -392,14 +386,14 @@ int main(int argc, char **argv)
     f.viewport_width = W;
     f.viewport_height = H;
     occluder o = {0};
-    occluder_make(&o, &cam, &info);
+    occluder_make(&o, &cam, info);
 
     /* The file's triangles as a soup with their colours, and the same with
      * the occluder's two alpha-1 triangles added: the reference scene. */
     oit_mesh mesh = {0};
     if (oit_partfile_load_mesh(pf, &mesh, &err) != OIT_OK) {
         fprintf(stderr, "FAIL: %s\n", err.message);
-        return 1;
+        return 0;
     }
     size_t nv = mesh.count * 3 + 6;
     float *pos = malloc(nv * 3 * sizeof *pos);
@@ -426,7 +420,7 @@ int main(int argc, char **argv)
     oit_mesh_free(&mesh);
     if (s != OIT_OK) {
         fprintf(stderr, "FAIL: %s\n", err.message);
-        return 1;
+        return 0;
     }
 
     /* The reference (DFB, in core) and the occluder alone. */
@@ -447,28 +441,62 @@ int main(int argc, char **argv)
         target_free(&t_occ);
         oit_renderer_destroy(r);
     }
+    uint64_t first = 0; /* every path keeps the first one's fragments */
     if (s == OIT_OK) {
         /* The part file through every packing (the K-slot array capture,
          * counted and first-k), in a depth-stencil texture; the in-core
          * scene (DFB) in a float depth texture. */
-        static const struct { const char *name; oit_render_pack pack; } packs[] = {
-            {"stream auto", OIT_RENDER_PACK_AUTO}, {"stream counted", OIT_RENDER_PACK_COUNTED},
-            {"stream first-k", OIT_RENDER_PACK_FIRSTK}, {"stream budget", OIT_RENDER_PACK_BUDGET},
-            {"stream disjoint", OIT_RENDER_PACK_DISJOINT}};
+        static const struct { const char *name, *ortho_name; oit_render_pack pack; } packs[] = {
+            {"stream auto", "ortho stream auto", OIT_RENDER_PACK_AUTO},
+            {"stream counted", "ortho stream counted", OIT_RENDER_PACK_COUNTED},
+            {"stream first-k", "ortho stream first-k", OIT_RENDER_PACK_FIRSTK},
+            {"stream budget", "ortho stream budget", OIT_RENDER_PACK_BUDGET},
+            {"stream disjoint", "ortho stream disjoint", OIT_RENDER_PACK_DISJOINT}};
         for (size_t i = 0; i < sizeof packs / sizeof *packs; i++)
-            check_depth(packs[i].name, scene, packs[i].pack, GL_DEPTH24_STENCIL8, &o, &f, ref,
-                        occ);
-        check_depth("in-core", core, OIT_RENDER_PACK_AUTO, GL_DEPTH_COMPONENT32F, &o, &f, ref,
-                    occ);
-        check_bad_depth(scene, &f);
+            check_depth(ortho ? packs[i].ortho_name : packs[i].name, scene, packs[i].pack,
+                        GL_DEPTH24_STENCIL8, &o, &f, ref, occ, &first);
+        check_depth(ortho ? "ortho in-core" : "in-core", core, OIT_RENDER_PACK_AUTO,
+                    GL_DEPTH_COMPONENT32F, &o, &f, ref, occ, &first);
+        if (!ortho)
+            check_bad_depth(scene, &f);
     }
     free(ref);
     free(occ);
     occluder_free(&o);
     oit_scene_close(core);
     oit_scene_close(with_occ);
+    return s == OIT_OK;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc != 2) {
+        fprintf(stderr, "usage: test_liboit_depth FILE.oitp\n");
+        return 2;
+    }
+    oit_error err = {0};
+    oit_gl *gl = NULL;
+    if (oit_gl_create(NULL, &gl, &err) != OIT_OK) {
+        fprintf(stderr, "FAIL: context: %s\n", err.message);
+        return 1;
+    }
+    printf("renderer: %s\n", oit_gl_renderer(gl));
+    oit_scene *scene = NULL;
+    oit_partfile *pf = NULL;
+    if (oit_scene_open(argv[1], NULL, &scene, &err) != OIT_OK ||
+        oit_partfile_open(argv[1], NULL, &pf, &err) != OIT_OK) {
+        fprintf(stderr, "FAIL: %s\n", err.message);
+        return 1;
+    }
+    oit_scene_info info;
+    oit_scene_get_info(scene, &info, &err);
+    CHECK(info.triangles > 0 && (info.attributes & OIT_ATTR_ALPHA),
+          "the scene needs triangles with alpha (%llu triangles, attributes %u)",
+          (unsigned long long)info.triangles, info.attributes);
+
+    int ok = run_projection(scene, pf, &info, 0) && run_projection(scene, pf, &info, 1);
     oit_partfile_close(pf);
     oit_scene_close(scene);
     oit_gl_destroy(gl);
-    return test_failures != 0;
+    return !ok || test_failures != 0;
 }
