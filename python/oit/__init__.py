@@ -46,7 +46,24 @@ def _check(status, err):
         raise OitError(name, err.message.decode(errors="replace"))
 
 
-class Scene:
+class _Closable:
+    """close() on leaving a with-block and when collected (errors then are
+    dropped: the interpreter may be shutting down)."""
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:
+            pass
+
+
+class Scene(_Closable):
     """A scene liboit draws: Scene.open(path) or Scene.from_arrays(...).
     Close it (or use `with`) to free it; renderers that drew it let go of
     it first."""
@@ -149,18 +166,6 @@ class Scene:
             L.lib().oit_scene_close(self._h)
             self._h = None
 
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
-
-    def __del__(self):
-        try:
-            self.close()
-        except Exception:
-            pass
-
 
 _SHADINGS = {"transparent": L.RENDER_TRANSPARENT, "translucent": L.RENDER_TRANSLUCENT}
 # oit_render_colour_space (liboit.h): where compositing happens
@@ -169,7 +174,7 @@ _COLOUR_SPACES = {"srgb": 0, "linear": 1}
 _PACKS = {"auto": 0, "counted": 1, "budget": 2, "disjoint": 3, "first-k": 4}
 
 
-class Renderer:
+class Renderer(_Closable):
     """An offscreen renderer: its own headless GL context and an oit_renderer
     (oit_offscreen_create). Options as in oit_renderer_desc; 0/None means the
     library's default. Use it from one thread."""
@@ -256,18 +261,6 @@ class Renderer:
         if self._h:
             L.lib().oit_offscreen_destroy(self._h)
             self._h = None
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
-
-    def __del__(self):
-        try:
-            self.close()
-        except Exception:
-            pass
 
 
 def _set_view(v, view):
