@@ -371,6 +371,22 @@ static void fill_stats(const oit_dfb *d, double t0, const oit_scan_result *res, 
     stats->batches = (uint32_t)bands;
 }
 
+/* The view with its shading defaults resolved (into v), the buffers sized
+ * for it and the capture passes resolved by prog into buffer buf: what the
+ * image and the state renders share. */
+static oit_status resolve_into(oit_dfb *d, GLuint prog, int buf,
+                               const oit_gpu_mesh *const *meshes, int n, const oit_view *view,
+                               uint32_t *counts, oit_view *v, oit_scan_result *res, int *bands,
+                               oit_error *err)
+{
+    *v = *view;
+    oit_shading_resolve_defaults(&v->shading);
+    oit_status s = prepare(d, v, buf, err);
+    if (s == OIT_OK)
+        s = render_passes(d, prog, meshes, n, v, counts, res, bands, err);
+    return s;
+}
+
 oit_status oit_dfb_render(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n,
                           const oit_view *view, oit_image *out,
                           uint32_t *counts, oit_frame_stats *stats,
@@ -380,13 +396,11 @@ oit_status oit_dfb_render(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n,
     if (s != OIT_OK)
         return s;
     double t0 = oit_time_ms();
-    oit_view v = *view;
-    oit_shading_resolve_defaults(&v.shading);
+    oit_view v;
     oit_scan_result res = {0};
     int bands = 0;
-    s = prepare(d, &v, BUF_OUT, err);
-    if (s == OIT_OK)
-        s = render_passes(d, d->resolve_prog, meshes, n, &v, counts, &res, &bands, err);
+    s = resolve_into(d, d->resolve_prog, BUF_OUT, meshes, n, view, counts, &v, &res, &bands,
+                     err);
     if (s == OIT_OK)
         s = oit_image_alloc(out, v.width, v.height, err);
     if (s == OIT_OK) {
@@ -416,13 +430,10 @@ oit_status oit_dfb_render_state(oit_dfb *d, const oit_gpu_mesh *const *meshes, i
     if (s != OIT_OK)
         return s;
     double t0 = oit_time_ms();
-    oit_view v = *view;
-    oit_shading_resolve_defaults(&v.shading);
+    oit_view v;
     oit_scan_result res = {0};
     int bands = 0;
-    s = prepare(d, &v, BUF_STATE, err);
-    if (s == OIT_OK)
-        s = render_passes(d, d->state_prog, meshes, n, &v, NULL, &res, &bands, err);
+    s = resolve_into(d, d->state_prog, BUF_STATE, meshes, n, view, NULL, &v, &res, &bands, err);
     if (s != OIT_OK)
         return s;
     *state = d->buf[BUF_STATE];
