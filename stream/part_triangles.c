@@ -20,29 +20,33 @@ static void expand_triangle(const oit_partfile_part_view *v, uint64_t t, oit_tri
     }
 }
 
+/* The part's triangles into dst; the view, for what else the caller needs. */
+static oit_status expand_part(const oit_partfile *pf, uint32_t part, oit_triangle *dst,
+                              oit_partfile_part_view *v, oit_error *err)
+{
+    oit_status s = oit_partfile_part_data(pf, part, v, err);
+    if (s != OIT_OK)
+        return s;
+    for (uint64_t t = 0; t < v->index_count / 3; t++)
+        expand_triangle(v, t, &dst[t]);
+    return OIT_OK;
+}
+
 oit_status oit_part_expand(const oit_partfile *pf, uint32_t part, oit_triangle *dst,
                            oit_error *err)
 {
     oit_partfile_part_view v;
-    oit_status s = oit_partfile_part_data(pf, part, &v, err);
-    if (s != OIT_OK)
-        return s;
-    for (uint64_t t = 0; t < v.index_count / 3; t++)
-        expand_triangle(&v, t, &dst[t]);
-    return OIT_OK;
+    return expand_part(pf, part, dst, &v, err);
 }
 
 oit_status oit_part_expand_sourced(const oit_partfile *pf, uint32_t part, void *dst,
                                    oit_error *err)
 {
     oit_partfile_part_view v;
-    oit_status s = oit_partfile_part_data(pf, part, &v, err);
+    oit_status s = expand_part(pf, part, dst, &v, err);
     if (s != OIT_OK)
         return s;
     uint64_t n = v.index_count / 3;
-    oit_triangle *tris = dst;
-    for (uint64_t t = 0; t < n; t++)
-        expand_triangle(&v, t, &tris[t]);
     memcpy((char *)dst + n * sizeof(oit_triangle), v.sources, n * sizeof(uint32_t));
     return OIT_OK;
 }
