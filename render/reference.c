@@ -62,6 +62,7 @@ typedef struct ref_job {
     uint8_t *ambiguous;
     double ambiguity_px;
     uint32_t *ties;
+    double saturation_epsilon;
     float view_matrix[16], ray_map[4], org_map[4], org_z;
     atomic_int next_row;
     atomic_int oom;
@@ -72,7 +73,7 @@ typedef struct ref_worker {
     ray_ctx ray;
     uint32_t *prims; /* the centre ray's kept prims, for the ambiguity test */
     size_t prims_cap;
-    uint64_t fragments;
+    uint64_t fragments, saturated;
     uint32_t max_layers;
     pthread_t thread;
 } ref_worker;
@@ -212,17 +213,28 @@ static int depth_kept(const ref_job *job, double t, const double dir[3])
     return depth >= job->cam->znear && depth <= job->cam->zfar;
 }
 
+/* The transmittance a fragment arriving now would be tested against by an
+ * early termination (capture.h): the largest channel, before any
+ * absorption on the way to it. */
+static int saturated_now(const ref_job *job, const oit_pixel_state *st)
+{
+    double e = job->saturation_epsilon;
+    return e > 0.0 && st->T[0] < e && st->T[1] < e && st->T[2] < e;
+}
+
 /* Composites hits already in (t, prim) order that pass the view-depth clip;
- * returns how many were kept. */
+ * returns how many were kept, and in *saturated how many of them came after
+ * the pixel saturated (saturated_now). */
 static uint32_t composite_hits(const ref_job *job, const hit_rec *hits, size_t n,
                                const double org[3], const double dir[3], float rgb[3],
-                               uint32_t *ties)
+                               uint32_t *ties, uint32_t *saturated)
 {
     oit_pixel_state st;
     oit_pixel_begin(&st);
     uint32_t kept = 0;
     float last_key = -1.0f;
     *ties = 0;
+    *saturated = 0;
     /* Shading looks back along the ray: from the eye, or (orthographic) from
      * the ray's origin on the near plane. */
     float from[3];
@@ -237,6 +249,7 @@ static uint32_t composite_hits(const ref_job *job, const hit_rec *hits, size_t n
         oit_shaded_fragment f;
         oit_shade_fragment(&job->shading, &job->mesh->tris[hits[i].prim], hits[i].prim, bary,
                            from, hits[i].key, &f);
+        *saturated += (uint32_t)saturated_now(job, &st);
         oit_pixel_add(&st, &job->shading, &f);
         kept++;
     }
@@ -336,8 +349,9 @@ static void trace_pixel(ref_worker *wk, int x, int y)
     if (n > 1)
         qsort(wk->ray.hits, n, sizeof *wk->ray.hits, cmp_key_prim);
     float *px = job->out->rgba + ((size_t)y * w + x) * 4;
-    uint32_t ties;
-    uint32_t kept = composite_hits(job, wk->ray.hits, n, org, dir, px, &ties);
+    uint32_t ties, saturated;
+    uint32_t kept = composite_hits(job, wk->ray.hits, n, org, dir, px, &ties, &saturated);
+    wk->saturated += saturated;
     if (job->ties)
         job->ties[(size_t)y * w + x] = ties;
     px[3] = 1.0f;
@@ -495,6 +509,7 @@ static int run_workers(ref_job *job, int nthreads, oit_frame_stats *stats)
         pthread_join(wk[i].thread, NULL);
     for (int i = 0; i < started; i++) {
         stats->fragments += wk[i].fragments;
+        stats->fragments_saturated += wk[i].saturated;
         if (wk[i].max_layers > stats->max_layers)
             stats->max_layers = wk[i].max_layers;
     }
@@ -553,6 +568,7 @@ oit_status oit_reference_render(const oit_mesh *mesh, const oit_view *view,
     job.counts = counts;
     job.ambiguous = desc ? desc->ambiguous : NULL;
     job.ties = desc ? desc->ties : NULL;
+    job.saturation_epsilon = desc && desc->saturation_epsilon > 0.0f ? desc->saturation_epsilon : 0.0;
     oit_camera_view_matrix(&view->camera, job.view_matrix);
     oit_view_ray_map(view, job.ray_map);
     oit_view_origin_map(view, job.org_map, &job.org_z);

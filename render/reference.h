@@ -27,6 +27,11 @@ typedef struct oit_reference_desc {
      * GL method's rounding may turn into ties. A method unable to order
      * ties (dual depth peeling) loses at most these fragments. */
     uint32_t *ties;
+    /* > 0: oit_frame_stats.fragments_saturated counts the kept hits that
+     * reach their pixel once its transmittance is below this in every
+     * channel: what a per-fragment early termination at that threshold
+     * drops (the image is still the exact one). */
+    float saturation_epsilon;
 } oit_reference_desc;
 
 /* out is allocated by the call. counts (optional) receives hits per pixel. */

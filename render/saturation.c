@@ -147,6 +147,18 @@ static void poll(oit_saturation *s)
     s->fence = 0;
 }
 
+oit_status oit_saturation_wait(oit_saturation *s, oit_error *err)
+{
+    if (!s->fence)
+        return OIT_OK;
+    GLenum r = glClientWaitSync(s->fence, GL_SYNC_FLUSH_COMMANDS_BIT, 10000000000ull);
+    if (r == GL_WAIT_FAILED || r == GL_TIMEOUT_EXPIRED)
+        return oit_error_set(err, OIT_ERR_GL, "saturation tiles: the read-back %s",
+                             r == GL_WAIT_FAILED ? "wait failed" : "took over 10 s");
+    poll(s);
+    return OIT_OK;
+}
+
 /* rect (row 0 at the top) to the tiles it touches, GL rows. */
 static int tile_range(const oit_saturation *s, const int rect[4], int t[4])
 {

@@ -35,6 +35,12 @@ oit_status oit_saturation_begin(oit_saturation *s, int w, int h, int translucent
  * the top, exclusive ends) and starts a read-back when none is in flight. */
 oit_status oit_saturation_update(oit_saturation *s, unsigned state, const int rect[4],
                                  oit_error *err);
+/* Blocks until the read-back in flight, if any, has landed, so that the
+ * next oit_saturation_covered sees every batch updated so far. For a few
+ * large batches a frame, where a late read-back would let a whole batch of
+ * hidden parts through; with many small ones, the wait for the GPU to
+ * drain would cost more than it saves. */
+oit_status oit_saturation_wait(oit_saturation *s, oit_error *err);
 /* 1 when, in the newest read-back, every tile rect touches has a largest
  * transmittance below epsilon; 0 otherwise (and always for epsilon <= 0). */
 int oit_saturation_covered(oit_saturation *s, const int rect[4], float epsilon);

@@ -117,6 +117,9 @@ typedef struct oit_frame_stats {
      * other method and capture. */
     uint64_t second_pass_pixels;
     uint32_t second_pass_packs;
+    /* The reference with a saturation threshold (reference.h): fragments
+     * behind pixels already saturated; 0 for every other method. */
+    uint64_t fragments_saturated;
 } oit_frame_stats;
 
 /* Camera helpers. */

@@ -236,10 +236,11 @@ static oit_status check_combination(const oit_stream_args *a, oit_error *err)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--window shows one interactive view: "
                              "it excludes --orbit, --out and --ambiguity");
     if (a->epsilon > 0.0f && a->method && strcmp(a->method, "stream") &&
-        strcmp(a->method, "f2b") && strcmp(a->method, "guarded"))
+        strcmp(a->method, "f2b") && strcmp(a->method, "guarded") &&
+        strcmp(a->method, "reference"))
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--epsilon is the early termination of "
-                             "--method stream and the threshold of f2b and guarded; method "
-                             "'%s' has none", a->method);
+                             "--method stream, the threshold of f2b and guarded and what "
+                             "reference counts; method '%s' has none", a->method);
     if ((a->have_view != 0) + (a->orbit != 0) + (a->walk != NULL) > 1)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--view, --orbit and --walk exclude each "
                              "other");
@@ -353,7 +354,9 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "                      default 0: exact); f2b: its alpha threshold, the same\n"
         "                      test\n"
         "                      (default 0.02); guarded: its contribution threshold\n"
-        "                      (default 0.0025); 0 discards nothing\n"
+        "                      (default 0.0025); 0 discards nothing; reference: draws\n"
+        "                      the exact image and counts the fragments behind\n"
+        "                      pixels below E (--stats: fragments_saturated)\n"
         "  --size WxH          image size, W and H in 1..16384 (default 1024x1024)\n"
         "  --view ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy[,znear,zfar][:FIELD]...\n"
         "                      camera; without it --azimuth/--elevation frame the model;\n"

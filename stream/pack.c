@@ -30,6 +30,7 @@ struct oit_packer {
     float *kept_near;
     uint32_t drawn, packs; /* of the frame being packed */
     int open_empty;        /* wave: the open pack has no part yet */
+    int front_first;       /* oit_packer_set_front_first */
 };
 
 uint64_t oit_pack_part_bytes(const oit_partfile_part *p)
@@ -60,6 +61,11 @@ void oit_packer_destroy(oit_packer *pk)
 void oit_packer_set_schedule(oit_packer *pk, oit_pack_schedule schedule)
 {
     pk->schedule = schedule;
+}
+
+void oit_packer_set_front_first(oit_packer *pk, int on)
+{
+    pk->front_first = on;
 }
 
 static oit_status check_parts(const oit_partfile *pf, uint32_t K, uint64_t budget, oit_error *err)
@@ -224,8 +230,8 @@ static int overlaps(const int a[4], const int b[4])
     return a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3];
 }
 
-/* Budget rule: adds the part's layers to its tiles if all stay <= K. */
-static int tiles_take(oit_packer *pk, const int r[4], uint32_t layers)
+/* Budget rule: adds the part's layers to its tiles if all stay <= cap. */
+static int tiles_take(oit_packer *pk, const int r[4], uint32_t layers, uint32_t cap)
 {
     int x0 = r[0] / TILE, x1 = (r[2] - 1) / TILE, y0 = r[1] / TILE, y1 = (r[3] - 1) / TILE;
     for (int pass = 0; pass < 2; pass++)
@@ -233,7 +239,7 @@ static int tiles_take(oit_packer *pk, const int r[4], uint32_t layers)
             for (int x = x0; x <= x1; x++) {
                 size_t t = (size_t)y * pk->tiles_x + x;
                 uint32_t cur = pk->tile_stamp[t] == pk->stamp ? pk->tile_sum[t] : 0;
-                if (pass == 0 && cur + layers > pk->K)
+                if (pass == 0 && cur + layers > cap)
                     return 0;
                 if (pass == 1) {
                     pk->tile_stamp[t] = pk->stamp;
@@ -258,15 +264,33 @@ static int fits(const oit_packer *pk, uint32_t pack, uint32_t layers, uint64_t b
     return unbounded(pk) || (layers <= pk->K && pk->layers[pack] <= pk->K);
 }
 
+/* Front first (pack.h): pack i's cap on the layer bounds a tile sums,
+ * K * 2^i, so a pixel's front layers take a few packs whatever its depth. */
+static uint32_t front_cap(const oit_packer *pk, uint32_t pack)
+{
+    return pack >= 12 ? pk->K << 12 : pk->K << pack;
+}
+
+/* The unbounded modes' own tile rule: only front first has one. */
+static int tiled(const oit_packer *pk)
+{
+    return pk->mode == OIT_PACK_BUDGET || (unbounded(pk) && pk->front_first);
+}
+
+static uint32_t tile_cap(const oit_packer *pk, uint32_t pack)
+{
+    return pk->mode == OIT_PACK_BUDGET ? pk->K : front_cap(pk, pack);
+}
+
 static int joins(oit_packer *pk, uint32_t pack, const int r[4], uint32_t layers, uint64_t bytes)
 {
     if (!fits(pk, pack, layers, bytes))
         return 0;
+    if (tiled(pk))
+        return tiles_take(pk, r, layers, tile_cap(pk, pack));
     if (unbounded(pk))
         return 1;
-    if (pk->mode == OIT_PACK_DISJOINT)
-        return !overlaps(pk->rects[pack], r);
-    return tiles_take(pk, r, layers);
+    return !overlaps(pk->rects[pack], r);
 }
 
 static void grow_rect(int acc[4], const int r[4])
@@ -321,8 +345,10 @@ static void pack_in_order(oit_packer *pk, uint32_t kept)
         if (pk->packs == 0 ||
             !joins(pk, pk->packs - 1, r, p->layer_bound, oit_pack_part_bytes(p))) {
             open_pack(pk, pk->packs++, pk->drawn, p->layer_bound);
-            if (pk->mode == OIT_PACK_BUDGET && p->layer_bound <= pk->K)
-                tiles_take(pk, r, p->layer_bound);
+            /* A front-first pack's first part counts even above the cap, so
+             * nothing joins it in those tiles. */
+            if (tiled(pk) && (p->layer_bound <= pk->K || unbounded(pk)))
+                tiles_take(pk, r, p->layer_bound, UINT32_MAX);
         }
         place(pk, pk->packs - 1, pk->kept[i], r);
     }
@@ -347,11 +373,12 @@ static int wave_join(void *ctx, uint32_t k)
     if (pk->open_empty) {
         open_pack(pk, pk->packs++, pk->drawn, p->layer_bound);
         if (p->layer_bound <= pk->K)
-            tiles_take(pk, r, cost);
+            tiles_take(pk, r, cost, UINT32_MAX);
         pk->open_empty = 0;
     } else {
         uint32_t pack = pk->packs - 1;
-        if (!fits(pk, pack, p->layer_bound, oit_pack_part_bytes(p)) || !tiles_take(pk, r, cost))
+        if (!fits(pk, pack, p->layer_bound, oit_pack_part_bytes(p)) ||
+            !tiles_take(pk, r, cost, pk->K))
             return 0;
     }
     place(pk, pk->packs - 1, pk->kept[k], r);

@@ -76,6 +76,14 @@ oit_status oit_packer_create(const oit_partfile *pf, oit_pack_mode mode, int K,
                              uint64_t byte_budget, oit_packer **out, oit_error *err);
 void oit_packer_destroy(oit_packer *pk);
 void oit_packer_set_schedule(oit_packer *pk, oit_pack_schedule schedule);
+/* Front first, for early termination with the unbounded modes (COUNTED,
+ * FIRSTK; the tree schedule): packs are also cut by depth, pack i taking at
+ * most K * 2^i layer bounds on any 32x32 tile (the budget rule's sums; a
+ * pack's first part always joins). The first packs of a frame then lay the
+ * front layers over the whole screen, so pixels saturate (render/
+ * saturation.h) before the parts behind them are read, while a pixel of
+ * depth D is spread over about log2(D / K) packs, not D / K. */
+void oit_packer_set_front_first(oit_packer *pk, int on);
 
 /* Packs order[0..n) for view. The arrays in out belong to the packer and
  * stay valid until the next call. */

@@ -230,8 +230,10 @@ static oit_status reference_open(const oit_mesh *mesh, const oit_method_options 
                                  oit_method_state **out, oit_error *err)
 {
     oit_status s = new_state(mesh, opt, 0, out, err);
-    if (s == OIT_OK && opt)
+    if (s == OIT_OK && opt) {
         (*out)->ref.ambiguity_px = opt->ambiguity_px;
+        (*out)->ref.saturation_epsilon = opt->epsilon > 0.0f ? opt->epsilon : 0.0f;
+    }
     return s;
 }
 

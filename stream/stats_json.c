@@ -52,15 +52,17 @@ static void put_frame(FILE *f, const oit_stats_frame *fr, int last)
     fprintf(f,
             ", \"ms\": %.3f, \"fragments\": %llu, \"max_layers\": %u, \"overflow_pixels\": %llu, "
             "\"gpu_bytes_peak\": %llu, \"batches\": %u, \"second_pass_pixels\": %llu, "
-            "\"second_pass_packs\": %u",
+            "\"second_pass_packs\": %u, \"fragments_saturated\": %llu",
             isfinite(s->ms) ? s->ms : -1.0, (unsigned long long)s->fragments, s->max_layers,
             (unsigned long long)s->overflow_pixels, (unsigned long long)s->gpu_bytes_peak,
-            s->batches, (unsigned long long)s->second_pass_pixels, s->second_pass_packs);
+            s->batches, (unsigned long long)s->second_pass_pixels, s->second_pass_packs,
+            (unsigned long long)s->fragments_saturated);
     if (fr->has_stream)
         fprintf(f, ", \"packs\": %u, \"parts_drawn\": %llu, \"parts_culled\": %llu, "
                 "\"parts_skipped\": %llu, \"bytes_uploaded\": %llu, \"cache_hits\": %llu, "
                 "\"cache_bytes\": %llu, \"epsilon\": %.9g, \"draw_calls\": %llu, "
-                "\"order_ms\": %.3f, \"pack_ms\": %.3f, \"auto_first_k\": %d",
+                "\"order_ms\": %.3f, \"pack_ms\": %.3f, \"auto_first_k\": %d, "
+                "\"front_first\": %d",
                 fr->stream.packs, (unsigned long long)fr->stream.parts_drawn,
                 (unsigned long long)fr->stream.parts_culled,
                 (unsigned long long)fr->stream.parts_skipped,
@@ -68,7 +70,7 @@ static void put_frame(FILE *f, const oit_stats_frame *fr, int last)
                 (unsigned long long)fr->stream.cache_hits,
                 (unsigned long long)fr->stream.cache_bytes, (double)fr->stream.epsilon,
                 (unsigned long long)fr->stream.draw_calls, fr->stream.order_ms,
-                fr->stream.pack_ms, fr->stream.first_k);
+                fr->stream.pack_ms, fr->stream.first_k, fr->stream.front_first);
     fprintf(f, "}%s\n", last ? "" : ",");
 }
 

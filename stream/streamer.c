@@ -48,6 +48,12 @@ struct oit_streamer {
     oit_opaque_depth opaque;    /* the caller's depth (oit_streamer_set_opaque) */
     oit_opaque_tiles *opaque_tiles; /* built at the first frame with one */
     float epsilon;
+    /* Epsilon with counted or first-K packs: front-first packs (pack.h)
+     * while they let whole parts be skipped; after a frame that skipped
+     * none, plain packs, front first tried again every
+     * OIT_STREAM_PROBE_FRAMES frames (adapt). */
+    int front_first, front_now;
+    uint32_t plain_frames;
     uint32_t ahead;
     uint32_t *ordered;
     /* Per position of the frame's packing (pk->parts[j]): */
@@ -172,9 +178,7 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
                              oit_partfile_name(pf));
     s->pf = pf;
     uint64_t budget = desc->upload_budget ? desc->upload_budget : 64ull << 20, all_bytes = 0;
-    oit_pack_mode mode = desc->pack != OIT_PACK_AUTO ? desc->pack
-                         : desc->epsilon > 0.0f ? OIT_PACK_DISJOINT
-                                                : OIT_PACK_FIRSTK;
+    oit_pack_mode mode = desc->pack != OIT_PACK_AUTO ? desc->pack : OIT_PACK_FIRSTK;
     s->adaptive = desc->pack == OIT_PACK_AUTO && mode == OIT_PACK_FIRSTK;
     s->first_k = 1;
     oit_status st = alloc_arrays(s, oit_partfile_part_count(pf), err);
@@ -190,6 +194,8 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
         st = oit_packer_create(pf, mode, desc->K, budget, &s->packer, err);
     if (st == OIT_OK)
         oit_packer_set_schedule(s->packer, desc->schedule);
+    s->front_first = desc->epsilon > 0.0f && (mode == OIT_PACK_FIRSTK || mode == OIT_PACK_COUNTED);
+    s->front_now = s->front_first;
     if (st == OIT_OK)
         st = create_upload(s, desc, budget, all_bytes, err);
     if (st == OIT_OK)
@@ -392,7 +398,12 @@ static oit_status draw_packs(oit_streamer *s, const oit_packing *pk,
     uint32_t next = 0;
     oit_status st = OIT_OK;
     for (uint32_t i = 0; st == OIT_OK && i < pk->pack_count; i++) {
-        st = prepare_ahead(s, pk, i, &next, err);
+        /* Front-first packs are few and grow: each should see what the
+         * packs before it saturated (saturation.h). */
+        if (s->front_now && s->saturation)
+            st = oit_saturation_wait(s->saturation, err);
+        if (st == OIT_OK)
+            st = prepare_ahead(s, pk, i, &next, err);
         if (st == OIT_OK)
             st = draw_pack(s, pk, i, ss, err);
     }
@@ -464,6 +475,7 @@ static oit_status capture_frame(oit_streamer *s, const oit_view *view, oit_packi
                                       &count, err);
     }
     double t1 = oit_time_ms();
+    oit_packer_set_front_first(s->packer, s->front_now);
     if (st == OIT_OK)
         st = oit_packer_run(s->packer, view, s->ordered, count, pk, err);
     ss->order_ms = t1 - t0;
@@ -490,9 +502,19 @@ static oit_status capture_frame(oit_streamer *s, const oit_view *view, oit_packi
  * send 5-16% and are 20-30% faster counted); a counted run tries first-K
  * again every OIT_STREAM_PROBE_FRAMES frames, in case the view has become
  * shallow. */
+static void adapt_front(oit_streamer *s, oit_stream_frame_stats *ss)
+{
+    ss->front_first = s->front_now;
+    if (s->front_now && ss->parts_skipped == 0)
+        s->front_now = 0, s->plain_frames = 0;
+    else if (s->front_first && !s->front_now && ++s->plain_frames >= OIT_STREAM_PROBE_FRAMES)
+        s->front_now = 1;
+}
+
 static void adapt(oit_streamer *s, const oit_view *view, const oit_frame_stats *fs,
                   oit_stream_frame_stats *ss)
 {
+    adapt_front(s, ss);
     ss->first_k = s->adaptive ? s->first_k : 0;
     if (!s->adaptive)
         return;

@@ -25,12 +25,12 @@ typedef struct oit_streamer_desc {
     oit_capture_kind capture; /* backend of the K-slot packs; OIT_PACK_COUNTED
                                  always takes OIT_CAPTURE_COUNTED, OIT_PACK_FIRSTK
                                  OIT_CAPTURE_FIRSTK (K: its most slots a pixel) */
-    /* OIT_PACK_AUTO (0): when epsilon is 0, first-K packs, switched to
-     * counted for the next frames when more than 1 pixel in 50 took the
-     * second pass, and tried again every OIT_STREAM_PROBE_FRAMES counted
-     * frames (the image is the same either way); with early termination
-     * disjoint K-slot packs, since skipping whole parts needs the many packs
-     * of the K-slot rules (the counted capture takes a frame in a few) */
+    /* OIT_PACK_AUTO (0): first-K packs, switched to counted for the next
+     * frames when more than 1 pixel in 50 took the second pass, and tried
+     * again every OIT_STREAM_PROBE_FRAMES counted frames (the image is the
+     * same either way). With early termination the counted and first-K
+     * packs are cut front first (oit_packer_set_front_first), so that
+     * saturated tiles can skip the parts behind them */
     oit_pack_mode pack;
     oit_pack_schedule schedule; /* 0: the tree's order (pack.h) */
     uint64_t upload_budget;   /* ring bytes; 0: 64 MiB; never more than the
@@ -79,6 +79,8 @@ typedef struct oit_stream_frame_stats {
     float epsilon;           /* the early-termination threshold it ran with */
     int first_k;             /* the automatic mode took first-K packs (else
                                 counted, or a fixed --pack: 0) */
+    int front_first;         /* the packs were cut front first (pack.h): early
+                                termination with counted or first-K packs */
 } oit_stream_frame_stats;
 
 typedef struct oit_streamer oit_streamer;

@@ -80,6 +80,29 @@ echo "stack E=0: $d0 parts drawn, $s0 skipped, $b0 bytes; E=0.02: $d2 drawn, $s2
     fail "stack E=0.02: no parts skipped, or drawn + skipped != $d0, or uploads did not fall"
 awk -v m="$m" 'BEGIN{exit !(m <= 0.02 + 1e-6)}' || fail "stack E=0.02: max_abs $m exceeds 0.02"
 
+# Every pack mode skips whole parts: the counted and first-K packs (auto
+# is first-K) are cut front first (stream/pack.h), so the stack's front
+# parts saturate the screen before the rest is read. E = 1/510 keeps every
+# float value within 1/510 of the exact image (the same for every mode), so
+# no 8-bit value can move by more than one step. 64x64: 16 tiles of 16.
+"$S" "$T/stack.oitp" --size 64x64 --view $V --out "$T/stack64_0.pfm" --stats "$T/stack64_0.json" \
+    --quiet || fail "stack 64x64 E=0: exited $?"
+d64=$(json_num parts_drawn < "$T/stack64_0.json")
+for mode in auto counted first-k budget; do
+    for e in 0.02 0.00196078; do
+        r="$T/stack64_${mode}_$e"
+        "$S" "$T/stack.oitp" --size 64x64 --view $V --epsilon $e --pack $mode \
+            --out "$r.pfm" --stats "$r.json" --quiet || { fail "stack $mode E=$e: exited $?"; continue; }
+        d=$(json_num parts_drawn < "$r.json") s=$(json_num parts_skipped < "$r.json")
+        m=$("$S" --compare "$r.pfm" "$T/stack64_0.pfm" --json | json_num max_abs)
+        echo "stack --pack $mode E=$e: $d drawn, $s skipped, max_abs $m"
+        [ "${s:-0}" -gt 0 ] && [ $((d + s)) -eq "$d64" ] ||
+            fail "stack $mode E=$e: no parts skipped, or drawn + skipped != $d64"
+        awk -v m="${m:-1}" -v e="$e" 'BEGIN{exit !(m <= e + 1e-6)}' ||
+            fail "stack $mode E=$e: max_abs $m beyond $e"
+    done
+done
+
 # A strongly coloured translucent shell: eight closed red boxes in a row,
 # seen end on over black. The medium absorbs green and blue (optical depth
 # about 3 a box) but not red, so after the first box T is tiny in green and
