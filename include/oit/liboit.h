@@ -186,8 +186,11 @@ typedef struct oit_render_shading {
  * first-k. */
 typedef enum oit_render_pack {
     OIT_RENDER_PACK_AUTO = 0,    /* FIRSTK while K slots a pixel hold the view,
-                                    switched to COUNTED for deep views;
-                                    DISJOINT when epsilon > 0 */
+                                    switched to COUNTED for deep views. With
+                                    epsilon > 0, COUNTED and FIRSTK packs are
+                                    cut front first, so that saturated pixels
+                                    skip the parts behind them (oitstream
+                                    --help, --pack) */
     OIT_RENDER_PACK_COUNTED,     /* packs cut by upload bytes only, each counted,
                                     stored and sorted per pixel (no layer limit) */
     OIT_RENDER_PACK_BUDGET,      /* K slots a pixel: parts share a pack while
