@@ -43,6 +43,11 @@ struct oit_streamer {
     oit_reader *reader;
     oit_residency *cache; /* NULL: no cache */
     GLuint cache_buffer;
+    /* Resident ring: every part has a home in the ring and is read there
+     * once (NULL: the ring is reused, the cache keeps parts). */
+    uint64_t *home;
+    uint8_t *loaded;
+    uint64_t loaded_bytes;
     oit_capture *capture;
     oit_saturation *saturation; /* only with epsilon > 0 */
     oit_opaque_depth opaque;    /* the caller's depth (oit_streamer_set_opaque) */
@@ -88,6 +93,8 @@ void oit_streamer_destroy(oit_streamer *s)
     free(s->offset);
     free(s->items);
     free(s->plans);
+    free(s->home);
+    free(s->loaded);
     free(s);
 }
 
@@ -145,6 +152,31 @@ static oit_status create_cache(oit_streamer *s, uint64_t budget, uint64_t all_by
     return oit_gl_check("residency cache: glNamedBufferStorage", err);
 }
 
+/* A file that fits both the ring and the cache budget is read once into a
+ * ring of its size, each part at a home of its own, and drawn from there in
+ * every frame: one copy of its parts on the GPU where a reused ring and a
+ * cache would hold two (a ring as large as the file holds any pack). */
+static oit_status make_resident(oit_streamer *s, oit_error *err)
+{
+    const oit_partfile_part *parts = oit_partfile_parts(s->pf);
+    uint32_t n = oit_partfile_part_count(s->pf);
+    s->home = calloc((size_t)n + 1, sizeof *s->home);
+    s->loaded = calloc((size_t)n + 1, 1);
+    if (!s->home || !s->loaded)
+        return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot allocate the streamer (%u parts)",
+                             oit_partfile_name(s->pf), n);
+    for (uint32_t i = 1; i <= n; i++)
+        s->home[i] = s->home[i - 1] + oit_pack_part_bytes(&parts[i - 1]);
+    return OIT_OK;
+}
+
+static int fits_resident(const oit_streamer_desc *desc, uint64_t budget, uint64_t all_bytes)
+{
+    uint64_t cache = desc->cache_budget ? desc->cache_budget : OIT_STREAM_CACHE_DEFAULT;
+    return desc->cache_budget != OIT_STREAM_CACHE_OFF && all_bytes <= budget &&
+           all_bytes <= cache;
+}
+
 static oit_status create_upload(oit_streamer *s, const oit_streamer_desc *desc, uint64_t budget,
                                 uint64_t all_bytes, oit_error *err)
 {
@@ -154,7 +186,9 @@ static oit_status create_upload(oit_streamer *s, const oit_streamer_desc *desc, 
     if (st == OIT_OK)
         st = oit_reader_create(s->pf, oit_upload_map(s->upload), !desc->read_inline,
                                &s->reader, err);
-    if (st == OIT_OK)
+    if (st == OIT_OK && fits_resident(desc, budget, all_bytes))
+        st = make_resident(s, err);
+    else if (st == OIT_OK)
         st = create_cache(s, desc->cache_budget, all_bytes, err);
     /* A few fences per lap of the ring: enough that reclaiming a region
      * waits for little more than its own pack. */
@@ -181,7 +215,8 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
     if (st == OIT_OK)
         st = number_triangles(s, &all_bytes, err);
     /* A ring as large as all the parts holds any pack, and the whole file
-     * in one lap: a small model needs no 64 MiB of GPU memory for it. */
+     * in one lap (resident, make_resident): a small model needs no 64 MiB
+     * of GPU memory for it. */
     if (all_bytes < budget)
         budget = all_bytes > OIT_STREAM_RING_MIN ? all_bytes : OIT_STREAM_RING_MIN;
     if (st == OIT_OK)
@@ -262,6 +297,10 @@ static uint64_t plan_sources(oit_streamer *s, const oit_packing *pk, uint32_t i)
         uint32_t p = pk->parts[j];
         if (saturated(s, pk, j)) {
             s->source[j] = SRC_SKIP;
+        } else if (s->home) {
+            s->source[j] = s->loaded[p] ? SRC_CACHE : SRC_RING;
+            s->offset[j] = s->home[p];
+            bytes += s->loaded[p] ? 0 : oit_pack_part_bytes(&parts[p]);
         } else if (s->cache && oit_residency_lookup(s->cache, p, &s->offset[j])) {
             s->source[j] = SRC_CACHE;
         } else {
@@ -283,7 +322,10 @@ static oit_status prepare_pack(oit_streamer *s, const oit_packing *pk, uint32_t 
     *got = 1;
     if (bytes == 0)
         return OIT_OK;
-    oit_status st = oit_upload_reserve(s->upload, s->fences, bytes, wait, &base, got, err);
+    /* Resident: the parts' homes are theirs alone, never reclaimed. */
+    oit_status st = s->home ? OIT_OK
+                            : oit_upload_reserve(s->upload, s->fences, bytes, wait, &base, got,
+                                                 err);
     if (st != OIT_OK || !*got)
         return st;
     uint32_t first = pk->pack_first[i], n = 0;
@@ -303,7 +345,8 @@ static void use_part(oit_streamer *s, const oit_packing *pk, uint32_t j, oit_gpu
     const oit_partfile_part *part = &oit_partfile_parts(s->pf)[pk->parts[j]];
     uint64_t bytes = oit_part_sourced_bytes(part->index_count / 3), at = 0;
     int cached = s->source[j] == SRC_CACHE;
-    oit_gpu_mesh_set_buffer(view, cached ? s->cache_buffer : oit_upload_buffer(s->upload));
+    oit_gpu_mesh_set_buffer(view, cached && s->cache ? s->cache_buffer
+                                                     : oit_upload_buffer(s->upload));
     oit_gpu_mesh_set_range_sourced(view, s->offset[j], (size_t)(part->index_count / 3));
     ss->cache_hits += (uint64_t)cached;
     if (!cached && s->cache &&
@@ -321,8 +364,16 @@ static oit_status retire_region(oit_streamer *s, const oit_packing *pk, uint32_t
     if (s->plans[i].ring_bytes == 0)
         return OIT_OK;
     for (uint32_t j = pk->pack_first[i]; j < pk->pack_first[i + 1]; j++)
-        if (s->source[j] == SRC_RING)
-            ss->bytes_uploaded += oit_part_sourced_bytes(parts[pk->parts[j]].index_count / 3);
+        if (s->source[j] == SRC_RING) {
+            const oit_partfile_part *part = &parts[pk->parts[j]];
+            ss->bytes_uploaded += oit_part_sourced_bytes(part->index_count / 3);
+            if (s->home && !s->loaded[pk->parts[j]]) {
+                s->loaded[pk->parts[j]] = 1;
+                s->loaded_bytes += oit_pack_part_bytes(part);
+            }
+        }
+    if (s->home)
+        return OIT_OK;
     oit_upload_drawn(s->upload, oit_fence_queue_tag(s->fences));
     s->unfenced += s->plans[i].ring_bytes;
     if (s->unfenced < s->fence_every)
@@ -511,7 +562,7 @@ static void finish_stats(const oit_streamer *s, const oit_packing *pk, oit_frame
     ss->parts_culled += pk->culled;
     ss->epsilon = s->epsilon;
     ss->draw_calls = oit_capture_draw_calls(s->capture);
-    ss->cache_bytes = s->cache ? oit_residency_bytes(s->cache) : 0;
+    ss->cache_bytes = s->cache ? oit_residency_bytes(s->cache) : s->loaded_bytes;
     ss->gpu_bytes_peak = fs->gpu_bytes_peak + oit_upload_gpu_bytes(s->upload) +
                          (s->cache ? oit_residency_capacity(s->cache) : 0) +
                          (s->saturation ? oit_saturation_gpu_bytes(s->saturation) : 0) +

@@ -34,7 +34,11 @@ typedef struct oit_streamer_desc {
     oit_pack_mode pack;
     oit_pack_schedule schedule; /* 0: the tree's order (pack.h) */
     uint64_t upload_budget;   /* ring bytes; 0: 64 MiB; never more than the
-                                 file's parts take (at least OIT_STREAM_RING_MIN) */
+                                 file's parts take (at least OIT_STREAM_RING_MIN).
+                                 A file within it and the cache budget is read
+                                 once into the ring, every part at a home of its
+                                 own, and drawn from there (cache_hits): no cache
+                                 buffer beside it */
     uint64_t slot_budget;     /* capture slot bytes (oit_capture_set_slot_budget);
                                  0: OIT_STREAM_STORE_DEFAULT for counted and
                                  first-K packs, else OIT_STREAM_SLOTS_DEFAULT */
@@ -69,7 +73,9 @@ typedef struct oit_stream_frame_stats {
                                 read-ahead of parts then skipped included  */
     uint64_t cache_hits;     /* parts drawn from the residency cache        */
     uint64_t cache_bytes;    /* bytes resident in the cache after the frame */
-    uint64_t gpu_bytes_peak; /* capture buffers + upload ring + cache       */
+    uint64_t gpu_bytes_peak; /* capture buffers (multi-draw commands too) +
+                                upload ring + cache + saturation and opaque
+                                tiles                                        */
     uint64_t draw_calls;     /* GL draw commands for geometry (a multi-draw
                                 is 1): oit_capture_draw_calls                */
     /* CPU milliseconds of the per-view work that does not wait for GL: the

@@ -205,7 +205,10 @@ typedef enum oit_render_pack {
 typedef struct oit_renderer_desc {
     uint32_t K;             /* capture layers 2..16; 0: the scene's K        */
     uint64_t upload_budget; /* GPU bytes of the upload ring, >= 64 KiB;
-                               0: 64 MiB (oitstream --upload-budget alike) */
+                               0: 64 MiB (oitstream --upload-budget alike); a
+                               scene within it and cache_budget is read once
+                               into a ring of its size and kept there, with no
+                               cache buffer beside it */
     oit_render_pack pack;
     oit_render_shading shading;
     /* Early termination; 0 (default): exact. In [0, 1): fragments behind
