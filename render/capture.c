@@ -173,7 +173,7 @@ oit_status oit_capture_create(oit_capture_kind kind, int K, oit_capture **out,
 
 static uint64_t held_bytes(const oit_capture *c)
 {
-    uint64_t b = oit_stencil_target_bytes(&c->stencil);
+    uint64_t b = oit_stencil_target_bytes(&c->stencil) + oit_gpu_draws_bytes(c->draws);
     if (uses_counted(c))
         b += oit_counted_bytes(&c->counted);
     if (c->backend == OIT_CAPTURE_FIRSTK)
@@ -205,17 +205,19 @@ static uint64_t state_bytes(const oit_view *v)
            oit_state_bytes(v->shading.mode == OIT_SHADING_TRANSLUCENT);
 }
 
-/* The array backend holds K slots for every pixel, or, under a slot budget
- * smaller than that, the budget's worth (at least one row), and then takes
- * every batch in tiles. The output, needed only at the frame's end, then
- * passes through the idle slots, in bands of rows when they hold less. */
+/* The array backend's slots are local to each batch's rectangle and grow
+ * to the largest rectangle's K slots a pixel (batch_slots), at most K for
+ * every pixel; under a slot budget smaller than that they hold the budget's
+ * worth (at least one row) and every batch goes through tiles. The output,
+ * needed only at the frame's end, passes through the idle slots, in bands
+ * of rows when they hold less. */
 static oit_status allocate(oit_capture *c, const oit_view *v, oit_error *err)
 {
     uint64_t pixels = (uint64_t)v->width * v->height;
     int array = c->backend == OIT_CAPTURE_ARRAY, stencil = c->backend == OIT_CAPTURE_STENCIL;
     uint64_t full = pixels * (uint64_t)c->K * 16, row = (uint64_t)v->width * c->K * 16;
     c->tiled = array && c->slot_budget && full > c->slot_budget;
-    uint64_t slots = !c->tiled ? full : c->slot_budget > row ? c->slot_budget : row;
+    uint64_t slots = !c->tiled ? row : c->slot_budget > row ? c->slot_budget : row;
     uint64_t state = state_bytes(v);
     oit_status s = oit_gl_check_ssbo_size(array && slots > state ? slots : state,
                                           "capture: the frame's largest buffer", err);
@@ -228,9 +230,9 @@ static oit_status allocate(oit_capture *c, const oit_view *v, oit_error *err)
     /* The counted and first-K backends' output passes through their
      * fragment store, idle at the frame's end (read_output), as the tiled
      * slots do. */
-    if (s == OIT_OK && !c->tiled && !uses_counted(c))
+    if (s == OIT_OK && stencil)
         s = reserve(c, BUF_OUT, pixels * 16, err);
-    c->out_buf = c->tiled ? c->buf[BUF_SLOTS] : c->buf[BUF_OUT];
+    c->out_buf = array ? c->buf[BUF_SLOTS] : c->buf[BUF_OUT];
     if (s == OIT_OK)
         s = reserve(c, BUF_TOTALS, 16, err);
     if (s == OIT_OK && stencil)
@@ -431,6 +433,17 @@ static oit_status batch_start(oit_capture *c, const int rect[4], int n, int r[4]
     return OIT_OK;
 }
 
+/* K slots a pixel of the GL rect r, indexed from its corner, for an untiled
+ * array batch: a batch pays for what it covers, not the frame. */
+static oit_status batch_slots(oit_capture *c, const int r[4], oit_error *err)
+{
+    uint64_t pixels = (uint64_t)(r[2] - r[0]) * (uint64_t)(r[3] - r[1]);
+    oit_status s = reserve(c, BUF_SLOTS, pixels * (uint64_t)c->K * 16, err);
+    glProgramUniform4i(c->fill_prog, glGetUniformLocation(c->fill_prog, "u_tile"), r[0], r[1],
+                       r[2], r[3]);
+    return s;
+}
+
 /* The counted backend's batch: the slot budget bounds its fragment store. */
 static oit_status counted_batch(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
                                 const int r[4], oit_error *err)
@@ -476,6 +489,10 @@ oit_status oit_capture_batch(oit_capture *c, const oit_gpu_mesh *const *meshes,
     int r[4] = {0}, empty = 1;
     oit_status s = batch_start(c, rect, n, r, &empty, err);
     if (s != OIT_OK || empty)
+        return s;
+    if (c->backend == OIT_CAPTURE_ARRAY)
+        s = batch_slots(c, r, err);
+    if (s != OIT_OK)
         return s;
     bind_buffers(c);
     fill(c, meshes, n, r);
@@ -615,6 +632,14 @@ static oit_status read_output(oit_capture *c, oit_image *out, GLuint totals[4], 
             return s;
         }
     }
+    /* Untiled, the frame's K slots a pixel would fit: one band, one pass. */
+    if (c->backend == OIT_CAPTURE_ARRAY && !c->tiled) {
+        s = reserve(c, BUF_SLOTS, (uint64_t)row * h, err);
+        if (s != OIT_OK) {
+            oit_image_free(out);
+            return s;
+        }
+    }
     uint64_t held = c->out_buf == c->buf[BUF_SLOTS] ? c->cap[BUF_SLOTS]
                     : firstk                        ? c->firstk.store_cap
                     : uses_counted(c)               ? c->counted.frags_cap
@@ -641,6 +666,7 @@ static oit_status finish_frame(oit_capture *c, oit_error *err)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: end without begin");
     c->in_frame = 0;
     bind_buffers(c);
+    note_peak(c); /* the multi-draw buffers grow within batches */
     return OIT_OK;
 }
 

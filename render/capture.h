@@ -68,9 +68,11 @@ unsigned oit_capture_state_buffer(const oit_capture *c);
  * a multi-draw counting 1. */
 uint64_t oit_capture_draw_calls(const oit_capture *c);
 
-/* GPU memory: from the next frame on, the array backend's slots take at
- * most `bytes` (at least one row of K), instead of K slots for every pixel
- * (K x 16 bytes a pixel: 128 MiB at 1024x1024, K = 8). A frame whose full
+/* GPU memory: the array backend's slots grow to K for each pixel of the
+ * largest batch rectangle so far, and to one output value a pixel of the
+ * frame, at most K slots for every pixel (K x 16 bytes a pixel: 128 MiB at
+ * 1024x1024, K = 8). From the next frame on they take at most `bytes` (at
+ * least one row of K) instead of that most. A frame whose full
  * slots exceed it captures every batch in screen tiles that fit, one draw of
  * the batch per tile, and writes its output into the idle slots. 0 (the
  * default): no limit. The image is the same either way. */

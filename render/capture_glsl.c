@@ -27,12 +27,15 @@ const char oit_capture_array_fs[] =
     COUNT_AND_FLAG
     SATURATED
     "layout(std430, binding = 3) writeonly buffer Slots { uvec4 slots[]; };\n"
+    "uniform ivec4 u_tile;\n"
     "void main() {\n"
     "    uint p = oit_pixel_index();\n"
     "    if (oit_behind_opaque()) discard;\n"
     "    if (oit_saturated(p)) discard;\n"
+    "    ivec2 px = ivec2(gl_FragCoord.xy) - u_tile.xy;\n"
+    "    uint q = uint(px.y * (u_tile.z - u_tile.x) + px.x);\n"
     "    uint c = atomicAdd(counts[p], 1u);\n"
-    "    if (c < uint(u_K)) slots[p * uint(u_K) + c] = oit_fragment();\n"
+    "    if (c < uint(u_K)) slots[q * uint(u_K) + c] = oit_fragment();\n"
     "    else if (c == uint(u_K)) atomicAdd(overflow, 1u);\n"
     "}\n";
 
@@ -86,7 +89,7 @@ const char oit_capture_resolve_cs[] =
     "#define LIST OIT_WIDE\n"
     "#else\n"
     "layout(std430, binding = 3) readonly buffer Slots { uvec4 slots[]; };\n"
-    "#define LOAD(px, p, i) slots[p * uint(u_K) + i]\n"
+    "#define LOAD(px, p, i) slots[uint((px.y - u_rect.y) * (u_rect.z - u_rect.x) + px.x - u_rect.x) * uint(u_K) + i]\n"
     "#define SLOTS uint(u_K)\n"
     "#define LIST 16\n"
     "#endif\n"

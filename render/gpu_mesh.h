@@ -65,6 +65,8 @@ void oit_gpu_draws_destroy(oit_gpu_draws *d);
 /* GL draw commands issued through d since its creation (a multi-draw
  * counts 1). */
 uint64_t oit_gpu_draws_calls(const oit_gpu_draws *d);
+/* GPU bytes its command and record buffers hold (its owner's footprint). */
+uint64_t oit_gpu_draws_bytes(const oit_gpu_draws *d);
 /* For tests: the triangles one group may span, rounded down to keep window
  * offsets aligned (at least the alignment's step); 0 restores the driver's
  * window (oit_gpu_triangle_window). Lets a test split groups and window

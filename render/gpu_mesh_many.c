@@ -155,6 +155,11 @@ uint64_t oit_gpu_draws_calls(const oit_gpu_draws *d)
     return d->calls;
 }
 
+uint64_t oit_gpu_draws_bytes(const oit_gpu_draws *d)
+{
+    return d ? d->cmd_bytes + d->rec_bytes : 0;
+}
+
 void oit_gpu_draws_set_window(oit_gpu_draws *d, size_t triangles)
 {
     if (triangles == 0 || triangles > d->driver_window) {

@@ -41,8 +41,17 @@ struct oit_streamer {
     oit_fence_queue *fences;
     oit_upload *upload;
     oit_reader *reader;
-    oit_residency *cache; /* NULL: no cache */
+    oit_residency *cache; /* NULL: no cache (yet) */
     GLuint cache_buffer;
+    uint64_t cache_limit;   /* what the cache may grow to; 0: no cache */
+    uint64_t cache_dropped; /* a smaller cache let go this frame, held until GL frees it */
+    uint64_t ring_limit;    /* what the ring may grow to */
+    int threaded;           /* the reader on a thread of its own */
+    /* Resident ring: every part has a home in the ring and is read there
+     * once (NULL: the ring is reused, the cache keeps parts). */
+    uint64_t *home;
+    uint8_t *loaded;
+    uint64_t loaded_bytes;
     oit_capture *capture;
     oit_saturation *saturation; /* only with epsilon > 0 */
     oit_opaque_depth opaque;    /* the caller's depth (oit_streamer_set_opaque) */
@@ -94,6 +103,8 @@ void oit_streamer_destroy(oit_streamer *s)
     free(s->offset);
     free(s->items);
     free(s->plans);
+    free(s->home);
+    free(s->loaded);
     free(s);
 }
 
@@ -132,39 +143,161 @@ static oit_status alloc_arrays(oit_streamer *s, uint32_t n, oit_error *err)
 
 /* The cache buffer lives in GPU memory (no CPU access): it is filled by GL
  * copies from the ring, so a discrete GPU draws cached parts from its own
- * memory rather than across the bus. */
-static oit_status create_cache(oit_streamer *s, uint64_t budget, uint64_t all_bytes,
-                               oit_error *err)
+ * memory rather than across the bus. It is made when a frame needs it
+ * (fit_cache), at most the budget or all the parts. */
+static void limit_cache(oit_streamer *s, uint64_t budget, uint64_t all_bytes)
 {
     if (budget == OIT_STREAM_CACHE_OFF)
-        return OIT_OK;
+        return;
     budget = budget ? budget : OIT_STREAM_CACHE_DEFAULT;
     uint64_t bytes = budget < all_bytes ? budget : all_bytes;
-    bytes -= bytes % OIT_PACK_ALIGN;
-    if (bytes == 0)
+    s->cache_limit = bytes - bytes % OIT_PACK_ALIGN;
+}
+
+/* Grows the cache to the parts of the frame's packing (all of this frame
+ * it could keep), geometrically, up to its limit. The grown cache starts
+ * empty: copying what the smaller one kept would hold both at once, and a
+ * frame after growth reads its parts once more, which geometric growth
+ * makes rare. */
+static oit_status fit_cache(oit_streamer *s, const oit_packing *pk, oit_error *err)
+{
+    uint64_t cap = s->cache ? oit_residency_capacity(s->cache) : 0, need = 0;
+    s->cache_dropped = 0;
+    if (cap >= s->cache_limit)
         return OIT_OK;
+    const oit_partfile_part *parts = oit_partfile_parts(s->pf);
+    for (uint32_t j = 0; j < pk->part_count; j++)
+        need += oit_pack_part_bytes(&parts[pk->parts[j]]);
+    if (need <= cap)
+        return OIT_OK;
+    uint64_t bytes = need > 2 * cap ? need : 2 * cap;
+    bytes = bytes < s->cache_limit ? bytes : s->cache_limit;
+    bytes -= bytes % OIT_PACK_ALIGN;
+    s->cache_dropped = cap;
+    oit_residency_destroy(s->cache);
+    s->cache = NULL;
+    glDeleteBuffers(1, &s->cache_buffer);
+    s->cache_buffer = 0;
     oit_status st = oit_residency_create(bytes, oit_partfile_part_count(s->pf), &s->cache, err);
     if (st != OIT_OK)
         return st;
+    oit_residency_begin_frame(s->cache);
     glCreateBuffers(1, &s->cache_buffer);
     glNamedBufferStorage(s->cache_buffer, (GLsizeiptr)bytes, NULL, 0);
-    return oit_gl_check("residency cache: glNamedBufferStorage", err);
+    st = oit_gl_check("residency cache: glNamedBufferStorage", err);
+    if (st != OIT_OK)
+        oit_error_prefix(err, oit_partfile_name(s->pf));
+    return st;
 }
 
+/* A ring of `bytes`, its reader writing into its mapping. */
+static oit_status make_ring(oit_streamer *s, uint64_t bytes, oit_error *err)
+{
+    oit_status st = oit_upload_create(bytes, &s->upload, err);
+    if (st == OIT_OK)
+        st = oit_reader_create(s->pf, oit_upload_map(s->upload), s->threaded, &s->reader, err);
+    if (st != OIT_OK) {
+        oit_upload_destroy(s->upload);
+        s->upload = NULL;
+    }
+    /* A few fences per lap of the ring: enough that reclaiming a region
+     * waits for little more than its own pack. */
+    s->fence_every = bytes / 4;
+    s->unfenced = 0;
+    return st;
+}
+
+/* The most that consecutive packs take together within the budget: the
+ * ring never holds more at once (the 2M plant's two packs of 52 MB, one
+ * at a time in a 64 MiB ring), so more would be memory never used. */
+static uint64_t widest_window(const oit_packing *pk, uint64_t budget)
+{
+    uint64_t best = 0, sum = 0;
+    for (uint32_t lo = 0, hi = 0; hi < pk->pack_count; hi++) {
+        sum += pk->bytes[hi];
+        while (sum > budget && lo < hi)
+            sum -= pk->bytes[lo++];
+        best = sum > best ? sum : best;
+    }
+    return best;
+}
+
+/* Grows the ring to what the frame reads (its parts the cache does not
+ * hold, as far as consecutive packs can use it; at least its largest pack
+ * whole: a cached part may be evicted before its pack is planned),
+ * geometrically, up to the budget. Only between packings, when nothing is
+ * outstanding: the ring is waited for (GL may still draw from it) and
+ * replaced with its reader. */
+static oit_status fit_ring(oit_streamer *s, const oit_packing *pk, oit_error *err)
+{
+    uint64_t cap = s->upload ? oit_upload_gpu_bytes(s->upload) : 0, read = 0, largest = 0, at = 0;
+    if (s->home || cap >= s->ring_limit)
+        return OIT_OK;
+    const oit_partfile_part *parts = oit_partfile_parts(s->pf);
+    for (uint32_t i = 0; i < pk->pack_count; i++)
+        largest = pk->bytes[i] > largest ? pk->bytes[i] : largest;
+    for (uint32_t j = 0; j < pk->part_count; j++)
+        if (!s->cache || !oit_residency_peek(s->cache, pk->parts[j], &at))
+            read += oit_pack_part_bytes(&parts[pk->parts[j]]);
+    uint64_t wide = widest_window(pk, s->ring_limit);
+    uint64_t need = read < wide ? read : wide;
+    need = need > largest ? need : largest;
+    if (need <= cap)
+        return OIT_OK;
+    uint64_t bytes = need > 2 * cap ? need : 2 * cap;
+    bytes = bytes < s->ring_limit ? bytes : s->ring_limit;
+    oit_status st = oit_fence_queue_wait(s->fences, oit_fence_queue_tag(s->fences), err);
+    if (st != OIT_OK)
+        return st;
+    /* The reader first: it may still write into the ring's mapping. */
+    oit_reader_destroy(s->reader);
+    oit_upload_destroy(s->upload);
+    s->reader = NULL;
+    s->upload = NULL;
+    return make_ring(s, bytes, err);
+}
+
+/* A file that fits both the ring and the cache budget is read once into a
+ * ring of its size, each part at a home of its own, and drawn from there in
+ * every frame: one copy of its parts on the GPU where a reused ring and a
+ * cache would hold two (a ring as large as the file holds any pack). */
+static oit_status make_resident(oit_streamer *s, oit_error *err)
+{
+    const oit_partfile_part *parts = oit_partfile_parts(s->pf);
+    uint32_t n = oit_partfile_part_count(s->pf);
+    s->home = calloc((size_t)n + 1, sizeof *s->home);
+    s->loaded = calloc((size_t)n + 1, 1);
+    if (!s->home || !s->loaded)
+        return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot allocate the streamer (%u parts)",
+                             oit_partfile_name(s->pf), n);
+    for (uint32_t i = 1; i <= n; i++)
+        s->home[i] = s->home[i - 1] + oit_pack_part_bytes(&parts[i - 1]);
+    return OIT_OK;
+}
+
+static int fits_resident(const oit_streamer_desc *desc, uint64_t budget, uint64_t all_bytes)
+{
+    uint64_t cache = desc->cache_budget ? desc->cache_budget : OIT_STREAM_CACHE_DEFAULT;
+    return desc->cache_budget != OIT_STREAM_CACHE_OFF && all_bytes <= budget &&
+           all_bytes <= cache;
+}
+
+/* A resident ring is the file's size from the start; a reused one starts
+ * at OIT_STREAM_RING_MIN and grows with the frames (fit_ring). */
 static oit_status create_upload(oit_streamer *s, const oit_streamer_desc *desc, uint64_t budget,
                                 uint64_t all_bytes, oit_error *err)
 {
+    int resident = fits_resident(desc, budget, all_bytes);
+    s->threaded = !desc->read_inline;
+    s->ring_limit = budget;
     oit_status st = oit_fence_queue_create(&s->fences, err);
     if (st == OIT_OK)
-        st = oit_upload_create(budget, &s->upload, err);
-    if (st == OIT_OK)
-        st = oit_reader_create(s->pf, oit_upload_map(s->upload), !desc->read_inline,
-                               &s->reader, err);
-    if (st == OIT_OK)
-        st = create_cache(s, desc->cache_budget, all_bytes, err);
-    /* A few fences per lap of the ring: enough that reclaiming a region
-     * waits for little more than its own pack. */
-    s->fence_every = budget / 4;
+        st = make_ring(s, resident || budget < OIT_STREAM_RING_MIN ? budget : OIT_STREAM_RING_MIN,
+                       err);
+    if (st == OIT_OK && resident)
+        st = make_resident(s, err);
+    else if (st == OIT_OK)
+        limit_cache(s, desc->cache_budget, all_bytes);
     return st;
 }
 
@@ -185,7 +318,8 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
     if (st == OIT_OK)
         st = number_triangles(s, &all_bytes, err);
     /* A ring as large as all the parts holds any pack, and the whole file
-     * in one lap: a small model needs no 64 MiB of GPU memory for it. */
+     * in one lap (resident, make_resident): a small model needs no 64 MiB
+     * of GPU memory for it. */
     if (all_bytes < budget)
         budget = all_bytes > OIT_STREAM_RING_MIN ? all_bytes : OIT_STREAM_RING_MIN;
     if (st == OIT_OK)
@@ -268,6 +402,10 @@ static uint64_t plan_sources(oit_streamer *s, const oit_packing *pk, uint32_t i)
         uint32_t p = pk->parts[j];
         if (saturated(s, pk, j)) {
             s->source[j] = SRC_SKIP;
+        } else if (s->home) {
+            s->source[j] = s->loaded[p] ? SRC_CACHE : SRC_RING;
+            s->offset[j] = s->home[p];
+            bytes += s->loaded[p] ? 0 : oit_pack_part_bytes(&parts[p]);
         } else if (s->cache && oit_residency_lookup(s->cache, p, &s->offset[j])) {
             s->source[j] = SRC_CACHE;
         } else {
@@ -289,7 +427,10 @@ static oit_status prepare_pack(oit_streamer *s, const oit_packing *pk, uint32_t 
     *got = 1;
     if (bytes == 0)
         return OIT_OK;
-    oit_status st = oit_upload_reserve(s->upload, s->fences, bytes, wait, &base, got, err);
+    /* Resident: the parts' homes are theirs alone, never reclaimed. */
+    oit_status st = s->home ? OIT_OK
+                            : oit_upload_reserve(s->upload, s->fences, bytes, wait, &base, got,
+                                                 err);
     if (st != OIT_OK || !*got)
         return st;
     uint32_t first = pk->pack_first[i], n = 0;
@@ -309,7 +450,8 @@ static void use_part(oit_streamer *s, const oit_packing *pk, uint32_t j, oit_gpu
     const oit_partfile_part *part = &oit_partfile_parts(s->pf)[pk->parts[j]];
     uint64_t bytes = oit_part_sourced_bytes(part->index_count / 3), at = 0;
     int cached = s->source[j] == SRC_CACHE;
-    oit_gpu_mesh_set_buffer(view, cached ? s->cache_buffer : oit_upload_buffer(s->upload));
+    oit_gpu_mesh_set_buffer(view, cached && s->cache ? s->cache_buffer
+                                                     : oit_upload_buffer(s->upload));
     oit_gpu_mesh_set_range_sourced(view, s->offset[j], (size_t)(part->index_count / 3));
     ss->cache_hits += (uint64_t)cached;
     if (!cached && s->cache &&
@@ -327,14 +469,33 @@ static oit_status retire_region(oit_streamer *s, const oit_packing *pk, uint32_t
     if (s->plans[i].ring_bytes == 0)
         return OIT_OK;
     for (uint32_t j = pk->pack_first[i]; j < pk->pack_first[i + 1]; j++)
-        if (s->source[j] == SRC_RING)
-            ss->bytes_uploaded += oit_part_sourced_bytes(parts[pk->parts[j]].index_count / 3);
+        if (s->source[j] == SRC_RING) {
+            const oit_partfile_part *part = &parts[pk->parts[j]];
+            ss->bytes_uploaded += oit_part_sourced_bytes(part->index_count / 3);
+            if (s->home && !s->loaded[pk->parts[j]]) {
+                s->loaded[pk->parts[j]] = 1;
+                s->loaded_bytes += oit_pack_part_bytes(part);
+            }
+        }
+    if (s->home)
+        return OIT_OK;
     oit_upload_drawn(s->upload, oit_fence_queue_tag(s->fences));
     s->unfenced += s->plans[i].ring_bytes;
     if (s->unfenced < s->fence_every)
         return OIT_OK;
     s->unfenced = 0;
     return oit_fence_queue_insert(s->fences, err);
+}
+
+/* The mapped file pages of the parts pack i read are let go once their
+ * triangles are in the ring: otherwise every part ever read stays in the
+ * process (the 2M plant's 38 MB), beside its copy on the GPU. A part read
+ * again faults them back in from the page cache. */
+static void drop_read_pages(oit_streamer *s, const oit_packing *pk, uint32_t i)
+{
+    for (uint32_t j = pk->pack_first[i]; j < pk->pack_first[i + 1]; j++)
+        if (s->source[j] == SRC_RING)
+            oit_partfile_drop_part_data(s->pf, pk->parts[j], 1);
 }
 
 /* Collects pack i from the reader and captures it, leaving out the parts
@@ -349,6 +510,7 @@ static oit_status draw_pack(oit_streamer *s, const oit_packing *pk, uint32_t i,
     oit_status st = s->plans[i].ring_bytes ? oit_reader_collect(s->reader, err) : OIT_OK;
     if (st != OIT_OK)
         return st;
+    drop_read_pages(s, pk, i);
     st = reserve_views(s, n, err);
     for (uint32_t j = first; j < first + n && st == OIT_OK; j++) {
         if (s->source[j] == SRC_SKIP || saturated(s, pk, j)) {
@@ -482,6 +644,12 @@ static oit_status capture_frame(oit_streamer *s, const oit_view *view, oit_packi
     /* Parts the order left out lie outside the view, as the packer's do. */
     ss->parts_culled = oit_partfile_part_count(s->pf) - count;
     ss->pack_ms = oit_time_ms() - t1;
+    /* The packing tells what the frame will hold: the ring and the cache
+     * grow to it before the first part is read. */
+    if (st == OIT_OK)
+        st = fit_cache(s, pk, err);
+    if (st == OIT_OK)
+        st = fit_ring(s, pk, err);
     if (st == OIT_OK && s->saturation)
         st = oit_saturation_begin(s->saturation, view->width, view->height,
                                   view->shading.mode == OIT_SHADING_TRANSLUCENT, err);
@@ -533,9 +701,9 @@ static void finish_stats(const oit_streamer *s, const oit_packing *pk, oit_frame
     ss->parts_culled += pk->culled;
     ss->epsilon = s->epsilon;
     ss->draw_calls = oit_capture_draw_calls(s->capture);
-    ss->cache_bytes = s->cache ? oit_residency_bytes(s->cache) : 0;
+    ss->cache_bytes = s->cache ? oit_residency_bytes(s->cache) : s->loaded_bytes;
     ss->gpu_bytes_peak = fs->gpu_bytes_peak + oit_upload_gpu_bytes(s->upload) +
-                         (s->cache ? oit_residency_capacity(s->cache) : 0) +
+                         (s->cache ? oit_residency_capacity(s->cache) : 0) + s->cache_dropped +
                          (s->saturation ? oit_saturation_gpu_bytes(s->saturation) : 0) +
                          oit_opaque_tiles_gpu_bytes(s->opaque_tiles);
     fs->gpu_bytes_peak = ss->gpu_bytes_peak;

@@ -33,22 +33,34 @@ typedef struct oit_streamer_desc {
      * saturated tiles can skip the parts behind them */
     oit_pack_mode pack;
     oit_pack_schedule schedule; /* 0: the tree's order (pack.h) */
-    uint64_t upload_budget;   /* ring bytes; 0: 64 MiB; never more than the
-                                 file's parts take (at least OIT_STREAM_RING_MIN) */
+    uint64_t upload_budget;   /* ring bytes at most; 0: 64 MiB; never more than
+                                 the file's parts take (at least
+                                 OIT_STREAM_RING_MIN). The ring starts at
+                                 OIT_STREAM_RING_MIN and grows between frames to
+                                 what a frame reads, as far as consecutive packs
+                                 use it.
+                                 A file within it and the cache budget is read
+                                 once into the ring, every part at a home of its
+                                 own, and drawn from there (cache_hits): no cache
+                                 buffer beside it */
     uint64_t slot_budget;     /* capture slot bytes (oit_capture_set_slot_budget);
                                  0: OIT_STREAM_STORE_DEFAULT for counted and
                                  first-K packs, else OIT_STREAM_SLOTS_DEFAULT */
     float epsilon;            /* early termination (oit_capture_set_epsilon); 0: exact */
-    uint64_t cache_budget;    /* residency cache bytes; 0: OIT_STREAM_CACHE_DEFAULT;
-                                 OIT_STREAM_CACHE_OFF: no cache */
+    uint64_t cache_budget;    /* residency cache bytes at most; 0:
+                                 OIT_STREAM_CACHE_DEFAULT; OIT_STREAM_CACHE_OFF:
+                                 no cache. Made at the first frame and grown
+                                 (geometrically, dropped and refilled) to the
+                                 parts a frame's packing holds */
     int read_inline;          /* 1: parts are read on the render thread, no reader
                                  thread (for comparison and debugging) */
 } oit_streamer_desc;
 
 /* 256 MiB: ~5.6 M triangles at 48 bytes, the visible working set of most
  * views of multi-million-triangle models, and a small share of any GL 4.5
- * GPU. The buffer never exceeds the file's own part bytes, so small files
- * pay only for what they hold. */
+ * GPU. The buffer grows to what the frames draw, never beyond the file's
+ * own part bytes, so small files and narrow views pay only for what they
+ * hold. */
 #define OIT_STREAM_CACHE_DEFAULT (256ull << 20)
 #define OIT_STREAM_CACHE_OFF UINT64_MAX
 /* Slot budgets: 64 MiB of fragment store and first-K slots (4 fragments a
@@ -69,7 +81,9 @@ typedef struct oit_stream_frame_stats {
                                 read-ahead of parts then skipped included  */
     uint64_t cache_hits;     /* parts drawn from the residency cache        */
     uint64_t cache_bytes;    /* bytes resident in the cache after the frame */
-    uint64_t gpu_bytes_peak; /* capture buffers + upload ring + cache       */
+    uint64_t gpu_bytes_peak; /* capture buffers (multi-draw commands too) +
+                                upload ring + cache + saturation and opaque
+                                tiles                                        */
     uint64_t draw_calls;     /* GL draw commands for geometry (a multi-draw
                                 is 1): oit_capture_draw_calls                */
     /* CPU milliseconds of the per-view work that does not wait for GL: the

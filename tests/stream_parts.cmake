@@ -32,3 +32,9 @@ oit_add_test(NAME stream_firstk LABELS integration TIMEOUT 300
 # duplicated boxes decided as on the source mesh (tests/test_source_prims.sh).
 oit_add_test(NAME stream_source_prims LABELS integration TIMEOUT 120
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_source_prims.sh $<TARGET_FILE:test_sources>)
+
+# GPU memory sized to the scene: a 256x256 frame of a small model within
+# 16 MB (gpu_bytes_peak) in every pack mode, its image DFB's
+# (tests/test_memory.sh, bench/memory-llvmpipe.md).
+oit_add_test(NAME stream_memory LABELS integration TIMEOUT 300
+  COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_memory.sh)

@@ -208,7 +208,10 @@ typedef enum oit_render_pack {
 typedef struct oit_renderer_desc {
     uint32_t K;             /* capture layers 2..16; 0: the scene's K        */
     uint64_t upload_budget; /* GPU bytes of the upload ring, >= 64 KiB;
-                               0: 64 MiB (oitstream --upload-budget alike) */
+                               0: 64 MiB (oitstream --upload-budget alike); a
+                               scene within it and cache_budget is read once
+                               into a ring of its size and kept there, with no
+                               cache buffer beside it */
     oit_render_pack pack;
     oit_render_shading shading;
     /* Early termination; 0 (default): exact. In [0, 1): fragments behind
@@ -222,7 +225,9 @@ typedef struct oit_renderer_desc {
     /* GPU bytes that keep parts drawn in one frame resident for the next
      * ones, drawn without reading or uploading them again
      * (oit_draw_stats.cache_hits), >= 64 KiB; 0: 256 MiB (never more than
-     * the scene's parts take); OIT_RENDER_CACHE_OFF: no cache. oitstream's
+     * the scene's parts take); OIT_RENDER_CACHE_OFF: no cache. The cache
+     * (and the upload ring) grow with what the frames draw up to their
+     * budgets rather than start there. oitstream's
      * --cache-budget means the same: 0 the default, "off" no cache. */
     uint64_t cache_budget;
     /* 0 (default): a reader thread of the renderer's own reads the parts of
@@ -311,7 +316,7 @@ typedef struct oit_draw_stats {
                                 wholly behind it over their screen rectangle
                                 (neither uploaded nor drawn; same image)      */
     uint64_t bytes_uploaded; /* part bytes written for the GPU in this call    */
-    uint64_t gpu_bytes_peak; /* capture, upload ring and cache together        */
+    uint64_t gpu_bytes_peak; /* capture, upload ring, cache and tiles together  */
     uint64_t cache_hits;     /* parts drawn from the cache, not uploaded again */
     uint64_t cache_bytes;    /* bytes resident in the cache after the call     */
     uint64_t draw_calls;     /* GL geometry draws; a pack's parts go in one
