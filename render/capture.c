@@ -30,6 +30,8 @@ struct oit_capture {
      * OIT_CAPTURE_MAX_LAYERS. */
     GLuint tile_fill_prog[2], tile_resolve_prog[2];
     uint64_t slot_budget; /* bytes; 0: K slots for every pixel of the frame */
+    uint64_t store_limit; /* oit_capture_set_store_limit; 0: the driver's */
+    uint64_t bind;        /* this frame's: the least of the two */
     int tiled;            /* this frame: every batch goes through tiles */
     GLuint out_buf;       /* this frame's output: BUF_OUT, or the idle slots */
     GLuint fbo; /* attachment-less, for the array backend */
@@ -256,6 +258,11 @@ void oit_capture_set_first_k(oit_capture *c, int on)
     c->firstk_off = !on;
 }
 
+void oit_capture_set_store_limit(oit_capture *c, uint64_t bytes)
+{
+    c->store_limit = bytes;
+}
+
 void oit_capture_set_slot_budget(oit_capture *c, uint64_t bytes)
 {
     c->slot_budget = bytes;
@@ -337,6 +344,8 @@ oit_status oit_capture_begin(oit_capture *c, const oit_view *view, oit_error *er
                              "(at most %d pixels a side)", view->width, view->height, max_size);
     c->t0 = oit_time_ms();
     c->view = *view;
+    uint64_t driver = oit_gl_ssbo_max_bytes();
+    c->bind = c->store_limit && c->store_limit < driver ? c->store_limit : driver;
     oit_shading_resolve_defaults(&c->view.shading);
     c->batches = 0;
     c->counted.splits = 0;
@@ -444,12 +453,23 @@ static oit_status batch_slots(oit_capture *c, const int r[4], oit_error *err)
     return s;
 }
 
+/* What the counted and first-K batches share of the frame. */
+static oit_counted_frame counted_frame(const oit_capture *c)
+{
+    return (oit_counted_frame){.fbo = c->fbo,
+                               .counts = c->buf[BUF_COUNTS],
+                               .state = c->buf[BUF_STATE],
+                               .width = c->view.width,
+                               .height = c->view.height,
+                               .draws = c->draws,
+                               .bind = c->bind};
+}
+
 /* The counted backend's batch: the slot budget bounds its fragment store. */
 static oit_status counted_batch(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
                                 const int r[4], oit_error *err)
 {
-    oit_counted_frame f = {c->fbo, c->buf[BUF_COUNTS], c->buf[BUF_STATE], c->view.width,
-                           c->view.height, c->draws};
+    oit_counted_frame f = counted_frame(c);
     c->counted.budget = c->slot_budget ? c->slot_budget : UINT64_MAX;
     oit_status s = oit_counted_batch(&c->counted, &f, meshes, n, r, err);
     note_peak(c);
@@ -462,11 +482,10 @@ static oit_status counted_batch(oit_capture *c, const oit_gpu_mesh *const *meshe
 static oit_status firstk_batch(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
                                const int r[4], oit_error *err)
 {
-    c->firstk.budget = c->slot_budget ? c->slot_budget : UINT64_MAX;
+    c->firstk.budget = c->slot_budget && c->slot_budget < c->bind ? c->slot_budget : c->bind;
     if (c->firstk_off || oit_firstk_slots(&c->firstk, r) == 0)
         return counted_batch(c, meshes, n, r, err);
-    oit_counted_frame f = {c->fbo, c->buf[BUF_COUNTS], c->buf[BUF_STATE], c->view.width,
-                           c->view.height, c->draws};
+    oit_counted_frame f = counted_frame(c);
     oit_status s = oit_firstk_batch(&c->firstk, &f, meshes, n, r, err);
     note_peak(c);
     bind_buffers(c);

@@ -78,6 +78,14 @@ uint64_t oit_capture_draw_calls(const oit_capture *c);
  * default): no limit. The image is the same either way. */
 void oit_capture_set_slot_budget(oit_capture *c, uint64_t bytes);
 
+/* The most bytes the counted and first-K captures put in one storage buffer,
+ * from the next frame on: what is stored past it is taken in pieces (a
+ * batch's meshes in halves, then one mesh's rectangle in halves, first-K's
+ * second pass in bands of rows). 0 (the default): what this driver binds
+ * (GL_MAX_SHADER_STORAGE_BLOCK_SIZE); lower only to test those pieces. The
+ * image is the same either way. */
+void oit_capture_set_store_limit(oit_capture *c, uint64_t bytes);
+
 /* OIT_CAPTURE_FIRSTK only: 0 captures every batch from the next one on as
  * OIT_CAPTURE_COUNTED does (count, store, sort: no slots), 1 (the default)
  * goes back to first-K. Deep views overflow most pixels' slots and pay both

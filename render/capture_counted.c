@@ -126,6 +126,31 @@ static int mostly_deep(const oit_scan_result *res)
     return res->max > OIT_COUNTED_MAX_SORTED && (uint64_t)res->long_fragments * 4 >= res->total;
 }
 
+/* Forgets the counts of a batch about to be taken in pieces. */
+static void forget_counts(oit_counted *k, const oit_counted_frame *f)
+{
+    static const GLuint zero = 0;
+    glClearNamedBufferData(f->counts, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    k->splits++;
+}
+
+/* One mesh whose fragments over r outgrow one storage binding is taken in
+ * two halves of r, across its longer side. Pixels are independent, so each
+ * half composites exactly what the whole would; a pixel is not split. */
+static oit_status split_rect(oit_counted *k, const oit_counted_frame *f,
+                             const oit_gpu_mesh *const *meshes, const int r[4],
+                             oit_error *err)
+{
+    int a[4] = {r[0], r[1], r[2], r[3]}, b[4] = {r[0], r[1], r[2], r[3]};
+    int across = r[2] - r[0] >= r[3] - r[1] ? 0 : 1;
+    int mid = r[across] + (r[across + 2] - r[across]) / 2;
+    a[across + 2] = mid;
+    b[across] = mid;
+    forget_counts(k, f);
+    oit_status s = oit_counted_batch(k, f, meshes, 1, a, err);
+    return s == OIT_OK ? oit_counted_batch(k, f, meshes, 1, b, err) : s;
+}
+
 oit_status oit_counted_batch(oit_counted *k, const oit_counted_frame *f,
                              const oit_gpu_mesh *const *meshes, int n, const int r[4],
                              oit_error *err)
@@ -134,20 +159,23 @@ oit_status oit_counted_batch(oit_counted *k, const oit_counted_frame *f,
     oit_status s = count(k, f, meshes, n, r, &res, err);
     if (s != OIT_OK)
         return s;
-    if (res.total > UINT32_MAX)
-        return oit_error_set(err, OIT_ERR_NOMEM, "counted capture: %llu fragments in one "
-                             "batch, more than 32-bit offsets address",
-                             (unsigned long long)res.total);
     if (res.total == 0)
         return OIT_OK; /* nothing drawn here: the counts are still zero */
-    if (n > 1 && (res.total * 16 > k->budget || mostly_deep(&res))) {
+    /* The budget is the batch's to keep where it can; one storage binding
+     * and 32-bit offsets are what the store cannot pass. */
+    int unbindable = res.total * 16 > f->bind || res.total > UINT32_MAX;
+    if (n > 1 && (unbindable || res.total * 16 > k->budget || mostly_deep(&res))) {
         /* Over budget, or lists too long to sort in registers: forget the
          * counts and take the two halves in turn. */
-        static const GLuint zero = 0;
-        glClearNamedBufferData(f->counts, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-        k->splits++;
+        forget_counts(k, f);
         s = oit_counted_batch(k, f, meshes, n / 2, r, err);
         return s == OIT_OK ? oit_counted_batch(k, f, meshes + n / 2, n - n / 2, r, err) : s;
     }
+    if (unbindable && (r[2] - r[0] > 1 || r[3] - r[1] > 1))
+        return split_rect(k, f, meshes, r, err);
+    if (res.total > UINT32_MAX)
+        return oit_error_set(err, OIT_ERR_NOMEM, "counted capture: %llu fragments in one "
+                             "pixel, more than 32-bit offsets address",
+                             (unsigned long long)res.total);
     return store_and_resolve(k, f, meshes, n, r, res.total, err);
 }

@@ -9,7 +9,8 @@
  * registers, while a split draws the batch again), is split in two halves of its
  * meshes, in order (the meshes of a batch are in visibility order, so the
  * halves are too), down to one mesh, whose fragments are then stored
- * whatever their number.
+ * whatever their number, within what one storage buffer binds: past that,
+ * the mesh is taken in halves of the rectangle instead.
  *
  * Internal to render/capture.c, which owns the frame's counts and state
  * buffers and the framebuffer; the counts are zero between batches (the
@@ -47,6 +48,7 @@ typedef struct oit_counted_frame {
     GLuint fbo, counts, state;
     int width, height;
     oit_gpu_draws *draws;
+    uint64_t bind; /* the most bytes one storage buffer may span */
 } oit_counted_frame;
 
 /* Captures meshes[0..n) over the GL rect r (bottom rows first, exclusive

@@ -330,13 +330,15 @@ static oit_status second_pass(oit_firstk *k, const oit_counted_frame *f,
 }
 
 /* Pass 2 over r in bands of rows whose overflowed fragments fit the store
- * (the slot budget, or what the slots already hold); a band is halved
+ * (the slot budget, or what the slots already hold, within one storage
+ * binding); a band is halved
  * while it does not, down to one row, which gets what it needs. */
 static oit_status second_passes(oit_firstk *k, const oit_counted_frame *f,
                                 const oit_gpu_mesh *const *meshes, int n, const int r[4], int W,
                                 oit_error *err)
 {
     uint64_t room = k->budget > k->store_cap ? k->budget : k->store_cap;
+    room = room < f->bind ? room : f->bind;
     int rows = r[3] - r[1];
     oit_status s = OIT_OK;
     for (int y = r[1]; y < r[3] && s == OIT_OK;) {

@@ -156,14 +156,20 @@ oit_status oit_gl_buffer_reserve(GLuint *buf, uint64_t *cap, uint64_t bytes,
     return OIT_OK;
 }
 
-oit_status oit_gl_check_ssbo_size(uint64_t bytes, const char *what, oit_error *err)
+uint64_t oit_gl_ssbo_max_bytes(void)
 {
     GLint64 max_block = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
-    if (bytes > (uint64_t)max_block)
+    return max_block > 0 ? (uint64_t)max_block : 0;
+}
+
+oit_status oit_gl_check_ssbo_size(uint64_t bytes, const char *what, oit_error *err)
+{
+    uint64_t max_block = oit_gl_ssbo_max_bytes();
+    if (bytes > max_block)
         return oit_error_set(err, OIT_ERR_NOMEM, "%s: needs %llu bytes in one storage buffer, "
-                             "more than this driver binds (%lld)", what,
-                             (unsigned long long)bytes, (long long)max_block);
+                             "more than this driver binds (%llu)", what,
+                             (unsigned long long)bytes, (unsigned long long)max_block);
     return OIT_OK;
 }
 

@@ -45,6 +45,9 @@ void oit_gl_buffer_release(GLuint *buf, uint64_t *cap);
 /* OIT_ERR_NOMEM naming 'what' when one shader storage block cannot span
  * 'bytes' on this driver (GL_MAX_SHADER_STORAGE_BLOCK_SIZE). */
 oit_status oit_gl_check_ssbo_size(uint64_t bytes, const char *what, oit_error *err);
+/* GL_MAX_SHADER_STORAGE_BLOCK_SIZE: the most bytes one storage buffer binding
+ * may span, which bounds what a capture stores in one pass. */
+uint64_t oit_gl_ssbo_max_bytes(void);
 
 /* Workgroups of 'local' threads covering n items. */
 GLuint oit_gl_groups(uint64_t n, GLuint local);
