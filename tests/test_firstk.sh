@@ -52,7 +52,7 @@ cmp_png() {
     { echo "FAIL: cannot make the stack part file"; exit 1; }
 # head on, and from the side of the stack's corner
 printf '0,0,5,0,0,0,0,1,0,18\n1.5,1.2,4,0,0,0,0,1,0,30\n' > "$T/views.txt"
-W="--size 128x128 --walk $T/views.txt --quiet"
+W="--size 64x64 --walk $T/views.txt --quiet"
 "$S" "$T/stack.oitp" --method dfb $W --out "$T/dfb" --stats "$T/dfb.json" ||
     fail "stack: dfb exited $?"
 "$S" "$T/stack.ply" --method dfb $W --out "$T/mesh" || fail "stack: dfb on the mesh exited $?"
@@ -99,7 +99,7 @@ echo "4 quads: max layers $(json_all max_layers < "$T/quads.json" | tr '\n' ' ')
 
 # The automatic mode: 10 frames of one view (the probe comes at frame 9).
 for i in 1 2 3 4 5 6 7 8 9 10; do echo "0,0,5,0,0,0,0,1,0,18"; done > "$T/still.txt"
-"$S" "$T/stack.oitp" --size 128x128 --walk "$T/still.txt" --quiet --out "$T/auto/" \
+"$S" "$T/stack.oitp" --size 64x64 --walk "$T/still.txt" --quiet --out "$T/auto/" \
     --stats "$T/auto.json" || fail "stack: auto exited $?"
 seq_auto=$(json_all auto_first_k < "$T/auto.json" | tr -d '\n')
 echo "stack, automatic mode, 10 frames of one view: first-K per frame $seq_auto," \

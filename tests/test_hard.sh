@@ -41,6 +41,9 @@ holds_ties() { case " $TIE_CASES " in *" $CASE "*) return 0 ;; esac; return 1; }
 S="$OIT_BIN/oitstream"
 T="$OIT_TEST_TMP/hard_${CASE}_$SCHEME"
 SIZE=${OIT_HARD_SIZE:-128x128}
+# 600 layers a pixel make the stack the suite's costliest case; its checks
+# compare methods pixel by pixel, which 64x64 does as well as 128x128.
+[ -n "${OIT_HARD_SIZE:-}" ] || [ "$CASE" != stack ] || SIZE=64x64
 rm -rf "$T" && mkdir -p "$T" || exit 1
 export EGL_PLATFORM=${EGL_PLATFORM:-surfaceless}
 FAILS=0
