@@ -80,8 +80,8 @@ void oit_capture_set_slot_budget(oit_capture *c, uint64_t bytes);
 
 /* The most bytes the counted and first-K captures put in one storage buffer,
  * from the next frame on: what is stored past it is taken in pieces (a
- * batch's meshes in halves, then one mesh's rectangle in halves, first-K's
- * second pass in bands of rows). 0 (the default): what this driver binds
+ * batch's meshes in halves, then one mesh's rows in bands, as first-K's
+ * second pass). 0 (the default): what this driver binds
  * (GL_MAX_SHADER_STORAGE_BLOCK_SIZE); lower only to test those pieces. The
  * image is the same either way. */
 void oit_capture_set_store_limit(oit_capture *c, uint64_t bytes);

@@ -4,6 +4,7 @@
 #include "render/capture_glsl.h"
 #include "render/frag_glsl.h"
 
+#include <stdlib.h>
 #include <string.h>
 
 oit_status oit_counted_init(oit_counted *k, oit_error *err)
@@ -88,14 +89,17 @@ static oit_status count(oit_counted *k, const oit_counted_frame *f,
     return oit_scan_run(&k->scan, k->offsets, pixels + 1, res, err);
 }
 
+/* Stores the fragments of the rows of r whose offsets start at base (0: the
+ * whole batch; a band of rows otherwise, whose pixels' offsets are
+ * consecutive) and composites them behind the state. */
 static oit_status store_and_resolve(oit_counted *k, const oit_counted_frame *f,
                                     const oit_gpu_mesh *const *meshes, int n, const int r[4],
-                                    uint64_t total, oit_error *err)
+                                    uint64_t base, uint64_t frags, oit_error *err)
 {
-    oit_status s = oit_gl_check_ssbo_size(total * 16, "counted capture: one part's fragments",
+    oit_status s = oit_gl_check_ssbo_size(frags * 16, "counted capture: one part's fragments",
                                           err);
     if (s == OIT_OK)
-        s = oit_gl_buffer_reserve(&k->frags, &k->frags_cap, total ? total * 16 : 16,
+        s = oit_gl_buffer_reserve(&k->frags, &k->frags_cap, frags ? frags * 16 : 16,
                                   "counted capture fragments", err);
     if (s != OIT_OK)
         return s;
@@ -103,6 +107,10 @@ static oit_status store_and_resolve(oit_counted *k, const oit_counted_frame *f,
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, f->counts);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OFFSETS, k->offsets);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_FRAGS, k->frags);
+    glProgramUniform1ui(k->store_prog, glGetUniformLocation(k->store_prog, "u_base"),
+                        (GLuint)base);
+    glProgramUniform1ui(k->resolve_prog, glGetUniformLocation(k->resolve_prog, "u_base"),
+                        (GLuint)base);
     oit_glsl_draw_scissored(f->fbo, f->width, f->height, k->store_prog, f->draws, meshes,
                             n, r);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -134,21 +142,41 @@ static void forget_counts(oit_counted *k, const oit_counted_frame *f)
     k->splits++;
 }
 
-/* One mesh whose fragments over r outgrow one storage binding is taken in
- * two halves of r, across its longer side. Pixels are independent, so each
- * half composites exactly what the whole would; a pixel is not split. */
-static oit_status split_rect(oit_counted *k, const oit_counted_frame *f,
-                             const oit_gpu_mesh *const *meshes, const int r[4],
-                             oit_error *err)
+/* One mesh whose fragments over r outgrow one storage binding is stored and
+ * composited in bands of rows that fit, from the one count: a pixel's
+ * offsets follow the frame's rows, so a band's fragments are the difference
+ * of the offsets at its first pixels, and pixels are independent. A row
+ * that alone outgrows the binding is refused. */
+static oit_status bands(oit_counted *k, const oit_counted_frame *f,
+                        const oit_gpu_mesh *const *meshes, const int r[4], oit_error *err)
 {
-    int a[4] = {r[0], r[1], r[2], r[3]}, b[4] = {r[0], r[1], r[2], r[3]};
-    int across = r[2] - r[0] >= r[3] - r[1] ? 0 : 1;
-    int mid = r[across] + (r[across + 2] - r[across]) / 2;
-    a[across + 2] = mid;
-    b[across] = mid;
-    forget_counts(k, f);
-    oit_status s = oit_counted_batch(k, f, meshes, 1, a, err);
-    return s == OIT_OK ? oit_counted_batch(k, f, meshes, 1, b, err) : s;
+    int rows = r[3] - r[1];
+    uint32_t *at = malloc(((size_t)rows + 1) * 4);
+    if (!at)
+        return oit_error_set(err, OIT_ERR_NOMEM, "counted capture: no memory for %d rows", rows);
+    /* the offset at each row's first pixel; pixels outside r count 0 */
+    for (int i = 0; i <= rows; i++)
+        glGetNamedBufferSubData(k->offsets, (GLintptr)((uint64_t)(r[1] + i) * f->width * 4), 4,
+                                &at[i]);
+    uint64_t fit = f->bind / 16;
+    oit_status s = OIT_OK;
+    for (int y = 0; y < rows && s == OIT_OK;) {
+        int e = y + 1;
+        while (e < rows && (uint64_t)at[e + 1] - at[y] <= fit)
+            e++;
+        if ((uint64_t)at[e] - at[y] > fit) {
+            s = oit_error_set(err, OIT_ERR_NOMEM, "counted capture: row %d holds %u fragments, "
+                              "more than one storage buffer binds (%llu bytes)", r[1] + y,
+                              at[e] - at[y], (unsigned long long)f->bind);
+            break;
+        }
+        int b[4] = {r[0], r[1] + y, r[2], r[1] + e};
+        k->splits += y > 0;
+        s = store_and_resolve(k, f, meshes, 1, b, at[y], at[e] - at[y], err);
+        y = e;
+    }
+    free(at);
+    return s;
 }
 
 oit_status oit_counted_batch(oit_counted *k, const oit_counted_frame *f,
@@ -171,11 +199,11 @@ oit_status oit_counted_batch(oit_counted *k, const oit_counted_frame *f,
         s = oit_counted_batch(k, f, meshes, n / 2, r, err);
         return s == OIT_OK ? oit_counted_batch(k, f, meshes + n / 2, n - n / 2, r, err) : s;
     }
-    if (unbindable && (r[2] - r[0] > 1 || r[3] - r[1] > 1))
-        return split_rect(k, f, meshes, r, err);
     if (res.total > UINT32_MAX)
         return oit_error_set(err, OIT_ERR_NOMEM, "counted capture: %llu fragments in one "
-                             "pixel, more than 32-bit offsets address",
+                             "part, more than 32-bit offsets address",
                              (unsigned long long)res.total);
-    return store_and_resolve(k, f, meshes, n, r, res.total, err);
+    if (unbindable)
+        return bands(k, f, meshes, r, err);
+    return store_and_resolve(k, f, meshes, n, r, 0, res.total, err);
 }

@@ -10,7 +10,7 @@
  * meshes, in order (the meshes of a batch are in visibility order, so the
  * halves are too), down to one mesh, whose fragments are then stored
  * whatever their number, within what one storage buffer binds: past that,
- * the mesh is taken in halves of the rectangle instead.
+ * they are stored and composited in bands of rows, from the one count.
  *
  * Internal to render/capture.c, which owns the frame's counts and state
  * buffers and the framebuffer; the counts are zero between batches (the

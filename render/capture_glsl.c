@@ -168,14 +168,15 @@ const char oit_capture_counted_store_fs[] =
     "layout(std430, binding = 1) buffer Counts { uint counts[]; };\n"
     "layout(std430, binding = 2) readonly buffer Offsets { uint offsets[]; };\n"
     "layout(std430, binding = 3) writeonly buffer Frags { uvec4 frags[]; };\n"
+    "uniform uint u_base;\n" /* the band's first offset (capture_counted.c) */
     SATURATED
     "void main() {\n"
     "    uint p = oit_pixel_index();\n"
     "    if (oit_behind_opaque()) discard;\n"
     "    if (oit_saturated(p)) discard;\n"
     "    uint c = atomicAdd(counts[p], 0xffffffffu);\n"
-    "    uint slot = offsets[p] + c - 1u;\n"
-    "    if (c != 0u && slot < offsets[p + 1u]) frags[slot] = oit_fragment();\n"
+    "    uint slot = offsets[p] - u_base + c - 1u;\n"
+    "    if (c != 0u && slot < offsets[p + 1u] - u_base) frags[slot] = oit_fragment();\n"
     "}\n";
 
 /* Before oit_glsl_segment_composite; oit_capture_counted_resolve_main after. */
@@ -185,6 +186,7 @@ const char oit_capture_counted_resolve_cs[] =
     "layout(location = 12) uniform ivec4 u_rect;\n"
     "layout(std430, binding = 2) readonly buffer Offsets { uint offsets[]; };\n"
     "layout(std430, binding = 3) buffer Frags { uvec4 frags[]; };\n"
+    "uniform uint u_base;\n"
     ;
 
 const char oit_capture_counted_resolve_main[] =
@@ -195,7 +197,7 @@ const char oit_capture_counted_resolve_main[] =
     "    uint n = offsets[p + 1u] - offsets[p];\n"
     "    if (n == 0u) return;\n"
     "    oit_state s = oit_state_load(p);\n"
-    "    oit_segment_composite(s, offsets[p], n);\n"
+    "    oit_segment_composite(s, offsets[p] - u_base, n);\n"
     "    s.nfrag += n;\n"
     "    oit_state_store(p, s);\n"
     "}\n";

@@ -343,8 +343,8 @@ static void test_firstk_all(void)
 }
 
 /* One mesh whose fragments outgrow one storage buffer (a store limit of 2
- * layers a pixel against up to 24): the counted capture takes its rectangle
- * in pieces and first-K its second pass in bands, both still DFB's image and
+ * layers a pixel against up to 24): the counted capture and first-K's second
+ * pass store it in bands of rows, both still DFB's image and
  * fragment total; before, the counted capture refused such a mesh. */
 static void test_store_limit(oit_capture_kind kind, const char *name)
 {
