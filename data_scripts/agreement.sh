@@ -6,6 +6,7 @@
 # Usage: data_scripts/agreement.sh [BINDIR] [OUT.md] [WxH]
 # Needs data_scripts/fetch_meshes.sh to have run (missing models are skipped).
 set -eu
+. "$(dirname "$0")/models.sh"
 bin=${1:-build/bin} out=${2:-bench/agreement-$(hostname).md} size=${3:-256x256}
 cache=${OIT_MESH_CACHE:-data_scripts/cache}
 work=$(mktemp -d) && trap 'rm -rf "$work"' EXIT
@@ -14,11 +15,7 @@ export EGL_PLATFORM=${EGL_PLATFORM:-surfaceless}
 "$bin/oitgen" demo -o "$work/demo.ply" >/dev/null
 "$bin/oitgen" plant --triangles 100000 -o "$work/plant100k.ply" >/dev/null
 models="$work/demo.ply $work/plant100k.ply"
-for m in bunny00.off armadillo.off refined_elephant.off ChineseDragon-10kv.off \
-         fandisk.off turbine.off Wuson.ply spider.obj Spider_binary.stl head.stl \
-         propeller.stl 2CylinderEngine.glb 2CylinderEngine-draco.gltf; do
-    [ -f "$cache/$m" ] && models="$models $cache/$m"
-done
+models="$models$(fetched_paths "$cache" $OIT_FETCHED_DRACO)"
 
 field() { sed -n "s/.*\"$1\": *\([-0-9.eEinfa]*\).*/\1/p" "$2" | head -n 1; }
 

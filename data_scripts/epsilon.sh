@@ -38,6 +38,7 @@ set -eu
 bin=${1:-build/bin} size=${3:-1024x1024}
 out=${2:-bench/epsilon-$(hostname).md}
 here=$(cd "$(dirname "$0")" && pwd)
+. "$here/models.sh"
 cache=${OIT_MESH_CACHE:-$here/cache}
 plant=${EPS_PLANT:-12000000} views=${EPS_VIEWS:-3}
 export EGL_PLATFORM=${EGL_PLATFORM:-surfaceless}
@@ -103,9 +104,7 @@ source_of() {
     esac
 }
 
-cases=${EPS_CASES:-"stack end hall plant1000000 demo bunny00.off armadillo.off \
-refined_elephant.off ChineseDragon-10kv.off fandisk.off turbine.off Wuson.ply spider.obj \
-Spider_binary.stl head.stl propeller.stl 2CylinderEngine.glb"}
+cases=${EPS_CASES:-"stack end hall plant1000000 demo $OIT_FETCHED_MODELS"}
 
 rows="$work/rows.md" renderer="?"
 : > "$rows"

@@ -14,6 +14,7 @@
 # FAST_T: part sizes; FAST_PLANT: the plant's triangles (0: none);
 # FAST_MODELS: cache files to take instead of all.
 set -eu
+. "$(dirname "$0")/models.sh"
 bin=${1:-build/bin} out=${2:-bench/fast-scheme-$(hostname).md} size=${3:-512x512}
 cache=${OIT_MESH_CACHE:-data_scripts/cache}
 fast_t=${FAST_T:-8192 32768 131072}
@@ -29,9 +30,7 @@ if [ "$plant" != 0 ]; then
     "$bin/oitgen" plant --triangles "$plant" -o "$work/plant$plant.ply" >/dev/null
     models="$models $work/plant$plant.ply"
 fi
-for m in ${FAST_MODELS:-bunny00.off armadillo.off refined_elephant.off ChineseDragon-10kv.off \
-         fandisk.off turbine.off Wuson.ply spider.obj Spider_binary.stl head.stl \
-         propeller.stl 2CylinderEngine.glb 2CylinderEngine-draco.gltf}; do
+for m in ${FAST_MODELS:-$OIT_FETCHED_MODELS $OIT_FETCHED_DRACO}; do
     [ -f "$cache/$m" ] && models="$models $cache/$m"
 done
 

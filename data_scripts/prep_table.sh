@@ -9,16 +9,12 @@
 #   "100000 1000000"); a refusal is recorded with its message, not dropped.
 # Needs data_scripts/fetch_meshes.sh to have run (missing models are skipped).
 set -eu
+. "$(dirname "$0")/models.sh"
 bin=${1:-build/bin} out=${2:-bench/prep-$(hostname).md} plants=${3:-100000 1000000}
 cache=${OIT_MESH_CACHE:-data_scripts/cache}
 work=$(mktemp -d) && trap 'rm -rf "$work"' EXIT
 
-models=""
-for m in bunny00.off armadillo.off refined_elephant.off ChineseDragon-10kv.off \
-         fandisk.off turbine.off Wuson.ply spider.obj Spider_binary.stl head.stl \
-         propeller.stl 2CylinderEngine.glb; do
-    [ -f "$cache/$m" ] && models="$models $cache/$m"
-done
+models="$(fetched_paths "$cache")"
 "$bin/oitgen" demo -o "$work/demo.ply" >/dev/null
 models="$models $work/demo.ply"
 for n in $plants; do

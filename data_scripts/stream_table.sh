@@ -11,6 +11,7 @@
 #   PLANTS: triangle counts of `oitgen plant` scenes (default "100000 1000000").
 # Needs data_scripts/fetch_meshes.sh to have run (missing models are skipped).
 set -eu
+. "$(dirname "$0")/models.sh"
 bin=${1:-build/bin} out=${2:-bench/stream-$(hostname).md} size=${3:-1024x1024}
 views=${4:-4} plants=${5:-100000 1000000}
 cache=${OIT_MESH_CACHE:-data_scripts/cache}
@@ -23,11 +24,7 @@ for n in $plants; do
     "$bin/oitgen" plant --triangles "$n" -o "$work/plant$n.ply" >/dev/null
     models="$models $work/plant$n.ply"
 done
-for m in bunny00.off armadillo.off refined_elephant.off ChineseDragon-10kv.off \
-         fandisk.off turbine.off Wuson.ply spider.obj Spider_binary.stl head.stl \
-         propeller.stl 2CylinderEngine.glb; do
-    [ -f "$cache/$m" ] && models="$models $cache/$m"
-done
+models="$models$(fetched_paths "$cache")"
 
 # every value of a key in a stats file, frames 1.. (frame 0 left out)
 after_first() { grep -o "\"$1\": [0-9.e+-]*" "$2" | sed 's/.*: //' | tail -n +2; }

@@ -48,6 +48,7 @@
 # ~90 s and stream ~25 s a frame, and VTK on it likely tens of minutes
 # (CMP_VTK_SKIP=plant12M leaves it out).
 set -eu
+. "$(dirname "$0")/models.sh"
 bin=${1:-build/bin} size=${3:-1024x1024}
 out=${2:-bench/stream-vs-dfb-$(hostname).md}
 here=$(cd "$(dirname "$0")" && pwd)
@@ -153,9 +154,7 @@ compare_dirs() {
 
 # ---- models ------------------------------------------------------------
 all="demo plant1M"
-for m in bunny00.off armadillo.off refined_elephant.off ChineseDragon-10kv.off \
-         fandisk.off turbine.off Wuson.ply spider.obj Spider_binary.stl head.stl \
-         propeller.stl 2CylinderEngine.glb 2CylinderEngine-draco.gltf; do
+for m in $OIT_FETCHED_MODELS $OIT_FETCHED_DRACO; do
     [ -f "$cache/$m" ] && all="$all $m"
 done
 [ "${CMP_12M:-1}" = 0 ] || all="$all plant12M" # last: the longest
