@@ -23,6 +23,8 @@ struct oit_capture {
     oit_capture_kind backend;
     int K;
     float epsilon; /* early termination threshold; 0: exact */
+    float applied; /* what the programs test now: epsilon, or 0 (gate_epsilon) */
+    int touched[4]; /* GL box of the frame's batches so far; empty: x0 >= x1 */
     oit_opaque_depth opaque; /* the caller's depth (oit_capture_set_opaque) */
     GLuint fill_prog, resolve_prog, end_prog;
     /* Tiled batches (tile-local slots: wide parts, or a slot budget below
@@ -270,14 +272,40 @@ void oit_capture_set_slot_budget(oit_capture *c, uint64_t bytes)
 
 /* The threshold in every program that tests it, effective from the next
  * batch on. */
-static void apply_epsilon(oit_capture *c)
+static void apply_epsilon(oit_capture *c, float e)
 {
-    glProgramUniform1f(c->fill_prog, glGetUniformLocation(c->fill_prog, "u_epsilon"),
-                       c->epsilon);
+    c->applied = e;
+    glProgramUniform1f(c->fill_prog, glGetUniformLocation(c->fill_prog, "u_epsilon"), e);
+    for (int i = 0; i < 2; i++)
+        if (c->tile_fill_prog[i])
+            glProgramUniform1f(c->tile_fill_prog[i],
+                               glGetUniformLocation(c->tile_fill_prog[i], "u_epsilon"), e);
     if (uses_counted(c))
-        oit_counted_set_epsilon(&c->counted, c->epsilon);
+        oit_counted_set_epsilon(&c->counted, e);
     if (c->backend == OIT_CAPTURE_FIRSTK)
-        oit_firstk_set_epsilon(&c->firstk, c->epsilon);
+        oit_firstk_set_epsilon(&c->firstk, e);
+}
+
+/* Pixels no earlier batch of the frame composited carry T = 1, where the
+ * per-fragment saturation test can drop nothing: a batch wholly outside
+ * the box of the earlier ones runs without it. Reading the state at every
+ * fragment costs (15% of a frame of the 2CylinderEngine in one pack on
+ * llvmpipe), and a frame's first pack is often its only one. */
+static void gate_epsilon(oit_capture *c, const int r[4])
+{
+    int *b = c->touched;
+    int apart = b[0] >= b[2] || r[2] <= b[0] || b[2] <= r[0] || r[3] <= b[1] || b[3] <= r[1];
+    float want = apart ? 0.0f : c->epsilon;
+    if (want != c->applied)
+        apply_epsilon(c, want);
+    if (b[0] >= b[2]) {
+        memcpy(b, r, sizeof c->touched);
+        return;
+    }
+    b[0] = r[0] < b[0] ? r[0] : b[0];
+    b[1] = r[1] < b[1] ? r[1] : b[1];
+    b[2] = r[2] > b[2] ? r[2] : b[2];
+    b[3] = r[3] > b[3] ? r[3] : b[3];
 }
 
 static void set_uniforms(oit_capture *c)
@@ -298,7 +326,7 @@ static void set_uniforms(oit_capture *c)
         oit_counted_set_opaque(&c->counted, &c->opaque);
     if (c->backend == OIT_CAPTURE_FIRSTK)
         oit_firstk_set_opaque(&c->firstk, &c->opaque);
-    apply_epsilon(c);
+    apply_epsilon(c, c->epsilon);
 }
 
 void oit_capture_set_opaque(oit_capture *c, const oit_opaque_depth *o)
@@ -311,7 +339,7 @@ void oit_capture_set_opaque(oit_capture *c, const oit_opaque_depth *o)
 void oit_capture_set_epsilon(oit_capture *c, float epsilon)
 {
     c->epsilon = epsilon > 0.0f ? epsilon : 0.0f;
-    apply_epsilon(c);
+    apply_epsilon(c, c->epsilon);
 }
 
 static void bind_buffers(const oit_capture *c)
@@ -348,6 +376,7 @@ oit_status oit_capture_begin(oit_capture *c, const oit_view *view, oit_error *er
     c->bind = c->store_limit && c->store_limit < driver ? c->store_limit : driver;
     oit_shading_resolve_defaults(&c->view.shading);
     c->batches = 0;
+    memset(c->touched, 0, sizeof c->touched);
     c->counted.splits = 0;
     c->firstk.second_pixels = 0;
     c->firstk.second_packs = c->firstk.second_draws = 0;
@@ -439,6 +468,8 @@ static oit_status batch_start(oit_capture *c, const int rect[4], int n, int r[4]
                              "oit_capture_begin/oit_capture_end");
     c->batches++;
     *empty = !gl_rect(c, rect, r) || n <= 0;
+    if (!*empty)
+        gate_epsilon(c, r);
     return OIT_OK;
 }
 
@@ -550,7 +581,7 @@ static oit_status tiled_programs(oit_capture *c, int i, oit_error *err)
         oit_glsl_set_opaque(progs[k], &c->opaque);
         glProgramUniform1i(progs[k], glGetUniformLocation(progs[k], "u_K"), c->K);
     }
-    glProgramUniform1f(progs[0], glGetUniformLocation(progs[0], "u_epsilon"), c->epsilon);
+    glProgramUniform1f(progs[0], glGetUniformLocation(progs[0], "u_epsilon"), c->applied);
     return OIT_OK;
 }
 
