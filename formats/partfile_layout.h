@@ -90,7 +90,7 @@ _Static_assert(sizeof(pf_section) == PF_ENTRY_BYTES, "section entry layout");
 _Static_assert(sizeof(pf_meta) == 64, "META layout");
 _Static_assert(sizeof(pf_grid_block) == 24, "grid block layout");
 _Static_assert(sizeof(pf_slab_block) == 16, "slab block layout");
-_Static_assert(sizeof(oit_partfile_part) == 112, "part record layout");
+_Static_assert(sizeof(oit_partfile_part) == 144, "part record layout");
 _Static_assert(sizeof(oit_partfile_piece) == 48, "piece record layout");
 _Static_assert(sizeof(oit_partfile_grid) == 64, "grid record layout");
 _Static_assert(sizeof(oit_partfile_cell) == 24, "cell record layout");

@@ -5,7 +5,9 @@
  * later check may rely on the earlier ones (e.g. a part's blob range is known
  * to lie inside PART_DATA before its bytes are read). Management sections are
  * copied into aligned host arrays, which also keeps later changes to the file
- * from reaching validated records; part blobs are used in place.
+ * from reaching validated records; part streams are decoded into the
+ * caller's buffer (version 5, formats/partfile_codec.h) and every decoded
+ * value is checked before a part is first handed out.
  * Sizes are compared by division or after bounding each count by the section
  * size, so no product or sum below can wrap.
  */
@@ -15,6 +17,7 @@
 #include "oit/partfile.h"
 
 #include "formats/checksum.h"
+#include "formats/partfile_codec.h"
 #include "formats/partfile_layout.h"
 
 #include <errno.h>
@@ -123,10 +126,14 @@ static oit_status check_header(oit_partfile *pf, oit_error *err)
     const pf_header *h = &pf->hdr;
     if (memcmp(h->magic, PF_MAGIC, sizeof h->magic) != 0)
         return bad(pf, err, "not a part file (no OITPART magic)");
-    if (h->version >= 1 && h->version < OIT_PARTFILE_VERSION_MIN)
+    if (h->version >= 1 && h->version < 4)
         return bad(pf, err, "part file version %u has no source triangle indices, which this "
                    "build needs (it reads version %u): convert the model again with oitprep",
                    h->version, OIT_PARTFILE_VERSION);
+    if (h->version == 4)
+        return bad(pf, err, "part file version 4 stores its parts unencoded, this build reads "
+                   "version %u (encoded parts): convert the model again with oitprep",
+                   OIT_PARTFILE_VERSION);
     if (h->version != OIT_PARTFILE_VERSION)
         return bad(pf, err, "part file version %u, this build reads version %u", h->version,
                    OIT_PARTFILE_VERSION);
@@ -337,6 +344,24 @@ static oit_status check_part_fields(const oit_partfile *pf, uint32_t i, oit_erro
     return OIT_OK;
 }
 
+/* The stored streams tile the stored bytes, and the decoded blob is at most
+ * PF_DECODE_RATIO times their size: no codec packs more than 64 decoded
+ * bytes into one stored byte, so a record cannot make the reader allocate
+ * far more than the file holds. */
+#define PF_DECODE_RATIO 128u
+static oit_status check_part_streams(const oit_partfile *pf, uint32_t i, oit_error *err)
+{
+    const oit_partfile_part *p = &pf->parts[i];
+    uint64_t v = p->stored_vertex_bytes, x = p->stored_index_bytes, s = p->stored_source_bytes;
+    if (v > p->stored_bytes || x > p->stored_bytes - v || s != p->stored_bytes - v - x ||
+        !v || !x || !s || p->data_bytes / PF_DECODE_RATIO > p->stored_bytes)
+        return bad(pf, err, "section PARTS: record %u: stored streams %llu + %llu + %llu "
+                   "bytes do not tile %llu stored bytes for a %llu-byte part", i,
+                   (unsigned long long)v, (unsigned long long)x, (unsigned long long)s,
+                   (unsigned long long)p->stored_bytes, (unsigned long long)p->data_bytes);
+    return OIT_OK;
+}
+
 /* The blob's layout, and that it lies in PART_DATA after the previous one. */
 static oit_status check_part_blob(const oit_partfile *pf, uint32_t i, uint64_t prev_end,
                                   oit_error *err)
@@ -351,19 +376,21 @@ static oit_status check_part_blob(const oit_partfile *pf, uint32_t i, uint64_t p
                    (unsigned long long)p->vertex_bytes, (unsigned long long)p->vertex_offset,
                    (unsigned long long)p->index_offset, (unsigned long long)vbytes,
                    (unsigned long long)pf_align_up(vbytes, 4));
-    /* index_count <= size / 2 bounds every product below. */
-    if (p->index_count > d->size / 2 || p->index_bytes != p->index_count * (p->index_bits / 8) ||
+    /* index_count <= size (the index codec stores at least a byte an index)
+     * bounds every product below. */
+    if (p->index_count > d->size || p->index_bytes != p->index_count * (p->index_bits / 8) ||
         p->data_bytes != oit_partfile_source_offset(p) + p->index_count / 3 * 4)
         return bad(pf, err, "section PARTS: record %u: %llu indices do not fit %llu index "
                    "bytes and %llu source indices in a %llu-byte blob", i,
                    (unsigned long long)p->index_count, (unsigned long long)p->index_bytes,
                    (unsigned long long)(p->index_count / 3), (unsigned long long)p->data_bytes);
     if (p->data_offset % pf->hdr.part_align || p->data_offset < prev_end ||
-        p->data_offset > d->offset + d->size || p->data_bytes > d->offset + d->size - p->data_offset)
+        p->data_offset > d->offset + d->size ||
+        p->stored_bytes > d->offset + d->size - p->data_offset)
         return bad(pf, err, "section PARTS: record %u: blob %llu..+%llu is unaligned, out of "
                    "order or outside PART_DATA", i, (unsigned long long)p->data_offset,
-                   (unsigned long long)p->data_bytes);
-    return OIT_OK;
+                   (unsigned long long)p->stored_bytes);
+    return check_part_streams(pf, i, err);
 }
 
 static oit_status check_pieces_of(const oit_partfile *pf, uint32_t i, oit_error *err)
@@ -413,7 +440,7 @@ static oit_status check_parts(const oit_partfile *pf, oit_error *err)
             return s;
         pieces += p->piece_count;
         triangles += p->index_count / 3;
-        prev_end = p->data_offset + p->data_bytes;
+        prev_end = p->data_offset + p->stored_bytes;
     }
     if (pieces != pf->piece_count)
         return bad(pf, err, "section PIECES: %llu records, the parts own %llu",
@@ -546,15 +573,67 @@ static oit_status check_piece_bounds(const oit_partfile *pf, uint32_t i, const u
     return OIT_OK;
 }
 
-static oit_status validate_blob(const oit_partfile *pf, uint32_t i, oit_error *err)
+static oit_status buffer_reserve(const oit_partfile *pf, oit_partfile_buffer *buf,
+                                 uint64_t bytes, oit_error *err)
+{
+    if (bytes <= buf->capacity)
+        return OIT_OK;
+    if (bytes > SIZE_MAX)
+        return nomem(pf, err);
+    void *p = realloc(buf->data, (size_t)bytes);
+    if (!p)
+        return nomem(pf, err);
+    buf->data = p;
+    buf->capacity = (size_t)bytes;
+    return OIT_OK;
+}
+
+/* Decodes part i's stored streams into the version 4 blob layout in buf
+ * (pads zero); checks nothing but the codecs' own framing. */
+static oit_status decode_blob(const oit_partfile *pf, uint32_t i, oit_partfile_buffer *buf,
+                              oit_error *err)
 {
     const oit_partfile_part *p = &pf->parts[i];
-    const uint8_t *blob = pf->base + p->data_offset;
-    uint32_t crc = oit_crc32c(0, blob, p->data_bytes);
+    oit_status s = buffer_reserve(pf, buf, p->data_bytes, err);
+    if (s)
+        return s;
+    uint8_t *blob = buf->data;
+    const uint8_t *in = pf->base + p->data_offset;
+    uint64_t src_at = oit_partfile_source_offset(p);
+    memset(blob + p->vertex_bytes, 0, (size_t)(p->index_offset - p->vertex_bytes));
+    memset(blob + p->index_offset + p->index_bytes, 0,
+           (size_t)(src_at - p->index_offset - p->index_bytes));
+    const char *what = NULL;
+    if (pf_decode_vertices(blob, p->vertex_count, pf_vertex_stride(p->attributes), in,
+                           (size_t)p->stored_vertex_bytes))
+        what = "vertex";
+    else if (pf_decode_indices(blob + p->index_offset, p->index_count, p->index_bits,
+                               in + p->stored_vertex_bytes, (size_t)p->stored_index_bytes))
+        what = "index";
+    else if (pf_decode_sources((uint32_t *)(void *)(blob + src_at), p->index_count / 3,
+                               in + p->stored_vertex_bytes + p->stored_index_bytes,
+                               (size_t)p->stored_source_bytes))
+        what = "source index";
+    if (what)
+        return bad(pf, err, "section PART_DATA: part %u: the %s stream does not decode to the "
+                   "record's counts (corrupt)", i, what);
+    return OIT_OK;
+}
+
+/* Checksum of the stored bytes, decode into buf, then every decoded value. */
+static oit_status validate_blob(const oit_partfile *pf, uint32_t i, oit_partfile_buffer *buf,
+                                oit_error *err)
+{
+    const oit_partfile_part *p = &pf->parts[i];
+    uint32_t crc = oit_crc32c(0, pf->base + p->data_offset, p->stored_bytes);
     if (crc != p->data_crc)
         return bad(pf, err, "section PART_DATA: part %u: checksum 0x%08x, stored 0x%08x "
                    "(corrupt)", i, crc, p->data_crc);
-    oit_status s = check_vertices(pf, i, blob, err);
+    oit_status s = decode_blob(pf, i, buf, err);
+    if (s)
+        return s;
+    const uint8_t *blob = buf->data;
+    s = check_vertices(pf, i, blob, err);
     if (!s)
         s = check_indices(pf, i, blob, err);
     if (!s)
@@ -980,14 +1059,16 @@ static oit_status validate_all(oit_partfile *pf, bool deferred, oit_error *err)
     if (!s)
         s = check_coverage(pf, err);
     const uint8_t *checked = s ? NULL : sec_data(pf, PF_SEC_PART_DATA);
+    oit_partfile_buffer buf = {0};
     for (uint32_t i = 0; !s && !deferred && i < pf->hdr.part_count; i++) {
-        s = validate_blob(pf, i, err);
-        const uint8_t *end = pf->base + pf->parts[i].data_offset + pf->parts[i].data_bytes;
+        s = validate_blob(pf, i, &buf, err);
+        const uint8_t *end = pf->base + pf->parts[i].data_offset + pf->parts[i].stored_bytes;
         if (end - checked >= (ptrdiff_t)PF_DROP_CHUNK || i + 1 == pf->hdr.part_count) {
             drop_checked(pf, checked, (size_t)(end - checked));
             checked = end;
         }
     }
+    oit_partfile_buffer_free(&buf);
     return s;
 }
 
@@ -1117,14 +1198,57 @@ oit_status oit_partfile_validate_part(oit_partfile *pf, uint32_t part, oit_error
                              pf->name, part, (unsigned long long)pf->hdr.part_count);
     if (!pf->part_ok || pf->part_ok[part])
         return OIT_OK;
-    oit_status s = validate_blob(pf, part, err);
+    oit_partfile_buffer buf = {0};
+    oit_status s = validate_blob(pf, part, &buf, err);
+    oit_partfile_buffer_free(&buf);
     if (!s)
         pf->part_ok[part] = 1;
     return s;
 }
 
-oit_status oit_partfile_part_data(const oit_partfile *pf, uint32_t part,
+void oit_partfile_buffer_free(oit_partfile_buffer *buf)
+{
+    if (!buf)
+        return;
+    free(buf->data);
+    *buf = (oit_partfile_buffer){0};
+}
+
+static void fill_view(const oit_partfile *pf, uint32_t part, const oit_partfile_buffer *buf,
+                      oit_partfile_part_view *out)
+{
+    const oit_partfile_part *p = &pf->parts[part];
+    const uint8_t *blob = buf->data;
+    out->blob = blob;
+    out->positions = (const float *)(const void *)blob;
+    out->rgba = p->attributes ? blob + 12 : NULL;
+    out->stride = pf_vertex_stride(p->attributes);
+    out->index_bits = p->index_bits;
+    out->indices = blob + p->index_offset;
+    out->index_count = p->index_count;
+    out->sources = blob + oit_partfile_source_offset(p);
+}
+
+oit_status oit_partfile_part_load(oit_partfile *pf, uint32_t part, oit_partfile_buffer *buf,
                                   oit_partfile_part_view *out, oit_error *err)
+{
+    memset(out, 0, sizeof *out);
+    if (part >= pf->hdr.part_count)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: part %u of %llu does not exist",
+                             pf->name, part, (unsigned long long)pf->hdr.part_count);
+    if (!pf->part_ok || pf->part_ok[part])
+        return oit_partfile_part_data(pf, part, buf, out, err);
+    oit_status s = validate_blob(pf, part, buf, err);
+    if (s)
+        return s;
+    pf->part_ok[part] = 1;
+    fill_view(pf, part, buf, out);
+    return OIT_OK;
+}
+
+oit_status oit_partfile_part_data(const oit_partfile *pf, uint32_t part,
+                                  oit_partfile_buffer *buf, oit_partfile_part_view *out,
+                                  oit_error *err)
 {
     memset(out, 0, sizeof *out);
     if (part >= pf->hdr.part_count)
@@ -1134,16 +1258,12 @@ oit_status oit_partfile_part_data(const oit_partfile *pf, uint32_t part,
         return oit_error_set(err, OIT_ERR_ARGUMENT,
                              "%s: part %u has not passed oit_partfile_validate_part", pf->name,
                              part);
-    const oit_partfile_part *p = &pf->parts[part];
-    const uint8_t *blob = pf->base + p->data_offset;
-    out->blob = blob;
-    out->positions = (const float *)(const void *)blob;
-    out->rgba = p->attributes ? blob + 12 : NULL;
-    out->stride = pf_vertex_stride(p->attributes);
-    out->index_bits = p->index_bits;
-    out->indices = blob + p->index_offset;
-    out->index_count = p->index_count;
-    out->sources = blob + oit_partfile_source_offset(p);
+    /* Validated bytes decode to validated values: the codecs are
+     * deterministic and the mapping is read-only. */
+    oit_status s = decode_blob(pf, part, buf, err);
+    if (s)
+        return s;
+    fill_view(pf, part, buf, out);
     return OIT_OK;
 }
 
@@ -1154,7 +1274,7 @@ void oit_partfile_drop_part_data(const oit_partfile *pf, uint32_t first, uint32_
         return;
     uint64_t last = count > n - first ? n - 1 : (uint64_t)first + count - 1;
     const oit_partfile_part *a = &pf->parts[first], *b = &pf->parts[last];
-    uint64_t end = b->data_offset + b->data_bytes;
+    uint64_t end = b->data_offset + b->stored_bytes;
     if (end > a->data_offset)
         drop_checked(pf, pf->base + a->data_offset, (size_t)(end - a->data_offset));
 }

@@ -12,7 +12,9 @@
 #include "oit/partfile.h"
 
 #include "formats/checksum.h"
+#include "formats/partfile_codec.h"
 #include "formats/partfile_layout.h"
+#include "formats/partfile_order.h"
 
 #include <errno.h>
 #include <math.h>
@@ -33,6 +35,7 @@ struct oit_partfile_writer {
     double origin[3];
     char *source_name, *options;
     bool skip_verify, have_grid, measured_bounds;
+    oit_partfile_order order;
     uint64_t pos;        /* bytes written so far            */
     uint64_t data_start; /* PART_DATA offset                */
     uint32_t data_crc;   /* running CRC of PART_DATA        */
@@ -167,6 +170,7 @@ oit_status oit_partfile_writer_create(const char *path, const oit_partfile_write
     memcpy(w->origin, d.origin, sizeof w->origin);
     w->skip_verify = d.skip_verify;
     w->measured_bounds = d.measured_bounds;
+    w->order = d.order;
     w->path = dup_string(path);
     w->tmp_path = malloc(strlen(path) + 5);
     w->source_name = dup_string(d.source_name);
@@ -255,7 +259,7 @@ static void bounds_add(float lo[3], float hi[3], const float *p)
 }
 
 /* Lays out vertices, zero pad to 4, indices, zero pad to 4, source indices:
- * the blob as stored. */
+ * the blob as the reader decodes it. */
 static uint8_t *build_blob(const oit_partfile_part_desc *p, oit_partfile_part *rec)
 {
     uint32_t stride = pf_vertex_stride(rec->attributes);
@@ -278,6 +282,30 @@ static uint8_t *build_blob(const oit_partfile_part_desc *p, oit_partfile_part *r
     }
     memcpy(blob + oit_partfile_source_offset(rec), p->sources, p->index_count / 3 * 4);
     return blob;
+}
+
+/* The part's stored streams (partfile_codec.h); sets the record's stored
+ * sizes. NULL when out of memory. */
+static uint8_t *encode_blob(const oit_partfile_part_desc *p, oit_partfile_part *rec)
+{
+    uint8_t *blob = build_blob(p, rec);
+    uint32_t stride = pf_vertex_stride(rec->attributes);
+    size_t cap = pf_encode_bound(p->vertex_count, stride, p->index_count);
+    uint8_t *out = blob ? malloc(cap) : NULL;
+    pf_codec_sizes z;
+    if (out && pf_encode_part(blob, p->vertex_count, stride, p->indices, p->index_count,
+                              p->sources, out, cap, &z)) {
+        free(out);
+        out = NULL;
+    }
+    free(blob);
+    if (!out)
+        return NULL;
+    rec->stored_vertex_bytes = z.vertex_bytes;
+    rec->stored_index_bytes = z.index_bytes;
+    rec->stored_source_bytes = z.source_bytes;
+    rec->stored_bytes = z.vertex_bytes + z.index_bytes + z.source_bytes;
+    return out;
 }
 
 static oit_partfile_part part_record(const oit_partfile_writer *w, const oit_partfile_part_desc *p)
@@ -333,18 +361,33 @@ oit_status oit_partfile_writer_add_part(oit_partfile_writer *w, const oit_partfi
     if (s)
         return s;
     uint32_t n = (uint32_t)w->parts.count;
+    pf_ordered ord = {0};
+    oit_partfile_part_desc q = *p;
+    if (w->order != OIT_PARTFILE_ORDER_KEEP) {
+        if (pf_cache_order(p, w->order == OIT_PARTFILE_ORDER_CACHE, &ord))
+            return oit_error_set(err, OIT_ERR_NOMEM, "%s: part %u: vertex-cache order failed "
+                                 "(out of memory, or the optimiser changed a triangle)",
+                                 w->path, n);
+        q.positions = ord.positions;
+        q.rgba = ord.rgba;
+        q.indices = ord.indices;
+        q.sources = ord.sources;
+    }
+    p = &q;
     oit_partfile_part rec = part_record(w, p);
-    uint8_t *blob = build_blob(p, &rec);
-    if (!blob)
+    uint8_t *blob = encode_blob(p, &rec);
+    if (!blob) {
+        pf_ordered_free(&ord);
         return oit_error_set(err, OIT_ERR_NOMEM, "%s: part %u: out of memory for %llu bytes",
                              w->path, n, (unsigned long long)rec.data_bytes);
+    }
     s = pad_to(w, w->part_align, &w->data_crc, err);
     rec.data_offset = w->pos;
-    rec.data_crc = oit_crc32c(0, blob, rec.data_bytes);
+    rec.data_crc = oit_crc32c(0, blob, rec.stored_bytes);
     if (!s)
-        s = write_bytes(w, blob, rec.data_bytes, err);
+        s = write_bytes(w, blob, rec.stored_bytes, err);
     if (!s)
-        w->data_crc = oit_crc32c(w->data_crc, blob, rec.data_bytes);
+        w->data_crc = oit_crc32c(w->data_crc, blob, rec.stored_bytes);
     free(blob);
     if (!s)
         s = add_pieces(w, p, n, err);
@@ -353,9 +396,10 @@ oit_status oit_partfile_writer_add_part(oit_partfile_writer *w, const oit_partfi
             w->sources_end = (uint64_t)p->sources[t] + 1;
     if (!s)
         s = vec_push(&w->parts, &rec, 1, sizeof rec, err);
+    pf_ordered_free(&ord);
     if (s)
         return s;
-    w->triangles += p->index_count / 3;
+    w->triangles += q.index_count / 3;
     if (index)
         *index = n;
     return OIT_OK;

@@ -630,7 +630,13 @@ static oit_status convert_binned(const oit_convert_options *o, const oit_mesh_in
     oit_partfile_writer_desc wd = {.K = o->K, .attributes = info->attributes, .part_align = 64,
                                    .source_name = base_name(o->input), .options = options,
                                    .origin = {info->origin[0], info->origin[1], info->origin[2]},
-                                   .measured_bounds = o->scheme == OIT_SCHEME_FAST};
+                                   .measured_bounds = o->scheme == OIT_SCHEME_FAST,
+                                   /* Vertices only: triangles keep their
+                                      order (docs/part-file.md, "Stored
+                                      streams": the vertex-cache order moved
+                                      fragments that tie on key and source
+                                      index, and so image bits) */
+                                   .order = OIT_PARTFILE_ORDER_VERTICES};
     oit_partfile_writer *w = NULL;
     oit_status s = oit_partfile_writer_create(o->output, &wd, &w, err);
     if (s)

@@ -52,7 +52,8 @@ static oit_status write_part(oit_ply_writer *w, const oit_partfile *pf, uint32_t
                              const uint8_t rgb[3], uint8_t alpha, oit_error *err)
 {
     oit_partfile_part_view v;
-    oit_status s = oit_partfile_part_data(pf, p, &v, err);
+    oit_partfile_buffer buf = {0};
+    oit_status s = oit_partfile_part_data(pf, p, &buf, &v, err);
     uint32_t nv = oit_partfile_parts(pf)[p].vertex_count;
     float *xyz = s ? NULL : malloc((nv ? nv : 1) * 12u);
     uint8_t *rgba = s ? NULL : malloc((nv ? nv : 1) * 4u);
@@ -76,6 +77,7 @@ static oit_status write_part(oit_ply_writer *w, const oit_partfile *pf, uint32_t
         s = oit_ply_writer_add_faces(w, idx, NULL, v.index_count / 3, err);
     }
     oit_partfile_drop_part_data(pf, p, 1);
+    oit_partfile_buffer_free(&buf);
     free(xyz);
     free(rgba);
     free(idx);

@@ -78,6 +78,7 @@ typedef struct verifier {
     size_t line_n;
     vray_ctx ray;
     oit_verify_report *rep;
+    oit_partfile_buffer decoded; /* one part at a time, reused */
 } verifier;
 
 static uint64_t rng_next(uint64_t *s)
@@ -129,7 +130,7 @@ static oit_status build_chunk(verifier *v, uint32_t p0, uint32_t p1, RTCScene *s
     uint32_t drop_from = p0;
     for (uint32_t p = p0; p < p1; p++) {
         oit_partfile_part_view pv;
-        oit_status s = oit_partfile_part_data(v->pf, p, &pv, err);
+        oit_status s = oit_partfile_part_data(v->pf, p, &v->decoded, &pv, err);
         if (s) {
             rtcReleaseGeometry(geom);
             return s;
@@ -512,7 +513,7 @@ static oit_status count_outside(verifier *v, uint32_t i, uint32_t p, double lo, 
 {
     const float *n = oit_partfile_slab_at(v->pf, i)->normal;
     oit_partfile_part_view pv;
-    oit_status s = oit_partfile_part_data(v->pf, p, &pv, err);
+    oit_status s = oit_partfile_part_data(v->pf, p, &v->decoded, &pv, err);
     uint32_t nv = s ? 0 : oit_partfile_parts(v->pf)[p].vertex_count;
     for (uint32_t k = 0; k < nv; k++) {
         float q[3];
@@ -605,7 +606,7 @@ static oit_status check_sources(verifier *v, oit_error *err)
     uint64_t found = 0;
     for (uint32_t p = 0; p < v->nparts; p++) {
         oit_partfile_part_view pv;
-        oit_status s = oit_partfile_part_data(v->pf, p, &pv, err);
+        oit_status s = oit_partfile_part_data(v->pf, p, &v->decoded, &pv, err);
         if (s) {
             free(seen);
             return s;
@@ -655,6 +656,7 @@ oit_status oit_verify(const char *path, const oit_verify_options *o, oit_verify_
     oit_order_destroy(v.order);
     oit_partfile_close(v.pf);
     free(v.part_of_prim);
+    oit_partfile_buffer_free(&v.decoded);
     free(v.rank);
     free(v.ordered);
     free(v.count);

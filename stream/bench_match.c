@@ -40,13 +40,13 @@ static oit_status part_moments(oit_partfile *pf, double m[4], oit_error *err)
         return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot hold a part of %llu triangles",
                              oit_partfile_name(pf), (unsigned long long)most);
     oit_status s = OIT_OK;
+    oit_partfile_buffer decoded = {0};
     for (uint32_t p = 0; p < n && s == OIT_OK; p++) {
-        s = oit_partfile_validate_part(pf, p, err);
-        if (s == OIT_OK)
-            s = oit_part_expand(pf, p, buf, err);
+        s = oit_part_expand(pf, p, &decoded, buf, err);
         if (s == OIT_OK)
             add_moments(buf, (size_t)(parts[p].index_count / 3), m);
     }
+    oit_partfile_buffer_free(&decoded);
     free(buf);
     return s;
 }

@@ -21,10 +21,10 @@ static void expand_triangle(const oit_partfile_part_view *v, uint64_t t, oit_tri
 }
 
 /* The part's triangles into dst; the view, for what else the caller needs. */
-static oit_status expand_part(const oit_partfile *pf, uint32_t part, oit_triangle *dst,
-                              oit_partfile_part_view *v, oit_error *err)
+static oit_status expand_part(oit_partfile *pf, uint32_t part, oit_partfile_buffer *buf,
+                              oit_triangle *dst, oit_partfile_part_view *v, oit_error *err)
 {
-    oit_status s = oit_partfile_part_data(pf, part, v, err);
+    oit_status s = oit_partfile_part_load(pf, part, buf, v, err);
     if (s != OIT_OK)
         return s;
     for (uint64_t t = 0; t < v->index_count / 3; t++)
@@ -32,18 +32,18 @@ static oit_status expand_part(const oit_partfile *pf, uint32_t part, oit_triangl
     return OIT_OK;
 }
 
-oit_status oit_part_expand(const oit_partfile *pf, uint32_t part, oit_triangle *dst,
-                           oit_error *err)
+oit_status oit_part_expand(oit_partfile *pf, uint32_t part, oit_partfile_buffer *buf,
+                           oit_triangle *dst, oit_error *err)
 {
     oit_partfile_part_view v;
-    return expand_part(pf, part, dst, &v, err);
+    return expand_part(pf, part, buf, dst, &v, err);
 }
 
-oit_status oit_part_expand_sourced(const oit_partfile *pf, uint32_t part, void *dst,
-                                   oit_error *err)
+oit_status oit_part_expand_sourced(oit_partfile *pf, uint32_t part, oit_partfile_buffer *buf,
+                                   void *dst, oit_error *err)
 {
     oit_partfile_part_view v;
-    oit_status s = expand_part(pf, part, dst, &v, err);
+    oit_status s = expand_part(pf, part, buf, dst, &v, err);
     if (s != OIT_OK)
         return s;
     uint64_t n = v.index_count / 3;
@@ -82,26 +82,28 @@ static oit_status load_sorted_by_keys(oit_partfile *pf, oit_mesh *out, oit_error
 {
     uint32_t n = oit_partfile_part_count(pf);
     oit_partfile_part_view v;
+    oit_partfile_buffer buf = {0};
     oit_status s = OIT_OK;
     for (uint32_t p = 0; p < n && s == OIT_OK; p++) {
-        s = oit_partfile_validate_part(pf, p, err);
-        if (s == OIT_OK)
-            s = oit_part_expand(pf, p, out->tris + out->count, err);
+        s = oit_part_expand(pf, p, &buf, out->tris + out->count, err);
         out->count += (size_t)(oit_partfile_parts(pf)[p].index_count / 3);
     }
-    if (s != OIT_OK)
+    if (s != OIT_OK) {
+        oit_partfile_buffer_free(&buf);
         return s;
+    }
     size_t count = out->count;
     uint64_t *key = count <= UINT32_MAX ? malloc((count ? count : 1) * sizeof *key) : NULL;
     uint8_t *done = key ? calloc(count / 8 + 1, 1) : NULL;
     if (!done) {
         free(key);
+        oit_partfile_buffer_free(&buf);
         return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot sort %zu triangles by their "
                              "source indices", oit_partfile_name(pf), count);
     }
     size_t at = 0;
     for (uint32_t p = 0; p < n && s == OIT_OK; p++) {
-        s = oit_partfile_part_data(pf, p, &v, err);
+        s = oit_partfile_part_data(pf, p, &buf, &v, err);
         for (uint64_t t = 0; s == OIT_OK && t < v.index_count / 3; t++, at++)
             key[at] = (uint64_t)oit_partfile_source(&v, t) << 32 | at;
     }
@@ -125,6 +127,7 @@ static oit_status load_sorted_by_keys(oit_partfile *pf, oit_mesh *out, oit_error
     }
     free(key);
     free(done);
+    oit_partfile_buffer_free(&buf);
     return s;
 }
 
@@ -163,22 +166,22 @@ oit_status oit_partfile_load_mesh(oit_partfile *pf, oit_mesh *out, oit_error *er
                              (unsigned long long)sum.triangles_in);
     }
     oit_partfile_part_view v;
+    oit_partfile_buffer buf = {0};
     for (uint32_t p = 0; p < n && s == OIT_OK; p++) {
-        s = oit_partfile_validate_part(pf, p, err);
-        if (s == OIT_OK)
-            s = oit_partfile_part_data(pf, p, &v, err);
+        s = oit_partfile_part_load(pf, p, &buf, &v, err);
         for (uint64_t t = 0; s == OIT_OK && t < v.index_count / 3; t++)
             next[oit_partfile_source(&v, t) + 1]++;
     }
     for (uint64_t i = 1; s == OIT_OK && i <= sum.triangles_in; i++)
         next[i] += next[i - 1];
     for (uint32_t p = 0; p < n && s == OIT_OK; p++) {
-        s = oit_partfile_part_data(pf, p, &v, err);
+        s = oit_partfile_part_data(pf, p, &buf, &v, err);
         for (uint64_t t = 0; s == OIT_OK && t < v.index_count / 3; t++)
             expand_triangle(&v, t, &out->tris[next[oit_partfile_source(&v, t)]++]);
         out->count += (size_t)(parts[p].index_count / 3);
     }
     free(next);
+    oit_partfile_buffer_free(&buf);
     if (s != OIT_OK) {
         oit_mesh_free(out);
         return s;

@@ -14,11 +14,13 @@
 #include "oit/mesh.h"
 #include "oit/partfile.h"
 
-/* Writes the part's index_count / 3 triangles to dst; the part must pass
- * oit_partfile_part_data (validated). Parts without colour get rgba 255,
- * which the shading replaces with its defaults (oit_shading.attributes). */
-oit_status oit_part_expand(const oit_partfile *pf, uint32_t part, oit_triangle *dst,
-                           oit_error *err);
+/* Writes the part's index_count / 3 triangles to dst, decoding the part
+ * once into buf (oit_partfile_part_load: validated on its first use, so no
+ * separate oit_partfile_validate_part is needed). Parts without colour get
+ * rgba 255, which the shading replaces with its defaults
+ * (oit_shading.attributes). */
+oit_status oit_part_expand(oit_partfile *pf, uint32_t part, oit_partfile_buffer *buf,
+                           oit_triangle *dst, oit_error *err);
 
 /* Bytes oit_part_expand_sourced writes for a part of `triangles`: 48 a
  * triangle, then 4 a source index. */
@@ -30,8 +32,8 @@ static inline uint64_t oit_part_sourced_bytes(uint64_t triangles)
 /* The part as the GPU draws it from the streamer's ring and cache: its
  * triangles as oit_part_expand writes them at dst (16-byte aligned), then
  * their source indices (u32) at dst + 48 x triangles. */
-oit_status oit_part_expand_sourced(const oit_partfile *pf, uint32_t part, void *dst,
-                                   oit_error *err);
+oit_status oit_part_expand_sourced(oit_partfile *pf, uint32_t part, oit_partfile_buffer *buf,
+                                   void *dst, oit_error *err);
 
 /* Validates and expands every part into out (info: the file's bounds,
  * attributes and triangle count), ordered by source index, stably: the

@@ -24,6 +24,9 @@ typedef struct job {
 struct oit_reader {
     oit_partfile *pf;
     unsigned char *dst;
+    /* Where the reader thread decodes parts (only it touches it; the
+     * synchronous mode runs jobs on the submitting thread, one at a time). */
+    oit_partfile_buffer decoded;
     int threaded, started;
     pthread_t thread;
     pthread_mutex_t lock;
@@ -46,9 +49,9 @@ static oit_status run_job(oit_reader *r, job *j, uint64_t n)
 {
     for (uint32_t i = 0; i < j->count && !dropped(r, n); i++) {
         const oit_read_item *it = &j->items[i];
-        oit_status s = oit_partfile_validate_part(r->pf, it->part, &j->err);
-        if (s == OIT_OK)
-            s = oit_part_expand_sourced(r->pf, it->part, r->dst + it->offset, &j->err);
+        /* One decode a use: validated on the part's first (part_load). */
+        oit_status s = oit_part_expand_sourced(r->pf, it->part, &r->decoded,
+                                               r->dst + it->offset, &j->err);
         if (s != OIT_OK)
             return s;
     }
@@ -120,6 +123,7 @@ void oit_reader_destroy(oit_reader *r)
     pthread_cond_destroy(&r->done);
     pthread_cond_destroy(&r->work);
     pthread_mutex_destroy(&r->lock);
+    oit_partfile_buffer_free(&r->decoded);
     free(r);
 }
 

@@ -23,7 +23,8 @@ static void walk_part(const oit_partfile *pf, uint32_t i)
 {
     const oit_partfile_part *p = &oit_partfile_parts(pf)[i];
     oit_partfile_part_view v;
-    REQUIRE(oit_partfile_part_data(pf, i, &v, NULL) == OIT_OK);
+    oit_partfile_buffer buf = {0};
+    REQUIRE(oit_partfile_part_data(pf, i, &buf, &v, NULL) == OIT_OK);
     for (uint64_t j = 0; j < v.index_count; j++) {
         uint32_t x = oit_partfile_index(&v, j);
         REQUIRE(x < p->vertex_count);
@@ -38,6 +39,7 @@ static void walk_part(const oit_partfile *pf, uint32_t i)
     REQUIRE(oit_partfile_source_offset(p) + v.index_count / 3 * 4 == p->data_bytes);
     for (uint64_t t = 0; t < v.index_count / 3; t++)
         REQUIRE(oit_partfile_source(&v, t) < sum.triangles_in);
+    oit_partfile_buffer_free(&buf);
 }
 
 static void walk(const oit_partfile *pf)

@@ -8,7 +8,7 @@
 
 #include <string.h>
 
-/* Part i's blob checksum, stored in its PARTS record. */
+/* Part i's checksum of its stored streams, in its PARTS record. */
 static inline void reseal_part(uint8_t *buf, size_t size, uint32_t i)
 {
     pf_section parts;
@@ -18,9 +18,9 @@ static inline void reseal_part(uint8_t *buf, size_t size, uint32_t i)
     if (at + sizeof p > size)
         return;
     memcpy(&p, buf + at, sizeof p);
-    if (p.data_offset > size || p.data_bytes > size - p.data_offset)
+    if (p.data_offset > size || p.stored_bytes > size - p.data_offset)
         return;
-    p.data_crc = oit_crc32c(0, buf + p.data_offset, p.data_bytes);
+    p.data_crc = oit_crc32c(0, buf + p.data_offset, p.stored_bytes);
     memcpy(buf + at, &p, sizeof p);
 }
 

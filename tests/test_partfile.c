@@ -13,6 +13,7 @@
 
 #include "formats/checksum.h"
 #include "formats/partfile_layout.h"
+#include "tests/partfile_reencode.h"
 #include "tests/partfile_reseal.h"
 #include "test_check.h"
 #include "test_files.h"
@@ -210,12 +211,13 @@ static void scene_free(scene *s)
     }
 }
 
-static oit_status write_scene(const scene *s, const char *path, uint32_t align, oit_error *err)
+static oit_status write_scene_ordered(const scene *s, const char *path, uint32_t align,
+                                      oit_partfile_order order, oit_error *err)
 {
     oit_partfile_writer *w;
     oit_partfile_writer_desc wd = {.part_align = align, .source_name = "synthetic \"scene\"",
                                    .options = "-K 8", .attributes = OIT_ATTR_COLOR | OIT_ATTR_ALPHA,
-                                   .origin = {1e7, -2500000.5, 0.125}};
+                                   .origin = {1e7, -2500000.5, 0.125}, .order = order};
     oit_status st = oit_partfile_writer_create(path, &wd, &w, err);
     for (uint32_t i = 0; !st && i < s->nparts; i++) {
         const part_in *p = &s->parts[i];
@@ -238,13 +240,97 @@ static oit_status write_scene(const scene *s, const char *path, uint32_t align, 
     return oit_partfile_writer_finish(w, &stats, err);
 }
 
+static oit_status write_scene(const scene *s, const char *path, uint32_t align, oit_error *err)
+{
+    return write_scene_ordered(s, path, align, OIT_PARTFILE_ORDER_KEEP, err);
+}
+
 /* ---- round trip ------------------------------------------------------------- */
+
+/* A triangle as the renderer sees it: its three positions in order (the tie
+ * rule's plane starts at vertex 0), colours, and its source index. */
+typedef struct tri_key {
+    float pos[9];
+    uint8_t rgba[12];
+    uint32_t src;
+} tri_key;
+
+static int tri_key_cmp(const void *a, const void *b) { return memcmp(a, b, sizeof(tri_key)); }
+
+/* Vertex i's position at pos + i * stride, its colour at rgba + i * rgba_stride. */
+static tri_key key_of(const float *pos, size_t stride, const uint8_t *rgba, size_t rgba_stride,
+                      const uint32_t v[3], uint32_t src)
+{
+    tri_key k;
+    memset(&k, 0, sizeof k);
+    for (int c = 0; c < 3; c++) {
+        memcpy(k.pos + 3 * c, (const uint8_t *)pos + v[c] * stride, 12);
+        if (rgba)
+            memcpy(k.rgba + 4 * c, rgba + v[c] * rgba_stride, 4);
+    }
+    k.src = src;
+    return k;
+}
+
+/* Written with OIT_PARTFILE_ORDER_CACHE: each piece holds the same
+ * triangles (positions bit for bit, vertex order, colours, source index)
+ * as written, in whatever order. */
+static void check_cache_order(const char *tmp, const scene *s)
+{
+    char path[600];
+    snprintf(path, sizeof path, "%s/partfile_ordered.oitp", tmp);
+    oit_error err = {0};
+    CHECK(write_scene_ordered(s, path, 64, OIT_PARTFILE_ORDER_CACHE, &err) == OIT_OK, "%s",
+          err.message);
+    oit_partfile *pf = NULL;
+    CHECK(oit_partfile_open(path, NULL, &pf, &err) == OIT_OK, "%s", err.message);
+    if (!pf)
+        return;
+    oit_partfile_buffer buf = {0};
+    uint64_t differ = 0, moved = 0;
+    for (uint32_t i = 0; i < s->nparts; i++) {
+        const part_in *in = &s->parts[i];
+        oit_partfile_part_view v;
+        CHECK(oit_partfile_part_data(pf, i, &buf, &v, &err) == OIT_OK, "%s", err.message);
+        if (v.index_count != in->ni)
+            continue;
+        uint64_t n = in->ni / 3, first = 0;
+        tri_key *a = malloc(n * sizeof *a), *b = malloc(n * sizeof *b);
+        for (uint64_t t = 0; a && b && t < n; t++) {
+            uint32_t iv[3] = {in->idx[3 * t], in->idx[3 * t + 1], in->idx[3 * t + 2]};
+            uint32_t ov[3] = {oit_partfile_index(&v, 3 * t), oit_partfile_index(&v, 3 * t + 1),
+                              oit_partfile_index(&v, 3 * t + 2)};
+            a[t] = key_of(in->pos, 12, in->rgba, 4, iv, in->src[t]);
+            b[t] = key_of(v.positions, v.stride, v.rgba, v.stride, ov,
+                          oit_partfile_source(&v, t));
+            moved += memcmp(&a[t], &b[t], sizeof a[t]) != 0;
+        }
+        for (uint32_t k = 0; a && b && k < in->np; k++) {
+            uint64_t c = in->pieces[k].triangle_count;
+            qsort(a + first, c, sizeof *a, tri_key_cmp);
+            qsort(b + first, c, sizeof *b, tri_key_cmp);
+            differ += memcmp(a + first, b + first, c * sizeof *a) != 0;
+            first += c;
+        }
+        free(a);
+        free(b);
+    }
+    printf("  vertex-cache order: %llu triangles moved, %llu pieces with other triangles\n",
+           (unsigned long long)moved, (unsigned long long)differ);
+    CHECK(differ == 0, "cache order: %llu pieces hold other triangles than written",
+          (unsigned long long)differ);
+    CHECK(moved > 0, "cache order moved no triangle: the test would not see a lost source");
+    oit_partfile_buffer_free(&buf);
+    oit_partfile_close(pf);
+    remove(path);
+}
 
 static void check_part_bytes(const oit_partfile *pf, uint32_t i, const part_in *in)
 {
     oit_partfile_part_view v;
     oit_error err = {0};
-    CHECK(oit_partfile_part_data(pf, i, &v, &err) == OIT_OK, "%s", err.message);
+    oit_partfile_buffer buf = {0};
+    CHECK(oit_partfile_part_data(pf, i, &buf, &v, &err) == OIT_OK, "%s", err.message);
     uint64_t bad_pos = 0, bad_rgba = 0, bad_idx = 0;
     for (uint32_t j = 0; j < in->nv; j++) {
         const uint8_t *vert = (const uint8_t *)v.positions + (size_t)j * v.stride;
@@ -267,6 +353,7 @@ static void check_part_bytes(const oit_partfile *pf, uint32_t i, const part_in *
           (unsigned long long)v.index_count, (unsigned long long)in->ni);
     CHECK((in->rgba != NULL) == (v.rgba != NULL) && v.stride == (in->rgba ? 16u : 12u),
           "part %u: stride %u", i, v.stride);
+    oit_partfile_buffer_free(&buf);
 }
 
 static void check_part_record(const oit_partfile *pf, uint32_t i, const part_in *in,
@@ -500,51 +587,94 @@ static void corrupt_flips(corrupt_ctx *c, uint8_t *b)
 static void set_u32(uint8_t *b, size_t at, uint32_t v) { memcpy(b + at, &v, 4); }
 static void set_u64(uint8_t *b, size_t at, uint64_t v) { memcpy(b + at, &v, 8); }
 
-/* Edits an index of part `part` and reseals every checksum. */
+/* The good file with one decoded value of part `part` replaced (index i,
+ * or source index i when `source`), re-encoded and resealed
+ * (partfile_reencode.h), expected refused with needle. */
+static void corrupt_decoded(corrupt_ctx *c, uint32_t part, int source, uint64_t i,
+                            uint32_t value, const char *what, const char *needle)
+{
+    decoded_part d = {0};
+    CHECK(decode_part(c->good, part, &d) == 0, "%s: the good file's part %u does not decode",
+          what, part);
+    (source ? d.sources : d.indices)[i] = value;
+    size_t n = 0;
+    uint8_t *b = reencode_part(c->good, c->size, part, &d, &n);
+    decoded_part_free(&d);
+    CHECK(b != NULL, "%s: cannot re-encode part %u", what, part);
+    if (b)
+        expect_refused(c, what, b, n, needle);
+    free(b);
+}
+
+/* Edits an index of part `part`, re-encodes it and reseals every checksum. */
 static void corrupt_index(corrupt_ctx *c, uint8_t *b, uint32_t part, uint32_t value,
                           const char *needle)
 {
-    memcpy(b, c->good, c->size);
-    pf_section ps = get_section(b, PF_SEC_PARTS);
-    oit_partfile_part p;
-    memcpy(&p, b + ps.offset + part * sizeof p, sizeof p);
-    uint8_t *idx = b + p.data_offset + p.index_offset + 3 * (p.index_bits / 8);
-    if (p.index_bits == 16)
-        memcpy(idx, &(uint16_t){(uint16_t)value}, 2);
-    else
-        set_u32(idx, 0, value);
-    reseal_part(b, c->size, part);
-    reseal(b, c->size);
+    (void)b;
     char what[64];
     snprintf(what, sizeof what, "index %u in part %u, resealed", value, part);
-    expect_refused(c, what, b, c->size, needle);
+    corrupt_decoded(c, part, 0, 3, value, what, needle);
 }
 
-/* Edits the source index of triangle `tri` of part `part` and reseals
- * every checksum. */
+/* Edits the source index of triangle `tri` of part `part`, re-encodes it
+ * and reseals every checksum. */
 static void corrupt_source(corrupt_ctx *c, uint8_t *b, uint32_t part, uint32_t tri,
                            uint32_t value, const char *needle)
 {
-    memcpy(b, c->good, c->size);
-    pf_section ps = get_section(b, PF_SEC_PARTS);
-    oit_partfile_part p;
-    memcpy(&p, b + ps.offset + part * sizeof p, sizeof p);
-    set_u32(b, p.data_offset + oit_partfile_source_offset(&p) + 4 * (size_t)tri, value);
-    reseal_part(b, c->size, part);
-    reseal(b, c->size);
+    (void)b;
     char what[80];
     snprintf(what, sizeof what, "source index %u of part %u, resealed", value, part);
-    expect_refused(c, what, b, c->size, needle);
+    corrupt_decoded(c, part, 1, tri, value, what, needle);
+}
+
+/* Stored streams that do not decode, behind valid checksums: the
+ * vertex/index boundary moved by one byte, then garbage in the index
+ * stream. Refused (not read past, not crashed on) with a message naming
+ * the file and the part. */
+static void corrupt_streams(corrupt_ctx *c, uint8_t *b)
+{
+    pf_section ps = get_section(c->good, PF_SEC_PARTS);
+    size_t at = ps.offset + sizeof(oit_partfile_part); /* part 1 */
+    oit_partfile_part p;
+    memcpy(b, c->good, c->size);
+    memcpy(&p, b + at, sizeof p);
+    p.stored_vertex_bytes -= 1;
+    p.stored_index_bytes += 1;
+    memcpy(b + at, &p, sizeof p);
+    reseal_part(b, c->size, 1);
+    reseal(b, c->size);
+    expect_refused(c, "vertex stream one byte short, resealed", b, c->size,
+                   "part 1: the vertex stream does not decode");
+    memcpy(b, c->good, c->size);
+    memcpy(&p, b + at, sizeof p);
+    memset(b + p.data_offset + p.stored_vertex_bytes + 1, 0xff,
+           (size_t)(p.stored_index_bytes - 2));
+    reseal_part(b, c->size, 1);
+    reseal(b, c->size);
+    expect_refused(c, "index stream garbage, resealed", b, c->size, "part 1: ");
+    memcpy(b, c->good, c->size);
+    memcpy(&p, b + at, sizeof p);
+    p.stored_bytes += 1;
+    p.stored_source_bytes += 1;
+    memcpy(b + at, &p, sizeof p);
+    reseal_part(b, c->size, 1);
+    reseal(b, c->size);
+    expect_refused(c, "source stream one byte long, resealed", b, c->size,
+                   "part 1: the source index stream does not decode");
 }
 
 static void corrupt_semantics(corrupt_ctx *c, uint8_t *b)
 {
     memcpy(b, c->good, c->size);
-    set_u32(b, offsetof(pf_header, version), 5);
-    expect_refused(c, "version 5", b, c->size, "part file version 5, this build reads version 4");
+    set_u32(b, offsetof(pf_header, version), 6);
+    expect_refused(c, "version 6", b, c->size, "part file version 6, this build reads version 5");
     memcpy(b, c->good, c->size);
     set_u32(b, offsetof(pf_header, version), 0);
-    expect_refused(c, "version 0", b, c->size, "part file version 0, this build reads version 4");
+    expect_refused(c, "version 0", b, c->size, "part file version 0, this build reads version 5");
+    memcpy(b, c->good, c->size);
+    set_u32(b, offsetof(pf_header, version), 4);
+    expect_refused(c, "version 4", b, c->size,
+                   "part file version 4 stores its parts unencoded, this build reads version 5");
     for (uint32_t v = 1; v <= 3; v++) {
         memcpy(b, c->good, c->size);
         set_u32(b, offsetof(pf_header, version), v);
@@ -623,8 +753,9 @@ static void corrupt_semantics(corrupt_ctx *c, uint8_t *b)
     expect_refused(c, "cell names part 7 of 4", b, c->size, "part 7");
 }
 
-/* The last part's blob reaching past PART_DATA's end, its index count grown
- * to match and every checksum resealed: only the blob bounds can see it. */
+/* The last part's stored streams reaching past PART_DATA's end, its source
+ * stream grown to match and every checksum resealed: only the blob bounds
+ * can see it. */
 static void corrupt_blob_bounds(corrupt_ctx *c, uint8_t *b)
 {
     memcpy(b, c->good, c->size);
@@ -634,11 +765,9 @@ static void corrupt_blob_bounds(corrupt_ctx *c, uint8_t *b)
     oit_partfile_part p;
     size_t at = ps.offset + (size_t)(h.part_count - 1) * sizeof p;
     memcpy(&p, b + at, sizeof p);
-    uint64_t ib = p.index_bits / 8, slack = ds.offset + ds.size - (p.data_offset + p.data_bytes);
-    uint64_t grow = 3 * (slack / (3 * ib) + 1);
-    p.index_count += grow;
-    p.index_bytes += grow * ib;
-    p.data_bytes = oit_partfile_source_offset(&p) + p.index_count / 3 * 4;
+    uint64_t slack = ds.offset + ds.size - (p.data_offset + p.stored_bytes);
+    p.stored_source_bytes += slack + 1;
+    p.stored_bytes += slack + 1;
     memcpy(b + at, &p, sizeof p);
     reseal(b, c->size);
     expect_refused(c, "last blob past PART_DATA, resealed", b, c->size, "outside PART_DATA");
@@ -653,7 +782,7 @@ static void corrupt_deferred(corrupt_ctx *c, uint8_t *b)
     pf_section ps = get_section(b, PF_SEC_PARTS);
     oit_partfile_part p;
     memcpy(&p, b + ps.offset + sizeof p, sizeof p);
-    b[p.data_offset + p.data_bytes / 2] ^= 0x04;
+    b[p.data_offset + p.stored_bytes / 2] ^= 0x04;
     oit_partfile *pf = NULL;
     oit_error err = {0};
     oit_partfile_open_desc od = {.defer_part_data = true};
@@ -679,6 +808,7 @@ static void check_corruptions(const char *tmp, const uint8_t *good, size_t size)
     corrupt_flips(&c, b);
     corrupt_semantics(&c, b);
     corrupt_blob_bounds(&c, b);
+    corrupt_streams(&c, b);
     corrupt_deferred(&c, b);
     free(b);
     printf("  %d corrupt files refused\n", c.cases);
@@ -716,7 +846,7 @@ static void check_tool(const char *tmp, const char *good, const uint8_t *bytes, 
     static const char *keys[] = {"\"triangles\": 138956", "\"parts\": 4", "\"pieces\": 5",
                                  "\"slabs\": 2", "\"cells\": 8", "\"subgrid_depth\": 2",
                                  "\"bytes\": ", "\"layer_bound\": 4",
-                                 "\"attributes\": [\"color\", \"alpha\"]", "\"version\": 4",
+                                 "\"attributes\": [\"color\", \"alpha\"]", "\"version\": 5",
                                  "\"K\": 8"};
     for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
         CHECK(strstr(text, keys[i]), "--json lacks %s", keys[i]);
@@ -764,8 +894,10 @@ static void check_deferred(const char *path, const scene *s)
     if (!pf)
         return;
     oit_partfile_part_view v;
-    CHECK(oit_partfile_part_data(pf, 2, &v, &err) == OIT_ERR_ARGUMENT,
+    oit_partfile_buffer buf = {0};
+    CHECK(oit_partfile_part_data(pf, 2, &buf, &v, &err) == OIT_ERR_ARGUMENT,
           "deferred: part data before validation");
+    oit_partfile_buffer_free(&buf);
     CHECK(oit_partfile_validate_part(pf, 2, &err) == OIT_OK, "%s", err.message);
     check_part_bytes(pf, 2, &s->parts[2]);
     CHECK(oit_partfile_validate_part(pf, 4, &err) == OIT_ERR_ARGUMENT, "part 4 of 4");
@@ -870,6 +1002,7 @@ int main(int argc, char **argv)
     }
     oit_partfile_close(pf);
     check_deferred(a, &s);
+    check_cache_order(tmp, &s);
     if (ba)
         check_corruptions(tmp, ba, na);
     check_tool(tmp, a, ba, na);

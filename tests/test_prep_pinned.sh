@@ -18,10 +18,10 @@ FAILS=0
 fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
 
 # scheme mesh: triangles_out pieces_clustered pieces parts slabs cut_slabs wide_parts sha256 (first 16)
-PINNED="guaranteed fandisk.off 42372 2116 7346 1946 154 153 0 bd95ce5538f94f50
-guaranteed turbine.off 50634 4525 10425 2867 256 223 1 937e75e7dfa4658c
-fast fandisk.off 12946 0 1 1 0 0 0 aa4d0024ada229d2
-fast turbine.off 18460 0 1 1 0 0 0 8e3c11ae5c543860"
+PINNED="guaranteed fandisk.off 42372 2116 7346 1946 154 153 0 81d3631df0f23e69
+guaranteed turbine.off 50634 4525 10425 2867 256 223 1 3460a4a46b806ccb
+fast fandisk.off 12946 0 1 1 0 0 0 ed7114160e6d296a
+fast turbine.off 18460 0 1 1 0 0 0 97b921db072c2802"
 
 KEYS="triangles_out pieces_clustered pieces parts slabs cut_slabs wide_parts"
 figures() {

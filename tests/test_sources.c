@@ -135,9 +135,10 @@ int main(int argc, char **argv)
     double *shuffled = calloc(m.count ? m.count : 1, sizeof *shuffled);
     uint32_t *npieces = calloc(m.count ? m.count : 1, sizeof *npieces);
     uint64_t out_of_range = 0, unordered_parts = 0, pieces = 0;
+    oit_partfile_buffer buf = {0};
     for (uint32_t p = 0; p < oit_partfile_part_count(pf); p++) {
         oit_partfile_part_view v;
-        if (oit_partfile_part_data(pf, p, &v, &err)) {
+        if (oit_partfile_part_data(pf, p, &buf, &v, &err)) {
             fprintf(stderr, "%s\n", err.message);
             return 3;
         }
@@ -163,6 +164,7 @@ int main(int argc, char **argv)
         }
         unordered_parts += (uint64_t)unordered;
     }
+    oit_partfile_buffer_free(&buf);
     uint64_t wrong = 0, missing = 0, caught = 0, rounded = 0;
     double worst = 0;
     for (size_t i = 0; i < m.count; i++) {

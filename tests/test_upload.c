@@ -300,17 +300,19 @@ static void reader_alone(oit_partfile *pf)
     oit_error err = {0};
     /* What the GPU draws: the part's triangles as oit_part_expand gives them,
      * then its source indices as the file stores them. */
+    oit_partfile_buffer buf = {0};
     for (uint32_t p = 0; items && dst && want && p < n; p++) {
         uint64_t tris = parts[p].index_count / 3;
-        CHECK(oit_part_expand(pf, p, (oit_triangle *)(void *)(want + items[p].offset), &err) ==
-                  OIT_OK, "expand part %u: %s", p, err.message);
+        CHECK(oit_part_expand(pf, p, &buf, (oit_triangle *)(void *)(want + items[p].offset),
+                              &err) == OIT_OK, "expand part %u: %s", p, err.message);
         oit_partfile_part_view v;
-        CHECK(oit_partfile_part_data(pf, p, &v, &err) == OIT_OK, "%s", err.message);
+        CHECK(oit_partfile_part_data(pf, p, &buf, &v, &err) == OIT_OK, "%s", err.message);
         for (uint64_t t = 0; t < tris; t++) {
             uint32_t s = oit_partfile_source(&v, t);
             memcpy(want + items[p].offset + tris * sizeof(oit_triangle) + 4 * t, &s, 4);
         }
     }
+    oit_partfile_buffer_free(&buf);
     oit_reader *r = NULL;
     if (items && dst && want && oit_reader_create(pf, dst, 1, &r, &err) == OIT_OK) {
         CHECK(oit_reader_collect(r, &err) == OIT_ERR_ARGUMENT, "collect with no job succeeded");

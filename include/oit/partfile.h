@@ -19,7 +19,8 @@
  * vertex/index/source blobs are validated instead by oit_partfile_validate_part,
  * which the loader calls before it first uses a part; oit_partfile_part_data
  * refuses a part that has not passed it. The records returned below are
- * decoded copies; the vertex and index pointers point into the mapping.
+ * decoded copies; part data is stored encoded (version 5) and decoded into
+ * a caller's buffer (oit_partfile_part_data).
  *
  * The reader and writer need a little-endian host with IEEE-754 floats (the
  * file is little-endian and vertex data is handed to GL as stored).
@@ -38,11 +39,11 @@
 extern "C" {
 #endif
 
-#define OIT_PARTFILE_VERSION 4u
+#define OIT_PARTFILE_VERSION 5u
 /* The oldest version this build reads. Versions 1 to 3 store no source
- * triangle indices; they are refused with a message that says to convert
- * the model again. */
-#define OIT_PARTFILE_VERSION_MIN 4u
+ * triangle indices, version 4 stores its parts unencoded; all are refused
+ * with a message that says to convert the model again. */
+#define OIT_PARTFILE_VERSION_MIN 5u
 #define OIT_PARTFILE_NONE 0xFFFFFFFFu /* "no grid / no cell" in parent links */
 /* A part's layer bound is at most K, except for a wide part: where more than
  * K layers meet at one vertex no box separates them, so the part keeps its
@@ -69,16 +70,25 @@ typedef struct oit_partfile_part {
     uint32_t index_bits;    /* 16 or 32                                     */
     uint32_t vertex_count;
     uint64_t index_count;   /* 3 per triangle                               */
-    uint64_t data_offset;   /* file offset of the part's blob (aligned)     */
-    uint64_t data_bytes;    /* the blob: vertices, pad to 4, indices, pad to
-                               4, source indices (oit_partfile_source_offset) */
-    uint64_t vertex_offset; /* within the blob (0)                          */
+    uint64_t data_offset;   /* file offset of the part's stored (encoded)
+                               streams (aligned)                            */
+    uint64_t data_bytes;    /* the decoded blob: vertices, pad to 4, indices,
+                               pad to 4, source indices
+                               (oit_partfile_source_offset)                 */
+    uint64_t vertex_offset; /* within the decoded blob (0)                  */
     uint64_t vertex_bytes;
-    uint64_t index_offset;  /* within the blob                              */
+    uint64_t index_offset;  /* within the decoded blob                      */
     uint64_t index_bytes;
-    uint32_t data_crc;      /* CRC-32C of the blob                          */
+    uint32_t data_crc;      /* CRC-32C of the stored_bytes at data_offset   */
     uint32_t reserved;
-} oit_partfile_part; /* 112 bytes */
+    /* Version 5: the stored streams at data_offset, back to back
+     * (formats/partfile_codec.h): meshopt vertex codec, meshopt index
+     * sequence codec, delta-varint source indices. */
+    uint64_t stored_bytes;  /* their sum: one read                          */
+    uint64_t stored_vertex_bytes;
+    uint64_t stored_index_bytes;
+    uint64_t stored_source_bytes;
+} oit_partfile_part; /* 144 bytes */
 
 typedef struct oit_partfile_piece {
     float bounds_min[3];     /* of the piece's triangles, exactly      */
@@ -189,7 +199,7 @@ const oit_partfile_piece *oit_partfile_pieces(const oit_partfile *pf);
 oit_status oit_partfile_validate_part(oit_partfile *pf, uint32_t part, oit_error *err);
 
 typedef struct oit_partfile_part_view {
-    const void *blob;     /* data_bytes at data_offset: the one read      */
+    const void *blob;     /* the decoded blob, data_bytes (in the buffer) */
     const float *positions; /* vertex i at (const char*)positions + i*stride */
     const uint8_t *rgba;  /* NULL when the part stores no colour           */
     uint32_t stride;      /* 12, or 16 with rgba                          */
@@ -204,9 +214,25 @@ typedef struct oit_partfile_part_view {
     const void *sources;
 } oit_partfile_part_view;
 
-/* Fails with OIT_ERR_ARGUMENT for an index out of range, or for a part not
- * validated yet when the file was opened with defer_part_data. */
+/* Where parts are decoded to: grown as needed, reused across parts, so a
+ * loader decoding part after part allocates once. Zero-initialise; free
+ * with oit_partfile_buffer_free. One buffer holds one decoded part: a view
+ * lasts until the buffer is reused or freed. */
+typedef struct oit_partfile_buffer {
+    void *data;
+    size_t capacity;
+} oit_partfile_buffer;
+void oit_partfile_buffer_free(oit_partfile_buffer *buf);
+
+/* Decodes a validated part into buf and points the view at it. Fails with
+ * OIT_ERR_ARGUMENT for an index out of range, or for a part not validated
+ * yet when the file was opened with defer_part_data; OIT_ERR_NOMEM. */
 oit_status oit_partfile_part_data(const oit_partfile *pf, uint32_t part,
+                                  oit_partfile_buffer *buf, oit_partfile_part_view *out,
+                                  oit_error *err);
+/* oit_partfile_validate_part and oit_partfile_part_data in one decode: the
+ * loader's path (a part is decoded once a use, also on its first). */
+oit_status oit_partfile_part_load(oit_partfile *pf, uint32_t part, oit_partfile_buffer *buf,
                                   oit_partfile_part_view *out, oit_error *err);
 /* A hint that parts [first, first + count) will not be read for a while:
  * the pages of a mapped file that hold their data leave the process (they
@@ -266,6 +292,17 @@ const uint32_t *oit_partfile_slab_inside(const oit_partfile *pf, uint32_t slab,
 
 typedef struct oit_partfile_writer oit_partfile_writer;
 
+/* What the writer may reorder within a part before encoding it: smaller
+ * encoded streams (meshoptimizer), the same triangles. */
+typedef enum oit_partfile_order {
+    OIT_PARTFILE_ORDER_KEEP = 0, /* stored as given                          */
+    OIT_PARTFILE_ORDER_VERTICES, /* vertices renumbered in first-use order
+                                    (fetch order); triangles keep theirs     */
+    OIT_PARTFILE_ORDER_CACHE     /* (not used by oitprep: docs/part-file.md)
+                                    also each piece's triangles in vertex-
+                                    cache order, source indices with them    */
+} oit_partfile_order;
+
 typedef struct oit_partfile_writer_desc {
     uint32_t K;             /* layers per part; even, 2..1024; default 8      */
     uint32_t part_align;    /* blob alignment; power of two, 8..1 MiB;
@@ -280,6 +317,7 @@ typedef struct oit_partfile_writer_desc {
     bool measured_bounds;    /* sets OIT_PARTFILE_FLAG_MEASURED_BOUNDS: every
                                 part gives its layer_bound (1..64), not
                                 bounded by its pieces                        */
+    oit_partfile_order order; /* default OIT_PARTFILE_ORDER_KEEP            */
 } oit_partfile_writer_desc;
 
 /* Creates "<path>.tmp". desc may be NULL. */
