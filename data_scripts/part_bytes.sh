@@ -14,17 +14,13 @@
 # oitgen's scenes are that PLY already, so theirs is the file's size.
 # `oitgen instances --count 1` is no substitute: it adds a colour per copy.
 set -eu
+. "$(dirname "$0")/models.sh"
 bin=${1:-build/bin} out=${2:-bench/part-bytes-$(hostname).md}
 plants=${3:-100000 1000000 12000000}
 cache=${OIT_MESH_CACHE:-data_scripts/cache}
 work=$(mktemp -d) && trap 'rm -rf "$work"' EXIT
 
-models=""
-for m in bunny00.off armadillo.off refined_elephant.off ChineseDragon-10kv.off \
-         fandisk.off turbine.off Wuson.ply spider.obj Spider_binary.stl head.stl \
-         propeller.stl 2CylinderEngine.glb; do
-    [ -f "$cache/$m" ] && models="$models $cache/$m"
-done
+models="$(fetched_paths "$cache")"
 "$bin/oitgen" demo -o "$work/demo.ply" >/dev/null
 models="$models $work/demo.ply"
 for n in $plants; do
