@@ -627,6 +627,17 @@ static void corrupt_source(corrupt_ctx *c, uint8_t *b, uint32_t part, uint32_t t
     corrupt_decoded(c, part, 1, tri, value, what, needle);
 }
 
+/* Writes part 1's record p back at `at`, reseals, and expects a refusal. */
+static void expect_part_refused(corrupt_ctx *c, uint8_t *b, size_t at,
+                                const oit_partfile_part *p, const char *what,
+                                const char *want)
+{
+    memcpy(b + at, p, sizeof *p);
+    reseal_part(b, c->size, 1);
+    reseal(b, c->size);
+    expect_refused(c, what, b, c->size, want);
+}
+
 /* Stored streams that do not decode, behind valid checksums: the
  * vertex/index boundary moved by one byte, then garbage in the index
  * stream. Refused (not read past, not crashed on) with a message naming
@@ -640,27 +651,19 @@ static void corrupt_streams(corrupt_ctx *c, uint8_t *b)
     memcpy(&p, b + at, sizeof p);
     p.stored_vertex_bytes -= 1;
     p.stored_index_bytes += 1;
-    memcpy(b + at, &p, sizeof p);
-    reseal_part(b, c->size, 1);
-    reseal(b, c->size);
-    expect_refused(c, "vertex stream one byte short, resealed", b, c->size,
-                   "part 1: the vertex stream does not decode");
+    expect_part_refused(c, b, at, &p, "vertex stream one byte short, resealed",
+                        "part 1: the vertex stream does not decode");
     memcpy(b, c->good, c->size);
     memcpy(&p, b + at, sizeof p);
     memset(b + p.data_offset + p.stored_vertex_bytes + 1, 0xff,
            (size_t)(p.stored_index_bytes - 2));
-    reseal_part(b, c->size, 1);
-    reseal(b, c->size);
-    expect_refused(c, "index stream garbage, resealed", b, c->size, "part 1: ");
+    expect_part_refused(c, b, at, &p, "index stream garbage, resealed", "part 1: ");
     memcpy(b, c->good, c->size);
     memcpy(&p, b + at, sizeof p);
     p.stored_bytes += 1;
     p.stored_source_bytes += 1;
-    memcpy(b + at, &p, sizeof p);
-    reseal_part(b, c->size, 1);
-    reseal(b, c->size);
-    expect_refused(c, "source stream one byte long, resealed", b, c->size,
-                   "part 1: the source index stream does not decode");
+    expect_part_refused(c, b, at, &p, "source stream one byte long, resealed",
+                        "part 1: the source index stream does not decode");
 }
 
 static void corrupt_semantics(corrupt_ctx *c, uint8_t *b)
