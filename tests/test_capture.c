@@ -382,6 +382,49 @@ static void test_store_limit(oit_capture_kind kind, const char *name)
     oit_capture_destroy(c);
 }
 
+/* Early termination at E = 0.05 over 24 deep layers: in one batch nothing
+ * is saturated before it, so it keeps every fragment and the exact image;
+ * in 4 batches front to back the later ones drop the fragments of pixels
+ * the earlier saturated, and the image stays within E of the exact one. */
+static void test_epsilon_batches(oit_capture_kind kind, const char *name)
+{
+    oit_error err = {0};
+    oit_capture *c = NULL;
+    if (oit_capture_create(kind, 8, &c, &err) != OIT_OK) {
+        CHECK(0, "%s: capture: %s", name, err.message);
+        return;
+    }
+    quad_spec q[24];
+    deep_scene(q);
+    for (int i = 0; i < 24; i++)
+        q[i].rgba[3] = 200; /* saturates after a few layers */
+    oit_view v;
+    scene_view(&v, 48, 40, OIT_SHADING_TRANSPARENT);
+    int one[2] = {0, 24}, four[5] = {0, 6, 12, 18, 24};
+    oit_image ex = {0}, e1 = {0}, e4 = {0};
+    oit_frame_stats sx, s1, s4;
+    int ok = capture_scene(c, &v, q, one, 1, NULL, &ex, &sx);
+    oit_capture_set_epsilon(c, 0.05f);
+    ok = ok && capture_scene(c, &v, q, one, 1, NULL, &e1, &s1) &&
+         capture_scene(c, &v, q, four, 4, NULL, &e4, &s4);
+    if (ok) {
+        double d1 = image_diff(&e1, &ex), d4 = image_diff(&e4, &ex);
+        printf("epsilon %s: one batch %llu/%llu fragments (diff %.6f), four batches %llu "
+               "(diff %.6f)\n", name, (unsigned long long)s1.fragments,
+               (unsigned long long)sx.fragments, d1, (unsigned long long)s4.fragments, d4);
+        CHECK(s1.fragments == sx.fragments && d1 == 0.0,
+              "%s: a frame's first batch dropped fragments", name);
+        CHECK(s4.fragments < sx.fragments, "%s: later batches dropped nothing", name);
+        CHECK(d4 <= 0.05 + 1.0 / 255, "%s: %.6f from exact, over E", name, d4);
+    } else {
+        test_failures++;
+    }
+    oit_image_free(&ex);
+    oit_image_free(&e1);
+    oit_image_free(&e4);
+    oit_capture_destroy(c);
+}
+
 int main(void)
 {
     oit_error err = {0};
@@ -427,6 +470,8 @@ int main(void)
     test_firstk_all();
     test_store_limit(OIT_CAPTURE_COUNTED, "counted");
     test_store_limit(OIT_CAPTURE_FIRSTK, "first-k");
+    test_epsilon_batches(OIT_CAPTURE_ARRAY, "array");
+    test_epsilon_batches(OIT_CAPTURE_COUNTED, "counted");
     oit_gl_destroy(gl);
     printf("%s\n", test_failures ? "FAILED" : "ok");
     return test_failures != 0;
