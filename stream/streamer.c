@@ -524,7 +524,8 @@ static oit_status draw_pack(oit_streamer *s, const oit_packing *pk, uint32_t i,
         st = oit_capture_batch_layers(s->capture, (const oit_gpu_mesh *const *)s->views,
                                       (int)drawn, pk->rects[i], (int)pk->layers[i], err);
     }
-    if (st == OIT_OK && drawn > 0 && s->saturation)
+    /* No pack after the last one reads the tiles it would recompute. */
+    if (st == OIT_OK && drawn > 0 && s->saturation && i + 1 < pk->pack_count)
         st = oit_saturation_update(s->saturation, oit_capture_state_buffer(s->capture),
                                    pk->rects[i], err);
     oit_status rs = retire_region(s, pk, i, ss, st == OIT_OK ? err : NULL);
