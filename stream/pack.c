@@ -264,11 +264,16 @@ static int fits(const oit_packer *pk, uint32_t pack, uint32_t layers, uint64_t b
     return unbounded(pk) || (layers <= pk->K && pk->layers[pack] <= pk->K);
 }
 
+/* Front first's doubling stops at K * 2^12 layer bounds a tile, a cap no
+ * real pack reaches (so later packs are cut by bytes alone), well before
+ * K << i could overflow 32 bits. */
+#define FRONT_CAP_DOUBLINGS 12u
+
 /* Front first (pack.h): pack i's cap on the layer bounds a tile sums,
  * K * 2^i, so a pixel's front layers take a few packs whatever its depth. */
 static uint32_t front_cap(const oit_packer *pk, uint32_t pack)
 {
-    return pack >= 12 ? pk->K << 12 : pk->K << pack;
+    return pk->K << (pack < FRONT_CAP_DOUBLINGS ? pack : FRONT_CAP_DOUBLINGS);
 }
 
 /* The unbounded modes' own tile rule: only front first has one. */
