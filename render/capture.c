@@ -13,6 +13,7 @@
 #include "render/capture_stencil.h"
 #include "render/frag_glsl.h"
 #include "render/image.h"
+#include "render/rect.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -294,18 +295,14 @@ static void apply_epsilon(oit_capture *c, float e)
 static void gate_epsilon(oit_capture *c, const int r[4])
 {
     int *b = c->touched;
-    int apart = b[0] >= b[2] || r[2] <= b[0] || b[2] <= r[0] || r[3] <= b[1] || b[3] <= r[1];
-    float want = apart ? 0.0f : c->epsilon;
+    int first = b[0] >= b[2];
+    float want = first || !oit_rect_overlaps(b, r) ? 0.0f : c->epsilon;
     if (want != c->applied)
         apply_epsilon(c, want);
-    if (b[0] >= b[2]) {
+    if (first)
         memcpy(b, r, sizeof c->touched);
-        return;
-    }
-    b[0] = r[0] < b[0] ? r[0] : b[0];
-    b[1] = r[1] < b[1] ? r[1] : b[1];
-    b[2] = r[2] > b[2] ? r[2] : b[2];
-    b[3] = r[3] > b[3] ? r[3] : b[3];
+    else
+        oit_rect_grow(b, r);
 }
 
 static void set_uniforms(oit_capture *c)

@@ -2,6 +2,7 @@
  * reset by stamping tiles with the pack number instead of clearing it. */
 #include "stream/pack.h"
 
+#include "render/rect.h"
 #include "stream/part_triangles.h"
 #include "stream/schedule.h"
 
@@ -225,11 +226,6 @@ static int project_box(const oit_partfile_part *p, const box_projector *pr, int 
     return rect[2] > rect[0] && rect[3] > rect[1];
 }
 
-static int overlaps(const int a[4], const int b[4])
-{
-    return a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3];
-}
-
 /* Budget rule: adds the part's layers to its tiles if all stay <= cap. */
 static int tiles_take(oit_packer *pk, const int r[4], uint32_t layers, uint32_t cap)
 {
@@ -295,15 +291,7 @@ static int joins(oit_packer *pk, uint32_t pack, const int r[4], uint32_t layers,
         return tiles_take(pk, r, layers, tile_cap(pk, pack));
     if (unbounded(pk))
         return 1;
-    return !overlaps(pk->rects[pack], r);
-}
-
-static void grow_rect(int acc[4], const int r[4])
-{
-    acc[0] = r[0] < acc[0] ? r[0] : acc[0];
-    acc[1] = r[1] < acc[1] ? r[1] : acc[1];
-    acc[2] = r[2] > acc[2] ? r[2] : acc[2];
-    acc[3] = r[3] > acc[3] ? r[3] : acc[3];
+    return !oit_rect_overlaps(pk->rects[pack], r);
 }
 
 static void open_pack(oit_packer *pk, uint32_t pack, uint32_t first, uint32_t layers)
@@ -334,7 +322,7 @@ static uint32_t cull(oit_packer *pk, const oit_view *view, const uint32_t *order
 
 static void place(oit_packer *pk, uint32_t pack, uint32_t id, const int r[4])
 {
-    grow_rect(pk->rects[pack], r);
+    oit_rect_grow(pk->rects[pack], r);
     pk->bytes[pack] += oit_pack_part_bytes(&oit_partfile_parts(pk->pf)[id]);
     memcpy(pk->part_rects[pk->drawn], r, sizeof pk->part_rects[pk->drawn]);
     pk->parts[pk->drawn++] = id;
