@@ -16,3 +16,16 @@ fetched_paths() {
     done
     return 0
 }
+
+# generated_paths BIN WORK [N...]: writes `oitgen demo` to WORK/demo.ply and
+# one `oitgen plant --triangles N` to WORK/plantN.ply a size, and prints
+# their paths, space-separated; fails when oitgen does.
+generated_paths() {
+    _b=$1 _w=$2 && shift 2
+    "$_b/oitgen" demo -o "$_w/demo.ply" >/dev/null || return 1
+    printf ' %s' "$_w/demo.ply"
+    for _n in "$@"; do
+        "$_b/oitgen" plant --triangles "$_n" -o "$_w/plant$_n.ply" >/dev/null || return 1
+        printf ' %s' "$_w/plant$_n.ply"
+    done
+}

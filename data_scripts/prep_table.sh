@@ -15,12 +15,7 @@ cache=${OIT_MESH_CACHE:-data_scripts/cache}
 work=$(mktemp -d) && trap 'rm -rf "$work"' EXIT
 
 models="$(fetched_paths "$cache")"
-"$bin/oitgen" demo -o "$work/demo.ply" >/dev/null
-models="$models $work/demo.ply"
-for n in $plants; do
-    "$bin/oitgen" plant --triangles "$n" -o "$work/plant$n.ply" >/dev/null
-    models="$models $work/plant$n.ply"
-done
+models="$models$(generated_paths "$bin" "$work" $plants)"
 
 field() { sed -n "s/.*\"$1\": *\([-0-9.eE]*\).*/\1/p" "$2" | head -n 1; }
 

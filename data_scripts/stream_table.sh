@@ -18,12 +18,7 @@ cache=${OIT_MESH_CACHE:-data_scripts/cache}
 work=$(mktemp -d) && trap 'rm -rf "$work"' EXIT
 export EGL_PLATFORM=${EGL_PLATFORM:-surfaceless}
 
-"$bin/oitgen" demo -o "$work/demo.ply" >/dev/null
-models="$work/demo.ply"
-for n in $plants; do
-    "$bin/oitgen" plant --triangles "$n" -o "$work/plant$n.ply" >/dev/null
-    models="$models $work/plant$n.ply"
-done
+models="$(generated_paths "$bin" "$work" $plants)"
 models="$models$(fetched_paths "$cache")"
 
 # every value of a key in a stats file, frames 1.. (frame 0 left out)
