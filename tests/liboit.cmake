@@ -39,3 +39,8 @@ add_dependencies(test_liboit_depth test_streamer)
 set(liboit_depth_grid ${CMAKE_BINARY_DIR}/test-tmp/liboit_depth_grid.oitp)
 oit_add_test(NAME liboit_depth LABELS unit TIMEOUT 120
   COMMAND sh -c "$<TARGET_FILE:test_streamer> ${liboit_depth_grid} && $<TARGET_FILE:test_liboit_depth> ${liboit_depth_grid}")
+
+# The shared library's boundary: it exports include/oit/'s functions only.
+oit_add_test(NAME liboit_exports LABELS unit TIMEOUT 30
+  COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_liboit_exports.sh $<TARGET_FILE:oit>
+          ${CMAKE_SOURCE_DIR}/include/oit)
