@@ -1,5 +1,5 @@
 #!/bin/sh
-# The fast scheme (oitprep --scheme fast, issue 17) against seed 002's
+# The fast scheme (oitprep --scheme fast, issue 17) against Wang & Xie's
 # guaranteed scheme and DFB on the source mesh, per model: the demo, a 1M
 # plant and every fetched mesh in the cache. Per model, in one run with the
 # same views (an orbit of 4, elevation 20, each view rendered twice: the

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Why our part counts are far above seed 002's Table 2: a part's layer bound
+# Why our part counts are far above Wang & Xie's Table 2: a part's layer bound
 # is guaranteed (2 per convex piece, 1 per planar one), and exact convexity
 # on scanned or tessellated surfaces gives pieces of a few triangles. This
 # converts models at K = 8, 16 and 64 and sets each part count beside the

@@ -2,7 +2,7 @@
 # The seeds' experiments, rerun with this project's own tools (oitgen,
 # oitprep, oitbench), and set beside the papers' published figures:
 #
-#   seed 002 (Wang & Xie) Table 1  management schemes on the Dragon: parts,
+#   Wang & Xie Table 1  management schemes on the Dragon: parts,
 #                                  triangles, file size, preprocessing
 #                                  seconds, stream ms per frame
 #            Table 2               per model: triangles, averaged max
@@ -13,7 +13,7 @@
 #            thresholds: early termination as speed against error)
 #            Table 3               GPU memory at 20, 60 and 100 layers
 #                                  (oitgen quads), at the paper's 1024x1024
-#   seed 000 (Maule et al.) Table I  the bunny at 500, 800 and 1100 square
+#   Maule et al. Table I  the bunny at 500, 800 and 1100 square
 #            Fig. 5                synthetic quads: 1, 5, 10 layers at two
 #                                  coverages
 #            Fig. 7                1, 5 and 10 instances of the dragon
@@ -160,7 +160,7 @@ COMMON="--orbit $ORBIT --frames $FRAMES --warmup 1 --size $SIZE"
 EXACT=stream,dfb,pll,b3d,dp,ddp
 DFBPAPER=b3d,dfb,ppll4,pll
 
-# ---- seed 002, Table 1: management schemes --------------------------------
+# ---- Wang & Xie, Table 1: management schemes --------------------------------
 
 DRAGON="$CACHE/ChineseDragon-10kv.off"
 table1() {
@@ -175,7 +175,7 @@ table1() {
 }
 
 table1_md() {
-    echo "## Seed 002, Table 1: managing parts (the Dragon)"
+    echo "## Wang & Xie, Table 1: managing parts (the Dragon)"
     echo
     echo "Paper (Dragon, 871K triangles; Xeon E5620 2.4 GHz 8 cores, 8 GB, GeForce GTX 680"
     echo "2 GB; 1024x1024; storage excludes the vertex data):"
@@ -210,7 +210,7 @@ table1_md() {
     echo
 }
 
-# ---- seed 002, Table 2: models, transparent and translucent --------------
+# ---- Wang & Xie, Table 2: models, transparent and translucent --------------
 
 # name:input pairs; the plant stands in for the Powerplant at a size
 # llvmpipe renders in seconds
@@ -229,7 +229,7 @@ table2() {
 }
 
 table2_md() {
-    echo "## Seed 002, Table 2: models, transparent and translucent"
+    echo "## Wang & Xie, Table 2: models, transparent and translucent"
     echo
     echo "Paper (ms per frame, 1024x1024, averaged over many views; in brackets the"
     echo "speed-up of ours, (old - new) / new; same machine as Table 1):"
@@ -333,7 +333,7 @@ sweep_md() {
     echo
 }
 
-# ---- seed 002, Table 3: memory against layers ------------------------------
+# ---- Wang & Xie, Table 3: memory against layers ------------------------------
 
 table3() {
     for n in 20 60 100; do
@@ -345,7 +345,7 @@ table3() {
 }
 
 table3_md() {
-    echo "## Seed 002, Table 3: GPU memory against depth layers"
+    echo "## Wang & Xie, Table 3: GPU memory against depth layers"
     echo
     echo "Paper (MB, 1024x1024):"
     echo
@@ -385,7 +385,7 @@ table3_md() {
     echo
 }
 
-# ---- seed 000: Table I, Fig. 5, Fig. 7 --------------------------------------
+# ---- Maule et al.: Table I, Fig. 5, Fig. 7 --------------------------------------
 
 BUNNY="$CACHE/bunny00.off"
 seed000() {
@@ -411,7 +411,7 @@ seed000() {
 }
 
 seed000_md() {
-    echo "## Seed 000 (Dynamic Fragment Buffer)"
+    echo "## Maule et al. (Dynamic Fragment Buffer)"
     echo
     echo "Paper: Intel i7 980, GeForce GTX 580 (1.5 GB), Windows 7; frames per second."
     echo

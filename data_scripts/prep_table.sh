@@ -2,7 +2,7 @@
 # oitprep on every fetched model and on generated plants: the conversion
 # figures of issue 4 (triangles in/out, pieces before and after the kd clip,
 # parts, wide parts, seconds, peak RSS) and `oitprep verify` on each result,
-# written as a markdown table beside seed 002's Table 2.
+# written as a markdown table beside Wang & Xie's Table 2.
 #
 # Usage: data_scripts/prep_table.sh [BINDIR] [OUT.md] [PLANT_SIZES]
 #   PLANT_SIZES: triangle counts of `oitgen plant` scenes (default
@@ -69,7 +69,7 @@ cat >> "$out" <<'EOF'
 plantN: `oitgen plant --triangles N` (clash-free, about 100K triangles a
 24 m block; `--clashes allow` is the stress case and not in this table).
 
-Seed 002's Table 2 (its own decomposition, not checked against an exact
+Wang & Xie's Table 2 (its own decomposition, not checked against an exact
 oracle): 97K triangles gave 14 parts, 871K gave 36, 12.7M gave 2968.
 Why ours are 100-1000x more: a part's bound here is guaranteed (2 layers a
 convex piece), and exact convexity on scanned or tessellated surfaces gives

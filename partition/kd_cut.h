@@ -1,4 +1,4 @@
-/* Cutting planes for kd nodes: seed 002's slab (section 4.1) at thickness
+/* Cutting planes for kd nodes: Wang & Xie's slab (section 4.1) at thickness
  * zero, for nodes that neither an axis plane splits cleanly nor a
  * separating slab (kd_slab.h) parts.
  *

@@ -1,4 +1,4 @@
-/* Separating slabs for kd nodes (seed 002 section 4.2, kd.h).
+/* Separating slabs for kd nodes (Wang & Xie section 4.2, kd.h).
  *
  * A node of at most 2K layers whose pieces no axis plane separates without
  * cutting one (pipes and beams running diagonally past each other, two

@@ -13,7 +13,7 @@
  * direction, or from a perspective eye, may cross more triangles (a thin
  * feature missed by the grid, a fold seen edge-on in a direction we do not
  * sample), and a rasterizer may count a triangle that the centre test did
- * not. Seed 002's convex pieces give a guarantee (partition/kd.h); this is
+ * not. Wang & Xie's convex pieces give a guarantee (partition/kd.h); this is
  * an estimate of the part's depth complexity, cheap and deterministic. The
  * counted capture (render/capture_counted.h) needs no bound at all; the
  * K-slot packs take it as their layer budget, so there a pixel that gets

@@ -23,7 +23,7 @@ typedef struct oit_cell_params {
     uint32_t max_piece_triangles;
     uint32_t max_depth;
     oit_kd_slabs slabs;
-    /* 0: seed 002's guaranteed scheme (convex pieces, partition/kd.h); else
+    /* 0: Wang & Xie's guaranteed scheme (convex pieces, partition/kd.h); else
      * the fast scheme (partition/kd_fast.h) with parts of at most this many
      * triangles and no convex clustering. */
     uint32_t fast_part_triangles;

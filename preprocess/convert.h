@@ -18,7 +18,7 @@
 #include "oit/status.h"
 #include "partition/kd.h"
 
-/* How parts are formed and managed (seed 002, Table 1). */
+/* How parts are formed and managed (Wang & Xie, Table 1). */
 typedef enum oit_manage {
     OIT_MANAGE_GRID = 0,  /* a top grid of cells, each kd-subdivided into parts of
                              convex pieces (the default) */
@@ -36,7 +36,7 @@ typedef enum oit_scheme {
     OIT_SCHEME_FAST = 0,  /* the default: large parts of at most part_triangles
                              triangles, measured layer counts, no convexity
                              (partition/kd_fast.h); --manage grid only */
-    OIT_SCHEME_GUARANTEED /* seed 002: convex pieces, at most K layers a part
+    OIT_SCHEME_GUARANTEED /* Wang & Xie: convex pieces, at most K layers a part
                              (partition/kd.h), for the paper's comparisons */
 } oit_scheme;
 

@@ -83,7 +83,7 @@ static void usage(FILE *f)
           "                captures (first-k and counted packs) need no bound; --pack\n"
           "                disjoint|budget count any excess as overflow. The file is\n"
           "                flagged as of measured bounds.\n"
-          "                guaranteed: seed 002's scheme, for its comparisons: convex\n"
+          "                guaranteed: Wang & Xie's scheme, for its comparisons: convex\n"
           "                pieces (--max-piece-triangles T stops one at T triangles,\n"
           "                1..1073741824, default 4096) grouped into parts of at most K\n"
           "                layers (1 per planar piece, 2 per other); a node of at most 2K\n"
@@ -98,9 +98,9 @@ static void usage(FILE *f)
           "                separates them: that node becomes a wide part (bound up to 64,\n"
           "                streamed alone over smaller tiles; wide_parts in --stats); a\n"
           "                node of more than 64 layers is refused (exit 3). --manage\n"
-          "                (seed 002, Table 1): grid (default: the above); kd-parts: one\n"
-          "                kd-tree over the whole model's convex pieces, one part a leaf\n"
-          "                (--grid 1: one top cell an axis, or two where the bounds\n"
+          "                (Wang & Xie, Table 1): grid (default: the above); kd-parts:\n"
+          "                one kd-tree over the whole model's convex pieces, one part a\n"
+          "                leaf (--grid 1: one top cell an axis, or two where the bounds\n"
           "                straddle a power of two; in memory); kd-facets: one kd-tree\n"
           "                over single facets, leaves of at most K facets (no convex\n"
           "                pieces). --max-piece-triangles, --slabs and --manage other\n"
@@ -324,7 +324,7 @@ static int cmd_convert(int argc, char **argv)
     oit_convert_options_init(&o);
     o.progress = isatty(2);
     const char *stats = NULL;
-    /* Options only seed 002's scheme has: without --scheme they select it,
+    /* Options only Wang & Xie's scheme has: without --scheme they select it,
      * so its comparisons keep their command lines. */
     const char *guaranteed_only = NULL;
     int scheme_given = 0;

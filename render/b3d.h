@@ -1,4 +1,4 @@
-/* Fixed per-pixel arrays, exact: the basic A-buffer that seed 003 starts
+/* Fixed per-pixel arrays, exact: the basic A-buffer that Crassin starts
  * from ("B3D": a 3D block of width x height x L fragment slots). A count
  * pass adds up each pixel's fragments, a reduction finds the frame's most
  * (L), the slot array is sized to L layers for every pixel, a store pass

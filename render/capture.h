@@ -1,10 +1,10 @@
 /* Capture of one batch of geometry into a bounded K-fragment A-buffer, then
  * per-pixel sort and front-to-back composite into the frame's accumulation
- * (seed 004's transmittance formulation), restricted to the batch's screen
+ * (Vlcek et al.'s transmittance formulation), restricted to the batch's screen
  * rectangle. Two backends behind this one interface:
  *  - OIT_CAPTURE_ARRAY: K slots per pixel filled through an atomic counter;
  *    portable, and counts overflow exactly.
- *  - OIT_CAPTURE_STENCIL: stencil routing over K MSAA samples (seed 002);
+ *  - OIT_CAPTURE_STENCIL: stencil routing over K MSAA samples (Wang & Xie);
  *    only offered when a start-up self-test shows the driver routes per
  *    sample (it does not on llvmpipe, see DESIGN.md).
  * A pixel that receives more than K fragments in one batch counts once in

@@ -1,5 +1,5 @@
 /* The counted capture (OIT_CAPTURE_COUNTED, capture.h): a batch is captured
- * as DFB captures a frame (seed 000: count fragments per pixel, prefix-sum,
+ * as DFB captures a frame (Maule et al.: count fragments per pixel, prefix-sum,
  * store each at its pixel's offset, sort per pixel) and composited into the
  * state the frame carries across batches. No per-pixel layer limit: a batch
  * is bounded by its fragments instead, which a count pass measures before

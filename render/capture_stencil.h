@@ -1,4 +1,4 @@
-/* The render target of the stencil-routed capture (seed 002): K MSAA
+/* The render target of the stencil-routed capture (Wang & Xie): K MSAA
  * samples of packed fragments (rgba32ui) with a per-sample stencil that
  * routes the i-th fragment of a pixel into sample i. Internal to capture.c. */
 #ifndef OIT_RENDER_CAPTURE_STENCIL_H

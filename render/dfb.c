@@ -1,4 +1,4 @@
-/* Dynamic Fragment Buffer (dfb.h, seed 000). Four passes per frame:
+/* Dynamic Fragment Buffer (dfb.h, Maule et al.). Four passes per frame:
  * count (atomic per pixel), exclusive scan of the counts (scan_glsl.h),
  * store (each fragment at its pixel's offset, slot by atomic decrement of the
  * count), resolve (sort each pixel's segment and composite per shade.h).

@@ -1,4 +1,4 @@
-/* Dynamic Fragment Buffer (seed 000): count fragments per pixel, prefix-sum
+/* Dynamic Fragment Buffer (Maule et al.): count fragments per pixel, prefix-sum
  * the counts in a compute shader, store every fragment at its pixel's offset,
  * sort per pixel and composite. The fragment store is sized to the frame's
  * exact fragment count and grown when a frame needs more; nothing is ever

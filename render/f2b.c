@@ -61,7 +61,7 @@ static const char gather_cs[] =
     "    for (uint k = 0u; k < 3u; k++) sorted[3u * r + k] = verts[3u * i + k];\n"
     "}\n";
 
-/* Seed 004's shader: the test comes before any shading work. */
+/* Vlcek et al.'s shader: the test comes before any shading work. */
 static const char blend_fs[] =
     "layout(binding = 0) uniform sampler2D u_accum;\n"
     "uniform float u_threshold;\n"

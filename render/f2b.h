@@ -1,4 +1,4 @@
-/* Front-to-back blending with early fragment discarding (seed 004, Vlcek
+/* Front-to-back blending with early fragment discarding (Vlcek
  * et al. 2010). APPROXIMATE: exact only where its two conditions hold.
  *
  * The seed's method: draw the primitives front to back with premultiplied

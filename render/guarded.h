@@ -1,4 +1,4 @@
-/* Guarded OIT (seed 001, Petrescu et al.): per-pixel linked lists whose
+/* Guarded OIT (Petrescu et al.): per-pixel linked lists whose
  * append culls fragments that cannot matter. APPROXIMATE for threshold > 0;
  * with threshold 0 nothing is culled and it is PLL, exact.
  *

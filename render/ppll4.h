@@ -1,4 +1,4 @@
-/* Paged per-pixel linked lists (seed 003, Crassin 2010), exact: pages of
+/* Paged per-pixel linked lists (Crassin 2010), exact: pages of
  * four fragment slots instead of single nodes, so one link and one atomic
  * allocation serve four fragments and a pixel's fragments sit together.
  *
@@ -8,7 +8,7 @@
  * claims the next slot with a compare-and-swap of that word; when the page
  * is full it first takes a new page from the global atomic page counter and
  * swaps in page * 4 + 0, linking the new page to the old one (pages are
- * chained newest first). Seed 003 guards this with a per-pixel critical
+ * chained newest first). Crassin guards this with a per-pixel critical
  * section; the swap is our choice instead because it is lock-free (no
  * fragment waits on another, which GPUs without independent thread
  * scheduling cannot promise) and gives the same layout. Its price: when two

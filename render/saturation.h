@@ -1,5 +1,5 @@
 /* Saturated screen tiles, for early termination that skips whole parts
- * (seed 002's per-pixel rule raised to parts, issue 6).
+ * (Wang & Xie's per-pixel rule raised to parts, issue 6).
  *
  * Per 16x16-pixel tile the grid holds the largest transmittance, over the
  * tile's pixels and the three channels, that the frame's state buffer

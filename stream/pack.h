@@ -1,4 +1,4 @@
-/* Cutting the per-view part order into packs (seed 002, 5.1): parts of the
+/* Cutting the per-view part order into packs (Wang & Xie, 5.1): parts of the
  * order drawn as one capture batch, earlier packs in front of later ones
  * along every ray. A K-slot pack is exact when no pixel can receive more
  * than K fragments from it, since the batch's per-pixel sort then orders its

@@ -1,6 +1,6 @@
 # Numerical hard cases (issue 8): each `oitgen hard --case` scene through
 # oitprep, verify and every exact method (tests/test_hard.sh), in the
-# default fast scheme (hard_CASE) and in seed 002's (hard_CASE_guaranteed).
+# default fast scheme (hard_CASE) and in Wang & Xie's (hard_CASE_guaranteed).
 foreach(case coplanar rings sticks moebius degenerate nearflat far tiny thin nonmanifold
         stack dense coplanar_tiny coplanar_far decal touching)
   oit_add_test(NAME hard_${case} LABELS integration TIMEOUT 240

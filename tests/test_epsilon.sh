@@ -109,7 +109,7 @@ done
 # blue while red keeps 0.96 a face: no pixel is saturated in every channel,
 # E = 0.05 may drop nothing, and the image must equal DFB's (PFM, per
 # channel). A test on the smallest channel instead of the largest drops
-# everything behind the first box and loses the red. Seed 002's scheme, so
+# everything behind the first box and loses the red. Wang & Xie's scheme, so
 # the boxes are many parts in many packs: fragments are dropped only from
 # the pack after a pixel saturates, and the fast scheme makes one part.
 awk 'BEGIN {

@@ -69,7 +69,7 @@ if [ "$NAME" = demo ]; then
         [ $rc = 2 ] && grep -q -- "${opt% *} applies to --scheme guaranteed only" "$T/err.txt" ||
             fail "--scheme fast $opt: exit $rc, $(cat "$T/err.txt")"
     done
-    # Without --scheme, seed 002's options select its scheme.
+    # Without --scheme, Wang & Xie's options select its scheme.
     "$P" "$IN" -o "$T/g.oitp" --slabs none --stats "$T/g.json" >/dev/null 2>&1 &&
         grep -q '"scheme": "guaranteed"' "$T/g.json" || fail "--slabs none did not select guaranteed"
     [ -f "$T/x.oitp" ] && fail "a refused conversion wrote $T/x.oitp"

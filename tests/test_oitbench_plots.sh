@@ -20,7 +20,7 @@ FAILS=0
 fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
 
 # part file of N quads beside its mesh: stream runs on the file, the other
-# methods on the mesh (found through the file's META). Seed 002's scheme:
+# methods on the mesh (found through the file's META). Wang & Xie's scheme:
 # its many small parts let early termination drop whole parts between
 # packs, where the fast scheme makes one part of the quads. 24 quads: the
 # first front-first pack (stream/pack.h) takes up to K = 8 layers a tile

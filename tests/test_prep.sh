@@ -1,6 +1,6 @@
 #!/bin/sh
 # oitprep end to end on a generated plant (oitgen plant, 10K triangles),
-# seed 002's guaranteed scheme unless said otherwise:
+# Wang & Xie's guaranteed scheme unless said otherwise:
 #   convert at --max-layers 16 with --stats (every documented key present,
 #   triangles conserved), `info` and `verify` (0 violations); the file is
 #   byte-identical for --threads 1/2 and under a --memory small enough to
@@ -16,7 +16,7 @@ set -u
 : "${OIT_BIN:?OIT_BIN must name the tools folder}"
 : "${OIT_TEST_TMP:?OIT_TEST_TMP must name a scratch folder}"
 P="$OIT_BIN/oitprep"
-# Seed 002's scheme, whose guarantees (layer bounds, slabs, wide parts) this
+# Wang & Xie's scheme, whose guarantees (layer bounds, slabs, wide parts) this
 # file checks; the default fast scheme has tests/test_fast_scheme.sh, and
 # here its determinism (b, c).
 GUAR="--scheme guaranteed"
@@ -211,7 +211,7 @@ grep -q "want all, separating or none" "$T/err.txt" || fail "--slabs some: $(cat
     [ "$(json_num max_layer_bound <"$T/saddle.off.json")" -gt 8 ] ||
     fail "saddle: no wide part (the star was split or refused)"
 
-# (g) the management schemes of seed 002's Table 1 on the plant: each is one
+# (g) the management schemes of Wang & Xie's Table 1 on the plant: each is one
 # kd-tree over the model (--grid 1: one top cell an axis, two where the
 # bounds straddle a power-of-two coordinate); kd-facets keeps no convex
 # piece of more than one triangle, so every part's bound is its facet count.

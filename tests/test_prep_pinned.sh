@@ -1,7 +1,7 @@
 #!/bin/sh
 # Pinned conversion figures of two CAD-like fetched meshes (fandisk.off,
 # turbine.off) with oitprep's defaults in each scheme (fast, the default, and
-# seed 002's guaranteed), with 1 and 2 threads: triangles out,
+# Wang & Xie's guaranteed), with 1 and 2 threads: triangles out,
 # clustered convex pieces, pieces after splitting, parts, slabs, cutting
 # planes, wide parts, and the part file's SHA-256. A change to clustering,
 # splitting or the kd that alters any of them fails here, also one that is

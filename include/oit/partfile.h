@@ -52,7 +52,7 @@ extern "C" {
 /* Header flag (version 3): the parts' layer bounds are measured (oitprep
  * --scheme fast, partition/layers_measured.h), not guaranteed. A part's
  * bound is then 1..OIT_PARTFILE_MAX_LAYERS whatever its pieces, and a ray
- * may meet more of its surfaces. Files without it are seed 002's guarantee.
+ * may meet more of its surfaces. Files without it are Wang & Xie's guarantee.
  * Builds before this flag refuse such a file (unknown flag), which is
  * right: they would take the bounds for guarantees. */
 #define OIT_PARTFILE_FLAG_MEASURED_BOUNDS 1u
