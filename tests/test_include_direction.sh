@@ -1,0 +1,44 @@
+#!/bin/sh
+# Dependencies point one way (docs/architecture.md): a folder includes only
+# headers of its own and of the folders below it. A lower folder that reaches
+# up fails here, naming the file and the include.
+# usage: test_include_direction.sh SOURCE_DIR
+set -eu
+cd "$1"
+status=0
+
+# folder: the folders whose headers it may include ("oit" is include/oit/)
+allowed() {
+    case $1 in
+    include/oit) echo "" ;;
+    formats) echo "oit formats" ;;
+    render) echo "oit formats render" ;;
+    scenes) echo "oit formats scenes" ;;
+    partition) echo "oit formats partition" ;;
+    preprocess) echo "oit formats partition preprocess stream/order.h" ;;
+    stream) echo "oit formats render partition preprocess stream" ;;
+    *) echo "?" ;;
+    esac
+}
+
+for dir in include/oit formats render scenes partition preprocess stream; do
+    ok=$(allowed "$dir")
+    for f in "$dir"/*.c "$dir"/*.h "$dir"/*.cpp; do
+        [ -f "$f" ] || continue
+        # quoted includes that name a folder: "render/dfb.h"
+        for inc in $(sed -n 's/^[[:space:]]*#[[:space:]]*include[[:space:]]*"\([a-z_]*\/[^"]*\)".*/\1/p' "$f"); do
+            top=${inc%%/*}
+            hit=0
+            for a in $ok; do
+                [ "$a" = "$top" ] && hit=1
+                [ "$a" = "$inc" ] && hit=1
+            done
+            if [ $hit = 0 ]; then
+                echo "FAIL: $f includes \"$inc\": $dir may include only: ${ok:-system headers and its own}" >&2
+                status=1
+            fi
+        done
+    done
+done
+[ $status = 0 ] && echo "ok: every folder includes only its own headers and those below it"
+exit $status
