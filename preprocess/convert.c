@@ -1,5 +1,6 @@
 /* The conversion pipeline (convert.h). */
 #include "preprocess/convert.h"
+#include "base/clock.h"
 
 #include <math.h>
 #include <pthread.h>
@@ -26,12 +27,6 @@
 #define FAST_TRIANGLES_PER_CELL 262144.0
 #define MAX_TOP_CELLS_PER_AXIS 1024u
 
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec + ts.tv_nsec * 1e-9;
-}
 
 /* ---- the top grid ------------------------------------------------------------ */
 
@@ -642,7 +637,7 @@ static oit_status convert_binned(const oit_convert_options *o, const oit_mesh_in
     if (s)
         return s;
     s = partition_and_write(r, w, info->attributes, st, err);
-    double t0 = now_s();
+    double t0 = (oit_time_ms() * 1e-3);
     if (!s)
         s = write_grids(w, r, err);
     if (!s) {
@@ -655,7 +650,7 @@ static oit_status convert_binned(const oit_convert_options *o, const oit_mesh_in
         s = oit_partfile_writer_finish(w, &ps, err);
     } else
         oit_partfile_writer_abort(w);
-    *t_write = now_s() - t0;
+    *t_write = (oit_time_ms() * 1e-3) - t0;
     return s;
 }
 
@@ -717,7 +712,7 @@ static oit_status convert_with(const oit_convert_options *o, oit_convert_stats *
 {
     st->threads = o->threads;
     st->K = o->K;
-    double t0 = now_s();
+    double t0 = (oit_time_ms() * 1e-3);
     oit_mesh_info info;
     oit_read_desc rd = {0};
     oit_progress pg;
@@ -726,7 +721,7 @@ static oit_status convert_with(const oit_convert_options *o, oit_convert_stats *
     oit_progress_end(&pg);
     if (s)
         return s;
-    double t1 = now_s();
+    double t1 = (oit_time_ms() * 1e-3);
     st->seconds_bounds = t1 - t0; /* the fast scheme's grid pass included */
     st->nonfinite_dropped = info.nonfinite_dropped;
     st->triangles_in = info.triangles + info.nonfinite_dropped;
@@ -737,7 +732,7 @@ static oit_status convert_with(const oit_convert_options *o, oit_convert_stats *
          * cross fewest clip less. */
         if ((s = fast_grid(o, &info, &r.grid, err)))
             return s;
-        t1 = now_s();
+        t1 = (oit_time_ms() * 1e-3);
         st->seconds_bounds = t1 - t0;
     } else if (info.triangles)
         choose_grid(info.bounds_min, info.bounds_max, info.triangles, o->grid,
@@ -754,7 +749,7 @@ static oit_status convert_with(const oit_convert_options *o, oit_convert_stats *
         s = oit_error_set(err, OIT_ERR_FORMAT, "%s: all %llu triangles are degenerate (no "
                           "plane): nothing to convert", o->input,
                           (unsigned long long)info.triangles);
-    double t2 = now_s();
+    double t2 = (oit_time_ms() * 1e-3);
     st->seconds_bin = t2 - t1;
     double t_write = 0;
     if (!s) {
@@ -776,9 +771,9 @@ static oit_status convert_with(const oit_convert_options *o, oit_convert_stats *
     free(r.res);
     oit_bins_destroy(r.bins);
     st->cells += st->subgrids * 2;
-    st->seconds_partition = now_s() - t2 - t_write;
+    st->seconds_partition = (oit_time_ms() * 1e-3) - t2 - t_write;
     st->seconds_write = t_write;
-    st->seconds_total = now_s() - t0;
+    st->seconds_total = (oit_time_ms() * 1e-3) - t0;
     struct rusage ru;
     if (getrusage(RUSAGE_SELF, &ru) == 0)
         st->peak_rss_bytes = (uint64_t)ru.ru_maxrss * 1024;

@@ -1,17 +1,12 @@
 /* Part decode throughput (decode_rate.h). */
 #include "preprocess/decode_rate.h"
+#include "base/clock.h"
 
 #include <string.h>
 #include <time.h>
 
 #include "oit/partfile.h"
 
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* One pass over every part: decode only, or (checked) the first use's
  * decode with every check on a file opened with deferred part data. */
@@ -25,11 +20,11 @@ static oit_status one_pass(const char *path, int checked, oit_partfile_buffer *b
         return st;
     uint32_t n = oit_partfile_part_count(pf);
     oit_partfile_part_view v;
-    double t0 = now_s();
+    double t0 = (oit_time_ms() * 1e-3);
     for (uint32_t p = 0; p < n && !st; p++)
         st = checked ? oit_partfile_part_load(pf, p, buf, &v, err)
                      : oit_partfile_part_data(pf, p, buf, &v, err);
-    *s = now_s() - t0;
+    *s = (oit_time_ms() * 1e-3) - t0;
     oit_partfile_close(pf);
     return st;
 }

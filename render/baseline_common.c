@@ -1,6 +1,7 @@
 /* Shared pieces of the baseline methods (baseline_common.h). */
 #include "render/baseline_common.h"
 
+#include "base/clock.h"
 #include "render/image.h"
 
 #include <stdio.h>

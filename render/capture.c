@@ -7,6 +7,7 @@
  * are flipped at the interface. */
 #include "render/capture.h"
 
+#include "base/clock.h"
 #include "render/capture_counted.h"
 #include "render/capture_firstk.h"
 #include "render/capture_glsl.h"

@@ -5,6 +5,7 @@
  * Buffers are in GL row order (bottom first); rows are flipped on readback. */
 #include "render/dfb.h"
 
+#include "base/clock.h"
 #include "render/frag_glsl.h"
 #include "render/image.h"
 #include "render/scan_glsl.h"

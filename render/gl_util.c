@@ -178,9 +178,3 @@ GLuint oit_gl_groups(uint64_t n, GLuint local)
     return (GLuint)((n + local - 1) / local);
 }
 
-double oit_time_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}

@@ -52,8 +52,6 @@ uint64_t oit_gl_ssbo_max_bytes(void);
 /* Workgroups of 'local' threads covering n items. */
 GLuint oit_gl_groups(uint64_t n, GLuint local);
 
-/* Milliseconds on a monotonic clock. */
-double oit_time_ms(void);
 
 #ifdef __cplusplus
 }

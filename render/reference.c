@@ -5,6 +5,7 @@
  * composited in double precision with shade.h. Rows are shared among
  * pthreads through an atomic row counter. */
 #include "render/reference.h"
+#include "base/clock.h"
 
 #include <embree3/rtcore.h>
 #include <math.h>
@@ -484,12 +485,6 @@ static int thread_count(const oit_reference_desc *desc, int rows)
     return (int)n;
 }
 
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
 
 /* Runs the row workers; returns 0 when a hit list could not grow. */
 static int run_workers(ref_job *job, int nthreads, oit_frame_stats *stats)
@@ -557,7 +552,7 @@ oit_status oit_reference_render(const oit_mesh *mesh, const oit_view *view,
                                 uint32_t *counts, oit_frame_stats *stats,
                                 oit_error *err)
 {
-    double t0 = now_ms();
+    double t0 = oit_time_ms();
     out->width = out->height = 0;
     out->rgba = NULL;
     ref_job job;
@@ -596,7 +591,7 @@ oit_status oit_reference_render(const oit_mesh *mesh, const oit_view *view,
         oit_image_free(out);
         return s;
     }
-    fs.ms = now_ms() - t0;
+    fs.ms = oit_time_ms() - t0;
     if (stats)
         *stats = fs;
     return OIT_OK;

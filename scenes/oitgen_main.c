@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "formats/paths.h"
+#include "base/clock.h"
 #include "formats/tool_signals.h"
 #include "formats/ply_writer.h"
 #include "scenes/scene.h"
@@ -223,12 +224,6 @@ static int parse_cli(cli *c, int argc, char **argv)
     return 0;
 }
 
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 typedef struct progress {
     uint64_t total;
@@ -238,7 +233,7 @@ typedef struct progress {
 static void show_progress(void *user, uint64_t triangles)
 {
     progress *p = user;
-    double t = now_s();
+    double t = (oit_time_ms() * 1e-3);
     if (t - p->last < 0.2)
         return;
     p->last = t;
@@ -262,7 +257,7 @@ static oit_status generate(const cli *c, oit_ply_writer_stats *st, oit_error *er
     if (s)
         return s;
     oit_emit e;
-    progress p = {c->scene->estimate ? c->scene->estimate(&c->args) : 0, now_s(), 0};
+    progress p = {c->scene->estimate ? c->scene->estimate(&c->args) : 0, (oit_time_ms() * 1e-3), 0};
     s = oit_emit_init(&e, w, err);
     if (!s && isatty(STDERR_FILENO)) {
         e.progress = show_progress;
@@ -293,7 +288,7 @@ int main(int argc, char **argv)
     int rc = parse_cli(&c, argc, argv);
     if (rc)
         return rc;
-    double t0 = now_s();
+    double t0 = (oit_time_ms() * 1e-3);
     oit_error err = {0};
     oit_ply_writer_stats st = {0};
     oit_status s = oit_output_check(c.output, "-o", &c.args.input, 1, &err);
@@ -307,6 +302,6 @@ int main(int argc, char **argv)
         return oit_status_exit_code(s);
     }
     printf("triangles %llu vertices %llu bytes %llu seconds %.3f\n", (unsigned long long)st.faces,
-           (unsigned long long)st.vertices, (unsigned long long)st.bytes, now_s() - t0);
+           (unsigned long long)st.vertices, (unsigned long long)st.bytes, (oit_time_ms() * 1e-3) - t0);
     return 0;
 }

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/clock.h"
 #include "formats/readers_internal.h"
 #include "render/capture_glsl.h"
 #include "render/dfb.h"

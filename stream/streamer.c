@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/clock.h"
 #include "render/gpu_mesh.h"
 #include "render/image.h"
 #include "render/opaque_tiles.h"

@@ -11,17 +11,18 @@ status=0
 allowed() {
     case $1 in
     include/oit) echo "" ;;
-    formats) echo "oit formats" ;;
-    render) echo "oit formats render" ;;
-    scenes) echo "oit formats scenes" ;;
-    partition) echo "oit formats partition" ;;
-    preprocess) echo "oit formats partition preprocess stream/order.h" ;;
-    stream) echo "oit formats render partition preprocess stream" ;;
+    base) echo "oit base" ;;
+    formats) echo "oit base formats" ;;
+    render) echo "oit base formats render" ;;
+    scenes) echo "oit base formats scenes" ;;
+    partition) echo "oit base formats partition" ;;
+    preprocess) echo "oit base formats partition preprocess stream/order.h" ;;
+    stream) echo "oit base formats render partition preprocess stream" ;;
     *) echo "?" ;;
     esac
 }
 
-for dir in include/oit formats render scenes partition preprocess stream; do
+for dir in include/oit base formats render scenes partition preprocess stream; do
     ok=$(allowed "$dir")
     for f in "$dir"/*.c "$dir"/*.h "$dir"/*.cpp; do
         [ -f "$f" ] || continue
