@@ -6,4 +6,7 @@
 /* Milliseconds since an arbitrary fixed point. */
 double oit_time_ms(void);
 
+/* The same clock in seconds. */
+double oit_time_s(void);
+
 #endif

@@ -9,7 +9,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "oit/mesh.h"
@@ -637,7 +636,7 @@ static oit_status convert_binned(const oit_convert_options *o, const oit_mesh_in
     if (s)
         return s;
     s = partition_and_write(r, w, info->attributes, st, err);
-    double t0 = (oit_time_ms() * 1e-3);
+    double t0 = oit_time_s();
     if (!s)
         s = write_grids(w, r, err);
     if (!s) {
@@ -650,7 +649,7 @@ static oit_status convert_binned(const oit_convert_options *o, const oit_mesh_in
         s = oit_partfile_writer_finish(w, &ps, err);
     } else
         oit_partfile_writer_abort(w);
-    *t_write = (oit_time_ms() * 1e-3) - t0;
+    *t_write = oit_time_s() - t0;
     return s;
 }
 
@@ -712,7 +711,7 @@ static oit_status convert_with(const oit_convert_options *o, oit_convert_stats *
 {
     st->threads = o->threads;
     st->K = o->K;
-    double t0 = (oit_time_ms() * 1e-3);
+    double t0 = oit_time_s();
     oit_mesh_info info;
     oit_read_desc rd = {0};
     oit_progress pg;
@@ -721,7 +720,7 @@ static oit_status convert_with(const oit_convert_options *o, oit_convert_stats *
     oit_progress_end(&pg);
     if (s)
         return s;
-    double t1 = (oit_time_ms() * 1e-3);
+    double t1 = oit_time_s();
     st->seconds_bounds = t1 - t0; /* the fast scheme's grid pass included */
     st->nonfinite_dropped = info.nonfinite_dropped;
     st->triangles_in = info.triangles + info.nonfinite_dropped;
@@ -732,7 +731,7 @@ static oit_status convert_with(const oit_convert_options *o, oit_convert_stats *
          * cross fewest clip less. */
         if ((s = fast_grid(o, &info, &r.grid, err)))
             return s;
-        t1 = (oit_time_ms() * 1e-3);
+        t1 = oit_time_s();
         st->seconds_bounds = t1 - t0;
     } else if (info.triangles)
         choose_grid(info.bounds_min, info.bounds_max, info.triangles, o->grid,
@@ -749,7 +748,7 @@ static oit_status convert_with(const oit_convert_options *o, oit_convert_stats *
         s = oit_error_set(err, OIT_ERR_FORMAT, "%s: all %llu triangles are degenerate (no "
                           "plane): nothing to convert", o->input,
                           (unsigned long long)info.triangles);
-    double t2 = (oit_time_ms() * 1e-3);
+    double t2 = oit_time_s();
     st->seconds_bin = t2 - t1;
     double t_write = 0;
     if (!s) {
@@ -771,9 +770,9 @@ static oit_status convert_with(const oit_convert_options *o, oit_convert_stats *
     free(r.res);
     oit_bins_destroy(r.bins);
     st->cells += st->subgrids * 2;
-    st->seconds_partition = (oit_time_ms() * 1e-3) - t2 - t_write;
+    st->seconds_partition = oit_time_s() - t2 - t_write;
     st->seconds_write = t_write;
-    st->seconds_total = (oit_time_ms() * 1e-3) - t0;
+    st->seconds_total = oit_time_s() - t0;
     struct rusage ru;
     if (getrusage(RUSAGE_SELF, &ru) == 0)
         st->peak_rss_bytes = (uint64_t)ru.ru_maxrss * 1024;

@@ -3,7 +3,6 @@
 #include "base/clock.h"
 
 #include <string.h>
-#include <time.h>
 
 #include "oit/partfile.h"
 
@@ -20,11 +19,11 @@ static oit_status one_pass(const char *path, int checked, oit_partfile_buffer *b
         return st;
     uint32_t n = oit_partfile_part_count(pf);
     oit_partfile_part_view v;
-    double t0 = (oit_time_ms() * 1e-3);
+    double t0 = oit_time_s();
     for (uint32_t p = 0; p < n && !st; p++)
         st = checked ? oit_partfile_part_load(pf, p, buf, &v, err)
                      : oit_partfile_part_data(pf, p, buf, &v, err);
-    *s = (oit_time_ms() * 1e-3) - t0;
+    *s = oit_time_s() - t0;
     oit_partfile_close(pf);
     return st;
 }

@@ -2,7 +2,6 @@
 #include "render/gl_util.h"
 
 #include <string.h>
-#include <time.h>
 
 static const char *gl_error_name(GLenum e)
 {

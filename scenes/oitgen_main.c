@@ -5,7 +5,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "formats/paths.h"
@@ -233,7 +232,7 @@ typedef struct progress {
 static void show_progress(void *user, uint64_t triangles)
 {
     progress *p = user;
-    double t = (oit_time_ms() * 1e-3);
+    double t = oit_time_s();
     if (t - p->last < 0.2)
         return;
     p->last = t;
@@ -257,7 +256,7 @@ static oit_status generate(const cli *c, oit_ply_writer_stats *st, oit_error *er
     if (s)
         return s;
     oit_emit e;
-    progress p = {c->scene->estimate ? c->scene->estimate(&c->args) : 0, (oit_time_ms() * 1e-3), 0};
+    progress p = {c->scene->estimate ? c->scene->estimate(&c->args) : 0, oit_time_s(), 0};
     s = oit_emit_init(&e, w, err);
     if (!s && isatty(STDERR_FILENO)) {
         e.progress = show_progress;
@@ -288,7 +287,7 @@ int main(int argc, char **argv)
     int rc = parse_cli(&c, argc, argv);
     if (rc)
         return rc;
-    double t0 = (oit_time_ms() * 1e-3);
+    double t0 = oit_time_s();
     oit_error err = {0};
     oit_ply_writer_stats st = {0};
     oit_status s = oit_output_check(c.output, "-o", &c.args.input, 1, &err);
@@ -302,6 +301,6 @@ int main(int argc, char **argv)
         return oit_status_exit_code(s);
     }
     printf("triangles %llu vertices %llu bytes %llu seconds %.3f\n", (unsigned long long)st.faces,
-           (unsigned long long)st.vertices, (unsigned long long)st.bytes, (oit_time_ms() * 1e-3) - t0);
+           (unsigned long long)st.vertices, (unsigned long long)st.bytes, oit_time_s() - t0);
     return 0;
 }
