@@ -1,9 +1,5 @@
 # tests for gltf (see CMakeLists.txt for oit_add_test / oit_add_test_exe / oit_add_fuzzer)
 
-# A tool, not a test: data_scripts/fetch_meshes.sh prints its figures.
-add_executable(oit_meshinfo oit_meshinfo.c)
-target_link_libraries(oit_meshinfo PRIVATE oit_formats)
-
 oit_add_test_exe(test_gltf SOURCES test_gltf.c LIBS oit_formats)
 oit_add_test(NAME gltf COMMAND test_gltf ${CMAKE_CURRENT_SOURCE_DIR}/corpus/gltf LABELS unit TIMEOUT 60)
 

@@ -12,10 +12,10 @@
 #include <string.h>
 
 #include "render/image.h"
-#include "stream/bench_csv.h"
-#include "stream/bench_plot.h"
-#include "stream/chart.h"
-#include "stream/text_overlay.h"
+#include "tools/oitbench/bench_csv.h"
+#include "tools/oitbench/bench_plot.h"
+#include "plot/chart.h"
+#include "plot/text_overlay.h"
 #include "test_check.h"
 
 static const float red[3] = {1.0f, 0.0f, 0.0f};

@@ -23,5 +23,5 @@ nm -D --defined-only "$lib" | awk '{print $NF}' | sed 's/@.*//' | sort -u > "$tm
 extra=$(comm -23 "$tmp/exported" "$tmp/public")
 [ -z "$extra" ] || fail "$lib exports $(echo "$extra" | wc -l) symbols not declared in $inc: $(echo $extra | cut -c1-400)"
 missing=$(comm -23 "$tmp/embedding" "$tmp/exported")
-[ -z "$missing" ] || fail "$lib does not export these functions of liboit.h/offscreen.h (add them to stream/liboit.map): $missing"
+[ -z "$missing" ] || fail "$lib does not export these functions of liboit.h/offscreen.h (add them to liboit/liboit.map): $missing"
 echo "ok: $lib exports $(wc -l < "$tmp/exported") functions, all declared in $inc"

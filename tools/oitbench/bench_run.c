@@ -1,0 +1,299 @@
+/* oitbench's measurement (bench_run.h). */
+#include "tools/oitbench/bench_run.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "render/gl_context.h"
+
+const char *oit_bench_geometry_label(oit_bench_geometry g)
+{
+    return g == OIT_BENCH_GEOMETRY_PART_FILE ? "part file (clipped)" : "source mesh";
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+double oit_bench_percentile(double *v, size_t n, double pct)
+{
+    qsort(v, n, sizeof *v, cmp_double);
+    size_t rank = (size_t)ceil(pct / 100.0 * (double)n);
+    return v[rank > 0 ? rank - 1 : 0];
+}
+
+/* Median and 95th percentile of n samples, without reordering them. */
+static void median_p95(const double *v, size_t n, double *median, double *p95)
+{
+    double *tmp = malloc(n * sizeof *tmp);
+    if (!tmp || n == 0) {
+        *median = *p95 = NAN;
+        free(tmp);
+        return;
+    }
+    memcpy(tmp, v, n * sizeof *tmp);
+    *median = oit_bench_percentile(tmp, n, 50.0);
+    *p95 = oit_bench_percentile(tmp, n, 95.0);
+    free(tmp);
+}
+
+/* view < 0: the method could not open. */
+static void mark_failed(oit_bench_method *m, int view, const char *msg)
+{
+    m->runnable = 0;
+    if (view < 0)
+        snprintf(m->reason, sizeof m->reason, "%s", msg);
+    else
+        snprintf(m->reason, sizeof m->reason, "view %d: %.480s", view, msg);
+}
+
+/* One GL context for all GL methods, made here so that they render in turn
+ * in the same context (each method's own headless context would not be
+ * current when another method rendered last). */
+static void open_methods(const oit_bench_desc *d, oit_bench_result *r, oit_gl **gl)
+{
+    oit_error err = {0};
+    int need_gl = 0;
+    for (int i = 0; i < r->method_count; i++)
+        need_gl |= r->methods[i].method->uses_gl;
+    oit_status gs = OIT_OK;
+    snprintf(r->renderer, sizeof r->renderer, "none (no GL method requested)");
+    if (need_gl && (gs = oit_gl_create(&(oit_gl_desc){0}, gl, &err)) == OIT_OK)
+        snprintf(r->renderer, sizeof r->renderer, "%s", oit_gl_renderer(*gl));
+    else if (need_gl)
+        snprintf(r->renderer, sizeof r->renderer, "none (no GL context: %.200s)", err.message);
+    oit_method_options opt = {.max_layers = d->max_layers, .partfile = d->partfile,
+                              .pack = OIT_PACK_AUTO, .gl = *gl};
+    for (int i = 0; i < r->method_count; i++) {
+        oit_bench_method *m = &r->methods[i];
+        m->runnable = 1;
+        opt.epsilon = m->epsilon;
+        if (m->method->uses_gl && gs != OIT_OK)
+            mark_failed(m, -1, r->renderer);
+        else if (m->method->needs_partfile && !d->partfile)
+            mark_failed(m, -1, "renders a part file (.oitp), and this run has none");
+        else if (m->method->open(d->mesh, &opt, &m->state, &err) != OIT_OK)
+            mark_failed(m, -1, err.message);
+    }
+}
+
+static oit_shading bench_shading(const oit_mesh_info *info, oit_shading_mode mode,
+                                 oit_colour_space space)
+{
+    oit_shading s = {0};
+    s.mode = mode;
+    s.colour_space = space;
+    s.attributes = info->attributes;
+    s.scene_scale = oit_scene_scale(info->bounds_min, info->bounds_max);
+    oit_shading_resolve_defaults(&s);
+    return s;
+}
+
+/* One frame of m; keeps the image in *keep when keep is non-NULL. */
+static oit_status render_frame(oit_bench_method *m, const oit_view *view, oit_frame_stats *st,
+                               oit_image *keep, oit_error *err)
+{
+    oit_image img = {0};
+    memset(st, 0, sizeof *st);
+    oit_status s = m->method->render(m->state, view, &img, NULL, NULL, st, err);
+    if (s == OIT_OK && m->method->stream_stats) {
+        uint64_t b = m->method->stream_stats(m->state)->gpu_bytes_peak;
+        st->gpu_bytes_peak = b > st->gpu_bytes_peak ? b : st->gpu_bytes_peak;
+    }
+    if (s == OIT_OK && keep) {
+        oit_image_free(keep);
+        *keep = img;
+    } else {
+        oit_image_free(&img);
+    }
+    return s;
+}
+
+static void record(oit_bench_method *m, oit_bench_cell *c, const oit_frame_stats *st)
+{
+    m->ms[m->ms_count++] = st->ms;
+    c->gpu_bytes_peak = st->gpu_bytes_peak > c->gpu_bytes_peak ? st->gpu_bytes_peak
+                                                                : c->gpu_bytes_peak;
+    c->max_layers = st->max_layers > c->max_layers ? st->max_layers : c->max_layers;
+    c->fragments = st->fragments;
+}
+
+/* Warm-up rounds, then timed rounds, every runnable method once per round. */
+static void measure_view(const oit_bench_desc *d, oit_bench_result *r, int v,
+                         const oit_view *view, oit_image *last)
+{
+    oit_error err = {0};
+    oit_frame_stats st;
+    size_t *first = calloc((size_t)r->method_count, sizeof *first);
+    for (int i = 0; first && i < r->method_count; i++)
+        first[i] = r->methods[i].ms_count;
+    for (int round = 0; round < d->warmup + d->frames; round++) {
+        int timed = round >= d->warmup;
+        for (int i = 0; i < r->method_count; i++) {
+            oit_bench_method *m = &r->methods[i];
+            if (!m->runnable)
+                continue;
+            if (render_frame(m, view, &st, timed ? &last[i] : NULL, &err) != OIT_OK)
+                mark_failed(m, v, err.message);
+            else if (timed)
+                record(m, &m->cells[v], &st);
+        }
+    }
+    for (int i = 0; first && i < r->method_count; i++) {
+        oit_bench_method *m = &r->methods[i];
+        oit_bench_cell *c = &m->cells[v];
+        c->ok = m->runnable;
+        if (c->ok)
+            median_p95(m->ms + first[i], m->ms_count - first[i], &c->ms_median, &c->ms_p95);
+    }
+    free(first);
+}
+
+static void compare_view(oit_bench_result *r, int v, const oit_image *ref, oit_image *last)
+{
+    oit_error err = {0};
+    for (int i = 0; i < r->method_count; i++) {
+        oit_bench_method *m = &r->methods[i];
+        oit_bench_cell *c = &m->cells[v];
+        if (c->ok && oit_image_compare(ref, &last[i], &c->diff, NULL, 1.0f, &err) != OIT_OK) {
+            c->ok = 0;
+            mark_failed(m, v, err.message);
+        }
+        oit_image_free(&last[i]);
+    }
+}
+
+static void print_view(FILE *f, const oit_bench_result *r, int v)
+{
+    if (!f)
+        return;
+    fprintf(f, "oitbench: view %d/%d: reference image %.1f ms", v + 1, r->views, r->ref_ms[v]);
+    for (int i = 0; i < r->method_count; i++) {
+        const oit_bench_method *m = &r->methods[i];
+        if (m->cells[v].ok)
+            fprintf(f, "; %s %.2f ms rmse %.3g", m->name, m->cells[v].ms_median,
+                    m->cells[v].diff.rmse);
+        else
+            fprintf(f, "; %s not run", m->name);
+    }
+    fprintf(f, "\n");
+}
+
+static void summarise(oit_bench_method *m, int views)
+{
+    int n = 0;
+    m->psnr_min = INFINITY;
+    for (int v = 0; v < views; v++) {
+        const oit_bench_cell *c = &m->cells[v];
+        if (!c->ok)
+            continue;
+        n++;
+        m->rmse_mean += c->diff.rmse;
+        m->max_abs_worst = fmax(m->max_abs_worst, c->diff.max_abs);
+        m->pct_over_worst = fmax(m->pct_over_worst, c->diff.pct_over_1_255);
+        m->psnr_min = fmin(m->psnr_min, c->diff.psnr);
+        m->gpu_bytes_peak = c->gpu_bytes_peak > m->gpu_bytes_peak ? c->gpu_bytes_peak
+                                                                   : m->gpu_bytes_peak;
+        m->max_layers = c->max_layers > m->max_layers ? c->max_layers : m->max_layers;
+    }
+    m->rmse_mean = n ? m->rmse_mean / n : NAN;
+    median_p95(m->ms, m->ms_count, &m->ms_median, &m->ms_p95);
+}
+
+static oit_status alloc_result(const oit_bench_desc *d, oit_bench_result *r, oit_error *err)
+{
+    memset(r, 0, sizeof *r);
+    r->method_count = d->entry_count;
+    r->views = d->views;
+    r->methods = calloc((size_t)d->entry_count, sizeof *r->methods);
+    r->ref_ms = calloc((size_t)d->views, sizeof *r->ref_ms);
+    r->ref_layers = calloc((size_t)d->views, sizeof *r->ref_layers);
+    int ok = r->methods && r->ref_ms && r->ref_layers;
+    for (int i = 0; ok && i < d->entry_count; i++) {
+        oit_bench_method *m = &r->methods[i];
+        m->method = oit_render_method_find(d->entries[i].method);
+        m->epsilon = d->entries[i].epsilon;
+        snprintf(m->name, sizeof m->name, "%s", d->entries[i].name);
+        int parts = m->method && m->method->needs_partfile;
+        m->geometry = parts ? OIT_BENCH_GEOMETRY_PART_FILE : d->mesh_geometry;
+        m->triangles = parts ? d->partfile_triangles : (uint64_t)d->mesh->count;
+        m->ms = malloc((size_t)d->views * (size_t)d->frames * sizeof *m->ms);
+        m->cells = calloc((size_t)d->views, sizeof *m->cells);
+        ok = m->method && m->ms && m->cells;
+    }
+    if (!ok)
+        return oit_error_set(err, OIT_ERR_NOMEM, "cannot allocate results for %d methods x %d "
+                             "views (or a method name is unknown)", d->entry_count, d->views);
+    return OIT_OK;
+}
+
+static oit_status run_views(const oit_bench_desc *d, oit_bench_result *r, oit_error *err)
+{
+    const oit_render_method *refm = oit_render_method_find("reference");
+    const oit_mesh *refmesh = d->reference_mesh ? d->reference_mesh : d->mesh;
+    oit_method_state *ref_state = NULL;
+    oit_image *last = calloc((size_t)r->method_count, sizeof *last);
+    oit_status s = last ? refm->open(refmesh, NULL, &ref_state, err)
+                        : oit_error_set(err, OIT_ERR_NOMEM, "cannot allocate image slots");
+    /* one view for every method, framed on the reference's mesh */
+    oit_view view = {.width = d->width, .height = d->height,
+                     .shading = bench_shading(&refmesh->info, d->shading, d->colour_space)};
+    for (int v = 0; v < d->views && s == OIT_OK; v++) {
+        oit_image ref = {0};
+        oit_frame_stats st = {0};
+        oit_camera_default(&view.camera, refmesh->info.bounds_min, refmesh->info.bounds_max,
+                           (float)(v * 360.0 / d->views), 20.0f);
+        s = refm->render(ref_state, &view, &ref, NULL, NULL, &st, err);
+        if (s != OIT_OK) {
+            oit_error_prefix(err, "reference");
+            break;
+        }
+        r->ref_ms[v] = st.ms;
+        r->ref_layers[v] = st.max_layers;
+        measure_view(d, r, v, &view, last);
+        compare_view(r, v, &ref, last);
+        oit_image_free(&ref);
+        print_view(d->progress, r, v);
+    }
+    if (ref_state)
+        refm->close(ref_state);
+    free(last);
+    return s;
+}
+
+oit_status oit_bench_run(const oit_bench_desc *d, oit_bench_result *r, oit_error *err)
+{
+    oit_gl *gl = NULL;
+    oit_status s = alloc_result(d, r, err);
+    if (s == OIT_OK) {
+        open_methods(d, r, &gl);
+        s = run_views(d, r, err);
+    }
+    for (int i = 0; s == OIT_OK && i < r->method_count; i++)
+        summarise(&r->methods[i], r->views);
+    /* GL objects go before the context they live in. */
+    for (int i = 0; r->methods && i < r->method_count; i++)
+        if (r->methods[i].state) {
+            r->methods[i].method->close(r->methods[i].state);
+            r->methods[i].state = NULL;
+        }
+    if (gl)
+        oit_gl_destroy(gl);
+    return s;
+}
+
+void oit_bench_result_free(oit_bench_result *r)
+{
+    for (int i = 0; r->methods && i < r->method_count; i++) {
+        free(r->methods[i].ms);
+        free(r->methods[i].cells);
+    }
+    free(r->methods);
+    free(r->ref_ms);
+    free(r->ref_layers);
+    memset(r, 0, sizeof *r);
+}

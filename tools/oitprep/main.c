@@ -1,0 +1,554 @@
+/* oitprep: converts models to part files and inspects and verifies them.
+ *
+ *   oitprep info FILE [--json]          validate FILE and print its summary
+ *   oitprep verify FILE [options]       check layer bounds and visibility order
+ *   oitprep parts FILE -o OUT.ply       the parts as a coloured PLY to look at
+ *   oitprep INPUT -o OUT [options]      convert a mesh (preprocess/convert.h)
+ *
+ * Exit codes follow DESIGN.md: 0 ok, 1 I/O, 2 usage, 3 bad input.
+ */
+#include "oit/mesh.h"
+#include "oit/partfile.h"
+#include "oit/status.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "tools/common/paths.h"
+#include "tools/common/signals.h"
+#include "preprocess/convert.h"
+#include "preprocess/decode_rate.h"
+#include "preprocess/stats_json.h"
+#include "preprocess/export_parts.h"
+#include "preprocess/verify.h"
+
+static void usage(FILE *f)
+{
+    fputs("usage: oitprep info FILE [--json] [--decode]\n"
+          "       oitprep verify FILE [--directions M] [--viewpoints V] [--chunk-triangles T]\n"
+          "       oitprep parts FILE -o OUT.ply [--colour part|kind] [--alpha A]\n"
+          "       oitprep INPUT -o OUT.oitp [--max-layers K] [--memory BYTES] [--threads N]\n"
+          "               [--stats FILE.json] [--grid N] [--max-piece-triangles T]\n"
+          "               [--manage grid|kd-parts|kd-facets] [--slabs all|separating|none]\n"
+          "               [--scheme fast|guaranteed] [--part-triangles T]\n"
+          "\n"
+          "  info FILE     validate a part file completely (header, checksums, every record\n"
+          "                and index) and print its counts; --json prints one JSON object\n"
+          "                (triangles, parts, pieces, slabs, cut_slabs, cells,\n"
+          "                subgrid_depth, bytes, layer_bound, attributes, version, K, ...);\n"
+          "                --decode also times decoding every part on one thread (best of\n"
+          "                3 passes), alone and with the first use's checks, in MB/s of\n"
+          "                decoded output\n"
+          "  verify FILE   cast rays through every part (Embree): parallel bundles from\n"
+          "                --directions M (0..100000, default 64) and rays from\n"
+          "                --viewpoints V (0..100000, default 16, the centre among them;\n"
+          "                M or V above 0);\n"
+          "                fails (exit 1) when a part yields more\n"
+          "                hits than its layer bound, parts are met out of the order\n"
+          "                stream/order.h computes for the ray's origin, or a slab's\n"
+          "                parts have a vertex on the wrong side of its planes (exact),\n"
+          "                or a source triangle the converter kept (not degenerate, finite)\n"
+          "                is the source index of no part triangle (a triangle lost).\n"
+          "                A file of measured bounds (--scheme fast) guarantees none: its\n"
+          "                hits over a part's bound are reported, not failed; order and\n"
+          "                slab violations and lost triangles fail it as for any file.\n"
+          "                The parts go into Embree scenes of at most --chunk-triangles T\n"
+          "                triangles\n"
+          "                (1..4G, default 4M, suffix K/M/G), built and cast one at a time:\n"
+          "                memory holds one scene (about 100 bytes a triangle)\n"
+          "  parts FILE    write FILE's parts as a PLY to look at (render it with oitstream):\n"
+          "                --colour part (default) gives each part a hue of its own; kind\n"
+          "                paints parts of axis splits grey, of separating slabs blue, of\n"
+          "                cutting planes orange, wide parts red. --alpha A (1..255) for\n"
+          "                every triangle, else the file's alpha\n"
+          "  INPUT -o OUT  convert a mesh (PLY, OBJ, OFF, STL, glTF/GLB) into a part file,\n"
+          "                out of core: the model is binned into a grid of top cells (--grid\n"
+          "                N along the longest axis, 1..1024, default: ~64K triangles a\n"
+          "                cell; cells are rounded to a power-of-two size) and each cell\n"
+          "                is subdivided into parts by a kd-tree, so that the parts are\n"
+          "                exactly ordered per view. Two schemes (--scheme):\n"
+          "                fast (default), built for streaming speed: a kd node stops\n"
+          "                splitting when it holds at most --part-triangles T triangles\n"
+          "                (1..16M, default 131072); triangles are clipped only where a\n"
+          "                tree plane crosses them and keep their source order within a\n"
+          "                part (depth ties resolve as in the source mesh). A part's layer\n"
+          "                bound is MEASURED, not guaranteed: the most triangles one line\n"
+          "                crosses among 64x64 parallel lines in each of 13 fixed\n"
+          "                directions (partition/layers_measured.h); a part measured above\n"
+          "                64 is split further (up to 12 levels), else stored as 64 and\n"
+          "                counted (clamped_parts in --stats). oitstream's default\n"
+          "                captures (first-k and counted packs) need no bound; --pack\n"
+          "                disjoint|budget count any excess as overflow. The file is\n"
+          "                flagged as of measured bounds.\n"
+          "                guaranteed: Wang & Xie's scheme, for its comparisons: convex\n"
+          "                pieces (--max-piece-triangles T stops one at T triangles,\n"
+          "                1..1073741824, default 4096) grouped into parts of at most K\n"
+          "                layers (1 per planar piece, 2 per other); a node of at most 2K\n"
+          "                layers that no axis plane splits without cutting may instead\n"
+          "                become two parts on either side of a slab: a separating one (a\n"
+          "                gap, any normal, nothing clipped), else a cutting plane (one of\n"
+          "                49 integer normals; it clips, seams exactly on the plane) when\n"
+          "                it crosses fewer triangles than the axis split or spares that\n"
+          "                split's further splits. --slabs all (default), separating (no\n"
+          "                cutting planes) or none (axis splits only): cut_slabs in\n"
+          "                --stats. Where more than K layers meet at one vertex no box\n"
+          "                separates them: that node becomes a wide part (bound up to 64,\n"
+          "                streamed alone over smaller tiles; wide_parts in --stats); a\n"
+          "                node of more than 64 layers is refused (exit 3). --manage\n"
+          "                (Wang & Xie, Table 1): grid (default: the above); kd-parts:\n"
+          "                one kd-tree over the whole model's convex pieces, one part a\n"
+          "                leaf (--grid 1: one top cell an axis, or two where the bounds\n"
+          "                straddle a power of two; in memory); kd-facets: one kd-tree\n"
+          "                over single facets, leaves of at most K facets (no convex\n"
+          "                pieces). --max-piece-triangles, --slabs and --manage other\n"
+          "                than grid select this scheme when --scheme is not given, and\n"
+          "                are usage errors with --scheme fast.\n"
+          "                Both: --max-layers K (even, 2..64, default 8: the capture's\n"
+          "                slots a pixel; above 16 the streamer captures parts over tiles),\n"
+          "                --memory BYTES for the binning (>= 64K, suffix K/M/G, default\n"
+          "                2G; beyond it bins spill to OUT.spill), --threads N (1..1024,\n"
+          "                default: all cores), --stats FILE.json figures. Clipping at kd\n"
+          "                planes adds triangles (split_added in --stats). The output is\n"
+          "                byte-identical for any --threads and --memory.\n"
+          "  -h, --help    this text\n"
+          "\n"
+          "exit: 0 ok, 1 runtime or I/O failure, 2 usage error, 3 bad input file\n",
+          f);
+}
+
+/* Writes s as a JSON string body; control bytes become \u escapes. */
+static void json_string(const char *s)
+{
+    putchar('"');
+    for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
+        if (*p == '"' || *p == '\\')
+            printf("\\%c", *p);
+        else if (*p < 0x20)
+            printf("\\u%04x", *p);
+        else
+            putchar(*p);
+    }
+    putchar('"');
+}
+
+static void print_json(const oit_partfile *pf, const oit_partfile_summary *s)
+{
+    printf("{\"file\": ");
+    json_string(oit_partfile_name(pf));
+    printf(", \"version\": %u, \"K\": %u, \"triangles\": %llu, \"triangles_in\": %llu, "
+           "\"triangles_dropped\": %llu, \"triangles_split\": %llu, \"parts\": %llu, "
+           "\"pieces\": %llu, \"slabs\": %llu, \"cut_slabs\": %llu, \"cells\": %llu, "
+           "\"subgrids\": %llu, "
+           "\"subgrid_depth\": %u, \"layer_bound\": %u, \"parts_index16\": %llu, "
+           "\"parts_index32\": %llu, \"bytes\": %llu, \"data_bytes\": %llu, "
+           "\"part_align\": %u, \"measured_bounds\": %s, \"attributes\": [",
+           s->version, s->K, (unsigned long long)s->triangles,
+           (unsigned long long)s->triangles_in, (unsigned long long)s->triangles_dropped,
+           (unsigned long long)s->triangles_split, (unsigned long long)s->parts,
+           (unsigned long long)s->pieces, (unsigned long long)s->slabs,
+           (unsigned long long)s->cut_slabs, (unsigned long long)s->cells, (unsigned long long)s->subgrids, s->subgrid_depth,
+           s->layer_bound, (unsigned long long)s->parts_index16,
+           (unsigned long long)s->parts_index32, (unsigned long long)s->bytes,
+           (unsigned long long)s->data_bytes, s->part_align,
+           s->measured_bounds ? "true" : "false");
+    const char *sep = "";
+    if (s->attributes & OIT_ATTR_COLOR) {
+        printf("\"color\"");
+        sep = ", ";
+    }
+    if (s->attributes & OIT_ATTR_ALPHA)
+        printf("%s\"alpha\"", sep);
+    printf("], \"bounds_min\": [%.9g, %.9g, %.9g], \"bounds_max\": [%.9g, %.9g, %.9g], "
+           "\"origin\": [%.17g, %.17g, %.17g], \"source\": ",
+           s->bounds_min[0], s->bounds_min[1], s->bounds_min[2], s->bounds_max[0],
+           s->bounds_max[1], s->bounds_max[2], s->origin[0], s->origin[1], s->origin[2]);
+    json_string(oit_partfile_source_name(pf));
+    printf("}\n");
+}
+
+static void print_human(const oit_partfile *pf, const oit_partfile_summary *s)
+{
+    const char *attr = s->attributes == (OIT_ATTR_COLOR | OIT_ATTR_ALPHA) ? "colour, alpha"
+                       : s->attributes & OIT_ATTR_COLOR                  ? "colour"
+                       : s->attributes & OIT_ATTR_ALPHA                  ? "alpha"
+                                                                         : "positions only";
+    printf("%s: part file version %u, K %u, source \"%s\"\n", oit_partfile_name(pf), s->version,
+           s->K, oit_partfile_source_name(pf));
+    printf("  triangles  %llu (read %llu, dropped %llu, added by splitting %llu)\n",
+           (unsigned long long)s->triangles, (unsigned long long)s->triangles_in,
+           (unsigned long long)s->triangles_dropped, (unsigned long long)s->triangles_split);
+    printf("  parts      %llu (16-bit indices %llu, 32-bit %llu), layer bound %u%s\n",
+           (unsigned long long)s->parts, (unsigned long long)s->parts_index16,
+           (unsigned long long)s->parts_index32, s->layer_bound,
+           s->measured_bounds ? " (measured, not guaranteed)" : "");
+    printf("  pieces     %llu\n", (unsigned long long)s->pieces);
+    printf("  cells      %llu (subgrids %llu, subgrid depth %u), slabs %llu (%llu cutting)\n",
+           (unsigned long long)s->cells, (unsigned long long)s->subgrids, s->subgrid_depth,
+           (unsigned long long)s->slabs, (unsigned long long)s->cut_slabs);
+    printf("  attributes %s\n", attr);
+    printf("  bytes      %llu (part data %llu, parts aligned to %u)\n",
+           (unsigned long long)s->bytes, (unsigned long long)s->data_bytes, s->part_align);
+    printf("  bounds     (%g %g %g) .. (%g %g %g)", s->bounds_min[0], s->bounds_min[1],
+           s->bounds_min[2], s->bounds_max[0], s->bounds_max[1], s->bounds_max[2]);
+    if (s->origin[0] || s->origin[1] || s->origin[2])
+        printf(" relative to origin (%.17g %.17g %.17g)", s->origin[0], s->origin[1], s->origin[2]);
+    printf("\n");
+}
+
+static int print_decode_rate(const char *path)
+{
+    oit_decode_rate r;
+    oit_error err = {0};
+    oit_status st = oit_measure_decode(path, 3, &r, &err);
+    if (st) {
+        fprintf(stderr, "oitprep: %s\n", err.message);
+        return oit_status_exit_code(st);
+    }
+    double mb = (double)r.decoded_bytes / 1e6;
+    printf("  decode     %llu parts, %llu stored bytes -> %llu decoded, one thread: %.1f ms "
+           "(%.0f MB/s), with the checks %.1f ms (%.0f MB/s)\n",
+           (unsigned long long)r.parts, (unsigned long long)r.stored_bytes,
+           (unsigned long long)r.decoded_bytes, 1e3 * r.decode_s,
+           r.decode_s > 0 ? mb / r.decode_s : 0.0, 1e3 * r.checked_s,
+           r.checked_s > 0 ? mb / r.checked_s : 0.0);
+    return 0;
+}
+
+static int cmd_info(int argc, char **argv)
+{
+    const char *path = NULL;
+    int json = 0, decode = 0;
+    for (int i = 2; i < argc; i++) {
+        if (strcmp(argv[i], "--json") == 0)
+            json = 1;
+        else if (strcmp(argv[i], "--decode") == 0)
+            decode = 1;
+        else if (argv[i][0] == '-' || path) {
+            fprintf(stderr, "oitprep info: unexpected argument '%s'\n", argv[i]);
+            return 2;
+        } else
+            path = argv[i];
+    }
+    if (!path) {
+        fprintf(stderr, "oitprep info: no FILE given (see oitprep --help)\n");
+        return 2;
+    }
+    if (json && decode) {
+        fprintf(stderr, "oitprep info: --decode prints a line of text, not JSON: give it "
+                "without --json\n");
+        return 2;
+    }
+    oit_partfile *pf = NULL;
+    oit_error err = {0};
+    oit_status st = oit_partfile_open(path, NULL, &pf, &err);
+    if (st) {
+        fprintf(stderr, "oitprep: %s\n", err.message);
+        return oit_status_exit_code(st);
+    }
+    oit_partfile_summary s;
+    oit_partfile_get_summary(pf, &s);
+    if (json)
+        print_json(pf, &s);
+    else
+        print_human(pf, &s);
+    oit_partfile_close(pf);
+    return decode ? print_decode_rate(path) : 0;
+}
+
+/* Parses an unsigned number with an optional K/M/G suffix (powers of 1024). */
+static int parse_size(const char *s, int suffixes, unsigned long long max, unsigned long long *out)
+{
+    char *end;
+    errno = 0;
+    unsigned long long v = strtoull(s, &end, 10);
+    if (errno || end == s || s[0] == '-')
+        return -1;
+    unsigned long long mul = 1;
+    if (suffixes && *end) {
+        mul = *end == 'K' || *end == 'k'   ? 1ull << 10
+              : *end == 'M' || *end == 'm' ? 1ull << 20
+              : *end == 'G' || *end == 'g' ? 1ull << 30
+                                           : 0;
+        end++;
+    }
+    if (*end || !mul || v > max / mul)
+        return -1;
+    *out = v * mul;
+    return 0;
+}
+
+static int option_value(int argc, char **argv, int *i, const char *name, int suffixes,
+                        unsigned long long lo, unsigned long long hi, unsigned long long *out)
+{
+    if (*i + 1 >= argc || parse_size(argv[*i + 1], suffixes, hi, out) || *out < lo) {
+        fprintf(stderr, "oitprep: %s needs a number in %llu..%llu\n", name, lo, hi);
+        return -1;
+    }
+    (*i)++;
+    return 0;
+}
+
+/* The index of the word after argv[*i] among names (NULL-terminated), or
+ * -1 with a message listing `want`. */
+static int option_choice(int argc, char **argv, int *i, const char *name,
+                         const char *const *names, const char *want)
+{
+    const char *m = *i + 1 < argc ? argv[++*i] : "";
+    for (int k = 0; names[k]; k++)
+        if (strcmp(m, names[k]) == 0)
+            return k;
+    fprintf(stderr, "oitprep: %s '%s': want %s\n", name, m, want);
+    return -1;
+}
+
+/* Before any work: neither output may be the input (or each other), and
+ * both must be creatable, so a typo never costs the model or the run. */
+static oit_status check_outputs(const char *input, const char *out, const char *stats,
+                                oit_error *err)
+{
+    const char *ins[2] = {input, out};
+    oit_status s = oit_output_check(out, "-o", ins, 1, err);
+    if (!s && stats && strcmp(stats, out) == 0)
+        s = oit_error_set(err, OIT_ERR_ARGUMENT, "%s: --stats and -o name the same file", stats);
+    if (!s && stats)
+        s = oit_output_check(stats, "--stats", ins, 2, err);
+    return s;
+}
+
+static int cmd_convert(int argc, char **argv)
+{
+    oit_convert_options o;
+    oit_convert_options_init(&o);
+    o.progress = isatty(2);
+    const char *stats = NULL;
+    /* Options only Wang & Xie's scheme has: without --scheme they select it,
+     * so its comparisons keep their command lines. */
+    const char *guaranteed_only = NULL;
+    int scheme_given = 0;
+    for (int i = 1; i < argc; i++) {
+        unsigned long long v;
+        const char *a = argv[i];
+        if (strcmp(a, "-o") == 0 && i + 1 < argc)
+            o.output = argv[++i];
+        else if (strcmp(a, "--stats") == 0 && i + 1 < argc)
+            stats = argv[++i];
+        else if (strcmp(a, "--max-layers") == 0) {
+            /* 64: the widest part the streamer captures (over tiles) */
+            if (i + 1 >= argc || parse_size(argv[i + 1], 0, 64, &v) || v < 2 || v % 2) {
+                fprintf(stderr, "oitprep: --max-layers '%s': must be even, 2..64\n",
+                        i + 1 < argc ? argv[i + 1] : "");
+                return 2;
+            }
+            i++;
+            o.K = (uint32_t)v;
+        } else if (strcmp(a, "--memory") == 0) {
+            if (option_value(argc, argv, &i, a, 1, 1 << 16, SIZE_MAX, &v))
+                return 2;
+            o.memory = (size_t)v;
+        } else if (strcmp(a, "--threads") == 0) {
+            if (option_value(argc, argv, &i, a, 0, 1, 1024, &v))
+                return 2;
+            o.threads = (uint32_t)v;
+        } else if (strcmp(a, "--grid") == 0) {
+            if (option_value(argc, argv, &i, a, 0, 1, 1024, &v))
+                return 2;
+            o.grid = (uint32_t)v;
+        } else if (strcmp(a, "--manage") == 0) {
+            static const char *const names[] = {"grid", "kd-parts", "kd-facets", NULL};
+            int k = option_choice(argc, argv, &i, a, names, "grid, kd-parts or kd-facets");
+            if (k < 0)
+                return 2;
+            o.manage = (oit_manage)k; /* in oit_manage's order */
+            if (o.manage != OIT_MANAGE_GRID)
+                guaranteed_only = a;
+        } else if (strcmp(a, "--slabs") == 0) {
+            static const char *const names[] = {"all", "separating", "none", NULL};
+            int k = option_choice(argc, argv, &i, a, names, "all, separating or none");
+            if (k < 0)
+                return 2;
+            o.slabs = (oit_kd_slabs)k; /* in oit_kd_slabs' order */
+            guaranteed_only = a;
+        } else if (strcmp(a, "--scheme") == 0) {
+            static const char *const names[] = {"fast", "guaranteed", NULL};
+            int k = option_choice(argc, argv, &i, a, names, "fast or guaranteed");
+            if (k < 0)
+                return 2;
+            o.scheme = (oit_scheme)k; /* in oit_scheme's order */
+            scheme_given = 1;
+        } else if (strcmp(a, "--part-triangles") == 0) {
+            if (option_value(argc, argv, &i, a, 1, 1, 1u << 24, &v))
+                return 2;
+            o.part_triangles = (uint32_t)v;
+        } else if (strcmp(a, "--max-piece-triangles") == 0) {
+            if (option_value(argc, argv, &i, a, 0, 1, 1u << 30, &v))
+                return 2;
+            o.max_piece_triangles = (uint32_t)v;
+            guaranteed_only = a;
+        } else if (a[0] == '-' || o.input) {
+            fprintf(stderr, "oitprep: unexpected argument '%s' (see oitprep --help)\n", a);
+            return 2;
+        } else
+            o.input = a;
+    }
+    if (!o.input || !o.output) {
+        fprintf(stderr, "oitprep: conversion needs INPUT and -o OUT (see oitprep --help)\n");
+        return 2;
+    }
+    if (guaranteed_only && !scheme_given)
+        o.scheme = OIT_SCHEME_GUARANTEED;
+    else if (guaranteed_only && o.scheme == OIT_SCHEME_FAST) {
+        fprintf(stderr, "oitprep: %s applies to --scheme guaranteed only (the fast scheme has "
+                "no convex pieces and no slabs)\n", guaranteed_only);
+        return 2;
+    }
+    oit_error err = {0};
+    oit_status s = check_outputs(o.input, o.output, stats, &err);
+    if (s) {
+        fprintf(stderr, "oitprep: %s\n", err.message);
+        return oit_status_exit_code(s);
+    }
+    static const char *const tmp[] = {".tmp", NULL}; /* partfile_write.c */
+    oit_tool_signals_install("oitprep", o.output, tmp);
+    oit_convert_stats st;
+    s = oit_convert(&o, &st, &err);
+    if (s) {
+        fprintf(stderr, "oitprep: %s\n", err.message);
+        return oit_status_exit_code(s);
+    }
+    if (o.scheme == OIT_SCHEME_FAST && st.clamped_parts)
+        fprintf(stderr, "oitprep: %s: %llu parts measured more than %u layers (most %u) after "
+                "every extra split; stored as %u\n", o.output,
+                (unsigned long long)st.clamped_parts, OIT_PARTFILE_MAX_LAYERS, st.max_measured,
+                OIT_PARTFILE_MAX_LAYERS);
+    fprintf(stderr,
+            "oitprep: %s: %llu triangles in, %llu out (dropped %llu degenerate, %llu non-finite; "
+            "split %+lld), %llu pieces, %llu parts, %llu cells, %.2f s\n",
+            o.output, (unsigned long long)st.triangles_in, (unsigned long long)st.triangles_out,
+            (unsigned long long)st.degenerate_dropped, (unsigned long long)st.nonfinite_dropped,
+            (long long)st.split_added, (unsigned long long)st.pieces,
+            (unsigned long long)st.parts, (unsigned long long)st.cells, st.seconds_total);
+    if (stats && (s = oit_convert_stats_write_json(stats, &o, &st, &err))) {
+        fprintf(stderr, "oitprep: %s\n", err.message);
+        return oit_status_exit_code(s);
+    }
+    return 0;
+}
+
+static int cmd_verify(int argc, char **argv)
+{
+    oit_verify_options o = {.directions = 64, .viewpoints = 16};
+    const char *path = NULL;
+    for (int i = 2; i < argc; i++) {
+        unsigned long long v;
+        if (strcmp(argv[i], "--directions") == 0) {
+            if (option_value(argc, argv, &i, argv[i], 0, 0, 100000, &v))
+                return 2;
+            o.directions = (uint32_t)v;
+        } else if (strcmp(argv[i], "--viewpoints") == 0) {
+            if (option_value(argc, argv, &i, argv[i], 0, 0, 100000, &v))
+                return 2;
+            o.viewpoints = (uint32_t)v;
+        } else if (strcmp(argv[i], "--chunk-triangles") == 0) {
+            if (option_value(argc, argv, &i, argv[i], 1, 1, 1ull << 32, &v))
+                return 2;
+            o.chunk_triangles = v;
+        } else if (argv[i][0] == '-' || path) {
+            fprintf(stderr, "oitprep verify: unexpected argument '%s'\n", argv[i]);
+            return 2;
+        } else
+            path = argv[i];
+    }
+    if (!path) {
+        fprintf(stderr, "oitprep verify: no FILE given (see oitprep --help)\n");
+        return 2;
+    }
+    if (o.directions == 0 && o.viewpoints == 0) { /* no ray: nothing verified */
+        fprintf(stderr, "oitprep verify: --directions 0 and --viewpoints 0 cast no ray; "
+                "give one of them above 0\n");
+        return 2;
+    }
+    oit_verify_report rep;
+    oit_error err = {0};
+    oit_status s = oit_verify(path, &o, &rep, &err);
+    if (s) {
+        fprintf(stderr, "oitprep: %s\n", err.message);
+        return oit_status_exit_code(s);
+    }
+    oit_verify_print(stdout, path, &rep);
+    return rep.layer_violations || rep.order_violations || rep.slab_violations ||
+                   rep.sources_lost
+               ? 1
+               : 0;
+}
+
+static int cmd_parts(int argc, char **argv)
+{
+    const char *path = NULL, *out = NULL;
+    oit_export_colour colour = OIT_EXPORT_BY_PART;
+    uint8_t alpha = 0;
+    for (int i = 2; i < argc; i++) {
+        unsigned long long v;
+        if (strcmp(argv[i], "-o") == 0 && i + 1 < argc)
+            out = argv[++i];
+        else if (strcmp(argv[i], "--colour") == 0 || strcmp(argv[i], "--color") == 0) {
+            static const char *const names[] = {"part", "kind", NULL};
+            int k = option_choice(argc, argv, &i, argv[i], names, "part or kind");
+            if (k < 0)
+                return 2;
+            colour = (oit_export_colour)k; /* in oit_export_colour's order */
+        } else if (strcmp(argv[i], "--alpha") == 0) {
+            if (option_value(argc, argv, &i, argv[i], 0, 1, 255, &v))
+                return 2;
+            alpha = (uint8_t)v;
+        } else if (argv[i][0] == '-' || path) {
+            fprintf(stderr, "oitprep parts: unexpected argument '%s'\n", argv[i]);
+            return 2;
+        } else
+            path = argv[i];
+    }
+    if (!path || !out) {
+        fprintf(stderr, "oitprep parts: needs FILE and -o OUT.ply (see oitprep --help)\n");
+        return 2;
+    }
+    oit_export_counts c;
+    oit_error err = {0};
+    oit_status s = oit_output_check(out, "-o", &path, 1, &err);
+    static const char *const tmp[] = {".tmp", ".faces.tmp", NULL}; /* write_ply.c */
+    if (!s)
+        oit_tool_signals_install("oitprep", out, tmp);
+    if (!s)
+        s = oit_export_parts(path, out, colour, alpha, &c, &err);
+    if (s) {
+        fprintf(stderr, "oitprep: %s\n", err.message);
+        return oit_status_exit_code(s);
+    }
+    printf("%s: %llu parts, %llu triangles (%llu parts of separating slabs, %llu of cutting "
+           "planes, %llu wide)\n", out, (unsigned long long)c.parts,
+           (unsigned long long)c.triangles, (unsigned long long)c.separating_parts,
+           (unsigned long long)c.cutting_parts, (unsigned long long)c.wide_parts);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return 2;
+    }
+    /* --help anywhere, after a subcommand too, prints the usage. */
+    for (int i = 1; i < argc; i++)
+        if (strcmp(argv[i], "-h") == 0 || strcmp(argv[i], "--help") == 0) {
+            usage(stdout);
+            return 0;
+        }
+    if (strcmp(argv[1], "info") == 0)
+        return cmd_info(argc, argv);
+    if (strcmp(argv[1], "verify") == 0)
+        return cmd_verify(argc, argv);
+    if (strcmp(argv[1], "parts") == 0)
+        return cmd_parts(argc, argv);
+    return cmd_convert(argc, argv);
+}

@@ -1,0 +1,456 @@
+/* oitstream option parsing (cli_args.h). */
+#include "tools/oitstream/cli_args.h"
+
+#include "stream/streamer.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int parse_float(const char *s, float *out)
+{
+    char *end;
+    double v = strtod(s, &end);
+    if (end == s || *end || !isfinite(v))
+        return 0;
+    *out = (float)v;
+    return 1;
+}
+
+static int parse_int(const char *s, int *out, int lo, int hi)
+{
+    char *end;
+    long v = strtol(s, &end, 10);
+    if (end == s || *end || v < lo || v > hi)
+        return 0;
+    *out = (int)v;
+    return 1;
+}
+
+static int parse_size(const char *s, int *w, int *h)
+{
+    char buf[64];
+    snprintf(buf, sizeof buf, "%s", s);
+    char *x = strchr(buf, 'x');
+    if (!x)
+        return 0;
+    *x = 0;
+    return parse_int(buf, w, 1, 16384) && parse_int(x + 1, h, 1, 16384);
+}
+
+static int parse_rgb(const char *s, float rgb[3])
+{
+    char *end;
+    const char *p = s;
+    for (int c = 0; c < 3; c++) {
+        double v = strtod(p, &end);
+        if (end == p || !isfinite(v) || v < 0.0 || v > 1.0)
+            return 0;
+        rgb[c] = (float)v;
+        if (c < 2 && *end != ',')
+            return 0;
+        p = end + 1;
+    }
+    if (*end)
+        return 0;
+    /* view.h reads all-zero as "default"; black is spelled negative. */
+    if (rgb[0] == 0.0f && rgb[1] == 0.0f && rgb[2] == 0.0f)
+        rgb[0] = rgb[1] = rgb[2] = -1.0f;
+    return 1;
+}
+
+/* Bytes with an optional K, M or G (binary) suffix. */
+static int parse_bytes(const char *s, unsigned long long *out)
+{
+    char *end;
+    double v = strtod(s, &end);
+    double unit = *end == 'K' ? 1024.0 : *end == 'M' ? 1048576.0 : *end == 'G' ? 1073741824.0 : 1.0;
+    if (unit > 1.0)
+        end++;
+    if (end == s || *end || !(v > 0.0) || v * unit > 1099511627776.0)
+        return 0;
+    *out = (unsigned long long)(v * unit);
+    return 1;
+}
+
+static oit_status bad(oit_error *err, const char *opt, const char *val, const char *want)
+{
+    return oit_error_set(err, OIT_ERR_ARGUMENT, "%s '%s': expected %s", opt, val ? val : "",
+                         want);
+}
+
+/* Options that take a value; returns 0 when opt is not one of them. */
+static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_status *s,
+                        oit_error *err)
+{
+    *s = OIT_OK;
+    if (!strcmp(opt, "--method")) a->method = v;
+    else if (!strcmp(opt, "--out")) a->out = v;
+    else if (!strcmp(opt, "--stats")) a->stats_path = v;
+    else if (!strcmp(opt, "--mask")) a->mask = v;
+    else if (!strcmp(opt, "--ambiguity")) a->ambiguity_out = v;
+    else if (!strcmp(opt, "--ambiguity-px")) {
+        char *end = NULL;
+        double px = strtod(v, &end);
+        if (end == v || *end || !(px > 0.0 && px <= 4.0))
+            *s = bad(err, opt, v, "a radius in pixels, in (0, 4]");
+        else
+            a->ambiguity_px = (float)px;
+    }
+    else if (!strcmp(opt, "--size")) {
+        if (!parse_size(v, &a->width, &a->height)) *s = bad(err, opt, v, "WxH, 1..16384");
+    } else if (!strcmp(opt, "--view")) {
+        int code = oit_camera_parse(&a->view, v, NULL);
+        if (code != 0)
+            *s = oit_error_set(err, OIT_ERR_ARGUMENT, "%s '%s': %s", opt, v,
+                               oit_camera_parse_error(code));
+        a->have_view = 1;
+        a->view_text = v;
+    } else if (!strcmp(opt, "--ortho")) {
+        char *end = NULL;
+        double h = strcmp(v, "fit") ? strtod(v, &end) : -1.0;
+        if (end && (end == v || *end || !(h > 0.0) || !isfinite(h)))
+            *s = bad(err, opt, v, "a view height > 0, or fit");
+        else
+            a->ortho = (float)h;
+    } else if (!strcmp(opt, "--azimuth")) {
+        if (!parse_float(v, &a->azimuth)) *s = bad(err, opt, v, "degrees");
+    } else if (!strcmp(opt, "--elevation")) {
+        if (!parse_float(v, &a->elevation) || fabsf(a->elevation) > 90.0f)
+            *s = bad(err, opt, v, "degrees in [-90, 90]");
+    } else if (!strcmp(opt, "--walk")) {
+        a->walk = v;
+    } else if (!strcmp(opt, "--orbit")) {
+        if (!parse_int(v, &a->orbit, 1, 100000)) *s = bad(err, opt, v, "a view count >= 1");
+    } else if (!strcmp(opt, "--shading")) {
+        if (!strcmp(v, "transparent")) a->shading.mode = OIT_SHADING_TRANSPARENT;
+        else if (!strcmp(v, "translucent")) a->shading.mode = OIT_SHADING_TRANSLUCENT;
+        else *s = bad(err, opt, v, "transparent or translucent");
+    } else if (!strcmp(opt, "--colour-space") || !strcmp(opt, "--color-space")) {
+        if (!strcmp(v, "srgb")) a->shading.colour_space = OIT_COLOUR_SRGB;
+        else if (!strcmp(v, "linear")) a->shading.colour_space = OIT_COLOUR_LINEAR;
+        else *s = bad(err, opt, v, "srgb or linear");
+    } else if (!strcmp(opt, "--alpha")) {
+        if (!parse_float(v, &a->shading.alpha) || !(a->shading.alpha > 0.0f) ||
+            a->shading.alpha > 1.0f)
+            *s = bad(err, opt, v, "a number in (0, 1]");
+    } else if (!strcmp(opt, "--absorption")) {
+        if (!parse_float(v, &a->shading.absorption) || !(a->shading.absorption > 0.0f))
+            *s = bad(err, opt, v, "a number > 0");
+    } else if (!strcmp(opt, "--background")) {
+        if (!parse_rgb(v, a->shading.background)) *s = bad(err, opt, v, "r,g,b in [0, 1]");
+    } else if (!strcmp(opt, "--max-layers")) {
+        if (!parse_int(v, &a->max_layers, 2, 16)) *s = bad(err, opt, v, "K in [2, 16]");
+    } else if (!strcmp(opt, "--show")) {
+        if (!strcmp(v, "layers")) a->show_layers = 1;
+        else if (strcmp(v, "colour") && strcmp(v, "color")) *s = bad(err, opt, v, "layers or colour");
+    } else if (!strcmp(opt, "--pack")) {
+        if (!strcmp(v, "auto")) a->pack = OIT_PACK_AUTO;
+        else if (!strcmp(v, "counted")) a->pack = OIT_PACK_COUNTED;
+        else if (!strcmp(v, "disjoint")) a->pack = OIT_PACK_DISJOINT;
+        else if (!strcmp(v, "budget")) a->pack = OIT_PACK_BUDGET;
+        else if (!strcmp(v, "first-k")) a->pack = OIT_PACK_FIRSTK;
+        else *s = bad(err, opt, v, "auto, counted, first-k, budget or disjoint");
+    } else if (!strcmp(opt, "--schedule")) {
+        if (!strcmp(v, "wave")) a->schedule_wave = 1;
+        else if (!strcmp(v, "tree")) a->schedule_wave = 0;
+        else *s = bad(err, opt, v, "wave or tree");
+    } else if (!strcmp(opt, "--upload-budget")) {
+        /* 0 is the default, as oit_renderer_desc.upload_budget = 0 is. */
+        if (!strcmp(v, "0"))
+            a->upload_budget = 0;
+        else if (!parse_bytes(v, &a->upload_budget) || a->upload_budget < 65536)
+            *s = bad(err, opt, v, "0 (default) or bytes >= 64K, with an optional K, M or G "
+                     "suffix");
+    } else if (!strcmp(opt, "--cache-budget")) {
+        /* As liboit's oit_renderer_desc.cache_budget: 0 is the default,
+         * "off" (OIT_RENDER_CACHE_OFF) no cache. */
+        if (!strcmp(v, "off"))
+            a->cache_budget = OIT_STREAM_CACHE_OFF;
+        else if (!strcmp(v, "0"))
+            a->cache_budget = 0;
+        else if (!parse_bytes(v, &a->cache_budget) || a->cache_budget < 65536)
+            *s = bad(err, opt, v, "off, 0 (default) or bytes >= 64K, with an optional K, M or "
+                     "G suffix");
+    } else if (!strcmp(opt, "--upload-threads")) {
+        if (!parse_int(v, &a->upload_threads, 0, 1)) *s = bad(err, opt, v, "0 or 1");
+    } else if (!strcmp(opt, "--slot-budget")) {
+        if (!parse_bytes(v, &a->slot_budget) || a->slot_budget < 65536)
+            *s = bad(err, opt, v, "bytes >= 64K, with an optional K, M or G suffix");
+    } else if (!strcmp(opt, "--epsilon")) {
+        if (!parse_float(v, &a->epsilon) || !(a->epsilon >= 0.0f) || !(a->epsilon < 1.0f))
+            *s = bad(err, opt, v, "a transmittance in [0, 1)");
+    } else if (!strcmp(opt, "--window-frames")) {
+        if (!parse_int(v, &a->window_frames, 1, 100000000)) *s = bad(err, opt, v, "a frame count >= 1");
+    } else if (!strcmp(opt, "--window-script")) a->window_script = v;
+    else if (!strcmp(opt, "--window-screenshot")) a->window_screenshot = v;
+    else if (!strcmp(opt, "--preview")) {
+        /* the values of oit_viewer_preview, in its order */
+        static const char *const names[] = {"auto", "lowres", "wboit", "unsorted", "off"};
+        int found = -1;
+        for (int i = 0; i < 5; i++)
+            if (!strcmp(v, names[i]))
+                found = i;
+        if (found < 0) *s = bad(err, opt, v, "auto, lowres, wboit, unsorted or off");
+        else a->preview = found;
+        a->have_preview = 1;
+    } else if (!strcmp(opt, "--still")) {
+        if (!parse_int(v, &a->still_ms, 1, 60000)) *s = bad(err, opt, v, "milliseconds, 1..60000");
+    } else if (!strcmp(opt, "--up")) {
+        if (!strcmp(v, "x")) a->up_axis = 0;
+        else if (!strcmp(v, "y")) a->up_axis = 1;
+        else if (!strcmp(v, "z")) a->up_axis = 2;
+        else *s = bad(err, opt, v, "x, y or z");
+    }
+    else if (!strcmp(opt, "--gain")) {
+        if (!parse_float(v, &a->gain) || !(a->gain > 0.0f)) *s = bad(err, opt, v, "a number > 0");
+    } else
+        return 0;
+    return 1;
+}
+
+static oit_status positional(oit_stream_args *a, const char *arg, oit_error *err)
+{
+    if (a->compare && !a->compare_a) a->compare_a = arg;
+    else if (a->compare && !a->compare_b) a->compare_b = arg;
+    else if (!a->compare && !a->model) a->model = arg;
+    else return oit_error_set(err, OIT_ERR_ARGUMENT, "unexpected argument '%s'", arg);
+    return OIT_OK;
+}
+
+static oit_status check_combination(const oit_stream_args *a, oit_error *err)
+{
+    if (a->help)
+        return OIT_OK;
+    if (a->compare && (!a->compare_a || !a->compare_b))
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "--compare needs two images");
+    if (!a->compare && !a->model)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "no model given (see --help)");
+    if ((a->window_frames || a->window_script || a->window_screenshot || a->no_overlay ||
+         a->have_preview || a->still_ms) &&
+        !a->window)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "--window-frames, --window-script, "
+                             "--window-screenshot, --no-overlay, --preview and --still need "
+                             "--window");
+    if (a->window && (a->orbit || a->out || a->ambiguity_out))
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "--window shows one interactive view: "
+                             "it excludes --orbit, --out and --ambiguity");
+    if (a->epsilon > 0.0f && a->method && strcmp(a->method, "stream") &&
+        strcmp(a->method, "f2b") && strcmp(a->method, "guarded") &&
+        strcmp(a->method, "reference"))
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "--epsilon is the early termination of "
+                             "--method stream, the threshold of f2b and guarded and what "
+                             "reference counts; method '%s' has none", a->method);
+    if ((a->have_view != 0) + (a->orbit != 0) + (a->walk != NULL) > 1)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "--view, --orbit and --walk exclude each "
+                             "other");
+    if (a->window && a->walk)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "--window shows one interactive view: it "
+                             "excludes --walk");
+    return OIT_OK;
+}
+
+oit_status oit_stream_args_parse(int argc, char **argv, oit_stream_args *a, oit_error *err)
+{
+    memset(a, 0, sizeof *a);
+    a->method = NULL;
+    a->width = a->height = 1024;
+    a->elevation = 20.0f;
+    a->gain = 1.0f;
+    a->max_layers = 0; /* the part file's K, else 16 */
+    a->epsilon = -1.0f; /* not given: each method's default */
+    a->upload_threads = 1;
+    a->up_axis = 1;
+    for (int i = 1; i < argc; i++) {
+        const char *arg = argv[i];
+        oit_status s = OIT_OK;
+        if (!strcmp(arg, "--help") || !strcmp(arg, "-h")) a->help = 1;
+        else if (!strcmp(arg, "--compare")) a->compare = 1;
+        else if (!strcmp(arg, "--json")) a->json = 1;
+        else if (!strcmp(arg, "--quiet")) a->quiet = 1;
+        else if (!strcmp(arg, "--window")) a->window = 1;
+        else if (!strcmp(arg, "--no-overlay")) a->no_overlay = 1;
+        else if (!strncmp(arg, "--", 2)) {
+            const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+            if (!value_option(a, arg, v ? v : "", &s, err))
+                return oit_error_set(err, OIT_ERR_ARGUMENT, "unknown option '%s' (see --help)", arg);
+            if (!v)
+                return oit_error_set(err, OIT_ERR_ARGUMENT, "%s needs a value", arg);
+            i++;
+        } else
+            s = positional(a, arg, err);
+        if (s != OIT_OK)
+            return s;
+    }
+    return check_combination(a, err);
+}
+
+void oit_stream_usage(FILE *f, const char *method_list)
+{
+    fprintf(f,
+        "usage: oitstream MODEL [options]\n"
+        "       oitstream --compare A B [--json] [--out DIFF.png] [--gain G]\n"
+        "\n"
+        "Renders MODEL (.ply .obj .off .stl .gltf .glb, or a part file .oitp made by\n"
+        "oitprep) with exact order-independent transparency and writes the image.\n"
+        "\n"
+        "  --method M          %s\n"
+        "                      (default: stream for a part file, dfb otherwise; the\n"
+        "                      others load a part file's triangles in core). Exact:\n"
+        "                      dfb, reference, array, stencil, stream, pll, ppll4 (paged\n"
+        "                      lists), b3d (fixed per-pixel arrays); dp and ddp (dual\n"
+        "                      depth peeling) without depth ties, ddp transparent only.\n"
+        "                      Approximate: guarded, f2b (see --epsilon), wboit,\n"
+        "                      unsorted\n"
+        "  --pack P            stream: counted (packs cut by upload bytes only, each\n"
+        "                      counted, stored and sorted per pixel as DFB does, with\n"
+        "                      no layer limit, halved while its fragments exceed the\n"
+        "                      slot budget or a quarter of them lie in pixels of more\n"
+        "                      than 32, which sort outside registers), or K slots a\n"
+        "                      pixel: disjoint (a part joins a pack while its screen\n"
+        "                      rectangle misses the pack's) or budget (the sum of the\n"
+        "                      layer bounds per 32x32 tile stays <= K; a pixel that\n"
+        "                      gets more loses them and counts as overflow), or\n"
+        "                      first-k (packs as counted, each drawn once into up to\n"
+        "                      K slots a pixel of its rectangle within --slot-budget\n"
+        "                      while every fragment is counted; only if some pixel got\n"
+        "                      more, the pack is drawn again for those pixels alone,\n"
+        "                      stored and sorted as counted does: exact, no limit;\n"
+        "                      --stats reports second_pass_pixels/_packs). auto\n"
+        "                      (default): first-k, switched to counted for the next\n"
+        "                      frames when more than 1 pixel in 50 took the second\n"
+        "                      pass (a deep view), first-k tried again every 8th\n"
+        "                      counted frame (--stats: auto_first_k), the same image\n"
+        "                      either way. With --epsilon, counted and first-k packs\n"
+        "                      are cut front first (pack i takes at most K*2^i layers\n"
+        "                      a 32x32 tile, so the front layers saturate pixels\n"
+        "                      before the parts behind are read) while a frame skips\n"
+        "                      parts; after one that skips none, plain packs, front\n"
+        "                      first tried again every 8th frame (--stats: front_first)\n"
+        "  --schedule S        stream: tree (default: packs of consecutive parts in the\n"
+        "                      management tree's depth-first order) or wave (packs\n"
+        "                      filled front to back across the whole screen, keeping\n"
+        "                      the order only between parts whose rectangles overlap:\n"
+        "                      fewer packs, larger resolve rectangles)\n"
+        "  --upload-budget B   stream: bytes of the upload ring, a persistently mapped\n"
+        "                      GPU buffer that a reader thread fills with the parts\n"
+        "                      of later packs while the GPU draws earlier ones; it\n"
+        "                      grows with what the frames read to at most B\n"
+        "                      (>= 64K, default 64M, never more than the file's parts\n"
+        "                      take; 0 also means the default); a pack never exceeds\n"
+        "                      it. A file within it and the cache budget is read once\n"
+        "                      into a ring of its size and drawn from there, with no\n"
+        "                      cache buffer\n"
+        "  --cache-budget B    stream: bytes of GPU memory that keep parts uploaded in\n"
+        "                      one frame for the next ones, drawn without reading or\n"
+        "                      uploading them again; it grows with the parts the\n"
+        "                      frames draw to at most B (>= 64K, default 256M, never\n"
+        "                      more than the file's parts take; 0 also means the\n"
+        "                      default, as in liboit; off: no cache; the default is\n"
+        "                      off when oitstream draws a single frame outside\n"
+        "                      --window: no later frame would draw from it)\n"
+        "  --upload-threads N  stream: 1 (default) reads parts on a thread of their\n"
+        "                      own; 0 reads them on the render thread, no overlap (0..1)\n"
+        "  --slot-budget B     stream: bytes of the K-fragment capture slots (>= 64K,\n"
+        "                      default 32M for disjoint and budget, 64M for counted,\n"
+        "                      first-k and auto), a larger frame captured in screen\n"
+        "                      tiles; for the counted capture, its fragment store\n"
+        "                      (packs split to fit);\n"
+        "                      for first-k, the slots of a pack's rectangle (K shrinks\n"
+        "                      to fit, a pack too wide for 2 is captured counted) and\n"
+        "                      its second pass's store (in bands of rows that fit)\n"
+        "  --epsilon E         in [0, 1). stream: drop fragments behind pixels whose\n"
+        "                      transmittance fell below E, and neither upload nor draw\n"
+        "                      parts whose whole footprint did (error <= E per channel;\n"
+        "                      default 0: exact); f2b: its alpha threshold, the same\n"
+        "                      test\n"
+        "                      (default 0.02); guarded: its contribution threshold\n"
+        "                      (default 0.0025); 0 discards nothing; reference: draws\n"
+        "                      the exact image and counts the fragments behind\n"
+        "                      pixels below E (--stats: fragments_saturated)\n"
+        "  --size WxH          image size, W and H in 1..16384 (default 1024x1024)\n"
+        "  --view ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy[,znear,zfar][:FIELD]...\n"
+        "                      camera; without it --azimuth/--elevation frame the model;\n"
+        "                      projection FIELDs: ortho=H (orthographic, H high; znear\n"
+        "                      may be <= 0), window=l,r,b,t (off-centre: the frustum's\n"
+        "                      sides at distance 1, or ortho's sides), far=inf\n"
+        "                      (infinite far plane)\n"
+        "  --ortho H|fit       orthographic, the view volume H high (fit: as high as the\n"
+        "                      perspective's frustum at the target), for any view\n"
+        "  --azimuth DEG       any angle (default 0)\n"
+        "  --elevation DEG     in [-90, 90] (default 20)\n"
+        "  --orbit N           N views around the model, 1..100000 (azimuth i*360/N,\n"
+        "                      elevation 20)\n"
+        "  --walk FILE         a camera path: one view a line in --view syntax (file\n"
+        "                      coordinates; # comments and blank lines skipped);\n"
+        "                      frames are written and reported as for --orbit\n"
+        "  --out PATH          FILE.png (8-bit sRGB) or FILE.pfm (float, linear light),\n"
+        "                      or a folder (frame_000.png ...)\n"
+        "  --shading S         transparent (default) or translucent\n"
+        "  --colour-space S    where compositing happens: srgb (default) on the\n"
+        "                      sRGB-encoded colours as given; linear: colours and\n"
+        "                      --background decoded (exact sRGB EOTF), composited in\n"
+        "                      linear light, the result encoded to sRGB for PNG;\n"
+        "                      PFM holds linear light in both\n"
+        "  --alpha A           alpha for models without one, in (0, 1] (default 0.35)\n"
+        "  --absorption X      translucent optical depth across the model, > 0 (default 4)\n"
+        "  --background r,g,b  default 1,1,1\n"
+        "  --max-layers K      fragments per pixel per batch for array/stencil/stream,\n"
+        "                      2..16 (default: the part file's K, else 16); pixels\n"
+        "                      with more count as overflow. stream: a part with more\n"
+        "                      layers than K (a wide part) is captured with more\n"
+        "                      slots per pixel over smaller screen tiles\n"
+        "  --show layers       write the fragments-per-pixel heat map (dfb, reference)\n"
+        "  --stats FILE.json   per-frame figures\n"
+        "  --ambiguity PATH    (reference) also write a mask, named like --out, that is\n"
+        "                      white where rasterization and ray casting may disagree:\n"
+        "                      the hit set changes within 1/64 pixel of the centre\n"
+        "                      (depth ties are not ambiguous: the tie rule orders them)\n"
+        "  --ambiguity-px P    that radius in pixels instead, in (0, 4]\n"
+        "  --quiet             no per-frame lines\n"
+        "  --up x|y|z          the model's up axis for the default views (default y;\n"
+        "                      z for CAD models: seen from -y, x to the right)\n"
+        "  --window            open an interactive window instead of writing images\n"
+        "                      (--size is the window's). It renders only when the\n"
+        "                      view or a setting changes: while the camera moves a\n"
+        "                      preview (see --preview), then the exact frame once\n"
+        "                      it was still for --still ms; the status line says\n"
+        "                      which. Keys (H or ? shows them in the window):\n"
+        "                      left-drag orbits, right-drag/wheel zooms, W/A/S/D and\n"
+        "                      Space/C fly; 1..9, 0 pick the first ten methods above\n"
+        "                      in --method's order (the same key for every input; a\n"
+        "                      method this input or machine cannot run says why on\n"
+        "                      screen), M/N next/previous method (all of them); L\n"
+        "                      layer heat map, T transparent/translucent, E early\n"
+        "                      termination, U up axis y/z/x, R resets the view, O\n"
+        "                      opens another file (type its path, Enter; or drop a\n"
+        "                      file on the window), P saves oitstream_NNN.png,\n"
+        "                      Esc/Q quits\n"
+        "  --preview P         --window, while the camera moves: lowres (the same\n"
+        "                      method at 1/2..1/4 of the resolution, upscaled, the\n"
+        "                      scale adapted to frames near 30 ms), wboit or\n"
+        "                      unsorted (those methods at full size), off (exact\n"
+        "                      frames throughout); auto (default): lowres when an\n"
+        "                      exact frame takes more than 40 ms, else off\n"
+        "  --still MS          --window: stillness before the exact frame, 1..60000\n"
+        "                      (default 200)\n"
+        "  --stats FILE.json   with --window: frame counters (frames_rendered,\n"
+        "                      exact_frames, preview_frames, presented, shown, view),\n"
+        "                      rewritten after every frame\n"
+        "  --window-frames N   render N exact frames back to back, then stop,\n"
+        "                      1..100000000 (a benchmark: the window otherwise\n"
+        "                      renders only on changes)\n"
+        "  --window-script K   press the keys K, one per exact frame (e.g. 2LT), then\n"
+        "                      stop\n"
+        "  --window-screenshot PATH  write the last frame shown (PNG) when stopping\n"
+        "  --no-overlay        no status line in the window's image\n"
+        "  --compare A B       print RMSE, max abs error, %% of pixels off by more than\n"
+        "                      1/255 and PSNR of two images (.png/.pfm), both in the\n"
+        "                      sRGB-encoded space (a PFM's linear light is encoded on\n"
+        "                      reading, so 1/255 is one 8-bit step); --json for JSON,\n"
+        "                      --out DIFF.png writes |A-B| * gain (--gain G > 0, default 1);\n"
+        "                      --mask M adds the figures outside M's non-black pixels\n"
+        "\n"
+        "Exit status: 0 ok, 1 runtime failure, 2 usage error, 3 bad input.\n",
+        method_list);
+}

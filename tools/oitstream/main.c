@@ -1,0 +1,650 @@
+/* oitstream: renders a model with one of the exact methods of
+ * render_methods.h from one view, a given camera or an orbit, and writes the
+ * image (or the layer heat map) and per-frame figures; or compares two
+ * images (--compare). Errors are one line on stderr; the exit status follows
+ * oit_status_exit_code. */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "tools/common/paths.h"
+#include "render/image.h"
+#include "tools/oitstream/cli_args.h"
+#include "stream/part_triangles.h"
+#include "stream/render_methods.h"
+#include "tools/oitstream/stats_json.h"
+#include "tools/oitstream/viewer.h"
+
+static int fail(const oit_error *err)
+{
+    fprintf(stderr, "oitstream: %s\n", err->message);
+    return oit_status_exit_code(err->status);
+}
+
+/* The stencil method's "unsupported" is the driver's limit (it does not
+ * route per sample, or has fewer samples than K), not bad input: a runtime
+ * failure, exit 1. The capture layer keeps UNSUPPORTED, which its callers
+ * read as "not offered here". */
+static int fail_rendering(const oit_error *err, const oit_render_method *m)
+{
+    int code = fail(err);
+    return err->status == OIT_ERR_UNSUPPORTED && m && !strcmp(m->name, "stencil") ? 1 : code;
+}
+
+/* ---- --compare ---- */
+
+static void print_diff(const oit_image_diff *d, uint64_t pixels, int json)
+{
+    if (json) {
+        /* JSON has no infinity: identical images report psnr null. */
+        char psnr[32];
+        if (isfinite(d->psnr)) snprintf(psnr, sizeof psnr, "%.4f", d->psnr);
+        else snprintf(psnr, sizeof psnr, "null");
+        printf("{\"rmse\": %.9g, \"max_abs\": %.9g, \"pct_over_1_255\": %.6f, \"psnr\": %s, "
+               "\"pixels_over\": %llu, \"pixels\": %llu}\n",
+               d->rmse, d->max_abs, d->pct_over_1_255, psnr,
+               (unsigned long long)d->pixels_over, (unsigned long long)pixels);
+    } else {
+        printf("rmse %.6g  max_abs %.6g  over 1/255: %.4f%% (%llu of %llu pixels)  psnr %.2f dB\n",
+               d->rmse, d->max_abs, d->pct_over_1_255, (unsigned long long)d->pixels_over,
+               (unsigned long long)pixels, d->psnr);
+    }
+}
+
+/* Figures over the pixels where the mask is black: masked pixels of b take
+ * a's values, so they contribute no error; pct is taken over the rest. */
+static oit_status compare_outside_mask(const oit_stream_args *a, const oit_image img[2],
+                                       oit_error *err)
+{
+    oit_image mask = {0}, b = {0};
+    oit_status s = oit_image_read(a->mask, &mask, err);
+    if (s == OIT_OK && (mask.width != img[0].width || mask.height != img[0].height))
+        s = oit_error_set(err, OIT_ERR_FORMAT, "%s is %dx%d, the images are %dx%d", a->mask,
+                          mask.width, mask.height, img[0].width, img[0].height);
+    if (s == OIT_OK)
+        s = oit_image_alloc(&b, img[1].width, img[1].height, err);
+    uint64_t n = (uint64_t)img[0].width * (uint64_t)img[0].height, masked = 0;
+    for (uint64_t i = 0; s == OIT_OK && i < n; i++) {
+        const float *m = mask.rgba + i * 4;
+        int in_mask = m[0] > 0.0f || m[1] > 0.0f || m[2] > 0.0f;
+        memcpy(b.rgba + i * 4, (in_mask ? img[0].rgba : img[1].rgba) + i * 4, 4 * sizeof(float));
+        masked += (uint64_t)in_mask;
+    }
+    oit_image_diff d;
+    if (s == OIT_OK)
+        s = oit_image_compare(&img[0], &b, &d, NULL, 1.0f, err);
+    if (s == OIT_OK) {
+        double pct = n > masked ? 100.0 * (double)d.pixels_over / (double)(n - masked) : 0.0;
+        if (a->json)
+            printf("{\"masked_pixels\": %llu, \"pct_over_1_255_outside_mask\": %.6f, "
+                   "\"max_abs_outside_mask\": %.9g, \"pixels_over_outside_mask\": %llu}\n",
+                   (unsigned long long)masked, pct, d.max_abs, (unsigned long long)d.pixels_over);
+        else
+            printf("outside %s (%llu pixels masked): over 1/255: %.4f%% (%llu pixels)  max_abs %.6g\n",
+                   a->mask, (unsigned long long)masked, pct, (unsigned long long)d.pixels_over,
+                   d.max_abs);
+    }
+    oit_image_free(&mask);
+    oit_image_free(&b);
+    return s;
+}
+
+
+/* ---- output paths, checked before any work ---- */
+
+/* The file extension of the last path component: 2 to 5 letters after a
+ * dot ("" otherwise), so "x.jpg" is a file but "run_0.01" a folder. */
+static const char *path_ext(const char *p)
+{
+    const char *slash = strrchr(p, '/'), *base = slash ? slash + 1 : p;
+    const char *dot = strrchr(base, '.');
+    if (!dot || dot == base)
+        return "";
+    size_t n = 0;
+    for (const char *c = dot + 1; *c; c++, n++)
+        if (!((*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z')))
+            return "";
+    return n >= 2 && n <= 5 ? dot : "";
+}
+
+/* An --out with an extension must be an image format we write; one without
+ * is a folder (created now, as it would be at the first frame). */
+static oit_status check_image_out(const char *out, const char *what, const char *const *ins,
+                                  size_t n, int folder_ok, int *created, oit_error *err)
+{
+    const char *ext = out ? path_ext(out) : "";
+    if (out && *out && out[strlen(out) - 1] != '/' && *ext) {
+        if (strcasecmp(ext, ".png") && strcasecmp(ext, ".pfm"))
+            return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: %s: unknown image extension '%s' "
+                                 "(want .png or .pfm%s)", out, what, ext,
+                                 folder_ok ? ", or a folder without an extension" : "");
+        return oit_output_check(out, what, ins, n, err);
+    }
+    if (!folder_ok)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: %s needs FILE.png or FILE.pfm",
+                             out && *out ? out : "\"\"", what);
+    return oit_output_dir_check(out, what, ins, n, created, err);
+}
+
+/* created[0], created[1]: --out and --ambiguity folders made by the check. */
+static oit_status check_outputs(const oit_stream_args *a, int created[2], oit_error *err)
+{
+    const char *ins[4] = {a->compare ? a->compare_a : a->model, a->compare_b, a->walk,
+                          a->mask};
+    oit_status s = OIT_OK;
+    if (a->out)
+        s = check_image_out(a->out, "--out", ins, 4, !a->compare, &created[0], err);
+    if (!s && a->ambiguity_out)
+        s = check_image_out(a->ambiguity_out, "--ambiguity", ins, 4, 1, &created[1], err);
+    if (!s && a->stats_path)
+        s = oit_output_check(a->stats_path, "--stats", ins, 4, err);
+    if (!s && a->out && a->stats_path && !strcmp(a->out, a->stats_path))
+        s = oit_error_set(err, OIT_ERR_ARGUMENT, "%s: --out and --stats name the same file",
+                          a->out);
+    return s;
+}
+
+static int run_compare(const oit_stream_args *a)
+{
+    oit_image img[2] = {{0}, {0}}, diff = {0};
+    oit_error err = {0};
+    oit_image_diff d;
+    oit_status s = oit_image_read(a->compare_a, &img[0], &err);
+    if (s == OIT_OK)
+        s = oit_image_read(a->compare_b, &img[1], &err);
+    if (s == OIT_OK && (img[0].width != img[1].width || img[0].height != img[1].height))
+        s = oit_error_set(&err, OIT_ERR_FORMAT, "%s is %dx%d but %s is %dx%d", a->compare_a,
+                          img[0].width, img[0].height, a->compare_b, img[1].width, img[1].height);
+    if (s == OIT_OK)
+        s = oit_image_compare(&img[0], &img[1], &d, a->out ? &diff : NULL, a->gain, &err);
+    if (s == OIT_OK && a->out)
+        s = oit_image_write(&diff, a->out, &err);
+    if (s == OIT_OK)
+        print_diff(&d, (uint64_t)img[0].width * (uint64_t)img[0].height, a->json);
+    if (s == OIT_OK && a->mask)
+        s = compare_outside_mask(a, img, &err);
+    oit_image_free(&img[0]);
+    oit_image_free(&img[1]);
+    oit_image_free(&diff);
+    return s == OIT_OK ? 0 : fail(&err);
+}
+
+/* ---- views ---- */
+
+/* Clip planes that enclose the model's bounding sphere, for a --view given
+ * without them. */
+static void fit_clip_planes(oit_camera *cam, const oit_mesh_info *info)
+{
+    double c[3], r2 = 0.0, f[3], flen = 0.0;
+    for (int k = 0; k < 3; k++) {
+        c[k] = 0.5 * ((double)info->bounds_min[k] + info->bounds_max[k]);
+        r2 += 0.25 * pow((double)info->bounds_max[k] - info->bounds_min[k], 2.0);
+        f[k] = (double)cam->target[k] - cam->eye[k];
+        flen += f[k] * f[k];
+    }
+    double r = sqrt(r2) > 0.0 && isfinite(r2) ? sqrt(r2) : 1.0, dc = 0.0;
+    for (int k = 0; k < 3; k++)
+        dc += (c[k] - cam->eye[k]) * f[k] / sqrt(flen);
+    double far = dc + 1.05 * r;
+    cam->zfar = (float)(far > 0.0 ? far : r);
+    cam->znear = (float)fmax(dc - 1.05 * r, 1e-4 * cam->zfar);
+    if (cam->projection == OIT_PROJ_ORTHOGRAPHIC) /* parallel rays: behind the eye too */
+        cam->znear = (float)(dc - 1.05 * r);
+}
+
+/* --ortho H|fit on a camera made by any other option. */
+static void apply_ortho(oit_camera *cam, float ortho)
+{
+    if (ortho == 0.0f)
+        return;
+    double d2 = 0.0;
+    for (int k = 0; k < 3; k++)
+        d2 += ((double)cam->target[k] - cam->eye[k]) * ((double)cam->target[k] - cam->eye[k]);
+    double fovy = cam->fovy_deg > 0.0f ? cam->fovy_deg : 45.0;
+    cam->projection = OIT_PROJ_ORTHOGRAPHIC;
+    cam->ortho_height = ortho > 0.0f ? ortho
+                                     : (float)(2.0 * sqrt(d2) *
+                                               tan(0.5 * fovy * 3.14159265358979323846 / 180.0));
+    if (isinf(cam->zfar))
+        cam->zfar = 2.0f * cam->znear + 1.0f;
+}
+
+/* --walk FILE: one camera a line; a bad line is bad input naming it. */
+static oit_status read_walk(const char *path, const oit_mesh_info *info, oit_camera **out,
+                            int *count, oit_error *err)
+{
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return oit_error_set(err, OIT_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+    oit_camera *cams = NULL;
+    int n = 0, cap = 0, line_no = 0;
+    char line[1024];
+    oit_status s = OIT_OK;
+    while (s == OIT_OK && fgets(line, sizeof line, f)) {
+        line_no++;
+        char *t = line + strspn(line, " \t");
+        size_t len = strcspn(t, "#\r\n");
+        while (len > 0 && (t[len - 1] == ' ' || t[len - 1] == '\t'))
+            len--;
+        t[len] = '\0';
+        if (!*t)
+            continue;
+        if (n == cap) {
+            cap = cap ? 2 * cap : 16;
+            oit_camera *c = realloc(cams, (size_t)cap * sizeof *c);
+            if (!c) {
+                s = oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot hold %d views", path, cap);
+                break;
+            }
+            cams = c;
+        }
+        memset(&cams[n], 0, sizeof cams[n]);
+        int code = oit_camera_parse(&cams[n], t, info->origin);
+        if (code != 0)
+            s = oit_error_set(err, OIT_ERR_FORMAT, "%s: line %d: not a view (%s): '%.60s'",
+                              path, line_no, oit_camera_parse_error(code), t);
+        else if (!(cams[n].znear > 0.0f && cams[n].zfar > cams[n].znear))
+            fit_clip_planes(&cams[n], info);
+        n += s == OIT_OK;
+    }
+    if (s == OIT_OK && ferror(f))
+        s = oit_error_set(err, OIT_ERR_IO, "%s: read error", path);
+    if (s == OIT_OK && n == 0)
+        s = oit_error_set(err, OIT_ERR_FORMAT, "%s: no views", path);
+    fclose(f);
+    if (s != OIT_OK) {
+        free(cams);
+        return s;
+    }
+    *out = cams;
+    *count = n;
+    return OIT_OK;
+}
+
+static oit_status make_views_of(const oit_stream_args *a, const oit_mesh_info *info,
+                                oit_camera **out, int *count, oit_error *err);
+
+static oit_status make_views(const oit_stream_args *a, const oit_mesh_info *info,
+                             oit_camera **out, int *count, oit_error *err)
+{
+    oit_status s = make_views_of(a, info, out, count, err);
+    if (s == OIT_OK)
+        for (int i = 0; i < *count; i++)
+            apply_ortho(&(*out)[i], a->ortho);
+    return s;
+}
+
+static oit_status make_views_of(const oit_stream_args *a, const oit_mesh_info *info,
+                                oit_camera **out, int *count, oit_error *err)
+{
+    if (a->walk)
+        return read_walk(a->walk, info, out, count, err);
+    int n = a->orbit > 0 ? a->orbit : 1;
+    oit_camera *cams = calloc((size_t)n, sizeof *cams);
+    if (!cams)
+        return oit_error_set(err, OIT_ERR_NOMEM, "cannot allocate %d views", n);
+    for (int i = 0; i < n; i++) {
+        if (a->have_view) {
+            cams[i] = a->view;
+            oit_camera_parse(&cams[i], a->view_text, info->origin);
+            int ortho = cams[i].projection == OIT_PROJ_ORTHOGRAPHIC;
+            if (!((ortho || cams[i].znear > 0.0f) && cams[i].zfar > cams[i].znear))
+                fit_clip_planes(&cams[i], info);
+        } else if (a->orbit > 0) {
+            oit_camera_default_up(&cams[i], info->bounds_min, info->bounds_max,
+                                  (float)(i * 360.0 / n), 20.0f, a->up_axis);
+        } else {
+            oit_camera_default_up(&cams[i], info->bounds_min, info->bounds_max, a->azimuth,
+                                  a->elevation, a->up_axis);
+        }
+    }
+    *out = cams;
+    *count = n;
+    return OIT_OK;
+}
+
+static oit_shading make_shading(const oit_stream_args *a, const oit_mesh_info *info)
+{
+    oit_shading s = a->shading;
+    s.attributes = info->attributes;
+    s.scene_scale = oit_scene_scale(info->bounds_min, info->bounds_max);
+    oit_shading_resolve_defaults(&s);
+    return s;
+}
+
+/* ---- output ---- */
+
+static int has_image_ext(const char *p)
+{
+    size_t n = strlen(p);
+    return n > 4 && (!strcasecmp(p + n - 4, ".png") || !strcasecmp(p + n - 4, ".pfm"));
+}
+
+/* FILE.png for one view, FILE_007.png for several, DIR/frame_007.png for a
+ * folder (created when missing). */
+static oit_status output_path(const char *out, int index, int views, char *buf, size_t cap,
+                              oit_error *err)
+{
+    if (has_image_ext(out)) {
+        size_t n = strlen(out);
+        if (views == 1)
+            snprintf(buf, cap, "%s", out);
+        else
+            snprintf(buf, cap, "%.*s_%03d%s", (int)(n - 4), out, index, out + n - 4);
+        return OIT_OK;
+    }
+    if (mkdir(out, 0777) != 0 && errno != EEXIST)
+        return oit_error_set(err, OIT_ERR_IO, "%s: cannot create folder: %s", out, strerror(errno));
+    snprintf(buf, cap, "%s/frame_%03d.png", out, index);
+    return OIT_OK;
+}
+
+static oit_status write_frame(const oit_stream_args *a, int index, int views,
+                              const oit_image *colour, const uint32_t *counts, oit_error *err)
+{
+    char path[4096];
+    oit_status s = output_path(a->out, index, views, path, sizeof path, err);
+    if (s != OIT_OK || !a->show_layers)
+        return s != OIT_OK ? s : oit_image_write(colour, path, err);
+    oit_image heat;
+    s = oit_image_heatmap(counts, colour->width, colour->height, &heat, err);
+    if (s == OIT_OK)
+        s = oit_image_write(&heat, path, err);
+    oit_image_free(&heat);
+    return s;
+}
+
+static oit_status write_ambiguity(const oit_stream_args *a, int index, int views,
+                                  const uint8_t *amb, int w, int h, oit_error *err)
+{
+    char path[4096];
+    oit_image img;
+    oit_status s = output_path(a->ambiguity_out, index, views, path, sizeof path, err);
+    if (s == OIT_OK)
+        s = oit_image_alloc(&img, w, h, err);
+    if (s != OIT_OK)
+        return s;
+    for (size_t i = 0; i < (size_t)w * (size_t)h; i++)
+        for (int c = 0; c < 4; c++)
+            img.rgba[i * 4 + c] = (c == 3 || amb[i]) ? 1.0f : 0.0f;
+    s = oit_image_write(&img, path, err);
+    oit_image_free(&img);
+    return s;
+}
+
+/* ---- rendering ---- */
+
+typedef struct run_ctx {
+    const oit_stream_args *args;
+    const oit_render_method *method;
+    oit_method_state *state;
+    oit_view view;
+    const double *origin; /* the model's (oit_mesh_info): views print in file coordinates */
+    uint32_t *counts;
+    uint8_t *ambiguous;
+} run_ctx;
+
+static oit_status render_one(run_ctx *rc, int index, int views, oit_stats_frame *fr,
+                             oit_error *err)
+{
+    oit_image img = {0};
+    memset(&fr->st, 0, sizeof fr->st);
+    oit_status s = rc->method->render(rc->state, &rc->view, &img, rc->counts, rc->ambiguous,
+                                      &fr->st, err);
+    if (s == OIT_OK && rc->args->out)
+        s = write_frame(rc->args, index, views, &img, rc->counts, err);
+    if (s == OIT_OK && rc->ambiguous)
+        s = write_ambiguity(rc->args, index, views, rc->ambiguous, img.width, img.height, err);
+    oit_image_free(&img);
+    fr->method = rc->method->name;
+    oit_stats_format_view(&rc->view.camera, rc->origin, fr->view, sizeof fr->view);
+    if (s == OIT_OK && rc->method->stream_stats) {
+        fr->has_stream = 1;
+        fr->stream = *rc->method->stream_stats(rc->state);
+    }
+    if (s == OIT_OK && !rc->args->quiet)
+        printf("frame %d: %s %dx%d %.2f ms, %llu fragments, max %u layers, %llu overflow pixels\n",
+               index, rc->method->name, rc->view.width, rc->view.height, fr->st.ms,
+               (unsigned long long)fr->st.fragments, fr->st.max_layers,
+               (unsigned long long)fr->st.overflow_pixels);
+    if (s == OIT_OK && !rc->args->quiet && fr->has_stream)
+        printf("frame %d: %.2f ms (order %.1f, pack %.1f), %u packs, %llu parts (%llu culled), "
+               "%llu draw calls, %.2f MiB uploaded, %llu from the cache (%.2f MiB resident), "
+               "%llu overflow pixels, %llu second-pass pixels in %u packs, "
+               "%.1f MiB GPU at peak\n",
+               index, fr->st.ms, fr->stream.order_ms, fr->stream.pack_ms, fr->stream.packs,
+               (unsigned long long)fr->stream.parts_drawn,
+               (unsigned long long)fr->stream.parts_culled,
+               (unsigned long long)fr->stream.draw_calls,
+               (double)fr->stream.bytes_uploaded / 1048576.0,
+               (unsigned long long)fr->stream.cache_hits,
+               (double)fr->stream.cache_bytes / 1048576.0,
+               (unsigned long long)fr->st.overflow_pixels,
+               (unsigned long long)fr->st.second_pass_pixels, fr->st.second_pass_packs,
+               (double)fr->stream.gpu_bytes_peak / 1048576.0);
+    return s;
+}
+
+static oit_status render_all(run_ctx *rc, const oit_mesh *mesh, const oit_camera *cams, int n,
+                             oit_error *err)
+{
+    const oit_stream_args *a = rc->args;
+    oit_stats_frame *frames = calloc((size_t)n, sizeof *frames);
+    if (!frames)
+        return oit_error_set(err, OIT_ERR_NOMEM, "cannot allocate %d frame records", n);
+    oit_status s = OIT_OK;
+    for (int i = 0; i < n && s == OIT_OK; i++) {
+        rc->view.camera = cams[i];
+        s = render_one(rc, i, n, &frames[i], err);
+    }
+    if (s == OIT_OK && !a->out && !a->quiet) /* say where nothing went */
+        fprintf(stderr, "oitstream: %s: %d view%s rendered; no --out given, so no image was "
+                "written\n", a->model, n, n == 1 ? "" : "s");
+    if (s == OIT_OK && a->stats_path) {
+        oit_stats_run run = {a->model, (unsigned long long)mesh->info.triangles,
+                             rc->method->renderer(rc->state), a->width, a->height, frames,
+                             (size_t)n};
+        s = oit_stats_json_write(a->stats_path, &run, err);
+    }
+    free(frames);
+    return s;
+}
+
+static int is_part_file(const char *path)
+{
+    size_t n = strlen(path);
+    return n > 5 && !strcasecmp(path + n - 5, ".oitp");
+}
+
+static oit_status check_method(const oit_stream_args *a, const oit_render_method **out,
+                               oit_error *err)
+{
+    char names[OIT_METHOD_NAMES_MAX];
+    oit_render_method_names(names, sizeof names);
+    *out = oit_render_method_find(a->method);
+    if (!*out)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "--method '%s': expected one of %s", a->method,
+                             names);
+    if (a->show_layers && !(*out)->has_counts)
+        return oit_error_set(err, OIT_ERR_ARGUMENT,
+                             "--show layers needs a method that counts fragments per pixel "
+                             "(dfb or reference), not %s", a->method);
+    if (a->ambiguity_out && !(*out)->has_ambiguity)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "--ambiguity needs --method reference, not %s",
+                             a->method);
+    return OIT_OK;
+}
+
+/* The scene: a mesh file loaded in core, or a part file, which the streamer
+ * reads part by part and the other methods load in core. */
+static oit_status load_scene(const oit_stream_args *a, const oit_render_method *m,
+                             oit_partfile **pf, oit_mesh *mesh, oit_error *err)
+{
+    memset(mesh, 0, sizeof *mesh);
+    *pf = NULL;
+    if (!is_part_file(a->model)) {
+        if (m->needs_partfile)
+            return oit_error_set(err, OIT_ERR_ARGUMENT, "--method %s renders a part file "
+                                 "(.oitp); convert %s with oitprep first", m->name, a->model);
+        return oit_mesh_load(a->model, NULL, mesh, err);
+    }
+    /* The viewer switches between the streamer and the in-core methods, so
+     * it wants both the streamable file and its triangles. */
+    oit_partfile_open_desc desc = {m->needs_partfile || a->window};
+    oit_status s = oit_partfile_open(a->model, &desc, pf, err);
+    if (s == OIT_OK && m->needs_partfile && !a->window)
+        oit_partfile_mesh_info(*pf, &mesh->info);
+    else if (s == OIT_OK)
+        s = oit_partfile_load_mesh(*pf, mesh, err);
+    return s;
+}
+
+/* The captures' K: --max-layers, else the part file's (its parts were cut
+ * for it), else 16. */
+static int scene_max_layers(const oit_stream_args *a, oit_partfile *pf)
+{
+    if (a->max_layers)
+        return a->max_layers;
+    oit_partfile_summary sum = {0};
+    if (pf)
+        oit_partfile_get_summary(pf, &sum);
+    /* A file cut for more than the K-slot capture holds streams as parts
+     * wider than K: captured alone over tiles (oit_capture_batch_layers). */
+    return pf && sum.K < 16 ? (int)sum.K : 16;
+}
+
+/* The viewer's O: a mesh in core, or a part file with its triangles in core
+ * too (the viewer switches between the streamer and in-core methods). */
+static oit_status window_open_model(void *ctx, const char *path, oit_viewer_scene *out,
+                                    oit_error *err)
+{
+    const oit_stream_args *a = ctx;
+    oit_stream_args one = *a;
+    one.model = path;
+    memset(out, 0, sizeof *out);
+    const oit_render_method *m = oit_render_method_find(is_part_file(path) ? "stream" : "dfb");
+    oit_status s = load_scene(&one, m, &out->partfile, &out->mesh, err);
+    if (s != OIT_OK) {
+        oit_mesh_free(&out->mesh);
+        oit_partfile_close(out->partfile);
+        memset(out, 0, sizeof *out);
+        return s;
+    }
+    out->max_layers = scene_max_layers(a, out->partfile);
+    return OIT_OK;
+}
+
+static void window_close_model(void *ctx, oit_viewer_scene *scene)
+{
+    (void)ctx;
+    oit_mesh_free(&scene->mesh);
+    oit_partfile_close(scene->partfile);
+    memset(scene, 0, sizeof *scene);
+}
+
+static oit_status run_window(const run_ctx *rc, const oit_mesh *mesh, oit_partfile *pf,
+                             const oit_method_options *opt, const oit_camera *cam,
+                             oit_error *err)
+{
+    const oit_stream_args *a = rc->args;
+    oit_viewer_desc d = {
+        .mesh = mesh, .partfile = pf, .options = *opt, .method = rc->method->name,
+        .width = a->width, .height = a->height, .camera = *cam,
+        .azimuth = a->azimuth, .elevation = a->elevation, .up_axis = a->up_axis,
+        .shading = rc->view.shading, .show_layers = a->show_layers, .overlay = !a->no_overlay,
+        .frames = a->window_frames, .script = a->window_script,
+        .screenshot = a->window_screenshot, .preview = (oit_viewer_preview)a->preview,
+        .still_ms = a->still_ms, .stats_path = a->stats_path, .model_path = a->model,
+        .open_model = window_open_model, .close_model = window_close_model,
+        .model_ctx = (void *)a};
+    return oit_viewer_run(&d, err);
+}
+
+static int run_render(const oit_stream_args *args)
+{
+    oit_error err = {0};
+    oit_stream_args resolved = *args;
+    const oit_stream_args *a = &resolved;
+    if (!resolved.method)
+        resolved.method = is_part_file(args->model) ? "stream" : "dfb";
+    run_ctx rc = {.args = a};
+    oit_status s = check_method(a, &rc.method, &err);
+    if (s != OIT_OK)
+        return fail(&err);
+    oit_mesh mesh;
+    oit_partfile *pf = NULL;
+    s = load_scene(a, rc.method, &pf, &mesh, &err);
+    if (s != OIT_OK) {
+        oit_partfile_close(pf);
+        return fail(&err);
+    }
+    oit_camera *cams = NULL;
+    int n = 0;
+    int K = scene_max_layers(a, pf);
+    oit_method_options opt = {.max_layers = K, .partfile = pf,
+                              .pack = a->pack,
+                              .schedule = a->schedule_wave ? OIT_SCHEDULE_WAVE : OIT_SCHEDULE_TREE,
+                              .upload_budget = a->upload_budget, .epsilon = a->epsilon,
+                              .slot_budget = a->slot_budget,
+                              .cache_budget = a->cache_budget,
+                              .read_inline = a->upload_threads == 0,
+                              .ambiguity_px = a->ambiguity_px};
+    rc.view.width = a->width;
+    rc.view.height = a->height;
+    rc.origin = mesh.info.origin;
+    rc.view.shading = make_shading(a, &mesh.info);
+    s = make_views(a, &mesh.info, &cams, &n, &err);
+    /* One frame has no next frame to keep parts for: the default cache
+     * would only hold a second copy of what the ring uploaded (on the 2M
+     * plant at 1024x1024, 104 of its 240 MB GPU peak). */
+    if (s == OIT_OK && n == 1 && !a->window && a->cache_budget == 0)
+        opt.cache_budget = OIT_STREAM_CACHE_OFF;
+    if (s == OIT_OK && a->show_layers &&
+        !(rc.counts = calloc((size_t)a->width * (size_t)a->height, sizeof *rc.counts)))
+        s = oit_error_set(&err, OIT_ERR_NOMEM, "cannot allocate the layer count buffer");
+    if (s == OIT_OK && a->ambiguity_out &&
+        !(rc.ambiguous = calloc((size_t)a->width * (size_t)a->height, 1)))
+        s = oit_error_set(&err, OIT_ERR_NOMEM, "cannot allocate the ambiguity mask");
+    if (s == OIT_OK && a->window)
+        s = run_window(&rc, &mesh, pf, &opt, &cams[0], &err);
+    else if (s == OIT_OK)
+        s = rc.method->open(&mesh, &opt, &rc.state, &err);
+    if (s == OIT_OK && !a->window) {
+        s = render_all(&rc, &mesh, cams, n, &err);
+        rc.method->close(rc.state);
+    }
+    free(rc.counts);
+    free(rc.ambiguous);
+    free(cams);
+    oit_mesh_free(&mesh);
+    oit_partfile_close(pf);
+    return s == OIT_OK ? 0 : fail_rendering(&err, rc.method);
+}
+
+int main(int argc, char **argv)
+{
+    oit_stream_args a;
+    oit_error err = {0};
+    if (oit_stream_args_parse(argc, argv, &a, &err) != OIT_OK)
+        return fail(&err);
+    if (a.help) {
+        char names[OIT_METHOD_NAMES_MAX];
+        oit_render_method_names(names, sizeof names);
+        oit_stream_usage(stdout, names);
+        return 0;
+    }
+    int created[2] = {0, 0};
+    if (check_outputs(&a, created, &err) != OIT_OK)
+        return fail(&err);
+    int code = a.compare ? run_compare(&a) : run_render(&a);
+    if (code != 0 && created[0])
+        rmdir(a.out); /* folders this run made, when nothing went into them */
+    if (code != 0 && created[1])
+        rmdir(a.ambiguity_out);
+    return code;
+}

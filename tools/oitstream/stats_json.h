@@ -1,0 +1,33 @@
+/* --stats FILE.json for oitstream: the run (model, triangles, renderer,
+ * size) and one object per frame with its figures and camera. */
+#ifndef OIT_OITSTREAM_STATS_JSON_H
+#define OIT_OITSTREAM_STATS_JSON_H
+
+#include <stddef.h>
+
+#include "render/view.h"
+#include "stream/streamer.h"
+
+typedef struct oit_stats_frame {
+    const char *method;
+    char view[512]; /* the camera as --view accepts it (with znear,zfar) */
+    oit_frame_stats st;
+    int has_stream;               /* the part-file streamer's figures follow */
+    oit_stream_frame_stats stream;
+} oit_stats_frame;
+
+typedef struct oit_stats_run {
+    const char *model;
+    unsigned long long triangles;
+    const char *renderer;
+    int width, height;
+    const oit_stats_frame *frames;
+    size_t frame_count;
+} oit_stats_run;
+
+/* The camera in --view syntax, round-trippable (%.9g). */
+void oit_stats_format_view(const oit_camera *cam, const double origin[3], char *buf, size_t cap);
+
+oit_status oit_stats_json_write(const char *path, const oit_stats_run *run, oit_error *err);
+
+#endif
