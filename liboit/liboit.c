@@ -47,7 +47,7 @@ static const char *scene_name(const oit_scene *s)
  * part-file reader names what is wrong with it. */
 static int is_part_file(const char *path)
 {
-    static const char magic[8] = "OITPART"; /* formats/partfile_layout.h */
+    static const char magic[8] = "OITPART"; /* partfile/layout.h */
     char head[8];
     FILE *f = fopen(path, "rb");
     size_t got = f ? fread(head, 1, sizeof head, f) : 0;

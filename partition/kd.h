@@ -11,7 +11,7 @@
  * both halves recurse. Every split is a 2x1x1 (1x2x1, 1x1x2) subgrid of its
  * node, so the result is a kd-tree of regular subgrids with at most one part
  * per leaf, each part inside its leaf's closed box: the contract of
- * stream/order.h.
+ * partfile/order.h.
  *
  * Where more than K layers meet at one vertex (a saddle of high valence, a
  * fan of many non-convex sheets) no box separates them: halving only clips
@@ -24,7 +24,7 @@
  * A node of at most 2K layers that no axis plane splits cleanly (without
  * cutting a piece, into halves of at most K) tries a separating slab first
  * (kd_slab.h): when one exists the node becomes a leaf with two parts on
- * either side of it, again the contract of stream/order.h. Failing that, a
+ * either side of it, again the contract of partfile/order.h. Failing that, a
  * cutting plane of another direction (kd_cut.h) that leaves both halves
  * within K replaces the axis split when it crosses fewer triangles, or when
  * the axis split's halves would need splitting again: the leaf is then a

@@ -9,7 +9,7 @@
  * layers at once: the node becomes one part on each side of the plane,
  * stored as a slab whose planes coincide (d0 = d1), with no inside part.
  *
- * Exactness. The order (stream/order.c) and the verifier put a part on the
+ * Exactness. The order (partfile/order.c) and the verifier put a part on the
  * plane's side by evaluating n.x, so a clipped vertex must lie on the plane
  * exactly, not within rounding. The normal is therefore an integer vector
  * whose largest component is a power of two (plane_exact.h): a seam vertex

@@ -12,7 +12,7 @@
  * halves recurse. A node of at most part_triangles triangles is one part.
  * The result is the same kd-tree of 2x1x1 subgrids as partition/kd.h's, at
  * most one part a leaf, each part inside its leaf's closed box: the
- * contract of stream/order.h, so the parts are exactly ordered per view.
+ * contract of partfile/order.h, so the parts are exactly ordered per view.
  * Triangles are clipped only where a tree plane crosses them.
  *
  * Each part's layer_bound is its measured layer count (layers_measured.h:

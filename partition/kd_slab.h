@@ -11,7 +11,7 @@
  * The planes n.x = d0 <= d1 hold with a gap in exact arithmetic for the
  * float normal as stored: every vertex of the lower group has n.x <= d0 and
  * every vertex of the upper group n.x >= d1, the bounds computed in double
- * and rounded outward, so the stream's order (stream/order.c) and the
+ * and rounded outward, so the stream's order (partfile/order.c) and the
  * verifier see the groups on their sides however they evaluate n.x. Groups
  * that only touch (a gap below rounding) do not qualify: a pixel where two
  * parts coincide would be ordered by pack, not by primitive id.

@@ -16,7 +16,7 @@ static int cells_with(const float lo[3], const float hi[3], int axis, float pos,
     }
     origin[axis] = pos - w;
     cell_size[axis] = w;
-    volatile float plane = origin[axis] + w; /* as stream/order.c computes it */
+    volatile float plane = origin[axis] + w; /* as partfile/order.c computes it */
     return w > 0 && plane == pos && origin[axis] <= lo[axis] && plane + w >= hi[axis];
 }
 

@@ -8,7 +8,7 @@
 
 #include "oit/partfile.h"
 #include "partition/plane_exact.h"
-#include "stream/order.h"
+#include "partfile/order.h"
 
 typedef struct vhit {
     float t;

@@ -13,7 +13,7 @@
  * of measured bounds, oitprep --scheme fast, the hits over it are reported,
  * not failed: the bound is an estimate there); (2) the
  * parts met along a ray, sorted by distance, never go back in the order that
- * stream/order.h computes for the ray's origin (hits closer than a tolerance,
+ * partfile/order.h computes for the ray's origin (hits closer than a tolerance,
  * e.g. on a shared cell face, are ties); (3) every slab's part_below lies in
  * n.x <= d0 and its part_above in n.x >= d1, vertex by vertex and exactly,
  * and its inside parts between (docs/part-file.md leaves this to us);

@@ -27,7 +27,7 @@
  *
  * Sourced draws (a streamed part file's parts, gpu_mesh.h
  * oit_gpu_mesh_set_range_sourced): the prim is each triangle's source
- * index (part_triangles.h), a u32 per triangle in an SSBO at
+ * index (partfile/triangles.h), a u32 per triangle in an SSBO at
  * OIT_BIND_PRIMS. Such a draw's a_draw.y is 0x80000000 | the word index, in
  * that binding, of its first triangle's source index; the vertex stage reads
  * prims[that + tri] and passes it flat with bit 31 set, which tells the

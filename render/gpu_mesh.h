@@ -28,7 +28,7 @@ oit_status oit_gpu_mesh_create_view(unsigned buffer, oit_gpu_mesh **out, oit_err
  * GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT) of a view's buffer; their
  * prims are first_prim + i. */
 void oit_gpu_mesh_set_range(oit_gpu_mesh *m, uint64_t offset, size_t count, uint32_t first_prim);
-/* The same for a sourced range (stream/part_triangles.h
+/* The same for a sourced range (partfile/triangles.h
  * oit_part_expand_sourced): count triangles at offset, then count u32 at
  * offset + 48 count, the triangles' prims (source indices, < 2^31): drawn
  * with those as the fragments' prims (frag_glsl.h, "Sourced draws"). */

@@ -3,7 +3,7 @@
 #include "stream/pack.h"
 
 #include "render/rect.h"
-#include "stream/part_triangles.h"
+#include "partfile/triangles.h"
 #include "stream/schedule.h"
 
 #include <math.h>

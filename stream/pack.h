@@ -40,7 +40,7 @@ typedef enum oit_pack_mode {
 } oit_pack_mode;
 
 /* The order packs are cut from. OIT_SCHEDULE_TREE (default): consecutive
- * parts of stream/order.h's order. OIT_SCHEDULE_WAVE: packs filled from a
+ * parts of partfile/order.h's order. OIT_SCHEDULE_WAVE: packs filled from a
  * front-to-back wavefront over the screen (stream/schedule.h), each tile
  * holding the layers of the rule above; about 40% fewer packs, but their
  * parts are scattered, so each pack's resolve rectangle is larger. On

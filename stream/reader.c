@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "oit/mesh.h"
-#include "stream/part_triangles.h"
+#include "partfile/triangles.h"
 
 typedef struct job {
     const oit_read_item *items;

@@ -1,5 +1,5 @@
 /* Reading parts ahead of the GPU: a thread that validates parts of a part
- * file and expands them (part_triangles.h) into memory the render thread
+ * file and expands them (partfile/triangles.h) into memory the render thread
  * made available, in the order they were asked for.
  *
  * Ownership. The render thread owns the GL context, the upload ring and the

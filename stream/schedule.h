@@ -1,7 +1,7 @@
 /* Packs formed front to back across the screen (stream/pack.h,
  * OIT_SCHEDULE_WAVE).
  *
- * The part order of stream/order.h walks the management tree depth first:
+ * The part order of partfile/order.h walks the management tree depth first:
  * everything on the near side of a plane comes before anything on the far
  * side, even where the two never share a pixel. Only parts whose screen
  * rectangles overlap need their relative order kept, since no ray meets two

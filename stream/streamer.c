@@ -10,8 +10,8 @@
 #include "render/opaque_tiles.h"
 #include "render/saturation.h"
 #include "stream/fence_queue.h"
-#include "stream/order.h"
-#include "stream/part_triangles.h"
+#include "partfile/order.h"
+#include "partfile/triangles.h"
 #include "stream/reader.h"
 #include "stream/residency.h"
 #include "stream/upload.h"
@@ -110,7 +110,7 @@ void oit_streamer_destroy(oit_streamer *s)
 }
 
 /* Primitive ids are the triangles' source indices, uploaded with them
- * (part_triangles.h), as the in-core mesh's positions order; they must fit
+ * (partfile/triangles.h), as the in-core mesh's positions order; they must fit
  * the 31 bits a fragment carries. *all_bytes: what every part takes in the
  * ring, the most a cache needs. */
 static oit_status number_triangles(oit_streamer *s, uint64_t *all_bytes, oit_error *err)

@@ -1,5 +1,5 @@
 /* The per-frame driver of the part-file renderer: order the parts for the
- * eye (order.h), cut the order into packs (pack.h), and per pack get its
+ * eye (partfile/order.h), cut the order into packs (pack.h), and per pack get its
  * parts onto the GPU and capture them as one batch (render/capture.h),
  * composited behind the packs before it.
  *

@@ -4,7 +4,7 @@
  * regions. Each pack's parts take one contiguous region (<= the budget, see
  * pack.h), placed after the previous one or wrapped to the start when the
  * tail is too short; the CPU writes the parts' triangles and their source
- * indices (part_triangles.h oit_part_expand_sourced) straight into the
+ * indices (partfile/triangles.h oit_part_expand_sourced) straight into the
  * mapping (stream/reader.h, possibly from another thread), and the render
  * thread draws them in place.
  *

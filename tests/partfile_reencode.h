@@ -7,7 +7,7 @@
 #ifndef OIT_TESTS_PARTFILE_REENCODE_H
 #define OIT_TESTS_PARTFILE_REENCODE_H
 
-#include "formats/partfile_codec.h"
+#include "partfile/codec.h"
 #include "tests/partfile_reseal.h"
 
 #include <stdlib.h>

@@ -3,8 +3,8 @@
 #ifndef OIT_TESTS_PARTFILE_RESEAL_H
 #define OIT_TESTS_PARTFILE_RESEAL_H
 
-#include "formats/checksum.h"
-#include "formats/partfile_layout.h"
+#include "partfile/checksum.h"
+#include "partfile/layout.h"
 
 #include <string.h>
 

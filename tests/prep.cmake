@@ -17,6 +17,6 @@ oit_add_test(NAME prep_pinned LABELS integration TIMEOUT 60
 
 # Every part triangle carries its source triangle's index: both schemes,
 # clipping, spilling and threads, checked by area against the source mesh.
-oit_add_test_exe(test_sources SOURCES test_sources.c LIBS oit_formats oit_partition)
+oit_add_test_exe(test_sources SOURCES test_sources.c LIBS oit_partfile_write oit_partition)
 oit_add_test(NAME prep_sources LABELS integration TIMEOUT 300
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_sources.sh $<TARGET_FILE:test_sources>)

@@ -1,7 +1,7 @@
 # tests for the part-file streamer: order, packing, upload, oitstream --method stream
-oit_add_test_exe(test_order SOURCES test_order.c LIBS oit_order oit_image)
+oit_add_test_exe(test_order SOURCES test_order.c LIBS oit_partfile_write oit_image)
 oit_add_test(NAME stream_order COMMAND $<TARGET_FILE:test_order> LABELS unit TIMEOUT 60)
-oit_add_test_exe(test_streamer SOURCES test_streamer.c LIBS oit_formats)
+oit_add_test_exe(test_streamer SOURCES test_streamer.c LIBS oit_partfile_write)
 add_dependencies(test_streamer oitstream)
 # Under ASan on 2 cores these take 100-250 s; the timeouts leave room for a
 # slower CI machine or a busy one (at 120/300 s a busy run timed out).

@@ -34,18 +34,19 @@ done <<EOF
 include/oit
 base oit base
 formats oit base formats
+partfile oit base formats partfile
 render oit base formats render
 plot oit base formats render/image.h render/view.h plot
 scenes oit base formats scenes
-partition oit base formats partition
-preprocess oit base formats partition preprocess stream/order.h
-stream oit base formats render stream
-liboit oit base formats render stream liboit
+partition oit base formats partfile partition
+preprocess oit base formats partfile partition preprocess
+stream oit base formats partfile render stream
+liboit oit base formats partfile render stream liboit
 tools/common oit base tools/common
 tools/oitgen oit base formats scenes tools/common tools/oitgen
-tools/oitprep oit base formats preprocess tools/common tools/oitprep
-tools/oitstream oit base formats render plot stream tools/common tools/oitstream
-tools/oitbench oit base formats render plot preprocess stream tools/common tools/oitbench
+tools/oitprep oit base formats partfile preprocess tools/common tools/oitprep
+tools/oitstream oit base formats partfile render plot stream tools/common tools/oitstream
+tools/oitbench oit base formats partfile render plot preprocess stream tools/common tools/oitbench
 tools/oit_meshinfo oit
 EOF
 [ $status = 0 ] && echo "ok: every folder includes only its own headers and those below it"

@@ -29,7 +29,7 @@
 #include "render/gl_context.h"
 #include "render/gl_util.h"
 #include "render/view.h"
-#include "stream/part_triangles.h"
+#include "partfile/triangles.h"
 #include "test_check.h"
 
 enum { W = 160, H = 120, PAD_X = 8, PAD_Y = 4, FW = W + 2 * PAD_X, FH = H + 2 * PAD_Y };

@@ -1,4 +1,4 @@
-/* stream/order.h: the part order is a visibility order from every eye.
+/* partfile/order.h: the part order is a visibility order from every eye.
  *
  * A part file is written with the writer: a 4x3x2 top grid of unequal cell
  * sizes with one tilted quad per cell, two cells refined by 2x1x1 subgrids
@@ -19,7 +19,7 @@
 
 #include "oit/partfile.h"
 #include "render/view.h"
-#include "stream/order.h"
+#include "partfile/order.h"
 
 #define MAX_PARTS 64
 #define SQ2 1.41421356f

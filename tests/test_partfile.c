@@ -11,8 +11,8 @@
 #include "oit/mesh.h"
 #include "oit/partfile.h"
 
-#include "formats/checksum.h"
-#include "formats/partfile_layout.h"
+#include "partfile/checksum.h"
+#include "partfile/layout.h"
 #include "tests/partfile_reencode.h"
 #include "tests/partfile_reseal.h"
 #include "test_check.h"

@@ -4,7 +4,7 @@
  * octahedron nested inside it (two pieces, 4 layers), some cells empty; one
  * cell refined by a 2x2x1 subgrid; one cell holding a slab (normal +z) with
  * a box below, a thin box inside and a box above. Every part lies inside its
- * leaf cell and is listed by that cell only, as order.h requires; colours
+ * leaf cell and is listed by that cell only, as partfile/order.h requires; colours
  * and alphas vary per shape; extents are jittered so no two faces are
  * coplanar.
  *

@@ -30,8 +30,8 @@
 
 #include "render/gl_context.h"
 #include "render/image.h"
-#include "stream/order.h"
-#include "stream/part_triangles.h"
+#include "partfile/order.h"
+#include "partfile/triangles.h"
 #include "stream/reader.h"
 #include "stream/streamer.h"
 #include "stream/upload.h"

@@ -82,7 +82,7 @@ typedef struct oit_partfile_part {
     uint32_t data_crc;      /* CRC-32C of the stored_bytes at data_offset   */
     uint32_t reserved;
     /* Version 5: the stored streams at data_offset, back to back
-     * (formats/partfile_codec.h): meshopt vertex codec, meshopt index
+     * (partfile/codec.h): meshopt vertex codec, meshopt index
      * sequence codec, delta-varint source indices. */
     uint64_t stored_bytes;  /* their sum: one read                          */
     uint64_t stored_vertex_bytes;

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "stream/part_triangles.h"
+#include "partfile/triangles.h"
 
 /* m[0] += area, m[1..3] += area * centroid, over n triangles. */
 static void add_moments(const oit_triangle *t, size_t n, double m[4])

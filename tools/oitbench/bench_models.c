@@ -9,7 +9,7 @@
 #include <unistd.h>
 
 #include "tools/oitbench/bench_match.h"
-#include "stream/part_triangles.h"
+#include "partfile/triangles.h"
 
 int oit_bench_is_part_file(const char *path)
 {

@@ -48,7 +48,7 @@ static void usage(FILE *f)
           "                M or V above 0);\n"
           "                fails (exit 1) when a part yields more\n"
           "                hits than its layer bound, parts are met out of the order\n"
-          "                stream/order.h computes for the ray's origin, or a slab's\n"
+          "                partfile/order.h computes for the ray's origin, or a slab's\n"
           "                parts have a vertex on the wrong side of its planes (exact),\n"
           "                or a source triangle the converter kept (not degenerate, finite)\n"
           "                is the source index of no part triangle (a triangle lost).\n"

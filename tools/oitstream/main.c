@@ -15,7 +15,7 @@
 #include "tools/common/paths.h"
 #include "render/image.h"
 #include "tools/oitstream/cli_args.h"
-#include "stream/part_triangles.h"
+#include "partfile/triangles.h"
 #include "stream/render_methods.h"
 #include "tools/oitstream/stats_json.h"
 #include "tools/oitstream/viewer.h"

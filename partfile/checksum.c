@@ -1,4 +1,4 @@
-#include "formats/checksum.h"
+#include "partfile/checksum.h"
 
 #include <string.h>
 

@@ -9,7 +9,7 @@
  * deep subgrid chain cannot overflow the C stack and a frame allocates
  * nothing. Emitted parts are marked with the frame's stamp, so no per-frame
  * clearing is needed either. */
-#include "stream/order.h"
+#include "partfile/order.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -1,27 +1,25 @@
-/* Part file reader (docs/part-file.md).
+/* The part file's checks (handle.h): nothing in the file is trusted.
  *
- * Nothing in the file is trusted: open checks the header, the section table,
- * every checksum and every record and cross-reference, in that order, so a
- * later check may rely on the earlier ones (e.g. a part's blob range is known
- * to lie inside PART_DATA before its bytes are read). Management sections are
- * copied into aligned host arrays, which also keeps later changes to the file
- * from reaching validated records; part streams are decoded into the
- * caller's buffer (version 5, formats/partfile_codec.h) and every decoded
- * value is checked before a part is first handed out.
+ * Open checks the header, the section table, every checksum and every
+ * record and cross-reference, in that order, so a later check may rely on
+ * the earlier ones (e.g. a part's blob range is known to lie inside
+ * PART_DATA before its bytes are read). Management sections are copied into
+ * aligned host arrays, which also keeps later changes to the file from
+ * reaching validated records; part streams are decoded into the caller's
+ * buffer (version 5, partfile/codec.h) and every decoded value is checked
+ * before a part is first handed out.
  * Sizes are compared by division or after bounding each count by the section
  * size, so no product or sum below can wrap.
  */
-/* madvise (drop_checked) is not POSIX. */
+/* madvise (pf_drop_checked) is not POSIX. */
 #define _DEFAULT_SOURCE
+#include "partfile/handle.h"
+
 #include "oit/mesh.h"
-#include "oit/partfile.h"
 
-#include "formats/checksum.h"
-#include "formats/partfile_codec.h"
-#include "formats/partfile_layout.h"
+#include "partfile/checksum.h"
+#include "partfile/codec.h"
 
-#include <errno.h>
-#include <fcntl.h>
 #include <float.h>
 #include <math.h>
 #include <stdarg.h>
@@ -29,35 +27,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
-#include <sys/stat.h>
 #include <unistd.h>
-
-struct oit_partfile {
-    char *name;
-    const uint8_t *base;
-    size_t size;
-    void *map; /* owned mapping, or NULL for open_memory */
-    pf_header hdr;
-    pf_section sec[PF_SECTION_COUNT]; /* indexed by type - 1 */
-    pf_meta meta;
-    double origin[3];
-    char *source_name, *options;
-    oit_partfile_part *parts;
-    oit_partfile_piece *pieces;
-    uint64_t piece_count;
-    oit_partfile_grid *grids; /* unified: 0 = top, then SUBGRIDS */
-    uint32_t grid_count;
-    oit_partfile_cell *cells; /* unified; subgrid list_first shifted */
-    uint64_t cell_count;
-    uint32_t *lists;
-    uint64_t list_count;
-    oit_partfile_slab *slabs;
-    uint32_t slab_count;
-    uint32_t *slab_list;
-    uint64_t slab_list_count;
-    unsigned char *part_ok; /* per part, with defer_part_data only */
-    oit_partfile_summary summary;
-};
 
 #if defined(__GNUC__)
 __attribute__((format(printf, 3, 4)))
@@ -90,7 +60,7 @@ static void *copy_out(const uint8_t *p, uint64_t count, size_t size)
     return d;
 }
 
-static oit_status nomem(const oit_partfile *pf, oit_error *err)
+oit_status pf_nomem(const oit_partfile *pf, oit_error *err)
 {
     return oit_error_set(err, OIT_ERR_NOMEM, "%s: out of memory", pf->name);
 }
@@ -200,7 +170,7 @@ static oit_status check_table(const oit_partfile *pf, oit_error *err)
     return OIT_OK;
 }
 
-/* Bytes of mapped part data checked between drops (drop_checked). */
+/* Bytes of mapped part data checked between drops (pf_drop_checked). */
 #define PF_DROP_CHUNK ((size_t)64 << 20)
 
 /* A mapped file's pages that were read only to be checked are dropped from
@@ -208,7 +178,7 @@ static oit_status check_table(const oit_partfile *pf, oit_error *err)
  * resident (oitprep's peak RSS would be the file). They stay in the page
  * cache and fault back in when read. Harmless beyond the range: the mapping
  * is private and read-only, so a dropped page is only ever re-read. */
-static void drop_checked(const oit_partfile *pf, const uint8_t *from, size_t n)
+void pf_drop_checked(const oit_partfile *pf, const uint8_t *from, size_t n)
 {
     long page = sysconf(_SC_PAGESIZE);
     if (!pf->map || n == 0 || page <= 0)
@@ -224,7 +194,7 @@ static uint32_t data_checksum(const oit_partfile *pf, const uint8_t *p, uint64_t
     for (uint64_t at = 0; at < n; at += PF_DROP_CHUNK) {
         size_t k = n - at < PF_DROP_CHUNK ? (size_t)(n - at) : PF_DROP_CHUNK;
         crc = oit_crc32c(crc, p + at, k);
-        drop_checked(pf, p + at, k);
+        pf_drop_checked(pf, p + at, k);
     }
     return crc;
 }
@@ -280,7 +250,7 @@ static oit_status load_meta(oit_partfile *pf, oit_error *err)
     pf->source_name = copy_string(text, m->source_name_bytes);
     pf->options = copy_string(text + m->source_name_bytes, m->options_bytes);
     if (!pf->source_name || !pf->options)
-        return nomem(pf, err);
+        return pf_nomem(pf, err);
     if (strlen(pf->source_name) != m->source_name_bytes ||
         strlen(pf->options) != m->options_bytes)
         return bad(pf, err, "section META: source name or options contain a NUL byte");
@@ -298,7 +268,7 @@ static oit_status load_records(oit_partfile *pf, uint32_t type, size_t record, v
                    pf_section_name(type), (unsigned long long)size, record);
     *count = size / record;
     *out = copy_out(sec_data(pf, type), *count, record);
-    return *out ? OIT_OK : nomem(pf, err);
+    return *out ? OIT_OK : pf_nomem(pf, err);
 }
 
 static oit_status load_parts(oit_partfile *pf, oit_error *err)
@@ -579,10 +549,10 @@ static oit_status buffer_reserve(const oit_partfile *pf, oit_partfile_buffer *bu
     if (bytes <= buf->capacity)
         return OIT_OK;
     if (bytes > SIZE_MAX)
-        return nomem(pf, err);
+        return pf_nomem(pf, err);
     void *p = realloc(buf->data, (size_t)bytes);
     if (!p)
-        return nomem(pf, err);
+        return pf_nomem(pf, err);
     buf->data = p;
     buf->capacity = (size_t)bytes;
     return OIT_OK;
@@ -590,8 +560,8 @@ static oit_status buffer_reserve(const oit_partfile *pf, oit_partfile_buffer *bu
 
 /* Decodes part i's stored streams into the version 4 blob layout in buf
  * (pads zero); checks nothing but the codecs' own framing. */
-static oit_status decode_blob(const oit_partfile *pf, uint32_t i, oit_partfile_buffer *buf,
-                              oit_error *err)
+oit_status pf_decode_blob(const oit_partfile *pf, uint32_t i, oit_partfile_buffer *buf,
+                          oit_error *err)
 {
     const oit_partfile_part *p = &pf->parts[i];
     oit_status s = buffer_reserve(pf, buf, p->data_bytes, err);
@@ -621,15 +591,15 @@ static oit_status decode_blob(const oit_partfile *pf, uint32_t i, oit_partfile_b
 }
 
 /* Checksum of the stored bytes, decode into buf, then every decoded value. */
-static oit_status validate_blob(const oit_partfile *pf, uint32_t i, oit_partfile_buffer *buf,
-                                oit_error *err)
+oit_status pf_validate_blob(const oit_partfile *pf, uint32_t i, oit_partfile_buffer *buf,
+                            oit_error *err)
 {
     const oit_partfile_part *p = &pf->parts[i];
     uint32_t crc = oit_crc32c(0, pf->base + p->data_offset, p->stored_bytes);
     if (crc != p->data_crc)
         return bad(pf, err, "section PART_DATA: part %u: checksum 0x%08x, stored 0x%08x "
                    "(corrupt)", i, crc, p->data_crc);
-    oit_status s = decode_blob(pf, i, buf, err);
+    oit_status s = pf_decode_blob(pf, i, buf, err);
     if (s)
         return s;
     const uint8_t *blob = buf->data;
@@ -739,7 +709,7 @@ static oit_status append_block(oit_partfile *pf, const grid_block *b, oit_error 
     if (l)
         pf->lists = l;
     if (!g || !c || !l)
-        return nomem(pf, err);
+        return pf_nomem(pf, err);
     memcpy(pf->grids + pf->grid_count, b->grids, h->grid_count * sizeof *pf->grids);
     memcpy(pf->cells + pf->cell_count, b->cells, h->cell_count * sizeof *pf->cells);
     memcpy(pf->lists + pf->list_count, b->list, h->list_count * sizeof *pf->lists);
@@ -825,7 +795,7 @@ static oit_status load_slabs(oit_partfile *pf, oit_error *err)
     pf->slabs = copy_out(p + sizeof h, h.slab_count, sizeof *pf->slabs);
     pf->slab_list = copy_out(p + sizeof h + h.slab_count * sizeof *pf->slabs, h.list_count,
                              sizeof *pf->slab_list);
-    return pf->slabs && pf->slab_list ? OIT_OK : nomem(pf, err);
+    return pf->slabs && pf->slab_list ? OIT_OK : pf_nomem(pf, err);
 }
 
 static bool cell_has_part(const oit_partfile *pf, const oit_partfile_cell *cell, uint32_t part)
@@ -982,7 +952,7 @@ static oit_status check_coverage(const oit_partfile *pf, oit_error *err)
     uint32_t n = (uint32_t)pf->hdr.part_count;
     unsigned char *seen = calloc(n ? n : 1, 1);
     if (!seen)
-        return nomem(pf, err);
+        return pf_nomem(pf, err);
     for (uint64_t i = 0; i < pf->list_count; i++)
         seen[pf->lists[i]] = 1;
     uint32_t missing = n;
@@ -995,45 +965,7 @@ static oit_status check_coverage(const oit_partfile *pf, oit_error *err)
     return OIT_OK;
 }
 
-/* ---- open ------------------------------------------------------------------------ */
-
-static void fill_summary(oit_partfile *pf)
-{
-    oit_partfile_summary *s = &pf->summary;
-    s->version = pf->hdr.version;
-    s->K = pf->hdr.K;
-    s->triangles = pf->hdr.triangle_count;
-    s->triangles_in = pf->meta.triangles_in;
-    s->triangles_dropped = pf->meta.triangles_dropped;
-    s->triangles_split = pf->meta.triangles_split;
-    s->parts = pf->hdr.part_count;
-    s->pieces = pf->piece_count;
-    s->slabs = pf->slab_count;
-    s->cut_slabs = 0;
-    s->measured_bounds = (pf->hdr.flags & OIT_PARTFILE_FLAG_MEASURED_BOUNDS) != 0;
-    for (uint32_t i = 0; i < pf->slab_count; i++)
-        s->cut_slabs += pf->slabs[i].d0 == pf->slabs[i].d1;
-    s->cells = pf->cell_count;
-    s->subgrids = pf->grid_count - 1;
-    s->attributes = pf->meta.attributes;
-    s->part_align = pf->hdr.part_align;
-    s->bytes = pf->size;
-    s->data_bytes = sec_size(pf, PF_SEC_PART_DATA);
-    memcpy(s->bounds_min, pf->meta.bounds_min, sizeof s->bounds_min);
-    memcpy(s->origin, pf->origin, sizeof s->origin);
-    memcpy(s->bounds_max, pf->meta.bounds_max, sizeof s->bounds_max);
-    for (uint32_t g = 0; g < pf->grid_count; g++)
-        s->subgrid_depth = pf->grids[g].depth > s->subgrid_depth ? pf->grids[g].depth
-                                                                  : s->subgrid_depth;
-    for (uint32_t i = 0; i < pf->hdr.part_count; i++) {
-        const oit_partfile_part *p = &pf->parts[i];
-        s->layer_bound = p->layer_bound > s->layer_bound ? p->layer_bound : s->layer_bound;
-        s->parts_index16 += p->index_bits == 16;
-        s->parts_index32 += p->index_bits == 32;
-    }
-}
-
-static oit_status validate_all(oit_partfile *pf, bool deferred, oit_error *err)
+oit_status pf_validate_all(oit_partfile *pf, bool deferred, oit_error *err)
 {
     oit_status s = check_header(pf, err);
     if (!s)
@@ -1061,255 +993,13 @@ static oit_status validate_all(oit_partfile *pf, bool deferred, oit_error *err)
     const uint8_t *checked = s ? NULL : sec_data(pf, PF_SEC_PART_DATA);
     oit_partfile_buffer buf = {0};
     for (uint32_t i = 0; !s && !deferred && i < pf->hdr.part_count; i++) {
-        s = validate_blob(pf, i, &buf, err);
+        s = pf_validate_blob(pf, i, &buf, err);
         const uint8_t *end = pf->base + pf->parts[i].data_offset + pf->parts[i].stored_bytes;
         if (end - checked >= (ptrdiff_t)PF_DROP_CHUNK || i + 1 == pf->hdr.part_count) {
-            drop_checked(pf, checked, (size_t)(end - checked));
+            pf_drop_checked(pf, checked, (size_t)(end - checked));
             checked = end;
         }
     }
     oit_partfile_buffer_free(&buf);
     return s;
-}
-
-static oit_status open_common(oit_partfile *pf, const oit_partfile_open_desc *desc,
-                              oit_partfile **out, oit_error *err)
-{
-    bool deferred = desc && desc->defer_part_data;
-    oit_status s = validate_all(pf, deferred, err);
-    if (!s && deferred) {
-        pf->part_ok = calloc(pf->hdr.part_count ? pf->hdr.part_count : 1, 1);
-        if (!pf->part_ok)
-            s = nomem(pf, err);
-    }
-    if (s) {
-        oit_partfile_close(pf);
-        return s;
-    }
-    fill_summary(pf);
-    *out = pf;
-    return OIT_OK;
-}
-
-static oit_partfile *new_handle(const char *name)
-{
-    oit_partfile *pf = calloc(1, sizeof *pf);
-    if (!pf)
-        return NULL;
-    size_t n = strlen(name) + 1;
-    pf->name = malloc(n);
-    if (!pf->name) {
-        free(pf);
-        return NULL;
-    }
-    memcpy(pf->name, name, n);
-    return pf;
-}
-
-oit_status oit_partfile_open_memory(const void *data, size_t size, const char *name,
-                                    const oit_partfile_open_desc *desc, oit_partfile **out,
-                                    oit_error *err)
-{
-    *out = NULL;
-    name = name ? name : "(memory)";
-    oit_partfile *pf = new_handle(name);
-    if (!pf)
-        return oit_error_set(err, OIT_ERR_NOMEM, "%s: out of memory", name);
-    pf->base = data;
-    pf->size = data ? size : 0;
-    return open_common(pf, desc, out, err);
-}
-
-oit_status oit_partfile_open(const char *path, const oit_partfile_open_desc *desc,
-                             oit_partfile **out, oit_error *err)
-{
-    *out = NULL;
-    int fd = open(path, O_RDONLY | O_CLOEXEC);
-    if (fd < 0)
-        return oit_error_set(err, OIT_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
-    struct stat st;
-    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-        close(fd);
-        return oit_error_set(err, OIT_ERR_IO, "%s: not a regular file", path);
-    }
-    oit_partfile *pf = new_handle(path);
-    if (!pf) {
-        close(fd);
-        return oit_error_set(err, OIT_ERR_NOMEM, "%s: out of memory", path);
-    }
-    pf->size = (size_t)st.st_size;
-    if (pf->size) {
-        void *m = mmap(NULL, pf->size, PROT_READ, MAP_PRIVATE, fd, 0);
-        if (m == MAP_FAILED) {
-            oit_error_set(err, OIT_ERR_IO, "%s: cannot map %zu bytes: %s", path, pf->size,
-                          strerror(errno));
-            close(fd);
-            oit_partfile_close(pf);
-            return OIT_ERR_IO;
-        }
-        pf->map = m;
-        pf->base = m;
-    }
-    close(fd);
-    return open_common(pf, desc, out, err);
-}
-
-void oit_partfile_close(oit_partfile *pf)
-{
-    if (!pf)
-        return;
-    if (pf->map)
-        munmap(pf->map, pf->size);
-    free(pf->name);
-    free(pf->source_name);
-    free(pf->options);
-    free(pf->parts);
-    free(pf->pieces);
-    free(pf->grids);
-    free(pf->cells);
-    free(pf->lists);
-    free(pf->slabs);
-    free(pf->slab_list);
-    free(pf->part_ok);
-    free(pf);
-}
-
-/* ---- accessors ---------------------------------------------------------------- */
-
-void oit_partfile_get_summary(const oit_partfile *pf, oit_partfile_summary *out)
-{
-    *out = pf->summary;
-}
-
-const char *oit_partfile_name(const oit_partfile *pf) { return pf->name; }
-const char *oit_partfile_source_name(const oit_partfile *pf) { return pf->source_name; }
-const char *oit_partfile_options(const oit_partfile *pf) { return pf->options; }
-uint32_t oit_partfile_part_count(const oit_partfile *pf) { return (uint32_t)pf->hdr.part_count; }
-const oit_partfile_part *oit_partfile_parts(const oit_partfile *pf) { return pf->parts; }
-uint64_t oit_partfile_piece_count(const oit_partfile *pf) { return pf->piece_count; }
-const oit_partfile_piece *oit_partfile_pieces(const oit_partfile *pf) { return pf->pieces; }
-uint32_t oit_partfile_grid_count(const oit_partfile *pf) { return pf->grid_count; }
-uint32_t oit_partfile_slab_count(const oit_partfile *pf) { return pf->slab_count; }
-
-oit_status oit_partfile_validate_part(oit_partfile *pf, uint32_t part, oit_error *err)
-{
-    if (part >= pf->hdr.part_count)
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: part %u of %llu does not exist",
-                             pf->name, part, (unsigned long long)pf->hdr.part_count);
-    if (!pf->part_ok || pf->part_ok[part])
-        return OIT_OK;
-    oit_partfile_buffer buf = {0};
-    oit_status s = validate_blob(pf, part, &buf, err);
-    oit_partfile_buffer_free(&buf);
-    if (!s)
-        pf->part_ok[part] = 1;
-    return s;
-}
-
-void oit_partfile_buffer_free(oit_partfile_buffer *buf)
-{
-    if (!buf)
-        return;
-    free(buf->data);
-    *buf = (oit_partfile_buffer){0};
-}
-
-static void fill_view(const oit_partfile *pf, uint32_t part, const oit_partfile_buffer *buf,
-                      oit_partfile_part_view *out)
-{
-    const oit_partfile_part *p = &pf->parts[part];
-    const uint8_t *blob = buf->data;
-    out->blob = blob;
-    out->positions = (const float *)(const void *)blob;
-    out->rgba = p->attributes ? blob + 12 : NULL;
-    out->stride = pf_vertex_stride(p->attributes);
-    out->index_bits = p->index_bits;
-    out->indices = blob + p->index_offset;
-    out->index_count = p->index_count;
-    out->sources = blob + oit_partfile_source_offset(p);
-}
-
-oit_status oit_partfile_part_load(oit_partfile *pf, uint32_t part, oit_partfile_buffer *buf,
-                                  oit_partfile_part_view *out, oit_error *err)
-{
-    memset(out, 0, sizeof *out);
-    if (part >= pf->hdr.part_count)
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: part %u of %llu does not exist",
-                             pf->name, part, (unsigned long long)pf->hdr.part_count);
-    if (!pf->part_ok || pf->part_ok[part])
-        return oit_partfile_part_data(pf, part, buf, out, err);
-    oit_status s = validate_blob(pf, part, buf, err);
-    if (s)
-        return s;
-    pf->part_ok[part] = 1;
-    fill_view(pf, part, buf, out);
-    return OIT_OK;
-}
-
-oit_status oit_partfile_part_data(const oit_partfile *pf, uint32_t part,
-                                  oit_partfile_buffer *buf, oit_partfile_part_view *out,
-                                  oit_error *err)
-{
-    memset(out, 0, sizeof *out);
-    if (part >= pf->hdr.part_count)
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: part %u of %llu does not exist",
-                             pf->name, part, (unsigned long long)pf->hdr.part_count);
-    if (pf->part_ok && !pf->part_ok[part])
-        return oit_error_set(err, OIT_ERR_ARGUMENT,
-                             "%s: part %u has not passed oit_partfile_validate_part", pf->name,
-                             part);
-    /* Validated bytes decode to validated values: the codecs are
-     * deterministic and the mapping is read-only. */
-    oit_status s = decode_blob(pf, part, buf, err);
-    if (s)
-        return s;
-    fill_view(pf, part, buf, out);
-    return OIT_OK;
-}
-
-void oit_partfile_drop_part_data(const oit_partfile *pf, uint32_t first, uint32_t count)
-{
-    uint64_t n = pf->hdr.part_count;
-    if (first >= n || count == 0)
-        return;
-    uint64_t last = count > n - first ? n - 1 : (uint64_t)first + count - 1;
-    const oit_partfile_part *a = &pf->parts[first], *b = &pf->parts[last];
-    uint64_t end = b->data_offset + b->stored_bytes;
-    if (end > a->data_offset)
-        drop_checked(pf, pf->base + a->data_offset, (size_t)(end - a->data_offset));
-}
-
-const oit_partfile_grid *oit_partfile_grid_at(const oit_partfile *pf, uint32_t grid)
-{
-    return grid < pf->grid_count ? &pf->grids[grid] : NULL;
-}
-
-const oit_partfile_cell *oit_partfile_cells(const oit_partfile *pf, uint32_t grid)
-{
-    return grid < pf->grid_count ? &pf->cells[pf->grids[grid].cell_first] : NULL;
-}
-
-const uint32_t *oit_partfile_cell_parts(const oit_partfile *pf, uint32_t grid, uint64_t cell,
-                                        uint32_t *count)
-{
-    *count = 0;
-    if (grid >= pf->grid_count || cell >= pf->grids[grid].cell_count)
-        return NULL;
-    const oit_partfile_cell *c = &pf->cells[pf->grids[grid].cell_first + cell];
-    *count = c->list_count;
-    return pf->lists + c->list_first;
-}
-
-const oit_partfile_slab *oit_partfile_slab_at(const oit_partfile *pf, uint32_t slab)
-{
-    return slab < pf->slab_count ? &pf->slabs[slab] : NULL;
-}
-
-const uint32_t *oit_partfile_slab_inside(const oit_partfile *pf, uint32_t slab, uint32_t *count)
-{
-    *count = 0;
-    if (slab >= pf->slab_count)
-        return NULL;
-    *count = pf->slabs[slab].inside_count;
-    return pf->slab_list + pf->slabs[slab].inside_first;
 }

@@ -7,8 +7,8 @@
  * ones after the used, so no vertex is dropped and the bounds do not move.
  * Positions and colours are copied bit for bit.
  */
-#ifndef OIT_FORMATS_PARTFILE_ORDER_H
-#define OIT_FORMATS_PARTFILE_ORDER_H
+#ifndef OIT_PARTFILE_VERTEX_ORDER_H
+#define OIT_PARTFILE_VERTEX_ORDER_H
 
 #include <stdbool.h>
 #include <stdint.h>

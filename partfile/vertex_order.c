@@ -1,5 +1,5 @@
-/* Vertex-cache order for one part (partfile_order.h). */
-#include "formats/partfile_order.h"
+/* Vertex-cache order for one part (vertex_order.h). */
+#include "partfile/vertex_order.h"
 
 #include <meshoptimizer.h>
 #include <stdlib.h>

@@ -2,8 +2,8 @@
  * (docs/part-file.md is the specification; keep the two in step).
  * Every struct here is the exact little-endian record; the asserts pin it.
  */
-#ifndef OIT_FORMATS_PARTFILE_LAYOUT_H
-#define OIT_FORMATS_PARTFILE_LAYOUT_H
+#ifndef OIT_PARTFILE_LAYOUT_H
+#define OIT_PARTFILE_LAYOUT_H
 
 #include <stddef.h>
 #include <stdint.h>

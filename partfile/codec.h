@@ -17,8 +17,8 @@
  * they are given; they may yield garbage for hostile input, so the part
  * file reader checks what they produce.
  */
-#ifndef OIT_FORMATS_PARTFILE_CODEC_H
-#define OIT_FORMATS_PARTFILE_CODEC_H
+#ifndef OIT_PARTFILE_CODEC_H
+#define OIT_PARTFILE_CODEC_H
 
 #include <stddef.h>
 #include <stdint.h>

@@ -5,8 +5,8 @@
  * running value is passed back in, so a writer can checksum a section it
  * streams out piece by piece: crc = oit_crc32c(crc, chunk, n), starting at 0.
  */
-#ifndef OIT_FORMATS_CHECKSUM_H
-#define OIT_FORMATS_CHECKSUM_H
+#ifndef OIT_PARTFILE_CHECKSUM_H
+#define OIT_PARTFILE_CHECKSUM_H
 
 #include <stddef.h>
 #include <stdint.h>

@@ -1,5 +1,5 @@
-/* Part blobs as triangle soups (part_triangles.h). */
-#include "stream/part_triangles.h"
+/* Part blobs as triangle soups (triangles.h). */
+#include "partfile/triangles.h"
 
 #include <stdint.h>
 #include <stdlib.h>

@@ -8,8 +8,8 @@
  * index, so that there a triangle's position, which DFB and the baselines
  * take as its prim, orders like its source index, and ties break as on the
  * source mesh. */
-#ifndef OIT_STREAM_PART_TRIANGLES_H
-#define OIT_STREAM_PART_TRIANGLES_H
+#ifndef OIT_PARTFILE_TRIANGLES_H
+#define OIT_PARTFILE_TRIANGLES_H
 
 #include "oit/mesh.h"
 #include "oit/partfile.h"

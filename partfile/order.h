@@ -13,8 +13,8 @@
  * only valid when the cells it spans are consecutive in every order, which
  * the converter guarantees by listing each part in exactly one leaf cell.
  * Work per call is O(cells + parts); no O(parts^2) work. */
-#ifndef OIT_STREAM_ORDER_H
-#define OIT_STREAM_ORDER_H
+#ifndef OIT_PARTFILE_ORDER_H
+#define OIT_PARTFILE_ORDER_H
 
 #include <stdint.h>
 

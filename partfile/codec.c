@@ -1,5 +1,5 @@
 /* Part stream codecs (partfile_codec.h). */
-#include "formats/partfile_codec.h"
+#include "partfile/codec.h"
 
 #include <meshoptimizer.h>
 #include <string.h>

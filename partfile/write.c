@@ -11,10 +11,10 @@
 #include "oit/mesh.h"
 #include "oit/partfile.h"
 
-#include "formats/checksum.h"
-#include "formats/partfile_codec.h"
-#include "formats/partfile_layout.h"
-#include "formats/partfile_order.h"
+#include "partfile/checksum.h"
+#include "partfile/codec.h"
+#include "partfile/layout.h"
+#include "partfile/vertex_order.h"
 
 #include <errno.h>
 #include <math.h>
