@@ -5,6 +5,7 @@
 #ifndef OIT_RENDER_REFERENCE_H
 #define OIT_RENDER_REFERENCE_H
 
+#include "render/method.h"
 #include "view.h"
 
 #ifdef __cplusplus
@@ -39,6 +40,9 @@ oit_status oit_reference_render(const oit_mesh *mesh, const oit_view *view,
                                 const oit_reference_desc *desc, oit_image *out,
                                 uint32_t *counts, oit_frame_stats *stats,
                                 oit_error *err);
+
+/* The reference as a method (render/method.h), named "reference". */
+extern const oit_method oit_method_reference;
 
 #ifdef __cplusplus
 }

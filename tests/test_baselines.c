@@ -12,19 +12,15 @@
 #include <stdlib.h>
 
 #include "gl_test_scene.h"
-#include "render/b3d.h"
-#include "render/depth_peel.h"
 #include "render/dfb.h"
-#include "render/dual_peel.h"
-#include "render/f2b.h"
+#include "render/baselines/methods.h"
+#include "render/baselines/f2b.h"
 #include "render/gl_context.h"
 #include "render/reference.h"
-#include "render/guarded.h"
+#include "render/baselines/guarded.h"
 #include "render/image.h"
-#include "render/ppll.h"
-#include "render/ppll4.h"
-#include "render/unsorted.h"
-#include "render/wboit.h"
+#include "render/baselines/ppll.h"
+#include "render/baselines/ppll4.h"
 #include "test_check.h"
 
 #define TOL (1.0 / 255)
@@ -37,20 +33,16 @@
 enum method {
     M_DFB, M_PLL, M_PPLL4, M_B3D, M_DP, M_DDP, M_GUARDED, M_F2B, M_WBOIT, M_UNSORTED, M_N
 };
-static const char *const method_names[M_N] = {"dfb", "pll", "ppll4", "b3d", "dp", "ddp",
-                                              "guarded", "f2b", "wboit", "unsorted"};
+/* Every method through its table (render/method.h), each made once and
+ * kept across frames as the tools keep them. */
+static const oit_method *const tables[M_N] = {
+    &oit_method_dfb, &oit_method_pll,     &oit_method_ppll4, &oit_method_b3d,
+    &oit_method_dp,  &oit_method_ddp,     &oit_method_guarded, &oit_method_f2b,
+    &oit_method_wboit, &oit_method_unsorted};
+static const char *method_name(enum method which) { return tables[which]->name; }
 
 typedef struct methods {
-    oit_dfb *dfb;
-    oit_pll *pll;
-    oit_ppll4 *ppll4;
-    oit_b3d *b3d;
-    oit_depth_peel *dp;
-    oit_dual_peel *ddp;
-    oit_guarded *guarded;
-    oit_f2b *f2b;
-    oit_wboit *wb;
-    oit_unsorted *un;
+    void *impl[M_N];
 } methods;
 
 typedef struct result {
@@ -66,26 +58,13 @@ static result render(methods *m, enum method which, const oit_triangle *tris, si
     oit_error err = {0};
     oit_gpu_mesh *mesh = NULL;
     oit_status s = oit_gpu_mesh_create(tris, count, 0, &mesh, &err);
-    const oit_gpu_mesh *list[1] = {mesh};
     if (s == OIT_OK) {
-        switch (which) {
-        case M_DFB: s = oit_dfb_render(m->dfb, list, 1, v, &r.img, NULL, &r.st, &err); break;
-        case M_PLL: s = oit_pll_render(m->pll, list, 1, v, &r.img, &r.st, &err); break;
-        case M_PPLL4: s = oit_ppll4_render(m->ppll4, list, 1, v, &r.img, &r.st, &err); break;
-        case M_B3D: s = oit_b3d_render(m->b3d, list, 1, v, &r.img, &r.st, &err); break;
-        case M_DP: s = oit_depth_peel_render(m->dp, list, 1, v, &r.img, &r.st, &err); break;
-        case M_DDP: s = oit_dual_peel_render(m->ddp, list, 1, v, &r.img, &r.st, &err); break;
-        case M_GUARDED:
-            s = oit_guarded_render(m->guarded, list, 1, v, &r.img, &r.st, &err);
-            break;
-        case M_F2B: s = oit_f2b_render(m->f2b, list, 1, v, &r.img, &r.st, &err); break;
-        case M_WBOIT: s = oit_wboit_render(m->wb, list, 1, v, &r.img, &r.st, &err); break;
-        default: s = oit_unsorted_render(m->un, list, 1, v, &r.img, &r.st, &err); break;
-        }
+        oit_method_frame f = {.gpu = mesh, .view = v, .out = &r.img, .stats = &r.st};
+        s = tables[which]->render(m->impl[which], &f, &err);
     }
     oit_gpu_mesh_destroy(mesh);
     r.ok = s == OIT_OK;
-    CHECK(r.ok, "%s: %s", method_names[which], err.message);
+    CHECK(r.ok, "%s: %s", method_name(which), err.message);
     return r;
 }
 
@@ -111,7 +90,7 @@ static oit_image_diff versus_dfb(methods *m, enum method which, const char *scen
     oit_image_diff d = compare(&r, &ref);
     printf("%-9s %-26s %dx%d max_abs=%.6f rmse=%.6f fragments=%llu (dfb %llu) "
            "max_layers=%u (dfb %u) passes=%u gpu_bytes=%llu (dfb %llu) ms=%.1f\n",
-           method_names[which], scene, v->width, v->height, d.max_abs, d.rmse,
+           method_name(which), scene, v->width, v->height, d.max_abs, d.rmse,
            (unsigned long long)r.st.fragments, (unsigned long long)ref.st.fragments,
            r.st.max_layers, ref.st.max_layers, r.st.batches,
            (unsigned long long)r.st.gpu_bytes_peak, (unsigned long long)ref.st.gpu_bytes_peak,
@@ -133,20 +112,20 @@ static void check_exact(methods *m, enum method which, const char *scene,
 {
     oit_frame_stats st, ref;
     oit_image_diff d = versus_dfb(m, which, scene, tris, count, v, &st, &ref);
-    CHECK(d.max_abs <= TOL, "%s on %s: differs from DFB by %.6f", method_names[which], scene,
+    CHECK(d.max_abs <= TOL, "%s on %s: differs from DFB by %.6f", method_name(which), scene,
           d.max_abs);
     CHECK(st.fragments == ref.fragments, "%s on %s: %llu fragments, DFB %llu",
-          method_names[which], scene, (unsigned long long)st.fragments,
+          method_name(which), scene, (unsigned long long)st.fragments,
           (unsigned long long)ref.fragments);
     CHECK(st.max_layers == ref.max_layers, "%s on %s: max_layers %u, DFB %u",
-          method_names[which], scene, st.max_layers, ref.max_layers);
-    CHECK(st.gpu_bytes_peak > 0, "%s: no gpu_bytes_peak", method_names[which]);
+          method_name(which), scene, st.max_layers, ref.max_layers);
+    CHECK(st.gpu_bytes_peak > 0, "%s: no gpu_bytes_peak", method_name(which));
     if (!q)
         return;
     result r = render(m, which, tris, count, v);
     double hand = r.ok ? hand_max_diff(&r.img, v, q, nq) : INFINITY;
-    printf("%-9s %-26s vs hand max_abs=%.6f\n", method_names[which], scene, hand);
-    CHECK(hand <= TOL, "%s on %s: differs from the hand result by %.6f", method_names[which],
+    printf("%-9s %-26s vs hand max_abs=%.6f\n", method_name(which), scene, hand);
+    CHECK(hand <= TOL, "%s on %s: differs from the hand result by %.6f", method_name(which),
           scene, hand);
     oit_image_free(&r.img);
 }
@@ -247,40 +226,17 @@ static size_t shapes_scene(oit_triangle *t)
 
 static oit_status methods_create(methods *m, oit_error *err)
 {
-    oit_status s = oit_dfb_create(&m->dfb, err);
-    if (s == OIT_OK)
-        s = oit_pll_create(&m->pll, err);
-    if (s == OIT_OK)
-        s = oit_ppll4_create(&m->ppll4, err);
-    if (s == OIT_OK)
-        s = oit_b3d_create(&m->b3d, err);
-    if (s == OIT_OK)
-        s = oit_depth_peel_create(&m->dp, err);
-    if (s == OIT_OK)
-        s = oit_dual_peel_create(&m->ddp, err);
-    if (s == OIT_OK)
-        s = oit_guarded_create(&m->guarded, err);
-    if (s == OIT_OK)
-        s = oit_f2b_create(&m->f2b, err);
-    if (s == OIT_OK)
-        s = oit_wboit_create(&m->wb, err);
-    if (s == OIT_OK)
-        s = oit_unsorted_create(&m->un, err);
+    oit_status s = OIT_OK;
+    for (int i = 0; i < M_N && s == OIT_OK; i++)
+        s = tables[i]->create(NULL, NULL, &m->impl[i], err);
     return s;
 }
 
 static void methods_destroy(methods *m)
 {
-    oit_dfb_destroy(m->dfb);
-    oit_pll_destroy(m->pll);
-    oit_ppll4_destroy(m->ppll4);
-    oit_b3d_destroy(m->b3d);
-    oit_depth_peel_destroy(m->dp);
-    oit_dual_peel_destroy(m->ddp);
-    oit_guarded_destroy(m->guarded);
-    oit_f2b_destroy(m->f2b);
-    oit_wboit_destroy(m->wb);
-    oit_unsorted_destroy(m->un);
+    for (int i = 0; i < M_N; i++)
+        if (m->impl[i])
+            tables[i]->destroy(m->impl[i]);
 }
 
 /* The methods that store every fragment, and so are exact with ties too
@@ -336,9 +292,9 @@ static void test_ddp_translucent(methods *m)
     oit_gpu_mesh *mesh = NULL;
     oit_image img = {0};
     oit_status s = oit_gpu_mesh_create(tris, 2, 0, &mesh, &err);
-    const oit_gpu_mesh *list[1] = {mesh};
+    oit_method_frame f = {.gpu = mesh, .view = &v, .out = &img};
     if (s == OIT_OK)
-        s = oit_dual_peel_render(m->ddp, list, 1, &v, &img, NULL, &err);
+        s = oit_method_ddp.render(m->impl[M_DDP], &f, &err);
     printf("ddp translucent: status %d: %s\n", (int)s, err.message);
     CHECK(s == OIT_ERR_UNSUPPORTED, "ddp should refuse translucent shading, got %d", (int)s);
     oit_image_free(&img);
@@ -371,11 +327,11 @@ static void check_loses_only_ties(methods *m, enum method which, const char *sce
     }
     uint64_t lost = ref.st.fragments - r.st.fragments;
     printf("%-9s %-26s ties: %llu fragments on %llu pixels, lost %llu, max_abs elsewhere %.6f\n",
-           method_names[which], scene, (unsigned long long)tied, (unsigned long long)tie_pixels,
+           method_name(which), scene, (unsigned long long)tied, (unsigned long long)tie_pixels,
            (unsigned long long)lost, worst);
     CHECK(worst <= TOL, "%s on %s: differs from DFB by %.6f where nothing ties",
-          method_names[which], scene, worst);
-    CHECK(lost <= tied, "%s on %s: lost %llu fragments, only %llu tie", method_names[which],
+          method_name(which), scene, worst);
+    CHECK(lost <= tied, "%s on %s: lost %llu fragments, only %llu tie", method_name(which),
           scene, (unsigned long long)lost, (unsigned long long)tied);
     oit_image_free(&r.img);
     oit_image_free(&ref.img);
@@ -406,7 +362,7 @@ static void test_exact_shapes(methods *m)
 
 static uint64_t capacity(const methods *m, enum method which)
 {
-    return which == M_PLL ? oit_pll_capacity(m->pll) : oit_ppll4_capacity(m->ppll4);
+    return which == M_PLL ? oit_pll_capacity(m->impl[M_PLL]) : oit_ppll4_capacity(m->impl[M_PPLL4]);
 }
 
 /* PLL's nodes or PPLL4's pages, on a fresh instance: frame 1 has one layer
@@ -415,7 +371,7 @@ static uint64_t capacity(const methods *m, enum method which)
  * it, grow it and be drawn again, still exact. */
 static void test_growth(enum method which)
 {
-    const char *name = method_names[which];
+    const char *name = method_name(which);
     oit_error err = {0};
     methods m = {0};
     if (methods_create(&m, &err) != OIT_OK) {
@@ -558,11 +514,11 @@ static void test_deep(void)
     for (int i = 0; i < N_ALL; i++) {
         versus_dfb(&m, all[i], "100 layers (bytes)", t[DEEP], 200, &v, &st[DEEP][i], NULL);
         printf("gpu_bytes_peak 3 -> 100 layers: %-8s %llu -> %llu (passes %u)\n",
-               method_names[all[i]], (unsigned long long)st[SHALLOW][i].gpu_bytes_peak,
+               method_name(all[i]), (unsigned long long)st[SHALLOW][i].gpu_bytes_peak,
                (unsigned long long)st[DEEP][i].gpu_bytes_peak, st[DEEP][i].batches);
         CHECK(st[DEEP][i].max_layers == 100 && st[DEEP][i].fragments == 100 * px,
               "%s: 100 full-frame quads gave max_layers %u, %llu fragments",
-              method_names[all[i]], st[DEEP][i].max_layers,
+              method_name(all[i]), st[DEEP][i].max_layers,
               (unsigned long long)st[DEEP][i].fragments);
     }
     /* Per fragment: DFB 16 bytes, PLL 20, PPLL4 17, B3D 16 per pixel-layer. */
@@ -571,9 +527,9 @@ static void test_deep(void)
         uint64_t lo = st[SHALLOW][i].gpu_bytes_peak, hi = st[DEEP][i].gpu_bytes_peak;
         if (growth[i])
             CHECK(hi >= lo + 90ull * px * growth[i], "%s bytes did not grow with depth",
-                  method_names[all[i]]);
+                  method_name(all[i]));
         else
-            CHECK(hi == lo, "%s bytes grew with depth", method_names[all[i]]);
+            CHECK(hi == lo, "%s bytes grew with depth", method_name(all[i]));
     }
     CHECK(st[DEEP][4].batches == 101, "dp drew %u passes for 100 layers", st[DEEP][4].batches);
     CHECK(st[DEEP][5].batches == 51, "ddp drew %u passes for 100 layers", st[DEEP][5].batches);
@@ -614,7 +570,7 @@ static void test_ties(methods *m)
     uint64_t tied = tied_pixels(&v);
     static const enum method peelers[] = {M_DDP};
     for (int i = 0; i < 1; i++) {
-        const char *name = method_names[peelers[i]];
+        const char *name = method_name(peelers[i]);
         oit_frame_stats st, ref;
         oit_image_diff d = versus_dfb(m, peelers[i], "coplanar ties", tris, 6, &v, &st, &ref);
         printf("%s on ties: lost %llu fragments (expect %llu), max_abs=%.6f\n", name,
@@ -634,9 +590,9 @@ static void check_threshold_range(methods *m)
     oit_error err = {0};
     static const float bad[] = {-0.01f, 1.0f, NAN};
     for (int i = 0; i < 3; i++) {
-        CHECK(oit_guarded_set_threshold(m->guarded, bad[i], &err) == OIT_ERR_ARGUMENT,
+        CHECK(oit_guarded_set_threshold(m->impl[M_GUARDED], bad[i], &err) == OIT_ERR_ARGUMENT,
               "guarded accepted threshold %g", (double)bad[i]);
-        CHECK(oit_f2b_set_threshold(m->f2b, bad[i], &err) == OIT_ERR_ARGUMENT,
+        CHECK(oit_f2b_set_threshold(m->impl[M_F2B], bad[i], &err) == OIT_ERR_ARGUMENT,
               "f2b accepted threshold %g", (double)bad[i]);
     }
     printf("threshold range: %s\n", err.message);
@@ -645,9 +601,9 @@ static void check_threshold_range(methods *m)
 static void set_threshold(methods *m, enum method which, float threshold)
 {
     oit_error err = {0};
-    oit_status s = which == M_GUARDED ? oit_guarded_set_threshold(m->guarded, threshold, &err)
-                                      : oit_f2b_set_threshold(m->f2b, threshold, &err);
-    CHECK(s == OIT_OK, "%s: threshold %g: %s", method_names[which], (double)threshold,
+    oit_status s = which == M_GUARDED ? oit_guarded_set_threshold(m->impl[M_GUARDED], threshold, &err)
+                                      : oit_f2b_set_threshold(m->impl[M_F2B], threshold, &err);
+    CHECK(s == OIT_OK, "%s: threshold %g: %s", method_name(which), (double)threshold,
           err.message);
 }
 

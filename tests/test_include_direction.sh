@@ -36,13 +36,14 @@ base oit base
 formats oit base formats
 partfile oit base formats partfile
 render oit base formats render
+render/baselines oit base formats render
 plot oit base formats render/image.h render/view.h plot
 scenes oit base formats scenes
 partition oit base formats partfile partition
 preprocess oit base formats partfile partition preprocess
 stream oit base formats partfile render stream
 liboit oit base formats partfile render stream liboit
-tools/common oit base tools/common
+tools/common oit base formats partfile render stream tools/common
 tools/oitgen oit base formats scenes tools/common tools/oitgen
 tools/oitprep oit base formats partfile preprocess tools/common tools/oitprep
 tools/oitstream oit base formats partfile render plot stream tools/common tools/oitstream

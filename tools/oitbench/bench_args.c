@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "tools/oitbench/bench_models.h"
-#include "stream/render_methods.h"
+#include "tools/common/methods.h"
 
 static int parse_int(const char *v, int *out, long lo, long hi)
 {
@@ -37,13 +37,13 @@ static oit_status split_methods(const char *list, oit_bench_args *a, char *buf, 
                                 oit_error *err)
 {
     char names[OIT_METHOD_NAMES_MAX];
-    oit_render_method_names(names, sizeof names);
+    oit_method_names(names, sizeof names);
     if (strlen(list) >= cap)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--methods '%s' is too long", list);
     strcpy(buf, list);
     a->method_count = 0;
     for (char *save = NULL, *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
-        if (!oit_render_method_find(t))
+        if (!oit_method_find(t))
             return oit_error_set(err, OIT_ERR_ARGUMENT, "--methods: unknown method '%s' "
                                  "(expected names from %s)", t, names);
         for (int i = 0; i < a->method_count; i++)
@@ -113,7 +113,7 @@ static oit_status expand_entries(oit_bench_args *a, oit_error *err)
     oit_status s = OIT_OK;
     a->entry_count = 0;
     for (int i = 0; i < a->method_count && s == OIT_OK; i++) {
-        int sweep = a->epsilon_count > 0 && oit_render_method_find(a->methods[i])->takes_epsilon;
+        int sweep = a->epsilon_count > 0 && !!(oit_method_find(a->methods[i])->flags & OIT_METHOD_EPSILON);
         swept |= sweep;
         for (int k = 0; k < (sweep ? a->epsilon_count : 1) && s == OIT_OK; k++)
             s = add_entry(a, a->methods[i], sweep ? a->epsilons[k] : -1.0f, err);
@@ -176,7 +176,7 @@ static oit_status check_geometry_options(const oit_bench_args *a, oit_error *err
     int streams = 0;
     const char *conv = conversion_option(a);
     for (int i = 0; i < a->method_count; i++)
-        streams |= oit_render_method_find(a->methods[i])->needs_partfile;
+        streams |= !!(oit_method_find(a->methods[i])->flags & OIT_METHOD_PARTFILE);
     if (oit_bench_is_part_file(a->model)) {
         const char *o = a->parts ? "--parts" : conv;
         if (o)

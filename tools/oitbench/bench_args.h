@@ -20,7 +20,7 @@ typedef struct oit_bench_args {
     int help;
     int plot;           /* the "plot" form: plot_out and runs are set */
     const char *model;
-    /* names checked against render_methods.h; no duplicates */
+    /* names checked against tools/common/methods.h; no duplicates */
     const char *methods[OIT_BENCH_MAX_METHODS];
     int method_count;
     /* --epsilon: thresholds in [0, 1), no duplicates; none: defaults */

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "render/gl_context.h"
+#include "stream/stream_method.h"
 
 const char *oit_bench_geometry_label(oit_bench_geometry g)
 {
@@ -59,24 +60,24 @@ static void open_methods(const oit_bench_desc *d, oit_bench_result *r, oit_gl **
     oit_error err = {0};
     int need_gl = 0;
     for (int i = 0; i < r->method_count; i++)
-        need_gl |= r->methods[i].method->uses_gl;
+        need_gl |= (r->methods[i].method->flags & OIT_METHOD_GL);
     oit_status gs = OIT_OK;
     snprintf(r->renderer, sizeof r->renderer, "none (no GL method requested)");
     if (need_gl && (gs = oit_gl_create(&(oit_gl_desc){0}, gl, &err)) == OIT_OK)
         snprintf(r->renderer, sizeof r->renderer, "%s", oit_gl_renderer(*gl));
     else if (need_gl)
         snprintf(r->renderer, sizeof r->renderer, "none (no GL context: %.200s)", err.message);
-    oit_method_options opt = {.max_layers = d->max_layers, .partfile = d->partfile,
-                              .pack = OIT_PACK_AUTO, .gl = *gl};
+    oit_stream_options so = {.partfile = d->partfile, .pack = OIT_PACK_AUTO};
+    oit_method_options opt = {.max_layers = d->max_layers, .gl = *gl, .stream = &so};
     for (int i = 0; i < r->method_count; i++) {
         oit_bench_method *m = &r->methods[i];
         m->runnable = 1;
         opt.epsilon = m->epsilon;
-        if (m->method->uses_gl && gs != OIT_OK)
+        if ((m->method->flags & OIT_METHOD_GL) && gs != OIT_OK)
             mark_failed(m, -1, r->renderer);
-        else if (m->method->needs_partfile && !d->partfile)
+        else if ((m->method->flags & OIT_METHOD_PARTFILE) && !d->partfile)
             mark_failed(m, -1, "renders a part file (.oitp), and this run has none");
-        else if (m->method->open(d->mesh, &opt, &m->state, &err) != OIT_OK)
+        else if (oit_method_open(m->method, d->mesh, &opt, &m->state, &err) != OIT_OK)
             mark_failed(m, -1, err.message);
     }
 }
@@ -99,9 +100,9 @@ static oit_status render_frame(oit_bench_method *m, const oit_view *view, oit_fr
 {
     oit_image img = {0};
     memset(st, 0, sizeof *st);
-    oit_status s = m->method->render(m->state, view, &img, NULL, NULL, st, err);
-    if (s == OIT_OK && m->method->stream_stats) {
-        uint64_t b = m->method->stream_stats(m->state)->gpu_bytes_peak;
+    oit_status s = oit_method_render(m->state, view, &img, NULL, NULL, st, err);
+    if (s == OIT_OK && oit_method_stream_stats(m->state)) {
+        uint64_t b = oit_method_stream_stats(m->state)->gpu_bytes_peak;
         st->gpu_bytes_peak = b > st->gpu_bytes_peak ? b : st->gpu_bytes_peak;
     }
     if (s == OIT_OK && keep) {
@@ -215,10 +216,10 @@ static oit_status alloc_result(const oit_bench_desc *d, oit_bench_result *r, oit
     int ok = r->methods && r->ref_ms && r->ref_layers;
     for (int i = 0; ok && i < d->entry_count; i++) {
         oit_bench_method *m = &r->methods[i];
-        m->method = oit_render_method_find(d->entries[i].method);
+        m->method = oit_method_find(d->entries[i].method);
         m->epsilon = d->entries[i].epsilon;
         snprintf(m->name, sizeof m->name, "%s", d->entries[i].name);
-        int parts = m->method && m->method->needs_partfile;
+        int parts = m->method && (m->method->flags & OIT_METHOD_PARTFILE);
         m->geometry = parts ? OIT_BENCH_GEOMETRY_PART_FILE : d->mesh_geometry;
         m->triangles = parts ? d->partfile_triangles : (uint64_t)d->mesh->count;
         m->ms = malloc((size_t)d->views * (size_t)d->frames * sizeof *m->ms);
@@ -233,11 +234,11 @@ static oit_status alloc_result(const oit_bench_desc *d, oit_bench_result *r, oit
 
 static oit_status run_views(const oit_bench_desc *d, oit_bench_result *r, oit_error *err)
 {
-    const oit_render_method *refm = oit_render_method_find("reference");
+    const oit_method *refm = oit_method_find("reference");
     const oit_mesh *refmesh = d->reference_mesh ? d->reference_mesh : d->mesh;
     oit_method_state *ref_state = NULL;
     oit_image *last = calloc((size_t)r->method_count, sizeof *last);
-    oit_status s = last ? refm->open(refmesh, NULL, &ref_state, err)
+    oit_status s = last ? oit_method_open(refm, refmesh, NULL, &ref_state, err)
                         : oit_error_set(err, OIT_ERR_NOMEM, "cannot allocate image slots");
     /* one view for every method, framed on the reference's mesh */
     oit_view view = {.width = d->width, .height = d->height,
@@ -247,7 +248,7 @@ static oit_status run_views(const oit_bench_desc *d, oit_bench_result *r, oit_er
         oit_frame_stats st = {0};
         oit_camera_default(&view.camera, refmesh->info.bounds_min, refmesh->info.bounds_max,
                            (float)(v * 360.0 / d->views), 20.0f);
-        s = refm->render(ref_state, &view, &ref, NULL, NULL, &st, err);
+        s = oit_method_render(ref_state, &view, &ref, NULL, NULL, &st, err);
         if (s != OIT_OK) {
             oit_error_prefix(err, "reference");
             break;
@@ -260,7 +261,7 @@ static oit_status run_views(const oit_bench_desc *d, oit_bench_result *r, oit_er
         print_view(d->progress, r, v);
     }
     if (ref_state)
-        refm->close(ref_state);
+        oit_method_close(ref_state);
     free(last);
     return s;
 }
@@ -278,7 +279,7 @@ oit_status oit_bench_run(const oit_bench_desc *d, oit_bench_result *r, oit_error
     /* GL objects go before the context they live in. */
     for (int i = 0; r->methods && i < r->method_count; i++)
         if (r->methods[i].state) {
-            r->methods[i].method->close(r->methods[i].state);
+            oit_method_close(r->methods[i].state);
             r->methods[i].state = NULL;
         }
     if (gl)

@@ -9,8 +9,9 @@
 
 #include <stdint.h>
 
+#include "oit/partfile.h"
 #include "render/image.h"
-#include "stream/render_methods.h"
+#include "tools/common/methods.h"
 
 /* Which triangles a method drew (bench_models.h): the source mesh in core,
  * or the part file's, clipped at its part boundaries (the stream's, or an
@@ -45,7 +46,7 @@ typedef struct oit_bench_entry {
 } oit_bench_entry;
 
 typedef struct oit_bench_method {
-    const oit_render_method *method;
+    const oit_method *method;
     char name[OIT_BENCH_NAME_MAX];
     float epsilon;           /* as oit_bench_entry */
     oit_bench_geometry geometry; /* what it draws */

@@ -51,7 +51,7 @@ static int streams(const oit_bench_args *a)
 {
     int any = 0;
     for (int i = 0; i < a->method_count; i++)
-        any |= oit_render_method_find(a->methods[i])->needs_partfile;
+        any |= !!(oit_method_find(a->methods[i])->flags & OIT_METHOD_PARTFILE);
     return any;
 }
 
@@ -248,7 +248,7 @@ int main(int argc, char **argv)
         char names[OIT_METHOD_NAMES_MAX];
         oit_convert_options o;
         oit_convert_options_init(&o);
-        oit_render_method_names(names, sizeof names);
+        oit_method_names(names, sizeof names);
         oit_bench_usage(stdout, names, oit_scheme_name(o.scheme), OIT_FAST_PART_TRIANGLES);
         return 0;
     }

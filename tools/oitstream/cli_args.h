@@ -19,7 +19,7 @@ typedef struct oit_stream_args {
     const char *mask; /* --mask: figures also outside its non-black pixels */
     /* rendering */
     const char *model;
-    const char *method; /* a name from render_methods.h; checked there; NULL:
+    const char *method; /* a name from tools/common/methods.h; checked there; NULL:
                            stream for a part file, dfb otherwise */
     int width, height;
     int have_view;

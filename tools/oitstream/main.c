@@ -1,5 +1,5 @@
 /* oitstream: renders a model with one of the exact methods of
- * render_methods.h from one view, a given camera or an orbit, and writes the
+ * tools/common/methods.h from one view, a given camera or an orbit, and writes the
  * image (or the layer heat map) and per-frame figures; or compares two
  * images (--compare). Errors are one line on stderr; the exit status follows
  * oit_status_exit_code. */
@@ -16,7 +16,8 @@
 #include "render/image.h"
 #include "tools/oitstream/cli_args.h"
 #include "partfile/triangles.h"
-#include "stream/render_methods.h"
+#include "tools/common/methods.h"
+#include "stream/stream_method.h"
 #include "tools/oitstream/stats_json.h"
 #include "tools/oitstream/viewer.h"
 
@@ -30,7 +31,7 @@ static int fail(const oit_error *err)
  * route per sample, or has fewer samples than K), not bad input: a runtime
  * failure, exit 1. The capture layer keeps UNSUPPORTED, which its callers
  * read as "not offered here". */
-static int fail_rendering(const oit_error *err, const oit_render_method *m)
+static int fail_rendering(const oit_error *err, const oit_method *m)
 {
     int code = fail(err);
     return err->status == OIT_ERR_UNSUPPORTED && m && !strcmp(m->name, "stencil") ? 1 : code;
@@ -381,7 +382,7 @@ static oit_status write_ambiguity(const oit_stream_args *a, int index, int views
 
 typedef struct run_ctx {
     const oit_stream_args *args;
-    const oit_render_method *method;
+    const oit_method *method;
     oit_method_state *state;
     oit_view view;
     const double *origin; /* the model's (oit_mesh_info): views print in file coordinates */
@@ -394,8 +395,8 @@ static oit_status render_one(run_ctx *rc, int index, int views, oit_stats_frame 
 {
     oit_image img = {0};
     memset(&fr->st, 0, sizeof fr->st);
-    oit_status s = rc->method->render(rc->state, &rc->view, &img, rc->counts, rc->ambiguous,
-                                      &fr->st, err);
+    oit_status s = oit_method_render(rc->state, &rc->view, &img, rc->counts, rc->ambiguous,
+                                     &fr->st, err);
     if (s == OIT_OK && rc->args->out)
         s = write_frame(rc->args, index, views, &img, rc->counts, err);
     if (s == OIT_OK && rc->ambiguous)
@@ -403,9 +404,9 @@ static oit_status render_one(run_ctx *rc, int index, int views, oit_stats_frame 
     oit_image_free(&img);
     fr->method = rc->method->name;
     oit_stats_format_view(&rc->view.camera, rc->origin, fr->view, sizeof fr->view);
-    if (s == OIT_OK && rc->method->stream_stats) {
+    if (s == OIT_OK && oit_method_stream_stats(rc->state)) {
         fr->has_stream = 1;
-        fr->stream = *rc->method->stream_stats(rc->state);
+        fr->stream = *oit_method_stream_stats(rc->state);
     }
     if (s == OIT_OK && !rc->args->quiet)
         printf("frame %d: %s %dx%d %.2f ms, %llu fragments, max %u layers, %llu overflow pixels\n",
@@ -447,7 +448,7 @@ static oit_status render_all(run_ctx *rc, const oit_mesh *mesh, const oit_camera
                 "written\n", a->model, n, n == 1 ? "" : "s");
     if (s == OIT_OK && a->stats_path) {
         oit_stats_run run = {a->model, (unsigned long long)mesh->info.triangles,
-                             rc->method->renderer(rc->state), a->width, a->height, frames,
+                             oit_method_renderer(rc->state), a->width, a->height, frames,
                              (size_t)n};
         s = oit_stats_json_write(a->stats_path, &run, err);
     }
@@ -461,20 +462,20 @@ static int is_part_file(const char *path)
     return n > 5 && !strcasecmp(path + n - 5, ".oitp");
 }
 
-static oit_status check_method(const oit_stream_args *a, const oit_render_method **out,
+static oit_status check_method(const oit_stream_args *a, const oit_method **out,
                                oit_error *err)
 {
     char names[OIT_METHOD_NAMES_MAX];
-    oit_render_method_names(names, sizeof names);
-    *out = oit_render_method_find(a->method);
+    oit_method_names(names, sizeof names);
+    *out = oit_method_find(a->method);
     if (!*out)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--method '%s': expected one of %s", a->method,
                              names);
-    if (a->show_layers && !(*out)->has_counts)
+    if (a->show_layers && !((*out)->flags & OIT_METHOD_COUNTS))
         return oit_error_set(err, OIT_ERR_ARGUMENT,
                              "--show layers needs a method that counts fragments per pixel "
                              "(dfb or reference), not %s", a->method);
-    if (a->ambiguity_out && !(*out)->has_ambiguity)
+    if (a->ambiguity_out && !((*out)->flags & OIT_METHOD_AMBIGUITY))
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--ambiguity needs --method reference, not %s",
                              a->method);
     return OIT_OK;
@@ -482,22 +483,22 @@ static oit_status check_method(const oit_stream_args *a, const oit_render_method
 
 /* The scene: a mesh file loaded in core, or a part file, which the streamer
  * reads part by part and the other methods load in core. */
-static oit_status load_scene(const oit_stream_args *a, const oit_render_method *m,
+static oit_status load_scene(const oit_stream_args *a, const oit_method *m,
                              oit_partfile **pf, oit_mesh *mesh, oit_error *err)
 {
     memset(mesh, 0, sizeof *mesh);
     *pf = NULL;
     if (!is_part_file(a->model)) {
-        if (m->needs_partfile)
+        if ((m->flags & OIT_METHOD_PARTFILE))
             return oit_error_set(err, OIT_ERR_ARGUMENT, "--method %s renders a part file "
                                  "(.oitp); convert %s with oitprep first", m->name, a->model);
         return oit_mesh_load(a->model, NULL, mesh, err);
     }
     /* The viewer switches between the streamer and the in-core methods, so
      * it wants both the streamable file and its triangles. */
-    oit_partfile_open_desc desc = {m->needs_partfile || a->window};
+    oit_partfile_open_desc desc = {(m->flags & OIT_METHOD_PARTFILE) || a->window};
     oit_status s = oit_partfile_open(a->model, &desc, pf, err);
-    if (s == OIT_OK && m->needs_partfile && !a->window)
+    if (s == OIT_OK && (m->flags & OIT_METHOD_PARTFILE) && !a->window)
         oit_partfile_mesh_info(*pf, &mesh->info);
     else if (s == OIT_OK)
         s = oit_partfile_load_mesh(*pf, mesh, err);
@@ -527,7 +528,7 @@ static oit_status window_open_model(void *ctx, const char *path, oit_viewer_scen
     oit_stream_args one = *a;
     one.model = path;
     memset(out, 0, sizeof *out);
-    const oit_render_method *m = oit_render_method_find(is_part_file(path) ? "stream" : "dfb");
+    const oit_method *m = oit_method_find(is_part_file(path) ? "stream" : "dfb");
     oit_status s = load_scene(&one, m, &out->partfile, &out->mesh, err);
     if (s != OIT_OK) {
         oit_mesh_free(&out->mesh);
@@ -586,14 +587,13 @@ static int run_render(const oit_stream_args *args)
     oit_camera *cams = NULL;
     int n = 0;
     int K = scene_max_layers(a, pf);
-    oit_method_options opt = {.max_layers = K, .partfile = pf,
-                              .pack = a->pack,
-                              .schedule = a->schedule_wave ? OIT_SCHEDULE_WAVE : OIT_SCHEDULE_TREE,
-                              .upload_budget = a->upload_budget, .epsilon = a->epsilon,
-                              .slot_budget = a->slot_budget,
-                              .cache_budget = a->cache_budget,
-                              .read_inline = a->upload_threads == 0,
-                              .ambiguity_px = a->ambiguity_px};
+    oit_stream_options so = {.partfile = pf, .pack = a->pack,
+                             .schedule = a->schedule_wave ? OIT_SCHEDULE_WAVE : OIT_SCHEDULE_TREE,
+                             .upload_budget = a->upload_budget, .slot_budget = a->slot_budget,
+                             .cache_budget = a->cache_budget,
+                             .read_inline = a->upload_threads == 0};
+    oit_method_options opt = {.max_layers = K, .epsilon = a->epsilon,
+                              .ambiguity_px = a->ambiguity_px, .stream = &so};
     rc.view.width = a->width;
     rc.view.height = a->height;
     rc.origin = mesh.info.origin;
@@ -603,7 +603,7 @@ static int run_render(const oit_stream_args *args)
      * would only hold a second copy of what the ring uploaded (on the 2M
      * plant at 1024x1024, 104 of its 240 MB GPU peak). */
     if (s == OIT_OK && n == 1 && !a->window && a->cache_budget == 0)
-        opt.cache_budget = OIT_STREAM_CACHE_OFF;
+        so.cache_budget = OIT_STREAM_CACHE_OFF;
     if (s == OIT_OK && a->show_layers &&
         !(rc.counts = calloc((size_t)a->width * (size_t)a->height, sizeof *rc.counts)))
         s = oit_error_set(&err, OIT_ERR_NOMEM, "cannot allocate the layer count buffer");
@@ -613,10 +613,10 @@ static int run_render(const oit_stream_args *args)
     if (s == OIT_OK && a->window)
         s = run_window(&rc, &mesh, pf, &opt, &cams[0], &err);
     else if (s == OIT_OK)
-        s = rc.method->open(&mesh, &opt, &rc.state, &err);
+        s = oit_method_open(rc.method, &mesh, &opt, &rc.state, &err);
     if (s == OIT_OK && !a->window) {
         s = render_all(&rc, &mesh, cams, n, &err);
-        rc.method->close(rc.state);
+        oit_method_close(rc.state);
     }
     free(rc.counts);
     free(rc.ambiguous);
@@ -634,7 +634,7 @@ int main(int argc, char **argv)
         return fail(&err);
     if (a.help) {
         char names[OIT_METHOD_NAMES_MAX];
-        oit_render_method_names(names, sizeof names);
+        oit_method_names(names, sizeof names);
         oit_stream_usage(stdout, names);
         return 0;
     }

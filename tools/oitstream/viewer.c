@@ -18,6 +18,7 @@
 #include "render/image.h"
 #include "tools/oitstream/stats_json.h"
 #include "plot/text_overlay.h"
+#include "stream/stream_method.h"
 
 #define GLFW_INCLUDE_NONE /* GL comes from gl_util.h (core profile prototypes) */
 #include <GLFW/glfw3.h>
@@ -33,12 +34,13 @@ enum { DEFAULT_STILL_MS = 200, PREVIEW_MAX_SCALE = 4 };
 typedef struct viewer {
     const oit_viewer_desc *desc;
     oit_method_options options; /* desc's, with the current scene's part file and K */
+    oit_stream_options stream;  /* options.stream points here */
     oit_gl *gl;
     GLFWwindow *win;
-    const oit_render_method *methods[MAX_METHODS]; /* the whole table, in its order */
+    const oit_method *methods[MAX_METHODS]; /* the whole table, in its order */
     int method_count, current;
     oit_method_state *state;
-    const oit_render_method *pv_method; /* wboit/unsorted preview, opened when first needed */
+    const oit_method *pv_method; /* wboit/unsorted preview, opened when first needed */
     oit_method_state *pv_state;
     /* the scene shown: the caller's, or one O opened (owned) */
     const oit_mesh *mesh;
@@ -329,22 +331,22 @@ static void on_resize(GLFWwindow *w, int width, int height)
 static void list_methods(viewer *v)
 {
     char names[OIT_METHOD_NAMES_MAX];
-    oit_render_method_names(names, sizeof names);
+    oit_method_names(names, sizeof names);
     for (char *tok = strtok(names, "|"); tok && v->method_count < MAX_METHODS;
          tok = strtok(NULL, "|")) {
-        const oit_render_method *m = oit_render_method_find(tok);
+        const oit_method *m = oit_method_find(tok);
         if (m)
             v->methods[v->method_count++] = m;
     }
 }
 
 /* Why this input cannot use m, or NULL when it can. */
-static const char *unavailable(const viewer *v, const oit_render_method *m)
+static const char *unavailable(const viewer *v, const oit_method *m)
 {
-    if (m->needs_partfile && !v->pf)
+    if ((m->flags & OIT_METHOD_PARTFILE) && !v->pf)
         return "needs a part file (.oitp): convert the model with oitprep, then open "
                "the .oitp with O";
-    if (!m->needs_partfile && v->mesh->count == 0)
+    if (!(m->flags & OIT_METHOD_PARTFILE) && v->mesh->count == 0)
         return "renders triangles in core, and this input has none";
     return NULL;
 }
@@ -360,7 +362,7 @@ static void key_label(int i, char *buf, size_t cap)
 static void close_preview_method(viewer *v)
 {
     if (v->pv_state)
-        v->pv_method->close(v->pv_state);
+        oit_method_close(v->pv_state);
     v->pv_state = NULL;
     v->pv_method = NULL;
 }
@@ -375,11 +377,11 @@ static oit_status switch_method(viewer *v, int i, oit_error *err)
     opt.gl = v->gl;
     opt.epsilon = v->epsilon;
     oit_method_state *st = NULL;
-    oit_status s = v->methods[i]->open(v->mesh, &opt, &st, err);
+    oit_status s = oit_method_open(v->methods[i], v->mesh, &opt, &st, err);
     if (s != OIT_OK)
         return s;
     if (v->state)
-        v->methods[v->current]->close(v->state);
+        oit_method_close(v->state);
     v->state = st;
     v->current = i;
     v->last_exact_wall_ms = 0.0; /* the new method's speed is not known yet */
@@ -388,7 +390,7 @@ static oit_status switch_method(viewer *v, int i, oit_error *err)
     v->changed = 1;
     char key[8];
     key_label(i, key, sizeof key);
-    printf("viewer: method %s: %s (%s)\n", key, v->methods[i]->name, v->methods[i]->renderer(st));
+    printf("viewer: method %s: %s (%s)\n", key, v->methods[i]->name, oit_method_renderer(st));
     fflush(stdout);
     return OIT_OK;
 }
@@ -521,7 +523,7 @@ static void open_entry(viewer *v)
     /* Methods go before the triangles and the file they read. */
     close_preview_method(v);
     if (v->state)
-        v->methods[v->current]->close(v->state);
+        oit_method_close(v->state);
     v->state = NULL;
     if (v->have_owned)
         v->desc->close_model(v->desc->model_ctx, &v->owned);
@@ -529,7 +531,7 @@ static void open_entry(viewer *v)
     v->have_owned = 1;
     v->mesh = &v->owned.mesh;
     v->pf = v->owned.partfile;
-    v->options.partfile = v->pf;
+    v->stream.partfile = v->pf;
     if (scene.max_layers > 0)
         v->options.max_layers = scene.max_layers;
     snprintf(v->model_name, sizeof v->model_name, "%s", v->entry);
@@ -579,7 +581,7 @@ static void handle_key(viewer *v, char key)
     case 'L':
         v->show_layers = !v->show_layers;
         v->changed = 1;
-        if (v->show_layers && !v->methods[v->current]->has_counts)
+        if (v->show_layers && !(v->methods[v->current]->flags & OIT_METHOD_COUNTS))
             say(v, "layer heat map: %s counts no layers per pixel (1 dfb and 2 reference do)",
                 v->methods[v->current]->name);
         else
@@ -627,7 +629,7 @@ static void field(fields *f, const char *fmt, ...)
 /* The named figures of the last rendered frame. */
 static void status_fields(viewer *v, fields *f)
 {
-    const oit_render_method *m = v->methods[v->current];
+    const oit_method *m = v->methods[v->current];
     char key[8], num[16];
     key_label(v->current, key, sizeof key);
     f->n = 0;
@@ -649,7 +651,7 @@ static void status_fields(viewer *v, fields *f)
         field(f, "overflow %llu", (unsigned long long)v->st.overflow_pixels);
     }
     if (m->stream_stats && v->state && !(v->shown_kind == SHOWN_PREVIEW && v->pv_method)) {
-        const oit_stream_frame_stats *ss = m->stream_stats(v->state);
+        const oit_stream_frame_stats *ss = oit_method_stream_stats(v->state);
         field(f, "packs %u", ss->packs);
         field(f, "draws %llu", (unsigned long long)ss->draw_calls);
         double up = (double)ss->bytes_uploaded;
@@ -665,7 +667,7 @@ static void status_fields(viewer *v, fields *f)
             field(f, "skipped %llu", (unsigned long long)ss->parts_skipped);
         }
     }
-    if (v->show_layers && m->has_counts)
+    if (v->show_layers && (m->flags & OIT_METHOD_COUNTS))
         field(f, "heat map");
     field(f, "%c up", axis_name[v->up_axis]);
     field(f, "H help");
@@ -911,13 +913,13 @@ static oit_status open_preview_method(viewer *v, oit_error *err)
 {
     if (v->pv_state)
         return OIT_OK;
-    const oit_render_method *m = oit_render_method_find(preview_method_name(v->desc->preview));
+    const oit_method *m = oit_method_find(preview_method_name(v->desc->preview));
     if (!m)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "viewer: no preview method");
     oit_method_options opt = v->options;
     opt.gl = v->gl;
     opt.epsilon = -1.0f;
-    oit_status s = m->open(v->mesh, &opt, &v->pv_state, err);
+    oit_status s = oit_method_open(m, v->mesh, &opt, &v->pv_state, err);
     if (s == OIT_OK)
         v->pv_method = m;
     return s;
@@ -954,7 +956,7 @@ static void adapt_preview_scale(viewer *v, double wall_ms)
  * (kind SHOWN_PREVIEW) the preview. */
 static oit_status render_frame(viewer *v, int fb_w, int fb_h, int kind, oit_error *err)
 {
-    const oit_render_method *m = v->methods[v->current];
+    const oit_method *m = v->methods[v->current];
     oit_method_state *state = v->state;
     int pk = kind == SHOWN_PREVIEW ? preview_kind(v) : 0, scale = 1;
     if (kind == SHOWN_PREVIEW && pk == 0)
@@ -971,7 +973,7 @@ static oit_status render_frame(viewer *v, int fb_w, int fb_h, int kind, oit_erro
         scale = v->preview_scale;
     }
     int w = fb_w / scale > 0 ? fb_w / scale : 1, h = fb_h / scale > 0 ? fb_h / scale : 1;
-    int heat = v->show_layers && m->has_counts;
+    int heat = v->show_layers && (m->flags & OIT_METHOD_COUNTS);
     oit_status s = heat ? ensure_counts(v, w, h, err) : OIT_OK;
     if (s != OIT_OK)
         return s;
@@ -981,7 +983,7 @@ static oit_status render_frame(viewer *v, int fb_w, int fb_h, int kind, oit_erro
     double t0 = glfwGetTime();
     oit_image_free(&v->frame);
     memset(&v->st, 0, sizeof v->st);
-    s = m->render(state, &v->view, &v->frame, heat ? v->counts : NULL, NULL, &v->st, err);
+    s = oit_method_render(state, &v->view, &v->frame, heat ? v->counts : NULL, NULL, &v->st, err);
     oit_image img = {0};
     if (s == OIT_OK && heat) {
         s = oit_image_heatmap(v->counts, v->frame.width, v->frame.height, &img, err);
@@ -1153,6 +1155,9 @@ static oit_status open_viewer(viewer *v, oit_error *err)
 {
     const oit_viewer_desc *d = v->desc;
     v->options = d->options;
+    if (d->options.stream)
+        v->stream = *d->options.stream;
+    v->options.stream = &v->stream;
     v->mesh = d->mesh;
     v->pf = d->partfile;
     v->up_axis = d->up_axis >= 0 && d->up_axis <= 2 ? d->up_axis : 1;
@@ -1201,7 +1206,7 @@ static void close_viewer(viewer *v)
 {
     close_preview_method(v);
     if (v->state)
-        v->methods[v->current]->close(v->state);
+        oit_method_close(v->state);
     if (v->gl) {
         glDeleteFramebuffers(1, &v->fbo);
         glDeleteTextures(1, &v->tex);

@@ -1,5 +1,5 @@
 /* oitstream --window: an interactive GLFW window that renders the model with
- * one of the methods of render_methods.h (in the window's own GL context)
+ * one of the methods of tools/common/methods.h (in the window's own GL context)
  * and presents the image with a status line of named figures.
  *
  * It renders only when something changed: the loop blocks on window events
@@ -28,7 +28,8 @@
 #ifndef OIT_OITSTREAM_VIEWER_H
 #define OIT_OITSTREAM_VIEWER_H
 
-#include "stream/render_methods.h"
+#include "oit/partfile.h"
+#include "tools/common/methods.h"
 
 /* A model the viewer shows: its triangles in core (every method but
  * stream), the part file when it is one (NULL otherwise) and the K its

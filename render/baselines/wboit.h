@@ -16,26 +16,11 @@
  *
  * Stats: fragments from an occlusion query, max_layers unknown (0),
  * batches 1, gpu_bytes_peak = the three float targets. */
-#ifndef OIT_RENDER_WBOIT_H
-#define OIT_RENDER_WBOIT_H
+#ifndef OIT_RENDER_BASELINES_WBOIT_H
+#define OIT_RENDER_BASELINES_WBOIT_H
 
 #include "render/gpu_mesh.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
-
 typedef struct oit_wboit oit_wboit;
 
-oit_status oit_wboit_create(oit_wboit **out, oit_error *err);
-void oit_wboit_destroy(oit_wboit *w);
-
-/* Renders meshes[0..n) as one scene; out is allocated by the call. */
-oit_status oit_wboit_render(oit_wboit *w, const oit_gpu_mesh *const *meshes, int n,
-                            const oit_view *view, oit_image *out,
-                            oit_frame_stats *stats, oit_error *err);
-
-#ifdef __cplusplus
-}
-#endif
 #endif

@@ -1,5 +1,5 @@
 /* Shared pieces of the baseline methods (baseline_common.h). */
-#include "render/baseline_common.h"
+#include "render/baselines/baseline_common.h"
 
 #include "base/clock.h"
 #include "render/image.h"

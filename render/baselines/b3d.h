@@ -16,26 +16,11 @@
  *
  * Stats: fragments (all, stored), max_layers (L of the frame), batches = 2
  * geometry passes (count, store), gpu_bytes_peak (slots included). */
-#ifndef OIT_RENDER_B3D_H
-#define OIT_RENDER_B3D_H
+#ifndef OIT_RENDER_BASELINES_B3D_H
+#define OIT_RENDER_BASELINES_B3D_H
 
 #include "render/gpu_mesh.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
-
 typedef struct oit_b3d oit_b3d;
 
-oit_status oit_b3d_create(oit_b3d **out, oit_error *err);
-void oit_b3d_destroy(oit_b3d *b);
-
-/* Renders meshes[0..n) as one scene; out is allocated by the call. */
-oit_status oit_b3d_render(oit_b3d *b, const oit_gpu_mesh *const *meshes, int n,
-                          const oit_view *view, oit_image *out, oit_frame_stats *stats,
-                          oit_error *err);
-
-#ifdef __cplusplus
-}
-#endif
 #endif

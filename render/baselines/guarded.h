@@ -45,34 +45,19 @@
  *
  * Stats: fragments = fragments stored (generated minus culled), max_layers
  * (longest list), batches = geometry passes, gpu_bytes_peak. */
-#ifndef OIT_RENDER_GUARDED_H
-#define OIT_RENDER_GUARDED_H
+#ifndef OIT_RENDER_BASELINES_GUARDED_H
+#define OIT_RENDER_BASELINES_GUARDED_H
 
 #include "render/gpu_mesh.h"
-
-#ifdef __cplusplus
-extern "C" {
-#endif
 
 #define OIT_GUARDED_DEFAULT_THRESHOLD 0.0025f
 
 /* A list store (list_store.h) with the guard's shaders. */
 typedef struct oit_list_store oit_guarded;
 
-/* Starts at OIT_GUARDED_DEFAULT_THRESHOLD. */
-oit_status oit_guarded_create(oit_guarded **out, oit_error *err);
-void oit_guarded_destroy(oit_guarded *g);
-
 /* Contribution threshold in [0, 1); 0 culls nothing. OIT_ERR_ARGUMENT
- * outside it (NaN included). Holds for the next frames. */
+ * outside it (NaN included). Holds for the next frames. The method
+ * (methods.h) starts at OIT_GUARDED_DEFAULT_THRESHOLD. */
 oit_status oit_guarded_set_threshold(oit_guarded *g, float threshold, oit_error *err);
 
-/* Renders meshes[0..n) as one scene; out is allocated by the call. */
-oit_status oit_guarded_render(oit_guarded *g, const oit_gpu_mesh *const *meshes, int n,
-                              const oit_view *view, oit_image *out, oit_frame_stats *stats,
-                              oit_error *err);
-
-#ifdef __cplusplus
-}
-#endif
 #endif

@@ -2,9 +2,10 @@
  * ping-pong: a pass reads one and writes the next pairs into the other,
  * cleared to -inf (no fragment: the MAX identity). A pixel whose pair reads
  * (-inf, -inf) has nothing left: every fragment is outside the interval. */
-#include "render/dual_peel.h"
+#include "render/baselines/dual_peel.h"
+#include "render/baselines/methods.h"
 
-#include "render/baseline_common.h"
+#include "render/baselines/baseline_common.h"
 #include "render/image.h"
 
 #include <math.h>
@@ -101,7 +102,9 @@ static const char final_cs[] =
     "    out_rgba[p] = vec4(oit_output(s.C + s.T * (b.C + b.T * oit_background())), 1.0);\n"
     "}\n";
 
-oit_status oit_dual_peel_create(oit_dual_peel **out, oit_error *err)
+static void oit_dual_peel_destroy(oit_dual_peel *self);
+
+static oit_status oit_dual_peel_create(oit_dual_peel **out, oit_error *err)
 {
     *out = NULL;
     oit_dual_peel *d = calloc(1, sizeof *d);
@@ -129,7 +132,7 @@ static void release_targets(oit_dual_peel *d)
     memset(d->layer, 0, sizeof d->layer);
 }
 
-void oit_dual_peel_destroy(oit_dual_peel *d)
+static void oit_dual_peel_destroy(oit_dual_peel *d)
 {
     if (!d)
         return;
@@ -250,9 +253,9 @@ static oit_status peel_all(oit_dual_peel *d, const oit_gpu_mesh *const *meshes, 
     return oit_gl_check("dual peeling: passes", err);
 }
 
-oit_status oit_dual_peel_render(oit_dual_peel *d, const oit_gpu_mesh *const *meshes, int n,
-                                const oit_view *view, oit_image *out,
-                                oit_frame_stats *stats, oit_error *err)
+static oit_status oit_dual_peel_render(oit_dual_peel *d, const oit_gpu_mesh *const *meshes, int n,
+                                       const oit_view *view, oit_image *out,
+                                       oit_frame_stats *stats, oit_error *err)
 {
     oit_view v;
     double t0;
@@ -275,3 +278,5 @@ oit_status oit_dual_peel_render(oit_dual_peel *d, const oit_gpu_mesh *const *mes
     oit_baseline_stats(stats, t0, figures[0], figures[1], d->b.peak, passes);
     return OIT_OK;
 }
+
+OIT_BASELINE_METHOD(ddp, oit_dual_peel, 0, OIT_NO_THRESHOLD);

@@ -1,8 +1,9 @@
 /* Unsorted blending (unsorted.h): premultiplied "over", dst = src + (1 - a)
  * dst, into an RGBA32F target cleared to the background. */
-#include "render/unsorted.h"
+#include "render/baselines/unsorted.h"
+#include "render/baselines/methods.h"
 
-#include "render/baseline_common.h"
+#include "render/baselines/baseline_common.h"
 #include "render/image.h"
 #include "render/shade.h"
 
@@ -18,7 +19,9 @@ static const char blend_fs[] =
     "layout(location = 0) out vec4 o_colour;\n"
     "void main() { o_colour = oit_premultiplied(oit_fragment()); }\n";
 
-oit_status oit_unsorted_create(oit_unsorted **out, oit_error *err)
+static void oit_unsorted_destroy(oit_unsorted *self);
+
+static oit_status oit_unsorted_create(oit_unsorted **out, oit_error *err)
 {
     *out = NULL;
     oit_unsorted *u = calloc(1, sizeof *u);
@@ -41,7 +44,7 @@ oit_status oit_unsorted_create(oit_unsorted **out, oit_error *err)
     return OIT_OK;
 }
 
-void oit_unsorted_destroy(oit_unsorted *u)
+static void oit_unsorted_destroy(oit_unsorted *u)
 {
     if (!u)
         return;
@@ -87,9 +90,9 @@ static void draw(oit_unsorted *u, const oit_gpu_mesh *const *meshes, int n,
     glDisable(GL_BLEND);
 }
 
-oit_status oit_unsorted_render(oit_unsorted *u, const oit_gpu_mesh *const *meshes, int n,
-                               const oit_view *view, oit_image *out,
-                               oit_frame_stats *stats, oit_error *err)
+static oit_status oit_unsorted_render(oit_unsorted *u, const oit_gpu_mesh *const *meshes, int n,
+                                      const oit_view *view, oit_image *out,
+                                      oit_frame_stats *stats, oit_error *err)
 {
     oit_view v;
     double t0;
@@ -115,3 +118,5 @@ oit_status oit_unsorted_render(oit_unsorted *u, const oit_gpu_mesh *const *meshe
     oit_baseline_stats(stats, t0, samples, 0, u->bytes_peak, 1);
     return OIT_OK;
 }
+
+OIT_BASELINE_METHOD(unsorted, oit_unsorted, 0, OIT_NO_THRESHOLD);

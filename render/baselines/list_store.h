@@ -32,8 +32,8 @@
  *
  * Stats: fragments (stored, counted by the resolve), max_layers (longest
  * list), batches = geometry passes drawn, gpu_bytes_peak. */
-#ifndef OIT_RENDER_LIST_STORE_H
-#define OIT_RENDER_LIST_STORE_H
+#ifndef OIT_RENDER_BASELINES_LIST_STORE_H
+#define OIT_RENDER_BASELINES_LIST_STORE_H
 
 #include "render/gpu_mesh.h"
 

@@ -1,8 +1,9 @@
 /* Fixed per-pixel arrays (b3d.h). Counts and output are buffers in GL row
  * order; slot s of pixel (x, y) is texel (x, y, s) of the layer array. */
-#include "render/b3d.h"
+#include "render/baselines/b3d.h"
+#include "render/baselines/methods.h"
 
-#include "render/baseline_common.h"
+#include "render/baselines/baseline_common.h"
 #include "render/image.h"
 
 #include <stdlib.h>
@@ -98,7 +99,9 @@ static oit_status build_programs(oit_b3d *b, oit_error *err)
     return s;
 }
 
-oit_status oit_b3d_create(oit_b3d **out, oit_error *err)
+static void oit_b3d_destroy(oit_b3d *self);
+
+static oit_status oit_b3d_create(oit_b3d **out, oit_error *err)
 {
     *out = NULL;
     oit_b3d *b = calloc(1, sizeof *b);
@@ -119,7 +122,7 @@ oit_status oit_b3d_create(oit_b3d **out, oit_error *err)
     return OIT_OK;
 }
 
-void oit_b3d_destroy(oit_b3d *b)
+static void oit_b3d_destroy(oit_b3d *b)
 {
     if (!b)
         return;
@@ -230,9 +233,9 @@ static oit_status store_and_resolve(oit_b3d *b, const oit_gpu_mesh *const *meshe
     return oit_gl_check("B3D: store pass and resolve", err);
 }
 
-oit_status oit_b3d_render(oit_b3d *b, const oit_gpu_mesh *const *meshes, int n,
-                          const oit_view *view, oit_image *out, oit_frame_stats *stats,
-                          oit_error *err)
+static oit_status oit_b3d_render(oit_b3d *b, const oit_gpu_mesh *const *meshes, int n,
+                                 const oit_view *view, oit_image *out, oit_frame_stats *stats,
+                                 oit_error *err)
 {
     oit_view v;
     double t0;
@@ -254,3 +257,5 @@ oit_status oit_b3d_render(oit_b3d *b, const oit_gpu_mesh *const *meshes, int n,
     oit_baseline_stats(stats, t0, figures[2], figures[1], b->b.peak, 2);
     return OIT_OK;
 }
+
+OIT_BASELINE_METHOD(b3d, oit_b3d, 0, OIT_NO_THRESHOLD);

@@ -17,26 +17,11 @@
  *
  * Stats: fragments = fragments composited,
  * max_layers = layers peeled, batches = geometry passes, gpu_bytes_peak. */
-#ifndef OIT_RENDER_DEPTH_PEEL_H
-#define OIT_RENDER_DEPTH_PEEL_H
+#ifndef OIT_RENDER_BASELINES_DEPTH_PEEL_H
+#define OIT_RENDER_BASELINES_DEPTH_PEEL_H
 
 #include "render/gpu_mesh.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
-
 typedef struct oit_depth_peel oit_depth_peel;
 
-oit_status oit_depth_peel_create(oit_depth_peel **out, oit_error *err);
-void oit_depth_peel_destroy(oit_depth_peel *d);
-
-/* Renders meshes[0..n) as one scene; out is allocated by the call. */
-oit_status oit_depth_peel_render(oit_depth_peel *d, const oit_gpu_mesh *const *meshes, int n,
-                                 const oit_view *view, oit_image *out,
-                                 oit_frame_stats *stats, oit_error *err);
-
-#ifdef __cplusplus
-}
-#endif
 #endif

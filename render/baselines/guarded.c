@@ -1,10 +1,11 @@
 /* Guarded OIT (guarded.h) on the list store (list_store.h): a unit is one
  * node; pixel p's head words are [2p] the list (newest node) and [2p + 1]
  * the nearest stored node. */
-#include "render/guarded.h"
+#include "render/baselines/guarded.h"
+#include "render/baselines/methods.h"
 
 #include "render/gl_util.h"
-#include "render/list_store.h"
+#include "render/baselines/list_store.h"
 
 /* A node is written before it is published (exchange or swap), and Nodes
  * is coherent, so a node a guard reads through either head word is whole.
@@ -53,7 +54,7 @@ static const char walk_glsl[] =
     OIT_LIST_NODE_WALK
     "uint oit_list_first(uint p) { return heads[2u * p]; }\n";
 
-oit_status oit_guarded_create(oit_guarded **out, oit_error *err)
+static oit_status oit_guarded_create(oit_guarded **out, oit_error *err)
 {
     /* 0xffffffff means no node, so it is no node index. A pass that
      * overflows counts as if guards past the pool never culled, so the pool
@@ -66,7 +67,7 @@ oit_status oit_guarded_create(oit_guarded **out, oit_error *err)
     return s;
 }
 
-void oit_guarded_destroy(oit_guarded *g)
+static void oit_guarded_destroy(oit_guarded *g)
 {
     oit_list_store_destroy(g);
 }
@@ -81,9 +82,11 @@ oit_status oit_guarded_set_threshold(oit_guarded *g, float threshold, oit_error 
     return oit_gl_check("guarded OIT: threshold", err);
 }
 
-oit_status oit_guarded_render(oit_guarded *g, const oit_gpu_mesh *const *meshes, int n,
-                              const oit_view *view, oit_image *out, oit_frame_stats *stats,
-                              oit_error *err)
+static oit_status oit_guarded_render(oit_guarded *g, const oit_gpu_mesh *const *meshes, int n,
+                                     const oit_view *view, oit_image *out, oit_frame_stats *stats,
+                                     oit_error *err)
 {
     return oit_list_store_render(g, meshes, n, view, out, stats, err);
 }
+
+OIT_BASELINE_METHOD(guarded, oit_guarded, OIT_METHOD_EPSILON, OIT_THRESHOLD);

@@ -4,8 +4,8 @@
  * of the methods that store every fragment, frame-size validation, and
  * readback of a GL-ordered (bottom row first) RGBA float result into a
  * top-first oit_image. None keeps state. */
-#ifndef OIT_RENDER_BASELINE_COMMON_H
-#define OIT_RENDER_BASELINE_COMMON_H
+#ifndef OIT_RENDER_BASELINES_BASELINE_COMMON_H
+#define OIT_RENDER_BASELINES_BASELINE_COMMON_H
 
 #include "render/frag_glsl.h"
 #include "render/gpu_mesh.h"

@@ -4,9 +4,10 @@
  * keeps nothing discards everything from then on; before the first pass
  * the previous layer reads t bits 0, below every fragment's. The composite state
  * is the GLSL oit_state per pixel in a buffer, GL row order. */
-#include "render/depth_peel.h"
+#include "render/baselines/depth_peel.h"
+#include "render/baselines/methods.h"
 
-#include "render/baseline_common.h"
+#include "render/baselines/baseline_common.h"
 #include "render/image.h"
 
 #include <math.h>
@@ -70,7 +71,9 @@ static const char final_cs[] =
     "    out_rgba[p] = oit_state_final(states[p]);\n"
     "}\n";
 
-oit_status oit_depth_peel_create(oit_depth_peel **out, oit_error *err)
+static void oit_depth_peel_destroy(oit_depth_peel *self);
+
+static oit_status oit_depth_peel_create(oit_depth_peel **out, oit_error *err)
 {
     *out = NULL;
     oit_depth_peel *d = calloc(1, sizeof *d);
@@ -96,7 +99,7 @@ static void release_targets(oit_depth_peel *d)
     d->layer[0] = d->layer[1] = d->depth = 0;
 }
 
-void oit_depth_peel_destroy(oit_depth_peel *d)
+static void oit_depth_peel_destroy(oit_depth_peel *d)
 {
     if (!d)
         return;
@@ -237,9 +240,9 @@ static oit_status peel_all(oit_depth_peel *d, const oit_gpu_mesh *const *meshes,
     return oit_gl_check("depth peeling: passes", err);
 }
 
-oit_status oit_depth_peel_render(oit_depth_peel *d, const oit_gpu_mesh *const *meshes, int n,
-                                 const oit_view *view, oit_image *out,
-                                 oit_frame_stats *stats, oit_error *err)
+static oit_status oit_depth_peel_render(oit_depth_peel *d, const oit_gpu_mesh *const *meshes, int n,
+                                        const oit_view *view, oit_image *out,
+                                        oit_frame_stats *stats, oit_error *err)
 {
     oit_view v;
     double t0;
@@ -263,3 +266,5 @@ oit_status oit_depth_peel_render(oit_depth_peel *d, const oit_gpu_mesh *const *m
     oit_baseline_stats(stats, t0, fragments, layers, d->b.peak, passes);
     return OIT_OK;
 }
+
+OIT_BASELINE_METHOD(dp, oit_depth_peel, 0, OIT_NO_THRESHOLD);

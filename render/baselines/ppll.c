@@ -1,8 +1,9 @@
 /* Per-pixel linked lists (ppll.h) on the list store (list_store.h): a unit
  * is one node, a pixel's one head word indexes its newest node. */
-#include "render/ppll.h"
+#include "render/baselines/ppll.h"
+#include "render/baselines/methods.h"
 
-#include "render/list_store.h"
+#include "render/baselines/list_store.h"
 
 
 static const char append_fs[] =
@@ -22,14 +23,14 @@ static const char walk_glsl[] =
     OIT_LIST_NODE_WALK
     "uint oit_list_first(uint p) { return heads[p]; }\n";
 
-oit_status oit_pll_create(oit_pll **out, oit_error *err)
+static oit_status oit_pll_create(oit_pll **out, oit_error *err)
 {
     /* 0xffffffff ends a list, so it is no node index. */
     static const oit_list_desc d = {"PLL", append_fs, walk_glsl, 1, 1, 0xfffffffeull, 0};
     return oit_list_store_create(&d, out, err);
 }
 
-void oit_pll_destroy(oit_pll *p)
+static void oit_pll_destroy(oit_pll *p)
 {
     oit_list_store_destroy(p);
 }
@@ -39,9 +40,11 @@ uint64_t oit_pll_capacity(const oit_pll *p)
     return oit_list_store_capacity(p);
 }
 
-oit_status oit_pll_render(oit_pll *p, const oit_gpu_mesh *const *meshes, int n,
-                          const oit_view *view, oit_image *out, oit_frame_stats *stats,
-                          oit_error *err)
+static oit_status oit_pll_render(oit_pll *p, const oit_gpu_mesh *const *meshes, int n,
+                                 const oit_view *view, oit_image *out, oit_frame_stats *stats,
+                                 oit_error *err)
 {
     return oit_list_store_render(p, meshes, n, view, out, stats, err);
 }
+
+OIT_BASELINE_METHOD(pll, oit_pll, 0, OIT_NO_THRESHOLD);

@@ -36,26 +36,11 @@
  * Stats: fragments = fragments composited (lost ties not counted),
  * max_layers = most composited on one pixel, batches = geometry passes,
  * gpu_bytes_peak. */
-#ifndef OIT_RENDER_DUAL_PEEL_H
-#define OIT_RENDER_DUAL_PEEL_H
+#ifndef OIT_RENDER_BASELINES_DUAL_PEEL_H
+#define OIT_RENDER_BASELINES_DUAL_PEEL_H
 
 #include "render/gpu_mesh.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
-
 typedef struct oit_dual_peel oit_dual_peel;
 
-oit_status oit_dual_peel_create(oit_dual_peel **out, oit_error *err);
-void oit_dual_peel_destroy(oit_dual_peel *d);
-
-/* Renders meshes[0..n) as one scene; out is allocated by the call. */
-oit_status oit_dual_peel_render(oit_dual_peel *d, const oit_gpu_mesh *const *meshes, int n,
-                                const oit_view *view, oit_image *out,
-                                oit_frame_stats *stats, oit_error *err);
-
-#ifdef __cplusplus
-}
-#endif
 #endif

@@ -1,9 +1,10 @@
 /* Paged per-pixel linked lists (ppll4.h) on the list store (list_store.h):
  * a unit is a page of four slots, a pixel's one head word packs the newest
  * page and its fill. */
-#include "render/ppll4.h"
+#include "render/baselines/ppll4.h"
+#include "render/baselines/methods.h"
 
-#include "render/list_store.h"
+#include "render/baselines/list_store.h"
 
 
 /* A page taken but not swapped in (another fragment filled the pixel first)
@@ -73,14 +74,14 @@ static const char walk_glsl[] =
     "}\n"
     "void oit_list_store(uint i, uvec4 f) { slots[i] = f; }\n";
 
-oit_status oit_ppll4_create(oit_ppll4 **out, oit_error *err)
+static oit_status oit_ppll4_create(oit_ppll4 **out, oit_error *err)
 {
     /* Page indices take the head word's upper 30 bits; the top one is NO_PAGE. */
     static const oit_list_desc d = {"PPLL4", append_fs, walk_glsl, 4, 1, 0x3ffffffeull, 0};
     return oit_list_store_create(&d, out, err);
 }
 
-void oit_ppll4_destroy(oit_ppll4 *p)
+static void oit_ppll4_destroy(oit_ppll4 *p)
 {
     oit_list_store_destroy(p);
 }
@@ -90,9 +91,11 @@ uint64_t oit_ppll4_capacity(const oit_ppll4 *p)
     return oit_list_store_capacity(p);
 }
 
-oit_status oit_ppll4_render(oit_ppll4 *p, const oit_gpu_mesh *const *meshes, int n,
-                            const oit_view *view, oit_image *out, oit_frame_stats *stats,
-                            oit_error *err)
+static oit_status oit_ppll4_render(oit_ppll4 *p, const oit_gpu_mesh *const *meshes, int n,
+                                   const oit_view *view, oit_image *out, oit_frame_stats *stats,
+                                   oit_error *err)
 {
     return oit_list_store_render(p, meshes, n, view, out, stats, err);
 }
+
+OIT_BASELINE_METHOD(ppll4, oit_ppll4, 0, OIT_NO_THRESHOLD);

@@ -1,9 +1,9 @@
 /* The list baselines' frame machinery (list_store.h). Buffers are in GL row
  * order; a slot's payload (16 bytes) and its unit's link (4 bytes) live in
  * two arrays so the payload keeps frag_glsl.h's packing. */
-#include "render/list_store.h"
+#include "render/baselines/list_store.h"
 
-#include "render/baseline_common.h"
+#include "render/baselines/baseline_common.h"
 #include "render/image.h"
 
 #include <stdio.h>

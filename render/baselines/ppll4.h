@@ -24,31 +24,16 @@
  *
  * Stats: fragments (stored: all of them), max_layers (longest list),
  * batches = geometry passes drawn, gpu_bytes_peak. */
-#ifndef OIT_RENDER_PPLL4_H
-#define OIT_RENDER_PPLL4_H
+#ifndef OIT_RENDER_BASELINES_PPLL4_H
+#define OIT_RENDER_BASELINES_PPLL4_H
 
 #include "render/gpu_mesh.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
-
 /* A list store (list_store.h) with this method's shaders. */
 typedef struct oit_list_store oit_ppll4;
-
-oit_status oit_ppll4_create(oit_ppll4 **out, oit_error *err);
-void oit_ppll4_destroy(oit_ppll4 *p);
-
-/* Renders meshes[0..n) as one scene; out is allocated by the call. */
-oit_status oit_ppll4_render(oit_ppll4 *p, const oit_gpu_mesh *const *meshes, int n,
-                            const oit_view *view, oit_image *out, oit_frame_stats *stats,
-                            oit_error *err);
 
 /* Fragment slots the page pool holds now (4 per page; grows with the frames
  * seen). */
 uint64_t oit_ppll4_capacity(const oit_ppll4 *p);
 
-#ifdef __cplusplus
-}
-#endif
 #endif

@@ -1,8 +1,9 @@
 /* Weighted blended OIT (wboit.h). Accumulation uses blend state per draw
  * buffer: (ONE, ONE) on accum, (ZERO, ONE_MINUS_SRC_COLOR) on reveal. */
-#include "render/wboit.h"
+#include "render/baselines/wboit.h"
+#include "render/baselines/methods.h"
 
-#include "render/baseline_common.h"
+#include "render/baselines/baseline_common.h"
 #include "render/image.h"
 
 #include <stdlib.h>
@@ -61,7 +62,9 @@ static oit_status build_programs(oit_wboit *w, oit_error *err)
     return s;
 }
 
-oit_status oit_wboit_create(oit_wboit **out, oit_error *err)
+static void oit_wboit_destroy(oit_wboit *self);
+
+static oit_status oit_wboit_create(oit_wboit **out, oit_error *err)
 {
     *out = NULL;
     oit_wboit *w = calloc(1, sizeof *w);
@@ -81,7 +84,7 @@ oit_status oit_wboit_create(oit_wboit **out, oit_error *err)
     return OIT_OK;
 }
 
-void oit_wboit_destroy(oit_wboit *w)
+static void oit_wboit_destroy(oit_wboit *w)
 {
     if (!w)
         return;
@@ -139,9 +142,9 @@ static void resolve(oit_wboit *w)
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
 }
 
-oit_status oit_wboit_render(oit_wboit *w, const oit_gpu_mesh *const *meshes, int n,
-                            const oit_view *view, oit_image *out,
-                            oit_frame_stats *stats, oit_error *err)
+static oit_status oit_wboit_render(oit_wboit *w, const oit_gpu_mesh *const *meshes, int n,
+                                   const oit_view *view, oit_image *out,
+                                   oit_frame_stats *stats, oit_error *err)
 {
     oit_view v;
     double t0;
@@ -165,3 +168,5 @@ oit_status oit_wboit_render(oit_wboit *w, const oit_gpu_mesh *const *meshes, int
     oit_baseline_stats(stats, t0, samples, 0, w->bytes_peak, 1);
     return OIT_OK;
 }
+
+OIT_BASELINE_METHOD(wboit, oit_wboit, 0, OIT_NO_THRESHOLD);

@@ -2,9 +2,10 @@
  * pass, CPU sort, gather pass, blend pass, final pass. Triangle indices
  * count across the frame's meshes (u_mesh_base: triangles of the meshes
  * before). */
-#include "render/f2b.h"
+#include "render/baselines/f2b.h"
+#include "render/baselines/methods.h"
 
-#include "render/baseline_common.h"
+#include "render/baselines/baseline_common.h"
 #include "render/image.h"
 
 #include <stdlib.h>
@@ -106,7 +107,9 @@ static oit_status build_programs(oit_f2b *f, oit_error *err)
     return s;
 }
 
-oit_status oit_f2b_create(oit_f2b **out, oit_error *err)
+static void oit_f2b_destroy(oit_f2b *self);
+
+static oit_status oit_f2b_create(oit_f2b **out, oit_error *err)
 {
     *out = NULL;
     oit_f2b *f = calloc(1, sizeof *f);
@@ -130,7 +133,7 @@ oit_status oit_f2b_create(oit_f2b **out, oit_error *err)
     return OIT_OK;
 }
 
-void oit_f2b_destroy(oit_f2b *f)
+static void oit_f2b_destroy(oit_f2b *f)
 {
     if (!f)
         return;
@@ -312,9 +315,9 @@ static void finish(oit_f2b *f)
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
 }
 
-oit_status oit_f2b_render(oit_f2b *f, const oit_gpu_mesh *const *meshes, int n,
-                          const oit_view *view, oit_image *out, oit_frame_stats *stats,
-                          oit_error *err)
+static oit_status oit_f2b_render(oit_f2b *f, const oit_gpu_mesh *const *meshes, int n,
+                                 const oit_view *view, oit_image *out, oit_frame_stats *stats,
+                                 oit_error *err)
 {
     oit_view v;
     double t0;
@@ -342,3 +345,5 @@ oit_status oit_f2b_render(oit_f2b *f, const oit_gpu_mesh *const *meshes, int n,
     oit_baseline_stats(stats, t0, samples, 0, f->b.peak, 1);
     return OIT_OK;
 }
+
+OIT_BASELINE_METHOD(f2b, oit_f2b, OIT_METHOD_EPSILON, OIT_THRESHOLD);

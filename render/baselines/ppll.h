@@ -15,30 +15,15 @@
  * Stats: fragments (stored: all of them), max_layers (longest list),
  * batches = the geometry passes drawn (1, or 2 after an overflow),
  * gpu_bytes_peak. */
-#ifndef OIT_RENDER_PPLL_H
-#define OIT_RENDER_PPLL_H
+#ifndef OIT_RENDER_BASELINES_PPLL_H
+#define OIT_RENDER_BASELINES_PPLL_H
 
 #include "render/gpu_mesh.h"
-
-#ifdef __cplusplus
-extern "C" {
-#endif
 
 /* A list store (list_store.h) with this method's shaders. */
 typedef struct oit_list_store oit_pll;
 
-oit_status oit_pll_create(oit_pll **out, oit_error *err);
-void oit_pll_destroy(oit_pll *p);
-
-/* Renders meshes[0..n) as one scene; out is allocated by the call. */
-oit_status oit_pll_render(oit_pll *p, const oit_gpu_mesh *const *meshes, int n,
-                          const oit_view *view, oit_image *out, oit_frame_stats *stats,
-                          oit_error *err);
-
 /* Nodes the node buffer holds now (grows with the frames seen). */
 uint64_t oit_pll_capacity(const oit_pll *p);
 
-#ifdef __cplusplus
-}
-#endif
 #endif

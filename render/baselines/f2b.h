@@ -39,33 +39,18 @@
  * Stats: fragments = fragments blended (GL_SAMPLES_PASSED; discarded ones
  * are not), max_layers = 0 (not known without a count pass), batches = 1,
  * gpu_bytes_peak. */
-#ifndef OIT_RENDER_F2B_H
-#define OIT_RENDER_F2B_H
+#ifndef OIT_RENDER_BASELINES_F2B_H
+#define OIT_RENDER_BASELINES_F2B_H
 
 #include "render/gpu_mesh.h"
-
-#ifdef __cplusplus
-extern "C" {
-#endif
 
 #define OIT_F2B_DEFAULT_THRESHOLD 0.02f
 
 typedef struct oit_f2b oit_f2b;
 
-/* Starts at OIT_F2B_DEFAULT_THRESHOLD. */
-oit_status oit_f2b_create(oit_f2b **out, oit_error *err);
-void oit_f2b_destroy(oit_f2b *f);
-
 /* Alpha (transmittance) threshold in [0, 1); 0 discards nothing.
- * OIT_ERR_ARGUMENT outside it (NaN included). */
+ * OIT_ERR_ARGUMENT outside it (NaN included). The method (methods.h)
+ * starts at OIT_F2B_DEFAULT_THRESHOLD. */
 oit_status oit_f2b_set_threshold(oit_f2b *f, float threshold, oit_error *err);
 
-/* Renders meshes[0..n) as one scene; out is allocated by the call. */
-oit_status oit_f2b_render(oit_f2b *f, const oit_gpu_mesh *const *meshes, int n,
-                          const oit_view *view, oit_image *out, oit_frame_stats *stats,
-                          oit_error *err);
-
-#ifdef __cplusplus
-}
-#endif
 #endif

@@ -1,0 +1,101 @@
+/* A rendering method behind one interface: DFB, the capture backends, the
+ * baselines, the Embree reference and (from stream/) the part-file streamer
+ * each describe themselves with one `oit_method` table of operations
+ * (designated initialisers; an operation a method lacks is NULL), and the
+ * tools drive any of them through oit_method_open / _render / _close.
+ *
+ * What the interface does for every method, so no method repeats it: a GL
+ * method (OIT_METHOD_GL) gets the caller's context or a headless one of its
+ * own, and an in-core GL method gets the mesh uploaded once at open; GL
+ * objects are released before the context that owns them.
+ *
+ * Adding a method: its own file with its table, one line in the registry
+ * (tools/common/methods.c), one line in CMake. */
+#ifndef OIT_RENDER_METHOD_H
+#define OIT_RENDER_METHOD_H
+
+#include <stdint.h>
+
+#include "oit/mesh.h"
+#include "render/gpu_mesh.h"
+#include "render/view.h"
+
+struct oit_gl;
+/* The streamer's options and figures (stream/stream_method.h,
+ * stream/streamer.h): only the part-file method reads or fills them. */
+typedef struct oit_stream_options oit_stream_options;
+struct oit_stream_frame_stats;
+
+enum {
+    OIT_METHOD_GL = 1u << 0,        /* renders with GL (a context is made or borrowed) */
+    OIT_METHOD_COUNTS = 1u << 1,    /* can fill per-pixel fragment counts (--show layers) */
+    OIT_METHOD_AMBIGUITY = 1u << 2, /* can flag raster-vs-ray ambiguous pixels */
+    OIT_METHOD_PARTFILE = 1u << 3,  /* renders options.stream->partfile, not the mesh */
+    OIT_METHOD_EPSILON = 1u << 4    /* takes options.epsilon as a threshold a sweep can vary */
+};
+
+typedef struct oit_method_options {
+    int max_layers; /* K of the capture backends and the streamer */
+    /* NULL: GL methods make their own headless context. Else they render in
+     * this one, current on the calling thread (the viewer's window), and do
+     * not destroy it. */
+    struct oit_gl *gl;
+    /* The streamer's early termination, f2b's alpha threshold, guarded's
+     * contribution threshold (0: none); < 0: the method's default (stream:
+     * 0, exact; f2b, guarded: their papers' values). */
+    float epsilon;
+    float ambiguity_px; /* the reference's ambiguity radius, pixels; 0: 1/64 */
+    const oit_stream_options *stream; /* OIT_METHOD_PARTFILE methods only */
+} oit_method_options;
+
+/* One frame's inputs and outputs, as a method's render operation sees them. */
+typedef struct oit_method_frame {
+    const oit_mesh *mesh;     /* the scene in host memory (empty for part files) */
+    const oit_gpu_mesh *gpu;  /* the same on the GPU (in-core GL methods) */
+    const oit_view *view;
+    oit_image *out;           /* allocated by the method */
+    uint32_t *counts;         /* width*height, or NULL; only with OIT_METHOD_COUNTS */
+    uint8_t *ambiguous;       /* width*height, or NULL; only with OIT_METHOD_AMBIGUITY */
+    oit_frame_stats *stats;
+} oit_method_frame;
+
+typedef struct oit_method {
+    const char *name;
+    unsigned flags; /* OIT_METHOD_* */
+    /* Makes the method's object; a GL context is current (GL methods). */
+    oit_status (*create)(const oit_mesh *mesh, const oit_method_options *opt, void **impl,
+                         oit_error *err);
+    oit_status (*render)(void *impl, const oit_method_frame *frame, oit_error *err);
+    void (*destroy)(void *impl);
+    /* "Embree 3.13.5 (CPU reference)"; NULL: the GL context's renderer. */
+    const char *(*renderer)(const void *impl);
+    /* The streamer's figures of the last frame; NULL for other methods. */
+    const struct oit_stream_frame_stats *(*stream_stats)(const void *impl);
+} oit_method;
+
+typedef struct oit_method_state oit_method_state;
+
+/* Opens m for mesh (empty for OIT_METHOD_PARTFILE methods, whose part file
+ * comes in opt->stream). opt may be NULL for methods that need none. */
+oit_status oit_method_open(const oit_method *m, const oit_mesh *mesh,
+                           const oit_method_options *opt, oit_method_state **out,
+                           oit_error *err);
+/* out is allocated by the call; counts and ambiguous (width*height) may be
+ * NULL, and are used only where the method's flags say it fills them. */
+oit_status oit_method_render(oit_method_state *st, const oit_view *view, oit_image *out,
+                             uint32_t *counts, uint8_t *ambiguous, oit_frame_stats *stats,
+                             oit_error *err);
+/* "llvmpipe (LLVM 15.0.6, 256 bits)", "Embree 3.13.5 (CPU reference)", ... */
+const char *oit_method_renderer(const oit_method_state *st);
+/* The streamer's figures of the last frame; NULL for other methods. */
+const struct oit_stream_frame_stats *oit_method_stream_stats(const oit_method_state *st);
+void oit_method_close(oit_method_state *st);
+
+/* The in-core exact methods of render/: DFB, and the two capture backends
+ * drawing the whole mesh as one batch (which is where their overflow count
+ * means something). */
+extern const oit_method oit_method_dfb;
+extern const oit_method oit_method_array;
+extern const oit_method oit_method_stencil;
+
+#endif

@@ -1,0 +1,85 @@
+/* DFB and the capture backends as method tables (method.h). */
+#include "render/method.h"
+
+#include "render/capture.h"
+#include "render/dfb.h"
+
+static oit_status dfb_create(const oit_mesh *mesh, const oit_method_options *opt, void **impl,
+                             oit_error *err)
+{
+    oit_dfb *d = NULL;
+    oit_status s = oit_dfb_create(&d, err);
+    *impl = d;
+    return s;
+}
+
+static oit_status dfb_render(void *impl, const oit_method_frame *f, oit_error *err)
+{
+    return oit_dfb_render(impl, &f->gpu, 1, f->view, f->out, f->counts, f->stats, err);
+}
+
+static void dfb_destroy(void *impl)
+{
+    oit_dfb_destroy(impl);
+}
+
+const oit_method oit_method_dfb = {
+    .name = "dfb",
+    .flags = OIT_METHOD_GL | OIT_METHOD_COUNTS,
+    .create = dfb_create,
+    .render = dfb_render,
+    .destroy = dfb_destroy,
+};
+
+static oit_status capture_create(oit_capture_kind kind, const oit_method_options *opt,
+                                 void **impl, oit_error *err)
+{
+    oit_capture *c = NULL;
+    oit_status s = oit_capture_create(kind, opt ? opt->max_layers : 0, &c, err);
+    *impl = c;
+    return s;
+}
+
+static oit_status array_create(const oit_mesh *mesh, const oit_method_options *opt, void **impl,
+                               oit_error *err)
+{
+    return capture_create(OIT_CAPTURE_ARRAY, opt, impl, err);
+}
+
+static oit_status stencil_create(const oit_mesh *mesh, const oit_method_options *opt,
+                                 void **impl, oit_error *err)
+{
+    return capture_create(OIT_CAPTURE_STENCIL, opt, impl, err);
+}
+
+/* The whole mesh as one batch. */
+static oit_status capture_render(void *impl, const oit_method_frame *f, oit_error *err)
+{
+    oit_status s = oit_capture_begin(impl, f->view, err);
+    if (s == OIT_OK)
+        s = oit_capture_batch(impl, &f->gpu, 1, NULL, err);
+    if (s == OIT_OK)
+        s = oit_capture_end(impl, f->out, f->stats, err);
+    return s;
+}
+
+static void capture_destroy(void *impl)
+{
+    oit_capture_destroy(impl);
+}
+
+const oit_method oit_method_array = {
+    .name = "array",
+    .flags = OIT_METHOD_GL,
+    .create = array_create,
+    .render = capture_render,
+    .destroy = capture_destroy,
+};
+
+const oit_method oit_method_stencil = {
+    .name = "stencil",
+    .flags = OIT_METHOD_GL,
+    .create = stencil_create,
+    .render = capture_render,
+    .destroy = capture_destroy,
+};

@@ -1,0 +1,62 @@
+/* The streamer behind render/method.h (stream_method.h). */
+#include "stream/stream_method.h"
+
+#include <stdlib.h>
+
+typedef struct stream_impl {
+    oit_streamer *streamer;
+    oit_stream_frame_stats stats;
+} stream_impl;
+
+static void stream_destroy(void *impl)
+{
+    stream_impl *m = impl;
+    oit_streamer_destroy(m->streamer);
+    free(m);
+}
+
+static oit_status stream_create(const oit_mesh *mesh, const oit_method_options *opt,
+                                void **impl, oit_error *err)
+{
+    const oit_stream_options *so = opt ? opt->stream : NULL;
+    if (!so || !so->partfile)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "--method stream renders a part file "
+                             "(.oitp, made by oitprep); convert the model first");
+    stream_impl *m = calloc(1, sizeof *m);
+    if (!m)
+        return oit_error_set(err, OIT_ERR_NOMEM, "method stream: out of memory");
+    oit_streamer_desc sd = {.K = opt->max_layers, .capture = OIT_CAPTURE_ARRAY, .pack = so->pack,
+                            .schedule = so->schedule,
+                            .upload_budget = so->upload_budget,
+                            .slot_budget = so->slot_budget,
+                            .cache_budget = so->cache_budget,
+                            .read_inline = so->read_inline,
+                            .epsilon = opt->epsilon > 0.0f ? opt->epsilon : 0.0f};
+    oit_status s = oit_streamer_create(so->partfile, &sd, &m->streamer, err);
+    if (s != OIT_OK) {
+        free(m);
+        return s;
+    }
+    *impl = m;
+    return OIT_OK;
+}
+
+static oit_status stream_render(void *impl, const oit_method_frame *f, oit_error *err)
+{
+    stream_impl *m = impl;
+    return oit_streamer_render(m->streamer, f->view, f->out, f->stats, &m->stats, err);
+}
+
+static const oit_stream_frame_stats *stream_figures(const void *impl)
+{
+    return &((const stream_impl *)impl)->stats;
+}
+
+const oit_method oit_method_stream = {
+    .name = "stream",
+    .flags = OIT_METHOD_GL | OIT_METHOD_PARTFILE | OIT_METHOD_EPSILON,
+    .create = stream_create,
+    .render = stream_render,
+    .destroy = stream_destroy,
+    .stream_stats = stream_figures,
+};
