@@ -13,9 +13,11 @@
  *
  * and decoded into the version 4 blob layout (vertices, pad to 4, indices of
  * index_bits, pad to 4, u32 source indices), which is what every reader of
- * a part view sees. The decoders never read or write outside the buffers
- * they are given; they may yield garbage for hostile input, so the part
- * file reader checks what they produce.
+ * a part view sees. The encoders (encode.c) use libmeshoptimizer;
+ * the decoders (partfile_codec.c) use our own meshopt_decode.h, so that
+ * reading needs no C++ runtime. The decoders never read or write outside
+ * the buffers they are given; they may yield garbage for hostile input, so
+ * the part file reader checks what they produce.
  */
 #ifndef OIT_PARTFILE_CODEC_H
 #define OIT_PARTFILE_CODEC_H

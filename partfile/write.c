@@ -284,7 +284,7 @@ static uint8_t *build_blob(const oit_partfile_part_desc *p, oit_partfile_part *r
     return blob;
 }
 
-/* The part's stored streams (partfile_codec.h); sets the record's stored
+/* The part's stored streams (codec.h); sets the record's stored
  * sizes. NULL when out of memory. */
 static uint8_t *encode_blob(const oit_partfile_part_desc *p, oit_partfile_part *rec)
 {
