@@ -12,6 +12,7 @@ install(TARGETS oit EXPORT oitTargets
 install(FILES
         ${CMAKE_SOURCE_DIR}/include/oit/oit.h
         ${CMAKE_SOURCE_DIR}/include/oit/status.h
+        ${CMAKE_SOURCE_DIR}/include/oit/export.h
         ${CMAKE_SOURCE_DIR}/include/oit/mesh.h
         ${CMAKE_SOURCE_DIR}/include/oit/partfile.h
         ${CMAKE_SOURCE_DIR}/include/oit/liboit.h

@@ -114,9 +114,10 @@ oit_status oit_order_create(const oit_partfile *pf, oit_order **out, oit_error *
     o->scratch = calloc(o->scratch_cap ? o->scratch_cap : 1, sizeof *o->scratch);
     o->reach = calloc(o->grid_count ? o->grid_count : 1, sizeof *o->reach);
     if (!o->grids || !o->cells || !o->stamp || !o->stack || !o->scratch || !o->reach) {
+        uint32_t grids = o->grid_count; /* o is gone when the message is written */
         oit_order_destroy(o);
         return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot allocate the part order "
-                             "(%u grids, %u parts)", oit_partfile_name(pf), o->grid_count, parts);
+                             "(%u grids, %u parts)", oit_partfile_name(pf), grids, parts);
     }
     for (uint32_t g = 0; g < o->grid_count; g++) {
         o->grids[g] = oit_partfile_grid_at(pf, g);

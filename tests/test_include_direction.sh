@@ -31,7 +31,7 @@ while read -r dir ok; do
         done
     done
 done <<EOF
-include/oit
+include/oit oit
 base oit base
 formats oit base formats
 partfile oit base formats partfile

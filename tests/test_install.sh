@@ -24,9 +24,11 @@ for f in include/oit/oit.h include/oit/liboit.h include/oit/offscreen.h include/
          lib/python3/dist-packages/oit/_install_paths.py; do
     [ -f "$tmp/prefix/$f" ] || { echo "FAIL: not installed: $f"; exit 1; }
 done
-# Only the public headers: render/ and stream/ internals must not leak.
-extra=$(find "$tmp/prefix/include" -name '*.h' | wc -l)
-[ "$extra" -eq 6 ] || { echo "FAIL: $extra headers installed, expected 6"; exit 1; }
+# Exactly the public headers: every one of include/oit/, and no internal one.
+(cd "$src_dir" && ls include/oit/*.h) > "$tmp/want"
+(cd "$tmp/prefix" && find include -name '*.h' | sort) > "$tmp/got"
+cmp -s "$tmp/want" "$tmp/got" ||
+    { echo "FAIL: installed headers differ from include/oit/:"; diff "$tmp/want" "$tmp/got"; exit 1; }
 
 cat > "$tmp/src/main.c" <<'C'
 #include <oit/oit.h>

@@ -64,6 +64,8 @@
 #ifndef OIT_LIBOIT_H
 #define OIT_LIBOIT_H
 
+#include "oit/export.h"
+
 #include <stdint.h>
 
 #include "status.h"
@@ -108,8 +110,8 @@ typedef struct oit_scene_info {
  * A missing or unreadable file fails with OIT_ERR_IO, a malformed one with
  * OIT_ERR_FORMAT, an unknown extension with OIT_ERR_UNSUPPORTED; the
  * message names path. */
-oit_status oit_scene_open(const char *path, const oit_scene_desc *desc, oit_scene **out,
-                          oit_error *err);
+OIT_API oit_status oit_scene_open(const char *path, const oit_scene_desc *desc, oit_scene **out,
+                                  oit_error *err);
 
 /* Colour arrays of oit_scene_mesh_desc. */
 typedef enum oit_color_type {
@@ -146,14 +148,14 @@ typedef struct oit_scene_mesh_desc {
  * scene, drawn with DFB. Bad arrays fail with OIT_ERR_ARGUMENT naming the
  * field and the element ("oit_scene_mesh_desc.indices[7] = 12: not below
  * vertex_count 9"); OIT_ERR_NOMEM when the copy does not fit. No GL needed. */
-oit_status oit_scene_create_mesh(const oit_scene_mesh_desc *desc, oit_scene **out,
-                                 oit_error *err);
-oit_status oit_scene_get_info(const oit_scene *scene, oit_scene_info *info, oit_error *err);
+OIT_API oit_status oit_scene_create_mesh(const oit_scene_mesh_desc *desc, oit_scene **out,
+                                         oit_error *err);
+OIT_API oit_status oit_scene_get_info(const oit_scene *scene, oit_scene_info *info, oit_error *err);
 /* Lifetime: a renderer keeps GPU state for the last scene it drew and
  * remembers that scene by address. Close a scene only after every renderer
  * that drew it last has been destroyed, has drawn another scene or has
  * released it (oit_renderer_release_scene). */
-void oit_scene_close(oit_scene *scene);
+OIT_API void oit_scene_close(oit_scene *scene);
 
 /* ---- renderer ---------------------------------------------------------- */
 
@@ -240,14 +242,14 @@ typedef struct oit_renderer_desc {
 
 /* Needs a current GL 4.5 core context (GL objects are created lazily, at the
  * first draw of each scene). */
-oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out,
-                               oit_error *err);
-void oit_renderer_destroy(oit_renderer *r);
+OIT_API oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out,
+                                       oit_error *err);
+OIT_API void oit_renderer_destroy(oit_renderer *r);
 /* Frees r's GPU state for scene when r drew it last (else does nothing), so
  * that scene may be closed while r lives on; the next draw of any scene
  * builds its state anew. Needs r's GL context current, like every call on
  * r. r or scene NULL: nothing. */
-void oit_renderer_release_scene(oit_renderer *r, const oit_scene *scene);
+OIT_API void oit_renderer_release_scene(oit_renderer *r, const oit_scene *scene);
 
 typedef struct oit_frame {
     /* Column-major 4x4, as glUniformMatrix4fv(..., GL_FALSE, m) takes.
@@ -331,8 +333,8 @@ typedef struct oit_draw_stats {
  * 1 unless the frame's fragments exceed one storage buffer), draw_calls,
  * bytes_uploaded (the triangles, at the first draw) and gpu_bytes_peak are
  * filled, the rest are 0. */
-oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame *frame,
-                             oit_draw_stats *stats, oit_error *err);
+OIT_API oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame *frame,
+                                     oit_draw_stats *stats, oit_error *err);
 
 #ifdef __cplusplus
 }

@@ -20,6 +20,8 @@
 #ifndef OIT_MESH_H
 #define OIT_MESH_H
 
+#include "oit/export.h"
+
 #include <stddef.h>
 #include <stdint.h>
 
@@ -65,10 +67,10 @@ typedef struct oit_mesh_info {
  * the origin is read as it is, and a georeferenced one (UTM or ECEF
  * coordinates, 1e5 to 1e7) keeps its sub-millimetre detail instead of
  * collapsing onto the float grid of 1 that 1e7 has. */
-void oit_mesh_origin_pick(const double first[3], double origin[3]);
+OIT_API void oit_mesh_origin_pick(const double first[3], double origin[3]);
 /* in - origin rounded to float; beyond the float range it becomes +-inf
  * (the readers then drop the triangle as non-finite). */
-void oit_mesh_position(const double origin[3], const double in[3], float out[3]);
+OIT_API void oit_mesh_position(const double origin[3], const double in[3], float out[3]);
 
 /* Descriptor for a read; zero means default for every field. */
 typedef struct oit_read_desc {
@@ -86,16 +88,16 @@ typedef oit_status (*oit_triangle_sink)(void *user, const oit_triangle *tris,
 /* Reads any supported file; the format is chosen by extension (.ply .obj
  * .off .stl .gltf .glb, case-insensitive). info may be NULL. On failure the
  * message names the file and the line or byte offset where it went wrong. */
-oit_status oit_mesh_read(const char *path, const oit_read_desc *desc,
-                         oit_triangle_sink sink, void *user,
-                         oit_mesh_info *info, oit_error *err);
+OIT_API oit_status oit_mesh_read(const char *path, const oit_read_desc *desc,
+                                 oit_triangle_sink sink, void *user,
+                                 oit_mesh_info *info, oit_error *err);
 
 /* The individual readers, for callers that know the format. */
-oit_status oit_read_ply(const char *path, const oit_read_desc *desc, oit_triangle_sink sink, void *user, oit_mesh_info *info, oit_error *err);
-oit_status oit_read_obj(const char *path, const oit_read_desc *desc, oit_triangle_sink sink, void *user, oit_mesh_info *info, oit_error *err);
-oit_status oit_read_off(const char *path, const oit_read_desc *desc, oit_triangle_sink sink, void *user, oit_mesh_info *info, oit_error *err);
-oit_status oit_read_stl(const char *path, const oit_read_desc *desc, oit_triangle_sink sink, void *user, oit_mesh_info *info, oit_error *err);
-oit_status oit_read_gltf(const char *path, const oit_read_desc *desc, oit_triangle_sink sink, void *user, oit_mesh_info *info, oit_error *err);
+OIT_API oit_status oit_read_ply(const char *path, const oit_read_desc *desc, oit_triangle_sink sink, void *user, oit_mesh_info *info, oit_error *err);
+OIT_API oit_status oit_read_obj(const char *path, const oit_read_desc *desc, oit_triangle_sink sink, void *user, oit_mesh_info *info, oit_error *err);
+OIT_API oit_status oit_read_off(const char *path, const oit_read_desc *desc, oit_triangle_sink sink, void *user, oit_mesh_info *info, oit_error *err);
+OIT_API oit_status oit_read_stl(const char *path, const oit_read_desc *desc, oit_triangle_sink sink, void *user, oit_mesh_info *info, oit_error *err);
+OIT_API oit_status oit_read_gltf(const char *path, const oit_read_desc *desc, oit_triangle_sink sink, void *user, oit_mesh_info *info, oit_error *err);
 
 /* An in-core triangle array, for renderers that need the whole scene. */
 typedef struct oit_mesh {
@@ -105,18 +107,18 @@ typedef struct oit_mesh {
     oit_mesh_info info;
 } oit_mesh;
 
-oit_status oit_mesh_load(const char *path, const oit_read_desc *desc,
-                         oit_mesh *out, oit_error *err);
+OIT_API oit_status oit_mesh_load(const char *path, const oit_read_desc *desc,
+                                 oit_mesh *out, oit_error *err);
 /* Appends triangles, growing geometrically; for generators and tests. */
-oit_status oit_mesh_append(oit_mesh *m, const oit_triangle *tris, size_t count,
-                           oit_error *err);
-void oit_mesh_free(oit_mesh *m);
+OIT_API oit_status oit_mesh_append(oit_mesh *m, const oit_triangle *tris, size_t count,
+                                   oit_error *err);
+OIT_API void oit_mesh_free(oit_mesh *m);
 
 /* Bounds helpers used by readers so that every reader counts the same way. */
-void oit_mesh_info_init(oit_mesh_info *info);
-void oit_mesh_info_add(oit_mesh_info *info, const oit_triangle *tris, size_t count);
+OIT_API void oit_mesh_info_init(oit_mesh_info *info);
+OIT_API void oit_mesh_info_add(oit_mesh_info *info, const oit_triangle *tris, size_t count);
 /* 1 when all nine coordinates are finite. */
-int oit_triangle_is_finite(const oit_triangle *t);
+OIT_API int oit_triangle_is_finite(const oit_triangle *t);
 
 #ifdef __cplusplus
 }

@@ -22,6 +22,8 @@
 #ifndef OIT_OFFSCREEN_H
 #define OIT_OFFSCREEN_H
 
+#include "oit/export.h"
+
 #include <stddef.h>
 #include <stdint.h>
 
@@ -39,14 +41,14 @@ typedef struct oit_offscreen_desc {
 
 /* desc may be NULL. Fails with OIT_ERR_GL when no EGL display or GL 4.5
  * core context can be had (the message says which step). */
-oit_status oit_offscreen_create(const oit_offscreen_desc *desc, oit_offscreen **out,
-                                oit_error *err);
-void oit_offscreen_destroy(oit_offscreen *o);
+OIT_API oit_status oit_offscreen_create(const oit_offscreen_desc *desc, oit_offscreen **out,
+                                        oit_error *err);
+OIT_API void oit_offscreen_destroy(oit_offscreen *o);
 /* oit_renderer_release_scene for o's renderer (liboit.h, Lifetime): call
  * it before closing a scene that o drew last while o lives on. */
-void oit_offscreen_release_scene(oit_offscreen *o, const oit_scene *scene);
+OIT_API void oit_offscreen_release_scene(oit_offscreen *o, const oit_scene *scene);
 /* The GL renderer string of the context ("llvmpipe (LLVM 15.0.6, 256 bits)"). */
-const char *oit_offscreen_gl_renderer(const oit_offscreen *o);
+OIT_API const char *oit_offscreen_gl_renderer(const oit_offscreen *o);
 
 typedef enum oit_pixel_format {
     OIT_PIXELS_RGBA8 = 0,  /* 4 uint8_t a pixel             */
@@ -87,9 +89,9 @@ typedef struct oit_offscreen_view {
  * (at least width * height * 4 * component size, else OIT_ERR_ARGUMENT).
  * stats may be NULL (see oit_renderer_draw). Errors name the scene or the
  * field of view that is wrong. */
-oit_status oit_offscreen_render(oit_offscreen *o, oit_scene *scene,
-                                const oit_offscreen_view *view, void *pixels,
-                                size_t pixels_bytes, oit_draw_stats *stats, oit_error *err);
+OIT_API oit_status oit_offscreen_render(oit_offscreen *o, oit_scene *scene,
+                                        const oit_offscreen_view *view, void *pixels,
+                                        size_t pixels_bytes, oit_draw_stats *stats, oit_error *err);
 
 #ifdef __cplusplus
 }

@@ -28,6 +28,8 @@
 #ifndef OIT_PARTFILE_H
 #define OIT_PARTFILE_H
 
+#include "oit/export.h"
+
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -173,30 +175,30 @@ typedef struct oit_partfile_open_desc {
 } oit_partfile_open_desc;
 
 /* desc may be NULL. On failure *out is NULL and err names the file. */
-oit_status oit_partfile_open(const char *path, const oit_partfile_open_desc *desc,
-                             oit_partfile **out, oit_error *err);
+OIT_API oit_status oit_partfile_open(const char *path, const oit_partfile_open_desc *desc,
+                                     oit_partfile **out, oit_error *err);
 /* The same over bytes already in memory (not copied: they must outlive the
  * handle). name is used in messages. */
-oit_status oit_partfile_open_memory(const void *data, size_t size, const char *name,
-                                    const oit_partfile_open_desc *desc,
-                                    oit_partfile **out, oit_error *err);
-void oit_partfile_close(oit_partfile *pf);
+OIT_API oit_status oit_partfile_open_memory(const void *data, size_t size, const char *name,
+                                            const oit_partfile_open_desc *desc,
+                                            oit_partfile **out, oit_error *err);
+OIT_API void oit_partfile_close(oit_partfile *pf);
 
-void oit_partfile_get_summary(const oit_partfile *pf, oit_partfile_summary *out);
-const char *oit_partfile_name(const oit_partfile *pf);
-const char *oit_partfile_source_name(const oit_partfile *pf); /* NUL-terminated */
-const char *oit_partfile_options(const oit_partfile *pf);     /* NUL-terminated */
+OIT_API void oit_partfile_get_summary(const oit_partfile *pf, oit_partfile_summary *out);
+OIT_API const char *oit_partfile_name(const oit_partfile *pf);
+OIT_API const char *oit_partfile_source_name(const oit_partfile *pf); /* NUL-terminated */
+OIT_API const char *oit_partfile_options(const oit_partfile *pf);     /* NUL-terminated */
 
-uint32_t oit_partfile_part_count(const oit_partfile *pf);
-const oit_partfile_part *oit_partfile_parts(const oit_partfile *pf);
-uint64_t oit_partfile_piece_count(const oit_partfile *pf);
-const oit_partfile_piece *oit_partfile_pieces(const oit_partfile *pf);
+OIT_API uint32_t oit_partfile_part_count(const oit_partfile *pf);
+OIT_API const oit_partfile_part *oit_partfile_parts(const oit_partfile *pf);
+OIT_API uint64_t oit_partfile_piece_count(const oit_partfile *pf);
+OIT_API const oit_partfile_piece *oit_partfile_pieces(const oit_partfile *pf);
 
 /* Checks part's blob: checksum, index values < vertex_count, vertices
  * finite and inside the part bounds, triangles inside their piece bounds,
  * source indices < the file's triangles_in.
  * Idempotent; distinct parts may be validated from different threads. */
-oit_status oit_partfile_validate_part(oit_partfile *pf, uint32_t part, oit_error *err);
+OIT_API oit_status oit_partfile_validate_part(oit_partfile *pf, uint32_t part, oit_error *err);
 
 typedef struct oit_partfile_part_view {
     const void *blob;     /* the decoded blob, data_bytes (in the buffer) */
@@ -222,25 +224,25 @@ typedef struct oit_partfile_buffer {
     void *data;
     size_t capacity;
 } oit_partfile_buffer;
-void oit_partfile_buffer_free(oit_partfile_buffer *buf);
+OIT_API void oit_partfile_buffer_free(oit_partfile_buffer *buf);
 
 /* Decodes a validated part into buf and points the view at it. Fails with
  * OIT_ERR_ARGUMENT for an index out of range, or for a part not validated
  * yet when the file was opened with defer_part_data; OIT_ERR_NOMEM. */
-oit_status oit_partfile_part_data(const oit_partfile *pf, uint32_t part,
-                                  oit_partfile_buffer *buf, oit_partfile_part_view *out,
-                                  oit_error *err);
+OIT_API oit_status oit_partfile_part_data(const oit_partfile *pf, uint32_t part,
+                                          oit_partfile_buffer *buf, oit_partfile_part_view *out,
+                                          oit_error *err);
 /* oit_partfile_validate_part and oit_partfile_part_data in one decode: the
  * loader's path (a part is decoded once a use, also on its first). */
-oit_status oit_partfile_part_load(oit_partfile *pf, uint32_t part, oit_partfile_buffer *buf,
-                                  oit_partfile_part_view *out, oit_error *err);
+OIT_API oit_status oit_partfile_part_load(oit_partfile *pf, uint32_t part, oit_partfile_buffer *buf,
+                                          oit_partfile_part_view *out, oit_error *err);
 /* A hint that parts [first, first + count) will not be read for a while:
  * the pages of a mapped file that hold their data leave the process (they
  * stay in the page cache and fault back in when read), so a tool that reads
  * every part once does not end holding the whole file. Views handed out
  * stay valid. No effect on a file read into memory; out-of-range parts are
  * ignored. */
-void oit_partfile_drop_part_data(const oit_partfile *pf, uint32_t first, uint32_t count);
+OIT_API void oit_partfile_drop_part_data(const oit_partfile *pf, uint32_t first, uint32_t count);
 
 /* Index i (< index_count) of a part view, whatever its width. Loads through
  * memcpy: a file opened from a caller's buffer (oit_partfile_open_memory)
@@ -275,18 +277,18 @@ static inline uint64_t oit_partfile_source_offset(const oit_partfile_part *p)
 
 /* Grids: index 0 is the top grid, 1..grid_count-1 the subgrids. NULL when
  * out of range. */
-uint32_t oit_partfile_grid_count(const oit_partfile *pf);
-const oit_partfile_grid *oit_partfile_grid_at(const oit_partfile *pf, uint32_t grid);
+OIT_API uint32_t oit_partfile_grid_count(const oit_partfile *pf);
+OIT_API const oit_partfile_grid *oit_partfile_grid_at(const oit_partfile *pf, uint32_t grid);
 /* The cells of a grid (cell_count of them), NULL when out of range. */
-const oit_partfile_cell *oit_partfile_cells(const oit_partfile *pf, uint32_t grid);
+OIT_API const oit_partfile_cell *oit_partfile_cells(const oit_partfile *pf, uint32_t grid);
 /* The ascending part indices of one cell; *count set (0 when out of range). */
-const uint32_t *oit_partfile_cell_parts(const oit_partfile *pf, uint32_t grid,
-                                        uint64_t cell, uint32_t *count);
+OIT_API const uint32_t *oit_partfile_cell_parts(const oit_partfile *pf, uint32_t grid,
+                                                uint64_t cell, uint32_t *count);
 
-uint32_t oit_partfile_slab_count(const oit_partfile *pf);
-const oit_partfile_slab *oit_partfile_slab_at(const oit_partfile *pf, uint32_t slab);
-const uint32_t *oit_partfile_slab_inside(const oit_partfile *pf, uint32_t slab,
-                                         uint32_t *count);
+OIT_API uint32_t oit_partfile_slab_count(const oit_partfile *pf);
+OIT_API const oit_partfile_slab *oit_partfile_slab_at(const oit_partfile *pf, uint32_t slab);
+OIT_API const uint32_t *oit_partfile_slab_inside(const oit_partfile *pf, uint32_t slab,
+                                                 uint32_t *count);
 
 /* ---- writer ------------------------------------------------------------ */
 

@@ -9,6 +9,8 @@
 #ifndef OIT_STATUS_H
 #define OIT_STATUS_H
 
+#include "oit/export.h"
+
 #include <stdarg.h>
 
 #ifdef __cplusplus
@@ -33,22 +35,22 @@ typedef struct oit_error {
 
 /* Fills err (when non-NULL) with a printf-formatted message and returns s, so
  * that failures read as `return oit_error_set(err, OIT_ERR_FORMAT, ...)`. */
-oit_status oit_error_set(oit_error *err, oit_status s, const char *fmt, ...)
+OIT_API oit_status oit_error_set(oit_error *err, oit_status s, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
 #endif
     ;
-oit_status oit_error_setv(oit_error *err, oit_status s, const char *fmt, va_list ap);
+OIT_API oit_status oit_error_setv(oit_error *err, oit_status s, const char *fmt, va_list ap);
 
 /* Prefixes an existing message with "what: " (e.g. the file name) so that a
  * low-level error names its input without every layer re-formatting it. */
-void oit_error_prefix(oit_error *err, const char *what);
+OIT_API void oit_error_prefix(oit_error *err, const char *what);
 
-const char *oit_status_name(oit_status s);
+OIT_API const char *oit_status_name(oit_status s);
 
 /* Tool convention (DESIGN.md): 0 success, 1 runtime failure, 2 usage error,
  * 3 bad input. */
-int oit_status_exit_code(oit_status s);
+OIT_API int oit_status_exit_code(oit_status s);
 
 #ifdef __cplusplus
 }
