@@ -639,7 +639,9 @@ static oit_status check_depth_texture(const oit_frame *f, oit_error *err)
 }
 
 /* The texture unit and sampler binding oit_renderer_draw takes for the
- * depth texture, given back after the capture. */
+ * depth texture, given back after the capture. liboit.h tells callers the
+ * unit by number. */
+_Static_assert(OIT_TEX_OPAQUE_DEPTH == 7, "liboit.h documents texture unit 7");
 typedef struct depth_unit {
     GLint active, tex, sampler;
 } depth_unit;

@@ -545,7 +545,7 @@ oit_status oit_capture_batch(oit_capture *c, const oit_gpu_mesh *const *meshes,
     bind_buffers(c);
     fill(c, meshes, n, r);
     if (c->backend == OIT_CAPTURE_STENCIL)
-        glBindTextureUnit(0, c->stencil.colour);
+        glBindTextureUnit(OIT_TEX_SAMPLES, c->stencil.colour);
     resolve(c->resolve_prog, r);
     return oit_gl_check("capture: batch", err);
 }
@@ -751,8 +751,8 @@ oit_status oit_capture_end(oit_capture *c, oit_image *out, oit_frame_stats *stat
  * small frame; every pixel's K samples must hold the K distinct quads. */
 static const char dump_cs[] =
     "layout(local_size_x = 1) in;\n"
-    "layout(binding = 0) uniform usampler2DMS u_samples;\n"
-    "layout(std430, binding = 4) writeonly buffer Out { uint prims[]; };\n"
+    "layout(binding = OIT_TEX_SAMPLES) uniform usampler2DMS u_samples;\n"
+    "layout(std430, binding = OIT_BIND_OUT) writeonly buffer Out { uint prims[]; };\n"
     "layout(location = 10) uniform int u_K;\n"
     "void main() {\n"
     "    ivec2 px = ivec2(gl_WorkGroupID.xy);\n"
@@ -827,7 +827,7 @@ static oit_status stencil_self_test(oit_capture *c, oit_error *err)
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, c->buf[BUF_OUT]);
         glUseProgram(prog);
         glProgramUniform1i(prog, OIT_LOC_K, c->K);
-        glBindTextureUnit(0, c->stencil.colour);
+        glBindTextureUnit(OIT_TEX_SAMPLES, c->stencil.colour);
         glDispatchCompute(TEST_SIZE, TEST_SIZE, 1);
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         glGetNamedBufferSubData(c->buf[BUF_OUT], 0, (GLsizeiptr)dump_bytes, prims);

@@ -17,7 +17,7 @@
  * rect that holds them (x0, y0, x1, y1; exclusive ends), so that pass 2
  * rasterizes only there. */
 #define TOTALS_BLOCK                                                        \
-    "layout(std430, binding = 7) buffer Spill { uint spill_pixels; uint spill_lo; "    \
+    "layout(std430, binding = OIT_BIND_SUMS) buffer Spill { uint spill_pixels; uint spill_lo; "    \
     "uint spill_hi; uint pad; uint box[4]; };\n"
 #define RECT_INDEX                                                          \
     "uint oit_rect_index(ivec2 px, ivec4 r) {\n"                          \
@@ -26,8 +26,8 @@
 
 /* Pass 1: every fragment counted, the first u_W of a pixel kept. */
 static const char fill_fs[] =
-    "layout(std430, binding = 1) buffer Counts { uint counts[]; };\n"
-    "layout(std430, binding = 3) writeonly buffer Slots { uvec4 slots[]; };\n"
+    "layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };\n"
+    "layout(std430, binding = OIT_BIND_FRAGS) writeonly buffer Slots { uvec4 slots[]; };\n"
     TOTALS_BLOCK RECT_INDEX
     "uniform int u_W;\n"
     "uniform ivec4 u_tile;\n"
@@ -51,8 +51,8 @@ static const char fill_fs[] =
  * overflowed pixel keeps its count: pass 2 takes it whole. */
 static const char resolve_cs[] =
     "layout(local_size_x = 8, local_size_y = 8) in;\n"
-    "layout(std430, binding = 1) buffer Counts { uint counts[]; };\n"
-    "layout(std430, binding = 3) readonly buffer Slots { uvec4 slots[]; };\n"
+    "layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };\n"
+    "layout(std430, binding = OIT_BIND_FRAGS) readonly buffer Slots { uvec4 slots[]; };\n"
     "layout(location = 11) uniform ivec2 u_size;\n"
     "layout(location = 12) uniform ivec4 u_rect;\n"
     "uniform int u_W;\n"
@@ -81,8 +81,8 @@ static const char resolve_cs[] =
  * order of segments does not matter, only that they do not overlap). */
 static const char alloc_cs[] =
     "layout(local_size_x = 8, local_size_y = 8) in;\n"
-    "layout(std430, binding = 1) readonly buffer Counts { uint counts[]; };\n"
-    "layout(std430, binding = 2) writeonly buffer Table { uvec2 table[]; };\n"
+    "layout(std430, binding = OIT_BIND_COUNTS) readonly buffer Counts { uint counts[]; };\n"
+    "layout(std430, binding = OIT_BIND_OFFSETS) writeonly buffer Table { uvec2 table[]; };\n"
     TOTALS_BLOCK RECT_INDEX
     "layout(location = 11) uniform ivec2 u_size;\n"
     "layout(location = 12) uniform ivec4 u_rect;\n"
@@ -102,9 +102,9 @@ static const char alloc_cs[] =
 
 /* Pass 2's store: only pixels with a segment, counted back down to 0. */
 static const char store_fs[] =
-    "layout(std430, binding = 1) buffer Counts { uint counts[]; };\n"
-    "layout(std430, binding = 2) readonly buffer Table { uvec2 table[]; };\n"
-    "layout(std430, binding = 3) writeonly buffer Frags { uvec4 frags[]; };\n"
+    "layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };\n"
+    "layout(std430, binding = OIT_BIND_OFFSETS) readonly buffer Table { uvec2 table[]; };\n"
+    "layout(std430, binding = OIT_BIND_FRAGS) writeonly buffer Frags { uvec4 frags[]; };\n"
     RECT_INDEX
     "uniform ivec4 u_tile;\n"
     "void main() {\n"
@@ -119,8 +119,8 @@ static const char store_fs[] =
 /* Pass 2's resolve: before oit_glsl_segment_composite, segment_main after. */
 static const char segment_cs[] =
     "layout(local_size_x = 8, local_size_y = 8) in;\n"
-    "layout(std430, binding = 2) readonly buffer Table { uvec2 table[]; };\n"
-    "layout(std430, binding = 3) buffer Frags { uvec4 frags[]; };\n"
+    "layout(std430, binding = OIT_BIND_OFFSETS) readonly buffer Table { uvec2 table[]; };\n"
+    "layout(std430, binding = OIT_BIND_FRAGS) buffer Frags { uvec4 frags[]; };\n"
     "layout(location = 11) uniform ivec2 u_size;\n"
     "layout(location = 12) uniform ivec4 u_rect;\n"
     RECT_INDEX;

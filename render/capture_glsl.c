@@ -3,9 +3,10 @@
 #include "render/capture_glsl.h"
 #include "render/frag_glsl.h"
 
-#define COUNT_AND_FLAG                                                      \
-    "layout(std430, binding = 1) buffer Counts { uint counts[]; };\n"      \
-    "layout(std430, binding = 5) buffer Totals { uint overflow; uint f_lo; uint f_hi; uint f_max; };\n" \
+#define COUNT_AND_FLAG                                                              \
+    "layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };\n" \
+    "layout(std430, binding = OIT_BIND_TOTALS) "                                    \
+    "buffer Totals { uint overflow; uint f_lo; uint f_hi; uint f_max; };\n"         \
     "layout(location = 10) uniform int u_K;\n"
 
 /* Early termination: a pixel whose carried transmittance is below
@@ -26,7 +27,7 @@ const char oit_capture_saturated[] = SATURATED;
 const char oit_capture_array_fs[] =
     COUNT_AND_FLAG
     SATURATED
-    "layout(std430, binding = 3) writeonly buffer Slots { uvec4 slots[]; };\n"
+    "layout(std430, binding = OIT_BIND_FRAGS) writeonly buffer Slots { uvec4 slots[]; };\n"
     "uniform ivec4 u_tile;\n"
     "void main() {\n"
     "    uint p = oit_pixel_index();\n"
@@ -45,7 +46,7 @@ const char oit_capture_array_fs[] =
 const char oit_capture_wide_fs[] =
     COUNT_AND_FLAG
     SATURATED
-    "layout(std430, binding = 3) writeonly buffer Slots { uvec4 slots[]; };\n"
+    "layout(std430, binding = OIT_BIND_FRAGS) writeonly buffer Slots { uvec4 slots[]; };\n"
     "uniform int u_W;\n"
     "uniform ivec4 u_tile;\n"
     "void main() {\n"
@@ -77,18 +78,18 @@ const char oit_capture_resolve_cs[] =
     "layout(location = 11) uniform ivec2 u_size;\n"
     "layout(location = 12) uniform ivec4 u_rect;\n"
     "#if defined(OIT_STENCIL)\n"
-    "layout(binding = 0) uniform usampler2DMS u_samples;\n"
+    "layout(binding = OIT_TEX_SAMPLES) uniform usampler2DMS u_samples;\n"
     "#define LOAD(px, p, i) texelFetch(u_samples, px, int(i))\n"
     "#define SLOTS uint(u_K)\n"
     "#define LIST 16\n"
     "#elif defined(OIT_WIDE)\n"
-    "layout(std430, binding = 3) readonly buffer Slots { uvec4 slots[]; };\n"
+    "layout(std430, binding = OIT_BIND_FRAGS) readonly buffer Slots { uvec4 slots[]; };\n"
     "uniform int u_W;\n"
     "#define LOAD(px, p, i) slots[uint((px.y - u_rect.y) * (u_rect.z - u_rect.x) + px.x - u_rect.x) * uint(u_W) + i]\n"
     "#define SLOTS uint(u_W)\n"
     "#define LIST OIT_WIDE\n"
     "#else\n"
-    "layout(std430, binding = 3) readonly buffer Slots { uvec4 slots[]; };\n"
+    "layout(std430, binding = OIT_BIND_FRAGS) readonly buffer Slots { uvec4 slots[]; };\n"
     "#define LOAD(px, p, i) slots[uint((px.y - u_rect.y) * (u_rect.z - u_rect.x) + px.x - u_rect.x) * uint(u_K) + i]\n"
     "#define SLOTS uint(u_K)\n"
     "#define LIST 16\n"
@@ -121,7 +122,7 @@ const char oit_capture_resolve_cs[] =
 const char oit_capture_end_cs[] =
     "layout(local_size_x = 64) in;\n"
     COUNT_AND_FLAG
-    "layout(std430, binding = 4) writeonly buffer Out { vec4 out_rgba[]; };\n"
+    "layout(std430, binding = OIT_BIND_OUT) writeonly buffer Out { vec4 out_rgba[]; };\n"
     "layout(location = 13) uniform uint u_count;\n"
     "uniform uint u_first;\n"
     "uniform int u_out;\n"
@@ -155,7 +156,7 @@ const char oit_capture_fullscreen_vs[] =
  * rasterization with the same saturation test, so every counted fragment
  * finds its slot; the store counts each pixel back down to 0. */
 const char oit_capture_counted_count_fs[] =
-    "layout(std430, binding = 1) buffer Counts { uint counts[]; };\n"
+    "layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };\n"
     SATURATED
     "void main() {\n"
     "    uint p = oit_pixel_index();\n"
@@ -165,9 +166,9 @@ const char oit_capture_counted_count_fs[] =
     "}\n";
 
 const char oit_capture_counted_store_fs[] =
-    "layout(std430, binding = 1) buffer Counts { uint counts[]; };\n"
-    "layout(std430, binding = 2) readonly buffer Offsets { uint offsets[]; };\n"
-    "layout(std430, binding = 3) writeonly buffer Frags { uvec4 frags[]; };\n"
+    "layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };\n"
+    "layout(std430, binding = OIT_BIND_OFFSETS) readonly buffer Offsets { uint offsets[]; };\n"
+    "layout(std430, binding = OIT_BIND_FRAGS) writeonly buffer Frags { uvec4 frags[]; };\n"
     "uniform uint u_base;\n" /* the band's first offset (capture_counted.c) */
     SATURATED
     "void main() {\n"
@@ -184,8 +185,8 @@ const char oit_capture_counted_resolve_cs[] =
     "layout(local_size_x = 8, local_size_y = 8) in;\n"
     "layout(location = 11) uniform ivec2 u_size;\n"
     "layout(location = 12) uniform ivec4 u_rect;\n"
-    "layout(std430, binding = 2) readonly buffer Offsets { uint offsets[]; };\n"
-    "layout(std430, binding = 3) buffer Frags { uvec4 frags[]; };\n"
+    "layout(std430, binding = OIT_BIND_OFFSETS) readonly buffer Offsets { uint offsets[]; };\n"
+    "layout(std430, binding = OIT_BIND_FRAGS) buffer Frags { uvec4 frags[]; };\n"
     "uniform uint u_base;\n"
     ;
 

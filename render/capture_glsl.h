@@ -12,7 +12,7 @@ extern "C" {
 /* Fragment stage, with the per-pixel state struct: bool oit_saturated(uint
  * p), the early-termination test against uniform float u_epsilon (true
  * only when u_epsilon > 0 and pixel p's carried transmittance is below it
- * in every channel); reads the state at binding 6. */
+ * in every channel); reads the state at OIT_BIND_STATE. */
 extern const char oit_capture_saturated[];
 /* Array backend: slot by atomic counter, overflow counted once per pixel. */
 extern const char oit_capture_array_fs[];

@@ -34,7 +34,7 @@ void oit_dfb_set_opaque(oit_dfb *d, const oit_opaque_depth *o)
 }
 
 static const char count_fs[] =
-    "layout(std430, binding = 1) buffer Counts { uint counts[]; };\n"
+    "layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };\n"
     "void main() {\n"
     "    if (oit_behind_opaque()) discard;\n"
     "    atomicAdd(counts[oit_pixel_index()], 1u);\n"
@@ -44,9 +44,9 @@ static const char count_fs[] =
  * slot; the bounds check only guards against a driver breaking invariance.
  * The store holds one band of rows (the scissor) from offset u_base on. */
 static const char store_fs[] =
-    "layout(std430, binding = 1) buffer Counts { uint counts[]; };\n"
-    "layout(std430, binding = 2) readonly buffer Offsets { uint offsets[]; };\n"
-    "layout(std430, binding = 3) writeonly buffer Frags { uvec4 frags[]; };\n"
+    "layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };\n"
+    "layout(std430, binding = OIT_BIND_OFFSETS) readonly buffer Offsets { uint offsets[]; };\n"
+    "layout(std430, binding = OIT_BIND_FRAGS) writeonly buffer Frags { uvec4 frags[]; };\n"
     "layout(location = 12) uniform uint u_base;\n"
     "void main() {\n"
     "    if (oit_behind_opaque()) discard;\n"
@@ -61,9 +61,9 @@ static const char resolve_cs[] =
     "layout(location = 11) uniform ivec2 u_size;\n"
     "layout(location = 12) uniform uint u_base;\n"
     "layout(location = 13) uniform ivec2 u_rows;\n"
-    "layout(std430, binding = 2) readonly buffer Offsets { uint offsets[]; };\n"
-    "layout(std430, binding = 3) buffer Frags { uvec4 frags[]; };\n"
-    "layout(std430, binding = 4) writeonly buffer Out { vec4 out_rgba[]; };\n";
+    "layout(std430, binding = OIT_BIND_OFFSETS) readonly buffer Offsets { uint offsets[]; };\n"
+    "layout(std430, binding = OIT_BIND_FRAGS) buffer Frags { uvec4 frags[]; };\n"
+    "layout(std430, binding = OIT_BIND_OUT) writeonly buffer Out { vec4 out_rgba[]; };\n";
 
 static const char resolve_main_cs[] =
     "void main() {\n"
@@ -82,8 +82,8 @@ static const char resolve_state_cs[] =
     "layout(location = 11) uniform ivec2 u_size;\n"
     "layout(location = 12) uniform uint u_base;\n"
     "layout(location = 13) uniform ivec2 u_rows;\n"
-    "layout(std430, binding = 2) readonly buffer Offsets { uint offsets[]; };\n"
-    "layout(std430, binding = 3) buffer Frags { uvec4 frags[]; };\n";
+    "layout(std430, binding = OIT_BIND_OFFSETS) readonly buffer Offsets { uint offsets[]; };\n"
+    "layout(std430, binding = OIT_BIND_FRAGS) buffer Frags { uvec4 frags[]; };\n";
 
 static const char resolve_state_main_cs[] =
     "void main() {\n"

@@ -7,15 +7,15 @@
 
 #include <math.h>
 
-const char oit_glsl_version[] = "#version 450 core\n";
+const char oit_glsl_version[] = "#version 450 core\n" OIT_GLSL_BINDINGS;
 
 const char oit_glsl_vertex[] =
-    "layout(std430, binding = 0) readonly buffer Verts { uvec4 verts[]; };\n"
+    "layout(std430, binding = OIT_BIND_VERTS) readonly buffer Verts { uvec4 verts[]; };\n"
     "layout(location = 0) uniform mat4 u_view;\n"
     "layout(location = 1) uniform mat4 u_proj;\n"
     "layout(location = 0) in uvec2 a_draw;\n"
     /* Source indices of sourced draws (frag_glsl.h, "Primitive id"). */
-    "layout(std430, binding = 8) readonly buffer Prims { uint prims[]; };\n"
+    "layout(std430, binding = OIT_BIND_PRIMS) readonly buffer Prims { uint prims[]; };\n"
     "out vec3 v_pos;\n"
     "out vec4 v_rgba;\n"
     "flat out vec3 v_normal;\n"
@@ -62,14 +62,14 @@ const char oit_glsl_vertex[] =
     "}\n";
 
 /* The caller's opaque depth (frag_glsl.h, oit_behind_opaque). */
-#define OIT_GLSL_OPAQUE                                                     \
-    "layout(binding = " OIT_GLSL_STR(OIT_TEX_OPAQUE_DEPTH) ") uniform sampler2D u_opaque_depth;\n" \
-    "layout(location = 17) uniform int u_opaque;\n"                       \
-    "layout(location = 18) uniform ivec2 u_opaque_origin;\n"              \
-    "bool oit_behind_opaque() {\n"                                        \
-    "    if (u_opaque == 0) return false;\n"                              \
-    "    ivec2 q = ivec2(gl_FragCoord.xy) + u_opaque_origin;\n"           \
-    "    return gl_FragCoord.z >= texelFetch(u_opaque_depth, q, 0).r;\n"  \
+#define OIT_GLSL_OPAQUE                                                          \
+    "layout(binding = OIT_TEX_OPAQUE_DEPTH) uniform sampler2D u_opaque_depth;\n" \
+    "layout(location = 17) uniform int u_opaque;\n"                              \
+    "layout(location = 18) uniform ivec2 u_opaque_origin;\n"                     \
+    "bool oit_behind_opaque() {\n"                                               \
+    "    if (u_opaque == 0) return false;\n"                                     \
+    "    ivec2 q = ivec2(gl_FragCoord.xy) + u_opaque_origin;\n"                  \
+    "    return gl_FragCoord.z >= texelFetch(u_opaque_depth, q, 0).r;\n"         \
     "}\n"
 
 const char oit_glsl_fragment_gen[] =
@@ -151,7 +151,7 @@ const char oit_glsl_fragment_gen[] =
  * which a driver is free to flush. */
 const char oit_glsl_state_io[] =
     OIT_GLSL_STATE_STRUCT
-    "layout(std430, binding = 6) buffer State { uint state_words[]; };\n"
+    "layout(std430, binding = OIT_BIND_STATE) buffer State { uint state_words[]; };\n"
     "const uint OIT_ONE_BITS = 0x3f800000u;\n"
     "uint oit_state_base(uint p) { return p * (u_mode == 1 ? 12u : 5u); }\n"
     "uvec3 oit_state_bits3(uint w) {\n"

@@ -48,6 +48,7 @@
 #define OIT_RENDER_FRAG_GLSL_H
 
 #include "render/gl_util.h"
+#include "render/glsl_bindings.h"
 #include "render/view.h"
 
 #ifdef __cplusplus
@@ -78,26 +79,12 @@ enum {
     OIT_LOC_OPAQUE_ORIGIN = 18 /* ivec2: texel of frame pixel (0, 0) */
 };
 
-/* The texture unit of the caller's opaque depth (oit_behind_opaque). */
-#define OIT_TEX_OPAQUE_DEPTH 7
-
 /* The vertex input of oit_glsl_vertex (uvec2, see above). */
 enum { OIT_IN_DRAW = 0 };
 
-/* Buffer bindings shared by all programs. */
-enum {
-    OIT_BIND_VERTS = 0,
-    OIT_BIND_COUNTS = 1,
-    OIT_BIND_OFFSETS = 2,
-    OIT_BIND_FRAGS = 3,
-    OIT_BIND_OUT = 4,
-    OIT_BIND_TOTALS = 5,
-    OIT_BIND_STATE = 6,
-    OIT_BIND_SUMS = 7,
-    OIT_BIND_PRIMS = 8 /* the source indices of sourced draws (above) */
-};
-
-extern const char oit_glsl_version[];   /* "#version 450" and extensions   */
+/* "#version 450 core", then the binding points as GLSL #defines
+ * (glsl_bindings.h): every program's first string. */
+extern const char oit_glsl_version[];
 extern const char oit_glsl_vertex[];    /* the vertex-pulling vertex shader */
 /* Fragment-stage library: oit_fragment() returns the packed fragment and
  * oit_pixel_index() the pixel's linear index (GL rows, bottom first). */
@@ -160,7 +147,7 @@ extern const char oit_glsl_segment_composite[];
  * as its bits XOR those of 1.0, so an all-zero buffer is the state of a
  * pixel nothing has reached (C = 0, T = 1): a frame starts with a buffer
  * clear, not a pass over every pixel. After `uniform int u_mode` (1:
- * translucent), it declares oit_state and the buffer (binding 6) and
+ * translucent), it declares oit_state and the buffer (OIT_BIND_STATE) and
  * defines oit_state_load(p), oit_state_store(p, s), oit_state_T(p). */
 extern const char oit_glsl_state_io[];
 #define OIT_STATE_WORDS_TRANSPARENT 5u

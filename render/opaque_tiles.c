@@ -5,8 +5,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define BIND_TILES 9
-
 struct oit_opaque_tiles {
     GLuint prog, buf;
     uint64_t cap;      /* bytes of buf */
@@ -18,8 +16,9 @@ struct oit_opaque_tiles {
 
 static const char tiles_cs[] =
     "layout(local_size_x = 8, local_size_y = 8) in;\n"
-    "layout(binding = " OIT_GLSL_STR(OIT_TEX_OPAQUE_DEPTH) ") uniform sampler2D u_opaque_depth;\n"
-    "layout(std430, binding = " OIT_GLSL_STR(BIND_TILES) ") writeonly buffer Tiles { float tile_max[]; };\n"
+    "layout(binding = OIT_TEX_OPAQUE_DEPTH) uniform sampler2D u_opaque_depth;\n"
+    "layout(std430, binding = OIT_BIND_OPAQUE_TILES) "
+    "writeonly buffer Tiles { float tile_max[]; };\n"
     "uniform ivec2 u_size;\n"
     "uniform ivec2 u_origin;\n"
     "uniform ivec2 u_tiles;\n"
@@ -92,7 +91,7 @@ oit_status oit_opaque_tiles_begin(oit_opaque_tiles *t, const oit_view *view,
                        o->origin[1]);
     glProgramUniform2i(t->prog, glGetUniformLocation(t->prog, "u_tiles"), tx, ty);
     glUseProgram(t->prog);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_TILES, t->buf);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OPAQUE_TILES, t->buf);
     glDispatchCompute((GLuint)(tx + 7) / 8, (GLuint)(ty + 7) / 8, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glGetNamedBufferSubData(t->buf, 0, (GLsizeiptr)bytes, t->tiles);

@@ -28,7 +28,7 @@ void oit_opaque_tiles_destroy(oit_opaque_tiles *t);
 /* Starts a frame of view's size: with o enabled, reads the tiles of the
  * texture bound at unit OIT_TEX_OPAQUE_DEPTH (texel of pixel (0, 0) at
  * o->origin); else nothing is behind. Needs no buffer bindings of the
- * caller (it uses SSBO binding 9 and leaves it bound). */
+ * caller (it uses OIT_BIND_OPAQUE_TILES and leaves it bound). */
 oit_status oit_opaque_tiles_begin(oit_opaque_tiles *t, const oit_view *view,
                                   const oit_opaque_depth *o, oit_error *err);
 /* 1 when the box [bmin, bmax] on screen rectangle rect ({x0, y0, x1, y1},

@@ -6,8 +6,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { BIND_TILES = OIT_BIND_SUMS };
-
 struct oit_saturation {
     GLuint prog;
     GLuint tiles;         /* GPU: float bits of each tile's largest T */
@@ -25,7 +23,7 @@ struct oit_saturation {
  * so its float bits order like the floats and atomicMax on uint works. */
 static const char tiles_cs[] =
     "layout(local_size_x = 16, local_size_y = 16) in;\n"
-    "layout(std430, binding = 7) writeonly buffer Tiles { uint tiles[]; };\n"
+    "layout(std430, binding = OIT_BIND_SUMS) writeonly buffer Tiles { uint tiles[]; };\n"
     "layout(location = 0) uniform ivec2 u_size;\n"
     "layout(location = 1) uniform ivec3 u_tile0;\n" /* x, y of the first tile; tiles a row */
     "shared uint m;\n"
@@ -184,7 +182,7 @@ oit_status oit_saturation_update(oit_saturation *s, unsigned state, const int re
     glProgramUniform2i(s->prog, 0, s->w, s->h);
     glProgramUniform3i(s->prog, 1, t[0], t[1], s->tx);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_STATE, state);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_TILES, s->tiles);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_SUMS, s->tiles);
     glDispatchCompute((GLuint)(t[2] - t[0] + 1), (GLuint)(t[3] - t[1] + 1), 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     poll(s);

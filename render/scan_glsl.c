@@ -10,9 +10,9 @@
 static const char scan_block_src[] =
     "#define OIT_SCAN_LONG " OIT_GLSL_STR(OIT_GLSL_SEGMENT_LOCAL) "u\n"
     "layout(local_size_x = 256) in;\n"
-    "layout(std430, binding = 1) buffer Data { uint data[]; };\n"
-    "layout(std430, binding = 7) writeonly buffer Sums { uint sums[]; };\n"
-    "layout(std430, binding = 5) buffer Totals {\n"
+    "layout(std430, binding = OIT_BIND_COUNTS) buffer Data { uint data[]; };\n"
+    "layout(std430, binding = OIT_BIND_SUMS) writeonly buffer Sums { uint sums[]; };\n"
+    "layout(std430, binding = OIT_BIND_TOTALS) buffer Totals {\n"
     "    uint t_lo; uint t_hi; uint t_max; uint t_long;\n"
     "};\n"
     "layout(location = 13) uniform uint u_count;\n"
@@ -54,8 +54,8 @@ static const char scan_block_src[] =
 
 static const char scan_add_src[] =
     "layout(local_size_x = 256) in;\n"
-    "layout(std430, binding = 1) buffer Data { uint data[]; };\n"
-    "layout(std430, binding = 7) readonly buffer Sums { uint sums[]; };\n"
+    "layout(std430, binding = OIT_BIND_COUNTS) buffer Data { uint data[]; };\n"
+    "layout(std430, binding = OIT_BIND_SUMS) readonly buffer Sums { uint sums[]; };\n"
     "layout(location = 13) uniform uint u_count;\n"
     "void main() {\n"
     "    uint i = gl_GlobalInvocationID.x;\n"
@@ -97,8 +97,8 @@ uint64_t oit_scan_bytes(const oit_scan *s)
 static void dispatch_block(oit_scan *s, GLuint data, GLuint sums, uint64_t n, int first)
 {
     glUseProgram(s->block);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, data);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, sums);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, data);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_SUMS, sums);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_TOTALS, s->totals);
     glProgramUniform1ui(s->block, OIT_LOC_COUNT, (GLuint)n);
     glProgramUniform1i(s->block, OIT_LOC_FIRST_LEVEL, first);
@@ -109,8 +109,8 @@ static void dispatch_block(oit_scan *s, GLuint data, GLuint sums, uint64_t n, in
 static void dispatch_add(oit_scan *s, GLuint data, GLuint sums, uint64_t n)
 {
     glUseProgram(s->add);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, data);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, sums);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, data);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_SUMS, sums);
     glProgramUniform1ui(s->add, OIT_LOC_COUNT, (GLuint)n);
     glDispatchCompute(oit_gl_groups(n, 256), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);

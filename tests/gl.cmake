@@ -27,3 +27,11 @@ if(OIT_XVFB_RUN)
 else()
   oit_add_test(NAME gl_window LABELS unit COMMAND sh -c "echo 'SKIP: xvfb-run not installed'; exit 77")
 endif()
+
+# Binding points come from render/glsl_bindings.h on both sides: no GLSL
+# layout(binding = N) or glBind*(N) with a number in its place; the
+# self-test checks that the patterns still catch a planted literal.
+oit_add_test(NAME glsl_bindings LABELS unit TIMEOUT 30
+  COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_glsl_bindings.sh ${CMAKE_SOURCE_DIR})
+oit_add_test(NAME glsl_bindings_selftest LABELS unit TIMEOUT 30
+  COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_glsl_bindings.sh --self-test ${CMAKE_BINARY_DIR}/test-tmp)

@@ -31,7 +31,7 @@
 enum { W = 64, H = 64, N = 300, SLOT = 1024, BUF_BYTES = 1 << 20, CENTER = 32 * W + 32 };
 
 static const char fingerprint_fs[] =
-    "layout(std430, binding = 4) buffer Acc { uint acc[]; };\n"
+    "layout(std430, binding = OIT_BIND_OUT) buffer Acc { uint acc[]; };\n"
     "void main() {\n"
     "    uvec4 f = oit_fragment();\n"
     "    uint h = f.x * 2654435761u ^ f.y * 2246822519u ^ f.z * 3266489917u ^ f.w * 668265263u;\n"
@@ -202,7 +202,7 @@ static uint64_t draw(gl_state *g, int n, int many, uint32_t *acc)
 {
     static const GLuint zero = 0;
     glClearNamedBufferData(g->acc, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, g->acc);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, g->acc);
     oit_glsl_raster_begin(g->fbo, W, H);
     glUseProgram(g->prog);
     uint64_t before = oit_gpu_draws_calls(g->draws);

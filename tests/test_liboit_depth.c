@@ -17,8 +17,9 @@
  *     (surfaces behind it), while liboit with it matches there: a test
  *     that fails if depth_texture were ignored;
  *   - fewer fragments with the depth texture than without;
- *   - the border outside the viewport, texture unit 7 and the active unit
- *     come back; bad depth textures fail with OIT_ERR_ARGUMENT.
+ *   - the border outside the viewport, the depth texture's unit
+ *     (OIT_TEX_OPAQUE_DEPTH: liboit.h's unit 7) and the active unit come
+ *     back; bad depth textures fail with OIT_ERR_ARGUMENT.
  *
  * usage: test_liboit_depth FILE.oitp (a part file, e.g. from test_streamer) */
 #include <math.h>
@@ -28,6 +29,7 @@
 #include "oit/liboit.h"
 #include "render/gl_context.h"
 #include "render/gl_util.h"
+#include "render/glsl_bindings.h"
 #include "render/view.h"
 #include "partfile/triangles.h"
 #include "test_check.h"
@@ -225,11 +227,11 @@ static void check_depth(const char *name, oit_scene *scene, oit_render_pack pack
     occluder_draw(o, &f, &with);
     occluder_draw(o, &f, &without);
 
-    /* A caller's texture on unit 7 and another active unit, to be given back. */
+    /* A caller's texture on liboit's depth unit and another active unit, to be given back. */
     GLuint mark = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &mark);
     glTextureStorage2D(mark, 1, GL_RGBA8, 4, 4);
-    glBindTextureUnit(7, mark);
+    glBindTextureUnit(OIT_TEX_OPAQUE_DEPTH, mark);
     glActiveTexture(GL_TEXTURE3);
 
     f.framebuffer = with.fbo;
@@ -237,15 +239,15 @@ static void check_depth(const char *name, oit_scene *scene, oit_render_pack pack
     oit_draw_stats sd = {0}, sn = {0};
     oit_status s = oit_renderer_draw(r, scene, &f, &sd, &err);
     CHECK(s == OIT_OK, "%s: draw with depth: %s", name, err.message);
-    GLint active = 0, unit7 = 0;
+    GLint active = 0, held = 0;
     glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
-    glActiveTexture(GL_TEXTURE7);
-    glGetIntegerv(GL_TEXTURE_BINDING_2D, &unit7);
+    glActiveTexture(GL_TEXTURE0 + OIT_TEX_OPAQUE_DEPTH);
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &held);
     glActiveTexture(GL_TEXTURE0);
-    CHECK(active == GL_TEXTURE3 && (GLuint)unit7 == mark,
-          "%s: texture state not restored: active 0x%x (want 0x%x), unit 7 holds %d (want %u)",
-          name, active, GL_TEXTURE3, unit7, mark);
-    glBindTextureUnit(7, 0);
+    CHECK(active == GL_TEXTURE3 && (GLuint)held == mark,
+          "%s: texture state not restored: active 0x%x (want 0x%x), unit %d holds %d (want %u)",
+          name, active, GL_TEXTURE3, OIT_TEX_OPAQUE_DEPTH, held, mark);
+    glBindTextureUnit(OIT_TEX_OPAQUE_DEPTH, 0);
     glDeleteTextures(1, &mark);
 
     f.framebuffer = without.fbo;

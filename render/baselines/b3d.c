@@ -20,15 +20,16 @@ struct oit_b3d {
 static const char *const buffer_names[BUF_N] = {"counts", "counters", "output"};
 
 static const char count_fs[] =
-    "layout(std430, binding = 1) buffer Counts { uint counts[]; };\n"
+    "layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };\n"
     "void main() { atomicAdd(counts[oit_pixel_index()], 1u); }\n";
 
 /* One global atomic per group rather than per pixel. */
 static const char max_cs[] =
     "layout(local_size_x = 8, local_size_y = 8) in;\n"
     "layout(location = 11) uniform ivec2 u_size;\n"
-    "layout(std430, binding = 1) readonly buffer Counts { uint counts[]; };\n"
-    "layout(std430, binding = 6) buffer Stats { uint counter; uint max_len; uint total; };\n"
+    "layout(std430, binding = OIT_BIND_COUNTS) readonly buffer Counts { uint counts[]; };\n"
+    "layout(std430, binding = OIT_BIND_STATE) "
+    "buffer Stats { uint counter; uint max_len; uint total; };\n"
     "shared uint group_max;\n"
     "void main() {\n"
     "    if (gl_LocalInvocationIndex == 0u) group_max = 0u;\n"
@@ -44,8 +45,8 @@ static const char max_cs[] =
  * fragment count once more, for the walk. The bound only guards against a
  * driver rasterizing the two passes differently. */
 static const char store_fs[] =
-    "layout(std430, binding = 1) buffer Counts { uint counts[]; };\n"
-    "layout(rgba32ui, binding = 0) writeonly uniform uimage2DArray u_slots;\n"
+    "layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };\n"
+    "layout(rgba32ui, binding = OIT_IMG_SLOTS) writeonly uniform uimage2DArray u_slots;\n"
     "layout(location = 10) uniform int u_k;\n"
     "void main() {\n"
     "    uint s = atomicAdd(counts[oit_pixel_index()], 1u);\n"
@@ -54,8 +55,8 @@ static const char store_fs[] =
 
 /* A walk position is slot * pixels + pixel, from the pixel's last slot down. */
 static const char walk_glsl[] =
-    "layout(std430, binding = 1) readonly buffer Counts { uint counts[]; };\n"
-    "layout(rgba32ui, binding = 0) uniform uimage2DArray u_slots;\n"
+    "layout(std430, binding = OIT_BIND_COUNTS) readonly buffer Counts { uint counts[]; };\n"
+    "layout(rgba32ui, binding = OIT_IMG_SLOTS) uniform uimage2DArray u_slots;\n"
     "layout(location = 10) uniform int u_k;\n"
     "uint pixels() { return uint(u_size.x * u_size.y); }\n"
     "uint oit_list_first(uint p) {\n"
@@ -224,7 +225,7 @@ static oit_status store_and_resolve(oit_b3d *b, const oit_gpu_mesh *const *meshe
 {
     glProgramUniform1i(b->store_prog, OIT_LOC_K, b->layers);
     glProgramUniform1i(b->resolve_prog, OIT_LOC_K, b->layers);
-    glBindImageTexture(0, b->slots, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32UI);
+    glBindImageTexture(OIT_IMG_SLOTS, b->slots, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32UI);
     clear_u32(b->b.buf[BUF_COUNTS]);
     clear_u32(b->b.buf[BUF_STATS]);
     draw(b->store_prog, meshes, n);

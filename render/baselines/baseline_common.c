@@ -22,8 +22,9 @@ const char oit_glsl_premultiplied[] =
 const char oit_glsl_sorted_resolve[] =
     "layout(local_size_x = 8, local_size_y = 8) in;\n"
     "layout(location = 11) uniform ivec2 u_size;\n"
-    "layout(std430, binding = 6) buffer Stats { uint counter; uint max_len; uint total; };\n"
-    "layout(std430, binding = 4) writeonly buffer Out { vec4 out_rgba[]; };\n"
+    "layout(std430, binding = OIT_BIND_STATE) "
+    "buffer Stats { uint counter; uint max_len; uint total; };\n"
+    "layout(std430, binding = OIT_BIND_OUT) writeonly buffer Out { vec4 out_rgba[]; };\n"
     "#define LOCAL_MAX 32u\n"
     "#define OIT_LIST_END 0xffffffffu\n"
     "uint oit_list_first(uint p);\n"

@@ -28,7 +28,7 @@ struct oit_depth_peel {
 static const char *const buffer_names[BUF_N] = {"state", "counter", "output"};
 
 static const char peel_fs[] =
-    "layout(binding = 0) uniform usampler2D u_prev;\n"
+    "layout(binding = OIT_TEX_LAYER) uniform usampler2D u_prev;\n"
     "uniform float u_depth_scale;\n"
     "layout(location = 0) out uvec4 o_frag;\n"
     "void main() {\n"
@@ -46,9 +46,9 @@ static const char merge_cs[] =
     "layout(local_size_x = 8, local_size_y = 8) in;\n"
     "layout(location = 11) uniform ivec2 u_size;\n"
     "uniform int u_first;\n"
-    "layout(binding = 0) uniform usampler2D u_layer;\n"
-    "layout(std430, binding = 6) buffer State { oit_state states[]; };\n"
-    "layout(std430, binding = 1) buffer Count { uint count; };\n"
+    "layout(binding = OIT_TEX_LAYER) uniform usampler2D u_layer;\n"
+    "layout(std430, binding = OIT_BIND_STATE) buffer State { oit_state states[]; };\n"
+    "layout(std430, binding = OIT_BIND_COUNTS) buffer Count { uint count; };\n"
     "void main() {\n"
     "    ivec2 px = ivec2(gl_GlobalInvocationID.xy);\n"
     "    if (px.x >= u_size.x || px.y >= u_size.y) return;\n"
@@ -62,8 +62,8 @@ static const char merge_cs[] =
 static const char final_cs[] =
     "layout(local_size_x = 8, local_size_y = 8) in;\n"
     "layout(location = 11) uniform ivec2 u_size;\n"
-    "layout(std430, binding = 6) readonly buffer State { oit_state states[]; };\n"
-    "layout(std430, binding = 4) writeonly buffer Out { vec4 out_rgba[]; };\n"
+    "layout(std430, binding = OIT_BIND_STATE) readonly buffer State { oit_state states[]; };\n"
+    "layout(std430, binding = OIT_BIND_OUT) writeonly buffer Out { vec4 out_rgba[]; };\n"
     "void main() {\n"
     "    ivec2 px = ivec2(gl_GlobalInvocationID.xy);\n"
     "    if (px.x >= u_size.x || px.y >= u_size.y) return;\n"
@@ -198,7 +198,7 @@ static int peel(oit_depth_peel *d, int cur, const oit_gpu_mesh *const *meshes, i
     glClearNamedFramebufferfv(d->pp.fbo[cur], GL_DEPTH, 0, &far_depth);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
-    glBindTextureUnit(0, d->layer[1 - cur]);
+    glBindTextureUnit(OIT_TEX_LAYER, d->layer[1 - cur]);
     int any = oit_peel_passes_draw(&d->pp, meshes, n);
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
@@ -208,7 +208,7 @@ static int peel(oit_depth_peel *d, int cur, const oit_gpu_mesh *const *meshes, i
 static void merge(oit_depth_peel *d, int cur, int first)
 {
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
-    glBindTextureUnit(0, d->layer[cur]);
+    glBindTextureUnit(OIT_TEX_LAYER, d->layer[cur]);
     oit_peel_passes_merge(&d->pp, first, d->w, d->h);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }

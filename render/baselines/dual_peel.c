@@ -31,9 +31,9 @@ static const char *const buffer_names[BUF_N] = {"front state", "back state", "co
  * layer fragment stores and is discarded, so the query counts only the
  * fragments left inside, and image stores before a discard still land. */
 static const char peel_fs[] =
-    "layout(binding = 0) uniform sampler2D u_minmax;\n"
-    "layout(rgba32ui, binding = 0) writeonly uniform uimage2D u_front;\n"
-    "layout(rgba32ui, binding = 1) writeonly uniform uimage2D u_back;\n"
+    "layout(binding = OIT_TEX_LAYER) uniform sampler2D u_minmax;\n"
+    "layout(rgba32ui, binding = OIT_IMG_FRONT) writeonly uniform uimage2D u_front;\n"
+    "layout(rgba32ui, binding = OIT_IMG_BACK) writeonly uniform uimage2D u_back;\n"
     "uniform int u_init;\n"
     "layout(location = 0) out vec2 o_minmax;\n"
     "void main() {\n"
@@ -56,12 +56,12 @@ static const char merge_cs[] =
     "layout(local_size_x = 8, local_size_y = 8) in;\n"
     "layout(location = 11) uniform ivec2 u_size;\n"
     "uniform int u_first;\n"
-    "layout(binding = 0) uniform sampler2D u_minmax;\n"
-    "layout(rgba32ui, binding = 0) readonly uniform uimage2D u_front;\n"
-    "layout(rgba32ui, binding = 1) readonly uniform uimage2D u_back;\n"
+    "layout(binding = OIT_TEX_LAYER) uniform sampler2D u_minmax;\n"
+    "layout(rgba32ui, binding = OIT_IMG_FRONT) readonly uniform uimage2D u_front;\n"
+    "layout(rgba32ui, binding = OIT_IMG_BACK) readonly uniform uimage2D u_back;\n"
     BACK_DECL
-    "layout(std430, binding = 6) buffer State { oit_state states[]; };\n"
-    "layout(std430, binding = 7) buffer Back { back_acc backs[]; };\n"
+    "layout(std430, binding = OIT_BIND_STATE) buffer State { oit_state states[]; };\n"
+    "layout(std430, binding = OIT_BIND_SUMS) buffer Back { back_acc backs[]; };\n"
     "void main() {\n"
     "    ivec2 px = ivec2(gl_GlobalInvocationID.xy);\n"
     "    if (px.x >= u_size.x || px.y >= u_size.y) return;\n"
@@ -87,10 +87,10 @@ static const char final_cs[] =
     "layout(local_size_x = 8, local_size_y = 8) in;\n"
     "layout(location = 11) uniform ivec2 u_size;\n"
     BACK_DECL
-    "layout(std430, binding = 6) readonly buffer State { oit_state states[]; };\n"
-    "layout(std430, binding = 7) readonly buffer Back { back_acc backs[]; };\n"
-    "layout(std430, binding = 1) buffer Count { uint fragments; uint max_len; };\n"
-    "layout(std430, binding = 4) writeonly buffer Out { vec4 out_rgba[]; };\n"
+    "layout(std430, binding = OIT_BIND_STATE) readonly buffer State { oit_state states[]; };\n"
+    "layout(std430, binding = OIT_BIND_SUMS) readonly buffer Back { back_acc backs[]; };\n"
+    "layout(std430, binding = OIT_BIND_COUNTS) buffer Count { uint fragments; uint max_len; };\n"
+    "layout(std430, binding = OIT_BIND_OUT) writeonly buffer Out { vec4 out_rgba[]; };\n"
     "void main() {\n"
     "    ivec2 px = ivec2(gl_GlobalInvocationID.xy);\n"
     "    if (px.x >= u_size.x || px.y >= u_size.y) return;\n"
@@ -196,8 +196,10 @@ static oit_status prepare(oit_dual_peel *d, const oit_view *v, oit_error *err)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_SUMS, d->b.buf[BUF_BACK]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, d->b.buf[BUF_COUNT]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, d->b.buf[BUF_OUT]);
-    glBindImageTexture(0, d->layer[IMG_FRONT], 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32UI);
-    glBindImageTexture(1, d->layer[IMG_BACK], 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32UI);
+    glBindImageTexture(OIT_IMG_FRONT, d->layer[IMG_FRONT], 0, GL_FALSE, 0, GL_READ_WRITE,
+                       GL_RGBA32UI);
+    glBindImageTexture(OIT_IMG_BACK, d->layer[IMG_BACK], 0, GL_FALSE, 0, GL_READ_WRITE,
+                       GL_RGBA32UI);
     return oit_gl_check("dual peeling: frame set-up", err);
 }
 
@@ -211,7 +213,7 @@ static int peel(oit_dual_peel *d, int cur, int init, const oit_gpu_mesh *const *
     glClearNamedFramebufferfv(d->pp.fbo[cur], GL_COLOR, 0, none);
     glEnable(GL_BLEND);
     glBlendEquation(GL_MAX);
-    glBindTextureUnit(0, d->minmax[1 - cur]);
+    glBindTextureUnit(OIT_TEX_LAYER, d->minmax[1 - cur]);
     glProgramUniform1i(d->pp.peel, glGetUniformLocation(d->pp.peel, "u_init"), init);
     int any = oit_peel_passes_draw(&d->pp, meshes, n);
     glBlendEquation(GL_FUNC_ADD);
@@ -223,7 +225,7 @@ static int peel(oit_dual_peel *d, int cur, int init, const oit_gpu_mesh *const *
 static void merge(oit_dual_peel *d, int prev, int first)
 {
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-    glBindTextureUnit(0, d->minmax[prev]);
+    glBindTextureUnit(OIT_TEX_LAYER, d->minmax[prev]);
     oit_peel_passes_merge(&d->pp, first, d->w, d->h);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }

@@ -27,17 +27,17 @@ struct oit_f2b {
 
 static const char *const buffer_names[BUF_N] = {"sort keys", "ranks", "sorted triangles"};
 
-#define PER_TRIANGLE                                                        \
-    "layout(local_size_x = 64) in;\n"                                       \
-    "layout(std430, binding = 0) readonly buffer Verts { uvec4 verts[]; };\n" \
-    "uniform uint u_window_first, u_window_count, u_mesh_base;\n"          \
+#define PER_TRIANGLE                                                                       \
+    "layout(local_size_x = 64) in;\n"                                                      \
+    "layout(std430, binding = OIT_BIND_VERTS) readonly buffer Verts { uvec4 verts[]; };\n" \
+    "uniform uint u_window_first, u_window_count, u_mesh_base;\n"                          \
     "uint triangle() { return gl_GlobalInvocationID.y * 65535u * 64u + gl_GlobalInvocationID.x; }\n"
 
 /* The key orders like the float view depth (sign flipped into order), so
  * the CPU sorts plain integers. */
 static const char key_cs[] =
     PER_TRIANGLE
-    "layout(std430, binding = 1) writeonly buffer Keys { uint keys[]; };\n"
+    "layout(std430, binding = OIT_BIND_COUNTS) writeonly buffer Keys { uint keys[]; };\n"
     "layout(location = 0) uniform mat4 u_view;\n"
     "vec3 corner(uint v) { return uintBitsToFloat(verts[v].xyz); }\n"
     "void main() {\n"
@@ -51,8 +51,8 @@ static const char key_cs[] =
 /* One window of the sorted copy per dispatch (u_out_first..+u_out_count). */
 static const char gather_cs[] =
     PER_TRIANGLE
-    "layout(std430, binding = 2) readonly buffer Rank { uint rank[]; };\n"
-    "layout(std430, binding = 3) writeonly buffer Sorted { uvec4 sorted[]; };\n"
+    "layout(std430, binding = OIT_BIND_OFFSETS) readonly buffer Rank { uint rank[]; };\n"
+    "layout(std430, binding = OIT_BIND_FRAGS) writeonly buffer Sorted { uvec4 sorted[]; };\n"
     "uniform uint u_out_first, u_out_count;\n"
     "void main() {\n"
     "    uint i = triangle();\n"
@@ -64,7 +64,7 @@ static const char gather_cs[] =
 
 /* Vlcek et al.'s shader: the test comes before any shading work. */
 static const char blend_fs[] =
-    "layout(binding = 0) uniform sampler2D u_accum;\n"
+    "layout(binding = OIT_TEX_ACCUM) uniform sampler2D u_accum;\n"
     "uniform float u_threshold;\n"
     "layout(location = 0) out vec4 o_colour;\n"
     "void main() {\n"
@@ -80,8 +80,8 @@ static const char final_cs[] =
     "uniform int u_colour_space;\n"
     OIT_GLSL_SRGB_FUNCS
     OIT_GLSL_OUTPUT
-    "layout(binding = 0) uniform sampler2D u_accum;\n"
-    "layout(rgba32f, binding = 0) writeonly uniform image2D u_out;\n"
+    "layout(binding = OIT_TEX_ACCUM) uniform sampler2D u_accum;\n"
+    "layout(rgba32f, binding = OIT_IMG_OUT) writeonly uniform image2D u_out;\n"
     "void main() {\n"
     "    ivec2 px = ivec2(gl_GlobalInvocationID.xy);\n"
     "    if (px.x >= u_size.x || px.y >= u_size.y) return;\n"
@@ -297,7 +297,7 @@ static void blend(oit_f2b *f)
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glClearNamedFramebufferfv(f->fbo, GL_COLOR, 0, clear);
     glTextureBarrier();
-    glBindTextureUnit(0, f->tex[TEX_ACCUM]);
+    glBindTextureUnit(OIT_TEX_ACCUM, f->tex[TEX_ACCUM]);
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE, GL_ZERO, GL_SRC_ALPHA);
     const oit_gpu_mesh *sorted[1] = {f->sorted};
@@ -309,8 +309,8 @@ static void blend(oit_f2b *f)
 static void finish(oit_f2b *f)
 {
     glTextureBarrier();
-    glBindTextureUnit(0, f->tex[TEX_ACCUM]);
-    glBindImageTexture(0, f->tex[TEX_OUT], 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindTextureUnit(OIT_TEX_ACCUM, f->tex[TEX_ACCUM]);
+    glBindImageTexture(OIT_IMG_OUT, f->tex[TEX_OUT], 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     oit_baseline_dispatch_frame(f->final_prog, f->w, f->h);
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
 }

@@ -12,10 +12,11 @@
  * Nodes at or past u_capacity were never written (an overflowing pass that
  * is drawn again): a guard that would need one does not cull. */
 static const char append_fs[] =
-    "layout(std430, binding = 1) coherent buffer Heads { uint heads[]; };\n"
-    "layout(std430, binding = 3) coherent buffer Nodes { uvec4 nodes[]; };\n"
-    "layout(std430, binding = 5) writeonly buffer Next { uint next[]; };\n"
-    "layout(std430, binding = 6) buffer Stats { uint counter; uint max_len; uint total; };\n"
+    "layout(std430, binding = OIT_BIND_COUNTS) coherent buffer Heads { uint heads[]; };\n"
+    "layout(std430, binding = OIT_BIND_FRAGS) coherent buffer Nodes { uvec4 nodes[]; };\n"
+    "layout(std430, binding = OIT_BIND_TOTALS) writeonly buffer Next { uint next[]; };\n"
+    "layout(std430, binding = OIT_BIND_STATE) "
+    "buffer Stats { uint counter; uint max_len; uint total; };\n"
     "layout(location = 13) uniform uint u_capacity;\n"
     "uniform float u_threshold;\n"
     "bool nearer(uvec4 a, uvec4 b) {\n"

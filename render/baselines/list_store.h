@@ -46,16 +46,16 @@ extern "C" {
 /* The walk GLSL of a store whose units are single nodes, each with its own
  * link (PLL, guarded): nodes, links, relinking for the merge sort. The
  * method appends its oit_list_first. */
-#define OIT_LIST_NODE_WALK                                                              \
-    "layout(std430, binding = 1) readonly buffer Heads { uint heads[]; };\n"           \
-    "layout(std430, binding = 3) readonly buffer Nodes { uvec4 nodes[]; };\n"          \
-    "layout(std430, binding = 5) buffer Next { uint next[]; };\n"                      \
-    "bool oit_list_can_relink() { return true; }\n"                                   \
-    "void oit_list_relink(uint i, uint n) { next[i] = n; }\n"                         \
-    "bool oit_list_index(uint first, uint n) { return false; }\n"                     \
-    "uint oit_list_at(uint k) { return OIT_LIST_END; }\n"                             \
-    "void oit_list_store(uint i, uvec4 f) {}\n"                                       \
-    "uint oit_list_next(uint i) { return next[i]; }\n"                                \
+#define OIT_LIST_NODE_WALK                                                                 \
+    "layout(std430, binding = OIT_BIND_COUNTS) readonly buffer Heads { uint heads[]; };\n" \
+    "layout(std430, binding = OIT_BIND_FRAGS) readonly buffer Nodes { uvec4 nodes[]; };\n" \
+    "layout(std430, binding = OIT_BIND_TOTALS) buffer Next { uint next[]; };\n"            \
+    "bool oit_list_can_relink() { return true; }\n"                                        \
+    "void oit_list_relink(uint i, uint n) { next[i] = n; }\n"                              \
+    "bool oit_list_index(uint first, uint n) { return false; }\n"                          \
+    "uint oit_list_at(uint k) { return OIT_LIST_END; }\n"                                  \
+    "void oit_list_store(uint i, uvec4 f) {}\n"                                            \
+    "uint oit_list_next(uint i) { return next[i]; }\n"                                     \
     "uvec4 oit_list_load(uint i) { return nodes[i]; }\n"
 
 typedef struct oit_list_desc {

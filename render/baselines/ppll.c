@@ -7,10 +7,11 @@
 
 
 static const char append_fs[] =
-    "layout(std430, binding = 1) buffer Heads { uint heads[]; };\n"
-    "layout(std430, binding = 3) writeonly buffer Nodes { uvec4 nodes[]; };\n"
-    "layout(std430, binding = 5) writeonly buffer Next { uint next[]; };\n"
-    "layout(std430, binding = 6) buffer Stats { uint counter; uint max_len; uint total; };\n"
+    "layout(std430, binding = OIT_BIND_COUNTS) buffer Heads { uint heads[]; };\n"
+    "layout(std430, binding = OIT_BIND_FRAGS) writeonly buffer Nodes { uvec4 nodes[]; };\n"
+    "layout(std430, binding = OIT_BIND_TOTALS) writeonly buffer Next { uint next[]; };\n"
+    "layout(std430, binding = OIT_BIND_STATE) "
+    "buffer Stats { uint counter; uint max_len; uint total; };\n"
     "layout(location = 13) uniform uint u_capacity;\n"
     "void main() {\n"
     "    uint n = atomicAdd(counter, 1u);\n"

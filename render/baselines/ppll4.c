@@ -12,10 +12,11 @@
  * wastes at most one page. Pages at or past u_capacity exist only in the
  * count: nothing is written to them, and the frame is drawn again. */
 static const char append_fs[] =
-    "layout(std430, binding = 1) buffer Heads { uint heads[]; };\n"
-    "layout(std430, binding = 3) writeonly buffer Slots { uvec4 slots[]; };\n"
-    "layout(std430, binding = 5) writeonly buffer Links { uint links[]; };\n"
-    "layout(std430, binding = 6) buffer Stats { uint counter; uint max_len; uint total; };\n"
+    "layout(std430, binding = OIT_BIND_COUNTS) buffer Heads { uint heads[]; };\n"
+    "layout(std430, binding = OIT_BIND_FRAGS) writeonly buffer Slots { uvec4 slots[]; };\n"
+    "layout(std430, binding = OIT_BIND_TOTALS) writeonly buffer Links { uint links[]; };\n"
+    "layout(std430, binding = OIT_BIND_STATE) "
+    "buffer Stats { uint counter; uint max_len; uint total; };\n"
     "layout(location = 13) uniform uint u_capacity;\n"
     "#define NO_PAGE 0x3fffffffu\n"
     "void main() {\n"
@@ -41,9 +42,9 @@ static const char append_fs[] =
 /* Newest first: down the slots of a page, then to slot 3 of the page it
  * links to; NO_PAGE * 4 + 3 is OIT_LIST_END. */
 static const char walk_glsl[] =
-    "layout(std430, binding = 1) readonly buffer Heads { uint heads[]; };\n"
-    "layout(std430, binding = 3) buffer Slots { uvec4 slots[]; };\n"
-    "layout(std430, binding = 5) readonly buffer Links { uint links[]; };\n"
+    "layout(std430, binding = OIT_BIND_COUNTS) readonly buffer Heads { uint heads[]; };\n"
+    "layout(std430, binding = OIT_BIND_FRAGS) buffer Slots { uvec4 slots[]; };\n"
+    "layout(std430, binding = OIT_BIND_TOTALS) readonly buffer Links { uint links[]; };\n"
     "uint oit_list_first(uint p) { return heads[p]; }\n"
     "uint oit_list_next(uint i) {\n"
     "    return (i & 3u) != 0u ? i - 1u : links[i >> 2] * 4u + 3u;\n"

@@ -37,9 +37,9 @@ static const char resolve_cs[] =
     "uniform int u_colour_space;\n"
     OIT_GLSL_SRGB_FUNCS
     OIT_GLSL_OUTPUT
-    "layout(binding = 0) uniform sampler2D u_accum;\n"
-    "layout(binding = 1) uniform sampler2D u_reveal;\n"
-    "layout(rgba32f, binding = 0) writeonly uniform image2D u_out;\n"
+    "layout(binding = OIT_TEX_ACCUM) uniform sampler2D u_accum;\n"
+    "layout(binding = OIT_TEX_REVEAL) uniform sampler2D u_reveal;\n"
+    "layout(rgba32f, binding = OIT_IMG_OUT) writeonly uniform image2D u_out;\n"
     "void main() {\n"
     "    ivec2 px = ivec2(gl_GlobalInvocationID.xy);\n"
     "    if (px.x >= u_size.x || px.y >= u_size.y) return;\n"
@@ -135,9 +135,9 @@ static void accumulate(oit_wboit *w, const oit_gpu_mesh *const *meshes, int n)
 static void resolve(oit_wboit *w)
 {
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-    glBindTextureUnit(0, w->tex[TEX_ACCUM]);
-    glBindTextureUnit(1, w->tex[TEX_REVEAL]);
-    glBindImageTexture(0, w->tex[TEX_OUT], 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindTextureUnit(OIT_TEX_ACCUM, w->tex[TEX_ACCUM]);
+    glBindTextureUnit(OIT_TEX_REVEAL, w->tex[TEX_REVEAL]);
+    glBindImageTexture(OIT_IMG_OUT, w->tex[TEX_OUT], 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     oit_baseline_dispatch_frame(w->resolve_prog, w->w, w->h);
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
 }
