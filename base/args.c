@@ -161,8 +161,11 @@ int oit_parse_bytes(const char *s, uint64_t lo, uint64_t hi, uint64_t *out)
     uint64_t v = whole * mul;
     if (frac) {
         /* ".25" as a double: the part below one unit, at most 2^30 bytes,
-         * which a double holds to far better than a byte */
+         * which a double holds to far better than a byte (an underflow of
+         * ".000...1" reads as 0: errno is the caller's, kept) */
+        int saved = errno;
         double f = strtod(frac, NULL);
+        errno = saved;
         uint64_t extra = (uint64_t)(f * (double)mul);
         if (v > UINT64_MAX - extra)
             return -1;

@@ -16,7 +16,7 @@
  * Each returns 0 and stores the value, or returns -1 and leaves *out (and
  * every other output) untouched, so a caller can keep its default and
  * print its own message: the message names the option, which only the
- * tool knows. None prints, allocates or keeps state. */
+ * tool knows. None prints, allocates, keeps state or changes errno. */
 #ifndef OIT_BASE_ARGS_H
 #define OIT_BASE_ARGS_H
 
