@@ -17,6 +17,7 @@
 
 #include "oit/mesh.h"
 
+#include "base/minmax.h"
 #include "partfile/checksum.h"
 #include "partfile/codec.h"
 
@@ -468,8 +469,8 @@ static oit_status check_vertices(const oit_partfile *pf, uint32_t i, const uint8
         if (!finite3(v))
             return bad(pf, err, "section PART_DATA: part %u: vertex %u is not finite", i, j);
         for (int k = 0; k < 3; k++) {
-            lo[k] = v[k] < lo[k] ? v[k] : lo[k];
-            hi[k] = v[k] > hi[k] ? v[k] : hi[k];
+            lo[k] = oit_min_f(lo[k], v[k]);
+            hi[k] = oit_max_f(hi[k], v[k]);
         }
     }
     if (memcmp(lo, p->bounds_min, sizeof lo) || memcmp(hi, p->bounds_max, sizeof hi))
@@ -532,8 +533,8 @@ static oit_status check_piece_bounds(const oit_partfile *pf, uint32_t i, const u
         for (uint64_t j = first; j < end; j++) {
             vertex_at(blob, stride, index_at(idx, p->index_bits, j), v);
             for (int c = 0; c < 3; c++) {
-                lo[c] = v[c] < lo[c] ? v[c] : lo[c];
-                hi[c] = v[c] > hi[c] ? v[c] : hi[c];
+                lo[c] = oit_min_f(lo[c], v[c]);
+                hi[c] = oit_max_f(hi[c], v[c]);
             }
         }
         if (memcmp(lo, pc->bounds_min, sizeof lo) || memcmp(hi, pc->bounds_max, sizeof hi))

@@ -11,6 +11,7 @@
 #include "oit/mesh.h"
 #include "oit/partfile.h"
 
+#include "base/minmax.h"
 #include "partfile/checksum.h"
 #include "partfile/codec.h"
 #include "partfile/layout.h"
@@ -253,8 +254,8 @@ static void bounds_reset(float lo[3], float hi[3])
 static void bounds_add(float lo[3], float hi[3], const float *p)
 {
     for (int k = 0; k < 3; k++) {
-        lo[k] = p[k] < lo[k] ? p[k] : lo[k];
-        hi[k] = p[k] > hi[k] ? p[k] : hi[k];
+        lo[k] = oit_min_f(lo[k], p[k]);
+        hi[k] = oit_max_f(hi[k], p[k]);
     }
 }
 

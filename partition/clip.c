@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "partition/predicates.h"
-#include "partition/minmax.h"
+#include "base/minmax.h"
 
 
 /* Lexicographic order on position, then colour: the canonical edge order. */

@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "partition/predicates.h"
-#include "partition/sort.h"
+#include "base/sort.h"
 
 /* ---- shared vertices and edge adjacency ------------------------------------ */
 

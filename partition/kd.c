@@ -10,7 +10,7 @@
 #include "partition/grow.h"
 #include "partition/kd_cut.h"
 #include "partition/kd_split.h"
-#include "partition/minmax.h"
+#include "base/minmax.h"
 
 
 typedef struct node_set {

@@ -1,6 +1,6 @@
 /* Cutting planes for kd nodes (kd_cut.h). */
 #include "partition/kd_cut.h"
-#include "partition/sort.h"
+#include "base/sort.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -10,7 +10,7 @@
 #include "partition/grow.h"
 #include "partition/kd_split.h"
 #include "partition/layers_measured.h"
-#include "partition/minmax.h"
+#include "base/minmax.h"
 
 typedef struct tri_set {
     oit_triangle *t;

@@ -1,7 +1,7 @@
 /* Separating slabs for kd nodes (kd_slab.h). */
 #include "partition/kd_slab.h"
-#include "partition/minmax.h"
-#include "partition/sort.h"
+#include "base/minmax.h"
+#include "base/sort.h"
 
 #include <float.h>
 #include <math.h>

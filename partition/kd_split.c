@@ -4,7 +4,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "partition/sort.h"
+#include "base/sort.h"
 
 /* One try at a two-cell grid of half-width w whose inner boundary is pos. */
 static int cells_with(const float lo[3], const float hi[3], int axis, float pos, float w,

@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "partition/minmax.h"
+#include "base/minmax.h"
 
 /* Centres sit at (i + CENTRE_U, j + CENTRE_V) cells: fractions of sqrt(2)
  * and sqrt(3), which no dyadic CAD coordinate hits. */

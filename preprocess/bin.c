@@ -1,6 +1,6 @@
 /* Out-of-core binning (bin.h). */
 #include "preprocess/bin.h"
-#include "partition/minmax.h"
+#include "base/minmax.h"
 
 #include <errno.h>
 #include <fcntl.h>

@@ -4,7 +4,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "partition/minmax.h"
+#include "base/minmax.h"
 
 void oit_grid_phase_init(oit_grid_phase *p, const oit_bin_grid *g)
 {

@@ -5,40 +5,60 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "base/json.h"
+
+/* The seconds of the whole conversion and of each stage. */
+static void put_seconds(oit_json *w, const oit_convert_stats *s)
+{
+    oit_json_begin_object(w, "seconds", OIT_JSON_INLINE);
+    oit_json_fixed(w, "total", s->seconds_total, 3);
+    oit_json_begin_object(w, "stages", OIT_JSON_INLINE);
+    oit_json_fixed(w, "bounds", s->seconds_bounds, 3);
+    oit_json_fixed(w, "bin", s->seconds_bin, 3);
+    oit_json_fixed(w, "partition", s->seconds_partition, 3);
+    oit_json_fixed(w, "write", s->seconds_write, 3);
+    oit_json_end(w);
+    oit_json_end(w);
+}
+
 oit_status oit_convert_stats_write_json(const char *path, const oit_convert_options *o,
                                         const oit_convert_stats *s, oit_error *err)
 {
     FILE *f = fopen(path, "w");
     if (!f)
         return oit_error_set(err, OIT_ERR_IO, "%s: cannot write stats: %s", path, strerror(errno));
-    fprintf(f,
-            "{\"triangles_in\": %llu, \"triangles_out\": %llu, \"degenerate_dropped\": %llu, "
-            "\"nonfinite_dropped\": %llu, \"split_added\": %lld, \"pieces\": %llu, "
-            "\"pieces_clustered\": %llu, \"wide_parts\": %llu, \"max_layer_bound\": %u, "
-            "\"parts\": %llu, \"slabs\": %llu, \"cut_slabs\": %llu, \"cells\": %llu, \"subgrids\": %llu, "
-            "\"subgrid_depth\": %u, \"grid\": [%u, %u, %u], \"spilled_bytes\": %llu, "
-            "\"seconds\": {\"total\": %.3f, \"stages\": {\"bounds\": %.3f, \"bin\": %.3f, "
-            "\"partition\": %.3f, \"write\": %.3f}}, \"peak_rss_bytes\": %llu, "
-            "\"threads\": %u, \"K\": %u, \"memory\": %zu, \"manage\": \"%s\", "
-            "\"scheme\": \"%s\", \"part_triangles\": %u, \"clamped_parts\": %llu, "
-            "\"max_measured_layers\": %u}\n",
-            (unsigned long long)s->triangles_in, (unsigned long long)s->triangles_out,
-            (unsigned long long)s->degenerate_dropped, (unsigned long long)s->nonfinite_dropped,
-            (long long)s->split_added, (unsigned long long)s->pieces,
-            (unsigned long long)s->pieces_clustered, (unsigned long long)s->wide_parts,
-            s->max_layer_bound,
-            (unsigned long long)s->parts, (unsigned long long)s->slabs,
-            (unsigned long long)s->cut_slabs, (unsigned long long)s->cells,
-            (unsigned long long)s->subgrids, s->subgrid_depth, s->grid_dims[0], s->grid_dims[1],
-            s->grid_dims[2], (unsigned long long)s->spilled_bytes, s->seconds_total,
-            s->seconds_bounds, s->seconds_bin, s->seconds_partition, s->seconds_write,
-            (unsigned long long)s->peak_rss_bytes, s->threads, s->K, o->memory,
-            oit_manage_name(o->manage), oit_scheme_name(o->scheme),
-            o->scheme == OIT_SCHEME_FAST ? (o->part_triangles ? o->part_triangles
-                                                              : OIT_FAST_PART_TRIANGLES)
-                                         : 0,
-            (unsigned long long)s->clamped_parts, s->max_measured);
-    if (fclose(f))
-        return oit_error_set(err, OIT_ERR_IO, "%s: cannot write stats: %s", path, strerror(errno));
-    return OIT_OK;
+    oit_json w;
+    oit_json_init(&w, f, path);
+    const oit_json_uint_member dropped[] = {
+        {"triangles_in", s->triangles_in}, {"triangles_out", s->triangles_out},
+        {"degenerate_dropped", s->degenerate_dropped}, {"nonfinite_dropped", s->nonfinite_dropped}};
+    const oit_json_uint_member layout[] = {
+        {"pieces", s->pieces}, {"pieces_clustered", s->pieces_clustered},
+        {"wide_parts", s->wide_parts}, {"max_layer_bound", s->max_layer_bound},
+        {"parts", s->parts}, {"slabs", s->slabs}, {"cut_slabs", s->cut_slabs},
+        {"cells", s->cells}, {"subgrids", s->subgrids}, {"subgrid_depth", s->subgrid_depth}};
+    const oit_json_uint_member run[] = {{"peak_rss_bytes", s->peak_rss_bytes},
+                                        {"threads", s->threads}, {"K", s->K},
+                                        {"memory", o->memory}};
+    oit_json_begin_object(&w, NULL, OIT_JSON_INLINE);
+    OIT_JSON_UINTS(&w, dropped);
+    oit_json_int(&w, "split_added", s->split_added);
+    OIT_JSON_UINTS(&w, layout);
+    oit_json_begin_array(&w, "grid", OIT_JSON_INLINE);
+    for (int k = 0; k < 3; k++)
+        oit_json_uint(&w, NULL, s->grid_dims[k]);
+    oit_json_end(&w);
+    oit_json_uint(&w, "spilled_bytes", s->spilled_bytes);
+    put_seconds(&w, s);
+    OIT_JSON_UINTS(&w, run);
+    oit_json_string(&w, "manage", oit_manage_name(o->manage));
+    oit_json_string(&w, "scheme", oit_scheme_name(o->scheme));
+    oit_json_uint(&w, "part_triangles",
+                  o->scheme == OIT_SCHEME_FAST
+                      ? (o->part_triangles ? o->part_triangles : OIT_FAST_PART_TRIANGLES)
+                      : 0);
+    oit_json_uint(&w, "clamped_parts", s->clamped_parts);
+    oit_json_uint(&w, "max_measured_layers", s->max_measured);
+    oit_json_end(&w);
+    return oit_json_close(&w, err);
 }

@@ -3,7 +3,9 @@
  * against the file before anything is allocated from them. */
 #include "render/image.h"
 #include "render/shade.h"
+#include "base/args.h"
 
+#include <float.h>
 #include <math.h>
 #include <png.h>
 #include <setjmp.h>
@@ -273,28 +275,21 @@ static int pfm_token(FILE *f, char *buf, size_t cap)
     return n > 0 && ch != EOF;
 }
 
-static int parse_int(const char *s, long *v)
-{
-    char *end;
-    *v = strtol(s, &end, 10);
-    return end != s && *end == 0;
-}
-
 static oit_status read_pfm(const char *path, FILE *f, oit_image *img, oit_error *err)
 {
     char magic[8], ws[24], hs[24], ss[48];
-    long w, h;
+    int wi, hi;
     if (!pfm_token(f, magic, sizeof magic) || (strcmp(magic, "PF") && strcmp(magic, "Pf")))
         return oit_error_set(err, OIT_ERR_FORMAT, "%s: not a PFM file (magic)", path);
     if (!pfm_token(f, ws, sizeof ws) || !pfm_token(f, hs, sizeof hs) ||
-        !parse_int(ws, &w) || !parse_int(hs, &h) || w <= 0 || h <= 0 ||
-        w > OIT_IMAGE_MAX_SIDE || h > OIT_IMAGE_MAX_SIDE)
+        oit_parse_int(ws, 1, OIT_IMAGE_MAX_SIDE, &wi) ||
+        oit_parse_int(hs, 1, OIT_IMAGE_MAX_SIDE, &hi))
         return oit_error_set(err, OIT_ERR_FORMAT, "%s: bad PFM size", path);
-    char *end;
+    long w = wi, h = hi;
     if (!pfm_token(f, ss, sizeof ss))
         return oit_error_set(err, OIT_ERR_FORMAT, "%s: bad PFM scale", path);
-    double scale = strtod(ss, &end);
-    if (end == ss || *end || scale == 0.0 || !isfinite(scale))
+    double scale;
+    if (oit_parse_double(ss, -DBL_MAX, DBL_MAX, &scale) || scale == 0.0)
         return oit_error_set(err, OIT_ERR_FORMAT, "%s: bad PFM scale '%s'", path, ss);
     int channels = magic[1] == 'F' ? 3 : 1;
     int big_endian = scale > 0.0;

@@ -1,5 +1,6 @@
 /* Tiles of the caller's opaque depth (opaque_tiles.h). */
 #include "render/opaque_tiles.h"
+#include "base/minmax.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -130,8 +131,8 @@ int oit_opaque_tiles_behind(const oit_opaque_tiles *t, const float bmin[3], cons
         double p[3] = {c & 1 ? bmax[0] : bmin[0], c & 2 ? bmax[1] : bmin[1],
                        c & 4 ? bmax[2] : bmin[2]};
         double z = t->view[2] * p[0] + t->view[6] * p[1] + t->view[10] * p[2] + t->view[14];
-        zlo = fmin(zlo, z);
-        zhi = fmax(zhi, z);
+        zlo = oit_min_d(zlo, z);
+        zhi = oit_max_d(zhi, z);
     }
     double d0 = window_depth(t->proj, zlo), d1 = window_depth(t->proj, zhi);
     if (!(d0 == d0) || !(d1 == d1)) /* reaches behind the eye */

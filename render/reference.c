@@ -6,6 +6,7 @@
  * pthreads through an atomic row counter. */
 #include "render/reference.h"
 #include "base/clock.h"
+#include "base/sort.h"
 
 #include <embree3/rtcore.h>
 #include <math.h>
@@ -128,19 +129,20 @@ static void record_hit(const struct RTCFilterFunctionNArguments *args)
     }
 }
 
-static int cmp_prim_t(const void *a, const void *b)
+/* The orders of a ray's hits, as typed sorts (base/sort.h): no comparator
+ * call through a pointer per comparison, in a loop run for every pixel. */
+static int less_prim_t(const hit_rec *x, const hit_rec *y)
 {
-    const hit_rec *x = a, *y = b;
-    if (x->prim != y->prim) return x->prim < y->prim ? -1 : 1;
-    return (x->t > y->t) - (x->t < y->t);
+    return x->prim != y->prim ? x->prim < y->prim : x->t < y->t;
 }
 
-static int cmp_key_prim(const void *a, const void *b)
+static int less_key_prim(const hit_rec *x, const hit_rec *y)
 {
-    const hit_rec *x = a, *y = b;
-    if (x->key != y->key) return x->key < y->key ? -1 : 1;
-    return (x->prim > y->prim) - (x->prim < y->prim);
+    return x->key != y->key ? x->key < y->key : x->prim < y->prim;
 }
+
+OIT_SORT_DEFINE(sort_prim_t, hit_rec, less_prim_t)
+OIT_SORT_DEFINE(sort_key_prim, hit_rec, less_key_prim)
 
 /* A line meets a triangle at most once, so repeated prims are duplicates of
  * one hit; keeps the nearest copy. Returns the new count. */
@@ -148,7 +150,7 @@ static size_t dedupe_hits(hit_rec *h, size_t n)
 {
     if (n < 2)
         return n;
-    qsort(h, n, sizeof *h, cmp_prim_t);
+    sort_prim_t(h, n);
     size_t m = 1;
     for (size_t i = 1; i < n; i++)
         if (h[i].prim != h[m - 1].prim)
@@ -347,7 +349,7 @@ static void trace_pixel(ref_worker *wk, int x, int y)
         wk->ray.oom = 1;
     key_hits(job, wk->ray.hits, n, x, y);
     if (n > 1)
-        qsort(wk->ray.hits, n, sizeof *wk->ray.hits, cmp_key_prim);
+        sort_key_prim(wk->ray.hits, n);
     float *px = job->out->rgba + ((size_t)y * w + x) * 4;
     uint32_t ties, saturated;
     uint32_t kept = composite_hits(job, wk->ray.hits, n, org, dir, px, &ties, &saturated);

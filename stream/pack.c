@@ -2,6 +2,7 @@
  * reset by stamping tiles with the pack number instead of clearing it. */
 #include "stream/pack.h"
 
+#include "base/minmax.h"
 #include "render/rect.h"
 #include "partfile/triangles.h"
 #include "stream/schedule.h"
@@ -190,7 +191,7 @@ static int project_box(const oit_partfile_part *p, const box_projector *pr, int 
         double vx = m[0] * x + m[4] * y + m[8] * z + m[12];
         double vy = m[1] * x + m[5] * y + m[9] * z + m[13];
         double depth = -(m[2] * x + m[6] * y + m[10] * z + m[14]);
-        nearest = fmin(nearest, depth);
+        nearest = oit_min_d(nearest, depth);
         before_near += depth < pr->znear;
         beyond_far += depth > pr->zfar;
         if (!pr->ortho && depth <= 0.5 * pr->znear) {
@@ -206,8 +207,8 @@ static int project_box(const oit_partfile_part *p, const box_projector *pr, int 
             px = pr->fx * vx / depth + 0.5 * pr->w;
             py = 0.5 * pr->h - pr->fy * vy / depth;
         }
-        lo[0] = fmin(lo[0], px), hi[0] = fmax(hi[0], px);
-        lo[1] = fmin(lo[1], py), hi[1] = fmax(hi[1], py);
+        lo[0] = oit_min_d(lo[0], px), hi[0] = oit_max_d(hi[0], px);
+        lo[1] = oit_min_d(lo[1], py), hi[1] = oit_max_d(hi[1], py);
     }
     if (before_near == 8 || beyond_far == 8)
         return 0;

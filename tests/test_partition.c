@@ -18,7 +18,7 @@
 #include "partition/plane_exact.h"
 #include "partition/kd_split.h"
 #include "partition/predicates.h"
-#include "partition/sort.h"
+#include "base/sort.h"
 #include "test_check.h"
 
 /* ---------------------------------------------------------------- predicates */

@@ -1,36 +1,12 @@
 /* oitbench's command line (bench_args.h). */
 #include "tools/oitbench/bench_args.h"
 
-#include <errno.h>
-#include <limits.h>
-#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/args.h"
 #include "tools/oitbench/bench_models.h"
 #include "tools/common/methods.h"
-
-static int parse_int(const char *v, int *out, long lo, long hi)
-{
-    char *end;
-    errno = 0;
-    long x = strtol(v, &end, 10);
-    if (errno || end == v || *end || x < lo || x > hi)
-        return 0;
-    *out = (int)x;
-    return 1;
-}
-
-static int parse_size(const char *v, int *w, int *h)
-{
-    char a[32];
-    const char *x = strchr(v, 'x');
-    if (!x || (size_t)(x - v) >= sizeof a)
-        return 0;
-    memcpy(a, v, (size_t)(x - v));
-    a[x - v] = 0;
-    return parse_int(a, w, 1, 16384) && parse_int(x + 1, h, 1, 16384);
-}
 
 /* Splits "dfb,pll" in place in buf; every name must exist and appear once. */
 static oit_status split_methods(const char *list, oit_bench_args *a, char *buf, size_t cap,
@@ -67,27 +43,26 @@ static oit_status bad(oit_error *err, const char *opt, const char *v, const char
 /* "0,0.01,0.1": each in [0, 1), none twice (as the float the method gets). */
 static oit_status split_epsilons(const char *list, oit_bench_args *a, oit_error *err)
 {
-    const char *p = list;
+    double v[OIT_BENCH_MAX_EPSILONS];
+    int n = oit_parse_doubles(list, ',', v, OIT_BENCH_MAX_EPSILONS);
+    /* a threshold is written plainly: no sign (not even "-0"), in range */
+    int bad_item = list[0] == '-' || strstr(list, ",-") != NULL;
     a->epsilon_count = 0;
-    for (;;) {
-        char *end;
-        errno = 0;
-        double v = strtod(p, &end);
-        if (end == p || errno || (*end && *end != ',') || !(v >= 0.0 && v < 1.0) ||
-            !strchr("0123456789.", *p))
-            return bad(err, "--epsilon", list, "comma-separated thresholds, each in [0, 1)");
-        for (int i = 0; i < a->epsilon_count; i++)
-            if (a->epsilons[i] == (float)v)
+    for (int i = 0; i < n && i < OIT_BENCH_MAX_EPSILONS && !bad_item; i++)
+        bad_item = !(v[i] >= 0.0 && v[i] < 1.0);
+    if (n < 0 || bad_item)
+        return bad(err, "--epsilon", list, "comma-separated thresholds, each in [0, 1)");
+    for (int i = 0; i < n && i < OIT_BENCH_MAX_EPSILONS; i++) {
+        for (int k = 0; k < i; k++)
+            if (a->epsilons[k] == (float)v[i])
                 return oit_error_set(err, OIT_ERR_ARGUMENT, "--epsilon '%s': %g given twice",
-                                     list, v);
-        if (a->epsilon_count == OIT_BENCH_MAX_EPSILONS)
-            return oit_error_set(err, OIT_ERR_ARGUMENT, "--epsilon '%s': more than %d values",
-                                 list, OIT_BENCH_MAX_EPSILONS);
-        a->epsilons[a->epsilon_count++] = (float)v;
-        if (!*end)
-            return OIT_OK;
-        p = end + 1;
+                                     list, v[i]);
+        a->epsilons[a->epsilon_count++] = (float)v[i];
     }
+    if (n > OIT_BENCH_MAX_EPSILONS)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "--epsilon '%s': more than %d values",
+                             list, OIT_BENCH_MAX_EPSILONS);
+    return OIT_OK;
 }
 
 static oit_status add_entry(oit_bench_args *a, const char *method, float epsilon,
@@ -130,15 +105,16 @@ static int value_option(oit_bench_args *a, const char *opt, const char *v, char 
 {
     if (!strcmp(opt, "--methods")) *s = split_methods(v, a, buf, cap, err);
     else if (!strcmp(opt, "--orbit")) {
-        if (!parse_int(v, &a->orbit, 1, 100000)) *s = bad(err, opt, v, "a view count >= 1");
+        if (oit_parse_int(v, 1, 100000, &a->orbit)) *s = bad(err, opt, v, "a view count >= 1");
     } else if (!strcmp(opt, "--size")) {
-        if (!parse_size(v, &a->width, &a->height)) *s = bad(err, opt, v, "WxH, e.g. 512x512");
+        if (oit_parse_size(v, 1, 16384, &a->width, &a->height))
+            *s = bad(err, opt, v, "WxH, e.g. 512x512");
     } else if (!strcmp(opt, "--frames")) {
-        if (!parse_int(v, &a->frames, 1, 100000)) *s = bad(err, opt, v, "a frame count >= 1");
+        if (oit_parse_int(v, 1, 100000, &a->frames)) *s = bad(err, opt, v, "a frame count >= 1");
     } else if (!strcmp(opt, "--warmup")) {
-        if (!parse_int(v, &a->warmup, 0, 100000)) *s = bad(err, opt, v, "a frame count >= 0");
+        if (oit_parse_int(v, 0, 100000, &a->warmup)) *s = bad(err, opt, v, "a frame count >= 0");
     } else if (!strcmp(opt, "--max-layers")) {
-        if (!parse_int(v, &a->max_layers, 2, 16)) *s = bad(err, opt, v, "K in [2, 16]");
+        if (oit_parse_int(v, 2, 16, &a->max_layers)) *s = bad(err, opt, v, "K in [2, 16]");
     } else if (!strcmp(opt, "--epsilon")) *s = split_epsilons(v, a, err);
     else if (!strcmp(opt, "--shading")) {
         if (!strcmp(v, "transparent")) a->shading = OIT_SHADING_TRANSPARENT;
@@ -157,7 +133,8 @@ static int value_option(oit_bench_args *a, const char *opt, const char *v, char 
         else a->scheme = v;
     } else if (!strcmp(opt, "--part-triangles")) {
         int t = 0;
-        if (!parse_int(v, &t, 1, 1 << 24)) *s = bad(err, opt, v, "a triangle count in 1..16777216");
+        if (oit_parse_int(v, 1, 1 << 24, &t))
+            *s = bad(err, opt, v, "a triangle count in 1..16777216");
         a->part_triangles = (unsigned)t;
     } else return 0;
     return 1;

@@ -2,10 +2,13 @@
 #include "tools/oitbench/bench_csv.h"
 
 #include <errno.h>
+#include <float.h>
 #include <stdarg.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "base/args.h"
 
 enum { FIELDS = 17, OLD_FIELDS = 15, LINE_MAX_BYTES = 4096, ROWS_MAX = 1 << 20 };
 
@@ -199,32 +202,18 @@ static oit_status split(char *line, field *fs, int *count, const reader *rd)
 
 static int parse_uint(const char *s, uint64_t max, uint64_t *out)
 {
-    if (!*s || strspn(s, "0123456789") != strlen(s) || strlen(s) > 19)
-        return 0;
-    errno = 0;
-    unsigned long long v = strtoull(s, NULL, 10);
-    if (errno || v > max)
-        return 0;
-    *out = v;
-    return 1;
+    return oit_parse_u64(s, 0, max, out) == 0;
 }
 
-/* A finite number >= 0 as %f / %g write it; empty gives NAN when allowed. */
+/* A finite number >= 0 as %f / %g write it (a digit first: no ".5", no
+ * "-0"); empty gives NAN when allowed. */
 static int parse_figure(const char *s, int allow_empty, double *out)
 {
     if (!*s) {
         *out = NAN;
         return allow_empty;
     }
-    if (!(*s >= '0' && *s <= '9') || strspn(s, "0123456789.eE+-") != strlen(s))
-        return 0;
-    char *end;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (*end || errno == ERANGE || !isfinite(v) || v < 0.0)
-        return 0;
-    *out = v;
-    return 1;
+    return *s >= '0' && *s <= '9' && oit_parse_double(s, 0.0, DBL_MAX, out) == 0;
 }
 
 static int valid_method(const char *s)

@@ -3,6 +3,7 @@
 
 #include "tools/oitbench/bench_csv.h"
 #include "tools/oitbench/bench_plot.h"
+#include "base/json.h"
 
 #include <errno.h>
 #include <math.h>
@@ -10,20 +11,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
-/* ---- small formatting helpers ---- */
-
-
-static void json_text(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (; *s; s++) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\') fprintf(f, "\\%c", c);
-        else if (c < 0x20) fprintf(f, "\\u%04x", c);
-        else fputc(c, f);
-    }
-    fputc('"', f);
-}
+/* ---- output files ---- */
 
 static oit_status open_out(const char *dir, const char *name, FILE **f, char *path, size_t cap,
                            oit_error *err)
@@ -45,107 +33,126 @@ static oit_status close_out(FILE *f, const char *path, oit_error *err)
 
 /* ---- results.json ---- */
 
-static void json_cell(FILE *f, int v, const oit_bench_cell *c)
+/* One view of one method: its figures, null where it did not run. */
+static void json_cell(oit_json *w, int v, const oit_bench_cell *c)
 {
-    char b[6][40];
-    fprintf(f, "{\"view\": %d, \"ok\": %s, \"ms_median\": %s, \"ms_p95\": %s, "
-               "\"gpu_bytes_peak\": %llu, \"max_layers\": %u, \"fragments\": %llu, "
-               "\"rmse\": %s, \"max_abs\": %s, \"pct_over_1_255\": %s, \"psnr\": %s}",
-            v, c->ok ? "true" : "false", oit_bench_number(b[0], 40, c->ok ? c->ms_median : NAN, "%.4f", "null"),
-            oit_bench_number(b[1], 40, c->ok ? c->ms_p95 : NAN, "%.4f", "null"),
-            (unsigned long long)c->gpu_bytes_peak, c->max_layers,
-            (unsigned long long)c->fragments,
-            oit_bench_number(b[2], 40, c->ok ? c->diff.rmse : NAN, "%.9g", "null"),
-            oit_bench_number(b[3], 40, c->ok ? c->diff.max_abs : NAN, "%.9g", "null"),
-            oit_bench_number(b[4], 40, c->ok ? c->diff.pct_over_1_255 : NAN, "%.6f", "null"),
-            oit_bench_number(b[5], 40, c->ok ? c->diff.psnr : NAN, "%.4f", "null"));
+    oit_json_begin_object(w, NULL, OIT_JSON_INLINE);
+    oit_json_int(w, "view", v);
+    oit_json_bool(w, "ok", c->ok);
+    oit_json_fixed(w, "ms_median", c->ok ? c->ms_median : NAN, 4);
+    oit_json_fixed(w, "ms_p95", c->ok ? c->ms_p95 : NAN, 4);
+    oit_json_uint(w, "gpu_bytes_peak", c->gpu_bytes_peak);
+    oit_json_uint(w, "max_layers", c->max_layers);
+    oit_json_uint(w, "fragments", c->fragments);
+    oit_json_general(w, "rmse", c->ok ? c->diff.rmse : NAN, 9);
+    oit_json_general(w, "max_abs", c->ok ? c->diff.max_abs : NAN, 9);
+    oit_json_fixed(w, "pct_over_1_255", c->ok ? c->diff.pct_over_1_255 : NAN, 6);
+    oit_json_fixed(w, "psnr", c->ok ? c->diff.psnr : NAN, 4);
+    oit_json_end(w);
 }
 
-static void json_method(FILE *f, const oit_bench_method *m, int views)
+/* A method's summary, then its views, each on a line of its own. */
+static void json_method(oit_json *w, const oit_bench_method *m, int views)
 {
-    char b[6][40];
-    fprintf(f, "    {\"name\": \"%s\", \"method\": \"%s\", \"epsilon\": %s, "
-               "\"geometry\": \"%s\", \"triangles\": %llu, \"runnable\": %s, \"reason\": ",
-            m->name, m->method->name, oit_bench_number(b[0], 40, m->epsilon >= 0.0f ? m->epsilon : NAN, "%g",
-                                          "null"),
-            m->geometry == OIT_BENCH_GEOMETRY_PART_FILE ? "part_file" : "source_mesh",
-            (unsigned long long)m->triangles, m->runnable ? "true" : "false");
-    json_text(f, m->reason);
-    fprintf(f, ", \"timed_frames\": %zu, \"ms_median\": %s, \"ms_p95\": %s, "
-               "\"gpu_bytes_peak\": %llu, \"max_layers\": %u, \"rmse_mean\": %s, "
-               "\"max_abs_worst\": %s, \"pct_over_1_255_worst\": %s, \"psnr_min\": %s,\n"
-               "     \"views\": [",
-            m->ms_count, oit_bench_number(b[0], 40, m->ms_median, "%.4f", "null"),
-            oit_bench_number(b[1], 40, m->ms_p95, "%.4f", "null"), (unsigned long long)m->gpu_bytes_peak,
-            m->max_layers, oit_bench_number(b[2], 40, m->runnable ? m->rmse_mean : NAN, "%.9g", "null"),
-            oit_bench_number(b[3], 40, m->runnable ? m->max_abs_worst : NAN, "%.9g", "null"),
-            oit_bench_number(b[4], 40, m->runnable ? m->pct_over_worst : NAN, "%.6f", "null"),
-            oit_bench_number(b[5], 40, m->runnable ? m->psnr_min : NAN, "%.4f", "null"));
+    oit_json_begin_object(w, NULL, OIT_JSON_INLINE);
+    oit_json_string(w, "name", m->name);
+    oit_json_string(w, "method", m->method->name);
+    oit_json_general(w, "epsilon", m->epsilon >= 0.0f ? m->epsilon : NAN, 6);
+    oit_json_string(w, "geometry",
+                    m->geometry == OIT_BENCH_GEOMETRY_PART_FILE ? "part_file" : "source_mesh");
+    oit_json_uint(w, "triangles", m->triangles);
+    oit_json_bool(w, "runnable", m->runnable);
+    oit_json_string(w, "reason", m->reason);
+    oit_json_uint(w, "timed_frames", m->ms_count);
+    oit_json_fixed(w, "ms_median", m->ms_median, 4);
+    oit_json_fixed(w, "ms_p95", m->ms_p95, 4);
+    oit_json_uint(w, "gpu_bytes_peak", m->gpu_bytes_peak);
+    oit_json_uint(w, "max_layers", m->max_layers);
+    oit_json_general(w, "rmse_mean", m->runnable ? m->rmse_mean : NAN, 9);
+    oit_json_general(w, "max_abs_worst", m->runnable ? m->max_abs_worst : NAN, 9);
+    oit_json_fixed(w, "pct_over_1_255_worst", m->runnable ? m->pct_over_worst : NAN, 6);
+    oit_json_fixed(w, "psnr_min", m->runnable ? m->psnr_min : NAN, 4);
+    oit_json_break(w, 5);
+    oit_json_begin_array(w, "views", OIT_JSON_INLINE);
     for (int v = 0; v < views; v++) {
-        fprintf(f, "%s", v ? ",\n       " : "");
-        json_cell(f, v, &m->cells[v]);
+        if (v)
+            oit_json_break(w, 7);
+        json_cell(w, v, &m->cells[v]);
     }
-    fprintf(f, "]}");
+    oit_json_end(w);
+    oit_json_end(w);
 }
 
 /* The source mesh, the part file and the conversion, as JSON members. */
-static void json_models(FILE *f, const oit_bench_models *m)
+static void json_models(oit_json *w, const oit_bench_models *m)
 {
-    fprintf(f, ",\n  \"source_mesh\": ");
-    if (m->have_source)
-        json_text(f, m->source_path);
-    else
-        fprintf(f, "null");
-    fprintf(f, ", \"source_triangles\": %llu,\n  \"part_file\": ",
-            (unsigned long long)m->source_triangles);
-    if (m->conv.done && !m->conv.kept)
-        fprintf(f, "\"(temporary, removed)\"");
-    else if (m->parts_path[0])
-        json_text(f, m->parts_path);
-    else
-        fprintf(f, "null");
-    fprintf(f, ", \"part_file_triangles\": %llu", (unsigned long long)m->part_triangles);
-    if (m->conv.done)
-        fprintf(f, ",\n  \"conversion\": {\"scheme\": \"%s\", \"part_triangles\": %u, "
-                   "\"seconds\": %.3f, \"triangles_in\": %llu, \"triangles_out\": %llu, "
-                   "\"parts\": %llu}", m->conv.scheme, m->conv.part_triangles, m->conv.seconds,
-                (unsigned long long)m->conv.triangles_in,
-                (unsigned long long)m->conv.triangles_out, (unsigned long long)m->conv.parts);
-    fprintf(f, ",\n  \"reference_geometry\": \"%s\",\n  \"notes\": [",
-            m->have_source ? "source_mesh" : "part_file");
-    for (int i = 0; i < m->note_count; i++) {
-        fprintf(f, "%s", i ? ", " : "");
-        json_text(f, m->notes[i]);
+    oit_json_break(w, 2);
+    oit_json_string(w, "source_mesh", m->have_source ? m->source_path : NULL);
+    oit_json_uint(w, "source_triangles", m->source_triangles);
+    oit_json_break(w, 2);
+    oit_json_string(w, "part_file", m->conv.done && !m->conv.kept ? "(temporary, removed)"
+                                    : m->parts_path[0]            ? m->parts_path
+                                                                  : NULL);
+    oit_json_uint(w, "part_file_triangles", m->part_triangles);
+    if (m->conv.done) {
+        oit_json_break(w, 2);
+        oit_json_begin_object(w, "conversion", OIT_JSON_INLINE);
+        oit_json_string(w, "scheme", m->conv.scheme);
+        oit_json_uint(w, "part_triangles", m->conv.part_triangles);
+        oit_json_fixed(w, "seconds", m->conv.seconds, 3);
+        oit_json_uint(w, "triangles_in", m->conv.triangles_in);
+        oit_json_uint(w, "triangles_out", m->conv.triangles_out);
+        oit_json_uint(w, "parts", m->conv.parts);
+        oit_json_end(w);
     }
-    fprintf(f, "]");
+    oit_json_break(w, 2);
+    oit_json_string(w, "reference_geometry", m->have_source ? "source_mesh" : "part_file");
+    oit_json_break(w, 2);
+    oit_json_begin_array(w, "notes", OIT_JSON_INLINE);
+    for (int i = 0; i < m->note_count; i++)
+        oit_json_string(w, NULL, m->notes[i]);
+    oit_json_end(w);
 }
 
-static void write_json(FILE *f, const oit_bench_context *ctx, const oit_bench_result *r)
+/* The run's settings on a few lines, then one line per method and view. */
+static void write_json(oit_json *w, const oit_bench_context *ctx, const oit_bench_result *r)
 {
-    fprintf(f, "{\n  \"model\": ");
-    json_text(f, ctx->model);
+    oit_json_begin_object(w, NULL, OIT_JSON_INLINE);
+    oit_json_break(w, 2);
+    oit_json_string(w, "model", ctx->model);
     if (ctx->models)
-        json_models(f, ctx->models);
-    fprintf(f, ",\n  \"command\": ");
-    json_text(f, ctx->command_line);
-    fprintf(f, ",\n  \"renderer\": ");
-    json_text(f, r->renderer);
-    fprintf(f, ",\n  \"cpus\": %ld, \"triangles\": %llu, \"shading\": \"%s\", "
-               "\"width\": %d, \"height\": %d, \"views\": %d, \"frames\": %d, "
-               "\"warmup\": %d,\n  \"reference_ms\": [",
-            ctx->cpus, (unsigned long long)ctx->triangles, ctx->shading, ctx->width, ctx->height,
-            r->views, ctx->frames, ctx->warmup);
+        json_models(w, ctx->models);
+    oit_json_break(w, 2);
+    oit_json_string(w, "command", ctx->command_line);
+    oit_json_break(w, 2);
+    oit_json_string(w, "renderer", r->renderer);
+    /* the run's sizes, all counts (>= 0) */
+    const oit_json_uint_member sizes[] = {
+        {"width", (unsigned)ctx->width}, {"height", (unsigned)ctx->height},
+        {"views", (unsigned)r->views}, {"frames", (unsigned)ctx->frames},
+        {"warmup", (unsigned)ctx->warmup}};
+    oit_json_break(w, 2);
+    oit_json_int(w, "cpus", ctx->cpus);
+    oit_json_uint(w, "triangles", ctx->triangles);
+    oit_json_string(w, "shading", ctx->shading);
+    OIT_JSON_UINTS(w, sizes);
+    oit_json_break(w, 2);
+    oit_json_begin_array(w, "reference_ms", OIT_JSON_INLINE);
     for (int v = 0; v < r->views; v++)
-        fprintf(f, "%s%.4f", v ? ", " : "", r->ref_ms[v]);
-    fprintf(f, "],\n  \"reference_max_layers\": [");
+        oit_json_fixed(w, NULL, r->ref_ms[v], 4);
+    oit_json_end(w);
+    oit_json_break(w, 2);
+    oit_json_begin_array(w, "reference_max_layers", OIT_JSON_INLINE);
     for (int v = 0; v < r->views; v++)
-        fprintf(f, "%s%u", v ? ", " : "", r->ref_layers[v]);
-    fprintf(f, "],\n  \"methods\": [\n");
-    for (int i = 0; i < r->method_count; i++) {
-        json_method(f, &r->methods[i], r->views);
-        fprintf(f, "%s\n", i + 1 < r->method_count ? "," : "");
-    }
-    fprintf(f, "  ]\n}\n");
+        oit_json_uint(w, NULL, r->ref_layers[v]);
+    oit_json_end(w);
+    oit_json_break(w, 2);
+    oit_json_begin_array(w, "methods", OIT_JSON_BLOCK);
+    for (int i = 0; i < r->method_count; i++)
+        json_method(w, &r->methods[i], r->views);
+    oit_json_end(w);
+    oit_json_break(w, 0);
+    oit_json_end(w);
 }
 
 /* ---- report.md ---- */
@@ -304,8 +311,10 @@ oit_status oit_bench_write_reports(const char *dir, const oit_bench_context *ctx
         s = close_out(f, path, err);
     }
     if (s == OIT_OK && (s = open_out(dir, "results.json", &f, path, sizeof path, err)) == OIT_OK) {
-        write_json(f, ctx, r);
-        s = close_out(f, path, err);
+        oit_json w;
+        oit_json_init(&w, f, path);
+        write_json(&w, ctx, r);
+        s = oit_json_close(&w, err);
     }
     if (s == OIT_OK)
         s = write_plots(dir, ctx, r, err);

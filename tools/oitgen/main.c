@@ -1,6 +1,5 @@
 /* oitgen: deterministic test and benchmark scenes as binary PLY.
  * Exit codes: 0 ok, 1 runtime failure, 2 usage error, 3 bad input. */
-#include <errno.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -8,6 +7,7 @@
 #include <unistd.h>
 
 #include "tools/common/paths.h"
+#include "base/args.h"
 #include "base/clock.h"
 #include "tools/common/signals.h"
 #include "formats/ply_writer.h"
@@ -114,29 +114,6 @@ static int usage_error(const char *fmt, ...)
     return 2;
 }
 
-static int parse_u64(const char *s, uint64_t *out)
-{
-    char *end;
-    errno = 0;
-    if (!s || !*s || *s == '-')
-        return 0;
-    unsigned long long v = strtoull(s, &end, 10);
-    if (errno || *end)
-        return 0;
-    *out = v;
-    return 1;
-}
-
-static int parse_double(const char *s, double *out)
-{
-    char *end;
-    errno = 0;
-    if (!s || !*s)
-        return 0;
-    *out = strtod(s, &end);
-    return !errno && !*end;
-}
-
 /* Parses one option at argv[*i]; returns 0 or an exit code. */
 static int parse_option(cli *c, int argc, char **argv, int *i)
 {
@@ -147,19 +124,18 @@ static int parse_option(cli *c, int argc, char **argv, int *i)
     if (!strcmp(o, "-o") || !strcmp(o, "--output")) {
         c->output = v;
     } else if (!strcmp(o, "--seed")) {
-        if (!parse_u64(v, &c->args.seed))
+        if (oit_parse_u64(v, 0, UINT64_MAX, &c->args.seed))
             return usage_error("--seed: '%s' is not an unsigned integer", v);
     } else if (!strcmp(o, "--count")) {
-        if (!parse_u64(v, &c->args.count) || c->args.count < 1 || c->args.count > 100000000)
+        if (oit_parse_u64(v, 1, 100000000, &c->args.count))
             return usage_error("--count: '%s' is not an integer in [1, 100000000]", v);
         c->given |= OPT_COUNT;
     } else if (!strcmp(o, "--coverage")) {
-        if (!parse_double(v, &c->args.coverage) || !(c->args.coverage > 0 && c->args.coverage <= 1))
+        if (oit_parse_double(v, 0.0, 1.0, &c->args.coverage) || !(c->args.coverage > 0))
             return usage_error("--coverage: '%s' is not a number in (0, 1]", v);
         c->given |= OPT_COVERAGE;
     } else if (!strcmp(o, "--triangles")) {
-        if (!parse_u64(v, &c->args.triangles) || c->args.triangles < 10000 ||
-            c->args.triangles > 50000000)
+        if (oit_parse_u64(v, 10000, 50000000, &c->args.triangles))
             return usage_error("--triangles: '%s' is not an integer in [10000, 50000000]", v);
         c->given |= OPT_TRIANGLES;
     } else if (!strcmp(o, "--clashes")) {

@@ -11,12 +11,13 @@
 #include "oit/partfile.h"
 #include "oit/status.h"
 
-#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
+#include "base/args.h"
+#include "base/json.h"
 #include "tools/common/paths.h"
 #include "tools/common/signals.h"
 #include "preprocess/convert.h"
@@ -119,54 +120,51 @@ static void usage(FILE *f)
           f);
 }
 
-/* Writes s as a JSON string body; control bytes become \u escapes. */
-static void json_string(const char *s)
+static void put_triple(oit_json *w, const char *key, const double v[3], int digits)
 {
-    putchar('"');
-    for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
-        if (*p == '"' || *p == '\\')
-            printf("\\%c", *p);
-        else if (*p < 0x20)
-            printf("\\u%04x", *p);
-        else
-            putchar(*p);
-    }
-    putchar('"');
+    oit_json_begin_array(w, key, OIT_JSON_INLINE);
+    for (int k = 0; k < 3; k++)
+        oit_json_general(w, NULL, v[k], digits);
+    oit_json_end(w);
 }
 
-static void print_json(const oit_partfile *pf, const oit_partfile_summary *s)
+/* --json: the summary as one JSON object on stdout. */
+static oit_status print_json(const oit_partfile *pf, const oit_partfile_summary *s,
+                             oit_error *err)
 {
-    printf("{\"file\": ");
-    json_string(oit_partfile_name(pf));
-    printf(", \"version\": %u, \"K\": %u, \"triangles\": %llu, \"triangles_in\": %llu, "
-           "\"triangles_dropped\": %llu, \"triangles_split\": %llu, \"parts\": %llu, "
-           "\"pieces\": %llu, \"slabs\": %llu, \"cut_slabs\": %llu, \"cells\": %llu, "
-           "\"subgrids\": %llu, "
-           "\"subgrid_depth\": %u, \"layer_bound\": %u, \"parts_index16\": %llu, "
-           "\"parts_index32\": %llu, \"bytes\": %llu, \"data_bytes\": %llu, "
-           "\"part_align\": %u, \"measured_bounds\": %s, \"attributes\": [",
-           s->version, s->K, (unsigned long long)s->triangles,
-           (unsigned long long)s->triangles_in, (unsigned long long)s->triangles_dropped,
-           (unsigned long long)s->triangles_split, (unsigned long long)s->parts,
-           (unsigned long long)s->pieces, (unsigned long long)s->slabs,
-           (unsigned long long)s->cut_slabs, (unsigned long long)s->cells, (unsigned long long)s->subgrids, s->subgrid_depth,
-           s->layer_bound, (unsigned long long)s->parts_index16,
-           (unsigned long long)s->parts_index32, (unsigned long long)s->bytes,
-           (unsigned long long)s->data_bytes, s->part_align,
-           s->measured_bounds ? "true" : "false");
-    const char *sep = "";
-    if (s->attributes & OIT_ATTR_COLOR) {
-        printf("\"color\"");
-        sep = ", ";
-    }
+    oit_json w;
+    oit_json_init(&w, stdout, "standard output");
+    const oit_json_uint_member counts[] = {
+        {"version", s->version}, {"K", s->K}, {"triangles", s->triangles},
+        {"triangles_in", s->triangles_in}, {"triangles_dropped", s->triangles_dropped},
+        {"triangles_split", s->triangles_split}, {"parts", s->parts}, {"pieces", s->pieces},
+        {"slabs", s->slabs}, {"cut_slabs", s->cut_slabs}, {"cells", s->cells},
+        {"subgrids", s->subgrids}, {"subgrid_depth", s->subgrid_depth},
+        {"layer_bound", s->layer_bound}, {"parts_index16", s->parts_index16},
+        {"parts_index32", s->parts_index32}, {"bytes", s->bytes}, {"data_bytes", s->data_bytes},
+        {"part_align", s->part_align}};
+    oit_json_begin_object(&w, NULL, OIT_JSON_INLINE);
+    oit_json_string(&w, "file", oit_partfile_name(pf));
+    OIT_JSON_UINTS(&w, counts);
+    oit_json_bool(&w, "measured_bounds", s->measured_bounds);
+    oit_json_begin_array(&w, "attributes", OIT_JSON_INLINE);
+    if (s->attributes & OIT_ATTR_COLOR)
+        oit_json_string(&w, NULL, "color");
     if (s->attributes & OIT_ATTR_ALPHA)
-        printf("%s\"alpha\"", sep);
-    printf("], \"bounds_min\": [%.9g, %.9g, %.9g], \"bounds_max\": [%.9g, %.9g, %.9g], "
-           "\"origin\": [%.17g, %.17g, %.17g], \"source\": ",
-           s->bounds_min[0], s->bounds_min[1], s->bounds_min[2], s->bounds_max[0],
-           s->bounds_max[1], s->bounds_max[2], s->origin[0], s->origin[1], s->origin[2]);
-    json_string(oit_partfile_source_name(pf));
-    printf("}\n");
+        oit_json_string(&w, NULL, "alpha");
+    oit_json_end(&w);
+    double lo[3], hi[3];
+    for (int k = 0; k < 3; k++) {
+        lo[k] = s->bounds_min[k];
+        hi[k] = s->bounds_max[k];
+    }
+    /* the bounds as the floats they are (%.9g), the origin as the double */
+    put_triple(&w, "bounds_min", lo, 9);
+    put_triple(&w, "bounds_max", hi, 9);
+    put_triple(&w, "origin", s->origin, 17);
+    oit_json_string(&w, "source", oit_partfile_source_name(pf));
+    oit_json_end(&w);
+    return oit_json_flush(&w, err);
 }
 
 static void print_human(const oit_partfile *pf, const oit_partfile_summary *s)
@@ -251,40 +249,26 @@ static int cmd_info(int argc, char **argv)
     oit_partfile_summary s;
     oit_partfile_get_summary(pf, &s);
     if (json)
-        print_json(pf, &s);
+        st = print_json(pf, &s, &err);
     else
         print_human(pf, &s);
     oit_partfile_close(pf);
+    if (st) {
+        fprintf(stderr, "oitprep: %s\n", err.message);
+        return oit_status_exit_code(st);
+    }
     return decode ? print_decode_rate(path) : 0;
 }
 
-/* Parses an unsigned number with an optional K/M/G suffix (powers of 1024). */
-static int parse_size(const char *s, int suffixes, unsigned long long max, unsigned long long *out)
-{
-    char *end;
-    errno = 0;
-    unsigned long long v = strtoull(s, &end, 10);
-    if (errno || end == s || s[0] == '-')
-        return -1;
-    unsigned long long mul = 1;
-    if (suffixes && *end) {
-        mul = *end == 'K' || *end == 'k'   ? 1ull << 10
-              : *end == 'M' || *end == 'm' ? 1ull << 20
-              : *end == 'G' || *end == 'g' ? 1ull << 30
-                                           : 0;
-        end++;
-    }
-    if (*end || !mul || v > max / mul)
-        return -1;
-    *out = v * mul;
-    return 0;
-}
-
+/* The number after argv[*i], in lo..hi; with suffixes, a byte count with
+ * an optional K/M/G (powers of 1024). -1 with the message otherwise. */
 static int option_value(int argc, char **argv, int *i, const char *name, int suffixes,
-                        unsigned long long lo, unsigned long long hi, unsigned long long *out)
+                        uint64_t lo, uint64_t hi, uint64_t *out)
 {
-    if (*i + 1 >= argc || parse_size(argv[*i + 1], suffixes, hi, out) || *out < lo) {
-        fprintf(stderr, "oitprep: %s needs a number in %llu..%llu\n", name, lo, hi);
+    const char *v = *i + 1 < argc ? argv[*i + 1] : NULL;
+    if (!v || (suffixes ? oit_parse_bytes(v, lo, hi, out) : oit_parse_u64(v, lo, hi, out))) {
+        fprintf(stderr, "oitprep: %s needs a number in %llu..%llu\n", name,
+                (unsigned long long)lo, (unsigned long long)hi);
         return -1;
     }
     (*i)++;
@@ -329,7 +313,7 @@ static int cmd_convert(int argc, char **argv)
     const char *guaranteed_only = NULL;
     int scheme_given = 0;
     for (int i = 1; i < argc; i++) {
-        unsigned long long v;
+        uint64_t v;
         const char *a = argv[i];
         if (strcmp(a, "-o") == 0 && i + 1 < argc)
             o.output = argv[++i];
@@ -337,7 +321,7 @@ static int cmd_convert(int argc, char **argv)
             stats = argv[++i];
         else if (strcmp(a, "--max-layers") == 0) {
             /* 64: the widest part the streamer captures (over tiles) */
-            if (i + 1 >= argc || parse_size(argv[i + 1], 0, 64, &v) || v < 2 || v % 2) {
+            if (i + 1 >= argc || oit_parse_u64(argv[i + 1], 2, 64, &v) || v % 2) {
                 fprintf(stderr, "oitprep: --max-layers '%s': must be even, 2..64\n",
                         i + 1 < argc ? argv[i + 1] : "");
                 return 2;
@@ -442,7 +426,7 @@ static int cmd_verify(int argc, char **argv)
     oit_verify_options o = {.directions = 64, .viewpoints = 16};
     const char *path = NULL;
     for (int i = 2; i < argc; i++) {
-        unsigned long long v;
+        uint64_t v;
         if (strcmp(argv[i], "--directions") == 0) {
             if (option_value(argc, argv, &i, argv[i], 0, 0, 100000, &v))
                 return 2;
@@ -490,7 +474,7 @@ static int cmd_parts(int argc, char **argv)
     oit_export_colour colour = OIT_EXPORT_BY_PART;
     uint8_t alpha = 0;
     for (int i = 2; i < argc; i++) {
-        unsigned long long v;
+        uint64_t v;
         if (strcmp(argv[i], "-o") == 0 && i + 1 < argc)
             out = argv[++i];
         else if (strcmp(argv[i], "--colour") == 0 || strcmp(argv[i], "--color") == 0) {

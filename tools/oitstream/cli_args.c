@@ -1,76 +1,48 @@
 /* oitstream option parsing (cli_args.h). */
 #include "tools/oitstream/cli_args.h"
 
+#include "base/args.h"
 #include "stream/streamer.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+/* A finite number a float holds. */
 static int parse_float(const char *s, float *out)
 {
-    char *end;
-    double v = strtod(s, &end);
-    if (end == s || *end || !isfinite(v))
-        return 0;
+    double v;
+    if (oit_parse_double(s, -FLT_MAX, FLT_MAX, &v))
+        return -1;
     *out = (float)v;
-    return 1;
-}
-
-static int parse_int(const char *s, int *out, int lo, int hi)
-{
-    char *end;
-    long v = strtol(s, &end, 10);
-    if (end == s || *end || v < lo || v > hi)
-        return 0;
-    *out = (int)v;
-    return 1;
-}
-
-static int parse_size(const char *s, int *w, int *h)
-{
-    char buf[64];
-    snprintf(buf, sizeof buf, "%s", s);
-    char *x = strchr(buf, 'x');
-    if (!x)
-        return 0;
-    *x = 0;
-    return parse_int(buf, w, 1, 16384) && parse_int(x + 1, h, 1, 16384);
+    return 0;
 }
 
 static int parse_rgb(const char *s, float rgb[3])
 {
-    char *end;
-    const char *p = s;
+    double v[3];
+    if (oit_parse_doubles(s, ',', v, 3) != 3)
+        return -1;
     for (int c = 0; c < 3; c++) {
-        double v = strtod(p, &end);
-        if (end == p || !isfinite(v) || v < 0.0 || v > 1.0)
-            return 0;
-        rgb[c] = (float)v;
-        if (c < 2 && *end != ',')
-            return 0;
-        p = end + 1;
+        if (!(v[c] >= 0.0 && v[c] <= 1.0))
+            return -1;
+        rgb[c] = (float)v[c];
     }
-    if (*end)
-        return 0;
     /* view.h reads all-zero as "default"; black is spelled negative. */
     if (rgb[0] == 0.0f && rgb[1] == 0.0f && rgb[2] == 0.0f)
         rgb[0] = rgb[1] = rgb[2] = -1.0f;
-    return 1;
+    return 0;
 }
 
-/* Bytes with an optional K, M or G (binary) suffix. */
+/* Bytes, 64K up to 1T, with an optional K, M or G (binary) suffix. */
 static int parse_bytes(const char *s, unsigned long long *out)
 {
-    char *end;
-    double v = strtod(s, &end);
-    double unit = *end == 'K' ? 1024.0 : *end == 'M' ? 1048576.0 : *end == 'G' ? 1073741824.0 : 1.0;
-    if (unit > 1.0)
-        end++;
-    if (end == s || *end || !(v > 0.0) || v * unit > 1099511627776.0)
-        return 0;
-    *out = (unsigned long long)(v * unit);
-    return 1;
+    uint64_t v;
+    if (oit_parse_bytes(s, 65536, 1ull << 40, &v))
+        return -1;
+    *out = v;
+    return 0;
 }
 
 static oit_status bad(oit_error *err, const char *opt, const char *val, const char *want)
@@ -90,15 +62,15 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
     else if (!strcmp(opt, "--mask")) a->mask = v;
     else if (!strcmp(opt, "--ambiguity")) a->ambiguity_out = v;
     else if (!strcmp(opt, "--ambiguity-px")) {
-        char *end = NULL;
-        double px = strtod(v, &end);
-        if (end == v || *end || !(px > 0.0 && px <= 4.0))
+        double px;
+        if (oit_parse_double(v, 0.0, 4.0, &px) || !(px > 0.0))
             *s = bad(err, opt, v, "a radius in pixels, in (0, 4]");
         else
             a->ambiguity_px = (float)px;
     }
     else if (!strcmp(opt, "--size")) {
-        if (!parse_size(v, &a->width, &a->height)) *s = bad(err, opt, v, "WxH, 1..16384");
+        if (oit_parse_size(v, 1, 16384, &a->width, &a->height))
+            *s = bad(err, opt, v, "WxH, 1..16384");
     } else if (!strcmp(opt, "--view")) {
         int code = oit_camera_parse(&a->view, v, NULL);
         if (code != 0)
@@ -107,21 +79,19 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
         a->have_view = 1;
         a->view_text = v;
     } else if (!strcmp(opt, "--ortho")) {
-        char *end = NULL;
-        double h = strcmp(v, "fit") ? strtod(v, &end) : -1.0;
-        if (end && (end == v || *end || !(h > 0.0) || !isfinite(h)))
+        if (!strcmp(v, "fit"))
+            a->ortho = -1.0f;
+        else if (parse_float(v, &a->ortho) || !(a->ortho > 0.0f))
             *s = bad(err, opt, v, "a view height > 0, or fit");
-        else
-            a->ortho = (float)h;
     } else if (!strcmp(opt, "--azimuth")) {
-        if (!parse_float(v, &a->azimuth)) *s = bad(err, opt, v, "degrees");
+        if (parse_float(v, &a->azimuth)) *s = bad(err, opt, v, "degrees");
     } else if (!strcmp(opt, "--elevation")) {
-        if (!parse_float(v, &a->elevation) || fabsf(a->elevation) > 90.0f)
+        if (parse_float(v, &a->elevation) || fabsf(a->elevation) > 90.0f)
             *s = bad(err, opt, v, "degrees in [-90, 90]");
     } else if (!strcmp(opt, "--walk")) {
         a->walk = v;
     } else if (!strcmp(opt, "--orbit")) {
-        if (!parse_int(v, &a->orbit, 1, 100000)) *s = bad(err, opt, v, "a view count >= 1");
+        if (oit_parse_int(v, 1, 100000, &a->orbit)) *s = bad(err, opt, v, "a view count >= 1");
     } else if (!strcmp(opt, "--shading")) {
         if (!strcmp(v, "transparent")) a->shading.mode = OIT_SHADING_TRANSPARENT;
         else if (!strcmp(v, "translucent")) a->shading.mode = OIT_SHADING_TRANSLUCENT;
@@ -131,16 +101,16 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
         else if (!strcmp(v, "linear")) a->shading.colour_space = OIT_COLOUR_LINEAR;
         else *s = bad(err, opt, v, "srgb or linear");
     } else if (!strcmp(opt, "--alpha")) {
-        if (!parse_float(v, &a->shading.alpha) || !(a->shading.alpha > 0.0f) ||
+        if (parse_float(v, &a->shading.alpha) || !(a->shading.alpha > 0.0f) ||
             a->shading.alpha > 1.0f)
             *s = bad(err, opt, v, "a number in (0, 1]");
     } else if (!strcmp(opt, "--absorption")) {
-        if (!parse_float(v, &a->shading.absorption) || !(a->shading.absorption > 0.0f))
+        if (parse_float(v, &a->shading.absorption) || !(a->shading.absorption > 0.0f))
             *s = bad(err, opt, v, "a number > 0");
     } else if (!strcmp(opt, "--background")) {
-        if (!parse_rgb(v, a->shading.background)) *s = bad(err, opt, v, "r,g,b in [0, 1]");
+        if (parse_rgb(v, a->shading.background)) *s = bad(err, opt, v, "r,g,b in [0, 1]");
     } else if (!strcmp(opt, "--max-layers")) {
-        if (!parse_int(v, &a->max_layers, 2, 16)) *s = bad(err, opt, v, "K in [2, 16]");
+        if (oit_parse_int(v, 2, 16, &a->max_layers)) *s = bad(err, opt, v, "K in [2, 16]");
     } else if (!strcmp(opt, "--show")) {
         if (!strcmp(v, "layers")) a->show_layers = 1;
         else if (strcmp(v, "colour") && strcmp(v, "color")) *s = bad(err, opt, v, "layers or colour");
@@ -159,7 +129,7 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
         /* 0 is the default, as oit_renderer_desc.upload_budget = 0 is. */
         if (!strcmp(v, "0"))
             a->upload_budget = 0;
-        else if (!parse_bytes(v, &a->upload_budget) || a->upload_budget < 65536)
+        else if (parse_bytes(v, &a->upload_budget))
             *s = bad(err, opt, v, "0 (default) or bytes >= 64K, with an optional K, M or G "
                      "suffix");
     } else if (!strcmp(opt, "--cache-budget")) {
@@ -169,19 +139,20 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
             a->cache_budget = OIT_STREAM_CACHE_OFF;
         else if (!strcmp(v, "0"))
             a->cache_budget = 0;
-        else if (!parse_bytes(v, &a->cache_budget) || a->cache_budget < 65536)
+        else if (parse_bytes(v, &a->cache_budget))
             *s = bad(err, opt, v, "off, 0 (default) or bytes >= 64K, with an optional K, M or "
                      "G suffix");
     } else if (!strcmp(opt, "--upload-threads")) {
-        if (!parse_int(v, &a->upload_threads, 0, 1)) *s = bad(err, opt, v, "0 or 1");
+        if (oit_parse_int(v, 0, 1, &a->upload_threads)) *s = bad(err, opt, v, "0 or 1");
     } else if (!strcmp(opt, "--slot-budget")) {
-        if (!parse_bytes(v, &a->slot_budget) || a->slot_budget < 65536)
+        if (parse_bytes(v, &a->slot_budget))
             *s = bad(err, opt, v, "bytes >= 64K, with an optional K, M or G suffix");
     } else if (!strcmp(opt, "--epsilon")) {
-        if (!parse_float(v, &a->epsilon) || !(a->epsilon >= 0.0f) || !(a->epsilon < 1.0f))
+        if (parse_float(v, &a->epsilon) || !(a->epsilon >= 0.0f) || !(a->epsilon < 1.0f))
             *s = bad(err, opt, v, "a transmittance in [0, 1)");
     } else if (!strcmp(opt, "--window-frames")) {
-        if (!parse_int(v, &a->window_frames, 1, 100000000)) *s = bad(err, opt, v, "a frame count >= 1");
+        if (oit_parse_int(v, 1, 100000000, &a->window_frames))
+            *s = bad(err, opt, v, "a frame count >= 1");
     } else if (!strcmp(opt, "--window-script")) a->window_script = v;
     else if (!strcmp(opt, "--window-screenshot")) a->window_screenshot = v;
     else if (!strcmp(opt, "--preview")) {
@@ -195,7 +166,8 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
         else a->preview = found;
         a->have_preview = 1;
     } else if (!strcmp(opt, "--still")) {
-        if (!parse_int(v, &a->still_ms, 1, 60000)) *s = bad(err, opt, v, "milliseconds, 1..60000");
+        if (oit_parse_int(v, 1, 60000, &a->still_ms))
+            *s = bad(err, opt, v, "milliseconds, 1..60000");
     } else if (!strcmp(opt, "--up")) {
         if (!strcmp(v, "x")) a->up_axis = 0;
         else if (!strcmp(v, "y")) a->up_axis = 1;
@@ -203,7 +175,7 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
         else *s = bad(err, opt, v, "x, y or z");
     }
     else if (!strcmp(opt, "--gain")) {
-        if (!parse_float(v, &a->gain) || !(a->gain > 0.0f)) *s = bad(err, opt, v, "a number > 0");
+        if (parse_float(v, &a->gain) || !(a->gain > 0.0f)) *s = bad(err, opt, v, "a number > 0");
     } else
         return 0;
     return 1;

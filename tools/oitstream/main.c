@@ -12,6 +12,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "base/json.h"
 #include "tools/common/paths.h"
 #include "render/image.h"
 #include "tools/oitstream/cli_args.h"
@@ -39,22 +40,26 @@ static int fail_rendering(const oit_error *err, const oit_method *m)
 
 /* ---- --compare ---- */
 
-static void print_diff(const oit_image_diff *d, uint64_t pixels, int json)
+static oit_status print_diff(const oit_image_diff *d, uint64_t pixels, int json, oit_error *err)
 {
     if (json) {
         /* JSON has no infinity: identical images report psnr null. */
-        char psnr[32];
-        if (isfinite(d->psnr)) snprintf(psnr, sizeof psnr, "%.4f", d->psnr);
-        else snprintf(psnr, sizeof psnr, "null");
-        printf("{\"rmse\": %.9g, \"max_abs\": %.9g, \"pct_over_1_255\": %.6f, \"psnr\": %s, "
-               "\"pixels_over\": %llu, \"pixels\": %llu}\n",
-               d->rmse, d->max_abs, d->pct_over_1_255, psnr,
-               (unsigned long long)d->pixels_over, (unsigned long long)pixels);
-    } else {
-        printf("rmse %.6g  max_abs %.6g  over 1/255: %.4f%% (%llu of %llu pixels)  psnr %.2f dB\n",
-               d->rmse, d->max_abs, d->pct_over_1_255, (unsigned long long)d->pixels_over,
-               (unsigned long long)pixels, d->psnr);
+        oit_json w;
+        oit_json_init(&w, stdout, "standard output");
+        oit_json_begin_object(&w, NULL, OIT_JSON_INLINE);
+        oit_json_general(&w, "rmse", d->rmse, 9);
+        oit_json_general(&w, "max_abs", d->max_abs, 9);
+        oit_json_fixed(&w, "pct_over_1_255", d->pct_over_1_255, 6);
+        oit_json_fixed(&w, "psnr", d->psnr, 4);
+        oit_json_uint(&w, "pixels_over", d->pixels_over);
+        oit_json_uint(&w, "pixels", pixels);
+        oit_json_end(&w);
+        return oit_json_flush(&w, err);
     }
+    printf("rmse %.6g  max_abs %.6g  over 1/255: %.4f%% (%llu of %llu pixels)  psnr %.2f dB\n",
+           d->rmse, d->max_abs, d->pct_over_1_255, (unsigned long long)d->pixels_over,
+           (unsigned long long)pixels, d->psnr);
+    return OIT_OK;
 }
 
 /* Figures over the pixels where the mask is black: masked pixels of b take
@@ -81,11 +86,17 @@ static oit_status compare_outside_mask(const oit_stream_args *a, const oit_image
         s = oit_image_compare(&img[0], &b, &d, NULL, 1.0f, err);
     if (s == OIT_OK) {
         double pct = n > masked ? 100.0 * (double)d.pixels_over / (double)(n - masked) : 0.0;
-        if (a->json)
-            printf("{\"masked_pixels\": %llu, \"pct_over_1_255_outside_mask\": %.6f, "
-                   "\"max_abs_outside_mask\": %.9g, \"pixels_over_outside_mask\": %llu}\n",
-                   (unsigned long long)masked, pct, d.max_abs, (unsigned long long)d.pixels_over);
-        else
+        if (a->json) {
+            oit_json w;
+            oit_json_init(&w, stdout, "standard output");
+            oit_json_begin_object(&w, NULL, OIT_JSON_INLINE);
+            oit_json_uint(&w, "masked_pixels", masked);
+            oit_json_fixed(&w, "pct_over_1_255_outside_mask", pct, 6);
+            oit_json_general(&w, "max_abs_outside_mask", d.max_abs, 9);
+            oit_json_uint(&w, "pixels_over_outside_mask", d.pixels_over);
+            oit_json_end(&w);
+            s = oit_json_flush(&w, err);
+        } else
             printf("outside %s (%llu pixels masked): over 1/255: %.4f%% (%llu pixels)  max_abs %.6g\n",
                    a->mask, (unsigned long long)masked, pct, (unsigned long long)d.pixels_over,
                    d.max_abs);
@@ -166,7 +177,7 @@ static int run_compare(const oit_stream_args *a)
     if (s == OIT_OK && a->out)
         s = oit_image_write(&diff, a->out, &err);
     if (s == OIT_OK)
-        print_diff(&d, (uint64_t)img[0].width * (uint64_t)img[0].height, a->json);
+        s = print_diff(&d, (uint64_t)img[0].width * (uint64_t)img[0].height, a->json, &err);
     if (s == OIT_OK && a->mask)
         s = compare_outside_mask(a, img, &err);
     oit_image_free(&img[0]);

@@ -1,6 +1,8 @@
 /* JSON writer for oitstream --stats (stats_json.h). */
 #include "tools/oitstream/stats_json.h"
 
+#include "base/json.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -27,51 +29,35 @@ void oit_stats_format_view(const oit_camera *c, const double origin[3], char *bu
         snprintf(buf + n, cap - n, ":far=inf");
 }
 
-static void put_string(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (; s && *s; s++) {
-        unsigned char ch = (unsigned char)*s;
-        if (ch == '"' || ch == '\\')
-            fprintf(f, "\\%c", ch);
-        else if (ch < 0x20)
-            fprintf(f, "\\u%04x", ch);
-        else
-            fputc(ch, f);
-    }
-    fputc('"', f);
-}
-
-static void put_frame(FILE *f, const oit_stats_frame *fr, int last)
+static void put_frame(oit_json *w, const oit_stats_frame *fr)
 {
     const oit_frame_stats *s = &fr->st;
-    fprintf(f, "    {\"method\": ");
-    put_string(f, fr->method);
-    fprintf(f, ", \"view\": ");
-    put_string(f, fr->view);
-    fprintf(f,
-            ", \"ms\": %.3f, \"fragments\": %llu, \"max_layers\": %u, \"overflow_pixels\": %llu, "
-            "\"gpu_bytes_peak\": %llu, \"batches\": %u, \"second_pass_pixels\": %llu, "
-            "\"second_pass_packs\": %u, \"fragments_saturated\": %llu",
-            isfinite(s->ms) ? s->ms : -1.0, (unsigned long long)s->fragments, s->max_layers,
-            (unsigned long long)s->overflow_pixels, (unsigned long long)s->gpu_bytes_peak,
-            s->batches, (unsigned long long)s->second_pass_pixels, s->second_pass_packs,
-            (unsigned long long)s->fragments_saturated);
-    if (fr->has_stream)
-        fprintf(f, ", \"packs\": %u, \"parts_drawn\": %llu, \"parts_culled\": %llu, "
-                "\"parts_skipped\": %llu, \"bytes_uploaded\": %llu, \"cache_hits\": %llu, "
-                "\"cache_bytes\": %llu, \"epsilon\": %.9g, \"draw_calls\": %llu, "
-                "\"order_ms\": %.3f, \"pack_ms\": %.3f, \"auto_first_k\": %d, "
-                "\"front_first\": %d",
-                fr->stream.packs, (unsigned long long)fr->stream.parts_drawn,
-                (unsigned long long)fr->stream.parts_culled,
-                (unsigned long long)fr->stream.parts_skipped,
-                (unsigned long long)fr->stream.bytes_uploaded,
-                (unsigned long long)fr->stream.cache_hits,
-                (unsigned long long)fr->stream.cache_bytes, (double)fr->stream.epsilon,
-                (unsigned long long)fr->stream.draw_calls, fr->stream.order_ms,
-                fr->stream.pack_ms, fr->stream.first_k, fr->stream.front_first);
-    fprintf(f, "}%s\n", last ? "" : ",");
+    const oit_stream_frame_stats *t = &fr->stream;
+    oit_json_begin_object(w, NULL, OIT_JSON_INLINE);
+    oit_json_string(w, "method", fr->method ? fr->method : "");
+    oit_json_string(w, "view", fr->view);
+    const oit_json_uint_member frame[] = {
+        {"fragments", s->fragments}, {"max_layers", s->max_layers},
+        {"overflow_pixels", s->overflow_pixels}, {"gpu_bytes_peak", s->gpu_bytes_peak},
+        {"batches", s->batches}, {"second_pass_pixels", s->second_pass_pixels},
+        {"second_pass_packs", s->second_pass_packs},
+        {"fragments_saturated", s->fragments_saturated}};
+    const oit_json_uint_member parts[] = {
+        {"packs", t->packs}, {"parts_drawn", t->parts_drawn}, {"parts_culled", t->parts_culled},
+        {"parts_skipped", t->parts_skipped}, {"bytes_uploaded", t->bytes_uploaded},
+        {"cache_hits", t->cache_hits}, {"cache_bytes", t->cache_bytes}};
+    oit_json_fixed(w, "ms", isfinite(s->ms) ? s->ms : -1.0, 3);
+    OIT_JSON_UINTS(w, frame);
+    if (fr->has_stream) {
+        OIT_JSON_UINTS(w, parts);
+        oit_json_general(w, "epsilon", t->epsilon, 9);
+        oit_json_uint(w, "draw_calls", t->draw_calls);
+        oit_json_fixed(w, "order_ms", t->order_ms, 3);
+        oit_json_fixed(w, "pack_ms", t->pack_ms, 3);
+        oit_json_int(w, "auto_first_k", t->first_k);
+        oit_json_int(w, "front_first", t->front_first);
+    }
+    oit_json_end(w);
 }
 
 oit_status oit_stats_json_write(const char *path, const oit_stats_run *run, oit_error *err)
@@ -79,16 +65,18 @@ oit_status oit_stats_json_write(const char *path, const oit_stats_run *run, oit_
     FILE *f = fopen(path, "w");
     if (!f)
         return oit_error_set(err, OIT_ERR_IO, "%s: cannot open for writing", path);
-    fprintf(f, "{\n  \"model\": ");
-    put_string(f, run->model);
-    fprintf(f, ",\n  \"triangles\": %llu,\n  \"renderer\": ", run->triangles);
-    put_string(f, run->renderer);
-    fprintf(f, ",\n  \"width\": %d,\n  \"height\": %d,\n  \"frames\": [\n", run->width,
-            run->height);
+    oit_json w;
+    oit_json_init(&w, f, path);
+    oit_json_begin_object(&w, NULL, OIT_JSON_BLOCK);
+    oit_json_string(&w, "model", run->model ? run->model : "");
+    oit_json_uint(&w, "triangles", run->triangles);
+    oit_json_string(&w, "renderer", run->renderer ? run->renderer : "");
+    oit_json_int(&w, "width", run->width);
+    oit_json_int(&w, "height", run->height);
+    oit_json_begin_array(&w, "frames", OIT_JSON_BLOCK);
     for (size_t i = 0; i < run->frame_count; i++)
-        put_frame(f, &run->frames[i], i + 1 == run->frame_count);
-    fprintf(f, "  ]\n}\n");
-    if (ferror(f) | (fclose(f) != 0))
-        return oit_error_set(err, OIT_ERR_IO, "%s: write failed", path);
-    return OIT_OK;
+        put_frame(&w, &run->frames[i]);
+    oit_json_end(&w);
+    oit_json_end(&w);
+    return oit_json_close(&w, err);
 }

@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/json.h"
 #include "render/gl_context.h"
 #include "render/gl_util.h"
 #include "render/image.h"
@@ -1117,18 +1118,30 @@ static void write_stats(viewer *v)
     if (!f)
         return;
     oit_stats_format_view(&v->view.camera, v->mesh->info.origin, view, sizeof view);
-    fprintf(f,
-            "{\"frames_rendered\": %d, \"exact_frames\": %d, \"preview_frames\": %d, "
-            "\"presented\": %d, \"shown\": \"%s\", \"preview_scale\": %d, \"method\": \"%s\", "
-            "\"width\": %d, \"height\": %d, \"frame_ms\": %.3f, \"last_exact_ms\": %.3f, "
-            "\"last_preview_ms\": %.3f, \"present_ms\": %.3f, \"up\": \"%c\", "
-            "\"view\": \"%s\"}\n",
-            v->frames, v->exact_frames, v->preview_frames, v->presents,
-            v->shown_kind == SHOWN_PREVIEW ? "preview" : "exact",
-            v->shown_kind == SHOWN_PREVIEW ? v->shown_scale : 1, v->methods[v->current]->name,
-            v->view.width, v->view.height, v->last_wall_ms, v->last_exact_wall_ms,
-            v->last_preview_wall_ms, v->last_present_ms, axis_name[v->up_axis], view);
-    if (fclose(f) == 0)
+    int preview = v->shown_kind == SHOWN_PREVIEW;
+    char up[2] = {axis_name[v->up_axis], 0};
+    oit_json w;
+    oit_json_init(&w, f, tmp);
+    const oit_json_uint_member counts[] = {{"frames_rendered", (unsigned)v->frames},
+                                           {"exact_frames", (unsigned)v->exact_frames},
+                                           {"preview_frames", (unsigned)v->preview_frames},
+                                           {"presented", (unsigned)v->presents}};
+    oit_json_begin_object(&w, NULL, OIT_JSON_INLINE);
+    OIT_JSON_UINTS(&w, counts);
+    oit_json_string(&w, "shown", preview ? "preview" : "exact");
+    oit_json_int(&w, "preview_scale", preview ? v->shown_scale : 1);
+    oit_json_string(&w, "method", v->methods[v->current]->name);
+    oit_json_int(&w, "width", v->view.width);
+    oit_json_int(&w, "height", v->view.height);
+    oit_json_fixed(&w, "frame_ms", v->last_wall_ms, 3);
+    oit_json_fixed(&w, "last_exact_ms", v->last_exact_wall_ms, 3);
+    oit_json_fixed(&w, "last_preview_ms", v->last_preview_wall_ms, 3);
+    oit_json_fixed(&w, "present_ms", v->last_present_ms, 3);
+    oit_json_string(&w, "up", up);
+    oit_json_string(&w, "view", view);
+    oit_json_end(&w);
+    /* a file that failed to write is not renamed over the last good one */
+    if (oit_json_close(&w, NULL) == OIT_OK)
         rename(tmp, path);
 }
 

@@ -1,4 +1,5 @@
-/* Typed stable sorting for the partition's hot loops.
+/* Typed stable sorting for hot loops: the partition's kd arrays, the
+ * reference renderer's hits per ray.
  *
  * qsort calls its comparator through a pointer for every comparison and
  * moves elements with memmove; on the kd's event, corner and edge arrays
@@ -11,8 +12,8 @@
  * input order and the output never depends on the sort's internals. It
  * takes a scratch copy of n elements; when that allocation fails it falls
  * back to insertion sort (slow, still correct), so it cannot fail. */
-#ifndef OIT_PARTITION_SORT_H
-#define OIT_PARTITION_SORT_H
+#ifndef OIT_BASE_SORT_H
+#define OIT_BASE_SORT_H
 
 #include <stddef.h>
 #include <stdlib.h>
