@@ -1,11 +1,16 @@
 #!/bin/sh
 # liboit.so exports exactly its public API: every dynamic symbol it defines is
 # a function declared in include/oit/, and every function of liboit.h and
-# offscreen.h (the embedding API) is among them.
-# usage: test_liboit_exports.sh LIBOIT_SO INCLUDE_OIT_DIR
+# offscreen.h (the embedding API) is among them. And it links only libc,
+# pthreads, libm, libdl and the GL/EGL loaders (a viewer carries liboit with
+# the system's GL alone): every NEEDED entry is on the allow list below; PNG,
+# GLFW, zlib and the glTF plugin's C++ stay out (docs/architecture.md).
+# usage: test_liboit_exports.sh LIBOIT_SO INCLUDE_OIT_DIR [sanitize]
+# sanitize: the build is instrumented; its sanitizer runtimes are allowed too.
 set -eu
 lib=$1
 inc=$2
+sanitize=${3:-}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }
@@ -24,4 +29,24 @@ extra=$(comm -23 "$tmp/exported" "$tmp/public")
 [ -z "$extra" ] || fail "$lib exports $(echo "$extra" | wc -l) symbols not declared in $inc: $(echo $extra | cut -c1-400)"
 missing=$(comm -23 "$tmp/embedding" "$tmp/exported")
 [ -z "$missing" ] || fail "$lib does not export these functions of liboit.h/offscreen.h (add them to liboit/liboit.map): $missing"
+
+allowed() { # $1: a NEEDED name (libEGL.so.1)
+    case $1 in
+    libc.so.* | libm.so.* | libpthread.so.* | libdl.so.* | ld-linux*.so.*) return 0 ;;
+    libEGL.so.* | libGL.so.* | libOpenGL.so.* | libGLdispatch.so.*) return 0 ;;
+    libmeshoptimizer.so.*) return 0 ;; # until the C decoder lands
+    libasan.so.* | libubsan.so.* | libclang_rt.asan*.so | libclang_rt.ubsan*.so)
+        [ "$sanitize" = sanitize ] ;;
+    *) return 1 ;;
+    esac
+}
+readelf -d "$lib" | sed -n 's/.*(NEEDED).*\[\(.*\)\]/\1/p' > "$tmp/needed"
+[ -s "$tmp/needed" ] || fail "readelf -d $lib shows no NEEDED entry (not a shared library?)"
+outside=""
+while read -r so; do
+    allowed "$so" || outside="$outside $so"
+done < "$tmp/needed"
+[ -z "$outside" ] || fail "$lib links libraries outside the allow list (libc, libm, pthreads, \
+libdl, the GL/EGL loaders):$outside; load them at run time (dlopen) or keep them in the tools"
+echo "ok: $lib needs only $(tr "\n" " " < "$tmp/needed")"
 echo "ok: $lib exports $(wc -l < "$tmp/exported") functions, all declared in $inc"
