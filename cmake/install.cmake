@@ -1,7 +1,7 @@
-# Install rules of liboit: the public headers, the shared library, a CMake
-# package exporting oit::oit and a pkg-config file, the converter oitprep
-# (which the Python package's oit.prep runs) and the Python package, all
-# relocatable (nothing records the configure-time prefix), so
+# Install rules of liboit: the public headers, the shared library and its
+# glTF plugin, a CMake package exporting oit::oit and a pkg-config file, the
+# converter oitprep (which the Python package's oit.prep runs) and the
+# Python package, all relocatable (nothing records the configure-time prefix), so
 # `cmake --install B --prefix P` works for any P.
 include(CMakePackageConfigHelpers)
 
@@ -9,6 +9,10 @@ install(TARGETS oit EXPORT oitTargets
         LIBRARY DESTINATION lib
         ARCHIVE DESTINATION lib
         RUNTIME DESTINATION bin)
+# The glTF plugin, beside liboit.so: liboit loads it from its own folder
+# when a .gltf/.glb is opened (formats/gltf_plugin.c). Nothing links it, so
+# it is not part of the exported targets.
+install(TARGETS oit_gltf_plugin LIBRARY DESTINATION lib)
 install(FILES
         ${CMAKE_SOURCE_DIR}/include/oit/oit.h
         ${CMAKE_SOURCE_DIR}/include/oit/status.h

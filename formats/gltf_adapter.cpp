@@ -963,8 +963,9 @@ extern "C" oit_status oit_read_gltf_memory(const unsigned char *bytes, size_t si
         &arg);
 }
 
-extern "C" oit_status oit_read_gltf(const char *path, const oit_read_desc *desc, oit_triangle_sink sink,
-                                    void *user, oit_mesh_info *info, oit_error *err)
+extern "C" oit_status oit_gltf_read_file(const char *path, const oit_read_desc *desc,
+                                         oit_triangle_sink sink, void *user, oit_mesh_info *info,
+                                         oit_error *err)
 {
     std::string dir(path);
     size_t slash = dir.find_last_of('/');

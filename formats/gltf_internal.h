@@ -1,5 +1,18 @@
-/* From-memory entry of the glTF reader, for the fuzz target and for callers
- * that already hold the bytes.
+/* The glTF reader's C entries (gltf_adapter.cpp, the only C++ of formats/).
+ *
+ * oit_gltf_read_file is oit_read_gltf's work. Two files implement the public
+ * oit_read_gltf (mesh.h) over it, and formats/CMakeLists.txt builds the
+ * readers with one or the other:
+ * - gltf_link.c (the tools, oit_formats_linked): the adapter is linked in;
+ * - gltf_plugin.c (liboit, oit_formats_loaded): the adapter is the plugin
+ *   liboit-gltf.so beside liboit.so, loaded with dlopen for each glTF read
+ *   and closed after it, so that liboit links neither C++, tinygltf nor
+ *   Draco. The plugin exports oit_gltf_read_file alone, found by the name
+ *   OIT_GLTF_PLUGIN_ENTRY; liboit and its plugin come from one build, so
+ *   the types they pass (mesh.h) agree.
+ *
+ * oit_read_gltf_memory reads from memory, for the fuzz target and for
+ * callers that already hold the bytes (the tools only).
  *
  * The bytes are a .glb when they start with the magic "glTF", otherwise JSON
  * text. `name` is used in messages only. External buffers ("uri" that is not
@@ -10,6 +23,7 @@
 #ifndef OIT_GLTF_INTERNAL_H
 #define OIT_GLTF_INTERNAL_H
 
+#include "oit/export.h"
 #include <stddef.h>
 
 #include "oit/mesh.h"
@@ -21,6 +35,14 @@ extern "C" {
 /* read_common.c's check that a read delivered a triangle (readers_internal.h). */
 oit_status oit_rd_require_triangles(const char *name, const oit_mesh_info *info,
                                     oit_error *err);
+
+#define OIT_GLTF_PLUGIN_ENTRY "oit_gltf_read_file"
+typedef oit_status oit_gltf_read_fn(const char *path, const oit_read_desc *desc,
+                                    oit_triangle_sink sink, void *user, oit_mesh_info *info,
+                                    oit_error *err);
+/* Visible although the build hides symbols by default: the plugin's one
+ * export (gltf_plugin.map), which liboit finds with dlsym. */
+OIT_API oit_gltf_read_fn oit_gltf_read_file;
 
 oit_status oit_read_gltf_memory(const unsigned char *bytes, size_t size, const char *name,
                                 const char *dir, const oit_read_desc *desc,

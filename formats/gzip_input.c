@@ -1,17 +1,21 @@
-/* Transparent gzip input (gzip_input.h). */
+/* Transparent gzip input (gzip_input.h). zlib comes through a table
+ * (zlib_load.h): linked in the tools; in liboit loaded for each gzip
+ * input and released with it. */
 #define _GNU_SOURCE /* fopencookie */
 #include "formats/gzip_input.h"
+
+#include "formats/zlib_load.h"
 
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/types.h>
-#include <zlib.h>
 
 #define GZ_IN ((size_t)1 << 16)
 
 struct oit_gz {
     FILE *src;
+    oit_zlib z;
     z_stream zs;
     int between; /* after a member's end: another member or the end */
     int end;
@@ -68,12 +72,12 @@ static ssize_t gz_read(void *cookie, char *buf, size_t size)
             }
             g->between = 0;
         }
-        int r = inflate(&g->zs, Z_NO_FLUSH);
+        int r = g->z.inflate(&g->zs, Z_NO_FLUSH);
         if (r == Z_STREAM_END) {
             g->between = 1;
-            inflateReset(&g->zs);
+            g->z.inflate_reset(&g->zs);
         } else if (r != Z_OK && r != Z_BUF_ERROR) {
-            return gz_fail(g, "corrupt gzip data", g->zs.msg ? g->zs.msg : zError(r));
+            return gz_fail(g, "corrupt gzip data", g->zs.msg ? g->zs.msg : g->z.error(r));
         }
     }
     return (ssize_t)(want - g->zs.avail_out);
@@ -82,7 +86,8 @@ static ssize_t gz_read(void *cookie, char *buf, size_t size)
 static int gz_close(void *cookie)
 {
     oit_gz *g = cookie;
-    inflateEnd(&g->zs);
+    g->z.inflate_end(&g->zs);
+    oit_zlib_close(&g->z);
     free(g);
     return 0;
 }
@@ -119,7 +124,13 @@ oit_status oit_gz_open(FILE *f, const char *name, FILE **out, oit_gz **state, oi
     if (!g)
         return oit_error_set(err, OIT_ERR_NOMEM, "%s: out of memory for gzip input", name);
     g->src = f;
-    if (inflateInit2(&g->zs, 15 + 16) != Z_OK) { /* 16: gzip wrapper only */
+    oit_status s = oit_zlib_open(&g->z, name, err);
+    if (s != OIT_OK) {
+        free(g);
+        return s;
+    }
+    if (oit_zlib_init_gzip(&g->z, &g->zs) != Z_OK) {
+        oit_zlib_close(&g->z);
         free(g);
         return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot start gzip decompression", name);
     }
@@ -158,11 +169,16 @@ oit_status oit_gunzip(const unsigned char *in, size_t n, size_t limit, const cha
     memset(&zs, 0, sizeof zs);
     *out = NULL;
     *out_n = 0;
-    if (inflateInit2(&zs, 15 + 16) != Z_OK)
+    oit_zlib z;
+    oit_status s = oit_zlib_open(&z, name, err);
+    if (s != OIT_OK)
+        return s;
+    if (oit_zlib_init_gzip(&z, &zs) != Z_OK) {
+        oit_zlib_close(&z);
         return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot start gzip decompression", name);
+    }
     unsigned char *buf = NULL;
     size_t cap = 0, used = 0;
-    oit_status s = OIT_OK;
     zs.next_in = (Bytef *)in;
     for (size_t left = n; s == OIT_OK;) {
         if (used == cap && (s = gunzip_grow(&buf, &cap, limit, name, err)) != OIT_OK)
@@ -172,22 +188,23 @@ oit_status oit_gunzip(const unsigned char *in, size_t n, size_t limit, const cha
         zs.avail_in = chunk_in;
         zs.next_out = buf + used;
         zs.avail_out = chunk_out;
-        int r = inflate(&zs, Z_NO_FLUSH);
+        int r = z.inflate(&zs, Z_NO_FLUSH);
         left -= chunk_in - zs.avail_in;
         used += chunk_out - zs.avail_out;
         if (r == Z_STREAM_END) { /* another member follows, or the data ends */
             if (left < 2 || !oit_gz_magic(zs.next_in, left))
                 break;
-            inflateReset(&zs);
+            z.inflate_reset(&zs);
         } else if (r == Z_BUF_ERROR && left == 0 && zs.avail_out > 0) {
             s = oit_error_set(err, OIT_ERR_FORMAT, "%s: gzip stream truncated (the file ends "
                               "inside it)", name);
         } else if (r != Z_OK && r != Z_BUF_ERROR) {
             s = oit_error_set(err, OIT_ERR_FORMAT, "%s: corrupt gzip data (%s)", name,
-                              zs.msg ? zs.msg : zError(r));
+                              zs.msg ? zs.msg : z.error(r));
         }
     }
-    inflateEnd(&zs);
+    z.inflate_end(&zs);
+    oit_zlib_close(&z);
     if (s != OIT_OK) {
         free(buf);
         return s;

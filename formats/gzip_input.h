@@ -32,7 +32,8 @@ int oit_gz_magic(const unsigned char *b, size_t n);
 /* Looks at f's first two bytes. Not gzip: *out = NULL, f is left where it
  * was. Gzip: *out is a new read-only stream of the inflated bytes (fclose it
  * before f; it does not close f) and *state its state for oit_gz_message.
- * Fails only when f cannot be rewound or memory runs out. */
+ * Fails only when f cannot be rewound, memory runs out or zlib cannot be
+ * loaded (liboit loads it at run time: zlib_load.h). */
 oit_status oit_gz_open(FILE *f, const char *name, FILE **out, oit_gz **state, oit_error *err);
 /* Why the last read failed ("" when it did not): "corrupt data (invalid
  * distance too far back)", "truncated (the file ends inside the stream)". */
@@ -40,7 +41,8 @@ const char *oit_gz_message(const oit_gz *g);
 
 /* Inflates all gzip members of in[0, n) into a malloc'ed buffer (*out, *out_n
  * bytes; free it); more than limit bytes is OIT_ERR_NOMEM, a corrupt or
- * truncated stream OIT_ERR_FORMAT, both naming `name`. */
+ * truncated stream OIT_ERR_FORMAT, both naming `name` (and, as for
+ * oit_gz_open, zlib that cannot be loaded). */
 oit_status oit_gunzip(const unsigned char *in, size_t n, size_t limit, const char *name,
                       unsigned char **out, size_t *out_n, oit_error *err);
 

@@ -1,21 +1,23 @@
 /* GL 4.5 core contexts (gl_context.h). Headless contexts come from EGL with
  * no surface: the GL methods render into their own FBOs, so a pbuffer would
  * only cost memory. The display is chosen so that a machine with an NVIDIA
- * GPU uses it even when Mesa's EGL is also installed. */
+ * GPU uses it even when Mesa's EGL is also installed. Windows are made by
+ * gl_window.c and adopted here through their ops, so that this file, which
+ * liboit links, needs no window system. */
 #include "render/gl_context.h"
 
 #include "render/gl_util.h"
 
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
-#include <GLFW/glfw3.h>
 #include <stdlib.h>
 #include <string.h>
 
 struct oit_gl {
     EGLDisplay dpy;
     EGLContext ctx;
-    GLFWwindow *window;
+    void *window; /* an adopted window, or NULL when headless */
+    const oit_gl_window_ops *ops;
     char renderer[256];
 };
 
@@ -92,30 +94,21 @@ static oit_status create_egl(const oit_gl_desc *desc, oit_gl *gl, oit_error *err
     return OIT_OK;
 }
 
-static oit_status create_window(const oit_gl_desc *desc, oit_gl *gl, oit_error *err)
+static oit_gl *gl_new(void)
 {
-    if (!glfwInit()) {
-        const char *why = NULL;
-        glfwGetError(&why);
-        return oit_error_set(err, OIT_ERR_GL, "GLFW: cannot initialise (%s); is there a "
-                             "display (DISPLAY / WAYLAND_DISPLAY)?", why ? why : "no reason given");
+    oit_gl *gl = calloc(1, sizeof *gl);
+    if (gl) {
+        gl->dpy = EGL_NO_DISPLAY;
+        gl->ctx = EGL_NO_CONTEXT;
     }
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
-    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-    glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, desc->debug ? GLFW_TRUE : GLFW_FALSE);
-    int w = desc->width > 0 ? desc->width : 1024, h = desc->height > 0 ? desc->height : 768;
-    gl->window = glfwCreateWindow(w, h, desc->title ? desc->title : "oitstream", NULL, NULL);
-    if (!gl->window) {
-        const char *why = NULL;
-        glfwGetError(&why);
-        glfwTerminate();
-        return oit_error_set(err, OIT_ERR_GL, "GLFW: cannot open a %dx%d OpenGL 4.5 core "
-                             "window: %s", w, h, why ? why : "no reason given");
-    }
-    glfwMakeContextCurrent(gl->window);
-    return OIT_OK;
+    return gl;
+}
+
+/* The renderer string, read once the context is current. */
+static void gl_ready(oit_gl *gl)
+{
+    const char *r = (const char *)glGetString(GL_RENDERER);
+    strncpy(gl->renderer, r ? r : "unknown", sizeof gl->renderer - 1);
 }
 
 oit_status oit_gl_create(const oit_gl_desc *desc, oit_gl **out, oit_error *err)
@@ -124,18 +117,31 @@ oit_status oit_gl_create(const oit_gl_desc *desc, oit_gl **out, oit_error *err)
     if (!desc)
         desc = &zero;
     *out = NULL;
-    oit_gl *gl = calloc(1, sizeof *gl);
+    oit_gl *gl = gl_new();
     if (!gl)
         return oit_error_set(err, OIT_ERR_NOMEM, "GL context: out of memory");
-    gl->dpy = EGL_NO_DISPLAY;
-    gl->ctx = EGL_NO_CONTEXT;
-    oit_status s = desc->window ? create_window(desc, gl, err) : create_egl(desc, gl, err);
+    oit_status s = create_egl(desc, gl, err);
     if (s != OIT_OK) {
         oit_gl_destroy(gl);
         return s;
     }
-    const char *r = (const char *)glGetString(GL_RENDERER);
-    strncpy(gl->renderer, r ? r : "unknown", sizeof gl->renderer - 1);
+    gl_ready(gl);
+    *out = gl;
+    return OIT_OK;
+}
+
+oit_status oit_gl_adopt_window(void *window, const oit_gl_window_ops *ops, oit_gl **out,
+                               oit_error *err)
+{
+    *out = NULL;
+    oit_gl *gl = gl_new();
+    if (!gl) {
+        ops->destroy(window);
+        return oit_error_set(err, OIT_ERR_NOMEM, "GL window: out of memory");
+    }
+    gl->window = window;
+    gl->ops = ops;
+    gl_ready(gl);
     *out = gl;
     return OIT_OK;
 }
@@ -144,10 +150,8 @@ void oit_gl_destroy(oit_gl *gl)
 {
     if (!gl)
         return;
-    if (gl->window) {
-        glfwDestroyWindow(gl->window);
-        glfwTerminate();
-    }
+    if (gl->window)
+        gl->ops->destroy(gl->window);
     if (gl->dpy != EGL_NO_DISPLAY) {
         eglMakeCurrent(gl->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         if (gl->ctx != EGL_NO_CONTEXT)
@@ -161,7 +165,7 @@ void oit_gl_destroy(oit_gl *gl)
 oit_status oit_gl_make_current(oit_gl *gl, oit_error *err)
 {
     if (gl->window) {
-        glfwMakeContextCurrent(gl->window);
+        gl->ops->make_current(gl->window);
         return OIT_OK;
     }
     if (eglGetCurrentContext() == gl->ctx)

@@ -1,7 +1,8 @@
 /* The GL 4.5 core context every GL method runs in: headless through EGL
  * (device platform with an NVIDIA device when present, else surfaceless
- * Mesa), or a GLFW window for the viewer. The caller makes one per thread and
- * owns it; nothing here is global. */
+ * Mesa), or a window's for the viewer (gl_window.h, library oit_window: it
+ * is the one that links GLFW, and liboit does not). The caller makes one per
+ * thread and owns it; nothing here is global. */
 #ifndef OIT_RENDER_GL_CONTEXT_H
 #define OIT_RENDER_GL_CONTEXT_H
 
@@ -14,12 +15,12 @@ extern "C" {
 typedef struct oit_gl oit_gl;
 
 typedef struct oit_gl_desc {
-    int window;        /* 0: headless EGL; 1: GLFW window               */
-    int width, height; /* window size; default 1024x768                 */
-    const char *title; /* window title; default "oitstream"             */
+    int width, height; /* window size; default 1024x768 (windows only)  */
+    const char *title; /* window title; default "oitstream" (windows)   */
     int debug;         /* 1: debug context with a message callback      */
 } oit_gl_desc;
 
+/* A headless EGL context, current on the calling thread (desc may be NULL). */
 oit_status oit_gl_create(const oit_gl_desc *desc, oit_gl **out, oit_error *err);
 void oit_gl_destroy(oit_gl *gl);
 /* "llvmpipe (LLVM 15.0.6, 256 bits)" or the NVIDIA renderer string. */
@@ -29,6 +30,19 @@ const char *oit_gl_renderer(const oit_gl *gl);
 oit_status oit_gl_make_current(oit_gl *gl, oit_error *err);
 /* Window only (NULL when headless): the GLFWwindow*. */
 void *oit_gl_window(oit_gl *gl);
+
+/* For a window system (gl_window.c): makes an oit_gl of a window whose GL
+ * context is current on the calling thread, so that the GL methods draw in
+ * it like in a headless one. oit_gl_make_current and oit_gl_destroy call
+ * ops with the window; ops must outlive the oit_gl (a static const table).
+ * The oit_gl owns the window from this call on: on failure it is destroyed
+ * through ops->destroy too. */
+typedef struct oit_gl_window_ops {
+    void (*make_current)(void *window);
+    void (*destroy)(void *window);
+} oit_gl_window_ops;
+oit_status oit_gl_adopt_window(void *window, const oit_gl_window_ops *ops, oit_gl **out,
+                               oit_error *err);
 
 #ifdef __cplusplus
 }

@@ -11,7 +11,7 @@ oit_add_test(NAME bench_plot COMMAND test_bench_plot LABELS unit TIMEOUT 60)
 
 # oitbench's PNG charts, --epsilon sweep and `oitbench plot` end to end
 # (png_figures tells a drawn chart from a blank one).
-oit_add_test_exe(png_figures SOURCES png_figures.c LIBS oit_render)
+oit_add_test_exe(png_figures SOURCES png_figures.c LIBS oit_render oit_image_png)
 oit_add_test(NAME oitbench_plots LABELS integration TIMEOUT 120
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_oitbench_plots.sh $<TARGET_FILE:png_figures>)
 

@@ -1,6 +1,6 @@
 # tests for gl (see CMakeLists.txt for oit_add_test / oit_add_test_exe / oit_add_fuzzer)
 # They run on whatever EGL offers: llvmpipe in CI, a GPU where there is one.
-oit_add_test_exe(test_gl_context SOURCES test_gl_context.c LIBS oit_render)
+oit_add_test_exe(test_gl_context SOURCES test_gl_context.c LIBS oit_window)
 oit_add_test(NAME gl_context COMMAND test_gl_context LABELS unit TIMEOUT 30)
 
 oit_add_test_exe(test_dfb SOURCES test_dfb.c LIBS oit_render)
@@ -15,7 +15,7 @@ oit_add_test(NAME gpu_draws COMMAND test_gpu_draws LABELS unit TIMEOUT 60)
 
 # The GLFW window path, under a virtual X display (xvfb-run from the xvfb
 # package, installed by setup/install-deps.sh). Skipped when xvfb-run is absent.
-oit_add_test_exe(test_gl_window SOURCES test_gl_window.c LIBS oit_render)
+oit_add_test_exe(test_gl_window SOURCES test_gl_window.c LIBS oit_window oit_image_png)
 find_program(OIT_XVFB_RUN xvfb-run)
 if(OIT_XVFB_RUN)
   # Leak checking is off here only: the X11 client libraries that Mesa loads

@@ -2,7 +2,7 @@
 oit_add_test_exe(test_shade SOURCES test_shade.c LIBS oit_image)
 oit_add_test(NAME shade COMMAND test_shade LABELS unit TIMEOUT 20)
 
-oit_add_test_exe(test_image SOURCES test_image.c LIBS oit_image PNG::PNG)
+oit_add_test_exe(test_image SOURCES test_image.c LIBS oit_image_png)
 oit_add_test(NAME image COMMAND test_image LABELS unit TIMEOUT 20)
 
 oit_add_test_exe(test_reference SOURCES test_reference.c LIBS oit_reference)
@@ -16,5 +16,5 @@ endforeach()
 
 # The image readers behind --compare: the corpus files start with one byte
 # that selects the format (odd: PNG, even: PFM).
-oit_add_fuzzer(fuzz_image fuzz_image.c LIBS oit_image
+oit_add_fuzzer(fuzz_image fuzz_image.c LIBS oit_image_png
                CORPUS ${CMAKE_CURRENT_SOURCE_DIR}/corpus/image)

@@ -5,6 +5,7 @@
 
 #include "render/gl_context.h"
 #include "render/gl_util.h"
+#include "render/gl_window.h"
 #include "test_check.h"
 
 
@@ -43,8 +44,8 @@ int main(void)
     oit_gl_destroy(gl);
 
     if (!getenv("DISPLAY") && !getenv("WAYLAND_DISPLAY")) {
-        oit_gl_desc desc = {.window = 1, .width = 64, .height = 64};
-        s = oit_gl_create(&desc, &gl, &err);
+        oit_gl_desc desc = {.width = 64, .height = 64};
+        s = oit_gl_create_window(&desc, &gl, &err);
         printf("window without display: %s: %s\n", oit_status_name(s), err.message);
         CHECK(s == OIT_ERR_GL && gl == NULL, "window without a display did not fail");
     }

@@ -9,7 +9,7 @@
 
 #include "gl_test_scene.h"
 #include "render/dfb.h"
-#include "render/gl_context.h"
+#include "render/gl_window.h"
 #include "render/gl_util.h"
 #include "render/image.h"
 
@@ -65,8 +65,8 @@ int main(void)
     }
     oit_error err = {0};
     oit_gl *gl = NULL;
-    oit_gl_desc desc = {.window = 1, .width = W, .height = H, .title = "oit window test"};
-    if (oit_gl_create(&desc, &gl, &err) != OIT_OK) {
+    oit_gl_desc desc = {.width = W, .height = H, .title = "oit window test"};
+    if (oit_gl_create_window(&desc, &gl, &err) != OIT_OK) {
         fprintf(stderr, "FAIL: window context: %s\n", err.message);
         return 1;
     }

@@ -2,7 +2,10 @@
 # Installs liboit from a build folder into a temporary prefix, then builds a
 # tiny outside project against it twice (find_package(oit) and pkg-config)
 # and runs it: it must link, load liboit.so and print the library's error for
-# a missing part file. Then the installed Python package: imported from the
+# a missing part file; it must open a .glb (Draco too) through the glTF plugin
+# installed beside liboit.so and a gzip mesh through the zlib liboit loads,
+# and without the plugin fail naming the file and the plugin's path. Then
+# the installed Python package: imported from the
 # prefix alone (no OIT_LIBRARY), it must load the prefix's liboit.so, render
 # pixels and convert with the prefix's oitprep.
 # usage: test_install.sh BUILD_DIR C_COMPILER PYTHON ["EXTRA_FLAGS" [PRELOAD]]
@@ -18,7 +21,7 @@ mkdir -p "$tmp/src"
 cmake --build "$build" --target oit oitprep oitgen > "$tmp/build.log" 2>&1 || { cat "$tmp/build.log"; exit 1; }
 cmake --install "$build" --prefix "$tmp/prefix" > "$tmp/install.log"
 for f in include/oit/oit.h include/oit/liboit.h include/oit/offscreen.h include/oit/partfile.h \
-         lib/pkgconfig/oit.pc lib/cmake/oit/oitConfig.cmake \
+         lib/liboit-gltf.so lib/pkgconfig/oit.pc lib/cmake/oit/oitConfig.cmake \
          lib/cmake/oit/oitConfigVersion.cmake bin/oitprep \
          lib/python3/dist-packages/oit/__init__.py \
          lib/python3/dist-packages/oit/_install_paths.py; do
@@ -40,7 +43,7 @@ int main(int argc, char **argv)
     oit_status s = oit_scene_open(argc > 1 ? argv[1] : "missing.oitp", NULL, &scene, &err);
     printf("%s: %s\n", oit_status_name(s), err.message);
     oit_scene_close(scene);
-    return s == OIT_ERR_IO ? 0 : 1;
+    return s == OIT_OK || s == OIT_ERR_IO ? 0 : 1;
 }
 C
 cat > "$tmp/src/CMakeLists.txt" <<'C'
@@ -64,6 +67,25 @@ cmake -S "$tmp/src" -B "$tmp/cm" -DCMAKE_C_COMPILER="$cc" -DCMAKE_PREFIX_PATH="$
       -DCMAKE_EXE_LINKER_FLAGS="$flags" > "$tmp/cm.log" 2>&1 || { cat "$tmp/cm.log"; exit 1; }
 cmake --build "$tmp/cm" > "$tmp/cm-build.log" 2>&1 || { cat "$tmp/cm-build.log"; exit 1; }
 check_run find_package "$tmp/cm/outside"
+
+# Mesh files that liboit reads through what it loads at run time, from the
+# prefix alone: the glTF plugin beside the installed liboit.so, and zlib.
+corpus="$src_dir/tests/corpus"
+open_scene() { # $1: a corpus file; prints the program's line
+    LD_LIBRARY_PATH="$tmp/prefix/lib" "$tmp/cm/outside" "$corpus/$1"
+}
+for scene in gltf/scene.glb gltf/draco.glb gltf/scene.gltf.gz off/color.off.gz; do
+    out=$(open_scene $scene) || { echo "FAIL (open $scene): $out"; exit 1; }
+    echo "open $scene: $out"
+    case $out in "ok: ") ;; *) echo "FAIL (open $scene): not opened"; exit 1 ;; esac
+done
+# Without the plugin a glTF file fails, saying which file and which plugin.
+mv "$tmp/prefix/lib/liboit-gltf.so" "$tmp/plugin-aside.so"
+out=$(open_scene gltf/scene.glb) && { echo "FAIL: opened a .glb without the plugin: $out"; exit 1; }
+echo "without the plugin: $out"
+case $out in "unsupported: $corpus/gltf/scene.glb: "*"glTF plugin $tmp/prefix/lib/liboit-gltf.so"*) ;;
+    *) echo "FAIL: the error does not name the file and the installed plugin's path"; exit 1 ;; esac
+mv "$tmp/plugin-aside.so" "$tmp/prefix/lib/liboit-gltf.so"
 
 pc_flags=$(PKG_CONFIG_PATH="$tmp/prefix/lib/pkgconfig" pkg-config --cflags --libs oit)
 echo "pkg-config: $pc_flags"

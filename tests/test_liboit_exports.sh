@@ -1,11 +1,17 @@
 #!/bin/sh
 # liboit.so exports exactly its public API: the dynamic symbols it defines are
 # exactly the functions include/oit/ marks OIT_API (oit/export.h), and every
-# function of liboit.h and offscreen.h (the embedding API) is among them.
-# usage: test_liboit_exports.sh LIBOIT_SO INCLUDE_OIT_DIR
+# function of liboit.h and offscreen.h (the embedding API) is among them. And
+# it links only libc, pthreads, libm, libdl and the GL/EGL loaders (a viewer
+# carries liboit with the system's GL alone): every NEEDED entry is on the
+# allow list below; PNG, GLFW, zlib, meshoptimizer and the glTF plugin's C++
+# stay out (docs/architecture.md).
+# usage: test_liboit_exports.sh LIBOIT_SO INCLUDE_OIT_DIR [sanitize]
+# sanitize: the build is instrumented; its sanitizer runtimes are allowed too.
 set -eu
 lib=$1
 inc=$2
+sanitize=${3:-}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }
@@ -28,4 +34,23 @@ missing=$(comm -23 "$tmp/embedding" "$tmp/exported")
 [ -z "$missing" ] || fail "$lib does not export these functions of liboit.h/offscreen.h: $missing"
 unlinked=$(comm -23 "$tmp/public" "$tmp/exported")
 [ -z "$unlinked" ] || fail "$lib lacks these OIT_API functions (a caller would get a link error): $unlinked"
+
+allowed() { # $1: a NEEDED name (libEGL.so.1)
+    case $1 in
+    libc.so.* | libm.so.* | libpthread.so.* | libdl.so.* | ld-linux*.so.*) return 0 ;;
+    libEGL.so.* | libGL.so.* | libOpenGL.so.* | libGLdispatch.so.*) return 0 ;;
+    libasan.so.* | libubsan.so.* | libclang_rt.asan*.so | libclang_rt.ubsan*.so)
+        [ "$sanitize" = sanitize ] ;;
+    *) return 1 ;;
+    esac
+}
+readelf -d "$lib" | sed -n 's/.*(NEEDED).*\[\(.*\)\]/\1/p' > "$tmp/needed"
+[ -s "$tmp/needed" ] || fail "readelf -d $lib shows no NEEDED entry (not a shared library?)"
+outside=""
+while read -r so; do
+    allowed "$so" || outside="$outside $so"
+done < "$tmp/needed"
+[ -z "$outside" ] || fail "$lib links libraries outside the allow list (libc, libm, pthreads, \
+libdl, the GL/EGL loaders):$outside; load them at run time (dlopen) or keep them in the tools"
+echo "ok: $lib needs only $(tr "\n" " " < "$tmp/needed")"
 echo "ok: $lib exports $(wc -l < "$tmp/exported") functions, all declared in $inc"

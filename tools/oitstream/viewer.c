@@ -15,6 +15,7 @@
 
 #include "base/json.h"
 #include "render/gl_context.h"
+#include "render/gl_window.h"
 #include "render/gl_util.h"
 #include "render/image.h"
 #include "tools/oitstream/stats_json.h"
@@ -1189,8 +1190,8 @@ static oit_status open_viewer(viewer *v, oit_error *err)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--window: method %s cannot render this "
                              "input%s%s", d->method, first >= 0 ? ": it " : "",
                              first >= 0 ? unavailable(v, v->methods[first]) : "");
-    oit_gl_desc gd = {.window = 1, .width = d->width, .height = d->height, .title = "oitstream"};
-    oit_status s = oit_gl_create(&gd, &v->gl, err);
+    oit_gl_desc gd = {.width = d->width, .height = d->height, .title = "oitstream"};
+    oit_status s = oit_gl_create_window(&gd, &v->gl, err);
     if (s != OIT_OK)
         return s;
     v->win = oit_gl_window(v->gl);
