@@ -23,9 +23,9 @@
 #ifndef OIT_GLTF_INTERNAL_H
 #define OIT_GLTF_INTERNAL_H
 
-#include "oit/export.h"
 #include <stddef.h>
 
+#include "oit/export.h"
 #include "oit/mesh.h"
 
 #ifdef __cplusplus
