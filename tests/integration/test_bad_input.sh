@@ -20,23 +20,14 @@
 # run, degenerate --view, --max-layers out of range), SIGINT/SIGTERM during
 # oitprep and oitgen. It prints its table of cases.
 set -u
-: "${OIT_BIN:?OIT_BIN must name the tools folder}"
-: "${OIT_TEST_TMP:?OIT_TEST_TMP must name a scratch folder}"
-P="$OIT_BIN/oitprep"
-G="$OIT_BIN/oitgen"
-S="$OIT_BIN/oitstream"
-BN="$OIT_BIN/oitbench"
-for tool in "$P" "$G" "$S" "$BN"; do
-    [ -x "$tool" ] || { echo "skip: $tool not built"; exit 77; }
-done
-command -v gzip >/dev/null || { echo "skip: gzip not installed"; exit 77; }
-T="$OIT_TEST_TMP/bad_input"
-rm -rf "$T" && mkdir -p "$T/in" "$T/out" || exit 1
+. "${OIT_TEST_LIB:-$(dirname "$0")/../lib.sh}"
+need_every_tool
+command -v gzip >/dev/null || skip "gzip not installed"
+scratch bad_input
 I="$T/in"
 O="$T/out"
-FAILS=0
+mkdir -p "$I" "$O" || exit 1
 CASES=0
-fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
 sum() { [ -n "$1" ] || { echo none; return; }; cksum <"$1" 2>/dev/null || echo missing; }
 row() { printf '%-26s %-13s %5s %5s  %s\n' "$1" "$2" "$3" "$4" "$5"; }
 
@@ -101,7 +92,7 @@ part() {
 }
 
 # ---- inputs ----
-"$G" quads --count 4 -o "$I/good.ply" >/dev/null || { echo "FAIL: oitgen quads"; exit 1; }
+"$G" quads --count 4 -o "$I/good.ply" >/dev/null || die "oitgen quads"
 tri='v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n'
 printf "$tri" >"$I/good.obj"
 cp /etc/passwd "$I/passwd.obj"
@@ -129,7 +120,7 @@ printf '\377\377\377\377\377\377\377\377' |
 gzip -9nc "$I/empty.obj" >"$I/empty.obj.gz"
 ln -s good.ply "$I/link.ply"
 ln "$I/good.ply" "$I/hard.ply"
-"$P" "$I/good.ply" -o "$I/good.oitp" >/dev/null 2>&1 || { echo "FAIL: oitprep good.ply"; exit 1; }
+"$P" "$I/good.ply" -o "$I/good.oitp" >/dev/null 2>&1 || die "oitprep good.ply"
 psize=$(wc -c <"$I/good.oitp")
 : >"$I/empty.oitp"
 printf 'hello, not a part file\n' >"$I/text.oitp"
@@ -253,6 +244,4 @@ interrupt TERM 143 "SIGTERM generating" oitgen "$O/../sig.ply" \
     "$G" instances --input "$I/big.ply" --count 8 -o "$O/../sig.ply"
 
 echo "$CASES runs, $FAILS failed"
-[ "$FAILS" -eq 0 ] || exit 1
-rm -rf "$T"
-exit 0
+finish --clean "bad input"

@@ -31,30 +31,23 @@
 # parts. Prints every figure. FIGURES (png_figures, third argument) counts
 # the decal's colours.
 set -u
-: "${OIT_BIN:?OIT_BIN must name the tools folder}"
-: "${OIT_TEST_TMP:?OIT_TEST_TMP must name a scratch folder}"
+. "${OIT_TEST_LIB:-$(dirname "$0")/../lib.sh}"
 CASE=${1:?usage: test_hard.sh CASE [fast|guaranteed] [PNG_FIGURES]}
 SCHEME=${2:-fast}
 FIGURES=${3:-}
 TIE_CASES="coplanar coplanar_tiny coplanar_far touching"
 holds_ties() { case " $TIE_CASES " in *" $CASE "*) return 0 ;; esac; return 1; }
 S="$OIT_BIN/oitstream"
-T="$OIT_TEST_TMP/hard_${CASE}_$SCHEME"
+scratch "hard_${CASE}_$SCHEME"
 SIZE=${OIT_HARD_SIZE:-128x128}
 # 600 layers a pixel make the stack the suite's costliest case; its checks
 # compare methods pixel by pixel, which 64x64 does as well as 128x128.
 [ -n "${OIT_HARD_SIZE:-}" ] || [ "$CASE" != stack ] || SIZE=64x64
-rm -rf "$T" && mkdir -p "$T" || exit 1
-export EGL_PLATFORM=${EGL_PLATFORM:-surfaceless}
-FAILS=0
-fail() { echo "FAIL: $CASE ($SCHEME): $*" >&2; FAILS=$((FAILS + 1)); }
-json_num() { sed -n "s/.*\"$1\": *\([-0-9.e+]*\).*/\1/p" "$2" | head -n 1; }
-json_str() { sed -n "s/.*\"$1\": *\"\([^\"]*\)\".*/\1/p" "$2" | head -n 1; }
-at_most() { awk "BEGIN{exit !($1 <= $2)}"; }
+FAIL_PREFIX="$CASE ($SCHEME): "
+INDENT="    "
 
-"$OIT_BIN/oitgen" hard --case "$CASE" -o "$T/in.ply" >/dev/null || { echo "FAIL: oitgen"; exit 1; }
-"$OIT_BIN/oitprep" "$T/in.ply" -o "$T/in.oitp" --scheme "$SCHEME" --stats "$T/prep.json" >"$T/prep.txt" 2>&1 ||
-    { echo "FAIL: $CASE: oitprep: $(tail -n 1 "$T/prep.txt")"; exit 1; }
+gen_hard "$CASE" "$T/in.ply"
+prep_or_die "$T/in.ply" "$T/in.oitp" --scheme "$SCHEME" --stats "$T/prep.json"
 echo "$CASE: oitprep --scheme $SCHEME: triangles $(json_num triangles_in "$T/prep.json") -> $(json_num triangles_out "$T/prep.json"), dropped $(json_num degenerate_dropped "$T/prep.json"), parts $(json_num parts "$T/prep.json"), wide $(json_num wide_parts "$T/prep.json"), max bound $(json_num max_layer_bound "$T/prep.json")"
 "$OIT_BIN/oitprep" verify "$T/in.oitp" >"$T/verify.txt" 2>&1 || fail "verify: $(tail -n 3 "$T/verify.txt" | tr '\n' ' ')"
 sed -n 's/^ *\(layers\|order\):/  verify \1:/p' "$T/verify.txt"
@@ -69,19 +62,6 @@ far) # positions rebased: the part file holds small floats, the origin the 1e7
     grep -q '"origin": \[10000000, 10000000, 10000000\]' "$T/info.json" ||
         fail "origin is not (1e7, 1e7, 1e7): $(grep -o '"origin": [^]]*]' "$T/info.json")" ;;
 esac
-
-# compare NAME A B [MASK] LIMIT%: prints and checks the share off by > 1/255.
-compare() {
-    if [ $# -eq 5 ]; then
-        "$S" --compare "$2" "$3" --mask "$4" --json >"$T/cmp.json" || { fail "$1: compare"; return; }
-        p=$(json_num pct_over_1_255_outside_mask "$T/cmp.json") lim=$5
-    else
-        "$S" --compare "$2" "$3" --json >"$T/cmp.json" || { fail "$1: compare"; return; }
-        p=$(json_num pct_over_1_255 "$T/cmp.json") lim=$4
-    fi
-    echo "    $1: max_abs $(json_num max_abs "$T/cmp.json"), over 1/255 $p% (limit $lim%)"
-    at_most "$p" "$lim" || fail "$1: $p% of pixels off by more than 1/255"
-}
 
 # view NAME OPTS...: every exact method from one camera.
 view() {
@@ -214,5 +194,4 @@ dense) # in the lattice's centre and near a corner, looking across it; the
     view inside_corner --view -0.9,-0.85,-0.8,1,1,1,0,0,1,60,0.1,10 ;;
 esac
 
-[ "$FAILS" -eq 0 ] || { echo "$CASE: $FAILS failures" >&2; exit 1; }
-echo "$CASE ($SCHEME): all checks passed"
+finish "$CASE ($SCHEME)"

@@ -12,25 +12,15 @@
 # Ranges are written in --help as LO..HI (integers, suffix K/M/G allowed),
 # [LO, HI] / (LO, HI] / [LO, HI) (numbers), ">= N" or "> 0".
 set -u
-: "${OIT_BIN:?OIT_BIN must name the tools folder}"
-: "${OIT_TEST_TMP:?OIT_TEST_TMP must name a scratch folder}"
-P="$OIT_BIN/oitprep"
-G="$OIT_BIN/oitgen"
-S="$OIT_BIN/oitstream"
-BN="$OIT_BIN/oitbench"
-for tool in "$P" "$G" "$S" "$BN"; do
-    [ -x "$tool" ] || { echo "skip: $tool not built"; exit 77; }
-done
-T="$OIT_TEST_TMP/help_ranges"
-rm -rf "$T" && mkdir -p "$T" || exit 1
+. "${OIT_TEST_LIB:-$(dirname "$0")/../lib.sh}"
+need_every_tool
+scratch help_ranges
 NO=/proc/oit_none
-FAILS=0
-fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
 
-"$G" quads --count 4 -o "$T/m.ply" >/dev/null || { echo "FAIL: oitgen quads"; exit 1; }
-"$P" "$T/m.ply" -o "$T/m.oitp" >/dev/null 2>&1 || { echo "FAIL: oitprep"; exit 1; }
+"$G" quads --count 4 -o "$T/m.ply" >/dev/null || die "oitgen quads"
+prep_or_die "$T/m.ply" "$T/m.oitp"
 "$S" "$T/m.ply" --size 8x8 --quiet --out "$T/a.png" 2>/dev/null &&
-    cp "$T/a.png" "$T/b.png" || { echo "FAIL: oitstream"; exit 1; }
+    cp "$T/a.png" "$T/b.png" || die "oitstream"
 
 # The command of a tool form; OUT is replaced by the output path.
 form() {
@@ -194,7 +184,4 @@ check quads --coverage
 check instances --count "" V second
 check plant --triangles "" V nodefault
 
-echo "$FAILS failure(s)"
-[ "$FAILS" -eq 0 ] || exit 1
-rm -rf "$T"
-exit 0
+finish --clean "help ranges"

@@ -12,10 +12,11 @@
 # PRELOAD: the sanitizer runtime python needs to load an instrumented liboit.
 # (Empty arguments are dropped on the way from ctest: the optional ones last.)
 set -eu
+. "${OIT_TEST_LIB:-$(dirname "$0")/../lib.sh}"
 build=$1 cc=$2 python=$3 flags=${4:-} preload=${5:-}
 src_dir=$(cd "$(dirname "$0")/../.." && pwd)
-tmp=${OIT_TEST_TMP:-/tmp}/liboit-install.$$
-trap 'rm -rf "$tmp"' EXIT
+temp_scratch liboit-install
+tmp=$T
 mkdir -p "$tmp/src"
 
 cmake --build "$build" --target oit oitprep oitgen > "$tmp/build.log" 2>&1 || { cat "$tmp/build.log"; exit 1; }

@@ -13,8 +13,7 @@
 #   separating, and verifies alike in one Embree scene or many; a 100K plant streams unsplit though a few pixels pass 32
 #   layers.
 set -u
-: "${OIT_BIN:?OIT_BIN must name the tools folder}"
-: "${OIT_TEST_TMP:?OIT_TEST_TMP must name a scratch folder}"
+. "${OIT_TEST_LIB:-$(dirname "$0")/../lib.sh}"
 P="$OIT_BIN/oitprep"
 # Wang & Xie's scheme, whose guarantees (layer bounds, slabs, wide parts) this
 # file checks; the default fast scheme has tests/preprocess/test_fast_scheme.sh, and
@@ -22,27 +21,34 @@ P="$OIT_BIN/oitprep"
 GUAR="--scheme guaranteed"
 G="$OIT_BIN/oitgen"
 S="$OIT_BIN/oitstream"
-for tool in "$P" "$G" "$S"; do
-    [ -x "$tool" ] || { echo "skip: $tool not built"; exit 77; }
-done
-T="$OIT_TEST_TMP/prep"
-rm -rf "$T" && mkdir -p "$T" || exit 1
-FAILS=0
-fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
-# json_num KEY < json: the number after "KEY": (first occurrence)
-json_num() { sed -n "s/.*\"$1\": \([-0-9.e+]*\).*/\1/p" | head -n 1; }
+need_tools "$P" "$G" "$S"
+scratch prep
 
-# expect_rc WANT CMD...: runs CMD (stdout/stderr to $T/out.txt, $T/err.txt)
-expect_rc() {
-    want=$1; shift
-    "$@" >"$T/out.txt" 2>"$T/err.txt"; rc=$?
-    [ "$rc" -eq "$want" ] ||
-        fail "'$*' exited $rc, want $want: $(tail -n 2 "$T/err.txt")"
+# verify_clean NAME FILE: oitprep verify FILE exits 0 and reports no layer
+# and no order violation (its report left in $T/out.txt).
+verify_clean() {
+    expect_rc 0 "$P" verify "$2"
+    grep -q "; 0 violations" "$T/out.txt" && grep -q "order: 0 violations" "$T/out.txt" ||
+        fail "$1: verify: $(cat "$T/out.txt")"
+}
+
+# stream_vs_dfb NAME FILE "STREAM_OPTIONS" OPTION...: the stream of FILE
+# with STREAM_OPTIONS and OPTION... (size and view; image $T/vs.png, stats
+# $T/vs.json) against DFB with OPTION... ($T/vd.png): no overflow pixel, and
+# at most 0.1% of the pixels off by more than 1/255.
+stream_vs_dfb() {
+    name=$1 file=$2 stream_opts=$3
+    shift 3
+    # shellcheck disable=SC2086
+    "$S" "$file" $stream_opts "$@" --out "$T/vs.png" --stats "$T/vs.json" --quiet &&
+        "$S" "$file" --method dfb "$@" --out "$T/vd.png" --quiet || fail "$name: oitstream $*"
+    grep -q '"overflow_pixels": 0,' "$T/vs.json" || fail "$name: stream overflow ($*)"
+    compare "$name: stream vs dfb" "$T/vs.png" "$T/vd.png" 0.1
 }
 
 # (a) conversion, its figures, info and verify
 M="$T/plant.ply"
-"$G" plant --triangles 10000 -o "$M" >/dev/null || { echo "FAIL: oitgen plant"; exit 1; }
+"$G" plant --triangles 10000 -o "$M" >/dev/null || die "oitgen plant"
 expect_rc 0 "$P" "$M" $GUAR -o "$T/t0.oitp" --max-layers 16 --stats "$T/s.json"
 for key in triangles_in triangles_out degenerate_dropped split_added pieces parts slabs \
     cells subgrid_depth seconds stages peak_rss_bytes; do
@@ -98,20 +104,16 @@ if "$S" "$T/t0.oitp" --method stream --max-layers 16 --size 96x96 --orbit 2 \
         --out "$T/s.png" --stats "$T/st.json" --quiet >"$T/out.txt" 2>&1 &&
     "$S" "$T/t0.oitp" --method dfb --size 96x96 --orbit 2 --out "$T/d.png" --quiet \
         >>"$T/out.txt" 2>&1; then
-    for o in $(grep -o '"overflow_pixels": [0-9]*' "$T/st.json" | sed 's/.*: //'); do
+    for o in $(json_all overflow_pixels "$T/st.json"); do
         [ "$o" -eq 0 ] || fail "stream: $o overflow pixels"
     done
     grep -q '"overflow_pixels"' "$T/st.json" || fail "stream stats lack overflow_pixels"
     for i in 000 001; do
-        j=$("$S" --compare "$T/s_$i.png" "$T/d_$i.png" --json) ||
-            { fail "compare view $i"; continue; }
-        pct=$(echo "$j" | json_num pct_over_1_255)
-        echo "view $i: stream vs dfb max_abs $(echo "$j" | json_num max_abs), over 1/255 $pct%"
         # The plant is clash-free, so no two parts' surfaces cross. Where
         # they do (oitgen plant --clashes allow), a pixel can get fragments
         # of equal depth from two packs, which DFB orders by primitive id
         # and the stream by pack order: a pixel or two, never more.
-        awk "BEGIN { exit !($pct <= 0.01) }" || fail "view $i: $pct% of pixels over 1/255"
+        compare "view $i: stream vs dfb" "$T/s_$i.png" "$T/d_$i.png" 0.01
     done
 else
     fail "oitstream on the part file: $(tail -n 2 "$T/out.txt")"
@@ -143,24 +145,14 @@ awk 'BEGIN { n = 16; print "OFF"; print n + 1, n, 0; print 0.31, 0.17, 0.05;
 "$G" demo -o "$T/demo.ply" >/dev/null || fail "oitgen demo"
 for case in demo.ply saddle.off; do
     expect_rc 0 "$P" "$T/$case" $GUAR -o "$T/$case.oitp" --stats "$T/$case.json"
-    expect_rc 0 "$P" verify "$T/$case.oitp"
-    grep -q "; 0 violations" "$T/out.txt" && grep -q "order: 0 violations" "$T/out.txt" ||
-        fail "$case: verify: $(cat "$T/out.txt")"
+    verify_clean "$case" "$T/$case.oitp"
     wide=$(json_num wide_parts <"$T/$case.json")
     lb=$(json_num max_layer_bound <"$T/$case.json")
     echo "$case at K=8: $(json_num triangles_in <"$T/$case.json") -> " \
         "$(json_num triangles_out <"$T/$case.json") triangles," \
         "$(json_num pieces_clustered <"$T/$case.json") pieces clustered," \
         "$(json_num parts <"$T/$case.json") parts, $wide wide (max bound $lb)"
-    "$S" "$T/$case.oitp" --size 96x96 --azimuth 30 --elevation 60 --pack disjoint \
-        --out "$T/ws.png" \
-        --stats "$T/ws.json" --quiet && "$S" "$T/$case.oitp" --method dfb --size 96x96 \
-        --azimuth 30 --elevation 60 --out "$T/wd.png" --quiet || fail "$case: oitstream"
-    grep -q '"overflow_pixels": 0,' "$T/ws.json" || fail "$case: stream overflow"
-    j=$("$S" --compare "$T/ws.png" "$T/wd.png" --json)
-    pct=$(echo "$j" | json_num pct_over_1_255)
-    echo "$case: stream vs dfb max_abs $(echo "$j" | json_num max_abs), over 1/255 $pct%"
-    awk "BEGIN { exit !($pct <= 0.1) }" || fail "$case: $pct% of pixels over 1/255"
+    stream_vs_dfb "$case" "$T/$case.oitp" "--pack disjoint" --size 96x96 --azimuth 30 --elevation 60
 done
 # (f2) cutting planes (partition/kd_cut.h): the demo has nodes of at most
 # 2K layers that no axis plane splits cleanly and no gap separates; some
@@ -221,18 +213,11 @@ for m in kd-parts kd-facets; do
     grep -q "\"manage\": \"$m\"" "$T/$m.json" || fail "$m: stats do not name the scheme"
     grep -q '"grid": \[[12], [12], [12]\]' "$T/$m.json" ||
         fail "$m: top grid $(grep -o '"grid": [^]]*]' "$T/$m.json"), want one cell an axis (two where the bounds straddle a power of two)"
-    expect_rc 0 "$P" verify "$T/$m.oitp"
-    grep -q "; 0 violations" "$T/out.txt" && grep -q "order: 0 violations" "$T/out.txt" ||
-        fail "$m: verify: $(cat "$T/out.txt")"
-    "$S" "$T/$m.oitp" --size 96x96 --azimuth 30 --elevation 40 --out "$T/ms.png" \
-        --stats "$T/ms.json" --quiet && "$S" "$T/$m.oitp" --method dfb --size 96x96 \
-        --azimuth 30 --elevation 40 --out "$T/md.png" --quiet || fail "$m: oitstream"
-    grep -q '"overflow_pixels": 0,' "$T/ms.json" || fail "$m: stream overflow"
-    pct=$("$S" --compare "$T/ms.png" "$T/md.png" --json | json_num pct_over_1_255)
-    awk "BEGIN { exit !($pct <= 0.1) }" || fail "$m: $pct% of pixels over 1/255"
+    verify_clean "$m" "$T/$m.oitp"
+    stream_vs_dfb "$m" "$T/$m.oitp" "" --size 96x96 --azimuth 30 --elevation 40
     echo "--manage $m: $(json_num parts <"$T/$m.json") parts," \
         "$(json_num pieces <"$T/$m.json") pieces, $(json_num triangles_out <"$T/$m.json")" \
-        "triangles; stream vs dfb over 1/255 $pct%"
+        "triangles; stream vs dfb over 1/255 $PCT%"
 done
 # No two facets merged: at least one piece per input triangle (the cell clip
 # may split a few), where convex clustering merges most of them.
@@ -268,19 +253,12 @@ for nb in 8; do
     [ "$slabs" -ge 1 ] && [ "$(json_num split_added <"$T/bars.json")" -eq 0 ] &&
         [ "$parts" -eq $((nb / 4)) ] ||
         fail "$nb bars: $slabs slabs, $parts parts, $(json_num split_added <"$T/bars.json") triangles added; want a slab, $((nb / 4)) parts, no clip"
-    expect_rc 0 "$P" verify "$T/bars.oitp"
-    grep -q "; 0 violations" "$T/out.txt" && grep -q "order: 0 violations" "$T/out.txt" &&
-        grep -q "slabs: $slabs, 0 vertices" "$T/out.txt" || fail "$nb bars: verify: $(cat "$T/out.txt")"
+    verify_clean "$nb bars" "$T/bars.oitp"
+    grep -q "slabs: $slabs, 0 vertices" "$T/out.txt" || fail "$nb bars: verify: $(cat "$T/out.txt")"
     for view in "--azimuth 45 --elevation 10" "--azimuth 135 --elevation 30" \
         "--azimuth 300 --elevation -20" "--view 0.5,0.5,0.5,1.5,1.5,0.5,0,0,1,60"; do
         # shellcheck disable=SC2086
-        "$S" "$T/bars.oitp" --size 96x96 $view --out "$T/bs.png" --stats "$T/bs.json" --quiet &&
-            "$S" "$T/bars.oitp" --method dfb --size 96x96 $view --out "$T/bd.png" --quiet ||
-            fail "$nb bars: oitstream $view"
-        grep -q '"overflow_pixels": 0,' "$T/bs.json" || fail "$nb bars: stream overflow ($view)"
-        pct=$("$S" --compare "$T/bs.png" "$T/bd.png" --json | json_num pct_over_1_255)
-        echo "$nb bars $view: stream vs dfb over 1/255 $pct%"
-        awk "BEGIN { exit !($pct <= 0.1) }" || fail "$nb bars: $pct% of pixels over 1/255 ($view)"
+        stream_vs_dfb "$nb bars $view" "$T/bars.oitp" "" --size 96x96 $view
     done
 done
 
@@ -290,17 +268,12 @@ done
 # (a split would draw it again, then its halves), and still equals DFB.
 "$G" plant --triangles 100000 -o "$T/p100k.ply" >/dev/null || fail "oitgen plant 100K"
 expect_rc 0 "$P" "$T/p100k.ply" $GUAR -o "$T/p100k.oitp"
-"$S" "$T/p100k.oitp" --size 128x128 --azimuth 30 --elevation 10 --out "$T/ps.png" \
-    --stats "$T/ps.json" --quiet && "$S" "$T/p100k.oitp" --method dfb --size 128x128 \
-    --azimuth 30 --elevation 10 --out "$T/pd.png" --quiet || fail "plant 100K: oitstream"
-ml=$(json_num max_layers <"$T/ps.json")
-pb=$(json_num batches <"$T/ps.json")
-pp=$(json_num packs <"$T/ps.json")
-pct=$("$S" --compare "$T/ps.png" "$T/pd.png" --json | json_num pct_over_1_255)
-echo "plant 100K: $ml layers at most, $pp packs, $pb batches; stream vs dfb over 1/255 $pct%"
+stream_vs_dfb "plant 100K" "$T/p100k.oitp" "" --size 128x128 --azimuth 30 --elevation 10
+ml=$(json_num max_layers <"$T/vs.json")
+pb=$(json_num batches <"$T/vs.json")
+pp=$(json_num packs <"$T/vs.json")
+echo "plant 100K: $ml layers at most, $pp packs, $pb batches"
 [ "$ml" -gt 32 ] && [ "$pb" -eq "$pp" ] ||
     fail "plant 100K: $ml layers, $pb batches for $pp packs; want > 32 layers and no split"
-awk "BEGIN { exit !($pct <= 0.1) }" || fail "plant 100K: $pct% of pixels over 1/255"
 
-[ "$FAILS" -eq 0 ] || { echo "$FAILS failure(s)"; exit 1; }
-echo "oitprep: all checks passed"
+finish oitprep

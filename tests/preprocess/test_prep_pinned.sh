@@ -10,12 +10,8 @@
 # in the commit message why the new figures are right.
 # Skips (77) without the fetched meshes.
 set -u
-: "${OIT_BIN:?OIT_BIN must name the tools folder}"
-: "${OIT_TEST_TMP:?OIT_TEST_TMP must name a scratch folder}"
-T="$OIT_TEST_TMP/prep_pinned"
-rm -rf "$T" && mkdir -p "$T" || exit 1
-FAILS=0
-fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
+. "${OIT_TEST_LIB:-$(dirname "$0")/../lib.sh}"
+scratch prep_pinned
 
 # scheme mesh: triangles_out pieces_clustered pieces parts slabs cut_slabs wide_parts sha256 (first 16)
 PINNED="guaranteed fandisk.off 42372 2116 7346 1946 154 153 0 81d3631df0f23e69
@@ -31,8 +27,8 @@ figures() {
 }
 
 echo "$PINNED" | while read -r scheme m want; do
-    M="${OIT_MESH_CACHE:-}/$m"
-    [ -f "$M" ] || { echo "skip: $M missing (run data_scripts/fetch_meshes.sh)"; exit 77; }
+    need_mesh "$m"
+    M=$MESH
     for th in 1 2; do
         "$OIT_BIN/oitprep" "$M" -o "$T/$m.oitp" --scheme "$scheme" --threads $th \
             --stats "$T/$m.json" >/dev/null 2>&1 ||

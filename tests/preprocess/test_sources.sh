@@ -11,23 +11,15 @@
 # `oitprep verify` reports no source triangle lost.
 # usage: test_sources.sh TEST_SOURCES
 set -u
-: "${OIT_BIN:?OIT_BIN must name the tools folder}"
-: "${OIT_TEST_TMP:?OIT_TEST_TMP must name a scratch folder}"
+. "${OIT_TEST_LIB:-$(dirname "$0")/../lib.sh}"
 C=${1:?usage: test_sources.sh TEST_SOURCES}
 P="$OIT_BIN/oitprep"
 G="$OIT_BIN/oitgen"
-for tool in "$P" "$G" "$C"; do
-    [ -x "$tool" ] || { echo "skip: $tool not built"; exit 77; }
-done
-T="$OIT_TEST_TMP/prep_sources"
-rm -rf "$T" && mkdir -p "$T" || exit 1
-FAILS=0
-fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
-json_num() { sed -n "s/.*\"$1\": \([-0-9.e+]*\).*/\1/p" | head -n 1; }
+need_tools "$P" "$G" "$C"
+scratch prep_sources
 
-"$G" demo -o "$T/demo.ply" >/dev/null || { echo "FAIL: oitgen demo"; exit 1; }
-"$G" hard --case degenerate -o "$T/degenerate.ply" >/dev/null ||
-    { echo "FAIL: oitgen hard --case degenerate"; exit 1; }
+"$G" demo -o "$T/demo.ply" >/dev/null || die "oitgen demo"
+gen_hard degenerate "$T/degenerate.ply"
 
 # convert NAME SOURCE [--ascending] -- OITPREP_ARGS...: converts, checks the
 # indices, and leaves the stats in $T/NAME.json.
@@ -74,6 +66,4 @@ for f in fast_clip guaranteed degenerate; do
 done
 grep "source triangles" "$T/guaranteed.verify"
 
-[ "$FAILS" -eq 0 ] || { echo "$FAILS failure(s)"; exit 1; }
-rm -rf "$T"
-echo PASS
+finish --clean "source indices"

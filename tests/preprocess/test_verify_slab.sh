@@ -5,14 +5,10 @@
 # (the inside box then reaches below d0) verify exits 1 and names the slab.
 # usage: test_verify_slab.sh TEST_STREAMER
 set -u
-: "${OIT_BIN:?OIT_BIN must name the tools folder}"
-: "${OIT_TEST_TMP:?OIT_TEST_TMP must name a scratch folder}"
+. "${OIT_TEST_LIB:-$(dirname "$0")/../lib.sh}"
 W=$1
-T="$OIT_TEST_TMP/verify_slab"
-rm -rf "$T" && mkdir -p "$T" || exit 1
-FAILS=0
-fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
-"$W" "$T/good.oitp" && "$W" "$T/bad.oitp" --bad-slab || { echo "FAIL: test_streamer"; exit 1; }
+scratch verify_slab
+"$W" "$T/good.oitp" && "$W" "$T/bad.oitp" --bad-slab || die "test_streamer"
 
 "$OIT_BIN/oitprep" verify "$T/good.oitp" >"$T/good.txt" 2>&1 ||
     fail "verify rejects the good file: $(cat "$T/good.txt")"
@@ -31,7 +27,7 @@ grep "slabs\|first violation" "$T/bad.txt"
 
 # A part whose recorded layer bound is one less than the hits a ray gets
 # (a closed box recorded with bound 1: 2 hits) fails the bound check.
-"$W" "$T/bound.oitp" --understated-bound || { echo "FAIL: test_streamer"; exit 1; }
+"$W" "$T/bound.oitp" --understated-bound || die "test_streamer --understated-bound"
 "$OIT_BIN/oitprep" verify "$T/bound.oitp" >"$T/bound.txt" 2>&1
 rc=$?
 [ "$rc" -eq 1 ] || fail "verify exits $rc on a bound one too low, want 1"
@@ -43,7 +39,7 @@ grep "hits\|violation" "$T/bound.txt" | head -n 3
 # an estimate, so verify passes and reports the excess; with the slab's two
 # parts swapped as well, its order and slab violations still fail it.
 "$W" "$T/measured.oitp" --measured && "$W" "$T/swapped.oitp" --measured-swapped ||
-    { echo "FAIL: test_streamer --measured"; exit 1; }
+    die "test_streamer --measured"
 "$OIT_BIN/oitprep" verify "$T/measured.oitp" >"$T/measured.txt" 2>&1
 rc=$?
 [ "$rc" -eq 0 ] || fail "verify exits $rc on a measured bound one too low, want 0: $(cat "$T/measured.txt")"
@@ -59,5 +55,4 @@ grep -q "order: [1-9][0-9]* violations" "$T/swapped.txt" &&
     fail "swapped slab parts: $(cat "$T/swapped.txt")"
 grep "order\|slabs" "$T/swapped.txt"
 
-[ "$FAILS" -eq 0 ] || { echo "$FAILS failure(s)"; exit 1; }
-echo "verify slab check: all checks passed"
+finish "verify slab check"

@@ -20,33 +20,26 @@
 #   the PFM's raw floats are the decoded PNG values (png_figures --pfm-linear).
 # usage: test_colour_space.sh hard CASE PNG_FIGURES | mesh FILE PNG_FIGURES
 set -u
-: "${OIT_BIN:?OIT_BIN must name the tools folder}"
-: "${OIT_TEST_TMP:?OIT_TEST_TMP must name a scratch folder}"
+. "${OIT_TEST_LIB:-$(dirname "$0")/../lib.sh}"
 KIND=${1:?usage: test_colour_space.sh hard CASE | mesh FILE}
 NAME=${2:?usage: test_colour_space.sh hard CASE | mesh FILE}
 FIGURES=${3:?usage: test_colour_space.sh hard CASE PNG_FIGURES | mesh FILE PNG_FIGURES}
 S="$OIT_BIN/oitstream"
-T="$OIT_TEST_TMP/colour_space_${KIND}_$NAME"
+scratch "colour_space_${KIND}_$NAME"
 SIZE=128x128
-rm -rf "$T" && mkdir -p "$T" || exit 1
-export EGL_PLATFORM=${EGL_PLATFORM:-surfaceless}
-FAILS=0
-fail() { echo "FAIL: $NAME: $*" >&2; FAILS=$((FAILS + 1)); }
-json_num() { sed -n "s/.*\"$1\": *\([-0-9.e+]*\).*/\1/p" "$2" | head -n 1; }
-json_str() { sed -n "s/.*\"$1\": *\"\([^\"]*\)\".*/\1/p" "$2" | head -n 1; }
-at_most() { awk "BEGIN{exit !($1 <= $2)}"; }
+FAIL_PREFIX="$NAME: "
+INDENT="    "
 
 case "$KIND" in
 hard)
-    "$OIT_BIN/oitgen" hard --case "$NAME" -o "$T/in.ply" >/dev/null || { echo "FAIL: oitgen"; exit 1; }
+    gen_hard "$NAME" "$T/in.ply"
     IN="$T/in.ply" ;;
 mesh)
-    IN="${OIT_MESH_CACHE:-}/$NAME"
-    [ -f "$IN" ] || { echo "skip: $IN missing (run data_scripts/fetch_meshes.sh)"; exit 77; } ;;
+    need_mesh "$NAME"
+    IN=$MESH ;;
 *) echo "usage: test_colour_space.sh hard CASE | mesh FILE" >&2; exit 2 ;;
 esac
-"$OIT_BIN/oitprep" "$IN" -o "$T/in.oitp" >"$T/prep.txt" 2>&1 ||
-    { echo "FAIL: $NAME: oitprep: $(tail -n 1 "$T/prep.txt")"; exit 1; }
+prep_or_die "$IN" "$T/in.oitp"
 
 # The option's spelling: srgb and linear only, a usage error (2) otherwise,
 # for oitstream and oitbench alike, and both list it in --help.
@@ -57,19 +50,6 @@ for tool in oitstream oitbench; do
         fail "$tool --colour-space gamma: exit $rc, $(head -n 1 "$T/bad.txt")"
     "$OIT_BIN/$tool" --help 2>&1 | grep -q -- "--colour-space" || fail "$tool --help lacks --colour-space"
 done
-
-# compare NAME A B [MASK] LIMIT%: prints and checks the share off by > 1/255.
-compare() {
-    if [ $# -eq 5 ]; then
-        "$S" --compare "$2" "$3" --mask "$4" --json >"$T/cmp.json" || { fail "$1: compare"; return; }
-        p=$(json_num pct_over_1_255_outside_mask "$T/cmp.json") lim=$5
-    else
-        "$S" --compare "$2" "$3" --json >"$T/cmp.json" || { fail "$1: compare"; return; }
-        p=$(json_num pct_over_1_255 "$T/cmp.json") lim=$4
-    fi
-    echo "    $1: max_abs $(json_num max_abs "$T/cmp.json"), over 1/255 $p% (limit $lim%)"
-    at_most "$p" "$lim" || fail "$1: $p% of pixels off by more than 1/255"
-}
 
 # view NAME SHADING OPTS...: the checks above from one camera.
 view() {
@@ -124,5 +104,4 @@ view az210 transparent --azimuth 210 --elevation 35
 view below transparent --azimuth 120 --elevation -25
 view tl30 translucent --azimuth 30 --elevation 35
 
-[ "$FAILS" -eq 0 ] || { echo "$NAME: $FAILS failures" >&2; exit 1; }
-echo "$NAME (colour space): all checks passed"
+finish "$NAME (colour space)"

@@ -11,6 +11,7 @@
 #          every one is named, so that a pattern that stopped matching
 #          cannot pass for clean sources.
 set -eu
+. "${OIT_TEST_LIB:-$(dirname "$0")/../lib.sh}"
 
 if [ "$1" = --self-test ]; then
     dir="$2/glsl_bindings_selftest"
@@ -34,19 +35,16 @@ void f(void)
 }
 EOF
     if out=$(sh "$0" "$dir" render 2>&1); then
-        echo "FAIL: planted literals passed: $out" >&2
-        exit 1
+        die "planted literals passed: $out"
     fi
     for line in 2 3 6 7 8 9 10; do
         case $out in
         *"render/planted.c:$line:"*) ;;
-        *) echo "FAIL: planted literal at render/planted.c:$line not named: $out" >&2
-           exit 1 ;;
+        *) die "planted literal at render/planted.c:$line not named: $out" ;;
         esac
     done
     case $out in
-    *"render/planted.c:11:"*) echo "FAIL: a named binding was reported: $out" >&2
-                              exit 1 ;;
+    *"render/planted.c:11:"*) die "a named binding was reported: $out" ;;
     esac
     rm -rf "$dir"
     echo "ok: every planted literal is named"
@@ -57,10 +55,7 @@ cd "$1"
 shift
 [ $# -gt 0 ] || set -- render tests liboit
 for d in "$@"; do
-    if [ ! -d "$d" ]; then # a moved folder must move here too
-        echo "FAIL: no folder $d" >&2
-        exit 1
-    fi
+    [ -d "$d" ] || die "no folder $d" # a moved folder must move here too
 done
 
 # GLSL: layout(..., binding = N). C: the index argument of the calls that

@@ -13,17 +13,11 @@
 #     on most of their pixels but not all (docs/ties.md): at most 0.1%.
 # Prints every figure.
 set -u
-: "${OIT_BIN:?OIT_BIN must name the tools folder}"
-: "${OIT_TEST_TMP:?OIT_TEST_TMP must name a scratch folder}"
-T="$OIT_TEST_TMP/tie_orbit"
+. "${OIT_TEST_LIB:-$(dirname "$0")/../lib.sh}"
+scratch tie_orbit
 SIZE=${OIT_ORBIT_SIZE:-160x160}
 STEPS=${OIT_ORBIT_STEPS:-8}
 S="$OIT_BIN/oitstream"
-rm -rf "$T" && mkdir -p "$T" || exit 1
-export EGL_PLATFORM=${EGL_PLATFORM:-surfaceless}
-FAILS=0
-fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
-at_most() { awk "BEGIN{exit !($1 <= $2)}"; }
 
 # orbit CASE METHOD: prints the mean share changed between neighbours (%).
 orbit() {
@@ -41,7 +35,7 @@ orbit() {
             { fail "$c: reference $i"; return 1; }
         if [ $i -gt 0 ]; then
             p=$("$S" --compare "$d/f$((i - 1)).pfm" "$d/f$i.pfm" --mask "$d/m$((i - 1)).png" --json |
-                sed -n 's/.*"pct_over_1_255_outside_mask": *\([-0-9.e+]*\).*/\1/p')
+                json_num pct_over_1_255_outside_mask)
             [ -n "$p" ] || { fail "$c $m: compare $i"; return 1; }
             sum=$(awk "BEGIN{print $sum + $p}")
         fi
@@ -67,5 +61,4 @@ for c in rings decal touching coplanar; do
         esac
     done
 done
-[ "$FAILS" -eq 0 ] || { echo "tie orbit: $FAILS failures" >&2; exit 1; }
-echo "tie orbit: all checks passed"
+finish "tie orbit"

@@ -7,18 +7,12 @@
 # E + 1/255 (the PNG rounding) and the fragment count must fall, more for
 # larger E; the stats must report the E they ran with.
 set -u
-: "${OIT_BIN:?OIT_BIN must name the tools folder}"
-: "${OIT_TEST_TMP:?OIT_TEST_TMP must name a scratch folder}"
+. "${OIT_TEST_LIB:-$(dirname "$0")/../lib.sh}"
 S="$OIT_BIN/oitstream"
-T="$OIT_TEST_TMP/epsilon"
-rm -rf "$T" && mkdir -p "$T" || exit 1
-FAILS=0
-fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
-json_num() { sed -n "s/.*\"$1\": \([-0-9.e+]*\).*/\1/p" | head -n 1; }
-json_sum() { grep -o "\"$1\": [-0-9.e+]*" | sed 's/.*: //' | awk '{s += $1} END {print s + 0}'; }
+scratch epsilon
 
 P="$T/grid.oitp"
-"$1" "$P" || { echo "FAIL: cannot write the part file"; exit 1; }
+"$1" "$P" || die "cannot write the part file"
 
 # run SHADING E: stream with early termination E, compared view by view
 # with DFB; prints the figures and sets FRAGS to the fragments of all views.
@@ -28,7 +22,7 @@ run() {
         --stats "$d.json" --quiet || { fail "$sh E=$e: stream exited $?"; FRAGS=0; return; }
     FRAGS=$(json_sum fragments < "$d.json")
     ms=$(json_sum ms < "$d.json")
-    [ "$(grep -o '"epsilon": [-0-9.e+]*' "$d.json" | sed 's/.*: //' |
+    [ "$(json_all epsilon "$d.json" |
          awk -v e="$e" '$1 - e > 1e-6 || e - $1 > 1e-6 {bad = 1} END {print bad + 0}')" -eq 0 ] ||
         fail "$sh E=$e: stats report another epsilon: $(grep -o '"epsilon": [^,}]*' "$d.json" | head -n 1)"
     worst=0
@@ -149,4 +143,4 @@ awk -v m="${m:-1}" 'BEGIN{exit !(m <= 1e-6)}' || fail "red shell E=0.05: max_abs
 "$S" "$P" --method dfb --epsilon 0.1 --size 16x16 --quiet >/dev/null 2>&1
 [ $? -eq 2 ] || fail "--method dfb --epsilon 0.1 was not refused as a usage error"
 
-[ "$FAILS" -eq 0 ] && echo "PASS" || { echo "$FAILS failure(s)"; exit 1; }
+finish epsilon

@@ -19,8 +19,7 @@
 #    exact and with early termination: bit for bit the counted capture's
 #    image, which composites the same fragments of the same packs.
 set -u
-: "${OIT_BIN:?OIT_BIN must name the tools folder}"
-: "${OIT_TEST_TMP:?OIT_TEST_TMP must name a scratch folder}"
+. "${OIT_TEST_LIB:-$(dirname "$0")/../lib.sh}"
 # Under the sanitizer build, LeakSanitizer's exit scan crashed ("Tracer
 # caught signal 11") on the 4-quad first-k run, every time, after the run had
 # passed: its log showed a main-thread DTLS range of 0xd9b-0x1800001e9d, the
@@ -30,26 +29,11 @@ set -u
 ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}intercept_tls_get_addr=0"
 export ASAN_OPTIONS
 S="$OIT_BIN/oitstream"
-T="$OIT_TEST_TMP/firstk"
-rm -rf "$T" && mkdir -p "$T" || exit 1
-FAILS=0
-fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
-json_num() { sed -n "s/.*\"$1\": \([-0-9.e+]*\).*/\1/p" | head -n 1; }
-json_all() { grep -o "\"$1\": [-0-9.e+]*" | sed 's/.*: //'; }
-json_sum() { json_all "$1" | awk '{s += $1} END {print s + 0}'; }
-json_min() { json_all "$1" | awk 'NR == 1 || $1 < m {m = $1} END {print m + 0}'; }
+scratch firstk
 
-cmp_png() {
-    d=$("$S" --compare "$2" "$3" --json) || { fail "$1: compare failed"; return; }
-    pct=$(echo "$d" | json_num pct_over_1_255)
-    echo "$1: max_abs $(echo "$d" | json_num max_abs), over 1/255 $pct%"
-    awk "BEGIN{exit !($pct <= 0.1)}" || fail "$1: $pct% of pixels differ by more than 1/255"
-}
-
-[ -x "$OIT_BIN/oitgen" ] && [ -x "$OIT_BIN/oitprep" ] || { echo "skip: oitgen/oitprep not built"; exit 77; }
-"$OIT_BIN/oitgen" hard --case stack -o "$T/stack.ply" >/dev/null &&
-    "$OIT_BIN/oitprep" "$T/stack.ply" -o "$T/stack.oitp" --scheme fast >/dev/null ||
-    { echo "FAIL: cannot make the stack part file"; exit 1; }
+need_tools "$OIT_BIN/oitgen" "$OIT_BIN/oitprep"
+gen_hard stack "$T/stack.ply"
+prep_or_die "$T/stack.ply" "$T/stack.oitp" --scheme fast
 # head on, and from the side of the stack's corner
 printf '0,0,5,0,0,0,0,1,0,18\n1.5,1.2,4,0,0,0,0,1,0,30\n' > "$T/views.txt"
 W="--size 64x64 --walk $T/views.txt --quiet"
@@ -61,8 +45,8 @@ for K in 8 16; do
     "$S" "$T/stack.oitp" --pack first-k --max-layers $K $W --out "$T/$n" --stats "$T/$n.json" ||
         { fail "stack K=$K: first-k exited $?"; continue; }
     for i in 000 001; do
-        cmp_png "stack K=$K view $i vs dfb" "$T/$n/frame_$i.png" "$T/dfb/frame_$i.png"
-        cmp_png "stack K=$K view $i vs dfb on the mesh" "$T/$n/frame_$i.png" "$T/mesh/frame_$i.png"
+        compare "stack K=$K view $i vs dfb" "$T/$n/frame_$i.png" "$T/dfb/frame_$i.png" 0.1
+        compare "stack K=$K view $i vs dfb on the mesh" "$T/$n/frame_$i.png" "$T/mesh/frame_$i.png" 0.1
     done
     f=$(json_all fragments < "$T/$n.json" | tr '\n' ' ')
     fd=$(json_all fragments < "$T/dfb.json" | tr '\n' ' ')
@@ -90,7 +74,7 @@ done
     --out "$T/quads" --stats "$T/quads.json" || fail "4 quads: first-k exited $?"
 "$S" "$T/quads.oitp" --method dfb --size 96x96 --orbit 3 --quiet --out "$T/quads_dfb" ||
     fail "4 quads: dfb exited $?"
-cmp_png "4 quads view 000" "$T/quads/frame_000.png" "$T/quads_dfb/frame_000.png"
+compare "4 quads view 000" "$T/quads/frame_000.png" "$T/quads_dfb/frame_000.png" 0.1
 echo "4 quads: max layers $(json_all max_layers < "$T/quads.json" | tr '\n' ' ')," \
      "second-pass packs $(json_all second_pass_packs < "$T/quads.json" | tr '\n' ' ')"
 [ "$(json_sum second_pass_packs < "$T/quads.json")" -eq 0 ] &&
@@ -115,7 +99,7 @@ done
     fail "4 quads: the automatic mode left first-K"
 
 P="$T/grid.oitp"
-"$1" "$P" || { echo "FAIL: cannot write the grid part file"; exit 1; }
+"$1" "$P" || die "cannot write the grid part file"
 G="--size 96x96 --orbit 3 --max-layers 2 --upload-budget 64K --cache-budget off --quiet"
 for e in 0 0.05; do
     for pk in counted first-k; do
@@ -140,4 +124,4 @@ done
   "$(json_sum fragments < "$T/grid_first-k_0.json")" ] ||
     fail "grid: E=0.05 dropped no fragment"
 
-[ "$FAILS" -eq 0 ] && echo "PASS" || { echo "$FAILS failure(s)"; exit 1; }
+finish first-k

@@ -9,27 +9,15 @@
 # holds the whole file, K slots for every pixel of the frame).
 # Usage: test_memory.sh
 set -u
-: "${OIT_BIN:?OIT_BIN must name the tools folder}"
-: "${OIT_TEST_TMP:?OIT_TEST_TMP must name a scratch folder}"
+. "${OIT_TEST_LIB:-$(dirname "$0")/../lib.sh}"
 S="$OIT_BIN/oitstream"
-T="$OIT_TEST_TMP/memory"
+scratch memory
 LIMIT=16000000
-rm -rf "$T" && mkdir -p "$T" || exit 1
-for t in oitgen oitprep oitstream; do
-    [ -x "$OIT_BIN/$t" ] || { echo "skip: $t not built"; exit 77; }
-done
-FAILS=0
-fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
-json_num() { sed -n "s/.*\"$1\": \([-0-9.e+]*\).*/\1/p" | head -n 1; }
+need_tools "$OIT_BIN/oitgen" "$OIT_BIN/oitprep" "$S"
 
-"$OIT_BIN/oitgen" demo -o "$T/demo.ply" >/dev/null || exit 1
+"$OIT_BIN/oitgen" demo -o "$T/demo.ply" >/dev/null || die "oitgen demo"
 models="demo.ply"
-M="${OIT_MESH_CACHE:-}/bunny00.off"
-if [ -f "$M" ]; then
-    models="$models $M"
-else
-    echo "note: $M missing (data_scripts/fetch_meshes.sh): the demo only"
-fi
+have_mesh bunny00.off && models="$models $MESH"
 for m in $models; do
     case $m in /*) src=$m ;; *) src=$T/$m ;; esac
     name=$(basename "$m" | sed 's/\..*//')
@@ -54,9 +42,7 @@ for m in $models; do
             fail "$name $mode: gpu_bytes_peak ${peak:-missing} over $LIMIT"
         # epsilon > 0 drops what lies behind saturated pixels: not DFB's image
         [ "$mode" = epsilon ] && continue
-        diff=$("$S" --compare "$out.png" "$T/${name}_dfb.png" --json | json_num max_abs)
-        [ "$diff" = 0 ] || fail "$name $mode: image differs from DFB's (max_abs ${diff:-?})"
+        expect_equal "$name $mode vs dfb" "$out.png" "$T/${name}_dfb.png"
     done
 done
-[ "$FAILS" -eq 0 ] || { echo "$FAILS failure(s)"; exit 1; }
-echo "memory: all within $LIMIT bytes"
+finish "memory (limit $LIMIT bytes)"

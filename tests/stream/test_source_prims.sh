@@ -19,23 +19,14 @@
 #       clipped edge's (0.01%).
 # usage: test_source_prims.sh TEST_SOURCES
 set -u
-: "${OIT_BIN:?OIT_BIN must name the tools folder}"
-: "${OIT_TEST_TMP:?OIT_TEST_TMP must name a scratch folder}"
+. "${OIT_TEST_LIB:-$(dirname "$0")/../lib.sh}"
 S="$OIT_BIN/oitstream"
 P="$OIT_BIN/oitprep"
 C=${1:?usage: test_source_prims.sh TEST_SOURCES}
-for tool in "$S" "$P" "$C"; do
-    [ -x "$tool" ] || { echo "skip: $tool not built"; exit 77; }
-done
-T="$OIT_TEST_TMP/source_prims"
+need_tools "$S" "$P" "$C"
+scratch source_prims
 SIZE=${OIT_SOURCE_PRIMS_SIZE:-128x128}
-rm -rf "$T" && mkdir -p "$T" || exit 1
-export EGL_PLATFORM=${EGL_PLATFORM:-surfaceless}
-FAILS=0
-fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
-json_num() { sed -n "s/.*\"$1\": *\([-0-9.e+]*\).*/\1/p" "$2" | head -n 1; }
-json_str() { sed -n "s/.*\"$1\": *\"\([^\"]*\)\".*/\1/p" "$2" | head -n 1; }
-at_most() { awk "BEGIN{exit !($1 <= $2)}"; }
+INDENT="    "
 
 # boxes ORDER OUT: the two boxes as ASCII PLY; ORDER "interleaved" (B0, A0..11,
 # B1..11), "a_first" (A0..11, B0..11) or "b_first" (B0..11, A0..11). Box A
@@ -76,29 +67,31 @@ boxes interleaved "$T/interleaved.ply"
 boxes a_first "$T/tie.ply"
 boxes b_first "$T/b_first.ply"
 
-# compare NAME A B LIMIT%: the share of pixels off by > 1/255, printed and checked.
-compare() {
-    "$S" --compare "$2" "$3" --json >"$T/cmp.json" || { fail "$1: compare"; return; }
-    p=$(json_num pct_over_1_255 "$T/cmp.json")
-    echo "    $1: over 1/255 $p% (limit $4%)"
-    at_most "$p" "$4" || fail "$1: $p% of pixels off by more than 1/255"
+# views NAME FILE AZIMUTH: the stream of FILE from AZIMUTH (elevation 35)
+# into $v-stream.pfm, v being $T/NAME-AZIMUTH, and its camera in cam; then
+# DFB of FILE from that camera into $v-dfb.pfm. Fails (1) without a stream.
+views() {
+    v="$T/$1-$3"
+    "$S" "$2" --method stream --size "$SIZE" --azimuth "$3" --elevation 35 \
+        --out "$v-stream.pfm" --stats "$v.json" --quiet || { fail "$1 $3: stream"; return 1; }
+    cam=$(json_str view "$v.json")
+    dfb_at "$1 $3" "$2" "$v-dfb.pfm"
+}
+# dfb_at NAME SOURCE OUT: DFB of SOURCE from cam into OUT.
+dfb_at() {
+    "$S" "$2" --method dfb --size "$SIZE" --view "$cam" --out "$3" --quiet ||
+        fail "$1: dfb on $(basename "$2")"
 }
 
 # (a) the hand-written file
-"$C" --write-tie "$T/tie.oitp" || { echo "FAIL: test_sources --write-tie"; exit 1; }
-"$C" --write-tie "$T/tie1m.oitp" 1000000 || { echo "FAIL: test_sources --write-tie 1M"; exit 1; }
+"$C" --write-tie "$T/tie.oitp" || die "test_sources --write-tie"
+"$C" --write-tie "$T/tie1m.oitp" 1000000 || die "test_sources --write-tie 1M"
 for az in 30 210; do
-    v="$T/tie-$az"
-    "$S" "$T/tie.oitp" --method stream --size "$SIZE" --azimuth $az --elevation 35 \
-        --out "$v-stream.pfm" --stats "$v.json" --quiet || { fail "tie $az: stream"; continue; }
-    cam=$(json_str view "$v.json")
-    "$S" "$T/tie.oitp" --method dfb --size "$SIZE" --view "$cam" --out "$v-dfb.pfm" \
-        --quiet || fail "tie $az: dfb on the part file"
-    "$S" "$T/tie1m.oitp" --method dfb --size "$SIZE" --view "$cam" --out "$v-dfb1m.pfm" \
-        --quiet || fail "tie $az: dfb on the part file claiming 1M source triangles"
+    views tie "$T/tie.oitp" $az || continue
+    # the same file claiming 1M source triangles
+    dfb_at "tie $az" "$T/tie1m.oitp" "$v-dfb1m.pfm"
     for src in tie b_first; do
-        "$S" "$T/$src.ply" --method dfb --size "$SIZE" --view "$cam" --out "$v-$src.pfm" \
-            --quiet || fail "tie $az: dfb on $src.ply"
+        dfb_at "tie $az" "$T/$src.ply" "$v-$src.pfm"
     done
     echo "  hand-written file (B stored first, A first in the source), azimuth $az:"
     compare "stream vs dfb (source mesh), no mask" "$v-stream.pfm" "$v-tie.pfm" 0
@@ -116,19 +109,11 @@ for scheme in guaranteed fast; do
     "$P" "$T/interleaved.ply" -o "$T/$scheme.oitp" --scheme $scheme >"$T/prep.txt" 2>&1 ||
         { fail "$scheme: oitprep: $(tail -n 1 "$T/prep.txt")"; continue; }
     for az in 30 210; do
-        v="$T/$scheme-$az"
-        "$S" "$T/$scheme.oitp" --method stream --size "$SIZE" --azimuth $az --elevation 35 \
-            --out "$v-stream.pfm" --stats "$v.json" --quiet || { fail "$scheme $az: stream"; continue; }
-        cam=$(json_str view "$v.json")
-        "$S" "$T/$scheme.oitp" --method dfb --size "$SIZE" --view "$cam" --out "$v-dfb.pfm" \
-            --quiet || fail "$scheme $az: dfb on the part file"
-        "$S" "$T/interleaved.ply" --method dfb --size "$SIZE" --view "$cam" \
-            --out "$v-mesh.pfm" --quiet || fail "$scheme $az: dfb on the source"
+        views $scheme "$T/$scheme.oitp" $az || continue
+        dfb_at "$scheme $az" "$T/interleaved.ply" "$v-mesh.pfm"
         echo "  interleaved source through oitprep --scheme $scheme, azimuth $az:"
         compare "stream vs dfb (source mesh), no mask" "$v-stream.pfm" "$v-mesh.pfm" 0.01
         compare "dfb (part file) vs dfb (source mesh), no mask" "$v-dfb.pfm" "$v-mesh.pfm" 0.01
     done
 done
-[ "$FAILS" -eq 0 ] || { echo "$FAILS failure(s)"; exit 1; }
-rm -rf "$T"
-echo PASS
+finish --clean "source prims"

@@ -14,17 +14,10 @@
 # rule, an upload ring small enough to wrap many times per frame, and K = 2
 # (wide parts), and the upload pipeline's own checks (residency below).
 set -u
-: "${OIT_BIN:?OIT_BIN must name the tools folder}"
-: "${OIT_TEST_TMP:?OIT_TEST_TMP must name a scratch folder}"
+. "${OIT_TEST_LIB:-$(dirname "$0")/../lib.sh}"
 MODE=${1:-grid}
 S="$OIT_BIN/oitstream"
-T="$OIT_TEST_TMP/streamer_$MODE"
-rm -rf "$T" && mkdir -p "$T" || exit 1
-FAILS=0
-fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
-json_num() { sed -n "s/.*\"$1\": \([-0-9.e+]*\).*/\1/p" | head -n 1; }
-# json_all KEY < json: every value of KEY, one a line
-json_all() { grep -o "\"$1\": [-0-9.e+]*" | sed 's/.*: //'; }
+scratch "streamer_$MODE"
 # frame_figures JSON: "parts_drawn bytes_uploaded cache_hits", one frame a line
 frame_figures() {
     sed -n 's/.*"parts_drawn": \([0-9]*\).*"bytes_uploaded": \([0-9]*\), "cache_hits": \([0-9]*\).*/\1 \2 \3/p' "$1"
@@ -33,18 +26,15 @@ frame_figures() {
 P="$T/scene.oitp"
 case "$MODE" in
 grid)
-    "$2" "$P" || { echo "FAIL: cannot write the part file"; exit 1; } ;;
+    "$2" "$P" || die "cannot write the part file" ;;
 demo)
-    [ -x "$OIT_BIN/oitgen" ] && [ -x "$OIT_BIN/oitprep" ] || { echo "skip: oitgen/oitprep not built"; exit 77; }
-    "$OIT_BIN/oitgen" demo -o "$T/demo.ply" >/dev/null || exit 1
-    "$OIT_BIN/oitprep" "$T/demo.ply" -o "$P" --part-triangles 2048 >"$T/prep.txt" 2>&1 ||
-        { echo "FAIL: oitprep: $(tail -n 1 "$T/prep.txt")"; exit 1; } ;;
+    need_tools "$OIT_BIN/oitgen" "$OIT_BIN/oitprep"
+    "$OIT_BIN/oitgen" demo -o "$T/demo.ply" >/dev/null || die "oitgen demo"
+    prep_or_die "$T/demo.ply" "$P" --part-triangles 2048 ;;
 bunny)
-    M="${OIT_MESH_CACHE:-}/bunny00.off"
-    [ -f "$M" ] || { echo "skip: $M missing (run data_scripts/fetch_meshes.sh)"; exit 77; }
-    [ -x "$OIT_BIN/oitprep" ] || { echo "skip: oitprep not built"; exit 77; }
-    "$OIT_BIN/oitprep" "$M" -o "$P" >"$T/prep.txt" 2>&1 ||
-        { echo "FAIL: oitprep: $(tail -n 1 "$T/prep.txt")"; exit 1; } ;;
+    need_mesh bunny00.off
+    need_tools "$OIT_BIN/oitprep"
+    prep_or_die "$MESH" "$P" ;;
 *) echo "usage: $0 grid WRITER | demo | bunny" >&2; exit 2 ;;
 esac
 
@@ -57,16 +47,9 @@ agree() {
         $(echo "$@" | sed -n 's/.*\(--shading [a-z]*\).*/\1/p') ||
         { fail "$name: dfb exited $?"; return; }
     for i in 000 001 002; do
-        cmp_view "$name view $i" "$T/${name}_s_$i.png" "$T/${name}_d_$i.png"
+        compare "$name view $i: stream vs dfb" "$T/${name}_s_$i.png" "$T/${name}_d_$i.png" 0.1
     done
     check_stats "$name" "$T/${name}_s.json"
-}
-
-cmp_view() {
-    d=$("$S" --compare "$2" "$3" --json) || { fail "$1: compare failed"; return; }
-    pct=$(echo "$d" | json_num pct_over_1_255)
-    echo "$1: stream vs dfb: max_abs $(echo "$d" | json_num max_abs), over 1/255 $pct%"
-    awk "BEGIN{exit !($pct <= 0.1)}" || fail "$1: $pct% of pixels differ by more than 1/255"
 }
 
 check_stats() {
@@ -140,8 +123,8 @@ residency() {
         "$S" "$P" --size 64x64 --orbit 8 --cache-budget $c --stats "$T/orbit_$c.json" --quiet ||
             fail "orbit, cache $c: exited $?"
     done
-    on=$(json_all bytes_uploaded < "$T/orbit_256M.json" | awk '{s += $1} END {print s + 0}')
-    off=$(json_all bytes_uploaded < "$T/orbit_off.json" | awk '{s += $1} END {print s + 0}')
+    on=$(json_sum bytes_uploaded < "$T/orbit_256M.json")
+    off=$(json_sum bytes_uploaded < "$T/orbit_off.json")
     echo "orbit 8: $on bytes uploaded with the cache, $off without"
     # Every frame times its ordering and packing: 8 figures each, none negative.
     for k in order_ms pack_ms; do
@@ -247,7 +230,7 @@ VIEW=$(awk -v s="$("$S" "$P" --size 8x8 --stats "$T/v.json" --quiet >/dev/null &
     fail "inside: stream exited $?"
 "$S" "$P" --method dfb --size 128x128 --view "$VIEW" --out "$T/in_d.png" --quiet ||
     fail "inside: dfb exited $?"
-cmp_view "inside ($VIEW)" "$T/in_s.png" "$T/in_d.png"
+compare "inside ($VIEW): stream vs dfb" "$T/in_s.png" "$T/in_d.png" 0.1
 check_stats inside "$T/in_s.json"
 
 
@@ -278,8 +261,8 @@ if [ "$MODE" = demo ]; then
         roomy) [ "$nb" = 1 ] || fail "counted budget: $nb batches where the store fits" ;;
         tight) [ "$nb" -gt 1 ] || fail "counted budget: 1 batch over twice the budget" ;;
         esac
-        cmp_view "counted budget $k" "$T/cb_$k.png" "$T/cb.png"
+        compare "counted budget $k: stream vs dfb" "$T/cb_$k.png" "$T/cb.png" 0.1
     done
 fi
 
-[ "$FAILS" -eq 0 ] && echo "PASS" || { echo "$FAILS failure(s)"; exit 1; }
+finish "streamer $MODE"

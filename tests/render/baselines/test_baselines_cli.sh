@@ -9,15 +9,11 @@
 # 3), --epsilon is refused for a method without a threshold (exit 2), and
 # oitbench runs every new method. Prints every comparison.
 set -u
+. "${OIT_TEST_LIB:-$(dirname "$0")/../../lib.sh}"
 S="$OIT_BIN/oitstream"
 G="$OIT_BIN/oitgen"
 B="$OIT_BIN/oitbench"
-T="$OIT_TEST_TMP/baselines_cli"
-rm -rf "$T"
-mkdir -p "$T"
-FAILS=0
-fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
-json_num() { sed -n "s/.*\"$1\": \([-0-9.e+]*\).*/\1/p" | head -n 1; }
+scratch baselines_cli
 
 # render MODEL METHOD OUT [OPTION...]
 render() {
@@ -62,14 +58,10 @@ vs_dfb "$T/plant.ply" f2b 1
 vs_dfb "$T/plant.ply" wboit 1
 vs_dfb "$T/plant.ply" unsorted 1
 
-"$S" "$T/quads.ply" --method ddp --shading translucent --size 16x16 --quiet \
-    --out "$T/ddp_translucent.png" 2>"$T/err.txt"
-rc=$?
-[ "$rc" -eq 3 ] && grep -q 'dual peeling: translucent' "$T/err.txt" ||
-    fail "ddp translucent: exit $rc, $(cat "$T/err.txt")"
-"$S" "$T/quads.ply" --method pll --epsilon 0.1 --size 16x16 --quiet >/dev/null 2>&1
-rc=$?
-[ "$rc" -eq 2 ] || fail "--method pll --epsilon 0.1 exited $rc, expected 2"
+expect_rc 3 "$S" "$T/quads.ply" --method ddp --shading translucent --size 16x16 --quiet \
+    --out "$T/ddp_translucent.png"
+expect_err 'dual peeling: translucent' "ddp translucent"
+expect_rc 2 "$S" "$T/quads.ply" --method pll --epsilon 0.1 --size 16x16 --quiet
 
 "$B" "$T/quads.ply" --methods ppll4,b3d,ddp,guarded,f2b --orbit 1 --size 48x48 \
     --frames 1 --warmup 0 --out "$T/bench" 2>"$T/err.txt" || fail "oitbench: $(cat "$T/err.txt")"
@@ -81,8 +73,4 @@ for m in ppll4 b3d ddp guarded f2b; do
     "$S" --help | grep -q "$m" || fail "oitstream --help does not name $m"
     "$B" --help | grep -q "$m" || fail "oitbench --help does not name $m"
 done
-if [ "$FAILS" -ne 0 ]; then
-    echo "test_baselines_cli: $FAILS failure(s)" >&2
-    exit 1
-fi
-echo "test_baselines_cli: ok"
+finish test_baselines_cli

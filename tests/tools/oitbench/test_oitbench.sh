@@ -15,26 +15,24 @@
 #  - --scheme fast and --save-parts; usage errors exit 2.
 # Prints the summary rows.
 set -u
+. "${OIT_TEST_LIB:-$(dirname "$0")/../../lib.sh}"
 B="$OIT_BIN/oitbench"
 G="$OIT_BIN/oitgen"
 P="$OIT_BIN/oitprep"
-T="$OIT_TEST_TMP/oitbench"
-rm -rf "$T"
+scratch oitbench
 mkdir -p "$T/tmp" "$T/alone"
-FAILS=0
-fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
 SMALL="--orbit 2 --size 64x64 --frames 2 --warmup 1"
 
-"$G" quads --count 12 --coverage 0.6 -o "$T/Q.ply" >/dev/null || { echo "oitgen quads failed" >&2; exit 1; }
+"$G" quads --count 12 --coverage 0.6 -o "$T/Q.ply" >/dev/null || die "oitgen quads"
 "$G" quads --count 12 --coverage 0.6 --seed 2 -o "$T/Q2.ply" >/dev/null &&
-    "$G" quads --count 9 --coverage 0.6 -o "$T/Q9.ply" >/dev/null || { echo "oitgen failed" >&2; exit 1; }
+    "$G" quads --count 9 --coverage 0.6 -o "$T/Q9.ply" >/dev/null || die "oitgen quads"
 for q in Q Q2 Q9; do
-    "$P" "$T/$q.ply" -o "$T/$q.oitp" --threads 1 >/dev/null 2>&1 || { echo "oitprep $q failed" >&2; exit 1; }
+    prep_or_die "$T/$q.ply" "$T/$q.oitp" --threads 1
 done
 SRC_TRIS=24                       # 12 quads
 PART_TRIS=$("$P" info "$T/Q.oitp" --json | sed -n 's/.*"triangles": \([0-9]*\),.*/\1/p')
 echo "Q.ply: $SRC_TRIS triangles; Q.oitp: $PART_TRIS"
-[ -n "$PART_TRIS" ] || { echo "no triangle count from oitprep info" >&2; exit 1; }
+[ -n "$PART_TRIS" ] || die "no triangle count from oitprep info"
 
 # field CSV ROW METHOD VIEW COLUMN: one cell of a results.csv, by header name.
 field() {
@@ -195,8 +193,4 @@ usage "$T/Q.ply" --methods stream --scheme slow
 "$B" --help | grep -q -- '--warmup' || fail "--help does not document --warmup"
 "$B" --help | grep -q -- '--parts FILE' || fail "--help does not document --parts"
 
-if [ "$FAILS" -ne 0 ]; then
-    echo "test_oitbench: $FAILS failure(s)" >&2
-    exit 1
-fi
-echo "test_oitbench: ok"
+finish test_oitbench

@@ -10,14 +10,10 @@
 # --epsilon values and plot without runs are usage errors (exit 2).
 # Usage: test_oitbench_plots.sh PNG_FIGURES   (tests/lib/png_figures.c)
 set -u
-: "${OIT_BIN:?OIT_BIN must name the tools folder}"
-: "${OIT_TEST_TMP:?OIT_TEST_TMP must name a scratch folder}"
+. "${OIT_TEST_LIB:-$(dirname "$0")/../../lib.sh}"
 FIG="$1"
 B="$OIT_BIN/oitbench"
-T="$OIT_TEST_TMP/oitbench_plots"
-rm -rf "$T" && mkdir -p "$T" || exit 1
-FAILS=0
-fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
+scratch oitbench_plots
 
 # part file of N quads beside its mesh: stream runs on the file, the other
 # methods on the mesh (found through the file's META). Wang & Xie's scheme:
@@ -26,10 +22,8 @@ fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
 # first front-first pack (stream/pack.h) takes up to K = 8 layers a tile
 # exactly, so fewer would give E = 0.1 nothing behind a saturated pixel.
 prep() {
-    "$OIT_BIN/oitgen" quads --count "$1" -o "$T/q$1.ply" >/dev/null &&
-        "$OIT_BIN/oitprep" "$T/q$1.ply" -o "$T/q$1.oitp" --scheme guaranteed --threads 1 \
-            >/dev/null 2>&1 ||
-        { echo "FAIL: cannot make q$1.oitp" >&2; exit 1; }
+    "$OIT_BIN/oitgen" quads --count "$1" -o "$T/q$1.ply" >/dev/null || die "oitgen quads --count $1"
+    prep_or_die "$T/q$1.ply" "$T/q$1.oitp" --scheme guaranteed --threads 1
 }
 prep 24
 prep 3
@@ -115,8 +109,4 @@ done
 "$B" --help | grep -q -- '--epsilon LIST' && "$B" --help | grep -q 'oitbench plot OUT_DIR RUN_DIR' ||
     fail "--help does not document --epsilon and plot"
 
-if [ "$FAILS" -ne 0 ]; then
-    echo "test_oitbench_plots: $FAILS failure(s)" >&2
-    exit 1
-fi
-echo "test_oitbench_plots: ok"
+finish test_oitbench_plots

@@ -9,28 +9,11 @@
 #           from $OIT_MESH_CACHE); exit 77 when none is there
 # Agreement (DESIGN.md): at least 99.9% of pixels within 1/255 per channel.
 set -u
-: "${OIT_BIN:?OIT_BIN must name the tools folder}"
-: "${OIT_TEST_TMP:?OIT_TEST_TMP must name a scratch folder}"
+. "${OIT_TEST_LIB:-$(dirname "$0")/../../lib.sh}"
 MODE=${1:-scene}
 S="$OIT_BIN/oitstream"
-T="$OIT_TEST_TMP/oitstream_$MODE"
-rm -rf "$T" && mkdir -p "$T" || exit 1
-FAILS=0
+scratch "oitstream_$MODE"
 MAX_PCT=0.1
-
-fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
-
-# json_num KEY < json: the number after "KEY": (first occurrence)
-json_num() { sed -n "s/.*\"$1\": \([-0-9.e+]*\).*/\1/p" | head -n 1; }
-
-# expect_rc WANT CMD...: runs CMD, checks its exit status
-expect_rc() {
-    want=$1; shift
-    "$@" >"$T/out.txt" 2>"$T/err.txt"; rc=$?
-    if [ "$rc" -ne "$want" ]; then
-        fail "'$*' exited $rc, want $want: $(cat "$T/err.txt")"
-    fi
-}
 
 # box x0 y0 z0 x1 y1 z1 r g b a: appends 8 vertices and 12 outward-facing
 # counter-clockwise triangles to $V/$F. Extents differ between boxes so no two
@@ -126,10 +109,10 @@ run_cli() {
     expect_rc 2 "$S" "$T/boxes.ply" --view 1,2,3
     expect_rc 2 "$S" "$T/boxes.ply" --method dfb --ambiguity "$T/amb.png"
     expect_rc 1 "$S" "$T/missing.ply" --method reference
-    grep -q "missing.ply" "$T/err.txt" || fail "error does not name the missing model"
+    expect_err "missing.ply" "error does not name the missing model"
     printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n1\n' >"$T/bad.ply"
     expect_rc 3 "$S" "$T/bad.ply" --method reference
-    grep -q "bad.ply" "$T/err.txt" || fail "error does not name the bad model"
+    expect_err "bad.ply" "error does not name the bad model"
 
     # The reference needs no GL: colour, heat map, stats, orbit naming.
     expect_rc 0 "$S" "$T/boxes.ply" --method reference --size 96x72 --out "$T/ref.pfm" \
@@ -155,11 +138,10 @@ run_cli() {
         --view 2,1,3,0,0,0,0,1,0,50,1,10 --out "$T/walk_view.png" --quiet
     [ -f "$T/walk/frame_000.png" ] && [ ! -f "$T/walk/frame_002.png" ] ||
         fail "--walk of 2 views did not write exactly 2 frames"
-    w=$("$S" --compare "$T/walk/frame_001.png" "$T/walk_view.png" --json | json_num max_abs)
-    [ "$w" = 0 ] || fail "--walk frame 1 differs from its --view (max_abs $w)"
+    expect_equal "--walk frame 1 vs its --view" "$T/walk/frame_001.png" "$T/walk_view.png"
     printf '0,0,4,0,0,0,0,1,0,45\nnot a view\n' >"$T/badwalk.txt"
     expect_rc 3 "$S" "$T/boxes.ply" --method reference --walk "$T/badwalk.txt" --quiet
-    grep -q "badwalk.txt: line 2" "$T/err.txt" || fail "a bad --walk line is not named: $(cat "$T/err.txt")"
+    expect_err "badwalk.txt: line 2" "a bad --walk line is not named"
     expect_rc 2 "$S" "$T/boxes.ply" --walk "$T/walk.txt" --orbit 2
 
     # --compare on images whose difference is known: another view of the
@@ -176,7 +158,7 @@ run_cli() {
     [ -f "$T/diff.png" ] || fail "no diff image"
     expect_rc 0 "$S" "$T/boxes.ply" --method reference --size 50x50 --out "$T/small.png"
     expect_rc 3 "$S" --compare "$T/ref.pfm" "$T/small.png"
-    grep -q "small.png" "$T/err.txt" || fail "size mismatch error does not name the file"
+    expect_err "small.png" "size mismatch error does not name the file"
 }
 
 run_scene() {
@@ -202,10 +184,7 @@ run_scene() {
         fi
     done
     if "$S" "$T/boxes.ply" --method dfb --size 160x120 --out "$T/dfb_0.pfm" --quiet; then
-        j=$("$S" --compare "$T/array_16.pfm" "$T/dfb_0.pfm" --json)
-        echo "array K=16 vs dfb: $j"
-        pct=$(echo "$j" | json_num pct_over_1_255)
-        awk "BEGIN { exit !($pct > $MAX_PCT) }" && fail "array vs dfb: $pct% over 1/255"
+        compare "array K=16 vs dfb" "$T/array_16.pfm" "$T/dfb_0.pfm" $MAX_PCT
     else
         fail "dfb render for the array comparison"
     fi
@@ -222,15 +201,12 @@ run_scene() {
 run_meshes() {
     found=0
     for m in bunny00.off fandisk.off; do
-        f="${OIT_MESH_CACHE:-}/$m"
-        if [ -f "$f" ]; then
+        if have_mesh $m; then
             found=1
-            agree "${m%.off}" "$f" 128x128 0.5
-        else
-            echo "note: $f missing (run data_scripts/fetch_meshes.sh)"
+            agree "${m%.off}" "$MESH" 128x128 0.5
         fi
     done
-    [ $found -eq 1 ] || { echo "skip: no fetched meshes in '${OIT_MESH_CACHE:-}'"; exit 77; }
+    [ $found -eq 1 ] || skip "no fetched meshes in '${OIT_MESH_CACHE:-}'"
 }
 
 case "$MODE" in
@@ -239,8 +215,4 @@ case "$MODE" in
     meshes) run_meshes ;;
     *) echo "usage: $0 cli|scene|meshes" >&2; exit 2 ;;
 esac
-if [ $FAILS -ne 0 ]; then
-    echo "test_oitstream $MODE: $FAILS failure(s)" >&2
-    exit 1
-fi
-echo "test_oitstream $MODE: ok"
+finish "test_oitstream $MODE"

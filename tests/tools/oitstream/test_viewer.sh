@@ -13,27 +13,13 @@
 #   - the status line of named fields wraps to the window's width
 # Equal means within half an 8-bit step (the window quantises to 8 bits).
 set -u
-: "${OIT_BIN:?OIT_BIN must name the tools folder}"
-: "${OIT_TEST_TMP:?OIT_TEST_TMP must name a scratch folder}"
-[ -n "${DISPLAY:-}" ] || { echo "SKIP: no DISPLAY (run under xvfb-run)"; exit 77; }
+. "${OIT_TEST_LIB:-$(dirname "$0")/../../lib.sh}"
+[ -n "${DISPLAY:-}" ] || skip "no DISPLAY (run under xvfb-run)"
 S="$OIT_BIN/oitstream"
-T="$OIT_TEST_TMP/viewer"
-rm -rf "$T" && mkdir -p "$T" && cd "$T" || exit 1
-FAILS=0
+scratch viewer
+cd "$T" || exit 1
 SIZE=160x120
 EQUAL=0.002 # 0.5/255 plus float slack
-
-fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
-json_num() { sed -n "s/.*\"$1\": \([-0-9.e+]*\).*/\1/p" | head -n 1; }
-# compare NAME A B: prints the figures, sets MAX and OVER
-compare() {
-    j=$("$S" --compare "$2" "$3" --json) || { fail "$1: cannot compare $2 $3"; MAX=9; OVER=0; return; }
-    MAX=$(echo "$j" | json_num max_abs)
-    OVER=$(echo "$j" | json_num pixels_over)
-    echo "$1: max_abs $MAX, $OVER pixels over 1/255"
-}
-expect_equal() { compare "$@"; awk "BEGIN{exit !($MAX <= $EQUAL)}" || fail "$1: $2 differs from $3 (max_abs $MAX)"; }
-expect_differ() { compare "$@"; [ "$OVER" -ge "$4" ] || fail "$1: $2 too close to $3 ($OVER pixels over, want >= $4)"; }
 
 # 0. Usage errors (exit 2) before any window opens.
 for bad in "--window-frames 3" "--window --orbit 4" "--window --out x.png"; do
@@ -97,7 +83,7 @@ echo "status band: $BAND rows"
     fail "the status band is '$BAND' rows, want 2 to 6 lines of 11"
 grep -q "last: 1 dfb  exact  frame [0-9.]* ms  fragments [0-9.]*K  layers 24  overflow 0" overlay.txt ||
     fail "the status line does not name its fields"
-compare "overlay vs none" overlay.png oitstream_000.png
+image_diff "overlay vs none" overlay.png oitstream_000.png
 [ "$OVER" -ge 50 ] && [ "$OVER" -le $((160 * ${BAND:-11})) ] ||
     fail "the status line changed $OVER pixels, want 50..$((160 * ${BAND:-11})) (the top $BAND rows)"
 
@@ -137,5 +123,4 @@ expect_differ "--up z vs y" upz.png ref.png 1000
     { cat upkey.txt; fail "the U run exited with $?"; }
 expect_equal "U vs --up z" upkey.png upz_ref.png
 
-[ "$FAILS" -eq 0 ] && echo ok || echo "$FAILS failure(s)"
-exit $((FAILS != 0))
+finish viewer

@@ -11,34 +11,20 @@
 #   - Q quits with exit status 0 and the counters on stdout.
 # Equal means within half an 8-bit step (the window quantises to 8 bits).
 set -u
-: "${OIT_BIN:?OIT_BIN must name the tools folder}"
-: "${OIT_TEST_TMP:?OIT_TEST_TMP must name a scratch folder}"
-[ -n "${DISPLAY:-}" ] || { echo "SKIP: no DISPLAY (run under xvfb-run)"; exit 77; }
+. "${OIT_TEST_LIB:-$(dirname "$0")/../../lib.sh}"
+[ -n "${DISPLAY:-}" ] || skip "no DISPLAY (run under xvfb-run)"
 command -v xdotool >/dev/null 2>&1 ||
-    { echo "SKIP: xdotool not installed (setup/debian-packages.txt lists it; run setup/install-deps.sh)"; exit 77; }
+    skip "xdotool not installed (setup/debian-packages.txt lists it; run setup/install-deps.sh)"
 S="$OIT_BIN/oitstream"
-T="$OIT_TEST_TMP/viewer_interactive"
-rm -rf "$T" && mkdir -p "$T" && cd "$T" || exit 1
-FAILS=0
+scratch viewer_interactive
+cd "$T" || exit 1
 W=200
 H=150
 EQUAL=0.002 # 0.5/255 plus float slack
 STILL=4000  # ms: long enough to look at the preview under ASan, short enough to wait for
 TICKS=$(getconf CLK_TCK)
 
-fail() { echo "FAIL: $*" >&2; FAILS=$((FAILS + 1)); }
-json_num() { sed -n "s/.*\"$1\": \([-0-9.e+]*\).*/\1/p" | head -n 1; }
-json_str() { sed -n "s/.*\"$1\": \"\([^\"]*\)\".*/\1/p" | head -n 1; }
 stat_of() { json_num "$1" <st.json; }
-compare() {
-    j=$("$S" --compare "$2" "$3" --json) || { fail "$1: cannot compare $2 $3"; MAX=9; OVER=0; return; }
-    MAX=$(echo "$j" | json_num max_abs)
-    OVER=$(echo "$j" | json_num pixels_over)
-    RMSE=$(echo "$j" | json_num rmse)
-    echo "$1: max_abs $MAX, rmse $RMSE, $OVER pixels over 1/255"
-}
-expect_equal() { compare "$@"; awk "BEGIN{exit !($MAX <= $EQUAL)}" || fail "$1: $2 differs from $3 (max_abs $MAX)"; }
-expect_differ() { compare "$@"; [ "$OVER" -ge "$4" ] || fail "$1: $2 too close to $3 ($OVER pixels over, want >= $4)"; }
 # wait_for SECONDS CONDITION...: polls the condition every 0.1 s
 wait_for() {
     n=$(($1 * 10)); shift
@@ -149,5 +135,4 @@ if start quads.ply --preview lowres --still 1000; then
     expect_equal "stream exact after the drag vs headless" "$(printf 'oitstream_%03d.png' "$before")" ref_stream.png
 fi
 
-[ "$FAILS" -eq 0 ] && echo ok || echo "$FAILS failure(s)"
-exit $((FAILS != 0))
+finish viewer_interactive
