@@ -488,7 +488,5 @@ int main(void)
     test_doubles();
     test_json_bytes();
     test_json_write_error();
-    if (!test_failures)
-        printf("ok: base args and json\n");
-    return test_failures != 0;
+    return test_verdict();
 }

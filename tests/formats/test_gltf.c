@@ -394,6 +394,5 @@ int main(int argc, char **argv)
     s = read_path(path, 0, &c, &info, &err);
     CHECK(s == OIT_ERR_IO, "missing file: %s", oit_status_name(s));
 
-    printf("%s (%d failures)\n", test_failures ? "FAILED" : "ok", test_failures);
-    return test_failures ? 1 : 0;
+    return test_verdict();
 }

@@ -156,6 +156,5 @@ int main(void)
     bad_index_leaves_nothing();
     abort_leaves_nothing();
     unwritable_path_is_named();
-    printf("%s (%d failures)\n", test_failures ? "FAILED" : "ok", test_failures);
-    return test_failures != 0;
+    return test_verdict();
 }

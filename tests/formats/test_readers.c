@@ -598,6 +598,5 @@ int main(void)
     test_far();
     test_stream();
     test_large();
-    printf("%s: %d failure(s)\n", test_failures ? "FAILED" : "passed", test_failures);
-    return test_failures ? 1 : 0;
+    return test_verdict();
 }

@@ -22,6 +22,7 @@
 #include "render/image.h"
 #include "partfile/triangles.h"
 #include "tests/lib/test_check.h"
+#include "tests/liboit/part_scene.h"
 
 enum { W = 160, H = 120, PAD_X = 8, PAD_Y = 4, FW = W + 2 * PAD_X, FH = H + 2 * PAD_Y };
 static const float kClear[4] = {0.2f, 0.4f, 0.6f, 1.0f};
@@ -641,26 +642,11 @@ done:
 
 int main(int argc, char **argv)
 {
-    if (argc != 2) {
-        fprintf(stderr, "usage: test_liboit FILE.oitp\n");
-        return 2;
-    }
-    oit_error err = {0};
-    oit_gl *gl = NULL;
-    if (oit_gl_create(NULL, &gl, &err) != OIT_OK) {
-        fprintf(stderr, "FAIL: context: %s\n", err.message);
-        return 1;
-    }
-    printf("renderer: %s\n", oit_gl_renderer(gl));
     oit_scene *scene = NULL;
     oit_partfile *pf = NULL;
-    if (oit_scene_open(argv[1], NULL, &scene, &err) != OIT_OK ||
-        oit_partfile_open(argv[1], NULL, &pf, &err) != OIT_OK) {
-        fprintf(stderr, "FAIL: %s\n", err.message);
-        return 1;
-    }
     oit_scene_info info;
-    oit_scene_get_info(scene, &info, &err);
+    oit_gl *gl = open_part_scene(argc, argv, &scene, &pf, &info);
+    oit_error err = {0};
     printf("scene: %llu triangles, %llu parts, K %u\n", (unsigned long long)info.triangles,
            (unsigned long long)info.parts, info.K);
     CHECK(info.triangles > 0 && info.parts > 0, "empty scene");
@@ -729,5 +715,5 @@ int main(int argc, char **argv)
     oit_partfile_close(pf);
     oit_scene_close(scene);
     oit_gl_destroy(gl);
-    return test_failures != 0;
+    return test_verdict();
 }

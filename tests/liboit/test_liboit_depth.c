@@ -33,6 +33,7 @@
 #include "render/view.h"
 #include "partfile/triangles.h"
 #include "tests/lib/test_check.h"
+#include "tests/liboit/part_scene.h"
 
 enum { W = 160, H = 120, PAD_X = 8, PAD_Y = 4, FW = W + 2 * PAD_X, FH = H + 2 * PAD_Y };
 static const float kClear[4] = {0.2f, 0.4f, 0.6f, 1.0f};
@@ -472,26 +473,10 @@ static int run_projection(oit_scene *scene, oit_partfile *pf, const oit_scene_in
 
 int main(int argc, char **argv)
 {
-    if (argc != 2) {
-        fprintf(stderr, "usage: test_liboit_depth FILE.oitp\n");
-        return 2;
-    }
-    oit_error err = {0};
-    oit_gl *gl = NULL;
-    if (oit_gl_create(NULL, &gl, &err) != OIT_OK) {
-        fprintf(stderr, "FAIL: context: %s\n", err.message);
-        return 1;
-    }
-    printf("renderer: %s\n", oit_gl_renderer(gl));
     oit_scene *scene = NULL;
     oit_partfile *pf = NULL;
-    if (oit_scene_open(argv[1], NULL, &scene, &err) != OIT_OK ||
-        oit_partfile_open(argv[1], NULL, &pf, &err) != OIT_OK) {
-        fprintf(stderr, "FAIL: %s\n", err.message);
-        return 1;
-    }
     oit_scene_info info;
-    oit_scene_get_info(scene, &info, &err);
+    oit_gl *gl = open_part_scene(argc, argv, &scene, &pf, &info);
     CHECK(info.triangles > 0 && (info.attributes & OIT_ATTR_ALPHA),
           "the scene needs triangles with alpha (%llu triangles, attributes %u)",
           (unsigned long long)info.triangles, info.attributes);

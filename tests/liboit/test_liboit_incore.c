@@ -516,5 +516,5 @@ int main(int argc, char **argv)
     oit_offscreen_destroy(o);
     oit_scene_close(mesh);
     oit_scene_close(part);
-    return test_failures != 0;
+    return test_verdict();
 }

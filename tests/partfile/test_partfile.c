@@ -1015,6 +1015,5 @@ int main(int argc, char **argv)
     free(ba);
     free(bb);
     scene_free(&s);
-    printf("%s: %d failures\n", test_failures ? "FAIL" : "ok", test_failures);
-    return test_failures ? 1 : 0;
+    return test_verdict();
 }

@@ -1066,7 +1066,5 @@ int main(void)
     test_kd_cut();
     test_layers_measured();
     test_kd_fast();
-    if (test_failures)
-        fprintf(stderr, "%d check(s) failed\n", test_failures);
-    return test_failures != 0;
+    return test_verdict();
 }

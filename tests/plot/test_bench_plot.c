@@ -492,9 +492,5 @@ int main(void)
     test_csv_malformed();
     test_csv_old_format();
     test_speed_chart_file(dir ? dir : "/tmp");
-    if (test_failures)
-        fprintf(stderr, "test_bench_plot: %d failure(s)\n", test_failures);
-    else
-        printf("test_bench_plot: ok\n");
-    return test_failures != 0;
+    return test_verdict();
 }

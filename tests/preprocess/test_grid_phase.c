@@ -73,6 +73,5 @@ int main(void)
     run(1, 500, 0.2f);   /* narrow: a free phase exists */
     run(2, 500, 0.6f);   /* wide, wrapping past the cell's end */
     run(3, 200, 1.5f);   /* some wider than a cell: cross every phase */
-    printf("grid_phase: %s\n", test_failures ? "FAIL" : "PASS");
-    return test_failures != 0;
+    return test_verdict();
 }

@@ -17,6 +17,7 @@
 #include "render/gl_context.h"
 #include "render/image.h"
 #include "tests/lib/test_check.h"
+#include "tests/lib/test_gl.h"
 
 
 /* Renders q split into batches [start[i], start[i+1]); rect[i] may be NULL. */
@@ -427,13 +428,8 @@ static void test_epsilon_batches(oit_capture_kind kind, const char *name)
 
 int main(void)
 {
+    oit_gl *gl = test_gl_open();
     oit_error err = {0};
-    oit_gl *gl = NULL;
-    if (oit_gl_create(NULL, &gl, &err) != OIT_OK) {
-        fprintf(stderr, "FAIL: context: %s\n", err.message);
-        return 1;
-    }
-    printf("renderer: %s\n", oit_gl_renderer(gl));
     oit_capture *c = NULL;
     if (oit_capture_create(OIT_CAPTURE_ARRAY, 8, &c, &err) != OIT_OK) {
         fprintf(stderr, "FAIL: array capture: %s\n", err.message);
@@ -473,6 +469,5 @@ int main(void)
     test_epsilon_batches(OIT_CAPTURE_ARRAY, "array");
     test_epsilon_batches(OIT_CAPTURE_COUNTED, "counted");
     oit_gl_destroy(gl);
-    printf("%s\n", test_failures ? "FAILED" : "ok");
-    return test_failures != 0;
+    return test_verdict();
 }

@@ -9,6 +9,7 @@
 #include "render/gl_context.h"
 #include "render/image.h"
 #include "tests/lib/test_check.h"
+#include "tests/lib/test_gl.h"
 
 
 typedef struct frame {
@@ -142,13 +143,8 @@ static void test_translucent(oit_dfb *d)
 
 int main(void)
 {
+    oit_gl *gl = test_gl_open();
     oit_error err = {0};
-    oit_gl *gl = NULL;
-    if (oit_gl_create(NULL, &gl, &err) != OIT_OK) {
-        fprintf(stderr, "FAIL: context: %s\n", err.message);
-        return 1;
-    }
-    printf("renderer: %s\n", oit_gl_renderer(gl));
     oit_dfb *d = NULL;
     if (oit_dfb_create(&d, &err) != OIT_OK) {
         fprintf(stderr, "FAIL: DFB: %s\n", err.message);
@@ -167,6 +163,5 @@ int main(void)
     CHECK(again == big, "a smaller frame changed the held bytes (%llu)", (unsigned long long)again);
     oit_dfb_destroy(d);
     oit_gl_destroy(gl);
-    printf("%s\n", test_failures ? "FAILED" : "ok");
-    return test_failures != 0;
+    return test_verdict();
 }

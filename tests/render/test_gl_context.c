@@ -49,6 +49,5 @@ int main(void)
         printf("window without display: %s: %s\n", oit_status_name(s), err.message);
         CHECK(s == OIT_ERR_GL && gl == NULL, "window without a display did not fail");
     }
-    printf("%s\n", test_failures ? "FAILED" : "ok");
-    return test_failures != 0;
+    return test_verdict();
 }

@@ -27,6 +27,7 @@
 #include "render/gl_context.h"
 #include "render/gpu_mesh.h"
 #include "tests/lib/test_check.h"
+#include "tests/lib/test_gl.h"
 
 enum { W = 64, H = 64, N = 300, SLOT = 1024, BUF_BYTES = 1 << 20, CENTER = 32 * W + 32 };
 
@@ -343,12 +344,8 @@ static void big_meshes(gl_state *g)
 
 int main(void)
 {
+    oit_gl *gl = test_gl_open();
     oit_error err = {0};
-    oit_gl *gl = NULL;
-    if (oit_gl_create(NULL, &gl, &err) != OIT_OK) {
-        fprintf(stderr, "FAIL: %s\n", err.message);
-        return 1;
-    }
     static scene s;
     gl_state g;
     memset(&g, 0, sizeof g);
@@ -365,7 +362,5 @@ int main(void)
     teardown(&g);
     free_scene(&s);
     oit_gl_destroy(gl);
-    if (test_failures == 0)
-        printf("PASS\n");
-    return test_failures != 0;
+    return test_verdict();
 }

@@ -274,10 +274,5 @@ int main(void)
     test_compare();
     test_heatmap();
     test_bad_files();
-    if (test_failures) {
-        fprintf(stderr, "test_image: %d failure(s)\n", test_failures);
-        return 1;
-    }
-    printf("test_image: ok\n");
-    return 0;
+    return test_verdict();
 }

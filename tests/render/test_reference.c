@@ -487,10 +487,5 @@ int main(void)
     test_brute_force(OIT_SHADING_TRANSLUCENT);
     test_ambiguity();
     test_bad_camera();
-    if (test_failures) {
-        fprintf(stderr, "test_reference: %d failure(s)\n", test_failures);
-        return 1;
-    }
-    printf("test_reference: ok\n");
-    return 0;
+    return test_verdict();
 }

@@ -7,8 +7,7 @@
 #include <string.h>
 
 #include "render/shade.h"
-
-static int failures;
+#include "tests/lib/test_check.h"
 
 #define CHECK_NEAR(got, want, tol, what)                                                  \
     do {                                                                                  \
@@ -16,7 +15,7 @@ static int failures;
         if (!(fabs(g_ - w_) <= (tol))) {                                                  \
             fprintf(stderr, "FAIL %s:%d %s: got %.9g want %.9g\n", __FILE__, __LINE__,    \
                     (what), g_, w_);                                                      \
-            failures++;                                                                   \
+            test_failures++;                                                              \
         }                                                                                 \
     } while (0)
 
@@ -99,7 +98,7 @@ static void test_shade_terms(void)
     CHECK_NEAR(f.alpha, 0.35, 1e-7, "default alpha");
     if (!f.front || f.prim != 7 || f.t != 5.0) {
         fprintf(stderr, "FAIL front/prim/t not carried\n");
-        failures++;
+        test_failures++;
     }
 
     s.attributes = OIT_ATTR_COLOR | OIT_ATTR_ALPHA;
@@ -113,7 +112,7 @@ static void test_shade_terms(void)
     oit_shade_fragment(&s, &t, 7, bary, below, 5.0, &f);
     if (f.front) {
         fprintf(stderr, "FAIL triangle seen from -z must be a back face\n");
-        failures++;
+        test_failures++;
     }
     CHECK_NEAR(f.colour[0], 0.2 * light, 1e-6, "back face lit by |n.v|");
 
@@ -149,7 +148,7 @@ static void test_absorption(void)
     }
     if (st.nest != 0) {
         fprintf(stderr, "FAIL nest %d after leaving the medium\n", st.nest);
-        failures++;
+        test_failures++;
     }
 }
 
@@ -164,7 +163,7 @@ static void test_tie_order(void)
     for (int i = 0; i < 5; i++) {
         printf(" %u", f[i].prim);
         if (f[i].prim != want[i])
-            failures++;
+            test_failures++;
     }
     printf("\n");
 
@@ -234,7 +233,7 @@ static void test_depth_key(void)
     if (ties != rays || decal_ties) {
         fprintf(stderr, "FAIL %s:%d depth key: coplanar ties %d/%d, decal ties %d\n", __FILE__,
                 __LINE__, ties, rays, decal_ties);
-        failures++;
+        test_failures++;
     }
     float t = 3.14159f, q = oit_depth_quantise(t);
     uint32_t tb_, qb;
@@ -292,7 +291,7 @@ static void test_colour_space(void)
             if (to_8bit(rgb[c]) != want[lin][c]) {
                 fprintf(stderr, "FAIL 50%% red over white (%s) channel %d: %d, want %d\n",
                         lin ? "linear" : "srgb", c, to_8bit(rgb[c]), want[lin][c]);
-                failures++;
+                test_failures++;
             }
     }
 
@@ -340,10 +339,5 @@ int main(void)
     test_tie_order();
     test_depth_key();
     test_colour_space();
-    if (failures) {
-        fprintf(stderr, "test_shade: %d failure(s)\n", failures);
-        return 1;
-    }
-    printf("test_shade: ok\n");
-    return 0;
+    return test_verdict();
 }

@@ -102,6 +102,5 @@ int main(void)
         check_shape("pipe", pipe_fn, s, oit_shape_pipe_cost(5, s), 1, pf * OIT_PI * 0.04 * len, 0.03);
     }
     remove(path);
-    printf("%s (%d failures)\n", test_failures ? "FAILED" : "ok", test_failures);
-    return test_failures != 0;
+    return test_verdict();
 }

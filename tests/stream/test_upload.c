@@ -361,7 +361,5 @@ int main(int argc, char **argv)
     reader_alone(pf);
     oit_partfile_close(pf);
     oit_gl_destroy(gl);
-    if (test_failures == 0)
-        printf("PASS\n");
-    return test_failures != 0;
+    return test_verdict();
 }

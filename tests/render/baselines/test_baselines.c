@@ -22,6 +22,7 @@
 #include "render/baselines/ppll.h"
 #include "render/baselines/ppll4.h"
 #include "tests/lib/test_check.h"
+#include "tests/lib/test_gl.h"
 
 #define TOL (1.0 / 255)
 /* WBOIT's error against DFB, measured on llvmpipe: quads12 max 0.089 rmse
@@ -796,13 +797,8 @@ static void test_f2b(methods *m)
 
 int main(void)
 {
+    oit_gl *gl = test_gl_open();
     oit_error err = {0};
-    oit_gl *gl = NULL;
-    if (oit_gl_create(NULL, &gl, &err) != OIT_OK) {
-        fprintf(stderr, "FAIL: context: %s\n", err.message);
-        return 1;
-    }
-    printf("renderer: %s\n", oit_gl_renderer(gl));
     methods m = {0};
     oit_status s = methods_create(&m, &err);
     CHECK(s == OIT_OK, "create: %s", err.message);
@@ -823,6 +819,5 @@ int main(void)
     }
     methods_destroy(&m);
     oit_gl_destroy(gl);
-    printf("%s\n", test_failures ? "FAILED" : "ok");
-    return test_failures != 0;
+    return test_verdict();
 }

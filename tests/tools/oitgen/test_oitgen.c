@@ -454,6 +454,5 @@ int main(int argc, char **argv)
     }
     test_plant();
     depth_probe(tmp_path("plant_a.ply"), 30, 20);
-    printf("%s (%d failures)\n", test_failures ? "FAILED" : "ok", test_failures);
-    return test_failures != 0;
+    return test_verdict();
 }
