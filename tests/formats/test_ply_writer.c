@@ -96,15 +96,24 @@ static void round_trip(int vrgba, int frgba, size_t nv, size_t nf)
     remove(path);
 }
 
+/* A writer of a plain PLY named name in the scratch folder (its path in
+ * path[600]), with no file of that name there before. */
+static oit_ply_writer *open_fresh(const char *name, char *path)
+{
+    path_in_tmp(path, 600, name);
+    remove(path);
+    oit_ply_writer_desc d = {.path = path};
+    oit_ply_writer *w = NULL;
+    oit_error err = {0};
+    CHECK(!oit_ply_writer_open(&d, &w, &err), "open: %s", err.message);
+    return w;
+}
+
 static void bad_index_leaves_nothing(void)
 {
     char path[600];
-    path_in_tmp(path, sizeof path, "writer_bad_index.ply");
-    remove(path);
-    oit_ply_writer_desc d = {.path = path};
-    oit_ply_writer *w;
+    oit_ply_writer *w = open_fresh("writer_bad_index.ply", path);
     oit_error err = {0};
-    CHECK(!oit_ply_writer_open(&d, &w, &err), "open: %s", err.message);
     float xyz[9] = {0};
     uint32_t idx[3] = {0, 1, 3};
     oit_ply_writer_add_vertices(w, xyz, NULL, 3, NULL, &err);
@@ -118,12 +127,8 @@ static void bad_index_leaves_nothing(void)
 static void abort_leaves_nothing(void)
 {
     char path[600];
-    path_in_tmp(path, sizeof path, "writer_abort.ply");
-    remove(path);
-    oit_ply_writer_desc d = {.path = path};
-    oit_ply_writer *w;
+    oit_ply_writer *w = open_fresh("writer_abort.ply", path);
     oit_error err = {0};
-    CHECK(!oit_ply_writer_open(&d, &w, &err), "open: %s", err.message);
     float xyz[3] = {1, 2, 3};
     oit_ply_writer_add_vertices(w, xyz, NULL, 1, NULL, &err);
     oit_ply_writer_abort(w);

@@ -54,6 +54,14 @@ static oit_status load(const char *name, const oit_read_desc *desc, oit_mesh *m,
     return s;
 }
 
+/* text written as name, then read into m, which must succeed. */
+static void load_text(const char *name, const char *text, oit_mesh *m)
+{
+    oit_error err;
+    write_text(name, text);
+    CHECK(load(name, NULL, m, &err) == OIT_OK, "%s", err.message);
+}
+
 static int same_pos(const oit_vertex *v, float x, float y, float z)
 {
     return v->pos[0] == x && v->pos[1] == y && v->pos[2] == z;
@@ -172,8 +180,7 @@ static void test_ply(void)
 {
     oit_mesh m;
     oit_error err;
-    write_text("square.ply", ply_ascii);
-    CHECK(load("square.ply", NULL, &m, &err) == OIT_OK, "%s", err.message);
+    load_text("square.ply", ply_ascii, &m);
     check_square(&m, "ascii ply", 255);
     CHECK(m.info.attributes == OIT_ATTR_COLOR, "attributes %u", m.info.attributes);
     CHECK(m.info.faces_in == 1 && m.info.vertices_in == 4, "faces/vertices");
@@ -294,9 +301,10 @@ static void test_obj(void)
     oit_mesh_free(&m);
 
     /* Vertex colours; a missing material library is not fatal. */
-    write_text("vcolor.obj", "mtllib missing.mtl\nv 0 0 0 1 0 0\nv 1 0 0 0 1 0\n"
-                             "v 0 1 0 0 0 1\nusemtl red\nf 1 2 3\n");
-    CHECK(load("vcolor.obj", NULL, &m, &err) == OIT_OK, "%s", err.message);
+    load_text("vcolor.obj",
+              "mtllib missing.mtl\nv 0 0 0 1 0 0\nv 1 0 0 0 1 0\n"
+              "v 0 1 0 0 0 1\nusemtl red\nf 1 2 3\n",
+              &m);
     CHECK(m.count == 1 && same_rgba(&m.tris[0].v[1], 0, 255, 0, 255), "vertex colour");
     CHECK(m.info.attributes == OIT_ATTR_COLOR, "attributes %u", m.info.attributes);
     oit_mesh_free(&m);
@@ -320,10 +328,10 @@ static void test_obj(void)
 static void test_off(void)
 {
     oit_mesh m;
-    oit_error err;
-    write_text("square.off", "OFF # unit square\n\n# counts\n4 1 0\n0 0 0\n1 0 0\n1 2 0\n"
-                             "0 2 0.5 # last vertex\n4 0 1 2 3\n");
-    CHECK(load("square.off", NULL, &m, &err) == OIT_OK, "%s", err.message);
+    load_text("square.off",
+              "OFF # unit square\n\n# counts\n4 1 0\n0 0 0\n1 0 0\n1 2 0\n"
+              "0 2 0.5 # last vertex\n4 0 1 2 3\n",
+              &m);
     CHECK(m.count == 2 && m.info.attributes == 0, "%zu triangles attr %u", m.count,
           m.info.attributes);
     CHECK(m.count == 2 && same_pos(&m.tris[1].v[2], 0, 2, 0.5f) &&
@@ -333,10 +341,11 @@ static void test_off(void)
 
     /* COFF with integer vertex colours, a face with float colour (override)
      * and one without (keeps vertex colours). */
-    write_text("color.off", "COFF\n4 2 0\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n"
-                            "1 2 0 0 0 255 255\n0 2 0 10 20 30 40\n"
-                            "3 0 1 2 0.0 0.5 1.0 1.0\n3 0 2 3\n");
-    CHECK(load("color.off", NULL, &m, &err) == OIT_OK, "%s", err.message);
+    load_text("color.off",
+              "COFF\n4 2 0\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n"
+              "1 2 0 0 0 255 255\n0 2 0 10 20 30 40\n"
+              "3 0 1 2 0.0 0.5 1.0 1.0\n3 0 2 3\n",
+              &m);
     CHECK(m.count == 2, "%zu triangles", m.count);
     if (m.count == 2) {
         CHECK(same_rgba(&m.tris[0].v[0], 0, 128, 255, 255), "face colour");
@@ -346,18 +355,20 @@ static void test_off(void)
           m.info.attributes);
     oit_mesh_free(&m);
 
-    write_text("normals.off", "CNOFF 3 1 0\n0 0 0 0 0 1 1 0 0\n1 0 0 0 0 1 0 1 0\n"
-                              "0 1 0 0 0 1 0 0 1\n3 0 1 2\n");
-    CHECK(load("normals.off", NULL, &m, &err) == OIT_OK, "%s", err.message);
+    load_text("normals.off",
+              "CNOFF 3 1 0\n0 0 0 0 0 1 1 0 0\n1 0 0 0 0 1 0 1 0\n"
+              "0 1 0 0 0 1 0 0 1\n3 0 1 2\n",
+              &m);
     CHECK(m.count == 1 && same_rgba(&m.tris[0].v[1], 0, 255, 0, 255) &&
               same_pos(&m.tris[0].v[1], 1, 0, 0) && m.info.attributes == OIT_ATTR_COLOR,
           "CNOFF wrong");
     oit_mesh_free(&m);
 
     /* NaN and inf vertices: triangles that touch them are dropped and counted. */
-    write_text("nan.off", "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\nnan 0 0\n0 inf 0\n"
-                          "3 0 1 2\n3 0 1 3\n3 4 1 2\n");
-    CHECK(load("nan.off", NULL, &m, &err) == OIT_OK, "%s", err.message);
+    load_text("nan.off",
+              "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\nnan 0 0\n0 inf 0\n"
+              "3 0 1 2\n3 0 1 3\n3 4 1 2\n",
+              &m);
     CHECK(m.count == 1 && m.info.nonfinite_dropped == 2 && m.info.faces_in == 3,
           "%zu kept, %llu dropped", m.count, (unsigned long long)m.info.nonfinite_dropped);
     CHECK(m.info.bounds_max[0] == 1 && m.info.bounds_max[1] == 1, "bounds include a dropped vertex");
@@ -404,12 +415,13 @@ static void test_stl(void)
           "binary STL wrong");
     oit_mesh_free(&m);
 
-    write_text("ascii.stl", "solid square\n  facet normal 0 0 1\n    outer loop\n"
-                            "      vertex 0 0 0\n      vertex 1 0 0\n      vertex 1 2 0\n"
-                            "    endloop\n  endfacet\n  FACET NORMAL 0 0 1\n    OUTER LOOP\n"
-                            "      VERTEX 0 0 0\n      VERTEX 1 2 0\n      VERTEX 0 2 0.5\n"
-                            "      vertex 0 1 0.5\n    ENDLOOP\n  ENDFACET\nendsolid square\n");
-    CHECK(load("ascii.stl", NULL, &m, &err) == OIT_OK, "%s", err.message);
+    load_text("ascii.stl",
+              "solid square\n  facet normal 0 0 1\n    outer loop\n"
+              "      vertex 0 0 0\n      vertex 1 0 0\n      vertex 1 2 0\n"
+              "    endloop\n  endfacet\n  FACET NORMAL 0 0 1\n    OUTER LOOP\n"
+              "      VERTEX 0 0 0\n      VERTEX 1 2 0\n      VERTEX 0 2 0.5\n"
+              "      vertex 0 1 0.5\n    ENDLOOP\n  ENDFACET\nendsolid square\n",
+              &m);
     CHECK(m.count == 3 && same_pos(&m.tris[1].v[2], 0, 2, 0.5f) &&
               same_pos(&m.tris[2].v[2], 0, 1, 0.5f),
           "ascii STL wrong");

@@ -78,6 +78,21 @@ static void camera_for(const oit_scene_info *info, oit_camera *cam, int proj)
     }
 }
 
+/* The W x H view from camera_for's camera, and the caller's frame of it:
+ * its matrices, drawing into a W x H viewport at the origin. */
+static void view_and_frame(const oit_scene_info *info, int proj, oit_view *v, oit_frame *f)
+{
+    *v = (oit_view){0};
+    camera_for(info, &v->camera, proj);
+    v->width = W;
+    v->height = H;
+    *f = (oit_frame){0};
+    oit_camera_view_matrix(&v->camera, f->view);
+    oit_camera_proj_matrix(&v->camera, (float)W / H, f->projection);
+    f->viewport_width = W;
+    f->viewport_height = H;
+}
+
 /* DFB's image of the whole file with the clear colour as background. */
 static int reference(oit_partfile *pf, const oit_view *v, oit_image *out,
                      oit_frame_stats *fs)
@@ -168,17 +183,11 @@ static void draw_and_compare_proj(const char *base, oit_scene *scene, oit_partfi
         CHECK(0, "%s: oit_renderer_create: %s", name, err.message);
         return;
     }
-    oit_view v = {0};
-    camera_for(&info, &v.camera, proj);
-    v.width = W;
-    v.height = H;
-    oit_frame f = {0};
-    oit_camera_view_matrix(&v.camera, f.view);
-    oit_camera_proj_matrix(&v.camera, (float)W / H, f.projection);
+    oit_view v;
+    oit_frame f;
+    view_and_frame(&info, proj, &v, &f);
     f.viewport_x = PAD_X;
     f.viewport_y = PAD_Y;
-    f.viewport_width = W;
-    f.viewport_height = H;
     target t = target_make();
     f.framebuffer = t.fbo;
 
@@ -277,15 +286,9 @@ static void check_linear_srgb_target(oit_scene *scene, oit_partfile *pf)
     oit_error err = {0};
     oit_scene_info info;
     oit_scene_get_info(scene, &info, &err);
-    oit_view v = {0};
-    camera_for(&info, &v.camera, PROJ_DEFAULT);
-    v.width = W;
-    v.height = H;
-    oit_frame f = {0};
-    oit_camera_view_matrix(&v.camera, f.view);
-    oit_camera_proj_matrix(&v.camera, (float)W / H, f.projection);
-    f.viewport_width = W;
-    f.viewport_height = H;
+    oit_view v;
+    oit_frame f;
+    view_and_frame(&info, PROJ_DEFAULT, &v, &f);
     uint8_t *got[2] = {malloc((size_t)W * H * 4), malloc((size_t)W * H * 4)};
     for (int space = 0; space < 2; space++) {
         oit_renderer_desc rd = {0};

@@ -156,17 +156,33 @@ static oit_scene *from_arrays(const oit_scene_mesh_desc *d)
     return s;
 }
 
+/* How many of two W x H float images' values differ (0 when one is
+ * missing). */
+static uint64_t values_differ(const float *a, const float *b)
+{
+    uint64_t n = 0;
+    for (size_t i = 0; a && b && i < (size_t)W * H * 4; i++)
+        n += a[i] != b[i];
+    return n;
+}
+
+/* The scene d describes, drawn and compared with the file's image. */
+static void arrays_vs_file(oit_offscreen *o, const oit_scene_mesh_desc *d, const float *file_img)
+{
+    oit_scene *s = from_arrays(d);
+    float *img = s ? render(o, s, d->name) : NULL;
+    compare(d->name, img, file_img, -1.0);
+    free(img);
+    oit_scene_close(s);
+}
+
 static void check_arrays(oit_offscreen *o, const scene_arrays *a, const float *file_img)
 {
     /* Indexed, per-vertex 8-bit colour: the PLY's own arrays. */
     oit_scene_mesh_desc d = {.positions = a->pos, .vertex_count = NV, .indices = a->idx,
                              .index_count = NT * 3, .colors = a->vrgba,
                              .name = "indexed per-vertex u8"};
-    oit_scene *s = from_arrays(&d);
-    float *img = s ? render(o, s, d.name) : NULL;
-    compare(d.name, img, file_img, -1.0);
-    free(img);
-    oit_scene_close(s);
+    arrays_vs_file(o, &d, file_img);
 
     /* Indexed, per-triangle float colour. */
     float *tri_f = malloc(NT * 4 * sizeof *tri_f);
@@ -180,11 +196,7 @@ static void check_arrays(oit_offscreen *o, const scene_arrays *a, const float *f
     d.color_type = OIT_COLOR_FLOAT;
     d.color_rate = OIT_COLOR_PER_TRIANGLE;
     d.name = "indexed per-triangle float";
-    s = from_arrays(&d);
-    img = s ? render(o, s, d.name) : NULL;
-    compare(d.name, img, file_img, -1.0);
-    free(img);
-    oit_scene_close(s);
+    arrays_vs_file(o, &d, file_img);
 
     /* Soups: per-vertex float, per-triangle 8-bit. */
     float *soup = malloc(NT * 9 * sizeof *soup), *soup_f = malloc(NT * 12 * sizeof *soup_f);
@@ -197,31 +209,21 @@ static void check_arrays(oit_offscreen *o, const scene_arrays *a, const float *f
         }
     oit_scene_mesh_desc sd = {.positions = soup, .vertex_count = NT * 3, .colors = soup_f,
                               .color_type = OIT_COLOR_FLOAT, .name = "soup per-vertex float"};
-    s = from_arrays(&sd);
-    img = s ? render(o, s, sd.name) : NULL;
-    compare(sd.name, img, file_img, -1.0);
-    free(img);
-    oit_scene_close(s);
+    arrays_vs_file(o, &sd, file_img);
     sd.colors = tri_u8;
     sd.color_type = OIT_COLOR_UINT8;
     sd.color_rate = OIT_COLOR_PER_TRIANGLE;
     sd.name = "soup per-triangle u8";
-    s = from_arrays(&sd);
-    img = s ? render(o, s, sd.name) : NULL;
-    compare(sd.name, img, file_img, -1.0);
-    free(img);
-    oit_scene_close(s);
+    arrays_vs_file(o, &sd, file_img);
 
     /* A different colour must show: the comparison can fail. */
     tri_u8[0] ^= 0xff;
     tri_u8[3] = 255;
     sd.name = "soup, one triangle recoloured";
-    s = from_arrays(&sd);
-    img = s ? render(o, s, sd.name) : NULL;
-    uint64_t differ = 0;
-    for (size_t i = 0; img && i < (size_t)W * H * 4; i++)
-        differ += img[i] != file_img[i];
-    CHECK(differ > 0, "recolouring a triangle changed no pixel: the comparison is blind");
+    oit_scene *s = from_arrays(&sd);
+    float *img = s ? render(o, s, sd.name) : NULL;
+    CHECK(values_differ(img, file_img) > 0,
+          "recolouring a triangle changed no pixel: the comparison is blind");
     free(img);
     oit_scene_close(s);
     free(soup);
@@ -230,18 +232,26 @@ static void check_arrays(oit_offscreen *o, const scene_arrays *a, const float *f
     free(tri_u8);
 }
 
+static const float square[12] = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
+
+/* The quad of corners pos (4 xyz, counter-clockwise), red of alpha
+ * 128/255. */
+static oit_scene *red_quad(const float pos[12], const char *name)
+{
+    static const uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
+    static const uint8_t red[8] = {255, 0, 0, 128, 255, 0, 0, 128};
+    oit_scene_mesh_desc d = {.positions = pos, .vertex_count = 4, .indices = idx,
+                             .index_count = 6, .colors = red,
+                             .color_rate = OIT_COLOR_PER_TRIANGLE, .name = name};
+    return from_arrays(&d);
+}
+
 /* A red square of alpha 128/255 facing the camera over white. At the
  * centre the view direction is the normal (light 1): r = a + (1 - a) = 1,
  * g = b = 1 - a = 127/255. */
 static void check_square(oit_offscreen *o)
 {
-    const float pos[12] = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
-    const uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
-    const uint8_t red[8] = {255, 0, 0, 128, 255, 0, 0, 128};
-    oit_scene_mesh_desc d = {.positions = pos, .vertex_count = 4, .indices = idx,
-                             .index_count = 6, .colors = red,
-                             .color_rate = OIT_COLOR_PER_TRIANGLE, .name = "red square"};
-    oit_scene *s = from_arrays(&d);
+    oit_scene *s = red_quad(square, "red square");
     if (!s)
         return;
     enum { S = 64 };
@@ -296,10 +306,7 @@ static void check_square(oit_offscreen *o)
           (unsigned long long)ds[1].bytes_uploaded, (unsigned long long)ds[2].bytes_uploaded);
     /* Row 0 is the top: a quad above the centre shows in the upper rows. */
     const float upper[12] = {-1, 0.3f, 0, 1, 0.3f, 0, 1, 1, 0, -1, 1, 0};
-    oit_scene_mesh_desc ud = d;
-    ud.positions = upper;
-    ud.name = "upper quad";
-    oit_scene *us = from_arrays(&ud);
+    oit_scene *us = red_quad(upper, "upper quad");
     v.background[0] = v.background[1] = v.background[2] = v.background[3] = 0.0f;
     if (us && oit_offscreen_render(o, us, &v, px, sizeof px, NULL, &err) == OIT_OK) {
         unsigned top = px[((S / 4) * S + S / 2) * 4 + 1], bottom = px[((3 * S / 4) * S + S / 2) * 4 + 1];
@@ -329,13 +336,7 @@ static void check_square_linear(void)
         CHECK(0, "linear offscreen: %s", err.message);
         return;
     }
-    const float pos[12] = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
-    const uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
-    const uint8_t red[8] = {255, 0, 0, 128, 255, 0, 0, 128};
-    oit_scene_mesh_desc d = {.positions = pos, .vertex_count = 4, .indices = idx,
-                             .index_count = 6, .colors = red,
-                             .color_rate = OIT_COLOR_PER_TRIANGLE, .name = "red square"};
-    oit_scene *s = from_arrays(&d);
+    oit_scene *s = red_quad(square, "red square");
     enum { S = 64 };
     static uint8_t px[S * S * 4];
     static float pf[S * S * 4];
@@ -497,10 +498,7 @@ int main(int argc, char **argv)
     float *t_file = render(o, mesh, "translucent mesh file");
     float *t_part = render(o, part, "translucent part file");
     compare("translucent: in core vs part file", t_file, t_part, 1.0 / 255.0);
-    uint64_t differ = 0;
-    for (size_t i = 0; t_file && file_img && i < (size_t)W * H * 4; i++)
-        differ += t_file[i] != file_img[i];
-    CHECK(differ > 0, "translucent shading gave the transparent image");
+    CHECK(values_differ(t_file, file_img) > 0, "translucent shading gave the transparent image");
     free(t_file);
     free(t_part);
     free(file_img);

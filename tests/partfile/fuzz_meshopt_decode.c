@@ -13,6 +13,7 @@
  * success or, when both succeed, in the output bytes traps too.
  */
 #include "partfile/meshopt_decode.h"
+#include "tests/partfile/meshopt_pair.h"
 
 #include <meshoptimizer.h>
 
@@ -26,30 +27,14 @@
             __builtin_trap();                                                                      \
     } while (0)
 
-static void vertices(const unsigned char *src, size_t bytes, size_t count, size_t stride)
+/* Traps unless both decoders succeed or both fail, and agree on every
+ * output byte when they succeed. */
+static void both(const meshopt_pair *p, const unsigned char *src, size_t bytes, size_t count,
+                 size_t size)
 {
-    size_t n = count * stride;
-    unsigned char *a = malloc(n ? n : 1), *b = malloc(n ? n : 1);
-    REQUIRE(a && b);
-    int ra = meshopt_decodeVertexBuffer(a, count, stride, src, bytes);
-    int rb = oit_meshopt_decode_vertices(b, count, stride, src, bytes);
+    int ra, rb;
+    REQUIRE(!meshopt_pair_run(p, src, bytes, count, size, &ra, &rb));
     REQUIRE((ra == 0) == (rb == 0));
-    REQUIRE(ra || !n || !memcmp(a, b, n));
-    free(a);
-    free(b);
-}
-
-static void indices(const unsigned char *src, size_t bytes, size_t count, size_t index_size)
-{
-    size_t n = count * index_size;
-    unsigned char *a = malloc(n ? n : 1), *b = malloc(n ? n : 1);
-    REQUIRE(a && b);
-    int ra = meshopt_decodeIndexSequence(a, count, index_size, src, bytes);
-    int rb = oit_meshopt_decode_index_sequence(b, count, index_size, src, bytes);
-    REQUIRE((ra == 0) == (rb == 0));
-    REQUIRE(ra || !n || !memcmp(a, b, n));
-    free(a);
-    free(b);
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
@@ -66,8 +51,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     unsigned char *src = malloc(bytes ? bytes : 1);
     REQUIRE(src);
     memcpy(src, data + 6, bytes);
-    vertices(src, bytes, vcount, stride);
-    indices(src, bytes, icount, index_size);
+    both(&MESHOPT_VERTICES, src, bytes, vcount, stride);
+    both(&MESHOPT_INDICES, src, bytes, icount, index_size);
     /* Bad arguments are refused, never decoded. */
     REQUIRE(oit_meshopt_decode_vertices(NULL, 1, stride + 2, src, bytes) == OIT_MESHOPT_EARG);
     REQUIRE(oit_meshopt_decode_index_sequence(NULL, 1, 3, src, bytes) == OIT_MESHOPT_EARG);

@@ -25,6 +25,7 @@
  * DIR and exits.
  */
 #include "partfile/meshopt_decode.h"
+#include "tests/partfile/meshopt_pair.h"
 
 #include "base/clock.h"
 
@@ -100,52 +101,38 @@ static uint32_t rng_below(rng *r, uint32_t n)
 
 /* Compares both decoders on one input (copied to an exact-size buffer);
  * returns the common result, or 1 when they disagree. */
-static int compare_vertices(tally *t, const char *name, const unsigned char *enc, size_t bytes,
-                            size_t count, size_t stride)
+static int compare_pair(tally *t, const meshopt_pair *p, const char *name, const unsigned char *enc,
+                        size_t bytes, size_t count, size_t size)
 {
     unsigned char *src = dup_bytes(enc, bytes);
-    unsigned char *a = xmalloc(count * stride), *b = xmalloc(count * stride);
-    int ra = meshopt_decodeVertexBuffer(a, count, stride, src, bytes);
-    int rb = oit_meshopt_decode_vertices(b, count, stride, src, bytes);
+    int ra, rb;
+    int differ = meshopt_pair_run(p, src, bytes, count, size, &ra, &rb);
     int rc = ra == 0 ? rb : ra;
     if ((ra == 0) != (rb == 0)) {
-        fail(t, "%s: vertices count %zu stride %zu bytes %zu: meshopt %d, ours %d", name, count,
-             stride, bytes, ra, rb);
+        fail(t, "%s: %s count %zu %s %zu bytes %zu: meshopt %d, ours %d", name, p->what, count,
+             p->size_name, size, bytes, ra, rb);
         rc = 1;
-    } else if (ra == 0 && count && memcmp(a, b, count * stride)) {
-        fail(t, "%s: vertices count %zu stride %zu: outputs differ", name, count, stride);
+    } else if (differ) {
+        fail(t, "%s: %s count %zu %s %zu: outputs differ", name, p->what, count, p->size_name,
+             size);
         rc = 1;
     } else if (ra != rb) {
         t->code_differs++;
     }
     free(src);
-    free(a);
-    free(b);
     return rc;
+}
+
+static int compare_vertices(tally *t, const char *name, const unsigned char *enc, size_t bytes,
+                            size_t count, size_t stride)
+{
+    return compare_pair(t, &MESHOPT_VERTICES, name, enc, bytes, count, stride);
 }
 
 static int compare_indices(tally *t, const char *name, const unsigned char *enc, size_t bytes,
                            size_t count, size_t index_size)
 {
-    unsigned char *src = dup_bytes(enc, bytes);
-    unsigned char *a = xmalloc(count * index_size), *b = xmalloc(count * index_size);
-    int ra = meshopt_decodeIndexSequence(a, count, index_size, src, bytes);
-    int rb = oit_meshopt_decode_index_sequence(b, count, index_size, src, bytes);
-    int rc = ra == 0 ? rb : ra;
-    if ((ra == 0) != (rb == 0)) {
-        fail(t, "%s: indices count %zu size %zu bytes %zu: meshopt %d, ours %d", name, count,
-             index_size, bytes, ra, rb);
-        rc = 1;
-    } else if (ra == 0 && count && memcmp(a, b, count * index_size)) {
-        fail(t, "%s: indices count %zu size %zu: outputs differ", name, count, index_size);
-        rc = 1;
-    } else if (ra != rb) {
-        t->code_differs++;
-    }
-    free(src);
-    free(a);
-    free(b);
-    return rc;
+    return compare_pair(t, &MESHOPT_INDICES, name, enc, bytes, count, index_size);
 }
 
 /* ---- hostile variants of one stream ----------------------------------------- */
@@ -180,6 +167,22 @@ static void hostile(tally *t, compare_fn cmp, const char *name, const unsigned c
     free(buf);
     t->hostile += runs;
     t->both_accept_hostile += accepted;
+}
+
+/* A stream the library's encoder wrote (bytes 0: it failed) must be taken
+ * alike by both decoders; with damage, so must its hostile variants.
+ * Returns cmp's result for the stream itself (0: both decoded it). */
+static int check_encoded(tally *t, compare_fn cmp, const char *name, const unsigned char *enc,
+                         size_t bytes, size_t count, size_t width, int damage)
+{
+    if (!bytes)
+        fail(t, "%s: the encoder failed", name);
+    int rc = cmp(t, name, enc, bytes, count, width);
+    if (rc != 0)
+        fail(t, "%s: an encoder-written stream is refused", name);
+    if (damage)
+        hostile(t, cmp, name, enc, bytes, count, width);
+    return rc;
 }
 
 /* ---- vertex data ------------------------------------------------------------ */
@@ -300,18 +303,13 @@ static void vertex_case(tally *t, rng *r, enum vpattern p, size_t count, size_t 
     fill_vertices(r, p, v, count, stride);
     size_t bytes;
     unsigned char *enc = encode_vertices(v, count, stride, &bytes);
-    if (!bytes)
-        fail(t, "%s: the encoder failed", name);
     count_modes(t, enc, count, stride);
     unsigned char *out = xmalloc(count * stride);
-    if (compare_vertices(t, name, enc, bytes, count, stride) != 0)
-        fail(t, "%s: an encoder-written stream is refused", name);
-    else if (oit_meshopt_decode_vertices(out, count, stride, enc, bytes) ||
-             (count && memcmp(out, v, count * stride)))
+    if (check_encoded(t, compare_vertices, name, enc, bytes, count, stride, damage) == 0 &&
+        (oit_meshopt_decode_vertices(out, count, stride, enc, bytes) ||
+         (count && memcmp(out, v, count * stride))))
         fail(t, "%s: does not round-trip", name);
     t->vertex_streams++;
-    if (damage)
-        hostile(t, compare_vertices, name, enc, bytes, count, stride);
     free(out);
     free(enc);
     free(v);
@@ -376,13 +374,8 @@ static void index_case(tally *t, rng *r, enum ipattern p, size_t count, size_t i
     size_t cap = meshopt_encodeIndexSequenceBound(count, (size_t)max);
     unsigned char *enc = xmalloc(cap);
     size_t bytes = meshopt_encodeIndexSequence(enc, cap, idx, count);
-    if (!bytes)
-        fail(t, "%s: the encoder failed", name);
-    if (compare_indices(t, name, enc, bytes, count, index_size) != 0)
-        fail(t, "%s: an encoder-written stream is refused", name);
+    check_encoded(t, compare_indices, name, enc, bytes, count, index_size, damage);
     t->index_streams++;
-    if (damage)
-        hostile(t, compare_indices, name, enc, bytes, count, index_size);
     free(enc);
     free(idx);
 }

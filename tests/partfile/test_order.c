@@ -296,6 +296,36 @@ static double quad_hit(const double o[3], const double d[3], const quad *q)
     return t0 > 0 ? t0 : t1;
 }
 
+/* Sample s (0..8) of a 3 x 3 grid on quad q, inset from its edges. */
+static void quad_sample(const quad *q, int s, double out[3])
+{
+    double u = 0.1 + 0.4 * (s % 3), v = 0.1 + 0.4 * (s / 3);
+    for (int k = 0; k < 3; k++) {
+        double a = q->p[0][k] + u * (q->p[1][k] - q->p[0][k]);
+        double b = q->p[3][k] + u * (q->p[2][k] - q->p[3][k]);
+        out[k] = a + v * (b - a);
+    }
+}
+
+/* Every pair of hits along the ray from o along d, by distance: a part hit
+ * nearer than another but ranked after it is a violation. */
+static int ray_violations(const scene *sc, const double o[3], const double d[3],
+                          const uint32_t *rank)
+{
+    int bad = 0;
+    for (uint32_t r = 0; r < sc->n; r++) {
+        double t = quad_hit(o, d, &sc->parts[r]);
+        if (t <= 1e-9)
+            continue;
+        for (uint32_t x = 0; x < sc->n; x++) {
+            double tx = quad_hit(o, d, &sc->parts[x]);
+            if (tx > 1e-9 && tx < t - 1e-6 && rank[x] > rank[r])
+                bad++;
+        }
+    }
+    return bad;
+}
+
 /* Rays through points of every quad: returns the violations (a part hit
  * clearly before another but ranked after it). */
 static int violations(const scene *sc, const float eye[3], const uint32_t *rank)
@@ -304,27 +334,14 @@ static int violations(const scene *sc, const float eye[3], const uint32_t *rank)
     double o[3] = {eye[0], eye[1], eye[2]};
     for (uint32_t p = 0; p < sc->n; p++)
         for (int s = 0; s < 9; s++) {
-            double u = 0.1 + 0.4 * (s % 3), v = 0.1 + 0.4 * (s / 3), d[3], len = 0;
-            const quad *q = &sc->parts[p];
+            double pt[3], d[3], len = 0;
+            quad_sample(&sc->parts[p], s, pt);
             for (int k = 0; k < 3; k++) {
-                double a = q->p[0][k] + u * (q->p[1][k] - q->p[0][k]);
-                double b = q->p[3][k] + u * (q->p[2][k] - q->p[3][k]);
-                d[k] = a + v * (b - a) - o[k];
+                d[k] = pt[k] - o[k];
                 len += d[k] * d[k];
             }
-            if (len < 1e-12)
-                continue;
-            /* Every pair of hits along the ray, by distance. */
-            for (uint32_t r = 0; r < sc->n; r++) {
-                double t = quad_hit(o, d, &sc->parts[r]);
-                if (t <= 1e-9)
-                    continue;
-                for (uint32_t x = 0; x < sc->n; x++) {
-                    double tx = quad_hit(o, d, &sc->parts[x]);
-                    if (tx > 1e-9 && tx < t - 1e-6 && rank[x] > rank[r])
-                        bad++;
-                }
-            }
+            if (len >= 1e-12)
+                bad += ray_violations(sc, o, d, rank);
         }
     return bad;
 }
@@ -338,23 +355,11 @@ static int violations_parallel(const scene *sc, const float dir[3], const uint32
     double d[3] = {dir[0] / len, dir[1] / len, dir[2] / len};
     for (uint32_t p = 0; p < sc->n; p++)
         for (int s = 0; s < 9; s++) {
-            double u = 0.1 + 0.4 * (s % 3), v = 0.1 + 0.4 * (s / 3), o[3];
-            const quad *q = &sc->parts[p];
-            for (int k = 0; k < 3; k++) {
-                double a = q->p[0][k] + u * (q->p[1][k] - q->p[0][k]);
-                double b = q->p[3][k] + u * (q->p[2][k] - q->p[3][k]);
-                o[k] = a + v * (b - a) - 100.0 * d[k];
-            }
-            for (uint32_t r = 0; r < sc->n; r++) {
-                double t = quad_hit(o, d, &sc->parts[r]);
-                if (t <= 1e-9)
-                    continue;
-                for (uint32_t x = 0; x < sc->n; x++) {
-                    double tx = quad_hit(o, d, &sc->parts[x]);
-                    if (tx > 1e-9 && tx < t - 1e-6 && rank[x] > rank[r])
-                        bad++;
-                }
-            }
+            double o[3];
+            quad_sample(&sc->parts[p], s, o);
+            for (int k = 0; k < 3; k++)
+                o[k] -= 100.0 * d[k];
+            bad += ray_violations(sc, o, d, rank);
         }
     return bad;
 }

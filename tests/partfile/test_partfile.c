@@ -245,6 +245,19 @@ static oit_status write_scene(const scene *s, const char *path, uint32_t align, 
     return write_scene_ordered(s, path, align, OIT_PARTFILE_ORDER_KEEP, err);
 }
 
+/* s written as dir/name (that path in path[600]), then read back whole: its
+ * bytes (free them; NULL when either failed, said as a failed check) and
+ * their count in *n. */
+static uint8_t *write_and_read(const scene *s, const char *dir, const char *name, uint32_t align,
+                               char *path, size_t *n)
+{
+    oit_error err = {0};
+    *n = 0;
+    snprintf(path, 600, "%s/%s", dir, name);
+    CHECK(write_scene(s, path, align, &err) == OIT_OK, "%s: %s", path, err.message);
+    return test_read_file(path, n);
+}
+
 /* ---- round trip ------------------------------------------------------------- */
 
 /* A triangle as the renderer sees it: its three positions in order (the tie
@@ -948,12 +961,9 @@ static void check_small(const char *tmp, const char *corpus, int write_corpus)
     scene s;
     small_scene(&s);
     char path[600], golden[600];
-    snprintf(path, sizeof path, "%s/partfile_small.oitp", tmp);
-    snprintf(golden, sizeof golden, "%s/small.oitp", corpus);
-    oit_error err = {0};
-    CHECK(write_scene(&s, path, 8, &err) == OIT_OK, "%s", err.message);
     size_t n = 0, gn = 0;
-    uint8_t *b = test_read_file(path, &n);
+    uint8_t *b = write_and_read(&s, tmp, "partfile_small.oitp", 8, path, &n);
+    snprintf(golden, sizeof golden, "%s/small.oitp", corpus);
     if (write_corpus && b)
         CHECK(spill(golden, b, n) == 0, "cannot write %s", golden);
     uint8_t *g = test_read_file(golden, &gn);
@@ -963,6 +973,7 @@ static void check_small(const char *tmp, const char *corpus, int write_corpus)
           "%s differs from the fuzz seed %s (rerun with --write-corpus after a format change)",
           path, golden);
     oit_partfile *pf = NULL;
+    oit_error err = {0};
     CHECK(oit_partfile_open_memory(b, n, "small", NULL, &pf, &err) == OIT_OK, "%s", err.message);
     if (pf)
         check_round_trip(pf, &s, n);
@@ -983,17 +994,14 @@ int main(int argc, char **argv)
     scene s;
     big_scene(&s);
     char a[600], b[600];
-    snprintf(a, sizeof a, "%s/partfile_a.oitp", tmp);
-    snprintf(b, sizeof b, "%s/partfile_b.oitp", tmp);
-    oit_error err = {0};
-    CHECK(write_scene(&s, a, 0, &err) == OIT_OK, "%s", err.message);
-    CHECK(write_scene(&s, b, 0, &err) == OIT_OK, "%s", err.message);
     size_t na = 0, nb = 0;
-    uint8_t *ba = test_read_file(a, &na), *bb = test_read_file(b, &nb);
+    uint8_t *ba = write_and_read(&s, tmp, "partfile_a.oitp", 0, a, &na);
+    uint8_t *bb = write_and_read(&s, tmp, "partfile_b.oitp", 0, b, &nb);
     printf("  big scene: %zu and %zu bytes, %s\n", na, nb,
            na == nb && ba && bb && !memcmp(ba, bb, na) ? "byte-identical" : "DIFFERENT");
     CHECK(ba && bb && na == nb && na > 0 && !memcmp(ba, bb, na), "two writes differ");
     oit_partfile *pf = NULL;
+    oit_error err = {0};
     CHECK(oit_partfile_open(a, NULL, &pf, &err) == OIT_OK, "%s", err.message);
     if (pf) {
         check_round_trip(pf, &s, na);

@@ -241,6 +241,19 @@ static void deep_scene(quad_spec q[24])
     }
 }
 
+/* A capture of kind with K slots a pixel, or NULL after a failed check
+ * naming what it was for. */
+static oit_capture *new_capture(oit_capture_kind kind, int K, const char *name)
+{
+    oit_error err = {0};
+    oit_capture *c = NULL;
+    if (oit_capture_create(kind, K, &c, &err) != OIT_OK) {
+        CHECK(0, "%s: capture: %s", name, err.message);
+        return NULL;
+    }
+    return c;
+}
+
 /* Pixels (by centre, as the rasterizer samples) covered by more than W of
  * the quads of batch [first, first + n). */
 static uint64_t pixels_over(const oit_view *v, const quad_spec *q, int first, int n, int W)
@@ -271,12 +284,9 @@ typedef struct firstk_case {
 
 static void test_firstk(const firstk_case *fc)
 {
-    oit_error err = {0};
-    oit_capture *c = NULL;
-    if (oit_capture_create(OIT_CAPTURE_FIRSTK, fc->K, &c, &err) != OIT_OK) {
-        CHECK(0, "%s: first-k capture: %s", fc->name, err.message);
+    oit_capture *c = new_capture(OIT_CAPTURE_FIRSTK, fc->K, fc->name);
+    if (!c)
         return;
-    }
     oit_capture_set_slot_budget(c, fc->slot_budget);
     quad_spec q[24];
     deep_scene(q);
@@ -349,12 +359,9 @@ static void test_firstk_all(void)
  * fragment total; before, the counted capture refused such a mesh. */
 static void test_store_limit(oit_capture_kind kind, const char *name)
 {
-    oit_error err = {0};
-    oit_capture *c = NULL;
-    if (oit_capture_create(kind, 4, &c, &err) != OIT_OK) {
-        CHECK(0, "%s: capture: %s", name, err.message);
+    oit_capture *c = new_capture(kind, 4, name);
+    if (!c)
         return;
-    }
     oit_capture_set_store_limit(c, 48u * 40u * 16u * 2u);
     quad_spec q[24];
     deep_scene(q);
@@ -389,12 +396,9 @@ static void test_store_limit(oit_capture_kind kind, const char *name)
  * the earlier saturated, and the image stays within E of the exact one. */
 static void test_epsilon_batches(oit_capture_kind kind, const char *name)
 {
-    oit_error err = {0};
-    oit_capture *c = NULL;
-    if (oit_capture_create(kind, 8, &c, &err) != OIT_OK) {
-        CHECK(0, "%s: capture: %s", name, err.message);
+    oit_capture *c = new_capture(kind, 8, name);
+    if (!c)
         return;
-    }
     quad_spec q[24];
     deep_scene(q);
     for (int i = 0; i < 24; i++)

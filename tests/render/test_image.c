@@ -37,16 +37,25 @@ static void fill_pattern(oit_image *img)
     }
 }
 
+/* A w x h image of fill_pattern in a, written to name in the scratch
+ * folder and read back into b (free both); returns the file's path. */
+static const char *round_trip(int w, int h, const char *name, oit_image *a, oit_image *b)
+{
+    oit_error err;
+    CHECK(oit_image_alloc(a, w, h, &err) == OIT_OK, "%s", err.message);
+    fill_pattern(a);
+    const char *path = tmp_path(name);
+    CHECK(oit_image_write(a, path, &err) == OIT_OK, "%s", err.message);
+    *b = (oit_image){0};
+    CHECK(oit_image_read(path, b, &err) == OIT_OK, "%s", err.message);
+    CHECK(b->width == w && b->height == h, "%s: size %dx%d", name, b->width, b->height);
+    return path;
+}
+
 static void test_png_round_trip(void)
 {
     oit_image a, b;
-    oit_error err;
-    CHECK(oit_image_alloc(&a, 37, 21, &err) == OIT_OK, "%s", err.message);
-    fill_pattern(&a);
-    const char *path = tmp_path("rt.png");
-    CHECK(oit_image_write(&a, path, &err) == OIT_OK, "%s", err.message);
-    CHECK(oit_image_read(path, &b, &err) == OIT_OK, "%s", err.message);
-    CHECK(b.width == 37 && b.height == 21, "size %dx%d", b.width, b.height);
+    round_trip(37, 21, "rt.png", &a, &b);
     double worst = 0;
     for (int y = 0; y < a.height; y++)
         for (int x = 0; x < a.width; x++)
@@ -64,11 +73,7 @@ static void test_pfm_round_trip(void)
 {
     oit_image a, b;
     oit_error err;
-    CHECK(oit_image_alloc(&a, 13, 7, &err) == OIT_OK, "%s", err.message);
-    fill_pattern(&a);
-    const char *path = tmp_path("rt.pfm");
-    CHECK(oit_image_write(&a, path, &err) == OIT_OK, "%s", err.message);
-    CHECK(oit_image_read(path, &b, &err) == OIT_OK, "%s", err.message);
+    const char *path = round_trip(13, 7, "rt.pfm", &a, &b);
     /* The file holds linear light (image.h): the reader encodes it back to
      * within float rounding, and to the same 8-bit value exactly. */
     int mismatches = 0, byte_mismatches = 0;

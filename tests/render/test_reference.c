@@ -102,29 +102,51 @@ static double max_pixel_error(const oit_image *img, int x, int y, const double w
     return e;
 }
 
+/* The layers through the reference (desc: NULL for its defaults),
+ * transparent, into img, counts (layers per pixel) and st; returns the
+ * largest error of any pixel against the composite of layers order[0..k)
+ * computed by hand. */
+static double render_layers(const layer *l, size_t n, const oit_reference_desc *desc,
+                            const size_t *order, size_t k, oit_image *img, uint32_t *counts,
+                            oit_frame_stats *st)
+{
+    oit_mesh m;
+    make_mesh(&m, l, n);
+    oit_view v = make_view(OIT_SHADING_TRANSPARENT);
+    oit_error err;
+    oit_status s = oit_reference_render(&m, &v, desc, img, counts, st, &err);
+    CHECK(s == OIT_OK, "%s", err.message);
+    oit_mesh_free(&m);
+    if (s != OIT_OK) {
+        *img = (oit_image){0};
+        *st = (oit_frame_stats){0};
+        memset(counts, 0, sizeof *counts * W * H);
+        return INFINITY;
+    }
+    double worst = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            double want[3];
+            expected_transparent(l, k, order, pixel_cos(x, y), want);
+            worst = fmax(worst, max_pixel_error(img, x, y, want));
+        }
+    return worst;
+}
+
 static void test_order_and_ties(void)
 {
     /* Prims listed far first; two coplanar layers at z=-3 tie. */
     layer l[4] = {{-6, 1, {0, 0, 255, 128}}, {-3, 1, {255, 0, 0, 100}},
                   {-3, 1, {0, 255, 0, 100}}, {-2, 0, {255, 255, 0, 60}}};
     size_t order[4] = {3, 1, 2, 0}; /* by depth, tie 1 before 2 */
-    oit_mesh m;
-    make_mesh(&m, l, 4);
-    oit_view v = make_view(OIT_SHADING_TRANSPARENT);
     oit_image img;
     uint32_t counts[W * H];
     oit_frame_stats st;
-    oit_error err;
     oit_reference_desc desc = {.threads = 2};
-    CHECK(oit_reference_render(&m, &v, &desc, &img, counts, &st, &err) == OIT_OK, "%s", err.message);
-    double worst = 0;
+    double worst = render_layers(l, 4, &desc, order, 4, &img, counts, &st);
     for (int y = 0; y < H; y++)
-        for (int x = 0; x < W; x++) {
-            double want[3];
-            expected_transparent(l, 4, order, pixel_cos(x, y), want);
-            worst = fmax(worst, max_pixel_error(&img, x, y, want));
+        for (int x = 0; x < W; x++)
             CHECK(counts[y * W + x] == 4, "pixel %d,%d has %u layers", x, y, counts[y * W + x]);
-        }
     const float *c = img.rgba + ((size_t)(H / 2) * W + W / 2) * 4;
     printf("order/ties: centre %.6f %.6f %.6f, max error %.3g, fragments %llu, max layers %u, %.2f ms\n",
            c[0], c[1], c[2], worst, (unsigned long long)st.fragments, st.max_layers, st.ms);
@@ -137,7 +159,6 @@ static void test_order_and_ties(void)
     expected_transparent(l, 4, swapped, pixel_cos(W / 2, H / 2), want);
     CHECK(max_pixel_error(&img, W / 2, H / 2, want) > 1e-3, "tie order not observable");
     oit_image_free(&img);
-    oit_mesh_free(&m);
 }
 
 static void test_many_layers(void)
@@ -151,31 +172,20 @@ static void test_many_layers(void)
                        {(unsigned char)(i % 256), 200, (unsigned char)(255 - i % 256), 3}};
         order[i] = (size_t)(N - 1 - i);
     }
-    oit_mesh m;
-    make_mesh(&m, l, N);
-    oit_view v = make_view(OIT_SHADING_TRANSPARENT);
     oit_image img;
     static uint32_t counts[W * H];
     oit_frame_stats st;
-    oit_error err;
-    CHECK(oit_reference_render(&m, &v, NULL, &img, counts, &st, &err) == OIT_OK, "%s", err.message);
-    double worst = 0;
+    double worst = render_layers(l, N, NULL, order, N, &img, counts, &st);
     uint32_t min_count = UINT32_MAX;
-    for (int y = 0; y < H; y++)
-        for (int x = 0; x < W; x++) {
-            double want[3];
-            expected_transparent(l, N, order, pixel_cos(x, y), want);
-            worst = fmax(worst, max_pixel_error(&img, x, y, want));
-            if (counts[y * W + x] < min_count)
-                min_count = counts[y * W + x];
-        }
+    for (int i = 0; i < W * H; i++)
+        if (counts[i] < min_count)
+            min_count = counts[i];
     printf("600 layers: min count %u, max layers %u, fragments %llu, max error %.3g, %.2f ms\n",
            min_count, st.max_layers, (unsigned long long)st.fragments, worst, st.ms);
     CHECK(min_count == N && st.max_layers == N, "lost layers");
     CHECK(st.fragments == (uint64_t)N * W * H, "fragment count");
     CHECK(worst < 1e-5, "600-layer composite error %g", worst);
     oit_image_free(&img);
-    oit_mesh_free(&m);
 }
 
 static void test_clipping(void)
@@ -185,28 +195,17 @@ static void test_clipping(void)
     layer l[4] = {{2, 1, {255, 0, 0, 255}}, {-0.3f, 1, {0, 255, 0, 255}},
                   {-150, 1, {0, 0, 255, 255}}, {-5, 1, {255, 0, 255, 128}}};
     size_t order[1] = {3};
-    oit_mesh m;
-    make_mesh(&m, l, 4);
-    oit_view v = make_view(OIT_SHADING_TRANSPARENT);
     oit_image img;
     uint32_t counts[W * H];
     oit_frame_stats st;
-    oit_error err;
-    CHECK(oit_reference_render(&m, &v, NULL, &img, counts, &st, &err) == OIT_OK, "%s", err.message);
-    double worst = 0;
+    double worst = render_layers(l, 4, NULL, order, 1, &img, counts, &st);
     int bad_counts = 0;
-    for (int y = 0; y < H; y++)
-        for (int x = 0; x < W; x++) {
-            double want[3];
-            expected_transparent(l, 1, order, pixel_cos(x, y), want);
-            worst = fmax(worst, max_pixel_error(&img, x, y, want));
-            bad_counts += counts[y * W + x] != 1;
-        }
+    for (int i = 0; i < W * H; i++)
+        bad_counts += counts[i] != 1;
     printf("clipping: max error %.3g, pixels with count != 1: %d, fragments %llu\n", worst,
            bad_counts, (unsigned long long)st.fragments);
     CHECK(worst < 1e-6 && bad_counts == 0 && st.fragments == W * H, "clipped layers leaked in");
     oit_image_free(&img);
-    oit_mesh_free(&m);
 }
 
 static void test_translucent(void)

@@ -252,6 +252,18 @@ static unsigned char to_8bit(float v)
  * red (255,0,0,128) over white seen head-on (light 1): 255,127,127 on the
  * encoded values, encode(1 - 128/255) = 187.19 -> 255,187,187 in linear
  * light. The vertex colours are decoded per vertex, before interpolation. */
+/* t shaded at bary, seen from eye (the fragment in *f), alone over s's
+ * background: the pixel in rgb. */
+static void shade_alone(const oit_shading *s, const oit_triangle *t, const float bary[3],
+                        const float eye[3], oit_shaded_fragment *f, float rgb[3])
+{
+    oit_shade_fragment(s, t, 0, bary, eye, 5.0, f);
+    oit_pixel_state st;
+    oit_pixel_begin(&st);
+    oit_pixel_add(&st, s, f);
+    oit_pixel_end(&st, s, rgb);
+}
+
 static void test_colour_space(void)
 {
     CHECK_NEAR(oit_srgb_decode(0.5), 0.214041140482232, 1e-12, "sRGB EOTF(0.5), not 0.5^2.2");
@@ -279,12 +291,8 @@ static void test_colour_space(void)
         s.attributes = OIT_ATTR_COLOR | OIT_ATTR_ALPHA;
         s.colour_space = lin ? OIT_COLOUR_LINEAR : OIT_COLOUR_SRGB;
         oit_shaded_fragment f;
-        oit_shade_fragment(&s, &t, 0, bary, eye, 5.0, &f);
-        oit_pixel_state st;
-        oit_pixel_begin(&st);
-        oit_pixel_add(&st, &s, &f);
         float rgb[3];
-        oit_pixel_end(&st, &s, rgb);
+        shade_alone(&s, &t, bary, eye, &f, rgb);
         printf("50%% red over white, %s: %.6f %.6f %.6f -> %d,%d,%d\n", lin ? "linear" : "srgb",
                rgb[0], rgb[1], rgb[2], to_8bit(rgb[0]), to_8bit(rgb[1]), to_8bit(rgb[2]));
         for (int c = 0; c < 3; c++)
@@ -311,12 +319,8 @@ static void test_colour_space(void)
      * .35 of default_rgb over a background of 0.5 grey. */
     s.attributes = 0;
     s.background[0] = s.background[1] = s.background[2] = 0.5f;
-    oit_shade_fragment(&s, &t, 0, bary, eye, 5.0, &f);
-    oit_pixel_state st;
-    oit_pixel_begin(&st);
-    oit_pixel_add(&st, &s, &f);
     float rgb[3];
-    oit_pixel_end(&st, &s, rgb);
+    shade_alone(&s, &t, bary, eye, &f, rgb);
     for (int c = 0; c < 3; c++) {
         double d = oit_srgb_decode(s.default_rgb[c]);
         CHECK_NEAR(f.colour[c], d, 1e-6, "linear: default_rgb decoded");
@@ -324,10 +328,7 @@ static void test_colour_space(void)
                    "linear: default colour over a decoded background, encoded");
     }
     s.colour_space = OIT_COLOUR_SRGB;
-    oit_shade_fragment(&s, &t, 0, bary, eye, 5.0, &f);
-    oit_pixel_begin(&st);
-    oit_pixel_add(&st, &s, &f);
-    oit_pixel_end(&st, &s, rgb);
+    shade_alone(&s, &t, bary, eye, &f, rgb);
     CHECK_NEAR(rgb[0], 0.35 * 0.85 + 0.65 * 0.5, 1e-6, "srgb: the encoded values as given");
 }
 

@@ -240,6 +240,33 @@ static void methods_destroy(methods *m)
             tables[i]->destroy(m->impl[i]);
 }
 
+/* m: a fresh instance of every method; 0 after a failed check, m then
+ * holding none. */
+static int methods_open(methods *m)
+{
+    oit_error err = {0};
+    *m = (methods){0};
+    if (methods_create(m, &err) == OIT_OK)
+        return 1;
+    CHECK(0, "create: %s", err.message);
+    methods_destroy(m);
+    *m = (methods){0};
+    return 0;
+}
+
+/* The scene most tests start from: 12 quads of quad_stack (z from -2, 0.7
+ * apart) shuffled with seed, their triangles in *tris (free both) and the
+ * 96x64 transparent view of them in *v. */
+enum { QUADS12 = 12 };
+static quad_spec *quads12(uint32_t seed, oit_triangle **tris, oit_view *v)
+{
+    quad_spec *q = quad_stack(QUADS12, -2.0f, 0.7f);
+    shuffle_quads(q, QUADS12, seed);
+    *tris = scene_tris(q, QUADS12);
+    scene_view(v, 96, 64, OIT_SHADING_TRANSPARENT);
+    return q;
+}
+
 /* The methods that store every fragment, and so are exact with ties too
  * and with translucent shading. */
 static const enum method storing[] = {M_PLL, M_PPLL4, M_B3D};
@@ -262,12 +289,10 @@ static quad_spec *full_stack(int n, float dz, uint8_t alpha, uint32_t seed)
 
 static void test_exact_quads(methods *m)
 {
-    const int n = 12;
-    quad_spec *q = quad_stack(n, -2.0f, 0.7f);
-    shuffle_quads(q, n, 0x2545f491u);
-    oit_triangle *tris = scene_tris(q, n);
+    const int n = QUADS12;
+    oit_triangle *tris;
     oit_view v;
-    scene_view(&v, 96, 64, OIT_SHADING_TRANSPARENT);
+    quad_spec *q = quads12(0x2545f491u, &tris, &v);
     for (int i = 0; i < N_STORING; i++)
         check_exact(m, storing[i], "quads12 shuffled", tris, 2 * (size_t)n, &v, q, n);
     check_exact(m, M_DP, "quads12 shuffled", tris, 2 * (size_t)n, &v, q, n);
@@ -373,13 +398,9 @@ static uint64_t capacity(const methods *m, enum method which)
 static void test_growth(enum method which)
 {
     const char *name = method_name(which);
-    oit_error err = {0};
-    methods m = {0};
-    if (methods_create(&m, &err) != OIT_OK) {
-        CHECK(0, "create: %s", err.message);
-        methods_destroy(&m);
+    methods m;
+    if (!methods_open(&m))
         return;
-    }
     oit_view v;
     scene_view(&v, 96, 64, OIT_SHADING_TRANSPARENT);
     quad_spec one = {-3.0f, 1.5f, {200, 100, 50, 128}, 1};
@@ -470,12 +491,10 @@ static void check_wboit(methods *m, const char *scene, const oit_triangle *tris,
 
 static void test_wboit(methods *m)
 {
-    const int n = 12;
-    quad_spec *q = quad_stack(n, -2.0f, 0.7f);
-    shuffle_quads(q, n, 99u);
-    oit_triangle *tris = scene_tris(q, n);
+    const int n = QUADS12;
+    oit_triangle *tris;
     oit_view v;
-    scene_view(&v, 96, 64, OIT_SHADING_TRANSPARENT);
+    quad_spec *q = quads12(99u, &tris, &v);
     check_wboit(m, "quads12 shuffled", tris, 2 * (size_t)n, &v);
     oit_triangle shapes[48];
     size_t ns = shapes_scene(shapes);
@@ -495,13 +514,9 @@ static void test_deep(void)
     enum { SHALLOW, DEEP };
     static const enum method all[] = {M_DFB, M_PLL, M_PPLL4, M_B3D, M_DP, M_DDP};
     enum { N_ALL = sizeof all / sizeof all[0] };
-    oit_error err = {0};
-    methods m = {0};
-    if (methods_create(&m, &err) != OIT_OK) {
-        CHECK(0, "create: %s", err.message);
-        methods_destroy(&m);
+    methods m;
+    if (!methods_open(&m))
         return;
-    }
     const uint64_t px = 96 * 64;
     oit_view v;
     scene_view(&v, 96, 64, OIT_SHADING_TRANSPARENT);
@@ -617,15 +632,13 @@ static void set_threshold(methods *m, enum method which, float threshold)
  * nothing. */
 static void test_guarded(methods *m)
 {
-    const int n = 12;
-    quad_spec *q = quad_stack(n, -2.0f, 0.7f);
-    shuffle_quads(q, n, 0x2545f491u);
-    oit_triangle *tris = scene_tris(q, n), shapes[48];
+    const int n = QUADS12;
+    oit_triangle *tris, shapes[48];
+    oit_view v;
+    quad_spec *q = quads12(0x2545f491u, &tris, &v);
     size_t ns = shapes_scene(shapes);
     quad_spec *deep = full_stack(40, 0.25f, 247, 99u);
     oit_triangle *td = scene_tris(deep, 40);
-    oit_view v;
-    scene_view(&v, 96, 64, OIT_SHADING_TRANSPARENT);
     set_threshold(m, M_GUARDED, 0.0f);
     check_exact(m, M_GUARDED, "quads12 threshold 0", tris, 2 * (size_t)n, &v, q, n);
     check_exact(m, M_GUARDED, "shapes threshold 0", shapes, ns, &v, NULL, 0);
@@ -682,13 +695,10 @@ static void test_guarded(methods *m)
  * (the paper's point: culled fragments take no memory). */
 static void test_guarded_memory(void)
 {
-    oit_error err = {0};
-    methods m = {0};
+    methods m;
     quad_spec *deep = full_stack(40, 0.25f, 247, 99u);
     oit_triangle *td = scene_tris(deep, 40);
-    if (methods_create(&m, &err) != OIT_OK) {
-        CHECK(0, "create: %s", err.message);
-    } else {
+    if (methods_open(&m)) {
         oit_view v;
         scene_view(&v, 96, 64, OIT_SHADING_TRANSPARENT);
         oit_frame_stats g, p;
@@ -754,14 +764,12 @@ static void check_f2b_pixels(methods *m, const char *scene, const quad_spec *q, 
  * fragments. */
 static void test_f2b(methods *m)
 {
-    const int n = 12;
-    quad_spec *q = quad_stack(n, -2.0f, 0.7f);
-    shuffle_quads(q, n, 0x2545f491u);
+    const int n = QUADS12;
+    oit_triangle *tris, shapes[48];
     oit_view v;
-    scene_view(&v, 96, 64, OIT_SHADING_TRANSPARENT);
+    quad_spec *q = quads12(0x2545f491u, &tris, &v);
     set_threshold(m, M_F2B, 0.0f);
     check_f2b_pixels(m, "quads12", q, n, &v, 0.0f);
-    oit_triangle *tris = scene_tris(q, n), shapes[48];
     double hand = INFINITY;
     result r = render(m, M_F2B, tris, 2 * (size_t)n, &v);
     if (r.ok)
@@ -798,11 +806,8 @@ static void test_f2b(methods *m)
 int main(void)
 {
     oit_gl *gl = test_gl_open();
-    oit_error err = {0};
-    methods m = {0};
-    oit_status s = methods_create(&m, &err);
-    CHECK(s == OIT_OK, "create: %s", err.message);
-    if (s == OIT_OK) {
+    methods m;
+    if (methods_open(&m)) {
         test_exact_quads(&m);
         test_exact_shapes(&m);
         test_ddp_translucent(&m);
