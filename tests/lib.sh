@@ -44,6 +44,7 @@ need_tools() {
 # need_every_tool: P, G, S and BN, the paths of oitprep, oitgen, oitstream
 # and oitbench, each built or the test skipped.
 need_every_tool() {
+    : "${OIT_BIN:?OIT_BIN must name the tools folder}"
     P="$OIT_BIN/oitprep"
     G="$OIT_BIN/oitgen"
     S="$OIT_BIN/oitstream"
