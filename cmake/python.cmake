@@ -1,6 +1,6 @@
 # The Python package python/oit (ctypes over liboit.so, numpy): installed
 # with liboit so that `import oit` finds the library beside it, and tested
-# by python/tests (tests/python.cmake).
+# by python/tests (tests/python/CMakeLists.txt).
 set(OIT_PYTHON /usr/bin/python3 CACHE FILEPATH
     "the Python 3 that runs python/tests (Debian's, with python3-numpy and python3-pytest)")
 set(OIT_PYTHON_INSTALL_DIR "lib/python3/dist-packages" CACHE STRING

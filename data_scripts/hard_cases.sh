@@ -1,5 +1,5 @@
 #!/bin/sh
-# Every `oitgen hard` case through tests/test_hard.sh (oitprep, verify, every
+# Every `oitgen hard` case through tests/integration/test_hard.sh (oitprep, verify, every
 # exact method, several views), its printed figures gathered into one
 # markdown report: what the hard-case suite measured on this machine.
 #
@@ -22,7 +22,7 @@ mkdir -p "$(dirname "$out")"
     echo "method against DFB (stream and PLL on the part file, depth peeling and DFB"
     echo "on the source mesh, the Embree reference outside its ambiguous pixels)."
     echo "\"over 1/255\" is the share of pixels with a channel off by more than 1/255;"
-    echo "every check's limit is 0.1% (0.5% part file vs mesh), as in tests/test_hard.sh."
+    echo "every check's limit is 0.1% (0.5% part file vs mesh), as in tests/integration/test_hard.sh."
     echo
 } > "$out"
 status=0
@@ -30,7 +30,7 @@ for c in $cases; do
     echo "hard_cases: $c" >&2
     echo "## $c" >> "$out"
     echo '```' >> "$out"
-    OIT_BIN="$bin" OIT_TEST_TMP="$work" OIT_HARD_SIZE="$size" sh "$here/tests/test_hard.sh" "$c" \
+    OIT_BIN="$bin" OIT_TEST_TMP="$work" OIT_HARD_SIZE="$size" sh "$here/tests/integration/test_hard.sh" "$c" \
         >> "$out" 2>&1 || status=1
     echo '```' >> "$out"
 done

@@ -10,7 +10,7 @@
  *   cc embed_liboit.c $(pkg-config --cflags --libs oit opengl egl) -lm
  *
  * or with find_package(oit) and find_package(OpenGL COMPONENTS OpenGL EGL)
- * (tests/test_install.sh does both). The image is written as a binary PPM
+ * (tests/liboit/test_install.sh does both). The image is written as a binary PPM
  * to keep the example free of an image library. */
 #define GL_GLEXT_PROTOTYPES 1
 #include <EGL/egl.h>

@@ -16,7 +16,7 @@
  *
  * Each produces, for every stream the encoder writes, the same bytes as
  * meshopt_decodeVertexBuffer / meshopt_decodeIndexSequence of libmeshoptimizer
- * 0.18 (tests/test_meshopt_decode.c checks that against the library). Other
+ * 0.18 (tests/partfile/test_meshopt_decode.c checks that against the library). Other
  * codec versions are refused, not guessed at.
  *
  * Safety: for any input whatsoever (a part file is untrusted) they read only

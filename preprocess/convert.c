@@ -606,7 +606,7 @@ static oit_status convert_binned(const oit_convert_options *o, const oit_mesh_in
 {
     char options[200];
     /* The guaranteed scheme's options read as before it had a name
-     * (tests/test_prep_pinned.sh pins its files). */
+     * (tests/preprocess/test_prep_pinned.sh pins its files). */
     if (o->scheme == OIT_SCHEME_FAST)
         snprintf(options, sizeof options, "K=%u scheme=fast part_triangles=%u grid=%ux%ux%u "
                  "cell=%g", o->K, o->part_triangles, r->grid.dims[0], r->grid.dims[1],

@@ -7,7 +7,7 @@
  * Shaders write layout(std430, binding = OIT_BIND_FRAGS) and the driver's
  * preprocessor puts in the number that glBindBufferBase(...,
  * OIT_BIND_FRAGS, ...) binds. Neither side spells a binding as a number:
- * tests/test_glsl_bindings.sh fails on one, naming file and line.
+ * tests/render/test_glsl_bindings.sh fails on one, naming file and line.
  *
  * GL numbers three kinds of binding point separately; the prefix tells the
  * kind: OIT_BIND_ storage buffers, OIT_TEX_ texture units (sampler

@@ -4,16 +4,15 @@
 # up fails here, naming the file and the include.
 # usage: test_include_direction.sh SOURCE_DIR
 set -eu
+. "${OIT_TEST_LIB:-$(dirname "$0")/lib.sh}"
 cd "$1"
-status=0
 
 # Each line: a folder, then the folders whose headers it may include
 # ("oit" is include/oit/; a folder allows its headers, a header path that
 # header alone).
 while read -r dir ok; do
     if [ ! -d "$dir" ]; then # a moved folder must move in this table too
-        echo "FAIL: no folder $dir: update this table" >&2
-        status=1
+        fail "no folder $dir: update this table"
         continue
     fi
     for f in "$dir"/*.c "$dir"/*.h "$dir"/*.cpp; do
@@ -24,10 +23,8 @@ while read -r dir ok; do
             for a in $ok; do
                 case $inc in "$a" | "$a"/*) hit=1 ;; esac
             done
-            if [ $hit = 0 ]; then
-                echo "FAIL: $f includes \"$inc\": $dir may include only: ${ok:-system headers and its own}" >&2
-                status=1
-            fi
+            [ $hit = 1 ] ||
+                fail "$f includes \"$inc\": $dir may include only: ${ok:-system headers and its own}"
         done
     done
 done <<EOF
@@ -50,5 +47,4 @@ tools/oitstream oit base formats partfile render plot stream tools/common tools/
 tools/oitbench oit base formats partfile render plot preprocess stream tools/common tools/oitbench
 tools/oit_meshinfo oit
 EOF
-[ $status = 0 ] && echo "ok: every folder includes only its own headers and those below it"
-exit $status
+finish "include direction"

@@ -1,0 +1,73 @@
+#!/bin/sh
+# Binding points are named, never numbered (render/glsl_bindings.h): a GLSL
+# layout(binding = N) or a glBindBufferBase(..., N, ...) with a number for N
+# agrees with the other side only until someone renumbers the list. Fails naming each
+# file:line that spells a storage binding, texture unit or image unit as a
+# number.
+# usage: test_glsl_bindings.sh SOURCE_DIR [FOLDER...]
+#          FOLDERs under SOURCE_DIR; default: render tests liboit
+#        test_glsl_bindings.sh --self-test TMP_DIR
+#          plants one literal of each kind under TMP_DIR and checks that
+#          every one is named, so that a pattern that stopped matching
+#          cannot pass for clean sources.
+set -eu
+. "${OIT_TEST_LIB:-$(dirname "$0")/../lib.sh}"
+
+if [ "$1" = --self-test ]; then
+    dir="$2/glsl_bindings_selftest"
+    rm -rf "$dir"
+    mkdir -p "$dir/render"
+    # digits through variables: a grep of the tree for numeric GLSL
+    # bindings (binding = digit) then finds none in this script
+    three=3 zero=0
+    cat >"$dir/render/planted.c" <<EOF
+static const char fs[] =
+    "layout(std430, binding = $three) buffer Frags { uvec4 frags[]; };\n"
+    "layout(rgba32f, binding=$zero) writeonly uniform image2D u_out;\n";
+void f(void)
+{
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, buf);
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 1, buf, 0, 16);
+    glBindImageTexture(0, tex, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindTextureUnit(1, tex);
+    glBindSampler(7, sampler);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, buf); /* named: fine */
+}
+EOF
+    if out=$(sh "$0" "$dir" render 2>&1); then
+        die "planted literals passed: $out"
+    fi
+    for line in 2 3 6 7 8 9 10; do
+        case $out in
+        *"render/planted.c:$line:"*) ;;
+        *) die "planted literal at render/planted.c:$line not named: $out" ;;
+        esac
+    done
+    case $out in
+    *"render/planted.c:11:"*) die "a named binding was reported: $out" ;;
+    esac
+    rm -rf "$dir"
+    echo "ok: every planted literal is named"
+    exit 0
+fi
+
+cd "$1"
+shift
+[ $# -gt 0 ] || set -- render tests liboit
+for d in "$@"; do
+    [ -d "$d" ] || die "no folder $d" # a moved folder must move here too
+done
+
+# GLSL: layout(..., binding = N). C: the index argument of the calls that
+# bind by number (the first, or the second after the target). One line at a
+# time: a call that breaks before its index is not seen.
+hits=$(grep -rnE --include='*.c' --include='*.h' \
+    -e 'binding[[:space:]]*=[[:space:]]*[0-9]' \
+    -e '(glBindBufferBase|glBindBufferRange)[[:space:]]*\([^,]*,[[:space:]]*[0-9]' \
+    -e '(glBindImageTexture|glBindTextureUnit|glBindSampler)[[:space:]]*\([[:space:]]*[0-9]' \
+    "$@" || true)
+if [ -n "$hits" ]; then
+    printf '%s\n' "$hits" | sed 's/^\([^:]*:[0-9]*\):[[:space:]]*\(.*\)/FAIL: \1: a binding point as a number (name it in render\/glsl_bindings.h): \2/' >&2
+    exit 1
+fi
+echo "ok: no numeric binding point in $*"

@@ -1,0 +1,126 @@
+#!/bin/sh
+# oitstream --window under a virtual X display (run by xvfb-run): the window
+# shows exactly what the headless renderer writes, and each scripted key
+# changes the frame the way the matching command-line option does:
+#   - the window's screenshot (no overlay) equals `--out` of the same view
+#   - the status line changes the top rows only, and some of them
+#   - L equals `--show layers`, T equals `--shading translucent`, the key
+#     of "array" equals `--method array`, W moves the view and R restores it
+#   - Q stops the loop early with exit status 0; E reports no early termination
+#   - one key map for meshes and part files: key 1 is dfb and key 5 stream for
+#     both; on a mesh, 5 puts a message on the image saying why it cannot run
+#   - --up z equals `--up z --out` and changes the default view
+#   - the status line of named fields wraps to the window's width
+# Equal means within half an 8-bit step (the window quantises to 8 bits).
+set -u
+. "${OIT_TEST_LIB:-$(dirname "$0")/../../lib.sh}"
+[ -n "${DISPLAY:-}" ] || skip "no DISPLAY (run under xvfb-run)"
+S="$OIT_BIN/oitstream"
+scratch viewer
+cd "$T" || exit 1
+SIZE=160x120
+EQUAL=0.002 # 0.5/255 plus float slack
+
+# 0. Usage errors (exit 2) before any window opens.
+for bad in "--window-frames 3" "--window --orbit 4" "--window --out x.png"; do
+    # shellcheck disable=SC2086 # the options are meant to split
+    "$S" quads.ply $bad >/dev/null 2>&1; rc=$?
+    [ "$rc" -eq 2 ] || fail "oitstream quads.ply $bad: exit $rc, want 2"
+done
+for opt in --window-script --preview --still --up; do
+    "$S" --help | grep -q -- "$opt" || fail "--help does not document $opt"
+done
+"$S" quads.ply --preview lowres >/dev/null 2>&1; rc=$?
+[ "$rc" -eq 2 ] || fail "--preview without --window: exit $rc, want 2"
+"$S" quads.ply --window --up w >/dev/null 2>&1; rc=$?
+[ "$rc" -eq 2 ] || fail "--up w: exit $rc, want 2"
+
+# 24 overlapping translucent squares: every pixel of the centre has many
+# layers, and few triangles keep llvmpipe frames fast.
+"$OIT_BIN/oitgen" quads --count 24 -o quads.ply >/dev/null || { fail "oitgen quads"; exit 1; }
+
+# 1. The overlay run: 3 frames, screenshot of the last.
+"$S" quads.ply --window --size $SIZE --window-frames 3 --window-screenshot overlay.png >overlay.txt 2>&1 ||
+    { cat overlay.txt; fail "--window exited with $?"; exit 1; }
+cat overlay.txt
+grep -q "^viewer: 3 frames" overlay.txt || fail "the overlay run did not show 3 frames"
+[ -f overlay.png ] || fail "no overlay.png"
+ARRAY_KEY=$(sed -n 's/^viewer: key \([1-9]\): array$/\1/p' overlay.txt)
+[ -n "$ARRAY_KEY" ] || fail "no key lists the array method"
+
+# 2. The scripted run, no overlay: P saves oitstream_NNN.png after the next frame.
+#    000 home, 001 heat map, 002 translucent, 003 after W, 004 array after R.
+SCRIPT="PLPLTPTWPR${ARRAY_KEY}PEEQ"
+"$S" quads.ply --window --no-overlay --size $SIZE --window-frames 100 --window-script "$SCRIPT" \
+    >script.txt 2>&1 || { cat script.txt; fail "the scripted run exited with $?"; }
+cat script.txt
+FRAMES=$(sed -n 's/^viewer: \([0-9]*\) frames.*/\1/p' script.txt)
+[ "$FRAMES" = "$(( ${#SCRIPT} - 1 ))" ] || fail "Q should stop after $(( ${#SCRIPT} - 1 )) frames, not '$FRAMES'"
+grep -q "early termination on, epsilon 0.00392157 (used by the stream method only)" script.txt &&
+    grep -q "early termination off (exact)" script.txt || fail "E E did not turn early termination on, then off"
+for i in 000 001 002 003 004; do [ -f oitstream_$i.png ] || fail "P did not save oitstream_$i.png"; done
+
+# 3. The same views headless.
+"$S" quads.ply --size $SIZE --quiet --out ref.png || fail "headless dfb"
+"$S" quads.ply --size $SIZE --quiet --show layers --out heat.png || fail "headless heat map"
+"$S" quads.ply --size $SIZE --quiet --shading translucent --out translucent.png || fail "headless translucent"
+"$S" quads.ply --size $SIZE --quiet --method array --out array.png || fail "headless array"
+
+expect_equal "window vs headless" oitstream_000.png ref.png
+expect_equal "L vs --show layers" oitstream_001.png heat.png
+expect_differ "L vs colour" oitstream_001.png ref.png 1000
+expect_equal "T vs --shading translucent" oitstream_002.png translucent.png
+expect_differ "T vs transparent" oitstream_002.png ref.png 100
+expect_differ "W vs home" oitstream_003.png ref.png 100
+expect_equal "R then array key vs --method array" oitstream_004.png array.png
+
+# 4. The status line: some pixels change, all within its band, whose rows
+#    the viewer reports: whole lines of 11 rows (the named fields wrap at
+#    160 pixels: more than one line, fewer than would fill the window).
+BAND=$(sed -n 's/^viewer: .* status band \([0-9]*\) rows.*/\1/p' overlay.txt)
+echo "status band: $BAND rows"
+[ -n "$BAND" ] && [ $((BAND % 11)) -eq 0 ] && [ "$BAND" -ge 22 ] && [ "$BAND" -le 66 ] ||
+    fail "the status band is '$BAND' rows, want 2 to 6 lines of 11"
+grep -q "last: 1 dfb  exact  frame [0-9.]* ms  fragments [0-9.]*K  layers 24  overflow 0" overlay.txt ||
+    fail "the status line does not name its fields"
+image_diff "overlay vs none" overlay.png oitstream_000.png
+[ "$OVER" -ge 50 ] && [ "$OVER" -le $((160 * ${BAND:-11})) ] ||
+    fail "the status line changed $OVER pixels, want 50..$((160 * ${BAND:-11})) (the top $BAND rows)"
+
+# 5. One key map: 1 is dfb and 5 stream on a part file as on a mesh; on the
+#    mesh 5 leaves dfb on and says why on the image (000 before, 001 after).
+"$OIT_BIN/oitprep" quads.ply -o quads.oitp >/dev/null 2>&1 || fail "oitprep quads"
+"$S" quads.oitp --window --no-overlay --size $SIZE --window-script "1" >keys_part.txt 2>&1 ||
+    { cat keys_part.txt; fail "the part-file run exited with $?"; }
+rm -f oitstream_00[0-9].png
+"$S" quads.ply --window --no-overlay --size $SIZE --window-script "P5P4" >keys_mesh.txt 2>&1 ||
+    { cat keys_mesh.txt; fail "the mesh key run exited with $?"; }
+cat keys_part.txt keys_mesh.txt
+for f in keys_part.txt keys_mesh.txt; do
+    grep -q "^viewer: key 1: dfb$" $f || fail "$f: key 1 is not dfb"
+    grep -q "^viewer: key 5: stream" $f || fail "$f: key 5 is not stream"
+done
+grep -q "^viewer: method 5: stream" keys_part.txt || fail "a part file does not start with 5, stream"
+grep -q "^viewer: method 1: dfb" keys_part.txt || fail "key 1 on a part file does not switch to dfb"
+grep -q "^viewer: 5 stream cannot run on this input: needs a part file" keys_mesh.txt ||
+    fail "key 5 on a mesh does not say why stream cannot run"
+grep -q "^viewer: method 5" keys_mesh.txt && fail "key 5 on a mesh switched method"
+#    4, stencil, runs or says why it cannot run here (llvmpipe: too few samples)
+grep -q "^viewer: method 4: stencil\|^viewer: 4 stencil cannot run here: ." keys_mesh.txt ||
+    fail "key 4 neither switched to stencil nor said why it cannot"
+expect_equal "before 5 vs headless" oitstream_000.png ref.png
+expect_differ "the message of 5 on the image" oitstream_001.png oitstream_000.png 100
+
+# 6. --up z: the window's default view is the headless --up z view, and not
+#    the y-up one.
+"$S" quads.ply --window --no-overlay --size $SIZE --up z --window-screenshot upz.png >upz.txt 2>&1 ||
+    { cat upz.txt; fail "the --up z window exited with $?"; }
+"$S" quads.ply --size $SIZE --quiet --up z --out upz_ref.png || fail "headless --up z"
+expect_equal "--up z window vs headless" upz.png upz_ref.png
+expect_differ "--up z vs y" upz.png ref.png 1000
+#    U cycles y -> z: the same view
+"$S" quads.ply --window --no-overlay --size $SIZE --window-script "U" --window-screenshot upkey.png >upkey.txt 2>&1 ||
+    { cat upkey.txt; fail "the U run exited with $?"; }
+expect_equal "U vs --up z" upkey.png upz_ref.png
+
+finish viewer
