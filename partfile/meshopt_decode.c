@@ -33,27 +33,19 @@ static size_t block_vertices(size_t stride)
  * the delta sum, or a 32-bit word the last 4 of a stride that is 4 mod 8. */
 #define LANES 8u
 
-/* 2-bit and 4-bit deltas are packed first-delta-in-the-high-bits; an all-ones
- * field (the sentinel) takes the next escape byte instead. Branch-free, as
- * sentinels are as unpredictable as the data. */
-static const unsigned char *unpack_bits2(const unsigned char *in, unsigned char *out)
+/* 2-bit and 4-bit deltas ('bits') are packed first-delta-in-the-high-bits;
+ * an all-ones field (the sentinel) takes the next escape byte instead.
+ * Branch-free, as sentinels are as unpredictable as the data. Inlined with
+ * a constant 'bits', each width gets its own loop. */
+static inline const unsigned char *unpack_bits(const unsigned char *in, unsigned char *out,
+                                               unsigned bits)
 {
-    const unsigned char *escape = in + GROUP * 2 / 8;
+    const unsigned per_byte = 8 / bits, sentinel = (1u << bits) - 1;
+    const unsigned char *escape = in + GROUP * bits / 8;
     for (unsigned i = 0; i < GROUP; i++) {
-        unsigned v = (in[i / 4] >> (6 - 2 * (i % 4))) & 3u;
-        out[i * LANES] = v == 3u ? *escape : (unsigned char)v;
-        escape += v == 3u;
-    }
-    return escape;
-}
-
-static const unsigned char *unpack_bits4(const unsigned char *in, unsigned char *out)
-{
-    const unsigned char *escape = in + GROUP * 4 / 8;
-    for (unsigned i = 0; i < GROUP; i++) {
-        unsigned v = (in[i / 2] >> (4 - 4 * (i % 2))) & 15u;
-        out[i * LANES] = v == 15u ? *escape : (unsigned char)v;
-        escape += v == 15u;
+        unsigned v = (in[i / per_byte] >> (8 - bits - bits * (i % per_byte))) & sentinel;
+        out[i * LANES] = v == sentinel ? *escape : (unsigned char)v;
+        escape += v == sentinel;
     }
     return escape;
 }
@@ -68,9 +60,9 @@ static const unsigned char *unpack_group(const unsigned char *in, unsigned mode,
             out[i * LANES] = 0;
         return in;
     case 1:
-        return unpack_bits2(in, out);
+        return unpack_bits(in, out, 2);
     case 2:
-        return unpack_bits4(in, out);
+        return unpack_bits(in, out, 4);
     default:
         for (unsigned i = 0; i < GROUP; i++)
             out[i * LANES] = in[i];

@@ -51,12 +51,11 @@ static const char append_fs[] =
     "    }\n"
     "}\n";
 
-static const char walk_glsl[] = OIT_LIST_NODE_WALK(2u);
-
 /* 0xffffffff means no node, so it is no node index. A pass that overflows
  * counts as if guards past the pool never culled, so the pool doubles at
  * most per pass rather than growing to PLL's size at once. */
-static const oit_list_desc desc = {"guarded OIT", append_fs, walk_glsl, 1, 2, 0xfffffffeull, 2};
+static const oit_list_desc desc = {"guarded OIT", append_fs, OIT_LIST_NODE_WALK(2u), 1, 2,
+                                   0xfffffffeull, 2};
 
 static oit_status oit_guarded_init(oit_guarded *g, oit_error *err)
 {

@@ -19,10 +19,9 @@ static const char append_fs[] =
     "    next[n] = atomicExchange(heads[oit_pixel_index()], n);\n"
     "}\n";
 
-static const char walk_glsl[] = OIT_LIST_NODE_WALK(1u);
-
 /* 0xffffffff ends a list, so it is no node index. */
-static const oit_list_desc desc = {"PLL", append_fs, walk_glsl, 1, 1, 0xfffffffeull, 0};
+static const oit_list_desc desc = {"PLL", append_fs, OIT_LIST_NODE_WALK(1u), 1, 1, 0xfffffffeull,
+                                   0};
 
 uint64_t oit_pll_capacity(const oit_pll *p)
 {
