@@ -104,33 +104,23 @@ static uint64_t add_bytes(uint64_t a, uint64_t b)
     return ((a & LOW7) + (b & LOW7)) ^ ((a ^ b) & HIGH);
 }
 
-/* Sums the deltas of 8 byte positions down the block, from the vertex
- * before it (`last`, which then becomes the block's last vertex). */
-static void add_deltas8(const unsigned char *deltas, size_t count, unsigned char *out,
-                        size_t stride, unsigned char *last)
+/* Sums the deltas of 'width' byte positions (8, or the 4 of lanes 0-3)
+ * down the block, from the vertex before it (`last`, which then becomes the
+ * block's last vertex). The bytes of a narrower width sit in the same bytes
+ * of the words in and out, and the arithmetic is bytewise, so the bytes
+ * beyond it stay 0 whatever the byte order. Inlined with a constant
+ * 'width', each width gets its own loop. */
+static inline void add_deltas(const unsigned char *deltas, size_t count, unsigned char *out,
+                              size_t stride, unsigned char *last, size_t width)
 {
-    uint64_t v, z;
-    memcpy(&v, last, 8);
+    uint64_t v = 0, z = 0;
+    memcpy(&v, last, width);
     for (size_t i = 0; i < count; i++, out += stride) {
-        memcpy(&z, deltas + i * LANES, 8);
+        memcpy(&z, deltas + i * LANES, width);
         v = add_bytes(v, unzigzag_bytes(z));
-        memcpy(out, &v, 8);
+        memcpy(out, &v, width);
     }
-    memcpy(last, &v, 8);
-}
-
-/* The same for 4 byte positions (lanes 0-3 of the deltas). */
-static void add_deltas4(const unsigned char *deltas, size_t count, unsigned char *out,
-                        size_t stride, unsigned char *last)
-{
-    uint32_t v, z;
-    memcpy(&v, last, 4);
-    for (size_t i = 0; i < count; i++, out += stride) {
-        memcpy(&z, deltas + i * LANES, 4);
-        v = (uint32_t)add_bytes(v, unzigzag_bytes(z));
-        memcpy(out, &v, 4);
-    }
-    memcpy(last, &v, 4);
+    memcpy(last, &v, width);
 }
 
 /* A block is stored byte position by byte position (deinterleaved), each
@@ -150,9 +140,9 @@ static const unsigned char *decode_block(const unsigned char *p, const unsigned 
                 return NULL;
         }
         if (lanes == LANES)
-            add_deltas8(deltas, count, dst + k, stride, last + k);
+            add_deltas(deltas, count, dst + k, stride, last + k, 8);
         else
-            add_deltas4(deltas, count, dst + k, stride, last + k);
+            add_deltas(deltas, count, dst + k, stride, last + k, 4);
     }
     return p;
 }

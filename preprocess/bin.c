@@ -1,5 +1,6 @@
 /* Out-of-core binning (bin.h). */
 #include "preprocess/bin.h"
+#include "base/grow.h"
 #include "base/minmax.h"
 
 #include <errno.h>
@@ -144,15 +145,13 @@ static oit_status push(oit_bins *b, uint64_t c, const oit_triangle *t, uint32_t 
     cell_bin *cb = &b->bins[c];
     if (cb->n == cb->cap) {
         size_t cap = cb->cap ? 2 * cb->cap : 64;
-        oit_triangle *p = realloc(cb->tris, cap * sizeof *p);
-        if (p)
-            cb->tris = p;
-        uint32_t *q = p ? realloc(cb->src, cap * sizeof *q) : NULL;
-        if (!q)
+        int ok = 1;
+        cb->tris = oit_grow(cb->tris, cap, sizeof *cb->tris, &ok);
+        cb->src = oit_grow(cb->src, cap, sizeof *cb->src, &ok);
+        if (!ok)
             return oit_error_set(err, OIT_ERR_NOMEM, "bin of cell %llu: out of memory",
                                  (unsigned long long)c);
-        b->held += (cap - cb->cap) * (sizeof *p + sizeof *q);
-        cb->src = q;
+        b->held += (cap - cb->cap) * (sizeof *cb->tris + sizeof *cb->src);
         cb->cap = cap;
     }
     cb->src[cb->n] = src;

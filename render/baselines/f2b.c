@@ -5,6 +5,7 @@
 #include "render/baselines/f2b.h"
 #include "render/baselines/methods.h"
 
+#include "base/grow.h"
 #include "render/baselines/baseline_common.h"
 #include "render/image.h"
 
@@ -122,17 +123,13 @@ static oit_status reserve_host(oit_f2b *f, size_t n, oit_error *err)
 {
     if (n <= f->host_cap)
         return OIT_OK;
-    uint64_t *p = realloc(f->pairs, n * sizeof *p);
-    if (p)
-        f->pairs = p;
-    uint64_t *q = p ? realloc(f->scratch, n * sizeof *q) : NULL;
-    if (q)
-        f->scratch = q;
-    uint32_t *w = q ? realloc(f->words, n * sizeof *w) : NULL;
-    if (!w)
+    int ok = 1;
+    f->pairs = oit_grow(f->pairs, n, sizeof *f->pairs, &ok);
+    f->scratch = oit_grow(f->scratch, n, sizeof *f->scratch, &ok);
+    f->words = oit_grow(f->words, n, sizeof *f->words, &ok);
+    if (!ok)
         return oit_error_set(err, OIT_ERR_NOMEM, "F2B: cannot allocate the sort of %zu "
                              "triangles", n);
-    f->words = w;
     f->host_cap = n;
     return OIT_OK;
 }

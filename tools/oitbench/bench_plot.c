@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/grow.h"
 #include "plot/chart.h"
 
 enum {
@@ -365,12 +366,11 @@ static int add_point(series_set *set, const char *name, double x, double y)
         return 0;
     if (s->n == s->cap) {
         int nc = s->cap ? 2 * s->cap : 8;
-        double *nx = realloc(s->x, (size_t)nc * sizeof *nx);
-        if (nx) s->x = nx;
-        double *ny = nx ? realloc(s->y, (size_t)nc * sizeof *ny) : NULL;
-        if (!ny)
+        int ok = 1;
+        s->x = oit_grow(s->x, (size_t)nc, sizeof *s->x, &ok);
+        s->y = oit_grow(s->y, (size_t)nc, sizeof *s->y, &ok);
+        if (!ok)
             return 0;
-        s->y = ny;
         s->cap = nc;
     }
     s->x[s->n] = x;
