@@ -24,8 +24,11 @@
 
 #define OIT_COUNTED_MAX_SORTED OIT_GLSL_SEGMENT_LOCAL
 
+/* Its programs, the two geometry passes first. */
+enum { OIT_COUNTED_COUNT, OIT_COUNTED_STORE, OIT_COUNTED_RESOLVE, OIT_COUNTED_PROGS };
+
 typedef struct oit_counted {
-    GLuint count_prog, store_prog, resolve_prog;
+    GLuint prog[OIT_COUNTED_PROGS];
     GLuint offsets, frags;
     uint64_t offsets_cap, frags_cap;
     oit_scan scan;

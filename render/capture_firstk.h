@@ -38,8 +38,18 @@
 #include "render/frag_glsl.h"
 #include "render/gpu_mesh.h"
 
+/* Its programs, the two geometry passes first. */
+enum {
+    OIT_FIRSTK_FILL,
+    OIT_FIRSTK_STORE,
+    OIT_FIRSTK_RESOLVE,
+    OIT_FIRSTK_ALLOC,
+    OIT_FIRSTK_SEGMENT,
+    OIT_FIRSTK_PROGS
+};
+
 typedef struct oit_firstk {
-    GLuint fill_prog, resolve_prog, alloc_prog, store_prog, segment_prog;
+    GLuint prog[OIT_FIRSTK_PROGS];
     GLuint store;   /* pass 1: the W slots; pass 2: the overflowed pixels' fragments */
     GLuint table;   /* pass 2: per pixel of the band, (offset, count); count 0: not its */
     GLuint totals;  /* uint overflowed pixels, fragments lo, fragments hi, pad */
