@@ -29,7 +29,7 @@ const char oit_capture_saturated[] = SATURATED;
 
 /* The fill's main: N (a GLSL int) slots per pixel of the tile u_tile, the
  * first N fragments of a pixel kept and the pixel flagged when more come. */
-#define FILL_MAIN(N)                                                                   \
+#define FILL_MAIN(N)                                                                       \
     "void main() {\n"                                                                      \
     "    uint p = oit_pixel_index();\n"                                                    \
     "    if (oit_behind_opaque()) discard;\n"                                              \

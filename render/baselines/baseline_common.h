@@ -156,7 +156,7 @@ oit_status oit_baseline_read_buffer(const char *method, GLuint buf, int w, int h
  * float targets (RGBA32F or R32F) of the frame's size, the first 'attached'
  * of them the framebuffer's colour attachments 0, 1, ... Errors name
  * 'method'. */
-#define OIT_BLEND_PROGS_MAX 4
+#define OIT_BLEND_PROGS_MAX   4
 #define OIT_BLEND_TARGETS_MAX 3
 typedef struct oit_blend_passes {
     const char *method;
@@ -164,9 +164,9 @@ typedef struct oit_blend_passes {
     GLuint tex[OIT_BLEND_TARGETS_MAX];
     GLenum format[OIT_BLEND_TARGETS_MAX];
     int n_prog, n_tex, attached;
-    int w, h;           /* the targets' size */
-    uint64_t bytes;     /* the targets' bytes */
-    uint64_t peak;      /* the most bytes they took */
+    int w, h;       /* the targets' size */
+    uint64_t bytes; /* the targets' bytes */
+    uint64_t peak;  /* the most bytes they took */
 } oit_blend_passes;
 
 oit_status oit_blend_passes_init(oit_blend_passes *p, const char *method,
