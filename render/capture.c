@@ -269,6 +269,23 @@ void oit_capture_set_slot_budget(oit_capture *c, uint64_t bytes)
     c->slot_budget = bytes;
 }
 
+/* The program arrays of the captures this one drives (the counted
+ * capture's, and the first-K capture's), each with its length; in both the
+ * two geometry passes come first. */
+static int backend_programs(oit_capture *c, GLuint *progs[2], int n[2])
+{
+    int k = 0;
+    if (uses_counted(c)) {
+        progs[k] = c->counted.prog;
+        n[k++] = OIT_COUNTED_PROGS;
+    }
+    if (c->backend == OIT_CAPTURE_FIRSTK) {
+        progs[k] = c->firstk.prog;
+        n[k++] = OIT_FIRSTK_PROGS;
+    }
+    return k;
+}
+
 /* The threshold in every program that tests it, effective from the next
  * batch on. */
 static void apply_epsilon(oit_capture *c, float e)
@@ -278,10 +295,10 @@ static void apply_epsilon(oit_capture *c, float e)
     for (int i = 0; i < 2; i++)
         if (c->tile_prog[i][0])
             oit_glsl_set_epsilon_all(&c->tile_prog[i][0], 1, e); /* its fill */
-    if (uses_counted(c))
-        oit_counted_set_epsilon(&c->counted, e);
-    if (c->backend == OIT_CAPTURE_FIRSTK)
-        oit_firstk_set_epsilon(&c->firstk, e);
+    GLuint *sub[2];
+    int n[2];
+    for (int i = 0, m = backend_programs(c, sub, n); i < m; i++)
+        oit_glsl_set_epsilon_all(sub[i], 2, e); /* the geometry passes */
 }
 
 /* Pixels no earlier batch of the frame composited carry T = 1, where the
@@ -311,15 +328,14 @@ static void set_uniforms(oit_capture *c)
         glProgramUniform1ui(progs[i], glGetUniformLocation(progs[i], "u_count"),
                             (GLuint)((uint64_t)c->view.width * c->view.height));
     }
-    if (uses_counted(c))
-        oit_counted_set_view(&c->counted, &c->view);
-    if (c->backend == OIT_CAPTURE_FIRSTK)
-        oit_firstk_set_view(&c->firstk, &c->view);
+    GLuint *sub[2];
+    int n[2], m = backend_programs(c, sub, n);
+    for (int i = 0; i < m; i++)
+        oit_glsl_set_view_all(sub[i], n[i], &c->view);
+    /* the opaque depth's projection replaces the view's */
     oit_glsl_set_opaque_all(progs, PROG_N, &c->opaque);
-    if (uses_counted(c))
-        oit_counted_set_opaque(&c->counted, &c->opaque);
-    if (c->backend == OIT_CAPTURE_FIRSTK)
-        oit_firstk_set_opaque(&c->firstk, &c->opaque);
+    for (int i = 0; i < m; i++)
+        oit_glsl_set_opaque_all(sub[i], n[i], &c->opaque);
     apply_epsilon(c, c->epsilon);
 }
 

@@ -36,21 +36,6 @@ void oit_counted_release(oit_counted *k)
     memset(k, 0, sizeof *k);
 }
 
-void oit_counted_set_view(oit_counted *k, const oit_view *v)
-{
-    oit_glsl_set_view_all(k->prog, OIT_COUNTED_PROGS, v);
-}
-
-void oit_counted_set_opaque(oit_counted *k, const oit_opaque_depth *o)
-{
-    oit_glsl_set_opaque_all(k->prog, OIT_COUNTED_PROGS, o);
-}
-
-void oit_counted_set_epsilon(oit_counted *k, float epsilon)
-{
-    oit_glsl_set_epsilon_all(k->prog, 2, epsilon); /* the geometry passes, first */
-}
-
 uint64_t oit_counted_bytes(const oit_counted *k)
 {
     return k->offsets_cap + k->frags_cap + oit_scan_bytes(&k->scan);

@@ -173,21 +173,6 @@ void oit_firstk_release(oit_firstk *k)
     memset(k, 0, sizeof *k);
 }
 
-void oit_firstk_set_view(oit_firstk *k, const oit_view *v)
-{
-    oit_glsl_set_view_all(k->prog, OIT_FIRSTK_PROGS, v);
-}
-
-void oit_firstk_set_opaque(oit_firstk *k, const oit_opaque_depth *o)
-{
-    oit_glsl_set_opaque_all(k->prog, OIT_FIRSTK_PROGS, o);
-}
-
-void oit_firstk_set_epsilon(oit_firstk *k, float epsilon)
-{
-    oit_glsl_set_epsilon_all(k->prog, 2, epsilon); /* the geometry passes, first */
-}
-
 uint64_t oit_firstk_bytes(const oit_firstk *k)
 {
     return k->store_cap + k->table_cap + 32;

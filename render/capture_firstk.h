@@ -38,7 +38,8 @@
 #include "render/frag_glsl.h"
 #include "render/gpu_mesh.h"
 
-/* Its programs, the two geometry passes first. */
+/* Its programs (prog), set up by capture.c as the counted capture's
+ * (capture_counted.h): the two geometry passes first. */
 enum {
     OIT_FIRSTK_FILL,
     OIT_FIRSTK_STORE,
@@ -64,10 +65,6 @@ typedef struct oit_firstk {
 
 oit_status oit_firstk_init(oit_firstk *k, int K, oit_error *err);
 void oit_firstk_release(oit_firstk *k);
-void oit_firstk_set_view(oit_firstk *k, const oit_view *v);
-/* After oit_firstk_set_view (frag_glsl.h, oit_glsl_set_opaque). */
-void oit_firstk_set_opaque(oit_firstk *k, const oit_opaque_depth *o);
-void oit_firstk_set_epsilon(oit_firstk *k, float epsilon);
 uint64_t oit_firstk_bytes(const oit_firstk *k);
 
 /* The slots a pack over the GL rect r gets: 0 when fewer than 2 fit the
