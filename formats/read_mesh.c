@@ -54,26 +54,19 @@ oit_status oit_mesh_read(const char *path, const oit_read_desc *desc, oit_triang
                          path, ext);
 }
 
-oit_status oit_read_ply(const char *path, const oit_read_desc *desc, oit_triangle_sink sink,
-                        void *user, oit_mesh_info *info, oit_error *err)
-{
-    return oit_rd_with_file(path, oit_read_ply_stream, desc, sink, user, info, err);
-}
+/* The file-path entry of a streaming reader: oit_read_FMT reads path
+ * (gzip or not) with oit_read_FMT_stream. Defines oit_read_ply,
+ * oit_read_obj, oit_read_off and oit_read_stl (oit/mesh.h). */
+#define PATH_READER(FMT)                                                                   \
+    oit_status oit_read_##FMT(const char *path, const oit_read_desc *desc,                \
+                              oit_triangle_sink sink, void *user, oit_mesh_info *info,   \
+                              oit_error *err)                                              \
+    {                                                                                      \
+        return oit_rd_with_file(path, oit_read_##FMT##_stream, desc, sink, user, info,     \
+                                err);                                                      \
+    }
 
-oit_status oit_read_obj(const char *path, const oit_read_desc *desc, oit_triangle_sink sink,
-                        void *user, oit_mesh_info *info, oit_error *err)
-{
-    return oit_rd_with_file(path, oit_read_obj_stream, desc, sink, user, info, err);
-}
-
-oit_status oit_read_off(const char *path, const oit_read_desc *desc, oit_triangle_sink sink,
-                        void *user, oit_mesh_info *info, oit_error *err)
-{
-    return oit_rd_with_file(path, oit_read_off_stream, desc, sink, user, info, err);
-}
-
-oit_status oit_read_stl(const char *path, const oit_read_desc *desc, oit_triangle_sink sink,
-                        void *user, oit_mesh_info *info, oit_error *err)
-{
-    return oit_rd_with_file(path, oit_read_stl_stream, desc, sink, user, info, err);
-}
+PATH_READER(ply)
+PATH_READER(obj)
+PATH_READER(off)
+PATH_READER(stl)

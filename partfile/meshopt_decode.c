@@ -33,27 +33,19 @@ static size_t block_vertices(size_t stride)
  * the delta sum, or a 32-bit word the last 4 of a stride that is 4 mod 8. */
 #define LANES 8u
 
-/* 2-bit and 4-bit deltas are packed first-delta-in-the-high-bits; an all-ones
- * field (the sentinel) takes the next escape byte instead. Branch-free, as
- * sentinels are as unpredictable as the data. */
-static const unsigned char *unpack_bits2(const unsigned char *in, unsigned char *out)
+/* 2-bit and 4-bit deltas ('bits') are packed first-delta-in-the-high-bits;
+ * an all-ones field (the sentinel) takes the next escape byte instead.
+ * Branch-free, as sentinels are as unpredictable as the data. Inlined with
+ * a constant 'bits', each width gets its own loop. */
+static inline const unsigned char *unpack_bits(const unsigned char *in, unsigned char *out,
+                                               unsigned bits)
 {
-    const unsigned char *escape = in + GROUP * 2 / 8;
+    const unsigned per_byte = 8 / bits, sentinel = (1u << bits) - 1;
+    const unsigned char *escape = in + GROUP * bits / 8;
     for (unsigned i = 0; i < GROUP; i++) {
-        unsigned v = (in[i / 4] >> (6 - 2 * (i % 4))) & 3u;
-        out[i * LANES] = v == 3u ? *escape : (unsigned char)v;
-        escape += v == 3u;
-    }
-    return escape;
-}
-
-static const unsigned char *unpack_bits4(const unsigned char *in, unsigned char *out)
-{
-    const unsigned char *escape = in + GROUP * 4 / 8;
-    for (unsigned i = 0; i < GROUP; i++) {
-        unsigned v = (in[i / 2] >> (4 - 4 * (i % 2))) & 15u;
-        out[i * LANES] = v == 15u ? *escape : (unsigned char)v;
-        escape += v == 15u;
+        unsigned v = (in[i / per_byte] >> (8 - bits - bits * (i % per_byte))) & sentinel;
+        out[i * LANES] = v == sentinel ? *escape : (unsigned char)v;
+        escape += v == sentinel;
     }
     return escape;
 }
@@ -68,9 +60,9 @@ static const unsigned char *unpack_group(const unsigned char *in, unsigned mode,
             out[i * LANES] = 0;
         return in;
     case 1:
-        return unpack_bits2(in, out);
+        return unpack_bits(in, out, 2);
     case 2:
-        return unpack_bits4(in, out);
+        return unpack_bits(in, out, 4);
     default:
         for (unsigned i = 0; i < GROUP; i++)
             out[i * LANES] = in[i];
@@ -112,33 +104,23 @@ static uint64_t add_bytes(uint64_t a, uint64_t b)
     return ((a & LOW7) + (b & LOW7)) ^ ((a ^ b) & HIGH);
 }
 
-/* Sums the deltas of 8 byte positions down the block, from the vertex
- * before it (`last`, which then becomes the block's last vertex). */
-static void add_deltas8(const unsigned char *deltas, size_t count, unsigned char *out,
-                        size_t stride, unsigned char *last)
+/* Sums the deltas of 'width' byte positions (8, or the 4 of lanes 0-3)
+ * down the block, from the vertex before it (`last`, which then becomes the
+ * block's last vertex). The bytes of a narrower width sit in the same bytes
+ * of the words in and out, and the arithmetic is bytewise, so the bytes
+ * beyond it stay 0 whatever the byte order. Inlined with a constant
+ * 'width', each width gets its own loop. */
+static inline void add_deltas(const unsigned char *deltas, size_t count, unsigned char *out,
+                              size_t stride, unsigned char *last, size_t width)
 {
-    uint64_t v, z;
-    memcpy(&v, last, 8);
+    uint64_t v = 0, z = 0;
+    memcpy(&v, last, width);
     for (size_t i = 0; i < count; i++, out += stride) {
-        memcpy(&z, deltas + i * LANES, 8);
+        memcpy(&z, deltas + i * LANES, width);
         v = add_bytes(v, unzigzag_bytes(z));
-        memcpy(out, &v, 8);
+        memcpy(out, &v, width);
     }
-    memcpy(last, &v, 8);
-}
-
-/* The same for 4 byte positions (lanes 0-3 of the deltas). */
-static void add_deltas4(const unsigned char *deltas, size_t count, unsigned char *out,
-                        size_t stride, unsigned char *last)
-{
-    uint32_t v, z;
-    memcpy(&v, last, 4);
-    for (size_t i = 0; i < count; i++, out += stride) {
-        memcpy(&z, deltas + i * LANES, 4);
-        v = (uint32_t)add_bytes(v, unzigzag_bytes(z));
-        memcpy(out, &v, 4);
-    }
-    memcpy(last, &v, 4);
+    memcpy(last, &v, width);
 }
 
 /* A block is stored byte position by byte position (deinterleaved), each
@@ -158,9 +140,9 @@ static const unsigned char *decode_block(const unsigned char *p, const unsigned 
                 return NULL;
         }
         if (lanes == LANES)
-            add_deltas8(deltas, count, dst + k, stride, last + k);
+            add_deltas(deltas, count, dst + k, stride, last + k, 8);
         else
-            add_deltas4(deltas, count, dst + k, stride, last + k);
+            add_deltas(deltas, count, dst + k, stride, last + k, 4);
     }
     return p;
 }

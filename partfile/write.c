@@ -598,16 +598,31 @@ static oit_status write_meta(oit_partfile_writer *w, pf_section *table,
     return s;
 }
 
-static oit_status write_array(oit_partfile_writer *w, pf_section *table, uint32_t type,
-                              const vec *v, size_t size, oit_error *err)
+/* A piece of a section's bytes. */
+typedef struct chunk {
+    const void *data;
+    size_t bytes;
+} chunk;
+
+/* Section 'type' of the n chunks in order (those of 0 bytes add nothing),
+ * padded to PF_SECTION_ALIGN. */
+static oit_status write_section(oit_partfile_writer *w, pf_section *table, uint32_t type,
+                                const chunk *c, int n, oit_error *err)
 {
     section_out so;
     oit_status s = begin_section(w, table, type, &so, err);
-    if (!s)
-        s = put(w, &so, v->data, v->count * size, err);
+    for (int i = 0; i < n && !s; i++)
+        if (c[i].bytes)
+            s = put(w, &so, c[i].data, c[i].bytes, err);
     if (!s)
         s = end_section(w, &so, err);
     return s;
+}
+
+static oit_status write_array(oit_partfile_writer *w, pf_section *table, uint32_t type,
+                              const vec *v, size_t size, oit_error *err)
+{
+    return write_section(w, table, type, &(chunk){v->data, v->count * size}, 1, err);
 }
 
 static oit_status write_grids(oit_partfile_writer *w, pf_section *table, bool top, oit_error *err)
@@ -621,19 +636,11 @@ static oit_status write_grids(oit_partfile_writer *w, pf_section *table, bool to
     b.grid_count = (uint32_t)count;
     b.cell_count = cells->count;
     b.list_count = list->count;
-    section_out so;
-    oit_status s = begin_section(w, table, top ? PF_SEC_GRID : PF_SEC_SUBGRIDS, &so, err);
-    if (!s)
-        s = put(w, &so, &b, sizeof b, err);
-    if (!s && count)
-        s = put(w, &so, grids + first, count * sizeof *grids, err);
-    if (!s)
-        s = put(w, &so, cells->data, cells->count * sizeof(oit_partfile_cell), err);
-    if (!s)
-        s = put(w, &so, list->data, list->count * sizeof(uint32_t), err);
-    if (!s)
-        s = end_section(w, &so, err);
-    return s;
+    const chunk c[] = {{&b, sizeof b},
+                       {grids + first, count * sizeof *grids},
+                       {cells->data, cells->count * sizeof(oit_partfile_cell)},
+                       {list->data, list->count * sizeof(uint32_t)}};
+    return write_section(w, table, top ? PF_SEC_GRID : PF_SEC_SUBGRIDS, c, 4, err);
 }
 
 static oit_status write_slabs(oit_partfile_writer *w, pf_section *table, oit_error *err)
@@ -642,17 +649,10 @@ static oit_status write_slabs(oit_partfile_writer *w, pf_section *table, oit_err
     memset(&b, 0, sizeof b);
     b.slab_count = (uint32_t)w->slabs.count;
     b.list_count = w->slab_list.count;
-    section_out so;
-    oit_status s = begin_section(w, table, PF_SEC_SLABS, &so, err);
-    if (!s)
-        s = put(w, &so, &b, sizeof b, err);
-    if (!s)
-        s = put(w, &so, w->slabs.data, w->slabs.count * sizeof(oit_partfile_slab), err);
-    if (!s)
-        s = put(w, &so, w->slab_list.data, w->slab_list.count * sizeof(uint32_t), err);
-    if (!s)
-        s = end_section(w, &so, err);
-    return s;
+    const chunk c[] = {{&b, sizeof b},
+                       {w->slabs.data, w->slabs.count * sizeof(oit_partfile_slab)},
+                       {w->slab_list.data, w->slab_list.count * sizeof(uint32_t)}};
+    return write_section(w, table, PF_SEC_SLABS, c, 3, err);
 }
 
 static oit_status write_header(oit_partfile_writer *w, pf_section *table, oit_error *err)

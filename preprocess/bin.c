@@ -1,5 +1,6 @@
 /* Out-of-core binning (bin.h). */
 #include "preprocess/bin.h"
+#include "base/grow.h"
 #include "base/minmax.h"
 
 #include <errno.h>
@@ -76,20 +77,26 @@ void oit_bin_cell_range(const oit_bin_grid *g, const float mn[3], const float mx
     }
 }
 
-static int write_all(int fd, const void *p, size_t n, uint64_t off)
+/* All n bytes at off, through pwrite (writing) or pread, again after an
+ * interruption or a short transfer; -1 on an error or the file's end. */
+static int transfer_all(int fd, char *c, size_t n, uint64_t off, int writing)
 {
-    const char *c = p;
     while (n) {
-        ssize_t w = pwrite(fd, c, n, (off_t)off);
-        if (w < 0 && errno == EINTR)
+        ssize_t k = writing ? pwrite(fd, c, n, (off_t)off) : pread(fd, c, n, (off_t)off);
+        if (k < 0 && errno == EINTR)
             continue;
-        if (w <= 0)
+        if (k <= 0)
             return -1;
-        c += w;
-        n -= (size_t)w;
-        off += (uint64_t)w;
+        c += k;
+        n -= (size_t)k;
+        off += (uint64_t)k;
     }
     return 0;
+}
+
+static int write_all(int fd, const void *p, size_t n, uint64_t off)
+{
+    return transfer_all(fd, (char *)p, n, off, 1);
 }
 
 static oit_status spill(oit_bins *b, oit_error *err)
@@ -138,15 +145,13 @@ static oit_status push(oit_bins *b, uint64_t c, const oit_triangle *t, uint32_t 
     cell_bin *cb = &b->bins[c];
     if (cb->n == cb->cap) {
         size_t cap = cb->cap ? 2 * cb->cap : 64;
-        oit_triangle *p = realloc(cb->tris, cap * sizeof *p);
-        if (p)
-            cb->tris = p;
-        uint32_t *q = p ? realloc(cb->src, cap * sizeof *q) : NULL;
-        if (!q)
+        int ok = 1;
+        cb->tris = oit_grow(cb->tris, cap, sizeof *cb->tris, &ok);
+        cb->src = oit_grow(cb->src, cap, sizeof *cb->src, &ok);
+        if (!ok)
             return oit_error_set(err, OIT_ERR_NOMEM, "bin of cell %llu: out of memory",
                                  (unsigned long long)c);
-        b->held += (cap - cb->cap) * (sizeof *p + sizeof *q);
-        cb->src = q;
+        b->held += (cap - cb->cap) * (sizeof *cb->tris + sizeof *cb->src);
         cb->cap = cap;
     }
     cb->src[cb->n] = src;
@@ -182,18 +187,7 @@ oit_status oit_bins_add(oit_bins *b, const oit_triangle *tris, const uint32_t *s
 
 static int read_all(int fd, void *p, size_t n, uint64_t off)
 {
-    char *c = p;
-    while (n) {
-        ssize_t r = pread(fd, c, n, (off_t)off);
-        if (r < 0 && errno == EINTR)
-            continue;
-        if (r <= 0)
-            return -1;
-        c += r;
-        n -= (size_t)r;
-        off += (uint64_t)r;
-    }
-    return 0;
+    return transfer_all(fd, p, n, off, 0);
 }
 
 oit_status oit_bins_read_cell(oit_bins *b, uint64_t cell, oit_triangle **tris, uint32_t **src,

@@ -3,6 +3,7 @@
 
 #include <stdlib.h>
 
+#include "base/grow.h"
 #include "partition/clip.h"
 #include "partition/convex.h"
 #include "partition/kd_fast.h"
@@ -28,16 +29,14 @@ static oit_status clip_to_cell(const oit_cell_params *p, const oit_triangle *tri
     for (size_t i = 0; i < n && o && os; i++) {
         if (m + OIT_CLIP_MAX_TRIS > cap) {
             cap *= 2;
-            oit_triangle *q = realloc(o, cap * sizeof *q);
-            if (q)
-                o = q;
-            uint32_t *qs = q ? realloc(os, cap * sizeof *qs) : NULL;
-            if (!qs) {
+            int ok = 1;
+            o = oit_grow(o, cap, sizeof *o, &ok);
+            os = oit_grow(os, cap, sizeof *os, &ok);
+            if (!ok) {
                 free(o);
                 o = NULL;
                 break;
             }
-            os = qs;
         }
         int k = oit_clip_triangle_box(&tris[i], p->lo, p->hi, o + m);
         size_t w = m;

@@ -20,6 +20,7 @@
 #include <string.h>
 
 enum { BUF_COUNTS, BUF_SLOTS, BUF_STATE, BUF_OUT, BUF_TOTALS, BUF_N };
+enum { PROG_FILL, PROG_RESOLVE, PROG_END, PROG_N };
 
 struct oit_capture {
     oit_capture_kind backend;
@@ -28,11 +29,11 @@ struct oit_capture {
     float applied; /* what the programs test now: epsilon, or 0 (gate_epsilon) */
     int touched[4]; /* GL box of the frame's batches so far; empty: x0 >= x1 */
     oit_opaque_depth opaque; /* the caller's depth (oit_capture_set_opaque) */
-    GLuint fill_prog, resolve_prog, end_prog;
+    GLuint prog[PROG_N];
     /* Tiled batches (tile-local slots: wide parts, or a slot budget below
      * the full frame), built on first use: [0] sorts up to 16, [1] up to
-     * OIT_CAPTURE_MAX_LAYERS. */
-    GLuint tile_fill_prog[2], tile_resolve_prog[2];
+     * OIT_CAPTURE_MAX_LAYERS; each its fill, then its resolve. */
+    GLuint tile_prog[2][2];
     uint64_t slot_budget; /* bytes; 0: K slots for every pixel of the frame */
     uint64_t store_limit; /* oit_capture_set_store_limit; 0: the driver's */
     uint64_t bind;        /* this frame's: the least of the two */
@@ -64,28 +65,24 @@ static int uses_counted(const oit_capture *c)
 static oit_status build_programs(oit_capture *c, oit_error *err)
 {
     int stencil = c->backend == OIT_CAPTURE_STENCIL;
-    const char *vs[] = {oit_glsl_version, oit_glsl_vertex, NULL};
-    const char *fs[] = {oit_glsl_version, oit_glsl_fragment_gen, oit_glsl_state_io,
-                        stencil ? oit_capture_stencil_fs : oit_capture_array_fs, NULL};
-    const char *rcs[] = {oit_glsl_version, stencil ? "#define OIT_STENCIL 1\n" : "",
-                         oit_glsl_composite, oit_glsl_state_io, oit_capture_resolve_cs, NULL};
-    const char *ecs[] = {oit_glsl_version, oit_glsl_composite, oit_glsl_state_io,
-                         oit_capture_end_cs, NULL};
-    oit_status s = oit_gl_program_graphics("capture fill", vs, fs, &c->fill_prog, err);
-    if (s == OIT_OK)
-        s = oit_gl_program_compute("capture resolve", rcs, &c->resolve_prog, err);
-    if (s == OIT_OK)
-        s = oit_gl_program_compute("capture end", ecs, &c->end_prog, err);
-    return s;
+    const oit_glsl_program programs[PROG_N] = {
+        [PROG_FILL] = {"capture fill",
+                       .fs = {oit_glsl_state_io,
+                              stencil ? oit_capture_stencil_fs : oit_capture_array_fs}},
+        [PROG_RESOLVE] = {"capture resolve",
+                          .cs = {stencil ? "#define OIT_STENCIL 1\n" : "", oit_glsl_composite,
+                                 oit_glsl_state_io, oit_capture_resolve_cs}},
+        [PROG_END] = {"capture end",
+                      .cs = {oit_glsl_composite, oit_glsl_state_io, oit_capture_end_cs}},
+    };
+    return oit_glsl_programs_build(programs, PROG_N, c->prog, err);
 }
 
 static void release(oit_capture *c)
 {
-    GLuint progs[7] = {c->fill_prog,          c->resolve_prog,           c->end_prog,
-                       c->tile_fill_prog[0],  c->tile_fill_prog[1],      c->tile_resolve_prog[0],
-                       c->tile_resolve_prog[1]};
-    for (int i = 0; i < 7; i++)
-        glDeleteProgram(progs[i]);
+    oit_glsl_programs_delete(c->prog, PROG_N);
+    for (int i = 0; i < 2; i++)
+        oit_glsl_programs_delete(c->tile_prog[i], 2);
     glDeleteFramebuffers(1, &c->fbo);
     glDeleteBuffers(BUF_N, c->buf);
     if (c->stencil.fbo)
@@ -272,20 +269,36 @@ void oit_capture_set_slot_budget(oit_capture *c, uint64_t bytes)
     c->slot_budget = bytes;
 }
 
+/* The program arrays of the captures this one drives (the counted
+ * capture's, and the first-K capture's), each with its length; in both the
+ * two geometry passes come first. */
+static int backend_programs(oit_capture *c, GLuint *progs[2], int n[2])
+{
+    int k = 0;
+    if (uses_counted(c)) {
+        progs[k] = c->counted.prog;
+        n[k++] = OIT_COUNTED_PROGS;
+    }
+    if (c->backend == OIT_CAPTURE_FIRSTK) {
+        progs[k] = c->firstk.prog;
+        n[k++] = OIT_FIRSTK_PROGS;
+    }
+    return k;
+}
+
 /* The threshold in every program that tests it, effective from the next
  * batch on. */
 static void apply_epsilon(oit_capture *c, float e)
 {
     c->applied = e;
-    glProgramUniform1f(c->fill_prog, glGetUniformLocation(c->fill_prog, "u_epsilon"), e);
+    oit_glsl_set_epsilon_all(&c->prog[PROG_FILL], 1, e);
     for (int i = 0; i < 2; i++)
-        if (c->tile_fill_prog[i])
-            glProgramUniform1f(c->tile_fill_prog[i],
-                               glGetUniformLocation(c->tile_fill_prog[i], "u_epsilon"), e);
-    if (uses_counted(c))
-        oit_counted_set_epsilon(&c->counted, e);
-    if (c->backend == OIT_CAPTURE_FIRSTK)
-        oit_firstk_set_epsilon(&c->firstk, e);
+        if (c->tile_prog[i][0])
+            oit_glsl_set_epsilon_all(&c->tile_prog[i][0], 1, e); /* its fill */
+    GLuint *sub[2];
+    int n[2];
+    for (int i = 0, m = backend_programs(c, sub, n); i < m; i++)
+        oit_glsl_set_epsilon_all(sub[i], 2, e); /* the geometry passes */
 }
 
 /* Pixels no earlier batch of the frame composited carry T = 1, where the
@@ -308,22 +321,21 @@ static void gate_epsilon(oit_capture *c, const int r[4])
 
 static void set_uniforms(oit_capture *c)
 {
-    GLuint progs[3] = {c->fill_prog, c->resolve_prog, c->end_prog};
-    for (int i = 0; i < 3; i++) {
+    GLuint *progs = c->prog;
+    for (int i = 0; i < PROG_N; i++) {
         oit_glsl_set_view(progs[i], &c->view);
         glProgramUniform1i(progs[i], glGetUniformLocation(progs[i], "u_K"), c->K);
         glProgramUniform1ui(progs[i], glGetUniformLocation(progs[i], "u_count"),
                             (GLuint)((uint64_t)c->view.width * c->view.height));
     }
-    if (uses_counted(c))
-        oit_counted_set_view(&c->counted, &c->view);
-    if (c->backend == OIT_CAPTURE_FIRSTK)
-        oit_firstk_set_view(&c->firstk, &c->view);
-    oit_glsl_set_opaque_all(progs, 3, &c->opaque);
-    if (uses_counted(c))
-        oit_counted_set_opaque(&c->counted, &c->opaque);
-    if (c->backend == OIT_CAPTURE_FIRSTK)
-        oit_firstk_set_opaque(&c->firstk, &c->opaque);
+    GLuint *sub[2];
+    int n[2], m = backend_programs(c, sub, n);
+    for (int i = 0; i < m; i++)
+        oit_glsl_set_view_all(sub[i], n[i], &c->view);
+    /* the opaque depth's projection replaces the view's */
+    oit_glsl_set_opaque_all(progs, PROG_N, &c->opaque);
+    for (int i = 0; i < m; i++)
+        oit_glsl_set_opaque_all(sub[i], n[i], &c->opaque);
     apply_epsilon(c, c->epsilon);
 }
 
@@ -436,12 +448,12 @@ static void fill(oit_capture *c, const oit_gpu_mesh *const *meshes, int n, const
     if (c->backend == OIT_CAPTURE_STENCIL) {
         oit_stencil_target_route(&c->stencil, r);
         oit_stencil_target_begin_draw(&c->stencil, r);
-        glUseProgram(c->fill_prog);
+        glUseProgram(c->prog[PROG_FILL]);
         oit_gpu_mesh_draw_many(c->draws, meshes, n);
         oit_stencil_target_end_draw();
         glDisable(GL_SCISSOR_TEST);
     } else {
-        draw_scissored(c, c->fill_prog, meshes, n, r);
+        draw_scissored(c, c->prog[PROG_FILL], meshes, n, r);
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
@@ -477,8 +489,8 @@ static oit_status batch_slots(oit_capture *c, const int r[4], oit_error *err)
 {
     uint64_t pixels = (uint64_t)(r[2] - r[0]) * (uint64_t)(r[3] - r[1]);
     oit_status s = reserve(c, BUF_SLOTS, pixels * (uint64_t)c->K * 16, err);
-    glProgramUniform4i(c->fill_prog, glGetUniformLocation(c->fill_prog, "u_tile"), r[0], r[1],
-                       r[2], r[3]);
+    GLuint fill = c->prog[PROG_FILL];
+    glProgramUniform4i(fill, glGetUniformLocation(fill, "u_tile"), r[0], r[1], r[2], r[3]);
     return s;
 }
 
@@ -546,7 +558,7 @@ oit_status oit_capture_batch(oit_capture *c, const oit_gpu_mesh *const *meshes,
     fill(c, meshes, n, r);
     if (c->backend == OIT_CAPTURE_STENCIL)
         glBindTextureUnit(OIT_TEX_SAMPLES, c->stencil.colour);
-    resolve(c->resolve_prog, r);
+    resolve(c->prog[PROG_RESOLVE], r);
     return oit_gl_check("capture: batch", err);
 }
 
@@ -556,24 +568,19 @@ oit_status oit_capture_batch(oit_capture *c, const oit_gpu_mesh *const *meshes,
  * OIT_CAPTURE_MAX_LAYERS (registers a GPU would rather not spend on K). */
 static oit_status tiled_programs(oit_capture *c, int i, oit_error *err)
 {
-    if (!c->tile_fill_prog[i]) {
-        const char *vs[] = {oit_glsl_version, oit_glsl_vertex, NULL};
-        const char *fs[] = {oit_glsl_version, oit_glsl_fragment_gen, oit_glsl_state_io,
-                            oit_capture_wide_fs, NULL};
-        const char *rcs[] = {oit_glsl_version,
-                             i ? "#define OIT_WIDE " OIT_GLSL_STR(OIT_CAPTURE_MAX_LAYERS) "\n"
-                               : "#define OIT_WIDE 16\n",
-                             oit_glsl_composite, oit_glsl_state_io, oit_capture_resolve_cs,
-                             NULL};
-        oit_status s = oit_gl_program_graphics("capture tiled fill", vs, fs,
-                                               &c->tile_fill_prog[i], err);
-        if (s == OIT_OK)
-            s = oit_gl_program_compute("capture tiled resolve", rcs, &c->tile_resolve_prog[i],
-                                       err);
+    GLuint *progs = c->tile_prog[i];
+    if (!progs[0]) {
+        const oit_glsl_program pair[2] = {
+            {"capture tiled fill", .fs = {oit_glsl_state_io, oit_capture_wide_fs}},
+            {"capture tiled resolve",
+             .cs = {i ? "#define OIT_WIDE " OIT_GLSL_STR(OIT_CAPTURE_MAX_LAYERS) "\n"
+                      : "#define OIT_WIDE 16\n",
+                    oit_glsl_composite, oit_glsl_state_io, oit_capture_resolve_cs}},
+        };
+        oit_status s = oit_glsl_programs_build(pair, 2, progs, err);
         if (s != OIT_OK)
             return s;
     }
-    GLuint progs[2] = {c->tile_fill_prog[i], c->tile_resolve_prog[i]};
     for (int k = 0; k < 2; k++) {
         oit_glsl_set_view(progs[k], &c->view);
         oit_glsl_set_opaque(progs[k], &c->opaque);
@@ -587,7 +594,7 @@ static oit_status tiled_programs(oit_capture *c, int i, oit_error *err)
 static void tile_pass(oit_capture *c, const oit_gpu_mesh *const *meshes, int n, int W, int i,
                       const int t[4])
 {
-    GLuint fp = c->tile_fill_prog[i], rp = c->tile_resolve_prog[i];
+    GLuint fp = c->tile_prog[i][0], rp = c->tile_prog[i][1];
     glProgramUniform1i(fp, glGetUniformLocation(fp, "u_W"), W);
     glProgramUniform1i(rp, glGetUniformLocation(rp, "u_W"), W);
     glProgramUniform4i(fp, glGetUniformLocation(fp, "u_tile"), t[0], t[1], t[2], t[3]);
@@ -643,7 +650,7 @@ oit_status oit_capture_batch_layers(oit_capture *c, const oit_gpu_mesh *const *m
  * start) of the pixels [first, first + count). */
 static void end_pass(oit_capture *c, uint64_t first, uint64_t count, int write_out)
 {
-    GLuint p = c->end_prog;
+    GLuint p = c->prog[PROG_END];
     glUseProgram(p);
     glProgramUniform1ui(p, glGetUniformLocation(p, "u_first"), (GLuint)first);
     glProgramUniform1ui(p, glGetUniformLocation(p, "u_count"), (GLuint)count);

@@ -7,25 +7,21 @@
 #include <stdlib.h>
 #include <string.h>
 
+static const oit_glsl_program programs[OIT_COUNTED_PROGS] = {
+    [OIT_COUNTED_COUNT] = {"counted capture count",
+                           .fs = {oit_glsl_state_io, oit_capture_counted_count_fs}},
+    [OIT_COUNTED_STORE] = {"counted capture store",
+                           .fs = {oit_glsl_state_io, oit_capture_counted_store_fs}},
+    [OIT_COUNTED_RESOLVE] = {"counted capture resolve",
+                             .cs = {oit_glsl_composite, oit_glsl_state_io,
+                                    oit_capture_counted_resolve_cs, oit_glsl_segment_composite,
+                                    oit_capture_counted_resolve_main}},
+};
+
 oit_status oit_counted_init(oit_counted *k, oit_error *err)
 {
     memset(k, 0, sizeof *k);
-    const char *vs[] = {oit_glsl_version, oit_glsl_vertex, NULL};
-    const char *cfs[] = {oit_glsl_version, oit_glsl_fragment_gen, oit_glsl_state_io,
-                         oit_capture_counted_count_fs,
-                         NULL};
-    const char *sfs[] = {oit_glsl_version, oit_glsl_fragment_gen, oit_glsl_state_io,
-                         oit_capture_counted_store_fs,
-                         NULL};
-    const char *rcs[] = {oit_glsl_version, oit_glsl_composite, oit_glsl_state_io,
-                         oit_capture_counted_resolve_cs,
-                         oit_glsl_segment_composite, oit_capture_counted_resolve_main, NULL};
-    oit_status s = oit_gl_program_graphics("counted capture count", vs, cfs, &k->count_prog,
-                                           err);
-    if (s == OIT_OK)
-        s = oit_gl_program_graphics("counted capture store", vs, sfs, &k->store_prog, err);
-    if (s == OIT_OK)
-        s = oit_gl_program_compute("counted capture resolve", rcs, &k->resolve_prog, err);
+    oit_status s = oit_glsl_programs_build(programs, OIT_COUNTED_PROGS, k->prog, err);
     if (s == OIT_OK)
         s = oit_scan_init(&k->scan, err);
     return s;
@@ -33,31 +29,11 @@ oit_status oit_counted_init(oit_counted *k, oit_error *err)
 
 void oit_counted_release(oit_counted *k)
 {
-    glDeleteProgram(k->count_prog);
-    glDeleteProgram(k->store_prog);
-    glDeleteProgram(k->resolve_prog);
+    oit_glsl_programs_delete(k->prog, OIT_COUNTED_PROGS);
     glDeleteBuffers(1, &k->offsets);
     glDeleteBuffers(1, &k->frags);
     oit_scan_release(&k->scan);
     memset(k, 0, sizeof *k);
-}
-
-void oit_counted_set_view(oit_counted *k, const oit_view *v)
-{
-    GLuint progs[3] = {k->count_prog, k->store_prog, k->resolve_prog};
-    oit_glsl_set_view_all(progs, 3, v);
-}
-
-void oit_counted_set_opaque(oit_counted *k, const oit_opaque_depth *o)
-{
-    GLuint progs[3] = {k->count_prog, k->store_prog, k->resolve_prog};
-    oit_glsl_set_opaque_all(progs, 3, o);
-}
-
-void oit_counted_set_epsilon(oit_counted *k, float epsilon)
-{
-    GLuint progs[2] = {k->count_prog, k->store_prog};
-    oit_glsl_set_epsilon_all(progs, 2, epsilon);
 }
 
 uint64_t oit_counted_bytes(const oit_counted *k)
@@ -79,8 +55,8 @@ static oit_status count(oit_counted *k, const oit_counted_frame *f,
         return s;
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, f->counts);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_STATE, f->state);
-    oit_glsl_draw_scissored(f->fbo, f->width, f->height, k->count_prog, f->draws, meshes,
-                            n, r);
+    oit_glsl_draw_scissored(f->fbo, f->width, f->height, k->prog[OIT_COUNTED_COUNT], f->draws,
+                            meshes, n, r);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     static const GLuint zero = 0;
     glCopyNamedBufferSubData(f->counts, k->offsets, 0, 0, (GLsizeiptr)(pixels * 4));
@@ -107,16 +83,14 @@ static oit_status store_and_resolve(oit_counted *k, const oit_counted_frame *f,
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, f->counts);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OFFSETS, k->offsets);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_FRAGS, k->frags);
-    glProgramUniform1ui(k->store_prog, glGetUniformLocation(k->store_prog, "u_base"),
-                        (GLuint)base);
-    glProgramUniform1ui(k->resolve_prog, glGetUniformLocation(k->resolve_prog, "u_base"),
-                        (GLuint)base);
-    oit_glsl_draw_scissored(f->fbo, f->width, f->height, k->store_prog, f->draws, meshes,
-                            n, r);
+    GLuint store = k->prog[OIT_COUNTED_STORE], resolve = k->prog[OIT_COUNTED_RESOLVE];
+    glProgramUniform1ui(store, glGetUniformLocation(store, "u_base"), (GLuint)base);
+    glProgramUniform1ui(resolve, glGetUniformLocation(resolve, "u_base"), (GLuint)base);
+    oit_glsl_draw_scissored(f->fbo, f->width, f->height, store, f->draws, meshes, n, r);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    glUseProgram(k->resolve_prog);
-    glProgramUniform2i(k->resolve_prog, 11, f->width, f->height);
-    glProgramUniform4i(k->resolve_prog, 12, r[0], r[1], r[2], r[3]);
+    glUseProgram(resolve);
+    glProgramUniform2i(resolve, 11, f->width, f->height);
+    glProgramUniform4i(resolve, 12, r[0], r[1], r[2], r[3]);
     glDispatchCompute(oit_gl_groups((uint64_t)(r[2] - r[0]), 8),
                       oit_gl_groups((uint64_t)(r[3] - r[1]), 8), 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);

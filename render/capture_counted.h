@@ -24,8 +24,14 @@
 
 #define OIT_COUNTED_MAX_SORTED OIT_GLSL_SEGMENT_LOCAL
 
+/* Its programs (prog), whose uniforms capture.c sets: the view, the opaque
+ * depth after it (frag_glsl.h), and the early-termination threshold in the
+ * two geometry passes, first, which drop fragments of saturated pixels
+ * alike. */
+enum { OIT_COUNTED_COUNT, OIT_COUNTED_STORE, OIT_COUNTED_RESOLVE, OIT_COUNTED_PROGS };
+
 typedef struct oit_counted {
-    GLuint count_prog, store_prog, resolve_prog;
+    GLuint prog[OIT_COUNTED_PROGS];
     GLuint offsets, frags;
     uint64_t offsets_cap, frags_cap;
     oit_scan scan;
@@ -35,12 +41,6 @@ typedef struct oit_counted {
 
 oit_status oit_counted_init(oit_counted *k, oit_error *err);
 void oit_counted_release(oit_counted *k);
-/* View uniforms for the frame; the early-termination threshold (the count
- * and store passes drop fragments of saturated pixels alike). */
-void oit_counted_set_view(oit_counted *k, const oit_view *v);
-/* After oit_counted_set_view (frag_glsl.h, oit_glsl_set_opaque). */
-void oit_counted_set_opaque(oit_counted *k, const oit_opaque_depth *o);
-void oit_counted_set_epsilon(oit_counted *k, float epsilon);
 uint64_t oit_counted_bytes(const oit_counted *k);
 
 /* The frame's buffers and draw scratch, owned by capture.c. */

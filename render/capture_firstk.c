@@ -138,37 +138,25 @@ static const char segment_main[] =
     "    oit_state_store(p, s);\n"
     "}\n";
 
-static oit_status build(oit_firstk *k, oit_error *err)
-{
-    const char *vs[] = {oit_glsl_version, oit_glsl_vertex, NULL};
-    const char *ffs[] = {oit_glsl_version, oit_glsl_fragment_gen, oit_glsl_state_io,
-                         oit_capture_saturated, fill_fs, NULL};
-    const char *sfs[] = {oit_glsl_version, oit_glsl_fragment_gen, oit_glsl_state_io,
-                         oit_capture_saturated, store_fs, NULL};
-    const char *rcs[] = {oit_glsl_version, oit_glsl_composite, oit_glsl_state_io, resolve_cs,
-                         NULL};
-    const char *acs[] = {oit_glsl_version, alloc_cs, NULL};
-    const char *gcs[] = {oit_glsl_version, oit_glsl_composite, oit_glsl_state_io, segment_cs,
-                         oit_glsl_segment_composite, segment_main, NULL};
-    oit_status s = oit_gl_program_graphics("first-k capture fill", vs, ffs, &k->fill_prog, err);
-    if (s == OIT_OK)
-        s = oit_gl_program_graphics("first-k capture store", vs, sfs, &k->store_prog, err);
-    if (s == OIT_OK)
-        s = oit_gl_program_compute("first-k capture resolve", rcs, &k->resolve_prog, err);
-    if (s == OIT_OK)
-        s = oit_gl_program_compute("first-k capture allocation", acs, &k->alloc_prog, err);
-    if (s == OIT_OK)
-        s = oit_gl_program_compute("first-k capture segment resolve", gcs, &k->segment_prog,
-                                   err);
-    return s;
-}
+static const oit_glsl_program programs[OIT_FIRSTK_PROGS] = {
+    [OIT_FIRSTK_FILL] = {"first-k capture fill",
+                         .fs = {oit_glsl_state_io, oit_capture_saturated, fill_fs}},
+    [OIT_FIRSTK_STORE] = {"first-k capture store",
+                          .fs = {oit_glsl_state_io, oit_capture_saturated, store_fs}},
+    [OIT_FIRSTK_RESOLVE] = {"first-k capture resolve",
+                            .cs = {oit_glsl_composite, oit_glsl_state_io, resolve_cs}},
+    [OIT_FIRSTK_ALLOC] = {"first-k capture allocation", .cs = {alloc_cs}},
+    [OIT_FIRSTK_SEGMENT] = {"first-k capture segment resolve",
+                            .cs = {oit_glsl_composite, oit_glsl_state_io, segment_cs,
+                                   oit_glsl_segment_composite, segment_main}},
+};
 
 oit_status oit_firstk_init(oit_firstk *k, int K, oit_error *err)
 {
     memset(k, 0, sizeof *k);
     k->K = K;
     k->budget = UINT64_MAX;
-    oit_status s = build(k, err);
+    oit_status s = oit_glsl_programs_build(programs, OIT_FIRSTK_PROGS, k->prog, err);
     if (s == OIT_OK) {
         glCreateBuffers(1, &k->totals);
         glNamedBufferData(k->totals, 32, NULL, GL_DYNAMIC_COPY);
@@ -179,33 +167,10 @@ oit_status oit_firstk_init(oit_firstk *k, int K, oit_error *err)
 
 void oit_firstk_release(oit_firstk *k)
 {
-    GLuint progs[5] = {k->fill_prog, k->resolve_prog, k->alloc_prog, k->store_prog,
-                       k->segment_prog};
-    for (int i = 0; i < 5; i++)
-        glDeleteProgram(progs[i]);
+    oit_glsl_programs_delete(k->prog, OIT_FIRSTK_PROGS);
     GLuint bufs[3] = {k->store, k->table, k->totals};
     glDeleteBuffers(3, bufs);
     memset(k, 0, sizeof *k);
-}
-
-void oit_firstk_set_view(oit_firstk *k, const oit_view *v)
-{
-    GLuint progs[5] = {k->fill_prog, k->resolve_prog, k->alloc_prog, k->store_prog,
-                       k->segment_prog};
-    oit_glsl_set_view_all(progs, 5, v);
-}
-
-void oit_firstk_set_opaque(oit_firstk *k, const oit_opaque_depth *o)
-{
-    GLuint progs[5] = {k->fill_prog, k->resolve_prog, k->alloc_prog, k->store_prog,
-                       k->segment_prog};
-    oit_glsl_set_opaque_all(progs, 5, o);
-}
-
-void oit_firstk_set_epsilon(oit_firstk *k, float epsilon)
-{
-    GLuint progs[2] = {k->fill_prog, k->store_prog};
-    oit_glsl_set_epsilon_all(progs, 2, epsilon);
 }
 
 uint64_t oit_firstk_bytes(const oit_firstk *k)
@@ -274,12 +239,13 @@ static oit_status first_pass(oit_firstk *k, const oit_counted_frame *f,
         return s;
     clear_totals(k);
     bind_frame(k, f);
-    set_int(k->fill_prog, "u_W", W);
-    set_rect(k->fill_prog, "u_tile", r);
-    set_int(k->resolve_prog, "u_W", W);
-    oit_glsl_draw_scissored(f->fbo, f->width, f->height, k->fill_prog, f->draws, meshes, n, r);
+    set_int(k->prog[OIT_FIRSTK_FILL], "u_W", W);
+    set_rect(k->prog[OIT_FIRSTK_FILL], "u_tile", r);
+    set_int(k->prog[OIT_FIRSTK_RESOLVE], "u_W", W);
+    oit_glsl_draw_scissored(f->fbo, f->width, f->height, k->prog[OIT_FIRSTK_FILL], f->draws,
+                            meshes, n, r);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    dispatch_rect(k->resolve_prog, r);
+    dispatch_rect(k->prog[OIT_FIRSTK_RESOLVE], r);
     glGetNamedBufferSubData(k->totals, 0, 32, t);
     return oit_gl_check("first-k capture: pass 1", err);
 }
@@ -295,8 +261,8 @@ static oit_status allocate(oit_firstk *k, const int b[4], int W, uint64_t *frags
         return s;
     clear_totals(k);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OFFSETS, k->table);
-    set_int(k->alloc_prog, "u_W", W);
-    dispatch_rect(k->alloc_prog, b);
+    set_int(k->prog[OIT_FIRSTK_ALLOC], "u_W", W);
+    dispatch_rect(k->prog[OIT_FIRSTK_ALLOC], b);
     GLuint t[3];
     glGetNamedBufferSubData(k->totals, 0, 12, t);
     *frags = (uint64_t)t[2] << 32 | t[1];
@@ -321,10 +287,11 @@ static oit_status second_pass(oit_firstk *k, const oit_counted_frame *f,
     if (s != OIT_OK)
         return s;
     bind_frame(k, f);
-    set_rect(k->store_prog, "u_tile", b);
-    oit_glsl_draw_scissored(f->fbo, f->width, f->height, k->store_prog, f->draws, meshes, n, b);
+    set_rect(k->prog[OIT_FIRSTK_STORE], "u_tile", b);
+    oit_glsl_draw_scissored(f->fbo, f->width, f->height, k->prog[OIT_FIRSTK_STORE], f->draws,
+                            meshes, n, b);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    dispatch_rect(k->segment_prog, b);
+    dispatch_rect(k->prog[OIT_FIRSTK_SEGMENT], b);
     k->second_draws++;
     return oit_gl_check("first-k capture: pass 2", err);
 }

@@ -38,8 +38,19 @@
 #include "render/frag_glsl.h"
 #include "render/gpu_mesh.h"
 
+/* Its programs (prog), set up by capture.c as the counted capture's
+ * (capture_counted.h): the two geometry passes first. */
+enum {
+    OIT_FIRSTK_FILL,
+    OIT_FIRSTK_STORE,
+    OIT_FIRSTK_RESOLVE,
+    OIT_FIRSTK_ALLOC,
+    OIT_FIRSTK_SEGMENT,
+    OIT_FIRSTK_PROGS
+};
+
 typedef struct oit_firstk {
-    GLuint fill_prog, resolve_prog, alloc_prog, store_prog, segment_prog;
+    GLuint prog[OIT_FIRSTK_PROGS];
     GLuint store;   /* pass 1: the W slots; pass 2: the overflowed pixels' fragments */
     GLuint table;   /* pass 2: per pixel of the band, (offset, count); count 0: not its */
     GLuint totals;  /* uint overflowed pixels, fragments lo, fragments hi, pad */
@@ -54,10 +65,6 @@ typedef struct oit_firstk {
 
 oit_status oit_firstk_init(oit_firstk *k, int K, oit_error *err);
 void oit_firstk_release(oit_firstk *k);
-void oit_firstk_set_view(oit_firstk *k, const oit_view *v);
-/* After oit_firstk_set_view (frag_glsl.h, oit_glsl_set_opaque). */
-void oit_firstk_set_opaque(oit_firstk *k, const oit_opaque_depth *o);
-void oit_firstk_set_epsilon(oit_firstk *k, float epsilon);
 uint64_t oit_firstk_bytes(const oit_firstk *k);
 
 /* The slots a pack over the GL rect r gets: 0 when fewer than 2 fit the

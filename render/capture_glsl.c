@@ -24,21 +24,29 @@
 
 const char oit_capture_saturated[] = SATURATED;
 
+#define SLOTS_BUFFER                                                                       \
+    "layout(std430, binding = OIT_BIND_FRAGS) writeonly buffer Slots { uvec4 slots[]; };\n"
+
+/* The fill's main: N (a GLSL int) slots per pixel of the tile u_tile, the
+ * first N fragments of a pixel kept and the pixel flagged when more come. */
+#define FILL_MAIN(N)                                                                       \
+    "void main() {\n"                                                                      \
+    "    uint p = oit_pixel_index();\n"                                                    \
+    "    if (oit_behind_opaque()) discard;\n"                                              \
+    "    if (oit_saturated(p)) discard;\n"                                                 \
+    "    ivec2 px = ivec2(gl_FragCoord.xy) - u_tile.xy;\n"                                 \
+    "    uint q = uint(px.y * (u_tile.z - u_tile.x) + px.x);\n"                            \
+    "    uint c = atomicAdd(counts[p], 1u);\n"                                             \
+    "    if (c < uint(" N ")) slots[q * uint(" N ") + c] = oit_fragment();\n"              \
+    "    else if (c == uint(" N ")) atomicAdd(overflow, 1u);\n"                            \
+    "}\n"
+
 const char oit_capture_array_fs[] =
     COUNT_AND_FLAG
     SATURATED
-    "layout(std430, binding = OIT_BIND_FRAGS) writeonly buffer Slots { uvec4 slots[]; };\n"
+    SLOTS_BUFFER
     "uniform ivec4 u_tile;\n"
-    "void main() {\n"
-    "    uint p = oit_pixel_index();\n"
-    "    if (oit_behind_opaque()) discard;\n"
-    "    if (oit_saturated(p)) discard;\n"
-    "    ivec2 px = ivec2(gl_FragCoord.xy) - u_tile.xy;\n"
-    "    uint q = uint(px.y * (u_tile.z - u_tile.x) + px.x);\n"
-    "    uint c = atomicAdd(counts[p], 1u);\n"
-    "    if (c < uint(u_K)) slots[q * uint(u_K) + c] = oit_fragment();\n"
-    "    else if (c == uint(u_K)) atomicAdd(overflow, 1u);\n"
-    "}\n";
+    FILL_MAIN("u_K");
 
 /* Wide batches: u_W slots per pixel of the current tile u_tile (GL rows,
  * exclusive ends), so a part with more than K layers fits the same slots
@@ -46,19 +54,10 @@ const char oit_capture_array_fs[] =
 const char oit_capture_wide_fs[] =
     COUNT_AND_FLAG
     SATURATED
-    "layout(std430, binding = OIT_BIND_FRAGS) writeonly buffer Slots { uvec4 slots[]; };\n"
+    SLOTS_BUFFER
     "uniform int u_W;\n"
     "uniform ivec4 u_tile;\n"
-    "void main() {\n"
-    "    uint p = oit_pixel_index();\n"
-    "    if (oit_behind_opaque()) discard;\n"
-    "    if (oit_saturated(p)) discard;\n"
-    "    ivec2 px = ivec2(gl_FragCoord.xy) - u_tile.xy;\n"
-    "    uint q = uint(px.y * (u_tile.z - u_tile.x) + px.x);\n"
-    "    uint c = atomicAdd(counts[p], 1u);\n"
-    "    if (c < uint(u_W)) slots[q * uint(u_W) + c] = oit_fragment();\n"
-    "    else if (c == uint(u_W)) atomicAdd(overflow, 1u);\n"
-    "}\n";
+    FILL_MAIN("u_W");
 
 const char oit_capture_stencil_fs[] =
     COUNT_AND_FLAG

@@ -74,20 +74,22 @@ oit_status oit_stencil_target_resize(oit_stencil_target *t, int w, int h, oit_er
     return s;
 }
 
-static void scissor(const int rect[4])
+/* The target bound, scissored to rect, with the stencil test on, depth off
+ * and colour writes as given: what routing and drawing both start with. */
+static void bind(oit_stencil_target *t, const int rect[4], GLboolean colour)
 {
+    glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
+    glViewport(0, 0, t->width, t->height);
     glEnable(GL_SCISSOR_TEST);
     glScissor(rect[0], rect[1], rect[2] - rect[0], rect[3] - rect[1]);
+    glColorMask(colour, colour, colour, colour);
+    glDisable(GL_DEPTH_TEST);
+    glEnable(GL_STENCIL_TEST);
 }
 
 void oit_stencil_target_route(oit_stencil_target *t, const int rect[4])
 {
-    glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
-    glViewport(0, 0, t->width, t->height);
-    scissor(rect);
-    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    glDisable(GL_DEPTH_TEST);
-    glEnable(GL_STENCIL_TEST);
+    bind(t, rect, GL_FALSE);
     glStencilMask(0xff);
     glStencilOp(GL_REPLACE, GL_REPLACE, GL_REPLACE);
     /* One full-screen draw per sample, masked to that sample. */
@@ -106,15 +108,10 @@ void oit_stencil_target_route(oit_stencil_target *t, const int rect[4])
 
 void oit_stencil_target_begin_draw(oit_stencil_target *t, const int rect[4])
 {
-    glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
-    glViewport(0, 0, t->width, t->height);
-    scissor(rect);
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glDisable(GL_DEPTH_TEST);
+    bind(t, rect, GL_TRUE);
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
     glDisable(GL_MULTISAMPLE);
-    glEnable(GL_STENCIL_TEST);
     glStencilFunc(GL_EQUAL, 1, 0xff);
     glStencilOp(GL_DECR, GL_DECR, GL_DECR);
 }

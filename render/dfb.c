@@ -14,10 +14,11 @@
 #include <string.h>
 
 enum { BUF_COUNTS, BUF_OFFSETS, BUF_FRAGS, BUF_OUT, BUF_STATE, BUF_N };
+/* PROG_STATE resolves into the state buffer; it is built at first use. */
+enum { PROG_COUNT, PROG_STORE, PROG_RESOLVE, PROG_STATE, PROG_N };
 
 struct oit_dfb {
-    GLuint count_prog, store_prog, resolve_prog;
-    GLuint state_prog; /* resolve into the state buffer; built at first use */
+    GLuint prog[PROG_N];
     GLuint fbo;
     GLuint buf[BUF_N];
     uint64_t cap[BUF_N];
@@ -56,59 +57,49 @@ static const char store_fs[] =
     "    if (c != 0u && slot < offsets[p + 1u] && slot >= u_base) frags[slot - u_base] = oit_fragment();\n"
     "}\n";
 
-static const char resolve_cs[] =
-    "layout(local_size_x = 8, local_size_y = 8) in;\n"
-    "layout(location = 11) uniform ivec2 u_size;\n"
-    "layout(location = 12) uniform uint u_base;\n"
-    "layout(location = 13) uniform ivec2 u_rows;\n"
-    "layout(std430, binding = OIT_BIND_OFFSETS) readonly buffer Offsets { uint offsets[]; };\n"
+/* Both resolves' declarations: the band of rows u_rows whose fragments
+ * start at offset u_base. */
+#define RESOLVE_DECLS                                                                      \
+    "layout(local_size_x = 8, local_size_y = 8) in;\n"                                     \
+    "layout(location = 11) uniform ivec2 u_size;\n"                                        \
+    "layout(location = 12) uniform uint u_base;\n"                                         \
+    "layout(location = 13) uniform ivec2 u_rows;\n"                                        \
+    "layout(std430, binding = OIT_BIND_OFFSETS) readonly buffer Offsets { uint offsets[]; };\n" \
     "layout(std430, binding = OIT_BIND_FRAGS) buffer Frags { uvec4 frags[]; };\n"
+
+/* Both resolves' main: each pixel's segment composited into s, which KEEP
+ * (GLSL) puts where the resolve leaves it. */
+#define RESOLVE_MAIN(KEEP)                                                                 \
+    "void main() {\n"                                                                      \
+    "    ivec2 px = ivec2(gl_GlobalInvocationID.xy) + ivec2(0, u_rows.x);\n"               \
+    "    if (px.x >= u_size.x || px.y >= u_rows.y) return;\n"                             \
+    "    uint p = uint(px.y * u_size.x + px.x);\n"                                         \
+    "    oit_state s = oit_state_begin();\n"                                               \
+    "    oit_segment_composite(s, offsets[p] - u_base, offsets[p + 1u] - offsets[p]);\n"  \
+    KEEP                                                                                   \
+    "}\n"
+
+static const char resolve_cs[] =
+    RESOLVE_DECLS
     "layout(std430, binding = OIT_BIND_OUT) writeonly buffer Out { vec4 out_rgba[]; };\n";
 
-static const char resolve_main_cs[] =
-    "void main() {\n"
-    "    ivec2 px = ivec2(gl_GlobalInvocationID.xy) + ivec2(0, u_rows.x);\n"
-    "    if (px.x >= u_size.x || px.y >= u_rows.y) return;\n"
-    "    uint p = uint(px.y * u_size.x + px.x);\n"
-    "    oit_state s = oit_state_begin();\n"
-    "    oit_segment_composite(s, offsets[p] - u_base, offsets[p + 1u] - offsets[p]);\n"
-    "    out_rgba[p] = oit_state_final(s);\n"
-    "}\n";
+static const char resolve_main_cs[] = RESOLVE_MAIN("    out_rgba[p] = oit_state_final(s);\n");
 
 /* The same resolve, leaving each pixel's (C, T) state in oit_glsl_state_io's
  * buffer instead of its colour over the background. */
-static const char resolve_state_cs[] =
-    "layout(local_size_x = 8, local_size_y = 8) in;\n"
-    "layout(location = 11) uniform ivec2 u_size;\n"
-    "layout(location = 12) uniform uint u_base;\n"
-    "layout(location = 13) uniform ivec2 u_rows;\n"
-    "layout(std430, binding = OIT_BIND_OFFSETS) readonly buffer Offsets { uint offsets[]; };\n"
-    "layout(std430, binding = OIT_BIND_FRAGS) buffer Frags { uvec4 frags[]; };\n";
+static const char resolve_state_cs[] = RESOLVE_DECLS;
 
-static const char resolve_state_main_cs[] =
-    "void main() {\n"
-    "    ivec2 px = ivec2(gl_GlobalInvocationID.xy) + ivec2(0, u_rows.x);\n"
-    "    if (px.x >= u_size.x || px.y >= u_rows.y) return;\n"
-    "    uint p = uint(px.y * u_size.x + px.x);\n"
-    "    oit_state s = oit_state_begin();\n"
-    "    oit_segment_composite(s, offsets[p] - u_base, offsets[p + 1u] - offsets[p]);\n"
-    "    oit_state_store(p, s);\n"
-    "}\n";
+static const char resolve_state_main_cs[] = RESOLVE_MAIN("    oit_state_store(p, s);\n");
 
-static oit_status build_programs(oit_dfb *d, oit_error *err)
-{
-    const char *vs[] = {oit_glsl_version, oit_glsl_vertex, NULL};
-    const char *cfs[] = {oit_glsl_version, oit_glsl_fragment_gen, count_fs, NULL};
-    const char *sfs[] = {oit_glsl_version, oit_glsl_fragment_gen, store_fs, NULL};
-    const char *rcs[] = {oit_glsl_version, oit_glsl_composite, resolve_cs,
-                         oit_glsl_segment_composite, resolve_main_cs, NULL};
-    oit_status s = oit_gl_program_graphics("DFB count pass", vs, cfs, &d->count_prog, err);
-    if (s == OIT_OK)
-        s = oit_gl_program_graphics("DFB store pass", vs, sfs, &d->store_prog, err);
-    if (s == OIT_OK)
-        s = oit_gl_program_compute("DFB resolve", rcs, &d->resolve_prog, err);
-    return s;
-}
+static const oit_glsl_program programs[PROG_N] = {
+    [PROG_COUNT] = {"DFB count pass", .fs = {count_fs}},
+    [PROG_STORE] = {"DFB store pass", .fs = {store_fs}},
+    [PROG_RESOLVE] = {"DFB resolve", .cs = {oit_glsl_composite, resolve_cs,
+                                            oit_glsl_segment_composite, resolve_main_cs}},
+    [PROG_STATE] = {"DFB resolve to state",
+                    .cs = {oit_glsl_composite, oit_glsl_state_io, resolve_state_cs,
+                           oit_glsl_segment_composite, resolve_state_main_cs}},
+};
 
 oit_status oit_dfb_create(oit_dfb **out, oit_error *err)
 {
@@ -116,13 +107,12 @@ oit_status oit_dfb_create(oit_dfb **out, oit_error *err)
     oit_dfb *d = calloc(1, sizeof *d);
     if (!d)
         return oit_error_set(err, OIT_ERR_NOMEM, "DFB: out of memory");
-    oit_status s = build_programs(d, err);
+    /* all but PROG_STATE */
+    oit_status s = oit_glsl_programs_build(programs, PROG_STATE, d->prog, err);
     if (s == OIT_OK)
         s = oit_scan_init(&d->scan, err);
-    if (s == OIT_OK) {
-        glCreateFramebuffers(1, &d->fbo);
-        s = oit_gl_check("DFB: glCreateFramebuffers", err);
-    }
+    if (s == OIT_OK)
+        s = oit_gl_framebuffer_create(&d->fbo, NULL, "DFB: glCreateFramebuffers", err);
     if (s != OIT_OK) {
         oit_dfb_destroy(d);
         return s;
@@ -135,10 +125,7 @@ void oit_dfb_destroy(oit_dfb *d)
 {
     if (!d)
         return;
-    glDeleteProgram(d->count_prog);
-    glDeleteProgram(d->store_prog);
-    glDeleteProgram(d->resolve_prog);
-    glDeleteProgram(d->state_prog);
+    oit_glsl_programs_delete(d->prog, PROG_N);
     glDeleteFramebuffers(1, &d->fbo);
     glDeleteBuffers(BUF_N, d->buf);
     oit_scan_release(&d->scan);
@@ -172,29 +159,6 @@ static void draw_meshes(GLuint prog, const oit_gpu_mesh *const *meshes, int n)
         oit_gpu_mesh_draw(meshes[i], prog);
 }
 
-/* Copies a GL-ordered buffer of w*h items of 'item' bytes to top-first rows. */
-static void flip_rows(const void *src, void *dst, int w, int h, size_t item)
-{
-    size_t row = (size_t)w * item;
-    for (int y = 0; y < h; y++)
-        memcpy((char *)dst + (size_t)y * row, (const char *)src + (size_t)(h - 1 - y) * row, row);
-}
-
-static oit_status read_flipped(GLuint buf, int w, int h, size_t item, void *dst,
-                               oit_error *err)
-{
-    size_t bytes = (size_t)w * h * item;
-    void *tmp = malloc(bytes);
-    if (!tmp)
-        return oit_error_set(err, OIT_ERR_NOMEM, "DFB: cannot allocate %zu bytes for "
-                             "readback", bytes);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glGetNamedBufferSubData(buf, 0, (GLsizeiptr)bytes, tmp);
-    flip_rows(tmp, dst, w, h, item);
-    free(tmp);
-    return oit_gl_check("DFB: glGetNamedBufferSubData", err);
-}
-
 /* Count pass plus scan: offsets[0..n] with offsets[n] = total. */
 static oit_status count_and_scan(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n,
                                  uint64_t pixels, oit_scan_result *res, oit_error *err)
@@ -202,7 +166,7 @@ static oit_status count_and_scan(oit_dfb *d, const oit_gpu_mesh *const *meshes, 
     static const GLuint zero = 0;
     glClearNamedBufferData(d->buf[BUF_COUNTS], GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, d->buf[BUF_COUNTS]);
-    draw_meshes(d->count_prog, meshes, n);
+    draw_meshes(d->prog[PROG_COUNT], meshes, n);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     glCopyNamedBufferSubData(d->buf[BUF_COUNTS], d->buf[BUF_OFFSETS], 0, 0,
                              (GLsizeiptr)((pixels + 1) * 4));
@@ -268,8 +232,8 @@ static void band_pass(oit_dfb *d, GLuint resolve, const oit_gpu_mesh *const *mes
     glScissor(0, y0, v->width, y1 - y0);
     glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_FRAGS, d->buf[BUF_FRAGS], 0,
                       (GLsizeiptr)(frags ? frags * 16 : 16));
-    glProgramUniform1ui(d->store_prog, 12, base);
-    draw_meshes(d->store_prog, meshes, n);
+    glProgramUniform1ui(d->prog[PROG_STORE], 12, base);
+    draw_meshes(d->prog[PROG_STORE], meshes, n);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(resolve);
     glProgramUniform1ui(resolve, 12, base);
@@ -289,7 +253,8 @@ static oit_status render_passes(oit_dfb *d, GLuint resolve, const oit_gpu_mesh *
     uint64_t pixels = (uint64_t)v->width * v->height;
     oit_status s = count_and_scan(d, meshes, n, pixels, res, err);
     if (s == OIT_OK && counts)
-        s = read_flipped(d->buf[BUF_COUNTS], v->width, v->height, 4, counts, err);
+        s = oit_gl_read_rows(d->buf[BUF_COUNTS], 0, v->width, v->height, 4, counts, "DFB",
+                             err);
     if (s != OIT_OK)
         return s;
     if (res->total > UINT32_MAX)
@@ -307,7 +272,7 @@ static oit_status render_passes(oit_dfb *d, GLuint resolve, const oit_gpu_mesh *
         s = nb ? reserve(d, BUF_FRAGS, most * 16, err) : OIT_ERR_NOMEM;
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, d->buf[BUF_COUNTS]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OFFSETS, d->buf[BUF_OFFSETS]);
-    if (resolve == d->state_prog)
+    if (resolve == d->prog[PROG_STATE])
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_STATE, d->buf[BUF_STATE]);
     else
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, d->buf[BUF_OUT]);
@@ -338,14 +303,12 @@ static oit_status prepare(oit_dfb *d, const oit_view *v, int out, oit_error *err
         s = reserve(d, out, out_bytes, err);
     if (s != OIT_OK)
         return s;
-    glNamedFramebufferParameteri(d->fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH, v->width);
-    glNamedFramebufferParameteri(d->fbo, GL_FRAMEBUFFER_DEFAULT_HEIGHT, v->height);
-    oit_glsl_raster_begin(d->fbo, v->width, v->height);
-    oit_glsl_set_view(d->count_prog, v);
-    oit_glsl_set_view(d->store_prog, v);
-    oit_glsl_set_view(out == BUF_OUT ? d->resolve_prog : d->state_prog, v);
-    oit_glsl_set_opaque(d->count_prog, &d->opaque);
-    oit_glsl_set_opaque(d->store_prog, &d->opaque);
+    oit_glsl_raster_begin_sized(d->fbo, v->width, v->height);
+    oit_glsl_set_view(d->prog[PROG_COUNT], v);
+    oit_glsl_set_view(d->prog[PROG_STORE], v);
+    oit_glsl_set_view(d->prog[out == BUF_OUT ? PROG_RESOLVE : PROG_STATE], v);
+    oit_glsl_set_opaque(d->prog[PROG_COUNT], &d->opaque);
+    oit_glsl_set_opaque(d->prog[PROG_STORE], &d->opaque);
     return oit_gl_check("DFB: frame set-up", err);
 }
 
@@ -361,30 +324,44 @@ static oit_status check_frame(const oit_view *view, int n, oit_error *err)
     return OIT_OK;
 }
 
-static void fill_stats(const oit_dfb *d, double t0, const oit_scan_result *res, int bands,
-                       oit_frame_stats *stats)
+/* One frame: its view with the shading defaults resolved, the scan of its
+ * counts, the bands it was stored in and its start (oit_time_ms). */
+typedef struct dfb_frame {
+    oit_view v;
+    oit_scan_result res;
+    int bands;
+    double t0;
+} dfb_frame;
+
+static void fill_stats(const oit_dfb *d, const dfb_frame *f, oit_frame_stats *stats)
 {
     memset(stats, 0, sizeof *stats);
-    stats->ms = oit_time_ms() - t0;
-    stats->fragments = res->total;
-    stats->max_layers = res->max;
+    stats->ms = oit_time_ms() - f->t0;
+    stats->fragments = f->res.total;
+    stats->max_layers = f->res.max;
     stats->gpu_bytes_peak = d->bytes_peak;
-    stats->batches = (uint32_t)bands;
+    stats->batches = (uint32_t)f->bands;
 }
 
-/* The view with its shading defaults resolved (into v), the buffers sized
- * for it and the capture passes resolved by prog into buffer buf: what the
- * image and the state renders share. */
-static oit_status resolve_into(oit_dfb *d, GLuint prog, int buf,
+/* What the image and the state renders share: the frame checked, program
+ * prog built (PROG_STATE is, at first use), the view resolved into f, the
+ * buffers sized for it and the passes resolved by prog into buffer buf. */
+static oit_status resolve_into(oit_dfb *d, int prog, int buf,
                                const oit_gpu_mesh *const *meshes, int n, const oit_view *view,
-                               uint32_t *counts, oit_view *v, oit_scan_result *res, int *bands,
-                               oit_error *err)
+                               uint32_t *counts, dfb_frame *f, oit_error *err)
 {
-    *v = *view;
-    oit_shading_resolve_defaults(&v->shading);
-    oit_status s = prepare(d, v, buf, err);
+    memset(f, 0, sizeof *f);
+    oit_status s = check_frame(view, n, err);
+    if (s == OIT_OK && !d->prog[prog])
+        s = oit_glsl_programs_build(&programs[prog], 1, &d->prog[prog], err);
+    if (s != OIT_OK)
+        return s;
+    f->t0 = oit_time_ms();
+    f->v = *view;
+    oit_shading_resolve_defaults(&f->v.shading);
+    s = prepare(d, &f->v, buf, err);
     if (s == OIT_OK)
-        s = render_passes(d, prog, meshes, n, v, counts, res, bands, err);
+        s = render_passes(d, d->prog[prog], meshes, n, &f->v, counts, &f->res, &f->bands, err);
     return s;
 }
 
@@ -393,27 +370,20 @@ oit_status oit_dfb_render(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n,
                           uint32_t *counts, oit_frame_stats *stats,
                           oit_error *err)
 {
-    oit_status s = check_frame(view, n, err);
-    if (s != OIT_OK)
-        return s;
-    double t0 = oit_time_ms();
-    oit_view v;
-    oit_scan_result res = {0};
-    int bands = 0;
-    s = resolve_into(d, d->resolve_prog, BUF_OUT, meshes, n, view, counts, &v, &res, &bands,
-                     err);
+    dfb_frame f;
+    oit_status s = resolve_into(d, PROG_RESOLVE, BUF_OUT, meshes, n, view, counts, &f, err);
     if (s == OIT_OK)
-        s = oit_image_alloc(out, v.width, v.height, err);
+        s = oit_image_alloc(out, f.v.width, f.v.height, err);
     if (s == OIT_OK) {
-        s = read_flipped(d->buf[BUF_OUT], v.width, v.height, 16, out->rgba, err);
+        s = oit_gl_read_rows(d->buf[BUF_OUT], 0, f.v.width, f.v.height, 16, out->rgba, "DFB",
+                             err);
         if (s != OIT_OK)
             oit_image_free(out);
     }
     glFinish();
-    if (s != OIT_OK || !stats)
-        return s;
-    fill_stats(d, t0, &res, bands, stats);
-    return OIT_OK;
+    if (s == OIT_OK && stats)
+        fill_stats(d, &f, stats);
+    return s;
 }
 
 oit_status oit_dfb_render_state(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n,
@@ -421,27 +391,15 @@ oit_status oit_dfb_render_state(oit_dfb *d, const oit_gpu_mesh *const *meshes, i
                                 oit_frame_stats *stats, oit_error *err)
 {
     *state = 0;
-    oit_status s = check_frame(view, n, err);
-    if (s == OIT_OK && !d->state_prog) {
-        const char *rcs[] = {oit_glsl_version, oit_glsl_composite, oit_glsl_state_io,
-                             resolve_state_cs, oit_glsl_segment_composite,
-                             resolve_state_main_cs, NULL};
-        s = oit_gl_program_compute("DFB resolve to state", rcs, &d->state_prog, err);
-    }
-    if (s != OIT_OK)
-        return s;
-    double t0 = oit_time_ms();
-    oit_view v;
-    oit_scan_result res = {0};
-    int bands = 0;
-    s = resolve_into(d, d->state_prog, BUF_STATE, meshes, n, view, NULL, &v, &res, &bands, err);
+    dfb_frame f;
+    oit_status s = resolve_into(d, PROG_STATE, BUF_STATE, meshes, n, view, NULL, &f, err);
     if (s != OIT_OK)
         return s;
     *state = d->buf[BUF_STATE];
     if (stats) {
         /* The GPU has finished before the time is taken, as for the image. */
         glFinish();
-        fill_stats(d, t0, &res, bands, stats);
+        fill_stats(d, &f, stats);
     }
     return OIT_OK;
 }

@@ -245,6 +245,45 @@ const char oit_glsl_composite[] =
 
 /* Uniforms are set by name: a location a program does not use is -1, which
  * GL ignores, whereas an unused explicit location is an error. */
+/* src = oit_glsl_version, then 'lead' (when set), then parts up to their
+ * first NULL, then NULL. */
+static void stage_sources(const char *lead, const char *const *parts, const char **src)
+{
+    int n = 0;
+    src[n++] = oit_glsl_version;
+    if (lead)
+        src[n++] = lead;
+    for (int i = 0; i < OIT_GLSL_PARTS_MAX && parts[i]; i++)
+        src[n++] = parts[i];
+    src[n] = NULL;
+}
+
+oit_status oit_glsl_programs_build(const oit_glsl_program *table, int n, GLuint *out,
+                                   oit_error *err)
+{
+    static const char *const vs[] = {oit_glsl_version, oit_glsl_vertex, NULL};
+    oit_status s = OIT_OK;
+    for (int i = 0; i < n && s == OIT_OK; i++) {
+        const char *src[OIT_GLSL_PARTS_MAX + 3];
+        if (table[i].fs[0]) {
+            stage_sources(oit_glsl_fragment_gen, table[i].fs, src);
+            s = oit_gl_program_graphics(table[i].what, vs, src, &out[i], err);
+        } else {
+            stage_sources(NULL, table[i].cs, src);
+            s = oit_gl_program_compute(table[i].what, src, &out[i], err);
+        }
+    }
+    return s;
+}
+
+void oit_glsl_programs_delete(GLuint *progs, int n)
+{
+    for (int i = 0; i < n; i++) {
+        glDeleteProgram(progs[i]);
+        progs[i] = 0;
+    }
+}
+
 static GLint loc(GLuint prog, const char *name)
 {
     return glGetUniformLocation(prog, name);
@@ -331,6 +370,13 @@ void oit_glsl_raster_begin(GLuint fbo, int w, int h)
     glDisable(GL_MULTISAMPLE);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     glDepthMask(GL_FALSE);
+}
+
+void oit_glsl_raster_begin_sized(GLuint fbo, int w, int h)
+{
+    glNamedFramebufferParameteri(fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH, w);
+    glNamedFramebufferParameteri(fbo, GL_FRAMEBUFFER_DEFAULT_HEIGHT, h);
+    oit_glsl_raster_begin(fbo, w, h);
 }
 
 const char oit_glsl_segment_composite[] =

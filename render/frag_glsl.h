@@ -158,6 +158,24 @@ static inline unsigned oit_state_bytes(int translucent)
     return 4u * (translucent ? OIT_STATE_WORDS_TRANSLUCENT : OIT_STATE_WORDS_TRANSPARENT);
 }
 
+/* A method's programs as a table, one entry each: a vertex + fragment
+ * program (oit_glsl_vertex; oit_glsl_fragment_gen, then fs) when fs[0] is
+ * set, else a compute program of cs. Every stage starts with
+ * oit_glsl_version; a list ends at its first NULL (or after
+ * OIT_GLSL_PARTS_MAX). 'what' names the program in errors. */
+#define OIT_GLSL_PARTS_MAX 8
+typedef struct oit_glsl_program {
+    const char *what;
+    const char *fs[OIT_GLSL_PARTS_MAX];
+    const char *cs[OIT_GLSL_PARTS_MAX];
+} oit_glsl_program;
+/* Builds out[i] from table[i] for i in [0, n), in order, up to the first
+ * failure (what was built stays in out for oit_glsl_programs_delete). */
+oit_status oit_glsl_programs_build(const oit_glsl_program *table, int n, GLuint *out,
+                                   oit_error *err);
+/* Deletes progs[0..n) (0 is fine) and sets them to 0. */
+void oit_glsl_programs_delete(GLuint *progs, int n);
+
 /* Sets the view and shading uniforms of a program built from the pieces
  * above (uniforms that a program does not use are skipped). */
 void oit_glsl_set_view(GLuint prog, const oit_view *view);
@@ -183,6 +201,9 @@ void oit_glsl_set_opaque_all(const GLuint *progs, int n, const oit_opaque_depth 
  * w x h, no depth, stencil, blending, culling or colour writes, so the
  * fragment shader sees every fragment of every triangle, both faces. */
 void oit_glsl_raster_begin(GLuint fbo, int w, int h);
+/* The same for an fbo without attachments, whose default size it sets to
+ * w x h first. */
+void oit_glsl_raster_begin_sized(GLuint fbo, int w, int h);
 
 struct oit_gpu_mesh;
 struct oit_gpu_draws;

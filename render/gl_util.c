@@ -1,6 +1,8 @@
 /* GL helpers (gl_util.h). */
 #include "render/gl_util.h"
 
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 static const char *gl_error_name(GLenum e)
@@ -118,6 +120,15 @@ oit_status oit_gl_program_compute(const char *what, const char *const *cs, GLuin
     return OIT_OK;
 }
 
+oit_status oit_gl_framebuffer_create(GLuint *fbo, GLuint *samples_query, const char *what,
+                                     oit_error *err)
+{
+    glCreateFramebuffers(1, fbo);
+    if (samples_query)
+        glCreateQueries(GL_SAMPLES_PASSED, 1, samples_query);
+    return oit_gl_check(what, err);
+}
+
 void oit_gl_buffer_release(GLuint *buf, uint64_t *cap)
 {
     glDeleteBuffers(1, buf);
@@ -153,6 +164,29 @@ oit_status oit_gl_buffer_reserve(GLuint *buf, uint64_t *cap, uint64_t bytes,
     }
     *cap = want;
     return OIT_OK;
+}
+
+oit_status oit_gl_read_rows(GLuint obj, int is_texture, int w, int h, size_t item, void *dst,
+                            const char *what, oit_error *err)
+{
+    size_t row = (size_t)w * item, bytes = row * (size_t)h;
+    char *tmp = malloc(bytes);
+    if (!tmp)
+        return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot allocate %zu bytes for the "
+                             "readback", what, bytes);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    if (is_texture)
+        glGetTextureImage(obj, 0, GL_RGBA, GL_FLOAT, (GLsizei)bytes, tmp);
+    else
+        glGetNamedBufferSubData(obj, 0, (GLsizeiptr)bytes, tmp);
+    char call[96];
+    snprintf(call, sizeof call, "%s: %s", what,
+             is_texture ? "glGetTextureImage" : "glGetNamedBufferSubData");
+    oit_status s = oit_gl_check(call, err);
+    for (int y = 0; s == OIT_OK && y < h; y++)
+        memcpy((char *)dst + (size_t)y * row, tmp + (size_t)(h - 1 - y) * row, row);
+    free(tmp);
+    return s;
 }
 
 uint64_t oit_gl_ssbo_max_bytes(void)

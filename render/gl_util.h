@@ -34,6 +34,11 @@ oit_status oit_gl_program_compute(const char *what, const char *const *cs, GLuin
  * call). */
 oit_status oit_gl_check(const char *call, oit_error *err);
 
+/* Creates *fbo, a framebuffer without attachments yet, and when
+ * samples_query is set a GL_SAMPLES_PASSED query there; errors name 'what'. */
+oit_status oit_gl_framebuffer_create(GLuint *fbo, GLuint *samples_query, const char *what,
+                                     oit_error *err);
+
 /* Makes *buf a buffer of at least 'bytes' (GL_DYNAMIC_COPY), keeping *cap in
  * bytes; when it must grow it allocates max(bytes, 1.5 * *cap) so repeated
  * growth is geometric. Contents are not preserved. */
@@ -41,6 +46,12 @@ oit_status oit_gl_buffer_reserve(GLuint *buf, uint64_t *cap, uint64_t bytes,
                                  const char *what, oit_error *err);
 /* Deletes *buf (0 is fine) and sets *buf and *cap to 0. */
 void oit_gl_buffer_release(GLuint *buf, uint64_t *cap);
+
+/* Reads w*h items of 'item' bytes stored in GL row order (bottom row
+ * first) into dst, top row first: from buffer obj, or from level 0 of
+ * texture obj as RGBA floats (item 16). Errors name 'what'. */
+oit_status oit_gl_read_rows(GLuint obj, int is_texture, int w, int h, size_t item, void *dst,
+                            const char *what, oit_error *err);
 
 /* OIT_ERR_NOMEM naming 'what' when one shader storage block cannot span
  * 'bytes' on this driver (GL_MAX_SHADER_STORAGE_BLOCK_SIZE). */

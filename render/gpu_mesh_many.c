@@ -13,6 +13,7 @@
  * window. */
 #include "render/gpu_mesh.h"
 
+#include "base/grow.h"
 #include "render/frag_glsl.h"
 
 #include <stdlib.h>
@@ -78,22 +79,13 @@ static int reserve(oit_gpu_draws *d, size_t n)
     if (n <= d->cap)
         return 1;
     size_t want = d->cap + d->cap / 2 > n ? d->cap + d->cap / 2 : n;
-    draw_cmd *c = realloc(d->cmds, want * sizeof *c);
-    if (c)
-        d->cmds = c;
-    draw_rec *r = c ? realloc(d->recs, want * sizeof *r) : NULL;
-    if (r)
-        d->recs = r;
-    uint64_t *a = r ? realloc(d->at, want * sizeof *a) : NULL;
-    if (a)
-        d->at = a;
-    uint64_t *pa = a ? realloc(d->prims_at, want * sizeof *pa) : NULL;
-    if (pa)
-        d->prims_at = pa;
-    draw_group *g = pa ? realloc(d->groups, want * sizeof *g) : NULL;
-    if (g)
-        d->groups = g;
-    if (!g || reserve_gl(d, want, NULL) != OIT_OK)
+    int ok = 1;
+    d->cmds = oit_grow(d->cmds, want, sizeof *d->cmds, &ok);
+    d->recs = oit_grow(d->recs, want, sizeof *d->recs, &ok);
+    d->at = oit_grow(d->at, want, sizeof *d->at, &ok);
+    d->prims_at = oit_grow(d->prims_at, want, sizeof *d->prims_at, &ok);
+    d->groups = oit_grow(d->groups, want, sizeof *d->groups, &ok);
+    if (!ok || reserve_gl(d, want, NULL) != OIT_OK)
         return 0;
     d->cap = want;
     return 1;

@@ -40,18 +40,6 @@ static oit_status capture_create(oit_capture_kind kind, const oit_method_options
     return s;
 }
 
-static oit_status array_create(const oit_mesh *mesh, const oit_method_options *opt, void **impl,
-                               oit_error *err)
-{
-    return capture_create(OIT_CAPTURE_ARRAY, opt, impl, err);
-}
-
-static oit_status stencil_create(const oit_mesh *mesh, const oit_method_options *opt,
-                                 void **impl, oit_error *err)
-{
-    return capture_create(OIT_CAPTURE_STENCIL, opt, impl, err);
-}
-
 /* The whole mesh as one batch. */
 static oit_status capture_render(void *impl, const oit_method_frame *f, oit_error *err)
 {
@@ -68,18 +56,18 @@ static void capture_destroy(void *impl)
     oit_capture_destroy(impl);
 }
 
-const oit_method oit_method_array = {
-    .name = "array",
-    .flags = OIT_METHOD_GL,
-    .create = array_create,
-    .render = capture_render,
-    .destroy = capture_destroy,
-};
+/* The table of the capture backend KIND, drawing the mesh as one batch. */
+#define CAPTURE_METHOD(NAME, KIND)                                                         \
+    static oit_status NAME##_create(const oit_mesh *mesh, const oit_method_options *opt,  \
+                                    void **impl, oit_error *err)                           \
+    {                                                                                      \
+        return capture_create(KIND, opt, impl, err);                                       \
+    }                                                                                      \
+    const oit_method oit_method_##NAME = {.name = #NAME,                                   \
+                                          .flags = OIT_METHOD_GL,                          \
+                                          .create = NAME##_create,                         \
+                                          .render = capture_render,                        \
+                                          .destroy = capture_destroy}
 
-const oit_method oit_method_stencil = {
-    .name = "stencil",
-    .flags = OIT_METHOD_GL,
-    .create = stencil_create,
-    .render = capture_render,
-    .destroy = capture_destroy,
-};
+CAPTURE_METHOD(array, OIT_CAPTURE_ARRAY);
+CAPTURE_METHOD(stencil, OIT_CAPTURE_STENCIL);

@@ -711,8 +711,10 @@ static void finish_stats(const oit_streamer *s, const oit_packing *pk, oit_frame
     fs->gpu_bytes_peak = ss->gpu_bytes_peak;
 }
 
-oit_status oit_streamer_render(oit_streamer *s, const oit_view *view, oit_image *out,
-                               oit_frame_stats *fs, oit_stream_frame_stats *ss, oit_error *err)
+/* A frame that ends in the image out, or (state set) in the capture's state
+ * buffer, *state. */
+static oit_status render(oit_streamer *s, const oit_view *view, oit_image *out, unsigned *state,
+                         oit_frame_stats *fs, oit_stream_frame_stats *ss, oit_error *err)
 {
     oit_stream_frame_stats local;
     oit_frame_stats flocal;
@@ -721,7 +723,8 @@ oit_status oit_streamer_render(oit_streamer *s, const oit_view *view, oit_image 
     oit_packing pk;
     oit_status st = capture_frame(s, view, &pk, ss, err);
     if (st == OIT_OK)
-        st = oit_capture_end(s->capture, out, fs, err);
+        st = state ? oit_capture_end_gpu(s->capture, state, fs, err)
+                   : oit_capture_end(s->capture, out, fs, err);
     if (st == OIT_OK)
         finish_stats(s, &pk, fs, ss);
     if (st == OIT_OK)
@@ -729,21 +732,15 @@ oit_status oit_streamer_render(oit_streamer *s, const oit_view *view, oit_image 
     return st;
 }
 
+oit_status oit_streamer_render(oit_streamer *s, const oit_view *view, oit_image *out,
+                               oit_frame_stats *fs, oit_stream_frame_stats *ss, oit_error *err)
+{
+    return render(s, view, out, NULL, fs, ss, err);
+}
+
 oit_status oit_streamer_render_gpu(oit_streamer *s, const oit_view *view, unsigned *state,
                                    oit_frame_stats *fs, oit_stream_frame_stats *ss,
                                    oit_error *err)
 {
-    oit_stream_frame_stats local;
-    oit_frame_stats flocal;
-    ss = ss ? ss : &local;
-    fs = fs ? fs : &flocal;
-    oit_packing pk;
-    oit_status st = capture_frame(s, view, &pk, ss, err);
-    if (st == OIT_OK)
-        st = oit_capture_end_gpu(s->capture, state, fs, err);
-    if (st == OIT_OK)
-        finish_stats(s, &pk, fs, ss);
-    if (st == OIT_OK)
-        adapt(s, view, fs, ss);
-    return st;
+    return render(s, view, NULL, state, fs, ss, err);
 }

@@ -9,9 +9,10 @@
 #include <stdlib.h>
 
 enum { BUF_COUNTS, BUF_STATS, BUF_OUT, BUF_N };
+enum { PROG_COUNT, PROG_STORE, PROG_MAX, PROG_RESOLVE, PROG_N };
 
 struct oit_b3d {
-    GLuint count_prog, max_prog, store_prog, resolve_prog, fbo;
+    GLuint prog[PROG_N], fbo;
     GLuint slots;     /* RGBA32UI 2D array, w x h x layers */
     int w, h, layers; /* its size */
     oit_gpu_buffers b;
@@ -82,59 +83,30 @@ static const char walk_glsl[] =
     "                              int(i / pixels())), f);\n"
     "}\n";
 
-static oit_status build_programs(oit_b3d *b, oit_error *err)
+static const oit_glsl_program programs[PROG_N] = {
+    [PROG_COUNT] = {"B3D count pass", .fs = {count_fs}},
+    [PROG_STORE] = {"B3D store pass", .fs = {store_fs}},
+    [PROG_MAX] = {"B3D layer maximum", .cs = {max_cs}},
+    [PROG_RESOLVE] = {"B3D resolve",
+                      .cs = {oit_glsl_composite, oit_glsl_sorted_resolve, walk_glsl}},
+};
+
+static oit_status oit_b3d_init(oit_b3d *b, oit_error *err)
 {
-    const char *vs[] = {oit_glsl_version, oit_glsl_vertex, NULL};
-    const char *cfs[] = {oit_glsl_version, oit_glsl_fragment_gen, count_fs, NULL};
-    const char *sfs[] = {oit_glsl_version, oit_glsl_fragment_gen, store_fs, NULL};
-    const char *mcs[] = {oit_glsl_version, max_cs, NULL};
-    const char *rcs[] = {oit_glsl_version, oit_glsl_composite, oit_glsl_sorted_resolve,
-                         walk_glsl, NULL};
-    oit_status s = oit_gl_program_graphics("B3D count pass", vs, cfs, &b->count_prog, err);
+    b->b.method = "B3D";
+    b->b.names = buffer_names;
+    oit_status s = oit_glsl_programs_build(programs, PROG_N, b->prog, err);
     if (s == OIT_OK)
-        s = oit_gl_program_graphics("B3D store pass", vs, sfs, &b->store_prog, err);
-    if (s == OIT_OK)
-        s = oit_gl_program_compute("B3D layer maximum", mcs, &b->max_prog, err);
-    if (s == OIT_OK)
-        s = oit_gl_program_compute("B3D resolve", rcs, &b->resolve_prog, err);
+        s = oit_gl_framebuffer_create(&b->fbo, NULL, "B3D: glCreateFramebuffers", err);
     return s;
 }
 
-static void oit_b3d_destroy(oit_b3d *self);
-
-static oit_status oit_b3d_create(oit_b3d **out, oit_error *err)
+static void oit_b3d_release(oit_b3d *b)
 {
-    *out = NULL;
-    oit_b3d *b = calloc(1, sizeof *b);
-    if (!b)
-        return oit_error_set(err, OIT_ERR_NOMEM, "B3D: out of memory");
-    b->b.method = "B3D";
-    b->b.names = buffer_names;
-    oit_status s = build_programs(b, err);
-    if (s == OIT_OK) {
-        glCreateFramebuffers(1, &b->fbo);
-        s = oit_gl_check("B3D: glCreateFramebuffers", err);
-    }
-    if (s != OIT_OK) {
-        oit_b3d_destroy(b);
-        return s;
-    }
-    *out = b;
-    return OIT_OK;
-}
-
-static void oit_b3d_destroy(oit_b3d *b)
-{
-    if (!b)
-        return;
-    glDeleteProgram(b->count_prog);
-    glDeleteProgram(b->max_prog);
-    glDeleteProgram(b->store_prog);
-    glDeleteProgram(b->resolve_prog);
+    oit_glsl_programs_delete(b->prog, PROG_N);
     glDeleteFramebuffers(1, &b->fbo);
     glDeleteTextures(1, &b->slots);
     oit_gpu_buffers_release(&b->b);
-    free(b);
 }
 
 /* Slots for 'layers' per pixel, grown only. */
@@ -176,13 +148,8 @@ static oit_status prepare(oit_b3d *b, const oit_view *v, oit_error *err)
                                         err);
     if (s != OIT_OK)
         return s;
-    glNamedFramebufferParameteri(b->fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH, v->width);
-    glNamedFramebufferParameteri(b->fbo, GL_FRAMEBUFFER_DEFAULT_HEIGHT, v->height);
-    oit_glsl_raster_begin(b->fbo, v->width, v->height);
-    oit_glsl_set_view(b->count_prog, v);
-    oit_glsl_set_view(b->store_prog, v);
-    oit_glsl_set_view(b->max_prog, v);
-    oit_glsl_set_view(b->resolve_prog, v);
+    oit_glsl_raster_begin_sized(b->fbo, v->width, v->height);
+    oit_glsl_set_view_all(b->prog, PROG_N, v);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, b->b.buf[BUF_COUNTS]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_STATE, b->b.buf[BUF_STATS]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, b->b.buf[BUF_OUT]);
@@ -195,68 +162,59 @@ static void clear_u32(GLuint buf)
     glClearNamedBufferData(buf, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
 }
 
-static void draw(GLuint prog, const oit_gpu_mesh *const *meshes, int n)
+/* A geometry pass of program 'geometry' on cleared counts and counters,
+ * then program 'frame' over the frame; reads n_words counters from word
+ * 'first' into words. */
+static oit_status pass(oit_b3d *b, int geometry, int frame, const oit_gpu_mesh *const *meshes,
+                       int n, const oit_view *v, int first, int n_words, GLuint *words,
+                       const char *what, oit_error *err)
 {
-    oit_baseline_draw(prog, 0, 0, meshes, n);
+    clear_u32(b->b.buf[BUF_COUNTS]);
+    clear_u32(b->b.buf[BUF_STATS]);
+    oit_baseline_draw(b->prog[geometry], 0, 0, meshes, n);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
                     GL_BUFFER_UPDATE_BARRIER_BIT);
-}
-
-static void dispatch_frame(GLuint prog, const oit_view *v)
-{
-    oit_baseline_dispatch_frame(prog, v->width, v->height);
+    oit_baseline_dispatch_frame(b->prog[frame], v->width, v->height);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(b->b.buf[BUF_STATS], (GLintptr)first * 4, (GLsizeiptr)n_words * 4,
+                            words);
+    return oit_gl_check(what, err);
 }
 
 /* Count pass and its maximum: the layers the slot array needs. */
 static oit_status count(oit_b3d *b, const oit_gpu_mesh *const *meshes, int n,
                         const oit_view *v, GLuint *layers, oit_error *err)
 {
-    clear_u32(b->b.buf[BUF_COUNTS]);
-    clear_u32(b->b.buf[BUF_STATS]);
-    draw(b->count_prog, meshes, n);
-    dispatch_frame(b->max_prog, v);
-    glGetNamedBufferSubData(b->b.buf[BUF_STATS], 4, 4, layers);
-    return oit_gl_check("B3D: count pass", err);
+    return pass(b, PROG_COUNT, PROG_MAX, meshes, n, v, 1, 1, layers, "B3D: count pass", err);
 }
 
 static oit_status store_and_resolve(oit_b3d *b, const oit_gpu_mesh *const *meshes, int n,
                                     const oit_view *v, GLuint figures[3], oit_error *err)
 {
-    glProgramUniform1i(b->store_prog, OIT_LOC_K, b->layers);
-    glProgramUniform1i(b->resolve_prog, OIT_LOC_K, b->layers);
+    glProgramUniform1i(b->prog[PROG_STORE], OIT_LOC_K, b->layers);
+    glProgramUniform1i(b->prog[PROG_RESOLVE], OIT_LOC_K, b->layers);
     glBindImageTexture(OIT_IMG_SLOTS, b->slots, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32UI);
-    clear_u32(b->b.buf[BUF_COUNTS]);
-    clear_u32(b->b.buf[BUF_STATS]);
-    draw(b->store_prog, meshes, n);
-    dispatch_frame(b->resolve_prog, v);
-    glGetNamedBufferSubData(b->b.buf[BUF_STATS], 0, 12, figures);
-    return oit_gl_check("B3D: store pass and resolve", err);
+    return pass(b, PROG_STORE, PROG_RESOLVE, meshes, n, v, 0, 3, figures,
+                "B3D: store pass and resolve", err);
 }
 
 static oit_status oit_b3d_render(oit_b3d *b, const oit_gpu_mesh *const *meshes, int n,
-                                 const oit_view *view, oit_image *out, oit_frame_stats *stats,
+                                 const oit_view *v, oit_image *out, oit_frame_stats *stats,
                                  oit_error *err)
 {
-    oit_view v;
-    double t0;
-    oit_status s = oit_baseline_begin("B3D", view, n, &v, &t0, err);
-    if (s != OIT_OK)
-        return s;
     GLuint layers = 0, figures[3] = {0, 0, 0}; /* counter, max_len, total */
-    s = prepare(b, &v, err);
+    oit_status s = prepare(b, v, err);
     if (s == OIT_OK)
-        s = count(b, meshes, n, &v, &layers, err);
+        s = count(b, meshes, n, v, &layers, err);
     if (s == OIT_OK)
-        s = reserve_slots(b, v.width, v.height, layers, err);
+        s = reserve_slots(b, v->width, v->height, layers, err);
     if (s == OIT_OK)
-        s = store_and_resolve(b, meshes, n, &v, figures, err);
+        s = store_and_resolve(b, meshes, n, v, figures, err);
     if (s == OIT_OK)
-        s = oit_baseline_read_buffer("B3D", b->b.buf[BUF_OUT], v.width, v.height, out, err);
-    if (s != OIT_OK || !stats)
-        return s;
-    oit_baseline_stats(stats, t0, figures[2], figures[1], b->b.peak, 2);
-    return OIT_OK;
+        s = oit_baseline_read_buffer("B3D", b->b.buf[BUF_OUT], v->width, v->height, out, err);
+    *stats = (oit_frame_stats){.fragments = figures[2], .max_layers = figures[1],
+                               .gpu_bytes_peak = b->b.peak, .batches = 2};
+    return s;
 }
 
-OIT_BASELINE_METHOD(b3d, oit_b3d, 0, OIT_NO_THRESHOLD);
+OIT_BASELINE_METHOD(b3d, oit_b3d, "B3D", 0, OIT_NO_THRESHOLD);

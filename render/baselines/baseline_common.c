@@ -242,22 +242,20 @@ void oit_baseline_dispatch_frame(GLuint prog, int w, int h)
     glDispatchCompute(oit_gl_groups((uint64_t)w, 8), oit_gl_groups((uint64_t)h, 8), 1);
 }
 
-void oit_baseline_stats(oit_frame_stats *stats, double t0, uint64_t fragments,
-                        uint32_t max_layers, uint64_t bytes_peak, uint32_t batches)
+void oit_baseline_dispatch_to_texture(GLuint prog, GLuint out, int w, int h)
 {
-    memset(stats, 0, sizeof *stats);
-    stats->ms = oit_time_ms() - t0;
-    stats->fragments = fragments;
-    stats->max_layers = max_layers;
-    stats->gpu_bytes_peak = bytes_peak;
-    stats->batches = batches;
+    glBindImageTexture(OIT_IMG_OUT, out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    oit_baseline_dispatch_frame(prog, w, h);
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
 }
 
-oit_status oit_baseline_begin(const char *method, const oit_view *view, int n, oit_view *v,
-                              double *t0, oit_error *err)
+oit_status oit_baseline_begin(const char *method, const oit_view *view, int n,
+                              oit_baseline_frame *fr, oit_error *err)
 {
-    *t0 = oit_time_ms();
-    *v = *view;
+    memset(fr, 0, sizeof *fr);
+    fr->t0 = oit_time_ms();
+    fr->view = *view;
+    oit_view *v = &fr->view;
     oit_shading_resolve_defaults(&v->shading);
     GLint max_w = 0, max_h = 0;
     glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &max_w);
@@ -269,42 +267,38 @@ oit_status oit_baseline_begin(const char *method, const oit_view *view, int n, o
     return OIT_OK;
 }
 
-/* tmp holds w*h RGBA floats, bottom row first. */
-static void flip_into(const float *tmp, oit_image *out)
+oit_status oit_baseline_end(oit_baseline_frame *fr, oit_frame_stats *stats, oit_status s)
 {
-    size_t row = (size_t)out->width * 4;
-    for (int y = 0; y < out->height; y++) {
-        float *dst = out->rgba + (size_t)y * row;
-        memcpy(dst, tmp + (size_t)(out->height - 1 - y) * row, row * sizeof *dst);
-        for (int x = 0; x < out->width; x++)
-            dst[4 * x + 3] = 1.0f;
+    if (s == OIT_OK && stats) {
+        *stats = fr->stats;
+        stats->ms = oit_time_ms() - fr->t0;
     }
+    return s;
+}
+
+GLuint oit_baseline_texture(GLenum format, int w, int h)
+{
+    GLuint t = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &t);
+    glTextureStorage2D(t, 1, format, w, h);
+    glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    return t;
 }
 
 static oit_status read_any(const char *method, GLuint obj, int is_texture, int w, int h,
                            oit_image *out, oit_error *err)
 {
-    size_t bytes = (size_t)w * h * 16;
-    float *tmp = malloc(bytes);
-    if (!tmp)
-        return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot allocate %zu bytes for the "
-                             "readback", method, bytes);
     oit_status s = oit_image_alloc(out, w, h, err);
-    if (s == OIT_OK) {
-        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
-        if (is_texture)
-            glGetTextureImage(obj, 0, GL_RGBA, GL_FLOAT, (GLsizei)bytes, tmp);
-        else
-            glGetNamedBufferSubData(obj, 0, (GLsizeiptr)bytes, tmp);
-        s = oit_gl_check(is_texture ? "readback: glGetTextureImage"
-                                    : "readback: glGetNamedBufferSubData", err);
-        if (s == OIT_OK)
-            flip_into(tmp, out);
-        else
-            oit_image_free(out);
+    if (s == OIT_OK)
+        s = oit_gl_read_rows(obj, is_texture, w, h, 16, out->rgba, method, err);
+    if (s != OIT_OK) {
+        oit_image_free(out);
+        return s;
     }
-    free(tmp);
-    return s;
+    for (size_t i = 3; i < (size_t)w * h * 4; i += 4)
+        out->rgba[i] = 1.0f;
+    return OIT_OK;
 }
 
 oit_status oit_baseline_read_texture(const char *method, GLuint tex, int w, int h,
@@ -317,4 +311,75 @@ oit_status oit_baseline_read_buffer(const char *method, GLuint buf, int w, int h
                                     oit_image *out, oit_error *err)
 {
     return read_any(method, buf, 0, w, h, out, err);
+}
+
+oit_status oit_blend_passes_init(oit_blend_passes *p, const char *method,
+                                 const oit_glsl_program *programs, int n_prog,
+                                 const GLenum *formats, int n_tex, int attached, oit_error *err)
+{
+    p->method = method;
+    p->n_prog = n_prog;
+    p->n_tex = n_tex;
+    p->attached = attached;
+    memcpy(p->format, formats, sizeof *formats * (size_t)n_tex);
+    char what[96];
+    snprintf(what, sizeof what, "%s: framebuffer and query", method);
+    oit_status s = oit_glsl_programs_build(programs, n_prog, p->prog, err);
+    if (s == OIT_OK)
+        s = oit_gl_framebuffer_create(&p->fbo, &p->query, what, err);
+    return s;
+}
+
+void oit_blend_passes_release(oit_blend_passes *p)
+{
+    oit_glsl_programs_delete(p->prog, p->n_prog);
+    glDeleteFramebuffers(1, &p->fbo);
+    glDeleteQueries(1, &p->query);
+    glDeleteTextures(p->n_tex, p->tex);
+}
+
+static oit_status blend_targets(oit_blend_passes *p, int w, int h, oit_error *err)
+{
+    if (p->tex[0] && p->w == w && p->h == h)
+        return OIT_OK;
+    static const GLenum colour[OIT_BLEND_TARGETS_MAX] = {
+        GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    glDeleteTextures(p->n_tex, p->tex);
+    p->bytes = 0;
+    for (int i = 0; i < p->n_tex; i++) {
+        p->tex[i] = oit_baseline_texture(p->format[i], w, h);
+        p->bytes += (uint64_t)w * h * (p->format[i] == GL_R32F ? 4 : 16);
+    }
+    for (int i = 0; i < p->attached; i++)
+        glNamedFramebufferTexture(p->fbo, colour[i], p->tex[i], 0);
+    glNamedFramebufferDrawBuffers(p->fbo, p->attached, colour);
+    p->w = w;
+    p->h = h;
+    if (p->bytes > p->peak)
+        p->peak = p->bytes;
+    char what[96];
+    snprintf(what, sizeof what, "%s: float targets", p->method);
+    return oit_gl_check(what, err);
+}
+
+oit_status oit_blend_passes_begin(oit_blend_passes *p, const oit_view *v, oit_error *err)
+{
+    oit_status s = blend_targets(p, v->width, v->height, err);
+    if (s == OIT_OK)
+        oit_glsl_set_view_all(p->prog, p->n_prog, v);
+    return s;
+}
+
+oit_status oit_blend_passes_end(oit_blend_passes *p, int result, uint64_t bytes_peak,
+                                oit_image *out, oit_frame_stats *stats, oit_error *err)
+{
+    char what[96];
+    snprintf(what, sizeof what, "%s: passes", p->method);
+    oit_status s = oit_gl_check(what, err);
+    if (s == OIT_OK)
+        s = oit_baseline_read_texture(p->method, p->tex[result], p->w, p->h, out, err);
+    GLuint64 samples = 0;
+    glGetQueryObjectui64v(p->query, GL_QUERY_RESULT, &samples);
+    *stats = (oit_frame_stats){.fragments = samples, .gpu_bytes_peak = bytes_peak, .batches = 1};
+    return s;
 }

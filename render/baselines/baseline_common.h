@@ -1,9 +1,11 @@
 /* What the baseline methods (unsorted.h, wboit.h, ppll.h, ppll4.h, b3d.h,
  * guarded.h, depth_peel.h, dual_peel.h, f2b.h) share beyond frag_glsl.h: the
  * premultiplied colour of a packed fragment, the sort-and-composite resolve
- * of the methods that store every fragment, frame-size validation, and
- * readback of a GL-ordered (bottom row first) RGBA float result into a
- * top-first oit_image. None keeps state. */
+ * of the methods that store every fragment, their GPU buffers, the passes
+ * of the peeling and of the blending methods, a frame's start (size
+ * validation) and end (figures), and readback of a GL-ordered (bottom row
+ * first) RGBA float result into a top-first oit_image. Only the buffer and
+ * pass structs keep state, their owner's. */
 #ifndef OIT_RENDER_BASELINES_BASELINE_COMMON_H
 #define OIT_RENDER_BASELINES_BASELINE_COMMON_H
 
@@ -98,18 +100,48 @@ void oit_baseline_draw(GLuint prog, GLenum query_target, GLuint query,
 
 /* Runs compute prog over a w x h frame in 8x8 groups. */
 void oit_baseline_dispatch_frame(GLuint prog, int w, int h);
+/* The same, writing the RGBA32F texture out (image unit OIT_IMG_OUT), and
+ * the barrier before it is read back. */
+void oit_baseline_dispatch_to_texture(GLuint prog, GLuint out, int w, int h);
+/* The GLSL of such a pass (8x8 groups): OIT_GLSL_TO_TEXTURE_HEAD, the
+ * method's samplers, OIT_GLSL_TO_TEXTURE_MAIN, then main's body for the
+ * pixel px, which ends by storing its colour in u_out through oit_output
+ * (over oit_background()). */
+#define OIT_GLSL_TO_TEXTURE_HEAD                                                           \
+    "layout(local_size_x = 8, local_size_y = 8) in;\n"                                     \
+    "layout(location = 11) uniform ivec2 u_size;\n"                                        \
+    "layout(location = 9) uniform vec3 u_background;\n"                                    \
+    "uniform int u_colour_space;\n"                                                        \
+    OIT_GLSL_SRGB_FUNCS                                                                    \
+    OIT_GLSL_OUTPUT
+#define OIT_GLSL_TO_TEXTURE_MAIN                                                           \
+    "layout(rgba32f, binding = OIT_IMG_OUT) writeonly uniform image2D u_out;\n"            \
+    "void main() {\n"                                                                      \
+    "    ivec2 px = ivec2(gl_GlobalInvocationID.xy);\n"                                    \
+    "    if (px.x >= u_size.x || px.y >= u_size.y) return;\n"
 
-/* Fills stats with the wall time since t0 (oit_time_ms) and the figures
- * given; overflow_pixels is 0 (no baseline has a per-batch K). */
-void oit_baseline_stats(oit_frame_stats *stats, double t0, uint64_t fragments,
-                        uint32_t max_layers, uint64_t bytes_peak, uint32_t batches);
+/* A frame of a baseline (methods.h): the view it renders, the figures its
+ * passes fill and the time it started (oit_time_ms). */
+typedef struct oit_baseline_frame {
+    oit_view view;
+    oit_frame_stats stats;
+    double t0;
+} oit_baseline_frame;
 
 /* Starts a frame: OIT_ERR_ARGUMENT naming 'method' when it cannot be
  * rendered here (non-positive or larger than GL_MAX_FRAMEBUFFER_WIDTH/HEIGHT,
- * n < 0); else *v is view with its shading defaults filled in and *t0 the
- * start time (oit_time_ms) for oit_baseline_stats. */
-oit_status oit_baseline_begin(const char *method, const oit_view *view, int n, oit_view *v,
-                              double *t0, oit_error *err);
+ * n < 0); else fr->view is view with its shading defaults filled in, the
+ * figures are 0 and the clock runs. */
+oit_status oit_baseline_begin(const char *method, const oit_view *view, int n,
+                              oit_baseline_frame *fr, oit_error *err);
+/* Ends it with the passes' status s: when s is OIT_OK and stats is set,
+ * *stats = the figures with the wall time since the start (overflow_pixels
+ * stays 0: no baseline has a per-batch K). Returns s. */
+oit_status oit_baseline_end(oit_baseline_frame *fr, oit_frame_stats *stats, oit_status s);
+
+/* An immutable 2D texture of w x h texels of 'format' with nearest
+ * filtering (an integer texture with a linear filter would read 0). */
+GLuint oit_baseline_texture(GLenum format, int w, int h);
 
 /* Allocates out and fills it from an RGBA32F texture or from a buffer of
  * w*h vec4, both bottom row first; alpha is set to 1 (a composited frame). */
@@ -117,6 +149,38 @@ oit_status oit_baseline_read_texture(const char *method, GLuint tex, int w, int 
                                      oit_image *out, oit_error *err);
 oit_status oit_baseline_read_buffer(const char *method, GLuint buf, int w, int h,
                                     oit_image *out, oit_error *err);
+
+/* What the blending baselines (unsorted.h, wboit.h, f2b.h) hold besides
+ * their own: their programs (a table of frag_glsl.h), a framebuffer, a
+ * GL_SAMPLES_PASSED query that counts what their geometry pass blends, and
+ * float targets (RGBA32F or R32F) of the frame's size, the first 'attached'
+ * of them the framebuffer's colour attachments 0, 1, ... Errors name
+ * 'method'. */
+#define OIT_BLEND_PROGS_MAX   4
+#define OIT_BLEND_TARGETS_MAX 3
+typedef struct oit_blend_passes {
+    const char *method;
+    GLuint prog[OIT_BLEND_PROGS_MAX], fbo, query;
+    GLuint tex[OIT_BLEND_TARGETS_MAX];
+    GLenum format[OIT_BLEND_TARGETS_MAX];
+    int n_prog, n_tex, attached;
+    int w, h;       /* the targets' size */
+    uint64_t bytes; /* the targets' bytes */
+    uint64_t peak;  /* the most bytes they took */
+} oit_blend_passes;
+
+oit_status oit_blend_passes_init(oit_blend_passes *p, const char *method,
+                                 const oit_glsl_program *programs, int n_prog,
+                                 const GLenum *formats, int n_tex, int attached, oit_error *err);
+void oit_blend_passes_release(oit_blend_passes *p);
+/* A frame of v: the targets of its size (made again when it changes) and
+ * the view set on every program. */
+oit_status oit_blend_passes_begin(oit_blend_passes *p, const oit_view *v, oit_error *err);
+/* Its end after the passes: their GL check, out read from target 'result'
+ * and the figures: the samples counted (fragments), bytes_peak and one
+ * batch. */
+oit_status oit_blend_passes_end(oit_blend_passes *p, int result, uint64_t bytes_peak,
+                                oit_image *out, oit_frame_stats *stats, oit_error *err);
 
 #ifdef __cplusplus
 }

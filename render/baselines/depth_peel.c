@@ -71,25 +71,13 @@ static const char final_cs[] =
     "    out_rgba[p] = oit_state_final(states[p]);\n"
     "}\n";
 
-static void oit_depth_peel_destroy(oit_depth_peel *self);
-
-static oit_status oit_depth_peel_create(oit_depth_peel **out, oit_error *err)
+static oit_status oit_depth_peel_init(oit_depth_peel *d, oit_error *err)
 {
-    *out = NULL;
-    oit_depth_peel *d = calloc(1, sizeof *d);
-    if (!d)
-        return oit_error_set(err, OIT_ERR_NOMEM, "depth peeling: out of memory");
     d->b.method = "depth peeling";
     d->b.names = buffer_names;
     const char *mcs[] = {oit_glsl_version, oit_glsl_composite, merge_cs, NULL};
     const char *fcs[] = {oit_glsl_version, oit_glsl_composite, final_cs, NULL};
-    oit_status s = oit_peel_passes_create(&d->pp, "depth peeling", peel_fs, mcs, fcs, err);
-    if (s != OIT_OK) {
-        oit_depth_peel_destroy(d);
-        return s;
-    }
-    *out = d;
-    return OIT_OK;
+    return oit_peel_passes_create(&d->pp, "depth peeling", peel_fs, mcs, fcs, err);
 }
 
 static void release_targets(oit_depth_peel *d)
@@ -99,14 +87,11 @@ static void release_targets(oit_depth_peel *d)
     d->layer[0] = d->layer[1] = d->depth = 0;
 }
 
-static void oit_depth_peel_destroy(oit_depth_peel *d)
+static void oit_depth_peel_release(oit_depth_peel *d)
 {
-    if (!d)
-        return;
     oit_peel_passes_release(&d->pp);
     release_targets(d);
     oit_gpu_buffers_release(&d->b);
-    free(d);
 }
 
 static oit_status resize_targets(oit_depth_peel *d, int w, int h, oit_error *err)
@@ -114,14 +99,9 @@ static oit_status resize_targets(oit_depth_peel *d, int w, int h, oit_error *err
     if (d->depth && d->w == w && d->h == h)
         return OIT_OK;
     release_targets(d);
-    glCreateTextures(GL_TEXTURE_2D, 2, d->layer);
-    glCreateTextures(GL_TEXTURE_2D, 1, &d->depth);
-    glTextureStorage2D(d->depth, 1, GL_DEPTH_COMPONENT32F, w, h);
+    d->depth = oit_baseline_texture(GL_DEPTH_COMPONENT32F, w, h);
     for (int i = 0; i < 2; i++) {
-        glTextureStorage2D(d->layer[i], 1, GL_RGBA32UI, w, h);
-        /* An integer texture with a linear filter is incomplete and reads 0. */
-        glTextureParameteri(d->layer[i], GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTextureParameteri(d->layer[i], GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        d->layer[i] = oit_baseline_texture(GL_RGBA32UI, w, h);
         glNamedFramebufferTexture(d->pp.fbo[i], GL_COLOR_ATTACHMENT0, d->layer[i], 0);
         glNamedFramebufferTexture(d->pp.fbo[i], GL_DEPTH_ATTACHMENT, d->depth, 0);
     }
@@ -240,16 +220,11 @@ static oit_status peel_all(oit_depth_peel *d, const oit_gpu_mesh *const *meshes,
     return oit_gl_check("depth peeling: passes", err);
 }
 
-static oit_status oit_depth_peel_render(oit_depth_peel *d, const oit_gpu_mesh *const *meshes, int n,
-                                        const oit_view *view, oit_image *out,
+static oit_status oit_depth_peel_render(oit_depth_peel *d, const oit_gpu_mesh *const *meshes,
+                                        int n, const oit_view *v, oit_image *out,
                                         oit_frame_stats *stats, oit_error *err)
 {
-    oit_view v;
-    double t0;
-    oit_status s = oit_baseline_begin("depth peeling", view, n, &v, &t0, err);
-    if (s != OIT_OK)
-        return s;
-    s = prepare(d, &v, err);
+    oit_status s = prepare(d, v, err);
     if (s != OIT_OK)
         return s;
     uint32_t layers = 0, passes = 0;
@@ -258,13 +233,12 @@ static oit_status oit_depth_peel_render(oit_depth_peel *d, const oit_gpu_mesh *c
     if (s == OIT_OK) {
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         glGetNamedBufferSubData(d->b.buf[BUF_COUNT], 0, 4, &fragments);
-        s = oit_baseline_read_buffer("depth peeling", d->b.buf[BUF_OUT], v.width, v.height,
+        s = oit_baseline_read_buffer("depth peeling", d->b.buf[BUF_OUT], v->width, v->height,
                                      out, err);
     }
-    if (s != OIT_OK || !stats)
-        return s;
-    oit_baseline_stats(stats, t0, fragments, layers, d->b.peak, passes);
-    return OIT_OK;
+    *stats = (oit_frame_stats){.fragments = fragments, .max_layers = layers,
+                               .gpu_bytes_peak = d->b.peak, .batches = passes};
+    return s;
 }
 
-OIT_BASELINE_METHOD(dp, oit_depth_peel, 0, OIT_NO_THRESHOLD);
+OIT_BASELINE_METHOD(dp, oit_depth_peel, "depth peeling", 0, OIT_NO_THRESHOLD);

@@ -102,26 +102,14 @@ static const char final_cs[] =
     "    out_rgba[p] = vec4(oit_output(s.C + s.T * (b.C + b.T * oit_background())), 1.0);\n"
     "}\n";
 
-static void oit_dual_peel_destroy(oit_dual_peel *self);
-
-static oit_status oit_dual_peel_create(oit_dual_peel **out, oit_error *err)
+static oit_status oit_dual_peel_init(oit_dual_peel *d, oit_error *err)
 {
-    *out = NULL;
-    oit_dual_peel *d = calloc(1, sizeof *d);
-    if (!d)
-        return oit_error_set(err, OIT_ERR_NOMEM, "dual peeling: out of memory");
     d->b.method = "dual peeling";
     d->b.names = buffer_names;
     const char *mcs[] = {oit_glsl_version, oit_glsl_composite, oit_glsl_premultiplied,
                          merge_cs, NULL};
     const char *fcs[] = {oit_glsl_version, oit_glsl_composite, final_cs, NULL};
-    oit_status s = oit_peel_passes_create(&d->pp, "dual peeling", peel_fs, mcs, fcs, err);
-    if (s != OIT_OK) {
-        oit_dual_peel_destroy(d);
-        return s;
-    }
-    *out = d;
-    return OIT_OK;
+    return oit_peel_passes_create(&d->pp, "dual peeling", peel_fs, mcs, fcs, err);
 }
 
 static void release_targets(oit_dual_peel *d)
@@ -132,24 +120,11 @@ static void release_targets(oit_dual_peel *d)
     memset(d->layer, 0, sizeof d->layer);
 }
 
-static void oit_dual_peel_destroy(oit_dual_peel *d)
+static void oit_dual_peel_release(oit_dual_peel *d)
 {
-    if (!d)
-        return;
     oit_peel_passes_release(&d->pp);
     release_targets(d);
     oit_gpu_buffers_release(&d->b);
-    free(d);
-}
-
-static GLuint texture(GLenum format, int w, int h)
-{
-    GLuint t = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &t);
-    glTextureStorage2D(t, 1, format, w, h);
-    glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    return t;
 }
 
 static oit_status resize_targets(oit_dual_peel *d, int w, int h, oit_error *err)
@@ -158,11 +133,11 @@ static oit_status resize_targets(oit_dual_peel *d, int w, int h, oit_error *err)
         return OIT_OK;
     release_targets(d);
     for (int i = 0; i < 2; i++) {
-        d->minmax[i] = texture(GL_RG32F, w, h);
+        d->minmax[i] = oit_baseline_texture(GL_RG32F, w, h);
         glNamedFramebufferTexture(d->pp.fbo[i], GL_COLOR_ATTACHMENT0, d->minmax[i], 0);
     }
     for (int i = 0; i < IMG_N; i++)
-        d->layer[i] = texture(GL_RGBA32UI, w, h);
+        d->layer[i] = oit_baseline_texture(GL_RGBA32UI, w, h);
     d->w = w;
     d->h = h;
     d->b.texture_bytes = (uint64_t)w * h * (2 * 8 + IMG_N * 16);
@@ -256,29 +231,23 @@ static oit_status peel_all(oit_dual_peel *d, const oit_gpu_mesh *const *meshes, 
 }
 
 static oit_status oit_dual_peel_render(oit_dual_peel *d, const oit_gpu_mesh *const *meshes, int n,
-                                       const oit_view *view, oit_image *out,
+                                       const oit_view *v, oit_image *out,
                                        oit_frame_stats *stats, oit_error *err)
 {
-    oit_view v;
-    double t0;
-    oit_status s = oit_baseline_begin("dual peeling", view, n, &v, &t0, err);
-    if (s != OIT_OK)
-        return s;
     uint32_t passes = 0;
     GLuint figures[2] = {0, 0}; /* fragments, max_len */
-    s = prepare(d, &v, err);
+    oit_status s = prepare(d, v, err);
     if (s == OIT_OK)
         s = peel_all(d, meshes, n, &passes, err);
     if (s == OIT_OK) {
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         glGetNamedBufferSubData(d->b.buf[BUF_COUNT], 0, 8, figures);
-        s = oit_baseline_read_buffer("dual peeling", d->b.buf[BUF_OUT], v.width, v.height,
+        s = oit_baseline_read_buffer("dual peeling", d->b.buf[BUF_OUT], v->width, v->height,
                                      out, err);
     }
-    if (s != OIT_OK || !stats)
-        return s;
-    oit_baseline_stats(stats, t0, figures[0], figures[1], d->b.peak, passes);
-    return OIT_OK;
+    *stats = (oit_frame_stats){.fragments = figures[0], .max_layers = figures[1],
+                               .gpu_bytes_peak = d->b.peak, .batches = passes};
+    return s;
 }
 
-OIT_BASELINE_METHOD(ddp, oit_dual_peel, 0, OIT_NO_THRESHOLD);
+OIT_BASELINE_METHOD(ddp, oit_dual_peel, "dual peeling", 0, OIT_NO_THRESHOLD);

@@ -5,6 +5,7 @@
 #include "render/baselines/f2b.h"
 #include "render/baselines/methods.h"
 
+#include "base/grow.h"
 #include "render/baselines/baseline_common.h"
 #include "render/image.h"
 
@@ -12,12 +13,11 @@
 
 enum { BUF_KEYS, BUF_RANK, BUF_SORTED, BUF_N };
 enum { TEX_ACCUM, TEX_OUT, TEX_N };
+enum { PROG_BLEND, PROG_KEY, PROG_GATHER, PROG_FINAL, PROG_N };
 enum { TRI_BYTES = 48 };
 
 struct oit_f2b {
-    GLuint key_prog, gather_prog, blend_prog, final_prog, fbo, query;
-    GLuint tex[TEX_N];
-    int w, h;
+    oit_blend_passes p;
     oit_gpu_buffers b;
     oit_gpu_mesh *sorted;       /* a view of buf[BUF_SORTED] */
     uint64_t *pairs, *scratch;  /* CPU sort: key << 32 | triangle */
@@ -74,82 +74,39 @@ static const char blend_fs[] =
     "}\n";
 
 static const char final_cs[] =
-    "layout(local_size_x = 8, local_size_y = 8) in;\n"
-    "layout(location = 11) uniform ivec2 u_size;\n"
-    "layout(location = 9) uniform vec3 u_background;\n"
-    "uniform int u_colour_space;\n"
-    OIT_GLSL_SRGB_FUNCS
-    OIT_GLSL_OUTPUT
+    OIT_GLSL_TO_TEXTURE_HEAD
     "layout(binding = OIT_TEX_ACCUM) uniform sampler2D u_accum;\n"
-    "layout(rgba32f, binding = OIT_IMG_OUT) writeonly uniform image2D u_out;\n"
-    "void main() {\n"
-    "    ivec2 px = ivec2(gl_GlobalInvocationID.xy);\n"
-    "    if (px.x >= u_size.x || px.y >= u_size.y) return;\n"
+    OIT_GLSL_TO_TEXTURE_MAIN
     "    vec4 a = texelFetch(u_accum, px, 0);\n"
     "    imageStore(u_out, px, vec4(oit_output(a.rgb + a.a * oit_background()), 1.0));\n"
     "}\n";
 
-static oit_status build_programs(oit_f2b *f, oit_error *err)
+static const oit_glsl_program programs[PROG_N] = {
+    [PROG_BLEND] = {"F2B blend pass", .fs = {oit_glsl_premultiplied, blend_fs}},
+    [PROG_KEY] = {"F2B sort keys", .cs = {key_cs}},
+    [PROG_GATHER] = {"F2B gather", .cs = {gather_cs}},
+    [PROG_FINAL] = {"F2B final", .cs = {final_cs}},
+};
+
+static oit_status oit_f2b_init(oit_f2b *f, oit_error *err)
 {
-    const char *vs[] = {oit_glsl_version, oit_glsl_vertex, NULL};
-    const char *bfs[] = {oit_glsl_version, oit_glsl_fragment_gen, oit_glsl_premultiplied,
-                         blend_fs, NULL};
-    const char *kcs[] = {oit_glsl_version, key_cs, NULL};
-    const char *gcs[] = {oit_glsl_version, gather_cs, NULL};
-    const char *fcs[] = {oit_glsl_version, final_cs, NULL};
-    oit_status s = oit_gl_program_graphics("F2B blend pass", vs, bfs, &f->blend_prog, err);
+    f->b.method = "F2B";
+    f->b.names = buffer_names;
+    static const GLenum formats[TEX_N] = {GL_RGBA32F, GL_RGBA32F};
+    oit_status s = oit_blend_passes_init(&f->p, "F2B", programs, PROG_N, formats, TEX_N, 1, err);
     if (s == OIT_OK)
-        s = oit_gl_program_compute("F2B sort keys", kcs, &f->key_prog, err);
-    if (s == OIT_OK)
-        s = oit_gl_program_compute("F2B gather", gcs, &f->gather_prog, err);
-    if (s == OIT_OK)
-        s = oit_gl_program_compute("F2B final", fcs, &f->final_prog, err);
+        s = oit_f2b_set_threshold(f, OIT_F2B_DEFAULT_THRESHOLD, err);
     return s;
 }
 
-static void oit_f2b_destroy(oit_f2b *self);
-
-static oit_status oit_f2b_create(oit_f2b **out, oit_error *err)
+static void oit_f2b_release(oit_f2b *f)
 {
-    *out = NULL;
-    oit_f2b *f = calloc(1, sizeof *f);
-    if (!f)
-        return oit_error_set(err, OIT_ERR_NOMEM, "F2B: out of memory");
-    f->b.method = "F2B";
-    f->b.names = buffer_names;
-    oit_status s = build_programs(f, err);
-    if (s == OIT_OK) {
-        glCreateFramebuffers(1, &f->fbo);
-        glCreateQueries(GL_SAMPLES_PASSED, 1, &f->query);
-        s = oit_gl_check("F2B: framebuffer and query", err);
-    }
-    if (s == OIT_OK)
-        s = oit_f2b_set_threshold(f, OIT_F2B_DEFAULT_THRESHOLD, err);
-    if (s != OIT_OK) {
-        oit_f2b_destroy(f);
-        return s;
-    }
-    *out = f;
-    return OIT_OK;
-}
-
-static void oit_f2b_destroy(oit_f2b *f)
-{
-    if (!f)
-        return;
-    glDeleteProgram(f->key_prog);
-    glDeleteProgram(f->gather_prog);
-    glDeleteProgram(f->blend_prog);
-    glDeleteProgram(f->final_prog);
-    glDeleteFramebuffers(1, &f->fbo);
-    glDeleteQueries(1, &f->query);
-    glDeleteTextures(TEX_N, f->tex);
+    oit_blend_passes_release(&f->p);
     oit_gpu_mesh_destroy(f->sorted);
     oit_gpu_buffers_release(&f->b);
     free(f->pairs);
     free(f->scratch);
     free(f->words);
-    free(f);
 }
 
 oit_status oit_f2b_set_threshold(oit_f2b *f, float threshold, oit_error *err)
@@ -157,45 +114,22 @@ oit_status oit_f2b_set_threshold(oit_f2b *f, float threshold, oit_error *err)
     if (!(threshold >= 0.0f && threshold < 1.0f))
         return oit_error_set(err, OIT_ERR_ARGUMENT, "F2B: alpha threshold %g is outside "
                              "[0, 1)", (double)threshold);
-    glProgramUniform1f(f->blend_prog, glGetUniformLocation(f->blend_prog, "u_threshold"),
-                       threshold);
+    GLuint blend = f->p.prog[PROG_BLEND];
+    glProgramUniform1f(blend, glGetUniformLocation(blend, "u_threshold"), threshold);
     return oit_gl_check("F2B: threshold", err);
-}
-
-static oit_status resize_targets(oit_f2b *f, int w, int h, oit_error *err)
-{
-    if (f->tex[0] && f->w == w && f->h == h)
-        return OIT_OK;
-    glDeleteTextures(TEX_N, f->tex);
-    glCreateTextures(GL_TEXTURE_2D, TEX_N, f->tex);
-    for (int i = 0; i < TEX_N; i++) {
-        glTextureStorage2D(f->tex[i], 1, GL_RGBA32F, w, h);
-        glTextureParameteri(f->tex[i], GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTextureParameteri(f->tex[i], GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    }
-    glNamedFramebufferTexture(f->fbo, GL_COLOR_ATTACHMENT0, f->tex[TEX_ACCUM], 0);
-    f->w = w;
-    f->h = h;
-    f->b.texture_bytes = (uint64_t)w * h * 16 * TEX_N;
-    oit_gpu_buffers_note(&f->b);
-    return oit_gl_check("F2B: RGBA32F targets", err);
 }
 
 static oit_status reserve_host(oit_f2b *f, size_t n, oit_error *err)
 {
     if (n <= f->host_cap)
         return OIT_OK;
-    uint64_t *p = realloc(f->pairs, n * sizeof *p);
-    if (p)
-        f->pairs = p;
-    uint64_t *q = p ? realloc(f->scratch, n * sizeof *q) : NULL;
-    if (q)
-        f->scratch = q;
-    uint32_t *w = q ? realloc(f->words, n * sizeof *w) : NULL;
-    if (!w)
+    int ok = 1;
+    f->pairs = oit_grow(f->pairs, n, sizeof *f->pairs, &ok);
+    f->scratch = oit_grow(f->scratch, n, sizeof *f->scratch, &ok);
+    f->words = oit_grow(f->words, n, sizeof *f->words, &ok);
+    if (!ok)
         return oit_error_set(err, OIT_ERR_NOMEM, "F2B: cannot allocate the sort of %zu "
                              "triangles", n);
-    f->words = w;
     f->host_cap = n;
     return OIT_OK;
 }
@@ -273,7 +207,7 @@ static oit_status order(oit_f2b *f, const oit_gpu_mesh *const *meshes, int n, oi
     if (tris == 0)
         return OIT_OK;
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, f->b.buf[BUF_KEYS]);
-    per_triangle(f->key_prog, meshes, n);
+    per_triangle(f->p.prog[PROG_KEY], meshes, n);
     s = sort_triangles(f, (size_t)tris, err);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OFFSETS, f->b.buf[BUF_RANK]);
     size_t window = oit_gpu_triangle_window();
@@ -281,11 +215,10 @@ static oit_status order(oit_f2b *f, const oit_gpu_mesh *const *meshes, int n, oi
         uint64_t count = tris - lo < window ? tris - lo : window;
         glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_FRAGS, f->b.buf[BUF_SORTED],
                           (GLintptr)(lo * TRI_BYTES), (GLsizeiptr)(count * TRI_BYTES));
-        glProgramUniform1ui(f->gather_prog, glGetUniformLocation(f->gather_prog, "u_out_first"),
-                            (GLuint)lo);
-        glProgramUniform1ui(f->gather_prog, glGetUniformLocation(f->gather_prog, "u_out_count"),
-                            (GLuint)count);
-        per_triangle(f->gather_prog, meshes, n);
+        GLuint gather = f->p.prog[PROG_GATHER];
+        glProgramUniform1ui(gather, glGetUniformLocation(gather, "u_out_first"), (GLuint)lo);
+        glProgramUniform1ui(gather, glGetUniformLocation(gather, "u_out_count"), (GLuint)count);
+        per_triangle(gather, meshes, n);
     }
     return s == OIT_OK ? oit_gl_check("F2B: ordering passes", err) : s;
 }
@@ -293,15 +226,15 @@ static oit_status order(oit_f2b *f, const oit_gpu_mesh *const *meshes, int n, oi
 static void blend(oit_f2b *f)
 {
     static const float clear[4] = {0.0f, 0.0f, 0.0f, 1.0f};
-    oit_glsl_raster_begin(f->fbo, f->w, f->h);
+    oit_glsl_raster_begin(f->p.fbo, f->p.w, f->p.h);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glClearNamedFramebufferfv(f->fbo, GL_COLOR, 0, clear);
+    glClearNamedFramebufferfv(f->p.fbo, GL_COLOR, 0, clear);
     glTextureBarrier();
-    glBindTextureUnit(OIT_TEX_ACCUM, f->tex[TEX_ACCUM]);
+    glBindTextureUnit(OIT_TEX_ACCUM, f->p.tex[TEX_ACCUM]);
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE, GL_ZERO, GL_SRC_ALPHA);
     const oit_gpu_mesh *sorted[1] = {f->sorted};
-    oit_baseline_draw(f->blend_prog, GL_SAMPLES_PASSED, f->query, sorted, 1);
+    oit_baseline_draw(f->p.prog[PROG_BLEND], GL_SAMPLES_PASSED, f->p.query, sorted, 1);
     glDisable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ZERO);
 }
@@ -309,41 +242,24 @@ static void blend(oit_f2b *f)
 static void finish(oit_f2b *f)
 {
     glTextureBarrier();
-    glBindTextureUnit(OIT_TEX_ACCUM, f->tex[TEX_ACCUM]);
-    glBindImageTexture(OIT_IMG_OUT, f->tex[TEX_OUT], 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    oit_baseline_dispatch_frame(f->final_prog, f->w, f->h);
-    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+    glBindTextureUnit(OIT_TEX_ACCUM, f->p.tex[TEX_ACCUM]);
+    oit_baseline_dispatch_to_texture(f->p.prog[PROG_FINAL], f->p.tex[TEX_OUT], f->p.w, f->p.h);
 }
 
 static oit_status oit_f2b_render(oit_f2b *f, const oit_gpu_mesh *const *meshes, int n,
-                                 const oit_view *view, oit_image *out, oit_frame_stats *stats,
+                                 const oit_view *v, oit_image *out, oit_frame_stats *stats,
                                  oit_error *err)
 {
-    oit_view v;
-    double t0;
-    oit_status s = oit_baseline_begin("F2B", view, n, &v, &t0, err);
-    if (s != OIT_OK)
-        return s;
-    s = resize_targets(f, v.width, v.height, err);
-    if (s != OIT_OK)
-        return s;
-    oit_glsl_set_view(f->key_prog, &v);
-    oit_glsl_set_view(f->blend_prog, &v);
-    oit_glsl_set_view(f->final_prog, &v);
-    s = order(f, meshes, n, err);
+    oit_status s = oit_blend_passes_begin(&f->p, v, err);
+    f->b.texture_bytes = f->p.bytes;
+    oit_gpu_buffers_note(&f->b);
+    if (s == OIT_OK)
+        s = order(f, meshes, n, err);
     if (s != OIT_OK)
         return s;
     blend(f);
     finish(f);
-    s = oit_gl_check("F2B: passes", err);
-    if (s == OIT_OK)
-        s = oit_baseline_read_texture("F2B", f->tex[TEX_OUT], v.width, v.height, out, err);
-    GLuint64 samples = 0;
-    glGetQueryObjectui64v(f->query, GL_QUERY_RESULT, &samples);
-    if (s != OIT_OK || !stats)
-        return s;
-    oit_baseline_stats(stats, t0, samples, 0, f->b.peak, 1);
-    return OIT_OK;
+    return oit_blend_passes_end(&f->p, TEX_OUT, f->b.peak, out, stats, err);
 }
 
-OIT_BASELINE_METHOD(f2b, oit_f2b, OIT_METHOD_EPSILON, OIT_THRESHOLD);
+OIT_BASELINE_METHOD(f2b, oit_f2b, "F2B", OIT_METHOD_EPSILON, OIT_THRESHOLD);

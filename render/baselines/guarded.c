@@ -51,26 +51,18 @@ static const char append_fs[] =
     "    }\n"
     "}\n";
 
-static const char walk_glsl[] =
-    OIT_LIST_NODE_WALK
-    "uint oit_list_first(uint p) { return heads[2u * p]; }\n";
+/* 0xffffffff means no node, so it is no node index. A pass that overflows
+ * counts as if guards past the pool never culled, so the pool doubles at
+ * most per pass rather than growing to PLL's size at once. */
+static const oit_list_desc desc = {"guarded OIT", append_fs, OIT_LIST_NODE_WALK(2u), 1, 2,
+                                   0xfffffffeull, 2};
 
-static oit_status oit_guarded_create(oit_guarded **out, oit_error *err)
+static oit_status oit_guarded_init(oit_guarded *g, oit_error *err)
 {
-    /* 0xffffffff means no node, so it is no node index. A pass that
-     * overflows counts as if guards past the pool never culled, so the pool
-     * doubles at most per pass rather than growing to PLL's size at once. */
-    static const oit_list_desc d = {"guarded OIT", append_fs, walk_glsl, 1, 2, 0xfffffffeull,
-                                    2};
-    oit_status s = oit_list_store_create(&d, out, err);
+    oit_status s = oit_list_store_init(g, &desc, err);
     if (s == OIT_OK)
-        s = oit_guarded_set_threshold(*out, OIT_GUARDED_DEFAULT_THRESHOLD, err);
+        s = oit_guarded_set_threshold(g, OIT_GUARDED_DEFAULT_THRESHOLD, err);
     return s;
-}
-
-static void oit_guarded_destroy(oit_guarded *g)
-{
-    oit_list_store_destroy(g);
 }
 
 oit_status oit_guarded_set_threshold(oit_guarded *g, float threshold, oit_error *err)
@@ -83,11 +75,6 @@ oit_status oit_guarded_set_threshold(oit_guarded *g, float threshold, oit_error 
     return oit_gl_check("guarded OIT: threshold", err);
 }
 
-static oit_status oit_guarded_render(oit_guarded *g, const oit_gpu_mesh *const *meshes, int n,
-                                     const oit_view *view, oit_image *out, oit_frame_stats *stats,
-                                     oit_error *err)
-{
-    return oit_list_store_render(g, meshes, n, view, out, stats, err);
-}
-
-OIT_BASELINE_METHOD(guarded, oit_guarded, OIT_METHOD_EPSILON, OIT_THRESHOLD);
+OIT_BASELINE_METHOD_OF(guarded, oit_guarded, desc.method, oit_guarded_init,
+                       oit_list_store_release, oit_list_store_render, OIT_METHOD_EPSILON,
+                       OIT_THRESHOLD);

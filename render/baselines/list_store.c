@@ -12,69 +12,38 @@
 /* heads, slots, links, {counter, max_len, total}, output. */
 enum { BUF_HEADS, BUF_SLOTS, BUF_LINKS, BUF_STATS, BUF_OUT, BUF_N };
 
-struct oit_list_store {
-    oit_list_desc d;
-    GLuint append_prog, resolve_prog, fbo;
-    oit_gpu_buffers b;
-    uint64_t units; /* pool capacity in units */
-};
-
 static const char *const buffer_names[BUF_N] = {"heads", "fragment slots", "links",
                                                 "counters", "output"};
 
-static oit_status build_programs(oit_list_store *ls, oit_error *err)
+oit_status oit_list_store_init(oit_list_store *ls, const oit_list_desc *desc, oit_error *err)
 {
-    char what[96];
-    const char *vs[] = {oit_glsl_version, oit_glsl_vertex, NULL};
-    const char *afs[] = {oit_glsl_version, oit_glsl_fragment_gen, oit_glsl_premultiplied,
-                         ls->d.append_fs, NULL};
-    const char *rcs[] = {oit_glsl_version, oit_glsl_composite, oit_glsl_sorted_resolve,
-                         ls->d.walk_glsl, NULL};
-    snprintf(what, sizeof what, "%s append pass", ls->d.method);
-    oit_status s = oit_gl_program_graphics(what, vs, afs, &ls->append_prog, err);
-    snprintf(what, sizeof what, "%s resolve", ls->d.method);
-    if (s == OIT_OK)
-        s = oit_gl_program_compute(what, rcs, &ls->resolve_prog, err);
-    return s;
-}
-
-oit_status oit_list_store_create(const oit_list_desc *desc, oit_list_store **out,
-                                 oit_error *err)
-{
-    *out = NULL;
-    oit_list_store *ls = calloc(1, sizeof *ls);
-    if (!ls)
-        return oit_error_set(err, OIT_ERR_NOMEM, "%s: out of memory", desc->method);
+    char append[96], resolve[96];
+    snprintf(append, sizeof append, "%s append pass", desc->method);
+    snprintf(resolve, sizeof resolve, "%s resolve", desc->method);
+    const oit_glsl_program programs[OIT_LIST_PROG_N] = {
+        [OIT_LIST_PROG_APPEND] = {append, .fs = {oit_glsl_premultiplied, desc->append_fs}},
+        [OIT_LIST_PROG_RESOLVE] = {resolve, .cs = {oit_glsl_composite, oit_glsl_sorted_resolve,
+                                          desc->walk_glsl}},
+    };
     ls->d = *desc;
     ls->b.method = desc->method;
     ls->b.names = buffer_names;
-    oit_status s = build_programs(ls, err);
-    if (s == OIT_OK) {
-        glCreateFramebuffers(1, &ls->fbo);
-        s = oit_gl_check("list store: glCreateFramebuffers", err);
-    }
-    if (s != OIT_OK) {
-        oit_list_store_destroy(ls);
-        return s;
-    }
-    *out = ls;
-    return OIT_OK;
+    oit_status s = oit_glsl_programs_build(programs, OIT_LIST_PROG_N, ls->prog, err);
+    if (s == OIT_OK)
+        s = oit_gl_framebuffer_create(&ls->fbo, NULL, "list store: glCreateFramebuffers", err);
+    return s;
 }
 
-void oit_list_store_destroy(oit_list_store *ls)
+void oit_list_store_release(oit_list_store *ls)
 {
-    if (!ls)
-        return;
-    glDeleteProgram(ls->append_prog);
-    glDeleteProgram(ls->resolve_prog);
+    oit_glsl_programs_delete(ls->prog, OIT_LIST_PROG_N);
     glDeleteFramebuffers(1, &ls->fbo);
     oit_gpu_buffers_release(&ls->b);
-    free(ls);
 }
 
 unsigned oit_list_store_append_program(const oit_list_store *ls)
 {
-    return ls->append_prog;
+    return ls->prog[OIT_LIST_PROG_APPEND];
 }
 
 uint64_t oit_list_store_capacity(const oit_list_store *ls)
@@ -122,8 +91,8 @@ static oit_status append_pass(oit_list_store *ls, const oit_gpu_mesh *const *mes
     glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_TOTALS, ls->b.buf[BUF_LINKS], 0,
                       (GLsizeiptr)(ls->units * 4));
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_STATE, ls->b.buf[BUF_STATS]);
-    glProgramUniform1ui(ls->append_prog, OIT_LOC_COUNT, (GLuint)ls->units);
-    oit_baseline_draw(ls->append_prog, 0, 0, meshes, n);
+    glProgramUniform1ui(ls->prog[OIT_LIST_PROG_APPEND], OIT_LOC_COUNT, (GLuint)ls->units);
+    oit_baseline_draw(ls->prog[OIT_LIST_PROG_APPEND], 0, 0, meshes, n);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     GLuint count = 0;
     glGetNamedBufferSubData(ls->b.buf[BUF_STATS], 0, 4, &count);
@@ -145,11 +114,8 @@ static oit_status prepare(oit_list_store *ls, const oit_view *v, oit_error *err)
         s = reserve_units(ls, (pixels + ls->d.slots_per_unit - 1) / ls->d.slots_per_unit, err);
     if (s != OIT_OK)
         return s;
-    glNamedFramebufferParameteri(ls->fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH, v->width);
-    glNamedFramebufferParameteri(ls->fbo, GL_FRAMEBUFFER_DEFAULT_HEIGHT, v->height);
-    oit_glsl_raster_begin(ls->fbo, v->width, v->height);
-    oit_glsl_set_view(ls->append_prog, v);
-    oit_glsl_set_view(ls->resolve_prog, v);
+    oit_glsl_raster_begin_sized(ls->fbo, v->width, v->height);
+    oit_glsl_set_view_all(ls->prog, OIT_LIST_PROG_N, v);
     return oit_gl_check("list store: frame set-up", err);
 }
 
@@ -180,33 +146,27 @@ static oit_status resolve(oit_list_store *ls, const oit_view *v, GLuint figures[
                           oit_error *err)
 {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, ls->b.buf[BUF_OUT]);
-    oit_baseline_dispatch_frame(ls->resolve_prog, v->width, v->height);
+    oit_baseline_dispatch_frame(ls->prog[OIT_LIST_PROG_RESOLVE], v->width, v->height);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glGetNamedBufferSubData(ls->b.buf[BUF_STATS], 0, 12, figures);
     return oit_gl_check("list store: resolve", err);
 }
 
 oit_status oit_list_store_render(oit_list_store *ls, const oit_gpu_mesh *const *meshes, int n,
-                                 const oit_view *view, oit_image *out,
-                                 oit_frame_stats *stats, oit_error *err)
+                                 const oit_view *v, oit_image *out, oit_frame_stats *stats,
+                                 oit_error *err)
 {
-    oit_view v;
-    double t0;
-    oit_status s = oit_baseline_begin(ls->d.method, view, n, &v, &t0, err);
-    if (s != OIT_OK)
-        return s;
     uint32_t passes = 0;
     GLuint figures[3] = {0, 0, 0}; /* counter, max_len, total */
-    s = prepare(ls, &v, err);
+    oit_status s = prepare(ls, v, err);
     if (s == OIT_OK)
         s = build_lists(ls, meshes, n, &passes, err);
     if (s == OIT_OK)
-        s = resolve(ls, &v, figures, err);
+        s = resolve(ls, v, figures, err);
     if (s == OIT_OK)
-        s = oit_baseline_read_buffer(ls->d.method, ls->b.buf[BUF_OUT], v.width, v.height, out,
+        s = oit_baseline_read_buffer(ls->d.method, ls->b.buf[BUF_OUT], v->width, v->height, out,
                                      err);
-    if (s != OIT_OK || !stats)
-        return s;
-    oit_baseline_stats(stats, t0, figures[2], figures[1], ls->b.peak, passes);
-    return OIT_OK;
+    *stats = (oit_frame_stats){.fragments = figures[2], .max_layers = figures[1],
+                               .gpu_bytes_peak = ls->b.peak, .batches = passes};
+    return s;
 }

@@ -35,6 +35,8 @@
 #ifndef OIT_RENDER_BASELINES_LIST_STORE_H
 #define OIT_RENDER_BASELINES_LIST_STORE_H
 
+#include "render/baselines/baseline_common.h"
+#include "render/baselines/methods.h"
 #include "render/gpu_mesh.h"
 
 #ifdef __cplusplus
@@ -44,9 +46,9 @@ extern "C" {
 #define OIT_LIST_MAX_PASSES 16
 
 /* The walk GLSL of a store whose units are single nodes, each with its own
- * link (PLL, guarded): nodes, links, relinking for the merge sort. The
- * method appends its oit_list_first. */
-#define OIT_LIST_NODE_WALK                                                                 \
+ * link (PLL, guarded): nodes, links, relinking for the merge sort, and a
+ * pixel's list from the first of its WORDS head words (a GLSL uint). */
+#define OIT_LIST_NODE_WALK(WORDS)                                                          \
     "layout(std430, binding = OIT_BIND_COUNTS) readonly buffer Heads { uint heads[]; };\n" \
     "layout(std430, binding = OIT_BIND_FRAGS) readonly buffer Nodes { uvec4 nodes[]; };\n" \
     "layout(std430, binding = OIT_BIND_TOTALS) buffer Next { uint next[]; };\n"            \
@@ -56,7 +58,8 @@ extern "C" {
     "uint oit_list_at(uint k) { return OIT_LIST_END; }\n"                                  \
     "void oit_list_store(uint i, uvec4 f) {}\n"                                            \
     "uint oit_list_next(uint i) { return next[i]; }\n"                                     \
-    "uvec4 oit_list_load(uint i) { return nodes[i]; }\n"
+    "uvec4 oit_list_load(uint i) { return nodes[i]; }\n"                                  \
+    "uint oit_list_first(uint p) { return heads[" #WORDS " * p]; }\n"
 
 typedef struct oit_list_desc {
     const char *method;       /* names the method in errors: "PLL" */
@@ -69,23 +72,42 @@ typedef struct oit_list_desc {
                                  count; g: to at most g times the pool */
 } oit_list_desc;
 
-typedef struct oit_list_store oit_list_store;
+enum { OIT_LIST_PROG_APPEND, OIT_LIST_PROG_RESOLVE, OIT_LIST_PROG_N };
 
-/* desc's strings must outlive the store. */
-oit_status oit_list_store_create(const oit_list_desc *desc, oit_list_store **out,
+/* Its fields are the store's own (list_store.c); the list methods hold one
+ * (methods.h allocates it). */
+typedef struct oit_list_store {
+    oit_list_desc d;
+    GLuint prog[OIT_LIST_PROG_N], fbo;
+    oit_gpu_buffers b;
+    uint64_t units; /* pool capacity in units */
+} oit_list_store;
+
+/* A list method's functions for OIT_BASELINE_METHOD_OF (methods.h): init
+ * with the method's desc (its strings must outlive the store), release,
+ * and one frame of meshes[0..n) as one scene. */
+oit_status oit_list_store_init(oit_list_store *ls, const oit_list_desc *desc, oit_error *err);
+void oit_list_store_release(oit_list_store *ls);
+oit_status oit_list_store_render(oit_list_store *ls, const oit_gpu_mesh *const *meshes, int n,
+                                 const oit_view *v, oit_image *out, oit_frame_stats *stats,
                                  oit_error *err);
-void oit_list_store_destroy(oit_list_store *ls);
+
+/* The table of the list method T (a typedef of oit_list_store) whose store
+ * DESC (a static oit_list_desc) describes; a method with more to set up
+ * writes its own T_init and uses OIT_BASELINE_METHOD_OF. */
+#define OIT_LIST_METHOD(NAME, T, DESC, FLAGS, SET)                                          \
+    static oit_status T##_init(T *ls, oit_error *err)                                       \
+    {                                                                                       \
+        return oit_list_store_init(ls, &(DESC), err);                                       \
+    }                                                                                       \
+    OIT_BASELINE_METHOD_OF(NAME, T, (DESC).method, T##_init, oit_list_store_release,        \
+                           oit_list_store_render, FLAGS, SET)
 
 /* For the method's own uniforms (a threshold). */
 unsigned oit_list_store_append_program(const oit_list_store *ls);
 
 /* Fragment slots the pool holds now (units * slots_per_unit). */
 uint64_t oit_list_store_capacity(const oit_list_store *ls);
-
-/* Renders meshes[0..n) as one scene; out is allocated by the call. */
-oit_status oit_list_store_render(oit_list_store *ls, const oit_gpu_mesh *const *meshes, int n,
-                                 const oit_view *view, oit_image *out,
-                                 oit_frame_stats *stats, oit_error *err);
 
 #ifdef __cplusplus
 }

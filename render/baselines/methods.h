@@ -6,7 +6,10 @@
 #ifndef OIT_RENDER_BASELINES_METHODS_H
 #define OIT_RENDER_BASELINES_METHODS_H
 
+#include "render/baselines/baseline_common.h"
 #include "render/method.h"
+
+#include <stdlib.h>
 
 extern const oit_method oit_method_unsorted;
 extern const oit_method oit_method_wboit;
@@ -18,24 +21,47 @@ extern const oit_method oit_method_ddp;
 extern const oit_method oit_method_guarded;
 extern const oit_method oit_method_f2b;
 
-/* Defines `const oit_method oit_method_NAME` from a baseline's typed API
- * (static T_create(T **, oit_error *), T_destroy(T *), T_render(T *, const
- * oit_gpu_mesh *const *, int, view, out, stats, err)), so that each
- * baseline file ends with its table in one line instead of a hand-written
- * adapter. SET is OIT_NO_THRESHOLD, or OIT_THRESHOLD for a baseline with a
- * T_set_threshold that takes oit_method_options.epsilon when it is >= 0. */
+/* Defines `const oit_method oit_method_NAME` from a baseline's typed
+ * functions, so that each baseline file ends with its table in one line
+ * and none repeats the object's life or the frame around its passes:
+ *   oit_status INIT(T *self, oit_error *err)  self is zeroed memory;
+ *       makes what the method keeps between frames
+ *   void RELEASE(T *self)  deletes what INIT and the frames made (also
+ *       after a failed INIT); the table frees self
+ *   oit_status RENDER(T *self, const oit_gpu_mesh *const *meshes, int n,
+ *                     const oit_view *v, oit_image *out,
+ *                     oit_frame_stats *stats, oit_error *err)
+ *       one frame; v is renderable here and has its shading defaults
+ *       resolved (oit_baseline_begin); out is allocated by the call; fills
+ *       stats' fragments, max_layers, gpu_bytes_peak and batches (the
+ *       table adds the time; the rest stay 0)
+ * OIT_BASELINE_METHOD takes them as T_init, T_release and T_render. LABEL
+ * names the method in errors ("depth peeling"). SET is OIT_NO_THRESHOLD,
+ * or OIT_THRESHOLD for a baseline with a T_set_threshold that takes
+ * oit_method_options.epsilon when it is >= 0 (INIT sets its default). */
 #define OIT_NO_THRESHOLD(T, impl, opt, err) OIT_OK
 #define OIT_THRESHOLD(T, impl, opt, err)                                                    \
     ((opt) && (opt)->epsilon >= 0.0f ? T##_set_threshold(impl, (opt)->epsilon, err) : OIT_OK)
-#define OIT_BASELINE_METHOD(NAME, T, FLAGS, SET)                                            \
+#define OIT_BASELINE_METHOD(NAME, T, LABEL, FLAGS, SET)                                     \
+    OIT_BASELINE_METHOD_OF(NAME, T, LABEL, T##_init, T##_release, T##_render, FLAGS, SET)
+#define OIT_BASELINE_METHOD_OF(NAME, T, LABEL, INIT, RELEASE, RENDER, FLAGS, SET)           \
+    static void NAME##_method_destroy(void *impl)                                           \
+    {                                                                                       \
+        if (impl)                                                                           \
+            RELEASE((T *)impl);                                                             \
+        free(impl);                                                                         \
+    }                                                                                       \
     static oit_status NAME##_method_create(const oit_mesh *mesh,                           \
                                            const oit_method_options *opt, void **impl,     \
                                            oit_error *err)                                 \
     {                                                                                       \
-        T *p = NULL;                                                                        \
-        oit_status s = T##_create(&p, err);                                                 \
-        if (s == OIT_OK && (s = SET(T, p, opt, err)) != OIT_OK) {                           \
-            T##_destroy(p);                                                                 \
+        T *p = calloc(1, sizeof *p);                                                        \
+        oit_status s = p ? INIT(p, err)                                                     \
+                         : oit_error_set(err, OIT_ERR_NOMEM, "%s: out of memory", LABEL);   \
+        if (s == OIT_OK)                                                                    \
+            s = SET(T, p, opt, err);                                                        \
+        if (s != OIT_OK) {                                                                  \
+            NAME##_method_destroy(p);                                                       \
             p = NULL;                                                                       \
         }                                                                                   \
         *impl = p;                                                                          \
@@ -44,9 +70,12 @@ extern const oit_method oit_method_f2b;
     static oit_status NAME##_method_render(void *impl, const oit_method_frame *f,          \
                                            oit_error *err)                                 \
     {                                                                                       \
-        return T##_render(impl, &f->gpu, 1, f->view, f->out, f->stats, err);                \
+        oit_baseline_frame fr;                                                              \
+        oit_status s = oit_baseline_begin(LABEL, f->view, 1, &fr, err);                     \
+        if (s == OIT_OK)                                                                    \
+            s = RENDER((T *)impl, &f->gpu, 1, &fr.view, f->out, &fr.stats, err);            \
+        return oit_baseline_end(&fr, f->stats, s);                                          \
     }                                                                                       \
-    static void NAME##_method_destroy(void *impl) { T##_destroy(impl); }                    \
     const oit_method oit_method_##NAME = {.name = #NAME,                                    \
                                           .flags = OIT_METHOD_GL | (FLAGS),                 \
                                           .create = NAME##_method_create,                   \

@@ -5,7 +5,6 @@
 
 #include "render/baselines/list_store.h"
 
-
 static const char append_fs[] =
     "layout(std430, binding = OIT_BIND_COUNTS) buffer Heads { uint heads[]; };\n"
     "layout(std430, binding = OIT_BIND_FRAGS) writeonly buffer Nodes { uvec4 nodes[]; };\n"
@@ -20,32 +19,13 @@ static const char append_fs[] =
     "    next[n] = atomicExchange(heads[oit_pixel_index()], n);\n"
     "}\n";
 
-static const char walk_glsl[] =
-    OIT_LIST_NODE_WALK
-    "uint oit_list_first(uint p) { return heads[p]; }\n";
-
-static oit_status oit_pll_create(oit_pll **out, oit_error *err)
-{
-    /* 0xffffffff ends a list, so it is no node index. */
-    static const oit_list_desc d = {"PLL", append_fs, walk_glsl, 1, 1, 0xfffffffeull, 0};
-    return oit_list_store_create(&d, out, err);
-}
-
-static void oit_pll_destroy(oit_pll *p)
-{
-    oit_list_store_destroy(p);
-}
+/* 0xffffffff ends a list, so it is no node index. */
+static const oit_list_desc desc = {"PLL", append_fs, OIT_LIST_NODE_WALK(1u), 1, 1, 0xfffffffeull,
+                                   0};
 
 uint64_t oit_pll_capacity(const oit_pll *p)
 {
     return oit_list_store_capacity(p);
 }
 
-static oit_status oit_pll_render(oit_pll *p, const oit_gpu_mesh *const *meshes, int n,
-                                 const oit_view *view, oit_image *out, oit_frame_stats *stats,
-                                 oit_error *err)
-{
-    return oit_list_store_render(p, meshes, n, view, out, stats, err);
-}
-
-OIT_BASELINE_METHOD(pll, oit_pll, 0, OIT_NO_THRESHOLD);
+OIT_LIST_METHOD(pll, oit_pll, desc, 0, OIT_NO_THRESHOLD);

@@ -6,7 +6,6 @@
 
 #include "render/baselines/list_store.h"
 
-
 /* A page taken but not swapped in (another fragment filled the pixel first)
  * is kept for the next full page this fragment meets, so one fragment
  * wastes at most one page. Pages at or past u_capacity exist only in the
@@ -75,28 +74,12 @@ static const char walk_glsl[] =
     "}\n"
     "void oit_list_store(uint i, uvec4 f) { slots[i] = f; }\n";
 
-static oit_status oit_ppll4_create(oit_ppll4 **out, oit_error *err)
-{
-    /* Page indices take the head word's upper 30 bits; the top one is NO_PAGE. */
-    static const oit_list_desc d = {"PPLL4", append_fs, walk_glsl, 4, 1, 0x3ffffffeull, 0};
-    return oit_list_store_create(&d, out, err);
-}
-
-static void oit_ppll4_destroy(oit_ppll4 *p)
-{
-    oit_list_store_destroy(p);
-}
+/* Page indices take the head word's upper 30 bits; the top one is NO_PAGE. */
+static const oit_list_desc desc = {"PPLL4", append_fs, walk_glsl, 4, 1, 0x3ffffffeull, 0};
 
 uint64_t oit_ppll4_capacity(const oit_ppll4 *p)
 {
     return oit_list_store_capacity(p);
 }
 
-static oit_status oit_ppll4_render(oit_ppll4 *p, const oit_gpu_mesh *const *meshes, int n,
-                                   const oit_view *view, oit_image *out, oit_frame_stats *stats,
-                                   oit_error *err)
-{
-    return oit_list_store_render(p, meshes, n, view, out, stats, err);
-}
-
-OIT_BASELINE_METHOD(ppll4, oit_ppll4, 0, OIT_NO_THRESHOLD);
+OIT_LIST_METHOD(ppll4, oit_ppll4, desc, 0, OIT_NO_THRESHOLD);

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/grow.h"
 #include "plot/chart.h"
 
 enum {
@@ -365,12 +366,11 @@ static int add_point(series_set *set, const char *name, double x, double y)
         return 0;
     if (s->n == s->cap) {
         int nc = s->cap ? 2 * s->cap : 8;
-        double *nx = realloc(s->x, (size_t)nc * sizeof *nx);
-        if (nx) s->x = nx;
-        double *ny = nx ? realloc(s->y, (size_t)nc * sizeof *ny) : NULL;
-        if (!ny)
+        int ok = 1;
+        s->x = oit_grow(s->x, (size_t)nc, sizeof *s->x, &ok);
+        s->y = oit_grow(s->y, (size_t)nc, sizeof *s->y, &ok);
+        if (!ok)
             return 0;
-        s->y = ny;
         s->cap = nc;
     }
     s->x[s->n] = x;
@@ -449,25 +449,42 @@ static void note_not_run(const oit_bench_table *runs, int n, notes *ns)
         }
 }
 
-static oit_status series_chart(series_set *set, const char *title, const char *subtitle,
-                               oit_chart_axis x, oit_chart_axis y, notes *ns, const char *path,
-                               oit_error *err)
+/* A linear axis from 0 unless the figures span more than two decades
+ * (then log10, labelled log_label). */
+static void fit_y_auto(oit_chart_axis *y, double lo, double hi, const char *log_label)
 {
+    y->scale = lo > 0.0 && hi / lo > 100.0 ? OIT_CHART_LOG10 : OIT_CHART_LINEAR;
+    oit_chart_axis_fit(y, lo, hi, y->scale == OIT_CHART_LINEAR);
+    if (y->scale == OIT_CHART_LOG10)
+        y->label = log_label;
+}
+
+/* The chart of the set, when s is OIT_OK, with x fitted to its x values
+ * (from 0 when x_zero) and y to its y values: fit_y_auto when y_log_label
+ * is set, else on y's own scale. Frees the set either way. */
+static oit_status series_chart(series_set *set, oit_status s, const char *title,
+                               const char *subtitle, oit_chart_axis x, int x_zero,
+                               oit_chart_axis y, const char *y_log_label, notes *ns,
+                               const char *path, oit_error *err)
+{
+    double lo, hi;
+    set_range(set, 0, &lo, &hi);
+    oit_chart_axis_fit(&x, lo, hi, x_zero);
+    set_range(set, 1, &lo, &hi);
+    if (y_log_label)
+        fit_y_auto(&y, lo, hi, y_log_label);
+    else
+        oit_chart_axis_fit(&y, lo, hi, 0);
     oit_chart c;
-    oit_status s = open_chart(&c, title, subtitle, x, y, ns, path, err);
+    if (s == OIT_OK)
+        s = open_chart(&c, title, subtitle, x, y, ns, path, err);
     if (s == OIT_OK) {
         draw_series(&c, set);
         draw_notes(&c, ns);
         s = finish(&c, path, err);
     }
+    series_free(set);
     return s;
-}
-
-/* A linear axis from 0 unless the figures span more than two decades. */
-static void fit_y_auto(oit_chart_axis *y, double lo, double hi)
-{
-    y->scale = lo > 0.0 && hi / lo > 100.0 ? OIT_CHART_LOG10 : OIT_CHART_LINEAR;
-    oit_chart_axis_fit(y, lo, hi, y->scale == OIT_CHART_LINEAR);
 }
 
 oit_status oit_bench_plot_memory_depth(const oit_bench_table *runs, int n, const char *title,
@@ -495,17 +512,8 @@ oit_status oit_bench_plot_memory_depth(const oit_bench_table *runs, int n, const
         note(&ns, 0, "no view rendered: nothing to plot");
     oit_chart_axis x = {"depth complexity of the view (max layers)", OIT_CHART_LINEAR, 0, 0};
     oit_chart_axis y = {"GPU memory at peak (MiB)", OIT_CHART_LINEAR, 0, 0};
-    double lo, hi;
-    set_range(&set, 0, &lo, &hi);
-    oit_chart_axis_fit(&x, lo, hi, 1);
-    set_range(&set, 1, &lo, &hi);
-    fit_y_auto(&y, lo, hi);
-    if (y.scale == OIT_CHART_LOG10)
-        y.label = "GPU memory at peak (MiB, log)";
-    if (s == OIT_OK)
-        s = series_chart(&set, title, subtitle, x, y, &ns, path, err);
-    series_free(&set);
-    return s;
+    return series_chart(&set, s, title, subtitle, x, 1, y, "GPU memory at peak (MiB, log)", &ns,
+                        path, err);
 }
 
 oit_status oit_bench_plot_time_triangles(const oit_bench_table *runs, int n, const char *title,
@@ -537,13 +545,5 @@ oit_status oit_bench_plot_time_triangles(const oit_bench_table *runs, int n, con
                                                path);
     oit_chart_axis x = {"triangles of the model (log)", OIT_CHART_LOG10, 0, 0};
     oit_chart_axis y = {"median ms per frame (log)", OIT_CHART_LOG10, 0, 0};
-    double lo, hi;
-    set_range(&set, 0, &lo, &hi);
-    oit_chart_axis_fit(&x, lo, hi, 0);
-    set_range(&set, 1, &lo, &hi);
-    oit_chart_axis_fit(&y, lo, hi, 0);
-    if (s == OIT_OK)
-        s = series_chart(&set, title, subtitle, x, y, &ns, path, err);
-    series_free(&set);
-    return s;
+    return series_chart(&set, s, title, subtitle, x, 0, y, NULL, &ns, path, err);
 }

@@ -215,6 +215,27 @@ static int print_decode_rate(const char *path)
     return 0;
 }
 
+/* A subcommand's FILE: arg, unless it is an option or a FILE came before
+ * (then 2, said on stderr). */
+static int file_arg(const char *cmd, const char *arg, const char **path)
+{
+    if (arg[0] == '-' || *path) {
+        fprintf(stderr, "oitprep %s: unexpected argument '%s'\n", cmd, arg);
+        return 2;
+    }
+    *path = arg;
+    return 0;
+}
+
+/* 2, said on stderr, when the subcommand got no FILE; else 0. */
+static int file_given(const char *cmd, const char *path)
+{
+    if (path)
+        return 0;
+    fprintf(stderr, "oitprep %s: no FILE given (see oitprep --help)\n", cmd);
+    return 2;
+}
+
 static int cmd_info(int argc, char **argv)
 {
     const char *path = NULL;
@@ -224,16 +245,11 @@ static int cmd_info(int argc, char **argv)
             json = 1;
         else if (strcmp(argv[i], "--decode") == 0)
             decode = 1;
-        else if (argv[i][0] == '-' || path) {
-            fprintf(stderr, "oitprep info: unexpected argument '%s'\n", argv[i]);
+        else if (file_arg("info", argv[i], &path))
             return 2;
-        } else
-            path = argv[i];
     }
-    if (!path) {
-        fprintf(stderr, "oitprep info: no FILE given (see oitprep --help)\n");
+    if (file_given("info", path))
         return 2;
-    }
     if (json && decode) {
         fprintf(stderr, "oitprep info: --decode prints a line of text, not JSON: give it "
                 "without --json\n");
@@ -439,16 +455,11 @@ static int cmd_verify(int argc, char **argv)
             if (option_value(argc, argv, &i, argv[i], 1, 1, 1ull << 32, &v))
                 return 2;
             o.chunk_triangles = v;
-        } else if (argv[i][0] == '-' || path) {
-            fprintf(stderr, "oitprep verify: unexpected argument '%s'\n", argv[i]);
+        } else if (file_arg("verify", argv[i], &path))
             return 2;
-        } else
-            path = argv[i];
     }
-    if (!path) {
-        fprintf(stderr, "oitprep verify: no FILE given (see oitprep --help)\n");
+    if (file_given("verify", path))
         return 2;
-    }
     if (o.directions == 0 && o.viewpoints == 0) { /* no ray: nothing verified */
         fprintf(stderr, "oitprep verify: --directions 0 and --viewpoints 0 cast no ray; "
                 "give one of them above 0\n");
@@ -487,11 +498,8 @@ static int cmd_parts(int argc, char **argv)
             if (option_value(argc, argv, &i, argv[i], 0, 1, 255, &v))
                 return 2;
             alpha = (uint8_t)v;
-        } else if (argv[i][0] == '-' || path) {
-            fprintf(stderr, "oitprep parts: unexpected argument '%s'\n", argv[i]);
+        } else if (file_arg("parts", argv[i], &path))
             return 2;
-        } else
-            path = argv[i];
     }
     if (!path || !out) {
         fprintf(stderr, "oitprep parts: needs FILE and -o OUT.ply (see oitprep --help)\n");
