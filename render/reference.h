@@ -6,7 +6,7 @@
 #define OIT_RENDER_REFERENCE_H
 
 #include "render/method.h"
-#include "view.h"
+#include "render/view.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -9,7 +9,8 @@ cd "$1"
 
 # Each line: a folder, then the folders whose headers it may include
 # ("oit" is include/oit/; a folder allows its headers, a header path that
-# header alone).
+# header alone; "!path" forbids a folder or header that an entry before it
+# allowed, e.g. the baselines below their parent render/).
 while read -r dir ok; do
     if [ ! -d "$dir" ]; then # a moved folder must move in this table too
         fail "no folder $dir: update this table"
@@ -21,7 +22,10 @@ while read -r dir ok; do
         for inc in $(sed -n 's/^[[:space:]]*#[[:space:]]*include[[:space:]]*"\([a-z_]*\/[^"]*\)".*/\1/p' "$f"); do
             hit=0
             for a in $ok; do
-                case $inc in "$a" | "$a"/*) hit=1 ;; esac
+                case $a in
+                !*) case $inc in "${a#!}" | "${a#!}"/*) hit=0 ;; esac ;;
+                *) case $inc in "$a" | "$a"/*) hit=1 ;; esac ;;
+                esac
             done
             [ $hit = 1 ] ||
                 fail "$f includes \"$inc\": $dir may include only: ${ok:-system headers and its own}"
@@ -32,7 +36,7 @@ include/oit oit
 base oit base
 formats oit base formats
 partfile oit base formats partfile
-render oit base formats render
+render oit base formats render !render/baselines
 render/baselines oit base formats render
 plot oit base formats render/image.h render/view.h plot
 scenes oit base formats scenes

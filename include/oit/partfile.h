@@ -291,6 +291,9 @@ OIT_API const uint32_t *oit_partfile_slab_inside(const oit_partfile *pf, uint32_
                                                  uint32_t *count);
 
 /* ---- writer ------------------------------------------------------------ */
+/* The writer is the converter's (the static library oit_partfile_write, with
+ * libmeshoptimizer's encoders), not liboit's: its functions carry no OIT_API
+ * and liboit.so does not export them. */
 
 typedef struct oit_partfile_writer oit_partfile_writer;
 
