@@ -12,12 +12,10 @@
 # 1M plant and 2CylinderEngine.glb. Knobs: AB_REPS (5), AB_VIEWS (6),
 # AB_SIZE (1024x1024).
 set -eu
-old=$(cd "$1" && pwd) new=$(cd "$2" && pwd)
-shift 2
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/models.sh"
-work=$(mktemp -d) && trap 'rm -rf "$work"' EXIT
-export EGL_PLATFORM=surfaceless
+two_builds "$1" "$2"
+shift 2
 reps=${AB_REPS:-5} views=${AB_VIEWS:-6} size=${AB_SIZE:-1024x1024}
 if [ $# = 0 ]; then
     set -- $(generated_paths "$new" "$work" 1000000) "$here/cache/2CylinderEngine.glb"

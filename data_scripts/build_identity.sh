@@ -11,12 +11,10 @@
 # MODEL: a path, or a name in data_scripts/cache; default: the demo scene, a
 # 100K plant and the fetched models of models.sh that the cache holds.
 set -eu
-old=$(cd "$1" && pwd) new=$(cd "$2" && pwd)
-shift 2
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/models.sh"
-work=$(mktemp -d) && trap 'rm -rf "$work"' EXIT
-export EGL_PLATFORM=surfaceless
+two_builds "$1" "$2"
+shift 2
 if [ $# = 0 ]; then
     set -- $(generated_paths "$new" "$work" 100000) $(fetched_paths "$here/cache")
 fi

@@ -29,3 +29,13 @@ generated_paths() {
         printf ' %s' "$_w/plant$_n.ply"
     done
 }
+
+# two_builds OLD_BIN NEW_BIN: for the scripts that compare two builds (before
+# and after a change): sets old and new to their binary folders (absolute),
+# work to a scratch folder removed on exit, and renders headless.
+two_builds() {
+    old=$(cd "$1" && pwd) && new=$(cd "$2" && pwd) || return 1
+    work=$(mktemp -d) || return 1
+    trap 'rm -rf "$work"' EXIT
+    export EGL_PLATFORM=surfaceless
+}
