@@ -239,6 +239,8 @@ oit_status oit_offscreen_render(oit_offscreen *o, oit_scene *scene,
     glGetTextureImage(o->tex, 0, GL_RGBA, GL_FLOAT,
                       (GLsizei)((size_t)w * h * 4 * sizeof *o->readback), o->readback);
     s = oit_gl_check("oit_offscreen_render: readback", err);
+    if (s == OIT_OK)
+        s = oit_gl_debug_check(o->gl, "oit_offscreen_render", err);
     if (s != OIT_OK)
         return s;
     size_t row = (size_t)w * 4;

@@ -38,7 +38,14 @@ const char oit_glsl_vertex[] =
     "    double len = sqrt(dot(nn, nn));\n"
     "    if (!(len > 0.0lf)) return vec4(0.0);\n"
     "    dvec3 nu = nn / len;\n"
-    "    return vec4(mat3(u_view) * vec3(nu), float(dot(nu, q0 - u_eye)));\n"
+    "    vec3 n = vec3(nu);\n"
+    /* Rotated term by term, in shade.c's order (reference.c key_hits):
+     * precise forbids the compiler to fuse or reorder (GLSL 4.50 4.7.1). */
+    "    precise vec3 r;\n"
+    "    r.x = u_view[0].x * n.x + u_view[1].x * n.y + u_view[2].x * n.z;\n"
+    "    r.y = u_view[0].y * n.x + u_view[1].y * n.y + u_view[2].y * n.z;\n"
+    "    r.z = u_view[0].z * n.x + u_view[1].z * n.y + u_view[2].z * n.z;\n"
+    "    return vec4(r, float(dot(nu, q0 - u_eye)));\n"
     "}\n"
     "void main() {\n"
     /* The draw's triangles start at vertex a_draw.x of the binding. */
@@ -92,7 +99,8 @@ const char oit_glsl_fragment_gen[] =
      * near plane for an orthographic view. */
     "vec3 oit_ray_origin() {\n"
     "    vec2 c = floor(gl_FragCoord.xy) + 0.5;\n"
-    "    return vec3(c.x * u_org.x + u_org.z, c.y * u_org.y + u_org.w, u_org_z);\n"
+    "    precise vec3 o = vec3(c.x * u_org.x + u_org.z, c.y * u_org.y + u_org.w, u_org_z);\n"
+    "    return o;\n"
     "}\n"
     "uint oit_pixel_index() {\n"
     "    return uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x);\n"
@@ -108,13 +116,25 @@ const char oit_glsl_fragment_gen[] =
      * orthographic ray map is 0, so dir = (0, 0, -1). */
     /* floor + 0.5: the centre even where a multisampled target lets
      * gl_FragCoord lie anywhere in the pixel. */
+    /* Every operation is written out in the order view.c
+     * (oit_view_pixel_ray) and shade.c (oit_depth_key) use, and precise:
+     * a GPU compiler may otherwise fuse multiply-adds or reassociate
+     * (GLSL 4.50 4.7.1), so that faces coplanar up to rounding get keys on
+     * either side of a grid line than the CPU reference's. Division and
+     * sqrt stay within GLSL's stated ulps of the CPU's. */
     "uint oit_depth_key(float t_interp) {\n"
     "    vec2 c = floor(gl_FragCoord.xy) + 0.5;\n"
-    "    vec3 dir = normalize(vec3(c.x * u_ray.x + u_ray.z, c.y * u_ray.y + u_ray.w, -1.0));\n"
-    "    float nd = dot(v_plane.xyz, dir);\n"
+    "    precise vec3 dir = vec3(c.x * u_ray.x + u_ray.z, c.y * u_ray.y + u_ray.w, -1.0);\n"
+    "    precise float len2 = dir.x * dir.x + dir.y * dir.y + dir.z * dir.z;\n"
+    "    precise float inv = 1.0 / sqrt(len2);\n"
+    "    dir = dir * inv;\n"
+    "    vec3 n = v_plane.xyz;\n"
+    "    precise float nd = n.x * dir.x + n.y * dir.y + n.z * dir.z;\n"
     "    float t = t_interp;\n"
     "    if (abs(nd) >= " OIT_GLSL_STR(OIT_DEPTH_GRAZING) ") {\n"
-    "        float tp = (v_plane.w - dot(v_plane.xyz, oit_ray_origin())) / nd;\n"
+    "        vec3 o = oit_ray_origin();\n"
+    "        precise float no = n.x * o.x + n.y * o.y + n.z * o.z;\n"
+    "        precise float tp = (v_plane.w - no) / nd;\n"
     "        if (tp > 0.0 && !isinf(tp)) t = tp;\n"
     "    }\n"
     "    return floatBitsToUint(t) & ~" OIT_GLSL_STR(OIT_DEPTH_KEY_MASK) "u;\n"

@@ -10,6 +10,8 @@
 
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
+#include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -19,7 +21,63 @@ struct oit_gl {
     void *window; /* an adopted window, or NULL when headless */
     const oit_gl_window_ops *ops;
     char renderer[256];
+    /* Debug contexts (oit_gl_debug_wanted): error and undefined-behaviour
+     * messages counted by on_debug, the first kept for the error;
+     * `reported` of them were returned by oit_gl_debug_check already. */
+    uint64_t debug_errors, debug_reported;
+    char debug_first[320];
 };
+
+int oit_gl_debug_wanted(const oit_gl_desc *desc)
+{
+    const char *env = getenv("OIT_GL_DEBUG");
+    return (desc && desc->debug) || (env && strcmp(env, "1") == 0);
+}
+
+static const char *debug_type_name(GLenum type)
+{
+    return type == GL_DEBUG_TYPE_ERROR ? "error" : "undefined behaviour";
+}
+
+/* Counts what the spec calls errors or undefined behaviour; performance and
+ * portability notes only matter to a person reading the log. */
+static void APIENTRY on_debug(GLenum source, GLenum type, GLuint id, GLenum severity,
+                              GLsizei length, const GLchar *message, const void *user)
+{
+    (void)source, (void)id, (void)severity;
+    if (type != GL_DEBUG_TYPE_ERROR && type != GL_DEBUG_TYPE_UNDEFINED_BEHAVIOR)
+        return;
+    oit_gl *gl = (oit_gl *)(uintptr_t)user;
+    int n = length < 0 ? (int)strlen(message) : (int)length;
+    if (gl->debug_errors++ == gl->debug_reported)
+        snprintf(gl->debug_first, sizeof gl->debug_first, "%s: %.*s", debug_type_name(type),
+                 n, message);
+    fprintf(stderr, "GL debug: %s: %.*s\n", debug_type_name(type), n, message);
+}
+
+/* A context made with the debug flag reports through on_debug, on the
+ * calling thread, at the call that caused the message. */
+static void install_debug(oit_gl *gl)
+{
+    GLint flags = 0;
+    glGetIntegerv(GL_CONTEXT_FLAGS, &flags);
+    if (!(flags & GL_CONTEXT_FLAG_DEBUG_BIT))
+        return;
+    glEnable(GL_DEBUG_OUTPUT);
+    glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+    glDebugMessageCallback(on_debug, gl);
+}
+
+oit_status oit_gl_debug_check(oit_gl *gl, const char *what, oit_error *err)
+{
+    if (!gl || gl->debug_errors == gl->debug_reported)
+        return OIT_OK;
+    uint64_t n = gl->debug_errors - gl->debug_reported;
+    gl->debug_reported = gl->debug_errors;
+    return oit_error_set(err, OIT_ERR_GL, "%s: the GL debug context reported %llu "
+                         "message(s), the first: %s", what, (unsigned long long)n,
+                         gl->debug_first);
+}
 
 /* An NVIDIA device of EGL_EXT_device_enumeration, or EGL_NO_DEVICE_EXT. */
 static EGLDeviceEXT find_nvidia_device(void)
@@ -81,7 +139,8 @@ static oit_status create_egl(const oit_gl_desc *desc, oit_gl *gl, oit_error *err
     const EGLint ctx_attr[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
                                EGL_CONTEXT_OPENGL_PROFILE_MASK,
                                EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                               EGL_CONTEXT_OPENGL_DEBUG, desc->debug ? EGL_TRUE : EGL_FALSE,
+                               EGL_CONTEXT_OPENGL_DEBUG,
+                               oit_gl_debug_wanted(desc) ? EGL_TRUE : EGL_FALSE,
                                EGL_NONE};
     gl->ctx = eglCreateContext(gl->dpy, cfg, EGL_NO_CONTEXT, ctx_attr);
     if (gl->ctx == EGL_NO_CONTEXT)
@@ -109,6 +168,7 @@ static void gl_ready(oit_gl *gl)
 {
     const char *r = (const char *)glGetString(GL_RENDERER);
     strncpy(gl->renderer, r ? r : "unknown", sizeof gl->renderer - 1);
+    install_debug(gl);
 }
 
 oit_status oit_gl_create(const oit_gl_desc *desc, oit_gl **out, oit_error *err)

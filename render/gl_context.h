@@ -17,7 +17,7 @@ typedef struct oit_gl oit_gl;
 typedef struct oit_gl_desc {
     int width, height; /* window size; default 1024x768 (windows only)  */
     const char *title; /* window title; default "oitstream" (windows)   */
-    int debug;         /* 1: debug context with a message callback      */
+    int debug;         /* 1: debug context (also OIT_GL_DEBUG=1, below)  */
 } oit_gl_desc;
 
 /* A headless EGL context, current on the calling thread (desc may be NULL). */
@@ -28,6 +28,19 @@ const char *oit_gl_renderer(const oit_gl *gl);
 /* Makes gl's context current on the calling thread again (after another
  * context was made current there). */
 oit_status oit_gl_make_current(oit_gl *gl, oit_error *err);
+/* Debug contexts. A context is made with the debug flag when its desc asks
+ * or the environment has OIT_GL_DEBUG=1 (the test suite sets it for every
+ * test), and any context of ours with that flag counts the driver's
+ * error and undefined-behaviour messages (KHR_debug), printing each to
+ * stderr as "GL debug: ...". The variable is read here alone; gl_window.c
+ * asks through oit_gl_debug_wanted. */
+int oit_gl_debug_wanted(const oit_gl_desc *desc);
+/* OIT_ERR_GL naming `what` and the first message when messages arrived
+ * since the last check, else OIT_OK (always for a context without the
+ * flag, or gl NULL). render/method.c checks after every frame, so a frame
+ * whose GL calls the driver flagged fails instead of passing silently. */
+oit_status oit_gl_debug_check(oit_gl *gl, const char *what, oit_error *err);
+
 /* Window only (NULL when headless): the GLFWwindow*. */
 void *oit_gl_window(oit_gl *gl);
 

@@ -147,10 +147,20 @@ oit_status oit_gl_buffer_reserve(GLuint *buf, uint64_t *cap, uint64_t bytes,
         want = 16;
     if (!*buf)
         glCreateBuffers(1, buf);
+    /* The geometric margin is a convenience: without room for it, the
+     * exact size still serves this frame. So an out-of-memory here is
+     * expected: a debug group that mutes error messages keeps it from
+     * failing a debug context's frame (gl_context.h), and restores the
+     * caller's message settings when popped. */
+    int probe = want > bytes;
+    if (probe) {
+        glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, "oit: allocation probe");
+        glDebugMessageControl(GL_DONT_CARE, GL_DEBUG_TYPE_ERROR, GL_DONT_CARE, 0, NULL, GL_FALSE);
+    }
     glNamedBufferData(*buf, (GLsizeiptr)want, NULL, GL_DYNAMIC_COPY);
     GLenum e = glGetError();
-    /* The geometric margin is a convenience: without room for it, the
-     * exact size still serves this frame. */
+    if (probe)
+        glPopDebugGroup();
     if (e != GL_NO_ERROR && want > bytes) {
         want = bytes;
         glNamedBufferData(*buf, (GLsizeiptr)want, NULL, GL_DYNAMIC_COPY);

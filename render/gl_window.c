@@ -35,7 +35,7 @@ oit_status oit_gl_create_window(const oit_gl_desc *desc, oit_gl **out, oit_error
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-    glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, desc->debug ? GLFW_TRUE : GLFW_FALSE);
+    glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, oit_gl_debug_wanted(desc) ? GLFW_TRUE : GLFW_FALSE);
     int w = desc->width > 0 ? desc->width : 1024, h = desc->height > 0 ? desc->height : 768;
     GLFWwindow *window =
         glfwCreateWindow(w, h, desc->title ? desc->title : "oitstream", NULL, NULL);

@@ -75,7 +75,11 @@ oit_status oit_method_render(oit_method_state *st, const oit_view *view, oit_ima
                               .counts = f & OIT_METHOD_COUNTS ? counts : NULL,
                               .ambiguous = f & OIT_METHOD_AMBIGUITY ? ambiguous : NULL,
                               .stats = stats};
-    return st->method->render(st->impl, &frame, err);
+    oit_status s = st->method->render(st->impl, &frame, err);
+    /* A borrowed context is checked too: the viewer's window is ours. */
+    if (s == OIT_OK)
+        s = oit_gl_debug_check(st->gl, st->method->name, err);
+    return s;
 }
 
 const char *oit_method_renderer(const oit_method_state *st)

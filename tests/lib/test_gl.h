@@ -6,6 +6,7 @@
 #include <stdlib.h>
 
 #include "render/gl_context.h"
+#include "tests/lib/test_check.h"
 
 /* The context (EGL; surfaceless under ctest), its renderer printed so that a
  * log says which driver its figures come from. Without one nothing can be
@@ -14,12 +15,27 @@ static inline oit_gl *test_gl_open(void)
 {
     oit_error err = {0};
     oit_gl *gl = NULL;
-    if (oit_gl_create(NULL, &gl, &err) != OIT_OK) {
+    /* A debug context: test_gl_verdict fails on any error or undefined
+     * behaviour the driver reports, even where no figure changed. */
+    if (oit_gl_create(&(oit_gl_desc){.debug = 1}, &gl, &err) != OIT_OK) {
         fprintf(stderr, "FAIL: context: %s\n", err.message);
         exit(1);
     }
     printf("renderer: %s\n", oit_gl_renderer(gl));
     return gl;
+}
+
+/* test_verdict, failing too when the driver reported errors or undefined
+ * behaviour on gl since the last check; destroys gl. */
+static inline int test_gl_verdict(oit_gl *gl)
+{
+    oit_error err = {0};
+    if (oit_gl_debug_check(gl, "GL debug context", &err) != OIT_OK) {
+        fprintf(stderr, "FAIL: %s\n", err.message);
+        test_failures++;
+    }
+    oit_gl_destroy(gl);
+    return test_verdict();
 }
 
 #endif

@@ -472,6 +472,5 @@ int main(void)
     test_store_limit(OIT_CAPTURE_FIRSTK, "first-k");
     test_epsilon_batches(OIT_CAPTURE_ARRAY, "array");
     test_epsilon_batches(OIT_CAPTURE_COUNTED, "counted");
-    oit_gl_destroy(gl);
-    return test_verdict();
+    return test_gl_verdict(gl);
 }

@@ -162,6 +162,5 @@ int main(void)
     uint64_t again = test_shuffled(d);
     CHECK(again == big, "a smaller frame changed the held bytes (%llu)", (unsigned long long)again);
     oit_dfb_destroy(d);
-    oit_gl_destroy(gl);
-    return test_verdict();
+    return test_gl_verdict(gl);
 }

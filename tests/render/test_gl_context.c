@@ -2,12 +2,41 @@
  * need; a window without a display fails with a message, not a crash. */
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "render/gl_context.h"
 #include "render/gl_util.h"
+#include "render/glsl_bindings.h"
 #include "render/gl_window.h"
 #include "tests/lib/test_check.h"
 
+/* A debug context (gl_context.h) turns what the driver flags into an error
+ * of the next check, once, naming the message. */
+static void debug_context(void)
+{
+    oit_error err = {0};
+    oit_gl *gl = NULL;
+    if (oit_gl_create(&(oit_gl_desc){.debug = 1}, &gl, &err) != OIT_OK) {
+        CHECK(0, "debug context: %s", err.message);
+        return;
+    }
+    CHECK(oit_gl_debug_check(gl, "fresh", &err) == OIT_OK, "fresh debug context: %s",
+          err.message);
+    GLuint buf = 0;
+    glCreateBuffers(1, &buf);
+    glNamedBufferStorage(buf, 64, NULL, 0);
+    /* An offset off every alignment a driver may ask for: GL_INVALID_VALUE. */
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_VERTS, buf, 3, 16);
+    oit_gl_check("provoked", &err);
+    oit_status s = oit_gl_debug_check(gl, "provoked", &err);
+    printf("debug message: %s\n", err.message);
+    CHECK(s == OIT_ERR_GL && strstr(err.message, "provoked") && strstr(err.message, "error"),
+          "an invalid glBindBufferRange passed the debug check (%d: %s)", (int)s, err.message);
+    CHECK(oit_gl_debug_check(gl, "again", &err) == OIT_OK, "a message reported twice: %s",
+          err.message);
+    glDeleteBuffers(1, &buf);
+    oit_gl_destroy(gl);
+}
 
 int main(void)
 {
@@ -42,6 +71,7 @@ int main(void)
     printf("compile error message: %s\n", err.message);
     CHECK(s == OIT_ERR_GL && prog == 0, "broken shader accepted");
     oit_gl_destroy(gl);
+    debug_context();
 
     if (!getenv("DISPLAY") && !getenv("WAYLAND_DISPLAY")) {
         oit_gl_desc desc = {.width = 64, .height = 64};

@@ -361,6 +361,5 @@ int main(void)
     }
     teardown(&g);
     free_scene(&s);
-    oit_gl_destroy(gl);
-    return test_verdict();
+    return test_gl_verdict(gl);
 }

@@ -823,6 +823,5 @@ int main(void)
         test_deep();
     }
     methods_destroy(&m);
-    oit_gl_destroy(gl);
-    return test_verdict();
+    return test_gl_verdict(gl);
 }
