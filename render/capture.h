@@ -5,8 +5,11 @@
  *  - OIT_CAPTURE_ARRAY: K slots per pixel filled through an atomic counter;
  *    portable, and counts overflow exactly.
  *  - OIT_CAPTURE_STENCIL: stencil routing over K MSAA samples (Wang & Xie);
- *    only offered when a start-up self-test shows the driver routes per
- *    sample (it does not on llvmpipe, see DESIGN.md).
+ *    only offered where K samples are K true multisamples (a driver that
+ *    says otherwise, GL_NV_internalformat_sample_query, is refused) and a
+ *    start-up self-test shows the driver routes one fragment to each sample
+ *    (it does not on llvmpipe, see design.md; nor on NVIDIA at 16 samples
+ *    of an integer format, 8 multisamples x 2 supersamples).
  * A pixel that receives more than K fragments in one batch counts once in
  * overflow_pixels; its extra fragments are lost, which is why a correct part
  * file must give zero. */
@@ -37,9 +40,25 @@ typedef enum oit_capture_kind {
 typedef struct oit_capture oit_capture;
 
 /* K in [2, 16]. Fails with OIT_ERR_UNSUPPORTED when STENCIL is asked for and
- * the self-test (or the sample count) rules it out; the message says which. */
+ * the sample mode or the self-test rules it out at this K; the message says
+ * which, with the numbers (and the largest K of true multisamples where the
+ * driver tells). AUTO then takes the array backend at the same K. */
 oit_status oit_capture_create(oit_capture_kind kind, int K, oit_capture **out,
                               oit_error *err);
+/* Testing: what a driver may do, forced on the stencil backend's fill (the
+ * self-test's and every batch's), so that a test can see the self-test
+ * refuse it where the driver itself does not do it. */
+enum {
+    /* the fill shader run once per covered sample (GL_SAMPLE_SHADING,
+     * minimum 1, multisampling on): more than once a pixel, each with its
+     * own coverage, as NVIDIA's 8 multisamples x 2 supersamples do */
+    OIT_CAPTURE_FAULT_SAMPLE_SHADING = 1u << 0
+};
+/* oit_capture_create with faults (OIT_CAPTURE_FAULT_*; 0: none). */
+oit_status oit_capture_create_faulty(oit_capture_kind kind, int K, unsigned faults,
+                                     oit_capture **out, oit_error *err);
+/* "array", "stencil", "counted", "first-k" (NULL for AUTO or unknown). */
+const char *oit_capture_kind_name(oit_capture_kind kind);
 void oit_capture_destroy(oit_capture *c);
 oit_capture_kind oit_capture_backend(const oit_capture *c);
 

@@ -120,6 +120,11 @@ typedef struct oit_frame_stats {
     /* The reference with a saturation threshold (reference.h): fragments
      * behind pixels already saturated; 0 for every other method. */
     uint64_t fragments_saturated;
+    /* The capture backends (render/capture.h): the one that ran
+     * ("array", "stencil", "counted", "first-k") and its K; NULL and 0
+     * for every other method. */
+    const char *capture;
+    uint32_t capture_k;
 } oit_frame_stats;
 
 /* Camera helpers. */

@@ -48,6 +48,10 @@ static void put_frame(oit_json *w, const oit_stats_frame *fr)
         {"cache_hits", t->cache_hits}, {"cache_bytes", t->cache_bytes}};
     oit_json_fixed(w, "ms", isfinite(s->ms) ? s->ms : -1.0, 3);
     OIT_JSON_UINTS(w, frame);
+    if (s->capture) {
+        oit_json_string(w, "capture", s->capture);
+        oit_json_uint(w, "capture_k", s->capture_k);
+    }
     if (fr->has_stream) {
         OIT_JSON_UINTS(w, parts);
         oit_json_general(w, "epsilon", t->epsilon, 9);

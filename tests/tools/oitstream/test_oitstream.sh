@@ -177,6 +177,10 @@ run_scene() {
         fi
         ov=$(json_num overflow_pixels <"$T/array_$K.json")
         echo "array K=$K: $ov overflow pixels (scene depth $ml layers)"
+        # the figures name the backend and K that ran (stencil may not)
+        [ "$(json_str capture <"$T/array_$K.json")" = array ] &&
+            [ "$(json_num capture_k <"$T/array_$K.json")" = "$K" ] ||
+            fail "array K=$K: --stats does not say the array capture ran at K=$K"
         if [ "$K" -ge "$ml" ]; then
             [ "$ov" = 0 ] || fail "array K=$K >= $ml layers overflowed on $ov pixels"
         else
