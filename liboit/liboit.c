@@ -6,6 +6,7 @@
 #include "oit/liboit.h"
 
 #include <math.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -22,11 +23,16 @@ struct oit_scene {
     oit_mesh mesh;    /* in core: the triangles */
     char *name;       /* in core: the file or the descriptor's name */
     oit_scene_info info;
+    /* The caller's handle is one share and each renderer that drew the
+     * scene last holds one: the scene is freed with the last share, so a
+     * renderer never meets a freed scene, nor another scene at its address
+     * (allocators hand freed blocks back), when the caller closes it first. */
+    atomic_uint shares;
 };
 
 struct oit_renderer {
     oit_renderer_desc desc;
-    const oit_scene *scene; /* the scene the streamer or gpu_mesh holds */
+    oit_scene *scene;       /* the scene the streamer or gpu_mesh holds: a share */
     oit_streamer *streamer; /* part files */
     oit_dfb *dfb;           /* in-core scenes; kept across scenes */
     oit_gpu_mesh *gpu_mesh; /* the in-core scene's triangles */
@@ -59,10 +65,30 @@ static int is_part_file(const char *path)
     return n >= 5 && strcmp(path + n - 5, ".oitp") == 0;
 }
 
+/* A scene of one share, the caller's. */
+static oit_scene *scene_new(void)
+{
+    oit_scene *s = calloc(1, sizeof *s);
+    if (s)
+        atomic_init(&s->shares, 1u);
+    return s;
+}
+
+/* Ends one share; the last one frees the scene. */
+static void scene_unshare(oit_scene *s)
+{
+    if (!s || atomic_fetch_sub(&s->shares, 1u) != 1u)
+        return;
+    oit_partfile_close(s->pf);
+    oit_mesh_free(&s->mesh);
+    free(s->name);
+    free(s);
+}
+
 static oit_status mesh_scene(oit_mesh *mesh, const char *name, oit_scene **out,
                              oit_error *err)
 {
-    oit_scene *s = calloc(1, sizeof *s);
+    oit_scene *s = scene_new();
     char *copy = s ? malloc(strlen(name) + 1) : NULL;
     if (!copy) {
         free(s);
@@ -96,7 +122,7 @@ oit_status oit_scene_open(const char *path, const oit_scene_desc *desc, oit_scen
         oit_status st = oit_mesh_load(path, NULL, &mesh, err);
         return st == OIT_OK ? mesh_scene(&mesh, path, out, err) : st;
     }
-    oit_scene *s = calloc(1, sizeof *s);
+    oit_scene *s = scene_new();
     if (!s)
         return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot allocate the scene", path);
     oit_partfile_open_desc od = {.defer_part_data = desc && desc->defer_validation};
@@ -128,12 +154,7 @@ oit_status oit_scene_get_info(const oit_scene *scene, oit_scene_info *info, oit_
 
 void oit_scene_close(oit_scene *scene)
 {
-    if (!scene)
-        return;
-    oit_partfile_close(scene->pf);
-    oit_mesh_free(&scene->mesh);
-    free(scene->name);
-    free(scene);
+    scene_unshare(scene);
 }
 
 /* Colour i of the descriptor's array as 8-bit RGBA. */
@@ -350,12 +371,23 @@ static const char blend_fs[] =
     "    o_transmit = vec4(s.T, t);\n"
     "}\n";
 
+/* Frees r's GPU state for its scene and lets the scene go (the streamer
+ * reads the scene's part file until it is destroyed). */
+static void drop_scene(oit_renderer *r)
+{
+    oit_streamer_destroy(r->streamer);
+    r->streamer = NULL;
+    oit_gpu_mesh_destroy(r->gpu_mesh);
+    r->gpu_mesh = NULL;
+    scene_unshare(r->scene);
+    r->scene = NULL;
+}
+
 void oit_renderer_destroy(oit_renderer *r)
 {
     if (!r)
         return;
-    oit_streamer_destroy(r->streamer);
-    oit_gpu_mesh_destroy(r->gpu_mesh);
+    drop_scene(r);
     oit_dfb_destroy(r->dfb);
     glDeleteProgram(r->blend_prog);
     glDeleteVertexArrays(1, &r->vao);
@@ -425,29 +457,29 @@ void oit_renderer_release_scene(oit_renderer *r, const oit_scene *scene)
 {
     if (!r || !scene || r->scene != scene)
         return;
-    oit_streamer_destroy(r->streamer);
-    r->streamer = NULL;
-    oit_gpu_mesh_destroy(r->gpu_mesh);
-    r->gpu_mesh = NULL;
-    r->scene = NULL;
+    drop_scene(r);
 }
 
-/* (Re)builds the streamer when r draws a scene it was not built for. */
-static oit_status bind_scene(oit_renderer *r, const oit_scene *scene, oit_error *err)
+/* r takes a share of scene, whose GPU state it now holds. */
+static void hold_scene(oit_renderer *r, oit_scene *scene)
+{
+    atomic_fetch_add(&scene->shares, 1u);
+    r->scene = scene;
+}
+
+/* (Re)builds the streamer when r draws a scene it was not built for. r's
+ * share keeps the scene it holds alive, so the address names one scene. */
+static oit_status bind_scene(oit_renderer *r, oit_scene *scene, oit_error *err)
 {
     if (r->scene == scene && (r->streamer || r->gpu_mesh))
         return OIT_OK;
-    oit_streamer_destroy(r->streamer);
-    r->streamer = NULL;
-    oit_gpu_mesh_destroy(r->gpu_mesh);
-    r->gpu_mesh = NULL;
-    r->scene = NULL;
+    drop_scene(r);
     if (!scene->pf) {
         oit_status st = r->dfb ? OIT_OK : oit_dfb_create(&r->dfb, err);
         if (st == OIT_OK)
             st = oit_gpu_mesh_create(scene->mesh.tris, scene->mesh.count, 0, &r->gpu_mesh, err);
         if (st == OIT_OK) {
-            r->scene = scene;
+            hold_scene(r, scene);
             r->pending_upload = (uint64_t)scene->mesh.count * sizeof(oit_triangle);
         }
         return st;
@@ -469,7 +501,7 @@ static oit_status bind_scene(oit_renderer *r, const oit_scene *scene, oit_error 
     sd.read_inline = r->desc.read_on_draw_thread != 0;
     oit_status st = oit_streamer_create(scene->pf, &sd, &r->streamer, err);
     if (st == OIT_OK)
-        r->scene = scene;
+        hold_scene(r, scene);
     return st;
 }
 

@@ -57,8 +57,9 @@
  *                   compute): a slot no other program uses, so that it
  *                   needs none of the caller's bindings (opaque_tiles.h).
  *
- * OIT_TEX_ACCUM     F2B's accumulation (blend fragment stage, final pass);
- *                   WBOIT's accumulation (resolve).
+ * OIT_TEX_ACCUM     F2B's accumulation (final pass) and its copy after the
+ *                   last chunk (blend fragment stage); WBOIT's
+ *                   accumulation (resolve).
  * OIT_TEX_REVEAL    WBOIT's revealage (resolve).
  * OIT_TEX_LAYER     depth peeling's layers (peel fragment stage: the last
  *                   layer; merge: the new one); dual peeling's (-near, far)

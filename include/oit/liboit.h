@@ -151,10 +151,14 @@ typedef struct oit_scene_mesh_desc {
 OIT_API oit_status oit_scene_create_mesh(const oit_scene_mesh_desc *desc, oit_scene **out,
                                          oit_error *err);
 OIT_API oit_status oit_scene_get_info(const oit_scene *scene, oit_scene_info *info, oit_error *err);
-/* Lifetime: a renderer keeps GPU state for the last scene it drew and
- * remembers that scene by address. Close a scene only after every renderer
- * that drew it last has been destroyed, has drawn another scene or has
- * released it (oit_renderer_release_scene). */
+/* Lifetime: a renderer holds the last scene it drew (the scene and the GPU
+ * state it built for it) until it draws another scene, releases it
+ * (oit_renderer_release_scene) or is destroyed. So a scene may be closed
+ * whenever no draw of it is under way, whoever drew it: the handle is then
+ * the caller's no more, and the scene's memory (its triangles or its open
+ * part file) is freed when the last renderer holding it lets it go; a scene
+ * opened later is never mistaken for it. Release it first to free that
+ * memory at once. */
 OIT_API void oit_scene_close(oit_scene *scene);
 
 /* ---- renderer ---------------------------------------------------------- */
@@ -245,10 +249,11 @@ typedef struct oit_renderer_desc {
 OIT_API oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out,
                                        oit_error *err);
 OIT_API void oit_renderer_destroy(oit_renderer *r);
-/* Frees r's GPU state for scene when r drew it last (else does nothing), so
- * that scene may be closed while r lives on; the next draw of any scene
- * builds its state anew. Needs r's GL context current, like every call on
- * r. r or scene NULL: nothing. */
+/* Frees r's GPU state for scene and lets the scene go when r drew it last
+ * (else does nothing), so that a closed scene's memory is freed while r
+ * lives on (Lifetime); the next draw of any scene builds its state anew.
+ * Needs r's GL context current, like every call on r. r or scene NULL:
+ * nothing. */
 OIT_API void oit_renderer_release_scene(oit_renderer *r, const oit_scene *scene);
 
 typedef struct oit_frame {

@@ -44,8 +44,9 @@ typedef struct oit_offscreen_desc {
 OIT_API oit_status oit_offscreen_create(const oit_offscreen_desc *desc, oit_offscreen **out,
                                         oit_error *err);
 OIT_API void oit_offscreen_destroy(oit_offscreen *o);
-/* oit_renderer_release_scene for o's renderer (liboit.h, Lifetime): call
- * it before closing a scene that o drew last while o lives on. */
+/* oit_renderer_release_scene for o's renderer (liboit.h, Lifetime): a
+ * scene o drew last stays in memory, closed or not, until o draws another,
+ * releases it or is destroyed. */
 OIT_API void oit_offscreen_release_scene(oit_offscreen *o, const oit_scene *scene);
 /* The GL renderer string of the context ("llvmpipe (LLVM 15.0.6, 256 bits)"). */
 OIT_API const char *oit_offscreen_gl_renderer(const oit_offscreen *o);

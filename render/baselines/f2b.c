@@ -1,6 +1,7 @@
 /* Front-to-back blending with early discarding (f2b.h). Per frame: key
- * pass, CPU sort, gather pass, blend pass, final pass. Triangle indices
- * count across the frame's meshes (u_mesh_base: triangles of the meshes
+ * pass, CPU sort, gather pass, blend pass (in chunks, each reading a copy
+ * of what the chunks before left), final pass. Triangle indices count
+ * across the frame's meshes (u_mesh_base: triangles of the meshes
  * before). */
 #include "render/baselines/f2b.h"
 #include "render/baselines/methods.h"
@@ -12,7 +13,9 @@
 #include <stdlib.h>
 
 enum { BUF_KEYS, BUF_RANK, BUF_SORTED, BUF_N };
-enum { TEX_ACCUM, TEX_OUT, TEX_N };
+/* TEX_SEEN: the accumulation as the chunks before the current one left
+ * it, the only target the blend shader reads. */
+enum { TEX_ACCUM, TEX_OUT, TEX_SEEN, TEX_N };
 enum { PROG_BLEND, PROG_KEY, PROG_GATHER, PROG_FINAL, PROG_N };
 enum { TRI_BYTES = 48 };
 
@@ -62,13 +65,14 @@ static const char gather_cs[] =
     "    for (uint k = 0u; k < 3u; k++) sorted[3u * r + k] = verts[3u * i + k];\n"
     "}\n";
 
-/* Vlcek et al.'s shader: the test comes before any shading work. */
+/* Vlcek et al.'s shader: the test comes before any shading work. It reads
+ * TEX_SEEN, never the target it blends into (f2b.h, "Chunks"). */
 static const char blend_fs[] =
-    "layout(binding = OIT_TEX_ACCUM) uniform sampler2D u_accum;\n"
+    "layout(binding = OIT_TEX_ACCUM) uniform sampler2D u_seen;\n"
     "uniform float u_threshold;\n"
     "layout(location = 0) out vec4 o_colour;\n"
     "void main() {\n"
-    "    if (texelFetch(u_accum, ivec2(gl_FragCoord.xy), 0).a < u_threshold) discard;\n"
+    "    if (texelFetch(u_seen, ivec2(gl_FragCoord.xy), 0).a < u_threshold) discard;\n"
     "    vec4 c = oit_premultiplied(oit_fragment());\n"
     "    o_colour = vec4(c.rgb, 1.0 - c.a);\n"
     "}\n";
@@ -92,7 +96,7 @@ static oit_status oit_f2b_init(oit_f2b *f, oit_error *err)
 {
     f->b.method = "F2B";
     f->b.names = buffer_names;
-    static const GLenum formats[TEX_N] = {GL_RGBA32F, GL_RGBA32F};
+    static const GLenum formats[TEX_N] = {GL_RGBA32F, GL_RGBA32F, GL_RGBA32F};
     oit_status s = oit_blend_passes_init(&f->p, "F2B", programs, PROG_N, formats, TEX_N, 1, err);
     if (s == OIT_OK)
         s = oit_f2b_set_threshold(f, OIT_F2B_DEFAULT_THRESHOLD, err);
@@ -195,11 +199,9 @@ static oit_status sort_triangles(oit_f2b *f, size_t tris, oit_error *err)
     return oit_gl_check("F2B: sort", err);
 }
 
-static oit_status order(oit_f2b *f, const oit_gpu_mesh *const *meshes, int n, oit_error *err)
+static oit_status order(oit_f2b *f, const oit_gpu_mesh *const *meshes, int n, uint64_t tris,
+                        oit_error *err)
 {
-    uint64_t tris = 0;
-    for (int i = 0; i < n; i++)
-        tris += oit_gpu_mesh_triangles(meshes[i]);
     oit_status s = reserve_triangles(f, tris, err);
     if (s != OIT_OK)
         return s;
@@ -223,18 +225,43 @@ static oit_status order(oit_f2b *f, const oit_gpu_mesh *const *meshes, int n, oi
     return s == OIT_OK ? oit_gl_check("F2B: ordering passes", err) : s;
 }
 
-static void blend(oit_f2b *f)
+uint64_t oit_f2b_chunk_triangles(uint64_t tris)
+{
+    GLint align = 0;
+    glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &align);
+    uint64_t unit = 1; /* triangles whose bytes keep a chunk's offset aligned */
+    while (align > 0 && unit * TRI_BYTES % (uint64_t)align != 0)
+        unit++;
+    uint64_t share = (tris + OIT_F2B_CHUNKS - 1) / OIT_F2B_CHUNKS;
+    return share == 0 ? unit : (share + unit - 1) / unit * unit;
+}
+
+/* The sorted triangles in chunks: each draw's termination test reads
+ * TEX_SEEN, the accumulation copied after the chunk before (T = 1 for the
+ * first), so no draw samples the texture it blends into. Copies are not
+ * shader writes: GL orders them with the draws around them. */
+static void blend(oit_f2b *f, uint64_t tris)
 {
     static const float clear[4] = {0.0f, 0.0f, 0.0f, 1.0f};
     oit_glsl_raster_begin(f->p.fbo, f->p.w, f->p.h);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glClearNamedFramebufferfv(f->p.fbo, GL_COLOR, 0, clear);
-    glTextureBarrier();
-    glBindTextureUnit(OIT_TEX_ACCUM, f->p.tex[TEX_ACCUM]);
+    glClearTexImage(f->p.tex[TEX_SEEN], 0, GL_RGBA, GL_FLOAT, clear);
+    glBindTextureUnit(OIT_TEX_ACCUM, f->p.tex[TEX_SEEN]);
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE, GL_ZERO, GL_SRC_ALPHA);
-    const oit_gpu_mesh *sorted[1] = {f->sorted};
-    oit_baseline_draw(f->p.prog[PROG_BLEND], GL_SAMPLES_PASSED, f->p.query, sorted, 1);
+    glUseProgram(f->p.prog[PROG_BLEND]);
+    glBeginQuery(GL_SAMPLES_PASSED, f->p.query);
+    uint64_t chunk = oit_f2b_chunk_triangles(tris);
+    for (uint64_t lo = 0; lo < tris; lo += chunk) {
+        if (lo > 0)
+            glCopyImageSubData(f->p.tex[TEX_ACCUM], GL_TEXTURE_2D, 0, 0, 0, 0,
+                               f->p.tex[TEX_SEEN], GL_TEXTURE_2D, 0, 0, 0, 0, f->p.w, f->p.h, 1);
+        uint64_t n = tris - lo < chunk ? tris - lo : chunk;
+        oit_gpu_mesh_set_range(f->sorted, lo * TRI_BYTES, (size_t)n, (uint32_t)lo);
+        oit_gpu_mesh_draw(f->sorted, f->p.prog[PROG_BLEND]);
+    }
+    glEndQuery(GL_SAMPLES_PASSED);
     glDisable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ZERO);
 }
@@ -253,11 +280,14 @@ static oit_status oit_f2b_render(oit_f2b *f, const oit_gpu_mesh *const *meshes, 
     oit_status s = oit_blend_passes_begin(&f->p, v, err);
     f->b.texture_bytes = f->p.bytes;
     oit_gpu_buffers_note(&f->b);
+    uint64_t tris = 0;
+    for (int i = 0; i < n; i++)
+        tris += oit_gpu_mesh_triangles(meshes[i]);
     if (s == OIT_OK)
-        s = order(f, meshes, n, err);
+        s = order(f, meshes, n, tris, err);
     if (s != OIT_OK)
         return s;
-    blend(f);
+    blend(f, tris);
     finish(f);
     return oit_blend_passes_end(&f->p, TEX_OUT, f->b.peak, out, stats, err);
 }

@@ -326,6 +326,45 @@ static void check_square(oit_offscreen *o)
     oit_scene_close(s);
 }
 
+/* Scenes closed without oit_renderer_release_scene, each followed by a new
+ * one of the same sizes, which the allocator tends to put where a closed
+ * one was (glibc does at once with its per-thread cache off: CMake runs
+ * this test with GLIBC_TUNABLES=glibc.malloc.tcache_count=0). Every frame
+ * must show its own scene, an upper and a lower quad in turn, never the
+ * triangles of the scene the renderer drew before. */
+static void check_closed_scenes(oit_offscreen *o)
+{
+    enum { S = 32, ROUNDS = 24 };
+    const float upper[12] = {-1, 0.3f, 0, 1, 0.3f, 0, 1, 1, 0, -1, 1, 0};
+    const float lower[12] = {-1, -1, 0, 1, -1, 0, 1, -0.3f, 0, -1, -0.3f, 0};
+    uint8_t px[S * S * 4];
+    oit_offscreen_view v = {.width = S, .height = S, .eye = {0, 0, 4}, .fovy_deg = 30.0f};
+    const oit_scene *closed[ROUNDS];
+    int reused = 0, wrong = 0;
+    for (int k = 0; k < ROUNDS; k++) {
+        int up = k % 2 == 0;
+        oit_scene *s = red_quad(up ? upper : lower, up ? "upper quad" : "lower quad");
+        if (!s)
+            return;
+        int at = -1; /* the latest closed scene at s's address */
+        for (int j = 0; j < k; j++)
+            at = closed[j] == s ? j : at;
+        reused += at >= 0;
+        oit_error err = {0};
+        oit_status st = oit_offscreen_render(o, s, &v, px, sizeof px, NULL, &err);
+        unsigned top = px[((S / 4) * S + S / 2) * 4 + 1], bottom = px[((3 * S / 4) * S + S / 2) * 4 + 1];
+        int ok = st == OIT_OK && (up ? top == 127 && bottom == 255 : top == 255 && bottom == 127);
+        CHECK(ok || wrong, "closed scenes: round %d (%s quad, at the address of round %d): green "
+              "%u at the top, %u at the bottom: %s", k, up ? "upper" : "lower", at, top, bottom,
+              st == OIT_OK ? "another scene's image" : err.message);
+        wrong += !ok;
+        closed[k] = s;
+        oit_scene_close(s);
+    }
+    printf("closed scenes: %d rounds, %d at a closed scene's address, %d wrong\n", ROUNDS,
+           reused, wrong);
+}
+
 /* The red square of check_square composited in linear light. */
 static void check_square_linear(void)
 {
@@ -509,6 +548,7 @@ int main(int argc, char **argv)
         return 1;
     }
     check_square(o);
+    check_closed_scenes(o);
     check_square_linear();
     check_errors(argv[2]);
     oit_offscreen_destroy(o);

@@ -756,6 +756,54 @@ static void check_f2b_pixels(methods *m, const char *scene, const quad_spec *q, 
     free(tris);
 }
 
+/* F2B's termination in chunks (f2b.h, "Chunks"), against a CPU model of
+ * the defined behaviour: on N full-frame layers of one alpha, chunk c's
+ * fragments are discarded when the transmittance the chunks before c left
+ * is below the threshold. Alpha 128/255 falls below 0.02 after 6 layers; the
+ * chunks hold 4 or 8 layers here, so the model blends 8 a pixel. A shader
+ * that sees its own draw's writes blends 6 (llvmpipe) and one that sees
+ * none all N (NVIDIA): both are reads GL leaves undefined. */
+static void check_f2b_chunks(methods *m)
+{
+    enum { N = 256 };
+    const double a = 128.0 / 255.0;
+    quad_spec *q = full_stack(N, 0.05f, 128, 7u);
+    oit_triangle *tris = scene_tris(q, N);
+    oit_view v;
+    scene_view(&v, 48, 32, OIT_SHADING_TRANSPARENT);
+    set_threshold(m, M_F2B, OIT_F2B_DEFAULT_THRESHOLD);
+    uint64_t chunk = oit_f2b_chunk_triangles(2 * N);
+    /* Quads facing the camera sort by depth, a quad's two triangles
+     * together: whole quads a chunk when chunk is even. */
+    double T = 1.0, seen = 1.0;
+    uint64_t layers = 0;
+    for (uint64_t j = 0; j < N; j++) {
+        if (2 * j % chunk == 0)
+            seen = T;
+        if (seen >= OIT_F2B_DEFAULT_THRESHOLD) {
+            layers++;
+            T *= 1.0 - a;
+        }
+    }
+    uint64_t want = layers * (uint64_t)v.width * v.height;
+    oit_frame_stats st, ref;
+    oit_image_diff d = versus_dfb(m, M_F2B, "full256 chunks", tris, 2 * N, &v, &st, &ref);
+    printf("f2b chunks of %llu triangles: blended %llu fragments, the model %llu (%llu layers "
+           "a pixel), max_abs %.6f\n", (unsigned long long)chunk,
+           (unsigned long long)st.fragments, (unsigned long long)want,
+           (unsigned long long)layers, d.max_abs);
+    CHECK(chunk % 2 == 0 && chunk < 2 * N, "f2b chunks: %llu triangles a chunk of %d: not "
+          "whole quads, or one chunk", (unsigned long long)chunk, 2 * N);
+    CHECK(st.fragments == want, "f2b chunks: blended %llu fragments, not the %llu (%llu a "
+          "pixel) of chunk c reading what the chunks before c left",
+          (unsigned long long)st.fragments, (unsigned long long)want, (unsigned long long)layers);
+    CHECK(ref.fragments == (uint64_t)N * v.width * v.height && d.max_abs <=
+          OIT_F2B_DEFAULT_THRESHOLD + TOL, "f2b chunks: DFB %llu fragments, max_abs %.6f",
+          (unsigned long long)ref.fragments, d.max_abs);
+    free(tris);
+    free(q);
+}
+
 /* F2B. Its order (view depth of triangle centroids) is exact for quads
  * facing the camera, so at threshold 0 it must equal DFB there; on the
  * interlocking shapes it need not (printed). At the default threshold, on
@@ -801,6 +849,7 @@ static void test_f2b(methods *m)
     free(dense);
     free(tris);
     free(q);
+    check_f2b_chunks(m);
 }
 
 int main(void)

@@ -35,9 +35,12 @@ done
 "$S" quads.ply --window --up w >/dev/null 2>&1; rc=$?
 [ "$rc" -eq 2 ] || fail "--up w: exit $rc, want 2"
 
-# 24 overlapping translucent squares: every pixel of the centre has many
-# layers, and few triangles keep llvmpipe frames fast.
-"$OIT_BIN/oitgen" quads --count 24 -o quads.ply >/dev/null || { fail "oitgen quads"; exit 1; }
+# 16 overlapping translucent squares: every pixel of the centre has many
+# layers, and few triangles keep llvmpipe frames fast. No more than the
+# array method's 16 slots: which fragments of an overflowing pixel keep
+# them is up to the order of atomics, so two array frames of a deeper scene
+# need not be equal (section 3).
+"$OIT_BIN/oitgen" quads --count 16 -o quads.ply >/dev/null || { fail "oitgen quads"; exit 1; }
 
 # 1. The overlay run: 3 frames, screenshot of the last.
 "$S" quads.ply --window --size $SIZE --window-frames 3 --window-screenshot overlay.png >overlay.txt 2>&1 ||
@@ -59,6 +62,8 @@ FRAMES=$(sed -n 's/^viewer: \([0-9]*\) frames.*/\1/p' script.txt)
 grep -q "early termination on, epsilon 0.00392157 (used by the stream method only)" script.txt &&
     grep -q "early termination off (exact)" script.txt || fail "E E did not turn early termination on, then off"
 for i in 000 001 002 003 004; do [ -f oitstream_$i.png ] || fail "P did not save oitstream_$i.png"; done
+grep -q "last: $ARRAY_KEY array .* overflow 0 " script.txt ||
+    fail "the array frame overflowed its slots: its image is not defined, so section 3 cannot compare it"
 
 # 3. The same views headless.
 "$S" quads.ply --size $SIZE --quiet --out ref.png || fail "headless dfb"
@@ -81,7 +86,7 @@ BAND=$(sed -n 's/^viewer: .* status band \([0-9]*\) rows.*/\1/p' overlay.txt)
 echo "status band: $BAND rows"
 [ -n "$BAND" ] && [ $((BAND % 11)) -eq 0 ] && [ "$BAND" -ge 22 ] && [ "$BAND" -le 66 ] ||
     fail "the status band is '$BAND' rows, want 2 to 6 lines of 11"
-grep -q "last: 1 dfb  exact  frame [0-9.]* ms  fragments [0-9.]*K  layers 24  overflow 0" overlay.txt ||
+grep -q "last: 1 dfb  exact  frame [0-9.]* ms  fragments [0-9.]*K  layers 16  overflow 0" overlay.txt ||
     fail "the status line does not name its fields"
 image_diff "overlay vs none" overlay.png oitstream_000.png
 [ "$OVER" -ge 50 ] && [ "$OVER" -le $((160 * ${BAND:-11})) ] ||
