@@ -128,7 +128,9 @@ int main(void)
     int llvmpipe = strstr(oit_gl_renderer(gl), "llvmpipe") != NULL;
     GLint samples = 0;
     glGetIntegerv(GL_MAX_INTEGER_SAMPLES, &samples);
-    for (int K = 2; K <= 4; K += 2) {
+    /* 8 and 16 only where the driver offers them (a GPU): where NVIDIA
+     * serves 16 as 8 x 2 supersamples, K=16 must be refused, K=8 exact. */
+    for (int K = 2; K <= 16; K *= 2) {
         if (K > samples) {
             printf("K=%d: GL_MAX_INTEGER_SAMPLES=%d, not checked\n", K, samples);
             continue;
@@ -136,6 +138,5 @@ int main(void)
         plain(K, llvmpipe);
         faulty(K);
     }
-    oit_gl_destroy(gl);
-    return test_verdict();
+    return test_gl_verdict(gl);
 }
