@@ -84,6 +84,7 @@ static oit_status ensure_target(oit_offscreen *o, int w, int h, oit_error *err)
                              "%dx%d pixels", w, h);
     glCreateTextures(GL_TEXTURE_2D, 1, &o->tex);
     glTextureStorage2D(o->tex, 1, GL_RGBA32F, w, h);
+    oit_gl_poison_texture(o->tex, GL_RGBA32F);
     glCreateFramebuffers(1, &o->fbo);
     glNamedFramebufferTexture(o->fbo, GL_COLOR_ATTACHMENT0, o->tex, 0);
     oit_status s = oit_gl_check("oit_offscreen_render: framebuffer", err);

@@ -160,6 +160,7 @@ oit_status oit_firstk_init(oit_firstk *k, int K, oit_error *err)
     if (s == OIT_OK) {
         glCreateBuffers(1, &k->totals);
         glNamedBufferData(k->totals, 32, NULL, GL_DYNAMIC_COPY);
+        oit_gl_poison_buffer(k->totals);
         s = oit_gl_check("first-k capture: set-up", err);
     }
     return s;

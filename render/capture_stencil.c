@@ -130,6 +130,7 @@ oit_status oit_stencil_target_resize(oit_stencil_target *t, int w, int h, oit_er
     glDeleteRenderbuffers(1, &t->depth_stencil);
     glCreateTextures(GL_TEXTURE_2D_MULTISAMPLE, 1, &t->colour);
     glTextureStorage2DMultisample(t->colour, t->samples, GL_RGBA32UI, w, h, GL_TRUE);
+    oit_gl_poison_texture(t->colour, GL_RGBA32UI);
     glCreateRenderbuffers(1, &t->depth_stencil);
     glNamedRenderbufferStorageMultisample(t->depth_stencil, t->samples, GL_DEPTH24_STENCIL8, w, h);
     glNamedFramebufferTexture(t->fbo, GL_COLOR_ATTACHMENT0, t->colour, 0);
@@ -278,6 +279,7 @@ static oit_status read_samples(oit_stencil_target *t, const oit_stencil_probe *p
     GLsizeiptr bytes = (GLsizeiptr)sizeof *prims * p->width * p->height * p->K;
     glCreateBuffers(1, &buf);
     glNamedBufferData(buf, bytes, NULL, GL_STREAM_READ);
+    oit_gl_poison_buffer(buf);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, buf);
     glUseProgram(prog);
     glProgramUniform1i(prog, OIT_LOC_K, p->K);

@@ -136,6 +136,40 @@ void oit_gl_buffer_release(GLuint *buf, uint64_t *cap)
     *cap = 0;
 }
 
+static int poison_wanted(void)
+{
+    const char *env = getenv("OIT_GL_POISON");
+    return env && strcmp(env, "1") == 0;
+}
+
+#define POISON_WORD 0xffc00001u
+
+void oit_gl_poison_buffer(GLuint buf)
+{
+    static const GLuint word = POISON_WORD;
+    if (buf && poison_wanted())
+        glClearNamedBufferData(buf, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &word);
+}
+
+void oit_gl_poison_texture(GLuint tex, GLenum format)
+{
+    static const GLuint words[4] = {POISON_WORD, POISON_WORD, POISON_WORD, POISON_WORD};
+    if (!tex || !poison_wanted())
+        return;
+    switch (format) {
+    case GL_RGBA32UI: case GL_RG32UI: case GL_R32UI:
+        glClearTexImage(tex, 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT, words);
+        break;
+    case GL_DEPTH_COMPONENT32F: case GL_DEPTH_COMPONENT24: case GL_DEPTH_COMPONENT16:
+        glClearTexImage(tex, 0, GL_DEPTH_COMPONENT, GL_FLOAT, words);
+        break;
+    case GL_DEPTH24_STENCIL8: case GL_DEPTH32F_STENCIL8:
+        break; /* cleared before every use by the depth and stencil tests' owners */
+    default:
+        glClearTexImage(tex, 0, GL_RGBA, GL_FLOAT, words);
+    }
+}
+
 oit_status oit_gl_buffer_reserve(GLuint *buf, uint64_t *cap, uint64_t bytes,
                                  const char *what, oit_error *err)
 {
@@ -173,6 +207,7 @@ oit_status oit_gl_buffer_reserve(GLuint *buf, uint64_t *cap, uint64_t bytes,
                              (unsigned long long)want);
     }
     *cap = want;
+    oit_gl_poison_buffer(*buf);
     return OIT_OK;
 }
 

@@ -44,6 +44,14 @@ oit_status oit_gl_framebuffer_create(GLuint *fbo, GLuint *samples_query, const c
  * growth is geometric. Contents are not preserved. */
 oit_status oit_gl_buffer_reserve(GLuint *buf, uint64_t *cap, uint64_t bytes,
                                  const char *what, oit_error *err);
+/* New GL storage holds garbage (the spec promises nothing; llvmpipe happens
+ * to zero it, NVIDIA does not). With OIT_GL_POISON=1 in the environment
+ * (the test suite sets it; read here alone) every buffer and texture the
+ * methods allocate is filled with 0xffc00001 words, a NaN as float, right
+ * after allocation, so that code that reads before it writes shows on
+ * llvmpipe too; without it these do nothing. */
+void oit_gl_poison_buffer(GLuint buf);
+void oit_gl_poison_texture(GLuint tex, GLenum format);
 /* Deletes *buf (0 is fine) and sets *buf and *cap to 0. */
 void oit_gl_buffer_release(GLuint *buf, uint64_t *cap);
 

@@ -84,6 +84,7 @@ oit_status oit_opaque_tiles_begin(oit_opaque_tiles *t, const oit_view *view,
         glDeleteBuffers(1, &t->buf);
         glCreateBuffers(1, &t->buf);
         glNamedBufferStorage(t->buf, (GLsizeiptr)bytes, NULL, GL_MAP_READ_BIT);
+        oit_gl_poison_buffer(t->buf);
         t->cap = bytes;
     }
     glProgramUniform2i(t->prog, glGetUniformLocation(t->prog, "u_size"), view->width,

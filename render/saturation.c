@@ -91,6 +91,7 @@ static oit_status make_readback(oit_saturation *s, uint64_t bytes, oit_error *er
     const GLbitfield flags = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
     glCreateBuffers(1, &s->readback);
     glNamedBufferStorage(s->readback, (GLsizeiptr)bytes, NULL, flags);
+    oit_gl_poison_buffer(s->readback);
     s->mapped = glMapNamedBufferRange(s->readback, 0, (GLsizeiptr)bytes, flags);
     if (!s->mapped) {
         oit_gl_check("saturation tiles: glMapNamedBufferRange", err);

@@ -73,6 +73,7 @@ oit_status oit_scan_init(oit_scan *s, oit_error *err)
     if (st == OIT_OK) {
         glCreateBuffers(1, &s->totals);
         glNamedBufferStorage(s->totals, 16, NULL, GL_DYNAMIC_STORAGE_BIT);
+        oit_gl_poison_buffer(s->totals);
     }
     return st;
 }

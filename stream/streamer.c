@@ -185,6 +185,7 @@ static oit_status fit_cache(oit_streamer *s, const oit_packing *pk, oit_error *e
     oit_residency_begin_frame(s->cache);
     glCreateBuffers(1, &s->cache_buffer);
     glNamedBufferStorage(s->cache_buffer, (GLsizeiptr)bytes, NULL, 0);
+    oit_gl_poison_buffer(s->cache_buffer);
     st = oit_gl_check("residency cache: glNamedBufferStorage", err);
     if (st != OIT_OK)
         oit_error_prefix(err, oit_partfile_name(s->pf));

@@ -34,6 +34,7 @@ oit_status oit_upload_create(uint64_t budget, oit_upload **out, oit_error *err)
     const GLbitfield flags = GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
     glCreateBuffers(1, &u->buffer);
     glNamedBufferStorage(u->buffer, (GLsizeiptr)budget, NULL, flags);
+    oit_gl_poison_buffer(u->buffer);
     oit_status s = oit_gl_check("upload ring: glNamedBufferStorage", err);
     if (s == OIT_OK) {
         u->map = glMapNamedBufferRange(u->buffer, 0, (GLsizeiptr)budget, flags);

@@ -126,6 +126,7 @@ static oit_status reserve_slots(oit_b3d *b, int w, int h, uint32_t layers, oit_e
     b->layers = 0;
     glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &b->slots);
     glTextureStorage3D(b->slots, 1, GL_RGBA32UI, w, h, (GLsizei)layers);
+    oit_gl_poison_texture(b->slots, GL_RGBA32UI);
     if (glGetError() != GL_NO_ERROR)
         return oit_error_set(err, OIT_ERR_NOMEM, "B3D: cannot allocate %u layers of %dx%d "
                              "slots (%llu bytes)", layers, w, h,

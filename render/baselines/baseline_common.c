@@ -281,6 +281,7 @@ GLuint oit_baseline_texture(GLenum format, int w, int h)
     GLuint t = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &t);
     glTextureStorage2D(t, 1, format, w, h);
+    oit_gl_poison_texture(t, format);
     glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     return t;

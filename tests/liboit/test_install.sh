@@ -14,6 +14,11 @@
 set -eu
 . "${OIT_TEST_LIB:-$(dirname "$0")/../lib.sh}"
 build=$1 cc=$2 python=$3 flags=${4:-} preload=${5:-}
+# A build carried to a machine without cmake or a compiler (the GPU recipe)
+# cannot install or build a consumer: skipped, saying which.
+command -v cmake >/dev/null 2>&1 || skip "cmake not installed here"
+command -v "$cc" >/dev/null 2>&1 || skip "$cc not installed here"
+"$python" -c 'import numpy' 2>/dev/null || skip "$python has no numpy"
 src_dir=$(cd "$(dirname "$0")/../.." && pwd)
 temp_scratch liboit-install
 tmp=$T
