@@ -241,9 +241,10 @@ void oit_gpu_mesh_draw(const oit_gpu_mesh *m, unsigned program)
         uint64_t base = 0;
         oit_draw_rec rec = window_record(m, start, &base);
         glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_VERTS, m->buffer, at, bytes);
+        uint64_t prims_end = m->prims_offset + (start + n) * 4;
         if (m->sourced)
             glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_PRIMS, m->buffer,
-                              (GLintptr)base, (GLsizeiptr)(m->prims_offset + (start + n) * 4 - base));
+                              (GLintptr)base, (GLsizeiptr)(prims_end - base));
         else
             glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_PRIMS, m->buffer, at, bytes);
         if (!m->owns_buffer)

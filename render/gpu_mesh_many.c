@@ -168,7 +168,8 @@ uint64_t oit_gpu_draws_bytes(const oit_gpu_draws *d)
     return d ? d->cmd_bytes + d->rec_bytes : 0;
 }
 
-/* The most triangles whose bytes keep a window start on the unit. */
+/* The fewest triangles whose bytes are a multiple of the unit: window
+ * starts inside a mesh stay on it, as group bases must. */
 static size_t unit_step(const oit_gpu_draws *d)
 {
     size_t step = 1;

@@ -15,7 +15,10 @@
 set -eu
 . "${OIT_TEST_LIB:-$(dirname "$0")/../lib.sh}"
 
-NAMES='GL_MAX_SHADER_STORAGE_BLOCK_SIZE|GL_MAX_UNIFORM_BLOCK_SIZE|GL_MAX_ELEMENT_INDEX|GL_MAX_SERVER_WAIT_TIMEOUT|GL_TIMESTAMP|GL_BUFFER_SIZE|GL_BUFFER_MAP_LENGTH|GL_BUFFER_MAP_OFFSET|GL_SHADER_STORAGE_BUFFER_SIZE|GL_SHADER_STORAGE_BUFFER_START|GL_UNIFORM_BUFFER_SIZE|GL_UNIFORM_BUFFER_START|GL_VERTEX_BINDING_OFFSET'
+NAMES='GL_MAX_SHADER_STORAGE_BLOCK_SIZE|GL_MAX_UNIFORM_BLOCK_SIZE|GL_MAX_ELEMENT_INDEX'
+NAMES="$NAMES|GL_MAX_SERVER_WAIT_TIMEOUT|GL_TIMESTAMP|GL_BUFFER_SIZE|GL_BUFFER_MAP_LENGTH"
+NAMES="$NAMES|GL_BUFFER_MAP_OFFSET|GL_SHADER_STORAGE_BUFFER_SIZE|GL_SHADER_STORAGE_BUFFER_START"
+NAMES="$NAMES|GL_UNIFORM_BUFFER_SIZE|GL_UNIFORM_BUFFER_START|GL_VERTEX_BINDING_OFFSET"
 GETTERS='glGetIntegerv|glGetIntegeri_v|glGetBufferParameteriv|glGetNamedBufferParameteriv'
 
 if [ "$1" = --self-test ]; then
@@ -61,7 +64,9 @@ done
 hits=$(grep -rnE --include='*.c' --include='*.h' \
     -e "($GETTERS)[[:space:]]*\([^;]*($NAMES)([^A-Z_]|\$)" "$@" || true)
 if [ -n "$hits" ]; then
-    printf '%s\n' "$hits" | sed 's/^\([^:]*:[0-9]*\):[[:space:]]*\(.*\)/FAIL: \1: 64-bit GL state read through a 32-bit getter (use glGetInteger64v): \2/' >&2
+    printf '%s\n' "$hits" |
+        sed -e 's/^\([^:]*:[0-9]*\):[[:space:]]*\(.*\)/FAIL: \1: 64-bit GL state, 32-bit getter: \2/' \
+            -e 's/$/ (use glGetInteger64v)/' >&2
     exit 1
 fi
 echo "ok: every 64-bit limit in $* is read as 64 bits"

@@ -64,13 +64,16 @@ stream() {
     fail "$name: no frame uploaded anything"
 }
 
+# uploaded NAME: "bytes_uploaded cache_hits", one frame a line
+uploaded() {
+    sed -n 's/.*"bytes_uploaded": \([0-9]*\), "cache_hits": \([0-9]*\).*/\1 \2/p' "$T/$1.json"
+}
+
 # mixed NAME: a warm frame drew parts from the cache and from the ring
 mixed() {
-    sed -n 's/.*"bytes_uploaded": \([0-9]*\), "cache_hits": \([0-9]*\).*/\1 \2/p' "$T/$1.json" |
-        awk 'NR > 1 && $1 > 0 && $2 > 0 {ok = 1} END {exit !ok}' ||
+    uploaded "$1" | awk 'NR > 1 && $1 > 0 && $2 > 0 {ok = 1} END {exit !ok}' ||
         fail "$1: no warm frame drew from the cache and the ring both" \
-             "(uploaded, hits: $(sed -n 's/.*"bytes_uploaded": \([0-9]*\), "cache_hits": \([0-9]*\).*/\1 \2/p' \
-             "$T/$1.json" | tr '\n' ';'))"
+             "(uploaded, hits: $(uploaded "$1" | tr '\n' ';'))"
 }
 
 dfb walk --walk "$T/walk.txt"
