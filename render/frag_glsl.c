@@ -47,19 +47,38 @@ const char oit_glsl_vertex[] =
     "    r.z = u_view[0].z * n.x + u_view[1].z * n.y + u_view[2].z * n.z;\n"
     "    return vec4(r, float(dot(nu, q0 - u_eye)));\n"
     "}\n"
+    /* Whether the triangle's three vertices and its prim lie in their
+     * bindings. A draw's own vertices always do; the test keeps a wrong
+     * record or binding from reading out of range, which GL leaves
+     * undefined (robust drivers return 0: a collapsed triangle). Every
+     * vertex of a triangle computes the same answer. */
+    "bool oit_in_range(uint vid, uint v0, uint prim_word, bool sourced) {\n"
+    "    uint nv = uint(verts.length());\n"
+    "    return vid >= a_draw.x && v0 + 2u < nv &&\n"
+    "           (!sourced || prim_word < uint(prims.length()));\n"
+    "}\n"
     "void main() {\n"
     /* The draw's triangles start at vertex a_draw.x of the binding. */
-    "    uint tri = (uint(gl_VertexID) - a_draw.x) / 3u;\n"
-    "    int v0 = int(a_draw.x + tri * 3u);\n"
+    "    uint vid = uint(gl_VertexID);\n"
+    "    uint tri = (vid - a_draw.x) / 3u;\n"
+    "    uint v0 = a_draw.x + tri * 3u;\n"
+    "    bool sourced = (a_draw.y & 0x80000000u) != 0u;\n"
+    "    uint prim_word = (a_draw.y & 0x7fffffffu) + tri;\n"
+    "    if (!oit_in_range(vid, v0, prim_word, sourced)) {\n"
+    /* Outside the clip volume: the triangle is dropped whole. */
+    "        gl_Position = vec4(2.0, 2.0, 2.0, 1.0);\n"
+    "        v_pos = vec3(0.0); v_rgba = vec4(0.0); v_normal = vec3(0.0);\n"
+    "        v_first_prim = 0u; v_plane = vec4(0.0);\n"
+    "        return;\n"
+    "    }\n"
     "    vec3 p0 = oit_world(verts[v0]);\n"
-    "    vec3 p1 = oit_world(verts[v0 + 1]);\n"
-    "    vec3 p2 = oit_world(verts[v0 + 2]);\n"
-    "    uvec4 me = verts[gl_VertexID];\n"
+    "    vec3 p1 = oit_world(verts[v0 + 1u]);\n"
+    "    vec3 p2 = oit_world(verts[v0 + 2u]);\n"
+    "    uvec4 me = verts[vid];\n"
     /* Geometric normal in world space, then rotated: dot products with
      * view-space vectors equal the world-space ones of shade.h. */
     "    v_normal = mat3(u_view) * cross(p1 - p0, p2 - p0);\n"
-    "    v_first_prim = (a_draw.y & 0x80000000u) != 0u\n"
-    "        ? prims[(a_draw.y & 0x7fffffffu) + tri] | 0x80000000u : a_draw.y;\n"
+    "    v_first_prim = sourced ? prims[prim_word] | 0x80000000u : a_draw.y;\n"
     "    v_plane = oit_tie_plane(p0, p1, p2);\n"
     "    vec4 vp = u_view * vec4(oit_world(me), 1.0);\n"
     "    v_pos = vp.xyz;\n"

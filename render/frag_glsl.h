@@ -17,9 +17,11 @@
  * 0 with every command of a multi-draw (GL 4.5, 10.4: MultiDrawArraysIndirect
  * behaves as DrawArraysIndirect called once per command, and the id counts
  * from the last drawing command), so the id is the same whether a mesh is
- * drawn alone or in a group. gpu_mesh.c sets the input: the current
- * attribute value for a single draw, a per-instance array indexed by each
- * command's baseInstance in a multi-draw (core GL 4.5 has no gl_DrawID).
+ * drawn alone or in a group. The input is always a per-instance array
+ * indexed by the draw's baseInstance (gpu_draw_record.h; core GL 4.5 has no
+ * gl_DrawID), never the attribute's current value. A triangle whose
+ * vertices or prim would lie outside their bindings is dropped whole
+ * rather than read out of range. Both blocks are bound on every draw.
  * Why gl_PrimitiveID and not first prim + tri from the vertex stage (the
  * same number): on llvmpipe a fragment shader that does not read
  * gl_PrimitiveID rasterized a dense model twice as slowly (DFB, 99K

@@ -1,18 +1,22 @@
 /* Triangles on the GPU (gpu_mesh.h). The soup is uploaded as is (16-byte
- * vertices) and read by the vertex-pulling shader of frag_glsl.h, which
- * needs no vertex array attributes (its one input, the per-draw record, is
- * the current attribute value in a single draw): one empty VAO per context
- * suffices, and GL core requires one to be bound, so each mesh owns its own.
- * Multi-draws are in gpu_mesh_many.c. */
+ * vertices) and read by the vertex-pulling shader of frag_glsl.h, whose one
+ * vertex input is the per-draw record (gpu_draw_record.h). Each mesh owns a
+ * vertex array that reads it from the mesh's record buffer: an owned mesh
+ * holds one record per window, written once; a view one, written before
+ * each of its windows is drawn, since its range changes between draws
+ * without GL calls (the streamer re-points views per pack and never draws
+ * them one by one). Multi-draws are in gpu_mesh_many.c. */
 #include "render/gpu_mesh.h"
 
 #include "render/frag_glsl.h"
+#include "render/gpu_draw_record.h"
 
 #include <stdlib.h>
 
 struct oit_gpu_mesh {
     GLuint buffer;
     GLuint vao;
+    GLuint records; /* OIT_IN_DRAW's records: a window's each, or a view's one */
     size_t count;
     uint32_t first_prim;
     size_t window; /* triangles per draw: SSBO size limit and alignment */
@@ -31,21 +35,58 @@ static uint64_t ssbo_align(void)
 }
 
 /* Triangles per draw window: the SSBO binding limit, rounded down so that
- * window offsets keep the SSBO offset alignment. */
+ * window offsets keep the SSBO offset alignment. The limit is a 64-bit
+ * figure (glGetInteger64v): a driver may allow more than 2^31 bytes, which
+ * glGetIntegerv would clamp or, on some drivers, truncate. */
 size_t oit_gpu_triangle_window(void)
 {
-    GLint max_block = 0, align = 16;
-    glGetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
-    glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &align);
+    uint64_t max_block = oit_gl_ssbo_max_bytes(), align = ssbo_align();
     size_t tri_bytes = sizeof(oit_triangle);
     size_t step = 1;
-    while ((step * tri_bytes) % (size_t)(align > 0 ? align : 16) != 0)
+    while ((step * tri_bytes) % align != 0)
         step++;
-    size_t w = (size_t)(max_block > 0 ? max_block : (1 << 27)) / tri_bytes;
-    /* glDrawArrays counts vertices in a GLsizei. */
-    if (w > (size_t)0x7fffffff / 3)
-        w = (size_t)0x7fffffff / 3;
-    return w / step * step;
+    uint64_t w = max_block / tri_bytes;
+    /* A window's vertices count in a GLsizei, and in the shader's int
+     * gl_VertexID and verts.length(). */
+    if (w > (uint64_t)0x7fffffff / 3)
+        w = (uint64_t)0x7fffffff / 3;
+    return (size_t)w / step * step;
+}
+
+static size_t windows_of(size_t count, size_t window)
+{
+    return count ? (count + window - 1) / window : 1;
+}
+
+/* The record of the window that starts at triangle `start`, with the byte
+ * offset of the window's prims binding (sourced meshes) in *prims_base. */
+static oit_draw_rec window_record(const oit_gpu_mesh *m, size_t start, uint64_t *prims_base)
+{
+    if (!m->sourced)
+        return (oit_draw_rec){0, m->first_prim + (uint32_t)start};
+    uint64_t at = m->prims_offset + start * 4;
+    *prims_base = at - at % m->align;
+    return (oit_draw_rec){0, 0x80000000u | (uint32_t)((at - *prims_base) / 4)};
+}
+
+/* The vertex array and record buffer: an owned mesh's records, one a
+ * window, go in once (immutable); a view's one record is rewritten. */
+static oit_status create_records(oit_gpu_mesh *m, const char *what, oit_error *err)
+{
+    size_t n = m->owns_buffer ? windows_of(m->count, m->window) : 1;
+    oit_draw_rec *recs = calloc(n, sizeof *recs);
+    if (!recs)
+        return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot hold %zu draw records", what, n);
+    uint64_t unused = 0;
+    for (size_t w = 0; m->owns_buffer && w < n; w++)
+        recs[w] = window_record(m, w * m->window, &unused);
+    glCreateVertexArrays(1, &m->vao);
+    glCreateBuffers(1, &m->records);
+    glNamedBufferStorage(m->records, (GLsizeiptr)(n * sizeof *recs), recs,
+                         m->owns_buffer ? 0 : GL_DYNAMIC_STORAGE_BIT);
+    free(recs);
+    oit_draw_records_attach(m->vao, m->records);
+    return oit_gl_check(what, err);
 }
 
 oit_status oit_gpu_mesh_create(const oit_triangle *tris, size_t count,
@@ -66,18 +107,19 @@ oit_status oit_gpu_mesh_create(const oit_triangle *tris, size_t count,
     m->window = oit_gpu_triangle_window();
     m->align = ssbo_align();
     m->owns_buffer = 1;
-    glCreateVertexArrays(1, &m->vao);
     glCreateBuffers(1, &m->buffer);
     uint64_t bytes = (uint64_t)count * sizeof(oit_triangle);
     glNamedBufferStorage(m->buffer, (GLsizeiptr)(bytes ? bytes : 16), count ? tris : NULL, 0);
     oit_status s = oit_gl_check("GPU mesh: glNamedBufferStorage", err);
+    if (s == OIT_ERR_NOMEM)
+        oit_error_set(err, s, "GPU mesh: cannot allocate %llu bytes for %zu triangles",
+                      (unsigned long long)bytes, count);
     if (s == OIT_OK && m->window == 0)
         s = oit_error_set(err, OIT_ERR_GL, "GPU mesh: GL_MAX_SHADER_STORAGE_BLOCK_SIZE is "
                           "smaller than one triangle");
+    if (s == OIT_OK)
+        s = create_records(m, "GPU mesh: draw records", err);
     if (s != OIT_OK) {
-        if (s == OIT_ERR_NOMEM)
-            oit_error_set(err, s, "GPU mesh: cannot allocate %llu bytes for %zu triangles",
-                          (unsigned long long)bytes, count);
         oit_gpu_mesh_destroy(m);
         return s;
     }
@@ -94,8 +136,10 @@ oit_status oit_gpu_mesh_create_view(unsigned buffer, oit_gpu_mesh **out, oit_err
     m->buffer = buffer;
     m->window = oit_gpu_triangle_window();
     m->align = ssbo_align();
-    glCreateVertexArrays(1, &m->vao);
-    oit_status s = oit_gl_check("GPU mesh view", err);
+    oit_status s = m->window ? create_records(m, "GPU mesh view: draw record", err)
+                             : oit_error_set(err, OIT_ERR_GL, "GPU mesh view: "
+                                             "GL_MAX_SHADER_STORAGE_BLOCK_SIZE is smaller than "
+                                             "one triangle");
     if (s != OIT_OK) {
         oit_gpu_mesh_destroy(m);
         return s;
@@ -104,8 +148,11 @@ oit_status oit_gpu_mesh_create_view(unsigned buffer, oit_gpu_mesh **out, oit_err
     return OIT_OK;
 }
 
+/* An owned mesh keeps its range: its records were written for it. */
 void oit_gpu_mesh_set_range(oit_gpu_mesh *m, uint64_t offset, size_t count, uint32_t first_prim)
 {
+    if (m->owns_buffer)
+        return;
     m->offset = offset;
     m->count = count;
     m->first_prim = first_prim;
@@ -114,6 +161,8 @@ void oit_gpu_mesh_set_range(oit_gpu_mesh *m, uint64_t offset, size_t count, uint
 
 void oit_gpu_mesh_set_range_sourced(oit_gpu_mesh *m, uint64_t offset, size_t count)
 {
+    if (m->owns_buffer)
+        return;
     m->offset = offset;
     m->count = count;
     m->first_prim = 0;
@@ -141,6 +190,7 @@ void oit_gpu_mesh_destroy(oit_gpu_mesh *m)
     if (m->owns_buffer)
         glDeleteBuffers(1, &m->buffer);
     glDeleteVertexArrays(1, &m->vao);
+    glDeleteBuffers(1, &m->records);
     free(m);
 }
 
@@ -169,26 +219,38 @@ uint64_t oit_gpu_mesh_offset(const oit_gpu_mesh *m)
     return m->offset;
 }
 
+void oit_gpu_mesh_set_align(oit_gpu_mesh *m, uint64_t bytes)
+{
+    uint64_t driver = ssbo_align();
+    m->align = bytes && bytes % driver == 0 ? bytes : driver;
+}
+
+/* Every storage binding the vertex stage declares is backed on every draw,
+ * OIT_BIND_PRIMS too where it reads none (its window's own triangles then):
+ * a block left unbound, or bound to a buffer since deleted or too short,
+ * is undefined behaviour a compiler may turn into a fault or a dropped
+ * draw even on a path that never reads it. */
 void oit_gpu_mesh_draw(const oit_gpu_mesh *m, unsigned program)
 {
     (void)program;
-    /* The mesh's vertex array enables no attribute, so the shader's
-     * per-draw input reads the current value set here. */
     glBindVertexArray(m->vao);
-    for (size_t start = 0; start < m->count; start += m->window) {
+    for (size_t start = 0, w = 0; start < m->count; start += m->window, w++) {
         size_t n = m->count - start < m->window ? m->count - start : m->window;
-        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_VERTS, m->buffer,
-                          (GLintptr)(m->offset + start * sizeof(oit_triangle)),
-                          (GLsizeiptr)(n * sizeof(oit_triangle)));
-        if (m->sourced) {
-            /* The window's prims, bound from the alignment below them. */
-            uint64_t at = m->prims_offset + start * 4, base = at - at % m->align;
+        GLintptr at = (GLintptr)(m->offset + start * sizeof(oit_triangle));
+        GLsizeiptr bytes = (GLsizeiptr)(n * sizeof(oit_triangle));
+        uint64_t base = 0;
+        oit_draw_rec rec = window_record(m, start, &base);
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_VERTS, m->buffer, at, bytes);
+        uint64_t prims_end = m->prims_offset + (start + n) * 4;
+        if (m->sourced)
             glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_PRIMS, m->buffer,
-                              (GLintptr)base, (GLsizeiptr)(at + n * 4 - base));
-            glVertexAttribI2ui(OIT_IN_DRAW, 0, 0x80000000u | (uint32_t)((at - base) / 4));
-        } else
-            glVertexAttribI2ui(OIT_IN_DRAW, 0, m->first_prim + (uint32_t)start);
-        glDrawArrays(GL_TRIANGLES, 0, (GLsizei)(n * 3));
+                              (GLintptr)base, (GLsizeiptr)(prims_end - base));
+        else
+            glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_PRIMS, m->buffer, at, bytes);
+        if (!m->owns_buffer)
+            glNamedBufferSubData(m->records, 0, sizeof rec, &rec);
+        glDrawArraysInstancedBaseInstance(GL_TRIANGLES, 0, (GLsizei)(n * 3), 1,
+                                          m->owns_buffer ? (GLuint)w : 0);
     }
 }
 

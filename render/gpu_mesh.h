@@ -22,11 +22,12 @@ oit_status oit_gpu_mesh_create(const oit_triangle *tris, size_t count,
                                oit_error *err);
 /* A mesh over triangles the caller places in its own GL buffer (a streaming
  * ring): it does not own the buffer, and oit_gpu_mesh_set_range re-points it
- * without allocating. Empty until set. */
+ * without allocating or calling GL. Empty until set. */
 oit_status oit_gpu_mesh_create_view(unsigned buffer, oit_gpu_mesh **out, oit_error *err);
 /* count oit_triangle records at byte offset (a multiple of
  * GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT) of a view's buffer; their
- * prims are first_prim + i. */
+ * prims are first_prim + i. Only for views (an owned mesh keeps its
+ * range), as is oit_gpu_mesh_set_range_sourced. */
 void oit_gpu_mesh_set_range(oit_gpu_mesh *m, uint64_t offset, size_t count, uint32_t first_prim);
 /* The same for a sourced range (partfile/triangles.h
  * oit_part_expand_sourced): count triangles at offset, then count u32 at
@@ -47,12 +48,20 @@ unsigned oit_gpu_mesh_buffer(const oit_gpu_mesh *m);
 uint64_t oit_gpu_mesh_offset(const oit_gpu_mesh *m);
 
 /* For the GL methods: draws the triangles with the bound program built from
- * frag_glsl.h, binding them for vertex pulling and setting the per-draw
- * input OIT_IN_DRAW (frag_glsl.h) as the current attribute value; large
- * meshes are drawn in windows that fit the SSBO limit, one glDrawArrays
- * each. It binds m's own vertex array. program is not read (the first prim
- * used to be its uniform); kept so callers need not change. */
+ * frag_glsl.h, binding them for vertex pulling (OIT_BIND_VERTS, and
+ * OIT_BIND_PRIMS always) and giving the per-draw input OIT_IN_DRAW
+ * (frag_glsl.h) from m's record buffer through m's own vertex array, which
+ * it binds; no current attribute value is read. Large meshes are drawn in
+ * windows that fit the SSBO limit, one glDrawArraysInstancedBaseInstance
+ * each; a view writes its record before each window. program is not read
+ * (the first prim used to be its uniform); kept so callers need not
+ * change. */
 void oit_gpu_mesh_draw(const oit_gpu_mesh *m, unsigned program);
+/* For tests: binds a sourced view's prims as if
+ * GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT were bytes (a multiple of the
+ * driver's; anything else restores the driver's), so that a driver's larger
+ * alignment, and the prim index it moves into the record, can be tried. */
+void oit_gpu_mesh_set_align(oit_gpu_mesh *m, uint64_t bytes);
 
 /* Scratch for oit_gpu_mesh_draw_many: the indirect commands and per-draw
  * records it uploads (grown geometrically, never shrunk), the vertex array
@@ -72,6 +81,11 @@ uint64_t oit_gpu_draws_bytes(const oit_gpu_draws *d);
  * window (oit_gpu_triangle_window). Lets a test split groups and window
  * large meshes without buffers of GL_MAX_SHADER_STORAGE_BLOCK_SIZE. */
 void oit_gpu_draws_set_window(oit_gpu_draws *d, size_t triangles);
+/* For tests: groups are bound as if GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT
+ * were bytes (a multiple of the driver's; anything else restores the
+ * driver's), as on drivers where it is 32, 64 or 256; the window is
+ * recomputed to keep its starts aligned. Mesh offsets must keep it. */
+void oit_gpu_draws_set_align(oit_gpu_draws *d, uint64_t bytes);
 
 /* Draws meshes[0..n), in that order, with the bound program built from
  * frag_glsl.h, in few draw calls: consecutive meshes in one GL buffer whose
@@ -83,11 +97,12 @@ void oit_gpu_draws_set_window(oit_gpu_draws *d, size_t triangles);
  * alternating between two buffers make one group per run. A mesh larger
  * than a window is cut into windows that join groups like meshes. A
  * sourced mesh's prims join the group's binding at OIT_BIND_PRIMS under the
- * same window rule. Fragments and primitive ids are those of
- * oit_gpu_mesh_draw on each mesh in turn.
+ * same window rule; a group without one binds its triangles' range there,
+ * so that the binding is never absent or stale. Fragments and primitive
+ * ids are those of oit_gpu_mesh_draw on each mesh in turn.
  * Empty meshes draw nothing. Mesh offsets must keep the alignment (as
  * oit_gpu_mesh_set_range requires). Leaves d's vertex array and indirect
- * buffer bound, and the current value of the per-draw input untouched.
+ * buffer bound.
  * Never an error: should d's scratch not grow to the call's commands, it
  * draws them in runs that fit (more calls, same fragments). */
 void oit_gpu_mesh_draw_many(oit_gpu_draws *d, const oit_gpu_mesh *const *meshes, int n);

@@ -10,11 +10,18 @@
  * gl_PrimitiveID (frag_glsl.h); for a sourced mesh, where its prims start
  * in the group's OIT_BIND_PRIMS binding. The commands of one group share
  * one SSBO binding (and one of prims), hence the grouping by buffer and
- * window. */
+ * window.
+ *
+ * What the driver may do least (GL 4.5 core leaves it open): a new buffer
+ * holds garbage, so only written commands and records are ever read; the
+ * records buffer is given to the vertex array again whenever it is
+ * replaced; every storage block the vertex stage declares is backed on
+ * every draw. */
 #include "render/gpu_mesh.h"
 
 #include "base/grow.h"
 #include "render/frag_glsl.h"
+#include "render/gpu_draw_record.h"
 
 #include <stdlib.h>
 
@@ -22,12 +29,6 @@
 typedef struct draw_cmd {
     GLuint count, instances, first, base_instance;
 } draw_cmd;
-
-/* What OIT_IN_DRAW reads per command: its first vertex in the binding and
- * the prim of its first triangle. */
-typedef struct draw_rec {
-    GLuint first_vertex, first_prim;
-} draw_rec;
 
 /* Commands [first, first + count) drawn with buffer bound from lo, rounded
  * down to the unit, to hi. A solo group is bound from lo itself: its one
@@ -46,34 +47,57 @@ struct oit_gpu_draws {
     /* CPU staging, cap commands each: at[k] is command k's byte offset in
      * its buffer until its group's base is known. */
     draw_cmd *cmds;
-    draw_rec *recs;
+    oit_draw_rec *recs;
     uint64_t *at;
     uint64_t *prims_at; /* command k's prims' byte offset; NO_PRIMS: not sourced */
     draw_group *groups;
     size_t cap;
     size_t window, driver_window; /* triangles a group may span */
+    size_t asked_window;          /* the test's (oit_gpu_draws_set_window), or 0 */
     /* Group bases: multiples of the SSBO offset alignment and of the 16
      * bytes of a vertex, which first vertices count in. */
-    uint64_t unit;
+    uint64_t unit, align;
     uint64_t calls;
 };
 
 enum { INITIAL_DRAWS = 256 };
 #define NO_PRIMS UINT64_MAX
 
+/* A buffer of at least `bytes` in *buf: a new one when it is short, whose
+ * immutable store is then the only one that name ever has. */
+static oit_status grow_gl(GLuint *buf, uint64_t *cap, uint64_t bytes, const char *what,
+                          oit_error *err)
+{
+    if (*buf && *cap >= bytes)
+        return OIT_OK;
+    GLuint b = 0;
+    glCreateBuffers(1, &b);
+    glNamedBufferStorage(b, (GLsizeiptr)bytes, NULL, GL_DYNAMIC_STORAGE_BIT);
+    oit_status s = oit_gl_check(what, err);
+    if (s != OIT_OK) {
+        glDeleteBuffers(1, &b);
+        return s;
+    }
+    glDeleteBuffers(1, buf);
+    *buf = b;
+    *cap = bytes;
+    return OIT_OK;
+}
+
 static oit_status reserve_gl(oit_gpu_draws *d, size_t n, oit_error *err)
 {
-    oit_status s = oit_gl_buffer_reserve(&d->cmd_buf, &d->cmd_bytes, n * sizeof(draw_cmd),
-                                         "multi-draw commands", err);
+    GLuint recs = d->rec_buf;
+    oit_status s = grow_gl(&d->cmd_buf, &d->cmd_bytes, n * sizeof(draw_cmd),
+                           "multi-draw commands", err);
     if (s == OIT_OK)
-        s = oit_gl_buffer_reserve(&d->rec_buf, &d->rec_bytes, n * sizeof(draw_rec),
-                                  "multi-draw records", err);
+        s = grow_gl(&d->rec_buf, &d->rec_bytes, n * sizeof(oit_draw_rec), "multi-draw records",
+                    err);
+    if (d->rec_buf != recs)
+        oit_draw_records_attach(d->vao, d->rec_buf);
     return s;
 }
 
-/* Room for n commands, CPU and GL; on failure the room stays as it was
- * (the buffer names stay too, so the vertex array's binding of the records
- * holds). */
+/* Room for n commands, CPU and GL; on failure the room stays as it was. */
 static int reserve(oit_gpu_draws *d, size_t n)
 {
     if (n <= d->cap)
@@ -99,23 +123,15 @@ oit_status oit_gpu_draws_create(oit_gpu_draws **out, oit_error *err)
         return oit_error_set(err, OIT_ERR_NOMEM, "multi-draw: out of memory");
     GLint align = 16;
     glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &align);
-    uint64_t a = align > 0 ? (uint64_t)align : 16;
-    for (d->unit = a; d->unit % 16 != 0;)
-        d->unit += a;
-    d->driver_window = d->window = oit_gpu_triangle_window();
+    d->align = align > 0 ? (uint64_t)align : 16;
+    oit_gpu_draws_set_align(d, 0);
     glCreateVertexArrays(1, &d->vao);
     oit_status s = reserve(d, INITIAL_DRAWS)
                        ? OIT_OK
                        : oit_error_set(err, OIT_ERR_NOMEM, "multi-draw: cannot allocate room "
                                        "for %d draws", INITIAL_DRAWS);
-    if (s == OIT_OK) {
-        glEnableVertexArrayAttrib(d->vao, OIT_IN_DRAW);
-        glVertexArrayAttribIFormat(d->vao, OIT_IN_DRAW, 2, GL_UNSIGNED_INT, 0);
-        glVertexArrayAttribBinding(d->vao, OIT_IN_DRAW, 0);
-        glVertexArrayVertexBuffer(d->vao, 0, d->rec_buf, 0, sizeof(draw_rec));
-        glVertexArrayBindingDivisor(d->vao, 0, 1);
+    if (s == OIT_OK)
         s = oit_gl_check("multi-draw: vertex array", err);
-    }
     if (s == OIT_OK && d->window == 0)
         s = oit_error_set(err, OIT_ERR_GL, "multi-draw: GL_MAX_SHADER_STORAGE_BLOCK_SIZE is "
                           "smaller than one triangle");
@@ -152,18 +168,40 @@ uint64_t oit_gpu_draws_bytes(const oit_gpu_draws *d)
     return d ? d->cmd_bytes + d->rec_bytes : 0;
 }
 
-void oit_gpu_draws_set_window(oit_gpu_draws *d, size_t triangles)
+/* The fewest triangles whose bytes are a multiple of the unit: window
+ * starts inside a mesh stay on it, as group bases must. */
+static size_t unit_step(const oit_gpu_draws *d)
 {
-    if (triangles == 0 || triangles > d->driver_window) {
-        d->window = d->driver_window;
-        return;
-    }
-    /* Window starts inside a mesh must stay on the unit, as the driver's
-     * stay aligned. */
     size_t step = 1;
     while ((step * sizeof(oit_triangle)) % d->unit != 0)
         step++;
-    d->window = triangles > step ? triangles / step * step : step;
+    return step;
+}
+
+/* The driver's window with starts on the unit, or the test's below it. */
+static void fit_window(oit_gpu_draws *d)
+{
+    size_t step = unit_step(d), driver = oit_gpu_triangle_window() / step * step;
+    d->driver_window = driver;
+    size_t t = d->asked_window;
+    if (t == 0 || t > driver)
+        d->window = driver;
+    else
+        d->window = t > step ? t / step * step : step;
+}
+
+void oit_gpu_draws_set_window(oit_gpu_draws *d, size_t triangles)
+{
+    d->asked_window = triangles;
+    fit_window(d);
+}
+
+void oit_gpu_draws_set_align(oit_gpu_draws *d, uint64_t bytes)
+{
+    uint64_t a = bytes && bytes % d->align == 0 ? bytes : d->align;
+    for (d->unit = a; d->unit % 16 != 0;)
+        d->unit += a;
+    fit_window(d);
 }
 
 /* Adds command k for `count` triangles at byte offset `at` of buffer (its
@@ -176,7 +214,7 @@ static void add_command(oit_gpu_draws *d, size_t *groups, size_t k, GLuint buffe
              window = (uint64_t)d->window * sizeof(oit_triangle);
     uint64_t plo = prims_at, phi = prims_at == NO_PRIMS ? 0 : prims_at + (uint64_t)count * 4;
     d->cmds[k] = (draw_cmd){(GLuint)(count * 3), 1, 0, (GLuint)k};
-    d->recs[k] = (draw_rec){0, first_prim};
+    d->recs[k] = (oit_draw_rec){0, first_prim};
     d->at[k] = at;
     d->prims_at[k] = prims_at;
     draw_group *g = *groups ? &d->groups[*groups - 1] : NULL;
@@ -202,40 +240,64 @@ static uint64_t group_base(const oit_gpu_draws *d, const draw_group *g)
     return g->solo ? g->lo : g->lo - g->lo % d->unit;
 }
 
-/* Draws commands [0, k) in their groups [0, groups): first vertices from
- * each group's base, one upload, one multi-draw a group. */
-static void flush(oit_gpu_draws *d, size_t k, size_t groups)
+static int group_sourced(const draw_group *g)
 {
-    if (k == 0)
-        return;
+    return g->plo < g->phi;
+}
+
+static uint64_t group_prims_base(const oit_gpu_draws *d, const draw_group *g)
+{
+    return g->plo - g->plo % d->unit;
+}
+
+/* Commands [0, k) get their first vertices (and prims' indices) from each
+ * of their groups' bases. */
+static void place_commands(oit_gpu_draws *d, size_t groups)
+{
     for (size_t g = 0; g < groups; g++) {
         const draw_group *gr = &d->groups[g];
         uint64_t base = group_base(d, gr);
-        uint64_t pbase = gr->plo - gr->plo % d->unit;
         for (size_t c = gr->first; c < gr->first + gr->count; c++) {
             GLuint first = (GLuint)((d->at[c] - base) / 16);
             d->cmds[c].first = first;
             d->recs[c].first_vertex = first;
             if (d->prims_at[c] != NO_PRIMS)
-                d->recs[c].first_prim = 0x80000000u | (GLuint)((d->prims_at[c] - pbase) / 4);
+                d->recs[c].first_prim =
+                    0x80000000u | (GLuint)((d->prims_at[c] - group_prims_base(d, gr)) / 4);
         }
     }
+}
+
+/* Binds group g's triangles at OIT_BIND_VERTS and its prims at
+ * OIT_BIND_PRIMS, or, without any, its triangles there too: a block the
+ * vertex stage declares is never left unbound or bound to a stale range. */
+static void bind_group(const oit_gpu_draws *d, const draw_group *gr)
+{
+    uint64_t base = group_base(d, gr);
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_VERTS, gr->buffer, (GLintptr)base,
+                      (GLsizeiptr)(gr->hi - base));
+    uint64_t plo = group_sourced(gr) ? group_prims_base(d, gr) : base;
+    uint64_t phi = group_sourced(gr) ? gr->phi : gr->hi;
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_PRIMS, gr->buffer, (GLintptr)plo,
+                      (GLsizeiptr)(phi - plo));
+}
+
+/* Draws commands [0, k) in their groups [0, groups): one upload, one
+ * multi-draw a group. */
+static void flush(oit_gpu_draws *d, size_t k, size_t groups)
+{
+    if (k == 0)
+        return;
+    place_commands(d, groups);
     /* Rewriting the buffers between groups could make a driver wait for
      * the draws before: all of them go up at once. */
     glNamedBufferSubData(d->cmd_buf, 0, (GLsizeiptr)(k * sizeof(draw_cmd)), d->cmds);
-    glNamedBufferSubData(d->rec_buf, 0, (GLsizeiptr)(k * sizeof(draw_rec)), d->recs);
+    glNamedBufferSubData(d->rec_buf, 0, (GLsizeiptr)(k * sizeof(oit_draw_rec)), d->recs);
     glBindVertexArray(d->vao);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, d->cmd_buf);
     for (size_t g = 0; g < groups; g++) {
         const draw_group *gr = &d->groups[g];
-        uint64_t base = group_base(d, gr);
-        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_VERTS, gr->buffer, (GLintptr)base,
-                          (GLsizeiptr)(gr->hi - base));
-        if (gr->plo < gr->phi) {
-            uint64_t pbase = gr->plo - gr->plo % d->unit;
-            glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_PRIMS, gr->buffer,
-                              (GLintptr)pbase, (GLsizeiptr)(gr->phi - pbase));
-        }
+        bind_group(d, gr);
         glMultiDrawArraysIndirect(GL_TRIANGLES,
                                   (const void *)(uintptr_t)(gr->first * sizeof(draw_cmd)),
                                   (GLsizei)gr->count, 0);

@@ -17,7 +17,27 @@
  * triangles, reversed within the mesh, so the centre's prims are those
  * values, not first prim + index.
  * A wrong group base, first vertex or per-draw record shows in the
- * fingerprints; a wrong grouping in the call count. */
+ * fingerprints; a wrong grouping in the call count.
+ *
+ * Every draw runs on poisoned GL state, since a driver may do the least GL
+ * 4.5 allows where llvmpipe happens to do more: before each path the
+ * current value of OIT_IN_DRAW is garbage, OIT_BIND_VERTS and OIT_BIND_PRIMS
+ * point at a buffer of NaNs, and the multi-draw's command and record
+ * buffers and each view's record buffer (found through GL queries after
+ * the first draws) are filled with NaNs. After each draw the current value
+ * must be untouched and the bound vertex array must take OIT_IN_DRAW from
+ * a buffer with divisor 1 (no draw reads a current value, which GL leaves
+ * undefined after an array draw and drivers latch as they please), and
+ * OIT_BIND_PRIMS must name the meshes' buffer even for draws that read no
+ * prims (an unbacked or stale block is undefined behaviour). The layouts
+ * run in two rounds in one process (a second run must find nothing left
+ * over by the first), with the driver's SSBO offset alignment and with 256
+ * forced on the multi-draw and the views (oit_gpu_draws_set_align,
+ * oit_gpu_mesh_set_align), and in shuffled and reversed mesh orders.
+ * Finally draws through records that do not fit their bindings (a prim
+ * past OIT_BIND_PRIMS, a first vertex past the draw's first, a triangle
+ * past OIT_BIND_VERTS) must drop exactly those triangles, not read out of
+ * range. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,6 +45,7 @@
 #include "tests/lib/gl_test_scene.h"
 #include "render/frag_glsl.h"
 #include "render/gl_context.h"
+#include "render/gpu_draw_record.h"
 #include "render/gpu_mesh.h"
 #include "tests/lib/test_check.h"
 #include "tests/lib/test_gl.h"
@@ -132,7 +153,17 @@ typedef struct gl_state {
     GLuint prog, fbo, acc, buf[2];
     oit_gpu_mesh *views[N];
     oit_gpu_draws *draws;
+    GLuint poison;          /* a small buffer of NaNs */
+    GLuint scratch[2];      /* the multi-draw's commands and records, once seen */
+    GLuint view_records[N]; /* each view's record buffer, once seen */
 } gl_state;
+
+/* A quiet NaN's bits, with a payload: garbage as a float and as a uint. */
+static const GLuint garbage = 0xffc00001u;
+static const GLuint garbage_attr[4] = {0xffc00001u, 0x7fc0beefu, 0xdeadbeefu, 0x7fffffffu};
+
+/* "round r, alignment a, sourced: " before every case name */
+static char prefix[96];
 
 static int setup(gl_state *g, oit_error *err)
 {
@@ -152,6 +183,9 @@ static int setup(gl_state *g, oit_error *err)
     glCreateBuffers(2, g->buf);
     for (int b = 0; b < 2; b++)
         glNamedBufferStorage(g->buf[b], BUF_BYTES, NULL, GL_DYNAMIC_STORAGE_BIT);
+    glCreateBuffers(1, &g->poison);
+    glNamedBufferStorage(g->poison, 64, NULL, GL_DYNAMIC_STORAGE_BIT);
+    glClearNamedBufferData(g->poison, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &garbage);
     oit_view v;
     scene_view(&v, W, H, OIT_SHADING_TRANSPARENT);
     oit_shading_resolve_defaults(&v.shading);
@@ -168,13 +202,13 @@ static void teardown(gl_state *g)
     glDeleteFramebuffers(1, &g->fbo);
     glDeleteBuffers(1, &g->acc);
     glDeleteBuffers(2, g->buf);
+    glDeleteBuffers(1, &g->poison);
 }
 
 /* Fills both buffers with garbage (NaN bit patterns), then writes the meshes
  * where the layout puts them and points the views there. */
 static void place(gl_state *g, const scene *s, const layout *l)
 {
-    static const GLuint garbage = 0xffc00001u;
     for (int b = 0; b < 2; b++)
         glClearNamedBufferData(g->buf[b], GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &garbage);
     for (int i = 0; i < N; i++) {
@@ -197,21 +231,109 @@ static void place(gl_state *g, const scene *s, const layout *l)
     }
 }
 
-/* Draws the views [0, n) one by one or with draw_many; reads the
- * accumulators into acc; returns the draw calls draw_many made. */
-static uint64_t draw(gl_state *g, int n, int many, uint32_t *acc)
+static void fill_garbage(GLuint buf)
+{
+    if (buf)
+        glClearNamedBufferData(buf, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &garbage);
+}
+
+/* Garbage wherever a draw could read what it did not set: the current value
+ * of its input, its storage bindings, its scratch buffers. */
+static void poison(gl_state *g)
+{
+    glVertexAttribI4uiv(OIT_IN_DRAW, garbage_attr);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_VERTS, g->poison);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_PRIMS, g->poison);
+    for (int k = 0; k < 2; k++)
+        fill_garbage(g->scratch[k]);
+    for (int i = 0; i < N; i++)
+        fill_garbage(g->view_records[i]);
+}
+
+/* Violations of the draw-state rules after a draw (see the top). */
+typedef struct state_faults {
+    int current, array, prims;
+} state_faults;
+
+/* Checks the state a draw left; returns the buffer its input reads. */
+static GLuint check_after(state_faults *f)
+{
+    GLuint cur[4];
+    glGetVertexAttribIuiv(OIT_IN_DRAW, GL_CURRENT_VERTEX_ATTRIB, cur);
+    f->current += memcmp(cur, garbage_attr, sizeof cur) != 0;
+    GLint enabled = 0, divisor = 0, integer = 0, buf = 0;
+    glGetVertexAttribiv(OIT_IN_DRAW, GL_VERTEX_ATTRIB_ARRAY_ENABLED, &enabled);
+    glGetVertexAttribiv(OIT_IN_DRAW, GL_VERTEX_ATTRIB_ARRAY_DIVISOR, &divisor);
+    glGetVertexAttribiv(OIT_IN_DRAW, GL_VERTEX_ATTRIB_ARRAY_INTEGER, &integer);
+    glGetVertexAttribiv(OIT_IN_DRAW, GL_VERTEX_ATTRIB_ARRAY_BUFFER_BINDING, &buf);
+    f->array += !enabled || divisor != 1 || !integer || buf == 0;
+    return (GLuint)buf;
+}
+
+static void prims_bound_to(state_faults *f, GLuint want)
+{
+    GLint prims = 0;
+    glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, OIT_BIND_PRIMS, &prims);
+    f->prims += (GLuint)prims != want;
+}
+
+static void report(const char *name, int many, const state_faults *f)
+{
+    const char *path = many ? "many" : "mesh by mesh";
+    CHECK(f->current == 0, "%s: %s: %d draws changed the current value of OIT_IN_DRAW", name,
+          path, f->current);
+    CHECK(f->array == 0, "%s: %s: %d draws left OIT_IN_DRAW without an integer array of "
+          "divisor 1 (a draw that reads its current value)", name, path, f->array);
+    CHECK(f->prims == 0, "%s: %s: %d draws left OIT_BIND_PRIMS unbound or on a buffer that "
+          "is not the meshes'", name, path, f->prims);
+}
+
+/* The views one by one, each on freshly poisoned bindings. */
+static void draw_each(gl_state *g, int n, state_faults *f)
+{
+    for (int i = 0; i < n; i++) {
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_PRIMS, g->poison);
+        oit_gpu_mesh_draw(g->views[i], g->prog);
+        if (oit_gpu_mesh_triangles(g->views[i]) == 0)
+            continue;
+        g->view_records[i] = check_after(f);
+        prims_bound_to(f, oit_gpu_mesh_buffer(g->views[i]));
+    }
+}
+
+static void draw_all(gl_state *g, int n, state_faults *f)
+{
+    oit_gpu_mesh_draw_many(g->draws, (const oit_gpu_mesh *const *)g->views, n);
+    int drew = 0;
+    for (int i = 0; i < n; i++)
+        drew |= oit_gpu_mesh_triangles(g->views[i]) != 0;
+    if (!drew)
+        return;
+    g->scratch[1] = check_after(f);
+    GLint cmds = 0, prims = 0;
+    glGetIntegerv(GL_DRAW_INDIRECT_BUFFER_BINDING, &cmds);
+    g->scratch[0] = (GLuint)cmds;
+    glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, OIT_BIND_PRIMS, &prims);
+    f->prims += (GLuint)prims != g->buf[0] && (GLuint)prims != g->buf[1];
+}
+
+/* Draws the views [0, n) one by one or with draw_many on poisoned state;
+ * reads the accumulators into acc; returns the draw calls draw_many made. */
+static uint64_t draw(gl_state *g, const char *name, int n, int many, uint32_t *acc)
 {
     static const GLuint zero = 0;
     glClearNamedBufferData(g->acc, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, g->acc);
     oit_glsl_raster_begin(g->fbo, W, H);
     glUseProgram(g->prog);
+    poison(g);
     uint64_t before = oit_gpu_draws_calls(g->draws);
+    state_faults f = {0};
     if (many)
-        oit_gpu_mesh_draw_many(g->draws, (const oit_gpu_mesh *const *)g->views, n);
+        draw_all(g, n, &f);
     else
-        for (int i = 0; i < n; i++)
-            oit_gpu_mesh_draw(g->views[i], g->prog);
+        draw_each(g, n, &f);
+    report(name, many, &f);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glGetNamedBufferSubData(g->acc, 0, ACC_WORDS * 4, acc);
     return oit_gpu_draws_calls(g->draws) - before;
@@ -230,14 +352,16 @@ static void center_of(const scene *s, int n, uint32_t out[3])
         }
 }
 
-static void run_case(gl_state *g, const scene *s, const char *name, const layout *l, int n,
+static void run_case(gl_state *g, const scene *s, const char *what, const layout *l, int n,
                      size_t window, uint64_t want_calls)
 {
     static uint32_t ref[ACC_WORDS], got[ACC_WORDS];
+    char name[192];
+    snprintf(name, sizeof name, "%s%s", prefix, what);
     place(g, s, l);
     oit_gpu_draws_set_window(g->draws, window);
-    draw(g, n, 0, ref);
-    uint64_t calls = draw(g, n, 1, got);
+    draw(g, name, n, 0, ref);
+    uint64_t calls = draw(g, name, n, 1, got);
     oit_gpu_draws_set_window(g->draws, 0);
     oit_error err = {0};
     CHECK(oit_gl_check(name, &err) == OIT_OK, "%s: %s", name, err.message);
@@ -282,7 +406,7 @@ static void cases(gl_state *g, scene *s)
         l.buffer[i] = 0, l.offset[i] = (uint64_t)i * SLOT;
     run_case(g, s, "one buffer", &l, N, 0, 1);
     static uint32_t acc[ACC_WORDS];
-    uint64_t none = draw(g, 0, 1, acc);
+    uint64_t none = draw(g, "no meshes", 0, 1, acc);
     CHECK(none == 0, "no meshes: %llu draw calls", (unsigned long long)none);
 
     for (int i = 0; i < N; i++)
@@ -342,6 +466,123 @@ static void big_meshes(gl_state *g)
         free(big.tris[i]);
 }
 
+/* The meshes in a shuffled order (their slots, buffers and prims their
+ * own), then in reverse: in one buffer, one group whatever the order; in
+ * two, one group a run. */
+static void orders(gl_state *g, const scene *s)
+{
+    static scene p;
+    static layout l;
+    int perm[N];
+    uint32_t r = 99;
+    for (int i = 0; i < N; i++)
+        perm[i] = i;
+    for (int i = N - 1; i > 0; i--) {
+        int j = (int)(rng(&r) % (uint32_t)(i + 1)), t = perm[i];
+        perm[i] = perm[j];
+        perm[j] = t;
+    }
+    for (int pass = 0; pass < 2; pass++) {
+        for (int k = 0; k < N; k++) {
+            int i = pass == 0 ? perm[k] : N - 1 - k;
+            p.tris[k] = s->tris[i];
+            p.count[k] = s->count[i];
+            p.first_prim[k] = s->first_prim[i];
+            l.offset[k] = (uint64_t)i * SLOT;
+            l.buffer[k] = 0;
+        }
+        run_case(g, &p, pass ? "reversed, one buffer" : "shuffled, one buffer", &l, N, 0, 1);
+        for (int k = 0; k < N; k++)
+            l.buffer[k] = (int)(l.offset[k] / SLOT) % 2;
+        run_case(g, &p, pass ? "reversed, alternating" : "shuffled, alternating", &l, N, 0,
+                 buffer_runs(&p, &l, N));
+    }
+}
+
+/* Draws two triangles, both over the centre, at prims prim and prim + 1
+ * (gl_PrimitiveID 0 and 1), through a vertex array of the test's own whose
+ * record is rec, with OIT_BIND_VERTS holding `tris` of them and
+ * OIT_BIND_PRIMS one word, 7, at PRIMS_AT; returns the centre's figures. */
+enum { PRIMS_AT = 4096 };
+static void draw_record(gl_state *g, oit_draw_rec rec, int tris, uint32_t centre[3])
+{
+    static uint32_t acc[ACC_WORDS];
+    static const GLuint zero = 0, prim = 7;
+    oit_triangle t[2];
+    uint32_t r = 4242;
+    make_triangle(&t[0], 1, &r);
+    make_triangle(&t[1], 1, &r);
+    glNamedBufferSubData(g->buf[0], 0, sizeof t, t);
+    glNamedBufferSubData(g->buf[0], PRIMS_AT, 4, &prim);
+    GLuint vao = 0, records = 0;
+    glCreateVertexArrays(1, &vao);
+    glCreateBuffers(1, &records);
+    glNamedBufferStorage(records, sizeof rec, &rec, 0);
+    oit_draw_records_attach(vao, records);
+    glClearNamedBufferData(g->acc, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, g->acc);
+    oit_glsl_raster_begin(g->fbo, W, H);
+    glUseProgram(g->prog);
+    glBindVertexArray(vao);
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_VERTS, g->buf[0], 0,
+                      (GLsizeiptr)(tris * sizeof(oit_triangle)));
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_PRIMS, g->buf[0], PRIMS_AT, 4);
+    glDrawArraysInstancedBaseInstance(GL_TRIANGLES, 0, 6, 1, 0);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(g->acc, 0, ACC_WORDS * 4, acc);
+    memcpy(centre, &acc[3 * W * H], 3 * sizeof *centre);
+    glDeleteVertexArrays(1, &vao);
+    glDeleteBuffers(1, &records);
+}
+
+/* Records that do not fit their bindings: the vertex stage drops the
+ * triangles they would read out of range, and draws the others exactly. */
+static void guards(gl_state *g)
+{
+    static const struct {
+        const char *what;
+        oit_draw_rec rec;
+        int tris;
+        uint32_t prim; /* of the one triangle that must be drawn */
+    } c[3] = {
+        {"its second prim past OIT_BIND_PRIMS", {0, 0x80000000u}, 2, 7},
+        {"first vertex 3, drawn from vertex 0", {3, 500}, 2, 501},
+        {"its second triangle past OIT_BIND_VERTS", {0, 600}, 1, 600},
+    };
+    for (int k = 0; k < 3; k++) {
+        uint32_t centre[3];
+        draw_record(g, c[k].rec, c[k].tris, centre);
+        printf("record with %s: centre %u fragments, prims %u\n", c[k].what, centre[0],
+               centre[1]);
+        CHECK(centre[0] == 1 && centre[1] == c[k].prim,
+              "record with %s: the centre got %u fragments, prims summing to %u; want 1, "
+              "prim %u (a triangle read out of range was drawn)", c[k].what, centre[0],
+              centre[1], c[k].prim);
+    }
+}
+
+/* Every layout in both kinds of views with the driver's SSBO offset
+ * alignment, then with 256 (which all the layouts' offsets keep), then
+ * with the driver's again: the same cases a second time in one process. */
+static void rounds(gl_state *g, scene *s)
+{
+    static const uint64_t aligns[3] = {0, 256, 0};
+    for (int round = 0; round < 3; round++) {
+        oit_gpu_draws_set_align(g->draws, aligns[round]);
+        for (int i = 0; i < N; i++)
+            oit_gpu_mesh_set_align(g->views[i], aligns[round]);
+        for (sourced = 0; sourced < 2; sourced++) {
+            snprintf(prefix, sizeof prefix, "round %d, alignment %s%s: ", round + 1,
+                     aligns[round] ? "256" : "the driver's", sourced ? ", sourced" : "");
+            cases(g, s);
+            orders(g, s);
+            if (!sourced) /* its prims would overlap the next mesh */
+                big_meshes(g);
+        }
+    }
+    prefix[0] = 0;
+}
+
 int main(void)
 {
     oit_gl *gl = test_gl_open();
@@ -353,11 +594,8 @@ int main(void)
         fprintf(stderr, "FAIL: set-up: %s\n", err.message);
         test_failures++;
     } else {
-        cases(&g, &s);
-        big_meshes(&g);
-        sourced = 1;
-        printf("sourced views:\n");
-        cases(&g, &s);
+        rounds(&g, &s);
+        guards(&g);
     }
     teardown(&g);
     free_scene(&s);
