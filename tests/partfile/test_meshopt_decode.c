@@ -1,6 +1,6 @@
 /* partfile/meshopt_decode.c against libmeshoptimizer, whose encoder is the
- * oracle: streams of many strides (every multiple of 4 up to 256 among
- * random ones, past the first block, whose size depends on the stride),
+ * oracle: streams of many strides (fixed ones and random multiples of 4 up
+ * to 256, past the first block, whose size depends on the stride),
  * counts and kinds of data (so that every
  * byte-group mode and the escape bytes occur, which the test counts) are
  * encoded with meshopt_encodeVertexBuffer / meshopt_encodeIndexSequence and
