@@ -10,12 +10,17 @@
  * stick out of the region their parent cell stands for by up to 1.5 times
  * its size on random sides, and a
  * small triangle part somewhere in most leaf cells. Views look at a random
- * part (most often one that lies outside its top cell) from random
- * directions and distances, narrow or wide, perspective and orthographic.
+ * part (most often one that lies outside its top cell, or two levels down
+ * outside its first subgrid) from random directions and distances, or from
+ * beyond it back at its top cell with the far plane just behind it, narrow
+ * or wide, perspective and orthographic.
  * Asserted for every view, against the unculled order:
  *   - the culled order keeps the full order's relative order;
  *   - every part it leaves out lies wholly outside one frustum plane (all 8
  *     corners of its box);
+ * the same for a chain of three one-cell subgrids along each axis, either
+ * way, whose overhangs add up: the part at its far end, seen from beyond with
+ * the far plane just behind it, must be kept;
  * and over the run: views kept parts whose top cell lies wholly outside a
  * plane ("rescued"), and parts two subgrids down whose first subgrid's box
  * lies wholly outside a plane ("rescued two levels down"), so a cull by the
@@ -313,17 +318,31 @@ static void check_view(tally *t, oit_order *o, const scene *sc, const oit_camera
     t->views++;
 }
 
-/* A part that lies outside its top cell, when there is one (3 views in 4). */
-static uint32_t pick_target(rng *r, const scene *sc)
+/* 1 when part p pokes out of [lo, hi]. */
+static int pokes_out(const scene *sc, uint32_t p, const double lo[3], const double hi[3])
+{
+    for (int k = 0; k < 3; k++)
+        if (sc->lo[p][k] < lo[k] || sc->hi[p][k] > hi[k])
+            return 1;
+    return 0;
+}
+
+/* Most often a part that lies outside its top cell, or (every other view)
+ * two subgrids down outside its first subgrid's box, when there is one. */
+static uint32_t pick_target(rng *r, const scene *sc, int deep)
 {
     uint32_t start = rnd(r, sc->np);
-    for (uint32_t i = 0; rnd(r, 4) && i < sc->np; i++) {
-        uint32_t p = (start + i) % sc->np;
+    for (uint32_t i = 0; rnd(r, 8) && i < sc->np; i++) {
+        uint32_t p = (start + i) % sc->np, path[4];
         double lo[3], hi[3];
-        top_cell_box(sc, p, lo, hi);
-        for (int k = 0; k < 3; k++)
-            if (sc->lo[p][k] < lo[k] || sc->hi[p][k] > hi[k])
-                return p;
+        if (deep && path_of(sc, p, path) < 3)
+            continue;
+        if (deep)
+            grid_box(&sc->g[path[1]], lo, hi);
+        else
+            top_cell_box(sc, p, lo, hi);
+        if (pokes_out(sc, p, lo, hi))
+            return p;
     }
     return start;
 }
@@ -331,12 +350,18 @@ static uint32_t pick_target(rng *r, const scene *sc)
 static void check_views(tally *t, rng *r, oit_order *o, const scene *sc)
 {
     for (int v = 0; v < VIEWS; v++) {
-        uint32_t p = pick_target(r, sc);
+        uint32_t p = pick_target(r, sc, v % 2);
         float target[3], dir[3];
-        double len = 0;
+        double len = 0, lo[3], hi[3];
+        /* every other view looks from beyond the part back at its top cell,
+         * the far plane just behind the part: the cell is out of view */
+        int back = v % 4 < 2;
+        top_cell_box(sc, p, lo, hi);
         for (int k = 0; k < 3; k++) {
             target[k] = (sc->tri[p][k] + sc->tri[p][3 + k] + sc->tri[p][6 + k]) / 3.0f;
             dir[k] = 2.0f * unit(r) - 1.0f;
+            if (back)
+                dir[k] = (float)(0.5 * (lo[k] + hi[k]) - target[k]) + 0.3f * dir[k];
             len += (double)dir[k] * dir[k];
         }
         if (len < 1e-4)
@@ -353,7 +378,7 @@ static void check_views(tally *t, rng *r, oit_order *o, const scene *sc)
         cam.up[vertical ? 0 : 1] = 1.0f;
         cam.fovy_deg = 2.0f + 40.0f * unit(r);
         cam.znear = 0.05f;
-        cam.zfar = dist + 0.5f + 10.0f * unit(r);
+        cam.zfar = dist + (back ? 0.05f + 0.5f * unit(r) : 0.5f + 10.0f * unit(r));
         int ortho = v % 3 == 2;
         if (ortho) {
             cam.projection = OIT_PROJ_ORTHOGRAPHIC;
@@ -362,6 +387,90 @@ static void check_views(tally *t, rng *r, oit_order *o, const scene *sc)
         }
         check_view(t, o, sc, &cam, ortho, dir);
     }
+}
+
+/* A chain of three one-cell subgrids over the unit cell, each reaching
+ * further out along axis a (side +1 or -1) than the one before: 0.5 beyond
+ * the top cell, 1.0 beyond the first subgrid's cell, 1.5 beyond the
+ * second's, so their overhangs add up to 3; the one part lies at the far
+ * end, between 2.8 and 2.95 out. The views look back at it from 0.5 beyond
+ * its middle, the far plane at 0.65: the top cell grown by less than the
+ * sum is out of view, the part is not. */
+static void chain_scene(scene *sc, int a, int side)
+{
+    memset(sc, 0, sizeof *sc);
+    static const double reach[4] = {0.0, 0.5, 1.5, 3.0};
+    for (uint32_t g = 0; g < 4; g++) {
+        grid *gr = &sc->g[g];
+        for (int k = 0; k < 3; k++) {
+            gr->dims[k] = 1;
+            gr->rlo[k] = 0.0, gr->rhi[k] = 1.0;
+            gr->origin[k] = 0.0f;
+            gr->size[k] = 1.0f;
+        }
+        gr->origin[a] = side > 0 ? 0.0f : (float)-reach[g];
+        gr->size[a] = (float)(1.0 + reach[g]);
+        gr->parent = g ? g - 1 : OIT_PARTFILE_NONE;
+        gr->parent_cell = g ? 0 : OIT_PARTFILE_NONE;
+        gr->depth = g;
+        gr->child[0] = g < 3 ? (int32_t)g + 1 : -1;
+        gr->part[0] = g < 3 ? -1 : 0;
+    }
+    sc->ng = 4;
+    sc->np = 1;
+    sc->grid_of[0] = 3;
+    double lo[3] = {0.4, 0.4, 0.4}, hi[3] = {0.6, 0.6, 0.6};
+    lo[a] = side > 0 ? 3.8 : -2.95;
+    hi[a] = side > 0 ? 3.95 : -2.8;
+    double v[3][3] = {{lo[0], lo[1], lo[2]}, {hi[0], lo[1], hi[2]}, {lo[0], hi[1], hi[2]}};
+    for (int i = 0; i < 9; i++)
+        sc->tri[0][i] = (float)v[i / 3][i % 3];
+    for (int k = 0; k < 3; k++) {
+        sc->lo[0][k] = (float)lo[k];
+        sc->hi[0][k] = (float)hi[k];
+    }
+}
+
+static void check_chains(tally *t, const char *path)
+{
+    static scene sc;
+    for (int a = 0; a < 3; a++)
+        for (int side = -1; side <= 1; side += 2) {
+            chain_scene(&sc, a, side);
+            oit_error err = {0};
+            oit_partfile *pf = NULL;
+            oit_order *o = NULL;
+            if (write_scene(path, &sc, &err) || oit_partfile_open(path, NULL, &pf, &err) ||
+                oit_order_create(pf, &o, &err)) {
+                CHECK(0, "chain along %d (%+d): %s", a, side, err.message);
+                oit_partfile_close(pf);
+                continue;
+            }
+            for (int ortho = 0; ortho < 2; ortho++) {
+                oit_camera cam;
+                memset(&cam, 0, sizeof cam);
+                float dir[3] = {0, 0, 0};
+                dir[a] = (float)-side;
+                for (int k = 0; k < 3; k++)
+                    cam.target[k] = cam.eye[k] = 0.5f;
+                cam.target[a] = side > 0 ? 3.9f : -2.9f;
+                cam.eye[a] = cam.target[a] + 0.5f * (float)side;
+                cam.up[a == 1 ? 0 : 1] = 1.0f;
+                cam.fovy_deg = 30.0f;
+                cam.znear = 0.05f;
+                cam.zfar = 0.65f;
+                if (ortho) {
+                    cam.projection = OIT_PROJ_ORTHOGRAPHIC;
+                    cam.ortho_height = 1.0f;
+                }
+                unsigned long before = t->bad;
+                check_view(t, o, &sc, &cam, ortho, dir);
+                CHECK(t->bad == before, "chain along axis %d (%+d): the part three overhangs "
+                      "out was culled", a, side);
+            }
+            oit_order_destroy(o);
+            oit_partfile_close(pf);
+        }
 }
 
 int main(void)
@@ -392,6 +501,7 @@ int main(void)
         oit_order_destroy(o);
         oit_partfile_close(pf);
     }
+    check_chains(&t, path);
     remove(path);
     printf("%d files (%lu grids, %lu parts), %lu views: %lu parts culled, %lu wrongly; kept "
            "parts outside their top cell's view: %lu, outside their first subgrid's: %lu\n",
