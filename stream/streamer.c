@@ -732,6 +732,29 @@ static oit_status render(oit_streamer *s, const oit_view *view, oit_image *out, 
     return st;
 }
 
+uint64_t oit_streamer_pixel_bytes(const oit_view *view)
+{
+    return oit_capture_pixel_bytes(view);
+}
+
+void oit_stream_frame_stats_add(oit_stream_frame_stats *acc, const oit_stream_frame_stats *band)
+{
+    uint64_t peak = acc->gpu_bytes_peak > band->gpu_bytes_peak ? acc->gpu_bytes_peak
+                                                              : band->gpu_bytes_peak;
+    oit_stream_frame_stats sum = *band;
+    sum.packs += acc->packs;
+    sum.parts_drawn += acc->parts_drawn;
+    sum.parts_culled += acc->parts_culled;
+    sum.parts_skipped += acc->parts_skipped;
+    sum.bytes_uploaded += acc->bytes_uploaded;
+    sum.cache_hits += acc->cache_hits;
+    sum.draw_calls += acc->draw_calls;
+    sum.order_ms += acc->order_ms;
+    sum.pack_ms += acc->pack_ms;
+    sum.gpu_bytes_peak = peak;
+    *acc = sum;
+}
+
 oit_status oit_streamer_render(oit_streamer *s, const oit_view *view, oit_image *out,
                                oit_frame_stats *fs, oit_stream_frame_stats *ss, oit_error *err)
 {
