@@ -6,7 +6,8 @@
  * translucent draw with a depth texture that occludes the lowest rows
  * (depth 0) and nothing above (1) checks that each band reads the opaque
  * depth at its own rows with its own projection: the occluded rows keep
- * the clear colour, the others DFB's image.
+ * the clear colour, the others DFB's image. A viewport wider than the GL
+ * renders fails, naming the limit.
  *
  * usage: test_liboit_sizes FILE.oitp (a part file, e.g. from test_streamer) */
 #include <math.h>
@@ -190,6 +191,28 @@ static void draw_and_compare(const char *name, oit_scene *scene, const oit_mesh 
     oit_renderer_destroy(r);
 }
 
+/* One pixel wider than GL_MAX_FRAMEBUFFER_WIDTH: no band can be that wide. */
+static void check_too_wide(oit_scene *scene)
+{
+    GLint most = 0;
+    glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &most);
+    oit_error err = {0};
+    oit_renderer *r = NULL;
+    CHECK(oit_renderer_create(NULL, &r, &err) == OIT_OK, "%s", err.message);
+    oit_scene_info info;
+    oit_scene_get_info(scene, &info, &err);
+    oit_view v;
+    view_of(&info, OIT_SHADING_TRANSPARENT, &v);
+    oit_frame f = {.viewport_width = most + 1, .viewport_height = 16};
+    oit_camera_view_matrix(&v.camera, f.view);
+    oit_camera_proj_matrix(&v.camera, (float)f.viewport_width / 16, f.projection);
+    oit_status s = r ? oit_renderer_draw(r, scene, &f, NULL, &err) : OIT_ERR_ARGUMENT;
+    printf("viewport %dx16: %s\n", most + 1, err.message);
+    CHECK(s == OIT_ERR_ARGUMENT && strstr(err.message, "GL_MAX_FRAMEBUFFER_WIDTH"),
+          "a viewport %d wide: status %d, \"%s\"", most + 1, (int)s, err.message);
+    oit_renderer_destroy(r);
+}
+
 int main(int argc, char **argv)
 {
     oit_scene *scene = NULL;
@@ -202,6 +225,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "FAIL: %s\n", err.message);
         return 1;
     }
+    check_too_wide(scene);
     refs refs = {0};
     draw_and_compare("stream transparent", scene, &mesh, &refs, OIT_RENDER_TRANSPARENT, 0);
     draw_and_compare("stream translucent", scene, &mesh, &refs, OIT_RENDER_TRANSLUCENT, 0);
