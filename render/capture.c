@@ -369,14 +369,35 @@ void oit_capture_set_epsilon(oit_capture *c, float epsilon)
     apply_epsilon(c, c->epsilon);
 }
 
+/* Binds buf (cap bytes) at binding, no more of it than one binding spans
+ * (c->bind): a driver need address no more, so an index past it reads 0
+ * and writes nothing here too, where it would go unnoticed elsewhere. */
+static void bind_within(const oit_capture *c, GLuint binding, GLuint buf, uint64_t cap)
+{
+    uint64_t size = cap < c->bind ? cap : c->bind;
+    if (buf && size)
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, binding, buf, 0, (GLsizeiptr)size);
+    else
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buf);
+}
+
+/* The bytes of out_buf, whichever buffer it is. */
+static uint64_t out_cap(const oit_capture *c)
+{
+    return c->out_buf == c->buf[BUF_SLOTS] ? c->cap[BUF_SLOTS]
+           : c->out_buf == c->buf[BUF_OUT] ? c->cap[BUF_OUT]
+           : c->out_buf == c->firstk.store ? c->firstk.store_cap
+                                           : c->counted.frags_cap;
+}
+
 static void bind_buffers(const oit_capture *c)
 {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, c->buf[BUF_COUNTS]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_TOTALS, c->buf[BUF_TOTALS]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_STATE, c->buf[BUF_STATE]);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, c->out_buf);
+    bind_within(c, OIT_BIND_OUT, c->out_buf, out_cap(c));
     if (c->buf[BUF_SLOTS])
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_FRAGS, c->buf[BUF_SLOTS]);
+        bind_within(c, OIT_BIND_FRAGS, c->buf[BUF_SLOTS], c->cap[BUF_SLOTS]);
 }
 
 unsigned oit_capture_state_buffer(const oit_capture *c)
@@ -700,7 +721,7 @@ static oit_status read_output(oit_capture *c, oit_image *out, GLuint totals[4], 
                                            "counted capture fragments", err);
         note_peak(c);
         c->out_buf = firstk ? c->firstk.store : c->counted.frags;
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, c->out_buf);
+        bind_within(c, OIT_BIND_OUT, c->out_buf, out_cap(c));
         if (s != OIT_OK) {
             oit_image_free(out);
             return s;
@@ -719,6 +740,7 @@ static oit_status read_output(oit_capture *c, oit_image *out, GLuint totals[4], 
                     : uses_counted(c)               ? c->counted.frags_cap
                                                     : c->cap[BUF_OUT];
     held = within_binding(c, held, row); /* a grown buffer may pass what one binding spans */
+    bind_within(c, OIT_BIND_OUT, c->out_buf, held);
     int band = (int)(held / row < (uint64_t)h ? held / row : (uint64_t)h);
     for (int y0 = 0; y0 < h; y0 += band) {
         int y1 = y0 + band < h ? y0 + band : h;

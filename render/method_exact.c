@@ -43,6 +43,8 @@ static oit_status capture_create(oit_capture_kind kind, const oit_method_options
 {
     oit_capture *c = NULL;
     oit_status s = oit_capture_create(kind, opt ? opt->max_layers : 0, &c, err);
+    if (s == OIT_OK && opt)
+        oit_capture_set_store_limit(c, opt->store_limit);
     *impl = c;
     return s;
 }

@@ -346,6 +346,8 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
         oit_capture_set_slot_budget(s->capture, desc->slot_budget ? desc->slot_budget
                                                 : stores ? OIT_STREAM_STORE_DEFAULT
                                                          : OIT_STREAM_SLOTS_DEFAULT);
+    if (st == OIT_OK)
+        oit_capture_set_store_limit(s->capture, desc->store_limit);
     s->ahead = AHEAD_EXACT;
     if (st == OIT_OK && desc->epsilon > 0.0f) {
         s->epsilon = desc->epsilon;

@@ -54,6 +54,8 @@ typedef struct oit_streamer_desc {
                                  parts a frame's packing holds */
     int read_inline;          /* 1: parts are read on the render thread, no reader
                                  thread (for comparison and debugging) */
+    uint64_t store_limit;     /* the capture's (oit_capture_set_store_limit); 0:
+                                 the driver's binding; lower only to test */
 } oit_streamer_desc;
 
 /* 256 MiB: ~5.6 M triangles at 48 bytes, the visible working set of most
