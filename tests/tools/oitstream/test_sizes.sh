@@ -1,13 +1,13 @@
 #!/bin/sh
 # Large frames through oitstream: 2048x2048 (2^22 pixels, where a dispatch
 # over the pixels in groups of 64 passes the 65535 groups GL promises) and
-# 4096x2160 (past one 128 MiB storage binding for DFB's output, the
-# capture's state: drawn in bands of rows) of a
-# small scene (hard case rings, a few hundred triangles): the stream of its
-# part file and the in-core exact methods against DFB of the source mesh,
-# at most 0.01% of pixels over 1/255, and their figures (fragments, layers)
-# as DFB's. The 8192x8192 frames and the fetched meshes are
-# data_scripts/sizes.sh's (too slow for the suite on llvmpipe).
+# 4096x2160 (past one 128 MiB storage binding for DFB's output and the
+# capture's state: drawn in bands of rows) of a small scene (hard case
+# rings, a few hundred triangles): the stream of its part file and the
+# in-core exact methods against DFB of the source mesh, at most 0.01% of
+# pixels over 1/255, and their figures (fragments, layers) as DFB's. The
+# 8192x8192 frames and the fetched meshes are data_scripts/sizes.sh's (too
+# slow for the suite on llvmpipe).
 set -u
 . "${OIT_TEST_LIB:-$(dirname "$0")/../../lib.sh}"
 need_every_tool
