@@ -15,17 +15,19 @@ oit_status oit_band_rows(const oit_view *v, uint64_t pixel_bytes, uint64_t limit
     int most_w = fb_w < dims[0] ? fb_w : dims[0], most_h = fb_h < dims[1] ? fb_h : dims[1];
     *rows = 0;
     if (v->width <= 0 || v->height <= 0 || v->width > most_w)
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "frame %dx%d: not renderable here (at most "
+        return oit_error_set(err, OIT_ERR_ARGUMENT,
+                             "frame %dx%d: not renderable here (at most "
                              "%d pixels wide: GL_MAX_FRAMEBUFFER_WIDTH %d, "
-                             "GL_MAX_VIEWPORT_DIMS %d)", v->width, v->height, most_w, fb_w,
-                             dims[0]);
+                             "GL_MAX_VIEWPORT_DIMS %d)",
+                             v->width, v->height, most_w, fb_w, dims[0]);
     uint64_t fit = (uint64_t)(most_h > 0 ? most_h : 1);
     if (pixel_bytes) {
         uint64_t driver = oit_gl_ssbo_max_bytes();
         uint64_t bind = limit && limit < driver ? limit : driver;
         uint64_t row = (uint64_t)v->width * pixel_bytes;
         if (row > bind)
-            return oit_error_set(err, OIT_ERR_ARGUMENT, "frame %dx%d: one row takes %llu bytes "
+            return oit_error_set(err, OIT_ERR_ARGUMENT,
+                                 "frame %dx%d: one row takes %llu bytes "
                                  "in one storage buffer, more than this driver binds (%llu)",
                                  v->width, v->height, (unsigned long long)row,
                                  (unsigned long long)bind);

@@ -22,8 +22,15 @@
 #include "tests/lib/test_check.h"
 #include "tests/liboit/part_scene.h"
 
-enum { W = 2048, H = 2048, PAD_X = 8, PAD_Y = 4, FW = W + 2 * PAD_X, FH = H + 2 * PAD_Y,
-       OCCLUDED = 1100 /* GL rows of the viewport behind depth 0: into both bands */ };
+enum {
+    W = 2048,
+    H = 2048,
+    PAD_X = 8,
+    PAD_Y = 4,
+    FW = W + 2 * PAD_X,
+    FH = H + 2 * PAD_Y,
+    OCCLUDED = 1100 /* GL rows of the viewport behind depth 0: into both bands */
+};
 static const float kClear[4] = {0.2f, 0.4f, 0.6f, 1.0f};
 
 typedef struct target {
@@ -82,8 +89,7 @@ static void view_of(const oit_scene_info *info, oit_shading_mode mode, oit_view 
 
 /* DFB's image of the file: its colour buffer (16 bytes a pixel) fits one
  * binding at this size, so it is not banded. */
-static int reference(const oit_mesh *mesh, const oit_view *v, oit_image *out,
-                     oit_frame_stats *fs)
+static int reference(const oit_mesh *mesh, const oit_view *v, oit_image *out, oit_frame_stats *fs)
 {
     if (out->rgba)
         return 1; /* made for an earlier case */
@@ -122,7 +128,8 @@ static void compare(const char *name, const target *t, const oit_image *ref, int
                 border_bad += memcmp(p, kClear, sizeof kClear) != 0;
                 continue;
             }
-            const float *r = vy < occluded ? kClear : ref->rgba + ((size_t)(H - 1 - vy) * W + vx) * 4;
+            const float *r =
+                vy < occluded ? kClear : ref->rgba + ((size_t)(H - 1 - vy) * W + vx) * 4;
             double d = 0.0;
             for (int c = 0; c < 3; c++)
                 d = fmax(d, fabs((double)p[c] - r[c]));
@@ -131,9 +138,11 @@ static void compare(const char *name, const target *t, const oit_image *ref, int
             covered += fabsf(r[0] - kClear[0]) + fabsf(r[2] - kClear[2]) > 1.0f / 255.0f;
         }
     free(px);
-    double pct = 100.0 * (double)over / ((double)W * H), cov = 100.0 * (double)covered / ((double)W * H);
+    double pct = 100.0 * (double)over / ((double)W * H),
+           cov = 100.0 * (double)covered / ((double)W * H);
     printf("%s: max_abs %.5f, %.4f%% pixels over 1/255, %.1f%% covered, border pixels "
-           "changed %llu\n", name, max_abs, pct, cov, (unsigned long long)border_bad);
+           "changed %llu\n",
+           name, max_abs, pct, cov, (unsigned long long)border_bad);
     CHECK(pct <= 0.01, "%s: %.4f%% of pixels differ from DFB by more than 1/255", name, pct);
     CHECK(cov >= 2.0, "%s: only %.1f%% of the frame is covered", name, cov);
     CHECK(border_bad == 0, "%s: %llu pixels outside the viewport changed", name,
@@ -146,8 +155,8 @@ typedef struct refs {
     oit_frame_stats st[2];
 } refs;
 
-static void draw_and_compare(const char *name, oit_scene *scene, const oit_mesh *mesh,
-                             refs *refs, oit_render_shading_mode mode, int with_depth)
+static void draw_and_compare(const char *name, oit_scene *scene, const oit_mesh *mesh, refs *refs,
+                             oit_render_shading_mode mode, int with_depth)
 {
     oit_error err = {0};
     oit_scene_info info;
@@ -229,8 +238,7 @@ int main(int argc, char **argv)
     refs refs = {0};
     draw_and_compare("stream transparent", scene, &mesh, &refs, OIT_RENDER_TRANSPARENT, 0);
     draw_and_compare("stream translucent", scene, &mesh, &refs, OIT_RENDER_TRANSLUCENT, 0);
-    draw_and_compare("stream translucent, depth", scene, &mesh, &refs, OIT_RENDER_TRANSLUCENT,
-                     1);
+    draw_and_compare("stream translucent, depth", scene, &mesh, &refs, OIT_RENDER_TRANSLUCENT, 1);
 
     /* The same triangles in core: DFB through liboit, its state banded. */
     float *pos = malloc(mesh.count * 9 * sizeof *pos);
@@ -240,7 +248,8 @@ int main(int argc, char **argv)
             memcpy(pos + (t * 3 + c) * 3, mesh.tris[t].v[c].pos, 12);
             memcpy(rgba + (t * 3 + c) * 4, mesh.tris[t].v[c].rgba, 4);
         }
-    oit_scene_mesh_desc md = {.positions = pos, .vertex_count = mesh.count * 3,
+    oit_scene_mesh_desc md = {.positions = pos,
+                              .vertex_count = mesh.count * 3,
                               .colors = (info.attributes & OIT_ATTR_COLOR) ? rgba : NULL,
                               .name = "grid arrays"};
     oit_scene *core = NULL;
@@ -248,8 +257,8 @@ int main(int argc, char **argv)
     free(pos);
     free(rgba);
     if (core) {
-        draw_and_compare("in-core translucent, depth", core, &mesh, &refs,
-                         OIT_RENDER_TRANSLUCENT, 1);
+        draw_and_compare("in-core translucent, depth", core, &mesh, &refs, OIT_RENDER_TRANSLUCENT,
+                         1);
         oit_scene_close(core);
     }
     for (int i = 0; i < 2; i++)

@@ -149,7 +149,8 @@ static void compare(const char *what, const oit_method *m, const oit_view *v, co
           err.message);
     int bands = bands_of(m, v);
     printf("%-24s %2d bands: max_abs %.5f, %llu pixels over 1/255, fragments %llu/%llu, "
-           "batches %u/%u\n", what, bands, d.max_abs, (unsigned long long)d.pixels_over,
+           "batches %u/%u\n",
+           what, bands, d.max_abs, (unsigned long long)d.pixels_over,
            (unsigned long long)banded->st.fragments, (unsigned long long)whole->st.fragments,
            banded->st.batches, whole->st.batches);
     CHECK(bands >= 4, "%s: %d bands: the limit does not band the frame", what, bands);
@@ -197,9 +198,10 @@ static void check_deep_enough(const oit_mesh *mesh, oit_method_options *opt, con
     }
     printf("deepest band of %d rows: %llu fragments, deepest row %llu; the limit holds %llu\n",
            rows, (unsigned long long)band_most, (unsigned long long)row_most, LIMIT / 16);
-    CHECK(band_most * 16 > LIMIT && row_most * 16 <= LIMIT, "the scene does not make the list "
-          "pools split: %llu fragments in a band, %llu in a row", (unsigned long long)band_most,
-          (unsigned long long)row_most);
+    CHECK(band_most * 16 > LIMIT && row_most * 16 <= LIMIT,
+          "the scene does not make the list "
+          "pools split: %llu fragments in a band, %llu in a row",
+          (unsigned long long)band_most, (unsigned long long)row_most);
     oit_image_free(&f->img);
     free(f);
 }
@@ -221,8 +223,8 @@ static void check_method(const oit_method *m, const oit_mesh *mesh, oit_method_o
 
 static void in_core(oit_gl *gl, const oit_mesh *mesh, const oit_view *v, const char *view_name)
 {
-    static const char *const names[] = {"dfb", "array", "stencil", "pll", "ppll4",
-                                        "b3d", "dp",    "ddp"};
+    static const char *const names[] = {"dfb",   "array", "stencil", "pll",
+                                        "ppll4", "b3d",   "dp",      "ddp"};
     oit_method_options dfb_opt = {.gl = gl};
     check_deep_enough(mesh, &dfb_opt, v);
     for (size_t i = 0; i < sizeof names / sizeof *names; i++) {
@@ -252,8 +254,10 @@ static void streamed(oit_gl *gl, oit_partfile *pf, const oit_view *v, const char
     static const struct {
         const char *name;
         oit_pack_mode pack;
-    } packs[] = {{"auto", OIT_PACK_AUTO},       {"counted", OIT_PACK_COUNTED},
-                 {"budget", OIT_PACK_BUDGET},   {"disjoint", OIT_PACK_DISJOINT},
+    } packs[] = {{"auto", OIT_PACK_AUTO},
+                 {"counted", OIT_PACK_COUNTED},
+                 {"budget", OIT_PACK_BUDGET},
+                 {"disjoint", OIT_PACK_DISJOINT},
                  {"first-k", OIT_PACK_FIRSTK}};
     static const oit_mesh empty;
     for (size_t i = 0; i < sizeof packs / sizeof *packs; i++) {

@@ -50,9 +50,10 @@ static void check_random(GLuint max_groups, uint64_t n)
         lng += v[i] > OIT_GLSL_SEGMENT_LOCAL ? v[i] : 0;
     }
     printf("%llu elements, %u groups a dispatch: total %llu (%llu), max %u (%u), long %u (%u), "
-           "%llu prefixes wrong\n", (unsigned long long)n, s.max_groups,
-           (unsigned long long)res.total, (unsigned long long)total, res.max, mx,
-           res.long_fragments, lng, (unsigned long long)bad);
+           "%llu prefixes wrong\n",
+           (unsigned long long)n, s.max_groups, (unsigned long long)res.total,
+           (unsigned long long)total, res.max, mx, res.long_fragments, lng,
+           (unsigned long long)bad);
     CHECK(bad == 0, "%llu prefixes wrong, the first at %llu: %u, want the sum before it",
           (unsigned long long)bad, (unsigned long long)first_bad,
           first_bad < n ? got[first_bad] : 0);
@@ -80,15 +81,15 @@ static void check_past_one_dispatch(void)
     oit_scan_result res = {0};
     oit_status st = oit_scan_run(&s, buf, n, &res, &err);
     CHECK(st == OIT_OK, "%llu elements: %s", (unsigned long long)n, err.message);
-    const uint64_t at[] = {0, 1, 1023, 1024, 65535ull * 1024 - 1, 65535ull * 1024,
-                           65536ull * 1024, n - 1};
+    const uint64_t at[] = {
+        0, 1, 1023, 1024, 65535ull * 1024 - 1, 65535ull * 1024, 65536ull * 1024, n - 1};
     for (size_t i = 0; st == OIT_OK && i < sizeof at / sizeof *at; i++) {
         GLuint v = 0;
         glGetNamedBufferSubData(buf, (GLintptr)(at[i] * 4), 4, &v);
         CHECK(v == at[i], "prefix %llu is %u", (unsigned long long)at[i], v);
     }
-    printf("%llu ones (%u groups a dispatch here): total %llu, max %u\n",
-           (unsigned long long)n, s.max_groups, (unsigned long long)res.total, res.max);
+    printf("%llu ones (%u groups a dispatch here): total %llu, max %u\n", (unsigned long long)n,
+           s.max_groups, (unsigned long long)res.total, res.max);
     CHECK(st != OIT_OK || (res.total == n && res.max == 1), "total %llu max %u, want %llu 1",
           (unsigned long long)res.total, res.max, (unsigned long long)n);
     oit_scan_release(&s);
