@@ -22,7 +22,7 @@
 # DFB's, "differs" past that, "failed: MESSAGE" when the render fails,
 # "not offered here: MESSAGE" for stencil on a driver that does not route
 # per sample (llvmpipe). Exits 1 when any row is neither ok nor not offered.
-# Duration on a loaded 2-core llvmpipe machine: about 20 minutes (the
+# Duration on a loaded 2-core llvmpipe machine: about 11 minutes (the
 # 8192x8192 frames: 67 M pixels, seconds to a minute each; dp and ddp peel
 # the frame once a layer). Run it with nice.
 set -eu
