@@ -13,6 +13,7 @@
 
 #include "base/clock.h"
 #include "formats/readers_internal.h"
+#include "render/band.h"
 #include "render/capture_glsl.h"
 #include "render/dfb.h"
 #include "render/frag_glsl.h"
@@ -571,12 +572,13 @@ static void gl_restore(const gl_saved *g)
         (g->enabled[i] ? glEnable : glDisable)(kToggles[i]);
 }
 
-/* dst = C + T * dst through dual-source blending, one fragment per pixel. */
-static void blend_over(const oit_renderer *r, const oit_frame *f, const oit_view *v,
-                       GLuint state)
+/* dst = C + T * dst through dual-source blending, one fragment per pixel,
+ * over the target's rect at (x, y) of v's size, the state's pixels. */
+static void blend_over(const oit_renderer *r, const oit_frame *f, const oit_view *v, int x,
+                       int y, GLuint state)
 {
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, f->framebuffer);
-    glViewport(f->viewport_x, f->viewport_y, f->viewport_width, f->viewport_height);
+    glViewport(x, y, v->width, v->height);
     for (int i = 1; i < 5; i++)
         glDisable(kToggles[i]);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
@@ -589,8 +591,8 @@ static void blend_over(const oit_renderer *r, const oit_frame *f, const oit_view
     if (v->shading.colour_space == OIT_COLOUR_LINEAR)
         glEnable(GL_FRAMEBUFFER_SRGB);
     glUseProgram(r->blend_prog);
-    glProgramUniform2i(r->blend_prog, OIT_LOC_SIZE, f->viewport_width, f->viewport_height);
-    glProgramUniform2i(r->blend_prog, OIT_LOC_RECT, f->viewport_x, f->viewport_y);
+    glProgramUniform2i(r->blend_prog, OIT_LOC_SIZE, v->width, v->height);
+    glProgramUniform2i(r->blend_prog, OIT_LOC_RECT, x, y);
     /* The state buffer's layout follows the shading (frag_glsl.h). */
     glProgramUniform1i(r->blend_prog, glGetUniformLocation(r->blend_prog, "u_mode"),
                        v->shading.mode == OIT_SHADING_TRANSLUCENT);
@@ -697,6 +699,72 @@ static void depth_unit_restore(const depth_unit *u)
     glActiveTexture((GLenum)u->active);
 }
 
+/* One band's (or the whole frame's) state: the scene through the streamer
+ * or DFB into *state, its figures in *fs and *ss. */
+static oit_status render_state(oit_renderer *r, const oit_scene *scene, const oit_view *v,
+                               const oit_opaque_depth *opaque, GLuint *state,
+                               oit_frame_stats *fs, oit_stream_frame_stats *ss, oit_error *err)
+{
+    if (scene->pf) {
+        oit_streamer_set_opaque(r->streamer, opaque);
+        return oit_streamer_render_gpu(r->streamer, v, state, fs, ss, err);
+    }
+    const oit_gpu_mesh *list[1] = {r->gpu_mesh};
+    oit_dfb_set_opaque(r->dfb, opaque);
+    oit_status st = oit_dfb_render_state(r->dfb, list, 1, v, state, fs, err);
+    ss->packs = fs->batches;
+    ss->draw_calls = 1 + (uint64_t)fs->batches; /* the count pass; a store a band */
+    ss->bytes_uploaded = r->pending_upload;
+    ss->gpu_bytes_peak = fs->gpu_bytes_peak + (uint64_t)scene->mesh.count * sizeof(oit_triangle);
+    r->pending_upload = 0;
+    return st;
+}
+
+/* The frame in bands of rows whose state fits one storage binding
+ * (render/band.h; one band where it all fits, the view unchanged), each
+ * rendered and blended over its rows of the viewport before the next
+ * overwrites the state. The opaque depth's projection is narrowed to the
+ * band as the camera is; the depth unit is bound only while a band is
+ * captured, not while the blend draws into a target it may belong to. */
+static oit_status draw_bands(oit_renderer *r, const oit_scene *scene, const oit_frame *frame,
+                             const oit_view *view, oit_frame_stats *fs,
+                             oit_stream_frame_stats *ss, oit_error *err)
+{
+    uint64_t px = scene->pf ? oit_streamer_pixel_bytes(view) : oit_dfb_pixel_bytes(view, 1);
+    int rows = 0, h = view->height;
+    oit_status st = oit_band_rows(view, px, 0, &rows, err);
+    for (int y0 = 0; st == OIT_OK && y0 < h; y0 += rows) {
+        int y1 = y0 + rows < h ? y0 + rows : h, gl_y = frame->viewport_y + h - y1;
+        oit_view band = *view;
+        oit_opaque_depth opaque = {.enabled = frame->depth_texture != 0,
+                                   .origin = {frame->viewport_x, gl_y}};
+        memcpy(opaque.proj, frame->projection, sizeof opaque.proj);
+        if (rows < h) {
+            oit_view_band(view, y0, y1, &band);
+            oit_band_projection(frame->projection, h, y0, y1, opaque.proj);
+        }
+        depth_unit unit;
+        if (opaque.enabled)
+            depth_unit_bind(r, frame->depth_texture, &unit);
+        oit_frame_stats bfs = {0};
+        oit_stream_frame_stats bss = {0};
+        GLuint state = 0;
+        st = render_state(r, scene, &band, &opaque, &state, &bfs, &bss, err);
+        if (opaque.enabled)
+            depth_unit_restore(&unit);
+        if (st == OIT_OK) {
+            blend_over(r, frame, &band, frame->viewport_x, gl_y, state);
+            st = oit_gl_check("oit_renderer_draw: blend", err);
+        }
+        oit_frame_stats_add(fs, &bfs);
+        if (y0 == 0)
+            *ss = bss;
+        else
+            oit_stream_frame_stats_add(ss, &bss);
+    }
+    return st;
+}
+
 oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame *frame,
                              oit_draw_stats *stats, oit_error *err)
 {
@@ -709,40 +777,14 @@ oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame 
         st = check_depth_texture(frame, err);
     if (st != OIT_OK)
         return st;
-    oit_opaque_depth opaque = {.enabled = frame->depth_texture != 0,
-                               .origin = {frame->viewport_x, frame->viewport_y}};
-    memcpy(opaque.proj, frame->projection, sizeof opaque.proj);
     gl_saved saved;
     gl_save(&saved);
-    depth_unit unit;
-    if (opaque.enabled)
-        depth_unit_bind(r, frame->depth_texture, &unit);
     oit_frame_stats fs = {0};
     oit_stream_frame_stats ss = {0};
-    GLuint state = 0;
     int empty = !scene->pf && scene->info.triangles == 0; /* in core: nothing to draw */
     st = empty ? OIT_OK : bind_scene(r, scene, err);
-    if (st == OIT_OK && !empty && scene->pf) {
-        oit_streamer_set_opaque(r->streamer, &opaque);
-        st = oit_streamer_render_gpu(r->streamer, &view, &state, &fs, &ss, err);
-    } else if (st == OIT_OK && !empty) {
-        const oit_gpu_mesh *list[1] = {r->gpu_mesh};
-        oit_dfb_set_opaque(r->dfb, &opaque);
-        st = oit_dfb_render_state(r->dfb, list, 1, &view, &state, &fs, err);
-        ss.packs = fs.batches;
-        ss.draw_calls = 1 + (uint64_t)fs.batches; /* the count pass; a store a band */
-        ss.bytes_uploaded = r->pending_upload;
-        ss.gpu_bytes_peak = fs.gpu_bytes_peak + (uint64_t)scene->mesh.count *
-                                                    sizeof(oit_triangle);
-        r->pending_upload = 0;
-    }
-    /* Not bound while the blend draws into a target it may be attached to. */
-    if (opaque.enabled)
-        depth_unit_restore(&unit);
-    if (st == OIT_OK && !empty) {
-        blend_over(r, frame, &view, state);
-        st = oit_gl_check("oit_renderer_draw: blend", err);
-    }
+    if (st == OIT_OK && !empty)
+        st = draw_bands(r, scene, frame, &view, &fs, &ss, err);
     gl_restore(&saved);
     if (st != OIT_OK) {
         const char *name = scene_name(scene);

@@ -46,6 +46,7 @@ struct oit_capture {
     oit_counted counted; /* OIT_CAPTURE_COUNTED, and FIRSTK's packs too wide for it */
     oit_firstk firstk;   /* OIT_CAPTURE_FIRSTK */
     int firstk_off;      /* FIRSTK capturing as COUNTED (oit_capture_set_first_k) */
+    GLuint max_groups;    /* GL_MAX_COMPUTE_WORK_GROUP_COUNT[0] */
     oit_gpu_draws *draws; /* every geometry draw goes through it */
     uint64_t calls0;      /* its draw calls at the frame's begin */
     oit_view view;
@@ -143,6 +144,7 @@ static oit_status make(oit_capture_kind backend, int K, unsigned faults, oit_cap
         s = oit_firstk_init(&c->firstk, K, err);
     if (s == OIT_OK) {
         glCreateFramebuffers(1, &c->fbo);
+        c->max_groups = oit_gl_max_groups_x();
         s = oit_gl_check("capture: set-up", err);
     }
     if (s != OIT_OK) {
@@ -224,11 +226,23 @@ static oit_status reserve(oit_capture *c, int which, uint64_t bytes, oit_error *
     return s;
 }
 
+uint64_t oit_capture_pixel_bytes(const oit_view *v)
+{
+    return oit_state_bytes(v->shading.mode == OIT_SHADING_TRANSLUCENT);
+}
+
 /* The state buffer's bytes for the frame v: its layout follows the shading. */
 static uint64_t state_bytes(const oit_view *v)
 {
-    return (uint64_t)v->width * v->height *
-           oit_state_bytes(v->shading.mode == OIT_SHADING_TRANSLUCENT);
+    return (uint64_t)v->width * v->height * oit_capture_pixel_bytes(v);
+}
+
+/* bytes, or less where one storage binding (at least one row of `row`
+ * bytes) spans less: what an output buffer read in bands of rows holds. */
+static uint64_t within_binding(const oit_capture *c, uint64_t bytes, uint64_t row)
+{
+    uint64_t most = c->bind > row ? c->bind : row;
+    return bytes < most ? bytes : most;
 }
 
 /* The array backend's slots are local to each batch's rectangle and grow
@@ -242,8 +256,11 @@ static oit_status allocate(oit_capture *c, const oit_view *v, oit_error *err)
     uint64_t pixels = (uint64_t)v->width * v->height;
     int array = c->backend == OIT_CAPTURE_ARRAY, stencil = c->backend == OIT_CAPTURE_STENCIL;
     uint64_t full = pixels * (uint64_t)c->K * 16, row = (uint64_t)v->width * c->K * 16;
-    c->tiled = array && c->slot_budget && full > c->slot_budget;
-    uint64_t slots = !c->tiled ? row : c->slot_budget > row ? c->slot_budget : row;
+    /* One storage binding is a slot budget too: slots past it would be
+     * written where the shader cannot address them. */
+    uint64_t budget = c->slot_budget && c->slot_budget < c->bind ? c->slot_budget : c->bind;
+    c->tiled = array && full > budget;
+    uint64_t slots = !c->tiled ? row : budget > row ? budget : row;
     uint64_t state = state_bytes(v);
     oit_status s = oit_gl_check_ssbo_size(array && slots > state ? slots : state,
                                           "capture: the frame's largest buffer", err);
@@ -257,7 +274,7 @@ static oit_status allocate(oit_capture *c, const oit_view *v, oit_error *err)
      * fragment store, idle at the frame's end (read_output), as the tiled
      * slots do. */
     if (s == OIT_OK && stencil)
-        s = reserve(c, BUF_OUT, pixels * 16, err);
+        s = reserve(c, BUF_OUT, within_binding(c, pixels * 16, (uint64_t)v->width * 16), err);
     c->out_buf = array ? c->buf[BUF_SLOTS] : c->buf[BUF_OUT];
     if (s == OIT_OK)
         s = reserve(c, BUF_TOTALS, 16, err);
@@ -375,14 +392,35 @@ void oit_capture_set_epsilon(oit_capture *c, float epsilon)
     apply_epsilon(c, c->epsilon);
 }
 
+/* Binds buf (cap bytes) at binding, no more of it than one binding spans
+ * (c->bind): a driver need address no more, so an index past it reads 0
+ * and writes nothing here too, where it would go unnoticed elsewhere. */
+static void bind_within(const oit_capture *c, GLuint binding, GLuint buf, uint64_t cap)
+{
+    uint64_t size = cap < c->bind ? cap : c->bind;
+    if (buf && size)
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, binding, buf, 0, (GLsizeiptr)size);
+    else
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buf);
+}
+
+/* The bytes of out_buf, whichever buffer it is. */
+static uint64_t out_cap(const oit_capture *c)
+{
+    return c->out_buf == c->buf[BUF_SLOTS] ? c->cap[BUF_SLOTS]
+           : c->out_buf == c->buf[BUF_OUT] ? c->cap[BUF_OUT]
+           : c->out_buf == c->firstk.store ? c->firstk.store_cap
+                                           : c->counted.frags_cap;
+}
+
 static void bind_buffers(const oit_capture *c)
 {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, c->buf[BUF_COUNTS]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_TOTALS, c->buf[BUF_TOTALS]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_STATE, c->buf[BUF_STATE]);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, c->out_buf);
+    bind_within(c, OIT_BIND_OUT, c->out_buf, out_cap(c));
     if (c->buf[BUF_SLOTS])
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_FRAGS, c->buf[BUF_SLOTS]);
+        bind_within(c, OIT_BIND_FRAGS, c->buf[BUF_SLOTS], c->cap[BUF_SLOTS]);
 }
 
 unsigned oit_capture_state_buffer(const oit_capture *c)
@@ -688,7 +726,8 @@ static void end_pass(oit_capture *c, uint64_t first, uint64_t count, int write_o
     glProgramUniform1ui(p, glGetUniformLocation(p, "u_first"), (GLuint)first);
     glProgramUniform1ui(p, glGetUniformLocation(p, "u_count"), (GLuint)count);
     glProgramUniform1i(p, glGetUniformLocation(p, "u_out"), write_out);
-    glDispatchCompute(oit_gl_groups(count, 64), 1, 1);
+    oit_gl_dispatch_x(p, glGetUniformLocation(p, "u_group0"), oit_gl_groups(count, 64),
+                      c->max_groups);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
@@ -706,15 +745,16 @@ static oit_status read_output(oit_capture *c, oit_image *out, GLuint totals[4], 
         /* The whole frame in one band where the budget allows: each band is
          * a pass and a read-back of its own. */
         uint64_t frame = (uint64_t)row * h, want = frame;
-        if (c->slot_budget && frame > c->slot_budget)
+        if (c->slot_budget && want > c->slot_budget)
             want = c->slot_budget > row ? c->slot_budget : row;
+        want = within_binding(c, want, row);
         s = firstk ? oit_gl_buffer_reserve(&c->firstk.store, &c->firstk.store_cap, want,
                                            "first-k capture fragments", err)
                    : oit_gl_buffer_reserve(&c->counted.frags, &c->counted.frags_cap, want,
                                            "counted capture fragments", err);
         note_peak(c);
         c->out_buf = firstk ? c->firstk.store : c->counted.frags;
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, c->out_buf);
+        bind_within(c, OIT_BIND_OUT, c->out_buf, out_cap(c));
         if (s != OIT_OK) {
             oit_image_free(out);
             return s;
@@ -722,7 +762,7 @@ static oit_status read_output(oit_capture *c, oit_image *out, GLuint totals[4], 
     }
     /* Untiled, the frame's K slots a pixel would fit: one band, one pass. */
     if (c->backend == OIT_CAPTURE_ARRAY && !c->tiled) {
-        s = reserve(c, BUF_SLOTS, (uint64_t)row * h, err);
+        s = reserve(c, BUF_SLOTS, within_binding(c, (uint64_t)row * h, row), err);
         if (s != OIT_OK) {
             oit_image_free(out);
             return s;
@@ -732,6 +772,8 @@ static oit_status read_output(oit_capture *c, oit_image *out, GLuint totals[4], 
                     : firstk                        ? c->firstk.store_cap
                     : uses_counted(c)               ? c->counted.frags_cap
                                                     : c->cap[BUF_OUT];
+    held = within_binding(c, held, row); /* a grown buffer may pass what one binding spans */
+    bind_within(c, OIT_BIND_OUT, c->out_buf, held);
     int band = (int)(held / row < (uint64_t)h ? held / row : (uint64_t)h);
     for (int y0 = 0; y0 < h; y0 += band) {
         int y1 = y0 + band < h ? y0 + band : h;

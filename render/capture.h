@@ -113,6 +113,13 @@ void oit_capture_set_store_limit(oit_capture *c, uint64_t bytes);
  * frame's figures (streamer.h). The image is the same either way. */
 void oit_capture_set_first_k(oit_capture *c, int on);
 
+/* Bytes a pixel of v takes in the capture's largest per-pixel buffer that
+ * must hold the whole frame in one storage binding: its state (shade.h),
+ * carried across batches. What else it stores past one binding it takes in
+ * pieces (tiles, bands of rows); a frame whose state does not fit is
+ * refused by oit_capture_begin, to be rendered in bands (render/band.h). */
+uint64_t oit_capture_pixel_bytes(const oit_view *v);
+
 /* Starts a frame: C = 0, T = 1, translucency state cleared. */
 oit_status oit_capture_begin(oit_capture *c, const oit_view *view, oit_error *err);
 /* Captures meshes[0..n) as one batch and composites it behind what the frame

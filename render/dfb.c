@@ -285,13 +285,16 @@ static oit_status render_passes(oit_dfb *d, GLuint resolve, const oit_gpu_mesh *
     return s == OIT_OK ? oit_gl_check("DFB: passes", err) : s;
 }
 
+uint64_t oit_dfb_pixel_bytes(const oit_view *view, int state)
+{
+    return state ? oit_state_bytes(view->shading.mode == OIT_SHADING_TRANSLUCENT) : 16;
+}
+
 /* out: BUF_OUT (colour over the background) or BUF_STATE (the state). */
 static oit_status prepare(oit_dfb *d, const oit_view *v, int out, oit_error *err)
 {
     uint64_t pixels = (uint64_t)v->width * v->height;
-    uint64_t out_bytes = out == BUF_OUT ? pixels * 16
-                                        : pixels * oit_state_bytes(v->shading.mode ==
-                                                                   OIT_SHADING_TRANSLUCENT);
+    uint64_t out_bytes = pixels * oit_dfb_pixel_bytes(v, out == BUF_STATE);
     oit_status s = oit_gl_check_ssbo_size(out_bytes, out == BUF_OUT ? "DFB: the frame's output"
                                                                     : "DFB: the frame's state",
                                           err);

@@ -43,6 +43,13 @@ oit_status oit_dfb_render_state(oit_dfb *d, const oit_gpu_mesh *const *meshes, i
                                 const oit_view *view, unsigned *state,
                                 oit_frame_stats *stats, oit_error *err);
 
+/* Bytes a pixel of view takes in DFB's largest per-pixel buffer, which
+ * must hold the whole frame in one storage binding: the colour (16) for
+ * oit_dfb_render, the state (shade.h) for oit_dfb_render_state (state 1).
+ * Its fragments are stored in bands past one binding; a frame whose output
+ * does not fit is refused, to be rendered in bands (render/band.h). */
+uint64_t oit_dfb_pixel_bytes(const oit_view *view, int state);
+
 /* The caller's opaque depth (frag_glsl.h, oit_opaque_depth) for d's next
  * frames; NULL: none (the default). Fragments behind it are neither counted
  * nor stored; the texture must be bound at unit OIT_TEX_OPAQUE_DEPTH while

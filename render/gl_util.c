@@ -256,3 +256,20 @@ GLuint oit_gl_groups(uint64_t n, GLuint local)
     return (GLuint)((n + local - 1) / local);
 }
 
+GLuint oit_gl_max_groups_x(void)
+{
+    GLint n = 0;
+    glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &n);
+    return n > 0 ? (GLuint)n : 65535u;
+}
+
+void oit_gl_dispatch_x(GLuint prog, GLint group0_loc, uint64_t groups, GLuint max_x)
+{
+    max_x = max_x ? max_x : 1u;
+    for (uint64_t first = 0; first < groups; first += max_x) {
+        uint64_t left = groups - first;
+        glProgramUniform1ui(prog, group0_loc, (GLuint)first);
+        glDispatchCompute(left < max_x ? (GLuint)left : max_x, 1, 1);
+    }
+}
+

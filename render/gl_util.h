@@ -71,6 +71,16 @@ uint64_t oit_gl_ssbo_max_bytes(void);
 /* Workgroups of 'local' threads covering n items. */
 GLuint oit_gl_groups(uint64_t n, GLuint local);
 
+/* GL_MAX_COMPUTE_WORK_GROUP_COUNT[0]: the most groups one dispatch may have
+ * along x (the spec promises only 65535: a frame of 2^22 pixels in groups
+ * of 64 is one more). */
+GLuint oit_gl_max_groups_x(void);
+/* Dispatches `groups` work groups of prog (current) along x in as many
+ * dispatches of at most max_x as it takes, setting prog's uint uniform at
+ * group0_loc to each dispatch's first group: the shader's group is
+ * gl_WorkGroupID.x + that uniform, never gl_WorkGroupID.x alone. */
+void oit_gl_dispatch_x(GLuint prog, GLint group0_loc, uint64_t groups, GLuint max_x);
+
 
 #ifdef __cplusplus
 }

@@ -3,8 +3,13 @@
 #include "render/method.h"
 
 #include <stdlib.h>
+#include <string.h>
 
+#include "base/clock.h"
+#include "render/band.h"
 #include "render/gl_context.h"
+#include "render/gl_util.h"
+#include "render/image.h"
 
 struct oit_method_state {
     const oit_method *method;
@@ -13,6 +18,7 @@ struct oit_method_state {
     int gl_borrowed; /* gl is the caller's (oit_method_options.gl): not ours to destroy */
     oit_gpu_mesh *gpu;
     void *impl;
+    uint64_t store_limit; /* oit_method_options.store_limit */
 };
 
 void oit_method_close(oit_method_state *st)
@@ -55,6 +61,7 @@ oit_status oit_method_open(const oit_method *m, const oit_mesh *mesh,
         return oit_error_set(err, OIT_ERR_NOMEM, "method %s: cannot allocate its state", m->name);
     st->method = m;
     st->mesh = mesh;
+    st->store_limit = opt ? opt->store_limit : 0;
     oit_status s = m->flags & OIT_METHOD_GL ? prepare_gl(st, opt, err) : OIT_OK;
     if (s == OIT_OK)
         s = m->create(mesh, opt, &st->impl, err);
@@ -66,20 +73,89 @@ oit_status oit_method_open(const oit_method *m, const oit_mesh *mesh,
     return OIT_OK;
 }
 
-oit_status oit_method_render(oit_method_state *st, const oit_view *view, oit_image *out,
-                             uint32_t *counts, uint8_t *ambiguous, oit_frame_stats *stats,
-                             oit_error *err)
+/* One frame (or band `band` of one) through the method. */
+static oit_status render_once(oit_method_state *st, const oit_view *view, oit_image *out,
+                              uint32_t *counts, uint8_t *ambiguous, oit_frame_stats *stats,
+                              int band, int *split, oit_error *err)
 {
     unsigned f = st->method->flags;
+    uint64_t bind = f & OIT_METHOD_GL ? oit_gl_ssbo_max_bytes() : UINT64_MAX;
+    if (st->store_limit && st->store_limit < bind)
+        bind = st->store_limit;
+    *split = 0;
     oit_method_frame frame = {.mesh = st->mesh, .gpu = st->gpu, .view = view, .out = out,
                               .counts = f & OIT_METHOD_COUNTS ? counts : NULL,
                               .ambiguous = f & OIT_METHOD_AMBIGUITY ? ambiguous : NULL,
-                              .stats = stats};
+                              .stats = stats, .band = band, .store_limit = bind,
+                              .split = split};
     oit_status s = st->method->render(st->impl, &frame, err);
     /* A borrowed context is checked too: the viewer's window is ours. */
     if (s == OIT_OK)
         s = oit_gl_debug_check(st->gl, st->method->name, err);
     return s;
+}
+
+/* The frame as bands of at most `rows` rows, each copied into out (and its
+ * counts into counts' rows); a band the method asks to split is taken
+ * again in that many, and so are the bands after it. */
+static oit_status render_bands(oit_method_state *st, const oit_view *view, int rows,
+                               oit_image *out, uint32_t *counts, oit_frame_stats *stats,
+                               oit_error *err)
+{
+    double t0 = oit_time_ms();
+    int w = view->width, h = view->height, band = 0;
+    oit_frame_stats sum = {0};
+    oit_status s = oit_image_alloc(out, w, h, err);
+    for (int y0 = 0; s == OIT_OK && y0 < h;) {
+        int y1 = y0 + rows < h ? y0 + rows : h, split = 0;
+        oit_view part_view;
+        oit_view_band(view, y0, y1, &part_view);
+        oit_image part = {0};
+        oit_frame_stats part_stats = {0};
+        s = render_once(st, &part_view, &part, counts ? counts + (size_t)y0 * w : NULL, NULL,
+                        &part_stats, band, &split, err);
+        if (s != OIT_OK && split > 1 && y1 - y0 > 1) {
+            rows = (y1 - y0 + split - 1) / split;
+            s = OIT_OK;
+            continue;
+        }
+        if (s == OIT_OK) {
+            memcpy(out->rgba + (size_t)y0 * w * 4, part.rgba,
+                   (size_t)w * (size_t)(y1 - y0) * 4 * sizeof *part.rgba);
+            oit_frame_stats_add(&sum, &part_stats);
+            band++;
+            y0 = y1;
+        }
+        oit_image_free(&part);
+    }
+    if (s != OIT_OK) {
+        oit_image_free(out);
+        return s;
+    }
+    sum.ms = oit_time_ms() - t0;
+    if (stats)
+        *stats = sum;
+    return OIT_OK;
+}
+
+oit_status oit_method_render(oit_method_state *st, const oit_view *view, oit_image *out,
+                             uint32_t *counts, uint8_t *ambiguous, oit_frame_stats *stats,
+                             oit_error *err)
+{
+    const oit_method *m = st->method;
+    int rows = view->height, split = 0;
+    oit_status s = OIT_OK;
+    if (m->pixel_bytes)
+        s = oit_band_rows(view, m->pixel_bytes(st->impl, view), st->store_limit, &rows, err);
+    if (s != OIT_OK)
+        return s;
+    if (rows >= view->height) {
+        s = render_once(st, view, out, counts, ambiguous, stats, 0, &split, err);
+        if (s == OIT_OK || split < 2 || view->height < 2)
+            return s;
+        rows = (view->height + split - 1) / split;
+    }
+    return render_bands(st, view, rows, out, counts, stats, err);
 }
 
 const char *oit_method_renderer(const oit_method_state *st)

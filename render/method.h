@@ -46,6 +46,10 @@ typedef struct oit_method_options {
     float epsilon;
     float ambiguity_px; /* the reference's ambiguity radius, pixels; 0: 1/64 */
     const oit_stream_options *stream; /* OIT_METHOD_PARTFILE methods only */
+    /* The most bytes a frame puts in one storage buffer (render/band.h):
+     * 0, what the driver binds (GL_MAX_SHADER_STORAGE_BLOCK_SIZE); lower
+     * only to test the bands. The image is the same either way. */
+    uint64_t store_limit;
 } oit_method_options;
 
 /* One frame's inputs and outputs, as a method's render operation sees them. */
@@ -57,6 +61,19 @@ typedef struct oit_method_frame {
     uint32_t *counts;         /* width*height, or NULL; only with OIT_METHOD_COUNTS */
     uint8_t *ambiguous;       /* width*height, or NULL; only with OIT_METHOD_AMBIGUITY */
     oit_frame_stats *stats;
+    /* A frame too large for one storage binding is rendered as bands of
+     * rows (render/band.h), each a frame of its own: band is its index in
+     * the frame, 0 for the first (or the only one), for a method that
+     * keeps figures across them (stream_stats). */
+    int band;
+    /* The most bytes one storage buffer binding may take in this frame:
+     * the driver's, or less (oit_method_options.store_limit). */
+    uint64_t store_limit;
+    /* A method whose store grows with the frame's depth (a fragment pool)
+     * and cannot hold it within store_limit sets *split to the bands of
+     * rows that would each fit, at least 2, and fails: oit_method_render
+     * then renders the frame in that many bands. */
+    int *split;
 } oit_method_frame;
 
 typedef struct oit_method {
@@ -71,6 +88,11 @@ typedef struct oit_method {
     const char *(*renderer)(const void *impl);
     /* The streamer's figures of the last frame; NULL for other methods. */
     const struct oit_stream_frame_stats *(*stream_stats)(const void *impl);
+    /* Bytes a pixel of view takes in the method's largest per-pixel
+     * storage buffer, which must hold the whole frame in one binding;
+     * oit_method_render renders frames past it in bands (render/band.h).
+     * NULL: no per-pixel storage (not GL). */
+    uint64_t (*pixel_bytes)(const void *impl, const oit_view *view);
 } oit_method;
 
 typedef struct oit_method_state oit_method_state;
@@ -81,7 +103,10 @@ oit_status oit_method_open(const oit_method *m, const oit_mesh *mesh,
                            const oit_method_options *opt, oit_method_state **out,
                            oit_error *err);
 /* out is allocated by the call; counts and ambiguous (width*height) may be
- * NULL, and are used only where the method's flags say it fills them. */
+ * NULL, and are used only where the method's flags say it fills them. A
+ * frame whose per-pixel state does not fit one storage binding (pixel_bytes)
+ * is rendered in bands of rows, each band copied into out; stats add up
+ * over them (oit_frame_stats_add), ms is the whole frame's. */
 oit_status oit_method_render(oit_method_state *st, const oit_view *view, oit_image *out,
                              uint32_t *counts, uint8_t *ambiguous, oit_frame_stats *stats,
                              oit_error *err);

@@ -23,12 +23,19 @@ static void dfb_destroy(void *impl)
     oit_dfb_destroy(impl);
 }
 
+static uint64_t dfb_pixel_bytes(const void *impl, const oit_view *view)
+{
+    (void)impl;
+    return oit_dfb_pixel_bytes(view, 0);
+}
+
 const oit_method oit_method_dfb = {
     .name = "dfb",
     .flags = OIT_METHOD_GL | OIT_METHOD_COUNTS,
     .create = dfb_create,
     .render = dfb_render,
     .destroy = dfb_destroy,
+    .pixel_bytes = dfb_pixel_bytes,
 };
 
 static oit_status capture_create(oit_capture_kind kind, const oit_method_options *opt,
@@ -36,6 +43,8 @@ static oit_status capture_create(oit_capture_kind kind, const oit_method_options
 {
     oit_capture *c = NULL;
     oit_status s = oit_capture_create(kind, opt ? opt->max_layers : 0, &c, err);
+    if (s == OIT_OK && opt)
+        oit_capture_set_store_limit(c, opt->store_limit);
     *impl = c;
     return s;
 }
@@ -56,6 +65,12 @@ static void capture_destroy(void *impl)
     oit_capture_destroy(impl);
 }
 
+static uint64_t capture_pixel_bytes(const void *impl, const oit_view *view)
+{
+    (void)impl;
+    return oit_capture_pixel_bytes(view);
+}
+
 /* The table of the capture backend KIND, drawing the mesh as one batch. */
 #define CAPTURE_METHOD(NAME, KIND)                                                         \
     static oit_status NAME##_create(const oit_mesh *mesh, const oit_method_options *opt,  \
@@ -67,7 +82,8 @@ static void capture_destroy(void *impl)
                                           .flags = OIT_METHOD_GL,                          \
                                           .create = NAME##_create,                         \
                                           .render = capture_render,                        \
-                                          .destroy = capture_destroy}
+                                          .destroy = capture_destroy,                      \
+                                          .pixel_bytes = capture_pixel_bytes}
 
 CAPTURE_METHOD(array, OIT_CAPTURE_ARRAY);
 CAPTURE_METHOD(stencil, OIT_CAPTURE_STENCIL);

@@ -17,10 +17,11 @@ static const char scan_block_src[] =
     "};\n"
     "layout(location = 13) uniform uint u_count;\n"
     "layout(location = 14) uniform int u_first_level;\n"
+    "uniform uint u_group0;\n"
     "shared uint part[256];\n"
     "void main() {\n"
-    "    uint lid = gl_LocalInvocationID.x;\n"
-    "    uint base = gl_WorkGroupID.x * 1024u + lid * 4u;\n"
+    "    uint lid = gl_LocalInvocationID.x, group = gl_WorkGroupID.x + u_group0;\n"
+    "    uint base = group * 1024u + lid * 4u;\n"
     "    uint v[4]; uint sum = 0u, mx = 0u, lng = 0u;\n"
     "    for (uint i = 0u; i < 4u; i++) {\n"
     "        v[i] = base + i < u_count ? data[base + i] : 0u;\n"
@@ -49,7 +50,7 @@ static const char scan_block_src[] =
     "            if (old + part[255] < old) atomicAdd(t_hi, 1u);\n"
     "        }\n"
     "    }\n"
-    "    if (lid == 255u) sums[gl_WorkGroupID.x] = part[255];\n"
+    "    if (lid == 255u) sums[group] = part[255];\n"
     "}\n";
 
 static const char scan_add_src[] =
@@ -57,8 +58,9 @@ static const char scan_add_src[] =
     "layout(std430, binding = OIT_BIND_COUNTS) buffer Data { uint data[]; };\n"
     "layout(std430, binding = OIT_BIND_SUMS) readonly buffer Sums { uint sums[]; };\n"
     "layout(location = 13) uniform uint u_count;\n"
+    "uniform uint u_group0;\n"
     "void main() {\n"
-    "    uint i = gl_GlobalInvocationID.x;\n"
+    "    uint i = (gl_WorkGroupID.x + u_group0) * 256u + gl_LocalInvocationID.x;\n"
     "    if (i < u_count) data[i] += sums[i / 1024u];\n"
     "}\n";
 
@@ -71,6 +73,7 @@ oit_status oit_scan_init(oit_scan *s, oit_error *err)
     if (st == OIT_OK)
         st = oit_gl_program_compute("prefix sum (add)", add, &s->add, err);
     if (st == OIT_OK) {
+        s->max_groups = oit_gl_max_groups_x();
         glCreateBuffers(1, &s->totals);
         glNamedBufferStorage(s->totals, 16, NULL, GL_DYNAMIC_STORAGE_BIT);
         oit_gl_poison_buffer(s->totals);
@@ -103,7 +106,8 @@ static void dispatch_block(oit_scan *s, GLuint data, GLuint sums, uint64_t n, in
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_TOTALS, s->totals);
     glProgramUniform1ui(s->block, OIT_LOC_COUNT, (GLuint)n);
     glProgramUniform1i(s->block, OIT_LOC_FIRST_LEVEL, first);
-    glDispatchCompute(oit_gl_groups(n, BLOCK), 1, 1);
+    oit_gl_dispatch_x(s->block, glGetUniformLocation(s->block, "u_group0"),
+                      oit_gl_groups(n, BLOCK), s->max_groups);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
@@ -113,7 +117,8 @@ static void dispatch_add(oit_scan *s, GLuint data, GLuint sums, uint64_t n)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, data);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_SUMS, sums);
     glProgramUniform1ui(s->add, OIT_LOC_COUNT, (GLuint)n);
-    glDispatchCompute(oit_gl_groups(n, 256), 1, 1);
+    oit_gl_dispatch_x(s->add, glGetUniformLocation(s->add, "u_group0"), oit_gl_groups(n, 256),
+                      s->max_groups);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 

@@ -22,6 +22,9 @@ typedef struct oit_scan {
     GLuint sums[OIT_SCAN_LEVELS];       /* block sums per level */
     uint64_t sums_cap[OIT_SCAN_LEVELS];
     GLuint totals;                      /* uint lo, hi, max, pad */
+    /* Groups one dispatch takes (GL_MAX_COMPUTE_WORK_GROUP_COUNT[0], read
+     * by oit_scan_init); more are dispatched in turn. Lower only to test. */
+    GLuint max_groups;
 } oit_scan;
 
 typedef struct oit_scan_result {

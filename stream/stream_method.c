@@ -31,6 +31,7 @@ static oit_status stream_create(const oit_mesh *mesh, const oit_method_options *
                             .slot_budget = so->slot_budget,
                             .cache_budget = so->cache_budget,
                             .read_inline = so->read_inline,
+                            .store_limit = opt->store_limit,
                             .epsilon = opt->epsilon > 0.0f ? opt->epsilon : 0.0f};
     oit_status s = oit_streamer_create(so->partfile, &sd, &m->streamer, err);
     if (s != OIT_OK) {
@@ -41,10 +42,23 @@ static oit_status stream_create(const oit_mesh *mesh, const oit_method_options *
     return OIT_OK;
 }
 
+/* A banded frame's figures add up over its bands (oit_method_frame.band). */
 static oit_status stream_render(void *impl, const oit_method_frame *f, oit_error *err)
 {
     stream_impl *m = impl;
-    return oit_streamer_render(m->streamer, f->view, f->out, f->stats, &m->stats, err);
+    oit_stream_frame_stats band = {0};
+    oit_status s = oit_streamer_render(m->streamer, f->view, f->out, f->stats, &band, err);
+    if (f->band == 0)
+        m->stats = band;
+    else
+        oit_stream_frame_stats_add(&m->stats, &band);
+    return s;
+}
+
+static uint64_t stream_pixel_bytes(const void *impl, const oit_view *view)
+{
+    (void)impl;
+    return oit_streamer_pixel_bytes(view);
 }
 
 static const oit_stream_frame_stats *stream_figures(const void *impl)
@@ -59,4 +73,5 @@ const oit_method oit_method_stream = {
     .render = stream_render,
     .destroy = stream_destroy,
     .stream_stats = stream_figures,
+    .pixel_bytes = stream_pixel_bytes,
 };

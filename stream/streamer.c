@@ -347,6 +347,8 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
         oit_capture_set_slot_budget(s->capture, desc->slot_budget ? desc->slot_budget
                                                 : stores ? OIT_STREAM_STORE_DEFAULT
                                                          : OIT_STREAM_SLOTS_DEFAULT);
+    if (st == OIT_OK)
+        oit_capture_set_store_limit(s->capture, desc->store_limit);
     s->ahead = AHEAD_EXACT;
     if (st == OIT_OK && desc->epsilon > 0.0f) {
         s->epsilon = desc->epsilon;
@@ -731,6 +733,29 @@ static oit_status render(oit_streamer *s, const oit_view *view, oit_image *out, 
     if (st == OIT_OK)
         adapt(s, view, fs, ss);
     return st;
+}
+
+uint64_t oit_streamer_pixel_bytes(const oit_view *view)
+{
+    return oit_capture_pixel_bytes(view);
+}
+
+void oit_stream_frame_stats_add(oit_stream_frame_stats *acc, const oit_stream_frame_stats *band)
+{
+    uint64_t peak = acc->gpu_bytes_peak > band->gpu_bytes_peak ? acc->gpu_bytes_peak
+                                                              : band->gpu_bytes_peak;
+    oit_stream_frame_stats sum = *band;
+    sum.packs += acc->packs;
+    sum.parts_drawn += acc->parts_drawn;
+    sum.parts_culled += acc->parts_culled;
+    sum.parts_skipped += acc->parts_skipped;
+    sum.bytes_uploaded += acc->bytes_uploaded;
+    sum.cache_hits += acc->cache_hits;
+    sum.draw_calls += acc->draw_calls;
+    sum.order_ms += acc->order_ms;
+    sum.pack_ms += acc->pack_ms;
+    sum.gpu_bytes_peak = peak;
+    *acc = sum;
 }
 
 oit_status oit_streamer_render(oit_streamer *s, const oit_view *view, oit_image *out,

@@ -54,6 +54,8 @@ typedef struct oit_streamer_desc {
                                  parts a frame's packing holds */
     int read_inline;          /* 1: parts are read on the render thread, no reader
                                  thread (for comparison and debugging) */
+    uint64_t store_limit;     /* the capture's (oit_capture_set_store_limit); 0:
+                                 the driver's binding; lower only to test */
 } oit_streamer_desc;
 
 /* 256 MiB: ~5.6 M triangles at 48 bytes, the visible working set of most
@@ -108,6 +110,15 @@ void oit_streamer_destroy(oit_streamer *s);
 /* The caller's opaque depth for the next frames (oit_capture_set_opaque);
  * NULL: none. */
 void oit_streamer_set_opaque(oit_streamer *s, const oit_opaque_depth *o);
+
+/* Bytes a pixel of view takes in the streamer's largest per-pixel buffer
+ * (oit_capture_pixel_bytes): a frame past one storage binding is refused,
+ * to be rendered in bands of rows (render/band.h). */
+uint64_t oit_streamer_pixel_bytes(const oit_view *view);
+/* acc takes the figures of a band of its frame: counts, bytes and times add
+ * up, the GPU peak takes the larger, the rest (cache_bytes, epsilon, modes)
+ * are the band's, the last. */
+void oit_stream_frame_stats_add(oit_stream_frame_stats *acc, const oit_stream_frame_stats *band);
 
 /* Renders one view into out (allocated by the call). fs and ss may be NULL. */
 oit_status oit_streamer_render(oit_streamer *s, const oit_view *view, oit_image *out,

@@ -333,11 +333,15 @@ typedef struct oit_draw_stats {
 /* Draws scene as seen through frame into frame->framebuffer (see Result
  * above). The scene must stay open while r draws it; drawing a different
  * scene rebuilds r's per-scene GPU state (for an in-core scene: its
- * triangles, uploaded at its first draw). stats may be NULL; for an
- * in-core scene only ms, fragments, max_layers, packs (DFB's bands of rows,
- * 1 unless the frame's fragments exceed one storage buffer), draw_calls,
- * bytes_uploaded (the triangles, at the first draw) and gpu_bytes_peak are
- * filled, the rest are 0. */
+ * triangles, uploaded at its first draw). Any viewport the GL renders
+ * works: one whose per-pixel state passes what one GPU storage buffer
+ * binds (GL_MAX_SHADER_STORAGE_BLOCK_SIZE, 128 MiB at the least: about
+ * 6.7 M pixels transparent, 2.8 M translucent) is drawn in bands of rows,
+ * each captured and blended in turn (the same image; its figures add up).
+ * stats may be NULL; for an in-core scene only ms, fragments, max_layers,
+ * packs (DFB's bands of rows, 1 unless the frame's fragments exceed one
+ * storage buffer), draw_calls, bytes_uploaded (the triangles, at the first
+ * draw) and gpu_bytes_peak are filled, the rest are 0. */
 OIT_API oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame *frame,
                                      oit_draw_stats *stats, oit_error *err);
 

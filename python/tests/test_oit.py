@@ -148,6 +148,24 @@ def test_prep_then_part_file(tmp_path):
     assert "missing.ply" in str(e.value)
 
 
+def test_large_frames(tmp_path):
+    """2048x2048: 2^22 pixels (the capture's end pass alone is more work
+    groups than GL promises in one dispatch) and, translucent, more state
+    than one storage binding holds (drawn in bands). The part file streamed
+    against the mesh in core (DFB)."""
+    pos, idx, col = layered_scene()
+    ply, part = tmp_path / "layers.ply", tmp_path / "layers.oitp"
+    write_ply(ply, pos, idx, col)
+    oit.prep(ply, part, part_triangles=2)
+    for shading in ("transparent", "translucent"):
+        a = oit.render(ply, size=(2048, 2048), dtype=np.float32, shading=shading)
+        b = oit.render(part, size=(2048, 2048), dtype=np.float32, shading=shading)
+        covered = np.any(a[:, :, :3] < 0.99, axis=2).mean()
+        assert covered > 0.2, f"{shading}: only {covered:.0%} of the frame covered"
+        over = (np.abs(a - b).max(axis=2) > 1 / 255).mean()
+        assert over <= 0.0001, f"{shading}: {over:.4%} of pixels differ"
+
+
 def test_renderer_options(tmp_path):
     pos, idx, col = layered_scene()
     ply, part = tmp_path / "layers.ply", tmp_path / "layers.oitp"

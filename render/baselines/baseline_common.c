@@ -249,6 +249,13 @@ void oit_baseline_dispatch_to_texture(GLuint prog, GLuint out, int w, int h)
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
 }
 
+uint64_t oit_baseline_pixel_bytes(const void *impl, const oit_view *view)
+{
+    (void)impl;
+    (void)view;
+    return OIT_BASELINE_PIXEL_BYTES;
+}
+
 oit_status oit_baseline_begin(const char *method, const oit_view *view, int n,
                               oit_baseline_frame *fr, oit_error *err)
 {

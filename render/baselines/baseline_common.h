@@ -128,6 +128,14 @@ typedef struct oit_baseline_frame {
     double t0;
 } oit_baseline_frame;
 
+/* The most bytes a pixel takes in any baseline's largest per-pixel storage
+ * buffer, which holds the whole frame in one binding: the peelers' state
+ * (oit_state, 48 bytes in std430). The others' (16, the output) are
+ * smaller, so their frames are banded a little sooner than they need. */
+#define OIT_BASELINE_PIXEL_BYTES 48u
+/* OIT_BASELINE_PIXEL_BYTES, as render/method.h's pixel_bytes. */
+uint64_t oit_baseline_pixel_bytes(const void *impl, const oit_view *view);
+
 /* Starts a frame: OIT_ERR_ARGUMENT naming 'method' when it cannot be
  * rendered here (non-positive or larger than GL_MAX_FRAMEBUFFER_WIDTH/HEIGHT,
  * n < 0); else fr->view is view with its shading defaults filled in, the

@@ -15,6 +15,7 @@
 
 enum { BUF_STATE, BUF_COUNT, BUF_OUT, BUF_N };
 enum { STATE_BYTES = 48 }; /* std430 size of oit_state */
+_Static_assert(STATE_BYTES <= OIT_BASELINE_PIXEL_BYTES, "frames are banded for the state");
 #define EXHAUSTED 0x7f800000u /* bits of +inf */
 #define MAX_PASSES 1000000u
 

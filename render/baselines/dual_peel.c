@@ -15,6 +15,7 @@
 enum { BUF_FRONT, BUF_BACK, BUF_COUNT, BUF_OUT, BUF_N };
 enum { IMG_FRONT, IMG_BACK, IMG_N };
 enum { STATE_BYTES = 48, BACK_BYTES = 32 }; /* std430 sizes of oit_state, back_acc */
+_Static_assert(STATE_BYTES <= OIT_BASELINE_PIXEL_BYTES, "frames are banded for the state");
 #define MAX_PASSES 1000000u
 
 struct oit_dual_peel {

@@ -75,6 +75,6 @@ oit_status oit_guarded_set_threshold(oit_guarded *g, float threshold, oit_error 
     return oit_gl_check("guarded OIT: threshold", err);
 }
 
-OIT_BASELINE_METHOD_OF(guarded, oit_guarded, desc.method, oit_guarded_init,
-                       oit_list_store_release, oit_list_store_render, OIT_METHOD_EPSILON,
-                       OIT_THRESHOLD);
+OIT_BASELINE_METHOD_FRAMED(guarded, oit_guarded, desc.method, oit_guarded_init,
+                           oit_list_store_release, oit_list_store_render, OIT_LIST_FRAME,
+                           OIT_METHOD_EPSILON, OIT_THRESHOLD);

@@ -51,26 +51,47 @@ uint64_t oit_list_store_capacity(const oit_list_store *ls)
     return ls->units * ls->d.slots_per_unit;
 }
 
+void oit_list_store_frame(oit_list_store *ls, uint64_t limit, int *split)
+{
+    ls->limit = limit;
+    ls->split = split;
+}
+
+/* The most bytes one binding takes this frame. */
+static uint64_t binding_bytes(const oit_list_store *ls)
+{
+    uint64_t driver = oit_gl_ssbo_max_bytes();
+    return ls->limit && ls->limit < driver ? ls->limit : driver;
+}
+
+/* A pool past one binding: the frame asks to be split in bands of rows
+ * that would each hold their share (one more than the even split: the
+ * fragments need not be even), when it can ask. */
+static oit_status pool_too_big(oit_list_store *ls, uint64_t bytes, uint64_t bind, oit_error *err)
+{
+    if (ls->split)
+        *ls->split = (int)((bytes + bind - 1) / bind + 1);
+    return oit_error_set(err, OIT_ERR_NOMEM, "%s fragment pool: needs %llu bytes in one "
+                         "storage buffer, more than this driver binds (%llu)", ls->d.method,
+                         (unsigned long long)bytes, (unsigned long long)bind);
+}
+
 /* A pool of at least 'units', within one storage block. */
 static oit_status reserve_units(oit_list_store *ls, uint64_t units, oit_error *err)
 {
-    uint64_t unit_bytes = 16ull * ls->d.slots_per_unit;
+    uint64_t unit_bytes = 16ull * ls->d.slots_per_unit, bind = binding_bytes(ls);
     if (units > ls->d.max_units)
         return oit_error_set(err, OIT_ERR_NOMEM, "%s: %llu storage units do not fit the "
                              "method's %llu-unit indices", ls->d.method,
                              (unsigned long long)units, (unsigned long long)ls->d.max_units);
-    char what[96];
-    snprintf(what, sizeof what, "%s fragment pool", ls->d.method);
-    oit_status s = oit_gl_check_ssbo_size(units * unit_bytes, what, err);
-    if (s == OIT_OK)
-        s = oit_gpu_buffers_reserve_all(&ls->b, BUF_N, (const uint64_t[BUF_N]){
-            [BUF_SLOTS] = units * unit_bytes, [BUF_LINKS] = units * 4}, err);
+    if (units * unit_bytes > bind)
+        return pool_too_big(ls, units * unit_bytes, bind, err);
+    oit_status s = oit_gpu_buffers_reserve_all(&ls->b, BUF_N, (const uint64_t[BUF_N]){
+        [BUF_SLOTS] = units * unit_bytes, [BUF_LINKS] = units * 4}, err);
     if (s == OIT_OK) {
         /* The margin reserve added is usable, within one block. */
-        GLint64 max_block = 0;
-        glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
         uint64_t have = ls->b.cap[BUF_LINKS] / 4;
-        uint64_t block = (uint64_t)max_block / unit_bytes;
+        uint64_t block = bind / unit_bytes;
         have = have < block ? have : block;
         ls->units = have < ls->d.max_units ? have : ls->d.max_units;
     }
@@ -110,6 +131,9 @@ static oit_status prepare(oit_list_store *ls, const oit_view *v, oit_error *err)
         s = oit_gpu_buffers_reserve_all(&ls->b, BUF_N, (const uint64_t[BUF_N]){
             [BUF_HEADS] = pixels * 4 * ls->d.words_per_pixel, [BUF_STATS] = 16,
             [BUF_OUT] = pixels * 16}, err);
+    /* The pool an earlier frame grew may pass this frame's binding. */
+    uint64_t fit = binding_bytes(ls) / (16ull * ls->d.slots_per_unit);
+    ls->units = ls->units < fit ? ls->units : fit;
     if (s == OIT_OK && ls->units == 0)
         s = reserve_units(ls, (pixels + ls->d.slots_per_unit - 1) / ls->d.slots_per_unit, err);
     if (s != OIT_OK)

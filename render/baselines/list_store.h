@@ -81,6 +81,8 @@ typedef struct oit_list_store {
     GLuint prog[OIT_LIST_PROG_N], fbo;
     oit_gpu_buffers b;
     uint64_t units; /* pool capacity in units */
+    uint64_t limit; /* this frame's most bytes in one storage binding; 0: the driver's */
+    int *split;     /* this frame's request to be split (oit_method_frame.split) */
 } oit_list_store;
 
 /* A list method's functions for OIT_BASELINE_METHOD_OF (methods.h): init
@@ -100,8 +102,14 @@ oit_status oit_list_store_render(oit_list_store *ls, const oit_gpu_mesh *const *
     {                                                                                       \
         return oit_list_store_init(ls, &(DESC), err);                                       \
     }                                                                                       \
-    OIT_BASELINE_METHOD_OF(NAME, T, (DESC).method, T##_init, oit_list_store_release,        \
-                           oit_list_store_render, FLAGS, SET)
+    OIT_BASELINE_METHOD_FRAMED(NAME, T, (DESC).method, T##_init, oit_list_store_release,    \
+                               oit_list_store_render, OIT_LIST_FRAME, FLAGS, SET)
+
+/* The method frame's storage limit and split request (render/method.h)
+ * for the next frame: a pool that must pass the limit asks for the bands
+ * of rows that would each fit, and the frame fails. split may be NULL. */
+void oit_list_store_frame(oit_list_store *ls, uint64_t limit, int *split);
+#define OIT_LIST_FRAME(impl, f) oit_list_store_frame((impl), (f)->store_limit, (f)->split)
 
 /* For the method's own uniforms (a threshold). */
 unsigned oit_list_store_append_program(const oit_list_store *ls);

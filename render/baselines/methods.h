@@ -38,13 +38,21 @@ extern const oit_method oit_method_f2b;
  * OIT_BASELINE_METHOD takes them as T_init, T_release and T_render. LABEL
  * names the method in errors ("depth peeling"). SET is OIT_NO_THRESHOLD,
  * or OIT_THRESHOLD for a baseline with a T_set_threshold that takes
- * oit_method_options.epsilon when it is >= 0 (INIT sets its default). */
+ * oit_method_options.epsilon when it is >= 0 (INIT sets its default).
+ * OIT_BASELINE_METHOD_FRAMED adds FRAME(impl, f), run before each RENDER
+ * with the method's frame: what a baseline takes from it beyond the view
+ * (the list stores: the storage limit and the request to split,
+ * list_store.h); OIT_NO_FRAME takes nothing. Every baseline's frames are
+ * banded for OIT_BASELINE_PIXEL_BYTES a pixel (render/band.h). */
 #define OIT_NO_THRESHOLD(T, impl, opt, err) OIT_OK
 #define OIT_THRESHOLD(T, impl, opt, err)                                                    \
     ((opt) && (opt)->epsilon >= 0.0f ? T##_set_threshold(impl, (opt)->epsilon, err) : OIT_OK)
 #define OIT_BASELINE_METHOD(NAME, T, LABEL, FLAGS, SET)                                     \
     OIT_BASELINE_METHOD_OF(NAME, T, LABEL, T##_init, T##_release, T##_render, FLAGS, SET)
+#define OIT_NO_FRAME(impl, f) ((void)0)
 #define OIT_BASELINE_METHOD_OF(NAME, T, LABEL, INIT, RELEASE, RENDER, FLAGS, SET)           \
+    OIT_BASELINE_METHOD_FRAMED(NAME, T, LABEL, INIT, RELEASE, RENDER, OIT_NO_FRAME, FLAGS, SET)
+#define OIT_BASELINE_METHOD_FRAMED(NAME, T, LABEL, INIT, RELEASE, RENDER, FRAME, FLAGS, SET) \
     static void NAME##_method_destroy(void *impl)                                           \
     {                                                                                       \
         if (impl)                                                                           \
@@ -72,6 +80,7 @@ extern const oit_method oit_method_f2b;
     {                                                                                       \
         oit_baseline_frame fr;                                                              \
         oit_status s = oit_baseline_begin(LABEL, f->view, 1, &fr, err);                     \
+        FRAME((T *)impl, f);                                                                \
         if (s == OIT_OK)                                                                    \
             s = RENDER((T *)impl, &f->gpu, 1, &fr.view, f->out, &fr.stats, err);            \
         return oit_baseline_end(&fr, f->stats, s);                                          \
@@ -80,6 +89,7 @@ extern const oit_method oit_method_f2b;
                                           .flags = OIT_METHOD_GL | (FLAGS),                 \
                                           .create = NAME##_method_create,                   \
                                           .render = NAME##_method_render,                   \
-                                          .destroy = NAME##_method_destroy}
+                                          .destroy = NAME##_method_destroy,                 \
+                                          .pixel_bytes = oit_baseline_pixel_bytes}
 
 #endif

@@ -128,4 +128,15 @@ expect_differ "--up z vs y" upz.png ref.png 1000
     { cat upkey.txt; fail "the U run exited with $?"; }
 expect_equal "U vs --up z" upkey.png upz_ref.png
 
+# 7. A window past one storage binding: 2048x2048 translucent, the stream's
+#    state 48 bytes a pixel (192 MiB; GL promises 128 MiB a binding), is
+#    drawn in bands and equals the headless frame (which was not drawable
+#    either: 2^22 pixels were more work groups than one dispatch takes).
+"$OIT_BIN/oitgen" quads --count 4 -o big.ply >/dev/null || fail "oitgen quads --count 4"
+"$OIT_BIN/oitprep" big.ply -o big.oitp >/dev/null 2>&1 || fail "oitprep big.ply"
+"$S" big.oitp --window --no-overlay --size 2048x2048 --shading translucent --window-frames 1 \
+    --window-screenshot big.png >big.txt 2>&1 || { cat big.txt; fail "the 2048x2048 window exited with $?"; }
+"$S" big.oitp --size 2048x2048 --quiet --shading translucent --out big_ref.png || fail "headless 2048x2048"
+expect_equal "2048x2048 window vs headless" big.png big_ref.png
+
 finish viewer
