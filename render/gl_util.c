@@ -147,8 +147,15 @@ static int poison_wanted(void)
 void oit_gl_poison_buffer(GLuint buf)
 {
     static const GLuint word = POISON_WORD;
-    if (buf && poison_wanted())
-        glClearNamedBufferData(buf, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &word);
+    if (!buf || !poison_wanted())
+        return;
+    /* Whole words only: a clear in R32UI needs a size that is a multiple
+     * of 4, which a buffer grown by half need not have. */
+    GLint64 size = 0;
+    glGetNamedBufferParameteri64v(buf, GL_BUFFER_SIZE, &size);
+    if (size >= 4)
+        glClearNamedBufferSubData(buf, GL_R32UI, 0, (GLsizeiptr)(size - size % 4), GL_RED_INTEGER,
+                                  GL_UNSIGNED_INT, &word);
 }
 
 void oit_gl_poison_texture(GLuint tex, GLenum format)
