@@ -28,6 +28,7 @@
 #include "oit/partfile.h"
 #include "partfile/order.h"
 #include "render/view.h"
+#include "tests/lib/test_rng.h"
 #include "tests/lib/test_check.h"
 
 #include <math.h>
@@ -36,16 +37,6 @@
 #include <string.h>
 
 enum { MAX_GRIDS = 48, MAX_CELLS = 27, MAX_PARTS = 400, ROUNDS = 24, VIEWS = 60 };
-
-typedef struct rng {
-    uint64_t s;
-} rng;
-
-static uint32_t rnd(rng *r, uint32_t n)
-{
-    r->s = r->s * 6364136223846793005u + 1442695040888963407u;
-    return (uint32_t)((r->s >> 33) % n);
-}
 
 static float unit(rng *r)
 {

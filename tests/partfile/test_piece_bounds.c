@@ -29,6 +29,7 @@
 #include "oit/partfile.h"
 
 #include "partfile/layout.h"
+#include "tests/lib/test_rng.h"
 #include "tests/lib/test_check.h"
 #include "tests/lib/test_files.h"
 #include "tests/partfile/partfile_reencode.h"
@@ -40,16 +41,6 @@
 #include <string.h>
 
 enum { MAX_PARTS = 4, MAX_PIECES = 4, MAX_V = 300, MAX_T = 4 * 24, ROUNDS = 48 };
-
-typedef struct rng {
-    uint64_t s;
-} rng;
-
-static uint32_t rnd(rng *r, uint32_t n)
-{
-    r->s = r->s * 6364136223846793005u + 1442695040888963407u;
-    return (uint32_t)((r->s >> 33) % n);
-}
 
 typedef struct part_in {
     float pos[MAX_V * 3];

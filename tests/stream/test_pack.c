@@ -24,6 +24,7 @@
  * of a pack overlap, checked there too). */
 #include "oit/partfile.h"
 #include "stream/pack.h"
+#include "tests/lib/test_rng.h"
 #include "tests/lib/test_check.h"
 
 #include <math.h>
@@ -32,16 +33,6 @@
 #include <string.h>
 
 enum { MAX_PARTS = 150, MAX_FAN = 12, TILE = 32, ROUNDS = 40, W_MAX = 400, H_MAX = 300 };
-
-typedef struct rng {
-    uint64_t s;
-} rng;
-
-static uint32_t rnd(rng *r, uint32_t n)
-{
-    r->s = r->s * 6364136223846793005u + 1442695040888963407u;
-    return (uint32_t)((r->s >> 33) % n);
-}
 
 typedef struct scene {
     uint32_t n, w, h, K;
