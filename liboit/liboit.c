@@ -756,11 +756,9 @@ static oit_status draw_bands(oit_renderer *r, const oit_scene *scene, const oit_
             blend_over(r, frame, &band, frame->viewport_x, gl_y, state);
             st = oit_gl_check("oit_renderer_draw: blend", err);
         }
+        /* fs and ss start at zero: adding the first band copies it. */
         oit_frame_stats_add(fs, &bfs);
-        if (y0 == 0)
-            *ss = bss;
-        else
-            oit_stream_frame_stats_add(ss, &bss);
+        oit_stream_frame_stats_add(ss, &bss);
     }
     return st;
 }

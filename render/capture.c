@@ -754,7 +754,6 @@ static oit_status read_output(oit_capture *c, oit_image *out, GLuint totals[4], 
                                            "counted capture fragments", err);
         note_peak(c);
         c->out_buf = firstk ? c->firstk.store : c->counted.frags;
-        bind_within(c, OIT_BIND_OUT, c->out_buf, out_cap(c));
         if (s != OIT_OK) {
             oit_image_free(out);
             return s;
@@ -768,11 +767,8 @@ static oit_status read_output(oit_capture *c, oit_image *out, GLuint totals[4], 
             return s;
         }
     }
-    uint64_t held = c->out_buf == c->buf[BUF_SLOTS] ? c->cap[BUF_SLOTS]
-                    : firstk                        ? c->firstk.store_cap
-                    : uses_counted(c)               ? c->counted.frags_cap
-                                                    : c->cap[BUF_OUT];
-    held = within_binding(c, held, row); /* a grown buffer may pass what one binding spans */
+    /* a grown buffer may pass what one binding spans */
+    uint64_t held = within_binding(c, out_cap(c), row);
     bind_within(c, OIT_BIND_OUT, c->out_buf, held);
     int band = (int)(held / row < (uint64_t)h ? held / row : (uint64_t)h);
     for (int y0 = 0; y0 < h; y0 += band) {

@@ -248,6 +248,13 @@ uint64_t oit_gl_ssbo_max_bytes(void)
     return max_block > 0 ? (uint64_t)max_block : 0;
 }
 
+uint64_t oit_gl_ssbo_align(void)
+{
+    GLint align = 16;
+    glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &align);
+    return align > 0 ? (uint64_t)align : 16;
+}
+
 oit_status oit_gl_check_ssbo_size(uint64_t bytes, const char *what, oit_error *err)
 {
     uint64_t max_block = oit_gl_ssbo_max_bytes();

@@ -68,6 +68,10 @@ oit_status oit_gl_check_ssbo_size(uint64_t bytes, const char *what, oit_error *e
  * may span, which bounds what a capture stores in one pass. */
 uint64_t oit_gl_ssbo_max_bytes(void);
 
+/* GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT (16 where the driver reports
+ * none): what every storage binding's offset must be a multiple of. */
+uint64_t oit_gl_ssbo_align(void);
+
 /* Workgroups of 'local' threads covering n items. */
 GLuint oit_gl_groups(uint64_t n, GLuint local);
 

@@ -27,11 +27,12 @@ struct oit_gpu_mesh {
     uint64_t align;       /* GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT */
 };
 
-static uint64_t ssbo_align(void)
+size_t oit_gpu_triangle_step(uint64_t align)
 {
-    GLint align = 16;
-    glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &align);
-    return align > 0 ? (uint64_t)align : 16;
+    size_t step = 1;
+    while ((step * sizeof(oit_triangle)) % align != 0)
+        step++;
+    return step;
 }
 
 /* Triangles per draw window: the SSBO binding limit, rounded down so that
@@ -40,12 +41,8 @@ static uint64_t ssbo_align(void)
  * glGetIntegerv would clamp or, on some drivers, truncate. */
 size_t oit_gpu_triangle_window(void)
 {
-    uint64_t max_block = oit_gl_ssbo_max_bytes(), align = ssbo_align();
-    size_t tri_bytes = sizeof(oit_triangle);
-    size_t step = 1;
-    while ((step * tri_bytes) % align != 0)
-        step++;
-    uint64_t w = max_block / tri_bytes;
+    size_t step = oit_gpu_triangle_step(oit_gl_ssbo_align());
+    uint64_t w = oit_gl_ssbo_max_bytes() / sizeof(oit_triangle);
     /* A window's vertices count in a GLsizei, and in the shader's int
      * gl_VertexID and verts.length(). */
     if (w > (uint64_t)0x7fffffff / 3)
@@ -105,7 +102,7 @@ oit_status oit_gpu_mesh_create(const oit_triangle *tris, size_t count,
     m->count = count;
     m->first_prim = first_prim;
     m->window = oit_gpu_triangle_window();
-    m->align = ssbo_align();
+    m->align = oit_gl_ssbo_align();
     m->owns_buffer = 1;
     glCreateBuffers(1, &m->buffer);
     uint64_t bytes = (uint64_t)count * sizeof(oit_triangle);
@@ -135,7 +132,7 @@ oit_status oit_gpu_mesh_create_view(unsigned buffer, oit_gpu_mesh **out, oit_err
         return oit_error_set(err, OIT_ERR_NOMEM, "GPU mesh view: out of memory");
     m->buffer = buffer;
     m->window = oit_gpu_triangle_window();
-    m->align = ssbo_align();
+    m->align = oit_gl_ssbo_align();
     oit_status s = m->window ? create_records(m, "GPU mesh view: draw record", err)
                              : oit_error_set(err, OIT_ERR_GL, "GPU mesh view: "
                                              "GL_MAX_SHADER_STORAGE_BLOCK_SIZE is smaller than "
@@ -221,7 +218,7 @@ uint64_t oit_gpu_mesh_offset(const oit_gpu_mesh *m)
 
 void oit_gpu_mesh_set_align(oit_gpu_mesh *m, uint64_t bytes)
 {
-    uint64_t driver = ssbo_align();
+    uint64_t driver = oit_gl_ssbo_align();
     m->align = bytes && bytes % driver == 0 ? bytes : driver;
 }
 

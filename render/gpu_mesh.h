@@ -120,6 +120,10 @@ void oit_gpu_mesh_dispatch(const oit_gpu_mesh *m, unsigned program, unsigned loc
  * of oit_gpu_mesh_draw, oit_gpu_mesh_dispatch and (unless a test set
  * another) oit_gpu_mesh_draw_many, for buffers laid out like a mesh's. */
 size_t oit_gpu_triangle_window(void);
+/* The fewest triangles whose bytes are a multiple of `align`: windows,
+ * chunks and groups that start that many triangles apart keep a binding
+ * offset aligned. */
+size_t oit_gpu_triangle_step(uint64_t align);
 
 #ifdef __cplusplus
 }

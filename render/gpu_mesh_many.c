@@ -73,6 +73,7 @@ static oit_status grow_gl(GLuint *buf, uint64_t *cap, uint64_t bytes, const char
     GLuint b = 0;
     glCreateBuffers(1, &b);
     glNamedBufferStorage(b, (GLsizeiptr)bytes, NULL, GL_DYNAMIC_STORAGE_BIT);
+    oit_gl_poison_buffer(b);
     oit_status s = oit_gl_check(what, err);
     if (s != OIT_OK) {
         glDeleteBuffers(1, &b);
@@ -121,9 +122,7 @@ oit_status oit_gpu_draws_create(oit_gpu_draws **out, oit_error *err)
     oit_gpu_draws *d = calloc(1, sizeof *d);
     if (!d)
         return oit_error_set(err, OIT_ERR_NOMEM, "multi-draw: out of memory");
-    GLint align = 16;
-    glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &align);
-    d->align = align > 0 ? (uint64_t)align : 16;
+    d->align = oit_gl_ssbo_align();
     oit_gpu_draws_set_align(d, 0);
     glCreateVertexArrays(1, &d->vao);
     oit_status s = reserve(d, INITIAL_DRAWS)
@@ -168,20 +167,12 @@ uint64_t oit_gpu_draws_bytes(const oit_gpu_draws *d)
     return d ? d->cmd_bytes + d->rec_bytes : 0;
 }
 
-/* The fewest triangles whose bytes are a multiple of the unit: window
- * starts inside a mesh stay on it, as group bases must. */
-static size_t unit_step(const oit_gpu_draws *d)
-{
-    size_t step = 1;
-    while ((step * sizeof(oit_triangle)) % d->unit != 0)
-        step++;
-    return step;
-}
-
 /* The driver's window with starts on the unit, or the test's below it. */
 static void fit_window(oit_gpu_draws *d)
 {
-    size_t step = unit_step(d), driver = oit_gpu_triangle_window() / step * step;
+    /* Window starts inside a mesh stay on the unit, as group bases must. */
+    size_t step = oit_gpu_triangle_step(d->unit);
+    size_t driver = oit_gpu_triangle_window() / step * step;
     d->driver_window = driver;
     size_t t = d->asked_window;
     if (t == 0 || t > driver)

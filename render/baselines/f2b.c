@@ -227,11 +227,8 @@ static oit_status order(oit_f2b *f, const oit_gpu_mesh *const *meshes, int n, ui
 
 uint64_t oit_f2b_chunk_triangles(uint64_t tris)
 {
-    GLint align = 0;
-    glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &align);
-    uint64_t unit = 1; /* triangles whose bytes keep a chunk's offset aligned */
-    while (align > 0 && unit * TRI_BYTES % (uint64_t)align != 0)
-        unit++;
+    /* triangles whose bytes keep a chunk's offset aligned */
+    uint64_t unit = oit_gpu_triangle_step(oit_gl_ssbo_align());
     uint64_t share = (tris + OIT_F2B_CHUNKS - 1) / OIT_F2B_CHUNKS;
     return share == 0 ? unit : (share + unit - 1) / unit * unit;
 }
