@@ -32,6 +32,7 @@ static const char fill_fs[] =
     "uniform int u_W;\n"
     "uniform ivec4 u_tile;\n"
     "void main() {\n"
+    "    if (oit_clipped()) discard;\n"
     "    if (oit_behind_opaque()) discard;\n"
     "    uint p = oit_pixel_index();\n"
     "    if (oit_saturated(p)) discard;\n"
@@ -108,6 +109,7 @@ static const char store_fs[] =
     RECT_INDEX
     "uniform ivec4 u_tile;\n"
     "void main() {\n"
+    "    if (oit_clipped()) discard;\n"
     "    if (oit_behind_opaque()) discard;\n"
     "    uvec2 e = table[oit_rect_index(ivec2(gl_FragCoord.xy), u_tile)];\n"
     "    uint p = oit_pixel_index();\n"

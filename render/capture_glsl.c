@@ -31,6 +31,7 @@ const char oit_capture_saturated[] = SATURATED;
  * first N fragments of a pixel kept and the pixel flagged when more come. */
 #define FILL_MAIN(N)                                                                       \
     "void main() {\n"                                                                      \
+    "    if (oit_clipped()) discard;\n"                                                    \
     "    uint p = oit_pixel_index();\n"                                                    \
     "    if (oit_behind_opaque()) discard;\n"                                              \
     "    if (oit_saturated(p)) discard;\n"                                                 \
@@ -64,6 +65,7 @@ const char oit_capture_stencil_fs[] =
     SATURATED
     "layout(location = 0) out uvec4 o_frag;\n"
     "void main() {\n"
+    "    if (oit_clipped()) discard;\n"
     "    if (oit_behind_opaque()) discard;\n"
     "    if (oit_saturated(oit_pixel_index())) discard;\n"
     "    uint c = atomicAdd(counts[oit_pixel_index()], 1u);\n"
@@ -159,6 +161,7 @@ const char oit_capture_counted_count_fs[] =
     "layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };\n"
     SATURATED
     "void main() {\n"
+    "    if (oit_clipped()) discard;\n"
     "    uint p = oit_pixel_index();\n"
     "    if (oit_behind_opaque()) discard;\n"
     "    if (oit_saturated(p)) discard;\n"
@@ -172,6 +175,7 @@ const char oit_capture_counted_store_fs[] =
     "uniform uint u_base;\n" /* the band's first offset (capture_counted.c) */
     SATURATED
     "void main() {\n"
+    "    if (oit_clipped()) discard;\n"
     "    uint p = oit_pixel_index();\n"
     "    if (oit_behind_opaque()) discard;\n"
     "    if (oit_saturated(p)) discard;\n"

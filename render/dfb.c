@@ -37,6 +37,7 @@ void oit_dfb_set_opaque(oit_dfb *d, const oit_opaque_depth *o)
 static const char count_fs[] =
     "layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };\n"
     "void main() {\n"
+    "    if (oit_clipped()) discard;\n"
     "    if (oit_behind_opaque()) discard;\n"
     "    atomicAdd(counts[oit_pixel_index()], 1u);\n"
     "}\n";
@@ -50,6 +51,7 @@ static const char store_fs[] =
     "layout(std430, binding = OIT_BIND_FRAGS) writeonly buffer Frags { uvec4 frags[]; };\n"
     "layout(location = 12) uniform uint u_base;\n"
     "void main() {\n"
+    "    if (oit_clipped()) discard;\n"
     "    if (oit_behind_opaque()) discard;\n"
     "    uint p = oit_pixel_index();\n"
     "    uint c = atomicAdd(counts[p], 0xffffffffu);\n"

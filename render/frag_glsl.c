@@ -158,6 +158,38 @@ const char oit_glsl_fragment_gen[] =
     "    }\n"
     "    return floatBitsToUint(t) & ~" OIT_GLSL_STR(OIT_DEPTH_KEY_MASK) "u;\n"
     "}\n"
+    /* Section planes (clip.h): u_clip holds them in view space
+     * (oit_clip_eye). The point tested is where the pixel centre's ray
+     * meets the triangle's plane, computed as oit_depth_key computes its t
+     * and as reference.c does, not the interpolated position, which a
+     * multisampled capture may take anywhere in the pixel; a grazing
+     * plane falls back to the interpolated distance along the same ray. */
+    "layout(location = 27) uniform int u_clip_count;\n"
+    "layout(location = 28) uniform vec4 u_clip[" OIT_GLSL_STR(OIT_CLIP_MAX) "];\n"
+    "bool oit_clipped() {\n"
+    "    if (u_clip_count == 0) return false;\n"
+    "    vec2 c = floor(gl_FragCoord.xy) + 0.5;\n"
+    "    precise vec3 dir = vec3(c.x * u_ray.x + u_ray.z, c.y * u_ray.y + u_ray.w, -1.0);\n"
+    "    precise float len2 = dir.x * dir.x + dir.y * dir.y + dir.z * dir.z;\n"
+    "    precise float inv = 1.0 / sqrt(len2);\n"
+    "    dir = dir * inv;\n"
+    "    vec3 o = oit_ray_origin();\n"
+    "    vec3 n = v_plane.xyz;\n"
+    "    precise float nd = n.x * dir.x + n.y * dir.y + n.z * dir.z;\n"
+    "    float t = length(v_pos - o);\n"
+    "    if (abs(nd) >= " OIT_GLSL_STR(OIT_DEPTH_GRAZING) ") {\n"
+    "        precise float no = n.x * o.x + n.y * o.y + n.z * o.z;\n"
+    "        precise float tp = (v_plane.w - no) / nd;\n"
+    "        if (tp > 0.0 && !isinf(tp)) t = tp;\n"
+    "    }\n"
+    "    precise vec3 p = o + dir * t;\n"
+    "    for (int i = 0; i < u_clip_count; i++) {\n"
+    "        vec4 q = u_clip[i];\n"
+    "        precise float s = q.x * p.x + q.y * p.y + q.z * p.z + q.w;\n"
+    "        if (s < 0.0) return true;\n"
+    "    }\n"
+    "    return false;\n"
+    "}\n"
     "uvec4 oit_fragment() {\n"
     "    vec3 rel = v_pos - oit_ray_origin();\n"
     "    float t_interp = length(rel);\n"
@@ -367,6 +399,11 @@ void oit_glsl_set_view(GLuint prog, const oit_view *view)
         m[i] = (float)md[i];
     glProgramUniformMatrix4fv(prog, loc(prog, "u_model"), 1, GL_FALSE, m);
     glProgramUniform1f(prog, loc(prog, "u_org_z"), org_z);
+    float clip[OIT_CLIP_MAX][4];
+    oit_camera_view_matrix(&view->camera, m);
+    oit_clip_eye(&view->clip, m, clip);
+    glProgramUniform1i(prog, loc(prog, "u_clip_count"), view->clip.count);
+    glProgramUniform4fv(prog, loc(prog, "u_clip"), OIT_CLIP_MAX, &clip[0][0]);
 }
 
 void oit_glsl_set_opaque(GLuint prog, const oit_opaque_depth *o)

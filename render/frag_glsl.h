@@ -78,7 +78,9 @@ enum {
     OIT_LOC_EYE = 15,        /* dvec3: the eye in the vertices' coordinates */
     OIT_LOC_RAY = 16,        /* vec4: window coordinates to view-space ray */
     OIT_LOC_OPAQUE = 17,     /* int: 1 tests the opaque depth (below) */
-    OIT_LOC_OPAQUE_ORIGIN = 18 /* ivec2: texel of frame pixel (0, 0) */
+    OIT_LOC_OPAQUE_ORIGIN = 18, /* ivec2: texel of frame pixel (0, 0) */
+    OIT_LOC_CLIP_COUNT = 27, /* int: section planes (oit_clipped) */
+    OIT_LOC_CLIP = 28        /* vec4[OIT_CLIP_MAX]: view space, 28..33 */
 };
 
 /* The vertex input of oit_glsl_vertex (uvec2, see above). */
@@ -97,6 +99,11 @@ extern const char oit_glsl_fragment_gen[];
  * unit OIT_TEX_OPAQUE_DEPTH read with texelFetch at gl_FragCoord.xy +
  * u_opaque_origin. Every fragment main that counts or stores fragments
  * discards those first, so that counts and stores agree. */
+/* oit_glsl_fragment_gen also defines oit_clipped(): true when a section
+ * plane (oit_view.clip, clip.h) removes the fragment. Every fragment main
+ * that counts, stores or blends fragments discards those first, before
+ * anything else, so that counts and stores agree and every method shows
+ * the same cut. */
 /* Any stage: oit_state, oit_state_begin(), oit_frag_less(a, b),
  * oit_composite(inout oit_state, uvec4 frag), oit_state_final(). */
 extern const char oit_glsl_composite[];

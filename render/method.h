@@ -31,7 +31,9 @@ enum {
     OIT_METHOD_COUNTS = 1u << 1,    /* can fill per-pixel fragment counts (--show layers) */
     OIT_METHOD_AMBIGUITY = 1u << 2, /* can flag raster-vs-ray ambiguous pixels */
     OIT_METHOD_PARTFILE = 1u << 3,  /* renders options.stream->partfile, not the mesh */
-    OIT_METHOD_EPSILON = 1u << 4    /* takes options.epsilon as a threshold a sweep can vary */
+    OIT_METHOD_EPSILON = 1u << 4,   /* takes options.epsilon as a threshold a sweep can vary */
+    OIT_METHOD_CLIP = 1u << 5       /* honours oit_view.clip (clip.h); oit_method_render
+                                       refuses planes to a method without it */
 };
 
 typedef struct oit_method_options {

@@ -31,7 +31,7 @@ static uint64_t dfb_pixel_bytes(const void *impl, const oit_view *view)
 
 const oit_method oit_method_dfb = {
     .name = "dfb",
-    .flags = OIT_METHOD_GL | OIT_METHOD_COUNTS,
+    .flags = OIT_METHOD_GL | OIT_METHOD_COUNTS | OIT_METHOD_CLIP,
     .create = dfb_create,
     .render = dfb_render,
     .destroy = dfb_destroy,
@@ -79,7 +79,7 @@ static uint64_t capture_pixel_bytes(const void *impl, const oit_view *view)
         return capture_create(KIND, opt, impl, err);                                       \
     }                                                                                      \
     const oit_method oit_method_##NAME = {.name = #NAME,                                   \
-                                          .flags = OIT_METHOD_GL,                          \
+                                          .flags = OIT_METHOD_GL | OIT_METHOD_CLIP,        \
                                           .create = NAME##_create,                         \
                                           .render = capture_render,                        \
                                           .destroy = capture_destroy,                      \

@@ -24,6 +24,7 @@ typedef struct hit_rec {
     float t, u, v; /* Embree's hit; t decides the view-depth clip, as in GL */
     uint32_t prim;
     float key;     /* the tie rule's sort key (shade.h) */
+    int clipped;   /* removed by a section plane (clip.h) */
 } hit_rec;
 
 /* Embree hands the filter the context pointer we pass to rtcIntersect1, so
@@ -65,6 +66,8 @@ typedef struct ref_job {
     uint32_t *ties;
     double saturation_epsilon;
     float view_matrix[16], ray_map[4], org_map[4], org_z;
+    float clip_eye[OIT_CLIP_MAX][4]; /* the view's section planes in view space */
+    int clip_count;
     atomic_int next_row;
     atomic_int oom;
 } ref_job;
@@ -316,6 +319,23 @@ static int hit_set_changes(ref_worker *wk, int x, int y, size_t centre_n)
     return 0;
 }
 
+/* Whether the section planes keep the hit: its point is where the pixel's
+ * ray meets the triangle's plane at the t the key is made of (shade.c
+ * oit_depth_key, before quantising), as the fragment stage's oit_clipped()
+ * finds it, so that both test the same float point. */
+static int clip_keeps(const ref_job *job, const float n[3], float d, const float o[3],
+                      const float dir[3], float t_hit)
+{
+    float nd = n[0] * dir[0] + n[1] * dir[1] + n[2] * dir[2];
+    float t = t_hit;
+    if (fabsf(nd) >= OIT_DEPTH_GRAZING) {
+        float tp = d / nd;
+        if (tp > 0.0f && isfinite(tp))
+            t = tp;
+    }
+    return oit_clip_keeps(job->clip_count, job->clip_eye, o, dir, t);
+}
+
 /* Each hit's sort key from its triangle's plane (shade.h), computed as the
  * GL methods do: the normal rotated into view space by the float view
  * matrix, the pixel's view-space ray from the ray map, so that both sides
@@ -335,7 +355,18 @@ static void key_hits(const ref_job *job, hit_rec *h, size_t n, int x, int y)
          * (o = 0). */
         float no = nv[0] * o[0] + nv[1] * o[1] + nv[2] * o[2];
         h[i].key = oit_depth_key(nv, d - no, dir, h[i].t);
+        h[i].clipped = job->clip_count > 0 && !clip_keeps(job, nv, d - no, o, dir, h[i].t);
     }
+}
+
+/* Drops the hits a section plane removes; returns how many are left. */
+static size_t drop_clipped(hit_rec *h, size_t n)
+{
+    size_t m = 0;
+    for (size_t i = 0; i < n; i++)
+        if (!h[i].clipped)
+            h[m++] = h[i];
+    return m;
 }
 
 static void trace_pixel(ref_worker *wk, int x, int y)
@@ -348,6 +379,8 @@ static void trace_pixel(ref_worker *wk, int x, int y)
     if (job->ambiguous && !save_centre_prims(wk, n, dir))
         wk->ray.oom = 1;
     key_hits(job, wk->ray.hits, n, x, y);
+    if (job->clip_count > 0)
+        n = drop_clipped(wk->ray.hits, n);
     if (n > 1)
         sort_key_prim(wk->ray.hits, n);
     float *px = job->out->rgba + ((size_t)y * w + x) * 4;
@@ -566,6 +599,8 @@ oit_status oit_reference_render(const oit_mesh *mesh, const oit_view *view,
     job.ties = desc ? desc->ties : NULL;
     job.saturation_epsilon = desc && desc->saturation_epsilon > 0.0f ? desc->saturation_epsilon : 0.0;
     oit_camera_view_matrix(&view->camera, job.view_matrix);
+    job.clip_count = view->clip.count;
+    oit_clip_eye(&view->clip, job.view_matrix, job.clip_eye);
     oit_view_ray_map(view, job.ray_map);
     oit_view_origin_map(view, job.org_map, &job.org_z);
     job.ambiguity_px = desc && desc->ambiguity_px > 0.0f ? desc->ambiguity_px : 1.0 / 64.0;

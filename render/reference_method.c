@@ -36,7 +36,7 @@ static const char *reference_renderer(const void *impl)
 
 const oit_method oit_method_reference = {
     .name = "reference",
-    .flags = OIT_METHOD_COUNTS | OIT_METHOD_AMBIGUITY,
+    .flags = OIT_METHOD_COUNTS | OIT_METHOD_AMBIGUITY | OIT_METHOD_CLIP,
     .create = reference_create,
     .render = reference_render,
     .destroy = free,

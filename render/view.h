@@ -22,6 +22,7 @@
 #include <stdint.h>
 
 #include "oit/mesh.h"
+#include "render/clip.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -93,6 +94,9 @@ typedef struct oit_view {
      * tie rule sees the world-space float vertices, as if pre-transformed;
      * the streamer culls and orders parts through it. */
     float model[16];
+    /* Section planes in world space (clip.h); count 0: none. A method
+     * without OIT_METHOD_CLIP refuses a view with planes (method.h). */
+    oit_clip clip;
 } oit_view;
 
 /* RGBA float image, row 0 at the top, values in [0,1] (alpha is 1 for a

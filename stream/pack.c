@@ -308,16 +308,31 @@ static void open_pack(oit_packer *pk, uint32_t pack, uint32_t first, uint32_t la
     }
 }
 
-/* Culls and projects order[0..n) into pk->kept, in order. */
-static uint32_t cull(oit_packer *pk, const oit_view *view, const uint32_t *order, uint32_t n)
+/* Culls and projects order[0..n) into pk->kept, in order; counts the
+ * boxes the section planes remove in out. */
+static uint32_t cull(oit_packer *pk, const oit_view *view, const uint32_t *order, uint32_t n,
+                     oit_packing *out)
 {
     box_projector pr;
     projector_init(&pr, view);
+    /* Part boxes are in model space, so the planes go there. */
+    double model[16], planes[OIT_CLIP_MAX][4];
+    oit_view_model(view, model);
+    oit_clip_model(&view->clip, model, planes);
     const oit_partfile_part *parts = oit_partfile_parts(pk->pf);
     uint32_t k = 0;
-    for (uint32_t i = 0; i < n; i++)
-        if (project_box(&parts[order[i]], &pr, pk->kept_rects[k], &pk->kept_near[k]))
-            pk->kept[k++] = order[i];
+    for (uint32_t i = 0; i < n; i++) {
+        const oit_partfile_part *p = &parts[order[i]];
+        if (!project_box(p, &pr, pk->kept_rects[k], &pk->kept_near[k]))
+            continue;
+        if (oit_clip_box_outside(view->clip.count, (const double(*)[4])planes, p->bounds_min,
+                                 p->bounds_max)) {
+            out->clipped++;
+            out->clipped_bytes += oit_pack_part_bytes(p);
+            continue;
+        }
+        pk->kept[k++] = order[i];
+    }
     return k;
 }
 
@@ -386,7 +401,7 @@ oit_status oit_packer_run(oit_packer *pk, const oit_view *view, const uint32_t *
     oit_status s = fit_tiles(pk, view, err);
     if (s != OIT_OK)
         return s;
-    uint32_t kept = cull(pk, view, order, n);
+    uint32_t kept = cull(pk, view, order, n, out);
     pk->drawn = pk->packs = 0;
     if (pk->schedule == OIT_SCHEDULE_WAVE) {
         oit_schedule_packer sp = {pk, wave_open, wave_join};
@@ -406,6 +421,6 @@ oit_status oit_packer_run(oit_packer *pk, const oit_view *view, const uint32_t *
     out->bytes = pk->bytes;
     out->layers = pk->layers;
     out->pack_count = pk->packs;
-    out->culled = n - kept;
+    out->culled = n - kept - out->clipped;
     return OIT_OK;
 }

@@ -17,7 +17,8 @@
  * are then cut from.
  * Rectangles are the projections of the parts' bounding boxes (a box that
  * reaches in front of the near plane covers the screen); a box wholly outside
- * the view volume yields no fragment and is culled. A pack is also cut where
+ * the view volume yields no fragment and is culled, and so is one wholly on
+ * the removed side of a section plane (oit_packing.clipped). A pack is also cut where
  * its expanded triangle data would exceed the upload budget.
  * Under the K-slot rules a wide part (layer bound above K, partition/kd.h)
  * is a pack of its own, captured with that many slots per pixel
@@ -63,7 +64,12 @@ typedef struct oit_packing {
     const uint64_t *bytes;      /* pack i's upload bytes */
     const uint32_t *layers;     /* pack i's fragments per pixel at most: K, or a wide part's */
     uint32_t pack_count;
-    uint32_t culled;
+    uint32_t culled;            /* boxes outside the view volume */
+    /* Boxes in the view volume but wholly on the removed side of a section
+     * plane (oit_view.clip, render/clip.h), and the upload bytes they
+     * would have taken: neither uploaded nor drawn. */
+    uint32_t clipped;
+    uint64_t clipped_bytes;
 } oit_packing;
 
 typedef struct oit_packer oit_packer;

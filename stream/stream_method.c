@@ -68,7 +68,7 @@ static const oit_stream_frame_stats *stream_figures(const void *impl)
 
 const oit_method oit_method_stream = {
     .name = "stream",
-    .flags = OIT_METHOD_GL | OIT_METHOD_PARTFILE | OIT_METHOD_EPSILON,
+    .flags = OIT_METHOD_GL | OIT_METHOD_PARTFILE | OIT_METHOD_EPSILON | OIT_METHOD_CLIP,
     .create = stream_create,
     .render = stream_render,
     .destroy = stream_destroy,

@@ -704,6 +704,8 @@ static void finish_stats(const oit_streamer *s, const oit_packing *pk, oit_frame
 {
     ss->parts_drawn = pk->part_count - ss->parts_skipped;
     ss->parts_culled += pk->culled;
+    ss->parts_clipped = pk->clipped;
+    ss->bytes_clipped = pk->clipped_bytes;
     ss->epsilon = s->epsilon;
     ss->draw_calls = oit_capture_draw_calls(s->capture);
     ss->cache_bytes = s->cache ? oit_residency_bytes(s->cache) : s->loaded_bytes;
@@ -748,6 +750,8 @@ void oit_stream_frame_stats_add(oit_stream_frame_stats *acc, const oit_stream_fr
     sum.packs += acc->packs;
     sum.parts_drawn += acc->parts_drawn;
     sum.parts_culled += acc->parts_culled;
+    sum.parts_clipped += acc->parts_clipped;
+    sum.bytes_clipped += acc->bytes_clipped;
     sum.parts_skipped += acc->parts_skipped;
     sum.bytes_uploaded += acc->bytes_uploaded;
     sum.cache_hits += acc->cache_hits;

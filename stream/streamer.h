@@ -77,6 +77,10 @@ typedef struct oit_stream_frame_stats {
     uint32_t packs;          /* captured (a pack whose parts were all skipped is not) */
     uint64_t parts_drawn;
     uint64_t parts_culled;   /* boxes outside the view volume: no fragment */
+    uint64_t parts_clipped;  /* boxes in the view volume wholly on the removed
+                                side of a section plane (render/clip.h):
+                                neither uploaded nor drawn */
+    uint64_t bytes_clipped;  /* the upload bytes those parts would take      */
     uint64_t parts_skipped;  /* epsilon > 0: footprint saturated (render/saturation.h),
                                 neither uploaded nor drawn */
     uint64_t bytes_uploaded; /* part bytes the CPU wrote into the upload ring,

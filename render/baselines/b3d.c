@@ -22,7 +22,7 @@ static const char *const buffer_names[BUF_N] = {"counts", "counters", "output"};
 
 static const char count_fs[] =
     "layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };\n"
-    "void main() { atomicAdd(counts[oit_pixel_index()], 1u); }\n";
+    "void main() { if (oit_clipped()) discard; atomicAdd(counts[oit_pixel_index()], 1u); }\n";
 
 /* One global atomic per group rather than per pixel. */
 static const char max_cs[] =
@@ -50,6 +50,7 @@ static const char store_fs[] =
     "layout(rgba32ui, binding = OIT_IMG_SLOTS) writeonly uniform uimage2DArray u_slots;\n"
     "layout(location = 10) uniform int u_k;\n"
     "void main() {\n"
+    "    if (oit_clipped()) discard;\n"
     "    uint s = atomicAdd(counts[oit_pixel_index()], 1u);\n"
     "    if (s < uint(u_k)) imageStore(u_slots, ivec3(ivec2(gl_FragCoord.xy), s), oit_fragment());\n"
     "}\n";

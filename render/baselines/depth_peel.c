@@ -33,6 +33,7 @@ static const char peel_fs[] =
     "uniform float u_depth_scale;\n"
     "layout(location = 0) out uvec4 o_frag;\n"
     "void main() {\n"
+    "    if (oit_clipped()) discard;\n"
     "    uvec4 f = oit_fragment();\n"
     "    uvec2 prev = texelFetch(u_prev, ivec2(gl_FragCoord.xy), 0).xy;\n"
     /* Keep only fragments after the previous layer in (key, prim) order. */

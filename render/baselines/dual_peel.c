@@ -38,6 +38,7 @@ static const char peel_fs[] =
     "uniform int u_init;\n"
     "layout(location = 0) out vec2 o_minmax;\n"
     "void main() {\n"
+    "    if (oit_clipped()) discard;\n"
     "    uvec4 f = oit_fragment();\n"
     "    float t = uintBitsToFloat(f.x);\n"
     "    ivec2 px = ivec2(gl_FragCoord.xy);\n"

@@ -72,6 +72,7 @@ static const char blend_fs[] =
     "uniform float u_threshold;\n"
     "layout(location = 0) out vec4 o_colour;\n"
     "void main() {\n"
+    "    if (oit_clipped()) discard;\n"
     "    if (texelFetch(u_seen, ivec2(gl_FragCoord.xy), 0).a < u_threshold) discard;\n"
     "    vec4 c = oit_premultiplied(oit_fragment());\n"
     "    o_colour = vec4(c.rgb, 1.0 - c.a);\n"

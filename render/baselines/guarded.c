@@ -35,6 +35,7 @@ static const char append_fs[] =
     "    return nearer(K, f) && imp * (1.0 - oit_premultiplied(K).a) < u_threshold;\n"
     "}\n"
     "void main() {\n"
+    "    if (oit_clipped()) discard;\n"
     "    uvec4 f = oit_fragment();\n"
     "    uint p = oit_pixel_index();\n"
     "    if (culled(f, p)) return;\n"

@@ -13,6 +13,7 @@ static const char append_fs[] =
     "buffer Stats { uint counter; uint max_len; uint total; };\n"
     "layout(location = 13) uniform uint u_capacity;\n"
     "void main() {\n"
+    "    if (oit_clipped()) discard;\n"
     "    uint n = atomicAdd(counter, 1u);\n"
     "    if (n >= u_capacity) return;\n"
     "    nodes[n] = oit_fragment();\n"

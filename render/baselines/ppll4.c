@@ -19,6 +19,7 @@ static const char append_fs[] =
     "layout(location = 13) uniform uint u_capacity;\n"
     "#define NO_PAGE 0x3fffffffu\n"
     "void main() {\n"
+    "    if (oit_clipped()) discard;\n"
     "    uint p = oit_pixel_index();\n"
     "    uint spare = NO_PAGE, w = heads[p], want;\n"
     "    for (;;) {\n"

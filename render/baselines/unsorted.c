@@ -15,7 +15,7 @@ struct oit_unsorted {
 
 static const char blend_fs[] =
     "layout(location = 0) out vec4 o_colour;\n"
-    "void main() { o_colour = oit_premultiplied(oit_fragment()); }\n";
+    "void main() { if (oit_clipped()) discard; o_colour = oit_premultiplied(oit_fragment()); }\n";
 
 static oit_status oit_unsorted_init(oit_unsorted *u, oit_error *err)
 {

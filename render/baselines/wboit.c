@@ -22,6 +22,7 @@ static const char accum_fs[] =
     "    return a * clamp(10.0 / (1e-5 + pow(t / 5.0, 2.0) + pow(t / 200.0, 6.0)), 1e-2, 3e3);\n"
     "}\n"
     "void main() {\n"
+    "    if (oit_clipped()) discard;\n"
     "    uvec4 f = oit_fragment();\n"
     "    vec4 c = oit_premultiplied(f);\n"
     "    o_accum = c * oit_weight(uintBitsToFloat(f.x), c.a);\n"

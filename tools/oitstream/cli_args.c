@@ -165,6 +165,11 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
         if (found < 0) *s = bad(err, opt, v, "auto, lowres, wboit, unsorted or off");
         else a->preview = found;
         a->have_preview = 1;
+    } else if (!strcmp(opt, "--clip")) {
+        int i = a->clip.count;
+        *s = oit_clip_add_text(&a->clip, v, NULL, opt, err);
+        if (*s == OIT_OK)
+            a->clip_text[i] = v;
     } else if (!strcmp(opt, "--still")) {
         if (oit_parse_int(v, 1, 60000, &a->still_ms))
             *s = bad(err, opt, v, "milliseconds, 1..60000");
@@ -382,6 +387,14 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "  --quiet             no per-frame lines\n"
         "  --up x|y|z          the model's up axis for the default views (default y;\n"
         "                      z for CAD models: seen from -y, x to the right)\n"
+        "  --clip nx,ny,nz,d   a section plane, in file coordinates: keeps what lies\n"
+        "                      where nx*x + ny*y + nz*z + d >= 0 and cuts the rest\n"
+        "                      away, exactly per pixel (a fragment is kept when its\n"
+        "                      point on its pixel's ray is kept); repeatable, up to 6\n"
+        "                      planes (what all of them keep); the normal must not be\n"
+        "                      0. Every method clips; stream neither uploads nor\n"
+        "                      draws parts wholly cut away (--stats: parts_clipped,\n"
+        "                      bytes_clipped)\n"
         "  --window            open an interactive window instead of writing images\n"
         "                      (--size is the window's). It renders only when the\n"
         "                      view or a setting changes: while the camera moves a\n"
@@ -394,7 +407,9 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "                      method this input or machine cannot run says why on\n"
         "                      screen), M/N next/previous method (all of them); L\n"
         "                      layer heat map, T transparent/translucent, E early\n"
-        "                      termination, U up axis y/z/x, R resets the view, O\n"
+        "                      termination, U up axis y/z/x, X section plane (one\n"
+        "                      through the centre facing you, or the planes off/on),\n"
+        "                      [ and ] move section plane 1, R resets the view, O\n"
         "                      opens another file (type its path, Enter; or drop a\n"
         "                      file on the window), P saves oitstream_NNN.png,\n"
         "                      Esc/Q quits\n"

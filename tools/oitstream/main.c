@@ -415,6 +415,7 @@ static oit_status render_one(run_ctx *rc, int index, int views, oit_stats_frame 
     oit_image_free(&img);
     fr->method = rc->method->name;
     oit_stats_format_view(&rc->view.camera, rc->origin, fr->view, sizeof fr->view);
+    oit_stats_format_clip(&rc->view.clip, rc->origin, fr->clip, sizeof fr->clip);
     if (s == OIT_OK && oit_method_stream_stats(rc->state)) {
         fr->has_stream = 1;
         fr->stream = *oit_method_stream_stats(rc->state);
@@ -425,13 +426,16 @@ static oit_status render_one(run_ctx *rc, int index, int views, oit_stats_frame 
                (unsigned long long)fr->st.fragments, fr->st.max_layers,
                (unsigned long long)fr->st.overflow_pixels);
     if (s == OIT_OK && !rc->args->quiet && fr->has_stream)
-        printf("frame %d: %.2f ms (order %.1f, pack %.1f), %u packs, %llu parts (%llu culled), "
+        printf("frame %d: %.2f ms (order %.1f, pack %.1f), %u packs, %llu parts (%llu culled, "
+               "%llu clipped: %.2f MiB not uploaded), "
                "%llu draw calls, %.2f MiB uploaded, %llu from the cache (%.2f MiB resident), "
                "%llu overflow pixels, %llu second-pass pixels in %u packs, "
                "%.1f MiB GPU at peak\n",
                index, fr->st.ms, fr->stream.order_ms, fr->stream.pack_ms, fr->stream.packs,
                (unsigned long long)fr->stream.parts_drawn,
                (unsigned long long)fr->stream.parts_culled,
+               (unsigned long long)fr->stream.parts_clipped,
+               (double)fr->stream.bytes_clipped / 1048576.0,
                (unsigned long long)fr->stream.draw_calls,
                (double)fr->stream.bytes_uploaded / 1048576.0,
                (unsigned long long)fr->stream.cache_hits,
@@ -568,7 +572,7 @@ static oit_status run_window(const run_ctx *rc, const oit_mesh *mesh, oit_partfi
         .mesh = mesh, .partfile = pf, .options = *opt, .method = rc->method->name,
         .width = a->width, .height = a->height, .camera = *cam,
         .azimuth = a->azimuth, .elevation = a->elevation, .up_axis = a->up_axis,
-        .shading = rc->view.shading, .show_layers = a->show_layers, .overlay = !a->no_overlay,
+        .shading = rc->view.shading, .clip = rc->view.clip, .show_layers = a->show_layers, .overlay = !a->no_overlay,
         .frames = a->window_frames, .script = a->window_script,
         .screenshot = a->window_screenshot, .preview = (oit_viewer_preview)a->preview,
         .still_ms = a->still_ms, .stats_path = a->stats_path, .model_path = a->model,
@@ -609,7 +613,10 @@ static int run_render(const oit_stream_args *args)
     rc.view.height = a->height;
     rc.origin = mesh.info.origin;
     rc.view.shading = make_shading(a, &mesh.info);
-    s = make_views(a, &mesh.info, &cams, &n, &err);
+    for (int i = 0; i < a->clip.count && s == OIT_OK; i++)
+        s = oit_clip_add_text(&rc.view.clip, a->clip_text[i], mesh.info.origin, "--clip", &err);
+    if (s == OIT_OK)
+        s = make_views(a, &mesh.info, &cams, &n, &err);
     /* One frame has no next frame to keep parts for: the default cache
      * would only hold a second copy of what the ring uploaded (on the 2M
      * plant at 1024x1024, 104 of its 240 MB GPU peak). */

@@ -29,6 +29,21 @@ void oit_stats_format_view(const oit_camera *c, const double origin[3], char *bu
         snprintf(buf + n, cap - n, ":far=inf");
 }
 
+void oit_stats_format_clip(const oit_clip *clip, const double origin[3], char *buf, size_t cap)
+{
+    size_t n = 0;
+    buf[0] = '\0';
+    for (int i = 0; i < clip->count && n < cap; i++) {
+        const float *p = clip->plane[i];
+        /* Positions are relative to origin (oit_clip_add_text). */
+        double d = p[3];
+        if (origin)
+            d -= p[0] * origin[0] + p[1] * origin[1] + p[2] * origin[2];
+        n += (size_t)snprintf(buf + n, cap - n, "%s%.9g,%.9g,%.9g,%.17g", i ? ";" : "", p[0],
+                              p[1], p[2], d);
+    }
+}
+
 static void put_frame(oit_json *w, const oit_stats_frame *fr)
 {
     const oit_frame_stats *s = &fr->st;
@@ -36,6 +51,8 @@ static void put_frame(oit_json *w, const oit_stats_frame *fr)
     oit_json_begin_object(w, NULL, OIT_JSON_INLINE);
     oit_json_string(w, "method", fr->method ? fr->method : "");
     oit_json_string(w, "view", fr->view);
+    if (fr->clip[0])
+        oit_json_string(w, "clip", fr->clip);
     const oit_json_uint_member frame[] = {
         {"fragments", s->fragments}, {"max_layers", s->max_layers},
         {"overflow_pixels", s->overflow_pixels}, {"gpu_bytes_peak", s->gpu_bytes_peak},
@@ -44,7 +61,8 @@ static void put_frame(oit_json *w, const oit_stats_frame *fr)
         {"fragments_saturated", s->fragments_saturated}};
     const oit_json_uint_member parts[] = {
         {"packs", t->packs}, {"parts_drawn", t->parts_drawn}, {"parts_culled", t->parts_culled},
-        {"parts_skipped", t->parts_skipped}, {"bytes_uploaded", t->bytes_uploaded},
+        {"parts_skipped", t->parts_skipped}, {"parts_clipped", t->parts_clipped},
+        {"bytes_clipped", t->bytes_clipped}, {"bytes_uploaded", t->bytes_uploaded},
         {"cache_hits", t->cache_hits}, {"cache_bytes", t->cache_bytes}};
     oit_json_fixed(w, "ms", isfinite(s->ms) ? s->ms : -1.0, 3);
     OIT_JSON_UINTS(w, frame);

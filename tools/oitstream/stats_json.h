@@ -11,6 +11,7 @@
 typedef struct oit_stats_frame {
     const char *method;
     char view[512]; /* the camera as --view accepts it (with znear,zfar) */
+    char clip[512]; /* the section planes as --clip takes them, ';' between; "" none */
     oit_frame_stats st;
     int has_stream;               /* the part-file streamer's figures follow */
     oit_stream_frame_stats stream;
@@ -27,6 +28,9 @@ typedef struct oit_stats_run {
 
 /* The camera in --view syntax, round-trippable (%.9g). */
 void oit_stats_format_view(const oit_camera *cam, const double origin[3], char *buf, size_t cap);
+
+/* The section planes in --clip syntax (file coordinates), ';' between. */
+void oit_stats_format_clip(const oit_clip *clip, const double origin[3], char *buf, size_t cap);
 
 oit_status oit_stats_json_write(const char *path, const oit_stats_run *run, oit_error *err);
 

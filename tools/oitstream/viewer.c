@@ -19,6 +19,7 @@
 #include "render/gl_util.h"
 #include "render/image.h"
 #include "tools/oitstream/stats_json.h"
+#include "tools/oitstream/viewer_clip.h"
 #include "plot/text_overlay.h"
 #include "stream/stream_method.h"
 
@@ -52,6 +53,7 @@ typedef struct viewer {
     char model_name[512];
     oit_view view;
     oit_camera home; /* R's */
+    oit_viewer_clip clip; /* section planes: X, [ and ] (viewer_clip.h) */
     int up_axis;
     float centre[3], radius; /* bounding sphere, for the clip planes */
     int show_layers, quit, drag;
@@ -248,6 +250,8 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
         push_key(v, (char)key); /* GLFW's codes for these are their ASCII capitals/digits */
     else if (key == GLFW_KEY_SPACE)
         push_key(v, ' ');
+    else if (key == GLFW_KEY_LEFT_BRACKET || key == GLFW_KEY_RIGHT_BRACKET)
+        push_key(v, (char)key); /* '[' and ']' in ASCII */
     else if (key == GLFW_KEY_ESCAPE)
         push_key(v, KEY_ESC);
 }
@@ -592,11 +596,18 @@ static void handle_key(viewer *v, char key)
     case 'E':
         toggle_epsilon(v);
         break;
-    default:
-        if (key >= '0' && key <= '9')
+    default: {
+        char note[200];
+        if (oit_viewer_clip_key(&v->clip, key, &v->view.camera, v->centre, v->radius, note,
+                                sizeof note)) {
+            v->view.clip = oit_viewer_clip_shown(&v->clip);
+            v->changed = 1;
+            say(v, "%s", note);
+        } else if (key >= '0' && key <= '9')
             key_method(v, key == '0' ? 9 : key - '1');
         else
             say(v, "key %c does nothing (H lists the keys)", key);
+    }
     }
 }
 
@@ -671,6 +682,8 @@ static void status_fields(viewer *v, fields *f)
     }
     if (v->show_layers && (m->flags & OIT_METHOD_COUNTS))
         field(f, "heat map");
+    if (v->view.clip.count > 0)
+        field(f, "section planes %d", v->view.clip.count);
     field(f, "%c up", axis_name[v->up_axis]);
     field(f, "H help");
     size_t used = 0;
@@ -778,6 +791,9 @@ static void help_panel(const viewer *v, panel *p)
     panel_add(p, kWhite, "T               transparent / translucent");
     panel_add(p, kWhite, "E               early termination (stream)");
     panel_add(p, kWhite, "U               up axis y, z, x (now %c)", axis_name[v->up_axis]);
+    panel_add(p, kWhite, "X               section plane: one through the centre facing");
+    panel_add(p, kWhite, "                you, or the planes off / on");
+    panel_add(p, kWhite, "[, ]            move section plane 1 back, forward");
     panel_add(p, kWhite, "R               reset the camera");
     panel_add(p, kWhite, "O               open a file: type its path, Enter");
     panel_add(p, kWhite, "                (or drop a file on the window)");
@@ -1180,6 +1196,8 @@ static oit_status open_viewer(viewer *v, oit_error *err)
     v->view.camera = d->camera;
     v->home = d->camera;
     v->view.shading = d->shading;
+    v->clip.planes = d->clip;
+    v->view.clip = d->clip;
     v->show_layers = d->show_layers;
     list_methods(v);
     int first = -1;

@@ -16,7 +16,9 @@
  * or this machine cannot run says why on screen) and M/N cycle through all
  * of them; L toggles the layer heat map; T transparent/translucent; E early
  * termination (where the method has it); U cycles the up axis (y, z, x) and
- * frames the model for it; R resets the camera; O opens another file (type
+ * frames the model for it; X makes a section plane through the model's
+ * centre facing the viewer, or turns the planes off and on, and [ and ]
+ * move the first plane along its normal (viewer_clip.h); R resets the camera; O opens another file (type
  * its path, Enter loads, Esc cancels; a file dropped on the window opens
  * too); H or ? toggles the help overlay; P saves a screenshot; Esc or Q
  * quits.
@@ -64,6 +66,7 @@ typedef struct oit_viewer_desc {
     float azimuth, elevation;     /* the default view's, for U and O         */
     int up_axis;                  /* 0 x, 1 y, 2 z                           */
     oit_shading shading;
+    oit_clip clip;                /* section planes (--clip); X, [ and ] change them */
     int show_layers;              /* start with the heat map                 */
     int overlay;                  /* draw the status line into the image     */
     int frames;                   /* > 0: stop after that many frames        */

@@ -1,0 +1,27 @@
+/* The viewer's section-plane keys (viewer.h; planes: render/clip.h).
+ *   X  no plane yet: one through the model's centre, facing the viewer
+ *      (the near half is cut away); else the planes off, and on again
+ *   ]  the first plane moves along its normal, cutting more away
+ *   [  the first plane moves back
+ * Each step is 1/25 of the model's bounding radius. */
+#ifndef OIT_OITSTREAM_VIEWER_CLIP_H
+#define OIT_OITSTREAM_VIEWER_CLIP_H
+
+#include <stddef.h>
+
+#include "render/view.h"
+
+typedef struct oit_viewer_clip {
+    oit_clip planes; /* as set (--clip, X, [ and ]) */
+    int off;         /* X turned them off */
+} oit_viewer_clip;
+
+/* Applies key; returns 1 when it was a plane key (note then says what it
+ * did, for the status message), 0 otherwise. */
+int oit_viewer_clip_key(oit_viewer_clip *c, char key, const oit_camera *cam,
+                        const float centre[3], float radius, char *note, size_t cap);
+
+/* The planes a frame renders with. */
+oit_clip oit_viewer_clip_shown(const oit_viewer_clip *c);
+
+#endif
