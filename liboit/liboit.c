@@ -623,6 +623,19 @@ static oit_status model_from_frame(const float *m, oit_view *v, oit_error *err)
     return OIT_OK;
 }
 
+/* oit_frame.clip: checked once, by its owner (render/clip.h). */
+_Static_assert(OIT_FRAME_CLIP_MAX == OIT_CLIP_MAX, "oit_frame.clip holds OIT_CLIP_MAX planes");
+static oit_status clip_from_frame(const oit_frame *f, oit_view *v, oit_error *err)
+{
+    v->clip.count = f->clip_count > OIT_CLIP_MAX ? OIT_CLIP_MAX + 1 : (int)f->clip_count;
+    for (int i = 0; i < OIT_CLIP_MAX && i < v->clip.count; i++)
+        memcpy(v->clip.plane[i], f->clip[i], sizeof v->clip.plane[i]);
+    if (f->clip_count > OIT_CLIP_MAX)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_frame.clip_count = %u: at most %d "
+                             "planes", f->clip_count, OIT_CLIP_MAX);
+    return oit_clip_check(&v->clip, "oit_frame.clip", err);
+}
+
 static oit_status frame_view(const oit_renderer *r, const oit_scene *scene,
                              const oit_frame *f, oit_view *v, oit_error *err)
 {
@@ -639,6 +652,8 @@ static oit_status frame_view(const oit_renderer *r, const oit_scene *scene,
                                     err);
     if (st == OIT_OK)
         st = model_from_frame(f->model, v, err);
+    if (st == OIT_OK)
+        st = clip_from_frame(f, v, err);
     return st;
 }
 
@@ -801,7 +816,9 @@ oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame 
                                   .gpu_bytes_peak = ss.gpu_bytes_peak,
                                   .cache_hits = ss.cache_hits,
                                   .cache_bytes = ss.cache_bytes,
-                                  .draw_calls = ss.draw_calls};
+                                  .draw_calls = ss.draw_calls,
+                                  .parts_clipped = ss.parts_clipped,
+                                  .bytes_clipped = ss.bytes_clipped};
     }
     return OIT_OK;
 }

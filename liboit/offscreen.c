@@ -126,6 +126,8 @@ static oit_status make_frame(const oit_scene *scene, const oit_offscreen_view *v
 {
     f->viewport_width = v->width;
     f->viewport_height = v->height;
+    f->clip_count = v->clip_count;
+    memcpy(f->clip, v->clip, sizeof f->clip);
     if (v->use_matrices) {
         memcpy(f->view, v->view, sizeof f->view);
         memcpy(f->projection, v->projection, sizeof f->projection);

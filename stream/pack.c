@@ -328,7 +328,7 @@ static uint32_t cull(oit_packer *pk, const oit_view *view, const uint32_t *order
         if (oit_clip_box_outside(view->clip.count, (const double(*)[4])planes, p->bounds_min,
                                  p->bounds_max)) {
             out->clipped++;
-            out->clipped_bytes += oit_pack_part_bytes(p);
+            out->clipped_bytes += oit_part_sourced_bytes(p->index_count / 3);
             continue;
         }
         pk->kept[k++] = order[i];

@@ -66,8 +66,9 @@ typedef struct oit_packing {
     uint32_t pack_count;
     uint32_t culled;            /* boxes outside the view volume */
     /* Boxes in the view volume but wholly on the removed side of a section
-     * plane (oit_view.clip, render/clip.h), and the upload bytes they
-     * would have taken: neither uploaded nor drawn. */
+     * plane (oit_view.clip, render/clip.h), and the bytes they would have
+     * written into the upload ring (as bytes_uploaded counts them, without
+     * the ring's alignment): neither uploaded nor drawn. */
     uint32_t clipped;
     uint64_t clipped_bytes;
 } oit_packing;

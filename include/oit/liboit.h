@@ -307,7 +307,21 @@ typedef struct oit_frame {
      * beforehand (in float), and the streamer culls and orders parts
      * through it; anything else is OIT_ERR_UNSUPPORTED. */
     float model[16];
+    /* Section planes, 0..OIT_FRAME_CLIP_MAX (0, default: none). Plane i,
+     * clip[i] = (a, b, c, d) in world space (the space view maps to eye
+     * space: the scene's coordinates, relative to oit_scene_info.origin,
+     * after model), KEEPS the points where a x + b y + c z + d >= 0; a
+     * fragment is drawn only when every plane keeps the point where its
+     * pixel centre's ray meets its triangle (exact per pixel, as oitstream
+     * --clip). A part file's parts wholly cut away are neither read,
+     * uploaded nor drawn (oit_draw_stats.parts_clipped). A count above
+     * OIT_FRAME_CLIP_MAX, a number that is not finite or a zero normal
+     * (a, b, c) is OIT_ERR_ARGUMENT. */
+    uint32_t clip_count;
+    float clip[6][4];
 } oit_frame;
+
+#define OIT_FRAME_CLIP_MAX 6
 
 typedef struct oit_draw_stats {
     double ms;               /* wall time of the call; the capture is finished
@@ -328,6 +342,9 @@ typedef struct oit_draw_stats {
     uint64_t cache_bytes;    /* bytes resident in the cache after the call     */
     uint64_t draw_calls;     /* GL geometry draws; a pack's parts go in one
                                 multi-draw per run from the ring or the cache */
+    uint64_t parts_clipped;  /* parts in view wholly cut away by
+                                oit_frame.clip: neither uploaded nor drawn    */
+    uint64_t bytes_clipped;  /* the upload bytes of those parts              */
 } oit_draw_stats;
 
 /* Draws scene as seen through frame into frame->framebuffer (see Result

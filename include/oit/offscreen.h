@@ -80,6 +80,10 @@ typedef struct oit_offscreen_view {
      * white, the tools' background. A negative component stands for 0, so
      * {-1, -1, -1, -1} is transparent black. */
     float background[4];
+    /* Section planes in the scene's coordinates, as oit_frame.clip_count
+     * and oit_frame.clip take them (liboit.h); 0: none. */
+    uint32_t clip_count;
+    float clip[6][4];
 } oit_offscreen_view;
 
 /* Renders scene into pixels: width * height pixels of 4 components (format),

@@ -218,13 +218,17 @@ class Renderer(_Closable):
     def gl_renderer(self):
         return L.lib().oit_offscreen_gl_renderer(self._h).decode()
 
-    def render(self, scene, size=(512, 512), view=None, dtype=np.uint8, background=None):
+    def render(self, scene, size=(512, 512), view=None, dtype=np.uint8, background=None,
+               clip=None):
         """The image of scene (a Scene) as a (height, width, 4) array, uint8
         or float32 (dtype). view: None (the tools' default view of the
         scene's bounds), a dict with eye, target and optional up, fovy,
         znear, zfar (the scene's coordinates), or a dict with view and
         projection 4x4 matrices as numpy writes them (v' = M @ v).
-        background: RGBA, default opaque white."""
+        background: RGBA, default opaque white. clip: section planes, a
+        list of up to 6 (nx, ny, nz, d) in the scene's coordinates, each
+        keeping what lies where nx*x + ny*y + nz*z + d >= 0 (oitstream
+        --clip; liboit checks them: oit_frame.clip)."""
         w, h = (int(size[0]), int(size[1]))
         v = L.OffscreenView()
         v.width, v.height = w, h
@@ -236,6 +240,7 @@ class Renderer(_Closable):
         else:
             raise ValueError(f"dtype: {dtype}, expected uint8 or float32")
         _set_view(v, view)
+        _set_clip(v, clip)
         if background is not None:
             bg = [float(c) for c in background]
             if len(bg) == 3:
@@ -291,6 +296,20 @@ def _set_view(v, view):
     v.zfar = float(view.get("zfar", 0.0))
 
 
+def _set_clip(v, clip):
+    if clip is None:
+        return
+    planes = [[float(c) for c in plane] for plane in clip]
+    for i, plane in enumerate(planes):
+        if len(plane) != 4:
+            raise ValueError(f"clip[{i}]: {len(plane)} numbers, expected 4 (nx, ny, nz, d)")
+    # The count goes as given, so that liboit, which owns the check, says
+    # when there are too many.
+    v.clip_count = len(planes)
+    for i, plane in enumerate(planes[:len(v.clip)]):
+        v.clip[i][:] = plane
+
+
 _renderers = {}
 
 
@@ -305,24 +324,26 @@ def _default_renderer(shading, colour_space="srgb"):
 
 
 def render(model_path, size=(512, 512), view=None, dtype=np.uint8, background=None,
-           shading="transparent", colour_space="srgb"):
+           shading="transparent", colour_space="srgb", clip=None):
     """Renders a mesh file (in core) or part file (streamed) into a
-    (height, width, 4) array; see Renderer.render for view and background,
-    Renderer for colour_space."""
+    (height, width, 4) array; see Renderer.render for view, background and
+    clip (section planes), Renderer for colour_space."""
     r = _default_renderer(shading, colour_space)
     with Scene.open(model_path) as s:
-        return r.render(s, size=size, view=view, dtype=dtype, background=background)
+        return r.render(s, size=size, view=view, dtype=dtype, background=background,
+                        clip=clip)
 
 
 def render_arrays(positions, indices=None, colors=None, size=(512, 512), view=None,
                   dtype=np.uint8, background=None, shading="transparent", color_rate="auto",
-                  colour_space="srgb"):
+                  colour_space="srgb", clip=None):
     """Renders triangles from arrays (see Scene.from_arrays) into a
-    (height, width, 4) array; see Renderer.render for view and background,
-    Renderer for colour_space."""
+    (height, width, 4) array; see Renderer.render for view, background and
+    clip, Renderer for colour_space."""
     r = _default_renderer(shading, colour_space)
     with Scene.from_arrays(positions, indices, colors, color_rate=color_rate) as s:
-        return r.render(s, size=size, view=view, dtype=dtype, background=background)
+        return r.render(s, size=size, view=view, dtype=dtype, background=background,
+                        clip=clip)
 
 
 def prep_tool():

@@ -64,7 +64,8 @@ class OffscreenView(ctypes.Structure):
                 ("eye", ctypes.c_float * 3), ("target", ctypes.c_float * 3),
                 ("up", ctypes.c_float * 3), ("fovy_deg", ctypes.c_float),
                 ("znear", ctypes.c_float), ("zfar", ctypes.c_float),
-                ("background", ctypes.c_float * 4)]
+                ("background", ctypes.c_float * 4),
+                ("clip_count", ctypes.c_uint32), ("clip", (ctypes.c_float * 4) * 6)]
 
 
 class DrawStats(ctypes.Structure):
@@ -74,7 +75,8 @@ class DrawStats(ctypes.Structure):
                 ("parts_culled", ctypes.c_uint64), ("parts_skipped", ctypes.c_uint64),
                 ("bytes_uploaded", ctypes.c_uint64), ("gpu_bytes_peak", ctypes.c_uint64),
                 ("cache_hits", ctypes.c_uint64), ("cache_bytes", ctypes.c_uint64),
-                ("draw_calls", ctypes.c_uint64)]
+                ("draw_calls", ctypes.c_uint64), ("parts_clipped", ctypes.c_uint64),
+                ("bytes_clipped", ctypes.c_uint64)]
 
 
 # enum values of the headers

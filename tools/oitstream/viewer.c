@@ -598,10 +598,13 @@ static void handle_key(viewer *v, char key)
         break;
     default: {
         char note[200];
-        if (oit_viewer_clip_key(&v->clip, key, &v->view.camera, v->centre, v->radius, note,
-                                sizeof note)) {
+        int plane = oit_viewer_clip_key(&v->clip, key, &v->view.camera, v->centre, v->radius,
+                                        note, sizeof note);
+        if (plane > 0) { /* the status line counts the planes; the plane goes to stdout */
             v->view.clip = oit_viewer_clip_shown(&v->clip);
             v->changed = 1;
+            printf("viewer: %s\n", note);
+        } else if (plane < 0) {
             say(v, "%s", note);
         } else if (key >= '0' && key <= '9')
             key_method(v, key == '0' ? 9 : key - '1');

@@ -40,7 +40,7 @@ int oit_viewer_clip_key(oit_viewer_clip *c, char key, const oit_camera *cam,
     } else if (key == '[' || key == ']') {
         if (c->planes.count == 0) {
             snprintf(note, cap, "no section plane to move: X makes one");
-            return 1;
+            return -1;
         }
         double n = sqrt((double)p[0] * p[0] + (double)p[1] * p[1] + (double)p[2] * p[2]);
         double step = radius / STEPS_PER_RADIUS * n;
@@ -52,7 +52,7 @@ int oit_viewer_clip_key(oit_viewer_clip *c, char key, const oit_camera *cam,
     if (c->off)
         snprintf(note, cap, "section planes off (X turns them on)");
     else
-        snprintf(note, cap, "section plane 1 of %d: %.4g,%.4g,%.4g,%.4g keeps ax+by+cz+d >= 0",
+        snprintf(note, cap, "section plane 1 of %d: %.9g,%.9g,%.9g,%.9g keeps ax+by+cz+d >= 0",
                  c->planes.count, p[0], p[1], p[2], p[3]);
     return 1;
 }

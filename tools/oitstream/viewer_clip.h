@@ -16,8 +16,9 @@ typedef struct oit_viewer_clip {
     int off;         /* X turned them off */
 } oit_viewer_clip;
 
-/* Applies key; returns 1 when it was a plane key (note then says what it
- * did, for the status message), 0 otherwise. */
+/* Applies key: returns 1 when it changed the planes (note says how, for
+ * stdout), -1 when it was a plane key that could do nothing (note says
+ * why, for the screen), 0 for any other key. */
 int oit_viewer_clip_key(oit_viewer_clip *c, char key, const oit_camera *cam,
                         const float centre[3], float radius, char *note, size_t cap);
 
