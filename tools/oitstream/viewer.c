@@ -599,7 +599,7 @@ static void handle_key(viewer *v, char key)
     default: {
         char note[200];
         int plane = oit_viewer_clip_key(&v->clip, key, &v->view.camera, v->centre, v->radius,
-                                        note, sizeof note);
+                                        v->mesh->info.origin, note, sizeof note);
         if (plane > 0) { /* the status line counts the planes; the plane goes to stdout */
             v->view.clip = oit_viewer_clip_shown(&v->clip);
             v->changed = 1;

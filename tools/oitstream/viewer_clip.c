@@ -29,7 +29,8 @@ static void make_facing(oit_viewer_clip *c, const oit_camera *cam, const float c
 }
 
 int oit_viewer_clip_key(oit_viewer_clip *c, char key, const oit_camera *cam,
-                        const float centre[3], float radius, char *note, size_t cap)
+                        const float centre[3], float radius, const double origin[3],
+                        char *note, size_t cap)
 {
     float *p = c->planes.plane[0];
     if (key == 'X') {
@@ -49,11 +50,12 @@ int oit_viewer_clip_key(oit_viewer_clip *c, char key, const oit_camera *cam,
     } else {
         return 0;
     }
+    double d = p[3] - (p[0] * origin[0] + p[1] * origin[1] + p[2] * origin[2]);
     if (c->off)
         snprintf(note, cap, "section planes off (X turns them on)");
     else
-        snprintf(note, cap, "section plane 1 of %d: %.9g,%.9g,%.9g,%.9g keeps ax+by+cz+d >= 0",
-                 c->planes.count, p[0], p[1], p[2], p[3]);
+        snprintf(note, cap, "section plane 1 of %d: %.9g,%.9g,%.9g,%.17g keeps ax+by+cz+d >= 0",
+                 c->planes.count, p[0], p[1], p[2], d);
     return 1;
 }
 
