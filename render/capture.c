@@ -859,12 +859,10 @@ static void fill_stats(const oit_capture *c, const GLuint totals[4], oit_frame_s
                                                : c->backend);
     stats->capture_k = (uint32_t)c->K;
     /* how its K-slot fills were made (the counted capture has none) */
-    stats->capture_slots = c->routed ? "stencil"
-                           : c->backend == OIT_CAPTURE_COUNTED ||
-                                     (c->backend == OIT_CAPTURE_FIRSTK && c->firstk_off)
-                               ? NULL
-                               : "array";
-    stats->capture_slots_k = c->routed ? (uint32_t)c->stencil.K : 0;
+    int none = c->backend == OIT_CAPTURE_COUNTED ||
+               (c->backend == OIT_CAPTURE_FIRSTK && c->firstk_off);
+    stats->capture_slots = none ? NULL : c->routed ? "stencil" : "array";
+    stats->capture_slots_k = !none && c->routed ? (uint32_t)c->stencil.K : 0;
 }
 
 oit_status oit_capture_end(oit_capture *c, oit_image *out, oit_frame_stats *stats,
