@@ -809,7 +809,9 @@ oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame 
                                   .draw_calls = ss.draw_calls,
                                   .capture_slots = fs.capture_slots,
                                   .capture_slots_k = fs.capture_slots_k,
-                                  .capture_fallback = ss.capture_fallback};
+                                  .capture_fallback =
+                                      r->streamer ? oit_streamer_capture_choice(r->streamer)->reason
+                                                  : NULL};
     }
     return OIT_OK;
 }

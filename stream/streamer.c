@@ -304,6 +304,11 @@ static oit_status create_upload(oit_streamer *s, const oit_streamer_desc *desc, 
     return st;
 }
 
+const oit_capture_choice *oit_streamer_capture_choice(const oit_streamer *s)
+{
+    return &s->choice;
+}
+
 /* A routed capture at stencil_k samples, kept once its self-test passes. */
 typedef struct routed_try {
     oit_capture_kind kind;
@@ -746,7 +751,7 @@ static void finish_stats(const oit_streamer *s, const oit_packing *pk, oit_frame
     ss->epsilon = s->epsilon;
     ss->capture_asked = s->choice.asked == OIT_CAPTURE_AUTO ? "auto"
                                                              : oit_capture_kind_name(s->choice.asked);
-    ss->capture_fallback = s->choice.reason;
+    memcpy(ss->capture_fallback, s->choice.reason, sizeof ss->capture_fallback);
     ss->draw_calls = oit_capture_draw_calls(s->capture);
     ss->cache_bytes = s->cache ? oit_residency_bytes(s->cache) : s->loaded_bytes;
     ss->gpu_bytes_peak = fs->gpu_bytes_peak + oit_upload_gpu_bytes(s->upload) +

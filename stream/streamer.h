@@ -109,10 +109,10 @@ typedef struct oit_stream_frame_stats {
                                 termination with counted or first-K packs */
     /* --capture as asked ("auto", "stencil", "array") and, where auto took
      * array slots or fewer samples than K, the self-test's reason ("" where
-     * it did not); owned by the streamer. What ran: oit_frame_stats's
-     * capture_slots. */
+     * it did not), copied: the figures outlive the streamer. What ran:
+     * oit_frame_stats's capture_slots. */
     const char *capture_asked;
-    const char *capture_fallback;
+    char capture_fallback[sizeof(((oit_capture_choice *)0)->reason)];
 } oit_stream_frame_stats;
 
 typedef struct oit_streamer oit_streamer;
@@ -122,6 +122,8 @@ typedef struct oit_streamer oit_streamer;
 oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
                                oit_streamer **out, oit_error *err);
 void oit_streamer_destroy(oit_streamer *s);
+/* What --capture chose at creation (its reason string lives as long as s). */
+const oit_capture_choice *oit_streamer_capture_choice(const oit_streamer *s);
 
 /* The caller's opaque depth for the next frames (oit_capture_set_opaque);
  * NULL: none. */

@@ -66,7 +66,7 @@ static void put_frame(oit_json *w, const oit_stats_frame *fr)
         oit_json_int(w, "front_first", t->front_first);
         if (t->capture_asked) {
             oit_json_string(w, "capture_asked", t->capture_asked);
-            oit_json_string(w, "capture_fallback", t->capture_fallback ? t->capture_fallback : "");
+            oit_json_string(w, "capture_fallback", t->capture_fallback);
         }
     }
     oit_json_end(w);
