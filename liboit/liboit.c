@@ -489,7 +489,12 @@ static oit_status bind_scene(oit_renderer *r, oit_scene *scene, oit_error *err)
     /* A file cut for more than the K-slot capture holds streams its parts as
      * wider than K, captured alone over tiles, as oitstream does. */
     sd.K = r->desc.K ? (int)r->desc.K : scene->info.K < 16 ? (int)scene->info.K : 16;
-    sd.capture = OIT_CAPTURE_AUTO;
+    /* the streamer checks the value (capture_choice.h) */
+    _Static_assert((int)OIT_RENDER_CAPTURE_ARRAY == (int)OIT_CAPTURE_ARRAY &&
+                       (int)OIT_RENDER_CAPTURE_STENCIL == (int)OIT_CAPTURE_STENCIL &&
+                       (int)OIT_RENDER_CAPTURE_AUTO == (int)OIT_CAPTURE_AUTO,
+                   "liboit's capture values are the streamer's");
+    sd.capture = (oit_capture_kind)r->desc.capture;
     sd.pack = r->desc.pack == OIT_RENDER_PACK_FIRSTK    ? OIT_PACK_FIRSTK
               : r->desc.pack == OIT_RENDER_PACK_DISJOINT  ? OIT_PACK_DISJOINT
               : r->desc.pack == OIT_RENDER_PACK_BUDGET  ? OIT_PACK_BUDGET
@@ -818,7 +823,12 @@ oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame 
                                   .cache_bytes = ss.cache_bytes,
                                   .draw_calls = ss.draw_calls,
                                   .parts_clipped = ss.parts_clipped,
-                                  .bytes_clipped = ss.bytes_clipped};
+                                  .bytes_clipped = ss.bytes_clipped,
+                                  .capture_slots = fs.capture_slots,
+                                  .capture_slots_k = fs.capture_slots_k,
+                                  .capture_fallback =
+                                      r->streamer ? oit_streamer_capture_choice(r->streamer)->reason
+                                                  : NULL};
     }
     return OIT_OK;
 }

@@ -76,4 +76,8 @@ void oit_frame_stats_add(oit_frame_stats *acc, const oit_frame_stats *band)
     acc->second_pass_pixels += band->second_pass_pixels;
     acc->second_pass_packs += band->second_pass_packs;
     acc->fragments_saturated += band->fragments_saturated;
+    if (band->capture_slots) {
+        acc->capture_slots = band->capture_slots;
+        acc->capture_slots_k = band->capture_slots_k;
+    }
 }

@@ -16,6 +16,7 @@
 #include "render/image.h"
 #include "render/rect.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -25,6 +26,10 @@ enum { PROG_FILL, PROG_RESOLVE, PROG_END, PROG_N };
 struct oit_capture {
     oit_capture_kind backend;
     int K;
+    /* the K-slot fills go through the stencil target: STENCIL's batches,
+     * or FIRSTK's first passes (oit_capture_create_routed) */
+    int routed;
+    unsigned faults;
     float epsilon; /* early termination threshold; 0: exact */
     float applied; /* what the programs test now: epsilon, or 0 (gate_epsilon) */
     int touched[4]; /* GL box of the frame's batches so far; empty: x0 >= x1 */
@@ -66,10 +71,14 @@ static int uses_counted(const oit_capture *c)
 static oit_status build_programs(oit_capture *c, oit_error *err)
 {
     int stencil = c->backend == OIT_CAPTURE_STENCIL;
+    char defines[96];
+    snprintf(defines, sizeof defines, "%s%s",
+             c->backend == OIT_CAPTURE_FIRSTK ? "#define OIT_FIRSTK_PASS 1\n" : "",
+             c->stencil.by_copy ? "#define OIT_ROUTE_BY_COPY 1\n" : "");
     const oit_glsl_program programs[PROG_N] = {
         [PROG_FILL] = {"capture fill",
-                       .fs = {oit_glsl_state_io,
-                              stencil ? oit_capture_stencil_fs : oit_capture_array_fs}},
+                       .fs = {defines, oit_glsl_state_io,
+                              c->routed ? oit_capture_stencil_fs : oit_capture_array_fs}},
         [PROG_RESOLVE] = {"capture resolve",
                           .cs = {stencil ? "#define OIT_STENCIL 1\n" : "", oit_glsl_composite,
                                  oit_glsl_state_io, oit_capture_resolve_cs}},
@@ -118,21 +127,27 @@ const char *oit_capture_kind_name(oit_capture_kind kind)
     }
 }
 
-static oit_status make(oit_capture_kind backend, int K, unsigned faults, oit_capture **out,
-                       oit_error *err)
+/* stencil_k: the samples of the routed fills (STENCIL: K; FIRSTK: its
+ * first pass's slots), 0 for none. */
+static oit_status make(oit_capture_kind backend, int K, int stencil_k, unsigned faults,
+                       oit_capture **out, oit_error *err)
 {
     oit_capture *c = calloc(1, sizeof *c);
     if (!c)
         return oit_error_set(err, OIT_ERR_NOMEM, "capture: out of memory");
     c->backend = backend;
     c->K = K;
+    c->routed = stencil_k > 0;
+    c->faults = faults;
     oit_status s = OIT_OK;
-    if (backend == OIT_CAPTURE_STENCIL) {
+    if (c->routed) {
         int samples = 0;
-        s = oit_stencil_choose_samples(K, &samples, err);
+        s = oit_stencil_choose_samples(stencil_k, &samples, err);
         if (s == OIT_OK)
-            s = oit_stencil_target_init(&c->stencil, K, samples, err);
+            s = oit_stencil_target_init(&c->stencil, stencil_k, samples, err);
         c->stencil.sample_shading = (faults & OIT_CAPTURE_FAULT_SAMPLE_SHADING) != 0;
+        if (s == OIT_OK && (faults & OIT_CAPTURE_TEST_ROUTE_BY_COPY))
+            s = oit_stencil_target_by_copy(&c->stencil, err);
     }
     if (s == OIT_OK)
         s = build_programs(c, err);
@@ -142,6 +157,8 @@ static oit_status make(oit_capture_kind backend, int K, unsigned faults, oit_cap
         s = oit_counted_init(&c->counted, err);
     if (s == OIT_OK && backend == OIT_CAPTURE_FIRSTK)
         s = oit_firstk_init(&c->firstk, K, err);
+    if (s == OIT_OK && backend == OIT_CAPTURE_FIRSTK && c->routed)
+        oit_firstk_route(&c->firstk, &c->stencil, c->prog[PROG_FILL]);
     if (s == OIT_OK) {
         glCreateFramebuffers(1, &c->fbo);
         c->max_groups = oit_gl_max_groups_x();
@@ -173,9 +190,29 @@ oit_status oit_capture_create_faulty(oit_capture_kind kind, int K, unsigned faul
     if (K < 2 || K > 16)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: K=%d is outside [2, 16]", K);
     if (kind == OIT_CAPTURE_ARRAY || kind == OIT_CAPTURE_COUNTED || kind == OIT_CAPTURE_FIRSTK)
-        return make(kind, K, faults, out, err);
+        return make(kind, K, 0, faults, out, err);
+    oit_status s = oit_capture_create_routed(OIT_CAPTURE_STENCIL, K, K, faults, out, err);
+    if (s != OIT_OK && kind == OIT_CAPTURE_AUTO)
+        return make(OIT_CAPTURE_ARRAY, K, 0, faults, out, err);
+    return s;
+}
+
+oit_status oit_capture_create_routed(oit_capture_kind kind, int K, int stencil_k,
+                                     unsigned faults, oit_capture **out, oit_error *err)
+{
+    *out = NULL;
+    if (K < 2 || K > 16)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: K=%d is outside [2, 16]", K);
+    if (kind != OIT_CAPTURE_STENCIL && kind != OIT_CAPTURE_FIRSTK)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: only the stencil and first-k "
+                             "captures are routed, not %s",
+                             oit_capture_kind_name(kind) ? oit_capture_kind_name(kind) : "auto");
+    if (stencil_k < 2 || stencil_k > K || (kind == OIT_CAPTURE_STENCIL && stencil_k != K))
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: %d routed samples for %s at "
+                             "K=%d (2..K; the stencil capture's own K)", stencil_k,
+                             oit_capture_kind_name(kind), K);
     oit_capture *c = NULL;
-    oit_status s = make(OIT_CAPTURE_STENCIL, K, faults, &c, err);
+    oit_status s = make(kind, K, stencil_k, faults, &c, err);
     if (s == OIT_OK) {
         s = stencil_self_test(c, err);
         if (s != OIT_OK) {
@@ -187,8 +224,6 @@ oit_status oit_capture_create_faulty(oit_capture_kind kind, int K, unsigned faul
         *out = c;
         return OIT_OK;
     }
-    if (kind == OIT_CAPTURE_AUTO)
-        return make(OIT_CAPTURE_ARRAY, K, faults, out, err);
     /* A driver error while setting stencil routing up means it is not
      * offered here, which the caller reads as UNSUPPORTED. */
     if (s == OIT_ERR_GL && err) {
@@ -197,6 +232,11 @@ oit_status oit_capture_create_faulty(oit_capture_kind kind, int K, unsigned faul
         return oit_error_set(err, OIT_ERR_UNSUPPORTED, "%s", why);
     }
     return s == OIT_ERR_GL ? OIT_ERR_UNSUPPORTED : s;
+}
+
+int oit_capture_routed_k(const oit_capture *c)
+{
+    return c->routed ? c->stencil.K : 0;
 }
 
 static uint64_t held_bytes(const oit_capture *c)
@@ -278,7 +318,7 @@ static oit_status allocate(oit_capture *c, const oit_view *v, oit_error *err)
     c->out_buf = array ? c->buf[BUF_SLOTS] : c->buf[BUF_OUT];
     if (s == OIT_OK)
         s = reserve(c, BUF_TOTALS, 16, err);
-    if (s == OIT_OK && stencil)
+    if (s == OIT_OK && c->routed)
         s = oit_stencil_target_resize(&c->stencil, v->width, v->height, err);
     if (s == OIT_OK && !array)
         note_peak(c);
@@ -368,6 +408,10 @@ static void set_uniforms(oit_capture *c)
         glProgramUniform1ui(progs[i], glGetUniformLocation(progs[i], "u_count"),
                             (GLuint)((uint64_t)c->view.width * c->view.height));
     }
+    /* first-K's routed pass 1 keeps as many fragments as the target has samples */
+    if (c->routed)
+        glProgramUniform1i(progs[PROG_FILL], glGetUniformLocation(progs[PROG_FILL], "u_K"),
+                           c->stencil.K);
     GLuint *sub[2];
     int n[2], m = backend_programs(c, sub, n);
     for (int i = 0; i < m; i++)
@@ -519,7 +563,7 @@ static void fill(oit_capture *c, const oit_gpu_mesh *const *meshes, int n, const
 static oit_status stencil_self_test(oit_capture *c, oit_error *err)
 {
     oit_stencil_probe probe;
-    oit_stencil_probe_build(&probe, c->K);
+    oit_stencil_probe_build(&probe, c->stencil.K);
     oit_status s = oit_capture_begin(c, &probe.view, err);
     if (s == OIT_OK) {
         const oit_stencil_fill f = {c->prog[PROG_FILL], c->buf[BUF_COUNTS], c->draws};
@@ -814,6 +858,11 @@ static void fill_stats(const oit_capture *c, const GLuint totals[4], oit_frame_s
                                                ? OIT_CAPTURE_COUNTED
                                                : c->backend);
     stats->capture_k = (uint32_t)c->K;
+    /* how its K-slot fills were made (the counted capture has none) */
+    int none = c->backend == OIT_CAPTURE_COUNTED ||
+               (c->backend == OIT_CAPTURE_FIRSTK && c->firstk_off);
+    stats->capture_slots = none ? NULL : c->routed ? "stencil" : "array";
+    stats->capture_slots_k = !none && c->routed ? (uint32_t)c->stencil.K : 0;
 }
 
 oit_status oit_capture_end(oit_capture *c, oit_image *out, oit_frame_stats *stats,

@@ -52,11 +52,31 @@ enum {
     /* the fill shader run once per covered sample (GL_SAMPLE_SHADING,
      * minimum 1, multisampling on): more than once a pixel, each with its
      * own coverage, as NVIDIA's 8 multisamples x 2 supersamples do */
-    OIT_CAPTURE_FAULT_SAMPLE_SHADING = 1u << 0
+    OIT_CAPTURE_FAULT_SAMPLE_SHADING = 1u << 0,
+    /* not a fault but a stand-in: the routed fills put each fragment in
+     * the sample stencil routing would (capture_stencil.h, by_copy)
+     * without the stencil, so that a driver that does not route
+     * (llvmpipe) passes the self-test and renders the stencil paths
+     * exactly; only the routing draw itself is left untested there */
+    OIT_CAPTURE_TEST_ROUTE_BY_COPY = 1u << 1
 };
 /* oit_capture_create with faults (OIT_CAPTURE_FAULT_*; 0: none). */
 oit_status oit_capture_create_faulty(oit_capture_kind kind, int K, unsigned faults,
                                      oit_capture **out, oit_error *err);
+/* A capture whose K-slot fills are routed by the stencil into stencil_k
+ * samples a pixel, after the self-test passed at stencil_k (no fallback:
+ * OIT_ERR_UNSUPPORTED with the reason where it does not; capture_choice.h
+ * decides what to try):
+ *  - OIT_CAPTURE_STENCIL: stencil_k = K;
+ *  - OIT_CAPTURE_FIRSTK: its first pass (capture_firstk.h) keeps a pixel's
+ *    first stencil_k (2..K) fragments in the samples while it counts every
+ *    fragment; pixels that got more take the second pass, as with array
+ *    slots. The target holds stencil_k samples of the whole frame, outside
+ *    the slot budget (20 bytes a sample: 160 MiB at 1024x1024, 8 samples). */
+oit_status oit_capture_create_routed(oit_capture_kind kind, int K, int stencil_k,
+                                     unsigned faults, oit_capture **out, oit_error *err);
+/* The samples of c's routed fills; 0: none (array slots). */
+int oit_capture_routed_k(const oit_capture *c);
 /* "array", "stencil", "counted", "first-k" (NULL for AUTO or unknown). */
 const char *oit_capture_kind_name(oit_capture_kind kind);
 void oit_capture_destroy(oit_capture *c);

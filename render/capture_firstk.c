@@ -8,6 +8,7 @@
 #include "render/capture_firstk.h"
 
 #include "render/capture_glsl.h"
+#include "render/capture_stencil.h"
 #include "render/frag_glsl.h"
 
 #include <string.h>
@@ -69,6 +70,43 @@ static const char resolve_cs[] =
     "    uvec4 f[16];\n"
     "    for (uint i = 0u; i < n; i++) {\n"
     "        uvec4 x = slots[i * P + q];\n"
+    "        OIT_SORTED_INSERT(f, i, x)\n"
+    "    }\n"
+    "    oit_state s = oit_state_load(p);\n"
+    "    for (uint i = 0u; i < n; i++) oit_composite(s, f[i]);\n"
+    "    s.nfrag += n;\n"
+    "    oit_state_store(p, s);\n"
+    "    counts[p] = 0u;\n"
+    "}\n";
+
+/* Pass 1's resolve when the stencil routed it: the same for the pixels of
+ * at most u_W fragments, from the samples; a pixel of more is found by its
+ * exact count and flagged here (the fill cannot: it does not know a
+ * pixel's last fragment), into the same spill totals and box the array
+ * fill writes. */
+static const char routed_resolve_cs[] =
+    "layout(local_size_x = 8, local_size_y = 8) in;\n"
+    "layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };\n"
+    "layout(binding = OIT_TEX_SAMPLES) uniform usampler2DMS u_samples;\n"
+    TOTALS_BLOCK
+    "layout(location = 11) uniform ivec2 u_size;\n"
+    "layout(location = 12) uniform ivec4 u_rect;\n"
+    "uniform int u_W;\n"
+    "void main() {\n"
+    "    ivec2 px = u_rect.xy + ivec2(gl_GlobalInvocationID.xy);\n"
+    "    if (px.x >= u_rect.z || px.y >= u_rect.w) return;\n"
+    "    uint p = uint(px.y * u_size.x + px.x);\n"
+    "    uint n = counts[p];\n"
+    "    if (n == 0u) return;\n"
+    "    if (n > uint(u_W)) {\n"
+    "        atomicAdd(spill_pixels, 1u);\n"
+    "        atomicMin(box[0], uint(px.x)); atomicMin(box[1], uint(px.y));\n"
+    "        atomicMax(box[2], uint(px.x) + 1u); atomicMax(box[3], uint(px.y) + 1u);\n"
+    "        return;\n"
+    "    }\n"
+    "    uvec4 f[16];\n"
+    "    for (uint i = 0u; i < n; i++) {\n"
+    "        uvec4 x = texelFetch(u_samples, px, int(i));\n"
     "        OIT_SORTED_INSERT(f, i, x)\n"
     "    }\n"
     "    oit_state s = oit_state_load(p);\n"
@@ -151,7 +189,16 @@ static const oit_glsl_program programs[OIT_FIRSTK_PROGS] = {
     [OIT_FIRSTK_SEGMENT] = {"first-k capture segment resolve",
                             .cs = {oit_glsl_composite, oit_glsl_state_io, segment_cs,
                                    oit_glsl_segment_composite, segment_main}},
+    [OIT_FIRSTK_ROUTED_RESOLVE] = {"first-k capture routed resolve",
+                                   .cs = {oit_glsl_composite, oit_glsl_state_io,
+                                          routed_resolve_cs}},
 };
+
+void oit_firstk_route(oit_firstk *k, oit_stencil_target *t, GLuint fill)
+{
+    k->routed = t;
+    k->routed_fill = fill;
+}
 
 oit_status oit_firstk_init(oit_firstk *k, int K, oit_error *err)
 {
@@ -188,6 +235,8 @@ static uint64_t rect_pixels(const int r[4])
 
 int oit_firstk_slots(const oit_firstk *k, const int r[4])
 {
+    if (k->routed)
+        return k->routed->K;
     uint64_t fit = k->budget / 16 / rect_pixels(r);
     int W = fit < (uint64_t)k->K ? (int)fit : k->K;
     return W >= 2 ? W : 0;
@@ -251,6 +300,23 @@ static oit_status first_pass(oit_firstk *k, const oit_counted_frame *f,
     dispatch_rect(k->prog[OIT_FIRSTK_RESOLVE], r);
     glGetNamedBufferSubData(k->totals, 0, 32, t);
     return oit_gl_check("first-k capture: pass 1", err);
+}
+
+/* Pass 1 routed by the stencil (oit_firstk_route): the target's fill over
+ * r, then the resolve from its samples, which also finds the overflowed
+ * pixels; t as first_pass's. */
+static oit_status routed_first_pass(oit_firstk *k, const oit_counted_frame *f,
+                                    const oit_gpu_mesh *const *meshes, int n, const int r[4],
+                                    int W, GLuint t[8], oit_error *err)
+{
+    clear_totals(k);
+    bind_frame(k, f);
+    oit_stencil_target_fill(k->routed, r, k->routed_fill, f->draws, meshes, n);
+    glBindTextureUnit(OIT_TEX_SAMPLES, k->routed->colour);
+    set_int(k->prog[OIT_FIRSTK_ROUTED_RESOLVE], "u_W", W);
+    dispatch_rect(k->prog[OIT_FIRSTK_ROUTED_RESOLVE], r);
+    glGetNamedBufferSubData(k->totals, 0, 32, t);
+    return oit_gl_check("first-k capture: routed pass 1", err);
 }
 
 /* Segments for the overflowed pixels of the band b; *frags receives their
@@ -337,7 +403,8 @@ oit_status oit_firstk_batch(oit_firstk *k, const oit_counted_frame *f,
                              "leaves fewer than 2 slots a pixel in the slot budget",
                              r[2] - r[0], r[3] - r[1]);
     GLuint t[8] = {0};
-    oit_status s = first_pass(k, f, meshes, n, r, W, t, err);
+    oit_status s = k->routed ? routed_first_pass(k, f, meshes, n, r, W, t, err)
+                             : first_pass(k, f, meshes, n, r, W, t, err);
     if (s != OIT_OK || t[0] == 0)
         return s;
     k->second_pixels += t[0];

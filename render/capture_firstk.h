@@ -46,8 +46,11 @@ enum {
     OIT_FIRSTK_RESOLVE,
     OIT_FIRSTK_ALLOC,
     OIT_FIRSTK_SEGMENT,
+    OIT_FIRSTK_ROUTED_RESOLVE,
     OIT_FIRSTK_PROGS
 };
+
+struct oit_stencil_target;
 
 typedef struct oit_firstk {
     GLuint prog[OIT_FIRSTK_PROGS];
@@ -61,11 +64,24 @@ typedef struct oit_firstk {
      * and the draws pass 2 made */
     uint64_t second_pixels;
     uint32_t second_packs, second_draws;
+    /* Pass 1 routed by the stencil (oit_firstk_route), else NULL: array
+     * slots. */
+    struct oit_stencil_target *routed;
+    GLuint routed_fill;
 } oit_firstk;
 
 oit_status oit_firstk_init(oit_firstk *k, int K, oit_error *err);
 void oit_firstk_release(oit_firstk *k);
 uint64_t oit_firstk_bytes(const oit_firstk *k);
+
+/* Pass 1 from now on through the stencil target t (its K samples a pixel
+ * of the whole frame, whatever the budget), filled with fill (the stencil
+ * fill shader built with OIT_FIRSTK_PASS, capture_glsl.h): the fill counts
+ * every fragment exactly with the atomic counter, so a pixel that got more
+ * than the samples hold is found from its count (not from the stencil,
+ * which stops at the last sample), and its fragments are all taken by pass
+ * 2. Pass 1's resolve reads the samples of the pixels of at most K. */
+void oit_firstk_route(oit_firstk *k, struct oit_stencil_target *t, GLuint fill);
 
 /* The slots a pack over the GL rect r gets: 0 when fewer than 2 fit the
  * budget, where pass 1 would settle too few pixels to pay for itself (the

@@ -60,17 +60,52 @@ const char oit_capture_wide_fs[] =
     "uniform ivec4 u_tile;\n"
     FILL_MAIN("u_W");
 
+/* The stencil target's fill (capture_stencil.h): every fragment counted
+ * exactly (the atomic count, not the stencil, tells overflow: it does not
+ * saturate and needs no read of the target), the fragment written to the
+ * sample the stencil routes it to. OIT_FIRSTK_PASS: first-K's pass 1, whose
+ * overflowed pixels are not lost (the second pass takes them), so they are
+ * not flagged. OIT_ROUTE_BY_COPY (testing, capture_stencil.h): the fragment
+ * goes to slot c of its pixel in a buffer, copied into sample c after the
+ * draw, as routing would have put it. */
 const char oit_capture_stencil_fs[] =
     COUNT_AND_FLAG
     SATURATED
+    "#ifdef OIT_ROUTE_BY_COPY\n"
+    "layout(std430, binding = OIT_BIND_FRAGS) writeonly buffer Routed { uvec4 routed[]; };\n"
+    "#else\n"
     "layout(location = 0) out uvec4 o_frag;\n"
+    "#endif\n"
     "void main() {\n"
     "    if (oit_clipped()) discard;\n"
     "    if (oit_behind_opaque()) discard;\n"
     "    if (oit_saturated(oit_pixel_index())) discard;\n"
     "    uint c = atomicAdd(counts[oit_pixel_index()], 1u);\n"
+    "#ifndef OIT_FIRSTK_PASS\n"
     "    if (c == uint(u_K)) atomicAdd(overflow, 1u);\n"
+    "#endif\n"
+    "#ifdef OIT_ROUTE_BY_COPY\n"
+    "    if (c < uint(u_K)) routed[oit_pixel_index() * uint(u_K) + c] = oit_fragment();\n"
+    "#else\n"
     "    o_frag = oit_fragment();\n"
+    "#endif\n"
+    "}\n";
+
+/* Testing (OIT_ROUTE_BY_COPY): sample u_sample of each pixel of a
+ * full-screen draw masked to that sample takes the pixel's slot u_sample,
+ * where the fill put the fragment routing would have put there. */
+const char oit_capture_route_copy_fs[] =
+    "layout(std430, binding = OIT_BIND_COUNTS) readonly buffer Counts { uint counts[]; };\n"
+    "layout(std430, binding = OIT_BIND_FRAGS) readonly buffer Routed { uvec4 routed[]; };\n"
+    "layout(location = 0) out uvec4 o_frag;\n"
+    "uniform int u_sample;\n"
+    "uniform int u_K;\n"
+    "uniform int u_width;\n"
+    "void main() {\n"
+    "    uvec2 px = uvec2(gl_FragCoord.xy);\n"
+    "    uint p = px.y * uint(u_width) + px.x;\n"
+    "    if (uint(u_sample) >= min(counts[p], uint(u_K))) discard;\n"
+    "    o_frag = routed[p * uint(u_K) + uint(u_sample)];\n"
     "}\n";
 
 const char oit_capture_resolve_cs[] =

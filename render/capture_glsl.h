@@ -18,8 +18,13 @@ extern const char oit_capture_saturated[];
 extern const char oit_capture_array_fs[];
 /* Wide batches: u_W slots per pixel of the tile u_tile (capture.h). */
 extern const char oit_capture_wide_fs[];
-/* Stencil backend: the fragment is the colour output; counts as above. */
+/* Stencil backend: the fragment is the colour output; counts as above.
+ * Prefix "#define OIT_FIRSTK_PASS 1" for first-K's pass 1 (no overflow
+ * flag), "#define OIT_ROUTE_BY_COPY 1" for routing by copies (testing,
+ * capture_stencil.h). */
 extern const char oit_capture_stencil_fs[];
+/* Routing by copies: one sample's copy from the fill's slots. */
+extern const char oit_capture_route_copy_fs[];
 /* Resolve over the batch rect; prefix "#define OIT_STENCIL 1" for samples,
  * "#define OIT_WIDE N" for a wide tile (u_rect is the tile, N >= u_W). */
 extern const char oit_capture_resolve_cs[];

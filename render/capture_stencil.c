@@ -112,9 +112,19 @@ oit_status oit_stencil_target_init(oit_stencil_target *t, int K, int samples, oi
     return s;
 }
 
+oit_status oit_stencil_target_by_copy(oit_stencil_target *t, oit_error *err)
+{
+    const char *vs[] = {oit_glsl_version, oit_capture_fullscreen_vs, NULL};
+    const char *fs[] = {oit_glsl_version, oit_capture_route_copy_fs, NULL};
+    t->by_copy = 1;
+    return oit_gl_program_graphics("stencil routing by copies", vs, fs, &t->copy_prog, err);
+}
+
 void oit_stencil_target_release(oit_stencil_target *t)
 {
     glDeleteProgram(t->init_prog);
+    glDeleteProgram(t->copy_prog);
+    glDeleteBuffers(1, &t->routed);
     glDeleteFramebuffers(1, &t->fbo);
     glDeleteVertexArrays(1, &t->vao);
     glDeleteTextures(1, &t->colour);
@@ -139,7 +149,13 @@ oit_status oit_stencil_target_resize(oit_stencil_target *t, int w, int h, oit_er
     GLenum status = glCheckNamedFramebufferStatus(t->fbo, GL_FRAMEBUFFER);
     t->width = w;
     t->height = h;
-    oit_status s = oit_gl_check("stencil capture: multisample target", err);
+    oit_status s = OIT_OK;
+    if (t->by_copy)
+        s = oit_gl_buffer_reserve(&t->routed, &t->routed_cap,
+                                  (uint64_t)w * h * (uint64_t)t->K * 16,
+                                  "stencil routing by copies", err);
+    if (s == OIT_OK)
+        s = oit_gl_check("stencil capture: multisample target", err);
     if (s == OIT_OK && status != GL_FRAMEBUFFER_COMPLETE)
         s = oit_error_set(err, OIT_ERR_UNSUPPORTED, "stencil capture: a %dx%d target with %d "
                           "rgba32ui samples is incomplete (status 0x%x)", w, h, t->samples, status);
@@ -207,9 +223,44 @@ static void end_draw(void)
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
 }
 
+/* Routing by copies: sample i of each pixel in rect takes its slot i. */
+static void copy_samples(oit_stencil_target *t, const int rect[4])
+{
+    bind(t, rect, GL_TRUE);
+    glDisable(GL_STENCIL_TEST);
+    glEnable(GL_MULTISAMPLE);
+    glEnable(GL_SAMPLE_MASK);
+    glUseProgram(t->copy_prog);
+    glBindVertexArray(t->vao);
+    glProgramUniform1i(t->copy_prog, glGetUniformLocation(t->copy_prog, "u_K"), t->K);
+    glProgramUniform1i(t->copy_prog, glGetUniformLocation(t->copy_prog, "u_width"), t->width);
+    for (int i = 0; i < t->K; i++) {
+        glSampleMaski(0, 1u << i);
+        glProgramUniform1i(t->copy_prog, glGetUniformLocation(t->copy_prog, "u_sample"), i);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    glSampleMaski(0, ~0u);
+    glDisable(GL_SAMPLE_MASK);
+}
+
 void oit_stencil_target_fill(oit_stencil_target *t, const int rect[4], GLuint prog,
                              oit_gpu_draws *draws, const oit_gpu_mesh *const *meshes, int n)
 {
+    if (t->by_copy) {
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_FRAGS, t->routed);
+        bind(t, rect, GL_FALSE);
+        glDisable(GL_STENCIL_TEST);
+        glDisable(GL_BLEND);
+        glDisable(GL_CULL_FACE);
+        glDisable(GL_MULTISAMPLE);
+        glUseProgram(prog);
+        oit_gpu_mesh_draw_many(draws, meshes, n);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        copy_samples(t, rect);
+        end_draw();
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+        return;
+    }
     route(t, rect);
     begin_draw(t, rect);
     glUseProgram(prog);
@@ -220,7 +271,7 @@ void oit_stencil_target_fill(oit_stencil_target *t, const int rect[4], GLuint pr
 
 uint64_t oit_stencil_target_bytes(const oit_stencil_target *t)
 {
-    return (uint64_t)t->width * t->height * t->samples * (16 + 4);
+    return (uint64_t)t->width * t->height * t->samples * (16 + 4) + t->routed_cap;
 }
 
 /* ---- the self-test -------------------------------------------------------- */

@@ -19,6 +19,15 @@ typedef struct oit_stencil_target {
     /* Testing (oit_capture_create_faulty): the fill shaded once per sample,
      * as a driver that supersamples runs it more than once a pixel. */
     int sample_shading;
+    /* Testing (OIT_CAPTURE_TEST_ROUTE_BY_COPY): no stencil routing; the
+     * fill (built with OIT_ROUTE_BY_COPY) puts a pixel's c-th fragment in
+     * slot c of routed, and K full-screen draws, each masked to one sample
+     * with multisampling on, copy slot i into sample i: the samples routing
+     * gives, on a driver that does not route (llvmpipe), so that all but
+     * the routing draw is tested there. */
+    int by_copy;
+    GLuint copy_prog, routed;
+    uint64_t routed_cap;
 } oit_stencil_target;
 
 /* The sample count for K in *samples: OIT_ERR_UNSUPPORTED when K exceeds
@@ -29,6 +38,8 @@ typedef struct oit_stencil_target {
 oit_status oit_stencil_choose_samples(int K, int *samples, oit_error *err);
 oit_status oit_stencil_target_init(oit_stencil_target *t, int K, int samples, oit_error *err);
 void oit_stencil_target_release(oit_stencil_target *t);
+/* Routing by copies from now on (by_copy above); its program. */
+oit_status oit_stencil_target_by_copy(oit_stencil_target *t, oit_error *err);
 /* (Re)allocates for a w x h frame when the size changed. */
 oit_status oit_stencil_target_resize(oit_stencil_target *t, int w, int h, oit_error *err);
 /* Routes and draws meshes[0..n) with the fill program prog (its frame's

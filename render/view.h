@@ -129,6 +129,12 @@ typedef struct oit_frame_stats {
      * for every other method. */
     const char *capture;
     uint32_t capture_k;
+    /* How the capture's K-slot fills were made: "stencil" (routed MSAA
+     * samples, capture_slots_k of them a pixel) or "array" (slots through
+     * an atomic counter; capture_slots_k 0); NULL where it has none (the
+     * counted capture, every other method). */
+    const char *capture_slots;
+    uint32_t capture_slots_k;
 } oit_frame_stats;
 
 /* Camera helpers. */

@@ -25,7 +25,7 @@ static oit_status stream_create(const oit_mesh *mesh, const oit_method_options *
     stream_impl *m = calloc(1, sizeof *m);
     if (!m)
         return oit_error_set(err, OIT_ERR_NOMEM, "method stream: out of memory");
-    oit_streamer_desc sd = {.K = opt->max_layers, .capture = OIT_CAPTURE_ARRAY, .pack = so->pack,
+    oit_streamer_desc sd = {.K = opt->max_layers, .capture = so->capture, .pack = so->pack,
                             .schedule = so->schedule,
                             .upload_budget = so->upload_budget,
                             .slot_budget = so->slot_budget,

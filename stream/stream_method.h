@@ -11,6 +11,7 @@
 struct oit_stream_options {
     oit_partfile *partfile;
     oit_pack_mode pack;
+    oit_capture_kind capture; /* --capture: AUTO (0), STENCIL or ARRAY */
     oit_pack_schedule schedule;
     unsigned long long upload_budget; /* bytes; 0: default */
     unsigned long long slot_budget;   /* capture slots, bytes; 0: default */

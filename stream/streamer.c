@@ -54,6 +54,7 @@ struct oit_streamer {
     uint8_t *loaded;
     uint64_t loaded_bytes;
     oit_capture *capture;
+    oit_capture_choice choice; /* --capture: asked, what runs, and why */
     oit_saturation *saturation; /* only with epsilon > 0 */
     oit_opaque_depth opaque;    /* the caller's depth (oit_streamer_set_opaque) */
     oit_opaque_tiles *opaque_tiles; /* built at the first frame with one */
@@ -303,6 +304,52 @@ static oit_status create_upload(oit_streamer *s, const oit_streamer_desc *desc, 
     return st;
 }
 
+const oit_capture_choice *oit_streamer_capture_choice(const oit_streamer *s)
+{
+    return &s->choice;
+}
+
+/* A routed capture at stencil_k samples, kept once its self-test passes. */
+typedef struct routed_try {
+    oit_capture_kind kind;
+    int K;
+    unsigned faults;
+    oit_capture *made;
+} routed_try;
+
+static oit_status try_routed(void *ctx, int stencil_k, oit_error *err)
+{
+    routed_try *t = ctx;
+    return oit_capture_create_routed(t->kind, t->K, stencil_k, t->faults, &t->made, err);
+}
+
+/* The pack mode's capture, its K-slot fills as --capture chooses. */
+static oit_status create_capture(oit_streamer *s, const oit_streamer_desc *desc,
+                                 oit_pack_mode mode, oit_error *err)
+{
+    if (mode == OIT_PACK_COUNTED) {
+        s->choice.asked = desc->capture;
+        if (desc->capture != OIT_CAPTURE_AUTO && desc->capture != OIT_CAPTURE_ARRAY)
+            return oit_error_set(err, OIT_ERR_ARGUMENT, "--capture %s: counted packs have no "
+                                 "K-slot fill to route (--pack first-k, budget or disjoint)",
+                                 oit_capture_kind_name(desc->capture)
+                                     ? oit_capture_kind_name(desc->capture) : "?");
+        return oit_capture_create_faulty(OIT_CAPTURE_COUNTED, desc->K, desc->capture_faults,
+                                         &s->capture, err);
+    }
+    int firstk = mode == OIT_PACK_FIRSTK;
+    routed_try t = {firstk ? OIT_CAPTURE_FIRSTK : OIT_CAPTURE_STENCIL, desc->K,
+                    desc->capture_faults, NULL};
+    oit_status st = oit_capture_choose(desc->capture, desc->K, firstk, try_routed, &t,
+                                       &s->choice, err);
+    if (st != OIT_OK || t.made) {
+        s->capture = t.made;
+        return st;
+    }
+    return oit_capture_create_faulty(firstk ? OIT_CAPTURE_FIRSTK : OIT_CAPTURE_ARRAY, desc->K,
+                                     desc->capture_faults, &s->capture, err);
+}
+
 oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
                                oit_streamer **out, oit_error *err)
 {
@@ -335,10 +382,7 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
     if (st == OIT_OK)
         st = create_upload(s, desc, budget, all_bytes, err);
     if (st == OIT_OK)
-        st = oit_capture_create(mode == OIT_PACK_COUNTED  ? OIT_CAPTURE_COUNTED
-                                : mode == OIT_PACK_FIRSTK ? OIT_CAPTURE_FIRSTK
-                                                          : desc->capture,
-                                desc->K, &s->capture, err);
+        st = create_capture(s, desc, mode, err);
     /* The counted and first-K captures store fragments beside their slots;
      * 32 MiB (2 a pixel at 1024x1024) split the packs of dense views, which
      * then drew again (bench/stream-vs-dfb-llvmpipe.md). */
@@ -707,6 +751,9 @@ static void finish_stats(const oit_streamer *s, const oit_packing *pk, oit_frame
     ss->parts_clipped = pk->clipped;
     ss->bytes_clipped = pk->clipped_bytes;
     ss->epsilon = s->epsilon;
+    ss->capture_asked = s->choice.asked == OIT_CAPTURE_AUTO ? "auto"
+                                                             : oit_capture_kind_name(s->choice.asked);
+    memcpy(ss->capture_fallback, s->choice.reason, sizeof ss->capture_fallback);
     ss->draw_calls = oit_capture_draw_calls(s->capture);
     ss->cache_bytes = s->cache ? oit_residency_bytes(s->cache) : s->loaded_bytes;
     ss->gpu_bytes_peak = fs->gpu_bytes_peak + oit_upload_gpu_bytes(s->upload) +

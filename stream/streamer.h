@@ -18,13 +18,23 @@
 
 #include "oit/partfile.h"
 #include "render/capture.h"
+#include "render/capture_choice.h"
 #include "stream/pack.h"
 
 typedef struct oit_streamer_desc {
     int K;                    /* capture layers, 2..16; every part's bound <= K */
-    oit_capture_kind capture; /* backend of the K-slot packs; OIT_PACK_COUNTED
-                                 always takes OIT_CAPTURE_COUNTED, OIT_PACK_FIRSTK
-                                 OIT_CAPTURE_FIRSTK (K: its most slots a pixel) */
+    /* How K-slot fills are made (--capture): OIT_CAPTURE_AUTO (0), _STENCIL
+     * or _ARRAY, for the K-slot packs (BUDGET, DISJOINT) and for first-K's
+     * first pass (FIRSTK, AUTO); counted packs have none (STENCIL is then
+     * refused). AUTO: stencil routing where its self-test passes on this
+     * driver (render/capture_choice.h: at K for K-slot packs; first-K also
+     * takes the largest power of two below K that passes), else array
+     * slots, the self-test's reason kept (oit_stream_frame_stats). STENCIL
+     * where no try passes: OIT_ERR_UNSUPPORTED with the reason. OIT_PACK_
+     * COUNTED always takes OIT_CAPTURE_COUNTED, OIT_PACK_FIRSTK
+     * OIT_CAPTURE_FIRSTK (K: its most slots a pixel) */
+    oit_capture_kind capture;
+    unsigned capture_faults;  /* testing: OIT_CAPTURE_FAULT_* and _TEST_* (capture.h) */
     /* OIT_PACK_AUTO (0): first-K packs, switched to counted for the next
      * frames when more than 1 pixel in 50 took the second pass, and tried
      * again every OIT_STREAM_PROBE_FRAMES counted frames (the image is the
@@ -101,6 +111,12 @@ typedef struct oit_stream_frame_stats {
                                 counted, or a fixed --pack: 0) */
     int front_first;         /* the packs were cut front first (pack.h): early
                                 termination with counted or first-K packs */
+    /* --capture as asked ("auto", "stencil", "array") and, where auto took
+     * array slots or fewer samples than K, the self-test's reason ("" where
+     * it did not), copied: the figures outlive the streamer. What ran:
+     * oit_frame_stats's capture_slots. */
+    const char *capture_asked;
+    char capture_fallback[sizeof(((oit_capture_choice *)0)->reason)];
 } oit_stream_frame_stats;
 
 typedef struct oit_streamer oit_streamer;
@@ -110,6 +126,8 @@ typedef struct oit_streamer oit_streamer;
 oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
                                oit_streamer **out, oit_error *err);
 void oit_streamer_destroy(oit_streamer *s);
+/* What --capture chose at creation (its reason string lives as long as s). */
+const oit_capture_choice *oit_streamer_capture_choice(const oit_streamer *s);
 
 /* The caller's opaque depth for the next frames (oit_capture_set_opaque);
  * NULL: none. */

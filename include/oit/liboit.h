@@ -208,6 +208,12 @@ typedef enum oit_render_pack {
                                     second pass for themselves alone */
 } oit_render_pack;
 
+typedef enum oit_render_capture {
+    OIT_RENDER_CAPTURE_AUTO = 0,
+    OIT_RENDER_CAPTURE_ARRAY = 1,
+    OIT_RENDER_CAPTURE_STENCIL = 2
+} oit_render_capture;
+
 /* For part files. An in-core scene is drawn with DFB, which stores every
  * fragment of the frame: K, upload_budget, pack, epsilon (the image is the
  * exact one), cache_budget and read_on_draw_thread do not apply to it. */
@@ -240,6 +246,14 @@ typedef struct oit_renderer_desc {
      * later packs while the GPU draws earlier ones (it never calls GL). 1:
      * parts are read on the drawing thread; for comparison and debugging. */
     int read_on_draw_thread;
+    /* How a part file's K-slot fills are made (oitstream --capture): for
+     * the K-slot packs (BUDGET, DISJOINT) and the first pass of FIRSTK
+     * packs (AUTO too). OIT_RENDER_CAPTURE_AUTO (0): the stencil-routed
+     * A-buffer where its start-up self-test passes on this GL driver, else
+     * array slots; STENCIL: that or OIT_ERR_UNSUPPORTED at the first draw,
+     * with the self-test's reason; ARRAY: slots through an atomic counter.
+     * The image is the same; oit_draw_stats says what ran and why. */
+    oit_render_capture capture;
 } oit_renderer_desc;
 
 #define OIT_RENDER_CACHE_OFF UINT64_MAX
@@ -345,6 +359,15 @@ typedef struct oit_draw_stats {
     uint64_t parts_clipped;  /* parts in view wholly cut away by
                                 oit_frame.clip: neither uploaded nor drawn    */
     uint64_t bytes_clipped;  /* the upload bytes of those parts              */
+    /* Part files: how the K-slot fills were made (oit_renderer_desc.capture):
+     * "stencil" (capture_slots_k samples a pixel) or "array"; NULL where
+     * none ran (counted packs, in-core scenes). capture_fallback: where
+     * AUTO took array slots or fewer samples than K, the self-test's
+     * reason, else ""; NULL for in-core scenes. Both strings are liboit's,
+     * valid while r draws the scene. */
+    const char *capture_slots;
+    uint32_t capture_slots_k;
+    const char *capture_fallback;
 } oit_draw_stats;
 
 /* Draws scene as seen through frame into frame->framebuffer (see Result

@@ -50,7 +50,7 @@ class RendererDesc(ctypes.Structure):
     _fields_ = [("K", ctypes.c_uint32), ("upload_budget", ctypes.c_uint64),
                 ("pack", ctypes.c_int), ("shading", RenderShading),
                 ("epsilon", ctypes.c_float), ("cache_budget", ctypes.c_uint64),
-                ("read_on_draw_thread", ctypes.c_int)]
+                ("read_on_draw_thread", ctypes.c_int), ("capture", ctypes.c_int)]
 
 
 class OffscreenDesc(ctypes.Structure):
@@ -76,7 +76,9 @@ class DrawStats(ctypes.Structure):
                 ("bytes_uploaded", ctypes.c_uint64), ("gpu_bytes_peak", ctypes.c_uint64),
                 ("cache_hits", ctypes.c_uint64), ("cache_bytes", ctypes.c_uint64),
                 ("draw_calls", ctypes.c_uint64), ("parts_clipped", ctypes.c_uint64),
-                ("bytes_clipped", ctypes.c_uint64)]
+                ("bytes_clipped", ctypes.c_uint64),
+                ("capture_slots", ctypes.c_char_p),
+                ("capture_slots_k", ctypes.c_uint32), ("capture_fallback", ctypes.c_char_p)]
 
 
 # enum values of the headers

@@ -1,6 +1,8 @@
 /* oitbench's command line (bench_args.h). */
 #include "tools/oitbench/bench_args.h"
 
+#include "render/capture_choice.h"
+
 #include <stdlib.h>
 #include <string.h>
 
@@ -115,6 +117,10 @@ static int value_option(oit_bench_args *a, const char *opt, const char *v, char 
         if (oit_parse_int(v, 0, 100000, &a->warmup)) *s = bad(err, opt, v, "a frame count >= 0");
     } else if (!strcmp(opt, "--max-layers")) {
         if (oit_parse_int(v, 2, 16, &a->max_layers)) *s = bad(err, opt, v, "K in [2, 16]");
+    } else if (!strcmp(opt, "--capture")) {
+        oit_capture_kind k = OIT_CAPTURE_AUTO;
+        *s = oit_capture_parse(v, opt, &k, err);
+        a->capture = (int)k;
     } else if (!strcmp(opt, "--epsilon")) *s = split_epsilons(v, a, err);
     else if (!strcmp(opt, "--shading")) {
         if (!strcmp(v, "transparent")) a->shading = OIT_SHADING_TRANSPARENT;
@@ -290,6 +296,8 @@ void oit_bench_usage(FILE *f, const char *method_list, const char *default_schem
         "  --frames F       timed frames per method per view, 1..100000 (default 5)\n"
         "  --warmup W       untimed frames per method per view first, 0..100000 (default 1)\n"
         "  --max-layers K   K of the capture backends, 2..16 (default 16)\n"
+        "  --capture C      stream's K-slot fills: auto (default), stencil or array\n"
+        "                   (oitstream --help, --capture)\n"
         "  --shading S      transparent (default) or translucent (Beer-Lambert and\n"
         "                   Fresnel, as oitstream --shading)\n"
         "  --colour-space S srgb (default): composite the sRGB-encoded colours; linear:\n"

@@ -149,7 +149,8 @@ static int run(const oit_bench_args *a, const char *command_line)
                         .partfile_triangles = models.part_triangles, .entries = a->entries,
                         .entry_count = a->entry_count, .views = a->orbit, .width = a->width,
                         .height = a->height, .frames = a->frames, .warmup = a->warmup,
-                        .max_layers = a->max_layers, .shading = a->shading,
+                        .max_layers = a->max_layers, .capture = a->capture,
+                        .shading = a->shading,
                         .colour_space = a->colour_space, .progress = stderr};
     print_geometry(&models, a);
     fprintf(stderr, "oitbench: %s: %llu triangles, %d entries, %d views\n", a->model,

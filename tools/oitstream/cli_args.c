@@ -121,6 +121,8 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
         else if (!strcmp(v, "budget")) a->pack = OIT_PACK_BUDGET;
         else if (!strcmp(v, "first-k")) a->pack = OIT_PACK_FIRSTK;
         else *s = bad(err, opt, v, "auto, counted, first-k, budget or disjoint");
+    } else if (!strcmp(opt, "--capture")) {
+        *s = oit_capture_parse(v, opt, &a->capture, err);
     } else if (!strcmp(opt, "--schedule")) {
         if (!strcmp(v, "wave")) a->schedule_wave = 1;
         else if (!strcmp(v, "tree")) a->schedule_wave = 0;
@@ -304,6 +306,19 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "                      before the parts behind are read) while a frame skips\n"
         "                      parts; after one that skips none, plain packs, front\n"
         "                      first tried again every 8th frame (--stats: front_first)\n"
+        "  --capture C         stream: how K-slot fills are made, for K-slot packs\n"
+        "                      (budget, disjoint) and first-k's first pass: stencil\n"
+        "                      (Wang & Xie's stencil-routed A-buffer: MSAA samples\n"
+        "                      filled in order by the stencil), array (slots through\n"
+        "                      an atomic counter) or auto (default): stencil where\n"
+        "                      its start-up self-test passes on this driver (at K;\n"
+        "                      first-k also at the largest power of two below K that\n"
+        "                      passes), else array. stencil where the self-test\n"
+        "                      fails is an error giving its reason; counted packs\n"
+        "                      have no K-slot fill. --stats and the viewer's status\n"
+        "                      line say what ran (capture_slots) and why auto fell\n"
+        "                      back (capture_fallback); llvmpipe does not route per\n"
+        "                      sample, so auto takes array there. Same image\n"
         "  --schedule S        stream: tree (default: packs of consecutive parts in the\n"
         "                      management tree's depth-first order) or wave (packs\n"
         "                      filled front to back across the whole screen, keeping\n"

@@ -7,6 +7,7 @@
 #include <stdio.h>
 
 #include "render/view.h"
+#include "render/capture.h"
 #include "stream/pack.h"
 
 typedef struct oit_stream_args {
@@ -38,6 +39,7 @@ typedef struct oit_stream_args {
     float ambiguity_px;        /* --ambiguity-px; 0: the reference's 1/64 */
     int quiet;
     oit_pack_mode pack;                /* --pack; 0: auto */
+    oit_capture_kind capture;          /* --capture; 0: auto (streamer.h checks it) */
     int schedule_wave;                 /* --schedule: 0 tree (default), 1 wave */
     unsigned long long upload_budget;  /* --upload-budget; 0 (or 0 given): default */
     unsigned long long slot_budget;    /* --slot-budget; 0: default */

@@ -443,6 +443,14 @@ static oit_status render_one(run_ctx *rc, int index, int views, oit_stats_frame 
                (unsigned long long)fr->st.overflow_pixels,
                (unsigned long long)fr->st.second_pass_pixels, fr->st.second_pass_packs,
                (double)fr->stream.gpu_bytes_peak / 1048576.0);
+    if (s == OIT_OK && !rc->args->quiet && fr->has_stream && fr->stream.capture_asked)
+        printf("frame %d: capture %s, K-slot fills %s%s%.0u (--capture %s)%s%s\n", index,
+               fr->st.capture ? fr->st.capture : "-",
+               fr->st.capture_slots ? fr->st.capture_slots : "none (counted)",
+               fr->st.capture_slots_k ? " x" : "", fr->st.capture_slots_k,
+               fr->stream.capture_asked,
+               fr->stream.capture_fallback[0] ? "; auto fell back: " : "",
+               fr->stream.capture_fallback);
     return s;
 }
 
@@ -602,7 +610,7 @@ static int run_render(const oit_stream_args *args)
     oit_camera *cams = NULL;
     int n = 0;
     int K = scene_max_layers(a, pf);
-    oit_stream_options so = {.partfile = pf, .pack = a->pack,
+    oit_stream_options so = {.partfile = pf, .pack = a->pack, .capture = a->capture,
                              .schedule = a->schedule_wave ? OIT_SCHEDULE_WAVE : OIT_SCHEDULE_TREE,
                              .upload_budget = a->upload_budget, .slot_budget = a->slot_budget,
                              .cache_budget = a->cache_budget,

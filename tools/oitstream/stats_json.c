@@ -70,6 +70,10 @@ static void put_frame(oit_json *w, const oit_stats_frame *fr)
         oit_json_string(w, "capture", s->capture);
         oit_json_uint(w, "capture_k", s->capture_k);
     }
+    if (s->capture_slots) {
+        oit_json_string(w, "capture_slots", s->capture_slots);
+        oit_json_uint(w, "capture_slots_k", s->capture_slots_k);
+    }
     if (fr->has_stream) {
         OIT_JSON_UINTS(w, parts);
         oit_json_general(w, "epsilon", t->epsilon, 9);
@@ -78,6 +82,10 @@ static void put_frame(oit_json *w, const oit_stats_frame *fr)
         oit_json_fixed(w, "pack_ms", t->pack_ms, 3);
         oit_json_int(w, "auto_first_k", t->first_k);
         oit_json_int(w, "front_first", t->front_first);
+        if (t->capture_asked) {
+            oit_json_string(w, "capture_asked", t->capture_asked);
+            oit_json_string(w, "capture_fallback", t->capture_fallback);
+        }
     }
     oit_json_end(w);
 }

@@ -669,6 +669,11 @@ static void status_fields(viewer *v, fields *f)
     if (m->stream_stats && v->state && !(v->shown_kind == SHOWN_PREVIEW && v->pv_method)) {
         const oit_stream_frame_stats *ss = oit_method_stream_stats(v->state);
         field(f, "packs %u", ss->packs);
+        /* which K-slot fill ran (--capture): "slots stencil x8", "slots array" */
+        if (v->st.capture_slots && v->st.capture_slots_k)
+            field(f, "slots %s x%u", v->st.capture_slots, v->st.capture_slots_k);
+        else if (v->st.capture_slots)
+            field(f, "slots %s", v->st.capture_slots);
         field(f, "draws %llu", (unsigned long long)ss->draw_calls);
         double up = (double)ss->bytes_uploaded;
         if (up >= 1e3) {
