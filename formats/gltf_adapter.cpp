@@ -71,6 +71,7 @@ struct Ctx {
     std::vector<oit_triangle> chunk;
     size_t chunk_cap;
     const tinygltf::Model *model;
+    bool texture_said; // the unsupported-texture note was printed
 };
 
 oit_status fail(Ctx &c, oit_status s, const char *fmt, ...)
@@ -463,9 +464,14 @@ oit_status material_shade(Ctx &c, int material, const char *what, Shade *sh)
         sh->base[k] = f[size_t(k)];
     sh->mode = m.alphaMode == "BLEND" ? Shade::BLEND : m.alphaMode == "MASK" ? Shade::MASK : Shade::OPAQUE;
     sh->cutoff = m.alphaCutoff;
-    c.info->attributes |= OIT_ATTR_COLOR;
-    if (sh->mode != Shade::OPAQUE)
-        c.info->attributes |= OIT_ATTR_ALPHA;
+    // Every material gives alpha, OPAQUE's being 1: its triangles are
+    // opaque (render/shade.h); a file without materials takes the default.
+    c.info->attributes |= OIT_ATTR_COLOR | OIT_ATTR_ALPHA;
+    if (m.pbrMetallicRoughness.baseColorTexture.index >= 0 && !c.texture_said) {
+        c.texture_said = true; // once per file
+        std::fprintf(stderr, "%s: baseColorTexture textures are not supported; using "
+                             "baseColorFactor\n", c.name ? c.name : "glTF");
+    }
     return OIT_OK;
 }
 

@@ -81,6 +81,9 @@ typedef struct oit_shading {
                              translucent shading                              */
     uint32_t attributes;  /* OIT_ATTR_* of the mesh: which vertex data is real */
     oit_colour_space colour_space; /* default OIT_COLOUR_SRGB (shade.h)        */
+    int see_through;      /* 1: alpha on every triangle, the file's alpha and
+                             opaque materials ignored; default 0 (shade.h,
+                             "Opaque triangles")                             */
 } oit_shading;
 
 typedef struct oit_view {
@@ -196,6 +199,13 @@ float oit_scene_scale(const float bmin[3], const float bmax[3]);
 
 /* Fills defaults for zero fields of the shading descriptor. */
 void oit_shading_resolve_defaults(oit_shading *s);
+/* The OIT_ATTR_* bits shading uses: attributes without OIT_ATTR_ALPHA when
+ * see_through is set. */
+uint32_t oit_shading_attrs(const oit_shading *s);
+/* 1 when triangles whose three vertices have alpha 255 are opaque (shade.h,
+ * "Opaque triangles"): transparent shading of a mesh with alpha, not
+ * see-through. Methods then run the opaque pre-pass (opaque_keys.h). */
+int oit_shading_opaque(const oit_shading *s);
 
 #ifdef __cplusplus
 }
