@@ -108,6 +108,13 @@ oit_status flush(Ctx &c)
     if (c.chunk.empty())
         return OIT_OK;
     oit_mesh_info_add(c.info, c.chunk.data(), c.chunk.size());
+    // ALPHA may come later (a primitive with a material after one without):
+    // oit_mesh_info_opaque at the end clears OPAQUE if it never does
+    for (const oit_triangle &t : c.chunk)
+        if (t.v[0].rgba[3] == 255 && t.v[1].rgba[3] == 255 && t.v[2].rgba[3] == 255) {
+            c.info->attributes |= OIT_ATTR_OPAQUE;
+            break;
+        }
     oit_status s = c.sink(c.user, c.chunk.data(), c.chunk.size(), c.err);
     c.chunk.clear();
     return s;
@@ -872,7 +879,10 @@ oit_status read_plain(Ctx &c, const unsigned char *bytes, size_t size)
         return s;
     c.chunk.reserve(c.chunk_cap);
     s = walk_model(c);
-    return s == OIT_OK ? flush(c) : s;
+    if (s == OIT_OK)
+        s = flush(c);
+    oit_mesh_info_opaque(c.info, nullptr, 0); // ALPHA came with the first material
+    return s;
 }
 
 /* tinygltf parses from memory: gzip bytes are inflated first, within the

@@ -252,6 +252,7 @@ oit_status oit_scene_create_mesh(const oit_scene_mesh_desc *d, oit_scene **out,
     mesh.info.vertices_in = d->vertex_count;
     mesh.info.faces_in = n;
     mesh.info.attributes = d->colors ? OIT_ATTR_COLOR | OIT_ATTR_ALPHA : 0;
+    oit_mesh_info_opaque(&mesh.info, mesh.tris, mesh.count);
     return mesh_scene(&mesh, name, out, err);
 }
 

@@ -69,7 +69,8 @@ static void interpolate_base(const oit_shading *s, const oit_triangle *tri,
 
 int oit_triangle_opaque(const oit_shading *s, const oit_triangle *tri)
 {
-    return oit_shading_opaque(s) && tri->v[0].rgba[3] == 255 && tri->v[1].rgba[3] == 255 &&
+    return s->mode == OIT_SHADING_TRANSPARENT && (oit_shading_attrs(s) & OIT_ATTR_ALPHA) &&
+           tri->v[0].rgba[3] == 255 && tri->v[1].rgba[3] == 255 &&
            tri->v[2].rgba[3] == 255;
 }
 

@@ -485,7 +485,8 @@ uint32_t oit_shading_attrs(const oit_shading *s)
 
 int oit_shading_opaque(const oit_shading *s)
 {
-    return s->mode == OIT_SHADING_TRANSPARENT && (oit_shading_attrs(s) & OIT_ATTR_ALPHA);
+    uint32_t both = OIT_ATTR_ALPHA | OIT_ATTR_OPAQUE;
+    return s->mode == OIT_SHADING_TRANSPARENT && (oit_shading_attrs(s) & both) == both;
 }
 
 float oit_scene_scale(const float bmin[3], const float bmax[3])

@@ -202,9 +202,11 @@ void oit_shading_resolve_defaults(oit_shading *s);
 /* The OIT_ATTR_* bits shading uses: attributes without OIT_ATTR_ALPHA when
  * see_through is set. */
 uint32_t oit_shading_attrs(const oit_shading *s);
-/* 1 when triangles whose three vertices have alpha 255 are opaque (shade.h,
- * "Opaque triangles"): transparent shading of a mesh with alpha, not
- * see-through. Methods then run the opaque pre-pass (opaque_keys.h). */
+/* 1 when the methods run the opaque pre-pass (opaque_keys.h): transparent
+ * shading, not see-through, of a mesh with alpha some of whose triangles
+ * are opaque (OIT_ATTR_ALPHA and OIT_ATTR_OPAQUE; shade.h, "Opaque
+ * triangles"). Without OIT_ATTR_OPAQUE an opaque triangle still
+ * composites with a = 1: the image is the same, only nothing is culled. */
 int oit_shading_opaque(const oit_shading *s);
 
 #ifdef __cplusplus
