@@ -17,6 +17,9 @@ const char oit_glsl_vertex[] =
     /* Source indices of sourced draws (frag_glsl.h, "Primitive id"). */
     "layout(std430, binding = OIT_BIND_PRIMS) readonly buffer Prims { uint prims[]; };\n"
     "out vec3 v_pos;\n"
+    /* The opaque pre-pass and the captures are different programs that
+     * must compute the same key from it (oit_fragment_key). */
+    "invariant v_pos;\n"
     "out vec4 v_rgba;\n"
     "flat out vec3 v_normal;\n"
     "flat out uint v_first_prim;\n"
@@ -175,7 +178,9 @@ const char oit_glsl_fragment_gen[] =
     /* One expression for the key, so that the opaque pre-pass and the
      * captures compute the same bits. */
     "uint oit_fragment_key() {\n"
-    "    return oit_depth_key(length(v_pos - oit_ray_origin()));\n"
+    "    precise vec3 rel = v_pos - oit_ray_origin();\n"
+    "    precise float t_interp = length(rel);\n"
+    "    return oit_depth_key(t_interp);\n"
     "}\n"
     OIT_GLSL_OPAQUE
     "uvec4 oit_fragment() {\n"
