@@ -71,6 +71,7 @@ struct Ctx {
     std::vector<oit_triangle> chunk;
     size_t chunk_cap;
     const tinygltf::Model *model;
+    bool texture_said; // the unsupported-texture note was printed
 };
 
 oit_status fail(Ctx &c, oit_status s, const char *fmt, ...)
@@ -107,6 +108,13 @@ oit_status flush(Ctx &c)
     if (c.chunk.empty())
         return OIT_OK;
     oit_mesh_info_add(c.info, c.chunk.data(), c.chunk.size());
+    // ALPHA may come later (a primitive with a material after one without):
+    // oit_mesh_info_opaque at the end clears OPAQUE if it never does
+    for (const oit_triangle &t : c.chunk)
+        if (t.v[0].rgba[3] == 255 && t.v[1].rgba[3] == 255 && t.v[2].rgba[3] == 255) {
+            c.info->attributes |= OIT_ATTR_OPAQUE;
+            break;
+        }
     oit_status s = c.sink(c.user, c.chunk.data(), c.chunk.size(), c.err);
     c.chunk.clear();
     return s;
@@ -463,9 +471,14 @@ oit_status material_shade(Ctx &c, int material, const char *what, Shade *sh)
         sh->base[k] = f[size_t(k)];
     sh->mode = m.alphaMode == "BLEND" ? Shade::BLEND : m.alphaMode == "MASK" ? Shade::MASK : Shade::OPAQUE;
     sh->cutoff = m.alphaCutoff;
-    c.info->attributes |= OIT_ATTR_COLOR;
-    if (sh->mode != Shade::OPAQUE)
-        c.info->attributes |= OIT_ATTR_ALPHA;
+    // Every material gives alpha, OPAQUE's being 1: its triangles are
+    // opaque (render/shade.h); a file without materials takes the default.
+    c.info->attributes |= OIT_ATTR_COLOR | OIT_ATTR_ALPHA;
+    if (m.pbrMetallicRoughness.baseColorTexture.index >= 0 && !c.texture_said) {
+        c.texture_said = true; // once per file
+        std::fprintf(stderr, "%s: baseColorTexture textures are not supported; using "
+                             "baseColorFactor\n", c.name ? c.name : "glTF");
+    }
     return OIT_OK;
 }
 
@@ -866,7 +879,10 @@ oit_status read_plain(Ctx &c, const unsigned char *bytes, size_t size)
         return s;
     c.chunk.reserve(c.chunk_cap);
     s = walk_model(c);
-    return s == OIT_OK ? flush(c) : s;
+    if (s == OIT_OK)
+        s = flush(c);
+    oit_mesh_info_opaque(c.info, nullptr, 0); // ALPHA came with the first material
+    return s;
 }
 
 /* tinygltf parses from memory: gzip bytes are inflated first, within the

@@ -53,6 +53,16 @@ void oit_mesh_info_add(oit_mesh_info *info, const oit_triangle *tris, size_t cou
     info->triangles += count;
 }
 
+void oit_mesh_info_opaque(oit_mesh_info *info, const oit_triangle *tris, size_t count)
+{
+    for (size_t i = 0; i < count && !(info->attributes & OIT_ATTR_OPAQUE); i++)
+        if (tris[i].v[0].rgba[3] == 255 && tris[i].v[1].rgba[3] == 255 &&
+            tris[i].v[2].rgba[3] == 255)
+            info->attributes |= OIT_ATTR_OPAQUE;
+    if (!(info->attributes & OIT_ATTR_ALPHA))
+        info->attributes &= ~(uint32_t)OIT_ATTR_OPAQUE;
+}
+
 int oit_triangle_is_finite(const oit_triangle *t)
 {
     for (int v = 0; v < 3; v++)

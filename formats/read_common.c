@@ -413,6 +413,12 @@ oit_status oit_rd_flush(oit_rd_emitter *e)
     size_t n = e->count;
     e->count = 0;
     oit_mesh_info_add(e->info, e->tris, n);
+    /* ALPHA may come later (an OBJ's first material with d): kept, then
+     * cleared at the end if it never does (oit_rd_ctx_close) */
+    for (size_t i = 0; i < n && !(e->info->attributes & OIT_ATTR_OPAQUE); i++)
+        if (e->tris[i].v[0].rgba[3] == 255 && e->tris[i].v[1].rgba[3] == 255 &&
+            e->tris[i].v[2].rgba[3] == 255)
+            e->info->attributes |= OIT_ATTR_OPAQUE;
     return e->sink ? e->sink(e->user, e->tris, n, e->err) : OIT_OK;
 }
 
@@ -457,6 +463,8 @@ oit_status oit_rd_ctx_close(oit_rd_ctx *c, oit_status st)
 {
     if (st == OIT_OK)
         st = oit_rd_flush(&c->out);
+    if (c->info)
+        oit_mesh_info_opaque(c->info, NULL, 0);
     oit_rd_close(&c->in);
     oit_rd_emitter_free(&c->out);
     if (c->gz_file)

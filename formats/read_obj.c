@@ -12,7 +12,11 @@
  * Kd as the face colour (unless the file has vertex colours, which win) and
  * d, or else Tr as 1 - d, as its alpha. A material library that cannot be
  * opened is skipped (the faces then carry no material colour); one that is
- * malformed is an error naming it.
+ * malformed is an error naming it. Texture maps (map_Kd, map_d, ...) are
+ * not rendered: the first one met is reported once on stderr. A face of a
+ * material with d or Tr carries that alpha, one of a material without
+ * (or of no material) alpha 1, MTL's default: with alpha in the file,
+ * those are opaque (render/shade.h, "Opaque triangles").
  *
  * Triangles touching a NaN/inf vertex are dropped and counted in
  * info->nonfinite_dropped.
@@ -38,6 +42,7 @@ typedef struct obj_reader {
     obj_material *mats;
     size_t nmat, capmat;
     const obj_material *cur;
+    int map_said; /* a texture map was reported (once per OBJ) */
 } obj_reader;
 
 /* The rest of a statement (a name), trimmed of blanks on both sides. */
@@ -85,8 +90,14 @@ static oit_status mtl_statement(obj_reader *r, oit_rd_stream *in, char *p)
         return mtl_new(r, in, obj_rest(p));
     int kd = oit_rd_word_eq(w, n, "Kd"), d = oit_rd_word_eq(w, n, "d"),
         tr = oit_rd_word_eq(w, n, "Tr");
-    if (!kd && !d && !tr)
-        return OIT_OK; /* Ka, Ks, Ns, illum, maps...: nothing we render */
+    if (!kd && !d && !tr) {
+        if (n > 4 && strncmp(w, "map_", 4) == 0 && !r->map_said) {
+            r->map_said = 1; /* once per file: texture maps are out of scope */
+            fprintf(stderr, "%s: %.*s textures are not supported; using Kd\n", in->name, (int)n,
+                    w);
+        }
+        return OIT_OK; /* Ka, Ks, Ns, illum, other maps...: nothing we render */
+    }
     if (r->nmat == 0)
         return oit_rd_fail_line(in, OIT_ERR_FORMAT, "'%.*s' before any 'newmtl'", (int)n, w);
     obj_material *m = &r->mats[r->nmat - 1];

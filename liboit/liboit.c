@@ -252,6 +252,7 @@ oit_status oit_scene_create_mesh(const oit_scene_mesh_desc *d, oit_scene **out,
     mesh.info.vertices_in = d->vertex_count;
     mesh.info.faces_in = n;
     mesh.info.attributes = d->colors ? OIT_ATTR_COLOR | OIT_ATTR_ALPHA : 0;
+    oit_mesh_info_opaque(&mesh.info, mesh.tris, mesh.count);
     return mesh_scene(&mesh, name, out, err);
 }
 
@@ -711,6 +712,19 @@ static void depth_unit_bind(const oit_renderer *r, GLuint tex, depth_unit *u)
     glActiveTexture((GLenum)u->active);
 }
 
+/* Texture unit 6 (OIT_TEX_OPAQUE_KEYS), which the opaque pre-pass binds
+ * (render/opaque_keys.h): liboit.h promises it back. */
+_Static_assert(OIT_TEX_OPAQUE_KEYS == 6, "liboit.h documents texture unit 6");
+static GLint keys_unit_save(void)
+{
+    GLint active = 0, tex = 0;
+    glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
+    glActiveTexture(GL_TEXTURE0 + OIT_TEX_OPAQUE_KEYS);
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &tex);
+    glActiveTexture((GLenum)active);
+    return tex;
+}
+
 static void depth_unit_restore(const depth_unit *u)
 {
     glActiveTexture(GL_TEXTURE0 + OIT_TEX_OPAQUE_DEPTH);
@@ -769,7 +783,9 @@ static oit_status draw_bands(oit_renderer *r, const oit_scene *scene, const oit_
         oit_frame_stats bfs = {0};
         oit_stream_frame_stats bss = {0};
         GLuint state = 0;
+        GLint keys_tex = keys_unit_save();
         st = render_state(r, scene, &band, &opaque, &state, &bfs, &bss, err);
+        glBindTextureUnit(OIT_TEX_OPAQUE_KEYS, (GLuint)keys_tex);
         if (opaque.enabled)
             depth_unit_restore(&unit);
         if (st == OIT_OK) {

@@ -14,6 +14,7 @@
 #include "render/capture_stencil.h"
 #include "render/frag_glsl.h"
 #include "render/image.h"
+#include "render/opaque_keys.h"
 #include "render/rect.h"
 
 #include <stdio.h>
@@ -33,7 +34,9 @@ struct oit_capture {
     float epsilon; /* early termination threshold; 0: exact */
     float applied; /* what the programs test now: epsilon, or 0 (gate_epsilon) */
     int touched[4]; /* GL box of the frame's batches so far; empty: x0 >= x1 */
-    oit_opaque_depth opaque; /* the caller's depth (oit_capture_set_opaque) */
+    oit_opaque_depth opaque; /* the caller's depth (oit_capture_set_opaque);
+                                keyed: this frame's opaque triangles */
+    oit_opaque_keys *keys;   /* the opaque pre-pass, made on first need */
     GLuint prog[PROG_N];
     /* Tiled batches (tile-local slots: wide parts, or a slot budget below
      * the full frame), built on first use: [0] sorts up to 16, [1] up to
@@ -102,6 +105,7 @@ static void release(oit_capture *c)
     if (c->backend == OIT_CAPTURE_FIRSTK)
         oit_firstk_release(&c->firstk);
     oit_gpu_draws_destroy(c->draws);
+    oit_opaque_keys_destroy(c->keys);
     free(c);
 }
 
@@ -248,7 +252,7 @@ static uint64_t held_bytes(const oit_capture *c)
         b += oit_firstk_bytes(&c->firstk);
     for (int i = 0; i < BUF_N; i++)
         b += c->cap[i];
-    return b;
+    return b + oit_opaque_keys_gpu_bytes(c->keys);
 }
 
 static void note_peak(oit_capture *c)
@@ -428,6 +432,24 @@ void oit_capture_set_opaque(oit_capture *c, const oit_opaque_depth *o)
     memset(&c->opaque, 0, sizeof c->opaque);
     if (o && o->enabled)
         c->opaque = *o;
+    c->opaque.keyed = 0; /* each frame's own (opaque_begin) */
+}
+
+/* The frame's opaque pre-pass (opaque_keys.h), when its shading has opaque
+ * triangles; before set_uniforms, which passes keyed to the programs. */
+static oit_status opaque_begin(oit_capture *c, oit_error *err)
+{
+    c->opaque.keyed = 0;
+    if (!oit_shading_opaque(&c->view.shading))
+        return OIT_OK;
+    oit_status s = c->keys ? OIT_OK : oit_opaque_keys_create(&c->keys, err);
+    int on = 0;
+    if (s == OIT_OK)
+        s = oit_opaque_keys_begin(c->keys, &c->view, c->opaque.enabled ? &c->opaque : NULL, &on,
+                                  err);
+    c->opaque.keyed = on;
+    note_peak(c);
+    return s;
 }
 
 void oit_capture_set_epsilon(oit_capture *c, float epsilon)
@@ -506,6 +528,8 @@ oit_status oit_capture_begin(oit_capture *c, const oit_view *view, oit_error *er
     glClearNamedBufferData(c->buf[BUF_TOTALS], GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     glNamedFramebufferParameteri(c->fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH, view->width);
     glNamedFramebufferParameteri(c->fbo, GL_FRAMEBUFFER_DEFAULT_HEIGHT, view->height);
+    if ((s = opaque_begin(c, err)) != OIT_OK)
+        return s;
     set_uniforms(c);
     bind_buffers(c);
     /* The state buffer of the frame before may still be read by a pass the
@@ -584,9 +608,11 @@ static void resolve(GLuint prog, const int r[4])
 }
 
 /* The start every batch shares: it must be inside a frame, it counts, and
- * its rect is clamped into GL rows in r; *empty when nothing is drawn. */
-static oit_status batch_start(oit_capture *c, const int rect[4], int n, int r[4], int *empty,
-                              oit_error *err)
+ * its rect is clamped into GL rows in r; *empty when nothing is drawn.
+ * With opaque triangles it draws the batch's into the keys first, so that
+ * the batch's own fragments behind them are discarded too. */
+static oit_status batch_start(oit_capture *c, const oit_gpu_mesh *const *meshes, const int rect[4],
+                              int n, int r[4], int *empty, oit_error *err)
 {
     if (!c->in_frame)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: batch outside "
@@ -595,6 +621,8 @@ static oit_status batch_start(oit_capture *c, const int rect[4], int n, int r[4]
     *empty = !gl_rect(c, rect, r) || n <= 0;
     if (!*empty)
         gate_epsilon(c, r);
+    if (!*empty && c->opaque.keyed)
+        oit_opaque_keys_draw(c->keys, c->draws, meshes, n, r);
     return OIT_OK;
 }
 
@@ -653,7 +681,7 @@ oit_status oit_capture_batch(oit_capture *c, const oit_gpu_mesh *const *meshes,
 {
     if (uses_counted(c)) {
         int r[4] = {0}, empty = 1;
-        oit_status s = batch_start(c, rect, n, r, &empty, err);
+        oit_status s = batch_start(c, meshes, rect, n, r, &empty, err);
         if (s != OIT_OK || empty)
             return s;
         return c->backend == OIT_CAPTURE_FIRSTK ? firstk_batch(c, meshes, n, r, err)
@@ -662,7 +690,7 @@ oit_status oit_capture_batch(oit_capture *c, const oit_gpu_mesh *const *meshes,
     if (c->tiled)
         return oit_capture_batch_layers(c, meshes, n, rect, c->K, err);
     int r[4] = {0}, empty = 1;
-    oit_status s = batch_start(c, rect, n, r, &empty, err);
+    oit_status s = batch_start(c, meshes, rect, n, r, &empty, err);
     if (s != OIT_OK || empty)
         return s;
     if (c->backend == OIT_CAPTURE_ARRAY)
@@ -755,7 +783,7 @@ oit_status oit_capture_batch_layers(oit_capture *c, const oit_gpu_mesh *const *m
         return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: a batch of %d layers, more than "
                              "%d", layers, OIT_CAPTURE_MAX_LAYERS);
     int r[4] = {0}, empty = 1;
-    oit_status s = batch_start(c, rect, n, r, &empty, err);
+    oit_status s = batch_start(c, meshes, rect, n, r, &empty, err);
     if (s != OIT_OK || empty)
         return s;
     return tiled_batch(c, meshes, n, r, layers > c->K ? layers : c->K, err);

@@ -8,6 +8,7 @@
 #include "base/clock.h"
 #include "render/frag_glsl.h"
 #include "render/image.h"
+#include "render/opaque_keys.h"
 #include "render/scan_glsl.h"
 
 #include <stdlib.h>
@@ -24,7 +25,8 @@ struct oit_dfb {
     uint64_t cap[BUF_N];
     oit_scan scan;
     uint64_t bytes_peak;
-    oit_opaque_depth opaque; /* oit_dfb_set_opaque */
+    oit_opaque_depth opaque; /* oit_dfb_set_opaque; keyed: this frame's */
+    oit_opaque_keys *keys;   /* the opaque pre-pass, made on first need */
 };
 
 void oit_dfb_set_opaque(oit_dfb *d, const oit_opaque_depth *o)
@@ -32,6 +34,7 @@ void oit_dfb_set_opaque(oit_dfb *d, const oit_opaque_depth *o)
     memset(&d->opaque, 0, sizeof d->opaque);
     if (o && o->enabled)
         d->opaque = *o;
+    d->opaque.keyed = 0; /* each frame's own (opaque_pass) */
 }
 
 static const char count_fs[] =
@@ -131,6 +134,7 @@ void oit_dfb_destroy(oit_dfb *d)
     glDeleteFramebuffers(1, &d->fbo);
     glDeleteBuffers(BUF_N, d->buf);
     oit_scan_release(&d->scan);
+    oit_opaque_keys_destroy(d->keys);
     free(d);
 }
 
@@ -139,7 +143,7 @@ static uint64_t held_bytes(const oit_dfb *d)
     uint64_t b = oit_scan_bytes(&d->scan);
     for (int i = 0; i < BUF_N; i++)
         b += d->cap[i];
-    return b;
+    return b + oit_opaque_keys_gpu_bytes(d->keys);
 }
 
 static oit_status reserve(oit_dfb *d, int which, uint64_t bytes, oit_error *err)
@@ -292,8 +296,30 @@ uint64_t oit_dfb_pixel_bytes(const oit_view *view, int state)
     return state ? oit_state_bytes(view->shading.mode == OIT_SHADING_TRANSLUCENT) : 16;
 }
 
+/* The opaque pre-pass over the whole frame (opaque_keys.h), when v's
+ * shading has opaque triangles: the count and store passes then skip
+ * every fragment behind them. */
+static oit_status opaque_pass(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n,
+                              const oit_view *v, oit_error *err)
+{
+    d->opaque.keyed = 0;
+    if (!oit_shading_opaque(&v->shading))
+        return OIT_OK;
+    oit_status s = d->keys ? OIT_OK : oit_opaque_keys_create(&d->keys, err);
+    int on = 0;
+    if (s == OIT_OK)
+        s = oit_opaque_keys_begin(d->keys, v, d->opaque.enabled ? &d->opaque : NULL, &on, err);
+    if (s != OIT_OK)
+        return s;
+    const int r[4] = {0, 0, v->width, v->height};
+    oit_opaque_keys_draw(d->keys, NULL, meshes, n, r);
+    d->opaque.keyed = on;
+    return oit_gl_check("DFB: opaque pre-pass", err);
+}
+
 /* out: BUF_OUT (colour over the background) or BUF_STATE (the state). */
-static oit_status prepare(oit_dfb *d, const oit_view *v, int out, oit_error *err)
+static oit_status prepare(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n, const oit_view *v,
+                          int out, oit_error *err)
 {
     uint64_t pixels = (uint64_t)v->width * v->height;
     uint64_t out_bytes = pixels * oit_dfb_pixel_bytes(v, out == BUF_STATE);
@@ -306,6 +332,8 @@ static oit_status prepare(oit_dfb *d, const oit_view *v, int out, oit_error *err
         s = reserve(d, BUF_OFFSETS, (pixels + 1) * 4, err);
     if (s == OIT_OK)
         s = reserve(d, out, out_bytes, err);
+    if (s == OIT_OK)
+        s = opaque_pass(d, meshes, n, v, err);
     if (s != OIT_OK)
         return s;
     oit_glsl_raster_begin_sized(d->fbo, v->width, v->height);
@@ -364,7 +392,7 @@ static oit_status resolve_into(oit_dfb *d, int prog, int buf,
     f->t0 = oit_time_ms();
     f->v = *view;
     oit_shading_resolve_defaults(&f->v.shading);
-    s = prepare(d, &f->v, buf, err);
+    s = prepare(d, meshes, n, &f->v, buf, err);
     if (s == OIT_OK)
         s = render_passes(d, d->prog[prog], meshes, n, &f->v, counts, &f->res, &f->bands, err);
     return s;

@@ -17,6 +17,9 @@ const char oit_glsl_vertex[] =
     /* Source indices of sourced draws (frag_glsl.h, "Primitive id"). */
     "layout(std430, binding = OIT_BIND_PRIMS) readonly buffer Prims { uint prims[]; };\n"
     "out vec3 v_pos;\n"
+    /* The opaque pre-pass and the captures are different programs that
+     * must compute the same key from it (oit_fragment_key). */
+    "invariant v_pos;\n"
     "out vec4 v_rgba;\n"
     "flat out vec3 v_normal;\n"
     "flat out uint v_first_prim;\n"
@@ -25,6 +28,11 @@ const char oit_glsl_vertex[] =
     "layout(location = 26) uniform mat4 u_model;\n"
     "vec3 oit_world(uvec4 v) { return (u_model * vec4(uintBitsToFloat(v.xyz), 1.0)).xyz; }\n"
     "flat out vec4 v_plane;\n"
+    /* Opaque triangle (shade.h, "Opaque triangles"): every vertex reads
+     * all three alphas, so the flat value is the same whichever provokes. */
+    "flat out uint v_opaque;\n"
+    "layout(location = 3) uniform int u_mode;\n"
+    "layout(location = 4) uniform uint u_attrs;\n"
     /* oit_shading.colour_space (shade.h, "Colour space"); set by name. */
     "uniform int u_colour_space;\n"
     OIT_GLSL_SRGB_FUNCS
@@ -68,7 +76,7 @@ const char oit_glsl_vertex[] =
     /* Outside the clip volume: the triangle is dropped whole. */
     "        gl_Position = vec4(2.0, 2.0, 2.0, 1.0);\n"
     "        v_pos = vec3(0.0); v_rgba = vec4(0.0); v_normal = vec3(0.0);\n"
-    "        v_first_prim = 0u; v_plane = vec4(0.0);\n"
+    "        v_first_prim = 0u; v_plane = vec4(0.0); v_opaque = 0u;\n"
     "        return;\n"
     "    }\n"
     "    vec3 p0 = oit_world(verts[v0]);\n"
@@ -80,6 +88,8 @@ const char oit_glsl_vertex[] =
     "    v_normal = mat3(u_view) * cross(p1 - p0, p2 - p0);\n"
     "    v_first_prim = sourced ? prims[prim_word] | 0x80000000u : a_draw.y;\n"
     "    v_plane = oit_tie_plane(p0, p1, p2);\n"
+    "    v_opaque = u_mode == 0 && (u_attrs & 2u) != 0u &&\n"
+    "               (verts[v0].w & verts[v0 + 1u].w & verts[v0 + 2u].w) >> 24 == 255u ? 1u : 0u;\n"
     "    vec4 vp = u_view * vec4(oit_world(me), 1.0);\n"
     "    v_pos = vp.xyz;\n"
     "    v_rgba = unpackUnorm4x8(me.w);\n"
@@ -87,19 +97,25 @@ const char oit_glsl_vertex[] =
     "    gl_Position = u_proj * vp;\n"
     "}\n";
 
-/* The caller's opaque depth (frag_glsl.h, oit_behind_opaque). */
+/* The caller's opaque depth and the opaque triangles' least keys
+ * (frag_glsl.h, oit_behind_opaque). A fragment at the least key is kept:
+ * the opaque one itself, and coplanar ones the tie rule orders. */
 #define OIT_GLSL_OPAQUE                                                          \
     "layout(binding = OIT_TEX_OPAQUE_DEPTH) uniform sampler2D u_opaque_depth;\n" \
+    "layout(binding = OIT_TEX_OPAQUE_KEYS) uniform sampler2D u_opaque_keys;\n"   \
     "layout(location = 17) uniform int u_opaque;\n"                              \
     "layout(location = 18) uniform ivec2 u_opaque_origin;\n"                     \
+    "uniform int u_opaque_keyed;\n"                                              \
     "bool oit_behind_opaque() {\n"                                               \
+    "    if (u_opaque_keyed != 0 && oit_fragment_key() >\n"                      \
+    "        floatBitsToUint(texelFetch(u_opaque_keys, ivec2(gl_FragCoord.xy), 0).r))\n" \
+    "        return true;\n"                                                     \
     "    if (u_opaque == 0) return false;\n"                                     \
     "    ivec2 q = ivec2(gl_FragCoord.xy) + u_opaque_origin;\n"                  \
     "    return gl_FragCoord.z >= texelFetch(u_opaque_depth, q, 0).r;\n"         \
     "}\n"
 
 const char oit_glsl_fragment_gen[] =
-    OIT_GLSL_OPAQUE
     "layout(location = 3) uniform int u_mode;\n"
     "layout(location = 4) uniform uint u_attrs;\n"
     "layout(location = 5) uniform float u_alpha;\n"
@@ -110,6 +126,7 @@ const char oit_glsl_fragment_gen[] =
     "flat in vec3 v_normal;\n"
     "flat in uint v_first_prim;\n"
     "flat in vec4 v_plane;\n"
+    "flat in uint v_opaque;\n"
     "layout(location = 16) uniform vec4 u_ray;\n"
     "layout(location = 24) uniform vec4 u_org;\n"
     "layout(location = 25) uniform float u_org_z;\n"
@@ -190,6 +207,14 @@ const char oit_glsl_fragment_gen[] =
     "    }\n"
     "    return false;\n"
     "}\n"
+    /* One expression for the key, so that the opaque pre-pass and the
+     * captures compute the same bits. */
+    "uint oit_fragment_key() {\n"
+    "    precise vec3 rel = v_pos - oit_ray_origin();\n"
+    "    precise float t_interp = length(rel);\n"
+    "    return oit_depth_key(t_interp);\n"
+    "}\n"
+    OIT_GLSL_OPAQUE
     "uvec4 oit_fragment() {\n"
     "    vec3 rel = v_pos - oit_ray_origin();\n"
     "    float t_interp = length(rel);\n"
@@ -200,11 +225,11 @@ const char oit_glsl_fragment_gen[] =
     "    float ndv = abs(nv);\n"
     "    float light = 0.3 + 0.7 * ndv;\n"
     "    vec3 base = (u_attrs & 1u) != 0u ? v_rgba.rgb : u_default_rgb;\n"
-    "    float a = (u_attrs & 2u) != 0u ? v_rgba.a : u_alpha;\n"
+    "    float a = v_opaque != 0u ? 1.0 : (u_attrs & 2u) != 0u ? v_rgba.a : u_alpha;\n"
     "    uint prim = (v_first_prim & 0x80000000u) != 0u ? v_first_prim\n"
     "                                                   : v_first_prim + uint(gl_PrimitiveID);\n"
     "    uvec4 f;\n"
-    "    f.x = oit_depth_key(t_interp);\n"
+    "    f.x = oit_fragment_key();\n"
     "    f.y = (prim & 0x7fffffffu) | (nv > 0.0 ? 0x80000000u : 0u);\n"
     "    if (u_mode == 1) {\n"
     "        float fresnel = 0.04 + 0.96 * pow(1.0 - ndv, 5.0);\n"
@@ -370,7 +395,7 @@ void oit_glsl_set_view(GLuint prog, const oit_view *view)
     glProgramUniformMatrix4fv(prog, loc(prog, "u_proj"), 1, GL_FALSE, m);
     glProgramUniform1i(prog, loc(prog, "u_mode"), (GLint)s->mode);
     glProgramUniform1i(prog, loc(prog, "u_colour_space"), (GLint)s->colour_space);
-    glProgramUniform1ui(prog, loc(prog, "u_attrs"), s->attributes);
+    glProgramUniform1ui(prog, loc(prog, "u_attrs"), oit_shading_attrs(s));
     glProgramUniform1f(prog, loc(prog, "u_alpha"), s->alpha);
     float drgb[3];
     for (int c = 0; c < 3; c++)
@@ -410,6 +435,7 @@ void oit_glsl_set_opaque(GLuint prog, const oit_opaque_depth *o)
 {
     int on = o && o->enabled;
     glProgramUniform1i(prog, loc(prog, "u_opaque"), on);
+    glProgramUniform1i(prog, loc(prog, "u_opaque_keyed"), o && o->keyed);
     glProgramUniform2i(prog, loc(prog, "u_opaque_origin"), on ? o->origin[0] : 0,
                        on ? o->origin[1] : 0);
     if (on)

@@ -97,8 +97,10 @@ extern const char oit_glsl_fragment_gen[];
  * opaque depth is set (oit_glsl_set_opaque) and the fragment's window depth
  * gl_FragCoord.z is >= the depth texel under it, a sampler2D at texture
  * unit OIT_TEX_OPAQUE_DEPTH read with texelFetch at gl_FragCoord.xy +
- * u_opaque_origin. Every fragment main that counts or stores fragments
- * discards those first, so that counts and stores agree. */
+ * u_opaque_origin; or when the opaque keys are on (keyed) and the
+ * fragment's key (oit_fragment_key()) is greater than the least opaque key
+ * at its pixel (opaque_keys.h). Every fragment main that counts or stores
+ * fragments discards those first, so that counts and stores agree. */
 /* oit_glsl_fragment_gen also defines oit_clipped(): true when a section
  * plane (oit_view.clip, clip.h) removes the fragment. Every fragment main
  * that counts, stores or blends fragments discards those first, before
@@ -199,7 +201,10 @@ void oit_glsl_set_epsilon_all(const GLuint *progs, int n, float epsilon);
  * the caller's projection gives; call it after oit_glsl_set_view, which
  * sets u_proj from the camera. The texture is bound by whoever draws. */
 typedef struct oit_opaque_depth {
-    int enabled;
+    int enabled;    /* 1: test the caller's depth (the fields below)     */
+    int keyed;      /* 1: test the opaque triangles' least keys, bound at
+                       OIT_TEX_OPAQUE_KEYS (opaque_keys.h); independent of
+                       enabled                                           */
     int origin[2];  /* texel of frame pixel (0, 0): the viewport's corner */
     float proj[16]; /* column-major, the caller's projection */
 } oit_opaque_depth;

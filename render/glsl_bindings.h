@@ -72,6 +72,11 @@
  *                   above, which passes that read it also bind; liboit
  *                   gives the caller's binding of this unit back, and
  *                   liboit.h tells callers its number.
+ * OIT_TEX_OPAQUE_KEYS  the least key of the opaque triangles' fragments
+ *                   per pixel (opaque_keys.h): every fragment stage built
+ *                   on oit_glsl_fragment_gen (oit_behind_opaque) where
+ *                   the shading has opaque triangles; liboit gives the
+ *                   caller's binding of this unit back too.
  *
  * OIT_IMG_OUT       the rgba32f result of F2B's final pass and WBOIT's
  *                   resolve.
@@ -101,6 +106,7 @@
     X(OIT_TEX_LAYER, 0)          \
     X(OIT_TEX_SAMPLES, 0)        \
     X(OIT_TEX_OPAQUE_DEPTH, 7)   \
+    X(OIT_TEX_OPAQUE_KEYS, 6)    \
     X(OIT_IMG_OUT, 0)            \
     X(OIT_IMG_SLOTS, 0)          \
     X(OIT_IMG_FRONT, 0)          \

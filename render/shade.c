@@ -60,9 +60,18 @@ static void interpolate_base(const oit_shading *s, const oit_triangle *tri,
         }
     for (int c = 0; c < 3; c++) {
         float d = lin ? (float)oit_srgb_decode(s->default_rgb[c]) : s->default_rgb[c];
-        base_rgb[c] = (s->attributes & OIT_ATTR_COLOR) ? (float)(rgba[c] / 255.0) : d;
+        base_rgb[c] = (oit_shading_attrs(s) & OIT_ATTR_COLOR) ? (float)(rgba[c] / 255.0) : d;
     }
-    *base_a = (s->attributes & OIT_ATTR_ALPHA) ? (float)(rgba[3] / 255.0) : s->alpha;
+    *base_a = (oit_shading_attrs(s) & OIT_ATTR_ALPHA) ? (float)(rgba[3] / 255.0) : s->alpha;
+    if (oit_triangle_opaque(s, tri))
+        *base_a = 1.0f; /* exactly: nothing behind it may show */
+}
+
+int oit_triangle_opaque(const oit_shading *s, const oit_triangle *tri)
+{
+    return s->mode == OIT_SHADING_TRANSPARENT && (oit_shading_attrs(s) & OIT_ATTR_ALPHA) &&
+           tri->v[0].rgba[3] == 255 && tri->v[1].rgba[3] == 255 &&
+           tri->v[2].rgba[3] == 255;
 }
 
 void oit_shade_fragment(const oit_shading *s, const oit_triangle *tri,

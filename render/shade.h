@@ -8,7 +8,8 @@
  *                                                    the viewer)
  *   base  = barycentric interpolation of vertex rgba / 255 (perspective
  *           correct); rgb := default_rgb without OIT_ATTR_COLOR, a := alpha
- *           without OIT_ATTR_ALPHA.
+ *           without OIT_ATTR_ALPHA (or with see_through); a := 1 exactly
+ *           on an opaque triangle (below).
  * transparent:  colour = base.rgb * (0.3 + 0.7 * ndv),  a = base.a
  * translucent:  colour = (1,1,1) * (0.3 + 0.7 * ndv) (a specular white),
  *               a = F0 + (1 - F0) * (1 - ndv)^5 with F0 = 0.04 (Schlick);
@@ -26,6 +27,19 @@
  *   final = C + T * background
  * The state (C, T, nest, medium, t_prev) is what crosses batch boundaries
  * when a frame is captured in several batches.
+ *
+ * Opaque triangles. With transparent shading of a mesh that has alpha
+ * (OIT_ATTR_ALPHA, not see_through), a triangle whose three vertices have
+ * alpha 255 is opaque (glTF OPAQUE and MASK materials, MTL d 1, a PLY's
+ * alpha 255): its a is 1, so T = 0 behind its nearest fragment and nothing
+ * there shows. The definition above needs nothing else; the GL methods
+ * also avoid storing what cannot show: a pre-pass writes per pixel the
+ * least key of the opaque fragments (opaque_keys.h), and every fragment
+ * with a greater key is discarded before it is counted or stored. Those
+ * at the least key (the opaque one, coplanar ones) are kept and sorted by
+ * the tie rule like any other, so the image is the one defined above. A
+ * triangle with some vertices at 255 and some below is not opaque.
+ * Translucent shading ignores it (alpha there is Fresnel's).
  *
  * Colour space (oit_shading.colour_space). Vertex colours, default_rgb and
  * background are sRGB-encoded (mesh.h: 8-bit sRGB, straight alpha).
@@ -128,6 +142,9 @@ float oit_depth_quantise(float t);
 
 /* Shades one hit: p0..p2 the triangle, bary (w0,w1,w2) the barycentric
  * weights of the hit, eye the camera position, t the hit distance. */
+/* 1 when tri is opaque under s (above, "Opaque triangles"). */
+int oit_triangle_opaque(const oit_shading *s, const oit_triangle *tri);
+
 void oit_shade_fragment(const oit_shading *s, const oit_triangle *tri,
                         uint32_t prim, const float bary[3], const float eye[3],
                         double t, oit_shaded_fragment *out);

@@ -478,6 +478,17 @@ void oit_shading_resolve_defaults(oit_shading *s)
         s->absorption = 4.0f;
 }
 
+uint32_t oit_shading_attrs(const oit_shading *s)
+{
+    return s->see_through ? s->attributes & ~(uint32_t)OIT_ATTR_ALPHA : s->attributes;
+}
+
+int oit_shading_opaque(const oit_shading *s)
+{
+    uint32_t both = OIT_ATTR_ALPHA | OIT_ATTR_OPAQUE;
+    return s->mode == OIT_SHADING_TRANSPARENT && (oit_shading_attrs(s) & both) == both;
+}
+
 float oit_scene_scale(const float bmin[3], const float bmax[3])
 {
     double d2 = 0.0;

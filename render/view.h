@@ -82,6 +82,9 @@ typedef struct oit_shading {
                              translucent shading                              */
     uint32_t attributes;  /* OIT_ATTR_* of the mesh: which vertex data is real */
     oit_colour_space colour_space; /* default OIT_COLOUR_SRGB (shade.h)        */
+    int see_through;      /* 1: alpha on every triangle, the file's alpha and
+                             opaque materials ignored; default 0 (shade.h,
+                             "Opaque triangles")                             */
 } oit_shading;
 
 typedef struct oit_view {
@@ -206,6 +209,15 @@ float oit_scene_scale(const float bmin[3], const float bmax[3]);
 
 /* Fills defaults for zero fields of the shading descriptor. */
 void oit_shading_resolve_defaults(oit_shading *s);
+/* The OIT_ATTR_* bits shading uses: attributes without OIT_ATTR_ALPHA when
+ * see_through is set. */
+uint32_t oit_shading_attrs(const oit_shading *s);
+/* 1 when the methods run the opaque pre-pass (opaque_keys.h): transparent
+ * shading, not see-through, of a mesh with alpha some of whose triangles
+ * are opaque (OIT_ATTR_ALPHA and OIT_ATTR_OPAQUE; shade.h, "Opaque
+ * triangles"). Without OIT_ATTR_OPAQUE an opaque triangle still
+ * composites with a = 1: the image is the same, only nothing is culled. */
+int oit_shading_opaque(const oit_shading *s);
 
 #ifdef __cplusplus
 }

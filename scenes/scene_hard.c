@@ -450,6 +450,24 @@ static void case_dense(oit_emit *e, uint64_t seed)
     }
 }
 
+/* Opaque and transparent together (render/shade.h, "Opaque triangles"):
+ * an opaque box (alpha 255) inside a transparent sphere, a transparent
+ * slab through the box, and a second opaque box outside the sphere,
+ * partly in front of it. Behind the opaque faces nothing shows, and the
+ * GL methods store nothing. */
+static void case_mixed(oit_emit *e, uint64_t seed)
+{
+    (void)seed;
+    hard_color(e, 0.6f, 90);
+    oit_shape_sphere(e, oit_v3_make(0, 0, 0), 1.0f, 32);
+    hard_color(e, 0.08f, 255);
+    oit_shape_box(e, oit_v3_make(-0.4f, -0.4f, -0.4f), oit_v3_make(0.4f, 0.4f, 0.4f));
+    hard_color(e, 0.33f, 140);
+    oit_shape_box(e, oit_v3_make(-0.8f, -0.1f, -0.7f), oit_v3_make(0.8f, 0.1f, 0.7f));
+    hard_color(e, 0.9f, 255);
+    oit_shape_box(e, oit_v3_make(0.6f, -0.9f, 0.9f), oit_v3_make(1.1f, -0.5f, 1.3f));
+}
+
 typedef struct hard_case {
     const char *name;
     hard_fn fn;
@@ -461,7 +479,7 @@ static const hard_case CASES[] = {
     {"far", case_far},           {"tiny", case_tiny},         {"thin", case_thin},
     {"nonmanifold", case_nonmanifold}, {"stack", case_stack}, {"dense", case_dense},
     {"coplanar_tiny", case_coplanar_tiny}, {"coplanar_far", case_coplanar_far},
-    {"decal", case_decal},       {"touching", case_touching},
+    {"decal", case_decal},       {"touching", case_touching}, {"mixed", case_mixed},
 };
 
 const char *oit_scene_hard_case_name(int i)

@@ -56,8 +56,10 @@
  * binding, blend enable / function / equation, depth, stencil, cull,
  * scissor and GL_FRAMEBUFFER_SRGB enables, colour and depth write masks,
  * and (with a depth texture) the active texture unit and the 2D texture and
- * sampler bound to texture unit 7, which it binds during the capture. It
- * does NOT restore indexed shader-storage buffer bindings 0..9, the texture
+ * sampler bound to texture unit 7, which it binds during the capture; and
+ * the 2D texture bound to texture unit 6, which it binds while a scene
+ * with opaque triangles (alpha 255 where the scene has alpha: glTF OPAQUE
+ * materials, MTL d 1) is captured. It does NOT restore indexed shader-storage buffer bindings 0..9, the texture
  * bound to unit 0, or the framebuffer default-size parameters of its own
  * objects; callers that rely on those must rebind them.
  */

@@ -42,7 +42,12 @@ typedef struct oit_triangle {
 
 enum {
     OIT_ATTR_COLOR = 1u << 0, /* the input defines rgb  */
-    OIT_ATTR_ALPHA = 1u << 1  /* the input defines alpha */
+    OIT_ATTR_ALPHA = 1u << 1, /* the input defines alpha */
+    /* with OIT_ATTR_ALPHA: some triangle has alpha 255 at its three
+     * vertices, so it is opaque (render/shade.h, "Opaque triangles") and
+     * the renderers run their opaque pre-pass; readers set it (never
+     * without OIT_ATTR_ALPHA), oit_mesh_info_opaque computes it */
+    OIT_ATTR_OPAQUE = 1u << 2
 };
 
 typedef struct oit_mesh_info {
@@ -117,6 +122,10 @@ OIT_API void oit_mesh_free(oit_mesh *m);
 /* Bounds helpers used by readers so that every reader counts the same way. */
 OIT_API void oit_mesh_info_init(oit_mesh_info *info);
 OIT_API void oit_mesh_info_add(oit_mesh_info *info, const oit_triangle *tris, size_t count);
+/* Sets OIT_ATTR_OPAQUE in info->attributes when it has OIT_ATTR_ALPHA and
+ * one of tris[0..count) has alpha 255 at its three vertices; clears it
+ * without OIT_ATTR_ALPHA. Readers call it on every chunk and at the end. */
+OIT_API void oit_mesh_info_opaque(oit_mesh_info *info, const oit_triangle *tris, size_t count);
 /* 1 when all nine coordinates are finite. */
 OIT_API int oit_triangle_is_finite(const oit_triangle *t);
 

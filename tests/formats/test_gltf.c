@@ -212,8 +212,9 @@ static void check_scene(const char *label, const collect *c, const oit_mesh_info
            c->mesh.count, c->calls, c->max_chunk, (unsigned long long)info->vertices_in,
            info->attributes);
     CHECK(c->mesh.count == 5 && info->triangles == 5, "%s: %zu triangles, want 5", label, c->mesh.count);
-    CHECK(info->attributes == (OIT_ATTR_COLOR | OIT_ATTR_ALPHA), "%s: attributes %u", label,
-          info->attributes);
+    /* the OPAQUE material gives alpha 1: opaque triangles (render/shade.h) */
+    CHECK(info->attributes == (OIT_ATTR_COLOR | OIT_ATTR_ALPHA | OIT_ATTR_OPAQUE),
+          "%s: attributes %u", label, info->attributes);
     CHECK(info->bounds_min[0] == 9 && info->bounds_max[0] == 12 && info->bounds_max[2] == 5,
           "%s: bounds x %g..%g, z max %g", label, info->bounds_min[0], info->bounds_max[0],
           info->bounds_max[2]);

@@ -296,6 +296,15 @@ static void test_obj(void)
         CHECK(same_rgba(&t[3].v[0], 51, 51, 51, 255), "single-value Kd not grey");
         CHECK(same_rgba(&t[4].v[0], 255, 255, 255, 255), "unknown material not default");
     }
+    /* grey and nosuch have alpha 1 (MTL's default d): opaque triangles */
+    CHECK(m.info.attributes == (OIT_ATTR_COLOR | OIT_ATTR_ALPHA | OIT_ATTR_OPAQUE),
+          "attributes %u", m.info.attributes);
+    oit_mesh_free(&m);
+
+    /* Only materials below alpha 1: alpha without opaque triangles. */
+    write_text("glass.mtl", "newmtl g\nKd 0 0 1\nd 0.4\n");
+    load_text("glass.obj", "mtllib glass.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl g\nf 1 2 3\n", &m);
+    CHECK(m.count == 1 && same_rgba(&m.tris[0].v[0], 0, 0, 255, 102), "d 0.4");
     CHECK(m.info.attributes == (OIT_ATTR_COLOR | OIT_ATTR_ALPHA), "attributes %u",
           m.info.attributes);
     oit_mesh_free(&m);
@@ -351,8 +360,9 @@ static void test_off(void)
         CHECK(same_rgba(&m.tris[0].v[0], 0, 128, 255, 255), "face colour");
         CHECK(same_rgba(&m.tris[1].v[2], 10, 20, 30, 40), "vertex colour");
     }
-    CHECK(m.info.attributes == (OIT_ATTR_COLOR | OIT_ATTR_ALPHA), "attributes %u",
-          m.info.attributes);
+    /* the first face has alpha 255 at its three corners */
+    CHECK(m.info.attributes == (OIT_ATTR_COLOR | OIT_ATTR_ALPHA | OIT_ATTR_OPAQUE),
+          "attributes %u", m.info.attributes);
     oit_mesh_free(&m);
 
     load_text("normals.off",

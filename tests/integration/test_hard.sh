@@ -21,6 +21,8 @@
 #     triangle edges but no longer depth ties (they are defined now), in
 #     both schemes; the fast scheme's stream == DFB on the source mesh on
 #     every pixel, edges included, within 0.01%;
+#   mixed: every stream pack mode stores exactly DFB's fragments (nothing
+#     behind an opaque box), fewer than --see-through;
 #   decal: the decal 1e-5 above its surface wins on every pixel seen from
 #     above (0 pixels where the red surface is in front), the surface on
 #     every pixel seen from below.
@@ -193,5 +195,26 @@ dense) # in the lattice's centre and near a corner, looking across it; the
     view inside_centre --view 0.01,0.02,0.03,1,0.7,0.4,0,0,1,80,0.1,10
     view inside_corner --view -0.9,-0.85,-0.8,1,1,1,0,0,1,60,0.1,10 ;;
 esac
+
+if [ "$CASE" = mixed ]; then
+    # Opaque boxes (render/shade.h, "Opaque triangles"): every pack mode of
+    # the stream stores exactly what DFB stores (a pack's pre-pass and the
+    # packs before it cull what lies behind), and --see-through stores more.
+    for name in az30 az210 below; do
+        v="$T/$name"
+        [ "$(json_num opaque "$v-stream.json")" = 1 ] || fail "mixed: $name: opaque is not 1"
+        d=$(json_num fragments "$v-dfb.json")
+        for m in stream cnt counted slots; do
+            f=$(json_num fragments "$v-$m.json")
+            [ "$f" = "$d" ] || fail "mixed: $name: $m stores $f fragments, DFB $d"
+        done
+        "$S" "$T/in.oitp" --method stream --see-through --size "$SIZE" \
+            --view "$(json_str view "$v-stream.json")" --stats "$v-see.json" --quiet ||
+            fail "mixed: $name: --see-through"
+        echo "  mixed $name: fragments $d, --see-through $(json_num fragments "$v-see.json")"
+        [ "$(json_num fragments "$v-see.json")" -gt "$d" ] ||
+            fail "mixed: $name: nothing culled behind the opaque boxes"
+    done
+fi
 
 finish "$CASE ($SCHEME)"

@@ -63,6 +63,8 @@ static const char USAGE[] =
     "                            sharing an edge and a corner\n"
     "               stack        600 parallel squares (600 layers)\n"
     "               dense        a 10^3 lattice of tilted boxes, to look from inside\n"
+    "               mixed        opaque boxes (alpha 255) inside and beside a\n"
+    "                            transparent sphere, a transparent slab through one\n"
     "\n"
     "options:\n"
     "  -o, --output FILE   output PLY (required); written via FILE.tmp, then renamed\n"

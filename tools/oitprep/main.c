@@ -152,6 +152,8 @@ static oit_status print_json(const oit_partfile *pf, const oit_partfile_summary 
         oit_json_string(&w, NULL, "color");
     if (s->attributes & OIT_ATTR_ALPHA)
         oit_json_string(&w, NULL, "alpha");
+    if (s->attributes & OIT_ATTR_OPAQUE)
+        oit_json_string(&w, NULL, "opaque");
     oit_json_end(&w);
     double lo[3], hi[3];
     for (int k = 0; k < 3; k++) {
@@ -169,7 +171,8 @@ static oit_status print_json(const oit_partfile *pf, const oit_partfile_summary 
 
 static void print_human(const oit_partfile *pf, const oit_partfile_summary *s)
 {
-    const char *attr = s->attributes == (OIT_ATTR_COLOR | OIT_ATTR_ALPHA) ? "colour, alpha"
+    const char *attr = s->attributes & OIT_ATTR_OPAQUE ? "colour, alpha, opaque triangles"
+                       : s->attributes == (OIT_ATTR_COLOR | OIT_ATTR_ALPHA) ? "colour, alpha"
                        : s->attributes & OIT_ATTR_COLOR                  ? "colour"
                        : s->attributes & OIT_ATTR_ALPHA                  ? "alpha"
                                                                          : "positions only";

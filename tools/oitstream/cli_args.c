@@ -249,6 +249,7 @@ oit_status oit_stream_args_parse(int argc, char **argv, oit_stream_args *a, oit_
         else if (!strcmp(arg, "--quiet")) a->quiet = 1;
         else if (!strcmp(arg, "--window")) a->window = 1;
         else if (!strcmp(arg, "--no-overlay")) a->no_overlay = 1;
+        else if (!strcmp(arg, "--see-through")) a->shading.see_through = 1;
         else if (!strncmp(arg, "--", 2)) {
             const char *v = i + 1 < argc ? argv[i + 1] : NULL;
             if (!value_option(a, arg, v ? v : "", &s, err))
@@ -384,7 +385,13 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "                      --background decoded (exact sRGB EOTF), composited in\n"
         "                      linear light, the result encoded to sRGB for PNG;\n"
         "                      PFM holds linear light in both\n"
-        "  --alpha A           alpha for models without one, in (0, 1] (default 0.35)\n"
+        "  --alpha A           alpha where the model gives none, in (0, 1] (default\n"
+        "                      0.35); a model's own alpha (PLY/OFF alpha, glTF\n"
+        "                      materials, MTL d/Tr) wins, and its triangles of alpha 1\n"
+        "                      (glTF OPAQUE, MTL d 1) are opaque: drawn once, hiding\n"
+        "                      what is behind them\n"
+        "  --see-through       --alpha on every triangle: the model's alpha and opaque\n"
+        "                      materials are ignored (its colours are kept)\n"
         "  --absorption X      translucent optical depth across the model, > 0 (default 4)\n"
         "  --background r,g,b  default 1,1,1\n"
         "  --max-layers K      fragments per pixel per batch for array/stencil/stream,\n"

@@ -472,7 +472,8 @@ static oit_status render_all(run_ctx *rc, const oit_mesh *mesh, const oit_camera
     if (s == OIT_OK && a->stats_path) {
         oit_stats_run run = {a->model, (unsigned long long)mesh->info.triangles,
                              oit_method_renderer(rc->state), a->width, a->height, frames,
-                             (size_t)n};
+                             (size_t)n, oit_shading_opaque(&rc->view.shading),
+                             rc->view.shading.see_through};
         s = oit_stats_json_write(a->stats_path, &run, err);
     }
     free(frames);

@@ -103,6 +103,8 @@ oit_status oit_stats_json_write(const char *path, const oit_stats_run *run, oit_
     oit_json_string(&w, "renderer", run->renderer ? run->renderer : "");
     oit_json_int(&w, "width", run->width);
     oit_json_int(&w, "height", run->height);
+    oit_json_int(&w, "opaque", run->opaque);
+    oit_json_int(&w, "see_through", run->see_through);
     oit_json_begin_array(&w, "frames", OIT_JSON_BLOCK);
     for (size_t i = 0; i < run->frame_count; i++)
         put_frame(&w, &run->frames[i]);

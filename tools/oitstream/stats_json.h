@@ -24,6 +24,8 @@ typedef struct oit_stats_run {
     int width, height;
     const oit_stats_frame *frames;
     size_t frame_count;
+    int opaque;      /* opaque triangles on (oit_shading_opaque) */
+    int see_through; /* --see-through */
 } oit_stats_run;
 
 /* The camera in --view syntax, round-trippable (%.9g). */
