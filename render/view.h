@@ -125,6 +125,9 @@ typedef struct oit_frame_stats {
      * for every other method. */
     const char *capture;
     uint32_t capture_k;
+    /* The GPU timer's number of this frame (render/gpu_timer.h), whose
+     * gpu_ms comes later (oit_method_gpu_poll); 0: not timed on the GPU. */
+    uint64_t gpu_frame;
 } oit_frame_stats;
 
 /* Camera helpers. */
