@@ -240,6 +240,13 @@ typedef struct oit_renderer_desc {
      * later packs while the GPU draws earlier ones (it never calls GL). 1:
      * parts are read on the drawing thread; for comparison and debugging. */
     int read_on_draw_thread;
+    /* GPU bytes for the upload ring, the cache and the capture together
+     * (oitstream --gpu-budget alike); 0: half the free memory the driver
+     * reports (GL_NVX_gpu_memory_info, GL_ATI_meminfo), or, where it
+     * reports none, no total (the budgets above alone). upload_budget and
+     * cache_budget stay inside it: given ones that add up to more fail
+     * the first draw. The chosen split is in oit_draw_stats. */
+    uint64_t gpu_budget;
 } oit_renderer_desc;
 
 #define OIT_RENDER_CACHE_OFF UINT64_MAX
@@ -309,6 +316,8 @@ typedef struct oit_frame {
     float model[16];
 } oit_frame;
 
+#define OIT_DRAW_GPU_PHASES 6
+
 typedef struct oit_draw_stats {
     double ms;               /* wall time of the call; the capture is finished
                                 (its totals are read back), the final blend not */
@@ -328,6 +337,19 @@ typedef struct oit_draw_stats {
     uint64_t cache_bytes;    /* bytes resident in the cache after the call     */
     uint64_t draw_calls;     /* GL geometry draws; a pack's parts go in one
                                 multi-draw per run from the ring or the cache */
+    /* GPU time from GL timestamp queries, read without waiting: the figures
+     * of draw number gpu_frame (1 the renderer's first; usually an earlier
+     * call than this one), 0 and gpu_ms -1 when none is in yet or the
+     * driver has no timestamps. Phases, in this order: other, upload (ring
+     * to cache copies), pass 1, pass 2, resolve, read-back; they add up to
+     * gpu_ms. */
+    uint64_t gpu_frame;
+    double gpu_ms;
+    double gpu_phase_ms[OIT_DRAW_GPU_PHASES];
+    /* The memory the renderer chose for a part file (0 for in-core scenes):
+     * the total (0: none), its split, and the driver's free memory (0: it
+     * reports none). */
+    uint64_t gpu_budget, ring_budget, cache_budget, capture_budget, gpu_free_bytes;
 } oit_draw_stats;
 
 /* Draws scene as seen through frame into frame->framebuffer (see Result

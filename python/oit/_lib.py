@@ -50,7 +50,7 @@ class RendererDesc(ctypes.Structure):
     _fields_ = [("K", ctypes.c_uint32), ("upload_budget", ctypes.c_uint64),
                 ("pack", ctypes.c_int), ("shading", RenderShading),
                 ("epsilon", ctypes.c_float), ("cache_budget", ctypes.c_uint64),
-                ("read_on_draw_thread", ctypes.c_int)]
+                ("read_on_draw_thread", ctypes.c_int), ("gpu_budget", ctypes.c_uint64)]
 
 
 class OffscreenDesc(ctypes.Structure):
@@ -74,7 +74,11 @@ class DrawStats(ctypes.Structure):
                 ("parts_culled", ctypes.c_uint64), ("parts_skipped", ctypes.c_uint64),
                 ("bytes_uploaded", ctypes.c_uint64), ("gpu_bytes_peak", ctypes.c_uint64),
                 ("cache_hits", ctypes.c_uint64), ("cache_bytes", ctypes.c_uint64),
-                ("draw_calls", ctypes.c_uint64)]
+                ("draw_calls", ctypes.c_uint64), ("gpu_frame", ctypes.c_uint64),
+                ("gpu_ms", ctypes.c_double), ("gpu_phase_ms", ctypes.c_double * 6),
+                ("gpu_budget", ctypes.c_uint64), ("ring_budget", ctypes.c_uint64),
+                ("cache_budget", ctypes.c_uint64), ("capture_budget", ctypes.c_uint64),
+                ("gpu_free_bytes", ctypes.c_uint64)]
 
 
 # enum values of the headers

@@ -5,6 +5,7 @@
 
 #include <stddef.h>
 
+#include "render/gpu_timer.h"
 #include "render/view.h"
 #include "stream/streamer.h"
 
@@ -14,6 +15,8 @@ typedef struct oit_stats_frame {
     oit_frame_stats st;
     int has_stream;               /* the part-file streamer's figures follow */
     oit_stream_frame_stats stream;
+    int has_gpu;       /* the GPU timer's figures of this frame follow */
+    oit_gpu_times gpu; /* render/gpu_timer.h */
 } oit_stats_frame;
 
 typedef struct oit_stats_run {
@@ -23,6 +26,7 @@ typedef struct oit_stats_run {
     int width, height;
     const oit_stats_frame *frames;
     size_t frame_count;
+    const char *gpu_absent; /* why no frame has gpu_ms; NULL: timed */
 } oit_stats_run;
 
 /* The camera in --view syntax, round-trippable (%.9g). */
