@@ -202,6 +202,10 @@ uint64_t oit_gpu_timer_end_frame(oit_gpu_timer *t)
         glQueryCounter(s->queries[s->n], GL_TIMESTAMP);
         s->phases[s->n++] = OIT_GPU_OTHER;
     }
+    /* The timestamp is taken when GL runs it: sent now, it is the frame's
+     * end, not that of whatever flushes next (llvmpipe runs queries when
+     * they are flushed). A flush waits for nothing. */
+    glFlush();
     s->state = SLOT_PENDING;
     s->frame = ++t->count;
     t->open = -1;

@@ -54,18 +54,19 @@ static void timed_frames(oit_gl *gl, const oit_method *m, const oit_mesh *mesh)
         oit_frame_stats fs = {0};
         double t0 = oit_time_ms();
         oit_status s = oit_method_render(st, &v, &img, NULL, NULL, &fs, &err);
-        wall[f] = oit_time_ms() - t0;
         CHECK(s == OIT_OK, "%s: frame %d: %s", m->name, f, err.message);
         CHECK(fs.gpu_frame == (uint64_t)f, "%s: frame %d numbered %llu", m->name, f,
               (unsigned long long)fs.gpu_frame);
         oit_image_free(&img);
+        /* Waited for here, so that the wall time spans the frame's last
+         * timestamp too: GL runs it after the read-back, when it will (a
+         * busy llvmpipe thread: milliseconds later). The ring test below
+         * takes figures without waiting. */
         oit_gpu_times t;
-        while (oit_method_gpu_poll(st, &t, 0))
+        while (oit_method_gpu_poll(st, &t, 1))
             got[seen < FRAMES ? ++seen : FRAMES] = t;
+        wall[f] = oit_time_ms() - t0;
     }
-    oit_gpu_times t;
-    while (oit_method_gpu_poll(st, &t, 1))
-        got[seen < FRAMES ? ++seen : FRAMES] = t;
     CHECK(seen == FRAMES, "%s: %d frames' figures for %d frames", m->name, seen, FRAMES);
     for (int f = 1; f <= seen; f++) {
         const oit_gpu_times *g = &got[f];
@@ -85,9 +86,9 @@ static void timed_frames(oit_gl *gl, const oit_method *m, const oit_mesh *mesh)
         CHECK(g->ms > 0, "%s: frame %d took %.6f ms on the GPU", m->name, f, g->ms);
         CHECK(fabs(sum - g->ms) <= 1e-6 * (1 + g->ms), "%s: phases add to %.6f, frame %.6f",
               m->name, sum, g->ms);
-        /* The GPU's span sits inside the wall time taken around the call
-         * (the frame reads its image back); 1 ms for the clocks' reads. */
-        CHECK(g->ms <= wall[f] + 1.0, "%s: frame %d: gpu %.3f ms > wall %.3f ms", m->name, f,
+        /* The GPU's span sits inside the wall time from the call to its
+         * figures; 2% and 1 ms for the two clocks. */
+        CHECK(g->ms <= wall[f] * 1.02 + 1.0, "%s: frame %d: gpu %.3f ms > wall %.3f ms", m->name, f,
               g->ms, wall[f]);
         /* A frame with geometry spends GPU time on the geometry and the
          * resolve, not all of it in "other". */
