@@ -285,7 +285,7 @@ static void fake_result(oit_bench_result *r, oit_bench_method m[2], oit_bench_ce
     m[0].cells = cells;
     for (int v = 0; v < 2; v++) {
         cells[v] = (oit_bench_cell){1, 2.0 + v, 3.0 + v, 1000000u * (v + 1), 7 + 5 * v, 10,
-                                    {v ? 0.002 : 0.0, 0.5, 0.1, v ? 40.0 : INFINITY, 3}};
+                                    {v ? 0.002 : 0.0, 0.5, 0.1, v ? 40.0 : INFINITY, 3}, -1.0};
     }
     m[0].ms_median = 2.0;
     m[0].ms_p95 = 4.0;
