@@ -94,9 +94,13 @@ static uint64_t min_u64(uint64_t a, uint64_t b)
     return a < b ? a : b;
 }
 
+/* Room a resident file leaves for the frame's per-pixel buffers (an
+ * eighth of a smaller total): 64 MiB hold 1024x1024 at 64 bytes a pixel. */
+#define PIXEL_ROOM (64ull << 20)
+
 /* The total's split (streamer.h): the capture's slots first (the default
  * store, or an eighth of a small total), the file resident where it fits
- * what is left less an eighth for the frame's per-pixel buffers, else a
+ * what is left less PIXEL_ROOM for the frame's per-pixel buffers, else a
  * ring of a quarter of the rest (64 MiB at most: it only has to hold
  * consecutive packs) and the cache the remainder. Given finer budgets
  * replace their shares. *d receives the budgets the streamer runs with. */
@@ -132,13 +136,16 @@ static oit_status split_budget(oit_streamer *s, oit_streamer_desc *d, int stores
     b->capture = d->slot_budget ? d->slot_budget : min_u64(slots, b->total / 8);
     uint64_t left = b->capture < b->total ? b->total - b->capture : 0;
     int off = d->cache_budget == OIT_STREAM_CACHE_OFF;
-    int resident = !off && !d->upload_budget && !d->cache_budget &&
-                   left > b->total / 8 && all_bytes <= left - b->total / 8;
+    uint64_t pixels = min_u64(b->total / 8, PIXEL_ROOM);
+    int fits = !off && !d->upload_budget && !d->cache_budget && left > pixels &&
+               all_bytes <= left - pixels;
     b->ring = d->upload_budget ? d->upload_budget
-              : resident       ? all_bytes
+              : fits           ? all_bytes
                                : min_u64(64ull << 20, left / 4);
-    b->cache = off ? 0 : d->cache_budget ? d->cache_budget : resident ? all_bytes
+    b->cache = off ? 0 : d->cache_budget ? d->cache_budget : fits ? all_bytes
                : left > b->ring ? left - b->ring : 0;
+    /* as create_upload decides: resident, the ring is the only copy */
+    int resident = !off && all_bytes <= b->ring && all_bytes <= b->cache;
     uint64_t sum = b->capture + b->ring + (resident ? 0 : b->cache);
     if (sum > b->total && d->gpu_budget)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: --upload-budget %llu + --cache-budget "

@@ -337,7 +337,7 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "                      reports none (llvmpipe), no total: the budgets below\n"
         "                      alone. Its split: the capture's slots (default, or an\n"
         "                      eighth of a small total), the file resident where it\n"
-        "                      fits the rest less an eighth for the frame's pixels,\n"
+        "                      fits the rest less 64M (or an eighth) for pixels,\n"
         "                      else a ring of a quarter of the rest (<= 64M) and the\n"
         "                      cache what is left, less the frame's per-pixel buffers.\n"
         "                      --upload-budget, --cache-budget and --slot-budget\n"
