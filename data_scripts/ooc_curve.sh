@@ -7,7 +7,8 @@
 # would keep resident; S: the capture's slot budget, 64M; P: the frame's
 # per-pixel buffers, W*H*80 bytes):
 #   f = 1:  --upload-budget D --cache-budget D (resident: read once)
-#   f < 1:  --upload-budget R --cache-budget f*D - R, R = min(64M, f*D/4)
+#   f < 1:  --upload-budget R --cache-budget f*D - R, R = min(64M, f*D/4),
+#           at least the largest part the fast scheme makes (128K triangles)
 #   always: --slot-budget S --gpu-budget f*D + S + P (the total bounds all)
 # Columns: frame ms and gpu_ms (medians of the warm frames: each view of
 # the walk is drawn twice, cold then warm, as stream_vs_dfb.sh does), the
@@ -88,6 +89,8 @@ sed -n 's/.*"view": "\([^"]*\)".*/\1/p' "$work/v.json" | awk '{ print; print }' 
 D=$(python3 -c "import json,sys; b=json.load(open(sys.argv[1]))['budget']; \
 assert b['resident'], b; print(b['ring'])" "$work/d.json") || die "$parts: decoded size"
 
+"$bin/oitprep" info "$parts" --json >"$work/info.json" || die "$parts: oitprep info failed"
+
 # ---- the bus, then DFB and the stream at each budget ---------------------
 "$bin/oitbench" bus --bytes "$bus_bytes" >"$work/bus.json" || die "oitbench bus failed"
 render() { # render FILE STATS [options]: the walk at the size, --stats STATS
@@ -98,13 +101,20 @@ render() { # render FILE STATS [options]: the walk at the size, --stats STATS
 echo "ooc_curve: DFB in core on $name" >&2
 render "$mesh" "$work/dfb.json" --method dfb
 S=$((64 << 20)) P=$((w * h * 80))
+# The ring holds a part whole: the largest oitprep's fast scheme makes
+# (--part-triangles, default 128K) at the file's bytes a triangle.
+tris=$(python3 -c "import json,sys; print(json.load(sys.stdin)['triangles'])" \
+    <"$work/info.json") || die "$parts: oitprep info"
+big=$((D / tris * 131072 + 65536))
+big=$((big > D ? D : big))
 for q in $fractions; do
     g=$((D / q))
     if [ "$q" = 1 ]; then
         r=$D c=$D
     else
         r=$((g / 4 < (64 << 20) ? g / 4 : (64 << 20)))
-        r=$((r < 65536 ? 65536 : r)) c=$((g - r))
+        r=$((r < big ? big : r)) c=$((g - r))
+        [ "$c" -ge 65536 ] || die "1/$q of $D bytes leaves no cache beside a ring of $r"
     fi
     total=$((g + S + P))
     echo "ooc_curve: stream at 1/$q of $D bytes (--gpu-budget $total)" >&2

@@ -144,10 +144,14 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
                      "G suffix");
     } else if (!strcmp(opt, "--gpu-budget")) {
         /* 0 is the default, as oit_renderer_desc.gpu_budget = 0 is; the
-         * streamer checks the range (oit_streamer_desc.gpu_budget). */
+         * least is the streamer's (it refuses less from liboit too), here
+         * so that a usage error names the option before any work. */
+        uint64_t g = 0;
         if (!strcmp(v, "0"))
             a->gpu_budget = 0;
-        else if (parse_bytes(v, &a->gpu_budget))
+        else if (oit_parse_bytes(v, OIT_STREAM_GPU_BUDGET_MIN, 1ull << 40, &g) == 0)
+            a->gpu_budget = g;
+        else
             *s = bad(err, opt, v, "0 (default) or bytes >= 1M, with an optional K, M or G "
                      "suffix");
     } else if (!strcmp(opt, "--upload-threads")) {
