@@ -18,6 +18,10 @@
 #     --stats where the tools report it, else the frame's wall ms. Where
 #     the driver refuses stencil routing (its self-test fails: llvmpipe),
 #     the reason is reported; that fails the check only on another driver.
+#  5. data_scripts/ooc_curve.sh (issue 35): the 12M plant (the 1M plant at
+#     512x512 on llvmpipe) streamed at 1/1, 1/2, 1/4 and 1/8 of its decoded
+#     size against DFB in core, with gpu_ms, upload GB/s and the host-to-
+#     device rate of `oitbench bus`; also written to OUTDIR/ooc-curve-*.md.
 # A frame passes when at most 0.01% of its pixels differ from DFB's by more
 # than 1/255 (the issue's bound). The report is written to
 # OUTDIR/gpu-check-RENDERER.md (RENDERER: the GL renderer string, folded to
@@ -34,6 +38,8 @@
 #                        than 5M triangles)
 #   GPU_CHECK_SIZE=WxH   frame size of the sweep (default 1024x1024)
 #   GPU_CHECK_CTEST=0    skip ctest;  GPU_CHECK_BENCH=0  skip stream_vs_dfb.sh
+#   GPU_CHECK_OOC=0      skip ooc_curve.sh; GPU_CHECK_OOC_MODEL=N a plant of N
+#                        triangles instead (GPU_CHECK_OOC_SIZE=WxH its size)
 #   GPU_CHECK_JOBS=N     ctest jobs (default: the cores)
 #   GPU_CHECK_CAPTURE_MODELS="demo plant1M"  models of step 4 (among the
 #                        models above; "" skips it);
@@ -50,7 +56,7 @@ views=${GPU_CHECK_VIEWS:-4}
 export EGL_PLATFORM=${EGL_PLATFORM:-surfaceless}
 
 die() { echo "gpu_check: $*" >&2; exit 2; }
-for t in oitgen oitprep oitstream; do
+for t in oitgen oitprep oitstream oitbench; do
     [ -x "$bin/$t" ] || die "$bin/$t: missing (build with: make build)"
 done
 bin=$(cd "$bin" && pwd)
@@ -240,6 +246,23 @@ if [ "${GPU_CHECK_BENCH:-1}" != 0 ]; then
     fi
 fi
 
+# ---- 4. the out-of-core curve (issue 35) ---------------------------------
+ooc_note="not run (GPU_CHECK_OOC=0)"
+if [ "${GPU_CHECK_OOC:-1}" != 0 ]; then
+    case $renderer in
+    *llvmpipe*) ooc_model=${GPU_CHECK_OOC_MODEL:-1000000} ooc_size=${GPU_CHECK_OOC_SIZE:-512x512} ;;
+    *) ooc_model=${GPU_CHECK_OOC_MODEL:-12000000} ooc_size=${GPU_CHECK_OOC_SIZE:-$size} ;;
+    esac
+    if OOC_CACHE=${OOC_CACHE:-$work/ooc} sh "$here/ooc_curve.sh" "$bin" "$work/ooc.md" \
+        "$ooc_size" "$ooc_model" >"$work/ooc.log" 2>&1; then
+        ooc_note="plant of $ooc_model triangles at $ooc_size, below"
+        cp "$work/ooc.md" "$outdir/ooc-curve-$tag.md"
+    else
+        ooc_note="FAILED: $(tail -n 3 "$work/ooc.log" | tr '\n' ' ')"
+        failures=$((failures + 1))
+    fi
+fi
+
 # ---- report --------------------------------------------------------------
 commit=$(git -C "$here" rev-parse --short HEAD 2>/dev/null || echo '?')
 {
@@ -277,6 +300,10 @@ commit=$(git -C "$here" rev-parse --short HEAD 2>/dev/null || echo '?')
     echo "## data_scripts/stream_vs_dfb.sh (CMP_VTK=0): $bench_note"
     echo
     [ ! -f "$work/svd.md" ] || sed 's/^#/##/' "$work/svd.md"
+    echo
+    echo "## data_scripts/ooc_curve.sh: $ooc_note"
+    echo
+    [ ! -f "$work/ooc.md" ] || sed 's/^#/##/' "$work/ooc.md"
     echo
     echo "Failures: $failures"
 } >"$report"

@@ -17,6 +17,7 @@
 #include "render/capture_glsl.h"
 #include "render/dfb.h"
 #include "render/frag_glsl.h"
+#include "render/gpu_timer.h"
 #include "stream/streamer.h"
 
 struct oit_scene {
@@ -40,7 +41,11 @@ struct oit_renderer {
     uint64_t pending_upload; /* bytes uploaded by bind_scene, for the stats */
     GLuint blend_prog, vao;
     GLuint depth_sampler; /* reads oit_frame.depth_texture: no compare, nearest */
+    oit_gpu_timer *timer; /* made at the first draw (GL current) */
+    oit_gpu_times gpu;    /* the newest figures polled; frame 0: none yet */
 };
+
+_Static_assert(OIT_DRAW_GPU_PHASES == OIT_GPU_PHASES, "one list of GPU phases");
 
 static const char *scene_name(const oit_scene *s)
 {
@@ -391,6 +396,7 @@ void oit_renderer_destroy(oit_renderer *r)
         return;
     drop_scene(r);
     oit_dfb_destroy(r->dfb);
+    oit_gpu_timer_destroy(r->timer);
     glDeleteProgram(r->blend_prog);
     glDeleteVertexArrays(1, &r->vao);
     glDeleteSamplers(1, &r->depth_sampler);
@@ -506,6 +512,7 @@ static oit_status bind_scene(oit_renderer *r, oit_scene *scene, oit_error *err)
     _Static_assert(OIT_RENDER_CACHE_OFF == OIT_STREAM_CACHE_OFF, "one spelling of 'no cache'");
     sd.cache_budget = r->desc.cache_budget;
     sd.read_inline = r->desc.read_on_draw_thread != 0;
+    sd.gpu_budget = r->desc.gpu_budget;
     oit_status st = oit_streamer_create(scene->pf, &sd, &r->streamer, err);
     if (st == OIT_OK)
         hold_scene(r, scene);
@@ -740,11 +747,13 @@ static oit_status render_state(oit_renderer *r, const oit_scene *scene, const oi
                                oit_frame_stats *fs, oit_stream_frame_stats *ss, oit_error *err)
 {
     if (scene->pf) {
+        oit_streamer_set_gpu_timer(r->streamer, r->timer);
         oit_streamer_set_opaque(r->streamer, opaque);
         return oit_streamer_render_gpu(r->streamer, v, state, fs, ss, err);
     }
     const oit_gpu_mesh *list[1] = {r->gpu_mesh};
     oit_dfb_set_opaque(r->dfb, opaque);
+    oit_dfb_set_gpu_timer(r->dfb, r->timer);
     oit_status st = oit_dfb_render_state(r->dfb, list, 1, v, state, fs, err);
     ss->packs = fs->batches;
     ss->draw_calls = 1 + (uint64_t)fs->batches; /* the count pass; a store a band */
@@ -816,9 +825,16 @@ oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame 
     oit_frame_stats fs = {0};
     oit_stream_frame_stats ss = {0};
     int empty = !scene->pf && scene->info.triangles == 0; /* in core: nothing to draw */
-    st = empty ? OIT_OK : bind_scene(r, scene, err);
+    if (!r->timer)
+        st = oit_gpu_timer_create(NULL, &r->timer, err);
+    if (st == OIT_OK)
+        st = empty ? OIT_OK : bind_scene(r, scene, err);
+    oit_gpu_timer_begin_frame(r->timer);
     if (st == OIT_OK && !empty)
         st = draw_bands(r, scene, frame, &view, &fs, &ss, err);
+    oit_gpu_timer_end_frame(r->timer);
+    while (oit_gpu_timer_poll(r->timer, &r->gpu, 0)) {
+    }
     gl_restore(&saved);
     if (st != OIT_OK) {
         const char *name = scene_name(scene);
@@ -844,7 +860,18 @@ oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame 
                                   .capture_slots_k = fs.capture_slots_k,
                                   .capture_fallback =
                                       r->streamer ? oit_streamer_capture_choice(r->streamer)->reason
-                                                  : NULL};
+                                                  : NULL,
+                                  .gpu_frame = r->gpu.frame,
+                                  .gpu_ms = r->gpu.frame ? r->gpu.ms : -1.0};
+        memcpy(stats->gpu_phase_ms, r->gpu.phase_ms, sizeof stats->gpu_phase_ms);
+        oit_stream_budget b = {0};
+        if (scene->pf)
+            oit_streamer_budget(r->streamer, &b);
+        stats->gpu_budget = b.total;
+        stats->ring_budget = b.ring;
+        stats->cache_budget = b.cache;
+        stats->capture_budget = b.capture;
+        stats->gpu_free_bytes = b.free_bytes;
     }
     return OIT_OK;
 }

@@ -13,6 +13,7 @@
 #include "render/capture_glsl.h"
 #include "render/capture_stencil.h"
 #include "render/frag_glsl.h"
+#include "render/gpu_timer.h"
 #include "render/image.h"
 #include "render/opaque_keys.h"
 #include "render/rect.h"
@@ -26,6 +27,7 @@ enum { PROG_FILL, PROG_RESOLVE, PROG_END, PROG_N };
 
 struct oit_capture {
     oit_capture_kind backend;
+    oit_gpu_timer *timer; /* phases marked (oit_capture_set_gpu_timer); NULL: none */
     int K;
     /* the K-slot fills go through the stencil target: STENCIL's batches,
      * or FIRSTK's first passes (oit_capture_create_routed) */
@@ -489,6 +491,11 @@ static void bind_buffers(const oit_capture *c)
         bind_within(c, OIT_BIND_FRAGS, c->buf[BUF_SLOTS], c->cap[BUF_SLOTS]);
 }
 
+void oit_capture_set_gpu_timer(oit_capture *c, struct oit_gpu_timer *t)
+{
+    c->timer = t;
+}
+
 unsigned oit_capture_state_buffer(const oit_capture *c)
 {
     return c->buf[BUF_STATE];
@@ -574,6 +581,7 @@ static void draw_scissored(oit_capture *c, GLuint prog, const oit_gpu_mesh *cons
 
 static void fill(oit_capture *c, const oit_gpu_mesh *const *meshes, int n, const int r[4])
 {
+    oit_gpu_timer_mark(c->timer, OIT_GPU_PASS1);
     if (c->backend == OIT_CAPTURE_STENCIL) {
         oit_stencil_target_fill(&c->stencil, r, c->prog[PROG_FILL], c->draws, meshes, n);
         return;
@@ -646,7 +654,8 @@ static oit_counted_frame counted_frame(const oit_capture *c)
                                .width = c->view.width,
                                .height = c->view.height,
                                .draws = c->draws,
-                               .bind = c->bind};
+                               .bind = c->bind,
+                               .timer = c->timer};
 }
 
 /* The counted backend's batch: the slot budget bounds its fragment store. */
@@ -655,6 +664,8 @@ static oit_status counted_batch(oit_capture *c, const oit_gpu_mesh *const *meshe
 {
     oit_counted_frame f = counted_frame(c);
     c->counted.budget = c->slot_budget ? c->slot_budget : UINT64_MAX;
+    /* count, store, sort and composite: not split into phases */
+    oit_gpu_timer_mark(c->timer, OIT_GPU_PASS1);
     oit_status s = oit_counted_batch(&c->counted, &f, meshes, n, r, err);
     note_peak(c);
     bind_buffers(c);
@@ -701,6 +712,7 @@ oit_status oit_capture_batch(oit_capture *c, const oit_gpu_mesh *const *meshes,
     fill(c, meshes, n, r);
     if (c->backend == OIT_CAPTURE_STENCIL)
         glBindTextureUnit(OIT_TEX_SAMPLES, c->stencil.colour);
+    oit_gpu_timer_mark(c->timer, OIT_GPU_RESOLVE);
     resolve(c->prog[PROG_RESOLVE], r);
     return oit_gl_check("capture: batch", err);
 }
@@ -741,8 +753,10 @@ static void tile_pass(oit_capture *c, const oit_gpu_mesh *const *meshes, int n, 
     glProgramUniform1i(fp, glGetUniformLocation(fp, "u_W"), W);
     glProgramUniform1i(rp, glGetUniformLocation(rp, "u_W"), W);
     glProgramUniform4i(fp, glGetUniformLocation(fp, "u_tile"), t[0], t[1], t[2], t[3]);
+    oit_gpu_timer_mark(c->timer, OIT_GPU_PASS1);
     draw_scissored(c, fp, meshes, n, t);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    oit_gpu_timer_mark(c->timer, OIT_GPU_RESOLVE);
     resolve(rp, t);
 }
 
@@ -845,7 +859,9 @@ static oit_status read_output(oit_capture *c, oit_image *out, GLuint totals[4], 
     int band = (int)(held / row < (uint64_t)h ? held / row : (uint64_t)h);
     for (int y0 = 0; y0 < h; y0 += band) {
         int y1 = y0 + band < h ? y0 + band : h;
+        oit_gpu_timer_mark(c->timer, OIT_GPU_RESOLVE);
         end_pass(c, (uint64_t)y0 * w, (uint64_t)(y1 - y0) * w, 1);
+        oit_gpu_timer_mark(c->timer, OIT_GPU_READBACK);
         /* GL rows are bottom first: each row goes to its flipped place. */
         for (int y = y0; y < y1; y++)
             glGetNamedBufferSubData(c->out_buf, (GLintptr)((size_t)(y - y0) * row),
@@ -913,7 +929,9 @@ oit_status oit_capture_end_gpu(oit_capture *c, unsigned *state, oit_frame_stats 
     oit_status s = finish_frame(c, err);
     if (s != OIT_OK)
         return s;
+    oit_gpu_timer_mark(c->timer, OIT_GPU_RESOLVE);
     end_pass(c, 0, (uint64_t)c->view.width * c->view.height, 0);
+    oit_gpu_timer_mark(c->timer, OIT_GPU_READBACK);
     GLuint totals[4];
     glGetNamedBufferSubData(c->buf[BUF_TOTALS], 0, 16, totals);
     s = oit_gl_check("capture: end on the GPU", err);

@@ -140,6 +140,11 @@ void oit_capture_set_first_k(oit_capture *c, int on);
  * refused by oit_capture_begin, to be rendered in bands (render/band.h). */
 uint64_t oit_capture_pixel_bytes(const oit_view *v);
 
+/* GPU phases of the next frames are marked on t (render/gpu_timer.h;
+ * NULL: none). The capture does not own it. */
+struct oit_gpu_timer;
+void oit_capture_set_gpu_timer(oit_capture *c, struct oit_gpu_timer *t);
+
 /* Starts a frame: C = 0, T = 1, translucency state cleared. */
 oit_status oit_capture_begin(oit_capture *c, const oit_view *view, oit_error *err);
 /* Captures meshes[0..n) as one batch and composites it behind what the frame

@@ -49,6 +49,7 @@ typedef struct oit_counted_frame {
     int width, height;
     oit_gpu_draws *draws;
     uint64_t bind; /* the most bytes one storage buffer may span */
+    struct oit_gpu_timer *timer; /* phases marked on it (render/gpu_timer.h); NULL: none */
 } oit_counted_frame;
 
 /* Captures meshes[0..n) over the GL rect r (bottom rows first, exclusive

@@ -10,6 +10,7 @@
 #include "render/capture_glsl.h"
 #include "render/capture_stencil.h"
 #include "render/frag_glsl.h"
+#include "render/gpu_timer.h"
 
 #include <string.h>
 
@@ -294,9 +295,11 @@ static oit_status first_pass(oit_firstk *k, const oit_counted_frame *f,
     set_int(k->prog[OIT_FIRSTK_FILL], "u_W", W);
     set_rect(k->prog[OIT_FIRSTK_FILL], "u_tile", r);
     set_int(k->prog[OIT_FIRSTK_RESOLVE], "u_W", W);
+    oit_gpu_timer_mark(f->timer, OIT_GPU_PASS1);
     oit_glsl_draw_scissored(f->fbo, f->width, f->height, k->prog[OIT_FIRSTK_FILL], f->draws,
                             meshes, n, r);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    oit_gpu_timer_mark(f->timer, OIT_GPU_RESOLVE);
     dispatch_rect(k->prog[OIT_FIRSTK_RESOLVE], r);
     glGetNamedBufferSubData(k->totals, 0, 32, t);
     return oit_gl_check("first-k capture: pass 1", err);
@@ -357,9 +360,11 @@ static oit_status second_pass(oit_firstk *k, const oit_counted_frame *f,
         return s;
     bind_frame(k, f);
     set_rect(k->prog[OIT_FIRSTK_STORE], "u_tile", b);
+    oit_gpu_timer_mark(f->timer, OIT_GPU_PASS2);
     oit_glsl_draw_scissored(f->fbo, f->width, f->height, k->prog[OIT_FIRSTK_STORE], f->draws,
                             meshes, n, b);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    oit_gpu_timer_mark(f->timer, OIT_GPU_RESOLVE);
     dispatch_rect(k->prog[OIT_FIRSTK_SEGMENT], b);
     k->second_draws++;
     return oit_gl_check("first-k capture: pass 2", err);
@@ -377,6 +382,7 @@ static oit_status second_passes(oit_firstk *k, const oit_counted_frame *f,
     room = room < f->bind ? room : f->bind;
     int rows = r[3] - r[1];
     oit_status s = OIT_OK;
+    oit_gpu_timer_mark(f->timer, OIT_GPU_PASS2);
     for (int y = r[1]; y < r[3] && s == OIT_OK;) {
         rows = rows < r[3] - y ? rows : r[3] - y;
         int b[4] = {r[0], y, r[2], y + rows};

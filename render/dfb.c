@@ -7,6 +7,7 @@
 
 #include "base/clock.h"
 #include "render/frag_glsl.h"
+#include "render/gpu_timer.h"
 #include "render/image.h"
 #include "render/opaque_keys.h"
 #include "render/scan_glsl.h"
@@ -19,6 +20,7 @@ enum { BUF_COUNTS, BUF_OFFSETS, BUF_FRAGS, BUF_OUT, BUF_STATE, BUF_N };
 enum { PROG_COUNT, PROG_STORE, PROG_RESOLVE, PROG_STATE, PROG_N };
 
 struct oit_dfb {
+    oit_gpu_timer *timer; /* phases marked (oit_dfb_set_gpu_timer); NULL: none */
     GLuint prog[PROG_N];
     GLuint fbo;
     GLuint buf[BUF_N];
@@ -170,6 +172,7 @@ static oit_status count_and_scan(oit_dfb *d, const oit_gpu_mesh *const *meshes, 
                                  uint64_t pixels, oit_scan_result *res, oit_error *err)
 {
     static const GLuint zero = 0;
+    oit_gpu_timer_mark(d->timer, OIT_GPU_PASS1);
     glClearNamedBufferData(d->buf[BUF_COUNTS], GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, d->buf[BUF_COUNTS]);
     draw_meshes(d->prog[PROG_COUNT], meshes, n);
@@ -239,8 +242,10 @@ static void band_pass(oit_dfb *d, GLuint resolve, const oit_gpu_mesh *const *mes
     glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_FRAGS, d->buf[BUF_FRAGS], 0,
                       (GLsizeiptr)(frags ? frags * 16 : 16));
     glProgramUniform1ui(d->prog[PROG_STORE], 12, base);
+    oit_gpu_timer_mark(d->timer, OIT_GPU_PASS2);
     draw_meshes(d->prog[PROG_STORE], meshes, n);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    oit_gpu_timer_mark(d->timer, OIT_GPU_RESOLVE);
     glUseProgram(resolve);
     glProgramUniform1ui(resolve, 12, base);
     glProgramUniform2i(resolve, 13, y0, y1);
@@ -289,6 +294,11 @@ static oit_status render_passes(oit_dfb *d, GLuint resolve, const oit_gpu_mesh *
     free(base);
     *bands = nb;
     return s == OIT_OK ? oit_gl_check("DFB: passes", err) : s;
+}
+
+void oit_dfb_set_gpu_timer(oit_dfb *d, struct oit_gpu_timer *t)
+{
+    d->timer = t;
 }
 
 uint64_t oit_dfb_pixel_bytes(const oit_view *view, int state)
@@ -407,6 +417,7 @@ oit_status oit_dfb_render(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n,
     oit_status s = resolve_into(d, PROG_RESOLVE, BUF_OUT, meshes, n, view, counts, &f, err);
     if (s == OIT_OK)
         s = oit_image_alloc(out, f.v.width, f.v.height, err);
+    oit_gpu_timer_mark(d->timer, OIT_GPU_READBACK);
     if (s == OIT_OK) {
         s = oit_gl_read_rows(d->buf[BUF_OUT], 0, f.v.width, f.v.height, 16, out->rgba, "DFB",
                              err);

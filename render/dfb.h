@@ -50,6 +50,11 @@ oit_status oit_dfb_render_state(oit_dfb *d, const oit_gpu_mesh *const *meshes, i
  * does not fit is refused, to be rendered in bands (render/band.h). */
 uint64_t oit_dfb_pixel_bytes(const oit_view *view, int state);
 
+/* GPU phases of the next frames are marked on t (render/gpu_timer.h: the
+ * count pass and scan as pass 1, the store as pass 2; NULL: none). */
+struct oit_gpu_timer;
+void oit_dfb_set_gpu_timer(oit_dfb *d, struct oit_gpu_timer *t);
+
 /* The caller's opaque depth (frag_glsl.h, oit_opaque_depth) for d's next
  * frames; NULL: none (the default). Fragments behind it are neither counted
  * nor stored; the texture must be bound at unit OIT_TEX_OPAQUE_DEPTH while

@@ -9,6 +9,7 @@
 #include "render/band.h"
 #include "render/gl_context.h"
 #include "render/gl_util.h"
+#include "render/gpu_timer.h"
 #include "render/image.h"
 
 struct oit_method_state {
@@ -19,6 +20,7 @@ struct oit_method_state {
     oit_gpu_mesh *gpu;
     void *impl;
     uint64_t store_limit; /* oit_method_options.store_limit */
+    oit_gpu_timer *timer; /* GL methods only */
 };
 
 void oit_method_close(oit_method_state *st)
@@ -28,6 +30,7 @@ void oit_method_close(oit_method_state *st)
     /* GL objects go before the context that owns them. */
     if (st->impl)
         st->method->destroy(st->impl);
+    oit_gpu_timer_destroy(st->timer);
     if (st->gpu)
         oit_gpu_mesh_destroy(st->gpu);
     if (st->gl && !st->gl_borrowed)
@@ -46,6 +49,9 @@ static oit_status prepare_gl(oit_method_state *st, const oit_method_options *opt
     } else {
         s = oit_gl_create(&(oit_gl_desc){0}, &st->gl, err);
     }
+    if (s == OIT_OK)
+        s = oit_gpu_timer_create(&(oit_gpu_timer_desc){.no_queries = opt && opt->no_gpu_timer},
+                                 &st->timer, err);
     if (s == OIT_OK && !(st->method->flags & OIT_METHOD_PARTFILE))
         s = oit_gpu_mesh_create(st->mesh->tris, st->mesh->count, 0, &st->gpu, err);
     return s;
@@ -87,7 +93,7 @@ static oit_status render_once(oit_method_state *st, const oit_view *view, oit_im
                               .counts = f & OIT_METHOD_COUNTS ? counts : NULL,
                               .ambiguous = f & OIT_METHOD_AMBIGUITY ? ambiguous : NULL,
                               .stats = stats, .band = band, .store_limit = bind,
-                              .split = split};
+                              .split = split, .timer = st->timer};
     oit_status s = st->method->render(st->impl, &frame, err);
     /* A borrowed context is checked too: the viewer's window is ours. */
     if (s == OIT_OK)
@@ -138,9 +144,37 @@ static oit_status render_bands(oit_method_state *st, const oit_view *view, int r
     return OIT_OK;
 }
 
+static oit_status render_frame(oit_method_state *st, const oit_view *view, oit_image *out,
+                               uint32_t *counts, uint8_t *ambiguous, oit_frame_stats *stats,
+                               oit_error *err);
+
+/* The frame between the GPU timer's begin and end (gpu_timer.h). */
 oit_status oit_method_render(oit_method_state *st, const oit_view *view, oit_image *out,
                              uint32_t *counts, uint8_t *ambiguous, oit_frame_stats *stats,
                              oit_error *err)
+{
+    oit_gpu_timer_begin_frame(st->timer);
+    oit_status s = render_frame(st, view, out, counts, ambiguous, stats, err);
+    uint64_t frame = oit_gpu_timer_end_frame(st->timer);
+    if (s == OIT_OK && stats)
+        stats->gpu_frame = frame;
+    return s;
+}
+
+int oit_method_gpu_poll(oit_method_state *st, oit_gpu_times *out, int wait)
+{
+    return oit_gpu_timer_poll(st->timer, out, wait);
+}
+
+const char *oit_method_gpu_absent(const oit_method_state *st)
+{
+    return st->timer ? oit_gpu_timer_absent(st->timer) : "not a GL method";
+}
+
+/* The frame whole, or in bands of rows (oit_method_render). */
+static oit_status render_frame(oit_method_state *st, const oit_view *view, oit_image *out,
+                               uint32_t *counts, uint8_t *ambiguous, oit_frame_stats *stats,
+                               oit_error *err)
 {
     const oit_method *m = st->method;
     int rows = view->height, split = 0;

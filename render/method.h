@@ -21,6 +21,8 @@
 #include "render/view.h"
 
 struct oit_gl;
+struct oit_gpu_timer;
+struct oit_gpu_times;
 /* The streamer's options and figures (stream/stream_method.h,
  * stream/streamer.h): only the part-file method reads or fills them. */
 typedef struct oit_stream_options oit_stream_options;
@@ -52,6 +54,9 @@ typedef struct oit_method_options {
      * 0, what the driver binds (GL_MAX_SHADER_STORAGE_BLOCK_SIZE); lower
      * only to test the bands. The image is the same either way. */
     uint64_t store_limit;
+    /* Testing: the GPU timer behaves as on a driver without timestamp
+     * queries (render/gpu_timer.h): no gpu_ms, and it says why. */
+    int no_gpu_timer;
 } oit_method_options;
 
 /* One frame's inputs and outputs, as a method's render operation sees them. */
@@ -76,6 +81,9 @@ typedef struct oit_method_frame {
      * rows that would each fit, at least 2, and fails: oit_method_render
      * then renders the frame in that many bands. */
     int *split;
+    /* GPU time per phase (render/gpu_timer.h): the frame is begun and
+     * ended around the method; the method marks its phases (NULL-safe). */
+    struct oit_gpu_timer *timer;
 } oit_method_frame;
 
 typedef struct oit_method {
@@ -116,6 +124,13 @@ oit_status oit_method_render(oit_method_state *st, const oit_view *view, oit_ima
 const char *oit_method_renderer(const oit_method_state *st);
 /* The streamer's figures of the last frame; NULL for other methods. */
 const struct oit_stream_frame_stats *oit_method_stream_stats(const oit_method_state *st);
+/* GPU time of earlier frames, oldest first, matched to a frame by
+ * oit_frame_stats.gpu_frame (render/gpu_timer.h): 1 and *out when the next
+ * one is in (wait: waits for it; at the end of a run), 0 when none is.
+ * Never for a method without GL or a driver without timestamps. */
+int oit_method_gpu_poll(oit_method_state *st, struct oit_gpu_times *out, int wait);
+/* NULL when the method's frames are timed on the GPU, else why not. */
+const char *oit_method_gpu_absent(const oit_method_state *st);
 void oit_method_close(oit_method_state *st);
 
 /* The in-core exact methods of render/: DFB, and the two capture backends

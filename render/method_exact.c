@@ -15,6 +15,7 @@ static oit_status dfb_create(const oit_mesh *mesh, const oit_method_options *opt
 
 static oit_status dfb_render(void *impl, const oit_method_frame *f, oit_error *err)
 {
+    oit_dfb_set_gpu_timer(impl, f->timer);
     return oit_dfb_render(impl, &f->gpu, 1, f->view, f->out, f->counts, f->stats, err);
 }
 
@@ -52,6 +53,7 @@ static oit_status capture_create(oit_capture_kind kind, const oit_method_options
 /* The whole mesh as one batch. */
 static oit_status capture_render(void *impl, const oit_method_frame *f, oit_error *err)
 {
+    oit_capture_set_gpu_timer(impl, f->timer);
     oit_status s = oit_capture_begin(impl, f->view, err);
     if (s == OIT_OK)
         s = oit_capture_batch(impl, &f->gpu, 1, NULL, err);

@@ -138,6 +138,9 @@ typedef struct oit_frame_stats {
      * counted capture, every other method). */
     const char *capture_slots;
     uint32_t capture_slots_k;
+    /* The GPU timer's number of this frame (render/gpu_timer.h), whose
+     * gpu_ms comes later (oit_method_gpu_poll); 0: not timed on the GPU. */
+    uint64_t gpu_frame;
 } oit_frame_stats;
 
 /* Camera helpers. */

@@ -31,6 +31,7 @@ static oit_status stream_create(const oit_mesh *mesh, const oit_method_options *
                             .slot_budget = so->slot_budget,
                             .cache_budget = so->cache_budget,
                             .read_inline = so->read_inline,
+                            .gpu_budget = so->gpu_budget,
                             .store_limit = opt->store_limit,
                             .epsilon = opt->epsilon > 0.0f ? opt->epsilon : 0.0f};
     oit_status s = oit_streamer_create(so->partfile, &sd, &m->streamer, err);
@@ -47,6 +48,7 @@ static oit_status stream_render(void *impl, const oit_method_frame *f, oit_error
 {
     stream_impl *m = impl;
     oit_stream_frame_stats band = {0};
+    oit_streamer_set_gpu_timer(m->streamer, f->timer);
     oit_status s = oit_streamer_render(m->streamer, f->view, f->out, f->stats, &band, err);
     if (f->band == 0)
         m->stats = band;

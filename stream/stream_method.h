@@ -18,6 +18,7 @@ struct oit_stream_options {
     /* residency cache, bytes; 0: OIT_STREAM_CACHE_DEFAULT; OIT_STREAM_CACHE_OFF: none */
     unsigned long long cache_budget;
     int read_inline; /* parts are read on the render thread, no reader thread */
+    unsigned long long gpu_budget; /* ring + cache + capture, bytes; 0: default */
 };
 
 extern const oit_method oit_method_stream;

@@ -6,6 +6,7 @@
 
 #include "base/clock.h"
 #include "render/gpu_mesh.h"
+#include "render/gpu_timer.h"
 #include "render/image.h"
 #include "render/opaque_tiles.h"
 #include "render/saturation.h"
@@ -47,6 +48,7 @@ struct oit_streamer {
     uint64_t cache_limit;   /* what the cache may grow to; 0: no cache */
     uint64_t cache_dropped; /* a smaller cache let go this frame, held until GL frees it */
     uint64_t ring_limit;    /* what the ring may grow to */
+    uint64_t cache_all;     /* the cache's limit before the frame's pixels (fit_frame_budget) */
     int threaded;           /* the reader on a thread of its own */
     /* Resident ring: every part has a home in the ring and is read there
      * once (NULL: the ring is reused, the cache keeps parts). */
@@ -55,6 +57,7 @@ struct oit_streamer {
     uint64_t loaded_bytes;
     oit_capture *capture;
     oit_capture_choice choice; /* --capture: asked, what runs, and why */
+    oit_gpu_timer *timer; /* oit_streamer_set_gpu_timer; NULL: none */
     oit_saturation *saturation; /* only with epsilon > 0 */
     oit_opaque_depth opaque;    /* the caller's depth (oit_streamer_set_opaque) */
     oit_opaque_tiles *opaque_tiles; /* built at the first frame with one */
@@ -79,7 +82,113 @@ struct oit_streamer {
      * mostly take one pass, counted ones while a view is deep (adapt). */
     int adaptive, first_k;
     uint32_t counted_frames;
+    oit_stream_budget budget; /* the split (split_budget) */
 };
+
+void oit_streamer_budget(const oit_streamer *s, oit_stream_budget *out)
+{
+    *out = s->budget;
+}
+
+static uint64_t min_u64(uint64_t a, uint64_t b)
+{
+    return a < b ? a : b;
+}
+
+/* Room a resident file leaves for the frame's per-pixel buffers (an
+ * eighth of a smaller total): 64 MiB hold 1024x1024 at 64 bytes a pixel. */
+#define PIXEL_ROOM (64ull << 20)
+
+/* The total's split (streamer.h): the capture's slots first (the default
+ * store, or an eighth of a small total), the file resident where it fits
+ * what is left less PIXEL_ROOM for the frame's per-pixel buffers, else a
+ * ring of a quarter of the rest (64 MiB at most: it only has to hold
+ * consecutive packs) and the cache the remainder. Given finer budgets
+ * replace their shares. *d receives the budgets the streamer runs with. */
+static oit_status split_budget(oit_streamer *s, oit_streamer_desc *d, int stores,
+                               uint64_t all_bytes, oit_error *err)
+{
+    oit_stream_budget *b = &s->budget;
+    const char *src = "default";
+    oit_gpu_free_query query = d->free_query ? d->free_query : oit_gpu_free_bytes;
+    b->free_bytes = query(d->free_ctx, &src);
+    uint64_t slots = stores ? OIT_STREAM_STORE_DEFAULT : OIT_STREAM_SLOTS_DEFAULT;
+    if (d->gpu_budget) {
+        b->total = d->gpu_budget;
+        b->source = "--gpu-budget";
+    } else if (b->free_bytes) {
+        b->total = b->free_bytes / OIT_STREAM_FREE_SHARE_DEN * OIT_STREAM_FREE_SHARE_NUM;
+        b->source = src;
+    } else {
+        /* No total: the parts' own defaults, as before there was one. */
+        b->source = src;
+        b->capture = d->slot_budget ? d->slot_budget : slots;
+        b->ring = d->upload_budget ? d->upload_budget : 64ull << 20;
+        b->cache = d->cache_budget == OIT_STREAM_CACHE_OFF ? 0
+                   : d->cache_budget                     ? d->cache_budget
+                                                         : OIT_STREAM_CACHE_DEFAULT;
+        return OIT_OK;
+    }
+    const char *name = oit_partfile_name(s->pf);
+    if (b->total < OIT_STREAM_GPU_BUDGET_MIN)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: a GPU budget of %llu bytes (%s); at "
+                             "least %llu", name, (unsigned long long)b->total, b->source,
+                             (unsigned long long)OIT_STREAM_GPU_BUDGET_MIN);
+    b->capture = d->slot_budget ? d->slot_budget : min_u64(slots, b->total / 8);
+    uint64_t left = b->capture < b->total ? b->total - b->capture : 0;
+    int off = d->cache_budget == OIT_STREAM_CACHE_OFF;
+    uint64_t pixels = min_u64(b->total / 8, PIXEL_ROOM);
+    int fits = !off && !d->upload_budget && !d->cache_budget && left > pixels &&
+               all_bytes <= left - pixels;
+    b->ring = d->upload_budget ? d->upload_budget
+              : fits           ? all_bytes
+                               : min_u64(64ull << 20, left / 4);
+    b->cache = off ? 0 : d->cache_budget ? d->cache_budget : fits ? all_bytes
+               : left > b->ring ? left - b->ring : 0;
+    /* as create_upload decides: resident, the ring is the only copy */
+    int resident = !off && all_bytes <= b->ring && all_bytes <= b->cache;
+    uint64_t sum = b->capture + b->ring + (resident ? 0 : b->cache);
+    if (sum > b->total && d->gpu_budget)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: --upload-budget %llu + --cache-budget "
+                             "%llu + --slot-budget %llu = %llu bytes, more than --gpu-budget "
+                             "%llu", name, (unsigned long long)b->ring,
+                             (unsigned long long)b->cache, (unsigned long long)b->capture,
+                             (unsigned long long)sum, (unsigned long long)b->total);
+    if (sum > b->total)
+        b->total = sum; /* finer budgets given past the driver's share win */
+    d->slot_budget = b->capture;
+    d->upload_budget = b->ring > OIT_STREAM_RING_MIN ? b->ring : OIT_STREAM_RING_MIN;
+    d->cache_budget = off ? OIT_STREAM_CACHE_OFF
+                      : b->cache ? b->cache - b->cache % OIT_PACK_ALIGN
+                                 : OIT_STREAM_CACHE_OFF;
+    return OIT_OK;
+}
+
+/* Bytes a pixel beyond the state: counts (4), first-K's segment table
+ * (8), the output where it has a buffer of its own (16), rounded up. */
+#define PIXEL_EXTRA 32u
+
+/* Under a total, the frame's per-pixel capture buffers (counts, state,
+ * output, segments) come out of the cache's share: the cache's limit is
+ * what the total leaves, and a cache past it is let go. */
+static void fit_frame_budget(oit_streamer *s, const oit_view *view)
+{
+    const oit_stream_budget *b = &s->budget;
+    if (!b->total || s->home || !b->cache)
+        return;
+    uint64_t pixel = (uint64_t)view->width * view->height *
+                     (oit_capture_pixel_bytes(view) + PIXEL_EXTRA);
+    uint64_t used = b->capture + s->ring_limit + pixel;
+    uint64_t room = used < b->total ? b->total - used : 0;
+    room = min_u64(room, b->cache);
+    s->cache_limit = min_u64(room - room % OIT_PACK_ALIGN, s->cache_all);
+    if (s->cache && oit_residency_capacity(s->cache) > s->cache_limit) {
+        oit_residency_destroy(s->cache);
+        s->cache = NULL;
+        glDeleteBuffers(1, &s->cache_buffer);
+        s->cache_buffer = 0;
+    }
+}
 
 void oit_streamer_destroy(oit_streamer *s)
 {
@@ -154,6 +263,7 @@ static void limit_cache(oit_streamer *s, uint64_t budget, uint64_t all_bytes)
     budget = budget ? budget : OIT_STREAM_CACHE_DEFAULT;
     uint64_t bytes = budget < all_bytes ? budget : all_bytes;
     s->cache_limit = bytes - bytes % OIT_PACK_ALIGN;
+    s->cache_all = s->cache_limit;
 }
 
 /* Grows the cache to the parts of the frame's packing (all of this frame
@@ -359,13 +469,19 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
         return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot allocate the streamer",
                              oit_partfile_name(pf));
     s->pf = pf;
-    uint64_t budget = desc->upload_budget ? desc->upload_budget : 64ull << 20, all_bytes = 0;
+    oit_streamer_desc eff = *desc;
+    uint64_t all_bytes = 0;
     oit_pack_mode mode = desc->pack != OIT_PACK_AUTO ? desc->pack : OIT_PACK_FIRSTK;
     s->adaptive = desc->pack == OIT_PACK_AUTO && mode == OIT_PACK_FIRSTK;
     s->first_k = 1;
     oit_status st = alloc_arrays(s, oit_partfile_part_count(pf), err);
     if (st == OIT_OK)
         st = number_triangles(s, &all_bytes, err);
+    if (st == OIT_OK)
+        st = split_budget(s, &eff, mode == OIT_PACK_COUNTED || mode == OIT_PACK_FIRSTK,
+                          all_bytes, err);
+    desc = &eff;
+    uint64_t budget = desc->upload_budget ? desc->upload_budget : 64ull << 20;
     /* A ring as large as all the parts holds any pack, and the whole file
      * in one lap (resident, make_resident): a small model needs no 64 MiB
      * of GPU memory for it. */
@@ -381,6 +497,11 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
     s->front_now = s->front_first;
     if (st == OIT_OK)
         st = create_upload(s, desc, budget, all_bytes, err);
+    if (st == OIT_OK) {
+        s->budget.resident = s->home != NULL;
+        s->budget.ring = s->ring_limit;
+        s->budget.cache = s->home ? 0 : s->cache_limit;
+    }
     if (st == OIT_OK)
         st = create_capture(s, desc, mode, err);
     /* The counted and first-K captures store fragments beside their slots;
@@ -503,9 +624,11 @@ static void use_part(oit_streamer *s, const oit_packing *pk, uint32_t j, oit_gpu
     oit_gpu_mesh_set_range_sourced(view, s->offset[j], (size_t)(part->index_count / 3));
     ss->cache_hits += (uint64_t)cached;
     if (!cached && s->cache &&
-        oit_residency_insert(s->cache, pk->parts[j], oit_pack_part_bytes(part), &at))
+        oit_residency_insert(s->cache, pk->parts[j], oit_pack_part_bytes(part), &at)) {
+        oit_gpu_timer_mark(s->timer, OIT_GPU_UPLOAD);
         glCopyNamedBufferSubData(oit_upload_buffer(s->upload), s->cache_buffer,
                                  (GLintptr)s->offset[j], (GLintptr)at, (GLsizeiptr)bytes);
+    }
 }
 
 /* Counts what pack i read, and lets its ring region go once the work issued
@@ -573,6 +696,7 @@ static oit_status draw_pack(oit_streamer *s, const oit_packing *pk, uint32_t i,
                                       (int)drawn, pk->rects[i], (int)pk->layers[i], err);
     }
     /* No pack after the last one reads the tiles it would recompute. */
+    oit_gpu_timer_mark(s->timer, OIT_GPU_OTHER);
     if (st == OIT_OK && drawn > 0 && s->saturation && i + 1 < pk->pack_count)
         st = oit_saturation_update(s->saturation, oit_capture_state_buffer(s->capture),
                                    pk->rects[i], err);
@@ -623,6 +747,12 @@ static oit_status draw_packs(oit_streamer *s, const oit_packing *pk,
         oit_upload_release_undrawn(s->upload);
     }
     return st;
+}
+
+void oit_streamer_set_gpu_timer(oit_streamer *s, oit_gpu_timer *t)
+{
+    s->timer = t;
+    oit_capture_set_gpu_timer(s->capture, t);
 }
 
 void oit_streamer_set_opaque(oit_streamer *s, const oit_opaque_depth *o)
@@ -696,6 +826,8 @@ static oit_status capture_frame(oit_streamer *s, const oit_view *view, oit_packi
     /* The packing tells what the frame will hold: the ring and the cache
      * grow to it before the first part is read. */
     if (st == OIT_OK)
+        fit_frame_budget(s, view);
+    if (st == OIT_OK)
         st = fit_cache(s, pk, err);
     if (st == OIT_OK)
         st = fit_ring(s, pk, err);
@@ -754,6 +886,7 @@ static void finish_stats(const oit_streamer *s, const oit_packing *pk, oit_frame
     ss->capture_asked = s->choice.asked == OIT_CAPTURE_AUTO ? "auto"
                                                              : oit_capture_kind_name(s->choice.asked);
     memcpy(ss->capture_fallback, s->choice.reason, sizeof ss->capture_fallback);
+    ss->budget = s->budget;
     ss->draw_calls = oit_capture_draw_calls(s->capture);
     ss->cache_bytes = s->cache ? oit_residency_bytes(s->cache) : s->loaded_bytes;
     ss->gpu_bytes_peak = fs->gpu_bytes_peak + oit_upload_gpu_bytes(s->upload) +

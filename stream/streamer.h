@@ -19,6 +19,7 @@
 #include "oit/partfile.h"
 #include "render/capture.h"
 #include "render/capture_choice.h"
+#include "render/gpu_memory.h"
 #include "stream/pack.h"
 
 typedef struct oit_streamer_desc {
@@ -66,7 +67,39 @@ typedef struct oit_streamer_desc {
                                  thread (for comparison and debugging) */
     uint64_t store_limit;     /* the capture's (oit_capture_set_store_limit); 0:
                                  the driver's binding; lower only to test */
+    /* One total for the ring, the cache and the capture together
+     * (oit_stream_budget has the split); 0: OIT_STREAM_FREE_SHARE of the
+     * free GPU memory the driver reports, or, where it reports none,
+     * no total (the defaults above, as before). At least
+     * OIT_STREAM_GPU_BUDGET_MIN. The finer budgets above stay inside it:
+     * given ones that add up to more are refused. */
+    uint64_t gpu_budget;
+    /* The free-memory query (render/gpu_memory.h); NULL: the driver's.
+     * Tests inject a fake driver here. */
+    oit_gpu_free_query free_query;
+    void *free_ctx;
 } oit_streamer_desc;
+
+/* Half the free memory the driver reports: the rest is the embedding
+ * application's (its own geometry, textures, framebuffers), the driver's
+ * and other processes', and room for fragmentation; half of an H200's
+ * 139 GB holds every model we have resident, where the fixed 256 MiB
+ * cache made the 12M plant (580 MB) stream every frame. */
+#define OIT_STREAM_FREE_SHARE_NUM 1
+#define OIT_STREAM_FREE_SHARE_DEN 2
+#define OIT_STREAM_GPU_BUDGET_MIN (1ull << 20)
+
+/* The memory a streamer chose, readable back (oit_streamer_budget). */
+typedef struct oit_stream_budget {
+    uint64_t total;      /* ring + cache + capture at most; 0: no total */
+    uint64_t ring;       /* the upload ring's limit */
+    uint64_t cache;      /* the residency cache's limit (0: none, or resident) */
+    uint64_t capture;    /* the capture's slot budget (its per-pixel buffers
+                            are taken from the cache's share frame by frame) */
+    uint64_t free_bytes; /* what the driver reported free; 0: nothing */
+    const char *source;  /* "--gpu-budget", "GL_NVX_gpu_memory_info", "default", ... */
+    int resident;        /* every part read once and kept */
+} oit_stream_budget;
 
 /* 256 MiB: ~5.6 M triangles at 48 bytes, the visible working set of most
  * views of multi-million-triangle models, and a small share of any GL 4.5
@@ -117,6 +150,7 @@ typedef struct oit_stream_frame_stats {
      * oit_frame_stats's capture_slots. */
     const char *capture_asked;
     char capture_fallback[sizeof(((oit_capture_choice *)0)->reason)];
+    oit_stream_budget budget; /* the memory the streamer chose (split_budget) */
 } oit_stream_frame_stats;
 
 typedef struct oit_streamer oit_streamer;
@@ -128,10 +162,17 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
 void oit_streamer_destroy(oit_streamer *s);
 /* What --capture chose at creation (its reason string lives as long as s). */
 const oit_capture_choice *oit_streamer_capture_choice(const oit_streamer *s);
+void oit_streamer_budget(const oit_streamer *s, oit_stream_budget *out);
 
 /* The caller's opaque depth for the next frames (oit_capture_set_opaque);
  * NULL: none. */
 void oit_streamer_set_opaque(oit_streamer *s, const oit_opaque_depth *o);
+
+/* GPU phases of the next frames are marked on t (render/gpu_timer.h):
+ * the ring's parts copied into the residency cache as uploads, the
+ * capture's passes as it marks them; NULL: none. Not owned. */
+struct oit_gpu_timer;
+void oit_streamer_set_gpu_timer(oit_streamer *s, struct oit_gpu_timer *t);
 
 /* Bytes a pixel of view takes in the streamer's largest per-pixel buffer
  * (oit_capture_pixel_bytes): a frame past one storage binding is refused,

@@ -256,6 +256,13 @@ typedef struct oit_renderer_desc {
      * with the self-test's reason; ARRAY: slots through an atomic counter.
      * The image is the same; oit_draw_stats says what ran and why. */
     oit_render_capture capture;
+    /* GPU bytes for the upload ring, the cache and the capture together
+     * (oitstream --gpu-budget alike); 0: half the free memory the driver
+     * reports (GL_NVX_gpu_memory_info, GL_ATI_meminfo), or, where it
+     * reports none, no total (the budgets above alone). upload_budget and
+     * cache_budget stay inside it: given ones that add up to more fail
+     * the first draw. The chosen split is in oit_draw_stats. */
+    uint64_t gpu_budget;
 } oit_renderer_desc;
 
 #define OIT_RENDER_CACHE_OFF UINT64_MAX
@@ -338,6 +345,7 @@ typedef struct oit_frame {
 } oit_frame;
 
 #define OIT_FRAME_CLIP_MAX 6
+#define OIT_DRAW_GPU_PHASES 6
 
 typedef struct oit_draw_stats {
     double ms;               /* wall time of the call; the capture is finished
@@ -370,6 +378,19 @@ typedef struct oit_draw_stats {
     const char *capture_slots;
     uint32_t capture_slots_k;
     const char *capture_fallback;
+    /* GPU time from GL timestamp queries, read without waiting: the figures
+     * of draw number gpu_frame (1 the renderer's first; usually an earlier
+     * call than this one), 0 and gpu_ms -1 when none is in yet or the
+     * driver has no timestamps. Phases, in this order: other, upload (ring
+     * to cache copies), pass 1, pass 2, resolve, read-back; they add up to
+     * gpu_ms. */
+    uint64_t gpu_frame;
+    double gpu_ms;
+    double gpu_phase_ms[OIT_DRAW_GPU_PHASES];
+    /* The memory the renderer chose for a part file (0 for in-core scenes):
+     * the total (0: none), its split, and the driver's free memory (0: it
+     * reports none). */
+    uint64_t gpu_budget, ring_budget, cache_budget, capture_budget, gpu_free_bytes;
 } oit_draw_stats;
 
 /* Draws scene as seen through frame into frame->framebuffer (see Result

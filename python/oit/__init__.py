@@ -181,10 +181,11 @@ class Renderer(_Closable):
 
     def __init__(self, shading="transparent", alpha=None, default_rgb=None, absorption=None,
                  K=0, epsilon=0.0, pack="auto", upload_budget=0, cache_budget=0,
-                 colour_space="srgb"):
-        """pack, upload_budget, cache_budget, K and epsilon take what
-        oitstream's --pack, --upload-budget, --cache-budget, --max-layers and
-        --epsilon take: 0 is the default, cache_budget="off" no cache.
+                 colour_space="srgb", gpu_budget=0):
+        """pack, upload_budget, cache_budget, gpu_budget, K and epsilon take
+        what oitstream's --pack, --upload-budget, --cache-budget, --gpu-budget,
+        --max-layers and --epsilon take: 0 is the default, cache_budget="off"
+        no cache.
         colour_space: "srgb" (default) composites the sRGB-encoded colours as
         given; "linear" decodes them (exact sRGB EOTF), composites in linear
         light and returns the result sRGB-encoded (oitstream --colour-space)."""
@@ -199,6 +200,7 @@ class Renderer(_Closable):
         d.renderer.epsilon = epsilon
         d.renderer.pack = _PACKS[pack]
         d.renderer.upload_budget = int(upload_budget)
+        d.renderer.gpu_budget = int(gpu_budget)
         d.renderer.cache_budget = L.RENDER_CACHE_OFF if cache_budget == "off" else int(cache_budget)
         d.renderer.shading.mode = _SHADINGS[shading]
         d.renderer.shading.colour_space = _COLOUR_SPACES[colour_space]
@@ -256,6 +258,7 @@ class Renderer(_Closable):
                                             out.ctypes.data, out.nbytes, ctypes.byref(stats),
                                             ctypes.byref(err)), err)
         self.stats = {name: getattr(stats, name) for name, _ in L.DrawStats._fields_}
+        self.stats["gpu_phase_ms"] = list(stats.gpu_phase_ms)
         return out
 
     def _release(self, scene):

@@ -50,7 +50,8 @@ class RendererDesc(ctypes.Structure):
     _fields_ = [("K", ctypes.c_uint32), ("upload_budget", ctypes.c_uint64),
                 ("pack", ctypes.c_int), ("shading", RenderShading),
                 ("epsilon", ctypes.c_float), ("cache_budget", ctypes.c_uint64),
-                ("read_on_draw_thread", ctypes.c_int), ("capture", ctypes.c_int)]
+                ("read_on_draw_thread", ctypes.c_int), ("capture", ctypes.c_int),
+                ("gpu_budget", ctypes.c_uint64)]
 
 
 class OffscreenDesc(ctypes.Structure):
@@ -78,7 +79,12 @@ class DrawStats(ctypes.Structure):
                 ("draw_calls", ctypes.c_uint64), ("parts_clipped", ctypes.c_uint64),
                 ("bytes_clipped", ctypes.c_uint64),
                 ("capture_slots", ctypes.c_char_p),
-                ("capture_slots_k", ctypes.c_uint32), ("capture_fallback", ctypes.c_char_p)]
+                ("capture_slots_k", ctypes.c_uint32), ("capture_fallback", ctypes.c_char_p),
+                ("gpu_frame", ctypes.c_uint64),
+                ("gpu_ms", ctypes.c_double), ("gpu_phase_ms", ctypes.c_double * 6),
+                ("gpu_budget", ctypes.c_uint64), ("ring_budget", ctypes.c_uint64),
+                ("cache_budget", ctypes.c_uint64), ("capture_budget", ctypes.c_uint64),
+                ("gpu_free_bytes", ctypes.c_uint64)]
 
 
 # enum values of the headers

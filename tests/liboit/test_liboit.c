@@ -167,6 +167,42 @@ static void check_state_restored(GLuint fbo)
           bound, vp[0], vp[1], vp[2], vp[3], blend, src, prog);
 }
 
+/* The GPU time of an earlier draw arrives within a few draws (timestamp
+ * queries read without waiting), its phases adding up to it; a part file
+ * reports the memory it chose: a total only where the driver says how
+ * much is free (none on llvmpipe), the ring and the capture always. */
+static void check_gpu_stats(const char *name, oit_renderer *r, oit_scene *scene,
+                            const oit_frame *f, int part_file)
+{
+    oit_error err = {0};
+    oit_draw_stats st = {0};
+    int draws = 2; /* the caller's */
+    target scratch = target_make(); /* liboit blends over what a target holds */
+    oit_frame g = *f;
+    g.framebuffer = scratch.fbo;
+    for (int i = 0; i < 8 && st.gpu_frame == 0; i++, draws++)
+        CHECK(oit_renderer_draw(r, scene, &g, &st, &err) == OIT_OK, "%s: %s", name,
+              err.message);
+    target_free(&scratch);
+    double sum = 0;
+    for (int p = 0; p < OIT_DRAW_GPU_PHASES; p++)
+        sum += st.gpu_phase_ms[p];
+    printf("%s: draw %llu took %.3f ms on the GPU; budget %llu (ring %llu, cache %llu, "
+           "capture %llu, driver free %llu)\n", name, (unsigned long long)st.gpu_frame,
+           st.gpu_ms, (unsigned long long)st.gpu_budget, (unsigned long long)st.ring_budget,
+           (unsigned long long)st.cache_budget, (unsigned long long)st.capture_budget,
+           (unsigned long long)st.gpu_free_bytes);
+    CHECK(st.gpu_frame >= 1 && st.gpu_frame <= (uint64_t)draws + 1 && st.gpu_ms > 0 &&
+              fabs(sum - st.gpu_ms) <= 1e-6 * (1 + st.gpu_ms),
+          "%s: GPU figures of draw %llu: %.6f ms, phases %.6f", name,
+          (unsigned long long)st.gpu_frame, st.gpu_ms, sum);
+    CHECK(!part_file || (st.ring_budget > 0 && st.capture_budget > 0 &&
+                         (st.gpu_budget == 0) == (st.gpu_free_bytes == 0)),
+          "%s: budget %llu, ring %llu, capture %llu, driver free %llu", name,
+          (unsigned long long)st.gpu_budget, (unsigned long long)st.ring_budget,
+          (unsigned long long)st.capture_budget, (unsigned long long)st.gpu_free_bytes);
+}
+
 static void draw_and_compare_proj(const char *base, oit_scene *scene, oit_partfile *pf,
                                   oit_render_shading_mode mode, oit_render_pack pack, int proj)
 {
@@ -247,6 +283,9 @@ static void draw_and_compare_proj(const char *base, oit_scene *scene, oit_partfi
               (unsigned long long)st.bytes_uploaded, (unsigned long long)st2.cache_hits,
               (unsigned long long)st2.parts_drawn);
     }
+    /* More draws, into a target of their own. */
+    if (s == OIT_OK)
+        check_gpu_stats(name, r, scene, &f, !info.in_core);
 
     oit_image ref = {0};
     oit_frame_stats rs = {0};

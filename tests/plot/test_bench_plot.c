@@ -285,7 +285,7 @@ static void fake_result(oit_bench_result *r, oit_bench_method m[2], oit_bench_ce
     m[0].cells = cells;
     for (int v = 0; v < 2; v++) {
         cells[v] = (oit_bench_cell){1, 2.0 + v, 3.0 + v, 1000000u * (v + 1), 7 + 5 * v, 10,
-                                    {v ? 0.002 : 0.0, 0.5, 0.1, v ? 40.0 : INFINITY, 3}};
+                                    {v ? 0.002 : 0.0, 0.5, 0.1, v ? 40.0 : INFINITY, 3}, -1.0};
     }
     m[0].ms_median = 2.0;
     m[0].ms_p95 = 4.0;
@@ -356,7 +356,7 @@ static void test_csv_round_trip(void)
 }
 
 #define HDR OIT_BENCH_CSV_HEADER "\n"
-#define OK_ROW "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16\n"
+#define OK_ROW "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16,2.5\n"
 #define OLD_ROW "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3\n"
 
 /* text (len bytes; an empty one read from an empty file) must fail to read
@@ -404,16 +404,16 @@ static void test_csv_malformed(void)
         {"row,method\n", 0, 1, "header"},
         {HDR, 0, 2, "no rows"},
         {HDR "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16\n", 0, 2, "14 fields"},
-        {HDR "view,pll,0,not_runnable,,,100,3,,,,,\"no\",16,3,source_mesh,16\n", 0, 2, "gpu_bytes_peak"},
-        {HDR OK_ROW "view,pll,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,inf,\"\",17,3,source_mesh,16\n", 0, 3, "triangles"},
+        {HDR "view,pll,0,not_runnable,,,100,3,,,,,\"no\",16,3,source_mesh,16,2.5\n", 0, 2, "gpu_bytes_peak"},
+        {HDR OK_ROW "view,pll,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,inf,\"\",17,3,source_mesh,16,2.5\n", 0, 3, "triangles"},
         {HDR OK_ROW "\n", 0, 3, "empty line"},
-        {HDR "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,part_file,-4\n", 0, 2,
+        {HDR "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,part_file,-4,\n", 0, 2,
          "drawn_triangles"},
         {HDR "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3\n", 0, 2, "15 fields"},
         {OIT_BENCH_CSV_HEADER_15 "\n" OLD_ROW "view,pll,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,inf,\"\",16,3,"
-         "source_mesh,16\n", 0, 3, "more than 15 fields"},
-        {HDR "view,dfb,0,ok,1.0\0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16\n",
-         sizeof(HDR "view,dfb,0,ok,1.0\0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16\n") - 1, 2, "NUL"},
+         "source_mesh,16,2.5\n", 0, 3, "more than 15 fields"},
+        {HDR "view,dfb,0,ok,1.0\0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16,2.5\n",
+         sizeof(HDR "view,dfb,0,ok,1.0\0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16,2.5\n") - 1, 2, "NUL"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         char what[32];
@@ -435,6 +435,8 @@ static void test_csv_malformed(void)
         {0, "summary", "summary"},
         {1, "d f b", "method"},
         {15, "mesh", "geometry"},
+        {17, "-2", "gpu_ms_median"},
+        {17, "fast", "gpu_ms_median"},
     };
     for (size_t i = 0; i < sizeof fields / sizeof fields[0]; i++) {
         char text[1024], what[64];

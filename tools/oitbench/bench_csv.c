@@ -10,7 +10,7 @@
 
 #include "base/args.h"
 
-enum { FIELDS = 17, OLD_FIELDS = 15, LINE_MAX_BYTES = 4096, ROWS_MAX = 1 << 20 };
+enum { FIELDS = 18, FIELDS_17 = 17, OLD_FIELDS = 15, LINE_MAX_BYTES = 4096, ROWS_MAX = 1 << 20 };
 
 /* ---- writing ---- */
 
@@ -41,6 +41,7 @@ typedef struct row_figures {
     uint32_t layers;
     double rmse, max_abs, pct, psnr;
     uint32_t view_layers;
+    double gpu_ms; /* < 0: none */
 } row_figures;
 
 static const char *geometry_token(oit_bench_geometry g)
@@ -65,8 +66,9 @@ static void csv_row(FILE *f, const char *row, const oit_bench_method *m, int vie
             oit_bench_number(b[4], 40, ok ? x->pct : NAN, "%.6f", ""),
             oit_bench_number(b[5], 40, ok ? x->psnr : NAN, "%.4f", ok ? "inf" : ""));
     csv_text(f, ok ? "" : reason);
-    fprintf(f, ",%llu,%u,%s,%llu\n", (unsigned long long)triangles, x->view_layers,
-            geometry_token(m->geometry), (unsigned long long)m->triangles);
+    fprintf(f, ",%llu,%u,%s,%llu,%s\n", (unsigned long long)triangles, x->view_layers,
+            geometry_token(m->geometry), (unsigned long long)m->triangles,
+            oit_bench_number(b[6], 40, ok && x->gpu_ms >= 0 ? x->gpu_ms : NAN, "%.4f", ""));
 }
 
 void oit_bench_csv_write(FILE *f, const oit_bench_result *r, uint64_t triangles)
@@ -80,14 +82,16 @@ void oit_bench_csv_write(FILE *f, const oit_bench_result *r, uint64_t triangles)
             const oit_bench_cell *c = &m->cells[v];
             row_figures x = {c->ok, c->ok ? c->ms_median : NAN, c->ok ? c->ms_p95 : NAN,
                              c->gpu_bytes_peak, c->max_layers, c->diff.rmse, c->diff.max_abs,
-                             c->diff.pct_over_1_255, c->diff.psnr, r->ref_layers[v]};
+                             c->diff.pct_over_1_255, c->diff.psnr, r->ref_layers[v],
+                             c->gpu_ms_median};
             csv_row(f, "view", m, v, &x, triangles);
         }
     }
     for (int i = 0; i < r->method_count; i++) {
         const oit_bench_method *m = &r->methods[i];
         row_figures x = {m->runnable, m->ms_median, m->ms_p95, m->gpu_bytes_peak, m->max_layers,
-                         m->rmse_mean, m->max_abs_worst, m->pct_over_worst, m->psnr_min, deepest};
+                         m->rmse_mean, m->max_abs_worst, m->pct_over_worst, m->psnr_min, deepest,
+                         m->gpu_ms_median};
         csv_row(f, "summary", m, -1, &x, triangles);
     }
 }
@@ -304,8 +308,13 @@ static oit_status row_tail(const field *fs, oit_bench_row *row, const reader *rd
 
 static oit_status row_geometry(const field *fs, oit_bench_row *row, const reader *rd)
 {
+    row->gpu_ms_median = -1.0;
     if (rd->fields == OLD_FIELDS)
         return OIT_OK;
+    if (rd->fields == FIELDS && *fs[17].s &&
+        (!row->ok || !parse_figure(fs[17].s, 0, &row->gpu_ms_median)))
+        return bad(rd, "column gpu_ms_median: '%.40s' is not a figure >= 0 on an ok row",
+                   fs[17].s);
     if (!strcmp(fs[15].s, "source_mesh")) row->geometry = OIT_BENCH_GEOMETRY_SOURCE_MESH;
     else if (!strcmp(fs[15].s, "part_file")) row->geometry = OIT_BENCH_GEOMETRY_PART_FILE;
     else return bad(rd, "column geometry: '%.40s' is neither source_mesh nor part_file",
@@ -325,7 +334,9 @@ static oit_status parse_row(char *line, oit_bench_row *row, const reader *rd)
         return s;
     if (n != rd->fields)
         return bad(rd, "%d fields, expected %d (%s)", n, rd->fields,
-                   rd->fields == FIELDS ? OIT_BENCH_CSV_HEADER : OIT_BENCH_CSV_HEADER_15);
+                   rd->fields == FIELDS      ? OIT_BENCH_CSV_HEADER
+                   : rd->fields == FIELDS_17 ? OIT_BENCH_CSV_HEADER_17
+                                             : OIT_BENCH_CSV_HEADER_15);
     for (int i = 0; i < n; i++)
         if (i != 12 && fs[i].quoted)
             return bad(rd, "field %d is quoted; only reason (field 13) is", i + 1);
@@ -359,8 +370,10 @@ static oit_status check_header(FILE *f, char *buf, size_t cap, reader *rd)
     if (!read_line(f, buf, cap, rd, &s))
         return s != OIT_OK ? s : bad(rd, "empty file, expected the header '%s'",
                                      OIT_BENCH_CSV_HEADER);
-    rd->fields = !strcmp(buf, OIT_BENCH_CSV_HEADER) ? FIELDS
-                 : !strcmp(buf, OIT_BENCH_CSV_HEADER_15) ? OLD_FIELDS : 0;
+    rd->fields = !strcmp(buf, OIT_BENCH_CSV_HEADER)      ? FIELDS
+                 : !strcmp(buf, OIT_BENCH_CSV_HEADER_17) ? FIELDS_17
+                 : !strcmp(buf, OIT_BENCH_CSV_HEADER_15) ? OLD_FIELDS
+                                                         : 0;
     if (!rd->fields)
         return bad(rd, "not the header of this oitbench's results.csv (written by an older "
                    "oitbench? run it again); expected '%s'", OIT_BENCH_CSV_HEADER);

@@ -16,9 +16,14 @@
  * boundaries) and drawn_triangles how many, on not_runnable rows too (what
  * it would have drawn).
  *
+ * gpu_ms_median is the median GPU time of the timed frames (GL timestamp
+ * queries, render/gpu_timer.h), empty where the method was not timed on
+ * the GPU (no GL, no timestamps, or not run).
+ *
  * The reader also takes the file of the oitbench before geometry
  * (OIT_BENCH_CSV_HEADER_15, 15 fields); its rows read with geometry -1 and
- * drawn_triangles = triangles. */
+ * drawn_triangles = triangles; and the one before gpu_ms_median
+ * (OIT_BENCH_CSV_HEADER_17), read with gpu_ms_median -1. */
 #ifndef OIT_OITBENCH_BENCH_CSV_H
 #define OIT_OITBENCH_BENCH_CSV_H
 
@@ -30,7 +35,8 @@
 #define OIT_BENCH_CSV_HEADER_15                                                          \
     "row,method,view,status,ms_median,ms_p95,gpu_bytes_peak,max_layers,rmse,max_abs,"    \
     "pct_over_1_255,psnr,reason,triangles,view_max_layers"
-#define OIT_BENCH_CSV_HEADER OIT_BENCH_CSV_HEADER_15 ",geometry,drawn_triangles"
+#define OIT_BENCH_CSV_HEADER_17 OIT_BENCH_CSV_HEADER_15 ",geometry,drawn_triangles"
+#define OIT_BENCH_CSV_HEADER OIT_BENCH_CSV_HEADER_17 ",gpu_ms_median"
 
 #define OIT_BENCH_CSV_REASON_MAX 512
 
@@ -52,6 +58,7 @@ typedef struct oit_bench_row {
     uint32_t view_max_layers;
     int geometry;                   /* oit_bench_geometry; -1: an older file */
     uint64_t drawn_triangles;
+    double gpu_ms_median;           /* -1: empty */
 } oit_bench_row;
 
 typedef struct oit_bench_table {

@@ -41,6 +41,7 @@ static void json_cell(oit_json *w, int v, const oit_bench_cell *c)
     oit_json_bool(w, "ok", c->ok);
     oit_json_fixed(w, "ms_median", c->ok ? c->ms_median : NAN, 4);
     oit_json_fixed(w, "ms_p95", c->ok ? c->ms_p95 : NAN, 4);
+    oit_json_fixed(w, "gpu_ms_median", c->ok ? c->gpu_ms_median : NAN, 4);
     oit_json_uint(w, "gpu_bytes_peak", c->gpu_bytes_peak);
     oit_json_uint(w, "max_layers", c->max_layers);
     oit_json_uint(w, "fragments", c->fragments);
@@ -66,6 +67,7 @@ static void json_method(oit_json *w, const oit_bench_method *m, int views)
     oit_json_uint(w, "timed_frames", m->ms_count);
     oit_json_fixed(w, "ms_median", m->ms_median, 4);
     oit_json_fixed(w, "ms_p95", m->ms_p95, 4);
+    oit_json_fixed(w, "gpu_ms_median", m->runnable ? m->gpu_ms_median : NAN, 4);
     oit_json_uint(w, "gpu_bytes_peak", m->gpu_bytes_peak);
     oit_json_uint(w, "max_layers", m->max_layers);
     oit_json_general(w, "rmse_mean", m->runnable ? m->rmse_mean : NAN, 9);

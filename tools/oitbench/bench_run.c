@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "render/gl_context.h"
+#include "render/gpu_timer.h"
 #include "stream/stream_method.h"
 
 const char *oit_bench_geometry_label(oit_bench_geometry g)
@@ -117,11 +118,38 @@ static oit_status render_frame(oit_bench_method *m, const oit_view *view, oit_fr
 
 static void record(oit_bench_method *m, oit_bench_cell *c, const oit_frame_stats *st)
 {
+    m->gpu_ms[m->ms_count] = -1.0;
+    m->gpu_frame[m->ms_count] = st->gpu_frame;
     m->ms[m->ms_count++] = st->ms;
     c->gpu_bytes_peak = st->gpu_bytes_peak > c->gpu_bytes_peak ? st->gpu_bytes_peak
                                                                 : c->gpu_bytes_peak;
     c->max_layers = st->max_layers > c->max_layers ? st->max_layers : c->max_layers;
     c->fragments = st->fragments;
+}
+
+/* Every GPU figure of m's frames (waited for: the view's frames are done),
+ * each to the timed frame of its number from index first on. */
+static void take_gpu_times(oit_bench_method *m, size_t first)
+{
+    oit_gpu_times t;
+    while (m->state && oit_method_gpu_poll(m->state, &t, 1))
+        for (size_t k = first; k < m->ms_count; k++)
+            if (m->gpu_frame[k] == t.frame)
+                m->gpu_ms[k] = t.ms;
+}
+
+/* The median of the GPU times from index first on; -1 when none. */
+static double gpu_median(const oit_bench_method *m, size_t first)
+{
+    size_t n = 0;
+    double *v = malloc((m->ms_count - first + 1) * sizeof *v), med = -1.0, p95 = 0;
+    for (size_t k = first; v && k < m->ms_count; k++)
+        if (m->gpu_ms[k] >= 0)
+            v[n++] = m->gpu_ms[k];
+    if (n)
+        median_p95(v, n, &med, &p95);
+    free(v);
+    return med;
 }
 
 /* Warm-up rounds, then timed rounds, every runnable method once per round. */
@@ -149,6 +177,8 @@ static void measure_view(const oit_bench_desc *d, oit_bench_result *r, int v,
         oit_bench_method *m = &r->methods[i];
         oit_bench_cell *c = &m->cells[v];
         c->ok = m->runnable;
+        take_gpu_times(m, first[i]);
+        c->gpu_ms_median = gpu_median(m, first[i]);
         if (c->ok)
             median_p95(m->ms + first[i], m->ms_count - first[i], &c->ms_median, &c->ms_p95);
     }
@@ -177,8 +207,8 @@ static void print_view(FILE *f, const oit_bench_result *r, int v)
     for (int i = 0; i < r->method_count; i++) {
         const oit_bench_method *m = &r->methods[i];
         if (m->cells[v].ok)
-            fprintf(f, "; %s %.2f ms rmse %.3g", m->name, m->cells[v].ms_median,
-                    m->cells[v].diff.rmse);
+            fprintf(f, "; %s %.2f ms (gpu %.2f) rmse %.3g", m->name, m->cells[v].ms_median,
+                    m->cells[v].gpu_ms_median, m->cells[v].diff.rmse);
         else
             fprintf(f, "; %s not run", m->name);
     }
@@ -204,6 +234,7 @@ static void summarise(oit_bench_method *m, int views)
     }
     m->rmse_mean = n ? m->rmse_mean / n : NAN;
     median_p95(m->ms, m->ms_count, &m->ms_median, &m->ms_p95);
+    m->gpu_ms_median = gpu_median(m, 0);
 }
 
 static oit_status alloc_result(const oit_bench_desc *d, oit_bench_result *r, oit_error *err)
@@ -223,9 +254,12 @@ static oit_status alloc_result(const oit_bench_desc *d, oit_bench_result *r, oit
         int parts = m->method && (m->method->flags & OIT_METHOD_PARTFILE);
         m->geometry = parts ? OIT_BENCH_GEOMETRY_PART_FILE : d->mesh_geometry;
         m->triangles = parts ? d->partfile_triangles : (uint64_t)d->mesh->count;
-        m->ms = malloc((size_t)d->views * (size_t)d->frames * sizeof *m->ms);
+        size_t frames = (size_t)d->views * (size_t)d->frames + 1;
+        m->ms = malloc(frames * sizeof *m->ms);
+        m->gpu_ms = malloc(frames * sizeof *m->gpu_ms);
+        m->gpu_frame = malloc(frames * sizeof *m->gpu_frame);
         m->cells = calloc((size_t)d->views, sizeof *m->cells);
-        ok = m->method && m->ms && m->cells;
+        ok = m->method && m->ms && m->gpu_ms && m->gpu_frame && m->cells;
     }
     if (!ok)
         return oit_error_set(err, OIT_ERR_NOMEM, "cannot allocate results for %d methods x %d "
@@ -292,6 +326,8 @@ void oit_bench_result_free(oit_bench_result *r)
 {
     for (int i = 0; r->methods && i < r->method_count; i++) {
         free(r->methods[i].ms);
+        free(r->methods[i].gpu_ms);
+        free(r->methods[i].gpu_frame);
         free(r->methods[i].cells);
     }
     free(r->methods);

@@ -33,6 +33,7 @@ typedef struct oit_bench_cell {
     uint32_t max_layers;
     uint64_t fragments;      /* of the last timed frame */
     oit_image_diff diff;     /* last timed frame against the reference */
+    double gpu_ms_median;    /* GPU time (render/gpu_timer.h); -1: not timed */
 } oit_bench_cell;
 
 /* What to run: a method, and the threshold oit_method_options.epsilon
@@ -55,10 +56,13 @@ typedef struct oit_bench_method {
     int runnable;            /* opened and rendered every view */
     char reason[512];        /* why not, when !runnable */
     double *ms;              /* every timed frame, all views */
+    double *gpu_ms;          /* the same frames' GPU time; -1: none */
+    uint64_t *gpu_frame;     /* their GPU timer numbers (oit_frame_stats.gpu_frame) */
     size_t ms_count;
     oit_bench_cell *cells;   /* one per view */
     /* summary over views that rendered */
     double ms_median, ms_p95;
+    double gpu_ms_median; /* -1: not timed on the GPU */
     uint64_t gpu_bytes_peak;
     uint32_t max_layers;
     double rmse_mean, max_abs_worst, pct_over_worst, psnr_min;

@@ -3,7 +3,8 @@
  * reference): the in-core methods on the source mesh, the stream on its
  * part file, converted now when none is given (bench_models.h); writes
  * results.csv, results.json, two PNG charts and
- * report.md; "oitbench plot" draws charts across earlier runs. Errors are
+ * report.md; "oitbench plot" draws charts across earlier runs; "oitbench
+ * bus" measures the host-to-device rate (bench_bus.c). Errors are
  * one line on stderr; the exit status follows oit_status_exit_code, except
  * that a run in which no method could render at all exits 1. */
 #include <stdio.h>
@@ -19,6 +20,7 @@
 #include "tools/common/signals.h"
 #include "preprocess/convert.h"
 #include "tools/oitbench/bench_args.h"
+#include "tools/oitbench/bench_bus.h"
 #include "tools/oitbench/bench_csv.h"
 #include "tools/oitbench/bench_models.h"
 #include "tools/oitbench/bench_plot.h"
@@ -243,6 +245,8 @@ int main(int argc, char **argv)
     oit_bench_args a;
     oit_error err = {0};
     char methods[512], line[4096];
+    if (argc >= 2 && !strcmp(argv[1], "bus"))
+        return oit_bench_bus_main(argc, argv);
     if (oit_bench_args_parse(argc, argv, &a, methods, sizeof methods, &err) != OIT_OK)
         return fail(&err);
     if (a.help) {

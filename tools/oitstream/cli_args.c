@@ -144,6 +144,18 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
         else if (parse_bytes(v, &a->cache_budget))
             *s = bad(err, opt, v, "off, 0 (default) or bytes >= 64K, with an optional K, M or "
                      "G suffix");
+    } else if (!strcmp(opt, "--gpu-budget")) {
+        /* 0 is the default, as oit_renderer_desc.gpu_budget = 0 is; the
+         * least is the streamer's (it refuses less from liboit too), here
+         * so that a usage error names the option before any work. */
+        uint64_t g = 0;
+        if (!strcmp(v, "0"))
+            a->gpu_budget = 0;
+        else if (oit_parse_bytes(v, OIT_STREAM_GPU_BUDGET_MIN, 1ull << 40, &g) == 0)
+            a->gpu_budget = g;
+        else
+            *s = bad(err, opt, v, "0 (default) or bytes >= 1M, with an optional K, M or G "
+                     "suffix");
     } else if (!strcmp(opt, "--upload-threads")) {
         if (oit_parse_int(v, 0, 1, &a->upload_threads)) *s = bad(err, opt, v, "0 or 1");
     } else if (!strcmp(opt, "--slot-budget")) {
@@ -342,6 +354,20 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "                      default, as in liboit; off: no cache; the default is\n"
         "                      off when oitstream draws a single frame outside\n"
         "                      --window: no later frame would draw from it)\n"
+        "  --gpu-budget B      stream: GPU bytes for the upload ring, the cache and the\n"
+        "                      capture together (>= 1M). Default: half the free memory\n"
+        "                      the driver reports (GL_NVX_gpu_memory_info or\n"
+        "                      GL_ATI_meminfo), so that a model that fits stays\n"
+        "                      resident after its first frame; where the driver\n"
+        "                      reports none (llvmpipe), no total: the budgets below\n"
+        "                      alone. Its split: the capture's slots (default, or an\n"
+        "                      eighth of a small total), the file resident where it\n"
+        "                      fits the rest less 64M (or an eighth) for pixels,\n"
+        "                      else a ring of a quarter of the rest (<= 64M) and the\n"
+        "                      cache what is left, less the frame's per-pixel buffers.\n"
+        "                      --upload-budget, --cache-budget and --slot-budget\n"
+        "                      replace their shares; more than B together is an error.\n"
+        "                      --stats: budget (the figures and their source)\n"
         "  --upload-threads N  stream: 1 (default) reads parts on a thread of their\n"
         "                      own; 0 reads them on the render thread, no overlap (0..1)\n"
         "  --slot-budget B     stream: bytes of the K-fragment capture slots (>= 64K,\n"
@@ -400,7 +426,11 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "                      layers than K (a wide part) is captured with more\n"
         "                      slots per pixel over smaller screen tiles\n"
         "  --show layers       write the fragments-per-pixel heat map (dfb, reference)\n"
-        "  --stats FILE.json   per-frame figures\n"
+        "  --stats FILE.json   per-frame figures: wall ms and gpu_ms (GL timestamp\n"
+        "                      queries, read without stalling; -1 where the driver has\n"
+        "                      none, gpu_timer says why) with gpu_phase_ms (upload,\n"
+        "                      pass1, pass2, resolve, readback, other); a summary of\n"
+        "                      warm medians; for stream, the budget it chose\n"
         "  --ambiguity PATH    (reference) also write a mask, named like --out, that is\n"
         "                      white where rasterization and ray casting may disagree:\n"
         "                      the hit set changes within 1/64 pixel of the centre\n"

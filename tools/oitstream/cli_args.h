@@ -43,6 +43,7 @@ typedef struct oit_stream_args {
     int schedule_wave;                 /* --schedule: 0 tree (default), 1 wave */
     unsigned long long upload_budget;  /* --upload-budget; 0 (or 0 given): default */
     unsigned long long slot_budget;    /* --slot-budget; 0: default */
+    unsigned long long gpu_budget;     /* --gpu-budget; 0: default (oit_streamer_desc.gpu_budget) */
     unsigned long long cache_budget;   /* --cache-budget; 0 (or 0 given): default; OIT_STREAM_CACHE_OFF: off */
     int upload_threads;                /* --upload-threads: 1 (default) or 0 */
     float epsilon;                     /* --epsilon (stream, f2b, guarded); < 0: not given */

@@ -454,6 +454,41 @@ static oit_status render_one(run_ctx *rc, int index, int views, oit_stats_frame 
     return s;
 }
 
+/* The GPU timer's figures that are in (wait: all of them), each to the
+ * frame of its number among frames[0..n). */
+static void take_gpu_times(run_ctx *rc, oit_stats_frame *frames, int n, int wait)
+{
+    oit_gpu_times t;
+    while (oit_method_gpu_poll(rc->state, &t, wait))
+        for (int i = 0; i < n; i++)
+            if (frames[i].st.gpu_frame == t.frame) {
+                frames[i].has_gpu = 1;
+                frames[i].gpu = t;
+            }
+}
+
+/* One line: each frame's GPU time, known only once the frames are done. */
+static void print_gpu_summary(const run_ctx *rc, const oit_stats_frame *frames, int n)
+{
+    const char *why = oit_method_gpu_absent(rc->state);
+    if (why) {
+        printf("gpu: no GPU time (%s)\n", why);
+        return;
+    }
+    for (int i = 0; i < n; i++) {
+        const oit_gpu_times *g = &frames[i].gpu;
+        if (!frames[i].has_gpu) {
+            printf("frame %d: gpu time lost (not read in time)\n", i);
+            continue;
+        }
+        printf("frame %d: gpu %.2f ms (upload %.2f, pass1 %.2f, pass2 %.2f, resolve %.2f, "
+               "readback %.2f, other %.2f), wall %.2f ms\n", i, g->ms,
+               g->phase_ms[OIT_GPU_UPLOAD], g->phase_ms[OIT_GPU_PASS1],
+               g->phase_ms[OIT_GPU_PASS2], g->phase_ms[OIT_GPU_RESOLVE],
+               g->phase_ms[OIT_GPU_READBACK], g->phase_ms[OIT_GPU_OTHER], frames[i].st.ms);
+    }
+}
+
 static oit_status render_all(run_ctx *rc, const oit_mesh *mesh, const oit_camera *cams, int n,
                              oit_error *err)
 {
@@ -465,7 +500,11 @@ static oit_status render_all(run_ctx *rc, const oit_mesh *mesh, const oit_camera
     for (int i = 0; i < n && s == OIT_OK; i++) {
         rc->view.camera = cams[i];
         s = render_one(rc, i, n, &frames[i], err);
+        take_gpu_times(rc, frames, i + 1, 0);
     }
+    take_gpu_times(rc, frames, n, 1);
+    if (s == OIT_OK && !a->quiet)
+        print_gpu_summary(rc, frames, n);
     if (s == OIT_OK && !a->out && !a->quiet) /* say where nothing went */
         fprintf(stderr, "oitstream: %s: %d view%s rendered; no --out given, so no image was "
                 "written\n", a->model, n, n == 1 ? "" : "s");
@@ -473,7 +512,8 @@ static oit_status render_all(run_ctx *rc, const oit_mesh *mesh, const oit_camera
         oit_stats_run run = {a->model, (unsigned long long)mesh->info.triangles,
                              oit_method_renderer(rc->state), a->width, a->height, frames,
                              (size_t)n, oit_shading_opaque(&rc->view.shading),
-                             rc->view.shading.see_through};
+                             rc->view.shading.see_through,
+                             oit_method_gpu_absent(rc->state)};
         s = oit_stats_json_write(a->stats_path, &run, err);
     }
     free(frames);
@@ -615,6 +655,7 @@ static int run_render(const oit_stream_args *args)
                              .schedule = a->schedule_wave ? OIT_SCHEDULE_WAVE : OIT_SCHEDULE_TREE,
                              .upload_budget = a->upload_budget, .slot_budget = a->slot_budget,
                              .cache_budget = a->cache_budget,
+                             .gpu_budget = a->gpu_budget,
                              .read_inline = a->upload_threads == 0};
     oit_method_options opt = {.max_layers = K, .epsilon = a->epsilon,
                               .ambiguity_px = a->ambiguity_px, .stream = &so};

@@ -4,6 +4,7 @@
 #include "base/json.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -65,6 +66,14 @@ static void put_frame(oit_json *w, const oit_stats_frame *fr)
         {"bytes_clipped", t->bytes_clipped}, {"bytes_uploaded", t->bytes_uploaded},
         {"cache_hits", t->cache_hits}, {"cache_bytes", t->cache_bytes}};
     oit_json_fixed(w, "ms", isfinite(s->ms) ? s->ms : -1.0, 3);
+    /* -1: not timed on the GPU (the run's gpu_timer says why) */
+    oit_json_fixed(w, "gpu_ms", fr->has_gpu ? fr->gpu.ms : -1.0, 3);
+    if (fr->has_gpu) {
+        oit_json_begin_object(w, "gpu_phase_ms", OIT_JSON_INLINE);
+        for (int p = 0; p < OIT_GPU_PHASES; p++)
+            oit_json_fixed(w, oit_gpu_phase_name((oit_gpu_phase)p), fr->gpu.phase_ms[p], 3);
+        oit_json_end(w);
+    }
     OIT_JSON_UINTS(w, frame);
     if (s->capture) {
         oit_json_string(w, "capture", s->capture);
@@ -90,6 +99,69 @@ static void put_frame(oit_json *w, const oit_stats_frame *fr)
     oit_json_end(w);
 }
 
+static int by_value(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The median of the n figures at v (sorted in place); -1 for none. */
+static double median(double *v, size_t n)
+{
+    if (n == 0)
+        return -1.0;
+    qsort(v, n, sizeof *v, by_value);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/* Warm medians: every frame but the first (which compiles, allocates and
+ * uploads), or the only one. which: -2 wall ms, -1 gpu ms, else a phase. */
+static double warm_median(const oit_stats_run *run, int which, double *tmp)
+{
+    size_t n = 0;
+    for (size_t i = run->frame_count > 1 ? 1 : 0; i < run->frame_count; i++) {
+        const oit_stats_frame *fr = &run->frames[i];
+        if (which == -2)
+            tmp[n++] = fr->st.ms;
+        else if (fr->has_gpu)
+            tmp[n++] = which == -1 ? fr->gpu.ms : fr->gpu.phase_ms[which];
+    }
+    return median(tmp, n);
+}
+
+/* The memory the streamer chose and where its total came from. */
+static void put_budget(oit_json *w, const oit_stream_budget *b)
+{
+    oit_json_begin_object(w, "budget", OIT_JSON_INLINE);
+    oit_json_uint(w, "gpu_budget", b->total);
+    oit_json_uint(w, "ring", b->ring);
+    oit_json_uint(w, "cache", b->cache);
+    oit_json_uint(w, "capture", b->capture);
+    oit_json_int(w, "resident", b->resident);
+    oit_json_uint(w, "driver_free", b->free_bytes);
+    oit_json_string(w, "source", b->source ? b->source : "");
+    oit_json_end(w);
+}
+
+static void put_summary(oit_json *w, const oit_stats_run *run)
+{
+    double *tmp = malloc((run->frame_count + 1) * sizeof *tmp);
+    if (!tmp)
+        return;
+    oit_json_begin_object(w, "summary", OIT_JSON_INLINE);
+    oit_json_uint(w, "warm_frames", run->frame_count > 1 ? run->frame_count - 1 : run->frame_count);
+    oit_json_fixed(w, "ms_median", warm_median(run, -2, tmp), 3);
+    oit_json_fixed(w, "gpu_ms_median", warm_median(run, -1, tmp), 3);
+    if (!run->gpu_absent) {
+        oit_json_begin_object(w, "gpu_phase_ms_median", OIT_JSON_INLINE);
+        for (int p = 0; p < OIT_GPU_PHASES; p++)
+            oit_json_fixed(w, oit_gpu_phase_name((oit_gpu_phase)p), warm_median(run, p, tmp), 3);
+        oit_json_end(w);
+    }
+    oit_json_end(w);
+    free(tmp);
+}
+
 oit_status oit_stats_json_write(const char *path, const oit_stats_run *run, oit_error *err)
 {
     FILE *f = fopen(path, "w");
@@ -105,6 +177,10 @@ oit_status oit_stats_json_write(const char *path, const oit_stats_run *run, oit_
     oit_json_int(&w, "height", run->height);
     oit_json_int(&w, "opaque", run->opaque);
     oit_json_int(&w, "see_through", run->see_through);
+    oit_json_string(&w, "gpu_timer", run->gpu_absent ? run->gpu_absent : "GL timestamp queries");
+    put_summary(&w, run);
+    if (run->frame_count > 0 && run->frames[0].has_stream)
+        put_budget(&w, &run->frames[0].stream.budget);
     oit_json_begin_array(&w, "frames", OIT_JSON_BLOCK);
     for (size_t i = 0; i < run->frame_count; i++)
         put_frame(&w, &run->frames[i]);

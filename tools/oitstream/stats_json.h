@@ -5,6 +5,7 @@
 
 #include <stddef.h>
 
+#include "render/gpu_timer.h"
 #include "render/view.h"
 #include "stream/streamer.h"
 
@@ -15,6 +16,8 @@ typedef struct oit_stats_frame {
     oit_frame_stats st;
     int has_stream;               /* the part-file streamer's figures follow */
     oit_stream_frame_stats stream;
+    int has_gpu;       /* the GPU timer's figures of this frame follow */
+    oit_gpu_times gpu; /* render/gpu_timer.h */
 } oit_stats_frame;
 
 typedef struct oit_stats_run {
@@ -26,6 +29,7 @@ typedef struct oit_stats_run {
     size_t frame_count;
     int opaque;      /* opaque triangles on (oit_shading_opaque) */
     int see_through; /* --see-through */
+    const char *gpu_absent; /* why no frame has gpu_ms; NULL: timed */
 } oit_stats_run;
 
 /* The camera in --view syntax, round-trippable (%.9g). */

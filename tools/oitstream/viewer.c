@@ -17,6 +17,7 @@
 #include "render/gl_context.h"
 #include "render/gl_window.h"
 #include "render/gl_util.h"
+#include "render/gpu_timer.h"
 #include "render/image.h"
 #include "tools/oitstream/stats_json.h"
 #include "tools/oitstream/viewer_clip.h"
@@ -66,6 +67,11 @@ typedef struct viewer {
     GLuint tex, fbo;
     int tex_w, tex_h;
     oit_frame_stats st;
+    /* The newest GPU time polled from gpu_state (a frame or two behind the
+     * one shown: timer queries are read without waiting); frame 0: none. */
+    oit_gpu_times gpu;
+    const oit_method_state *gpu_state;
+    const char *gpu_absent;
     int frames, exact_frames, preview_frames, presents, screenshots;
     int save_pending; /* P: save the next presented image */
     float epsilon;    /* early termination the methods open with (E toggles) */
@@ -371,6 +377,7 @@ static void close_preview_method(viewer *v)
         oit_method_close(v->pv_state);
     v->pv_state = NULL;
     v->pv_method = NULL;
+    v->gpu_state = NULL;
 }
 
 /* Opens method i in the window's context; on failure the current one stays. */
@@ -389,6 +396,7 @@ static oit_status switch_method(viewer *v, int i, oit_error *err)
     if (v->state)
         oit_method_close(v->state);
     v->state = st;
+    v->gpu_state = NULL; /* a new state may take the old one's address */
     v->current = i;
     v->last_exact_wall_ms = 0.0; /* the new method's speed is not known yet */
     v->preview_scale = 0;
@@ -660,6 +668,10 @@ static void status_fields(viewer *v, fields *f)
     else
         field(f, "exact");
     field(f, "frame %.*f ms", v->st.ms < 100.0 ? 1 : 0, v->st.ms);
+    if (v->gpu_absent)
+        field(f, "gpu n/a");
+    else if (v->gpu.frame)
+        field(f, "gpu %.*f ms", v->gpu.ms < 100.0 ? 1 : 0, v->gpu.ms);
     human((double)v->st.fragments, num, sizeof num);
     field(f, "fragments %s", num);
     if (!(v->shown_kind == SHOWN_PREVIEW && v->pv_method)) { /* wboit, unsorted count no layers */
@@ -1010,6 +1022,12 @@ static oit_status render_frame(viewer *v, int fb_w, int fb_h, int kind, oit_erro
     oit_image_free(&v->frame);
     memset(&v->st, 0, sizeof v->st);
     s = oit_method_render(state, &v->view, &v->frame, heat ? v->counts : NULL, NULL, &v->st, err);
+    if (v->gpu_state != state)
+        memset(&v->gpu, 0, sizeof v->gpu);
+    v->gpu_state = state;
+    v->gpu_absent = oit_method_gpu_absent(state);
+    for (oit_gpu_times g; oit_method_gpu_poll(state, &g, 0);)
+        v->gpu = g;
     oit_image img = {0};
     if (s == OIT_OK && heat) {
         s = oit_image_heatmap(v->counts, v->frame.width, v->frame.height, &img, err);

@@ -86,8 +86,11 @@ BAND=$(sed -n 's/^viewer: .* status band \([0-9]*\) rows.*/\1/p' overlay.txt)
 echo "status band: $BAND rows"
 [ -n "$BAND" ] && [ $((BAND % 11)) -eq 0 ] && [ "$BAND" -ge 22 ] && [ "$BAND" -le 66 ] ||
     fail "the status band is '$BAND' rows, want 2 to 6 lines of 11"
-grep -q "last: 1 dfb  exact  frame [0-9.]* ms  fragments [0-9.]*K  layers 16  overflow 0" overlay.txt ||
+grep -q "last: 1 dfb  exact  frame [0-9.]* ms  \(gpu [0-9.]* ms  \)\?fragments [0-9.]*K  layers 16  overflow 0" overlay.txt ||
     fail "the status line does not name its fields"
+# GPU time (timer queries, read frames later): in by the third frame
+grep -q "last: 1 dfb  exact  frame [0-9.]* ms  gpu [0-9.]* ms  " overlay.txt ||
+    fail "the status line has no GPU time"
 image_diff "overlay vs none" overlay.png oitstream_000.png
 [ "$OVER" -ge 50 ] && [ "$OVER" -le $((160 * ${BAND:-11})) ] ||
     fail "the status line changed $OVER pixels, want 50..$((160 * ${BAND:-11})) (the top $BAND rows)"
