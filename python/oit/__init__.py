@@ -170,6 +170,8 @@ class Scene(_Closable):
 _SHADINGS = {"transparent": L.RENDER_TRANSPARENT, "translucent": L.RENDER_TRANSLUCENT}
 # oit_render_colour_space (liboit.h): where compositing happens
 _COLOUR_SPACES = {"srgb": 0, "linear": 1}
+# oit_up_axis (offscreen.h), spelt as oitstream --up spells it
+_UP_AXES = {"y": 0, "z": 1, "x": 2}
 # oit_render_pack, spelt as oitstream --pack spells it
 _PACKS = {"auto": 0, "counted": 1, "budget": 2, "disjoint": 3, "first-k": 4}
 
@@ -218,12 +220,19 @@ class Renderer(_Closable):
     def gl_renderer(self):
         return L.lib().oit_offscreen_gl_renderer(self._h).decode()
 
-    def render(self, scene, size=(512, 512), view=None, dtype=np.uint8, background=None):
+    def render(self, scene, size=(512, 512), view=None, dtype=np.uint8, background=None,
+               up=None, azimuth=None, elevation=None):
         """The image of scene (a Scene) as a (height, width, 4) array, uint8
-        or float32 (dtype). view: None (the tools' default view of the
-        scene's bounds), a dict with eye, target and optional up, fovy,
-        znear, zfar (the scene's coordinates), or a dict with view and
+        or float32 (dtype); size is (width, height), as oitstream --size WxH.
+        view: None (the tools' default view of the scene's bounds), a dict
+        with eye, target and optional up, fovy, znear, zfar (the scene's
+        coordinates; without eye and target the default view about up,
+        which must then be +x, +y or +z), or a dict with view and
         projection 4x4 matrices as numpy writes them (v' = M @ v).
+        up ("x", "y" or "z"), azimuth and elevation (degrees) are
+        oitstream's --up, --azimuth and --elevation: the default view
+        (up "y", azimuth 0, elevation 20) turned, computed by liboit
+        (oit_offscreen_default_view); they take view=None.
         background: RGBA, default opaque white."""
         w, h = (int(size[0]), int(size[1]))
         v = L.OffscreenView()
@@ -236,6 +245,8 @@ class Renderer(_Closable):
         else:
             raise ValueError(f"dtype: {dtype}, expected uint8 or float32")
         _set_view(v, view)
+        if up is not None or azimuth is not None or elevation is not None:
+            _set_default_view(v, scene, view, up, azimuth, elevation)
         if background is not None:
             bg = [float(c) for c in background]
             if len(bg) == 3:
@@ -291,6 +302,21 @@ def _set_view(v, view):
     v.zfar = float(view.get("zfar", 0.0))
 
 
+def _set_default_view(v, scene, view, up, azimuth, elevation):
+    """v's camera as oitstream --up/--azimuth/--elevation set it."""
+    if view is not None:
+        raise ValueError("up/azimuth/elevation turn the default view: give them with "
+                         "view=None (a view dict's own up turns it too)")
+    if up is None:
+        up = "y"
+    if up not in _UP_AXES:
+        raise ValueError(f"up: {up!r}, expected x, y or z")
+    err = L.Error()
+    _check(L.lib().oit_offscreen_default_view(
+        scene._handle(), _UP_AXES[up], float(0.0 if azimuth is None else azimuth),
+        float(20.0 if elevation is None else elevation), ctypes.byref(v), ctypes.byref(err)), err)
+
+
 _renderers = {}
 
 
@@ -305,24 +331,27 @@ def _default_renderer(shading, colour_space="srgb"):
 
 
 def render(model_path, size=(512, 512), view=None, dtype=np.uint8, background=None,
-           shading="transparent", colour_space="srgb"):
+           shading="transparent", colour_space="srgb", up=None, azimuth=None, elevation=None):
     """Renders a mesh file (in core) or part file (streamed) into a
-    (height, width, 4) array; see Renderer.render for view and background,
+    (height, width, 4) array; see Renderer.render for view, background, up,
+    azimuth and elevation (oitstream's --up, --azimuth, --elevation),
     Renderer for colour_space."""
     r = _default_renderer(shading, colour_space)
     with Scene.open(model_path) as s:
-        return r.render(s, size=size, view=view, dtype=dtype, background=background)
+        return r.render(s, size=size, view=view, dtype=dtype, background=background, up=up,
+                        azimuth=azimuth, elevation=elevation)
 
 
 def render_arrays(positions, indices=None, colors=None, size=(512, 512), view=None,
                   dtype=np.uint8, background=None, shading="transparent", color_rate="auto",
-                  colour_space="srgb"):
+                  colour_space="srgb", up=None, azimuth=None, elevation=None):
     """Renders triangles from arrays (see Scene.from_arrays) into a
-    (height, width, 4) array; see Renderer.render for view and background,
-    Renderer for colour_space."""
+    (height, width, 4) array; see Renderer.render for view, background, up,
+    azimuth and elevation, Renderer for colour_space."""
     r = _default_renderer(shading, colour_space)
     with Scene.from_arrays(positions, indices, colors, color_rate=color_rate) as s:
-        return r.render(s, size=size, view=view, dtype=dtype, background=background)
+        return r.render(s, size=size, view=view, dtype=dtype, background=background, up=up,
+                        azimuth=azimuth, elevation=elevation)
 
 
 def prep_tool():

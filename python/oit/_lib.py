@@ -124,6 +124,8 @@ def _declare(lib):
         "oit_offscreen_gl_renderer": (ctypes.c_char_p, [vp]),
         "oit_offscreen_render": (ctypes.c_int, [vp, vp, P(OffscreenView), vp, ctypes.c_size_t,
                                                 P(DrawStats), err]),
+        "oit_offscreen_default_view": (ctypes.c_int, [vp, ctypes.c_int, ctypes.c_float,
+                                                      ctypes.c_float, P(OffscreenView), err]),
         "oit_status_name": (ctypes.c_char_p, [ctypes.c_int]),
     }
     for name, (res, args) in sigs.items():
