@@ -16,8 +16,10 @@
 #include <sys/stat.h>
 
 #include "tools/common/paths.h"
+#include "tools/common/progress_mode.h"
 #include "tools/common/signals.h"
 #include "preprocess/convert.h"
+#include "preprocess/progress.h"
 #include "tools/oitbench/bench_args.h"
 #include "tools/oitbench/bench_csv.h"
 #include "tools/oitbench/bench_models.h"
@@ -36,7 +38,9 @@ static oit_status convert_options(const oit_bench_args *a, oit_convert_options *
                                   oit_error *err)
 {
     oit_convert_options_init(o);
-    o->progress = isatty(2);
+    oit_tool_progress tp = oit_tool_progress_get("oitbench");
+    o->progress = tp.bar ? OIT_PROGRESS_BAR : OIT_PROGRESS_LINES;
+    o->progress_period_s = tp.period_s;
     if (a->scheme)
         o->scheme = strcmp(a->scheme, "fast") ? OIT_SCHEME_GUARANTEED : OIT_SCHEME_FAST;
     o->part_triangles = a->part_triangles;
