@@ -299,8 +299,10 @@ static void note_geometry(const oit_bench_table *t, notes *ns)
             continue;
         char line[sizeof ns->text[0]];
         size_t used = (size_t)snprintf(line, sizeof line, "drew the %s, %llu triangles:",
-                                       r->geometry == OIT_BENCH_GEOMETRY_PART_FILE
-                                           ? "part file (clipped)" : "source mesh",
+                                       r->geometry != OIT_BENCH_GEOMETRY_PART_FILE
+                                           ? "source mesh"
+                                       : r->drawn_triangles > r->triangles
+                                           ? "part file (clipped)" : "part file",
                                        (unsigned long long)r->drawn_triangles);
         for (size_t j = i; j < t->count && used < sizeof line; j++)
             if (t->rows[j].summary && t->rows[j].geometry == r->geometry &&

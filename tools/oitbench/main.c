@@ -150,7 +150,8 @@ static int run(const oit_bench_args *a, const char *command_line)
     const oit_mesh *mesh = oit_bench_models_in_core(&models);
     oit_bench_desc d = {.mesh = mesh, .mesh_geometry = oit_bench_models_in_core_geometry(&models),
                         .reference_mesh = mesh, .partfile = models.pf,
-                        .partfile_triangles = models.part_triangles, .entries = a->entries,
+                        .partfile_triangles = models.part_triangles,
+                        .source_triangles = models.source_triangles, .entries = a->entries,
                         .entry_count = a->entry_count, .views = a->orbit, .width = a->width,
                         .height = a->height, .frames = a->frames, .warmup = a->warmup,
                         .max_layers = a->max_layers, .shading = a->shading,
