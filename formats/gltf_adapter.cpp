@@ -463,7 +463,7 @@ oit_status material_shade(Ctx &c, int material, const char *what, Shade *sh)
         sh->base[k] = f[size_t(k)];
     sh->mode = m.alphaMode == "BLEND" ? Shade::BLEND : m.alphaMode == "MASK" ? Shade::MASK : Shade::OPAQUE;
     sh->cutoff = m.alphaCutoff;
-    c.info->attributes |= OIT_ATTR_COLOR;
+    c.info->attributes |= OIT_ATTR_COLOUR;
     if (sh->mode != Shade::OPAQUE)
         c.info->attributes |= OIT_ATTR_ALPHA;
     return OIT_OK;
@@ -584,7 +584,7 @@ oit_status emit_primitive(Ctx &c, int mesh, size_t prim, const Mat4 &world)
         s = load_accessors(c, p, what, g);
     if (s == OIT_OK) {
         if (!g.rgba.empty())
-            c.info->attributes |= OIT_ATTR_COLOR;
+            c.info->attributes |= OIT_ATTR_COLOUR;
         s = emit_geometry(c, g, sh, p.mode, world, what);
     }
     release(c, g.bytes);

@@ -83,12 +83,12 @@ class Scene(_Closable):
         return cls(h, path)
 
     @classmethod
-    def from_arrays(cls, positions, indices=None, colors=None, color_rate="auto",
+    def from_arrays(cls, positions, indices=None, colours=None, colour_rate="auto",
                     name="arrays"):
         """positions: (n, 3) floats. indices: (m, 3) or (3m,) non-negative ints
-        below n, or None for a soup (n a multiple of 3). colors: None, or RGBA
+        below n, or None for a soup (n a multiple of 3). colours: None, or RGBA
         (k, 4) uint8 (0..255) or floats (0..1), per vertex (k = n) or per
-        triangle (k = triangles); color_rate "vertex" or "triangle" says
+        triangle (k = triangles); colour_rate "vertex" or "triangle" says
         which when both counts are equal ("auto" refuses to guess then).
         The arrays are copied."""
         pos = np.ascontiguousarray(positions, dtype=np.float32)
@@ -111,31 +111,31 @@ class Scene(_Closable):
             triangles = idx.size // 3
         else:
             triangles = pos.shape[0] // 3
-        if colors is not None:
-            col = np.asarray(colors)
+        if colours is not None:
+            col = np.asarray(colours)
             if col.ndim != 2 or col.shape[1] != 4:
-                raise ValueError(f"colors: shape {col.shape}, expected (k, 4) RGBA")
+                raise ValueError(f"colours: shape {col.shape}, expected (k, 4) RGBA")
             if col.dtype == np.uint8:
-                d.color_type = L.COLOR_UINT8
+                d.colour_type = L.COLOUR_UINT8
             else:
                 col = col.astype(np.float32)
-                d.color_type = L.COLOR_FLOAT
+                d.colour_type = L.COLOUR_FLOAT
             col = np.ascontiguousarray(col)
-            rate = color_rate
+            rate = colour_rate
             if rate == "auto":
                 if col.shape[0] == pos.shape[0] and col.shape[0] == triangles:
-                    raise ValueError("colors: as many vertices as triangles; say "
-                                     "color_rate='vertex' or 'triangle'")
+                    raise ValueError("colours: as many vertices as triangles; say "
+                                     "colour_rate='vertex' or 'triangle'")
                 rate = "vertex" if col.shape[0] == pos.shape[0] else "triangle"
             if rate not in ("vertex", "triangle"):
-                raise ValueError(f"color_rate: {color_rate!r}, expected auto, vertex or "
+                raise ValueError(f"colour_rate: {colour_rate!r}, expected auto, vertex or "
                                  "triangle")
             want = pos.shape[0] if rate == "vertex" else triangles
             if col.shape[0] != want:
-                raise ValueError(f"colors: {col.shape[0]} rows; {pos.shape[0]} vertices, "
+                raise ValueError(f"colours: {col.shape[0]} rows; {pos.shape[0]} vertices, "
                                  f"{triangles} triangles")
-            d.color_rate = L.COLOR_PER_VERTEX if rate == "vertex" else L.COLOR_PER_TRIANGLE
-            d.colors = col.ctypes.data
+            d.colour_rate = L.COLOUR_PER_VERTEX if rate == "vertex" else L.COLOUR_PER_TRIANGLE
+            d.colours = col.ctypes.data
             keep.append(col)
         d.name = name.encode()
         h, err = ctypes.c_void_p(), L.Error()
@@ -342,14 +342,14 @@ def render(model_path, size=(512, 512), view=None, dtype=np.uint8, background=No
                         azimuth=azimuth, elevation=elevation)
 
 
-def render_arrays(positions, indices=None, colors=None, size=(512, 512), view=None,
-                  dtype=np.uint8, background=None, shading="transparent", color_rate="auto",
+def render_arrays(positions, indices=None, colours=None, size=(512, 512), view=None,
+                  dtype=np.uint8, background=None, shading="transparent", colour_rate="auto",
                   colour_space="srgb", up=None, azimuth=None, elevation=None):
     """Renders triangles from arrays (see Scene.from_arrays) into a
     (height, width, 4) array; see Renderer.render for view, background, up,
     azimuth and elevation, Renderer for colour_space."""
     r = _default_renderer(shading, colour_space)
-    with Scene.from_arrays(positions, indices, colors, color_rate=color_rate) as s:
+    with Scene.from_arrays(positions, indices, colours, colour_rate=colour_rate) as s:
         return r.render(s, size=size, view=view, dtype=dtype, background=background, up=up,
                         azimuth=azimuth, elevation=elevation)
 

@@ -182,7 +182,7 @@ static void test_ply(void)
     oit_error err;
     load_text("square.ply", ply_ascii, &m);
     check_square(&m, "ascii ply", 255);
-    CHECK(m.info.attributes == OIT_ATTR_COLOR, "attributes %u", m.info.attributes);
+    CHECK(m.info.attributes == OIT_ATTR_COLOUR, "attributes %u", m.info.attributes);
     CHECK(m.info.faces_in == 1 && m.info.vertices_in == 4, "faces/vertices");
     oit_mesh_free(&m);
 
@@ -192,7 +192,7 @@ static void test_ply(void)
         write_bytes(name, buf, ply_binary(buf, be, 4));
         CHECK(load(name, NULL, &m, &err) == OIT_OK, "%s", err.message);
         check_square(&m, name, 128);
-        CHECK(m.info.attributes == (OIT_ATTR_COLOR | OIT_ATTR_ALPHA), "attributes %u",
+        CHECK(m.info.attributes == (OIT_ATTR_COLOUR | OIT_ATTR_ALPHA), "attributes %u",
               m.info.attributes);
         oit_mesh_free(&m);
     }
@@ -215,7 +215,7 @@ static void test_ply(void)
     CHECK(m.count == 3 && same_pos(&m.tris[2].v[0], 0, 0, 0) && same_pos(&m.tris[2].v[1], 1, 2, 0) &&
               same_pos(&m.tris[2].v[2], 0, 1, 0),
           "fan order wrong");
-    CHECK(m.info.attributes == (OIT_ATTR_COLOR | OIT_ATTR_ALPHA), "attributes %u",
+    CHECK(m.info.attributes == (OIT_ATTR_COLOUR | OIT_ATTR_ALPHA), "attributes %u",
           m.info.attributes);
     oit_mesh_free(&m);
 
@@ -296,7 +296,7 @@ static void test_obj(void)
         CHECK(same_rgba(&t[3].v[0], 51, 51, 51, 255), "single-value Kd not grey");
         CHECK(same_rgba(&t[4].v[0], 255, 255, 255, 255), "unknown material not default");
     }
-    CHECK(m.info.attributes == (OIT_ATTR_COLOR | OIT_ATTR_ALPHA), "attributes %u",
+    CHECK(m.info.attributes == (OIT_ATTR_COLOUR | OIT_ATTR_ALPHA), "attributes %u",
           m.info.attributes);
     oit_mesh_free(&m);
 
@@ -306,7 +306,7 @@ static void test_obj(void)
               "v 0 1 0 0 0 1\nusemtl red\nf 1 2 3\n",
               &m);
     CHECK(m.count == 1 && same_rgba(&m.tris[0].v[1], 0, 255, 0, 255), "vertex colour");
-    CHECK(m.info.attributes == OIT_ATTR_COLOR, "attributes %u", m.info.attributes);
+    CHECK(m.info.attributes == OIT_ATTR_COLOUR, "attributes %u", m.info.attributes);
     oit_mesh_free(&m);
 
     expect_error("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", 0, OIT_ERR_FORMAT, "line 4");
@@ -351,7 +351,7 @@ static void test_off(void)
         CHECK(same_rgba(&m.tris[0].v[0], 0, 128, 255, 255), "face colour");
         CHECK(same_rgba(&m.tris[1].v[2], 10, 20, 30, 40), "vertex colour");
     }
-    CHECK(m.info.attributes == (OIT_ATTR_COLOR | OIT_ATTR_ALPHA), "attributes %u",
+    CHECK(m.info.attributes == (OIT_ATTR_COLOUR | OIT_ATTR_ALPHA), "attributes %u",
           m.info.attributes);
     oit_mesh_free(&m);
 
@@ -360,7 +360,7 @@ static void test_off(void)
               "0 1 0 0 0 1 0 0 1\n3 0 1 2\n",
               &m);
     CHECK(m.count == 1 && same_rgba(&m.tris[0].v[1], 0, 255, 0, 255) &&
-              same_pos(&m.tris[0].v[1], 1, 0, 0) && m.info.attributes == OIT_ATTR_COLOR,
+              same_pos(&m.tris[0].v[1], 1, 0, 0) && m.info.attributes == OIT_ATTR_COLOUR,
           "CNOFF wrong");
     oit_mesh_free(&m);
 

@@ -154,7 +154,7 @@ static oit_status print_json(const oit_partfile *pf, const oit_partfile_summary 
     OIT_JSON_UINTS(&w, counts);
     oit_json_bool(&w, "measured_bounds", s->measured_bounds);
     oit_json_begin_array(&w, "attributes", OIT_JSON_INLINE);
-    if (s->attributes & OIT_ATTR_COLOR)
+    if (s->attributes & OIT_ATTR_COLOUR)
         oit_json_string(&w, NULL, "color");
     if (s->attributes & OIT_ATTR_ALPHA)
         oit_json_string(&w, NULL, "alpha");
@@ -175,8 +175,8 @@ static oit_status print_json(const oit_partfile *pf, const oit_partfile_summary 
 
 static void print_human(const oit_partfile *pf, const oit_partfile_summary *s)
 {
-    const char *attr = s->attributes == (OIT_ATTR_COLOR | OIT_ATTR_ALPHA) ? "colour, alpha"
-                       : s->attributes & OIT_ATTR_COLOR                  ? "colour"
+    const char *attr = s->attributes == (OIT_ATTR_COLOUR | OIT_ATTR_ALPHA) ? "colour, alpha"
+                       : s->attributes & OIT_ATTR_COLOUR                  ? "colour"
                        : s->attributes & OIT_ATTR_ALPHA                  ? "alpha"
                                                                          : "positions only";
     printf("%s: part file version %u, K %u, source \"%s\"\n", oit_partfile_name(pf), s->version,
