@@ -1,7 +1,7 @@
 # Install rules of liboit: the public headers, the shared library and its
 # glTF plugin, a CMake package exporting oit::oit and a pkg-config file, the
-# converter oitprep (which the Python package's oit.prep runs) and the
-# Python package, all relocatable (nothing records the configure-time prefix), so
+# tools (oitprep among them, which the Python package's oit.prep runs) and
+# the Python package, all relocatable (nothing records the configure-time prefix), so
 # `cmake --install B --prefix P` works for any P.
 include(CMakePackageConfigHelpers)
 
@@ -35,6 +35,7 @@ install(FILES ${CMAKE_BINARY_DIR}/cmake/oitConfig.cmake
 configure_file(${CMAKE_SOURCE_DIR}/cmake/oit.pc.in ${CMAKE_BINARY_DIR}/cmake/oit.pc @ONLY)
 install(FILES ${CMAKE_BINARY_DIR}/cmake/oit.pc DESTINATION lib/pkgconfig)
 
-# Only the converter: the other tools stay in the build tree.
-install(TARGETS oitprep RUNTIME DESTINATION bin)
+# Every tool (README, Tools). They link our libraries statically and only
+# system libraries dynamically, so they need no run path of their own.
+install(TARGETS oitgen oitprep oitstream oitbench oit_meshinfo RUNTIME DESTINATION bin)
 include(${CMAKE_SOURCE_DIR}/cmake/python.cmake)

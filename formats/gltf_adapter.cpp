@@ -473,7 +473,7 @@ oit_status material_shade(Ctx &c, int material, const char *what, Shade *sh)
     sh->cutoff = m.alphaCutoff;
     // Every material gives alpha, OPAQUE's being 1: its triangles are
     // opaque (render/shade.h); a file without materials takes the default.
-    c.info->attributes |= OIT_ATTR_COLOR | OIT_ATTR_ALPHA;
+    c.info->attributes |= OIT_ATTR_COLOUR | OIT_ATTR_ALPHA;
     if (m.pbrMetallicRoughness.baseColorTexture.index >= 0 && !c.texture_said) {
         c.texture_said = true; // once per file
         std::fprintf(stderr, "%s: baseColorTexture textures are not supported; using "
@@ -597,7 +597,7 @@ oit_status emit_primitive(Ctx &c, int mesh, size_t prim, const Mat4 &world)
         s = load_accessors(c, p, what, g);
     if (s == OIT_OK) {
         if (!g.rgba.empty())
-            c.info->attributes |= OIT_ATTR_COLOR;
+            c.info->attributes |= OIT_ATTR_COLOUR;
         s = emit_geometry(c, g, sh, p.mode, world, what);
     }
     release(c, g.bytes);

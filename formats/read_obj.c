@@ -198,7 +198,7 @@ static oit_status obj_vertex(obj_reader *r, char *p)
         for (int k = 0; k < 3; k++)
             v.rgba[k] = oit_rd_unit_to_u8(extra[k]);
         r->vertex_colors = 1;
-        r->c->info->attributes |= OIT_ATTR_COLOR;
+        r->c->info->attributes |= OIT_ATTR_COLOUR;
     }
     return oit_rd_vtable_push(&r->tab, &r->c->budget, &v, r->c->name, r->c->err);
 }
@@ -244,7 +244,7 @@ static oit_status obj_face(obj_reader *r, char *p)
     }
     r->c->info->faces_in++;
     if (r->cur && count >= 3)
-        r->c->info->attributes |= (r->cur->has_kd ? OIT_ATTR_COLOR : 0) |
+        r->c->info->attributes |= (r->cur->has_kd ? OIT_ATTR_COLOUR : 0) |
                                   (r->cur->has_alpha ? OIT_ATTR_ALPHA : 0);
     return st;
 }

@@ -77,7 +77,7 @@ static oit_status off_color(oit_rd_ctx *c, char *p, int skip_tail, uint8_t rgba[
 static void off_note_color(oit_rd_ctx *c, int has)
 {
     if (has >= 3)
-        c->info->attributes |= OIT_ATTR_COLOR;
+        c->info->attributes |= OIT_ATTR_COLOUR;
     if (has == 4)
         c->info->attributes |= OIT_ATTR_ALPHA;
 }

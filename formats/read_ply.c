@@ -249,7 +249,7 @@ static oit_status ply_assign_roles(ply_reader *r)
                                  "%s: header: element 'face' has no vertex_indices list",
                                  r->c->name);
         if (e->kind != ELEM_OTHER && rp[ROLE_R] >= 0 && rp[ROLE_G] >= 0 && rp[ROLE_B] >= 0)
-            r->c->info->attributes |= OIT_ATTR_COLOR;
+            r->c->info->attributes |= OIT_ATTR_COLOUR;
         if (e->kind != ELEM_OTHER && rp[ROLE_A] >= 0)
             r->c->info->attributes |= OIT_ATTR_ALPHA;
     }

@@ -166,12 +166,12 @@ void oit_scene_close(oit_scene *scene)
 /* Colour i of the descriptor's array as 8-bit RGBA. */
 static void desc_colour(const oit_scene_mesh_desc *d, uint64_t i, uint8_t rgba[4])
 {
-    if (d->color_type == OIT_COLOR_FLOAT) {
-        const float *c = (const float *)d->colors + 4 * i;
+    if (d->colour_type == OIT_COLOUR_FLOAT) {
+        const float *c = (const float *)d->colours + 4 * i;
         for (int k = 0; k < 4; k++)
             rgba[k] = oit_rd_unit_to_u8(c[k]);
     } else {
-        memcpy(rgba, (const uint8_t *)d->colors + 4 * i, 4);
+        memcpy(rgba, (const uint8_t *)d->colours + 4 * i, 4);
     }
 }
 
@@ -184,12 +184,12 @@ static oit_status check_mesh_desc(const oit_scene_mesh_desc *d, const char *name
     if (d->vertex_count < 3)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: %s.vertex_count = %llu: fewer than "
                              "one triangle's 3", name, D, (unsigned long long)d->vertex_count);
-    if (d->color_type != OIT_COLOR_UINT8 && d->color_type != OIT_COLOR_FLOAT)
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: %s.color_type = %d is not an "
-                             "oit_color_type", name, D, (int)d->color_type);
-    if (d->color_rate != OIT_COLOR_PER_VERTEX && d->color_rate != OIT_COLOR_PER_TRIANGLE)
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: %s.color_rate = %d is not an "
-                             "oit_color_rate", name, D, (int)d->color_rate);
+    if (d->colour_type != OIT_COLOUR_UINT8 && d->colour_type != OIT_COLOUR_FLOAT)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: %s.colour_type = %d is not an "
+                             "oit_colour_type", name, D, (int)d->colour_type);
+    if (d->colour_rate != OIT_COLOUR_PER_VERTEX && d->colour_rate != OIT_COLOUR_PER_TRIANGLE)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: %s.colour_rate = %d is not an "
+                             "oit_colour_rate", name, D, (int)d->colour_rate);
     if (d->indices) {
         if (d->index_count == 0 || d->index_count % 3)
             return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: %s.index_count = %llu is not a "
@@ -247,8 +247,8 @@ oit_status oit_scene_create_mesh(const oit_scene_mesh_desc *d, oit_scene **out,
             uint64_t v = d->indices ? d->indices[3 * t + c] : 3 * t + c;
             oit_vertex *out_v = &mesh.tris[t].v[c];
             memcpy(out_v->pos, d->positions + 3 * v, sizeof out_v->pos);
-            if (d->colors)
-                desc_colour(d, d->color_rate == OIT_COLOR_PER_TRIANGLE ? t : v, out_v->rgba);
+            if (d->colours)
+                desc_colour(d, d->colour_rate == OIT_COLOUR_PER_TRIANGLE ? t : v, out_v->rgba);
             else
                 memset(out_v->rgba, 255, sizeof out_v->rgba);
         }
@@ -256,7 +256,7 @@ oit_status oit_scene_create_mesh(const oit_scene_mesh_desc *d, oit_scene **out,
     oit_mesh_info_add(&mesh.info, mesh.tris, mesh.count);
     mesh.info.vertices_in = d->vertex_count;
     mesh.info.faces_in = n;
-    mesh.info.attributes = d->colors ? OIT_ATTR_COLOR | OIT_ATTR_ALPHA : 0;
+    mesh.info.attributes = d->colours ? OIT_ATTR_COLOUR | OIT_ATTR_ALPHA : 0;
     oit_mesh_info_opaque(&mesh.info, mesh.tris, mesh.count);
     return mesh_scene(&mesh, name, out, err);
 }

@@ -121,6 +121,90 @@ static int is_zero(const float *v, int n)
     return 1;
 }
 
+/* The internal axis number (render/view.h: 0 x, 1 y, 2 z) of a public one. */
+static int axis_of(oit_up_axis up)
+{
+    return up == OIT_UP_Z ? 2 : up == OIT_UP_X ? 0 : 1;
+}
+
+/* The axis an up vector without eye and target names: 0 is y, else it
+ * must point along +x, +y or +z. */
+static oit_status up_axis_of_vector(const float up[3], oit_up_axis *out, oit_error *err)
+{
+    static const oit_up_axis axes[3] = {OIT_UP_X, OIT_UP_Y, OIT_UP_Z};
+    *out = OIT_UP_Y;
+    if (is_zero(up, 3))
+        return OIT_OK;
+    for (int k = 0; k < 3; k++)
+        if (up[k] > 0.0f && isfinite(up[k]) && up[(k + 1) % 3] == 0.0f &&
+            up[(k + 2) % 3] == 0.0f) {
+            *out = axes[k];
+            return OIT_OK;
+        }
+    return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_offscreen_view.up = (%g, %g, %g) without "
+                         "eye and target: the default view turns about an axis, so up must "
+                         "point along +x, +y or +z (or give eye and target)",
+                         up[0], up[1], up[2]);
+}
+
+static void default_camera(const oit_scene_info *info, oit_up_axis up, float azimuth_deg,
+                           float elevation_deg, oit_camera *cam)
+{
+    oit_camera_default_up(cam, info->bounds_min, info->bounds_max, azimuth_deg,
+                          elevation_deg, axis_of(up));
+}
+
+oit_status oit_offscreen_default_view(const oit_scene *scene, oit_up_axis up,
+                                      float azimuth_deg, float elevation_deg,
+                                      oit_offscreen_view *view, oit_error *err)
+{
+    if (!scene || !view)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_offscreen_default_view: NULL argument");
+    if (up != OIT_UP_Y && up != OIT_UP_Z && up != OIT_UP_X)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_offscreen_default_view: up = %d is "
+                             "not an oit_up_axis", (int)up);
+    if (!isfinite(azimuth_deg))
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_offscreen_default_view: azimuth %g "
+                             "is not a finite angle", azimuth_deg);
+    if (!(elevation_deg >= -90.0f && elevation_deg <= 90.0f))
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_offscreen_default_view: elevation "
+                             "%g is outside [-90, 90]", elevation_deg);
+    oit_scene_info info;
+    oit_status s = oit_scene_get_info(scene, &info, err);
+    if (s != OIT_OK)
+        return s;
+    oit_camera cam;
+    default_camera(&info, up, azimuth_deg, elevation_deg, &cam);
+    view->use_matrices = 0;
+    memcpy(view->eye, cam.eye, sizeof view->eye);
+    memcpy(view->target, cam.target, sizeof view->target);
+    memcpy(view->up, cam.up, sizeof view->up);
+    view->fovy_deg = cam.fovy_deg;
+    view->znear = cam.znear;
+    view->zfar = cam.zfar;
+    return OIT_OK;
+}
+
+/* The default view moved along its direction so that the bounding sphere
+ * fills fovy_deg as it filled the default 45 degrees, its planes fitted
+ * again. */
+static void refit_fovy(const oit_scene_info *info, float fovy_deg, oit_camera *cam)
+{
+    double c[3], r, d[3], len = 0.0;
+    bounding_sphere(info, c, &r);
+    for (int k = 0; k < 3; k++) {
+        d[k] = (double)cam->eye[k] - cam->target[k];
+        len += d[k] * d[k];
+    }
+    len = sqrt(len);
+    double dist = r / sin(0.5 * fovy_deg * 3.14159265358979323846 / 180.0);
+    for (int k = 0; k < 3; k++)
+        cam->eye[k] = (float)(cam->target[k] + d[k] / len * dist);
+    cam->fovy_deg = fovy_deg;
+    cam->znear = (float)fmax(dist - 1.05 * r, 1e-4 * dist);
+    cam->zfar = (float)(dist + 1.05 * r);
+}
+
 static oit_status make_frame(const oit_scene *scene, const oit_offscreen_view *v,
                              oit_frame *f, oit_error *err)
 {
@@ -139,9 +223,26 @@ static oit_status make_frame(const oit_scene *scene, const oit_offscreen_view *v
         return s;
     oit_camera cam;
     int look_at = !is_zero(v->eye, 3) || !is_zero(v->target, 3);
-    if (!look_at && is_zero(v->up, 3) && v->fovy_deg == 0.0f && v->znear == 0.0f &&
-        v->zfar == 0.0f) {
-        oit_camera_default(&cam, info.bounds_min, info.bounds_max, 0.0f, 20.0f);
+    if (!look_at) {
+        oit_up_axis up;
+        s = up_axis_of_vector(v->up, &up, err);
+        if (s != OIT_OK)
+            return s;
+        default_camera(&info, up, 0.0f, 20.0f, &cam);
+        if (v->fovy_deg != 0.0f) {
+            if (!(v->fovy_deg > 0.0f && v->fovy_deg < 180.0f))
+                return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_offscreen_view.fovy_deg = "
+                                     "%g is outside (0, 180)", v->fovy_deg);
+            refit_fovy(&info, v->fovy_deg, &cam);
+        }
+        if (v->znear != 0.0f || v->zfar != 0.0f) {
+            cam.znear = v->znear;
+            cam.zfar = v->zfar;
+            if (!(cam.znear > 0.0f && cam.zfar > cam.znear && isfinite(cam.zfar)))
+                return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_offscreen_view: znear %g, "
+                                     "zfar %g: need 0 < znear < zfar < inf", cam.znear,
+                                     cam.zfar);
+        }
     } else {
         double d2 = 0.0;
         for (int k = 0; k < 3; k++)

@@ -239,7 +239,7 @@ static oit_status load_meta(oit_partfile *pf, oit_error *err)
         return bad(pf, err, "section META: %llu bytes, its record says %llu",
                    (unsigned long long)size,
                    (unsigned long long)(head + (uint64_t)m->source_name_bytes + m->options_bytes));
-    if (m->reserved || (m->attributes & ~(uint32_t)(OIT_ATTR_COLOR | OIT_ATTR_ALPHA | OIT_ATTR_OPAQUE)))
+    if (m->reserved || (m->attributes & ~(uint32_t)(OIT_ATTR_COLOUR | OIT_ATTR_ALPHA | OIT_ATTR_OPAQUE)))
         return bad(pf, err, "section META: unknown attribute bits 0x%x", m->attributes);
     if (!box_ok(m->bounds_min, m->bounds_max))
         return bad(pf, err, "section META: scene bounds are not finite or min > max");

@@ -157,7 +157,7 @@ oit_status oit_partfile_writer_create(const char *path, const oit_partfile_write
         return oit_error_set(err, OIT_ERR_ARGUMENT,
                              "%s: part alignment %u is not a power of two in %u..%u", path,
                              d.part_align, PF_ALIGN_MIN, PF_ALIGN_MAX);
-    if (d.attributes & ~(uint32_t)(OIT_ATTR_COLOR | OIT_ATTR_ALPHA | OIT_ATTR_OPAQUE))
+    if (d.attributes & ~(uint32_t)(OIT_ATTR_COLOUR | OIT_ATTR_ALPHA | OIT_ATTR_OPAQUE))
         return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: unknown attribute bits 0x%x", path,
                              d.attributes);
     if (!isfinite(d.origin[0]) || !isfinite(d.origin[1]) || !isfinite(d.origin[2]))
@@ -214,7 +214,7 @@ static oit_status check_part(const oit_partfile_writer *w, const oit_partfile_pa
         return oit_error_set(err, OIT_ERR_ARGUMENT,
                              "%s: part %u: needs vertices, a multiple of 3 indices, their "
                              "triangles' source indices and pieces", w->path, n);
-    if (p->attributes & ~(uint32_t)(OIT_ATTR_COLOR | OIT_ATTR_ALPHA | OIT_ATTR_OPAQUE))
+    if (p->attributes & ~(uint32_t)(OIT_ATTR_COLOUR | OIT_ATTR_ALPHA | OIT_ATTR_OPAQUE))
         return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: part %u: unknown attribute bits 0x%x",
                              w->path, n, p->attributes);
     uint64_t tris = 0;
@@ -313,7 +313,7 @@ static oit_partfile_part part_record(const oit_partfile_writer *w, const oit_par
 {
     oit_partfile_part r;
     memset(&r, 0, sizeof r);
-    r.attributes = p->rgba ? (p->attributes ? p->attributes : OIT_ATTR_COLOR | OIT_ATTR_ALPHA) : 0;
+    r.attributes = p->rgba ? (p->attributes ? p->attributes : OIT_ATTR_COLOUR | OIT_ATTR_ALPHA) : 0;
     uint32_t max_layers = p->piece_count > w->K / 2 ? w->K : 2 * p->piece_count;
     r.layer_bound = p->layer_bound ? p->layer_bound : max_layers;
     r.piece_first = (uint32_t)w->pieces.count;

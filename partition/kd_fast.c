@@ -117,7 +117,6 @@ static oit_status emit_part(fast_ctx *c, size_t node, const tri_set *s, uint32_t
         layers = OIT_PARTFILE_MAX_LAYERS;
         r->clamped_parts++;
     }
-    r->wide_parts += layers > c->p->max_layers;
     r->parts[r->part_count] = (oit_kd_part){r->tri_count, s->n, (uint32_t)r->piece_count, 1,
                                             layers};
     /* The planes are not counted: each triangle its own is the upper bound

@@ -22,8 +22,11 @@
  * above then is recorded at that limit and counted in clamped_parts (a star
  * of sheets around one vertex keeps its layers in every box around it).
  * The result has one piece a part (plane_count = its triangle count: the
- * planes are not counted) and no slabs; wide_parts counts the parts whose
- * measured count exceeds K, as the K-slot packs will see them.
+ * planes are not counted) and no slabs. wide_parts stays 0: a wide part is
+ * the guaranteed scheme's node where more than K layers meet at a vertex
+ * and no box separates them; a part here holds up to T triangles whatever
+ * its layers, and the default captures need no bound (max_measured and
+ * clamped_parts say how deep the parts are).
  */
 #ifndef OIT_PARTITION_KD_FAST_H
 #define OIT_PARTITION_KD_FAST_H
@@ -41,7 +44,7 @@ extern "C" {
 
 typedef struct oit_kd_fast_params {
     uint32_t part_triangles; /* T: a node of at most T triangles is a part; >= 1 */
-    uint32_t max_layers;     /* K of the file (for wide_parts only) */
+    uint32_t max_layers;     /* K of the file (not used: no part is wide here) */
     uint32_t max_depth;      /* splits below the cell; 0: 48 */
     uint64_t max_triangles;  /* the parts may hold in all; 0: no limit */
 } oit_kd_fast_params;

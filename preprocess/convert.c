@@ -138,7 +138,7 @@ static oit_status fast_grid(const oit_convert_options *o, const oit_mesh_info *i
     oit_read_desc rd = {0};
     oit_mesh_info again;
     oit_progress pg;
-    oit_progress_start(&pg, "grid", 1, o->progress);
+    oit_progress_start(&pg, "grid", 1, o->progress, o->progress_period_s);
     oit_status s = oit_mesh_read(o->input, &rd, phase_sink, ph, &again, err);
     oit_progress_end(&pg);
     if (!s && again.triangles != info->triangles)
@@ -499,7 +499,8 @@ static oit_status partition_and_write(cell_run *r, oit_partfile_writer *w, uint3
                            : oit_error_set(err, OIT_ERR_IO, "cannot start worker threads");
     part_buf buf = {0};
     oit_progress pg;
-    oit_progress_start(&pg, "partition", r->ncells, r->o->progress);
+    oit_progress_start(&pg, "partition", r->ncells, r->o->progress,
+                       r->o->progress_period_s);
     uint32_t part_base = 0;
     for (uint64_t c = 0; c < r->ncells && !s; c++) {
         pthread_mutex_lock(&r->lock);
@@ -591,7 +592,7 @@ static oit_status bin_input(const oit_convert_options *o, const oit_bin_grid *gr
     }
     rd.chunk_triangles = 65536;
     oit_progress pg;
-    oit_progress_start(&pg, "bin", total, o->progress);
+    oit_progress_start(&pg, "bin", total, o->progress, o->progress_period_s);
     ctx->progress = &pg;
     s = oit_mesh_read(o->input, &rd, bin_sink, ctx, NULL, err);
     oit_progress_end(&pg);
@@ -715,7 +716,7 @@ static oit_status convert_with(const oit_convert_options *o, oit_convert_stats *
     oit_mesh_info info;
     oit_read_desc rd = {0};
     oit_progress pg;
-    oit_progress_start(&pg, "bounds", 1, o->progress);
+    oit_progress_start(&pg, "bounds", 1, o->progress, o->progress_period_s);
     oit_status s = oit_mesh_read(o->input, &rd, count_sink, NULL, &info, err);
     oit_progress_end(&pg);
     if (s)

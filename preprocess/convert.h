@@ -61,7 +61,9 @@ typedef struct oit_convert_options {
     uint32_t K;                   /* even, 2..1024 */
     size_t memory;                /* bin budget in bytes */
     uint32_t threads;             /* >= 1 */
-    uint32_t grid;                /* cells along the longest axis; 0: ~64K triangles a cell */
+    uint32_t grid;                /* cells along the longest axis; 0: fast scheme
+                                     cells of >= max(256K, 8 * part_triangles)
+                                     triangles, guaranteed ~64K a cell */
     uint32_t max_piece_triangles; /* 0: convex.h default */
     oit_manage manage;            /* not GRID: grid must be 0 or 1, and for
                                      KD_FACETS max_piece_triangles 0 or 1 */
@@ -69,7 +71,9 @@ typedef struct oit_convert_options {
                                      the fast scheme has no slabs */
     oit_scheme scheme;            /* --scheme */
     uint32_t part_triangles;      /* fast scheme: 0 = OIT_FAST_PART_TRIANGLES */
-    int progress;                 /* draw progress bars on stderr */
+    int progress;                 /* oit_progress_mode (progress.h): off, a
+                                     bar (a terminal) or periodic lines */
+    double progress_period_s;     /* lines: seconds between them; 0: 5 */
 } oit_convert_options;
 
 typedef struct oit_convert_stats {
@@ -91,7 +95,7 @@ typedef struct oit_convert_stats {
 /* oitprep's defaults for a conversion, so that a tool converting on the fly
  * (oitbench) makes the file oitprep would and follows it when a default
  * changes: K 8, 2G of bins, every online core, the default scheme and
- * management, no progress bars; input and output NULL. */
+ * management, no progress; input and output NULL. */
 void oit_convert_options_init(oit_convert_options *o);
 
 /* Exit-code mapping as usual: OIT_ERR_FORMAT / OIT_ERR_UNSUPPORTED are bad

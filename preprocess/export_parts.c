@@ -13,7 +13,10 @@ static const uint8_t kind_rgb[4][3] = {
     {170, 170, 170}, {40, 110, 230}, {245, 140, 20}, {220, 30, 30}};
 
 /* Per part: which slab kind it belongs to (the last one naming it). */
-static uint8_t *part_kinds(const oit_partfile *pf, uint32_t K)
+/* Wide parts are the guaranteed scheme's: in a file of measured bounds
+ * (the fast scheme) a part above K is only deep, and is painted as what it
+ * is, an axis split. */
+static uint8_t *part_kinds(const oit_partfile *pf, uint32_t K, bool measured)
 {
     uint32_t n = oit_partfile_part_count(pf);
     uint8_t *kind = calloc(n ? n : 1, 1);
@@ -28,7 +31,7 @@ static uint8_t *part_kinds(const oit_partfile *pf, uint32_t K)
         for (uint32_t i = 0; i < m; i++)
             kind[in[i]] = k;
     }
-    for (uint32_t p = 0; p < n; p++)
+    for (uint32_t p = 0; p < n && !measured; p++)
         if (oit_partfile_parts(pf)[p].layer_bound > K)
             kind[p] = KIND_WIDE;
     return kind;
@@ -94,7 +97,7 @@ oit_status oit_export_parts(const char *path, const char *out, oit_export_colour
         return s;
     oit_partfile_summary sum;
     oit_partfile_get_summary(pf, &sum);
-    uint8_t *kind = part_kinds(pf, sum.K);
+    uint8_t *kind = part_kinds(pf, sum.K, sum.measured_bounds);
     oit_ply_writer *w = NULL;
     oit_ply_writer_desc d = {.path = out, .vertex_rgba = 1, .vertex_double = 1,
                              .comment = colour == OIT_EXPORT_BY_KIND

@@ -60,7 +60,7 @@ static void interpolate_base(const oit_shading *s, const oit_triangle *tri,
         }
     for (int c = 0; c < 3; c++) {
         float d = lin ? (float)oit_srgb_decode(s->default_rgb[c]) : s->default_rgb[c];
-        base_rgb[c] = (oit_shading_attrs(s) & OIT_ATTR_COLOR) ? (float)(rgba[c] / 255.0) : d;
+        base_rgb[c] = (oit_shading_attrs(s) & OIT_ATTR_COLOUR) ? (float)(rgba[c] / 255.0) : d;
     }
     *base_a = (oit_shading_attrs(s) & OIT_ATTR_ALPHA) ? (float)(rgba[3] / 255.0) : s->alpha;
     if (oit_triangle_opaque(s, tri))

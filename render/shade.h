@@ -7,7 +7,7 @@
  *   ndv   = |dot(n, v)|,  front = dot(n, v) > 0    (counter-clockwise faces
  *                                                    the viewer)
  *   base  = barycentric interpolation of vertex rgba / 255 (perspective
- *           correct); rgb := default_rgb without OIT_ATTR_COLOR, a := alpha
+ *           correct); rgb := default_rgb without OIT_ATTR_COLOUR, a := alpha
  *           without OIT_ATTR_ALPHA (or with see_through); a := 1 exactly
  *           on an opaque triangle (below).
  * transparent:  colour = base.rgb * (0.3 + 0.7 * ndv),  a = base.a

@@ -116,20 +116,20 @@ OIT_API oit_status oit_scene_open(const char *path, const oit_scene_desc *desc, 
                                   oit_error *err);
 
 /* Colour arrays of oit_scene_mesh_desc. */
-typedef enum oit_color_type {
-    OIT_COLOR_UINT8 = 0, /* 4 uint8_t a colour, 0..255                    */
-    OIT_COLOR_FLOAT = 1  /* 4 floats a colour, 0..1 (clamped; NaN is 0),
-                            rounded to 8 bits as the mesh readers do      */
-} oit_color_type;
+typedef enum oit_colour_type {
+    OIT_COLOUR_UINT8 = 0, /* 4 uint8_t a colour, 0..255                    */
+    OIT_COLOUR_FLOAT = 1  /* 4 floats a colour, 0..1 (clamped; NaN is 0),
+                             rounded to 8 bits as the mesh readers do     */
+} oit_colour_type;
 
-typedef enum oit_color_rate {
-    OIT_COLOR_PER_VERTEX = 0,  /* one colour a vertex: vertex_count colours */
-    OIT_COLOR_PER_TRIANGLE = 1 /* one colour a triangle, for its 3 corners  */
-} oit_color_rate;
+typedef enum oit_colour_rate {
+    OIT_COLOUR_PER_VERTEX = 0,  /* one colour a vertex: vertex_count colours */
+    OIT_COLOUR_PER_TRIANGLE = 1 /* one colour a triangle, for its 3 corners  */
+} oit_colour_rate;
 
 /* An in-core mesh from the caller's arrays; zero fields mean the default.
  * Colours are RGBA, sRGB-encoded with straight alpha, as the mesh readers
- * deliver them (oit/mesh.h): a scene with colours has OIT_ATTR_COLOR |
+ * deliver them (oit/mesh.h): a scene with colours has OIT_ATTR_COLOUR |
  * OIT_ATTR_ALPHA, one without takes the renderer's default colour and
  * alpha (oit_render_shading). */
 typedef struct oit_scene_mesh_desc {
@@ -140,9 +140,9 @@ typedef struct oit_scene_mesh_desc {
      * (vertex_count a multiple of 3; index_count must be 0). */
     const uint32_t *indices;
     uint64_t index_count;
-    const void *colors;        /* NULL: none; else see color_type, color_rate */
-    oit_color_type color_type;
-    oit_color_rate color_rate;
+    const void *colours;       /* NULL: none; else see colour_type, colour_rate */
+    oit_colour_type colour_type;
+    oit_colour_rate colour_rate;
     const char *name;          /* the scene in messages; default "mesh"       */
 } oit_scene_mesh_desc;
 

@@ -41,7 +41,7 @@ typedef struct oit_triangle {
 } oit_triangle; /* 48 bytes */
 
 enum {
-    OIT_ATTR_COLOR = 1u << 0, /* the input defines rgb  */
+    OIT_ATTR_COLOUR = 1u << 0, /* the input defines rgb  */
     OIT_ATTR_ALPHA = 1u << 1, /* the input defines alpha */
     /* with OIT_ATTR_ALPHA: some triangle has alpha 255 at its three
      * vertices, so it is opaque (render/shade.h, "Opaque triangles") and

@@ -67,9 +67,14 @@ typedef struct oit_offscreen_view {
      * - eye != target: a look-at camera; up 0: +y; fovy_deg 0: 45;
      *   znear = zfar = 0: planes fitted to the scene's bounding sphere seen
      *   from eye;
-     * - everything 0: the tools' default view (oitstream without --view:
-     *   oit_camera_default of the scene's bounds, azimuth 0, elevation 20,
-     *   fovy 45, the bounding sphere filling the height). */
+     * - eye = target = 0: the tools' default view (oitstream without
+     *   --view: the scene's bounds seen from azimuth 0, elevation 20, fovy
+     *   45, the bounding sphere filling the height), turned about up when
+     *   it is given (+x, +y or +z, any length: oitstream --up x|y|z; any
+     *   other direction is OIT_ERR_ARGUMENT), fovy_deg moving the eye so
+     *   the sphere still fills the height, znear/zfar replacing the fitted
+     *   planes when given. oit_offscreen_default_view gives the other
+     *   azimuths and elevations. */
     int use_matrices;
     float view[16], projection[16];
     float eye[3], target[3], up[3];
@@ -85,6 +90,25 @@ typedef struct oit_offscreen_view {
     uint32_t clip_count;
     float clip[6][4];
 } oit_offscreen_view;
+
+/* The up axis of oit_offscreen_default_view, in the order the viewer's U
+ * key steps through them; zero is the tools' default, y. */
+typedef enum oit_up_axis {
+    OIT_UP_Y = 0,
+    OIT_UP_Z = 1, /* CAD models: seen from -y, x to the right */
+    OIT_UP_X = 2
+} oit_up_axis;
+
+/* Sets view's camera (eye, target, up, fovy_deg 45, znear, zfar fitted to
+ * the bounding sphere; use_matrices 0) to the view oitstream takes of
+ * scene's bounds for --up, --azimuth and --elevation without --view;
+ * width, height, format and background are left as they are. azimuth:
+ * any finite angle (0: the eye on the +z side for y or x up, on the -y
+ * side for z up; 90 a quarter turn to the right); elevation in [-90, 90]
+ * (oitstream's default is 20). */
+OIT_API oit_status oit_offscreen_default_view(const oit_scene *scene, oit_up_axis up,
+                                              float azimuth_deg, float elevation_deg,
+                                              oit_offscreen_view *view, oit_error *err);
 
 /* Renders scene into pixels: width * height pixels of 4 components (format),
  * colour sRGB-encoded in both colour spaces (in OIT_RENDER_COLOUR_LINEAR the

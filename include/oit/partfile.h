@@ -349,7 +349,7 @@ typedef struct oit_partfile_part_desc {
     uint32_t layer_bound;    /* 0: min(K, 2*piece_count); with measured
                                 bounds 1..64, required                    */
     uint32_t attributes;     /* OIT_ATTR_* the rgba holds; 0 with rgba
-                                means OIT_ATTR_COLOR|OIT_ATTR_ALPHA      */
+                                means OIT_ATTR_COLOUR|OIT_ATTR_ALPHA      */
 } oit_partfile_part_desc;
 
 /* Writes the part's blob now; bounds are computed from the data. */

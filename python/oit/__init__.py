@@ -83,12 +83,12 @@ class Scene(_Closable):
         return cls(h, path)
 
     @classmethod
-    def from_arrays(cls, positions, indices=None, colors=None, color_rate="auto",
+    def from_arrays(cls, positions, indices=None, colours=None, colour_rate="auto",
                     name="arrays"):
         """positions: (n, 3) floats. indices: (m, 3) or (3m,) non-negative ints
-        below n, or None for a soup (n a multiple of 3). colors: None, or RGBA
+        below n, or None for a soup (n a multiple of 3). colours: None, or RGBA
         (k, 4) uint8 (0..255) or floats (0..1), per vertex (k = n) or per
-        triangle (k = triangles); color_rate "vertex" or "triangle" says
+        triangle (k = triangles); colour_rate "vertex" or "triangle" says
         which when both counts are equal ("auto" refuses to guess then).
         The arrays are copied."""
         pos = np.ascontiguousarray(positions, dtype=np.float32)
@@ -111,31 +111,31 @@ class Scene(_Closable):
             triangles = idx.size // 3
         else:
             triangles = pos.shape[0] // 3
-        if colors is not None:
-            col = np.asarray(colors)
+        if colours is not None:
+            col = np.asarray(colours)
             if col.ndim != 2 or col.shape[1] != 4:
-                raise ValueError(f"colors: shape {col.shape}, expected (k, 4) RGBA")
+                raise ValueError(f"colours: shape {col.shape}, expected (k, 4) RGBA")
             if col.dtype == np.uint8:
-                d.color_type = L.COLOR_UINT8
+                d.colour_type = L.COLOUR_UINT8
             else:
                 col = col.astype(np.float32)
-                d.color_type = L.COLOR_FLOAT
+                d.colour_type = L.COLOUR_FLOAT
             col = np.ascontiguousarray(col)
-            rate = color_rate
+            rate = colour_rate
             if rate == "auto":
                 if col.shape[0] == pos.shape[0] and col.shape[0] == triangles:
-                    raise ValueError("colors: as many vertices as triangles; say "
-                                     "color_rate='vertex' or 'triangle'")
+                    raise ValueError("colours: as many vertices as triangles; say "
+                                     "colour_rate='vertex' or 'triangle'")
                 rate = "vertex" if col.shape[0] == pos.shape[0] else "triangle"
             if rate not in ("vertex", "triangle"):
-                raise ValueError(f"color_rate: {color_rate!r}, expected auto, vertex or "
+                raise ValueError(f"colour_rate: {colour_rate!r}, expected auto, vertex or "
                                  "triangle")
             want = pos.shape[0] if rate == "vertex" else triangles
             if col.shape[0] != want:
-                raise ValueError(f"colors: {col.shape[0]} rows; {pos.shape[0]} vertices, "
+                raise ValueError(f"colours: {col.shape[0]} rows; {pos.shape[0]} vertices, "
                                  f"{triangles} triangles")
-            d.color_rate = L.COLOR_PER_VERTEX if rate == "vertex" else L.COLOR_PER_TRIANGLE
-            d.colors = col.ctypes.data
+            d.colour_rate = L.COLOUR_PER_VERTEX if rate == "vertex" else L.COLOUR_PER_TRIANGLE
+            d.colours = col.ctypes.data
             keep.append(col)
         d.name = name.encode()
         h, err = ctypes.c_void_p(), L.Error()
@@ -170,6 +170,8 @@ class Scene(_Closable):
 _SHADINGS = {"transparent": L.RENDER_TRANSPARENT, "translucent": L.RENDER_TRANSLUCENT}
 # oit_render_colour_space (liboit.h): where compositing happens
 _COLOUR_SPACES = {"srgb": 0, "linear": 1}
+# oit_up_axis (offscreen.h), spelt as oitstream --up spells it
+_UP_AXES = {"y": 0, "z": 1, "x": 2}
 # oit_render_pack, spelt as oitstream --pack spells it
 _PACKS = {"auto": 0, "counted": 1, "budget": 2, "disjoint": 3, "first-k": 4}
 
@@ -221,12 +223,18 @@ class Renderer(_Closable):
         return L.lib().oit_offscreen_gl_renderer(self._h).decode()
 
     def render(self, scene, size=(512, 512), view=None, dtype=np.uint8, background=None,
-               clip=None):
+               clip=None, up=None, azimuth=None, elevation=None):
         """The image of scene (a Scene) as a (height, width, 4) array, uint8
-        or float32 (dtype). view: None (the tools' default view of the
-        scene's bounds), a dict with eye, target and optional up, fovy,
-        znear, zfar (the scene's coordinates), or a dict with view and
+        or float32 (dtype); size is (width, height), as oitstream --size WxH.
+        view: None (the tools' default view of the scene's bounds), a dict
+        with eye, target and optional up, fovy, znear, zfar (the scene's
+        coordinates; without eye and target the default view about up,
+        which must then be +x, +y or +z), or a dict with view and
         projection 4x4 matrices as numpy writes them (v' = M @ v).
+        up ("x", "y" or "z"), azimuth and elevation (degrees) are
+        oitstream's --up, --azimuth and --elevation: the default view
+        (up "y", azimuth 0, elevation 20) turned, computed by liboit
+        (oit_offscreen_default_view); they take view=None.
         background: RGBA, default opaque white. clip: section planes, a
         list of up to 6 (nx, ny, nz, d) in the scene's coordinates, each
         keeping what lies where nx*x + ny*y + nz*z + d >= 0 (oitstream
@@ -242,6 +250,8 @@ class Renderer(_Closable):
         else:
             raise ValueError(f"dtype: {dtype}, expected uint8 or float32")
         _set_view(v, view)
+        if up is not None or azimuth is not None or elevation is not None:
+            _set_default_view(v, scene, view, up, azimuth, elevation)
         _set_clip(v, clip)
         if background is not None:
             bg = [float(c) for c in background]
@@ -313,6 +323,21 @@ def _set_clip(v, clip):
         v.clip[i][:] = plane
 
 
+def _set_default_view(v, scene, view, up, azimuth, elevation):
+    """v's camera as oitstream --up/--azimuth/--elevation set it."""
+    if view is not None:
+        raise ValueError("up/azimuth/elevation turn the default view: give them with "
+                         "view=None (a view dict's own up turns it too)")
+    if up is None:
+        up = "y"
+    if up not in _UP_AXES:
+        raise ValueError(f"up: {up!r}, expected x, y or z")
+    err = L.Error()
+    _check(L.lib().oit_offscreen_default_view(
+        scene._handle(), _UP_AXES[up], float(0.0 if azimuth is None else azimuth),
+        float(20.0 if elevation is None else elevation), ctypes.byref(v), ctypes.byref(err)), err)
+
+
 _renderers = {}
 
 
@@ -327,26 +352,27 @@ def _default_renderer(shading, colour_space="srgb"):
 
 
 def render(model_path, size=(512, 512), view=None, dtype=np.uint8, background=None,
-           shading="transparent", colour_space="srgb", clip=None):
+           shading="transparent", colour_space="srgb", clip=None, up=None, azimuth=None, elevation=None):
     """Renders a mesh file (in core) or part file (streamed) into a
-    (height, width, 4) array; see Renderer.render for view, background and
-    clip (section planes), Renderer for colour_space."""
+    (height, width, 4) array; see Renderer.render for view, background, up,
+    azimuth and elevation (oitstream's --up, --azimuth, --elevation),
+    Renderer for colour_space; clip: section planes."""
     r = _default_renderer(shading, colour_space)
     with Scene.open(model_path) as s:
-        return r.render(s, size=size, view=view, dtype=dtype, background=background,
-                        clip=clip)
+        return r.render(s, size=size, view=view, dtype=dtype, background=background, up=up,
+                        azimuth=azimuth, elevation=elevation, clip=clip)
 
 
-def render_arrays(positions, indices=None, colors=None, size=(512, 512), view=None,
-                  dtype=np.uint8, background=None, shading="transparent", color_rate="auto",
-                  colour_space="srgb", clip=None):
+def render_arrays(positions, indices=None, colours=None, size=(512, 512), view=None,
+                  dtype=np.uint8, background=None, shading="transparent", colour_rate="auto",
+                  colour_space="srgb", clip=None, up=None, azimuth=None, elevation=None):
     """Renders triangles from arrays (see Scene.from_arrays) into a
-    (height, width, 4) array; see Renderer.render for view, background and
-    clip, Renderer for colour_space."""
+    (height, width, 4) array; see Renderer.render for view, background, up,
+    azimuth and elevation, Renderer for colour_space; clip: section planes."""
     r = _default_renderer(shading, colour_space)
-    with Scene.from_arrays(positions, indices, colors, color_rate=color_rate) as s:
-        return r.render(s, size=size, view=view, dtype=dtype, background=background,
-                        clip=clip)
+    with Scene.from_arrays(positions, indices, colours, colour_rate=colour_rate) as s:
+        return r.render(s, size=size, view=view, dtype=dtype, background=background, up=up,
+                        azimuth=azimuth, elevation=elevation, clip=clip)
 
 
 def prep_tool():

@@ -36,8 +36,8 @@ class SceneInfo(ctypes.Structure):
 class SceneMeshDesc(ctypes.Structure):
     _fields_ = [("positions", ctypes.c_void_p), ("vertex_count", ctypes.c_uint64),
                 ("indices", ctypes.c_void_p), ("index_count", ctypes.c_uint64),
-                ("colors", ctypes.c_void_p), ("color_type", ctypes.c_int),
-                ("color_rate", ctypes.c_int), ("name", ctypes.c_char_p)]
+                ("colours", ctypes.c_void_p), ("colour_type", ctypes.c_int),
+                ("colour_rate", ctypes.c_int), ("name", ctypes.c_char_p)]
 
 
 class RenderShading(ctypes.Structure):
@@ -89,12 +89,12 @@ class DrawStats(ctypes.Structure):
 
 # enum values of the headers
 OIT_OK = 0
-COLOR_UINT8, COLOR_FLOAT = 0, 1
-COLOR_PER_VERTEX, COLOR_PER_TRIANGLE = 0, 1
+COLOUR_UINT8, COLOUR_FLOAT = 0, 1
+COLOUR_PER_VERTEX, COLOUR_PER_TRIANGLE = 0, 1
 PIXELS_RGBA8, PIXELS_RGBA32F = 0, 1
 RENDER_TRANSPARENT, RENDER_TRANSLUCENT = 0, 1
 RENDER_CACHE_OFF = 2**64 - 1
-ATTR_COLOR, ATTR_ALPHA = 1, 2
+ATTR_COLOUR, ATTR_ALPHA = 1, 2
 
 
 class LibraryNotFound(OSError):
@@ -134,6 +134,8 @@ def _declare(lib):
         "oit_offscreen_gl_renderer": (ctypes.c_char_p, [vp]),
         "oit_offscreen_render": (ctypes.c_int, [vp, vp, P(OffscreenView), vp, ctypes.c_size_t,
                                                 P(DrawStats), err]),
+        "oit_offscreen_default_view": (ctypes.c_int, [vp, ctypes.c_int, ctypes.c_float,
+                                                      ctypes.c_float, P(OffscreenView), err]),
         "oit_status_name": (ctypes.c_char_p, [ctypes.c_int]),
     }
     for name, (res, args) in sigs.items():

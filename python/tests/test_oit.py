@@ -265,3 +265,101 @@ def test_save_png(tmp_path):
     rows = np.frombuffer(raw, dtype=np.uint8).reshape(10, 1 + 20 * 4)
     assert np.all(rows[:, 0] == 0)
     assert np.array_equal(rows[:, 1:].reshape(10, 20, 4), img)
+
+
+def read_png_rgba(path):
+    """An 8-bit RGB or RGBA PNG as (h, w, n) uint8, every row filter undone."""
+    data = open(path, "rb").read()
+    w, h, depth, ctype = struct.unpack(">IIBB", data[16:26])
+    assert depth == 8 and ctype in (2, 6), (depth, ctype)
+    n = 3 if ctype == 2 else 4
+    idat, pos = b"", 8
+    while pos < len(data):
+        length, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        if kind == b"IDAT":
+            idat += data[pos + 8:pos + 8 + length]
+        pos += 12 + length
+    raw = np.frombuffer(zlib.decompress(idat), dtype=np.uint8).reshape(h, 1 + w * n)
+    out = np.zeros((h, w * n), dtype=np.int32)
+    for y in range(h):
+        f, line = raw[y, 0], raw[y, 1:].astype(np.int32)
+        prev = out[y - 1] if y else np.zeros(w * n, dtype=np.int32)
+        row = np.zeros(w * n, dtype=np.int32)
+        for i in range(w * n):
+            a = row[i - n] if i >= n else 0
+            b, c = prev[i], (prev[i - n] if i >= n else 0)
+            if f == 0:
+                p = 0
+            elif f == 1:
+                p = a
+            elif f == 2:
+                p = b
+            elif f == 3:
+                p = (a + b) // 2
+            else:
+                pa, pb, pc = abs(b - c), abs(a - c), abs(a + b - 2 * c)
+                p = a if pa <= pb and pa <= pc else (b if pb <= pc else c)
+            row[i] = (line[i] + p) & 255
+        out[y] = row
+    return out.reshape(h, w, n).astype(np.uint8)
+
+
+def z_up(pos):
+    """The scene turned so that its +y is +z (x stays): (x, y, z) -> (x, -z, y),
+    exact in float, which maps oitstream's y-up default view onto its z-up one."""
+    return np.stack([pos[:, 0], -pos[:, 2], pos[:, 1]], axis=1).astype(np.float32)
+
+
+def test_up_azimuth_elevation(tmp_path):
+    pos, idx, col = layered_scene()
+    zpos = z_up(pos)
+    size = (64, 48)
+    for az, el in ((None, None), (30, 10), (-75, -40)):
+        y_up = oit.render_arrays(pos, idx, col, size=size, azimuth=az, elevation=el)
+        z_file = oit.render_arrays(zpos, idx, col, size=size, up="z", azimuth=az, elevation=el)
+        assert np.array_equal(y_up, z_file), (az, el)
+        # Without up="z" the turned scene is seen from elsewhere: the check can fail.
+        assert not np.array_equal(y_up, oit.render_arrays(zpos, idx, col, size=size,
+                                                          azimuth=az, elevation=el)), (az, el)
+    # The defaults are oitstream's: azimuth 0, elevation 20, up y.
+    default = oit.render_arrays(pos, idx, col, size=size)
+    assert np.array_equal(default, oit.render_arrays(pos, idx, col, size=size, up="y",
+                                                     azimuth=0, elevation=20))
+    assert not np.array_equal(default, oit.render_arrays(pos, idx, col, size=size, azimuth=40))
+    # A view dict's up alone turns the default view too (it used to fail:
+    # "eye and target are the same point").
+    assert np.array_equal(oit.render_arrays(zpos, idx, col, size=size, up="z"),
+                          oit.render_arrays(zpos, idx, col, size=size,
+                                            view={"up": (0, 0, 2.5)}))
+    with pytest.raises(oit.OitError) as e:
+        oit.render_arrays(zpos, idx, col, size=size, view={"up": (0, 1, 1)})
+    assert "+x, +y or +z" in e.value.message
+    with pytest.raises(oit.OitError) as e:
+        oit.render_arrays(pos, idx, col, size=size, elevation=91)
+    assert "elevation 91" in e.value.message
+    with pytest.raises(ValueError):
+        oit.render_arrays(pos, idx, col, size=size, up="w")
+    with pytest.raises(ValueError):
+        oit.render_arrays(pos, idx, col, size=size, up="z", view=FRONT)
+
+
+def test_up_as_oitstream(tmp_path):
+    """oit.render(path, up="z", ...) is the image oitstream --up z draws."""
+    prep = os.environ.get("OIT_PREP", "")
+    tool = os.path.join(os.path.dirname(prep), "oitstream")
+    if not os.access(tool, os.X_OK):
+        pytest.skip(f"no oitstream beside OIT_PREP ({prep!r})")
+    pos, idx, col = layered_scene()
+    ply = tmp_path / "zup.ply"
+    write_ply(ply, z_up(pos), idx, col)
+    for args, kw in (([], {}), (["--azimuth", "30", "--elevation", "-15"],
+                                {"azimuth": 30, "elevation": -15})):
+        png = tmp_path / "zup.png"
+        subprocess.run([tool, str(ply), "--method", "dfb", "--up", "z", "--size", "80x60",
+                        "--out", str(png)] + args, check=True, capture_output=True)
+        ours = oit.render(ply, size=(80, 60), up="z", **kw)
+        theirs = read_png_rgba(png)[:, :, :3]
+        covered = np.any(theirs != 255, axis=2).mean()
+        assert covered > 0.1, f"{args}: only {covered:.0%} of oitstream's frame covered"
+        assert (np.abs(ours[:, :, :3].astype(int) - theirs).max(axis=2) > 1).mean() <= 0.001, args
+        assert not np.array_equal(ours, oit.render(ply, size=(80, 60), **kw))

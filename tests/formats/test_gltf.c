@@ -213,7 +213,7 @@ static void check_scene(const char *label, const collect *c, const oit_mesh_info
            info->attributes);
     CHECK(c->mesh.count == 5 && info->triangles == 5, "%s: %zu triangles, want 5", label, c->mesh.count);
     /* the OPAQUE material gives alpha 1: opaque triangles (render/shade.h) */
-    CHECK(info->attributes == (OIT_ATTR_COLOR | OIT_ATTR_ALPHA | OIT_ATTR_OPAQUE),
+    CHECK(info->attributes == (OIT_ATTR_COLOUR | OIT_ATTR_ALPHA | OIT_ATTR_OPAQUE),
           "%s: attributes %u", label, info->attributes);
     CHECK(info->bounds_min[0] == 9 && info->bounds_max[0] == 12 && info->bounds_max[2] == 5,
           "%s: bounds x %g..%g, z max %g", label, info->bounds_min[0], info->bounds_max[0],
@@ -325,7 +325,7 @@ static void check_draco(const char *corpus)
     CHECK(c[0].mesh.count && fabs(c[0].mesh.tris[0].v[0].rgba[3] - 0.4 * 255) <= 1.0 &&
               fabs(c[0].mesh.tris[0].v[0].rgba[2] - srgb(0.9)) <= 1.0,
           "draco: material colour not applied");
-    CHECK(info[0].attributes == (OIT_ATTR_COLOR | OIT_ATTR_ALPHA), "draco: attributes %u", info[0].attributes);
+    CHECK(info[0].attributes == (OIT_ATTR_COLOUR | OIT_ATTR_ALPHA), "draco: attributes %u", info[0].attributes);
     oit_mesh_free(&c[0].mesh);
     oit_mesh_free(&c[1].mesh);
 }

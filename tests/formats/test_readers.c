@@ -182,7 +182,7 @@ static void test_ply(void)
     oit_error err;
     load_text("square.ply", ply_ascii, &m);
     check_square(&m, "ascii ply", 255);
-    CHECK(m.info.attributes == OIT_ATTR_COLOR, "attributes %u", m.info.attributes);
+    CHECK(m.info.attributes == OIT_ATTR_COLOUR, "attributes %u", m.info.attributes);
     CHECK(m.info.faces_in == 1 && m.info.vertices_in == 4, "faces/vertices");
     oit_mesh_free(&m);
 
@@ -192,7 +192,7 @@ static void test_ply(void)
         write_bytes(name, buf, ply_binary(buf, be, 4));
         CHECK(load(name, NULL, &m, &err) == OIT_OK, "%s", err.message);
         check_square(&m, name, 128);
-        CHECK(m.info.attributes == (OIT_ATTR_COLOR | OIT_ATTR_ALPHA), "attributes %u",
+        CHECK(m.info.attributes == (OIT_ATTR_COLOUR | OIT_ATTR_ALPHA), "attributes %u",
               m.info.attributes);
         oit_mesh_free(&m);
     }
@@ -215,7 +215,7 @@ static void test_ply(void)
     CHECK(m.count == 3 && same_pos(&m.tris[2].v[0], 0, 0, 0) && same_pos(&m.tris[2].v[1], 1, 2, 0) &&
               same_pos(&m.tris[2].v[2], 0, 1, 0),
           "fan order wrong");
-    CHECK(m.info.attributes == (OIT_ATTR_COLOR | OIT_ATTR_ALPHA), "attributes %u",
+    CHECK(m.info.attributes == (OIT_ATTR_COLOUR | OIT_ATTR_ALPHA), "attributes %u",
           m.info.attributes);
     oit_mesh_free(&m);
 
@@ -297,7 +297,7 @@ static void test_obj(void)
         CHECK(same_rgba(&t[4].v[0], 255, 255, 255, 255), "unknown material not default");
     }
     /* grey and nosuch have alpha 1 (MTL's default d): opaque triangles */
-    CHECK(m.info.attributes == (OIT_ATTR_COLOR | OIT_ATTR_ALPHA | OIT_ATTR_OPAQUE),
+    CHECK(m.info.attributes == (OIT_ATTR_COLOUR | OIT_ATTR_ALPHA | OIT_ATTR_OPAQUE),
           "attributes %u", m.info.attributes);
     oit_mesh_free(&m);
 
@@ -305,7 +305,7 @@ static void test_obj(void)
     write_text("glass.mtl", "newmtl g\nKd 0 0 1\nd 0.4\n");
     load_text("glass.obj", "mtllib glass.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl g\nf 1 2 3\n", &m);
     CHECK(m.count == 1 && same_rgba(&m.tris[0].v[0], 0, 0, 255, 102), "d 0.4");
-    CHECK(m.info.attributes == (OIT_ATTR_COLOR | OIT_ATTR_ALPHA), "attributes %u",
+    CHECK(m.info.attributes == (OIT_ATTR_COLOUR | OIT_ATTR_ALPHA), "attributes %u",
           m.info.attributes);
     oit_mesh_free(&m);
 
@@ -315,7 +315,7 @@ static void test_obj(void)
               "v 0 1 0 0 0 1\nusemtl red\nf 1 2 3\n",
               &m);
     CHECK(m.count == 1 && same_rgba(&m.tris[0].v[1], 0, 255, 0, 255), "vertex colour");
-    CHECK(m.info.attributes == OIT_ATTR_COLOR, "attributes %u", m.info.attributes);
+    CHECK(m.info.attributes == OIT_ATTR_COLOUR, "attributes %u", m.info.attributes);
     oit_mesh_free(&m);
 
     expect_error("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", 0, OIT_ERR_FORMAT, "line 4");
@@ -361,7 +361,7 @@ static void test_off(void)
         CHECK(same_rgba(&m.tris[1].v[2], 10, 20, 30, 40), "vertex colour");
     }
     /* the first face has alpha 255 at its three corners */
-    CHECK(m.info.attributes == (OIT_ATTR_COLOR | OIT_ATTR_ALPHA | OIT_ATTR_OPAQUE),
+    CHECK(m.info.attributes == (OIT_ATTR_COLOUR | OIT_ATTR_ALPHA | OIT_ATTR_OPAQUE),
           "attributes %u", m.info.attributes);
     oit_mesh_free(&m);
 
@@ -370,7 +370,7 @@ static void test_off(void)
               "0 1 0 0 0 1 0 0 1\n3 0 1 2\n",
               &m);
     CHECK(m.count == 1 && same_rgba(&m.tris[0].v[1], 0, 255, 0, 255) &&
-              same_pos(&m.tris[0].v[1], 1, 0, 0) && m.info.attributes == OIT_ATTR_COLOR,
+              same_pos(&m.tris[0].v[1], 1, 0, 0) && m.info.attributes == OIT_ATTR_COLOUR,
           "CNOFF wrong");
     oit_mesh_free(&m);
 

@@ -30,7 +30,7 @@ static inline void scene_view(oit_view *v, int w, int h, oit_shading_mode mode)
     v->width = w;
     v->height = h;
     v->shading.mode = mode;
-    v->shading.attributes = OIT_ATTR_COLOR | OIT_ATTR_ALPHA;
+    v->shading.attributes = OIT_ATTR_COLOUR | OIT_ATTR_ALPHA;
     v->shading.background[0] = 0.2f;
     v->shading.background[1] = 0.4f;
     v->shading.background[2] = 0.9f;

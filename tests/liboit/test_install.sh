@@ -1,7 +1,10 @@
 #!/bin/sh
-# Installs liboit from a build folder into a temporary prefix, then builds a
+# Installs liboit from a build folder into a temporary prefix (every tool
+# of tools/ in its bin/, each answering --help from there), then builds a
 # tiny outside project against it twice (find_package(oit) and pkg-config)
-# and runs it: it must link, load liboit.so and print the library's error for
+# and runs it without LD_LIBRARY_PATH (the prefix is no system folder: the
+# run path comes from CMake or from oit.pc's Libs): it must link, load
+# liboit.so and print the library's error for
 # a missing part file; it must open a .glb (Draco too) through the glTF plugin
 # installed beside liboit.so and a gzip mesh through the zlib liboit loads,
 # and without the plugin fail naming the file and the plugin's path. Then
@@ -24,15 +27,24 @@ temp_scratch liboit-install
 tmp=$T
 mkdir -p "$tmp/src"
 
-cmake --build "$build" --target oit oitprep oitgen > "$tmp/build.log" 2>&1 || { cat "$tmp/build.log"; exit 1; }
+# Every folder of tools/ but common/ is a tool, so a new one is checked too.
+tools=$(cd "$src_dir/tools" && for d in */; do [ "$d" = common/ ] || printf '%s ' "${d%/}"; done)
+# shellcheck disable=SC2086 # one target a tool
+cmake --build "$build" --target oit $tools > "$tmp/build.log" 2>&1 || { cat "$tmp/build.log"; exit 1; }
 cmake --install "$build" --prefix "$tmp/prefix" > "$tmp/install.log"
 for f in include/oit/oit.h include/oit/liboit.h include/oit/offscreen.h include/oit/partfile.h \
          lib/liboit-gltf.so lib/pkgconfig/oit.pc lib/cmake/oit/oitConfig.cmake \
-         lib/cmake/oit/oitConfigVersion.cmake bin/oitprep \
+         lib/cmake/oit/oitConfigVersion.cmake \
          lib/python3/dist-packages/oit/__init__.py \
          lib/python3/dist-packages/oit/_install_paths.py; do
     [ -f "$tmp/prefix/$f" ] || { echo "FAIL: not installed: $f"; exit 1; }
 done
+for t in $tools; do
+    [ -x "$tmp/prefix/bin/$t" ] || { echo "FAIL: the tool $t is not installed in bin/"; exit 1; }
+    env -u LD_LIBRARY_PATH "$tmp/prefix/bin/$t" --help > "$tmp/help.txt" 2>&1 ||
+        { cat "$tmp/help.txt"; echo "FAIL: the installed $t --help exits $?"; exit 1; }
+done
+echo "tools installed: $tools"
 # Exactly the public headers: every one of include/oit/, and no internal one.
 (cd "$src_dir" && ls include/oit/*.h) > "$tmp/want"
 (cd "$tmp/prefix" && find include -name '*.h' | sort) > "$tmp/got"
@@ -62,7 +74,7 @@ C
 
 missing="$tmp/no-such-scene.oitp"
 check_run() { # $1: how it was built, $2: the program
-    out=$(LD_LIBRARY_PATH="$tmp/prefix/lib" "$2" "$missing") || {
+    out=$(env -u LD_LIBRARY_PATH "$2" "$missing") || {
         echo "FAIL ($1): $out"; exit 1; }
     echo "$1: $out"
     case $out in "i/o error: "*no-such-scene.oitp*) ;;
@@ -78,7 +90,7 @@ check_run find_package "$tmp/cm/outside"
 # prefix alone: the glTF plugin beside the installed liboit.so, and zlib.
 corpus="$src_dir/tests/corpus"
 open_scene() { # $1: a corpus file; prints the program's line
-    LD_LIBRARY_PATH="$tmp/prefix/lib" "$tmp/cm/outside" "$corpus/$1"
+    env -u LD_LIBRARY_PATH "$tmp/cm/outside" "$corpus/$1"
 }
 for scene in gltf/scene.glb gltf/draco.glb gltf/scene.gltf.gz off/color.off.gz; do
     out=$(open_scene $scene) || { echo "FAIL (open $scene): $out"; exit 1; }
@@ -127,7 +139,7 @@ for how in cm pc; do
     exe="$tmp/ex-cm/embed_liboit"
     [ $how = pc ] && exe="$tmp/embed-pc"
     for scene in quads.ply quads.oitp; do
-        out=$(LD_LIBRARY_PATH="$tmp/prefix/lib" "$exe" "$tmp/$scene" "$tmp/$how-$scene.ppm" 96 72) || {
+        out=$(env -u LD_LIBRARY_PATH "$exe" "$tmp/$scene" "$tmp/$how-$scene.ppm" 96 72) || {
             echo "FAIL (example $how, $scene): $out"; exit 1; }
         echo "example $how: $out"
     done

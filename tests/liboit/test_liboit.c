@@ -598,10 +598,10 @@ static void check_model(oit_partfile *pf, oit_scene *file_scene, const oit_scene
             memcpy(rgba + (t * 3 + c) * 4, mesh.tris[t].v[c].rgba, 4);
         }
     oit_mesh_free(&mesh);
-    const uint8_t *colors = (info->attributes & OIT_ATTR_COLOR) ? rgba : NULL;
-    oit_scene_mesh_desc md = {.positions = pos, .vertex_count = nv, .colors = colors,
+    const uint8_t *colours = (info->attributes & OIT_ATTR_COLOUR) ? rgba : NULL;
+    oit_scene_mesh_desc md = {.positions = pos, .vertex_count = nv, .colours = colours,
                               .name = "model arrays"};
-    oit_scene_mesh_desc ms = {.positions = scaled, .vertex_count = nv, .colors = colors,
+    oit_scene_mesh_desc ms = {.positions = scaled, .vertex_count = nv, .colours = colours,
                               .name = "pre-scaled arrays"};
     oit_scene *plain = NULL, *pre = NULL;
     oit_renderer *r = NULL;
@@ -724,7 +724,7 @@ int main(int argc, char **argv)
             memcpy(rgba + (t * 3 + c) * 4, mesh.tris[t].v[c].rgba, 4);
         }
     oit_scene_mesh_desc md = {.positions = pos, .vertex_count = mesh.count * 3,
-                              .colors = (info.attributes & OIT_ATTR_COLOR) ? rgba : NULL,
+                              .colours = (info.attributes & OIT_ATTR_COLOUR) ? rgba : NULL,
                               .name = "grid arrays"};
     oit_scene *core = NULL;
     if (oit_scene_create_mesh(&md, &core, &err) != OIT_OK) {

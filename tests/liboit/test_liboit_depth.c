@@ -411,7 +411,7 @@ static int run_projection(oit_scene *scene, oit_partfile *pf, const oit_scene_in
         memcpy(rgba + (mesh.count * 3 + i) * 4, kOccluder, 4);
     }
     oit_scene_mesh_desc md = {.positions = pos, .vertex_count = mesh.count * 3,
-                              .colors = rgba, .name = "grid arrays"};
+                              .colours = rgba, .name = "grid arrays"};
     oit_scene *core = NULL, *with_occ = NULL;
     oit_status s = oit_scene_create_mesh(&md, &core, &err);
     md.vertex_count = nv;

@@ -5,7 +5,7 @@
 # it links only libc, pthreads, libm, libdl and the GL/EGL loaders (a viewer
 # carries liboit with the system's GL alone): every NEEDED entry is on the
 # allow list below; PNG, GLFW, zlib, meshoptimizer and the glTF plugin's C++
-# stay out (docs/architecture.md).
+# stay out (docs/architecture.md). The headers spell colour one way.
 # usage: test_liboit_exports.sh LIBOIT_SO INCLUDE_OIT_DIR [sanitize]
 # sanitize: the build is instrumented; its sanitizer runtimes are allowed too.
 set -eu
@@ -25,6 +25,10 @@ declared "$inc/liboit.h" "$inc/offscreen.h" > "$tmp/embedding"
 [ "$(grep -c '^[a-z].*\boit_[a-z0-9_]*(' "$inc/liboit.h" "$inc/offscreen.h" | awk -F: '{n += $2} END {print n}')" = 0 ] ||
     die "a function of liboit.h/offscreen.h is not marked OIT_API"
 [ -s "$tmp/embedding" ] || die "no function found in $inc/liboit.h and offscreen.h"
+# One spelling across the public API: colour (the project's, and most of
+# the headers'), never color, in any name (GL's own GL_*_COLOR* aside).
+spelt=$(grep -n -E '[A-Za-z_]*(color|COLOR)[A-Za-z0-9_]*' "$inc"/*.h | grep -v -E 'GL_[A-Z0-9_]*COLOR' || true)
+[ -z "$spelt" ] || die "the public API spells colour as color: $spelt"
 nm -D --defined-only "$lib" | awk '{print $NF}' | sed 's/@.*//' | sort -u > "$tmp/exported"
 [ -s "$tmp/exported" ] || die "$lib exports nothing"
 

@@ -180,7 +180,7 @@ static void check_arrays(oit_offscreen *o, const scene_arrays *a, const float *f
 {
     /* Indexed, per-vertex 8-bit colour: the PLY's own arrays. */
     oit_scene_mesh_desc d = {.positions = a->pos, .vertex_count = NV, .indices = a->idx,
-                             .index_count = NT * 3, .colors = a->vrgba,
+                             .index_count = NT * 3, .colours = a->vrgba,
                              .name = "indexed per-vertex u8"};
     arrays_vs_file(o, &d, file_img);
 
@@ -192,9 +192,9 @@ static void check_arrays(oit_offscreen *o, const scene_arrays *a, const float *f
             tri_u8[t * 4 + c] = a->vrgba[a->idx[t * 3] * 4 + c];
             tri_f[t * 4 + c] = tri_u8[t * 4 + c] / 255.0f;
         }
-    d.colors = tri_f;
-    d.color_type = OIT_COLOR_FLOAT;
-    d.color_rate = OIT_COLOR_PER_TRIANGLE;
+    d.colours = tri_f;
+    d.colour_type = OIT_COLOUR_FLOAT;
+    d.colour_rate = OIT_COLOUR_PER_TRIANGLE;
     d.name = "indexed per-triangle float";
     arrays_vs_file(o, &d, file_img);
 
@@ -207,12 +207,12 @@ static void check_arrays(oit_offscreen *o, const scene_arrays *a, const float *f
             for (int k = 0; k < 4; k++)
                 soup_f[(t * 3 + c) * 4 + k] = a->vrgba[v * 4 + k] / 255.0f;
         }
-    oit_scene_mesh_desc sd = {.positions = soup, .vertex_count = NT * 3, .colors = soup_f,
-                              .color_type = OIT_COLOR_FLOAT, .name = "soup per-vertex float"};
+    oit_scene_mesh_desc sd = {.positions = soup, .vertex_count = NT * 3, .colours = soup_f,
+                              .colour_type = OIT_COLOUR_FLOAT, .name = "soup per-vertex float"};
     arrays_vs_file(o, &sd, file_img);
-    sd.colors = tri_u8;
-    sd.color_type = OIT_COLOR_UINT8;
-    sd.color_rate = OIT_COLOR_PER_TRIANGLE;
+    sd.colours = tri_u8;
+    sd.colour_type = OIT_COLOUR_UINT8;
+    sd.colour_rate = OIT_COLOUR_PER_TRIANGLE;
     sd.name = "soup per-triangle u8";
     arrays_vs_file(o, &sd, file_img);
 
@@ -241,8 +241,8 @@ static oit_scene *red_quad(const float pos[12], const char *name)
     static const uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
     static const uint8_t red[8] = {255, 0, 0, 128, 255, 0, 0, 128};
     oit_scene_mesh_desc d = {.positions = pos, .vertex_count = 4, .indices = idx,
-                             .index_count = 6, .colors = red,
-                             .color_rate = OIT_COLOR_PER_TRIANGLE, .name = name};
+                             .index_count = 6, .colours = red,
+                             .colour_rate = OIT_COLOUR_PER_TRIANGLE, .name = name};
     return from_arrays(&d);
 }
 
@@ -485,7 +485,7 @@ int main(int argc, char **argv)
            (unsigned long long)mi.triangles, mi.in_core, (unsigned long long)pi.triangles,
            (unsigned long long)pi.parts);
     CHECK(mi.in_core == 1 && mi.parts == 0 && mi.triangles == NT &&
-              mi.attributes == (OIT_ATTR_COLOR | OIT_ATTR_ALPHA),
+              mi.attributes == (OIT_ATTR_COLOUR | OIT_ATTR_ALPHA),
           "mesh info: in_core %u, %llu parts, %llu triangles, attributes %u", mi.in_core,
           (unsigned long long)mi.parts, (unsigned long long)mi.triangles, mi.attributes);
     CHECK(pi.in_core == 0 && pi.parts > 0 && pi.triangles >= NT,

@@ -250,7 +250,7 @@ int main(int argc, char **argv)
         }
     oit_scene_mesh_desc md = {.positions = pos,
                               .vertex_count = mesh.count * 3,
-                              .colors = (info.attributes & OIT_ATTR_COLOR) ? rgba : NULL,
+                              .colours = (info.attributes & OIT_ATTR_COLOUR) ? rgba : NULL,
                               .name = "grid arrays"};
     oit_scene *core = NULL;
     CHECK(oit_scene_create_mesh(&md, &core, &err) == OIT_OK, "%s", err.message);

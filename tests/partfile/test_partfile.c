@@ -216,7 +216,7 @@ static oit_status write_scene_ordered(const scene *s, const char *path, uint32_t
 {
     oit_partfile_writer *w;
     oit_partfile_writer_desc wd = {.part_align = align, .source_name = "synthetic \"scene\"",
-                                   .options = "-K 8", .attributes = OIT_ATTR_COLOR | OIT_ATTR_ALPHA,
+                                   .options = "-K 8", .attributes = OIT_ATTR_COLOUR | OIT_ATTR_ALPHA,
                                    .origin = {1e7, -2500000.5, 0.125}, .order = order};
     oit_status st = oit_partfile_writer_create(path, &wd, &w, err);
     for (uint32_t i = 0; !st && i < s->nparts; i++) {
@@ -476,7 +476,7 @@ static void check_summary(const oit_partfile *pf, const scene *s, size_t bytes)
               sum.subgrid_depth == s->ngrids - 1u && sum.slabs == s->nslabs &&
               sum.layer_bound == layers && sum.parts_index16 == idx16 &&
               sum.parts_index32 == s->nparts - idx16 && sum.bytes == bytes &&
-              sum.attributes == (OIT_ATTR_COLOR | OIT_ATTR_ALPHA) && sum.triangles_in == 1000 &&
+              sum.attributes == (OIT_ATTR_COLOUR | OIT_ATTR_ALPHA) && sum.triangles_in == 1000 &&
               sum.triangles_dropped == 3 && sum.triangles_split == 7,
           "summary differs from the scene");
 }

@@ -96,7 +96,7 @@ static void random_part(rng *r, part_in *p, uint32_t first_source)
 static oit_status write_file(const char *path, const part_in *parts, uint32_t n,
                              oit_partfile_order order, oit_error *err)
 {
-    oit_partfile_writer_desc wd = {.attributes = OIT_ATTR_COLOR | OIT_ATTR_ALPHA,
+    oit_partfile_writer_desc wd = {.attributes = OIT_ATTR_COLOUR | OIT_ATTR_ALPHA,
                                    .part_align = 64, .order = order};
     oit_partfile_writer *w = NULL;
     oit_status s = oit_partfile_writer_create(path, &wd, &w, err);

@@ -45,6 +45,13 @@ echo "$NAME: fast scheme: triangles $tin -> $tout, parts $parts, max measured la
     "$(json_num max_measured_layers "$T/prep.json"), clamped $(json_num clamped_parts "$T/prep.json")," \
     "$(json_num total "$T/prep.json") s"
 grep -q '"scheme": "fast"' "$T/prep.json" || fail "stats do not name the fast scheme"
+# No part of the fast scheme is wide (the guaranteed scheme's vertex star):
+# a part measured above K is only deep, in the stats and in the kinds' PLY.
+[ "$(json_num wide_parts "$T/prep.json")" = 0 ] ||
+    fail "the fast scheme's stats call $(json_num wide_parts "$T/prep.json") parts wide"
+"$P" parts "$T/f.oitp" -o "$T/kinds.ply" --colour kind >"$T/kinds.txt" 2>&1 ||
+    fail "oitprep parts --colour kind: $(cat "$T/kinds.txt")"
+grep -q ", 0 wide)" "$T/kinds.txt" || fail "oitprep parts calls fast parts wide: $(cat "$T/kinds.txt")"
 if [ "$ratio_check" = 1 ]; then
     at_most "$tout" "$tin * 1.10" || fail "triangles out $tout > 1.10 x in $tin"
     at_most "$parts * 1000" "$tin" || fail "$parts parts for $tin triangles: parts are not large"

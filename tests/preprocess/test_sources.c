@@ -84,12 +84,12 @@ static int write_tie(const char *path, uint64_t triangles_in)
     oit_partfile_part_desc d = {.positions = pos, .rgba = rgba, .vertex_count = 16,
                                 .indices = idx, .index_count = 72, .sources = src,
                                 .pieces = pieces, .piece_count = 2,
-                                .attributes = OIT_ATTR_COLOR | OIT_ATTR_ALPHA};
+                                .attributes = OIT_ATTR_COLOUR | OIT_ATTR_ALPHA};
     uint32_t counts[1] = {1}, parts[1] = {0};
     oit_partfile_grid_desc g = {.dims = {1, 1, 1}, .origin = {-1, -1, -1},
                                 .cell_size = {2, 2, 2}, .cell_counts = counts,
                                 .cell_parts = parts};
-    oit_partfile_writer_desc wd = {.K = 8, .attributes = OIT_ATTR_COLOR | OIT_ATTR_ALPHA,
+    oit_partfile_writer_desc wd = {.K = 8, .attributes = OIT_ATTR_COLOUR | OIT_ATTR_ALPHA,
                                    .source_name = "tie.ply"};
     oit_partfile_stats st = {triangles_in, triangles_in - 24, 0};
     oit_partfile_writer *w = NULL;

@@ -84,7 +84,7 @@ static void scene(oit_mesh *m)
     m->count = m->capacity = TRIS;
     oit_mesh_info_init(&m->info);
     oit_mesh_info_add(&m->info, m->tris, m->count);
-    m->info.attributes = OIT_ATTR_COLOR | OIT_ATTR_ALPHA;
+    m->info.attributes = OIT_ATTR_COLOUR | OIT_ATTR_ALPHA;
 }
 
 static void make_view(const float lo[3], const float hi[3], int ortho, oit_view *v)
@@ -98,7 +98,7 @@ static void make_view(const float lo[3], const float hi[3], int ortho, oit_view 
     v->width = W;
     v->height = H;
     v->shading.mode = ortho ? OIT_SHADING_TRANSLUCENT : OIT_SHADING_TRANSPARENT;
-    v->shading.attributes = OIT_ATTR_COLOR | OIT_ATTR_ALPHA;
+    v->shading.attributes = OIT_ATTR_COLOUR | OIT_ATTR_ALPHA;
     v->shading.scene_scale = oit_scene_scale(lo, hi);
     oit_shading_resolve_defaults(&v->shading);
 }

@@ -184,9 +184,9 @@ static void check_rule(void)
     v.shading.see_through = 1;
     CHECK(!oit_triangle_opaque(&v.shading, &t[1]), "see-through: nothing opaque");
     v.shading.see_through = 0;
-    v.shading.attributes = OIT_ATTR_COLOR;
+    v.shading.attributes = OIT_ATTR_COLOUR;
     CHECK(!oit_triangle_opaque(&v.shading, &t[1]), "no alpha in the file: default alpha");
-    v.shading.attributes = OIT_ATTR_COLOR | OIT_ATTR_ALPHA;
+    v.shading.attributes = OIT_ATTR_COLOUR | OIT_ATTR_ALPHA;
     v.shading.mode = OIT_SHADING_TRANSLUCENT;
     CHECK(!oit_triangle_opaque(&v.shading, &t[1]), "translucent shading: not opaque");
     CHECK(!oit_shading_opaque(&v.shading), "translucent shading: no pre-pass");

@@ -62,7 +62,7 @@ static oit_view make_view(oit_shading_mode mode)
     v.width = W;
     v.height = H;
     v.shading.mode = mode;
-    v.shading.attributes = OIT_ATTR_COLOR | OIT_ATTR_ALPHA;
+    v.shading.attributes = OIT_ATTR_COLOUR | OIT_ATTR_ALPHA;
     v.shading.background[0] = v.shading.background[1] = v.shading.background[2] = 1.0f;
     v.shading.absorption = 3.0f;
     v.shading.scene_scale = 2.0f;
@@ -436,7 +436,7 @@ static void test_ambiguity(void)
     oit_mesh_append(&m, &dup, 1, NULL);
     uint32_t ties[W * H];
     desc.ties = ties;
-    v.shading.attributes = OIT_ATTR_COLOR;
+    v.shading.attributes = OIT_ATTR_COLOUR;
     CHECK(oit_reference_render(&m, &v, &desc, &img, NULL, NULL, &err) == OIT_OK, "%s", err.message);
     flagged = 0;
     int tie_px = 0;

@@ -101,7 +101,7 @@ static void test_shade_terms(void)
         test_failures++;
     }
 
-    s.attributes = OIT_ATTR_COLOR | OIT_ATTR_ALPHA;
+    s.attributes = OIT_ATTR_COLOUR | OIT_ATTR_ALPHA;
     oit_shade_fragment(&s, &t, 7, bary, eye, 5.0, &f);
     CHECK_NEAR(f.colour[0], 0.2 * light, 1e-6, "interpolated r");
     CHECK_NEAR(f.colour[1], 0.3 * light, 1e-6, "interpolated g");
@@ -117,7 +117,7 @@ static void test_shade_terms(void)
     CHECK_NEAR(f.colour[0], 0.2 * light, 1e-6, "back face lit by |n.v|");
 
     s = shading(OIT_SHADING_TRANSLUCENT);
-    s.attributes = OIT_ATTR_COLOR;
+    s.attributes = OIT_ATTR_COLOUR;
     oit_shade_fragment(&s, &t, 7, bary, eye, 5.0, &f);
     double fresnel = 0.04 + 0.96 * pow(1.0 - 0.8, 5.0);
     printf("translucent: colour %.6f alpha %.6f (want %.6f %.6f)\n", f.colour[0], f.alpha,
@@ -288,7 +288,7 @@ static void test_colour_space(void)
     const unsigned char want[2][3] = {{255, 127, 127}, {255, 187, 187}};
     for (int lin = 0; lin < 2; lin++) {
         oit_shading s = shading(OIT_SHADING_TRANSPARENT);
-        s.attributes = OIT_ATTR_COLOR | OIT_ATTR_ALPHA;
+        s.attributes = OIT_ATTR_COLOUR | OIT_ATTR_ALPHA;
         s.colour_space = lin ? OIT_COLOUR_LINEAR : OIT_COLOUR_SRGB;
         oit_shaded_fragment f;
         float rgb[3];
@@ -309,7 +309,7 @@ static void test_colour_space(void)
     t.v[1].rgba[0] = t.v[1].rgba[1] = t.v[1].rgba[2] = 0;
     t.v[2].rgba[0] = t.v[2].rgba[1] = t.v[2].rgba[2] = 255;
     oit_shading s = shading(OIT_SHADING_TRANSPARENT);
-    s.attributes = OIT_ATTR_COLOR;
+    s.attributes = OIT_ATTR_COLOUR;
     s.colour_space = OIT_COLOUR_LINEAR;
     oit_shaded_fragment f;
     oit_shade_fragment(&s, &t, 0, bary, eye, 5.0, &f);

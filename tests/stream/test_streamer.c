@@ -132,7 +132,7 @@ static int write_shape(oit_partfile_writer *w, const shape *s, uint32_t *index, 
     d.pieces = s->pieces;
     d.piece_count = s->piece_count;
     d.layer_bound = s->layer_bound;
-    d.attributes = OIT_ATTR_COLOR | OIT_ATTR_ALPHA;
+    d.attributes = OIT_ATTR_COLOUR | OIT_ATTR_ALPHA;
     return oit_partfile_writer_add_part(w, &d, index, err) == OIT_OK ? 0 : -1;
 }
 
@@ -165,7 +165,7 @@ static int write_scene(const char *path, int flaw, oit_error *err)
     int bad_slab = flaw == FLAW_SLAB;
     oit_partfile_writer_desc wd = {0};
     wd.K = 8;
-    wd.attributes = OIT_ATTR_COLOR | OIT_ATTR_ALPHA;
+    wd.attributes = OIT_ATTR_COLOUR | OIT_ATTR_ALPHA;
     wd.source_name = "test_streamer grid of convex shapes";
     wd.measured_bounds = flaw == FLAW_MEASURED || flaw == FLAW_MEASURED_SWAPPED;
     oit_partfile_writer *w = NULL;

@@ -3,6 +3,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -91,4 +92,25 @@ oit_status oit_output_dir_check(const char *dir, const char *what, const char *c
         return oit_error_set(err, OIT_ERR_IO, "%s: cannot write into folder: %s", dir,
                              strerror(errno));
     return OIT_OK;
+}
+
+oit_status oit_output_reserve_numbered(const char *prefix, const char *ext, int *next,
+                                       char *out, size_t cap, oit_error *err)
+{
+    for (int i = *next > 0 ? *next : 0; i < 1000000; i++) {
+        int len = snprintf(out, cap, "%s_%03d.%s", prefix, i, ext);
+        if (len < 0 || (size_t)len >= cap)
+            return oit_error_set(err, OIT_ERR_ARGUMENT, "%s_%03d.%s: name too long", prefix, i,
+                                 ext);
+        int fd = open(out, O_WRONLY | O_CREAT | O_EXCL, 0666);
+        if (fd >= 0) {
+            close(fd);
+            *next = i + 1;
+            return OIT_OK;
+        }
+        if (errno != EEXIST)
+            return oit_error_set(err, OIT_ERR_IO, "%s: cannot create: %s", out, strerror(errno));
+    }
+    return oit_error_set(err, OIT_ERR_IO, "%s_NNN.%s: every number up to 999999 is taken",
+                         prefix, ext);
 }

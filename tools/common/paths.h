@@ -33,6 +33,13 @@ oit_status oit_output_check(const char *out, const char *what, const char *const
  * tool whose run then fails can remove it again (rmdir: only when empty). */
 oit_status oit_output_dir_check(const char *dir, const char *what, const char *const *inputs,
                                 size_t n, int *created, oit_error *err);
+/* The first free numbered name PREFIX_NNN.EXT (NNN from *next up, three
+ * digits or more) in the working folder, created empty with O_EXCL so that
+ * no other run (or earlier one) can have it or lose it to this one: out
+ * gets the name, *next the number after it. OIT_ERR_IO when the folder
+ * refuses or every number up to a million is taken. */
+oit_status oit_output_reserve_numbered(const char *prefix, const char *ext, int *next,
+                                       char *out, size_t cap, oit_error *err);
 /* 1 when a and b name the same existing file (device and inode). */
 int oit_same_file(const char *a, const char *b);
 

@@ -39,7 +39,7 @@ int main(int argc, char **argv)
                "attributes%s%s\nbounds %g %g %g  %g %g %g\n",
                argv[i], (unsigned long long)m.triangles, (unsigned long long)m.faces_in,
                (unsigned long long)m.vertices_in, (unsigned long long)m.nonfinite_dropped,
-               m.attributes & OIT_ATTR_COLOR ? " color" : "", m.attributes & OIT_ATTR_ALPHA ? " alpha" : "",
+               m.attributes & OIT_ATTR_COLOUR ? " color" : "", m.attributes & OIT_ATTR_ALPHA ? " alpha" : "",
                m.bounds_min[0], m.bounds_min[1], m.bounds_min[2], m.bounds_max[0], m.bounds_max[1],
                m.bounds_max[2]);
     }

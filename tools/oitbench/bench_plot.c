@@ -174,10 +174,12 @@ static oit_status speed_collect(const oit_bench_table *t, double floor_y, speed_
                                 notes *ns, oit_error *err)
 {
     size_t cap = t->count ? t->count : 1;
-    p->row = malloc(cap * sizeof *p->row);
-    p->ms = malloc(cap * sizeof *p->ms);
-    p->err = malloc(cap * sizeof *p->err);
-    p->front = malloc(cap);
+    /* Zeroed: with no row that ran, the Pareto front is still handed the
+     * arrays, and GCC (rightly) will not take "n is 0" as "never read". */
+    p->row = calloc(cap, sizeof *p->row);
+    p->ms = calloc(cap, sizeof *p->ms);
+    p->err = calloc(cap, sizeof *p->err);
+    p->front = calloc(cap, 1);
     p->n = 0;
     if (!p->row || !p->ms || !p->err || !p->front)
         return oit_error_set(err, OIT_ERR_NOMEM, "speed chart: cannot allocate %zu points", cap);
@@ -297,8 +299,10 @@ static void note_geometry(const oit_bench_table *t, notes *ns)
             continue;
         char line[sizeof ns->text[0]];
         size_t used = (size_t)snprintf(line, sizeof line, "drew the %s, %llu triangles:",
-                                       r->geometry == OIT_BENCH_GEOMETRY_PART_FILE
-                                           ? "part file (clipped)" : "source mesh",
+                                       r->geometry != OIT_BENCH_GEOMETRY_PART_FILE
+                                           ? "source mesh"
+                                       : r->drawn_triangles > r->triangles
+                                           ? "part file (clipped)" : "part file",
                                        (unsigned long long)r->drawn_triangles);
         for (size_t j = i; j < t->count && used < sizeof line; j++)
             if (t->rows[j].summary && t->rows[j].geometry == r->geometry &&

@@ -164,7 +164,8 @@ static void md_method(FILE *f, const oit_bench_method *m, const oit_bench_result
     int views = r->views;
     char b[8][40];
     fprintf(f, "## %s\n\nDrew the %s: %llu triangles.\n\n", m->name,
-            oit_bench_geometry_label(m->geometry), (unsigned long long)m->triangles);
+            oit_bench_geometry_label(m->geometry, m->triangles, m->source_triangles),
+            (unsigned long long)m->triangles);
     if (!m->runnable && m->ms_count == 0) {
         fprintf(f, "Not runnable: %s\n\n", m->reason);
         return;
@@ -231,7 +232,8 @@ void oit_bench_print_summary(FILE *f, const oit_bench_result *r, int markdown)
         int ran = m->ms_count > 0;
         fprintf(f, markdown ? "| %s | %s | %llu | %s | %s | %s | %s | %s |\n"
                             : "%-14s  %-19s  %10llu  %9s  %9s  %10s  %9s  %8s\n",
-                m->name, oit_bench_geometry_label(m->geometry), (unsigned long long)m->triangles,
+                m->name, oit_bench_geometry_label(m->geometry, m->triangles, m->source_triangles),
+                (unsigned long long)m->triangles,
                 oit_bench_number(b[0], 40, m->ms_median, "%.2f", "not run"),
                 oit_bench_number(b[1], 40, m->ms_p95, "%.2f", "-"),
                 oit_bench_number(b[2], 40, ran ? m->rmse_mean : NAN, "%.3g", "-"),

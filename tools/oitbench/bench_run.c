@@ -10,9 +10,11 @@
 #include "render/gpu_timer.h"
 #include "stream/stream_method.h"
 
-const char *oit_bench_geometry_label(oit_bench_geometry g)
+const char *oit_bench_geometry_label(oit_bench_geometry g, uint64_t drawn, uint64_t source)
 {
-    return g == OIT_BENCH_GEOMETRY_PART_FILE ? "part file (clipped)" : "source mesh";
+    if (g != OIT_BENCH_GEOMETRY_PART_FILE)
+        return "source mesh";
+    return drawn > source ? "part file (clipped)" : "part file";
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -254,6 +256,7 @@ static oit_status alloc_result(const oit_bench_desc *d, oit_bench_result *r, oit
         int parts = m->method && (m->method->flags & OIT_METHOD_PARTFILE);
         m->geometry = parts ? OIT_BENCH_GEOMETRY_PART_FILE : d->mesh_geometry;
         m->triangles = parts ? d->partfile_triangles : (uint64_t)d->mesh->count;
+        m->source_triangles = d->source_triangles;
         size_t frames = (size_t)d->views * (size_t)d->frames + 1;
         m->ms = malloc(frames * sizeof *m->ms);
         m->gpu_ms = malloc(frames * sizeof *m->gpu_ms);

@@ -21,9 +21,10 @@ typedef enum oit_bench_geometry {
     OIT_BENCH_GEOMETRY_PART_FILE
 } oit_bench_geometry;
 
-/* "source mesh" or "part file (clipped)", for reports; the CSV spells them
- * source_mesh and part_file. */
-const char *oit_bench_geometry_label(oit_bench_geometry g);
+/* "source mesh", "part file" or, when the part file holds more triangles
+ * than the source (its planes cut some), "part file (clipped)", for
+ * reports; the CSV spells them source_mesh and part_file. */
+const char *oit_bench_geometry_label(oit_bench_geometry g, uint64_t drawn, uint64_t source);
 
 /* One method on one view. */
 typedef struct oit_bench_cell {
@@ -52,6 +53,7 @@ typedef struct oit_bench_method {
     float epsilon;           /* as oit_bench_entry */
     oit_bench_geometry geometry; /* what it draws */
     uint64_t triangles;      /* how many triangles that is */
+    uint64_t source_triangles; /* the source model's (oit_bench_desc) */
     oit_method_state *state;
     int runnable;            /* opened and rendered every view */
     char reason[512];        /* why not, when !runnable */
@@ -76,6 +78,7 @@ typedef struct oit_bench_desc {
     const oit_mesh *reference_mesh;
     oit_partfile *partfile;      /* the stream's; NULL when there is none */
     uint64_t partfile_triangles; /* its stored triangles */
+    uint64_t source_triangles;   /* the source model's, for the labels */
     const oit_bench_entry *entries;
     int entry_count;
     int views, width, height, frames, warmup, max_layers;

@@ -17,8 +17,10 @@
 #include <sys/stat.h>
 
 #include "tools/common/paths.h"
+#include "tools/common/progress_mode.h"
 #include "tools/common/signals.h"
 #include "preprocess/convert.h"
+#include "preprocess/progress.h"
 #include "tools/oitbench/bench_args.h"
 #include "tools/oitbench/bench_bus.h"
 #include "tools/oitbench/bench_csv.h"
@@ -38,7 +40,9 @@ static oit_status convert_options(const oit_bench_args *a, oit_convert_options *
                                   oit_error *err)
 {
     oit_convert_options_init(o);
-    o->progress = isatty(2);
+    oit_tool_progress tp = oit_tool_progress_get("oitbench");
+    o->progress = tp.bar ? OIT_PROGRESS_BAR : OIT_PROGRESS_LINES;
+    o->progress_period_s = tp.period_s;
     if (a->scheme)
         o->scheme = strcmp(a->scheme, "fast") ? OIT_SCHEME_GUARANTEED : OIT_SCHEME_FAST;
     o->part_triangles = a->part_triangles;
@@ -148,7 +152,8 @@ static int run(const oit_bench_args *a, const char *command_line)
     const oit_mesh *mesh = oit_bench_models_in_core(&models);
     oit_bench_desc d = {.mesh = mesh, .mesh_geometry = oit_bench_models_in_core_geometry(&models),
                         .reference_mesh = mesh, .partfile = models.pf,
-                        .partfile_triangles = models.part_triangles, .entries = a->entries,
+                        .partfile_triangles = models.part_triangles,
+                        .source_triangles = models.source_triangles, .entries = a->entries,
                         .entry_count = a->entry_count, .views = a->orbit, .width = a->width,
                         .height = a->height, .frames = a->frames, .warmup = a->warmup,
                         .max_layers = a->max_layers, .capture = a->capture,

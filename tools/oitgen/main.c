@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "tools/common/paths.h"
+#include "tools/common/progress_mode.h"
 #include "base/args.h"
 #include "base/clock.h"
 #include "tools/common/signals.h"
@@ -72,7 +73,8 @@ static const char USAGE[] =
     "  -h, --help          this text\n"
     "\n"
     "Prints one line to stdout at the end: triangles, vertices, bytes, seconds.\n"
-    "Progress goes to stderr when it is a terminal.\n"
+    "Progress goes to stderr: a line redrawn in place on a terminal, else a line\n"
+    "every 5 s (OIT_PROGRESS_PERIOD=SECONDS sets the period).\n"
     "exit codes: 0 ok, 1 runtime failure, 2 usage error, 3 bad input\n";
 
 enum { OPT_COUNT = 1, OPT_COVERAGE = 2, OPT_TRIANGLES = 4, OPT_INPUT = 8, OPT_CASE = 16, OPT_CLASHES = 32 };
@@ -202,23 +204,49 @@ static int parse_cli(cli *c, int argc, char **argv)
 }
 
 
+/* On a terminal a line redrawn in place every 0.2 s; elsewhere (a pipe, a
+ * log) a line every period_s (OIT_PROGRESS_PERIOD, default 5 s), and a last
+ * one when any was printed (tools/common/progress_mode.h). */
 typedef struct progress {
     uint64_t total;
     double start, last;
+    int bar;
+    double period_s;
+    int lines;
+    uint64_t triangles, printed; /* so far; in the last line */
 } progress;
+
+static void progress_print(progress *p, double t)
+{
+    if (p->total)
+        fprintf(stderr, "%soitgen: %5.1f%%  %llu triangles  %.1f s%s", p->bar ? "\r" : "",
+                100.0 * (double)p->triangles / (double)p->total,
+                (unsigned long long)p->triangles, t - p->start, p->bar ? "" : "\n");
+    else
+        fprintf(stderr, "%soitgen: %llu triangles  %.1f s%s", p->bar ? "\r" : "",
+                (unsigned long long)p->triangles, t - p->start, p->bar ? "" : "\n");
+    fflush(stderr);
+    p->printed = p->triangles;
+}
 
 static void show_progress(void *user, uint64_t triangles)
 {
     progress *p = user;
     double t = oit_time_s();
-    if (t - p->last < 0.2)
+    p->triangles = triangles;
+    if (t - p->last < (p->bar ? 0.2 : p->period_s))
         return;
     p->last = t;
-    if (p->total)
-        fprintf(stderr, "\roitgen: %5.1f%%  %llu triangles  %.1f s", 100.0 * (double)triangles / (double)p->total,
-                (unsigned long long)triangles, t - p->start);
-    else
-        fprintf(stderr, "\roitgen: %llu triangles  %.1f s", (unsigned long long)triangles, t - p->start);
+    p->lines++;
+    progress_print(p, t);
+}
+
+static void progress_end(progress *p)
+{
+    if (p->bar)
+        fprintf(stderr, "\n");
+    else if (p->lines && p->printed != p->triangles)
+        progress_print(p, oit_time_s());
 }
 
 static oit_status generate(const cli *c, oit_ply_writer_stats *st, oit_error *err)
@@ -234,9 +262,13 @@ static oit_status generate(const cli *c, oit_ply_writer_stats *st, oit_error *er
     if (s)
         return s;
     oit_emit e;
-    progress p = {c->scene->estimate ? c->scene->estimate(&c->args) : 0, oit_time_s(), 0};
+    oit_tool_progress tp = oit_tool_progress_get("oitgen");
+    double now = oit_time_s();
+    progress p = {.total = c->scene->estimate ? c->scene->estimate(&c->args) : 0,
+                  .start = now, .last = tp.bar ? 0.0 : now, .bar = tp.bar,
+                  .period_s = tp.period_s > 0.0 ? tp.period_s : 5.0};
     s = oit_emit_init(&e, w, err);
-    if (!s && isatty(STDERR_FILENO)) {
+    if (!s) {
         e.progress = show_progress;
         e.progress_user = &p;
     }
@@ -246,7 +278,7 @@ static oit_status generate(const cli *c, oit_ply_writer_stats *st, oit_error *er
         s = oit_emit_flush(&e);
     oit_emit_free(&e);
     if (e.progress)
-        fprintf(stderr, "\n");
+        progress_end(&p);
     if (s) {
         oit_ply_writer_abort(w);
         return s;

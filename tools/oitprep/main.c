@@ -19,8 +19,10 @@
 #include "base/args.h"
 #include "base/json.h"
 #include "tools/common/paths.h"
+#include "tools/common/progress_mode.h"
 #include "tools/common/signals.h"
 #include "preprocess/convert.h"
+#include "preprocess/progress.h"
 #include "preprocess/decode_rate.h"
 #include "preprocess/stats_json.h"
 #include "preprocess/export_parts.h"
@@ -63,14 +65,16 @@ static void usage(FILE *f)
           "  parts FILE    write FILE's parts as a PLY to look at (render it with oitstream):\n"
           "                --colour part (default) gives each part a hue of its own; kind\n"
           "                paints parts of axis splits grey, of separating slabs blue, of\n"
-          "                cutting planes orange, wide parts red. --alpha A (1..255) for\n"
-          "                every triangle, else the file's alpha\n"
+          "                cutting planes orange, wide parts (guaranteed scheme) red.\n"
+          "                --alpha A (1..255) for every triangle, else the file's alpha\n"
           "  INPUT -o OUT  convert a mesh (PLY, OBJ, OFF, STL, glTF/GLB) into a part file,\n"
           "                out of core: the model is binned into a grid of top cells (--grid\n"
-          "                N along the longest axis, 1..1024, default: ~64K triangles a\n"
-          "                cell; cells are rounded to a power-of-two size) and each cell\n"
-          "                is subdivided into parts by a kd-tree, so that the parts are\n"
-          "                exactly ordered per view. Two schemes (--scheme):\n"
+          "                N along the longest axis, 1..1024; default: cells of at least\n"
+          "                256K triangles or 8 parts' worth, doubled where that makes\n"
+          "                fewer cells, for the fast scheme, ~64K triangles a cell for\n"
+          "                the guaranteed one; cells are rounded to a power-of-two size)\n"
+          "                and each cell is subdivided into parts by a kd-tree, so that\n"
+          "                the parts are exactly ordered per view. Two schemes (--scheme):\n"
           "                fast (default), built for streaming speed: a kd node stops\n"
           "                splitting when it holds at most --part-triangles T triangles\n"
           "                (1..16M, default 131072); triangles are clipped only where a\n"
@@ -113,7 +117,9 @@ static void usage(FILE *f)
           "                2G; beyond it bins spill to OUT.spill), --threads N (1..1024,\n"
           "                default: all cores), --stats FILE.json figures. Clipping at kd\n"
           "                planes adds triangles (split_added in --stats). The output is\n"
-          "                byte-identical for any --threads and --memory.\n"
+          "                byte-identical for any --threads and --memory. Progress\n"
+          "                goes to stderr: a bar per stage on a terminal, else a line\n"
+          "                every 5 s (OIT_PROGRESS_PERIOD=SECONDS sets the period).\n"
           "  -h, --help    this text\n"
           "\n"
           "exit: 0 ok, 1 runtime or I/O failure, 2 usage error, 3 bad input file\n",
@@ -148,7 +154,7 @@ static oit_status print_json(const oit_partfile *pf, const oit_partfile_summary 
     OIT_JSON_UINTS(&w, counts);
     oit_json_bool(&w, "measured_bounds", s->measured_bounds);
     oit_json_begin_array(&w, "attributes", OIT_JSON_INLINE);
-    if (s->attributes & OIT_ATTR_COLOR)
+    if (s->attributes & OIT_ATTR_COLOUR)
         oit_json_string(&w, NULL, "color");
     if (s->attributes & OIT_ATTR_ALPHA)
         oit_json_string(&w, NULL, "alpha");
@@ -172,8 +178,8 @@ static oit_status print_json(const oit_partfile *pf, const oit_partfile_summary 
 static void print_human(const oit_partfile *pf, const oit_partfile_summary *s)
 {
     const char *attr = s->attributes & OIT_ATTR_OPAQUE ? "colour, alpha, opaque triangles"
-                       : s->attributes == (OIT_ATTR_COLOR | OIT_ATTR_ALPHA) ? "colour, alpha"
-                       : s->attributes & OIT_ATTR_COLOR                  ? "colour"
+                       : s->attributes == (OIT_ATTR_COLOUR | OIT_ATTR_ALPHA) ? "colour, alpha"
+                       : s->attributes & OIT_ATTR_COLOUR                  ? "colour"
                        : s->attributes & OIT_ATTR_ALPHA                  ? "alpha"
                                                                          : "positions only";
     printf("%s: part file version %u, K %u, source \"%s\"\n", oit_partfile_name(pf), s->version,
@@ -325,7 +331,9 @@ static int cmd_convert(int argc, char **argv)
 {
     oit_convert_options o;
     oit_convert_options_init(&o);
-    o.progress = isatty(2);
+    oit_tool_progress tp = oit_tool_progress_get("oitprep");
+    o.progress = tp.bar ? OIT_PROGRESS_BAR : OIT_PROGRESS_LINES;
+    o.progress_period_s = tp.period_s;
     const char *stats = NULL;
     /* Options only Wang & Xie's scheme has: without --scheme they select it,
      * so its comparisons keep their command lines. */

@@ -19,6 +19,7 @@
 #include "render/gl_util.h"
 #include "render/gpu_timer.h"
 #include "render/image.h"
+#include "tools/common/paths.h"
 #include "tools/oitstream/stats_json.h"
 #include "tools/oitstream/viewer_clip.h"
 #include "plot/text_overlay.h"
@@ -438,16 +439,24 @@ static void cycle_method(viewer *v, int dir)
     }
 }
 
+/* P: the next oitstream_NNN.png that does not exist yet, so that no run
+ * of the viewer replaces an earlier one's screenshot. */
 static void save_screenshot(viewer *v)
 {
     char path[64];
     oit_error err = {0};
     v->save_pending = 0;
-    snprintf(path, sizeof path, "oitstream_%03d.png", v->screenshots++);
-    if (oit_image_write_png(&v->shot, path, &err) != OIT_OK)
+    if (oit_output_reserve_numbered("oitstream", "png", &v->screenshots, path, sizeof path,
+                                    &err) != OIT_OK) {
         say(v, "screenshot: %s", err.message);
-    else
+        return;
+    }
+    if (oit_image_write_png(&v->shot, path, &err) != OIT_OK) {
+        remove(path);
+        say(v, "screenshot: %s", err.message);
+    } else {
         printf("viewer: screenshot %s\n", path);
+    }
     fflush(stdout);
 }
 
@@ -817,7 +826,7 @@ static void help_panel(const viewer *v, panel *p)
     panel_add(p, kWhite, "R               reset the camera");
     panel_add(p, kWhite, "O               open a file: type its path, Enter");
     panel_add(p, kWhite, "                (or drop a file on the window)");
-    panel_add(p, kWhite, "P               save oitstream_NNN.png");
+    panel_add(p, kWhite, "P               save the next free oitstream_NNN.png");
     panel_add(p, kWhite, "Q, Esc          quit");
     panel_add(p, kGrey, "moving shows a preview; still for %d ms, the exact image",
               v->desc->still_ms > 0 ? v->desc->still_ms : DEFAULT_STILL_MS);

@@ -33,6 +33,9 @@ SRC_TRIS=24                       # 12 quads
 PART_TRIS=$("$P" info "$T/Q.oitp" --json | sed -n 's/.*"triangles": \([0-9]*\),.*/\1/p')
 echo "Q.ply: $SRC_TRIS triangles; Q.oitp: $PART_TRIS"
 [ -n "$PART_TRIS" ] || die "no triangle count from oitprep info"
+# The default (fast) scheme keeps 12 quads in one part, nothing clipped:
+# the reports say "part file", and "(clipped)" only where planes cut.
+[ "$PART_TRIS" = "$SRC_TRIS" ] || die "Q.oitp: $PART_TRIS triangles, want $SRC_TRIS (one part, unclipped)"
 
 # field CSV ROW METHOD VIEW COLUMN: one cell of a results.csv, by header name.
 field() {
@@ -89,14 +92,15 @@ for m in wboit unsorted; do
 done
 grep -q "converted .*Q.ply: $SRC_TRIS triangles in, $PART_TRIS out" "$T/err.txt" ||
     fail "stderr does not report the conversion's triangles in and out"
-grep -q "^stream  *part file (clipped)  *$PART_TRIS " "$T/table.txt" || fail "stdout table lacks the stream's row"
+grep -q "^stream  *part file  *$PART_TRIS " "$T/table.txt" || fail "stdout table lacks the stream's row"
+grep -q "clipped" "$T/table.txt" "$T/D/report.md" && fail "nothing was clipped, yet the reports say clipped"
 grep -q "^dfb  *source mesh  *$SRC_TRIS " "$T/table.txt" || fail "stdout table lacks dfb's row"
 grep -q '"conversion": {"scheme": "[a-z]*", .*"triangles_in": '$SRC_TRIS', "triangles_out": '$PART_TRIS',' \
     "$T/D/results.json" || fail "results.json lacks the conversion"
 grep -q '"name": "stream", "method": "stream", "epsilon": null, "geometry": "part_file", "triangles": '$PART_TRIS \
     "$T/D/results.json" || fail "results.json lacks the stream's geometry"
 grep -q 'converted in this run (temporary, removed)' "$T/D/report.md" || fail "report.md does not say the part file was temporary"
-grep -q '| stream | part file (clipped) | '$PART_TRIS' |' "$T/D/report.md" || fail "report.md's summary lacks the stream's geometry"
+grep -q '| stream | part file | '$PART_TRIS' |' "$T/D/report.md" || fail "report.md's summary lacks the stream's geometry"
 [ -z "$(ls -A "$T/tmp")" ] || fail "temporary files left in TMPDIR: $(ls "$T/tmp")"
 ls "$T" | grep -v '^\(Q\|Q2\|Q9\)\.\(ply\|oitp\)$' | grep -q '\.oitp' && fail "a part file was written beside the input"
 grep -q '"timed_frames": 4' "$T/D/results.json" || fail "results.json lacks 4 timed frames (2 views x 2)"
@@ -146,7 +150,7 @@ is "$T/A/results.csv" stream part_file "$PART_TRIS"
 [ "$(field "$T/A/results.csv" summary dfb '' triangles)" = $SRC_TRIS ] || fail "alone: triangles column is not the META's $SRC_TRIS"
 grep -q "source mesh 'Q.ply' recorded in .*alone/Q.oitp is not beside it" "$T/erra.txt" || fail "alone: stderr does not say the source is missing"
 grep -q 'source mesh: not at hand' "$T/A/report.md" || fail "alone: report.md does not say the source is missing"
-grep -q '| dfb | part file (clipped) | '$PART_TRIS' |' "$T/A/report.md" || fail "alone: report.md does not say dfb drew the part file"
+grep -q '| dfb | part file | '$PART_TRIS' |' "$T/A/report.md" || fail "alone: report.md does not say dfb drew the part file"
 grep -q '"reference_geometry": "part_file"' "$T/A/results.json" || fail "alone: results.json does not say what the reference drew"
 "$B" "$T/alone/Q.oitp" --mesh "$T/Q.ply" --methods dfb,stream $SMALL --out "$T/AM" >/dev/null 2>&1 ||
     fail "--mesh exited $?"
@@ -169,6 +173,19 @@ grep -q 'source beside .*cannot be read' "$T/errg.txt" || fail "an unreadable me
 # ---- the conversion's options ----
 "$B" "$T/Q.ply" --methods stream --scheme fast --part-triangles 8 --save-parts "$T/kept.oitp" \
     --orbit 1 --size 16x16 --frames 1 --out "$T/S" >/dev/null 2>"$T/errs.txt" || fail "--scheme fast --save-parts exited $?"
+# A tilted triangle spanning the box with four small ones around it, in
+# parts of at most 2 triangles: every split plane cuts the big one, and the
+# reports say clipped (only) then. (Crossing triangles would not do: the
+# fast scheme splits around their crossing line to its full depth.)
+printf 'OFF\n15 5 0\n0 0 0\n10 5 0\n0 10 10\n1 9 1\n1.5 9 1\n1 9.5 1\n9 9 9\n9.5 9 9\n9 9.5 9\n9 1 1\n9.5 1 1\n9 1.5 1\n5 5 9\n5.5 5 9\n5 5.5 9\n3 0 1 2\n3 3 4 5\n3 6 7 8\n3 9 10 11\n3 12 13 14\n' >"$T/x.off"
+"$B" "$T/x.off" --methods dfb,stream --scheme fast --part-triangles 2 --save-parts "$T/x.oitp" \
+    --orbit 1 --size 16x16 --frames 1 --out "$T/X" >"$T/tablex.txt" 2>"$T/errx.txt" ||
+    fail "the crossing squares exited $?: $(cat "$T/errx.txt")"
+X_TRIS=$("$P" info "$T/x.oitp" --json | sed -n 's/.*"triangles": \([0-9]*\),.*/\1/p')
+[ "${X_TRIS:-0}" -gt 5 ] || fail "parts of 2 triangles clipped nothing of the spanning one ($X_TRIS)"
+grep -q "^stream  *part file (clipped)  *$X_TRIS " "$T/tablex.txt" &&
+    grep -q '| stream | part file (clipped) | '"$X_TRIS"' |' "$T/X/report.md" ||
+    fail "a clipped part file is not called clipped: $(cat "$T/tablex.txt")"
 grep -q '"scheme": "fast", "part_triangles": 8,' "$T/S/results.json" || fail "results.json lacks scheme fast, part_triangles 8"
 "$P" info "$T/kept.oitp" >/dev/null 2>&1 || fail "--save-parts did not keep a valid part file"
 KEPT_PARTS=$("$P" info "$T/kept.oitp" --json | sed -n 's/.*"parts": \([0-9]*\),.*/\1/p')

@@ -132,7 +132,7 @@ static void check_with_reader(const char *path, const test_ply *p)
     CHECK(s == OIT_OK, "oit_read_ply %s: %s", path, err.message);
     CHECK(n == p->faces && info.triangles == p->faces, "oit_read_ply: %llu triangles, file has %zu",
           (unsigned long long)n, p->faces);
-    CHECK((info.attributes & (OIT_ATTR_COLOR | OIT_ATTR_ALPHA)) == (OIT_ATTR_COLOR | OIT_ATTR_ALPHA),
+    CHECK((info.attributes & (OIT_ATTR_COLOUR | OIT_ATTR_ALPHA)) == (OIT_ATTR_COLOUR | OIT_ATTR_ALPHA),
           "oit_read_ply: attributes %u lack colour or alpha", info.attributes);
 }
 

@@ -10,6 +10,7 @@
 #   - one key map for meshes and part files: key 1 is dfb and key 5 stream for
 #     both; on a mesh, 5 puts a message on the image saying why it cannot run
 #   - --up z equals `--up z --out` and changes the default view
+#   - P writes the first free oitstream_NNN.png and never replaces a file
 #   - the status line of named fields wraps to the window's width
 # Equal means within half an 8-bit step (the window quantises to 8 bits).
 set -u
@@ -118,6 +119,23 @@ grep -q "^viewer: method 4: stencil\|^viewer: 4 stencil cannot run here: ." keys
     fail "key 4 neither switched to stencil nor said why it cannot"
 expect_equal "before 5 vs headless" oitstream_000.png ref.png
 expect_differ "the message of 5 on the image" oitstream_001.png oitstream_000.png 100
+
+# 5b. P never overwrites: a later run numbers on from the first free name
+#     (000 and 001 are section 5's), skips a file someone else made, and
+#     says which it wrote.
+printf 'not ours\n' > oitstream_003.png
+before=$(cksum oitstream_000.png oitstream_001.png)
+"$S" quads.ply --window --no-overlay --size $SIZE --window-script "PWPR" >shots.txt 2>&1 ||
+    { cat shots.txt; fail "the screenshot run exited with $?"; }
+cat shots.txt
+grep -q "^viewer: screenshot oitstream_002.png$" shots.txt &&
+    grep -q "^viewer: screenshot oitstream_004.png$" shots.txt ||
+    fail "P did not write oitstream_002.png then oitstream_004.png (the first free names)"
+[ "$(cksum oitstream_000.png oitstream_001.png)" = "$before" ] ||
+    fail "P replaced an earlier run's screenshot"
+[ "$(cat oitstream_003.png)" = "not ours" ] || fail "P replaced oitstream_003.png, not its own"
+expect_equal "a later run's first screenshot vs headless" oitstream_002.png ref.png
+expect_differ "its second, after W" oitstream_004.png ref.png 100
 
 # 6. --up z: the window's default view is the headless --up z view, and not
 #    the y-up one.
