@@ -602,7 +602,7 @@ static int run_render(const oit_stream_args *args)
                              .schedule = a->schedule_wave ? OIT_SCHEDULE_WAVE : OIT_SCHEDULE_TREE,
                              .upload_budget = a->upload_budget, .slot_budget = a->slot_budget,
                              .cache_budget = a->cache_budget,
-                             .read_inline = a->upload_threads == 0};
+                             .reader_threads = a->upload_threads};
     oit_method_options opt = {.max_layers = K, .epsilon = a->epsilon,
                               .ambiguity_px = a->ambiguity_px, .stream = &so};
     rc.view.width = a->width;

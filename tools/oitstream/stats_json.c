@@ -60,6 +60,7 @@ static void put_frame(oit_json *w, const oit_stats_frame *fr)
         oit_json_fixed(w, "pack_ms", t->pack_ms, 3);
         oit_json_int(w, "auto_first_k", t->first_k);
         oit_json_int(w, "front_first", t->front_first);
+        oit_json_int(w, "reader_threads", t->reader_threads);
     }
     oit_json_end(w);
 }
