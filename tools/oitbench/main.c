@@ -15,6 +15,7 @@
 #include <signal.h>
 #include <sys/stat.h>
 
+#include "tools/common/heap.h"
 #include "tools/common/paths.h"
 #include "tools/common/signals.h"
 #include "preprocess/convert.h"
@@ -239,6 +240,7 @@ static int plot(const oit_bench_args *a)
 
 int main(int argc, char **argv)
 {
+    oit_tool_heap_setup();
     oit_bench_args a;
     oit_error err = {0};
     char methods[512], line[4096];

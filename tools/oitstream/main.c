@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "base/json.h"
+#include "tools/common/heap.h"
 #include "tools/common/paths.h"
 #include "render/image.h"
 #include "tools/oitstream/cli_args.h"
@@ -639,6 +640,7 @@ static int run_render(const oit_stream_args *args)
 
 int main(int argc, char **argv)
 {
+    oit_tool_heap_setup();
     oit_stream_args a;
     oit_error err = {0};
     if (oit_stream_args_parse(argc, argv, &a, &err) != OIT_OK)
