@@ -511,7 +511,7 @@ static oit_status bind_scene(oit_renderer *r, oit_scene *scene, oit_error *err)
     sd.epsilon = r->desc.epsilon;
     _Static_assert(OIT_RENDER_CACHE_OFF == OIT_STREAM_CACHE_OFF, "one spelling of 'no cache'");
     sd.cache_budget = r->desc.cache_budget;
-    sd.read_inline = r->desc.read_on_draw_thread != 0;
+    sd.reader_threads = r->desc.read_on_draw_thread ? OIT_STREAM_READ_INLINE : 0;
     sd.gpu_budget = r->desc.gpu_budget;
     oit_status st = oit_streamer_create(scene->pf, &sd, &r->streamer, err);
     if (st == OIT_OK)

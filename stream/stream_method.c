@@ -30,7 +30,7 @@ static oit_status stream_create(const oit_mesh *mesh, const oit_method_options *
                             .upload_budget = so->upload_budget,
                             .slot_budget = so->slot_budget,
                             .cache_budget = so->cache_budget,
-                            .read_inline = so->read_inline,
+                            .reader_threads = so->reader_threads,
                             .gpu_budget = so->gpu_budget,
                             .store_limit = opt->store_limit,
                             .epsilon = opt->epsilon > 0.0f ? opt->epsilon : 0.0f};

@@ -17,7 +17,7 @@ struct oit_stream_options {
     unsigned long long slot_budget;   /* capture slots, bytes; 0: default */
     /* residency cache, bytes; 0: OIT_STREAM_CACHE_DEFAULT; OIT_STREAM_CACHE_OFF: none */
     unsigned long long cache_budget;
-    int read_inline; /* parts are read on the render thread, no reader thread */
+    int reader_threads; /* oit_streamer_desc.reader_threads */
     unsigned long long gpu_budget; /* ring + cache + capture, bytes; 0: default */
 };
 

@@ -3,6 +3,7 @@
 
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "base/clock.h"
 #include "render/gpu_mesh.h"
@@ -49,7 +50,7 @@ struct oit_streamer {
     uint64_t cache_dropped; /* a smaller cache let go this frame, held until GL frees it */
     uint64_t ring_limit;    /* what the ring may grow to */
     uint64_t cache_all;     /* the cache's limit before the frame's pixels (fit_frame_budget) */
-    int threaded;           /* the reader on a thread of its own */
+    int threads;            /* the reader's threads (0: none) */
     /* Resident ring: every part has a home in the ring and is read there
      * once (NULL: the ring is reused, the cache keeps parts). */
     uint64_t *home;
@@ -308,7 +309,7 @@ static oit_status make_ring(oit_streamer *s, uint64_t bytes, oit_error *err)
 {
     oit_status st = oit_upload_create(bytes, &s->upload, err);
     if (st == OIT_OK)
-        st = oit_reader_create(s->pf, oit_upload_map(s->upload), s->threaded, &s->reader, err);
+        st = oit_reader_create(s->pf, oit_upload_map(s->upload), s->threads, &s->reader, err);
     if (st != OIT_OK) {
         oit_upload_destroy(s->upload);
         s->upload = NULL;
@@ -401,7 +402,6 @@ static oit_status create_upload(oit_streamer *s, const oit_streamer_desc *desc, 
                                 uint64_t all_bytes, oit_error *err)
 {
     int resident = fits_resident(desc, budget, all_bytes);
-    s->threaded = !desc->read_inline;
     s->ring_limit = budget;
     oit_status st = oit_fence_queue_create(&s->fences, err);
     if (st == OIT_OK)
@@ -460,6 +460,25 @@ static oit_status create_capture(oit_streamer *s, const oit_streamer_desc *desc,
                                      desc->capture_faults, &s->capture, err);
 }
 
+/* desc's reader_threads resolved: the render thread draws, the others
+ * decode (on a GPU, decoding is the CPU's share of the upload). */
+static oit_status reader_threads(const oit_partfile *pf, int want, int *threads, oit_error *err)
+{
+    if (want == OIT_STREAM_READ_INLINE) {
+        *threads = 0;
+        return OIT_OK;
+    }
+    if (want < 0 || want > OIT_READER_MAX_THREADS)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: %d reader threads: expected 1..%d, 0 "
+                             "(the cores less one) or %d (the render thread)",
+                             oit_partfile_name(pf), want, OIT_READER_MAX_THREADS,
+                             OIT_STREAM_READ_INLINE);
+    long others = sysconf(_SC_NPROCESSORS_ONLN) - 1;
+    others = others < 1 ? 1 : others > OIT_READER_MAX_THREADS ? OIT_READER_MAX_THREADS : others;
+    *threads = want ? want : (int)others;
+    return OIT_OK;
+}
+
 oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
                                oit_streamer **out, oit_error *err)
 {
@@ -474,7 +493,9 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
     oit_pack_mode mode = desc->pack != OIT_PACK_AUTO ? desc->pack : OIT_PACK_FIRSTK;
     s->adaptive = desc->pack == OIT_PACK_AUTO && mode == OIT_PACK_FIRSTK;
     s->first_k = 1;
-    oit_status st = alloc_arrays(s, oit_partfile_part_count(pf), err);
+    oit_status st = reader_threads(pf, desc->reader_threads, &s->threads, err);
+    if (st == OIT_OK)
+        st = alloc_arrays(s, oit_partfile_part_count(pf), err);
     if (st == OIT_OK)
         st = number_triangles(s, &all_bytes, err);
     if (st == OIT_OK)
@@ -887,6 +908,7 @@ static void finish_stats(const oit_streamer *s, const oit_packing *pk, oit_frame
                                                              : oit_capture_kind_name(s->choice.asked);
     memcpy(ss->capture_fallback, s->choice.reason, sizeof ss->capture_fallback);
     ss->budget = s->budget;
+    ss->reader_threads = s->threads;
     ss->draw_calls = oit_capture_draw_calls(s->capture);
     ss->cache_bytes = s->cache ? oit_residency_bytes(s->cache) : s->loaded_bytes;
     ss->gpu_bytes_peak = fs->gpu_bytes_peak + oit_upload_gpu_bytes(s->upload) +

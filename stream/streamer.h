@@ -21,6 +21,7 @@
 #include "render/capture_choice.h"
 #include "render/gpu_memory.h"
 #include "stream/pack.h"
+#include "stream/reader.h"
 
 typedef struct oit_streamer_desc {
     int K;                    /* capture layers, 2..16; every part's bound <= K */
@@ -63,8 +64,12 @@ typedef struct oit_streamer_desc {
                                  no cache. Made at the first frame and grown
                                  (geometrically, dropped and refilled) to the
                                  parts a frame's packing holds */
-    int read_inline;          /* 1: parts are read on the render thread, no reader
-                                 thread (for comparison and debugging) */
+    int reader_threads;       /* threads that read and decode parts ahead of the
+                                 GPU (reader.h), 1..OIT_READER_MAX_THREADS; 0:
+                                 the cores there are, less one (the render
+                                 thread's), at least 1; OIT_STREAM_READ_INLINE:
+                                 none, parts are read on the render thread (for
+                                 comparison and debugging) */
     uint64_t store_limit;     /* the capture's (oit_capture_set_store_limit); 0:
                                  the driver's binding; lower only to test */
     /* One total for the ring, the cache and the capture together
@@ -114,6 +119,7 @@ typedef struct oit_stream_budget {
 #define OIT_STREAM_SLOTS_DEFAULT (32ull << 20)
 #define OIT_STREAM_PROBE_FRAMES 8u
 #define OIT_STREAM_RING_MIN (64ull << 10)
+#define OIT_STREAM_READ_INLINE (-1)
 
 /* The streamer's own per-frame figures, beside oit_frame_stats. */
 typedef struct oit_stream_frame_stats {
@@ -151,6 +157,7 @@ typedef struct oit_stream_frame_stats {
     const char *capture_asked;
     char capture_fallback[sizeof(((oit_capture_choice *)0)->reason)];
     oit_stream_budget budget; /* the memory the streamer chose (split_budget) */
+    int reader_threads;      /* threads reading parts (0: the render thread) */
 } oit_stream_frame_stats;
 
 typedef struct oit_streamer oit_streamer;

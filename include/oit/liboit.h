@@ -22,10 +22,11 @@
  * Threads: no global state. A scene may be shared by renderers of one thread;
  * a renderer belongs to the GL context that was current at its creation and
  * must be used and destroyed on a thread where that context is current. A
- * renderer starts one reader thread of its own at its first draw (see
- * read_on_draw_thread), which touches only the scene's file and memory the
- * renderer mapped, never GL; it is idle between oit_renderer_draw calls and
- * joined by oit_renderer_destroy.
+ * renderer starts reader threads of its own at its first draw (the cores
+ * there are, less one, at least 1; see read_on_draw_thread), which touch
+ * only the scene's file and memory the renderer mapped, never GL; they are
+ * idle between oit_renderer_draw calls and joined by
+ * oit_renderer_destroy.
  *
  * Result: the frame is composited OVER the target's existing content with
  * premultiplied colour C and per-channel transmittance T (DESIGN.md):
@@ -244,8 +245,9 @@ typedef struct oit_renderer_desc {
      * budgets rather than start there. oitstream's
      * --cache-budget means the same: 0 the default, "off" no cache. */
     uint64_t cache_budget;
-    /* 0 (default): a reader thread of the renderer's own reads the parts of
-     * later packs while the GPU draws earlier ones (it never calls GL). 1:
+    /* 0 (default): reader threads of the renderer's own (the cores there
+     * are, less one, at least 1) read the parts of later packs while the
+     * GPU draws earlier ones (they never call GL). 1:
      * parts are read on the drawing thread; for comparison and debugging. */
     int read_on_draw_thread;
     /* How a part file's K-slot fills are made (oitstream --capture): for

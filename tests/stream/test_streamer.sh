@@ -134,7 +134,7 @@ residency() {
     [ "$on" -gt 0 ] && [ "$on" -lt "$off" ] || fail "orbit 8: cache uploads $on, none $off"
     look_around "$b0"
 
-    for bad in "--cache-budget 1K" "--cache-budget -1" "--upload-threads 2"; do
+    for bad in "--cache-budget 1K" "--cache-budget -1" "--upload-threads 65"; do
         "$S" "$P" --size 8x8 --quiet $bad >/dev/null 2>&1
         [ $? -eq 2 ] || fail "$bad was not refused as a usage error"
     done

@@ -136,17 +136,20 @@ static void residency_and_identity(oit_partfile *pf, const oit_view *v)
     struct {
         const char *name;
         uint64_t cache, ring;
-        int read_inline;
+        int threads;
     } cfg[] = {{"no cache", OIT_STREAM_CACHE_OFF, 0, 0},
-               {"no thread, no cache", OIT_STREAM_CACHE_OFF, 0, 1},
-               {"no thread, cache", 0, 0, 1},
+               {"no thread, no cache", OIT_STREAM_CACHE_OFF, 0, OIT_STREAM_READ_INLINE},
+               {"no thread, cache", 0, 0, OIT_STREAM_READ_INLINE},
+               {"1 thread, no cache", OIT_STREAM_CACHE_OFF, 0, 1},
+               {"4 threads, no cache", OIT_STREAM_CACHE_OFF, 0, 4},
                {"8K ring, no cache", OIT_STREAM_CACHE_OFF, 8192, 0},
+               {"8K ring, 3 threads, no cache", OIT_STREAM_CACHE_OFF, 8192, 3},
                {"8K ring, 16K cache", 16384, 8192, 0}};
     for (size_t c = 0; c < sizeof cfg / sizeof *cfg; c++) {
         d = base_desc();
         d.cache_budget = cfg[c].cache;
         d.upload_budget = cfg[c].ring;
-        d.read_inline = cfg[c].read_inline;
+        d.reader_threads = cfg[c].threads;
         if (!render_twice(pf, v, &d, cfg[c].name, &r))
             continue;
         for (int f = 0; f < 2; f++)
@@ -218,14 +221,15 @@ static void corrupt_part(const char *path, oit_partfile *pf, const oit_view *v)
         return;
     char want_part[32];
     snprintf(want_part, sizeof want_part, "part %u:", part);
-    for (int read_inline = 0; read_inline < 2; read_inline++) {
+    static const int threads[] = {OIT_STREAM_READ_INLINE, 1, 3};
+    for (int t = 0; t < 3; t++) {
         oit_error err = {0};
         oit_partfile *bad = NULL;
         oit_partfile_open_desc od = {.defer_part_data = true};
         oit_status st = oit_partfile_open_memory(bytes, size, "corrupt.oitp", &od, &bad, &err);
         CHECK(st == OIT_OK, "corrupt.oitp does not open deferred: %s", err.message);
         oit_streamer_desc d = base_desc();
-        d.read_inline = read_inline;
+        d.reader_threads = threads[t];
         oit_streamer *s = NULL;
         if (st == OIT_OK)
             st = oit_streamer_create(bad, &d, &s, &err);
@@ -234,9 +238,8 @@ static void corrupt_part(const char *path, oit_partfile *pf, const oit_view *v)
             oit_image img = {0};
             oit_error e = {0};
             oit_status r = oit_streamer_render(s, v, &img, NULL, NULL, &e);
-            printf("corrupt part %u, %s, render %d: %s: %s\n", part,
-                   read_inline ? "no thread" : "reader thread", f, oit_status_name(r),
-                   e.message);
+            printf("corrupt part %u, reader threads %d, render %d: %s: %s\n", part,
+                   threads[t], f, oit_status_name(r), e.message);
             CHECK(r == OIT_ERR_FORMAT && strstr(e.message, "corrupt.oitp") &&
                       strstr(e.message, want_part),
                   "render %d gave %s: '%s', not a format error naming corrupt.oitp and %s", f,

@@ -16,6 +16,7 @@
 #include <signal.h>
 #include <sys/stat.h>
 
+#include "tools/common/heap.h"
 #include "tools/common/paths.h"
 #include "tools/common/progress_mode.h"
 #include "tools/common/signals.h"
@@ -247,6 +248,7 @@ static int plot(const oit_bench_args *a)
 
 int main(int argc, char **argv)
 {
+    oit_tool_heap_setup();
     oit_bench_args a;
     oit_error err = {0};
     char methods[512], line[4096];

@@ -157,7 +157,11 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
             *s = bad(err, opt, v, "0 (default) or bytes >= 1M, with an optional K, M or G "
                      "suffix");
     } else if (!strcmp(opt, "--upload-threads")) {
-        if (oit_parse_int(v, 0, 1, &a->upload_threads)) *s = bad(err, opt, v, "0 or 1");
+        /* 0 read on the render thread before threads were counted */
+        if (oit_parse_int(v, 0, OIT_READER_MAX_THREADS, &a->upload_threads))
+            *s = bad(err, opt, v, "0..64 threads");
+        else if (a->upload_threads == 0)
+            a->upload_threads = OIT_STREAM_READ_INLINE;
     } else if (!strcmp(opt, "--slot-budget")) {
         if (parse_bytes(v, &a->slot_budget))
             *s = bad(err, opt, v, "bytes >= 64K, with an optional K, M or G suffix");
@@ -250,7 +254,7 @@ oit_status oit_stream_args_parse(int argc, char **argv, oit_stream_args *a, oit_
     a->gain = 1.0f;
     a->max_layers = 0; /* the part file's K, else 16 */
     a->epsilon = -1.0f; /* not given: each method's default */
-    a->upload_threads = 1;
+    a->upload_threads = 0; /* the streamer's default */
     a->up_axis = 1;
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i];
@@ -368,8 +372,11 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "                      --upload-budget, --cache-budget and --slot-budget\n"
         "                      replace their shares; more than B together is an error.\n"
         "                      --stats: budget (the figures and their source)\n"
-        "  --upload-threads N  stream: 1 (default) reads parts on a thread of their\n"
-        "                      own; 0 reads them on the render thread, no overlap (0..1)\n"
+        "  --upload-threads N  stream: threads that read and decode parts while the\n"
+        "                      GPU draws, each taking the next part in the packs'\n"
+        "                      order, 0..64 (0: none, parts are read on the render\n"
+        "                      thread, no overlap; default: the cores there are, less\n"
+        "                      one, at least 1; --stats: reader_threads)\n"
         "  --slot-budget B     stream: bytes of the K-fragment capture slots (>= 64K,\n"
         "                      default 32M for disjoint and budget, 64M for counted,\n"
         "                      first-k and auto), a larger frame captured in screen\n"

@@ -45,7 +45,7 @@ typedef struct oit_stream_args {
     unsigned long long slot_budget;    /* --slot-budget; 0: default */
     unsigned long long gpu_budget;     /* --gpu-budget; 0: default (oit_streamer_desc.gpu_budget) */
     unsigned long long cache_budget;   /* --cache-budget; 0 (or 0 given): default; OIT_STREAM_CACHE_OFF: off */
-    int upload_threads;                /* --upload-threads: 1 (default) or 0 */
+    int upload_threads;                /* --upload-threads, as oit_streamer_desc.reader_threads */
     float epsilon;                     /* --epsilon (stream, f2b, guarded); < 0: not given */
     /* --window: the interactive viewer (viewer.h) */
     int window;

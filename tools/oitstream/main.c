@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "base/json.h"
+#include "tools/common/heap.h"
 #include "tools/common/paths.h"
 #include "render/image.h"
 #include "tools/oitstream/cli_args.h"
@@ -656,7 +657,7 @@ static int run_render(const oit_stream_args *args)
                              .upload_budget = a->upload_budget, .slot_budget = a->slot_budget,
                              .cache_budget = a->cache_budget,
                              .gpu_budget = a->gpu_budget,
-                             .read_inline = a->upload_threads == 0};
+                             .reader_threads = a->upload_threads};
     oit_method_options opt = {.max_layers = K, .epsilon = a->epsilon,
                               .ambiguity_px = a->ambiguity_px, .stream = &so};
     rc.view.width = a->width;
@@ -696,6 +697,7 @@ static int run_render(const oit_stream_args *args)
 
 int main(int argc, char **argv)
 {
+    oit_tool_heap_setup();
     oit_stream_args a;
     oit_error err = {0};
     if (oit_stream_args_parse(argc, argv, &a, &err) != OIT_OK)

@@ -95,6 +95,7 @@ static void put_frame(oit_json *w, const oit_stats_frame *fr)
             oit_json_string(w, "capture_asked", t->capture_asked);
             oit_json_string(w, "capture_fallback", t->capture_fallback);
         }
+        oit_json_int(w, "reader_threads", t->reader_threads);
     }
     oit_json_end(w);
 }
