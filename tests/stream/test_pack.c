@@ -501,6 +501,57 @@ static void run_config(tally *t, const oit_partfile *pf, const scene *sc, const 
     oit_packer_destroy(pk);
 }
 
+/* A known layout: two pairs of overlapping parts, P0 and P1 at the left, P2
+ * and P3 at the right, in the order P0 P1 P2 P3. The tree's disjoint rule
+ * cuts [P0] [P1 P2] [P3]; by level, [P0 P2] [P1 P3]: the overlapping pairs
+ * never share a pack, and P0 comes before P1, P2 before P3. */
+static void known_layout(const char *path)
+{
+    static scene sc;
+    memset(&sc, 0, sizeof sc);
+    sc.w = 100, sc.h = 40, sc.K = 8, sc.n = 4;
+    const double x0[4] = {10.25, 15.25, 40.25, 45.25};
+    for (uint32_t i = 0; i < 4; i++) {
+        sc.px[i][0] = x0[i], sc.px[i][2] = x0[i] + 10.0;
+        sc.px[i][1] = 10.25, sc.px[i][3] = 20.25;
+        sc.tris[i] = 2, sc.layers[i] = 8, sc.z[i] = -1.0f - (float)i;
+    }
+    oit_error err = {0};
+    oit_partfile *pf = NULL;
+    oit_packer *tree = NULL, *wave = NULL;
+    if (write_scene(path, &sc, &err) || oit_partfile_open(path, NULL, &pf, &err) ||
+        oit_packer_create(pf, OIT_PACK_DISJOINT, 8, 1u << 30, &tree, &err) ||
+        oit_packer_create(pf, OIT_PACK_DISJOINT, 8, 1u << 30, &wave, &err)) {
+        CHECK(0, "known layout: %s", err.message);
+        goto done;
+    }
+    oit_packer_set_schedule(wave, OIT_SCHEDULE_WAVE);
+    oit_view view;
+    make_view(&sc, &view);
+    const uint32_t order[4] = {0, 1, 2, 3};
+    oit_packing t, w;
+    if (oit_packer_run(tree, &view, order, 4, &t, &err)) {
+        CHECK(0, "known layout, tree: %s", err.message);
+        goto done;
+    }
+    uint32_t tree_count = t.pack_count;
+    if (oit_packer_run(wave, &view, order, 4, &w, &err)) {
+        CHECK(0, "known layout, wave: %s", err.message);
+        goto done;
+    }
+    CHECK(tree_count == 3, "known layout: the tree's disjoint rule cut %u packs, not 3",
+          tree_count);
+    int ok = w.pack_count == 2 && w.part_count == 4 && w.pack_first[1] == 2 &&
+             w.parts[0] == 0 && w.parts[1] == 2 && w.parts[2] == 1 && w.parts[3] == 3;
+    CHECK(ok, "known layout: by level %u packs (%u parts: %u %u %u %u, the second pack from "
+          "%u), not [0 2] [1 3]", w.pack_count, w.part_count, w.parts[0], w.parts[1],
+          w.parts[2], w.parts[3], w.pack_first[1]);
+done:
+    oit_packer_destroy(tree);
+    oit_packer_destroy(wave);
+    oit_partfile_close(pf);
+}
+
 int main(void)
 {
     const char *tmp = getenv("OIT_TEST_TMP") ? getenv("OIT_TEST_TMP") : "/tmp";
@@ -530,6 +581,7 @@ int main(void)
         }
         oit_partfile_close(pf);
     }
+    known_layout(path);
     remove(path);
     printf("%lu packings, %lu packs, %lu of a wide part, %lu where parts joined a first part "
            "of K layers; disjoint by level: %lu packs where the tree cuts %lu (%lu of %lu at "
