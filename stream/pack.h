@@ -6,8 +6,13 @@
  *  - OIT_PACK_BUDGET: a screen grid of 32x32-pixel tiles holds the sum of the
  *    layer bounds of the pack's parts whose rectangle touches the tile; a
  *    part joins while every tile it touches stays <= K.
- *  - OIT_PACK_DISJOINT (the paper's rule): a part joins while its rectangle
- *    does not overlap the bounding rectangle of the pack so far.
+ *  - OIT_PACK_DISJOINT (the paper's rule, Fig. 6): a part joins while its
+ *    rectangle does not overlap the bounding rectangle of the pack so far;
+ *    with the wave schedule, packs by level instead (the paper's "pack of
+ *    the unoccluded parts among those remaining", 5.1): no two parts of a
+ *    pack share a pixel, and of two parts that do, the earlier one in the
+ *    order is in the earlier pack (pack.c says why that is exact, and the
+ *    image the same byte for byte as one part a pack).
  *  - OIT_PACK_COUNTED: no layer rule at all, for the counted capture
  *    (render/capture_counted.h), which has no per-pixel limit and measures
  *    each pack's fragments before storing them; wide parts join too.
@@ -43,7 +48,10 @@ typedef enum oit_pack_mode {
 /* The order packs are cut from. OIT_SCHEDULE_TREE (default): consecutive
  * parts of partfile/order.h's order. OIT_SCHEDULE_WAVE: packs filled from a
  * front-to-back wavefront over the screen (stream/schedule.h), each tile
- * holding the layers of the rule above; about 40% fewer packs, but their
+ * holding the layers of the rule above (the disjoint rule: by level, as
+ * above, a pack per level of the parts that share pixels; the 1M plant's
+ * guaranteed scheme at 512x512: 7,380 packs where the tree cuts 61,790);
+ * about 40% fewer packs, but their
  * parts are scattered, so each pack's resolve rectangle is larger. On
  * llvmpipe, where resolving a rectangle costs more than a pack's fixed
  * overhead, the tree order is faster (bunny and plant100k at 512x512). */

@@ -174,6 +174,8 @@ _COLOUR_SPACES = {"srgb": 0, "linear": 1}
 _UP_AXES = {"y": 0, "z": 1, "x": 2}
 # oit_render_pack, spelt as oitstream --pack spells it
 _PACKS = {"auto": 0, "counted": 1, "budget": 2, "disjoint": 3, "first-k": 4}
+# oit_render_capture, spelt as oitstream --capture spells it
+_CAPTURES = {"auto": 0, "array": 1, "stencil": 2}
 
 
 class Renderer(_Closable):
@@ -183,21 +185,30 @@ class Renderer(_Closable):
 
     def __init__(self, shading="transparent", alpha=None, default_rgb=None, absorption=None,
                  K=0, epsilon=0.0, pack="auto", upload_budget=0, cache_budget=0,
-                 colour_space="srgb", gpu_budget=0):
+                 colour_space="srgb", gpu_budget=0, capture="auto"):
         """pack, upload_budget, cache_budget, gpu_budget, K and epsilon take
         what oitstream's --pack, --upload-budget, --cache-budget, --gpu-budget,
         --max-layers and --epsilon take: 0 is the default, cache_budget="off"
         no cache.
         colour_space: "srgb" (default) composites the sRGB-encoded colours as
         given; "linear" decodes them (exact sRGB EOTF), composites in linear
-        light and returns the result sRGB-encoded (oitstream --colour-space)."""
+        light and returns the result sRGB-encoded (oitstream --colour-space).
+        capture: how a part file's K-slot fills are made (oitstream
+        --capture): "auto" (default: the stencil-routed A-buffer where its
+        self-test passes on this driver, else array slots), "stencil" (that
+        or an error at the first render, with the self-test's reason) or
+        "array"; the image is the same, and stats["capture_slots"] and
+        stats["capture_fallback"] say what ran and why."""
         if colour_space not in _COLOUR_SPACES:
             raise ValueError(f"colour_space: {colour_space!r}, expected srgb or linear")
         if shading not in _SHADINGS:
             raise ValueError(f"shading: {shading!r}, expected transparent or translucent")
         if pack not in _PACKS:
             raise ValueError(f"pack: {pack!r}, expected one of {', '.join(_PACKS)}")
+        if capture not in _CAPTURES:
+            raise ValueError(f"capture: {capture!r}, expected one of {', '.join(_CAPTURES)}")
         d = L.OffscreenDesc()
+        d.renderer.capture = _CAPTURES[capture]
         d.renderer.K = K
         d.renderer.epsilon = epsilon
         d.renderer.pack = _PACKS[pack]
@@ -341,23 +352,25 @@ def _set_default_view(v, scene, view, up, azimuth, elevation):
 _renderers = {}
 
 
-def _default_renderer(shading, colour_space="srgb"):
-    """One Renderer a shading and colour space for the module-level
+def _default_renderer(shading, colour_space="srgb", capture="auto"):
+    """One Renderer a shading, colour space and capture for the module-level
     functions, made at first use."""
-    key = (shading, colour_space)
+    key = (shading, colour_space, capture)
     r = _renderers.get(key)
     if r is None or not r._h:
-        r = _renderers[key] = Renderer(shading=shading, colour_space=colour_space)
+        r = _renderers[key] = Renderer(shading=shading, colour_space=colour_space,
+                                       capture=capture)
     return r
 
 
 def render(model_path, size=(512, 512), view=None, dtype=np.uint8, background=None,
-           shading="transparent", colour_space="srgb", clip=None, up=None, azimuth=None, elevation=None):
+           shading="transparent", colour_space="srgb", clip=None, up=None, azimuth=None,
+           elevation=None, capture="auto"):
     """Renders a mesh file (in core) or part file (streamed) into a
     (height, width, 4) array; see Renderer.render for view, background, up,
     azimuth and elevation (oitstream's --up, --azimuth, --elevation),
-    Renderer for colour_space; clip: section planes."""
-    r = _default_renderer(shading, colour_space)
+    Renderer for colour_space and capture; clip: section planes."""
+    r = _default_renderer(shading, colour_space, capture)
     with Scene.open(model_path) as s:
         return r.render(s, size=size, view=view, dtype=dtype, background=background, up=up,
                         azimuth=azimuth, elevation=elevation, clip=clip)

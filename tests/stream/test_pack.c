@@ -16,12 +16,17 @@
  *     rectangle" for the tile sums;
  *   - counted and first-k: bytes only; front first: pack i also caps the
  *     tile sums at K * 2^i, its first part counted even above the cap;
+ *   - disjoint on the wave: by level, a part's level 1 + the highest of the
+ *     earlier parts whose rectangle overlaps its own (pairs compared, no
+ *     cells), the parts sorted by level stably and cut where the level
+ *     changes, the bytes overflow or a part is wide or follows one;
  * and the packer's packs must be the model's exactly (parts, pack starts,
- * layers, bytes, rectangles, culled count). The wave schedule reorders, so
- * there only the rules are checked on what it made: every kept part once,
- * bytes within the budget, a wide part alone, the budget rule's tile sums
- * <= K, the disjoint rule's one part a tile (the tree's: no two rectangles
- * of a pack overlap, checked there too). */
+ * layers, bytes, rectangles, culled count). The budget and counted wave
+ * schedules reorder, so there only the rules are checked on what they made.
+ * On every packing: every kept part once, bytes within the budget, a wide
+ * part alone, the budget rule's tile sums <= K, the disjoint rule's no two
+ * rectangles of a pack overlapping, and two overlapping parts never in
+ * packs against their order (the disjoint rule: never in one pack). */
 #include "oit/partfile.h"
 #include "stream/pack.h"
 #include "tests/lib/test_rng.h"
@@ -160,6 +165,8 @@ typedef struct model {
     uint64_t bytes[MAX_PARTS];
     int pack_rect[MAX_PARTS][4];
     uint32_t tile[(W_MAX / TILE + 1) * (H_MAX / TILE + 1)]; /* the open pack's sums */
+    uint32_t parts_level, levels; /* run_model_levels: the last part placed, levels */
+    int cell;                     /* and the cells' side */
 } model;
 
 /* The rectangle as pack.h says: the span and a pixel of margin, on screen. */
@@ -246,6 +253,71 @@ static void run_model(const scene *sc, const config *c, model *m)
     m->pack_first[m->packs] = m->drawn;
 }
 
+/* The disjoint rule on the wave: levels from the pairs, then packs cut as
+ * the tree's are but by level, bytes and wide parts only. */
+static int share_cell(const int a[4], const int b[4], int c)
+{
+    return a[0] / c <= (b[2] - 1) / c && b[0] / c <= (a[2] - 1) / c &&
+           a[1] / c <= (b[3] - 1) / c && b[1] / c <= (a[3] - 1) / c;
+}
+
+static void run_model_levels(const scene *sc, const config *c, model *m)
+{
+    memset(m, 0, sizeof *m);
+    uint32_t level[MAX_PARTS], kept[MAX_PARTS], n = 0, levels = 0;
+    int rect[MAX_PARTS][4];
+    double area = 0;
+    for (uint32_t i = 0; i < sc->n; i++) {
+        if (!part_rect(sc, i, rect[n])) {
+            m->culled++;
+            continue;
+        }
+        area += (double)(rect[n][2] - rect[n][0]) * (rect[n][3] - rect[n][1]);
+        kept[n++] = i;
+    }
+    /* pack.c's cells: the finest power of two visiting <= 16 a screen pixel */
+    int cell = 1;
+    while (cell < 64 && area / ((double)cell * cell) > 16.0 * sc->w * sc->h)
+        cell *= 2;
+    m->cell = cell;
+    for (uint32_t k = 0; k < n; k++) {
+        level[k] = 0;
+        for (uint32_t j = 0; j < k; j++)
+            if (share_cell(rect[j], rect[k], cell) && level[j] + 1 > level[k])
+                level[k] = level[j] + 1;
+        levels = level[k] + 1 > levels ? level[k] + 1 : levels;
+    }
+    for (uint32_t v = 0; v < levels; v++)
+        for (uint32_t k = 0; k < n; k++) {
+            if (level[k] != v)
+                continue;
+            uint32_t i = kept[k], L = sc->layers[i], p = m->packs - 1;
+            uint64_t b = part_bytes(sc, i);
+            int join = m->packs > 0 && m->drawn > m->pack_first[p] &&
+                       level[m->parts_level] == v && m->bytes[p] + b <= c->budget &&
+                       L <= sc->K && m->layers[p] <= sc->K;
+            if (!join) {
+                p = m->packs++;
+                m->pack_first[p] = m->drawn;
+                m->layers[p] = L > sc->K ? L : sc->K;
+                m->bytes[p] = 0;
+                memcpy(m->pack_rect[p], rect[k], sizeof rect[k]);
+            }
+            m->bytes[p] += b;
+            for (int e = 0; e < 2; e++) {
+                m->pack_rect[p][e] = rect[k][e] < m->pack_rect[p][e] ? rect[k][e]
+                                                                     : m->pack_rect[p][e];
+                m->pack_rect[p][e + 2] = rect[k][e + 2] > m->pack_rect[p][e + 2]
+                                             ? rect[k][e + 2] : m->pack_rect[p][e + 2];
+            }
+            memcpy(m->rect[m->drawn], rect[k], sizeof rect[k]);
+            m->parts_level = k;
+            m->parts[m->drawn++] = i;
+        }
+    m->pack_first[m->packs] = m->drawn;
+    m->levels = levels;
+}
+
 /* ---- the checks ----------------------------------------------------------------- */
 
 static const char *mode_name(const config *c)
@@ -316,27 +388,64 @@ static void check_rules(const oit_packing *pk, const scene *sc, const config *c,
                 }
         }
         uint32_t worst = 0, crowded = 0;
-        for (uint32_t t = 0; t < tx * ty; t++) {
+        for (uint32_t t = 0; t < tx * ty; t++)
             worst = sum[t] > worst ? sum[t] : worst;
-            crowded += c->mode == OIT_PACK_DISJOINT && c->wave && on[t] > 1;
-        }
-        /* the tree's disjoint rule is on rectangles, the wave's on tiles */
-        for (uint32_t j = a; c->mode == OIT_PACK_DISJOINT && !c->wave && j < e; j++)
+        /* the disjoint rule: no pixel gets fragments of two parts of a pack */
+        for (uint32_t j = a; c->mode == OIT_PACK_DISJOINT && j < e; j++)
             for (uint32_t k = a; k < j; k++)
                 crowded += overlaps(pk->part_rects[j], pk->part_rects[k]);
         ok = e > a && bytes <= c->budget && (!kslots || !wide || e - a == 1) &&
              (c->mode != OIT_PACK_BUDGET || wide || worst <= sc->K) &&
              (c->mode != OIT_PACK_DISJOINT || crowded == 0);
         CHECK(ok, "%s: pack %u of %u parts: %llu bytes (budget %llu), %u wide, most layers on "
-              "a tile %u (K %u); disjoint: %u tiles (tree: rectangles) shared", what, p, e - a,
+              "a tile %u (K %u); disjoint: %u pairs of rectangles overlap", what, p, e - a,
               (unsigned long long)bytes, (unsigned long long)c->budget, wide, worst, sc->K,
               crowded);
     }
+    /* Order: of two parts whose rectangles overlap, the earlier in the input
+     * is drawn first (the disjoint rule: in an earlier pack). */
+    uint32_t pack_of[MAX_PARTS], pos[MAX_PARTS];
+    for (uint32_t p = 0; ok && p < pk->pack_count; p++)
+        for (uint32_t j = pk->pack_first[p]; j < pk->pack_first[p + 1]; j++) {
+            pack_of[pk->parts[j]] = p;
+            pos[pk->parts[j]] = j;
+        }
+    uint32_t reversed = 0;
+    for (uint32_t j = 0; ok && j < pk->part_count; j++)
+        for (uint32_t k = 0; k < pk->part_count; k++) {
+            uint32_t a = pk->parts[j], b = pk->parts[k];
+            if (a >= b || !overlaps(pk->part_rects[j], pk->part_rects[k]))
+                continue;
+            reversed += pos[a] > pos[b] ||
+                        (c->mode == OIT_PACK_DISJOINT && pack_of[a] == pack_of[b]);
+        }
+    CHECK(reversed == 0, "%s: %u overlapping pairs drawn against the order or (disjoint) in "
+          "one pack", what, reversed);
 }
 
 typedef struct tally {
     unsigned long runs, packs, wide_packs, joined_after_first;
+    unsigned long level_packings, level_packs, tree_packs; /* disjoint: wave, and tree alike */
+    unsigned long coarse; /* of those, at cells wider than a pixel */
 } tally;
+
+/* The tree's disjoint packs of the same scene, beside the levels'. */
+static uint32_t tree_packs(const oit_partfile *pf, const scene *sc, const config *c,
+                           const oit_view *view)
+{
+    oit_packer *pk = NULL;
+    oit_error err = {0};
+    oit_packing out = {0};
+    uint32_t order[MAX_PARTS];
+    for (uint32_t i = 0; i < sc->n; i++)
+        order[i] = i;
+    if (oit_packer_create(pf, OIT_PACK_DISJOINT, (int)sc->K, c->budget, &pk, &err) ||
+        oit_packer_run(pk, view, order, sc->n, &out, &err))
+        CHECK(0, "tree packer: %s", err.message);
+    uint32_t n = out.pack_count;
+    oit_packer_destroy(pk);
+    return n;
+}
 
 static void run_config(tally *t, const oit_partfile *pf, const scene *sc, const config *c,
                        int round)
@@ -365,10 +474,20 @@ static void run_config(tally *t, const oit_partfile *pf, const scene *sc, const 
             break;
         }
         model m;
-        run_model(sc, c, &m);
+        int levels = c->wave && c->mode == OIT_PACK_DISJOINT;
+        if (levels)
+            run_model_levels(sc, c, &m);
+        else
+            run_model(sc, c, &m);
         check_rules(&out, sc, c, &m, what);
-        if (!c->wave)
+        if (!c->wave || levels)
             same_as_model(&out, &m, what);
+        if (levels && !rep) {
+            t->level_packings++;
+            t->coarse += m.cell > 1;
+            t->level_packs += out.pack_count;
+            t->tree_packs += tree_packs(pf, sc, c, &view);
+        }
         if (rep)
             continue;
         t->runs++;
@@ -380,6 +499,57 @@ static void run_config(tally *t, const oit_partfile *pf, const scene *sc, const 
         }
     }
     oit_packer_destroy(pk);
+}
+
+/* A known layout: two pairs of overlapping parts, P0 and P1 at the left, P2
+ * and P3 at the right, in the order P0 P1 P2 P3. The tree's disjoint rule
+ * cuts [P0] [P1 P2] [P3]; by level, [P0 P2] [P1 P3]: the overlapping pairs
+ * never share a pack, and P0 comes before P1, P2 before P3. */
+static void known_layout(const char *path)
+{
+    static scene sc;
+    memset(&sc, 0, sizeof sc);
+    sc.w = 100, sc.h = 40, sc.K = 8, sc.n = 4;
+    const double x0[4] = {10.25, 15.25, 40.25, 45.25};
+    for (uint32_t i = 0; i < 4; i++) {
+        sc.px[i][0] = x0[i], sc.px[i][2] = x0[i] + 10.0;
+        sc.px[i][1] = 10.25, sc.px[i][3] = 20.25;
+        sc.tris[i] = 2, sc.layers[i] = 8, sc.z[i] = -1.0f - (float)i;
+    }
+    oit_error err = {0};
+    oit_partfile *pf = NULL;
+    oit_packer *tree = NULL, *wave = NULL;
+    if (write_scene(path, &sc, &err) || oit_partfile_open(path, NULL, &pf, &err) ||
+        oit_packer_create(pf, OIT_PACK_DISJOINT, 8, 1u << 30, &tree, &err) ||
+        oit_packer_create(pf, OIT_PACK_DISJOINT, 8, 1u << 30, &wave, &err)) {
+        CHECK(0, "known layout: %s", err.message);
+        goto done;
+    }
+    oit_packer_set_schedule(wave, OIT_SCHEDULE_WAVE);
+    oit_view view;
+    make_view(&sc, &view);
+    const uint32_t order[4] = {0, 1, 2, 3};
+    oit_packing t, w;
+    if (oit_packer_run(tree, &view, order, 4, &t, &err)) {
+        CHECK(0, "known layout, tree: %s", err.message);
+        goto done;
+    }
+    uint32_t tree_count = t.pack_count;
+    if (oit_packer_run(wave, &view, order, 4, &w, &err)) {
+        CHECK(0, "known layout, wave: %s", err.message);
+        goto done;
+    }
+    CHECK(tree_count == 3, "known layout: the tree's disjoint rule cut %u packs, not 3",
+          tree_count);
+    int ok = w.pack_count == 2 && w.part_count == 4 && w.pack_first[1] == 2 &&
+             w.parts[0] == 0 && w.parts[1] == 2 && w.parts[2] == 1 && w.parts[3] == 3;
+    CHECK(ok, "known layout: by level %u packs (%u parts: %u %u %u %u, the second pack from "
+          "%u), not [0 2] [1 3]", w.pack_count, w.part_count, w.parts[0], w.parts[1],
+          w.parts[2], w.parts[3], w.pack_first[1]);
+done:
+    oit_packer_destroy(tree);
+    oit_packer_destroy(wave);
+    oit_partfile_close(pf);
 }
 
 int main(void)
@@ -411,9 +581,14 @@ int main(void)
         }
         oit_partfile_close(pf);
     }
+    known_layout(path);
     remove(path);
     printf("%lu packings, %lu packs, %lu of a wide part, %lu where parts joined a first part "
-           "of K layers\n", t.runs, t.packs, t.wide_packs, t.joined_after_first);
+           "of K layers; disjoint by level: %lu packs where the tree cuts %lu (%lu of %lu at "
+           "coarser cells)\n", t.runs, t.packs, t.wide_packs, t.joined_after_first,
+           t.level_packs, t.tree_packs, t.coarse, t.level_packings);
+    CHECK(t.level_packings > 0 && t.level_packs < t.tree_packs,
+          "the levels made no fewer packs than the tree's disjoint rule");
     CHECK(t.wide_packs > 0 && t.joined_after_first > 0,
           "the random scenes miss wide parts or full first parts");
     return test_verdict();
