@@ -12,6 +12,10 @@
 #   cull     z <= 0 keeps 6 quads: the stream neither uploads nor draws the
 #            other 6 parts (--stats parts_clipped, bytes_clipped), and its
 #            uploaded bytes plus the clipped ones are the unclipped frame's
+#   opaque   a plane through the opaque boxes of the hard case `mixed`:
+#            what the cut-away opaque halves hid shows again, so the opaque
+#            pre-pass must drop clipped fragments as the captures do; DFB,
+#            array slots and the stream equal the reference
 #   errors   bad --clip input: exit 2 and a message naming the fault
 #   window   (under X) the viewer's X makes the plane it prints, the frame
 #            equals --clip with that plane; ] moves it by 1/25 of the radius
@@ -52,6 +56,21 @@ render() {
 }
 
 case $PART in
+opaque)
+    gen_hard mixed mixed.ply
+    prep_or_die mixed.ply mixed.oitp --part-triangles 64
+    for m in reference dfb array stream; do
+        _in=mixed.ply
+        [ "$m" = stream ] && _in=mixed.oitp
+        "$S" $_in --method "$m" --size $SIZE --clip 0,0,-1,0 --out "o_$m.png" --quiet ||
+            fail "opaque: $m --clip failed"
+    done
+    "$S" mixed.ply --method reference --size $SIZE --out o_plain.png --quiet || fail "reference"
+    expect_differ "the plane cuts the opaque boxes" o_reference.png o_plain.png 500
+    for m in dfb array stream; do
+        compare "opaque $m vs reference" o_reference.png "o_$m.png" 0.01
+    done
+    ;;
 agree)
     CLIP="--clip 0.4,0.3,-1,0.05"
     render ref reference $CLIP
