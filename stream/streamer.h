@@ -56,6 +56,13 @@ typedef struct oit_streamer_desc {
                                  thread (for comparison and debugging) */
     uint64_t store_limit;     /* the capture's (oit_capture_set_store_limit); 0:
                                  the driver's binding; lower only to test */
+    /* Sort-last rendering (partfile/share.h): share_count 0 or 1 (default),
+     * every part; 2..OIT_SHARES_MAX, only the parts of share share_index
+     * (< share_count) are ordered, read and drawn, and the ring and cache
+     * are sized by that share's bytes. The frame's C and T are then the
+     * share's, to be blended with the other shares' in the order
+     * oit_streamer_share_order gives. */
+    uint32_t share_count, share_index;
 } oit_streamer_desc;
 
 /* 256 MiB: ~5.6 M triangles at 48 bytes, the visible working set of most
@@ -119,6 +126,14 @@ uint64_t oit_streamer_pixel_bytes(const oit_view *view);
  * up, the GPU peak takes the larger, the rest (cache_bytes, epsilon, modes)
  * are the band's, the last. */
 void oit_stream_frame_stats_add(oit_stream_frame_stats *acc, const oit_stream_frame_stats *band);
+
+/* The shares front to back for view (partfile/share.h, oit_shares_order):
+ * share_count indices into order; with share_count <= 1, just 0. Every
+ * streamer over the same file and share_count gives the same order. */
+oit_status oit_streamer_share_order(oit_streamer *s, const oit_view *view, uint32_t *order,
+                                    oit_error *err);
+/* Parts and triangles of the streamer's share (all the file's without one). */
+void oit_streamer_share_size(const oit_streamer *s, uint32_t *parts, uint64_t *triangles);
 
 /* Renders one view into out (allocated by the call). fs and ss may be NULL. */
 oit_status oit_streamer_render(oit_streamer *s, const oit_view *view, oit_image *out,
