@@ -362,6 +362,13 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
      * of GPU memory for it. */
     if (all_bytes < budget)
         budget = all_bytes > OIT_STREAM_RING_MIN ? all_bytes : OIT_STREAM_RING_MIN;
+    /* The packer checks every part of the file against the budget, other
+     * shares' too (an empty share included). */
+    for (uint32_t i = 0; s->shares && i < oit_partfile_part_count(pf); i++) {
+        uint64_t b = oit_pack_part_bytes(&oit_partfile_parts(pf)[i]);
+        budget = b > budget && b <= (desc->upload_budget ? desc->upload_budget : 64ull << 20)
+                     ? b : budget;
+    }
     if (st == OIT_OK)
         st = oit_order_create(pf, &s->order, err);
     if (st == OIT_OK)

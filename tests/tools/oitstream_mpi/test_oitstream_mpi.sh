@@ -1,0 +1,61 @@
+#!/bin/sh
+# oitstream-mpi against oitstream on the same part file: NP ranks, each
+# streaming one share, blended in order by IceT, must give the
+# single-process images within 1/255 per channel (an 8-bit PNG step: the
+# blend C_front + T_front C_back rounds in float where the one capture
+# composites fragment by fragment, ~1e-7, which can move a value across a
+# rounding boundary of the 8-bit output), for 4 orbit views at 96x96; the
+# figures name NP ranks whose shares add up to the file's triangles, with
+# no rank empty; translucent shading is refused by name.
+# Usage: test_oitstream_mpi.sh demo|bunny|plant NP
+set -u
+. "${OIT_TEST_LIB:-$(dirname "$0")/../../lib.sh}"
+MODE=$1 NP=$2
+need_tools "$OIT_BIN/oitgen" "$OIT_BIN/oitprep" "$OIT_BIN/oitstream" "$OIT_BIN/oitstream-mpi"
+command -v mpirun >/dev/null 2>&1 || skip "no mpirun (Debian openmpi-bin)"
+scratch "oitstream_mpi_${MODE}_$NP"
+P="$T/scene.oitp"
+case "$MODE" in
+demo)
+    "$OIT_BIN/oitgen" demo -o "$T/scene.ply" >/dev/null || die "oitgen demo"
+    prep_or_die "$T/scene.ply" "$P" --part-triangles 2048 ;;
+bunny)
+    need_mesh bunny00.off
+    prep_or_die "$MESH" "$P" --part-triangles 512 ;;
+plant)
+    "$OIT_BIN/oitgen" plant --triangles 20000 -o "$T/scene.ply" >/dev/null || die "oitgen plant"
+    prep_or_die "$T/scene.ply" "$P" --part-triangles 1024 ;;
+*) echo "usage: $0 demo|bunny|plant NP" >&2; exit 2 ;;
+esac
+# Quiet, local and quick: shared memory between the ranks, no network probe.
+export OMPI_MCA_btl=self,vader OMPI_MCA_btl_vader_single_copy_mechanism=none
+export OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_hwloc_base_binding_policy=none
+root=""
+[ "$(id -u)" -eq 0 ] && root=--allow-run-as-root
+"$OIT_BIN/oitstream" "$P" --size 96x96 --orbit 4 --out "$T/one.png" --quiet ||
+    die "oitstream failed"
+# shellcheck disable=SC2086
+mpirun $root --oversubscribe -np "$NP" "$OIT_BIN/oitstream-mpi" "$P" --size 96x96 --orbit 4 \
+    --out "$T/mpi.png" --stats "$T/mpi.json" >"$T/mpi.txt" 2>&1 ||
+    { cat "$T/mpi.txt" >&2; die "oitstream-mpi -np $NP failed"; }
+for i in 000 001 002 003; do
+    d=$("$OIT_BIN/oitstream" --compare "$T/one_$i.png" "$T/mpi_$i.png") ||
+        { fail "view $i: no comparison"; continue; }
+    max=$(echo "$d" | sed -n 's/.*max_abs \([0-9.e+-]*\).*/\1/p')
+    awk -v m="$max" 'BEGIN { exit !(m != "" && m <= 1.0 / 255 + 1e-6) }' ||
+        fail "view $i, $NP ranks: max_abs $max > 1/255 against one process ($d)"
+done
+ranks=$(grep -c '"rank":' "$T/mpi.json")
+[ "$ranks" -eq $((NP * 4)) ] || fail "stats: $ranks rank records, expected $((NP * 4))"
+tri=$("$OIT_BIN/oitprep" info "$P" | sed -n 's/^ *triangles *\([0-9]*\).*/\1/p')
+sum=$(sed -n '/"frames"/,$p' "$T/mpi.json" | grep '"rank":' | head -n "$NP" |
+      sed 's/.*"triangles": \([0-9]*\).*/\1/' | awk '{ s += $1 } END { print s }')
+[ -n "$tri" ] && [ "$sum" = "$tri" ] || fail "shares hold $sum triangles, the file $tri"
+grep '"rank":' "$T/mpi.json" | head -n "$NP" | grep -q '"triangles": 0,' &&
+    fail "a rank got an empty share"
+# shellcheck disable=SC2086
+mpirun $root --oversubscribe -np "$NP" "$OIT_BIN/oitstream-mpi" "$P" --size 32x32 \
+    --shading translucent >"$T/tl.txt" 2>&1 && fail "translucent shading was not refused"
+grep -q 'translucent.*cross share boundaries' "$T/tl.txt" ||
+    fail "translucent refusal does not say why: $(head -n 1 "$T/tl.txt")"
+finish "oitstream-mpi $MODE -np $NP"
