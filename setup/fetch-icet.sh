@@ -36,10 +36,20 @@ command -v apt-get >/dev/null 2>&1 || { echo "fetch-icet: no apt-get: install pa
 mkdir -p "$dir"
 work=$(mktemp -d "$dir/.x-XXXXXX")
 trap 'rm -rf "$work"' EXIT
-# apt-get download writes into the working directory.
-if ! (cd "$work" && apt-get download -q paraview paraview-dev >&2); then
-    echo "fetch-icet: apt-get download paraview paraview-dev failed (no network or package lists?)" >&2
-    exit 1
+# apt-get download writes into the working directory, and checks each .deb
+# against the signed package lists. A clean system (a container image) may
+# have no lists: refresh them once, as install-deps.sh does.
+download() { (cd "$work" && apt-get download -q paraview paraview-dev >&2); }
+if ! download; then
+    sudo=""
+    [ "$(id -u)" -eq 0 ] || { command -v sudo >/dev/null 2>&1 && sudo=sudo; }
+    echo "fetch-icet: refreshing the package lists and retrying" >&2
+    # shellcheck disable=SC2086
+    if ! { $sudo apt-get update -q >&2 && download; }; then
+        echo "fetch-icet: apt-get download paraview paraview-dev failed (no network to the" \
+             "Debian mirror, or no root for apt-get update?)" >&2
+        exit 1
+    fi
 fi
 for deb in "$work"/*.deb; do
     dpkg -x "$deb" "$work/x"
