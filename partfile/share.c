@@ -229,6 +229,16 @@ static oit_status descend(build_ctx *b)
     return st;
 }
 
+oit_status oit_shares_check(const oit_partfile *pf, uint32_t count, uint32_t index,
+                            oit_error *err)
+{
+    if (count > OIT_SHARES_MAX || (count > 1 && index >= count) || (count <= 1 && index != 0))
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: share %u of %u: expected a share "
+                             "below a count of 1..%u (0: no shares)", oit_partfile_name(pf),
+                             index, count, OIT_SHARES_MAX);
+    return OIT_OK;
+}
+
 oit_status oit_shares_create(const oit_partfile *pf, uint32_t count, oit_shares **out,
                              oit_error *err)
 {

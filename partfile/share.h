@@ -46,6 +46,12 @@ extern "C" {
 
 typedef struct oit_shares oit_shares;
 
+/* The one check of a share's numbers (the streamer's desc, liboit's
+ * oit_scene_desc): count 0 or 1 (no shares) with index 0, or count
+ * 2..OIT_SHARES_MAX with index below it. The message names pf and both. */
+oit_status oit_shares_check(const oit_partfile *pf, uint32_t count, uint32_t index,
+                            oit_error *err);
+
 /* count 1..OIT_SHARES_MAX; pf must outlive the shares only for the call. */
 oit_status oit_shares_create(const oit_partfile *pf, uint32_t count, oit_shares **out,
                              oit_error *err);

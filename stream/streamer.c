@@ -315,15 +315,11 @@ static oit_status create_upload(oit_streamer *s, const oit_streamer_desc *desc, 
 
 static oit_status make_shares(oit_streamer *s, const oit_streamer_desc *desc, oit_error *err)
 {
-    if (desc->share_count > OIT_SHARES_MAX || (desc->share_count > 1 &&
-                                               desc->share_index >= desc->share_count) ||
-        (desc->share_count <= 1 && desc->share_index != 0))
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: share %u of %u: expected a share "
-                             "below a count of 1..%u", oit_partfile_name(s->pf),
-                             desc->share_index, desc->share_count, OIT_SHARES_MAX);
+    oit_status st = oit_shares_check(s->pf, desc->share_count, desc->share_index, err);
     s->share_index = desc->share_index;
-    return desc->share_count > 1 ? oit_shares_create(s->pf, desc->share_count, &s->shares, err)
-                                 : OIT_OK;
+    if (st == OIT_OK && desc->share_count > 1)
+        st = oit_shares_create(s->pf, desc->share_count, &s->shares, err);
+    return st;
 }
 
 void oit_streamer_share_size(const oit_streamer *s, uint32_t *parts, uint64_t *triangles)
@@ -663,6 +659,23 @@ static oit_status view_in_model(const oit_view *view, float planes[6][4], float 
     return OIT_OK;
 }
 
+oit_status oit_shares_view_order(oit_order *order, oit_shares *shares, const oit_view *view,
+                                 uint32_t *scratch, uint32_t *out, oit_error *err)
+{
+    /* The whole order, unculled: every process computes the same one from
+     * the same file and view, whatever its share. */
+    float planes[6][4], eye[3], dir[3];
+    uint32_t count = 0;
+    oit_status st = view_in_model(view, planes, eye, dir, err);
+    if (st == OIT_OK && view->camera.projection == OIT_PROJ_ORTHOGRAPHIC)
+        st = oit_order_compute_parallel(order, dir, NULL, scratch, &count, err);
+    else if (st == OIT_OK)
+        st = oit_order_compute(order, eye, scratch, &count, err);
+    if (st == OIT_OK)
+        oit_shares_order(shares, scratch, count, out);
+    return st;
+}
+
 oit_status oit_streamer_share_order(oit_streamer *s, const oit_view *view, uint32_t *order,
                                     oit_error *err)
 {
@@ -670,18 +683,7 @@ oit_status oit_streamer_share_order(oit_streamer *s, const oit_view *view, uint3
         order[0] = 0;
         return OIT_OK;
     }
-    /* The whole order, unculled: every process computes the same one from
-     * the same file and view, whatever its share. */
-    float planes[6][4], eye[3], dir[3];
-    uint32_t count = 0;
-    oit_status st = view_in_model(view, planes, eye, dir, err);
-    if (st == OIT_OK && view->camera.projection == OIT_PROJ_ORTHOGRAPHIC)
-        st = oit_order_compute_parallel(s->order, dir, NULL, s->ordered, &count, err);
-    else if (st == OIT_OK)
-        st = oit_order_compute(s->order, eye, s->ordered, &count, err);
-    if (st == OIT_OK)
-        oit_shares_order(s->shares, s->ordered, count, order);
-    return st;
+    return oit_shares_view_order(s->order, s->shares, view, s->ordered, order, err);
 }
 
 /* Captures every pack of the view; on failure the frame is ended and
@@ -809,6 +811,14 @@ static oit_status render(oit_streamer *s, const oit_view *view, oit_image *out, 
     oit_frame_stats flocal;
     ss = ss ? ss : &local;
     fs = fs ? fs : &flocal;
+    /* A share's C and T are blended with the others' as one RGBA image a
+     * process; the absorbing medium between surfaces of different shares
+     * and the per-channel T cannot pass through that. */
+    if (s->shares && view->shading.mode == OIT_SHADING_TRANSLUCENT)
+        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "%s: shading translucent over shares: "
+                             "the absorbing medium and its per-channel transmittance cross "
+                             "share boundaries, which an RGBA blend of the shares cannot "
+                             "carry; render it whole", oit_partfile_name(s->pf));
     oit_packing pk;
     oit_status st = capture_frame(s, view, &pk, ss, err);
     if (st == OIT_OK)

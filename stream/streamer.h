@@ -17,6 +17,8 @@
 #define OIT_STREAM_STREAMER_H
 
 #include "oit/partfile.h"
+#include "partfile/order.h"
+#include "partfile/share.h"
 #include "render/capture.h"
 #include "stream/pack.h"
 
@@ -132,6 +134,11 @@ void oit_stream_frame_stats_add(oit_stream_frame_stats *acc, const oit_stream_fr
  * streamer over the same file and share_count gives the same order. */
 oit_status oit_streamer_share_order(oit_streamer *s, const oit_view *view, uint32_t *order,
                                     oit_error *err);
+/* The same without a streamer (no GL; liboit's oit_scene_share_order):
+ * order over the file that shares cut, scratch a part count of uint32_t,
+ * out oit_shares_count(shares) indices. */
+oit_status oit_shares_view_order(oit_order *order, oit_shares *shares, const oit_view *view,
+                                 uint32_t *scratch, uint32_t *out, oit_error *err);
 /* Parts and triangles of the streamer's share (all the file's without one). */
 void oit_streamer_share_size(const oit_streamer *s, uint32_t *parts, uint64_t *triangles);
 

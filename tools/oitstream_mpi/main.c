@@ -8,8 +8,9 @@
  * adds the background (C + T bg, in the compositing space, as the capture's
  * resolve does), writes the images and the figures: per rank its share and
  * render ms, and per frame the compositing ms and IceT's bytes sent.
- * Translucent shading is refused: its absorbing medium and the per-channel
- * T cross share boundaries, which one RGBA image a rank cannot carry. */
+ * Translucent shading over more than one rank is refused (by the streamer):
+ * its absorbing medium and the per-channel T cross share boundaries, which
+ * one RGBA image a rank cannot carry. */
 #include <math.h>
 #include <mpi.h>
 #include <stdio.h>
@@ -106,10 +107,6 @@ static oit_status open_share(mpi_run *r, int views, oit_error *err)
     r->view.width = a->width;
     r->view.height = a->height;
     r->view.shading = make_shading(a, &r->info);
-    if (r->view.shading.mode == OIT_SHADING_TRANSLUCENT)
-        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "--shading translucent: the absorbing "
-                             "medium and its per-channel transmittance cross share boundaries, "
-                             "which IceT's RGBA blend cannot carry; render it with oitstream");
     oit_streamer_desc sd = {
         .K = max_layers(a, r->pf), .capture = OIT_CAPTURE_ARRAY, .pack = a->pack,
         .schedule = a->schedule_wave ? OIT_SCHEDULE_WAVE : OIT_SCHEDULE_TREE,
@@ -397,7 +394,7 @@ int main(int argc, char **argv)
                    "each of N ranks streams one share of the part file, IceT blends them in "
                    "order, rank 0 writes --out and --stats. The options are oitstream's "
                    "below; --method is stream, and --compare, --window, --show, --ambiguity "
-                   "and --shading translucent are refused.\n\n");
+                   "(and, with more than one rank, --shading translucent) are refused.\n\n");
             oit_stream_usage(stdout, "stream");
         }
         MPI_Finalize();
