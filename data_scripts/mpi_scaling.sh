@@ -3,7 +3,8 @@
 # rendered with 1, 2, 4 (RANKS) ranks on this machine, each rank's share
 # (triangles), its render ms, IceT's compositing ms and bytes exchanged,
 # averaged over the orbit's frames after the first (cold) one; peak host
-# memory per rank (the largest of /usr/bin/time's maximum RSS over the ranks).
+# and GPU memory per rank (the largest over ranks and frames of the stats'
+# host_peak_bytes, getrusage's maximum RSS, and gpu_peak_bytes).
 # Writes a Markdown table to OUT (default bench/tmp/mpi-scaling.md).
 #
 # Usage: data_scripts/mpi_scaling.sh [BINDIR] [OUT]
@@ -30,8 +31,8 @@ root=""
 [ "$(id -u)" -eq 0 ] && root=--allow-run-as-root
 mkdir -p "$work" "$(dirname "$out")"
 {
-    echo "| plant | ranks | LP_NUM_THREADS | frame ms | composite ms | MiB exchanged | shares (triangles) | rank ms | peak RSS MiB a rank |"
-    echo "|---|---|---|---|---|---|---|---|---|"
+    echo "| plant | ranks | LP_NUM_THREADS | frame ms | composite ms | MiB exchanged | shares (triangles) | rank ms | peak host MiB a rank | peak GPU MiB a rank |"
+    echo "|---|---|---|---|---|---|---|---|---|---|"
 } >"$out"
 for n in $models; do
     pf="$work/plant$n.oitp"
@@ -43,11 +44,9 @@ for n in $models; do
     for np in $ranks; do
         js="$work/plant$n-$np.json"
         # shellcheck disable=SC2086
-        mpirun $root --oversubscribe -np "$np" /usr/bin/time -f 'rss %M' -a -o "$work/rss-$n-$np" \
+        mpirun $root --oversubscribe -np "$np" \
             "$bin/oitstream-mpi" "$pf" --size "$size" --orbit "$views" --stats "$js" --quiet
-        rss=$(awk '/rss/ { if ($2 > m) m = $2 } END { printf "%.0f", m / 1024 }' "$work/rss-$n-$np")
-        rm -f "$work/rss-$n-$np"
-        python3 - "$js" "$n" "$np" "${LP_NUM_THREADS:-default}" "$rss" >>"$out" <<'PY'
+        python3 - "$js" "$n" "$np" "${LP_NUM_THREADS:-default}" >>"$out" <<'PY'
 import json, sys
 d = json.load(open(sys.argv[1]))
 fr = d["frames"][1:] or d["frames"]
@@ -55,10 +54,11 @@ avg = lambda xs: sum(xs) / len(xs)
 ranks = d["ranks"]
 shares = " / ".join(str(r["triangles"]) for r in fr[0]["ranks"])
 rank_ms = " / ".join("%.0f" % avg([f["ranks"][k]["ms"] for f in fr]) for k in range(ranks))
-print("| %s | %d | %s | %.0f | %.1f | %.1f | %s | %s | %s |" % (
+peak = lambda key: max(k[key] for f in d["frames"] for k in f["ranks"]) / 2**20
+print("| %s | %d | %s | %.0f | %.1f | %.1f | %s | %s | %.0f | %.0f |" % (
     sys.argv[2], ranks, sys.argv[4], avg([f["ms"] for f in fr]),
     avg([f["composite_ms"] for f in fr]), avg([f["bytes_exchanged"] for f in fr]) / 2**20,
-    shares, rank_ms, sys.argv[5]))
+    shares, rank_ms, peak("host_peak_bytes"), peak("gpu_peak_bytes")))
 PY
     done
 done

@@ -13,6 +13,7 @@
  * one RGBA image a rank cannot carry. */
 #include <math.h>
 #include <mpi.h>
+#include <sys/resource.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -47,7 +48,10 @@
 #include "tools/oitstream/stats_json.h"
 #include "tools/oitstream/views.h"
 
-enum { FIGS = 5 }; /* per rank a frame: render ms, parts, triangles, fragments, parts drawn */
+/* Per rank a frame: render ms, parts, triangles, fragments, parts drawn,
+ * peak host memory so far (getrusage's ru_maxrss, bytes) and the frame's
+ * GPU bytes at peak (the streamer's: capture, ring, cache, tiles). */
+enum { FIGS = 7 };
 
 typedef struct mpi_run {
     int rank, ranks;
@@ -181,7 +185,8 @@ static void print_frame(const mpi_run *r, int index, double frame_ms, double com
     for (int k = 0; k < r->ranks; k++) {
         const double *f = &r->figs[k * FIGS];
         printf("frame %d: rank %d: %.0f parts, %.0f triangles, %.2f ms, %.0f fragments, "
-               "%.0f parts drawn\n", index, k, f[1], f[2], f[0], f[3], f[4]);
+               "%.0f parts drawn, peak %.1f MiB host, %.1f MiB GPU\n", index, k, f[1], f[2],
+               f[0], f[3], f[4], f[5] / 1048576.0, f[6] / 1048576.0);
     }
 }
 
@@ -206,8 +211,11 @@ static oit_status render_frame(mpi_run *r, int index, int views, frame_figs *ff,
     uint32_t parts = 0;
     uint64_t tris = 0;
     oit_streamer_share_size(r->streamer, &parts, &tris);
+    struct rusage ru = {0};
+    getrusage(RUSAGE_SELF, &ru);
     double mine[FIGS] = {oit_time_ms() - t0, parts, (double)tris, (double)fs.fragments,
-                         (double)ss.parts_drawn};
+                         (double)ss.parts_drawn, (double)ru.ru_maxrss * 1024.0, /* KiB */
+                         (double)ss.gpu_bytes_peak};
     /* Every rank reaches the collectives, failed or not, so none hangs. */
     int ok = s == OIT_OK, all_ok = 0;
     MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
@@ -279,6 +287,8 @@ static oit_status write_stats(const mpi_run *r, const frame_figs *ff, int n, oit
             oit_json_fixed(&w, "ms", g[0], 3);
             oit_json_uint(&w, "fragments", (unsigned long long)g[3]);
             oit_json_uint(&w, "parts_drawn", (unsigned long long)g[4]);
+            oit_json_uint(&w, "host_peak_bytes", (unsigned long long)g[5]);
+            oit_json_uint(&w, "gpu_peak_bytes", (unsigned long long)g[6]);
             oit_json_end(&w);
         }
         oit_json_end(&w);

@@ -55,6 +55,11 @@ sum=$(sed -n '/"frames"/,$p' "$T/mpi.json" | grep '"rank":' | head -n "$NP" |
 [ -n "$tri" ] && [ "$sum" = "$tri" ] || fail "shares hold $sum triangles, the file $tri"
 grep '"rank":' "$T/mpi.json" | head -n "$NP" | grep -q '"triangles": 0,' &&
     fail "a rank got an empty share"
+# Every rank's record gives its peak host memory (a rank holds at least
+# its frame buffers, 96x96 float RGBA) and its GPU bytes at peak.
+mem=$(grep '"rank":' "$T/mpi.json" | grep -c \
+      '"host_peak_bytes": [1-9][0-9]\{5,\}, "gpu_peak_bytes": [1-9][0-9]\{4,\}')
+[ "$mem" -eq $((NP * 4)) ] || fail "stats: $mem of $((NP * 4)) rank records give peak host and GPU bytes"
 # The refusal is the streamer's, whatever the scene: checked once (an MPI
 # start costs seconds under the sanitizers).
 if [ "$MODE" = demo ]; then
