@@ -24,7 +24,8 @@
 /* Leak checking before the GL context goes and MPI_Finalize (run): Mesa
  * and OpenMPI unload libraries and components there, after which LSan can
  * no longer name the module of their own never-freed allocations, so no
- * suppression (tests/lsan.supp) could match them. */
+ * suppression (tests/tools/oitstream_mpi/lsan-openmpi.supp) could match
+ * them. */
 #if defined(__has_feature)
 #if __has_feature(address_sanitizer)
 #define OIT_LEAK_CHECK 1

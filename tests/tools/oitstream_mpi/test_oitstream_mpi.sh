@@ -30,16 +30,31 @@ esac
 # Quiet, local and quick: shared memory between the ranks, no network probe.
 export OMPI_MCA_btl=self,vader OMPI_MCA_btl_vader_single_copy_mechanism=none
 export OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_hwloc_base_binding_policy=none
-# Leaks are checked (sanitized builds) inside oitstream-mpi before
-# MPI_Finalize, OpenMPI's own suppressed by module in tests/lsan.supp.
+# Leaks are checked (sanitized builds) inside oitstream-mpi before the GL
+# context goes and MPI_Finalize runs; OpenMPI's own are suppressed by
+# module (lsan-openmpi.supp, added to the suite's suppressions here only).
+# A few remain that no suppression can name: something in a rank loads and
+# unloads a library whose load-time strdup then has no module and a
+# one-frame stack (1 in ~10 runs). So LSan reports without failing the
+# rank (mpirun only: oitstream below keeps the suite's settings), and the
+# test fails on any leak whose stack reaches our sources (frames with an
+# absolute source path: only this build carries them).
+cat "$(dirname "$0")/../../lsan.supp" "$(dirname "$0")/lsan-openmpi.supp" >"$T/lsan.supp"
+mpi_lsan="suppressions=$T/lsan.supp:print_suppressions=0:exitcode=0"
+ours_leaked() { # $1: a rank's output
+    awk '/^(Direct|Indirect) leak/ { leak = 1; next } /^$/ { leak = 0 }
+         leak && /^ *#[0-9]+ .* in [^ ]+ \/[^ ]*\.(c|cpp|h):[0-9]+/ { found = 1; print }
+         END { exit !found }' "$1"
+}
 root=""
 [ "$(id -u)" -eq 0 ] && root=--allow-run-as-root
 "$OIT_BIN/oitstream" "$P" --size 96x96 --orbit 4 --out "$T/one.png" --quiet ||
     die "oitstream failed"
 # shellcheck disable=SC2086
-mpirun $root --oversubscribe -np "$NP" "$OIT_BIN/oitstream-mpi" "$P" --size 96x96 --orbit 4 \
+LSAN_OPTIONS=$mpi_lsan mpirun $root --oversubscribe -np "$NP" "$OIT_BIN/oitstream-mpi" "$P" --size 96x96 --orbit 4 \
     --out "$T/mpi.png" --stats "$T/mpi.json" >"$T/mpi.txt" 2>&1 ||
     { cat "$T/mpi.txt" >&2; die "oitstream-mpi -np $NP failed"; }
+ours_leaked "$T/mpi.txt" >&2 && fail "oitstream-mpi -np $NP leaked (stacks above; $T/mpi.txt)"
 for i in 000 001 002 003; do
     d=$("$OIT_BIN/oitstream" --compare "$T/one_$i.png" "$T/mpi_$i.png") ||
         { fail "view $i: no comparison"; continue; }
@@ -64,7 +79,7 @@ mem=$(grep '"rank":' "$T/mpi.json" | grep -c \
 # start costs seconds under the sanitizers).
 if [ "$MODE" = demo ]; then
     # shellcheck disable=SC2086
-    mpirun $root --oversubscribe -np "$NP" "$OIT_BIN/oitstream-mpi" "$P" --size 32x32 \
+    LSAN_OPTIONS=$mpi_lsan mpirun $root --oversubscribe -np "$NP" "$OIT_BIN/oitstream-mpi" "$P" --size 32x32 \
         --shading translucent >"$T/tl.txt" 2>&1 && fail "translucent shading was not refused"
     grep -q 'translucent.*cross share boundaries' "$T/tl.txt" ||
         fail "translucent refusal does not say why: $(head -n 1 "$T/tl.txt")"
