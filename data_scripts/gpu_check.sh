@@ -44,6 +44,8 @@
 #   GPU_CHECK_CAPTURE_MODELS="demo plant1M"  models of step 4 (among the
 #                        models above; "" skips it);
 #   GPU_CHECK_CAPTURE_SIZE=WxH  its frame size (default 1024x1024)
+#   GPU_CHECK_MPI=0      skip the oitstream-mpi scaling (1-8 ranks on the GPU;
+#                        GPU_CHECK_MPI_MODELS: plant sizes, default 1000000)
 # Exits 1 when any test or frame fails (after writing the report), 2 when a
 # tool is missing or a step cannot run.
 set -u
@@ -263,6 +265,19 @@ if [ "${GPU_CHECK_OOC:-1}" != 0 ]; then
     fi
 fi
 
+# Sort-last ranks sharing this machine's GPU (issue 38): 1-8 ranks of
+# oitstream-mpi on the 1M plant; skipped when the tool was not built.
+mpi_note="skipped: $bin/oitstream-mpi not built (MPI or IceT missing)"
+if [ "${GPU_CHECK_MPI:-1}" != 0 ] && [ -x "$bin/oitstream-mpi" ] && command -v mpirun >/dev/null; then
+    if MPI_MODELS=${GPU_CHECK_MPI_MODELS:-1000000} RANKS="1 2 3 4 5 6 7 8" MPI_SIZE="$size" \
+        sh "$here/mpi_scaling.sh" "$bin" "$work/mpi.md" >"$work/mpi.log" 2>&1; then
+        mpi_note="below"
+    else
+        mpi_note="FAILED: $(tail -n 3 "$work/mpi.log" | tr '\n' ' ')"
+        failures=$((failures + 1))
+    fi
+fi
+
 # ---- report --------------------------------------------------------------
 commit=$(git -C "$here" rev-parse --short HEAD 2>/dev/null || echo '?')
 {
@@ -304,6 +319,10 @@ commit=$(git -C "$here" rev-parse --short HEAD 2>/dev/null || echo '?')
     echo "## data_scripts/ooc_curve.sh: $ooc_note"
     echo
     [ ! -f "$work/ooc.md" ] || sed 's/^#/##/' "$work/ooc.md"
+    echo
+    echo "## data_scripts/mpi_scaling.sh, 1-8 ranks sharing the GPU: $mpi_note"
+    echo
+    [ ! -f "$work/mpi.md" ] || cat "$work/mpi.md"
     echo
     echo "Failures: $failures"
 } >"$report"

@@ -25,6 +25,11 @@ struct oit_scene {
     oit_mesh mesh;    /* in core: the triangles */
     char *name;       /* in core: the file or the descriptor's name */
     oit_scene_info info;
+    /* oit_scene_desc.share_*: the shares of the file and the order that
+     * oit_scene_share_order reads them from (NULL for a whole scene). */
+    oit_shares *share_set;
+    oit_order *order;
+    uint32_t *ordered; /* the part order of a view, a part count long */
     /* The caller's handle is one share and each renderer that drew the
      * scene last holds one: the scene is freed with the last share, so a
      * renderer never meets a freed scene, nor another scene at its address
@@ -85,6 +90,9 @@ static void scene_unshare(oit_scene *s)
 {
     if (!s || atomic_fetch_sub(&s->shares, 1u) != 1u)
         return;
+    oit_shares_destroy(s->share_set);
+    oit_order_destroy(s->order);
+    free(s->ordered);
     oit_partfile_close(s->pf);
     oit_mesh_free(&s->mesh);
     free(s->name);
@@ -111,8 +119,41 @@ static oit_status mesh_scene(oit_mesh *mesh, const char *name, oit_scene **out,
     s->info.attributes = mi->attributes;
     memcpy(s->info.origin, mi->origin, sizeof s->info.origin);
     s->info.in_core = 1;
+    s->info.share_count = 1;
+    s->info.share_parts = 0;
+    s->info.share_triangles = mesh->count;
     *out = s;
     return OIT_OK;
+}
+
+/* oit_scene_desc.share_*, checked by the shares' owner (partfile/share.h);
+ * the shares and an order object kept for oit_scene_share_order. */
+static oit_status open_share(oit_scene *s, const oit_scene_desc *desc, oit_error *err)
+{
+    uint32_t count = desc ? desc->share_count : 0, index = desc ? desc->share_index : 0;
+    oit_status st = oit_shares_check(s->pf, count, index, err);
+    if (st != OIT_OK) {
+        oit_error_prefix(err, "oit_scene_desc");
+        return st;
+    }
+    s->info.share_count = count > 1 ? count : 1;
+    s->info.share_index = index;
+    s->info.share_parts = s->info.parts;
+    s->info.share_triangles = s->info.triangles;
+    if (count <= 1)
+        return OIT_OK;
+    uint32_t parts = oit_partfile_part_count(s->pf);
+    st = oit_shares_create(s->pf, count, &s->share_set, err);
+    if (st == OIT_OK)
+        st = oit_order_create(s->pf, &s->order, err);
+    if (st == OIT_OK && !(s->ordered = malloc((parts ? parts : 1) * sizeof *s->ordered)))
+        st = oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot allocate the order of %u parts",
+                           oit_partfile_name(s->pf), parts);
+    if (st == OIT_OK) {
+        s->info.share_parts = oit_shares_parts(s->share_set, index);
+        s->info.share_triangles = oit_shares_triangles(s->share_set, index);
+    }
+    return st;
 }
 
 oit_status oit_scene_open(const char *path, const oit_scene_desc *desc, oit_scene **out,
@@ -124,6 +165,11 @@ oit_status oit_scene_open(const char *path, const oit_scene_desc *desc, oit_scen
     if (!path)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_scene_open: path is NULL");
     if (!is_part_file(path)) {
+        /* Shares cut a part file's management tree; a mesh has none. */
+        if (desc && (desc->share_count > 1 || desc->share_index != 0))
+            return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: oit_scene_desc share %u of %u: "
+                                 "shares are of part files (oitprep), this is a mesh", path,
+                                 desc->share_index, desc->share_count);
         oit_mesh mesh;
         oit_status st = oit_mesh_load(path, NULL, &mesh, err);
         return st == OIT_OK ? mesh_scene(&mesh, path, out, err) : st;
@@ -146,6 +192,11 @@ oit_status oit_scene_open(const char *path, const oit_scene_desc *desc, oit_scen
     s->info.K = sum.K;
     s->info.attributes = sum.attributes;
     memcpy(s->info.origin, sum.origin, sizeof s->info.origin);
+    st = open_share(s, desc, err);
+    if (st != OIT_OK) {
+        scene_unshare(s);
+        return st;
+    }
     *out = s;
     return OIT_OK;
 }
@@ -513,6 +564,8 @@ static oit_status bind_scene(oit_renderer *r, oit_scene *scene, oit_error *err)
     sd.cache_budget = r->desc.cache_budget;
     sd.reader_threads = r->desc.read_on_draw_thread ? OIT_STREAM_READ_INLINE : 0;
     sd.gpu_budget = r->desc.gpu_budget;
+    sd.share_count = scene->info.share_count;
+    sd.share_index = scene->info.share_index;
     oit_status st = oit_streamer_create(scene->pf, &sd, &r->streamer, err);
     if (st == OIT_OK)
         hold_scene(r, scene);
@@ -649,8 +702,8 @@ static oit_status clip_from_frame(const oit_frame *f, oit_view *v, oit_error *er
     return oit_clip_check(&v->clip, "oit_frame.clip", err);
 }
 
-static oit_status frame_view(const oit_renderer *r, const oit_scene *scene,
-                             const oit_frame *f, oit_view *v, oit_error *err)
+/* The view's size, camera and model from f (no shading). */
+static oit_status frame_camera(const oit_frame *f, oit_view *v, oit_error *err)
 {
     if (f->viewport_width <= 0 || f->viewport_height <= 0)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_frame: viewport %dx%d is empty",
@@ -658,7 +711,6 @@ static oit_status frame_view(const oit_renderer *r, const oit_scene *scene,
     memset(v, 0, sizeof *v);
     v->width = f->viewport_width;
     v->height = f->viewport_height;
-    make_shading(r, scene, &v->shading);
     oit_status st = camera_from_view(f->view, &v->camera, err);
     if (st == OIT_OK)
         st = camera_from_projection(f->projection, (double)v->width / v->height, &v->camera,
@@ -667,6 +719,15 @@ static oit_status frame_view(const oit_renderer *r, const oit_scene *scene,
         st = model_from_frame(f->model, v, err);
     if (st == OIT_OK)
         st = clip_from_frame(f, v, err);
+    return st;
+}
+
+static oit_status frame_view(const oit_renderer *r, const oit_scene *scene,
+                             const oit_frame *f, oit_view *v, oit_error *err)
+{
+    oit_status st = frame_camera(f, v, err);
+    if (st == OIT_OK)
+        make_shading(r, scene, &v->shading);
     return st;
 }
 
@@ -874,4 +935,25 @@ oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame 
         stats->gpu_free_bytes = b.free_bytes;
     }
     return OIT_OK;
+}
+
+oit_status oit_scene_share_order(oit_scene *scene, const oit_frame *frame, uint32_t *order,
+                                 uint32_t order_count, oit_error *err)
+{
+    if (!scene || !frame || !order)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_scene_share_order: NULL argument");
+    uint32_t n = scene->info.share_count;
+    if (order_count < n)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: oit_scene_share_order: order holds "
+                             "%u shares, the scene has %u", scene_name(scene), order_count, n);
+    oit_view view;
+    oit_status st = frame_camera(frame, &view, err);
+    if (st == OIT_OK && !scene->share_set)
+        order[0] = 0;
+    else if (st == OIT_OK)
+        st = oit_shares_view_order(scene->order, scene->share_set, &view, scene->ordered, order,
+                                   err);
+    if (st != OIT_OK)
+        oit_error_prefix(err, scene_name(scene));
+    return st;
 }

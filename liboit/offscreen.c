@@ -300,7 +300,8 @@ oit_status oit_offscreen_render(oit_offscreen *o, oit_scene *scene,
     if (w <= 0 || h <= 0 || w > 32768 || h > 32768)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_offscreen_view: size %dx%d is "
                              "outside 1..32768 a side", w, h);
-    if (view->format != OIT_PIXELS_RGBA8 && view->format != OIT_PIXELS_RGBA32F)
+    if (view->format != OIT_PIXELS_RGBA8 && view->format != OIT_PIXELS_RGBA32F &&
+        view->format != OIT_PIXELS_PREMUL32F)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_offscreen_view.format = %d is not an "
                              "oit_pixel_format", (int)view->format);
     size_t comp = view->format == OIT_PIXELS_RGBA8 ? 1 : sizeof(float);
@@ -308,7 +309,7 @@ oit_status oit_offscreen_render(oit_offscreen *o, oit_scene *scene,
     if (pixels_bytes < need)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_offscreen_render: a %dx%d %s image "
                              "needs %zu bytes, the buffer has %zu", w, h,
-                             comp == 1 ? "RGBA8" : "RGBA32F", need, pixels_bytes);
+                             comp == 1 ? "RGBA8" : "float RGBA", need, pixels_bytes);
     oit_frame frame = {0};
     oit_status s = make_frame(scene, view, &frame, err);
     if (s == OIT_OK)
@@ -324,10 +325,13 @@ oit_status oit_offscreen_render(oit_offscreen *o, oit_scene *scene,
         s = ensure_target(o, w, h, err);
     if (s != OIT_OK)
         return s;
+    /* The frame alone: over transparent black, liboit.h's Result leaves
+     * C and 1 - t. */
+    int premul = view->format == OIT_PIXELS_PREMUL32F;
     float bg[4];
     int all_zero = is_zero(view->background, 4);
     for (int c = 0; c < 4; c++)
-        bg[c] = all_zero ? 1.0f : fmaxf(view->background[c], 0.0f);
+        bg[c] = premul ? 0.0f : all_zero ? 1.0f : fmaxf(view->background[c], 0.0f);
     /* Linear light: the float target holds linear values (GL does not
      * encode into a float target), so the background is decoded here and
      * the result encoded after readback (offscreen.h). */
@@ -348,7 +352,7 @@ oit_status oit_offscreen_render(oit_offscreen *o, oit_scene *scene,
     if (s != OIT_OK)
         return s;
     size_t row = (size_t)w * 4;
-    if (o->linear)
+    if (o->linear && !premul)
         for (size_t i = 0; i < (size_t)w * h * 4; i++)
             if (i % 4 != 3)
                 o->readback[i] = (float)oit_srgb_encode(o->readback[i]);

@@ -275,22 +275,31 @@ static void push(oit_order *o, size_t *top, uint32_t grid, const uint32_t lo[3],
     memcpy(nd->hi, hi, sizeof nd->hi);
 }
 
+void oit_order_split_range(const oit_partfile_grid *g, const uint32_t lo[3], const uint32_t hi[3],
+                           int *axis, uint32_t *mid)
+{
+    int a = 0;
+    float best = -1.0f;
+    for (int k = 0; k < 3; k++) {
+        float len = (float)(hi[k] - lo[k]) * g->cell_size[k];
+        if (hi[k] - lo[k] > 1 && len > best) {
+            best = len;
+            a = k;
+        }
+    }
+    *axis = a;
+    *mid = lo[a] + (hi[a] - lo[a]) / 2;
+}
+
 /* Splits nd at the middle of its longest side; pushes the far half, then the
  * near half (popped first). */
 static void split(oit_order *o, size_t *top, const order_node *nd, const float eye[3],
                   const float *dir)
 {
     const oit_partfile_grid *g = o->grids[nd->grid];
-    int axis = 0;
-    float best = -1.0f;
-    for (int k = 0; k < 3; k++) {
-        float len = (float)(nd->hi[k] - nd->lo[k]) * g->cell_size[k];
-        if (nd->hi[k] - nd->lo[k] > 1 && len > best) {
-            best = len;
-            axis = k;
-        }
-    }
-    uint32_t mid = nd->lo[axis] + (nd->hi[axis] - nd->lo[axis]) / 2;
+    int axis;
+    uint32_t mid;
+    oit_order_split_range(g, nd->lo, nd->hi, &axis, &mid);
     float plane = g->origin[axis] + (float)mid * g->cell_size[axis];
     uint32_t lo2[3], hi1[3];
     memcpy(lo2, nd->lo, sizeof lo2);

@@ -52,6 +52,14 @@ oit_status oit_order_compute_parallel(oit_order *o, const float dir[3],
                                       const float (*planes)[4], uint32_t *parts,
                                       uint32_t *count, oit_error *err);
 
+/* The implicit kd-tree's one split rule: a cell index range [lo, hi) of g
+ * with more than one cell splits on its longest side in world units (among
+ * sides of more than one cell) into [lo, mid) and [mid, hi) on *axis. The
+ * view only picks which half comes first; the shares (share.h) cut the
+ * same tree, so the order of a view keeps each share's parts together. */
+void oit_order_split_range(const oit_partfile_grid *g, const uint32_t lo[3], const uint32_t hi[3],
+                           int *axis, uint32_t *mid);
+
 #ifdef __cplusplus
 }
 #endif

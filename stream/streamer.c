@@ -13,6 +13,7 @@
 #include "render/saturation.h"
 #include "stream/fence_queue.h"
 #include "partfile/order.h"
+#include "partfile/share.h"
 #include "partfile/triangles.h"
 #include "stream/reader.h"
 #include "stream/residency.h"
@@ -40,6 +41,8 @@ typedef struct pack_plan {
 struct oit_streamer {
     oit_partfile *pf;
     oit_order *order;
+    oit_shares *shares; /* NULL: every part is the streamer's */
+    uint32_t share_index;
     oit_packer *packer;
     oit_fence_queue *fences;
     oit_upload *upload;
@@ -210,6 +213,7 @@ void oit_streamer_destroy(oit_streamer *s)
     oit_fence_queue_destroy(s->fences);
     oit_packer_destroy(s->packer);
     oit_order_destroy(s->order);
+    oit_shares_destroy(s->shares);
     free(s->ordered);
     free(s->source);
     free(s->offset);
@@ -218,6 +222,12 @@ void oit_streamer_destroy(oit_streamer *s)
     free(s->home);
     free(s->loaded);
     free(s);
+}
+
+/* A part of the streamer's share (all are, without one). */
+static int is_mine(const oit_streamer *s, uint32_t part)
+{
+    return !s->shares || oit_shares_of_part(s->shares, part) == s->share_index;
 }
 
 /* Primitive ids are the triangles' source indices, uploaded with them
@@ -235,7 +245,7 @@ static oit_status number_triangles(oit_streamer *s, uint64_t *all_bytes, oit_err
                              oit_partfile_name(s->pf));
     *all_bytes = 0;
     for (uint32_t i = 0; i < oit_partfile_part_count(s->pf); i++)
-        *all_bytes += oit_pack_part_bytes(&parts[i]);
+        *all_bytes += is_mine(s, i) ? oit_pack_part_bytes(&parts[i]) : 0;
     return OIT_OK;
 }
 
@@ -385,7 +395,7 @@ static oit_status make_resident(oit_streamer *s, oit_error *err)
         return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot allocate the streamer (%u parts)",
                              oit_partfile_name(s->pf), n);
     for (uint32_t i = 1; i <= n; i++)
-        s->home[i] = s->home[i - 1] + oit_pack_part_bytes(&parts[i - 1]);
+        s->home[i] = s->home[i - 1] + (is_mine(s, i - 1) ? oit_pack_part_bytes(&parts[i - 1]) : 0);
     return OIT_OK;
 }
 
@@ -479,6 +489,28 @@ static oit_status reader_threads(const oit_partfile *pf, int want, int *threads,
     return OIT_OK;
 }
 
+static oit_status make_shares(oit_streamer *s, const oit_streamer_desc *desc, oit_error *err)
+{
+    oit_status st = oit_shares_check(s->pf, desc->share_count, desc->share_index, err);
+    s->share_index = desc->share_index;
+    if (st == OIT_OK && desc->share_count > 1)
+        st = oit_shares_create(s->pf, desc->share_count, &s->shares, err);
+    return st;
+}
+
+void oit_streamer_share_size(const oit_streamer *s, uint32_t *parts, uint64_t *triangles)
+{
+    if (s->shares) {
+        *parts = oit_shares_parts(s->shares, s->share_index);
+        *triangles = oit_shares_triangles(s->shares, s->share_index);
+        return;
+    }
+    oit_partfile_summary sum = {0};
+    oit_partfile_get_summary(s->pf, &sum);
+    *parts = oit_partfile_part_count(s->pf);
+    *triangles = sum.triangles;
+}
+
 oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
                                oit_streamer **out, oit_error *err)
 {
@@ -497,6 +529,8 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
     if (st == OIT_OK)
         st = alloc_arrays(s, oit_partfile_part_count(pf), err);
     if (st == OIT_OK)
+        st = make_shares(s, desc, err);
+    if (st == OIT_OK)
         st = number_triangles(s, &all_bytes, err);
     if (st == OIT_OK)
         st = split_budget(s, &eff, mode == OIT_PACK_COUNTED || mode == OIT_PACK_FIRSTK,
@@ -508,6 +542,13 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
      * of GPU memory for it. */
     if (all_bytes < budget)
         budget = all_bytes > OIT_STREAM_RING_MIN ? all_bytes : OIT_STREAM_RING_MIN;
+    /* The packer checks every part of the file against the budget, other
+     * shares' too (an empty share included). */
+    for (uint32_t i = 0; s->shares && i < oit_partfile_part_count(pf); i++) {
+        uint64_t b = oit_pack_part_bytes(&oit_partfile_parts(pf)[i]);
+        budget = b > budget && b <= (desc->upload_budget ? desc->upload_budget : 64ull << 20)
+                     ? b : budget;
+    }
     if (st == OIT_OK)
         st = oit_order_create(pf, &s->order, err);
     if (st == OIT_OK)
@@ -784,6 +825,62 @@ void oit_streamer_set_opaque(oit_streamer *s, const oit_opaque_depth *o)
         s->opaque = *o;
 }
 
+/* The view's frustum planes, eye and direction in model space, where the
+ * parts are: through the model matrix (a plane p on M x is M^T p on x; an
+ * affine map keeps which side of a plane a point lies on). */
+static oit_status view_in_model(const oit_view *view, float planes[6][4], float eye[3],
+                                float dir[3], oit_error *err)
+{
+    oit_camera_frustum(&view->camera, (float)view->width / (float)view->height, planes);
+    double model[16], meye[3], mdir[3];
+    int modelled = oit_view_model(view, model);
+    if (modelled) {
+        for (int i = 0; i < 6; i++) {
+            double p[4];
+            for (int j = 0; j < 4; j++)
+                p[j] = planes[i][0] * model[j * 4] + planes[i][1] * model[j * 4 + 1] +
+                       planes[i][2] * model[j * 4 + 2] + planes[i][3] * model[j * 4 + 3];
+            for (int j = 0; j < 4; j++)
+                planes[i][j] = (float)p[j];
+        }
+        if (!oit_view_model_eye(view, meye, mdir))
+            return oit_error_set(err, OIT_ERR_ARGUMENT, "the model matrix is singular");
+    }
+    const oit_camera *c = &view->camera;
+    for (int k = 0; k < 3; k++) {
+        eye[k] = modelled ? (float)meye[k] : c->eye[k];
+        dir[k] = modelled ? (float)mdir[k] : c->target[k] - c->eye[k];
+    }
+    return OIT_OK;
+}
+
+oit_status oit_shares_view_order(oit_order *order, oit_shares *shares, const oit_view *view,
+                                 uint32_t *scratch, uint32_t *out, oit_error *err)
+{
+    /* The whole order, unculled: every process computes the same one from
+     * the same file and view, whatever its share. */
+    float planes[6][4], eye[3], dir[3];
+    uint32_t count = 0;
+    oit_status st = view_in_model(view, planes, eye, dir, err);
+    if (st == OIT_OK && view->camera.projection == OIT_PROJ_ORTHOGRAPHIC)
+        st = oit_order_compute_parallel(order, dir, NULL, scratch, &count, err);
+    else if (st == OIT_OK)
+        st = oit_order_compute(order, eye, scratch, &count, err);
+    if (st == OIT_OK)
+        oit_shares_order(shares, scratch, count, out);
+    return st;
+}
+
+oit_status oit_streamer_share_order(oit_streamer *s, const oit_view *view, uint32_t *order,
+                                    oit_error *err)
+{
+    if (!s->shares) {
+        order[0] = 0;
+        return OIT_OK;
+    }
+    return oit_shares_view_order(s->order, s->shares, view, s->ordered, order, err);
+}
+
 /* Captures every pack of the view; on failure the frame is ended and
  * discarded. */
 static oit_status capture_frame(oit_streamer *s, const oit_view *view, oit_packing *pk,
@@ -802,31 +899,9 @@ static oit_status capture_frame(oit_streamer *s, const oit_view *view, oit_packi
         st = oit_opaque_tiles_begin(s->opaque_tiles, view, &s->opaque, err);
     /* Whole grid ranges outside the view are left out of the order; the
      * packer still culls part by part what remains. */
-    float planes[6][4];
-    oit_camera_frustum(&view->camera, (float)view->width / (float)view->height, planes);
-    /* Parts are in model space: the planes, the eye and the view direction
-     * go there through the model matrix (a plane p on M x is M^T p on x;
-     * an affine map keeps which side of a plane a point lies on). */
-    double model[16], meye[3], mdir[3];
-    int modelled = oit_view_model(view, model);
-    if (modelled) {
-        for (int i = 0; i < 6; i++) {
-            double p[4];
-            for (int j = 0; j < 4; j++)
-                p[j] = planes[i][0] * model[j * 4] + planes[i][1] * model[j * 4 + 1] +
-                       planes[i][2] * model[j * 4 + 2] + planes[i][3] * model[j * 4 + 3];
-            for (int j = 0; j < 4; j++)
-                planes[i][j] = (float)p[j];
-        }
-        if (!oit_view_model_eye(view, meye, mdir) && st == OIT_OK)
-            st = oit_error_set(err, OIT_ERR_ARGUMENT, "the model matrix is singular");
-    }
-    const oit_camera *c = &view->camera;
-    float eye[3], dir[3];
-    for (int k = 0; k < 3; k++) {
-        eye[k] = modelled ? (float)meye[k] : c->eye[k];
-        dir[k] = modelled ? (float)mdir[k] : c->target[k] - c->eye[k];
-    }
+    float planes[6][4], eye[3], dir[3];
+    if (st == OIT_OK)
+        st = view_in_model(view, planes, eye, dir, err);
     double t0 = oit_time_ms();
     if (st == OIT_OK && view->camera.projection == OIT_PROJ_ORTHOGRAPHIC) {
         /* Parallel rays: near sides by the view direction, not an eye. */
@@ -836,13 +911,26 @@ static oit_status capture_frame(oit_streamer *s, const oit_view *view, oit_packi
         st = oit_order_compute_culled(s->order, eye, (const float(*)[4])planes, s->ordered,
                                       &count, err);
     }
+    /* Another share's parts are another process's (a subsequence of a
+     * visibility order is one of its parts). */
+    uint32_t mine = count;
+    if (s->shares) {
+        mine = 0;
+        for (uint32_t i = 0; i < count; i++)
+            if (is_mine(s, s->ordered[i]))
+                s->ordered[mine++] = s->ordered[i];
+    }
+    count = mine;
     double t1 = oit_time_ms();
     oit_packer_set_front_first(s->packer, s->front_now);
     if (st == OIT_OK)
         st = oit_packer_run(s->packer, view, s->ordered, count, pk, err);
     ss->order_ms = t1 - t0;
     /* Parts the order left out lie outside the view, as the packer's do. */
-    ss->parts_culled = oit_partfile_part_count(s->pf) - count;
+    uint32_t own = 0;
+    uint64_t own_triangles = 0;
+    oit_streamer_share_size(s, &own, &own_triangles);
+    ss->parts_culled = own - count;
     ss->pack_ms = oit_time_ms() - t1;
     /* The packing tells what the frame will hold: the ring and the cache
      * grow to it before the first part is read. */
@@ -927,6 +1015,14 @@ static oit_status render(oit_streamer *s, const oit_view *view, oit_image *out, 
     oit_frame_stats flocal;
     ss = ss ? ss : &local;
     fs = fs ? fs : &flocal;
+    /* A share's C and T are blended with the others' as one RGBA image a
+     * process; the absorbing medium between surfaces of different shares
+     * and the per-channel T cannot pass through that. */
+    if (s->shares && view->shading.mode == OIT_SHADING_TRANSLUCENT)
+        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "%s: shading translucent over shares: "
+                             "the absorbing medium and its per-channel transmittance cross "
+                             "share boundaries, which an RGBA blend of the shares cannot "
+                             "carry; render it whole", oit_partfile_name(s->pf));
     oit_packing pk;
     oit_status st = capture_frame(s, view, &pk, ss, err);
     if (st == OIT_OK)

@@ -17,6 +17,8 @@
 #define OIT_STREAM_STREAMER_H
 
 #include "oit/partfile.h"
+#include "partfile/order.h"
+#include "partfile/share.h"
 #include "render/capture.h"
 #include "render/capture_choice.h"
 #include "render/gpu_memory.h"
@@ -83,6 +85,13 @@ typedef struct oit_streamer_desc {
      * Tests inject a fake driver here. */
     oit_gpu_free_query free_query;
     void *free_ctx;
+    /* Sort-last rendering (partfile/share.h): share_count 0 or 1 (default),
+     * every part; 2..OIT_SHARES_MAX, only the parts of share share_index
+     * (< share_count) are ordered, read and drawn, and the ring and cache
+     * are sized by that share's bytes. The frame's C and T are then the
+     * share's, to be blended with the other shares' in the order
+     * oit_streamer_share_order gives. */
+    uint32_t share_count, share_index;
 } oit_streamer_desc;
 
 /* Half the free memory the driver reports: the rest is the embedding
@@ -189,6 +198,19 @@ uint64_t oit_streamer_pixel_bytes(const oit_view *view);
  * up, the GPU peak takes the larger, the rest (cache_bytes, epsilon, modes)
  * are the band's, the last. */
 void oit_stream_frame_stats_add(oit_stream_frame_stats *acc, const oit_stream_frame_stats *band);
+
+/* The shares front to back for view (partfile/share.h, oit_shares_order):
+ * share_count indices into order; with share_count <= 1, just 0. Every
+ * streamer over the same file and share_count gives the same order. */
+oit_status oit_streamer_share_order(oit_streamer *s, const oit_view *view, uint32_t *order,
+                                    oit_error *err);
+/* The same without a streamer (no GL; liboit's oit_scene_share_order):
+ * order over the file that shares cut, scratch a part count of uint32_t,
+ * out oit_shares_count(shares) indices. */
+oit_status oit_shares_view_order(oit_order *order, oit_shares *shares, const oit_view *view,
+                                 uint32_t *scratch, uint32_t *out, oit_error *err);
+/* Parts and triangles of the streamer's share (all the file's without one). */
+void oit_streamer_share_size(const oit_streamer *s, uint32_t *parts, uint64_t *triangles);
 
 /* Renders one view into out (allocated by the call). fs and ss may be NULL. */
 oit_status oit_streamer_render(oit_streamer *s, const oit_view *view, oit_image *out,

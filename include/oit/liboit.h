@@ -86,6 +86,21 @@ typedef struct oit_scene_desc {
     /* 0 (default): every part's data is checked at open. 1: only the
      * management sections; each part is checked when first drawn. */
     int defer_validation;
+    /* Sort-last rendering over several processes (MPI ranks, each with
+     * its own GL), a part file only. share_count 0 or 1 (default): the
+     * whole file. 2..4096: the scene is share share_index (< share_count)
+     * of the file: one whole subtree of its management tree, the shares
+     * balanced by triangles, so that every view orders them. A renderer
+     * then draws only that share's parts, and its C and T are the share's:
+     * read them as premultiplied colour and 1 - T (a float target cleared
+     * to 0, or oit/offscreen.h's OIT_PIXELS_PREMUL32F) and composite the
+     * processes' images with the over operator (IceT's
+     * ICET_COMPOSITE_MODE_BLEND) in the order oit_scene_share_order gives.
+     * Exact for OIT_RENDER_TRANSPARENT; OIT_RENDER_TRANSLUCENT is refused
+     * at draw (OIT_ERR_UNSUPPORTED): its absorbing medium and per-channel
+     * T cross share boundaries. Bad numbers fail at open with
+     * OIT_ERR_ARGUMENT, as does share_count > 1 for a mesh file. */
+    uint32_t share_count, share_index;
 } oit_scene_desc;
 
 typedef struct oit_scene_info {
@@ -103,6 +118,11 @@ typedef struct oit_scene_info {
     /* 1: an in-core scene (a mesh file or the caller's arrays), drawn with
      * DFB; parts and K are then 0. 0: a part file, streamed. */
     uint32_t in_core;
+    /* oit_scene_desc's share, resolved: share_count 1 and share_index 0
+     * for a whole scene; the parts and triangles the scene's share draws
+     * (triangles and parts above are the whole file's). */
+    uint32_t share_count, share_index;
+    uint64_t share_parts, share_triangles;
 } oit_scene_info;
 
 /* path: a part file (its content starts with the part-file magic, or its
@@ -409,6 +429,20 @@ typedef struct oit_draw_stats {
  * draw) and gpu_bytes_peak are filled, the rest are 0. */
 OIT_API oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame *frame,
                                      oit_draw_stats *stats, oit_error *err);
+
+/* ---- sort-last over several processes (oit_scene_desc.share_count) --- */
+
+/* The shares front to back for frame (its view, projection, viewport size
+ * and model: as oit_renderer_draw takes it; framebuffer and depth_texture
+ * are not read): writes share_count share indices into order (capacity
+ * order_count >= share_count, else OIT_ERR_ARGUMENT), the composite order
+ * of the processes that draw the shares of one file (icetCompositeOrder
+ * takes it, share i being the process that opened share i). Every scene
+ * over the same file and share_count gives the same order for the same
+ * frame, whatever its share_index; a whole scene gives {0}. No GL needed;
+ * not to be called while another call uses scene. */
+OIT_API oit_status oit_scene_share_order(oit_scene *scene, const oit_frame *frame,
+                                         uint32_t *order, uint32_t order_count, oit_error *err);
 
 #ifdef __cplusplus
 }

@@ -53,7 +53,15 @@ OIT_API const char *oit_offscreen_gl_renderer(const oit_offscreen *o);
 
 typedef enum oit_pixel_format {
     OIT_PIXELS_RGBA8 = 0,  /* 4 uint8_t a pixel             */
-    OIT_PIXELS_RGBA32F = 1 /* 4 floats a pixel, 0..1, sRGB-encoded like RGBA8 */
+    OIT_PIXELS_RGBA32F = 1, /* 4 floats a pixel, 0..1, sRGB-encoded like RGBA8 */
+    /* 4 floats a pixel: the frame itself, for compositing with other
+     * frames (oit_scene_desc.share_count): rgb its premultiplied colour C
+     * and a = 1 - t (t = mean(T), T itself for transparent shading), in the
+     * compositing space (linear light, not encoded, for
+     * OIT_RENDER_COLOUR_LINEAR), with no background (background is not
+     * read). Frames A in front of B combine with the over operator,
+     * A + (1 - A.a) B, and a background last: rgb + (1 - a) bg. */
+    OIT_PIXELS_PREMUL32F = 2
 } oit_pixel_format;
 
 typedef struct oit_offscreen_view {

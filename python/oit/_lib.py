@@ -23,14 +23,17 @@ class Error(ctypes.Structure):
 
 
 class SceneDesc(ctypes.Structure):
-    _fields_ = [("defer_validation", ctypes.c_int)]
+    _fields_ = [("defer_validation", ctypes.c_int), ("share_count", ctypes.c_uint32),
+                ("share_index", ctypes.c_uint32)]
 
 
 class SceneInfo(ctypes.Structure):
     _fields_ = [("triangles", ctypes.c_uint64), ("parts", ctypes.c_uint64),
                 ("bounds_min", ctypes.c_float * 3), ("bounds_max", ctypes.c_float * 3),
                 ("K", ctypes.c_uint32), ("attributes", ctypes.c_uint32),
-                ("origin", ctypes.c_double * 3), ("in_core", ctypes.c_uint32)]
+                ("origin", ctypes.c_double * 3), ("in_core", ctypes.c_uint32),
+                ("share_count", ctypes.c_uint32), ("share_index", ctypes.c_uint32),
+                ("share_parts", ctypes.c_uint64), ("share_triangles", ctypes.c_uint64)]
 
 
 class SceneMeshDesc(ctypes.Structure):

@@ -1,0 +1,24 @@
+/* oitstream's views, shading and output names from its command line,
+ * shared with oitstream-mpi (tools/oitstream_mpi), which takes the same
+ * options. */
+#ifndef OIT_OITSTREAM_VIEWS_H
+#define OIT_OITSTREAM_VIEWS_H
+
+#include <stddef.h>
+
+#include "oit/mesh.h"
+#include "render/view.h"
+#include "tools/oitstream/cli_args.h"
+
+/* The cameras of --view, --orbit, --walk or --azimuth/--elevation (with
+ * --ortho), in the model's coordinates; *out allocated by the call. */
+oit_status make_views(const oit_stream_args *a, const oit_mesh_info *info,
+                      oit_camera **out, int *count, oit_error *err);
+/* The shading options with the model's attributes and defaults resolved. */
+oit_shading make_shading(const oit_stream_args *a, const oit_mesh_info *info);
+/* --out's file for view index of views: FILE.png for one view, FILE_007.png
+ * for several, DIR/frame_007.png for a folder (created when missing). */
+oit_status output_path(const char *out, int index, int views, char *buf, size_t cap,
+                       oit_error *err);
+
+#endif
