@@ -28,7 +28,16 @@ tmp=$T
 mkdir -p "$tmp/src"
 
 # Every folder of tools/ but common/ is a tool, so a new one is checked too.
-tools=$(cd "$src_dir/tools" && for d in */; do [ "$d" = common/ ] || printf '%s ' "${d%/}"; done)
+# A tool is the executable its folder's CMakeLists.txt adds; an optional one
+# (oitstream-mpi without MPI or IceT) is checked where this build made it.
+tools=""
+for d in "$src_dir"/tools/*/; do
+    t=$(sed -n 's/^add_executable(\([^ ]*\).*/\1/p' "$d/CMakeLists.txt" | head -n 1)
+    [ -n "$t" ] || continue
+    [ "$t" != oitstream-mpi ] || grep -q '^OIT_HAVE_MPI_TOOL:INTERNAL=ON' "$build/CMakeCache.txt" ||
+        continue
+    tools="$tools$t "
+done
 # shellcheck disable=SC2086 # one target a tool
 cmake --build "$build" --target oit $tools > "$tmp/build.log" 2>&1 || { cat "$tmp/build.log"; exit 1; }
 cmake --install "$build" --prefix "$tmp/prefix" > "$tmp/install.log"
