@@ -11,9 +11,14 @@
  * Materials: `mtllib` files are read from the OBJ's folder; `usemtl` selects
  * Kd as the face colour (unless the file has vertex colours, which win) and
  * d, or else Tr as 1 - d, as its alpha. A material library that cannot be
- * opened is skipped (the faces then carry no material colour); one that is
- * malformed is an error naming it. Texture maps (map_Kd, map_d, ...) are
- * not rendered: the first one met is reported once on stderr. A face of a
+ * opened is skipped with a warning on stderr naming the OBJ's line (the
+ * faces then carry no material colour), and so is the first usemtl of a
+ * material no library defined; a malformed library (a missing, malformed
+ * or non-finite number, Kd with two numbers, Kd/d/Tr before any newmtl) is
+ * an error naming it and its line. Kd, d and Tr outside 0..1 are clamped,
+ * the first such value of a library reported on stderr. Texture maps
+ * (map_Kd, map_d, ...) are not rendered: the first one met is reported
+ * once on stderr. A face of a
  * material with d or Tr carries that alpha, one of a material without
  * (or of no material) alpha 1, MTL's default: with alpha in the file,
  * those are opaque (render/shade.h, "Opaque triangles").
@@ -23,10 +28,13 @@
  */
 #include "formats/readers_internal.h"
 
+#include <errno.h>
 #include <inttypes.h>
+#include <math.h>
 #include <stdlib.h>
 
 #define OBJ_MAX_NAME 1024
+#define NO_MATERIAL SIZE_MAX
 
 typedef struct obj_material {
     char *name;
@@ -37,12 +45,17 @@ typedef struct obj_material {
 typedef struct obj_reader {
     oit_rd_ctx *c;
     const char *mtl_dir;
+    FILE *mtl_file;       /* oit_read_obj_stream_mtl: every mtllib reads it */
+    const char *mtl_name;
     oit_rd_vtable tab;
     int vertex_colors;
     obj_material *mats;
     size_t nmat, capmat;
-    const obj_material *cur;
-    int map_said; /* a texture map was reported (once per OBJ) */
+    size_t cur; /* the usemtl material, an index into mats (which a later
+                   mtllib may move), or NO_MATERIAL */
+    int map_said;     /* a texture map was reported (once per OBJ)       */
+    int range_said;   /* a value outside 0..1 (once per library read)    */
+    int unknown_said; /* a usemtl of no known material (once per OBJ)    */
 } obj_reader;
 
 /* The rest of a statement (a name), trimmed of blanks on both sides. */
@@ -82,6 +95,33 @@ static oit_status mtl_new(obj_reader *r, oit_rd_stream *in, char *name)
     return OIT_OK;
 }
 
+/* The next number of statement w: a missing, malformed or non-finite one is
+ * an error naming the statement and what stood there. */
+static oit_status mtl_number(oit_rd_stream *in, const char *w, size_t n, char **p, double *v)
+{
+    char *at = *p, *tok;
+    if (oit_rd_double(p, v) && isfinite(*v))
+        return OIT_OK;
+    size_t len = oit_rd_word(&at, &tok);
+    if (len == 0)
+        return oit_rd_fail_line(in, OIT_ERR_FORMAT, "'%.*s' needs a number", (int)n, w);
+    return oit_rd_fail_line(in, OIT_ERR_FORMAT, "'%.*s': '%.*s' is not a finite number", (int)n,
+                            w, (int)(len < 40 ? len : 40), tok);
+}
+
+/* Kd, d and Tr are fractions; a value outside 0..1 is drawn clamped, as
+ * viewers do, and the first one of a library read is reported. */
+static void mtl_range(obj_reader *r, oit_rd_stream *in, const char *w, size_t n, double v)
+{
+    if ((v >= 0.0 && v <= 1.0) || r->range_said)
+        return;
+    r->range_said = 1;
+    fprintf(stderr,
+            "%s: line %" PRIu64 ": %.*s %g is outside 0..1; drawn as %g (further values out of "
+            "range in this library are clamped without a word)\n",
+            in->name, in->tok_line, (int)n, w, v, v < 0.0 ? 0.0 : 1.0);
+}
+
 static oit_status mtl_statement(obj_reader *r, oit_rd_stream *in, char *p)
 {
     char *w;
@@ -101,15 +141,29 @@ static oit_status mtl_statement(obj_reader *r, oit_rd_stream *in, char *p)
     if (r->nmat == 0)
         return oit_rd_fail_line(in, OIT_ERR_FORMAT, "'%.*s' before any 'newmtl'", (int)n, w);
     obj_material *m = &r->mats[r->nmat - 1];
+    if (d) { /* "d -halo f": the MTL specification's dissolve option */
+        char *q = p, *opt;
+        size_t k = oit_rd_word(&q, &opt);
+        if (oit_rd_word_eq(opt, k, "-halo"))
+            p = q;
+    }
     double v[3];
-    if (!oit_rd_double(&p, &v[0]))
-        return oit_rd_fail_line(in, OIT_ERR_FORMAT, "'%.*s' needs a number", (int)n, w);
+    int got = 0;
+    oit_status st = OIT_OK;
+    /* Kd takes three numbers, or one for grey (MTL specification); d and
+     * Tr one. What follows them is ignored. */
+    while (st == OIT_OK && got < (kd ? 3 : 1) && (got == 0 || oit_rd_skip_blanks(&p) != '\0'))
+        if ((st = mtl_number(in, w, n, &p, &v[got])) == OIT_OK)
+            got++;
+    if (st != OIT_OK)
+        return st;
+    if (got == 2)
+        return oit_rd_fail_line(in, OIT_ERR_FORMAT, "'Kd' needs one or three numbers, not two");
+    for (int k = 0; k < got; k++)
+        mtl_range(r, in, w, n, v[k]);
     if (kd) {
-        /* "Kd r" alone means grey r, per the MTL specification */
-        if (oit_rd_skip_blanks(&p) == '\0')
+        if (got == 1)
             v[1] = v[2] = v[0];
-        else if (!oit_rd_double(&p, &v[1]) || !oit_rd_double(&p, &v[2]))
-            return oit_rd_fail_line(in, OIT_ERR_FORMAT, "'Kd' needs one or three numbers");
         for (int k = 0; k < 3; k++)
             m->rgba[k] = oit_rd_unit_to_u8(v[k]);
         m->has_kd = 1;
@@ -124,6 +178,7 @@ static oit_status mtl_statement(obj_reader *r, oit_rd_stream *in, char *p)
 static oit_status mtl_read(obj_reader *r, FILE *f, const char *path)
 {
     oit_rd_stream in;
+    r->range_said = 0;
     oit_status st = oit_rd_open(&in, f, path, &r->c->budget, r->c->err);
     while (st == OIT_OK) {
         char *line;
@@ -137,12 +192,20 @@ static oit_status mtl_read(obj_reader *r, FILE *f, const char *path)
     return st;
 }
 
-/* Opens dir + name; 1 when read (or failed: see *st), 0 when absent. */
+/* Opens dir + name; 1 when read (or failed: see *st), 0 when it cannot be
+ * opened (errno says why). */
 static int mtl_try(obj_reader *r, const char *name, oit_status *st)
 {
+    if (r->mtl_file) { /* a library in memory (fuzzing), read from its start */
+        rewind(r->mtl_file);
+        *st = mtl_read(r, r->mtl_file, r->mtl_name);
+        return 1;
+    }
     char path[4096];
-    if (snprintf(path, sizeof path, "%s%s", r->mtl_dir, name) >= (int)sizeof path)
+    if (snprintf(path, sizeof path, "%s%s", r->mtl_dir, name) >= (int)sizeof path) {
+        errno = ENAMETOOLONG;
         return 0;
+    }
     FILE *f = fopen(path, "rb");
     if (!f)
         return 0;
@@ -155,14 +218,17 @@ static oit_status obj_mtllib(obj_reader *r, char *p)
 {
     oit_status st = OIT_OK;
     char *names = obj_rest(p);
-    if (!r->mtl_dir || mtl_try(r, names, &st))
+    if ((!r->mtl_dir && !r->mtl_file) || mtl_try(r, names, &st))
         return st; /* one library, possibly with blanks in its name */
     char *w;
     size_t n;
     while ((n = oit_rd_word(&names, &w)) > 0 && st == OIT_OK) {
         char save = w[n];
         w[n] = '\0';
-        mtl_try(r, w, &st); /* a missing library leaves faces uncoloured */
+        if (!mtl_try(r, w, &st)) /* not fatal: its materials are then unknown */
+            fprintf(stderr, "%s: line %" PRIu64 ": material library %s%s: %s; its materials "
+                            "are drawn in the default colour\n",
+                    r->c->name, r->c->in.tok_line, r->mtl_dir, w, strerror(errno));
         w[n] = save;
     }
     return st;
@@ -171,12 +237,21 @@ static oit_status obj_mtllib(obj_reader *r, char *p)
 static void obj_usemtl(obj_reader *r, char *p)
 {
     const char *name = obj_rest(p);
-    r->cur = NULL;
+    r->cur = NO_MATERIAL;
     for (size_t i = r->nmat; i-- > 0;) /* the last definition wins */
         if (strcmp(r->mats[i].name, name) == 0) {
-            r->cur = &r->mats[i];
+            r->cur = i;
             return;
         }
+    /* Libraries skipped by design (read from memory) or "usemtl" alone
+     * (no material) are no news; one report an OBJ is enough. */
+    if ((r->mtl_dir || r->mtl_file) && name[0] && !r->unknown_said) {
+        r->unknown_said = 1;
+        fprintf(stderr, "%s: line %" PRIu64 ": usemtl %.200s: no such material in the material "
+                        "libraries read; drawn in the default colour (further unknown "
+                        "materials are not reported)\n",
+                r->c->name, r->c->in.tok_line, name);
+    }
 }
 
 /* ---- geometry --------------------------------------------------------- */
@@ -219,7 +294,7 @@ static oit_status obj_ref(obj_reader *r, char **p, oit_vertex *out)
                                 "vertex index %" PRId64 " out of range (%" PRId64 " vertices so far)",
                                 i, n);
     *out = r->tab.v[k];
-    const obj_material *m = r->cur;
+    const obj_material *m = r->cur == NO_MATERIAL ? NULL : &r->mats[r->cur];
     if (m && m->has_kd && !r->vertex_colors)
         memcpy(out->rgba, m->rgba, 3);
     if (m && m->has_alpha)
@@ -243,9 +318,9 @@ static oit_status obj_face(obj_reader *r, char *p)
         count++;
     }
     r->c->info->faces_in++;
-    if (r->cur && count >= 3)
-        r->c->info->attributes |= (r->cur->has_kd ? OIT_ATTR_COLOUR : 0) |
-                                  (r->cur->has_alpha ? OIT_ATTR_ALPHA : 0);
+    if (r->cur != NO_MATERIAL && count >= 3)
+        r->c->info->attributes |= (r->mats[r->cur].has_kd ? OIT_ATTR_COLOUR : 0) |
+                                  (r->mats[r->cur].has_alpha ? OIT_ATTR_ALPHA : 0);
     return st;
 }
 
@@ -281,12 +356,12 @@ static oit_status obj_parse(obj_reader *r)
     return st;
 }
 
-oit_status oit_read_obj_stream(FILE *f, const char *name, const char *mtl_dir,
-                               const oit_read_desc *desc, oit_triangle_sink sink, void *user,
-                               oit_mesh_info *info, oit_error *err)
+static oit_status obj_read(obj_reader r, FILE *f, const char *name, const oit_read_desc *desc,
+                           oit_triangle_sink sink, void *user, oit_mesh_info *info,
+                           oit_error *err)
 {
     oit_rd_ctx c;
-    obj_reader r = {.c = &c, .mtl_dir = mtl_dir};
+    r.c = &c;
     oit_status st = oit_rd_ctx_open(&c, f, name, desc, sink, user, info, err);
     if (st == OIT_OK)
         st = obj_parse(&r);
@@ -295,4 +370,19 @@ oit_status oit_read_obj_stream(FILE *f, const char *name, const char *mtl_dir,
     oit_rd_release(&c.budget, (void **)&r.mats, &r.capmat, sizeof *r.mats);
     oit_rd_release(&c.budget, (void **)&r.tab.v, &r.tab.cap, sizeof *r.tab.v);
     return oit_rd_ctx_close(&c, st);
+}
+
+oit_status oit_read_obj_stream(FILE *f, const char *name, const char *mtl_dir,
+                               const oit_read_desc *desc, oit_triangle_sink sink, void *user,
+                               oit_mesh_info *info, oit_error *err)
+{
+    return obj_read((obj_reader){.mtl_dir = mtl_dir, .cur = NO_MATERIAL}, f, name, desc, sink, user, info, err);
+}
+
+oit_status oit_read_obj_stream_mtl(FILE *f, const char *name, FILE *mtl, const char *mtl_name,
+                                   const oit_read_desc *desc, oit_triangle_sink sink,
+                                   void *user, oit_mesh_info *info, oit_error *err)
+{
+    return obj_read((obj_reader){.mtl_file = mtl, .mtl_name = mtl_name, .cur = NO_MATERIAL}, f, name, desc, sink,
+                    user, info, err);
 }

@@ -300,6 +300,12 @@ oit_status oit_read_ply_stream(FILE *f, const char *name, const char *dir,
 oit_status oit_read_obj_stream(FILE *f, const char *name, const char *mtl_dir,
                                const oit_read_desc *desc, oit_triangle_sink sink, void *user,
                                oit_mesh_info *info, oit_error *err);
+/* oit_read_obj_stream whose every mtllib statement reads mtl, from its
+ * start, instead of a file: the MTL parser fed from memory (fuzz targets).
+ * mtl_name names it in messages; mtl must be seekable (fmemopen). */
+oit_status oit_read_obj_stream_mtl(FILE *f, const char *name, FILE *mtl, const char *mtl_name,
+                                   const oit_read_desc *desc, oit_triangle_sink sink,
+                                   void *user, oit_mesh_info *info, oit_error *err);
 oit_status oit_read_off_stream(FILE *f, const char *name, const char *dir,
                                const oit_read_desc *desc, oit_triangle_sink sink, void *user,
                                oit_mesh_info *info, oit_error *err);

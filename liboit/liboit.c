@@ -485,6 +485,12 @@ oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out
         return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_desc.pack = %d is not an "
                              "oit_render_pack", p);
     }
+    if (r->desc.see_through != 0 && r->desc.see_through != 1) {
+        int v = r->desc.see_through;
+        free(r);
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_desc.see_through = %d is not "
+                             "0 or 1", v);
+    }
     if (!(r->desc.epsilon >= 0.0f && r->desc.epsilon < 1.0f)) {
         double e = r->desc.epsilon;
         free(r);
@@ -584,6 +590,7 @@ static void make_shading(const oit_renderer *r, const oit_scene *scene, oit_shad
     s->colour_space = in->colour_space == OIT_RENDER_COLOUR_LINEAR ? OIT_COLOUR_LINEAR
                                                                    : OIT_COLOUR_SRGB;
     s->attributes = scene->info.attributes;
+    s->see_through = r->desc.see_through;
     s->scene_scale = in->scene_scale > 0.0f
                          ? in->scene_scale
                          : oit_scene_scale(scene->info.bounds_min, scene->info.bounds_max);
@@ -933,6 +940,8 @@ oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame 
         stats->cache_budget = b.cache;
         stats->capture_budget = b.capture;
         stats->gpu_free_bytes = b.free_bytes;
+        stats->see_through = (uint32_t)view.shading.see_through;
+        stats->opaque = (uint32_t)oit_shading_opaque(&view.shading);
     }
     return OIT_OK;
 }

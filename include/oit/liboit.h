@@ -285,6 +285,15 @@ typedef struct oit_renderer_desc {
      * cache_budget stay inside it: given ones that add up to more fail
      * the first draw. The chosen split is in oit_draw_stats. */
     uint64_t gpu_budget;
+    /* 0 (default): a scene's own alpha, and its opaque triangles (alpha
+     * 255 at all three corners where the scene has alpha: glTF OPAQUE and
+     * MASK materials, MTL d 1) hide what is behind them. 1: see-through,
+     * oitstream --see-through: every triangle takes shading.alpha (the
+     * scene's colours are kept), so nothing is opaque and what opaque
+     * triangles hid is stored and composited too. Other values:
+     * OIT_ERR_ARGUMENT. Shading in spirit; kept here, at the end, so that
+     * the fields above keep their offsets for callers built before it. */
+    int see_through;
 } oit_renderer_desc;
 
 #define OIT_RENDER_CACHE_OFF UINT64_MAX
@@ -413,6 +422,12 @@ typedef struct oit_draw_stats {
      * the total (0: none), its split, and the driver's free memory (0: it
      * reports none). */
     uint64_t gpu_budget, ring_budget, cache_budget, capture_budget, gpu_free_bytes;
+    /* The shading the draw resolved, as oitstream --stats prints it:
+     * see_through is oit_renderer_desc.see_through; opaque is 1 when the
+     * scene's opaque triangles hid what is behind them (transparent
+     * shading, not see-through, a scene with opaque triangles): fragments
+     * behind them were neither stored nor counted. */
+    uint32_t see_through, opaque;
 } oit_draw_stats;
 
 /* Draws scene as seen through frame into frame->framebuffer (see Result

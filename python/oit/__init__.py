@@ -185,7 +185,7 @@ class Renderer(_Closable):
 
     def __init__(self, shading="transparent", alpha=None, default_rgb=None, absorption=None,
                  K=0, epsilon=0.0, pack="auto", upload_budget=0, cache_budget=0,
-                 colour_space="srgb", gpu_budget=0, capture="auto"):
+                 colour_space="srgb", gpu_budget=0, capture="auto", see_through=False):
         """pack, upload_budget, cache_budget, gpu_budget, K and epsilon take
         what oitstream's --pack, --upload-budget, --cache-budget, --gpu-budget,
         --max-layers and --epsilon take: 0 is the default, cache_budget="off"
@@ -198,7 +198,13 @@ class Renderer(_Closable):
         self-test passes on this driver, else array slots), "stencil" (that
         or an error at the first render, with the self-test's reason) or
         "array"; the image is the same, and stats["capture_slots"] and
-        stats["capture_fallback"] say what ran and why."""
+        stats["capture_fallback"] say what ran and why.
+        see_through: False (default): a model's own alpha, and its opaque
+        triangles (glTF OPAQUE and MASK materials, MTL d 1) hide what is
+        behind them; True: every triangle takes alpha (its colours kept),
+        as oitstream --see-through, so what they hid is drawn too.
+        stats["see_through"] and stats["opaque"] (1 when opaque triangles
+        hid what is behind them) say what the last render did."""
         if colour_space not in _COLOUR_SPACES:
             raise ValueError(f"colour_space: {colour_space!r}, expected srgb or linear")
         if shading not in _SHADINGS:
@@ -214,6 +220,7 @@ class Renderer(_Closable):
         d.renderer.pack = _PACKS[pack]
         d.renderer.upload_budget = int(upload_budget)
         d.renderer.gpu_budget = int(gpu_budget)
+        d.renderer.see_through = int(see_through)  # liboit checks it is 0 or 1
         d.renderer.cache_budget = L.RENDER_CACHE_OFF if cache_budget == "off" else int(cache_budget)
         d.renderer.shading.mode = _SHADINGS[shading]
         d.renderer.shading.colour_space = _COLOUR_SPACES[colour_space]
@@ -352,25 +359,27 @@ def _set_default_view(v, scene, view, up, azimuth, elevation):
 _renderers = {}
 
 
-def _default_renderer(shading, colour_space="srgb", capture="auto"):
-    """One Renderer a shading, colour space and capture for the module-level
-    functions, made at first use."""
-    key = (shading, colour_space, capture)
+def _default_renderer(shading, colour_space="srgb", capture="auto", see_through=False):
+    """One Renderer a shading, colour space, capture and see_through for the
+    module-level functions, made at first use."""
+    key = (shading, colour_space, capture, int(see_through))
     r = _renderers.get(key)
     if r is None or not r._h:
         r = _renderers[key] = Renderer(shading=shading, colour_space=colour_space,
-                                       capture=capture)
+                                       capture=capture, see_through=see_through)
     return r
 
 
 def render(model_path, size=(512, 512), view=None, dtype=np.uint8, background=None,
            shading="transparent", colour_space="srgb", clip=None, up=None, azimuth=None,
-           elevation=None, capture="auto"):
+           elevation=None, capture="auto", see_through=False):
     """Renders a mesh file (in core) or part file (streamed) into a
     (height, width, 4) array; see Renderer.render for view, background, up,
     azimuth and elevation (oitstream's --up, --azimuth, --elevation),
-    Renderer for colour_space and capture; clip: section planes."""
-    r = _default_renderer(shading, colour_space, capture)
+    Renderer for colour_space, capture and see_through (oitstream
+    --see-through: opaque materials drawn with the default alpha too);
+    clip: section planes."""
+    r = _default_renderer(shading, colour_space, capture, see_through)
     with Scene.open(model_path) as s:
         return r.render(s, size=size, view=view, dtype=dtype, background=background, up=up,
                         azimuth=azimuth, elevation=elevation, clip=clip)
@@ -378,11 +387,13 @@ def render(model_path, size=(512, 512), view=None, dtype=np.uint8, background=No
 
 def render_arrays(positions, indices=None, colours=None, size=(512, 512), view=None,
                   dtype=np.uint8, background=None, shading="transparent", colour_rate="auto",
-                  colour_space="srgb", clip=None, up=None, azimuth=None, elevation=None):
+                  colour_space="srgb", clip=None, up=None, azimuth=None, elevation=None,
+                  see_through=False):
     """Renders triangles from arrays (see Scene.from_arrays) into a
     (height, width, 4) array; see Renderer.render for view, background, up,
-    azimuth and elevation, Renderer for colour_space; clip: section planes."""
-    r = _default_renderer(shading, colour_space)
+    azimuth and elevation, Renderer for colour_space and see_through; clip:
+    section planes."""
+    r = _default_renderer(shading, colour_space, see_through=see_through)
     with Scene.from_arrays(positions, indices, colours, colour_rate=colour_rate) as s:
         return r.render(s, size=size, view=view, dtype=dtype, background=background, up=up,
                         azimuth=azimuth, elevation=elevation, clip=clip)

@@ -54,7 +54,7 @@ class RendererDesc(ctypes.Structure):
                 ("pack", ctypes.c_int), ("shading", RenderShading),
                 ("epsilon", ctypes.c_float), ("cache_budget", ctypes.c_uint64),
                 ("read_on_draw_thread", ctypes.c_int), ("capture", ctypes.c_int),
-                ("gpu_budget", ctypes.c_uint64)]
+                ("gpu_budget", ctypes.c_uint64), ("see_through", ctypes.c_int)]
 
 
 class OffscreenDesc(ctypes.Structure):
@@ -87,7 +87,8 @@ class DrawStats(ctypes.Structure):
                 ("gpu_ms", ctypes.c_double), ("gpu_phase_ms", ctypes.c_double * 6),
                 ("gpu_budget", ctypes.c_uint64), ("ring_budget", ctypes.c_uint64),
                 ("cache_budget", ctypes.c_uint64), ("capture_budget", ctypes.c_uint64),
-                ("gpu_free_bytes", ctypes.c_uint64)]
+                ("gpu_free_bytes", ctypes.c_uint64),
+                ("see_through", ctypes.c_uint32), ("opaque", ctypes.c_uint32)]
 
 
 # enum values of the headers

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 
 static char tmpdir[1024];
@@ -258,6 +259,132 @@ static void test_ply(void)
 }
 
 /* ---- OBJ -------------------------------------------------------------- */
+
+/* load() with stderr caught in log (what the reader warned). */
+static oit_status load_warned(const char *name, oit_mesh *m, oit_error *err, char *log,
+                              size_t cap)
+{
+    fflush(stderr);
+    int saved = dup(2);
+    FILE *f = fopen(tmp_path("stderr.txt"), "w+");
+    CHECK(saved >= 0 && f, "cannot redirect stderr");
+    if (saved < 0 || !f)
+        exit(1);
+    dup2(fileno(f), 2);
+    oit_status s = load(name, NULL, m, err);
+    fflush(stderr);
+    dup2(saved, 2);
+    close(saved);
+    rewind(f);
+    size_t n = fread(log, 1, cap - 1, f);
+    log[n] = '\0';
+    fclose(f);
+    printf("%s stderr: %s", name, n ? log : "(nothing)\n");
+    return s;
+}
+
+/* Bad material input: errors (status, file and line) for what cannot be
+ * read, warnings naming the file and line for what is drawn anyway. */
+static void test_mtl_errors(void)
+{
+    oit_mesh m;
+    oit_error err;
+    char log[4096];
+    const char *tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    char obj[512];
+
+    /* A missing library: the read goes on, the OBJ's line is named, and
+     * the first usemtl of a material it would have defined too. */
+    snprintf(obj, sizeof obj, "%smtllib nolib.mtl\nusemtl red\nf 1 2 3\nusemtl blue\nf 1 2 3\n",
+             tri);
+    write_text("nolib.obj", obj);
+    CHECK(load_warned("nolib.obj", &m, &err, log, sizeof log) == OIT_OK && m.count == 2, "%s",
+          err.message);
+    CHECK(strstr(log, "nolib.obj: line 4: material library ") && strstr(log, "nolib.mtl: "),
+          "missing library not reported with its line: %s", log);
+    CHECK(strstr(log, "nolib.obj: line 5: usemtl red: no such material"),
+          "unknown material not reported with its line: %s", log);
+    CHECK(!strstr(log, "usemtl blue"), "unknown materials reported more than once: %s", log);
+    oit_mesh_free(&m);
+
+    /* An unknown material in a library that was read; "usemtl" alone
+     * (no material) is not news. */
+    write_text("known.mtl", "newmtl red\nKd 1 0 0\n");
+    snprintf(obj, sizeof obj, "mtllib known.mtl\n%susemtl\nf 1 2 3\nusemtl green\nf 1 2 3\n",
+             tri);
+    write_text("unknown.obj", obj);
+    CHECK(load_warned("unknown.obj", &m, &err, log, sizeof log) == OIT_OK && m.count == 2, "%s",
+          err.message);
+    CHECK(strstr(log, "unknown.obj: line 7: usemtl green: no such material") &&
+              !strstr(log, "line 5"),
+          "unknown material: %s", log);
+    CHECK(m.count == 2 && same_rgba(&m.tris[1].v[0], 255, 255, 255, 255),
+          "an unknown material is not the default");
+    oit_mesh_free(&m);
+
+    /* Values outside 0..1 are clamped, the first of a library reported. */
+    write_text("range.mtl", "newmtl over\nd 1.5\nnewmtl under\nKd 0.5 0.5 0.5\nTr -1\n");
+    snprintf(obj, sizeof obj,
+             "mtllib range.mtl\n%susemtl over\nf 1 2 3\nusemtl under\nf 1 2 3\n", tri);
+    write_text("range_mtl.obj", obj);
+    CHECK(load_warned("range_mtl.obj", &m, &err, log, sizeof log) == OIT_OK && m.count == 2, "%s",
+          err.message);
+    CHECK(strstr(log, "range.mtl: line 2: d 1.5 is outside 0..1; drawn as 1"),
+          "d 1.5 not reported: %s", log);
+    CHECK(!strstr(log, "line 5"), "more than one range warning a library: %s", log);
+    CHECK(m.count == 2 && same_rgba(&m.tris[0].v[0], 255, 255, 255, 255) &&
+              same_rgba(&m.tris[1].v[0], 128, 128, 128, 255),
+          "d 1.5 or Tr -1 not clamped to opaque");
+    oit_mesh_free(&m);
+    write_text("tr.mtl", "newmtl a\nTr -1\n");
+    snprintf(obj, sizeof obj, "mtllib tr.mtl\n%susemtl a\nf 1 2 3\n", tri);
+    write_text("tr.obj", obj);
+    CHECK(load_warned("tr.obj", &m, &err, log, sizeof log) == OIT_OK, "%s", err.message);
+    CHECK(strstr(log, "tr.mtl: line 2: Tr -1 is outside 0..1; drawn as 0"), "Tr -1: %s", log);
+    oit_mesh_free(&m);
+
+    /* "d -halo f" is the specification's option, not a bad number. */
+    write_text("halo.mtl", "newmtl a\nd -halo 0.25\n");
+    snprintf(obj, sizeof obj, "mtllib halo.mtl\n%susemtl a\nf 1 2 3\n", tri);
+    write_text("halo.obj", obj);
+    CHECK(load_warned("halo.obj", &m, &err, log, sizeof log) == OIT_OK && m.count == 1 &&
+              m.tris[0].v[0].rgba[3] == 64,
+          "d -halo 0.25: %s", err.message);
+    oit_mesh_free(&m);
+
+    /* Malformed numbers: errors naming the library and its line. */
+    static const struct {
+        const char *mtl, *line, *what;
+    } bad[] = {
+        {"newmtl a\nKd 0.5 0.5\n", "line 2", "one or three numbers"},
+        {"newmtl a\nKd 1 0 0\nd abc\n", "line 3", "'abc' is not a finite number"},
+        {"newmtl a\nTr\n", "line 2", "'Tr' needs a number"},
+        {"newmtl a\nKd nan 0 0\n", "line 2", "'nan' is not a finite number"},
+        {"newmtl a\nd 1e999\n", "line 2", "not a finite number"},
+        {"Kd 1 0 0\nnewmtl a\n", "line 1", "before any 'newmtl'"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        write_text("bad.mtl", bad[i].mtl);
+        snprintf(obj, sizeof obj, "mtllib bad.mtl\n%susemtl a\nf 1 2 3\n", tri);
+        write_text("badmtl.obj", obj);
+        oit_status s = load_warned("badmtl.obj", &m, &err, log, sizeof log);
+        CHECK(s == OIT_ERR_FORMAT && strstr(err.message, "bad.mtl: ") &&
+                  strstr(err.message, bad[i].line) && strstr(err.message, bad[i].what),
+              "bad MTL %zu: %s: %s", i, oit_status_name(s), err.message);
+        oit_mesh_free(&m);
+    }
+
+    /* A usemtl, then another mtllib (which grows the material table past
+     * its first 8): the current material must survive the move (a pointer
+     * into the table was read after free; tests/corpus/mtl has the input
+     * libFuzzer found). */
+    write_text("five.mtl", "newmtl a\nKd 1 0 0\nd 0.5\nnewmtl b\nnewmtl c\nnewmtl d\nnewmtl e\n");
+    snprintf(obj, sizeof obj, "mtllib five.mtl\nusemtl a\nmtllib five.mtl\n%sf 1 2 3\n", tri);
+    load_text("moved.obj", obj, &m);
+    CHECK(m.count == 1 && same_rgba(&m.tris[0].v[0], 255, 0, 0, 128),
+          "usemtl before a second mtllib lost its material");
+    oit_mesh_free(&m);
+}
 
 static void test_obj(void)
 {
@@ -615,6 +742,7 @@ int main(void)
     snprintf(tmpdir, sizeof tmpdir, "%s", t ? t : "/tmp");
     test_ply();
     test_obj();
+    test_mtl_errors();
     test_off();
     test_stl();
     test_far();
