@@ -113,6 +113,10 @@ def check_written(work, path):
 def main():
     readme, build, src = (os.path.abspath(a) for a in sys.argv[1:4])
     scratch = sys.argv[4] if len(sys.argv) > 4 else None
+    # A sanitized build's liboit.so needs the sanitizer runtime preloaded
+    # into the Python that loads it (as python_oit does); its leak checking
+    # stays off there (the interpreter's own allocations read as leaks).
+    preload = sys.argv[5] if len(sys.argv) > 5 else ""
     bindir = os.path.join(build, "bin")
     text = open(readme).read()
     work = tempfile.mkdtemp(prefix="readme.", dir=scratch)
@@ -146,7 +150,10 @@ def main():
                 print(f"skip README.md:{no}: /usr/bin/python3 has no numpy: {cmd}")
                 continue
             t0 = time.time()
-            p = subprocess.run(["sh", "-c", run], cwd=work, env=env, capture_output=True,
+            cenv = env
+            if preload and "python3" in run:
+                cenv = dict(env, LD_PRELOAD=preload, ASAN_OPTIONS="detect_leaks=0")
+            p = subprocess.run(["sh", "-c", run], cwd=work, env=cenv, capture_output=True,
                                text=True)
             ran += 1
             missing = [o for o in outputs(run) if not check_written(work, o)]

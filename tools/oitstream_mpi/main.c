@@ -399,15 +399,14 @@ static oit_status run(mpi_run *r, oit_error *err)
 
 int main(int argc, char **argv)
 {
-    MPI_Init(&argc, &argv);
-    mpi_run r = {0};
-    MPI_Comm_rank(MPI_COMM_WORLD, &r.rank);
-    MPI_Comm_size(MPI_COMM_WORLD, &r.ranks);
     oit_stream_args a;
     oit_error err = {0};
     oit_status s = oit_stream_args_parse(argc, argv, &a, &err);
     if (s == OIT_OK && a.help) {
-        if (r.rank == 0) {
+        /* before MPI starts: --help needs no ranks (and leaves none of
+         * MPI's start-up allocations behind); under mpirun rank 0 says it */
+        const char *rank = getenv("OMPI_COMM_WORLD_RANK");
+        if (!rank || strcmp(rank, "0") == 0) {
             printf("oitstream-mpi: run as `mpirun -np N oitstream-mpi FILE.oitp [options]`: "
                    "each of N ranks streams one share of the part file, IceT blends them in "
                    "order, rank 0 writes --out and --stats. The options are oitstream's "
@@ -415,9 +414,12 @@ int main(int argc, char **argv)
                    "(and, with more than one rank, --shading translucent) are refused.\n\n");
             oit_stream_usage(stdout, "stream");
         }
-        MPI_Finalize();
         return 0;
     }
+    MPI_Init(&argc, &argv);
+    mpi_run r = {0};
+    MPI_Comm_rank(MPI_COMM_WORLD, &r.rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &r.ranks);
     if (s == OIT_OK)
         s = check_args(&a, &err);
     r.args = &a;
