@@ -20,7 +20,27 @@
  * rasterizes only there. */
 #define TOTALS_BLOCK                                                        \
     "layout(std430, binding = OIT_BIND_SUMS) buffer Spill { uint spill_pixels; uint spill_lo; "    \
-    "uint spill_hi; uint pad; uint box[4]; };\n"
+    "uint spill_hi; uint pad; uint box[4]; };\n"                           \
+    "void oit_spill(uvec2 px) {\n"                                        \
+    "    atomicAdd(spill_pixels, 1u);\n"                                  \
+    "    atomicMin(box[0], px.x); atomicMin(box[1], px.y);\n"             \
+    "    atomicMax(box[2], px.x + 1u); atomicMax(box[3], px.y + 1u);\n"   \
+    "}\n"
+/* The end of a pass-1 resolve: pixel p's n fragments, each read by LOAD
+ * (a GLSL expression of i), sorted in registers and composited into its
+ * state; its count goes back to zero for the next pack. */
+#define RESOLVE_SORTED(LOAD)                                                \
+    "    uvec4 f[16];\n"                                                   \
+    "    for (uint i = 0u; i < n; i++) {\n"                                \
+    "        uvec4 x = " LOAD ";\n"                                        \
+    "        OIT_SORTED_INSERT(f, i, x)\n"                                 \
+    "    }\n"                                                              \
+    "    oit_state s = oit_state_load(p);\n"                               \
+    "    for (uint i = 0u; i < n; i++) oit_composite(s, f[i]);\n"          \
+    "    s.nfrag += n;\n"                                                  \
+    "    oit_state_store(p, s);\n"                                         \
+    "    counts[p] = 0u;\n"                                                \
+    "}\n"
 #define RECT_INDEX                                                          \
     "uint oit_rect_index(ivec2 px, ivec4 r) {\n"                          \
     "    return uint((px.y - r.y) * (r.z - r.x) + (px.x - r.x));\n"       \
@@ -42,12 +62,7 @@ static const char fill_fs[] =
     "    uint P = uint((u_tile.z - u_tile.x) * (u_tile.w - u_tile.y));\n"
     "    uint c = atomicAdd(counts[p], 1u);\n"
     "    if (c < uint(u_W)) slots[c * P + q] = oit_fragment();\n"
-    "    else if (c == uint(u_W)) {\n"
-    "        atomicAdd(spill_pixels, 1u);\n"
-    "        uvec2 px = uvec2(gl_FragCoord.xy);\n"
-    "        atomicMin(box[0], px.x); atomicMin(box[1], px.y);\n"
-    "        atomicMax(box[2], px.x + 1u); atomicMax(box[3], px.y + 1u);\n"
-    "    }\n"
+    "    else if (c == uint(u_W)) oit_spill(uvec2(gl_FragCoord.xy));\n"
     "}\n";
 
 /* Pass 1's resolve: pixels of at most u_W fragments, from their slots. An
@@ -68,17 +83,7 @@ static const char resolve_cs[] =
     "    if (n == 0u || n > uint(u_W)) return;\n"
     "    uint q = oit_rect_index(px, u_rect);\n"
     "    uint P = uint((u_rect.z - u_rect.x) * (u_rect.w - u_rect.y));\n"
-    "    uvec4 f[16];\n"
-    "    for (uint i = 0u; i < n; i++) {\n"
-    "        uvec4 x = slots[i * P + q];\n"
-    "        OIT_SORTED_INSERT(f, i, x)\n"
-    "    }\n"
-    "    oit_state s = oit_state_load(p);\n"
-    "    for (uint i = 0u; i < n; i++) oit_composite(s, f[i]);\n"
-    "    s.nfrag += n;\n"
-    "    oit_state_store(p, s);\n"
-    "    counts[p] = 0u;\n"
-    "}\n";
+    RESOLVE_SORTED("slots[i * P + q]");
 
 /* Pass 1's resolve when the stencil routed it: the same for the pixels of
  * at most u_W fragments, from the samples; a pixel of more is found by its
@@ -100,22 +105,10 @@ static const char routed_resolve_cs[] =
     "    uint n = counts[p];\n"
     "    if (n == 0u) return;\n"
     "    if (n > uint(u_W)) {\n"
-    "        atomicAdd(spill_pixels, 1u);\n"
-    "        atomicMin(box[0], uint(px.x)); atomicMin(box[1], uint(px.y));\n"
-    "        atomicMax(box[2], uint(px.x) + 1u); atomicMax(box[3], uint(px.y) + 1u);\n"
+    "        oit_spill(uvec2(px));\n"
     "        return;\n"
     "    }\n"
-    "    uvec4 f[16];\n"
-    "    for (uint i = 0u; i < n; i++) {\n"
-    "        uvec4 x = texelFetch(u_samples, px, int(i));\n"
-    "        OIT_SORTED_INSERT(f, i, x)\n"
-    "    }\n"
-    "    oit_state s = oit_state_load(p);\n"
-    "    for (uint i = 0u; i < n; i++) oit_composite(s, f[i]);\n"
-    "    s.nfrag += n;\n"
-    "    oit_state_store(p, s);\n"
-    "    counts[p] = 0u;\n"
-    "}\n";
+    RESOLVE_SORTED("texelFetch(u_samples, px, int(i))");
 
 /* Pass 2, over a band: each overflowed pixel a segment of its count (the
  * order of segments does not matter, only that they do not overlap). */
