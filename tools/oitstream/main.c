@@ -405,20 +405,6 @@ static oit_status load_scene(const oit_stream_args *a, const oit_method *m,
     return s;
 }
 
-/* The captures' K: --max-layers, else the part file's (its parts were cut
- * for it), else 16. */
-static int scene_max_layers(const oit_stream_args *a, oit_partfile *pf)
-{
-    if (a->max_layers)
-        return a->max_layers;
-    oit_partfile_summary sum = {0};
-    if (pf)
-        oit_partfile_get_summary(pf, &sum);
-    /* A file cut for more than the K-slot capture holds streams as parts
-     * wider than K: captured alone over tiles (oit_capture_batch_layers). */
-    return pf && sum.K < 16 ? (int)sum.K : 16;
-}
-
 /* The viewer's O: a mesh in core, or a part file with its triangles in core
  * too (the viewer switches between the streamer and in-core methods). */
 static oit_status window_open_model(void *ctx, const char *path, oit_viewer_scene *out,
@@ -436,7 +422,7 @@ static oit_status window_open_model(void *ctx, const char *path, oit_viewer_scen
         memset(out, 0, sizeof *out);
         return s;
     }
-    out->max_layers = scene_max_layers(a, out->partfile);
+    out->max_layers = stream_max_layers(a, out->partfile);
     return OIT_OK;
 }
 
@@ -486,7 +472,7 @@ static int run_render(const oit_stream_args *args)
     }
     oit_camera *cams = NULL;
     int n = 0;
-    int K = scene_max_layers(a, pf);
+    int K = stream_max_layers(a, pf);
     oit_stream_options so = {.partfile = pf, .pack = a->pack, .capture = a->capture,
                              .schedule = a->schedule_wave ? OIT_SCHEDULE_WAVE : OIT_SCHEDULE_TREE,
                              .upload_budget = a->upload_budget, .slot_budget = a->slot_budget,
@@ -503,11 +489,8 @@ static int run_render(const oit_stream_args *args)
         s = oit_clip_add_text(&rc.view.clip, a->clip_text[i], mesh.info.origin, "--clip", &err);
     if (s == OIT_OK)
         s = make_views(a, &mesh.info, &cams, &n, &err);
-    /* One frame has no next frame to keep parts for: the default cache
-     * would only hold a second copy of what the ring uploaded (on the 2M
-     * plant at 1024x1024, 104 of its 240 MB GPU peak). */
-    if (s == OIT_OK && n == 1 && !a->window && a->cache_budget == 0)
-        so.cache_budget = OIT_STREAM_CACHE_OFF;
+    if (s == OIT_OK)
+        so.cache_budget = stream_cache_budget(a, n);
     if (s == OIT_OK && a->show_layers &&
         !(rc.counts = calloc((size_t)a->width * (size_t)a->height, sizeof *rc.counts)))
         s = oit_error_set(&err, OIT_ERR_NOMEM, "cannot allocate the layer count buffer");

@@ -1,5 +1,7 @@
-/* oitstream's views, shading and output names (views.h). */
+/* oitstream's views, shading, output names and stream settings (views.h). */
 #include "tools/oitstream/views.h"
+
+#include "stream/streamer.h"
 
 #include <errno.h>
 #include <math.h>
@@ -175,3 +177,22 @@ oit_status output_path(const char *out, int index, int views, char *buf, size_t 
     return OIT_OK;
 }
 
+int stream_max_layers(const oit_stream_args *a, oit_partfile *pf)
+{
+    if (a->max_layers)
+        return a->max_layers;
+    oit_partfile_summary sum = {0};
+    if (pf)
+        oit_partfile_get_summary(pf, &sum);
+    /* A file cut for more than the K-slot capture holds streams as parts
+     * wider than K: captured alone over tiles (oit_capture_batch_layers). */
+    return pf && sum.K < 16 ? (int)sum.K : 16;
+}
+
+/* The default cache would only hold a second copy of what the ring
+ * uploaded (on the 2M plant at 1024x1024, 104 of its 240 MB GPU peak). */
+unsigned long long stream_cache_budget(const oit_stream_args *a, int views)
+{
+    return views == 1 && !a->window && a->cache_budget == 0 ? OIT_STREAM_CACHE_OFF
+                                                           : a->cache_budget;
+}

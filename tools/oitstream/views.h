@@ -1,4 +1,5 @@
-/* oitstream's views, shading and output names from its command line,
+/* oitstream's views, shading, output names and stream settings from its
+ * command line,
  * shared with oitstream-mpi (tools/oitstream_mpi), which takes the same
  * options. */
 #ifndef OIT_OITSTREAM_VIEWS_H
@@ -7,6 +8,7 @@
 #include <stddef.h>
 
 #include "oit/mesh.h"
+#include "oit/partfile.h"
 #include "render/view.h"
 #include "tools/oitstream/cli_args.h"
 
@@ -20,5 +22,11 @@ oit_shading make_shading(const oit_stream_args *a, const oit_mesh_info *info);
  * for several, DIR/frame_007.png for a folder (created when missing). */
 oit_status output_path(const char *out, int index, int views, char *buf, size_t cap,
                        oit_error *err);
+/* The captures' K: --max-layers, else the part file's (its parts were cut
+ * for it), else 16; pf may be NULL (a mesh). */
+int stream_max_layers(const oit_stream_args *a, oit_partfile *pf);
+/* --cache-budget for a run of views frames: one frame (outside the window)
+ * has no next frame to keep parts for, so the default cache is off. */
+unsigned long long stream_cache_budget(const oit_stream_args *a, int views);
 
 #endif

@@ -93,15 +93,6 @@ static oit_status check_args(const oit_stream_args *a, oit_error *err)
     return OIT_OK;
 }
 
-static int max_layers(const oit_stream_args *a, oit_partfile *pf)
-{
-    if (a->max_layers)
-        return a->max_layers;
-    oit_partfile_summary sum = {0};
-    oit_partfile_get_summary(pf, &sum);
-    return sum.K < 16 ? (int)sum.K : 16;
-}
-
 static oit_status open_share(mpi_run *r, int views, oit_error *err)
 {
     const oit_stream_args *a = r->args;
@@ -120,12 +111,10 @@ static oit_status open_share(mpi_run *r, int views, oit_error *err)
     if (s != OIT_OK)
         return s;
     oit_streamer_desc sd = {
-        .K = max_layers(a, r->pf), .capture = a->capture, .pack = a->pack,
+        .K = stream_max_layers(a, r->pf), .capture = a->capture, .pack = a->pack,
         .schedule = a->schedule_wave ? OIT_SCHEDULE_WAVE : OIT_SCHEDULE_TREE,
         .upload_budget = a->upload_budget, .slot_budget = a->slot_budget,
-        /* oitstream's rule: one frame keeps nothing for a next one */
-        .cache_budget = views == 1 && a->cache_budget == 0 ? OIT_STREAM_CACHE_OFF
-                                                           : a->cache_budget,
+        .cache_budget = stream_cache_budget(a, views),
         .reader_threads = a->upload_threads, .gpu_budget = a->gpu_budget,
         .epsilon = a->epsilon > 0.0f ? a->epsilon : 0.0f,
         .share_count = (uint32_t)r->ranks, .share_index = (uint32_t)r->rank};
