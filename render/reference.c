@@ -7,6 +7,7 @@
 #include "render/reference.h"
 #include "base/clock.h"
 #include "base/sort.h"
+#include "base/vec.h"
 
 #include <embree3/rtcore.h>
 #include <math.h>
@@ -417,26 +418,11 @@ static void *render_rows(void *arg)
     return NULL;
 }
 
-static double dot3(const double a[3], const double b[3])
+/* 1 when v had a finite, non-zero length and is now a unit vector; else 0
+ * and v unchanged (an infinite v is refused, not divided into zeros). */
+static int unit3(double v[3])
 {
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static int normalize3(double v[3])
-{
-    double len = sqrt(dot3(v, v));
-    if (!(len > 0.0) || !isfinite(len))
-        return 0;
-    for (int k = 0; k < 3; k++)
-        v[k] /= len;
-    return 1;
-}
-
-static void cross3(const double a[3], const double b[3], double out[3])
-{
-    out[0] = a[1] * b[2] - a[2] * b[1];
-    out[1] = a[2] * b[0] - a[0] * b[2];
-    out[2] = a[0] * b[1] - a[1] * b[0];
+    return isfinite(oit_dot3d(v, v)) && oit_normalize3d(v) > 0.0;
 }
 
 /* The same frame as a GL look-at: right = forward x up, up' = right x forward. */
@@ -455,11 +441,11 @@ static oit_status make_basis(const oit_view *view, ray_basis *b, oit_error *err)
         b->forward[k] = (double)c->target[k] - c->eye[k];
         up[k] = c->up[k];
     }
-    cross3(b->forward, up, b->right);
-    if (!normalize3(b->forward) || !normalize3(b->right))
+    oit_cross3d(b->forward, up, b->right);
+    if (!unit3(b->forward) || !unit3(b->right))
         return oit_error_set(err, OIT_ERR_ARGUMENT,
                              "reference: camera eye equals target or up is parallel to the view");
-    cross3(b->right, b->forward, b->up);
+    oit_cross3d(b->right, b->forward, b->up);
     b->tan_half_y = tan(c->fovy_deg * (3.14159265358979323846 / 360.0));
     b->aspect = (double)view->width / (double)view->height;
     b->ortho = ortho;

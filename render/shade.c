@@ -3,6 +3,7 @@
  * side of every comparison; the shaded fragment is stored in float because
  * that is what the GL methods carry. */
 #include "render/shade.h"
+#include "base/vec.h"
 
 #include <math.h>
 #include <string.h>
@@ -13,23 +14,6 @@ static void sub3(const float a[3], const float b[3], double out[3])
         out[k] = (double)a[k] - (double)b[k];
 }
 
-static double dot3(const double a[3], const double b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-/* Returns 0 for a zero vector (left unchanged) so that degenerate input
- * shades as edge-on instead of producing NaN. */
-static int normalize3(double v[3])
-{
-    double len = sqrt(dot3(v, v));
-    if (!(len > 0.0))
-        return 0;
-    for (int k = 0; k < 3; k++)
-        v[k] /= len;
-    return 1;
-}
-
 /* (p1 - p0) x (p2 - p0) in double, where the float differences are exact
  * and the products keep 53 bits: triangles of one plane get normals
  * parallel to about 1e-16. */
@@ -38,9 +22,7 @@ static void cross_normal(const oit_triangle *tri, double n[3])
     double e1[3], e2[3];
     sub3(tri->v[1].pos, tri->v[0].pos, e1);
     sub3(tri->v[2].pos, tri->v[0].pos, e2);
-    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    oit_cross3d(e1, e2, n);
 }
 
 /* Linear mode decodes each vertex's colour (and default_rgb) before
@@ -86,9 +68,11 @@ void oit_shade_fragment(const oit_shading *s, const oit_triangle *tri,
             p += (double)bary[j] * tri->v[j].pos[k];
         v[k] = (double)eye[k] - p;
     }
+    /* A zero normal or eye vector (left unchanged) shades as edge-on
+     * instead of producing NaN. */
     double ndv_signed = 0.0;
-    if (normalize3(n) && normalize3(v))
-        ndv_signed = dot3(n, v);
+    if (oit_normalize3d(n) > 0.0 && oit_normalize3d(v) > 0.0)
+        ndv_signed = oit_dot3d(n, v);
     double ndv = fabs(ndv_signed);
     double light = OIT_SHADE_AMBIENT + OIT_SHADE_DIFFUSE * ndv;
 
@@ -116,11 +100,11 @@ int oit_depth_plane(const oit_triangle *tri, const float eye[3], float n[3], flo
     sub3(tri->v[0].pos, eye, q);
     *d = 0.0f;
     n[0] = n[1] = n[2] = 0.0f;
-    if (!normalize3(nn) || !isfinite(nn[0] + nn[1] + nn[2]))
+    if (!(oit_normalize3d(nn) > 0.0) || !isfinite(nn[0] + nn[1] + nn[2]))
         return 0;
     for (int k = 0; k < 3; k++)
         n[k] = (float)nn[k];
-    *d = (float)dot3(nn, q);
+    *d = (float)oit_dot3d(nn, q);
     return 1;
 }
 

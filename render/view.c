@@ -3,27 +3,13 @@
  * looking down -z) so the GL methods and the Embree reference see the same
  * rays through the same pixel centres. */
 #include "render/view.h"
+#include "base/vec.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 static const double kPi = 3.14159265358979323846;
-
-static void normalize3(double v[3])
-{
-    double len = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    if (len > 0.0)
-        for (int k = 0; k < 3; k++)
-            v[k] /= len;
-}
-
-static void cross3(const double a[3], const double b[3], double out[3])
-{
-    out[0] = a[1] * b[2] - a[2] * b[1];
-    out[1] = a[2] * b[0] - a[0] * b[2];
-    out[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 void oit_camera_default(oit_camera *cam, const float bmin[3], const float bmax[3],
                         float azimuth_deg, float elevation_deg)
@@ -60,7 +46,7 @@ void oit_camera_default_up(oit_camera *cam, const float bmin[3], const float bma
     static const double F[3][3] = {{0, 0, 1}, {0, 0, 1}, {0, -1, 0}};
     int a = up_axis >= 0 && up_axis <= 2 ? up_axis : 1;
     double S[3];
-    cross3(U[a], F[a], S);
+    oit_cross3d(U[a], F[a], S);
     double dir[3];
     for (int k = 0; k < 3; k++)
         dir[k] = cos(el) * (sin(az) * S[k] + cos(az) * F[a][k]) + sin(el) * U[a][k];
@@ -86,10 +72,10 @@ void oit_camera_view_matrix(const oit_camera *cam, float m[16])
         up[k] = cam->up[k];
         e[k] = cam->eye[k];
     }
-    normalize3(f);
-    cross3(f, up, s);
-    normalize3(s);
-    cross3(s, f, u);
+    oit_normalize3d(f);
+    oit_cross3d(f, up, s);
+    oit_normalize3d(s);
+    oit_cross3d(s, f, u);
     const double rows[3][3] = {{s[0], s[1], s[2]}, {u[0], u[1], u[2]}, {-f[0], -f[1], -f[2]}};
     memset(m, 0, 16 * sizeof *m);
     for (int r = 0; r < 3; r++) {
@@ -431,10 +417,10 @@ int oit_camera_parse(oit_camera *cam, const char *text, const double origin[3])
     if (n != 10 && n != 12)
         return -1;
     double f[3] = {v[3] - v[0], v[4] - v[1], v[5] - v[2]}, up[3] = {v[6], v[7], v[8]}, s[3];
-    cross3(f, up, s);
-    if (!(f[0] * f[0] + f[1] * f[1] + f[2] * f[2] > 0.0))
+    oit_cross3d(f, up, s);
+    if (!(oit_dot3d(f, f) > 0.0))
         return -2;
-    if (!(s[0] * s[0] + s[1] * s[1] + s[2] * s[2] > 0.0))
+    if (!(oit_dot3d(s, s) > 0.0))
         return -3;
     if (!(v[9] > 0.0 && v[9] < 180.0))
         return -4;
