@@ -18,6 +18,7 @@
 #include <string.h>
 
 #include "oit/partfile.h"
+#include "partfile/write.h"
 #include "render/view.h"
 #include "partfile/order.h"
 

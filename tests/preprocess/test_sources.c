@@ -30,6 +30,7 @@
  * by keys instead of its counting sort. */
 #include "oit/mesh.h"
 #include "oit/partfile.h"
+#include "partfile/write.h"
 #include "partition/clip.h"
 
 #include <float.h>
