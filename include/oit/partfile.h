@@ -165,7 +165,7 @@ typedef struct oit_partfile_summary {
     bool measured_bounds;   /* OIT_PARTFILE_FLAG_MEASURED_BOUNDS is set     */
 } oit_partfile_summary;
 
-/* ---- reader ------------------------------------------------------------ */
+/* ---- reader: EXPERIMENTAL ---------------------------------------------- */
 
 typedef struct oit_partfile oit_partfile;
 
@@ -278,7 +278,12 @@ static inline uint64_t oit_partfile_source_offset(const oit_partfile_part *p)
     return (p->index_offset + p->index_bytes + 3u) & ~(uint64_t)3u;
 }
 
-/* Grids: index 0 is the top grid, 1..grid_count-1 the subgrids. NULL when
+/* ---- traversal: EXPERIMENTAL ------------------------------------------- */
+/* The management tree as stored (the order oitstream draws parts in is
+ * computed from it per view). Like the whole header it follows the file
+ * format and may change between minor versions.
+ *
+ * Grids: index 0 is the top grid, 1..grid_count-1 the subgrids. NULL when
  * out of range. */
 OIT_API uint32_t oit_partfile_grid_count(const oit_partfile *pf);
 OIT_API const oit_partfile_grid *oit_partfile_grid_at(const oit_partfile *pf, uint32_t grid);
