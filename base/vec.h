@@ -17,6 +17,12 @@
  *                                as it was (callers test the result > 0), an
  *                                infinite one divides (v becomes 0 or NaN)
  *
+ * and, for float corners measured in double:
+ *
+ *   void   oit_sub3fd(a, b, out) out = a - b of float a, b in double: exact
+ *   double oit_area3fd(a, b, c)  the area of triangle abc, |(b-a) x (c-a)| / 2,
+ *                                the edges exact and the products in double
+ *
  * One template for both types, as base/sort.h does, so the two cannot drift. */
 #ifndef OIT_BASE_VEC_H
 #define OIT_BASE_VEC_H
@@ -50,5 +56,20 @@
 
 OIT_VEC3_DEFINE(d, double, sqrt)
 OIT_VEC3_DEFINE(f, float, sqrtf)
+
+static inline void oit_sub3fd(const float a[3], const float b[3], double out[3])
+{
+    for (int k = 0; k < 3; k++)
+        out[k] = (double)a[k] - (double)b[k];
+}
+
+static inline double oit_area3fd(const float a[3], const float b[3], const float c[3])
+{
+    double u[3], v[3], n[3];
+    oit_sub3fd(b, a, u);
+    oit_sub3fd(c, a, v);
+    oit_cross3d(u, v, n);
+    return 0.5 * sqrt(oit_dot3d(n, n));
+}
 
 #endif

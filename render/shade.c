@@ -8,20 +8,14 @@
 #include <math.h>
 #include <string.h>
 
-static void sub3(const float a[3], const float b[3], double out[3])
-{
-    for (int k = 0; k < 3; k++)
-        out[k] = (double)a[k] - (double)b[k];
-}
-
 /* (p1 - p0) x (p2 - p0) in double, where the float differences are exact
  * and the products keep 53 bits: triangles of one plane get normals
  * parallel to about 1e-16. */
 static void cross_normal(const oit_triangle *tri, double n[3])
 {
     double e1[3], e2[3];
-    sub3(tri->v[1].pos, tri->v[0].pos, e1);
-    sub3(tri->v[2].pos, tri->v[0].pos, e2);
+    oit_sub3fd(tri->v[1].pos, tri->v[0].pos, e1);
+    oit_sub3fd(tri->v[2].pos, tri->v[0].pos, e2);
     oit_cross3d(e1, e2, n);
 }
 
@@ -97,7 +91,7 @@ int oit_depth_plane(const oit_triangle *tri, const float eye[3], float n[3], flo
 {
     double nn[3], q[3];
     cross_normal(tri, nn);
-    sub3(tri->v[0].pos, eye, q);
+    oit_sub3fd(tri->v[0].pos, eye, q);
     *d = 0.0f;
     n[0] = n[1] = n[2] = 0.0f;
     if (!(oit_normalize3d(nn) > 0.0) || !isfinite(nn[0] + nn[1] + nn[2]))

@@ -1,7 +1,8 @@
 /* base/vec.h by its contracts: the cross product's handedness, the dot
  * product's summation order (the order the copies it replaced used, on
  * which byte-identical images depend: a different order gives 1, not 0,
- * below), and normalize's length, zero and NaN guard, in double and float. */
+ * below), normalize's length, zero and NaN guard, in double and float, and
+ * the float corners measured in double (exact edges, triangle area). */
 #include "base/vec.h"
 
 #include <math.h>
@@ -64,9 +65,25 @@ static void test_float(void)
           "a zero float vector must come back 0 and unchanged");
 }
 
+/* Float corners measured in double: the edge is exact where float
+ * arithmetic would round (1e8 - 1 has no float: its ulp there is 8). */
+static void test_float_in_double(void)
+{
+    const float a[3] = {1e8f, 0, 0}, b[3] = {1, 0, 0};
+    double d[3];
+    oit_sub3fd(a, b, d);
+    CHECK(d[0] == 99999999.0, "1e8 - 1 in double = %.1f, want 99999999 (not rounded in float)",
+          d[0]);
+    const float p[3] = {1e7f, 0, 5}, q[3] = {1e7f + 4, 0, 5}, r[3] = {1e7f, 3, 5};
+    CHECK(oit_area3fd(p, q, r) == 6.0, "area of the 3-4-5 triangle = %g, want 6",
+          oit_area3fd(p, q, r));
+    CHECK(oit_area3fd(p, p, r) == 0.0, "a degenerate triangle has area %g", oit_area3fd(p, p, r));
+}
+
 int main(void)
 {
     test_double();
     test_float();
+    test_float_in_double();
     return test_verdict();
 }
