@@ -18,7 +18,7 @@
 #include <string.h>
 
 #include "oit/partfile.h"
-#include "render/view.h"
+#include "render/image/view.h"
 #include "partfile/order.h"
 
 #define MAX_PARTS 64

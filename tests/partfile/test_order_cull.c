@@ -27,7 +27,7 @@
  * parent boxes alone, or by one level of overhang, fails the test. */
 #include "oit/partfile.h"
 #include "partfile/order.h"
-#include "render/view.h"
+#include "render/image/view.h"
 #include "tests/lib/test_rng.h"
 #include "tests/lib/test_check.h"
 

@@ -14,11 +14,11 @@
 #include <string.h>
 
 #include "base/json.h"
-#include "render/gl_context.h"
-#include "render/gl_window.h"
-#include "render/gl_util.h"
-#include "render/gpu_timer.h"
-#include "render/image.h"
+#include "render/gl/gl_context.h"
+#include "render/gl/gl_window.h"
+#include "render/gl/gl_util.h"
+#include "render/gl/gpu_timer.h"
+#include "render/image/image.h"
 #include "tools/common/paths.h"
 #include "tools/oitstream/stats_json.h"
 #include "tools/oitstream/viewer_clip.h"
