@@ -1,7 +1,8 @@
 /* Capture of one batch of geometry into a bounded K-fragment A-buffer, then
  * per-pixel sort and front-to-back composite into the frame's accumulation
  * (Vlcek et al.'s transmittance formulation), restricted to the batch's screen
- * rectangle. Two backends behind this one interface:
+ * rectangle. Four backends behind this one interface, each its own state
+ * and table of operations (capture_backend.h); the K-slot ones:
  *  - OIT_CAPTURE_ARRAY: K slots per pixel filled through an atomic counter;
  *    portable, and counts overflow exactly.
  *  - OIT_CAPTURE_STENCIL: stencil routing over K MSAA samples (Wang & Xie);
@@ -12,7 +13,8 @@
  *    of an integer format, 8 multisamples x 2 supersamples).
  * A pixel that receives more than K fragments in one batch counts once in
  * overflow_pixels; its extra fragments are lost, which is why a correct part
- * file must give zero. */
+ * file must give zero. The counted and first-K backends have no such limit
+ * (OIT_CAPTURE_COUNTED, OIT_CAPTURE_FIRSTK below). */
 #ifndef OIT_RENDER_CAPTURE_H
 #define OIT_RENDER_CAPTURE_H
 

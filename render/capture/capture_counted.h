@@ -12,8 +12,9 @@
  * whatever their number, within what one storage buffer binds: past that,
  * they are stored and composited in bands of rows, from the one count.
  *
- * Internal to render/capture/capture.c, which owns the frame's counts and state
- * buffers and the framebuffer; the counts are zero between batches (the
+ * Internal to render/capture/: the counted backend and first-K's wide packs
+ * (capture_backend.h); capture.c owns the frame's counts and state buffers
+ * and the framebuffer; the counts are zero between batches (the
  * store pass counts them back down). */
 #ifndef OIT_RENDER_CAPTURE_COUNTED_H
 #define OIT_RENDER_CAPTURE_COUNTED_H
@@ -24,7 +25,7 @@
 
 #define OIT_COUNTED_MAX_SORTED OIT_GLSL_SEGMENT_LOCAL
 
-/* Its programs (prog), whose uniforms capture.c sets: the view, the opaque
+/* Its programs (prog), whose uniforms its backend sets: the view, the opaque
  * depth after it (frag_glsl.h), and the early-termination threshold in the
  * two geometry passes, first, which drop fragments of saturated pixels
  * alike. */

@@ -27,7 +27,8 @@
  * that pass 1's resolve left untouched, so both passes see the same state
  * and agree on every pixel.
  *
- * Internal to render/capture/capture.c, which owns the frame's counts and state
+ * Internal to render/capture/ (the first-K backend,
+ * capture_firstk_backend.c); capture.c owns the frame's counts and state
  * buffers and the framebuffer. Contract: the counts are zero between
  * batches; the pass-1 resolve zeroes the pixels it composites, the pass-2
  * store counts the others back down to zero. */
@@ -38,7 +39,7 @@
 #include "render/gl/frag_glsl.h"
 #include "render/gl/gpu_mesh.h"
 
-/* Its programs (prog), set up by capture.c as the counted capture's
+/* Its programs (prog), set up by its backend as the counted capture's
  * (capture_counted.h): the two geometry passes first. */
 enum {
     OIT_FIRSTK_FILL,

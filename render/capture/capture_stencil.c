@@ -5,6 +5,7 @@
  * tests run per sample: the sample mode and the self-test check both. */
 #include "render/capture/capture_stencil.h"
 
+#include "render/capture/capture_backend.h"
 #include "render/capture/capture_glsl.h"
 #include "render/gl/frag_glsl.h"
 #include "render/gl/glsl_bindings.h"
@@ -363,3 +364,164 @@ oit_status oit_stencil_self_test(oit_stencil_target *t, const oit_stencil_probe 
     free(prims);
     return s;
 }
+
+/* The self-test through a capture: a frame of the probe's view begun, so
+ * that its counts are zero and the target has the probe's size. */
+oit_status oit_capture_stencil_self_test(oit_capture *c, oit_stencil_target *t, GLuint fill,
+                                         oit_error *err)
+{
+    oit_stencil_probe probe;
+    oit_stencil_probe_build(&probe, t->K);
+    oit_status s = oit_capture_begin(c, &probe.view, err);
+    if (s == OIT_OK) {
+        const oit_stencil_fill f = {fill, c->buf[OIT_CAPTURE_COUNTS], c->draws};
+        s = oit_stencil_self_test(t, &probe, &f, err);
+    }
+    c->frame.in_frame = 0;
+    return s;
+}
+
+oit_status oit_capture_route_init(const oit_capture *c, oit_stencil_target *t, int stencil_k,
+                                  oit_error *err)
+{
+    int samples = 0;
+    oit_status s = oit_stencil_choose_samples(stencil_k, &samples, err);
+    if (s == OIT_OK)
+        s = oit_stencil_target_init(t, stencil_k, samples, err);
+    t->sample_shading = (c->faults & OIT_CAPTURE_FAULT_SAMPLE_SHADING) != 0;
+    if (s == OIT_OK && (c->faults & OIT_CAPTURE_TEST_ROUTE_BY_COPY))
+        s = oit_stencil_target_by_copy(t, err);
+    return s;
+}
+
+/* ---- the stencil backend (OIT_CAPTURE_STENCIL) ------------------------------ */
+
+/* Its K-slot fills routed into the target; wide batches in tiles of array
+ * slots; the output through a buffer of its own (the target is no
+ * storage buffer). */
+typedef struct stencil_backend {
+    oit_capture_slots slots;
+    oit_stencil_target target;
+    GLuint out;
+    uint64_t out_cap;
+} stencil_backend;
+
+static oit_status stencil_create(oit_capture *c, int stencil_k, oit_error *err)
+{
+    stencil_backend *b = calloc(1, sizeof *b);
+    if (!b)
+        return oit_error_set(err, OIT_ERR_NOMEM, "capture: out of memory");
+    c->be = b;
+    oit_status s = oit_capture_route_init(c, &b->target, stencil_k, err);
+    if (s == OIT_OK)
+        s = oit_capture_slots_init(&b->slots,
+                                   b->target.by_copy ? "#define OIT_ROUTE_BY_COPY 1\n" : "",
+                                   oit_capture_stencil_fs, "#define OIT_STENCIL 1\n", err);
+    c->routed_k = stencil_k;
+    if (s == OIT_OK)
+        s = oit_capture_stencil_self_test(c, &b->target, b->slots.fill, err);
+    return s;
+}
+
+static void stencil_destroy(void *be)
+{
+    stencil_backend *b = be;
+    if (!b)
+        return;
+    oit_capture_slots_release(&b->slots);
+    if (b->target.fbo)
+        oit_stencil_target_release(&b->target);
+    glDeleteBuffers(1, &b->out);
+    free(b);
+}
+
+static oit_status stencil_begin(oit_capture *c, oit_error *err)
+{
+    stencil_backend *b = c->be;
+    int w = c->view.width, h = c->view.height;
+    uint64_t bytes = oit_capture_within_binding(c, (uint64_t)w * h * 16, (uint64_t)w * 16);
+    oit_status s = oit_capture_reserve(c, &b->out, &b->out_cap, bytes, "capture output", err);
+    if (s == OIT_OK)
+        s = oit_stencil_target_resize(&b->target, w, h, err);
+    return s;
+}
+
+static void stencil_uniforms(oit_capture *c)
+{
+    oit_capture_slots_uniforms(c, &((stencil_backend *)c->be)->slots);
+}
+
+static void stencil_epsilon(oit_capture *c, float e)
+{
+    oit_capture_slots_epsilon(&((stencil_backend *)c->be)->slots, e);
+}
+
+static void stencil_bind(const oit_capture *c)
+{
+    const stencil_backend *b = c->be;
+    oit_capture_bind_within(c, OIT_BIND_OUT, b->out, b->out_cap);
+    if (b->slots.buf)
+        oit_capture_bind_within(c, OIT_BIND_FRAGS, b->slots.buf, b->slots.cap);
+}
+
+static oit_status stencil_batch(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
+                                const int rect[4], oit_error *err)
+{
+    stencil_backend *b = c->be;
+    int r[4] = {0}, empty = 1;
+    oit_status s = oit_capture_batch_start(c, meshes, rect, n, r, &empty, err);
+    if (s != OIT_OK || empty)
+        return s;
+    oit_capture_bind_buffers(c);
+    oit_gpu_timer_mark(c->set.timer, OIT_GPU_PASS1);
+    oit_stencil_target_fill(&b->target, r, b->slots.fill, c->draws, meshes, n);
+    glBindTextureUnit(OIT_TEX_SAMPLES, b->target.colour);
+    oit_gpu_timer_mark(c->set.timer, OIT_GPU_RESOLVE);
+    oit_capture_resolve(b->slots.resolve, r);
+    return oit_gl_check("capture: batch", err);
+}
+
+static oit_status stencil_batch_layers(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
+                                       const int rect[4], int layers, oit_error *err)
+{
+    stencil_backend *b = c->be;
+    return oit_capture_slots_batch_layers(c, &b->slots, stencil_batch, meshes, n, rect, layers,
+                                          err);
+}
+
+static oit_status stencil_end(oit_capture *c, uint64_t want, uint64_t row, oit_capture_out *out,
+                              oit_error *err)
+{
+    const stencil_backend *b = c->be;
+    *out = (oit_capture_out){b->out, b->out_cap};
+    return OIT_OK;
+}
+
+static uint64_t stencil_bytes(const void *be)
+{
+    const stencil_backend *b = be;
+    return oit_stencil_target_bytes(&b->target) + b->slots.cap + b->out_cap;
+}
+
+static void stencil_stats(const oit_capture *c, oit_frame_stats *stats)
+{
+    stats->capture = c->ops->name;
+    stats->capture_slots = "stencil";
+    stats->capture_slots_k = (uint32_t)c->routed_k;
+}
+
+const oit_capture_ops oit_capture_stencil_ops = {
+    .kind = OIT_CAPTURE_STENCIL,
+    .name = "stencil",
+    .create = stencil_create,
+    .destroy = stencil_destroy,
+    .begin = stencil_begin,
+    .uniforms = stencil_uniforms,
+    .epsilon = stencil_epsilon,
+    .bind = stencil_bind,
+    .batch = stencil_batch,
+    .batch_layers = stencil_batch_layers,
+    .end = stencil_end,
+    .bytes = stencil_bytes,
+    .stats = stencil_stats,
+};

@@ -1,8 +1,9 @@
 /* The render target of the stencil-routed capture (Wang & Xie): K MSAA
  * samples of packed fragments (rgba32ui) with a per-sample stencil that
  * routes the i-th fragment of a pixel into sample i, and the start-up
- * self-test that decides whether this driver does route so. Internal to
- * capture.c. */
+ * self-test that decides whether this driver does route so; the stencil
+ * backend (capture_backend.h) is in capture_stencil.c too. Internal to
+ * render/capture/. */
 #ifndef OIT_RENDER_CAPTURE_STENCIL_H
 #define OIT_RENDER_CAPTURE_STENCIL_H
 
