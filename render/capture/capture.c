@@ -38,8 +38,9 @@ const char *oit_capture_kind_name(oit_capture_kind kind)
 
 static void release(oit_capture *c)
 {
-    if (c->ops->destroy)
+    if (c->be)
         c->ops->destroy(c->be);
+    free(c->be);
     oit_glsl_programs_delete(&c->end_prog, 1);
     glDeleteFramebuffers(1, &c->fbo);
     glDeleteBuffers(OIT_CAPTURE_BUFS, c->buf);
@@ -70,6 +71,11 @@ static oit_status make(const oit_capture_ops *ops, int K, int stencil_k, unsigne
     c->ops = ops;
     c->K = K;
     c->faults = faults;
+    c->be = calloc(1, ops->size);
+    if (!c->be) {
+        free(c);
+        return oit_error_set(err, OIT_ERR_NOMEM, "capture: out of memory");
+    }
     const oit_glsl_program end = {"capture end",
                                   .cs = {oit_glsl_composite, oit_glsl_state_io, oit_capture_end_cs}};
     oit_status s = oit_glsl_programs_build(&end, 1, &c->end_prog, err);
@@ -452,13 +458,13 @@ oit_counted_frame oit_capture_counted_frame(const oit_capture *c)
 oit_status oit_capture_batch(oit_capture *c, const oit_gpu_mesh *const *meshes,
                              int n, const int rect[4], oit_error *err)
 {
-    return c->ops->batch(c, meshes, n, rect, err);
+    return c->ops->batch(c, meshes, n, rect, c->K, err);
 }
 
 oit_status oit_capture_batch_layers(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
                                     const int rect[4], int layers, oit_error *err)
 {
-    return c->ops->batch_layers(c, meshes, n, rect, layers, err);
+    return c->ops->batch(c, meshes, n, rect, layers, err);
 }
 
 /* ---- the frame's end ------------------------------------------------------------ */

@@ -7,8 +7,6 @@
 
 #include "render/capture/capture_glsl.h"
 
-#include <stdlib.h>
-
 enum { SLOTS_FILL, SLOTS_RESOLVE, SLOTS_PROGS };
 
 oit_status oit_capture_slots_init(oit_capture_slots *s, const char *defines, const char *fill_fs,
@@ -123,14 +121,10 @@ static oit_status tiled_batch(oit_capture *c, oit_capture_slots *s,
     return oit_gl_check("capture: tiled batch", err);
 }
 
-oit_status oit_capture_slots_batch_layers(
-    oit_capture *c, oit_capture_slots *s,
-    oit_status (*batch)(oit_capture *, const oit_gpu_mesh *const *, int, const int[4],
-                        oit_error *),
-    const oit_gpu_mesh *const *meshes, int n, const int rect[4], int layers, oit_error *err)
+oit_status oit_capture_slots_tiled(oit_capture *c, oit_capture_slots *s,
+                                   const oit_gpu_mesh *const *meshes, int n, const int rect[4],
+                                   int layers, oit_error *err)
 {
-    if (layers <= c->K && !s->tiled)
-        return batch(c, meshes, n, rect, err);
     if (layers > OIT_CAPTURE_MAX_LAYERS)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: a batch of %d layers, more than "
                              "%d", layers, OIT_CAPTURE_MAX_LAYERS);
@@ -145,18 +139,12 @@ oit_status oit_capture_slots_batch_layers(
 
 static oit_status array_create(oit_capture *c, int stencil_k, oit_error *err)
 {
-    oit_capture_slots *s = calloc(1, sizeof *s);
-    if (!s)
-        return oit_error_set(err, OIT_ERR_NOMEM, "capture: out of memory");
-    c->be = s;
-    return oit_capture_slots_init(s, "", oit_capture_array_fs, "", err);
+    return oit_capture_slots_init(c->be, "", oit_capture_array_fs, "", err);
 }
 
 static void array_destroy(void *be)
 {
-    if (be)
-        oit_capture_slots_release(be);
-    free(be);
+    oit_capture_slots_release(be);
 }
 
 /* The slots are local to each batch's rectangle and grow to the largest
@@ -202,23 +190,14 @@ static void array_bind(const oit_capture *c)
         oit_capture_bind_within(c, OIT_BIND_FRAGS, s->buf, s->cap);
 }
 
-static oit_status array_batch(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
-                              const int rect[4], oit_error *err);
-
-static oit_status array_batch_layers(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
-                                     const int rect[4], int layers, oit_error *err)
-{
-    return oit_capture_slots_batch_layers(c, c->be, array_batch, meshes, n, rect, layers, err);
-}
-
 /* K slots a pixel of the GL rect r, indexed from its corner: a batch pays
  * for what it covers, not the frame. */
 static oit_status array_batch(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
-                              const int rect[4], oit_error *err)
+                              const int rect[4], int layers, oit_error *err)
 {
     oit_capture_slots *s = c->be;
-    if (s->tiled)
-        return array_batch_layers(c, meshes, n, rect, c->K, err);
+    if (layers > c->K || s->tiled)
+        return oit_capture_slots_tiled(c, s, meshes, n, rect, layers, err);
     int r[4] = {0}, empty = 1;
     oit_status st = oit_capture_batch_start(c, meshes, rect, n, r, &empty, err);
     if (st != OIT_OK || empty)
@@ -263,18 +242,4 @@ static void array_stats(const oit_capture *c, oit_frame_stats *stats)
     stats->capture_slots = "array";
 }
 
-const oit_capture_ops oit_capture_array_ops = {
-    .kind = OIT_CAPTURE_ARRAY,
-    .name = "array",
-    .create = array_create,
-    .destroy = array_destroy,
-    .begin = array_begin,
-    .uniforms = array_uniforms,
-    .epsilon = array_epsilon,
-    .bind = array_bind,
-    .batch = array_batch,
-    .batch_layers = array_batch_layers,
-    .end = array_end,
-    .bytes = array_bytes,
-    .stats = array_stats,
-};
+OIT_CAPTURE_OPS(array, OIT_CAPTURE_ARRAY, "array", oit_capture_slots, NULL);

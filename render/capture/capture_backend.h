@@ -1,14 +1,16 @@
 /* What a capture (capture.h) is made of: the part every backend shares
  * (the frame's view, counts, state and totals, the settings, the opaque
  * pre-pass, the draws, this frame's figures), owned by capture.c, and one
- * table of operations per backend, written with designated initialisers
- * beside the backend's own state in its own file:
- *   array    capture_array.c    K slots a pixel (and the tiles of wide batches)
- *   stencil  capture_stencil.c  the stencil-routed target, its self-test
- *   counted  capture_counted.c  count, store, sort per batch
- *   first-k  capture_firstk.c   K slots, and a second pass where they overflow
+ * table of operations per backend (OIT_CAPTURE_OPS, designated
+ * initialisers) beside the backend's own state in its own file:
+ *   array    capture_array.c           K slots a pixel (and the tiles of wide batches)
+ *   stencil  capture_stencil.c         the stencil-routed target, its self-test
+ *   counted  capture_counted.c         count, store, sort per batch
+ *   first-k  capture_firstk_backend.c  K slots, and a second pass where they
+ *                                      overflow (capture_firstk.c)
  * capture.c picks the table once, at creation; nothing else asks which
- * backend runs. Internal to render/capture/. */
+ * backend runs (tests/render/test_render_layout.sh). Internal to
+ * render/capture/. */
 #ifndef OIT_RENDER_CAPTURE_BACKEND_H
 #define OIT_RENDER_CAPTURE_BACKEND_H
 
@@ -69,13 +71,15 @@ struct oit_capture {
     oit_capture_frame frame;
 };
 
-/* A backend. r: a batch's rect in GL rows (batch_start's); rect: the
- * caller's, top rows first. */
+/* A backend (OIT_CAPTURE_OPS writes its table). r: a batch's rect in GL
+ * rows (batch_start's); rect: the caller's, top rows first. */
 struct oit_capture_ops {
     oit_capture_kind kind;
     const char *name; /* oit_capture_kind_name */
-    /* Makes c->be; stencil_k: the samples of routed fills (0: none). */
+    size_t size;      /* of its state, which capture.c allocates zeroed as c->be */
+    /* Sets c->be up; stencil_k: the samples of routed fills (0: none). */
     oit_status (*create)(oit_capture *c, int stencil_k, oit_error *err);
+    /* Releases what c->be holds, however far create got. */
     void (*destroy)(void *be);
     /* The frame's own buffers for c->view; this frame's figures reset. */
     oit_status (*begin)(oit_capture *c, oit_error *err);
@@ -85,10 +89,10 @@ struct oit_capture_ops {
     void (*epsilon)(oit_capture *c, float e);
     /* Its buffers at their bindings (OIT_BIND_OUT, OIT_BIND_FRAGS). */
     void (*bind)(const oit_capture *c);
+    /* A batch that may give up to `layers` fragments a pixel
+     * (oit_capture_batch_layers; oit_capture_batch passes K). */
     oit_status (*batch)(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
-                        const int rect[4], oit_error *err);
-    oit_status (*batch_layers)(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
-                               const int rect[4], int layers, oit_error *err);
+                        const int rect[4], int layers, oit_error *err);
     /* The buffer the frame's output passes through, reserved for `want`
      * bytes where the backend sizes it (rows of `row` bytes). */
     oit_status (*end)(oit_capture *c, uint64_t want, uint64_t row, oit_capture_out *out,
@@ -100,6 +104,15 @@ struct oit_capture_ops {
     /* first-k only (NULL elsewhere): oit_capture_set_first_k */
     void (*first_k)(oit_capture *c, int on);
 };
+
+/* The table of backend P (its functions P_create, P_destroy, ... and its
+ * state type T) as oit_capture_P_ops; FIRST_K: its first_k or NULL. */
+#define OIT_CAPTURE_OPS(P, KIND, NAME, T, FIRST_K)                                            \
+    const oit_capture_ops oit_capture_##P##_ops = {                                           \
+        .kind = KIND, .name = NAME, .size = sizeof(T), .create = P##_create,                  \
+        .destroy = P##_destroy, .begin = P##_begin, .uniforms = P##_uniforms,                 \
+        .epsilon = P##_epsilon, .bind = P##_bind, .batch = P##_batch, .end = P##_end,         \
+        .bytes = P##_bytes, .stats = P##_stats, .first_k = FIRST_K}
 
 extern const oit_capture_ops oit_capture_array_ops, oit_capture_stencil_ops,
     oit_capture_counted_ops, oit_capture_firstk_ops;
@@ -175,12 +188,11 @@ oit_status oit_capture_slots_init(oit_capture_slots *s, const char *defines, con
 void oit_capture_slots_release(oit_capture_slots *s);
 void oit_capture_slots_uniforms(const oit_capture *c, oit_capture_slots *s);
 void oit_capture_slots_epsilon(oit_capture_slots *s, float e);
-/* A batch of up to `layers` a pixel: one of K (untiled) through batch,
- * else in tiles of array slots. */
-oit_status oit_capture_slots_batch_layers(
-    oit_capture *c, oit_capture_slots *s,
-    oit_status (*batch)(oit_capture *, const oit_gpu_mesh *const *, int, const int[4],
-                        oit_error *),
-    const oit_gpu_mesh *const *meshes, int n, const int rect[4], int layers, oit_error *err);
+/* A batch in tiles of array slots small enough that `layers` (at least K)
+ * slots a pixel fit: what a batch of more than K layers takes, and every
+ * batch of a tiled frame. */
+oit_status oit_capture_slots_tiled(oit_capture *c, oit_capture_slots *s,
+                                   const oit_gpu_mesh *const *meshes, int n, const int rect[4],
+                                   int layers, oit_error *err);
 
 #endif

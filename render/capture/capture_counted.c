@@ -217,18 +217,12 @@ oit_status oit_capture_store_out(oit_capture *c, GLuint *buf, uint64_t *cap, con
 
 static oit_status counted_create(oit_capture *c, int stencil_k, oit_error *err)
 {
-    oit_counted *k = calloc(1, sizeof *k);
-    if (!k)
-        return oit_error_set(err, OIT_ERR_NOMEM, "capture: out of memory");
-    c->be = k;
-    return oit_counted_init(k, err);
+    return oit_counted_init(c->be, err);
 }
 
 static void counted_destroy(void *be)
 {
-    if (be)
-        oit_counted_release(be);
-    free(be);
+    oit_counted_release(be);
 }
 
 static oit_status counted_begin(oit_capture *c, oit_error *err)
@@ -258,20 +252,14 @@ static void counted_bind(const oit_capture *c)
 }
 
 /* No per-pixel limit: a batch of any number of layers is an ordinary one. */
-static oit_status counted_batch_layers(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
-                                       const int rect[4], int layers, oit_error *err)
+static oit_status counted_batch(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
+                                const int rect[4], int layers, oit_error *err)
 {
     int r[4] = {0}, empty = 1;
     oit_status s = oit_capture_batch_start(c, meshes, rect, n, r, &empty, err);
     if (s != OIT_OK || empty)
         return s;
     return oit_capture_counted_batch(c, c->be, meshes, n, r, err);
-}
-
-static oit_status counted_batch(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
-                                const int rect[4], oit_error *err)
-{
-    return counted_batch_layers(c, meshes, n, rect, 1, err);
 }
 
 static oit_status counted_end(oit_capture *c, uint64_t want, uint64_t row, oit_capture_out *out,
@@ -293,18 +281,4 @@ static void counted_stats(const oit_capture *c, oit_frame_stats *stats)
     stats->batches += ((const oit_counted *)c->be)->splits;
 }
 
-const oit_capture_ops oit_capture_counted_ops = {
-    .kind = OIT_CAPTURE_COUNTED,
-    .name = "counted",
-    .create = counted_create,
-    .destroy = counted_destroy,
-    .begin = counted_begin,
-    .uniforms = counted_uniforms,
-    .epsilon = counted_epsilon,
-    .bind = counted_bind,
-    .batch = counted_batch,
-    .batch_layers = counted_batch_layers,
-    .end = counted_end,
-    .bytes = counted_bytes,
-    .stats = counted_stats,
-};
+OIT_CAPTURE_OPS(counted, OIT_CAPTURE_COUNTED, "counted", oit_counted, NULL);

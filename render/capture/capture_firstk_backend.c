@@ -7,8 +7,6 @@
 #include "render/capture/capture_firstk.h"
 #include "render/capture/capture_glsl.h"
 
-#include <stdlib.h>
-
 typedef struct firstk_backend {
     oit_firstk k;
     /* the packs too wide for 2 slots a pixel, and every pack while off */
@@ -42,10 +40,7 @@ static oit_status firstk_route(oit_capture *c, firstk_backend *b, int stencil_k,
 
 static oit_status firstk_create(oit_capture *c, int stencil_k, oit_error *err)
 {
-    firstk_backend *b = calloc(1, sizeof *b);
-    if (!b)
-        return oit_error_set(err, OIT_ERR_NOMEM, "capture: out of memory");
-    c->be = b;
+    firstk_backend *b = c->be;
     oit_status s = oit_counted_init(&b->counted, err);
     if (s == OIT_OK)
         s = oit_firstk_init(&b->k, c->K, err);
@@ -57,14 +52,11 @@ static oit_status firstk_create(oit_capture *c, int stencil_k, oit_error *err)
 static void firstk_destroy(void *be)
 {
     firstk_backend *b = be;
-    if (!b)
-        return;
     oit_counted_release(&b->counted);
     oit_firstk_release(&b->k);
     if (b->target.fbo)
         oit_stencil_target_release(&b->target);
     oit_glsl_programs_delete(&b->fill, 1);
-    free(b);
 }
 
 static oit_status firstk_begin(oit_capture *c, oit_error *err)
@@ -112,8 +104,8 @@ static void firstk_bind(const oit_capture *c)
 
 /* W slots a pixel within the slot budget, or, where fewer than 2 fit, the
  * counted capture's batch; any number of layers. */
-static oit_status firstk_batch_layers(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
-                                      const int rect[4], int layers, oit_error *err)
+static oit_status firstk_batch(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
+                               const int rect[4], int layers, oit_error *err)
 {
     firstk_backend *b = c->be;
     int r[4] = {0}, empty = 1;
@@ -129,12 +121,6 @@ static oit_status firstk_batch_layers(oit_capture *c, const oit_gpu_mesh *const 
     oit_capture_note_peak(c);
     oit_capture_bind_buffers(c);
     return s;
-}
-
-static oit_status firstk_batch(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
-                               const int rect[4], oit_error *err)
-{
-    return firstk_batch_layers(c, meshes, n, rect, 1, err);
 }
 
 static oit_status firstk_end(oit_capture *c, uint64_t want, uint64_t row, oit_capture_out *out,
@@ -183,19 +169,4 @@ static void firstk_first_k(oit_capture *c, int on)
     b->off = !on;
 }
 
-const oit_capture_ops oit_capture_firstk_ops = {
-    .kind = OIT_CAPTURE_FIRSTK,
-    .name = "first-k",
-    .create = firstk_create,
-    .destroy = firstk_destroy,
-    .begin = firstk_begin,
-    .uniforms = firstk_uniforms,
-    .epsilon = firstk_epsilon,
-    .bind = firstk_bind,
-    .batch = firstk_batch,
-    .batch_layers = firstk_batch_layers,
-    .end = firstk_end,
-    .bytes = firstk_bytes,
-    .stats = firstk_stats,
-    .first_k = firstk_first_k,
-};
+OIT_CAPTURE_OPS(firstk, OIT_CAPTURE_FIRSTK, "first-k", firstk_backend, firstk_first_k);

@@ -408,10 +408,7 @@ typedef struct stencil_backend {
 
 static oit_status stencil_create(oit_capture *c, int stencil_k, oit_error *err)
 {
-    stencil_backend *b = calloc(1, sizeof *b);
-    if (!b)
-        return oit_error_set(err, OIT_ERR_NOMEM, "capture: out of memory");
-    c->be = b;
+    stencil_backend *b = c->be;
     oit_status s = oit_capture_route_init(c, &b->target, stencil_k, err);
     if (s == OIT_OK)
         s = oit_capture_slots_init(&b->slots,
@@ -426,13 +423,10 @@ static oit_status stencil_create(oit_capture *c, int stencil_k, oit_error *err)
 static void stencil_destroy(void *be)
 {
     stencil_backend *b = be;
-    if (!b)
-        return;
     oit_capture_slots_release(&b->slots);
     if (b->target.fbo)
         oit_stencil_target_release(&b->target);
     glDeleteBuffers(1, &b->out);
-    free(b);
 }
 
 static oit_status stencil_begin(oit_capture *c, oit_error *err)
@@ -464,10 +458,13 @@ static void stencil_bind(const oit_capture *c)
         oit_capture_bind_within(c, OIT_BIND_FRAGS, b->slots.buf, b->slots.cap);
 }
 
+/* Wide batches in tiles of array slots (the target holds K a pixel). */
 static oit_status stencil_batch(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
-                                const int rect[4], oit_error *err)
+                                const int rect[4], int layers, oit_error *err)
 {
     stencil_backend *b = c->be;
+    if (layers > c->K || b->slots.tiled)
+        return oit_capture_slots_tiled(c, &b->slots, meshes, n, rect, layers, err);
     int r[4] = {0}, empty = 1;
     oit_status s = oit_capture_batch_start(c, meshes, rect, n, r, &empty, err);
     if (s != OIT_OK || empty)
@@ -479,14 +476,6 @@ static oit_status stencil_batch(oit_capture *c, const oit_gpu_mesh *const *meshe
     oit_gpu_timer_mark(c->set.timer, OIT_GPU_RESOLVE);
     oit_capture_resolve(b->slots.resolve, r);
     return oit_gl_check("capture: batch", err);
-}
-
-static oit_status stencil_batch_layers(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
-                                       const int rect[4], int layers, oit_error *err)
-{
-    stencil_backend *b = c->be;
-    return oit_capture_slots_batch_layers(c, &b->slots, stencil_batch, meshes, n, rect, layers,
-                                          err);
 }
 
 static oit_status stencil_end(oit_capture *c, uint64_t want, uint64_t row, oit_capture_out *out,
@@ -510,18 +499,4 @@ static void stencil_stats(const oit_capture *c, oit_frame_stats *stats)
     stats->capture_slots_k = (uint32_t)c->routed_k;
 }
 
-const oit_capture_ops oit_capture_stencil_ops = {
-    .kind = OIT_CAPTURE_STENCIL,
-    .name = "stencil",
-    .create = stencil_create,
-    .destroy = stencil_destroy,
-    .begin = stencil_begin,
-    .uniforms = stencil_uniforms,
-    .epsilon = stencil_epsilon,
-    .bind = stencil_bind,
-    .batch = stencil_batch,
-    .batch_layers = stencil_batch_layers,
-    .end = stencil_end,
-    .bytes = stencil_bytes,
-    .stats = stencil_stats,
-};
+OIT_CAPTURE_OPS(stencil, OIT_CAPTURE_STENCIL, "stencil", stencil_backend, NULL);
