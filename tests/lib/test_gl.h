@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include "oit/partfile.h"
 
-#include "render/gl_context.h"
+#include "render/gl/gl_context.h"
 #include "tests/lib/test_check.h"
 
 /* The context (EGL; surfaceless under ctest), its renderer printed so that a

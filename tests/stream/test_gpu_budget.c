@@ -18,8 +18,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "render/gl_context.h"
-#include "render/image.h"
+#include "render/gl/gl_context.h"
+#include "render/image/image.h"
 #include "partfile/triangles.h"
 #include "stream/pack.h"
 #include "stream/streamer.h"
