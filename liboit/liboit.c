@@ -39,6 +39,7 @@ struct oit_scene {
 
 struct oit_renderer {
     oit_renderer_desc desc;
+    oit_streamer_desc stream; /* desc spelt for the streamer (stream_desc); K per scene */
     oit_scene *scene;       /* the scene the streamer or gpu_mesh holds: a share */
     oit_streamer *streamer; /* part files */
     oit_dfb *dfb;           /* in-core scenes; kept across scenes */
@@ -454,6 +455,37 @@ void oit_renderer_destroy(oit_renderer *r)
     free(r);
 }
 
+/* liboit's spelling of the streamer's settings onto oit_streamer_desc, the
+ * one place it is built: the streamer checks the values
+ * (oit_streamer_desc_check) and each scene adds its K and share. */
+static void stream_desc(const oit_renderer_desc *d, oit_streamer_desc *sd)
+{
+    memset(sd, 0, sizeof *sd);
+    _Static_assert((int)OIT_RENDER_CAPTURE_ARRAY == (int)OIT_CAPTURE_ARRAY &&
+                       (int)OIT_RENDER_CAPTURE_STENCIL == (int)OIT_CAPTURE_STENCIL &&
+                       (int)OIT_RENDER_CAPTURE_AUTO == (int)OIT_CAPTURE_AUTO,
+                   "liboit's capture values are the streamer's");
+    sd->capture = (oit_capture_kind)d->capture;
+    sd->pack = d->pack == OIT_RENDER_PACK_FIRSTK     ? OIT_PACK_FIRSTK
+               : d->pack == OIT_RENDER_PACK_DISJOINT ? OIT_PACK_DISJOINT
+               : d->pack == OIT_RENDER_PACK_BUDGET   ? OIT_PACK_BUDGET
+               : d->pack == OIT_RENDER_PACK_COUNTED  ? OIT_PACK_COUNTED
+                                                     : OIT_PACK_AUTO;
+    sd->upload_budget = d->upload_budget;
+    sd->epsilon = d->epsilon;
+    _Static_assert(OIT_RENDER_CACHE_OFF == OIT_STREAM_CACHE_OFF, "one spelling of 'no cache'");
+    sd->cache_budget = d->cache_budget;
+    sd->reader_threads = d->read_on_draw_thread ? OIT_STREAM_READ_INLINE : 0;
+    sd->gpu_budget = d->gpu_budget;
+}
+
+/* What the streamer's range errors call its settings here. */
+static const oit_streamer_names desc_names = {
+    .upload_budget = "oit_renderer_desc.upload_budget",
+    .cache_budget = "oit_renderer_desc.cache_budget",
+    .gpu_budget = "oit_renderer_desc.gpu_budget", .epsilon = "oit_renderer_desc.epsilon",
+    .cache_off = "OIT_RENDER_CACHE_OFF"};
+
 oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out,
                                oit_error *err)
 {
@@ -469,16 +501,6 @@ oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out
         return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_desc.K = %u is outside "
                              "[2, 16]", K);
     }
-    /* The ranges oitstream's --upload-budget and --cache-budget take. */
-    uint64_t ub = r->desc.upload_budget, cb = r->desc.cache_budget;
-    if ((ub != 0 && ub < 65536) || (cb != 0 && cb != OIT_RENDER_CACHE_OFF && cb < 65536)) {
-        free(r);
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_desc.%s = %llu is below 64 "
-                             "KiB (0: the default%s)", ub != 0 && ub < 65536 ? "upload_budget"
-                                                                            : "cache_budget",
-                             (unsigned long long)(ub != 0 && ub < 65536 ? ub : cb),
-                             ub != 0 && ub < 65536 ? "" : "; OIT_RENDER_CACHE_OFF: no cache");
-    }
     if ((unsigned)r->desc.pack > OIT_RENDER_PACK_FIRSTK) {
         int p = (int)r->desc.pack;
         free(r);
@@ -491,11 +513,11 @@ oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out
         return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_desc.see_through = %d is not "
                              "0 or 1", v);
     }
-    if (!(r->desc.epsilon >= 0.0f && r->desc.epsilon < 1.0f)) {
-        double e = r->desc.epsilon;
+    stream_desc(&r->desc, &r->stream);
+    oit_status bad = oit_streamer_desc_check(&r->stream, &desc_names, err);
+    if (bad != OIT_OK) {
         free(r);
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_desc.epsilon = %g is outside "
-                             "[0, 1)", e);
+        return bad;
     }
     const char *vs[] = {oit_glsl_version, oit_capture_fullscreen_vs, NULL};
     const char *fs[] = {oit_glsl_version, oit_glsl_composite, oit_glsl_state_io, blend_fs, NULL};
@@ -549,27 +571,10 @@ static oit_status bind_scene(oit_renderer *r, oit_scene *scene, oit_error *err)
         }
         return st;
     }
-    oit_streamer_desc sd = {0};
+    oit_streamer_desc sd = r->stream;
     /* A file cut for more than the K-slot capture holds streams its parts as
      * wider than K, captured alone over tiles, as oitstream does. */
     sd.K = r->desc.K ? (int)r->desc.K : scene->info.K < 16 ? (int)scene->info.K : 16;
-    /* the streamer checks the value (capture_choice.h) */
-    _Static_assert((int)OIT_RENDER_CAPTURE_ARRAY == (int)OIT_CAPTURE_ARRAY &&
-                       (int)OIT_RENDER_CAPTURE_STENCIL == (int)OIT_CAPTURE_STENCIL &&
-                       (int)OIT_RENDER_CAPTURE_AUTO == (int)OIT_CAPTURE_AUTO,
-                   "liboit's capture values are the streamer's");
-    sd.capture = (oit_capture_kind)r->desc.capture;
-    sd.pack = r->desc.pack == OIT_RENDER_PACK_FIRSTK    ? OIT_PACK_FIRSTK
-              : r->desc.pack == OIT_RENDER_PACK_DISJOINT  ? OIT_PACK_DISJOINT
-              : r->desc.pack == OIT_RENDER_PACK_BUDGET  ? OIT_PACK_BUDGET
-              : r->desc.pack == OIT_RENDER_PACK_COUNTED ? OIT_PACK_COUNTED
-                                                        : OIT_PACK_AUTO;
-    sd.upload_budget = r->desc.upload_budget;
-    sd.epsilon = r->desc.epsilon;
-    _Static_assert(OIT_RENDER_CACHE_OFF == OIT_STREAM_CACHE_OFF, "one spelling of 'no cache'");
-    sd.cache_budget = r->desc.cache_budget;
-    sd.reader_threads = r->desc.read_on_draw_thread ? OIT_STREAM_READ_INLINE : 0;
-    sd.gpu_budget = r->desc.gpu_budget;
     sd.share_count = scene->info.share_count;
     sd.share_index = scene->info.share_index;
     oit_status st = oit_streamer_create(scene->pf, &sd, &r->streamer, err);

@@ -204,7 +204,12 @@ const char *oit_method_renderer(const oit_method_state *st)
     return st->gl ? oit_gl_renderer(st->gl) : "none";
 }
 
-const struct oit_stream_frame_stats *oit_method_stream_stats(const oit_method_state *st)
+const oit_method *oit_method_of(const oit_method_state *st)
 {
-    return st->method->stream_stats ? st->method->stream_stats(st->impl) : NULL;
+    return st->method;
+}
+
+const void *oit_method_figures(const oit_method_state *st)
+{
+    return st->method->figures ? st->method->figures(st->impl) : NULL;
 }

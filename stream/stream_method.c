@@ -18,23 +18,21 @@ static void stream_destroy(void *impl)
 static oit_status stream_create(const oit_mesh *mesh, const oit_method_options *opt,
                                 void **impl, oit_error *err)
 {
-    const oit_stream_options *so = opt ? opt->stream : NULL;
+    const oit_stream_options *so = opt ? opt->source : NULL;
     if (!so || !so->partfile)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--method stream renders a part file "
                              "(.oitp, made by oitprep); convert the model first");
     stream_impl *m = calloc(1, sizeof *m);
     if (!m)
         return oit_error_set(err, OIT_ERR_NOMEM, "method stream: out of memory");
-    oit_streamer_desc sd = {.K = opt->max_layers, .capture = so->capture, .pack = so->pack,
-                            .schedule = so->schedule,
-                            .upload_budget = so->upload_budget,
-                            .slot_budget = so->slot_budget,
-                            .cache_budget = so->cache_budget,
-                            .reader_threads = so->reader_threads,
-                            .gpu_budget = so->gpu_budget,
-                            .store_limit = opt->store_limit,
-                            .epsilon = opt->epsilon > 0.0f ? opt->epsilon : 0.0f};
-    oit_status s = oit_streamer_create(so->partfile, &sd, &m->streamer, err);
+    oit_streamer_desc sd = so->desc;
+    sd.K = opt->max_layers;
+    sd.store_limit = opt->store_limit;
+    if (opt->threshold)
+        sd.epsilon = *opt->threshold;
+    oit_status s = oit_streamer_desc_check(&sd, NULL, err);
+    if (s == OIT_OK)
+        s = oit_streamer_create(so->partfile, &sd, &m->streamer, err);
     if (s != OIT_OK) {
         free(m);
         return s;
@@ -63,9 +61,14 @@ static uint64_t stream_pixel_bytes(const void *impl, const oit_view *view)
     return oit_streamer_pixel_bytes(view);
 }
 
-static const oit_stream_frame_stats *stream_figures(const void *impl)
+static const void *stream_figures(const void *impl)
 {
     return &((const stream_impl *)impl)->stats;
+}
+
+const oit_stream_frame_stats *oit_method_stream_stats(const oit_method_state *st)
+{
+    return oit_method_of(st) == &oit_method_stream ? oit_method_figures(st) : NULL;
 }
 
 const oit_method oit_method_stream = {
@@ -74,6 +77,6 @@ const oit_method oit_method_stream = {
     .create = stream_create,
     .render = stream_render,
     .destroy = stream_destroy,
-    .stream_stats = stream_figures,
+    .figures = stream_figures,
     .pixel_bytes = stream_pixel_bytes,
 };

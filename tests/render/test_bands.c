@@ -233,7 +233,7 @@ static void in_core(oit_gl *gl, const oit_mesh *mesh, const oit_view *v, const c
         if (v->shading.mode == OIT_SHADING_TRANSLUCENT && !strcmp(names[i], "ddp"))
             continue;
         const oit_method *m = oit_method_find(names[i]);
-        oit_method_options opt = {.max_layers = 8, .epsilon = -1.0f, .gl = gl};
+        oit_method_options opt = {.max_layers = 8, .gl = gl};
         oit_method_state *probe = NULL;
         oit_error err = {0};
         /* Stencil routing is offered only where the driver routes per
@@ -261,8 +261,8 @@ static void streamed(oit_gl *gl, oit_partfile *pf, const oit_view *v, const char
                  {"first-k", OIT_PACK_FIRSTK}};
     static const oit_mesh empty;
     for (size_t i = 0; i < sizeof packs / sizeof *packs; i++) {
-        oit_stream_options so = {.partfile = pf, .pack = packs[i].pack};
-        oit_method_options opt = {.max_layers = 8, .epsilon = -1.0f, .stream = &so, .gl = gl};
+        oit_stream_options so = {.partfile = pf, .desc = {.pack = packs[i].pack}};
+        oit_method_options opt = {.max_layers = 8, .source = &so, .gl = gl};
         char what[64];
         snprintf(what, sizeof what, "stream %s %s", packs[i].name, view_name);
         check_method(&oit_method_stream, &empty, &opt, v, what);

@@ -97,7 +97,8 @@ static oit_status expand_entries(oit_bench_args *a, oit_error *err)
     }
     if (s == OIT_OK && a->epsilon_count > 0 && !swept)
         s = oit_error_set(err, OIT_ERR_ARGUMENT, "--epsilon applies to stream, guarded and "
-                          "f2b; --methods names none of them");
+                          "f2b (and reference, which counts what it would drop); --methods "
+                          "names none of them");
     return s;
 }
 
@@ -286,7 +287,8 @@ void oit_bench_usage(FILE *f, const char *method_list, const char *default_schem
         "  --epsilon LIST   comma-separated thresholds, each in [0, 1): every method\n"
         "                   of LIST that takes one (stream: early termination at\n"
         "                   transmittance E, exact at 0; guarded: contribution\n"
-        "                   threshold; f2b: alpha threshold) runs once per value, as\n"
+        "                   threshold; f2b: alpha threshold; reference: counts the\n"
+        "                   fragments behind pixels below E) runs once per value, as\n"
         "                   its own entry NAME@E (e.g. stream@0.01), so each value is\n"
         "                   a point on the speed-against-error chart. Default: each\n"
         "                   method once at its default (stream exact)\n"

@@ -39,7 +39,7 @@ enum { DEFAULT_STILL_MS = 200, PREVIEW_MAX_SCALE = 4 };
 typedef struct viewer {
     const oit_viewer_desc *desc;
     oit_method_options options; /* desc's, with the current scene's part file and K */
-    oit_stream_options stream;  /* options.stream points here */
+    oit_stream_options stream;  /* options.source points here */
     oit_gl *gl;
     GLFWwindow *win;
     const oit_method *methods[MAX_METHODS]; /* the whole table, in its order */
@@ -75,7 +75,10 @@ typedef struct viewer {
     const char *gpu_absent;
     int frames, exact_frames, preview_frames, presents, screenshots;
     int save_pending; /* P: save the next presented image */
-    float epsilon;    /* early termination the methods open with (E toggles) */
+    /* The threshold the methods open with (options.threshold; E toggles
+     * it): has_epsilon 0, none given, each method's default. */
+    float epsilon;
+    int has_epsilon;
     /* what needs doing: moved (camera: preview), changed (exact now),
      * recompose (overlays only: no rendering) */
     int moved, changed, recompose;
@@ -389,7 +392,7 @@ static oit_status switch_method(viewer *v, int i, oit_error *err)
         return oit_error_set(err, OIT_ERR_UNSUPPORTED, "%s", why);
     oit_method_options opt = v->options;
     opt.gl = v->gl;
-    opt.epsilon = v->epsilon;
+    opt.threshold = v->has_epsilon ? &v->epsilon : NULL;
     oit_method_state *st = NULL;
     oit_status s = oit_method_open(v->methods[i], v->mesh, &opt, &st, err);
     if (s != OIT_OK)
@@ -465,14 +468,18 @@ static void save_screenshot(viewer *v)
  * is reopened so that it takes effect from the next frame. */
 static void toggle_epsilon(viewer *v)
 {
-    float on = v->desc->options.epsilon > 0.0f ? v->desc->options.epsilon : 1.0f / 255.0f;
+    const float *given = v->desc->options.threshold;
+    float on = given && *given > 0.0f ? *given : 1.0f / 255.0f;
     float was = v->epsilon;
+    int had = v->has_epsilon;
     oit_error err = {0};
-    v->epsilon = was > 0.0f ? 0.0f : on;
+    v->epsilon = had && was > 0.0f ? 0.0f : on;
+    v->has_epsilon = 1;
     if (switch_method(v, v->current, &err) != OIT_OK) {
         v->epsilon = was;
+        v->has_epsilon = had;
         say(v, "early termination: %s", err.message);
-    } else if (v->epsilon > 0.0f && !v->methods[v->current]->stream_stats) {
+    } else if (v->epsilon > 0.0f && !(v->methods[v->current]->flags & OIT_METHOD_PARTFILE)) {
         say(v, "early termination on, epsilon %g (used by the stream method only)", v->epsilon);
     } else if (v->epsilon > 0.0f) {
         printf("viewer: early termination on, epsilon %g\n", v->epsilon);
@@ -687,8 +694,10 @@ static void status_fields(viewer *v, fields *f)
         field(f, "layers %u", v->st.max_layers);
         field(f, "overflow %llu", (unsigned long long)v->st.overflow_pixels);
     }
-    if (m->stream_stats && v->state && !(v->shown_kind == SHOWN_PREVIEW && v->pv_method)) {
-        const oit_stream_frame_stats *ss = oit_method_stream_stats(v->state);
+    const oit_stream_frame_stats *ss = v->state && !(v->shown_kind == SHOWN_PREVIEW &&
+                                                     v->pv_method)
+                                           ? oit_method_stream_stats(v->state) : NULL;
+    if (ss) {
         field(f, "packs %u", ss->packs);
         /* which K-slot fill ran (--capture): "slots stencil x8", "slots array" */
         if (v->st.capture_slots && v->st.capture_slots_k)
@@ -965,7 +974,7 @@ static oit_status open_preview_method(viewer *v, oit_error *err)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "viewer: no preview method");
     oit_method_options opt = v->options;
     opt.gl = v->gl;
-    opt.epsilon = -1.0f;
+    opt.threshold = NULL;
     oit_status s = oit_method_open(m, v->mesh, &opt, &v->pv_state, err);
     if (s == OIT_OK)
         v->pv_method = m;
@@ -1220,9 +1229,9 @@ static oit_status open_viewer(viewer *v, oit_error *err)
 {
     const oit_viewer_desc *d = v->desc;
     v->options = d->options;
-    if (d->options.stream)
-        v->stream = *d->options.stream;
-    v->options.stream = &v->stream;
+    if (d->options.source)
+        v->stream = *(const oit_stream_options *)d->options.source;
+    v->options.source = &v->stream;
     v->mesh = d->mesh;
     v->pf = d->partfile;
     v->up_axis = d->up_axis >= 0 && d->up_axis <= 2 ? d->up_axis : 1;
@@ -1371,7 +1380,8 @@ oit_status oit_viewer_run(const oit_viewer_desc *desc, oit_error *err)
     viewer v;
     memset(&v, 0, sizeof v);
     v.desc = desc;
-    v.epsilon = desc->options.epsilon;
+    v.has_epsilon = desc->options.threshold != NULL;
+    v.epsilon = v.has_epsilon ? *desc->options.threshold : 0.0f;
     oit_status s = open_viewer(&v, err);
     int limit = frame_limit(desc);
     if (s == OIT_OK)

@@ -193,6 +193,6 @@ int stream_max_layers(const oit_stream_args *a, oit_partfile *pf)
  * uploaded (on the 2M plant at 1024x1024, 104 of its 240 MB GPU peak). */
 unsigned long long stream_cache_budget(const oit_stream_args *a, int views)
 {
-    return views == 1 && !a->window && a->cache_budget == 0 ? OIT_STREAM_CACHE_OFF
-                                                           : a->cache_budget;
+    return views == 1 && !a->window && a->stream.cache_budget == 0 ? OIT_STREAM_CACHE_OFF
+                                                                  : a->stream.cache_budget;
 }
