@@ -602,6 +602,31 @@ static void make_shading(const oit_renderer *r, const oit_scene *scene, oit_shad
     oit_shading_resolve_defaults(s);
 }
 
+void oit_renderer_get_desc(const oit_renderer *r, oit_renderer_desc *out)
+{
+    *out = r->desc;
+    if (r->scene) {
+        oit_shading s;
+        make_shading(r, r->scene, &s);
+        out->shading.alpha = s.alpha;
+        memcpy(out->shading.default_rgb, s.default_rgb, sizeof out->shading.default_rgb);
+        out->shading.absorption = s.absorption;
+        out->shading.scene_scale = s.scene_scale;
+        out->shading.colour_space = s.colour_space == OIT_COLOUR_LINEAR
+                                        ? OIT_RENDER_COLOUR_LINEAR : OIT_RENDER_COLOUR_SRGB;
+    }
+    if (!r->streamer)
+        return;
+    oit_streamer_desc sd;
+    oit_streamer_resolved_desc(r->streamer, &sd);
+    out->K = (uint32_t)sd.K;
+    out->upload_budget = sd.upload_budget;
+    out->cache_budget = sd.cache_budget;
+    out->gpu_budget = sd.gpu_budget;
+    out->capture = (oit_render_capture)sd.capture;
+    out->read_on_draw_thread = sd.reader_threads == OIT_STREAM_READ_INLINE;
+}
+
 /* The state oit_renderer_draw promises to give back (liboit.h). */
 typedef struct gl_saved {
     GLint draw_fb, read_fb, viewport[4], program, vao, indirect;

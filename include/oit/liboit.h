@@ -303,6 +303,20 @@ typedef struct oit_renderer_desc {
 OIT_API oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out,
                                        oit_error *err);
 OIT_API void oit_renderer_destroy(oit_renderer *r);
+/* The descriptor r draws with, every zero resolved to the value in use
+ * (as sokol_gfx's query_desc): after r drew a part file, K (the scene's
+ * where 0 was given), upload_budget and cache_budget (the limits the ring
+ * and the cache grow to: oit_draw_stats.ring_budget, cache_budget;
+ * OIT_RENDER_CACHE_OFF where there is no cache, a resident scene
+ * included), gpu_budget (the total, 0: none), capture (what the K-slot
+ * fills use, ARRAY or STENCIL; AUTO where none do: COUNTED packs) and
+ * read_on_draw_thread; after any draw, the shading's defaults for the
+ * scene drawn last (alpha, colours, absorption, scene_scale, colour
+ * space). pack stays as given (AUTO switches frame by frame; the draw's
+ * figures say which ran), and so do epsilon and see_through. Before the
+ * first draw: the descriptor as given. oitstream --stats prints the same
+ * figures (its budget and reader_threads). */
+OIT_API void oit_renderer_get_desc(const oit_renderer *r, oit_renderer_desc *out);
 /* Frees r's GPU state for scene and lets the scene go when r drew it last
  * (else does nothing), so that a closed scene's memory is freed while r
  * lives on (Lifetime); the next draw of any scene builds its state anew.
