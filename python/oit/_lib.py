@@ -136,6 +136,7 @@ def _declare(lib):
         "oit_offscreen_destroy": (None, [vp]),
         "oit_offscreen_release_scene": (None, [vp, vp]),
         "oit_offscreen_gl_renderer": (ctypes.c_char_p, [vp]),
+        "oit_offscreen_get_desc": (None, [vp, P(OffscreenDesc)]),
         "oit_offscreen_render": (ctypes.c_int, [vp, vp, P(OffscreenView), vp, ctypes.c_size_t,
                                                 P(DrawStats), err]),
         "oit_offscreen_default_view": (ctypes.c_int, [vp, ctypes.c_int, ctypes.c_float,
