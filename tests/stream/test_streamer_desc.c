@@ -13,10 +13,9 @@
 #include <string.h>
 
 #include "partfile/triangles.h"
-#include "render/gl_context.h"
 #include "stream/pack.h"
 #include "stream/streamer.h"
-#include "tests/lib/test_check.h"
+#include "tests/lib/test_gl.h"
 
 enum { UB, SB, CB, GB, EPS, PACK, SCHED };
 
@@ -180,17 +179,12 @@ int main(int argc, char **argv)
         return 2;
     }
     check_ranges();
+    oit_gl *gl = test_gl_open();
     oit_error err = {0};
-    oit_gl *gl = NULL;
     oit_partfile *pf = NULL;
-    if (oit_gl_create(NULL, &gl, &err) != OIT_OK ||
-        oit_partfile_open(argv[1], NULL, &pf, &err) != OIT_OK) {
-        fprintf(stderr, "FAIL: %s\n", err.message);
-        oit_gl_destroy(gl);
-        return 1;
-    }
-    check_resolved(pf);
+    CHECK(oit_partfile_open(argv[1], NULL, &pf, &err) == OIT_OK, "%s", err.message);
+    if (pf)
+        check_resolved(pf);
     oit_partfile_close(pf);
-    oit_gl_destroy(gl);
-    return test_verdict();
+    return test_gl_verdict(gl);
 }
