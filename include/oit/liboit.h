@@ -69,6 +69,7 @@
 
 #include "oit/export.h"
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "status.h"
@@ -231,6 +232,11 @@ typedef enum oit_render_pack {
                                     second pass for themselves alone */
 } oit_render_pack;
 
+typedef enum oit_render_schedule {
+    OIT_RENDER_SCHEDULE_TREE = 0, /* the management tree's order (default) */
+    OIT_RENDER_SCHEDULE_WAVE = 1  /* wavefronts of the visibility order     */
+} oit_render_schedule;
+
 typedef enum oit_render_capture {
     OIT_RENDER_CAPTURE_AUTO = 0,
     OIT_RENDER_CAPTURE_ARRAY = 1,
@@ -294,6 +300,19 @@ typedef struct oit_renderer_desc {
      * OIT_ERR_ARGUMENT. Shading in spirit; kept here, at the end, so that
      * the fields above keep their offsets for callers built before it. */
     int see_through;
+    /* Appended after see_through, so that the fields above keep their
+     * offsets. The order packs are cut in (oitstream --schedule):
+     * OIT_RENDER_SCHEDULE_TREE (0) the management tree's, WAVE the
+     * wavefront; the image is the same. */
+    oit_render_schedule schedule;
+    /* GPU bytes of the capture's slots a pack (oitstream --slot-budget),
+     * the streamer checks the range; 0: 64 MiB of fragment store for
+     * counted and first-K packs, 32 MiB of K slots for the others. */
+    uint64_t slot_budget;
+    /* Threads that read parts ahead of the GPU (oitstream
+     * --upload-threads), 1..64, checked at the first draw; 0: as
+     * read_on_draw_thread says (which, when 1, wins). */
+    uint32_t reader_threads;
 } oit_renderer_desc;
 
 #define OIT_RENDER_CACHE_OFF UINT64_MAX
@@ -387,7 +406,28 @@ typedef struct oit_frame {
      * (a, b, c) is OIT_ERR_ARGUMENT. */
     uint32_t clip_count;
     float clip[6][4];
+    /* NULL (default): the camera is view and projection. Else the camera
+     * by its parameters, as the tools take it (oitstream --view), and view
+     * and projection are not read: no matrix stands between the caller's
+     * numbers and the rasterizer's, so the image is bit for bit the one
+     * the tools render of the same camera. */
+    const struct oit_frame_camera *camera;
 } oit_frame;
+
+/* oit_frame.camera: a look-at camera. Perspective (ortho_height 0):
+ * fovy_deg in (0, 180), 0 < znear < zfar, zfar INFINITY for an infinite far
+ * plane. Orthographic (ortho_height > 0, the view volume's height):
+ * znear < zfar, both finite, znear may be <= 0. window: an off-centre
+ * window (left, right, bottom, top; at distance 1 for a perspective, in
+ * eye units for an orthographic one); all 0: symmetric about the view
+ * direction. up need not be orthogonal to the view direction, only not
+ * parallel to it. Anything else is OIT_ERR_ARGUMENT naming the field. */
+typedef struct oit_frame_camera {
+    float eye[3], target[3], up[3];
+    float fovy_deg, znear, zfar;
+    float ortho_height;
+    float window[4];
+} oit_frame_camera;
 
 #define OIT_FRAME_CLIP_MAX 6
 #define OIT_DRAW_GPU_PHASES 6
@@ -442,6 +482,35 @@ typedef struct oit_draw_stats {
      * shading, not see-through, a scene with opaque triangles): fragments
      * behind them were neither stored nor counted. */
     uint32_t see_through, opaque;
+    /* A part file's per-draw work and choices, the figures oitstream
+     * --stats prints beside the ones above (0, or NULL, for in-core
+     * scenes). order_ms, pack_ms: CPU milliseconds of the parts'
+     * visibility order and of their packing, the per-view work that does
+     * not wait for GL. auto_first_k: OIT_RENDER_PACK_AUTO took first-K
+     * packs (0: counted ones, or a fixed pack). front_first: the packs
+     * were cut front first (epsilon > 0 with counted or first-K packs).
+     * second_pass_pixels: first-K packs' pixels that got more fragments
+     * than their slots hold, summed over the packs; second_pass_packs: the
+     * packs that had any, so took a second geometry pass. capture: the
+     * capture that ran ("counted", "first-k", "array", "stencil"; the
+     * last pack's) and capture_k its K; capture_asked:
+     * oit_renderer_desc.capture as given ("auto", "stencil", "array").
+     * reader_threads: the threads that read parts (0: the drawing
+     * thread). resident: the scene is read once into the ring and kept
+     * (oit_renderer_desc.upload_budget); budget_source: where gpu_budget
+     * came from ("--gpu-budget": given, in oitstream's spelling;
+     * "GL_NVX_gpu_memory_info", "default", ...). The strings are liboit's, valid while r draws the
+     * scene. Appended in this order so that the fields above keep their
+     * offsets for callers built before them. */
+    double order_ms, pack_ms;
+    uint32_t auto_first_k, front_first;
+    uint64_t second_pass_pixels;
+    uint32_t second_pass_packs;
+    const char *capture;
+    uint32_t capture_k;
+    const char *capture_asked;
+    uint32_t reader_threads, resident;
+    const char *budget_source;
 } oit_draw_stats;
 
 /* Draws scene as seen through frame into frame->framebuffer (see Result
@@ -458,6 +527,25 @@ typedef struct oit_draw_stats {
  * draw) and gpu_bytes_peak are filled, the rest are 0. */
 OIT_API oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame *frame,
                                      oit_draw_stats *stats, oit_error *err);
+
+/* The frame of oit_renderer_draw resolved in memory instead of blended
+ * into a framebuffer, as the tools write their images: width * height
+ * pixels (frame's viewport size) of 4 floats into rgba (rgba_bytes at
+ * least that many bytes, else OIT_ERR_ARGUMENT), row 0 at the TOP,
+ *     rgb = C + T * background,  a = 1
+ * with C and T as in Result, computed by the capture's own resolve pass (so
+ * the bytes are those of oitstream's PFMs for the same settings and
+ * camera: oit_frame.camera), colour sRGB-encoded in both colour spaces.
+ * background: rgb, sRGB-encoded (decoded for OIT_RENDER_COLOUR_LINEAR); a
+ * negative component is 0; NULL or all 0: white, the tools' default.
+ * frame's framebuffer, viewport_x and viewport_y are not read; a
+ * depth_texture is OIT_ERR_UNSUPPORTED here. stats as oit_renderer_draw's
+ * (ms includes the read-back). The GL state is kept as by
+ * oit_renderer_draw. */
+OIT_API oit_status oit_renderer_draw_image(oit_renderer *r, oit_scene *scene,
+                                           const oit_frame *frame, const float background[3],
+                                           float *rgba, size_t rgba_bytes,
+                                           oit_draw_stats *stats, oit_error *err);
 
 /* ---- sort-last over several processes (oit_scene_desc.share_count) --- */
 
