@@ -40,6 +40,8 @@ struct oit_scene {
     atomic_uint shares;
 };
 
+enum { GPU_QUEUE = 64 };
+
 struct oit_renderer {
     oit_renderer_desc desc;
     oit_streamer_desc stream; /* desc spelt for the streamer (stream_desc); K per scene */
@@ -52,6 +54,11 @@ struct oit_renderer {
     GLuint depth_sampler; /* reads oit_frame.depth_texture: no compare, nearest */
     oit_gpu_timer *timer; /* made at the first draw (GL current) */
     oit_gpu_times gpu;    /* the newest figures polled; frame 0: none yet */
+    /* Figures polled but not yet taken by oit_renderer_gpu_poll, oldest
+     * first at gpu_head; the oldest go when it is full. */
+    oit_gpu_times gpu_queue[GPU_QUEUE];
+    unsigned gpu_head, gpu_count;
+    uint64_t draws; /* oit_draw_stats.draw of the last draw */
 };
 
 _Static_assert(OIT_DRAW_GPU_PHASES == OIT_GPU_PHASES, "one list of GPU phases");
@@ -487,6 +494,7 @@ static void stream_desc(const oit_renderer_desc *d, oit_streamer_desc *sd)
                    "liboit's schedule values are the packer's");
     sd->schedule = (oit_pack_schedule)d->schedule;
     sd->slot_budget = d->slot_budget;
+    sd->store_limit = d->binding_limit;
 }
 
 /* What the streamer's range errors call its settings here. */
@@ -679,7 +687,11 @@ static void gl_restore(const gl_saved *g)
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)g->draw_fb);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)g->read_fb);
     glViewport(g->viewport[0], g->viewport[1], g->viewport[2], g->viewport[3]);
-    glUseProgram((GLuint)g->program);
+    /* A program the caller deleted while it was current lived only as long
+     * as it stayed current (GL 4.5, 7.3): once liboit's own replaced it,
+     * it is gone, and binding its name again would fail; the caller then
+     * gets none, as after any glUseProgram of another. */
+    glUseProgram(glIsProgram((GLuint)g->program) ? (GLuint)g->program : 0);
     glBindVertexArray((GLuint)g->vao);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, (GLuint)g->indirect);
     glBlendFuncSeparate((GLenum)g->src_rgb, (GLenum)g->dst_rgb, (GLenum)g->src_a,
@@ -942,7 +954,7 @@ static oit_status draw_bands(oit_renderer *r, const oit_scene *scene, const oit_
 {
     uint64_t px = scene->pf ? oit_streamer_pixel_bytes(view) : oit_dfb_pixel_bytes(view, 1);
     int rows = 0, h = view->height;
-    oit_status st = oit_band_rows(view, px, 0, &rows, err);
+    oit_status st = oit_band_rows(view, px, r->desc.binding_limit, &rows, err);
     for (int y0 = 0; st == OIT_OK && y0 < h; y0 += rows) {
         int y1 = y0 + rows < h ? y0 + rows : h, gl_y = frame->viewport_y + h - y1;
         oit_view band = *view;
@@ -995,7 +1007,49 @@ static void draw_stats_work(const oit_frame_stats *fs, const oit_stream_frame_st
     out->capture = fs->capture;
     out->capture_k = fs->capture_k;
     out->capture_asked = ss->capture_asked;
+    out->batches = fs->batches;
     out->reader_threads = (uint32_t)(ss->reader_threads > 0 ? ss->reader_threads : 0);
+}
+
+/* The figures that are in, queued for oit_renderer_gpu_poll; the newest
+ * also in r->gpu, for oit_draw_stats. */
+static void gpu_take(oit_renderer *r)
+{
+    r->draws++;
+    oit_gpu_times t;
+    while (oit_gpu_timer_poll(r->timer, &t, 0)) {
+        r->gpu = t;
+        if (r->gpu_count == GPU_QUEUE) {
+            r->gpu_head = (r->gpu_head + 1) % GPU_QUEUE;
+            r->gpu_count--;
+        }
+        r->gpu_queue[(r->gpu_head + r->gpu_count++) % GPU_QUEUE] = t;
+    }
+}
+
+int oit_renderer_gpu_poll(oit_renderer *r, oit_draw_gpu *out, int wait)
+{
+    oit_gpu_times t;
+    if (!r || !out)
+        return 0;
+    if (r->gpu_count) {
+        t = r->gpu_queue[r->gpu_head];
+        r->gpu_head = (r->gpu_head + 1) % GPU_QUEUE;
+        r->gpu_count--;
+    } else if (!r->timer || !oit_gpu_timer_poll(r->timer, &t, wait)) {
+        return 0;
+    }
+    out->draw = t.frame;
+    out->ms = t.ms;
+    memcpy(out->phase_ms, t.phase_ms, sizeof out->phase_ms);
+    return 1;
+}
+
+const char *oit_renderer_gpu_absent(const oit_renderer *r)
+{
+    if (!r)
+        return "no renderer";
+    return r->timer ? oit_gpu_timer_absent(r->timer) : NULL;
 }
 
 static oit_status name_scene(const oit_scene *scene, oit_status st, oit_error *err);
@@ -1028,8 +1082,7 @@ oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame 
     if (st == OIT_OK && !empty)
         st = draw_bands(r, scene, frame, &view, &fs, &ss, err);
     oit_gpu_timer_end_frame(r->timer);
-    while (oit_gpu_timer_poll(r->timer, &r->gpu, 0)) {
-    }
+    gpu_take(r);
     gl_restore(&saved);
     if (st != OIT_OK)
         return name_scene(scene, st, err);
@@ -1074,7 +1127,7 @@ static void fill_stats(const oit_renderer *r, const oit_scene *scene, const oit_
                                   .capture_fallback =
                                       r->streamer ? oit_streamer_capture_choice(r->streamer)->reason
                                                   : NULL,
-                                  .gpu_frame = r->gpu.frame,
+                                  .gpu_frame = r->gpu.frame, .draw = r->draws,
                                   .gpu_ms = r->gpu.frame ? r->gpu.ms : -1.0};
         memcpy(stats->gpu_phase_ms, r->gpu.phase_ms, sizeof stats->gpu_phase_ms);
         oit_stream_budget b = {0};
@@ -1126,7 +1179,7 @@ static oit_status image_bands(oit_renderer *r, const oit_scene *scene, const oit
 {
     uint64_t px = scene->pf ? oit_streamer_pixel_bytes(view) : oit_dfb_pixel_bytes(view, 0);
     int rows = 0, w = view->width, h = view->height;
-    oit_status st = oit_band_rows(view, px, 0, &rows, err);
+    oit_status st = oit_band_rows(view, px, r->desc.binding_limit, &rows, err);
     for (int y0 = 0; st == OIT_OK && y0 < h; y0 += rows) {
         int y1 = y0 + rows < h ? y0 + rows : h;
         oit_view band = *view;
@@ -1193,8 +1246,7 @@ oit_status oit_renderer_draw_image(oit_renderer *r, oit_scene *scene, const oit_
     if (st == OIT_OK && !empty)
         st = image_bands(r, scene, &view, rgba, &fs, &ss, err);
     oit_gpu_timer_end_frame(r->timer);
-    while (oit_gpu_timer_poll(r->timer, &r->gpu, 0)) {
-    }
+    gpu_take(r);
     gl_restore(&saved);
     if (st == OIT_OK && empty) /* nothing in front of the background */
         empty_image(&view, rgba);

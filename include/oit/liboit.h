@@ -313,6 +313,12 @@ typedef struct oit_renderer_desc {
      * --upload-threads), 1..64, checked at the first draw; 0: as
      * read_on_draw_thread says (which, when 1, wins). */
     uint32_t reader_threads;
+    /* The most bytes a frame puts in one GPU storage buffer binding; 0:
+     * what the driver binds (GL_MAX_SHADER_STORAGE_BLOCK_SIZE). Lower
+     * caps the frame's per-pixel buffers: it is then drawn in more bands
+     * of rows (the image alike but for pixel centres within rounding of a
+     * silhouette at a band's edge). */
+    uint64_t binding_limit;
 } oit_renderer_desc;
 
 #define OIT_RENDER_CACHE_OFF UINT64_MAX
@@ -511,6 +517,14 @@ typedef struct oit_draw_stats {
     const char *capture_asked;
     uint32_t reader_threads, resident;
     const char *budget_source;
+    /* This draw's number (1: the renderer's first oit_renderer_draw or
+     * oit_renderer_draw_image), which its GPU figures carry
+     * (oit_renderer_gpu_poll, gpu_frame above). */
+    uint64_t draw;
+    /* Capture batches: packs, more where a pack's fragments overran the
+     * capture's store (oit_renderer_desc.slot_budget) and it was captured
+     * in several; for an in-core scene, DFB's bands. */
+    uint32_t batches;
 } oit_draw_stats;
 
 /* Draws scene as seen through frame into frame->framebuffer (see Result
@@ -546,6 +560,24 @@ OIT_API oit_status oit_renderer_draw_image(oit_renderer *r, oit_scene *scene,
                                            const oit_frame *frame, const float background[3],
                                            float *rgba, size_t rgba_bytes,
                                            oit_draw_stats *stats, oit_error *err);
+
+/* One draw's GPU time (oit_draw_stats.gpu_ms alike): its number
+ * (oit_draw_stats.draw), the total and the phases. */
+typedef struct oit_draw_gpu {
+    uint64_t draw;
+    double ms;
+    double phase_ms[OIT_DRAW_GPU_PHASES];
+} oit_draw_gpu;
+
+/* Every draw's GPU figures, oldest first, each once (a tool that prints
+ * every frame's; oit_draw_stats has only the newest): 1 and *out when the
+ * next draw's are in (wait 1: waits for them, as at the end of a run), 0
+ * when none is. The renderer keeps the 64 newest that were not taken.
+ * Never 1 where oit_renderer_gpu_absent says why not. */
+OIT_API int oit_renderer_gpu_poll(oit_renderer *r, oit_draw_gpu *out, int wait);
+/* NULL when r's draws are timed on the GPU (or r has not drawn yet), else
+ * why not ("the driver reports 0 timestamp bits"). */
+OIT_API const char *oit_renderer_gpu_absent(const oit_renderer *r);
 
 /* ---- sort-last over several processes (oit_scene_desc.share_count) --- */
 

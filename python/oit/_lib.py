@@ -56,7 +56,7 @@ class RendererDesc(ctypes.Structure):
                 ("read_on_draw_thread", ctypes.c_int), ("capture", ctypes.c_int),
                 ("gpu_budget", ctypes.c_uint64), ("see_through", ctypes.c_int),
                 ("schedule", ctypes.c_int), ("slot_budget", ctypes.c_uint64),
-                ("reader_threads", ctypes.c_uint32)]
+                ("reader_threads", ctypes.c_uint32), ("binding_limit", ctypes.c_uint64)]
 
 
 class OffscreenDesc(ctypes.Structure):
@@ -97,7 +97,8 @@ class DrawStats(ctypes.Structure):
                 ("second_pass_packs", ctypes.c_uint32), ("capture", ctypes.c_char_p),
                 ("capture_k", ctypes.c_uint32), ("capture_asked", ctypes.c_char_p),
                 ("reader_threads", ctypes.c_uint32), ("resident", ctypes.c_uint32),
-                ("budget_source", ctypes.c_char_p)]
+                ("budget_source", ctypes.c_char_p), ("draw", ctypes.c_uint64),
+                ("batches", ctypes.c_uint32)]
 
 
 # enum values of the headers

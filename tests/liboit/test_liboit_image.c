@@ -6,7 +6,9 @@
  * and the default white. Its oit_draw_stats carry the streamer's own
  * figures of the frame (order and pack time aside, which are clocks): the
  * second pass, the capture that ran and was asked for, the automatic
- * mode's choice, the readers. Bad inputs fail with the documented status.
+ * mode's choice, the readers. A program the caller deleted while current
+ * (the streamer's here) is not bound again when liboit gives the GL state
+ * back. Bad inputs fail with the documented status.
  *
  * usage: test_liboit_image FILE.oitp (a part file, e.g. from test_streamer) */
 #include <math.h>
@@ -126,7 +128,7 @@ static void check_stream(oit_scene *scene, oit_partfile *pf, const oit_scene_inf
            (unsigned long long)st.second_pass_pixels, st.second_pass_packs,
            st.capture ? st.capture : "-", st.capture_asked ? st.capture_asked : "-",
            st.auto_first_k);
-    CHECK(st.fragments == fs.fragments && st.packs == ss.packs &&
+    CHECK(st.fragments == fs.fragments && st.packs == ss.packs && st.batches == fs.batches &&
               st.second_pass_pixels == fs.second_pass_pixels &&
               st.second_pass_packs == fs.second_pass_packs && st.capture_k == fs.capture_k &&
               st.auto_first_k == (uint32_t)ss.first_k &&
@@ -145,8 +147,9 @@ static void check_stream(oit_scene *scene, oit_partfile *pf, const oit_scene_inf
           ss.first_k, st.front_first, ss.front_first, st.reader_threads,
           st.budget_source ? st.budget_source : "NULL");
     oit_image_free(&want);
+    /* The streamer's program, deleted while current, stays the caller's
+     * for the next case's draw: liboit must not bind it again. */
     oit_streamer_destroy(s);
-    glUseProgram(0); /* the streamer's, deleted: liboit would give it back */
     oit_renderer_destroy(r);
     free(got);
 }
@@ -194,7 +197,6 @@ static void check_in_core(oit_partfile *pf, const oit_scene_info *info)
     oit_image_free(&want);
     oit_gpu_mesh_destroy(gm);
     oit_dfb_destroy(d);
-    glUseProgram(0);
     oit_renderer_destroy(r);
     oit_scene_close(core);
     oit_mesh_free(&mesh);
