@@ -1,6 +1,6 @@
 /* A rendering method behind one interface: DFB, the capture backends, the
- * baselines, the Embree reference and (from stream/) the part-file streamer
- * each describe themselves with one `oit_method` table of operations
+ * baselines, the Embree reference and (tools/common/method_stream.h) liboit
+ * streaming a part file each describe themselves with one `oit_method` table of operations
  * (designated initialisers; an operation a method lacks is NULL), and the
  * tools drive any of them through oit_method_open / _render / _close.
  *
@@ -47,7 +47,7 @@ typedef struct oit_method_options {
     const float *threshold;
     float ambiguity_px; /* the reference's ambiguity radius, pixels; 0: 1/64 */
     /* OIT_METHOD_PARTFILE methods: what they render and how, in the
-     * method's own type (the streamer's: stream/stream_method.h), which
+     * method's own type (liboit's: tools/common/method_stream.h), which
      * this floor does not name; NULL for the others. */
     const void *source;
     /* The most bytes a frame puts in one storage buffer (render/band.h):
@@ -97,7 +97,7 @@ typedef struct oit_method {
     /* "Embree 3.13.5 (CPU reference)"; NULL: the GL context's renderer. */
     const char *(*renderer)(const void *impl);
     /* The method's own figures of the last frame beside oit_frame_stats, in
-     * its own type (the streamer's: stream/stream_method.h reads them
+     * its own type (the stream method's: tools/common/method_stream.h reads them
      * typed); NULL for a method with none. */
     const void *(*figures)(const void *impl);
     /* Bytes a pixel of view takes in the method's largest per-pixel
@@ -105,6 +105,12 @@ typedef struct oit_method {
      * oit_method_render renders frames past it in bands (render/band.h).
      * NULL: no per-pixel storage (not GL). */
     uint64_t (*pixel_bytes)(const void *impl, const oit_view *view);
+    /* A method that times its frames on the GPU itself (a library with a
+     * timer of its own): oit_method_gpu_poll and _absent ask it, the
+     * interface makes no timer for it, and its render sets
+     * oit_frame_stats.gpu_frame. NULL: the interface's timer. */
+    int (*gpu_poll)(void *impl, struct oit_gpu_times *out, int wait);
+    const char *(*gpu_absent)(const void *impl);
 } oit_method;
 
 typedef struct oit_method_state oit_method_state;

@@ -23,7 +23,7 @@
 #include "tools/oitstream/stats_json.h"
 #include "tools/oitstream/viewer_clip.h"
 #include "plot/text_overlay.h"
-#include "stream/stream_method.h"
+#include "tools/common/method_stream.h"
 
 #define GLFW_INCLUDE_NONE /* GL comes from gl_util.h (core profile prototypes) */
 #include <GLFW/glfw3.h>
@@ -39,7 +39,8 @@ enum { DEFAULT_STILL_MS = 200, PREVIEW_MAX_SCALE = 4 };
 typedef struct viewer {
     const oit_viewer_desc *desc;
     oit_method_options options; /* desc's, with the current scene's part file and K */
-    oit_stream_options stream;  /* options.source points here */
+    oit_stream_source stream;   /* options.source points here */
+    char stream_path[4096];     /* stream.path: the part file shown */
     oit_gl *gl;
     GLFWwindow *win;
     const oit_method *methods[MAX_METHODS]; /* the whole table, in its order */
@@ -561,7 +562,7 @@ static void open_entry(viewer *v)
     v->have_owned = 1;
     v->mesh = &v->owned.mesh;
     v->pf = v->owned.partfile;
-    v->stream.partfile = v->pf;
+    snprintf(v->stream_path, sizeof v->stream_path, "%s", v->entry);
     if (scene.max_layers > 0)
         v->options.max_layers = scene.max_layers;
     snprintf(v->model_name, sizeof v->model_name, "%s", v->entry);
@@ -694,9 +695,11 @@ static void status_fields(viewer *v, fields *f)
         field(f, "layers %u", v->st.max_layers);
         field(f, "overflow %llu", (unsigned long long)v->st.overflow_pixels);
     }
-    const oit_stream_frame_stats *ss = v->state && !(v->shown_kind == SHOWN_PREVIEW &&
-                                                     v->pv_method)
-                                           ? oit_method_stream_stats(v->state) : NULL;
+    const oit_draw_stats *ss = v->state && !(v->shown_kind == SHOWN_PREVIEW && v->pv_method)
+                                   ? oit_method_stream_stats(v->state) : NULL;
+    oit_renderer_desc ran = {0};
+    if (ss)
+        oit_method_stream_desc(v->state, &ran);
     if (ss) {
         field(f, "packs %u", ss->packs);
         /* which K-slot fill ran (--capture): "slots stencil x8", "slots array" */
@@ -713,8 +716,8 @@ static void status_fields(viewer *v, fields *f)
             field(f, "uploaded %.0f B", up);
         }
         field(f, "cache hits %llu", (unsigned long long)ss->cache_hits);
-        if (ss->epsilon > 0.0f) {
-            field(f, "eps %.3g", ss->epsilon);
+        if (ran.epsilon > 0.0f) {
+            field(f, "eps %.3g", ran.epsilon);
             field(f, "skipped %llu", (unsigned long long)ss->parts_skipped);
         }
     }
@@ -1230,7 +1233,9 @@ static oit_status open_viewer(viewer *v, oit_error *err)
     const oit_viewer_desc *d = v->desc;
     v->options = d->options;
     if (d->options.source)
-        v->stream = *(const oit_stream_options *)d->options.source;
+        v->stream = *(const oit_stream_source *)d->options.source;
+    snprintf(v->stream_path, sizeof v->stream_path, "%s", v->stream.path ? v->stream.path : "");
+    v->stream.path = v->stream_path;
     v->options.source = &v->stream;
     v->mesh = d->mesh;
     v->pf = d->partfile;
