@@ -6,6 +6,8 @@
  *   oit_scene_create_mesh  an in-core scene from the caller's arrays
  *   oit_renderer_create needs the caller's current GL 4.5 core context
  *   oit_renderer_draw  composites the scene over the caller's framebuffer
+ *   oit_renderer_draw_image  the same frame resolved into memory over a
+ *                      background, bit for bit the tools' images
  *
  * Both kinds of scene go through the same handle and the same draw: a part
  * file is streamed (parts read, uploaded and captured pack by pack); an
