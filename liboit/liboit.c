@@ -514,11 +514,9 @@ oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out
         return oit_error_set(err, OIT_ERR_NOMEM, "oit_renderer_create: out of memory");
     if (desc)
         r->desc = *desc;
-    if (r->desc.K != 0 && (r->desc.K < 2 || r->desc.K > 16)) {
-        uint32_t K = r->desc.K;
+    if (r->desc.K != 0 && oit_capture_k_check(r->desc.K, "oit_renderer_desc.K", err)) {
         free(r);
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_desc.K = %u is outside "
-                             "[2, 16]", K);
+        return OIT_ERR_ARGUMENT;
     }
     if ((unsigned)r->desc.pack > OIT_RENDER_PACK_FIRSTK) {
         int p = (int)r->desc.pack;

@@ -1,8 +1,10 @@
 /* oitbench's command line (bench_args.h). */
 #include "tools/oitbench/bench_args.h"
 
+#include "render/capture.h"
 #include "render/capture_choice.h"
 
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -117,7 +119,8 @@ static int value_option(oit_bench_args *a, const char *opt, const char *v, char 
     } else if (!strcmp(opt, "--warmup")) {
         if (oit_parse_int(v, 0, 100000, &a->warmup)) *s = bad(err, opt, v, "a frame count >= 0");
     } else if (!strcmp(opt, "--max-layers")) {
-        if (oit_parse_int(v, 2, 16, &a->max_layers)) *s = bad(err, opt, v, "K in [2, 16]");
+        if (oit_parse_int(v, INT_MIN, INT_MAX, &a->max_layers)) *s = bad(err, opt, v, "an integer");
+        else *s = oit_capture_k_check(a->max_layers, "--max-layers", err);
     } else if (!strcmp(opt, "--capture")) {
         oit_capture_kind k = OIT_CAPTURE_AUTO;
         *s = oit_capture_parse(v, opt, &k, err);

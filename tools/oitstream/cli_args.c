@@ -4,6 +4,7 @@
 #include "base/args.h"
 
 #include <float.h>
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -112,7 +113,8 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
     } else if (!strcmp(opt, "--background")) {
         if (parse_rgb(v, a->shading.background)) *s = bad(err, opt, v, "r,g,b in [0, 1]");
     } else if (!strcmp(opt, "--max-layers")) {
-        if (oit_parse_int(v, 2, 16, &a->max_layers)) *s = bad(err, opt, v, "K in [2, 16]");
+        if (oit_parse_int(v, INT_MIN, INT_MAX, &a->max_layers)) *s = bad(err, opt, v, "an integer");
+        else *s = oit_capture_k_check(a->max_layers, "--max-layers", err);
     } else if (!strcmp(opt, "--show")) {
         if (!strcmp(v, "layers")) a->show_layers = 1;
         else if (strcmp(v, "colour") && strcmp(v, "color")) *s = bad(err, opt, v, "layers or colour");
