@@ -154,6 +154,50 @@ static void check_stream(oit_scene *scene, oit_partfile *pf, const oit_scene_inf
     free(got);
 }
 
+/* oit_frame.camera drives oit_renderer_draw too: blended over a target
+ * cleared to the background, the frame equals the resolved image (within
+ * the blend's float arithmetic, where the resolve pass computes in its own
+ * order), and a wrong camera (the eye moved) would not. */
+static void check_draw_camera(oit_scene *scene, const oit_scene_info *info)
+{
+    oit_error err = {0};
+    oit_renderer *r = NULL;
+    CHECK(oit_renderer_create(NULL, &r, &err) == OIT_OK, "draw camera: %s", err.message);
+    oit_camera cam = camera_of(info, 1);
+    oit_frame_camera fc = public_camera(&cam);
+    oit_frame f = {.viewport_width = W, .viewport_height = H, .camera = &fc};
+    const float bg[4] = {0.2f, 0.4f, 0.6f, 1.0f};
+    size_t n = (size_t)W * H * 4;
+    float *img = malloc(n * sizeof *img), *fb = malloc(n * sizeof *fb);
+    CHECK(oit_renderer_draw_image(r, scene, &f, bg, img, n * sizeof *img, NULL, &err) == OIT_OK,
+          "draw camera: image: %s", err.message);
+    GLuint tex, fbo;
+    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+    glTextureStorage2D(tex, 1, GL_RGBA32F, W, H);
+    glCreateFramebuffers(1, &fbo);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, tex, 0);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE); /* the streamer's resolve leaves it off */
+    glClearNamedFramebufferfv(fbo, GL_COLOR, 0, bg);
+    f.framebuffer = fbo;
+    CHECK(oit_renderer_draw(r, scene, &f, NULL, &err) == OIT_OK, "draw camera: %s",
+          err.message);
+    glGetTextureImage(tex, 0, GL_RGBA, GL_FLOAT, (GLsizei)(n * sizeof *fb), fb);
+    double worst = 0.0;
+    for (int y = 0; y < H; y++) /* GL rows bottom first, the image's top first */
+        for (int x = 0; x < W * 3; x++) {
+            double d = fabs(fb[((size_t)(H - 1 - y) * W) * 4 + (x / 3) * 4 + x % 3] -
+                            img[((size_t)y * W) * 4 + (x / 3) * 4 + x % 3]);
+            worst = d > worst ? d : worst;
+        }
+    printf("draw camera: blended against resolved, max %.3g\n", worst);
+    CHECK(worst < 1e-5, "draw camera: the blended frame differs from the image by %g", worst);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteTextures(1, &tex);
+    free(img);
+    free(fb);
+    oit_renderer_destroy(r);
+}
+
 /* The file's triangles in core: liboit's image against DFB's. */
 static void check_in_core(oit_partfile *pf, const oit_scene_info *info)
 {
@@ -263,6 +307,7 @@ int main(int argc, char **argv)
     check_stream(scene, pf, &info, OIT_RENDER_PACK_FIRSTK, 0, 1, bg);
     check_stream(scene, pf, &info, OIT_RENDER_PACK_COUNTED, 0, 0, bg);
     check_stream(scene, pf, &info, OIT_RENDER_PACK_BUDGET, 0, 0, NULL);
+    check_draw_camera(scene, &info);
     check_in_core(pf, &info);
     oit_partfile_close(pf);
     oit_scene_close(scene);
