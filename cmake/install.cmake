@@ -39,6 +39,9 @@ configure_file(${CMAKE_SOURCE_DIR}/cmake/oit.pc.in ${CMAKE_BINARY_DIR}/cmake/oit
 install(FILES ${CMAKE_BINARY_DIR}/cmake/oit.pc DESTINATION lib/pkgconfig)
 
 # Every tool (README, Tools). They link our libraries statically and only
-# system libraries dynamically, so they need no run path of their own.
+# system libraries dynamically, but for oitstream and oitbench, whose stream
+# method is liboit.so's public API (tools/common/method_stream.h): they find
+# it beside the installed tree.
+set_target_properties(oitstream oitbench PROPERTIES INSTALL_RPATH "$ORIGIN/../lib")
 install(TARGETS oitgen oitprep oitstream oitbench oit_meshinfo RUNTIME DESTINATION bin)
 include(${CMAKE_SOURCE_DIR}/cmake/python.cmake)

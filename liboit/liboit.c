@@ -5,6 +5,7 @@
  * framebuffer. */
 #include "oit/liboit.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdatomic.h>
 #include <stdio.h>
@@ -18,6 +19,8 @@
 #include "render/capture/dfb.h"
 #include "render/gl/frag_glsl.h"
 #include "render/gl/gpu_timer.h"
+#include "render/image/image.h"
+#include "render/image/shade.h"
 #include "stream/streamer.h"
 
 struct oit_scene {
@@ -37,8 +40,11 @@ struct oit_scene {
     atomic_uint shares;
 };
 
+enum { GPU_QUEUE = 64 };
+
 struct oit_renderer {
     oit_renderer_desc desc;
+    oit_streamer_desc stream; /* desc spelt for the streamer (stream_desc); K per scene */
     oit_scene *scene;       /* the scene the streamer or gpu_mesh holds: a share */
     oit_streamer *streamer; /* part files */
     oit_dfb *dfb;           /* in-core scenes; kept across scenes */
@@ -48,6 +54,11 @@ struct oit_renderer {
     GLuint depth_sampler; /* reads oit_frame.depth_texture: no compare, nearest */
     oit_gpu_timer *timer; /* made at the first draw (GL current) */
     oit_gpu_times gpu;    /* the newest figures polled; frame 0: none yet */
+    /* Figures polled but not yet taken by oit_renderer_gpu_poll, oldest
+     * first at gpu_head; the oldest go when it is full. */
+    oit_gpu_times gpu_queue[GPU_QUEUE];
+    unsigned gpu_head, gpu_count;
+    uint64_t draws; /* oit_draw_stats.draw of the last draw */
 };
 
 _Static_assert(OIT_DRAW_GPU_PHASES == OIT_GPU_PHASES, "one list of GPU phases");
@@ -454,6 +465,46 @@ void oit_renderer_destroy(oit_renderer *r)
     free(r);
 }
 
+/* liboit's spelling of the streamer's settings onto oit_streamer_desc, the
+ * one place it is built: the streamer checks the values
+ * (oit_streamer_desc_check) and each scene adds its K and share. */
+static void stream_desc(const oit_renderer_desc *d, oit_streamer_desc *sd)
+{
+    memset(sd, 0, sizeof *sd);
+    _Static_assert((int)OIT_RENDER_CAPTURE_ARRAY == (int)OIT_CAPTURE_ARRAY &&
+                       (int)OIT_RENDER_CAPTURE_STENCIL == (int)OIT_CAPTURE_STENCIL &&
+                       (int)OIT_RENDER_CAPTURE_AUTO == (int)OIT_CAPTURE_AUTO,
+                   "liboit's capture values are the streamer's");
+    sd->capture = (oit_capture_kind)d->capture;
+    sd->pack = d->pack == OIT_RENDER_PACK_FIRSTK     ? OIT_PACK_FIRSTK
+               : d->pack == OIT_RENDER_PACK_DISJOINT ? OIT_PACK_DISJOINT
+               : d->pack == OIT_RENDER_PACK_BUDGET   ? OIT_PACK_BUDGET
+               : d->pack == OIT_RENDER_PACK_COUNTED  ? OIT_PACK_COUNTED
+                                                     : OIT_PACK_AUTO;
+    sd->upload_budget = d->upload_budget;
+    sd->epsilon = d->epsilon;
+    _Static_assert(OIT_RENDER_CACHE_OFF == OIT_STREAM_CACHE_OFF, "one spelling of 'no cache'");
+    sd->cache_budget = d->cache_budget;
+    sd->reader_threads = d->read_on_draw_thread ? OIT_STREAM_READ_INLINE
+                                                : (int)(d->reader_threads > INT_MAX
+                                                            ? INT_MAX : d->reader_threads);
+    sd->gpu_budget = d->gpu_budget;
+    _Static_assert((int)OIT_RENDER_SCHEDULE_WAVE == (int)OIT_SCHEDULE_WAVE &&
+                       (int)OIT_RENDER_SCHEDULE_TREE == (int)OIT_SCHEDULE_TREE,
+                   "liboit's schedule values are the packer's");
+    sd->schedule = (oit_pack_schedule)d->schedule;
+    sd->slot_budget = d->slot_budget;
+    sd->store_limit = d->binding_limit;
+}
+
+/* What the streamer's range errors call its settings here. */
+static const oit_streamer_names desc_names = {
+    .upload_budget = "oit_renderer_desc.upload_budget",
+    .cache_budget = "oit_renderer_desc.cache_budget",
+    .gpu_budget = "oit_renderer_desc.gpu_budget", .epsilon = "oit_renderer_desc.epsilon",
+    .slot_budget = "oit_renderer_desc.slot_budget", .schedule = "oit_renderer_desc.schedule",
+    .cache_off = "OIT_RENDER_CACHE_OFF"};
+
 oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out,
                                oit_error *err)
 {
@@ -463,21 +514,9 @@ oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out
         return oit_error_set(err, OIT_ERR_NOMEM, "oit_renderer_create: out of memory");
     if (desc)
         r->desc = *desc;
-    if (r->desc.K != 0 && (r->desc.K < 2 || r->desc.K > 16)) {
-        uint32_t K = r->desc.K;
+    if (r->desc.K != 0 && oit_capture_k_check(r->desc.K, "oit_renderer_desc.K", err)) {
         free(r);
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_desc.K = %u is outside "
-                             "[2, 16]", K);
-    }
-    /* The ranges oitstream's --upload-budget and --cache-budget take. */
-    uint64_t ub = r->desc.upload_budget, cb = r->desc.cache_budget;
-    if ((ub != 0 && ub < 65536) || (cb != 0 && cb != OIT_RENDER_CACHE_OFF && cb < 65536)) {
-        free(r);
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_desc.%s = %llu is below 64 "
-                             "KiB (0: the default%s)", ub != 0 && ub < 65536 ? "upload_budget"
-                                                                            : "cache_budget",
-                             (unsigned long long)(ub != 0 && ub < 65536 ? ub : cb),
-                             ub != 0 && ub < 65536 ? "" : "; OIT_RENDER_CACHE_OFF: no cache");
+        return OIT_ERR_ARGUMENT;
     }
     if ((unsigned)r->desc.pack > OIT_RENDER_PACK_FIRSTK) {
         int p = (int)r->desc.pack;
@@ -491,11 +530,11 @@ oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out
         return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_desc.see_through = %d is not "
                              "0 or 1", v);
     }
-    if (!(r->desc.epsilon >= 0.0f && r->desc.epsilon < 1.0f)) {
-        double e = r->desc.epsilon;
+    stream_desc(&r->desc, &r->stream);
+    oit_status bad = oit_streamer_desc_check(&r->stream, &desc_names, err);
+    if (bad != OIT_OK) {
         free(r);
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_desc.epsilon = %g is outside "
-                             "[0, 1)", e);
+        return bad;
     }
     const char *vs[] = {oit_glsl_version, oit_capture_fullscreen_vs, NULL};
     const char *fs[] = {oit_glsl_version, oit_glsl_composite, oit_glsl_state_io, blend_fs, NULL};
@@ -549,27 +588,10 @@ static oit_status bind_scene(oit_renderer *r, oit_scene *scene, oit_error *err)
         }
         return st;
     }
-    oit_streamer_desc sd = {0};
+    oit_streamer_desc sd = r->stream;
     /* A file cut for more than the K-slot capture holds streams its parts as
      * wider than K, captured alone over tiles, as oitstream does. */
     sd.K = r->desc.K ? (int)r->desc.K : scene->info.K < 16 ? (int)scene->info.K : 16;
-    /* the streamer checks the value (capture_choice.h) */
-    _Static_assert((int)OIT_RENDER_CAPTURE_ARRAY == (int)OIT_CAPTURE_ARRAY &&
-                       (int)OIT_RENDER_CAPTURE_STENCIL == (int)OIT_CAPTURE_STENCIL &&
-                       (int)OIT_RENDER_CAPTURE_AUTO == (int)OIT_CAPTURE_AUTO,
-                   "liboit's capture values are the streamer's");
-    sd.capture = (oit_capture_kind)r->desc.capture;
-    sd.pack = r->desc.pack == OIT_RENDER_PACK_FIRSTK    ? OIT_PACK_FIRSTK
-              : r->desc.pack == OIT_RENDER_PACK_DISJOINT  ? OIT_PACK_DISJOINT
-              : r->desc.pack == OIT_RENDER_PACK_BUDGET  ? OIT_PACK_BUDGET
-              : r->desc.pack == OIT_RENDER_PACK_COUNTED ? OIT_PACK_COUNTED
-                                                        : OIT_PACK_AUTO;
-    sd.upload_budget = r->desc.upload_budget;
-    sd.epsilon = r->desc.epsilon;
-    _Static_assert(OIT_RENDER_CACHE_OFF == OIT_STREAM_CACHE_OFF, "one spelling of 'no cache'");
-    sd.cache_budget = r->desc.cache_budget;
-    sd.reader_threads = r->desc.read_on_draw_thread ? OIT_STREAM_READ_INLINE : 0;
-    sd.gpu_budget = r->desc.gpu_budget;
     sd.share_count = scene->info.share_count;
     sd.share_index = scene->info.share_index;
     oit_status st = oit_streamer_create(scene->pf, &sd, &r->streamer, err);
@@ -578,10 +600,15 @@ static oit_status bind_scene(oit_renderer *r, oit_scene *scene, oit_error *err)
     return st;
 }
 
-static void make_shading(const oit_renderer *r, const oit_scene *scene, oit_shading *s)
+/* bg: the background of a resolved image (oit_renderer_draw_image), NULL
+ * for the default (white), which a blend over a framebuffer does not read. */
+static void make_shading(const oit_renderer *r, const oit_scene *scene, const float *bg,
+                         oit_shading *s)
 {
     const oit_render_shading *in = &r->desc.shading;
     memset(s, 0, sizeof *s);
+    if (bg)
+        memcpy(s->background, bg, sizeof s->background);
     s->mode = in->mode == OIT_RENDER_TRANSLUCENT ? OIT_SHADING_TRANSLUCENT
                                                   : OIT_SHADING_TRANSPARENT;
     s->alpha = in->alpha;
@@ -595,6 +622,31 @@ static void make_shading(const oit_renderer *r, const oit_scene *scene, oit_shad
                          ? in->scene_scale
                          : oit_scene_scale(scene->info.bounds_min, scene->info.bounds_max);
     oit_shading_resolve_defaults(s);
+}
+
+void oit_renderer_get_desc(const oit_renderer *r, oit_renderer_desc *out)
+{
+    *out = r->desc;
+    if (r->scene) {
+        oit_shading s;
+        make_shading(r, r->scene, NULL, &s);
+        out->shading.alpha = s.alpha;
+        memcpy(out->shading.default_rgb, s.default_rgb, sizeof out->shading.default_rgb);
+        out->shading.absorption = s.absorption;
+        out->shading.scene_scale = s.scene_scale;
+        out->shading.colour_space = s.colour_space == OIT_COLOUR_LINEAR
+                                        ? OIT_RENDER_COLOUR_LINEAR : OIT_RENDER_COLOUR_SRGB;
+    }
+    if (!r->streamer)
+        return;
+    oit_streamer_desc sd;
+    oit_streamer_resolved_desc(r->streamer, &sd);
+    out->K = (uint32_t)sd.K;
+    out->upload_budget = sd.upload_budget;
+    out->cache_budget = sd.cache_budget;
+    out->gpu_budget = sd.gpu_budget;
+    out->capture = (oit_render_capture)sd.capture;
+    out->read_on_draw_thread = sd.reader_threads == OIT_STREAM_READ_INLINE;
 }
 
 /* The state oit_renderer_draw promises to give back (liboit.h). */
@@ -633,7 +685,11 @@ static void gl_restore(const gl_saved *g)
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)g->draw_fb);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)g->read_fb);
     glViewport(g->viewport[0], g->viewport[1], g->viewport[2], g->viewport[3]);
-    glUseProgram((GLuint)g->program);
+    /* A program the caller deleted while it was current lived only as long
+     * as it stayed current (GL 4.5, 7.3): once liboit's own replaced it,
+     * it is gone, and binding its name again would fail; the caller then
+     * gets none, as after any glUseProgram of another. */
+    glUseProgram(glIsProgram((GLuint)g->program) ? (GLuint)g->program : 0);
     glBindVertexArray((GLuint)g->vao);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, (GLuint)g->indirect);
     glBlendFuncSeparate((GLenum)g->src_rgb, (GLenum)g->dst_rgb, (GLenum)g->src_a,
@@ -709,6 +765,55 @@ static oit_status clip_from_frame(const oit_frame *f, oit_view *v, oit_error *er
     return oit_clip_check(&v->clip, "oit_frame.clip", err);
 }
 
+static int all_finite(const float *v, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (!isfinite(v[i]))
+            return 0;
+    return 1;
+}
+
+/* oit_frame.camera (liboit.h) copied as it is, so that no rounding stands
+ * between the caller's camera and the one the capture builds its matrices
+ * from; checked here, its one reader. */
+static oit_status camera_given(const oit_frame_camera *c, oit_camera *cam, oit_error *err)
+{
+    const char *F = "oit_frame.camera";
+    double d[3], u[3];
+    for (int k = 0; k < 3; k++) {
+        d[k] = (double)c->target[k] - c->eye[k];
+        u[k] = c->up[k];
+    }
+    double cx = d[1] * u[2] - d[2] * u[1], cy = d[2] * u[0] - d[0] * u[2],
+           cz = d[0] * u[1] - d[1] * u[0];
+    if (!all_finite(c->eye, 3) || !all_finite(c->target, 3) || !all_finite(c->up, 3) ||
+        !all_finite(c->window, 4) || !isfinite(c->ortho_height) || !isfinite(c->znear))
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: a number that is not finite", F);
+    if (!(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > 0.0) || !(cx * cx + cy * cy + cz * cz > 0.0))
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: eye (%g, %g, %g) and target give no "
+                             "view direction, or up (%g, %g, %g) is parallel to it", F,
+                             c->eye[0], c->eye[1], c->eye[2], c->up[0], c->up[1], c->up[2]);
+    int ortho = c->ortho_height != 0.0f;
+    if (ortho ? !(c->ortho_height > 0.0f && c->zfar > c->znear && isfinite(c->zfar))
+              : !(c->fovy_deg > 0.0f && c->fovy_deg < 180.0f && c->znear > 0.0f &&
+                  c->zfar > c->znear))
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: %s, fovy %g, near %g, far %g: need %s",
+                             F, ortho ? "orthographic" : "perspective", c->fovy_deg, c->znear,
+                             c->zfar, ortho ? "ortho_height > 0, znear < zfar < inf"
+                                            : "fovy_deg in (0, 180), 0 < znear < zfar");
+    memset(cam, 0, sizeof *cam);
+    memcpy(cam->eye, c->eye, sizeof cam->eye);
+    memcpy(cam->target, c->target, sizeof cam->target);
+    memcpy(cam->up, c->up, sizeof cam->up);
+    cam->fovy_deg = c->fovy_deg;
+    cam->znear = c->znear;
+    cam->zfar = c->zfar;
+    cam->projection = ortho ? OIT_PROJ_ORTHOGRAPHIC : OIT_PROJ_PERSPECTIVE;
+    cam->ortho_height = c->ortho_height;
+    memcpy(cam->window, c->window, sizeof cam->window);
+    return OIT_OK;
+}
+
 /* The view's size, camera and model from f (no shading). */
 static oit_status frame_camera(const oit_frame *f, oit_view *v, oit_error *err)
 {
@@ -718,8 +823,12 @@ static oit_status frame_camera(const oit_frame *f, oit_view *v, oit_error *err)
     memset(v, 0, sizeof *v);
     v->width = f->viewport_width;
     v->height = f->viewport_height;
-    oit_status st = camera_from_view(f->view, &v->camera, err);
-    if (st == OIT_OK)
+    oit_status st = OIT_OK;
+    if (f->camera)
+        st = camera_given(f->camera, &v->camera, err);
+    if (st == OIT_OK && !f->camera)
+        st = camera_from_view(f->view, &v->camera, err);
+    if (st == OIT_OK && !f->camera)
         st = camera_from_projection(f->projection, (double)v->width / v->height, &v->camera,
                                     err);
     if (st == OIT_OK)
@@ -730,11 +839,11 @@ static oit_status frame_camera(const oit_frame *f, oit_view *v, oit_error *err)
 }
 
 static oit_status frame_view(const oit_renderer *r, const oit_scene *scene,
-                             const oit_frame *f, oit_view *v, oit_error *err)
+                             const oit_frame *f, const float *bg, oit_view *v, oit_error *err)
 {
     oit_status st = frame_camera(f, v, err);
     if (st == OIT_OK)
-        make_shading(r, scene, &v->shading);
+        make_shading(r, scene, bg, &v->shading);
     return st;
 }
 
@@ -843,16 +952,21 @@ static oit_status draw_bands(oit_renderer *r, const oit_scene *scene, const oit_
 {
     uint64_t px = scene->pf ? oit_streamer_pixel_bytes(view) : oit_dfb_pixel_bytes(view, 1);
     int rows = 0, h = view->height;
-    oit_status st = oit_band_rows(view, px, 0, &rows, err);
+    oit_status st = oit_band_rows(view, px, r->desc.binding_limit, &rows, err);
     for (int y0 = 0; st == OIT_OK && y0 < h; y0 += rows) {
         int y1 = y0 + rows < h ? y0 + rows : h, gl_y = frame->viewport_y + h - y1;
         oit_view band = *view;
         oit_opaque_depth opaque = {.enabled = frame->depth_texture != 0,
                                    .origin = {frame->viewport_x, gl_y}};
-        memcpy(opaque.proj, frame->projection, sizeof opaque.proj);
+        float proj[16];
+        if (frame->camera)
+            oit_camera_proj_matrix(&view->camera, (float)view->width / (float)h, proj);
+        else
+            memcpy(proj, frame->projection, sizeof proj);
+        memcpy(opaque.proj, proj, sizeof opaque.proj);
         if (rows < h) {
             oit_view_band(view, y0, y1, &band);
-            oit_band_projection(frame->projection, h, y0, y1, opaque.proj);
+            oit_band_projection(proj, h, y0, y1, opaque.proj);
         }
         depth_unit unit;
         if (opaque.enabled)
@@ -876,6 +990,71 @@ static oit_status draw_bands(oit_renderer *r, const oit_scene *scene, const oit_
     return st;
 }
 
+/* The figures of the draw's work and choices (oit_draw_stats, from
+ * order_ms on) that the capture and the streamer report: 0 and NULL for an
+ * in-core scene, whose ss DFB's branch of render_state leaves so. */
+static void draw_stats_work(const oit_frame_stats *fs, const oit_stream_frame_stats *ss,
+                            oit_draw_stats *out)
+{
+    out->order_ms = ss->order_ms;
+    out->pack_ms = ss->pack_ms;
+    out->auto_first_k = (uint32_t)ss->first_k;
+    out->front_first = (uint32_t)ss->front_first;
+    out->second_pass_pixels = fs->second_pass_pixels;
+    out->second_pass_packs = fs->second_pass_packs;
+    out->capture = fs->capture;
+    out->capture_k = fs->capture_k;
+    out->capture_asked = ss->capture_asked;
+    out->batches = fs->batches;
+    out->reader_threads = (uint32_t)(ss->reader_threads > 0 ? ss->reader_threads : 0);
+}
+
+/* The figures that are in, queued for oit_renderer_gpu_poll; the newest
+ * also in r->gpu, for oit_draw_stats. */
+static void gpu_take(oit_renderer *r)
+{
+    r->draws++;
+    oit_gpu_times t;
+    while (oit_gpu_timer_poll(r->timer, &t, 0)) {
+        r->gpu = t;
+        if (r->gpu_count == GPU_QUEUE) {
+            r->gpu_head = (r->gpu_head + 1) % GPU_QUEUE;
+            r->gpu_count--;
+        }
+        r->gpu_queue[(r->gpu_head + r->gpu_count++) % GPU_QUEUE] = t;
+    }
+}
+
+int oit_renderer_gpu_poll(oit_renderer *r, oit_draw_gpu *out, int wait)
+{
+    oit_gpu_times t;
+    if (!r || !out)
+        return 0;
+    if (r->gpu_count) {
+        t = r->gpu_queue[r->gpu_head];
+        r->gpu_head = (r->gpu_head + 1) % GPU_QUEUE;
+        r->gpu_count--;
+    } else if (!r->timer || !oit_gpu_timer_poll(r->timer, &t, wait)) {
+        return 0;
+    }
+    out->draw = t.frame;
+    out->ms = t.ms;
+    memcpy(out->phase_ms, t.phase_ms, sizeof out->phase_ms);
+    return 1;
+}
+
+const char *oit_renderer_gpu_absent(const oit_renderer *r)
+{
+    if (!r)
+        return "no renderer";
+    return r->timer ? oit_gpu_timer_absent(r->timer) : NULL;
+}
+
+static oit_status name_scene(const oit_scene *scene, oit_status st, oit_error *err);
+static void fill_stats(const oit_renderer *r, const oit_scene *scene, const oit_view *view,
+                       const oit_frame_stats *fs, const oit_stream_frame_stats *ss,
+                       double t0, oit_draw_stats *stats);
+
 oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame *frame,
                              oit_draw_stats *stats, oit_error *err)
 {
@@ -883,7 +1062,7 @@ oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame 
         return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_draw: NULL argument");
     double t0 = oit_time_ms();
     oit_view view;
-    oit_status st = frame_view(r, scene, frame, &view, err);
+    oit_status st = frame_view(r, scene, frame, NULL, &view, err);
     if (st == OIT_OK && frame->depth_texture)
         st = check_depth_texture(frame, err);
     if (st != OIT_OK)
@@ -901,16 +1080,33 @@ oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame 
     if (st == OIT_OK && !empty)
         st = draw_bands(r, scene, frame, &view, &fs, &ss, err);
     oit_gpu_timer_end_frame(r->timer);
-    while (oit_gpu_timer_poll(r->timer, &r->gpu, 0)) {
-    }
+    gpu_take(r);
     gl_restore(&saved);
-    if (st != OIT_OK) {
-        const char *name = scene_name(scene);
-        if (err && strncmp(err->message, name, strlen(name)) != 0)
-            oit_error_prefix(err, name);
-        return st;
-    }
-    if (stats) {
+    if (st != OIT_OK)
+        return name_scene(scene, st, err);
+    if (stats)
+        fill_stats(r, scene, &view, &fs, &ss, t0, stats);
+    return OIT_OK;
+}
+
+/* A failure's message starts with the scene's name. */
+static oit_status name_scene(const oit_scene *scene, oit_status st, oit_error *err)
+{
+    const char *name = scene_name(scene);
+    if (err && strncmp(err->message, name, strlen(name)) != 0)
+        oit_error_prefix(err, name);
+    return st;
+}
+
+/* oit_draw_stats of a draw, from the capture's and the streamer's figures. */
+static void fill_stats(const oit_renderer *r, const oit_scene *scene, const oit_view *vp,
+                       const oit_frame_stats *fsp, const oit_stream_frame_stats *ssp,
+                       double t0, oit_draw_stats *stats)
+{
+    const oit_frame_stats fs = *fsp;
+    const oit_stream_frame_stats ss = *ssp;
+    const oit_view view = *vp;
+    {
         *stats = (oit_draw_stats){.ms = oit_time_ms() - t0, .fragments = fs.fragments,
                                   .max_layers = fs.max_layers,
                                   .overflow_pixels = fs.overflow_pixels, .packs = ss.packs,
@@ -929,7 +1125,7 @@ oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame 
                                   .capture_fallback =
                                       r->streamer ? oit_streamer_capture_choice(r->streamer)->reason
                                                   : NULL,
-                                  .gpu_frame = r->gpu.frame,
+                                  .gpu_frame = r->gpu.frame, .draw = r->draws,
                                   .gpu_ms = r->gpu.frame ? r->gpu.ms : -1.0};
         memcpy(stats->gpu_phase_ms, r->gpu.phase_ms, sizeof stats->gpu_phase_ms);
         oit_stream_budget b = {0};
@@ -942,7 +1138,120 @@ oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame 
         stats->gpu_free_bytes = b.free_bytes;
         stats->see_through = (uint32_t)view.shading.see_through;
         stats->opaque = (uint32_t)oit_shading_opaque(&view.shading);
+        stats->resident = (uint32_t)b.resident;
+        stats->budget_source = b.source;
+        draw_stats_work(&fs, &ss, stats);
     }
+}
+
+/* One band's (or the whole frame's) image through the capture's resolve:
+ * the streamer's or DFB's, as the tools' methods render it. */
+static oit_status render_image(oit_renderer *r, const oit_scene *scene, const oit_view *v,
+                               oit_image *out, oit_frame_stats *fs, oit_stream_frame_stats *ss,
+                               oit_error *err)
+{
+    static const oit_opaque_depth none = {0};
+    if (scene->pf) {
+        oit_streamer_set_gpu_timer(r->streamer, r->timer);
+        oit_streamer_set_opaque(r->streamer, &none);
+        return oit_streamer_render(r->streamer, v, out, fs, ss, err);
+    }
+    const oit_gpu_mesh *list[1] = {r->gpu_mesh};
+    oit_dfb_set_opaque(r->dfb, &none);
+    oit_dfb_set_gpu_timer(r->dfb, r->timer);
+    oit_status st = oit_dfb_render(r->dfb, list, 1, v, out, NULL, fs, err);
+    ss->packs = fs->batches;
+    ss->draw_calls = 1 + (uint64_t)fs->batches;
+    ss->bytes_uploaded = r->pending_upload;
+    ss->gpu_bytes_peak = fs->gpu_bytes_peak + (uint64_t)scene->mesh.count * sizeof(oit_triangle);
+    r->pending_upload = 0;
+    return st;
+}
+
+/* The image in bands of rows whose per-pixel state fits one storage
+ * binding (render/gl/band.h), each copied into its rows of rgba, as the
+ * tools' method interface does (render/method.c). */
+static oit_status image_bands(oit_renderer *r, const oit_scene *scene, const oit_view *view,
+                              float *rgba, oit_frame_stats *fs, oit_stream_frame_stats *ss,
+                              oit_error *err)
+{
+    uint64_t px = scene->pf ? oit_streamer_pixel_bytes(view) : oit_dfb_pixel_bytes(view, 0);
+    int rows = 0, w = view->width, h = view->height;
+    oit_status st = oit_band_rows(view, px, r->desc.binding_limit, &rows, err);
+    for (int y0 = 0; st == OIT_OK && y0 < h; y0 += rows) {
+        int y1 = y0 + rows < h ? y0 + rows : h;
+        oit_view band = *view;
+        if (rows < h)
+            oit_view_band(view, y0, y1, &band);
+        oit_image part = {0};
+        oit_frame_stats bfs = {0};
+        oit_stream_frame_stats bss = {0};
+        st = render_image(r, scene, &band, &part, &bfs, &bss, err);
+        if (st == OIT_OK)
+            memcpy(rgba + (size_t)y0 * w * 4, part.rgba,
+                   (size_t)w * (size_t)(y1 - y0) * 4 * sizeof *rgba);
+        oit_image_free(&part);
+        oit_frame_stats_add(fs, &bfs);
+        oit_stream_frame_stats_add(ss, &bss);
+    }
+    return st;
+}
+
+/* The background alone, as a pixel no fragment reached resolves. */
+static void empty_image(const oit_view *view, float *rgba)
+{
+    oit_pixel_state px;
+    float rgb[3];
+    oit_pixel_begin(&px);
+    oit_pixel_end(&px, &view->shading, rgb);
+    for (size_t i = 0; i < (size_t)view->width * (size_t)view->height; i++) {
+        memcpy(rgba + 4 * i, rgb, sizeof rgb);
+        rgba[4 * i + 3] = 1.0f;
+    }
+}
+
+oit_status oit_renderer_draw_image(oit_renderer *r, oit_scene *scene, const oit_frame *frame,
+                                   const float background[3], float *rgba, size_t rgba_bytes,
+                                   oit_draw_stats *stats, oit_error *err)
+{
+    if (!r || !scene || !frame || !rgba)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_draw_image: NULL argument");
+    double t0 = oit_time_ms();
+    oit_view view;
+    oit_status st = frame_view(r, scene, frame, background, &view, err);
+    if (st != OIT_OK)
+        return st;
+    if (frame->depth_texture)
+        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "oit_renderer_draw_image: "
+                             "oit_frame.depth_texture = %u: an image has no opaque depth; "
+                             "draw into the caller's framebuffer (oit_renderer_draw)",
+                             frame->depth_texture);
+    size_t need = (size_t)view.width * (size_t)view.height * 4 * sizeof *rgba;
+    if (rgba_bytes < need)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_draw_image: a %dx%d image "
+                             "needs %zu bytes, rgba has %zu", view.width, view.height, need,
+                             rgba_bytes);
+    gl_saved saved;
+    gl_save(&saved);
+    oit_frame_stats fs = {0};
+    oit_stream_frame_stats ss = {0};
+    if (!r->timer)
+        st = oit_gpu_timer_create(NULL, &r->timer, err);
+    int empty = !scene->pf && scene->info.triangles == 0;
+    if (st == OIT_OK && !empty)
+        st = bind_scene(r, scene, err);
+    oit_gpu_timer_begin_frame(r->timer);
+    if (st == OIT_OK && !empty)
+        st = image_bands(r, scene, &view, rgba, &fs, &ss, err);
+    oit_gpu_timer_end_frame(r->timer);
+    gpu_take(r);
+    gl_restore(&saved);
+    if (st == OIT_OK && empty) /* nothing in front of the background */
+        empty_image(&view, rgba);
+    if (st != OIT_OK)
+        return name_scene(scene, st, err);
+    if (stats)
+        fill_stats(r, scene, &view, &fs, &ss, t0, stats);
     return OIT_OK;
 }
 

@@ -68,6 +68,11 @@ const char *oit_offscreen_gl_renderer(const oit_offscreen *o)
     return o ? oit_gl_renderer(o->gl) : "";
 }
 
+void oit_offscreen_get_desc(const oit_offscreen *o, oit_offscreen_desc *out)
+{
+    oit_renderer_get_desc(o->renderer, &out->renderer);
+}
+
 /* The colour target, reallocated when the size changes. */
 static oit_status ensure_target(oit_offscreen *o, int w, int h, oit_error *err)
 {

@@ -49,7 +49,7 @@ static oit_status prepare_gl(oit_method_state *st, const oit_method_options *opt
     } else {
         s = oit_gl_create(&(oit_gl_desc){0}, &st->gl, err);
     }
-    if (s == OIT_OK)
+    if (s == OIT_OK && !st->method->gpu_poll)
         s = oit_gpu_timer_create(&(oit_gpu_timer_desc){.no_queries = opt && opt->no_gpu_timer},
                                  &st->timer, err);
     if (s == OIT_OK && !(st->method->flags & OIT_METHOD_PARTFILE))
@@ -156,18 +156,22 @@ oit_status oit_method_render(oit_method_state *st, const oit_view *view, oit_ima
     oit_gpu_timer_begin_frame(st->timer);
     oit_status s = render_frame(st, view, out, counts, ambiguous, stats, err);
     uint64_t frame = oit_gpu_timer_end_frame(st->timer);
-    if (s == OIT_OK && stats)
+    if (s == OIT_OK && stats && !st->method->gpu_poll)
         stats->gpu_frame = frame;
     return s;
 }
 
 int oit_method_gpu_poll(oit_method_state *st, oit_gpu_times *out, int wait)
 {
+    if (st->method->gpu_poll)
+        return st->method->gpu_poll(st->impl, out, wait);
     return oit_gpu_timer_poll(st->timer, out, wait);
 }
 
 const char *oit_method_gpu_absent(const oit_method_state *st)
 {
+    if (st->method->gpu_absent)
+        return st->method->gpu_absent(st->impl);
     return st->timer ? oit_gpu_timer_absent(st->timer) : "not a GL method";
 }
 
@@ -204,7 +208,12 @@ const char *oit_method_renderer(const oit_method_state *st)
     return st->gl ? oit_gl_renderer(st->gl) : "none";
 }
 
-const struct oit_stream_frame_stats *oit_method_stream_stats(const oit_method_state *st)
+const oit_method *oit_method_of(const oit_method_state *st)
 {
-    return st->method->stream_stats ? st->method->stream_stats(st->impl) : NULL;
+    return st->method;
+}
+
+const void *oit_method_figures(const oit_method_state *st)
+{
+    return st->method->figures ? st->method->figures(st->impl) : NULL;
 }

@@ -1,6 +1,6 @@
 /* A rendering method behind one interface: DFB, the capture backends, the
- * baselines, the Embree reference and (from stream/) the part-file streamer
- * each describe themselves with one `oit_method` table of operations
+ * baselines, the Embree reference and (tools/common/method_stream.h) liboit
+ * streaming a part file each describe themselves with one `oit_method` table of operations
  * (designated initialisers; an operation a method lacks is NULL), and the
  * tools drive any of them through oit_method_open / _render / _close.
  *
@@ -23,17 +23,13 @@
 struct oit_gl;
 struct oit_gpu_timer;
 struct oit_gpu_times;
-/* The streamer's options and figures (stream/stream_method.h,
- * stream/streamer.h): only the part-file method reads or fills them. */
-typedef struct oit_stream_options oit_stream_options;
-struct oit_stream_frame_stats;
 
 enum {
     OIT_METHOD_GL = 1u << 0,        /* renders with GL (a context is made or borrowed) */
     OIT_METHOD_COUNTS = 1u << 1,    /* can fill per-pixel fragment counts (--show layers) */
     OIT_METHOD_AMBIGUITY = 1u << 2, /* can flag raster-vs-ray ambiguous pixels */
-    OIT_METHOD_PARTFILE = 1u << 3,  /* renders options.stream->partfile, not the mesh */
-    OIT_METHOD_EPSILON = 1u << 4,   /* takes options.epsilon as a threshold a sweep can vary */
+    OIT_METHOD_PARTFILE = 1u << 3,  /* renders what options.source names, not the mesh */
+    OIT_METHOD_EPSILON = 1u << 4,   /* takes options.threshold (a sweep can vary it) */
     OIT_METHOD_CLIP = 1u << 5       /* honours oit_view.clip (clip.h); oit_method_render
                                        refuses planes to a method without it */
 };
@@ -44,12 +40,16 @@ typedef struct oit_method_options {
      * this one, current on the calling thread (the viewer's window), and do
      * not destroy it. */
     struct oit_gl *gl;
-    /* The streamer's early termination, f2b's alpha threshold, guarded's
-     * contribution threshold (0: none); < 0: the method's default (stream:
-     * 0, exact; f2b, guarded: their papers' values). */
-    float epsilon;
+    /* The threshold of a method flagged OIT_METHOD_EPSILON, in [0, 1); its
+     * table's file says what it means (the streamer's early termination,
+     * f2b's alpha, guarded's contribution, what the reference counts as
+     * saturated). NULL: the method's own default. Other methods ignore it. */
+    const float *threshold;
     float ambiguity_px; /* the reference's ambiguity radius, pixels; 0: 1/64 */
-    const oit_stream_options *stream; /* OIT_METHOD_PARTFILE methods only */
+    /* OIT_METHOD_PARTFILE methods: what they render and how, in the
+     * method's own type (liboit's: tools/common/method_stream.h), which
+     * this floor does not name; NULL for the others. */
+    const void *source;
     /* The most bytes a frame puts in one storage buffer (render/gl/band.h):
      * 0, what the driver binds (GL_MAX_SHADER_STORAGE_BLOCK_SIZE); lower
      * only to test the bands. The image is the same either way. */
@@ -71,7 +71,7 @@ typedef struct oit_method_frame {
     /* A frame too large for one storage binding is rendered as bands of
      * rows (render/gl/band.h), each a frame of its own: band is its index in
      * the frame, 0 for the first (or the only one), for a method that
-     * keeps figures across them (stream_stats). */
+     * keeps figures across them (figures). */
     int band;
     /* The most bytes one storage buffer binding may take in this frame:
      * the driver's, or less (oit_method_options.store_limit). */
@@ -96,19 +96,27 @@ typedef struct oit_method {
     void (*destroy)(void *impl);
     /* "Embree 3.13.5 (CPU reference)"; NULL: the GL context's renderer. */
     const char *(*renderer)(const void *impl);
-    /* The streamer's figures of the last frame; NULL for other methods. */
-    const struct oit_stream_frame_stats *(*stream_stats)(const void *impl);
+    /* The method's own figures of the last frame beside oit_frame_stats, in
+     * its own type (the stream method's: tools/common/method_stream.h reads them
+     * typed); NULL for a method with none. */
+    const void *(*figures)(const void *impl);
     /* Bytes a pixel of view takes in the method's largest per-pixel
      * storage buffer, which must hold the whole frame in one binding;
      * oit_method_render renders frames past it in bands (render/gl/band.h).
      * NULL: no per-pixel storage (not GL). */
     uint64_t (*pixel_bytes)(const void *impl, const oit_view *view);
+    /* A method that times its frames on the GPU itself (a library with a
+     * timer of its own): oit_method_gpu_poll and _absent ask it, the
+     * interface makes no timer for it, and its render sets
+     * oit_frame_stats.gpu_frame. NULL: the interface's timer. */
+    int (*gpu_poll)(void *impl, struct oit_gpu_times *out, int wait);
+    const char *(*gpu_absent)(const void *impl);
 } oit_method;
 
 typedef struct oit_method_state oit_method_state;
 
 /* Opens m for mesh (empty for OIT_METHOD_PARTFILE methods, whose part file
- * comes in opt->stream). opt may be NULL for methods that need none. */
+ * comes in opt->source). opt may be NULL for methods that need none. */
 oit_status oit_method_open(const oit_method *m, const oit_mesh *mesh,
                            const oit_method_options *opt, oit_method_state **out,
                            oit_error *err);
@@ -122,8 +130,10 @@ oit_status oit_method_render(oit_method_state *st, const oit_view *view, oit_ima
                              oit_error *err);
 /* "llvmpipe (LLVM 15.0.6, 256 bits)", "Embree 3.13.5 (CPU reference)", ... */
 const char *oit_method_renderer(const oit_method_state *st);
-/* The streamer's figures of the last frame; NULL for other methods. */
-const struct oit_stream_frame_stats *oit_method_stream_stats(const oit_method_state *st);
+const oit_method *oit_method_of(const oit_method_state *st);
+/* The method's own figures of the last frame (oit_method.figures); NULL
+ * for a method with none. */
+const void *oit_method_figures(const oit_method_state *st);
 /* GPU time of earlier frames, oldest first, matched to a frame by
  * oit_frame_stats.gpu_frame (render/gl/gpu_timer.h): 1 and *out when the next
  * one is in (wait: waits for it; at the end of a run), 0 when none is.

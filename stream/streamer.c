@@ -87,11 +87,25 @@ struct oit_streamer {
     int adaptive, first_k;
     uint32_t counted_frames;
     oit_stream_budget budget; /* the split (split_budget) */
+    oit_streamer_desc desc;   /* as given (oit_streamer_resolved_desc) */
 };
 
 void oit_streamer_budget(const oit_streamer *s, oit_stream_budget *out)
 {
     *out = s->budget;
+}
+
+void oit_streamer_resolved_desc(const oit_streamer *s, oit_streamer_desc *out)
+{
+    const oit_stream_budget *b = &s->budget;
+    *out = s->desc;
+    out->capture = s->choice.slots;
+    out->upload_budget = b->ring;
+    out->cache_budget = b->cache ? b->cache : OIT_STREAM_CACHE_OFF;
+    out->slot_budget = b->capture;
+    out->gpu_budget = b->total;
+    out->reader_threads = s->threads ? s->threads : OIT_STREAM_READ_INLINE;
+    out->epsilon = s->epsilon;
 }
 
 static uint64_t min_u64(uint64_t a, uint64_t b)
@@ -127,7 +141,7 @@ static oit_status split_budget(oit_streamer *s, oit_streamer_desc *d, int stores
         /* No total: the parts' own defaults, as before there was one. */
         b->source = src;
         b->capture = d->slot_budget ? d->slot_budget : slots;
-        b->ring = d->upload_budget ? d->upload_budget : 64ull << 20;
+        b->ring = d->upload_budget ? d->upload_budget : OIT_STREAM_RING_DEFAULT;
         b->cache = d->cache_budget == OIT_STREAM_CACHE_OFF ? 0
                    : d->cache_budget                     ? d->cache_budget
                                                          : OIT_STREAM_CACHE_DEFAULT;
@@ -146,7 +160,7 @@ static oit_status split_budget(oit_streamer *s, oit_streamer_desc *d, int stores
                all_bytes <= left - pixels;
     b->ring = d->upload_budget ? d->upload_budget
               : fits           ? all_bytes
-                               : min_u64(64ull << 20, left / 4);
+                               : min_u64(OIT_STREAM_RING_DEFAULT, left / 4);
     b->cache = off ? 0 : d->cache_budget ? d->cache_budget : fits ? all_bytes
                : left > b->ring ? left - b->ring : 0;
     /* as create_upload decides: resident, the ring is the only copy */
@@ -520,6 +534,7 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
         return oit_error_set(err, OIT_ERR_NOMEM, "%s: cannot allocate the streamer",
                              oit_partfile_name(pf));
     s->pf = pf;
+    s->desc = *desc;
     oit_streamer_desc eff = *desc;
     uint64_t all_bytes = 0;
     oit_pack_mode mode = desc->pack != OIT_PACK_AUTO ? desc->pack : OIT_PACK_FIRSTK;
@@ -536,7 +551,8 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
         st = split_budget(s, &eff, mode == OIT_PACK_COUNTED || mode == OIT_PACK_FIRSTK,
                           all_bytes, err);
     desc = &eff;
-    uint64_t budget = desc->upload_budget ? desc->upload_budget : 64ull << 20;
+    uint64_t most = desc->upload_budget ? desc->upload_budget : OIT_STREAM_RING_DEFAULT;
+    uint64_t budget = most;
     /* A ring as large as all the parts holds any pack, and the whole file
      * in one lap (resident, make_resident): a small model needs no 64 MiB
      * of GPU memory for it. */
@@ -546,8 +562,7 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
      * shares' too (an empty share included). */
     for (uint32_t i = 0; s->shares && i < oit_partfile_part_count(pf); i++) {
         uint64_t b = oit_pack_part_bytes(&oit_partfile_parts(pf)[i]);
-        budget = b > budget && b <= (desc->upload_budget ? desc->upload_budget : 64ull << 20)
-                     ? b : budget;
+        budget = b > budget && b <= most ? b : budget;
     }
     if (st == OIT_OK)
         st = oit_order_create(pf, &s->order, err);

@@ -47,7 +47,8 @@ typedef struct oit_streamer_desc {
      * saturated tiles can skip the parts behind them */
     oit_pack_mode pack;
     oit_pack_schedule schedule; /* 0: the tree's order (pack.h) */
-    uint64_t upload_budget;   /* ring bytes at most; 0: 64 MiB; never more than
+    uint64_t upload_budget;   /* ring bytes at most; 0: OIT_STREAM_RING_DEFAULT
+                                 (or the total's share); never more than
                                  the file's parts take (at least
                                  OIT_STREAM_RING_MIN). The ring starts at
                                  OIT_STREAM_RING_MIN and grows between frames to
@@ -60,7 +61,8 @@ typedef struct oit_streamer_desc {
     uint64_t slot_budget;     /* capture slot bytes (oit_capture_set_slot_budget);
                                  0: OIT_STREAM_STORE_DEFAULT for counted and
                                  first-K packs, else OIT_STREAM_SLOTS_DEFAULT */
-    float epsilon;            /* early termination (oit_capture_set_epsilon); 0: exact */
+    float epsilon;            /* early termination (oit_capture_set_epsilon), in
+                                 [0, 1); 0: exact */
     uint64_t cache_budget;    /* residency cache bytes at most; 0:
                                  OIT_STREAM_CACHE_DEFAULT; OIT_STREAM_CACHE_OFF:
                                  no cache. Made at the first frame and grown
@@ -127,8 +129,38 @@ typedef struct oit_stream_budget {
 #define OIT_STREAM_STORE_DEFAULT (64ull << 20)
 #define OIT_STREAM_SLOTS_DEFAULT (32ull << 20)
 #define OIT_STREAM_PROBE_FRAMES 8u
+/* The ring when no total splits the memory, and a total's most for it: it
+ * only has to hold consecutive packs, and 64 MiB hold the largest packs of
+ * the 12M plant (bench/stream-vs-dfb-llvmpipe.md). */
+#define OIT_STREAM_RING_DEFAULT (64ull << 20)
 #define OIT_STREAM_RING_MIN (64ull << 10)
 #define OIT_STREAM_READ_INLINE (-1)
+/* The range a caller may give each byte budget (oit_streamer_desc_check):
+ * 64 KiB, the least ring (smaller budgets only split every pack; tests
+ * drive smaller rings into oit_streamer_create directly), up to 1 TiB. */
+#define OIT_STREAM_BUDGET_MIN OIT_STREAM_RING_MIN
+#define OIT_STREAM_BUDGET_MAX (1ull << 40)
+
+/* The names a caller spells oit_streamer_desc's fields in, for the errors
+ * of oit_streamer_desc_check: oitstream's options ("--upload-budget"),
+ * liboit's fields ("oit_renderer_desc.upload_budget"); cache_off spells
+ * OIT_STREAM_CACHE_OFF ("off", "OIT_RENDER_CACHE_OFF"). A NULL name: the
+ * streamer's own ("oit_streamer_desc.upload_budget"). */
+typedef struct oit_streamer_names {
+    const char *upload_budget, *slot_budget, *cache_budget, *gpu_budget, *epsilon, *pack,
+        *schedule, *cache_off;
+} oit_streamer_names;
+
+/* The one range check of the settings a caller gives (every zero is the
+ * default): upload_budget and slot_budget 0 or OIT_STREAM_BUDGET_MIN..MAX,
+ * cache_budget that or OIT_STREAM_CACHE_OFF, gpu_budget 0 or
+ * OIT_STREAM_GPU_BUDGET_MIN..OIT_STREAM_BUDGET_MAX, epsilon in [0, 1), pack
+ * and schedule one of their enums. OIT_ERR_ARGUMENT names the setting (in
+ * names' spelling; names may be NULL) and the value. capture and
+ * reader_threads are checked by oit_streamer_create (capture_choice.h,
+ * reader.h), K by the capture. */
+oit_status oit_streamer_desc_check(const oit_streamer_desc *d, const oit_streamer_names *names,
+                                   oit_error *err);
 
 /* The streamer's own per-frame figures, beside oit_frame_stats. */
 typedef struct oit_stream_frame_stats {
@@ -179,6 +211,14 @@ void oit_streamer_destroy(oit_streamer *s);
 /* What --capture chose at creation (its reason string lives as long as s). */
 const oit_capture_choice *oit_streamer_capture_choice(const oit_streamer *s);
 void oit_streamer_budget(const oit_streamer *s, oit_stream_budget *out);
+/* The descriptor s runs with, every default resolved: pack (AUTO stays
+ * AUTO: it switches between FIRSTK and COUNTED frame by frame), capture
+ * (what K-slot fills use: ARRAY or STENCIL; COUNTED and FIRSTK packs have
+ * none: AUTO), the ring, cache (OIT_STREAM_CACHE_OFF: none, or resident),
+ * slot and GPU budgets (0: no total) of oit_streamer_budget, reader_threads
+ * (OIT_STREAM_READ_INLINE: the render thread) and epsilon; the rest as
+ * given. */
+void oit_streamer_resolved_desc(const oit_streamer *s, oit_streamer_desc *out);
 
 /* The caller's opaque depth for the next frames (oit_capture_set_opaque);
  * NULL: none. */

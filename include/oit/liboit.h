@@ -6,6 +6,8 @@
  *   oit_scene_create_mesh  an in-core scene from the caller's arrays
  *   oit_renderer_create needs the caller's current GL 4.5 core context
  *   oit_renderer_draw  composites the scene over the caller's framebuffer
+ *   oit_renderer_draw_image  the same frame resolved into memory over a
+ *                      background, bit for bit the tools' images
  *
  * Both kinds of scene go through the same handle and the same draw: a part
  * file is streamed (parts read, uploaded and captured pack by pack); an
@@ -71,6 +73,7 @@
 
 #include "oit/export.h"
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "status.h"
@@ -234,6 +237,11 @@ typedef enum oit_render_pack {
                                     second pass for themselves alone */
 } oit_render_pack;
 
+typedef enum oit_render_schedule {
+    OIT_RENDER_SCHEDULE_TREE = 0, /* the management tree's order (default) */
+    OIT_RENDER_SCHEDULE_WAVE = 1  /* wavefronts of the visibility order     */
+} oit_render_schedule;
+
 typedef enum oit_render_capture {
     OIT_RENDER_CAPTURE_AUTO = 0,
     OIT_RENDER_CAPTURE_ARRAY = 1,
@@ -297,6 +305,25 @@ typedef struct oit_renderer_desc {
      * OIT_ERR_ARGUMENT. Shading in spirit; kept here, at the end, so that
      * the fields above keep their offsets for callers built before it. */
     int see_through;
+    /* Appended after see_through, so that the fields above keep their
+     * offsets. The order packs are cut in (oitstream --schedule):
+     * OIT_RENDER_SCHEDULE_TREE (0) the management tree's, WAVE the
+     * wavefront; the image is the same. */
+    oit_render_schedule schedule;
+    /* GPU bytes of the capture's slots a pack (oitstream --slot-budget),
+     * the streamer checks the range; 0: 64 MiB of fragment store for
+     * counted and first-K packs, 32 MiB of K slots for the others. */
+    uint64_t slot_budget;
+    /* Threads that read parts ahead of the GPU (oitstream
+     * --upload-threads), 1..64, checked at the first draw; 0: as
+     * read_on_draw_thread says (which, when 1, wins). */
+    uint32_t reader_threads;
+    /* The most bytes a frame puts in one GPU storage buffer binding; 0:
+     * what the driver binds (GL_MAX_SHADER_STORAGE_BLOCK_SIZE). Lower
+     * caps the frame's per-pixel buffers: it is then drawn in more bands
+     * of rows (the image alike but for pixel centres within rounding of a
+     * silhouette at a band's edge). */
+    uint64_t binding_limit;
 } oit_renderer_desc;
 
 #define OIT_RENDER_CACHE_OFF UINT64_MAX
@@ -306,6 +333,20 @@ typedef struct oit_renderer_desc {
 OIT_API oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out,
                                        oit_error *err);
 OIT_API void oit_renderer_destroy(oit_renderer *r);
+/* The descriptor r draws with, every zero resolved to the value in use
+ * (as sokol_gfx's query_desc): after r drew a part file, K (the scene's
+ * where 0 was given), upload_budget and cache_budget (the limits the ring
+ * and the cache grow to: oit_draw_stats.ring_budget, cache_budget;
+ * OIT_RENDER_CACHE_OFF where there is no cache, a resident scene
+ * included), gpu_budget (the total, 0: none), capture (what the K-slot
+ * fills use, ARRAY or STENCIL; AUTO where none do: COUNTED packs) and
+ * read_on_draw_thread; after any draw, the shading's defaults for the
+ * scene drawn last (alpha, colours, absorption, scene_scale, colour
+ * space). pack stays as given (AUTO switches frame by frame; the draw's
+ * figures say which ran), and so do epsilon and see_through. Before the
+ * first draw: the descriptor as given. oitstream --stats prints the same
+ * figures (its budget and reader_threads). */
+OIT_API void oit_renderer_get_desc(const oit_renderer *r, oit_renderer_desc *out);
 /* Frees r's GPU state for scene and lets the scene go when r drew it last
  * (else does nothing), so that a closed scene's memory is freed while r
  * lives on (Lifetime); the next draw of any scene builds its state anew.
@@ -376,7 +417,28 @@ typedef struct oit_frame {
      * (a, b, c) is OIT_ERR_ARGUMENT. */
     uint32_t clip_count;
     float clip[6][4];
+    /* NULL (default): the camera is view and projection. Else the camera
+     * by its parameters, as the tools take it (oitstream --view), and view
+     * and projection are not read: no matrix stands between the caller's
+     * numbers and the rasterizer's, so the image is bit for bit the one
+     * the tools render of the same camera. */
+    const struct oit_frame_camera *camera;
 } oit_frame;
+
+/* oit_frame.camera: a look-at camera. Perspective (ortho_height 0):
+ * fovy_deg in (0, 180), 0 < znear < zfar, zfar INFINITY for an infinite far
+ * plane. Orthographic (ortho_height > 0, the view volume's height):
+ * znear < zfar, both finite, znear may be <= 0. window: an off-centre
+ * window (left, right, bottom, top; at distance 1 for a perspective, in
+ * eye units for an orthographic one); all 0: symmetric about the view
+ * direction. up need not be orthogonal to the view direction, only not
+ * parallel to it. Anything else is OIT_ERR_ARGUMENT naming the field. */
+typedef struct oit_frame_camera {
+    float eye[3], target[3], up[3];
+    float fovy_deg, znear, zfar;
+    float ortho_height;
+    float window[4];
+} oit_frame_camera;
 
 #define OIT_FRAME_CLIP_MAX 6
 #define OIT_DRAW_GPU_PHASES 6
@@ -431,6 +493,43 @@ typedef struct oit_draw_stats {
      * shading, not see-through, a scene with opaque triangles): fragments
      * behind them were neither stored nor counted. */
     uint32_t see_through, opaque;
+    /* A part file's per-draw work and choices, the figures oitstream
+     * --stats prints beside the ones above (0, or NULL, for in-core
+     * scenes). order_ms, pack_ms: CPU milliseconds of the parts'
+     * visibility order and of their packing, the per-view work that does
+     * not wait for GL. auto_first_k: OIT_RENDER_PACK_AUTO took first-K
+     * packs (0: counted ones, or a fixed pack). front_first: the packs
+     * were cut front first (epsilon > 0 with counted or first-K packs).
+     * second_pass_pixels: first-K packs' pixels that got more fragments
+     * than their slots hold, summed over the packs; second_pass_packs: the
+     * packs that had any, so took a second geometry pass. capture: the
+     * capture that ran ("counted", "first-k", "array", "stencil"; the
+     * last pack's) and capture_k its K; capture_asked:
+     * oit_renderer_desc.capture as given ("auto", "stencil", "array").
+     * reader_threads: the threads that read parts (0: the drawing
+     * thread). resident: the scene is read once into the ring and kept
+     * (oit_renderer_desc.upload_budget); budget_source: where gpu_budget
+     * came from ("--gpu-budget": given, in oitstream's spelling;
+     * "GL_NVX_gpu_memory_info", "default", ...). The strings are liboit's, valid while r draws the
+     * scene. Appended in this order so that the fields above keep their
+     * offsets for callers built before them. */
+    double order_ms, pack_ms;
+    uint32_t auto_first_k, front_first;
+    uint64_t second_pass_pixels;
+    uint32_t second_pass_packs;
+    const char *capture;
+    uint32_t capture_k;
+    const char *capture_asked;
+    uint32_t reader_threads, resident;
+    const char *budget_source;
+    /* This draw's number (1: the renderer's first oit_renderer_draw or
+     * oit_renderer_draw_image), which its GPU figures carry
+     * (oit_renderer_gpu_poll, gpu_frame above). */
+    uint64_t draw;
+    /* Capture batches: packs, more where a pack's fragments overran the
+     * capture's store (oit_renderer_desc.slot_budget) and it was captured
+     * in several; for an in-core scene, DFB's bands. */
+    uint32_t batches;
 } oit_draw_stats;
 
 /* Draws scene as seen through frame into frame->framebuffer (see Result
@@ -447,6 +546,43 @@ typedef struct oit_draw_stats {
  * draw) and gpu_bytes_peak are filled, the rest are 0. */
 OIT_API oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame *frame,
                                      oit_draw_stats *stats, oit_error *err);
+
+/* The frame of oit_renderer_draw resolved in memory instead of blended
+ * into a framebuffer, as the tools write their images: width * height
+ * pixels (frame's viewport size) of 4 floats into rgba (rgba_bytes at
+ * least that many bytes, else OIT_ERR_ARGUMENT), row 0 at the TOP,
+ *     rgb = C + T * background,  a = 1
+ * with C and T as in Result, computed by the capture's own resolve pass (so
+ * the bytes are those of oitstream's PFMs for the same settings and
+ * camera: oit_frame.camera), colour sRGB-encoded in both colour spaces.
+ * background: rgb, sRGB-encoded (decoded for OIT_RENDER_COLOUR_LINEAR); a
+ * negative component is 0; NULL or all 0: white, the tools' default.
+ * frame's framebuffer, viewport_x and viewport_y are not read; a
+ * depth_texture is OIT_ERR_UNSUPPORTED here. stats as oit_renderer_draw's
+ * (ms includes the read-back). The GL state is kept as by
+ * oit_renderer_draw. */
+OIT_API oit_status oit_renderer_draw_image(oit_renderer *r, oit_scene *scene,
+                                           const oit_frame *frame, const float background[3],
+                                           float *rgba, size_t rgba_bytes,
+                                           oit_draw_stats *stats, oit_error *err);
+
+/* One draw's GPU time (oit_draw_stats.gpu_ms alike): its number
+ * (oit_draw_stats.draw), the total and the phases. */
+typedef struct oit_draw_gpu {
+    uint64_t draw;
+    double ms;
+    double phase_ms[OIT_DRAW_GPU_PHASES];
+} oit_draw_gpu;
+
+/* Every draw's GPU figures, oldest first, each once (a tool that prints
+ * every frame's; oit_draw_stats has only the newest): 1 and *out when the
+ * next draw's are in (wait 1: waits for them, as at the end of a run), 0
+ * when none is. The renderer keeps the 64 newest that were not taken.
+ * Never 1 where oit_renderer_gpu_absent says why not. */
+OIT_API int oit_renderer_gpu_poll(oit_renderer *r, oit_draw_gpu *out, int wait);
+/* NULL when r's draws are timed on the GPU (or r has not drawn yet), else
+ * why not ("the driver reports 0 timestamp bits"). */
+OIT_API const char *oit_renderer_gpu_absent(const oit_renderer *r);
 
 /* ---- sort-last over several processes (oit_scene_desc.share_count) --- */
 

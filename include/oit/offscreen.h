@@ -50,6 +50,10 @@ OIT_API void oit_offscreen_destroy(oit_offscreen *o);
 OIT_API void oit_offscreen_release_scene(oit_offscreen *o, const oit_scene *scene);
 /* The GL renderer string of the context ("llvmpipe (LLVM 15.0.6, 256 bits)"). */
 OIT_API const char *oit_offscreen_gl_renderer(const oit_offscreen *o);
+/* o's renderer descriptor with every default resolved, as
+ * oit_renderer_get_desc gives it (after a render of a part file: K, the
+ * budgets, capture, read_on_draw_thread; after any render: the shading). */
+OIT_API void oit_offscreen_get_desc(const oit_offscreen *o, oit_offscreen_desc *out);
 
 typedef enum oit_pixel_format {
     OIT_PIXELS_RGBA8 = 0,  /* 4 uint8_t a pixel             */

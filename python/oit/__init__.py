@@ -240,6 +240,29 @@ class Renderer(_Closable):
     def gl_renderer(self):
         return L.lib().oit_offscreen_gl_renderer(self._h).decode()
 
+    @property
+    def desc(self):
+        """The options in use, every default resolved (oit_renderer_get_desc):
+        after a render of a part file, K, upload_budget, cache_budget ("off":
+        none, a resident scene included), gpu_budget (0: no total), capture
+        (what the K-slot fills use) and read_on_draw_thread as they run
+        (stats["ring_budget"] and its siblings say the same); after any
+        render, the shading's defaults (alpha, default_rgb, absorption,
+        scene_scale). Before a render: the options as given."""
+        d = L.OffscreenDesc()
+        L.lib().oit_offscreen_get_desc(self._h, ctypes.byref(d))
+        r, sh = d.renderer, d.renderer.shading
+        name = lambda table, v: next(k for k, x in table.items() if x == v)
+        return {"K": r.K, "upload_budget": r.upload_budget,
+                "cache_budget": "off" if r.cache_budget == L.RENDER_CACHE_OFF else r.cache_budget,
+                "gpu_budget": r.gpu_budget, "pack": name(_PACKS, r.pack),
+                "capture": name(_CAPTURES, r.capture), "epsilon": r.epsilon,
+                "read_on_draw_thread": bool(r.read_on_draw_thread),
+                "see_through": bool(r.see_through), "shading": name(_SHADINGS, sh.mode),
+                "alpha": sh.alpha, "default_rgb": list(sh.default_rgb),
+                "absorption": sh.absorption, "scene_scale": sh.scene_scale,
+                "colour_space": name(_COLOUR_SPACES, sh.colour_space)}
+
     def render(self, scene, size=(512, 512), view=None, dtype=np.uint8, background=None,
                clip=None, up=None, azimuth=None, elevation=None):
         """The image of scene (a Scene) as a (height, width, 4) array, uint8

@@ -54,7 +54,9 @@ class RendererDesc(ctypes.Structure):
                 ("pack", ctypes.c_int), ("shading", RenderShading),
                 ("epsilon", ctypes.c_float), ("cache_budget", ctypes.c_uint64),
                 ("read_on_draw_thread", ctypes.c_int), ("capture", ctypes.c_int),
-                ("gpu_budget", ctypes.c_uint64), ("see_through", ctypes.c_int)]
+                ("gpu_budget", ctypes.c_uint64), ("see_through", ctypes.c_int),
+                ("schedule", ctypes.c_int), ("slot_budget", ctypes.c_uint64),
+                ("reader_threads", ctypes.c_uint32), ("binding_limit", ctypes.c_uint64)]
 
 
 class OffscreenDesc(ctypes.Structure):
@@ -88,7 +90,15 @@ class DrawStats(ctypes.Structure):
                 ("gpu_budget", ctypes.c_uint64), ("ring_budget", ctypes.c_uint64),
                 ("cache_budget", ctypes.c_uint64), ("capture_budget", ctypes.c_uint64),
                 ("gpu_free_bytes", ctypes.c_uint64),
-                ("see_through", ctypes.c_uint32), ("opaque", ctypes.c_uint32)]
+                ("see_through", ctypes.c_uint32), ("opaque", ctypes.c_uint32),
+                ("order_ms", ctypes.c_double), ("pack_ms", ctypes.c_double),
+                ("auto_first_k", ctypes.c_uint32), ("front_first", ctypes.c_uint32),
+                ("second_pass_pixels", ctypes.c_uint64),
+                ("second_pass_packs", ctypes.c_uint32), ("capture", ctypes.c_char_p),
+                ("capture_k", ctypes.c_uint32), ("capture_asked", ctypes.c_char_p),
+                ("reader_threads", ctypes.c_uint32), ("resident", ctypes.c_uint32),
+                ("budget_source", ctypes.c_char_p), ("draw", ctypes.c_uint64),
+                ("batches", ctypes.c_uint32)]
 
 
 # enum values of the headers
@@ -136,6 +146,7 @@ def _declare(lib):
         "oit_offscreen_destroy": (None, [vp]),
         "oit_offscreen_release_scene": (None, [vp, vp]),
         "oit_offscreen_gl_renderer": (ctypes.c_char_p, [vp]),
+        "oit_offscreen_get_desc": (None, [vp, P(OffscreenDesc)]),
         "oit_offscreen_render": (ctypes.c_int, [vp, vp, P(OffscreenView), vp, ctypes.c_size_t,
                                                 P(DrawStats), err]),
         "oit_offscreen_default_view": (ctypes.c_int, [vp, ctypes.c_int, ctypes.c_float,

@@ -181,6 +181,13 @@ def test_renderer_options(tmp_path):
                 if opts.get("cache_budget") == "off":
                     r.render(s, size=(64, 48))
                     assert r.stats["cache_hits"] == 0 and r.stats["bytes_uploaded"] > 0
+                # the options in use, every default resolved: what the stats say
+                d, st = r.desc, r.stats
+                cache = st["cache_budget"] if st["cache_budget"] else "off"
+                assert (d["upload_budget"], d["cache_budget"], d["gpu_budget"]) == \
+                    (st["ring_budget"], cache, st["gpu_budget"]), (opts, d, st)
+                assert 2 <= d["K"] <= 16 and d["alpha"] > 0 and d["scene_scale"] > 0, (opts, d)
+                assert d["pack"] == opts.get("pack", "auto"), (opts, d)
     with pytest.raises(oit.OitError) as e:
         oit.Renderer(cache_budget=1000)
     assert "cache_budget = 1000" in e.value.message

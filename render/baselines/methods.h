@@ -38,7 +38,7 @@ extern const oit_method oit_method_f2b;
  * OIT_BASELINE_METHOD takes them as T_init, T_release and T_render. LABEL
  * names the method in errors ("depth peeling"). SET is OIT_NO_THRESHOLD,
  * or OIT_THRESHOLD for a baseline with a T_set_threshold that takes
- * oit_method_options.epsilon when it is >= 0 (INIT sets its default).
+ * oit_method_options.threshold when one is given (INIT sets its default).
  * OIT_BASELINE_METHOD_FRAMED adds FRAME(impl, f), run before each RENDER
  * with the method's frame: what a baseline takes from it beyond the view
  * (the list stores: the storage limit and the request to split,
@@ -46,7 +46,7 @@ extern const oit_method oit_method_f2b;
  * banded for OIT_BASELINE_PIXEL_BYTES a pixel (render/gl/band.h). */
 #define OIT_NO_THRESHOLD(T, impl, opt, err) OIT_OK
 #define OIT_THRESHOLD(T, impl, opt, err)                                                    \
-    ((opt) && (opt)->epsilon >= 0.0f ? T##_set_threshold(impl, (opt)->epsilon, err) : OIT_OK)
+    ((opt) && (opt)->threshold ? T##_set_threshold(impl, *(opt)->threshold, err) : OIT_OK)
 #define OIT_BASELINE_METHOD(NAME, T, LABEL, FLAGS, SET)                                     \
     OIT_BASELINE_METHOD_OF(NAME, T, LABEL, T##_init, T##_release, T##_render, FLAGS, SET)
 #define OIT_NO_FRAME(impl, f) ((void)0)

@@ -105,15 +105,24 @@ oit_status oit_capture_create(oit_capture_kind kind, int K, oit_capture **out,
 /* AUTO keeps the caller's K and takes the array backend where stencil
  * routing is refused; STENCIL refuses with the reason: the caller asked for
  * that method, and a lower K would lose fragments (an inexact image). */
+oit_status oit_capture_k_check(long long K, const char *what, oit_error *err)
+{
+    if (K >= OIT_CAPTURE_K_MIN && K <= OIT_CAPTURE_K_MAX)
+        return OIT_OK;
+    return oit_error_set(err, OIT_ERR_ARGUMENT, "%s = %lld is outside [%d, %d]",
+                         what ? what : "capture: K", K, OIT_CAPTURE_K_MIN, OIT_CAPTURE_K_MAX);
+}
+
 oit_status oit_capture_create_faulty(oit_capture_kind kind, int K, unsigned faults,
                                      oit_capture **out, oit_error *err)
 {
     *out = NULL;
-    if (K < 2 || K > 16)
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: K=%d is outside [2, 16]", K);
+    oit_status s = oit_capture_k_check(K, NULL, err);
+    if (s != OIT_OK)
+        return s;
     if (kind == OIT_CAPTURE_ARRAY || kind == OIT_CAPTURE_COUNTED || kind == OIT_CAPTURE_FIRSTK)
         return make(ops_of(kind), K, 0, faults, out, err);
-    oit_status s = oit_capture_create_routed(OIT_CAPTURE_STENCIL, K, K, faults, out, err);
+    s = oit_capture_create_routed(OIT_CAPTURE_STENCIL, K, K, faults, out, err);
     if (s != OIT_OK && kind == OIT_CAPTURE_AUTO)
         return make(&oit_capture_array_ops, K, 0, faults, out, err);
     return s;
@@ -123,8 +132,8 @@ oit_status oit_capture_create_routed(oit_capture_kind kind, int K, int stencil_k
                                      unsigned faults, oit_capture **out, oit_error *err)
 {
     *out = NULL;
-    if (K < 2 || K > 16)
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: K=%d is outside [2, 16]", K);
+    if (oit_capture_k_check(K, NULL, err) != OIT_OK)
+        return err ? err->status : OIT_ERR_ARGUMENT;
     if (kind != OIT_CAPTURE_STENCIL && kind != OIT_CAPTURE_FIRSTK)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: only the stencil and first-k "
                              "captures are routed, not %s",

@@ -41,6 +41,14 @@ typedef enum oit_capture_kind {
 
 typedef struct oit_capture oit_capture;
 
+/* The capture's K, fragments a pixel a batch: the one range, and its one
+ * check, which the tools and liboit run on the value they were given, named
+ * in their spelling (what: "--max-layers", "oit_renderer_desc.K"; NULL:
+ * "capture: K"). */
+#define OIT_CAPTURE_K_MIN 2
+#define OIT_CAPTURE_K_MAX 16
+oit_status oit_capture_k_check(long long K, const char *what, oit_error *err);
+
 /* K in [2, 16]. Fails with OIT_ERR_UNSUPPORTED when STENCIL is asked for and
  * the sample mode or the self-test rules it out at this K; the message says
  * which, with the numbers (and the largest K of true multisamples where the

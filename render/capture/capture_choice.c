@@ -24,8 +24,9 @@ oit_status oit_capture_choose(oit_capture_kind asked, int K, int fewer_ok,
     if (asked != OIT_CAPTURE_AUTO && asked != OIT_CAPTURE_ARRAY && asked != OIT_CAPTURE_STENCIL)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: %d is not auto, stencil or array",
                              (int)asked);
-    if (K < 2 || K > 16)
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: K=%d is outside [2, 16]", K);
+    oit_status k = oit_capture_k_check(K, NULL, err);
+    if (k != OIT_OK)
+        return k;
     if (asked == OIT_CAPTURE_ARRAY)
         return OIT_OK;
     for (int k = K; k >= 2; k = fewer_ok ? next_try(k) : 0) {

@@ -76,6 +76,10 @@ void oit_frame_stats_add(oit_frame_stats *acc, const oit_frame_stats *band)
     acc->second_pass_pixels += band->second_pass_pixels;
     acc->second_pass_packs += band->second_pass_packs;
     acc->fragments_saturated += band->fragments_saturated;
+    if (band->capture) {
+        acc->capture = band->capture;
+        acc->capture_k = band->capture_k;
+    }
     if (band->capture_slots) {
         acc->capture_slots = band->capture_slots;
         acc->capture_slots_k = band->capture_slots_k;

@@ -1,6 +1,8 @@
 /* The Embree reference as a method table (method.h): no GL; it fills
  * per-pixel counts and flags the pixels where rasterization and rays may
- * disagree. */
+ * disagree. Its threshold (OIT_METHOD_EPSILON) changes no pixel: it counts
+ * the fragments an early termination at it would drop
+ * (oit_reference_desc.saturation_epsilon). */
 #include "render/method.h"
 
 #include <embree3/rtcore_config.h>
@@ -16,7 +18,7 @@ static oit_status reference_create(const oit_mesh *mesh, const oit_method_option
         return oit_error_set(err, OIT_ERR_NOMEM, "method reference: out of memory");
     if (opt) {
         d->ambiguity_px = opt->ambiguity_px;
-        d->saturation_epsilon = opt->epsilon > 0.0f ? opt->epsilon : 0.0f;
+        d->saturation_epsilon = opt->threshold ? *opt->threshold : 0.0f;
     }
     *impl = d;
     return OIT_OK;
@@ -36,7 +38,7 @@ static const char *reference_renderer(const void *impl)
 
 const oit_method oit_method_reference = {
     .name = "reference",
-    .flags = OIT_METHOD_COUNTS | OIT_METHOD_AMBIGUITY | OIT_METHOD_CLIP,
+    .flags = OIT_METHOD_COUNTS | OIT_METHOD_AMBIGUITY | OIT_METHOD_EPSILON | OIT_METHOD_CLIP,
     .create = reference_create,
     .render = reference_render,
     .destroy = free,

@@ -201,6 +201,34 @@ static void check_gpu_stats(const char *name, oit_renderer *r, oit_scene *scene,
           "%s: budget %llu, ring %llu, capture %llu, driver free %llu", name,
           (unsigned long long)st.gpu_budget, (unsigned long long)st.ring_budget,
           (unsigned long long)st.capture_budget, (unsigned long long)st.gpu_free_bytes);
+    /* The resolved descriptor says what the figures say. */
+    oit_renderer_desc rd;
+    oit_renderer_get_desc(r, &rd);
+    uint64_t cache = st.cache_budget ? st.cache_budget : OIT_RENDER_CACHE_OFF;
+    printf("%s: resolved K %u, ring %llu, cache %llu, total %llu, capture %d, alpha %g, "
+           "scene scale %g\n", name, rd.K, (unsigned long long)rd.upload_budget,
+           (unsigned long long)rd.cache_budget, (unsigned long long)rd.gpu_budget,
+           (int)rd.capture, (double)rd.shading.alpha, (double)rd.shading.scene_scale);
+    CHECK(rd.shading.alpha > 0.0f && rd.shading.absorption > 0.0f &&
+              rd.shading.scene_scale > 0.0f,
+          "%s: shading defaults not resolved: alpha %g, absorption %g, scene scale %g", name,
+          (double)rd.shading.alpha, (double)rd.shading.absorption,
+          (double)rd.shading.scene_scale);
+    CHECK(!part_file || (rd.K >= 2 && rd.K <= 16 && rd.upload_budget == st.ring_budget &&
+                         rd.cache_budget == cache && rd.gpu_budget == st.gpu_budget &&
+                         !rd.read_on_draw_thread),
+          "%s: resolved K %u, ring %llu (stats %llu), cache %llu (stats %llu), total %llu "
+          "(stats %llu), on the draw thread %d", name, rd.K,
+          (unsigned long long)rd.upload_budget, (unsigned long long)st.ring_budget,
+          (unsigned long long)rd.cache_budget, (unsigned long long)st.cache_budget,
+          (unsigned long long)rd.gpu_budget, (unsigned long long)st.gpu_budget,
+          rd.read_on_draw_thread);
+    CHECK(!part_file || !st.capture_slots ||
+              (int)rd.capture == (!strcmp(st.capture_slots, "stencil")
+                                      ? (int)OIT_RENDER_CAPTURE_STENCIL
+                                      : (int)OIT_RENDER_CAPTURE_ARRAY),
+          "%s: resolved capture %d, the draw's slots %s", name, (int)rd.capture,
+          st.capture_slots);
 }
 
 static void draw_and_compare_proj(const char *base, oit_scene *scene, oit_partfile *pf,
@@ -219,6 +247,13 @@ static void draw_and_compare_proj(const char *base, oit_scene *scene, oit_partfi
         CHECK(0, "%s: oit_renderer_create: %s", name, err.message);
         return;
     }
+    oit_renderer_desc given;
+    oit_renderer_get_desc(r, &given); /* before any draw: as given */
+    CHECK(given.K == rd.K && given.upload_budget == 0 && given.cache_budget == 0 &&
+              given.pack == pack && given.shading.mode == mode && given.shading.alpha == 0.0f,
+          "%s: the descriptor before a draw is not the one given: K %u ring %llu cache %llu "
+          "pack %d alpha %g", name, given.K, (unsigned long long)given.upload_budget,
+          (unsigned long long)given.cache_budget, (int)given.pack, (double)given.shading.alpha);
     oit_view v;
     oit_frame f;
     view_and_frame(&info, proj, &v, &f);

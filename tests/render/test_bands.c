@@ -27,7 +27,8 @@
 #include "render/baselines/baseline_common.h"
 #include "render/image/image.h"
 #include "render/method.h"
-#include "stream/stream_method.h"
+#include "stream/streamer.h"
+#include "tools/common/method_stream.h"
 #include "tests/lib/test_check.h"
 #include "tests/lib/test_gl.h"
 #include "tools/common/methods.h"
@@ -130,8 +131,10 @@ static int bands_of(const oit_method *m, const oit_view *v)
 {
     int rows = 0;
     oit_error err = {0};
-    CHECK(oit_band_rows(v, m->pixel_bytes(NULL, v), LIMIT, &rows, &err) == OIT_OK, "%s",
-          err.message);
+    /* The stream method has none: liboit bands by the streamer's state
+     * itself (oit_renderer_desc.binding_limit). */
+    uint64_t px = m->pixel_bytes ? m->pixel_bytes(NULL, v) : oit_streamer_pixel_bytes(v);
+    CHECK(oit_band_rows(v, px, LIMIT, &rows, &err) == OIT_OK, "%s", err.message);
     return rows > 0 ? (H + rows - 1) / rows : 0;
 }
 
@@ -233,7 +236,7 @@ static void in_core(oit_gl *gl, const oit_mesh *mesh, const oit_view *v, const c
         if (v->shading.mode == OIT_SHADING_TRANSLUCENT && !strcmp(names[i], "ddp"))
             continue;
         const oit_method *m = oit_method_find(names[i]);
-        oit_method_options opt = {.max_layers = 8, .epsilon = -1.0f, .gl = gl};
+        oit_method_options opt = {.max_layers = 8, .gl = gl};
         oit_method_state *probe = NULL;
         oit_error err = {0};
         /* Stencil routing is offered only where the driver routes per
@@ -249,20 +252,20 @@ static void in_core(oit_gl *gl, const oit_mesh *mesh, const oit_view *v, const c
     }
 }
 
-static void streamed(oit_gl *gl, oit_partfile *pf, const oit_view *v, const char *view_name)
+static void streamed(oit_gl *gl, const char *path, const oit_view *v, const char *view_name)
 {
     static const struct {
         const char *name;
-        oit_pack_mode pack;
-    } packs[] = {{"auto", OIT_PACK_AUTO},
-                 {"counted", OIT_PACK_COUNTED},
-                 {"budget", OIT_PACK_BUDGET},
-                 {"disjoint", OIT_PACK_DISJOINT},
-                 {"first-k", OIT_PACK_FIRSTK}};
+        oit_render_pack pack;
+    } packs[] = {{"auto", OIT_RENDER_PACK_AUTO},
+                 {"counted", OIT_RENDER_PACK_COUNTED},
+                 {"budget", OIT_RENDER_PACK_BUDGET},
+                 {"disjoint", OIT_RENDER_PACK_DISJOINT},
+                 {"first-k", OIT_RENDER_PACK_FIRSTK}};
     static const oit_mesh empty;
     for (size_t i = 0; i < sizeof packs / sizeof *packs; i++) {
-        oit_stream_options so = {.partfile = pf, .pack = packs[i].pack};
-        oit_method_options opt = {.max_layers = 8, .epsilon = -1.0f, .stream = &so, .gl = gl};
+        oit_stream_source so = {.path = path, .desc = {.pack = packs[i].pack}};
+        oit_method_options opt = {.max_layers = 8, .source = &so, .gl = gl};
         char what[64];
         snprintf(what, sizeof what, "stream %s %s", packs[i].name, view_name);
         check_method(&oit_method_stream, &empty, &opt, v, what);
@@ -293,7 +296,7 @@ int main(int argc, char **argv)
         in_core(gl, &mesh, &v, name);
         make_view(sum.bounds_min, sum.bounds_max, ortho, &v);
         v.shading.attributes = sum.attributes;
-        streamed(gl, pf, &v, name);
+        streamed(gl, argv[1], &v, name);
     }
     oit_partfile_close(pf);
     oit_gl_destroy(gl);

@@ -6,7 +6,7 @@
 
 #include "render/baselines/methods.h"
 #include "render/reference/reference.h"
-#include "stream/stream_method.h"
+#include "tools/common/method_stream.h"
 
 static const oit_method *const methods[] = {
     &oit_method_dfb,      &oit_method_reference, &oit_method_array, &oit_method_stencil,

@@ -1,8 +1,10 @@
 /* oitbench's command line (bench_args.h). */
 #include "tools/oitbench/bench_args.h"
 
+#include "render/capture/capture.h"
 #include "render/capture/capture_choice.h"
 
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -97,7 +99,8 @@ static oit_status expand_entries(oit_bench_args *a, oit_error *err)
     }
     if (s == OIT_OK && a->epsilon_count > 0 && !swept)
         s = oit_error_set(err, OIT_ERR_ARGUMENT, "--epsilon applies to stream, guarded and "
-                          "f2b; --methods names none of them");
+                          "f2b (and reference, which counts what it would drop); --methods "
+                          "names none of them");
     return s;
 }
 
@@ -116,7 +119,8 @@ static int value_option(oit_bench_args *a, const char *opt, const char *v, char 
     } else if (!strcmp(opt, "--warmup")) {
         if (oit_parse_int(v, 0, 100000, &a->warmup)) *s = bad(err, opt, v, "a frame count >= 0");
     } else if (!strcmp(opt, "--max-layers")) {
-        if (oit_parse_int(v, 2, 16, &a->max_layers)) *s = bad(err, opt, v, "K in [2, 16]");
+        if (oit_parse_int(v, INT_MIN, INT_MAX, &a->max_layers)) *s = bad(err, opt, v, "an integer");
+        else *s = oit_capture_k_check(a->max_layers, "--max-layers", err);
     } else if (!strcmp(opt, "--capture")) {
         oit_capture_kind k = OIT_CAPTURE_AUTO;
         *s = oit_capture_parse(v, opt, &k, err);
@@ -286,7 +290,8 @@ void oit_bench_usage(FILE *f, const char *method_list, const char *default_schem
         "  --epsilon LIST   comma-separated thresholds, each in [0, 1): every method\n"
         "                   of LIST that takes one (stream: early termination at\n"
         "                   transmittance E, exact at 0; guarded: contribution\n"
-        "                   threshold; f2b: alpha threshold) runs once per value, as\n"
+        "                   threshold; f2b: alpha threshold; reference: counts the\n"
+        "                   fragments behind pixels below E) runs once per value, as\n"
         "                   its own entry NAME@E (e.g. stream@0.01), so each value is\n"
         "                   a point on the speed-against-error chart. Default: each\n"
         "                   method once at its default (stream exact)\n"

@@ -114,7 +114,7 @@ static void drop_source(oit_bench_models *m)
 }
 
 /* The conversion into d->convert.output, then that file opened (a temporary
- * one is unlinked at once: the open descriptor keeps it readable). */
+ * one is removed at close, or at once when this fails). */
 static oit_status convert_now(oit_bench_models *m, const oit_bench_models_desc *d,
                               oit_error *err)
 {
@@ -140,8 +140,10 @@ static oit_status convert_now(oit_bench_models *m, const oit_bench_models_desc *
                     st.seconds_total);
         s = open_parts(m, o.output, 1, err);
     }
-    if (d->output_is_temp)
+    if (d->output_is_temp && s != OIT_OK)
         unlink(o.output);
+    else if (d->output_is_temp)
+        snprintf(m->temp_path, sizeof m->temp_path, "%s", o.output);
     return s;
 }
 
@@ -237,6 +239,8 @@ void oit_bench_models_close(oit_bench_models *m)
     if (m->have_clipped)
         oit_mesh_free(&m->clipped);
     oit_partfile_close(m->pf);
+    if (m->temp_path[0])
+        unlink(m->temp_path);
     memset(m, 0, sizeof *m);
 }
 

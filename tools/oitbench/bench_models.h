@@ -37,7 +37,7 @@ typedef struct oit_bench_models_desc {
      * input is set here; output must be set (--save-parts, or a file of
      * oit_bench_temp_part_file) */
     oit_convert_options convert;
-    int output_is_temp;      /* remove convert.output once it is open (or failed) */
+    int output_is_temp;      /* remove convert.output at close (or failure) */
     FILE *progress;          /* "oitbench: ..." lines; NULL: silent */
 } oit_bench_models_desc;
 
@@ -61,6 +61,9 @@ typedef struct oit_bench_models {
     uint64_t source_triangles;   /* the mesh's; META triangles_in without it */
     uint64_t part_triangles;     /* stored in the part file (after clipping) */
     oit_bench_conversion conv;
+    /* The temporary part file (output_is_temp), kept until close: the
+     * stream method opens it again by name (tools/common/method_stream.h). */
+    char temp_path[OIT_BENCH_PATH_MAX];
     /* what a reader must know: a source not found, a different name */
     char notes[OIT_BENCH_NOTES_MAX][600];
     int note_count;

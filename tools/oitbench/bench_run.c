@@ -8,7 +8,7 @@
 
 #include "render/gl/gl_context.h"
 #include "render/gl/gpu_timer.h"
-#include "stream/stream_method.h"
+#include "tools/common/method_stream.h"
 
 const char *oit_bench_geometry_label(oit_bench_geometry g, uint64_t drawn, uint64_t source)
 {
@@ -70,13 +70,14 @@ static void open_methods(const oit_bench_desc *d, oit_bench_result *r, oit_gl **
         snprintf(r->renderer, sizeof r->renderer, "%s", oit_gl_renderer(*gl));
     else if (need_gl)
         snprintf(r->renderer, sizeof r->renderer, "none (no GL context: %.200s)", err.message);
-    oit_stream_options so = {.partfile = d->partfile, .pack = OIT_PACK_AUTO,
-                             .capture = (oit_capture_kind)d->capture};
-    oit_method_options opt = {.max_layers = d->max_layers, .gl = *gl, .stream = &so};
+    /* The stream method opens the part file again through liboit. */
+    oit_stream_source so = {.path = d->partfile ? oit_partfile_name(d->partfile) : NULL,
+                            .desc = {.capture = (oit_render_capture)d->capture}};
+    oit_method_options opt = {.max_layers = d->max_layers, .gl = *gl, .source = &so};
     for (int i = 0; i < r->method_count; i++) {
         oit_bench_method *m = &r->methods[i];
         m->runnable = 1;
-        opt.epsilon = m->epsilon;
+        opt.threshold = m->epsilon >= 0.0f ? &m->epsilon : NULL;
         if ((m->method->flags & OIT_METHOD_GL) && gs != OIT_OK)
             mark_failed(m, -1, r->renderer);
         else if ((m->method->flags & OIT_METHOD_PARTFILE) && !d->partfile)

@@ -37,8 +37,8 @@ typedef struct oit_bench_cell {
     double gpu_ms_median;    /* GPU time (render/gl/gpu_timer.h); -1: not timed */
 } oit_bench_cell;
 
-/* What to run: a method, and the threshold oit_method_options.epsilon
- * passes it (< 0: the method's default); name labels it in every output
+/* What to run: a method, and the threshold oit_method_options.threshold
+ * passes it (< 0: none, the method's default); name labels it in every output
  * ("stream", "stream@0.01"). */
 #define OIT_BENCH_NAME_MAX 64
 typedef struct oit_bench_entry {

@@ -2,9 +2,9 @@
 #include "tools/oitstream/cli_args.h"
 
 #include "base/args.h"
-#include "stream/streamer.h"
 
 #include <float.h>
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -35,15 +35,18 @@ static int parse_rgb(const char *s, float rgb[3])
     return 0;
 }
 
-/* Bytes, 64K up to 1T, with an optional K, M or G (binary) suffix. */
-static int parse_bytes(const char *s, unsigned long long *out)
+/* Bytes with an optional K, M or G (binary) suffix; their range is the
+ * streamer's to check (oit_streamer_desc_check). */
+static int parse_bytes(const char *s, uint64_t *out)
 {
-    uint64_t v;
-    if (oit_parse_bytes(s, 65536, 1ull << 40, &v))
-        return -1;
-    *out = v;
-    return 0;
+    return oit_parse_bytes(s, 0, UINT64_MAX, out);
 }
+
+/* What the streamer's range errors call its fields here. */
+static const oit_streamer_names option_names = {
+    .upload_budget = "--upload-budget", .slot_budget = "--slot-budget",
+    .cache_budget = "--cache-budget", .gpu_budget = "--gpu-budget", .epsilon = "--epsilon",
+    .pack = "--pack", .schedule = "--schedule", .cache_off = "off"};
 
 static oit_status bad(oit_error *err, const char *opt, const char *val, const char *want)
 {
@@ -110,64 +113,51 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
     } else if (!strcmp(opt, "--background")) {
         if (parse_rgb(v, a->shading.background)) *s = bad(err, opt, v, "r,g,b in [0, 1]");
     } else if (!strcmp(opt, "--max-layers")) {
-        if (oit_parse_int(v, 2, 16, &a->max_layers)) *s = bad(err, opt, v, "K in [2, 16]");
+        if (oit_parse_int(v, INT_MIN, INT_MAX, &a->max_layers)) *s = bad(err, opt, v, "an integer");
+        else *s = oit_capture_k_check(a->max_layers, "--max-layers", err);
     } else if (!strcmp(opt, "--show")) {
         if (!strcmp(v, "layers")) a->show_layers = 1;
         else if (strcmp(v, "colour") && strcmp(v, "color")) *s = bad(err, opt, v, "layers or colour");
     } else if (!strcmp(opt, "--pack")) {
-        if (!strcmp(v, "auto")) a->pack = OIT_PACK_AUTO;
-        else if (!strcmp(v, "counted")) a->pack = OIT_PACK_COUNTED;
-        else if (!strcmp(v, "disjoint")) a->pack = OIT_PACK_DISJOINT;
-        else if (!strcmp(v, "budget")) a->pack = OIT_PACK_BUDGET;
-        else if (!strcmp(v, "first-k")) a->pack = OIT_PACK_FIRSTK;
+        if (!strcmp(v, "auto")) a->stream.pack = OIT_PACK_AUTO;
+        else if (!strcmp(v, "counted")) a->stream.pack = OIT_PACK_COUNTED;
+        else if (!strcmp(v, "disjoint")) a->stream.pack = OIT_PACK_DISJOINT;
+        else if (!strcmp(v, "budget")) a->stream.pack = OIT_PACK_BUDGET;
+        else if (!strcmp(v, "first-k")) a->stream.pack = OIT_PACK_FIRSTK;
         else *s = bad(err, opt, v, "auto, counted, first-k, budget or disjoint");
     } else if (!strcmp(opt, "--capture")) {
-        *s = oit_capture_parse(v, opt, &a->capture, err);
+        *s = oit_capture_parse(v, opt, &a->stream.capture, err);
     } else if (!strcmp(opt, "--schedule")) {
-        if (!strcmp(v, "wave")) a->schedule_wave = 1;
-        else if (!strcmp(v, "tree")) a->schedule_wave = 0;
+        if (!strcmp(v, "wave")) a->stream.schedule = OIT_SCHEDULE_WAVE;
+        else if (!strcmp(v, "tree")) a->stream.schedule = OIT_SCHEDULE_TREE;
         else *s = bad(err, opt, v, "wave or tree");
     } else if (!strcmp(opt, "--upload-budget")) {
-        /* 0 is the default, as oit_renderer_desc.upload_budget = 0 is. */
-        if (!strcmp(v, "0"))
-            a->upload_budget = 0;
-        else if (parse_bytes(v, &a->upload_budget))
-            *s = bad(err, opt, v, "0 (default) or bytes >= 64K, with an optional K, M or G "
-                     "suffix");
+        if (parse_bytes(v, &a->stream.upload_budget))
+            *s = bad(err, opt, v, "bytes, with an optional K, M or G suffix");
     } else if (!strcmp(opt, "--cache-budget")) {
-        /* As liboit's oit_renderer_desc.cache_budget: 0 is the default,
-         * "off" (OIT_RENDER_CACHE_OFF) no cache. */
+        /* As liboit's oit_renderer_desc.cache_budget: "off"
+         * (OIT_RENDER_CACHE_OFF) no cache. */
         if (!strcmp(v, "off"))
-            a->cache_budget = OIT_STREAM_CACHE_OFF;
-        else if (!strcmp(v, "0"))
-            a->cache_budget = 0;
-        else if (parse_bytes(v, &a->cache_budget))
-            *s = bad(err, opt, v, "off, 0 (default) or bytes >= 64K, with an optional K, M or "
-                     "G suffix");
+            a->stream.cache_budget = OIT_STREAM_CACHE_OFF;
+        else if (parse_bytes(v, &a->stream.cache_budget))
+            *s = bad(err, opt, v, "off or bytes, with an optional K, M or G suffix");
     } else if (!strcmp(opt, "--gpu-budget")) {
-        /* 0 is the default, as oit_renderer_desc.gpu_budget = 0 is; the
-         * least is the streamer's (it refuses less from liboit too), here
-         * so that a usage error names the option before any work. */
-        uint64_t g = 0;
-        if (!strcmp(v, "0"))
-            a->gpu_budget = 0;
-        else if (oit_parse_bytes(v, OIT_STREAM_GPU_BUDGET_MIN, 1ull << 40, &g) == 0)
-            a->gpu_budget = g;
-        else
-            *s = bad(err, opt, v, "0 (default) or bytes >= 1M, with an optional K, M or G "
-                     "suffix");
+        if (parse_bytes(v, &a->stream.gpu_budget))
+            *s = bad(err, opt, v, "bytes, with an optional K, M or G suffix");
     } else if (!strcmp(opt, "--upload-threads")) {
         /* 0 read on the render thread before threads were counted */
-        if (oit_parse_int(v, 0, OIT_READER_MAX_THREADS, &a->upload_threads))
+        int *n = &a->stream.reader_threads;
+        if (oit_parse_int(v, 0, OIT_READER_MAX_THREADS, n))
             *s = bad(err, opt, v, "0..64 threads");
-        else if (a->upload_threads == 0)
-            a->upload_threads = OIT_STREAM_READ_INLINE;
+        else if (*n == 0)
+            *n = OIT_STREAM_READ_INLINE;
     } else if (!strcmp(opt, "--slot-budget")) {
-        if (parse_bytes(v, &a->slot_budget))
-            *s = bad(err, opt, v, "bytes >= 64K, with an optional K, M or G suffix");
+        if (parse_bytes(v, &a->stream.slot_budget))
+            *s = bad(err, opt, v, "bytes, with an optional K, M or G suffix");
     } else if (!strcmp(opt, "--epsilon")) {
-        if (parse_float(v, &a->epsilon) || !(a->epsilon >= 0.0f) || !(a->epsilon < 1.0f))
-            *s = bad(err, opt, v, "a transmittance in [0, 1)");
+        a->have_epsilon = 1;
+        if (parse_float(v, &a->stream.epsilon))
+            *s = bad(err, opt, v, "a number");
     } else if (!strcmp(opt, "--window-frames")) {
         if (oit_parse_int(v, 1, 100000000, &a->window_frames))
             *s = bad(err, opt, v, "a frame count >= 1");
@@ -230,12 +220,12 @@ static oit_status check_combination(const oit_stream_args *a, oit_error *err)
     if (a->window && (a->orbit || a->out || a->ambiguity_out))
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--window shows one interactive view: "
                              "it excludes --orbit, --out and --ambiguity");
-    if (a->epsilon > 0.0f && a->method && strcmp(a->method, "stream") &&
-        strcmp(a->method, "f2b") && strcmp(a->method, "guarded") &&
-        strcmp(a->method, "reference"))
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "--epsilon is the early termination of "
-                             "--method stream, the threshold of f2b and guarded and what "
-                             "reference counts; method '%s' has none", a->method);
+    /* The streamer's settings are checked by the streamer (every other
+     * method ignores them); which methods take --epsilon, main.c asks the
+     * method's flags (OIT_METHOD_EPSILON). */
+    oit_status s = oit_streamer_desc_check(&a->stream, &option_names, err);
+    if (s != OIT_OK)
+        return s;
     if ((a->have_view != 0) + (a->orbit != 0) + (a->walk != NULL) > 1)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--view, --orbit and --walk exclude each "
                              "other");
@@ -253,8 +243,6 @@ oit_status oit_stream_args_parse(int argc, char **argv, oit_stream_args *a, oit_
     a->elevation = 20.0f;
     a->gain = 1.0f;
     a->max_layers = 0; /* the part file's K, else 16 */
-    a->epsilon = -1.0f; /* not given: each method's default */
-    a->upload_threads = 0; /* the streamer's default */
     a->up_axis = 1;
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i];
@@ -382,9 +370,9 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "                      one, at least 1; --stats: reader_threads)\n"
         "  --slot-budget B     stream: bytes of the K-fragment capture slots (>= 64K,\n"
         "                      default 32M for disjoint and budget, 64M for counted,\n"
-        "                      first-k and auto), a larger frame captured in screen\n"
-        "                      tiles; for the counted capture, its fragment store\n"
-        "                      (packs split to fit);\n"
+        "                      first-k and auto; 0 also means the default), a larger\n"
+        "                      frame captured in screen tiles; for the counted\n"
+        "                      capture, its fragment store (packs split to fit);\n"
         "                      for first-k, the slots of a pack's rectangle (K shrinks\n"
         "                      to fit, a pack too wide for 2 is captured counted) and\n"
         "                      its second pass's store (in bands of rows that fit)\n"

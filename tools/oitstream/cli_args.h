@@ -7,8 +7,7 @@
 #include <stdio.h>
 
 #include "render/image/view.h"
-#include "render/capture/capture.h"
-#include "stream/pack.h"
+#include "stream/streamer.h"
 
 typedef struct oit_stream_args {
     int help;
@@ -38,15 +37,15 @@ typedef struct oit_stream_args {
     const char *ambiguity_out; /* --ambiguity: mask of ambiguous pixels */
     float ambiguity_px;        /* --ambiguity-px; 0: the reference's 1/64 */
     int quiet;
-    oit_pack_mode pack;                /* --pack; 0: auto */
-    oit_capture_kind capture;          /* --capture; 0: auto (streamer.h checks it) */
-    int schedule_wave;                 /* --schedule: 0 tree (default), 1 wave */
-    unsigned long long upload_budget;  /* --upload-budget; 0 (or 0 given): default */
-    unsigned long long slot_budget;    /* --slot-budget; 0: default */
-    unsigned long long gpu_budget;     /* --gpu-budget; 0: default (oit_streamer_desc.gpu_budget) */
-    unsigned long long cache_budget;   /* --cache-budget; 0 (or 0 given): default; OIT_STREAM_CACHE_OFF: off */
-    int upload_threads;                /* --upload-threads, as oit_streamer_desc.reader_threads */
-    float epsilon;                     /* --epsilon (stream, f2b, guarded); < 0: not given */
+    /* The streamer's settings, each option spelt onto its field and
+     * checked by oit_streamer_desc_check (zero: default): --pack, --capture,
+     * --schedule, --upload-budget, --slot-budget, --cache-budget,
+     * --gpu-budget, --upload-threads (reader_threads), --epsilon. K is
+     * --max-layers (or the file's); the rest stay 0. */
+    oit_streamer_desc stream;
+    /* --epsilon was given: stream.epsilon is also the threshold of the
+     * other methods flagged OIT_METHOD_EPSILON (render/method.h) */
+    int have_epsilon;
     /* --window: the interactive viewer (viewer.h) */
     int window;
     int window_frames;             /* --window-frames N; 0: until quit */

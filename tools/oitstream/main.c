@@ -19,7 +19,7 @@
 #include "tools/oitstream/cli_args.h"
 #include "partfile/triangles.h"
 #include "tools/common/methods.h"
-#include "stream/stream_method.h"
+#include "tools/common/method_stream.h"
 #include "tools/oitstream/stats_json.h"
 #include "tools/oitstream/viewer.h"
 #include "tools/oitstream/views.h"
@@ -252,9 +252,12 @@ static oit_status render_one(run_ctx *rc, int index, int views, oit_stats_frame 
     fr->method = rc->method->name;
     oit_stats_format_view(&rc->view.camera, rc->origin, fr->view, sizeof fr->view);
     oit_stats_format_clip(&rc->view.clip, rc->origin, fr->clip, sizeof fr->clip);
-    if (s == OIT_OK && oit_method_stream_stats(rc->state)) {
+    oit_renderer_desc used;
+    if (s == OIT_OK && oit_method_stream_stats(rc->state) &&
+        oit_method_stream_desc(rc->state, &used)) {
         fr->has_stream = 1;
         fr->stream = *oit_method_stream_stats(rc->state);
+        fr->epsilon = used.epsilon;
     }
     if (s == OIT_OK && !rc->args->quiet)
         printf("frame %d: %s %dx%d %.2f ms, %llu fragments, max %u layers, %llu overflow pixels\n",
@@ -285,8 +288,9 @@ static oit_status render_one(run_ctx *rc, int index, int views, oit_stats_frame 
                fr->st.capture_slots ? fr->st.capture_slots : "none (counted)",
                fr->st.capture_slots_k ? " x" : "", fr->st.capture_slots_k,
                fr->stream.capture_asked,
-               fr->stream.capture_fallback[0] ? "; auto fell back: " : "",
-               fr->stream.capture_fallback);
+               fr->stream.capture_fallback && fr->stream.capture_fallback[0]
+                   ? "; auto fell back: " : "",
+               fr->stream.capture_fallback ? fr->stream.capture_fallback : "");
     return s;
 }
 
@@ -461,6 +465,11 @@ static int run_render(const oit_stream_args *args)
         resolved.method = is_part_file(args->model) ? "stream" : "dfb";
     run_ctx rc = {.args = a};
     oit_status s = check_method(a, &rc.method, &err);
+    if (s == OIT_OK && args->method && a->stream.epsilon > 0.0f &&
+        !(rc.method->flags & OIT_METHOD_EPSILON))
+        s = oit_error_set(&err, OIT_ERR_ARGUMENT, "--epsilon is the early termination of "
+                          "--method stream, the threshold of f2b and guarded and what "
+                          "reference counts; method '%s' has none", a->method);
     if (s != OIT_OK)
         return fail(&err);
     oit_mesh mesh;
@@ -473,14 +482,10 @@ static int run_render(const oit_stream_args *args)
     oit_camera *cams = NULL;
     int n = 0;
     int K = stream_max_layers(a, pf);
-    oit_stream_options so = {.partfile = pf, .pack = a->pack, .capture = a->capture,
-                             .schedule = a->schedule_wave ? OIT_SCHEDULE_WAVE : OIT_SCHEDULE_TREE,
-                             .upload_budget = a->upload_budget, .slot_budget = a->slot_budget,
-                             .cache_budget = a->cache_budget,
-                             .gpu_budget = a->gpu_budget,
-                             .reader_threads = a->upload_threads};
-    oit_method_options opt = {.max_layers = K, .epsilon = a->epsilon,
-                              .ambiguity_px = a->ambiguity_px, .stream = &so};
+    oit_stream_source so = {.path = a->model};
+    oit_method_options opt = {.max_layers = K,
+                              .threshold = a->have_epsilon ? &a->stream.epsilon : NULL,
+                              .ambiguity_px = a->ambiguity_px, .source = &so};
     rc.view.width = a->width;
     rc.view.height = a->height;
     rc.origin = mesh.info.origin;
@@ -490,7 +495,7 @@ static int run_render(const oit_stream_args *args)
     if (s == OIT_OK)
         s = make_views(a, &mesh.info, &cams, &n, &err);
     if (s == OIT_OK)
-        so.cache_budget = stream_cache_budget(a, n);
+        so.desc = stream_renderer_desc(a, n);
     if (s == OIT_OK && a->show_layers &&
         !(rc.counts = calloc((size_t)a->width * (size_t)a->height, sizeof *rc.counts)))
         s = oit_error_set(&err, OIT_ERR_NOMEM, "cannot allocate the layer count buffer");

@@ -48,7 +48,7 @@ void oit_stats_format_clip(const oit_clip *clip, const double origin[3], char *b
 static void put_frame(oit_json *w, const oit_stats_frame *fr)
 {
     const oit_frame_stats *s = &fr->st;
-    const oit_stream_frame_stats *t = &fr->stream;
+    const oit_draw_stats *t = &fr->stream;
     oit_json_begin_object(w, NULL, OIT_JSON_INLINE);
     oit_json_string(w, "method", fr->method ? fr->method : "");
     oit_json_string(w, "view", fr->view);
@@ -85,17 +85,18 @@ static void put_frame(oit_json *w, const oit_stats_frame *fr)
     }
     if (fr->has_stream) {
         OIT_JSON_UINTS(w, parts);
-        oit_json_general(w, "epsilon", t->epsilon, 9);
+        oit_json_general(w, "epsilon", fr->epsilon, 9);
         oit_json_uint(w, "draw_calls", t->draw_calls);
         oit_json_fixed(w, "order_ms", t->order_ms, 3);
         oit_json_fixed(w, "pack_ms", t->pack_ms, 3);
-        oit_json_int(w, "auto_first_k", t->first_k);
-        oit_json_int(w, "front_first", t->front_first);
+        oit_json_int(w, "auto_first_k", (int)t->auto_first_k);
+        oit_json_int(w, "front_first", (int)t->front_first);
         if (t->capture_asked) {
             oit_json_string(w, "capture_asked", t->capture_asked);
-            oit_json_string(w, "capture_fallback", t->capture_fallback);
+            oit_json_string(w, "capture_fallback",
+                            t->capture_fallback ? t->capture_fallback : "");
         }
-        oit_json_int(w, "reader_threads", t->reader_threads);
+        oit_json_int(w, "reader_threads", (int)t->reader_threads);
     }
     oit_json_end(w);
 }
@@ -131,16 +132,16 @@ static double warm_median(const oit_stats_run *run, int which, double *tmp)
 }
 
 /* The memory the streamer chose and where its total came from. */
-static void put_budget(oit_json *w, const oit_stream_budget *b)
+static void put_budget(oit_json *w, const oit_draw_stats *b)
 {
     oit_json_begin_object(w, "budget", OIT_JSON_INLINE);
-    oit_json_uint(w, "gpu_budget", b->total);
-    oit_json_uint(w, "ring", b->ring);
-    oit_json_uint(w, "cache", b->cache);
-    oit_json_uint(w, "capture", b->capture);
-    oit_json_int(w, "resident", b->resident);
-    oit_json_uint(w, "driver_free", b->free_bytes);
-    oit_json_string(w, "source", b->source ? b->source : "");
+    oit_json_uint(w, "gpu_budget", b->gpu_budget);
+    oit_json_uint(w, "ring", b->ring_budget);
+    oit_json_uint(w, "cache", b->cache_budget);
+    oit_json_uint(w, "capture", b->capture_budget);
+    oit_json_int(w, "resident", (int)b->resident);
+    oit_json_uint(w, "driver_free", b->gpu_free_bytes);
+    oit_json_string(w, "source", b->budget_source ? b->budget_source : "");
     oit_json_end(w);
 }
 
@@ -181,7 +182,7 @@ oit_status oit_stats_json_write(const char *path, const oit_stats_run *run, oit_
     oit_json_string(&w, "gpu_timer", run->gpu_absent ? run->gpu_absent : "GL timestamp queries");
     put_summary(&w, run);
     if (run->frame_count > 0 && run->frames[0].has_stream)
-        put_budget(&w, &run->frames[0].stream.budget);
+        put_budget(&w, &run->frames[0].stream);
     oit_json_begin_array(&w, "frames", OIT_JSON_BLOCK);
     for (size_t i = 0; i < run->frame_count; i++)
         put_frame(&w, &run->frames[i]);

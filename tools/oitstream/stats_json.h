@@ -7,15 +7,16 @@
 
 #include "render/gl/gpu_timer.h"
 #include "render/image/view.h"
-#include "stream/streamer.h"
+#include "oit/liboit.h"
 
 typedef struct oit_stats_frame {
     const char *method;
     char view[512]; /* the camera as --view accepts it (with znear,zfar) */
     char clip[512]; /* the section planes as --clip takes them, ';' between; "" none */
     oit_frame_stats st;
-    int has_stream;               /* the part-file streamer's figures follow */
-    oit_stream_frame_stats stream;
+    int has_stream;       /* the stream method's figures follow (liboit's) */
+    oit_draw_stats stream;
+    float epsilon;        /* the early termination the stream ran with */
     int has_gpu;       /* the GPU timer's figures of this frame follow */
     oit_gpu_times gpu; /* render/gl/gpu_timer.h */
 } oit_stats_frame;

@@ -24,7 +24,7 @@
 #include "tools/oitstream/stats_json.h"
 #include "tools/oitstream/viewer_clip.h"
 #include "plot/text_overlay.h"
-#include "stream/stream_method.h"
+#include "tools/common/method_stream.h"
 
 #define GLFW_INCLUDE_NONE /* GL comes from gl_util.h (core profile prototypes) */
 #include <GLFW/glfw3.h>
@@ -40,7 +40,8 @@ enum { DEFAULT_STILL_MS = 200, PREVIEW_MAX_SCALE = 4 };
 typedef struct viewer {
     const oit_viewer_desc *desc;
     oit_method_options options; /* desc's, with the current scene's part file and K */
-    oit_stream_options stream;  /* options.stream points here */
+    oit_stream_source stream;   /* options.source points here */
+    char stream_path[4096];     /* stream.path: the part file shown */
     oit_gl *gl;
     GLFWwindow *win;
     const oit_method *methods[MAX_METHODS]; /* the whole table, in its order */
@@ -76,7 +77,10 @@ typedef struct viewer {
     const char *gpu_absent;
     int frames, exact_frames, preview_frames, presents, screenshots;
     int save_pending; /* P: save the next presented image */
-    float epsilon;    /* early termination the methods open with (E toggles) */
+    /* The threshold the methods open with (options.threshold; E toggles
+     * it): has_epsilon 0, none given, each method's default. */
+    float epsilon;
+    int has_epsilon;
     /* what needs doing: moved (camera: preview), changed (exact now),
      * recompose (overlays only: no rendering) */
     int moved, changed, recompose;
@@ -367,7 +371,7 @@ static oit_status switch_method(viewer *v, int i, oit_error *err)
         return oit_error_set(err, OIT_ERR_UNSUPPORTED, "%s", why);
     oit_method_options opt = v->options;
     opt.gl = v->gl;
-    opt.epsilon = v->epsilon;
+    opt.threshold = v->has_epsilon ? &v->epsilon : NULL;
     oit_method_state *st = NULL;
     oit_status s = oit_method_open(v->methods[i], v->mesh, &opt, &st, err);
     if (s != OIT_OK)
@@ -443,14 +447,18 @@ static void save_screenshot(viewer *v)
  * is reopened so that it takes effect from the next frame. */
 static void toggle_epsilon(viewer *v)
 {
-    float on = v->desc->options.epsilon > 0.0f ? v->desc->options.epsilon : 1.0f / 255.0f;
+    const float *given = v->desc->options.threshold;
+    float on = given && *given > 0.0f ? *given : 1.0f / 255.0f;
     float was = v->epsilon;
+    int had = v->has_epsilon;
     oit_error err = {0};
-    v->epsilon = was > 0.0f ? 0.0f : on;
+    v->epsilon = had && was > 0.0f ? 0.0f : on;
+    v->has_epsilon = 1;
     if (switch_method(v, v->current, &err) != OIT_OK) {
         v->epsilon = was;
+        v->has_epsilon = had;
         say(v, "early termination: %s", err.message);
-    } else if (v->epsilon > 0.0f && !v->methods[v->current]->stream_stats) {
+    } else if (v->epsilon > 0.0f && !(v->methods[v->current]->flags & OIT_METHOD_PARTFILE)) {
         say(v, "early termination on, epsilon %g (used by the stream method only)", v->epsilon);
     } else if (v->epsilon > 0.0f) {
         printf("viewer: early termination on, epsilon %g\n", v->epsilon);
@@ -532,7 +540,7 @@ static void open_entry(viewer *v)
     v->have_owned = 1;
     v->mesh = &v->owned.mesh;
     v->pf = v->owned.partfile;
-    v->stream.partfile = v->pf;
+    snprintf(v->stream_path, sizeof v->stream_path, "%s", v->entry);
     if (scene.max_layers > 0)
         v->options.max_layers = scene.max_layers;
     snprintf(v->model_name, sizeof v->model_name, "%s", v->entry);
@@ -665,8 +673,12 @@ static void status_fields(viewer *v, fields *f)
         field(f, "layers %u", v->st.max_layers);
         field(f, "overflow %llu", (unsigned long long)v->st.overflow_pixels);
     }
-    if (m->stream_stats && v->state && !(v->shown_kind == SHOWN_PREVIEW && v->pv_method)) {
-        const oit_stream_frame_stats *ss = oit_method_stream_stats(v->state);
+    const oit_draw_stats *ss = v->state && !(v->shown_kind == SHOWN_PREVIEW && v->pv_method)
+                                   ? oit_method_stream_stats(v->state) : NULL;
+    oit_renderer_desc ran = {0};
+    if (ss)
+        oit_method_stream_desc(v->state, &ran);
+    if (ss) {
         field(f, "packs %u", ss->packs);
         /* which K-slot fill ran (--capture): "slots stencil x8", "slots array" */
         if (v->st.capture_slots && v->st.capture_slots_k)
@@ -682,8 +694,8 @@ static void status_fields(viewer *v, fields *f)
             field(f, "uploaded %.0f B", up);
         }
         field(f, "cache hits %llu", (unsigned long long)ss->cache_hits);
-        if (ss->epsilon > 0.0f) {
-            field(f, "eps %.3g", ss->epsilon);
+        if (ran.epsilon > 0.0f) {
+            field(f, "eps %.3g", ran.epsilon);
             field(f, "skipped %llu", (unsigned long long)ss->parts_skipped);
         }
     }
@@ -943,7 +955,7 @@ static oit_status open_preview_method(viewer *v, oit_error *err)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "viewer: no preview method");
     oit_method_options opt = v->options;
     opt.gl = v->gl;
-    opt.epsilon = -1.0f;
+    opt.threshold = NULL;
     oit_status s = oit_method_open(m, v->mesh, &opt, &v->pv_state, err);
     if (s == OIT_OK)
         v->pv_method = m;
@@ -1198,9 +1210,11 @@ static oit_status open_viewer(viewer *v, oit_error *err)
 {
     const oit_viewer_desc *d = v->desc;
     v->options = d->options;
-    if (d->options.stream)
-        v->stream = *d->options.stream;
-    v->options.stream = &v->stream;
+    if (d->options.source)
+        v->stream = *(const oit_stream_source *)d->options.source;
+    snprintf(v->stream_path, sizeof v->stream_path, "%s", v->stream.path ? v->stream.path : "");
+    v->stream.path = v->stream_path;
+    v->options.source = &v->stream;
     v->mesh = d->mesh;
     v->pf = d->partfile;
     v->up_axis = d->up_axis >= 0 && d->up_axis <= 2 ? d->up_axis : 1;
@@ -1349,7 +1363,8 @@ oit_status oit_viewer_run(const oit_viewer_desc *desc, oit_error *err)
     viewer v;
     memset(&v, 0, sizeof v);
     v.desc = desc;
-    v.epsilon = desc->options.epsilon;
+    v.has_epsilon = desc->options.threshold != NULL;
+    v.epsilon = v.has_epsilon ? *desc->options.threshold : 0.0f;
     oit_status s = open_viewer(&v, err);
     int limit = frame_limit(desc);
     if (s == OIT_OK)

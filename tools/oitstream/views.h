@@ -7,6 +7,7 @@
 
 #include <stddef.h>
 
+#include "oit/liboit.h"
 #include "oit/mesh.h"
 #include "oit/partfile.h"
 #include "render/image/view.h"
@@ -28,5 +29,10 @@ int stream_max_layers(const oit_stream_args *a, oit_partfile *pf);
 /* --cache-budget for a run of views frames: one frame (outside the window)
  * has no next frame to keep parts for, so the default cache is off. */
 unsigned long long stream_cache_budget(const oit_stream_args *a, int views);
+
+/* The stream method's settings (tools/common/method_stream.h) from the
+ * checked command line, for `views` views: the streamer's options in
+ * liboit's public spelling. */
+oit_renderer_desc stream_renderer_desc(const oit_stream_args *a, int views);
 
 #endif

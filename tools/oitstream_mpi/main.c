@@ -110,14 +110,12 @@ static oit_status open_share(mpi_run *r, int views, oit_error *err)
         s = oit_clip_add_text(&r->view.clip, a->clip_text[i], r->info.origin, "--clip", err);
     if (s != OIT_OK)
         return s;
-    oit_streamer_desc sd = {
-        .K = stream_max_layers(a, r->pf), .capture = a->capture, .pack = a->pack,
-        .schedule = a->schedule_wave ? OIT_SCHEDULE_WAVE : OIT_SCHEDULE_TREE,
-        .upload_budget = a->upload_budget, .slot_budget = a->slot_budget,
-        .cache_budget = stream_cache_budget(a, views),
-        .reader_threads = a->upload_threads, .gpu_budget = a->gpu_budget,
-        .epsilon = a->epsilon > 0.0f ? a->epsilon : 0.0f,
-        .share_count = (uint32_t)r->ranks, .share_index = (uint32_t)r->rank};
+    /* oitstream's options, checked there (cli_args.c), and this rank's share */
+    oit_streamer_desc sd = a->stream;
+    sd.K = stream_max_layers(a, r->pf);
+    sd.cache_budget = stream_cache_budget(a, views);
+    sd.share_count = (uint32_t)r->ranks;
+    sd.share_index = (uint32_t)r->rank;
     return oit_streamer_create(r->pf, &sd, &r->streamer, err);
 }
 

@@ -108,6 +108,10 @@ run_cli() {
     expect_rc 2 "$S" "$T/boxes.ply" --method array --show layers
     expect_rc 2 "$S" "$T/boxes.ply" --view 1,2,3
     expect_rc 2 "$S" "$T/boxes.ply" --method dfb --ambiguity "$T/amb.png"
+    # K's one range check (the capture's), named in the option's spelling.
+    expect_rc 2 "$S" "$T/boxes.ply" --method array --max-layers 17
+    expect_err "--max-layers = 17 is outside \[2, 16\]" "--max-layers 17 not refused by name"
+    expect_rc 2 "$S" "$T/boxes.ply" --method array --max-layers 1
     expect_rc 1 "$S" "$T/missing.ply" --method reference
     expect_err "missing.ply" "error does not name the missing model"
     printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n1\n' >"$T/bad.ply"
