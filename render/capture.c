@@ -8,6 +8,7 @@
 #include "render/capture.h"
 
 #include "base/clock.h"
+#include "render/capture_compute.h"
 #include "render/capture_counted.h"
 #include "render/capture_firstk.h"
 #include "render/capture_glsl.h"
@@ -56,6 +57,7 @@ struct oit_capture {
     oit_counted counted; /* OIT_CAPTURE_COUNTED, and FIRSTK's packs too wide for it */
     oit_firstk firstk;   /* OIT_CAPTURE_FIRSTK */
     int firstk_off;      /* FIRSTK capturing as COUNTED (oit_capture_set_first_k) */
+    oit_compute compute; /* OIT_CAPTURE_COMPUTE */
     GLuint max_groups;    /* GL_MAX_COMPUTE_WORK_GROUP_COUNT[0] */
     oit_gpu_draws *draws; /* every geometry draw goes through it */
     uint64_t calls0;      /* its draw calls at the frame's begin */
@@ -106,6 +108,8 @@ static void release(oit_capture *c)
         oit_counted_release(&c->counted);
     if (c->backend == OIT_CAPTURE_FIRSTK)
         oit_firstk_release(&c->firstk);
+    if (c->backend == OIT_CAPTURE_COMPUTE)
+        oit_compute_release(&c->compute);
     oit_gpu_draws_destroy(c->draws);
     oit_opaque_keys_destroy(c->keys);
     free(c);
@@ -129,6 +133,7 @@ const char *oit_capture_kind_name(oit_capture_kind kind)
     case OIT_CAPTURE_STENCIL: return "stencil";
     case OIT_CAPTURE_COUNTED: return "counted";
     case OIT_CAPTURE_FIRSTK: return "first-k";
+    case OIT_CAPTURE_COMPUTE: return "compute";
     default: return NULL;
     }
 }
@@ -161,6 +166,8 @@ static oit_status make(oit_capture_kind backend, int K, int stencil_k, unsigned 
         s = oit_gpu_draws_create(&c->draws, err);
     if (s == OIT_OK && uses_counted(c))
         s = oit_counted_init(&c->counted, err);
+    if (s == OIT_OK && backend == OIT_CAPTURE_COMPUTE)
+        s = oit_compute_init(&c->compute, err);
     if (s == OIT_OK && backend == OIT_CAPTURE_FIRSTK)
         s = oit_firstk_init(&c->firstk, K, err);
     if (s == OIT_OK && backend == OIT_CAPTURE_FIRSTK && c->routed)
@@ -195,7 +202,8 @@ oit_status oit_capture_create_faulty(oit_capture_kind kind, int K, unsigned faul
     *out = NULL;
     if (K < 2 || K > 16)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: K=%d is outside [2, 16]", K);
-    if (kind == OIT_CAPTURE_ARRAY || kind == OIT_CAPTURE_COUNTED || kind == OIT_CAPTURE_FIRSTK)
+    if (kind == OIT_CAPTURE_ARRAY || kind == OIT_CAPTURE_COUNTED || kind == OIT_CAPTURE_FIRSTK ||
+        kind == OIT_CAPTURE_COMPUTE)
         return make(kind, K, 0, faults, out, err);
     oit_status s = oit_capture_create_routed(OIT_CAPTURE_STENCIL, K, K, faults, out, err);
     if (s != OIT_OK && kind == OIT_CAPTURE_AUTO)
@@ -252,6 +260,8 @@ static uint64_t held_bytes(const oit_capture *c)
         b += oit_counted_bytes(&c->counted);
     if (c->backend == OIT_CAPTURE_FIRSTK)
         b += oit_firstk_bytes(&c->firstk);
+    if (c->backend == OIT_CAPTURE_COMPUTE)
+        b += oit_compute_bytes(&c->compute);
     for (int i = 0; i < BUF_N; i++)
         b += c->cap[i];
     return b + oit_opaque_keys_gpu_bytes(c->keys);
@@ -300,7 +310,9 @@ static uint64_t within_binding(const oit_capture *c, uint64_t bytes, uint64_t ro
 static oit_status allocate(oit_capture *c, const oit_view *v, oit_error *err)
 {
     uint64_t pixels = (uint64_t)v->width * v->height;
-    int array = c->backend == OIT_CAPTURE_ARRAY, stencil = c->backend == OIT_CAPTURE_STENCIL;
+    int array = c->backend == OIT_CAPTURE_ARRAY;
+    /* the backends with an output buffer of their own */
+    int stencil = c->backend == OIT_CAPTURE_STENCIL || c->backend == OIT_CAPTURE_COMPUTE;
     uint64_t full = pixels * (uint64_t)c->K * 16, row = (uint64_t)v->width * c->K * 16;
     /* One storage binding is a slot budget too: slots past it would be
      * written where the shader cannot address them. */
@@ -368,6 +380,10 @@ static int backend_programs(oit_capture *c, GLuint *progs[2], int n[2])
     if (c->backend == OIT_CAPTURE_FIRSTK) {
         progs[k] = c->firstk.prog;
         n[k++] = OIT_FIRSTK_PROGS;
+    }
+    if (c->backend == OIT_CAPTURE_COMPUTE) {
+        progs[k] = c->compute.prog;
+        n[k++] = OIT_COMPUTE_PROGS;
     }
     return k;
 }
@@ -687,16 +703,34 @@ static oit_status firstk_batch(oit_capture *c, const oit_gpu_mesh *const *meshes
     return s;
 }
 
+/* The compute capture's batch (capture_compute.h), at the epsilon this
+ * batch tests (gate_epsilon). */
+static oit_status compute_batch(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
+                                const int r[4], oit_error *err)
+{
+    const oit_compute_frame f = {.state = c->buf[BUF_STATE],
+                                 .width = c->view.width,
+                                 .height = c->view.height,
+                                 .bind = c->bind,
+                                 .epsilon = c->applied,
+                                 .timer = c->timer};
+    oit_status s = oit_compute_batch(&c->compute, &f, meshes, n, r, err);
+    note_peak(c);
+    bind_buffers(c);
+    return s;
+}
+
 oit_status oit_capture_batch(oit_capture *c, const oit_gpu_mesh *const *meshes,
                              int n, const int rect[4], oit_error *err)
 {
-    if (uses_counted(c)) {
+    if (uses_counted(c) || c->backend == OIT_CAPTURE_COMPUTE) {
         int r[4] = {0}, empty = 1;
         oit_status s = batch_start(c, meshes, rect, n, r, &empty, err);
         if (s != OIT_OK || empty)
             return s;
-        return c->backend == OIT_CAPTURE_FIRSTK ? firstk_batch(c, meshes, n, r, err)
-                                                 : counted_batch(c, meshes, n, r, err);
+        return c->backend == OIT_CAPTURE_FIRSTK    ? firstk_batch(c, meshes, n, r, err)
+               : c->backend == OIT_CAPTURE_COMPUTE ? compute_batch(c, meshes, n, r, err)
+                                                   : counted_batch(c, meshes, n, r, err);
     }
     if (c->tiled)
         return oit_capture_batch_layers(c, meshes, n, rect, c->K, err);
@@ -791,7 +825,7 @@ static oit_status tiled_batch(oit_capture *c, const oit_gpu_mesh *const *meshes,
 oit_status oit_capture_batch_layers(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
                                     const int rect[4], int layers, oit_error *err)
 {
-    if ((layers <= c->K && !c->tiled) || uses_counted(c))
+    if ((layers <= c->K && !c->tiled) || uses_counted(c) || c->backend == OIT_CAPTURE_COMPUTE)
         return oit_capture_batch(c, meshes, n, rect, err);
     if (layers > OIT_CAPTURE_MAX_LAYERS)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: a batch of %d layers, more than "
@@ -903,7 +937,7 @@ static void fill_stats(const oit_capture *c, const GLuint totals[4], oit_frame_s
                                                : c->backend);
     stats->capture_k = (uint32_t)c->K;
     /* how its K-slot fills were made (the counted capture has none) */
-    int none = c->backend == OIT_CAPTURE_COUNTED ||
+    int none = c->backend == OIT_CAPTURE_COUNTED || c->backend == OIT_CAPTURE_COMPUTE ||
                (c->backend == OIT_CAPTURE_FIRSTK && c->firstk_off);
     stats->capture_slots = none ? NULL : c->routed ? "stencil" : "array";
     stats->capture_slots_k = !none && c->routed ? (uint32_t)c->stencil.K : 0;

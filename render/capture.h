@@ -34,7 +34,11 @@ typedef enum oit_capture_kind {
      * pixel within the slot budget while every fragment is counted; only
      * the pixels that got more are drawn again, stored and sorted
      * (capture_firstk.h); a batch too wide for 2 slots a pixel is counted */
-    OIT_CAPTURE_FIRSTK
+    OIT_CAPTURE_FIRSTK,
+    /* no per-pixel limit, no raster pipeline: each batch binned into tiles,
+     * rasterized, ordered and composited in compute shaders
+     * (capture_compute.h); K is not used */
+    OIT_CAPTURE_COMPUTE
 } oit_capture_kind;
 
 typedef struct oit_capture oit_capture;
@@ -77,7 +81,8 @@ oit_status oit_capture_create_routed(oit_capture_kind kind, int K, int stencil_k
                                      unsigned faults, oit_capture **out, oit_error *err);
 /* The samples of c's routed fills; 0: none (array slots). */
 int oit_capture_routed_k(const oit_capture *c);
-/* "array", "stencil", "counted", "first-k" (NULL for AUTO or unknown). */
+/* "array", "stencil", "counted", "first-k", "compute" (NULL for AUTO or
+ * unknown). */
 const char *oit_capture_kind_name(oit_capture_kind kind);
 void oit_capture_destroy(oit_capture *c);
 oit_capture_kind oit_capture_backend(const oit_capture *c);

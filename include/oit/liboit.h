@@ -376,7 +376,7 @@ typedef struct oit_frame {
 } oit_frame;
 
 #define OIT_FRAME_CLIP_MAX 6
-#define OIT_DRAW_GPU_PHASES 6
+#define OIT_DRAW_GPU_PHASES 8
 
 typedef struct oit_draw_stats {
     double ms;               /* wall time of the call; the capture is finished
@@ -413,7 +413,8 @@ typedef struct oit_draw_stats {
      * of draw number gpu_frame (1 the renderer's first; usually an earlier
      * call than this one), 0 and gpu_ms -1 when none is in yet or the
      * driver has no timestamps. Phases, in this order: other, upload (ring
-     * to cache copies), pass 1, pass 2, resolve, read-back; they add up to
+     * to cache copies), pass 1, pass 2, resolve, read-back, binning and
+     * sweep (the compute capture, capture=compute); they add up to
      * gpu_ms. */
     uint64_t gpu_frame;
     double gpu_ms;

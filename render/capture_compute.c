@@ -1,0 +1,217 @@
+/* The compute capture (capture_compute.h). */
+#include "render/capture_compute.h"
+
+#include "render/compute_glsl.h"
+#include "render/gpu_timer.h"
+
+#include <string.h>
+
+static const char u_mode_decl[] = "layout(location = 3) uniform int u_mode;\n";
+
+static const oit_glsl_program programs[OIT_COMPUTE_PROGS] = {
+    [OIT_COMPUTE_SETUP] = {"compute capture set-up",
+                           .cs = {oit_glsl_vertex_lib, oit_compute_setup_cs}},
+    [OIT_COMPUTE_SCATTER] = {"compute capture scatter", .cs = {oit_compute_scatter_cs}},
+    [OIT_COMPUTE_LIVE] = {"compute capture live tiles",
+                          .cs = {u_mode_decl, oit_glsl_state_io, oit_compute_live_cs}},
+    [OIT_COMPUTE_TILES] = {"compute capture sweep",
+                           .cs = {oit_glsl_composite, oit_glsl_state_io, oit_compute_frag_inputs,
+                                  oit_glsl_fragment_lib, oit_compute_tiles_cs}},
+};
+
+oit_status oit_compute_init(oit_compute *k, oit_error *err)
+{
+    memset(k, 0, sizeof *k);
+    k->align = oit_gl_ssbo_align();
+    oit_status s = oit_glsl_programs_build(programs, OIT_COMPUTE_PROGS, k->prog, err);
+    if (s == OIT_OK)
+        s = oit_scan_init(&k->scan, err);
+    return s;
+}
+
+void oit_compute_release(oit_compute *k)
+{
+    oit_glsl_programs_delete(k->prog, OIT_COMPUTE_PROGS);
+    GLuint bufs[] = {k->recs, k->tiles, k->list, k->dead};
+    glDeleteBuffers(4, bufs);
+    oit_scan_release(&k->scan);
+    memset(k, 0, sizeof *k);
+}
+
+uint64_t oit_compute_bytes(const oit_compute *k)
+{
+    return k->recs_cap + k->tiles_cap + k->list_cap + k->dead_cap + oit_scan_bytes(&k->scan);
+}
+
+static void set_rect(const oit_compute *k, const oit_compute_frame *f, const int r[4])
+{
+    for (int i = 0; i < OIT_COMPUTE_PROGS; i++) {
+        glProgramUniform2i(k->prog[i], glGetUniformLocation(k->prog[i], "u_size"), f->width,
+                           f->height);
+        glProgramUniform4i(k->prog[i], glGetUniformLocation(k->prog[i], "u_rect"), r[0], r[1],
+                           r[2], r[3]);
+    }
+}
+
+/* Invocations i in [0, count) of a 64-wide program, in rows of 65535
+ * groups (the shaders rebuild i from x and y). */
+static void dispatch_linear(uint64_t count)
+{
+    GLuint groups = oit_gl_groups(count, 64);
+    glDispatchCompute(groups < 65535 ? groups : 65535, oit_gl_groups(groups, 65535), 1);
+}
+
+/* The prims of a sourced mesh's triangles [start, start + count) bound at
+ * OIT_BIND_PRIMS from an aligned offset; returns the word of the first
+ * within the binding. Other meshes bind their triangles there (never
+ * read: the binding is just not left absent). */
+static GLuint bind_prims(const oit_compute *k, const oit_gpu_mesh *m, size_t start, size_t count)
+{
+    uint64_t prims = 0;
+    GLuint buf = oit_gpu_mesh_buffer(m);
+    if (!oit_gpu_mesh_sourced(m, &prims)) {
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_PRIMS, buf,
+                          (GLintptr)(oit_gpu_mesh_offset(m) + start * sizeof(oit_triangle)),
+                          (GLsizeiptr)(count * sizeof(oit_triangle)));
+        return 0;
+    }
+    uint64_t first = prims + start * 4, base = first - first % k->align;
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_PRIMS, buf, (GLintptr)base,
+                      (GLsizeiptr)(first - base + count * 4));
+    return (GLuint)((first - base) / 4);
+}
+
+/* Set-up and tile counts of every triangle, records in batch order. */
+static void setup(oit_compute *k, const oit_gpu_mesh *const *meshes, int n)
+{
+    GLuint p = k->prog[OIT_COMPUTE_SETUP];
+    GLint l_first = glGetUniformLocation(p, "u_window_first"),
+          l_count = glGetUniformLocation(p, "u_window_count"),
+          l_base = glGetUniformLocation(p, "u_rec_base"),
+          l_prim = glGetUniformLocation(p, "u_first_prim"),
+          l_sourced = glGetUniformLocation(p, "u_sourced"),
+          l_word = glGetUniformLocation(p, "u_prim_word0");
+    glUseProgram(p);
+    size_t window = oit_gpu_triangle_window(), base = 0;
+    for (int i = 0; i < n; i++) {
+        const oit_gpu_mesh *m = meshes[i];
+        size_t count = oit_gpu_mesh_triangles(m);
+        uint64_t unused;
+        glProgramUniform1ui(p, l_prim, oit_gpu_mesh_first_prim(m));
+        glProgramUniform1ui(p, l_sourced, (GLuint)oit_gpu_mesh_sourced(m, &unused));
+        for (size_t start = 0; start < count; start += window) {
+            size_t c = count - start < window ? count - start : window;
+            glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_VERTS, oit_gpu_mesh_buffer(m),
+                              (GLintptr)(oit_gpu_mesh_offset(m) + start * sizeof(oit_triangle)),
+                              (GLsizeiptr)(c * sizeof(oit_triangle)));
+            glProgramUniform1ui(p, l_word, bind_prims(k, m, start, c));
+            glProgramUniform1ui(p, l_first, (GLuint)start);
+            glProgramUniform1ui(p, l_count, (GLuint)c);
+            glProgramUniform1ui(p, l_base, (GLuint)(base + start));
+            dispatch_linear(c);
+        }
+        base += count;
+    }
+}
+
+/* Dispatches prog over the tiles that meet the GL rect r. */
+static void dispatch_tiles(GLuint prog, const int r[4])
+{
+    int tx0 = r[0] / OIT_COMPUTE_TILE, ty0 = r[1] / OIT_COMPUTE_TILE;
+    int tx1 = (r[2] - 1) / OIT_COMPUTE_TILE, ty1 = (r[3] - 1) / OIT_COMPUTE_TILE;
+    glUseProgram(prog);
+    glProgramUniform2i(prog, glGetUniformLocation(prog, "u_tile0"), tx0, ty0);
+    glDispatchCompute((GLuint)(tx1 - tx0 + 1), (GLuint)(ty1 - ty0 + 1), 1);
+}
+
+static oit_status reserve(GLuint *buf, uint64_t *cap, uint64_t bytes, const char *what,
+                          oit_error *err)
+{
+    return oit_gl_buffer_reserve(buf, cap, bytes ? bytes : 4, what, err);
+}
+
+/* The tiles of the rect whose pixels are all below epsilon marked dead
+ * (1) in k->dead, the others 0. */
+static void mark_live(oit_compute *k, const oit_compute_frame *f, const int r[4])
+{
+    static const GLuint one = 1;
+    glClearNamedBufferData(k->dead, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &one);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    GLuint p = k->prog[OIT_COMPUTE_LIVE];
+    glProgramUniform1f(p, glGetUniformLocation(p, "u_epsilon"), f->epsilon);
+    dispatch_tiles(p, r);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+static oit_status too_large(const char *what, uint64_t bytes, uint64_t bind, oit_error *err)
+{
+    return oit_error_set(err, OIT_ERR_UNSUPPORTED,
+                         "compute capture: the batch's %s take %llu bytes, more than one "
+                         "storage binding spans (%llu); capture it in smaller packs",
+                         what, (unsigned long long)bytes, (unsigned long long)bind);
+}
+
+oit_status oit_compute_batch(oit_compute *k, const oit_compute_frame *f,
+                             const oit_gpu_mesh *const *meshes, int n, const int r[4],
+                             oit_error *err)
+{
+    uint64_t tris = 0;
+    for (int i = 0; i < n; i++)
+        tris += oit_gpu_mesh_triangles(meshes[i]);
+    if (tris == 0)
+        return OIT_OK;
+    uint64_t rec_bytes = tris * OIT_COMPUTE_RECORD_WORDS * 16;
+    if (rec_bytes > f->bind || tris > UINT32_MAX / OIT_COMPUTE_RECORD_WORDS)
+        return too_large("triangle records", rec_bytes, f->bind, err);
+    uint64_t tx = (uint64_t)(f->width + OIT_COMPUTE_TILE - 1) / OIT_COMPUTE_TILE;
+    uint64_t tiles = tx * ((uint64_t)(f->height + OIT_COMPUTE_TILE - 1) / OIT_COMPUTE_TILE);
+    oit_status s = reserve(&k->recs, &k->recs_cap, rec_bytes, "compute capture records", err);
+    if (s == OIT_OK)
+        s = reserve(&k->tiles, &k->tiles_cap, tiles * 4, "compute capture tile counts", err);
+    if (s == OIT_OK)
+        s = reserve(&k->dead, &k->dead_cap, tiles * 4, "compute capture tile flags", err);
+    if (s != OIT_OK)
+        return s;
+    oit_gpu_timer_mark(f->timer, OIT_GPU_BINNING);
+    set_rect(k, f, r);
+    int live = f->epsilon > 0.0f;
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_STATE, f->state);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_TOTALS, k->dead);
+    if (live)
+        mark_live(k, f, r);
+    for (int i = 0; i < OIT_COMPUTE_PROGS; i++)
+        glProgramUniform1i(k->prog[i], glGetUniformLocation(k->prog[i], "u_live"), live);
+    static const GLuint zero = 0;
+    glClearNamedBufferData(k->tiles, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_FRAGS, k->recs, 0,
+                      (GLsizeiptr)rec_bytes);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OFFSETS, k->tiles);
+    setup(k, meshes, n);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    oit_scan_result sum;
+    s = oit_scan_run(&k->scan, k->tiles, tiles, &sum, err);
+    if (s != OIT_OK)
+        return s;
+    if (sum.total * 4 > f->bind || sum.total > UINT32_MAX)
+        return too_large("tile lists", sum.total * 4, f->bind, err);
+    s = reserve(&k->list, &k->list_cap, sum.total * 4, "compute capture tile lists", err);
+    if (s != OIT_OK)
+        return s;
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OFFSETS, k->tiles);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_TOTALS, k->dead);
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_SUMS, k->list, 0,
+                      (GLsizeiptr)(sum.total ? sum.total * 4 : 4));
+    GLuint sc = k->prog[OIT_COMPUTE_SCATTER];
+    glUseProgram(sc);
+    glProgramUniform1ui(sc, glGetUniformLocation(sc, "u_count"), (GLuint)tris);
+    dispatch_linear(tris);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    oit_gpu_timer_mark(f->timer, OIT_GPU_SWEEP);
+    GLuint tp = k->prog[OIT_COMPUTE_TILES];
+    glProgramUniform1f(tp, glGetUniformLocation(tp, "u_epsilon"), f->epsilon);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_STATE, f->state);
+    dispatch_tiles(tp, r);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    return oit_gl_check("compute capture: batch", err);
+}
