@@ -32,15 +32,16 @@ oit_status oit_compute_init(oit_compute *k, oit_error *err)
 void oit_compute_release(oit_compute *k)
 {
     oit_glsl_programs_delete(k->prog, OIT_COMPUTE_PROGS);
-    GLuint bufs[] = {k->recs, k->tiles, k->list, k->dead};
-    glDeleteBuffers(4, bufs);
+    GLuint bufs[] = {k->recs, k->tiles, k->list, k->dead, k->resume, k->pending};
+    glDeleteBuffers(6, bufs);
     oit_scan_release(&k->scan);
     memset(k, 0, sizeof *k);
 }
 
 uint64_t oit_compute_bytes(const oit_compute *k)
 {
-    return k->recs_cap + k->tiles_cap + k->list_cap + k->dead_cap + oit_scan_bytes(&k->scan);
+    return k->recs_cap + k->tiles_cap + k->list_cap + k->dead_cap + k->resume_cap +
+           k->pending_cap + oit_scan_bytes(&k->scan);
 }
 
 static void set_rect(const oit_compute *k, const oit_compute_frame *f, const int r[4])
@@ -151,6 +152,45 @@ static oit_status too_large(const char *what, uint64_t bytes, uint64_t bind, oit
                          what, (unsigned long long)bytes, (unsigned long long)bind);
 }
 
+/* The sweep over the rect, dispatched again for the pixels a driver's loop
+ * limit cut short (compute_glsl.c) until none is pending. */
+static oit_status sweep(oit_compute *k, const oit_compute_frame *f, const int r[4],
+                        uint64_t entries, oit_error *err)
+{
+    uint64_t pixels = (uint64_t)f->width * f->height;
+    oit_status s = reserve(&k->resume, &k->resume_cap, pixels * 16, "compute capture resume", err);
+    if (s == OIT_OK)
+        s = reserve(&k->pending, &k->pending_cap, 8, "compute capture pending", err);
+    if (s != OIT_OK)
+        return s;
+    if (pixels * 16 > f->bind)
+        return too_large("resume cursors", pixels * 16, f->bind, err);
+    GLuint tp = k->prog[OIT_COMPUTE_TILES];
+    glProgramUniform1f(tp, glGetUniformLocation(tp, "u_epsilon"), f->epsilon);
+    glProgramUniform1i(tp, glGetUniformLocation(tp, "u_probe"), 2);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_STATE, f->state);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, k->resume);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_TOTALS, k->pending);
+    static const GLuint zero = 0;
+    for (k->rounds = 1;; k->rounds++) {
+        glClearNamedBufferData(k->pending, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        glProgramUniform1i(tp, glGetUniformLocation(tp, "u_resume"), k->rounds > 1);
+        dispatch_tiles(tp, r);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        GLuint pend[2] = {0, 0};
+        glGetNamedBufferSubData(k->pending, 0, sizeof pend, pend);
+        if (pend[0] == 0)
+            return OIT_OK;
+        if (pend[1] == 0)
+            return oit_error_set(err, OIT_ERR_UNSUPPORTED,
+                                 "compute capture: this driver cuts shader loops short and %u "
+                                 "pixels could not finish one sweep of their tile's triangles "
+                                 "(%llu tile entries in the batch); capture it in smaller packs",
+                                 pend[0], (unsigned long long)entries);
+    }
+}
+
 oit_status oit_compute_batch(oit_compute *k, const oit_compute_frame *f,
                              const oit_gpu_mesh *const *meshes, int n, const int r[4],
                              oit_error *err)
@@ -208,10 +248,8 @@ oit_status oit_compute_batch(oit_compute *k, const oit_compute_frame *f,
     dispatch_linear(tris);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     oit_gpu_timer_mark(f->timer, OIT_GPU_SWEEP);
-    GLuint tp = k->prog[OIT_COMPUTE_TILES];
-    glProgramUniform1f(tp, glGetUniformLocation(tp, "u_epsilon"), f->epsilon);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_STATE, f->state);
-    dispatch_tiles(tp, r);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    s = sweep(k, f, r, sum.total, err);
+    if (s != OIT_OK)
+        return s;
     return oit_gl_check("compute capture: batch", err);
 }

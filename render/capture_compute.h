@@ -40,6 +40,12 @@
  * the spec leaves to the implementation anyway. Pixels whose centre lies
  * within a rounding of an edge may differ from a raster method's.
  *
+ * A driver that cuts long shader loops short (llvmpipe: 65535 iterations
+ * an invocation, all loops together) gets the pixels it cut resumed in
+ * further dispatches from their last composited fragment (compute_glsl.c
+ * says how they notice); a tile list too long for even one sweep is
+ * refused with OIT_ERR_UNSUPPORTED rather than rendered short.
+ *
  * Early termination: with epsilon on (capture.h), a pre-pass marks the
  * tiles of the rect whose every pixel is below epsilon; binning skips them,
  * so a saturated tile costs its triangles nothing past set-up. A pixel
@@ -58,8 +64,9 @@ enum { OIT_COMPUTE_SETUP, OIT_COMPUTE_SCATTER, OIT_COMPUTE_LIVE, OIT_COMPUTE_TIL
 
 typedef struct oit_compute {
     GLuint prog[OIT_COMPUTE_PROGS]; /* capture.c sets the view and opaque uniforms */
-    GLuint recs, tiles, list, dead;
-    uint64_t recs_cap, tiles_cap, list_cap, dead_cap;
+    GLuint recs, tiles, list, dead, resume, pending;
+    uint64_t recs_cap, tiles_cap, list_cap, dead_cap, resume_cap, pending_cap;
+    uint32_t rounds; /* sweep dispatches of the last batch (1 unless loops were cut) */
     oit_scan scan;
     uint64_t align; /* GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT */
 } oit_compute;

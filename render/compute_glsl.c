@@ -180,7 +180,19 @@ const char oit_compute_frag_inputs[] =
 /* One invocation a pixel, a work group a tile. The sweep: each pass over
  * the tile's triangles keeps, in registers, the CS_N least fragments
  * (key, prim, record) after the last one composited, then composites
- * them; it passes again while any fragment was left out. */
+ * them; it passes again while any fragment was left out.
+ *
+ * Loops cut short. GL runs a loop to its end, but llvmpipe stops every
+ * loop of an invocation once all of them together have iterated 65535
+ * times (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS), silently: a deep pixel
+ * lost fragments past ~270 layers. So a sweep counts only when a probe
+ * loop of u_probe iterations afterwards still runs to its end (the limit
+ * was not reached inside the sweep, its insertions and its compositing,
+ * which goes into a copy of the state); otherwise the pixel records its
+ * cursor in resume[] and counts itself pending, and the caller
+ * dispatches again (u_resume), each invocation with a fresh limit, until
+ * no pixel is pending. On a driver without such a limit nothing is ever
+ * pending. */
 const char oit_compute_tiles_cs[] =
     CS_COMMON
     "#define CS_N " OIT_GLSL_STR(OIT_COMPUTE_SWEEP) "u\n"
@@ -188,8 +200,12 @@ const char oit_compute_tiles_cs[] =
     "layout(std430, binding = OIT_BIND_FRAGS) readonly buffer Recs { uvec4 recs[]; };\n"
     "layout(std430, binding = OIT_BIND_OFFSETS) readonly buffer TileEnds { uint tile_end[]; };\n"
     "layout(std430, binding = OIT_BIND_SUMS) readonly buffer TileList { uint tile_list[]; };\n"
+    "layout(std430, binding = OIT_BIND_COUNTS) buffer Resume { uvec4 resume[]; };\n"
+    "layout(std430, binding = OIT_BIND_TOTALS) buffer Pending { uint g_pending; uint g_progress; };\n"
     "uniform ivec2 u_tile0;\n"
     "uniform float u_epsilon;\n"
+    "uniform int u_resume;\n"
+    "uniform int u_probe;\n"
     /* The fill rule on an edge's line: a pixel centre exactly on it
      * belongs to the side its coefficients point to (top-left in spirit);
      * the neighbour across a shared edge holds the exact negation, so
@@ -238,6 +254,37 @@ const char oit_compute_tiles_cs[] =
     "    return a.x < b.x || (a.x == b.x && (a.y < b.y || (a.y == b.y && a.z < b.z)));\n"
     "}\n"
     "uvec3 cs_order(uvec4 f, uint r) { return uvec3(f.x, f.y & 0x7fffffffu, r); }\n"
+    /* The sweep's registers, as globals so that the unrolled steps share
+     * them without copies. */
+    "uvec4 cs_f[CS_N]; uint cs_r[CS_N]; uint cs_n; bool cs_more;\n"
+    "uvec3 cs_cursor; bool cs_first; vec2 cs_P;\n"
+    "void cs_consider(uint r) {\n"
+    "    if (!cs_fragment_at(r, cs_P)) return;\n"
+    "    uvec3 o = uvec3(oit_fragment_key(), v_first_prim & 0x7fffffffu, r);\n"
+    "    if (!cs_first && !cs_less(cs_cursor, o)) return;\n"
+    "    if (cs_n == CS_N) {\n"
+    "        cs_more = true;\n"
+    "        if (!cs_less(o, cs_order(cs_f[CS_N - 1u], cs_r[CS_N - 1u]))) return;\n"
+    "        cs_n--;\n"
+    "    }\n"
+    "    uvec4 x = oit_fragment();\n"
+    /* Insertion, as a while loop with a break (frag_glsl.c,
+     * OIT_SORTED_INSERT: llvmpipe miscompiles the for-loop form). */
+    "    uint j = cs_n;\n"
+    "    while (j > 0u) {\n"
+    "        if (!cs_less(o, cs_order(cs_f[j - 1u], cs_r[j - 1u]))) break;\n"
+    "        cs_f[j] = cs_f[j - 1u]; cs_r[j] = cs_r[j - 1u];\n"
+    "        j--;\n"
+    "    }\n"
+    "    cs_f[j] = x; cs_r[j] = r;\n"
+    "    cs_n++;\n"
+    "}\n"
+    /* True when the driver cut loops short before this (see above). */
+    "bool cs_cut() {\n"
+    "    int i = 0;\n"
+    "    while (i < u_probe) i++;\n"
+    "    return i < u_probe;\n"
+    "}\n"
     "void main() {\n"
     "    ivec2 tile = u_tile0 + ivec2(gl_WorkGroupID.xy);\n"
     "    ivec2 px = tile * CS_TILE + ivec2(gl_LocalInvocationID.xy);\n"
@@ -246,49 +293,50 @@ const char oit_compute_tiles_cs[] =
     "    uint lo = t == 0u ? 0u : tile_end[t - 1u], hi = tile_end[t];\n"
     "    if (lo >= hi) return;\n"
     "    uint p = uint(px.y) * uint(u_size.x) + uint(px.x);\n"
+    "    cs_cursor = uvec3(0u);\n"
+    "    cs_first = true;\n"
+    "    if (u_resume != 0) {\n"
+    "        uvec4 q = resume[p];\n"
+    "        if (q.w == 0u) return;\n"
+    "        cs_cursor = q.xyz;\n"
+    "        cs_first = q.w == 1u;\n"
     /* Early termination per pixel too, as the other captures drop a
-     * saturated pixel's fragments. */
-    "    if (u_epsilon > 0.0) {\n"
+     * saturated pixel's fragments; at the batch's start only, as they do. */
+    "    } else if (u_epsilon > 0.0) {\n"
     "        vec3 T = oit_state_T(p);\n"
-    "        if (max(T.r, max(T.g, T.b)) < u_epsilon) return;\n"
+    "        if (max(T.r, max(T.g, T.b)) < u_epsilon) {\n"
+    "            resume[p] = uvec4(0u);\n"
+    "            return;\n"
+    "        }\n"
     "    }\n"
     "    precise vec2 P = (vec2(px) + 0.5) * (2.0 / vec2(u_size)) - 1.0;\n"
+    "    cs_P = P;\n"
     "    cs_frag_coord = vec4(vec2(px) + 0.5, 0.0, 1.0);\n"
     "    oit_state s = oit_state_load(p);\n"
-    "    uint n0 = s.nfrag;\n"
-    "    uvec3 cursor = uvec3(0u);\n"
-    "    bool first = true;\n"
+    "    bool done = false, progressed = false;\n"
     "    for (;;) {\n"
-    "        uvec4 f[CS_N]; uint fr[CS_N];\n"
-    "        uint n = 0u;\n"
-    "        bool more = false;\n"
-    "        for (uint k = lo; k < hi; k++) {\n"
-    "            uint r = tile_list[k];\n"
-    "            if (!cs_fragment_at(r, P)) continue;\n"
-    "            uvec3 o = uvec3(oit_fragment_key(), v_first_prim & 0x7fffffffu, r);\n"
-    "            if (!first && !cs_less(cursor, o)) continue;\n"
-    "            if (n == CS_N) {\n"
-    "                more = true;\n"
-    "                if (!cs_less(o, cs_order(f[n - 1u], fr[n - 1u]))) continue;\n"
-    "                n--;\n"
-    "            }\n"
-    "            uvec4 x = oit_fragment();\n"
-    /* Insertion, as a while loop with a break (frag_glsl.c,
-     * OIT_SORTED_INSERT: llvmpipe miscompiles the for-loop form). */
-    "            uint j = n;\n"
-    "            while (j > 0u) {\n"
-    "                if (!cs_less(o, cs_order(f[j - 1u], fr[j - 1u]))) break;\n"
-    "                f[j] = f[j - 1u]; fr[j] = fr[j - 1u];\n"
-    "                j--;\n"
-    "            }\n"
-    "            f[j] = x; fr[j] = r;\n"
-    "            n++;\n"
+    "        cs_n = 0u;\n"
+    "        cs_more = false;\n"
+    "        uint k = lo;\n"
+    "        for (; k + 4u <= hi; k += 4u) {\n"
+    "            cs_consider(tile_list[k]); cs_consider(tile_list[k + 1u]);\n"
+    "            cs_consider(tile_list[k + 2u]); cs_consider(tile_list[k + 3u]);\n"
     "        }\n"
-    "        for (uint i = 0u; i < n; i++) oit_composite(s, f[i]);\n"
-    "        s.nfrag += n;\n"
-    "        if (!more) break;\n"
-    "        cursor = cs_order(f[n - 1u], fr[n - 1u]);\n"
-    "        first = false;\n"
+    "        for (; k < hi; k++) cs_consider(tile_list[k]);\n"
+    "        oit_state s2 = s;\n"
+    "        for (uint i = 0u; i < cs_n; i++) oit_composite(s2, cs_f[i]);\n"
+    "        if (cs_cut()) break;\n"
+    "        s = s2;\n"
+    "        s.nfrag += cs_n;\n"
+    "        progressed = true;\n"
+    "        if (!cs_more) { done = true; break; }\n"
+    "        cs_cursor = cs_order(cs_f[CS_N - 1u], cs_r[CS_N - 1u]);\n"
+    "        cs_first = false;\n"
     "    }\n"
-    "    if (s.nfrag != n0) oit_state_store(p, s);\n"
+    "    if (progressed) oit_state_store(p, s);\n"
+    "    resume[p] = uvec4(cs_cursor, done ? 0u : cs_first ? 1u : 2u);\n"
+    "    if (!done) {\n"
+    "        atomicAdd(g_pending, 1u);\n"
+    "        if (progressed) atomicAdd(g_progress, 1u);\n"
+    "    }\n"
     "}\n";
