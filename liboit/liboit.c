@@ -556,7 +556,8 @@ static oit_status bind_scene(oit_renderer *r, oit_scene *scene, oit_error *err)
     /* the streamer checks the value (capture_choice.h) */
     _Static_assert((int)OIT_RENDER_CAPTURE_ARRAY == (int)OIT_CAPTURE_ARRAY &&
                        (int)OIT_RENDER_CAPTURE_STENCIL == (int)OIT_CAPTURE_STENCIL &&
-                       (int)OIT_RENDER_CAPTURE_AUTO == (int)OIT_CAPTURE_AUTO,
+                       (int)OIT_RENDER_CAPTURE_AUTO == (int)OIT_CAPTURE_AUTO &&
+                       (int)OIT_RENDER_CAPTURE_COMPUTE == (int)OIT_CAPTURE_COMPUTE,
                    "liboit's capture values are the streamer's");
     sd.capture = (oit_capture_kind)r->desc.capture;
     sd.pack = r->desc.pack == OIT_RENDER_PACK_FIRSTK    ? OIT_PACK_FIRSTK

@@ -447,6 +447,12 @@ static oit_status try_routed(void *ctx, int stencil_k, oit_error *err)
 static oit_status create_capture(oit_streamer *s, const oit_streamer_desc *desc,
                                  oit_pack_mode mode, oit_error *err)
 {
+    /* No K-slot fill and no per-pixel limit: exact with every pack mode. */
+    if (desc->capture == OIT_CAPTURE_COMPUTE) {
+        s->choice.asked = desc->capture;
+        return oit_capture_create_faulty(OIT_CAPTURE_COMPUTE, desc->K, desc->capture_faults,
+                                         &s->capture, err);
+    }
     if (mode == OIT_PACK_COUNTED) {
         s->choice.asked = desc->capture;
         if (desc->capture != OIT_CAPTURE_AUTO && desc->capture != OIT_CAPTURE_ARRAY)
@@ -522,7 +528,12 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
     s->pf = pf;
     oit_streamer_desc eff = *desc;
     uint64_t all_bytes = 0;
-    oit_pack_mode mode = desc->pack != OIT_PACK_AUTO ? desc->pack : OIT_PACK_FIRSTK;
+    /* The compute capture has no per-pixel limit and no second pass: the
+     * counted rule's packs (cut only by the upload budget) are the largest
+     * exact ones, and fewer packs are fewer binnings and read-backs. */
+    oit_pack_mode mode = desc->pack != OIT_PACK_AUTO            ? desc->pack
+                         : desc->capture == OIT_CAPTURE_COMPUTE ? OIT_PACK_COUNTED
+                                                                : OIT_PACK_FIRSTK;
     s->adaptive = desc->pack == OIT_PACK_AUTO && mode == OIT_PACK_FIRSTK;
     s->first_k = 1;
     oit_status st = reader_threads(pf, desc->reader_threads, &s->threads, err);

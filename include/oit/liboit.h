@@ -234,7 +234,10 @@ typedef enum oit_render_pack {
 typedef enum oit_render_capture {
     OIT_RENDER_CAPTURE_AUTO = 0,
     OIT_RENDER_CAPTURE_ARRAY = 1,
-    OIT_RENDER_CAPTURE_STENCIL = 2
+    OIT_RENDER_CAPTURE_STENCIL = 2,
+    /* every pack captured in compute shaders, no raster pipeline, no
+     * per-pixel limit (oitstream --capture compute) */
+    OIT_RENDER_CAPTURE_COMPUTE = 5
 } oit_render_capture;
 
 /* For part files. An in-core scene is drawn with DFB, which stores every
@@ -275,7 +278,9 @@ typedef struct oit_renderer_desc {
      * packs (AUTO too). OIT_RENDER_CAPTURE_AUTO (0): the stencil-routed
      * A-buffer where its start-up self-test passes on this GL driver, else
      * array slots; STENCIL: that or OIT_ERR_UNSUPPORTED at the first draw,
-     * with the self-test's reason; ARRAY: slots through an atomic counter.
+     * with the self-test's reason; ARRAY: slots through an atomic counter;
+     * COMPUTE: no K-slot fill at all, every pack binned, rasterized, sorted
+     * and composited in compute shaders (AUTO packs then are COUNTED's).
      * The image is the same; oit_draw_stats says what ran and why. */
     oit_render_capture capture;
     /* GPU bytes for the upload ring, the cache and the capture together
