@@ -5,6 +5,8 @@
 
 #include "render/gl_util.h"
 
+_Static_assert(OIT_COMPUTE_SWEEP == 16, "cs_consider shifts 15 slots, written out");
+
 /* What every stage shares: the tile size and the record layout (uvec4s a
  * triangle, indexed by its place in the batch):
  *   r0 = e0.xyz, prim | opaque << 31   e_i: edge i's homogeneous line,
@@ -250,6 +252,14 @@ const char oit_compute_tiles_cs[] =
     "    v_rgba = mu.x * c0 + mu.y * c1 + mu.z * c2;\n"
     "    return true;\n"
     "}\n"
+    /* The edge tests of cs_fragment_at alone. */
+    "bool cs_covers(uint r, vec2 P) {\n"
+    "    uint b = r * CS_REC;\n"
+    "    float v;\n"
+    "    return cs_inside(uintBitsToFloat(recs[b].xyz), P, v) &&\n"
+    "           cs_inside(uintBitsToFloat(recs[b + 1u].xyz), P, v) &&\n"
+    "           cs_inside(uintBitsToFloat(recs[b + 2u].xyz), P, v);\n"
+    "}\n"
     "bool cs_less(uvec3 a, uvec3 b) {\n"
     "    return a.x < b.x || (a.x == b.x && (a.y < b.y || (a.y == b.y && a.z < b.z)));\n"
     "}\n"
@@ -268,15 +278,18 @@ const char oit_compute_tiles_cs[] =
     "        cs_n--;\n"
     "    }\n"
     "    uvec4 x = oit_fragment();\n"
-    /* Insertion, as a while loop with a break (frag_glsl.c,
-     * OIT_SORTED_INSERT: llvmpipe miscompiles the for-loop form). */
-    "    uint j = cs_n;\n"
-    "    while (j > 0u) {\n"
-    "        if (!cs_less(o, cs_order(cs_f[j - 1u], cs_r[j - 1u]))) break;\n"
-    "        cs_f[j] = cs_f[j - 1u]; cs_r[j] = cs_r[j - 1u];\n"
-    "        j--;\n"
-    "    }\n"
-    "    cs_f[j] = x; cs_r[j] = r;\n"
+    /* Insertion written out, no loop: llvmpipe counts a loop entered by a
+     * masked lane against its limit at every triangle of the list, and
+     * constant indices keep the arrays in registers on a GPU. Slot j
+     * shifts up while x orders before it; the array is sorted, so the
+     * shifts stop at x's place. */
+    "    uint pos = cs_n;\n"
+    "#define CS_SHIFT(j) if (j <= cs_n && cs_less(o, cs_order(cs_f[j - 1u], cs_r[j - 1u]))) "
+    "{ cs_f[j] = cs_f[j - 1u]; cs_r[j] = cs_r[j - 1u]; pos = j - 1u; }\n"
+    "    CS_SHIFT(15u) CS_SHIFT(14u) CS_SHIFT(13u) CS_SHIFT(12u) CS_SHIFT(11u)\n"
+    "    CS_SHIFT(10u) CS_SHIFT(9u) CS_SHIFT(8u) CS_SHIFT(7u) CS_SHIFT(6u) CS_SHIFT(5u)\n"
+    "    CS_SHIFT(4u) CS_SHIFT(3u) CS_SHIFT(2u) CS_SHIFT(1u)\n"
+    "    cs_f[pos] = x; cs_r[pos] = r;\n"
     "    cs_n++;\n"
     "}\n"
     /* True when the driver cut loops short before this (see above). */
@@ -318,11 +331,21 @@ const char oit_compute_tiles_cs[] =
     "        cs_n = 0u;\n"
     "        cs_more = false;\n"
     "        uint k = lo;\n"
-    "        for (; k + 4u <= hi; k += 4u) {\n"
-    "            cs_consider(tile_list[k]); cs_consider(tile_list[k + 1u]);\n"
-    "            cs_consider(tile_list[k + 2u]); cs_consider(tile_list[k + 3u]);\n"
+    /* Eight triangles at a time: their coverage first (cheap, written
+     * out), then the fragments of those that cover the pixel, so that the
+     * shading runs as often as the most covered lane needs, not once a
+     * triangle (SIMD lanes of a CPU, threads of a warp). */
+    "        for (; k < hi; k += 8u) {\n"
+    "            uint bits = 0u;\n"
+    "#define CS_COVER(u) if (k + u < hi && cs_covers(tile_list[k + u], P)) bits |= 1u << u;\n"
+    "            CS_COVER(0u) CS_COVER(1u) CS_COVER(2u) CS_COVER(3u)\n"
+    "            CS_COVER(4u) CS_COVER(5u) CS_COVER(6u) CS_COVER(7u)\n"
+    "            while (bits != 0u) {\n"
+    "                uint u = uint(findLSB(bits));\n"
+    "                bits &= bits - 1u;\n"
+    "                cs_consider(tile_list[k + u]);\n"
+    "            }\n"
     "        }\n"
-    "        for (; k < hi; k++) cs_consider(tile_list[k]);\n"
     "        oit_state s2 = s;\n"
     "        for (uint i = 0u; i < cs_n; i++) oit_composite(s2, cs_f[i]);\n"
     "        if (cs_cut()) break;\n"
