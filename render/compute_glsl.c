@@ -40,9 +40,12 @@ const char oit_compute_setup_cs[] =
     "uniform int u_live;\n"
     /* Written out and precise, so that the edge a triangle shares with its
      * neighbour is the exact negation of the neighbour's (each component
-     * is the same two products subtracted the other way round). */
-    "vec3 cs_cross(vec3 a, vec3 b) {\n"
-    "    precise vec3 c;\n"
+     * is the same two products subtracted the other way round); in double
+     * from the float clip coordinates, where each product is exact, so
+     * that the edges and the sign of det (the orientation) stay right for
+     * slivers and tiny triangles. */
+    "dvec3 cs_cross(dvec3 a, dvec3 b) {\n"
+    "    precise dvec3 c;\n"
     "    c.x = a.y * b.z - a.z * b.y;\n"
     "    c.y = a.z * b.x - a.x * b.z;\n"
     "    c.z = a.x * b.y - a.y * b.x;\n"
@@ -102,13 +105,13 @@ const char oit_compute_setup_cs[] =
      * NDC is det * the barycentric lambda_i of the pixel's ray, so the
      * ray meets the triangle in front of the eye exactly where every e_i
      * times sign(det) is >= 0; no clipping against the eye plane. */
-    "    vec3 h0 = cl[0].xyw, h1 = cl[1].xyw, h2 = cl[2].xyw;\n"
-    "    vec3 e0 = cs_cross(h1, h2), e1 = cs_cross(h2, h0), e2 = cs_cross(h0, h1);\n"
-    "    precise float det = h0.x * e0.x + h0.y * e0.y + h0.z * e0.z;\n"
+    "    dvec3 h0 = dvec3(cl[0].xyw), h1 = dvec3(cl[1].xyw), h2 = dvec3(cl[2].xyw);\n"
+    "    dvec3 d0 = cs_cross(h1, h2), d1 = cs_cross(h2, h0), d2 = cs_cross(h0, h1);\n"
+    "    precise double det = h0.x * d0.x + h0.y * d0.y + h0.z * d0.z;\n"
     "    ivec4 box = ivec4(0);\n"
-    "    if (det != 0.0 && !isnan(det) && !isinf(det) && !cs_culled(cl)) box = cs_box(cl);\n"
-    "    float sg = det > 0.0 ? 1.0 : -1.0;\n"
-    "    e0 *= sg; e1 *= sg; e2 *= sg;\n"
+    "    if (det != 0.0lf && !cs_culled(cl)) box = cs_box(cl);\n"
+    "    double sg = det > 0.0lf ? 1.0lf : -1.0lf;\n"
+    "    vec3 e0 = vec3(d0 * sg), e1 = vec3(d1 * sg), e2 = vec3(d2 * sg);\n"
     "    uint b = (u_rec_base + i) * CS_REC;\n"
     "    recs[b + 0u] = uvec4(floatBitsToUint(e0), prim | (opaque ? 0x80000000u : 0u));\n"
     "    recs[b + 1u] = uvec4(floatBitsToUint(e1), va[0].w);\n"
