@@ -191,6 +191,16 @@ static oit_status sweep(oit_compute *k, const oit_compute_frame *f, const int r[
     }
 }
 
+/* A batch's meshes are in visibility order, so its halves, captured one
+ * after the other, give the same image. */
+static oit_status halves(oit_compute *k, const oit_compute_frame *f,
+                         const oit_gpu_mesh *const *meshes, int n, const int r[4],
+                         oit_error *err)
+{
+    oit_status s = oit_compute_batch(k, f, meshes, n / 2, r, err);
+    return s == OIT_OK ? oit_compute_batch(k, f, meshes + n / 2, n - n / 2, r, err) : s;
+}
+
 oit_status oit_compute_batch(oit_compute *k, const oit_compute_frame *f,
                              const oit_gpu_mesh *const *meshes, int n, const int r[4],
                              oit_error *err)
@@ -202,7 +212,8 @@ oit_status oit_compute_batch(oit_compute *k, const oit_compute_frame *f,
         return OIT_OK;
     uint64_t rec_bytes = tris * OIT_COMPUTE_RECORD_WORDS * 16;
     if (rec_bytes > f->bind || tris > UINT32_MAX / OIT_COMPUTE_RECORD_WORDS)
-        return too_large("triangle records", rec_bytes, f->bind, err);
+        return n > 1 ? halves(k, f, meshes, n, r, err)
+                     : too_large("triangle records", rec_bytes, f->bind, err);
     uint64_t tx = (uint64_t)(f->width + OIT_COMPUTE_TILE - 1) / OIT_COMPUTE_TILE;
     uint64_t tiles = tx * ((uint64_t)(f->height + OIT_COMPUTE_TILE - 1) / OIT_COMPUTE_TILE);
     oit_status s = reserve(&k->recs, &k->recs_cap, rec_bytes, "compute capture records", err);
@@ -234,7 +245,8 @@ oit_status oit_compute_batch(oit_compute *k, const oit_compute_frame *f,
     if (s != OIT_OK)
         return s;
     if (sum.total * 4 > f->bind || sum.total > UINT32_MAX)
-        return too_large("tile lists", sum.total * 4, f->bind, err);
+        return n > 1 ? halves(k, f, meshes, n, r, err)
+                     : too_large("tile lists", sum.total * 4, f->bind, err);
     s = reserve(&k->list, &k->list_cap, sum.total * 4, "compute capture tile lists", err);
     if (s != OIT_OK)
         return s;

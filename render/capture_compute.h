@@ -84,9 +84,10 @@ typedef struct oit_compute_frame {
 } oit_compute_frame;
 
 /* Captures meshes[0..n) over the GL rect r (bottom rows first, exclusive
- * ends) and composites them behind the state. OIT_ERR_UNSUPPORTED, with
- * the numbers, where the batch's records or tile lists exceed one storage
- * binding (a pack that large is to be split by its caller). */
+ * ends) and composites them behind the state. A batch whose records or
+ * tile lists exceed one storage binding (f->bind) is captured in halves of
+ * its meshes, in order, down to one mesh; OIT_ERR_UNSUPPORTED, with the
+ * numbers, where one mesh alone exceeds it. */
 oit_status oit_compute_batch(oit_compute *k, const oit_compute_frame *f,
                              const oit_gpu_mesh *const *meshes, int n, const int r[4],
                              oit_error *err);

@@ -7,7 +7,8 @@
  * loop iterations llvmpipe runs an invocation (every fragment composited,
  * in order: the count equals DFB's and the image the hand result); early termination
  * (the exact number of fragments a saturated pixel drops, and the image
- * within epsilon). Every buffer starts poisoned (OIT_GL_POISON). */
+ * within epsilon); a batch too large for one storage binding, captured in
+ * halves. Every buffer starts poisoned (OIT_GL_POISON). */
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -246,6 +247,51 @@ static void test_deep(oit_capture *c, int N, int w, int h)
     oit_image_free(&b);
 }
 
+/* One batch of 300 layers in 10 meshes, front to back, with one storage
+ * binding capped at 32 KiB (oit_capture_set_store_limit): the 96 000
+ * bytes of records go in halves of the meshes, down to pieces that fit,
+ * and the image, fragment total and depth stay DFB's. */
+static void test_split(oit_capture *c)
+{
+    enum { N = 300, M = 10 };
+    quad_spec *q = malloc(sizeof *q * N);
+    oit_triangle *tris = q ? scene_tris((stack_scene(q, N, 0.01f, 7), q), N) : NULL;
+    oit_view v;
+    scene_view(&v, 16, 16, OIT_SHADING_TRANSPARENT);
+    oit_error err = {0};
+    oit_gpu_mesh *m[M] = {0};
+    oit_status s = tris ? OIT_OK : OIT_ERR_NOMEM;
+    for (int i = 0; s == OIT_OK && i < M; i++)
+        s = oit_gpu_mesh_create(tris + 2 * (N / M) * i, 2 * (N / M), 2u * (uint32_t)((N / M) * i),
+                                &m[i], &err);
+    oit_image a = {0}, b = {0};
+    oit_frame_stats sa, sb;
+    oit_capture_set_store_limit(c, 32 << 10);
+    if (s == OIT_OK)
+        s = oit_capture_begin(c, &v, &err);
+    if (s == OIT_OK)
+        s = oit_capture_batch(c, (const oit_gpu_mesh *const *)m, M, NULL, &err);
+    if (s == OIT_OK)
+        s = oit_capture_end(c, &a, &sa, &err);
+    oit_capture_set_store_limit(c, 0);
+    CHECK(s == OIT_OK, "split: %s", err.message);
+    if (s == OIT_OK && dfb_scene(&v, q, N, &b, &sb)) {
+        double d = image_diff(&a, &b);
+        printf("split under a 32 KiB binding: vs DFB %.6f, fragments %llu/%llu, layers %u/%u\n",
+               d, (unsigned long long)sa.fragments, (unsigned long long)sb.fragments,
+               sa.max_layers, sb.max_layers);
+        CHECK(d <= 1.0 / 255 && sa.fragments == sb.fragments && sa.max_layers == sb.max_layers,
+              "split: %.6f from DFB, %llu fragments (DFB %llu)", d,
+              (unsigned long long)sa.fragments, (unsigned long long)sb.fragments);
+    }
+    for (int i = 0; i < M; i++)
+        oit_gpu_mesh_destroy(m[i]);
+    free(tris);
+    free(q);
+    oit_image_free(&a);
+    oit_image_free(&b);
+}
+
 /* Epsilon: a front batch of one near-opaque quad over the middle of
  * the frame (T = 5/255 < E behind it), then 8 quads covering everything.
  * The second batch must drop exactly its fragments on the saturated
@@ -314,6 +360,7 @@ int main(void)
     test_deep(c, 300, 24, 20);
     test_deep(c, 1200, 8, 8);
     test_epsilon(c);
+    test_split(c);
     oit_capture_destroy(c);
     return test_gl_verdict(gl);
 }
