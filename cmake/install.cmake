@@ -22,6 +22,9 @@ install(FILES
         ${CMAKE_SOURCE_DIR}/include/oit/liboit.h
         ${CMAKE_SOURCE_DIR}/include/oit/offscreen.h
         DESTINATION include/oit)
+# The part-file format, which oit/partfile.h cites: the one document a
+# reader of that header needs and would otherwise find only in the sources.
+install(FILES ${CMAKE_SOURCE_DIR}/docs/part-file.md DESTINATION share/doc/oit)
 install(EXPORT oitTargets NAMESPACE oit:: DESTINATION lib/cmake/oit)
 
 configure_package_config_file(${CMAKE_SOURCE_DIR}/cmake/oitConfig.cmake.in

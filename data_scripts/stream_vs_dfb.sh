@@ -318,7 +318,7 @@ done
     echo "(stats keys second_pass_pixels / second_pass_packs, '-' where this oitstream does not write them);"
     echo "RSS = peak host resident set (/usr/bin/time -v); GPU MB = gpu_bytes_peak, worst frame (1 MB = 10^6 bytes):"
     echo "the stream's counts its ring, cache and capture; DFB's counts its fragment buffers only, so \"DFB + mesh\""
-    echo "adds the source mesh's vertex buffer, triangles x 48 bytes (sizeof(oit_triangle), render/gpu_mesh.c)."
+    echo "adds the source mesh's vertex buffer, triangles x 48 bytes (sizeof(oit_triangle), render/gl/gpu_mesh.c)."
     echo
     echo "## Conversion and stream"
     echo

@@ -13,11 +13,11 @@
 
 #include "base/clock.h"
 #include "formats/readers_internal.h"
-#include "render/band.h"
-#include "render/capture_glsl.h"
-#include "render/dfb.h"
-#include "render/frag_glsl.h"
-#include "render/gpu_timer.h"
+#include "render/gl/band.h"
+#include "render/capture/capture_glsl.h"
+#include "render/capture/dfb.h"
+#include "render/gl/frag_glsl.h"
+#include "render/gl/gpu_timer.h"
 #include "stream/streamer.h"
 
 struct oit_scene {
@@ -697,7 +697,7 @@ static oit_status model_from_frame(const float *m, oit_view *v, oit_error *err)
     return OIT_OK;
 }
 
-/* oit_frame.clip: checked once, by its owner (render/clip.h). */
+/* oit_frame.clip: checked once, by its owner (render/image/clip.h). */
 _Static_assert(OIT_FRAME_CLIP_MAX == OIT_CLIP_MAX, "oit_frame.clip holds OIT_CLIP_MAX planes");
 static oit_status clip_from_frame(const oit_frame *f, oit_view *v, oit_error *err)
 {
@@ -789,7 +789,7 @@ static void depth_unit_bind(const oit_renderer *r, GLuint tex, depth_unit *u)
 }
 
 /* Texture unit 6 (OIT_TEX_OPAQUE_KEYS), which the opaque pre-pass binds
- * (render/opaque_keys.h): liboit.h promises it back. */
+ * (render/capture/opaque_keys.h): liboit.h promises it back. */
 _Static_assert(OIT_TEX_OPAQUE_KEYS == 6, "liboit.h documents texture unit 6");
 static GLint keys_unit_save(void)
 {
@@ -833,7 +833,7 @@ static oit_status render_state(oit_renderer *r, const oit_scene *scene, const oi
 }
 
 /* The frame in bands of rows whose state fits one storage binding
- * (render/band.h; one band where it all fits, the view unchanged), each
+ * (render/gl/band.h; one band where it all fits, the view unchanged), each
  * rendered and blended over its rows of the viewport before the next
  * overwrites the state. The opaque depth's projection is narrowed to the
  * band as the camera is; the depth unit is bound only while a band is

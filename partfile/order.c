@@ -10,6 +10,7 @@
  * nothing. Emitted parts are marked with the frame's stamp, so no per-frame
  * clearing is needed either. */
 #include "partfile/order.h"
+#include "base/vec.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -157,11 +158,6 @@ static void emit(emit_ctx *e, uint32_t part)
     e->parts[e->count++] = part;
 }
 
-static float dot3(const float a[3], const float b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 /* Interval of n.x over the part's box. */
 static void box_extent(const oit_partfile_part *p, const float n[3], float *lo, float *hi)
 {
@@ -187,12 +183,12 @@ static int must_precede(const oit_partfile_part *a, const oit_partfile_part *b,
         if (dir) {
             /* Parallel rays cross the plane in the direction of d . dir's
              * sign; along it (0) they meet one side only. */
-            float s = dot3(d, dir);
+            float s = oit_dot3f(d, dir);
             if ((ahi <= blo && s > 0.0f) || (bhi <= alo && s < 0.0f))
                 return 1;
             continue;
         }
-        float e = dot3(d, eye);
+        float e = oit_dot3f(d, eye);
         if ((ahi <= blo && e <= ahi) || (bhi <= alo && e >= alo))
             return 1;
     }

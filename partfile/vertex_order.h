@@ -13,7 +13,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "oit/partfile.h"
+#include "partfile/write.h"
 
 /* The reordered arrays, owned (pf_ordered_free). */
 typedef struct pf_ordered {

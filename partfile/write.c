@@ -1,4 +1,4 @@
-/* Part file writer (docs/part-file.md).
+/* Part file writer (write.h; the format: docs/part-file.md).
  *
  * Part blobs are streamed to "<path>.tmp" as they are added, starting at the
  * first aligned offset after the header and section table; only records stay
@@ -16,6 +16,7 @@
 #include "partfile/codec.h"
 #include "partfile/layout.h"
 #include "partfile/vertex_order.h"
+#include "partfile/write.h"
 
 #include <errno.h>
 #include <math.h>

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "base/minmax.h"
+#include "base/vec.h"
 
 /* Centres sit at (i + CENTRE_U, j + CENTRE_V) cells: fractions of sqrt(2)
  * and sqrt(3), which no dyadic CAD coordinate hits. */
@@ -37,13 +38,9 @@ static frame frame_of(const double d_in[3])
     double h[3] = {0, 0, 0};
     h[fabs(d[0]) < 0.9 ? 0 : 1] = 1; /* any axis not near d */
     frame f;
-    f.u[0] = d[1] * h[2] - d[2] * h[1];
-    f.u[1] = d[2] * h[0] - d[0] * h[2];
-    f.u[2] = d[0] * h[1] - d[1] * h[0];
+    oit_cross3d(d, h, f.u);
     normalise(f.u);
-    f.v[0] = d[1] * f.u[2] - d[2] * f.u[1];
-    f.v[1] = d[2] * f.u[0] - d[0] * f.u[2];
-    f.v[2] = d[0] * f.u[1] - d[1] * f.u[0];
+    oit_cross3d(d, f.u, f.v);
     return f;
 }
 

@@ -15,7 +15,7 @@
  * sample), and a rasterizer may count a triangle that the centre test did
  * not. Wang & Xie's convex pieces give a guarantee (partition/kd.h); this is
  * an estimate of the part's depth complexity, cheap and deterministic. The
- * counted capture (render/capture_counted.h) needs no bound at all; the
+ * counted capture (render/capture/capture_counted.h) needs no bound at all; the
  * K-slot packs take it as their layer budget, so there a pixel that gets
  * more is counted as overflow, never hidden.
  *

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "render/image.h"
+#include "render/image/image.h"
 #include "plot/text_overlay.h"
 
 enum {

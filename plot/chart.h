@@ -15,7 +15,7 @@
 
 #include <stddef.h>
 
-#include "render/view.h"
+#include "render/image/view.h"
 
 typedef enum oit_chart_scale { OIT_CHART_LINEAR = 0, OIT_CHART_LOG10 } oit_chart_scale;
 

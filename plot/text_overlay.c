@@ -4,7 +4,7 @@
  * draws upper case). */
 #include "plot/text_overlay.h"
 
-#include "render/image.h"
+#include "render/image/image.h"
 
 #include <ctype.h>
 #include <string.h>

@@ -5,7 +5,7 @@
 #ifndef OIT_PLOT_TEXT_OVERLAY_H
 #define OIT_PLOT_TEXT_OVERLAY_H
 
-#include "render/view.h"
+#include "render/image/view.h"
 
 /* Height in pixels of one status line at scale s (glyph 7 rows + margins). */
 int oit_text_line_height(int scale);

@@ -14,6 +14,7 @@
 #include "oit/mesh.h"
 #include "partition/convex.h"
 #include "oit/partfile.h"
+#include "partfile/write.h"
 #include "partition/clip.h"
 #include "partition/kd_split.h"
 #include "preprocess/bin.h"

@@ -1,5 +1,6 @@
 /* Ray-cast verification of a part file (verify.h). */
 #include "preprocess/verify.h"
+#include "base/vec.h"
 
 #include <embree3/rtcore.h>
 #include <math.h>
@@ -405,15 +406,11 @@ static int add_ray(verifier *v, const float org[3], const float dir[3], uint32_t
 static void basis(const float d[3], float u[3], float w[3])
 {
     float a[3] = {fabsf(d[0]) < 0.6f ? 1.0f : 0.0f, fabsf(d[0]) < 0.6f ? 0.0f : 1.0f, 0};
-    u[0] = d[1] * a[2] - d[2] * a[1];
-    u[1] = d[2] * a[0] - d[0] * a[2];
-    u[2] = d[0] * a[1] - d[1] * a[0];
-    float l = sqrtf(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    oit_cross3f(d, a, u);
+    float l = sqrtf(oit_dot3f(u, u)); /* > 0.5 for a unit d: a is far from it */
     for (int k = 0; k < 3; k++)
         u[k] /= l;
-    w[0] = d[1] * u[2] - d[2] * u[1];
-    w[1] = d[2] * u[0] - d[0] * u[2];
-    w[2] = d[0] * u[1] - d[1] * u[0];
+    oit_cross3f(d, u, w);
 }
 
 static int bundles(verifier *v, const oit_verify_options *o, uint64_t *rng, uint32_t *cap)

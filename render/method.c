@@ -6,11 +6,11 @@
 #include <string.h>
 
 #include "base/clock.h"
-#include "render/band.h"
-#include "render/gl_context.h"
-#include "render/gl_util.h"
-#include "render/gpu_timer.h"
-#include "render/image.h"
+#include "render/gl/band.h"
+#include "render/gl/gl_context.h"
+#include "render/gl/gl_util.h"
+#include "render/gl/gpu_timer.h"
+#include "render/image/image.h"
 
 struct oit_method_state {
     const oit_method *method;

@@ -17,8 +17,8 @@
 #include <stdint.h>
 
 #include "oit/mesh.h"
-#include "render/gpu_mesh.h"
-#include "render/view.h"
+#include "render/gl/gpu_mesh.h"
+#include "render/image/view.h"
 
 struct oit_gl;
 struct oit_gpu_timer;
@@ -50,12 +50,12 @@ typedef struct oit_method_options {
     float epsilon;
     float ambiguity_px; /* the reference's ambiguity radius, pixels; 0: 1/64 */
     const oit_stream_options *stream; /* OIT_METHOD_PARTFILE methods only */
-    /* The most bytes a frame puts in one storage buffer (render/band.h):
+    /* The most bytes a frame puts in one storage buffer (render/gl/band.h):
      * 0, what the driver binds (GL_MAX_SHADER_STORAGE_BLOCK_SIZE); lower
      * only to test the bands. The image is the same either way. */
     uint64_t store_limit;
     /* Testing: the GPU timer behaves as on a driver without timestamp
-     * queries (render/gpu_timer.h): no gpu_ms, and it says why. */
+     * queries (render/gl/gpu_timer.h): no gpu_ms, and it says why. */
     int no_gpu_timer;
 } oit_method_options;
 
@@ -69,7 +69,7 @@ typedef struct oit_method_frame {
     uint8_t *ambiguous;       /* width*height, or NULL; only with OIT_METHOD_AMBIGUITY */
     oit_frame_stats *stats;
     /* A frame too large for one storage binding is rendered as bands of
-     * rows (render/band.h), each a frame of its own: band is its index in
+     * rows (render/gl/band.h), each a frame of its own: band is its index in
      * the frame, 0 for the first (or the only one), for a method that
      * keeps figures across them (stream_stats). */
     int band;
@@ -81,7 +81,7 @@ typedef struct oit_method_frame {
      * rows that would each fit, at least 2, and fails: oit_method_render
      * then renders the frame in that many bands. */
     int *split;
-    /* GPU time per phase (render/gpu_timer.h): the frame is begun and
+    /* GPU time per phase (render/gl/gpu_timer.h): the frame is begun and
      * ended around the method; the method marks its phases (NULL-safe). */
     struct oit_gpu_timer *timer;
 } oit_method_frame;
@@ -100,7 +100,7 @@ typedef struct oit_method {
     const struct oit_stream_frame_stats *(*stream_stats)(const void *impl);
     /* Bytes a pixel of view takes in the method's largest per-pixel
      * storage buffer, which must hold the whole frame in one binding;
-     * oit_method_render renders frames past it in bands (render/band.h).
+     * oit_method_render renders frames past it in bands (render/gl/band.h).
      * NULL: no per-pixel storage (not GL). */
     uint64_t (*pixel_bytes)(const void *impl, const oit_view *view);
 } oit_method;
@@ -125,7 +125,7 @@ const char *oit_method_renderer(const oit_method_state *st);
 /* The streamer's figures of the last frame; NULL for other methods. */
 const struct oit_stream_frame_stats *oit_method_stream_stats(const oit_method_state *st);
 /* GPU time of earlier frames, oldest first, matched to a frame by
- * oit_frame_stats.gpu_frame (render/gpu_timer.h): 1 and *out when the next
+ * oit_frame_stats.gpu_frame (render/gl/gpu_timer.h): 1 and *out when the next
  * one is in (wait: waits for it; at the end of a run), 0 when none is.
  * Never for a method without GL or a driver without timestamps. */
 int oit_method_gpu_poll(oit_method_state *st, struct oit_gpu_times *out, int wait);

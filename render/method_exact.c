@@ -1,8 +1,8 @@
 /* DFB and the capture backends as method tables (method.h). */
 #include "render/method.h"
 
-#include "render/capture.h"
-#include "render/dfb.h"
+#include "render/capture/capture.h"
+#include "render/capture/dfb.h"
 
 static oit_status dfb_create(const oit_mesh *mesh, const oit_method_options *opt, void **impl,
                              oit_error *err)

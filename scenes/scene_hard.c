@@ -450,7 +450,7 @@ static void case_dense(oit_emit *e, uint64_t seed)
     }
 }
 
-/* Opaque and transparent together (render/shade.h, "Opaque triangles"):
+/* Opaque and transparent together (render/image/shade.h, "Opaque triangles"):
  * an opaque box (alpha 255) inside a transparent sphere, a transparent
  * slab through the box, and a second opaque box outside the sphere,
  * partly in front of it. Behind the opaque faces nothing shows, and the

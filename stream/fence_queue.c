@@ -3,7 +3,7 @@
 
 #include <stdlib.h>
 
-#include "render/gl_util.h"
+#include "render/gl/gl_util.h"
 
 /* Pending fences in insertion order, a growable circular array: fence k
  * (k counted from 1) has serial k, so the oldest pending one is

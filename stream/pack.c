@@ -3,7 +3,7 @@
 #include "stream/pack.h"
 
 #include "base/minmax.h"
-#include "render/rect.h"
+#include "render/image/rect.h"
 #include "partfile/triangles.h"
 #include "stream/schedule.h"
 

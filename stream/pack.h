@@ -14,10 +14,10 @@
  *    order is in the earlier pack (pack.c says why that is exact, and the
  *    image the same byte for byte as one part a pack).
  *  - OIT_PACK_COUNTED: no layer rule at all, for the counted capture
- *    (render/capture_counted.h), which has no per-pixel limit and measures
+ *    (render/capture/capture_counted.h), which has no per-pixel limit and measures
  *    each pack's fragments before storing them; wide parts join too.
  *  - OIT_PACK_FIRSTK: the same packs, for the first-K capture
- *    (render/capture_firstk.h), also without a per-pixel limit.
+ *    (render/capture/capture_firstk.h), also without a per-pixel limit.
  * The parts are first culled; see oit_pack_schedule for the order the packs
  * are then cut from.
  * Rectangles are the projections of the parts' bounding boxes (a box that
@@ -32,7 +32,7 @@
 #define OIT_STREAM_PACK_H
 
 #include "oit/partfile.h"
-#include "render/view.h"
+#include "render/image/view.h"
 
 /* OIT_PACK_COUNTED takes the counted capture, OIT_PACK_FIRSTK the first-K
  * capture, BUDGET and DISJOINT the K-slot array. OIT_PACK_AUTO (0) is for the streamer to resolve (streamer.h); the
@@ -74,7 +74,7 @@ typedef struct oit_packing {
     uint32_t pack_count;
     uint32_t culled;            /* boxes outside the view volume */
     /* Boxes in the view volume but wholly on the removed side of a section
-     * plane (oit_view.clip, render/clip.h), and the bytes they would have
+     * plane (oit_view.clip, render/image/clip.h), and the bytes they would have
      * written into the upload ring (as bytes_uploaded counts them, without
      * the ring's alignment): neither uploaded nor drawn. */
     uint32_t clipped;

@@ -6,11 +6,11 @@
 #include <unistd.h>
 
 #include "base/clock.h"
-#include "render/gpu_mesh.h"
-#include "render/gpu_timer.h"
-#include "render/image.h"
-#include "render/opaque_tiles.h"
-#include "render/saturation.h"
+#include "render/gl/gpu_mesh.h"
+#include "render/gl/gpu_timer.h"
+#include "render/image/image.h"
+#include "render/capture/opaque_tiles.h"
+#include "render/capture/saturation.h"
 #include "stream/fence_queue.h"
 #include "partfile/order.h"
 #include "partfile/share.h"

@@ -1,6 +1,6 @@
 /* The per-frame driver of the part-file renderer: order the parts for the
  * eye (partfile/order.h), cut the order into packs (pack.h), and per pack get its
- * parts onto the GPU and capture them as one batch (render/capture.h),
+ * parts onto the GPU and capture them as one batch (render/capture/capture.h),
  * composited behind the packs before it.
  *
  * Upload pipeline. The order is known before the first draw, so packs are
@@ -19,9 +19,9 @@
 #include "oit/partfile.h"
 #include "partfile/order.h"
 #include "partfile/share.h"
-#include "render/capture.h"
-#include "render/capture_choice.h"
-#include "render/gpu_memory.h"
+#include "render/capture/capture.h"
+#include "render/capture/capture_choice.h"
+#include "render/gl/gpu_memory.h"
 #include "stream/pack.h"
 #include "stream/reader.h"
 
@@ -31,13 +31,13 @@ typedef struct oit_streamer_desc {
      * or _ARRAY, for the K-slot packs (BUDGET, DISJOINT) and for first-K's
      * first pass (FIRSTK, AUTO); counted packs have none (STENCIL is then
      * refused). AUTO: stencil routing where its self-test passes on this
-     * driver (render/capture_choice.h: at K for K-slot packs; first-K also
+     * driver (render/capture/capture_choice.h: at K for K-slot packs; first-K also
      * takes the largest power of two below K that passes), else array
      * slots, the self-test's reason kept (oit_stream_frame_stats). STENCIL
      * where no try passes: OIT_ERR_UNSUPPORTED with the reason. OIT_PACK_
      * COUNTED always takes OIT_CAPTURE_COUNTED, OIT_PACK_FIRSTK
      * OIT_CAPTURE_FIRSTK (K: its most slots a pixel). OIT_CAPTURE_COMPUTE
-     * (render/capture_compute.h) captures every pack mode's packs, exactly
+     * (render/capture/capture_compute.h) captures every pack mode's packs, exactly
      * (no per-pixel limit); with OIT_PACK_AUTO it takes OIT_PACK_COUNTED's,
      * the largest */
     oit_capture_kind capture;
@@ -84,7 +84,7 @@ typedef struct oit_streamer_desc {
      * OIT_STREAM_GPU_BUDGET_MIN. The finer budgets above stay inside it:
      * given ones that add up to more are refused. */
     uint64_t gpu_budget;
-    /* The free-memory query (render/gpu_memory.h); NULL: the driver's.
+    /* The free-memory query (render/gl/gpu_memory.h); NULL: the driver's.
      * Tests inject a fake driver here. */
     oit_gpu_free_query free_query;
     void *free_ctx;
@@ -139,10 +139,10 @@ typedef struct oit_stream_frame_stats {
     uint64_t parts_drawn;
     uint64_t parts_culled;   /* boxes outside the view volume: no fragment */
     uint64_t parts_clipped;  /* boxes in the view volume wholly on the removed
-                                side of a section plane (render/clip.h):
+                                side of a section plane (render/image/clip.h):
                                 neither uploaded nor drawn */
     uint64_t bytes_clipped;  /* the upload bytes those parts would take      */
-    uint64_t parts_skipped;  /* epsilon > 0: footprint saturated (render/saturation.h),
+    uint64_t parts_skipped;  /* epsilon > 0: footprint saturated (render/capture/saturation.h),
                                 neither uploaded nor drawn */
     uint64_t bytes_uploaded; /* part bytes the CPU wrote into the upload ring,
                                 read-ahead of parts then skipped included  */
@@ -187,7 +187,7 @@ void oit_streamer_budget(const oit_streamer *s, oit_stream_budget *out);
  * NULL: none. */
 void oit_streamer_set_opaque(oit_streamer *s, const oit_opaque_depth *o);
 
-/* GPU phases of the next frames are marked on t (render/gpu_timer.h):
+/* GPU phases of the next frames are marked on t (render/gl/gpu_timer.h):
  * the ring's parts copied into the residency cache as uploads, the
  * capture's passes as it marks them; NULL: none. Not owned. */
 struct oit_gpu_timer;
@@ -195,7 +195,7 @@ void oit_streamer_set_gpu_timer(oit_streamer *s, struct oit_gpu_timer *t);
 
 /* Bytes a pixel of view takes in the streamer's largest per-pixel buffer
  * (oit_capture_pixel_bytes): a frame past one storage binding is refused,
- * to be rendered in bands of rows (render/band.h). */
+ * to be rendered in bands of rows (render/gl/band.h). */
 uint64_t oit_streamer_pixel_bytes(const oit_view *view);
 /* acc takes the figures of a band of its frame: counts, bytes and times add
  * up, the GPU peak takes the larger, the rest (cache_bytes, epsilon, modes)

@@ -3,7 +3,7 @@
 
 #include <stdlib.h>
 
-#include "render/gl_util.h"
+#include "render/gl/gl_util.h"
 #include "stream/pack.h"
 
 typedef struct region {

@@ -18,7 +18,7 @@ while read -r dir ok; do
     fi
     for f in "$dir"/*.c "$dir"/*.h "$dir"/*.cpp; do
         [ -f "$f" ] || continue
-        # quoted includes that name a folder: "render/dfb.h"
+        # quoted includes that name a folder: "render/capture/dfb.h"
         for inc in $(sed -n 's/^[[:space:]]*#[[:space:]]*include[[:space:]]*"\([a-z_]*\/[^"]*\)".*/\1/p' "$f"); do
             hit=0
             for a in $ok; do
@@ -36,9 +36,13 @@ include/oit oit
 base oit base
 formats oit base formats
 partfile oit base formats partfile
-render oit base formats render !render/baselines
-render/baselines oit base formats render
-plot oit base formats render/image.h render/view.h plot
+render/image oit base formats render/image
+render/gl oit base formats render/image render/gl
+render/capture oit base formats render/image render/gl render/capture
+render oit base formats render !render/baselines !render/reference
+render/reference oit base formats render/image render/method.h render/reference
+render/baselines oit base formats render !render/reference
+plot oit base formats render/image plot
 scenes oit base formats scenes
 partition oit base formats partfile partition
 preprocess oit base formats partfile partition preprocess

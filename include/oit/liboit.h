@@ -10,7 +10,8 @@
  * Both kinds of scene go through the same handle and the same draw: a part
  * file is streamed (parts read, uploaded and captured pack by pack); an
  * in-core scene is uploaded whole at its first draw and drawn with DFB, the
- * in-core exact method (render/dfb.h). The images agree within the
+ * in-core exact method (every fragment of the frame stored and sorted per
+ * pixel). The images agree within the
  * tolerance of stream against DFB; the Result paragraph holds for both.
  * oit/offscreen.h renders a scene without a caller's context (scripts).
  *
@@ -29,7 +30,8 @@
  * oit_renderer_destroy.
  *
  * Result: the frame is composited OVER the target's existing content with
- * premultiplied colour C and per-channel transmittance T (DESIGN.md):
+ * premultiplied colour C and per-channel transmittance T of the scene's
+ * fragments composited front to back:
  *     dst.rgb = C + T * dst.rgb,   dst.a = (1 - t) + t * dst.a, t = mean(T)
  * through dual-source blending (GL_ONE, GL_SRC1_COLOR), so whatever the
  * caller drew before (a sky, opaque geometry without depth interaction) shows
@@ -191,7 +193,7 @@ typedef enum oit_render_shading_mode {
     OIT_RENDER_TRANSLUCENT = 1  /* Fresnel surfaces over an absorbing medium  */
 } oit_render_shading_mode;
 
-/* Where compositing happens (render/shade.h, "Colour space"). Colours
+/* Where compositing happens (oit/mesh.h and Result above). Colours
  * (vertex colours, default_rgb) are 8-bit sRGB-encoded, straight alpha. */
 typedef enum oit_render_colour_space {
     OIT_RENDER_COLOUR_SRGB = 0,  /* on the encoded values, as the OIT papers and
@@ -200,8 +202,9 @@ typedef enum oit_render_colour_space {
                                     composited in linear light (Result)          */
 } oit_render_colour_space;
 
-/* Mirrors the renderer's shading (DESIGN.md); zero means default. There is
- * no background: the caller's framebuffer is the background. */
+/* The shading that oitstream's --shading, --alpha, --absorption and
+ * --colour-space set; zero means default. There is no background: the
+ * caller's framebuffer is the background. */
 typedef struct oit_render_shading {
     oit_render_shading_mode mode;
     float alpha;          /* for files without alpha; default 0.35          */

@@ -7,12 +7,12 @@
  * without the file's index space.
  *
  * Colours are 8-bit sRGB-encoded values with straight (not premultiplied)
- * alpha. By default (oit_shading.colour_space OIT_COLOUR_SRGB) all methods
- * blend them in that encoding, as the OIT papers and most viewers do: 50%
- * red over white is 255,127,127. OIT_COLOUR_LINEAR (oitstream
- * --colour-space linear) decodes them with the exact sRGB EOTF, composites
- * in linear light and encodes the result: 255,187,187 (render/shade.h,
- * "Colour space"). Alpha is coverage in both and never converted.
+ * alpha. By default (oit_render_shading.colour_space OIT_RENDER_COLOUR_SRGB,
+ * oit/liboit.h) all methods blend them in that encoding, as the OIT papers
+ * and most viewers do: 50% red over white is 255,127,127.
+ * OIT_RENDER_COLOUR_LINEAR (oitstream --colour-space linear) decodes them
+ * with the exact sRGB EOTF, composites in linear light and encodes the
+ * result: 255,187,187. Alpha is coverage in both and never converted.
  * When the input has no colour (or no alpha) the reader writes 255 and clears
  * the bit in oit_mesh_info.attributes; the renderer then substitutes its
  * default colour or --alpha.
@@ -44,9 +44,10 @@ enum {
     OIT_ATTR_COLOUR = 1u << 0, /* the input defines rgb  */
     OIT_ATTR_ALPHA = 1u << 1, /* the input defines alpha */
     /* with OIT_ATTR_ALPHA: some triangle has alpha 255 at its three
-     * vertices, so it is opaque (render/shade.h, "Opaque triangles") and
-     * the renderers run their opaque pre-pass; readers set it (never
-     * without OIT_ATTR_ALPHA), oit_mesh_info_opaque computes it */
+     * vertices, so it is opaque (it hides what lies behind it; a triangle
+     * with some corners below 255 is not) and the renderers run their
+     * opaque pre-pass; readers set it (never without OIT_ATTR_ALPHA),
+     * oit_mesh_info_opaque computes it */
     OIT_ATTR_OPAQUE = 1u << 2
 };
 

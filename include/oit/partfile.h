@@ -1,4 +1,12 @@
-/* The part file: a converted scene as oitstream reads it (docs/part-file.md).
+/* The part file: a converted scene as oitstream reads it (its format:
+ * part-file.md, installed in share/doc/oit).
+ *
+ * EXPERIMENTAL: everything in this header (the records, the reader and the
+ * traversal of grids, cells and slabs) follows the file format
+ * (OIT_PARTFILE_VERSION) and may change between minor versions of liboit,
+ * whose package accepts only its own minor version. oit/liboit.h is the
+ * stable way to draw a part file. Part files are written by oitprep; the
+ * writer is not part of liboit.
  *
  * A part is at most K/2 convex pieces, so it yields at most K fragments per
  * pixel from any viewpoint (in a file flagged OIT_PARTFILE_FLAG_MEASURED_BOUNDS,
@@ -6,12 +14,6 @@
  * guaranteed); grids, subgrids and slabs order the parts per
  * view. One part's vertices and indices are one contiguous, aligned byte
  * range, so a streaming loader reads a part with one pread.
- *
- * Writer: parts are appended one at a time (their data goes to disk at once,
- * only the small records stay in memory); grids, subgrids and slabs follow;
- * oit_partfile_writer_finish writes the management sections and the header to
- * "<path>.tmp", validates that file with the reader and renames it to <path>.
- * The same calls give the same bytes.
  *
  * Reader: maps the file read-only and validates every byte that it will hand
  * out before oit_partfile_open returns: header, section table, checksums,
@@ -22,8 +24,9 @@
  * decoded copies; part data is stored encoded (version 5) and decoded into
  * a caller's buffer (oit_partfile_part_data).
  *
- * The reader and writer need a little-endian host with IEEE-754 floats (the
- * file is little-endian and vertex data is handed to GL as stored).
+ * The reader (and oitprep's writer) need a little-endian host with IEEE-754
+ * floats (the file is little-endian and vertex data is handed to GL as
+ * stored).
  */
 #ifndef OIT_PARTFILE_H
 #define OIT_PARTFILE_H
@@ -52,7 +55,7 @@ extern "C" {
  * bound (up to this) and the renderer captures it over smaller tiles. */
 #define OIT_PARTFILE_MAX_LAYERS 64u
 /* Header flag (version 3): the parts' layer bounds are measured (oitprep
- * --scheme fast, partition/layers_measured.h), not guaranteed. A part's
+ * --scheme fast counts them along sampled lines), not guaranteed. A part's
  * bound is then 1..OIT_PARTFILE_MAX_LAYERS whatever its pieces, and a ray
  * may meet more of its surfaces. Files without it are Wang & Xie's guarantee.
  * Builds before this flag refuse such a file (unknown flag), which is
@@ -60,7 +63,7 @@ extern "C" {
 #define OIT_PARTFILE_FLAG_MEASURED_BOUNDS 1u
 
 /* Decoded records. Their layout is the file's record layout (the reader
- * copies sections into them); see docs/part-file.md for every invariant. */
+ * copies sections into them); part-file.md states every invariant. */
 typedef struct oit_partfile_part {
     float bounds_min[3];    /* of the part's vertices, exactly              */
     float bounds_max[3];
@@ -84,7 +87,7 @@ typedef struct oit_partfile_part {
     uint32_t data_crc;      /* CRC-32C of the stored_bytes at data_offset   */
     uint32_t reserved;
     /* Version 5: the stored streams at data_offset, back to back
-     * (partfile/codec.h): meshopt vertex codec, meshopt index
+     * (part-file.md, PART_DATA): meshopt vertex codec, meshopt index
      * sequence codec, delta-varint source indices. */
     uint64_t stored_bytes;  /* their sum: one read                          */
     uint64_t stored_vertex_bytes;
@@ -162,7 +165,7 @@ typedef struct oit_partfile_summary {
     bool measured_bounds;   /* OIT_PARTFILE_FLAG_MEASURED_BOUNDS is set     */
 } oit_partfile_summary;
 
-/* ---- reader ------------------------------------------------------------ */
+/* ---- reader: EXPERIMENTAL ---------------------------------------------- */
 
 typedef struct oit_partfile oit_partfile;
 
@@ -269,13 +272,18 @@ static inline uint32_t oit_partfile_source(const oit_partfile_part_view *v, uint
 }
 
 /* Where a part's source indices start within its blob: after the index
- * stream, rounded up to 4 (docs/part-file.md). */
+ * stream, rounded up to 4 (part-file.md). */
 static inline uint64_t oit_partfile_source_offset(const oit_partfile_part *p)
 {
     return (p->index_offset + p->index_bytes + 3u) & ~(uint64_t)3u;
 }
 
-/* Grids: index 0 is the top grid, 1..grid_count-1 the subgrids. NULL when
+/* ---- traversal: EXPERIMENTAL ------------------------------------------- */
+/* The management tree as stored (the order oitstream draws parts in is
+ * computed from it per view). Like the whole header it follows the file
+ * format and may change between minor versions.
+ *
+ * Grids: index 0 is the top grid, 1..grid_count-1 the subgrids. NULL when
  * out of range. */
 OIT_API uint32_t oit_partfile_grid_count(const oit_partfile *pf);
 OIT_API const oit_partfile_grid *oit_partfile_grid_at(const oit_partfile *pf, uint32_t grid);
@@ -289,116 +297,6 @@ OIT_API uint32_t oit_partfile_slab_count(const oit_partfile *pf);
 OIT_API const oit_partfile_slab *oit_partfile_slab_at(const oit_partfile *pf, uint32_t slab);
 OIT_API const uint32_t *oit_partfile_slab_inside(const oit_partfile *pf, uint32_t slab,
                                                  uint32_t *count);
-
-/* ---- writer ------------------------------------------------------------ */
-/* The writer is the converter's (the static library oit_partfile_write, with
- * libmeshoptimizer's encoders), not liboit's: its functions carry no OIT_API
- * and liboit.so does not export them. */
-
-typedef struct oit_partfile_writer oit_partfile_writer;
-
-/* What the writer may reorder within a part before encoding it: smaller
- * encoded streams (meshoptimizer), the same triangles. */
-typedef enum oit_partfile_order {
-    OIT_PARTFILE_ORDER_KEEP = 0, /* stored as given                          */
-    OIT_PARTFILE_ORDER_VERTICES, /* vertices renumbered in first-use order
-                                    (fetch order); triangles keep theirs     */
-    OIT_PARTFILE_ORDER_CACHE     /* (not used by oitprep: docs/part-file.md)
-                                    also each piece's triangles in vertex-
-                                    cache order, source indices with them    */
-} oit_partfile_order;
-
-typedef struct oit_partfile_writer_desc {
-    uint32_t K;             /* layers per part; even, 2..1024; default 8      */
-    uint32_t part_align;    /* blob alignment; power of two, 8..1 MiB;
-                               default 4096 (page: one read, no split page) */
-    uint32_t attributes;    /* OIT_ATTR_* of the source                       */
-    const char *source_name; /* recorded in META; default ""                  */
-    const char *options;     /* converter options, recorded; default ""       */
-    double origin[3];        /* of the source's positions (oit_mesh_info);
-                                finite; default 0                            */
-    bool skip_verify;        /* default false: finish re-opens the file with the
-                                reader before renaming it into place         */
-    bool measured_bounds;    /* sets OIT_PARTFILE_FLAG_MEASURED_BOUNDS: every
-                                part gives its layer_bound (1..64), not
-                                bounded by its pieces                        */
-    oit_partfile_order order; /* default OIT_PARTFILE_ORDER_KEEP            */
-} oit_partfile_writer_desc;
-
-/* Creates "<path>.tmp". desc may be NULL. */
-oit_status oit_partfile_writer_create(const char *path, const oit_partfile_writer_desc *desc,
-                                      oit_partfile_writer **out, oit_error *err);
-
-typedef struct oit_partfile_piece_desc {
-    uint64_t triangle_count; /* consecutive triangles of the part */
-    uint32_t plane_count;
-} oit_partfile_piece_desc;
-
-typedef struct oit_partfile_part_desc {
-    const float *positions;  /* vertex_count x 3                         */
-    const uint8_t *rgba;     /* vertex_count x 4, or NULL: not stored    */
-    uint32_t vertex_count;
-    const uint32_t *indices; /* index_count, 3 per triangle; stored as 16-bit
-                                when vertex_count <= 65536                */
-    uint64_t index_count;
-    const uint32_t *sources; /* index_count / 3: each triangle's source index
-                                (oit_partfile_part_view.sources); required,
-                                each < the finish stats' triangles_in    */
-    const oit_partfile_piece_desc *pieces; /* cover the triangles in order */
-    uint32_t piece_count;
-    uint32_t layer_bound;    /* 0: min(K, 2*piece_count); with measured
-                                bounds 1..64, required                    */
-    uint32_t attributes;     /* OIT_ATTR_* the rgba holds; 0 with rgba
-                                means OIT_ATTR_COLOUR|OIT_ATTR_ALPHA      */
-} oit_partfile_part_desc;
-
-/* Writes the part's blob now; bounds are computed from the data. */
-oit_status oit_partfile_writer_add_part(oit_partfile_writer *w, const oit_partfile_part_desc *part,
-                                        uint32_t *index, oit_error *err);
-
-typedef struct oit_partfile_grid_desc {
-    uint32_t dims[3];
-    float origin[3];
-    float cell_size[3];
-    uint32_t parent_grid;        /* subgrids only: grid index (0 = top)  */
-    uint32_t parent_cell;
-    const uint32_t *cell_counts; /* parts per cell, dims product of them */
-    const uint32_t *cell_parts;  /* the lists, concatenated, ascending   */
-} oit_partfile_grid_desc;
-
-/* Exactly once, before subgrids and slabs. */
-oit_status oit_partfile_writer_set_grid(oit_partfile_writer *w, const oit_partfile_grid_desc *g,
-                                        oit_error *err);
-/* Returns the new grid's index (1, 2, ...). Parents come before children. */
-oit_status oit_partfile_writer_add_subgrid(oit_partfile_writer *w, const oit_partfile_grid_desc *g,
-                                           uint32_t *grid, oit_error *err);
-
-typedef struct oit_partfile_slab_desc {
-    float normal[3];
-    float d0, d1;
-    uint32_t grid, cell;
-    uint32_t part_below, part_above;
-    const uint32_t *inside; /* ascending */
-    uint32_t inside_count;
-} oit_partfile_slab_desc;
-
-oit_status oit_partfile_writer_add_slab(oit_partfile_writer *w, const oit_partfile_slab_desc *s,
-                                        uint32_t *slab, oit_error *err);
-
-typedef struct oit_partfile_stats {
-    uint64_t triangles_in;
-    uint64_t triangles_dropped; /* degenerate or non-finite */
-    uint64_t triangles_split;   /* added by splitting       */
-} oit_partfile_stats;
-
-/* Writes management sections and header, verifies, renames. Consumes w on
- * success and on failure (the .tmp file is removed on failure). stats may be
- * NULL: then triangles_in is the file's triangle count (a synthetic file
- * whose every triangle is its own source), nothing dropped or split. */
-oit_status oit_partfile_writer_finish(oit_partfile_writer *w, const oit_partfile_stats *stats,
-                                      oit_error *err);
-/* Discards w and its .tmp file. NULL is allowed. */
-void oit_partfile_writer_abort(oit_partfile_writer *w);
 
 #ifdef __cplusplus
 }

@@ -48,7 +48,7 @@ OIT_API void oit_error_prefix(oit_error *err, const char *what);
 
 OIT_API const char *oit_status_name(oit_status s);
 
-/* Tool convention (DESIGN.md): 0 success, 1 runtime failure, 2 usage error,
+/* The tools' exit codes: 0 success, 1 runtime failure, 2 usage error,
  * 3 bad input. */
 OIT_API int oit_status_exit_code(oit_status s);
 

@@ -19,7 +19,7 @@
 #ifndef OIT_RENDER_BASELINES_B3D_H
 #define OIT_RENDER_BASELINES_B3D_H
 
-#include "render/gpu_mesh.h"
+#include "render/gl/gpu_mesh.h"
 
 typedef struct oit_b3d oit_b3d;
 

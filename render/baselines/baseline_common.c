@@ -2,7 +2,7 @@
 #include "render/baselines/baseline_common.h"
 
 #include "base/clock.h"
-#include "render/image.h"
+#include "render/image/image.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -9,9 +9,9 @@
 #ifndef OIT_RENDER_BASELINES_BASELINE_COMMON_H
 #define OIT_RENDER_BASELINES_BASELINE_COMMON_H
 
-#include "render/frag_glsl.h"
-#include "render/gpu_mesh.h"
-#include "render/view.h"
+#include "render/gl/frag_glsl.h"
+#include "render/gl/gpu_mesh.h"
+#include "render/image/view.h"
 
 #ifdef __cplusplus
 extern "C" {

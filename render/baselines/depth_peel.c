@@ -8,7 +8,7 @@
 #include "render/baselines/methods.h"
 
 #include "render/baselines/baseline_common.h"
-#include "render/image.h"
+#include "render/image/image.h"
 
 #include <math.h>
 #include <stdlib.h>

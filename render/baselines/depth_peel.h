@@ -20,7 +20,7 @@
 #ifndef OIT_RENDER_BASELINES_DEPTH_PEEL_H
 #define OIT_RENDER_BASELINES_DEPTH_PEEL_H
 
-#include "render/gpu_mesh.h"
+#include "render/gl/gpu_mesh.h"
 
 typedef struct oit_depth_peel oit_depth_peel;
 

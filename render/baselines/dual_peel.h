@@ -39,7 +39,7 @@
 #ifndef OIT_RENDER_BASELINES_DUAL_PEEL_H
 #define OIT_RENDER_BASELINES_DUAL_PEEL_H
 
-#include "render/gpu_mesh.h"
+#include "render/gl/gpu_mesh.h"
 
 typedef struct oit_dual_peel oit_dual_peel;
 

@@ -8,7 +8,7 @@
 
 #include "base/grow.h"
 #include "render/baselines/baseline_common.h"
-#include "render/image.h"
+#include "render/image/image.h"
 
 #include <stdlib.h>
 

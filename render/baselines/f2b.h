@@ -57,7 +57,7 @@
 #ifndef OIT_RENDER_BASELINES_F2B_H
 #define OIT_RENDER_BASELINES_F2B_H
 
-#include "render/gpu_mesh.h"
+#include "render/gl/gpu_mesh.h"
 
 #define OIT_F2B_DEFAULT_THRESHOLD 0.02f
 #define OIT_F2B_CHUNKS 64

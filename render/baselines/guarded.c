@@ -4,7 +4,7 @@
 #include "render/baselines/guarded.h"
 #include "render/baselines/methods.h"
 
-#include "render/gl_util.h"
+#include "render/gl/gl_util.h"
 #include "render/baselines/list_store.h"
 
 /* A node is written before it is published (exchange or swap), and Nodes

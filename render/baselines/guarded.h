@@ -48,7 +48,7 @@
 #ifndef OIT_RENDER_BASELINES_GUARDED_H
 #define OIT_RENDER_BASELINES_GUARDED_H
 
-#include "render/gpu_mesh.h"
+#include "render/gl/gpu_mesh.h"
 
 #define OIT_GUARDED_DEFAULT_THRESHOLD 0.0025f
 

@@ -4,7 +4,7 @@
 #include "render/baselines/list_store.h"
 
 #include "render/baselines/baseline_common.h"
-#include "render/image.h"
+#include "render/image/image.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -37,7 +37,7 @@
 
 #include "render/baselines/baseline_common.h"
 #include "render/baselines/methods.h"
-#include "render/gpu_mesh.h"
+#include "render/gl/gpu_mesh.h"
 
 #ifdef __cplusplus
 extern "C" {

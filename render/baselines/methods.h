@@ -43,7 +43,7 @@ extern const oit_method oit_method_f2b;
  * with the method's frame: what a baseline takes from it beyond the view
  * (the list stores: the storage limit and the request to split,
  * list_store.h); OIT_NO_FRAME takes nothing. Every baseline's frames are
- * banded for OIT_BASELINE_PIXEL_BYTES a pixel (render/band.h). */
+ * banded for OIT_BASELINE_PIXEL_BYTES a pixel (render/gl/band.h). */
 #define OIT_NO_THRESHOLD(T, impl, opt, err) OIT_OK
 #define OIT_THRESHOLD(T, impl, opt, err)                                                    \
     ((opt) && (opt)->epsilon >= 0.0f ? T##_set_threshold(impl, (opt)->epsilon, err) : OIT_OK)

@@ -18,7 +18,7 @@
 #ifndef OIT_RENDER_BASELINES_PPLL_H
 #define OIT_RENDER_BASELINES_PPLL_H
 
-#include "render/gpu_mesh.h"
+#include "render/gl/gpu_mesh.h"
 
 /* A list store (list_store.h) with this method's shaders. */
 typedef struct oit_list_store oit_pll;

@@ -4,8 +4,8 @@
 #include "render/baselines/methods.h"
 
 #include "render/baselines/baseline_common.h"
-#include "render/image.h"
-#include "render/shade.h"
+#include "render/image/image.h"
+#include "render/image/shade.h"
 
 #include <stdlib.h>
 

@@ -9,7 +9,7 @@
 #ifndef OIT_RENDER_BASELINES_UNSORTED_H
 #define OIT_RENDER_BASELINES_UNSORTED_H
 
-#include "render/gpu_mesh.h"
+#include "render/gl/gpu_mesh.h"
 
 typedef struct oit_unsorted oit_unsorted;
 

@@ -19,7 +19,7 @@
 #ifndef OIT_RENDER_BASELINES_WBOIT_H
 #define OIT_RENDER_BASELINES_WBOIT_H
 
-#include "render/gpu_mesh.h"
+#include "render/gl/gpu_mesh.h"
 
 typedef struct oit_wboit oit_wboit;
 

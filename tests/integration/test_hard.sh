@@ -14,7 +14,7 @@
 #     dual depth peeling == DFB on the source mesh except on the cases that
 #     hold depth ties (TIE_CASES), which it cannot order (dual_peel.h): on
 #     coplanar it must DIFFER, showing that the views really hold ties;
-#   the tie rule (render/shade.h, docs/ties.md) across conversion and
+#   the tie rule (render/image/shade.h, docs/ties.md) across conversion and
 #     methods: the stream (part file), DFB on the part file and on the
 #     source mesh and the Embree reference on the source mesh all agree
 #     outside the reference's ambiguity mask, which flags pixel centres on
@@ -197,7 +197,7 @@ dense) # in the lattice's centre and near a corner, looking across it; the
 esac
 
 if [ "$CASE" = mixed ]; then
-    # Opaque boxes (render/shade.h, "Opaque triangles"): every pack mode of
+    # Opaque boxes (render/image/shade.h, "Opaque triangles"): every pack mode of
     # the stream stores exactly what DFB stores (a pack's pre-pass and the
     # packs before it cull what lies behind), and --see-through stores more.
     for name in az30 az210 below; do

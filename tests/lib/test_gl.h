@@ -4,8 +4,9 @@
 
 #include <stdio.h>
 #include <stdlib.h>
+#include "oit/partfile.h"
 
-#include "render/gl_context.h"
+#include "render/gl/gl_context.h"
 #include "tests/lib/test_check.h"
 
 /* The context (EGL; surfaceless under ctest), its renderer printed so that a
@@ -22,6 +23,27 @@ static inline oit_gl *test_gl_open(void)
         exit(1);
     }
     printf("renderer: %s\n", oit_gl_renderer(gl));
+    return gl;
+}
+
+/* For a test run as "TEST FILE.oitp": a plain context (no debug: these
+ * tests check byte counts and images, not the driver's messages) and the
+ * part file, both open, or the test exits: 2 for another command line, 1
+ * naming what failed to open. */
+static inline oit_gl *test_gl_open_partfile(int argc, char **argv, oit_partfile **pf)
+{
+    if (argc != 2) {
+        fprintf(stderr, "usage: %s FILE.oitp\n", argv[0]);
+        exit(2);
+    }
+    oit_error err = {0};
+    oit_gl *gl = NULL;
+    if (oit_gl_create(NULL, &gl, &err) != OIT_OK ||
+        oit_partfile_open(argv[1], NULL, pf, &err) != OIT_OK) {
+        fprintf(stderr, "FAIL: %s\n", err.message);
+        oit_gl_destroy(gl);
+        exit(1);
+    }
     return gl;
 }
 

@@ -16,10 +16,10 @@
 #include <string.h>
 
 #include "oit/liboit.h"
-#include "render/dfb.h"
-#include "render/gl_context.h"
-#include "render/gl_util.h"
-#include "render/image.h"
+#include "render/capture/dfb.h"
+#include "render/gl/gl_context.h"
+#include "render/gl/gl_util.h"
+#include "render/image/image.h"
 #include "partfile/triangles.h"
 #include "tests/lib/test_check.h"
 #include "tests/liboit/part_scene.h"

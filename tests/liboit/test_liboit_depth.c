@@ -28,10 +28,10 @@
 #include <string.h>
 
 #include "oit/liboit.h"
-#include "render/gl_context.h"
-#include "render/gl_util.h"
-#include "render/glsl_bindings.h"
-#include "render/view.h"
+#include "render/gl/gl_context.h"
+#include "render/gl/gl_util.h"
+#include "render/gl/glsl_bindings.h"
+#include "render/image/view.h"
 #include "partfile/triangles.h"
 #include "tests/lib/test_check.h"
 #include "tests/liboit/part_scene.h"

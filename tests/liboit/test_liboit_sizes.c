@@ -17,8 +17,8 @@
 
 #include "oit/liboit.h"
 #include "partfile/triangles.h"
-#include "render/dfb.h"
-#include "render/image.h"
+#include "render/capture/dfb.h"
+#include "render/image/image.h"
 #include "tests/lib/test_check.h"
 #include "tests/liboit/part_scene.h"
 

@@ -18,7 +18,8 @@
 #include <string.h>
 
 #include "oit/partfile.h"
-#include "render/view.h"
+#include "partfile/write.h"
+#include "render/image/view.h"
 #include "partfile/order.h"
 
 #define MAX_PARTS 64

@@ -26,8 +26,9 @@
  * lies wholly outside a plane ("rescued two levels down"), so a cull by the
  * parent boxes alone, or by one level of overhang, fails the test. */
 #include "oit/partfile.h"
+#include "partfile/write.h"
 #include "partfile/order.h"
-#include "render/view.h"
+#include "render/image/view.h"
 #include "tests/lib/test_rng.h"
 #include "tests/lib/test_check.h"
 

@@ -10,6 +10,7 @@
  */
 #include "oit/mesh.h"
 #include "oit/partfile.h"
+#include "partfile/write.h"
 
 #include "partfile/checksum.h"
 #include "partfile/layout.h"

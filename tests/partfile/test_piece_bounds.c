@@ -27,6 +27,7 @@
  * generator cannot drift into files where a kind never applies. */
 #include "oit/mesh.h"
 #include "oit/partfile.h"
+#include "partfile/write.h"
 
 #include "partfile/layout.h"
 #include "tests/lib/test_rng.h"

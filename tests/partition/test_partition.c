@@ -19,6 +19,7 @@
 #include "partition/kd_split.h"
 #include "partition/predicates.h"
 #include "base/sort.h"
+#include "base/vec.h"
 #include "tests/lib/test_check.h"
 
 /* ---------------------------------------------------------------- predicates */
@@ -187,14 +188,7 @@ static void make_sphere(tri_list *l, int rings, int segs)
 
 static double tri_area(const oit_triangle *t)
 {
-    double u[3], v[3];
-    for (int k = 0; k < 3; k++) {
-        u[k] = (double)t->v[1].pos[k] - t->v[0].pos[k];
-        v[k] = (double)t->v[2].pos[k] - t->v[0].pos[k];
-    }
-    double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2],
-           z = u[0] * v[1] - u[1] * v[0];
-    return 0.5 * sqrt(x * x + y * y + z * z);
+    return oit_area3fd(t->v[0].pos, t->v[1].pos, t->v[2].pos);
 }
 
 /* ---------------------------------------------------------------- clip */

@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "render/image.h"
+#include "render/image/image.h"
 #include "tools/oitbench/bench_csv.h"
 #include "tools/oitbench/bench_plot.h"
 #include "plot/chart.h"

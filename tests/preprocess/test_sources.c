@@ -30,6 +30,8 @@
  * by keys instead of its counting sort. */
 #include "oit/mesh.h"
 #include "oit/partfile.h"
+#include "partfile/write.h"
+#include "base/vec.h"
 #include "partition/clip.h"
 
 #include <float.h>
@@ -38,17 +40,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static double area_of(const float a[3], const float b[3], const float c[3])
-{
-    double u[3], v[3];
-    for (int k = 0; k < 3; k++) {
-        u[k] = (double)b[k] - a[k];
-        v[k] = (double)c[k] - a[k];
-    }
-    double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2],
-           z = u[0] * v[1] - u[1] * v[0];
-    return 0.5 * sqrt(x * x + y * y + z * z);
-}
 
 static void vertex(const oit_partfile_part_view *v, uint64_t i, float out[3])
 {
@@ -157,9 +148,9 @@ int main(int argc, char **argv)
             vertex(&v, 3 * t, a);
             vertex(&v, 3 * t + 1, b);
             vertex(&v, 3 * t + 2, c);
-            got[s] += area_of(a, b, c);
+            got[s] += oit_area3fd(a, b, c);
             npieces[s]++;
-            shuffled[m.count - 1 - s] += area_of(a, b, c);
+            shuffled[m.count - 1 - s] += oit_area3fd(a, b, c);
             pieces++;
         }
         unordered_parts += (uint64_t)unordered;
@@ -169,7 +160,7 @@ int main(int argc, char **argv)
     double worst = 0;
     for (size_t i = 0; i < m.count; i++) {
         const oit_triangle *t = &m.tris[i];
-        double want = area_of(t->v[0].pos, t->v[1].pos, t->v[2].pos), big = 0, edge = 0;
+        double want = oit_area3fd(t->v[0].pos, t->v[1].pos, t->v[2].pos), big = 0, edge = 0;
         for (int k = 0; k < 3; k++) {
             double e2 = 0;
             for (int c = 0; c < 3; c++) {

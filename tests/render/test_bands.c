@@ -1,4 +1,4 @@
-/* Frames rendered in bands of rows (render/band.h) against the same frames
+/* Frames rendered in bands of rows (render/gl/band.h) against the same frames
  * whole: every exact method through oit_method_render, with a storage
  * limit (oit_method_options.store_limit) low enough that a 37x53 frame
  * takes 4 to 14 bands, and for the list methods a fragment pool that
@@ -23,9 +23,9 @@
 #include <string.h>
 
 #include "oit/partfile.h"
-#include "render/band.h"
+#include "render/gl/band.h"
 #include "render/baselines/baseline_common.h"
-#include "render/image.h"
+#include "render/image/image.h"
 #include "render/method.h"
 #include "stream/stream_method.h"
 #include "tests/lib/test_check.h"

@@ -12,10 +12,10 @@
 #include <stdlib.h>
 
 #include "tests/lib/gl_test_scene.h"
-#include "render/capture.h"
-#include "render/dfb.h"
-#include "render/gl_context.h"
-#include "render/image.h"
+#include "render/capture/capture.h"
+#include "render/capture/dfb.h"
+#include "render/gl/gl_context.h"
+#include "render/image/image.h"
 #include "tests/lib/test_check.h"
 #include "tests/lib/test_gl.h"
 

@@ -7,7 +7,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "render/capture_choice.h"
+#include "render/capture/capture_choice.h"
 #include "tests/lib/test_check.h"
 
 /* The injected self-test: passes at `from` samples and fewer (0: never),

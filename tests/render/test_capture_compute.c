@@ -1,4 +1,4 @@
-/* The compute capture (render/capture_compute.h) against DFB and against
+/* The compute capture (render/capture/capture_compute.h) against DFB and against
  * compositing by hand (tests/lib/gl_test_scene.h): one batch of shuffled
  * quads (image, fragment total and deepest pixel); front-to-back batches
  * with tight rects, transparent and translucent (a closed slab split
@@ -12,9 +12,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "render/capture.h"
-#include "render/dfb.h"
-#include "render/image.h"
+#include "render/capture/capture.h"
+#include "render/capture/dfb.h"
+#include "render/image/image.h"
 #include "tests/lib/gl_test_scene.h"
 #include "tests/lib/test_check.h"
 #include "tests/lib/test_gl.h"

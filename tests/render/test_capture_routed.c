@@ -15,11 +15,11 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "render/capture.h"
-#include "render/dfb.h"
-#include "render/gl_context.h"
-#include "render/gl_util.h"
-#include "render/image.h"
+#include "render/capture/capture.h"
+#include "render/capture/dfb.h"
+#include "render/gl/gl_context.h"
+#include "render/gl/gl_util.h"
+#include "render/image/image.h"
 #include "tests/lib/gl_test_scene.h"
 #include "tests/lib/test_check.h"
 #include "tests/lib/test_gl.h"

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Linear-light compositing (oitstream --colour-space linear, render/shade.h
+# Linear-light compositing (oitstream --colour-space linear, render/image/shade.h
 # "Colour space") through the GL methods against the Embree reference, on
 # one input: a numerical hard case (hard CASE, oitgen hard --case CASE,
 # vertex colours) or a fetched mesh (mesh FILE in $OIT_MESH_CACHE, no
@@ -15,7 +15,7 @@
 #   Three views in transparent shading, one in translucent (the decoded
 #   medium colour, Beer-Lambert in linear light).
 #   A PFM written and read back holds linear light that encodes to the
-#   PNG's bytes (PFM linear-light output, render/image.h): --compare of the
+#   PNG's bytes (PFM linear-light output, render/image/image.h): --compare of the
 #   PNG and the PFM of one frame finds no pixel more than 1/255 apart, and
 #   the PFM's raw floats are the decoded PNG values (png_figures --pfm-linear).
 # usage: test_colour_space.sh hard CASE PNG_FIGURES | mesh FILE PNG_FIGURES

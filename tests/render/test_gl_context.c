@@ -4,10 +4,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "render/gl_context.h"
-#include "render/gl_util.h"
-#include "render/glsl_bindings.h"
-#include "render/gl_window.h"
+#include "render/gl/gl_context.h"
+#include "render/gl/gl_util.h"
+#include "render/gl/glsl_bindings.h"
+#include "render/gl/gl_window.h"
 #include "tests/lib/test_check.h"
 
 /* A debug context (gl_context.h) turns what the driver flags into an error

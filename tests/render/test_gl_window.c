@@ -8,10 +8,10 @@
 #include <stdlib.h>
 
 #include "tests/lib/gl_test_scene.h"
-#include "render/dfb.h"
-#include "render/gl_window.h"
-#include "render/gl_util.h"
-#include "render/image.h"
+#include "render/capture/dfb.h"
+#include "render/gl/gl_window.h"
+#include "render/gl/gl_util.h"
+#include "render/image/image.h"
 
 #define GLFW_INCLUDE_NONE /* GL comes from gl_util.h (core profile prototypes) */
 #include <GLFW/glfw3.h>

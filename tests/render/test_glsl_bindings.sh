@@ -1,5 +1,5 @@
 #!/bin/sh
-# Binding points are named, never numbered (render/glsl_bindings.h): a GLSL
+# Binding points are named, never numbered (render/gl/glsl_bindings.h): a GLSL
 # layout(binding = N) or a glBindBufferBase(..., N, ...) with a number for N
 # agrees with the other side only until someone renumbers the list. Fails naming each
 # file:line that spells a storage binding, texture unit or image unit as a

@@ -39,7 +39,7 @@ check() {
 if [ "${1:-}" = --self-test ]; then
     dir="$2/glsl_precise_selftest"
     mkdir -p "$dir"
-    src=$(dirname "$0")/../../render/frag_glsl.c
+    src=$(dirname "$0")/../../render/gl/frag_glsl.c
     # The key as it was before precise: dot and normalize, fused freely.
     sed 's/"    precise float nd = n.x \* dir.x + n.y \* dir.y + n.z \* dir.z;\\n"/"    float nd = dot(n, dir);\\n"/' \
         "$src" >"$dir/planted.c"
@@ -52,6 +52,6 @@ if [ "${1:-}" = --self-test ]; then
     finish "glsl precise self-test"
 fi
 
-out=$(check "$1/render/frag_glsl.c")
+out=$(check "$1/render/gl/frag_glsl.c")
 [ -z "$out" ] || fail "$out"
 finish "glsl precise"

@@ -1,4 +1,4 @@
-/* oit_gpu_mesh_draw_many (render/gpu_mesh.h) against oit_gpu_mesh_draw on
+/* oit_gpu_mesh_draw_many (render/gl/gpu_mesh.h) against oit_gpu_mesh_draw on
  * each mesh in turn: 300 mesh views (some empty, primitive ids not in
  * drawing order) over two GL buffers whose gaps hold garbage, laid out so
  * the groups change: one buffer, runs alternating between the buffers,
@@ -43,10 +43,10 @@
 #include <string.h>
 
 #include "tests/lib/gl_test_scene.h"
-#include "render/frag_glsl.h"
-#include "render/gl_context.h"
-#include "render/gpu_draw_record.h"
-#include "render/gpu_mesh.h"
+#include "render/gl/frag_glsl.h"
+#include "render/gl/gl_context.h"
+#include "render/gl/gpu_draw_record.h"
+#include "render/gl/gpu_mesh.h"
 #include "tests/lib/test_check.h"
 #include "tests/lib/test_gl.h"
 

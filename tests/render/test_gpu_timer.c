@@ -1,4 +1,4 @@
-/* The GPU timer (render/gpu_timer.h) through the method layer and alone:
+/* The GPU timer (render/gl/gpu_timer.h) through the method layer and alone:
  * figures per frame and phase that add up and stay within the frame's wall
  * time, frame numbers in order, results that wait for nobody until asked
  * (a ring that keeps the newest, says how many it dropped), and a timer
@@ -8,9 +8,9 @@
 #include <stdlib.h>
 
 #include "base/clock.h"
-#include "render/gl_util.h"
-#include "render/gpu_timer.h"
-#include "render/image.h"
+#include "render/gl/gl_util.h"
+#include "render/gl/gpu_timer.h"
+#include "render/image/image.h"
 #include "render/method.h"
 #include "tests/lib/gl_test_scene.h"
 #include "tests/lib/test_check.h"

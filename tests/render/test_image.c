@@ -7,8 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "render/image.h"
-#include "render/shade.h"
+#include "render/image/image.h"
+#include "render/image/shade.h"
 #include "tests/lib/test_check.h"
 
 

@@ -1,4 +1,4 @@
-/* Opaque triangles (render/shade.h, "Opaque triangles"): screen-aligned
+/* Opaque triangles (render/image/shade.h, "Opaque triangles"): screen-aligned
  * quads, some of alpha 255, through DFB, the capture in batches (array and
  * counted backends) and the Embree reference. Checked against the hand
  * result of shade.h (an opaque quad composites with a = 1, so nothing
@@ -11,11 +11,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "render/capture.h"
-#include "render/dfb.h"
-#include "render/image.h"
-#include "render/reference.h"
-#include "render/shade.h"
+#include "render/capture/capture.h"
+#include "render/capture/dfb.h"
+#include "render/image/image.h"
+#include "render/reference/reference.h"
+#include "render/image/shade.h"
 #include "tests/lib/gl_test_scene.h"
 #include "tests/lib/test_check.h"
 #include "tests/lib/test_gl.h"

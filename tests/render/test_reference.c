@@ -8,9 +8,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "render/image.h"
-#include "render/reference.h"
-#include "render/shade.h"
+#include "render/image/image.h"
+#include "render/reference/reference.h"
+#include "render/image/shade.h"
 #include "tests/lib/test_check.h"
 
 

@@ -1,4 +1,4 @@
-/* The saturation tiles (render/saturation.h) on state buffers written here,
+/* The saturation tiles (render/capture/saturation.h) on state buffers written here,
  * against a CPU model of the grid: a tile holds the largest transmittance
  * (over its pixels and channels) of the state when a batch touching it was
  * last updated, 1 when none was, and a rect is covered at epsilon when
@@ -25,8 +25,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "render/frag_glsl.h"
-#include "render/saturation.h"
+#include "render/gl/frag_glsl.h"
+#include "render/capture/saturation.h"
 #include "tests/lib/test_check.h"
 #include "tests/lib/test_gl.h"
 

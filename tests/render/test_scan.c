@@ -11,7 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "render/scan_glsl.h"
+#include "render/gl/scan_glsl.h"
 #include "tests/lib/test_check.h"
 #include "tests/lib/test_gl.h"
 

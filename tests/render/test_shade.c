@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "render/shade.h"
+#include "render/image/shade.h"
 #include "tests/lib/test_check.h"
 
 #define CHECK_NEAR(got, want, tol, what)                                                  \

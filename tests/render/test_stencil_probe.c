@@ -1,4 +1,4 @@
-/* The stencil capture's checks without GL (render/capture_stencil_probe.h):
+/* The stencil capture's checks without GL (render/capture/capture_stencil_probe.h):
  * the self-test's probe scene has what it must (partial coverage, pixels
  * with K, with fewer and with no fragments, edges clear of pixel centres);
  * its verdict accepts a correct read-back and refuses crafted wrong ones
@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "render/capture_stencil_probe.h"
+#include "render/capture/capture_stencil_probe.h"
 #include "tests/lib/test_check.h"
 
 static int bits(uint32_t m)

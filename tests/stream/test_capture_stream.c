@@ -13,9 +13,9 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "render/gl_context.h"
-#include "render/gl_util.h"
-#include "render/image.h"
+#include "render/gl/gl_context.h"
+#include "render/gl/gl_util.h"
+#include "render/image/image.h"
 #include "stream/streamer.h"
 #include "tests/lib/test_check.h"
 #include "tests/lib/test_gl.h"

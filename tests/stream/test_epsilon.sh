@@ -49,7 +49,7 @@ for sh in transparent translucent; do
         fail "$sh: fragments do not fall with epsilon: $f0 (E=0), $f1 (0.01), $f5 (0.05)"
 done
 
-# Whole parts behind saturated tiles (render/saturation.h): on 600 stacked
+# Whole parts behind saturated tiles (render/capture/saturation.h): on 600 stacked
 # squares seen head on, E = 0.02 saturates every pixel after ~123 layers, so
 # parts must be skipped (neither uploaded nor drawn), drawn + skipped must
 # be the parts E = 0 draws, uploads must fall, and the error stays in bound.

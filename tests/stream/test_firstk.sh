@@ -1,5 +1,5 @@
 #!/bin/sh
-# oitstream --pack first-k (render/capture_firstk.h) where its slots cannot
+# oitstream --pack first-k (render/capture/capture_firstk.h) where its slots cannot
 # hold a pack: exact, nothing lost, and the second pass reported.
 # Usage: test_firstk.sh WRITER   (WRITER: test_streamer, writes the grid file)
 #  - 600 stacked squares (oitgen hard --case stack, --scheme fast: 16 parts of

@@ -18,12 +18,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "render/gl_context.h"
-#include "render/image.h"
+#include "render/gl/gl_context.h"
+#include "render/image/image.h"
 #include "partfile/triangles.h"
 #include "stream/pack.h"
 #include "stream/streamer.h"
 #include "tests/lib/test_check.h"
+#include "tests/lib/test_gl.h"
 
 enum { W = 96, H = 96, VIEWS = 3 };
 
@@ -116,19 +117,9 @@ static oit_streamer_desc base_desc(void)
 
 int main(int argc, char **argv)
 {
-    if (argc != 2) {
-        fprintf(stderr, "usage: test_gpu_budget FILE.oitp\n");
-        return 2;
-    }
-    oit_error err = {0};
-    oit_gl *gl = NULL;
     oit_partfile *pf = NULL;
-    if (oit_gl_create(NULL, &gl, &err) != OIT_OK ||
-        oit_partfile_open(argv[1], NULL, &pf, &err) != OIT_OK) {
-        fprintf(stderr, "FAIL: %s\n", err.message);
-        oit_gl_destroy(gl);
-        return 1;
-    }
+    oit_gl *gl = test_gl_open_partfile(argc, argv, &pf);
+    oit_error err = {0};
     uint64_t all = file_bytes(pf);
     printf("%s: %u parts, %llu bytes decoded\n", argv[1], oit_partfile_part_count(pf),
            (unsigned long long)all);

@@ -28,6 +28,7 @@
  * rectangles of a pack overlapping, and two overlapping parts never in
  * packs against their order (the disjoint rule: never in one pack). */
 #include "oit/partfile.h"
+#include "partfile/write.h"
 #include "stream/pack.h"
 #include "tests/lib/test_rng.h"
 #include "tests/lib/test_check.h"

@@ -23,6 +23,7 @@
 
 #include "oit/mesh.h"
 #include "oit/partfile.h"
+#include "partfile/write.h"
 
 enum { NX = 6, NY = 5, NZ = 4, CELLS = NX * NY * NZ, MAXV = 32, MAXI = 64 };
 

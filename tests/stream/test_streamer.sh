@@ -177,14 +177,14 @@ agree translucent_auto --shading translucent
 # Packs filled front to back across the screen (stream/schedule.h): the
 # same image from a different pack order.
 agree wave --schedule wave --pack budget
-# The counted capture (render/capture_counted.h): no layer limit, packs cut
+# The counted capture (render/capture/capture_counted.h): no layer limit, packs cut
 # by bytes only, halved where they exceed the fragment budget; the K-slot
 # packs are the two rules above and below. The default (auto) takes
 # first-K packs or counted ones by the frame before (stream/streamer.h).
 agree counted --pack counted
 agree counted_split --pack counted --slot-budget 64K
 agree auto
-# The first-K capture (render/capture_firstk.h): the counted packs, drawn
+# The first-K capture (render/capture/capture_firstk.h): the counted packs, drawn
 # once into K slots a pixel, again only for the pixels that got more; with
 # a 64K slot budget its packs are too wide for 2 slots a pixel and are
 # captured counted instead.

@@ -28,14 +28,15 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "render/gl_context.h"
-#include "render/image.h"
+#include "render/gl/gl_context.h"
+#include "render/image/image.h"
 #include "partfile/order.h"
 #include "partfile/triangles.h"
 #include "stream/reader.h"
 #include "stream/streamer.h"
 #include "stream/upload.h"
 #include "tests/lib/test_check.h"
+#include "tests/lib/test_gl.h"
 
 enum { W = 96, H = 96 };
 
@@ -347,19 +348,9 @@ static void reader_alone(oit_partfile *pf)
 
 int main(int argc, char **argv)
 {
-    if (argc != 2) {
-        fprintf(stderr, "usage: test_upload FILE.oitp\n");
-        return 2;
-    }
-    oit_error err = {0};
-    oit_gl *gl = NULL;
     oit_partfile *pf = NULL;
-    if (oit_gl_create(NULL, &gl, &err) != OIT_OK ||
-        oit_partfile_open(argv[1], NULL, &pf, &err) != OIT_OK) {
-        fprintf(stderr, "FAIL: %s\n", err.message);
-        oit_gl_destroy(gl);
-        return 1;
-    }
+    oit_gl *gl = test_gl_open_partfile(argc, argv, &pf);
+    oit_error err = {0};
     oit_view v = make_view(pf);
     oit_streamer *s = NULL;
     oit_streamer_desc d = base_desc();

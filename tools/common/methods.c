@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "render/baselines/methods.h"
-#include "render/reference.h"
+#include "render/reference/reference.h"
 #include "stream/stream_method.h"
 
 static const oit_method *const methods[] = {

@@ -1,7 +1,7 @@
 /* oitbench's command line (bench_args.h). */
 #include "tools/oitbench/bench_args.h"
 
-#include "render/capture_choice.h"
+#include "render/capture/capture_choice.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -31,7 +31,7 @@ typedef struct oit_bench_args {
     oit_bench_entry entries[OIT_BENCH_MAX_ENTRIES];
     int entry_count;
     oit_shading_mode shading; /* default transparent */
-    oit_colour_space colour_space; /* default srgb (render/shade.h) */
+    oit_colour_space colour_space; /* default srgb (render/image/shade.h) */
     int orbit;          /* views around the model; default 8 */
     int width, height;  /* default 512x512 */
     int frames, warmup; /* per method per view; default 5 and 1 */

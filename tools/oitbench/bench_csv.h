@@ -17,7 +17,7 @@
  * it would have drawn).
  *
  * gpu_ms_median is the median GPU time of the timed frames (GL timestamp
- * queries, render/gpu_timer.h), empty where the method was not timed on
+ * queries, render/gl/gpu_timer.h), empty where the method was not timed on
  * the GPU (no GL, no timestamps, or not run).
  *
  * The reader also takes the file of the oitbench before geometry

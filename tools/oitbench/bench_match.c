@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/vec.h"
 #include "partfile/triangles.h"
 
 /* m[0] += area, m[1..3] += area * centroid, over n triangles. */
@@ -13,14 +14,7 @@ static void add_moments(const oit_triangle *t, size_t n, double m[4])
 {
     for (size_t i = 0; i < n; i++) {
         const float *a = t[i].v[0].pos, *b = t[i].v[1].pos, *c = t[i].v[2].pos;
-        double u[3], v[3];
-        for (int k = 0; k < 3; k++) {
-            u[k] = (double)b[k] - a[k];
-            v[k] = (double)c[k] - a[k];
-        }
-        double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2],
-               z = u[0] * v[1] - u[1] * v[0];
-        double area = 0.5 * sqrt(x * x + y * y + z * z);
+        double area = oit_area3fd(a, b, c);
         m[0] += area;
         for (int k = 0; k < 3; k++)
             m[1 + k] += area * ((double)a[k] + b[k] + c[k]) / 3.0;

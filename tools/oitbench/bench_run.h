@@ -10,7 +10,7 @@
 #include <stdint.h>
 
 #include "oit/partfile.h"
-#include "render/image.h"
+#include "render/image/image.h"
 #include "tools/common/methods.h"
 
 /* Which triangles a method drew (bench_models.h): the source mesh in core,
@@ -34,7 +34,7 @@ typedef struct oit_bench_cell {
     uint32_t max_layers;
     uint64_t fragments;      /* of the last timed frame */
     oit_image_diff diff;     /* last timed frame against the reference */
-    double gpu_ms_median;    /* GPU time (render/gpu_timer.h); -1: not timed */
+    double gpu_ms_median;    /* GPU time (render/gl/gpu_timer.h); -1: not timed */
 } oit_bench_cell;
 
 /* What to run: a method, and the threshold oit_method_options.epsilon

@@ -6,8 +6,8 @@
 
 #include <stdio.h>
 
-#include "render/view.h"
-#include "render/capture.h"
+#include "render/image/view.h"
+#include "render/capture/capture.h"
 #include "stream/pack.h"
 
 typedef struct oit_stream_args {
@@ -57,7 +57,7 @@ typedef struct oit_stream_args {
     int still_ms;                  /* --still MS: stillness before the exact frame; 0: 200 */
     int up_axis;                   /* --up x|y|z: 0, 1 (default), 2 */
     /* --clip (repeatable): the planes as checked with origin 0, and their
-     * text, re-read against the model's origin (render/clip.h) */
+     * text, re-read against the model's origin (render/image/clip.h) */
     oit_clip clip;
     const char *clip_text[OIT_CLIP_MAX];
     int have_preview;              /* --preview was given */

@@ -5,8 +5,8 @@
 
 #include <stddef.h>
 
-#include "render/gpu_timer.h"
-#include "render/view.h"
+#include "render/gl/gpu_timer.h"
+#include "render/image/view.h"
 #include "stream/streamer.h"
 
 typedef struct oit_stats_frame {
@@ -17,7 +17,7 @@ typedef struct oit_stats_frame {
     int has_stream;               /* the part-file streamer's figures follow */
     oit_stream_frame_stats stream;
     int has_gpu;       /* the GPU timer's figures of this frame follow */
-    oit_gpu_times gpu; /* render/gpu_timer.h */
+    oit_gpu_times gpu; /* render/gl/gpu_timer.h */
 } oit_stats_frame;
 
 typedef struct oit_stats_run {

@@ -14,11 +14,12 @@
 #include <string.h>
 
 #include "base/json.h"
-#include "render/gl_context.h"
-#include "render/gl_window.h"
-#include "render/gl_util.h"
-#include "render/gpu_timer.h"
-#include "render/image.h"
+#include "base/vec.h"
+#include "render/gl/gl_context.h"
+#include "render/gl/gl_util.h"
+#include "render/gl/gl_window.h"
+#include "render/gl/gpu_timer.h"
+#include "render/image/image.h"
 #include "tools/common/paths.h"
 #include "tools/oitstream/stats_json.h"
 #include "tools/oitstream/viewer_clip.h"
@@ -100,34 +101,12 @@ static const float kWhite[3] = {1.0f, 1.0f, 1.0f}, kPanel[3] = {0.08f, 0.08f, 0.
 
 /* ---- camera ---- */
 
-static void sub3(const float a[3], const float b[3], float out[3])
-{
-    for (int k = 0; k < 3; k++)
-        out[k] = a[k] - b[k];
-}
-
-static void cross3(const float a[3], const float b[3], float out[3])
-{
-    out[0] = a[1] * b[2] - a[2] * b[1];
-    out[1] = a[2] * b[0] - a[0] * b[2];
-    out[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-static float normalize3(float v[3])
-{
-    float n = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    if (n > 0.0f)
-        for (int k = 0; k < 3; k++)
-            v[k] /= n;
-    return n;
-}
-
 /* Rotates v by angle (radians) about the unit axis (Rodrigues). */
 static void rotate3(float v[3], const float axis[3], float angle)
 {
     float c = cosf(angle), s = sinf(angle), kxv[3];
-    float kdv = axis[0] * v[0] + axis[1] * v[1] + axis[2] * v[2];
-    cross3(axis, v, kxv);
+    float kdv = oit_dot3f(axis, v);
+    oit_cross3f(axis, v, kxv);
     for (int k = 0; k < 3; k++)
         v[k] = v[k] * c + kxv[k] * s + axis[k] * kdv * (1.0f - c);
 }
@@ -138,10 +117,10 @@ static void fit_clip(viewer *v)
 {
     oit_camera *c = &v->view.camera;
     float f[3], to_c[3];
-    sub3(c->target, c->eye, f);
-    normalize3(f);
-    sub3(v->centre, c->eye, to_c);
-    float dc = f[0] * to_c[0] + f[1] * to_c[1] + f[2] * to_c[2];
+    oit_sub3f(c->target, c->eye, f);
+    oit_normalize3f(f);
+    oit_sub3f(v->centre, c->eye, to_c);
+    float dc = oit_dot3f(f, to_c);
     float r = 1.05f * v->radius;
     c->zfar = dc + r > 0.0f ? dc + r : r;
     c->znear = fmaxf(dc - r, 1e-4f * c->zfar);
@@ -153,15 +132,14 @@ static void orbit(viewer *v, double dx, double dy)
 {
     oit_camera *c = &v->view.camera;
     float off[3], up[3] = {c->up[0], c->up[1], c->up[2]}, right[3];
-    sub3(c->eye, c->target, off);
-    normalize3(up);
+    oit_sub3f(c->eye, c->target, off);
+    oit_normalize3f(up);
     rotate3(off, up, (float)(-dx * 0.01));
-    cross3(off, up, right);
-    if (normalize3(right) > 0.0f) {
+    oit_cross3f(off, up, right);
+    if (oit_normalize3f(right) > 0.0f) {
         float before[3] = {off[0], off[1], off[2]};
         rotate3(off, right, (float)(dy * 0.01));
-        float len = sqrtf(off[0] * off[0] + off[1] * off[1] + off[2] * off[2]);
-        float cosu = (off[0] * up[0] + off[1] * up[1] + off[2] * up[2]) / len;
+        float cosu = oit_dot3f(off, up) / sqrtf(oit_dot3f(off, off));
         if (fabsf(cosu) > 0.995f)
             memcpy(off, before, sizeof off);
     }
@@ -181,11 +159,11 @@ static void fly(viewer *v, int forward, int right, int up_dir)
 {
     oit_camera *c = &v->view.camera;
     float f[3], r[3], u[3] = {c->up[0], c->up[1], c->up[2]};
-    sub3(c->target, c->eye, f);
-    float step = 0.05f * normalize3(f);
-    normalize3(u);
-    cross3(f, u, r);
-    normalize3(r);
+    oit_sub3f(c->target, c->eye, f);
+    float step = 0.05f * oit_normalize3f(f);
+    oit_normalize3f(u);
+    oit_cross3f(f, u, r);
+    oit_normalize3f(r);
     for (int k = 0; k < 3; k++) {
         float d = step * ((float)forward * f[k] + (float)right * r[k] + (float)up_dir * u[k]);
         c->eye[k] += d;

@@ -9,7 +9,7 @@
 
 #include "oit/mesh.h"
 #include "oit/partfile.h"
-#include "render/view.h"
+#include "render/image/view.h"
 #include "tools/oitstream/cli_args.h"
 
 /* The cameras of --view, --orbit, --walk or --azimuth/--elevation (with

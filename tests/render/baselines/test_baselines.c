@@ -12,13 +12,13 @@
 #include <stdlib.h>
 
 #include "tests/lib/gl_test_scene.h"
-#include "render/dfb.h"
+#include "render/capture/dfb.h"
 #include "render/baselines/methods.h"
 #include "render/baselines/f2b.h"
-#include "render/gl_context.h"
-#include "render/reference.h"
+#include "render/gl/gl_context.h"
+#include "render/reference/reference.h"
 #include "render/baselines/guarded.h"
-#include "render/image.h"
+#include "render/image/image.h"
 #include "render/baselines/ppll.h"
 #include "render/baselines/ppll4.h"
 #include "tests/lib/test_check.h"

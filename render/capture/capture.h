@@ -1,0 +1,188 @@
+/* Capture of one batch of geometry into a bounded K-fragment A-buffer, then
+ * per-pixel sort and front-to-back composite into the frame's accumulation
+ * (Vlcek et al.'s transmittance formulation), restricted to the batch's screen
+ * rectangle. Four backends behind this one interface, each its own state
+ * and table of operations (capture_backend.h); the K-slot ones:
+ *  - OIT_CAPTURE_ARRAY: K slots per pixel filled through an atomic counter;
+ *    portable, and counts overflow exactly.
+ *  - OIT_CAPTURE_STENCIL: stencil routing over K MSAA samples (Wang & Xie);
+ *    only offered where K samples are K true multisamples (a driver that
+ *    says otherwise, GL_NV_internalformat_sample_query, is refused) and a
+ *    start-up self-test shows the driver routes one fragment to each sample
+ *    (it does not on llvmpipe, see design.md; nor on NVIDIA at 16 samples
+ *    of an integer format, 8 multisamples x 2 supersamples).
+ * A pixel that receives more than K fragments in one batch counts once in
+ * overflow_pixels; its extra fragments are lost, which is why a correct part
+ * file must give zero. The counted and first-K backends have no such limit
+ * (OIT_CAPTURE_COUNTED, OIT_CAPTURE_FIRSTK below). */
+#ifndef OIT_RENDER_CAPTURE_H
+#define OIT_RENDER_CAPTURE_H
+
+#include "render/gl/gpu_mesh.h"
+#include "render/gl/frag_glsl.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum oit_capture_kind {
+    OIT_CAPTURE_AUTO = 0, /* stencil when its self-test passes, else array */
+    OIT_CAPTURE_ARRAY,
+    OIT_CAPTURE_STENCIL,
+    /* no per-pixel limit: each batch counted, stored and sorted as DFB does,
+     * within the slot budget as a fragment budget (capture_counted.h) */
+    OIT_CAPTURE_COUNTED,
+    /* no per-pixel limit either: each batch drawn once into up to K slots a
+     * pixel within the slot budget while every fragment is counted; only
+     * the pixels that got more are drawn again, stored and sorted
+     * (capture_firstk.h); a batch too wide for 2 slots a pixel is counted */
+    OIT_CAPTURE_FIRSTK,
+    /* no per-pixel limit, no raster pipeline: each batch binned into tiles,
+     * rasterized, ordered and composited in compute shaders
+     * (capture_compute.h); K is not used */
+    OIT_CAPTURE_COMPUTE
+} oit_capture_kind;
+
+typedef struct oit_capture oit_capture;
+
+/* K in [2, 16]. Fails with OIT_ERR_UNSUPPORTED when STENCIL is asked for and
+ * the sample mode or the self-test rules it out at this K; the message says
+ * which, with the numbers (and the largest K of true multisamples where the
+ * driver tells). AUTO then takes the array backend at the same K. */
+oit_status oit_capture_create(oit_capture_kind kind, int K, oit_capture **out,
+                              oit_error *err);
+/* Testing: what a driver may do, forced on the stencil backend's fill (the
+ * self-test's and every batch's), so that a test can see the self-test
+ * refuse it where the driver itself does not do it. */
+enum {
+    /* the fill shader run once per covered sample (GL_SAMPLE_SHADING,
+     * minimum 1, multisampling on): more than once a pixel, each with its
+     * own coverage, as NVIDIA's 8 multisamples x 2 supersamples do */
+    OIT_CAPTURE_FAULT_SAMPLE_SHADING = 1u << 0,
+    /* not a fault but a stand-in: the routed fills put each fragment in
+     * the sample stencil routing would (capture_stencil.h, by_copy)
+     * without the stencil, so that a driver that does not route
+     * (llvmpipe) passes the self-test and renders the stencil paths
+     * exactly; only the routing draw itself is left untested there */
+    OIT_CAPTURE_TEST_ROUTE_BY_COPY = 1u << 1
+};
+/* oit_capture_create with faults (OIT_CAPTURE_FAULT_*; 0: none). */
+oit_status oit_capture_create_faulty(oit_capture_kind kind, int K, unsigned faults,
+                                     oit_capture **out, oit_error *err);
+/* A capture whose K-slot fills are routed by the stencil into stencil_k
+ * samples a pixel, after the self-test passed at stencil_k (no fallback:
+ * OIT_ERR_UNSUPPORTED with the reason where it does not; capture_choice.h
+ * decides what to try):
+ *  - OIT_CAPTURE_STENCIL: stencil_k = K;
+ *  - OIT_CAPTURE_FIRSTK: its first pass (capture_firstk.h) keeps a pixel's
+ *    first stencil_k (2..K) fragments in the samples while it counts every
+ *    fragment; pixels that got more take the second pass, as with array
+ *    slots. The target holds stencil_k samples of the whole frame, outside
+ *    the slot budget (20 bytes a sample: 160 MiB at 1024x1024, 8 samples). */
+oit_status oit_capture_create_routed(oit_capture_kind kind, int K, int stencil_k,
+                                     unsigned faults, oit_capture **out, oit_error *err);
+/* The samples of c's routed fills; 0: none (array slots). */
+int oit_capture_routed_k(const oit_capture *c);
+/* "array", "stencil", "counted", "first-k", "compute" (NULL for AUTO or
+ * unknown). */
+const char *oit_capture_kind_name(oit_capture_kind kind);
+void oit_capture_destroy(oit_capture *c);
+oit_capture_kind oit_capture_backend(const oit_capture *c);
+
+/* Early termination (DESIGN.md): from the next batch on, a pixel whose
+ * carried transmittance is below epsilon in every channel drops its
+ * fragments, so the image differs from the exact one by at most epsilon per
+ * channel. 0 (the default; negatives read as 0) keeps the image exact. */
+void oit_capture_set_epsilon(oit_capture *c, float epsilon);
+
+/* The caller's opaque depth (frag_glsl.h, oit_opaque_depth) from the next
+ * oit_capture_begin on; NULL: none (the default). Fragments behind it are
+ * neither counted nor stored; the texture must be bound at unit
+ * OIT_TEX_OPAQUE_DEPTH while the frame is captured. */
+void oit_capture_set_opaque(oit_capture *c, const oit_opaque_depth *o);
+
+/* The GL buffer of the frame's width*height per-pixel states (packed as
+ * frag_glsl.h's oit_glsl_state_io reads them, in the frame's shading; GL
+ * rows, bottom first), for passes that read the carried transmittance
+ * between batches (saturation.h). Valid until the next oit_capture_begin. */
+unsigned oit_capture_state_buffer(const oit_capture *c);
+
+/* GL draw calls made for geometry since the frame's oit_capture_begin: the
+ * meshes of a batch are drawn with oit_gpu_mesh_draw_many, once per fill
+ * (twice for the counted capture: count and store; once per tile when
+ * tiled; first-K: once, and once more per band where pixels overflowed),
+ * a multi-draw counting 1. */
+uint64_t oit_capture_draw_calls(const oit_capture *c);
+
+/* GPU memory: the array backend's slots grow to K for each pixel of the
+ * largest batch rectangle so far, and to one output value a pixel of the
+ * frame, at most K slots for every pixel (K x 16 bytes a pixel: 128 MiB at
+ * 1024x1024, K = 8). From the next frame on they take at most `bytes` (at
+ * least one row of K) instead of that most. A frame whose full
+ * slots exceed it captures every batch in screen tiles that fit, one draw of
+ * the batch per tile, and writes its output into the idle slots. 0 (the
+ * default): no limit. The image is the same either way. */
+void oit_capture_set_slot_budget(oit_capture *c, uint64_t bytes);
+
+/* The most bytes the counted and first-K captures put in one storage buffer,
+ * from the next frame on: what is stored past it is taken in pieces (a
+ * batch's meshes in halves, then one mesh's rows in bands, as first-K's
+ * second pass). 0 (the default): what this driver binds
+ * (GL_MAX_SHADER_STORAGE_BLOCK_SIZE); lower only to test those pieces. The
+ * image is the same either way. */
+void oit_capture_set_store_limit(oit_capture *c, uint64_t bytes);
+
+/* OIT_CAPTURE_FIRSTK only: 0 captures every batch from the next one on as
+ * OIT_CAPTURE_COUNTED does (count, store, sort: no slots), 1 (the default)
+ * goes back to first-K. Deep views overflow most pixels' slots and pay both
+ * passes of first-K and then the store again; counted packs pay two passes
+ * whatever the depth. The streamer's automatic mode switches by the
+ * frame's figures (streamer.h). The image is the same either way. */
+void oit_capture_set_first_k(oit_capture *c, int on);
+
+/* Bytes a pixel of v takes in the capture's largest per-pixel buffer that
+ * must hold the whole frame in one storage binding: its state (shade.h),
+ * carried across batches. What else it stores past one binding it takes in
+ * pieces (tiles, bands of rows); a frame whose state does not fit is
+ * refused by oit_capture_begin, to be rendered in bands (render/gl/band.h). */
+uint64_t oit_capture_pixel_bytes(const oit_view *v);
+
+/* GPU phases of the next frames are marked on t (render/gl/gpu_timer.h;
+ * NULL: none). The capture does not own it. */
+struct oit_gpu_timer;
+void oit_capture_set_gpu_timer(oit_capture *c, struct oit_gpu_timer *t);
+
+/* Starts a frame: C = 0, T = 1, translucency state cleared. */
+oit_status oit_capture_begin(oit_capture *c, const oit_view *view, oit_error *err);
+/* Captures meshes[0..n) as one batch and composites it behind what the frame
+ * already holds. rect = {x0, y0, x1, y1} in pixels, row 0 at the top, x1/y1
+ * exclusive; NULL means the whole frame. */
+oit_status oit_capture_batch(oit_capture *c, const oit_gpu_mesh *const *meshes,
+                             int n, const int rect[4], oit_error *err);
+/* The widest batch oit_capture_batch_layers takes. */
+#define OIT_CAPTURE_MAX_LAYERS 64
+
+/* As oit_capture_batch for a batch that may give up to `layers` fragments
+ * per pixel. layers <= K is an ordinary batch. A wider one (a wide part,
+ * partition/kd.h) is captured in screen tiles small enough that `layers`
+ * slots per pixel fit the frame's K slots per pixel: the same bytes, one
+ * extra draw of the batch per tile. Exact as long as no pixel gets more than
+ * `layers` (overflow counts it as usual). Both backends use array slots for
+ * it. */
+oit_status oit_capture_batch_layers(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
+                                    const int rect[4], int layers, oit_error *err);
+/* Resolves the frame into out (allocated by the call) and fills stats. */
+oit_status oit_capture_end(oit_capture *c, oit_image *out,
+                           oit_frame_stats *stats, oit_error *err);
+/* Ends the frame without reading the image back: *state receives the GL
+ * buffer holding width*height per-pixel states (oit_glsl_state_io reads
+ * them: C and T before the background; GL rows, bottom first), owned by c
+ * and valid until the
+ * next oit_capture_begin. Only the 16-byte totals are read back for stats. */
+oit_status oit_capture_end_gpu(oit_capture *c, unsigned *state, oit_frame_stats *stats,
+                               oit_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

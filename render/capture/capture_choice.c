@@ -1,0 +1,70 @@
+/* The capture's K-slot fill, chosen (capture_choice.h). */
+#include "render/capture/capture_choice.h"
+
+#include <stdio.h>
+#include <string.h>
+
+/* The next sample count to try after k: the largest power of two below
+ * it (sample counts GL offers), 0 when none is left. */
+static int next_try(int k)
+{
+    int p = 1;
+    while (p * 2 < k)
+        p *= 2;
+    return p >= 2 ? p : 0;
+}
+
+oit_status oit_capture_choose(oit_capture_kind asked, int K, int fewer_ok,
+                              oit_capture_try try_stencil, void *ctx, oit_capture_choice *out,
+                              oit_error *err)
+{
+    memset(out, 0, sizeof *out);
+    out->asked = asked;
+    out->slots = OIT_CAPTURE_ARRAY;
+    if (asked != OIT_CAPTURE_AUTO && asked != OIT_CAPTURE_ARRAY && asked != OIT_CAPTURE_STENCIL)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: %d is not auto, stencil or array",
+                             (int)asked);
+    if (K < 2 || K > 16)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: K=%d is outside [2, 16]", K);
+    if (asked == OIT_CAPTURE_ARRAY)
+        return OIT_OK;
+    for (int k = K; k >= 2; k = fewer_ok ? next_try(k) : 0) {
+        oit_error why = {0};
+        oit_status s = try_stencil(ctx, k, &why);
+        if (s == OIT_OK) {
+            out->slots = OIT_CAPTURE_STENCIL;
+            out->stencil_k = k;
+            return OIT_OK;
+        }
+        if (s != OIT_ERR_UNSUPPORTED) {
+            if (err)
+                *err = why;
+            return s;
+        }
+        if (k == K)
+            snprintf(out->reason, sizeof out->reason, "%s", why.message);
+    }
+    if (asked == OIT_CAPTURE_STENCIL)
+        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "--capture stencil at K=%d%s: %s", K,
+                             fewer_ok && K > 2 ? " (nor fewer samples)" : "", out->reason);
+    return OIT_OK;
+}
+
+oit_status oit_capture_parse(const char *value, const char *what, oit_capture_kind *kind,
+                             oit_error *err)
+{
+    static const struct {
+        const char *name;
+        oit_capture_kind kind;
+    } names[] = {{"auto", OIT_CAPTURE_AUTO},
+                 {"stencil", OIT_CAPTURE_STENCIL},
+                 {"array", OIT_CAPTURE_ARRAY},
+                 {"compute", OIT_CAPTURE_COMPUTE}};
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
+        if (value && !strcmp(value, names[i].name)) {
+            *kind = names[i].kind;
+            return OIT_OK;
+        }
+    return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: '%s' is not auto, stencil, array or compute", what,
+                         value ? value : "");
+}

@@ -1,0 +1,44 @@
+/* Which K-slot fill a capture gets (--capture auto|stencil|array): the
+ * stencil-routed A-buffer where its self-test passes on this driver,
+ * array slots otherwise. Decided without GL: the self-test comes in as a
+ * function, so that tests can inject its verdicts (capture.h's
+ * oit_capture_create_routed is the real one).
+ *
+ * The tries: K first; where the capture may route fewer samples than K
+ * (first-K's pass 1: pixels of more take the second pass, exact either
+ * way) each power of two below K down to 2, the first that passes taken.
+ * K-slot packs may not (a part of K layers would lose fragments), so they
+ * try K alone. */
+#ifndef OIT_RENDER_CAPTURE_CHOICE_H
+#define OIT_RENDER_CAPTURE_CHOICE_H
+
+#include "oit/status.h"
+#include "render/capture/capture.h"
+
+/* The self-test at stencil_k samples: OIT_OK when it passes (the try may
+ * keep what it built), else the reason in err. */
+typedef oit_status (*oit_capture_try)(void *ctx, int stencil_k, oit_error *err);
+
+typedef struct oit_capture_choice {
+    oit_capture_kind asked; /* AUTO, ARRAY or STENCIL */
+    oit_capture_kind slots; /* what runs: ARRAY or STENCIL */
+    int stencil_k;          /* STENCIL: the samples routed a pixel; else 0 */
+    /* the self-test's reason at K where auto fell back to array slots or
+     * took fewer samples than K; "" where it did not */
+    char reason[512];
+} oit_capture_choice;
+
+/* asked: OIT_CAPTURE_AUTO, _ARRAY or _STENCIL (else OIT_ERR_ARGUMENT).
+ * ARRAY tries nothing. STENCIL where no try passes: OIT_ERR_UNSUPPORTED
+ * whose message gives the self-test's reason at K (no fallback: the caller
+ * asked for it). */
+oit_status oit_capture_choose(oit_capture_kind asked, int K, int fewer_ok,
+                              oit_capture_try try_stencil, void *ctx, oit_capture_choice *out,
+                              oit_error *err);
+
+/* "auto", "stencil", "array", "compute" into *kind; OIT_ERR_ARGUMENT naming the value
+ * otherwise (what = the option, for the message). */
+oit_status oit_capture_parse(const char *value, const char *what, oit_capture_kind *kind,
+                             oit_error *err);
+
+#endif

@@ -1,0 +1,284 @@
+/* The counted capture (capture_counted.h). */
+#include "render/capture/capture_counted.h"
+
+#include "render/capture/capture_backend.h"
+#include "render/capture/capture_glsl.h"
+#include "render/gl/frag_glsl.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+static const oit_glsl_program programs[OIT_COUNTED_PROGS] = {
+    [OIT_COUNTED_COUNT] = {"counted capture count",
+                           .fs = {oit_glsl_state_io, oit_capture_counted_count_fs}},
+    [OIT_COUNTED_STORE] = {"counted capture store",
+                           .fs = {oit_glsl_state_io, oit_capture_counted_store_fs}},
+    [OIT_COUNTED_RESOLVE] = {"counted capture resolve",
+                             .cs = {oit_glsl_composite, oit_glsl_state_io,
+                                    oit_capture_counted_resolve_cs, oit_glsl_segment_composite,
+                                    oit_capture_counted_resolve_main}},
+};
+
+oit_status oit_counted_init(oit_counted *k, oit_error *err)
+{
+    memset(k, 0, sizeof *k);
+    oit_status s = oit_glsl_programs_build(programs, OIT_COUNTED_PROGS, k->prog, err);
+    if (s == OIT_OK)
+        s = oit_scan_init(&k->scan, err);
+    return s;
+}
+
+void oit_counted_release(oit_counted *k)
+{
+    oit_glsl_programs_delete(k->prog, OIT_COUNTED_PROGS);
+    glDeleteBuffers(1, &k->offsets);
+    glDeleteBuffers(1, &k->frags);
+    oit_scan_release(&k->scan);
+    memset(k, 0, sizeof *k);
+}
+
+uint64_t oit_counted_bytes(const oit_counted *k)
+{
+    return k->offsets_cap + k->frags_cap + oit_scan_bytes(&k->scan);
+}
+
+
+/* Count pass, then offsets = exclusive scan of the counts (pixels + 1
+ * entries, the last = the batch's fragments). */
+static oit_status count(oit_counted *k, const oit_counted_frame *f,
+                        const oit_gpu_mesh *const *meshes, int n, const int r[4],
+                        oit_scan_result *res, oit_error *err)
+{
+    uint64_t pixels = (uint64_t)f->width * f->height;
+    oit_status s = oit_gl_buffer_reserve(&k->offsets, &k->offsets_cap, (pixels + 1) * 4,
+                                         "counted capture offsets", err);
+    if (s != OIT_OK)
+        return s;
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, f->counts);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_STATE, f->state);
+    oit_glsl_draw_scissored(f->fbo, f->width, f->height, k->prog[OIT_COUNTED_COUNT], f->draws,
+                            meshes, n, r);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    static const GLuint zero = 0;
+    glCopyNamedBufferSubData(f->counts, k->offsets, 0, 0, (GLsizeiptr)(pixels * 4));
+    glClearNamedBufferSubData(k->offsets, GL_R32UI, (GLintptr)(pixels * 4), 4, GL_RED_INTEGER,
+                              GL_UNSIGNED_INT, &zero);
+    return oit_scan_run(&k->scan, k->offsets, pixels + 1, res, err);
+}
+
+/* Stores the fragments of the rows of r whose offsets start at base (0: the
+ * whole batch; a band of rows otherwise, whose pixels' offsets are
+ * consecutive) and composites them behind the state. */
+static oit_status store_and_resolve(oit_counted *k, const oit_counted_frame *f,
+                                    const oit_gpu_mesh *const *meshes, int n, const int r[4],
+                                    uint64_t base, uint64_t frags, oit_error *err)
+{
+    oit_status s = oit_gl_check_ssbo_size(frags * 16, "counted capture: one part's fragments",
+                                          err);
+    if (s == OIT_OK)
+        s = oit_gl_buffer_reserve(&k->frags, &k->frags_cap, frags ? frags * 16 : 16,
+                                  "counted capture fragments", err);
+    if (s != OIT_OK)
+        return s;
+    /* the scan bound its data at the counts' binding */
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, f->counts);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OFFSETS, k->offsets);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_FRAGS, k->frags);
+    GLuint store = k->prog[OIT_COUNTED_STORE], resolve = k->prog[OIT_COUNTED_RESOLVE];
+    glProgramUniform1ui(store, glGetUniformLocation(store, "u_base"), (GLuint)base);
+    glProgramUniform1ui(resolve, glGetUniformLocation(resolve, "u_base"), (GLuint)base);
+    oit_glsl_draw_scissored(f->fbo, f->width, f->height, store, f->draws, meshes, n, r);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(resolve);
+    glProgramUniform2i(resolve, 11, f->width, f->height);
+    glProgramUniform4i(resolve, 12, r[0], r[1], r[2], r[3]);
+    glDispatchCompute(oit_gl_groups((uint64_t)(r[2] - r[0]), 8),
+                      oit_gl_groups((uint64_t)(r[3] - r[1]), 8), 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    return oit_gl_check("counted capture: batch", err);
+}
+
+/* Lists longer than OIT_COUNTED_MAX_SORTED are heap-sorted in memory,
+ * several times slower a fragment than in registers, but splitting draws the
+ * whole batch again (a wasted count pass, then both halves). That pays where
+ * long lists hold much of the batch, a stack hundreds of layers deep, not
+ * where a few pixels of a wide view pass 32 (the 1M-triangle plant at
+ * 1024x1024: 3.4-3.7 s a frame unsplit against 6.7-6.9 s split). */
+static int mostly_deep(const oit_scan_result *res)
+{
+    return res->max > OIT_COUNTED_MAX_SORTED && (uint64_t)res->long_fragments * 4 >= res->total;
+}
+
+/* Forgets the counts of a batch about to be taken in pieces. */
+static void forget_counts(oit_counted *k, const oit_counted_frame *f)
+{
+    static const GLuint zero = 0;
+    glClearNamedBufferData(f->counts, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    k->splits++;
+}
+
+/* One mesh whose fragments over r outgrow one storage binding is stored and
+ * composited in bands of rows that fit, from the one count: a pixel's
+ * offsets follow the frame's rows, so a band's fragments are the difference
+ * of the offsets at its first pixels, and pixels are independent. A row
+ * that alone outgrows the binding is refused. */
+static oit_status bands(oit_counted *k, const oit_counted_frame *f,
+                        const oit_gpu_mesh *const *meshes, const int r[4], oit_error *err)
+{
+    int rows = r[3] - r[1];
+    uint32_t *at = malloc(((size_t)rows + 1) * 4);
+    if (!at)
+        return oit_error_set(err, OIT_ERR_NOMEM, "counted capture: no memory for %d rows", rows);
+    /* the offset at each row's first pixel; pixels outside r count 0 */
+    for (int i = 0; i <= rows; i++)
+        glGetNamedBufferSubData(k->offsets, (GLintptr)((uint64_t)(r[1] + i) * f->width * 4), 4,
+                                &at[i]);
+    uint64_t fit = f->bind / 16;
+    oit_status s = OIT_OK;
+    for (int y = 0; y < rows && s == OIT_OK;) {
+        int e = y + 1;
+        while (e < rows && (uint64_t)at[e + 1] - at[y] <= fit)
+            e++;
+        if ((uint64_t)at[e] - at[y] > fit) {
+            s = oit_error_set(err, OIT_ERR_NOMEM, "counted capture: row %d holds %u fragments, "
+                              "more than one storage buffer binds (%llu bytes)", r[1] + y,
+                              at[e] - at[y], (unsigned long long)f->bind);
+            break;
+        }
+        int b[4] = {r[0], r[1] + y, r[2], r[1] + e};
+        k->splits += y > 0;
+        s = store_and_resolve(k, f, meshes, 1, b, at[y], at[e] - at[y], err);
+        y = e;
+    }
+    free(at);
+    return s;
+}
+
+oit_status oit_counted_batch(oit_counted *k, const oit_counted_frame *f,
+                             const oit_gpu_mesh *const *meshes, int n, const int r[4],
+                             oit_error *err)
+{
+    oit_scan_result res = {0};
+    oit_status s = count(k, f, meshes, n, r, &res, err);
+    if (s != OIT_OK)
+        return s;
+    if (res.total == 0)
+        return OIT_OK; /* nothing drawn here: the counts are still zero */
+    /* The budget is the batch's to keep where it can; one storage binding
+     * and 32-bit offsets are what the store cannot pass. */
+    int unbindable = res.total * 16 > f->bind || res.total > UINT32_MAX;
+    if (n > 1 && (unbindable || res.total * 16 > k->budget || mostly_deep(&res))) {
+        /* Over budget, or lists too long to sort in registers: forget the
+         * counts and take the two halves in turn. */
+        forget_counts(k, f);
+        s = oit_counted_batch(k, f, meshes, n / 2, r, err);
+        return s == OIT_OK ? oit_counted_batch(k, f, meshes + n / 2, n - n / 2, r, err) : s;
+    }
+    if (res.total > UINT32_MAX)
+        return oit_error_set(err, OIT_ERR_NOMEM, "counted capture: %llu fragments in one "
+                             "part, more than 32-bit offsets address",
+                             (unsigned long long)res.total);
+    if (unbindable)
+        return bands(k, f, meshes, r, err);
+    return store_and_resolve(k, f, meshes, n, r, 0, res.total, err);
+}
+
+/* ---- the counted backend (OIT_CAPTURE_COUNTED) ------------------------------ */
+
+oit_status oit_capture_counted_batch(oit_capture *c, oit_counted *k,
+                                     const oit_gpu_mesh *const *meshes, int n, const int r[4],
+                                     oit_error *err)
+{
+    oit_counted_frame f = oit_capture_counted_frame(c);
+    /* the slot budget bounds its fragment store */
+    k->budget = c->set.slot_budget ? c->set.slot_budget : UINT64_MAX;
+    /* count, store, sort and composite: not split into phases */
+    oit_gpu_timer_mark(c->set.timer, OIT_GPU_PASS1);
+    oit_status s = oit_counted_batch(k, &f, meshes, n, r, err);
+    oit_capture_note_peak(c);
+    oit_capture_bind_buffers(c);
+    return s;
+}
+
+/* The whole frame in one band where the budget allows: each band is a pass
+ * and a read-back of its own. */
+oit_status oit_capture_store_out(oit_capture *c, GLuint *buf, uint64_t *cap, const char *name,
+                                 uint64_t want, uint64_t row, oit_capture_out *out,
+                                 oit_error *err)
+{
+    uint64_t budget = c->set.slot_budget;
+    if (budget && want > budget)
+        want = budget > row ? budget : row;
+    want = oit_capture_within_binding(c, want, row);
+    oit_status s = oit_capture_reserve(c, buf, cap, want, name, err);
+    *out = (oit_capture_out){*buf, *cap};
+    return s;
+}
+
+static oit_status counted_create(oit_capture *c, int stencil_k, oit_error *err)
+{
+    return oit_counted_init(c->be, err);
+}
+
+static void counted_destroy(void *be)
+{
+    oit_counted_release(be);
+}
+
+static oit_status counted_begin(oit_capture *c, oit_error *err)
+{
+    ((oit_counted *)c->be)->splits = 0;
+    return OIT_OK;
+}
+
+static void counted_uniforms(oit_capture *c)
+{
+    oit_counted *k = c->be;
+    oit_glsl_set_view_all(k->prog, OIT_COUNTED_PROGS, &c->view);
+    /* the opaque depth's projection replaces the view's */
+    oit_glsl_set_opaque_all(k->prog, OIT_COUNTED_PROGS, &c->opaque);
+}
+
+static void counted_epsilon(oit_capture *c, float e)
+{
+    oit_glsl_set_epsilon_all(((oit_counted *)c->be)->prog, 2, e); /* the geometry passes */
+}
+
+/* Nothing at OIT_BIND_OUT within the frame: its output passes through the
+ * fragment store at the end. */
+static void counted_bind(const oit_capture *c)
+{
+    oit_capture_bind_within(c, OIT_BIND_OUT, 0, 0);
+}
+
+/* No per-pixel limit: a batch of any number of layers is an ordinary one. */
+static oit_status counted_batch(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
+                                const int rect[4], int layers, oit_error *err)
+{
+    int r[4] = {0}, empty = 1;
+    oit_status s = oit_capture_batch_start(c, meshes, rect, n, r, &empty, err);
+    if (s != OIT_OK || empty)
+        return s;
+    return oit_capture_counted_batch(c, c->be, meshes, n, r, err);
+}
+
+static oit_status counted_end(oit_capture *c, uint64_t want, uint64_t row, oit_capture_out *out,
+                              oit_error *err)
+{
+    oit_counted *k = c->be;
+    return oit_capture_store_out(c, &k->frags, &k->frags_cap, "counted capture fragments", want,
+                                 row, out, err);
+}
+
+static uint64_t counted_bytes(const void *be)
+{
+    return oit_counted_bytes(be);
+}
+
+static void counted_stats(const oit_capture *c, oit_frame_stats *stats)
+{
+    stats->capture = c->ops->name;
+    stats->batches += ((const oit_counted *)c->be)->splits;
+}
+
+OIT_CAPTURE_OPS(counted, OIT_CAPTURE_COUNTED, "counted", oit_counted, NULL);

@@ -1,0 +1,63 @@
+/* The counted capture (OIT_CAPTURE_COUNTED, capture.h): a batch is captured
+ * as DFB captures a frame (Maule et al.: count fragments per pixel, prefix-sum,
+ * store each at its pixel's offset, sort per pixel) and composited into the
+ * state the frame carries across batches. No per-pixel layer limit: a batch
+ * is bounded by its fragments instead, which a count pass measures before
+ * anything is stored. A batch over the fragment budget, or with a quarter or
+ * more of its fragments in lists longer than OIT_COUNTED_MAX_SORTED (those
+ * are heap-sorted in memory, several times slower a fragment than in
+ * registers, while a split draws the batch again), is split in two halves of its
+ * meshes, in order (the meshes of a batch are in visibility order, so the
+ * halves are too), down to one mesh, whose fragments are then stored
+ * whatever their number, within what one storage buffer binds: past that,
+ * they are stored and composited in bands of rows, from the one count.
+ *
+ * Internal to render/capture/: the counted backend and first-K's wide packs
+ * (capture_backend.h); capture.c owns the frame's counts and state buffers
+ * and the framebuffer; the counts are zero between batches (the
+ * store pass counts them back down). */
+#ifndef OIT_RENDER_CAPTURE_COUNTED_H
+#define OIT_RENDER_CAPTURE_COUNTED_H
+
+#include "render/gl/gpu_mesh.h"
+#include "render/gl/frag_glsl.h"
+#include "render/gl/scan_glsl.h"
+
+#define OIT_COUNTED_MAX_SORTED OIT_GLSL_SEGMENT_LOCAL
+
+/* Its programs (prog), whose uniforms its backend sets: the view, the opaque
+ * depth after it (frag_glsl.h), and the early-termination threshold in the
+ * two geometry passes, first, which drop fragments of saturated pixels
+ * alike. */
+enum { OIT_COUNTED_COUNT, OIT_COUNTED_STORE, OIT_COUNTED_RESOLVE, OIT_COUNTED_PROGS };
+
+typedef struct oit_counted {
+    GLuint prog[OIT_COUNTED_PROGS];
+    GLuint offsets, frags;
+    uint64_t offsets_cap, frags_cap;
+    oit_scan scan;
+    uint64_t budget;   /* fragment store bytes a batch may take before it splits */
+    uint32_t splits;   /* batches split this frame (the caller resets it) */
+} oit_counted;
+
+oit_status oit_counted_init(oit_counted *k, oit_error *err);
+void oit_counted_release(oit_counted *k);
+uint64_t oit_counted_bytes(const oit_counted *k);
+
+/* The frame's buffers and draw scratch, owned by capture.c. */
+typedef struct oit_counted_frame {
+    GLuint fbo, counts, state;
+    int width, height;
+    oit_gpu_draws *draws;
+    uint64_t bind; /* the most bytes one storage buffer may span */
+    struct oit_gpu_timer *timer; /* phases marked on it (render/gl/gpu_timer.h); NULL: none */
+} oit_counted_frame;
+
+/* Captures meshes[0..n) over the GL rect r (bottom rows first, exclusive
+ * ends) and composites them behind the state. oit_counted_bytes tells the
+ * caller what the module holds afterwards. */
+oit_status oit_counted_batch(oit_counted *k, const oit_counted_frame *f,
+                             const oit_gpu_mesh *const *meshes, int n, const int r[4],
+                             oit_error *err);
+
+#endif

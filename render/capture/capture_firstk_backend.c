@@ -1,0 +1,172 @@
+/* The first-K backend (OIT_CAPTURE_FIRSTK, capture.h): the first-K capture
+ * (capture_firstk.h) of each pack, or the counted capture's
+ * (capture_counted.h) where fewer than 2 slots a pixel fit the budget or
+ * first-K is switched off; its pass 1 routed by the stencil where
+ * oit_capture_create_routed asked for it. */
+#include "render/capture/capture_backend.h"
+#include "render/capture/capture_firstk.h"
+#include "render/capture/capture_glsl.h"
+
+typedef struct firstk_backend {
+    oit_firstk k;
+    /* the packs too wide for 2 slots a pixel, and every pack while off */
+    oit_counted counted;
+    int off; /* capturing as the counted backend (oit_capture_set_first_k) */
+    /* pass 1 routed by the stencil (c->routed_k > 0): the target and its
+     * fill, the stencil fill built for pass 1 */
+    oit_stencil_target target;
+    GLuint fill;
+} firstk_backend;
+
+/* Pass 1 through the stencil target (oit_capture_create_routed). */
+static oit_status firstk_route(oit_capture *c, firstk_backend *b, int stencil_k,
+                               oit_error *err)
+{
+    oit_status s = oit_capture_route_init(c, &b->target, stencil_k, err);
+    if (s == OIT_OK) {
+        const oit_glsl_program fill = {
+            "capture fill",
+            .fs = {b->target.by_copy ? "#define OIT_FIRSTK_PASS 1\n#define OIT_ROUTE_BY_COPY 1\n"
+                                     : "#define OIT_FIRSTK_PASS 1\n",
+                   oit_glsl_state_io, oit_capture_stencil_fs}};
+        s = oit_glsl_programs_build(&fill, 1, &b->fill, err);
+    }
+    if (s != OIT_OK)
+        return s;
+    oit_firstk_route(&b->k, &b->target, b->fill);
+    c->routed_k = stencil_k;
+    return oit_capture_stencil_self_test(c, &b->target, b->fill, err);
+}
+
+static oit_status firstk_create(oit_capture *c, int stencil_k, oit_error *err)
+{
+    firstk_backend *b = c->be;
+    oit_status s = oit_counted_init(&b->counted, err);
+    if (s == OIT_OK)
+        s = oit_firstk_init(&b->k, c->K, err);
+    if (s == OIT_OK && stencil_k)
+        s = firstk_route(c, b, stencil_k, err);
+    return s;
+}
+
+static void firstk_destroy(void *be)
+{
+    firstk_backend *b = be;
+    oit_counted_release(&b->counted);
+    oit_firstk_release(&b->k);
+    if (b->target.fbo)
+        oit_stencil_target_release(&b->target);
+    oit_glsl_programs_delete(&b->fill, 1);
+}
+
+static oit_status firstk_begin(oit_capture *c, oit_error *err)
+{
+    firstk_backend *b = c->be;
+    b->counted.splits = 0;
+    b->k.second_pixels = 0;
+    b->k.second_packs = b->k.second_draws = 0;
+    if (!b->fill)
+        return OIT_OK;
+    return oit_stencil_target_resize(&b->target, c->view.width, c->view.height, err);
+}
+
+static void firstk_uniforms(oit_capture *c)
+{
+    firstk_backend *b = c->be;
+    oit_glsl_set_view_all(b->counted.prog, OIT_COUNTED_PROGS, &c->view);
+    oit_glsl_set_view_all(b->k.prog, OIT_FIRSTK_PROGS, &c->view);
+    /* the opaque depth's projection replaces the view's */
+    oit_glsl_set_opaque_all(b->counted.prog, OIT_COUNTED_PROGS, &c->opaque);
+    oit_glsl_set_opaque_all(b->k.prog, OIT_FIRSTK_PROGS, &c->opaque);
+    if (!b->fill)
+        return;
+    oit_capture_set_frame_uniforms(c, &b->fill, 1);
+    /* the routed pass 1 keeps as many fragments as the target has samples */
+    glProgramUniform1i(b->fill, glGetUniformLocation(b->fill, "u_K"), b->target.K);
+}
+
+static void firstk_epsilon(oit_capture *c, float e)
+{
+    firstk_backend *b = c->be;
+    if (b->fill)
+        oit_glsl_set_epsilon_all(&b->fill, 1, e);
+    /* the geometry passes */
+    oit_glsl_set_epsilon_all(b->counted.prog, 2, e);
+    oit_glsl_set_epsilon_all(b->k.prog, 2, e);
+}
+
+/* Nothing at OIT_BIND_OUT within the frame: its output passes through a
+ * fragment store at the end. */
+static void firstk_bind(const oit_capture *c)
+{
+    oit_capture_bind_within(c, OIT_BIND_OUT, 0, 0);
+}
+
+/* W slots a pixel within the slot budget, or, where fewer than 2 fit, the
+ * counted capture's batch; any number of layers. */
+static oit_status firstk_batch(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
+                               const int rect[4], int layers, oit_error *err)
+{
+    firstk_backend *b = c->be;
+    int r[4] = {0}, empty = 1;
+    oit_status s = oit_capture_batch_start(c, meshes, rect, n, r, &empty, err);
+    if (s != OIT_OK || empty)
+        return s;
+    uint64_t budget = c->set.slot_budget, bind = c->frame.bind;
+    b->k.budget = budget && budget < bind ? budget : bind;
+    if (b->off || oit_firstk_slots(&b->k, r) == 0)
+        return oit_capture_counted_batch(c, &b->counted, meshes, n, r, err);
+    oit_counted_frame f = oit_capture_counted_frame(c);
+    s = oit_firstk_batch(&b->k, &f, meshes, n, r, err);
+    oit_capture_note_peak(c);
+    oit_capture_bind_buffers(c);
+    return s;
+}
+
+static oit_status firstk_end(oit_capture *c, uint64_t want, uint64_t row, oit_capture_out *out,
+                             oit_error *err)
+{
+    firstk_backend *b = c->be;
+    if (b->off)
+        return oit_capture_store_out(c, &b->counted.frags, &b->counted.frags_cap,
+                                     "counted capture fragments", want, row, out, err);
+    return oit_capture_store_out(c, &b->k.store, &b->k.store_cap, "first-k capture fragments",
+                                 want, row, out, err);
+}
+
+static uint64_t firstk_bytes(const void *be)
+{
+    const firstk_backend *b = be;
+    return oit_counted_bytes(&b->counted) + oit_firstk_bytes(&b->k) +
+           oit_stencil_target_bytes(&b->target);
+}
+
+/* Switched off, it captures as the counted backend does and says so. */
+static void firstk_stats(const oit_capture *c, oit_frame_stats *stats)
+{
+    const firstk_backend *b = c->be;
+    stats->capture = b->off ? oit_capture_counted_ops.name : c->ops->name;
+    stats->batches += b->counted.splits;
+    stats->second_pass_pixels = b->k.second_pixels;
+    stats->second_pass_packs = b->k.second_packs;
+    /* how its K-slot fills were made (the counted capture has none) */
+    stats->capture_slots = b->off ? NULL : b->fill ? "stencil" : "array";
+    stats->capture_slots_k = !b->off && b->fill ? (uint32_t)b->target.K : 0;
+}
+
+/* The capture switched away from keeps nothing: a frame holds one
+ * capture's store, not both (12M plant at 1024x1024: 68 MB beyond the ring
+ * and cache with both, 55 with one). */
+static void firstk_first_k(oit_capture *c, int on)
+{
+    firstk_backend *b = c->be;
+    if ((on == 0) == b->off)
+        return;
+    if (on)
+        oit_gl_buffer_release(&b->counted.frags, &b->counted.frags_cap);
+    else
+        oit_gl_buffer_release(&b->k.store, &b->k.store_cap);
+    b->off = !on;
+}
+
+OIT_CAPTURE_OPS(firstk, OIT_CAPTURE_FIRSTK, "first-k", firstk_backend, firstk_first_k);

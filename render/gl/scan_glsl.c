@@ -1,0 +1,157 @@
+/* GPU exclusive scan (scan_glsl.h). */
+#include "render/gl/scan_glsl.h"
+
+#include "render/gl/frag_glsl.h"
+
+#include <string.h>
+
+#define BLOCK 1024u
+
+static const char scan_block_src[] =
+    "#define OIT_SCAN_LONG " OIT_GLSL_STR(OIT_GLSL_SEGMENT_LOCAL) "u\n"
+    "layout(local_size_x = 256) in;\n"
+    "layout(std430, binding = OIT_BIND_COUNTS) buffer Data { uint data[]; };\n"
+    "layout(std430, binding = OIT_BIND_SUMS) writeonly buffer Sums { uint sums[]; };\n"
+    "layout(std430, binding = OIT_BIND_TOTALS) buffer Totals {\n"
+    "    uint t_lo; uint t_hi; uint t_max; uint t_long;\n"
+    "};\n"
+    "layout(location = 13) uniform uint u_count;\n"
+    "layout(location = 14) uniform int u_first_level;\n"
+    "uniform uint u_group0;\n"
+    "shared uint part[256];\n"
+    "void main() {\n"
+    "    uint lid = gl_LocalInvocationID.x, group = gl_WorkGroupID.x + u_group0;\n"
+    "    uint base = group * 1024u + lid * 4u;\n"
+    "    uint v[4]; uint sum = 0u, mx = 0u, lng = 0u;\n"
+    "    for (uint i = 0u; i < 4u; i++) {\n"
+    "        v[i] = base + i < u_count ? data[base + i] : 0u;\n"
+    "        sum += v[i]; mx = max(mx, v[i]);\n"
+    "        if (v[i] > OIT_SCAN_LONG) lng += v[i];\n"
+    "    }\n"
+    "    part[lid] = sum;\n"
+    "    barrier();\n"
+    "    for (uint off = 1u; off < 256u; off <<= 1) {\n"
+    "        uint add = lid >= off ? part[lid - off] : 0u;\n"
+    "        barrier();\n"
+    "        part[lid] += add;\n"
+    "        barrier();\n"
+    "    }\n"
+    "    uint run = part[lid] - sum;\n"
+    "    for (uint i = 0u; i < 4u; i++) {\n"
+    "        if (base + i < u_count) data[base + i] = run;\n"
+    "        run += v[i];\n"
+    "    }\n"
+    "    if (u_first_level != 0) {\n"
+    "        atomicMax(t_max, mx);\n"
+    "        if (lng != 0u) atomicAdd(t_long, lng);\n"
+    /* 64-bit total from 32-bit atomics: a wrap of the low word carries. */
+    "        if (lid == 255u) {\n"
+    "            uint old = atomicAdd(t_lo, part[255]);\n"
+    "            if (old + part[255] < old) atomicAdd(t_hi, 1u);\n"
+    "        }\n"
+    "    }\n"
+    "    if (lid == 255u) sums[group] = part[255];\n"
+    "}\n";
+
+static const char scan_add_src[] =
+    "layout(local_size_x = 256) in;\n"
+    "layout(std430, binding = OIT_BIND_COUNTS) buffer Data { uint data[]; };\n"
+    "layout(std430, binding = OIT_BIND_SUMS) readonly buffer Sums { uint sums[]; };\n"
+    "layout(location = 13) uniform uint u_count;\n"
+    "uniform uint u_group0;\n"
+    "void main() {\n"
+    "    uint i = (gl_WorkGroupID.x + u_group0) * 256u + gl_LocalInvocationID.x;\n"
+    "    if (i < u_count) data[i] += sums[i / 1024u];\n"
+    "}\n";
+
+oit_status oit_scan_init(oit_scan *s, oit_error *err)
+{
+    memset(s, 0, sizeof *s);
+    const char *block[] = {oit_glsl_version, scan_block_src, NULL};
+    const char *add[] = {oit_glsl_version, scan_add_src, NULL};
+    oit_status st = oit_gl_program_compute("prefix sum (block)", block, &s->block, err);
+    if (st == OIT_OK)
+        st = oit_gl_program_compute("prefix sum (add)", add, &s->add, err);
+    if (st == OIT_OK) {
+        s->max_groups = oit_gl_max_groups_x();
+        glCreateBuffers(1, &s->totals);
+        glNamedBufferStorage(s->totals, 16, NULL, GL_DYNAMIC_STORAGE_BIT);
+        oit_gl_poison_buffer(s->totals);
+    }
+    return st;
+}
+
+void oit_scan_release(oit_scan *s)
+{
+    glDeleteProgram(s->block);
+    glDeleteProgram(s->add);
+    glDeleteBuffers(OIT_SCAN_LEVELS, s->sums);
+    glDeleteBuffers(1, &s->totals);
+    memset(s, 0, sizeof *s);
+}
+
+uint64_t oit_scan_bytes(const oit_scan *s)
+{
+    uint64_t b = 16;
+    for (int i = 0; i < OIT_SCAN_LEVELS; i++)
+        b += s->sums_cap[i];
+    return b;
+}
+
+static void dispatch_block(oit_scan *s, GLuint data, GLuint sums, uint64_t n, int first)
+{
+    glUseProgram(s->block);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, data);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_SUMS, sums);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_TOTALS, s->totals);
+    glProgramUniform1ui(s->block, OIT_LOC_COUNT, (GLuint)n);
+    glProgramUniform1i(s->block, OIT_LOC_FIRST_LEVEL, first);
+    oit_gl_dispatch_x(s->block, glGetUniformLocation(s->block, "u_group0"),
+                      oit_gl_groups(n, BLOCK), s->max_groups);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+static void dispatch_add(oit_scan *s, GLuint data, GLuint sums, uint64_t n)
+{
+    glUseProgram(s->add);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, data);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_SUMS, sums);
+    glProgramUniform1ui(s->add, OIT_LOC_COUNT, (GLuint)n);
+    oit_gl_dispatch_x(s->add, glGetUniformLocation(s->add, "u_group0"), oit_gl_groups(n, 256),
+                      s->max_groups);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+oit_status oit_scan_run(oit_scan *s, GLuint buf, uint64_t n, oit_scan_result *res,
+                        oit_error *err)
+{
+    uint64_t size[OIT_SCAN_LEVELS + 1];
+    size[0] = n;
+    int levels = 0;
+    /* Level i scans size[i] elements into size[i+1] block sums; recursion
+     * stops when one block covers everything. */
+    do {
+        if (levels == OIT_SCAN_LEVELS)
+            return oit_error_set(err, OIT_ERR_ARGUMENT, "prefix sum: %llu elements exceed "
+                                 "the scan's %d levels", (unsigned long long)n, OIT_SCAN_LEVELS);
+        size[levels + 1] = (size[levels] + BLOCK - 1) / BLOCK;
+        oit_status st = oit_gl_buffer_reserve(&s->sums[levels], &s->sums_cap[levels],
+                                              size[levels + 1] * 4, "prefix sum", err);
+        if (st != OIT_OK)
+            return st;
+        levels++;
+    } while (size[levels] > 1);
+    static const GLuint zero[4];
+    glNamedBufferSubData(s->totals, 0, sizeof zero, zero);
+    for (int i = 0; i < levels; i++)
+        dispatch_block(s, i == 0 ? buf : s->sums[i - 1], s->sums[i], size[i], i == 0);
+    for (int i = levels - 2; i >= 0; i--)
+        dispatch_add(s, i == 0 ? buf : s->sums[i - 1], s->sums[i], size[i]);
+    GLuint t[4];
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(s->totals, 0, sizeof t, t);
+    res->total = (uint64_t)t[1] << 32 | t[0];
+    res->max = t[2];
+    res->long_fragments = t[3];
+    return oit_gl_check("prefix sum", err);
+}

@@ -1,0 +1,49 @@
+/* Exclusive prefix sum of a GPU uint buffer in compute shaders: blocks of
+ * 1024 elements scanned in shared memory, block sums scanned recursively,
+ * then added back (work-efficient, O(n)). The first level also accumulates
+ * the 64-bit total, the maximum element and the sum of the elements over
+ * OIT_GLSL_SEGMENT_LOCAL, which callers read back to size their fragment store, fill
+ * stats and (capture_counted.h) weigh how much of a batch would sort
+ * outside registers. */
+#ifndef OIT_RENDER_SCAN_GLSL_H
+#define OIT_RENDER_SCAN_GLSL_H
+
+#include "render/gl/frag_glsl.h"
+#include "render/gl/gl_util.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define OIT_SCAN_LEVELS 4 /* 1024^4 elements */
+
+typedef struct oit_scan {
+    GLuint block, add;                  /* programs */
+    GLuint sums[OIT_SCAN_LEVELS];       /* block sums per level */
+    uint64_t sums_cap[OIT_SCAN_LEVELS];
+    GLuint totals;                      /* uint lo, hi, max, pad */
+    /* Groups one dispatch takes (GL_MAX_COMPUTE_WORK_GROUP_COUNT[0], read
+     * by oit_scan_init); more are dispatched in turn. Lower only to test. */
+    GLuint max_groups;
+} oit_scan;
+
+typedef struct oit_scan_result {
+    uint64_t total;
+    uint32_t max;
+    /* Sum of the elements over OIT_GLSL_SEGMENT_LOCAL, the lists the
+     * per-pixel sort cannot keep in registers (32-bit: exact while total
+     * fits in 32 bits, which the counted capture requires). */
+    uint32_t long_fragments;
+} oit_scan_result;
+
+oit_status oit_scan_init(oit_scan *s, oit_error *err);
+void oit_scan_release(oit_scan *s);
+/* Scans buf[0..n) in place (exclusive) and reads back total and maximum. */
+oit_status oit_scan_run(oit_scan *s, GLuint buf, uint64_t n, oit_scan_result *res,
+                        oit_error *err);
+uint64_t oit_scan_bytes(const oit_scan *s);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
