@@ -64,7 +64,13 @@ enum {
      * without the stencil, so that a driver that does not route
      * (llvmpipe) passes the self-test and renders the stencil paths
      * exactly; only the routing draw itself is left untested there */
-    OIT_CAPTURE_TEST_ROUTE_BY_COPY = 1u << 1
+    OIT_CAPTURE_TEST_ROUTE_BY_COPY = 1u << 1,
+    /* the compute capture's tile lists one entry long, never grown: every
+     * tile takes the path of an overflowed list */
+    OIT_CAPTURE_TEST_COMPUTE_LIST_SHORT = 1u << 2,
+    /* the compute capture takes the driver for one that runs loops to
+     * their end (no read-back of the sweep's pending pixels) */
+    OIT_CAPTURE_TEST_COMPUTE_NO_PROBE = 1u << 3
 };
 /* oit_capture_create with faults (OIT_CAPTURE_FAULT_*; 0: none). */
 oit_status oit_capture_create_faulty(oit_capture_kind kind, int K, unsigned faults,

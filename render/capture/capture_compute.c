@@ -18,7 +18,13 @@ static const oit_glsl_program programs[OIT_COMPUTE_PROGS] = {
     [OIT_COMPUTE_TILES] = {"compute capture sweep",
                            .cs = {oit_glsl_composite, oit_glsl_state_io, oit_compute_frag_inputs,
                                   oit_glsl_fragment_lib, oit_compute_tiles_cs}},
+    [OIT_COMPUTE_WORK] = {"compute capture work list", .cs = {oit_compute_work_cs}},
+    [OIT_COMPUTE_ARGS] = {"compute capture dispatch", .cs = {oit_compute_args_cs}},
+    [OIT_COMPUTE_PROBE] = {"compute capture loop probe", .cs = {oit_compute_probe_cs}},
 };
+
+/* Iterations of the probe's loop: past llvmpipe's 65535. */
+#define PROBE_LOOP (1 << 17)
 
 static oit_status compute_init(oit_compute *k, oit_error *err)
 {
@@ -34,8 +40,9 @@ static void compute_destroy(void *be)
 {
     oit_compute *k = be;
     oit_glsl_programs_delete(k->prog, OIT_COMPUTE_PROGS);
-    GLuint bufs[] = {k->recs, k->tiles, k->list, k->dead, k->resume, k->pending};
-    glDeleteBuffers(6, bufs);
+    GLuint bufs[] = {k->recs,    k->tiles,   k->list,    k->dead,
+                     k->resume,  k->pending, k->work[0], k->work[1], k->late};
+    glDeleteBuffers((GLsizei)(sizeof bufs / sizeof bufs[0]), bufs);
     oit_scan_release(&k->scan);
     memset(k, 0, sizeof *k);
 }
@@ -44,7 +51,8 @@ static uint64_t compute_bytes(const void *be)
 {
     const oit_compute *k = be;
     return k->recs_cap + k->tiles_cap + k->list_cap + k->dead_cap + k->resume_cap +
-           k->pending_cap + oit_scan_bytes(&k->scan);
+           k->pending_cap + k->work_cap[0] + k->work_cap[1] + k->late_cap +
+           oit_scan_bytes(&k->scan);
 }
 
 static void set_rect(const oit_compute *k, const oit_compute_frame *f, const int r[4])
@@ -155,32 +163,96 @@ static oit_status too_large(const char *what, uint64_t bytes, uint64_t bind, oit
                          what, (unsigned long long)bytes, (unsigned long long)bind);
 }
 
-/* The sweep over the rect, dispatched again for the pixels a driver's loop
- * limit cut short (compute_glsl.c) until none is pending. */
-static oit_status sweep(oit_compute *k, const oit_compute_frame *f, const int r[4],
-                        uint64_t entries, oit_error *err)
+/* Its args from its count (OIT_BIND_OUT), ready for an indirect dispatch. */
+static void work_args(const oit_compute *k, GLuint list)
 {
-    uint64_t pixels = (uint64_t)f->width * f->height;
-    oit_status s = reserve(&k->resume, &k->resume_cap, pixels * 16, "compute capture resume", err);
-    if (s == OIT_OK)
-        s = reserve(&k->pending, &k->pending_cap, 8, "compute capture pending", err);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, list);
+    glUseProgram(k->prog[OIT_COMPUTE_ARGS]);
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+}
+
+static void clear_header(GLuint list)
+{
+    static const GLuint zero = 0;
+    glClearNamedBufferSubData(list, GL_R32UI, 0, 16, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+}
+
+/* The first work list: the rect's tiles with list entries, in work[0]. */
+static void first_work(const oit_compute *k, const int r[4])
+{
+    int tx0 = r[0] / OIT_COMPUTE_TILE, ty0 = r[1] / OIT_COMPUTE_TILE;
+    int tx1 = (r[2] - 1) / OIT_COMPUTE_TILE, ty1 = (r[3] - 1) / OIT_COMPUTE_TILE;
+    GLuint p = k->prog[OIT_COMPUTE_WORK];
+    clear_header(k->work[0]);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OFFSETS, k->tiles);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, k->work[0]);
+    glUseProgram(p);
+    glProgramUniform2i(p, glGetUniformLocation(p, "u_tile0"), tx0, ty0);
+    glProgramUniform2i(p, glGetUniformLocation(p, "u_tile1"), tx1, ty1);
+    glDispatchCompute(oit_gl_groups((uint64_t)(tx1 - tx0 + 1), 8),
+                      oit_gl_groups((uint64_t)(ty1 - ty0 + 1), 8), 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    work_args(k, k->work[0]);
+}
+
+/* One round over the tiles of work list `from`, those with pixels left
+ * pending appended to `to`. */
+static void sweep_round(oit_compute *k, GLuint from, GLuint to, int resume)
+{
+    GLuint tp = k->prog[OIT_COMPUTE_TILES];
+    clear_header(to);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_VERTS, from);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, to);
+    glUseProgram(tp);
+    glProgramUniform1i(tp, glGetUniformLocation(tp, "u_resume"), resume);
+    glProgramUniform1ui(tp, glGetUniformLocation(tp, "u_round"), ++k->round);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, from);
+    glDispatchComputeIndirect(0);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    work_args(k, to);
+}
+
+/* The sweep over the batch's tiles (one indirect dispatch), and where the
+ * driver cuts loops short (compute_glsl.c), further rounds over the tiles
+ * left pending, read back once per chunk of them until none is. */
+static oit_status sweep(oit_compute *k, const oit_compute_frame *f, const int r[4],
+                        uint64_t tris, uint64_t list_cap, oit_error *err)
+{
+    uint64_t tiles = (uint64_t)(f->width + OIT_COMPUTE_TILE - 1) / OIT_COMPUTE_TILE *
+                     ((f->height + OIT_COMPUTE_TILE - 1) / OIT_COMPUTE_TILE);
+    oit_status s = OIT_OK;
+    for (int i = 0; i < 2 && s == OIT_OK; i++)
+        s = reserve(&k->work[i], &k->work_cap[i], 16 + tiles * 4, "compute capture work", err);
     if (s != OIT_OK)
         return s;
+    uint64_t pixels = (uint64_t)f->width * f->height;
     if (pixels * 16 > f->bind)
         return too_large("resume cursors", pixels * 16, f->bind, err);
     GLuint tp = k->prog[OIT_COMPUTE_TILES];
     glProgramUniform1f(tp, glGetUniformLocation(tp, "u_epsilon"), f->epsilon);
     glProgramUniform1i(tp, glGetUniformLocation(tp, "u_probe"), 2);
+    glProgramUniform1ui(tp, glGetUniformLocation(tp, "u_list_cap"), (GLuint)list_cap);
+    glProgramUniform1ui(tp, glGetUniformLocation(tp, "u_recs"), (GLuint)tris);
+    first_work(k, r);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_STATE, f->state);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, k->resume);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_TOTALS, k->pending);
     static const GLuint zero = 0;
-    for (k->rounds = 1;; k->rounds++) {
-        glClearNamedBufferData(k->pending, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        glProgramUniform1i(tp, glGetUniformLocation(tp, "u_resume"), k->rounds > 1);
-        dispatch_tiles(tp, r);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    for (int round = 0;;) {
+        for (uint32_t i = 0; i < (k->cuts ? k->chunk : 1); i++, round++) {
+            /* where loops are cut, the counts are the round's; elsewhere
+             * the frame's, for its end to check */
+            if (k->cuts)
+                glClearNamedBufferSubData(k->pending, GL_R32UI, 0, 8, GL_RED_INTEGER,
+                                          GL_UNSIGNED_INT, &zero);
+            sweep_round(k, k->work[round & 1], k->work[(round + 1) & 1], round > 0);
+        }
+        if (!k->cuts)
+            return OIT_OK;
         GLuint pend[2] = {0, 0};
         glGetNamedBufferSubData(k->pending, 0, sizeof pend, pend);
         if (pend[0] == 0)
@@ -189,8 +261,9 @@ static oit_status sweep(oit_compute *k, const oit_compute_frame *f, const int r[
             return oit_error_set(err, OIT_ERR_UNSUPPORTED,
                                  "compute capture: this driver cuts shader loops short and %u "
                                  "pixels could not finish one sweep of their tile's triangles "
-                                 "(%llu tile entries in the batch); capture it in smaller packs",
-                                 pend[0], (unsigned long long)entries);
+                                 "(%llu triangles in the batch); capture it in smaller packs",
+                                 pend[0], (unsigned long long)tris);
+        k->chunk = k->chunk < 16 ? k->chunk * 2 : 16;
     }
 }
 
@@ -202,6 +275,37 @@ static oit_status halves(oit_compute *k, const oit_compute_frame *f,
 {
     oit_status s = oit_compute_batch(k, f, meshes, n / 2, r, err);
     return s == OIT_OK ? oit_compute_batch(k, f, meshes + n / 2, n - n / 2, r, err) : s;
+}
+
+/* Tile-list entries for a batch of tris triangles, sized without the
+ * scan's total: 4 a triangle, or the most an earlier frame's batch
+ * needed, or what the buffer holds already; within one binding. */
+static uint64_t list_entries(const oit_compute *k, const oit_compute_frame *f, uint64_t tris)
+{
+    if (k->test & OIT_CAPTURE_TEST_COMPUTE_LIST_SHORT)
+        return 1;
+    uint64_t want = tris * 4;
+    want = want > k->list_seen ? want : k->list_seen;
+    want = want > k->list_cap / 4 ? want : k->list_cap / 4;
+    uint64_t most = f->bind / 4 < UINT32_MAX ? f->bind / 4 : UINT32_MAX;
+    return want < most ? want : most;
+}
+
+/* Each record's index into the lists of its tiles, no more than cap. */
+static void scatter(oit_compute *k, uint64_t tris, uint64_t cap)
+{
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OFFSETS, k->tiles);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_TOTALS, k->dead);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, k->late);
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_SUMS, k->list, 0,
+                      (GLsizeiptr)(cap * 4));
+    GLuint sc = k->prog[OIT_COMPUTE_SCATTER];
+    glUseProgram(sc);
+    glProgramUniform1ui(sc, glGetUniformLocation(sc, "u_count"), (GLuint)tris);
+    glProgramUniform1ui(sc, glGetUniformLocation(sc, "u_list_cap"), (GLuint)cap);
+    dispatch_linear(tris);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    k->late_armed = 1;
 }
 
 oit_status oit_compute_batch(oit_compute *k, const oit_compute_frame *f,
@@ -219,11 +323,14 @@ oit_status oit_compute_batch(oit_compute *k, const oit_compute_frame *f,
                      : too_large("triangle records", rec_bytes, f->bind, err);
     uint64_t tx = (uint64_t)(f->width + OIT_COMPUTE_TILE - 1) / OIT_COMPUTE_TILE;
     uint64_t tiles = tx * ((uint64_t)(f->height + OIT_COMPUTE_TILE - 1) / OIT_COMPUTE_TILE);
+    uint64_t cap = list_entries(k, f, tris);
     oit_status s = reserve(&k->recs, &k->recs_cap, rec_bytes, "compute capture records", err);
     if (s == OIT_OK)
         s = reserve(&k->tiles, &k->tiles_cap, tiles * 4, "compute capture tile counts", err);
     if (s == OIT_OK)
         s = reserve(&k->dead, &k->dead_cap, tiles * 4, "compute capture tile flags", err);
+    if (s == OIT_OK)
+        s = reserve(&k->list, &k->list_cap, cap * 4, "compute capture tile lists", err);
     if (s != OIT_OK)
         return s;
     oit_gpu_timer_mark(f->timer, OIT_GPU_BINNING);
@@ -243,27 +350,12 @@ oit_status oit_compute_batch(oit_compute *k, const oit_compute_frame *f,
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OFFSETS, k->tiles);
     setup(k, meshes, n);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    oit_scan_result sum;
-    s = oit_scan_run(&k->scan, k->tiles, tiles, &sum, err);
+    s = oit_scan_run(&k->scan, k->tiles, tiles, NULL, err);
     if (s != OIT_OK)
         return s;
-    if (sum.total * 4 > f->bind || sum.total > UINT32_MAX)
-        return n > 1 ? halves(k, f, meshes, n, r, err)
-                     : too_large("tile lists", sum.total * 4, f->bind, err);
-    s = reserve(&k->list, &k->list_cap, sum.total * 4, "compute capture tile lists", err);
-    if (s != OIT_OK)
-        return s;
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OFFSETS, k->tiles);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_TOTALS, k->dead);
-    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_SUMS, k->list, 0,
-                      (GLsizeiptr)(sum.total ? sum.total * 4 : 4));
-    GLuint sc = k->prog[OIT_COMPUTE_SCATTER];
-    glUseProgram(sc);
-    glProgramUniform1ui(sc, glGetUniformLocation(sc, "u_count"), (GLuint)tris);
-    dispatch_linear(tris);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    scatter(k, tris, cap);
     oit_gpu_timer_mark(f->timer, OIT_GPU_SWEEP);
-    s = sweep(k, f, r, sum.total, err);
+    s = sweep(k, f, r, tris, cap, err);
     if (s != OIT_OK)
         return s;
     return oit_gl_check("compute capture: batch", err);
@@ -271,19 +363,80 @@ oit_status oit_compute_batch(oit_compute *k, const oit_compute_frame *f,
 
 /* ---- the compute backend (OIT_CAPTURE_COMPUTE) ------------------------------ */
 
+/* Whether the driver stops a loop short of its end (llvmpipe: 65535
+ * iterations an invocation), once, so that a driver that runs loops to
+ * their end, as GL says, never waits on the sweep. */
+static oit_status probe_loops(oit_compute *k, oit_error *err)
+{
+    oit_status s = reserve(&k->late, &k->late_cap, 16, "compute capture late", err);
+    if (s != OIT_OK)
+        return s;
+    GLuint p = k->prog[OIT_COMPUTE_PROBE], ran = 0;
+    glProgramUniform1i(p, glGetUniformLocation(p, "u_probe"), PROBE_LOOP);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_TOTALS, k->late);
+    glUseProgram(p);
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(k->late, 0, 4, &ran);
+    k->cuts = ran != PROBE_LOOP;
+    return oit_gl_check("compute capture: loop probe", err);
+}
+
 static oit_status compute_create(oit_capture *c, int stencil_k, oit_error *err)
 {
-    return compute_init(c->be, err);
+    oit_compute *k = c->be;
+    oit_status s = compute_init(k, err);
+    k->test = c->faults & (OIT_CAPTURE_TEST_COMPUTE_LIST_SHORT | OIT_CAPTURE_TEST_COMPUTE_NO_PROBE);
+    k->chunk = 2;
+    if (s == OIT_OK && !(k->test & OIT_CAPTURE_TEST_COMPUTE_NO_PROBE))
+        s = probe_loops(k, err);
+    return s;
+}
+
+/* What the last frame's batches needed of the tile lists, read now that
+ * it is over (its end read its totals back), then cleared. */
+static void read_late(oit_compute *k)
+{
+    static const GLuint zero = 0;
+    if (k->late_armed && !(k->test & OIT_CAPTURE_TEST_COMPUTE_LIST_SHORT)) {
+        GLuint need = 0;
+        glGetNamedBufferSubData(k->late, 0, 4, &need);
+        k->list_seen = need > k->list_seen ? need : k->list_seen;
+    }
+    k->late_armed = 0;
+    glClearNamedBufferData(k->late, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
 }
 
 /* The resume cursors, a pixel's 16 bytes, held for the whole frame: the
- * output passes through them at its end (compute_end). */
+ * output passes through them at its end (compute_end). The pending counts
+ * and tile stamps start at 0; where the last frame left pixels pending on
+ * a driver taken for one that runs loops to the end, the sweeps read back
+ * from now on. */
 static oit_status compute_begin(oit_capture *c, oit_error *err)
 {
     oit_compute *k = c->be;
-    uint64_t pixels = (uint64_t)c->view.width * c->view.height;
-    return oit_capture_reserve(c, &k->resume, &k->resume_cap, pixels * 16,
-                               "compute capture resume", err);
+    int w = c->view.width, h = c->view.height;
+    uint64_t pixels = (uint64_t)w * h, tiles = (uint64_t)(w + OIT_COMPUTE_TILE - 1) /
+                                               OIT_COMPUTE_TILE *
+                                               ((h + OIT_COMPUTE_TILE - 1) / OIT_COMPUTE_TILE);
+    oit_status s = oit_capture_reserve(c, &k->resume, &k->resume_cap, pixels * 16,
+                                       "compute capture resume", err);
+    if (s == OIT_OK)
+        s = oit_capture_reserve(c, &k->late, &k->late_cap, 16, "compute capture late", err);
+    if (s == OIT_OK)
+        s = oit_capture_reserve(c, &k->pending, &k->pending_cap, 16 + tiles * 4,
+                                "compute capture pending", err);
+    if (s != OIT_OK)
+        return s;
+    GLuint pend = 0;
+    if (k->round && !k->cuts)
+        glGetNamedBufferSubData(k->pending, 0, 4, &pend);
+    k->cuts |= pend != 0;
+    read_late(k);
+    static const GLuint zero = 0;
+    glClearNamedBufferData(k->pending, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    k->round = 0;
+    return OIT_OK;
 }
 
 static void compute_uniforms(oit_capture *c)
@@ -331,6 +484,15 @@ static oit_status compute_end(oit_capture *c, uint64_t want, uint64_t row, oit_c
                               oit_error *err)
 {
     oit_compute *k = c->be;
+    GLuint pend = 0;
+    if (k->round && !k->cuts) {
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        glGetNamedBufferSubData(k->pending, 0, 4, &pend);
+    }
+    if (pend)
+        return oit_error_set(err, OIT_ERR_GL, "compute capture: the driver cut shader loops "
+                             "short at %u pixels though its probe ran to the end; this frame "
+                             "is incomplete, the next ones resume them", pend);
     return oit_capture_store_out(c, &k->resume, &k->resume_cap, "compute capture resume", want,
                                  row, out, err);
 }

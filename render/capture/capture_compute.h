@@ -40,11 +40,22 @@
  * the spec leaves to the implementation anyway. Pixels whose centre lies
  * within a rounding of an edge may differ from a raster method's.
  *
+ * No read-back within a frame: the tile lists are sized from what the
+ * host knows (4 entries a triangle, or the most a batch of an earlier
+ * frame needed), a tile whose list overflowed sweeps every record of the
+ * batch instead (exact, slower), and the entries needed are read back at
+ * the next frame's begin to size the lists; the sweep's tiles are a work
+ * list written on the GPU and dispatched indirectly.
+ *
  * A driver that cuts long shader loops short (llvmpipe: 65535 iterations
  * an invocation, all loops together) gets the pixels it cut resumed in
  * further dispatches from their last composited fragment (compute_glsl.c
- * says how they notice); a tile list too long for even one sweep is
- * refused with OIT_ERR_UNSUPPORTED rather than rendered short.
+ * says how they notice), indirect, over the tiles with pending pixels,
+ * read back once per chunk of rounds; a probe at creation tells whether
+ * the driver cuts (where it says not and a pixel is pending all the same,
+ * oit_capture_end fails and the next frames read back). A tile list too
+ * long for even one sweep is refused with OIT_ERR_UNSUPPORTED rather than
+ * rendered short.
  *
  * Early termination: with epsilon on (capture.h), a pre-pass marks the
  * tiles of the rect whose every pixel is below epsilon; binning skips them,
@@ -63,13 +74,22 @@
 #include "render/gl/scan_glsl.h"
 
 enum { OIT_COMPUTE_SETUP, OIT_COMPUTE_SCATTER, OIT_COMPUTE_LIVE, OIT_COMPUTE_TILES,
-       OIT_COMPUTE_PROGS };
+       OIT_COMPUTE_WORK, OIT_COMPUTE_ARGS, OIT_COMPUTE_PROBE, OIT_COMPUTE_PROGS };
 
 typedef struct oit_compute {
     GLuint prog[OIT_COMPUTE_PROGS]; /* the frame's view and opaque uniforms set by compute_uniforms */
-    GLuint recs, tiles, list, dead, resume, pending;
-    uint64_t recs_cap, tiles_cap, list_cap, dead_cap, resume_cap, pending_cap;
-    uint32_t rounds; /* sweep dispatches of the last batch (1 unless loops were cut) */
+    GLuint recs, tiles, list, dead, resume, pending, work[2], late;
+    uint64_t recs_cap, tiles_cap, list_cap, dead_cap, resume_cap, pending_cap, work_cap[2],
+        late_cap;
+    /* The driver cuts long loops short (a probe at creation): the sweep's
+     * rounds are read back after each chunk of them. Otherwise a batch
+     * reads nothing back. */
+    int cuts;
+    int late_armed;      /* a frame wrote k->late since it was last read */
+    uint32_t round;      /* the frame's sweep rounds so far (tile stamps) */
+    uint32_t chunk;      /* rounds issued between read-backs where loops are cut */
+    uint64_t list_seen;  /* the most tile-list entries a batch needed (late read-back) */
+    unsigned test;       /* OIT_CAPTURE_TEST_COMPUTE_* of the capture's faults */
     oit_scan scan;
     uint64_t align; /* GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT */
 } oit_compute;

@@ -133,7 +133,12 @@ const char oit_compute_setup_cs[] =
 
 /* After the scan, tile_count holds each tile's first entry; taking one
  * with an atomic leaves it at the tile's end, the next tile's start. The
- * order within a tile is whatever the atomics give: the sweep orders. */
+ * order within a tile is whatever the atomics give: the sweep orders.
+ * The list holds u_list_cap entries, sized by the host without reading
+ * the scan's total back: an entry past it is not written (the sweep
+ * finds the tile's triangles among all records instead) and the entries
+ * the batch needed go to late_need, which the host reads after the frame
+ * to size the next frame's lists. */
 const char oit_compute_scatter_cs[] =
     CS_COMMON
     "layout(local_size_x = 64) in;\n"
@@ -141,7 +146,9 @@ const char oit_compute_scatter_cs[] =
     "layout(std430, binding = OIT_BIND_OFFSETS) buffer TileCounts { uint tile_count[]; };\n"
     "layout(std430, binding = OIT_BIND_TOTALS) readonly buffer TileDead { uint tile_dead[]; };\n"
     "layout(std430, binding = OIT_BIND_SUMS) writeonly buffer TileList { uint tile_list[]; };\n"
+    "layout(std430, binding = OIT_BIND_COUNTS) buffer Late { uint late_need; };\n"
     "layout(location = 13) uniform uint u_count;\n"
+    "uniform uint u_list_cap;\n"
     "uniform int u_live;\n"
     "void main() {\n"
     "    uint i = gl_GlobalInvocationID.y * 65535u * 64u + gl_GlobalInvocationID.x;\n"
@@ -152,8 +159,51 @@ const char oit_compute_scatter_cs[] =
     "    for (int ty = box.y / CS_TILE; ty <= (box.w - 1) / CS_TILE; ty++)\n"
     "        for (int tc = box.x / CS_TILE; tc <= (box.z - 1) / CS_TILE; tc++) {\n"
     "            uint t = uint(ty) * tx + uint(tc);\n"
-    "            if (u_live == 0 || tile_dead[t] == 0u) tile_list[atomicAdd(tile_count[t], 1u)] = i;\n"
+    "            if (u_live != 0 && tile_dead[t] != 0u) continue;\n"
+    "            uint at = atomicAdd(tile_count[t], 1u);\n"
+    "            if (at < u_list_cap) tile_list[at] = i;\n"
+    "            else atomicMax(late_need, at + 1u);\n"
     "        }\n"
+    "}\n";
+
+/* The sweep's work list (uvec4 header: the indirect dispatch's groups in
+ * xyz, the tiles in w; then the tiles): the tiles of the rect [u_tile0,
+ * u_tile1] with an entry in their list. */
+const char oit_compute_work_cs[] =
+    CS_COMMON
+    "layout(local_size_x = 8, local_size_y = 8) in;\n"
+    "layout(std430, binding = OIT_BIND_OFFSETS) readonly buffer TileEnds { uint tile_end[]; };\n"
+    "layout(std430, binding = OIT_BIND_OUT) buffer Work { uvec4 work_hdr; uint work[]; };\n"
+    "uniform ivec2 u_tile0;\n"
+    "uniform ivec2 u_tile1;\n"
+    "void main() {\n"
+    "    ivec2 tile = u_tile0 + ivec2(gl_GlobalInvocationID.xy);\n"
+    "    if (any(greaterThan(tile, u_tile1))) return;\n"
+    "    uint t = uint(tile.y) * cs_tiles_x() + uint(tile.x);\n"
+    "    uint lo = t == 0u ? 0u : tile_end[t - 1u];\n"
+    "    if (tile_end[t] > lo) work[atomicAdd(work_hdr.w, 1u)] = t;\n"
+    "}\n";
+
+/* A work list's tiles into its dispatch's groups: rows of 65535 (the
+ * least GL_MAX_COMPUTE_WORK_GROUP_COUNT), none when it is empty. */
+const char oit_compute_args_cs[] =
+    "layout(local_size_x = 1) in;\n"
+    "layout(std430, binding = OIT_BIND_OUT) buffer Work { uvec4 work_hdr; };\n"
+    "void main() {\n"
+    "    uint c = work_hdr.w;\n"
+    "    work_hdr.xyz = uvec3(min(c, 65535u), (c + 65534u) / 65535u, 1u);\n"
+    "}\n";
+
+/* Whether the driver cuts loops short (tiles_cs says why that matters):
+ * the iterations a loop of u_probe ran. */
+const char oit_compute_probe_cs[] =
+    "layout(local_size_x = 1) in;\n"
+    "layout(std430, binding = OIT_BIND_TOTALS) writeonly buffer Probe { uint ran; };\n"
+    "uniform int u_probe;\n"
+    "void main() {\n"
+    "    int i = 0;\n"
+    "    while (i < u_probe) i++;\n"
+    "    ran = uint(i);\n"
     "}\n";
 
 /* Per-tile early termination: tile_dead starts all 1 (a buffer clear);
@@ -197,7 +247,14 @@ const char oit_compute_frag_inputs[] =
  * cursor in resume[] and counts itself pending, and the caller
  * dispatches again (u_resume), each invocation with a fresh limit, until
  * no pixel is pending. On a driver without such a limit nothing is ever
- * pending. */
+ * pending.
+ *
+ * The tiles come from a work list written on the GPU (work_cs, then each
+ * round's pending tiles, appended once a round: tile_stamp holds the
+ * round that last appended the tile), dispatched indirectly, so that the
+ * host reads nothing back between rounds. A tile whose list lost entries
+ * (past u_list_cap, scatter_cs) sweeps every record of the batch whose
+ * pixel box holds the pixel: the same triangles, found slower. */
 const char oit_compute_tiles_cs[] =
     CS_COMMON
     "#define CS_N " OIT_GLSL_STR(OIT_COMPUTE_SWEEP) "u\n"
@@ -206,10 +263,16 @@ const char oit_compute_tiles_cs[] =
     "layout(std430, binding = OIT_BIND_OFFSETS) readonly buffer TileEnds { uint tile_end[]; };\n"
     "layout(std430, binding = OIT_BIND_SUMS) readonly buffer TileList { uint tile_list[]; };\n"
     "layout(std430, binding = OIT_BIND_COUNTS) buffer Resume { uvec4 resume[]; };\n"
-    "layout(std430, binding = OIT_BIND_TOTALS) buffer Pending { uint g_pending; uint g_progress; };\n"
-    "uniform ivec2 u_tile0;\n"
+    "layout(std430, binding = OIT_BIND_TOTALS) buffer Pending {\n"
+    "    uint g_pending; uint g_progress; uint g_pad0; uint g_pad1; uint tile_stamp[];\n"
+    "};\n"
+    "layout(std430, binding = OIT_BIND_VERTS) readonly buffer Work { uvec4 work_hdr; uint work[]; };\n"
+    "layout(std430, binding = OIT_BIND_OUT) buffer Next { uvec4 next_hdr; uint next[]; };\n"
     "uniform float u_epsilon;\n"
     "uniform int u_resume;\n"
+    "uniform uint u_round;\n"
+    "uniform uint u_list_cap;\n"
+    "uniform uint u_recs;\n"
     "uniform int u_probe;\n"
     /* The fill rule on an edge's line: a pixel centre exactly on it
      * belongs to the side its coefficients point to (top-left in spirit);
@@ -255,10 +318,17 @@ const char oit_compute_tiles_cs[] =
     "    v_rgba = mu.x * c0 + mu.y * c1 + mu.z * c2;\n"
     "    return true;\n"
     "}\n"
-    /* The edge tests of cs_fragment_at alone. */
+    /* The edge tests of cs_fragment_at alone; sweeping every record, also
+     * the record's box (the lists hold a record in the tiles its box
+     * meets). */
+    "bool cs_all; ivec2 cs_px;\n"
     "bool cs_covers(uint r, vec2 P) {\n"
     "    uint b = r * CS_REC;\n"
     "    float v;\n"
+    "    if (cs_all) {\n"
+    "        ivec4 bx = ivec4(recs[b + 9u]);\n"
+    "        if (any(lessThan(cs_px, bx.xy)) || any(greaterThanEqual(cs_px, bx.zw))) return false;\n"
+    "    }\n"
     "    return cs_inside(uintBitsToFloat(recs[b].xyz), P, v) &&\n"
     "           cs_inside(uintBitsToFloat(recs[b + 1u].xyz), P, v) &&\n"
     "           cs_inside(uintBitsToFloat(recs[b + 2u].xyz), P, v);\n"
@@ -301,13 +371,19 @@ const char oit_compute_tiles_cs[] =
     "    while (i < u_probe) i++;\n"
     "    return i < u_probe;\n"
     "}\n"
+    "uint cs_entry(uint k) { return cs_all ? k : tile_list[k]; }\n"
     "void main() {\n"
-    "    ivec2 tile = u_tile0 + ivec2(gl_WorkGroupID.xy);\n"
+    "    uint g = gl_WorkGroupID.y * 65535u + gl_WorkGroupID.x;\n"
+    "    if (g >= work_hdr.w) return;\n"
+    "    uint t = work[g], tx = cs_tiles_x();\n"
+    "    ivec2 tile = ivec2(int(t % tx), int(t / tx));\n"
     "    ivec2 px = tile * CS_TILE + ivec2(gl_LocalInvocationID.xy);\n"
     "    if (any(lessThan(px, u_rect.xy)) || any(greaterThanEqual(px, u_rect.zw))) return;\n"
-    "    uint t = uint(tile.y) * cs_tiles_x() + uint(tile.x);\n"
     "    uint lo = t == 0u ? 0u : tile_end[t - 1u], hi = tile_end[t];\n"
     "    if (lo >= hi) return;\n"
+    "    cs_all = hi > u_list_cap;\n"
+    "    cs_px = px;\n"
+    "    if (cs_all) { lo = 0u; hi = u_recs; }\n"
     "    uint p = uint(px.y) * uint(u_size.x) + uint(px.x);\n"
     "    cs_cursor = uvec3(0u);\n"
     "    cs_first = true;\n"
@@ -340,13 +416,13 @@ const char oit_compute_tiles_cs[] =
      * triangle (SIMD lanes of a CPU, threads of a warp). */
     "        for (; k < hi; k += 8u) {\n"
     "            uint bits = 0u;\n"
-    "#define CS_COVER(u) if (k + u < hi && cs_covers(tile_list[k + u], P)) bits |= 1u << u;\n"
+    "#define CS_COVER(u) if (k + u < hi && cs_covers(cs_entry(k + u), P)) bits |= 1u << u;\n"
     "            CS_COVER(0u) CS_COVER(1u) CS_COVER(2u) CS_COVER(3u)\n"
     "            CS_COVER(4u) CS_COVER(5u) CS_COVER(6u) CS_COVER(7u)\n"
     "            while (bits != 0u) {\n"
     "                uint u = uint(findLSB(bits));\n"
     "                bits &= bits - 1u;\n"
-    "                cs_consider(tile_list[k + u]);\n"
+    "                cs_consider(cs_entry(k + u));\n"
     "            }\n"
     "        }\n"
     "        oit_state s2 = s;\n"
@@ -364,5 +440,7 @@ const char oit_compute_tiles_cs[] =
     "    if (!done) {\n"
     "        atomicAdd(g_pending, 1u);\n"
     "        if (progressed) atomicAdd(g_progress, 1u);\n"
+    "        if (atomicExchange(tile_stamp[t], u_round) != u_round)\n"
+    "            next[atomicAdd(next_hdr.w, 1u)] = t;\n"
     "    }\n"
     "}\n";

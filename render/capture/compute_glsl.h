@@ -14,6 +14,13 @@
 extern const char oit_compute_setup_cs[];
 /* Each record's index into the lists of its tiles. */
 extern const char oit_compute_scatter_cs[];
+/* The sweep's first work list: the rect's tiles with list entries. */
+extern const char oit_compute_work_cs[];
+/* A work list's indirect dispatch arguments from its count. */
+extern const char oit_compute_args_cs[];
+/* The iterations one loop of u_probe ran: fewer where the driver cuts
+ * loops short. */
+extern const char oit_compute_probe_cs[];
 /* After u_mode and oit_glsl_state_io: which tiles have a pixel not yet
  * below epsilon. */
 extern const char oit_compute_live_cs[];

@@ -8,7 +8,11 @@
  * in order: the count equals DFB's and the image the hand result); early termination
  * (the exact number of fragments a saturated pixel drops, and the image
  * within epsilon); a batch too large for one storage binding, captured in
- * halves. Every buffer starts poisoned (OIT_GL_POISON). */
+ * halves. Again with tile lists one entry long (every tile takes the
+ * overflowed list's path: all records swept), and with the driver taken
+ * for one that runs loops to their end (no read-back: a shallow frame is
+ * exact, a deep one fails at its end rather than render short, and the
+ * frames after it resume). Every buffer starts poisoned (OIT_GL_POISON). */
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -18,6 +22,9 @@
 #include "tests/lib/gl_test_scene.h"
 #include "tests/lib/test_check.h"
 #include "tests/lib/test_gl.h"
+
+/* Set while a failure is what the test wants: capture_scene stays quiet. */
+static int expect_failure;
 
 /* Captures q in batches [start[i], start[i+1]) (rects[i] or the frame). */
 static int capture_scene(oit_capture *c, const oit_view *v, const quad_spec *q, const int *start,
@@ -39,8 +46,10 @@ static int capture_scene(oit_capture *c, const oit_view *v, const quad_spec *q, 
     if (s == OIT_OK)
         s = oit_capture_end(c, img, st, &err);
     free(tris);
-    if (s != OIT_OK)
+    if (s != OIT_OK && !expect_failure)
         fprintf(stderr, "FAIL: compute capture: %s\n", err.message);
+    if (s != OIT_OK && expect_failure)
+        printf("failed as expected: %s\n", err.message);
     return s == OIT_OK;
 }
 
@@ -206,11 +215,12 @@ static void test_rect_cut(oit_capture *c)
     oit_image_free(&img);
 }
 
-/* N layers on most pixels of a w x h frame in two batches (front half,
- * then back half), submitted shuffled within each. At 300 a pixel needs 19
- * sweeps; at 1200, 75 sweeps over 2400 triangles, past the 65535 loop
- * iterations llvmpipe runs an invocation (its pixels are resumed). */
-static void test_deep(oit_capture *c, int N, int w, int h)
+/* N layers on most pixels of a w x h frame in nb batches (1, or 2: front
+ * half, then back half), submitted shuffled within each. At 300 a pixel
+ * needs 19 sweeps; at 1200 in one batch, 75 sweeps over 2400 triangles,
+ * past the 65535 loop iterations llvmpipe runs an invocation (its pixels
+ * are resumed: test_no_probe shows they are cut). */
+static void test_deep(oit_capture *c, int N, int w, int h, int nb)
 {
     quad_spec *q = malloc(sizeof *q * (size_t)N);
     if (!q) {
@@ -226,12 +236,13 @@ static void test_deep(oit_capture *c, int N, int w, int h)
     shuffle_quads(q + N / 2, N / 2, 98u);
     oit_view v;
     scene_view(&v, w, h, OIT_SHADING_TRANSPARENT);
-    int two[3] = {0, N / 2, N};
+    int two[3] = {0, N / 2, N}, one[2] = {0, N};
     oit_image a = {0}, b = {0};
     oit_frame_stats sa, sb;
-    if (capture_scene(c, &v, q, two, 2, NULL, &a, &sa) && dfb_scene(&v, q, N, &b, &sb)) {
+    if (capture_scene(c, &v, q, nb == 1 ? one : two, nb, NULL, &a, &sa) &&
+        dfb_scene(&v, q, N, &b, &sb)) {
         double d = image_diff(&a, &b), h = hand_max_diff(&a, &v, q, N);
-        printf("deep: vs DFB %.6f, vs hand %.6f, fragments %llu/%llu, layers %u/%u\n", d, h,
+        printf("deep, %d batches: vs DFB %.6f, vs hand %.6f, fragments %llu/%llu, layers %u/%u\n", nb, d, h,
                (unsigned long long)sa.fragments, (unsigned long long)sb.fragments, sa.max_layers,
                sb.max_layers);
         CHECK(sb.max_layers == (uint32_t)N && sa.max_layers == (uint32_t)N, "deep: %u layers (DFB %u), want %d",
@@ -334,6 +345,75 @@ static void test_epsilon(oit_capture *c)
     oit_image_free(&ep);
 }
 
+/* The scene of test_deep(N = 1200, 8 x 8) in one batch: its pixels need
+ * more loop iterations than llvmpipe runs an invocation. */
+static int deep_frame(oit_capture *c)
+{
+    enum { N = 1200 };
+    quad_spec *q = malloc(sizeof *q * N);
+    if (!q)
+        return 0;
+    stack_scene(q, N, 0.01f, 3);
+    oit_view v;
+    scene_view(&v, 8, 8, OIT_SHADING_TRANSPARENT);
+    int one[2] = {0, N};
+    oit_image img = {0};
+    oit_frame_stats st;
+    int ok = capture_scene(c, &v, q, one, 1, NULL, &img, &st);
+    oit_image_free(&img);
+    free(q);
+    return ok;
+}
+
+/* Tile lists one entry long and never grown: every tile's list
+ * overflows, so every tile finds its triangles among all the batch's
+ * records; the images, counts and depths stay DFB's and the hand's. */
+static void test_list_overflow(void)
+{
+    oit_error err = {0};
+    oit_capture *c = NULL;
+    if (oit_capture_create_faulty(OIT_CAPTURE_COMPUTE, 8, OIT_CAPTURE_TEST_COMPUTE_LIST_SHORT, &c,
+                                  &err) != OIT_OK) {
+        fprintf(stderr, "FAIL: compute capture, short lists: %s\n", err.message);
+        test_failures++;
+        return;
+    }
+    printf("-- tile lists one entry long\n");
+    test_one_batch(c);
+    quad_spec q[8];
+    stack_scene(q, 8, 0.7f, 0);
+    int start[4] = {0, 2, 5, 8};
+    test_batches(c, OIT_SHADING_TRANSPARENT, q, start, 3);
+    test_rect_cut(c);
+    test_deep(c, 1200, 8, 8, 1);
+    test_epsilon(c);
+    oit_capture_destroy(c);
+}
+
+/* The driver taken for one that runs loops to their end: a shallow frame
+ * reads nothing back and is exact; llvmpipe cuts the deep frame's loops
+ * short, which its end must report (never an image short of fragments);
+ * the frames after it read back and are exact again. */
+static void test_no_probe(void)
+{
+    oit_error err = {0};
+    oit_capture *c = NULL;
+    if (oit_capture_create_faulty(OIT_CAPTURE_COMPUTE, 8, OIT_CAPTURE_TEST_COMPUTE_NO_PROBE, &c,
+                                  &err) != OIT_OK) {
+        fprintf(stderr, "FAIL: compute capture, no probe: %s\n", err.message);
+        test_failures++;
+        return;
+    }
+    printf("-- no loop probe\n");
+    test_one_batch(c);
+    expect_failure = 1;
+    int ok = deep_frame(c);
+    expect_failure = 0;
+    CHECK(!ok, "no probe: the deep frame's cut loops went unreported");
+    test_deep(c, 1200, 8, 8, 1);
+    oit_capture_destroy(c);
+}
+
 int main(void)
 {
     setenv("OIT_GL_POISON", "1", 1);
@@ -357,10 +437,13 @@ int main(void)
     int tstart[4] = {0, 2, 3, 4};
     test_batches(c, OIT_SHADING_TRANSLUCENT, t, tstart, 3);
     test_rect_cut(c);
-    test_deep(c, 300, 24, 20);
-    test_deep(c, 1200, 8, 8);
+    test_deep(c, 300, 24, 20, 2);
+    test_deep(c, 1200, 8, 8, 2);
+    test_deep(c, 1200, 8, 8, 1);
     test_epsilon(c);
     test_split(c);
     oit_capture_destroy(c);
+    test_list_overflow();
+    test_no_probe();
     return test_gl_verdict(gl);
 }
