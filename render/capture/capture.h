@@ -43,6 +43,12 @@ typedef enum oit_capture_kind {
     OIT_CAPTURE_COMPUTE
 } oit_capture_kind;
 
+/* GPU bytes a triangle of a batch takes in the compute capture beside its
+ * geometry: its record (160) and four tile-list entries (capture_compute.h);
+ * a budget holding its batches holds this much a triangle of the
+ * largest. */
+#define OIT_CAPTURE_COMPUTE_TRIANGLE_BYTES 176u
+
 typedef struct oit_capture oit_capture;
 
 /* K in [2, 16]. Fails with OIT_ERR_UNSUPPORTED when STENCIL is asked for and

@@ -23,6 +23,9 @@ static const oit_glsl_program programs[OIT_COMPUTE_PROGS] = {
     [OIT_COMPUTE_PROBE] = {"compute capture loop probe", .cs = {oit_compute_probe_cs}},
 };
 
+_Static_assert(OIT_CAPTURE_COMPUTE_TRIANGLE_BYTES == OIT_COMPUTE_RECORD_WORDS * 16 + 4 * 4,
+               "capture.h's figure: a record and four list entries");
+
 /* Iterations of the probe's loop: past llvmpipe's 65535. */
 #define PROBE_LOOP (1 << 17)
 
@@ -279,7 +282,8 @@ static oit_status halves(oit_compute *k, const oit_compute_frame *f,
 
 /* Tile-list entries for a batch of tris triangles, sized without the
  * scan's total: 4 a triangle, or the most an earlier frame's batch
- * needed, or what the buffer holds already; within one binding. */
+ * needed, or what the buffer holds already; within one binding and what
+ * the budget leaves beside the records (at least one). */
 static uint64_t list_entries(const oit_compute *k, const oit_compute_frame *f, uint64_t tris)
 {
     if (k->test & OIT_CAPTURE_TEST_COMPUTE_LIST_SHORT)
@@ -288,7 +292,26 @@ static uint64_t list_entries(const oit_compute *k, const oit_compute_frame *f, u
     want = want > k->list_seen ? want : k->list_seen;
     want = want > k->list_cap / 4 ? want : k->list_cap / 4;
     uint64_t most = f->bind / 4 < UINT32_MAX ? f->bind / 4 : UINT32_MAX;
+    uint64_t recs = tris * OIT_COMPUTE_RECORD_WORDS * 16;
+    if (f->budget) {
+        uint64_t room = f->budget > recs ? (f->budget - recs) / 4 : 0;
+        most = room < most ? room : most;
+        most = most ? most : 1;
+    }
     return want < most ? want : most;
+}
+
+/* buf grown to bytes; under a budget to bytes exactly, so that the
+ * geometric margin does not take what the budget does not have. */
+static oit_status reserve_within(GLuint *buf, uint64_t *cap, uint64_t bytes, uint64_t budget,
+                                 const char *what, oit_error *err)
+{
+    if (budget && *cap < bytes) {
+        glDeleteBuffers(1, buf);
+        *buf = 0;
+        *cap = 0;
+    }
+    return reserve(buf, cap, bytes, what, err);
 }
 
 /* Each record's index into the lists of its tiles, no more than cap. */
@@ -318,19 +341,23 @@ oit_status oit_compute_batch(oit_compute *k, const oit_compute_frame *f,
     if (tris == 0)
         return OIT_OK;
     uint64_t rec_bytes = tris * OIT_COMPUTE_RECORD_WORDS * 16;
+    if (n > 1 && f->budget && tris * OIT_CAPTURE_COMPUTE_TRIANGLE_BYTES > f->budget)
+        return halves(k, f, meshes, n, r, err);
     if (rec_bytes > f->bind || tris > UINT32_MAX / OIT_COMPUTE_RECORD_WORDS)
         return n > 1 ? halves(k, f, meshes, n, r, err)
                      : too_large("triangle records", rec_bytes, f->bind, err);
     uint64_t tx = (uint64_t)(f->width + OIT_COMPUTE_TILE - 1) / OIT_COMPUTE_TILE;
     uint64_t tiles = tx * ((uint64_t)(f->height + OIT_COMPUTE_TILE - 1) / OIT_COMPUTE_TILE);
     uint64_t cap = list_entries(k, f, tris);
-    oit_status s = reserve(&k->recs, &k->recs_cap, rec_bytes, "compute capture records", err);
+    oit_status s = reserve_within(&k->recs, &k->recs_cap, rec_bytes, f->budget,
+                                  "compute capture records", err);
     if (s == OIT_OK)
         s = reserve(&k->tiles, &k->tiles_cap, tiles * 4, "compute capture tile counts", err);
     if (s == OIT_OK)
         s = reserve(&k->dead, &k->dead_cap, tiles * 4, "compute capture tile flags", err);
     if (s == OIT_OK)
-        s = reserve(&k->list, &k->list_cap, cap * 4, "compute capture tile lists", err);
+        s = reserve_within(&k->list, &k->list_cap, cap * 4, f->budget,
+                           "compute capture tile lists", err);
     if (s != OIT_OK)
         return s;
     oit_gpu_timer_mark(f->timer, OIT_GPU_BINNING);
@@ -470,6 +497,7 @@ static oit_status compute_batch(oit_capture *c, const oit_gpu_mesh *const *meshe
                                  .width = c->view.width,
                                  .height = c->view.height,
                                  .bind = c->frame.bind,
+                                 .budget = c->set.slot_budget,
                                  .epsilon = c->frame.applied,
                                  .timer = c->set.timer};
     s = oit_compute_batch(c->be, &f, meshes, n, r, err);

@@ -98,15 +98,21 @@ typedef struct oit_compute_frame {
     GLuint state;                /* the frame's per-pixel state */
     int width, height;
     uint64_t bind;               /* the most bytes one storage buffer may span */
+    /* the most bytes its records and tile lists take (the slot budget;
+     * 0: one binding each): a batch past it is captured in halves of its
+     * meshes, its lists shortened (exact: overflowed tiles sweep every
+     * record) */
+    uint64_t budget;
     float epsilon;               /* what this batch tests (0: nothing) */
     struct oit_gpu_timer *timer; /* phases marked on it; NULL: none */
 } oit_compute_frame;
 
 /* Captures meshes[0..n) over the GL rect r (bottom rows first, exclusive
- * ends) and composites them behind the state. A batch whose records or
- * tile lists exceed one storage binding (f->bind) is captured in halves of
- * its meshes, in order, down to one mesh; OIT_ERR_UNSUPPORTED, with the
- * numbers, where one mesh alone exceeds it. */
+ * ends) and composites them behind the state. A batch whose records
+ * exceed one storage binding (f->bind), or with 4 list entries a triangle
+ * f->budget, is captured in halves of its meshes, in order, down to one
+ * mesh; OIT_ERR_UNSUPPORTED, with the numbers, where one mesh's records
+ * alone exceed a binding. */
 oit_status oit_compute_batch(oit_compute *k, const oit_compute_frame *f,
                              const oit_gpu_mesh *const *meshes, int n, const int r[4],
                              oit_error *err);
