@@ -117,7 +117,7 @@ static uint64_t largest_part(const oit_partfile *pf)
  * share (slot: the capture's budget; 0: no bound). */
 static uint64_t compute_pack_budget(uint64_t slot)
 {
-    return slot ? slot / OIT_CAPTURE_COMPUTE_TRIANGLE_BYTES * sizeof(oit_triangle) : UINT64_MAX;
+    return slot ? slot / OIT_COMPUTE_CAPTURE_TRIANGLE_BYTES * sizeof(oit_triangle) : UINT64_MAX;
 }
 
 /* Room a resident file leaves for the frame's per-pixel buffers (an
@@ -166,7 +166,7 @@ static oit_status split_budget(oit_streamer *s, oit_streamer_desc *d, int stores
     if (d->capture == OIT_CAPTURE_COMPUTE && !d->slot_budget)
         b->capture = max_u64(b->capture, (largest_part(s->pf) + sizeof(oit_triangle) - 1) /
                                              sizeof(oit_triangle) *
-                                             OIT_CAPTURE_COMPUTE_TRIANGLE_BYTES);
+                                             OIT_COMPUTE_CAPTURE_TRIANGLE_BYTES);
     uint64_t left = b->capture < b->total ? b->total - b->capture : 0;
     int off = d->cache_budget == OIT_STREAM_CACHE_OFF;
     uint64_t pixels = min_u64(b->total / 8, PIXEL_ROOM);

@@ -47,7 +47,7 @@ typedef enum oit_capture_kind {
  * geometry: its record (160) and four tile-list entries (capture_compute.h);
  * a budget holding its batches holds this much a triangle of the
  * largest. */
-#define OIT_CAPTURE_COMPUTE_TRIANGLE_BYTES 176u
+#define OIT_COMPUTE_CAPTURE_TRIANGLE_BYTES 176u
 
 typedef struct oit_capture oit_capture;
 

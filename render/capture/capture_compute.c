@@ -23,7 +23,7 @@ static const oit_glsl_program programs[OIT_COMPUTE_PROGS] = {
     [OIT_COMPUTE_PROBE] = {"compute capture loop probe", .cs = {oit_compute_probe_cs}},
 };
 
-_Static_assert(OIT_CAPTURE_COMPUTE_TRIANGLE_BYTES == OIT_COMPUTE_RECORD_WORDS * 16 + 4 * 4,
+_Static_assert(OIT_COMPUTE_CAPTURE_TRIANGLE_BYTES == OIT_COMPUTE_RECORD_WORDS * 16 + 4 * 4,
                "capture.h's figure: a record and four list entries");
 
 /* Iterations of the probe's loop: past llvmpipe's 65535. */
@@ -341,7 +341,7 @@ oit_status oit_compute_batch(oit_compute *k, const oit_compute_frame *f,
     if (tris == 0)
         return OIT_OK;
     uint64_t rec_bytes = tris * OIT_COMPUTE_RECORD_WORDS * 16;
-    if (n > 1 && f->budget && tris * OIT_CAPTURE_COMPUTE_TRIANGLE_BYTES > f->budget)
+    if (n > 1 && f->budget && tris * OIT_COMPUTE_CAPTURE_TRIANGLE_BYTES > f->budget)
         return halves(k, f, meshes, n, r, err);
     if (rec_bytes > f->bind || tris > UINT32_MAX / OIT_COMPUTE_RECORD_WORDS)
         return n > 1 ? halves(k, f, meshes, n, r, err)
