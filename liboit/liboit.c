@@ -473,7 +473,8 @@ static void stream_desc(const oit_renderer_desc *d, oit_streamer_desc *sd)
     memset(sd, 0, sizeof *sd);
     _Static_assert((int)OIT_RENDER_CAPTURE_ARRAY == (int)OIT_CAPTURE_ARRAY &&
                        (int)OIT_RENDER_CAPTURE_STENCIL == (int)OIT_CAPTURE_STENCIL &&
-                       (int)OIT_RENDER_CAPTURE_AUTO == (int)OIT_CAPTURE_AUTO,
+                       (int)OIT_RENDER_CAPTURE_AUTO == (int)OIT_CAPTURE_AUTO &&
+                       (int)OIT_RENDER_CAPTURE_COMPUTE == (int)OIT_CAPTURE_COMPUTE,
                    "liboit's capture values are the streamer's");
     sd->capture = (oit_capture_kind)d->capture;
     sd->pack = d->pack == OIT_RENDER_PACK_FIRSTK     ? OIT_PACK_FIRSTK

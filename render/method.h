@@ -149,5 +149,6 @@ void oit_method_close(oit_method_state *st);
 extern const oit_method oit_method_dfb;
 extern const oit_method oit_method_array;
 extern const oit_method oit_method_stencil;
+extern const oit_method oit_method_compute;
 
 #endif

@@ -89,3 +89,5 @@ static uint64_t capture_pixel_bytes(const void *impl, const oit_view *view)
 
 CAPTURE_METHOD(array, OIT_CAPTURE_ARRAY);
 CAPTURE_METHOD(stencil, OIT_CAPTURE_STENCIL);
+/* The compute capture (capture_compute.h): no raster pipeline. */
+CAPTURE_METHOD(compute, OIT_CAPTURE_COMPUTE);

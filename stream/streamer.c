@@ -113,6 +113,27 @@ static uint64_t min_u64(uint64_t a, uint64_t b)
     return a < b ? a : b;
 }
 
+static uint64_t max_u64(uint64_t a, uint64_t b)
+{
+    return a > b ? a : b;
+}
+
+/* The bytes of the file's largest part (oit_pack_part_bytes). */
+static uint64_t largest_part(const oit_partfile *pf)
+{
+    uint64_t most = 0;
+    for (uint32_t i = 0; i < oit_partfile_part_count(pf); i++)
+        most = max_u64(most, oit_pack_part_bytes(&oit_partfile_parts(pf)[i]));
+    return most;
+}
+
+/* The pack bytes whose triangles the compute capture holds within its
+ * share (slot: the capture's budget; 0: no bound). */
+static uint64_t compute_pack_budget(uint64_t slot)
+{
+    return slot ? slot / OIT_COMPUTE_CAPTURE_TRIANGLE_BYTES * sizeof(oit_triangle) : UINT64_MAX;
+}
+
 /* Room a resident file leaves for the frame's per-pixel buffers (an
  * eighth of a smaller total): 64 MiB hold 1024x1024 at 64 bytes a pixel. */
 #define PIXEL_ROOM (64ull << 20)
@@ -153,6 +174,13 @@ static oit_status split_budget(oit_streamer *s, oit_streamer_desc *d, int stores
                              "least %llu", name, (unsigned long long)b->total, b->source,
                              (unsigned long long)OIT_STREAM_GPU_BUDGET_MIN);
     b->capture = d->slot_budget ? d->slot_budget : min_u64(slots, b->total / 8);
+    /* The compute capture's records and tile lists hold a pack's
+     * triangles (its packs are cut to its share, compute_pack_budget): at
+     * least those of the largest part, which no pack splits. */
+    if (d->capture == OIT_CAPTURE_COMPUTE && !d->slot_budget)
+        b->capture = max_u64(b->capture, (largest_part(s->pf) + sizeof(oit_triangle) - 1) /
+                                             sizeof(oit_triangle) *
+                                             OIT_COMPUTE_CAPTURE_TRIANGLE_BYTES);
     uint64_t left = b->capture < b->total ? b->total - b->capture : 0;
     int off = d->cache_budget == OIT_STREAM_CACHE_OFF;
     uint64_t pixels = min_u64(b->total / 8, PIXEL_ROOM);
@@ -183,7 +211,9 @@ static oit_status split_budget(oit_streamer *s, oit_streamer_desc *d, int stores
 }
 
 /* Bytes a pixel beyond the state: counts (4), first-K's segment table
- * (8), the output where it has a buffer of its own (16), rounded up. */
+ * (8), the output where it has a buffer of its own (16; the compute
+ * capture's resume cursors, through which its output passes), rounded
+ * up. */
 #define PIXEL_EXTRA 32u
 
 /* Under a total, the frame's per-pixel capture buffers (counts, state,
@@ -461,6 +491,12 @@ static oit_status try_routed(void *ctx, int stencil_k, oit_error *err)
 static oit_status create_capture(oit_streamer *s, const oit_streamer_desc *desc,
                                  oit_pack_mode mode, oit_error *err)
 {
+    /* No K-slot fill and no per-pixel limit: exact with every pack mode. */
+    if (desc->capture == OIT_CAPTURE_COMPUTE) {
+        s->choice.asked = desc->capture;
+        return oit_capture_create_faulty(OIT_CAPTURE_COMPUTE, desc->K, desc->capture_faults,
+                                         &s->capture, err);
+    }
     if (mode == OIT_PACK_COUNTED) {
         s->choice.asked = desc->capture;
         if (desc->capture != OIT_CAPTURE_AUTO && desc->capture != OIT_CAPTURE_ARRAY)
@@ -537,7 +573,12 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
     s->desc = *desc;
     oit_streamer_desc eff = *desc;
     uint64_t all_bytes = 0;
-    oit_pack_mode mode = desc->pack != OIT_PACK_AUTO ? desc->pack : OIT_PACK_FIRSTK;
+    /* The compute capture has no per-pixel limit and no second pass: the
+     * counted rule's packs (cut only by the upload budget) are the largest
+     * exact ones, and fewer packs are fewer binnings and read-backs. */
+    oit_pack_mode mode = desc->pack != OIT_PACK_AUTO            ? desc->pack
+                         : desc->capture == OIT_CAPTURE_COMPUTE ? OIT_PACK_COUNTED
+                                                                : OIT_PACK_FIRSTK;
     s->adaptive = desc->pack == OIT_PACK_AUTO && mode == OIT_PACK_FIRSTK;
     s->first_k = 1;
     oit_status st = reader_threads(pf, desc->reader_threads, &s->threads, err);
@@ -558,6 +599,9 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
      * of GPU memory for it. */
     if (all_bytes < budget)
         budget = all_bytes > OIT_STREAM_RING_MIN ? all_bytes : OIT_STREAM_RING_MIN;
+    if (st == OIT_OK && desc->capture == OIT_CAPTURE_COMPUTE)
+        budget = min_u64(budget, max_u64(compute_pack_budget(desc->slot_budget),
+                                         largest_part(pf)));
     /* The packer checks every part of the file against the budget, other
      * shares' too (an empty share included). */
     for (uint32_t i = 0; s->shares && i < oit_partfile_part_count(pf); i++) {

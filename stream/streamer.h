@@ -36,7 +36,10 @@ typedef struct oit_streamer_desc {
      * slots, the self-test's reason kept (oit_stream_frame_stats). STENCIL
      * where no try passes: OIT_ERR_UNSUPPORTED with the reason. OIT_PACK_
      * COUNTED always takes OIT_CAPTURE_COUNTED, OIT_PACK_FIRSTK
-     * OIT_CAPTURE_FIRSTK (K: its most slots a pixel) */
+     * OIT_CAPTURE_FIRSTK (K: its most slots a pixel). OIT_CAPTURE_COMPUTE
+     * (render/capture/capture_compute.h) captures every pack mode's packs, exactly
+     * (no per-pixel limit); with OIT_PACK_AUTO it takes OIT_PACK_COUNTED's,
+     * the largest */
     oit_capture_kind capture;
     unsigned capture_faults;  /* testing: OIT_CAPTURE_FAULT_* and _TEST_* (capture.h) */
     /* OIT_PACK_AUTO (0): first-K packs, switched to counted for the next

@@ -245,7 +245,10 @@ typedef enum oit_render_schedule {
 typedef enum oit_render_capture {
     OIT_RENDER_CAPTURE_AUTO = 0,
     OIT_RENDER_CAPTURE_ARRAY = 1,
-    OIT_RENDER_CAPTURE_STENCIL = 2
+    OIT_RENDER_CAPTURE_STENCIL = 2,
+    /* every pack captured in compute shaders, no raster pipeline, no
+     * per-pixel limit (oitstream --capture compute) */
+    OIT_RENDER_CAPTURE_COMPUTE = 5
 } oit_render_capture;
 
 /* For part files. An in-core scene is drawn with DFB, which stores every
@@ -286,7 +289,9 @@ typedef struct oit_renderer_desc {
      * packs (AUTO too). OIT_RENDER_CAPTURE_AUTO (0): the stencil-routed
      * A-buffer where its start-up self-test passes on this GL driver, else
      * array slots; STENCIL: that or OIT_ERR_UNSUPPORTED at the first draw,
-     * with the self-test's reason; ARRAY: slots through an atomic counter.
+     * with the self-test's reason; ARRAY: slots through an atomic counter;
+     * COMPUTE: no K-slot fill at all, every pack binned, rasterized, sorted
+     * and composited in compute shaders (AUTO packs then are COUNTED's).
      * The image is the same; oit_draw_stats says what ran and why. */
     oit_render_capture capture;
     /* GPU bytes for the upload ring, the cache and the capture together
@@ -441,7 +446,7 @@ typedef struct oit_frame_camera {
 } oit_frame_camera;
 
 #define OIT_FRAME_CLIP_MAX 6
-#define OIT_DRAW_GPU_PHASES 6
+#define OIT_DRAW_GPU_PHASES 8
 
 typedef struct oit_draw_stats {
     double ms;               /* wall time of the call; the capture is finished
@@ -478,7 +483,8 @@ typedef struct oit_draw_stats {
      * of draw number gpu_frame (1 the renderer's first; usually an earlier
      * call than this one), 0 and gpu_ms -1 when none is in yet or the
      * driver has no timestamps. Phases, in this order: other, upload (ring
-     * to cache copies), pass 1, pass 2, resolve, read-back; they add up to
+     * to cache copies), pass 1, pass 2, resolve, read-back, binning and
+     * sweep (the compute capture, capture=compute); they add up to
      * gpu_ms. */
     uint64_t gpu_frame;
     double gpu_ms;

@@ -175,7 +175,7 @@ _UP_AXES = {"y": 0, "z": 1, "x": 2}
 # oit_render_pack, spelt as oitstream --pack spells it
 _PACKS = {"auto": 0, "counted": 1, "budget": 2, "disjoint": 3, "first-k": 4}
 # oit_render_capture, spelt as oitstream --capture spells it
-_CAPTURES = {"auto": 0, "array": 1, "stencil": 2}
+_CAPTURES = {"auto": 0, "array": 1, "stencil": 2, "compute": 5}
 
 
 class Renderer(_Closable):
@@ -196,8 +196,9 @@ class Renderer(_Closable):
         capture: how a part file's K-slot fills are made (oitstream
         --capture): "auto" (default: the stencil-routed A-buffer where its
         self-test passes on this driver, else array slots), "stencil" (that
-        or an error at the first render, with the self-test's reason) or
-        "array"; the image is the same, and stats["capture_slots"] and
+        or an error at the first render, with the self-test's reason),
+        "array", or "compute" (no K-slot fill: every pack rasterized, sorted
+        and composited in compute shaders); the image is the same, and stats["capture_slots"] and
         stats["capture_fallback"] say what ran and why.
         see_through: False (default): a model's own alpha, and its opaque
         triangles (glTF OPAQUE and MASK materials, MTL d 1) hide what is

@@ -86,7 +86,7 @@ class DrawStats(ctypes.Structure):
                 ("capture_slots", ctypes.c_char_p),
                 ("capture_slots_k", ctypes.c_uint32), ("capture_fallback", ctypes.c_char_p),
                 ("gpu_frame", ctypes.c_uint64),
-                ("gpu_ms", ctypes.c_double), ("gpu_phase_ms", ctypes.c_double * 6),
+                ("gpu_ms", ctypes.c_double), ("gpu_phase_ms", ctypes.c_double * 8),
                 ("gpu_budget", ctypes.c_uint64), ("ring_budget", ctypes.c_uint64),
                 ("cache_budget", ctypes.c_uint64), ("capture_budget", ctypes.c_uint64),
                 ("gpu_free_bytes", ctypes.c_uint64),

@@ -26,6 +26,7 @@ static const oit_capture_ops *ops_of(oit_capture_kind kind)
     case OIT_CAPTURE_STENCIL: return &oit_capture_stencil_ops;
     case OIT_CAPTURE_COUNTED: return &oit_capture_counted_ops;
     case OIT_CAPTURE_FIRSTK: return &oit_capture_firstk_ops;
+    case OIT_CAPTURE_COMPUTE: return &oit_capture_compute_ops;
     default: return NULL;
     }
 }
@@ -120,7 +121,8 @@ oit_status oit_capture_create_faulty(oit_capture_kind kind, int K, unsigned faul
     oit_status s = oit_capture_k_check(K, NULL, err);
     if (s != OIT_OK)
         return s;
-    if (kind == OIT_CAPTURE_ARRAY || kind == OIT_CAPTURE_COUNTED || kind == OIT_CAPTURE_FIRSTK)
+    if (kind == OIT_CAPTURE_ARRAY || kind == OIT_CAPTURE_COUNTED || kind == OIT_CAPTURE_FIRSTK ||
+        kind == OIT_CAPTURE_COMPUTE)
         return make(ops_of(kind), K, 0, faults, out, err);
     s = oit_capture_create_routed(OIT_CAPTURE_STENCIL, K, K, faults, out, err);
     if (s != OIT_OK && kind == OIT_CAPTURE_AUTO)

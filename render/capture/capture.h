@@ -36,8 +36,18 @@ typedef enum oit_capture_kind {
      * pixel within the slot budget while every fragment is counted; only
      * the pixels that got more are drawn again, stored and sorted
      * (capture_firstk.h); a batch too wide for 2 slots a pixel is counted */
-    OIT_CAPTURE_FIRSTK
+    OIT_CAPTURE_FIRSTK,
+    /* no per-pixel limit, no raster pipeline: each batch binned into tiles,
+     * rasterized, ordered and composited in compute shaders
+     * (capture_compute.h); K is not used */
+    OIT_CAPTURE_COMPUTE
 } oit_capture_kind;
+
+/* GPU bytes a triangle of a batch takes in the compute capture beside its
+ * geometry: its record (160) and four tile-list entries (capture_compute.h);
+ * a budget holding its batches holds this much a triangle of the
+ * largest. */
+#define OIT_COMPUTE_CAPTURE_TRIANGLE_BYTES 176u
 
 typedef struct oit_capture oit_capture;
 
@@ -68,7 +78,13 @@ enum {
      * without the stencil, so that a driver that does not route
      * (llvmpipe) passes the self-test and renders the stencil paths
      * exactly; only the routing draw itself is left untested there */
-    OIT_CAPTURE_TEST_ROUTE_BY_COPY = 1u << 1
+    OIT_CAPTURE_TEST_ROUTE_BY_COPY = 1u << 1,
+    /* the compute capture's tile lists one entry long, never grown: every
+     * tile takes the path of an overflowed list */
+    OIT_CAPTURE_TEST_COMPUTE_LIST_SHORT = 1u << 2,
+    /* the compute capture takes the driver for one that runs loops to
+     * their end (no read-back of the sweep's pending pixels) */
+    OIT_CAPTURE_TEST_COMPUTE_NO_PROBE = 1u << 3
 };
 /* oit_capture_create with faults (OIT_CAPTURE_FAULT_*; 0: none). */
 oit_status oit_capture_create_faulty(oit_capture_kind kind, int K, unsigned faults,
@@ -87,7 +103,8 @@ oit_status oit_capture_create_routed(oit_capture_kind kind, int K, int stencil_k
                                      unsigned faults, oit_capture **out, oit_error *err);
 /* The samples of c's routed fills; 0: none (array slots). */
 int oit_capture_routed_k(const oit_capture *c);
-/* "array", "stencil", "counted", "first-k" (NULL for AUTO or unknown). */
+/* "array", "stencil", "counted", "first-k", "compute" (NULL for AUTO or
+ * unknown). */
 const char *oit_capture_kind_name(oit_capture_kind kind);
 void oit_capture_destroy(oit_capture *c);
 oit_capture_kind oit_capture_backend(const oit_capture *c);

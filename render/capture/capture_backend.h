@@ -8,6 +8,8 @@
  *   counted  capture_counted.c         count, store, sort per batch
  *   first-k  capture_firstk_backend.c  K slots, and a second pass where they
  *                                      overflow (capture_firstk.c)
+ *   compute  capture_compute.c         binning, coverage, order and compositing
+ *                                      in compute shaders
  * capture.c picks the table once, at creation; nothing else asks which
  * backend runs (tests/render/test_render_layout.sh). Internal to
  * render/capture/. */
@@ -115,7 +117,7 @@ struct oit_capture_ops {
         .bytes = P##_bytes, .stats = P##_stats, .first_k = FIRST_K}
 
 extern const oit_capture_ops oit_capture_array_ops, oit_capture_stencil_ops,
-    oit_capture_counted_ops, oit_capture_firstk_ops;
+    oit_capture_counted_ops, oit_capture_firstk_ops, oit_capture_compute_ops;
 
 /* ---- what capture.c lends its backends ----------------------------------- */
 

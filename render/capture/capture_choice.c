@@ -59,12 +59,13 @@ oit_status oit_capture_parse(const char *value, const char *what, oit_capture_ki
         oit_capture_kind kind;
     } names[] = {{"auto", OIT_CAPTURE_AUTO},
                  {"stencil", OIT_CAPTURE_STENCIL},
-                 {"array", OIT_CAPTURE_ARRAY}};
+                 {"array", OIT_CAPTURE_ARRAY},
+                 {"compute", OIT_CAPTURE_COMPUTE}};
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
         if (value && !strcmp(value, names[i].name)) {
             *kind = names[i].kind;
             return OIT_OK;
         }
-    return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: '%s' is not auto, stencil or array", what,
+    return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: '%s' is not auto, stencil, array or compute", what,
                          value ? value : "");
 }

@@ -36,7 +36,7 @@ oit_status oit_capture_choose(oit_capture_kind asked, int K, int fewer_ok,
                               oit_capture_try try_stencil, void *ctx, oit_capture_choice *out,
                               oit_error *err);
 
-/* "auto", "stencil", "array" into *kind; OIT_ERR_ARGUMENT naming the value
+/* "auto", "stencil", "array", "compute" into *kind; OIT_ERR_ARGUMENT naming the value
  * otherwise (what = the option, for the message). */
 oit_status oit_capture_parse(const char *value, const char *what, oit_capture_kind *kind,
                              oit_error *err);

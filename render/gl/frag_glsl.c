@@ -9,13 +9,51 @@
 
 const char oit_glsl_version[] = "#version 450 core\n" OIT_GLSL_BINDINGS;
 
+#define OIT_GLSL_TIE_PLANE \
+    /* The tie rule's plane (shade.h, oit_depth_plane): in double from the \
+     * float vertices, rounded to float, so that every triangle of one plane \
+     * carries the same numbers; the normal is then rotated into view space. */ \
+    "vec4 oit_tie_plane(vec3 p0, vec3 p1, vec3 p2) {\n" \
+    "    dvec3 q0 = dvec3(p0);\n" \
+    "    dvec3 nn = cross(dvec3(p1) - q0, dvec3(p2) - q0);\n" \
+    "    double len = sqrt(dot(nn, nn));\n" \
+    "    if (!(len > 0.0lf)) return vec4(0.0);\n" \
+    "    dvec3 nu = nn / len;\n" \
+    "    vec3 n = vec3(nu);\n" \
+    /* Rotated term by term, in shade.c's order (reference.c key_hits): \
+     * precise forbids the compiler to fuse or reorder (GLSL 4.50 4.7.1). */ \
+    "    precise vec3 r;\n" \
+    "    r.x = u_view[0].x * n.x + u_view[1].x * n.y + u_view[2].x * n.z;\n" \
+    "    r.y = u_view[0].y * n.x + u_view[1].y * n.y + u_view[2].y * n.z;\n" \
+    "    r.z = u_view[0].z * n.x + u_view[1].z * n.y + u_view[2].z * n.z;\n" \
+    "    return vec4(r, float(dot(nu, q0 - u_eye)));\n" \
+    "}\n" \
+
+/* What the vertex stage and the compute capture's triangle set-up share
+ * (frag_glsl.h, oit_glsl_vertex_lib): the bindings, the transforms and the
+ * tie rule's plane. */
+#define OIT_GLSL_VERTEX_LIB \
+    "layout(std430, binding = OIT_BIND_VERTS) readonly buffer Verts { uvec4 verts[]; };\n" \
+    "layout(location = 0) uniform mat4 u_view;\n" \
+    "layout(location = 1) uniform mat4 u_proj;\n" \
+    /* Source indices of sourced draws (frag_glsl.h, "Primitive id"). */ \
+    "layout(std430, binding = OIT_BIND_PRIMS) readonly buffer Prims { uint prims[]; };\n" \
+    "layout(location = 15) uniform dvec3 u_eye;\n" \
+    /* Model to world (oit_view.model; the identity changes no bit). */ \
+    "layout(location = 26) uniform mat4 u_model;\n" \
+    "vec3 oit_world(uvec4 v) { return (u_model * vec4(uintBitsToFloat(v.xyz), 1.0)).xyz; }\n" \
+    "layout(location = 3) uniform int u_mode;\n" \
+    "layout(location = 4) uniform uint u_attrs;\n" \
+    /* oit_shading.colour_space (shade.h, "Colour space"); set by name. */ \
+    "uniform int u_colour_space;\n" \
+    OIT_GLSL_SRGB_FUNCS \
+    OIT_GLSL_TIE_PLANE
+
+const char oit_glsl_vertex_lib[] = OIT_GLSL_VERTEX_LIB;
+
 const char oit_glsl_vertex[] =
-    "layout(std430, binding = OIT_BIND_VERTS) readonly buffer Verts { uvec4 verts[]; };\n"
-    "layout(location = 0) uniform mat4 u_view;\n"
-    "layout(location = 1) uniform mat4 u_proj;\n"
+    OIT_GLSL_VERTEX_LIB
     "layout(location = 0) in uvec2 a_draw;\n"
-    /* Source indices of sourced draws (frag_glsl.h, "Primitive id"). */
-    "layout(std430, binding = OIT_BIND_PRIMS) readonly buffer Prims { uint prims[]; };\n"
     "out vec3 v_pos;\n"
     /* The opaque pre-pass and the captures are different programs that
      * must compute the same key from it (oit_fragment_key). */
@@ -23,38 +61,11 @@ const char oit_glsl_vertex[] =
     "out vec4 v_rgba;\n"
     "flat out vec3 v_normal;\n"
     "flat out uint v_first_prim;\n"
-    "layout(location = 15) uniform dvec3 u_eye;\n"
-    /* Model to world (oit_view.model; the identity changes no bit). */
-    "layout(location = 26) uniform mat4 u_model;\n"
-    "vec3 oit_world(uvec4 v) { return (u_model * vec4(uintBitsToFloat(v.xyz), 1.0)).xyz; }\n"
     "flat out vec4 v_plane;\n"
     /* Opaque triangle (shade.h, "Opaque triangles"): every vertex reads
      * all three alphas, so the flat value is the same whichever provokes. */
     "flat out uint v_opaque;\n"
-    "layout(location = 3) uniform int u_mode;\n"
-    "layout(location = 4) uniform uint u_attrs;\n"
-    /* oit_shading.colour_space (shade.h, "Colour space"); set by name. */
-    "uniform int u_colour_space;\n"
-    OIT_GLSL_SRGB_FUNCS
     "invariant gl_Position;\n"
-    /* The tie rule's plane (shade.h, oit_depth_plane): in double from the
-     * float vertices, rounded to float, so that every triangle of one plane
-     * carries the same numbers; the normal is then rotated into view space. */
-    "vec4 oit_tie_plane(vec3 p0, vec3 p1, vec3 p2) {\n"
-    "    dvec3 q0 = dvec3(p0);\n"
-    "    dvec3 nn = cross(dvec3(p1) - q0, dvec3(p2) - q0);\n"
-    "    double len = sqrt(dot(nn, nn));\n"
-    "    if (!(len > 0.0lf)) return vec4(0.0);\n"
-    "    dvec3 nu = nn / len;\n"
-    "    vec3 n = vec3(nu);\n"
-    /* Rotated term by term, in shade.c's order (reference.c key_hits):
-     * precise forbids the compiler to fuse or reorder (GLSL 4.50 4.7.1). */
-    "    precise vec3 r;\n"
-    "    r.x = u_view[0].x * n.x + u_view[1].x * n.y + u_view[2].x * n.z;\n"
-    "    r.y = u_view[0].y * n.x + u_view[1].y * n.y + u_view[2].y * n.z;\n"
-    "    r.z = u_view[0].z * n.x + u_view[1].z * n.y + u_view[2].z * n.z;\n"
-    "    return vec4(r, float(dot(nu, q0 - u_eye)));\n"
-    "}\n"
     /* Whether the triangle's three vertices and its prim lie in their
      * bindings. A draw's own vertices always do; the test keeps a wrong
      * record or binding from reading out of range, which GL leaves
@@ -108,140 +119,153 @@ const char oit_glsl_vertex[] =
     "uniform int u_opaque_keyed;\n"                                              \
     "bool oit_behind_opaque() {\n"                                               \
     "    if (u_opaque_keyed != 0 && oit_fragment_key() >\n"                      \
-    "        floatBitsToUint(texelFetch(u_opaque_keys, ivec2(gl_FragCoord.xy), 0).r))\n" \
+    "        floatBitsToUint(texelFetch(u_opaque_keys, ivec2(OIT_FRAG_COORD.xy), 0).r))\n" \
     "        return true;\n"                                                     \
     "    if (u_opaque == 0) return false;\n"                                     \
-    "    ivec2 q = ivec2(gl_FragCoord.xy) + u_opaque_origin;\n"                  \
-    "    return gl_FragCoord.z >= texelFetch(u_opaque_depth, q, 0).r;\n"         \
+    "    ivec2 q = ivec2(OIT_FRAG_COORD.xy) + u_opaque_origin;\n"                  \
+    "    return OIT_FRAG_COORD.z >= texelFetch(u_opaque_depth, q, 0).r;\n"         \
     "}\n"
+
+/* The fragment library (frag_glsl.h) over OIT_FRAG_COORD and
+ * OIT_PRIMITIVE_ID, which the fragment stage defines as gl_FragCoord and
+ * gl_PrimitiveID and the compute capture as its own per-pixel values. */
+#define OIT_GLSL_FRAGMENT_LIB \
+    "layout(location = 16) uniform vec4 u_ray;\n" \
+    "layout(location = 24) uniform vec4 u_org;\n" \
+    "layout(location = 25) uniform float u_org_z;\n" \
+    /* The view-space origin of the pixel centre's ray (view.h, \
+     * oit_view_origin_map): the eye, 0, for a perspective; the point of the \
+     * near plane for an orthographic view. */ \
+    "vec3 oit_ray_origin() {\n" \
+    "    vec2 c = floor(OIT_FRAG_COORD.xy) + 0.5;\n" \
+    "    precise vec3 o = vec3(c.x * u_org.x + u_org.z, c.y * u_org.y + u_org.w, u_org_z);\n" \
+    "    return o;\n" \
+    "}\n" \
+    "uint oit_pixel_index() {\n" \
+    "    return uint(OIT_FRAG_COORD.y) * uint(u_width) + uint(OIT_FRAG_COORD.x);\n" \
+    "}\n" \
+    "uint oit_pack_111110(vec3 c) {\n" \
+    "    uvec3 q = uvec3(round(clamp(c, 0.0, 1.0) * vec3(2047.0, 2047.0, 1023.0)));\n" \
+    "    return q.x | (q.y << 11) | (q.z << 22);\n" \
+    "}\n" \
+    /* The tie rule's key (shade.h, oit_depth_key): t of the triangle's \
+     * plane along the pixel centre's unit ray from its origin o, which every \
+     * triangle at this pixel shares, with the low mantissa bits cleared: \
+     * (d - n . o) / (n . dir), d - 0 = d for a perspective (o = 0); an \
+     * orthographic ray map is 0, so dir = (0, 0, -1). */ \
+    /* floor + 0.5: the centre even where a multisampled target lets \
+     * OIT_FRAG_COORD lie anywhere in the pixel. */ \
+    /* Every operation is written out in the order view.c \
+     * (oit_view_pixel_ray) and shade.c (oit_depth_key) use, and precise: \
+     * a GPU compiler may otherwise fuse multiply-adds or reassociate \
+     * (GLSL 4.50 4.7.1), so that faces coplanar up to rounding get keys on \
+     * either side of a grid line than the CPU reference's. Division and \
+     * sqrt stay within GLSL's stated ulps of the CPU's. */ \
+    "uint oit_depth_key(float t_interp) {\n" \
+    "    vec2 c = floor(OIT_FRAG_COORD.xy) + 0.5;\n" \
+    "    precise vec3 dir = vec3(c.x * u_ray.x + u_ray.z, c.y * u_ray.y + u_ray.w, -1.0);\n" \
+    "    precise float len2 = dir.x * dir.x + dir.y * dir.y + dir.z * dir.z;\n" \
+    "    precise float inv = 1.0 / sqrt(len2);\n" \
+    "    dir = dir * inv;\n" \
+    "    vec3 n = v_plane.xyz;\n" \
+    "    precise float nd = n.x * dir.x + n.y * dir.y + n.z * dir.z;\n" \
+    "    float t = t_interp;\n" \
+    "    if (abs(nd) >= " OIT_GLSL_STR(OIT_DEPTH_GRAZING) ") {\n" \
+    "        vec3 o = oit_ray_origin();\n" \
+    "        precise float no = n.x * o.x + n.y * o.y + n.z * o.z;\n" \
+    "        precise float tp = (v_plane.w - no) / nd;\n" \
+    "        if (tp > 0.0 && !isinf(tp)) t = tp;\n" \
+    "    }\n" \
+    "    return floatBitsToUint(t) & ~" OIT_GLSL_STR(OIT_DEPTH_KEY_MASK) "u;\n" \
+    "}\n" \
+    /* Section planes (clip.h): u_clip holds them in view space \
+     * (oit_clip_eye). The point tested is where the pixel centre's ray \
+     * meets the triangle's plane, computed as oit_depth_key computes its t \
+     * and as reference.c does, not the interpolated position, which a \
+     * multisampled capture may take anywhere in the pixel; a grazing \
+     * plane falls back to the interpolated distance along the same ray. */ \
+    "layout(location = 27) uniform int u_clip_count;\n" \
+    "layout(location = 28) uniform vec4 u_clip[" OIT_GLSL_STR(OIT_CLIP_MAX) "];\n" \
+    "bool oit_clipped() {\n" \
+    "    if (u_clip_count == 0) return false;\n" \
+    "    vec2 c = floor(OIT_FRAG_COORD.xy) + 0.5;\n" \
+    "    precise vec3 dir = vec3(c.x * u_ray.x + u_ray.z, c.y * u_ray.y + u_ray.w, -1.0);\n" \
+    "    precise float len2 = dir.x * dir.x + dir.y * dir.y + dir.z * dir.z;\n" \
+    "    precise float inv = 1.0 / sqrt(len2);\n" \
+    "    dir = dir * inv;\n" \
+    "    vec3 o = oit_ray_origin();\n" \
+    "    vec3 n = v_plane.xyz;\n" \
+    "    precise float nd = n.x * dir.x + n.y * dir.y + n.z * dir.z;\n" \
+    "    float t = length(v_pos - o);\n" \
+    "    if (abs(nd) >= " OIT_GLSL_STR(OIT_DEPTH_GRAZING) ") {\n" \
+    "        precise float no = n.x * o.x + n.y * o.y + n.z * o.z;\n" \
+    "        precise float tp = (v_plane.w - no) / nd;\n" \
+    "        if (tp > 0.0 && !isinf(tp)) t = tp;\n" \
+    "    }\n" \
+    "    precise vec3 p = o + dir * t;\n" \
+    "    for (int i = 0; i < u_clip_count; i++) {\n" \
+    "        vec4 q = u_clip[i];\n" \
+    "        precise float s = q.x * p.x + q.y * p.y + q.z * p.z + q.w;\n" \
+    "        if (s < 0.0) return true;\n" \
+    "    }\n" \
+    "    return false;\n" \
+    "}\n" \
+    /* One expression for the key, so that the opaque pre-pass and the \
+     * captures compute the same bits. */ \
+    "uint oit_fragment_key() {\n" \
+    "    precise vec3 rel = v_pos - oit_ray_origin();\n" \
+    "    precise float t_interp = length(rel);\n" \
+    "    return oit_depth_key(t_interp);\n" \
+    "}\n" \
+    OIT_GLSL_OPAQUE \
+    "uvec4 oit_fragment() {\n" \
+    "    vec3 rel = v_pos - oit_ray_origin();\n" \
+    "    float t_interp = length(rel);\n" \
+    "    vec3 v = -rel / t_interp;\n" \
+    /* Degenerate triangles shade as edge-on, like shade.c. */ \
+    "    float nn = dot(v_normal, v_normal);\n" \
+    "    float nv = nn > 0.0 ? dot(v_normal * inversesqrt(nn), v) : 0.0;\n" \
+    "    float ndv = abs(nv);\n" \
+    "    float light = 0.3 + 0.7 * ndv;\n" \
+    "    vec3 base = (u_attrs & 1u) != 0u ? v_rgba.rgb : u_default_rgb;\n" \
+    "    float a = v_opaque != 0u ? 1.0 : (u_attrs & 2u) != 0u ? v_rgba.a : u_alpha;\n" \
+    "    uint prim = (v_first_prim & 0x80000000u) != 0u ? v_first_prim\n" \
+    "                                                   : v_first_prim + uint(OIT_PRIMITIVE_ID);\n" \
+    "    uvec4 f;\n" \
+    "    f.x = oit_fragment_key();\n" \
+    "    f.y = (prim & 0x7fffffffu) | (nv > 0.0 ? 0x80000000u : 0u);\n" \
+    "    if (u_mode == 1) {\n" \
+    "        float fresnel = 0.04 + 0.96 * pow(1.0 - ndv, 5.0);\n" \
+    "        f.z = packUnorm2x16(vec2(light, fresnel));\n" \
+    "        f.w = oit_pack_111110(base);\n" \
+    "    } else {\n" \
+    "        vec3 c = base * light;\n" \
+    "        f.z = packUnorm2x16(c.rg);\n" \
+    "        f.w = packUnorm2x16(vec2(c.b, a));\n" \
+    "    }\n" \
+    "    return f;\n" \
+    "}\n" \
+
+#define OIT_GLSL_FRAGMENT_UNIFORMS \
+    "layout(location = 4) uniform uint u_attrs;\n" \
+    "layout(location = 5) uniform float u_alpha;\n" \
+    "layout(location = 6) uniform vec3 u_default_rgb;\n" \
+    "layout(location = 7) uniform int u_width;\n"
 
 const char oit_glsl_fragment_gen[] =
     "layout(location = 3) uniform int u_mode;\n"
-    "layout(location = 4) uniform uint u_attrs;\n"
-    "layout(location = 5) uniform float u_alpha;\n"
-    "layout(location = 6) uniform vec3 u_default_rgb;\n"
-    "layout(location = 7) uniform int u_width;\n"
+    OIT_GLSL_FRAGMENT_UNIFORMS
     "in vec3 v_pos;\n"
     "in vec4 v_rgba;\n"
     "flat in vec3 v_normal;\n"
     "flat in uint v_first_prim;\n"
     "flat in vec4 v_plane;\n"
     "flat in uint v_opaque;\n"
-    "layout(location = 16) uniform vec4 u_ray;\n"
-    "layout(location = 24) uniform vec4 u_org;\n"
-    "layout(location = 25) uniform float u_org_z;\n"
-    /* The view-space origin of the pixel centre's ray (view.h,
-     * oit_view_origin_map): the eye, 0, for a perspective; the point of the
-     * near plane for an orthographic view. */
-    "vec3 oit_ray_origin() {\n"
-    "    vec2 c = floor(gl_FragCoord.xy) + 0.5;\n"
-    "    precise vec3 o = vec3(c.x * u_org.x + u_org.z, c.y * u_org.y + u_org.w, u_org_z);\n"
-    "    return o;\n"
-    "}\n"
-    "uint oit_pixel_index() {\n"
-    "    return uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x);\n"
-    "}\n"
-    "uint oit_pack_111110(vec3 c) {\n"
-    "    uvec3 q = uvec3(round(clamp(c, 0.0, 1.0) * vec3(2047.0, 2047.0, 1023.0)));\n"
-    "    return q.x | (q.y << 11) | (q.z << 22);\n"
-    "}\n"
-    /* The tie rule's key (shade.h, oit_depth_key): t of the triangle's
-     * plane along the pixel centre's unit ray from its origin o, which every
-     * triangle at this pixel shares, with the low mantissa bits cleared:
-     * (d - n . o) / (n . dir), d - 0 = d for a perspective (o = 0); an
-     * orthographic ray map is 0, so dir = (0, 0, -1). */
-    /* floor + 0.5: the centre even where a multisampled target lets
-     * gl_FragCoord lie anywhere in the pixel. */
-    /* Every operation is written out in the order view.c
-     * (oit_view_pixel_ray) and shade.c (oit_depth_key) use, and precise:
-     * a GPU compiler may otherwise fuse multiply-adds or reassociate
-     * (GLSL 4.50 4.7.1), so that faces coplanar up to rounding get keys on
-     * either side of a grid line than the CPU reference's. Division and
-     * sqrt stay within GLSL's stated ulps of the CPU's. */
-    "uint oit_depth_key(float t_interp) {\n"
-    "    vec2 c = floor(gl_FragCoord.xy) + 0.5;\n"
-    "    precise vec3 dir = vec3(c.x * u_ray.x + u_ray.z, c.y * u_ray.y + u_ray.w, -1.0);\n"
-    "    precise float len2 = dir.x * dir.x + dir.y * dir.y + dir.z * dir.z;\n"
-    "    precise float inv = 1.0 / sqrt(len2);\n"
-    "    dir = dir * inv;\n"
-    "    vec3 n = v_plane.xyz;\n"
-    "    precise float nd = n.x * dir.x + n.y * dir.y + n.z * dir.z;\n"
-    "    float t = t_interp;\n"
-    "    if (abs(nd) >= " OIT_GLSL_STR(OIT_DEPTH_GRAZING) ") {\n"
-    "        vec3 o = oit_ray_origin();\n"
-    "        precise float no = n.x * o.x + n.y * o.y + n.z * o.z;\n"
-    "        precise float tp = (v_plane.w - no) / nd;\n"
-    "        if (tp > 0.0 && !isinf(tp)) t = tp;\n"
-    "    }\n"
-    "    return floatBitsToUint(t) & ~" OIT_GLSL_STR(OIT_DEPTH_KEY_MASK) "u;\n"
-    "}\n"
-    /* Section planes (clip.h): u_clip holds them in view space
-     * (oit_clip_eye). The point tested is where the pixel centre's ray
-     * meets the triangle's plane, computed as oit_depth_key computes its t
-     * and as reference.c does, not the interpolated position, which a
-     * multisampled capture may take anywhere in the pixel; a grazing
-     * plane falls back to the interpolated distance along the same ray. */
-    "layout(location = 27) uniform int u_clip_count;\n"
-    "layout(location = 28) uniform vec4 u_clip[" OIT_GLSL_STR(OIT_CLIP_MAX) "];\n"
-    "bool oit_clipped() {\n"
-    "    if (u_clip_count == 0) return false;\n"
-    "    vec2 c = floor(gl_FragCoord.xy) + 0.5;\n"
-    "    precise vec3 dir = vec3(c.x * u_ray.x + u_ray.z, c.y * u_ray.y + u_ray.w, -1.0);\n"
-    "    precise float len2 = dir.x * dir.x + dir.y * dir.y + dir.z * dir.z;\n"
-    "    precise float inv = 1.0 / sqrt(len2);\n"
-    "    dir = dir * inv;\n"
-    "    vec3 o = oit_ray_origin();\n"
-    "    vec3 n = v_plane.xyz;\n"
-    "    precise float nd = n.x * dir.x + n.y * dir.y + n.z * dir.z;\n"
-    "    float t = length(v_pos - o);\n"
-    "    if (abs(nd) >= " OIT_GLSL_STR(OIT_DEPTH_GRAZING) ") {\n"
-    "        precise float no = n.x * o.x + n.y * o.y + n.z * o.z;\n"
-    "        precise float tp = (v_plane.w - no) / nd;\n"
-    "        if (tp > 0.0 && !isinf(tp)) t = tp;\n"
-    "    }\n"
-    "    precise vec3 p = o + dir * t;\n"
-    "    for (int i = 0; i < u_clip_count; i++) {\n"
-    "        vec4 q = u_clip[i];\n"
-    "        precise float s = q.x * p.x + q.y * p.y + q.z * p.z + q.w;\n"
-    "        if (s < 0.0) return true;\n"
-    "    }\n"
-    "    return false;\n"
-    "}\n"
-    /* One expression for the key, so that the opaque pre-pass and the
-     * captures compute the same bits. */
-    "uint oit_fragment_key() {\n"
-    "    precise vec3 rel = v_pos - oit_ray_origin();\n"
-    "    precise float t_interp = length(rel);\n"
-    "    return oit_depth_key(t_interp);\n"
-    "}\n"
-    OIT_GLSL_OPAQUE
-    "uvec4 oit_fragment() {\n"
-    "    vec3 rel = v_pos - oit_ray_origin();\n"
-    "    float t_interp = length(rel);\n"
-    "    vec3 v = -rel / t_interp;\n"
-    /* Degenerate triangles shade as edge-on, like shade.c. */
-    "    float nn = dot(v_normal, v_normal);\n"
-    "    float nv = nn > 0.0 ? dot(v_normal * inversesqrt(nn), v) : 0.0;\n"
-    "    float ndv = abs(nv);\n"
-    "    float light = 0.3 + 0.7 * ndv;\n"
-    "    vec3 base = (u_attrs & 1u) != 0u ? v_rgba.rgb : u_default_rgb;\n"
-    "    float a = v_opaque != 0u ? 1.0 : (u_attrs & 2u) != 0u ? v_rgba.a : u_alpha;\n"
-    "    uint prim = (v_first_prim & 0x80000000u) != 0u ? v_first_prim\n"
-    "                                                   : v_first_prim + uint(gl_PrimitiveID);\n"
-    "    uvec4 f;\n"
-    "    f.x = oit_fragment_key();\n"
-    "    f.y = (prim & 0x7fffffffu) | (nv > 0.0 ? 0x80000000u : 0u);\n"
-    "    if (u_mode == 1) {\n"
-    "        float fresnel = 0.04 + 0.96 * pow(1.0 - ndv, 5.0);\n"
-    "        f.z = packUnorm2x16(vec2(light, fresnel));\n"
-    "        f.w = oit_pack_111110(base);\n"
-    "    } else {\n"
-    "        vec3 c = base * light;\n"
-    "        f.z = packUnorm2x16(c.rg);\n"
-    "        f.w = packUnorm2x16(vec2(c.b, a));\n"
-    "    }\n"
-    "    return f;\n"
-    "}\n";
+    "#define OIT_FRAG_COORD gl_FragCoord\n"
+    "#define OIT_PRIMITIVE_ID gl_PrimitiveID\n"
+    OIT_GLSL_FRAGMENT_LIB;
+
+const char oit_glsl_fragment_lib[] = OIT_GLSL_FRAGMENT_UNIFORMS OIT_GLSL_FRAGMENT_LIB;
 
 /* The XOR-ed T is only ever held as bits: as a float it may be denormal,
  * which a driver is free to flush. */

@@ -90,9 +90,23 @@ enum { OIT_IN_DRAW = 0 };
  * (glsl_bindings.h): every program's first string. */
 extern const char oit_glsl_version[];
 extern const char oit_glsl_vertex[];    /* the vertex-pulling vertex shader */
+/* Its declarations and functions without its inputs, outputs and main
+ * (the bindings Verts and Prims, u_view, u_proj, u_eye, u_model, u_mode,
+ * u_attrs, u_colour_space, oit_world(), oit_srgb_decode(),
+ * oit_tie_plane()), for the compute capture's triangle set-up, so that it
+ * transforms vertices and derives the tie plane as the vertex stage does. */
+extern const char oit_glsl_vertex_lib[];
 /* Fragment-stage library: oit_fragment() returns the packed fragment and
  * oit_pixel_index() the pixel's linear index (GL rows, bottom first). */
 extern const char oit_glsl_fragment_gen[];
+/* The functions of oit_glsl_fragment_gen (and its uniforms but u_mode)
+ * without its inputs, for a compute stage that generates fragments itself
+ * (capture_compute.h): before it, that stage declares u_mode (as
+ * oit_glsl_composite does) and as plain globals the inputs v_pos, v_rgba,
+ * v_normal, v_first_prim, v_plane, v_opaque, and #defines OIT_FRAG_COORD
+ * (what gl_FragCoord would be: the pixel's centre and window depth) and
+ * OIT_PRIMITIVE_ID (what gl_PrimitiveID would be). */
+extern const char oit_glsl_fragment_lib[];
 /* oit_glsl_fragment_gen also defines oit_behind_opaque(): true when an
  * opaque depth is set (oit_glsl_set_opaque) and the fragment's window depth
  * gl_FragCoord.z is >= the depth texel under it, a sampler2D at texture

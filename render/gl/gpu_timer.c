@@ -32,7 +32,8 @@ struct oit_gpu_timer {
 const char *oit_gpu_phase_name(oit_gpu_phase p)
 {
     static const char *const names[OIT_GPU_PHASES] = {"other", "upload", "pass1",
-                                                      "pass2", "resolve", "readback"};
+                                                      "pass2", "resolve", "readback",
+                                                      "binning", "sweep"};
     return (unsigned)p < OIT_GPU_PHASES ? names[p] : "?";
 }
 

@@ -37,10 +37,17 @@ typedef enum oit_gpu_phase {
     OIT_GPU_PASS2,     /* the second geometry pass (first-K's overflow, DFB's store) */
     OIT_GPU_RESOLVE,   /* sorting and compositing (per batch and the frame's end) */
     OIT_GPU_READBACK,  /* the image and totals back to the host */
+    /* the compute capture (capture_compute.h): triangle set-up, tile
+     * counts, their prefix sum and the tile lists */
+    OIT_GPU_BINNING,
+    /* the compute capture's per-tile pass: coverage, order and compositing
+     * of every pixel in one dispatch, so one phase */
+    OIT_GPU_SWEEP,
     OIT_GPU_PHASES
 } oit_gpu_phase;
 
-/* "other", "upload", "pass1", "pass2", "resolve", "readback". */
+/* "other", "upload", "pass1", "pass2", "resolve", "readback", "binning",
+ * "sweep". */
 const char *oit_gpu_phase_name(oit_gpu_phase p);
 
 typedef struct oit_gpu_times {

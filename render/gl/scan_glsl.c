@@ -147,6 +147,8 @@ oit_status oit_scan_run(oit_scan *s, GLuint buf, uint64_t n, oit_scan_result *re
         dispatch_block(s, i == 0 ? buf : s->sums[i - 1], s->sums[i], size[i], i == 0);
     for (int i = levels - 2; i >= 0; i--)
         dispatch_add(s, i == 0 ? buf : s->sums[i - 1], s->sums[i], size[i]);
+    if (!res)
+        return oit_gl_check("prefix sum", err);
     GLuint t[4];
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glGetNamedBufferSubData(s->totals, 0, sizeof t, t);

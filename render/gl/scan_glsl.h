@@ -38,7 +38,9 @@ typedef struct oit_scan_result {
 
 oit_status oit_scan_init(oit_scan *s, oit_error *err);
 void oit_scan_release(oit_scan *s);
-/* Scans buf[0..n) in place (exclusive) and reads back total and maximum. */
+/* Scans buf[0..n) in place (exclusive) and reads back total and maximum;
+ * with res NULL reads nothing back, so that the host does not wait for
+ * the GPU (the totals stay in s->totals). */
 oit_status oit_scan_run(oit_scan *s, GLuint buf, uint64_t n, oit_scan_result *res,
                         oit_error *err);
 uint64_t oit_scan_bytes(const oit_scan *s);

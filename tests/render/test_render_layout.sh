@@ -43,7 +43,7 @@ done
 for f in render/capture/*.c; do
     case $f in render/capture/capture.c | render/capture/capture_choice.c) continue ;; esac
     # comment lines and the tables (OIT_CAPTURE_OPS) are not branches
-    hits=$(grep -nE 'OIT_CAPTURE_(ARRAY|STENCIL|COUNTED|FIRSTK)|->kind|oit_capture_backend\(' "$f" |
+    hits=$(grep -nE 'OIT_CAPTURE_(ARRAY|STENCIL|COUNTED|FIRSTK|COMPUTE)|->kind|oit_capture_backend\(' "$f" |
         grep -vE '^[0-9]+:OIT_CAPTURE_OPS\(|^[0-9]+:/?[[:space:]]*\*') || true
     [ -z "$hits" ] ||
         fail "$(printf '%s\n' "$hits" | sed "s|^|$f:|")

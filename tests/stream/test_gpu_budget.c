@@ -198,6 +198,31 @@ int main(int argc, char **argv)
         }
     CHECK(reread > 0, "a total below the file, yet no part read again");
 
+    /* The same total with the compute capture: its resume cursors (16
+     * bytes a pixel, the output's buffer at the frame's end), its records
+     * and tile lists (a pack's triangles, 176 bytes each) are inside it
+     * too; its image is that of the compute capture with the file
+     * resident. */
+    run comp, comp_fits;
+    t.capture = OIT_CAPTURE_COMPUTE;
+    d.capture = OIT_CAPTURE_COMPUTE;
+    d.free_ctx = &nvx;
+    CHECK(render_views(pf, &t, &comp, &err), "compute, below the file: %s", err.message);
+    CHECK(render_views(pf, &d, &comp_fits, &err), "compute, resident: %s", err.message);
+    print_budget("compute, below the file", &comp.budget);
+    for (int v = 0; v < VIEWS; v++)
+        for (int f = 0; f < 2; f++) {
+            const oit_stream_frame_stats *ss = &comp.ss[v][f];
+            double diff = max_diff(&comp.img[v][f], &comp_fits.img[v][f]);
+            printf("compute, below the file: view %d frame %d: peak %llu, %.3g from resident\n",
+                   v, f, (unsigned long long)ss->gpu_bytes_peak, diff);
+            CHECK(diff <= 1e-6, "compute: view %d frame %d: %.3g from the resident image", v, f,
+                  diff);
+            CHECK(ss->gpu_bytes_peak <= t.gpu_budget,
+                  "compute: view %d frame %d: GPU peak %llu > %llu", v, f,
+                  (unsigned long long)ss->gpu_bytes_peak, (unsigned long long)t.gpu_budget);
+        }
+
     /* Refusals. */
     oit_streamer *s = NULL;
     oit_streamer_desc x = base_desc();
@@ -221,6 +246,8 @@ int main(int argc, char **argv)
     free_run(&plain);
     free_run(&none);
     free_run(&tight);
+    free_run(&comp);
+    free_run(&comp_fits);
     oit_partfile_close(pf);
     oit_gl_destroy(gl);
     return test_verdict();

@@ -12,7 +12,7 @@ static const oit_method *const methods[] = {
     &oit_method_dfb,      &oit_method_reference, &oit_method_array, &oit_method_stencil,
     &oit_method_stream,   &oit_method_unsorted,  &oit_method_wboit, &oit_method_pll,
     &oit_method_dp,       &oit_method_ppll4,     &oit_method_b3d,   &oit_method_ddp,
-    &oit_method_guarded,  &oit_method_f2b,
+    &oit_method_guarded,  &oit_method_f2b,       &oit_method_compute,
 };
 
 const oit_method *oit_method_find(const char *name)

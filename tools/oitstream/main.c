@@ -322,10 +322,11 @@ static void print_gpu_summary(const run_ctx *rc, const oit_stats_frame *frames, 
             continue;
         }
         printf("frame %d: gpu %.2f ms (upload %.2f, pass1 %.2f, pass2 %.2f, resolve %.2f, "
-               "readback %.2f, other %.2f), wall %.2f ms\n", i, g->ms,
+               "readback %.2f, binning %.2f, sweep %.2f, other %.2f), wall %.2f ms\n", i, g->ms,
                g->phase_ms[OIT_GPU_UPLOAD], g->phase_ms[OIT_GPU_PASS1],
                g->phase_ms[OIT_GPU_PASS2], g->phase_ms[OIT_GPU_RESOLVE],
-               g->phase_ms[OIT_GPU_READBACK], g->phase_ms[OIT_GPU_OTHER], frames[i].st.ms);
+               g->phase_ms[OIT_GPU_READBACK], g->phase_ms[OIT_GPU_BINNING],
+               g->phase_ms[OIT_GPU_SWEEP], g->phase_ms[OIT_GPU_OTHER], frames[i].st.ms);
     }
 }
 

@@ -31,7 +31,8 @@ for name in ("s", "d"):
     for i, f in enumerate(fr):
         ph = f.get("gpu_phase_ms", {})
         check(f["gpu_ms"] > 0, "%s frame %d: gpu_ms %r" % (name, i, f["gpu_ms"]))
-        check(set(ph) == {"other", "upload", "pass1", "pass2", "resolve", "readback"},
+        check(set(ph) == {"other", "upload", "pass1", "pass2", "resolve", "readback",
+                          "binning", "sweep"},
               "%s frame %d: phases %r" % (name, i, sorted(ph)))
         check(abs(sum(ph.values()) - f["gpu_ms"]) <= 0.01 + 1e-3 * f["gpu_ms"],
               "%s frame %d: phases add to %.3f, gpu_ms %.3f" % (name, i, sum(ph.values()), f["gpu_ms"]))

@@ -1,0 +1,33 @@
+/* The compute capture's shader stages (capture_compute.h). */
+#ifndef OIT_RENDER_COMPUTE_GLSL_H
+#define OIT_RENDER_COMPUTE_GLSL_H
+
+/* Tile side in pixels: a work group of the tile pass. */
+#define OIT_COMPUTE_TILE 16
+/* uvec4s a triangle record takes (compute_glsl.c has the layout). */
+#define OIT_COMPUTE_RECORD_WORDS 10
+/* Fragments a pixel keeps in registers per sweep. */
+#define OIT_COMPUTE_SWEEP 16
+
+/* After oit_glsl_vertex_lib: a triangle's set-up into its record, and its
+ * count in every tile its box touches. */
+extern const char oit_compute_setup_cs[];
+/* Each record's index into the lists of its tiles. */
+extern const char oit_compute_scatter_cs[];
+/* The sweep's first work list: the rect's tiles with list entries. */
+extern const char oit_compute_work_cs[];
+/* A work list's indirect dispatch arguments from its count. */
+extern const char oit_compute_args_cs[];
+/* The iterations one loop of u_probe ran: fewer where the driver cuts
+ * loops short. */
+extern const char oit_compute_probe_cs[];
+/* After u_mode and oit_glsl_state_io: which tiles have a pixel not yet
+ * below epsilon. */
+extern const char oit_compute_live_cs[];
+/* oit_glsl_composite, oit_glsl_state_io, oit_compute_frag_inputs,
+ * oit_glsl_fragment_lib, then oit_compute_tiles_cs: coverage, order and
+ * compositing per pixel. */
+extern const char oit_compute_frag_inputs[];
+extern const char oit_compute_tiles_cs[];
+
+#endif
