@@ -22,6 +22,12 @@
 #     512x512 on llvmpipe) streamed at 1/1, 1/2, 1/4 and 1/8 of its decoded
 #     size against DFB in core, with gpu_ms, upload GB/s and the host-to-
 #     device rate of `oitbench bus`; also written to OUTDIR/ooc-curve-*.md.
+#  6. the compute capture (issue 39): data_scripts/compute_vs_dfb.sh on the
+#     hard cases, the demo, the fetched meshes and the plants (12M where step
+#     2 has it), in core and streamed, every frame against DFB outside the
+#     edge mask, timed; and ooc_curve.sh at 1/4 of the model with
+#     OOC_STREAM_ARGS="--capture compute" (the stream out of core with the
+#     compute capture against DFB in core); written to OUTDIR too.
 # A frame passes when at most 0.01% of its pixels differ from DFB's by more
 # than 1/255 (the issue's bound). The report is written to
 # OUTDIR/gpu-check-RENDERER.md (RENDERER: the GL renderer string, folded to
@@ -44,6 +50,8 @@
 #   GPU_CHECK_CAPTURE_MODELS="demo plant1M"  models of step 4 (among the
 #                        models above; "" skips it);
 #   GPU_CHECK_CAPTURE_SIZE=WxH  its frame size (default 1024x1024)
+#   GPU_CHECK_COMPUTE=0  skip step 6 (GPU_CHECK_COMPUTE_MODELS: its models,
+#                        default compute_vs_dfb.sh's own list)
 #   GPU_CHECK_MPI=0      skip the oitstream-mpi scaling (1-8 ranks on the GPU;
 #                        GPU_CHECK_MPI_MODELS: plant sizes, default 1000000)
 # Exits 1 when any test or frame fails (after writing the report), 2 when a
@@ -265,6 +273,30 @@ if [ "${GPU_CHECK_OOC:-1}" != 0 ]; then
     fi
 fi
 
+# ---- 6. the compute capture (issue 39) -------------------------------------
+compute_note="not run (GPU_CHECK_COMPUTE=0)"
+compute_ooc_note="not run (GPU_CHECK_COMPUTE=0)"
+if [ "${GPU_CHECK_COMPUTE:-1}" != 0 ]; then
+    if COMPUTE_12M=${GPU_CHECK_12M:-$def12} COMPUTE_MODELS=${GPU_CHECK_COMPUTE_MODELS:-} \
+        sh "$here/compute_vs_dfb.sh" "$bin" "$work/compute.md" "$size" >"$work/compute.log" 2>&1; then
+        compute_note="below"
+    else
+        compute_note="FAILED: $(tail -n 3 "$work/compute.log" | tr '\n' ' ')"
+        failures=$((failures + 1))
+    fi
+    [ ! -f "$work/compute.md" ] || cp "$work/compute.md" "$outdir/compute-vs-dfb-$tag.md"
+    if [ "${GPU_CHECK_OOC:-1}" != 0 ]; then
+        if OOC_CACHE=${OOC_CACHE:-$work/ooc} OOC_FRACTIONS=4 OOC_STREAM_ARGS="--capture compute" \
+            sh "$here/ooc_curve.sh" "$bin" "$work/ooc-compute.md" "$ooc_size" "$ooc_model" \
+            >"$work/ooc-compute.log" 2>&1; then
+            compute_ooc_note="plant of $ooc_model triangles at $ooc_size, below"
+        else
+            compute_ooc_note="FAILED: $(tail -n 3 "$work/ooc-compute.log" | tr '\n' ' ')"
+            failures=$((failures + 1))
+        fi
+    fi
+fi
+
 # Sort-last ranks sharing this machine's GPU (issue 38): 1-8 ranks of
 # oitstream-mpi on the 1M plant; skipped when the tool was not built.
 mpi_note="skipped: $bin/oitstream-mpi not built (MPI or IceT missing)"
@@ -319,6 +351,14 @@ commit=$(git -C "$here" rev-parse --short HEAD 2>/dev/null || echo '?')
     echo "## data_scripts/ooc_curve.sh: $ooc_note"
     echo
     [ ! -f "$work/ooc.md" ] || sed 's/^#/##/' "$work/ooc.md"
+    echo
+    echo "## data_scripts/compute_vs_dfb.sh (issue 39): $compute_note"
+    echo
+    [ ! -f "$work/compute.md" ] || sed 's/^#/##/' "$work/compute.md"
+    echo
+    echo "## The stream with --capture compute out of core, 1/4 of the model: $compute_ooc_note"
+    echo
+    [ ! -f "$work/ooc-compute.md" ] || sed 's/^#/##/' "$work/ooc-compute.md"
     echo
     echo "## data_scripts/mpi_scaling.sh, 1-8 ranks sharing the GPU: $mpi_note"
     echo

@@ -31,6 +31,8 @@
 #   OOC_VIEWS=N          views of the orbit (default 3)
 #   OOC_FRACTIONS="1 2 4 8"  the budgets, as denominators of D
 #   OOC_BUS_BYTES=B      bytes of the bus measurement (default 256M)
+#   OOC_STREAM_ARGS="--capture compute"  more oitstream options for the
+#                        stream's runs (not DFB's), named in the report
 # The 12M plant: ~0.6 GB decoded; its conversion takes minutes and 1.3 GB of
 # disk; on llvmpipe a frame takes tens of seconds: try `... 512x512 1000000`.
 set -eu
@@ -121,16 +123,17 @@ for q in $fractions; do
     total=$((g + S + P))
     [ "$c" != off ] || total=$((r + S + P))
     echo "ooc_curve: stream at 1/$q of $D bytes (--gpu-budget $total)" >&2
+    # shellcheck disable=SC2086 # OOC_STREAM_ARGS: words on purpose
     render "$parts" "$work/s$q.json" --method stream --slot-budget "$S" --upload-budget "$r" \
-        --cache-budget "$c" --gpu-budget "$total"
+        --cache-budget "$c" --gpu-budget "$total" ${OOC_STREAM_ARGS:-}
     echo "$q $g $total" >>"$work/budgets.txt"
 done
 
 # ---- report ----------------------------------------------------------------
 out=${2:-}
-python3 - "$work" "$D" "$name" "$size" "$cmdline" "$out" "$here" <<'PY'
+python3 - "$work" "$D" "$name" "$size" "$cmdline" "$out" "$here" "${OOC_STREAM_ARGS:-}" <<'PY'
 import json, os, statistics, subprocess, sys, time
-work, D, name, size, cmdline, out, here = sys.argv[1:8]
+work, D, name, size, cmdline, out, here, extra = sys.argv[1:9]
 D = int(D)
 def load(p): return json.load(open(os.path.join(work, p)))
 def warm(frames, key):
@@ -186,6 +189,9 @@ with open(out, "w") as f:
           % fmt(bus["subdata_gpu_gbps"], 0))
     p()
     p("DFB in core on the source mesh: %s ms, gpu %s ms." % (fmt(d_ms), fmt(d_gpu)))
+    if extra:
+        p()
+        p("The stream's runs add `%s` (OOC_STREAM_ARGS)." % extra)
     p()
     p("| budget | geometry MB | --gpu-budget MB | ms | gpu_ms | ms / DFB | gpu / DFB | "
       "MB uploaded a warm frame | upload GB/s (wall) | GPU MB at peak | peak inside |")

@@ -37,6 +37,9 @@
 #   CMP_PEELS="1000 4"            the two VTK peel counts (exact, default)
 #   CMP_PYTHON=/usr/bin/python3   the Python with python3-vtk9 (Debian's)
 #   CMP_KEEP=DIR                  keep frames and stats per model in DIR
+#   CMP_COMPUTE=0                 leave out the compute capture's columns: in
+#                                 core (`--method compute`) and streamed
+#                                 (`--capture compute`), issue 39
 # Needs: the tools in BINDIR, /usr/bin/time; for VTK: python3-vtk9, xvfb-run
 # (setup/install-deps.sh setup/bench-packages.txt installs them; the script
 # runs it when they are missing). Big files go to a folder under /tmp that is
@@ -170,8 +173,8 @@ commit=$(git -C "$here" rev-parse --short HEAD 2>/dev/null || echo '?')
 git -C "$here" diff --quiet HEAD -- 2>/dev/null || commit="$commit (+ uncommitted changes)"
 t1="| model | scheme | views | tris in | tris out | out/in | parts | conv s | in tris/s | conv RSS MB | stream RSS MB | stream GPU MB | DFB capture GPU MB | DFB + mesh GPU MB | overflow | 2nd-pass px | 2nd-pass packs |"
 s1="|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
-t2="| model | stream ms | DFB mesh ms | unsorted ms | stream / DFB | stream / unsorted | stream off % (max) |"
-s2="|---|---|---|---|---|---|---|"
+t2="| model | stream ms | DFB mesh ms | unsorted ms | stream / DFB | stream / unsorted | stream off % (max) | compute ms | compute / DFB | compute off % (max) | stream --capture compute ms | its / DFB | its off % (max) |"
+s2="|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for p in $peels; do
     t2="$t2 VTK DDP $p ms | VTK $p off % (max) |"
     s2="$s2---|---|"
@@ -223,10 +226,14 @@ for model in $models; do
         --stats "$work/prep.json" >"$work/prep.log" 2>&1 ||
         { cat "$work/prep.log" >&2; die "$name: oitprep failed"; }
     render "$work/m.oitp" "$work/s.json" "$work/s" "$work/s.time" stream --epsilon 0
+    [ "${CMP_COMPUTE:-1}" = 0 ] || render "$work/m.oitp" "$work/sc.json" "$work/sc" \
+        "$work/sc.time" "stream --capture compute" --epsilon 0 --capture compute
     rm -f "$work/m.oitp"
     # The alternatives on the source mesh.
     render "$m" "$work/d.json" "$work/d" "$work/d.time" dfb --method dfb
     render "$m" "$work/u.json" "$work/u" "$work/u.time" unsorted --method unsorted
+    [ "${CMP_COMPUTE:-1}" = 0 ] ||
+        render "$m" "$work/c.json" "$work/c" "$work/c.time" compute --method compute
     [ -n "$gl_renderer" ] || gl_renderer=$(sed -n 's/.*"renderer": "\([^"]*\)".*/\1/p' "$work/d.json" | head -n 1)
 
     conv=$(num total "$work/prep.json")
@@ -245,6 +252,15 @@ for model in $models; do
         "$(key_sum overflow_pixels "$work/s.json") | $(key_max second_pass_pixels "$work/s.json") |" \
         "$(key_max second_pass_packs "$work/s.json") |" >>"$work/rows1"
     row="| $name | $sms | $dms | $ums | $(ratio "$sms" "$dms") | $(ratio "$sms" "$ums") | $off |"
+    if [ "${CMP_COMPUTE:-1}" = 0 ]; then
+        row="$row skipped (CMP_COMPUTE=0) | - | - | skipped | - | - |"
+    else
+        for x in c sc; do
+            xms=$(warm_ms "$work/$x.json")
+            r=$(compare_dirs "$work/$x" "$work/d" "$x vs dfb")
+            row="$row $xms | $(ratio "$xms" "$dms") | ${r% *} (${r#* }) |"
+        done
+    fi
 
     # VTK dual depth peeling on the same walk.
     skip=""
@@ -284,14 +300,15 @@ for model in $models; do
     echo "$row" >>"$work/rows2"
     if [ -n "${CMP_KEEP:-}" ]; then
         mkdir -p "$CMP_KEEP/$name"
-        for x in s d u; do
+        for x in s d u c sc; do
+            [ -d "$work/$x" ] || continue
             cp -r "$work/$x" "$CMP_KEEP/$name/$x" && cp "$work/$x.json" "$CMP_KEEP/$name/$x.json"
         done
         cp "$work/prep.json" "$work/walk.txt" "$CMP_KEEP/$name/"
     fi
     tail -n 1 "$work/rows1" >&2
     tail -n 1 "$work/rows2" >&2
-    rm -rf "$work/s" "$work/d" "$work/u" "$work/k"
+    rm -rf "$work/s" "$work/d" "$work/u" "$work/k" "$work/c" "$work/sc"
     case $m in "$work"/*) rm -f "$m" ;; esac
 done
 
@@ -309,7 +326,8 @@ done
     echo "Views: an orbit of $views views at elevation 20 (framing the source mesh; $big_views for models over $big_tris triangles),"
     echo "each rendered twice; ms = median of the warm (second) frames. All methods read the same walk file."
     echo "stream: \`oitprep MESH -o M.oitp\` (default scheme, named in the scheme column, and options), \`oitstream M.oitp --epsilon 0\` (default options);"
-    echo "DFB / unsorted: \`oitstream MESH --method dfb|unsorted\` on the source mesh."
+    echo "DFB / unsorted / compute: \`oitstream MESH --method dfb|unsorted|compute\` on the source mesh;"
+    echo "stream --capture compute: the same part file, \`oitstream M.oitp --epsilon 0 --capture compute\`."
     echo "VTK DDP: data_scripts/vtk_ddp.py (vtkDualDepthPeelingPass, occlusion ratio 0, multisampling off, offscreen under Xvfb)"
     echo "at ${peels% *} peels (exact) and ${peels#* } (VTK's default); same cameras and shading (positional light at the eye,"
     echo "flat, ambient 0.3, diffuse 0.7, alpha 0.35): what differs is listed in vtk_ddp.py and its stats."
