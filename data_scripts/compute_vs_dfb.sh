@@ -66,13 +66,7 @@ mkdir -p "$(dirname "$out")" || die "$(dirname "$out"): cannot create"
 case $renderer in *llvmpipe*) def12=0 ;; *) def12=1 ;; esac
 
 hard="coplanar coplanar_tiny coplanar_far decal touching rings sticks moebius degenerate nearflat far tiny thin nonmanifold stack dense mixed"
-all="$hard demo"
-for m in $OIT_FETCHED_MODELS $OIT_FETCHED_DRACO; do
-    [ -f "$cache/$m" ] && all="$all $m"
-done
-all="$all plant1M"
-[ "${COMPUTE_12M:-$def12}" = 0 ] || all="$all plant12M"
-models=${COMPUTE_MODELS:-$all}
+models=${COMPUTE_MODELS:-$hard $(check_models "$cache" "${COMPUTE_12M:-$def12}")}
 failures=0
 : >"$work/rows.txt"
 
@@ -213,26 +207,20 @@ try:
                             capture_output=True, text=True).stdout.strip() or "?"
 except OSError:
     commit = "?"
-with open(out, "w") as o:
-    p = lambda *a: print(*a, file=o)
-    p("# The compute capture against DFB on %s" % renderer)
-    p()
-    p("`%s` at %s, %s, %d cores, %s. Each view of an orbit drawn cold then warm; times are "
-      "the warm frames' medians." % (cmdline, commit, time.strftime("%Y-%m-%d", time.gmtime()),
-                                     os.cpu_count(), size))
-    p()
-    p("A frame passes at <= 0.01% of its pixels over 1/255 against DFB on the source mesh, "
-      "outside the edge mask (the reference's --ambiguity mask) where one was made. "
-      "\"time\" is gpu_ms where both runs report it, else wall ms.")
-    p()
-    p("| model | compute capture | triangles | frames | worst % over 1/255 | worst % outside mask | "
-      "DFB time | compute time | compute / DFB | compute phases (warm medians, ms) | verdict |")
-    p("|---|---|---|---|---|---|---|---|---|---|---|")
-    for l in lines: p(l)
-    p()
-    p("Bars on an NVIDIA GPU (issue 39): plant12M in core <= 0.25x DFB (beyond: <= 6.4 ms); "
-      "stack <= 0.1x DFB; the stream out of core at 1/4 of the model <= 0.5x DFB in core "
-      "(ooc_curve.sh with OOC_STREAM_ARGS=\"--capture compute\").")
+head = "`%s` at %s, %s, %d cores, %s." % (cmdline, commit, time.strftime("%Y-%m-%d", time.gmtime()),
+                                           os.cpu_count(), size)
+doc = ["# The compute capture against DFB on %s" % renderer, "",
+       head + " Each view of an orbit drawn cold then warm; times are the warm frames' medians.", "",
+       "A frame passes at <= 0.01% of its pixels over 1/255 against DFB on the source mesh, "
+       "outside the edge mask (the reference's --ambiguity mask) where one was made. "
+       "\"time\" is gpu_ms where both runs report it, else wall ms.", "",
+       "| model | compute capture | triangles | frames | worst % over 1/255 | worst % outside mask | "
+       "DFB time | compute time | compute / DFB | compute phases (warm medians, ms) | verdict |",
+       "|---|---|---|---|---|---|---|---|---|---|---|"] + lines + ["",
+       "Bars on an NVIDIA GPU (issue 39): plant12M in core <= 0.25x DFB (beyond: <= 6.4 ms); "
+       "stack <= 0.1x DFB; the stream out of core at 1/4 of the model <= 0.5x DFB in core "
+       "(ooc_curve.sh with OOC_STREAM_ARGS=\"--capture compute\")."]
+open(out, "w").write("\n".join(doc) + "\n")
 print("compute_vs_dfb: wrote %s (%d failing row(s))" % (out, bad))
 sys.exit(1 if bad else 0)
 PY

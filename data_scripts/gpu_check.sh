@@ -197,13 +197,7 @@ smallest_budget() {
     done
 }
 
-all="demo"
-for m in $OIT_FETCHED_MODELS $OIT_FETCHED_DRACO; do
-    [ -f "$cache/$m" ] && all="$all $m"
-done
-all="$all plant1M"
-[ "${GPU_CHECK_12M:-$def12}" = 0 ] || all="$all plant12M"
-models=${GPU_CHECK_MODELS:-$all}
+models=${GPU_CHECK_MODELS:-$(check_models "$cache" "${GPU_CHECK_12M:-$def12}")}
 for model in $models; do
     name=${model%.*}
     case $model in
@@ -285,6 +279,7 @@ if [ "${GPU_CHECK_COMPUTE:-1}" != 0 ]; then
         failures=$((failures + 1))
     fi
     [ ! -f "$work/compute.md" ] || cp "$work/compute.md" "$outdir/compute-vs-dfb-$tag.md"
+    compute_ooc_note="not run (GPU_CHECK_OOC=0)"
     if [ "${GPU_CHECK_OOC:-1}" != 0 ]; then
         if OOC_CACHE=${OOC_CACHE:-$work/ooc} OOC_FRACTIONS=4 OOC_STREAM_ARGS="--capture compute" \
             sh "$here/ooc_curve.sh" "$bin" "$work/ooc-compute.md" "$ooc_size" "$ooc_model" \
@@ -300,6 +295,7 @@ fi
 # Sort-last ranks sharing this machine's GPU (issue 38): 1-8 ranks of
 # oitstream-mpi on the 1M plant; skipped when the tool was not built.
 mpi_note="skipped: $bin/oitstream-mpi not built (MPI or IceT missing)"
+[ "${GPU_CHECK_MPI:-1}" != 0 ] || mpi_note="not run (GPU_CHECK_MPI=0)"
 if [ "${GPU_CHECK_MPI:-1}" != 0 ] && [ -x "$bin/oitstream-mpi" ] && command -v mpirun >/dev/null; then
     if MPI_MODELS=${GPU_CHECK_MPI_MODELS:-1000000} RANKS="1 2 3 4 5 6 7 8" MPI_SIZE="$size" \
         sh "$here/mpi_scaling.sh" "$bin" "$work/mpi.md" >"$work/mpi.log" 2>&1; then
@@ -311,6 +307,12 @@ if [ "${GPU_CHECK_MPI:-1}" != 0 ] && [ -x "$bin/oitstream-mpi" ] && command -v m
 fi
 
 # ---- report --------------------------------------------------------------
+# section TITLE FILE: a heading, then FILE's report one level down, if any.
+section() {
+    printf '## %s\n\n' "$1"
+    [ ! -f "$2" ] || sed 's/^#/##/' "$2"
+    echo
+}
 commit=$(git -C "$here" rev-parse --short HEAD 2>/dev/null || echo '?')
 {
     echo "# GPU check on $renderer"
@@ -344,22 +346,11 @@ commit=$(git -C "$here" rev-parse --short HEAD 2>/dev/null || echo '?')
     echo "|---|---|---|---|---|---|---|---|---|---|"
     cat "$caprows"
     echo
-    echo "## data_scripts/stream_vs_dfb.sh (CMP_VTK=0): $bench_note"
-    echo
-    [ ! -f "$work/svd.md" ] || sed 's/^#/##/' "$work/svd.md"
-    echo
-    echo "## data_scripts/ooc_curve.sh: $ooc_note"
-    echo
-    [ ! -f "$work/ooc.md" ] || sed 's/^#/##/' "$work/ooc.md"
-    echo
-    echo "## data_scripts/compute_vs_dfb.sh (issue 39): $compute_note"
-    echo
-    [ ! -f "$work/compute.md" ] || sed 's/^#/##/' "$work/compute.md"
-    echo
-    echo "## The stream with --capture compute out of core, 1/4 of the model: $compute_ooc_note"
-    echo
-    [ ! -f "$work/ooc-compute.md" ] || sed 's/^#/##/' "$work/ooc-compute.md"
-    echo
+    section "data_scripts/stream_vs_dfb.sh (CMP_VTK=0): $bench_note" "$work/svd.md"
+    section "data_scripts/ooc_curve.sh: $ooc_note" "$work/ooc.md"
+    section "data_scripts/compute_vs_dfb.sh (issue 39): $compute_note" "$work/compute.md"
+    section "The stream with --capture compute out of core, 1/4 of the model: $compute_ooc_note" \
+        "$work/ooc-compute.md"
     echo "## data_scripts/mpi_scaling.sh, 1-8 ranks sharing the GPU: $mpi_note"
     echo
     [ ! -f "$work/mpi.md" ] || cat "$work/mpi.md"

@@ -17,6 +17,18 @@ fetched_paths() {
     return 0
 }
 
+# check_models CACHE WITH12M: the GPU checks' model names: demo, each fetched
+# mesh (and the Draco glTF) that CACHE holds, plant1M, and plant12M unless
+# WITH12M is 0; space-separated.
+check_models() {
+    printf 'demo'
+    for _m in $OIT_FETCHED_MODELS $OIT_FETCHED_DRACO; do
+        [ -f "$1/$_m" ] && printf ' %s' "$_m"
+    done
+    printf ' plant1M'
+    [ "$2" = 0 ] || printf ' plant12M'
+}
+
 # generated_paths BIN WORK [N...]: writes `oitgen demo` to WORK/demo.ply and
 # one `oitgen plant --triangles N` to WORK/plantN.ply a size, and prints
 # their paths, space-separated; fails when oitgen does.
