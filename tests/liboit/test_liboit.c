@@ -719,47 +719,40 @@ done:
 
 int main(int argc, char **argv)
 {
-    oit_scene *scene = NULL;
-    oit_partfile *pf = NULL;
-    oit_scene_info info;
-    oit_gl *gl = open_part_scene(argc, argv, &scene, &pf, &info);
+    part_scene ps = open_part_scene(argc, argv);
     oit_error err = {0};
-    printf("scene: %llu triangles, %llu parts, K %u\n", (unsigned long long)info.triangles,
-           (unsigned long long)info.parts, info.K);
-    CHECK(info.triangles > 0 && info.parts > 0, "empty scene");
-    check_errors(scene);
-    draw_and_compare("transparent", scene, pf, OIT_RENDER_TRANSPARENT, OIT_RENDER_PACK_AUTO);
-    draw_and_compare("translucent", scene, pf, OIT_RENDER_TRANSLUCENT, OIT_RENDER_PACK_AUTO);
+    printf("scene: %llu triangles, %llu parts, K %u\n", (unsigned long long)ps.info.triangles,
+           (unsigned long long)ps.info.parts, ps.info.K);
+    CHECK(ps.info.triangles > 0 && ps.info.parts > 0, "empty scene");
+    check_errors(ps.scene);
+    draw_and_compare("transparent", ps.scene, ps.pf, OIT_RENDER_TRANSPARENT, OIT_RENDER_PACK_AUTO);
+    draw_and_compare("translucent", ps.scene, ps.pf, OIT_RENDER_TRANSLUCENT, OIT_RENDER_PACK_AUTO);
     /* Each packing oitstream --pack offers, first-k and counted exact. */
-    draw_and_compare("first-k", scene, pf, OIT_RENDER_TRANSPARENT, OIT_RENDER_PACK_FIRSTK);
-    draw_and_compare("counted", scene, pf, OIT_RENDER_TRANSPARENT, OIT_RENDER_PACK_COUNTED);
-    check_linear_srgb_target(scene, pf);
+    draw_and_compare("first-k", ps.scene, ps.pf, OIT_RENDER_TRANSPARENT, OIT_RENDER_PACK_FIRSTK);
+    draw_and_compare("counted", ps.scene, ps.pf, OIT_RENDER_TRANSPARENT, OIT_RENDER_PACK_COUNTED);
+    check_linear_srgb_target(ps.scene, ps.pf);
     /* Every projection a viewer uses, through the caller's matrices. */
-    check_classify(scene);
+    check_classify(ps.scene);
     for (int proj = PROJ_ORTHO; proj <= PROJ_INFINITE; proj++)
-        draw_and_compare_proj("transparent", scene, pf, OIT_RENDER_TRANSPARENT,
+        draw_and_compare_proj("transparent", ps.scene, ps.pf, OIT_RENDER_TRANSPARENT,
                               OIT_RENDER_PACK_AUTO, proj);
-    draw_and_compare_proj("translucent", scene, pf, OIT_RENDER_TRANSLUCENT,
+    draw_and_compare_proj("translucent", ps.scene, ps.pf, OIT_RENDER_TRANSLUCENT,
                           OIT_RENDER_PACK_AUTO, PROJ_ORTHO);
-    check_model(pf, scene, &info);
+    check_model(ps.pf, ps.scene, &ps.info);
 
     /* The same triangles as an in-core scene from arrays (a soup with
      * per-vertex colour), through the same draw: DFB's image, the caller's
      * border and GL state kept as for the part file. */
     oit_mesh mesh = {0};
-    if (oit_partfile_load_mesh(pf, &mesh, &err) != OIT_OK) {
+    if (oit_partfile_load_mesh(ps.pf, &mesh, &err) != OIT_OK) {
         fprintf(stderr, "FAIL: %s\n", err.message);
         return 1;
     }
-    float *pos = malloc(mesh.count * 9 * sizeof *pos);
-    uint8_t *rgba = malloc(mesh.count * 12);
-    for (size_t t = 0; t < mesh.count; t++)
-        for (int c = 0; c < 3; c++) {
-            memcpy(pos + (t * 3 + c) * 3, mesh.tris[t].v[c].pos, 12);
-            memcpy(rgba + (t * 3 + c) * 4, mesh.tris[t].v[c].rgba, 4);
-        }
+    float *pos = NULL;
+    uint8_t *rgba = NULL;
+    mesh_soup(&mesh, &pos, &rgba);
     oit_scene_mesh_desc md = {.positions = pos, .vertex_count = mesh.count * 3,
-                              .colours = (info.attributes & OIT_ATTR_COLOUR) ? rgba : NULL,
+                              .colours = (ps.info.attributes & OIT_ATTR_COLOUR) ? rgba : NULL,
                               .name = "grid arrays"};
     oit_scene *core = NULL;
     if (oit_scene_create_mesh(&md, &core, &err) != OIT_OK) {
@@ -771,26 +764,26 @@ int main(int argc, char **argv)
     oit_mesh_free(&mesh);
     oit_scene_info ci;
     oit_scene_get_info(core, &ci, &err);
-    CHECK(ci.in_core == 1 && ci.parts == 0 && ci.triangles == info.triangles &&
-              !info.in_core,
+    CHECK(ci.in_core == 1 && ci.parts == 0 && ci.triangles == ps.info.triangles &&
+              !ps.info.in_core,
           "in-core info: in_core %u, %llu parts, %llu triangles (file %llu)", ci.in_core,
           (unsigned long long)ci.parts, (unsigned long long)ci.triangles,
-          (unsigned long long)info.triangles);
+          (unsigned long long)ps.info.triangles);
     /* The reference shades with the file's attributes; the arrays carry
      * colour and alpha exactly when the file does. */
-    CHECK(ci.attributes == info.attributes, "in-core attributes %u, file %u", ci.attributes,
-          info.attributes);
-    draw_and_compare("in-core transparent", core, pf, OIT_RENDER_TRANSPARENT,
+    CHECK(ci.attributes == ps.info.attributes, "in-core attributes %u, file %u", ci.attributes,
+          ps.info.attributes);
+    draw_and_compare("in-core transparent", core, ps.pf, OIT_RENDER_TRANSPARENT,
                      OIT_RENDER_PACK_AUTO);
-    draw_and_compare("in-core translucent", core, pf, OIT_RENDER_TRANSLUCENT,
+    draw_and_compare("in-core translucent", core, ps.pf, OIT_RENDER_TRANSLUCENT,
                      OIT_RENDER_PACK_AUTO);
     for (int proj = PROJ_ORTHO; proj <= PROJ_INFINITE; proj++)
-        draw_and_compare_proj("in-core transparent", core, pf, OIT_RENDER_TRANSPARENT,
+        draw_and_compare_proj("in-core transparent", core, ps.pf, OIT_RENDER_TRANSPARENT,
                               OIT_RENDER_PACK_AUTO, proj);
     oit_scene_close(core);
 
-    oit_partfile_close(pf);
-    oit_scene_close(scene);
-    oit_gl_destroy(gl);
+    oit_partfile_close(ps.pf);
+    oit_scene_close(ps.scene);
+    oit_gl_destroy(ps.gl);
     return test_verdict();
 }

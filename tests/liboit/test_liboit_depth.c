@@ -488,17 +488,14 @@ static int run_projection(oit_scene *scene, oit_partfile *pf, const oit_scene_in
 
 int main(int argc, char **argv)
 {
-    oit_scene *scene = NULL;
-    oit_partfile *pf = NULL;
-    oit_scene_info info;
-    oit_gl *gl = open_part_scene(argc, argv, &scene, &pf, &info);
-    CHECK(info.triangles > 0 && (info.attributes & OIT_ATTR_ALPHA),
+    part_scene ps = open_part_scene(argc, argv);
+    CHECK(ps.info.triangles > 0 && (ps.info.attributes & OIT_ATTR_ALPHA),
           "the scene needs triangles with alpha (%llu triangles, attributes %u)",
-          (unsigned long long)info.triangles, info.attributes);
+          (unsigned long long)ps.info.triangles, ps.info.attributes);
 
-    int ok = run_projection(scene, pf, &info, 0) && run_projection(scene, pf, &info, 1);
-    oit_partfile_close(pf);
-    oit_scene_close(scene);
-    oit_gl_destroy(gl);
+    int ok = run_projection(ps.scene, ps.pf, &ps.info, 0) && run_projection(ps.scene, ps.pf, &ps.info, 1);
+    oit_partfile_close(ps.pf);
+    oit_scene_close(ps.scene);
+    oit_gl_destroy(ps.gl);
     return !ok || test_failures != 0;
 }

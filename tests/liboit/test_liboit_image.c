@@ -204,13 +204,9 @@ static void check_in_core(oit_partfile *pf, const oit_scene_info *info)
     oit_error err = {0};
     oit_mesh mesh = {0};
     CHECK(oit_partfile_load_mesh(pf, &mesh, &err) == OIT_OK, "load: %s", err.message);
-    float *pos = malloc(mesh.count * 9 * sizeof *pos);
-    uint8_t *rgba = malloc(mesh.count * 12);
-    for (size_t t = 0; t < mesh.count; t++)
-        for (int c = 0; c < 3; c++) {
-            memcpy(pos + (t * 3 + c) * 3, mesh.tris[t].v[c].pos, 12);
-            memcpy(rgba + (t * 3 + c) * 4, mesh.tris[t].v[c].rgba, 4);
-        }
+    float *pos = NULL;
+    uint8_t *rgba = NULL;
+    mesh_soup(&mesh, &pos, &rgba);
     oit_scene_mesh_desc md = {.positions = pos, .vertex_count = mesh.count * 3,
                               .colours = (info->attributes & OIT_ATTR_COLOUR) ? rgba : NULL};
     oit_scene *core = NULL;
@@ -296,20 +292,17 @@ static void check_errors(oit_scene *scene, const oit_scene_info *info)
 
 int main(int argc, char **argv)
 {
-    oit_scene *scene = NULL;
-    oit_partfile *pf = NULL;
-    oit_scene_info info;
-    oit_gl *gl = open_part_scene(argc, argv, &scene, &pf, &info);
+    part_scene ps = open_part_scene(argc, argv);
     const float bg[3] = {0.2f, 0.4f, 0.6f};
-    check_errors(scene, &info);
-    check_stream(scene, pf, &info, OIT_RENDER_PACK_AUTO, 0, 0, NULL);
-    check_stream(scene, pf, &info, OIT_RENDER_PACK_AUTO, 1, 0, bg);
-    check_stream(scene, pf, &info, OIT_RENDER_PACK_FIRSTK, 0, 1, bg);
-    check_stream(scene, pf, &info, OIT_RENDER_PACK_COUNTED, 0, 0, bg);
-    check_stream(scene, pf, &info, OIT_RENDER_PACK_BUDGET, 0, 0, NULL);
-    check_draw_camera(scene, &info);
-    check_in_core(pf, &info);
-    oit_partfile_close(pf);
-    oit_scene_close(scene);
-    return test_gl_verdict(gl);
+    check_errors(ps.scene, &ps.info);
+    check_stream(ps.scene, ps.pf, &ps.info, OIT_RENDER_PACK_AUTO, 0, 0, NULL);
+    check_stream(ps.scene, ps.pf, &ps.info, OIT_RENDER_PACK_AUTO, 1, 0, bg);
+    check_stream(ps.scene, ps.pf, &ps.info, OIT_RENDER_PACK_FIRSTK, 0, 1, bg);
+    check_stream(ps.scene, ps.pf, &ps.info, OIT_RENDER_PACK_COUNTED, 0, 0, bg);
+    check_stream(ps.scene, ps.pf, &ps.info, OIT_RENDER_PACK_BUDGET, 0, 0, NULL);
+    check_draw_camera(ps.scene, &ps.info);
+    check_in_core(ps.pf, &ps.info);
+    oit_partfile_close(ps.pf);
+    oit_scene_close(ps.scene);
+    return test_gl_verdict(ps.gl);
 }

@@ -224,33 +224,26 @@ static void check_too_wide(oit_scene *scene)
 
 int main(int argc, char **argv)
 {
-    oit_scene *scene = NULL;
-    oit_partfile *pf = NULL;
-    oit_scene_info info;
-    oit_gl *gl = open_part_scene(argc, argv, &scene, &pf, &info);
+    part_scene ps = open_part_scene(argc, argv);
     oit_error err = {0};
     oit_mesh mesh = {0};
-    if (oit_partfile_load_mesh(pf, &mesh, &err) != OIT_OK) {
+    if (oit_partfile_load_mesh(ps.pf, &mesh, &err) != OIT_OK) {
         fprintf(stderr, "FAIL: %s\n", err.message);
         return 1;
     }
-    check_too_wide(scene);
+    check_too_wide(ps.scene);
     refs refs = {0};
-    draw_and_compare("stream transparent", scene, &mesh, &refs, OIT_RENDER_TRANSPARENT, 0);
-    draw_and_compare("stream translucent", scene, &mesh, &refs, OIT_RENDER_TRANSLUCENT, 0);
-    draw_and_compare("stream translucent, depth", scene, &mesh, &refs, OIT_RENDER_TRANSLUCENT, 1);
+    draw_and_compare("stream transparent", ps.scene, &mesh, &refs, OIT_RENDER_TRANSPARENT, 0);
+    draw_and_compare("stream translucent", ps.scene, &mesh, &refs, OIT_RENDER_TRANSLUCENT, 0);
+    draw_and_compare("stream translucent, depth", ps.scene, &mesh, &refs, OIT_RENDER_TRANSLUCENT, 1);
 
     /* The same triangles in core: DFB through liboit, its state banded. */
-    float *pos = malloc(mesh.count * 9 * sizeof *pos);
-    uint8_t *rgba = malloc(mesh.count * 12);
-    for (size_t t = 0; t < mesh.count; t++)
-        for (int c = 0; c < 3; c++) {
-            memcpy(pos + (t * 3 + c) * 3, mesh.tris[t].v[c].pos, 12);
-            memcpy(rgba + (t * 3 + c) * 4, mesh.tris[t].v[c].rgba, 4);
-        }
+    float *pos = NULL;
+    uint8_t *rgba = NULL;
+    mesh_soup(&mesh, &pos, &rgba);
     oit_scene_mesh_desc md = {.positions = pos,
                               .vertex_count = mesh.count * 3,
-                              .colours = (info.attributes & OIT_ATTR_COLOUR) ? rgba : NULL,
+                              .colours = (ps.info.attributes & OIT_ATTR_COLOUR) ? rgba : NULL,
                               .name = "grid arrays"};
     oit_scene *core = NULL;
     CHECK(oit_scene_create_mesh(&md, &core, &err) == OIT_OK, "%s", err.message);
@@ -264,8 +257,8 @@ int main(int argc, char **argv)
     for (int i = 0; i < 2; i++)
         oit_image_free(&refs.img[i]);
     oit_mesh_free(&mesh);
-    oit_partfile_close(pf);
-    oit_scene_close(scene);
-    oit_gl_destroy(gl);
+    oit_partfile_close(ps.pf);
+    oit_scene_close(ps.scene);
+    oit_gl_destroy(ps.gl);
     return test_verdict();
 }
