@@ -435,7 +435,10 @@ static const char blend_fs[] =
     "void main() {\n"
     "    ivec2 px = ivec2(gl_FragCoord.xy) - u_origin;\n"
     "    oit_state s = oit_state_load(uint(px.y * u_size.x + px.x));\n"
-    "    float t = (s.T.r + s.T.g + s.T.b) / 3.0;\n"
+    /* Transparent T is one number: the mean of three copies rounds away
+     * from it (oitstream-mpi's shares blend this alpha, bit for bit the
+     * state's 1 - T as the tool read it before it drew through liboit). */
+    "    float t = u_mode != 1 ? s.T.r : (s.T.r + s.T.g + s.T.b) / 3.0;\n"
     "    o_colour = vec4(s.C, 1.0 - t);\n"
     "    o_transmit = vec4(s.T, t);\n"
     "}\n";
@@ -498,13 +501,39 @@ static void stream_desc(const oit_renderer_desc *d, oit_streamer_desc *sd)
     sd->store_limit = d->binding_limit;
 }
 
-/* What the streamer's range errors call its settings here. */
-static const oit_streamer_names desc_names = {
-    .upload_budget = "oit_renderer_desc.upload_budget",
-    .cache_budget = "oit_renderer_desc.cache_budget",
-    .gpu_budget = "oit_renderer_desc.gpu_budget", .epsilon = "oit_renderer_desc.epsilon",
-    .slot_budget = "oit_renderer_desc.slot_budget", .schedule = "oit_renderer_desc.schedule",
-    .cache_off = "OIT_RENDER_CACHE_OFF"};
+static const char *spelt(const char *given, const char *field)
+{
+    return given ? given : field;
+}
+
+/* liboit's own checks, then the streamer's (oit_streamer_desc_check) on
+ * the descriptor stream_desc spells, under the caller's names. */
+oit_status oit_renderer_desc_check(const oit_renderer_desc *d, const oit_renderer_desc_names *names,
+                                   oit_error *err)
+{
+    static const oit_renderer_desc_names none = {0};
+    const oit_renderer_desc_names *n = names ? names : &none;
+    if (d->K != 0 && oit_capture_k_check(d->K, spelt(n->K, "oit_renderer_desc.K"), err))
+        return OIT_ERR_ARGUMENT;
+    if ((unsigned)d->pack > OIT_RENDER_PACK_FIRSTK)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s = %d is not an oit_render_pack",
+                             spelt(n->pack, "oit_renderer_desc.pack"), (int)d->pack);
+    if (d->see_through != 0 && d->see_through != 1)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s = %d is not 0 or 1",
+                             spelt(n->see_through, "oit_renderer_desc.see_through"),
+                             d->see_through);
+    oit_streamer_desc sd;
+    stream_desc(d, &sd);
+    const oit_streamer_names sn = {
+        .upload_budget = spelt(n->upload_budget, "oit_renderer_desc.upload_budget"),
+        .cache_budget = spelt(n->cache_budget, "oit_renderer_desc.cache_budget"),
+        .gpu_budget = spelt(n->gpu_budget, "oit_renderer_desc.gpu_budget"),
+        .epsilon = spelt(n->epsilon, "oit_renderer_desc.epsilon"),
+        .slot_budget = spelt(n->slot_budget, "oit_renderer_desc.slot_budget"),
+        .schedule = spelt(n->schedule, "oit_renderer_desc.schedule"),
+        .cache_off = spelt(n->cache_off, "OIT_RENDER_CACHE_OFF")};
+    return oit_streamer_desc_check(&sd, &sn, err);
+}
 
 oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out,
                                oit_error *err)
@@ -515,28 +544,12 @@ oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out
         return oit_error_set(err, OIT_ERR_NOMEM, "oit_renderer_create: out of memory");
     if (desc)
         r->desc = *desc;
-    if (r->desc.K != 0 && oit_capture_k_check(r->desc.K, "oit_renderer_desc.K", err)) {
-        free(r);
-        return OIT_ERR_ARGUMENT;
-    }
-    if ((unsigned)r->desc.pack > OIT_RENDER_PACK_FIRSTK) {
-        int p = (int)r->desc.pack;
-        free(r);
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_desc.pack = %d is not an "
-                             "oit_render_pack", p);
-    }
-    if (r->desc.see_through != 0 && r->desc.see_through != 1) {
-        int v = r->desc.see_through;
-        free(r);
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_desc.see_through = %d is not "
-                             "0 or 1", v);
-    }
-    stream_desc(&r->desc, &r->stream);
-    oit_status bad = oit_streamer_desc_check(&r->stream, &desc_names, err);
+    oit_status bad = oit_renderer_desc_check(&r->desc, NULL, err);
     if (bad != OIT_OK) {
         free(r);
         return bad;
     }
+    stream_desc(&r->desc, &r->stream);
     const char *vs[] = {oit_glsl_version, oit_capture_fullscreen_vs, NULL};
     const char *fs[] = {oit_glsl_version, oit_glsl_composite, oit_glsl_state_io, blend_fs, NULL};
     oit_status st = oit_gl_program_graphics("liboit blend", vs, fs, &r->blend_prog, err);

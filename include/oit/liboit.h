@@ -333,6 +333,26 @@ typedef struct oit_renderer_desc {
 
 #define OIT_RENDER_CACHE_OFF UINT64_MAX
 
+/* The names a caller spells oit_renderer_desc's fields in, for the errors
+ * of oit_renderer_desc_check: a command line's options ("--upload-budget");
+ * cache_off spells OIT_RENDER_CACHE_OFF ("off"). A NULL name (or names
+ * NULL): the field's own ("oit_renderer_desc.upload_budget"). */
+typedef struct oit_renderer_desc_names {
+    const char *K, *upload_budget, *slot_budget, *cache_budget, *gpu_budget, *epsilon, *pack,
+        *schedule, *see_through, *cache_off;
+} oit_renderer_desc_names;
+
+/* The one range check of desc, the one oit_renderer_create runs: K 0 or
+ * 2..16; the byte budgets 0 or 64 KiB..1 TiB (cache_budget also
+ * OIT_RENDER_CACHE_OFF, gpu_budget at least 1 MiB); epsilon in [0, 1);
+ * pack, schedule and see_through their values. For a caller that wants
+ * the errors before it makes a renderer, in its own spelling (names may
+ * be NULL): OIT_ERR_ARGUMENT naming the setting and the value. capture,
+ * reader_threads and the budgets' sum are checked at the first draw of a
+ * part file. No GL needed. */
+OIT_API oit_status oit_renderer_desc_check(const oit_renderer_desc *desc,
+                                           const oit_renderer_desc_names *names, oit_error *err);
+
 /* Needs a current GL 4.5 core context (GL objects are created lazily, at the
  * first draw of each scene). */
 OIT_API oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out,

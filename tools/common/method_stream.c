@@ -50,8 +50,7 @@ static oit_status stream_create(const oit_mesh *mesh, const oit_method_options *
     return OIT_OK;
 }
 
-/* The view's resolved shading in liboit's spelling. */
-static void shading_of(const oit_shading *in, oit_renderer_desc *d)
+void oit_stream_shading(const oit_shading *in, oit_renderer_desc *d)
 {
     d->shading.mode = in->mode == OIT_SHADING_TRANSLUCENT ? OIT_RENDER_TRANSLUCENT
                                                          : OIT_RENDER_TRANSPARENT;
@@ -68,7 +67,7 @@ static void shading_of(const oit_shading *in, oit_renderer_desc *d)
 static oit_status renderer_for(stream_impl *m, const oit_shading *shading, oit_error *err)
 {
     oit_renderer_desc d = m->desc;
-    shading_of(shading, &d);
+    oit_stream_shading(shading, &d);
     if (m->renderer && !memcmp(&d, &m->desc, sizeof d))
         return OIT_OK;
     oit_renderer_destroy(m->renderer);
@@ -89,6 +88,16 @@ static oit_frame_camera camera_of(const oit_camera *c)
     f.ortho_height = c->projection == OIT_PROJ_ORTHOGRAPHIC ? c->ortho_height : 0.0f;
     memcpy(f.window, c->window, sizeof f.window);
     return f;
+}
+
+void oit_stream_frame(const oit_view *v, oit_frame_camera *cam, oit_frame *fr)
+{
+    *cam = camera_of(&v->camera);
+    *fr = (oit_frame){.viewport_width = v->width, .viewport_height = v->height,
+                      .camera = cam, .clip_count = (uint32_t)v->clip.count};
+    memcpy(fr->model, v->model, sizeof fr->model);
+    for (int i = 0; i < v->clip.count && i < OIT_FRAME_CLIP_MAX; i++)
+        memcpy(fr->clip[i], v->clip.plane[i], sizeof fr->clip[i]);
 }
 
 /* liboit's figures in the interface's (oit_frame_stats). */
@@ -119,12 +128,9 @@ static oit_status stream_render(void *impl, const oit_method_frame *f, oit_error
         s = oit_image_alloc(f->out, v->width, v->height, err);
     if (s != OIT_OK)
         return s;
-    oit_frame_camera cam = camera_of(&v->camera);
-    oit_frame fr = {.viewport_width = v->width, .viewport_height = v->height,
-                    .camera = &cam, .clip_count = (uint32_t)v->clip.count};
-    memcpy(fr.model, v->model, sizeof fr.model);
-    for (int i = 0; i < v->clip.count && i < OIT_FRAME_CLIP_MAX; i++)
-        memcpy(fr.clip[i], v->clip.plane[i], sizeof fr.clip[i]);
+    oit_frame_camera cam;
+    oit_frame fr;
+    oit_stream_frame(v, &cam, &fr);
     size_t bytes = (size_t)v->width * (size_t)v->height * 4 * sizeof *f->out->rgba;
     s = oit_renderer_draw_image(m->renderer, m->scene, &fr, v->shading.background,
                                 f->out->rgba, bytes, &m->stats, err);

@@ -27,6 +27,13 @@ typedef struct oit_stream_source {
 
 extern const oit_method oit_method_stream;
 
+/* The tools' view in liboit's spelling, for the stream method and
+ * oitstream-mpi alike: the resolved shading onto d's (and see_through);
+ * the frame of v (viewport size, camera: cam, which fr points to, the
+ * model matrix, the section planes), framebuffer 0. */
+void oit_stream_shading(const oit_shading *in, oit_renderer_desc *d);
+void oit_stream_frame(const oit_view *v, oit_frame_camera *cam, oit_frame *fr);
+
 /* liboit's figures of st's last frame; NULL when st is not the stream
  * method or has not rendered. */
 const oit_draw_stats *oit_method_stream_stats(const oit_method_state *st);

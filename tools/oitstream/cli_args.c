@@ -2,6 +2,9 @@
 #include "tools/oitstream/cli_args.h"
 
 #include "base/args.h"
+#include "render/capture/capture.h"
+#include "render/capture/capture_choice.h"
+#include "stream/reader.h"
 
 #include <float.h>
 #include <limits.h>
@@ -35,15 +38,15 @@ static int parse_rgb(const char *s, float rgb[3])
     return 0;
 }
 
-/* Bytes with an optional K, M or G (binary) suffix; their range is the
- * streamer's to check (oit_streamer_desc_check). */
+/* Bytes with an optional K, M or G (binary) suffix; their range is
+ * liboit's to check (oit_renderer_desc_check). */
 static int parse_bytes(const char *s, uint64_t *out)
 {
     return oit_parse_bytes(s, 0, UINT64_MAX, out);
 }
 
-/* What the streamer's range errors call its fields here. */
-static const oit_streamer_names option_names = {
+/* What liboit's range errors call its fields here. */
+static const oit_renderer_desc_names option_names = {
     .upload_budget = "--upload-budget", .slot_budget = "--slot-budget",
     .cache_budget = "--cache-budget", .gpu_budget = "--gpu-budget", .epsilon = "--epsilon",
     .pack = "--pack", .schedule = "--schedule", .cache_off = "off"};
@@ -119,17 +122,20 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
         if (!strcmp(v, "layers")) a->show_layers = 1;
         else if (strcmp(v, "colour") && strcmp(v, "color")) *s = bad(err, opt, v, "layers or colour");
     } else if (!strcmp(opt, "--pack")) {
-        if (!strcmp(v, "auto")) a->stream.pack = OIT_PACK_AUTO;
-        else if (!strcmp(v, "counted")) a->stream.pack = OIT_PACK_COUNTED;
-        else if (!strcmp(v, "disjoint")) a->stream.pack = OIT_PACK_DISJOINT;
-        else if (!strcmp(v, "budget")) a->stream.pack = OIT_PACK_BUDGET;
-        else if (!strcmp(v, "first-k")) a->stream.pack = OIT_PACK_FIRSTK;
+        if (!strcmp(v, "auto")) a->stream.pack = OIT_RENDER_PACK_AUTO;
+        else if (!strcmp(v, "counted")) a->stream.pack = OIT_RENDER_PACK_COUNTED;
+        else if (!strcmp(v, "disjoint")) a->stream.pack = OIT_RENDER_PACK_DISJOINT;
+        else if (!strcmp(v, "budget")) a->stream.pack = OIT_RENDER_PACK_BUDGET;
+        else if (!strcmp(v, "first-k")) a->stream.pack = OIT_RENDER_PACK_FIRSTK;
         else *s = bad(err, opt, v, "auto, counted, first-k, budget or disjoint");
     } else if (!strcmp(opt, "--capture")) {
-        *s = oit_capture_parse(v, opt, &a->stream.capture, err);
+        /* liboit's capture values are the capture's (liboit.c) */
+        oit_capture_kind kind = OIT_CAPTURE_AUTO;
+        *s = oit_capture_parse(v, opt, &kind, err);
+        a->stream.capture = (oit_render_capture)kind;
     } else if (!strcmp(opt, "--schedule")) {
-        if (!strcmp(v, "wave")) a->stream.schedule = OIT_SCHEDULE_WAVE;
-        else if (!strcmp(v, "tree")) a->stream.schedule = OIT_SCHEDULE_TREE;
+        if (!strcmp(v, "wave")) a->stream.schedule = OIT_RENDER_SCHEDULE_WAVE;
+        else if (!strcmp(v, "tree")) a->stream.schedule = OIT_RENDER_SCHEDULE_TREE;
         else *s = bad(err, opt, v, "wave or tree");
     } else if (!strcmp(opt, "--upload-budget")) {
         if (parse_bytes(v, &a->stream.upload_budget))
@@ -138,7 +144,7 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
         /* As liboit's oit_renderer_desc.cache_budget: "off"
          * (OIT_RENDER_CACHE_OFF) no cache. */
         if (!strcmp(v, "off"))
-            a->stream.cache_budget = OIT_STREAM_CACHE_OFF;
+            a->stream.cache_budget = OIT_RENDER_CACHE_OFF;
         else if (parse_bytes(v, &a->stream.cache_budget))
             *s = bad(err, opt, v, "off or bytes, with an optional K, M or G suffix");
     } else if (!strcmp(opt, "--gpu-budget")) {
@@ -146,11 +152,11 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
             *s = bad(err, opt, v, "bytes, with an optional K, M or G suffix");
     } else if (!strcmp(opt, "--upload-threads")) {
         /* 0 read on the render thread before threads were counted */
-        int *n = &a->stream.reader_threads;
-        if (oit_parse_int(v, 0, OIT_READER_MAX_THREADS, n))
+        int n = 0;
+        if (oit_parse_int(v, 0, OIT_READER_MAX_THREADS, &n))
             *s = bad(err, opt, v, "0..64 threads");
-        else if (*n == 0)
-            *n = OIT_STREAM_READ_INLINE;
+        a->stream.reader_threads = (uint32_t)n;
+        a->stream.read_on_draw_thread = n == 0;
     } else if (!strcmp(opt, "--slot-budget")) {
         if (parse_bytes(v, &a->stream.slot_budget))
             *s = bad(err, opt, v, "bytes, with an optional K, M or G suffix");
@@ -220,10 +226,10 @@ static oit_status check_combination(const oit_stream_args *a, oit_error *err)
     if (a->window && (a->orbit || a->out || a->ambiguity_out))
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--window shows one interactive view: "
                              "it excludes --orbit, --out and --ambiguity");
-    /* The streamer's settings are checked by the streamer (every other
-     * method ignores them); which methods take --epsilon, main.c asks the
-     * method's flags (OIT_METHOD_EPSILON). */
-    oit_status s = oit_streamer_desc_check(&a->stream, &option_names, err);
+    /* The stream's settings are checked by liboit, before any I/O (every
+     * other method ignores them); which methods take --epsilon, main.c
+     * asks the method's flags (OIT_METHOD_EPSILON). */
+    oit_status s = oit_renderer_desc_check(&a->stream, &option_names, err);
     if (s != OIT_OK)
         return s;
     if ((a->have_view != 0) + (a->orbit != 0) + (a->walk != NULL) > 1)

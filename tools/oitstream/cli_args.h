@@ -6,8 +6,9 @@
 
 #include <stdio.h>
 
+#include "oit/liboit.h"
+#include "render/image/clip.h"
 #include "render/image/view.h"
-#include "stream/streamer.h"
 
 typedef struct oit_stream_args {
     int help;
@@ -37,12 +38,13 @@ typedef struct oit_stream_args {
     const char *ambiguity_out; /* --ambiguity: mask of ambiguous pixels */
     float ambiguity_px;        /* --ambiguity-px; 0: the reference's 1/64 */
     int quiet;
-    /* The streamer's settings, each option spelt onto its field and
-     * checked by oit_streamer_desc_check (zero: default): --pack, --capture,
-     * --schedule, --upload-budget, --slot-budget, --cache-budget,
-     * --gpu-budget, --upload-threads (reader_threads), --epsilon. K is
-     * --max-layers (or the file's); the rest stay 0. */
-    oit_streamer_desc stream;
+    /* The stream's settings in liboit's public descriptor, each option
+     * parsed onto its field and checked by oit_renderer_desc_check (zero:
+     * default): --pack, --capture, --schedule, --upload-budget,
+     * --slot-budget, --cache-budget, --gpu-budget, --upload-threads
+     * (reader_threads; 0: read_on_draw_thread), --epsilon. K is
+     * --max-layers (or the file's), the shading the view's; the rest 0. */
+    oit_renderer_desc stream;
     /* --epsilon was given: stream.epsilon is also the threshold of the
      * other methods flagged OIT_METHOD_EPSILON (render/method.h) */
     int have_epsilon;

@@ -1,8 +1,6 @@
 /* oitstream's views, shading, output names and stream settings (views.h). */
 #include "tools/oitstream/views.h"
 
-#include "stream/streamer.h"
-
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -191,26 +189,10 @@ int stream_max_layers(const oit_stream_args *a, oit_partfile *pf)
 
 /* The default cache would only hold a second copy of what the ring
  * uploaded (on the 2M plant at 1024x1024, 104 of its 240 MB GPU peak). */
-unsigned long long stream_cache_budget(const oit_stream_args *a, int views)
-{
-    return views == 1 && !a->window && a->stream.cache_budget == 0 ? OIT_STREAM_CACHE_OFF
-                                                                  : a->stream.cache_budget;
-}
-
 oit_renderer_desc stream_renderer_desc(const oit_stream_args *a, int views)
 {
-    const oit_streamer_desc *sd = &a->stream;
-    _Static_assert((int)OIT_RENDER_PACK_COUNTED == (int)OIT_PACK_COUNTED &&
-                       (int)OIT_RENDER_PACK_BUDGET == (int)OIT_PACK_BUDGET &&
-                       (int)OIT_RENDER_PACK_DISJOINT == (int)OIT_PACK_DISJOINT &&
-                       (int)OIT_RENDER_PACK_FIRSTK == (int)OIT_PACK_FIRSTK,
-                   "liboit's packs are the packer's");
-    oit_renderer_desc d = {
-        .upload_budget = sd->upload_budget, .pack = (oit_render_pack)sd->pack,
-        .epsilon = sd->epsilon, .cache_budget = stream_cache_budget(a, views),
-        .read_on_draw_thread = sd->reader_threads == OIT_STREAM_READ_INLINE,
-        .capture = (oit_render_capture)sd->capture, .gpu_budget = sd->gpu_budget,
-        .schedule = (oit_render_schedule)sd->schedule, .slot_budget = sd->slot_budget,
-        .reader_threads = sd->reader_threads > 0 ? (uint32_t)sd->reader_threads : 0};
+    oit_renderer_desc d = a->stream;
+    if (views == 1 && !a->window && d.cache_budget == 0)
+        d.cache_budget = OIT_RENDER_CACHE_OFF;
     return d;
 }

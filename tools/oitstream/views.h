@@ -26,13 +26,9 @@ oit_status output_path(const char *out, int index, int views, char *buf, size_t 
 /* The captures' K: --max-layers, else the part file's (its parts were cut
  * for it), else 16; pf may be NULL (a mesh). */
 int stream_max_layers(const oit_stream_args *a, oit_partfile *pf);
-/* --cache-budget for a run of views frames: one frame (outside the window)
- * has no next frame to keep parts for, so the default cache is off. */
-unsigned long long stream_cache_budget(const oit_stream_args *a, int views);
-
-/* The stream method's settings (tools/common/method_stream.h) from the
- * checked command line, for `views` views: the streamer's options in
- * liboit's public spelling. */
+/* The command line's liboit descriptor (oit_stream_args.stream) for a
+ * run of views frames: one frame (outside the window) has no next frame
+ * to keep parts for, so the default cache is off there. */
 oit_renderer_desc stream_renderer_desc(const oit_stream_args *a, int views);
 
 #endif

@@ -8,9 +8,14 @@
  * adds the background (C + T bg, in the compositing space, as the capture's
  * resolve does), writes the images and the figures: per rank its share and
  * render ms, and per frame the compositing ms and IceT's bytes sent.
- * Translucent shading over more than one rank is refused (by the streamer):
- * its absorbing medium and the per-channel T cross share boundaries, which
- * one RGBA image a rank cannot carry. */
+ * Each rank streams through liboit's public API, as any program that
+ * embeds it: its share is an oit_scene (oit_scene_desc.share_count and
+ * share_index), drawn by an oit_renderer made from oitstream's descriptor
+ * into a float target cleared to 0, which leaves C and 1 - T, ordered by
+ * oit_scene_share_order. Translucent shading over more than one rank is
+ * refused (by liboit, at the first draw): its absorbing medium and the
+ * per-channel T cross share boundaries, which one RGBA image a rank cannot
+ * carry. */
 #include <math.h>
 #include <mpi.h>
 #include <sys/resource.h>
@@ -39,31 +44,33 @@
 
 #include "base/clock.h"
 #include "base/json.h"
+#include "oit/liboit.h"
 #include "partfile/triangles.h"
-#include "render/image/clip.h"
-#include "render/gl/frag_glsl.h"
 #include "render/gl/gl_context.h"
+#include "render/gl/gl_util.h"
+#include "render/image/clip.h"
 #include "render/image/image.h"
 #include "render/image/shade.h"
-#include "stream/streamer.h"
+#include "tools/common/method_stream.h"
 #include "tools/oitstream/cli_args.h"
 #include "tools/oitstream/stats_json.h"
 #include "tools/oitstream/views.h"
 
 /* Per rank a frame: render ms, parts, triangles, fragments, parts drawn,
  * peak host memory so far (getrusage's ru_maxrss, bytes) and the frame's
- * GPU bytes at peak (the streamer's: capture, ring, cache, tiles). */
+ * GPU bytes at peak (liboit's: capture, ring, cache, tiles). */
 enum { FIGS = 7 };
 
 typedef struct mpi_run {
     int rank, ranks;
     const oit_stream_args *args;
-    oit_partfile *pf;
     oit_mesh_info info;
-    oit_streamer *streamer;
+    int K; /* stream_max_layers: --max-layers or the file's */
+    oit_scene *scene; /* this rank's share */
+    oit_renderer *renderer;
     oit_view view;
-    float *rgba;     /* the rank's premultiplied colour and 1 - T, GL rows */
-    uint32_t *state; /* the capture's per-pixel state, read back */
+    unsigned tex, fbo; /* GL_RGBA32F of the view's size, cleared to 0 each frame */
+    float *rgba;       /* the rank's premultiplied colour and 1 - T, GL rows */
     IceTInt *order;
     double *figs;    /* rank 0: ranks x FIGS of the current frame */
 } mpi_run;
@@ -93,49 +100,63 @@ static oit_status check_args(const oit_stream_args *a, oit_error *err)
     return OIT_OK;
 }
 
+/* The float target liboit blends the share into: over 0, its Result
+ * (liboit.h) leaves C and 1 - t, t = T for transparent shading. */
+static oit_status make_target(mpi_run *r, oit_error *err)
+{
+    glCreateTextures(GL_TEXTURE_2D, 1, &r->tex);
+    glTextureStorage2D(r->tex, 1, GL_RGBA32F, r->view.width, r->view.height);
+    glCreateFramebuffers(1, &r->fbo);
+    glNamedFramebufferTexture(r->fbo, GL_COLOR_ATTACHMENT0, r->tex, 0);
+    if (glCheckNamedFramebufferStatus(r->fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE ||
+        glGetError() != GL_NO_ERROR)
+        return oit_error_set(err, OIT_ERR_GL, "cannot make a %dx%d float RGBA target",
+                             r->view.width, r->view.height);
+    return OIT_OK;
+}
+
 static oit_status open_share(mpi_run *r, int views, oit_error *err)
 {
     const oit_stream_args *a = r->args;
-    oit_partfile_open_desc d = {1};
-    oit_status s = oit_partfile_open(a->model, &d, &r->pf, err);
-    if (s != OIT_OK)
-        return s;
-    oit_partfile_mesh_info(r->pf, &r->info);
     r->view.width = a->width;
     r->view.height = a->height;
     r->view.shading = make_shading(a, &r->info);
     /* oitstream's section planes: every rank cuts its share alike, and
      * culls the parts wholly cut away before reading them */
+    oit_status s = OIT_OK;
     for (int i = 0; i < a->clip.count && s == OIT_OK; i++)
         s = oit_clip_add_text(&r->view.clip, a->clip_text[i], r->info.origin, "--clip", err);
-    if (s != OIT_OK)
-        return s;
-    /* oitstream's options, checked there (cli_args.c), and this rank's share */
-    oit_streamer_desc sd = a->stream;
-    sd.K = stream_max_layers(a, r->pf);
-    sd.cache_budget = stream_cache_budget(a, views);
-    sd.share_count = (uint32_t)r->ranks;
-    sd.share_index = (uint32_t)r->rank;
-    return oit_streamer_create(r->pf, &sd, &r->streamer, err);
+    /* parts are checked when first drawn, as oitstream's stream method does */
+    oit_scene_desc sd = {.defer_validation = 1, .share_count = (uint32_t)r->ranks,
+                         .share_index = (uint32_t)r->rank};
+    if (s == OIT_OK)
+        s = oit_scene_open(a->model, &sd, &r->scene, err);
+    /* oitstream's descriptor, checked there (cli_args.c), with K and the
+     * view's shading */
+    oit_renderer_desc d = stream_renderer_desc(a, views);
+    d.K = (uint32_t)r->K;
+    oit_stream_shading(&r->view.shading, &d);
+    if (s == OIT_OK)
+        s = oit_renderer_create(&d, &r->renderer, err);
+    return s == OIT_OK ? make_target(r, err) : s;
 }
 
-/* The capture's state (frag_glsl.h, oit_glsl_state_io, transparent: C, T
- * XOR 1.0, count) as IceT's premultiplied RGBA: C, 1 - T. */
-static oit_status read_share(mpi_run *r, unsigned buffer, oit_error *err)
+/* This rank's share of the frame: C and 1 - T, read back in GL rows. */
+static oit_status draw_share(mpi_run *r, const oit_frame *frame, oit_draw_stats *ds,
+                             oit_error *err)
 {
-    size_t px = (size_t)r->view.width * (size_t)r->view.height;
-    glGetNamedBufferSubData(buffer, 0, (GLsizeiptr)(px * oit_state_bytes(0)), r->state);
+    static const float zero[4] = {0, 0, 0, 0};
+    glClearNamedFramebufferfv(r->fbo, GL_COLOR, 0, zero);
+    oit_frame f = *frame;
+    f.framebuffer = r->fbo;
+    oit_status s = oit_renderer_draw(r->renderer, r->scene, &f, ds, err);
+    if (s != OIT_OK)
+        return s;
+    size_t bytes = (size_t)r->view.width * (size_t)r->view.height * 4 * sizeof *r->rgba;
+    glGetTextureImage(r->tex, 0, GL_RGBA, GL_FLOAT, (GLsizei)bytes, r->rgba);
     if (glGetError() != GL_NO_ERROR)
-        return oit_error_set(err, OIT_ERR_GL, "cannot read back the share's %zu pixel states", px);
-    for (size_t i = 0; i < px; i++) {
-        const uint32_t *w = &r->state[i * OIT_STATE_WORDS_TRANSPARENT];
-        uint32_t tb = w[3] ^ 0x3f800000u;
-        float c[3], t;
-        memcpy(c, w, sizeof c);
-        memcpy(&t, &tb, sizeof t);
-        memcpy(&r->rgba[i * 4], c, sizeof c);
-        r->rgba[i * 4 + 3] = 1.0f - t;
-    }
+        return oit_error_set(err, OIT_ERR_GL, "cannot read back the share's %dx%d pixels",
+                             r->view.width, r->view.height);
     return OIT_OK;
 }
 
@@ -194,23 +215,24 @@ typedef struct frame_figs {
 static oit_status render_frame(mpi_run *r, int index, int views, frame_figs *ff, oit_error *err)
 {
     double t0 = oit_time_ms();
-    uint32_t *order = (uint32_t *)r->order;
-    oit_status s = oit_streamer_share_order(r->streamer, &r->view, order, err);
-    unsigned buffer = 0;
-    oit_frame_stats fs = {0};
-    oit_stream_frame_stats ss = {0};
+    _Static_assert(sizeof(IceTInt) == sizeof(uint32_t), "IceT's ranks are 32-bit");
+    oit_frame_camera cam;
+    oit_frame fr;
+    oit_stream_frame(&r->view, &cam, &fr);
+    oit_status s = oit_scene_share_order(r->scene, &fr, (uint32_t *)r->order,
+                                         (uint32_t)r->ranks, err);
+    oit_draw_stats ds = {0};
     if (s == OIT_OK)
-        s = oit_streamer_render_gpu(r->streamer, &r->view, &buffer, &fs, &ss, err);
+        s = draw_share(r, &fr, &ds, err);
+    oit_scene_info si = {0};
     if (s == OIT_OK)
-        s = read_share(r, buffer, err);
-    uint32_t parts = 0;
-    uint64_t tris = 0;
-    oit_streamer_share_size(r->streamer, &parts, &tris);
+        s = oit_scene_get_info(r->scene, &si, err);
     struct rusage ru = {0};
     getrusage(RUSAGE_SELF, &ru);
-    double mine[FIGS] = {oit_time_ms() - t0, parts, (double)tris, (double)fs.fragments,
-                         (double)ss.parts_drawn, (double)ru.ru_maxrss * 1024.0, /* KiB */
-                         (double)ss.gpu_bytes_peak};
+    double mine[FIGS] = {oit_time_ms() - t0, (double)si.share_parts,
+                         (double)si.share_triangles, (double)ds.fragments,
+                         (double)ds.parts_drawn, (double)ru.ru_maxrss * 1024.0, /* KiB */
+                         (double)ds.gpu_bytes_peak};
     /* Every rank reaches the collectives, failed or not, so none hangs. */
     int ok = s == OIT_OK, all_ok = 0;
     MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
@@ -318,12 +340,13 @@ static oit_status run(mpi_run *r, oit_error *err)
     const oit_stream_args *a = r->args;
     oit_camera *cams = NULL;
     int n = 0;
-    oit_status s = oit_partfile_open(a->model, &(oit_partfile_open_desc){1}, &r->pf, err);
+    oit_partfile *pf = NULL;
+    oit_status s = oit_partfile_open(a->model, &(oit_partfile_open_desc){1}, &pf, err);
     if (s == OIT_OK) {
-        oit_partfile_mesh_info(r->pf, &r->info);
+        oit_partfile_mesh_info(pf, &r->info);
+        r->K = stream_max_layers(a, pf);
         s = make_views(a, &r->info, &cams, &n, err);
-        oit_partfile_close(r->pf);
-        r->pf = NULL;
+        oit_partfile_close(pf);
     }
     oit_gl *gl = NULL;
     if (s == OIT_OK)
@@ -334,13 +357,12 @@ static oit_status run(mpi_run *r, oit_error *err)
     frame_figs *ff = NULL;
     if (s == OIT_OK) {
         r->rgba = malloc(px * 4 * sizeof *r->rgba);
-        r->state = malloc(px * oit_state_bytes(0));
         r->order = calloc((size_t)r->ranks, sizeof *r->order);
         r->figs = calloc((size_t)r->ranks * FIGS, sizeof *r->figs);
         ff = calloc((size_t)n, sizeof *ff);
         for (int i = 0; ff && i < n; i++)
             ff[i].ranks = calloc((size_t)r->ranks * FIGS, sizeof(double));
-        if (!r->rgba || !r->state || !r->order || !r->figs || !ff || (n && !ff[n - 1].ranks))
+        if (!r->rgba || !r->order || !r->figs || !ff || (n && !ff[n - 1].ranks))
             s = oit_error_set(err, OIT_ERR_NOMEM, "cannot allocate %dx%d frame buffers",
                               a->width, a->height);
     }
@@ -370,11 +392,14 @@ static oit_status run(mpi_run *r, oit_error *err)
     free(ff);
     free(cams);
     free(r->rgba);
-    free(r->state);
     free(r->order);
     free(r->figs);
-    oit_streamer_destroy(r->streamer);
-    oit_partfile_close(r->pf);
+    if (r->fbo)
+        glDeleteFramebuffers(1, &r->fbo);
+    if (r->tex)
+        glDeleteTextures(1, &r->tex);
+    oit_renderer_destroy(r->renderer);
+    oit_scene_close(r->scene);
 #ifdef OIT_LEAK_CHECK
     /* All of ours is freed but the context, still reachable. Exits on a
      * leak; no check runs again at exit. */
