@@ -22,6 +22,7 @@
 #include "stream/streamer.h"
 #include "tests/lib/test_check.h"
 #include "tests/liboit/part_scene.h"
+#include "tools/common/method_stream.h"
 
 enum { W = 96, H = 72 };
 
@@ -40,20 +41,6 @@ static oit_camera camera_of(const oit_scene_info *info, int ortho)
         cam.znear = 0.0f;
     }
     return cam;
-}
-
-static oit_frame_camera public_camera(const oit_camera *c)
-{
-    oit_frame_camera f = {0};
-    memcpy(f.eye, c->eye, sizeof f.eye);
-    memcpy(f.target, c->target, sizeof f.target);
-    memcpy(f.up, c->up, sizeof f.up);
-    f.fovy_deg = c->fovy_deg;
-    f.znear = c->znear;
-    f.zfar = c->zfar;
-    f.ortho_height = c->projection == OIT_PROJ_ORTHOGRAPHIC ? c->ortho_height : 0.0f;
-    memcpy(f.window, c->window, sizeof f.window);
-    return f;
 }
 
 /* The tools' view of the scene: their shading resolved as liboit resolves
@@ -100,7 +87,7 @@ static void check_stream(oit_scene *scene, oit_partfile *pf, const oit_scene_inf
     oit_renderer *r = NULL;
     CHECK(oit_renderer_create(&rd, &r, &err) == OIT_OK, "%s: %s", name, err.message);
     oit_camera cam = camera_of(info, ortho);
-    oit_frame_camera fc = public_camera(&cam);
+    oit_frame_camera fc = oit_stream_camera(&cam);
     oit_frame f = {.viewport_width = W, .viewport_height = H, .camera = &fc};
     float *got = malloc((size_t)W * H * 4 * sizeof *got);
     oit_draw_stats st = {0};
@@ -164,7 +151,7 @@ static void check_draw_camera(oit_scene *scene, const oit_scene_info *info)
     oit_renderer *r = NULL;
     CHECK(oit_renderer_create(NULL, &r, &err) == OIT_OK, "draw camera: %s", err.message);
     oit_camera cam = camera_of(info, 1);
-    oit_frame_camera fc = public_camera(&cam);
+    oit_frame_camera fc = oit_stream_camera(&cam);
     oit_frame f = {.viewport_width = W, .viewport_height = H, .camera = &fc};
     const float bg[4] = {0.2f, 0.4f, 0.6f, 1.0f};
     size_t n = (size_t)W * H * 4;
@@ -214,7 +201,7 @@ static void check_in_core(oit_partfile *pf, const oit_scene_info *info)
     oit_renderer *r = NULL;
     CHECK(oit_renderer_create(NULL, &r, &err) == OIT_OK, "in core: %s", err.message);
     oit_camera cam = camera_of(info, 0);
-    oit_frame_camera fc = public_camera(&cam);
+    oit_frame_camera fc = oit_stream_camera(&cam);
     oit_frame f = {.viewport_width = W, .viewport_height = H, .camera = &fc};
     float *got = malloc((size_t)W * H * 4 * sizeof *got);
     oit_draw_stats st = {0};
@@ -263,7 +250,7 @@ static void check_errors(oit_scene *scene, const oit_scene_info *info)
     }
     CHECK(oit_renderer_create(NULL, &r, &err) == OIT_OK, "%s", err.message);
     oit_camera cam = camera_of(info, 0);
-    oit_frame_camera fc = public_camera(&cam);
+    oit_frame_camera fc = oit_stream_camera(&cam);
     oit_frame f = {.viewport_width = W, .viewport_height = H, .camera = &fc};
     float px[4];
     oit_status s = oit_renderer_draw_image(r, scene, &f, NULL, px, sizeof px, NULL, &err);

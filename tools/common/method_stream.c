@@ -76,7 +76,7 @@ static oit_status renderer_for(stream_impl *m, const oit_shading *shading, oit_e
     return oit_renderer_create(&m->desc, &m->renderer, err);
 }
 
-static oit_frame_camera camera_of(const oit_camera *c)
+oit_frame_camera oit_stream_camera(const oit_camera *c)
 {
     oit_frame_camera f = {0};
     memcpy(f.eye, c->eye, sizeof f.eye);
@@ -92,7 +92,7 @@ static oit_frame_camera camera_of(const oit_camera *c)
 
 void oit_stream_frame(const oit_view *v, oit_frame_camera *cam, oit_frame *fr)
 {
-    *cam = camera_of(&v->camera);
+    *cam = oit_stream_camera(&v->camera);
     *fr = (oit_frame){.viewport_width = v->width, .viewport_height = v->height,
                       .camera = cam, .clip_count = (uint32_t)v->clip.count};
     memcpy(fr->model, v->model, sizeof fr->model);

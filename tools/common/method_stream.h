@@ -32,6 +32,9 @@ extern const oit_method oit_method_stream;
  * the frame of v (viewport size, camera: cam, which fr points to, the
  * model matrix, the section planes), framebuffer 0. */
 void oit_stream_shading(const oit_shading *in, oit_renderer_desc *d);
+/* The tools' camera as liboit's oit_frame_camera, field for field (an
+ * orthographic camera by its height, a perspective one by fovy). */
+oit_frame_camera oit_stream_camera(const oit_camera *c);
 void oit_stream_frame(const oit_view *v, oit_frame_camera *cam, oit_frame *fr);
 
 /* liboit's figures of st's last frame; NULL when st is not the stream
