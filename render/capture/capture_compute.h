@@ -40,6 +40,13 @@
  * the spec leaves to the implementation anyway. Pixels whose centre lies
  * within a rounding of an edge may differ from a raster method's.
  *
+ * Records past one binding: a batch cannot be cut where its records
+ * outgrow one storage binding (its triangles are not in visibility
+ * order; the sweep must see them all), so they span up to
+ * OIT_COMPUTE_BLOCKS blocks of one buffer at consecutive binding points
+ * (compute_blocks.h), the shaders picking a record's block by an
+ * if-chain on its index.
+ *
  * No read-back within a frame: the tile lists are sized from what the
  * host knows (4 entries a triangle, or the most a batch of an earlier
  * frame needed), a tile whose list overflowed sweeps every record of the
