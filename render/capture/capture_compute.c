@@ -2,9 +2,11 @@
 #include "render/capture/capture_compute.h"
 
 #include "render/capture/capture_backend.h"
+#include "render/capture/compute_blocks.h"
 #include "render/capture/compute_glsl.h"
 #include "render/gl/gpu_timer.h"
 
+#include <stdio.h>
 #include <string.h>
 
 static const char u_mode_decl[] = "layout(location = 3) uniform int u_mode;\n";
@@ -33,7 +35,17 @@ static oit_status compute_init(oit_compute *k, oit_error *err)
 {
     memset(k, 0, sizeof *k);
     k->align = oit_gl_ssbo_align();
-    oit_status s = oit_glsl_programs_build(programs, OIT_COMPUTE_PROGS, k->prog, err);
+    k->blocks = oit_compute_record_blocks();
+    snprintf(k->blocks_decl, sizeof k->blocks_decl, "#define CS_BLOCKS %d\n", k->blocks);
+    oit_glsl_program table[OIT_COMPUTE_PROGS];
+    memcpy(table, programs, sizeof table);
+    static const int with_recs[] = {OIT_COMPUTE_SETUP, OIT_COMPUTE_SCATTER, OIT_COMPUTE_TILES};
+    for (size_t i = 0; i < sizeof with_recs / sizeof with_recs[0]; i++) {
+        const char **cs = table[with_recs[i]].cs;
+        memmove(cs + 1, cs, sizeof(cs[0]) * (OIT_GLSL_PARTS_MAX - 1));
+        cs[0] = k->blocks_decl;
+    }
+    oit_status s = oit_glsl_programs_build(table, OIT_COMPUTE_PROGS, k->prog, err);
     if (s == OIT_OK)
         s = oit_scan_init(&k->scan, err);
     return s;
@@ -343,9 +355,10 @@ oit_status oit_compute_batch(oit_compute *k, const oit_compute_frame *f,
     uint64_t rec_bytes = tris * OIT_COMPUTE_RECORD_WORDS * 16;
     if (n > 1 && f->budget && tris * OIT_COMPUTE_CAPTURE_TRIANGLE_BYTES > f->budget)
         return halves(k, f, meshes, n, r, err);
-    if (rec_bytes > f->bind || tris > UINT32_MAX / OIT_COMPUTE_RECORD_WORDS)
+    uint64_t per = oit_compute_block_records(k->align, f->bind);
+    if (tris > per * (uint64_t)k->blocks || tris > UINT32_MAX)
         return n > 1 ? halves(k, f, meshes, n, r, err)
-                     : too_large("triangle records", rec_bytes, f->bind, err);
+                     : oit_compute_too_many(k->blocks, tris, per, f->bind, err);
     uint64_t tx = (uint64_t)(f->width + OIT_COMPUTE_TILE - 1) / OIT_COMPUTE_TILE;
     uint64_t tiles = tx * ((uint64_t)(f->height + OIT_COMPUTE_TILE - 1) / OIT_COMPUTE_TILE);
     uint64_t cap = list_entries(k, f, tris);
@@ -372,8 +385,12 @@ oit_status oit_compute_batch(oit_compute *k, const oit_compute_frame *f,
     static const GLuint zero = 0;
     glClearNamedBufferData(k->tiles, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_FRAGS, k->recs, 0,
-                      (GLsizeiptr)rec_bytes);
+    oit_compute_bind_records(k->recs, k->blocks, tris, per);
+    static const int with_recs[] = {OIT_COMPUTE_SETUP, OIT_COMPUTE_SCATTER, OIT_COMPUTE_TILES};
+    for (int i = 0; i < 3; i++)
+        glProgramUniform1ui(k->prog[with_recs[i]],
+                            glGetUniformLocation(k->prog[with_recs[i]], "u_block_recs"),
+                            (GLuint)per);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OFFSETS, k->tiles);
     setup(k, meshes, n);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);

@@ -40,6 +40,13 @@
  * the spec leaves to the implementation anyway. Pixels whose centre lies
  * within a rounding of an edge may differ from a raster method's.
  *
+ * Records past one binding: a batch cannot be cut where its records
+ * outgrow one storage binding (its triangles are not in visibility
+ * order; the sweep must see them all), so they span up to
+ * OIT_COMPUTE_BLOCKS blocks of one buffer at consecutive binding points
+ * (compute_blocks.h), the shaders picking a record's block by an
+ * if-chain on its index.
+ *
  * No read-back within a frame: the tile lists are sized from what the
  * host knows (4 entries a triangle, or the most a batch of an earlier
  * frame needed), a tile whose list overflowed sweeps every record of the
@@ -92,6 +99,10 @@ typedef struct oit_compute {
     unsigned test;       /* OIT_CAPTURE_TEST_COMPUTE_* of the capture's faults */
     oit_scan scan;
     uint64_t align; /* GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT */
+    /* Storage blocks a batch's records may span (OIT_COMPUTE_BLOCKS or
+     * fewer, as the driver's limits allow), and the shaders' define of it. */
+    int blocks;
+    char blocks_decl[32];
 } oit_compute;
 
 typedef struct oit_compute_frame {
@@ -108,11 +119,12 @@ typedef struct oit_compute_frame {
 } oit_compute_frame;
 
 /* Captures meshes[0..n) over the GL rect r (bottom rows first, exclusive
- * ends) and composites them behind the state. A batch whose records
- * exceed one storage binding (f->bind), or with 4 list entries a triangle
- * f->budget, is captured in halves of its meshes, in order, down to one
- * mesh; OIT_ERR_UNSUPPORTED, with the numbers, where one mesh's records
- * alone exceed a binding. */
+ * ends) and composites them behind the state. The records span up to
+ * k->blocks storage bindings of f->bind bytes each, so that one batch
+ * holds k->blocks times what one binding does. A batch past that, or
+ * with 4 list entries a triangle past f->budget, is captured in halves of
+ * its meshes, in order, down to one mesh; OIT_ERR_UNSUPPORTED, with the
+ * numbers, where one mesh's records alone exceed the blocks. */
 oit_status oit_compute_batch(oit_compute *k, const oit_compute_frame *f,
                              const oit_gpu_mesh *const *meshes, int n, const int r[4],
                              oit_error *err);

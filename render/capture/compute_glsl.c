@@ -4,6 +4,7 @@
 #include "render/capture/compute_glsl.h"
 
 #include "render/gl/gl_util.h"
+#include "render/gl/glsl_bindings.h"
 
 _Static_assert(OIT_COMPUTE_SWEEP == 16, "cs_consider shifts 15 slots, written out");
 
@@ -25,10 +26,56 @@ _Static_assert(OIT_COMPUTE_SWEEP == 16, "cs_consider shifts 15 slots, written ou
     "layout(location = 12) uniform ivec4 u_rect;\n"                           \
     "uint cs_tiles_x() { return uint(u_size.x + CS_TILE - 1) / uint(CS_TILE); }\n"
 
+/* The records in up to OIT_COMPUTE_BLOCKS storage blocks (CS_BLOCKS of
+ * them: oit_compute_blocks_decl comes first), u_block_recs records each,
+ * so that a batch is not limited to what one binding spans. Block i holds
+ * records [i, i + 1) * u_block_recs. GLSL 4.5 indexes an array of blocks
+ * only with a dynamically uniform index, and a tile's records may lie in
+ * any block, so the block is picked by an if-chain on the record's index;
+ * a batch within one binding takes its first branch. */
+#define CS_BLOCK(q, i, bind)                                                  \
+    "#if CS_BLOCKS > " #i "\n"                                                \
+    "layout(std430, binding = " bind ") " q " buffer Recs" #i                 \
+    " { uvec4 recs" #i "[]; };\n"                                              \
+    "#endif\n"
+#define CS_BLOCKS_DECL(q)                                                     \
+    "uniform uint u_block_recs;\n"                                            \
+    CS_BLOCK(q, 0, "OIT_BIND_FRAGS") CS_BLOCK(q, 1, "OIT_BIND_RECS1")         \
+    CS_BLOCK(q, 2, "OIT_BIND_RECS2") CS_BLOCK(q, 3, "OIT_BIND_RECS3")         \
+    CS_BLOCK(q, 4, "OIT_BIND_RECS4") CS_BLOCK(q, 5, "OIT_BIND_RECS5")         \
+    CS_BLOCK(q, 6, "OIT_BIND_RECS6") CS_BLOCK(q, 7, "OIT_BIND_RECS7")
+#define CS_GET(i)                                                             \
+    "#if CS_BLOCKS > " #i "\n"                                                \
+    "    if (r < u_block_recs) return recs" #i "[r * CS_REC + w];\n"           \
+    "    r -= u_block_recs;\n"                                                \
+    "#endif\n"
+/* Word w of record r (past every block: zeros, never asked for). */
+#define CS_RECS_READ                                                          \
+    CS_BLOCKS_DECL("readonly")                                                \
+    "uvec4 cs_rec(uint r, uint w) {\n"                                        \
+    CS_GET(0) CS_GET(1) CS_GET(2) CS_GET(3) CS_GET(4) CS_GET(5) CS_GET(6)     \
+    CS_GET(7)                                                                 \
+    "    return uvec4(0u);\n"                                                 \
+    "}\n"
+#define CS_PUT(i)                                                             \
+    "#if CS_BLOCKS > " #i "\n"                                                \
+    "    if (r < u_block_recs) { recs" #i "[r * CS_REC + w] = v; return; }\n"  \
+    "    r -= u_block_recs;\n"                                                \
+    "#endif\n"
+#define CS_RECS_WRITE                                                         \
+    CS_BLOCKS_DECL("writeonly")                                               \
+    "void cs_put(uint r, uint w, uvec4 v) {\n"                                \
+    CS_PUT(0) CS_PUT(1) CS_PUT(2) CS_PUT(3) CS_PUT(4) CS_PUT(5) CS_PUT(6)     \
+    CS_PUT(7)                                                                 \
+    "}\n"
+
+_Static_assert(OIT_COMPUTE_BLOCKS == 8, "CS_BLOCKS_DECL, CS_GET and CS_PUT name 8 blocks");
+_Static_assert(OIT_BIND_RECS7 - OIT_BIND_RECS1 == 6, "glsl_bindings.h: 7 record bindings");
+
 const char oit_compute_setup_cs[] =
     CS_COMMON
     "layout(local_size_x = 64) in;\n"
-    "layout(std430, binding = OIT_BIND_FRAGS) writeonly buffer Recs { uvec4 recs[]; };\n"
+    CS_RECS_WRITE
     "layout(std430, binding = OIT_BIND_OFFSETS) buffer TileCounts { uint tile_count[]; };\n"
     "layout(std430, binding = OIT_BIND_TOTALS) readonly buffer TileDead { uint tile_dead[]; };\n"
     "uniform uint u_window_first;\n"
@@ -112,16 +159,16 @@ const char oit_compute_setup_cs[] =
     "    if (det != 0.0lf && !cs_culled(cl)) box = cs_box(cl);\n"
     "    double sg = det > 0.0lf ? 1.0lf : -1.0lf;\n"
     "    vec3 e0 = vec3(d0 * sg), e1 = vec3(d1 * sg), e2 = vec3(d2 * sg);\n"
-    "    uint b = (u_rec_base + i) * CS_REC;\n"
-    "    recs[b + 0u] = uvec4(floatBitsToUint(e0), prim | (opaque ? 0x80000000u : 0u));\n"
-    "    recs[b + 1u] = uvec4(floatBitsToUint(e1), va[0].w);\n"
-    "    recs[b + 2u] = uvec4(floatBitsToUint(e2), va[1].w);\n"
-    "    recs[b + 3u] = uvec4(floatBitsToUint(vec3(cl[0].z, cl[1].z, cl[2].z)), va[2].w);\n"
-    "    recs[b + 4u] = uvec4(floatBitsToUint(vec3(cl[0].w, cl[1].w, cl[2].w)), 0u);\n"
+    "    uint b = u_rec_base + i;\n"
+    "    cs_put(b, 0u, uvec4(floatBitsToUint(e0), prim | (opaque ? 0x80000000u : 0u)));\n"
+    "    cs_put(b, 1u, uvec4(floatBitsToUint(e1), va[0].w));\n"
+    "    cs_put(b, 2u, uvec4(floatBitsToUint(e2), va[1].w));\n"
+    "    cs_put(b, 3u, uvec4(floatBitsToUint(vec3(cl[0].z, cl[1].z, cl[2].z)), va[2].w));\n"
+    "    cs_put(b, 4u, uvec4(floatBitsToUint(vec3(cl[0].w, cl[1].w, cl[2].w)), 0u));\n"
     "    for (int k = 0; k < 3; k++)\n"
-    "        recs[b + 5u + uint(k)] = uvec4(floatBitsToUint(vp[k]), floatBitsToUint(nrm[k]));\n"
-    "    recs[b + 8u] = floatBitsToUint(plane);\n"
-    "    recs[b + 9u] = uvec4(box);\n"
+    "        cs_put(b, 5u + uint(k), uvec4(floatBitsToUint(vp[k]), floatBitsToUint(nrm[k])));\n"
+    "    cs_put(b, 8u, floatBitsToUint(plane));\n"
+    "    cs_put(b, 9u, uvec4(box));\n"
     "    if (box.x >= box.z || box.y >= box.w) return;\n"
     "    uint tx = cs_tiles_x();\n"
     "    for (int ty = box.y / CS_TILE; ty <= (box.w - 1) / CS_TILE; ty++)\n"
@@ -142,7 +189,7 @@ const char oit_compute_setup_cs[] =
 const char oit_compute_scatter_cs[] =
     CS_COMMON
     "layout(local_size_x = 64) in;\n"
-    "layout(std430, binding = OIT_BIND_FRAGS) readonly buffer Recs { uvec4 recs[]; };\n"
+    CS_RECS_READ
     "layout(std430, binding = OIT_BIND_OFFSETS) buffer TileCounts { uint tile_count[]; };\n"
     "layout(std430, binding = OIT_BIND_TOTALS) readonly buffer TileDead { uint tile_dead[]; };\n"
     "layout(std430, binding = OIT_BIND_SUMS) writeonly buffer TileList { uint tile_list[]; };\n"
@@ -153,7 +200,7 @@ const char oit_compute_scatter_cs[] =
     "void main() {\n"
     "    uint i = gl_GlobalInvocationID.y * 65535u * 64u + gl_GlobalInvocationID.x;\n"
     "    if (i >= u_count) return;\n"
-    "    ivec4 box = ivec4(recs[i * CS_REC + 9u]);\n"
+    "    ivec4 box = ivec4(cs_rec(i, 9u));\n"
     "    if (box.x >= box.z || box.y >= box.w) return;\n"
     "    uint tx = cs_tiles_x();\n"
     "    for (int ty = box.y / CS_TILE; ty <= (box.w - 1) / CS_TILE; ty++)\n"
@@ -259,7 +306,7 @@ const char oit_compute_tiles_cs[] =
     CS_COMMON
     "#define CS_N " OIT_GLSL_STR(OIT_COMPUTE_SWEEP) "u\n"
     "layout(local_size_x = CS_TILE, local_size_y = CS_TILE) in;\n"
-    "layout(std430, binding = OIT_BIND_FRAGS) readonly buffer Recs { uvec4 recs[]; };\n"
+    CS_RECS_READ
     "layout(std430, binding = OIT_BIND_OFFSETS) readonly buffer TileEnds { uint tile_end[]; };\n"
     "layout(std430, binding = OIT_BIND_SUMS) readonly buffer TileList { uint tile_list[]; };\n"
     "layout(std430, binding = OIT_BIND_COUNTS) buffer Resume { uvec4 resume[]; };\n"
@@ -288,8 +335,7 @@ const char oit_compute_tiles_cs[] =
      * volume and survives the section planes and the opaque depths; sets
      * the fragment library's inputs for it when it does. */
     "bool cs_fragment_at(uint r, vec2 P) {\n"
-    "    uint b = r * CS_REC;\n"
-    "    uvec4 r0 = recs[b], r1 = recs[b + 1u], r2 = recs[b + 2u];\n"
+    "    uvec4 r0 = cs_rec(r, 0u), r1 = cs_rec(r, 1u), r2 = cs_rec(r, 2u);\n"
     "    vec3 E;\n"
     "    if (!cs_inside(uintBitsToFloat(r0.xyz), P, E.x)) return false;\n"
     "    if (!cs_inside(uintBitsToFloat(r1.xyz), P, E.y)) return false;\n"
@@ -297,16 +343,16 @@ const char oit_compute_tiles_cs[] =
     "    E = max(E, vec3(0.0));\n"
     "    float sum = E.x + E.y + E.z;\n"
     "    vec3 mu = sum > 0.0 ? E / sum : vec3(1.0 / 3.0);\n"
-    "    uvec4 r3 = recs[b + 3u], r4 = recs[b + 4u];\n"
+    "    uvec4 r3 = cs_rec(r, 3u), r4 = cs_rec(r, 4u);\n"
     "    float zc = dot(mu, uintBitsToFloat(r3.xyz)), wc = dot(mu, uintBitsToFloat(r4.xyz));\n"
     /* GL's clipping to -w <= z <= w (near and far planes). */
     "    if (!(wc > 0.0) || zc < -wc || zc > wc) return false;\n"
     "    cs_frag_coord.z = zc / wc * 0.5 + 0.5;\n"
-    "    uvec4 q0 = recs[b + 5u], q1 = recs[b + 6u], q2 = recs[b + 7u];\n"
+    "    uvec4 q0 = cs_rec(r, 5u), q1 = cs_rec(r, 6u), q2 = cs_rec(r, 7u);\n"
     "    v_pos = mu.x * uintBitsToFloat(q0.xyz) + mu.y * uintBitsToFloat(q1.xyz) +\n"
     "            mu.z * uintBitsToFloat(q2.xyz);\n"
     "    v_normal = uintBitsToFloat(uvec3(q0.w, q1.w, q2.w));\n"
-    "    v_plane = uintBitsToFloat(recs[b + 8u]);\n"
+    "    v_plane = uintBitsToFloat(cs_rec(r, 8u));\n"
     "    v_first_prim = r0.w | 0x80000000u;\n"
     "    v_opaque = r0.w >> 31;\n"
     "    if (oit_clipped() || oit_behind_opaque()) return false;\n"
@@ -323,15 +369,14 @@ const char oit_compute_tiles_cs[] =
      * meets). */
     "bool cs_all; ivec2 cs_px;\n"
     "bool cs_covers(uint r, vec2 P) {\n"
-    "    uint b = r * CS_REC;\n"
     "    float v;\n"
     "    if (cs_all) {\n"
-    "        ivec4 bx = ivec4(recs[b + 9u]);\n"
+    "        ivec4 bx = ivec4(cs_rec(r, 9u));\n"
     "        if (any(lessThan(cs_px, bx.xy)) || any(greaterThanEqual(cs_px, bx.zw))) return false;\n"
     "    }\n"
-    "    return cs_inside(uintBitsToFloat(recs[b].xyz), P, v) &&\n"
-    "           cs_inside(uintBitsToFloat(recs[b + 1u].xyz), P, v) &&\n"
-    "           cs_inside(uintBitsToFloat(recs[b + 2u].xyz), P, v);\n"
+    "    return cs_inside(uintBitsToFloat(cs_rec(r, 0u).xyz), P, v) &&\n"
+    "           cs_inside(uintBitsToFloat(cs_rec(r, 1u).xyz), P, v) &&\n"
+    "           cs_inside(uintBitsToFloat(cs_rec(r, 2u).xyz), P, v);\n"
     "}\n"
     "bool cs_less(uvec3 a, uvec3 b) {\n"
     "    return a.x < b.x || (a.x == b.x && (a.y < b.y || (a.y == b.y && a.z < b.z)));\n"

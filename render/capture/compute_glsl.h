@@ -6,6 +6,10 @@
 #define OIT_COMPUTE_TILE 16
 /* uvec4s a triangle record takes (compute_glsl.c has the layout). */
 #define OIT_COMPUTE_RECORD_WORDS 10
+/* Storage blocks a batch's records may span (compute_glsl.c: the block
+ * of a record by an if-chain); a program gets "#define CS_BLOCKS n\n"
+ * (n <= this, what the driver's limits allow) before its other parts. */
+#define OIT_COMPUTE_BLOCKS 8
 /* Fragments a pixel keeps in registers per sweep. */
 #define OIT_COMPUTE_SWEEP 16
 

@@ -56,6 +56,10 @@
  * OIT_BIND_OPAQUE_TILES  the opaque depth's tile maxima (opaque_tiles.c,
  *                   compute): a slot no other program uses, so that it
  *                   needs none of the caller's bindings (opaque_tiles.h).
+ * OIT_BIND_RECS1..7 the compute capture's triangle records past the first
+ *                   binding's (which is OIT_BIND_FRAGS): blocks 1..7 of a
+ *                   batch too large for one binding (compute_glsl.c,
+ *                   set-up, scatter and sweep). Consecutive numbers.
  *
  * OIT_TEX_ACCUM     F2B's accumulation (final pass) and its copy after the
  *                   last chunk (blend fragment stage); WBOIT's
@@ -101,6 +105,13 @@
     X(OIT_BIND_SUMS, 7)          \
     X(OIT_BIND_PRIMS, 8)         \
     X(OIT_BIND_OPAQUE_TILES, 9)  \
+    X(OIT_BIND_RECS1, 10)        \
+    X(OIT_BIND_RECS2, 11)        \
+    X(OIT_BIND_RECS3, 12)        \
+    X(OIT_BIND_RECS4, 13)        \
+    X(OIT_BIND_RECS5, 14)        \
+    X(OIT_BIND_RECS6, 15)        \
+    X(OIT_BIND_RECS7, 16)        \
     X(OIT_TEX_ACCUM, 0)          \
     X(OIT_TEX_REVEAL, 1)         \
     X(OIT_TEX_LAYER, 0)          \

@@ -7,14 +7,16 @@
  * loop iterations llvmpipe runs an invocation (every fragment composited,
  * in order: the count equals DFB's and the image the hand result); early termination
  * (the exact number of fragments a saturated pixel drops, and the image
- * within epsilon); a batch too large for one storage binding, captured in
- * halves. Again with tile lists one entry long (every tile takes the
+ * within epsilon); a batch too large for one storage binding, its records
+ * in several blocks, and one too large for all blocks, captured in halves
+ * of its meshes or (one mesh) refused with the numbers. Again with tile lists one entry long (every tile takes the
  * overflowed list's path: all records swept), and with the driver taken
  * for one that runs loops to their end (no read-back: a shallow frame is
  * exact, a deep one fails at its end rather than render short, and the
  * frames after it resume). Every buffer starts poisoned (OIT_GL_POISON). */
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "render/capture/capture.h"
 #include "render/capture/dfb.h"
@@ -259,9 +261,10 @@ static void test_deep(oit_capture *c, int N, int w, int h, int nb)
 }
 
 /* One batch of 300 layers in 10 meshes, front to back, with one storage
- * binding capped at 32 KiB (oit_capture_set_store_limit): the 96 000
- * bytes of records go in halves of the meshes, down to pieces that fit,
- * and the image, fragment total and depth stay DFB's. */
+ * binding capped at 8 KiB (oit_capture_set_store_limit): the 96 000
+ * bytes of records exceed what 8 blocks of 8 KiB hold, so they go in
+ * halves of the meshes (each in 6 blocks), and the image, fragment total
+ * and depth stay DFB's. */
 static void test_split(oit_capture *c)
 {
     enum { N = 300, M = 10 };
@@ -277,7 +280,7 @@ static void test_split(oit_capture *c)
                                 &m[i], &err);
     oit_image a = {0}, b = {0};
     oit_frame_stats sa, sb;
-    oit_capture_set_store_limit(c, 32 << 10);
+    oit_capture_set_store_limit(c, 8 << 10);
     if (s == OIT_OK)
         s = oit_capture_begin(c, &v, &err);
     if (s == OIT_OK)
@@ -288,7 +291,7 @@ static void test_split(oit_capture *c)
     CHECK(s == OIT_OK, "split: %s", err.message);
     if (s == OIT_OK && dfb_scene(&v, q, N, &b, &sb)) {
         double d = image_diff(&a, &b);
-        printf("split under a 32 KiB binding: vs DFB %.6f, fragments %llu/%llu, layers %u/%u\n",
+        printf("split under an 8 KiB binding: vs DFB %.6f, fragments %llu/%llu, layers %u/%u\n",
                d, (unsigned long long)sa.fragments, (unsigned long long)sb.fragments,
                sa.max_layers, sb.max_layers);
         CHECK(d <= 1.0 / 255 && sa.fragments == sb.fragments && sa.max_layers == sb.max_layers,
@@ -301,6 +304,44 @@ static void test_split(oit_capture *c)
     free(q);
     oit_image_free(&a);
     oit_image_free(&b);
+}
+
+/* One mesh whose records outgrow a binding capped at 32 KiB: its 600
+ * triangles (96 000 bytes) span 3 record blocks, shuffled so that a
+ * pixel's fragments come from all of them; every fragment composited in
+ * order (test_deep's checks). Under 4 KiB, 8 blocks hold fewer than 600
+ * records: refused, naming the numbers. */
+static void test_blocks(oit_capture *c)
+{
+    printf("-- records in blocks of 32 KiB\n");
+    oit_capture_set_store_limit(c, 32 << 10);
+    test_deep(c, 300, 24, 20, 1);
+    enum { N = 300 };
+    quad_spec *q = malloc(sizeof *q * N);
+    oit_triangle *tris = q ? scene_tris((stack_scene(q, N, 0.01f, 7), q), N) : NULL;
+    oit_view v;
+    scene_view(&v, 16, 16, OIT_SHADING_TRANSPARENT);
+    oit_error err = {0};
+    oit_gpu_mesh *m = NULL;
+    oit_status s = tris ? oit_gpu_mesh_create(tris, 2 * N, 0, &m, &err) : OIT_ERR_NOMEM;
+    oit_capture_set_store_limit(c, 4 << 10);
+    if (s == OIT_OK)
+        s = oit_capture_begin(c, &v, &err);
+    const oit_gpu_mesh *list[1] = {m};
+    if (s == OIT_OK)
+        s = oit_capture_batch(c, list, 1, NULL, &err);
+    printf("600 triangles under 4 KiB bindings: %s\n", err.message);
+    CHECK(s == OIT_ERR_UNSUPPORTED && strstr(err.message, "600 triangles take 96000 bytes"),
+          "blocks: a batch past its blocks gave %d: %s", (int)s, err.message);
+    oit_capture_set_store_limit(c, 0);
+    oit_image img = {0};
+    oit_frame_stats st;
+    if (s == OIT_OK)
+        oit_capture_end(c, &img, &st, &err);
+    oit_image_free(&img);
+    oit_gpu_mesh_destroy(m);
+    free(tris);
+    free(q);
 }
 
 /* Epsilon: a front batch of one near-opaque quad over the middle of
@@ -387,6 +428,7 @@ static void test_list_overflow(void)
     test_rect_cut(c);
     test_deep(c, 1200, 8, 8, 1);
     test_epsilon(c);
+    test_blocks(c);
     oit_capture_destroy(c);
 }
 
@@ -442,6 +484,7 @@ int main(void)
     test_deep(c, 1200, 8, 8, 1);
     test_epsilon(c);
     test_split(c);
+    test_blocks(c);
     oit_capture_destroy(c);
     test_list_overflow();
     test_no_probe();
