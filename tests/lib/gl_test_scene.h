@@ -63,6 +63,23 @@ static inline oit_triangle *scene_tris(const quad_spec *q, int n)
     return t;
 }
 
+/* Bounding box (top rows first, exclusive) of the pixels quad q covers. */
+static inline void footprint(const oit_view *v, const quad_spec *q, int rect[4])
+{
+    rect[0] = v->width, rect[1] = v->height, rect[2] = 0, rect[3] = 0;
+    for (int y = 0; y < v->height; y++)
+        for (int x = 0; x < v->width; x++) {
+            double dx = ((x + 0.5) / v->width * 2 - 1) * v->width / v->height;
+            double dy = 1 - (y + 0.5) / v->height * 2;
+            if (fabs(dx * q->z) < q->half && fabs(dy * q->z) < q->half) {
+                rect[0] = x < rect[0] ? x : rect[0];
+                rect[1] = y < rect[1] ? y : rect[1];
+                rect[2] = x + 1 > rect[2] ? x + 1 : rect[2];
+                rect[3] = y + 1 > rect[3] ? y + 1 : rect[3];
+            }
+        }
+}
+
 typedef struct hand_frag {
     double t;
     int order; /* quad index: prim order */

@@ -21,6 +21,7 @@
 #include "render/capture/capture.h"
 #include "render/capture/dfb.h"
 #include "render/image/image.h"
+#include "tests/lib/gl_test_dfb.h"
 #include "tests/lib/gl_test_scene.h"
 #include "tests/lib/test_check.h"
 #include "tests/lib/test_gl.h"
@@ -53,40 +54,6 @@ static int capture_scene(oit_capture *c, const oit_view *v, const quad_spec *q, 
     if (s != OIT_OK && expect_failure)
         printf("failed as expected: %s\n", err.message);
     return s == OIT_OK;
-}
-
-static int dfb_scene(const oit_view *v, const quad_spec *q, int n, oit_image *img,
-                     oit_frame_stats *st)
-{
-    oit_error err = {0};
-    oit_dfb *d = NULL;
-    oit_gpu_mesh *m = NULL;
-    oit_triangle *tris = scene_tris(q, n);
-    oit_status s = oit_dfb_create(&d, &err);
-    if (s == OIT_OK)
-        s = oit_gpu_mesh_create(tris, 2 * (size_t)n, 0, &m, &err);
-    const oit_gpu_mesh *list[1] = {m};
-    if (s == OIT_OK)
-        s = oit_dfb_render(d, list, 1, v, img, NULL, st, &err);
-    oit_gpu_mesh_destroy(m);
-    oit_dfb_destroy(d);
-    free(tris);
-    if (s != OIT_OK)
-        fprintf(stderr, "FAIL: DFB: %s\n", err.message);
-    return s == OIT_OK;
-}
-
-static double image_diff(const oit_image *a, const oit_image *b)
-{
-    double worst = 0.0;
-    for (size_t i = 0; i < (size_t)a->width * a->height * 4; i++)
-        worst = fmax(worst, fabs(a->rgba[i] - b->rgba[i]));
-    return worst;
-}
-
-static quad_spec mk(float z, float half, int r, int g, int b, int a, int front)
-{
-    return (quad_spec){z, half, {(uint8_t)r, (uint8_t)g, (uint8_t)b, (uint8_t)a}, front};
 }
 
 /* n quads front to back from z = -1.5, every 'big'-th covering the frame,
@@ -131,23 +98,6 @@ static void test_one_batch(oit_capture *c)
     }
     oit_image_free(&a);
     oit_image_free(&b);
-}
-
-/* Bounding box (top rows first, exclusive) of the pixels quad q covers. */
-static void footprint(const oit_view *v, const quad_spec *q, int r[4])
-{
-    r[0] = v->width, r[1] = v->height, r[2] = 0, r[3] = 0;
-    for (int y = 0; y < v->height; y++)
-        for (int x = 0; x < v->width; x++) {
-            double dx = ((x + 0.5) / v->width * 2 - 1) * v->width / v->height;
-            double dy = 1 - (y + 0.5) / v->height * 2;
-            if (fabs(dx * q->z) < q->half && fabs(dy * q->z) < q->half) {
-                r[0] = x < r[0] ? x : r[0];
-                r[1] = y < r[1] ? y : r[1];
-                r[2] = x + 1 > r[2] ? x + 1 : r[2];
-                r[3] = y + 1 > r[3] ? y + 1 : r[3];
-            }
-        }
 }
 
 /* The scene in batches front to back, each over its quads' footprint: the

@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "tests/lib/gl_test_dfb.h"
 #include "tests/lib/gl_test_scene.h"
 #include "render/capture/dfb.h"
 #include "render/gl/gl_context.h"
@@ -83,11 +84,6 @@ static uint64_t check_scene(oit_dfb *d, const char *name, const quad_spec *q, in
     uint64_t bytes = f.st.gpu_bytes_peak;
     frame_free(&f);
     return bytes;
-}
-
-static quad_spec mk(float z, float half, int r, int g, int b, int a, int front)
-{
-    return (quad_spec){z, half, {(uint8_t)r, (uint8_t)g, (uint8_t)b, (uint8_t)a}, front};
 }
 
 static uint64_t test_shuffled(oit_dfb *d)
