@@ -7,6 +7,7 @@
 #include <math.h>
 #include <stdio.h>
 
+#include "render/capture/capture.h"
 #include "render/capture/dfb.h"
 #include "render/image/image.h"
 #include "tests/lib/gl_test_scene.h"
@@ -32,6 +33,30 @@ static inline int dfb_scene(const oit_view *v, const quad_spec *q, int n, oit_im
     if (s != OIT_OK)
         fprintf(stderr, "FAIL: DFB: %s\n", err.message);
     return s == OIT_OK;
+}
+
+/* Captures q in batches [start[i], start[i+1]), batch i within rects[i]
+ * (rects or rects[i] NULL: the frame), one mesh a batch, into img and st. */
+static inline oit_status capture_quads(oit_capture *c, const oit_view *v, const quad_spec *q,
+                                       const int *start, int nb, const int (*rects)[4],
+                                       oit_image *img, oit_frame_stats *st, oit_error *err)
+{
+    oit_triangle *tris = scene_tris(q, start[nb]);
+    oit_status s = tris ? oit_capture_begin(c, v, err) : OIT_ERR_NOMEM;
+    for (int b = 0; s == OIT_OK && b < nb; b++) {
+        oit_gpu_mesh *m = NULL;
+        int n = start[b + 1] - start[b];
+        s = oit_gpu_mesh_create(tris + 2 * start[b], 2 * (size_t)n, 2u * (uint32_t)start[b], &m,
+                                err);
+        const oit_gpu_mesh *list[1] = {m};
+        if (s == OIT_OK)
+            s = oit_capture_batch(c, list, 1, rects ? rects[b] : NULL, err);
+        oit_gpu_mesh_destroy(m);
+    }
+    if (s == OIT_OK)
+        s = oit_capture_end(c, img, st, err);
+    free(tris);
+    return s;
 }
 
 /* The largest absolute difference of any channel of two images of one size. */

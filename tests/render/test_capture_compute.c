@@ -34,21 +34,7 @@ static int capture_scene(oit_capture *c, const oit_view *v, const quad_spec *q, 
                          int nb, const int (*rects)[4], oit_image *img, oit_frame_stats *st)
 {
     oit_error err = {0};
-    oit_triangle *tris = scene_tris(q, start[nb]);
-    oit_status s = tris ? oit_capture_begin(c, v, &err) : OIT_ERR_NOMEM;
-    for (int b = 0; s == OIT_OK && b < nb; b++) {
-        oit_gpu_mesh *m = NULL;
-        int n = start[b + 1] - start[b];
-        s = oit_gpu_mesh_create(tris + 2 * start[b], 2 * (size_t)n, 2u * (uint32_t)start[b], &m,
-                                &err);
-        const oit_gpu_mesh *list[1] = {m};
-        if (s == OIT_OK)
-            s = oit_capture_batch(c, list, 1, rects ? rects[b] : NULL, &err);
-        oit_gpu_mesh_destroy(m);
-    }
-    if (s == OIT_OK)
-        s = oit_capture_end(c, img, st, &err);
-    free(tris);
+    oit_status s = capture_quads(c, v, q, start, nb, rects, img, st, &err);
     if (s != OIT_OK && !expect_failure)
         fprintf(stderr, "FAIL: compute capture: %s\n", err.message);
     if (s != OIT_OK && expect_failure)
