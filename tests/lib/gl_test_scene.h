@@ -80,6 +80,21 @@ static inline void footprint(const oit_view *v, const quad_spec *q, int rect[4])
         }
 }
 
+/* The union of the footprints of quads q[first..last): a batch's tight rect. */
+static inline void batch_rect(const oit_view *v, const quad_spec *q, int first, int last,
+                              int r[4])
+{
+    r[0] = v->width, r[1] = v->height, r[2] = 0, r[3] = 0;
+    for (int i = first; i < last; i++) {
+        int f[4];
+        footprint(v, &q[i], f);
+        r[0] = f[0] < r[0] ? f[0] : r[0];
+        r[1] = f[1] < r[1] ? f[1] : r[1];
+        r[2] = f[2] > r[2] ? f[2] : r[2];
+        r[3] = f[3] > r[3] ? f[3] : r[3];
+    }
+}
+
 typedef struct hand_frag {
     double t;
     int order; /* quad index: prim order */

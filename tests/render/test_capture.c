@@ -76,19 +76,8 @@ static void test_batches(oit_capture *c, const char *name, oit_shading_mode mode
     oit_view v;
     scene_view(&v, 48, 40, mode);
     int (*rects)[4] = calloc((size_t)nb, sizeof *rects);
-    for (int b = 0; b < nb; b++) {
-        /* Tight rects: union of the batch's footprints. */
-        int r[4] = {v.width, v.height, 0, 0};
-        for (int i = start[b]; i < start[b + 1]; i++) {
-            int f[4];
-            footprint(&v, &q[i], f);
-            r[0] = f[0] < r[0] ? f[0] : r[0];
-            r[1] = f[1] < r[1] ? f[1] : r[1];
-            r[2] = f[2] > r[2] ? f[2] : r[2];
-            r[3] = f[3] > r[3] ? f[3] : r[3];
-        }
-        memcpy(rects[b], r, sizeof r);
-    }
+    for (int b = 0; b < nb; b++) /* tight rects */
+        batch_rect(&v, q, start[b], start[b + 1], rects[b]);
     oit_image one = {0}, many = {0};
     oit_frame_stats s1, sn;
     int all[2] = {0, n};

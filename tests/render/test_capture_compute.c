@@ -96,16 +96,7 @@ static void test_batches(oit_capture *c, oit_shading_mode mode, const quad_spec 
     scene_view(&v, 48, 40, mode);
     int rects[8][4];
     for (int b = 0; b < nb; b++) {
-        int *r = rects[b];
-        r[0] = v.width, r[1] = v.height, r[2] = 0, r[3] = 0;
-        for (int i = start[b]; i < start[b + 1]; i++) {
-            int f[4];
-            footprint(&v, &q[i], f);
-            r[0] = f[0] < r[0] ? f[0] : r[0];
-            r[1] = f[1] < r[1] ? f[1] : r[1];
-            r[2] = f[2] > r[2] ? f[2] : r[2];
-            r[3] = f[3] > r[3] ? f[3] : r[3];
-        }
+        batch_rect(&v, q, start[b], start[b + 1], rects[b]);
     }
     oit_image img = {0};
     oit_frame_stats st;
