@@ -353,7 +353,8 @@ oit_status oit_compute_batch(oit_compute *k, const oit_compute_frame *f,
     if (tris == 0)
         return OIT_OK;
     uint64_t rec_bytes = tris * OIT_COMPUTE_RECORD_WORDS * 16;
-    if (n > 1 && f->budget && tris * OIT_COMPUTE_CAPTURE_TRIANGLE_BYTES > f->budget)
+    if (n > 1 && ((f->budget && tris * OIT_COMPUTE_CAPTURE_TRIANGLE_BYTES > f->budget) ||
+                  (k->cuts && tris > OIT_COMPUTE_CUT_BATCH)))
         return halves(k, f, meshes, n, r, err);
     uint64_t per = oit_compute_block_records(k->align, f->bind);
     if (tris > per * (uint64_t)k->blocks || tris > UINT32_MAX)

@@ -80,6 +80,14 @@
 #include "render/gl/gpu_mesh.h"
 #include "render/gl/scan_glsl.h"
 
+/* Where the driver cuts long shader loops (llvmpipe), a batch of several
+ * meshes is captured in halves of them down to this many triangles, so that
+ * one sweep of a tile's list finishes within the cut: a 300K-triangle pack
+ * of the 1M plant at 48x48 did not (some of its tiles' lists held nearly
+ * every triangle), and such a tile is refused, not rendered short. Exact:
+ * a batch's meshes are in visibility order. One mesh alone is not split. */
+#define OIT_COMPUTE_CUT_BATCH 65536
+
 enum { OIT_COMPUTE_SETUP, OIT_COMPUTE_SCATTER, OIT_COMPUTE_LIVE, OIT_COMPUTE_TILES,
        OIT_COMPUTE_WORK, OIT_COMPUTE_ARGS, OIT_COMPUTE_PROBE, OIT_COMPUTE_PROGS };
 

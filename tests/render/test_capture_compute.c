@@ -275,6 +275,54 @@ static void test_blocks(oit_capture *c)
  * the frame (T = 5/255 < E behind it), then 8 quads covering everything.
  * The second batch must drop exactly its fragments on the saturated
  * pixels, keep all others, and stay within E of the exact image. */
+/* Where the driver cuts long shader loops (llvmpipe), one sweep of a tile
+ * whose list holds ~300K triangles cannot finish: a batch of several meshes
+ * that large must be captured in halves (OIT_COMPUTE_CUT_BATCH), not
+ * refused. 8 meshes of 40,000 quads, all in the frame's one tile: 8 large,
+ * the rest tiny (covering no pixel centre), against DFB. */
+static void test_cut_batch(oit_capture *c)
+{
+    enum { N = 160000, M = 8 };
+    quad_spec *q = malloc(sizeof *q * N);
+    if (q) {
+        stack_scene(q, 8, 0.3f, 0);
+        for (int i = 8; i < N; i++)
+            q[i] = mk(-1.0f - (float)i / N, 1e-4f, i % 256, 80, 160, 100, i % 2);
+    }
+    oit_triangle *tris = q ? scene_tris(q, N) : NULL;
+    oit_view v;
+    scene_view(&v, 16, 16, OIT_SHADING_TRANSPARENT);
+    oit_error err = {0};
+    oit_gpu_mesh *m[M] = {0};
+    oit_status s = tris ? OIT_OK : OIT_ERR_NOMEM;
+    for (int i = 0; s == OIT_OK && i < M; i++)
+        s = oit_gpu_mesh_create(tris + 2 * (N / M) * i, 2 * (N / M), 2u * (uint32_t)((N / M) * i),
+                                &m[i], &err);
+    oit_image a = {0}, b = {0};
+    oit_frame_stats sa, sb;
+    if (s == OIT_OK)
+        s = oit_capture_begin(c, &v, &err);
+    if (s == OIT_OK)
+        s = oit_capture_batch(c, (const oit_gpu_mesh *const *)m, M, NULL, &err);
+    if (s == OIT_OK)
+        s = oit_capture_end(c, &a, &sa, &err);
+    CHECK(s == OIT_OK, "a batch of %d triangles in one tile: %s", 2 * N, err.message);
+    if (s == OIT_OK && dfb_scene(&v, q, N, &b, &sb)) {
+        double d = image_diff(&a, &b);
+        printf("%d triangles in one tile, %d meshes: vs DFB %.6f, fragments %llu/%llu\n", 2 * N,
+               M, d, (unsigned long long)sa.fragments, (unsigned long long)sb.fragments);
+        CHECK(d <= 1.0 / 255 && sa.fragments == sb.fragments,
+              "cut batch: %.6f from DFB, %llu fragments (DFB %llu)", d,
+              (unsigned long long)sa.fragments, (unsigned long long)sb.fragments);
+    }
+    for (int i = 0; i < M; i++)
+        oit_gpu_mesh_destroy(m[i]);
+    free(tris);
+    free(q);
+    oit_image_free(&a);
+    oit_image_free(&b);
+}
+
 static void test_epsilon(oit_capture *c)
 {
     quad_spec q[9];
@@ -356,6 +404,7 @@ static void test_list_overflow(void)
     test_deep(c, 1200, 8, 8, 1);
     test_epsilon(c);
     test_blocks(c);
+    test_cut_batch(c);
     oit_capture_destroy(c);
 }
 
@@ -412,6 +461,7 @@ int main(void)
     test_epsilon(c);
     test_split(c);
     test_blocks(c);
+    test_cut_batch(c);
     oit_capture_destroy(c);
     test_list_overflow();
     test_no_probe();
