@@ -187,6 +187,45 @@ static void test_deep(oit_capture *c, int N, int w, int h, int nb)
     oit_image_free(&b);
 }
 
+/* quads q[0..N) as M meshes of N/M quads captured in ONE batch (16x16,
+ * transparent), against DFB: image, fragments and layers. */
+static void meshes_vs_dfb(oit_capture *c, const quad_spec *q, int N, int M, const char *what)
+{
+    oit_triangle *tris = q ? scene_tris(q, N) : NULL;
+    oit_view v;
+    scene_view(&v, 16, 16, OIT_SHADING_TRANSPARENT);
+    oit_error err = {0};
+    oit_gpu_mesh **m = calloc((size_t)M, sizeof *m);
+    oit_status s = tris && m ? OIT_OK : OIT_ERR_NOMEM;
+    for (int i = 0; s == OIT_OK && i < M; i++)
+        s = oit_gpu_mesh_create(tris + 2 * (N / M) * i, 2 * (N / M), 2u * (uint32_t)((N / M) * i),
+                                &m[i], &err);
+    oit_image a = {0}, b = {0};
+    oit_frame_stats sa, sb;
+    if (s == OIT_OK)
+        s = oit_capture_begin(c, &v, &err);
+    if (s == OIT_OK)
+        s = oit_capture_batch(c, (const oit_gpu_mesh *const *)m, M, NULL, &err);
+    if (s == OIT_OK)
+        s = oit_capture_end(c, &a, &sa, &err);
+    CHECK(s == OIT_OK, "%s: %s", what, err.message);
+    if (s == OIT_OK && dfb_scene(&v, q, N, &b, &sb)) {
+        double d = image_diff(&a, &b);
+        printf("%s: vs DFB %.6f, fragments %llu/%llu, layers %u/%u\n", what, d,
+               (unsigned long long)sa.fragments, (unsigned long long)sb.fragments,
+               sa.max_layers, sb.max_layers);
+        CHECK(d <= 1.0 / 255 && sa.fragments == sb.fragments && sa.max_layers == sb.max_layers,
+              "%s: %.6f from DFB, %llu fragments (DFB %llu)", what, d,
+              (unsigned long long)sa.fragments, (unsigned long long)sb.fragments);
+    }
+    for (int i = 0; m && i < M; i++)
+        oit_gpu_mesh_destroy(m[i]);
+    free(m);
+    free(tris);
+    oit_image_free(&a);
+    oit_image_free(&b);
+}
+
 /* One batch of 300 layers in 10 meshes, front to back, with one storage
  * binding capped at 8 KiB (oit_capture_set_store_limit): the 96 000
  * bytes of records exceed what 8 blocks of 8 KiB hold, so they go in
@@ -196,41 +235,12 @@ static void test_split(oit_capture *c)
 {
     enum { N = 300, M = 10 };
     quad_spec *q = malloc(sizeof *q * N);
-    oit_triangle *tris = q ? scene_tris((stack_scene(q, N, 0.01f, 7), q), N) : NULL;
-    oit_view v;
-    scene_view(&v, 16, 16, OIT_SHADING_TRANSPARENT);
-    oit_error err = {0};
-    oit_gpu_mesh *m[M] = {0};
-    oit_status s = tris ? OIT_OK : OIT_ERR_NOMEM;
-    for (int i = 0; s == OIT_OK && i < M; i++)
-        s = oit_gpu_mesh_create(tris + 2 * (N / M) * i, 2 * (N / M), 2u * (uint32_t)((N / M) * i),
-                                &m[i], &err);
-    oit_image a = {0}, b = {0};
-    oit_frame_stats sa, sb;
+    if (q)
+        stack_scene(q, N, 0.01f, 7);
     oit_capture_set_store_limit(c, 8 << 10);
-    if (s == OIT_OK)
-        s = oit_capture_begin(c, &v, &err);
-    if (s == OIT_OK)
-        s = oit_capture_batch(c, (const oit_gpu_mesh *const *)m, M, NULL, &err);
-    if (s == OIT_OK)
-        s = oit_capture_end(c, &a, &sa, &err);
+    meshes_vs_dfb(c, q, N, M, "split under an 8 KiB binding");
     oit_capture_set_store_limit(c, 0);
-    CHECK(s == OIT_OK, "split: %s", err.message);
-    if (s == OIT_OK && dfb_scene(&v, q, N, &b, &sb)) {
-        double d = image_diff(&a, &b);
-        printf("split under an 8 KiB binding: vs DFB %.6f, fragments %llu/%llu, layers %u/%u\n",
-               d, (unsigned long long)sa.fragments, (unsigned long long)sb.fragments,
-               sa.max_layers, sb.max_layers);
-        CHECK(d <= 1.0 / 255 && sa.fragments == sb.fragments && sa.max_layers == sb.max_layers,
-              "split: %.6f from DFB, %llu fragments (DFB %llu)", d,
-              (unsigned long long)sa.fragments, (unsigned long long)sb.fragments);
-    }
-    for (int i = 0; i < M; i++)
-        oit_gpu_mesh_destroy(m[i]);
-    free(tris);
     free(q);
-    oit_image_free(&a);
-    oit_image_free(&b);
 }
 
 /* One mesh whose records outgrow a binding capped at 32 KiB: its 600
@@ -289,38 +299,8 @@ static void test_cut_batch(oit_capture *c)
         for (int i = 8; i < N; i++)
             q[i] = mk(-1.0f - (float)i / N, 1e-4f, i % 256, 80, 160, 100, i % 2);
     }
-    oit_triangle *tris = q ? scene_tris(q, N) : NULL;
-    oit_view v;
-    scene_view(&v, 16, 16, OIT_SHADING_TRANSPARENT);
-    oit_error err = {0};
-    oit_gpu_mesh *m[M] = {0};
-    oit_status s = tris ? OIT_OK : OIT_ERR_NOMEM;
-    for (int i = 0; s == OIT_OK && i < M; i++)
-        s = oit_gpu_mesh_create(tris + 2 * (N / M) * i, 2 * (N / M), 2u * (uint32_t)((N / M) * i),
-                                &m[i], &err);
-    oit_image a = {0}, b = {0};
-    oit_frame_stats sa, sb;
-    if (s == OIT_OK)
-        s = oit_capture_begin(c, &v, &err);
-    if (s == OIT_OK)
-        s = oit_capture_batch(c, (const oit_gpu_mesh *const *)m, M, NULL, &err);
-    if (s == OIT_OK)
-        s = oit_capture_end(c, &a, &sa, &err);
-    CHECK(s == OIT_OK, "a batch of %d triangles in one tile: %s", 2 * N, err.message);
-    if (s == OIT_OK && dfb_scene(&v, q, N, &b, &sb)) {
-        double d = image_diff(&a, &b);
-        printf("%d triangles in one tile, %d meshes: vs DFB %.6f, fragments %llu/%llu\n", 2 * N,
-               M, d, (unsigned long long)sa.fragments, (unsigned long long)sb.fragments);
-        CHECK(d <= 1.0 / 255 && sa.fragments == sb.fragments,
-              "cut batch: %.6f from DFB, %llu fragments (DFB %llu)", d,
-              (unsigned long long)sa.fragments, (unsigned long long)sb.fragments);
-    }
-    for (int i = 0; i < M; i++)
-        oit_gpu_mesh_destroy(m[i]);
-    free(tris);
+    meshes_vs_dfb(c, q, N, M, "320000 triangles in one tile, 8 meshes");
     free(q);
-    oit_image_free(&a);
-    oit_image_free(&b);
 }
 
 static void test_epsilon(oit_capture *c)
