@@ -39,11 +39,11 @@ mkdir -p "$(dirname "$out")"
     echo "upload ring 64M, residency cache 256M, slot budget 32M). uploaded: bytes"
     echo "per frame after view 0 (the cache holds what earlier views uploaded)."
     echo "diff: share of pixels where stream and DFB differ by more than 1/255,"
-    echo "worst view. GPU MB: at peak as each method reports it; stream's counts its"
-    echo "ring, cache and capture, DFB's only its fragment buffers, so the last column"
-    echo "adds what DFB also holds on the GPU: the whole model (48 bytes a triangle)."
+    echo "worst view. GPU MB: at peak as each method reports it, all it holds: the"
+    echo "stream's ring, cache, capture and per-pixel state, DFB's fragment buffers and"
+    echo "the whole model, whose part is 'of it model MB' (gpu_mesh_bytes)."
     echo
-    echo "| model | triangles (file) | parts | stream ms | DFB ms | packs | uploaded MB | cache hits | stream GPU MB | DFB GPU MB | DFB + model MB | diff |"
+    echo "| model | triangles (file) | parts | stream ms | DFB ms | packs | uploaded MB | cache hits | stream GPU MB | DFB GPU MB | of it model MB | diff |"
     echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
 } >"$out"
 
@@ -76,7 +76,7 @@ for m in $models; do
         "$(after_first bytes_uploaded "$work/stream.json" | median | awk '{ printf "%.1f", $1 / 1e6 }')" \
         "$(after_first cache_hits "$work/stream.json" | median)" \
         "$(after_first gpu_bytes_peak "$work/stream.json" | most | awk '{ print $1 / 1048576 }')" \
-        "$dfb_gpu" "$(awk -v g="$dfb_gpu" -v t="$tris" 'BEGIN { print g + t * 48 / 1048576 }')" \
+        "$dfb_gpu" "$(after_first gpu_mesh_bytes "$work/dfb.json" | most | awk '{ print $1 / 1048576 }')" \
         "$worst" >>"$out"
 done
 echo "wrote $out" >&2

@@ -15,7 +15,8 @@
 #
 # Columns: the scheme, triangles in/out, parts (oitprep --stats), conversion s and
 # input triangles/s, peak host RSS of the conversion and of the stream
-# (/usr/bin/time -v), GPU bytes at peak (stream; DFB), overflow pixels (sum
+# (/usr/bin/time -v), GPU bytes at peak (stream; DFB with its mesh, and the
+# mesh's part), overflow pixels (sum
 # over all frames), second-pass pixels and packs (stats keys
 # second_pass_pixels / second_pass_packs, worst frame; '-' when this build's
 # oitstream does not write them), ms of each method, stream/DFB and
@@ -171,7 +172,7 @@ fi
 mkdir -p "$(dirname "$out")"
 commit=$(git -C "$here" rev-parse --short HEAD 2>/dev/null || echo '?')
 git -C "$here" diff --quiet HEAD -- 2>/dev/null || commit="$commit (+ uncommitted changes)"
-t1="| model | scheme | views | tris in | tris out | out/in | parts | conv s | in tris/s | conv RSS MB | stream RSS MB | stream GPU MB | DFB capture GPU MB | DFB + mesh GPU MB | overflow | 2nd-pass px | 2nd-pass packs |"
+t1="| model | scheme | views | tris in | tris out | out/in | parts | conv s | in tris/s | conv RSS MB | stream RSS MB | stream GPU MB | DFB GPU MB | of it DFB's mesh MB | overflow | 2nd-pass px | 2nd-pass packs |"
 s1="|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 t2="| model | stream ms | DFB mesh ms | unsorted ms | stream / DFB | stream / unsorted | stream off % (max) | compute ms | compute / DFB | compute off % (max) | stream --capture compute ms | its / DFB | its off % (max) |"
 s2="|---|---|---|---|---|---|---|---|---|---|---|---|---|"
@@ -248,7 +249,7 @@ for model in $models; do
     echo "| $name | ${scheme:-?} | $nv | $tin | $tout | $(ratio "$tout" "$tin") | $(num parts "$work/prep.json") |" \
         "$conv | $(awk -v n="$tin" -v s="$conv" 'BEGIN { printf "%.0f", (s > 0 ? n / s : 0) }') |" \
         "$(rss_mb "$work/prep.time") | $(rss_mb "$work/s.time") |" \
-        "$(mb "$(key_max gpu_bytes_peak "$work/s.json")") | $(mb "$dcap") | $(mb "$((dcap + 48 * tin))") |" \
+        "$(mb "$(key_max gpu_bytes_peak "$work/s.json")") | $(mb "$dcap") | $(mb "$(key_max gpu_mesh_bytes "$work/d.json")") |" \
         "$(key_sum overflow_pixels "$work/s.json") | $(key_max second_pass_pixels "$work/s.json") |" \
         "$(key_max second_pass_packs "$work/s.json") |" >>"$work/rows1"
     row="| $name | $sms | $dms | $ums | $(ratio "$sms" "$dms") | $(ratio "$sms" "$ums") | $off |"
@@ -335,8 +336,8 @@ done
     echo "absolute difference in 1/255. overflow = sum over all frames; 2nd-pass px / packs = worst frame"
     echo "(stats keys second_pass_pixels / second_pass_packs, '-' where this oitstream does not write them);"
     echo "RSS = peak host resident set (/usr/bin/time -v); GPU MB = gpu_bytes_peak, worst frame (1 MB = 10^6 bytes):"
-    echo "the stream's counts its ring, cache and capture; DFB's counts its fragment buffers only, so \"DFB + mesh\""
-    echo "adds the source mesh's vertex buffer, triangles x 48 bytes (sizeof(oit_triangle), render/gl/gpu_mesh.c)."
+    echo "the stream's counts its ring, cache, capture and per-pixel state; DFB's its fragment buffers and the source"
+    echo "mesh it holds, whose part is gpu_mesh_bytes ('-' from an oitstream before that key, whose DFB figure left it out)."
     echo
     echo "## Conversion and stream"
     echo

@@ -949,7 +949,7 @@ static oit_status render_state(oit_renderer *r, const oit_scene *scene, const oi
     ss->packs = fs->batches;
     ss->draw_calls = 1 + (uint64_t)fs->batches; /* the count pass; a store a band */
     ss->bytes_uploaded = r->pending_upload;
-    ss->gpu_bytes_peak = fs->gpu_bytes_peak + (uint64_t)scene->mesh.count * sizeof(oit_triangle);
+    ss->gpu_bytes_peak = fs->gpu_bytes_peak + oit_gpu_mesh_bytes(r->gpu_mesh);
     r->pending_upload = 0;
     return st;
 }
@@ -1177,7 +1177,7 @@ static oit_status render_image(oit_renderer *r, const oit_scene *scene, const oi
     ss->packs = fs->batches;
     ss->draw_calls = 1 + (uint64_t)fs->batches;
     ss->bytes_uploaded = r->pending_upload;
-    ss->gpu_bytes_peak = fs->gpu_bytes_peak + (uint64_t)scene->mesh.count * sizeof(oit_triangle);
+    ss->gpu_bytes_peak = fs->gpu_bytes_peak + oit_gpu_mesh_bytes(r->gpu_mesh);
     r->pending_upload = 0;
     return st;
 }

@@ -158,6 +158,12 @@ oit_status oit_method_render(oit_method_state *st, const oit_view *view, oit_ima
     uint64_t frame = oit_gpu_timer_end_frame(st->timer);
     if (s == OIT_OK && stats && !st->method->gpu_poll)
         stats->gpu_frame = frame;
+    /* The mesh went up once at open and stays for every frame: it is part
+     * of each frame's peak, counted here for every in-core method alike. */
+    if (s == OIT_OK && stats) {
+        stats->gpu_mesh_bytes = oit_gpu_mesh_bytes(st->gpu);
+        stats->gpu_bytes_peak += stats->gpu_mesh_bytes;
+    }
     return s;
 }
 

@@ -124,7 +124,9 @@ oit_status oit_method_open(const oit_method *m, const oit_mesh *mesh,
  * NULL, and are used only where the method's flags say it fills them. A
  * frame whose per-pixel state does not fit one storage binding (pixel_bytes)
  * is rendered in bands of rows, each band copied into out; stats add up
- * over them (oit_frame_stats_add), ms is the whole frame's. */
+ * over them (oit_frame_stats_add), ms is the whole frame's. gpu_bytes_peak
+ * is the method's own peak plus the mesh uploaded at open (gpu_mesh_bytes),
+ * so that every method's figure counts all it holds on the GPU. */
 oit_status oit_method_render(oit_method_state *st, const oit_view *view, oit_image *out,
                              uint32_t *counts, uint8_t *ambiguous, oit_frame_stats *stats,
                              oit_error *err);

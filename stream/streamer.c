@@ -1058,7 +1058,10 @@ static void finish_stats(const oit_streamer *s, const oit_packing *pk, oit_frame
     ss->reader_threads = s->threads;
     ss->draw_calls = oit_capture_draw_calls(s->capture);
     ss->cache_bytes = s->cache ? oit_residency_bytes(s->cache) : s->loaded_bytes;
-    ss->gpu_bytes_peak = fs->gpu_bytes_peak + oit_upload_gpu_bytes(s->upload) +
+    uint64_t views = 0; /* their draw records: the triangles are the ring's or cache's */
+    for (uint32_t i = 0; i < s->view_count; i++)
+        views += oit_gpu_mesh_bytes(s->views[i]);
+    ss->gpu_bytes_peak = fs->gpu_bytes_peak + views + oit_upload_gpu_bytes(s->upload) +
                          (s->cache ? oit_residency_capacity(s->cache) : 0) + s->cache_dropped +
                          (s->saturation ? oit_saturation_gpu_bytes(s->saturation) : 0) +
                          oit_opaque_tiles_gpu_bytes(s->opaque_tiles);

@@ -180,9 +180,10 @@ typedef struct oit_stream_frame_stats {
                                 read-ahead of parts then skipped included  */
     uint64_t cache_hits;     /* parts drawn from the residency cache        */
     uint64_t cache_bytes;    /* bytes resident in the cache after the frame */
-    uint64_t gpu_bytes_peak; /* capture buffers (multi-draw commands too) +
-                                upload ring + cache + saturation and opaque
-                                tiles                                        */
+    uint64_t gpu_bytes_peak; /* capture buffers and textures (per-pixel
+                                state, multi-draw commands too) + upload
+                                ring + cache + saturation and opaque tiles +
+                                the parts' draw records                     */
     uint64_t draw_calls;     /* GL draw commands for geometry (a multi-draw
                                 is 1): oit_capture_draw_calls                */
     /* CPU milliseconds of the per-view work that does not wait for GL: the

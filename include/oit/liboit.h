@@ -482,7 +482,10 @@ typedef struct oit_draw_stats {
                                 wholly behind it over their screen rectangle
                                 (neither uploaded nor drawn; same image)      */
     uint64_t bytes_uploaded; /* part bytes written for the GPU in this call    */
-    uint64_t gpu_bytes_peak; /* capture, upload ring, cache and tiles together  */
+    uint64_t gpu_bytes_peak; /* all the GPU memory the call held at its peak:
+                                a part file's capture and per-pixel state,
+                                upload ring, cache and tiles together; an
+                                in-core scene's DFB buffers and its mesh   */
     uint64_t cache_hits;     /* parts drawn from the cache, not uploaded again */
     uint64_t cache_bytes;    /* bytes resident in the cache after the call     */
     uint64_t draw_calls;     /* GL geometry draws; a pack's parts go in one

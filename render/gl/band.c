@@ -72,6 +72,8 @@ void oit_frame_stats_add(oit_frame_stats *acc, const oit_frame_stats *band)
     acc->overflow_pixels += band->overflow_pixels;
     acc->gpu_bytes_peak =
         band->gpu_bytes_peak > acc->gpu_bytes_peak ? band->gpu_bytes_peak : acc->gpu_bytes_peak;
+    acc->gpu_mesh_bytes =
+        band->gpu_mesh_bytes > acc->gpu_mesh_bytes ? band->gpu_mesh_bytes : acc->gpu_mesh_bytes;
     acc->batches += band->batches;
     acc->second_pass_pixels += band->second_pass_pixels;
     acc->second_pass_packs += band->second_pass_packs;

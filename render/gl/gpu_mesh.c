@@ -198,7 +198,12 @@ size_t oit_gpu_mesh_triangles(const oit_gpu_mesh *m)
 
 uint64_t oit_gpu_mesh_bytes(const oit_gpu_mesh *m)
 {
-    return (uint64_t)m->count * sizeof(oit_triangle);
+    if (!m)
+        return 0;
+    uint64_t tris = (uint64_t)m->count * sizeof(oit_triangle);
+    uint64_t buffer = m->owns_buffer ? (tris ? tris : 16) : 0;
+    size_t recs = m->owns_buffer ? windows_of(m->count, m->window) : 1;
+    return buffer + (uint64_t)recs * sizeof(oit_draw_rec);
 }
 
 uint32_t oit_gpu_mesh_first_prim(const oit_gpu_mesh *m)

@@ -41,6 +41,11 @@ int oit_gpu_mesh_sourced(const oit_gpu_mesh *m, uint64_t *prims_offset);
 void oit_gpu_mesh_set_buffer(oit_gpu_mesh *m, unsigned buffer);
 void oit_gpu_mesh_destroy(oit_gpu_mesh *m);
 size_t oit_gpu_mesh_triangles(const oit_gpu_mesh *m);
+/* The GPU bytes m holds, as every method's memory figure counts a mesh
+ * (oit_frame_stats.gpu_mesh_bytes): its triangle buffer when it owns one
+ * (48 bytes a triangle, 16 for an empty mesh) and its draw-record buffer
+ * (one oit_draw_rec a draw window; a view's one). A view's triangles are in
+ * its owner's buffer (a ring, a cache), which its owner counts. */
 uint64_t oit_gpu_mesh_bytes(const oit_gpu_mesh *m);
 uint32_t oit_gpu_mesh_first_prim(const oit_gpu_mesh *m);
 /* The GL buffer the triangles live in, and the byte offset of the first. */

@@ -116,7 +116,17 @@ typedef struct oit_frame_stats {
     uint64_t fragments;       /* fragments generated (all layers)              */
     uint32_t max_layers;      /* most fragments on one pixel                   */
     uint64_t overflow_pixels; /* pixels that got more than K in one batch      */
-    uint64_t gpu_bytes_peak;  /* GPU buffers/textures allocated by the method  */
+    /* Every GPU buffer and texture the method held at its peak in the frame:
+     * its own working memory, and (oit_method_render adds it) the mesh an
+     * in-core method holds for as long as it is open, gpu_mesh_bytes. The
+     * stream's is its whole footprint: upload ring, residency cache,
+     * capture buffers and textures, per-pixel state, tiles (streamer.h). A
+     * method's render operation called directly fills its own part only. */
+    uint64_t gpu_bytes_peak;
+    /* Of gpu_bytes_peak, the uploaded mesh's (oit_gpu_mesh_bytes: its
+     * triangle and draw-record buffers); 0 for the stream (its parts are in
+     * its ring and cache) and for methods without GL. */
+    uint64_t gpu_mesh_bytes;
     uint32_t batches;         /* capture batches (packs) drawn                 */
     /* The first-K capture (render/capture/capture_firstk.h): pixels that got more
      * fragments in one pack than its slots hold, summed over the packs, and

@@ -284,12 +284,17 @@ static void fake_result(oit_bench_result *r, oit_bench_method m[2], oit_bench_ce
     m[0].runnable = 1;
     m[0].cells = cells;
     for (int v = 0; v < 2; v++) {
-        cells[v] = (oit_bench_cell){1, 2.0 + v, 3.0 + v, 1000000u * (v + 1), 7 + 5 * v, 10,
-                                    {v ? 0.002 : 0.0, 0.5, 0.1, v ? 40.0 : INFINITY, 3}, -1.0};
+        cells[v] = (oit_bench_cell){.ok = 1, .ms_median = 2.0 + v, .ms_p95 = 3.0 + v,
+                                    .gpu_bytes_peak = 1000000u * (v + 1),
+                                    .gpu_mesh_bytes = 600000u, .max_layers = 7 + 5 * v,
+                                    .fragments = 10,
+                                    .diff = {v ? 0.002 : 0.0, 0.5, 0.1, v ? 40.0 : INFINITY, 3},
+                                    .gpu_ms_median = -1.0};
     }
     m[0].ms_median = 2.0;
     m[0].ms_p95 = 4.0;
     m[0].gpu_bytes_peak = 2000000;
+    m[0].gpu_mesh_bytes = 600000;
     m[0].max_layers = 12;
     m[0].rmse_mean = 0.001;
     m[0].psnr_min = 40.0;
@@ -350,13 +355,18 @@ static void test_csv_round_trip(void)
           "geometry read back wrong (%d %llu, %d %llu)", v1->geometry,
           (unsigned long long)v1->drawn_triangles, sum_stream->geometry,
           (unsigned long long)sum_stream->drawn_triangles);
+    CHECK(v1->mesh_counted && v1->gpu_mesh_bytes == 600000 && t.rows[4].mesh_counted &&
+          t.rows[4].gpu_mesh_bytes == 600000 && sum_stream->gpu_mesh_bytes == 0,
+          "gpu_mesh_bytes read back wrong (%d %llu, summary %llu)", v1->mesh_counted,
+          (unsigned long long)v1->gpu_mesh_bytes, (unsigned long long)t.rows[4].gpu_mesh_bytes);
     CHECK(oit_bench_rmse_floor(&t) == 1e-4, "rmse floor %g, expected 1e-4 (least 0.001)",
           oit_bench_rmse_floor(&t));
     oit_bench_table_free(&t);
 }
 
 #define HDR OIT_BENCH_CSV_HEADER "\n"
-#define OK_ROW "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16,2.5\n"
+#define OK_ROW "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16,2.5,40\n"
+#define ROW_18 "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16,2.5\n"
 #define OLD_ROW "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3\n"
 
 /* text (len bytes; an empty one read from an empty file) must fail to read
@@ -404,16 +414,20 @@ static void test_csv_malformed(void)
         {"row,method\n", 0, 1, "header"},
         {HDR, 0, 2, "no rows"},
         {HDR "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16\n", 0, 2, "14 fields"},
-        {HDR "view,pll,0,not_runnable,,,100,3,,,,,\"no\",16,3,source_mesh,16,2.5\n", 0, 2, "gpu_bytes_peak"},
-        {HDR OK_ROW "view,pll,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,inf,\"\",17,3,source_mesh,16,2.5\n", 0, 3, "triangles"},
+        {HDR "view,pll,0,not_runnable,,,100,3,,,,,\"no\",16,3,source_mesh,16,2.5,\n", 0, 2, "gpu_bytes_peak"},
+        {HDR "view,pll,0,not_runnable,,,,,,,,,\"no\",16,3,source_mesh,16,,40\n", 0, 2,
+         "gpu_mesh_bytes"},
+        {HDR OK_ROW "view,pll,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,inf,\"\",17,3,source_mesh,16,2.5,0\n", 0, 3, "triangles"},
         {HDR OK_ROW "\n", 0, 3, "empty line"},
-        {HDR "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,part_file,-4,\n", 0, 2,
+        {HDR "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,part_file,-4,,40\n", 0, 2,
          "drawn_triangles"},
+        {HDR ROW_18, 0, 2, "18 fields"},
+        {OIT_BENCH_CSV_HEADER_18 "\n" OK_ROW, 0, 2, "more than 18 fields"},
         {HDR "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3\n", 0, 2, "15 fields"},
         {OIT_BENCH_CSV_HEADER_15 "\n" OLD_ROW "view,pll,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,inf,\"\",16,3,"
          "source_mesh,16,2.5\n", 0, 3, "more than 15 fields"},
-        {HDR "view,dfb,0,ok,1.0\0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16,2.5\n",
-         sizeof(HDR "view,dfb,0,ok,1.0\0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16,2.5\n") - 1, 2, "NUL"},
+        {HDR "view,dfb,0,ok,1.0\0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16,2.5,40\n",
+         sizeof(HDR "view,dfb,0,ok,1.0\0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16,2.5,40\n") - 1, 2, "NUL"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         char what[32];
@@ -437,6 +451,10 @@ static void test_csv_malformed(void)
         {15, "mesh", "geometry"},
         {17, "-2", "gpu_ms_median"},
         {17, "fast", "gpu_ms_median"},
+        {18, "", "gpu_mesh_bytes"},
+        {18, "101", "gpu_mesh_bytes"}, /* more than its gpu_bytes_peak, which holds it */
+        {18, "-1", "gpu_mesh_bytes"},
+        {18, "4k", "gpu_mesh_bytes"},
     };
     for (size_t i = 0; i < sizeof fields / sizeof fields[0]; i++) {
         char text[1024], what[64];
@@ -460,23 +478,74 @@ static void test_csv_malformed(void)
           strstr(err.message, "/nonexistent/results.csv"), "missing file: '%s'", err.message);
 }
 
-/* A file of the oitbench before the geometry columns still reads: its rows
- * say no geometry (-1) and drew the file's triangle count. */
-static void test_csv_old_format(void)
+/* text read as a results.csv into t (OIT_OK expected). */
+static oit_status read_text(const char *text, const char *name, oit_bench_table *t,
+                            oit_error *err)
 {
-    static const char text[] = OIT_BENCH_CSV_HEADER_15 "\n" OLD_ROW;
-    char copy[sizeof text];
-    memcpy(copy, text, sizeof text);
-    FILE *f = fmemopen(copy, sizeof text - 1, "rb");
-    oit_bench_table t = {0};
-    oit_error err = {0};
-    oit_status s = f ? oit_bench_csv_read(f, "old.csv", &t, &err) : OIT_ERR_IO;
-    CHECK(s == OIT_OK && t.count == 1 && t.rows[0].geometry == -1 &&
-          t.rows[0].drawn_triangles == 16, "older results.csv: status %d '%s'", (int)s,
-          err.message);
-    oit_bench_table_free(&t);
+    size_t n = strlen(text);
+    char *copy = malloc(n + 1);
+    memcpy(copy, text, n + 1);
+    FILE *f = fmemopen(copy, n, "rb");
+    oit_status s = f ? oit_bench_csv_read(f, name, t, err) : OIT_ERR_IO;
     if (f)
         fclose(f);
+    free(copy);
+    return s;
+}
+
+/* A file of the oitbench before the geometry columns still reads: its rows
+ * say no geometry (-1) and drew the file's triangle count; that and the
+ * file before gpu_mesh_bytes say their GPU bytes left the mesh out. */
+static void test_csv_old_format(void)
+{
+    oit_bench_table t = {0};
+    oit_error err = {0};
+    oit_status s = read_text(OIT_BENCH_CSV_HEADER_15 "\n" OLD_ROW, "old.csv", &t, &err);
+    CHECK(s == OIT_OK && t.count == 1 && t.rows[0].geometry == -1 &&
+          t.rows[0].drawn_triangles == 16 && !t.rows[0].mesh_counted,
+          "older results.csv: status %d '%s'", (int)s, err.message);
+    oit_bench_table_free(&t);
+    s = read_text(OIT_BENCH_CSV_HEADER_18 "\n" ROW_18, "old18.csv", &t, &err);
+    CHECK(s == OIT_OK && t.count == 1 && t.rows[0].gpu_ms_median == 2.5 &&
+          t.rows[0].gpu_bytes_peak == 100 && !t.rows[0].mesh_counted &&
+          t.rows[0].gpu_mesh_bytes == 0,
+          "results.csv before gpu_mesh_bytes: status %d '%s'", (int)s, err.message);
+    oit_bench_table_free(&t);
+    s = read_text(HDR OK_ROW, "new.csv", &t, &err);
+    CHECK(s == OIT_OK && t.count == 1 && t.rows[0].mesh_counted &&
+          t.rows[0].gpu_mesh_bytes == 40, "results.csv: status %d '%s'", (int)s, err.message);
+    oit_bench_table_free(&t);
+}
+
+/* The memory chart of a file (text) that reads, and its height: one note
+ * line more for a file whose in-core figures left the mesh out. */
+static int memory_chart_height(const char *dir, const char *text, const char *name)
+{
+    oit_bench_table t = {0};
+    oit_error err = {0};
+    char path[1024];
+    snprintf(path, sizeof path, "%s/test_bench_plot_%s.png", dir, name);
+    oit_status s = read_text(text, name, &t, &err);
+    if (s == OIT_OK)
+        s = oit_bench_plot_memory_depth(&t, 1, "fake", NULL, path, &err);
+    oit_bench_table_free(&t);
+    oit_image img = {0};
+    if (s == OIT_OK)
+        s = oit_image_read(path, &img, &err);
+    CHECK(s == OIT_OK, "memory chart of %s: %s", name, err.message);
+    int h = s == OIT_OK ? img.height : -1;
+    oit_image_free(&img);
+    return h;
+}
+
+static void test_memory_chart_old_note(const char *dir)
+{
+    int now = memory_chart_height(dir, HDR OK_ROW, "mem_new");
+    int old = memory_chart_height(dir, OIT_BENCH_CSV_HEADER_18 "\n" ROW_18, "mem_old");
+    printf("memory chart: %d rows (gpu_mesh_bytes), %d (older file)\n", now, old);
+    CHECK(now > 0 && old == now + 22, "an older file's memory chart has %d rows, the "
+          "current one's %d: expected one note line (22 rows) more saying the mesh is left "
+          "out", old, now);
 }
 
 static void test_speed_chart_file(const char *dir)
@@ -526,6 +595,7 @@ int main(void)
     test_csv_round_trip();
     test_csv_malformed();
     test_csv_old_format();
+    test_memory_chart_old_note(dir ? dir : "/tmp");
     test_speed_chart_file(dir ? dir : "/tmp");
     return test_verdict();
 }

@@ -10,7 +10,7 @@
 
 #include "base/args.h"
 
-enum { FIELDS = 18, FIELDS_17 = 17, OLD_FIELDS = 15, LINE_MAX_BYTES = 4096, ROWS_MAX = 1 << 20 };
+enum { FIELDS = 19, FIELDS_18 = 18, FIELDS_17 = 17, OLD_FIELDS = 15, LINE_MAX_BYTES = 4096, ROWS_MAX = 1 << 20 };
 
 /* ---- writing ---- */
 
@@ -42,6 +42,7 @@ typedef struct row_figures {
     double rmse, max_abs, pct, psnr;
     uint32_t view_layers;
     double gpu_ms; /* < 0: none */
+    uint64_t mesh;
 } row_figures;
 
 static const char *geometry_token(oit_bench_geometry g)
@@ -66,9 +67,11 @@ static void csv_row(FILE *f, const char *row, const oit_bench_method *m, int vie
             oit_bench_number(b[4], 40, ok ? x->pct : NAN, "%.6f", ""),
             oit_bench_number(b[5], 40, ok ? x->psnr : NAN, "%.4f", ok ? "inf" : ""));
     csv_text(f, ok ? "" : reason);
-    fprintf(f, ",%llu,%u,%s,%llu,%s\n", (unsigned long long)triangles, x->view_layers,
+    fprintf(f, ",%llu,%u,%s,%llu,%s,", (unsigned long long)triangles, x->view_layers,
             geometry_token(m->geometry), (unsigned long long)m->triangles,
             oit_bench_number(b[6], 40, ok && x->gpu_ms >= 0 ? x->gpu_ms : NAN, "%.4f", ""));
+    if (ok) fprintf(f, "%llu", (unsigned long long)x->mesh);
+    fprintf(f, "\n");
 }
 
 void oit_bench_csv_write(FILE *f, const oit_bench_result *r, uint64_t triangles)
@@ -83,7 +86,7 @@ void oit_bench_csv_write(FILE *f, const oit_bench_result *r, uint64_t triangles)
             row_figures x = {c->ok, c->ok ? c->ms_median : NAN, c->ok ? c->ms_p95 : NAN,
                              c->gpu_bytes_peak, c->max_layers, c->diff.rmse, c->diff.max_abs,
                              c->diff.pct_over_1_255, c->diff.psnr, r->ref_layers[v],
-                             c->gpu_ms_median};
+                             c->gpu_ms_median, c->gpu_mesh_bytes};
             csv_row(f, "view", m, v, &x, triangles);
         }
     }
@@ -91,7 +94,7 @@ void oit_bench_csv_write(FILE *f, const oit_bench_result *r, uint64_t triangles)
         const oit_bench_method *m = &r->methods[i];
         row_figures x = {m->runnable, m->ms_median, m->ms_p95, m->gpu_bytes_peak, m->max_layers,
                          m->rmse_mean, m->max_abs_worst, m->pct_over_worst, m->psnr_min, deepest,
-                         m->gpu_ms_median};
+                         m->gpu_ms_median, m->gpu_mesh_bytes};
         csv_row(f, "summary", m, -1, &x, triangles);
     }
 }
@@ -107,7 +110,7 @@ typedef struct reader {
     const char *name;
     size_t line;
     oit_error *err;
-    int fields; /* FIELDS, or OLD_FIELDS after the older header */
+    int fields; /* FIELDS, or FIELDS_18, FIELDS_17, OLD_FIELDS after an older header */
 } reader;
 
 static oit_status bad(const reader *rd, const char *fmt, ...)
@@ -306,12 +309,28 @@ static oit_status row_tail(const field *fs, oit_bench_row *row, const reader *rd
     return OIT_OK;
 }
 
+/* gpu_mesh_bytes: on an ok row, at most its gpu_bytes_peak (which holds
+ * it); none on a not_runnable one. */
+static oit_status row_mesh(const field *fs, oit_bench_row *row, const reader *rd)
+{
+    row->mesh_counted = rd->fields == FIELDS;
+    if (rd->fields != FIELDS)
+        return OIT_OK;
+    if (!row->ok && *fs[18].s)
+        return bad(rd, "column gpu_mesh_bytes: '%.40s' on a not_runnable row (expected empty)",
+                   fs[18].s);
+    if (row->ok && !parse_uint(fs[18].s, row->gpu_bytes_peak, &row->gpu_mesh_bytes))
+        return bad(rd, "column gpu_mesh_bytes: '%.40s' is not a byte count within "
+                   "gpu_bytes_peak (%llu)", fs[18].s, (unsigned long long)row->gpu_bytes_peak);
+    return OIT_OK;
+}
+
 static oit_status row_geometry(const field *fs, oit_bench_row *row, const reader *rd)
 {
     row->gpu_ms_median = -1.0;
     if (rd->fields == OLD_FIELDS)
         return OIT_OK;
-    if (rd->fields == FIELDS && *fs[17].s &&
+    if (rd->fields >= FIELDS_18 && *fs[17].s &&
         (!row->ok || !parse_figure(fs[17].s, 0, &row->gpu_ms_median)))
         return bad(rd, "column gpu_ms_median: '%.40s' is not a figure >= 0 on an ok row",
                    fs[17].s);
@@ -335,6 +354,7 @@ static oit_status parse_row(char *line, oit_bench_row *row, const reader *rd)
     if (n != rd->fields)
         return bad(rd, "%d fields, expected %d (%s)", n, rd->fields,
                    rd->fields == FIELDS      ? OIT_BENCH_CSV_HEADER
+                   : rd->fields == FIELDS_18 ? OIT_BENCH_CSV_HEADER_18
                    : rd->fields == FIELDS_17 ? OIT_BENCH_CSV_HEADER_17
                                              : OIT_BENCH_CSV_HEADER_15);
     for (int i = 0; i < n; i++)
@@ -343,6 +363,8 @@ static oit_status parse_row(char *line, oit_bench_row *row, const reader *rd)
     if ((s = row_identity(fs, row, rd)) == OIT_OK && (s = row_memory(fs, row, rd)) == OIT_OK &&
         (s = row_figures_read(fs, row, rd)) == OIT_OK && (s = row_tail(fs, row, rd)) == OIT_OK)
         s = row_geometry(fs, row, rd);
+    if (s == OIT_OK)
+        s = row_mesh(fs, row, rd);
     return s;
 }
 
@@ -371,6 +393,7 @@ static oit_status check_header(FILE *f, char *buf, size_t cap, reader *rd)
         return s != OIT_OK ? s : bad(rd, "empty file, expected the header '%s'",
                                      OIT_BENCH_CSV_HEADER);
     rd->fields = !strcmp(buf, OIT_BENCH_CSV_HEADER)      ? FIELDS
+                 : !strcmp(buf, OIT_BENCH_CSV_HEADER_18) ? FIELDS_18
                  : !strcmp(buf, OIT_BENCH_CSV_HEADER_17) ? FIELDS_17
                  : !strcmp(buf, OIT_BENCH_CSV_HEADER_15) ? OLD_FIELDS
                                                          : 0;

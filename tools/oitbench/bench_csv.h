@@ -20,10 +20,18 @@
  * queries, render/gl/gpu_timer.h), empty where the method was not timed on
  * the GPU (no GL, no timestamps, or not run).
  *
+ * gpu_bytes_peak is every GPU buffer and texture the entry held at its
+ * peak: an in-core method's working memory and the mesh it uploaded, the
+ * stream's ring, cache, capture and per-pixel state; gpu_mesh_bytes is the
+ * mesh's part of it (0 for the stream and the reference), both empty
+ * where the entry did not run.
+ *
  * The reader also takes the file of the oitbench before geometry
  * (OIT_BENCH_CSV_HEADER_15, 15 fields); its rows read with geometry -1 and
- * drawn_triangles = triangles; and the one before gpu_ms_median
- * (OIT_BENCH_CSV_HEADER_17), read with gpu_ms_median -1. */
+ * drawn_triangles = triangles; the one before gpu_ms_median
+ * (OIT_BENCH_CSV_HEADER_17), read with gpu_ms_median -1; and the one
+ * before gpu_mesh_bytes (OIT_BENCH_CSV_HEADER_18), whose in-core methods'
+ * gpu_bytes_peak left their mesh out: read with mesh_counted 0. */
 #ifndef OIT_OITBENCH_BENCH_CSV_H
 #define OIT_OITBENCH_BENCH_CSV_H
 
@@ -36,7 +44,8 @@
     "row,method,view,status,ms_median,ms_p95,gpu_bytes_peak,max_layers,rmse,max_abs,"    \
     "pct_over_1_255,psnr,reason,triangles,view_max_layers"
 #define OIT_BENCH_CSV_HEADER_17 OIT_BENCH_CSV_HEADER_15 ",geometry,drawn_triangles"
-#define OIT_BENCH_CSV_HEADER OIT_BENCH_CSV_HEADER_17 ",gpu_ms_median"
+#define OIT_BENCH_CSV_HEADER_18 OIT_BENCH_CSV_HEADER_17 ",gpu_ms_median"
+#define OIT_BENCH_CSV_HEADER OIT_BENCH_CSV_HEADER_18 ",gpu_mesh_bytes"
 
 #define OIT_BENCH_CSV_REASON_MAX 512
 
@@ -59,6 +68,10 @@ typedef struct oit_bench_row {
     int geometry;                   /* oit_bench_geometry; -1: an older file */
     uint64_t drawn_triangles;
     double gpu_ms_median;           /* -1: empty */
+    /* 1: gpu_bytes_peak counts the in-core mesh, gpu_mesh_bytes of it; 0:
+     * a file older than the column, whose in-core figures leave it out. */
+    int mesh_counted;
+    uint64_t gpu_mesh_bytes;
 } oit_bench_row;
 
 typedef struct oit_bench_table {
@@ -74,7 +87,7 @@ const char *oit_bench_number(char *buf, size_t cap, double x, const char *fmt,
                              const char *nonfinite);
 
 /* Reads a file as oit_bench_csv_write writes it, and nothing else: the
- * exact header, 17 fields a row (15 after the older header), every field checked (row kind, method
+ * exact header, 19 fields a row (18, 17 or 15 after the older headers), every field checked (row kind, method
  * name, view number, status, numbers finite and >= 0, figures present
  * exactly where the status says, reason quoted, one triangle count in the
  * whole file). A failure is OIT_ERR_FORMAT (OIT_ERR_IO when reading fails)

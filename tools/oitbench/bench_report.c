@@ -43,6 +43,7 @@ static void json_cell(oit_json *w, int v, const oit_bench_cell *c)
     oit_json_fixed(w, "ms_p95", c->ok ? c->ms_p95 : NAN, 4);
     oit_json_fixed(w, "gpu_ms_median", c->ok ? c->gpu_ms_median : NAN, 4);
     oit_json_uint(w, "gpu_bytes_peak", c->gpu_bytes_peak);
+    oit_json_uint(w, "gpu_mesh_bytes", c->gpu_mesh_bytes);
     oit_json_uint(w, "max_layers", c->max_layers);
     oit_json_uint(w, "fragments", c->fragments);
     oit_json_general(w, "rmse", c->ok ? c->diff.rmse : NAN, 9);
@@ -69,6 +70,7 @@ static void json_method(oit_json *w, const oit_bench_method *m, int views)
     oit_json_fixed(w, "ms_p95", m->ms_p95, 4);
     oit_json_fixed(w, "gpu_ms_median", m->runnable ? m->gpu_ms_median : NAN, 4);
     oit_json_uint(w, "gpu_bytes_peak", m->gpu_bytes_peak);
+    oit_json_uint(w, "gpu_mesh_bytes", m->gpu_mesh_bytes);
     oit_json_uint(w, "max_layers", m->max_layers);
     oit_json_general(w, "rmse_mean", m->runnable ? m->rmse_mean : NAN, 9);
     oit_json_general(w, "max_abs_worst", m->runnable ? m->max_abs_worst : NAN, 9);
@@ -267,6 +269,10 @@ static void write_md(FILE *f, const oit_bench_context *ctx, const oit_bench_resu
                "side by side in one run.\n\n");
     fprintf(f, "## Summary\n\n");
     oit_bench_print_summary(f, r, 1);
+    fprintf(f, "GPU MiB: every GPU buffer and texture the entry held at its peak: an in-core "
+               "method's working memory and the mesh it uploaded (`gpu_mesh_bytes` in "
+               "results.csv and results.json), the stream's upload ring, residency cache, "
+               "capture and per-pixel state.\n\n");
     fprintf(f, "## Plots\n\n![speed against error](speed_vs_error.png)\n\n"
                "![memory against depth](memory_vs_depth.png)\n\n");
     for (int i = 0; i < r->method_count; i++)

@@ -126,6 +126,8 @@ static void record(oit_bench_method *m, oit_bench_cell *c, const oit_frame_stats
     m->ms[m->ms_count++] = st->ms;
     c->gpu_bytes_peak = st->gpu_bytes_peak > c->gpu_bytes_peak ? st->gpu_bytes_peak
                                                                 : c->gpu_bytes_peak;
+    c->gpu_mesh_bytes = st->gpu_mesh_bytes > c->gpu_mesh_bytes ? st->gpu_mesh_bytes
+                                                                : c->gpu_mesh_bytes;
     c->max_layers = st->max_layers > c->max_layers ? st->max_layers : c->max_layers;
     c->fragments = st->fragments;
 }
@@ -233,6 +235,8 @@ static void summarise(oit_bench_method *m, int views)
         m->psnr_min = fmin(m->psnr_min, c->diff.psnr);
         m->gpu_bytes_peak = c->gpu_bytes_peak > m->gpu_bytes_peak ? c->gpu_bytes_peak
                                                                    : m->gpu_bytes_peak;
+        m->gpu_mesh_bytes = c->gpu_mesh_bytes > m->gpu_mesh_bytes ? c->gpu_mesh_bytes
+                                                                   : m->gpu_mesh_bytes;
         m->max_layers = c->max_layers > m->max_layers ? c->max_layers : m->max_layers;
     }
     m->rmse_mean = n ? m->rmse_mean / n : NAN;

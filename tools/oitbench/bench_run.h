@@ -30,7 +30,10 @@ const char *oit_bench_geometry_label(oit_bench_geometry g, uint64_t drawn, uint6
 typedef struct oit_bench_cell {
     int ok;                  /* rendered all its frames of this view */
     double ms_median, ms_p95;
-    uint64_t gpu_bytes_peak;
+    /* Every GPU buffer and texture at the peak, the mesh an in-core method
+     * uploaded included (oit_frame_stats.gpu_bytes_peak), and that mesh's
+     * part of it (gpu_mesh_bytes; 0 for the stream and the reference). */
+    uint64_t gpu_bytes_peak, gpu_mesh_bytes;
     uint32_t max_layers;
     uint64_t fragments;      /* of the last timed frame */
     oit_image_diff diff;     /* last timed frame against the reference */
@@ -65,7 +68,7 @@ typedef struct oit_bench_method {
     /* summary over views that rendered */
     double ms_median, ms_p95;
     double gpu_ms_median; /* -1: not timed on the GPU */
-    uint64_t gpu_bytes_peak;
+    uint64_t gpu_bytes_peak, gpu_mesh_bytes; /* as oit_bench_cell's, the most over views */
     uint32_t max_layers;
     double rmse_mean, max_abs_worst, pct_over_worst, psnr_min;
 } oit_bench_method;

@@ -260,10 +260,13 @@ static oit_status render_one(run_ctx *rc, int index, int views, oit_stats_frame 
         fr->epsilon = used.epsilon;
     }
     if (s == OIT_OK && !rc->args->quiet)
-        printf("frame %d: %s %dx%d %.2f ms, %llu fragments, max %u layers, %llu overflow pixels\n",
+        printf("frame %d: %s %dx%d %.2f ms, %llu fragments, max %u layers, %llu overflow pixels, "
+               "%.2f MiB GPU at peak (%.2f MiB of it the mesh)\n",
                index, rc->method->name, rc->view.width, rc->view.height, fr->st.ms,
                (unsigned long long)fr->st.fragments, fr->st.max_layers,
-               (unsigned long long)fr->st.overflow_pixels);
+               (unsigned long long)fr->st.overflow_pixels,
+               (double)fr->st.gpu_bytes_peak / 1048576.0,
+               (double)fr->st.gpu_mesh_bytes / 1048576.0);
     if (s == OIT_OK && !rc->args->quiet && fr->has_stream)
         printf("frame %d: %.2f ms (order %.1f, pack %.1f), %u packs, %llu parts (%llu culled, "
                "%llu clipped: %.2f MiB not uploaded), "

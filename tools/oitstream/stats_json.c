@@ -57,6 +57,7 @@ static void put_frame(oit_json *w, const oit_stats_frame *fr)
     const oit_json_uint_member frame[] = {
         {"fragments", s->fragments}, {"max_layers", s->max_layers},
         {"overflow_pixels", s->overflow_pixels}, {"gpu_bytes_peak", s->gpu_bytes_peak},
+        {"gpu_mesh_bytes", s->gpu_mesh_bytes},
         {"batches", s->batches}, {"second_pass_pixels", s->second_pass_pixels},
         {"second_pass_packs", s->second_pass_packs},
         {"fragments_saturated", s->fragments_saturated}};

@@ -47,8 +47,8 @@ cat "$T/err1.txt"
 CSV="$T/R1/results.csv"
 [ -s "$CSV" ] || { fail "no results.csv"; exit 1; }
 cat "$CSV"
-head -n 1 "$CSV" | grep -q ',reason,triangles,view_max_layers,geometry,drawn_triangles,gpu_ms_median$' ||
-    fail "header lacks triangles, view_max_layers, geometry, drawn_triangles, gpu_ms_median"
+head -n 1 "$CSV" | grep -q ',reason,triangles,view_max_layers,geometry,drawn_triangles,gpu_ms_median,gpu_mesh_bytes$' ||
+    fail "header lacks triangles, view_max_layers, geometry, drawn_triangles, gpu_ms_median, gpu_mesh_bytes"
 for m in stream@0 stream@0.1 dfb; do
     [ "$(grep -c "^view,$m,[01],ok," "$CSV")" -eq 2 ] || fail "expected 2 ok view rows of $m"
     grep -q "^summary,$m,,ok," "$CSV" || fail "no ok summary row of $m"
@@ -63,6 +63,14 @@ col() {
 tri=$(sed -n 's/.*: \([0-9]*\) triangles, .*/\1/p' "$T/err1.txt")
 [ -n "$tri" ] && [ "$(col dfb triangles)" = "$tri" ] || fail "triangles column '$(col dfb triangles)', oitbench said '$tri'"
 [ "$(col dfb view_max_layers)" -ge 24 ] 2>/dev/null || fail "view_max_layers '$(col dfb view_max_layers)' below the 24 quads"
+# GPU bytes count the mesh DFB holds (3 vertices of 16 bytes a triangle,
+# worked out here), within its peak; the stream holds no mesh
+dm=$(col dfb gpu_mesh_bytes) dp=$(col dfb gpu_bytes_peak) dt=$(col dfb drawn_triangles)
+echo "dfb: gpu_bytes_peak $dp, gpu_mesh_bytes $dm, $dt triangles"
+awk -v m="$dm" -v p="$dp" -v t="$dt" 'BEGIN { exit !(m != "" && t != "" && m + 0 >= t * 48 && p + 0 >= m + 0) }' ||
+    fail "dfb: gpu_mesh_bytes '$dm' for $dt triangles, gpu_bytes_peak '$dp'"
+[ "$(col stream@0 gpu_mesh_bytes)" = 0 ] || fail "stream@0: gpu_mesh_bytes '$(col stream@0 gpu_mesh_bytes)'"
+grep -q '"gpu_mesh_bytes": '"$dm"',' "$T/R1/results.json" || fail "results.json lacks dfb's gpu_mesh_bytes $dm"
 e0=$(col stream@0 rmse) e1=$(col stream@0.1 rmse)
 echo "rmse: stream@0 $e0, stream@0.1 $e1"
 awk -v a="$e0" -v b="$e1" 'BEGIN { exit !(a != "" && b != "" && b + 0 > a + 0) }' ||

@@ -5,7 +5,14 @@
 # it, pass1 and resolve > 0 (the geometry and its compositing are timed),
 # the summary's medians are those of the frames after the first; the
 # stream's budget names its source (llvmpipe: no driver figure, no total),
-# and --gpu-budget is the total it reports.
+# and --gpu-budget is the total it reports. GPU bytes count all a method
+# holds: DFB's gpu_bytes_peak holds its mesh (gpu_mesh_bytes, at least the
+# triangles' vertex bytes, 3 x 16 a triangle, worked out here) and its
+# per-pixel output; the stream's holds its upload ring (the budget's) and
+# its per-pixel state (20 bytes a pixel, transparent), with no mesh: on a
+# plant of 20000 triangles at 16x16, whose parts (resident: a ring of the
+# file's size, at least the bytes frame 0 uploaded) outweigh the capture,
+# a figure without the ring falls short.
 . "${OIT_TEST_LIB:-$(dirname "$0")/../../lib.sh}"
 scratch oitstream_stats_gpu
 "$OIT_BIN/oitgen" quads --count 24 -o "$T/q.ply" >/dev/null || die "oitgen quads"
@@ -16,6 +23,10 @@ scratch oitstream_stats_gpu
     --stats "$T/d.json" >/dev/null || fail "dfb --stats"
 "$OIT_BIN/oitstream" "$T/q.oitp" --method stream --orbit 2 --size 64x64 --quiet \
     --gpu-budget 8M --stats "$T/b.json" >/dev/null || fail "stream --gpu-budget 8M"
+"$OIT_BIN/oitgen" plant --triangles 20000 -o "$T/p.ply" >/dev/null || die "oitgen plant"
+"$OIT_BIN/oitprep" "$T/p.ply" -o "$T/p.oitp" >/dev/null || die "oitprep plant"
+"$OIT_BIN/oitstream" "$T/p.oitp" --method stream --orbit 2 --size 16x16 --quiet \
+    --stats "$T/p.json" >/dev/null || fail "stream plant --stats"
 python3 - "$T" <<'PY' || fail "--stats GPU figures wrong"
 import json, statistics, sys
 t = sys.argv[1]
@@ -42,6 +53,29 @@ for name in ("s", "d"):
     check(abs(d["summary"]["gpu_ms_median"] - med) <= 0.002,
           "%s: summary gpu_ms_median %r, frames' %r" % (name, d["summary"]["gpu_ms_median"], med))
     check(d["summary"]["warm_frames"] == len(fr) - 1, "%s: warm_frames" % name)
+d = json.load(open("%s/d.json" % t))
+px = d["width"] * d["height"]
+vertex = 3 * 4 + 4  # position floats + RGBA8
+for i, f in enumerate(d["frames"]):
+    check(f["gpu_mesh_bytes"] >= d["triangles"] * 3 * vertex,
+          "dfb frame %d: gpu_mesh_bytes %d for %d triangles" % (i, f["gpu_mesh_bytes"], d["triangles"]))
+    check(f["gpu_bytes_peak"] >= f["gpu_mesh_bytes"] + 16 * px,
+          "dfb frame %d: gpu_bytes_peak %d below its mesh %d and output %d" %
+          (i, f["gpu_bytes_peak"], f["gpu_mesh_bytes"], 16 * px))
+s = json.load(open("%s/s.json" % t))
+for i, f in enumerate(s["frames"]):
+    check(f["gpu_mesh_bytes"] == 0, "stream frame %d: gpu_mesh_bytes %d" % (i, f["gpu_mesh_bytes"]))
+    check(f["gpu_bytes_peak"] >= s["budget"]["ring"] + 20 * px,
+          "stream frame %d: gpu_bytes_peak %d below its ring %d and state %d" %
+          (i, f["gpu_bytes_peak"], s["budget"]["ring"], 20 * px))
+p = json.load(open("%s/p.json" % t))
+ring, up = p["budget"]["ring"], p["frames"][0]["bytes_uploaded"]
+check(p["budget"]["resident"] == 1 and ring >= up > 16 * 16 * 1000,
+      "plant: resident %r, ring %d, frame 0 uploaded %d" % (p["budget"]["resident"], ring, up))
+for i, f in enumerate(p["frames"]):
+    check(f["gpu_mesh_bytes"] == 0 and f["gpu_bytes_peak"] >= ring + 20 * 16 * 16,
+          "plant frame %d: gpu_bytes_peak %d below its ring %d and state %d" %
+          (i, f["gpu_bytes_peak"], ring, 20 * 16 * 16))
 s, b = (json.load(open("%s/%s.json" % (t, n))) for n in ("s", "b"))
 sb, bb = s["budget"], b["budget"]
 check(sb["source"] != "" and (sb["gpu_budget"] == 0) == (sb["driver_free"] == 0),
