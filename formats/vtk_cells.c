@@ -64,7 +64,8 @@ oit_status vtk_colours_alloc(vtk_colours *c, oit_rd_budget *b, size_t n, int com
     oit_status st = oit_rd_grow(b, (void **)&c->rgba, &c->cap, 4, n, name, "colour array", err);
     if (st != OIT_OK)
         return st;
-    memset(c->rgba, 255, 4 * n);
+    if (n > 0)
+        memset(c->rgba, 255, 4 * n);
     c->count = n;
     c->components = comps;
     return OIT_OK;
