@@ -256,7 +256,7 @@ static oit_status leg_cells_classic(leg *L, vtk_cells *cs, uint64_t n, uint64_t 
         double v;
         if ((st = leg_value(L, LT_I32, what, &v)) != OIT_OK)
             break;
-        if (!(v >= 0) || used + 1 + (uint64_t)v > size)
+        if (!(v >= 0 && v <= (double)size && v == floor(v)) || used + 1 + (uint64_t)v > size)
             return leg_fail(L, OIT_ERR_FORMAT, "%s: cell %" PRIu64 " of %.0f points overruns "
                             "the declared size %" PRIu64, what, i, v, size);
         used += 1 + (uint64_t)v;

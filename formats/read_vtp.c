@@ -85,6 +85,13 @@ static oit_status vtp_fail(vtp *V, size_t at, oit_status st, const char *fmt, ..
 static oit_status vtp_slurp(vtp *V)
 {
     oit_rd_stream *s = &V->c->in;
+    int64_t size = V->c->gz ? -1 : oit_rd_file_size(s->f); /* one allocation when known */
+    if (size > 0) {
+        oit_status st = oit_rd_grow(&V->c->budget, (void **)&V->buf, &V->cap, 1,
+                                    (size_t)size + 1, V->c->name, "file buffer", V->c->err);
+        if (st != OIT_OK)
+            return st;
+    }
     for (;;) {
         const unsigned char *p;
         size_t avail;
