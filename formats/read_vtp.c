@@ -387,10 +387,11 @@ static oit_status vtp_end(vtp *V, vtp_walk *w, const unsigned char *t, const uns
     return OIT_OK;
 }
 
-/* The first text of an open DataArray with content is its data. */
+/* The first text directly inside an open DataArray is its data (not the
+ * text of its InformationKey children, which VTK writes before it). */
 static void vtp_text(vtp *V, vtp_walk *w, size_t from, size_t to)
 {
-    if (!w->in_array)
+    if (!w->in_array || !walk_parent_is(w, "DataArray"))
         return;
     vtp_array *a = &V->arrays[w->in_array - 1];
     if (a->text_end > a->text)

@@ -251,6 +251,71 @@ static void test_vtp_errors(void)
                  OIT_ERR_FORMAT, "appended DataArray but no <AppendedData>");
 }
 
+/* Hand-written .vtp of what VTK writers and ParaView add around the data:
+ * InformationKey children before an ascii array's values, FieldData outside
+ * the Piece, comments, a byte-order mark, an array of strings that is not
+ * used, two Pieces (ids per piece, cell colours per piece) and a colour
+ * array found by name (no Scalars attribute). */
+static void test_vtp_extras(void)
+{
+    const char *text =
+        "\xef\xbb\xbf<?xml version=\"1.0\"?>\n<!-- written by hand -->\n"
+        "<VTKFile type='PolyData' version='1.0' byte_order='LittleEndian'>\n"
+        "<PolyData><FieldData><DataArray type='Float64' Name='TimeValue' "
+        "NumberOfTuples='1' format='ascii'>7</DataArray><DataArray type='String' Name='N' "
+        "format='ascii'>65 0</DataArray></FieldData>\n"
+        "<Piece NumberOfPoints='3' NumberOfPolys='1'>\n"
+        "<Points><DataArray type='Float32' NumberOfComponents='3' format='ascii'>\n"
+        "<InformationKey name='L2_NORM_RANGE' location='vtkDataArray' length='2'>"
+        "<Value index='0'>99</Value><Value index='1'>98</Value></InformationKey>\n"
+        "0 0 0 1 0 0 0 1 0</DataArray></Points>\n"
+        "<Polys><DataArray type='Int64' Name='connectivity' format='ascii'>0 1 2</DataArray>"
+        "<DataArray type='Int64' Name='offsets' format='ascii'>3</DataArray></Polys>\n"
+        "</Piece>\n"
+        "<Piece NumberOfPoints='4' NumberOfPolys='1' NumberOfStrips='1'>\n"
+        "<CellData><DataArray type='UInt8' Name='Temperature' NumberOfComponents='4' "
+        "format='ascii'>1 1 1 1 1 1 1 1</DataArray><DataArray type='UInt8' Name='cellColors' "
+        "NumberOfComponents='4' format='ascii'>10 20 30 40 50 60 70 80</DataArray></CellData>\n"
+        "<Points><DataArray type='Float64' NumberOfComponents='3' format='ascii'>"
+        "2 0 0 3 0 0 2 1 0 3 1 0</DataArray></Points>\n"
+        "<Strips><DataArray type='Int32' Name='connectivity' format='ascii'>0 1 2 3</DataArray>"
+        "<DataArray type='Int32' Name='offsets' format='ascii'>4</DataArray></Strips>\n"
+        "<Polys><DataArray type='Int32' Name='connectivity' format='ascii'>3 2 1</DataArray>"
+        "<DataArray type='Int32' Name='offsets' format='ascii'>3</DataArray></Polys>\n"
+        "</Piece></PolyData></VTKFile>\n";
+    write_bytes("extras.vtp", text, strlen(text));
+    oit_mesh m;
+    oit_error err = {0};
+    oit_status st = oit_mesh_load(tmp_path("extras.vtp"), NULL, &m, &err);
+    CHECK(st == OIT_OK, "extras.vtp: %s", err.message);
+    if (st != OIT_OK)
+        return;
+    /* piece 1: (0,1,2) white; piece 2: poly (3,2,1) = cell 0, then the strip
+     * (0,1,2) and flipped (2,1,3) = cell 1 */
+    static const float want[4][3][3] = {
+        {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}},
+        {{3, 1, 0}, {2, 1, 0}, {3, 0, 0}},
+        {{2, 0, 0}, {3, 0, 0}, {2, 1, 0}},
+        {{2, 1, 0}, {3, 0, 0}, {3, 1, 0}}};
+    static const int rgba[4][4] = {
+        {255, 255, 255, 255}, {10, 20, 30, 40}, {50, 60, 70, 80}, {50, 60, 70, 80}};
+    CHECK(m.count == 4, "extras.vtp: %zu triangles, 4 expected", m.count);
+    for (size_t t = 0; t < m.count && t < 4; t++)
+        for (int v = 0; v < 3; v++) {
+            const oit_vertex *x = &m.tris[t].v[v];
+            CHECK(x->pos[0] == want[t][v][0] && x->pos[1] == want[t][v][1] &&
+                  x->pos[2] == want[t][v][2], "extras.vtp: triangle %zu vertex %d at %g %g %g",
+                  t, v, x->pos[0], x->pos[1], x->pos[2]);
+            CHECK(x->rgba[0] == rgba[t][0] && x->rgba[1] == rgba[t][1] &&
+                  x->rgba[2] == rgba[t][2] && x->rgba[3] == rgba[t][3],
+                  "extras.vtp: triangle %zu vertex %d colour %d %d %d %d", t, v, x->rgba[0],
+                  x->rgba[1], x->rgba[2], x->rgba[3]);
+        }
+    CHECK(m.info.vertices_in == 7, "extras.vtp: %llu vertices, 7 expected",
+          (unsigned long long)m.info.vertices_in);
+    oit_mesh_free(&m);
+}
+
 /* A budget too small for the held arrays fails as out of memory. */
 static void test_budget(const char *dir)
 {
@@ -278,6 +343,7 @@ int main(int argc, char **argv)
     CHECK(n >= 5, "only %d .vtp files in %s", n, argv[2]);
     test_legacy_errors();
     test_vtp_errors();
+    test_vtp_extras();
     test_budget(argv[2]);
     return test_verdict();
 }
