@@ -595,9 +595,14 @@ static oit_status vtp_binary(vtp *V, vtp_src *s, size_t at, size_t *n)
     for (uint64_t i = 0; i < nb && csum <= s->end - s->pos; i++)
         csum += vtp_word(V, (size_t)(3 + i) * w) > s->end ? s->end : vtp_word(V, (size_t)(3 + i) * w);
     uint64_t total = nb == 0 ? 0 : (nb - 1) * bs + (last ? last : bs);
-    if (csum > s->end - s->pos || total / (bs ? bs : 1) > nb)
+    if (csum > s->end - s->pos)
         return vtp_fail(V, at, OIT_ERR_FORMAT, "compressed blocks of %" PRIu64 " bytes: more "
                         "than the file holds (truncated?)", csum);
+    /* deflate expands at most about 1032:1: a header claiming more is not
+     * allocated for */
+    if (total > csum * 1040 + 1024)
+        return vtp_fail(V, at, OIT_ERR_FORMAT, "compressed blocks of %" PRIu64 " bytes cannot "
+                        "inflate to the %" PRIu64 " the header claims", csum, total);
     if ((st = vtp_take(V, s, head + (size_t)csum, at)) != OIT_OK)
         return st;
     unsigned char *out = NULL;
@@ -620,6 +625,10 @@ static oit_status vtp_binary(vtp *V, vtp_src *s, size_t at, size_t *n)
 /* ASCII numbers into dec as native doubles. */
 static oit_status vtp_ascii(vtp *V, const vtp_array *a, size_t count)
 {
+    if (count > (a->text_end - a->text + 1) / 2) /* a digit and a blank each at least */
+        return vtp_fail(V, a->at, OIT_ERR_FORMAT, "ascii DataArray '%.*s' of %zu bytes cannot "
+                        "hold %zu values", (int)(a->name_len > 40 ? 40 : a->name_len),
+                        a->name ? a->name : "", a->text_end - a->text, count);
     oit_status st = oit_rd_grow(&V->c->budget, (void **)&V->dec, &V->dec_cap, sizeof(double),
                                 count + 1, V->c->name, "decoded array", V->c->err);
     size_t p = a->text, i = 0;

@@ -234,9 +234,15 @@ static void test_vtp_errors(void)
                  OIT_ERR_FORMAT, "byte 0x2a in base64 data");
     expect_error("e_short.vtp",
                  VTP_HEAD "<PolyData><Piece NumberOfPoints=\"2\"><Points><DataArray "
-                 "type=\"Float32\" NumberOfComponents=\"3\" format=\"ascii\">0 0 0 1"
+                 "type=\"Float32\" NumberOfComponents=\"3\" format=\"ascii\">0 0 0 1      "
                  "</DataArray></Points></Piece></PolyData></VTKFile>\n",
                  OIT_ERR_FORMAT, "holds 4 of 6 values");
+    /* a declared count is not allocated for before the data could hold it */
+    expect_error("e_count.vtp",
+                 VTP_HEAD "<PolyData><Piece NumberOfPoints=\"4000000000\"><Points><DataArray "
+                 "type=\"Float32\" NumberOfComponents=\"3\" format=\"ascii\">0 0 0 1"
+                 "</DataArray></Points></Piece></PolyData></VTKFile>\n",
+                 OIT_ERR_FORMAT, "of 7 bytes cannot hold 12000000000 values");
     expect_error("e_no_polys.vtp", VTP_HEAD VTP_TRI "</Piece></PolyData></VTKFile>\n"
                  "<!-- a comment -->", OIT_ERR_FORMAT, "without its connectivity");
     expect_error("e_points_only.vtp",
