@@ -202,6 +202,62 @@ static void test_legacy_errors(void)
                  OIT_ERR_FORMAT, "no surface cells, only 1 volume cells");
 }
 
+/* One triangle's three vertices must have colour r g b a. */
+static void expect_colour(const char *name, const oit_mesh *m, size_t t, int r, int g, int b,
+                          int a)
+{
+    if (t >= m->count) {
+        CHECK(0, "%s: no triangle %zu", name, t);
+        return;
+    }
+    for (int v = 0; v < 3; v++) {
+        const uint8_t *c = m->tris[t].v[v].rgba;
+        CHECK(c[0] == r && c[1] == g && c[2] == b && c[3] == a,
+              "%s: triangle %zu vertex %d colour %d %d %d %d, expected %d %d %d %d", name, t, v,
+              c[0], c[1], c[2], c[3], r, g, b, a);
+    }
+}
+
+static oit_mesh load_ok(const char *name, const char *text)
+{
+    write_bytes(name, text, strlen(text));
+    oit_mesh m;
+    oit_error err = {0};
+    oit_status st = oit_mesh_load(tmp_path(name), NULL, &m, &err);
+    CHECK(st == OIT_OK, "%s: %s", name, err.message);
+    return m;
+}
+
+/* Hand-written legacy files for what VTK's writers emit around colours:
+ * SCALARS unsigned_char of 4 components (a colour) beside SCALARS float
+ * with a LOOKUP_TABLE (not one), a LOOKUP_TABLE section, METADATA blocks,
+ * a FIELD array named like a colour, a 1-component COLOR_SCALARS (grey),
+ * lower-case keywords, and COLOR_SCALARS winning over SCALARS whatever the
+ * order. */
+static void test_legacy_extras(void)
+{
+    oit_mesh m = load_ok("x_scalars.vtk", LEG_HEAD TRI_POINTS
+        "METADATA\nINFORMATION 1\nNAME L2_NORM_RANGE LOCATION vtkDataArray\nDATA 2 0 1\n\n"
+        "POLYGONS 1 4\n3 0 1 2\nPOINT_DATA 3\nSCALARS temp float 1\nLOOKUP_TABLE default\n"
+        "0.5 0.25 1\nSCALARS rgba unsigned_char 4\nLOOKUP_TABLE default\n"
+        "10 20 30 40 10 20 30 40 10 20 30 40\nMETADATA\nCOMPONENT_NAMES\nR\nG\nB\nA\n\n"
+        "LOOKUP_TABLE my 2\n0 0 0 1 1 1 1 1\nNORMALS n float\n0 0 1 0 0 1 0 0 1\n");
+    expect_colour("x_scalars.vtk", &m, 0, 10, 20, 30, 40);
+    CHECK(m.info.attributes == (OIT_ATTR_COLOUR | OIT_ATTR_ALPHA), "x_scalars.vtk: attributes %u",
+          m.info.attributes);
+    oit_mesh_free(&m);
+    m = load_ok("x_field.vtk", LEG_HEAD TRI_POINTS "polygons 1 4\n3 0 1 2\ncell_data 1\n"
+        "FIELD FieldData 2\nids 1 1 int\n7\nMETADATA\nINFORMATION 0\n\n"
+        "CellColors 3 1 unsigned_char\n200 100 50\n");
+    expect_colour("x_field.vtk", &m, 0, 200, 100, 50, 255);
+    oit_mesh_free(&m);
+    m = load_ok("x_grey.vtk", LEG_HEAD TRI_POINTS "POLYGONS 1 4\n3 0 1 2\nCELL_DATA 1\n"
+        "SCALARS rgb unsigned_char 3\nLOOKUP_TABLE default\n1 2 3\n"
+        "COLOR_SCALARS grey 1\n0.5\n");
+    expect_colour("x_grey.vtk", &m, 0, 128, 128, 128, 255);
+    oit_mesh_free(&m);
+}
+
 #define VTP_HEAD "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\">\n"
 #define VTP_TRI                                                                            \
     "<PolyData><Piece NumberOfPoints=\"3\" NumberOfPolys=\"1\">\n"                         \
@@ -348,6 +404,7 @@ int main(int argc, char **argv)
     n = test_folder(argv[2], ".vtp");
     CHECK(n >= 5, "only %d .vtp files in %s", n, argv[2]);
     test_legacy_errors();
+    test_legacy_extras();
     test_vtp_errors();
     test_vtp_extras();
     test_budget(argv[2]);
