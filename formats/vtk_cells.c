@@ -158,8 +158,9 @@ oit_status vtk_emit_cells(oit_rd_ctx *c, const oit_rd_vtable *pts, const vtk_cel
         uint64_t id = first_id + i;
         const uint8_t *rgba = cc->components && id < cc->count ? cc->rgba + 4 * id : NULL;
         int type = cs->types ? cs->types[i] : cs->type;
-        st = vtk_cell(c, pts, type, cs->conn + cs->off[i], (size_t)(cs->off[i + 1] - cs->off[i]),
-                      rgba, skip);
+        size_t n = (size_t)(cs->off[i + 1] - cs->off[i]);
+        /* cells of no point leave conn unallocated: no pointer into it */
+        st = vtk_cell(c, pts, type, n ? cs->conn + cs->off[i] : NULL, n, rgba, skip);
     }
     return st;
 }
