@@ -15,9 +15,12 @@ VTK's reader returns them, printed exactly as float32 with %.9g).
 Triangulation is the readers' documented one (formats/vtk_cells.c): fans
 from a cell's first point (polygons, quads, triangles), strips with every
 second triangle flipped, pixels 0,1,3 and 0,3,2; a cell colour overrides
-its points' colours; volume cells are skipped. VTK's triangle filter gives
-the same counts (checked here); its ear cut places a polygon's diagonals
-elsewhere, which is why the positions are not taken from it.
+its points' colours; a linear volume cell gives the faces (VTK's, as VTK
+orients them) that no other volume cell shares and no triangle/quad/pixel
+cell covers, quads fanned, a voxel's
+pixel faces split as pixels. vtkGeometryFilter + vtkTriangleFilter give the
+same counts (checked here); the ear cut places a polygon's diagonals
+elsewhere, which is why the positions are not taken from them.
 """
 import os
 import sys
@@ -34,6 +37,14 @@ PTS = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0.25), (2, 1, 0.5), (3, 0, 0),
        (4, 0, 0.125), (4.5, 1, 0.125), (4, 2, 0.25), (3, 1.5, 0.375),
        (0, 3, 1), (1, 3, 1.5), (2, 3, 1), (3, 3, 1.5), (4, 3, 1), (5, 3, 1.5),
        (-1.5, -2.25, 0.75)]
+
+
+# More points for the unstructured grid's volume cells: a voxel (17-24), a
+# pyramid on its top (21, 22, 24, 23, 25), a wedge (26-31) and two
+# tetrahedra sharing a face (32-36), whose shared face is inside.
+EXTRA = [(0, 0, 2), (1, 0, 2), (0, 1, 2), (1, 1, 2), (0, 0, 3), (1, 0, 3), (0, 1, 3), (1, 1, 3),
+         (0.5, 0.5, 4), (3, 0, 2), (4, 0, 2), (3, 1, 2), (3, 0, 3), (4, 0, 3), (3, 1, 3),
+         (6, 0, 0), (7, 0, 0), (6, 1, 0), (6, 0, 1), (6.5, 0.5, -1)]
 
 
 def colours(name, n, comps, seed):
@@ -80,14 +91,18 @@ def polydata(point_comps, cell_comps):
 def ugrid(cell_comps):
     g = vtk.vtkUnstructuredGrid()
     p = vtk.vtkPoints()
-    for x in PTS:
+    for x in PTS + EXTRA:
         p.InsertNextPoint(x)
     g.SetPoints(p)
     cells = [(vtk.VTK_TRIANGLE, (0, 1, 2)), (vtk.VTK_QUAD, (1, 5, 4, 3)),
              (vtk.VTK_TETRA, (0, 1, 2, 16)), (vtk.VTK_POLYGON, (5, 6, 7, 8, 9)),
              (vtk.VTK_PIXEL, (10, 11, 2, 3)), (vtk.VTK_VERTEX, (16,)),
-             (vtk.VTK_TRIANGLE_STRIP, (10, 11, 12, 13, 14)), (vtk.VTK_LINE, (16, 5)),
-             (vtk.VTK_HEXAHEDRON, (0, 1, 3, 2, 10, 11, 13, 12))]
+             (vtk.VTK_TRIANGLE_STRIP, (14, 15, 9, 8, 7)), (vtk.VTK_LINE, (16, 5)),
+             (vtk.VTK_HEXAHEDRON, (0, 1, 3, 2, 10, 11, 13, 12)),
+             (vtk.VTK_VOXEL, (17, 18, 19, 20, 21, 22, 23, 24)),
+             (vtk.VTK_PYRAMID, (21, 22, 24, 23, 25)),
+             (vtk.VTK_WEDGE, (26, 27, 28, 29, 30, 31)),
+             (vtk.VTK_TETRA, (32, 33, 34, 35)), (vtk.VTK_TETRA, (32, 34, 33, 36))]
     for t, ids in cells:
         g.InsertNextCell(t, len(ids), ids)
     if cell_comps:
@@ -135,6 +150,18 @@ def expected(data):
     pc = colour_array(data.GetPointData())
     cc = colour_array(data.GetCellData())
     tris, volume = [], 0
+    shared = {}
+    for cid in range(data.GetNumberOfCells()):
+        cell = data.GetCell(cid)
+        if data.GetCellType(cid) in (vtk.VTK_TRIANGLE, vtk.VTK_QUAD, vtk.VTK_PIXEL,
+                                     vtk.VTK_POLYGON) and cell.GetNumberOfPoints() in (3, 4):
+            key = tuple(sorted(cell.GetPointId(j) for j in range(cell.GetNumberOfPoints())))
+            shared[key] = shared.get(key, 0) + 1  # a surface cell covers a volume face
+        if cell.GetCellDimension() == 3:
+            for k in range(cell.GetNumberOfFaces()):
+                f = cell.GetFace(k)
+                key = tuple(sorted(f.GetPointId(j) for j in range(f.GetNumberOfPoints())))
+                shared[key] = shared.get(key, 0) + 1
     for cid in range(data.GetNumberOfCells()):
         cell = data.GetCell(cid)
         t = data.GetCellType(cid)
@@ -146,9 +173,22 @@ def expected(data):
         elif t == vtk.VTK_TRIANGLE_STRIP:
             idx = [(ids[k + 1], ids[k], ids[k + 2]) if k % 2 else (ids[k], ids[k + 1], ids[k + 2])
                    for k in range(len(ids) - 2)]
+        elif cell.GetCellDimension() == 3:
+            # the faces no other volume cell shares, as VTK orients them
+            volume += 1
+            idx = []
+            for k in range(cell.GetNumberOfFaces()):
+                f = cell.GetFace(k)
+                fi = [f.GetPointId(j) for j in range(f.GetNumberOfPoints())]
+                if shared[tuple(sorted(fi))] != 1:
+                    continue
+                if len(fi) == 3:
+                    idx.append(tuple(fi))
+                elif f.GetCellType() == vtk.VTK_PIXEL:
+                    idx += [(fi[0], fi[1], fi[3]), (fi[0], fi[3], fi[2])]
+                else:
+                    idx += [(fi[0], fi[1], fi[2]), (fi[0], fi[2], fi[3])]
         else:
-            if cell.GetCellDimension() == 3:
-                volume += 1
             continue
         for tri in idx:
             tris.append([(pts.GetPoint(i), rgba(cc, cid) if cc is not None else rgba(pc, i))
@@ -162,14 +202,8 @@ def expected(data):
 def vtk_count(data):
     """vtkTriangleFilter's triangles of the surface cells (a check)."""
     if isinstance(data, vtk.vtkUnstructuredGrid):
-        keep = vtk.vtkUnstructuredGrid()
-        keep.SetPoints(data.GetPoints())
-        for cid in range(data.GetNumberOfCells()):
-            if data.GetCell(cid).GetCellDimension() == 2:
-                c = data.GetCell(cid)
-                keep.InsertNextCell(data.GetCellType(cid), c.GetPointIds())
-        geo = vtk.vtkGeometryFilter()
-        geo.SetInputData(keep)
+        geo = vtk.vtkGeometryFilter()  # 2D cells, and 3D cells' boundary faces
+        geo.SetInputData(data)
         geo.Update()
         data = geo.GetOutput()
     tf = vtk.vtkTriangleFilter()

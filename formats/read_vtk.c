@@ -3,8 +3,9 @@
  * DATASET POLYDATA (POLYGONS and TRIANGLE_STRIPS drawn; VERTICES and LINES
  * read, counted in VTK's cell ids and not drawn) and UNSTRUCTURED_GRID
  * (triangles, quads, polygons, pixels, triangle strips drawn; vertices and
- * lines not drawn; volume cells such as tetrahedra and hexahedra skipped
- * with a note on stderr, not turned into their boundary). Cells in the
+ * lines not drawn; linear volume cells (tetrahedra, voxels, hexahedra,
+ * wedges, pyramids) drawn as their boundary faces, vtk_cells.c; higher
+ * order cells and polyhedra skipped with a note on stderr). Cells in the
  * classic layout ("POLYGONS n size", each cell "count ids...") and in the
  * layout of file version 5 and later ("POLYGONS nOffsets nConnectivity"
  * then OFFSETS and CONNECTIVITY arrays).

@@ -60,11 +60,12 @@ oit_status vtk_colours_alloc(vtk_colours *c, oit_rd_budget *b, size_t n, int com
                              const char *name, oit_error *err);
 void vtk_colours_free(vtk_colours *c, oit_rd_budget *b);
 
-/* Counts of what was not drawn, for the note on stderr. */
+/* Counts of what was not drawn as read, for the note on stderr. */
 typedef struct vtk_skipped {
-    uint64_t verts_lines; /* vertices, poly-vertices, lines, poly-lines */
-    uint64_t volume;      /* tetrahedra, hexahedra, ... (not surfaces)   */
-    uint64_t other;       /* surface types not read (quadratic, ...)     */
+    uint64_t verts_lines; /* vertices, poly-vertices, lines, poly-lines   */
+    uint64_t volume;      /* linear volume cells, drawn as their boundary */
+    uint64_t boundary;    /* the boundary faces drawn for them            */
+    uint64_t other;       /* types not read (quadratic, polyhedron, ...)  */
 } vtk_skipped;
 
 /* Applies the point colours to the vertex table (pts->v[i].rgba). */
@@ -72,16 +73,18 @@ void vtk_apply_point_colours(oit_rd_vtable *pts, const vtk_colours *pc);
 
 /* Emits the triangles of cells (first_id: the VTK id of its first cell, to
  * index the cell colours cc, which may be empty). Polygons and pixels/quads
- * are fanned, strips alternate their winding as VTK does; a cell colour
- * overrides its points' colours. Surface cells count in info->faces_in. */
+ * are fanned, strips alternate their winding as VTK does; linear volume
+ * cells give their boundary faces (those no other volume cell of cs shares);
+ * a cell colour overrides its points' colours. Surface cells and boundary
+ * faces count in info->faces_in. */
 oit_status vtk_emit_cells(oit_rd_ctx *c, const oit_rd_vtable *pts, const vtk_cells *cs,
                           uint64_t first_id, const vtk_colours *cc, vtk_skipped *skip);
 
 /* Sets the attribute bits for colours of `components` components. */
 void vtk_note_colours(oit_mesh_info *info, int components);
 
-/* The note on stderr for skipped cells, if any; when they were all there
- * was (no triangle), a format error saying so instead. */
+/* The note on stderr for volume and skipped cells, if any; when skipped
+ * cells were all there was (no triangle), a format error saying so. */
 oit_status vtk_report_skipped(oit_rd_ctx *c, const vtk_skipped *skip);
 
 /* Cell storage, growing as cells arrive (never sized by a declared count):

@@ -2,7 +2,10 @@
  * wrote itself (tests/corpus/vtk, tests/corpus/vtp; made by
  * data_scripts/make_vtk_corpus.py, which also wrote each NAME.expected from
  * VTK's own readers): every triangle's positions and colours, the count and
- * the attribute bits must match exactly, in one chunk and in chunks of 3.
+ * the attribute bits must match exactly, in one chunk and in chunks of 3
+ * (the unstructured grids: surface cells, and the boundary faces of a
+ * voxel, a pyramid on it, a wedge, a hexahedron and tetrahedra, two of
+ * them sharing an inner face, one face covered by a triangle cell).
  * Then each file cut in half, and hand-written malformed files, must fail
  * with the right status and a message naming the file (and, for parse
  * errors, the line or byte offset). Arguments: the two corpus folders. */
@@ -194,12 +197,13 @@ static void test_legacy_errors(void)
                  "# vtk DataFile Version 5.1\nt\nASCII\nDATASET POLYDATA\n" TRI_POINTS
                  "POLYGONS 2 3\nOFFSETS vtktypeint64\n0 4\n",
                  OIT_ERR_FORMAT, "offsets must start at 0 and grow up to 3");
-    /* only volume cells: nothing to draw, said as such */
-    expect_error("e_tetra.vtk",
+    /* only cells of a type not read (a quadratic tetrahedron): said as such */
+    expect_error("e_quadratic.vtk",
                  "# vtk DataFile Version 4.2\nt\nASCII\nDATASET UNSTRUCTURED_GRID\n"
-                 "POINTS 4 float\n0 0 0 1 0 0 0 1 0 0 0 1\nCELLS 1 5\n4 0 1 2 3\n"
-                 "CELL_TYPES 1\n10\n",
-                 OIT_ERR_FORMAT, "no surface cells, only 1 volume cells");
+                 "POINTS 10 float\n0 0 0 1 0 0 0 1 0 0 0 1 .5 0 0 .5 .5 0 0 .5 0 0 0 .5 .5 0 .5 "
+                 "0 .5 .5\nCELLS 1 11\n10 0 1 2 3 4 5 6 7 8 9\nCELL_TYPES 1\n24\n",
+                 OIT_ERR_FORMAT, "no surface cells and no volume cell with a boundary, only 1 "
+                 "cells of unsupported types");
 }
 
 /* One triangle's three vertices must have colour r g b a. */

@@ -16,7 +16,7 @@
 # degenerate, all non-finite, binary bytes in a text format), UTF-8 BOMs,
 # gzip (named .gz or not: read; corrupt or truncated: refused naming gzip),
 # VTK files (.vtp and legacy .vtk that VTK wrote: read; truncated, without
-# geometry, only volume cells, a dataset or file type that holds no surface,
+# geometry, only cells of a type not read, a dataset or file type that holds no surface,
 # another format under their names: refused naming the file and the fault),
 # corrupt part files (empty, text, truncated, flipped byte, gzip), usage
 # errors (empty -o, unknown image extension, unwritable folder before the
@@ -136,6 +136,7 @@ printf '<VTKFile type="UnstructuredGrid"><UnstructuredGrid></UnstructuredGrid></
 cp "$I/tri.ply" "$I/ply_named.vtp"
 cp "$I/tri.ply" "$I/ply_named.vtk"
 printf '# vtk DataFile Version 4.2\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 float\n0 0 0 1 0 0 0 1 0 0 0 1\nCELLS 1 5\n4 0 1 2 3\nCELL_TYPES 1\n10\n' >"$I/tetra.vtk"
+sed 's/^10$/71/' "$I/tetra.vtk" >"$I/bezier.vtk" # a cell type the reader does not take
 ln -s good.ply "$I/link.ply"
 ln "$I/good.ply" "$I/hard.ply"
 "$P" "$I/good.ply" -o "$I/good.oitp" >/dev/null 2>&1 || die "oitprep good.ply"
@@ -195,7 +196,8 @@ mesh "truncated binary vtk" 3 "$I/truncated.vtk" "truncated.vtk: byte offset"
 mesh "vtk points only" 3 "$I/points_only.vtk" "points_only.vtk: 3 vertices but no faces"
 mesh "vtk no geometry" 3 "$I/empty.vtk" "empty.vtk: no vertices and no faces"
 mesh "vtp no geometry" 3 "$I/empty.vtp" "empty.vtp: no vertices and no faces"
-mesh "vtk only volume cells" 3 "$I/tetra.vtk" "tetra.vtk: no surface cells, only 1 volume cells"
+mesh "vtk tetrahedron (boundary)" 0 "$I/tetra.vtk"
+mesh "vtk only unread cells" 3 "$I/bezier.vtk" "bezier.vtk: no surface cells and no volume cell"
 mesh "vtk STRUCTURED_POINTS" 3 "$I/image.vtk" "DATASET STRUCTURED_POINTS is not supported"
 mesh "vtp UnstructuredGrid" 3 "$I/ugrid.vtp" "VTKFile type 'UnstructuredGrid' is not supported"
 mesh "ply named .vtp" 3 "$I/ply_named.vtp" "ply_named.vtp: byte offset 0: not an XML VTK file"
