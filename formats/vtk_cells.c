@@ -175,8 +175,8 @@ static int vtk_surface_face(int type, size_t n)
 }
 
 /* Counts every face of the volume cells of cs (and the surface cells that
- * may cover one); *any is 0 when there is no volume cell. */
-static oit_status vtk_faces_count(oit_rd_ctx *c, const vtk_cells *cs, vtk_faces *t, int *any)
+ * may cover one); t stays empty when there is no volume cell. */
+static oit_status vtk_faces_count(oit_rd_ctx *c, const vtk_cells *cs, vtk_faces *t)
 {
     size_t faces = 0, surface = 0;
     for (size_t i = 0; cs->types && i < cs->ncells; i++) {
@@ -185,7 +185,6 @@ static oit_status vtk_faces_count(oit_rd_ctx *c, const vtk_cells *cs, vtk_faces 
         faces += sh ? (size_t)sh->nfaces : 0;
         surface += vtk_surface_face(cs->types[i], n);
     }
-    *any = faces > 0;
     if (!faces)
         return OIT_OK;
     faces += surface;
@@ -292,8 +291,7 @@ oit_status vtk_emit_cells(oit_rd_ctx *c, const oit_rd_vtable *pts, const vtk_cel
                           uint64_t first_id, const vtk_colours *cc, vtk_skipped *skip)
 {
     vtk_faces faces = {0};
-    int any;
-    oit_status st = vtk_faces_count(c, cs, &faces, &any);
+    oit_status st = vtk_faces_count(c, cs, &faces);
     for (size_t i = 0; i < cs->ncells && st == OIT_OK; i++) {
         uint64_t id = first_id + i;
         const uint8_t *rgba = cc->components && id < cc->count ? cc->rgba + 4 * id : NULL;
@@ -303,7 +301,6 @@ oit_status vtk_emit_cells(oit_rd_ctx *c, const oit_rd_vtable *pts, const vtk_cel
         st = vtk_cell(c, pts, type, n ? cs->conn + cs->off[i] : NULL, n, rgba, &faces, skip);
     }
     oit_rd_release(&c->budget, (void **)&faces.slot, &faces.cap, sizeof *faces.slot);
-    (void)any;
     return st;
 }
 
@@ -313,6 +310,9 @@ oit_status vtk_report_skipped(oit_rd_ctx *c, const vtk_skipped *skip)
         return oit_error_set(c->err, OIT_ERR_FORMAT, "%s: no surface cells and no volume cell "
                              "with a boundary, only %" PRIu64 " cells of unsupported types "
                              "(higher order, polyhedra): nothing to draw", c->name, skip->other);
+    if (skip->verts_lines)
+        fprintf(stderr, "%s: %" PRIu64 " vertex and line cells not drawn\n", c->name,
+                skip->verts_lines);
     if (skip->volume)
         fprintf(stderr, "%s: %" PRIu64 " volume cells drawn as their %" PRIu64 " boundary faces\n",
                 c->name, skip->volume, skip->boundary);
