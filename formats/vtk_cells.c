@@ -189,7 +189,7 @@ static oit_status vtk_faces_count(oit_rd_ctx *c, const vtk_cells *cs, vtk_faces 
         return OIT_OK;
     faces += surface;
     size_t cap = 16;
-    while (cap < 2 * faces)
+    while (cap < faces / 3 * 4 + 16) /* a load of at most 3/4 */
         cap *= 2;
     oit_status st = oit_rd_grow(&c->budget, (void **)&t->slot, &t->cap, sizeof *t->slot, cap,
                                 c->name, "volume face table", c->err);
