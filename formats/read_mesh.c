@@ -55,7 +55,8 @@ oit_status oit_mesh_read(const char *path, const oit_read_desc *desc, oit_triang
     if (ext_is(ext, "vtp"))
         return oit_rd_with_file(path, oit_read_vtp_stream, desc, sink, user, info, err);
     return oit_error_set(err, OIT_ERR_UNSUPPORTED,
-                         "%s: unknown mesh format '.%s' (expected .ply .obj .off .stl .gltf .glb .vtk .vtp)",
+                         "%s: unknown mesh format '.%s' (expected .ply .obj .off .stl .gltf .glb "
+                         ".vtk .vtp)",
                          path, ext);
 }
 
