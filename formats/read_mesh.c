@@ -1,6 +1,7 @@
 /* oit_mesh_read: picks the reader by file extension (case-insensitive), and
  * the file-path entries of the streaming readers. */
 #include "formats/readers_internal.h"
+#include "formats/vtk_internal.h"
 
 #include <ctype.h>
 #include <string.h>
@@ -49,8 +50,13 @@ oit_status oit_mesh_read(const char *path, const oit_read_desc *desc, oit_triang
         return oit_read_stl(path, desc, sink, user, info, err);
     if (ext_is(ext, "gltf") || ext_is(ext, "glb"))
         return oit_read_gltf(path, desc, sink, user, info, err);
+    if (ext_is(ext, "vtk"))
+        return oit_rd_with_file(path, oit_read_vtk_stream, desc, sink, user, info, err);
+    if (ext_is(ext, "vtp"))
+        return oit_rd_with_file(path, oit_read_vtp_stream, desc, sink, user, info, err);
     return oit_error_set(err, OIT_ERR_UNSUPPORTED,
-                         "%s: unknown mesh format '.%s' (expected .ply .obj .off .stl .gltf .glb)",
+                         "%s: unknown mesh format '.%s' (expected .ply .obj .off .stl .gltf .glb "
+                         ".vtk .vtp)",
                          path, ext);
 }
 

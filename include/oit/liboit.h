@@ -132,7 +132,7 @@ typedef struct oit_scene_info {
 
 /* path: a part file (its content starts with the part-file magic, or its
  * name ends in .oitp) is opened and streamed; any other name is read as a
- * mesh by extension (.ply .obj .off .stl .gltf .glb, case-insensitive, a
+ * mesh by extension (.ply .obj .off .stl .gltf .glb .vtk .vtp, case-insensitive, a
  * trailing .gz allowed: oit_mesh_read) and held in core, as
  * oit_scene_create_mesh holds arrays. desc applies to part files only.
  * A missing or unreadable file fails with OIT_ERR_IO, a malformed one with

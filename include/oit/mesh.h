@@ -92,7 +92,7 @@ typedef oit_status (*oit_triangle_sink)(void *user, const oit_triangle *tris,
                                         size_t count, oit_error *err);
 
 /* Reads any supported file; the format is chosen by extension (.ply .obj
- * .off .stl .gltf .glb, case-insensitive). info may be NULL. On failure the
+ * .off .stl .gltf .glb .vtk .vtp, case-insensitive). info may be NULL. On failure the
  * message names the file and the line or byte offset where it went wrong. */
 OIT_API oit_status oit_mesh_read(const char *path, const oit_read_desc *desc,
                                  oit_triangle_sink sink, void *user,

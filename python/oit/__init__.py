@@ -1,7 +1,7 @@
 """oit: exact order-independent transparency of meshes, from Python.
 
 A thin ctypes layer over liboit (include/oit/liboit.h, oit/offscreen.h):
-scenes are mesh files (.ply .obj .off .stl .gltf .glb, held in core and
+scenes are mesh files (.ply .obj .off .stl .gltf .glb .vtk .vtp, held in core and
 drawn with DFB), part files (.oitp, streamed) or numpy arrays; images come
 back as numpy arrays (height, width, 4), row 0 at the top.
 

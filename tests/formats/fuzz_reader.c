@@ -1,9 +1,12 @@
 /* libFuzzer target: arbitrary bytes through one streaming mesh reader (via
  * fmemopen, so nothing touches the disk). Built once per format with
- * OIT_FUZZ_FORMAT set to ply, obj, off or stl. Any status is fine; crashes,
+ * OIT_FUZZ_FORMAT set to ply, obj, off, stl, vtk or vtp. Any status is fine; crashes,
  * hangs, leaks and sanitizer reports are not. A small budget and chunk keep
  * the budget-exceeded and chunk-boundary paths in reach. */
 #include "formats/readers_internal.h"
+#ifdef OIT_FUZZ_VTK
+#include "formats/vtk_internal.h" /* oit_read_vtk_stream, oit_read_vtp_stream */
+#endif
 
 #define OIT_CAT3(a, b, c) a##b##c
 #define OIT_READER(fmt) OIT_CAT3(oit_read_, fmt, _stream)

@@ -15,6 +15,9 @@
 # and garbage models (/etc/passwd as .obj, vertices only, no faces, all
 # degenerate, all non-finite, binary bytes in a text format), UTF-8 BOMs,
 # gzip (named .gz or not: read; corrupt or truncated: refused naming gzip),
+# VTK files (.vtp and legacy .vtk that VTK wrote: read; truncated, without
+# geometry, only cells of a type not read, a dataset or file type that holds no surface,
+# another format under their names: refused naming the file and the fault),
 # corrupt part files (empty, text, truncated, flipped byte, gzip), usage
 # errors (empty -o, unknown image extension, unwritable folder before the
 # run, degenerate --view, --max-layers out of range), SIGINT/SIGTERM during
@@ -118,6 +121,22 @@ cp "$I/good.ply.gz" "$I/corrupt.ply.gz"
 printf '\377\377\377\377\377\377\377\377' |
     dd of="$I/corrupt.ply.gz" bs=1 seek=$((size / 3)) conv=notrunc 2>/dev/null
 gzip -9nc "$I/empty.obj" >"$I/empty.obj.gz"
+# VTK (tests/corpus: files VTK 9.1 wrote)
+V=$(dirname "$0")/../corpus
+cp "$V/vtp/poly_appended.vtp" "$V/vtk/poly_binary_51.vtk" "$V/vtk/ugrid_ascii_51.vtk" "$I/"
+gzip -9nc "$I/poly_appended.vtp" >"$I/poly_appended.vtp.gz"
+head -c 1500 "$I/poly_appended.vtp" >"$I/truncated.vtp"
+head -c $(($(wc -c <"$I/poly_appended.vtp") - 200)) "$I/poly_appended.vtp" >"$I/cut_data.vtp"
+head -c 400 "$I/poly_binary_51.vtk" >"$I/truncated.vtk"
+printf '# vtk DataFile Version 4.2\nt\nASCII\nDATASET POLYDATA\nPOINTS 3 float\n0 0 0 1 0 0 0 1 0\n' >"$I/points_only.vtk"
+printf '# vtk DataFile Version 4.2\nt\nASCII\nDATASET POLYDATA\n' >"$I/empty.vtk"
+printf '<VTKFile type="PolyData"><PolyData><Piece NumberOfPoints="0"></Piece></PolyData></VTKFile>\n' >"$I/empty.vtp"
+printf '# vtk DataFile Version 3.0\nt\nASCII\nDATASET STRUCTURED_POINTS\nDIMENSIONS 2 2 2\n' >"$I/image.vtk"
+printf '<VTKFile type="UnstructuredGrid"><UnstructuredGrid></UnstructuredGrid></VTKFile>\n' >"$I/ugrid.vtp"
+cp "$I/tri.ply" "$I/ply_named.vtp"
+cp "$I/tri.ply" "$I/ply_named.vtk"
+printf '# vtk DataFile Version 4.2\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 float\n0 0 0 1 0 0 0 1 0 0 0 1\nCELLS 1 5\n4 0 1 2 3\nCELL_TYPES 1\n10\n' >"$I/tetra.vtk"
+sed 's/^10$/71/' "$I/tetra.vtk" >"$I/bezier.vtk" # a cell type the reader does not take
 ln -s good.ply "$I/link.ply"
 ln "$I/good.ply" "$I/hard.ply"
 "$P" "$I/good.ply" -o "$I/good.oitp" >/dev/null 2>&1 || die "oitprep good.ply"
@@ -167,6 +186,22 @@ mesh "gzip ascii stl.gz" 0 "$I/ascii.stl.gz"
 mesh "gzip truncated" 3 "$I/truncated.ply.gz" "gzip stream truncated"
 mesh "gzip corrupt" 3 "$I/corrupt.ply.gz" "gzip"
 mesh "gzip of empty obj" 3 "$I/empty.obj.gz" "no vertices and no faces"
+mesh "vtp (VTK's default)" 0 "$I/poly_appended.vtp"
+mesh "gzip vtp.gz" 0 "$I/poly_appended.vtp.gz"
+mesh "binary vtk 5.1" 0 "$I/poly_binary_51.vtk"
+mesh "unstructured vtk" 0 "$I/ugrid_ascii_51.vtk"
+mesh "truncated vtp" 3 "$I/truncated.vtp" "truncated.vtp: byte offset"
+mesh "vtp, data cut" 3 "$I/cut_data.vtp" "cut_data.vtp: byte offset"
+mesh "truncated binary vtk" 3 "$I/truncated.vtk" "truncated.vtk: byte offset"
+mesh "vtk points only" 3 "$I/points_only.vtk" "points_only.vtk: 3 vertices but no faces"
+mesh "vtk no geometry" 3 "$I/empty.vtk" "empty.vtk: no vertices and no faces"
+mesh "vtp no geometry" 3 "$I/empty.vtp" "empty.vtp: no vertices and no faces"
+mesh "vtk tetrahedron (boundary)" 0 "$I/tetra.vtk"
+mesh "vtk only unread cells" 3 "$I/bezier.vtk" "bezier.vtk: no surface cells and no volume cell"
+mesh "vtk STRUCTURED_POINTS" 3 "$I/image.vtk" "DATASET STRUCTURED_POINTS is not supported"
+mesh "vtp UnstructuredGrid" 3 "$I/ugrid.vtp" "VTKFile type 'UnstructuredGrid' is not supported"
+mesh "ply named .vtp" 3 "$I/ply_named.vtp" "ply_named.vtp: byte offset 0: not an XML VTK file"
+mesh "ply named .vtk" 3 "$I/ply_named.vtk" "ply_named.vtk: line 1: not a legacy VTK file"
 
 # ---- part files ----
 part "good part file" 0 "$I/good.oitp"
