@@ -101,6 +101,12 @@ oit_status oit_capture_create_faulty(oit_capture_kind kind, int K, unsigned faul
  *    the slot budget (20 bytes a sample: 160 MiB at 1024x1024, 8 samples). */
 oit_status oit_capture_create_routed(oit_capture_kind kind, int K, int stencil_k,
                                      unsigned faults, oit_capture **out, oit_error *err);
+/* oit_capture_create_faulty (stencil_k 0) or oit_capture_create_routed
+ * (stencil_k > 0) with the capture's programs built through pc
+ * (render/gl/program_cache.h; NULL: compiled), which must outlive it. */
+oit_status oit_capture_create_cached(oit_program_cache *pc, oit_capture_kind kind, int K,
+                                     int stencil_k, unsigned faults, oit_capture **out,
+                                     oit_error *err);
 /* The samples of c's routed fills; 0: none (array slots). */
 int oit_capture_routed_k(const oit_capture *c);
 /* "array", "stencil", "counted", "first-k", "compute" (NULL for AUTO or

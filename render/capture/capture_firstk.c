@@ -194,12 +194,12 @@ void oit_firstk_route(oit_firstk *k, oit_stencil_target *t, GLuint fill)
     k->routed_fill = fill;
 }
 
-oit_status oit_firstk_init(oit_firstk *k, int K, oit_error *err)
+oit_status oit_firstk_init(oit_firstk *k, int K, oit_program_cache *pc, oit_error *err)
 {
     memset(k, 0, sizeof *k);
     k->K = K;
     k->budget = UINT64_MAX;
-    oit_status s = oit_glsl_programs_build(programs, OIT_FIRSTK_PROGS, k->prog, err);
+    oit_status s = oit_glsl_programs_build(pc, programs, OIT_FIRSTK_PROGS, k->prog, err);
     if (s == OIT_OK) {
         glCreateBuffers(1, &k->totals);
         glNamedBufferData(k->totals, 32, NULL, GL_DYNAMIC_COPY);

@@ -71,7 +71,7 @@ typedef struct oit_firstk {
     GLuint routed_fill;
 } oit_firstk;
 
-oit_status oit_firstk_init(oit_firstk *k, int K, oit_error *err);
+oit_status oit_firstk_init(oit_firstk *k, int K, oit_program_cache *pc, oit_error *err);
 void oit_firstk_release(oit_firstk *k);
 uint64_t oit_firstk_bytes(const oit_firstk *k);
 

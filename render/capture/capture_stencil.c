@@ -411,7 +411,7 @@ static oit_status stencil_create(oit_capture *c, int stencil_k, oit_error *err)
     stencil_backend *b = c->be;
     oit_status s = oit_capture_route_init(c, &b->target, stencil_k, err);
     if (s == OIT_OK)
-        s = oit_capture_slots_init(&b->slots,
+        s = oit_capture_slots_init(&b->slots, c->programs,
                                    b->target.by_copy ? "#define OIT_ROUTE_BY_COPY 1\n" : "",
                                    oit_capture_stencil_fs, "#define OIT_STENCIL 1\n", err);
     c->routed_k = stencil_k;
