@@ -17,7 +17,7 @@
 static const char magic[8] = {'O', 'I', 'T', 'P', 'B', 'I', 'N', '1'};
 
 /* What precedes the binary in an entry. */
-typedef struct entry_head {
+typedef struct entry_head { /* program_cache.h spells its layout */
     char magic[8];
     uint64_t key_b;    /* the second hash of the key */
     uint64_t key_len;  /* bytes hashed */
@@ -25,6 +25,8 @@ typedef struct entry_head {
     uint32_t format;   /* the driver's binary format */
     uint32_t length;   /* of the binary */
 } entry_head;
+
+_Static_assert(sizeof(entry_head) == 40, "the entry header program_cache.h spells");
 
 struct oit_program_cache {
     char dir[CACHE_PATH_MAX];
@@ -60,7 +62,7 @@ static void hash_string(key_hash *h, const char *s)
     hash_bytes(h, s ? s : "", strlen(s ? s : "") + 1);
 }
 
-static uint64_t checksum(const void *data, size_t n)
+uint64_t oit_program_cache_checksum(const void *data, size_t n)
 {
     key_hash h = {0xcbf29ce484222325ull, 0, 0};
     hash_bytes(&h, data, n);
@@ -205,7 +207,7 @@ static void *read_entry(const oit_program_cache *pc, const char *path, const key
         bin = malloc(head->length);
         /* exactly length bytes: a longer file is not ours either */
         if (bin && (fread(bin, 1, head->length, f) != head->length || fgetc(f) != EOF ||
-                    checksum(bin, head->length) != head->checksum)) {
+                    oit_program_cache_checksum(bin, head->length) != head->checksum)) {
             free(bin);
             bin = NULL;
         }
@@ -243,7 +245,7 @@ static int write_entry(const char *path, const key_hash *k, GLuint prog)
     GLsizei got = 0;
     glGetProgramBinary(prog, len, &got, &format, bin);
     entry_head head = {.key_b = k->b, .key_len = k->len, .format = format,
-                       .length = (uint32_t)got, .checksum = checksum(bin, (size_t)got)};
+                       .length = (uint32_t)got, .checksum = oit_program_cache_checksum(bin, (size_t)got)};
     memcpy(head.magic, magic, sizeof magic);
     char tmp[CACHE_PATH_MAX + 48];
     snprintf(tmp, sizeof tmp, "%s.XXXXXX", path);
@@ -275,16 +277,19 @@ oit_status oit_program_cache_build(oit_program_cache *pc, const char *what,
     int found = 0;
     void *bin = read_entry(pc, path, &k, &head, &found);
     GLuint prog = bin ? load_entry(&head, bin) : 0;
-    free(bin);
     if (prog) {
+        free(bin);
         pc->stats.hits++;
         *out = prog;
         return OIT_OK;
     }
-    if (found)
+    if (bin)
+        pc->stats.refused++;
+    else if (found)
         pc->stats.rejected++;
     else
         pc->stats.misses++;
+    free(bin);
     oit_status s = oit_gl_program_build(what, vs, fs, cs, 1, out, err);
     if (s == OIT_OK && write_entry(path, &k, *out))
         pc->stats.written++;

@@ -28,7 +28,10 @@ typedef struct oit_program_cache oit_program_cache;
 typedef struct oit_program_cache_stats {
     unsigned hits;     /* programs loaded from an entry */
     unsigned misses;   /* no entry: compiled */
-    unsigned rejected; /* an entry was there but not trusted or refused: compiled */
+    unsigned rejected; /* an entry was there but not ours, not whole or not this
+                          program's (its header, size or checksum): compiled */
+    unsigned refused;  /* an entry passed those checks but the driver refused it
+                          (GL_LINK_STATUS false after glProgramBinary): compiled */
     unsigned written;  /* entries written */
 } oit_program_cache_stats;
 
@@ -44,6 +47,12 @@ void oit_program_cache_close(oit_program_cache *pc);
 /* The folder in use ("" for NULL). */
 const char *oit_program_cache_dir(const oit_program_cache *pc);
 oit_program_cache_stats oit_program_cache_get_stats(const oit_program_cache *pc);
+
+/* An entry is a 40-byte header (magic "OITPBIN1", the key's second hash,
+ * the key's length, this checksum of the binary, all uint64 in the host's
+ * order; then the binary's format and length, uint32) and the binary. The
+ * checksum, for tests that forge an entry the driver must refuse. */
+uint64_t oit_program_cache_checksum(const void *data, size_t n);
 
 /* As oit_gl_program_graphics (cs NULL) or oit_gl_program_compute (vs and fs
  * NULL), through pc's entries; pc NULL compiles. */
