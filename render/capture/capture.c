@@ -78,18 +78,17 @@ static oit_status make(oit_program_cache *pc, const oit_capture_ops *ops, int K,
         free(c);
         return oit_error_set(err, OIT_ERR_NOMEM, "capture: out of memory");
     }
-    /* the backend first: a routed one the driver refuses is tried at
-     * fewer samples, and what was built for this try is thrown away */
-    oit_status s = oit_gpu_draws_create(&c->draws, err);
+    /* the end program before the backend, whose self-test ends a frame */
+    const oit_glsl_program end = {"capture end",
+                                  .cs = {oit_glsl_composite, oit_glsl_state_io, oit_capture_end_cs}};
+    oit_status s = oit_glsl_programs_build(pc, &end, 1, &c->end_prog, err);
+    if (s == OIT_OK)
+        s = oit_gpu_draws_create(&c->draws, err);
     if (s == OIT_OK) {
         glCreateFramebuffers(1, &c->fbo);
         c->max_groups = oit_gl_max_groups_x();
         s = ops->create(c, stencil_k, err);
     }
-    const oit_glsl_program end = {"capture end",
-                                  .cs = {oit_glsl_composite, oit_glsl_state_io, oit_capture_end_cs}};
-    if (s == OIT_OK)
-        s = oit_glsl_programs_build(pc, &end, 1, &c->end_prog, err);
     if (s == OIT_OK)
         s = oit_gl_check("capture: set-up", err);
     if (s != OIT_OK) {
@@ -98,12 +97,6 @@ static oit_status make(oit_program_cache *pc, const oit_capture_ops *ops, int K,
     }
     *out = c;
     return OIT_OK;
-}
-
-oit_status oit_capture_create(oit_capture_kind kind, int K, oit_capture **out,
-                              oit_error *err)
-{
-    return oit_capture_create_faulty(kind, K, 0, out, err);
 }
 
 /* AUTO keeps the caller's K and takes the array backend where stencil
@@ -115,46 +108,6 @@ oit_status oit_capture_k_check(long long K, const char *what, oit_error *err)
         return OIT_OK;
     return oit_error_set(err, OIT_ERR_ARGUMENT, "%s = %lld is outside [%d, %d]",
                          what ? what : "capture: K", K, OIT_CAPTURE_K_MIN, OIT_CAPTURE_K_MAX);
-}
-
-static oit_status create_routed(oit_program_cache *pc, oit_capture_kind kind, int K,
-                                int stencil_k, unsigned faults, oit_capture **out,
-                                oit_error *err);
-
-static oit_status create_kind(oit_program_cache *pc, oit_capture_kind kind, int K,
-                              unsigned faults, oit_capture **out, oit_error *err)
-{
-    *out = NULL;
-    oit_status s = oit_capture_k_check(K, NULL, err);
-    if (s != OIT_OK)
-        return s;
-    if (kind == OIT_CAPTURE_ARRAY || kind == OIT_CAPTURE_COUNTED || kind == OIT_CAPTURE_FIRSTK ||
-        kind == OIT_CAPTURE_COMPUTE)
-        return make(pc, ops_of(kind), K, 0, faults, out, err);
-    s = create_routed(pc, OIT_CAPTURE_STENCIL, K, K, faults, out, err);
-    if (s != OIT_OK && kind == OIT_CAPTURE_AUTO)
-        return make(pc, &oit_capture_array_ops, K, 0, faults, out, err);
-    return s;
-}
-
-oit_status oit_capture_create_faulty(oit_capture_kind kind, int K, unsigned faults,
-                                     oit_capture **out, oit_error *err)
-{
-    return create_kind(NULL, kind, K, faults, out, err);
-}
-
-oit_status oit_capture_create_cached(oit_program_cache *pc, oit_capture_kind kind, int K,
-                                     int stencil_k, unsigned faults, oit_capture **out,
-                                     oit_error *err)
-{
-    return stencil_k ? create_routed(pc, kind, K, stencil_k, faults, out, err)
-                     : create_kind(pc, kind, K, faults, out, err);
-}
-
-oit_status oit_capture_create_routed(oit_capture_kind kind, int K, int stencil_k,
-                                     unsigned faults, oit_capture **out, oit_error *err)
-{
-    return create_routed(NULL, kind, K, stencil_k, faults, out, err);
 }
 
 static oit_status create_routed(oit_program_cache *pc, oit_capture_kind kind, int K,
@@ -183,6 +136,30 @@ static oit_status create_routed(oit_program_cache *pc, oit_capture_kind kind, in
         return oit_error_set(err, OIT_ERR_UNSUPPORTED, "%s", why);
     }
     return s == OIT_ERR_GL ? OIT_ERR_UNSUPPORTED : s;
+}
+
+static oit_status create_kind(oit_program_cache *pc, oit_capture_kind kind, int K,
+                              unsigned faults, oit_capture **out, oit_error *err)
+{
+    *out = NULL;
+    oit_status s = oit_capture_k_check(K, NULL, err);
+    if (s != OIT_OK)
+        return s;
+    if (kind == OIT_CAPTURE_ARRAY || kind == OIT_CAPTURE_COUNTED || kind == OIT_CAPTURE_FIRSTK ||
+        kind == OIT_CAPTURE_COMPUTE)
+        return make(pc, ops_of(kind), K, 0, faults, out, err);
+    s = create_routed(pc, OIT_CAPTURE_STENCIL, K, K, faults, out, err);
+    if (s != OIT_OK && kind == OIT_CAPTURE_AUTO)
+        return make(pc, &oit_capture_array_ops, K, 0, faults, out, err);
+    return s;
+}
+
+oit_status oit_capture_create_cached(oit_program_cache *pc, oit_capture_kind kind, int K,
+                                     int stencil_k, unsigned faults, oit_capture **out,
+                                     oit_error *err)
+{
+    return stencil_k ? create_routed(pc, kind, K, stencil_k, faults, out, err)
+                     : create_kind(pc, kind, K, faults, out, err);
 }
 
 int oit_capture_routed_k(const oit_capture *c)
