@@ -39,6 +39,17 @@ static oit_status firstk_route(oit_capture *c, firstk_backend *b, int stencil_k,
     return oit_capture_stencil_self_test(c, &b->target, b->fill, err);
 }
 
+static void firstk_uniforms(oit_capture *c);
+static void firstk_epsilon(oit_capture *c, float e);
+
+/* Programs built mid-frame get the frame's uniforms. */
+static void reapply(void *ctx)
+{
+    oit_capture *c = ctx;
+    firstk_uniforms(c);
+    firstk_epsilon(c, c->frame.applied);
+}
+
 /* The route and its self-test first: a driver that refuses them costs
  * this try no more than theirs (oit_capture_choose tries fewer samples). */
 static oit_status firstk_create(oit_capture *c, int stencil_k, oit_error *err)
@@ -46,14 +57,11 @@ static oit_status firstk_create(oit_capture *c, int stencil_k, oit_error *err)
     firstk_backend *b = c->be;
     oit_status s = stencil_k ? firstk_route(c, b, stencil_k, err) : OIT_OK;
     if (s == OIT_OK)
-        s = oit_firstk_init(&b->k, c->K, c->programs, err);
+        s = oit_firstk_init(&b->k, c->K, c->programs, reapply, c, err);
     if (s == OIT_OK && stencil_k)
         oit_firstk_route(&b->k, &b->target, b->fill);
     return s;
 }
-
-static void firstk_uniforms(oit_capture *c);
-static void firstk_epsilon(oit_capture *c, float e);
 
 /* The counted capture, built the first time a batch needs it, with this
  * frame's uniforms. */
@@ -65,8 +73,7 @@ static oit_status counted_ready(oit_capture *c, firstk_backend *b, oit_error *er
     if (s != OIT_OK)
         return s;
     b->counted_ready = 1;
-    firstk_uniforms(c);
-    firstk_epsilon(c, c->frame.applied);
+    reapply(c);
     return OIT_OK;
 }
 
