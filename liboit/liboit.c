@@ -50,7 +50,8 @@ struct oit_renderer {
     oit_dfb *dfb;           /* in-core scenes; kept across scenes */
     oit_gpu_mesh *gpu_mesh; /* the in-core scene's triangles */
     uint64_t pending_upload; /* bytes uploaded by bind_scene, for the stats */
-    GLuint blend_prog, vao;
+    GLuint blend_prog, vao; /* blend_prog: made at the first oit_renderer_draw */
+    oit_program_cache *programs; /* desc.program_cache's, NULL: none */
     GLuint depth_sampler; /* reads oit_frame.depth_texture: no compare, nearest */
     oit_gpu_timer *timer; /* made at the first draw (GL current) */
     oit_gpu_times gpu;    /* the newest figures polled; frame 0: none yet */
@@ -463,6 +464,7 @@ void oit_renderer_destroy(oit_renderer *r)
     oit_dfb_destroy(r->dfb);
     oit_gpu_timer_destroy(r->timer);
     glDeleteProgram(r->blend_prog);
+    oit_program_cache_close(r->programs);
     glDeleteVertexArrays(1, &r->vao);
     glDeleteSamplers(1, &r->depth_sampler);
     free(r);
@@ -550,9 +552,10 @@ oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out
         return bad;
     }
     stream_desc(&r->desc, &r->stream);
-    const char *vs[] = {oit_glsl_version, oit_capture_fullscreen_vs, NULL};
-    const char *fs[] = {oit_glsl_version, oit_glsl_composite, oit_glsl_state_io, blend_fs, NULL};
-    oit_status st = oit_gl_program_graphics("liboit blend", vs, fs, &r->blend_prog, err);
+    oit_status st = oit_program_cache_open(r->desc.program_cache, &r->programs, err);
+    /* the caller's string is not kept: the folder in use is read back */
+    r->desc.program_cache = r->programs ? oit_program_cache_dir(r->programs) : "off";
+    r->stream.programs = r->programs;
     if (st == OIT_OK) {
         glCreateVertexArrays(1, &r->vao);
         glCreateSamplers(1, &r->depth_sampler);
@@ -717,6 +720,18 @@ static void gl_restore(const gl_saved *g)
 
 /* dst = C + T * dst through dual-source blending, one fragment per pixel,
  * over the target's rect at (x, y) of v's size, the state's pixels. */
+/* The blend program, built at the first draw over a framebuffer (a run
+ * that only reads images back never needs it). */
+static oit_status blend_ready(oit_renderer *r, oit_error *err)
+{
+    if (r->blend_prog)
+        return OIT_OK;
+    const char *vs[] = {oit_glsl_version, oit_capture_fullscreen_vs, NULL};
+    const char *fs[] = {oit_glsl_version, oit_glsl_composite, oit_glsl_state_io, blend_fs, NULL};
+    return oit_program_cache_build(r->programs, "liboit blend", vs, fs, NULL, &r->blend_prog,
+                                   err);
+}
+
 static void blend_over(const oit_renderer *r, const oit_frame *f, const oit_view *v, int x,
                        int y, GLuint state)
 {
@@ -993,6 +1008,8 @@ static oit_status draw_bands(oit_renderer *r, const oit_scene *scene, const oit_
         glBindTextureUnit(OIT_TEX_OPAQUE_KEYS, (GLuint)keys_tex);
         if (opaque.enabled)
             depth_unit_restore(&unit);
+        if (st == OIT_OK)
+            st = blend_ready(r, err);
         if (st == OIT_OK) {
             blend_over(r, frame, &band, frame->viewport_x, gl_y, state);
             st = oit_gl_check("oit_renderer_draw: blend", err);

@@ -478,13 +478,15 @@ typedef struct routed_try {
     oit_capture_kind kind;
     int K;
     unsigned faults;
+    oit_program_cache *programs;
     oit_capture *made;
 } routed_try;
 
 static oit_status try_routed(void *ctx, int stencil_k, oit_error *err)
 {
     routed_try *t = ctx;
-    return oit_capture_create_routed(t->kind, t->K, stencil_k, t->faults, &t->made, err);
+    return oit_capture_create_cached(t->programs, t->kind, t->K, stencil_k, t->faults, &t->made,
+                                     err);
 }
 
 /* The pack mode's capture, its K-slot fills as --capture chooses. */
@@ -494,8 +496,8 @@ static oit_status create_capture(oit_streamer *s, const oit_streamer_desc *desc,
     /* No K-slot fill and no per-pixel limit: exact with every pack mode. */
     if (desc->capture == OIT_CAPTURE_COMPUTE) {
         s->choice.asked = desc->capture;
-        return oit_capture_create_faulty(OIT_CAPTURE_COMPUTE, desc->K, desc->capture_faults,
-                                         &s->capture, err);
+        return oit_capture_create_cached(desc->programs, OIT_CAPTURE_COMPUTE, desc->K, 0,
+                                         desc->capture_faults, &s->capture, err);
     }
     if (mode == OIT_PACK_COUNTED) {
         s->choice.asked = desc->capture;
@@ -504,20 +506,20 @@ static oit_status create_capture(oit_streamer *s, const oit_streamer_desc *desc,
                                  "K-slot fill to route (--pack first-k, budget or disjoint)",
                                  oit_capture_kind_name(desc->capture)
                                      ? oit_capture_kind_name(desc->capture) : "?");
-        return oit_capture_create_faulty(OIT_CAPTURE_COUNTED, desc->K, desc->capture_faults,
-                                         &s->capture, err);
+        return oit_capture_create_cached(desc->programs, OIT_CAPTURE_COUNTED, desc->K, 0,
+                                         desc->capture_faults, &s->capture, err);
     }
     int firstk = mode == OIT_PACK_FIRSTK;
     routed_try t = {firstk ? OIT_CAPTURE_FIRSTK : OIT_CAPTURE_STENCIL, desc->K,
-                    desc->capture_faults, NULL};
+                    desc->capture_faults, desc->programs, NULL};
     oit_status st = oit_capture_choose(desc->capture, desc->K, firstk, try_routed, &t,
                                        &s->choice, err);
     if (st != OIT_OK || t.made) {
         s->capture = t.made;
         return st;
     }
-    return oit_capture_create_faulty(firstk ? OIT_CAPTURE_FIRSTK : OIT_CAPTURE_ARRAY, desc->K,
-                                     desc->capture_faults, &s->capture, err);
+    return oit_capture_create_cached(desc->programs, firstk ? OIT_CAPTURE_FIRSTK : OIT_CAPTURE_ARRAY,
+                                     desc->K, 0, desc->capture_faults, &s->capture, err);
 }
 
 /* desc's reader_threads resolved: the render thread draws, the others

@@ -42,6 +42,9 @@ typedef struct oit_streamer_desc {
      * the largest */
     oit_capture_kind capture;
     unsigned capture_faults;  /* testing: OIT_CAPTURE_FAULT_* and _TEST_* (capture.h) */
+    /* where the capture's programs are built through (the caller's, which
+     * outlives the streamer: render/gl/program_cache.h); NULL: compiled */
+    oit_program_cache *programs;
     /* OIT_PACK_AUTO (0): first-K packs, switched to counted for the next
      * frames when more than 1 pixel in 50 took the second pass, and tried
      * again every OIT_STREAM_PROBE_FRAMES counted frames (the image is the

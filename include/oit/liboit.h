@@ -329,6 +329,19 @@ typedef struct oit_renderer_desc {
      * of rows (the image alike but for pixel centres within rounding of a
      * silhouette at a band's edge). */
     uint64_t binding_limit;
+    /* Where linked GL programs are kept across processes (GL program
+     * binaries; oitstream --program-cache), so a later process with the
+     * same driver loads them instead of compiling: a folder, made if
+     * missing; "off": none. NULL (default): OIT_PROGRAM_CACHE from the
+     * environment where set (a folder or "off"), else
+     * $XDG_CACHE_HOME/oit, else $HOME/.cache/oit. An entry is named by a
+     * hash of the driver's strings and the programs' sources and checked
+     * before use; a bad or refused one is compiled and written again, and
+     * a folder that cannot be written, or a driver without program
+     * binaries, means no cache, never an error. Read at
+     * oit_renderer_create; the string need not outlive that call.
+     * oit_renderer_get_desc gives the folder in use, or "off". */
+    const char *program_cache;
 } oit_renderer_desc;
 
 #define OIT_RENDER_CACHE_OFF UINT64_MAX

@@ -56,7 +56,8 @@ class RendererDesc(ctypes.Structure):
                 ("read_on_draw_thread", ctypes.c_int), ("capture", ctypes.c_int),
                 ("gpu_budget", ctypes.c_uint64), ("see_through", ctypes.c_int),
                 ("schedule", ctypes.c_int), ("slot_budget", ctypes.c_uint64),
-                ("reader_threads", ctypes.c_uint32), ("binding_limit", ctypes.c_uint64)]
+                ("reader_threads", ctypes.c_uint32), ("binding_limit", ctypes.c_uint64),
+                ("program_cache", ctypes.c_char_p)]
 
 
 class OffscreenDesc(ctypes.Structure):

@@ -96,7 +96,7 @@ static oit_status oit_b3d_init(oit_b3d *b, oit_error *err)
 {
     b->b.method = "B3D";
     b->b.names = buffer_names;
-    oit_status s = oit_glsl_programs_build(programs, PROG_N, b->prog, err);
+    oit_status s = oit_glsl_programs_build(NULL, programs, PROG_N, b->prog, err);
     if (s == OIT_OK)
         s = oit_gl_framebuffer_create(&b->fbo, NULL, "B3D: glCreateFramebuffers", err);
     return s;

@@ -332,7 +332,7 @@ oit_status oit_blend_passes_init(oit_blend_passes *p, const char *method,
     memcpy(p->format, formats, sizeof *formats * (size_t)n_tex);
     char what[96];
     snprintf(what, sizeof what, "%s: framebuffer and query", method);
-    oit_status s = oit_glsl_programs_build(programs, n_prog, p->prog, err);
+    oit_status s = oit_glsl_programs_build(NULL, programs, n_prog, p->prog, err);
     if (s == OIT_OK)
         s = oit_gl_framebuffer_create(&p->fbo, &p->query, what, err);
     return s;

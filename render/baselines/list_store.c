@@ -28,7 +28,7 @@ oit_status oit_list_store_init(oit_list_store *ls, const oit_list_desc *desc, oi
     ls->d = *desc;
     ls->b.method = desc->method;
     ls->b.names = buffer_names;
-    oit_status s = oit_glsl_programs_build(programs, OIT_LIST_PROG_N, ls->prog, err);
+    oit_status s = oit_glsl_programs_build(NULL, programs, OIT_LIST_PROG_N, ls->prog, err);
     if (s == OIT_OK)
         s = oit_gl_framebuffer_create(&ls->fbo, NULL, "list store: glCreateFramebuffers", err);
     return s;

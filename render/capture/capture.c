@@ -63,13 +63,14 @@ oit_capture_kind oit_capture_backend(const oit_capture *c)
 
 /* The shared part, then the backend's (stencil_k: the samples of its
  * routed fills, 0 for none; a routed backend runs the self-test). */
-static oit_status make(const oit_capture_ops *ops, int K, int stencil_k, unsigned faults,
-                       oit_capture **out, oit_error *err)
+static oit_status make(oit_program_cache *pc, const oit_capture_ops *ops, int K, int stencil_k,
+                       unsigned faults, oit_capture **out, oit_error *err)
 {
     oit_capture *c = calloc(1, sizeof *c);
     if (!c)
         return oit_error_set(err, OIT_ERR_NOMEM, "capture: out of memory");
     c->ops = ops;
+    c->programs = pc;
     c->K = K;
     c->faults = faults;
     c->be = calloc(1, ops->size);
@@ -77,9 +78,10 @@ static oit_status make(const oit_capture_ops *ops, int K, int stencil_k, unsigne
         free(c);
         return oit_error_set(err, OIT_ERR_NOMEM, "capture: out of memory");
     }
+    /* the end program before the backend, whose self-test ends a frame */
     const oit_glsl_program end = {"capture end",
                                   .cs = {oit_glsl_composite, oit_glsl_state_io, oit_capture_end_cs}};
-    oit_status s = oit_glsl_programs_build(&end, 1, &c->end_prog, err);
+    oit_status s = oit_glsl_programs_build(pc, &end, 1, &c->end_prog, err);
     if (s == OIT_OK)
         s = oit_gpu_draws_create(&c->draws, err);
     if (s == OIT_OK) {
@@ -97,12 +99,6 @@ static oit_status make(const oit_capture_ops *ops, int K, int stencil_k, unsigne
     return OIT_OK;
 }
 
-oit_status oit_capture_create(oit_capture_kind kind, int K, oit_capture **out,
-                              oit_error *err)
-{
-    return oit_capture_create_faulty(kind, K, 0, out, err);
-}
-
 /* AUTO keeps the caller's K and takes the array backend where stencil
  * routing is refused; STENCIL refuses with the reason: the caller asked for
  * that method, and a lower K would lose fragments (an inexact image). */
@@ -114,24 +110,9 @@ oit_status oit_capture_k_check(long long K, const char *what, oit_error *err)
                          what ? what : "capture: K", K, OIT_CAPTURE_K_MIN, OIT_CAPTURE_K_MAX);
 }
 
-oit_status oit_capture_create_faulty(oit_capture_kind kind, int K, unsigned faults,
-                                     oit_capture **out, oit_error *err)
-{
-    *out = NULL;
-    oit_status s = oit_capture_k_check(K, NULL, err);
-    if (s != OIT_OK)
-        return s;
-    if (kind == OIT_CAPTURE_ARRAY || kind == OIT_CAPTURE_COUNTED || kind == OIT_CAPTURE_FIRSTK ||
-        kind == OIT_CAPTURE_COMPUTE)
-        return make(ops_of(kind), K, 0, faults, out, err);
-    s = oit_capture_create_routed(OIT_CAPTURE_STENCIL, K, K, faults, out, err);
-    if (s != OIT_OK && kind == OIT_CAPTURE_AUTO)
-        return make(&oit_capture_array_ops, K, 0, faults, out, err);
-    return s;
-}
-
-oit_status oit_capture_create_routed(oit_capture_kind kind, int K, int stencil_k,
-                                     unsigned faults, oit_capture **out, oit_error *err)
+static oit_status create_routed(oit_program_cache *pc, oit_capture_kind kind, int K,
+                                int stencil_k, unsigned faults, oit_capture **out,
+                                oit_error *err)
 {
     *out = NULL;
     if (oit_capture_k_check(K, NULL, err) != OIT_OK)
@@ -144,7 +125,7 @@ oit_status oit_capture_create_routed(oit_capture_kind kind, int K, int stencil_k
         return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: %d routed samples for %s at "
                              "K=%d (2..K; the stencil capture's own K)", stencil_k,
                              oit_capture_kind_name(kind), K);
-    oit_status s = make(ops_of(kind), K, stencil_k, faults, out, err);
+    oit_status s = make(pc, ops_of(kind), K, stencil_k, faults, out, err);
     if (s == OIT_OK)
         return OIT_OK;
     /* A driver error while setting stencil routing up means it is not
@@ -155,6 +136,30 @@ oit_status oit_capture_create_routed(oit_capture_kind kind, int K, int stencil_k
         return oit_error_set(err, OIT_ERR_UNSUPPORTED, "%s", why);
     }
     return s == OIT_ERR_GL ? OIT_ERR_UNSUPPORTED : s;
+}
+
+static oit_status create_kind(oit_program_cache *pc, oit_capture_kind kind, int K,
+                              unsigned faults, oit_capture **out, oit_error *err)
+{
+    *out = NULL;
+    oit_status s = oit_capture_k_check(K, NULL, err);
+    if (s != OIT_OK)
+        return s;
+    if (kind == OIT_CAPTURE_ARRAY || kind == OIT_CAPTURE_COUNTED || kind == OIT_CAPTURE_FIRSTK ||
+        kind == OIT_CAPTURE_COMPUTE)
+        return make(pc, ops_of(kind), K, 0, faults, out, err);
+    s = create_routed(pc, OIT_CAPTURE_STENCIL, K, K, faults, out, err);
+    if (s != OIT_OK && kind == OIT_CAPTURE_AUTO)
+        return make(pc, &oit_capture_array_ops, K, 0, faults, out, err);
+    return s;
+}
+
+oit_status oit_capture_create_cached(oit_program_cache *pc, oit_capture_kind kind, int K,
+                                     int stencil_k, unsigned faults, oit_capture **out,
+                                     oit_error *err)
+{
+    return stencil_k ? create_routed(pc, kind, K, stencil_k, faults, out, err)
+                     : create_kind(pc, kind, K, faults, out, err);
 }
 
 int oit_capture_routed_k(const oit_capture *c)

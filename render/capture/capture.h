@@ -59,12 +59,21 @@ typedef struct oit_capture oit_capture;
 #define OIT_CAPTURE_K_MAX 16
 oit_status oit_capture_k_check(long long K, const char *what, oit_error *err);
 
+/* What the three below make (stencil_k 0: oit_capture_create_faulty,
+ * else oit_capture_create_routed), with the capture's programs built through pc
+ * (render/gl/program_cache.h; NULL: compiled), which must outlive it. */
+oit_status oit_capture_create_cached(oit_program_cache *pc, oit_capture_kind kind, int K,
+                                     int stencil_k, unsigned faults, oit_capture **out,
+                                     oit_error *err);
 /* K in [2, 16]. Fails with OIT_ERR_UNSUPPORTED when STENCIL is asked for and
  * the sample mode or the self-test rules it out at this K; the message says
  * which, with the numbers (and the largest K of true multisamples where the
  * driver tells). AUTO then takes the array backend at the same K. */
-oit_status oit_capture_create(oit_capture_kind kind, int K, oit_capture **out,
-                              oit_error *err);
+static inline oit_status oit_capture_create(oit_capture_kind kind, int K, oit_capture **out,
+                                            oit_error *err)
+{
+    return oit_capture_create_cached(NULL, kind, K, 0, 0, out, err);
+}
 /* Testing: what a driver may do, forced on the stencil backend's fill (the
  * self-test's and every batch's), so that a test can see the self-test
  * refuse it where the driver itself does not do it. */
@@ -87,8 +96,12 @@ enum {
     OIT_CAPTURE_TEST_COMPUTE_NO_PROBE = 1u << 3
 };
 /* oit_capture_create with faults (OIT_CAPTURE_FAULT_*; 0: none). */
-oit_status oit_capture_create_faulty(oit_capture_kind kind, int K, unsigned faults,
-                                     oit_capture **out, oit_error *err);
+static inline oit_status oit_capture_create_faulty(oit_capture_kind kind, int K,
+                                                   unsigned faults, oit_capture **out,
+                                                   oit_error *err)
+{
+    return oit_capture_create_cached(NULL, kind, K, 0, faults, out, err);
+}
 /* A capture whose K-slot fills are routed by the stencil into stencil_k
  * samples a pixel, after the self-test passed at stencil_k (no fallback:
  * OIT_ERR_UNSUPPORTED with the reason where it does not; capture_choice.h
@@ -99,8 +112,12 @@ oit_status oit_capture_create_faulty(oit_capture_kind kind, int K, unsigned faul
  *    fragment; pixels that got more take the second pass, as with array
  *    slots. The target holds stencil_k samples of the whole frame, outside
  *    the slot budget (20 bytes a sample: 160 MiB at 1024x1024, 8 samples). */
-oit_status oit_capture_create_routed(oit_capture_kind kind, int K, int stencil_k,
-                                     unsigned faults, oit_capture **out, oit_error *err);
+static inline oit_status oit_capture_create_routed(oit_capture_kind kind, int K,
+                                                   int stencil_k, unsigned faults,
+                                                   oit_capture **out, oit_error *err)
+{
+    return oit_capture_create_cached(NULL, kind, K, stencil_k, faults, out, err);
+}
 /* The samples of c's routed fills; 0: none (array slots). */
 int oit_capture_routed_k(const oit_capture *c);
 /* "array", "stencil", "counted", "first-k", "compute" (NULL for AUTO or

@@ -9,7 +9,8 @@
 
 enum { SLOTS_FILL, SLOTS_RESOLVE, SLOTS_PROGS };
 
-oit_status oit_capture_slots_init(oit_capture_slots *s, const char *defines, const char *fill_fs,
+oit_status oit_capture_slots_init(oit_capture_slots *s, oit_program_cache *pc,
+                                  const char *defines, const char *fill_fs,
                                   const char *resolve_defines, oit_error *err)
 {
     const oit_glsl_program programs[SLOTS_PROGS] = {
@@ -19,7 +20,7 @@ oit_status oit_capture_slots_init(oit_capture_slots *s, const char *defines, con
                                   oit_capture_resolve_cs}},
     };
     GLuint progs[SLOTS_PROGS] = {0};
-    oit_status st = oit_glsl_programs_build(programs, SLOTS_PROGS, progs, err);
+    oit_status st = oit_glsl_programs_build(pc, programs, SLOTS_PROGS, progs, err);
     s->fill = progs[SLOTS_FILL];
     s->resolve = progs[SLOTS_RESOLVE];
     return st;
@@ -64,7 +65,7 @@ static oit_status tiled_programs(const oit_capture *c, oit_capture_slots *s, int
                       : "#define OIT_WIDE 16\n",
                     oit_glsl_composite, oit_glsl_state_io, oit_capture_resolve_cs}},
         };
-        oit_status st = oit_glsl_programs_build(pair, 2, progs, err);
+        oit_status st = oit_glsl_programs_build(c->programs, pair, 2, progs, err);
         if (st != OIT_OK)
             return st;
     }
@@ -139,7 +140,7 @@ oit_status oit_capture_slots_tiled(oit_capture *c, oit_capture_slots *s,
 
 static oit_status array_create(oit_capture *c, int stencil_k, oit_error *err)
 {
-    return oit_capture_slots_init(c->be, "", oit_capture_array_fs, "", err);
+    return oit_capture_slots_init(c->be, c->programs, "", oit_capture_array_fs, "", err);
 }
 
 static void array_destroy(void *be)

@@ -57,6 +57,7 @@ typedef struct oit_capture_ops oit_capture_ops;
 struct oit_capture {
     const oit_capture_ops *ops;
     void *be;     /* the backend's own state (ops->create) */
+    oit_program_cache *programs; /* where its programs are built through; NULL: none */
     int K;
     int routed_k; /* samples a pixel of the routed fills; 0: none */
     unsigned faults;
@@ -185,7 +186,8 @@ typedef struct oit_capture_slots {
 
 /* fill_fs: the K-slot fill shader, after defines; resolve_defines: before
  * the resolve's. */
-oit_status oit_capture_slots_init(oit_capture_slots *s, const char *defines, const char *fill_fs,
+oit_status oit_capture_slots_init(oit_capture_slots *s, oit_program_cache *pc,
+                                  const char *defines, const char *fill_fs,
                                   const char *resolve_defines, oit_error *err);
 void oit_capture_slots_release(oit_capture_slots *s);
 void oit_capture_slots_uniforms(const oit_capture *c, oit_capture_slots *s);

@@ -31,7 +31,7 @@ _Static_assert(OIT_COMPUTE_CAPTURE_TRIANGLE_BYTES == OIT_COMPUTE_RECORD_WORDS * 
 /* Iterations of the probe's loop: past llvmpipe's 65535. */
 #define PROBE_LOOP (1 << 17)
 
-static oit_status compute_init(oit_compute *k, oit_error *err)
+static oit_status compute_init(oit_compute *k, oit_program_cache *pc, oit_error *err)
 {
     memset(k, 0, sizeof *k);
     k->align = oit_gl_ssbo_align();
@@ -45,9 +45,9 @@ static oit_status compute_init(oit_compute *k, oit_error *err)
         memmove(cs + 1, cs, sizeof(cs[0]) * (OIT_GLSL_PARTS_MAX - 1));
         cs[0] = k->blocks_decl;
     }
-    oit_status s = oit_glsl_programs_build(table, OIT_COMPUTE_PROGS, k->prog, err);
+    oit_status s = oit_glsl_programs_build(pc, table, OIT_COMPUTE_PROGS, k->prog, err);
     if (s == OIT_OK)
-        s = oit_scan_init(&k->scan, err);
+        s = oit_scan_init(&k->scan, pc, err);
     return s;
 }
 
@@ -430,7 +430,7 @@ static oit_status probe_loops(oit_compute *k, oit_error *err)
 static oit_status compute_create(oit_capture *c, int stencil_k, oit_error *err)
 {
     oit_compute *k = c->be;
-    oit_status s = compute_init(k, err);
+    oit_status s = compute_init(k, c->programs, err);
     k->test = c->faults & (OIT_CAPTURE_TEST_COMPUTE_LIST_SHORT | OIT_CAPTURE_TEST_COMPUTE_NO_PROBE);
     k->chunk = 2;
     if (s == OIT_OK && !(k->test & OIT_CAPTURE_TEST_COMPUTE_NO_PROBE))

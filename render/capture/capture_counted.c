@@ -19,12 +19,12 @@ static const oit_glsl_program programs[OIT_COUNTED_PROGS] = {
                                     oit_capture_counted_resolve_main}},
 };
 
-oit_status oit_counted_init(oit_counted *k, oit_error *err)
+oit_status oit_counted_init(oit_counted *k, oit_program_cache *pc, oit_error *err)
 {
     memset(k, 0, sizeof *k);
-    oit_status s = oit_glsl_programs_build(programs, OIT_COUNTED_PROGS, k->prog, err);
+    oit_status s = oit_glsl_programs_build(pc, programs, OIT_COUNTED_PROGS, k->prog, err);
     if (s == OIT_OK)
-        s = oit_scan_init(&k->scan, err);
+        s = oit_scan_init(&k->scan, pc, err);
     return s;
 }
 
@@ -217,7 +217,7 @@ oit_status oit_capture_store_out(oit_capture *c, GLuint *buf, uint64_t *cap, con
 
 static oit_status counted_create(oit_capture *c, int stencil_k, oit_error *err)
 {
-    return oit_counted_init(c->be, err);
+    return oit_counted_init(c->be, c->programs, err);
 }
 
 static void counted_destroy(void *be)

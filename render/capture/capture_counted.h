@@ -40,7 +40,7 @@ typedef struct oit_counted {
     uint32_t splits;   /* batches split this frame (the caller resets it) */
 } oit_counted;
 
-oit_status oit_counted_init(oit_counted *k, oit_error *err);
+oit_status oit_counted_init(oit_counted *k, oit_program_cache *pc, oit_error *err);
 void oit_counted_release(oit_counted *k);
 uint64_t oit_counted_bytes(const oit_counted *k);
 

@@ -194,18 +194,33 @@ void oit_firstk_route(oit_firstk *k, oit_stencil_target *t, GLuint fill)
     k->routed_fill = fill;
 }
 
-oit_status oit_firstk_init(oit_firstk *k, int K, oit_error *err)
+oit_status oit_firstk_init(oit_firstk *k, int K, oit_program_cache *pc,
+                           void (*built)(void *built_ctx), void *built_ctx, oit_error *err)
 {
     memset(k, 0, sizeof *k);
     k->K = K;
     k->budget = UINT64_MAX;
-    oit_status s = oit_glsl_programs_build(programs, OIT_FIRSTK_PROGS, k->prog, err);
-    if (s == OIT_OK) {
-        glCreateBuffers(1, &k->totals);
-        glNamedBufferData(k->totals, 32, NULL, GL_DYNAMIC_COPY);
-        oit_gl_poison_buffer(k->totals);
-        s = oit_gl_check("first-k capture: set-up", err);
-    }
+    k->pc = pc;
+    k->built = built;
+    k->built_ctx = built_ctx;
+    glCreateBuffers(1, &k->totals);
+    glNamedBufferData(k->totals, 32, NULL, GL_DYNAMIC_COPY);
+    oit_gl_poison_buffer(k->totals);
+    return oit_gl_check("first-k capture: set-up", err);
+}
+
+/* Builds those of progs[0..n) not built yet, and tells the owner. */
+static oit_status need(oit_firstk *k, const int *progs, int n, oit_error *err)
+{
+    int made = 0;
+    oit_status s = OIT_OK;
+    for (int i = 0; i < n && s == OIT_OK; i++)
+        if (!k->prog[progs[i]]) {
+            s = oit_glsl_programs_build(k->pc, &programs[progs[i]], 1, &k->prog[progs[i]], err);
+            made = 1;
+        }
+    if (made && s == OIT_OK && k->built)
+        k->built(k->built_ctx);
     return s;
 }
 
@@ -401,9 +416,14 @@ oit_status oit_firstk_batch(oit_firstk *k, const oit_counted_frame *f,
         return oit_error_set(err, OIT_ERR_ARGUMENT, "first-k capture: a %dx%d rectangle "
                              "leaves fewer than 2 slots a pixel in the slot budget",
                              r[2] - r[0], r[3] - r[1]);
+    static const int routed[] = {OIT_FIRSTK_ROUTED_RESOLVE},
+                     array[] = {OIT_FIRSTK_FILL, OIT_FIRSTK_RESOLVE},
+                     second[] = {OIT_FIRSTK_ALLOC, OIT_FIRSTK_STORE, OIT_FIRSTK_SEGMENT};
     GLuint t[8] = {0};
-    oit_status s = k->routed ? routed_first_pass(k, f, meshes, n, r, W, t, err)
-                             : first_pass(k, f, meshes, n, r, W, t, err);
+    oit_status s = k->routed ? need(k, routed, 1, err) : need(k, array, 2, err);
+    if (s == OIT_OK)
+        s = k->routed ? routed_first_pass(k, f, meshes, n, r, W, t, err)
+                      : first_pass(k, f, meshes, n, r, W, t, err);
     if (s != OIT_OK || t[0] == 0)
         return s;
     k->second_pixels += t[0];
@@ -414,5 +434,6 @@ oit_status oit_firstk_batch(oit_firstk *k, const oit_counted_frame *f,
     if (box[2] <= box[0] || box[3] <= box[1])
         return oit_error_set(err, OIT_ERR_GL, "first-k capture: %u overflowed pixels outside "
                              "the pack's rectangle", t[0]);
-    return second_passes(k, f, meshes, n, box, W, err);
+    s = need(k, second, 3, err);
+    return s == OIT_OK ? second_passes(k, f, meshes, n, box, W, err) : s;
 }

@@ -69,9 +69,17 @@ typedef struct oit_firstk {
      * slots. */
     struct oit_stencil_target *routed;
     GLuint routed_fill;
+    /* Programs are built at their first use (a routed pass 1 needs none
+     * of the array pass's, a pack without overflow none of pass 2's),
+     * through pc; then built(built_ctx) gives them the frame's uniforms. */
+    oit_program_cache *pc;
+    void (*built)(void *built_ctx);
+    void *built_ctx;
 } oit_firstk;
 
-oit_status oit_firstk_init(oit_firstk *k, int K, oit_error *err);
+/* built(built_ctx): after programs were built mid-frame (may be NULL). */
+oit_status oit_firstk_init(oit_firstk *k, int K, oit_program_cache *pc,
+                           void (*built)(void *built_ctx), void *built_ctx, oit_error *err);
 void oit_firstk_release(oit_firstk *k);
 uint64_t oit_firstk_bytes(const oit_firstk *k);
 

@@ -9,8 +9,10 @@
 
 typedef struct firstk_backend {
     oit_firstk k;
-    /* the packs too wide for 2 slots a pixel, and every pack while off */
+    /* the packs too wide for 2 slots a pixel, and every pack while off;
+     * built on first use (most one-image runs never need it) */
     oit_counted counted;
+    int counted_ready;
     int off; /* capturing as the counted backend (oit_capture_set_first_k) */
     /* pass 1 routed by the stencil (c->routed_k > 0): the target and its
      * fill, the stencil fill built for pass 1 */
@@ -29,24 +31,50 @@ static oit_status firstk_route(oit_capture *c, firstk_backend *b, int stencil_k,
             .fs = {b->target.by_copy ? "#define OIT_FIRSTK_PASS 1\n#define OIT_ROUTE_BY_COPY 1\n"
                                      : "#define OIT_FIRSTK_PASS 1\n",
                    oit_glsl_state_io, oit_capture_stencil_fs}};
-        s = oit_glsl_programs_build(&fill, 1, &b->fill, err);
+        s = oit_glsl_programs_build(c->programs, &fill, 1, &b->fill, err);
     }
     if (s != OIT_OK)
         return s;
-    oit_firstk_route(&b->k, &b->target, b->fill);
     c->routed_k = stencil_k;
     return oit_capture_stencil_self_test(c, &b->target, b->fill, err);
 }
 
+static void firstk_uniforms(oit_capture *c);
+static void firstk_epsilon(oit_capture *c, float e);
+
+/* Programs built mid-frame get the frame's uniforms. */
+static void reapply(void *ctx)
+{
+    oit_capture *c = ctx;
+    firstk_uniforms(c);
+    firstk_epsilon(c, c->frame.applied);
+}
+
+/* The route and its self-test first: a driver that refuses them costs
+ * this try no more than theirs (oit_capture_choose tries fewer samples). */
 static oit_status firstk_create(oit_capture *c, int stencil_k, oit_error *err)
 {
     firstk_backend *b = c->be;
-    oit_status s = oit_counted_init(&b->counted, err);
+    oit_status s = stencil_k ? firstk_route(c, b, stencil_k, err) : OIT_OK;
     if (s == OIT_OK)
-        s = oit_firstk_init(&b->k, c->K, err);
+        s = oit_firstk_init(&b->k, c->K, c->programs, reapply, c, err);
     if (s == OIT_OK && stencil_k)
-        s = firstk_route(c, b, stencil_k, err);
+        oit_firstk_route(&b->k, &b->target, b->fill);
     return s;
+}
+
+/* The counted capture, built the first time a batch needs it, with this
+ * frame's uniforms. */
+static oit_status counted_ready(oit_capture *c, firstk_backend *b, oit_error *err)
+{
+    if (b->counted_ready)
+        return OIT_OK;
+    oit_status s = oit_counted_init(&b->counted, c->programs, err);
+    if (s != OIT_OK)
+        return s;
+    b->counted_ready = 1;
+    reapply(c);
+    return OIT_OK;
 }
 
 static void firstk_destroy(void *be)
@@ -114,8 +142,10 @@ static oit_status firstk_batch(oit_capture *c, const oit_gpu_mesh *const *meshes
         return s;
     uint64_t budget = c->set.slot_budget, bind = c->frame.bind;
     b->k.budget = budget && budget < bind ? budget : bind;
-    if (b->off || oit_firstk_slots(&b->k, r) == 0)
-        return oit_capture_counted_batch(c, &b->counted, meshes, n, r, err);
+    if (b->off || oit_firstk_slots(&b->k, r) == 0) {
+        s = counted_ready(c, b, err);
+        return s == OIT_OK ? oit_capture_counted_batch(c, &b->counted, meshes, n, r, err) : s;
+    }
     oit_counted_frame f = oit_capture_counted_frame(c);
     s = oit_firstk_batch(&b->k, &f, meshes, n, r, err);
     oit_capture_note_peak(c);

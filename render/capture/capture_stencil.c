@@ -98,14 +98,17 @@ oit_status oit_stencil_choose_samples(int K, int *samples, oit_error *err)
 
 /* ---- the target ------------------------------------------------------------ */
 
-oit_status oit_stencil_target_init(oit_stencil_target *t, int K, int samples, oit_error *err)
+oit_status oit_stencil_target_init(oit_stencil_target *t, int K, int samples,
+                                   oit_program_cache *pc, oit_error *err)
 {
     memset(t, 0, sizeof *t);
+    t->pc = pc;
     t->K = K;
     t->samples = samples;
     const char *vs[] = {oit_glsl_version, oit_capture_fullscreen_vs, NULL};
     const char *fs[] = {oit_glsl_version, "void main() {}\n", NULL};
-    oit_status s = oit_gl_program_graphics("stencil routing set-up", vs, fs, &t->init_prog, err);
+    oit_status s = oit_program_cache_build(pc, "stencil routing set-up", vs, fs, NULL,
+                                           &t->init_prog, err);
     if (s == OIT_OK) {
         glCreateFramebuffers(1, &t->fbo);
         glCreateVertexArrays(1, &t->vao);
@@ -118,7 +121,8 @@ oit_status oit_stencil_target_by_copy(oit_stencil_target *t, oit_error *err)
     const char *vs[] = {oit_glsl_version, oit_capture_fullscreen_vs, NULL};
     const char *fs[] = {oit_glsl_version, oit_capture_route_copy_fs, NULL};
     t->by_copy = 1;
-    return oit_gl_program_graphics("stencil routing by copies", vs, fs, &t->copy_prog, err);
+    return oit_program_cache_build(t->pc, "stencil routing by copies", vs, fs, NULL,
+                                   &t->copy_prog, err);
 }
 
 void oit_stencil_target_release(oit_stencil_target *t)
@@ -325,7 +329,8 @@ static oit_status read_samples(oit_stencil_target *t, const oit_stencil_probe *p
 {
     GLuint prog = 0, buf = 0;
     const char *src[] = {oit_glsl_version, dump_cs, NULL};
-    oit_status s = oit_gl_program_compute("stencil self-test: read-back", src, &prog, err);
+    oit_status s = oit_program_cache_build(t->pc, "stencil self-test: read-back", NULL, NULL,
+                                           src, &prog, err);
     if (s != OIT_OK)
         return s;
     GLsizeiptr bytes = (GLsizeiptr)sizeof *prims * p->width * p->height * p->K;
@@ -387,7 +392,7 @@ oit_status oit_capture_route_init(const oit_capture *c, oit_stencil_target *t, i
     int samples = 0;
     oit_status s = oit_stencil_choose_samples(stencil_k, &samples, err);
     if (s == OIT_OK)
-        s = oit_stencil_target_init(t, stencil_k, samples, err);
+        s = oit_stencil_target_init(t, stencil_k, samples, c->programs, err);
     t->sample_shading = (c->faults & OIT_CAPTURE_FAULT_SAMPLE_SHADING) != 0;
     if (s == OIT_OK && (c->faults & OIT_CAPTURE_TEST_ROUTE_BY_COPY))
         s = oit_stencil_target_by_copy(t, err);
@@ -411,7 +416,7 @@ static oit_status stencil_create(oit_capture *c, int stencil_k, oit_error *err)
     stencil_backend *b = c->be;
     oit_status s = oit_capture_route_init(c, &b->target, stencil_k, err);
     if (s == OIT_OK)
-        s = oit_capture_slots_init(&b->slots,
+        s = oit_capture_slots_init(&b->slots, c->programs,
                                    b->target.by_copy ? "#define OIT_ROUTE_BY_COPY 1\n" : "",
                                    oit_capture_stencil_fs, "#define OIT_STENCIL 1\n", err);
     c->routed_k = stencil_k;

@@ -10,9 +10,11 @@
 #include "render/capture/capture_stencil_probe.h"
 #include "render/gl/gl_util.h"
 #include "render/gl/gpu_mesh.h"
+#include "render/gl/program_cache.h"
 
 typedef struct oit_stencil_target {
     GLuint fbo, colour, depth_stencil, init_prog;
+    oit_program_cache *pc; /* its programs' and its self-test's (NULL: compiled) */
     GLuint vao; /* empty: core GL draws need one bound */
     int width, height;
     int K;       /* fragments routed a pixel: samples 0..K-1 */
@@ -37,7 +39,8 @@ typedef struct oit_stencil_target {
  * multisamples (oit_stencil_pick_samples); the message gives the numbers.
  * Without that extension the self-test is the judge. */
 oit_status oit_stencil_choose_samples(int K, int *samples, oit_error *err);
-oit_status oit_stencil_target_init(oit_stencil_target *t, int K, int samples, oit_error *err);
+oit_status oit_stencil_target_init(oit_stencil_target *t, int K, int samples,
+                                   oit_program_cache *pc, oit_error *err);
 void oit_stencil_target_release(oit_stencil_target *t);
 /* Routing by copies from now on (by_copy above); its program. */
 oit_status oit_stencil_target_by_copy(oit_stencil_target *t, oit_error *err);

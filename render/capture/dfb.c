@@ -115,9 +115,9 @@ oit_status oit_dfb_create(oit_dfb **out, oit_error *err)
     if (!d)
         return oit_error_set(err, OIT_ERR_NOMEM, "DFB: out of memory");
     /* all but PROG_STATE */
-    oit_status s = oit_glsl_programs_build(programs, PROG_STATE, d->prog, err);
+    oit_status s = oit_glsl_programs_build(NULL, programs, PROG_STATE, d->prog, err);
     if (s == OIT_OK)
-        s = oit_scan_init(&d->scan, err);
+        s = oit_scan_init(&d->scan, NULL, err);
     if (s == OIT_OK)
         s = oit_gl_framebuffer_create(&d->fbo, NULL, "DFB: glCreateFramebuffers", err);
     if (s != OIT_OK) {
@@ -396,7 +396,7 @@ static oit_status resolve_into(oit_dfb *d, int prog, int buf,
     memset(f, 0, sizeof *f);
     oit_status s = check_frame(view, n, err);
     if (s == OIT_OK && !d->prog[prog])
-        s = oit_glsl_programs_build(&programs[prog], 1, &d->prog[prog], err);
+        s = oit_glsl_programs_build(NULL, &programs[prog], 1, &d->prog[prog], err);
     if (s != OIT_OK)
         return s;
     f->t0 = oit_time_ms();

@@ -25,7 +25,7 @@ oit_status oit_opaque_keys_create(oit_opaque_keys **out, oit_error *err)
     if (!k)
         return oit_error_set(err, OIT_ERR_NOMEM, "opaque keys: out of memory");
     const oit_glsl_program table[1] = {{"opaque keys", .fs = {keys_fs}}};
-    oit_status st = oit_glsl_programs_build(table, 1, &k->prog, err);
+    oit_status st = oit_glsl_programs_build(NULL, table, 1, &k->prog, err);
     if (st != OIT_OK) {
         oit_opaque_keys_destroy(k);
         return st;

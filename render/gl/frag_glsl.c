@@ -378,7 +378,7 @@ static void stage_sources(const char *lead, const char *const *parts, const char
     src[n] = NULL;
 }
 
-oit_status oit_glsl_programs_build(const oit_glsl_program *table, int n, GLuint *out,
+oit_status oit_glsl_programs_build(oit_program_cache *pc, const oit_glsl_program *table, int n, GLuint *out,
                                    oit_error *err)
 {
     static const char *const vs[] = {oit_glsl_version, oit_glsl_vertex, NULL};
@@ -387,10 +387,10 @@ oit_status oit_glsl_programs_build(const oit_glsl_program *table, int n, GLuint 
         const char *src[OIT_GLSL_PARTS_MAX + 3];
         if (table[i].fs[0]) {
             stage_sources(oit_glsl_fragment_gen, table[i].fs, src);
-            s = oit_gl_program_graphics(table[i].what, vs, src, &out[i], err);
+            s = oit_program_cache_build(pc, table[i].what, vs, src, NULL, &out[i], err);
         } else {
             stage_sources(NULL, table[i].cs, src);
-            s = oit_gl_program_compute(table[i].what, src, &out[i], err);
+            s = oit_program_cache_build(pc, table[i].what, NULL, NULL, src, &out[i], err);
         }
     }
     return s;
@@ -469,19 +469,22 @@ void oit_glsl_set_opaque(GLuint prog, const oit_opaque_depth *o)
 void oit_glsl_set_opaque_all(const GLuint *progs, int n, const oit_opaque_depth *o)
 {
     for (int i = 0; i < n; i++)
-        oit_glsl_set_opaque(progs[i], o);
+        if (progs[i])
+            oit_glsl_set_opaque(progs[i], o);
 }
 
 void oit_glsl_set_view_all(const GLuint *progs, int n, const oit_view *view)
 {
     for (int i = 0; i < n; i++)
-        oit_glsl_set_view(progs[i], view);
+        if (progs[i])
+            oit_glsl_set_view(progs[i], view);
 }
 
 void oit_glsl_set_epsilon_all(const GLuint *progs, int n, float epsilon)
 {
     for (int i = 0; i < n; i++)
-        glProgramUniform1f(progs[i], loc(progs[i], "u_epsilon"), epsilon);
+        if (progs[i])
+            glProgramUniform1f(progs[i], loc(progs[i], "u_epsilon"), epsilon);
 }
 
 void oit_glsl_raster_begin(GLuint fbo, int w, int h)

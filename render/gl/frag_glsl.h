@@ -50,6 +50,7 @@
 #define OIT_RENDER_FRAG_GLSL_H
 
 #include "render/gl/gl_util.h"
+#include "render/gl/program_cache.h"
 #include "render/gl/glsl_bindings.h"
 #include "render/image/view.h"
 
@@ -195,8 +196,9 @@ typedef struct oit_glsl_program {
     const char *cs[OIT_GLSL_PARTS_MAX];
 } oit_glsl_program;
 /* Builds out[i] from table[i] for i in [0, n), in order, up to the first
- * failure (what was built stays in out for oit_glsl_programs_delete). */
-oit_status oit_glsl_programs_build(const oit_glsl_program *table, int n, GLuint *out,
+ * failure (what was built stays in out for oit_glsl_programs_delete),
+ * through pc's entries (NULL: compiled). */
+oit_status oit_glsl_programs_build(oit_program_cache *pc, const oit_glsl_program *table, int n, GLuint *out,
                                    oit_error *err);
 /* Deletes progs[0..n) (0 is fine) and sets them to 0. */
 void oit_glsl_programs_delete(GLuint *progs, int n);
@@ -204,8 +206,9 @@ void oit_glsl_programs_delete(GLuint *progs, int n);
 /* Sets the view and shading uniforms of a program built from the pieces
  * above (uniforms that a program does not use are skipped). */
 void oit_glsl_set_view(GLuint prog, const oit_view *view);
-/* The same for progs[0..n); and their early-termination threshold
- * (`u_epsilon`, where a program has it). */
+/* The same for progs[0..n) (those not built yet, 0, are skipped: a
+ * program built on first use gets its uniforms then); and their
+ * early-termination threshold (`u_epsilon`, where a program has it). */
 void oit_glsl_set_view_all(const GLuint *progs, int n, const oit_view *view);
 void oit_glsl_set_epsilon_all(const GLuint *progs, int n, float epsilon);
 

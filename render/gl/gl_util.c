@@ -76,23 +76,27 @@ static oit_status link(const char *what, GLuint prog, oit_error *err)
     return oit_error_set(err, OIT_ERR_GL, "%s: program does not link: %s", what, log);
 }
 
-oit_status oit_gl_program_graphics(const char *what, const char *const *vs,
-                                   const char *const *fs, GLuint *out, oit_error *err)
+oit_status oit_gl_program_build(const char *what, const char *const *vs,
+                               const char *const *fs, const char *const *cs, int retrievable,
+                               GLuint *out, oit_error *err)
 {
-    GLuint v = 0, f = 0;
-    oit_status s = compile(what, GL_VERTEX_SHADER, vs, &v, err);
-    if (s == OIT_OK && fs)
-        s = compile(what, GL_FRAGMENT_SHADER, fs, &f, err);
+    GLuint sh[2] = {0, 0};
+    oit_status s = cs ? compile(what, GL_COMPUTE_SHADER, cs, &sh[0], err)
+                      : compile(what, GL_VERTEX_SHADER, vs, &sh[0], err);
+    if (s == OIT_OK && !cs && fs)
+        s = compile(what, GL_FRAGMENT_SHADER, fs, &sh[1], err);
     GLuint prog = 0;
     if (s == OIT_OK) {
         prog = glCreateProgram();
-        glAttachShader(prog, v);
-        if (f)
-            glAttachShader(prog, f);
+        if (retrievable)
+            glProgramParameteri(prog, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
+        for (int i = 0; i < 2; i++)
+            if (sh[i])
+                glAttachShader(prog, sh[i]);
         s = link(what, prog, err);
     }
-    glDeleteShader(v);
-    glDeleteShader(f);
+    glDeleteShader(sh[0]);
+    glDeleteShader(sh[1]);
     if (s != OIT_OK) {
         glDeleteProgram(prog);
         return s;
@@ -101,23 +105,16 @@ oit_status oit_gl_program_graphics(const char *what, const char *const *vs,
     return OIT_OK;
 }
 
+oit_status oit_gl_program_graphics(const char *what, const char *const *vs,
+                                   const char *const *fs, GLuint *out, oit_error *err)
+{
+    return oit_gl_program_build(what, vs, fs, NULL, 0, out, err);
+}
+
 oit_status oit_gl_program_compute(const char *what, const char *const *cs, GLuint *out,
                                   oit_error *err)
 {
-    GLuint c = 0;
-    oit_status s = compile(what, GL_COMPUTE_SHADER, cs, &c, err);
-    if (s != OIT_OK)
-        return s;
-    GLuint prog = glCreateProgram();
-    glAttachShader(prog, c);
-    s = link(what, prog, err);
-    glDeleteShader(c);
-    if (s != OIT_OK) {
-        glDeleteProgram(prog);
-        return s;
-    }
-    *out = prog;
-    return OIT_OK;
+    return oit_gl_program_build(what, NULL, NULL, cs, 0, out, err);
 }
 
 oit_status oit_gl_framebuffer_create(GLuint *fbo, GLuint *samples_query, const char *what,

@@ -28,6 +28,12 @@ oit_status oit_gl_program_graphics(const char *what, const char *const *vs,
                                    const char *const *fs, GLuint *out, oit_error *err);
 oit_status oit_gl_program_compute(const char *what, const char *const *cs, GLuint *out,
                                   oit_error *err);
+/* Either of the above (cs set: compute, vs and fs unread), with
+ * GL_PROGRAM_BINARY_RETRIEVABLE_HINT set before the link where retrievable
+ * (program_cache.h). */
+oit_status oit_gl_program_build(const char *what, const char *const *vs,
+                               const char *const *fs, const char *const *cs, int retrievable,
+                               GLuint *out, oit_error *err);
 
 /* OIT_OK when glGetError reports nothing; otherwise OIT_ERR_GL naming 'call'
  * and the error (later errors are drained so they do not blame the next

@@ -64,14 +64,14 @@ static const char scan_add_src[] =
     "    if (i < u_count) data[i] += sums[i / 1024u];\n"
     "}\n";
 
-oit_status oit_scan_init(oit_scan *s, oit_error *err)
+oit_status oit_scan_init(oit_scan *s, oit_program_cache *pc, oit_error *err)
 {
     memset(s, 0, sizeof *s);
     const char *block[] = {oit_glsl_version, scan_block_src, NULL};
     const char *add[] = {oit_glsl_version, scan_add_src, NULL};
-    oit_status st = oit_gl_program_compute("prefix sum (block)", block, &s->block, err);
+    oit_status st = oit_program_cache_build(pc, "prefix sum (block)", NULL, NULL, block, &s->block, err);
     if (st == OIT_OK)
-        st = oit_gl_program_compute("prefix sum (add)", add, &s->add, err);
+        st = oit_program_cache_build(pc, "prefix sum (add)", NULL, NULL, add, &s->add, err);
     if (st == OIT_OK) {
         s->max_groups = oit_gl_max_groups_x();
         glCreateBuffers(1, &s->totals);

@@ -36,7 +36,8 @@ typedef struct oit_scan_result {
     uint32_t long_fragments;
 } oit_scan_result;
 
-oit_status oit_scan_init(oit_scan *s, oit_error *err);
+/* pc: where its programs are built through (program_cache.h; NULL: compiled). */
+oit_status oit_scan_init(oit_scan *s, oit_program_cache *pc, oit_error *err);
 void oit_scan_release(oit_scan *s);
 /* Scans buf[0..n) in place (exclusive) and reads back total and maximum;
  * with res NULL reads nothing back, so that the host does not wait for

@@ -35,7 +35,7 @@ static void check_random(GLuint max_groups, uint64_t n)
     GLuint buf = upload(v, n);
     oit_scan s;
     oit_error err = {0};
-    CHECK(oit_scan_init(&s, &err) == OIT_OK, "%s", err.message);
+    CHECK(oit_scan_init(&s, NULL, &err) == OIT_OK, "%s", err.message);
     if (max_groups)
         s.max_groups = max_groups;
     oit_scan_result res = {0};
@@ -77,7 +77,7 @@ static void check_past_one_dispatch(void)
     glClearNamedBufferData(buf, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &one);
     oit_scan s;
     oit_error err = {0};
-    CHECK(oit_scan_init(&s, &err) == OIT_OK, "%s", err.message);
+    CHECK(oit_scan_init(&s, NULL, &err) == OIT_OK, "%s", err.message);
     oit_scan_result res = {0};
     oit_status st = oit_scan_run(&s, buf, n, &res, &err);
     CHECK(st == OIT_OK, "%llu elements: %s", (unsigned long long)n, err.message);

@@ -66,6 +66,8 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
     else if (!strcmp(opt, "--out")) a->out = v;
     else if (!strcmp(opt, "--stats")) a->stats_path = v;
     else if (!strcmp(opt, "--mask")) a->mask = v;
+    /* liboit's oit_renderer_desc.program_cache: a folder or "off" */
+    else if (!strcmp(opt, "--program-cache")) a->stream.program_cache = v;
     else if (!strcmp(opt, "--ambiguity")) a->ambiguity_out = v;
     else if (!strcmp(opt, "--ambiguity-px")) {
         double px;
@@ -361,6 +363,13 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "                      default, as in liboit; off: no cache; the default is\n"
         "                      off when oitstream draws a single frame outside\n"
         "                      --window: no later frame would draw from it)\n"
+        "  --program-cache DIR stream: the folder where linked GL programs are kept\n"
+        "                      for later runs on the same driver (GL program\n"
+        "                      binaries, checked before use; a bad entry is built\n"
+        "                      again), made if missing; off: none. Default:\n"
+        "                      $OIT_PROGRAM_CACHE (a folder or off), else\n"
+        "                      $XDG_CACHE_HOME/oit, else ~/.cache/oit. A folder that\n"
+        "                      cannot be written is no cache, not an error\n"
         "  --gpu-budget B      stream: GPU bytes for the upload ring, the cache and the\n"
         "                      capture together (>= 1M). Default: half the free memory\n"
         "                      the driver reports (GL_NVX_gpu_memory_info or\n"
