@@ -1,5 +1,7 @@
-/* oit_mesh_read: picks the reader by file extension (case-insensitive), and
+/* oit_mesh_read: picks the reader by file extension (case-insensitive),
+ * assimp's adapter taking the rest (assimp_internal.h), and
  * the file-path entries of the streaming readers. */
+#include "formats/assimp_internal.h"
 #include "formats/readers_internal.h"
 
 #include <ctype.h>
@@ -49,9 +51,9 @@ oit_status oit_mesh_read(const char *path, const oit_read_desc *desc, oit_triang
         return oit_read_stl(path, desc, sink, user, info, err);
     if (ext_is(ext, "gltf") || ext_is(ext, "glb"))
         return oit_read_gltf(path, desc, sink, user, info, err);
-    return oit_error_set(err, OIT_ERR_UNSUPPORTED,
-                         "%s: unknown mesh format '.%s' (expected .ply .obj .off .stl .gltf .glb)",
-                         path, ext);
+    /* Last: assimp takes what no reader of ours does, and refuses (naming
+     * every extension) what it does not import either. */
+    return oit_read_assimp(path, desc, sink, user, info, err);
 }
 
 /* The file-path entry of a streaming reader: oit_read_FMT reads path

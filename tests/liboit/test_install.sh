@@ -42,7 +42,7 @@ done
 cmake --build "$build" --target oit $tools > "$tmp/build.log" 2>&1 || { cat "$tmp/build.log"; exit 1; }
 cmake --install "$build" --prefix "$tmp/prefix" > "$tmp/install.log"
 for f in include/oit/oit.h include/oit/liboit.h include/oit/offscreen.h include/oit/partfile.h \
-         share/doc/oit/part-file.md lib/liboit-gltf.so lib/pkgconfig/oit.pc lib/cmake/oit/oitConfig.cmake \
+         share/doc/oit/part-file.md lib/liboit-gltf.so lib/liboit-assimp.so lib/pkgconfig/oit.pc lib/cmake/oit/oitConfig.cmake \
          lib/cmake/oit/oitConfigVersion.cmake \
          lib/python3/dist-packages/oit/__init__.py \
          lib/python3/dist-packages/oit/_install_paths.py; do
