@@ -361,15 +361,27 @@ std::string format_ext(const char *path)
     return dot == std::string::npos ? std::string() : base.substr(dot + 1);
 }
 
+// assimp's extensions but ours ("*.3d;*.3ds;..." to ".3d .3ds ..."): what
+// the message of an unknown extension adds to our readers' list.
 std::string supported_list(Assimp::Importer &imp)
 {
-    std::string list, out; // "*.3d;*.3ds;..." to ".3d .3ds ..."
+    static const char *const ours[] = {"ply", "obj", "off", "stl", "gltf", "glb"};
+    std::string list, out;
     imp.GetExtensionList(list);
-    for (char ch : list)
-        if (ch == ';')
-            out += ' ';
-        else if (ch != '*')
-            out += ch;
+    for (size_t at = 0; at < list.size();) {
+        size_t end = list.find(';', at);
+        if (end == std::string::npos)
+            end = list.size();
+        std::string ext = list.substr(at, end - at);
+        at = end + 1;
+        if (ext.compare(0, 2, "*.") == 0)
+            ext.erase(0, 2);
+        bool taken = ext.empty();
+        for (const char *o : ours)
+            taken = taken || ext == o;
+        if (!taken)
+            out += (out.empty() ? "." : " .") + ext;
+    }
     return out;
 }
 
@@ -379,7 +391,7 @@ oit_status read_path(Ctx &c, const char *path)
     Assimp::Importer imp;
     if (ext.empty() || !imp.IsExtensionSupported(("." + ext).c_str()))
         return fail(c, OIT_ERR_UNSUPPORTED, "unknown mesh format '.%s' (expected .ply .obj .off .stl "
-                    ".gltf .glb, or one that assimp imports: %s)", ext.c_str(), supported_list(imp).c_str());
+                    ".gltf .glb, or through assimp %s)", ext.c_str(), supported_list(imp).c_str());
     FILE *f = std::fopen(path, "rb");
     struct stat st;
     if (!f)
