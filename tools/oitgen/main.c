@@ -28,7 +28,7 @@ static const char USAGE[] =
     "                      --coverage C in (0, 1] (default 0.5)\n"
     "  instances  N copies of a mesh in a near-square grid on the XZ plane,\n"
     "             spaced 1.1x the mesh's extent, one colour and alpha per copy\n"
-    "             options: --input MESH (required; .ply .obj .off .stl .gltf .glb),\n"
+    "             options: --input MESH (required; as oitprep reads),\n"
     "                      --count N in 1..100000000 (default 16)\n"
     "  plant      procedural power plant: steel frames, catwalks, stairs, tanks,\n"
     "             ducts, pipe racks and pipe runs with elbows; closed solids,\n"

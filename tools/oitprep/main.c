@@ -67,7 +67,7 @@ static void usage(FILE *f)
           "                paints parts of axis splits grey, of separating slabs blue, of\n"
           "                cutting planes orange, wide parts (guaranteed scheme) red.\n"
           "                --alpha A (1..255) for every triangle, else the file's alpha\n"
-          "  INPUT -o OUT  convert a mesh (PLY, OBJ, OFF, STL, glTF/GLB) into a part file,\n"
+          "  INPUT -o OUT  convert a mesh (formats below) into a part file,\n"
           "                out of core: the model is binned into a grid of top cells (--grid\n"
           "                N along the longest axis, 1..1024; default: cells of at least\n"
           "                256K triangles or 8 parts' worth, doubled where that makes\n"
@@ -121,6 +121,13 @@ static void usage(FILE *f)
           "                goes to stderr: a bar per stage on a terminal, else a line\n"
           "                every 5 s (OIT_PROGRESS_PERIOD=SECONDS sets the period).\n"
           "  -h, --help    this text\n"
+          "\n"
+          "Mesh formats, by extension (case-insensitive; NAME.EXT.gz is inflated):\n"
+          "  .ply .obj (with its .mtl) .off .stl   our streaming readers, memory bounded\n"
+          "  .gltf .glb (Draco too)                our glTF reader\n"
+          "  every other extension assimp imports  assimp (.fbx .dae .3ds .3mf .ifc\n"
+          "    .blend .x .lwo .ase .dxf ..., an unknown one's error lists them), the\n"
+          "    whole scene in memory; points, lines skipped; diffuse colour, opacity\n"
           "\n"
           "exit: 0 ok, 1 runtime or I/O failure, 2 usage error, 3 bad input file\n",
           f);

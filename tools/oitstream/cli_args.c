@@ -281,7 +281,7 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "usage: oitstream MODEL [options]\n"
         "       oitstream --compare A B [--json] [--out DIFF.png] [--gain G]\n"
         "\n"
-        "Renders MODEL (.ply .obj .off .stl .gltf .glb, or a part file .oitp made by\n"
+        "Renders MODEL (a mesh, formats below, or a part file .oitp made by\n"
         "oitprep) with exact order-independent transparency and writes the image.\n"
         "\n"
         "  --method M          %s\n"
@@ -500,6 +500,13 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "                      reading, so 1/255 is one 8-bit step); --json for JSON,\n"
         "                      --out DIFF.png writes |A-B| * gain (--gain G > 0, default 1);\n"
         "                      --mask M adds the figures outside M's non-black pixels\n"
+        "\n"
+        "Mesh formats, by extension (case-insensitive; NAME.EXT.gz is inflated):\n"
+        "  .ply .obj (with its .mtl) .off .stl   our streaming readers, memory bounded\n"
+        "  .gltf .glb (Draco too)                our glTF reader\n"
+        "  every other extension assimp imports  assimp (.fbx .dae .3ds .3mf .ifc\n"
+        "    .blend .x .lwo .ase .dxf ..., an unknown one's error lists them), the\n"
+        "    whole scene in memory; points, lines skipped; diffuse colour, opacity\n"
         "\n"
         "Exit status: 0 ok, 1 runtime failure, 2 usage error, 3 bad input.\n",
         method_list);
