@@ -14,6 +14,7 @@
 # Cases: outputs that are the input (same path, symlink, hard link), empty
 # and garbage models (/etc/passwd as .obj, vertices only, no faces, all
 # degenerate, all non-finite, binary bytes in a text format), UTF-8 BOMs,
+# formats through assimp (truncated FBX, IFC without geometry, random .dae),
 # gzip (named .gz or not: read; corrupt or truncated: refused naming gzip),
 # corrupt part files (empty, text, truncated, flipped byte, gzip), usage
 # errors (empty -o, unknown image extension, unwritable folder before the
@@ -128,6 +129,12 @@ head -c $((psize / 2)) "$I/good.oitp" >"$I/truncated.oitp"
 cp "$I/good.oitp" "$I/flipped.oitp"
 printf '\125' | dd of="$I/flipped.oitp" bs=1 seek=$((psize / 2)) conv=notrunc 2>/dev/null
 gzip -9nc "$I/good.oitp" >"$I/gzip.oitp"
+# formats read through assimp (issue 47): half an FBX, an IFC of a site
+# without any product, random bytes named .dae
+AS=$(dirname "$0")/../corpus/assimp
+head -c $(($(wc -c <"$AS/box.fbx") / 2)) "$AS/box.fbx" >"$I/truncated.fbx"
+cp "$AS/empty_site.ifc" "$I/nogeometry.ifc"
+head -c 4096 /dev/urandom >"$I/random.dae"
 
 row case tool want got verdict
 row ---- ---- ---- --- -------
@@ -167,6 +174,9 @@ mesh "gzip ascii stl.gz" 0 "$I/ascii.stl.gz"
 mesh "gzip truncated" 3 "$I/truncated.ply.gz" "gzip stream truncated"
 mesh "gzip corrupt" 3 "$I/corrupt.ply.gz" "gzip"
 mesh "gzip of empty obj" 3 "$I/empty.obj.gz" "no vertices and no faces"
+mesh "truncated fbx" 3 "$I/truncated.fbx" "truncated.fbx: assimp cannot read it"
+mesh "ifc without geometry" 3 "$I/nogeometry.ifc" "nogeometry.ifc: no geometry"
+mesh "random bytes .dae" 3 "$I/random.dae" "random.dae: assimp cannot read it"
 
 # ---- part files ----
 part "good part file" 0 "$I/good.oitp"
