@@ -56,6 +56,23 @@ oit_status oit_mesh_read(const char *path, const oit_read_desc *desc, oit_triang
     return oit_read_assimp(path, desc, sink, user, info, err);
 }
 
+/* Here, not in mesh.c, so that what the plugins take of mesh.c (the info
+ * helpers) does not bring every reader into each of them. */
+static oit_status load_sink(void *user, const oit_triangle *tris, size_t count, oit_error *err)
+{
+    return oit_mesh_append((oit_mesh *)user, tris, count, err);
+}
+
+oit_status oit_mesh_load(const char *path, const oit_read_desc *desc, oit_mesh *out,
+                         oit_error *err)
+{
+    memset(out, 0, sizeof *out);
+    oit_status s = oit_mesh_read(path, desc, load_sink, out, &out->info, err);
+    if (s != OIT_OK)
+        oit_mesh_free(out);
+    return s;
+}
+
 /* The file-path entry of a streaming reader: oit_read_FMT reads path
  * (gzip or not) with oit_read_FMT_stream. Defines oit_read_ply,
  * oit_read_obj, oit_read_off and oit_read_stl (oit/mesh.h). */
