@@ -21,6 +21,11 @@
  * emitted per node instance with the node's composed transform; points and
  * lines are skipped and counted in a note on stderr.
  *
+ * assimp 5.2 dies (SIGSEGV) on some malformed files, so the import runs in
+ * a child process (fork) that sends the triangles back through a pipe: a
+ * child that dies makes the read fail with OIT_ERR_FORMAT naming its signal,
+ * and the caller lives on. The caller's sink runs in the caller's process.
+ *
  * oit_read_assimp_memory reads from memory (a gzip stream is inflated
  * first), for the fuzz target and for .gz files: `hint` is the format's
  * extension without its dot ("fbx"). Nothing else is opened, so a format

@@ -135,6 +135,7 @@ AS=$(dirname "$0")/../corpus/assimp
 head -c $(($(wc -c <"$AS/box.fbx") / 2)) "$AS/box.fbx" >"$I/truncated.fbx"
 cp "$AS/empty_site.ifc" "$I/nogeometry.ifc"
 head -c 4096 /dev/urandom >"$I/random.dae"
+cp "$AS/crashes_assimp.ifc" "$I/crashes_assimp.ifc"
 
 row case tool want got verdict
 row ---- ---- ---- --- -------
@@ -177,6 +178,7 @@ mesh "gzip of empty obj" 3 "$I/empty.obj.gz" "no vertices and no faces"
 mesh "truncated fbx" 3 "$I/truncated.fbx" "truncated.fbx: assimp cannot read it"
 mesh "ifc without geometry" 3 "$I/nogeometry.ifc" "nogeometry.ifc: no geometry"
 mesh "random bytes .dae" 3 "$I/random.dae" "random.dae: assimp cannot read it"
+mesh "ifc that kills assimp" 3 "$I/crashes_assimp.ifc" "crashes_assimp.ifc: assimp crashed reading it"
 
 # ---- part files ----
 part "good part file" 0 "$I/good.oitp"
