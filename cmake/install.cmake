@@ -13,6 +13,8 @@ install(TARGETS oit EXPORT oitTargets
 # when a .gltf/.glb is opened (formats/gltf_plugin.c). Nothing links it, so
 # it is not part of the exported targets.
 install(TARGETS oit_gltf_plugin LIBRARY DESTINATION lib)
+# The assimp plugin likewise, for every other mesh format (formats/assimp_plugin.c).
+install(TARGETS oit_assimp_plugin LIBRARY DESTINATION lib)
 install(FILES
         ${CMAKE_SOURCE_DIR}/include/oit/oit.h
         ${CMAKE_SOURCE_DIR}/include/oit/status.h

@@ -96,21 +96,6 @@ oit_status oit_mesh_append(oit_mesh *m, const oit_triangle *tris, size_t count,
     return OIT_OK;
 }
 
-static oit_status load_sink(void *user, const oit_triangle *tris, size_t count, oit_error *err)
-{
-    return oit_mesh_append((oit_mesh *)user, tris, count, err);
-}
-
-oit_status oit_mesh_load(const char *path, const oit_read_desc *desc, oit_mesh *out,
-                         oit_error *err)
-{
-    memset(out, 0, sizeof *out);
-    oit_status s = oit_mesh_read(path, desc, load_sink, out, &out->info, err);
-    if (s != OIT_OK)
-        oit_mesh_free(out);
-    return s;
-}
-
 void oit_mesh_free(oit_mesh *m)
 {
     if (!m) return;

@@ -1,5 +1,7 @@
-/* oit_mesh_read: picks the reader by file extension (case-insensitive), and
+/* oit_mesh_read: picks the reader by file extension (case-insensitive),
+ * assimp's adapter taking the rest (assimp_internal.h), and
  * the file-path entries of the streaming readers. */
+#include "formats/assimp_internal.h"
 #include "formats/readers_internal.h"
 #include "formats/vtk_internal.h"
 
@@ -54,10 +56,26 @@ oit_status oit_mesh_read(const char *path, const oit_read_desc *desc, oit_triang
         return oit_rd_with_file(path, oit_read_vtk_stream, desc, sink, user, info, err);
     if (ext_is(ext, "vtp"))
         return oit_rd_with_file(path, oit_read_vtp_stream, desc, sink, user, info, err);
-    return oit_error_set(err, OIT_ERR_UNSUPPORTED,
-                         "%s: unknown mesh format '.%s' (expected .ply .obj .off .stl .gltf .glb "
-                         ".vtk .vtp)",
-                         path, ext);
+    /* Last: assimp takes what no reader of ours does, and refuses (naming
+     * every extension) what it does not import either. */
+    return oit_read_assimp(path, desc, sink, user, info, err);
+}
+
+/* Here, not in mesh.c, so that what the plugins take of mesh.c (the info
+ * helpers) does not bring every reader into each of them. */
+static oit_status load_sink(void *user, const oit_triangle *tris, size_t count, oit_error *err)
+{
+    return oit_mesh_append((oit_mesh *)user, tris, count, err);
+}
+
+oit_status oit_mesh_load(const char *path, const oit_read_desc *desc, oit_mesh *out,
+                         oit_error *err)
+{
+    memset(out, 0, sizeof *out);
+    oit_status s = oit_mesh_read(path, desc, load_sink, out, &out->info, err);
+    if (s != OIT_OK)
+        oit_mesh_free(out);
+    return s;
 }
 
 /* The file-path entry of a streaming reader: oit_read_FMT reads path

@@ -91,9 +91,12 @@ typedef struct oit_read_desc {
 typedef oit_status (*oit_triangle_sink)(void *user, const oit_triangle *tris,
                                         size_t count, oit_error *err);
 
-/* Reads any supported file; the format is chosen by extension (.ply .obj
- * .off .stl .gltf .glb .vtk .vtp, case-insensitive). info may be NULL. On failure the
- * message names the file and the line or byte offset where it went wrong. */
+/* Reads any supported file; the format is chosen by extension
+ * (case-insensitive): .ply .obj .off .stl  .gltf .glb .vtk .vtp by liboit's own
+ * readers, every other extension that assimp imports (.fbx .dae .3ds .3mf
+ * .ifc ...) through assimp, whose plugin liboit loads for the read. info may
+ * be NULL. On failure the message names the file and, where the reader
+ * knows it, the line or byte offset where it went wrong. */
 OIT_API oit_status oit_mesh_read(const char *path, const oit_read_desc *desc,
                                  oit_triangle_sink sink, void *user,
                                  oit_mesh_info *info, oit_error *err);

@@ -14,6 +14,7 @@
 # Cases: outputs that are the input (same path, symlink, hard link), empty
 # and garbage models (/etc/passwd as .obj, vertices only, no faces, all
 # degenerate, all non-finite, binary bytes in a text format), UTF-8 BOMs,
+# formats through assimp (truncated FBX, IFC without geometry, random .dae),
 # gzip (named .gz or not: read; corrupt or truncated: refused naming gzip),
 # VTK files (.vtp and legacy .vtk that VTK wrote: read; truncated, without
 # geometry, only cells of a type not read, a dataset or file type that holds no surface,
@@ -147,6 +148,13 @@ head -c $((psize / 2)) "$I/good.oitp" >"$I/truncated.oitp"
 cp "$I/good.oitp" "$I/flipped.oitp"
 printf '\125' | dd of="$I/flipped.oitp" bs=1 seek=$((psize / 2)) conv=notrunc 2>/dev/null
 gzip -9nc "$I/good.oitp" >"$I/gzip.oitp"
+# formats read through assimp (issue 47): half an FBX, an IFC of a site
+# without any product, random bytes named .dae
+AS=$(dirname "$0")/../corpus/assimp
+head -c $(($(wc -c <"$AS/box.fbx") / 2)) "$AS/box.fbx" >"$I/truncated.fbx"
+cp "$AS/empty_site.ifc" "$I/nogeometry.ifc"
+head -c 4096 /dev/urandom >"$I/random.dae"
+cp "$AS/crashes_assimp.ifc" "$I/crashes_assimp.ifc"
 
 row case tool want got verdict
 row ---- ---- ---- --- -------
@@ -202,6 +210,10 @@ mesh "vtk STRUCTURED_POINTS" 3 "$I/image.vtk" "DATASET STRUCTURED_POINTS is not 
 mesh "vtp UnstructuredGrid" 3 "$I/ugrid.vtp" "VTKFile type 'UnstructuredGrid' is not supported"
 mesh "ply named .vtp" 3 "$I/ply_named.vtp" "ply_named.vtp: byte offset 0: not an XML VTK file"
 mesh "ply named .vtk" 3 "$I/ply_named.vtk" "ply_named.vtk: line 1: not a legacy VTK file"
+mesh "truncated fbx" 3 "$I/truncated.fbx" "truncated.fbx: assimp cannot read it"
+mesh "ifc without geometry" 3 "$I/nogeometry.ifc" "nogeometry.ifc: no geometry"
+mesh "random bytes .dae" 3 "$I/random.dae" "random.dae: assimp cannot read it"
+mesh "ifc that kills assimp" 3 "$I/crashes_assimp.ifc" "crashes_assimp.ifc: assimp crashed reading it"
 
 # ---- part files ----
 part "good part file" 0 "$I/good.oitp"

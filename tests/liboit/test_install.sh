@@ -42,7 +42,7 @@ done
 cmake --build "$build" --target oit $tools > "$tmp/build.log" 2>&1 || { cat "$tmp/build.log"; exit 1; }
 cmake --install "$build" --prefix "$tmp/prefix" > "$tmp/install.log"
 for f in include/oit/oit.h include/oit/liboit.h include/oit/offscreen.h include/oit/partfile.h \
-         share/doc/oit/part-file.md lib/liboit-gltf.so lib/pkgconfig/oit.pc lib/cmake/oit/oitConfig.cmake \
+         share/doc/oit/part-file.md lib/liboit-gltf.so lib/liboit-assimp.so lib/pkgconfig/oit.pc lib/cmake/oit/oitConfig.cmake \
          lib/cmake/oit/oitConfigVersion.cmake \
          lib/python3/dist-packages/oit/__init__.py \
          lib/python3/dist-packages/oit/_install_paths.py; do
@@ -101,7 +101,8 @@ corpus="$src_dir/tests/corpus"
 open_scene() { # $1: a corpus file; prints the program's line
     env -u LD_LIBRARY_PATH "$tmp/cm/outside" "$corpus/$1"
 }
-for scene in gltf/scene.glb gltf/draco.glb gltf/scene.gltf.gz off/color.off.gz; do
+for scene in gltf/scene.glb gltf/draco.glb gltf/scene.gltf.gz off/color.off.gz \
+    assimp/wall_glass.ifc assimp/box.fbx; do
     out=$(open_scene $scene) || { echo "FAIL (open $scene): $out"; exit 1; }
     echo "open $scene: $out"
     case $out in "ok: ") ;; *) echo "FAIL (open $scene): not opened"; exit 1 ;; esac
@@ -113,6 +114,13 @@ echo "without the plugin: $out"
 case $out in "unsupported: $corpus/gltf/scene.glb: "*"glTF plugin $tmp/prefix/lib/liboit-gltf.so"*) ;;
     *) echo "FAIL: the error does not name the file and the installed plugin's path"; exit 1 ;; esac
 mv "$tmp/plugin-aside.so" "$tmp/prefix/lib/liboit-gltf.so"
+# Likewise without the assimp plugin, for a format read through assimp.
+mv "$tmp/prefix/lib/liboit-assimp.so" "$tmp/plugin-aside.so"
+out=$(open_scene assimp/box.fbx) && { echo "FAIL: opened a .fbx without the assimp plugin: $out"; exit 1; }
+echo "without the assimp plugin: $out"
+case $out in "unsupported: $corpus/assimp/box.fbx: "*"assimp plugin $tmp/prefix/lib/liboit-assimp.so"*) ;;
+    *) echo "FAIL: the error does not name the file and the installed assimp plugin's path"; exit 1 ;; esac
+mv "$tmp/plugin-aside.so" "$tmp/prefix/lib/liboit-assimp.so"
 
 pc_flags=$(PKG_CONFIG_PATH="$tmp/prefix/lib/pkgconfig" pkg-config --cflags --libs oit)
 echo "pkg-config: $pc_flags"

@@ -14,7 +14,7 @@ static oit_status discard(void *user, const oit_triangle *t, size_t n, oit_error
 static int usage(FILE *out, int code)
 {
     fprintf(out, "usage: oit_meshinfo FILE...\n"
-                 "Reads each mesh (.ply .obj .off .stl .gltf .glb .vtk .vtp) and prints triangles,\n"
+                 "Reads each mesh (as oitprep reads) and prints triangles,\n"
                  "faces, vertices, dropped non-finite triangles, attributes and bounds.\n");
     return code;
 }

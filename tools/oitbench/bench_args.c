@@ -267,7 +267,7 @@ void oit_bench_usage(FILE *f, const char *method_list, const char *default_schem
         "  reported with the reason, not dropped.\n"
         "what each method draws (the choice a user makes: the mesh in core, or its\n"
         "part file streamed):\n"
-        "  MODEL a mesh (any format oitprep reads): the in-core methods and the\n"
+        "  MODEL a mesh (as oitprep reads): the in-core methods and the\n"
         "    reference draw its triangles; stream draws the part file of --parts, or\n"
         "    one converted now as oitprep would (progress on stderr; its seconds and\n"
         "    triangles in and out reported) into a temporary file in $TMPDIR or /tmp,\n"
