@@ -22,6 +22,7 @@
 #include "render/image/image.h"
 #include "render/image/shade.h"
 #include "stream/streamer.h"
+#include "liboit/desc_ranges.h"
 
 struct oit_scene {
     oit_partfile *pf; /* a part file, or NULL: in core */
@@ -508,22 +509,43 @@ static const char *spelt(const char *given, const char *field)
     return given ? given : field;
 }
 
-/* liboit's own checks, then the streamer's (oit_streamer_desc_check) on
- * the descriptor stream_desc spells, under the caller's names. */
+/* One row of desc_ranges.h that liboit checks, on an integer field. */
+static oit_status check_row(const oit_renderer_desc *d, const oit_desc_range *row,
+                            const oit_renderer_desc_names *n, oit_error *err)
+{
+    const char *p = (const char *)d + row->offset;
+    long long v;
+    if (row->type == OIT_DESC_U32) {
+        uint32_t u;
+        memcpy(&u, p, sizeof u);
+        v = u;
+    } else {
+        int i;
+        memcpy(&i, p, sizeof i);
+        v = i;
+    }
+    if ((v == 0 && row->zero_default) || (v >= (long long)row->lo && v <= (long long)row->hi))
+        return OIT_OK;
+    const char *given;
+    memcpy(&given, (const char *)n + row->name_offset, sizeof given);
+    char own[64];
+    snprintf(own, sizeof own, "oit_renderer_desc.%s", row->field);
+    return oit_error_set(err, OIT_ERR_ARGUMENT, "%s = %lld: expected %s", spelt(given, own), v,
+                         row->expect);
+}
+
+/* liboit's own checks (the rows of desc_ranges.h it owns), then the
+ * streamer's (oit_streamer_desc_check) on the descriptor stream_desc
+ * spells, under the caller's names. */
 oit_status oit_renderer_desc_check(const oit_renderer_desc *d, const oit_renderer_desc_names *names,
                                    oit_error *err)
 {
     static const oit_renderer_desc_names none = {0};
     const oit_renderer_desc_names *n = names ? names : &none;
-    if (d->K != 0 && oit_capture_k_check(d->K, spelt(n->K, "oit_renderer_desc.K"), err))
-        return OIT_ERR_ARGUMENT;
-    if ((unsigned)d->pack > OIT_RENDER_PACK_FIRSTK)
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s = %d is not an oit_render_pack",
-                             spelt(n->pack, "oit_renderer_desc.pack"), (int)d->pack);
-    if (d->see_through != 0 && d->see_through != 1)
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s = %d is not 0 or 1",
-                             spelt(n->see_through, "oit_renderer_desc.see_through"),
-                             d->see_through);
+    for (size_t i = 0; i < OIT_DESC_RANGES; i++)
+        if (oit_desc_ranges[i].liboit_checks &&
+            check_row(d, &oit_desc_ranges[i], n, err) != OIT_OK)
+            return OIT_ERR_ARGUMENT;
     oit_streamer_desc sd;
     stream_desc(d, &sd);
     const oit_streamer_names sn = {

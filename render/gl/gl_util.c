@@ -179,7 +179,10 @@ oit_status oit_gl_buffer_reserve(GLuint *buf, uint64_t *cap, uint64_t bytes,
 {
     if (*buf && *cap >= bytes)
         return OIT_OK;
-    uint64_t grown = *cap + *cap / 2;
+    /* Grown by half, kept a multiple of 16 bytes: a whole-buffer clear
+     * (glClearNamedBufferData, R32UI or RGBA32UI) needs its size a
+     * multiple of the format's, and 1.5x of 4 * odd is not. */
+    uint64_t grown = (*cap + *cap / 2 + 15) / 16 * 16;
     uint64_t want = bytes > grown ? bytes : grown;
     if (want == 0)
         want = 16;

@@ -46,8 +46,9 @@ oit_status oit_gl_framebuffer_create(GLuint *fbo, GLuint *samples_query, const c
                                      oit_error *err);
 
 /* Makes *buf a buffer of at least 'bytes' (GL_DYNAMIC_COPY), keeping *cap in
- * bytes; when it must grow it allocates max(bytes, 1.5 * *cap) so repeated
- * growth is geometric. Contents are not preserved. */
+ * bytes; when it must grow it allocates max(bytes, 1.5 * *cap rounded up to
+ * 16 bytes) so repeated growth is geometric and a whole-buffer clear of
+ * 32-bit words stays valid. Contents are not preserved. */
 oit_status oit_gl_buffer_reserve(GLuint *buf, uint64_t *cap, uint64_t bytes,
                                  const char *what, oit_error *err);
 /* New GL storage holds garbage (the spec promises nothing; llvmpipe happens
