@@ -13,6 +13,7 @@ install(TARGETS oit EXPORT oitTargets
 # when a .gltf/.glb is opened (formats/gltf_plugin.c). Nothing links it, so
 # it is not part of the exported targets.
 install(TARGETS oit_gltf_plugin LIBRARY DESTINATION lib)
+install(TARGETS oit_occt_plugin LIBRARY DESTINATION lib) # STEP/IGES, formats/step_plugin.c
 install(FILES
         ${CMAKE_SOURCE_DIR}/include/oit/oit.h
         ${CMAKE_SOURCE_DIR}/include/oit/status.h

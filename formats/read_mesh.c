@@ -49,8 +49,13 @@ oit_status oit_mesh_read(const char *path, const oit_read_desc *desc, oit_triang
         return oit_read_stl(path, desc, sink, user, info, err);
     if (ext_is(ext, "gltf") || ext_is(ext, "glb"))
         return oit_read_gltf(path, desc, sink, user, info, err);
+    if (ext_is(ext, "step") || ext_is(ext, "stp"))
+        return oit_read_step(path, desc, sink, user, info, err);
+    if (ext_is(ext, "iges") || ext_is(ext, "igs"))
+        return oit_read_iges(path, desc, sink, user, info, err);
     return oit_error_set(err, OIT_ERR_UNSUPPORTED,
-                         "%s: unknown mesh format '.%s' (expected .ply .obj .off .stl .gltf .glb)",
+                         "%s: unknown mesh format '.%s' (expected .ply .obj .off .stl .gltf .glb "
+                         ".step .stp .iges .igs)",
                          path, ext);
 }
 

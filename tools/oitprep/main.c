@@ -11,6 +11,7 @@
 #include "oit/partfile.h"
 #include "oit/status.h"
 
+#include <float.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -36,7 +37,7 @@ static void usage(FILE *f)
           "       oitprep INPUT -o OUT.oitp [--max-layers K] [--memory BYTES] [--threads N]\n"
           "               [--stats FILE.json] [--grid N] [--max-piece-triangles T]\n"
           "               [--manage grid|kd-parts|kd-facets] [--slabs all|separating|none]\n"
-          "               [--scheme fast|guaranteed] [--part-triangles T]\n"
+          "               [--scheme fast|guaranteed] [--part-triangles T] [--deflection D]\n"
           "\n"
           "  info FILE     validate a part file completely (header, checksums, every record\n"
           "                and index) and print its counts; --json prints one JSON object\n"
@@ -67,9 +68,16 @@ static void usage(FILE *f)
           "                paints parts of axis splits grey, of separating slabs blue, of\n"
           "                cutting planes orange, wide parts (guaranteed scheme) red.\n"
           "                --alpha A (1..255) for every triangle, else the file's alpha\n"
-          "  INPUT -o OUT  convert a mesh (PLY, OBJ, OFF, STL, glTF/GLB) into a part file,\n"
-          "                out of core: the model is binned into a grid of top cells (--grid\n"
-          "                N along the longest axis, 1..1024; default: cells of at least\n"
+          "  INPUT -o OUT  convert a mesh into a part file. Readers by extension: .ply .obj\n"
+          "                .off .stl (ours, streamed), .gltf .glb (tinygltf, Draco), .step\n"
+          "                .stp .iges .igs (Open CASCADE: the B-rep tessellated, with its\n"
+          "                faces' colours and transparency; --deflection D (> 0, in the\n"
+          "                file's units) bounds the distance of the triangles from the\n"
+          "                surfaces; unset it is a thousandth of the bounding box's\n"
+          "                diagonal; deflection in --stats gives the one used). The\n"
+          "                conversion runs out of core: the model is binned into a grid\n"
+          "                of top cells (--grid N along the longest axis, 1..1024;\n"
+          "                default: cells of at least\n"
           "                256K triangles or 8 parts' worth, doubled where that makes\n"
           "                fewer cells, for the fast scheme, ~64K triangles a cell for\n"
           "                the guaranteed one; cells are rounded to a power-of-two size)\n"
@@ -393,6 +401,15 @@ static int cmd_convert(int argc, char **argv)
             if (option_value(argc, argv, &i, a, 1, 1, 1u << 24, &v))
                 return 2;
             o.part_triangles = (uint32_t)v;
+        } else if (strcmp(a, "--deflection") == 0) {
+            /* checked here for the usage error; oit_read_desc owns its meaning */
+            if (i + 1 >= argc || oit_parse_double(argv[i + 1], 0.0, DBL_MAX, &o.deflection) ||
+                !(o.deflection > 0.0)) {
+                fprintf(stderr, "oitprep: --deflection '%s': want a number > 0 (the file's "
+                        "units)\n", i + 1 < argc ? argv[i + 1] : "");
+                return 2;
+            }
+            i++;
         } else if (strcmp(a, "--max-piece-triangles") == 0) {
             if (option_value(argc, argv, &i, a, 0, 1, 1u << 30, &v))
                 return 2;
