@@ -292,8 +292,8 @@ oit_status load(Ctx &c, oit_occt_format format, const char *path, std::istream *
         r.SetLayerMode(false);
         oit_status s = read_status(c, in ? r.ChangeReader().ReadStream(c.name, *in) : r.ReadFile(path));
         if (s == OIT_OK && !r.Transfer(doc))
-            s = fail(c, OIT_ERR_FORMAT, "Open CASCADE could not translate its STEP entities "
-                     "into shapes");
+            s = fail(c, OIT_ERR_FORMAT, "holds nothing Open CASCADE could translate into a "
+                     "shape (no geometry?)");
         return s;
     }
     IGESControl_Controller::Init();
@@ -303,8 +303,8 @@ oit_status load(Ctx &c, oit_occt_format format, const char *path, std::istream *
     r.SetLayerMode(false);
     oit_status s = read_status(c, r.ReadFile(path));
     if (s == OIT_OK && !r.Transfer(doc))
-        s = fail(c, OIT_ERR_FORMAT, "Open CASCADE could not translate its IGES entities "
-                 "into shapes");
+        s = fail(c, OIT_ERR_FORMAT, "holds nothing Open CASCADE could translate into a "
+                 "shape (no geometry?)");
     return s;
 }
 

@@ -15,6 +15,7 @@
 # and garbage models (/etc/passwd as .obj, vertices only, no faces, all
 # degenerate, all non-finite, binary bytes in a text format), UTF-8 BOMs,
 # gzip (named .gz or not: read; corrupt or truncated: refused naming gzip),
+# STEP/IGES (truncated, random bytes named .igs, no geometry),
 # corrupt part files (empty, text, truncated, flipped byte, gzip), usage
 # errors (empty -o, unknown image extension, unwritable folder before the
 # run, degenerate --view, --max-layers out of range), SIGINT/SIGTERM during
@@ -128,6 +129,12 @@ head -c $((psize / 2)) "$I/good.oitp" >"$I/truncated.oitp"
 cp "$I/good.oitp" "$I/flipped.oitp"
 printf '\125' | dd of="$I/flipped.oitp" bs=1 seek=$((psize / 2)) conv=notrunc 2>/dev/null
 gzip -9nc "$I/good.oitp" >"$I/gzip.oitp"
+# STEP and IGES (Open CASCADE): cut mid-DATA, random bytes, no geometry
+step_corpus=$(dirname "${OIT_TEST_LIB:-$(dirname "$0")/../lib.sh}")/corpus/step
+ssize=$(wc -c <"$step_corpus/parts.step")
+head -c $((ssize / 2)) "$step_corpus/parts.step" >"$I/truncated.step"
+head -c 4096 /dev/urandom >"$I/random.igs"
+cp "$step_corpus/nogeom.step" "$I/nogeom.step"
 
 row case tool want got verdict
 row ---- ---- ---- --- -------
@@ -167,6 +174,10 @@ mesh "gzip ascii stl.gz" 0 "$I/ascii.stl.gz"
 mesh "gzip truncated" 3 "$I/truncated.ply.gz" "gzip stream truncated"
 mesh "gzip corrupt" 3 "$I/corrupt.ply.gz" "gzip"
 mesh "gzip of empty obj" 3 "$I/empty.obj.gz" "no vertices and no faces"
+mesh "truncated step" 3 "$I/truncated.step" "truncated.step: "
+mesh "random bytes as .igs" 3 "$I/random.igs" "random.igs: not a readable IGES file"
+mesh "step without geometry" 3 "$I/nogeom.step" "nogeom.step: "
+mesh "good step" 0 "$step_corpus/parts.step"
 
 # ---- part files ----
 part "good part file" 0 "$I/good.oitp"
