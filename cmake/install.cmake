@@ -15,6 +15,7 @@ install(TARGETS oit EXPORT oitTargets
 install(TARGETS oit_gltf_plugin LIBRARY DESTINATION lib)
 # The assimp plugin likewise, for every other mesh format (formats/assimp_plugin.c).
 install(TARGETS oit_assimp_plugin LIBRARY DESTINATION lib)
+install(TARGETS oit_occt_plugin LIBRARY DESTINATION lib) # STEP/IGES, formats/step_plugin.c
 install(FILES
         ${CMAKE_SOURCE_DIR}/include/oit/oit.h
         ${CMAKE_SOURCE_DIR}/include/oit/status.h

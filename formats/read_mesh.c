@@ -56,6 +56,10 @@ oit_status oit_mesh_read(const char *path, const oit_read_desc *desc, oit_triang
         return oit_rd_with_file(path, oit_read_vtk_stream, desc, sink, user, info, err);
     if (ext_is(ext, "vtp"))
         return oit_rd_with_file(path, oit_read_vtp_stream, desc, sink, user, info, err);
+    if (ext_is(ext, "step") || ext_is(ext, "stp"))
+        return oit_read_step(path, desc, sink, user, info, err);
+    if (ext_is(ext, "iges") || ext_is(ext, "igs"))
+        return oit_read_iges(path, desc, sink, user, info, err);
     /* Last: assimp takes what no reader of ours does, and refuses (naming
      * every extension) what it does not import either. */
     return oit_read_assimp(path, desc, sink, user, info, err);

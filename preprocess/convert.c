@@ -136,7 +136,7 @@ static oit_status fast_grid(const oit_convert_options *o, const oit_mesh_info *i
     if (!ph)
         return oit_error_set(err, OIT_ERR_NOMEM, "%s: out of memory", o->input);
     oit_grid_phase_init(ph, g);
-    oit_read_desc rd = {0};
+    oit_read_desc rd = {.deflection = info->deflection};
     oit_mesh_info again;
     oit_progress pg;
     oit_progress_start(&pg, "grid", 1, o->progress, o->progress_period_s);
@@ -570,8 +570,11 @@ static const char *base_name(const char *path)
     return s ? s + 1 : path;
 }
 
+/* deflection: the first pass's (oit_mesh_info), so that a STEP or IGES
+ * file is tessellated alike in every pass. */
 static oit_status bin_input(const oit_convert_options *o, const oit_bin_grid *grid,
-                            uint64_t total, oit_bins **bins, bin_sink_ctx *ctx, oit_error *err)
+                            uint64_t total, double deflection, oit_bins **bins,
+                            bin_sink_ctx *ctx, oit_error *err)
 {
     size_t spill_len = strlen(o->output) + 8;
     char *spill = malloc(spill_len);
@@ -582,7 +585,7 @@ static oit_status bin_input(const oit_convert_options *o, const oit_bin_grid *gr
     free(spill);
     if (s)
         return s;
-    oit_read_desc rd = {0};
+    oit_read_desc rd = {.deflection = deflection};
     ctx->bins = *bins;
     ctx->keep = malloc(65536 * sizeof *ctx->keep);
     ctx->keep_src = malloc(65536 * sizeof *ctx->keep_src);
@@ -715,7 +718,7 @@ static oit_status convert_with(const oit_convert_options *o, oit_convert_stats *
     st->K = o->K;
     double t0 = oit_time_s();
     oit_mesh_info info;
-    oit_read_desc rd = {0};
+    oit_read_desc rd = {.deflection = o->deflection};
     oit_progress pg;
     oit_progress_start(&pg, "bounds", 1, o->progress, o->progress_period_s);
     oit_status s = oit_mesh_read(o->input, &rd, count_sink, NULL, &info, err);
@@ -725,6 +728,7 @@ static oit_status convert_with(const oit_convert_options *o, oit_convert_stats *
     double t1 = oit_time_s();
     st->seconds_bounds = t1 - t0; /* the fast scheme's grid pass included */
     st->nonfinite_dropped = info.nonfinite_dropped;
+    st->deflection = info.deflection;
     st->triangles_in = info.triangles + info.nonfinite_dropped;
     cell_run r = {.o = o};
     if (info.triangles && o->scheme == OIT_SCHEME_FAST) {
@@ -744,7 +748,7 @@ static oit_status convert_with(const oit_convert_options *o, oit_convert_stats *
     memcpy(st->grid_dims, r.grid.dims, sizeof st->grid_dims);
     st->cells = r.ncells;
     bin_sink_ctx bctx = {0};
-    s = bin_input(o, &r.grid, info.triangles, &r.bins, &bctx, err);
+    s = bin_input(o, &r.grid, info.triangles, info.deflection, &r.bins, &bctx, err);
     st->degenerate_dropped = bctx.degenerate;
     if (!s && bctx.degenerate == info.triangles) /* the reader's test is coarser than ours */
         s = oit_error_set(err, OIT_ERR_FORMAT, "%s: all %llu triangles are degenerate (no "

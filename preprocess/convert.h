@@ -74,6 +74,8 @@ typedef struct oit_convert_options {
     int progress;                 /* oit_progress_mode (progress.h): off, a
                                      bar (a terminal) or periodic lines */
     double progress_period_s;     /* lines: seconds between them; 0: 5 */
+    double deflection;            /* STEP/IGES tessellation (oit_read_desc's,
+                                     oit/mesh.h): 0 for its default */
 } oit_convert_options;
 
 typedef struct oit_convert_stats {
@@ -90,6 +92,7 @@ typedef struct oit_convert_stats {
     uint32_t subgrid_depth, grid_dims[3], threads, K;
     double seconds_total, seconds_bounds, seconds_bin, seconds_partition, seconds_write;
     uint64_t peak_rss_bytes;
+    double deflection;         /* the reader's (oit_mesh_info): 0 but for STEP/IGES */
 } oit_convert_stats;
 
 /* oitprep's defaults for a conversion, so that a tool converting on the fly

@@ -59,6 +59,8 @@ oit_status oit_convert_stats_write_json(const char *path, const oit_convert_opti
                       : 0);
     oit_json_uint(&w, "clamped_parts", s->clamped_parts);
     oit_json_uint(&w, "max_measured_layers", s->max_measured);
+    /* STEP/IGES: the tessellation's chordal deflection; 0 for meshes */
+    oit_json_general(&w, "deflection", s->deflection, 9);
     oit_json_end(&w);
     return oit_json_close(&w, err);
 }

@@ -19,6 +19,7 @@
 # VTK files (.vtp and legacy .vtk that VTK wrote: read; truncated, without
 # geometry, only cells of a type not read, a dataset or file type that holds no surface,
 # another format under their names: refused naming the file and the fault),
+# STEP/IGES (truncated, random bytes named .igs, no geometry),
 # corrupt part files (empty, text, truncated, flipped byte, gzip), usage
 # errors (empty -o, unknown image extension, unwritable folder before the
 # run, degenerate --view, --max-layers out of range), SIGINT/SIGTERM during
@@ -155,6 +156,12 @@ head -c $(($(wc -c <"$AS/box.fbx") / 2)) "$AS/box.fbx" >"$I/truncated.fbx"
 cp "$AS/empty_site.ifc" "$I/nogeometry.ifc"
 head -c 4096 /dev/urandom >"$I/random.dae"
 cp "$AS/crashes_assimp.ifc" "$I/crashes_assimp.ifc"
+# STEP and IGES (Open CASCADE): cut mid-DATA, random bytes, no geometry
+step_corpus=$(dirname "${OIT_TEST_LIB:-$(dirname "$0")/../lib.sh}")/corpus/step
+ssize=$(wc -c <"$step_corpus/parts.step")
+head -c $((ssize / 2)) "$step_corpus/parts.step" >"$I/truncated.step"
+head -c 4096 /dev/urandom >"$I/random.igs"
+cp "$step_corpus/nogeom.step" "$I/nogeom.step"
 
 row case tool want got verdict
 row ---- ---- ---- --- -------
@@ -214,6 +221,10 @@ mesh "truncated fbx" 3 "$I/truncated.fbx" "truncated.fbx: assimp cannot read it"
 mesh "ifc without geometry" 3 "$I/nogeometry.ifc" "nogeometry.ifc: no geometry"
 mesh "random bytes .dae" 3 "$I/random.dae" "random.dae: assimp cannot read it"
 mesh "ifc that kills assimp" 3 "$I/crashes_assimp.ifc" "crashes_assimp.ifc: assimp crashed reading it"
+mesh "truncated step" 3 "$I/truncated.step" "truncated.step: "
+mesh "random bytes as .igs" 3 "$I/random.igs" "random.igs: not a readable IGES file"
+mesh "step without geometry" 3 "$I/nogeom.step" "nogeom.step: "
+mesh "good step" 0 "$step_corpus/parts.step"
 
 # ---- part files ----
 part "good part file" 0 "$I/good.oitp"

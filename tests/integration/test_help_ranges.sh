@@ -155,6 +155,7 @@ check prep --threads
 check prep --grid
 check prep --max-piece-triangles "--scheme guaranteed"
 check prep --part-triangles
+check prep --deflection
 check verify --directions "" V nohi
 check verify --viewpoints "" V nohi
 check verify --chunk-triangles "" V nohi

@@ -42,7 +42,7 @@ done
 cmake --build "$build" --target oit $tools > "$tmp/build.log" 2>&1 || { cat "$tmp/build.log"; exit 1; }
 cmake --install "$build" --prefix "$tmp/prefix" > "$tmp/install.log"
 for f in include/oit/oit.h include/oit/liboit.h include/oit/offscreen.h include/oit/partfile.h \
-         share/doc/oit/part-file.md lib/liboit-gltf.so lib/liboit-assimp.so lib/pkgconfig/oit.pc lib/cmake/oit/oitConfig.cmake \
+         share/doc/oit/part-file.md lib/liboit-gltf.so lib/liboit-assimp.so lib/liboit-occt.so lib/pkgconfig/oit.pc lib/cmake/oit/oitConfig.cmake \
          lib/cmake/oit/oitConfigVersion.cmake \
          lib/python3/dist-packages/oit/__init__.py \
          lib/python3/dist-packages/oit/_install_paths.py; do
@@ -96,13 +96,14 @@ cmake --build "$tmp/cm" > "$tmp/cm-build.log" 2>&1 || { cat "$tmp/cm-build.log";
 check_run find_package "$tmp/cm/outside"
 
 # Mesh files that liboit reads through what it loads at run time, from the
-# prefix alone: the glTF plugin beside the installed liboit.so, and zlib.
+# prefix alone: the glTF and Open CASCADE plugins beside the installed
+# liboit.so, and zlib.
 corpus="$src_dir/tests/corpus"
 open_scene() { # $1: a corpus file; prints the program's line
     env -u LD_LIBRARY_PATH "$tmp/cm/outside" "$corpus/$1"
 }
 for scene in gltf/scene.glb gltf/draco.glb gltf/scene.gltf.gz off/color.off.gz \
-    assimp/wall_glass.ifc assimp/box.fbx; do
+    assimp/wall_glass.ifc assimp/box.fbx step/parts.step step/parts.igs; do
     out=$(open_scene $scene) || { echo "FAIL (open $scene): $out"; exit 1; }
     echo "open $scene: $out"
     case $out in "ok: ") ;; *) echo "FAIL (open $scene): not opened"; exit 1 ;; esac

@@ -11,6 +11,7 @@
 #include "oit/partfile.h"
 #include "oit/status.h"
 
+#include <float.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -36,7 +37,7 @@ static void usage(FILE *f)
           "       oitprep INPUT -o OUT.oitp [--max-layers K] [--memory BYTES] [--threads N]\n"
           "               [--stats FILE.json] [--grid N] [--max-piece-triangles T]\n"
           "               [--manage grid|kd-parts|kd-facets] [--slabs all|separating|none]\n"
-          "               [--scheme fast|guaranteed] [--part-triangles T]\n"
+          "               [--scheme fast|guaranteed] [--part-triangles T] [--deflection D]\n"
           "\n"
           "  info FILE     validate a part file completely (header, checksums, every record\n"
           "                and index) and print its counts; --json prints one JSON object\n"
@@ -126,6 +127,8 @@ static void usage(FILE *f)
           "  .ply .obj (with its .mtl) .off .stl   our streaming readers, memory bounded\n"
           "  .gltf .glb (Draco too)                our glTF reader\n"
           "  .vtk .vtp                             our VTK readers (legacy; XML PolyData)\n"
+          "  .step .stp .iges .igs                Open CASCADE (B-rep tessellated at\n"
+          "    --deflection, oitprep only; XDE colours and transparency)\n"
           "  every other extension assimp imports  assimp (.fbx .dae .3ds .3mf .ifc\n"
           "    .blend .x .lwo .ase .dxf ..., an unknown one's error lists them), the\n"
           "    whole scene in memory; points, lines skipped; diffuse colour, opacity\n"
@@ -401,6 +404,15 @@ static int cmd_convert(int argc, char **argv)
             if (option_value(argc, argv, &i, a, 1, 1, 1u << 24, &v))
                 return 2;
             o.part_triangles = (uint32_t)v;
+        } else if (strcmp(a, "--deflection") == 0) {
+            /* checked here for the usage error; oit_read_desc owns its meaning */
+            if (i + 1 >= argc || oit_parse_double(argv[i + 1], 0.0, DBL_MAX, &o.deflection) ||
+                !(o.deflection > 0.0)) {
+                fprintf(stderr, "oitprep: --deflection '%s': want a number > 0 (the file's "
+                        "units)\n", i + 1 < argc ? argv[i + 1] : "");
+                return 2;
+            }
+            i++;
         } else if (strcmp(a, "--max-piece-triangles") == 0) {
             if (option_value(argc, argv, &i, a, 0, 1, 1u << 30, &v))
                 return 2;
