@@ -265,10 +265,11 @@ void oit_streamer_share_size(const oit_streamer *s, uint32_t *parts, uint64_t *t
 
 /* The frame rendered last ended (its image is in the caller's hands) after
  * wall_ms, from the caller's start of it; its GPU timer figure will come
- * as frame gpu_tag (0: none). The automatic pack mode judges the frame on
- * that time; oit_streamer_render's frames are judged on their own time
- * unless this follows. Without it, a render_gpu frame is judged on the
- * streamer's own time at the next render. */
+ * as frame gpu_tag (0: none). The automatic pack mode judges a
+ * render_gpu frame on that time (without this call: on the streamer's own
+ * time, at the next render); oit_streamer_render's frames end with their
+ * read-back and are judged on their own time, so for them this only tags
+ * the GPU figure. */
 void oit_streamer_frame_end(oit_streamer *s, double wall_ms, uint64_t gpu_tag);
 /* GPU timer frame gpu_tag took gpu_ms (gpu_timer.h); the automatic mode
  * weighs it beside the wall times (stream/choice.h). */
