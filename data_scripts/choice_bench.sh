@@ -71,8 +71,11 @@ for s in $scenes; do make_scene "$s"; done
     echo "methods interleaved, median over $rounds rounds. auto's paths: its frames in"
     echo "the last round (f first-k, c counted). DFB runs on the source mesh."
     echo
-    echo "| scene | size | auto ms | first-k ms | counted ms | DFB ms | auto / best fixed | auto / DFB | auto's paths |"
-    echo "|---|---|---|---|---|---|---|---|---|"
+    echo "auto's costs: choice_first_k_ms / choice_counted_ms at its last frame in the"
+    echo "last round, the least wall ms of each path's frames as auto measured them."
+    echo
+    echo "| scene | size | auto ms | first-k ms | counted ms | DFB ms | auto / best fixed | auto / DFB | auto's paths | auto's costs f / c |"
+    echo "|---|---|---|---|---|---|---|---|---|---|"
 } >"$work/table.md"
 for s in $scenes; do
     for z in $sizes; do
@@ -95,11 +98,16 @@ for s in $scenes; do
         done
         a=$(median <"$work/$s.$z.auto") f=$(median <"$work/$s.$z.first-k")
         c=$(median <"$work/$s.$z.counted") d=$(median <"$work/$s.$z.dfb")
-        paths=$(grep -o '"choice": "[a-z-]*"' "$work/$s.$z.auto.$rounds.json" |
-            sed 's/.*"first-k"/f/; s/.*"counted"/c/' | tr -d '\n')
-        awk -v s="$s" -v z="$z" -v a="$a" -v f="$f" -v c="$c" -v d="$d" -v p="$paths" 'BEGIN {
+        j="$work/$s.$z.auto.$rounds.json"
+        paths=$(grep -o '"choice": "[a-z-]*"' "$j" | sed 's/.*"first-k"/f/; s/.*"counted"/c/' |
+            tr -d '\n')
+        # the costs auto weighed at its last frame (its own measurements)
+        cf=$(grep -o '"choice_first_k_ms": *[-0-9.]*' "$j" | tail -n 1 | sed 's/.*: *//')
+        cc=$(grep -o '"choice_counted_ms": *[-0-9.]*' "$j" | tail -n 1 | sed 's/.*: *//')
+        awk -v s="$s" -v z="$z" -v a="$a" -v f="$f" -v c="$c" -v d="$d" -v p="$paths" \
+            -v cf="$cf" -v cc="$cc" 'BEGIN {
             b = f < c ? f : c
-            printf "| %s | %s | %.0f | %.0f | %.0f | %.0f | %.2f | %.2f | %s |\n", s, z, a, f, c, d, a / b, a / d, p
+            printf "| %s | %s | %.0f | %.0f | %.0f | %.0f | %.2f | %.2f | %s | %.0f / %.0f |\n", s, z, a, f, c, d, a / b, a / d, p, cf, cc
         }' >>"$work/table.md"
     done
 done

@@ -142,10 +142,12 @@ static void bar(oit_choice_view *v, oit_path p)
     k->backoff = k->backoff * 2 > OIT_CHOICE_BAR_MOST ? OIT_CHOICE_BAR_MOST : k->backoff * 2;
 }
 
-/* The held path measured slower than best: best is held from now on. */
+/* The held path measured slower than best: best is held from now on (the
+ * old one barred unless its one figure was the start-up frame's). */
 static void give_way(oit_choice_view *v, oit_path best, const char *why)
 {
-    bar(v, v->held);
+    if (!v->cost[v->held].cold)
+        bar(v, v->held);
     v->held = v->next = best;
     v->why = why;
 }
@@ -190,6 +192,7 @@ void oit_choice_end(oit_choice *c, double wall_ms, oit_path suggest)
     oit_path_cost *k = &v->cost[p];
     if (!k->frames || wall_ms < k->wall_ms)
         k->wall_ms = wall_ms;
+    k->cold = !k->frames && c->clock == 1;
     k->frames++;
     for (int q = 0; q < OIT_PATHS; q++)
         if (q != (int)p && v->cost[q].bar)

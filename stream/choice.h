@@ -20,7 +20,10 @@
  * has not measured it, or its bar ran out. A probe is kept only if its
  * measured cost is lower than the held path's; otherwise the view goes back
  * and the probed path is barred for a number of frames that doubles with
- * each failed probe (OIT_CHOICE_BAR_FIRST up to OIT_CHOICE_BAR_MOST). A held
+ * each failed probe (OIT_CHOICE_BAR_FIRST up to OIT_CHOICE_BAR_MOST). The
+ * very first frame carries the process's start-up (programs built, parts
+ * read and uploaded): a path measured only there that loses to a probe is
+ * not barred, so it is measured again warm at the next suggestion. A held
  * path whose cost rises above another's measured one (late GPU figures, a
  * slower frame) gives way to it. Ties keep the held path. */
 #ifndef OIT_STREAM_CHOICE_H
@@ -50,6 +53,7 @@ typedef struct oit_path_cost {
     double wall_ms;      /* their least wall time (frames > 0) */
     uint32_t gpu_frames; /* of those, frames whose GPU figure came in */
     double gpu_ms;       /* their least GPU time (gpu_frames > 0) */
+    int cold;            /* its only frame was the judge's first (start-up) */
     uint32_t bar;        /* frames of the view before it may be probed again */
     uint32_t backoff;    /* the next bar's length */
 } oit_path_cost;

@@ -91,6 +91,7 @@ static void test_faster_probe_kept(void)
     oit_choice c;
     oit_choice_init(&c, BOTH, FK);
     const double ms[2] = {200.0, 120.0};
+    frame(&c, 1000, ms, NONE); /* the start-up frame, of another view */
     frame(&c, 7, ms, CT);
     CHECK(frame(&c, 7, ms, FK) == CT, "the probe");
     oit_path p;
@@ -111,6 +112,33 @@ static void test_faster_probe_kept(void)
     oit_choice_end(&c, 600.0, NONE);
     CHECK(oit_choice_begin(&c, 7) == CT, "a noisy frame moved auto off counted");
     oit_choice_end(&c, 120.0, NONE);
+}
+
+/* The first frame carries start-up: a path measured only there and
+ * beaten is measured again at once, and wins back where it is faster warm. */
+static void test_cold_start(void)
+{
+    oit_choice c;
+    oit_choice_init(&c, BOTH, FK);
+    oit_choice_begin(&c, 9);
+    oit_choice_end(&c, 900.0, CT); /* first-k, cold */
+    CHECK(oit_choice_begin(&c, 9) == CT, "the probe");
+    oit_choice_end(&c, 300.0, FK); /* counted, kept: 300 < 900 */
+    oit_path p = oit_choice_begin(&c, 9);
+    CHECK(p == CT && !strcmp(c.why, "kept: measured faster"), "counted kept: %s %s",
+          oit_path_name(p), c.why);
+    oit_choice_end(&c, 300.0, FK);
+    p = oit_choice_begin(&c, 9);
+    CHECK(p == FK && !strcmp(c.why, "probe"),
+          "first-k, measured only cold, not probed again at once: %s %s", oit_path_name(p),
+          c.why);
+    oit_choice_end(&c, 200.0, NONE); /* warm first-k: faster */
+    p = oit_choice_begin(&c, 9);
+    CHECK(p == FK && !strcmp(c.why, "kept: measured faster"), "warm first-k: %s %s",
+          oit_path_name(p), c.why);
+    oit_choice_end(&c, 200.0, CT);
+    /* a path measured on a later frame is barred as usual: counted now */
+    CHECK(c.views[0].cost[CT].bar > 0, "counted, beaten warm, not barred");
 }
 
 static void test_tie_keeps_held(void)
@@ -232,6 +260,7 @@ int main(void)
 {
     test_slower_probe_never_kept();
     test_faster_probe_kept();
+    test_cold_start();
     test_tie_keeps_held();
     test_view_reseeds();
     test_gpu_figures();
