@@ -83,9 +83,7 @@ static double view_cost(const oit_choice *c, const oit_choice_view *v, oit_path 
     const oit_path_cost *k = &v->cost[p];
     if (!candidate(c, p) || !k->frames)
         return -1.0;
-    if (gpu_basis(c, v) && k->gpu_ms > k->wall_ms)
-        return k->gpu_ms;
-    return k->wall_ms;
+    return gpu_basis(c, v) ? k->gpu_ms : k->wall_ms;
 }
 
 double oit_choice_cost(const oit_choice *c, oit_path p)
@@ -193,6 +191,7 @@ void oit_choice_end(oit_choice *c, double wall_ms, oit_path suggest)
     if (!k->frames || wall_ms < k->wall_ms)
         k->wall_ms = wall_ms;
     k->cold = !k->frames && c->clock == 1;
+    c->wall_ms = wall_ms;
     k->frames++;
     for (int q = 0; q < OIT_PATHS; q++)
         if (q != (int)p && v->cost[q].bar)
@@ -219,6 +218,7 @@ void oit_choice_tag_gpu(oit_choice *c, uint64_t tag)
     c->pending[i].tag = tag;
     c->pending[i].key = c->views[c->cur].key;
     c->pending[i].path = c->path;
+    c->pending[i].wall_ms = c->wall_ms;
 }
 
 void oit_choice_gpu(oit_choice *c, uint64_t tag, double gpu_ms)
@@ -232,8 +232,9 @@ void oit_choice_gpu(oit_choice *c, uint64_t tag, double gpu_ms)
             if (!v->used || v->key != c->pending[i].key)
                 continue;
             oit_path_cost *k = &v->cost[c->pending[i].path];
-            if (!k->gpu_frames || gpu_ms < k->gpu_ms)
-                k->gpu_ms = gpu_ms;
+            double ms = gpu_ms > c->pending[i].wall_ms ? gpu_ms : c->pending[i].wall_ms;
+            if (!k->gpu_frames || ms < k->gpu_ms)
+                k->gpu_ms = ms;
             k->gpu_frames++;
         }
         return;

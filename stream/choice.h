@@ -8,10 +8,11 @@
  * because a still view's frames do the same work and a shared machine's
  * noise only ever adds to it.
  *
- * A path's cost is its wall time, or the larger of wall and GPU time where
- * both compared paths have GPU figures (a frame ends when both the host and
- * the GPU are done; a path with no GPU figure is compared on wall time
- * alone, never against a guess).
+ * A path's cost is its least wall time or, where every measured path has
+ * GPU figures, its least frame time over the frames that have one, each
+ * the larger of the frame's wall and GPU time (a frame ends when both the
+ * host and the GPU are done; a path with no GPU figure is compared on wall
+ * time alone, never against a guess).
  *
  * The rule: a new view starts on the path the last view held (the first
  * view: the seed), with no figures. After each frame the caller says which
@@ -52,7 +53,8 @@ typedef struct oit_path_cost {
     uint32_t frames;     /* frames of the view drawn with the path */
     double wall_ms;      /* their least wall time (frames > 0) */
     uint32_t gpu_frames; /* of those, frames whose GPU figure came in */
-    double gpu_ms;       /* their least GPU time (gpu_frames > 0) */
+    double gpu_ms;       /* their least frame time, each the larger of its
+                            wall and GPU time (gpu_frames > 0) */
     int cold;            /* its only frame was the judge's first (start-up) */
     uint32_t bar;        /* frames of the view before it may be probed again */
     uint32_t backoff;    /* the next bar's length */
@@ -74,9 +76,11 @@ typedef struct oit_choice {
     uint64_t clock;
     int cur;     /* the view of the frame begun last; -1: none */
     oit_path path; /* the frame's path */
+    double wall_ms; /* the wall time of the frame ended last */
     struct {
         uint64_t tag, key;
         oit_path path;
+        double wall_ms;
     } pending[OIT_CHOICE_PENDING];
     unsigned pending_next;
     /* Why the frame begun last took its path: "seed" (the first frame),

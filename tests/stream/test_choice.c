@@ -7,7 +7,8 @@
  * choice; a changed view starts from the last view's path with no figures
  * and a view seen again keeps its own; GPU figures count only where every
  * measured path has them, late and out of order, and unknown ones are
- * dropped; the view key sees the camera, the size and the section planes.
+ * dropped, and a cost is one frame's own (the larger of its wall and GPU
+ * time); the view key sees the camera, the size and the section planes.
  * Each check was seen to fail with the rule broken (a probe kept whatever
  * it measured; views never re-seeded; GPU figures compared one-sided). */
 #include <math.h>
@@ -220,6 +221,16 @@ static void test_gpu_figures(void)
     oit_choice_gpu(&c, 42, 1.0); /* taken already: dropped */
     CHECK(fabs(oit_choice_cost(&c, CT) - 150.0) < 1e-9, "a figure taken twice: %.1f",
           oit_choice_cost(&c, CT));
+    /* a cost is some frame's own time: counted again, 140 ms on the host
+     * and 145 on the GPU, so 145 (not the 120 GPU ms of a frame that took
+     * 150 on the host, nor the 140 host ms of one that took 145 on the GPU) */
+    oit_choice_end(&c, 140.0, NONE);
+    oit_choice_tag_gpu(&c, 43);
+    oit_choice_gpu(&c, 43, 145.0);
+    oit_choice_begin(&c, 5);
+    CHECK(fabs(oit_choice_cost(&c, CT) - 145.0) < 1e-9, "counted's cost %.1f, want 145",
+          oit_choice_cost(&c, CT));
+    oit_choice_end(&c, 140.0, NONE);
 }
 
 static void test_candidates(void)
