@@ -565,9 +565,9 @@ typedef struct oit_draw_stats {
      * pass; counted draws trying first-K), kept only if it measures
      * faster; "kept: measured faster", "back: measured slower", "measured
      * faster"); and each path's cost as measured on this view before the
-     * draw, the least wall time of its draws (or the larger of that and
-     * the least GPU time where both paths have GPU figures), -1 where not
-     * measured. The strings are static. */
+     * draw, the least wall time of its draws (where both paths have GPU
+     * figures: the least over its draws of each one's larger of wall and
+     * GPU time), -1 where not measured. The strings are static. */
     const char *choice, *choice_why;
     double choice_first_k_ms, choice_counted_ms;
 } oit_draw_stats;
