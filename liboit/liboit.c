@@ -61,6 +61,7 @@ struct oit_renderer {
     oit_gpu_times gpu_queue[GPU_QUEUE];
     unsigned gpu_head, gpu_count;
     uint64_t draws; /* oit_draw_stats.draw of the last draw */
+    unsigned bands; /* streamer frames of the draw under way (render_state) */
 };
 
 _Static_assert(OIT_DRAW_GPU_PHASES == OIT_GPU_PHASES, "one list of GPU phases");
@@ -975,6 +976,7 @@ static oit_status render_state(oit_renderer *r, const oit_scene *scene, const oi
                                oit_frame_stats *fs, oit_stream_frame_stats *ss, oit_error *err)
 {
     if (scene->pf) {
+        r->bands++;
         oit_streamer_set_gpu_timer(r->streamer, r->timer);
         oit_streamer_set_opaque(r->streamer, opaque);
         return oit_streamer_render_gpu(r->streamer, v, state, fs, ss, err);
@@ -1052,6 +1054,10 @@ static void draw_stats_work(const oit_frame_stats *fs, const oit_stream_frame_st
     out->order_ms = ss->order_ms;
     out->pack_ms = ss->pack_ms;
     out->auto_first_k = (uint32_t)ss->first_k;
+    out->choice = ss->choice_path;
+    out->choice_why = ss->choice_why;
+    out->choice_first_k_ms = ss->choice_path ? ss->choice_ms[0] : -1.0;
+    out->choice_counted_ms = ss->choice_path ? ss->choice_ms[1] : -1.0;
     out->front_first = (uint32_t)ss->front_first;
     out->second_pass_pixels = fs->second_pass_pixels;
     out->second_pass_packs = fs->second_pass_packs;
@@ -1062,6 +1068,16 @@ static void draw_stats_work(const oit_frame_stats *fs, const oit_stream_frame_st
     out->reader_threads = (uint32_t)(ss->reader_threads > 0 ? ss->reader_threads : 0);
 }
 
+/* A part file's draw in one band is one streamer frame: the automatic
+ * pack mode judges it on the draw's whole wall time and its GPU figure
+ * (stream/choice.h); bands are judged each on its own time. */
+static void frame_end(oit_renderer *r, const oit_scene *scene, oit_status st, double t0,
+                      uint64_t gpu_tag)
+{
+    if (st == OIT_OK && scene->pf && r->streamer && r->bands == 1)
+        oit_streamer_frame_end(r->streamer, oit_time_ms() - t0, gpu_tag);
+}
+
 /* The figures that are in, queued for oit_renderer_gpu_poll; the newest
  * also in r->gpu, for oit_draw_stats. */
 static void gpu_take(oit_renderer *r)
@@ -1069,6 +1085,8 @@ static void gpu_take(oit_renderer *r)
     r->draws++;
     oit_gpu_times t;
     while (oit_gpu_timer_poll(r->timer, &t, 0)) {
+        if (r->streamer)
+            oit_streamer_gpu_figure(r->streamer, t.frame, t.ms);
         r->gpu = t;
         if (r->gpu_count == GPU_QUEUE) {
             r->gpu_head = (r->gpu_head + 1) % GPU_QUEUE;
@@ -1089,6 +1107,8 @@ int oit_renderer_gpu_poll(oit_renderer *r, oit_draw_gpu *out, int wait)
         r->gpu_count--;
     } else if (!r->timer || !oit_gpu_timer_poll(r->timer, &t, wait)) {
         return 0;
+    } else if (r->streamer) {
+        oit_streamer_gpu_figure(r->streamer, t.frame, t.ms);
     }
     out->draw = t.frame;
     out->ms = t.ms;
@@ -1130,9 +1150,10 @@ oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame 
     if (st == OIT_OK)
         st = empty ? OIT_OK : bind_scene(r, scene, err);
     oit_gpu_timer_begin_frame(r->timer);
+    r->bands = 0;
     if (st == OIT_OK && !empty)
         st = draw_bands(r, scene, frame, &view, &fs, &ss, err);
-    oit_gpu_timer_end_frame(r->timer);
+    frame_end(r, scene, st, t0, oit_gpu_timer_end_frame(r->timer));
     gpu_take(r);
     gl_restore(&saved);
     if (st != OIT_OK)
@@ -1205,6 +1226,7 @@ static oit_status render_image(oit_renderer *r, const oit_scene *scene, const oi
 {
     static const oit_opaque_depth none = {0};
     if (scene->pf) {
+        r->bands++;
         oit_streamer_set_gpu_timer(r->streamer, r->timer);
         oit_streamer_set_opaque(r->streamer, &none);
         return oit_streamer_render(r->streamer, v, out, fs, ss, err);
@@ -1294,9 +1316,10 @@ oit_status oit_renderer_draw_image(oit_renderer *r, oit_scene *scene, const oit_
     if (st == OIT_OK && !empty)
         st = bind_scene(r, scene, err);
     oit_gpu_timer_begin_frame(r->timer);
+    r->bands = 0;
     if (st == OIT_OK && !empty)
         st = image_bands(r, scene, &view, rgba, &fs, &ss, err);
-    oit_gpu_timer_end_frame(r->timer);
+    frame_end(r, scene, st, t0, oit_gpu_timer_end_frame(r->timer));
     gpu_take(r);
     gl_restore(&saved);
     if (st == OIT_OK && empty) /* nothing in front of the background */

@@ -11,6 +11,7 @@
 #include "render/image/image.h"
 #include "render/capture/opaque_tiles.h"
 #include "render/capture/saturation.h"
+#include "stream/choice.h"
 #include "stream/fence_queue.h"
 #include "partfile/order.h"
 #include "partfile/share.h"
@@ -22,6 +23,9 @@
 _Static_assert(OIT_PACK_MAX_LAYERS == OIT_CAPTURE_MAX_LAYERS &&
                    OIT_PACK_MAX_LAYERS == OIT_PARTFILE_MAX_LAYERS,
                "a wide part the file allows must fit the packer and the capture");
+
+_Static_assert(OIT_PATHS == sizeof(((oit_stream_frame_stats *)0)->choice_ms) / sizeof(double),
+               "a cost figure per path the judge weighs");
 
 /* Packs prepared ahead of the one being drawn. Without early termination
  * the ring's free space is the real bound; with it, a part read far ahead
@@ -82,10 +86,16 @@ struct oit_streamer {
     uint64_t fence_every, unfenced; /* ring bytes between fences, and since the last */
     oit_gpu_mesh **views; /* one per part of the largest pack so far */
     uint32_t view_count;
-    /* OIT_PACK_AUTO without early termination: first-K packs while they
-     * mostly take one pass, counted ones while a view is deep (adapt). */
+    /* OIT_PACK_AUTO without early termination: first-K or counted packs,
+     * as the measured costs of each view say (stream/choice.h); the frame
+     * is judged when it ends (frame_end). */
     int adaptive, first_k;
-    uint32_t counted_frames;
+    oit_choice judge;
+    struct {
+        int open;        /* drawn, not yet judged (a render_gpu frame) */
+        double ms;       /* the streamer's own wall time of it */
+        oit_path suggest; /* the fixed rule's next path */
+    } frame;
     oit_stream_budget budget; /* the split (split_budget) */
     oit_streamer_desc desc;   /* as given (oit_streamer_resolved_desc) */
 };
@@ -583,6 +593,7 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
                                                                 : OIT_PACK_FIRSTK;
     s->adaptive = desc->pack == OIT_PACK_AUTO && mode == OIT_PACK_FIRSTK;
     s->first_k = 1;
+    oit_choice_init(&s->judge, 1u << OIT_PATH_FIRSTK | 1u << OIT_PATH_COUNTED, OIT_PATH_FIRSTK);
     oit_status st = reader_threads(pf, desc->reader_threads, &s->threads, err);
     if (st == OIT_OK)
         st = alloc_arrays(s, oit_partfile_part_count(pf), err);
@@ -1014,13 +1025,9 @@ static oit_status capture_frame(oit_streamer *s, const oit_view *view, oit_packi
     return st;
 }
 
-/* The automatic mode's choice for the next frame. More than 1 pixel in 50
- * through the second pass means a deep view (measured at 1024x1024: the
- * demo and the bunny, 10 layers at most, send under 1.3% and stream at
- * 0.8x DFB's time in first-K; the engine and the 1M plant, 26-64 layers,
- * send 5-16% and are 20-30% faster counted); a counted run tries first-K
- * again every OIT_STREAM_PROBE_FRAMES frames, in case the view has become
- * shallow. */
+/* Early termination's choice for the next frame: front-first packs while
+ * they let whole parts be skipped; after a frame that skipped none, plain
+ * packs, front first tried again every OIT_STREAM_PROBE_FRAMES frames. */
 static void adapt_front(oit_streamer *s, oit_stream_frame_stats *ss)
 {
     ss->front_first = s->front_now;
@@ -1030,19 +1037,71 @@ static void adapt_front(oit_streamer *s, oit_stream_frame_stats *ss)
         s->front_now = 1;
 }
 
+/* The automatic mode's path for this frame (stream/choice.h). A frame
+ * still open is judged first, on the streamer's own time. */
+static void choose(oit_streamer *s, const oit_view *view)
+{
+    if (!s->adaptive)
+        return;
+    if (s->frame.open)
+        oit_choice_end(&s->judge, s->frame.ms, s->frame.suggest);
+    s->frame.open = 0;
+    oit_path p = oit_choice_begin(&s->judge, oit_choice_view_key(view));
+    s->first_k = p == OIT_PATH_FIRSTK;
+    oit_capture_set_first_k(s->capture, s->first_k);
+}
+
+/* What the frame's path was chosen from (the judge's figures before the
+ * frame ends). */
+static void choice_stats(const oit_streamer *s, oit_stream_frame_stats *ss)
+{
+    ss->choice_ms[OIT_PATH_FIRSTK] = ss->choice_ms[OIT_PATH_COUNTED] = -1.0;
+    if (!s->adaptive)
+        return;
+    for (int i = 0; i < OIT_PATHS; i++)
+        ss->choice_ms[i] = oit_choice_cost(&s->judge, (oit_path)i);
+    ss->choice_path = oit_path_name(s->judge.path);
+    ss->choice_why = s->judge.why;
+}
+
+/* The fixed rule's seed: first-K frames where more than 1 pixel in 50
+ * took the second pass suggest counted packs (measured at 1024x1024: the
+ * demo and the bunny, 10 layers at most, send under 1.3%; the engine and
+ * the 1M plant, 26-64 layers, send 5-16% and were 20-30% faster counted);
+ * counted frames suggest first-K (the judge's bar spaces the probes). The
+ * judge keeps the suggested path only if it measures faster. */
 static void adapt(oit_streamer *s, const oit_view *view, const oit_frame_stats *fs,
-                  oit_stream_frame_stats *ss)
+                  oit_stream_frame_stats *ss, double ms, int judged_now)
 {
     adapt_front(s, ss);
     ss->first_k = s->adaptive ? s->first_k : 0;
     if (!s->adaptive)
         return;
     uint64_t pixels = (uint64_t)view->width * view->height;
-    if (s->first_k && fs->second_pass_pixels * 50 > pixels)
-        s->first_k = 0, s->counted_frames = 0;
-    else if (!s->first_k && ++s->counted_frames >= OIT_STREAM_PROBE_FRAMES)
-        s->first_k = 1;
-    oit_capture_set_first_k(s->capture, s->first_k);
+    oit_path suggest = !s->first_k                              ? OIT_PATH_FIRSTK
+                       : fs->second_pass_pixels * 50 > pixels ? OIT_PATH_COUNTED
+                                                                : OIT_PATHS;
+    s->frame.ms = ms;
+    s->frame.suggest = suggest;
+    s->frame.open = 1;
+    if (judged_now)
+        oit_streamer_frame_end(s, ms, 0);
+}
+
+void oit_streamer_frame_end(oit_streamer *s, double wall_ms, uint64_t gpu_tag)
+{
+    if (!s->adaptive)
+        return;
+    if (s->frame.open)
+        oit_choice_end(&s->judge, wall_ms, s->frame.suggest);
+    s->frame.open = 0;
+    oit_choice_tag_gpu(&s->judge, gpu_tag);
+}
+
+void oit_streamer_gpu_figure(oit_streamer *s, uint64_t gpu_tag, double gpu_ms)
+{
+    if (s->adaptive)
+        oit_choice_gpu(&s->judge, gpu_tag, gpu_ms);
 }
 
 static void finish_stats(const oit_streamer *s, const oit_packing *pk, oit_frame_stats *fs,
@@ -1087,15 +1146,20 @@ static oit_status render(oit_streamer *s, const oit_view *view, oit_image *out, 
                              "the absorbing medium and its per-channel transmittance cross "
                              "share boundaries, which an RGBA blend of the shares cannot "
                              "carry; render it whole", oit_partfile_name(s->pf));
+    double t0 = oit_time_ms();
+    choose(s, view);
     oit_packing pk;
     oit_status st = capture_frame(s, view, &pk, ss, err);
+    choice_stats(s, ss);
     if (st == OIT_OK)
         st = state ? oit_capture_end_gpu(s->capture, state, fs, err)
                    : oit_capture_end(s->capture, out, fs, err);
     if (st == OIT_OK)
         finish_stats(s, &pk, fs, ss);
+    /* A frame read back here ends here; one left on the GPU ends at the
+     * caller's oit_streamer_frame_end (or, without one, at the next). */
     if (st == OIT_OK)
-        adapt(s, view, fs, ss);
+        adapt(s, view, fs, ss, oit_time_ms() - t0, state == NULL);
     return st;
 }
 

@@ -45,10 +45,11 @@ typedef struct oit_streamer_desc {
     /* where the capture's programs are built through (the caller's, which
      * outlives the streamer: render/gl/program_cache.h); NULL: compiled */
     oit_program_cache *programs;
-    /* OIT_PACK_AUTO (0): first-K packs, switched to counted for the next
-     * frames when more than 1 pixel in 50 took the second pass, and tried
-     * again every OIT_STREAM_PROBE_FRAMES counted frames (the image is the
-     * same either way). With early termination the counted and first-K
+    /* OIT_PACK_AUTO (0): first-K or counted packs, as this process measured
+     * them on each view (stream/choice.h): first-K first; counted tried for
+     * a frame when more than 1 pixel in 50 took the second pass, first-K
+     * again from counted, each kept only where it measured faster (the
+     * image is the same either way). With early termination the counted and first-K
      * packs are cut front first (oit_packer_set_front_first), so that
      * saturated tiles can skip the parts behind them */
     oit_pack_mode pack;
@@ -196,6 +197,13 @@ typedef struct oit_stream_frame_stats {
     float epsilon;           /* the early-termination threshold it ran with */
     int first_k;             /* the automatic mode took first-K packs (else
                                 counted, or a fixed --pack: 0) */
+    /* The automatic mode (stream/choice.h): the path it took ("first-k",
+     * "counted"), why ("seed", "held", "probe", ...: oit_choice.why), and
+     * the costs per path (oit_path) it chose from, measured on this view
+     * before the frame (-1: not measured; both -1 with a fixed --pack,
+     * the strings NULL). */
+    const char *choice_path, *choice_why;
+    double choice_ms[2];
     int front_first;         /* the packs were cut front first (pack.h): early
                                 termination with counted or first-K packs */
     /* --capture as asked ("auto", "stencil", "array") and, where auto took
@@ -258,6 +266,18 @@ oit_status oit_shares_view_order(oit_order *order, oit_shares *shares, const oit
                                  uint32_t *scratch, uint32_t *out, oit_error *err);
 /* Parts and triangles of the streamer's share (all the file's without one). */
 void oit_streamer_share_size(const oit_streamer *s, uint32_t *parts, uint64_t *triangles);
+
+/* The frame rendered last ended (its image is in the caller's hands) after
+ * wall_ms, from the caller's start of it; its GPU timer figure will come
+ * as frame gpu_tag (0: none). The automatic pack mode judges a
+ * render_gpu frame on that time (without this call: on the streamer's own
+ * time, at the next render); oit_streamer_render's frames end with their
+ * read-back and are judged on their own time, so for them this only tags
+ * the GPU figure. */
+void oit_streamer_frame_end(oit_streamer *s, double wall_ms, uint64_t gpu_tag);
+/* GPU timer frame gpu_tag took gpu_ms (gpu_timer.h); the automatic mode
+ * weighs it beside the wall times (stream/choice.h). */
+void oit_streamer_gpu_figure(oit_streamer *s, uint64_t gpu_tag, double gpu_ms);
 
 /* Renders one view into out (allocated by the call). fs and ss may be NULL. */
 oit_status oit_streamer_render(oit_streamer *s, const oit_view *view, oit_image *out,

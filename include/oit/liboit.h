@@ -572,6 +572,20 @@ typedef struct oit_draw_stats {
      * capture's store (oit_renderer_desc.slot_budget) and it was captured
      * in several; for an in-core scene, DFB's bands. */
     uint32_t batches;
+    /* OIT_RENDER_PACK_AUTO's choice of packs for this draw (NULL and -1
+     * with a fixed pack, a compute capture or an in-core scene): choice the
+     * path taken, "first-k" or "counted"; choice_why why ("seed": the first
+     * draw; "new view": the view changed, so the last view's path with no
+     * figures; "held"; "probe": tried for one draw, as a fixed rule
+     * suggests (first-K sending more than 1 pixel in 50 through its second
+     * pass; counted draws trying first-K), kept only if it measures
+     * faster; "kept: measured faster", "back: measured slower", "measured
+     * faster"); and each path's cost as measured on this view before the
+     * draw, the least wall time of its draws (where both paths have GPU
+     * figures: the least over its draws of each one's larger of wall and
+     * GPU time), -1 where not measured. The strings are static. */
+    const char *choice, *choice_why;
+    double choice_first_k_ms, choice_counted_ms;
 } oit_draw_stats;
 
 /* Draws scene as seen through frame into frame->framebuffer (see Result

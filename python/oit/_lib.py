@@ -99,7 +99,10 @@ class DrawStats(ctypes.Structure):
                 ("capture_k", ctypes.c_uint32), ("capture_asked", ctypes.c_char_p),
                 ("reader_threads", ctypes.c_uint32), ("resident", ctypes.c_uint32),
                 ("budget_source", ctypes.c_char_p), ("draw", ctypes.c_uint64),
-                ("batches", ctypes.c_uint32)]
+                ("batches", ctypes.c_uint32),
+                ("choice", ctypes.c_char_p), ("choice_why", ctypes.c_char_p),
+                ("choice_first_k_ms", ctypes.c_double),
+                ("choice_counted_ms", ctypes.c_double)]
 
 
 # enum values of the headers

@@ -64,3 +64,25 @@ def test_capture_module_render(part_file):
 def test_capture_bad_name():
     with pytest.raises(ValueError, match="capture"):
         oit.Renderer(capture="routed")
+
+
+def test_auto_choice_stats(part_file):
+    """pack="auto" reports its measured choice (liboit oit_draw_stats.choice,
+    stream/choice.h): the first draw the seed with no costs, the same view
+    again first-k held (two squares: no second pass, nothing to probe) with
+    first-k's measured cost; a fixed pack reports none."""
+    r = oit.Renderer(pack="auto")
+    try:
+        with oit.Scene.open(part_file) as s:
+            r.render(s, size=(64, 64), view=FRONT)
+            first = dict(r.stats)
+            r.render(s, size=(64, 64), view=FRONT)
+            second = dict(r.stats)
+    finally:
+        r.close()
+    assert first["choice"] == b"first-k" and first["choice_why"] == b"seed"
+    assert first["choice_first_k_ms"] == -1.0 and first["choice_counted_ms"] == -1.0
+    assert second["choice"] == b"first-k" and second["choice_why"] == b"held"
+    assert second["choice_first_k_ms"] > 0.0 and second["choice_counted_ms"] == -1.0
+    _, fixed = render_with(part_file, "array", pack="counted")
+    assert fixed["choice"] is None and fixed["choice_first_k_ms"] == -1.0

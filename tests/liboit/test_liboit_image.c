@@ -133,6 +133,17 @@ static void check_stream(oit_scene *scene, oit_partfile *pf, const oit_scene_inf
           fs.capture ? fs.capture : "NULL", st.capture_k, fs.capture_k, st.auto_first_k,
           ss.first_k, st.front_first, ss.front_first, st.reader_threads,
           st.budget_source ? st.budget_source : "NULL");
+    /* the automatic mode's choice, as the streamer made it: a first draw
+     * takes the seed, with no costs yet; a fixed pack reports none */
+    CHECK((st.choice == NULL) == (ss.choice_path == NULL) &&
+              (!st.choice || (!strcmp(st.choice, ss.choice_path) && st.choice_why &&
+                              !strcmp(st.choice_why, "seed") && st.choice_first_k_ms == -1.0 &&
+                              st.choice_counted_ms == -1.0)) &&
+              (st.choice != NULL) == (modes[pack] == OIT_PACK_AUTO),
+          "%s: choice %s (%s; %.1f, %.1f), the streamer's %s", name,
+          st.choice ? st.choice : "NULL", st.choice_why ? st.choice_why : "NULL",
+          st.choice_first_k_ms, st.choice_counted_ms,
+          ss.choice_path ? ss.choice_path : "NULL");
     oit_image_free(&want);
     /* The streamer's program, deleted while current, stays the caller's
      * for the next case's draw: liboit must not bind it again. */

@@ -12,9 +12,10 @@
 #  - 4 stacked quads: nothing over K, so no pack takes the second pass.
 #  - the automatic mode (the default): on the stack, head on, the first frame
 #    takes first-K, sends far more than 1 pixel in 50 through the second
-#    pass, and the next ones are counted until the probe frame tries first-K
-#    again; on the 4 quads every frame stays first-K; every frame's image is
-#    bit for bit the first's, whichever capture took it.
+#    pass, and the next one probes counted (which holds after it is the
+#    measured costs' call: test_choice.sh); on the 4 quads every frame stays
+#    first-K; every frame's image is bit for bit the first's, whichever
+#    capture took it.
 #  - the grid in many packs (64K upload ring), K = 2 so pixels overflow,
 #    exact and with early termination: bit for bit the counted capture's
 #    image, which composites the same fragments of the same packs.
@@ -88,7 +89,12 @@ for i in 1 2 3 4 5 6 7 8 9 10; do echo "0,0,5,0,0,0,0,1,0,18"; done > "$T/still.
 seq_auto=$(json_all auto_first_k < "$T/auto.json" | tr -d '\n')
 echo "stack, automatic mode, 10 frames of one view: first-K per frame $seq_auto," \
      "second-pass pixels $(json_all second_pass_pixels < "$T/auto.json" | tr '\n' ' ')"
-[ "$seq_auto" = 1000000001 ] || fail "stack: automatic mode took $seq_auto, want 1000000001"
+# Which path holds after the probe is the measured costs' call
+# (stream/choice.h, test_choice.sh): here only the seed and the probe.
+case $seq_auto in
+10????????) ;;
+*) fail "stack: automatic mode took $seq_auto, want first-K, then the counted probe" ;;
+esac
 for i in 001 002 008 009; do
     cmp -s "$T/auto/frame_000.png" "$T/auto/frame_$i.png" ||
         fail "stack: automatic mode frame $i differs from frame 0"

@@ -237,6 +237,25 @@ typedef struct run_ctx {
     uint8_t *ambiguous;
 } run_ctx;
 
+/* A cost as --stats prints it: "812.0 ms", "-" where not measured. */
+static void format_cost(double ms, char *out, size_t n)
+{
+    if (ms < 0.0)
+        snprintf(out, n, "-");
+    else
+        snprintf(out, n, "%.1f ms", ms);
+}
+
+/* --pack auto's choice of the frame and the costs it weighed. */
+static void print_choice(int index, const oit_draw_stats *t)
+{
+    char fk[32], ct[32];
+    format_cost(t->choice_first_k_ms, fk, sizeof fk);
+    format_cost(t->choice_counted_ms, ct, sizeof ct);
+    printf("frame %d: choice: %s (first-k %s, counted %s; %s)\n", index, t->choice, fk, ct,
+           t->choice_why ? t->choice_why : "-");
+}
+
 static oit_status render_one(run_ctx *rc, int index, int views, oit_stats_frame *fr,
                              oit_error *err)
 {
@@ -285,6 +304,8 @@ static oit_status render_one(run_ctx *rc, int index, int views, oit_stats_frame 
                (unsigned long long)fr->st.overflow_pixels,
                (unsigned long long)fr->st.second_pass_pixels, fr->st.second_pass_packs,
                (double)fr->stream.gpu_bytes_peak / 1048576.0);
+    if (s == OIT_OK && !rc->args->quiet && fr->has_stream && fr->stream.choice)
+        print_choice(index, &fr->stream);
     if (s == OIT_OK && !rc->args->quiet && fr->has_stream && fr->stream.capture_asked)
         printf("frame %d: capture %s, K-slot fills %s%s%.0u (--capture %s)%s%s\n", index,
                fr->st.capture ? fr->st.capture : "-",

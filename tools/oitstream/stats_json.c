@@ -92,6 +92,12 @@ static void put_frame(oit_json *w, const oit_stats_frame *fr)
         oit_json_fixed(w, "pack_ms", t->pack_ms, 3);
         oit_json_int(w, "auto_first_k", (int)t->auto_first_k);
         oit_json_int(w, "front_first", (int)t->front_first);
+        if (t->choice) {
+            oit_json_string(w, "choice", t->choice);
+            oit_json_string(w, "choice_why", t->choice_why ? t->choice_why : "");
+            oit_json_fixed(w, "choice_first_k_ms", t->choice_first_k_ms, 3);
+            oit_json_fixed(w, "choice_counted_ms", t->choice_counted_ms, 3);
+        }
         if (t->capture_asked) {
             oit_json_string(w, "capture_asked", t->capture_asked);
             oit_json_string(w, "capture_fallback",
