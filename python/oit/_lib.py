@@ -98,7 +98,8 @@ class DrawStats(ctypes.Structure):
                 ("capture_k", ctypes.c_uint32), ("capture_asked", ctypes.c_char_p),
                 ("reader_threads", ctypes.c_uint32), ("resident", ctypes.c_uint32),
                 ("budget_source", ctypes.c_char_p), ("draw", ctypes.c_uint64),
-                ("batches", ctypes.c_uint32)]
+                ("batches", ctypes.c_uint32), ("host_waits", ctypes.c_uint32),
+                ("redraws", ctypes.c_uint32)]
 
 
 # enum values of the headers
