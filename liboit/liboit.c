@@ -1065,6 +1065,8 @@ static void draw_stats_work(const oit_frame_stats *fs, const oit_stream_frame_st
     out->capture_k = fs->capture_k;
     out->capture_asked = ss->capture_asked;
     out->batches = fs->batches;
+    out->host_waits = fs->host_waits;
+    out->redraws = fs->redraws;
     out->reader_threads = (uint32_t)(ss->reader_threads > 0 ? ss->reader_threads : 0);
 }
 

@@ -102,13 +102,16 @@ uint64_t oit_fence_queue_poll(oit_fence_queue *q)
     return q->completed;
 }
 
-oit_status oit_fence_queue_wait(oit_fence_queue *q, uint64_t serial, oit_error *err)
+oit_status oit_fence_queue_wait(oit_fence_queue *q, uint64_t serial, oit_host_waits *waits,
+                                oit_error *err)
 {
     if (serial > q->issued) {
         oit_status st = oit_fence_queue_insert(q, err);
         if (st != OIT_OK)
             return st;
     }
+    if (oit_fence_queue_poll(q) < serial)
+        oit_host_wait_note(waits);
     oit_status st = OIT_OK;
     /* A bounded wait in a loop rather than an infinite one: a context that
      * was lost would otherwise hang the caller forever. */

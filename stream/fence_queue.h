@@ -15,6 +15,7 @@
 #include <stdint.h>
 
 #include "oit/status.h"
+#include "render/gl/host_wait.h"
 
 typedef struct oit_fence_queue oit_fence_queue;
 
@@ -30,7 +31,9 @@ oit_status oit_fence_queue_insert(oit_fence_queue *q, oit_error *err);
  * waiting. */
 uint64_t oit_fence_queue_poll(oit_fence_queue *q);
 /* Blocks until work tagged `serial` completed (inserting its fence first
- * when it has none yet). */
-oit_status oit_fence_queue_wait(oit_fence_queue *q, uint64_t serial, oit_error *err);
+ * when it has none yet); one wait counted on waits (NULL: none) when it
+ * had to block, none when the fences polled had already signalled. */
+oit_status oit_fence_queue_wait(oit_fence_queue *q, uint64_t serial, oit_host_waits *waits,
+                                oit_error *err);
 
 #endif

@@ -424,7 +424,8 @@ static oit_status fit_ring(oit_streamer *s, const oit_packing *pk, oit_error *er
         return OIT_OK;
     uint64_t bytes = need > 2 * cap ? need : 2 * cap;
     bytes = bytes < s->ring_limit ? bytes : s->ring_limit;
-    oit_status st = oit_fence_queue_wait(s->fences, oit_fence_queue_tag(s->fences), err);
+    oit_status st = oit_fence_queue_wait(s->fences, oit_fence_queue_tag(s->fences),
+                                         oit_capture_host_waits(s->capture), err);
     if (st != OIT_OK)
         return st;
     /* The reader first: it may still write into the ring's mapping. */
@@ -648,6 +649,9 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
                                                          : OIT_STREAM_SLOTS_DEFAULT);
     if (st == OIT_OK)
         oit_capture_set_store_limit(s->capture, desc->store_limit);
+    /* first-K's pass 2 without waits; a short frame is drawn again (render) */
+    if (st == OIT_OK)
+        oit_capture_set_no_wait(s->capture, 1);
     s->ahead = AHEAD_EXACT;
     if (st == OIT_OK && desc->epsilon > 0.0f) {
         s->epsilon = desc->epsilon;
@@ -733,7 +737,7 @@ static oit_status prepare_pack(oit_streamer *s, const oit_packing *pk, uint32_t 
     /* Resident: the parts' homes are theirs alone, never reclaimed. */
     oit_status st = s->home ? OIT_OK
                             : oit_upload_reserve(s->upload, s->fences, bytes, wait, &base, got,
-                                                 err);
+                                                 oit_capture_host_waits(s->capture), err);
     if (st != OIT_OK || !*got)
         return st;
     uint32_t first = pk->pack_first[i], n = 0;
@@ -870,7 +874,7 @@ static oit_status draw_packs(oit_streamer *s, const oit_packing *pk,
         /* Front-first packs are few and grow: each should see what the
          * packs before it saturated (saturation.h). */
         if (s->front_now && s->saturation)
-            st = oit_saturation_wait(s->saturation, err);
+            st = oit_saturation_wait(s->saturation, oit_capture_host_waits(s->capture), err);
         if (st == OIT_OK)
             st = prepare_ahead(s, pk, i, &next, err);
         if (st == OIT_OK)
@@ -968,7 +972,8 @@ static oit_status capture_frame(oit_streamer *s, const oit_view *view, oit_packi
     if (st == OIT_OK && s->opaque.enabled && !s->opaque_tiles)
         st = oit_opaque_tiles_create(&s->opaque_tiles, err);
     if (st == OIT_OK && s->opaque_tiles)
-        st = oit_opaque_tiles_begin(s->opaque_tiles, view, &s->opaque, err);
+        st = oit_opaque_tiles_begin(s->opaque_tiles, view, &s->opaque,
+                                     oit_capture_host_waits(s->capture), err);
     /* Whole grid ranges outside the view are left out of the order; the
      * packer still culls part by part what remains. */
     float planes[6][4], eye[3], dir[3];
@@ -1149,11 +1154,27 @@ static oit_status render(oit_streamer *s, const oit_view *view, oit_image *out, 
     double t0 = oit_time_ms();
     choose(s, view);
     oit_packing pk;
-    oit_status st = capture_frame(s, view, &pk, ss, err);
-    choice_stats(s, ss);
-    if (st == OIT_OK)
-        st = state ? oit_capture_end_gpu(s->capture, state, fs, err)
-                   : oit_capture_end(s->capture, out, fs, err);
+    oit_status st = OIT_OK;
+    /* A frame that ended short (oit_capture_short) is drawn again with the
+     * store it measured: never returned; its waits are the frame's, and
+     * its final read-back one more. */
+    uint32_t waits = 0, redraws = 0;
+    for (int again = 1; st == OIT_OK && again; redraws++) {
+        if (redraws > 0 && !state)
+            oit_image_free(out);
+        if (redraws > 2)
+            return oit_error_set(err, OIT_ERR_GL, "%s: the first-K store still short after "
+                                 "%u redraws", oit_partfile_name(s->pf), redraws - 1);
+        st = capture_frame(s, view, &pk, ss, err);
+        choice_stats(s, ss);
+        if (st == OIT_OK)
+            st = state ? oit_capture_end_gpu(s->capture, state, fs, err)
+                       : oit_capture_end(s->capture, out, fs, err);
+        again = st == OIT_OK && oit_capture_short(s->capture);
+        waits += st == OIT_OK ? fs->host_waits + (uint32_t)again : 0;
+    }
+    fs->host_waits = waits;
+    fs->redraws = redraws - 1;
     if (st == OIT_OK)
         finish_stats(s, &pk, fs, ss);
     /* A frame read back here ends here; one left on the GPU ends at the

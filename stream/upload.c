@@ -130,7 +130,8 @@ static oit_status push(oit_upload *u, uint64_t start, uint64_t bytes, oit_error 
 }
 
 oit_status oit_upload_reserve(oit_upload *u, oit_fence_queue *f, uint64_t bytes, int wait,
-                              uint64_t *offset, int *got, oit_error *err)
+                              uint64_t *offset, int *got, oit_host_waits *waits,
+                              oit_error *err)
 {
     *got = 0;
     if (bytes == 0 || bytes > u->budget || bytes % OIT_PACK_ALIGN)
@@ -149,7 +150,7 @@ oit_status oit_upload_reserve(oit_upload *u, oit_fence_queue *f, uint64_t bytes,
         /* Not empty, or it would have fitted: the oldest region is in the way. */
         if (!wait || !u->drawn)
             return OIT_OK;
-        oit_status s = oit_fence_queue_wait(f, at(u, 0)->serial, err);
+        oit_status s = oit_fence_queue_wait(f, at(u, 0)->serial, waits, err);
         if (s != OIT_OK)
             return s;
     }

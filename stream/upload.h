@@ -39,9 +39,11 @@ unsigned char *oit_upload_map(const oit_upload *u);
  * pack and sets *offset, reclaiming first every drawn region whose fence
  * signalled. When it does not fit yet: with `wait`, blocks on the fences of
  * drawn regions until it does; without, or when an undrawn region is in the
- * way, returns OIT_OK with *got = 0 and reserves nothing. */
+ * way, returns OIT_OK with *got = 0 and reserves nothing. A fence it
+ * blocked on counts on waits (oit_fence_queue_wait). */
 oit_status oit_upload_reserve(oit_upload *u, oit_fence_queue *f, uint64_t bytes, int wait,
-                              uint64_t *offset, int *got, oit_error *err);
+                              uint64_t *offset, int *got, oit_host_waits *waits,
+                              oit_error *err);
 /* The oldest undrawn region was drawn by work tagged `serial`
  * (oit_fence_queue_tag). */
 void oit_upload_drawn(oit_upload *u, uint64_t serial);

@@ -586,6 +586,14 @@ typedef struct oit_draw_stats {
      * GPU time), -1 where not measured. The strings are static. */
     const char *choice, *choice_why;
     double choice_first_k_ms, choice_counted_ms;
+    /* A part file's draw: host_waits, the times the host waited on the GPU
+     * between the draw's first command and its final read-back (buffer
+     * read-backs, fences that blocked; the final read-back not counted),
+     * 0 on warm draws of the default packs; redraws, the times the draw
+     * was captured again because a store sized ahead of the GPU's need
+     * proved short (the figures are the last capture's, the image exact).
+     * 0 for in-core scenes. */
+    uint32_t host_waits, redraws;
 } oit_draw_stats;
 
 /* Draws scene as seen through frame into frame->framebuffer (see Result

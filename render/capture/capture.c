@@ -254,27 +254,6 @@ static oit_status allocate(oit_capture *c, const oit_view *v, oit_error *err)
 
 /* ---- settings and uniforms ----------------------------------------------------- */
 
-void oit_capture_set_first_k(oit_capture *c, int on)
-{
-    if (c->ops->first_k)
-        c->ops->first_k(c, on);
-}
-
-void oit_capture_set_store_limit(oit_capture *c, uint64_t bytes)
-{
-    c->set.store_limit = bytes;
-}
-
-void oit_capture_set_slot_budget(oit_capture *c, uint64_t bytes)
-{
-    c->set.slot_budget = bytes;
-}
-
-void oit_capture_set_gpu_timer(oit_capture *c, struct oit_gpu_timer *t)
-{
-    c->set.timer = t;
-}
-
 /* The threshold in every program that tests it, effective from the next
  * batch on. */
 static void apply_epsilon(oit_capture *c, float e)
@@ -459,7 +438,7 @@ oit_status oit_capture_batch_start(oit_capture *c, const oit_gpu_mesh *const *me
     return OIT_OK;
 }
 
-oit_counted_frame oit_capture_counted_frame(const oit_capture *c)
+oit_counted_frame oit_capture_counted_frame(oit_capture *c)
 {
     return (oit_counted_frame){.fbo = c->fbo,
                                .counts = c->buf[OIT_CAPTURE_COUNTS],
@@ -468,7 +447,8 @@ oit_counted_frame oit_capture_counted_frame(const oit_capture *c)
                                .height = c->view.height,
                                .draws = c->draws,
                                .bind = c->frame.bind,
-                               .timer = c->set.timer};
+                               .timer = c->set.timer,
+                               .waits = &c->frame.waits};
 }
 
 oit_status oit_capture_batch(oit_capture *c, const oit_gpu_mesh *const *meshes,
@@ -546,6 +526,13 @@ static oit_status finish_frame(oit_capture *c, oit_error *err)
     return OIT_OK;
 }
 
+/* After the frame's final read-back: the backend's figures measured on the
+ * GPU, and whether the frame ended short. */
+static void ended(oit_capture *c, oit_status s)
+{
+    c->ended_short = s == OIT_OK && c->ops->ended && c->ops->ended(c);
+}
+
 static void fill_stats(const oit_capture *c, const GLuint totals[4], oit_frame_stats *stats)
 {
     if (!stats)
@@ -558,6 +545,7 @@ static void fill_stats(const oit_capture *c, const GLuint totals[4], oit_frame_s
     stats->gpu_bytes_peak = c->frame.bytes_peak;
     stats->batches = c->frame.batches;
     stats->capture_k = (uint32_t)c->K;
+    stats->host_waits = c->frame.waits.count;
     c->ops->stats(c, stats);
 }
 
@@ -570,6 +558,7 @@ oit_status oit_capture_end(oit_capture *c, oit_image *out, oit_frame_stats *stat
     GLuint totals[4];
     s = read_output(c, out, totals, err);
     glFinish();
+    ended(c, s);
     if (s == OIT_OK)
         fill_stats(c, totals, stats);
     return s;
@@ -587,6 +576,7 @@ oit_status oit_capture_end_gpu(oit_capture *c, unsigned *state, oit_frame_stats 
     GLuint totals[4];
     glGetNamedBufferSubData(c->buf[OIT_CAPTURE_TOTALS], 0, 16, totals);
     s = oit_gl_check("capture: end on the GPU", err);
+    ended(c, s);
     if (s != OIT_OK)
         return s;
     *state = c->buf[OIT_CAPTURE_STATE];

@@ -177,6 +177,21 @@ void oit_capture_set_store_limit(oit_capture *c, uint64_t bytes);
  * frame's figures (streamer.h). The image is the same either way. */
 void oit_capture_set_first_k(oit_capture *c, int on);
 
+/* OIT_CAPTURE_FIRSTK only, from the next frame on: 1 drives first-K's
+ * second pass on the GPU, so that the host never waits within a frame
+ * (oit_frame_stats.host_waits): the pass-2 store is sized ahead from what
+ * earlier frames' packs needed (at least what the slots hold), the GPU
+ * decides where pass 2 runs, if at all (indirect dispatches, draws of 0
+ * instances). The first frame measures that need as with 0. A pack that needs more than the store holds leaves pixels
+ * out: the frame ends short (oit_capture_short) and must be drawn again,
+ * which the measured need then fits, within the slot budget and one
+ * storage binding (past them the host splits pass 2 in bands as with 0). 0 (the default): the host
+ * reads each pack's overflow back and sizes pass 2 exactly; never short. */
+void oit_capture_set_no_wait(oit_capture *c, int on);
+/* 1 when the frame that oit_capture_end or _end_gpu just ended is short
+ * (oit_capture_set_no_wait): its image is not exact, draw it again. */
+int oit_capture_short(const oit_capture *c);
+
 /* Bytes a pixel of v takes in the capture's largest per-pixel buffer that
  * must hold the whole frame in one storage binding: its state (shade.h),
  * carried across batches. What else it stores past one binding it takes in
@@ -188,6 +203,12 @@ uint64_t oit_capture_pixel_bytes(const oit_view *v);
  * NULL: none). The capture does not own it. */
 struct oit_gpu_timer;
 void oit_capture_set_gpu_timer(oit_capture *c, struct oit_gpu_timer *t);
+
+/* The frame's count of the host's waits on the GPU (render/gl/host_wait.h),
+ * zeroed by oit_capture_begin, reported as oit_frame_stats.host_waits: the
+ * caller counts its own waits within the frame on it. */
+struct oit_host_waits;
+struct oit_host_waits *oit_capture_host_waits(oit_capture *c);
 
 /* Starts a frame: C = 0, T = 1, translucency state cleared. */
 oit_status oit_capture_begin(oit_capture *c, const oit_view *view, oit_error *err);

@@ -21,6 +21,7 @@
 #include "render/capture/capture_stencil.h"
 #include "render/capture/opaque_keys.h"
 #include "render/gl/gpu_timer.h"
+#include "render/gl/host_wait.h"
 
 /* The frame's buffers every backend uses. */
 enum { OIT_CAPTURE_COUNTS, OIT_CAPTURE_STATE, OIT_CAPTURE_TOTALS, OIT_CAPTURE_BUFS };
@@ -32,6 +33,7 @@ typedef struct oit_capture_settings {
     uint64_t slot_budget; /* bytes; 0: K slots for every pixel of the frame */
     uint64_t store_limit; /* bytes a storage buffer spans; 0: the driver's */
     oit_gpu_timer *timer; /* phases marked; NULL: none */
+    int no_wait;          /* oit_capture_set_no_wait */
 } oit_capture_settings;
 
 /* This frame's, set by oit_capture_begin. */
@@ -44,6 +46,7 @@ typedef struct oit_capture_frame {
     uint32_t batches;
     uint64_t calls0;     /* the draws' calls at the frame's begin */
     uint64_t bytes_peak;
+    oit_host_waits waits; /* the host's waits on the GPU so far (host_wait.h) */
 } oit_capture_frame;
 
 /* The buffer a frame's output passes through at its end (idle by then). */
@@ -72,6 +75,7 @@ struct oit_capture {
     oit_gpu_draws *draws; /* every geometry draw goes through it */
     oit_view view;
     oit_capture_frame frame;
+    int ended_short; /* oit_capture_short */
 };
 
 /* A backend (OIT_CAPTURE_OPS writes its table). r: a batch's rect in GL
@@ -106,16 +110,21 @@ struct oit_capture_ops {
     void (*stats)(const oit_capture *c, oit_frame_stats *stats);
     /* first-k only (NULL elsewhere): oit_capture_set_first_k */
     void (*first_k)(oit_capture *c, int on);
+    /* After the frame's final read-back (NULL: nothing to do): reads what
+     * the backend measured on the GPU (no wait: it is done); returns 1
+     * when the frame ended short (oit_capture_short). */
+    int (*ended)(oit_capture *c);
 };
 
 /* The table of backend P (its functions P_create, P_destroy, ... and its
- * state type T) as oit_capture_P_ops; FIRST_K: its first_k or NULL. */
-#define OIT_CAPTURE_OPS(P, KIND, NAME, T, FIRST_K)                                            \
+ * state type T) as oit_capture_P_ops; FIRST_K, ENDED: its first_k and
+ * ended, or NULL. */
+#define OIT_CAPTURE_OPS(P, KIND, NAME, T, FIRST_K, ENDED)                                     \
     const oit_capture_ops oit_capture_##P##_ops = {                                           \
         .kind = KIND, .name = NAME, .size = sizeof(T), .create = P##_create,                  \
         .destroy = P##_destroy, .begin = P##_begin, .uniforms = P##_uniforms,                 \
         .epsilon = P##_epsilon, .bind = P##_bind, .batch = P##_batch, .end = P##_end,         \
-        .bytes = P##_bytes, .stats = P##_stats, .first_k = FIRST_K}
+        .bytes = P##_bytes, .stats = P##_stats, .first_k = FIRST_K, .ended = ENDED}
 
 extern const oit_capture_ops oit_capture_array_ops, oit_capture_stencil_ops,
     oit_capture_counted_ops, oit_capture_firstk_ops, oit_capture_compute_ops;
@@ -145,7 +154,7 @@ void oit_capture_resolve(GLuint prog, const int r[4]);
 void oit_capture_draw_scissored(oit_capture *c, GLuint prog, const oit_gpu_mesh *const *meshes,
                                 int n, const int r[4]);
 /* What the counted and first-K batches share of the frame. */
-oit_counted_frame oit_capture_counted_frame(const oit_capture *c);
+oit_counted_frame oit_capture_counted_frame(oit_capture *c);
 /* The view, the opaque depth, K and the pixel count in progs[0..n). */
 void oit_capture_set_frame_uniforms(const oit_capture *c, GLuint *progs, int n);
 

@@ -269,7 +269,7 @@ static oit_status sweep(oit_compute *k, const oit_compute_frame *f, const int r[
         if (!k->cuts)
             return OIT_OK;
         GLuint pend[2] = {0, 0};
-        glGetNamedBufferSubData(k->pending, 0, sizeof pend, pend);
+        oit_host_read(f->waits, k->pending, 0, sizeof pend, pend);
         if (pend[0] == 0)
             return OIT_OK;
         if (pend[1] == 0)
@@ -395,7 +395,7 @@ oit_status oit_compute_batch(oit_compute *k, const oit_compute_frame *f,
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OFFSETS, k->tiles);
     setup(k, meshes, n);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    s = oit_scan_run(&k->scan, k->tiles, tiles, NULL, err);
+    s = oit_scan_run(&k->scan, k->tiles, tiles, NULL, NULL, err);
     if (s != OIT_OK)
         return s;
     scatter(k, tris, cap);
@@ -440,12 +440,12 @@ static oit_status compute_create(oit_capture *c, int stencil_k, oit_error *err)
 
 /* What the last frame's batches needed of the tile lists, read now that
  * it is over (its end read its totals back), then cleared. */
-static void read_late(oit_compute *k)
+static void read_late(oit_compute *k, oit_host_waits *waits)
 {
     static const GLuint zero = 0;
     if (k->late_armed && !(k->test & OIT_CAPTURE_TEST_COMPUTE_LIST_SHORT)) {
         GLuint need = 0;
-        glGetNamedBufferSubData(k->late, 0, 4, &need);
+        oit_host_read(waits, k->late, 0, 4, &need);
         k->list_seen = need > k->list_seen ? need : k->list_seen;
     }
     k->late_armed = 0;
@@ -475,9 +475,9 @@ static oit_status compute_begin(oit_capture *c, oit_error *err)
         return s;
     GLuint pend = 0;
     if (k->round && !k->cuts)
-        glGetNamedBufferSubData(k->pending, 0, 4, &pend);
+        oit_host_read(&c->frame.waits, k->pending, 0, 4, &pend);
     k->cuts |= pend != 0;
-    read_late(k);
+    read_late(k, &c->frame.waits);
     static const GLuint zero = 0;
     glClearNamedBufferData(k->pending, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     k->round = 0;
@@ -517,7 +517,8 @@ static oit_status compute_batch(oit_capture *c, const oit_gpu_mesh *const *meshe
                                  .bind = c->frame.bind,
                                  .budget = c->set.slot_budget,
                                  .epsilon = c->frame.applied,
-                                 .timer = c->set.timer};
+                                 .timer = c->set.timer,
+                                 .waits = &c->frame.waits};
     s = oit_compute_batch(c->be, &f, meshes, n, r, err);
     oit_capture_note_peak(c);
     oit_capture_bind_buffers(c);
@@ -533,7 +534,7 @@ static oit_status compute_end(oit_capture *c, uint64_t want, uint64_t row, oit_c
     GLuint pend = 0;
     if (k->round && !k->cuts) {
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-        glGetNamedBufferSubData(k->pending, 0, 4, &pend);
+        oit_host_read(&c->frame.waits, k->pending, 0, 4, &pend);
     }
     if (pend)
         return oit_error_set(err, OIT_ERR_GL, "compute capture: the driver cut shader loops "
@@ -548,4 +549,4 @@ static void compute_stats(const oit_capture *c, oit_frame_stats *stats)
     stats->capture = c->ops->name;
 }
 
-OIT_CAPTURE_OPS(compute, OIT_CAPTURE_COMPUTE, "compute", oit_compute, NULL);
+OIT_CAPTURE_OPS(compute, OIT_CAPTURE_COMPUTE, "compute", oit_compute, NULL, NULL);

@@ -124,6 +124,7 @@ typedef struct oit_compute_frame {
     uint64_t budget;
     float epsilon;               /* what this batch tests (0: nothing) */
     struct oit_gpu_timer *timer; /* phases marked on it; NULL: none */
+    oit_host_waits *waits;       /* the frame's waits on the GPU (render/gl/host_wait.h) */
 } oit_compute_frame;
 
 /* Captures meshes[0..n) over the GL rect r (bottom rows first, exclusive

@@ -63,7 +63,7 @@ static oit_status count(oit_counted *k, const oit_counted_frame *f,
     glCopyNamedBufferSubData(f->counts, k->offsets, 0, 0, (GLsizeiptr)(pixels * 4));
     glClearNamedBufferSubData(k->offsets, GL_R32UI, (GLintptr)(pixels * 4), 4, GL_RED_INTEGER,
                               GL_UNSIGNED_INT, &zero);
-    return oit_scan_run(&k->scan, k->offsets, pixels + 1, res, err);
+    return oit_scan_run(&k->scan, k->offsets, pixels + 1, res, f->waits, err);
 }
 
 /* Stores the fragments of the rows of r whose offsets start at base (0: the
@@ -131,8 +131,7 @@ static oit_status bands(oit_counted *k, const oit_counted_frame *f,
         return oit_error_set(err, OIT_ERR_NOMEM, "counted capture: no memory for %d rows", rows);
     /* the offset at each row's first pixel; pixels outside r count 0 */
     for (int i = 0; i <= rows; i++)
-        glGetNamedBufferSubData(k->offsets, (GLintptr)((uint64_t)(r[1] + i) * f->width * 4), 4,
-                                &at[i]);
+        oit_host_read(f->waits, k->offsets, (uint64_t)(r[1] + i) * f->width * 4, 4, &at[i]);
     uint64_t fit = f->bind / 16;
     oit_status s = OIT_OK;
     for (int y = 0; y < rows && s == OIT_OK;) {
@@ -281,4 +280,4 @@ static void counted_stats(const oit_capture *c, oit_frame_stats *stats)
     stats->batches += ((const oit_counted *)c->be)->splits;
 }
 
-OIT_CAPTURE_OPS(counted, OIT_CAPTURE_COUNTED, "counted", oit_counted, NULL);
+OIT_CAPTURE_OPS(counted, OIT_CAPTURE_COUNTED, "counted", oit_counted, NULL, NULL);

@@ -51,6 +51,7 @@ typedef struct oit_counted_frame {
     oit_gpu_draws *draws;
     uint64_t bind; /* the most bytes one storage buffer may span */
     struct oit_gpu_timer *timer; /* phases marked on it (render/gl/gpu_timer.h); NULL: none */
+    oit_host_waits *waits;       /* the frame's waits on the GPU (render/gl/host_wait.h) */
 } oit_counted_frame;
 
 /* Captures meshes[0..n) over the GL rect r (bottom rows first, exclusive

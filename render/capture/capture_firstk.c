@@ -15,12 +15,15 @@
 #include <string.h>
 
 /* The pass-2 totals at a binding no other program of a pack uses while
- * they are live: overflowed pixels, their fragments as 64 bits, and the GL
- * rect that holds them (x0, y0, x1, y1; exclusive ends), so that pass 2
- * rasterizes only there. */
+ * they are live: overflowed pixels, their fragments as 64 bits, the gate
+ * of pass 2's draw (ahead mode), the GL rect that holds them (x0, y0, x1,
+ * y1; exclusive ends), so that pass 2 works only there; then the frame's
+ * words (oit_firstk_begin) and pass 2's dispatch (ahead mode). */
 #define TOTALS_BLOCK                                                        \
     "layout(std430, binding = OIT_BIND_SUMS) buffer Spill { uint spill_pixels; uint spill_lo; "    \
-    "uint spill_hi; uint pad; uint box[4]; };\n"                           \
+    "uint spill_hi; uint gate; uint box[4]; uint frame_short; uint need; "  \
+    "uint second_pixels; uint second_packs; uvec4 groups; };\n"            \
+    "ivec4 oit_box() { return ivec4(box[0], box[1], box[2], box[3]); }\n" \
     "void oit_spill(uvec2 px) {\n"                                        \
     "    atomicAdd(spill_pixels, 1u);\n"                                  \
     "    atomicMin(box[0], px.x); atomicMin(box[1], px.y);\n"             \
@@ -41,6 +44,11 @@
     "    oit_state_store(p, s);\n"                                         \
     "    counts[p] = 0u;\n"                                                \
     "}\n"
+/* Pass 2's own rect: the pack's overflow box (ahead mode, dispatched by
+ * the GPU over it) or the band u_rect the host gave. */
+#define PASS2_RECT                                                          \
+    "uniform int u_from_box;\n"                                            \
+    "ivec4 oit_pass2_rect() { return u_from_box != 0 ? oit_box() : u_rect; }\n"
 #define RECT_INDEX                                                          \
     "uint oit_rect_index(ivec2 px, ivec4 r) {\n"                          \
     "    return uint((px.y - r.y) * (r.z - r.x) + (px.x - r.x));\n"       \
@@ -114,23 +122,52 @@ static const char routed_resolve_cs[] =
  * order of segments does not matter, only that they do not overlap). */
 static const char alloc_cs[] =
     "layout(local_size_x = 8, local_size_y = 8) in;\n"
-    "layout(std430, binding = OIT_BIND_COUNTS) readonly buffer Counts { uint counts[]; };\n"
+    "layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };\n"
     "layout(std430, binding = OIT_BIND_OFFSETS) writeonly buffer Table { uvec2 table[]; };\n"
     TOTALS_BLOCK RECT_INDEX
     "layout(location = 11) uniform ivec2 u_size;\n"
     "layout(location = 12) uniform ivec4 u_rect;\n"
+    PASS2_RECT
     "uniform int u_W;\n"
+    "uniform uint u_cap;\n" /* fragments the store holds */
     "void main() {\n"
-    "    ivec2 px = u_rect.xy + ivec2(gl_GlobalInvocationID.xy);\n"
-    "    if (px.x >= u_rect.z || px.y >= u_rect.w) return;\n"
-    "    uint n = counts[uint(px.y * u_size.x + px.x)];\n"
+    "    ivec4 b = oit_pass2_rect();\n"
+    "    ivec2 px = b.xy + ivec2(gl_GlobalInvocationID.xy);\n"
+    "    if (px.x >= b.z || px.y >= b.w) return;\n"
+    "    uint p = uint(px.y * u_size.x + px.x);\n"
+    "    uint n = counts[p];\n"
     "    uvec2 e = uvec2(0u);\n"
     "    if (n > uint(u_W)) {\n"
     "        uint old = atomicAdd(spill_lo, n);\n"
     "        if (old + n < old) atomicAdd(spill_hi, 1u);\n"
     "        e = uvec2(old, n);\n"
+    /* past the store: left out, the frame flagged short (the verdict) */
+    "        if (old + n < old || old + n > u_cap) { e = uvec2(0u); counts[p] = 0u; }\n"
     "    }\n"
     "    table[oit_rect_index(px, u_rect)] = e;\n"
+    "}\n";
+
+/* Ahead mode's judge, one invocation. Step 0, after pass 1's resolve: pass
+ * 2's dispatch over the overflow box (none when nothing overflowed). Step
+ * 1, after the allocation: the gate of the store's draw, the frame's
+ * figures, and its flag when the store proved short. */
+static const char judge_cs[] =
+    "layout(local_size_x = 1) in;\n"
+    TOTALS_BLOCK
+    "uniform int u_step;\n"
+    "uniform uint u_cap;\n"
+    "void main() {\n"
+    "    if (u_step == 0) {\n"
+    "        bool any = spill_pixels != 0u;\n"
+    "        groups = uvec4(any ? (box[2] - box[0] + 7u) / 8u : 0u,\n"
+    "                       any ? (box[3] - box[1] + 7u) / 8u : 0u, 1u, 0u);\n"
+    "        return;\n"
+    "    }\n"
+    "    gate = spill_pixels != 0u ? 1u : 0u;\n"
+    "    if (spill_hi != 0u || spill_lo > u_cap) frame_short = 1u;\n"
+    "    need = max(need, spill_hi != 0u ? 0xffffffffu : spill_lo);\n"
+    "    second_pixels += spill_pixels;\n"
+    "    second_packs += gate;\n"
     "}\n";
 
 /* Pass 2's store: only pixels with a segment, counted back down to 0. */
@@ -138,12 +175,15 @@ static const char store_fs[] =
     "layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };\n"
     "layout(std430, binding = OIT_BIND_OFFSETS) readonly buffer Table { uvec2 table[]; };\n"
     "layout(std430, binding = OIT_BIND_FRAGS) writeonly buffer Frags { uvec4 frags[]; };\n"
-    RECT_INDEX
+    TOTALS_BLOCK RECT_INDEX
     "uniform ivec4 u_tile;\n"
     "void main() {\n"
+    "    ivec2 px = ivec2(gl_FragCoord.xy);\n"
+    "    ivec4 b = oit_box();\n" /* the table holds only the box's pixels */
+    "    if (px.x < b.x || px.y < b.y || px.x >= b.z || px.y >= b.w) discard;\n"
     "    if (oit_clipped()) discard;\n"
     "    if (oit_behind_opaque()) discard;\n"
-    "    uvec2 e = table[oit_rect_index(ivec2(gl_FragCoord.xy), u_tile)];\n"
+    "    uvec2 e = table[oit_rect_index(px, u_tile)];\n"
     "    uint p = oit_pixel_index();\n"
     "    if (e.y == 0u || oit_saturated(p)) discard;\n"
     "    uint c = atomicAdd(counts[p], 0xffffffffu);\n"
@@ -157,12 +197,13 @@ static const char segment_cs[] =
     "layout(std430, binding = OIT_BIND_FRAGS) buffer Frags { uvec4 frags[]; };\n"
     "layout(location = 11) uniform ivec2 u_size;\n"
     "layout(location = 12) uniform ivec4 u_rect;\n"
-    RECT_INDEX;
+    TOTALS_BLOCK PASS2_RECT RECT_INDEX;
 
 static const char segment_main[] =
     "void main() {\n"
-    "    ivec2 px = u_rect.xy + ivec2(gl_GlobalInvocationID.xy);\n"
-    "    if (px.x >= u_rect.z || px.y >= u_rect.w) return;\n"
+    "    ivec4 b = oit_pass2_rect();\n"
+    "    ivec2 px = b.xy + ivec2(gl_GlobalInvocationID.xy);\n"
+    "    if (px.x >= b.z || px.y >= b.w) return;\n"
     "    uvec2 e = table[oit_rect_index(px, u_rect)];\n"
     "    if (e.y == 0u) return;\n"
     "    uint p = uint(px.y * u_size.x + px.x);\n"
@@ -171,6 +212,10 @@ static const char segment_main[] =
     "    s.nfrag += e.y;\n"
     "    oit_state_store(p, s);\n"
     "}\n";
+
+/* TOTALS_BLOCK's bytes, and its words the host names */
+#define TOTALS_BYTES 64
+enum { W_SPILL_LO = 1, W_GATE = 3, W_FRAME = 8, W_GROUPS = 12 };
 
 static const oit_glsl_program programs[OIT_FIRSTK_PROGS] = {
     [OIT_FIRSTK_FILL] = {"first-k capture fill",
@@ -186,6 +231,7 @@ static const oit_glsl_program programs[OIT_FIRSTK_PROGS] = {
     [OIT_FIRSTK_ROUTED_RESOLVE] = {"first-k capture routed resolve",
                                    .cs = {oit_glsl_composite, oit_glsl_state_io,
                                           routed_resolve_cs}},
+    [OIT_FIRSTK_JUDGE] = {"first-k capture judge", .cs = {judge_cs}},
 };
 
 void oit_firstk_route(oit_firstk *k, oit_stencil_target *t, GLuint fill)
@@ -204,7 +250,7 @@ oit_status oit_firstk_init(oit_firstk *k, int K, oit_program_cache *pc,
     k->built = built;
     k->built_ctx = built_ctx;
     glCreateBuffers(1, &k->totals);
-    glNamedBufferData(k->totals, 32, NULL, GL_DYNAMIC_COPY);
+    glNamedBufferData(k->totals, TOTALS_BYTES, NULL, GL_DYNAMIC_COPY);
     oit_gl_poison_buffer(k->totals);
     return oit_gl_check("first-k capture: set-up", err);
 }
@@ -234,7 +280,7 @@ void oit_firstk_release(oit_firstk *k)
 
 uint64_t oit_firstk_bytes(const oit_firstk *k)
 {
-    return k->store_cap + k->table_cap + 32;
+    return k->store_cap + k->table_cap + TOTALS_BYTES;
 }
 
 static uint64_t rect_pixels(const int r[4])
@@ -279,15 +325,43 @@ static void bind_frame(const oit_firstk *k, const oit_counted_frame *f)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OFFSETS, k->table);
 }
 
-/* Zero counts, an empty box. */
+/* Zero counts, a closed gate, an empty box. */
 static void clear_totals(const oit_firstk *k)
 {
     static const GLuint start[8] = {0, 0, 0, 0, 0xffffffffu, 0xffffffffu, 0, 0};
     glNamedBufferSubData(k->totals, 0, sizeof start, start);
 }
 
+void oit_firstk_begin(oit_firstk *k)
+{
+    static const GLuint zero[4] = {0, 0, 0, 0};
+    glNamedBufferSubData(k->totals, W_FRAME * 4, sizeof zero, zero);
+    k->ended_short = 0;
+    k->seen = 0;
+}
+
+void oit_firstk_ended(oit_firstk *k)
+{
+    uint64_t seen = k->seen;
+    if (k->ahead) {
+        /* after the final read-back: the GPU is done, nothing waits */
+        GLuint w[4];
+        oit_host_read(NULL, k->totals, W_FRAME * 4, sizeof w, w);
+        k->ended_short = w[0] != 0;
+        k->second_pixels = w[2];
+        k->second_packs = w[3];
+        seen = w[1];
+    }
+    /* room for the most a pack needed, and an eighth more, so that a view
+     * that deepens a little does not draw its frames twice */
+    uint64_t need = seen + seen / 8;
+    k->need = need > k->need ? need : k->need;
+    k->measured = 1;
+}
+
 /* Pass 1 over r with W slots a pixel, and its resolve; t receives the
- * totals (a read-back: whether pass 2 is needed, and where). */
+ * totals (a read-back: whether pass 2 is needed, and where; NULL: none,
+ * the GPU decides). */
 static oit_status first_pass(oit_firstk *k, const oit_counted_frame *f,
                              const oit_gpu_mesh *const *meshes, int n, const int r[4], int W,
                              GLuint t[8], oit_error *err)
@@ -309,7 +383,8 @@ static oit_status first_pass(oit_firstk *k, const oit_counted_frame *f,
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     oit_gpu_timer_mark(f->timer, OIT_GPU_RESOLVE);
     dispatch_rect(k->prog[OIT_FIRSTK_RESOLVE], r);
-    glGetNamedBufferSubData(k->totals, 0, 32, t);
+    if (t)
+        oit_host_read(f->waits, k->totals, 0, 32, t);
     return oit_gl_check("first-k capture: pass 1", err);
 }
 
@@ -326,26 +401,33 @@ static oit_status routed_first_pass(oit_firstk *k, const oit_counted_frame *f,
     glBindTextureUnit(OIT_TEX_SAMPLES, k->routed->colour);
     set_int(k->prog[OIT_FIRSTK_ROUTED_RESOLVE], "u_W", W);
     dispatch_rect(k->prog[OIT_FIRSTK_ROUTED_RESOLVE], r);
-    glGetNamedBufferSubData(k->totals, 0, 32, t);
+    if (t)
+        oit_host_read(f->waits, k->totals, 0, 32, t);
     return oit_gl_check("first-k capture: routed pass 1", err);
 }
 
 /* Segments for the overflowed pixels of the band b; *frags receives their
  * fragments. */
-static oit_status allocate(oit_firstk *k, const int b[4], int W, uint64_t *frags,
-                           oit_error *err)
+static oit_status allocate(oit_firstk *k, const oit_counted_frame *f, const int b[4], int W,
+                           uint64_t *frags, oit_error *err)
 {
     oit_status s = oit_gl_buffer_reserve(&k->table, &k->table_cap, rect_pixels(b) * 8,
                                          "first-k capture segment table", err);
     if (s != OIT_OK)
         return s;
-    clear_totals(k);
+    /* the fragments' count from 0; the box stays, the store's draw tests it */
+    static const GLuint zero[2] = {0, 0};
+    glNamedBufferSubData(k->totals, W_SPILL_LO * 4, sizeof zero, zero);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OFFSETS, k->table);
-    set_int(k->prog[OIT_FIRSTK_ALLOC], "u_W", W);
-    dispatch_rect(k->prog[OIT_FIRSTK_ALLOC], b);
+    GLuint a = k->prog[OIT_FIRSTK_ALLOC];
+    set_int(a, "u_W", W);
+    set_int(a, "u_from_box", 0);
+    glProgramUniform1ui(a, glGetUniformLocation(a, "u_cap"), 0xffffffffu);
+    dispatch_rect(a, b);
     GLuint t[3];
-    glGetNamedBufferSubData(k->totals, 0, 12, t);
+    oit_host_read(f->waits, k->totals, 0, 12, t);
     *frags = (uint64_t)t[2] << 32 | t[1];
+    k->seen = *frags > k->seen ? *frags : k->seen;
     if (*frags > UINT32_MAX)
         return oit_error_set(err, OIT_ERR_NOMEM, "first-k capture: %llu fragments in one "
                              "band, more than 32-bit offsets address",
@@ -373,6 +455,7 @@ static oit_status second_pass(oit_firstk *k, const oit_counted_frame *f,
                             meshes, n, b);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     oit_gpu_timer_mark(f->timer, OIT_GPU_RESOLVE);
+    set_int(k->prog[OIT_FIRSTK_SEGMENT], "u_from_box", 0);
     dispatch_rect(k->prog[OIT_FIRSTK_SEGMENT], b);
     k->second_draws++;
     return oit_gl_check("first-k capture: pass 2", err);
@@ -395,7 +478,7 @@ static oit_status second_passes(oit_firstk *k, const oit_counted_frame *f,
         rows = rows < r[3] - y ? rows : r[3] - y;
         int b[4] = {r[0], y, r[2], y + rows};
         uint64_t frags = 0;
-        s = allocate(k, b, W, &frags, err);
+        s = allocate(k, f, b, W, &frags, err);
         if (s == OIT_OK && frags * 16 > room && rows > 1) {
             rows = (rows + 1) / 2;
             continue;
@@ -405,6 +488,69 @@ static oit_status second_passes(oit_firstk *k, const oit_counted_frame *f,
         y += rows;
     }
     return s;
+}
+
+/* One step of the judge (judge_cs) over the store's cap fragments. */
+static void judge(const oit_firstk *k, int step, uint64_t cap)
+{
+    GLuint j = k->prog[OIT_FIRSTK_JUDGE];
+    set_int(j, "u_step", step);
+    glProgramUniform1ui(j, glGetUniformLocation(j, "u_cap"), (GLuint)cap);
+    glUseProgram(j);
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+}
+
+/* prog dispatched over the overflow box, as the judge sized it. */
+static void dispatch_box(const oit_firstk *k, GLuint prog, const int r[4])
+{
+    glUseProgram(prog);
+    set_rect(prog, "u_rect", r);
+    set_int(prog, "u_from_box", 1);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, k->totals);
+    glDispatchComputeIndirect(W_GROUPS * 4);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+/* Pass 2 over r without the host: segments allocated over the overflow
+ * box in a store sized ahead (the need of earlier frames, at least what
+ * the slots took), the store's draw gated and the segments resolved by
+ * what the GPU found; a pack whose overflow outgrows the store leaves it
+ * out and flags the frame short (oit_firstk_ended). */
+static oit_status ahead_pass(oit_firstk *k, const oit_counted_frame *f,
+                             const oit_gpu_mesh *const *meshes, int n, const int r[4], int W,
+                             oit_error *err)
+{
+    uint64_t cap = k->store_cap / 16 > k->need ? k->store_cap / 16 : k->need;
+    cap = cap < f->bind / 16 ? cap : f->bind / 16;
+    cap = cap < UINT32_MAX ? cap : UINT32_MAX;
+    oit_status s = oit_gl_buffer_reserve(&k->store, &k->store_cap, cap * 16,
+                                         "first-k capture fragments", err);
+    if (s == OIT_OK)
+        s = oit_gl_buffer_reserve(&k->table, &k->table_cap, rect_pixels(r) * 8,
+                                  "first-k capture segment table", err);
+    if (s != OIT_OK)
+        return s;
+    bind_frame(k, f);
+    oit_gpu_timer_mark(f->timer, OIT_GPU_PASS2);
+    judge(k, 0, cap);
+    GLuint a = k->prog[OIT_FIRSTK_ALLOC];
+    set_int(a, "u_W", W);
+    glProgramUniform1ui(a, glGetUniformLocation(a, "u_cap"), (GLuint)cap);
+    dispatch_box(k, a, r);
+    judge(k, 1, cap);
+    GLuint st = k->prog[OIT_FIRSTK_STORE];
+    set_rect(st, "u_tile", r);
+    oit_glsl_raster_begin(f->fbo, f->width, f->height);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(r[0], r[1], r[2] - r[0], r[3] - r[1]);
+    glUseProgram(st);
+    oit_gpu_mesh_draw_many_gated(f->draws, meshes, n, k->totals, W_GATE);
+    glDisable(GL_SCISSOR_TEST);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    oit_gpu_timer_mark(f->timer, OIT_GPU_RESOLVE);
+    dispatch_box(k, k->prog[OIT_FIRSTK_SEGMENT], r);
+    return oit_gl_check("first-k capture: pass 2 ahead", err);
 }
 
 oit_status oit_firstk_batch(oit_firstk *k, const oit_counted_frame *f,
@@ -418,7 +564,20 @@ oit_status oit_firstk_batch(oit_firstk *k, const oit_counted_frame *f,
                              r[2] - r[0], r[3] - r[1]);
     static const int routed[] = {OIT_FIRSTK_ROUTED_RESOLVE},
                      array[] = {OIT_FIRSTK_FILL, OIT_FIRSTK_RESOLVE},
-                     second[] = {OIT_FIRSTK_ALLOC, OIT_FIRSTK_STORE, OIT_FIRSTK_SEGMENT};
+                     second[] = {OIT_FIRSTK_ALLOC, OIT_FIRSTK_STORE, OIT_FIRSTK_SEGMENT},
+                     ahead[] = {OIT_FIRSTK_ALLOC, OIT_FIRSTK_STORE, OIT_FIRSTK_SEGMENT,
+                                OIT_FIRSTK_JUDGE};
+    if (k->ahead) {
+        /* every program before the first pass: none is built between the
+         * passes of a pack */
+        oit_status s = k->routed ? need(k, routed, 1, err) : need(k, array, 2, err);
+        if (s == OIT_OK)
+            s = need(k, ahead, 4, err);
+        if (s == OIT_OK)
+            s = k->routed ? routed_first_pass(k, f, meshes, n, r, W, NULL, err)
+                          : first_pass(k, f, meshes, n, r, W, NULL, err);
+        return s == OIT_OK ? ahead_pass(k, f, meshes, n, r, W, err) : s;
+    }
     GLuint t[8] = {0};
     oit_status s = k->routed ? need(k, routed, 1, err) : need(k, array, 2, err);
     if (s == OIT_OK)

@@ -48,6 +48,7 @@ enum {
     OIT_FIRSTK_ALLOC,
     OIT_FIRSTK_SEGMENT,
     OIT_FIRSTK_ROUTED_RESOLVE,
+    OIT_FIRSTK_JUDGE, /* ahead mode: pass 2's dispatch, gate and verdict on the GPU */
     OIT_FIRSTK_PROGS
 };
 
@@ -57,7 +58,11 @@ typedef struct oit_firstk {
     GLuint prog[OIT_FIRSTK_PROGS];
     GLuint store;   /* pass 1: the W slots; pass 2: the overflowed pixels' fragments */
     GLuint table;   /* pass 2: per pixel of the band, (offset, count); count 0: not its */
-    GLuint totals;  /* uint overflowed pixels, fragments lo, fragments hi, pad */
+    /* a pack's words: uint overflowed pixels, fragments lo, fragments hi,
+     * the gate of pass 2's draw, the overflow box; then the frame's
+     * (oit_firstk_begin): short, the most fragments a pack's pass 2
+     * needed, pixels and packs that took pass 2 */
+    GLuint totals;
     uint64_t store_cap, table_cap;
     int K;          /* the most slots a pixel gets */
     uint64_t budget; /* slot bytes a pack may take; UINT64_MAX: no limit */
@@ -75,7 +80,25 @@ typedef struct oit_firstk {
     oit_program_cache *pc;
     void (*built)(void *built_ctx);
     void *built_ctx;
+    /* Pass 2 driven by the GPU (oit_capture_set_no_wait; its backend sets
+     * ahead a frame, from the second on, once a frame measured the need,
+     * and off while `need` passes the slot budget or one binding: the host
+     * then splits pass 2 in bands): the store sized ahead for `need`
+     * fragments (the most an earlier frame's pack needed); a pack that
+     * needs more flags the frame short. */
+    int ahead;
+    uint64_t need;
+    int measured;    /* a frame has ended: need holds what it saw */
+    uint64_t seen;   /* this frame's most fragments a band's pass 2 took (host mode) */
+    int ended_short; /* the last frame (oit_firstk_ended) */
 } oit_firstk;
+
+/* The frame's words of the totals cleared: at a frame's begin. */
+void oit_firstk_begin(oit_firstk *k);
+/* After the frame's final read-back (the GPU is done: no wait): in ahead
+ * mode, the frame's pass-2 figures, whether it ended short and the need
+ * the next frames size the store for. */
+void oit_firstk_ended(oit_firstk *k);
 
 /* built(built_ctx): after programs were built mid-frame (may be NULL). */
 oit_status oit_firstk_init(oit_firstk *k, int K, oit_program_cache *pc,

@@ -93,6 +93,14 @@ static oit_status firstk_begin(oit_capture *c, oit_error *err)
     b->counted.splits = 0;
     b->k.second_pixels = 0;
     b->k.second_packs = b->k.second_draws = 0;
+    /* pass 2 on the GPU while the store the host would split it by (the
+     * slot budget, or what the slots hold; one binding) holds what a pack
+     * needed */
+    uint64_t room = c->set.slot_budget ? c->set.slot_budget : c->frame.bind;
+    room = room > b->k.store_cap ? room : b->k.store_cap;
+    room = room < c->frame.bind ? room : c->frame.bind;
+    b->k.ahead = c->set.no_wait && b->k.measured && b->k.need * 16 <= room;
+    oit_firstk_begin(&b->k);
     if (!b->fill)
         return OIT_OK;
     return oit_stencil_target_resize(&b->target, c->view.width, c->view.height, err);
@@ -199,4 +207,12 @@ static void firstk_first_k(oit_capture *c, int on)
     b->off = !on;
 }
 
-OIT_CAPTURE_OPS(firstk, OIT_CAPTURE_FIRSTK, "first-k", firstk_backend, firstk_first_k);
+static int firstk_ended(oit_capture *c)
+{
+    firstk_backend *b = c->be;
+    oit_firstk_ended(&b->k);
+    return b->k.ahead && b->k.ended_short;
+}
+
+OIT_CAPTURE_OPS(firstk, OIT_CAPTURE_FIRSTK, "first-k", firstk_backend, firstk_first_k,
+                firstk_ended);

@@ -179,7 +179,7 @@ static oit_status count_and_scan(oit_dfb *d, const oit_gpu_mesh *const *meshes, 
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     glCopyNamedBufferSubData(d->buf[BUF_COUNTS], d->buf[BUF_OFFSETS], 0, 0,
                              (GLsizeiptr)((pixels + 1) * 4));
-    return oit_scan_run(&d->scan, d->buf[BUF_OFFSETS], pixels + 1, res, err);
+    return oit_scan_run(&d->scan, d->buf[BUF_OFFSETS], pixels + 1, res, NULL, err);
 }
 
 /* Fragments one storage buffer binding can hold here. */

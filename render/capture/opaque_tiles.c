@@ -62,7 +62,8 @@ void oit_opaque_tiles_destroy(oit_opaque_tiles *t)
 }
 
 oit_status oit_opaque_tiles_begin(oit_opaque_tiles *t, const oit_view *view,
-                                  const oit_opaque_depth *o, oit_error *err)
+                                  const oit_opaque_depth *o, oit_host_waits *waits,
+                                  oit_error *err)
 {
     t->on = 0;
     if (!o || !o->enabled)
@@ -96,7 +97,7 @@ oit_status oit_opaque_tiles_begin(oit_opaque_tiles *t, const oit_view *view,
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OPAQUE_TILES, t->buf);
     glDispatchCompute((GLuint)(tx + 7) / 8, (GLuint)(ty + 7) / 8, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glGetNamedBufferSubData(t->buf, 0, (GLsizeiptr)bytes, t->tiles);
+    oit_host_read(waits, t->buf, 0, bytes, t->tiles);
     oit_status st = oit_gl_check("opaque tiles", err);
     if (st != OIT_OK)
         return st;

@@ -16,6 +16,7 @@
 #define OIT_RENDER_OPAQUE_TILES_H
 
 #include "render/gl/frag_glsl.h"
+#include "render/gl/host_wait.h"
 #include "render/image/view.h"
 
 #define OIT_OPAQUE_TILE 16
@@ -28,9 +29,11 @@ void oit_opaque_tiles_destroy(oit_opaque_tiles *t);
 /* Starts a frame of view's size: with o enabled, reads the tiles of the
  * texture bound at unit OIT_TEX_OPAQUE_DEPTH (texel of pixel (0, 0) at
  * o->origin); else nothing is behind. Needs no buffer bindings of the
- * caller (it uses OIT_BIND_OPAQUE_TILES and leaves it bound). */
+ * caller (it uses OIT_BIND_OPAQUE_TILES and leaves it bound). The
+ * read-back is a wait counted on waits (host_wait.h). */
 oit_status oit_opaque_tiles_begin(oit_opaque_tiles *t, const oit_view *view,
-                                  const oit_opaque_depth *o, oit_error *err);
+                                  const oit_opaque_depth *o, oit_host_waits *waits,
+                                  oit_error *err);
 /* 1 when the box [bmin, bmax] on screen rectangle rect ({x0, y0, x1, y1},
  * row 0 at the top, exclusive ends, as the packer's part rectangles) lies
  * behind the opaque depth everywhere; 0 otherwise and without one. */

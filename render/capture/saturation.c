@@ -146,10 +146,12 @@ static void poll(oit_saturation *s)
     s->fence = 0;
 }
 
-oit_status oit_saturation_wait(oit_saturation *s, oit_error *err)
+oit_status oit_saturation_wait(oit_saturation *s, oit_host_waits *waits, oit_error *err)
 {
+    poll(s);
     if (!s->fence)
         return OIT_OK;
+    oit_host_wait_note(waits);
     GLenum r = glClientWaitSync(s->fence, GL_SYNC_FLUSH_COMMANDS_BIT, 10000000000ull);
     if (r == GL_WAIT_FAILED || r == GL_TIMEOUT_EXPIRED)
         return oit_error_set(err, OIT_ERR_GL, "saturation tiles: the read-back %s",

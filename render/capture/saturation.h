@@ -18,6 +18,7 @@
 #define OIT_RENDER_SATURATION_H
 
 #include "render/gl/gl_util.h"
+#include "render/gl/host_wait.h"
 
 #define OIT_SATURATION_TILE 16
 
@@ -40,7 +41,7 @@ oit_status oit_saturation_update(oit_saturation *s, unsigned state, const int re
  * large batches a frame, where a late read-back would let a whole batch of
  * hidden parts through; with many small ones, the wait for the GPU to
  * drain would cost more than it saves. */
-oit_status oit_saturation_wait(oit_saturation *s, oit_error *err);
+oit_status oit_saturation_wait(oit_saturation *s, oit_host_waits *waits, oit_error *err);
 /* 1 when, in the newest read-back, every tile rect touches has a largest
  * transmittance below epsilon; 0 otherwise (and always for epsilon <= 0). */
 int oit_saturation_covered(oit_saturation *s, const int rect[4], float epsilon);

@@ -111,6 +111,12 @@ void oit_gpu_draws_set_align(oit_gpu_draws *d, uint64_t bytes);
  * Never an error: should d's scratch not grow to the call's commands, it
  * draws them in runs that fit (more calls, same fragments). */
 void oit_gpu_mesh_draw_many(oit_gpu_draws *d, const oit_gpu_mesh *const *meshes, int n);
+/* The same, each command drawn only when uint `word` of the GL buffer
+ * gate is nonzero when the GPU reaches it (its instance count set on the
+ * GPU: the host never reads the word); the draw calls count as issued
+ * either way. The caller's program and storage bindings are kept. */
+void oit_gpu_mesh_draw_many_gated(oit_gpu_draws *d, const oit_gpu_mesh *const *meshes, int n,
+                                  unsigned gate, unsigned word);
 
 /* For compute passes with one invocation per triangle: binds each of those
  * windows at OIT_BIND_VERTS, sets the uints u_window_first (the window's

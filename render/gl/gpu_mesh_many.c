@@ -43,6 +43,10 @@ typedef struct draw_group {
 
 struct oit_gpu_draws {
     GLuint vao, cmd_buf, rec_buf;
+    /* oit_gpu_mesh_draw_many_gated's pass over the commands, built on
+     * first use; gate_failed: it could not be, the draws go ungated */
+    GLuint gate_prog;
+    int gate_failed;
     uint64_t cmd_bytes, rec_bytes; /* capacities of the GL buffers */
     /* CPU staging, cap commands each: at[k] is command k's byte offset in
      * its buffer until its group's base is known. */
@@ -149,6 +153,7 @@ void oit_gpu_draws_destroy(oit_gpu_draws *d)
     glDeleteVertexArrays(1, &d->vao);
     glDeleteBuffers(1, &d->cmd_buf);
     glDeleteBuffers(1, &d->rec_buf);
+    glDeleteProgram(d->gate_prog);
     free(d->cmds);
     free(d->recs);
     free(d->at);
@@ -273,9 +278,73 @@ static void bind_group(const oit_gpu_draws *d, const draw_group *gr)
                       (GLsizeiptr)(phi - plo));
 }
 
+/* The gate's pass: every command's instance count set to 1 where the
+ * gate word is nonzero, else 0, so that the GPU decides whether the draws
+ * rasterize anything. */
+static const char gate_cs[] =
+    "layout(local_size_x = 64) in;\n"
+    "layout(std430, binding = OIT_BIND_OUT) buffer Cmds { uvec4 cmds[]; };\n"
+    "layout(std430, binding = OIT_BIND_TOTALS) readonly buffer Gate { uint gate_words[]; };\n"
+    "uniform uint u_word;\n"
+    "uniform uint u_count;\n"
+    "void main() {\n"
+    "    uint i = gl_GlobalInvocationID.x;\n"
+    "    if (i < u_count) cmds[i].y = gate_words[u_word] != 0u ? 1u : 0u;\n"
+    "}\n";
+
+/* A storage binding as it was, to put back. */
+typedef struct ssbo_binding {
+    GLint buf;
+    GLint64 start, size;
+} ssbo_binding;
+
+static ssbo_binding binding_get(GLuint index)
+{
+    ssbo_binding b = {0, 0, 0};
+    glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, index, &b.buf);
+    glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, index, &b.start);
+    glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, index, &b.size);
+    return b;
+}
+
+static void binding_put(GLuint index, ssbo_binding b)
+{
+    if (b.buf && b.size > 0)
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, index, (GLuint)b.buf, (GLintptr)b.start,
+                          (GLsizeiptr)b.size);
+    else
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, index, (GLuint)b.buf);
+}
+
+/* Commands [0, k) gated by word `word` of buffer gate; the caller's
+ * program and storage bindings are left as they were. */
+static void gate_commands(oit_gpu_draws *d, size_t k, GLuint gate, GLuint word)
+{
+    if (!d->gate_prog && !d->gate_failed) {
+        const oit_glsl_program p = {"multi-draw gate", .cs = {gate_cs}};
+        d->gate_failed = oit_glsl_programs_build(&p, 1, &d->gate_prog, NULL) != OIT_OK;
+    }
+    if (d->gate_failed)
+        return; /* ungated: the draws rasterize, the caller's shader still decides */
+    GLint prog = 0;
+    glGetIntegerv(GL_CURRENT_PROGRAM, &prog);
+    ssbo_binding out = binding_get(OIT_BIND_OUT), totals = binding_get(OIT_BIND_TOTALS);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, d->cmd_buf);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_TOTALS, gate);
+    glUseProgram(d->gate_prog);
+    glProgramUniform1ui(d->gate_prog, glGetUniformLocation(d->gate_prog, "u_word"), word);
+    glProgramUniform1ui(d->gate_prog, glGetUniformLocation(d->gate_prog, "u_count"),
+                        (GLuint)k);
+    glDispatchCompute((GLuint)((k + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    binding_put(OIT_BIND_OUT, out);
+    binding_put(OIT_BIND_TOTALS, totals);
+    glUseProgram((GLuint)prog);
+}
+
 /* Draws commands [0, k) in their groups [0, groups): one upload, one
- * multi-draw a group. */
-static void flush(oit_gpu_draws *d, size_t k, size_t groups)
+ * multi-draw a group; gated by word `word` of buffer gate (0: not). */
+static void flush(oit_gpu_draws *d, size_t k, size_t groups, GLuint gate, GLuint word)
 {
     if (k == 0)
         return;
@@ -284,6 +353,8 @@ static void flush(oit_gpu_draws *d, size_t k, size_t groups)
      * the draws before: all of them go up at once. */
     glNamedBufferSubData(d->cmd_buf, 0, (GLsizeiptr)(k * sizeof(draw_cmd)), d->cmds);
     glNamedBufferSubData(d->rec_buf, 0, (GLsizeiptr)(k * sizeof(oit_draw_rec)), d->recs);
+    if (gate)
+        gate_commands(d, k, gate, word);
     glBindVertexArray(d->vao);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, d->cmd_buf);
     for (size_t g = 0; g < groups; g++) {
@@ -296,7 +367,8 @@ static void flush(oit_gpu_draws *d, size_t k, size_t groups)
     }
 }
 
-void oit_gpu_mesh_draw_many(oit_gpu_draws *d, const oit_gpu_mesh *const *meshes, int n)
+static void draw_many(oit_gpu_draws *d, const oit_gpu_mesh *const *meshes, int n, GLuint gate,
+                      GLuint word)
 {
     size_t total = 0, k = 0, groups = 0;
     for (int i = 0; i < n; i++)
@@ -310,7 +382,7 @@ void oit_gpu_mesh_draw_many(oit_gpu_draws *d, const oit_gpu_mesh *const *meshes,
         int sourced = oit_gpu_mesh_sourced(m, &prims);
         for (size_t start = 0; start < count; start += d->window) {
             if (k == d->cap) {
-                flush(d, k, groups);
+                flush(d, k, groups, gate, word);
                 k = groups = 0;
             }
             add_command(d, &groups, k++, oit_gpu_mesh_buffer(m),
@@ -320,5 +392,16 @@ void oit_gpu_mesh_draw_many(oit_gpu_draws *d, const oit_gpu_mesh *const *meshes,
                         sourced ? prims + (uint64_t)start * 4 : NO_PRIMS);
         }
     }
-    flush(d, k, groups);
+    flush(d, k, groups, gate, word);
+}
+
+void oit_gpu_mesh_draw_many(oit_gpu_draws *d, const oit_gpu_mesh *const *meshes, int n)
+{
+    draw_many(d, meshes, n, 0, 0);
+}
+
+void oit_gpu_mesh_draw_many_gated(oit_gpu_draws *d, const oit_gpu_mesh *const *meshes, int n,
+                                  unsigned gate, unsigned word)
+{
+    draw_many(d, meshes, n, gate, word);
 }

@@ -123,7 +123,7 @@ static void dispatch_add(oit_scan *s, GLuint data, GLuint sums, uint64_t n)
 }
 
 oit_status oit_scan_run(oit_scan *s, GLuint buf, uint64_t n, oit_scan_result *res,
-                        oit_error *err)
+                        oit_host_waits *waits, oit_error *err)
 {
     uint64_t size[OIT_SCAN_LEVELS + 1];
     size[0] = n;
@@ -151,7 +151,7 @@ oit_status oit_scan_run(oit_scan *s, GLuint buf, uint64_t n, oit_scan_result *re
         return oit_gl_check("prefix sum", err);
     GLuint t[4];
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glGetNamedBufferSubData(s->totals, 0, sizeof t, t);
+    oit_host_read(waits, s->totals, 0, sizeof t, t);
     res->total = (uint64_t)t[1] << 32 | t[0];
     res->max = t[2];
     res->long_fragments = t[3];

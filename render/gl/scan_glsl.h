@@ -10,6 +10,7 @@
 
 #include "render/gl/frag_glsl.h"
 #include "render/gl/gl_util.h"
+#include "render/gl/host_wait.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -41,9 +42,10 @@ oit_status oit_scan_init(oit_scan *s, oit_program_cache *pc, oit_error *err);
 void oit_scan_release(oit_scan *s);
 /* Scans buf[0..n) in place (exclusive) and reads back total and maximum;
  * with res NULL reads nothing back, so that the host does not wait for
- * the GPU (the totals stay in s->totals). */
+ * the GPU (the totals stay in s->totals); the read-back is a wait counted
+ * on waits (host_wait.h; NULL: not counted). */
 oit_status oit_scan_run(oit_scan *s, GLuint buf, uint64_t n, oit_scan_result *res,
-                        oit_error *err);
+                        oit_host_waits *waits, oit_error *err);
 uint64_t oit_scan_bytes(const oit_scan *s);
 
 #ifdef __cplusplus

@@ -151,6 +151,14 @@ typedef struct oit_frame_stats {
     /* The GPU timer's number of this frame (render/gl/gpu_timer.h), whose
      * gpu_ms comes later (oit_method_gpu_poll); 0: not timed on the GPU. */
     uint64_t gpu_frame;
+    /* The exact capture's frames (the stream): the host's waits on the GPU
+     * between the frame's first command and its final read-back
+     * (render/gl/host_wait.h), and the times the frame was drawn again
+     * because a store sized ahead of the GPU's need proved short (its
+     * image is the redrawn one); 0 for other methods, whose waits are not
+     * counted. */
+    uint32_t host_waits;
+    uint32_t redraws;
 } oit_frame_stats;
 
 /* Camera helpers. */

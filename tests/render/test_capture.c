@@ -208,6 +208,57 @@ typedef struct firstk_case {
     int tiny;               /* 1: every other quad covers only the 4 centre pixels */
 } firstk_case;
 
+/* The host's waits of a first frame (host_wait.h), by the capture's
+ * structure: first-K reads each batch's totals back after pass 1, and the
+ * fragments of each band of pass 2 (one band a second-pass batch unless a
+ * slot budget splits it); the counted fallback reads each count's totals. */
+static void check_waits(const firstk_case *fc, const oit_frame_stats *s)
+{
+    uint64_t one_band = (uint64_t)fc->nb + s->second_pass_packs;
+    if (fc->W && !fc->slot_budget)
+        CHECK(s->host_waits == one_band, "%s: %u host waits, want %llu (%d batches, %u second "
+              "passes)", fc->name, s->host_waits, (unsigned long long)one_band, fc->nb,
+              s->second_pass_packs);
+    else if (fc->W)
+        CHECK(s->host_waits > one_band, "%s: %u host waits, want more than %llu (bands)",
+              fc->name, s->host_waits, (unsigned long long)one_band);
+    else
+        CHECK(s->host_waits >= (uint32_t)fc->nb, "%s: %u host waits, want >= %d (counted)",
+              fc->name, s->host_waits, fc->nb);
+    CHECK(s->redraws == 0, "%s: the capture reports %u redraws", fc->name, s->redraws);
+}
+
+/* The same frame again with pass 2 driven by the GPU
+ * (oit_capture_set_no_wait): the first frame measured the need, so this
+ * one fits it, waits 0 times where first-K ran within the slot budget, and
+ * is still DFB's image, fragment for fragment. */
+static void test_firstk_no_wait(oit_capture *c, const firstk_case *fc, const oit_view *v,
+                                const quad_spec *q, const int *start, const oit_image *d,
+                                const oit_frame_stats *sd, uint64_t want)
+{
+    oit_capture_set_no_wait(c, 1);
+    oit_image a = {0};
+    oit_frame_stats sa;
+    if (!capture_scene(c, v, q, start, fc->nb, NULL, &a, &sa)) {
+        test_failures++;
+        return;
+    }
+    double diff = image_diff(&a, d);
+    printf("first-k %s, no wait: vs DFB %.6f, %u host waits, short %d, second pass %llu "
+           "pixels in %u packs\n", fc->name, diff, sa.host_waits, oit_capture_short(c),
+           (unsigned long long)sa.second_pass_pixels, sa.second_pass_packs);
+    CHECK(!oit_capture_short(c), "%s: no wait: the frame ended short", fc->name);
+    CHECK(diff <= 1.0 / 255 && sa.fragments == sd->fragments,
+          "%s: no wait: %.6f from DFB, fragments %llu/%llu", fc->name, diff,
+          (unsigned long long)sa.fragments, (unsigned long long)sd->fragments);
+    CHECK(sa.second_pass_pixels == want, "%s: no wait: second-pass pixels %llu, want %llu",
+          fc->name, (unsigned long long)sa.second_pass_pixels, (unsigned long long)want);
+    CHECK(!fc->W || fc->slot_budget || sa.host_waits == 0, "%s: no wait: %u host waits",
+          fc->name, sa.host_waits);
+    oit_image_free(&a);
+    oit_capture_set_no_wait(c, 0);
+}
+
 static void test_firstk(const firstk_case *fc)
 {
     oit_capture *c = new_capture(OIT_CAPTURE_FIRSTK, fc->K, fc->name);
@@ -249,6 +300,8 @@ static void test_firstk(const firstk_case *fc)
               (unsigned long long)draws, fc->min_draws);
         CHECK(want > 0 || draws == (uint64_t)fc->nb * (fc->W ? 1 : 2),
               "%s: %llu draws without overflow", fc->name, (unsigned long long)draws);
+        check_waits(fc, &sa);
+        test_firstk_no_wait(c, fc, &v, q, start, &d, &sd, want);
     } else {
         test_failures++;
     }

@@ -142,11 +142,11 @@ static int update(oit_saturation *s, frame *f, const int *rect, int wait, const 
 {
     oit_error err = {0};
     /* a read-back still in flight would keep this batch's from starting */
-    oit_status st = wait ? oit_saturation_wait(s, &err) : OIT_OK;
+    oit_status st = wait ? oit_saturation_wait(s, NULL, &err) : OIT_OK;
     if (st == OIT_OK)
         st = oit_saturation_update(s, f->buf, rect, &err);
     if (st == OIT_OK && wait)
-        st = oit_saturation_wait(s, &err);
+        st = oit_saturation_wait(s, NULL, &err);
     CHECK(st == OIT_OK, "%s: %s", what, err.message);
     if (st == OIT_OK)
         model_update(f, rect);

@@ -39,7 +39,7 @@ static void check_random(GLuint max_groups, uint64_t n)
     if (max_groups)
         s.max_groups = max_groups;
     oit_scan_result res = {0};
-    CHECK(oit_scan_run(&s, buf, n, &res, &err) == OIT_OK, "%s", err.message);
+    CHECK(oit_scan_run(&s, buf, n, &res, NULL, &err) == OIT_OK, "%s", err.message);
     glGetNamedBufferSubData(buf, 0, (GLsizeiptr)(n * 4), got);
     uint64_t bad = 0, first_bad = n;
     for (uint64_t i = 0; i < n; i++) {
@@ -79,7 +79,7 @@ static void check_past_one_dispatch(void)
     oit_error err = {0};
     CHECK(oit_scan_init(&s, NULL, &err) == OIT_OK, "%s", err.message);
     oit_scan_result res = {0};
-    oit_status st = oit_scan_run(&s, buf, n, &res, &err);
+    oit_status st = oit_scan_run(&s, buf, n, &res, NULL, &err);
     CHECK(st == OIT_OK, "%llu elements: %s", (unsigned long long)n, err.message);
     const uint64_t at[] = {
         0, 1, 1023, 1024, 65535ull * 1024 - 1, 65535ull * 1024, 65536ull * 1024, n - 1};

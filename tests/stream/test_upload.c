@@ -268,27 +268,27 @@ static void ring_rules(void)
     CHECK(oit_upload_map(u) != NULL, "ring: no mapping");
     uint64_t a = 1, b = 1, c = 1, tag = oit_fence_queue_tag(f);
     int got_a = 0, got_b = 0, got = 1;
-    oit_upload_reserve(u, f, 8192, 0, &a, &got_a, &err);
-    oit_upload_reserve(u, f, 8192, 0, &b, &got_b, &err);
+    oit_upload_reserve(u, f, 8192, 0, &a, &got_a, NULL, &err);
+    oit_upload_reserve(u, f, 8192, 0, &b, &got_b, NULL, &err);
     CHECK(got_a && got_b && a == 0 && b == 8192, "ring: two 8K regions at %llu, %llu (got "
           "%d, %d)", (unsigned long long)a, (unsigned long long)b, got_a, got_b);
-    CHECK(oit_upload_reserve(u, f, 256, 1, &c, &got, &err) == OIT_OK && !got,
+    CHECK(oit_upload_reserve(u, f, 256, 1, &c, &got, NULL, &err) == OIT_OK && !got,
           "ring: a full ring of undrawn regions gave room (or failed: %s)", err.message);
     oit_upload_drawn(u, tag); /* the first region, drawn by work with no fence yet */
     got = 1;
-    oit_upload_reserve(u, f, 4096, 0, &c, &got, &err);
+    oit_upload_reserve(u, f, 4096, 0, &c, &got, NULL, &err);
     CHECK(!got, "ring: reused a drawn region before any fence followed its draws");
     got = 0;
-    CHECK(oit_upload_reserve(u, f, 4096, 1, &c, &got, &err) == OIT_OK && got && c == 0,
+    CHECK(oit_upload_reserve(u, f, 4096, 1, &c, &got, NULL, &err) == OIT_OK && got && c == 0,
           "ring: waiting gave %d at %llu: %s", got, (unsigned long long)c, err.message);
     uint64_t done = oit_fence_queue_poll(f);
     CHECK(done >= tag, "ring: region reused while its fence %llu had not completed (%llu)",
           (unsigned long long)tag, (unsigned long long)done);
     oit_upload_release_undrawn(u);
     got = 0;
-    oit_upload_reserve(u, f, 16384, 0, &c, &got, &err);
+    oit_upload_reserve(u, f, 16384, 0, &c, &got, NULL, &err);
     CHECK(got && c == 0, "ring: after releasing the undrawn regions 16K did not fit at 0");
-    CHECK(oit_upload_reserve(u, f, 16640, 1, &c, &got, &err) == OIT_ERR_ARGUMENT,
+    CHECK(oit_upload_reserve(u, f, 16640, 1, &c, &got, NULL, &err) == OIT_ERR_ARGUMENT,
           "ring: reserved more than its budget");
     oit_upload_destroy(u);
     oit_fence_queue_destroy(f);

@@ -149,7 +149,7 @@ static void reserve(ring_case *c, int wait)
     uint64_t want = model_place(&c->m, bytes);
     int want_wait = model_fits_after_wait(&c->m, bytes);
     oit_error err = {0};
-    oit_status st = oit_upload_reserve(c->u, c->f, bytes, wait, &off, &got, &err);
+    oit_status st = oit_upload_reserve(c->u, c->f, bytes, wait, &off, &got, NULL, &err);
     c->pending |= wait; /* a wait retires fences up to the one it needs */
     uint64_t done = oit_fence_queue_poll(c->f), last = issued(c);
     c->reserves++;
@@ -218,7 +218,7 @@ static void step(ring_case *c)
     } else if (k < 94) {
         /* every fence so far waited for: completion is determined again */
         if (issued(c) > 0)
-            CHECK(oit_fence_queue_wait(c->f, issued(c), &err) == OIT_OK, "%s: wait: %s",
+            CHECK(oit_fence_queue_wait(c->f, issued(c), NULL, &err) == OIT_OK, "%s: wait: %s",
                   c->name, err.message);
         c->pending = 0;
     } else {
@@ -251,7 +251,7 @@ static void run_case(uint64_t budget, uint32_t seed, int steps, const char *name
     }
     uint64_t off = 1;
     int got = 0;
-    CHECK(oit_upload_reserve(c.u, c.f, budget, 1, &off, &got, &err) == OIT_OK && got &&
+    CHECK(oit_upload_reserve(c.u, c.f, budget, 1, &off, &got, NULL, &err) == OIT_OK && got &&
               off == 0,
           "%s: with every region drawn the whole %llu bytes did not fit at 0 (got %d at %llu)",
           name, (unsigned long long)budget, got, (unsigned long long)off);
@@ -289,7 +289,7 @@ static void fence_serials(void)
               (unsigned long long)oit_fence_queue_poll(f));
     }
     uint64_t tag = oit_fence_queue_tag(f);
-    CHECK(oit_fence_queue_wait(f, tag, &err) == OIT_OK, "wait: %s", err.message);
+    CHECK(oit_fence_queue_wait(f, tag, NULL, &err) == OIT_OK, "wait: %s", err.message);
     CHECK(oit_fence_queue_tag(f) == tag + 1 && oit_fence_queue_poll(f) == tag,
           "a wait on tag %llu with no fence: tag now %llu, %llu complete (want %llu, %llu)",
           (unsigned long long)tag, (unsigned long long)oit_fence_queue_tag(f),

@@ -45,6 +45,7 @@ static void json_cell(oit_json *w, int v, const oit_bench_cell *c)
     oit_json_uint(w, "gpu_bytes_peak", c->gpu_bytes_peak);
     oit_json_uint(w, "gpu_mesh_bytes", c->gpu_mesh_bytes);
     oit_json_uint(w, "max_layers", c->max_layers);
+    oit_json_uint(w, "host_waits_max", c->host_waits_max);
     oit_json_uint(w, "fragments", c->fragments);
     oit_json_general(w, "rmse", c->ok ? c->diff.rmse : NAN, 9);
     oit_json_general(w, "max_abs", c->ok ? c->diff.max_abs : NAN, 9);
@@ -72,6 +73,7 @@ static void json_method(oit_json *w, const oit_bench_method *m, int views)
     oit_json_uint(w, "gpu_bytes_peak", m->gpu_bytes_peak);
     oit_json_uint(w, "gpu_mesh_bytes", m->gpu_mesh_bytes);
     oit_json_uint(w, "max_layers", m->max_layers);
+    oit_json_uint(w, "host_waits_max", m->host_waits_max);
     oit_json_general(w, "rmse_mean", m->runnable ? m->rmse_mean : NAN, 9);
     oit_json_general(w, "max_abs_worst", m->runnable ? m->max_abs_worst : NAN, 9);
     oit_json_fixed(w, "pct_over_1_255_worst", m->runnable ? m->pct_over_worst : NAN, 6);

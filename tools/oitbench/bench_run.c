@@ -129,6 +129,7 @@ static void record(oit_bench_method *m, oit_bench_cell *c, const oit_frame_stats
     c->gpu_mesh_bytes = st->gpu_mesh_bytes > c->gpu_mesh_bytes ? st->gpu_mesh_bytes
                                                                 : c->gpu_mesh_bytes;
     c->max_layers = st->max_layers > c->max_layers ? st->max_layers : c->max_layers;
+    c->host_waits_max = st->host_waits > c->host_waits_max ? st->host_waits : c->host_waits_max;
     c->fragments = st->fragments;
 }
 
@@ -238,6 +239,8 @@ static void summarise(oit_bench_method *m, int views)
         m->gpu_mesh_bytes = c->gpu_mesh_bytes > m->gpu_mesh_bytes ? c->gpu_mesh_bytes
                                                                    : m->gpu_mesh_bytes;
         m->max_layers = c->max_layers > m->max_layers ? c->max_layers : m->max_layers;
+        m->host_waits_max = c->host_waits_max > m->host_waits_max ? c->host_waits_max
+                                                                  : m->host_waits_max;
     }
     m->rmse_mean = n ? m->rmse_mean / n : NAN;
     median_p95(m->ms, m->ms_count, &m->ms_median, &m->ms_p95);

@@ -38,6 +38,9 @@ typedef struct oit_bench_cell {
     uint64_t fragments;      /* of the last timed frame */
     oit_image_diff diff;     /* last timed frame against the reference */
     double gpu_ms_median;    /* GPU time (render/gl/gpu_timer.h); -1: not timed */
+    /* the most host waits on the GPU of a timed frame
+     * (oit_frame_stats.host_waits: the stream's; 0 where not counted) */
+    uint32_t host_waits_max;
 } oit_bench_cell;
 
 /* What to run: a method, and the threshold oit_method_options.threshold
@@ -70,6 +73,7 @@ typedef struct oit_bench_method {
     double gpu_ms_median; /* -1: not timed on the GPU */
     uint64_t gpu_bytes_peak, gpu_mesh_bytes; /* as oit_bench_cell's, the most over views */
     uint32_t max_layers;
+    uint32_t host_waits_max; /* the cells' most */
     double rmse_mean, max_abs_worst, pct_over_worst, psnr_min;
 } oit_bench_method;
 

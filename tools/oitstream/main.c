@@ -291,7 +291,7 @@ static oit_status render_one(run_ctx *rc, int index, int views, oit_stats_frame 
                "%llu clipped: %.2f MiB not uploaded), "
                "%llu draw calls, %.2f MiB uploaded, %llu from the cache (%.2f MiB resident), "
                "%llu overflow pixels, %llu second-pass pixels in %u packs, "
-               "%.1f MiB GPU at peak\n",
+               "%u host waits, %u redraws, %.1f MiB GPU at peak\n",
                index, fr->st.ms, fr->stream.order_ms, fr->stream.pack_ms, fr->stream.packs,
                (unsigned long long)fr->stream.parts_drawn,
                (unsigned long long)fr->stream.parts_culled,
@@ -303,7 +303,7 @@ static oit_status render_one(run_ctx *rc, int index, int views, oit_stats_frame 
                (double)fr->stream.cache_bytes / 1048576.0,
                (unsigned long long)fr->st.overflow_pixels,
                (unsigned long long)fr->st.second_pass_pixels, fr->st.second_pass_packs,
-               (double)fr->stream.gpu_bytes_peak / 1048576.0);
+               fr->st.host_waits, fr->st.redraws, (double)fr->stream.gpu_bytes_peak / 1048576.0);
     if (s == OIT_OK && !rc->args->quiet && fr->has_stream && fr->stream.choice)
         print_choice(index, &fr->stream);
     if (s == OIT_OK && !rc->args->quiet && fr->has_stream && fr->stream.capture_asked)

@@ -1,0 +1,91 @@
+#!/bin/sh
+# The host's waits on the GPU within a frame (render/gl/host_wait.h) on the
+# default stream path (--pack auto: first-K packs, their second pass driven
+# by the GPU from the second frame on), resident part files:
+#  - 300 stacked squares (oitgen hard --case stack) seen from far off, so
+#    that fewer than 1 pixel in 50 overflows K and auto stays first-K: the
+#    first frame reads each pack's totals and each second pass's fragment
+#    count back (host_waits = packs + second_pass_packs), every later frame
+#    waits 0 times, with second-pass pixels > 0 and DFB's image and
+#    fragments;
+#  - 4 stacked quads (nothing over K): 0 waits from the second frame on, no
+#    second pass;
+#  - --pack first-k on the stack, the corner view (1.6 M fragments) then the
+#    head-on one (2.5 M): the head-on frame outgrows the store sized from
+#    the corner's need, ends short and is drawn again (redraws 1, one wait:
+#    the short frame's final read-back); the frames after it wait 0 times
+#    and never redraw; every frame's image and fragments DFB's.
+set -u
+. "${OIT_TEST_LIB:-$(dirname "$0")/../lib.sh}"
+S="$OIT_BIN/oitstream"
+scratch host_waits
+need_tools "$OIT_BIN/oitgen" "$OIT_BIN/oitprep"
+gen_hard stack "$T/stack.ply"
+prep_or_die "$T/stack.ply" "$T/stack.oitp" --scheme fast
+"$OIT_BIN/oitgen" quads --count 4 -o "$T/quads.ply" >/dev/null ||
+    die "cannot make the 4-quad mesh"
+prep_or_die "$T/quads.ply" "$T/quads.oitp" --scheme fast
+
+# every frame of run NAME: its images (in $T/NAME/) equal DFB's (in
+# $T/NAME_dfb/), and its fragments
+same_as_dfb() {
+    _n=$1
+    for _f in "$T/$_n"/frame_*.png; do
+        _i=$(basename "$_f")
+        compare "$_n $_i vs dfb" "$_f" "$T/${_n}_dfb/$_i" 0.01
+    done
+    [ "$(json_all fragments < "$T/$_n.json" | tr '\n' ' ')" = \
+      "$(json_all fragments < "$T/${_n}_dfb.json" | tr '\n' ' ')" ] ||
+        fail "$_n: fragments $(json_all fragments < "$T/$_n.json" | tr '\n' ' '), dfb's" \
+             "$(json_all fragments < "$T/${_n}_dfb.json" | tr '\n' ' ')"
+}
+
+# run NAME FILE SIZE VIEWS [OPTION...]: the stream and DFB, stats kept
+run() {
+    _n=$1 _p=$2 _s=$3 _v=$4
+    shift 4
+    "$S" "$_p" --size "$_s" --walk "$_v" --quiet --out "$T/$_n/" --stats "$T/$_n.json" "$@" ||
+        fail "$_n: oitstream exited $?"
+    "$S" "$_p" --method dfb --size "$_s" --walk "$_v" --quiet --out "$T/${_n}_dfb/" \
+        --stats "$T/${_n}_dfb.json" || fail "$_n: dfb exited $?"
+    echo "$_n: host waits $(json_all host_waits < "$T/$_n.json" | tr '\n' ' ')," \
+         "redraws $(json_all redraws < "$T/$_n.json" | tr '\n' ' ')," \
+         "second-pass pixels $(json_all second_pass_pixels < "$T/$_n.json" | tr '\n' ' ')," \
+         "first-K $(json_all auto_first_k < "$T/$_n.json" | tr -d '\n')"
+    same_as_dfb "$_n"
+}
+
+# frames 1.. of NAME: 0 waits, 0 redraws
+warm_zero() {
+    [ "$(json_all host_waits < "$T/$1.json" | sed 1d | awk '{s += $1} END {print s + 0}')" -eq 0 ] ||
+        fail "$1: a warm frame waited: $(json_all host_waits < "$T/$1.json" | tr '\n' ' ')"
+    [ "$(json_sum redraws < "$T/$1.json")" -eq 0 ] || fail "$1: a frame was drawn again"
+}
+
+for i in 1 2 3 4; do echo "0,0,60,0,0,0,0,1,0,18"; done > "$T/far.txt"
+run far "$T/stack.oitp" 128x128 "$T/far.txt"
+warm_zero far
+[ "$(json_all auto_first_k < "$T/far.json" | tr -d '\n')" = 1111 ] ||
+    fail "far: auto left first-K; this test needs a view that stays there"
+[ "$(json_min second_pass_pixels < "$T/far.json")" -gt 0 ] ||
+    fail "far: a frame without second-pass pixels: nothing overflowed K"
+first=$(json_all host_waits < "$T/far.json" | head -n 1)
+want=$(($(json_all packs < "$T/far.json" | head -n 1) +
+        $(json_all second_pass_packs < "$T/far.json" | head -n 1)))
+[ "$first" -eq "$want" ] || fail "far: the first frame waited $first times, want $want" \
+    "(a read-back a pack, one a second pass)"
+
+run quads "$T/quads.oitp" 96x96 "$T/far.txt"
+warm_zero quads
+[ "$(json_sum second_pass_pixels < "$T/quads.json")" -eq 0 ] ||
+    fail "quads: a second pass where no pixel gets more than 4"
+
+printf '%s\n' 1.5,1.2,4,0,0,0,0,1,0,30 1.5,1.2,4,0,0,0,0,1,0,30 0,0,5,0,0,0,0,1,0,18 \
+    0,0,5,0,0,0,0,1,0,18 0,0,5,0,0,0,0,1,0,18 > "$T/grow.txt"
+run grow "$T/stack.oitp" 64x64 "$T/grow.txt" --pack first-k
+[ "$(json_all redraws < "$T/grow.json" | tr '\n' ' ')" = "0 0 1 0 0 " ] ||
+    fail "grow: redraws $(json_all redraws < "$T/grow.json" | tr '\n' ' '), want 0 0 1 0 0"
+[ "$(json_all host_waits < "$T/grow.json" | sed 1d | tr '\n' ' ')" = "0 1 0 0 " ] ||
+    fail "grow: host waits after the first frame" \
+         "$(json_all host_waits < "$T/grow.json" | sed 1d | tr '\n' ' '), want 0 1 0 0"
+finish "host waits"
