@@ -322,7 +322,7 @@ static void gate_commands(oit_gpu_draws *d, size_t k, GLuint gate, GLuint word)
 {
     if (!d->gate_prog && !d->gate_failed) {
         const oit_glsl_program p = {"multi-draw gate", .cs = {gate_cs}};
-        d->gate_failed = oit_glsl_programs_build(&p, 1, &d->gate_prog, NULL) != OIT_OK;
+        d->gate_failed = oit_glsl_programs_build(NULL, &p, 1, &d->gate_prog, NULL) != OIT_OK;
     }
     if (d->gate_failed)
         return; /* ungated: the draws rasterize, the caller's shader still decides */
