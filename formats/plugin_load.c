@@ -1,0 +1,58 @@
+/* oit_plugin_open (plugin_load.h). */
+#define _GNU_SOURCE /* dladdr */
+#include "formats/plugin_load.h"
+
+#include <dlfcn.h>
+#include <stdio.h>
+#include <string.h>
+
+/* An object of this library for dladdr to place. A static one: an exported
+ * function's address could be an executable's definition of it (a program
+ * that links both liboit and the readers). */
+static const char here;
+
+/* The plugin's path: the folder of the file that holds this code, or the
+ * bare name (dlopen then searches the library path) when that file's name
+ * has no folder. 0 when the path does not fit in cap bytes. */
+static int plugin_path(const char *file, char *buf, size_t cap)
+{
+    Dl_info at;
+    const char *lib = dladdr(&here, &at) && at.dli_fname ? at.dli_fname : "";
+    const char *slash = strrchr(lib, '/');
+    int n = slash ? snprintf(buf, cap, "%.*s/%s", (int)(slash - lib), lib, file)
+                  : snprintf(buf, cap, "%s", file);
+    return n > 0 && (size_t)n < cap;
+}
+
+oit_status oit_plugin_open(const oit_plugin_desc *d, const char *path, const char *what,
+                           oit_plugin *out, oit_error *err)
+{
+    memset(out, 0, sizeof *out);
+    char plugin[4096];
+    if (!plugin_path(d->file, plugin, sizeof plugin))
+        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "%s: cannot read %s: the path of the "
+                             "%s plugin %s is too long", path, what, d->name, d->file);
+    void *h = dlopen(plugin, RTLD_NOW | RTLD_LOCAL | (d->keep ? RTLD_NODELETE : 0));
+    if (!h) {
+        const char *why = dlerror();
+        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "%s: cannot read %s: the %s plugin %s "
+                             "could not be loaded (%s)", path, what, d->name, plugin,
+                             why ? why : "no reason given");
+    }
+    void *entry = dlsym(h, d->entry);
+    if (!entry) {
+        dlclose(h);
+        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "%s: cannot read %s: the %s plugin %s "
+                             "lacks its entry %s (not this liboit's plugin?)", path, what,
+                             d->name, plugin, d->entry);
+    }
+    *out = (oit_plugin){h, entry};
+    return OIT_OK;
+}
+
+void oit_plugin_close(oit_plugin *p)
+{
+    if (p->handle)
+        dlclose(p->handle);
+    memset(p, 0, sizeof *p);
+}
