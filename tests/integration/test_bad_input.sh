@@ -278,7 +278,9 @@ interrupt() {
     echo "previous output" >"$output"
     before=$(sum "$I/big.ply")
     prev=$(sum "$output")
-    "$@" >"$T/out.txt" 2>"$T/err.txt" &
+    # no progress line, however long a loaded machine takes to reach the
+    # signal: the one stderr line checked is the interruption's
+    OIT_PROGRESS_PERIOD=86400 "$@" >"$T/out.txt" 2>"$T/err.txt" &
     pid=$!
     n=0
     while [ ! -e "$output.tmp" ] && [ $n -lt 200 ] && kill -0 $pid 2>/dev/null; do
