@@ -22,8 +22,8 @@
 #
 # Scenes (NS_SCENES picks some):
 #   stack80     300 unit squares 0.01 apart (alpha 0.12) crossed by 50 long
-#               slivers (700 triangles, up to ~80 layers from 20 deg): the
-#               issue's stack, written by this script
+#               slivers (700 triangles, ~80 layers from 20 deg): the
+#               issue's stack (data_scripts/stack_slivers.py)
 #   hardstack   oitgen hard --case stack (600 squares)
 #   plant1M     oitgen plant --triangles 1000000
 #   cad332K     18 copies of turbine.off (332,280 triangles; oitgen instances)
@@ -70,36 +70,9 @@ warm_max() { grep -o "\"$1\": [0-9]*" "$2" | sed 's/.*: //' | awk 'NR % 2 == 0' 
 warm_paths() { grep -o '"capture": "[^"]*"' "$1" | sed 's/.*: "//; s/"//' | awk 'NR % 2 == 0' |
     awk '!s[$0]++' | paste -sd/ -; }
 
-# The issue's stack: 300 squares in z (0.01 apart, alpha 0.12) and 50 slivers
-# through them, as an ascii PLY with a colour and alpha per vertex.
-write_stack80() {
-    awk 'BEGIN {
-        nq = 300; ns = 50; nv = 4 * nq + 4 * ns; nf = 2 * nq + 2 * ns
-        print "ply"; print "format ascii 1.0"
-        print "element vertex " nv
-        print "property float x"; print "property float y"; print "property float z"
-        print "property uchar red"; print "property uchar green"; print "property uchar blue"
-        print "property uchar alpha"
-        print "element face " nf; print "property list uchar int vertex_indices"; print "end_header"
-        for (i = 0; i < nq; i++) {
-            z = i * 0.01; r = 60 + (i * 37) % 190; g = 60 + (i * 91) % 190; b = 60 + (i * 53) % 190
-            printf "0 0 %g %d %d %d 31\n1 0 %g %d %d %d 31\n", z, r, g, b, z, r, g, b
-            printf "1 1 %g %d %d %d 31\n0 1 %g %d %d %d 31\n", z, r, g, b, z, r, g, b
-        }
-        for (j = 0; j < ns; j++) {  # long slivers, 1e-3 wide, tilted through the stack
-            x = (j + 0.5) / ns; y0 = -0.5; y1 = 1.5
-            printf "%g %g -0.2 230 40 40 31\n%g %g -0.2 230 40 40 31\n", x, y0, x + 0.001, y0
-            printf "%g %g 3.2 230 40 40 31\n%g %g 3.2 230 40 40 31\n", x + 0.001, y1, x, y1
-        }
-        for (i = 0; i < nq + ns; i++) {
-            v = 4 * i; printf "3 %d %d %d\n3 %d %d %d\n", v, v + 1, v + 2, v, v + 2, v + 3
-        }
-    }' >"$1"
-}
-
 mesh_of() { # scene -> path of its source mesh in $work
     case $1 in
-    stack80) write_stack80 "$work/stack80.ply" && echo "$work/stack80.ply" ;;
+    stack80) python3 "$here/stack_slivers.py" "$work/stack80.ply" && echo "$work/stack80.ply" ;;
     hardstack) "$bin/oitgen" hard --case stack -o "$work/hardstack.ply" >/dev/null &&
         echo "$work/hardstack.ply" ;;
     plant1M) nice -n 5 "$bin/oitgen" plant --triangles 1000000 -o "$work/plant1M.ply" >/dev/null &&
