@@ -72,7 +72,8 @@ warm_paths() { grep -o '"capture": "[^"]*"' "$1" | sed 's/.*: "//; s/"//' | awk 
 
 mesh_of() { # scene -> path of its source mesh in $work
     case $1 in
-    stack80) python3 "$here/stack_slivers.py" "$work/stack80.ply" && echo "$work/stack80.ply" ;;
+    stack80) python3 "$here/stack_slivers.py" "$work/stack80.ply" >/dev/null &&
+        echo "$work/stack80.ply" ;;
     hardstack) "$bin/oitgen" hard --case stack -o "$work/hardstack.ply" >/dev/null &&
         echo "$work/hardstack.ply" ;;
     plant1M) nice -n 5 "$bin/oitgen" plant --triangles 1000000 -o "$work/plant1M.ply" >/dev/null &&
