@@ -162,6 +162,14 @@ oit_status oit_capture_create_cached(oit_program_cache *pc, oit_capture_kind kin
                      : create_kind(pc, kind, K, faults, out, err);
 }
 
+/* Not through oit_capture_create_cached: there 0 samples means unrouted,
+ * here it is a routed capture's argument out of range, and refused. */
+oit_status oit_capture_create_routed(oit_capture_kind kind, int K, int stencil_k,
+                                     unsigned faults, oit_capture **out, oit_error *err)
+{
+    return create_routed(NULL, kind, K, stencil_k, faults, out, err);
+}
+
 int oit_capture_routed_k(const oit_capture *c)
 {
     return c->routed_k;

@@ -112,12 +112,8 @@ static inline oit_status oit_capture_create_faulty(oit_capture_kind kind, int K,
  *    fragment; pixels that got more take the second pass, as with array
  *    slots. The target holds stencil_k samples of the whole frame, outside
  *    the slot budget (20 bytes a sample: 160 MiB at 1024x1024, 8 samples). */
-static inline oit_status oit_capture_create_routed(oit_capture_kind kind, int K,
-                                                   int stencil_k, unsigned faults,
-                                                   oit_capture **out, oit_error *err)
-{
-    return oit_capture_create_cached(NULL, kind, K, stencil_k, faults, out, err);
-}
+oit_status oit_capture_create_routed(oit_capture_kind kind, int K, int stencil_k,
+                                     unsigned faults, oit_capture **out, oit_error *err);
 /* The samples of c's routed fills; 0: none (array slots). */
 int oit_capture_routed_k(const oit_capture *c);
 /* "array", "stencil", "counted", "first-k", "compute" (NULL for AUTO or

@@ -12,6 +12,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "render/gl/glsl_bindings.h"
 #include "render/gl/program_cache.h"
 #include "tests/lib/test_files.h"
 #include "tests/lib/test_gl.h"
@@ -19,7 +20,7 @@
 #define SIZE 32
 #define N_OUT 4096
 
-static const char version[] = "#version 450 core\n";
+static const char version[] = "#version 450 core\n" OIT_GLSL_BINDINGS;
 static const char vs_src[] =
     "void main() {\n"
     "    vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));\n"
@@ -37,7 +38,7 @@ static const char fs_src[] =
     "}\n";
 static const char cs_src[] =
     "layout(local_size_x = 64) in;\n"
-    "layout(std430, binding = 0) buffer Out { uint v[]; };\n"
+    "layout(std430, binding = OIT_BIND_OUT) buffer Out { uint v[]; };\n"
     "void main() {\n"
     "    uint i = gl_GlobalInvocationID.x;\n"
     "    v[i] = i * 2654435761u ^ (i >> 3) ^ uint(TINT * 1000.0);\n"
@@ -84,7 +85,7 @@ static void compute(GLuint prog, uint32_t *out)
     GLuint buf = 0;
     glCreateBuffers(1, &buf);
     glNamedBufferStorage(buf, N_OUT * 4, NULL, 0);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buf);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, buf);
     glUseProgram(prog);
     glDispatchCompute(N_OUT / 64, 1, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
