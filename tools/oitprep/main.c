@@ -19,6 +19,7 @@
 
 #include "base/args.h"
 #include "base/json.h"
+#include "tools/common/mesh_formats.h"
 #include "tools/common/paths.h"
 #include "tools/common/progress_mode.h"
 #include "tools/common/signals.h"
@@ -127,15 +128,7 @@ static void usage(FILE *f)
           "                --stats gives the one used).\n"
           "  -h, --help    this text\n"
           "\n"
-          "Mesh formats, by extension (case-insensitive; NAME.EXT.gz is inflated):\n"
-          "  .ply .obj (with its .mtl) .off .stl   our streaming readers, memory bounded\n"
-          "  .gltf .glb (Draco too)                our glTF reader\n"
-          "  .vtk .vtp                             our VTK readers (legacy; XML PolyData)\n"
-          "  .step .stp .iges .igs                Open CASCADE (B-rep tessellated at\n"
-          "    --deflection, oitprep only; XDE colours and transparency)\n"
-          "  every other extension assimp imports  assimp (.fbx .dae .3ds .3mf .ifc\n"
-          "    .blend .x .lwo .ase .dxf ..., an unknown one's error lists them), the\n"
-          "    whole scene in memory; points, lines skipped; diffuse colour, opacity\n"
+          OIT_TOOL_MESH_FORMATS_HELP
           "\n"
           "exit: 0 ok, 1 runtime or I/O failure, 2 usage error, 3 bad input file\n",
           f);

@@ -5,6 +5,7 @@
 #include "render/capture/capture.h"
 #include "render/capture/capture_choice.h"
 #include "stream/reader.h"
+#include "tools/common/mesh_formats.h"
 
 #include <float.h>
 #include <limits.h>
@@ -528,15 +529,7 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "                      --out DIFF.png writes |A-B| * gain (--gain G > 0, default 1);\n"
         "                      --mask M adds the figures outside M's non-black pixels\n"
         "\n"
-        "Mesh formats, by extension (case-insensitive; NAME.EXT.gz is inflated):\n"
-        "  .ply .obj (with its .mtl) .off .stl   our streaming readers, memory bounded\n"
-        "  .gltf .glb (Draco too)                our glTF reader\n"
-        "  .vtk .vtp                             our VTK readers (legacy; XML PolyData)\n"
-        "  .step .stp .iges .igs                Open CASCADE (B-rep tessellated at\n"
-        "    --deflection, oitprep only; XDE colours and transparency)\n"
-        "  every other extension assimp imports  assimp (.fbx .dae .3ds .3mf .ifc\n"
-        "    .blend .x .lwo .ase .dxf ..., an unknown one's error lists them), the\n"
-        "    whole scene in memory; points, lines skipped; diffuse colour, opacity\n"
+        OIT_TOOL_MESH_FORMATS_HELP
         "\n"
         "Exit status: 0 ok, 1 runtime failure, 2 usage error, 3 bad input.\n",
         method_list);
