@@ -20,9 +20,7 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
-#include <signal.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -37,6 +35,7 @@
 
 #include "formats/assimp_internal.h"
 #include "formats/gzip_input.h"
+#include "formats/read_isolated.h"
 #include "oit/mesh.h"
 
 namespace {
@@ -455,143 +454,32 @@ void init_ctx(Ctx &c, const char *name, const oit_read_desc *desc, oit_triangle_
 //
 // assimp 5.2 crashes on some malformed files (the fuzz targets find SEGVs
 // inside libassimp within seconds, in its FBX, 3MF and IFC importers), and
-// no check of ours can run before its parser. So the import runs in a
-// child process: the child reads, walks and emits as above, its sink
-// writing each chunk to a pipe, then a trailer with the status, the info
-// and the error; the parent hands the chunks to the caller's sink as they
-// come. A child that dies is a format error naming its signal, never a
-// crash of the caller. Messages (the skipped-primitives note) go to the
-// shared stderr.
+// no check of ours can run before its parser: the import runs in a child
+// process (read_isolated.h), the context's sink, info and error the
+// child's for the read.
 
-constexpr uint64_t kTrailer = ~uint64_t(0);
+struct Job {
+    Ctx *c;
+    oit_status (*fn)(Ctx &, const void *);
+    const void *arg;
+};
 
-bool write_all(int fd, const void *p, size_t n)
+oit_status run_job(void *a, oit_triangle_sink sink, void *sink_user, oit_mesh_info *info,
+                   oit_error *err)
 {
-    const char *b = static_cast<const char *>(p);
-    while (n) {
-        ssize_t w = write(fd, b, n);
-        if (w < 0 && errno == EINTR)
-            continue;
-        if (w <= 0)
-            return false;
-        b += w, n -= size_t(w);
-    }
-    return true;
-}
-
-// 1 read, 0 end of stream before the first byte, -1 short or failed.
-int read_all(int fd, void *p, size_t n)
-{
-    char *b = static_cast<char *>(p);
-    size_t got = 0;
-    while (got < n) {
-        ssize_t r = read(fd, b + got, n - got);
-        if (r < 0 && errno == EINTR)
-            continue;
-        if (r <= 0)
-            return got == 0 && r == 0 ? 0 : -1;
-        got += size_t(r);
-    }
-    return 1;
-}
-
-oit_status pipe_sink(void *user, const oit_triangle *tris, size_t count, oit_error *err)
-{
-    int fd = *static_cast<int *>(user);
-    uint64_t n = count;
-    if (write_all(fd, &n, sizeof n) && write_all(fd, tris, count * sizeof *tris))
-        return OIT_OK;
-    return oit_error_set(err, OIT_ERR_IO, "the assimp reader's pipe closed");
-}
-
-[[noreturn]] void child(Ctx &c, int fd, oit_status (*fn)(Ctx &, const void *), const void *arg)
-{
-    // assimp's crash must end this process quietly, not run a sanitizer's
-    // or a fuzzer's report and hooks that belong to the parent
-    for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT})
-        signal(sig, SIG_DFL);
-    oit_error err{};
-    c.sink = pipe_sink; // c.info is the child's copy of the caller's, set up
-    c.user = &fd;
-    c.err = &err;
-    oit_status s = fn(c, arg);
-    oit_mesh_info info = *c.info;
-    uint64_t mark = kTrailer;
-    bool ok = write_all(fd, &mark, sizeof mark) && write_all(fd, &s, sizeof s) &&
-              write_all(fd, &info, sizeof info) && write_all(fd, &err, sizeof err);
-    _exit(ok ? 0 : 1);
-}
-
-oit_status reap(Ctx &c, pid_t pid, bool kill_it, oit_status s)
-{
-    if (kill_it)
-        kill(pid, SIGKILL);
-    int ws = 0;
-    while (waitpid(pid, &ws, 0) < 0 && errno == EINTR) {
-    }
-    if (s == OIT_OK && WIFSIGNALED(ws))
-        return fail(c, OIT_ERR_FORMAT, "assimp crashed reading it (signal %d, %s)", WTERMSIG(ws),
-                    strsignal(WTERMSIG(ws)));
-    return s;
-}
-
-oit_status parent(Ctx &c, int fd, pid_t pid)
-{
-    std::vector<oit_triangle> buf;
-    for (;;) {
-        uint64_t n = 0;
-        int r = read_all(fd, &n, sizeof n);
-        if (r <= 0) // the child died before its trailer
-            return reap(c, pid, false, OIT_OK) == OIT_OK
-                       ? fail(c, OIT_ERR_FORMAT, "the assimp reader ended without a result")
-                       : OIT_ERR_FORMAT;
-        if (n == kTrailer) {
-            oit_status s;
-            oit_error err;
-            if (read_all(fd, &s, sizeof s) != 1 || read_all(fd, c.info, sizeof *c.info) != 1 ||
-                read_all(fd, &err, sizeof err) != 1)
-                return reap(c, pid, true, fail(c, OIT_ERR_FORMAT, "the assimp reader's result is cut short"));
-            err.message[sizeof err.message - 1] = '\0';
-            if (s != OIT_OK && c.err)
-                *c.err = err;
-            return reap(c, pid, false, s);
-        }
-        if (n == 0 || n > c.chunk_cap)
-            return reap(c, pid, true, fail(c, OIT_ERR_FORMAT, "the assimp reader sent a chunk of %llu",
-                                           (unsigned long long)n));
-        buf.resize(size_t(n));
-        if (read_all(fd, buf.data(), buf.size() * sizeof buf[0]) != 1)
-            return reap(c, pid, false, OIT_OK) == OIT_OK
-                       ? fail(c, OIT_ERR_FORMAT, "the assimp reader ended inside a chunk")
-                       : OIT_ERR_FORMAT;
-        oit_status s = c.sink(c.user, buf.data(), buf.size(), c.err);
-        if (s != OIT_OK)
-            return reap(c, pid, true, s);
-    }
+    Job &j = *static_cast<Job *>(a);
+    j.c->sink = sink;
+    j.c->user = sink_user;
+    j.c->info = info;
+    j.c->err = err;
+    return j.fn(*j.c, j.arg);
 }
 
 oit_status isolated(Ctx &c, oit_status (*fn)(Ctx &, const void *), const void *arg)
 {
-    int fds[2];
-    if (pipe(fds) != 0)
-        return fail(c, OIT_ERR_IO, "cannot make a pipe for the assimp reader: %s", std::strerror(errno));
-    std::fflush(nullptr); // nothing buffered is written twice
-    pid_t pid = fork();
-    if (pid < 0) {
-        close(fds[0]);
-        close(fds[1]);
-        return fail(c, OIT_ERR_IO, "cannot start the assimp reader: %s", std::strerror(errno));
-    }
-    if (pid == 0) {
-        close(fds[0]);
-        child(c, fds[1], fn, arg);
-    }
-    close(fds[1]);
-    // a write to a closed pipe in the child must not kill the parent (it
-    // cannot: only the child writes), and the parent's SIGPIPE is untouched
-    oit_status s = parent(c, fds[0], pid);
-    close(fds[0]);
-    return s;
+    Job j{&c, fn, arg};
+    return oit_read_isolated(c.name, "assimp", c.chunk_cap, run_job, &j, c.sink, c.user, c.info,
+                             c.err);
 }
 
 } // namespace

@@ -5,22 +5,41 @@
 #include <dlfcn.h>
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 /* An object of this library for dladdr to place. A static one: an exported
  * function's address could be an executable's definition of it (a program
  * that links both liboit and the readers). */
 static const char here;
 
-/* The plugin's path: the folder of the file that holds this code, or the
- * bare name (dlopen then searches the library path) when that file's name
- * has no folder. 0 when the path does not fit in cap bytes. */
+/* The plugin's path: beside the file that holds this code (liboit.so, or a
+ * plugin-loading build of our libraries in the build tree or an installed
+ * tree), else, when nothing of that name is there, in the lib folder beside
+ * that file's folder (bin/oitprep -> lib/liboit-occt.so: the tools' layout,
+ * built and installed alike). The bare name (dlopen then searches the
+ * library path) when that file's name has no folder. 0 when the path does
+ * not fit in cap bytes. */
 static int plugin_path(const char *file, char *buf, size_t cap)
 {
     Dl_info at;
     const char *lib = dladdr(&here, &at) && at.dli_fname ? at.dli_fname : "";
     const char *slash = strrchr(lib, '/');
-    int n = slash ? snprintf(buf, cap, "%.*s/%s", (int)(slash - lib), lib, file)
-                  : snprintf(buf, cap, "%s", file);
+    if (!slash) {
+        int n = snprintf(buf, cap, "%s", file);
+        return n > 0 && (size_t)n < cap;
+    }
+    int dir = (int)(slash - lib);
+    int n = snprintf(buf, cap, "%.*s/%s", dir, lib, file);
+    if (n <= 0 || (size_t)n >= cap)
+        return 0;
+    if (access(buf, F_OK) == 0)
+        return 1;
+    n = snprintf(buf, cap, "%.*s/../lib/%s", dir, lib, file);
+    if (n <= 0 || (size_t)n >= cap)
+        return 0;
+    if (access(buf, F_OK) == 0)
+        return 1;
+    n = snprintf(buf, cap, "%.*s/%s", dir, lib, file); /* dlerror names the first */
     return n > 0 && (size_t)n < cap;
 }
 

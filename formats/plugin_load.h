@@ -1,7 +1,8 @@
-/* The C++ readers' plugins as liboit loads them (gltf_plugin.c,
+/* The C++ readers' plugins as liboit and the tools load them (gltf_plugin.c,
  * assimp_plugin.c, step_plugin.c): a plugin is looked up beside the file
- * that holds this code (liboit.so, in the build tree and installed alike),
- * so one liboit always loads its own plugins whatever the library path. */
+ * that holds this code (liboit.so), else in ../lib from it (a tool in bin/),
+ * in the build tree and installed alike, so one liboit or tool always loads
+ * its own plugins whatever the library path. */
 #ifndef OIT_FORMATS_PLUGIN_LOAD_H
 #define OIT_FORMATS_PLUGIN_LOAD_H
 

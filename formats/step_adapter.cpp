@@ -54,6 +54,7 @@
 #include <string>
 #include <vector>
 
+#include "formats/read_isolated.h"
 #include "formats/step_internal.h"
 
 namespace {
@@ -408,6 +409,45 @@ oit_status make_ctx(Ctx &c, const char *name, oit_occt_format format, const oit_
     return OIT_OK;
 }
 
+// Open CASCADE 7.6 crashes on some malformed STEP files (fuzz_step finds a
+// null dereference in StepToTopoDS_TranslateVertex within seconds): the
+// translation runs in a child process (read_isolated.h), the context's
+// sink, info and error the child's for the read.
+struct Job {
+    Ctx *c;
+    oit_occt_format format;
+    const char *path;            // a file, or
+    const unsigned char *bytes;  // STEP text in memory
+    size_t size;
+};
+
+oit_status run_job(void *a, oit_triangle_sink sink, void *sink_user, oit_mesh_info *info,
+                   oit_error *err)
+{
+    Job &j = *static_cast<Job *>(a);
+    Ctx &c = *j.c;
+    c.sink = sink;
+    c.user = sink_user;
+    c.info = info;
+    c.err = err;
+    oit_status s = guarded(c, [&] {
+        if (j.path)
+            return read_doc(c, j.format, j.path, nullptr);
+        oit_status r = charge(c, j.size, "the bytes");
+        if (r != OIT_OK)
+            return r;
+        std::istringstream in(std::string(reinterpret_cast<const char *>(j.bytes), j.size));
+        return read_doc(c, OIT_OCCT_STEP, nullptr, &in);
+    });
+    return s == OIT_OK ? oit_rd_require_triangles(c.name, c.info, c.err) : s;
+}
+
+oit_status isolated(Ctx &c, Job &j)
+{
+    return oit_read_isolated(c.name, "Open CASCADE", c.chunk_cap, run_job, &j, c.sink, c.user,
+                             c.info, c.err);
+}
+
 } // namespace
 
 extern "C" oit_status oit_occt_read_file(const char *path, oit_occt_format format,
@@ -420,13 +460,12 @@ extern "C" oit_status oit_occt_read_file(const char *path, oit_occt_format forma
         return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_read_%s: no path given",
                              format == OIT_OCCT_IGES ? "iges" : "step");
     oit_status s = make_ctx(c, path, format, desc, sink, user, info ? info : &local, err);
+    if (s == OIT_OK)
+        s = guarded(c, [&] { return check_file(c, path); });
     if (s != OIT_OK)
         return s;
-    s = guarded(c, [&] {
-        oit_status r = check_file(c, path);
-        return r == OIT_OK ? read_doc(c, format, path, nullptr) : r;
-    });
-    return s == OIT_OK ? oit_rd_require_triangles(c.name, c.info, c.err) : s;
+    Job j{&c, format, path, nullptr, 0};
+    return isolated(c, j);
 }
 
 extern "C" oit_status oit_read_step_memory(const unsigned char *bytes, size_t size,
@@ -439,12 +478,6 @@ extern "C" oit_status oit_read_step_memory(const unsigned char *bytes, size_t si
     oit_status s = make_ctx(c, name, OIT_OCCT_STEP, desc, sink, user, info ? info : &local, err);
     if (s != OIT_OK)
         return s;
-    s = guarded(c, [&] {
-        oit_status r = charge(c, size, "the bytes");
-        if (r != OIT_OK)
-            return r;
-        std::istringstream in(std::string(reinterpret_cast<const char *>(bytes), size));
-        return read_doc(c, OIT_OCCT_STEP, nullptr, &in);
-    });
-    return s == OIT_OK ? oit_rd_require_triangles(c.name, c.info, c.err) : s;
+    Job j{&c, OIT_OCCT_STEP, nullptr, bytes, size};
+    return isolated(c, j);
 }
