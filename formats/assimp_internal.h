@@ -4,7 +4,7 @@
  *
  * Built as the glTF reader is (gltf_internal.h): oit_read_assimp is
  * implemented over oit_assimp_read_file by
- * - assimp_link.c (the tools, oit_formats_linked): the adapter is linked in;
+ * - assimp_link.c (tests and fuzzers, oit_formats_linked): the adapter is linked in;
  * - assimp_plugin.c (liboit, oit_formats_loaded): the adapter is the plugin
  *   liboit-assimp.so beside liboit.so, loaded with dlopen for the read and
  *   closed after it, so that liboit links neither C++ nor assimp. The plugin

@@ -3,7 +3,7 @@
  * oit_gltf_read_file is oit_read_gltf's work. Two files implement the public
  * oit_read_gltf (mesh.h) over it, and formats/CMakeLists.txt builds the
  * readers with one or the other:
- * - gltf_link.c (the tools, oit_formats_linked): the adapter is linked in;
+ * - gltf_link.c (tests and fuzzers, oit_formats_linked): the adapter is linked in;
  * - gltf_plugin.c (liboit, oit_formats_loaded): the adapter is the plugin
  *   liboit-gltf.so beside liboit.so, loaded with dlopen for each glTF read
  *   and closed after it, so that liboit links neither C++, tinygltf nor

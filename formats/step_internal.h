@@ -3,7 +3,7 @@
  *
  * As for glTF (gltf_internal.h), two files implement the public
  * oit_read_step and oit_read_iges (mesh.h) over oit_occt_read_file:
- * - step_link.c (the tools, oit_formats_linked): the adapter is linked in;
+ * - step_link.c (tests and fuzzers, oit_formats_linked): the adapter is linked in;
  * - step_plugin.c (liboit, oit_formats_loaded): the adapter is the plugin
  *   liboit-occt.so beside liboit.so, loaded with dlopen for each read and
  *   closed after it, so that liboit links neither C++ nor Open CASCADE. The
