@@ -12,8 +12,13 @@
 #   the demo has cutting planes, which save triangles over --slabs
 #   separating, and verifies alike in one Embree scene or many; a 100K plant streams unsplit though a few pixels pass 32
 #   layers.
+# PART (the first argument) runs a third of it, for ctest to run the three
+# side by side: plant (a-e, g, h), demo (f, f2) or p100k (i); all: every one.
 set -u
 . "${OIT_TEST_LIB:-$(dirname "$0")/../lib.sh}"
+PART=${1:-all}
+case "$PART" in all|plant|demo|p100k) ;; *) die "usage: test_prep.sh [all|plant|demo|p100k]" ;; esac
+want() { [ "$PART" = all ] || [ "$PART" = "$1" ]; }
 P="$OIT_BIN/oitprep"
 # Wang & Xie's scheme, whose guarantees (layer bounds, slabs, wide parts) this
 # file checks; the default fast scheme has tests/preprocess/test_fast_scheme.sh, and
@@ -22,7 +27,7 @@ GUAR="--scheme guaranteed"
 G="$OIT_BIN/oitgen"
 S="$OIT_BIN/oitstream"
 need_tools "$P" "$G" "$S"
-scratch prep
+scratch "prep_$PART"
 
 # verify_clean NAME FILE: oitprep verify FILE exits 0 and reports no layer
 # and no order violation (its report left in $T/out.txt).
@@ -46,6 +51,7 @@ stream_vs_dfb() {
     compare "$name: stream vs dfb" "$T/vs.png" "$T/vd.png" 0.1
 }
 
+if want plant; then
 # (a) conversion, its figures, info and verify
 M="$T/plant.ply"
 "$G" plant --triangles 10000 -o "$M" >/dev/null || die "oitgen plant"
@@ -132,6 +138,9 @@ expect_rc 1 "$P" "$T/missing.ply" -o "$T/x.oitp"
 grep -q "missing.ply" "$T/err.txt" || fail "missing input: stderr does not name the file"
 expect_rc 2 "$P" "$M" -o "$T/x.oitp" --max-layers 7
 
+fi
+
+if want demo; then
 # (f) the default K (8): `oitgen demo`, and a saddle of 16 sectors around one
 # vertex, alternately up and down. No box around that vertex holds fewer
 # than its 8 two-plane pieces (16 layers), so it must become a wide part:
@@ -203,6 +212,9 @@ grep -q "want all, separating or none" "$T/err.txt" || fail "--slabs some: $(cat
     [ "$(json_num max_layer_bound <"$T/saddle.off.json")" -gt 8 ] ||
     fail "saddle: no wide part (the star was split or refused)"
 
+fi
+
+if want plant; then
 # (g) the management schemes of Wang & Xie's Table 1 on the plant: each is one
 # kd-tree over the model (--grid 1: one top cell an axis, two where the
 # bounds straddle a power-of-two coordinate); kd-facets keeps no convex
@@ -262,6 +274,9 @@ for nb in 8; do
     done
 done
 
+fi
+
+if want p100k; then
 # (i) the counted capture splits a batch for depth only when long lists hold
 # much of it (capture_counted.h): a 100K plant seen whole has a few pixels
 # past 32 layers among thousands of shallow ones, so its pack is one batch
@@ -276,4 +291,6 @@ echo "plant 100K: $ml layers at most, $pp packs, $pb batches"
 [ "$ml" -gt 32 ] && [ "$pb" -eq "$pp" ] ||
     fail "plant 100K: $ml layers, $pb batches for $pp packs; want > 32 layers and no split"
 
-finish oitprep
+fi
+
+finish "oitprep ($PART)"
