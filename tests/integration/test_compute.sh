@@ -20,10 +20,16 @@
 # termination (within epsilon of exact, fewer fragments), and oitbench
 # --methods compute,dfb. Small frames: the sweeps of 600 layers are slow on
 # llvmpipe.
+# PART (the first argument) runs half of it, for ctest to run both side by
+# side: hard (the hard cases) or models (the demo, the bunny, the shadings,
+# a section plane, early termination, oitbench); all: both.
 set -u
 . "${OIT_TEST_LIB:-$(dirname "$0")/../lib.sh}"
+PART=${1:-all}
+case "$PART" in all|hard|models) ;; *) die "usage: test_compute.sh [all|hard|models]" ;; esac
+want() { [ "$PART" = all ] || [ "$PART" = "$1" ]; }
 need_every_tool
-scratch compute_capture
+scratch "compute_capture_$PART"
 INDENT="  "
 
 # against NAME IMG DFB REF MASK: IMG against REF within 0.01% and against
@@ -70,6 +76,7 @@ mesh() {
     prep_or_die "$T/$1.ply" "$T/$1.oitp" --max-piece-triangles 200
 }
 
+if want hard; then
 for c in coplanar decal degenerate thin mixed stack dense; do mesh $c; done
 A="--azimuth 30 --elevation 35"
 # shellcheck disable=SC2086 # A is two options
@@ -88,6 +95,9 @@ check stack "$T/stack.ply" 24x24 $A
 check stack_inside "$T/stack.ply" 24x24 --view 0.05,0.02,0.0015,0.05,0.02,1,0,1,0,70,0.05,5
 check dense_inside "$T/dense.ply" 48x48 --view 0.01,0.02,0.03,1,0.7,0.4,0,0,1,80,0.1,10
 
+fi
+
+if want models; then
 "$G" demo -o "$T/demo.ply" >/dev/null || die "oitgen demo"
 prep_or_die "$T/demo.ply" "$T/demo.oitp" --max-piece-triangles 1000
 # shellcheck disable=SC2086
@@ -132,4 +142,6 @@ at_most "$ma" 0.0540 || fail "epsilon 0.05: $ma from the exact image"
 grep -q '^compute' "$T/bench/"*.csv 2>/dev/null || grep -q 'compute' "$T/bench/"*.csv ||
     fail "oitbench wrote no compute row"
 
-finish --clean compute_capture
+fi
+
+finish --clean "compute_capture ($PART)"
