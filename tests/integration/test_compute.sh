@@ -76,9 +76,9 @@ mesh() {
     prep_or_die "$T/$1.ply" "$T/$1.oitp" --max-piece-triangles 200
 }
 
+A="--azimuth 30 --elevation 35"
 if want hard; then
 for c in coplanar decal degenerate thin mixed stack dense; do mesh $c; done
-A="--azimuth 30 --elevation 35"
 # shellcheck disable=SC2086 # A is two options
 check coplanar "$T/coplanar.ply" 64x64 $A
 # shellcheck disable=SC2086
