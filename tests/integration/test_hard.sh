@@ -65,58 +65,128 @@ far) # positions rebased: the part file holds small floats, the origin the 1e7
         fail "origin is not (1e7, 1e7, 1e7): $(grep -o '"origin": [^]]*]' "$T/info.json")" ;;
 esac
 
-# view NAME OPTS...: every exact method from one camera.
-view() {
-    name=$1; shift
-    v="$T/$name"
-    "$S" "$T/in.oitp" --method stream --size "$SIZE" "$@" --out "$v-stream.pfm" \
-        --stats "$v-stream.json" --quiet || { fail "$name: stream"; return; }
-    cam=$(json_str view "$v-stream.json")
-    # The default (auto) takes first-K packs, or counted ones after a frame
-    # that sent many pixels through first-K's second pass. Then the counted
-    # capture (no layer limit) itself, and with a fragment budget small
-    # enough (16K) that most packs are split before they are stored; then
-    # the K-slot capture (--pack disjoint).
-    "$S" "$T/in.oitp" --method stream --pack counted --size "$SIZE" --view "$cam" \
-        --out "$v-cnt.pfm" --stats "$v-cnt.json" --quiet || fail "$name: stream --pack counted"
-    "$S" "$T/in.oitp" --method stream --pack counted --slot-budget 256K --size "$SIZE" \
-        --view "$cam" --out "$v-counted.pfm" --stats "$v-counted.json" --quiet ||
-        fail "$name: stream, 16K-fragment budget"
-    "$S" "$T/in.oitp" --method stream --pack disjoint --size "$SIZE" --view "$cam" \
-        --out "$v-slots.pfm" --stats "$v-slots.json" --quiet || fail "$name: stream --pack disjoint"
-    "$S" "$T/in.oitp" --method dfb --size "$SIZE" --view "$cam" --out "$v-dfb.pfm" \
-        --stats "$v-dfb.json" --quiet || fail "$name: dfb"
-    # The other exact baselines. A list or array lives in one storage buffer:
-    # deeper than the driver binds it cannot run (reported, as oitbench
-    # does), which is not a wrong image.
-    ran=""
-    for m in pll ppll4 b3d; do
-        if "$S" "$T/in.oitp" --method $m --size "$SIZE" --view "$cam" --out "$v-$m.pfm" \
-            --quiet 2>"$T/$m.err"; then
-            ran="$ran $m"
-        elif grep -q "more than this driver binds\|more than one storage buffer" "$T/$m.err"; then
-            echo "    $m: cannot run here: $(cat "$T/$m.err")"
-        else
-            fail "$name: $m: $(cat "$T/$m.err")"
-        fi
+# The views: NAME and the options that set its camera, one a line; each is
+# resolved once into the camera oitstream draws (a --view line, from an 8x8
+# DFB frame's stats), and every method then draws all views in one run
+# (--walk), as a viewer draws frames: a run a method, not a run a view.
+VIEWS="az30|--azimuth 30 --elevation 35
+az210|--azimuth 210 --elevation 35
+below|--azimuth 120 --elevation -25"
+case "$CASE" in
+coplanar|touching) # orthographic (--ortho, then :ortho=H in the view): the tie
+       # rule along parallel rays from the near plane, every method and the
+       # reference with per-pixel ray origins; az30 off-centre (a window
+       # shifted left and up), with an infinite far plane: the ray map's
+       # general form (view.h)
+    VIEWS="$VIEWS
+ortho30|--azimuth 30 --elevation 35 --ortho fit
+offaxis|--view @az30:window=-0.5,0.3,-0.25,0.45:far=inf" ;;
+stack) # between layers 300 and 301, looking up the stack and along it; the
+       # near plane (0.05) cuts the next 15 layers away
+    VIEWS="$VIEWS
+inside_up|--view 0.05,0.02,0.0015,0.05,0.02,1,0,1,0,70,0.05,5
+inside_along|--view -0.3,0.1,0.0015,1,0.2,0.3,0,0,1,90,0.05,5" ;;
+dense) # in the lattice's centre and near a corner, looking across it; the
+       # near plane (0.1; boxes are 0.09 across) cuts the boxes nearest
+    VIEWS="$VIEWS
+inside_centre|--view 0.01,0.02,0.03,1,0.7,0.4,0,0,1,80,0.1,10
+inside_corner|--view -0.9,-0.85,-0.8,1,1,1,0,0,1,60,0.1,10" ;;
+esac
+echo "$VIEWS" >"$T/views.in"
+: >"$T/views.txt"
+while IFS='|' read -r name opts; do
+    opts=$(echo "$opts" | sed "s|@az30|$(head -n 1 "$T/views.txt")|")
+    # shellcheck disable=SC2086
+    "$S" "$T/in.oitp" --method dfb --size 8x8 $opts --out "$T/resolve.png" \
+        --stats "$T/resolve.json" --quiet || { fail "$name: resolving the view"; continue; }
+    json_str view "$T/resolve.json" >>"$T/views.txt"
+done <"$T/views.in"
+NAMES=$(echo "$VIEWS" | cut -d'|' -f1)
+[ "$(wc -l <"$T/views.txt")" -eq "$(echo "$NAMES" | wc -l)" ] || die "not every view resolved"
+
+# frame_stats FILE N: FILE's stats with only its frame N (from 0) and no
+# summary, so json_num reads that frame's figures and the run's own.
+frame_stats() {
+    awk -v n="$2" '/^  "summary"/ {next} /^    \{"method"/ {if (k++ != n) next} {print}' "$1"
+}
+
+# draw TAG INPUT OPTIONS...: every view in one run of oitstream on INPUT
+# with OPTIONS, then $T/NAME-TAG.pfm for each view, and NAME-TAG.json (its
+# frame's stats) where TAG is in DRAW_STATS. 1 when the run failed (its
+# stderr in $T/TAG.err).
+draw() {
+    tag=$1 input=$2
+    shift 2
+    stats=""
+    case "$DRAW_STATS" in *" $tag "*) stats="--stats $T/all-$tag.json" ;; esac
+    # shellcheck disable=SC2086
+    "$S" "$input" --size "$SIZE" --walk "$T/views.txt" "$@" --out "$T/all-$tag.pfm" $stats \
+        --quiet 2>"$T/$tag.err" || return 1
+    i=0
+    for name in $NAMES; do
+        n=$(printf '%03d' $i)
+        mv "$T/all-${tag}_$n.pfm" "$T/$name-$tag.pfm" || return 1
+        [ -z "$stats" ] || frame_stats "$T/all-$tag.json" $i >"$T/$name-$tag.json"
+        i=$((i + 1))
     done
-    "$S" "$T/in.oitp" --method reference --size "$SIZE" --view "$cam" --out "$v-ref.pfm" \
-        --ambiguity "$v-mask.png" --quiet || fail "$name: reference"
-    "$S" "$T/in.ply" --method dfb --size "$SIZE" --view "$cam" --out "$v-mesh.pfm" --quiet ||
-        fail "$name: dfb on the mesh"
-    # Depth peeling draws the scene once per layer: first view only, on the
-    # source mesh (one draw a pass instead of one a part), and for 600
-    # layers on a smaller image beside DFB at that size.
-    if [ "$name" = az30 ]; then
-        dps=$SIZE
-        [ "$CASE" = stack ] && dps=48x48
-        "$S" "$T/in.ply" --method dp --size $dps --view "$cam" --out "$v-dp.pfm" --quiet ||
-            fail "$name: dp"
-        "$S" "$T/in.ply" --method ddp --size $dps --view "$cam" --out "$v-ddp.pfm" --quiet ||
-            fail "$name: ddp"
-        "$S" "$T/in.ply" --method dfb --size $dps --view "$cam" --out "$v-dpref.pfm" --quiet ||
-            fail "$name: dfb at $dps"
+}
+DRAW_STATS=" stream cnt counted slots dfb see "
+
+# masks TAG: the reference's ambiguity masks of the last draw TAG,
+# all-TAGmask_NNN.png, as $T/NAME-MASK.png (MASK: the second argument).
+masks() {
+    i=0
+    for name in $NAMES; do
+        mv "$T/all-$1mask_$(printf '%03d' $i).png" "$T/$name-$2.png" || return 1
+        i=$((i + 1))
+    done
+}
+
+# Every exact method, every view. The default stream (auto) takes first-K
+# packs, or counted ones after a frame that sent many pixels through
+# first-K's second pass. Then the counted capture (no layer limit) itself,
+# and with a fragment budget small enough (16K) that most packs are split
+# before they are stored; then the K-slot capture (--pack disjoint).
+draw stream "$T/in.oitp" --method stream || fail "stream: $(cat "$T/stream.err")"
+draw cnt "$T/in.oitp" --method stream --pack counted || fail "stream --pack counted: $(cat "$T/cnt.err")"
+draw counted "$T/in.oitp" --method stream --pack counted --slot-budget 256K ||
+    fail "stream, 16K-fragment budget: $(cat "$T/counted.err")"
+draw slots "$T/in.oitp" --method stream --pack disjoint || fail "stream --pack disjoint: $(cat "$T/slots.err")"
+draw dfb "$T/in.oitp" --method dfb || fail "dfb: $(cat "$T/dfb.err")"
+# The other exact baselines. A list or array lives in one storage buffer:
+# deeper than the driver binds it cannot run (reported, as oitbench does),
+# which is not a wrong image.
+ran=""
+for m in pll ppll4 b3d; do
+    if draw $m "$T/in.oitp" --method $m; then
+        ran="$ran $m"
+    elif grep -q "more than this driver binds\|more than one storage buffer" "$T/$m.err"; then
+        echo "    $m: cannot run here: $(cat "$T/$m.err")"
+    else
+        fail "$m: $(cat "$T/$m.err")"
     fi
+done
+draw ref "$T/in.oitp" --method reference --ambiguity "$T/all-refmask.png" && masks ref mask ||
+    fail "reference: $(cat "$T/ref.err")"
+draw mesh "$T/in.ply" --method dfb || fail "dfb on the mesh: $(cat "$T/mesh.err")"
+draw refmesh "$T/in.ply" --method reference --ambiguity "$T/all-refmeshmask.png" &&
+    masks refmesh meshmask || fail "reference on the mesh: $(cat "$T/refmesh.err")"
+# Depth peeling draws the scene once per layer: the first view only, on the
+# source mesh (one draw a pass instead of one a part), and for 600 layers
+# on a smaller image beside DFB at that size.
+cam=$(head -n 1 "$T/views.txt")
+dps=$SIZE
+[ "$CASE" = stack ] && dps=48x48
+for m in dp ddp; do
+    "$S" "$T/in.ply" --method $m --size $dps --view "$cam" --out "$T/az30-$m.pfm" --quiet ||
+        fail "az30: $m"
+done
+"$S" "$T/in.ply" --method dfb --size $dps --view "$cam" --out "$T/az30-dpref.pfm" --quiet ||
+    fail "az30: dfb at $dps"
+
+# view NAME: every check on one camera's images.
+view() {
+    name=$1 v="$T/$1"
     ovf=$(json_num overflow_pixels "$v-slots.json")
     echo "  view $name: layers $(json_num max_layers "$v-dfb.json"), packs $(json_num packs "$v-stream.json")," \
         "16K-fragment budget: batches $(json_num batches "$v-counted.json"), K slots: packs" \
@@ -133,8 +203,6 @@ view() {
     compare "stream, 16K-fragment budget, vs dfb" "$v-counted.pfm" "$v-dfb.pfm" 0.1
     compare "stream --pack disjoint vs dfb" "$v-slots.pfm" "$v-dfb.pfm" 0.1
     for m in $ran; do compare "$m vs dfb" "$v-$m.pfm" "$v-dfb.pfm" 0.1; done
-    "$S" "$T/in.ply" --method reference --size "$SIZE" --view "$cam" --out "$v-refmesh.pfm" \
-        --ambiguity "$v-meshmask.png" --quiet || fail "$name: reference on the mesh"
     if [ "$name" = az30 ]; then
         compare "dp vs dfb (mesh)" "$v-dp.pfm" "$v-dpref.pfm" 0.1
         if ! holds_ties; then
@@ -172,35 +240,14 @@ view() {
     fi
 }
 
-view az30 --azimuth 30 --elevation 35
-view az210 --azimuth 210 --elevation 35
-view below --azimuth 120 --elevation -25
-case "$CASE" in
-coplanar|touching) # orthographic (--ortho, then :ortho=H in the view): the tie
-       # rule along parallel rays from the near plane, every method and the
-       # reference with per-pixel ray origins
-    view ortho30 --azimuth 30 --elevation 35 --ortho fit
-    # az30 off-centre (a window shifted left and up), with an infinite far
-    # plane: the ray map's general form (view.h)
-    c=$(json_str view "$T/az30-stream.json")
-    view offaxis --view "$c:window=-0.5,0.3,-0.25,0.45:far=inf" ;;
-esac
-case "$CASE" in
-stack) # between layers 300 and 301, looking up the stack and along it; the
-       # near plane (0.05) cuts the next 15 layers away
-    view inside_up --view 0.05,0.02,0.0015,0.05,0.02,1,0,1,0,70,0.05,5
-    view inside_along --view -0.3,0.1,0.0015,1,0.2,0.3,0,0,1,90,0.05,5 ;;
-dense) # in the lattice's centre and near a corner, looking across it; the
-       # near plane (0.1; boxes are 0.09 across) cuts the boxes nearest
-    view inside_centre --view 0.01,0.02,0.03,1,0.7,0.4,0,0,1,80,0.1,10
-    view inside_corner --view -0.9,-0.85,-0.8,1,1,1,0,0,1,60,0.1,10 ;;
-esac
+for name in $NAMES; do view "$name"; done
 
 if [ "$CASE" = mixed ]; then
     # Opaque boxes (render/image/shade.h, "Opaque triangles"): every pack mode of
     # the stream stores exactly what DFB stores (a pack's pre-pass and the
     # packs before it cull what lies behind), and --see-through stores more.
-    for name in az30 az210 below; do
+    draw see "$T/in.oitp" --method stream --see-through || fail "mixed: --see-through"
+    for name in $NAMES; do
         v="$T/$name"
         [ "$(json_num opaque "$v-stream.json")" = 1 ] || fail "mixed: $name: opaque is not 1"
         d=$(json_num fragments "$v-dfb.json")
@@ -208,9 +255,6 @@ if [ "$CASE" = mixed ]; then
             f=$(json_num fragments "$v-$m.json")
             [ "$f" = "$d" ] || fail "mixed: $name: $m stores $f fragments, DFB $d"
         done
-        "$S" "$T/in.oitp" --method stream --see-through --size "$SIZE" \
-            --view "$(json_str view "$v-stream.json")" --stats "$v-see.json" --quiet ||
-            fail "mixed: $name: --see-through"
         echo "  mixed $name: fragments $d, --see-through $(json_num fragments "$v-see.json")"
         [ "$(json_num fragments "$v-see.json")" -gt "$d" ] ||
             fail "mixed: $name: nothing culled behind the opaque boxes"
