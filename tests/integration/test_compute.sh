@@ -20,13 +20,14 @@
 # termination (within epsilon of exact, fewer fragments), and oitbench
 # --methods compute,dfb. Small frames: the sweeps of 600 layers are slow on
 # llvmpipe.
-# PART (the first argument) runs half of it, for ctest to run both side by
-# side: hard (the hard cases) or models (the demo, the bunny, the shadings,
-# a section plane, early termination, oitbench); all: both.
+# PART (the first argument) runs a third of it, for ctest to run the three
+# side by side: hard (the hard cases), models (the demo and the bunny) or
+# options (on the demo: the shadings, a section plane, early termination,
+# oitbench); all: every one.
 set -u
 . "${OIT_TEST_LIB:-$(dirname "$0")/../lib.sh}"
 PART=${1:-all}
-case "$PART" in all|hard|models) ;; *) die "usage: test_compute.sh [all|hard|models]" ;; esac
+case "$PART" in all|hard|models|options) ;; *) die "usage: test_compute.sh [all|hard|models|options]" ;; esac
 want() { [ "$PART" = all ] || [ "$PART" = "$1" ]; }
 need_every_tool
 scratch "compute_capture_$PART"
@@ -97,9 +98,12 @@ check dense_inside "$T/dense.ply" 48x48 --view 0.01,0.02,0.03,1,0.7,0.4,0,0,1,80
 
 fi
 
-if want models; then
+if want models || want options; then
 "$G" demo -o "$T/demo.ply" >/dev/null || die "oitgen demo"
 prep_or_die "$T/demo.ply" "$T/demo.oitp" --max-piece-triangles 1000
+fi
+
+if want models; then
 # shellcheck disable=SC2086
 check demo "$T/demo.ply" 96x96 $A
 if have_mesh bunny00.off; then
@@ -107,6 +111,9 @@ if have_mesh bunny00.off; then
         --max-piece-triangles 1000 &&
         check bunny "$T/bunny.off" 96x96 --azimuth 60 --elevation 20
 fi
+fi
+
+if want options; then
 
 # Shadings and a section plane on the demo, in core and streamed.
 for opt in "--shading translucent" "--colour-space linear" "--clip 0.3,1,0.2,0"; do
