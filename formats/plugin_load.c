@@ -32,15 +32,14 @@ static int plugin_path(const char *file, char *buf, size_t cap)
     int n = snprintf(buf, cap, "%.*s/%s", dir, lib, file);
     if (n <= 0 || (size_t)n >= cap)
         return 0;
-    if (access(buf, F_OK) == 0)
-        return 1;
-    n = snprintf(buf, cap, "%.*s/../lib/%s", dir, lib, file);
-    if (n <= 0 || (size_t)n >= cap)
-        return 0;
-    if (access(buf, F_OK) == 0)
-        return 1;
-    n = snprintf(buf, cap, "%.*s/%s", dir, lib, file); /* dlerror names the first */
-    return n > 0 && (size_t)n < cap;
+    char up[4096];
+    int m = snprintf(up, sizeof up, "%.*s/../lib/%s", dir, lib, file);
+    /* beside it when there, else ../lib when there; else beside it, which
+     * dlerror then names */
+    if (access(buf, F_OK) != 0 && m > 0 && (size_t)m < cap && (size_t)m < sizeof up &&
+        access(up, F_OK) == 0)
+        memcpy(buf, up, (size_t)m + 1);
+    return 1;
 }
 
 oit_status oit_plugin_open(const oit_plugin_desc *d, const char *path, const char *what,

@@ -3,6 +3,7 @@
 #include "formats/read_isolated.h"
 
 #include <errno.h>
+#include <stdarg.h>
 #include <signal.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -77,9 +78,18 @@ typedef struct job {
     pid_t pid;
 } job;
 
-static oit_status fail(const job *j, oit_status s, const char *what)
+static oit_status fail(const job *j, oit_status s, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+static oit_status fail(const job *j, oit_status s, const char *fmt, ...)
 {
-    oit_error_set(j->err, s, "%s", what);
+    va_list ap;
+    va_start(ap, fmt);
+    oit_error_setv(j->err, s, fmt, ap);
+    va_end(ap);
     oit_error_prefix(j->err, j->name);
     return s;
 }
@@ -94,10 +104,8 @@ static oit_status reap(const job *j, int kill_it, oit_status s)
     while (waitpid(j->pid, &ws, 0) < 0 && errno == EINTR) {
     }
     if (s == OIT_OK && WIFSIGNALED(ws)) {
-        char what[160];
-        snprintf(what, sizeof what, "%s crashed reading it (signal %d, %s)", j->library,
-                 WTERMSIG(ws), strsignal(WTERMSIG(ws)));
-        return fail(j, OIT_ERR_FORMAT, what);
+        return fail(j, OIT_ERR_FORMAT, "%s crashed reading it (signal %d, %s)", j->library,
+                    WTERMSIG(ws), strsignal(WTERMSIG(ws)));
     }
     return s;
 }
@@ -106,7 +114,7 @@ static oit_status reap(const job *j, int kill_it, oit_status s)
 static oit_status cut_short(const job *j, const char *what)
 {
     oit_status s = reap(j, 0, OIT_OK);
-    return s == OIT_OK ? fail(j, OIT_ERR_FORMAT, what) : s;
+    return s == OIT_OK ? fail(j, OIT_ERR_FORMAT, "%s", what) : s;
 }
 
 static oit_status trailer(const job *j, int fd)
@@ -141,10 +149,8 @@ static oit_status parent(const job *j, int fd)
             break;
         }
         if (n == 0 || n > j->chunk_cap) {
-            char what[96];
-            snprintf(what, sizeof what, "the reader sent a chunk of %llu triangles",
-                     (unsigned long long)n);
-            s = reap(j, 1, fail(j, OIT_ERR_FORMAT, what));
+            s = reap(j, 1, fail(j, OIT_ERR_FORMAT, "the reader sent a chunk of %llu triangles",
+                                (unsigned long long)n));
             break;
         }
         if (n > cap) {
@@ -174,20 +180,17 @@ oit_status oit_read_isolated(const char *name, const char *library, size_t chunk
                              void *user, oit_mesh_info *info, oit_error *err)
 {
     job j = {name ? name : "(memory)", library, chunk_cap, sink, user, info, err, 0};
-    char what[160];
     int fds[2];
-    if (pipe(fds) != 0) {
-        snprintf(what, sizeof what, "cannot make a pipe for the %s reader: %s", library,
-                 strerror(errno));
-        return fail(&j, OIT_ERR_IO, what);
-    }
+    if (pipe(fds) != 0)
+        return fail(&j, OIT_ERR_IO, "cannot make a pipe for the %s reader: %s", library,
+                    strerror(errno));
     fflush(NULL); /* nothing buffered is written twice */
     j.pid = fork();
     if (j.pid < 0) {
-        snprintf(what, sizeof what, "cannot start the %s reader: %s", library, strerror(errno));
+        int e = errno;
         close(fds[0]);
         close(fds[1]);
-        return fail(&j, OIT_ERR_IO, what);
+        return fail(&j, OIT_ERR_IO, "cannot start the %s reader: %s", library, strerror(e));
     }
     if (j.pid == 0) {
         close(fds[0]);
