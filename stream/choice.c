@@ -24,6 +24,8 @@ void oit_choice_init(oit_choice *c, unsigned candidates, oit_path seed)
     c->path = seed;
     c->cur = -1;
     c->why = "seed";
+    for (int p = 0; p < OIT_PATHS; p++)
+        c->backoff[p] = OIT_CHOICE_BAR_FIRST;
 }
 
 /* FNV-1a over n bytes. */
@@ -98,8 +100,6 @@ static void view_reset(oit_choice_view *v, uint64_t key, oit_path start)
     memset(v, 0, sizeof *v);
     v->key = key;
     v->held = v->next = start;
-    for (int p = 0; p < OIT_PATHS; p++)
-        v->cost[p].backoff = OIT_CHOICE_BAR_FIRST;
 }
 
 /* The view of key, or a free or the least recently used one re-seeded. */
@@ -132,20 +132,21 @@ static oit_path cheapest(const oit_choice *c, const oit_choice_view *v)
     return best;
 }
 
-/* p lost a comparison: not probed for its bar, longer each time. */
-static void bar(oit_choice_view *v, oit_path p)
+/* p lost a comparison: not probed on any view for its bar, longer each
+ * time. */
+static void bar(oit_choice *c, oit_path p)
 {
-    oit_path_cost *k = &v->cost[p];
-    k->bar = k->backoff;
-    k->backoff = k->backoff * 2 > OIT_CHOICE_BAR_MOST ? OIT_CHOICE_BAR_MOST : k->backoff * 2;
+    c->bar[p] = c->backoff[p];
+    c->backoff[p] = c->backoff[p] * 2 > OIT_CHOICE_BAR_MOST ? OIT_CHOICE_BAR_MOST
+                                                           : c->backoff[p] * 2;
 }
 
 /* The held path measured slower than best: best is held from now on (the
  * old one barred unless its one figure was the start-up frame's). */
-static void give_way(oit_choice_view *v, oit_path best, const char *why)
+static void give_way(oit_choice *c, oit_choice_view *v, oit_path best, const char *why)
 {
     if (!v->cost[v->held].cold)
-        bar(v, v->held);
+        bar(c, v->held);
     v->held = v->next = best;
     v->why = why;
 }
@@ -161,7 +162,7 @@ oit_path oit_choice_begin(oit_choice *c, uint64_t key)
      * turned the comparison. */
     oit_path best = cheapest(c, v);
     if (!fresh && v->next == v->held && best != v->held)
-        give_way(v, best, "measured faster");
+        give_way(c, v, best, "measured faster");
     c->path = v->next;
     c->why = fresh ? (first ? "seed" : "new view") : v->why;
     return c->path;
@@ -173,10 +174,10 @@ static void judge_probe(oit_choice *c, oit_choice_view *v, oit_path p)
 {
     double cp = view_cost(c, v, p), ch = view_cost(c, v, v->held);
     if (ch >= 0.0 && cp < ch) {
-        give_way(v, p, "kept: measured faster");
+        give_way(c, v, p, "kept: measured faster");
         return;
     }
-    bar(v, p);
+    bar(c, p);
     v->next = v->held;
     v->why = "back: measured slower";
 }
@@ -194,8 +195,8 @@ void oit_choice_end(oit_choice *c, double wall_ms, oit_path suggest)
     c->wall_ms = wall_ms;
     k->frames++;
     for (int q = 0; q < OIT_PATHS; q++)
-        if (q != (int)p && v->cost[q].bar)
-            v->cost[q].bar--;
+        if (q != (int)p && c->bar[q])
+            c->bar[q]--;
     if (p != v->held) {
         judge_probe(c, v, p);
     } else {
@@ -203,8 +204,8 @@ void oit_choice_end(oit_choice *c, double wall_ms, oit_path suggest)
         v->why = "held";
         v->next = v->held;
         if (best != v->held)
-            give_way(v, best, "measured faster");
-        else if (candidate(c, suggest) && suggest != p && !v->cost[suggest].bar)
+            give_way(c, v, best, "measured faster");
+        else if (candidate(c, suggest) && suggest != p && !c->bar[suggest])
             v->next = suggest, v->why = "probe";
     }
     c->held = v->held;

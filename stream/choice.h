@@ -16,16 +16,20 @@
  *
  * The rule: a new view starts on the path the last view held (the first
  * view: the seed), with no figures. After each frame the caller says which
- * other path a fixed rule suggests (first-K's second-pass share; a counted
- * run's periodic probe), and that path is probed for one frame if this view
- * has not measured it, or its bar ran out. A probe is kept only if its
+ * other path a fixed rule suggests (first-K's second-pass share, or the
+ * share a counted frame's counts say first-K would send there; a long
+ * period's re-check), and that path is probed for one frame unless it is
+ * barred. A probe is kept only if its
  * measured cost is lower than the held path's; otherwise the view goes back
  * and the probed path is barred for a number of frames that doubles with
- * each failed probe (OIT_CHOICE_BAR_FIRST up to OIT_CHOICE_BAR_MOST). The
- * very first frame carries the process's start-up (programs built, parts
- * read and uploaded): a path measured only there that loses to a probe is
- * not barred, so it is measured again warm at the next suggestion. A held
- * path whose cost rises above another's measured one (late GPU figures, a
+ * each failed probe (OIT_CHOICE_BAR_FIRST up to OIT_CHOICE_BAR_MOST). Bars
+ * are the process's, not a view's: the views a session moves between are
+ * alike, and a path that lost on one would otherwise be probed again on
+ * every new view, a slow frame each. The very first frame carries the
+ * process's start-up (programs built, parts read and uploaded): a path
+ * measured only there that loses to a probe is not barred, so it is
+ * measured again warm at the next suggestion. A held path whose cost rises
+ * above another's measured one (late GPU figures, a
  * slower frame) gives way to it. Ties keep the held path. */
 #ifndef OIT_STREAM_CHOICE_H
 #define OIT_STREAM_CHOICE_H
@@ -56,8 +60,6 @@ typedef struct oit_path_cost {
     double gpu_ms;       /* their least frame time, each the larger of its
                             wall and GPU time (gpu_frames > 0) */
     int cold;            /* its only frame was the judge's first (start-up) */
-    uint32_t bar;        /* frames of the view before it may be probed again */
-    uint32_t backoff;    /* the next bar's length */
 } oit_path_cost;
 
 typedef struct oit_choice_view {
@@ -72,6 +74,8 @@ typedef struct oit_choice_view {
 typedef struct oit_choice {
     unsigned candidates; /* 1u << path for each path the capture can take */
     oit_path held;       /* the last view's: where a new view starts */
+    uint32_t bar[OIT_PATHS];     /* frames before the path may be probed again */
+    uint32_t backoff[OIT_PATHS]; /* the next bar's length */
     oit_choice_view views[OIT_CHOICE_VIEWS];
     uint64_t clock;
     int cur;     /* the view of the frame begun last; -1: none */

@@ -95,6 +95,7 @@ struct oit_streamer {
         int open;        /* drawn, not yet judged (a render_gpu frame) */
         double ms;       /* the streamer's own wall time of it */
         oit_path suggest; /* the fixed rule's next path */
+        uint32_t deep_counted; /* counted frames of deep views (adapt) */
     } frame;
     oit_stream_budget budget; /* the split (split_budget) */
     oit_streamer_desc desc;   /* as given (oit_streamer_resolved_desc) */
@@ -1069,12 +1070,15 @@ static void choice_stats(const oit_streamer *s, oit_stream_frame_stats *ss)
     ss->choice_why = s->judge.why;
 }
 
-/* The fixed rule's seed: first-K frames where more than 1 pixel in 50
- * took the second pass suggest counted packs (measured at 1024x1024: the
- * demo and the bunny, 10 layers at most, send under 1.3%; the engine and
- * the 1M plant, 26-64 layers, send 5-16% and were 20-30% faster counted);
- * counted frames suggest first-K (the judge's bar spaces the probes). The
- * judge keeps the suggested path only if it measures faster. */
+/* The fixed rule's seed: a frame where more than 1 pixel in 50 got more
+ * than K fragments in a pack (first-K's second pass took them; a counted
+ * frame's counts say it would have) suggests counted packs, one where
+ * fewer did suggests first-K (measured at 1024x1024: the demo and the
+ * bunny, 10 layers at most, send under 1.3%; the engine and the 1M plant,
+ * 26-64 layers, send 5-16% and were 20-30% faster counted). A counted
+ * frame of a deep view still suggests first-K every OIT_CHOICE_BAR_MOST-th
+ * frame, so that the rule never decides alone; the judge keeps a suggested
+ * path only if it measures faster. */
 static void adapt(oit_streamer *s, const oit_view *view, const oit_frame_stats *fs,
                   oit_stream_frame_stats *ss, double ms, int judged_now)
 {
@@ -1083,9 +1087,10 @@ static void adapt(oit_streamer *s, const oit_view *view, const oit_frame_stats *
     if (!s->adaptive)
         return;
     uint64_t pixels = (uint64_t)view->width * view->height;
-    oit_path suggest = !s->first_k                              ? OIT_PATH_FIRSTK
-                       : fs->second_pass_pixels * 50 > pixels ? OIT_PATH_COUNTED
-                                                                : OIT_PATHS;
+    int deep = fs->deep_pixels * 50 > pixels;
+    oit_path suggest = deep ? OIT_PATH_COUNTED : OIT_PATH_FIRSTK;
+    if (!s->first_k && deep && ++s->frame.deep_counted % OIT_CHOICE_BAR_MOST == 0)
+        suggest = OIT_PATH_FIRSTK;
     s->frame.ms = ms;
     s->frame.suggest = suggest;
     s->frame.open = 1;

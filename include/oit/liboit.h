@@ -577,9 +577,10 @@ typedef struct oit_draw_stats {
      * path taken, "first-k" or "counted"; choice_why why ("seed": the first
      * draw; "new view": the view changed, so the last view's path with no
      * figures; "held"; "probe": tried for one draw, as a fixed rule
-     * suggests (first-K sending more than 1 pixel in 50 through its second
-     * pass; counted draws trying first-K), kept only if it measures
-     * faster; "kept: measured faster", "back: measured slower", "measured
+     * suggests (deep_pixels more than 1 pixel in 50 suggests counted,
+     * fewer suggests first-K; a deep view's counted draws try first-K
+     * every 256th draw), kept only if it measures faster (a path that
+     * lost is not tried again on any view for 8, 16, ... 256 draws); "kept: measured faster", "back: measured slower", "measured
      * faster"); and each path's cost as measured on this view before the
      * draw, the least wall time of its draws (where both paths have GPU
      * figures: the least over its draws of each one's larger of wall and
@@ -594,6 +595,14 @@ typedef struct oit_draw_stats {
      * proved short (the figures are the last capture's, the image exact).
      * 0 for in-core scenes. */
     uint32_t host_waits, redraws;
+    /* A part file's draw with first-K or counted packs: the pixels that
+     * got more than capture_k fragments in one pack (first-K: more than
+     * its slots), summed over the packs. First-K's second pass took
+     * exactly these (second_pass_pixels); counted packs count them from
+     * their counts. OIT_RENDER_PACK_AUTO's rule suggests counted packs
+     * where more than 1 pixel in 50 did, first-K where fewer did. 0
+     * otherwise. */
+    uint64_t deep_pixels;
 } oit_draw_stats;
 
 /* Draws scene as seen through frame into frame->framebuffer (see Result

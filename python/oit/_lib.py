@@ -103,7 +103,8 @@ class DrawStats(ctypes.Structure):
                 ("choice", ctypes.c_char_p), ("choice_why", ctypes.c_char_p),
                 ("choice_first_k_ms", ctypes.c_double),
                 ("choice_counted_ms", ctypes.c_double),
-                ("host_waits", ctypes.c_uint32), ("redraws", ctypes.c_uint32)]
+                ("host_waits", ctypes.c_uint32), ("redraws", ctypes.c_uint32),
+                ("deep_pixels", ctypes.c_uint64)]
 
 
 # enum values of the headers

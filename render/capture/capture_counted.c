@@ -63,7 +63,10 @@ static oit_status count(oit_counted *k, const oit_counted_frame *f,
     glCopyNamedBufferSubData(f->counts, k->offsets, 0, 0, (GLsizeiptr)(pixels * 4));
     glClearNamedBufferSubData(k->offsets, GL_R32UI, (GLintptr)(pixels * 4), 4, GL_RED_INTEGER,
                               GL_UNSIGNED_INT, &zero);
-    return oit_scan_run(&k->scan, k->offsets, pixels + 1, res, f->waits, err);
+    k->scan.over = k->deep_over;
+    s = oit_scan_run(&k->scan, k->offsets, pixels + 1, res, f->waits, err);
+    k->deep_pixels += s == OIT_OK ? res->over : 0;
+    return s;
 }
 
 /* Stores the fragments of the rows of r whose offsets start at base (0: the
@@ -98,58 +101,47 @@ static oit_status store_and_resolve(oit_counted *k, const oit_counted_frame *f,
     return oit_gl_check("counted capture: batch", err);
 }
 
-/* Lists longer than OIT_COUNTED_MAX_SORTED are heap-sorted in memory,
- * several times slower a fragment than in registers, but splitting draws the
- * whole batch again (a wasted count pass, then both halves). That pays where
- * long lists hold much of the batch, a stack hundreds of layers deep, not
- * where a few pixels of a wide view pass 32 (the 1M-triangle plant at
- * 1024x1024: 3.4-3.7 s a frame unsplit against 6.7-6.9 s split). */
-static int mostly_deep(const oit_scan_result *res)
-{
-    return res->max > OIT_COUNTED_MAX_SORTED && (uint64_t)res->long_fragments * 4 >= res->total;
-}
-
-/* Forgets the counts of a batch about to be taken in pieces. */
-static void forget_counts(oit_counted *k, const oit_counted_frame *f)
-{
-    static const GLuint zero = 0;
-    glClearNamedBufferData(f->counts, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    k->splits++;
-}
-
-/* One mesh whose fragments over r outgrow one storage binding is stored and
- * composited in bands of rows that fit, from the one count: a pixel's
- * offsets follow the frame's rows, so a band's fragments are the difference
- * of the offsets at its first pixels, and pixels are independent. A row
- * that alone outgrows the binding is refused. */
+/* A batch whose fragments over r outgrow fit fragments is stored and
+ * composited in bands of rows, from the one count: a pixel's offsets
+ * follow the frame's rows, so a band's fragments are the difference of the
+ * offsets at its first pixels, and pixels are independent. Each band draws
+ * the batch again, scissored to its rows, so the bands together rasterize
+ * what one store pass would (splitting by meshes instead counted them
+ * again at every halving: 22 parts of a 300-layer stack took 43 count
+ * passes). A row that alone outgrows fit gets what it needs within one
+ * storage binding; one past that is refused. The row starts are read back
+ * at once (one wait). */
 static oit_status bands(oit_counted *k, const oit_counted_frame *f,
-                        const oit_gpu_mesh *const *meshes, const int r[4], oit_error *err)
+                        const oit_gpu_mesh *const *meshes, int n, const int r[4], uint64_t fit,
+                        oit_error *err)
 {
     int rows = r[3] - r[1];
-    uint32_t *at = malloc(((size_t)rows + 1) * 4);
-    if (!at)
-        return oit_error_set(err, OIT_ERR_NOMEM, "counted capture: no memory for %d rows", rows);
-    /* the offset at each row's first pixel; pixels outside r count 0 */
-    for (int i = 0; i <= rows; i++)
-        oit_host_read(f->waits, k->offsets, (uint64_t)(r[1] + i) * f->width * 4, 4, &at[i]);
-    uint64_t fit = f->bind / 16;
+    size_t span = (size_t)rows * (size_t)f->width + 1;
+    uint32_t *off = malloc(span * 4);
+    if (!off)
+        return oit_error_set(err, OIT_ERR_NOMEM, "counted capture: no memory for the offsets "
+                             "of %d rows", rows);
+    oit_host_read(f->waits, k->offsets, (uint64_t)r[1] * f->width * 4, span * 4, off);
+    uint64_t most = f->bind / 16;
     oit_status s = OIT_OK;
+#define AT(i) off[(size_t)(i) * (size_t)f->width]
     for (int y = 0; y < rows && s == OIT_OK;) {
         int e = y + 1;
-        while (e < rows && (uint64_t)at[e + 1] - at[y] <= fit)
+        while (e < rows && (uint64_t)AT(e + 1) - AT(y) <= fit)
             e++;
-        if ((uint64_t)at[e] - at[y] > fit) {
+        if ((uint64_t)AT(e) - AT(y) > most) {
             s = oit_error_set(err, OIT_ERR_NOMEM, "counted capture: row %d holds %u fragments, "
                               "more than one storage buffer binds (%llu bytes)", r[1] + y,
-                              at[e] - at[y], (unsigned long long)f->bind);
+                              AT(e) - AT(y), (unsigned long long)f->bind);
             break;
         }
         int b[4] = {r[0], r[1] + y, r[2], r[1] + e};
         k->splits += y > 0;
-        s = store_and_resolve(k, f, meshes, 1, b, at[y], at[e] - at[y], err);
+        s = store_and_resolve(k, f, meshes, n, b, AT(y), AT(e) - AT(y), err);
         y = e;
     }
-    free(at);
+#undef AT
+    free(off);
     return s;
 }
 
@@ -163,22 +155,15 @@ oit_status oit_counted_batch(oit_counted *k, const oit_counted_frame *f,
         return s;
     if (res.total == 0)
         return OIT_OK; /* nothing drawn here: the counts are still zero */
-    /* The budget is the batch's to keep where it can; one storage binding
-     * and 32-bit offsets are what the store cannot pass. */
-    int unbindable = res.total * 16 > f->bind || res.total > UINT32_MAX;
-    if (n > 1 && (unbindable || res.total * 16 > k->budget || mostly_deep(&res))) {
-        /* Over budget, or lists too long to sort in registers: forget the
-         * counts and take the two halves in turn. */
-        forget_counts(k, f);
-        s = oit_counted_batch(k, f, meshes, n / 2, r, err);
-        return s == OIT_OK ? oit_counted_batch(k, f, meshes + n / 2, n - n / 2, r, err) : s;
-    }
     if (res.total > UINT32_MAX)
         return oit_error_set(err, OIT_ERR_NOMEM, "counted capture: %llu fragments in one "
-                             "part, more than 32-bit offsets address",
+                             "batch, more than 32-bit offsets address",
                              (unsigned long long)res.total);
-    if (unbindable)
-        return bands(k, f, meshes, r, err);
+    /* The budget is the batch's store where it can keep to it; one storage
+     * binding is what the store cannot pass. */
+    uint64_t fit = k->budget / 16 < f->bind / 16 ? k->budget / 16 : f->bind / 16;
+    if (res.total > fit)
+        return bands(k, f, meshes, n, r, fit, err);
     return store_and_resolve(k, f, meshes, n, r, 0, res.total, err);
 }
 
@@ -226,7 +211,10 @@ static void counted_destroy(void *be)
 
 static oit_status counted_begin(oit_capture *c, oit_error *err)
 {
-    ((oit_counted *)c->be)->splits = 0;
+    oit_counted *k = c->be;
+    k->splits = 0;
+    k->deep_pixels = 0;
+    k->deep_over = (uint32_t)c->K;
     return OIT_OK;
 }
 
@@ -276,8 +264,10 @@ static uint64_t counted_bytes(const void *be)
 
 static void counted_stats(const oit_capture *c, oit_frame_stats *stats)
 {
+    const oit_counted *k = c->be;
     stats->capture = c->ops->name;
-    stats->batches += ((const oit_counted *)c->be)->splits;
+    stats->batches += k->splits;
+    stats->deep_pixels = k->deep_pixels;
 }
 
 OIT_CAPTURE_OPS(counted, OIT_CAPTURE_COUNTED, "counted", oit_counted, NULL, NULL);

@@ -91,6 +91,8 @@ static oit_status firstk_begin(oit_capture *c, oit_error *err)
 {
     firstk_backend *b = c->be;
     b->counted.splits = 0;
+    b->counted.deep_pixels = 0;
+    b->counted.deep_over = (uint32_t)c->K;
     b->k.second_pixels = 0;
     b->k.second_packs = b->k.second_draws = 0;
     /* pass 2 on the GPU while the store the host would split it by (the
@@ -190,6 +192,7 @@ static void firstk_stats(const oit_capture *c, oit_frame_stats *stats)
     stats->batches += b->counted.splits;
     stats->second_pass_pixels = b->k.second_pixels;
     stats->second_pass_packs = b->k.second_packs;
+    stats->deep_pixels = b->k.second_pixels + b->counted.deep_pixels;
     /* how its K-slot fills were made (the counted capture has none) */
     stats->capture_slots = b->off ? NULL : b->fill ? "stencil" : "array";
     stats->capture_slots_k = !b->off && b->fill ? (uint32_t)b->target.K : 0;

@@ -8,25 +8,25 @@
 #define BLOCK 1024u
 
 static const char scan_block_src[] =
-    "#define OIT_SCAN_LONG " OIT_GLSL_STR(OIT_GLSL_SEGMENT_LOCAL) "u\n"
     "layout(local_size_x = 256) in;\n"
     "layout(std430, binding = OIT_BIND_COUNTS) buffer Data { uint data[]; };\n"
     "layout(std430, binding = OIT_BIND_SUMS) writeonly buffer Sums { uint sums[]; };\n"
     "layout(std430, binding = OIT_BIND_TOTALS) buffer Totals {\n"
-    "    uint t_lo; uint t_hi; uint t_max; uint t_long;\n"
+    "    uint t_lo; uint t_hi; uint t_max; uint t_over;\n"
     "};\n"
     "layout(location = 13) uniform uint u_count;\n"
     "layout(location = 14) uniform int u_first_level;\n"
     "uniform uint u_group0;\n"
+    "uniform uint u_over;\n"
     "shared uint part[256];\n"
     "void main() {\n"
     "    uint lid = gl_LocalInvocationID.x, group = gl_WorkGroupID.x + u_group0;\n"
     "    uint base = group * 1024u + lid * 4u;\n"
-    "    uint v[4]; uint sum = 0u, mx = 0u, lng = 0u;\n"
+    "    uint v[4]; uint sum = 0u, mx = 0u, over = 0u;\n"
     "    for (uint i = 0u; i < 4u; i++) {\n"
     "        v[i] = base + i < u_count ? data[base + i] : 0u;\n"
     "        sum += v[i]; mx = max(mx, v[i]);\n"
-    "        if (v[i] > OIT_SCAN_LONG) lng += v[i];\n"
+    "        over += v[i] > u_over ? 1u : 0u;\n"
     "    }\n"
     "    part[lid] = sum;\n"
     "    barrier();\n"
@@ -43,7 +43,7 @@ static const char scan_block_src[] =
     "    }\n"
     "    if (u_first_level != 0) {\n"
     "        atomicMax(t_max, mx);\n"
-    "        if (lng != 0u) atomicAdd(t_long, lng);\n"
+    "        if (over != 0u) atomicAdd(t_over, over);\n"
     /* 64-bit total from 32-bit atomics: a wrap of the low word carries. */
     "        if (lid == 255u) {\n"
     "            uint old = atomicAdd(t_lo, part[255]);\n"
@@ -106,6 +106,7 @@ static void dispatch_block(oit_scan *s, GLuint data, GLuint sums, uint64_t n, in
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_TOTALS, s->totals);
     glProgramUniform1ui(s->block, OIT_LOC_COUNT, (GLuint)n);
     glProgramUniform1i(s->block, OIT_LOC_FIRST_LEVEL, first);
+    glProgramUniform1ui(s->block, glGetUniformLocation(s->block, "u_over"), s->over);
     oit_gl_dispatch_x(s->block, glGetUniformLocation(s->block, "u_group0"),
                       oit_gl_groups(n, BLOCK), s->max_groups);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -154,6 +155,6 @@ oit_status oit_scan_run(oit_scan *s, GLuint buf, uint64_t n, oit_scan_result *re
     oit_host_read(waits, s->totals, 0, sizeof t, t);
     res->total = (uint64_t)t[1] << 32 | t[0];
     res->max = t[2];
-    res->long_fragments = t[3];
+    res->over = t[3];
     return oit_gl_check("prefix sum", err);
 }

@@ -1,10 +1,10 @@
 /* Exclusive prefix sum of a GPU uint buffer in compute shaders: blocks of
  * 1024 elements scanned in shared memory, block sums scanned recursively,
  * then added back (work-efficient, O(n)). The first level also accumulates
- * the 64-bit total, the maximum element and the sum of the elements over
- * OIT_GLSL_SEGMENT_LOCAL, which callers read back to size their fragment store, fill
- * stats and (capture_counted.h) weigh how much of a batch would sort
- * outside registers. */
+ * the 64-bit total, the maximum element and the number of elements over a
+ * threshold, which callers read back to size their fragment store, fill
+ * stats and (capture_counted.h) tell how many pixels a first-K pack of the
+ * same parts would send through its second pass. */
 #ifndef OIT_RENDER_SCAN_GLSL_H
 #define OIT_RENDER_SCAN_GLSL_H
 
@@ -26,21 +26,23 @@ typedef struct oit_scan {
     /* Groups one dispatch takes (GL_MAX_COMPUTE_WORK_GROUP_COUNT[0], read
      * by oit_scan_init); more are dispatched in turn. Lower only to test. */
     GLuint max_groups;
+    /* Elements greater than this are counted in oit_scan_result.over
+     * (0, as oit_scan_init leaves it: the nonzero ones). */
+    uint32_t over;
 } oit_scan;
 
 typedef struct oit_scan_result {
     uint64_t total;
     uint32_t max;
-    /* Sum of the elements over OIT_GLSL_SEGMENT_LOCAL, the lists the
-     * per-pixel sort cannot keep in registers (32-bit: exact while total
-     * fits in 32 bits, which the counted capture requires). */
-    uint32_t long_fragments;
+    /* Elements greater than oit_scan.over (32-bit: exact for up to 2^32
+     * elements, more than one binding's pixels). */
+    uint32_t over;
 } oit_scan_result;
 
 /* pc: where its programs are built through (program_cache.h; NULL: compiled). */
 oit_status oit_scan_init(oit_scan *s, oit_program_cache *pc, oit_error *err);
 void oit_scan_release(oit_scan *s);
-/* Scans buf[0..n) in place (exclusive) and reads back total and maximum;
+/* Scans buf[0..n) in place (exclusive) and reads back total, maximum and over;
  * with res NULL reads nothing back, so that the host does not wait for
  * the GPU (the totals stay in s->totals); the read-back is a wait counted
  * on waits (host_wait.h; NULL: not counted). */

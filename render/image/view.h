@@ -134,6 +134,12 @@ typedef struct oit_frame_stats {
      * other method and capture. */
     uint64_t second_pass_pixels;
     uint32_t second_pass_packs;
+    /* The first-K and counted captures: pixels that got more than
+     * capture_k fragments in one batch (first-K: more than its pack's
+     * slots), summed over the batches. First-K's second pass took exactly
+     * these (second_pass_pixels); the counted capture counts them in its
+     * scan. 0 for every other method and capture. */
+    uint64_t deep_pixels;
     /* The reference with a saturation threshold (reference.h): fragments
      * behind pixels already saturated; 0 for every other method. */
     uint64_t fragments_saturated;

@@ -298,7 +298,11 @@ static void test_firstk(const firstk_case *fc)
         CHECK((sa.second_pass_packs > 0) == (want > 0), "%s: second-pass packs", fc->name);
         CHECK(draws >= (uint64_t)fc->min_draws, "%s: %llu draws, want >= %d", fc->name,
               (unsigned long long)draws, fc->min_draws);
-        CHECK(want > 0 || draws == (uint64_t)fc->nb * (fc->W ? 1 : 2),
+        /* without overflow, first-K draws a batch once; counted packs
+         * count it and store it, in bands of rows where its fragments
+         * outgrow the slot budget (the fallback's: 1 slot a pixel) */
+        CHECK(want > 0 || (fc->W ? draws == (uint64_t)fc->nb
+                                 : draws > (uint64_t)fc->nb * 2 + 2),
               "%s: %llu draws without overflow", fc->name, (unsigned long long)draws);
         check_waits(fc, &sa);
         test_firstk_no_wait(c, fc, &v, q, start, &d, &sd, want);

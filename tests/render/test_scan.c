@@ -6,7 +6,7 @@
  *     dispatched them at once);
  *   - random counts with the groups of one dispatch lowered to 3 and to 1,
  *     so that every level takes several dispatches: every prefix, the
- *     total, the maximum and the long lists' fragments as the CPU has them;
+ *     total, the maximum and the elements over 8 as the CPU has them;
  *   - the same with the driver's limit (one dispatch a level). */
 #include <stdio.h>
 #include <stdlib.h>
@@ -38,6 +38,7 @@ static void check_random(GLuint max_groups, uint64_t n)
     CHECK(oit_scan_init(&s, NULL, &err) == OIT_OK, "%s", err.message);
     if (max_groups)
         s.max_groups = max_groups;
+    s.over = 8; /* the deep elements: a seventh, of up to 63 */
     oit_scan_result res = {0};
     CHECK(oit_scan_run(&s, buf, n, &res, NULL, &err) == OIT_OK, "%s", err.message);
     glGetNamedBufferSubData(buf, 0, (GLsizeiptr)(n * 4), got);
@@ -47,19 +48,19 @@ static void check_random(GLuint max_groups, uint64_t n)
             first_bad = i;
         total += v[i];
         mx = v[i] > mx ? v[i] : mx;
-        lng += v[i] > OIT_GLSL_SEGMENT_LOCAL ? v[i] : 0;
+        lng += v[i] > s.over;
     }
-    printf("%llu elements, %u groups a dispatch: total %llu (%llu), max %u (%u), long %u (%u), "
+    printf("%llu elements, %u groups a dispatch: total %llu (%llu), max %u (%u), over %u (%u), "
            "%llu prefixes wrong\n",
            (unsigned long long)n, s.max_groups, (unsigned long long)res.total,
-           (unsigned long long)total, res.max, mx, res.long_fragments, lng,
+           (unsigned long long)total, res.max, mx, res.over, lng,
            (unsigned long long)bad);
     CHECK(bad == 0, "%llu prefixes wrong, the first at %llu: %u, want the sum before it",
           (unsigned long long)bad, (unsigned long long)first_bad,
           first_bad < n ? got[first_bad] : 0);
-    CHECK(res.total == total && res.max == mx && res.long_fragments == lng,
+    CHECK(res.total == total && res.max == mx && res.over == lng,
           "total %llu max %u long %u, want %llu %u %u", (unsigned long long)res.total, res.max,
-          res.long_fragments, (unsigned long long)total, mx, lng);
+          res.over, (unsigned long long)total, mx, lng);
     oit_scan_release(&s);
     glDeleteBuffers(1, &buf);
     free(v);

@@ -5,7 +5,8 @@
  * never kept and is barred for 8, then 16 frames; a probe measured faster
  * is kept; a tie keeps the held path; one noisy frame does not flip a
  * choice; a changed view starts from the last view's path with no figures
- * and a view seen again keeps its own; GPU figures count only where every
+ * and a view seen again keeps its own, while a path that lost on one view
+ * stays barred on the next; GPU figures count only where every
  * measured path has them, late and out of order, and unknown ones are
  * dropped, and a cost is one frame's own (the larger of its wall and GPU
  * time); the view key sees the camera, the size and the section planes.
@@ -139,7 +140,30 @@ static void test_cold_start(void)
           oit_path_name(p), c.why);
     oit_choice_end(&c, 200.0, CT);
     /* a path measured on a later frame is barred as usual: counted now */
-    CHECK(c.views[0].cost[CT].bar > 0, "counted, beaten warm, not barred");
+    CHECK(c.bar[CT] > 0, "counted, beaten warm, not barred");
+}
+
+/* A path that lost on one view is barred on the next as well: the views a
+ * session moves between are alike, and a probe on each new view would
+ * cost a slow frame each. */
+static void test_bar_crosses_views(void)
+{
+    oit_choice c;
+    oit_choice_init(&c, BOTH, FK);
+    const double ms[2] = {100.0, 250.0};
+    frame(&c, 1000, ms, NONE); /* the start-up frame, of another view */
+    frame(&c, 1, ms, CT);
+    CHECK(frame(&c, 1, ms, CT) == CT, "view 1 probes counted");
+    int probes = 0;
+    for (uint64_t v = 2; v < 2 + OIT_CHOICE_BAR_FIRST / 2; v++) { /* its 8 frames */
+        probes += frame(&c, v, ms, CT) == CT;
+        probes += frame(&c, v, ms, CT) == CT;
+    }
+    CHECK(probes == 0, "counted, slower on view 1, probed %d times on the views after it",
+          probes);
+    /* the bar runs out on frames of any view */
+    CHECK(frame(&c, 99, ms, CT) == FK && frame(&c, 99, ms, CT) == CT,
+          "counted not probed again after its bar ran out");
 }
 
 static void test_tie_keeps_held(void)
@@ -272,6 +296,7 @@ int main(void)
     test_slower_probe_never_kept();
     test_faster_probe_kept();
     test_cold_start();
+    test_bar_crosses_views();
     test_tie_keeps_held();
     test_view_reseeds();
     test_gpu_figures();
