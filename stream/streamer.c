@@ -1161,12 +1161,11 @@ static oit_status render(oit_streamer *s, const oit_view *view, oit_image *out, 
     oit_packing pk;
     oit_status st = OIT_OK;
     /* A frame that ended short (oit_capture_short) is drawn again with the
-     * store it measured: never returned; its waits are the frame's, and
-     * its final read-back one more. */
+     * store it measured: never returned (the redraw writes the same image
+     * in place); its waits are the frame's, and its final read-back one
+     * more. */
     uint32_t waits = 0, redraws = 0;
     for (int again = 1; st == OIT_OK && again; redraws++) {
-        if (redraws > 0 && !state)
-            oit_image_free(out);
         if (redraws > 2)
             return oit_error_set(err, OIT_ERR_GL, "%s: the first-K store still short after "
                                  "%u redraws", oit_partfile_name(s->pf), redraws - 1);

@@ -279,7 +279,9 @@ void oit_streamer_frame_end(oit_streamer *s, double wall_ms, uint64_t gpu_tag);
  * weighs it beside the wall times (stream/choice.h). */
 void oit_streamer_gpu_figure(oit_streamer *s, uint64_t gpu_tag, double gpu_ms);
 
-/* Renders one view into out (allocated by the call). fs and ss may be NULL. */
+/* Renders one view into out: empty ({0}: allocated by the call) or an
+ * image of the view's size, written in place (oit_capture_end). fs and ss
+ * may be NULL. */
 oit_status oit_streamer_render(oit_streamer *s, const oit_view *view, oit_image *out,
                                oit_frame_stats *fs, oit_stream_frame_stats *ss, oit_error *err);
 /* The same without the read-back: *state receives the capture's per-pixel

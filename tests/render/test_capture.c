@@ -43,6 +43,44 @@ static void transparent_scene(quad_spec q[8])
     }
 }
 
+/* oit_capture_end into an image the caller holds: the same pixels as into
+ * an empty one, written in place (the caller's pointer kept, every pixel
+ * overwritten: the buffer starts poisoned with NaN), never freed (ASan
+ * would see the caller's free as a double free). */
+static void test_end_in_place(oit_capture *c, const char *name)
+{
+    quad_spec q[8];
+    transparent_scene(q);
+    oit_view v;
+    scene_view(&v, 40, 24, OIT_SHADING_TRANSPARENT);
+    oit_image a = {0}, given = {0};
+    oit_frame_stats sa, sg;
+    int one[2] = {0, 8};
+    oit_error err = {0};
+    if (!capture_scene(c, &v, q, one, 1, NULL, &a, &sa) ||
+        oit_image_alloc(&given, v.width, v.height, &err) != OIT_OK) {
+        test_failures++;
+        oit_image_free(&a);
+        return;
+    }
+    for (size_t i = 0; i < (size_t)v.width * v.height * 4; i++)
+        given.rgba[i] = NAN;
+    float *mine = given.rgba;
+    if (capture_scene(c, &v, q, one, 1, NULL, &given, &sg)) {
+        CHECK(given.rgba == mine && given.width == v.width && given.height == v.height,
+              "%s: the given image was replaced", name);
+        size_t off = 0; /* NaN differs from every value: a pixel left out counts */
+        for (size_t i = 0; i < (size_t)v.width * v.height * 4; i++)
+            off += !(given.rgba[i] == a.rgba[i]);
+        CHECK(off == 0, "%s: written in place, %zu values differ from an allocated image",
+              name, off);
+    } else {
+        test_failures++;
+    }
+    oit_image_free(&given);
+    oit_image_free(&a);
+}
+
 static void test_equals_dfb(oit_capture *c, const char *name, int nq)
 {
     quad_spec q[8];
@@ -464,6 +502,14 @@ int main(void)
         oit_capture_destroy(a);
     }
     test_firstk_all();
+    for (int kind = 0; kind < 2; kind++) {
+        oit_capture *e = NULL;
+        oit_capture_kind k = kind ? OIT_CAPTURE_FIRSTK : OIT_CAPTURE_COUNTED;
+        CHECK(oit_capture_create(k, 8, &e, &err) == OIT_OK, "%s", err.message);
+        if (e)
+            test_end_in_place(e, kind ? "first-k" : "counted");
+        oit_capture_destroy(e);
+    }
     test_store_limit(OIT_CAPTURE_COUNTED, "counted");
     test_store_limit(OIT_CAPTURE_FIRSTK, "first-k");
     test_epsilon_batches(OIT_CAPTURE_ARRAY, 16, 16, "array");
