@@ -503,6 +503,7 @@ static void stream_desc(const oit_renderer_desc *d, oit_streamer_desc *sd)
     sd->schedule = (oit_pack_schedule)d->schedule;
     sd->slot_budget = d->slot_budget;
     sd->store_limit = d->binding_limit;
+    sd->frames = d->frames;
 }
 
 static const char *spelt(const char *given, const char *field)

@@ -101,6 +101,13 @@ typedef struct oit_streamer_desc {
      * share's, to be blended with the other shares' in the order
      * oit_streamer_share_order gives. */
     uint32_t share_count, share_index;
+    /* The frames the caller expects to draw: 1, a one-image run, where
+     * OIT_PACK_AUTO starts with counted packs (stored exactly, as DFB
+     * stores a frame) instead of first-K ones, whose K-slot store (up to
+     * the slot budget, 64 MiB at 1024x1024) only later frames amortize: the
+     * demo's one-image run at 1024x1024 on llvmpipe, 0.70 s against 0.93 s;
+     * 0 (default): many. A hint: any number of frames may be drawn. */
+    uint32_t frames;
 } oit_streamer_desc;
 
 /* Half the free memory the driver reports: the rest is the embedding

@@ -342,6 +342,14 @@ typedef struct oit_renderer_desc {
      * oit_renderer_create; the string need not outlive that call.
      * oit_renderer_get_desc gives the folder in use, or "off". */
     const char *program_cache;
+    /* Appended last, so that the fields above keep their offsets. The
+     * frames the caller expects to draw with the renderer: 1, a one-image
+     * run (oitstream's single view outside --window), where
+     * OIT_RENDER_PACK_AUTO starts with counted packs, stored exactly as DFB
+     * stores a frame, instead of first-K ones, whose K-slot store (up to
+     * slot_budget) only later frames amortize; 0 (default): many. A hint:
+     * any number of frames may be drawn, the image is the same. */
+    uint32_t frames;
 } oit_renderer_desc;
 
 #define OIT_RENDER_CACHE_OFF UINT64_MAX

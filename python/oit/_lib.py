@@ -57,7 +57,7 @@ class RendererDesc(ctypes.Structure):
                 ("gpu_budget", ctypes.c_uint64), ("see_through", ctypes.c_int),
                 ("schedule", ctypes.c_int), ("slot_budget", ctypes.c_uint64),
                 ("reader_threads", ctypes.c_uint32), ("binding_limit", ctypes.c_uint64),
-                ("program_cache", ctypes.c_char_p)]
+                ("program_cache", ctypes.c_char_p), ("frames", ctypes.c_uint32)]
 
 
 class OffscreenDesc(ctypes.Structure):

@@ -174,8 +174,10 @@ oit_status oit_capture_counted_batch(oit_capture *c, oit_counted *k,
                                      oit_error *err)
 {
     oit_counted_frame f = oit_capture_counted_frame(c);
-    /* the slot budget bounds its fragment store */
+    /* the slot budget bounds its fragment store; deep pixels are those
+     * first-K's K slots would not hold */
     k->budget = c->set.slot_budget ? c->set.slot_budget : UINT64_MAX;
+    k->deep_over = (uint32_t)c->K;
     /* count, store, sort and composite: not split into phases */
     oit_gpu_timer_mark(c->set.timer, OIT_GPU_PASS1);
     oit_status s = oit_counted_batch(k, &f, meshes, n, r, err);
@@ -214,7 +216,6 @@ static oit_status counted_begin(oit_capture *c, oit_error *err)
     oit_counted *k = c->be;
     k->splits = 0;
     k->deep_pixels = 0;
-    k->deep_over = (uint32_t)c->K;
     return OIT_OK;
 }
 

@@ -39,9 +39,9 @@ typedef struct oit_counted {
     uint64_t budget;   /* fragment store bytes a batch may take before it splits */
     uint32_t splits;   /* batches split this frame (the caller resets it) */
     /* this frame's pixels of more than deep_over fragments in a batch,
-     * summed over its batches (the caller sets deep_over to the capture's K
-     * and resets deep_pixels): those a first-K pack would send through
-     * its second pass */
+     * summed over its batches (oit_capture_counted_batch sets deep_over to
+     * the capture's K; the caller resets deep_pixels): those a first-K
+     * pack would send through its second pass */
     uint32_t deep_over;
     uint64_t deep_pixels;
 } oit_counted;

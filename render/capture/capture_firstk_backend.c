@@ -92,7 +92,6 @@ static oit_status firstk_begin(oit_capture *c, oit_error *err)
     firstk_backend *b = c->be;
     b->counted.splits = 0;
     b->counted.deep_pixels = 0;
-    b->counted.deep_over = (uint32_t)c->K;
     b->k.second_pixels = 0;
     b->k.second_packs = b->k.second_draws = 0;
     /* pass 2 on the GPU while the store the host would split it by (the

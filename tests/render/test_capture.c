@@ -352,6 +352,41 @@ static void test_firstk(const firstk_case *fc)
     oit_capture_destroy(c);
 }
 
+/* deep_pixels (the pixels over K a batch, auto's hint for first-K) from
+ * counted batches: the counted capture's, and the first-K backend's
+ * switched off from its very first frame, whose counted half is set up
+ * mid-frame (it once counted every covered pixel there, as if K were 0,
+ * so a shallow view looked deep). */
+static void test_deep_pixels(int firstk_off)
+{
+    const char *name = firstk_off ? "first-k switched off" : "counted";
+    oit_capture *c = new_capture(firstk_off ? OIT_CAPTURE_FIRSTK : OIT_CAPTURE_COUNTED, 4, name);
+    if (!c)
+        return;
+    if (firstk_off)
+        oit_capture_set_first_k(c, 0);
+    quad_spec q[24];
+    deep_scene(q);
+    oit_view v;
+    scene_view(&v, 48, 40, OIT_SHADING_TRANSPARENT);
+    int start[3] = {0, 10, 24};
+    uint64_t want = pixels_over(&v, q, 0, 10, 4) + pixels_over(&v, q, 10, 14, 4);
+    for (int frame = 0; frame < 2; frame++) {
+        oit_image a = {0};
+        oit_frame_stats sa;
+        if (!capture_scene(c, &v, q, start, 2, NULL, &a, &sa)) {
+            test_failures++;
+            break;
+        }
+        printf("%s, frame %d: deep_pixels %llu (want %llu)\n", name, frame,
+               (unsigned long long)sa.deep_pixels, (unsigned long long)want);
+        CHECK(want > 0 && sa.deep_pixels == want, "%s, frame %d: deep_pixels %llu, want %llu",
+              name, frame, (unsigned long long)sa.deep_pixels, (unsigned long long)want);
+        oit_image_free(&a);
+    }
+    oit_capture_destroy(c);
+}
+
 static void test_firstk_all(void)
 {
     const uint64_t two_slots = 48u * 40u * 16u * 2u; /* W = 2 over the frame */
@@ -502,6 +537,8 @@ int main(void)
         oit_capture_destroy(a);
     }
     test_firstk_all();
+    test_deep_pixels(0);
+    test_deep_pixels(1);
     for (int kind = 0; kind < 2; kind++) {
         oit_capture *e = NULL;
         oit_capture_kind k = kind ? OIT_CAPTURE_FIRSTK : OIT_CAPTURE_COUNTED;

@@ -14,6 +14,7 @@
 #    by the last frame both paths are measured.
 #  - the images: every frame bit for bit --pack first-k's of the same view,
 #    and DFB's on the source mesh to 1/255 on >= 99.9% of pixels.
+#  - one image a process starts counted ("seed"), the same image.
 # Checked to fail (7 frames flagged) with the judge preferring the higher
 # cost (the comparisons of judge_probe and cheapest in stream/choice.c
 # reversed). A judge_probe that keeps every probe alone is caught a frame
@@ -81,4 +82,12 @@ for i in 000 001 002 005 011; do
         fail "frame $i: auto differs from --pack first-k"
     compare "frame $i vs dfb on the mesh" "$T/auto/frame_$i.png" "$T/dfb/frame_$i.png" 0.1
 done
+# One image a process (oit_renderer_desc.frames = 1): auto starts with
+# counted packs, which store exactly what the frame holds, not first-K's
+# K-slot store that only later frames amortize; the image is the same.
+"$S" "$T/stack.oitp" --size 64x64 --view "$(head -n 1 "$T/still.txt")" --out "$T/one.png" \
+    --stats "$T/one.json" --quiet || die "one image exited $?"
+grep -q '"choice": "counted", "choice_why": "seed"' "$T/one.json" ||
+    fail "one image: auto did not start counted ($(grep -o '"choice[a-z_]*": "[^"]*"' "$T/one.json" | tr '\n' ' '))"
+cmp -s "$T/one.png" "$T/firstk/frame_000.png" || fail "one image: differs from --pack first-k"
 finish choice

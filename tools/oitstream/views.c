@@ -187,12 +187,15 @@ int stream_max_layers(const oit_stream_args *a, oit_partfile *pf)
     return pf && sum.K < 16 ? (int)sum.K : 16;
 }
 
-/* The default cache would only hold a second copy of what the ring
- * uploaded (on the 2M plant at 1024x1024, 104 of its 240 MB GPU peak). */
+/* One image: the default cache would only hold a second copy of what the
+ * ring uploaded (on the 2M plant at 1024x1024, 104 of its 240 MB GPU
+ * peak), and auto packs start counted (oit_renderer_desc.frames). */
 oit_renderer_desc stream_renderer_desc(const oit_stream_args *a, int views)
 {
     oit_renderer_desc d = a->stream;
     if (views == 1 && !a->window && d.cache_budget == 0)
         d.cache_budget = OIT_RENDER_CACHE_OFF;
+    if (views == 1 && !a->window)
+        d.frames = 1;
     return d;
 }
