@@ -186,11 +186,16 @@ if [ "${NS_BENCH:-1}" != 0 ]; then
     m=$(mesh_of plant1M) || die "plant1M failed"
     nice -n 0 "$bin/oitbench" "$m" --methods stream,dfb,unsorted --orbit 2 --size 512x512 \
         --out "$work/bench" >"$work/bench.log" 2>&1 || { cat "$work/bench.log" >&2; die "oitbench failed"; }
-    col() { awk -F, -v k="$1" 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == k) c = i; next }
-        { print $1 "," $c }' "$work/bench/results.csv"; }
+    # results.csv: a "summary" row a method (the median over its views),
+    # the method in column "method"
+    col() { awk -F, -v k="$1" 'NR == 1 { for (i = 1; i <= NF; i++) { if ($i == k) c = i
+            if ($i == "method") m = i }; next }
+        $1 == "summary" { print $m "," $c }' "$work/bench/results.csv"; }
     bs=$(col ms_median | awk -F, '$1 == "stream" { print $2; exit }')
     bd=$(col ms_median | awk -F, '$1 == "dfb" { print $2; exit }')
     bu=$(col ms_median | awk -F, '$1 == "unsorted" { print $2; exit }')
+    [ -n "$bs" ] && [ -n "$bd" ] && [ -n "$bu" ] ||
+        die "oitbench: no summary rows for stream, dfb and unsorted in results.csv"
     bench="| $bs | $bd | $bu | $(ratio "$bs" "$bd") | $(ratio "$bs" "$bu") |"
 fi
 
