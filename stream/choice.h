@@ -19,18 +19,18 @@
  * other path a fixed rule suggests (first-K's second-pass share, or the
  * share a counted frame's counts say first-K would send there; a long
  * period's re-check), and that path is probed for one frame unless it is
- * barred. A probe is kept only if its
- * measured cost is lower than the held path's; otherwise the view goes back
- * and the probed path is barred for a number of frames that doubles with
- * each failed probe (OIT_CHOICE_BAR_FIRST up to OIT_CHOICE_BAR_MOST). Bars
- * are the process's, not a view's: the views a session moves between are
- * alike, and a path that lost on one would otherwise be probed again on
- * every new view, a slow frame each. The very first frame carries the
- * process's start-up (programs built, parts read and uploaded): a path
- * measured only there that loses to a probe is not barred, so it is
- * measured again warm at the next suggestion. A held path whose cost rises
- * above another's measured one (late GPU figures, a
- * slower frame) gives way to it. Ties keep the held path. */
+ * barred. A probe is kept only if its measured cost is lower than the held
+ * path's; otherwise the view goes back and the probed path is barred for a
+ * number of frames that doubles with each failed probe
+ * (OIT_CHOICE_BAR_FIRST up to OIT_CHOICE_BAR_MOST). Bars are the
+ * process's, not a view's: the views a session moves between are alike,
+ * and a path that lost on one would otherwise be probed again on every new
+ * view, a slow frame each. The very first frame carries the process's
+ * start-up (programs built, parts read and uploaded): a path measured only
+ * there that loses to a probe is not barred, so it is measured again warm
+ * at the next suggestion. A held path whose cost rises above another's
+ * measured one (late GPU figures, a slower frame) gives way to it. Ties
+ * keep the held path. */
 #ifndef OIT_STREAM_CHOICE_H
 #define OIT_STREAM_CHOICE_H
 

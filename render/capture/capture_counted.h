@@ -7,7 +7,7 @@
  * is stored and composited in bands of rows from that one count, each band
  * a store pass scissored to its rows (so the bands together rasterize what
  * one store pass would), within what one storage buffer binds. Long lists
- * are sorted in memory past OIT_COUNTED_MAX_SORTED, as DFB sorts them:
+ * are sorted in memory past OIT_GLSL_SEGMENT_LOCAL fragments, as DFB sorts them:
  * splitting a batch by its meshes to shorten them drew it again at every
  * halving (a 300-layer stack of 22 parts at 1024x1024: 43 count passes,
  * 3.8 s a frame against 2.1-2.7 s in bands).
@@ -22,8 +22,6 @@
 #include "render/gl/gpu_mesh.h"
 #include "render/gl/frag_glsl.h"
 #include "render/gl/scan_glsl.h"
-
-#define OIT_COUNTED_MAX_SORTED OIT_GLSL_SEGMENT_LOCAL
 
 /* Its programs (prog), whose uniforms its backend sets: the view, the opaque
  * depth after it (frag_glsl.h), and the early-termination threshold in the
