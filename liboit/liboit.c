@@ -1262,11 +1262,11 @@ static oit_status image_bands(oit_renderer *r, const oit_scene *scene, const oit
         oit_view band = *view;
         if (rows < h)
             oit_view_band(view, y0, y1, &band);
-        /* One band of a part file's frame is read back into rgba itself
-         * (oit_capture_end writes a given image in place): no second
-         * image to fault in and copy (the 1M plant at 1024x1024: ~50 ms a
-         * frame on llvmpipe). */
-        int direct = scene->pf && y0 == 0 && y1 == h;
+        /* A frame of one band is read back into rgba itself (the stream
+         * and DFB write a given image in place, oit_image_reserve): no
+         * second image to fault in and copy (the 1M plant at 1024x1024:
+         * ~50 ms a frame on llvmpipe). */
+        int direct = y0 == 0 && y1 == h;
         oit_image part = {0};
         if (direct)
             part = (oit_image){.width = w, .height = h, .rgba = rgba};

@@ -594,8 +594,9 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
                          : desc->capture == OIT_CAPTURE_COMPUTE ? OIT_PACK_COUNTED
                                                                 : OIT_PACK_FIRSTK;
     s->adaptive = desc->pack == OIT_PACK_AUTO && mode == OIT_PACK_FIRSTK;
-    s->first_k = desc->frames != 1;
-    oit_choice_init(&s->judge, 1u << OIT_PATH_FIRSTK | 1u << OIT_PATH_COUNTED, desc->frames == 1 ? OIT_PATH_COUNTED : OIT_PATH_FIRSTK);
+    oit_path seed = desc->frames == 1 ? OIT_PATH_COUNTED : OIT_PATH_FIRSTK;
+    s->first_k = seed == OIT_PATH_FIRSTK;
+    oit_choice_init(&s->judge, 1u << OIT_PATH_FIRSTK | 1u << OIT_PATH_COUNTED, seed);
     oit_status st = reader_threads(pf, desc->reader_threads, &s->threads, err);
     if (st == OIT_OK)
         st = alloc_arrays(s, oit_partfile_part_count(pf), err);

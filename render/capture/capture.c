@@ -487,22 +487,21 @@ static void end_pass(oit_capture *c, uint64_t first, uint64_t count, int write_o
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
-/* Resolves the carried state against the background into out (written in
- * place where it holds an image of the frame's size, else allocated), in
- * bands of GL rows as many as the backend's output buffer holds, then
+/* Resolves the carried state against the background into out
+ * (oit_image_reserve: written in place where it holds an image of the
+ * frame's size, else allocated), in bands of GL rows as many as the backend's output buffer holds, then
  * reads the totals. */
 static oit_status read_output(oit_capture *c, oit_image *out, GLuint totals[4], oit_error *err)
 {
-    int w = c->view.width, h = c->view.height;
-    int given = out->rgba && out->width == w && out->height == h;
-    oit_status s = given ? OIT_OK : oit_image_alloc(out, w, h, err);
+    int w = c->view.width, h = c->view.height, made = 0;
+    oit_status s = oit_image_reserve(out, w, h, &made, err);
     if (s != OIT_OK)
         return s;
     size_t row = (size_t)w * 16;
     oit_capture_out o = {0, 0};
     s = c->ops->end(c, (uint64_t)row * h, row, &o, err);
     if (s != OIT_OK) {
-        if (!given)
+        if (made)
             oit_image_free(out);
         return s;
     }
@@ -522,7 +521,7 @@ static oit_status read_output(oit_capture *c, oit_image *out, GLuint totals[4], 
     }
     glGetNamedBufferSubData(c->buf[OIT_CAPTURE_TOTALS], 0, 16, totals);
     s = oit_gl_check("capture: readback", err);
-    if (s != OIT_OK && !given)
+    if (s != OIT_OK && made)
         oit_image_free(out);
     return s;
 }

@@ -227,8 +227,7 @@ oit_status oit_capture_batch_layers(oit_capture *c, const oit_gpu_mesh *const *m
                                     const int rect[4], int layers, oit_error *err);
 /* Resolves the frame into out and fills stats. out is empty ({0}: the call
  * allocates it) or holds an image of the frame's size, whose pixels are
- * written in place and which the call never frees (a caller's own buffer:
- * no second image and copy a frame). */
+ * written in place and which the call never frees (oit_image_reserve). */
 oit_status oit_capture_end(oit_capture *c, oit_image *out,
                            oit_frame_stats *stats, oit_error *err);
 /* Ends the frame without reading the image back: *state receives the GL

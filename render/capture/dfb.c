@@ -414,14 +414,15 @@ oit_status oit_dfb_render(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n,
                           oit_error *err)
 {
     dfb_frame f;
+    int made = 0;
     oit_status s = resolve_into(d, PROG_RESOLVE, BUF_OUT, meshes, n, view, counts, &f, err);
     if (s == OIT_OK)
-        s = oit_image_alloc(out, f.v.width, f.v.height, err);
+        s = oit_image_reserve(out, f.v.width, f.v.height, &made, err);
     oit_gpu_timer_mark(d->timer, OIT_GPU_READBACK);
     if (s == OIT_OK) {
         s = oit_gl_read_rows(d->buf[BUF_OUT], 0, f.v.width, f.v.height, 16, out->rgba, "DFB",
                              err);
-        if (s != OIT_OK)
+        if (s != OIT_OK && made)
             oit_image_free(out);
     }
     glFinish();

@@ -24,8 +24,9 @@ typedef struct oit_dfb oit_dfb;
 oit_status oit_dfb_create(oit_dfb **out, oit_error *err);
 void oit_dfb_destroy(oit_dfb *d);
 
-/* Renders meshes[0..n) as one scene. out is allocated by the call (free with
- * oit_image_free). counts, when non-NULL, receives width*height fragment
+/* Renders meshes[0..n) as one scene into out: empty (allocated by the call;
+ * free with oit_image_free) or an image of the view's size, written in place
+ * (oit_image_reserve). counts, when non-NULL, receives width*height fragment
  * counts, row 0 at the top (for the layer heat map). */
 oit_status oit_dfb_render(oit_dfb *d, const oit_gpu_mesh *const *meshes, int n,
                           const oit_view *view, oit_image *out,

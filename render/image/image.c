@@ -30,6 +30,12 @@ oit_status oit_image_alloc(oit_image *img, int width, int height, oit_error *err
     return OIT_OK;
 }
 
+oit_status oit_image_reserve(oit_image *img, int width, int height, int *made, oit_error *err)
+{
+    *made = !(img->rgba && img->width == width && img->height == height);
+    return *made ? oit_image_alloc(img, width, height, err) : OIT_OK;
+}
+
 void oit_image_free(oit_image *img)
 {
     if (!img)

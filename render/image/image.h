@@ -21,6 +21,12 @@ extern "C" {
 
 oit_status oit_image_alloc(oit_image *img, int width, int height, oit_error *err);
 void oit_image_free(oit_image *img);
+/* img as a width x height image for a renderer to write every pixel of:
+ * kept where it is one already (a caller's own buffer, written in place:
+ * no second image and copy a frame), else allocated (img empty, {0});
+ * *made: 1 when allocated here, so the renderer frees it on a failure and
+ * never frees a kept one. */
+oit_status oit_image_reserve(oit_image *img, int width, int height, int *made, oit_error *err);
 
 /* Sets pixel (x, y), row 0 at the top, to opaque rgb; outside: nothing. */
 void oit_image_put_rgb(oit_image *img, int x, int y, const float rgb[3]);
