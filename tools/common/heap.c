@@ -10,5 +10,6 @@ void oit_tool_heap_setup(void)
 {
 #if defined(__GLIBC__)
     mallopt(M_TRIM_THRESHOLD, OIT_TOOL_HEAP_KEEP);
+    mallopt(M_MMAP_THRESHOLD, OIT_TOOL_HEAP_MMAP);
 #endif
 }
