@@ -1080,6 +1080,11 @@ static void choice_stats(const oit_streamer *s, oit_stream_frame_stats *ss)
  * frame of a deep view still suggests first-K every OIT_CHOICE_BAR_MOST-th
  * frame, so that the rule never decides alone; the judge keeps a suggested
  * path only if it measures faster. */
+static int deep_view(const oit_view *view, const oit_frame_stats *fs)
+{
+    return fs->deep_pixels * 50 > (uint64_t)view->width * view->height;
+}
+
 static void adapt(oit_streamer *s, const oit_view *view, const oit_frame_stats *fs,
                   oit_stream_frame_stats *ss, double ms, int judged_now)
 {
@@ -1087,8 +1092,7 @@ static void adapt(oit_streamer *s, const oit_view *view, const oit_frame_stats *
     ss->first_k = s->adaptive ? s->first_k : 0;
     if (!s->adaptive)
         return;
-    uint64_t pixels = (uint64_t)view->width * view->height;
-    int deep = fs->deep_pixels * 50 > pixels;
+    int deep = deep_view(view, fs);
     oit_path suggest = deep ? OIT_PATH_COUNTED : OIT_PATH_FIRSTK;
     if (!s->first_k && deep && ++s->frame.deep_counted % OIT_CHOICE_BAR_MOST == 0)
         suggest = OIT_PATH_FIRSTK;
@@ -1164,19 +1168,32 @@ static oit_status render(oit_streamer *s, const oit_view *view, oit_image *out, 
     /* A frame that ended short (oit_capture_short) is drawn again with the
      * store it measured: never returned (the redraw writes the same image
      * in place); its waits are the frame's, and its final read-back one
-     * more. */
+     * more; the bytes it uploaded, those of every draw (a redraw finds
+     * the parts the first draw brought up in the cache). */
     uint32_t waits = 0, redraws = 0;
+    uint64_t uploaded = 0;
     for (int again = 1; st == OIT_OK && again; redraws++) {
         if (redraws > 2)
             return oit_error_set(err, OIT_ERR_GL, "%s: the first-K store still short after "
                                  "%u redraws", oit_partfile_name(s->pf), redraws - 1);
         st = capture_frame(s, view, &pk, ss, err);
+        uploaded += ss->bytes_uploaded;
+        ss->bytes_uploaded = uploaded;
         choice_stats(s, ss);
         if (st == OIT_OK)
             st = state ? oit_capture_end_gpu(s->capture, state, fs, err)
                        : oit_capture_end(s->capture, out, fs, err);
         again = st == OIT_OK && oit_capture_short(s->capture);
         waits += st == OIT_OK ? fs->host_waits + (uint32_t)again : 0;
+        /* First-K's first frame sizes its pass-2 store by what the slots
+         * hold, which a deep view outgrows: it is drawn again counted, the
+         * path the fixed rule then suggests, so that its store is built in
+         * the frame already slow, not in the next. The judge counts the
+         * frame as first-K's, both draws its cost. */
+        if (again && s->adaptive && s->first_k && deep_view(view, fs)) {
+            s->first_k = 0;
+            oit_capture_set_first_k(s->capture, 0);
+        }
     }
     fs->host_waits = waits;
     fs->redraws = redraws - 1;

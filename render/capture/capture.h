@@ -176,12 +176,13 @@ void oit_capture_set_first_k(oit_capture *c, int on);
 /* OIT_CAPTURE_FIRSTK only, from the next frame on: 1 drives first-K's
  * second pass on the GPU, so that the host never waits within a frame
  * (oit_frame_stats.host_waits): the pass-2 store is sized ahead from what
- * earlier frames' packs needed (at least what the slots hold), the GPU
- * decides where pass 2 runs, if at all (indirect dispatches, draws of 0
- * instances). The first frame measures that need as with 0. A pack that needs more than the store holds leaves pixels
- * out: the frame ends short (oit_capture_short) and must be drawn again,
- * which the measured need then fits, within the slot budget and one
- * storage binding (past them the host splits pass 2 in bands as with 0). 0 (the default): the host
+ * earlier frames' packs needed (at least what the slots hold; the first
+ * frame's, what they hold), the GPU decides where pass 2 runs, if at all
+ * (indirect dispatches, draws of 0 instances). A pack that needs more than
+ * the store holds leaves pixels out: the frame ends short
+ * (oit_capture_short) and must be drawn again, which the measured need
+ * then fits, within the slot budget and one storage binding (past them
+ * the host splits pass 2 in bands as with 0). 0 (the default): the host
  * reads each pack's overflow back and sizes pass 2 exactly; never short. */
 void oit_capture_set_no_wait(oit_capture *c, int on);
 /* 1 when the frame that oit_capture_end or _end_gpu just ended is short

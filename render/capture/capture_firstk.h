@@ -81,11 +81,11 @@ typedef struct oit_firstk {
     void (*built)(void *built_ctx);
     void *built_ctx;
     /* Pass 2 driven by the GPU (oit_capture_set_no_wait; its backend sets
-     * ahead a frame, from the second on, once a frame measured the need,
-     * and off while `need` passes the slot budget or one binding: the host
-     * then splits pass 2 in bands): the store sized ahead for `need`
-     * fragments (the most an earlier frame's pack needed); a pack that
-     * needs more flags the frame short. */
+     * ahead a frame, from the first on, and off while the measured `need`
+     * passes the slot budget or one binding: the host then splits pass 2
+     * in bands): the store sized ahead for `need` fragments (the most an
+     * earlier frame's pack needed; before any, what the slots hold); a
+     * pack that needs more flags the frame short. */
     int ahead;
     uint64_t need;
     int measured;    /* a frame has ended: need holds what it saw */

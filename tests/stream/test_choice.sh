@@ -3,8 +3,9 @@
 # deep stack: it never holds a path its own figures say is slower.
 #  - 600 stacked squares (oitgen hard --case stack, --scheme fast), seen
 #    from the side of the stack's corner, 12 frames of that one view at
-#    64x64: the first frame takes first-k ("seed") and sends more than 1
-#    pixel in 50 through the second pass, so the second probes counted.
+#    64x64: the first frame takes first-k ("seed") and finds more than 1
+#    pixel in 50 over K (deep_pixels; it is drawn again counted, as
+#    test_firstk.sh checks), so the second probes counted.
 #  - every frame's --stats say which path it took, why, and the costs it
 #    weighed (choice_first_k_ms, choice_counted_ms); each cost must come
 #    from the frames before that drew its path: positive, and no more than
@@ -34,8 +35,8 @@ W="--size 64x64 --walk $T/still.txt --quiet"
 "$S" "$T/stack.ply" --method dfb --size 64x64 --walk "$T/still.txt" --quiet --out "$T/dfb/" ||
     die "dfb on the mesh exited $?"
 
-# One line a frame: path why first-k-cost counted-cost ms gpu_ms second-pass.
-grep '"choice"' "$T/auto.json" | sed 's/.*"ms": \([-0-9.]*\), "gpu_ms": \([-0-9.]*\).*"second_pass_pixels": \([0-9]*\).*"choice": "\([^"]*\)", "choice_why": "\([^"]*\)", "choice_first_k_ms": \([-0-9.]*\), "choice_counted_ms": \([-0-9.]*\).*/\4|\5|\6|\7|\1|\2|\3/' \
+# One line a frame: path why first-k-cost counted-cost ms gpu_ms deep-pixels.
+grep '"choice"' "$T/auto.json" | sed 's/.*"ms": \([-0-9.]*\), "gpu_ms": \([-0-9.]*\).*"deep_pixels": \([0-9]*\).*"choice": "\([^"]*\)", "choice_why": "\([^"]*\)", "choice_first_k_ms": \([-0-9.]*\), "choice_counted_ms": \([-0-9.]*\).*/\4|\5|\6|\7|\1|\2|\3/' \
     > "$T/frames.txt"
 cat "$T/frames.txt"
 [ "$(wc -l < "$T/frames.txt")" -eq 12 ] || fail "$(wc -l < "$T/frames.txt") frames with a choice, want 12"
@@ -47,7 +48,7 @@ function bad(m) { print "FAIL: frame " NR - 1 ": " m; fails++ }
         if (path != "first-k" || why != "seed" || $3 != -1 || $4 != -1)
             bad("the first frame is " path " (" why ", " $3 ", " $4 "), want first-k, seed, no costs")
         if ($7 * 50 <= px)
-            bad("second-pass pixels " $7 " of " px ": the view is not deep enough to probe counted")
+            bad("pixels over K " $7 " of " px ": the view is not deep enough to probe counted")
     }
     if (NR == 2 && (path != "counted" || why != "probe"))
         bad("the second frame is " path " (" why "), want the probe of counted")

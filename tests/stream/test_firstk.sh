@@ -11,11 +11,12 @@
 #    second_pass_pixels > 0; counted packs report 0 for both figures.
 #  - 4 stacked quads: nothing over K, so no pack takes the second pass.
 #  - the automatic mode (the default): on the stack, head on, the first frame
-#    takes first-K, sends far more than 1 pixel in 50 through the second
-#    pass, and the next one probes counted (which holds after it is the
-#    measured costs' call: test_choice.sh); on the 4 quads every frame stays
-#    first-K; every frame's image is bit for bit the first's, whichever
-#    capture took it.
+#    takes first-K (choice "seed"), finds far more than 1 pixel in 50 over K,
+#    outgrows the pass-2 store its slots give a first frame, and is drawn
+#    again counted (redraws 1, capture counted); the next one probes counted
+#    (which holds after it is the measured costs' call: test_choice.sh); on
+#    the 4 quads every frame stays first-K; every frame's image is bit for
+#    bit the first's, whichever capture took it.
 #  - the grid in many packs (64K upload ring), K = 2 so pixels overflow,
 #    exact and with early termination: bit for bit the counted capture's
 #    image, which composites the same fragments of the same packs.
@@ -86,15 +87,22 @@ echo "4 quads: max layers $(json_all max_layers < "$T/quads.json" | tr '\n' ' ')
 for i in 1 2 3 4 5 6 7 8 9 10; do echo "0,0,5,0,0,0,0,1,0,18"; done > "$T/still.txt"
 "$S" "$T/stack.oitp" --size 64x64 --walk "$T/still.txt" --quiet --out "$T/auto/" \
     --stats "$T/auto.json" || fail "stack: auto exited $?"
-seq_auto=$(json_all auto_first_k < "$T/auto.json" | tr -d '\n')
-echo "stack, automatic mode, 10 frames of one view: first-K per frame $seq_auto," \
-     "second-pass pixels $(json_all second_pass_pixels < "$T/auto.json" | tr '\n' ' ')"
+seq_auto=$(grep -o '"choice": "[^"]*", "choice_why": "[^"]*"' "$T/auto.json" |
+    sed 's/.*"choice": "\([^"]*\)", "choice_why": "\([^"]*\)"/\1:\2/' | head -n 2 | tr '\n' ' ')
+echo "stack, automatic mode, 10 frames of one view: first-K per frame" \
+     "$(json_all auto_first_k < "$T/auto.json" | tr -d '\n'), choices $seq_auto..., redraws" \
+     "$(json_all redraws < "$T/auto.json" | tr '\n' ' '), deep pixels" \
+     "$(json_all deep_pixels < "$T/auto.json" | tr '\n' ' ')"
 # Which path holds after the probe is the measured costs' call
 # (stream/choice.h, test_choice.sh): here only the seed and the probe.
-case $seq_auto in
-10????????) ;;
-*) fail "stack: automatic mode took $seq_auto, want first-K, then the counted probe" ;;
-esac
+[ "$seq_auto" = "first-k:seed counted:probe " ] ||
+    fail "stack: automatic mode chose $seq_auto, want first-K, then the counted probe"
+[ "$(json_all deep_pixels < "$T/auto.json" | head -n 1)" -gt $((64 * 64 / 50)) ] ||
+    fail "stack: the first frame found at most 1 pixel in 50 over K"
+[ "$(json_all redraws < "$T/auto.json" | tr -d '\n')" = 1000000000 ] &&
+    [ "$(json_str capture < "$T/auto.json")" = counted ] ||
+    fail "stack: the first frame was not drawn again counted (redraws" \
+         "$(json_all redraws < "$T/auto.json" | tr -d '\n'), capture $(json_str capture < "$T/auto.json"))"
 for i in 001 002 008 009; do
     cmp -s "$T/auto/frame_000.png" "$T/auto/frame_$i.png" ||
         fail "stack: automatic mode frame $i differs from frame 0"

@@ -1,17 +1,17 @@
 #!/bin/sh
 # The host's waits on the GPU within a frame (render/gl/host_wait.h) on the
 # default stream path (--pack auto: first-K packs, their second pass driven
-# by the GPU from the second frame on), resident part files:
+# by the GPU from the first frame on), resident part files:
 #  - 300 stacked squares (oitgen hard --case stack) seen from far off, so
-#    that fewer than 1 pixel in 50 overflows K and auto stays first-K: the
-#    first frame reads each pack's totals and each second pass's fragment
-#    count back (host_waits = packs + second_pass_packs), every later frame
-#    waits 0 times, with second-pass pixels > 0 and DFB's image and
-#    fragments;
-#  - 4 stacked quads (nothing over K): 0 waits from the second frame on, no
-#    second pass;
+#    that fewer than 1 pixel in 50 overflows K and auto stays first-K: no
+#    frame reads anything back within it; the first may outgrow the pass-2
+#    store its slots give it, end short and be drawn again (its one wait:
+#    the short frame's final read-back), no later frame waits or redraws,
+#    second-pass pixels > 0 and DFB's image and fragments;
+#  - 4 stacked quads (nothing over K): 0 waits and redraws, no second pass;
 #  - --pack first-k on the stack, the corner view (1.6 M fragments) then the
-#    head-on one (2.5 M): the head-on frame outgrows the store sized from
+#    head-on one (2.5 M): the first frame may outgrow its slots' store (as
+#    above); the head-on frame outgrows the store sized from
 #    the corner's need, ends short and is drawn again (redraws 1, one wait:
 #    the short frame's final read-back); the frames after it wait 0 times
 #    and never redraw; every frame's image and fragments DFB's.
@@ -55,11 +55,17 @@ run() {
     same_as_dfb "$_n"
 }
 
-# frames 1.. of NAME: 0 waits, 0 redraws
+# frames 1.. of NAME: 0 waits, 0 redraws; frame 0 waits only for its redraw
 warm_zero() {
     [ "$(json_all host_waits < "$T/$1.json" | sed 1d | awk '{s += $1} END {print s + 0}')" -eq 0 ] ||
         fail "$1: a warm frame waited: $(json_all host_waits < "$T/$1.json" | tr '\n' ' ')"
-    [ "$(json_sum redraws < "$T/$1.json")" -eq 0 ] || fail "$1: a frame was drawn again"
+    [ "$(json_all redraws < "$T/$1.json" | sed 1d | awk '{s += $1} END {print s + 0}')" -eq 0 ] ||
+        fail "$1: a warm frame was drawn again: $(json_all redraws < "$T/$1.json" | tr '\n' ' ')"
+    _w=$(json_all host_waits < "$T/$1.json" | head -n 1)
+    _r=$(json_all redraws < "$T/$1.json" | head -n 1)
+    [ "$_r" -le 1 ] && [ "$_w" -eq "$_r" ] ||
+        fail "$1: the first frame waited $_w times and was drawn again $_r times; want one" \
+             "wait a redraw, at most one"
 }
 
 for i in 1 2 3 4; do echo "0,0,60,0,0,0,0,1,0,18"; done > "$T/far.txt"
@@ -69,11 +75,6 @@ warm_zero far
     fail "far: auto left first-K; this test needs a view that stays there"
 [ "$(json_min second_pass_pixels < "$T/far.json")" -gt 0 ] ||
     fail "far: a frame without second-pass pixels: nothing overflowed K"
-first=$(json_all host_waits < "$T/far.json" | head -n 1)
-want=$(($(json_all packs < "$T/far.json" | head -n 1) +
-        $(json_all second_pass_packs < "$T/far.json" | head -n 1)))
-[ "$first" -eq "$want" ] || fail "far: the first frame waited $first times, want $want" \
-    "(a read-back a pack, one a second pass)"
 
 run quads "$T/quads.oitp" 96x96 "$T/far.txt"
 warm_zero quads
@@ -83,8 +84,9 @@ warm_zero quads
 printf '%s\n' 1.5,1.2,4,0,0,0,0,1,0,30 1.5,1.2,4,0,0,0,0,1,0,30 0,0,5,0,0,0,0,1,0,18 \
     0,0,5,0,0,0,0,1,0,18 0,0,5,0,0,0,0,1,0,18 > "$T/grow.txt"
 run grow "$T/stack.oitp" 64x64 "$T/grow.txt" --pack first-k
-[ "$(json_all redraws < "$T/grow.json" | tr '\n' ' ')" = "0 0 1 0 0 " ] ||
-    fail "grow: redraws $(json_all redraws < "$T/grow.json" | tr '\n' ' '), want 0 0 1 0 0"
+[ "$(json_all redraws < "$T/grow.json" | sed 1d | tr '\n' ' ')" = "0 1 0 0 " ] &&
+    [ "$(json_all redraws < "$T/grow.json" | head -n 1)" -le 1 ] ||
+    fail "grow: redraws $(json_all redraws < "$T/grow.json" | tr '\n' ' '), want 0 or 1, 0 1 0 0"
 [ "$(json_all host_waits < "$T/grow.json" | sed 1d | tr '\n' ' ')" = "0 1 0 0 " ] ||
     fail "grow: host waits after the first frame" \
          "$(json_all host_waits < "$T/grow.json" | sed 1d | tr '\n' ' '), want 0 1 0 0"
