@@ -651,7 +651,8 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
                                                          : OIT_STREAM_SLOTS_DEFAULT);
     if (st == OIT_OK)
         oit_capture_set_store_limit(s->capture, desc->store_limit);
-    /* first-K's pass 2 without waits; a short frame is drawn again (render) */
+    /* first-K's pass 2 and counted batches without waits; a short frame is
+     * drawn again (render) */
     if (st == OIT_OK)
         oit_capture_set_no_wait(s->capture, 1);
     s->ahead = AHEAD_EXACT;
@@ -1174,7 +1175,7 @@ static oit_status render(oit_streamer *s, const oit_view *view, oit_image *out, 
     uint64_t uploaded = 0;
     for (int again = 1; st == OIT_OK && again; redraws++) {
         if (redraws > 2)
-            return oit_error_set(err, OIT_ERR_GL, "%s: the first-K store still short after "
+            return oit_error_set(err, OIT_ERR_GL, "%s: a store sized ahead still short after "
                                  "%u redraws", oit_partfile_name(s->pf), redraws - 1);
         st = capture_frame(s, view, &pk, ss, err);
         uploaded += ss->bytes_uploaded;

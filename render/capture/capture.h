@@ -173,7 +173,7 @@ void oit_capture_set_store_limit(oit_capture *c, uint64_t bytes);
  * frame's figures (streamer.h). The image is the same either way. */
 void oit_capture_set_first_k(oit_capture *c, int on);
 
-/* OIT_CAPTURE_FIRSTK only, from the next frame on: 1 drives first-K's
+/* OIT_CAPTURE_FIRSTK, from the next frame on: 1 drives first-K's
  * second pass on the GPU, so that the host never waits within a frame
  * (oit_frame_stats.host_waits): the pass-2 store is sized ahead from what
  * earlier frames' packs needed (at least what the slots hold; the first
@@ -183,7 +183,11 @@ void oit_capture_set_first_k(oit_capture *c, int on);
  * (oit_capture_short) and must be drawn again, which the measured need
  * then fits, within the slot budget and one storage binding (past them
  * the host splits pass 2 in bands as with 0). 0 (the default): the host
- * reads each pack's overflow back and sizes pass 2 exactly; never short. */
+ * reads each pack's overflow back and sizes pass 2 exactly; never short.
+ * OIT_CAPTURE_COUNTED (and first-K's counted packs) likewise, from the
+ * second frame on: each batch's store sized ahead from the most an
+ * earlier frame's batch took, opened by a judge on the GPU; a batch that
+ * needs more ends the frame short (capture_counted.h). */
 void oit_capture_set_no_wait(oit_capture *c, int on);
 /* 1 when the frame that oit_capture_end or _end_gpu just ended is short
  * (oit_capture_set_no_wait): its image is not exact, draw it again. */

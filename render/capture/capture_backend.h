@@ -164,6 +164,9 @@ void oit_capture_set_frame_uniforms(const oit_capture *c, GLuint *progs, int n);
 oit_status oit_capture_counted_batch(oit_capture *c, oit_counted *k,
                                      const oit_gpu_mesh *const *meshes, int n, const int r[4],
                                      oit_error *err);
+/* Fragments one counted store may hold: the slot budget where set, within
+ * one storage binding (the frame's; oit_counted_begin's fit). */
+uint64_t oit_capture_counted_fit(const oit_capture *c);
 /* The output through a fragment store (buf, cap), idle at the frame's end:
  * `want` bytes, within the slot budget and one binding (rows of `row`). */
 oit_status oit_capture_store_out(oit_capture *c, GLuint *buf, uint64_t *cap, const char *name,

@@ -12,6 +12,14 @@
  * halving (a 300-layer stack of 22 parts at 1024x1024: 43 count passes,
  * 3.8 s a frame against 2.1-2.7 s in bands).
  *
+ * Ahead (oit_counted_begin with no_wait, once a frame measured the need
+ * and while it fits one store): the host never reads a batch's count. The
+ * store is sized for the most fragments a batch of earlier frames took
+ * (an eighth more); a judge on the GPU opens the store pass and the
+ * resolve where the batch fits it, and flags the frame short where it does
+ * not, as first-K's pass 2 does: a short frame's image is not exact and is
+ * drawn again (oit_counted_ended), with the need it measured.
+ *
  * Internal to render/capture/: the counted backend and first-K's wide packs
  * (capture_backend.h); capture.c owns the frame's counts and state buffers
  * and the framebuffer; the counts are zero between batches (the
@@ -42,9 +50,21 @@ typedef struct oit_counted {
      * pack would send through its second pass */
     uint32_t deep_over;
     uint64_t deep_pixels;
+    /* Ahead mode (see above): the judge's program and words (gate, short,
+     * this frame's most fragments a batch, its deep pixels, the resolve's
+     * groups); this frame's mode; the need measured so far. */
+    GLuint judge, words;
+    int ahead, measured, ended_short;
+    uint64_t need, seen; /* seen: this frame's most fragments a batch (host mode) */
 } oit_counted;
 
 oit_status oit_counted_init(oit_counted *k, oit_program_cache *pc, oit_error *err);
+/* A frame's begin: its figures reset; ahead when no_wait is set, a frame
+ * has measured the need and `fit` fragments (one store) hold it. */
+void oit_counted_begin(oit_counted *k, int no_wait, uint64_t fit);
+/* After the frame's final read-back (the GPU is done: nothing waits): the
+ * figures the GPU kept (ahead mode), the need; 1 when the frame ended short. */
+int oit_counted_ended(oit_counted *k);
 void oit_counted_release(oit_counted *k);
 uint64_t oit_counted_bytes(const oit_counted *k);
 

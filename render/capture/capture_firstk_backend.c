@@ -90,8 +90,9 @@ static void firstk_destroy(void *be)
 static oit_status firstk_begin(oit_capture *c, oit_error *err)
 {
     firstk_backend *b = c->be;
-    b->counted.splits = 0;
-    b->counted.deep_pixels = 0;
+    /* built mid-frame where it is first needed: then on the host */
+    if (b->counted_ready)
+        oit_counted_begin(&b->counted, c->set.no_wait, oit_capture_counted_fit(c));
     b->k.second_pixels = 0;
     b->k.second_packs = b->k.second_draws = 0;
     /* pass 2 on the GPU while the store the host would split it by (the
@@ -222,7 +223,8 @@ static int firstk_ended(oit_capture *c)
     if (!b->k.totals)
         return 0; /* a self-test frame (firstk_begin) */
     oit_firstk_ended(&b->k);
-    return b->k.ahead && b->k.ended_short;
+    int counted_short = b->counted_ready && oit_counted_ended(&b->counted);
+    return (b->k.ahead && b->k.ended_short) || counted_short;
 }
 
 OIT_CAPTURE_OPS(firstk, OIT_CAPTURE_FIRSTK, "first-k", firstk_backend, firstk_first_k,

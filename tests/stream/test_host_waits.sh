@@ -9,12 +9,21 @@
 #    the short frame's final read-back), no later frame waits or redraws,
 #    second-pass pixels > 0 and DFB's image and fragments;
 #  - 4 stacked quads (nothing over K): 0 waits and redraws, no second pass;
+#  - the stack head on, every pixel over K: auto draws it counted from the
+#    first frame's redraw on; counted batches wait for their counts only
+#    until a frame has measured what they need, so every frame after the
+#    first waits 0 times and none is drawn again (--slot-budget 64M: one
+#    store holds a batch; past one, the host splits it in bands);
 #  - --pack first-k on the stack, the corner view (1.6 M fragments) then the
 #    head-on one (2.5 M): the first frame may outgrow its slots' store (as
 #    above); the head-on frame outgrows the store sized from
 #    the corner's need, ends short and is drawn again (redraws 1, one wait:
 #    the short frame's final read-back); the frames after it wait 0 times
-#    and never redraw; every frame's image and fragments DFB's.
+#    and never redraw; every frame's image and fragments DFB's;
+#  - the same walk with --pack counted: the first frame reads its batches'
+#    counts, the second is sized ahead from them, the head-on frame outgrows
+#    that store and is drawn again (redraws 0 0 1 0 0, waits after the first
+#    0 1 0 0), every frame's image and fragments DFB's.
 set -u
 . "${OIT_TEST_LIB:-$(dirname "$0")/../lib.sh}"
 S="$OIT_BIN/oitstream"
@@ -55,12 +64,16 @@ run() {
     same_as_dfb "$_n"
 }
 
-# frames 1.. of NAME: 0 waits, 0 redraws; frame 0 waits only for its redraw
+# frames 1.. of NAME: 0 waits, 0 redraws
 warm_zero() {
     [ "$(json_all host_waits < "$T/$1.json" | sed 1d | awk '{s += $1} END {print s + 0}')" -eq 0 ] ||
         fail "$1: a warm frame waited: $(json_all host_waits < "$T/$1.json" | tr '\n' ' ')"
     [ "$(json_all redraws < "$T/$1.json" | sed 1d | awk '{s += $1} END {print s + 0}')" -eq 0 ] ||
         fail "$1: a warm frame was drawn again: $(json_all redraws < "$T/$1.json" | tr '\n' ' ')"
+}
+
+# frame 0 of NAME (first-K): no wait but for its redraw, at most one
+first_frame() {
     _w=$(json_all host_waits < "$T/$1.json" | head -n 1)
     _r=$(json_all redraws < "$T/$1.json" | head -n 1)
     [ "$_r" -le 1 ] && [ "$_w" -eq "$_r" ] ||
@@ -71,6 +84,7 @@ warm_zero() {
 for i in 1 2 3 4; do echo "0,0,60,0,0,0,0,1,0,18"; done > "$T/far.txt"
 run far "$T/stack.oitp" 128x128 "$T/far.txt"
 warm_zero far
+first_frame far
 [ "$(json_all auto_first_k < "$T/far.json" | tr -d '\n')" = 1111 ] ||
     fail "far: auto left first-K; this test needs a view that stays there"
 [ "$(json_min second_pass_pixels < "$T/far.json")" -gt 0 ] ||
@@ -78,8 +92,15 @@ warm_zero far
 
 run quads "$T/quads.oitp" 96x96 "$T/far.txt"
 warm_zero quads
+first_frame quads
 [ "$(json_sum second_pass_pixels < "$T/quads.json")" -eq 0 ] ||
     fail "quads: a second pass where no pixel gets more than 4"
+
+for i in 1 2 3 4; do echo "0,0,5,0,0,0,0,1,0,18"; done > "$T/deep.txt"
+run deep "$T/stack.oitp" 64x64 "$T/deep.txt" --slot-budget 64M
+warm_zero deep
+[ "$(json_all auto_first_k < "$T/deep.json" | sed 1d | tr -d '\n')" = 000 ] ||
+    fail "deep: auto did not hold counted packs; this test needs a view that does"
 
 printf '%s\n' 1.5,1.2,4,0,0,0,0,1,0,30 1.5,1.2,4,0,0,0,0,1,0,30 0,0,5,0,0,0,0,1,0,18 \
     0,0,5,0,0,0,0,1,0,18 0,0,5,0,0,0,0,1,0,18 > "$T/grow.txt"
@@ -90,4 +111,10 @@ run grow "$T/stack.oitp" 64x64 "$T/grow.txt" --pack first-k
 [ "$(json_all host_waits < "$T/grow.json" | sed 1d | tr '\n' ' ')" = "0 1 0 0 " ] ||
     fail "grow: host waits after the first frame" \
          "$(json_all host_waits < "$T/grow.json" | sed 1d | tr '\n' ' '), want 0 1 0 0"
+run growc "$T/stack.oitp" 64x64 "$T/grow.txt" --pack counted
+[ "$(json_all redraws < "$T/growc.json" | tr '\n' ' ')" = "0 0 1 0 0 " ] ||
+    fail "growc: redraws $(json_all redraws < "$T/growc.json" | tr '\n' ' '), want 0 0 1 0 0"
+[ "$(json_all host_waits < "$T/growc.json" | sed 1d | tr '\n' ' ')" = "0 1 0 0 " ] ||
+    fail "growc: host waits after the first frame" \
+         "$(json_all host_waits < "$T/growc.json" | sed 1d | tr '\n' ' '), want 0 1 0 0"
 finish "host waits"
