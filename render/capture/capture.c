@@ -568,6 +568,8 @@ oit_status oit_capture_end(oit_capture *c, oit_image *out, oit_frame_stats *stat
     GLuint totals[4];
     s = read_output(c, out, totals, err);
     glFinish();
+    if (s == OIT_OK)
+        c->frame.fragments = (uint64_t)totals[2] << 32 | totals[1];
     ended(c, s);
     if (s == OIT_OK)
         fill_stats(c, totals, stats);
@@ -586,6 +588,8 @@ oit_status oit_capture_end_gpu(oit_capture *c, unsigned *state, oit_frame_stats 
     GLuint totals[4];
     glGetNamedBufferSubData(c->buf[OIT_CAPTURE_TOTALS], 0, 16, totals);
     s = oit_gl_check("capture: end on the GPU", err);
+    if (s == OIT_OK)
+        c->frame.fragments = (uint64_t)totals[2] << 32 | totals[1];
     ended(c, s);
     if (s != OIT_OK)
         return s;

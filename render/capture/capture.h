@@ -189,6 +189,11 @@ void oit_capture_set_first_k(oit_capture *c, int on);
  * earlier frame's batch took, opened by a judge on the GPU; a batch that
  * needs more ends the frame short (capture_counted.h). */
 void oit_capture_set_no_wait(oit_capture *c, int on);
+/* OIT_CAPTURE_FIRSTK, after a frame: the counted capture built and sized
+ * for that frame's fragments, for a next frame drawn counted
+ * (oit_capture_set_first_k 0) to start warm and without waits; nothing
+ * once counted packs have been measured, or for other captures. */
+void oit_capture_ready_counted(oit_capture *c);
 /* 1 when the frame that oit_capture_end or _end_gpu just ended is short
  * (oit_capture_set_no_wait): its image is not exact, draw it again. */
 int oit_capture_short(const oit_capture *c);

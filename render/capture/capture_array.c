@@ -243,4 +243,4 @@ static void array_stats(const oit_capture *c, oit_frame_stats *stats)
     stats->capture_slots = "array";
 }
 
-OIT_CAPTURE_OPS(array, OIT_CAPTURE_ARRAY, "array", oit_capture_slots, NULL, NULL);
+OIT_CAPTURE_OPS(array, OIT_CAPTURE_ARRAY, "array", oit_capture_slots, NULL, NULL, NULL);

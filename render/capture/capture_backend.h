@@ -47,6 +47,7 @@ typedef struct oit_capture_frame {
     uint64_t calls0;     /* the draws' calls at the frame's begin */
     uint64_t bytes_peak;
     oit_host_waits waits; /* the host's waits on the GPU so far (host_wait.h) */
+    uint64_t fragments;   /* the frame's, once ended (oit_capture_ready_counted) */
 } oit_capture_frame;
 
 /* The buffer a frame's output passes through at its end (idle by then). */
@@ -108,8 +109,10 @@ struct oit_capture_ops {
     /* Its part of the frame's stats: capture, capture_slots(_k), batches
      * past c->frame.batches, second-pass figures. */
     void (*stats)(const oit_capture *c, oit_frame_stats *stats);
-    /* first-k only (NULL elsewhere): oit_capture_set_first_k */
+    /* first-k only (NULL elsewhere): oit_capture_set_first_k,
+     * oit_capture_ready_counted */
     void (*first_k)(oit_capture *c, int on);
+    void (*ready_counted)(oit_capture *c);
     /* After the frame's final read-back (NULL: nothing to do): reads what
      * the backend measured on the GPU (no wait: it is done); returns 1
      * when the frame ended short (oit_capture_short). */
@@ -117,14 +120,15 @@ struct oit_capture_ops {
 };
 
 /* The table of backend P (its functions P_create, P_destroy, ... and its
- * state type T) as oit_capture_P_ops; FIRST_K, ENDED: its first_k and
- * ended, or NULL. */
-#define OIT_CAPTURE_OPS(P, KIND, NAME, T, FIRST_K, ENDED)                                     \
+ * state type T) as oit_capture_P_ops; FIRST_K, READY, ENDED: its first_k,
+ * ready_counted and ended, or NULL. */
+#define OIT_CAPTURE_OPS(P, KIND, NAME, T, FIRST_K, READY, ENDED)                              \
     const oit_capture_ops oit_capture_##P##_ops = {                                           \
         .kind = KIND, .name = NAME, .size = sizeof(T), .create = P##_create,                  \
         .destroy = P##_destroy, .begin = P##_begin, .uniforms = P##_uniforms,                 \
         .epsilon = P##_epsilon, .bind = P##_bind, .batch = P##_batch, .end = P##_end,         \
-        .bytes = P##_bytes, .stats = P##_stats, .first_k = FIRST_K, .ended = ENDED}
+        .bytes = P##_bytes, .stats = P##_stats, .first_k = FIRST_K, .ready_counted = READY,  \
+        .ended = ENDED}
 
 extern const oit_capture_ops oit_capture_array_ops, oit_capture_stencil_ops,
     oit_capture_counted_ops, oit_capture_firstk_ops, oit_capture_compute_ops;

@@ -549,4 +549,4 @@ static void compute_stats(const oit_capture *c, oit_frame_stats *stats)
     stats->capture = c->ops->name;
 }
 
-OIT_CAPTURE_OPS(compute, OIT_CAPTURE_COMPUTE, "compute", oit_compute, NULL, NULL);
+OIT_CAPTURE_OPS(compute, OIT_CAPTURE_COMPUTE, "compute", oit_compute, NULL, NULL, NULL);

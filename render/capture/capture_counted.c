@@ -103,6 +103,16 @@ int oit_counted_ended(oit_counted *k)
     return k->ended_short;
 }
 
+void oit_counted_seed(oit_counted *k, uint64_t fragments, uint64_t fit)
+{
+    uint64_t need = fragments + fragments / 8;
+    k->need = need > k->need ? need : k->need;
+    k->measured = 1;
+    if (k->need && k->need <= fit && k->need <= UINT32_MAX)
+        oit_gl_buffer_reserve(&k->frags, &k->frags_cap, k->need * 16,
+                              "counted capture fragments", NULL);
+}
+
 
 /* Count pass, then offsets = exclusive scan of the counts (pixels + 1
  * entries, the last = the batch's fragments). */
@@ -410,4 +420,5 @@ static void counted_stats(const oit_capture *c, oit_frame_stats *stats)
     stats->deep_pixels = k->deep_pixels;
 }
 
-OIT_CAPTURE_OPS(counted, OIT_CAPTURE_COUNTED, "counted", oit_counted, NULL, counted_ended);
+OIT_CAPTURE_OPS(counted, OIT_CAPTURE_COUNTED, "counted", oit_counted, NULL, NULL,
+                counted_ended);

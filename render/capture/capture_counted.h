@@ -65,6 +65,9 @@ void oit_counted_begin(oit_counted *k, int no_wait, uint64_t fit);
 /* After the frame's final read-back (the GPU is done: nothing waits): the
  * figures the GPU kept (ahead mode), the need; 1 when the frame ended short. */
 int oit_counted_ended(oit_counted *k);
+/* Measured from elsewhere (another capture's frame of `fragments`): the
+ * need set, the store reserved where `fit` holds it. */
+void oit_counted_seed(oit_counted *k, uint64_t fragments, uint64_t fit);
 void oit_counted_release(oit_counted *k);
 uint64_t oit_counted_bytes(const oit_counted *k);
 

@@ -227,5 +227,18 @@ static int firstk_ended(oit_capture *c)
     return (b->k.ahead && b->k.ended_short) || counted_short;
 }
 
+/* The counted capture built and seeded with the last frame's fragments
+ * (an upper bound of its largest pack's), its store reserved: the frame
+ * after, drawn counted, then runs ahead on warm buffers. A failure here
+ * leaves that frame to build and measure as it would have. */
+static void firstk_ready_counted(oit_capture *c)
+{
+    firstk_backend *b = c->be;
+    if (b->off || (b->counted_ready && b->counted.measured))
+        return;
+    if (counted_ready(c, b, NULL) == OIT_OK)
+        oit_counted_seed(&b->counted, c->frame.fragments, oit_capture_counted_fit(c));
+}
+
 OIT_CAPTURE_OPS(firstk, OIT_CAPTURE_FIRSTK, "first-k", firstk_backend, firstk_first_k,
-                firstk_ended);
+                firstk_ready_counted, firstk_ended);

@@ -19,6 +19,12 @@ void oit_capture_set_no_wait(oit_capture *c, int on)
     c->set.no_wait = on != 0;
 }
 
+void oit_capture_ready_counted(oit_capture *c)
+{
+    if (c->ops->ready_counted && !c->frame.in_frame)
+        c->ops->ready_counted(c);
+}
+
 int oit_capture_short(const oit_capture *c)
 {
     return c->ended_short;

@@ -504,4 +504,5 @@ static void stencil_stats(const oit_capture *c, oit_frame_stats *stats)
     stats->capture_slots_k = (uint32_t)c->routed_k;
 }
 
-OIT_CAPTURE_OPS(stencil, OIT_CAPTURE_STENCIL, "stencil", stencil_backend, NULL, NULL);
+OIT_CAPTURE_OPS(stencil, OIT_CAPTURE_STENCIL, "stencil", stencil_backend, NULL, NULL,
+                NULL);
