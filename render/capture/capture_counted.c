@@ -244,12 +244,8 @@ static oit_status judged_store(oit_counted *k, const oit_counted_frame *f,
     GLuint store = k->prog[OIT_COUNTED_STORE], resolve = k->prog[OIT_COUNTED_RESOLVE];
     glProgramUniform1ui(store, glGetUniformLocation(store, "u_base"), 0);
     glProgramUniform1ui(resolve, glGetUniformLocation(resolve, "u_base"), 0);
-    oit_glsl_raster_begin(f->fbo, f->width, f->height);
-    glEnable(GL_SCISSOR_TEST);
-    glScissor(r[0], r[1], r[2] - r[0], r[3] - r[1]);
-    glUseProgram(store);
-    oit_gpu_mesh_draw_many_gated(f->draws, meshes, n, k->words, J_GATE);
-    glDisable(GL_SCISSOR_TEST);
+    oit_glsl_draw_scissored_gated(f->fbo, f->width, f->height, store, f->draws, meshes, n, r,
+                                  k->words, J_GATE);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(resolve);
     glProgramUniform2i(resolve, 11, f->width, f->height);

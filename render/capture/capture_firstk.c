@@ -541,12 +541,8 @@ static oit_status ahead_pass(oit_firstk *k, const oit_counted_frame *f,
     judge(k, 1, cap);
     GLuint st = k->prog[OIT_FIRSTK_STORE];
     set_rect(st, "u_tile", r);
-    oit_glsl_raster_begin(f->fbo, f->width, f->height);
-    glEnable(GL_SCISSOR_TEST);
-    glScissor(r[0], r[1], r[2] - r[0], r[3] - r[1]);
-    glUseProgram(st);
-    oit_gpu_mesh_draw_many_gated(f->draws, meshes, n, k->totals, W_GATE);
-    glDisable(GL_SCISSOR_TEST);
+    oit_glsl_draw_scissored_gated(f->fbo, f->width, f->height, st, f->draws, meshes, n, r,
+                                  k->totals, W_GATE);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     oit_gpu_timer_mark(f->timer, OIT_GPU_RESOLVE);
     dispatch_box(k, k->prog[OIT_FIRSTK_SEGMENT], r);
