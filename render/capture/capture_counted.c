@@ -85,6 +85,16 @@ void oit_counted_begin(oit_counted *k, int no_wait, uint64_t fit)
     glNamedBufferSubData(k->words, 0, sizeof zero, zero);
 }
 
+/* A batch of `seen` fragments measured: the need, with room for an eighth
+ * more, so that a view that deepens a little does not draw its frames
+ * twice. */
+static void note_need(oit_counted *k, uint64_t seen)
+{
+    uint64_t need = seen + seen / 8;
+    k->need = need > k->need ? need : k->need;
+    k->measured = 1;
+}
+
 int oit_counted_ended(oit_counted *k)
 {
     uint64_t seen = k->seen;
@@ -95,19 +105,13 @@ int oit_counted_ended(oit_counted *k)
         k->deep_pixels = w[J_DEEP];
         seen = w[J_NEED];
     }
-    /* room for an eighth more, so that a view that deepens a little does
-     * not draw its frames twice */
-    uint64_t need = seen + seen / 8;
-    k->need = need > k->need ? need : k->need;
-    k->measured = 1;
+    note_need(k, seen);
     return k->ended_short;
 }
 
 void oit_counted_seed(oit_counted *k, uint64_t fragments, uint64_t fit)
 {
-    uint64_t need = fragments + fragments / 8;
-    k->need = need > k->need ? need : k->need;
-    k->measured = 1;
+    note_need(k, fragments);
     if (k->need && k->need <= fit && k->need <= UINT32_MAX)
         oit_gl_buffer_reserve(&k->frags, &k->frags_cap, k->need * 16,
                               "counted capture fragments", NULL);
