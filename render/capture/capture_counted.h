@@ -12,13 +12,18 @@
  * halving (a 300-layer stack of 22 parts at 1024x1024: 43 count passes,
  * 3.8 s a frame against 2.1-2.7 s in bands).
  *
- * Ahead (oit_counted_begin with no_wait, once a frame measured the need
- * and while it fits one store): the host never reads a batch's count. The
- * store is sized for the most fragments a batch of earlier frames took
- * (an eighth more); a judge on the GPU opens the store pass and the
- * resolve where the batch fits it, and flags the frame short where it does
- * not, as first-K's pass 2 does: a short frame's image is not exact and is
- * drawn again (oit_counted_ended), with the need it measured.
+ * Bands are cut on the GPU from the count (an eighth under the store), and
+ * every band goes through a judge on the GPU that opens its store pass and
+ * resolve where its fragments fit the store, at the offset it read there.
+ * On the host (the first frame, or a need past one store), the host reads
+ * the batch's bands back (one wait a batch) and sizes the store for each.
+ * Ahead (oit_counted_begin with no_wait, once a frame measured the need):
+ * the host reads nothing. The store is sized for the most fragments a band
+ * of earlier frames took (an eighth more), and batch j is drawn in the
+ * bands the last frame cut its batch j in; where a band does not fit, the
+ * judge flags the frame short, as first-K's pass 2 does: a short frame's
+ * image is not exact and is drawn again (oit_counted_ended), with the need
+ * and the bands it measured.
  *
  * Internal to render/capture/: the counted backend and first-K's wide packs
  * (capture_backend.h); capture.c owns the frame's counts and state buffers
@@ -50,12 +55,18 @@ typedef struct oit_counted {
      * pack would send through its second pass */
     uint32_t deep_over;
     uint64_t deep_pixels;
-    /* Ahead mode (see above): the judge's program and words (gate, short,
-     * this frame's most fragments a batch, its deep pixels, the resolve's
-     * groups); this frame's mode; the need measured so far. */
-    GLuint judge, words;
-    int ahead, measured, ended_short;
-    uint64_t need, seen; /* seen: this frame's most fragments a batch (host mode) */
+    /* The judge's program and words (gate, short, this frame's most
+     * fragments a band, its deep pixels, the resolve's groups, the band's
+     * base and the store's capacity); the program that cuts bands and its
+     * table (SLOT words a batch of the frame); this frame's mode and batch;
+     * the need measured so far; the last frame's table (pred_n batches),
+     * and whether a batch of it needed more bands than a slot holds. */
+    GLuint judge, words, split, table;
+    size_t table_slots, batch;
+    int ahead, measured, ended_short, unbanded;
+    uint64_t need, fit; /* fit: the fragments one store holds (the last batch's) */
+    uint32_t *pred;
+    size_t pred_n, pred_cap;
 } oit_counted;
 
 oit_status oit_counted_init(oit_counted *k, oit_program_cache *pc, oit_error *err);
@@ -63,7 +74,8 @@ oit_status oit_counted_init(oit_counted *k, oit_program_cache *pc, oit_error *er
  * has measured the need and `fit` fragments (one store) hold it. */
 void oit_counted_begin(oit_counted *k, int no_wait, uint64_t fit);
 /* After the frame's final read-back (the GPU is done: nothing waits): the
- * figures the GPU kept (ahead mode), the need; 1 when the frame ended short. */
+ * figures the GPU kept, the need, the bands for the next frame; 1 when the
+ * frame ended short. */
 int oit_counted_ended(oit_counted *k);
 /* Measured from elsewhere (another capture's frame of `fragments`): the
  * need set, the store reserved where `fit` holds it. */

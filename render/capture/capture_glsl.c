@@ -191,7 +191,16 @@ const char oit_capture_fullscreen_vs[] =
 
 /* The counted capture (capture_counted.h). Count and store run the same
  * rasterization with the same saturation test, so every counted fragment
- * finds its slot; the store counts each pixel back down to 0. */
+ * finds its slot; the store counts each pixel back down to 0. The band's
+ * first offset and the store's capacity are the judge's (capture_counted.c),
+ * written on the GPU; the store checks the capacity itself, so that a
+ * band the judge closed stays within the store where the draws could not
+ * be gated. */
+#define BAND                                                                              \
+    "layout(std430, binding = OIT_BIND_SUMS) readonly buffer Band { uint band_gate; "     \
+    "uint band_short; uint band_need; uint band_deep; uvec4 band_groups; uint band_base; " \
+    "uint band_cap; };\n"
+
 const char oit_capture_counted_count_fs[] =
     "layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };\n"
     SATURATED
@@ -207,7 +216,7 @@ const char oit_capture_counted_store_fs[] =
     "layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };\n"
     "layout(std430, binding = OIT_BIND_OFFSETS) readonly buffer Offsets { uint offsets[]; };\n"
     "layout(std430, binding = OIT_BIND_FRAGS) writeonly buffer Frags { uvec4 frags[]; };\n"
-    "uniform uint u_base;\n" /* the band's first offset (capture_counted.c) */
+    BAND
     SATURATED
     "void main() {\n"
     "    if (oit_clipped()) discard;\n"
@@ -215,8 +224,9 @@ const char oit_capture_counted_store_fs[] =
     "    if (oit_behind_opaque()) discard;\n"
     "    if (oit_saturated(p)) discard;\n"
     "    uint c = atomicAdd(counts[p], 0xffffffffu);\n"
-    "    uint slot = offsets[p] - u_base + c - 1u;\n"
-    "    if (c != 0u && slot < offsets[p + 1u] - u_base) frags[slot] = oit_fragment();\n"
+    "    uint slot = offsets[p] - band_base + c - 1u;\n"
+    "    if (c != 0u && slot < offsets[p + 1u] - band_base && slot < band_cap)\n"
+    "        frags[slot] = oit_fragment();\n"
     "}\n";
 
 /* Before oit_glsl_segment_composite; oit_capture_counted_resolve_main after. */
@@ -226,8 +236,7 @@ const char oit_capture_counted_resolve_cs[] =
     "layout(location = 12) uniform ivec4 u_rect;\n"
     "layout(std430, binding = OIT_BIND_OFFSETS) readonly buffer Offsets { uint offsets[]; };\n"
     "layout(std430, binding = OIT_BIND_FRAGS) buffer Frags { uvec4 frags[]; };\n"
-    "uniform uint u_base;\n"
-    ;
+    BAND;
 
 const char oit_capture_counted_resolve_main[] =
     "void main() {\n"
@@ -237,7 +246,7 @@ const char oit_capture_counted_resolve_main[] =
     "    uint n = offsets[p + 1u] - offsets[p];\n"
     "    if (n == 0u) return;\n"
     "    oit_state s = oit_state_load(p);\n"
-    "    oit_segment_composite(s, offsets[p] - u_base, n);\n"
+    "    oit_segment_composite(s, offsets[p] - band_base, n);\n"
     "    s.nfrag += n;\n"
     "    oit_state_store(p, s);\n"
     "}\n";

@@ -25,7 +25,13 @@
 #  - the same walk with --pack counted: the first frame reads its batches'
 #    counts, the second is sized ahead from them, the head-on frame outgrows
 #    that store and is drawn again (redraws 0 0 1 0 0, waits after the first
-#    0 1 0 0), every frame's image and fragments DFB's.
+#    0 1 0 0), every frame's image and fragments DFB's;
+#  - both counted runs again with --slot-budget 2M (131,072 fragments a
+#    store against 2.5 M head on): each batch is drawn in bands of rows,
+#    cut on the GPU and, ahead, the bands the frame before cut; warm
+#    frames still wait 0 times (head on) and the walk redraws only where
+#    its view changes (0 0 1 0 0, waits 0 1 0 0), at least 19 bands a
+#    head-on frame, every image and fragment count DFB's.
 set -u
 . "${OIT_TEST_LIB:-$(dirname "$0")/../lib.sh}"
 S="$OIT_BIN/oitstream"
@@ -117,4 +123,14 @@ run growc "$T/stack.oitp" 64x64 "$T/grow.txt" --pack counted
 [ "$(json_all host_waits < "$T/growc.json" | sed 1d | tr '\n' ' ')" = "0 1 0 0 " ] ||
     fail "growc: host waits after the first frame" \
          "$(json_all host_waits < "$T/growc.json" | sed 1d | tr '\n' ' '), want 0 1 0 0"
+run banded "$T/stack.oitp" 64x64 "$T/deep.txt" --slot-budget 2M --pack counted
+warm_zero banded
+[ "$(json_min batches < "$T/banded.json")" -ge 19 ] ||
+    fail "banded: batches $(json_all batches < "$T/banded.json" | tr '\n' ' '), want >= 19 bands"
+run growb "$T/stack.oitp" 64x64 "$T/grow.txt" --slot-budget 2M --pack counted
+[ "$(json_all redraws < "$T/growb.json" | tr '\n' ' ')" = "0 0 1 0 0 " ] ||
+    fail "growb: redraws $(json_all redraws < "$T/growb.json" | tr '\n' ' '), want 0 0 1 0 0"
+[ "$(json_all host_waits < "$T/growb.json" | sed 1d | tr '\n' ' ')" = "0 1 0 0 " ] ||
+    fail "growb: host waits after the first frame" \
+         "$(json_all host_waits < "$T/growb.json" | sed 1d | tr '\n' ' '), want 0 1 0 0"
 finish "host waits"
