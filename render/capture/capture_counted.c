@@ -431,7 +431,7 @@ oit_status oit_counted_batch(oit_counted *k, const oit_counted_frame *f,
         split(k, f, k->batch, y, r[3], fit, target);
         s = host_bands(k, f, meshes, n, r, y, fit, &y, err);
     }
-    k->batch++;
+    k->batch += s == OIT_OK; /* a failed batch's slot may hold nothing */
     return s;
 }
 /* ---- the counted backend (OIT_CAPTURE_COUNTED) ------------------------------ */

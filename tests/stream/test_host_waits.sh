@@ -14,8 +14,8 @@
 #    times' call, which a loaded machine can change): counted batches wait
 #    for their counts only until a frame has measured what they need, so
 #    every frame after the first waits 0 times and none is drawn again
-#    (--slot-budget 64M: one store holds a batch; past one, the host splits
-#    it in bands);
+#    (--slot-budget 64M: one store holds a batch; the runs below cut
+#    batches in bands);
 #  - --pack first-k on the stack, the corner view (1.6 M fragments) then the
 #    head-on one (2.5 M): the first frame may outgrow its slots' store (as
 #    above); the head-on frame outgrows the store sized from
