@@ -55,12 +55,13 @@ typedef struct oit_counted {
      * pack would send through its second pass */
     uint32_t deep_over;
     uint64_t deep_pixels;
-    /* The judge's program and words (gate, short, this frame's most
-     * fragments a band, its deep pixels, the resolve's groups, the band's
-     * base and the store's capacity); the program that cuts bands and its
-     * table (SLOT words a batch of the frame); this frame's mode and batch;
-     * the need measured so far; the last frame's table (pred_n batches),
-     * and whether a batch of it needed more bands than a slot holds. */
+    /* The judge's program and words (gate, short, this frame's deep
+     * pixels, the resolve's groups, the band's base and the store's
+     * capacity); the program that cuts bands and its table (SLOT words a
+     * batch of the frame); this frame's mode and batch; the need (the last
+     * frame's largest band, an eighth more); the last frame's table (pred_n
+     * batches), and whether a batch of it needed more bands than a slot
+     * holds. */
     GLuint judge, words, split, table;
     size_t table_slots, batch;
     int ahead, measured, ended_short, unbanded;

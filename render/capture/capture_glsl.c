@@ -198,7 +198,7 @@ const char oit_capture_fullscreen_vs[] =
  * be gated. */
 #define BAND                                                                              \
     "layout(std430, binding = OIT_BIND_SUMS) readonly buffer Band { uint band_gate; "     \
-    "uint band_short; uint band_need; uint band_deep; uvec4 band_groups; uint band_base; " \
+    "uint band_short; uint band_deep; uint band_pad; uvec4 band_groups; uint band_base; " \
     "uint band_cap; };\n"
 
 const char oit_capture_counted_count_fs[] =
