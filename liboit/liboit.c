@@ -1069,6 +1069,7 @@ static void draw_stats_work(const oit_frame_stats *fs, const oit_stream_frame_st
     out->host_waits = fs->host_waits;
     out->redraws = fs->redraws;
     out->deep_pixels = fs->deep_pixels;
+    out->predicted_batches = fs->predicted_batches;
     out->reader_threads = (uint32_t)(ss->reader_threads > 0 ? ss->reader_threads : 0);
 }
 

@@ -28,39 +28,6 @@ void oit_choice_init(oit_choice *c, unsigned candidates, oit_path seed)
         c->backoff[p] = OIT_CHOICE_BAR_FIRST;
 }
 
-/* FNV-1a over n bytes. */
-static uint64_t mix(uint64_t h, const void *p, size_t n)
-{
-    const unsigned char *b = p;
-    for (size_t i = 0; i < n; i++)
-        h = (h ^ b[i]) * 1099511628211ull;
-    return h;
-}
-
-uint64_t oit_choice_view_key(const oit_view *view)
-{
-    /* Field by field: no padding bytes enter the key. */
-    const oit_camera *cam = &view->camera;
-    uint64_t h = 14695981039346656037ull;
-    h = mix(h, cam->eye, sizeof cam->eye);
-    h = mix(h, cam->target, sizeof cam->target);
-    h = mix(h, cam->up, sizeof cam->up);
-    h = mix(h, &cam->fovy_deg, sizeof cam->fovy_deg);
-    h = mix(h, &cam->znear, sizeof cam->znear);
-    h = mix(h, &cam->zfar, sizeof cam->zfar);
-    h = mix(h, &cam->projection, sizeof cam->projection);
-    h = mix(h, &cam->ortho_height, sizeof cam->ortho_height);
-    h = mix(h, cam->window, sizeof cam->window);
-    h = mix(h, &view->width, sizeof view->width);
-    h = mix(h, &view->height, sizeof view->height);
-    h = mix(h, &view->shading.mode, sizeof view->shading.mode);
-    h = mix(h, view->model, sizeof view->model);
-    h = mix(h, &view->clip.count, sizeof view->clip.count);
-    for (int i = 0; i >= 0 && i < view->clip.count && i < OIT_CLIP_MAX; i++)
-        h = mix(h, view->clip.plane[i], sizeof view->clip.plane[i]);
-    return h;
-}
-
 static int candidate(const oit_choice *c, oit_path p)
 {
     return p >= 0 && p < OIT_PATHS && (c->candidates >> p & 1u);

@@ -1,7 +1,7 @@
 /* The automatic pack mode's judge: which capture path a view's next frame
  * takes, from the costs this process measured for that view (no GL here).
  *
- * A view (oit_choice_view_key: the camera, the size, the model matrix and
+ * A view (oit_view_key: the camera, the size, the model matrix and
  * the section planes) keeps, per path, the least wall time of its frames on
  * the host and the least GPU time of those whose timer figures came in
  * (gpu_timer.h: they arrive frames later, never waited for). The least,
@@ -97,8 +97,6 @@ typedef struct oit_choice {
 
 /* candidates: at least the seed's bit; paths outside it are never taken. */
 void oit_choice_init(oit_choice *c, unsigned candidates, oit_path seed);
-/* The key of view's figures: views with equal keys are one view. */
-uint64_t oit_choice_view_key(const oit_view *view);
 /* The path of the frame of view key that starts now (c->why says why). */
 oit_path oit_choice_begin(oit_choice *c, uint64_t key);
 /* The frame begun last ended after wall_ms on the host; suggest: the path

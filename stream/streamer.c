@@ -1054,7 +1054,7 @@ static void choose(oit_streamer *s, const oit_view *view)
     if (s->frame.open)
         oit_choice_end(&s->judge, s->frame.ms, s->frame.suggest);
     s->frame.open = 0;
-    oit_path p = oit_choice_begin(&s->judge, oit_choice_view_key(view));
+    oit_path p = oit_choice_begin(&s->judge, oit_view_key(view));
     s->first_k = p == OIT_PATH_FIRSTK;
     oit_capture_set_first_k(s->capture, s->first_k);
 }

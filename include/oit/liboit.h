@@ -611,6 +611,11 @@ typedef struct oit_draw_stats {
      * where more than 1 pixel in 50 did, first-K where fewer did. 0
      * otherwise. */
     uint64_t deep_pixels;
+    /* A part file's draw with counted packs: the packs drawn at the
+     * offsets the last draw's counts of the same view gave (one geometry
+     * pass where the view held still, a second for the pixels whose
+     * fragments it did not hold), not counted first. 0 otherwise. */
+    uint32_t predicted_batches;
 } oit_draw_stats;
 
 /* Draws scene as seen through frame into frame->framebuffer (see Result

@@ -104,7 +104,8 @@ class DrawStats(ctypes.Structure):
                 ("choice_first_k_ms", ctypes.c_double),
                 ("choice_counted_ms", ctypes.c_double),
                 ("host_waits", ctypes.c_uint32), ("redraws", ctypes.c_uint32),
-                ("deep_pixels", ctypes.c_uint64)]
+                ("deep_pixels", ctypes.c_uint64),
+                ("predicted_batches", ctypes.c_uint32)]
 
 
 # enum values of the headers

@@ -455,6 +455,7 @@ oit_counted_frame oit_capture_counted_frame(oit_capture *c)
                                .height = c->view.height,
                                .draws = c->draws,
                                .bind = c->frame.bind,
+                               .view_key = oit_view_key(&c->view),
                                .timer = c->set.timer,
                                .waits = &c->frame.waits};
 }

@@ -1,8 +1,10 @@
 /* The counted capture (capture_counted.h). */
 #include "render/capture/capture_counted.h"
+#include "render/capture/capture_counted_steps.h"
 
 #include "render/capture/capture_backend.h"
 #include "render/capture/capture_glsl.h"
+#include "render/gl/gpu_timer.h"
 #include "render/gl/frag_glsl.h"
 
 #include <stdlib.h>
@@ -44,12 +46,11 @@ enum { J_GATE, J_SHORT, J_DEEP, J_GROUPS = 4, J_BASE = 8, J_CAP, J_WORDS = 12 };
 /* A batch's bands of rows, cut on the GPU after the scan: from row
  * u_rows.x on, one band where the rows' fragments fit the store (u_fit),
  * else each band the most rows whose fragments stay within u_target (a
- * row that alone passes it is a band of its own), at most BANDS of them. Its slot of the band table: the bands (BANDS_LEFT set
- * where rows were left), the scan's high word, the first row's offset,
- * then each band's end row and the offset there. The host reads the slot
- * where it splits a batch itself; the next frame's ahead batches draw
- * the bands this one cut (oit_counted_ended). */
-enum { BANDS = 62, SLOT = 128, S_BANDS = 0, S_HI, S_START, S_ENDS };
+ * row that alone passes it is a band of its own), at most BANDS of them. Its slot of the band
+ * table: the bands (BANDS_LEFT set where rows were left), the scan's high word, the first row's
+ * offset, then each band's end row and the offset there. The host reads the slot where it splits a
+ * batch itself; the next frame's ahead batches draw the bands this one cut (oit_counted_ended). */
+enum { BANDS = OIT_COUNTED_BANDS, SLOT = 128, S_BANDS = 0, S_HI, S_START, S_ENDS };
 #define BANDS_LEFT 0x80000000u
 static const char split_cs[] =
     "layout(local_size_x = 1) in;\n"
@@ -94,6 +95,13 @@ static const oit_glsl_program programs[OIT_COUNTED_PROGS] = {
                              .cs = {oit_glsl_composite, oit_glsl_state_io,
                                     oit_capture_counted_resolve_cs, oit_glsl_segment_composite,
                                     oit_capture_counted_resolve_main}},
+    [OIT_COUNTED_PREDICTED] = {"counted capture predicted store",
+                               .fs = {oit_glsl_state_io, oit_capture_counted_predicted_fs}},
+    [OIT_COUNTED_PREDICTED_RESOLVE] = {"counted capture predicted resolve",
+                                       .cs = {oit_glsl_composite, oit_glsl_state_io,
+                                              oit_capture_counted_predicted_cs,
+                                              oit_glsl_segment_composite,
+                                              oit_capture_counted_predicted_main}},
 };
 
 /* The judge's frame figures (gate to groups) to zero. */
@@ -106,7 +114,12 @@ static void zero_figures(oit_counted *k)
 oit_status oit_counted_init(oit_counted *k, oit_program_cache *pc, oit_error *err)
 {
     memset(k, 0, sizeof *k);
-    oit_status s = oit_glsl_programs_build(pc, programs, OIT_COUNTED_PROGS, k->prog, err);
+    k->pc = pc;
+    /* the predicted passes wait for a frame that predicts */
+    oit_status s = oit_glsl_programs_build(pc, programs, OIT_COUNTED_PREDICTED, k->prog, err);
+    if (s == OIT_OK)
+        s = oit_glsl_programs_build(pc, &programs[OIT_COUNTED_RESOLVE], 1,
+                                    &k->prog[OIT_COUNTED_RESOLVE], err);
     if (s == OIT_OK)
         s = oit_glsl_programs_build(pc, &judge_program, 1, &k->judge, err);
     if (s == OIT_OK)
@@ -131,6 +144,8 @@ void oit_counted_release(oit_counted *k)
     glDeleteBuffers(1, &k->frags);
     glDeleteBuffers(1, &k->words);
     glDeleteBuffers(1, &k->table);
+    glDeleteBuffers(OIT_COUNTED_PREDICTED_BATCHES, k->predicted);
+    glDeleteBuffers(1, &k->next);
     oit_scan_release(&k->scan);
     free(k->pred);
     memset(k, 0, sizeof *k);
@@ -138,8 +153,26 @@ void oit_counted_release(oit_counted *k)
 
 uint64_t oit_counted_bytes(const oit_counted *k)
 {
-    return k->offsets_cap + k->frags_cap + oit_scan_bytes(&k->scan) +
-           (k->words ? J_WORDS * 4 : 0) + k->table_slots * SLOT * 4;
+    uint64_t predicted = k->next_cap;
+    for (int j = 0; j < OIT_COUNTED_PREDICTED_BATCHES; j++)
+        predicted += k->predicted_cap[j];
+    return k->offsets_cap + k->frags_cap + oit_scan_bytes(&k->scan) + (k->words ? J_WORDS * 4 : 0) +
+           k->table_slots * SLOT * 4 + predicted;
+}
+
+/* The predicted passes' programs where they are not built yet; a
+ * driver that refuses them leaves every batch counted. */
+void oit_counted_build_predicted(oit_counted *k)
+{
+    if (k->prog[OIT_COUNTED_PREDICTED] || k->predicted_failed)
+        return;
+    k->predicted_failed =
+        oit_glsl_programs_build(k->pc, &programs[OIT_COUNTED_PREDICTED], 1,
+                                &k->prog[OIT_COUNTED_PREDICTED], NULL) != OIT_OK ||
+        oit_glsl_programs_build(k->pc, &programs[OIT_COUNTED_PREDICTED_RESOLVE], 1,
+                                &k->prog[OIT_COUNTED_PREDICTED_RESOLVE], NULL) != OIT_OK;
+    if (k->predicted_failed)
+        oit_glsl_programs_delete(&k->prog[OIT_COUNTED_PREDICTED], 1);
 }
 
 void oit_counted_begin(oit_counted *k, int no_wait, uint64_t fit)
@@ -150,7 +183,15 @@ void oit_counted_begin(oit_counted *k, int no_wait, uint64_t fit)
     k->ended_short = 0;
     k->ahead = no_wait && k->measured && !k->unbanded && k->need <= fit;
     k->unbanded = 0;
+    k->predicted_batches = 0;
     zero_figures(k);
+    /* the predicted passes, once a frame ahead has a prediction to draw
+     * by; before the frame's uniforms are set */
+    int any = 0;
+    for (int j = 0; j < OIT_COUNTED_PREDICTED_BATCHES; j++)
+        any |= k->predicted_ok[j];
+    if (k->ahead && any)
+        oit_counted_build_predicted(k);
 }
 
 /* A band of `seen` fragments, the most of a frame: the need, with room
@@ -179,8 +220,11 @@ static void keep_bands(oit_counted *k)
         k->pred = p, k->pred_cap = k->batch;
     }
     k->pred_n = k->batch;
-    if (k->batch)
-        oit_host_read(NULL, k->table, 0, k->batch * SLOT * 4, k->pred);
+    /* a frame that drew no batch counted (first-K's) measured nothing:
+     * the need stays (seeded or the last counted frame's) */
+    if (!k->batch)
+        return;
+    oit_host_read(NULL, k->table, 0, k->batch * SLOT * 4, k->pred);
     uint64_t most = 0;
     for (size_t j = 0; j < k->pred_n; j++) {
         const uint32_t *slot = k->pred + j * SLOT;
@@ -210,8 +254,8 @@ void oit_counted_seed(oit_counted *k, uint64_t fragments, uint64_t fit)
 {
     note_need(k, fragments);
     if (k->need && k->need <= fit && k->need <= UINT32_MAX)
-        oit_gl_buffer_reserve(&k->frags, &k->frags_cap, k->need * 16,
-                              "counted capture fragments", NULL);
+        oit_gl_buffer_reserve(&k->frags, &k->frags_cap, k->need * 16, "counted capture fragments",
+                              NULL);
 }
 
 /* Fragments one store holds: the budget where it can keep to it, one
@@ -238,38 +282,46 @@ static oit_status table_slot(oit_counted *k, size_t j, oit_error *err)
     return oit_gl_check("counted capture: band table", err);
 }
 
-/* Count pass, then offsets = exclusive scan of the counts (pixels + 1
- * entries, the last = the batch's fragments), nothing read back. */
-static oit_status count(oit_counted *k, const oit_counted_frame *f,
-                        const oit_gpu_mesh *const *meshes, int n, const int r[4],
-                        oit_error *err)
+/* offsets = the exclusive scan of the frame's counts (pixels + 1 entries,
+ * the last = the fragments), the counts over `over` counted, nothing read
+ * back. */
+oit_status oit_counted_scan_counts(oit_counted *k, const oit_counted_frame *f, uint32_t over,
+                                   oit_error *err)
 {
     uint64_t pixels = (uint64_t)f->width * f->height;
     oit_status s = oit_gl_buffer_reserve(&k->offsets, &k->offsets_cap, (pixels + 1) * 4,
                                          "counted capture offsets", err);
     if (s != OIT_OK)
         return s;
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, f->counts);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_STATE, f->state);
-    oit_glsl_draw_scissored(f->fbo, f->width, f->height, k->prog[OIT_COUNTED_COUNT], f->draws,
-                            meshes, n, r);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     static const GLuint zero = 0;
     glCopyNamedBufferSubData(f->counts, k->offsets, 0, 0, (GLsizeiptr)(pixels * 4));
     glClearNamedBufferSubData(k->offsets, GL_R32UI, (GLintptr)(pixels * 4), 4, GL_RED_INTEGER,
                               GL_UNSIGNED_INT, &zero);
-    k->scan.over = k->deep_over;
+    k->scan.over = over;
     return oit_scan_run(&k->scan, k->offsets, pixels + 1, NULL, f->waits, err);
+}
+
+/* Count pass, then its scan into offsets. */
+static oit_status count(oit_counted *k, const oit_counted_frame *f,
+                        const oit_gpu_mesh *const *meshes, int n, const int r[4], oit_error *err)
+{
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, f->counts);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_STATE, f->state);
+    oit_gpu_timer_mark(f->timer, OIT_GPU_PASS1);
+    oit_glsl_draw_scissored(f->fbo, f->width, f->height, k->prog[OIT_COUNTED_COUNT], f->draws,
+                            meshes, n, r);
+    return oit_counted_scan_counts(k, f, k->deep_over, err);
 }
 
 /* Cuts the rows [y0, y1) of batch j's count in bands into its slot of
  * the band table: one where they fit, else of at most target fragments. */
-static void split(oit_counted *k, const oit_counted_frame *f, size_t j, int y0, int y1,
-                  uint64_t fit, uint64_t target)
+void oit_counted_split(oit_counted *k, const oit_counted_frame *f, GLuint offsets, size_t j, int y0,
+                       int y1, uint64_t fit, uint64_t target)
 {
     GLuint p = k->split;
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_TOTALS, k->scan.totals);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OFFSETS, k->offsets);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OFFSETS, offsets);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_SUMS, k->table);
     glProgramUniform1ui(p, glGetUniformLocation(p, "u_width"), (GLuint)f->width);
     glProgramUniform2ui(p, glGetUniformLocation(p, "u_rows"), (GLuint)y0, (GLuint)y1);
@@ -284,20 +336,16 @@ static void split(oit_counted *k, const oit_counted_frame *f, size_t j, int y0, 
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
-/* The band of rows r judged against the store (its capacity): the store
- * pass gated and the resolve dispatched by the judge's verdict, both at
- * the offset the judge read. Every band of both modes goes this way, so
- * that the first frame already builds and runs what the next, ahead,
- * runs (stack80 at 128x128: that frame took 95 ms against 38 warm when
- * only it judged). */
-static oit_status judged_store(oit_counted *k, const oit_counted_frame *f,
-                               const oit_gpu_mesh *const *meshes, int n, const int r[4],
-                               int first, oit_error *err)
+/* The band of rows r of the scan in offsets judged against the store (its
+ * capacity), into the judge's words; with first, the scan's counts over
+ * K added to the frame's deep pixels. */
+void oit_counted_judge(oit_counted *k, const oit_counted_frame *f, GLuint offsets, const int r[4],
+                       int first)
 {
     uint64_t cap = k->frags_cap / 16 < UINT32_MAX ? k->frags_cap / 16 : UINT32_MAX;
     GLuint j = k->judge;
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_TOTALS, k->scan.totals);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OFFSETS, k->offsets);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OFFSETS, offsets);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_SUMS, k->words);
     glProgramUniform1ui(j, glGetUniformLocation(j, "u_cap"), (GLuint)cap);
     glProgramUniform1ui(j, glGetUniformLocation(j, "u_width"), (GLuint)f->width);
@@ -309,11 +357,25 @@ static oit_status judged_store(oit_counted *k, const oit_counted_frame *f,
     glUseProgram(j);
     glDispatchCompute(1, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+}
+
+/* The band of rows r judged: the store pass gated and the resolve
+ * dispatched by the judge's verdict, both at the offset the judge read.
+ * Every band of both modes goes this way, so that the first frame already
+ * builds and runs what the next, ahead, runs (stack80 at 128x128: that
+ * frame took 95 ms against 38 warm when only it judged). */
+oit_status oit_counted_judged_store(oit_counted *k, const oit_counted_frame *f,
+                                    const oit_gpu_mesh *const *meshes, int n, const int r[4],
+                                    int first, oit_error *err)
+{
+    oit_counted_judge(k, f, k->offsets, r, first);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_COUNTS, f->counts);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_FRAGS, k->frags);
-    oit_glsl_draw_scissored_gated(f->fbo, f->width, f->height, k->prog[OIT_COUNTED_STORE],
-                                  f->draws, meshes, n, r, k->words, J_GATE);
+    oit_gpu_timer_mark(f->timer, OIT_GPU_PASS2);
+    oit_glsl_draw_scissored_gated(f->fbo, f->width, f->height, k->prog[OIT_COUNTED_STORE], f->draws,
+                                  meshes, n, r, k->words, J_GATE);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    oit_gpu_timer_mark(f->timer, OIT_GPU_RESOLVE);
     GLuint resolve = k->prog[OIT_COUNTED_RESOLVE];
     glUseProgram(resolve);
     glProgramUniform2i(resolve, 11, f->width, f->height);
@@ -328,7 +390,7 @@ static oit_status judged_store(oit_counted *k, const oit_counted_frame *f,
 /* The bands the last frame cut batch j in, clipped to r's rows (a view
  * that moved a little keeps them; the judge finds out where it did not):
  * their end rows into ends, the last r's end. */
-static int foreseen_bands(const oit_counted *k, size_t j, const int r[4], int ends[BANDS + 1])
+int oit_counted_foreseen_bands(const oit_counted *k, size_t j, const int r[4], int ends[BANDS + 1])
 {
     int nb = 0;
     if (j < k->pred_n) {
@@ -344,6 +406,16 @@ static int foreseen_bands(const oit_counted *k, size_t j, const int r[4], int en
     return nb;
 }
 
+/* The store sized for the need, ahead of the frame's read-back. */
+oit_status oit_counted_reserve_need(oit_counted *k, oit_error *err)
+{
+    uint64_t cap = k->need < UINT32_MAX ? k->need : UINT32_MAX;
+    if (cap * 16 <= k->frags_cap)
+        return OIT_OK;
+    return oit_gl_buffer_reserve(&k->frags, &k->frags_cap, cap ? cap * 16 : 16,
+                                 "counted capture fragments", err);
+}
+
 /* A batch without the host (ahead mode): counted, scanned and cut for the
  * next frame on the GPU, its bands those the last frame cut, each judged
  * against the store sized ahead. */
@@ -351,20 +423,16 @@ static oit_status ahead_batch(oit_counted *k, const oit_counted_frame *f,
                               const oit_gpu_mesh *const *meshes, int n, const int r[4],
                               uint64_t fit, uint64_t target, oit_error *err)
 {
-    uint64_t cap = k->need < UINT32_MAX ? k->need : UINT32_MAX;
-    oit_status s = OIT_OK;
-    if (cap * 16 > k->frags_cap)
-        s = oit_gl_buffer_reserve(&k->frags, &k->frags_cap, cap ? cap * 16 : 16,
-                                  "counted capture fragments", err);
+    oit_status s = oit_counted_reserve_need(k, err);
     if (s == OIT_OK)
         s = count(k, f, meshes, n, r, err);
     if (s != OIT_OK)
         return s;
-    split(k, f, k->batch, r[1], r[3], fit, target);
-    int ends[BANDS + 1], nb = foreseen_bands(k, k->batch, r, ends);
+    oit_counted_split(k, f, k->offsets, k->batch, r[1], r[3], fit, target);
+    int ends[BANDS + 1], nb = oit_counted_foreseen_bands(k, k->batch, r, ends);
     for (int b = 0, y = r[1]; b < nb && s == OIT_OK; y = ends[b++]) {
         int band[4] = {r[0], y, r[2], ends[b]};
-        s = judged_store(k, f, meshes, n, band, b == 0, err);
+        s = oit_counted_judged_store(k, f, meshes, n, band, b == 0, err);
     }
     return s;
 }
@@ -380,7 +448,8 @@ static oit_status host_bands(oit_counted *k, const oit_counted_frame *f,
     uint32_t w[SLOT];
     oit_host_read(f->waits, k->table, k->batch * SLOT * 4, sizeof w, w);
     if (w[S_HI] != 0)
-        return oit_error_set(err, OIT_ERR_NOMEM, "counted capture: more than 2^32 fragments "
+        return oit_error_set(err, OIT_ERR_NOMEM,
+                             "counted capture: more than 2^32 fragments "
                              "in one batch, more than 32-bit offsets address");
     uint32_t bands = w[S_BANDS] & ~BANDS_LEFT;
     uint64_t most = f->bind / 16;
@@ -391,7 +460,8 @@ static oit_status host_bands(oit_counted *k, const oit_counted_frame *f,
         int e = (int)w[S_ENDS + 2 * b];
         uint64_t frags = w[S_ENDS + 2 * b + 1] - (b ? w[S_ENDS + 2 * b - 1] : w[S_START]);
         if (frags > most)
-            return oit_error_set(err, OIT_ERR_NOMEM, "counted capture: row %d holds %llu "
+            return oit_error_set(err, OIT_ERR_NOMEM,
+                                 "counted capture: row %d holds %llu "
                                  "fragments, more than one storage buffer binds (%llu bytes)",
                                  y, (unsigned long long)frags, (unsigned long long)f->bind);
         /* with the need's margin, so that the next frame, ahead, finds its
@@ -403,7 +473,7 @@ static oit_status host_bands(oit_counted *k, const oit_counted_frame *f,
                                       "counted capture fragments", err);
         int band[4] = {r[0], y, r[2], e};
         if (s == OIT_OK && frags)
-            s = judged_store(k, f, meshes, n, band, first, err);
+            s = oit_counted_judged_store(k, f, meshes, n, band, first, err);
         first &= !frags;
         y = e;
     }
@@ -420,6 +490,11 @@ oit_status oit_counted_batch(oit_counted *k, const oit_counted_frame *f,
     uint64_t fit = store_fit(k, f), target = fit - fit / 8;
     k->fit = fit;
     oit_status s = table_slot(k, k->batch, err);
+    if (s == OIT_OK && k->ahead && oit_counted_predicts(k, f, k->batch)) {
+        s = oit_counted_predicted_batch(k, f, meshes, n, r, fit, target, err);
+        k->batch += s == OIT_OK;
+        return s;
+    }
     if (s == OIT_OK && k->ahead)
         s = ahead_batch(k, f, meshes, n, r, fit, target, err);
     else if (s == OIT_OK)
@@ -428,125 +503,11 @@ oit_status oit_counted_batch(oit_counted *k, const oit_counted_frame *f,
      * slot then holds the last cut's: no bands for the next frame) */
     for (int y = r[1]; s == OIT_OK && !k->ahead && y < r[3];) {
         k->unbanded |= y > r[1];
-        split(k, f, k->batch, y, r[3], fit, target);
+        oit_counted_split(k, f, k->offsets, k->batch, y, r[3], fit, target);
         s = host_bands(k, f, meshes, n, r, y, fit, &y, err);
     }
+    if (s == OIT_OK)
+        oit_counted_keep_prediction(k, f, k->batch, &k->offsets, &k->offsets_cap);
     k->batch += s == OIT_OK; /* a failed batch's slot may hold nothing */
     return s;
 }
-/* ---- the counted backend (OIT_CAPTURE_COUNTED) ------------------------------ */
-
-oit_status oit_capture_counted_batch(oit_capture *c, oit_counted *k,
-                                     const oit_gpu_mesh *const *meshes, int n, const int r[4],
-                                     oit_error *err)
-{
-    oit_counted_frame f = oit_capture_counted_frame(c);
-    /* the slot budget bounds its fragment store; deep pixels are those
-     * first-K's K slots would not hold */
-    k->budget = c->set.slot_budget ? c->set.slot_budget : UINT64_MAX;
-    k->deep_over = (uint32_t)c->K;
-    /* count, store, sort and composite: not split into phases */
-    oit_gpu_timer_mark(c->set.timer, OIT_GPU_PASS1);
-    oit_status s = oit_counted_batch(k, &f, meshes, n, r, err);
-    oit_capture_note_peak(c);
-    oit_capture_bind_buffers(c);
-    return s;
-}
-
-/* The whole frame in one band where the budget allows: each band is a pass
- * and a read-back of its own. */
-oit_status oit_capture_store_out(oit_capture *c, GLuint *buf, uint64_t *cap, const char *name,
-                                 uint64_t want, uint64_t row, oit_capture_out *out,
-                                 oit_error *err)
-{
-    uint64_t budget = c->set.slot_budget;
-    if (budget && want > budget)
-        want = budget > row ? budget : row;
-    want = oit_capture_within_binding(c, want, row);
-    oit_status s = oit_capture_reserve(c, buf, cap, want, name, err);
-    *out = (oit_capture_out){*buf, *cap};
-    return s;
-}
-
-static oit_status counted_create(oit_capture *c, int stencil_k, oit_error *err)
-{
-    return oit_counted_init(c->be, c->programs, err);
-}
-
-static void counted_destroy(void *be)
-{
-    oit_counted_release(be);
-}
-
-/* Fragments one store holds: the slot budget where set, one binding. */
-uint64_t oit_capture_counted_fit(const oit_capture *c)
-{
-    uint64_t budget = c->set.slot_budget ? c->set.slot_budget : UINT64_MAX;
-    return (budget < c->frame.bind ? budget : c->frame.bind) / 16;
-}
-
-static oit_status counted_begin(oit_capture *c, oit_error *err)
-{
-    oit_counted_begin(c->be, c->set.no_wait, oit_capture_counted_fit(c));
-    return OIT_OK;
-}
-
-static int counted_ended(oit_capture *c)
-{
-    return oit_counted_ended(c->be);
-}
-
-static void counted_uniforms(oit_capture *c)
-{
-    oit_counted *k = c->be;
-    oit_glsl_set_view_all(k->prog, OIT_COUNTED_PROGS, &c->view);
-    /* the opaque depth's projection replaces the view's */
-    oit_glsl_set_opaque_all(k->prog, OIT_COUNTED_PROGS, &c->opaque);
-}
-
-static void counted_epsilon(oit_capture *c, float e)
-{
-    oit_glsl_set_epsilon_all(((oit_counted *)c->be)->prog, 2, e); /* the geometry passes */
-}
-
-/* Nothing at OIT_BIND_OUT within the frame: its output passes through the
- * fragment store at the end. */
-static void counted_bind(const oit_capture *c)
-{
-    oit_capture_bind_within(c, OIT_BIND_OUT, 0, 0);
-}
-
-/* No per-pixel limit: a batch of any number of layers is an ordinary one. */
-static oit_status counted_batch(oit_capture *c, const oit_gpu_mesh *const *meshes, int n,
-                                const int rect[4], int layers, oit_error *err)
-{
-    int r[4] = {0}, empty = 1;
-    oit_status s = oit_capture_batch_start(c, meshes, rect, n, r, &empty, err);
-    if (s != OIT_OK || empty)
-        return s;
-    return oit_capture_counted_batch(c, c->be, meshes, n, r, err);
-}
-
-static oit_status counted_end(oit_capture *c, uint64_t want, uint64_t row, oit_capture_out *out,
-                              oit_error *err)
-{
-    oit_counted *k = c->be;
-    return oit_capture_store_out(c, &k->frags, &k->frags_cap, "counted capture fragments", want,
-                                 row, out, err);
-}
-
-static uint64_t counted_bytes(const void *be)
-{
-    return oit_counted_bytes(be);
-}
-
-static void counted_stats(const oit_capture *c, oit_frame_stats *stats)
-{
-    const oit_counted *k = c->be;
-    stats->capture = c->ops->name;
-    stats->batches += k->splits;
-    stats->deep_pixels = k->deep_pixels;
-}
-
-OIT_CAPTURE_OPS(counted, OIT_CAPTURE_COUNTED, "counted", oit_counted, NULL, NULL,
-                counted_ended);

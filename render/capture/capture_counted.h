@@ -25,6 +25,24 @@
  * image is not exact and is drawn again (oit_counted_ended), with the need
  * and the bands it measured.
  *
+ * Predicted batches. A view drawn again draws the same fragments, so its
+ * last frame's counts already say where each pixel's fragments go: batch j
+ * of a frame whose view has the key of the frame that counted its batch j
+ * (OIT_COUNTED_PREDICTED_BATCHES of them kept, 4 bytes a pixel each) is
+ * drawn once a band, each fragment counted and stored in its pixel's
+ * segment of those offsets where it falls within it. The resolve
+ * composites the pixels the segments held and keeps every count for the
+ * next frame; a pixel that got more (the scene or the opaque depth
+ * changed under the same view) keeps its count, and those are scanned and
+ * stored as an ordinary band of their own, whose judge shuts the store
+ * pass where none spilled. Only the same view predicts: a moving one
+ * spills throughout and would pay that second pass on top of counting's
+ * (the 1M plant at 256x256, 10 degrees a frame: 440-730 ms a frame
+ * against 360-375). The first-K backend keeps its pass 1's counts the
+ * same way on the first frame of a deep view (oit_counted_predict), for
+ * auto's counted try on the next. The 1M plant at 512x512, the same view:
+ * 250-310 ms a frame against 440-470 counted first and 430-490 for DFB.
+ *
  * Internal to render/capture/: the counted backend and first-K's wide packs
  * (capture_backend.h); capture.c owns the frame's counts and state buffers
  * and the framebuffer; the counts are zero between batches (the
@@ -40,7 +58,18 @@
  * depth after it (frag_glsl.h), and the early-termination threshold in the
  * two geometry passes, first, which drop fragments of saturated pixels
  * alike. */
-enum { OIT_COUNTED_COUNT, OIT_COUNTED_STORE, OIT_COUNTED_RESOLVE, OIT_COUNTED_PROGS };
+enum {
+    OIT_COUNTED_COUNT,
+    OIT_COUNTED_STORE,
+    OIT_COUNTED_PREDICTED, /* a predicted band's store (a geometry pass too) */
+    OIT_COUNTED_RESOLVE,
+    OIT_COUNTED_PREDICTED_RESOLVE,
+    OIT_COUNTED_PROGS,
+    OIT_COUNTED_GEOMETRY_PROGS = 3 /* the first three: epsilon applies */
+};
+/* Batches of a frame whose counts predict the next frame's (each holds a
+ * frame's offsets: 4 bytes a pixel). */
+enum { OIT_COUNTED_PREDICTED_BATCHES = 4 };
 
 typedef struct oit_counted {
     GLuint prog[OIT_COUNTED_PROGS];
@@ -68,6 +97,18 @@ typedef struct oit_counted {
     uint64_t need, fit; /* fit: the fragments one store holds (the last batch's) */
     uint32_t *pred;
     size_t pred_n, pred_cap;
+    /* The offsets of the last frame's batch j (the scan of its counts,
+     * frames of predicted_pixels pixels, its view's key) where
+     * predicted_ok[j]; next, the
+     * counts the predicted batch drawing now keeps for the frame after;
+     * the batches this frame drew predicted. */
+    GLuint predicted[OIT_COUNTED_PREDICTED_BATCHES], next;
+    uint64_t predicted_cap[OIT_COUNTED_PREDICTED_BATCHES], next_cap, predicted_pixels;
+    int predicted_ok[OIT_COUNTED_PREDICTED_BATCHES];
+    uint64_t predicted_view[OIT_COUNTED_PREDICTED_BATCHES]; /* the key of its frame's view */
+    uint32_t predicted_batches;
+    oit_program_cache *pc; /* the predicted passes' programs, built on first use */
+    int predicted_failed;  /* they could not be: no batch is drawn predicted */
 } oit_counted;
 
 oit_status oit_counted_init(oit_counted *k, oit_program_cache *pc, oit_error *err);
@@ -90,6 +131,7 @@ typedef struct oit_counted_frame {
     int width, height;
     oit_gpu_draws *draws;
     uint64_t bind; /* the most bytes one storage buffer may span */
+    uint64_t view_key;           /* oit_view_key of the frame's view */
     struct oit_gpu_timer *timer; /* phases marked on it (render/gl/gpu_timer.h); NULL: none */
     oit_host_waits *waits;       /* the frame's waits on the GPU (render/gl/host_wait.h) */
 } oit_counted_frame;
@@ -100,5 +142,18 @@ typedef struct oit_counted_frame {
 oit_status oit_counted_batch(oit_counted *k, const oit_counted_frame *f,
                              const oit_gpu_mesh *const *meshes, int n, const int r[4],
                              oit_error *err);
+
+/* A prediction from another capture's batch j of the frame (its pass
+ * counting every fragment): *copy receives a buffer for that batch's
+ * counts (pixels of frame f), into which the caller copies them; 0 where
+ * j is past the batches kept or the prediction would not fit `budget`
+ * bytes beside what the counted capture holds (the caller's own store
+ * taken off; UINT64_MAX: no limit), then nothing is kept. Then
+ * oit_counted_predict scans them and keeps them as batch j's prediction
+ * for the next frame, nothing read back. */
+oit_status oit_counted_predict_target(oit_counted *k, const oit_counted_frame *f, size_t j,
+                                      uint64_t budget, GLuint *copy, oit_error *err);
+oit_status oit_counted_predict(oit_counted *k, const oit_counted_frame *f, size_t j,
+                               oit_error *err);
 
 #endif

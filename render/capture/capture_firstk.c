@@ -382,6 +382,9 @@ static oit_status first_pass(oit_firstk *k, const oit_counted_frame *f,
                             meshes, n, r);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     oit_gpu_timer_mark(f->timer, OIT_GPU_RESOLVE);
+    if (k->counts_copy)
+        glCopyNamedBufferSubData(f->counts, k->counts_copy, 0, 0,
+                                 (GLsizeiptr)((uint64_t)f->width * f->height * 4));
     dispatch_rect(k->prog[OIT_FIRSTK_RESOLVE], r);
     if (t)
         oit_host_read(f->waits, k->totals, 0, 32, t);

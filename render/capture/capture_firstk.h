@@ -91,6 +91,10 @@ typedef struct oit_firstk {
     int measured;    /* a frame has ended: need holds what it saw */
     uint64_t seen;   /* this frame's most fragments a band's pass 2 took (host mode) */
     int ended_short; /* the last frame (oit_firstk_ended) */
+    /* Where pass 1's counts go (every pixel's fragments, before its
+     * resolve takes them back to 0) for a counted frame to predict by
+     * (capture_counted.h); 0: nowhere. Set by the caller per batch. */
+    GLuint counts_copy;
 } oit_firstk;
 
 /* The frame's words of the totals cleared: at a frame's begin. */

@@ -18,11 +18,18 @@ typedef struct firstk_backend {
      * fill, the stencil fill built for pass 1 */
     oit_stencil_target target;
     GLuint fill;
+    /* Pass 1's counts kept for the counted capture to predict the next
+     * frame by (oit_counted_predict) in this frame, at its pack `packs`;
+     * the last frame's view and whether it was deep (as stream/choice.h
+     * judges it: more than 1 pixel in 50 past K). */
+    int predict;
+    size_t packs;
+    uint64_t last_view;
+    int last_deep, ended_any;
 } firstk_backend;
 
 /* Pass 1 through the stencil target (oit_capture_create_routed). */
-static oit_status firstk_route(oit_capture *c, firstk_backend *b, int stencil_k,
-                               oit_error *err)
+static oit_status firstk_route(oit_capture *c, firstk_backend *b, int stencil_k, oit_error *err)
 {
     oit_status s = oit_capture_route_init(c, &b->target, stencil_k, err);
     if (s == OIT_OK) {
@@ -110,6 +117,13 @@ static oit_status firstk_begin(oit_capture *c, oit_error *err)
      * is tried first): there is no first-K state to begin yet */
     if (b->k.totals)
         oit_firstk_begin(&b->k);
+    /* A still view's next frame may go counted (auto's try, where it was
+     * deep), which then draws once where it would count and store: the
+     * first frame of a view keeps its counts, the others pay nothing. */
+    uint64_t view = oit_view_key(&c->view);
+    b->predict = c->set.no_wait && (!b->ended_any || b->last_deep) && view != b->last_view;
+    b->last_view = view;
+    b->packs = 0;
     if (!b->fill)
         return OIT_OK;
     return oit_stencil_target_resize(&b->target, c->view.width, c->view.height, err);
@@ -136,7 +150,7 @@ static void firstk_epsilon(oit_capture *c, float e)
     if (b->fill)
         oit_glsl_set_epsilon_all(&b->fill, 1, e);
     /* the geometry passes */
-    oit_glsl_set_epsilon_all(b->counted.prog, 2, e);
+    oit_glsl_set_epsilon_all(b->counted.prog, OIT_COUNTED_GEOMETRY_PROGS, e);
     oit_glsl_set_epsilon_all(b->k.prog, 2, e);
 }
 
@@ -160,11 +174,25 @@ static oit_status firstk_batch(oit_capture *c, const oit_gpu_mesh *const *meshes
     uint64_t budget = c->set.slot_budget, bind = c->frame.bind;
     b->k.budget = budget && budget < bind ? budget : bind;
     if (b->off || oit_firstk_slots(&b->k, r) == 0) {
+        b->packs++;
         s = counted_ready(c, b, err);
         return s == OIT_OK ? oit_capture_counted_batch(c, &b->counted, meshes, n, r, err) : s;
     }
     oit_counted_frame f = oit_capture_counted_frame(c);
-    s = oit_firstk_batch(&b->k, &f, meshes, n, r, err);
+    /* the prediction within what the slots leave of the budget */
+    uint64_t slots = (uint64_t)(r[2] - r[0]) * (uint64_t)(r[3] - r[1]) * 16u *
+                     (uint64_t)oit_firstk_slots(&b->k, r);
+    slots = slots > b->k.store_cap ? slots : b->k.store_cap;
+    if (b->predict && !b->k.routed && counted_ready(c, b, NULL) == OIT_OK)
+        s = oit_counted_predict_target(&b->counted, &f, b->packs,
+                                       budget ? (budget > slots ? budget - slots : 0) : UINT64_MAX,
+                                       &b->k.counts_copy, err);
+    if (s == OIT_OK)
+        s = oit_firstk_batch(&b->k, &f, meshes, n, r, err);
+    if (s == OIT_OK && b->k.counts_copy)
+        s = oit_counted_predict(&b->counted, &f, b->packs, err);
+    b->k.counts_copy = 0;
+    b->packs++;
     oit_capture_note_peak(c);
     oit_capture_bind_buffers(c);
     return s;
@@ -177,8 +205,8 @@ static oit_status firstk_end(oit_capture *c, uint64_t want, uint64_t row, oit_ca
     if (b->off)
         return oit_capture_store_out(c, &b->counted.frags, &b->counted.frags_cap,
                                      "counted capture fragments", want, row, out, err);
-    return oit_capture_store_out(c, &b->k.store, &b->k.store_cap, "first-k capture fragments",
-                                 want, row, out, err);
+    return oit_capture_store_out(c, &b->k.store, &b->k.store_cap, "first-k capture fragments", want,
+                                 row, out, err);
 }
 
 static uint64_t firstk_bytes(const void *be)
@@ -197,6 +225,7 @@ static void firstk_stats(const oit_capture *c, oit_frame_stats *stats)
     stats->second_pass_pixels = b->k.second_pixels;
     stats->second_pass_packs = b->k.second_packs;
     stats->deep_pixels = b->k.second_pixels + b->counted.deep_pixels;
+    stats->predicted_batches = b->counted.predicted_batches;
     /* how its K-slot fills were made (the counted capture has none) */
     stats->capture_slots = b->off ? NULL : b->fill ? "stencil" : "array";
     stats->capture_slots_k = !b->off && b->fill ? (uint32_t)b->target.K : 0;
@@ -224,6 +253,9 @@ static int firstk_ended(oit_capture *c)
         return 0; /* a self-test frame (firstk_begin) */
     oit_firstk_ended(&b->k);
     int counted_short = b->counted_ready && oit_counted_ended(&b->counted);
+    uint64_t deep = b->k.second_pixels + b->counted.deep_pixels;
+    b->last_deep = deep * 50 > (uint64_t)c->view.width * c->view.height;
+    b->ended_any = 1;
     return (b->k.ahead && b->k.ended_short) || counted_short;
 }
 

@@ -223,6 +223,9 @@ const char oit_capture_counted_store_fs[] =
     "    uint p = oit_pixel_index();\n"
     "    if (oit_behind_opaque()) discard;\n"
     "    if (oit_saturated(p)) discard;\n"
+    /* a pixel without a segment keeps its count (a predicted batch's
+     * spill pass: one the prediction held is at 0 already) */
+    "    if (offsets[p + 1u] == offsets[p]) discard;\n"
     "    uint c = atomicAdd(counts[p], 0xffffffffu);\n"
     "    uint slot = offsets[p] - band_base + c - 1u;\n"
     "    if (c != 0u && slot < offsets[p + 1u] - band_base && slot < band_cap)\n"
@@ -249,4 +252,60 @@ const char oit_capture_counted_resolve_main[] =
     "    oit_segment_composite(s, offsets[p] - band_base, n);\n"
     "    s.nfrag += n;\n"
     "    oit_state_store(p, s);\n"
+    "}\n";
+
+/* A predicted band (capture_counted.h): the last frame's offsets of the
+ * batch at OIT_BIND_OFFSETS give each pixel its segment, the band's
+ * fragments from the offset at pixel u_band_pixel on, in a store of u_cap;
+ * every fragment is counted, those within the segment stored. */
+#define PREDICTED                                                                          \
+    "layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };\n"        \
+    "layout(std430, binding = OIT_BIND_OFFSETS) readonly buffer Offsets { uint offsets[]; };\n" \
+    "uniform uint u_band_pixel;\n"                                                         \
+    "uniform uint u_cap;\n"                                                                \
+    "bool oit_predicted_holds(uint p, uint n) {\n"                                         \
+    "    return n <= offsets[p + 1u] - offsets[p] &&\n"                                     \
+    "           offsets[p + 1u] - offsets[u_band_pixel] <= u_cap;\n"                       \
+    "}\n"
+
+const char oit_capture_counted_predicted_fs[] =
+    "layout(std430, binding = OIT_BIND_FRAGS) writeonly buffer Frags { uvec4 frags[]; };\n"
+    PREDICTED
+    SATURATED
+    "void main() {\n"
+    "    if (oit_clipped()) discard;\n"
+    "    uint p = oit_pixel_index();\n"
+    "    if (oit_behind_opaque()) discard;\n"
+    "    if (oit_saturated(p)) discard;\n"
+    "    uint c = atomicAdd(counts[p], 1u);\n"
+    "    if (oit_predicted_holds(p, c + 1u))\n"
+    "        frags[offsets[p] - offsets[u_band_pixel] + c] = oit_fragment();\n"
+    "}\n";
+
+/* Before oit_glsl_segment_composite; oit_capture_counted_predicted_main
+ * after. */
+const char oit_capture_counted_predicted_cs[] =
+    "layout(local_size_x = 8, local_size_y = 8) in;\n"
+    "layout(location = 11) uniform ivec2 u_size;\n"
+    "layout(location = 12) uniform ivec4 u_rect;\n"
+    "layout(std430, binding = OIT_BIND_FRAGS) buffer Frags { uvec4 frags[]; };\n"
+    "layout(std430, binding = OIT_BIND_TOTALS) writeonly buffer Next { uint next_counts[]; };\n"
+    PREDICTED;
+
+/* Every pixel's count kept for the next frame's prediction; a pixel the
+ * prediction held composited and its count back to 0; one it did not
+ * keeps its count for the band's spill pass. */
+const char oit_capture_counted_predicted_main[] =
+    "void main() {\n"
+    "    ivec2 px = u_rect.xy + ivec2(gl_GlobalInvocationID.xy);\n"
+    "    if (px.x >= u_rect.z || px.y >= u_rect.w) return;\n"
+    "    uint p = uint(px.y * u_size.x + px.x);\n"
+    "    uint n = counts[p];\n"
+    "    next_counts[p] = n;\n"
+    "    if (n == 0u || !oit_predicted_holds(p, n)) return;\n"
+    "    oit_state s = oit_state_load(p);\n"
+    "    oit_segment_composite(s, offsets[p] - offsets[u_band_pixel], n);\n"
+    "    s.nfrag += n;\n"
+    "    oit_state_store(p, s);\n"
+    "    counts[p] = 0u;\n"
     "}\n";

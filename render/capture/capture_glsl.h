@@ -38,6 +38,13 @@ extern const char oit_capture_counted_count_fs[];
 extern const char oit_capture_counted_store_fs[];
 extern const char oit_capture_counted_resolve_cs[];
 extern const char oit_capture_counted_resolve_main[];
+/* Its predicted bands: the store fragment stage (after
+ * oit_glsl_fragment_gen) and the resolve in two halves around
+ * oit_glsl_segment_composite (after oit_glsl_composite and
+ * oit_glsl_state_io). */
+extern const char oit_capture_counted_predicted_fs[];
+extern const char oit_capture_counted_predicted_cs[];
+extern const char oit_capture_counted_predicted_main[];
 
 #ifdef __cplusplus
 }

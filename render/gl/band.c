@@ -78,6 +78,7 @@ void oit_frame_stats_add(oit_frame_stats *acc, const oit_frame_stats *band)
     acc->second_pass_pixels += band->second_pass_pixels;
     acc->second_pass_packs += band->second_pass_packs;
     acc->deep_pixels += band->deep_pixels;
+    acc->predicted_batches += band->predicted_batches;
     acc->host_waits += band->host_waits;
     acc->redraws += band->redraws;
     acc->fragments_saturated += band->fragments_saturated;

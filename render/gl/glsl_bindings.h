@@ -41,7 +41,8 @@
  *                   (capture.c); test_gpu_draws' accumulation.
  * OIT_BIND_TOTALS   the capture's totals and overflow flag, the prefix
  *                   sum's totals (scan_glsl.c); the links of PPLL, PPLL4
- *                   and guarded (append, resolve walk).
+ *                   and guarded (append, resolve walk); the counted
+ *                   capture's next counts (its predicted resolve).
  * OIT_BIND_STATE    the per-pixel compositing state (oit_glsl_state_io:
  *                   the captures' and DFB's resolves to state, saturation,
  *                   liboit's blend into the caller's framebuffer; depth and

@@ -102,6 +102,11 @@ typedef struct oit_view {
     oit_clip clip;
 } oit_view;
 
+/* A view's key: the camera, the size, the shading mode, the model matrix
+ * and the section planes, field by field (no padding bytes); views with
+ * equal keys see the scene alike. */
+uint64_t oit_view_key(const oit_view *view);
+
 /* RGBA float image, row 0 at the top, values in [0,1] (alpha is 1 for a
  * composited frame). Colour is sRGB-encoded in both colour spaces (the
  * linear result is encoded by oit_pixel_end / oit_state_final), as PNG
@@ -140,6 +145,10 @@ typedef struct oit_frame_stats {
      * these (second_pass_pixels); the counted capture counts them in its
      * scan. 0 for every other method and capture. */
     uint64_t deep_pixels;
+    /* The counted capture's batches drawn at the offsets its last frame
+     * of the same view counted (capture_counted.h, "Predicted batches"),
+     * not counted first; 0 for every other method and capture. */
+    uint32_t predicted_batches;
     /* The reference with a saturation threshold (reference.h): fragments
      * behind pixels already saturated; 0 for every other method. */
     uint64_t fragments_saturated;

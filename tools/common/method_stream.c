@@ -115,6 +115,7 @@ static void frame_stats_of(const oit_draw_stats *d, oit_frame_stats *fs)
     fs->host_waits = d->host_waits;
     fs->redraws = d->redraws;
     fs->deep_pixels = d->deep_pixels;
+    fs->predicted_batches = d->predicted_batches;
     fs->capture = d->capture;
     fs->capture_k = d->capture_k;
     fs->capture_slots = d->capture_slots;

@@ -60,6 +60,7 @@ static void put_frame(oit_json *w, const oit_stats_frame *fr)
         {"gpu_mesh_bytes", s->gpu_mesh_bytes},
         {"batches", s->batches}, {"second_pass_pixels", s->second_pass_pixels},
         {"second_pass_packs", s->second_pass_packs}, {"deep_pixels", s->deep_pixels},
+        {"predicted_batches", s->predicted_batches},
         {"host_waits", s->host_waits}, {"redraws", s->redraws},
         {"fragments_saturated", s->fragments_saturated}};
     const oit_json_uint_member parts[] = {
