@@ -201,14 +201,19 @@ const char oit_capture_fullscreen_vs[] =
     "uint band_short; uint band_deep; uint band_pad; uvec4 band_groups; uint band_base; " \
     "uint band_cap; };\n"
 
+/* The head of the counted capture's geometry passes: pixel p's fragment,
+ * unless clipped, behind the opaque depth or saturated. */
+#define KEPT_FRAGMENT                                                                       \
+    "    if (oit_clipped()) discard;\n"                                                     \
+    "    uint p = oit_pixel_index();\n"                                                     \
+    "    if (oit_behind_opaque()) discard;\n"                                               \
+    "    if (oit_saturated(p)) discard;\n"
+
 const char oit_capture_counted_count_fs[] =
     "layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };\n"
     SATURATED
     "void main() {\n"
-    "    if (oit_clipped()) discard;\n"
-    "    uint p = oit_pixel_index();\n"
-    "    if (oit_behind_opaque()) discard;\n"
-    "    if (oit_saturated(p)) discard;\n"
+    KEPT_FRAGMENT
     "    atomicAdd(counts[p], 1u);\n"
     "}\n";
 
@@ -219,10 +224,7 @@ const char oit_capture_counted_store_fs[] =
     BAND
     SATURATED
     "void main() {\n"
-    "    if (oit_clipped()) discard;\n"
-    "    uint p = oit_pixel_index();\n"
-    "    if (oit_behind_opaque()) discard;\n"
-    "    if (oit_saturated(p)) discard;\n"
+    KEPT_FRAGMENT
     /* a pixel without a segment keeps its count (a predicted batch's
      * spill pass: one the prediction held is at 0 already) */
     "    if (offsets[p + 1u] == offsets[p]) discard;\n"
@@ -273,10 +275,7 @@ const char oit_capture_counted_predicted_fs[] =
     PREDICTED
     SATURATED
     "void main() {\n"
-    "    if (oit_clipped()) discard;\n"
-    "    uint p = oit_pixel_index();\n"
-    "    if (oit_behind_opaque()) discard;\n"
-    "    if (oit_saturated(p)) discard;\n"
+    KEPT_FRAGMENT
     "    uint c = atomicAdd(counts[p], 1u);\n"
     "    if (oit_predicted_holds(p, c + 1u))\n"
     "        frags[offsets[p] - offsets[u_band_pixel] + c] = oit_fragment();\n"
