@@ -4,13 +4,15 @@
 # the same views, beside the host-to-device rate measured in the same run.
 #
 # Per budget fraction f (D: the file's decoded part bytes, what the stream
-# would keep resident; S: the capture's slot budget, 64M; P: the frame's
-# per-pixel buffers, W*H*80 bytes):
+# would keep resident; S: the capture's slot budget, 64M; ST: its fragment
+# store budget, 256M (both their defaults); P: the frame's per-pixel
+# buffers, W*H*80 bytes):
 #   f = 1:  --upload-budget D --cache-budget D (resident: read once)
 #   f < 1:  --upload-budget R --cache-budget f*D - R, R = min(64M, f*D/4),
 #           at least the largest part the fast scheme makes (128K triangles);
 #           where that leaves no cache: the ring alone, geometry = R
-#   always: --slot-budget S --gpu-budget f*D + S + P (the total bounds all)
+#   always: --slot-budget S --store-budget ST --gpu-budget f*D + S + ST + P
+#   (the total bounds all)
 # Columns: frame ms and gpu_ms (medians of the warm frames: each view of
 # the walk is drawn twice, cold then warm, as stream_vs_dfb.sh does), the
 # stream against DFB (ms and gpu_ms), MB uploaded a warm frame, upload GB/s
@@ -103,7 +105,7 @@ render() { # render FILE STATS [options]: the walk at the size, --stats STATS
 }
 echo "ooc_curve: DFB in core on $name" >&2
 render "$mesh" "$work/dfb.json" --method dfb
-S=$((64 << 20)) P=$((w * h * 80))
+S=$((64 << 20)) ST=$((256 << 20)) P=$((w * h * 80))
 # The ring holds a part whole: the largest oitprep's fast scheme makes
 # (--part-triangles, default 128K) at the file's bytes a triangle.
 tris=$(python3 -c "import json,sys; print(json.load(sys.stdin)['triangles'])" \
@@ -120,11 +122,11 @@ for q in $fractions; do
         # a budget no larger than a part: the ring alone, no cache
         [ "$c" -ge 65536 ] || c=off g=$r
     fi
-    total=$((g + S + P))
-    [ "$c" != off ] || total=$((r + S + P))
+    total=$((g + S + ST + P))
+    [ "$c" != off ] || total=$((r + S + ST + P))
     echo "ooc_curve: stream at 1/$q of $D bytes (--gpu-budget $total)" >&2
     # shellcheck disable=SC2086 # OOC_STREAM_ARGS: words on purpose
-    render "$parts" "$work/s$q.json" --method stream --slot-budget "$S" --upload-budget "$r" \
+    render "$parts" "$work/s$q.json" --method stream --slot-budget "$S" --store-budget "$ST" --upload-budget "$r" \
         --cache-budget "$c" --gpu-budget "$total" ${OOC_STREAM_ARGS:-}
     echo "$q $g $total" >>"$work/budgets.txt"
 done

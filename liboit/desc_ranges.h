@@ -55,6 +55,8 @@ static const oit_desc_range oit_desc_ranges[] = {
      (double)OIT_STREAM_BUDGET_MAX, 1, 0, 0, "64 KiB..1 TiB"},
     {OIT_DESC_ROW(slot_budget, OIT_DESC_U64), (double)OIT_STREAM_BUDGET_MIN,
      (double)OIT_STREAM_BUDGET_MAX, 1, 0, 0, "64 KiB..1 TiB"},
+    {OIT_DESC_ROW(store_budget, OIT_DESC_U64), (double)OIT_STREAM_BUDGET_MIN,
+     (double)OIT_STREAM_BUDGET_MAX, 1, 0, 0, "64 KiB..1 TiB"},
     {OIT_DESC_ROW(cache_budget, OIT_DESC_U64), (double)OIT_STREAM_BUDGET_MIN,
      (double)OIT_STREAM_BUDGET_MAX, 1, OIT_RENDER_CACHE_OFF, 0, "64 KiB..1 TiB or off"},
     {OIT_DESC_ROW(gpu_budget, OIT_DESC_U64), (double)OIT_STREAM_GPU_BUDGET_MIN,

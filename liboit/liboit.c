@@ -502,6 +502,7 @@ static void stream_desc(const oit_renderer_desc *d, oit_streamer_desc *sd)
                    "liboit's schedule values are the packer's");
     sd->schedule = (oit_pack_schedule)d->schedule;
     sd->slot_budget = d->slot_budget;
+    sd->store_budget = d->store_budget;
     sd->store_limit = d->binding_limit;
     sd->frames = d->frames;
 }
@@ -556,6 +557,7 @@ oit_status oit_renderer_desc_check(const oit_renderer_desc *d, const oit_rendere
         .gpu_budget = spelt(n->gpu_budget, "oit_renderer_desc.gpu_budget"),
         .epsilon = spelt(n->epsilon, "oit_renderer_desc.epsilon"),
         .slot_budget = spelt(n->slot_budget, "oit_renderer_desc.slot_budget"),
+        .store_budget = spelt(n->store_budget, "oit_renderer_desc.store_budget"),
         .schedule = spelt(n->schedule, "oit_renderer_desc.schedule"),
         .cache_off = spelt(n->cache_off, "OIT_RENDER_CACHE_OFF")};
     return oit_streamer_desc_check(&sd, &sn, err);
@@ -1214,6 +1216,7 @@ static void fill_stats(const oit_renderer *r, const oit_scene *scene, const oit_
         stats->ring_budget = b.ring;
         stats->cache_budget = b.cache;
         stats->capture_budget = b.capture;
+        stats->store_budget = b.store;
         stats->gpu_free_bytes = b.free_bytes;
         stats->see_through = (uint32_t)view.shading.see_through;
         stats->opaque = (uint32_t)oit_shading_opaque(&view.shading);

@@ -114,6 +114,7 @@ void oit_streamer_resolved_desc(const oit_streamer *s, oit_streamer_desc *out)
     out->upload_budget = b->ring;
     out->cache_budget = b->cache ? b->cache : OIT_STREAM_CACHE_OFF;
     out->slot_budget = b->capture;
+    out->store_budget = b->store;
     out->gpu_budget = b->total;
     out->reader_threads = s->threads ? s->threads : OIT_STREAM_READ_INLINE;
     out->epsilon = s->epsilon;
@@ -149,8 +150,8 @@ static uint64_t compute_pack_budget(uint64_t slot)
  * eighth of a smaller total): 64 MiB hold 1024x1024 at 64 bytes a pixel. */
 #define PIXEL_ROOM (64ull << 20)
 
-/* The total's split (streamer.h): the capture's slots first (the default
- * store, or an eighth of a small total), the file resident where it fits
+/* The total's split (streamer.h): the capture's slots and store first
+ * (their defaults, or each an eighth of a small total), the file resident where it fits
  * what is left less PIXEL_ROOM for the frame's per-pixel buffers, else a
  * ring of a quarter of the rest (64 MiB at most: it only has to hold
  * consecutive packs) and the cache the remainder. Given finer budgets
@@ -162,7 +163,8 @@ static oit_status split_budget(oit_streamer *s, oit_streamer_desc *d, int stores
     const char *src = "default";
     oit_gpu_free_query query = d->free_query ? d->free_query : oit_gpu_free_bytes;
     b->free_bytes = query(d->free_ctx, &src);
-    uint64_t slots = stores ? OIT_STREAM_STORE_DEFAULT : OIT_STREAM_SLOTS_DEFAULT;
+    uint64_t slots = stores ? OIT_STREAM_FIRSTK_SLOTS_DEFAULT : OIT_STREAM_SLOTS_DEFAULT;
+    uint64_t store = stores ? OIT_STREAM_STORE_DEFAULT : 0;
     if (d->gpu_budget) {
         b->total = d->gpu_budget;
         b->source = "--gpu-budget";
@@ -173,6 +175,7 @@ static oit_status split_budget(oit_streamer *s, oit_streamer_desc *d, int stores
         /* No total: the parts' own defaults, as before there was one. */
         b->source = src;
         b->capture = d->slot_budget ? d->slot_budget : slots;
+        b->store = stores && d->store_budget ? d->store_budget : store;
         b->ring = d->upload_budget ? d->upload_budget : OIT_STREAM_RING_DEFAULT;
         b->cache = d->cache_budget == OIT_STREAM_CACHE_OFF ? 0
                    : d->cache_budget                     ? d->cache_budget
@@ -185,6 +188,7 @@ static oit_status split_budget(oit_streamer *s, oit_streamer_desc *d, int stores
                              "least %llu", name, (unsigned long long)b->total, b->source,
                              (unsigned long long)OIT_STREAM_GPU_BUDGET_MIN);
     b->capture = d->slot_budget ? d->slot_budget : min_u64(slots, b->total / 8);
+    b->store = stores && d->store_budget ? d->store_budget : min_u64(store, b->total / 8);
     /* The compute capture's records and tile lists hold a pack's
      * triangles (its packs are cut to its share, compute_pack_budget): at
      * least those of the largest part, which no pack splits. */
@@ -192,7 +196,8 @@ static oit_status split_budget(oit_streamer *s, oit_streamer_desc *d, int stores
         b->capture = max_u64(b->capture, (largest_part(s->pf) + sizeof(oit_triangle) - 1) /
                                              sizeof(oit_triangle) *
                                              OIT_COMPUTE_CAPTURE_TRIANGLE_BYTES);
-    uint64_t left = b->capture < b->total ? b->total - b->capture : 0;
+    uint64_t held = b->capture + b->store;
+    uint64_t left = held < b->total ? b->total - held : 0;
     int off = d->cache_budget == OIT_STREAM_CACHE_OFF;
     uint64_t pixels = min_u64(b->total / 8, PIXEL_ROOM);
     int fits = !off && !d->upload_budget && !d->cache_budget && left > pixels &&
@@ -204,16 +209,18 @@ static oit_status split_budget(oit_streamer *s, oit_streamer_desc *d, int stores
                : left > b->ring ? left - b->ring : 0;
     /* as create_upload decides: resident, the ring is the only copy */
     int resident = !off && all_bytes <= b->ring && all_bytes <= b->cache;
-    uint64_t sum = b->capture + b->ring + (resident ? 0 : b->cache);
+    uint64_t sum = held + b->ring + (resident ? 0 : b->cache);
     if (sum > b->total && d->gpu_budget)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: --upload-budget %llu + --cache-budget "
-                             "%llu + --slot-budget %llu = %llu bytes, more than --gpu-budget "
-                             "%llu", name, (unsigned long long)b->ring,
+                             "%llu + --slot-budget %llu + --store-budget %llu = %llu bytes, "
+                             "more than --gpu-budget %llu", name, (unsigned long long)b->ring,
                              (unsigned long long)b->cache, (unsigned long long)b->capture,
-                             (unsigned long long)sum, (unsigned long long)b->total);
+                             (unsigned long long)b->store, (unsigned long long)sum,
+                             (unsigned long long)b->total);
     if (sum > b->total)
         b->total = sum; /* finer budgets given past the driver's share win */
     d->slot_budget = b->capture;
+    d->store_budget = b->store;
     d->upload_budget = b->ring > OIT_STREAM_RING_MIN ? b->ring : OIT_STREAM_RING_MIN;
     d->cache_budget = off ? OIT_STREAM_CACHE_OFF
                       : b->cache ? b->cache - b->cache % OIT_PACK_ALIGN
@@ -237,7 +244,7 @@ static void fit_frame_budget(oit_streamer *s, const oit_view *view)
         return;
     uint64_t pixel = (uint64_t)view->width * view->height *
                      (oit_capture_pixel_bytes(view) + PIXEL_EXTRA);
-    uint64_t used = b->capture + s->ring_limit + pixel;
+    uint64_t used = b->capture + b->store + s->ring_limit + pixel;
     uint64_t room = used < b->total ? b->total - used : 0;
     room = min_u64(room, b->cache);
     s->cache_limit = min_u64(room - room % OIT_PACK_ALIGN, s->cache_all);
@@ -643,12 +650,12 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
         st = create_capture(s, desc, mode, err);
     /* The counted and first-K captures store fragments beside their slots;
      * 32 MiB (2 a pixel at 1024x1024) split the packs of dense views, which
-     * then drew again (bench/stream-vs-dfb-llvmpipe.md). */
-    int stores = mode == OIT_PACK_COUNTED || mode == OIT_PACK_FIRSTK;
-    if (st == OIT_OK)
-        oit_capture_set_slot_budget(s->capture, desc->slot_budget ? desc->slot_budget
-                                                : stores ? OIT_STREAM_STORE_DEFAULT
-                                                         : OIT_STREAM_SLOTS_DEFAULT);
+     * then drew again (bench/stream-vs-dfb-llvmpipe.md). split_budget gave
+     * both budgets their values. */
+    if (st == OIT_OK) {
+        oit_capture_set_slot_budget(s->capture, s->budget.capture);
+        oit_capture_set_store_budget(s->capture, s->budget.store);
+    }
     if (st == OIT_OK)
         oit_capture_set_store_limit(s->capture, desc->store_limit);
     /* first-K's pass 2 and counted batches without waits; a short frame is

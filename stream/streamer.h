@@ -66,8 +66,12 @@ typedef struct oit_streamer_desc {
                                  own, and drawn from there (cache_hits): no cache
                                  buffer beside it */
     uint64_t slot_budget;     /* capture slot bytes (oit_capture_set_slot_budget);
-                                 0: OIT_STREAM_STORE_DEFAULT for counted and
-                                 first-K packs, else OIT_STREAM_SLOTS_DEFAULT */
+                                 0: OIT_STREAM_FIRSTK_SLOTS_DEFAULT for counted
+                                 and first-K packs, else OIT_STREAM_SLOTS_DEFAULT */
+    uint64_t store_budget;    /* counted and first-K fragment store bytes
+                                 (oit_capture_set_store_budget); 0:
+                                 OIT_STREAM_STORE_DEFAULT, or an eighth of a
+                                 smaller total; unused by other packs */
     float epsilon;            /* early termination (oit_capture_set_epsilon), in
                                  [0, 1); 0: exact */
     uint64_t cache_budget;    /* residency cache bytes at most; 0:
@@ -126,6 +130,8 @@ typedef struct oit_stream_budget {
     uint64_t cache;      /* the residency cache's limit (0: none, or resident) */
     uint64_t capture;    /* the capture's slot budget (its per-pixel buffers
                             are taken from the cache's share frame by frame) */
+    uint64_t store;      /* the capture's fragment store budget; 0: none (packs
+                            other than counted and first-K) */
     uint64_t free_bytes; /* what the driver reported free; 0: nothing */
     const char *source;  /* "--gpu-budget", "GL_NVX_gpu_memory_info", "default", ... */
     int resident;        /* every part read once and kept */
@@ -138,10 +144,17 @@ typedef struct oit_stream_budget {
  * hold. */
 #define OIT_STREAM_CACHE_DEFAULT (256ull << 20)
 #define OIT_STREAM_CACHE_OFF UINT64_MAX
-/* Slot budgets: 64 MiB of fragment store and first-K slots (4 fragments a
- * pixel at 1024x1024), 32 MiB of K-slot array slots. */
-#define OIT_STREAM_STORE_DEFAULT (64ull << 20)
+/* Slot budgets: 64 MiB of first-K slots (4 fragments a pixel at
+ * 1024x1024), 32 MiB of K-slot array slots. */
+#define OIT_STREAM_FIRSTK_SLOTS_DEFAULT (64ull << 20)
 #define OIT_STREAM_SLOTS_DEFAULT (32ull << 20)
+/* The fragment store's: grown to what a frame stores, no further. A deep
+ * view past it is stored in bands of rows, each drawing the pack again:
+ * at 64 MiB, oitgen hard --case stack at 1024x1024 took 44 bands and
+ * 19-20 s a frame on llvmpipe, at 256 MiB 22 (one binding each there)
+ * and 13.4 s, against DFB's 17.4 (bench/never-slower-llvmpipe.md). The
+ * room past one binding holds the counted batches' predictions. */
+#define OIT_STREAM_STORE_DEFAULT (256ull << 20)
 #define OIT_STREAM_PROBE_FRAMES 8u
 /* The ring when no total splits the memory, and a total's most for it: it
  * only has to hold consecutive packs, and 64 MiB hold the largest packs of
@@ -162,11 +175,12 @@ typedef struct oit_stream_budget {
  * streamer's own ("oit_streamer_desc.upload_budget"). */
 typedef struct oit_streamer_names {
     const char *upload_budget, *slot_budget, *cache_budget, *gpu_budget, *epsilon, *pack,
-        *schedule, *cache_off;
+        *schedule, *cache_off, *store_budget;
 } oit_streamer_names;
 
 /* The one range check of the settings a caller gives (every zero is the
- * default): upload_budget and slot_budget 0 or OIT_STREAM_BUDGET_MIN..MAX,
+ * default): upload_budget, slot_budget and store_budget 0 or
+ * OIT_STREAM_BUDGET_MIN..MAX,
  * cache_budget that or OIT_STREAM_CACHE_OFF, gpu_budget 0 or
  * OIT_STREAM_GPU_BUDGET_MIN..OIT_STREAM_BUDGET_MAX, epsilon in [0, 1), pack
  * and schedule one of their enums. OIT_ERR_ARGUMENT names the setting (in

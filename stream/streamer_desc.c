@@ -37,6 +37,9 @@ oit_status oit_streamer_desc_check(const oit_streamer_desc *d, const oit_streame
     if (s == OIT_OK)
         s = check_bytes(d->slot_budget, OIT_STREAM_BUDGET_MIN,
                         name_of(n->slot_budget, "oit_streamer_desc.slot_budget"), "", err);
+    if (s == OIT_OK)
+        s = check_bytes(d->store_budget, OIT_STREAM_BUDGET_MIN,
+                        name_of(n->store_budget, "oit_streamer_desc.store_budget"), "", err);
     if (s == OIT_OK && d->cache_budget != OIT_STREAM_CACHE_OFF)
         s = check_bytes(d->cache_budget, OIT_STREAM_BUDGET_MIN,
                         name_of(n->cache_budget, "oit_streamer_desc.cache_budget"), off, err);

@@ -316,8 +316,9 @@ typedef struct oit_renderer_desc {
      * wavefront; the image is the same. */
     oit_render_schedule schedule;
     /* GPU bytes of the capture's slots a pack (oitstream --slot-budget),
-     * the streamer checks the range; 0: 64 MiB of fragment store for
-     * counted and first-K packs, 32 MiB of K slots for the others. */
+     * the streamer checks the range; 0: 64 MiB of first-K slots for
+     * counted and first-K packs, 32 MiB of K slots for the others.
+     * Fragment stores are store_budget's. */
     uint64_t slot_budget;
     /* Threads that read parts ahead of the GPU (oitstream
      * --upload-threads), 1..64, checked at the first draw; 0: as
@@ -350,6 +351,13 @@ typedef struct oit_renderer_desc {
      * slot_budget) only later frames amortize; 0 (default): many. A hint:
      * any number of frames may be drawn, the image is the same. */
     uint32_t frames;
+    /* Appended after frames, so that the fields above keep their offsets.
+     * GPU bytes of the counted and first-K packs' fragment stores
+     * (oitstream --store-budget), grown to what a frame stores and no
+     * further: a deep view past it is stored in bands of rows, each
+     * drawing the pack again. The streamer checks the range; 0: 256 MiB,
+     * or an eighth of a smaller gpu_budget. Other packs have none. */
+    uint64_t store_budget;
 } oit_renderer_desc;
 
 #define OIT_RENDER_CACHE_OFF UINT64_MAX
@@ -360,7 +368,7 @@ typedef struct oit_renderer_desc {
  * NULL): the field's own ("oit_renderer_desc.upload_budget"). */
 typedef struct oit_renderer_desc_names {
     const char *K, *upload_budget, *slot_budget, *cache_budget, *gpu_budget, *epsilon, *pack,
-        *schedule, *see_through, *cache_off;
+        *schedule, *see_through, *cache_off, *store_budget;
 } oit_renderer_desc_names;
 
 /* The one range check of desc, the one oit_renderer_create runs: K 0 or
@@ -616,6 +624,10 @@ typedef struct oit_draw_stats {
      * pass where the view held still, a second for the pixels whose
      * fragments it did not hold), not counted first. 0 otherwise. */
     uint32_t predicted_batches;
+    /* Appended last: the fragment store budget the renderer chose for a
+     * part file (oit_renderer_desc.store_budget; 0: in-core scenes and
+     * packs without a store), the split's fifth share. */
+    uint64_t store_budget;
 } oit_draw_stats;
 
 /* Draws scene as seen through frame into frame->framebuffer (see Result

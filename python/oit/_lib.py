@@ -57,7 +57,8 @@ class RendererDesc(ctypes.Structure):
                 ("gpu_budget", ctypes.c_uint64), ("see_through", ctypes.c_int),
                 ("schedule", ctypes.c_int), ("slot_budget", ctypes.c_uint64),
                 ("reader_threads", ctypes.c_uint32), ("binding_limit", ctypes.c_uint64),
-                ("program_cache", ctypes.c_char_p), ("frames", ctypes.c_uint32)]
+                ("program_cache", ctypes.c_char_p), ("frames", ctypes.c_uint32),
+                ("store_budget", ctypes.c_uint64)]
 
 
 class OffscreenDesc(ctypes.Structure):
@@ -105,7 +106,7 @@ class DrawStats(ctypes.Structure):
                 ("choice_counted_ms", ctypes.c_double),
                 ("host_waits", ctypes.c_uint32), ("redraws", ctypes.c_uint32),
                 ("deep_pixels", ctypes.c_uint64),
-                ("predicted_batches", ctypes.c_uint32)]
+                ("predicted_batches", ctypes.c_uint32), ("store_budget", ctypes.c_uint64)]
 
 
 # enum values of the headers

@@ -157,6 +157,16 @@ uint64_t oit_capture_draw_calls(const oit_capture *c);
  * default): no limit. The image is the same either way. */
 void oit_capture_set_slot_budget(oit_capture *c, uint64_t bytes);
 
+/* The most bytes the counted and first-K captures' fragment stores take,
+ * from the next frame on: counted's store (a batch whose fragments pass it
+ * is stored in bands of rows) with its predictions, and first-K's second
+ * pass store (whose first bytes are its slots, which the slot budget
+ * bounds). Apart from the slot budget because a deep view's bands each
+ * draw the pack again, while first-K's slots are cleared and resolved
+ * every frame whatever they hold. 0 (the default): the slot budget's. The
+ * image is the same either way. */
+void oit_capture_set_store_budget(oit_capture *c, uint64_t bytes);
+
 /* The most bytes the counted and first-K captures put in one storage buffer,
  * from the next frame on: what is stored past it is taken in pieces (a
  * batch's meshes in halves, then one mesh's rows in bands, as first-K's

@@ -31,6 +31,7 @@ enum { OIT_CAPTURE_COUNTS, OIT_CAPTURE_STATE, OIT_CAPTURE_TOTALS, OIT_CAPTURE_BU
 typedef struct oit_capture_settings {
     float epsilon;        /* early termination threshold; 0: exact */
     uint64_t slot_budget; /* bytes; 0: K slots for every pixel of the frame */
+    uint64_t store_budget; /* fragment store bytes; 0: slot_budget's */
     uint64_t store_limit; /* bytes a storage buffer spans; 0: the driver's */
     oit_gpu_timer *timer; /* phases marked; NULL: none */
     int no_wait;          /* oit_capture_set_no_wait */
@@ -168,11 +169,14 @@ void oit_capture_set_frame_uniforms(const oit_capture *c, GLuint *progs, int n);
 oit_status oit_capture_counted_batch(oit_capture *c, oit_counted *k,
                                      const oit_gpu_mesh *const *meshes, int n, const int r[4],
                                      oit_error *err);
-/* Fragments one counted store may hold: the slot budget where set, within
+/* The fragment stores' bytes: the store budget, else the slot budget; 0:
+ * no limit but one binding's. */
+uint64_t oit_capture_store_budget(const oit_capture *c);
+/* Fragments one counted store may hold: the store budget where set, within
  * one storage binding (the frame's; oit_counted_begin's fit). */
 uint64_t oit_capture_counted_fit(const oit_capture *c);
 /* The output through a fragment store (buf, cap), idle at the frame's end:
- * `want` bytes, within the slot budget and one binding (rows of `row`). */
+ * `want` bytes, within the store budget and one binding (rows of `row`). */
 oit_status oit_capture_store_out(oit_capture *c, GLuint *buf, uint64_t *cap, const char *name,
                                  uint64_t want, uint64_t row, oit_capture_out *out,
                                  oit_error *err);

@@ -9,9 +9,10 @@ oit_status oit_capture_counted_batch(oit_capture *c, oit_counted *k,
                                      oit_error *err)
 {
     oit_counted_frame f = oit_capture_counted_frame(c);
-    /* the slot budget bounds its fragment store; deep pixels are those
+    /* the store budget bounds its fragment store; deep pixels are those
      * first-K's K slots would not hold */
-    k->budget = c->set.slot_budget ? c->set.slot_budget : UINT64_MAX;
+    uint64_t budget = oit_capture_store_budget(c);
+    k->budget = budget ? budget : UINT64_MAX;
     k->deep_over = (uint32_t)c->K;
     oit_status s = oit_counted_batch(k, &f, meshes, n, r, err);
     oit_capture_note_peak(c);
@@ -24,7 +25,7 @@ oit_status oit_capture_counted_batch(oit_capture *c, oit_counted *k,
 oit_status oit_capture_store_out(oit_capture *c, GLuint *buf, uint64_t *cap, const char *name,
                                  uint64_t want, uint64_t row, oit_capture_out *out, oit_error *err)
 {
-    uint64_t budget = c->set.slot_budget;
+    uint64_t budget = oit_capture_store_budget(c);
     if (budget && want > budget)
         want = budget > row ? budget : row;
     want = oit_capture_within_binding(c, want, row);
@@ -43,10 +44,11 @@ static void counted_destroy(void *be)
     oit_counted_release(be);
 }
 
-/* Fragments one store holds: the slot budget where set, one binding. */
+/* Fragments one store holds: the store budget where set, one binding. */
 uint64_t oit_capture_counted_fit(const oit_capture *c)
 {
-    uint64_t budget = c->set.slot_budget ? c->set.slot_budget : UINT64_MAX;
+    uint64_t budget = oit_capture_store_budget(c);
+    budget = budget ? budget : UINT64_MAX;
     return (budget < c->frame.bind ? budget : c->frame.bind) / 16;
 }
 

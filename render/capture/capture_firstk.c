@@ -245,7 +245,7 @@ oit_status oit_firstk_init(oit_firstk *k, int K, oit_program_cache *pc,
 {
     memset(k, 0, sizeof *k);
     k->K = K;
-    k->budget = UINT64_MAX;
+    k->budget = k->store_budget = UINT64_MAX;
     k->pc = pc;
     k->built = built;
     k->built_ctx = built_ctx;
@@ -465,14 +465,14 @@ static oit_status second_pass(oit_firstk *k, const oit_counted_frame *f,
 }
 
 /* Pass 2 over r in bands of rows whose overflowed fragments fit the store
- * (the slot budget, or what the slots already hold, within one storage
+ * (the store budget, or what the store already holds, within one storage
  * binding); a band is halved
  * while it does not, down to one row, which gets what it needs. */
 static oit_status second_passes(oit_firstk *k, const oit_counted_frame *f,
                                 const oit_gpu_mesh *const *meshes, int n, const int r[4], int W,
                                 oit_error *err)
 {
-    uint64_t room = k->budget > k->store_cap ? k->budget : k->store_cap;
+    uint64_t room = k->store_budget > k->store_cap ? k->store_budget : k->store_cap;
     room = room < f->bind ? room : f->bind;
     int rows = r[3] - r[1];
     oit_status s = OIT_OK;

@@ -66,6 +66,7 @@ typedef struct oit_firstk {
     uint64_t store_cap, table_cap;
     int K;          /* the most slots a pixel gets */
     uint64_t budget; /* slot bytes a pack may take; UINT64_MAX: no limit */
+    uint64_t store_budget; /* pass 2's store bytes before it bands; UINT64_MAX: no limit */
     /* this frame (the caller resets them): pixels and packs that took pass 2,
      * and the draws pass 2 made */
     uint64_t second_pixels;
@@ -82,7 +83,7 @@ typedef struct oit_firstk {
     void *built_ctx;
     /* Pass 2 driven by the GPU (oit_capture_set_no_wait; its backend sets
      * ahead a frame, from the first on, and off while the measured `need`
-     * passes the slot budget or one binding: the host then splits pass 2
+     * passes the store budget or one binding: the host then splits pass 2
      * in bands): the store sized ahead for `need` fragments (the most an
      * earlier frame's pack needed; before any, what the slots hold); a
      * pack that needs more flags the frame short. */

@@ -103,13 +103,13 @@ static oit_status firstk_begin(oit_capture *c, oit_error *err)
     b->k.second_pixels = 0;
     b->k.second_packs = b->k.second_draws = 0;
     /* pass 2 on the GPU while the store the host would split it by (the
-     * slot budget, or what the slots hold; one binding) holds what a pack
+     * store budget, or what the store holds; one binding) holds what a pack
      * needed; from the first frame on, in the store the slots take: a
      * first frame on the host and the next on the GPU paid pass 2's
      * programs, draws and buffers twice, the second time in the frame a
      * still view's user sees next (head.stl at 128x128: 94 ms against
      * 60 warm) */
-    uint64_t room = c->set.slot_budget ? c->set.slot_budget : c->frame.bind;
+    uint64_t room = oit_capture_store_budget(c) ? oit_capture_store_budget(c) : c->frame.bind;
     room = room > b->k.store_cap ? room : b->k.store_cap;
     room = room < c->frame.bind ? room : c->frame.bind;
     b->k.ahead = c->set.no_wait && (!b->k.measured || b->k.need * 16 <= room);
@@ -172,20 +172,23 @@ static oit_status firstk_batch(oit_capture *c, const oit_gpu_mesh *const *meshes
     if (s != OIT_OK || empty)
         return s;
     uint64_t budget = c->set.slot_budget, bind = c->frame.bind;
+    uint64_t store = oit_capture_store_budget(c);
     b->k.budget = budget && budget < bind ? budget : bind;
+    b->k.store_budget = store && store < bind ? store : bind;
     if (b->off || oit_firstk_slots(&b->k, r) == 0) {
         b->packs++;
         s = counted_ready(c, b, err);
         return s == OIT_OK ? oit_capture_counted_batch(c, &b->counted, meshes, n, r, err) : s;
     }
     oit_counted_frame f = oit_capture_counted_frame(c);
-    /* the prediction within what the slots leave of the budget */
+    /* the prediction within what the slots and store leave of the store
+     * budget (the slots are the store's first bytes) */
     uint64_t slots = (uint64_t)(r[2] - r[0]) * (uint64_t)(r[3] - r[1]) * 16u *
                      (uint64_t)oit_firstk_slots(&b->k, r);
     slots = slots > b->k.store_cap ? slots : b->k.store_cap;
     if (b->predict && !b->k.routed && counted_ready(c, b, NULL) == OIT_OK)
         s = oit_counted_predict_target(&b->counted, &f, b->packs,
-                                       budget ? (budget > slots ? budget - slots : 0) : UINT64_MAX,
+                                       store ? (store > slots ? store - slots : 0) : UINT64_MAX,
                                        &b->k.counts_copy, err);
     if (s == OIT_OK)
         s = oit_firstk_batch(&b->k, &f, meshes, n, r, err);

@@ -35,6 +35,16 @@ void oit_capture_set_slot_budget(oit_capture *c, uint64_t bytes)
     c->set.slot_budget = bytes;
 }
 
+void oit_capture_set_store_budget(oit_capture *c, uint64_t bytes)
+{
+    c->set.store_budget = bytes;
+}
+
+uint64_t oit_capture_store_budget(const oit_capture *c)
+{
+    return c->set.store_budget ? c->set.store_budget : c->set.slot_budget;
+}
+
 void oit_capture_set_gpu_timer(oit_capture *c, struct oit_gpu_timer *t)
 {
     c->set.timer = t;

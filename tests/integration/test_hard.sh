@@ -149,7 +149,7 @@ masks() {
 # before they are stored; then the K-slot capture (--pack disjoint).
 draw stream "$T/in.oitp" --method stream || fail "stream: $(cat "$T/stream.err")"
 draw cnt "$T/in.oitp" --method stream --pack counted || fail "stream --pack counted: $(cat "$T/cnt.err")"
-draw counted "$T/in.oitp" --method stream --pack counted --slot-budget 256K ||
+draw counted "$T/in.oitp" --method stream --pack counted --store-budget 256K ||
     fail "stream, 16K-fragment budget: $(cat "$T/counted.err")"
 draw slots "$T/in.oitp" --method stream --pack disjoint || fail "stream --pack disjoint: $(cat "$T/slots.err")"
 draw dfb "$T/in.oitp" --method dfb || fail "dfb: $(cat "$T/dfb.err")"

@@ -169,6 +169,7 @@ check streamparts --upload-budget
 check streamparts --cache-budget
 check streamparts --upload-threads
 check streamparts --slot-budget
+check streamparts --store-budget
 check streamparts --gpu-budget
 check streamparts --epsilon
 check streamfull --size "" Vx8 nohi,nodefault

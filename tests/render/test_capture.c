@@ -245,7 +245,15 @@ typedef struct firstk_case {
     int W;                  /* the slots the capture must pick (0: counted fallback) */
     int min_draws;          /* the geometry draws the frame must at least make */
     int tiny;               /* 1: every other quad covers only the 4 centre pixels */
+    uint64_t store_budget;  /* 0: the slot budget's; else one that holds every fragment */
 } firstk_case;
+
+/* Whether the case's stores are cut in bands: a slot budget that also
+ * bounds the stores (none of their own). */
+static int banded(const firstk_case *fc)
+{
+    return fc->slot_budget && !fc->store_budget;
+}
 
 /* The host's waits of a first frame (host_wait.h), by the capture's
  * structure: first-K reads each batch's totals back after pass 1, and the
@@ -254,7 +262,7 @@ typedef struct firstk_case {
 static void check_waits(const firstk_case *fc, const oit_frame_stats *s)
 {
     uint64_t one_band = (uint64_t)fc->nb + s->second_pass_packs;
-    if (fc->W && !fc->slot_budget)
+    if (fc->W && !banded(fc))
         CHECK(s->host_waits == one_band, "%s: %u host waits, want %llu (%d batches, %u second "
               "passes)", fc->name, s->host_waits, (unsigned long long)one_band, fc->nb,
               s->second_pass_packs);
@@ -292,7 +300,7 @@ static void test_firstk_no_wait(oit_capture *c, const firstk_case *fc, const oit
           (unsigned long long)sa.fragments, (unsigned long long)sd->fragments);
     CHECK(sa.second_pass_pixels == want, "%s: no wait: second-pass pixels %llu, want %llu",
           fc->name, (unsigned long long)sa.second_pass_pixels, (unsigned long long)want);
-    CHECK(!fc->W || fc->slot_budget || sa.host_waits == 0, "%s: no wait: %u host waits",
+    CHECK(!fc->W || banded(fc) || sa.host_waits == 0, "%s: no wait: %u host waits",
           fc->name, sa.host_waits);
     oit_image_free(&a);
     oit_capture_set_no_wait(c, 0);
@@ -304,6 +312,7 @@ static void test_firstk(const firstk_case *fc)
     if (!c)
         return;
     oit_capture_set_slot_budget(c, fc->slot_budget);
+    oit_capture_set_store_budget(c, fc->store_budget);
     quad_spec q[24];
     deep_scene(q);
     for (int i = 0; fc->tiny && i < 24; i += 2)
@@ -339,9 +348,11 @@ static void test_firstk(const firstk_case *fc)
               (unsigned long long)draws, fc->min_draws);
         /* without overflow, first-K draws a batch once; counted packs
          * count it and store it, in bands of rows where its fragments
-         * outgrow the slot budget (the fallback's: 1 slot a pixel) */
-        CHECK(want > 0 || (fc->W ? draws == (uint64_t)fc->nb
-                                 : draws > (uint64_t)fc->nb * 2 + 2),
+         * outgrow the store budget (the fallback's: 1 slot a pixel), in
+         * one where a store budget of its own holds them */
+        CHECK(want > 0 || (fc->W         ? draws == (uint64_t)fc->nb
+                           : banded(fc) ? draws > (uint64_t)fc->nb * 2 + 2
+                                        : draws == (uint64_t)fc->nb * 2),
               "%s: %llu draws without overflow", fc->name, (unsigned long long)draws);
         check_waits(fc, &sa);
         test_firstk_no_wait(c, fc, &v, q, start, &d, &sd, want);
@@ -391,20 +402,26 @@ static void test_deep_pixels(int firstk_off)
 static void test_firstk_all(void)
 {
     const uint64_t two_slots = 48u * 40u * 16u * 2u; /* W = 2 over the frame */
+    const uint64_t all = 48u * 40u * 16u * 24u;      /* every fragment of the frame */
     const firstk_case cases[] = {
-        {"deep", OIT_SHADING_TRANSPARENT, 24, 4, 1, 0, 4, 2, 0},
-        {"deep K=16", OIT_SHADING_TRANSPARENT, 24, 16, 1, 0, 16, 2, 0},
-        {"deep batches", OIT_SHADING_TRANSPARENT, 24, 4, 3, 0, 4, 4, 0},
-        {"deep translucent", OIT_SHADING_TRANSLUCENT, 24, 4, 4, 0, 4, 5, 0},
+        {"deep", OIT_SHADING_TRANSPARENT, 24, 4, 1, 0, 4, 2, 0, 0},
+        {"deep K=16", OIT_SHADING_TRANSPARENT, 24, 16, 1, 0, 16, 2, 0, 0},
+        {"deep batches", OIT_SHADING_TRANSPARENT, 24, 4, 3, 0, 4, 4, 0, 0},
+        {"deep translucent", OIT_SHADING_TRANSLUCENT, 24, 4, 4, 0, 4, 5, 0, 0},
         /* the overflowed fragments exceed the budget: pass 2 in bands */
-        {"bands", OIT_SHADING_TRANSPARENT, 24, 8, 1, two_slots, 2, 4, 0},
+        {"bands", OIT_SHADING_TRANSPARENT, 24, 8, 1, two_slots, 2, 4, 0, 0},
         /* only the 4 centre pixels get more than 16 (24): a second pass
          * for 4 pixels */
-        {"4 pixels over", OIT_SHADING_TRANSPARENT, 24, 16, 1, 0, 16, 2, 1},
-        {"shallow", OIT_SHADING_TRANSPARENT, 4, 4, 1, 0, 4, 1, 0},
-        {"shallow batches", OIT_SHADING_TRANSLUCENT, 12, 8, 3, 0, 8, 3, 0},
+        {"4 pixels over", OIT_SHADING_TRANSPARENT, 24, 16, 1, 0, 16, 2, 1, 0},
+        {"shallow", OIT_SHADING_TRANSPARENT, 4, 4, 1, 0, 4, 1, 0, 0},
+        {"shallow batches", OIT_SHADING_TRANSLUCENT, 12, 8, 3, 0, 8, 3, 0, 0},
         /* fewer than 2 slots fit: counted packs, still exact */
-        {"fallback", OIT_SHADING_TRANSPARENT, 24, 8, 2, two_slots / 2, 0, 4, 0},
+        {"fallback", OIT_SHADING_TRANSPARENT, 24, 8, 2, two_slots / 2, 0, 4, 0, 0},
+        /* the stores apart from the slots (oit_capture_set_store_budget):
+         * the same slots, but pass 2 and the counted fallback each in one
+         * band, no more waits and draws than that */
+        {"bands, store apart", OIT_SHADING_TRANSPARENT, 24, 8, 1, two_slots, 2, 2, 0, all},
+        {"fallback, store apart", OIT_SHADING_TRANSPARENT, 24, 8, 2, two_slots / 2, 0, 4, 0, all},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
         test_firstk(&cases[i]);

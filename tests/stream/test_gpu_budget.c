@@ -104,9 +104,10 @@ static double max_diff(const oit_image *a, const oit_image *b)
 
 static void print_budget(const char *name, const oit_stream_budget *b)
 {
-    printf("%s: total %llu ring %llu cache %llu capture %llu resident %d free %llu (%s)\n", name,
-           (unsigned long long)b->total, (unsigned long long)b->ring,
-           (unsigned long long)b->cache, (unsigned long long)b->capture, b->resident,
+    printf("%s: total %llu ring %llu cache %llu capture %llu store %llu resident %d free %llu "
+           "(%s)\n", name, (unsigned long long)b->total, (unsigned long long)b->ring,
+           (unsigned long long)b->cache, (unsigned long long)b->capture,
+           (unsigned long long)b->store, b->resident,
            (unsigned long long)b->free_bytes, b->source ? b->source : "?");
 }
 
@@ -162,7 +163,8 @@ int main(int argc, char **argv)
     CHECK(plain.budget.total == 0 && none.budget.total == 0 && plain.budget.free_bytes == 0,
           "no driver figure, yet totals %llu and %llu", (unsigned long long)plain.budget.total,
           (unsigned long long)none.budget.total);
-    CHECK(none.budget.capture == OIT_STREAM_STORE_DEFAULT && none.budget.resident &&
+    CHECK(none.budget.capture == OIT_STREAM_FIRSTK_SLOTS_DEFAULT &&
+              none.budget.store == OIT_STREAM_STORE_DEFAULT && none.budget.resident &&
               none.budget.ring == plain.budget.ring,
           "no total: capture %llu, resident %d, ring %llu: the old defaults expected",
           (unsigned long long)none.budget.capture, none.budget.resident,
@@ -180,6 +182,14 @@ int main(int argc, char **argv)
               !strcmp(tight.budget.source, "--gpu-budget"),
           "below the file: resident %d, total %llu from %s", tight.budget.resident,
           (unsigned long long)tight.budget.total, tight.budget.source);
+    /* the store is a share of its own, not taken from the others' */
+    const oit_stream_budget *tb = &tight.budget;
+    CHECK(tb->store > 0 && tb->store <= t.gpu_budget / 8 &&
+              tb->capture + tb->store + tb->ring + tb->cache <= t.gpu_budget,
+          "below the file: capture %llu + store %llu + ring %llu + cache %llu past %llu",
+          (unsigned long long)tb->capture, (unsigned long long)tb->store,
+          (unsigned long long)tb->ring, (unsigned long long)tb->cache,
+          (unsigned long long)t.gpu_budget);
     uint64_t reread = 0;
     for (int v = 0; v < VIEWS; v++)
         for (int f = 0; f < 2; f++) {

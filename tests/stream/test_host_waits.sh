@@ -14,7 +14,7 @@
 #    times' call, which a loaded machine can change): counted batches wait
 #    for their counts only until a frame has measured what they need, so
 #    every frame after the first waits 0 times and none is drawn again
-#    (--slot-budget 64M: one store holds a batch; the runs below cut
+#    (--store-budget 64M: one store holds a batch; the runs below cut
 #    batches in bands);
 #  - --pack first-k on the stack, the corner view (1.6 M fragments) then the
 #    head-on one (2.5 M): the first frame may outgrow its slots' store (as
@@ -26,7 +26,7 @@
 #    counts, the second is sized ahead from them, the head-on frame outgrows
 #    that store and is drawn again (redraws 0 0 1 0 0, waits after the first
 #    0 1 0 0), every frame's image and fragments DFB's;
-#  - both counted runs again with --slot-budget 2M (131,072 fragments a
+#  - both counted runs again with --store-budget 2M (131,072 fragments a
 #    store against 2.5 M head on): each batch is drawn in bands of rows,
 #    cut on the GPU and, ahead, the bands the frame before cut; warm
 #    frames still wait 0 times (head on) and the walk redraws only where
@@ -105,7 +105,7 @@ first_frame quads
     fail "quads: a second pass where no pixel gets more than 4"
 
 for i in 1 2 3 4; do echo "0,0,5,0,0,0,0,1,0,18"; done > "$T/deep.txt"
-run deep "$T/stack.oitp" 64x64 "$T/deep.txt" --slot-budget 64M --pack counted
+run deep "$T/stack.oitp" 64x64 "$T/deep.txt" --store-budget 64M --pack counted
 warm_zero deep
 
 printf '%s\n' 1.5,1.2,4,0,0,0,0,1,0,30 1.5,1.2,4,0,0,0,0,1,0,30 0,0,5,0,0,0,0,1,0,18 \
@@ -123,11 +123,11 @@ run growc "$T/stack.oitp" 64x64 "$T/grow.txt" --pack counted
 [ "$(json_all host_waits < "$T/growc.json" | sed 1d | tr '\n' ' ')" = "0 1 0 0 " ] ||
     fail "growc: host waits after the first frame" \
          "$(json_all host_waits < "$T/growc.json" | sed 1d | tr '\n' ' '), want 0 1 0 0"
-run banded "$T/stack.oitp" 64x64 "$T/deep.txt" --slot-budget 2M --pack counted
+run banded "$T/stack.oitp" 64x64 "$T/deep.txt" --store-budget 2M --pack counted
 warm_zero banded
 [ "$(json_min batches < "$T/banded.json")" -ge 19 ] ||
     fail "banded: batches $(json_all batches < "$T/banded.json" | tr '\n' ' '), want >= 19 bands"
-run growb "$T/stack.oitp" 64x64 "$T/grow.txt" --slot-budget 2M --pack counted
+run growb "$T/stack.oitp" 64x64 "$T/grow.txt" --store-budget 2M --pack counted
 [ "$(json_all redraws < "$T/growb.json" | tr '\n' ' ')" = "0 0 1 0 0 " ] ||
     fail "growb: redraws $(json_all redraws < "$T/growb.json" | tr '\n' ' '), want 0 0 1 0 0"
 [ "$(json_all host_waits < "$T/growb.json" | sed 1d | tr '\n' ' ')" = "0 1 0 0 " ] ||

@@ -187,7 +187,7 @@ agree wave --schedule wave --pack budget
 # packs are the two rules above and below. The default (auto) takes
 # first-K packs or counted ones by the frame before (stream/streamer.h).
 agree counted --pack counted
-agree counted_split --pack counted --slot-budget 64K
+agree counted_split --pack counted --store-budget 64K
 agree auto
 # The first-K capture (render/capture/capture_firstk.h): the counted packs, drawn
 # once into K slots a pixel, again only for the pixels that got more; with
@@ -214,13 +214,15 @@ if [ "$MODE" = grid ]; then
     residency
     # GPU memory at 1024x1024 outside the three budgets stays below 64 MB
     # (per-pixel counts and state), whatever the model (issue 6), with both
-    # captures: the counted one's fragment store is the slot budget.
+    # captures: the counted and first-K fragment stores are the store
+    # budget.
     for pk in counted disjoint first-k; do
-        "$S" "$P" --size 1024x1024 --upload-budget 1M --slot-budget 8M --cache-budget 1M \
+        "$S" "$P" --size 1024x1024 --upload-budget 1M --slot-budget 8M --store-budget 8M \
+            --cache-budget 1M \
             --pack $pk --out "$T/big.png" --stats "$T/big.json" --quiet ||
             fail "1024x1024 --pack $pk: stream exited $?"
         g=$(json_num gpu_bytes_peak < "$T/big.json")
-        echo "1024x1024 --pack $pk, upload budget 1M, slot budget 8M, cache budget 1M: GPU peak $g bytes"
+        echo "1024x1024 --pack $pk, upload budget 1M, slot and store budgets 8M, cache budget 1M: GPU peak $g bytes"
         [ -n "$g" ] && [ "$g" -le $((64000000 + 10 * 1048576)) ] ||
             fail "1024x1024 --pack $pk: GPU peak $g bytes, more than 64 MB beyond the budgets"
     done
@@ -258,7 +260,7 @@ if [ "$MODE" = demo ]; then
         case $k in roomy) b=$((F * 16)) ;; tight) b=$((F * 12)) ;; esac
         [ "$b" -ge 65536 ] || fail "counted budget: $F fragments are too few for the check"
         # shellcheck disable=SC2086
-        "$S" "$P" $V --slot-budget "$b" --stats "$T/cb_$k.json" --out "$T/cb_$k.png" ||
+        "$S" "$P" $V --store-budget "$b" --stats "$T/cb_$k.json" --out "$T/cb_$k.png" ||
             fail "counted budget $k: exited $?"
         nb=$(json_num batches < "$T/cb_$k.json")
         echo "counted budget: $F fragments, store budget $b bytes ($k): $nb batches"

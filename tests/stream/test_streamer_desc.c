@@ -17,7 +17,7 @@
 #include "stream/streamer.h"
 #include "tests/lib/test_gl.h"
 
-enum { UB, SB, CB, GB, EPS, PACK, SCHED };
+enum { UB, SB, CB, GB, EPS, PACK, SCHED, STB };
 
 typedef struct range_case {
     int field;
@@ -34,17 +34,20 @@ static void set_field(oit_streamer_desc *d, int field, double v)
     case GB: d->gpu_budget = (uint64_t)v; break;
     case EPS: d->epsilon = (float)v; break;
     case PACK: d->pack = (oit_pack_mode)(int)v; break;
+    case STB: d->store_budget = (uint64_t)v; break;
     default: d->schedule = (oit_pack_schedule)(int)v; break;
     }
 }
 
 static const char *const spelt[] = {"--upload-budget", "--slot-budget", "--cache-budget",
-                                    "--gpu-budget", "--epsilon", "--pack", "--schedule"};
+                                    "--gpu-budget", "--epsilon", "--pack", "--schedule",
+                                    "--store-budget"};
 static const char *const own[] = {"oit_streamer_desc.upload_budget",
                                   "oit_streamer_desc.slot_budget",
                                   "oit_streamer_desc.cache_budget",
                                   "oit_streamer_desc.gpu_budget", "oit_streamer_desc.epsilon",
-                                  "oit_streamer_desc.pack", "oit_streamer_desc.schedule"};
+                                  "oit_streamer_desc.pack", "oit_streamer_desc.schedule",
+                                  "oit_streamer_desc.store_budget"};
 
 static void check_ranges(void)
 {
@@ -53,6 +56,7 @@ static void check_ranges(void)
     const range_case cases[] = {
         {UB, 0, 1}, {UB, lo, 1}, {UB, lo - 1, 0}, {UB, 1, 0}, {UB, hi, 1}, {UB, hi + 1, 0},
         {SB, 0, 1}, {SB, lo, 1}, {SB, lo - 1, 0}, {SB, hi, 1}, {SB, hi + 1, 0},
+        {STB, 0, 1}, {STB, lo, 1}, {STB, lo - 1, 0}, {STB, hi, 1}, {STB, hi + 1, 0},
         {CB, 0, 1}, {CB, lo, 1}, {CB, lo - 1, 0}, {CB, hi + 1, 0},
         {CB, (double)OIT_STREAM_CACHE_OFF, 1},
         {GB, 0, 1}, {GB, g, 1}, {GB, g - 1, 0}, {GB, hi, 1}, {GB, hi + 1, 0},
@@ -62,7 +66,7 @@ static void check_ranges(void)
     const oit_streamer_names names = {
         .upload_budget = spelt[UB], .slot_budget = spelt[SB], .cache_budget = spelt[CB],
         .gpu_budget = spelt[GB], .epsilon = spelt[EPS], .pack = spelt[PACK],
-        .schedule = spelt[SCHED], .cache_off = "off"};
+        .schedule = spelt[SCHED], .cache_off = "off", .store_budget = spelt[STB]};
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
         const range_case *c = &cases[i];
         for (int named = 0; named < 2; named++) {
@@ -133,8 +137,12 @@ static void check_resolved(oit_partfile *pf)
               "ring %llu, expected the file's %llu (budget %llu)",
               (unsigned long long)r.upload_budget, (unsigned long long)ring,
               (unsigned long long)b.ring);
-        CHECK(r.slot_budget == OIT_STREAM_STORE_DEFAULT, "slots %llu, expected the store's %llu",
-              (unsigned long long)r.slot_budget, (unsigned long long)OIT_STREAM_STORE_DEFAULT);
+        CHECK(r.slot_budget == OIT_STREAM_FIRSTK_SLOTS_DEFAULT &&
+                  r.store_budget == OIT_STREAM_STORE_DEFAULT && b.store == r.store_budget,
+              "slots %llu store %llu (budget %llu), expected first-K's %llu and the store's %llu",
+              (unsigned long long)r.slot_budget, (unsigned long long)r.store_budget,
+              (unsigned long long)b.store, (unsigned long long)OIT_STREAM_FIRSTK_SLOTS_DEFAULT,
+              (unsigned long long)OIT_STREAM_STORE_DEFAULT);
         CHECK(b.resident && r.cache_budget == OIT_STREAM_CACHE_OFF,
               "resident %d, cache %llu: a file within the ring keeps no cache", b.resident,
               (unsigned long long)r.cache_budget);
@@ -153,7 +161,7 @@ static void check_resolved(oit_partfile *pf)
     if (resolve(pf, &d, &r, &b)) {
         CHECK(r.upload_budget == (256u << 10) && r.cache_budget == OIT_STREAM_CACHE_OFF &&
                   r.reader_threads == 2 && r.slot_budget == OIT_STREAM_SLOTS_DEFAULT &&
-                  r.epsilon == 0.0f && !b.resident,
+                  r.store_budget == 0 && r.epsilon == 0.0f && !b.resident,
               "given: ring %llu cache %llu threads %d slots %llu epsilon %g resident %d",
               (unsigned long long)r.upload_budget, (unsigned long long)r.cache_budget,
               r.reader_threads, (unsigned long long)r.slot_budget, (double)r.epsilon,
@@ -165,10 +173,13 @@ static void check_resolved(oit_partfile *pf)
                             .free_query = silent_driver};
     if (resolve(pf, &d, &r, &b)) {
         uint64_t cache = r.cache_budget == OIT_STREAM_CACHE_OFF ? 0 : r.cache_budget;
-        CHECK(r.gpu_budget == (8u << 20) && r.upload_budget + cache + r.slot_budget <= (8u << 20),
-              "total %llu: ring %llu + cache %llu + slots %llu",
+        CHECK(r.gpu_budget == (8u << 20) &&
+                  r.upload_budget + cache + r.slot_budget + r.store_budget <= (8u << 20) &&
+                  r.store_budget > 0,
+              "total %llu: ring %llu + cache %llu + slots %llu + store %llu",
               (unsigned long long)r.gpu_budget, (unsigned long long)r.upload_budget,
-              (unsigned long long)cache, (unsigned long long)r.slot_budget);
+              (unsigned long long)cache, (unsigned long long)r.slot_budget,
+              (unsigned long long)r.store_budget);
     }
 }
 

@@ -49,6 +49,7 @@ static int parse_bytes(const char *s, uint64_t *out)
 /* What liboit's range errors call its fields here. */
 static const oit_renderer_desc_names option_names = {
     .upload_budget = "--upload-budget", .slot_budget = "--slot-budget",
+    .store_budget = "--store-budget",
     .cache_budget = "--cache-budget", .gpu_budget = "--gpu-budget", .epsilon = "--epsilon",
     .pack = "--pack", .schedule = "--schedule", .cache_off = "off"};
 
@@ -162,6 +163,9 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
         a->stream.read_on_draw_thread = n == 0;
     } else if (!strcmp(opt, "--slot-budget")) {
         if (parse_bytes(v, &a->stream.slot_budget))
+            *s = bad(err, opt, v, "bytes, with an optional K, M or G suffix");
+    } else if (!strcmp(opt, "--store-budget")) {
+        if (parse_bytes(v, &a->stream.store_budget))
             *s = bad(err, opt, v, "bytes, with an optional K, M or G suffix");
     } else if (!strcmp(opt, "--epsilon")) {
         a->have_epsilon = 1;
@@ -303,7 +307,7 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "  --pack P            stream: counted (packs cut by upload bytes only, each\n"
         "                      counted, stored and sorted per pixel as DFB does, with\n"
         "                      no layer limit, stored in bands of rows from its one\n"
-        "                      count where its fragments exceed the slot budget;\n"
+        "                      count where its fragments exceed --store-budget;\n"
         "                      a view drawn again is stored at the offsets its\n"
         "                      last frame counted, not counted first: one pass,\n"
         "                      a second for pixels that got more; --stats:\n"
@@ -392,13 +396,15 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "                      GL_ATI_meminfo), so that a model that fits stays\n"
         "                      resident after its first frame; where the driver\n"
         "                      reports none (llvmpipe), no total: the budgets below\n"
-        "                      alone. Its split: the capture's slots (default, or an\n"
-        "                      eighth of a small total), the file resident where it\n"
+        "                      alone. Its split: the capture's slots and store\n"
+        "                      (their defaults, or each an eighth of a small total),\n"
+        "                      the file resident where it\n"
         "                      fits the rest less 64M (or an eighth) for pixels,\n"
         "                      else a ring of a quarter of the rest (<= 64M) and the\n"
         "                      cache what is left, less the frame's per-pixel buffers.\n"
-        "                      --upload-budget, --cache-budget and --slot-budget\n"
-        "                      replace their shares; more than B together is an error.\n"
+        "                      --upload-budget, --cache-budget, --slot-budget and\n"
+        "                      --store-budget replace their shares; more than B\n"
+        "                      together is an error.\n"
         "                      --stats: budget (the figures and their source)\n"
         "  --upload-threads N  stream: threads that read and decode parts while the\n"
         "                      GPU draws, each taking the next part in the packs'\n"
@@ -408,11 +414,16 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "  --slot-budget B     stream: bytes of the K-fragment capture slots (>= 64K,\n"
         "                      default 32M for disjoint and budget, 64M for counted,\n"
         "                      first-k and auto; 0 also means the default), a larger\n"
-        "                      frame captured in screen tiles; for the counted\n"
-        "                      capture, its fragment store (packs split to fit);\n"
-        "                      for first-k, the slots of a pack's rectangle (K shrinks\n"
-        "                      to fit, a pack too wide for 2 is captured counted) and\n"
-        "                      its second pass's store (in bands of rows that fit)\n"
+        "                      frame captured in screen tiles; for first-k, the\n"
+        "                      slots of a pack's rectangle (K shrinks to fit, a pack\n"
+        "                      too wide for 2 is captured counted)\n"
+        "  --store-budget B    stream: bytes of the counted and first-k fragment\n"
+        "                      stores (>= 64K, default 256M; 0 also means the\n"
+        "                      default), grown to what a frame stores: counted's\n"
+        "                      store and its predictions (a pack past it is stored\n"
+        "                      in bands of rows, each drawing it again), first-k's\n"
+        "                      second pass (in bands of rows that fit). Other packs\n"
+        "                      have none\n"
         "  --epsilon E         in [0, 1). stream: drop fragments behind pixels whose\n"
         "                      transmittance fell below E, and neither upload nor draw\n"
         "                      parts whose whole footprint did (error <= E per channel;\n"

@@ -41,7 +41,7 @@ typedef struct oit_stream_args {
     /* The stream's settings in liboit's public descriptor, each option
      * parsed onto its field and checked by oit_renderer_desc_check (zero:
      * default): --pack, --capture, --schedule, --upload-budget,
-     * --slot-budget, --cache-budget, --gpu-budget, --upload-threads
+     * --slot-budget, --store-budget, --cache-budget, --gpu-budget, --upload-threads
      * (reader_threads; 0: read_on_draw_thread), --epsilon. K is
      * --max-layers (or the file's), the shading the view's; the rest 0. */
     oit_renderer_desc stream;

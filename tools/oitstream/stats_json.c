@@ -148,6 +148,7 @@ static void put_budget(oit_json *w, const oit_draw_stats *b)
     oit_json_uint(w, "ring", b->ring_budget);
     oit_json_uint(w, "cache", b->cache_budget);
     oit_json_uint(w, "capture", b->capture_budget);
+    oit_json_uint(w, "store", b->store_budget);
     oit_json_int(w, "resident", (int)b->resident);
     oit_json_uint(w, "driver_free", b->gpu_free_bytes);
     oit_json_string(w, "source", b->budget_source ? b->budget_source : "");
