@@ -366,6 +366,7 @@ oit_status oit_capture_begin(oit_capture *c, const oit_view *view, oit_error *er
         .bind = limit && limit < driver ? limit : driver,
         .applied = c->frame.applied,
         .calls0 = oit_gpu_draws_calls(c->draws),
+        .view_key = oit_view_key(&c->view),
     };
     c->frame.bytes_peak = held_bytes(c); /* this frame's peak: buffers may have been released */
     oit_status s = allocate(c, &c->view, err);
@@ -455,7 +456,7 @@ oit_counted_frame oit_capture_counted_frame(oit_capture *c)
                                .height = c->view.height,
                                .draws = c->draws,
                                .bind = c->frame.bind,
-                               .view_key = oit_view_key(&c->view),
+                               .view_key = c->frame.view_key,
                                .timer = c->set.timer,
                                .waits = &c->frame.waits};
 }

@@ -41,6 +41,7 @@ typedef struct oit_capture_settings {
 typedef struct oit_capture_frame {
     double t0;
     uint64_t bind;       /* the most one storage binding spans: store_limit or the driver's */
+    uint64_t view_key;   /* oit_view_key of the frame's view (predicted batches') */
     float applied;       /* the threshold the programs test now: epsilon, or 0 (gate_epsilon) */
     int touched[4];      /* GL box of the frame's batches so far; empty: x0 >= x1 */
     int in_frame;

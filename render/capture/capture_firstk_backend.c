@@ -120,7 +120,7 @@ static oit_status firstk_begin(oit_capture *c, oit_error *err)
     /* A still view's next frame may go counted (auto's try, where it was
      * deep), which then draws once where it would count and store: the
      * first frame of a view keeps its counts, the others pay nothing. */
-    uint64_t view = oit_view_key(&c->view);
+    uint64_t view = c->frame.view_key;
     b->predict = c->set.no_wait && (!b->ended_any || b->last_deep) && view != b->last_view;
     b->last_view = view;
     b->packs = 0;
