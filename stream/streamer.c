@@ -95,7 +95,8 @@ struct oit_streamer {
         int open;        /* drawn, not yet judged (a render_gpu frame) */
         double ms;       /* the streamer's own wall time of it */
         oit_path suggest; /* the fixed rule's next path */
-        uint32_t deep_counted; /* counted frames of deep views (adapt) */
+        int adapted;     /* a frame has had its suggestion (adapt) */
+        uint32_t deep_counted; /* counted frames of views over K (adapt) */
     } frame;
     oit_stream_budget budget; /* the split (split_budget) */
     oit_streamer_desc desc;   /* as given (oit_streamer_resolved_desc) */
@@ -655,6 +656,8 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
     if (st == OIT_OK) {
         oit_capture_set_slot_budget(s->capture, s->budget.capture);
         oit_capture_set_store_budget(s->capture, s->budget.store);
+        /* only auto's counted frames predict from first-K's counts */
+        oit_capture_set_keep_counts(s->capture, s->adaptive);
     }
     if (st == OIT_OK)
         oit_capture_set_store_limit(s->capture, desc->store_limit);
@@ -1064,6 +1067,10 @@ static void choose(oit_streamer *s, const oit_view *view)
     oit_path p = oit_choice_begin(&s->judge, oit_view_key(view));
     s->first_k = p == OIT_PATH_FIRSTK;
     oit_capture_set_first_k(s->capture, s->first_k);
+    /* a first-K frame keeps its counts for a counted probe of its view
+     * where the rule may suggest one */
+    oit_capture_set_keep_counts(s->capture,
+                                !s->frame.adapted || s->frame.suggest == OIT_PATH_COUNTED);
 }
 
 /* What the frame's path was chosen from (the judge's figures before the
@@ -1079,30 +1086,42 @@ static void choice_stats(const oit_streamer *s, oit_stream_frame_stats *ss)
     ss->choice_why = s->judge.why;
 }
 
-/* The fixed rule's seed: a frame where more than 1 pixel in 50 got more
- * than K fragments in a pack (first-K's second pass took them; a counted
- * frame's counts say it would have) suggests counted packs, one where
- * fewer did suggests first-K (measured at 1024x1024: the demo and the
- * bunny, 10 layers at most, send under 1.3%; the engine and the 1M plant,
- * 26-64 layers, send 5-16% and were 20-30% faster counted). A counted
- * frame of a deep view still suggests first-K every OIT_CHOICE_BAR_MOST-th
- * frame, so that the rule never decides alone; the judge keeps a suggested
- * path only if it measures faster. */
+/* A first frame more than 1 pixel in 50 of which got more than K
+ * fragments in a pack (first-K's second pass took them; a counted frame's
+ * counts say it would have) is drawn again counted where it ended short
+ * (render): the engine and the 1M plant at 1024x1024, 26-64 layers, send
+ * 5-16% there and were 20-30% faster counted. */
 static int deep_view(const oit_view *view, const oit_frame_stats *fs)
 {
     return fs->deep_pixels * 50 > (uint64_t)view->width * view->height;
 }
 
-static void adapt(oit_streamer *s, const oit_view *view, const oit_frame_stats *fs,
-                  oit_stream_frame_stats *ss, double ms, int judged_now)
+/* The fixed rule's seed: a frame where any pixel got more than K
+ * fragments in a pack suggests counted packs, one where none did
+ * suggests first-K. First-K draws a pack again for such pixels, however
+ * few, while a still view's next counted frame is predicted from this
+ * one's counts: one geometry pass, no second (the 332K-triangle CAD
+ * assembly at 128x128 on llvmpipe: 29 pixels over K, first-K's pass 2 73
+ * ms of a 148 ms frame, DFB 124). A moving view takes no probe (a probe
+ * is a view's, stream/choice.h). A counted frame over K still suggests
+ * first-K every OIT_CHOICE_BAR_MOST-th frame, so that the rule never
+ * decides alone; the judge keeps a suggested path only if it measures
+ * faster. */
+static int over_k(const oit_frame_stats *fs)
+{
+    return fs->deep_pixels > 0;
+}
+
+static void adapt(oit_streamer *s, const oit_frame_stats *fs, oit_stream_frame_stats *ss,
+                  double ms, int judged_now)
 {
     adapt_front(s, ss);
     ss->first_k = s->adaptive ? s->first_k : 0;
     if (!s->adaptive)
         return;
-    int deep = deep_view(view, fs);
-    oit_path suggest = deep ? OIT_PATH_COUNTED : OIT_PATH_FIRSTK;
-    if (!s->first_k && deep && ++s->frame.deep_counted % OIT_CHOICE_BAR_MOST == 0)
+    int over = over_k(fs);
+    oit_path suggest = over ? OIT_PATH_COUNTED : OIT_PATH_FIRSTK;
+    if (!s->first_k && over && ++s->frame.deep_counted % OIT_CHOICE_BAR_MOST == 0)
         suggest = OIT_PATH_FIRSTK;
     /* the probe's programs and store made in this frame, not the probe's:
      * its time is what the judge weighs (the 1M plant at 1024x1024: the
@@ -1111,6 +1130,7 @@ static void adapt(oit_streamer *s, const oit_view *view, const oit_frame_stats *
         oit_capture_ready_counted(s->capture);
     s->frame.ms = ms;
     s->frame.suggest = suggest;
+    s->frame.adapted = 1;
     s->frame.open = 1;
     if (judged_now)
         oit_streamer_frame_end(s, ms, 0);
@@ -1215,7 +1235,7 @@ static oit_status render(oit_streamer *s, const oit_view *view, oit_image *out, 
     /* A frame read back here ends here; one left on the GPU ends at the
      * caller's oit_streamer_frame_end (or, without one, at the next). */
     if (st == OIT_OK)
-        adapt(s, view, fs, ss, oit_time_ms() - t0, state == NULL);
+        adapt(s, fs, ss, oit_time_ms() - t0, state == NULL);
     return st;
 }
 

@@ -47,8 +47,8 @@ typedef struct oit_streamer_desc {
     oit_program_cache *programs;
     /* OIT_PACK_AUTO (0): first-K or counted packs, as this process measured
      * them on each view (stream/choice.h): first-K first; counted tried for
-     * a frame when more than 1 pixel in 50 took the second pass, first-K
-     * again from counted, each kept only where it measured faster (the
+     * a frame when any pixel took the second pass, first-K again from
+     * counted, each kept only where it measured faster (the
      * image is the same either way). With early termination the counted and first-K
      * packs are cut front first (oit_packer_set_front_first), so that
      * saturated tiles can skip the parts behind them */

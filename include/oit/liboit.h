@@ -593,9 +593,8 @@ typedef struct oit_draw_stats {
      * path taken, "first-k" or "counted"; choice_why why ("seed": the first
      * draw; "new view": the view changed, so the last view's path with no
      * figures; "held"; "probe": tried for one draw, as a fixed rule
-     * suggests (deep_pixels more than 1 pixel in 50 suggests counted,
-     * fewer suggests first-K; a deep view's counted draws try first-K
-     * every 256th draw), kept only if it measures faster (a path that
+     * suggests (deep_pixels above 0 suggests counted, 0 suggests first-K;
+     * counted draws over K try first-K every 256th draw), kept only if it measures faster (a path that
      * lost is not tried again on any view for 8, 16, ... 256 draws); "kept: measured faster", "back: measured slower", "measured
      * faster"); and each path's cost as measured on this view before the
      * draw, the least wall time of its draws (where both paths have GPU
@@ -616,7 +615,8 @@ typedef struct oit_draw_stats {
      * its slots), summed over the packs. First-K's second pass took
      * exactly these (second_pass_pixels); counted packs count them from
      * their counts. OIT_RENDER_PACK_AUTO's rule suggests counted packs
-     * where more than 1 pixel in 50 did, first-K where fewer did. 0
+     * where any did (a still view's next counted draw is predicted from
+     * this one's counts: one geometry pass), first-K where none did. 0
      * otherwise. */
     uint64_t deep_pixels;
     /* A part file's draw with counted packs: the packs drawn at the

@@ -183,6 +183,15 @@ void oit_capture_set_store_limit(oit_capture *c, uint64_t bytes);
  * frame's figures (streamer.h). The image is the same either way. */
 void oit_capture_set_first_k(oit_capture *c, int on);
 
+/* OIT_CAPTURE_FIRSTK only, from the next frame on: 1 (the default) has the
+ * first frame of a view (oit_view_key) keep its pass 1 counts, so that a
+ * counted frame of the same view after it is predicted from them
+ * (capture_counted.h) instead of counted first; 0 keeps none (a copy of
+ * the counts a batch, for at most OIT_COUNTED_PREDICTED_BATCHES batches,
+ * saved). The streamer's automatic mode keeps them where its rule
+ * suggests counted next. The image is the same either way. */
+void oit_capture_set_keep_counts(oit_capture *c, int on);
+
 /* OIT_CAPTURE_FIRSTK, from the next frame on: 1 drives first-K's
  * second pass on the GPU, so that the host never waits within a frame
  * (oit_frame_stats.host_waits): the pass-2 store is sized ahead from what

@@ -35,6 +35,7 @@ typedef struct oit_capture_settings {
     uint64_t store_limit; /* bytes a storage buffer spans; 0: the driver's */
     oit_gpu_timer *timer; /* phases marked; NULL: none */
     int no_wait;          /* oit_capture_set_no_wait */
+    int no_counts;        /* !oit_capture_set_keep_counts */
 } oit_capture_settings;
 
 /* This frame's, set by oit_capture_begin. */

@@ -19,13 +19,11 @@ typedef struct firstk_backend {
     oit_stencil_target target;
     GLuint fill;
     /* Pass 1's counts kept for the counted capture to predict the next
-     * frame by (oit_counted_predict) in this frame, at its pack `packs`;
-     * the last frame's view and whether it was deep (as stream/choice.h
-     * judges it: more than 1 pixel in 50 past K). */
+     * frame by (oit_counted_predict) in this frame, at its pack `packs`
+     * (oit_capture_set_keep_counts); the last frame's view. */
     int predict;
     size_t packs;
     uint64_t last_view;
-    int last_deep, ended_any;
 } firstk_backend;
 
 /* Pass 1 through the stencil target (oit_capture_create_routed). */
@@ -117,11 +115,12 @@ static oit_status firstk_begin(oit_capture *c, oit_error *err)
      * is tried first): there is no first-K state to begin yet */
     if (b->k.totals)
         oit_firstk_begin(&b->k);
-    /* A still view's next frame may go counted (auto's try, where it was
-     * deep), which then draws once where it would count and store: the
-     * first frame of a view keeps its counts, the others pay nothing. */
+    /* A still view's next frame may go counted (auto's try), which then
+     * draws once where it would count and store: the first frame of a view
+     * keeps its counts where the caller asks (oit_capture_set_keep_counts),
+     * the others pay nothing. */
     uint64_t view = c->frame.view_key;
-    b->predict = c->set.no_wait && (!b->ended_any || b->last_deep) && view != b->last_view;
+    b->predict = c->set.no_wait && !c->set.no_counts && view != b->last_view;
     b->last_view = view;
     b->packs = 0;
     if (!b->fill)
@@ -256,9 +255,6 @@ static int firstk_ended(oit_capture *c)
         return 0; /* a self-test frame (firstk_begin) */
     oit_firstk_ended(&b->k);
     int counted_short = b->counted_ready && oit_counted_ended(&b->counted);
-    uint64_t deep = b->k.second_pixels + b->counted.deep_pixels;
-    b->last_deep = deep * 50 > (uint64_t)c->view.width * c->view.height;
-    b->ended_any = 1;
     return (b->k.ahead && b->k.ended_short) || counted_short;
 }
 

@@ -45,6 +45,11 @@ uint64_t oit_capture_store_budget(const oit_capture *c)
     return c->set.store_budget ? c->set.store_budget : c->set.slot_budget;
 }
 
+void oit_capture_set_keep_counts(oit_capture *c, int on)
+{
+    c->set.no_counts = !on;
+}
+
 void oit_capture_set_gpu_timer(oit_capture *c, struct oit_gpu_timer *t)
 {
     c->set.timer = t;

@@ -3,11 +3,15 @@
 # default stream path (--pack auto: first-K packs, their second pass driven
 # by the GPU from the first frame on), resident part files:
 #  - 300 stacked squares (oitgen hard --case stack) seen from far off, so
-#    that fewer than 1 pixel in 50 overflows K and auto stays first-K: no
-#    frame reads anything back within it; the first may outgrow the pass-2
+#    that fewer than 1 pixel in 50 overflows K, --pack first-k: no frame
+#    reads anything back within it; the first may outgrow the pass-2
 #    store its slots give it, end short and be drawn again (its one wait:
 #    the short frame's final read-back), no later frame waits or redraws,
-#    second-pass pixels > 0 and DFB's image and fragments;
+#    second-pass pixels > 0 on every frame and DFB's image and fragments;
+#  - the same under auto: its first frame is first-K's (no wait but for a
+#    redraw), and its pixels over K have the still view's second frame
+#    probe counted, drawn predicted from the first frame's counts (one
+#    geometry pass, predicted_batches > 0); no warm frame waits;
 #  - 4 stacked quads (nothing over K): 0 waits and redraws, no second pass;
 #  - the stack head on, every pixel over K, --pack counted (the path auto
 #    takes there; pinned, because which path auto holds is its measured
@@ -90,13 +94,19 @@ first_frame() {
 }
 
 for i in 1 2 3 4; do echo "0,0,60,0,0,0,0,1,0,18"; done > "$T/far.txt"
-run far "$T/stack.oitp" 128x128 "$T/far.txt"
+run far "$T/stack.oitp" 128x128 "$T/far.txt" --pack first-k
 warm_zero far
 first_frame far
-[ "$(json_all auto_first_k < "$T/far.json" | tr -d '\n')" = 1111 ] ||
-    fail "far: auto left first-K; this test needs a view that stays there"
 [ "$(json_min second_pass_pixels < "$T/far.json")" -gt 0 ] ||
     fail "far: a frame without second-pass pixels: nothing overflowed K"
+run farauto "$T/stack.oitp" 128x128 "$T/far.txt"
+warm_zero farauto
+first_frame farauto
+[ "$(json_all auto_first_k < "$T/farauto.json" | head -n 2 | tr -d '\n')" = 10 ] &&
+    [ "$(json_all predicted_batches < "$T/farauto.json" | sed -n 2p)" -gt 0 ] ||
+    fail "farauto: first-K $(json_all auto_first_k < "$T/farauto.json" | tr -d '\n')," \
+         "predicted batches $(json_all predicted_batches < "$T/farauto.json" | tr '\n' ' '):" \
+         "want the second frame counted, predicted"
 
 run quads "$T/quads.oitp" 96x96 "$T/far.txt"
 warm_zero quads
