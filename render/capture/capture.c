@@ -362,9 +362,8 @@ oit_status oit_capture_begin(oit_capture *c, const oit_view *view, oit_error *er
     oit_shading_resolve_defaults(&c->view.shading);
     uint64_t driver = oit_gl_ssbo_max_bytes(), limit = c->set.store_limit;
     c->frame = (oit_capture_frame){
-        .t0 = oit_time_ms(),
+        .t0 = oit_time_ms(), .applied = c->frame.applied,
         .bind = limit && limit < driver ? limit : driver,
-        .applied = c->frame.applied,
         .calls0 = oit_gpu_draws_calls(c->draws),
         .view_key = oit_view_key(&c->view),
     };
