@@ -1,6 +1,9 @@
 /* The part file handle's inside, shared by the reader (read.c: open, close,
- * accessors) and its checks (validate.c: everything open verifies before a
- * caller sees a record). Nothing outside partfile/ includes it. */
+ * accessors), its checks (validate.c: everything open verifies before a
+ * caller sees a record), the part decoder (part_blob.c) and the helpers all
+ * of them report through (handle.c). Dependencies point one way: read.c ->
+ * validate.c -> part_blob.c -> handle.c, and read.c uses the lower two too.
+ * Nothing outside partfile/ includes it. */
 #ifndef OIT_PARTFILE_HANDLE_H
 #define OIT_PARTFILE_HANDLE_H
 
@@ -39,8 +42,24 @@ struct oit_partfile {
     oit_partfile_summary summary;
 };
 
+/* ---- handle.c ---- */
+
 /* OIT_ERR_NOMEM naming the file. */
 oit_status pf_nomem(const oit_partfile *pf, oit_error *err);
+
+/* OIT_ERR_FORMAT, the message (printf's fmt) prefixed with the file's name:
+ * what every check returns for a file that breaks the format. */
+#if defined(__GNUC__)
+__attribute__((format(printf, 3, 4)))
+#endif
+oit_status pf_bad(const oit_partfile *pf, oit_error *err, const char *fmt, ...);
+
+/* A malloc'd copy of count records of size bytes at p (1 byte when count is
+ * 0, so NULL means out of memory); the caller has bounded count * size by
+ * the section's size. */
+void *pf_copy_out(const uint8_t *p, uint64_t count, size_t size);
+
+/* ---- validate.c ---- */
 
 /* Every check of open, in order: header, section table, checksums (of the
  * part data too unless deferred), then each section's records and the
@@ -53,8 +72,10 @@ oit_status pf_validate_all(oit_partfile *pf, bool deferred, oit_error *err);
  * hold a many-GB file resident. Nothing for an in-memory file. */
 void pf_drop_checked(const oit_partfile *pf, const uint8_t *from, size_t n);
 
-/* Decodes part i into buf (grown as needed) and checks every decoded value
- * against its records. */
+/* ---- part_blob.c (and oit_partfile_buffer_free) ---- */
+
+/* Checks part i's stored checksum, decodes it into buf (grown as needed)
+ * and checks every decoded value against its records. */
 oit_status pf_validate_blob(const oit_partfile *pf, uint32_t i, oit_partfile_buffer *buf,
                             oit_error *err);
 /* Decodes part i into buf without the value checks (a part already

@@ -1,6 +1,8 @@
 /* Part file reader (docs/part-file.md): open, close and the accessors.
  * Every check open runs is in validate.c; a caller sees only records that
- * passed them. */
+ * passed them. The top of the reader: it uses validate.c (open's checks),
+ * part_blob.c (a part's decode and its buffer) and handle.c, and none of
+ * them uses it. */
 #include "partfile/handle.h"
 
 
@@ -183,14 +185,6 @@ oit_status oit_partfile_validate_part(oit_partfile *pf, uint32_t part, oit_error
     if (!s)
         pf->part_ok[part] = 1;
     return s;
-}
-
-void oit_partfile_buffer_free(oit_partfile_buffer *buf)
-{
-    if (!buf)
-        return;
-    free(buf->data);
-    *buf = (oit_partfile_buffer){0};
 }
 
 static void fill_view(const oit_partfile *pf, uint32_t part, const oit_partfile_buffer *buf,

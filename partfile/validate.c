@@ -11,70 +11,24 @@
  * Sizes are compared by division or after bounding each count by the section
  * size, so no product or sum below can wrap.
  */
+/* Dependencies point down: read.c uses this file and part_blob.c; this file
+ * uses part_blob.c (each part's blob at open) and handle.c, never read.c. */
 /* madvise (pf_drop_checked) is not POSIX. */
 #define _DEFAULT_SOURCE
 #include "partfile/handle.h"
+#include "partfile/validate_internal.h"
 
 #include "oit/mesh.h"
 
-#include "base/minmax.h"
 #include "partfile/checksum.h"
-#include "partfile/codec.h"
 
 #include <float.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
 #include <unistd.h>
-
-#if defined(__GNUC__)
-__attribute__((format(printf, 3, 4)))
-#endif
-static oit_status bad(const oit_partfile *pf, oit_error *err, const char *fmt, ...)
-{
-    char msg[sizeof err->message];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
-    return oit_error_set(err, OIT_ERR_FORMAT, "%s: %s", pf->name, msg);
-}
-
-static const uint8_t *sec_data(const oit_partfile *pf, uint32_t type)
-{
-    return pf->base + pf->sec[type - 1].offset;
-}
-
-static uint64_t sec_size(const oit_partfile *pf, uint32_t type)
-{
-    return pf->sec[type - 1].size;
-}
-
-static void *copy_out(const uint8_t *p, uint64_t count, size_t size)
-{
-    void *d = malloc(count ? count * size : 1);
-    if (d && count)
-        memcpy(d, p, count * size);
-    return d;
-}
-
-oit_status pf_nomem(const oit_partfile *pf, oit_error *err)
-{
-    return oit_error_set(err, OIT_ERR_NOMEM, "%s: out of memory", pf->name);
-}
-
-static bool finite3(const float v[3])
-{
-    return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
-}
-
-static bool box_ok(const float lo[3], const float hi[3])
-{
-    return finite3(lo) && finite3(hi) && lo[0] <= hi[0] && lo[1] <= hi[1] && lo[2] <= hi[2];
-}
 
 static bool box_inside(const float lo[3], const float hi[3], const float olo[3], const float ohi[3])
 {
@@ -89,49 +43,49 @@ static bool box_inside(const float lo[3], const float hi[3], const float olo[3],
 static oit_status check_header(oit_partfile *pf, oit_error *err)
 {
     if (pf->size == 0)
-        return bad(pf, err, "empty file, not a part file");
+        return pf_bad(pf, err, "empty file, not a part file");
     if (pf->size < PF_HEADER_BYTES)
-        return bad(pf, err, "file is %zu bytes, shorter than the %u-byte header", pf->size,
-                   PF_HEADER_BYTES);
+        return pf_bad(pf, err, "file is %zu bytes, shorter than the %u-byte header", pf->size,
+                      PF_HEADER_BYTES);
     memcpy(&pf->hdr, pf->base, sizeof pf->hdr);
     const pf_header *h = &pf->hdr;
     if (memcmp(h->magic, PF_MAGIC, sizeof h->magic) != 0)
-        return bad(pf, err, "not a part file (no OITPART magic)");
+        return pf_bad(pf, err, "not a part file (no OITPART magic)");
     if (h->version >= 1 && h->version < 4)
-        return bad(pf, err, "part file version %u has no source triangle indices, which this "
-                   "build needs (it reads version %u): convert the model again with oitprep",
-                   h->version, OIT_PARTFILE_VERSION);
+        return pf_bad(pf, err, "part file version %u has no source triangle indices, which this "
+                      "build needs (it reads version %u): convert the model again with oitprep",
+                      h->version, OIT_PARTFILE_VERSION);
     if (h->version == 4)
-        return bad(pf, err, "part file version 4 stores its parts unencoded, this build reads "
-                   "version %u (encoded parts): convert the model again with oitprep",
-                   OIT_PARTFILE_VERSION);
+        return pf_bad(pf, err, "part file version 4 stores its parts unencoded, this build reads "
+                      "version %u (encoded parts): convert the model again with oitprep",
+                      OIT_PARTFILE_VERSION);
     if (h->version != OIT_PARTFILE_VERSION)
-        return bad(pf, err, "part file version %u, this build reads version %u", h->version,
-                   OIT_PARTFILE_VERSION);
+        return pf_bad(pf, err, "part file version %u, this build reads version %u", h->version,
+                      OIT_PARTFILE_VERSION);
     uint32_t known = OIT_PARTFILE_FLAG_MEASURED_BOUNDS;
     if ((h->flags & ~known) || h->reserved || h->header_bytes != PF_HEADER_BYTES ||
         h->section_count != PF_SECTION_COUNT)
-        return bad(pf, err, "header: flags 0x%x, header size %u, %u sections: expected flags "
-                   "within 0x%x, %u, %u", h->flags, h->header_bytes, h->section_count, known,
-                   PF_HEADER_BYTES, PF_SECTION_COUNT);
+        return pf_bad(pf, err, "header: flags 0x%x, header size %u, %u sections: expected flags "
+                      "within 0x%x, %u, %u", h->flags, h->header_bytes, h->section_count, known,
+                      PF_HEADER_BYTES, PF_SECTION_COUNT);
     if (h->K < 2 || h->K > PF_K_MAX || h->K % 2)
-        return bad(pf, err, "header: K %u is not an even number in 2..%u", h->K, PF_K_MAX);
+        return pf_bad(pf, err, "header: K %u is not an even number in 2..%u", h->K, PF_K_MAX);
     if (h->part_align < PF_ALIGN_MIN || h->part_align > PF_ALIGN_MAX ||
         (h->part_align & (h->part_align - 1)))
-        return bad(pf, err, "header: part alignment %u is not a power of two in %u..%u",
-                   h->part_align, PF_ALIGN_MIN, PF_ALIGN_MAX);
+        return pf_bad(pf, err, "header: part alignment %u is not a power of two in %u..%u",
+                      h->part_align, PF_ALIGN_MIN, PF_ALIGN_MAX);
     if (h->file_bytes != pf->size)
-        return bad(pf, err, "file is %zu bytes, its header says %llu (truncated or appended to)",
-                   pf->size, (unsigned long long)h->file_bytes);
+        return pf_bad(pf, err, "file is %zu bytes, its header says %llu (truncated or appended to)",
+                      pf->size, (unsigned long long)h->file_bytes);
     if (pf->size < PF_TABLE_END)
-        return bad(pf, err, "file is %zu bytes, shorter than header and section table (%u)",
-                   pf->size, PF_TABLE_END);
+        return pf_bad(pf, err, "file is %zu bytes, shorter than header and section table (%u)",
+                      pf->size, PF_TABLE_END);
     memcpy(pf->sec, pf->base + PF_HEADER_BYTES, sizeof pf->sec);
     uint32_t crc = oit_crc32c(oit_crc32c(0, pf->base, offsetof(pf_header, table_crc)),
                               pf->base + PF_HEADER_BYTES, sizeof pf->sec);
     if (crc != h->table_crc)
-        return bad(pf, err, "header: checksum 0x%08x, stored 0x%08x (corrupt header or table)",
-                   crc, h->table_crc);
+        return pf_bad(pf, err, "header: checksum 0x%08x, stored 0x%08x (corrupt header or table)",
+                      crc, h->table_crc);
     return OIT_OK;
 }
 
@@ -139,17 +93,17 @@ static oit_status check_entry(const oit_partfile *pf, uint32_t i, oit_error *err
 {
     const pf_section *s = &pf->sec[i];
     if (s->type != i + 1 || s->flags || s->reserved)
-        return bad(pf, err, "section table: entry %u: type %u flags 0x%x: expected type %u (%s), "
-                   "no flags", i, s->type, s->flags, i + 1, pf_section_name(i + 1));
+        return pf_bad(pf, err, "section table: entry %u: type %u flags 0x%x: expected type %u "
+                      "(%s), no flags", i, s->type, s->flags, i + 1, pf_section_name(i + 1));
     uint64_t align = s->type == PF_SEC_PART_DATA ? pf->hdr.part_align : PF_SECTION_ALIGN;
     const char *name = pf_section_name(s->type);
     if (s->offset % align)
-        return bad(pf, err, "section %s: offset %llu is not a multiple of %llu", name,
-                   (unsigned long long)s->offset, (unsigned long long)align);
+        return pf_bad(pf, err, "section %s: offset %llu is not a multiple of %llu", name,
+                      (unsigned long long)s->offset, (unsigned long long)align);
     if (s->offset < PF_TABLE_END || s->offset > pf->size || s->size > pf->size - s->offset)
-        return bad(pf, err, "section %s: bytes %llu..+%llu lie outside the file's data "
-                   "(%u..%zu)", name, (unsigned long long)s->offset,
-                   (unsigned long long)s->size, PF_TABLE_END, pf->size);
+        return pf_bad(pf, err, "section %s: bytes %llu..+%llu lie outside the file's data "
+                      "(%u..%zu)", name, (unsigned long long)s->offset,
+                      (unsigned long long)s->size, PF_TABLE_END, pf->size);
     return OIT_OK;
 }
 
@@ -165,8 +119,8 @@ static oit_status check_table(const oit_partfile *pf, oit_error *err)
             const pf_section *a = &pf->sec[i], *b = &pf->sec[j];
             if (a->size && b->size && a->offset < b->offset + b->size &&
                 b->offset < a->offset + a->size)
-                return bad(pf, err, "sections %s and %s overlap", pf_section_name(a->type),
-                           pf_section_name(b->type));
+                return pf_bad(pf, err, "sections %s and %s overlap", pf_section_name(a->type),
+                              pf_section_name(b->type));
         }
     return OIT_OK;
 }
@@ -205,11 +159,12 @@ static oit_status check_checksums(const oit_partfile *pf, bool with_data, oit_er
     for (uint32_t t = 1; t <= PF_SECTION_COUNT; t++) {
         if (t == PF_SEC_PART_DATA && !with_data)
             continue; /* each part's own checksum covers it when it is validated */
-        uint32_t crc = t == PF_SEC_PART_DATA ? data_checksum(pf, sec_data(pf, t), sec_size(pf, t))
-                                             : oit_crc32c(0, sec_data(pf, t), sec_size(pf, t));
+        uint32_t crc = t == PF_SEC_PART_DATA
+                           ? data_checksum(pf, pf_sec_data(pf, t), pf_sec_size(pf, t))
+                           : oit_crc32c(0, pf_sec_data(pf, t), pf_sec_size(pf, t));
         if (crc != pf->sec[t - 1].crc)
-            return bad(pf, err, "section %s: checksum 0x%08x, stored 0x%08x (corrupt)",
-                       pf_section_name(t), crc, pf->sec[t - 1].crc);
+            return pf_bad(pf, err, "section %s: checksum 0x%08x, stored 0x%08x (corrupt)",
+                          pf_section_name(t), crc, pf->sec[t - 1].crc);
     }
     return OIT_OK;
 }
@@ -228,33 +183,34 @@ static char *copy_string(const uint8_t *p, uint32_t n)
 
 static oit_status load_meta(oit_partfile *pf, oit_error *err)
 {
-    uint64_t size = sec_size(pf, PF_SEC_META);
+    uint64_t size = pf_sec_size(pf, PF_SEC_META);
     if (size < sizeof pf->meta)
-        return bad(pf, err, "section META: %llu bytes, shorter than its %zu-byte record",
-                   (unsigned long long)size, sizeof pf->meta);
-    memcpy(&pf->meta, sec_data(pf, PF_SEC_META), sizeof pf->meta);
+        return pf_bad(pf, err, "section META: %llu bytes, shorter than its %zu-byte record",
+                      (unsigned long long)size, sizeof pf->meta);
+    memcpy(&pf->meta, pf_sec_data(pf, PF_SEC_META), sizeof pf->meta);
     const pf_meta *m = &pf->meta;
     uint64_t head = sizeof *m + sizeof pf->origin;
     if (size != head + (uint64_t)m->source_name_bytes + m->options_bytes)
-        return bad(pf, err, "section META: %llu bytes, its record says %llu",
-                   (unsigned long long)size,
-                   (unsigned long long)(head + (uint64_t)m->source_name_bytes + m->options_bytes));
+        return pf_bad(pf, err, "section META: %llu bytes, its record says %llu",
+                      (unsigned long long)size,
+                      (unsigned long long)(head + (uint64_t)m->source_name_bytes +
+                                           m->options_bytes));
     if (m->reserved || (m->attributes & ~(uint32_t)(OIT_ATTR_COLOUR | OIT_ATTR_ALPHA | OIT_ATTR_OPAQUE)))
-        return bad(pf, err, "section META: unknown attribute bits 0x%x", m->attributes);
-    if (!box_ok(m->bounds_min, m->bounds_max))
-        return bad(pf, err, "section META: scene bounds are not finite or min > max");
-    memcpy(pf->origin, sec_data(pf, PF_SEC_META) + sizeof *m, head - sizeof *m);
+        return pf_bad(pf, err, "section META: unknown attribute bits 0x%x", m->attributes);
+    if (!pf_box_ok(m->bounds_min, m->bounds_max))
+        return pf_bad(pf, err, "section META: scene bounds are not finite or min > max");
+    memcpy(pf->origin, pf_sec_data(pf, PF_SEC_META) + sizeof *m, head - sizeof *m);
     for (int k = 0; k < 3; k++)
         if (!isfinite(pf->origin[k]))
-            return bad(pf, err, "section META: origin is not finite");
-    const uint8_t *text = sec_data(pf, PF_SEC_META) + head;
+            return pf_bad(pf, err, "section META: origin is not finite");
+    const uint8_t *text = pf_sec_data(pf, PF_SEC_META) + head;
     pf->source_name = copy_string(text, m->source_name_bytes);
     pf->options = copy_string(text + m->source_name_bytes, m->options_bytes);
     if (!pf->source_name || !pf->options)
         return pf_nomem(pf, err);
     if (strlen(pf->source_name) != m->source_name_bytes ||
         strlen(pf->options) != m->options_bytes)
-        return bad(pf, err, "section META: source name or options contain a NUL byte");
+        return pf_bad(pf, err, "section META: source name or options contain a NUL byte");
     return OIT_OK;
 }
 
@@ -263,12 +219,12 @@ static oit_status load_meta(oit_partfile *pf, oit_error *err)
 static oit_status load_records(oit_partfile *pf, uint32_t type, size_t record, void **out,
                                uint64_t *count, oit_error *err)
 {
-    uint64_t size = sec_size(pf, type);
+    uint64_t size = pf_sec_size(pf, type);
     if (size % record)
-        return bad(pf, err, "section %s: %llu bytes is not a whole number of %zu-byte records",
-                   pf_section_name(type), (unsigned long long)size, record);
+        return pf_bad(pf, err, "section %s: %llu bytes is not a whole number of %zu-byte records",
+                      pf_section_name(type), (unsigned long long)size, record);
     *count = size / record;
-    *out = copy_out(sec_data(pf, type), *count, record);
+    *out = pf_copy_out(pf_sec_data(pf, type), *count, record);
     return *out ? OIT_OK : pf_nomem(pf, err);
 }
 
@@ -280,11 +236,11 @@ static oit_status load_parts(oit_partfile *pf, oit_error *err)
     if (s)
         return s;
     if (n != pf->hdr.part_count)
-        return bad(pf, err, "section PARTS: holds %llu records, the header claims %llu parts",
-                   (unsigned long long)n, (unsigned long long)pf->hdr.part_count);
+        return pf_bad(pf, err, "section PARTS: holds %llu records, the header claims %llu parts",
+                      (unsigned long long)n, (unsigned long long)pf->hdr.part_count);
     if (n > UINT32_MAX - 1)
-        return bad(pf, err, "section PARTS: %llu parts, at most %u allowed",
-                   (unsigned long long)n, UINT32_MAX - 1);
+        return pf_bad(pf, err, "section PARTS: %llu parts, at most %u allowed",
+                      (unsigned long long)n, UINT32_MAX - 1);
     return load_records(pf, PF_SEC_PIECES, sizeof(oit_partfile_piece), (void **)&pf->pieces,
                         &pf->piece_count, err);
 }
@@ -298,20 +254,20 @@ static oit_status check_part_fields(const oit_partfile *pf, uint32_t i, oit_erro
                                   !(pf->hdr.flags & OIT_PARTFILE_FLAG_MEASURED_BOUNDS)
                               ? 2 * p->piece_count
                               : OIT_PARTFILE_MAX_LAYERS;
-    if (p->reserved || !box_ok(p->bounds_min, p->bounds_max))
-        return bad(pf, err, "section PARTS: record %u: bounds not finite or min > max", i);
+    if (p->reserved || !pf_box_ok(p->bounds_min, p->bounds_max))
+        return pf_bad(pf, err, "section PARTS: record %u: bounds not finite or min > max", i);
     if (p->attributes & ~pf->meta.attributes)
-        return bad(pf, err, "section PARTS: record %u: attributes 0x%x, the file has 0x%x", i,
-                   p->attributes, pf->meta.attributes);
+        return pf_bad(pf, err, "section PARTS: record %u: attributes 0x%x, the file has 0x%x", i,
+                      p->attributes, pf->meta.attributes);
     if (!p->piece_count || p->layer_bound < 1 || p->layer_bound > max_layers)
-        return bad(pf, err, "section PARTS: record %u: layer bound %u with %u pieces, K %u", i,
-                   p->layer_bound, p->piece_count, pf->hdr.K);
+        return pf_bad(pf, err, "section PARTS: record %u: layer bound %u with %u pieces, K %u", i,
+                      p->layer_bound, p->piece_count, pf->hdr.K);
     if (!p->vertex_count || !p->index_count || p->index_count % 3)
-        return bad(pf, err, "section PARTS: record %u: %u vertices, %llu indices", i,
-                   p->vertex_count, (unsigned long long)p->index_count);
+        return pf_bad(pf, err, "section PARTS: record %u: %u vertices, %llu indices", i,
+                      p->vertex_count, (unsigned long long)p->index_count);
     if (p->index_bits != 32 && (p->index_bits != 16 || p->vertex_count > PF_INDEX16_MAX_VERTICES))
-        return bad(pf, err, "section PARTS: record %u: %u-bit indices for %u vertices", i,
-                   p->index_bits, p->vertex_count);
+        return pf_bad(pf, err, "section PARTS: record %u: %u-bit indices for %u vertices", i,
+                      p->index_bits, p->vertex_count);
     return OIT_OK;
 }
 
@@ -326,10 +282,10 @@ static oit_status check_part_streams(const oit_partfile *pf, uint32_t i, oit_err
     uint64_t v = p->stored_vertex_bytes, x = p->stored_index_bytes, s = p->stored_source_bytes;
     if (v > p->stored_bytes || x > p->stored_bytes - v || s != p->stored_bytes - v - x ||
         !v || !x || !s || p->data_bytes / PF_DECODE_RATIO > p->stored_bytes)
-        return bad(pf, err, "section PARTS: record %u: stored streams %llu + %llu + %llu "
-                   "bytes do not tile %llu stored bytes for a %llu-byte part", i,
-                   (unsigned long long)v, (unsigned long long)x, (unsigned long long)s,
-                   (unsigned long long)p->stored_bytes, (unsigned long long)p->data_bytes);
+        return pf_bad(pf, err, "section PARTS: record %u: stored streams %llu + %llu + %llu "
+                      "bytes do not tile %llu stored bytes for a %llu-byte part", i,
+                      (unsigned long long)v, (unsigned long long)x, (unsigned long long)s,
+                      (unsigned long long)p->stored_bytes, (unsigned long long)p->data_bytes);
     return OIT_OK;
 }
 
@@ -342,25 +298,25 @@ static oit_status check_part_blob(const oit_partfile *pf, uint32_t i, uint64_t p
     uint64_t vbytes = (uint64_t)p->vertex_count * pf_vertex_stride(p->attributes);
     if (p->vertex_offset != 0 || p->vertex_bytes != vbytes ||
         p->index_offset != pf_align_up(vbytes, 4))
-        return bad(pf, err, "section PARTS: record %u: vertex bytes %llu at %llu, indices at "
-                   "%llu: expected %llu at 0, indices at %llu", i,
-                   (unsigned long long)p->vertex_bytes, (unsigned long long)p->vertex_offset,
-                   (unsigned long long)p->index_offset, (unsigned long long)vbytes,
-                   (unsigned long long)pf_align_up(vbytes, 4));
+        return pf_bad(pf, err, "section PARTS: record %u: vertex bytes %llu at %llu, indices at "
+                      "%llu: expected %llu at 0, indices at %llu", i,
+                      (unsigned long long)p->vertex_bytes, (unsigned long long)p->vertex_offset,
+                      (unsigned long long)p->index_offset, (unsigned long long)vbytes,
+                      (unsigned long long)pf_align_up(vbytes, 4));
     /* index_count <= size (the index codec stores at least a byte an index)
      * bounds every product below. */
     if (p->index_count > d->size || p->index_bytes != p->index_count * (p->index_bits / 8) ||
         p->data_bytes != oit_partfile_source_offset(p) + p->index_count / 3 * 4)
-        return bad(pf, err, "section PARTS: record %u: %llu indices do not fit %llu index "
-                   "bytes and %llu source indices in a %llu-byte blob", i,
-                   (unsigned long long)p->index_count, (unsigned long long)p->index_bytes,
-                   (unsigned long long)(p->index_count / 3), (unsigned long long)p->data_bytes);
+        return pf_bad(pf, err, "section PARTS: record %u: %llu indices do not fit %llu index "
+                      "bytes and %llu source indices in a %llu-byte blob", i,
+                      (unsigned long long)p->index_count, (unsigned long long)p->index_bytes,
+                      (unsigned long long)(p->index_count / 3), (unsigned long long)p->data_bytes);
     if (p->data_offset % pf->hdr.part_align || p->data_offset < prev_end ||
         p->data_offset > d->offset + d->size ||
         p->stored_bytes > d->offset + d->size - p->data_offset)
-        return bad(pf, err, "section PARTS: record %u: blob %llu..+%llu is unaligned, out of "
-                   "order or outside PART_DATA", i, (unsigned long long)p->data_offset,
-                   (unsigned long long)p->stored_bytes);
+        return pf_bad(pf, err, "section PARTS: record %u: blob %llu..+%llu is unaligned, out of "
+                      "order or outside PART_DATA", i, (unsigned long long)p->data_offset,
+                      (unsigned long long)p->stored_bytes);
     return check_part_streams(pf, i, err);
 }
 
@@ -373,22 +329,22 @@ static oit_status check_pieces_of(const oit_partfile *pf, uint32_t i, oit_error 
         const oit_partfile_piece *pc = &pf->pieces[j];
         if (pc->part != i || pc->triangle_first != tri || !pc->triangle_count ||
             pc->triangle_count > p->index_count / 3 - tri)
-            return bad(pf, err, "section PIECES: record %llu: part %u triangles %llu..+%llu, "
-                       "expected part %u from triangle %llu within %llu", (unsigned long long)j,
-                       pc->part, (unsigned long long)pc->triangle_first,
-                       (unsigned long long)pc->triangle_count, i, (unsigned long long)tri,
-                       (unsigned long long)(p->index_count / 3));
+            return pf_bad(pf, err, "section PIECES: record %llu: part %u triangles %llu..+%llu, "
+                          "expected part %u from triangle %llu within %llu", (unsigned long long)j,
+                          pc->part, (unsigned long long)pc->triangle_first,
+                          (unsigned long long)pc->triangle_count, i, (unsigned long long)tri,
+                          (unsigned long long)(p->index_count / 3));
         if (!pc->plane_count || pc->plane_count > pc->triangle_count ||
-            !box_ok(pc->bounds_min, pc->bounds_max) ||
+            !pf_box_ok(pc->bounds_min, pc->bounds_max) ||
             !box_inside(pc->bounds_min, pc->bounds_max, p->bounds_min, p->bounds_max))
-            return bad(pf, err, "section PIECES: record %llu: %u planes for %llu triangles, or "
-                       "bounds outside part %u", (unsigned long long)j, pc->plane_count,
-                       (unsigned long long)pc->triangle_count, i);
+            return pf_bad(pf, err, "section PIECES: record %llu: %u planes for %llu triangles, or "
+                          "bounds outside part %u", (unsigned long long)j, pc->plane_count,
+                          (unsigned long long)pc->triangle_count, i);
         tri += pc->triangle_count;
     }
     if (tri != p->index_count / 3)
-        return bad(pf, err, "section PIECES: part %u: pieces cover %llu of %llu triangles", i,
-                   (unsigned long long)tri, (unsigned long long)(p->index_count / 3));
+        return pf_bad(pf, err, "section PIECES: part %u: pieces cover %llu of %llu triangles", i,
+                      (unsigned long long)tri, (unsigned long long)(p->index_count / 3));
     return OIT_OK;
 }
 
@@ -400,9 +356,9 @@ static oit_status check_parts(const oit_partfile *pf, oit_error *err)
         const oit_partfile_part *p = &pf->parts[i];
         oit_status s = check_part_fields(pf, i, err);
         if (!s && (p->piece_first != pieces || p->piece_count > pf->piece_count - pieces))
-            s = bad(pf, err, "section PARTS: record %u: pieces %u..+%u, expected from %llu "
-                    "within %llu", i, p->piece_first, p->piece_count,
-                    (unsigned long long)pieces, (unsigned long long)pf->piece_count);
+            s = pf_bad(pf, err, "section PARTS: record %u: pieces %u..+%u, expected from %llu "
+                       "within %llu", i, p->piece_first, p->piece_count,
+                       (unsigned long long)pieces, (unsigned long long)pf->piece_count);
         if (!s)
             s = check_part_blob(pf, i, prev_end, err);
         if (!s)
@@ -414,11 +370,11 @@ static oit_status check_parts(const oit_partfile *pf, oit_error *err)
         prev_end = p->data_offset + p->stored_bytes;
     }
     if (pieces != pf->piece_count)
-        return bad(pf, err, "section PIECES: %llu records, the parts own %llu",
-                   (unsigned long long)pf->piece_count, (unsigned long long)pieces);
+        return pf_bad(pf, err, "section PIECES: %llu records, the parts own %llu",
+                      (unsigned long long)pf->piece_count, (unsigned long long)pieces);
     if (triangles != pf->hdr.triangle_count)
-        return bad(pf, err, "header: %llu triangles, the parts hold %llu",
-                   (unsigned long long)pf->hdr.triangle_count, (unsigned long long)triangles);
+        return pf_bad(pf, err, "header: %llu triangles, the parts hold %llu",
+                      (unsigned long long)pf->hdr.triangle_count, (unsigned long long)triangles);
     return OIT_OK;
 }
 
@@ -432,186 +388,8 @@ static oit_status check_scene_bounds(const oit_partfile *pf, oit_error *err)
             hi[k] = i == 0 || p->bounds_max[k] > hi[k] ? p->bounds_max[k] : hi[k];
         }
     if (memcmp(lo, pf->meta.bounds_min, sizeof lo) || memcmp(hi, pf->meta.bounds_max, sizeof hi))
-        return bad(pf, err, "section META: scene bounds differ from the union of part bounds");
+        return pf_bad(pf, err, "section META: scene bounds differ from the union of part bounds");
     return OIT_OK;
-}
-
-/* ---- part blobs ------------------------------------------------------------ */
-
-static uint32_t index_at(const uint8_t *idx, uint32_t bits, uint64_t i)
-{
-    if (bits == 16) {
-        uint16_t v;
-        memcpy(&v, idx + i * 2, 2);
-        return v;
-    }
-    uint32_t v;
-    memcpy(&v, idx + i * 4, 4);
-    return v;
-}
-
-static void vertex_at(const uint8_t *blob, uint32_t stride, uint32_t v, float out[3])
-{
-    memcpy(out, blob + (size_t)v * stride, 12);
-}
-
-/* Bounds are stored exactly (min/max of the data), so compare for equality. */
-static oit_status check_vertices(const oit_partfile *pf, uint32_t i, const uint8_t *blob,
-                                 oit_error *err)
-{
-    const oit_partfile_part *p = &pf->parts[i];
-    uint32_t stride = pf_vertex_stride(p->attributes);
-    float lo[3], hi[3], v[3];
-    vertex_at(blob, stride, 0, lo);
-    memcpy(hi, lo, sizeof hi);
-    for (uint32_t j = 0; j < p->vertex_count; j++) {
-        vertex_at(blob, stride, j, v);
-        if (!finite3(v))
-            return bad(pf, err, "section PART_DATA: part %u: vertex %u is not finite", i, j);
-        for (int k = 0; k < 3; k++) {
-            lo[k] = oit_min_f(lo[k], v[k]);
-            hi[k] = oit_max_f(hi[k], v[k]);
-        }
-    }
-    if (memcmp(lo, p->bounds_min, sizeof lo) || memcmp(hi, p->bounds_max, sizeof hi))
-        return bad(pf, err, "section PART_DATA: part %u: vertices span (%g %g %g)..(%g %g %g), "
-                   "the record says (%g %g %g)..(%g %g %g)", i, lo[0], lo[1], lo[2], hi[0],
-                   hi[1], hi[2], p->bounds_min[0], p->bounds_min[1], p->bounds_min[2],
-                   p->bounds_max[0], p->bounds_max[1], p->bounds_max[2]);
-    return OIT_OK;
-}
-
-static oit_status check_indices(const oit_partfile *pf, uint32_t i, const uint8_t *blob,
-                                oit_error *err)
-{
-    const oit_partfile_part *p = &pf->parts[i];
-    const uint8_t *idx = blob + p->index_offset;
-    for (uint64_t j = 0; j < p->index_count; j++) {
-        uint32_t v = index_at(idx, p->index_bits, j);
-        if (v >= p->vertex_count)
-            return bad(pf, err, "section PART_DATA: part %u: triangle %llu: index %u >= %u "
-                       "vertices", i, (unsigned long long)(j / 3), v, p->vertex_count);
-    }
-    return OIT_OK;
-}
-
-/* Every source index names a triangle the source delivered; the pad
- * before them is zero. */
-static oit_status check_sources(const oit_partfile *pf, uint32_t i, const uint8_t *blob,
-                                oit_error *err)
-{
-    const oit_partfile_part *p = &pf->parts[i];
-    uint64_t at = oit_partfile_source_offset(p);
-    for (uint64_t j = p->index_offset + p->index_bytes; j < at; j++)
-        if (blob[j])
-            return bad(pf, err, "section PART_DATA: part %u: non-zero pad before the source "
-                       "indices", i);
-    for (uint64_t t = 0; t < p->index_count / 3; t++) {
-        uint32_t v;
-        memcpy(&v, blob + at + t * 4, sizeof v);
-        if (v >= pf->meta.triangles_in)
-            return bad(pf, err, "section PART_DATA: part %u: triangle %llu: source index %u "
-                       ">= %llu source triangles", i, (unsigned long long)t, v,
-                       (unsigned long long)pf->meta.triangles_in);
-    }
-    return OIT_OK;
-}
-
-/* Runs after check_indices: every index is in range. */
-static oit_status check_piece_bounds(const oit_partfile *pf, uint32_t i, const uint8_t *blob,
-                                     oit_error *err)
-{
-    const oit_partfile_part *p = &pf->parts[i];
-    uint32_t stride = pf_vertex_stride(p->attributes);
-    const uint8_t *idx = blob + p->index_offset;
-    for (uint32_t k = 0; k < p->piece_count; k++) {
-        const oit_partfile_piece *pc = &pf->pieces[p->piece_first + k];
-        float lo[3], hi[3], v[3];
-        uint64_t first = pc->triangle_first * 3, end = first + pc->triangle_count * 3;
-        vertex_at(blob, stride, index_at(idx, p->index_bits, first), lo);
-        memcpy(hi, lo, sizeof hi);
-        for (uint64_t j = first; j < end; j++) {
-            vertex_at(blob, stride, index_at(idx, p->index_bits, j), v);
-            for (int c = 0; c < 3; c++) {
-                lo[c] = oit_min_f(lo[c], v[c]);
-                hi[c] = oit_max_f(hi[c], v[c]);
-            }
-        }
-        if (memcmp(lo, pc->bounds_min, sizeof lo) || memcmp(hi, pc->bounds_max, sizeof hi))
-            return bad(pf, err, "section PIECES: record %u: bounds differ from its triangles' "
-                       "(part %u)", p->piece_first + k, i);
-    }
-    return OIT_OK;
-}
-
-static oit_status buffer_reserve(const oit_partfile *pf, oit_partfile_buffer *buf,
-                                 uint64_t bytes, oit_error *err)
-{
-    if (bytes <= buf->capacity)
-        return OIT_OK;
-    if (bytes > SIZE_MAX)
-        return pf_nomem(pf, err);
-    void *p = realloc(buf->data, (size_t)bytes);
-    if (!p)
-        return pf_nomem(pf, err);
-    buf->data = p;
-    buf->capacity = (size_t)bytes;
-    return OIT_OK;
-}
-
-/* Decodes part i's stored streams into the version 4 blob layout in buf
- * (pads zero); checks nothing but the codecs' own framing. */
-oit_status pf_decode_blob(const oit_partfile *pf, uint32_t i, oit_partfile_buffer *buf,
-                          oit_error *err)
-{
-    const oit_partfile_part *p = &pf->parts[i];
-    oit_status s = buffer_reserve(pf, buf, p->data_bytes, err);
-    if (s)
-        return s;
-    uint8_t *blob = buf->data;
-    const uint8_t *in = pf->base + p->data_offset;
-    uint64_t src_at = oit_partfile_source_offset(p);
-    memset(blob + p->vertex_bytes, 0, (size_t)(p->index_offset - p->vertex_bytes));
-    memset(blob + p->index_offset + p->index_bytes, 0,
-           (size_t)(src_at - p->index_offset - p->index_bytes));
-    const char *what = NULL;
-    if (pf_decode_vertices(blob, p->vertex_count, pf_vertex_stride(p->attributes), in,
-                           (size_t)p->stored_vertex_bytes))
-        what = "vertex";
-    else if (pf_decode_indices(blob + p->index_offset, p->index_count, p->index_bits,
-                               in + p->stored_vertex_bytes, (size_t)p->stored_index_bytes))
-        what = "index";
-    else if (pf_decode_sources((uint32_t *)(void *)(blob + src_at), p->index_count / 3,
-                               in + p->stored_vertex_bytes + p->stored_index_bytes,
-                               (size_t)p->stored_source_bytes))
-        what = "source index";
-    if (what)
-        return bad(pf, err, "section PART_DATA: part %u: the %s stream does not decode to the "
-                   "record's counts (corrupt)", i, what);
-    return OIT_OK;
-}
-
-/* Checksum of the stored bytes, decode into buf, then every decoded value. */
-oit_status pf_validate_blob(const oit_partfile *pf, uint32_t i, oit_partfile_buffer *buf,
-                            oit_error *err)
-{
-    const oit_partfile_part *p = &pf->parts[i];
-    uint32_t crc = oit_crc32c(0, pf->base + p->data_offset, p->stored_bytes);
-    if (crc != p->data_crc)
-        return bad(pf, err, "section PART_DATA: part %u: checksum 0x%08x, stored 0x%08x "
-                   "(corrupt)", i, crc, p->data_crc);
-    oit_status s = pf_decode_blob(pf, i, buf, err);
-    if (s)
-        return s;
-    const uint8_t *blob = buf->data;
-    s = check_vertices(pf, i, blob, err);
-    if (!s)
-        s = check_indices(pf, i, blob, err);
-    if (!s)
-        s = check_piece_bounds(pf, i, blob, err);
-    if (!s)
-        s = check_sources(pf, i, blob, err);
-    return s;
 }
 
 /* ---- GRID and SUBGRIDS -------------------------------------------------------- */
@@ -624,23 +402,23 @@ static oit_status check_grid(const oit_partfile *pf, uint32_t g, uint64_t cell_f
     uint64_t xy = (uint64_t)gr->dims[0] * gr->dims[1];
     if (!gr->dims[0] || !gr->dims[1] || !gr->dims[2] || xy > UINT64_MAX / gr->dims[2] ||
         xy * gr->dims[2] != gr->cell_count || gr->cell_first != cell_first)
-        return bad(pf, err, "section %s: grid %u: %ux%ux%u dims, %llu cells from %llu", sec, g,
-                   gr->dims[0], gr->dims[1], gr->dims[2], (unsigned long long)gr->cell_count,
-                   (unsigned long long)gr->cell_first);
-    if (!finite3(gr->origin) || !finite3(gr->cell_size) || !(gr->cell_size[0] > 0) ||
+        return pf_bad(pf, err, "section %s: grid %u: %ux%ux%u dims, %llu cells from %llu", sec, g,
+                      gr->dims[0], gr->dims[1], gr->dims[2], (unsigned long long)gr->cell_count,
+                      (unsigned long long)gr->cell_first);
+    if (!pf_finite3(gr->origin) || !pf_finite3(gr->cell_size) || !(gr->cell_size[0] > 0) ||
         !(gr->cell_size[1] > 0) || !(gr->cell_size[2] > 0))
-        return bad(pf, err, "section %s: grid %u: origin or cell size not finite or <= 0", sec,
-                   g);
+        return pf_bad(pf, err, "section %s: grid %u: origin or cell size not finite or <= 0", sec,
+                      g);
     if (g == 0 && (gr->depth || gr->parent_grid != OIT_PARTFILE_NONE ||
                    gr->parent_cell != OIT_PARTFILE_NONE))
-        return bad(pf, err, "section GRID: the top grid has depth %u, parent %u", gr->depth,
-                   gr->parent_grid);
+        return pf_bad(pf, err, "section GRID: the top grid has depth %u, parent %u", gr->depth,
+                      gr->parent_grid);
     if (g > 0 && (gr->parent_grid >= g ||
                   gr->parent_cell >= pf->grids[gr->parent_grid].cell_count ||
                   gr->depth != pf->grids[gr->parent_grid].depth + 1))
-        return bad(pf, err, "section SUBGRIDS: record %u: parent grid %u cell %u depth %u: the "
-                   "parent must be an earlier grid, one level up", g - 1, gr->parent_grid,
-                   gr->parent_cell, gr->depth);
+        return pf_bad(pf, err, "section SUBGRIDS: record %u: parent grid %u cell %u depth %u: the "
+                      "parent must be an earlier grid, one level up", g - 1, gr->parent_grid,
+                      gr->parent_cell, gr->depth);
     return OIT_OK;
 }
 
@@ -649,15 +427,15 @@ static oit_status check_cell_list(const oit_partfile *pf, const char *sec, uint6
                                   const oit_partfile_cell *cell, oit_error *err)
 {
     if (cell->reserved || cell->list_first != list_first)
-        return bad(pf, err, "section %s: cell %llu: list from %llu, expected %llu", sec,
-                   (unsigned long long)c, (unsigned long long)cell->list_first,
-                   (unsigned long long)list_first);
+        return pf_bad(pf, err, "section %s: cell %llu: list from %llu, expected %llu", sec,
+                      (unsigned long long)c, (unsigned long long)cell->list_first,
+                      (unsigned long long)list_first);
     for (uint32_t k = 0; k < cell->list_count; k++) {
         uint32_t part = list[cell->list_first + k];
         if (part >= pf->hdr.part_count || (k && part <= list[cell->list_first + k - 1]))
-            return bad(pf, err, "section %s: cell %llu: part %u is missing or out of order (%llu "
-                       "parts)", sec, (unsigned long long)c, part,
-                       (unsigned long long)pf->hdr.part_count);
+            return pf_bad(pf, err, "section %s: cell %llu: part %u is missing or out of order "
+                          "(%llu parts)", sec, (unsigned long long)c, part,
+                          (unsigned long long)pf->hdr.part_count);
     }
     return OIT_OK;
 }
@@ -671,11 +449,11 @@ static oit_status parse_block(const oit_partfile *pf, uint32_t type, grid_block 
                               oit_error *err)
 {
     const char *sec = pf_section_name(type);
-    uint64_t size = sec_size(pf, type);
-    const uint8_t *p = sec_data(pf, type);
+    uint64_t size = pf_sec_size(pf, type);
+    const uint8_t *p = pf_sec_data(pf, type);
     if (size < sizeof b->head)
-        return bad(pf, err, "section %s: %llu bytes, shorter than its head", sec,
-                   (unsigned long long)size);
+        return pf_bad(pf, err, "section %s: %llu bytes, shorter than its head", sec,
+                      (unsigned long long)size);
     memcpy(&b->head, p, sizeof b->head);
     const pf_grid_block *h = &b->head;
     /* Bounding each count by the size keeps the byte total below 2^64. */
@@ -683,10 +461,10 @@ static oit_status parse_block(const oit_partfile *pf, uint32_t type, grid_block 
         h->cell_count > size / sizeof(oit_partfile_cell) || h->list_count > size / 4 ||
         size != pf_grid_block_bytes(h->grid_count, h->cell_count, h->list_count) ||
         (type == PF_SEC_GRID && h->grid_count != 1))
-        return bad(pf, err, "section %s: %llu bytes cannot hold the %u grids, %llu cells and "
-                   "%llu list entries its head claims", sec, (unsigned long long)size,
-                   h->grid_count, (unsigned long long)h->cell_count,
-                   (unsigned long long)h->list_count);
+        return pf_bad(pf, err, "section %s: %llu bytes cannot hold the %u grids, %llu cells and "
+                      "%llu list entries its head claims", sec, (unsigned long long)size,
+                      h->grid_count, (unsigned long long)h->cell_count,
+                      (unsigned long long)h->list_count);
     b->grids = p + sizeof *h;
     b->cells = b->grids + h->grid_count * sizeof(oit_partfile_grid);
     b->list = b->cells + h->cell_count * sizeof(oit_partfile_cell);
@@ -699,7 +477,7 @@ static oit_status append_block(oit_partfile *pf, const grid_block *b, oit_error 
     const pf_grid_block *h = &b->head;
     uint64_t grids = (uint64_t)pf->grid_count + h->grid_count;
     if (grids > UINT32_MAX)
-        return bad(pf, err, "section SUBGRIDS: too many grids");
+        return pf_bad(pf, err, "section SUBGRIDS: too many grids");
     void *g = realloc(pf->grids, grids * sizeof *pf->grids);
     if (g)
         pf->grids = g;
@@ -733,22 +511,22 @@ static oit_status check_block(oit_partfile *pf, uint32_t type, const pf_grid_blo
             break;
     }
     if (cells != h->cell_count)
-        return bad(pf, err, "section %s: grids own %llu cells, the head says %llu", sec,
-                   (unsigned long long)cells, (unsigned long long)h->cell_count);
+        return pf_bad(pf, err, "section %s: grids own %llu cells, the head says %llu", sec,
+                      (unsigned long long)cells, (unsigned long long)h->cell_count);
     oit_partfile_cell *cell = pf->cells + pf->cell_count;
     const uint32_t *lst = pf->lists + pf->list_count;
     for (uint64_t c = 0; c < h->cell_count; c++) {
         if (cell[c].list_count > h->list_count - list)
-            return bad(pf, err, "section %s: cell %llu: list runs past the %llu entries", sec,
-                       (unsigned long long)c, (unsigned long long)h->list_count);
+            return pf_bad(pf, err, "section %s: cell %llu: list runs past the %llu entries", sec,
+                          (unsigned long long)c, (unsigned long long)h->list_count);
         oit_status s = check_cell_list(pf, sec, c, lst, list, &cell[c], err);
         if (s)
             return s;
         list += cell[c].list_count;
     }
     if (list != h->list_count)
-        return bad(pf, err, "section %s: cells use %llu of %llu list entries", sec,
-                   (unsigned long long)list, (unsigned long long)h->list_count);
+        return pf_bad(pf, err, "section %s: cells use %llu of %llu list entries", sec,
+                      (unsigned long long)list, (unsigned long long)h->list_count);
     for (uint32_t g = g0; g < g0 + h->grid_count; g++)
         pf->grids[g].cell_first += pf->cell_count;
     for (uint64_t c = 0; c < h->cell_count; c++)
@@ -779,23 +557,23 @@ static oit_status load_grids(oit_partfile *pf, oit_error *err)
 
 static oit_status load_slabs(oit_partfile *pf, oit_error *err)
 {
-    uint64_t size = sec_size(pf, PF_SEC_SLABS);
-    const uint8_t *p = sec_data(pf, PF_SEC_SLABS);
+    uint64_t size = pf_sec_size(pf, PF_SEC_SLABS);
+    const uint8_t *p = pf_sec_data(pf, PF_SEC_SLABS);
     pf_slab_block h;
     if (size < sizeof h)
-        return bad(pf, err, "section SLABS: %llu bytes, shorter than its head",
-                   (unsigned long long)size);
+        return pf_bad(pf, err, "section SLABS: %llu bytes, shorter than its head",
+                      (unsigned long long)size);
     memcpy(&h, p, sizeof h);
     if (h.reserved || h.slab_count > size / sizeof(oit_partfile_slab) || h.list_count > size / 4 ||
         size != pf_slab_block_bytes(h.slab_count, h.list_count))
-        return bad(pf, err, "section SLABS: %llu bytes cannot hold the %u slabs and %llu list "
-                   "entries its head claims", (unsigned long long)size, h.slab_count,
-                   (unsigned long long)h.list_count);
+        return pf_bad(pf, err, "section SLABS: %llu bytes cannot hold the %u slabs and %llu list "
+                      "entries its head claims", (unsigned long long)size, h.slab_count,
+                      (unsigned long long)h.list_count);
     pf->slab_count = h.slab_count;
     pf->slab_list_count = h.list_count;
-    pf->slabs = copy_out(p + sizeof h, h.slab_count, sizeof *pf->slabs);
-    pf->slab_list = copy_out(p + sizeof h + h.slab_count * sizeof *pf->slabs, h.list_count,
-                             sizeof *pf->slab_list);
+    pf->slabs = pf_copy_out(p + sizeof h, h.slab_count, sizeof *pf->slabs);
+    pf->slab_list = pf_copy_out(p + sizeof h + h.slab_count * sizeof *pf->slabs, h.list_count,
+                                sizeof *pf->slab_list);
     return pf->slabs && pf->slab_list ? OIT_OK : pf_nomem(pf, err);
 }
 
@@ -820,32 +598,32 @@ static oit_status check_slab(const oit_partfile *pf, uint32_t i, uint64_t list_f
     float len2 = s->normal[0] * s->normal[0] + s->normal[1] * s->normal[1] +
                  s->normal[2] * s->normal[2];
     /* A cutting plane keeps its integer normal (partfile.h). */
-    if (!finite3(s->normal) || !(len2 > 0) || !isfinite(len2))
-        return bad(pf, err, "section SLABS: record %u: normal (%g %g %g) zero or not finite", i,
-                   s->normal[0], s->normal[1], s->normal[2]);
+    if (!pf_finite3(s->normal) || !(len2 > 0) || !isfinite(len2))
+        return pf_bad(pf, err, "section SLABS: record %u: normal (%g %g %g) zero or not finite", i,
+                      s->normal[0], s->normal[1], s->normal[2]);
     if (!isfinite(s->d0) || !isfinite(s->d1) || s->d0 > s->d1)
-        return bad(pf, err, "section SLABS: record %u: planes d0 %g > d1 %g or not finite", i,
-                   s->d0, s->d1);
+        return pf_bad(pf, err, "section SLABS: record %u: planes d0 %g > d1 %g or not finite", i,
+                      s->d0, s->d1);
     if (s->grid >= pf->grid_count || s->cell >= pf->grids[s->grid].cell_count)
-        return bad(pf, err, "section SLABS: record %u: grid %u cell %u does not exist", i,
-                   s->grid, s->cell);
+        return pf_bad(pf, err, "section SLABS: record %u: grid %u cell %u does not exist", i,
+                      s->grid, s->cell);
     const oit_partfile_cell *cell = &pf->cells[pf->grids[s->grid].cell_first + s->cell];
     if (cell->slab != i + 1)
-        return bad(pf, err, "section SLABS: record %u: its cell names slab %u", i, cell->slab);
+        return pf_bad(pf, err, "section SLABS: record %u: its cell names slab %u", i, cell->slab);
     if (s->inside_first != list_first || s->inside_count > pf->slab_list_count - list_first)
-        return bad(pf, err, "section SLABS: record %u: list %llu..+%u, expected from %llu "
-                   "within %llu", i, (unsigned long long)s->inside_first, s->inside_count,
-                   (unsigned long long)list_first, (unsigned long long)pf->slab_list_count);
+        return pf_bad(pf, err, "section SLABS: record %u: list %llu..+%u, expected from %llu "
+                      "within %llu", i, (unsigned long long)s->inside_first, s->inside_count,
+                      (unsigned long long)list_first, (unsigned long long)pf->slab_list_count);
     if (s->part_below == s->part_above || !cell_has_part(pf, cell, s->part_below) ||
         !cell_has_part(pf, cell, s->part_above))
-        return bad(pf, err, "section SLABS: record %u: parts %u and %u are not two parts of its "
-                   "cell", i, s->part_below, s->part_above);
+        return pf_bad(pf, err, "section SLABS: record %u: parts %u and %u are not two parts of its "
+                      "cell", i, s->part_below, s->part_above);
     for (uint32_t k = 0; k < s->inside_count; k++) {
         uint32_t p = pf->slab_list[list_first + k];
         if ((k && p <= pf->slab_list[list_first + k - 1]) || p == s->part_below ||
             p == s->part_above || !cell_has_part(pf, cell, p))
-            return bad(pf, err, "section SLABS: record %u: inside part %u is out of order, "
-                       "repeated or not in its cell", i, p);
+            return pf_bad(pf, err, "section SLABS: record %u: inside part %u is out of order, "
+                          "repeated or not in its cell", i, p);
     }
     return OIT_OK;
 }
@@ -860,8 +638,8 @@ static oit_status check_slabs(const oit_partfile *pf, oit_error *err)
         list += pf->slabs[i].inside_count;
     }
     if (list != pf->slab_list_count)
-        return bad(pf, err, "section SLABS: slabs use %llu of %llu list entries",
-                   (unsigned long long)list, (unsigned long long)pf->slab_list_count);
+        return pf_bad(pf, err, "section SLABS: slabs use %llu of %llu list entries",
+                      (unsigned long long)list, (unsigned long long)pf->slab_list_count);
     return OIT_OK;
 }
 
@@ -907,12 +685,12 @@ static oit_status check_cell_links(const oit_partfile *pf, uint32_t g, uint64_t 
     uint32_t sg = cell->subgrid;
     if (sg && (sg >= pf->grid_count || pf->grids[sg].parent_grid != g ||
                pf->grids[sg].parent_cell != c || !subgrid_fits(pf, sg, region)))
-        return bad(pf, err, "section %s: grid %u cell %llu: subgrid %u does not refine this cell",
-                   g ? "SUBGRIDS" : "GRID", g, (unsigned long long)c, sg);
+        return pf_bad(pf, err, "section %s: grid %u cell %llu: subgrid %u does not refine this "
+                      "cell", g ? "SUBGRIDS" : "GRID", g, (unsigned long long)c, sg);
     if (cell->slab > pf->slab_count)
-        return bad(pf, err, "section %s: grid %u cell %llu: slab %u of %u does not exist",
-                   g ? "SUBGRIDS" : "GRID", g, (unsigned long long)c, cell->slab - 1,
-                   pf->slab_count);
+        return pf_bad(pf, err, "section %s: grid %u cell %llu: slab %u of %u does not exist",
+                      g ? "SUBGRIDS" : "GRID", g, (unsigned long long)c, cell->slab - 1,
+                      pf->slab_count);
     return OIT_OK;
 }
 
@@ -941,8 +719,8 @@ static oit_status check_links(const oit_partfile *pf, oit_error *err)
         const oit_partfile_grid *gr = &pf->grids[g];
         const oit_partfile_grid *parent = &pf->grids[gr->parent_grid];
         if (pf->cells[parent->cell_first + gr->parent_cell].subgrid != g)
-            return bad(pf, err, "section SUBGRIDS: record %u: its parent cell does not name it",
-                       g - 1);
+            return pf_bad(pf, err, "section SUBGRIDS: record %u: its parent cell does not name it",
+                          g - 1);
     }
     return OIT_OK;
 }
@@ -962,7 +740,7 @@ static oit_status check_coverage(const oit_partfile *pf, oit_error *err)
             missing = i;
     free(seen);
     if (missing != n)
-        return bad(pf, err, "section PARTS: record %u: the part is in no grid cell", missing);
+        return pf_bad(pf, err, "section PARTS: record %u: the part is in no grid cell", missing);
     return OIT_OK;
 }
 
@@ -991,7 +769,7 @@ oit_status pf_validate_all(oit_partfile *pf, bool deferred, oit_error *err)
         s = check_links(pf, err);
     if (!s)
         s = check_coverage(pf, err);
-    const uint8_t *checked = s ? NULL : sec_data(pf, PF_SEC_PART_DATA);
+    const uint8_t *checked = s ? NULL : pf_sec_data(pf, PF_SEC_PART_DATA);
     oit_partfile_buffer buf = {0};
     for (uint32_t i = 0; !s && !deferred && i < pf->hdr.part_count; i++) {
         s = pf_validate_blob(pf, i, &buf, err);
