@@ -1,5 +1,5 @@
-/* partfile/validate.c: a piece's bounds against its triangles, as a
- * property over random files and random corruptions of them.
+/* partfile/part_blob.c and validate_parts.c: a piece's bounds against its
+ * triangles, as a property over random files and random corruptions of them.
  *
  * Each round writes a random part file with the writer (1-4 parts of 1-4
  * pieces, random vertices, some unused and some signed zeros, each piece's
