@@ -103,6 +103,32 @@ void oit_baseline_dispatch_frame(GLuint prog, int w, int h);
 /* The same, writing the RGBA32F texture out (image unit OIT_IMG_OUT), and
  * the barrier before it is read back. */
 void oit_baseline_dispatch_to_texture(GLuint prog, GLuint out, int w, int h);
+/* TEMPORARY (until baselines/ has its glsl/ files): copies of render/gl/glsl/srgb.glsl and output.glsl. */
+/* shade.c's oit_srgb_decode / oit_srgb_encode, per channel. */
+#define OIT_GLSL_SRGB_FUNCS \
+    "vec3 oit_srgb_decode(vec3 c) {\n" \
+    "    c = max(c, vec3(0.0));\n" \
+    "    return mix(pow((c + 0.055) / 1.055, vec3(2.4)), c / 12.92,\n" \
+    "               lessThanEqual(c, vec3(0.04045)));\n" \
+    "}\n" \
+    "vec3 oit_srgb_encode(vec3 c) {\n" \
+    "    c = max(c, vec3(0.0));\n" \
+    "    return mix(1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, 12.92 * c,\n" \
+    "               lessThanEqual(c, vec3(0.0031308)));\n" \
+    "}\n"
+
+/* The background in the compositing space, and the compositing space's
+ * result in the image's encoding (shade.c, oit_pixel_end); they need u_colour_space and
+ * u_background declared, as oit_glsl_composite does. */
+#define OIT_GLSL_OUTPUT \
+    "vec3 oit_background() {\n" \
+    "    return u_colour_space == 1 ? oit_srgb_decode(u_background) : u_background;\n" \
+    "}\n" \
+    "vec3 oit_output(vec3 c) {\n" \
+    "    return u_colour_space == 1 ? oit_srgb_encode(c) : c;\n" \
+    "}\n"
+
+
 /* The GLSL of such a pass (8x8 groups): OIT_GLSL_TO_TEXTURE_HEAD, the
  * method's samplers, OIT_GLSL_TO_TEXTURE_MAIN, then main's body for the
  * pixel px, which ends by storing its colour in u_out through oit_output

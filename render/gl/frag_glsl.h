@@ -52,40 +52,15 @@
 #include "render/gl/gl_util.h"
 #include "render/gl/program_cache.h"
 #include "render/gl/glsl_bindings.h"
+#include "render/gl/glsl_locations.h"
+#include "render/gl/glsl_program.h"
 #include "render/image/view.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-/* Explicit uniform locations shared by all programs. A program may leave
- * some unused: set those through glGetUniformLocation (-1 is ignored). */
-enum {
-    OIT_LOC_VIEW = 0,        /* mat4 */
-    OIT_LOC_PROJ = 1,        /* mat4 */
-    /* 2: free (was the first prim, now the vertex input OIT_IN_DRAW) */
-    OIT_LOC_MODE = 3,        /* int: oit_shading_mode */
-    OIT_LOC_ATTRS = 4,       /* uint: OIT_ATTR_* */
-    OIT_LOC_ALPHA = 5,       /* float */
-    OIT_LOC_DEFAULT_RGB = 6, /* vec3 */
-    OIT_LOC_WIDTH = 7,       /* int: frame width (pixel index) */
-    OIT_LOC_SIGMA = 8,       /* float: absorption / scene_scale */
-    OIT_LOC_BACKGROUND = 9,  /* vec3, negative clamped to 0 */
-    OIT_LOC_K = 10,          /* int: capture slots per pixel */
-    OIT_LOC_SIZE = 11,       /* ivec2: frame size */
-    OIT_LOC_RECT = 12,       /* ivec4: GL-oriented rect x0,y0,x1,y1 */
-    OIT_LOC_COUNT = 13,      /* uint: element count (scans) */
-    OIT_LOC_FIRST_LEVEL = 14, /* int: scan level 0 accumulates totals */
-    OIT_LOC_EYE = 15,        /* dvec3: the eye in the vertices' coordinates */
-    OIT_LOC_RAY = 16,        /* vec4: window coordinates to view-space ray */
-    OIT_LOC_OPAQUE = 17,     /* int: 1 tests the opaque depth (below) */
-    OIT_LOC_OPAQUE_ORIGIN = 18, /* ivec2: texel of frame pixel (0, 0) */
-    OIT_LOC_CLIP_COUNT = 27, /* int: section planes (oit_clipped) */
-    OIT_LOC_CLIP = 28        /* vec4[OIT_CLIP_MAX]: view space, 28..33 */
-};
-
-/* The vertex input of oit_glsl_vertex (uvec2, see above). */
-enum { OIT_IN_DRAW = 0 };
+/* Uniform locations, the vertex input and fragment outputs: glsl_locations.h. */
 
 /* "#version 450 core", then the binding points as GLSL #defines
  * (glsl_bindings.h): every program's first string. */
@@ -134,37 +109,9 @@ extern const char oit_glsl_segment_composite[];
  * fragments in longer ones, the counted capture weighs them. */
 #define OIT_GLSL_SEGMENT_LOCAL 32
 
-/* The per-pixel state carried across batches, in registers. Depth peeling
- * keeps its own buffer of these (std430, 48 bytes). */
-/* shade.c's oit_srgb_decode / oit_srgb_encode, per channel. */
-#define OIT_GLSL_SRGB_FUNCS \
-    "vec3 oit_srgb_decode(vec3 c) {\n" \
-    "    c = max(c, vec3(0.0));\n" \
-    "    return mix(pow((c + 0.055) / 1.055, vec3(2.4)), c / 12.92,\n" \
-    "               lessThanEqual(c, vec3(0.04045)));\n" \
-    "}\n" \
-    "vec3 oit_srgb_encode(vec3 c) {\n" \
-    "    c = max(c, vec3(0.0));\n" \
-    "    return mix(1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, 12.92 * c,\n" \
-    "               lessThanEqual(c, vec3(0.0031308)));\n" \
-    "}\n"
-
-/* The background in the compositing space, and the compositing space's
- * result in the image's encoding (shade.c, oit_pixel_end); they need u_colour_space and
- * u_background declared, as oit_glsl_composite does. */
-#define OIT_GLSL_OUTPUT \
-    "vec3 oit_background() {\n" \
-    "    return u_colour_space == 1 ? oit_srgb_decode(u_background) : u_background;\n" \
-    "}\n" \
-    "vec3 oit_output(vec3 c) {\n" \
-    "    return u_colour_space == 1 ? oit_srgb_encode(c) : c;\n" \
-    "}\n"
-
-#define OIT_GLSL_STATE_STRUCT \
-    "#ifndef OIT_STATE_STRUCT\n#define OIT_STATE_STRUCT 1\n" \
-    "struct oit_state { vec3 C; float t_prev; vec3 T; int nest; vec3 medium; uint nfrag; };\n" \
-    "#endif\n"
-
+/* The per-pixel state carried across batches, oit_state, is in registers
+ * (glsl/state_struct.glsl); depth peeling keeps its own buffer of these
+ * (std430, 48 bytes). */
 /* The capture's state buffer, `uint state_words[]`, holds a pixel in
  * oit_state_words(mode) words: transparent shading carries C, one T (its
  * channels are equal: alpha is one number) and the fragment count, 20
@@ -183,25 +130,6 @@ static inline unsigned oit_state_bytes(int translucent)
 {
     return 4u * (translucent ? OIT_STATE_WORDS_TRANSLUCENT : OIT_STATE_WORDS_TRANSPARENT);
 }
-
-/* A method's programs as a table, one entry each: a vertex + fragment
- * program (oit_glsl_vertex; oit_glsl_fragment_gen, then fs) when fs[0] is
- * set, else a compute program of cs. Every stage starts with
- * oit_glsl_version; a list ends at its first NULL (or after
- * OIT_GLSL_PARTS_MAX). 'what' names the program in errors. */
-#define OIT_GLSL_PARTS_MAX 8
-typedef struct oit_glsl_program {
-    const char *what;
-    const char *fs[OIT_GLSL_PARTS_MAX];
-    const char *cs[OIT_GLSL_PARTS_MAX];
-} oit_glsl_program;
-/* Builds out[i] from table[i] for i in [0, n), in order, up to the first
- * failure (what was built stays in out for oit_glsl_programs_delete),
- * through pc's entries (NULL: compiled). */
-oit_status oit_glsl_programs_build(oit_program_cache *pc, const oit_glsl_program *table, int n, GLuint *out,
-                                   oit_error *err);
-/* Deletes progs[0..n) (0 is fine) and sets them to 0. */
-void oit_glsl_programs_delete(GLuint *progs, int n);
 
 /* Sets the view and shading uniforms of a program built from the pieces
  * above (uniforms that a program does not use are skipped). */

@@ -278,19 +278,13 @@ static void bind_group(const oit_gpu_draws *d, const draw_group *gr)
                       (GLsizeiptr)(phi - plo));
 }
 
-/* The gate's pass: every command's instance count set to 1 where the
- * gate word is nonzero, else 0, so that the GPU decides whether the draws
- * rasterize anything. */
-static const char gate_cs[] =
-    "layout(local_size_x = 64) in;\n"
-    "layout(std430, binding = OIT_BIND_OUT) buffer Cmds { uvec4 cmds[]; };\n"
-    "layout(std430, binding = OIT_BIND_TOTALS) readonly buffer Gate { uint gate_words[]; };\n"
-    "uniform uint u_word;\n"
-    "uniform uint u_count;\n"
-    "void main() {\n"
-    "    uint i = gl_GlobalInvocationID.x;\n"
-    "    if (i < u_count) cmds[i].y = gate_words[u_word] != 0u ? 1u : 0u;\n"
-    "}\n";
+extern const char oit_glsl_draw_gate[]; /* glsl/draw_gate.glsl */
+static const oit_glsl_program gate_program = {"multi-draw gate", .cs = {oit_glsl_draw_gate}};
+
+void oit_gpu_draws_glsl_variants(oit_glsl_visit *visit, void *user)
+{
+    visit(user, &gate_program);
+}
 
 /* A storage binding as it was, to put back. */
 typedef struct ssbo_binding {
@@ -321,8 +315,7 @@ static void binding_put(GLuint index, ssbo_binding b)
 static void gate_commands(oit_gpu_draws *d, size_t k, GLuint gate, GLuint word)
 {
     if (!d->gate_prog && !d->gate_failed) {
-        const oit_glsl_program p = {"multi-draw gate", .cs = {gate_cs}};
-        d->gate_failed = oit_glsl_programs_build(NULL, &p, 1, &d->gate_prog, NULL) != OIT_OK;
+        d->gate_failed = oit_glsl_programs_build(NULL, &gate_program, 1, &d->gate_prog, NULL) != OIT_OK;
     }
     if (d->gate_failed)
         return; /* ungated: the draws rasterize, the caller's shader still decides */

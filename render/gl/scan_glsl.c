@@ -7,71 +7,25 @@
 
 #define BLOCK 1024u
 
-static const char scan_block_src[] =
-    "layout(local_size_x = 256) in;\n"
-    "layout(std430, binding = OIT_BIND_COUNTS) buffer Data { uint data[]; };\n"
-    "layout(std430, binding = OIT_BIND_SUMS) writeonly buffer Sums { uint sums[]; };\n"
-    "layout(std430, binding = OIT_BIND_TOTALS) buffer Totals {\n"
-    "    uint t_lo; uint t_hi; uint t_max; uint t_over;\n"
-    "};\n"
-    "layout(location = 13) uniform uint u_count;\n"
-    "layout(location = 14) uniform int u_first_level;\n"
-    "uniform uint u_group0;\n"
-    "uniform uint u_over;\n"
-    "shared uint part[256];\n"
-    "void main() {\n"
-    "    uint lid = gl_LocalInvocationID.x, group = gl_WorkGroupID.x + u_group0;\n"
-    "    uint base = group * 1024u + lid * 4u;\n"
-    "    uint v[4]; uint sum = 0u, mx = 0u, over = 0u;\n"
-    "    for (uint i = 0u; i < 4u; i++) {\n"
-    "        v[i] = base + i < u_count ? data[base + i] : 0u;\n"
-    "        sum += v[i]; mx = max(mx, v[i]);\n"
-    "        over += v[i] > u_over ? 1u : 0u;\n"
-    "    }\n"
-    "    part[lid] = sum;\n"
-    "    barrier();\n"
-    "    for (uint off = 1u; off < 256u; off <<= 1) {\n"
-    "        uint add = lid >= off ? part[lid - off] : 0u;\n"
-    "        barrier();\n"
-    "        part[lid] += add;\n"
-    "        barrier();\n"
-    "    }\n"
-    "    uint run = part[lid] - sum;\n"
-    "    for (uint i = 0u; i < 4u; i++) {\n"
-    "        if (base + i < u_count) data[base + i] = run;\n"
-    "        run += v[i];\n"
-    "    }\n"
-    "    if (u_first_level != 0) {\n"
-    "        atomicMax(t_max, mx);\n"
-    "        if (over != 0u) atomicAdd(t_over, over);\n"
-    /* 64-bit total from 32-bit atomics: a wrap of the low word carries. */
-    "        if (lid == 255u) {\n"
-    "            uint old = atomicAdd(t_lo, part[255]);\n"
-    "            if (old + part[255] < old) atomicAdd(t_hi, 1u);\n"
-    "        }\n"
-    "    }\n"
-    "    if (lid == 255u) sums[group] = part[255];\n"
-    "}\n";
+extern const char oit_glsl_scan_block[], oit_glsl_scan_add[]; /* glsl/scan_*.glsl */
+static const oit_glsl_program programs[2] = {
+    {"prefix sum (block)", .cs = {oit_glsl_scan_block}},
+    {"prefix sum (add)", .cs = {oit_glsl_scan_add}},
+};
 
-static const char scan_add_src[] =
-    "layout(local_size_x = 256) in;\n"
-    "layout(std430, binding = OIT_BIND_COUNTS) buffer Data { uint data[]; };\n"
-    "layout(std430, binding = OIT_BIND_SUMS) readonly buffer Sums { uint sums[]; };\n"
-    "layout(location = 13) uniform uint u_count;\n"
-    "uniform uint u_group0;\n"
-    "void main() {\n"
-    "    uint i = (gl_WorkGroupID.x + u_group0) * 256u + gl_LocalInvocationID.x;\n"
-    "    if (i < u_count) data[i] += sums[i / 1024u];\n"
-    "}\n";
+void oit_scan_glsl_variants(oit_glsl_visit *visit, void *user)
+{
+    for (int i = 0; i < 2; i++)
+        visit(user, &programs[i]);
+}
 
 oit_status oit_scan_init(oit_scan *s, oit_program_cache *pc, oit_error *err)
 {
     memset(s, 0, sizeof *s);
-    const char *block[] = {oit_glsl_version, scan_block_src, NULL};
-    const char *add[] = {oit_glsl_version, scan_add_src, NULL};
-    oit_status st = oit_program_cache_build(pc, "prefix sum (block)", NULL, NULL, block, &s->block, err);
-    if (st == OIT_OK)
-        st = oit_program_cache_build(pc, "prefix sum (add)", NULL, NULL, add, &s->add, err);
+    GLuint progs[2] = {0, 0};
+    oit_status st = oit_glsl_programs_build(pc, programs, 2, progs, err);
+    s->block = progs[0];
+    s->add = progs[1];
     if (st == OIT_OK) {
         s->max_groups = oit_gl_max_groups_x();
         glCreateBuffers(1, &s->totals);

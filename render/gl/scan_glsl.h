@@ -41,6 +41,8 @@ typedef struct oit_scan_result {
 
 /* pc: where its programs are built through (program_cache.h; NULL: compiled). */
 oit_status oit_scan_init(oit_scan *s, oit_program_cache *pc, oit_error *err);
+/* Its programs, for the offline check (glsl_program.h). */
+void oit_scan_glsl_variants(oit_glsl_visit *visit, void *user);
 void oit_scan_release(oit_scan *s);
 /* Scans buf[0..n) in place (exclusive) and reads back total, maximum and over;
  * with res NULL reads nothing back, so that the host does not wait for
