@@ -13,7 +13,7 @@ MESH: .ply and .stl go to VTK's own readers; .off, .obj(+.mtl) and
 uncompressed .gltf/.glb are converted here to a binary PLY (vertices
 de-indexed, one colour a vertex), mirroring formats/read_off.c,
 formats/read_obj.c (fan triangulation, MTL Kd/d/Tr, white for faces without
-Kd in a coloured file) and formats/gltf_adapter.cpp (node transforms,
+Kd in a coloured file) and formats/gltf_scene.cpp (node transforms,
 baseColorFactor x COLOR_0 encoded sRGB, alphaMode; VTK's own glTF importer
 would shade PBR), because no tool of the project writes a mesh as it reads
 it; --keep-ply PATH keeps it, so that `oitstream PATH --method dfb` can check
@@ -279,7 +279,7 @@ GLTF_NCOMP = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT4": 16}
 
 
 def srgb_u8(linear):
-    """formats/gltf_adapter.cpp srgb_u8."""
+    """formats/gltf_scene.cpp srgb_u8."""
     v = 12.92 * linear if linear <= 0.0031308 else 1.055 * math.pow(linear, 1.0 / 2.4) - 0.055
     return 0 if not v > 0.0 else 255 if v >= 1.0 else int(v * 255.0 + 0.5)
 
