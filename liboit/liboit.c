@@ -15,7 +15,7 @@
 #include "base/clock.h"
 #include "formats/readers_internal.h"
 #include "render/gl/band.h"
-#include "render/capture/capture_glsl.h"
+#include "render/capture/blend_into.h"
 #include "render/capture/dfb.h"
 #include "render/gl/frag_glsl.h"
 #include "render/gl/gpu_timer.h"
@@ -430,22 +430,6 @@ static oit_status camera_from_projection(const float *m, double aspect, oit_came
 
 /* ---- renderer ---------------------------------------------------------- */
 
-static const char blend_fs[] =
-    "layout(location = 11) uniform ivec2 u_size;\n"
-    "layout(location = 12) uniform ivec2 u_origin;\n"
-    "layout(location = 0, index = 0) out vec4 o_colour;\n"
-    "layout(location = 0, index = 1) out vec4 o_transmit;\n"
-    "void main() {\n"
-    "    ivec2 px = ivec2(gl_FragCoord.xy) - u_origin;\n"
-    "    oit_state s = oit_state_load(uint(px.y * u_size.x + px.x));\n"
-    /* Transparent T is one number: the mean of three copies rounds away
-     * from it (oitstream-mpi's shares blend this alpha, bit for bit the
-     * state's 1 - T as the tool read it before it drew through liboit). */
-    "    float t = u_mode != 1 ? s.T.r : (s.T.r + s.T.g + s.T.b) / 3.0;\n"
-    "    o_colour = vec4(s.C, 1.0 - t);\n"
-    "    o_transmit = vec4(s.T, t);\n"
-    "}\n";
-
 /* Frees r's GPU state for its scene and lets the scene go (the streamer
  * reads the scene's part file until it is destroyed). */
 static void drop_scene(oit_renderer *r)
@@ -752,10 +736,7 @@ static oit_status blend_ready(oit_renderer *r, oit_error *err)
 {
     if (r->blend_prog)
         return OIT_OK;
-    const char *vs[] = {oit_glsl_version, oit_capture_fullscreen_vs, NULL};
-    const char *fs[] = {oit_glsl_version, oit_glsl_composite, oit_glsl_state_io, blend_fs, NULL};
-    return oit_program_cache_build(r->programs, "liboit blend", vs, fs, NULL, &r->blend_prog,
-                                   err);
+    return oit_blend_into_build(r->programs, &r->blend_prog, err);
 }
 
 static void blend_over(const oit_renderer *r, const oit_frame *f, const oit_view *v, int x,
@@ -776,7 +757,7 @@ static void blend_over(const oit_renderer *r, const oit_frame *f, const oit_view
         glEnable(GL_FRAMEBUFFER_SRGB);
     glUseProgram(r->blend_prog);
     glProgramUniform2i(r->blend_prog, OIT_LOC_SIZE, v->width, v->height);
-    glProgramUniform2i(r->blend_prog, OIT_LOC_RECT, x, y);
+    glProgramUniform2i(r->blend_prog, OIT_LOC_ORIGIN, x, y);
     /* The state buffer's layout follows the shading (frag_glsl.h). */
     glProgramUniform1i(r->blend_prog, glGetUniformLocation(r->blend_prog, "u_mode"),
                        v->shading.mode == OIT_SHADING_TRANSLUCENT);

@@ -4,6 +4,7 @@
 #include "render/baselines/methods.h"
 
 #include "render/baselines/baseline_common.h"
+#include "render/baselines/baseline_glsl.h"
 #include "render/image/image.h"
 
 #include <stdlib.h>
@@ -20,77 +21,22 @@ struct oit_b3d {
 
 static const char *const buffer_names[BUF_N] = {"counts", "counters", "output"};
 
-static const char count_fs[] =
-    "layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };\n"
-    "void main() { if (oit_clipped()) discard; atomicAdd(counts[oit_pixel_index()], 1u); }\n";
-
-/* One global atomic per group rather than per pixel. */
-static const char max_cs[] =
-    "layout(local_size_x = 8, local_size_y = 8) in;\n"
-    "layout(location = 11) uniform ivec2 u_size;\n"
-    "layout(std430, binding = OIT_BIND_COUNTS) readonly buffer Counts { uint counts[]; };\n"
-    "layout(std430, binding = OIT_BIND_STATE) "
-    "buffer Stats { uint counter; uint max_len; uint total; };\n"
-    "shared uint group_max;\n"
-    "void main() {\n"
-    "    if (gl_LocalInvocationIndex == 0u) group_max = 0u;\n"
-    "    barrier();\n"
-    "    ivec2 px = ivec2(gl_GlobalInvocationID.xy);\n"
-    "    if (px.x < u_size.x && px.y < u_size.y)\n"
-    "        atomicMax(group_max, counts[px.y * u_size.x + px.x]);\n"
-    "    barrier();\n"
-    "    if (gl_LocalInvocationIndex == 0u) atomicMax(max_len, group_max);\n"
-    "}\n";
-
-/* Counts start again from 0, so after this pass they hold the pixel's
- * fragment count once more, for the walk. The bound only guards against a
- * driver rasterizing the two passes differently. */
-static const char store_fs[] =
-    "layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };\n"
-    "layout(rgba32ui, binding = OIT_IMG_SLOTS) writeonly uniform uimage2DArray u_slots;\n"
-    "layout(location = 10) uniform int u_k;\n"
-    "void main() {\n"
-    "    if (oit_clipped()) discard;\n"
-    "    uint s = atomicAdd(counts[oit_pixel_index()], 1u);\n"
-    "    if (s < uint(u_k)) imageStore(u_slots, ivec3(ivec2(gl_FragCoord.xy), s), oit_fragment());\n"
-    "}\n";
-
-/* A walk position is slot * pixels + pixel, from the pixel's last slot down. */
-static const char walk_glsl[] =
-    "layout(std430, binding = OIT_BIND_COUNTS) readonly buffer Counts { uint counts[]; };\n"
-    "layout(rgba32ui, binding = OIT_IMG_SLOTS) uniform uimage2DArray u_slots;\n"
-    "layout(location = 10) uniform int u_k;\n"
-    "uint pixels() { return uint(u_size.x * u_size.y); }\n"
-    "uint oit_list_first(uint p) {\n"
-    "    uint n = min(counts[p], uint(u_k));\n"
-    "    return n == 0u ? OIT_LIST_END : (n - 1u) * pixels() + p;\n"
-    "}\n"
-    "uint oit_list_next(uint i) { return i >= pixels() ? i - pixels() : OIT_LIST_END; }\n"
-    "uvec4 oit_list_load(uint i) {\n"
-    "    uint p = i % pixels();\n"
-    "    return imageLoad(u_slots, ivec3(int(p % uint(u_size.x)), int(p / uint(u_size.x)),\n"
-    "                                    int(i / pixels())));\n"
-    "}\n"
-    /* An array: the k-th of the walk is slot n-1-k, so a heap sort sorts
-     * it in place. */
-    "bool oit_list_can_relink() { return false; }\n"
-    "void oit_list_relink(uint i, uint n) {}\n"
-    "uint oit_first;\n"
-    "bool oit_list_index(uint first, uint n) { oit_first = first; return true; }\n"
-    "uint oit_list_at(uint k) { return oit_first - k * pixels(); }\n"
-    "void oit_list_store(uint i, uvec4 f) {\n"
-    "    uint p = i % pixels();\n"
-    "    imageStore(u_slots, ivec3(int(p % uint(u_size.x)), int(p / uint(u_size.x)),\n"
-    "                              int(i / pixels())), f);\n"
-    "}\n";
+/* glsl/b3d_*.glsl: the count and store fragment stages, the deepest
+ * pixel's compute pass, and the walk of the slots for the sorted resolve. */
+extern const char oit_b3d_count_fs[], oit_b3d_store_fs[], oit_b3d_max_cs[], oit_b3d_walk[];
 
 static const oit_glsl_program programs[PROG_N] = {
-    [PROG_COUNT] = {"B3D count pass", .fs = {count_fs}},
-    [PROG_STORE] = {"B3D store pass", .fs = {store_fs}},
-    [PROG_MAX] = {"B3D layer maximum", .cs = {max_cs}},
+    [PROG_COUNT] = {"B3D count pass", .fs = {oit_b3d_count_fs}},
+    [PROG_STORE] = {"B3D store pass", .fs = {oit_b3d_store_fs}},
+    [PROG_MAX] = {"B3D layer maximum", .cs = {oit_b3d_max_cs}},
     [PROG_RESOLVE] = {"B3D resolve",
-                      .cs = {oit_glsl_composite, oit_glsl_sorted_resolve, walk_glsl}},
+                      .cs = {oit_glsl_composite, oit_glsl_sorted_resolve, oit_b3d_walk}},
 };
+
+void oit_b3d_glsl_variants(oit_glsl_visit *visit, void *user)
+{
+    oit_baseline_visit_table(programs, PROG_N, visit, user);
+}
 
 static oit_status oit_b3d_init(oit_b3d *b, oit_error *err)
 {

@@ -17,13 +17,15 @@
 extern "C" {
 #endif
 
-/* Fragment-stage GLSL, placed after oit_glsl_fragment_gen (it uses u_mode):
+/* Fragment-stage GLSL (glsl/premultiplied.glsl), placed after
+ * oit_glsl_fragment_gen or oit_glsl_composite (it uses u_mode):
  * vec4 oit_premultiplied(uvec4 f) returns (a * colour, a) of a packed
  * fragment, the terms oit_composite adds for one fragment on a clear state.
  * Translucent absorption needs the order and is not part of it. */
 extern const char oit_glsl_premultiplied[];
 
-/* Compute-stage GLSL (8x8 groups), placed after oit_glsl_composite: per
+/* Compute-stage GLSL (glsl/sorted_resolve.glsl; 8x8 groups), placed after
+ * oit_glsl_composite: per
  * pixel, sorts the stored fragments by (t, prim) and composites them per
  * shade.h into out_rgba[p] (binding OIT_BIND_OUT, GL rows), and adds the
  * pixel's count to max_len (atomicMax) and total (atomicAdd) of the block
@@ -73,17 +75,17 @@ void oit_gpu_buffers_note(oit_gpu_buffers *b);
 void oit_gpu_buffers_release(oit_gpu_buffers *b);
 
 /* What both peeling methods (depth_peel.h, dual_peel.h) hold besides
- * their targets: the geometry pass (oit_glsl_vertex; oit_glsl_fragment_gen
- * and peel_fs), the merge and final compute passes (the NULL-terminated
- * sources given, oit_glsl_version first), two framebuffers to ping-pong and
+ * their targets: the geometry pass, the merge and final compute passes
+ * (programs[OIT_PEEL_PROG_PASS, _MERGE, _FINAL], the method's table, which
+ * its oit_*_glsl_variants visits too), two framebuffers to ping-pong and
  * the any-samples query that ends the peeling loop. Errors name 'method'. */
+enum { OIT_PEEL_PROG_PASS, OIT_PEEL_PROG_MERGE, OIT_PEEL_PROG_FINAL, OIT_PEEL_PROG_N };
 typedef struct oit_peel_passes {
     GLuint peel, merge, final, fbo[2], query;
 } oit_peel_passes;
 
-oit_status oit_peel_passes_create(oit_peel_passes *p, const char *method, const char *peel_fs,
-                                  const char *const *merge_cs, const char *const *final_cs,
-                                  oit_error *err);
+oit_status oit_peel_passes_create(oit_peel_passes *p, const char *method,
+                                  const oit_glsl_program programs[OIT_PEEL_PROG_N], oit_error *err);
 void oit_peel_passes_release(oit_peel_passes *p);
 /* oit_glsl_set_view on the three programs. */
 void oit_peel_passes_set_view(const oit_peel_passes *p, const oit_view *v);
@@ -103,48 +105,13 @@ void oit_baseline_dispatch_frame(GLuint prog, int w, int h);
 /* The same, writing the RGBA32F texture out (image unit OIT_IMG_OUT), and
  * the barrier before it is read back. */
 void oit_baseline_dispatch_to_texture(GLuint prog, GLuint out, int w, int h);
-/* TEMPORARY (until baselines/ has its glsl/ files): copies of render/gl/glsl/srgb.glsl and output.glsl. */
-/* shade.c's oit_srgb_decode / oit_srgb_encode, per channel. */
-#define OIT_GLSL_SRGB_FUNCS \
-    "vec3 oit_srgb_decode(vec3 c) {\n" \
-    "    c = max(c, vec3(0.0));\n" \
-    "    return mix(pow((c + 0.055) / 1.055, vec3(2.4)), c / 12.92,\n" \
-    "               lessThanEqual(c, vec3(0.04045)));\n" \
-    "}\n" \
-    "vec3 oit_srgb_encode(vec3 c) {\n" \
-    "    c = max(c, vec3(0.0));\n" \
-    "    return mix(1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, 12.92 * c,\n" \
-    "               lessThanEqual(c, vec3(0.0031308)));\n" \
-    "}\n"
-
-/* The background in the compositing space, and the compositing space's
- * result in the image's encoding (shade.c, oit_pixel_end); they need u_colour_space and
- * u_background declared, as oit_glsl_composite does. */
-#define OIT_GLSL_OUTPUT \
-    "vec3 oit_background() {\n" \
-    "    return u_colour_space == 1 ? oit_srgb_decode(u_background) : u_background;\n" \
-    "}\n" \
-    "vec3 oit_output(vec3 c) {\n" \
-    "    return u_colour_space == 1 ? oit_srgb_encode(c) : c;\n" \
-    "}\n"
-
-
-/* The GLSL of such a pass (8x8 groups): OIT_GLSL_TO_TEXTURE_HEAD, the
- * method's samplers, OIT_GLSL_TO_TEXTURE_MAIN, then main's body for the
- * pixel px, which ends by storing its colour in u_out through oit_output
- * (over oit_background()). */
-#define OIT_GLSL_TO_TEXTURE_HEAD                                                           \
-    "layout(local_size_x = 8, local_size_y = 8) in;\n"                                     \
-    "layout(location = 11) uniform ivec2 u_size;\n"                                        \
-    "layout(location = 9) uniform vec3 u_background;\n"                                    \
-    "uniform int u_colour_space;\n"                                                        \
-    OIT_GLSL_SRGB_FUNCS                                                                    \
-    OIT_GLSL_OUTPUT
-#define OIT_GLSL_TO_TEXTURE_MAIN                                                           \
-    "layout(rgba32f, binding = OIT_IMG_OUT) writeonly uniform image2D u_out;\n"            \
-    "void main() {\n"                                                                      \
-    "    ivec2 px = ivec2(gl_GlobalInvocationID.xy);\n"                                    \
-    "    if (px.x >= u_size.x || px.y >= u_size.y) return;\n"
+/* Compute-stage GLSL of a pass that writes a frame's colour into an
+ * RGBA32F texture (8x8 groups; glsl/to_texture.glsl, with render/gl's
+ * srgb.glsl and output.glsl): u_size, u_background, u_colour_space and the
+ * image u_out at OIT_IMG_OUT, and oit_background() and oit_output(). The
+ * method's GLSL follows it with its samplers and main, which stores each
+ * pixel's colour in u_out through oit_output (over oit_background()). */
+extern const char oit_glsl_to_texture[];
 
 /* A frame of a baseline (methods.h): the view it renders, the figures its
  * passes fill and the time it started (oit_time_ms). */

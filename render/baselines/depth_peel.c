@@ -8,6 +8,7 @@
 #include "render/baselines/methods.h"
 
 #include "render/baselines/baseline_common.h"
+#include "render/baselines/baseline_glsl.h"
 #include "render/image/image.h"
 
 #include <math.h>
@@ -28,58 +29,28 @@ struct oit_depth_peel {
 
 static const char *const buffer_names[BUF_N] = {"state", "counter", "output"};
 
-static const char peel_fs[] =
-    "layout(binding = OIT_TEX_LAYER) uniform usampler2D u_prev;\n"
-    "uniform float u_depth_scale;\n"
-    "layout(location = 0) out uvec4 o_frag;\n"
-    "void main() {\n"
-    "    if (oit_clipped()) discard;\n"
-    "    uvec4 f = oit_fragment();\n"
-    "    uvec2 prev = texelFetch(u_prev, ivec2(gl_FragCoord.xy), 0).xy;\n"
-    /* Keep only fragments after the previous layer in (key, prim) order. */
-    "    uint pf = f.y & 0x7fffffffu, pp = prev.y & 0x7fffffffu;\n"
-    "    if (f.x < prev.x || (f.x == prev.x && pf <= pp)) discard;\n"
-    "    gl_FragDepth = uintBitsToFloat(f.x) * u_depth_scale;\n"
-    "    o_frag = f;\n"
-    "}\n";
+/* glsl/depth_peel*.glsl: the peel pass's fragment stage, the merge of a
+ * layer into the state, and the final pass. */
+extern const char oit_depth_peel_fs[], oit_depth_peel_merge_cs[], oit_depth_peel_final_cs[];
 
-/* The layer joins the state of its pixel; 'first' starts the state. */
-static const char merge_cs[] =
-    "layout(local_size_x = 8, local_size_y = 8) in;\n"
-    "layout(location = 11) uniform ivec2 u_size;\n"
-    "uniform int u_first;\n"
-    "layout(binding = OIT_TEX_LAYER) uniform usampler2D u_layer;\n"
-    "layout(std430, binding = OIT_BIND_STATE) buffer State { oit_state states[]; };\n"
-    "layout(std430, binding = OIT_BIND_COUNTS) buffer Count { uint count; };\n"
-    "void main() {\n"
-    "    ivec2 px = ivec2(gl_GlobalInvocationID.xy);\n"
-    "    if (px.x >= u_size.x || px.y >= u_size.y) return;\n"
-    "    uint p = uint(px.y * u_size.x + px.x);\n"
-    "    oit_state s = u_first != 0 ? oit_state_begin() : states[p];\n"
-    "    uvec4 f = texelFetch(u_layer, px, 0);\n"
-    "    if (f.x != 0x7f800000u) { oit_composite(s, f); atomicAdd(count, 1u); }\n"
-    "    states[p] = s;\n"
-    "}\n";
+static const oit_glsl_program programs[OIT_PEEL_PROG_N] = {
+    [OIT_PEEL_PROG_PASS] = {"depth peeling pass", .fs = {oit_depth_peel_fs}},
+    [OIT_PEEL_PROG_MERGE] = {"depth peeling merge",
+                             .cs = {oit_glsl_composite, oit_depth_peel_merge_cs}},
+    [OIT_PEEL_PROG_FINAL] = {"depth peeling final",
+                             .cs = {oit_glsl_composite, oit_depth_peel_final_cs}},
+};
 
-static const char final_cs[] =
-    "layout(local_size_x = 8, local_size_y = 8) in;\n"
-    "layout(location = 11) uniform ivec2 u_size;\n"
-    "layout(std430, binding = OIT_BIND_STATE) readonly buffer State { oit_state states[]; };\n"
-    "layout(std430, binding = OIT_BIND_OUT) writeonly buffer Out { vec4 out_rgba[]; };\n"
-    "void main() {\n"
-    "    ivec2 px = ivec2(gl_GlobalInvocationID.xy);\n"
-    "    if (px.x >= u_size.x || px.y >= u_size.y) return;\n"
-    "    uint p = uint(px.y * u_size.x + px.x);\n"
-    "    out_rgba[p] = oit_state_final(states[p]);\n"
-    "}\n";
+void oit_depth_peel_glsl_variants(oit_glsl_visit *visit, void *user)
+{
+    oit_baseline_visit_table(programs, OIT_PEEL_PROG_N, visit, user);
+}
 
 static oit_status oit_depth_peel_init(oit_depth_peel *d, oit_error *err)
 {
     d->b.method = "depth peeling";
     d->b.names = buffer_names;
-    const char *mcs[] = {oit_glsl_version, oit_glsl_composite, merge_cs, NULL};
-    const char *fcs[] = {oit_glsl_version, oit_glsl_composite, final_cs, NULL};
-    return oit_peel_passes_create(&d->pp, "depth peeling", peel_fs, mcs, fcs, err);
+    return oit_peel_passes_create(&d->pp, "depth peeling", programs, err);
 }
 
 static void release_targets(oit_depth_peel *d)

@@ -6,6 +6,7 @@
 #include "render/baselines/methods.h"
 
 #include "render/baselines/baseline_common.h"
+#include "render/baselines/baseline_glsl.h"
 #include "render/image/image.h"
 
 #include <math.h>
@@ -28,90 +29,30 @@ struct oit_dual_peel {
 static const char *const buffer_names[BUF_N] = {"front state", "back state", "counters",
                                                 "output"};
 
-/* u_init: the first pass, which only gathers every fragment's pair. A
- * layer fragment stores and is discarded, so the query counts only the
- * fragments left inside, and image stores before a discard still land. */
-static const char peel_fs[] =
-    "layout(binding = OIT_TEX_LAYER) uniform sampler2D u_minmax;\n"
-    "layout(rgba32ui, binding = OIT_IMG_FRONT) writeonly uniform uimage2D u_front;\n"
-    "layout(rgba32ui, binding = OIT_IMG_BACK) writeonly uniform uimage2D u_back;\n"
-    "uniform int u_init;\n"
-    "layout(location = 0) out vec2 o_minmax;\n"
-    "void main() {\n"
-    "    if (oit_clipped()) discard;\n"
-    "    uvec4 f = oit_fragment();\n"
-    "    float t = uintBitsToFloat(f.x);\n"
-    "    ivec2 px = ivec2(gl_FragCoord.xy);\n"
-    "    vec2 nf = u_init != 0 ? vec2(-t, t) : texelFetch(u_minmax, px, 0).xy;\n"
-    "    float near = -nf.x, far = nf.y;\n"
-    "    if (t < near || t > far) discard;\n"
-    "    if (u_init != 0 || (t > near && t < far)) { o_minmax = vec2(-t, t); return; }\n"
-    "    if (t == near) imageStore(u_front, px, f); else imageStore(u_back, px, f);\n"
-    "    discard;\n"
-    "}\n";
+/* glsl/dual_peel*.glsl: the peel pass's fragment stage, the merge of the
+ * front and back layers, and the final pass (glsl/dual_back_acc.glsl, the
+ * back accumulation's layout, leads the last two). */
+extern const char oit_dual_peel_fs[], oit_dual_peel_merge_cs[], oit_dual_peel_final_cs[];
 
-#define BACK_DECL "struct back_acc { vec3 C; float T; uint n; };\n"
+static const oit_glsl_program programs[OIT_PEEL_PROG_N] = {
+    [OIT_PEEL_PROG_PASS] = {"dual peeling pass", .fs = {oit_dual_peel_fs}},
+    [OIT_PEEL_PROG_MERGE] = {"dual peeling merge",
+                             .cs = {oit_glsl_composite, oit_glsl_premultiplied,
+                                    oit_dual_peel_merge_cs}},
+    [OIT_PEEL_PROG_FINAL] = {"dual peeling final",
+                             .cs = {oit_glsl_composite, oit_dual_peel_final_cs}},
+};
 
-/* The pair read is the one the pass peeled against: its nearest names the
- * front layer, its farthest the back one unless both are the same. */
-static const char merge_cs[] =
-    "layout(local_size_x = 8, local_size_y = 8) in;\n"
-    "layout(location = 11) uniform ivec2 u_size;\n"
-    "uniform int u_first;\n"
-    "layout(binding = OIT_TEX_LAYER) uniform sampler2D u_minmax;\n"
-    "layout(rgba32ui, binding = OIT_IMG_FRONT) readonly uniform uimage2D u_front;\n"
-    "layout(rgba32ui, binding = OIT_IMG_BACK) readonly uniform uimage2D u_back;\n"
-    BACK_DECL
-    "layout(std430, binding = OIT_BIND_STATE) buffer State { oit_state states[]; };\n"
-    "layout(std430, binding = OIT_BIND_SUMS) buffer Back { back_acc backs[]; };\n"
-    "void main() {\n"
-    "    ivec2 px = ivec2(gl_GlobalInvocationID.xy);\n"
-    "    if (px.x >= u_size.x || px.y >= u_size.y) return;\n"
-    "    uint p = uint(px.y * u_size.x + px.x);\n"
-    "    oit_state s = u_first != 0 ? oit_state_begin() : states[p];\n"
-    "    back_acc b = u_first != 0 ? back_acc(vec3(0.0), 1.0, 0u) : backs[p];\n"
-    "    vec2 nf = texelFetch(u_minmax, px, 0).xy;\n"
-    "    if (-nf.x <= nf.y) {\n"
-    "        oit_composite(s, imageLoad(u_front, px));\n"
-    "        b.n++;\n"
-    "        if (nf.y > -nf.x) {\n"
-    "            vec4 c = oit_premultiplied(imageLoad(u_back, px));\n"
-    "            b.C = c.rgb + (1.0 - c.a) * b.C;\n"
-    "            b.T *= 1.0 - c.a;\n"
-    "            b.n++;\n"
-    "        }\n"
-    "    }\n"
-    "    states[p] = s;\n"
-    "    backs[p] = b;\n"
-    "}\n";
-
-static const char final_cs[] =
-    "layout(local_size_x = 8, local_size_y = 8) in;\n"
-    "layout(location = 11) uniform ivec2 u_size;\n"
-    BACK_DECL
-    "layout(std430, binding = OIT_BIND_STATE) readonly buffer State { oit_state states[]; };\n"
-    "layout(std430, binding = OIT_BIND_SUMS) readonly buffer Back { back_acc backs[]; };\n"
-    "layout(std430, binding = OIT_BIND_COUNTS) buffer Count { uint fragments; uint max_len; };\n"
-    "layout(std430, binding = OIT_BIND_OUT) writeonly buffer Out { vec4 out_rgba[]; };\n"
-    "void main() {\n"
-    "    ivec2 px = ivec2(gl_GlobalInvocationID.xy);\n"
-    "    if (px.x >= u_size.x || px.y >= u_size.y) return;\n"
-    "    uint p = uint(px.y * u_size.x + px.x);\n"
-    "    oit_state s = states[p];\n"
-    "    back_acc b = backs[p];\n"
-    "    atomicAdd(fragments, b.n);\n"
-    "    atomicMax(max_len, b.n);\n"
-    "    out_rgba[p] = vec4(oit_output(s.C + s.T * (b.C + b.T * oit_background())), 1.0);\n"
-    "}\n";
+void oit_dual_peel_glsl_variants(oit_glsl_visit *visit, void *user)
+{
+    oit_baseline_visit_table(programs, OIT_PEEL_PROG_N, visit, user);
+}
 
 static oit_status oit_dual_peel_init(oit_dual_peel *d, oit_error *err)
 {
     d->b.method = "dual peeling";
     d->b.names = buffer_names;
-    const char *mcs[] = {oit_glsl_version, oit_glsl_composite, oit_glsl_premultiplied,
-                         merge_cs, NULL};
-    const char *fcs[] = {oit_glsl_version, oit_glsl_composite, final_cs, NULL};
-    return oit_peel_passes_create(&d->pp, "dual peeling", peel_fs, mcs, fcs, err);
+    return oit_peel_passes_create(&d->pp, "dual peeling", programs, err);
 }
 
 static void release_targets(oit_dual_peel *d)

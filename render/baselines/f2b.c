@@ -8,6 +8,7 @@
 
 #include "base/grow.h"
 #include "render/baselines/baseline_common.h"
+#include "render/baselines/baseline_glsl.h"
 #include "render/image/image.h"
 
 #include <stdlib.h>
@@ -30,68 +31,22 @@ struct oit_f2b {
 
 static const char *const buffer_names[BUF_N] = {"sort keys", "ranks", "sorted triangles"};
 
-#define PER_TRIANGLE                                                                       \
-    "layout(local_size_x = 64) in;\n"                                                      \
-    "layout(std430, binding = OIT_BIND_VERTS) readonly buffer Verts { uvec4 verts[]; };\n" \
-    "uniform uint u_window_first, u_window_count, u_mesh_base;\n"                          \
-    "uint triangle() { return gl_GlobalInvocationID.y * 65535u * 64u + gl_GlobalInvocationID.x; }\n"
-
-/* The key orders like the float view depth (sign flipped into order), so
- * the CPU sorts plain integers. */
-static const char key_cs[] =
-    PER_TRIANGLE
-    "layout(std430, binding = OIT_BIND_COUNTS) writeonly buffer Keys { uint keys[]; };\n"
-    "layout(location = 0) uniform mat4 u_view;\n"
-    "vec3 corner(uint v) { return uintBitsToFloat(verts[v].xyz); }\n"
-    "void main() {\n"
-    "    uint i = triangle();\n"
-    "    if (i >= u_window_count) return;\n"
-    "    vec3 c = (corner(3u * i) + corner(3u * i + 1u) + corner(3u * i + 2u)) / 3.0;\n"
-    "    uint b = floatBitsToUint(-(u_view * vec4(c, 1.0)).z);\n"
-    "    keys[u_mesh_base + u_window_first + i] = (b & 0x80000000u) != 0u ? ~b : b | 0x80000000u;\n"
-    "}\n";
-
-/* One window of the sorted copy per dispatch (u_out_first..+u_out_count). */
-static const char gather_cs[] =
-    PER_TRIANGLE
-    "layout(std430, binding = OIT_BIND_OFFSETS) readonly buffer Rank { uint rank[]; };\n"
-    "layout(std430, binding = OIT_BIND_FRAGS) writeonly buffer Sorted { uvec4 sorted[]; };\n"
-    "uniform uint u_out_first, u_out_count;\n"
-    "void main() {\n"
-    "    uint i = triangle();\n"
-    "    if (i >= u_window_count) return;\n"
-    "    uint r = rank[u_mesh_base + u_window_first + i] - u_out_first;\n"
-    "    if (r >= u_out_count) return;\n"
-    "    for (uint k = 0u; k < 3u; k++) sorted[3u * r + k] = verts[3u * i + k];\n"
-    "}\n";
-
-/* Vlcek et al.'s shader: the test comes before any shading work. It reads
- * TEX_SEEN, never the target it blends into (f2b.h, "Chunks"). */
-static const char blend_fs[] =
-    "layout(binding = OIT_TEX_ACCUM) uniform sampler2D u_seen;\n"
-    "uniform float u_threshold;\n"
-    "layout(location = 0) out vec4 o_colour;\n"
-    "void main() {\n"
-    "    if (oit_clipped()) discard;\n"
-    "    if (texelFetch(u_seen, ivec2(gl_FragCoord.xy), 0).a < u_threshold) discard;\n"
-    "    vec4 c = oit_premultiplied(oit_fragment());\n"
-    "    o_colour = vec4(c.rgb, 1.0 - c.a);\n"
-    "}\n";
-
-static const char final_cs[] =
-    OIT_GLSL_TO_TEXTURE_HEAD
-    "layout(binding = OIT_TEX_ACCUM) uniform sampler2D u_accum;\n"
-    OIT_GLSL_TO_TEXTURE_MAIN
-    "    vec4 a = texelFetch(u_accum, px, 0);\n"
-    "    imageStore(u_out, px, vec4(oit_output(a.rgb + a.a * oit_background()), 1.0));\n"
-    "}\n";
+/* glsl/f2b_*.glsl: the blend pass's fragment stage, the sort keys and the
+ * gather (each after glsl/f2b_per_triangle.glsl), and the final pass
+ * (after oit_glsl_to_texture). */
+extern const char oit_f2b_blend_fs[], oit_f2b_key_cs[], oit_f2b_gather_cs[], oit_f2b_final_cs[];
 
 static const oit_glsl_program programs[PROG_N] = {
-    [PROG_BLEND] = {"F2B blend pass", .fs = {oit_glsl_premultiplied, blend_fs}},
-    [PROG_KEY] = {"F2B sort keys", .cs = {key_cs}},
-    [PROG_GATHER] = {"F2B gather", .cs = {gather_cs}},
-    [PROG_FINAL] = {"F2B final", .cs = {final_cs}},
+    [PROG_BLEND] = {"F2B blend pass", .fs = {oit_glsl_premultiplied, oit_f2b_blend_fs}},
+    [PROG_KEY] = {"F2B sort keys", .cs = {oit_f2b_key_cs}},
+    [PROG_GATHER] = {"F2B gather", .cs = {oit_f2b_gather_cs}},
+    [PROG_FINAL] = {"F2B final", .cs = {oit_glsl_to_texture, oit_f2b_final_cs}},
 };
+
+void oit_f2b_glsl_variants(oit_glsl_visit *visit, void *user)
+{
+    oit_baseline_visit_table(programs, PROG_N, visit, user);
+}
 
 static oit_status oit_f2b_init(oit_f2b *f, oit_error *err)
 {

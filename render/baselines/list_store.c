@@ -15,16 +15,35 @@ enum { BUF_HEADS, BUF_SLOTS, BUF_LINKS, BUF_STATS, BUF_OUT, BUF_N };
 static const char *const buffer_names[BUF_N] = {"heads", "fragment slots", "links",
                                                 "counters", "output"};
 
+/* The append and resolve programs of desc into out, named in the caller's
+ * append and resolve (LIST_NAME_MAX bytes each). */
+enum { LIST_NAME_MAX = 96 };
+static void list_programs(const oit_list_desc *desc, char *append, char *resolve,
+                          oit_glsl_program out[OIT_LIST_PROG_N])
+{
+    snprintf(append, LIST_NAME_MAX, "%s append pass", desc->method);
+    snprintf(resolve, LIST_NAME_MAX, "%s resolve", desc->method);
+    out[OIT_LIST_PROG_APPEND] =
+        (oit_glsl_program){append, .fs = {oit_glsl_premultiplied, desc->append_fs}};
+    out[OIT_LIST_PROG_RESOLVE] =
+        (oit_glsl_program){resolve, .cs = {oit_glsl_composite, oit_glsl_sorted_resolve,
+                                           desc->walk[0], desc->walk[1]}};
+}
+
+void oit_list_store_glsl_variants(const oit_list_desc *desc, oit_glsl_visit *visit, void *user)
+{
+    char append[LIST_NAME_MAX], resolve[LIST_NAME_MAX];
+    oit_glsl_program programs[OIT_LIST_PROG_N];
+    list_programs(desc, append, resolve, programs);
+    for (int i = 0; i < OIT_LIST_PROG_N; i++)
+        visit(user, &programs[i]);
+}
+
 oit_status oit_list_store_init(oit_list_store *ls, const oit_list_desc *desc, oit_error *err)
 {
-    char append[96], resolve[96];
-    snprintf(append, sizeof append, "%s append pass", desc->method);
-    snprintf(resolve, sizeof resolve, "%s resolve", desc->method);
-    const oit_glsl_program programs[OIT_LIST_PROG_N] = {
-        [OIT_LIST_PROG_APPEND] = {append, .fs = {oit_glsl_premultiplied, desc->append_fs}},
-        [OIT_LIST_PROG_RESOLVE] = {resolve, .cs = {oit_glsl_composite, oit_glsl_sorted_resolve,
-                                          desc->walk_glsl}},
-    };
+    char append[LIST_NAME_MAX], resolve[LIST_NAME_MAX];
+    oit_glsl_program programs[OIT_LIST_PROG_N];
+    list_programs(desc, append, resolve, programs);
     ls->d = *desc;
     ls->b.method = desc->method;
     ls->b.names = buffer_names;
@@ -112,7 +131,7 @@ static oit_status append_pass(oit_list_store *ls, const oit_gpu_mesh *const *mes
     glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_TOTALS, ls->b.buf[BUF_LINKS], 0,
                       (GLsizeiptr)(ls->units * 4));
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_STATE, ls->b.buf[BUF_STATS]);
-    glProgramUniform1ui(ls->prog[OIT_LIST_PROG_APPEND], OIT_LOC_COUNT, (GLuint)ls->units);
+    glProgramUniform1ui(ls->prog[OIT_LIST_PROG_APPEND], OIT_LOC_CAPACITY, (GLuint)ls->units);
     oit_baseline_draw(ls->prog[OIT_LIST_PROG_APPEND], 0, 0, meshes, n);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     GLuint count = 0;

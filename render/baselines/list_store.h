@@ -26,8 +26,8 @@
  * (uint; pixel p's words at p * words_per_pixel), slots at OIT_BIND_FRAGS
  * (uvec4; unit u's at u * slots_per_unit), links at OIT_BIND_TOTALS (uint per
  * unit), Stats { uint counter; uint max_len; uint total; } at OIT_BIND_STATE,
- * and the append shader's `layout(location = 13) uniform uint u_capacity`
- * (units). The append program is built from oit_glsl_fragment_gen,
+ * and the append shader's `layout(location = OIT_LOC_CAPACITY) uniform uint
+ * u_capacity` (units). The append program is built from oit_glsl_fragment_gen,
  * oit_glsl_premultiplied and the method's fragment stage.
  *
  * Stats: fragments (stored, counted by the resolve), max_layers (longest
@@ -46,25 +46,18 @@ extern "C" {
 #define OIT_LIST_MAX_PASSES 16
 
 /* The walk GLSL of a store whose units are single nodes, each with its own
- * link (PLL, guarded): nodes, links, relinking for the merge sort, and a
- * pixel's list from the first of its WORDS head words (a GLSL uint). */
-#define OIT_LIST_NODE_WALK(WORDS)                                                          \
-    "layout(std430, binding = OIT_BIND_COUNTS) readonly buffer Heads { uint heads[]; };\n" \
-    "layout(std430, binding = OIT_BIND_FRAGS) readonly buffer Nodes { uvec4 nodes[]; };\n" \
-    "layout(std430, binding = OIT_BIND_TOTALS) buffer Next { uint next[]; };\n"            \
-    "bool oit_list_can_relink() { return true; }\n"                                        \
-    "void oit_list_relink(uint i, uint n) { next[i] = n; }\n"                              \
-    "bool oit_list_index(uint first, uint n) { return false; }\n"                          \
-    "uint oit_list_at(uint k) { return OIT_LIST_END; }\n"                                  \
-    "void oit_list_store(uint i, uvec4 f) {}\n"                                            \
-    "uint oit_list_next(uint i) { return next[i]; }\n"                                     \
-    "uvec4 oit_list_load(uint i) { return nodes[i]; }\n"                                  \
-    "uint oit_list_first(uint p) { return heads[" #WORDS " * p]; }\n"
+ * link (PLL, guarded; glsl/node_walk.glsl): nodes, links, relinking for
+ * the merge sort, and a pixel's list from the first of its head words,
+ * after OIT_LIST_HEAD_WORDS_GLSL(WORDS), the method's words_per_pixel
+ * spelt as the GLSL uint that the walk multiplies by. */
+extern const char oit_glsl_node_walk[];
+#define OIT_LIST_HEAD_WORDS_GLSL(WORDS) "#define OIT_LIST_HEAD_WORDS " OIT_GLSL_STR(WORDS) "u\n"
 
 typedef struct oit_list_desc {
     const char *method;       /* names the method in errors: "PLL" */
     const char *append_fs;    /* the fragment stage's main */
-    const char *walk_glsl;    /* oit_list_first/next/load and their buffers */
+    const char *walk[2];      /* oit_list_first/next/load and their buffers:
+                                 GLSL pieces up to the first NULL */
     uint32_t slots_per_unit;  /* 1: nodes; 4: pages of four */
     uint32_t words_per_pixel; /* head words per pixel */
     uint64_t max_units;       /* the most units the method's indices address */
@@ -110,6 +103,10 @@ oit_status oit_list_store_render(oit_list_store *ls, const oit_gpu_mesh *const *
  * of rows that would each fit, and the frame fails. split may be NULL. */
 void oit_list_store_frame(oit_list_store *ls, uint64_t limit, int *split);
 #define OIT_LIST_FRAME(impl, f) oit_list_store_frame((impl), (f)->store_limit, (f)->split)
+
+/* The store's programs for desc, each once, as oit_list_store_init builds
+ * them (render/gl/glsl_program.h): a list method's oit_*_glsl_variants. */
+void oit_list_store_glsl_variants(const oit_list_desc *desc, oit_glsl_visit *visit, void *user);
 
 /* For the method's own uniforms (a threshold). */
 unsigned oit_list_store_append_program(const oit_list_store *ls);

@@ -3,26 +3,23 @@
 #include "render/baselines/ppll.h"
 #include "render/baselines/methods.h"
 
+#include "render/baselines/baseline_glsl.h"
 #include "render/baselines/list_store.h"
 
-static const char append_fs[] =
-    "layout(std430, binding = OIT_BIND_COUNTS) buffer Heads { uint heads[]; };\n"
-    "layout(std430, binding = OIT_BIND_FRAGS) writeonly buffer Nodes { uvec4 nodes[]; };\n"
-    "layout(std430, binding = OIT_BIND_TOTALS) writeonly buffer Next { uint next[]; };\n"
-    "layout(std430, binding = OIT_BIND_STATE) "
-    "buffer Stats { uint counter; uint max_len; uint total; };\n"
-    "layout(location = 13) uniform uint u_capacity;\n"
-    "void main() {\n"
-    "    if (oit_clipped()) discard;\n"
-    "    uint n = atomicAdd(counter, 1u);\n"
-    "    if (n >= u_capacity) return;\n"
-    "    nodes[n] = oit_fragment();\n"
-    "    next[n] = atomicExchange(heads[oit_pixel_index()], n);\n"
-    "}\n";
+/* glsl/pll_append.glsl */
+extern const char oit_pll_append_fs[];
+
+#define HEAD_WORDS 1 /* a pixel's head words */
 
 /* 0xffffffff ends a list, so it is no node index. */
-static const oit_list_desc desc = {"PLL", append_fs, OIT_LIST_NODE_WALK(1u), 1, 1, 0xfffffffeull,
-                                   0};
+static const oit_list_desc desc = {"PLL", oit_pll_append_fs,
+                                   {OIT_LIST_HEAD_WORDS_GLSL(HEAD_WORDS), oit_glsl_node_walk}, 1,
+                                   HEAD_WORDS, 0xfffffffeull, 0};
+
+void oit_pll_glsl_variants(oit_glsl_visit *visit, void *user)
+{
+    oit_list_store_glsl_variants(&desc, visit, user);
+}
 
 uint64_t oit_pll_capacity(const oit_pll *p)
 {

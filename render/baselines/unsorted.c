@@ -4,6 +4,7 @@
 #include "render/baselines/methods.h"
 
 #include "render/baselines/baseline_common.h"
+#include "render/baselines/baseline_glsl.h"
 #include "render/image/image.h"
 #include "render/image/shade.h"
 
@@ -13,14 +14,19 @@ struct oit_unsorted {
     oit_blend_passes p;
 };
 
-static const char blend_fs[] =
-    "layout(location = 0) out vec4 o_colour;\n"
-    "void main() { if (oit_clipped()) discard; o_colour = oit_premultiplied(oit_fragment()); }\n";
+/* glsl/unsorted_blend.glsl */
+extern const char oit_unsorted_blend_fs[];
+
+static const oit_glsl_program program = {"unsorted blend pass",
+                                         .fs = {oit_glsl_premultiplied, oit_unsorted_blend_fs}};
+
+void oit_unsorted_glsl_variants(oit_glsl_visit *visit, void *user)
+{
+    oit_baseline_visit_table(&program, 1, visit, user);
+}
 
 static oit_status oit_unsorted_init(oit_unsorted *u, oit_error *err)
 {
-    static const oit_glsl_program program = {
-        "unsorted blend pass", .fs = {oit_glsl_premultiplied, blend_fs}};
     static const GLenum target = GL_RGBA32F;
     return oit_blend_passes_init(&u->p, "unsorted", &program, 1, &target, 1, 1, err);
 }

@@ -4,6 +4,7 @@
 #include "render/baselines/methods.h"
 
 #include "render/baselines/baseline_common.h"
+#include "render/baselines/baseline_glsl.h"
 #include "render/image/image.h"
 
 #include <stdlib.h>
@@ -15,35 +16,19 @@ struct oit_wboit {
     oit_blend_passes p;
 };
 
-static const char accum_fs[] =
-    "layout(location = 0) out vec4 o_accum;\n"
-    "layout(location = 1) out float o_reveal;\n"
-    "float oit_weight(float t, float a) {\n"
-    "    return a * clamp(10.0 / (1e-5 + pow(t / 5.0, 2.0) + pow(t / 200.0, 6.0)), 1e-2, 3e3);\n"
-    "}\n"
-    "void main() {\n"
-    "    if (oit_clipped()) discard;\n"
-    "    uvec4 f = oit_fragment();\n"
-    "    vec4 c = oit_premultiplied(f);\n"
-    "    o_accum = c * oit_weight(uintBitsToFloat(f.x), c.a);\n"
-    "    o_reveal = c.a;\n"
-    "}\n";
-
-static const char resolve_cs[] =
-    OIT_GLSL_TO_TEXTURE_HEAD
-    "layout(binding = OIT_TEX_ACCUM) uniform sampler2D u_accum;\n"
-    "layout(binding = OIT_TEX_REVEAL) uniform sampler2D u_reveal;\n"
-    OIT_GLSL_TO_TEXTURE_MAIN
-    "    vec4 acc = texelFetch(u_accum, px, 0);\n"
-    "    float r = texelFetch(u_reveal, px, 0).r;\n"
-    "    vec3 c = acc.rgb / max(acc.a, 1e-5);\n"
-    "    imageStore(u_out, px, vec4(oit_output(c * (1.0 - r) + oit_background() * r), 1.0));\n"
-    "}\n";
+/* glsl/wboit_*.glsl: the accumulation's fragment stage and the resolve
+ * (after oit_glsl_to_texture). */
+extern const char oit_wboit_accum_fs[], oit_wboit_resolve_cs[];
 
 static const oit_glsl_program programs[PROG_N] = {
-    [PROG_ACCUM] = {"WBOIT accumulation pass", .fs = {oit_glsl_premultiplied, accum_fs}},
-    [PROG_RESOLVE] = {"WBOIT resolve", .cs = {resolve_cs}},
+    [PROG_ACCUM] = {"WBOIT accumulation pass", .fs = {oit_glsl_premultiplied, oit_wboit_accum_fs}},
+    [PROG_RESOLVE] = {"WBOIT resolve", .cs = {oit_glsl_to_texture, oit_wboit_resolve_cs}},
 };
+
+void oit_wboit_glsl_variants(oit_glsl_visit *visit, void *user)
+{
+    oit_baseline_visit_table(programs, PROG_N, visit, user);
+}
 
 static oit_status oit_wboit_init(oit_wboit *w, oit_error *err)
 {
