@@ -1,4 +1,4 @@
-/* Doubling growth of the kd result's arrays (kd.c, kd_fast.c).
+/* Doubling growth of the kd result's arrays (kd.c, kd_emit.c, kd_fast.c).
  *
  * Grows *arr (count elements of elem bytes used, *cap allocated) so that it
  * holds need more, doubling from 16; returns 0, or -1 with *arr and *cap
