@@ -48,18 +48,26 @@ static int parse_four(const char *text, double v[4])
     }
 }
 
-oit_status oit_clip_add_text(oit_clip *c, const char *text, const double origin[3],
-                             const char *what, oit_error *err)
+/* The plane "a,b,c,d" into v, or OIT_ERR_ARGUMENT naming what and text. */
+static oit_status parse_plane(const char *text, int count, const char *what, double v[4],
+                              oit_error *err)
 {
-    double v[4];
     if (!text || parse_four(text, v) != 4)
         return oit_error_set(err, OIT_ERR_ARGUMENT,
                              "%s '%s': expected four numbers nx,ny,nz,d (the plane keeps "
                              "nx*x + ny*y + nz*z + d >= 0)",
                              what, text ? text : "(null)");
-    if (c->count >= OIT_CLIP_MAX)
+    if (count >= OIT_CLIP_MAX)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "%s '%s': at most %d planes", what, text,
                              OIT_CLIP_MAX);
+    return OIT_OK;
+}
+
+/* Appends v, relative to origin, to c when the result passes the check. */
+static oit_status add_plane(oit_clip *c, const double given[4], const double origin[3],
+                            const char *what, oit_error *err)
+{
+    double v[4] = {given[0], given[1], given[2], given[3]};
     /* Positions are relative to origin: n . (p + origin) + d. */
     if (origin)
         v[3] += v[0] * origin[0] + v[1] * origin[1] + v[2] * origin[2];
@@ -70,6 +78,42 @@ oit_status oit_clip_add_text(oit_clip *c, const char *text, const double origin[
     oit_status s = oit_clip_check(&next, what, err);
     if (s == OIT_OK)
         *c = next;
+    return s;
+}
+
+oit_status oit_clip_add_text(oit_clip *c, const char *text, const double origin[3],
+                             const char *what, oit_error *err)
+{
+    double v[4];
+    oit_status s = parse_plane(text, c->count, what, v, err);
+    return s == OIT_OK ? add_plane(c, v, origin, what, err) : s;
+}
+
+oit_status oit_clip_given_add_text(oit_clip_given *g, const char *text, const char *what,
+                                   oit_error *err)
+{
+    double v[4];
+    oit_clip placed;
+    oit_status s = parse_plane(text, g->count, what, v, err);
+    if (s == OIT_OK)
+        s = oit_clip_place(g, NULL, what, &placed, err);
+    if (s == OIT_OK)
+        s = add_plane(&placed, v, NULL, what, err);
+    if (s == OIT_OK)
+        memcpy(g->plane[g->count++], v, sizeof v);
+    return s;
+}
+
+oit_status oit_clip_place(const oit_clip_given *g, const double origin[3], const char *what,
+                          oit_clip *out, oit_error *err)
+{
+    oit_clip c;
+    memset(&c, 0, sizeof c);
+    oit_status s = OIT_OK;
+    for (int i = 0; i < g->count && i < OIT_CLIP_MAX && s == OIT_OK; i++)
+        s = add_plane(&c, g->plane[i], origin, what, err);
+    if (s == OIT_OK)
+        *out = c;
     return s;
 }
 

@@ -42,6 +42,22 @@ oit_status oit_clip_check(const oit_clip *c, const char *what, oit_error *err);
 oit_status oit_clip_add_text(oit_clip *c, const char *text, const double origin[3],
                              const char *what, oit_error *err);
 
+/* Planes as a command line gives them, in the file's coordinates and in
+ * double, parsed and checked once (oit_clip_given_add_text) before the
+ * file is read, and placed once its origin is known (oit_clip_place). */
+typedef struct oit_clip_given {
+    int count;
+    double plane[OIT_CLIP_MAX][4];
+} oit_clip_given;
+/* Appends "a,b,c,d" to g when the planes so far and it pass oit_clip_check
+ * (placed at origin 0); else OIT_ERR_ARGUMENT naming what and the text. */
+oit_status oit_clip_given_add_text(oit_clip_given *g, const char *text, const char *what,
+                                   oit_error *err);
+/* g's planes relative to origin (NULL: 0), d shifted by n . origin in
+ * double, into *out (replaced), then checked. */
+oit_status oit_clip_place(const oit_clip_given *g, const double origin[3], const char *what,
+                          oit_clip *out, oit_error *err);
+
 /* The planes in the view space of a camera whose view matrix (world to
  * eye, rigid, column-major; oit_camera_view_matrix) is m, in double from
  * the float matrix, rounded: what the fragment stage and the reference

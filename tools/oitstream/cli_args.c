@@ -187,10 +187,7 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
         else a->preview = found;
         a->have_preview = 1;
     } else if (!strcmp(opt, "--clip")) {
-        int i = a->clip.count;
-        *s = oit_clip_add_text(&a->clip, v, NULL, opt, err);
-        if (*s == OIT_OK)
-            a->clip_text[i] = v;
+        *s = oit_clip_given_add_text(&a->clip, v, opt, err);
     } else if (!strcmp(opt, "--still")) {
         if (oit_parse_int(v, 1, 60000, &a->still_ms))
             *s = bad(err, opt, v, "milliseconds, 1..60000");

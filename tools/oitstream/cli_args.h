@@ -57,10 +57,9 @@ typedef struct oit_stream_args {
     int preview;                   /* --preview: oit_viewer_preview (viewer.h); 0 auto */
     int still_ms;                  /* --still MS: stillness before the exact frame; 0: 200 */
     int up_axis;                   /* --up x|y|z: 0, 1 (default), 2 */
-    /* --clip (repeatable): the planes as checked with origin 0, and their
-     * text, re-read against the model's origin (render/image/clip.h) */
-    oit_clip clip;
-    const char *clip_text[OIT_CLIP_MAX];
+    /* --clip (repeatable): the planes as given, parsed and checked once,
+     * placed at the model's origin once it is read (render/image/clip.h) */
+    oit_clip_given clip;
     int have_preview;              /* --preview was given */
 } oit_stream_args;
 

@@ -515,8 +515,7 @@ static int run_render(const oit_stream_args *args)
     rc.view.height = a->height;
     rc.origin = mesh.info.origin;
     rc.view.shading = make_shading(a, &mesh.info);
-    for (int i = 0; i < a->clip.count && s == OIT_OK; i++)
-        s = oit_clip_add_text(&rc.view.clip, a->clip_text[i], mesh.info.origin, "--clip", &err);
+    s = oit_clip_place(&a->clip, mesh.info.origin, "--clip", &rc.view.clip, &err);
     if (s == OIT_OK)
         s = make_views(a, &mesh.info, &cams, &n, &err);
     if (s == OIT_OK)

@@ -123,9 +123,7 @@ static oit_status open_share(mpi_run *r, int views, oit_error *err)
     r->view.shading = make_shading(a, &r->info);
     /* oitstream's section planes: every rank cuts its share alike, and
      * culls the parts wholly cut away before reading them */
-    oit_status s = OIT_OK;
-    for (int i = 0; i < a->clip.count && s == OIT_OK; i++)
-        s = oit_clip_add_text(&r->view.clip, a->clip_text[i], r->info.origin, "--clip", err);
+    oit_status s = oit_clip_place(&a->clip, r->info.origin, "--clip", &r->view.clip, err);
     /* parts are checked when first drawn, as oitstream's stream method does */
     oit_scene_desc sd = {.defer_validation = 1, .share_count = (uint32_t)r->ranks,
                          .share_index = (uint32_t)r->rank};
