@@ -61,6 +61,9 @@ oit_capture_kind oit_capture_backend(const oit_capture *c)
     return c->ops->kind;
 }
 
+const oit_glsl_program oit_capture_end_program = {
+    "capture end", .cs = {oit_glsl_composite, oit_glsl_state_io, oit_capture_end_cs}};
+
 /* The shared part, then the backend's (stencil_k: the samples of its
  * routed fills, 0 for none; a routed backend runs the self-test). */
 static oit_status make(oit_program_cache *pc, const oit_capture_ops *ops, int K, int stencil_k,
@@ -79,9 +82,7 @@ static oit_status make(oit_program_cache *pc, const oit_capture_ops *ops, int K,
         return oit_error_set(err, OIT_ERR_NOMEM, "capture: out of memory");
     }
     /* the end program before the backend, whose self-test ends a frame */
-    const oit_glsl_program end = {"capture end",
-                                  .cs = {oit_glsl_composite, oit_glsl_state_io, oit_capture_end_cs}};
-    oit_status s = oit_glsl_programs_build(pc, &end, 1, &c->end_prog, err);
+    oit_status s = oit_glsl_programs_build(pc, &oit_capture_end_program, 1, &c->end_prog, err);
     if (s == OIT_OK)
         s = oit_gpu_draws_create(&c->draws, err);
     if (s == OIT_OK) {
@@ -488,10 +489,9 @@ static void end_pass(oit_capture *c, uint64_t first, uint64_t count, int write_o
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
-/* Resolves the carried state against the background into out
- * (oit_image_reserve: written in place where it holds an image of the
- * frame's size, else allocated), in bands of GL rows as many as the backend's output buffer holds, then
- * reads the totals. */
+/* Resolves the carried state against the background into out (oit_image_reserve: written in
+ * place where it holds an image of the frame's size, else allocated), in bands of GL rows, as
+ * many as the backend's output buffer holds, then reads the totals. */
 static oit_status read_output(oit_capture *c, oit_image *out, GLuint totals[4], oit_error *err)
 {
     int w = c->view.width, h = c->view.height, made = 0;

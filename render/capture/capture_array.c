@@ -10,15 +10,8 @@
 enum { SLOTS_FILL, SLOTS_RESOLVE, SLOTS_PROGS };
 
 oit_status oit_capture_slots_init(oit_capture_slots *s, oit_program_cache *pc,
-                                  const char *defines, const char *fill_fs,
-                                  const char *resolve_defines, oit_error *err)
+                                  const oit_glsl_program programs[2], oit_error *err)
 {
-    const oit_glsl_program programs[SLOTS_PROGS] = {
-        [SLOTS_FILL] = {"capture fill", .fs = {defines, oit_glsl_state_io, fill_fs}},
-        [SLOTS_RESOLVE] = {"capture resolve",
-                           .cs = {resolve_defines, oit_glsl_composite, oit_glsl_state_io,
-                                  oit_capture_resolve_cs}},
-    };
     GLuint progs[SLOTS_PROGS] = {0};
     oit_status st = oit_glsl_programs_build(pc, programs, SLOTS_PROGS, progs, err);
     s->fill = progs[SLOTS_FILL];
@@ -51,20 +44,31 @@ void oit_capture_slots_epsilon(oit_capture_slots *s, float e)
 
 /* ---- tiled batches ----------------------------------------------------------- */
 
-/* Program pair i: 0 sorts up to 16 fragments a pixel, 1 up to
- * OIT_CAPTURE_MAX_LAYERS (registers a GPU would rather not spend on K). */
+/* The fragments a pixel that tiled pair 0 sorts: more take pair 1. */
+#define WIDE_SHORT 16
+
+/* Program pair i: the fill, and the resolve that sorts up to WIDE_SHORT
+ * fragments a pixel (0) or up to OIT_CAPTURE_MAX_LAYERS (1: registers a
+ * GPU would rather not spend on K). */
+static void tiled_pair(int i, oit_glsl_program pair[2])
+{
+    static const char *const wide[2] = {
+        "#define OIT_WIDE " OIT_GLSL_STR(WIDE_SHORT) "\n",
+        "#define OIT_WIDE " OIT_GLSL_STR(OIT_CAPTURE_MAX_LAYERS) "\n"};
+    pair[0] = (oit_glsl_program){"capture tiled fill",
+                                 .fs = {oit_glsl_state_io, oit_capture_wide_fs}};
+    pair[1] = (oit_glsl_program){"capture tiled resolve",
+                                 .cs = {wide[i], oit_glsl_composite, oit_glsl_state_io,
+                                        oit_capture_resolve_cs}};
+}
+
 static oit_status tiled_programs(const oit_capture *c, oit_capture_slots *s, int i,
                                  oit_error *err)
 {
     GLuint *progs = s->tile_prog[i];
     if (!progs[0]) {
-        const oit_glsl_program pair[2] = {
-            {"capture tiled fill", .fs = {oit_glsl_state_io, oit_capture_wide_fs}},
-            {"capture tiled resolve",
-             .cs = {i ? "#define OIT_WIDE " OIT_GLSL_STR(OIT_CAPTURE_MAX_LAYERS) "\n"
-                      : "#define OIT_WIDE 16\n",
-                    oit_glsl_composite, oit_glsl_state_io, oit_capture_resolve_cs}},
-        };
+        oit_glsl_program pair[2];
+        tiled_pair(i, pair);
         oit_status st = oit_glsl_programs_build(c->programs, pair, 2, progs, err);
         if (st != OIT_OK)
             return st;
@@ -102,7 +106,7 @@ static oit_status tiled_batch(oit_capture *c, oit_capture_slots *s,
     uint64_t slots = s->tiled ? s->cap / 16
                               : (uint64_t)c->view.width * c->view.height * (uint64_t)c->K;
     slots = slots > (uint64_t)W ? slots : (uint64_t)W;
-    int i = W > 16;
+    int i = W > WIDE_SHORT;
     oit_status st = oit_capture_reserve(c, &s->buf, &s->cap, slots * 16, "capture slots", err);
     if (st == OIT_OK)
         st = tiled_programs(c, s, i, err);
@@ -138,9 +142,34 @@ oit_status oit_capture_slots_tiled(oit_capture *c, oit_capture_slots *s,
 
 /* ---- the array backend ------------------------------------------------------- */
 
+/* Its K-slot fill and resolve. */
+static void array_programs(oit_glsl_program programs[2])
+{
+    programs[0] =
+        (oit_glsl_program){"capture fill", .fs = {oit_glsl_state_io, oit_capture_array_fs}};
+    programs[1] = (oit_glsl_program){
+        "capture resolve", .cs = {oit_glsl_composite, oit_glsl_state_io, oit_capture_resolve_cs}};
+}
+
+void oit_capture_array_glsl_variants(oit_glsl_visit *visit, void *user)
+{
+    oit_glsl_program p[2];
+    array_programs(p);
+    visit(user, &p[0]);
+    visit(user, &p[1]);
+    for (int i = 0; i < 2; i++) {
+        tiled_pair(i, p);
+        if (i == 0)
+            visit(user, &p[0]); /* the same fill for both */
+        visit(user, &p[1]);
+    }
+}
+
 static oit_status array_create(oit_capture *c, int stencil_k, oit_error *err)
 {
-    return oit_capture_slots_init(c->be, c->programs, "", oit_capture_array_fs, "", err);
+    oit_glsl_program programs[2];
+    array_programs(programs);
+    return oit_capture_slots_init(c->be, c->programs, programs, err);
 }
 
 static void array_destroy(void *be)

@@ -74,7 +74,7 @@ struct oit_capture {
     GLuint fbo;              /* attachment-less: the fills write buffers */
     GLuint buf[OIT_CAPTURE_BUFS];
     uint64_t cap[OIT_CAPTURE_BUFS];
-    GLuint end_prog;      /* final colours and totals (capture_glsl.h) */
+    GLuint end_prog;      /* final colours and totals (oit_capture_end_program) */
     GLuint max_groups;    /* GL_MAX_COMPUTE_WORK_GROUP_COUNT[0] */
     oit_gpu_draws *draws; /* every geometry draw goes through it */
     oit_view view;
@@ -138,6 +138,10 @@ extern const oit_capture_ops oit_capture_array_ops, oit_capture_stencil_ops,
 
 /* ---- what capture.c lends its backends ----------------------------------- */
 
+/* The frame's end (glsl/end.glsl): final colours and totals, built at
+ * creation into end_prog. */
+extern const oit_glsl_program oit_capture_end_program;
+
 void oit_capture_note_peak(oit_capture *c);
 /* A buffer of the capture grown to bytes, the peak noted. */
 oit_status oit_capture_reserve(oit_capture *c, GLuint *buf, uint64_t *cap, uint64_t bytes,
@@ -185,6 +189,10 @@ oit_status oit_capture_store_out(oit_capture *c, GLuint *buf, uint64_t *cap, con
 
 /* ---- the stencil-routed fills (capture_stencil.c) ------------------------- */
 
+/* A routed fill (glsl/stencil_fill.glsl): the stencil backend's
+ * (firstk_pass 0) or first-K's pass 1 (1); by_copy: routing by copies
+ * (testing, capture_stencil.h). */
+oit_glsl_program oit_capture_routed_fill(int firstk_pass, int by_copy);
 /* t made for stencil_k samples a pixel, with c's faults. */
 oit_status oit_capture_route_init(const oit_capture *c, oit_stencil_target *t, int stencil_k,
                                   oit_error *err);
@@ -206,11 +214,10 @@ typedef struct oit_capture_slots {
     int tiled; /* this frame: every batch goes through tiles */
 } oit_capture_slots;
 
-/* fill_fs: the K-slot fill shader, after defines; resolve_defines: before
- * the resolve's. */
+/* Builds the backend's K-slot fill (programs[0]) and its resolve
+ * (programs[1]) into s. */
 oit_status oit_capture_slots_init(oit_capture_slots *s, oit_program_cache *pc,
-                                  const char *defines, const char *fill_fs,
-                                  const char *resolve_defines, oit_error *err);
+                                  const oit_glsl_program programs[2], oit_error *err);
 void oit_capture_slots_release(oit_capture_slots *s);
 void oit_capture_slots_uniforms(const oit_capture *c, oit_capture_slots *s);
 void oit_capture_slots_epsilon(oit_capture_slots *s, float e);
@@ -220,5 +227,8 @@ void oit_capture_slots_epsilon(oit_capture_slots *s, float e);
 oit_status oit_capture_slots_tiled(oit_capture *c, oit_capture_slots *s,
                                    const oit_gpu_mesh *const *meshes, int n, const int rect[4],
                                    int layers, oit_error *err);
+/* The array backend's programs and the tiled batches' (both backends'),
+ * each once (glsl_program.h). */
+void oit_capture_array_glsl_variants(oit_glsl_visit *visit, void *user);
 
 #endif

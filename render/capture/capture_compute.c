@@ -6,24 +6,7 @@
 #include "render/capture/compute_glsl.h"
 #include "render/gl/gpu_timer.h"
 
-#include <stdio.h>
 #include <string.h>
-
-static const char u_mode_decl[] = "layout(location = 3) uniform int u_mode;\n";
-
-static const oit_glsl_program programs[OIT_COMPUTE_PROGS] = {
-    [OIT_COMPUTE_SETUP] = {"compute capture set-up",
-                           .cs = {oit_glsl_vertex_lib, oit_compute_setup_cs}},
-    [OIT_COMPUTE_SCATTER] = {"compute capture scatter", .cs = {oit_compute_scatter_cs}},
-    [OIT_COMPUTE_LIVE] = {"compute capture live tiles",
-                          .cs = {u_mode_decl, oit_glsl_state_io, oit_compute_live_cs}},
-    [OIT_COMPUTE_TILES] = {"compute capture sweep",
-                           .cs = {oit_glsl_composite, oit_glsl_state_io, oit_compute_frag_inputs,
-                                  oit_glsl_fragment_lib, oit_compute_tiles_cs}},
-    [OIT_COMPUTE_WORK] = {"compute capture work list", .cs = {oit_compute_work_cs}},
-    [OIT_COMPUTE_ARGS] = {"compute capture dispatch", .cs = {oit_compute_args_cs}},
-    [OIT_COMPUTE_PROBE] = {"compute capture loop probe", .cs = {oit_compute_probe_cs}},
-};
 
 _Static_assert(OIT_COMPUTE_CAPTURE_TRIANGLE_BYTES == OIT_COMPUTE_RECORD_WORDS * 16 + 4 * 4,
                "capture.h's figure: a record and four list entries");
@@ -36,15 +19,9 @@ static oit_status compute_init(oit_compute *k, oit_program_cache *pc, oit_error 
     memset(k, 0, sizeof *k);
     k->align = oit_gl_ssbo_align();
     k->blocks = oit_compute_record_blocks();
-    snprintf(k->blocks_decl, sizeof k->blocks_decl, "#define CS_BLOCKS %d\n", k->blocks);
+    oit_compute_blocks_define(k->blocks, k->blocks_decl, sizeof k->blocks_decl);
     oit_glsl_program table[OIT_COMPUTE_PROGS];
-    memcpy(table, programs, sizeof table);
-    static const int with_recs[] = {OIT_COMPUTE_SETUP, OIT_COMPUTE_SCATTER, OIT_COMPUTE_TILES};
-    for (size_t i = 0; i < sizeof with_recs / sizeof with_recs[0]; i++) {
-        const char **cs = table[with_recs[i]].cs;
-        memmove(cs + 1, cs, sizeof(cs[0]) * (OIT_GLSL_PARTS_MAX - 1));
-        cs[0] = k->blocks_decl;
-    }
+    oit_compute_programs(k->blocks_decl, table);
     oit_status s = oit_glsl_programs_build(pc, table, OIT_COMPUTE_PROGS, k->prog, err);
     if (s == OIT_OK)
         s = oit_scan_init(&k->scan, pc, err);

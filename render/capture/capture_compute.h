@@ -56,8 +56,8 @@
  *
  * A driver that cuts long shader loops short (llvmpipe: 65535 iterations
  * an invocation, all loops together) gets the pixels it cut resumed in
- * further dispatches from their last composited fragment (compute_glsl.c
- * says how they notice), indirect, over the tiles with pending pixels,
+ * further dispatches from their last composited fragment
+ * (glsl/compute_tiles.glsl says how they notice), indirect, over the tiles with pending pixels,
  * read back once per chunk of rounds; a probe at creation tells whether
  * the driver cuts (where it says not and a pixel is pending all the same,
  * oit_capture_end fails and the next frames read back). A tile list too
@@ -126,6 +126,17 @@ typedef struct oit_compute_frame {
     struct oit_gpu_timer *timer; /* phases marked on it; NULL: none */
     oit_host_waits *waits;       /* the frame's waits on the GPU (render/gl/host_wait.h) */
 } oit_compute_frame;
+
+/* "#define CS_BLOCKS blocks\n" into buf: the storage blocks a batch's
+ * records may span (1..OIT_COMPUTE_BLOCKS, compute_glsl.h), which the
+ * programs that read or write records take first. */
+void oit_compute_blocks_define(int blocks, char *buf, size_t size);
+/* The capture's programs into table, those with records after
+ * blocks_define (compute_glsl.c); what compute_create builds. */
+void oit_compute_programs(const char *blocks_define, oit_glsl_program table[OIT_COMPUTE_PROGS]);
+/* Every program the compute capture can build, for every count of
+ * blocks, each once (glsl_program.h). */
+void oit_compute_glsl_variants(oit_glsl_visit *visit, void *user);
 
 /* Captures meshes[0..n) over the GL rect r (bottom rows first, exclusive
  * ends) and composites them behind the state. The records span up to

@@ -10,37 +10,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* A band of a batch's rows, judged after the scan: whether the store holds
- * its fragments (the store pass and the resolve run only then), where they
- * start (the store and the resolve read base and cap here, not from the
- * host), and the frame's figures. The scan's totals: the fragments (lo,
- * hi), the largest count, the counts over K (added once a batch, at its
- * first band). Offsets follow the frame's rows, so a band's fragments are
- * the difference of the offsets at its first pixels. */
-static const char judge_cs[] =
-    "layout(local_size_x = 1) in;\n"
-    "layout(std430, binding = OIT_BIND_TOTALS) readonly buffer Scan { uint lo; uint hi; "
-    "uint most; uint over; };\n"
-    "layout(std430, binding = OIT_BIND_OFFSETS) readonly buffer Offsets { uint offsets[]; };\n"
-    "layout(std430, binding = OIT_BIND_SUMS) buffer Judge { uint gate; uint frame_short; "
-    "uint deep; uint pad; uvec4 groups; uint base; uint cap; };\n"
-    "uniform uint u_cap;\n"
-    "uniform uint u_width;\n"
-    "uniform uvec2 u_rows;\n"
-    "uniform uvec2 u_groups;\n"
-    "uniform uint u_first;\n"
-    "void main() {\n"
-    "    uint start = offsets[u_rows.x * u_width];\n"
-    "    uint n = offsets[u_rows.y * u_width] - start;\n"
-    "    bool fits = hi == 0u && n <= u_cap;\n"
-    "    gate = fits && n != 0u ? 1u : 0u;\n"
-    "    if (!fits) frame_short = 1u;\n"
-    "    if (u_first != 0u) deep += over;\n"
-    "    groups = uvec4(gate != 0u ? u_groups : uvec2(0u), 1u, 0u);\n"
-    "    base = start;\n"
-    "    cap = u_cap;\n"
-    "}\n";
-static const oit_glsl_program judge_program = {"counted capture judge", .cs = {judge_cs}};
+/* A band of a batch's rows, judged after the scan (glsl/counted_judge.glsl):
+ * whether the store holds its fragments, where they start, and the
+ * frame's figures; its words the host names. */
+extern const char oit_counted_judge_cs[], oit_counted_split_cs[]; /* glsl/counted_*.glsl */
+static const oit_glsl_program judge_program = {"counted capture judge",
+                                               .cs = {oit_counted_judge_cs}};
 enum { J_GATE, J_SHORT, J_DEEP, J_GROUPS = 4, J_BASE = 8, J_CAP, J_WORDS = 12 };
 
 /* A batch's bands of rows, cut on the GPU after the scan: from row
@@ -52,39 +27,8 @@ enum { J_GATE, J_SHORT, J_DEEP, J_GROUPS = 4, J_BASE = 8, J_CAP, J_WORDS = 12 };
  * batch itself; the next frame's ahead batches draw the bands this one cut (oit_counted_ended). */
 enum { BANDS = OIT_COUNTED_BANDS, SLOT = 128, S_BANDS = 0, S_HI, S_START, S_ENDS };
 #define BANDS_LEFT 0x80000000u
-static const char split_cs[] =
-    "layout(local_size_x = 1) in;\n"
-    "layout(std430, binding = OIT_BIND_TOTALS) readonly buffer Scan { uint lo; uint hi; "
-    "uint most; uint over; };\n"
-    "layout(std430, binding = OIT_BIND_OFFSETS) readonly buffer Offsets { uint offsets[]; };\n"
-    "layout(std430, binding = OIT_BIND_SUMS) writeonly buffer Table { uint table[]; };\n"
-    "uniform uint u_width;\n"
-    "uniform uvec2 u_rows;\n"
-    "uniform uint u_fit;\n"
-    "uniform uint u_target;\n"
-    "uniform uint u_slot;\n"
-    "uniform uint u_bands;\n"
-    "void main() {\n"
-    "    uint y = u_rows.x, n = 0u, at = u_slot + 3u;\n"
-    "    table[u_slot + 1u] = hi;\n"
-    "    table[u_slot + 2u] = offsets[y * u_width];\n"
-    "    uint all = offsets[u_rows.y * u_width] - offsets[y * u_width];\n"
-    "    uint target = hi == 0u && all <= u_fit ? u_fit : u_target;\n"
-    "    while (y < u_rows.y && n < u_bands) {\n"
-    "        uint start = offsets[y * u_width], a = y + 1u, b = u_rows.y;\n"
-    "        while (a < b) {\n"
-    "            uint m = b - (b - a) / 2u;\n"
-    "            if (offsets[m * u_width] - start <= target) a = m; else b = m - 1u;\n"
-    "        }\n"
-    "        table[at] = a;\n"
-    "        table[at + 1u] = offsets[a * u_width];\n"
-    "        at += 2u;\n"
-    "        y = a;\n"
-    "        n++;\n"
-    "    }\n"
-    "    table[u_slot] = y < u_rows.y ? n | 0x80000000u : n;\n"
-    "}\n";
-static const oit_glsl_program split_program = {"counted capture bands", .cs = {split_cs}};
+static const oit_glsl_program split_program = {"counted capture bands",
+                                               .cs = {oit_counted_split_cs}};
 
 static const oit_glsl_program programs[OIT_COUNTED_PROGS] = {
     [OIT_COUNTED_COUNT] = {"counted capture count",
@@ -103,6 +47,14 @@ static const oit_glsl_program programs[OIT_COUNTED_PROGS] = {
                                               oit_glsl_segment_composite,
                                               oit_capture_counted_predicted_main}},
 };
+
+void oit_counted_glsl_variants(oit_glsl_visit *visit, void *user)
+{
+    for (int i = 0; i < OIT_COUNTED_PROGS; i++)
+        visit(user, &programs[i]);
+    visit(user, &judge_program);
+    visit(user, &split_program);
+}
 
 /* The judge's frame figures (gate to groups) to zero. */
 static void zero_figures(oit_counted *k)
@@ -378,8 +330,8 @@ oit_status oit_counted_judged_store(oit_counted *k, const oit_counted_frame *f,
     oit_gpu_timer_mark(f->timer, OIT_GPU_RESOLVE);
     GLuint resolve = k->prog[OIT_COUNTED_RESOLVE];
     glUseProgram(resolve);
-    glProgramUniform2i(resolve, 11, f->width, f->height);
-    glProgramUniform4i(resolve, 12, r[0], r[1], r[2], r[3]);
+    glProgramUniform2i(resolve, OIT_LOC_SIZE, f->width, f->height);
+    glProgramUniform4i(resolve, OIT_LOC_RECT, r[0], r[1], r[2], r[3]);
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, k->words);
     glDispatchComputeIndirect(J_GROUPS * 4);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);

@@ -123,6 +123,8 @@ int oit_counted_ended(oit_counted *k);
  * need set, the store reserved where `fit` holds it. */
 void oit_counted_seed(oit_counted *k, uint64_t fragments, uint64_t fit);
 void oit_counted_release(oit_counted *k);
+/* Every program it can build, each once (glsl_program.h). */
+void oit_counted_glsl_variants(oit_glsl_visit *visit, void *user);
 uint64_t oit_counted_bytes(const oit_counted *k);
 
 /* The frame's buffers and draw scratch, owned by capture.c. */

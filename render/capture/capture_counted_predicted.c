@@ -92,8 +92,8 @@ static oit_status predicted_band(oit_counted *k, const oit_counted_frame *f,
     oit_gpu_timer_mark(f->timer, OIT_GPU_RESOLVE);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_TOTALS, k->next);
     glUseProgram(resolve);
-    glProgramUniform2i(resolve, 11, f->width, f->height);
-    glProgramUniform4i(resolve, 12, r[0], r[1], r[2], r[3]);
+    glProgramUniform2i(resolve, OIT_LOC_SIZE, f->width, f->height);
+    glProgramUniform4i(resolve, OIT_LOC_RECT, r[0], r[1], r[2], r[3]);
     glDispatchCompute(oit_gl_groups((uint64_t)(r[2] - r[0]), 8),
                       oit_gl_groups((uint64_t)(r[3] - r[1]), 8), 1);
     /* the spilled pixels' scan counts no deep pixels: the batch's own

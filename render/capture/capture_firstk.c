@@ -14,225 +14,38 @@
 
 #include <string.h>
 
-/* The pass-2 totals at a binding no other program of a pack uses while
- * they are live: overflowed pixels, their fragments as 64 bits, the gate
- * of pass 2's draw (ahead mode), the GL rect that holds them (x0, y0, x1,
- * y1; exclusive ends), so that pass 2 works only there; then the frame's
- * words (oit_firstk_begin) and pass 2's dispatch (ahead mode). */
-#define TOTALS_BLOCK                                                        \
-    "layout(std430, binding = OIT_BIND_SUMS) buffer Spill { uint spill_pixels; uint spill_lo; "    \
-    "uint spill_hi; uint gate; uint box[4]; uint frame_short; uint need; "  \
-    "uint second_pixels; uint second_packs; uvec4 groups; };\n"            \
-    "ivec4 oit_box() { return ivec4(box[0], box[1], box[2], box[3]); }\n" \
-    "void oit_spill(uvec2 px) {\n"                                        \
-    "    atomicAdd(spill_pixels, 1u);\n"                                  \
-    "    atomicMin(box[0], px.x); atomicMin(box[1], px.y);\n"             \
-    "    atomicMax(box[2], px.x + 1u); atomicMax(box[3], px.y + 1u);\n"   \
-    "}\n"
-/* The end of a pass-1 resolve: pixel p's n fragments, each read by LOAD
- * (a GLSL expression of i), sorted in registers and composited into its
- * state; its count goes back to zero for the next pack. */
-#define RESOLVE_SORTED(LOAD)                                                \
-    "    uvec4 f[16];\n"                                                   \
-    "    for (uint i = 0u; i < n; i++) {\n"                                \
-    "        uvec4 x = " LOAD ";\n"                                        \
-    "        OIT_SORTED_INSERT(f, i, x)\n"                                 \
-    "    }\n"                                                              \
-    "    oit_state s = oit_state_load(p);\n"                               \
-    "    for (uint i = 0u; i < n; i++) oit_composite(s, f[i]);\n"          \
-    "    s.nfrag += n;\n"                                                  \
-    "    oit_state_store(p, s);\n"                                         \
-    "    counts[p] = 0u;\n"                                                \
-    "}\n"
-/* Pass 2's own rect: the pack's overflow box (ahead mode, dispatched by
- * the GPU over it) or the band u_rect the host gave. */
-#define PASS2_RECT                                                          \
-    "uniform int u_from_box;\n"                                            \
-    "ivec4 oit_pass2_rect() { return u_from_box != 0 ? oit_box() : u_rect; }\n"
-#define RECT_INDEX                                                          \
-    "uint oit_rect_index(ivec2 px, ivec4 r) {\n"                          \
-    "    return uint((px.y - r.y) * (r.z - r.x) + (px.x - r.x));\n"       \
-    "}\n"
+/* The programs' stages, glsl/firstk_*.glsl (CMakeLists.txt: with
+ * glsl/firstk_totals.glsl, the pass-2 totals, and glsl/rect_index.glsl). */
+extern const char oit_firstk_fill_fs[], oit_firstk_store_fs[], oit_firstk_resolve_cs[],
+    oit_firstk_alloc_cs[], oit_firstk_segment_cs[], oit_firstk_segment_main[],
+    oit_firstk_routed_resolve_cs[], oit_firstk_judge_cs[];
 
-/* Pass 1: every fragment counted, the first u_W of a pixel kept. */
-static const char fill_fs[] =
-    "layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };\n"
-    "layout(std430, binding = OIT_BIND_FRAGS) writeonly buffer Slots { uvec4 slots[]; };\n"
-    TOTALS_BLOCK RECT_INDEX
-    "uniform int u_W;\n"
-    "uniform ivec4 u_tile;\n"
-    "void main() {\n"
-    "    if (oit_clipped()) discard;\n"
-    "    if (oit_behind_opaque()) discard;\n"
-    "    uint p = oit_pixel_index();\n"
-    "    if (oit_saturated(p)) discard;\n"
-    "    uint q = oit_rect_index(ivec2(gl_FragCoord.xy), u_tile);\n"
-    "    uint P = uint((u_tile.z - u_tile.x) * (u_tile.w - u_tile.y));\n"
-    "    uint c = atomicAdd(counts[p], 1u);\n"
-    "    if (c < uint(u_W)) slots[c * P + q] = oit_fragment();\n"
-    "    else if (c == uint(u_W)) oit_spill(uvec2(gl_FragCoord.xy));\n"
-    "}\n";
-
-/* Pass 1's resolve: pixels of at most u_W fragments, from their slots. An
- * overflowed pixel keeps its count: pass 2 takes it whole. */
-static const char resolve_cs[] =
-    "layout(local_size_x = 8, local_size_y = 8) in;\n"
-    "layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };\n"
-    "layout(std430, binding = OIT_BIND_FRAGS) readonly buffer Slots { uvec4 slots[]; };\n"
-    "layout(location = 11) uniform ivec2 u_size;\n"
-    "layout(location = 12) uniform ivec4 u_rect;\n"
-    "uniform int u_W;\n"
-    RECT_INDEX
-    "void main() {\n"
-    "    ivec2 px = u_rect.xy + ivec2(gl_GlobalInvocationID.xy);\n"
-    "    if (px.x >= u_rect.z || px.y >= u_rect.w) return;\n"
-    "    uint p = uint(px.y * u_size.x + px.x);\n"
-    "    uint n = counts[p];\n"
-    "    if (n == 0u || n > uint(u_W)) return;\n"
-    "    uint q = oit_rect_index(px, u_rect);\n"
-    "    uint P = uint((u_rect.z - u_rect.x) * (u_rect.w - u_rect.y));\n"
-    RESOLVE_SORTED("slots[i * P + q]");
-
-/* Pass 1's resolve when the stencil routed it: the same for the pixels of
- * at most u_W fragments, from the samples; a pixel of more is found by its
- * exact count and flagged here (the fill cannot: it does not know a
- * pixel's last fragment), into the same spill totals and box the array
- * fill writes. */
-static const char routed_resolve_cs[] =
-    "layout(local_size_x = 8, local_size_y = 8) in;\n"
-    "layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };\n"
-    "layout(binding = OIT_TEX_SAMPLES) uniform usampler2DMS u_samples;\n"
-    TOTALS_BLOCK
-    "layout(location = 11) uniform ivec2 u_size;\n"
-    "layout(location = 12) uniform ivec4 u_rect;\n"
-    "uniform int u_W;\n"
-    "void main() {\n"
-    "    ivec2 px = u_rect.xy + ivec2(gl_GlobalInvocationID.xy);\n"
-    "    if (px.x >= u_rect.z || px.y >= u_rect.w) return;\n"
-    "    uint p = uint(px.y * u_size.x + px.x);\n"
-    "    uint n = counts[p];\n"
-    "    if (n == 0u) return;\n"
-    "    if (n > uint(u_W)) {\n"
-    "        oit_spill(uvec2(px));\n"
-    "        return;\n"
-    "    }\n"
-    RESOLVE_SORTED("texelFetch(u_samples, px, int(i))");
-
-/* Pass 2, over a band: each overflowed pixel a segment of its count (the
- * order of segments does not matter, only that they do not overlap). */
-static const char alloc_cs[] =
-    "layout(local_size_x = 8, local_size_y = 8) in;\n"
-    "layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };\n"
-    "layout(std430, binding = OIT_BIND_OFFSETS) writeonly buffer Table { uvec2 table[]; };\n"
-    TOTALS_BLOCK RECT_INDEX
-    "layout(location = 11) uniform ivec2 u_size;\n"
-    "layout(location = 12) uniform ivec4 u_rect;\n"
-    PASS2_RECT
-    "uniform int u_W;\n"
-    "uniform uint u_cap;\n" /* fragments the store holds */
-    "void main() {\n"
-    "    ivec4 b = oit_pass2_rect();\n"
-    "    ivec2 px = b.xy + ivec2(gl_GlobalInvocationID.xy);\n"
-    "    if (px.x >= b.z || px.y >= b.w) return;\n"
-    "    uint p = uint(px.y * u_size.x + px.x);\n"
-    "    uint n = counts[p];\n"
-    "    uvec2 e = uvec2(0u);\n"
-    "    if (n > uint(u_W)) {\n"
-    "        uint old = atomicAdd(spill_lo, n);\n"
-    "        if (old + n < old) atomicAdd(spill_hi, 1u);\n"
-    "        e = uvec2(old, n);\n"
-    /* past the store: left out, the frame flagged short (the verdict) */
-    "        if (old + n < old || old + n > u_cap) { e = uvec2(0u); counts[p] = 0u; }\n"
-    "    }\n"
-    "    table[oit_rect_index(px, u_rect)] = e;\n"
-    "}\n";
-
-/* Ahead mode's judge, one invocation. Step 0, after pass 1's resolve: pass
- * 2's dispatch over the overflow box (none when nothing overflowed). Step
- * 1, after the allocation: the gate of the store's draw, the frame's
- * figures, and its flag when the store proved short. */
-static const char judge_cs[] =
-    "layout(local_size_x = 1) in;\n"
-    TOTALS_BLOCK
-    "uniform int u_step;\n"
-    "uniform uint u_cap;\n"
-    "void main() {\n"
-    "    if (u_step == 0) {\n"
-    "        bool any = spill_pixels != 0u;\n"
-    "        groups = uvec4(any ? (box[2] - box[0] + 7u) / 8u : 0u,\n"
-    "                       any ? (box[3] - box[1] + 7u) / 8u : 0u, 1u, 0u);\n"
-    "        return;\n"
-    "    }\n"
-    "    gate = spill_pixels != 0u ? 1u : 0u;\n"
-    "    if (spill_hi != 0u || spill_lo > u_cap) frame_short = 1u;\n"
-    "    need = max(need, spill_hi != 0u ? 0xffffffffu : spill_lo);\n"
-    "    second_pixels += spill_pixels;\n"
-    "    second_packs += gate;\n"
-    "}\n";
-
-/* Pass 2's store: only pixels with a segment, counted back down to 0. */
-static const char store_fs[] =
-    "layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };\n"
-    "layout(std430, binding = OIT_BIND_OFFSETS) readonly buffer Table { uvec2 table[]; };\n"
-    "layout(std430, binding = OIT_BIND_FRAGS) writeonly buffer Frags { uvec4 frags[]; };\n"
-    TOTALS_BLOCK RECT_INDEX
-    "uniform ivec4 u_tile;\n"
-    "void main() {\n"
-    "    ivec2 px = ivec2(gl_FragCoord.xy);\n"
-    "    ivec4 b = oit_box();\n" /* the table holds only the box's pixels */
-    "    if (px.x < b.x || px.y < b.y || px.x >= b.z || px.y >= b.w) discard;\n"
-    "    if (oit_clipped()) discard;\n"
-    "    if (oit_behind_opaque()) discard;\n"
-    "    uvec2 e = table[oit_rect_index(px, u_tile)];\n"
-    "    uint p = oit_pixel_index();\n"
-    "    if (e.y == 0u || oit_saturated(p)) discard;\n"
-    "    uint c = atomicAdd(counts[p], 0xffffffffu);\n"
-    "    if (c != 0u && c <= e.y) frags[e.x + c - 1u] = oit_fragment();\n"
-    "}\n";
-
-/* Pass 2's resolve: before oit_glsl_segment_composite, segment_main after. */
-static const char segment_cs[] =
-    "layout(local_size_x = 8, local_size_y = 8) in;\n"
-    "layout(std430, binding = OIT_BIND_OFFSETS) readonly buffer Table { uvec2 table[]; };\n"
-    "layout(std430, binding = OIT_BIND_FRAGS) buffer Frags { uvec4 frags[]; };\n"
-    "layout(location = 11) uniform ivec2 u_size;\n"
-    "layout(location = 12) uniform ivec4 u_rect;\n"
-    TOTALS_BLOCK PASS2_RECT RECT_INDEX;
-
-static const char segment_main[] =
-    "void main() {\n"
-    "    ivec4 b = oit_pass2_rect();\n"
-    "    ivec2 px = b.xy + ivec2(gl_GlobalInvocationID.xy);\n"
-    "    if (px.x >= b.z || px.y >= b.w) return;\n"
-    "    uvec2 e = table[oit_rect_index(px, u_rect)];\n"
-    "    if (e.y == 0u) return;\n"
-    "    uint p = uint(px.y * u_size.x + px.x);\n"
-    "    oit_state s = oit_state_load(p);\n"
-    "    oit_segment_composite(s, e.x, e.y);\n"
-    "    s.nfrag += e.y;\n"
-    "    oit_state_store(p, s);\n"
-    "}\n";
-
-/* TOTALS_BLOCK's bytes, and its words the host names */
+/* glsl/firstk_totals.glsl's bytes, and its words the host names */
 #define TOTALS_BYTES 64
 enum { W_SPILL_LO = 1, W_GATE = 3, W_FRAME = 8, W_GROUPS = 12 };
 
 static const oit_glsl_program programs[OIT_FIRSTK_PROGS] = {
     [OIT_FIRSTK_FILL] = {"first-k capture fill",
-                         .fs = {oit_glsl_state_io, oit_capture_saturated, fill_fs}},
+                         .fs = {oit_glsl_state_io, oit_capture_saturated, oit_firstk_fill_fs}},
     [OIT_FIRSTK_STORE] = {"first-k capture store",
-                          .fs = {oit_glsl_state_io, oit_capture_saturated, store_fs}},
+                          .fs = {oit_glsl_state_io, oit_capture_saturated, oit_firstk_store_fs}},
     [OIT_FIRSTK_RESOLVE] = {"first-k capture resolve",
-                            .cs = {oit_glsl_composite, oit_glsl_state_io, resolve_cs}},
-    [OIT_FIRSTK_ALLOC] = {"first-k capture allocation", .cs = {alloc_cs}},
+                            .cs = {oit_glsl_composite, oit_glsl_state_io, oit_firstk_resolve_cs}},
+    [OIT_FIRSTK_ALLOC] = {"first-k capture allocation", .cs = {oit_firstk_alloc_cs}},
     [OIT_FIRSTK_SEGMENT] = {"first-k capture segment resolve",
-                            .cs = {oit_glsl_composite, oit_glsl_state_io, segment_cs,
-                                   oit_glsl_segment_composite, segment_main}},
+                            .cs = {oit_glsl_composite, oit_glsl_state_io, oit_firstk_segment_cs,
+                                   oit_glsl_segment_composite, oit_firstk_segment_main}},
     [OIT_FIRSTK_ROUTED_RESOLVE] = {"first-k capture routed resolve",
                                    .cs = {oit_glsl_composite, oit_glsl_state_io,
-                                          routed_resolve_cs}},
-    [OIT_FIRSTK_JUDGE] = {"first-k capture judge", .cs = {judge_cs}},
+                                          oit_firstk_routed_resolve_cs}},
+    [OIT_FIRSTK_JUDGE] = {"first-k capture judge", .cs = {oit_firstk_judge_cs}},
 };
+
+void oit_firstk_glsl_variants(oit_glsl_visit *visit, void *user)
+{
+    for (int i = 0; i < OIT_FIRSTK_PROGS; i++)
+        visit(user, &programs[i]);
+}
 
 void oit_firstk_route(oit_firstk *k, oit_stencil_target *t, GLuint fill)
 {

@@ -109,6 +109,8 @@ void oit_firstk_ended(oit_firstk *k);
 oit_status oit_firstk_init(oit_firstk *k, int K, oit_program_cache *pc,
                            void (*built)(void *built_ctx), void *built_ctx, oit_error *err);
 void oit_firstk_release(oit_firstk *k);
+/* Every program it can build, each once (glsl_program.h). */
+void oit_firstk_glsl_variants(oit_glsl_visit *visit, void *user);
 uint64_t oit_firstk_bytes(const oit_firstk *k);
 
 /* Pass 1 from now on through the stencil target t (its K samples a pixel

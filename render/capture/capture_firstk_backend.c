@@ -5,7 +5,6 @@
  * oit_capture_create_routed asked for it. */
 #include "render/capture/capture_backend.h"
 #include "render/capture/capture_firstk.h"
-#include "render/capture/capture_glsl.h"
 
 typedef struct firstk_backend {
     oit_firstk k;
@@ -31,11 +30,7 @@ static oit_status firstk_route(oit_capture *c, firstk_backend *b, int stencil_k,
 {
     oit_status s = oit_capture_route_init(c, &b->target, stencil_k, err);
     if (s == OIT_OK) {
-        const oit_glsl_program fill = {
-            "capture fill",
-            .fs = {b->target.by_copy ? "#define OIT_FIRSTK_PASS 1\n#define OIT_ROUTE_BY_COPY 1\n"
-                                     : "#define OIT_FIRSTK_PASS 1\n",
-                   oit_glsl_state_io, oit_capture_stencil_fs}};
+        const oit_glsl_program fill = oit_capture_routed_fill(1, b->target.by_copy);
         s = oit_glsl_programs_build(c->programs, &fill, 1, &b->fill, err);
     }
     if (s != OIT_OK)

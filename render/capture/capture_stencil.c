@@ -98,6 +98,19 @@ oit_status oit_stencil_choose_samples(int K, int *samples, oit_error *err)
 
 /* ---- the target ------------------------------------------------------------ */
 
+/* The target's programs: the routing set-up's and routing by copies'
+ * full-screen passes, and the self-test's read-back
+ * (glsl/stencil_dump.glsl). */
+enum { PROG_SETUP, PROG_COPY, PROG_DUMP, PROGS };
+extern const char oit_stencil_dump_cs[]; /* glsl/stencil_dump.glsl */
+static const oit_glsl_program programs[PROGS] = {
+    [PROG_SETUP] = {"stencil routing set-up",
+                    .vs = {oit_capture_fullscreen_vs}, .fs = {oit_capture_route_setup_fs}},
+    [PROG_COPY] = {"stencil routing by copies",
+                   .vs = {oit_capture_fullscreen_vs}, .fs = {oit_capture_route_copy_fs}},
+    [PROG_DUMP] = {"stencil self-test: read-back", .cs = {oit_stencil_dump_cs}},
+};
+
 oit_status oit_stencil_target_init(oit_stencil_target *t, int K, int samples,
                                    oit_program_cache *pc, oit_error *err)
 {
@@ -105,10 +118,7 @@ oit_status oit_stencil_target_init(oit_stencil_target *t, int K, int samples,
     t->pc = pc;
     t->K = K;
     t->samples = samples;
-    const char *vs[] = {oit_glsl_version, oit_capture_fullscreen_vs, NULL};
-    const char *fs[] = {oit_glsl_version, "void main() {}\n", NULL};
-    oit_status s = oit_program_cache_build(pc, "stencil routing set-up", vs, fs, NULL,
-                                           &t->init_prog, err);
+    oit_status s = oit_glsl_programs_build(pc, &programs[PROG_SETUP], 1, &t->init_prog, err);
     if (s == OIT_OK) {
         glCreateFramebuffers(1, &t->fbo);
         glCreateVertexArrays(1, &t->vao);
@@ -118,11 +128,8 @@ oit_status oit_stencil_target_init(oit_stencil_target *t, int K, int samples,
 
 oit_status oit_stencil_target_by_copy(oit_stencil_target *t, oit_error *err)
 {
-    const char *vs[] = {oit_glsl_version, oit_capture_fullscreen_vs, NULL};
-    const char *fs[] = {oit_glsl_version, oit_capture_route_copy_fs, NULL};
     t->by_copy = 1;
-    return oit_program_cache_build(t->pc, "stencil routing by copies", vs, fs, NULL,
-                                   &t->copy_prog, err);
+    return oit_glsl_programs_build(t->pc, &programs[PROG_COPY], 1, &t->copy_prog, err);
 }
 
 void oit_stencil_target_release(oit_stencil_target *t)
@@ -281,20 +288,6 @@ uint64_t oit_stencil_target_bytes(const oit_stencil_target *t)
 
 /* ---- the self-test -------------------------------------------------------- */
 
-/* Each pixel's K samples' primitives (.y without the facing bit), in GL
- * rows, pixel by pixel. */
-static const char dump_cs[] =
-    "layout(local_size_x = 1) in;\n"
-    "layout(binding = OIT_TEX_SAMPLES) uniform usampler2DMS u_samples;\n"
-    "layout(std430, binding = OIT_BIND_OUT) writeonly buffer Out { uint prims[]; };\n"
-    "layout(location = 10) uniform int u_K;\n"
-    "void main() {\n"
-    "    ivec2 px = ivec2(gl_WorkGroupID.xy);\n"
-    "    uint p = uint(px.y) * gl_NumWorkGroups.x + uint(px.x);\n"
-    "    for (int i = 0; i < u_K; i++)\n"
-    "        prims[p * uint(u_K) + uint(i)] = texelFetch(u_samples, px, i).y & 0x7fffffffu;\n"
-    "}\n";
-
 /* Every sample of the target OIT_STENCIL_UNWRITTEN, so that one no fragment
  * reached reads as lost rather than as whatever the memory held. */
 static void clear_samples(oit_stencil_target *t)
@@ -328,9 +321,7 @@ static oit_status read_samples(oit_stencil_target *t, const oit_stencil_probe *p
                                uint32_t *prims, oit_error *err)
 {
     GLuint prog = 0, buf = 0;
-    const char *src[] = {oit_glsl_version, dump_cs, NULL};
-    oit_status s = oit_program_cache_build(t->pc, "stencil self-test: read-back", NULL, NULL,
-                                           src, &prog, err);
+    oit_status s = oit_glsl_programs_build(t->pc, &programs[PROG_DUMP], 1, &prog, err);
     if (s != OIT_OK)
         return s;
     GLsizeiptr bytes = (GLsizeiptr)sizeof *prims * p->width * p->height * p->K;
@@ -399,6 +390,16 @@ oit_status oit_capture_route_init(const oit_capture *c, oit_stencil_target *t, i
     return s;
 }
 
+oit_glsl_program oit_capture_routed_fill(int firstk_pass, int by_copy)
+{
+    static const char *const defines[2][2] = {
+        {"", "#define OIT_ROUTE_BY_COPY 1\n"},
+        {"#define OIT_FIRSTK_PASS 1\n",
+         "#define OIT_FIRSTK_PASS 1\n#define OIT_ROUTE_BY_COPY 1\n"}};
+    return (oit_glsl_program){"capture fill", .fs = {defines[firstk_pass != 0][by_copy != 0],
+                                                     oit_glsl_state_io, oit_capture_stencil_fs}};
+}
+
 /* ---- the stencil backend (OIT_CAPTURE_STENCIL) ------------------------------ */
 
 /* Its K-slot fills routed into the target; wide batches in tiles of array
@@ -411,14 +412,38 @@ typedef struct stencil_backend {
     uint64_t out_cap;
 } stencil_backend;
 
+/* Its K-slot fill, routed (by copies where by_copy), and the resolve of
+ * the samples. */
+static void stencil_programs(int by_copy, oit_glsl_program programs[2])
+{
+    programs[0] = oit_capture_routed_fill(0, by_copy);
+    programs[1] = (oit_glsl_program){"capture resolve",
+                                     .cs = {"#define OIT_STENCIL 1\n", oit_glsl_composite,
+                                            oit_glsl_state_io, oit_capture_resolve_cs}};
+}
+
+void oit_capture_stencil_glsl_variants(oit_glsl_visit *visit, void *user)
+{
+    for (int i = 0; i < PROGS; i++)
+        visit(user, &programs[i]);
+    oit_glsl_program p[2];
+    stencil_programs(0, p);
+    visit(user, &p[1]); /* the same resolve either way */
+    for (int by_copy = 0; by_copy < 2; by_copy++)
+        for (int firstk_pass = 0; firstk_pass < 2; firstk_pass++) {
+            oit_glsl_program fill = oit_capture_routed_fill(firstk_pass, by_copy);
+            visit(user, &fill);
+        }
+}
+
 static oit_status stencil_create(oit_capture *c, int stencil_k, oit_error *err)
 {
     stencil_backend *b = c->be;
     oit_status s = oit_capture_route_init(c, &b->target, stencil_k, err);
+    oit_glsl_program slots[2];
+    stencil_programs(b->target.by_copy, slots);
     if (s == OIT_OK)
-        s = oit_capture_slots_init(&b->slots, c->programs,
-                                   b->target.by_copy ? "#define OIT_ROUTE_BY_COPY 1\n" : "",
-                                   oit_capture_stencil_fs, "#define OIT_STENCIL 1\n", err);
+        s = oit_capture_slots_init(&b->slots, c->programs, slots, err);
     c->routed_k = stencil_k;
     if (s == OIT_OK)
         s = oit_capture_stencil_self_test(c, &b->target, b->slots.fill, err);

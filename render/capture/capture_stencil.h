@@ -10,6 +10,7 @@
 #include "render/capture/capture_stencil_probe.h"
 #include "render/gl/gl_util.h"
 #include "render/gl/gpu_mesh.h"
+#include "render/gl/glsl_program.h"
 #include "render/gl/program_cache.h"
 
 typedef struct oit_stencil_target {
@@ -66,5 +67,10 @@ typedef struct oit_stencil_fill {
  * driver routes; OIT_ERR_UNSUPPORTED saying how it does not. */
 oit_status oit_stencil_self_test(oit_stencil_target *t, const oit_stencil_probe *p,
                                  const oit_stencil_fill *f, oit_error *err);
+
+/* Every program of the target and the stencil backend, and every routed
+ * fill (oit_capture_routed_fill: the stencil backend's and first-K's pass
+ * 1, routed or by copies), each once (glsl_program.h). */
+void oit_capture_stencil_glsl_variants(oit_glsl_visit *visit, void *user);
 
 #endif

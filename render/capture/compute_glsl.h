@@ -1,14 +1,18 @@
-/* The compute capture's shader stages (capture_compute.h). */
+/* The compute capture's shader stages (capture_compute.h): the files
+ * glsl/compute_*.glsl, embedded at build time (CMakeLists.txt), and the
+ * programs made of them (compute_glsl.c). */
 #ifndef OIT_RENDER_COMPUTE_GLSL_H
 #define OIT_RENDER_COMPUTE_GLSL_H
 
 /* Tile side in pixels: a work group of the tile pass. */
 #define OIT_COMPUTE_TILE 16
-/* uvec4s a triangle record takes (compute_glsl.c has the layout). */
+/* uvec4s a triangle record takes (glsl/compute_common.glsl has the
+ * layout). */
 #define OIT_COMPUTE_RECORD_WORDS 10
-/* Storage blocks a batch's records may span (compute_glsl.c: the block
- * of a record by an if-chain); a program gets "#define CS_BLOCKS n\n"
- * (n <= this, what the driver's limits allow) before its other parts. */
+/* Storage blocks a batch's records may span (glsl/compute_recs_read.glsl:
+ * the block of a record by an if-chain); a program that reads or writes
+ * records gets oit_compute_blocks_define's "#define CS_BLOCKS n\n" (n <=
+ * this, what the driver's limits allow) before its other parts. */
 #define OIT_COMPUTE_BLOCKS 8
 /* Fragments a pixel keeps in registers per sweep. */
 #define OIT_COMPUTE_SWEEP 16

@@ -39,74 +39,26 @@ void oit_dfb_set_opaque(oit_dfb *d, const oit_opaque_depth *o)
     d->opaque.keyed = 0; /* each frame's own (opaque_pass) */
 }
 
-static const char count_fs[] =
-    "layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };\n"
-    "void main() {\n"
-    "    if (oit_clipped()) discard;\n"
-    "    if (oit_behind_opaque()) discard;\n"
-    "    atomicAdd(counts[oit_pixel_index()], 1u);\n"
-    "}\n";
-
-/* The count pass ran the same rasterization, so every fragment finds its
- * slot; the bounds check only guards against a driver breaking invariance.
- * The store holds one band of rows (the scissor) from offset u_base on. */
-static const char store_fs[] =
-    "layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };\n"
-    "layout(std430, binding = OIT_BIND_OFFSETS) readonly buffer Offsets { uint offsets[]; };\n"
-    "layout(std430, binding = OIT_BIND_FRAGS) writeonly buffer Frags { uvec4 frags[]; };\n"
-    "layout(location = 12) uniform uint u_base;\n"
-    "void main() {\n"
-    "    if (oit_clipped()) discard;\n"
-    "    if (oit_behind_opaque()) discard;\n"
-    "    uint p = oit_pixel_index();\n"
-    "    uint c = atomicAdd(counts[p], 0xffffffffu);\n"
-    "    uint slot = offsets[p] + c - 1u;\n"
-    "    if (c != 0u && slot < offsets[p + 1u] && slot >= u_base) frags[slot - u_base] = oit_fragment();\n"
-    "}\n";
-
-/* Both resolves' declarations: the band of rows u_rows whose fragments
- * start at offset u_base. */
-#define RESOLVE_DECLS                                                                      \
-    "layout(local_size_x = 8, local_size_y = 8) in;\n"                                     \
-    "layout(location = 11) uniform ivec2 u_size;\n"                                        \
-    "layout(location = 12) uniform uint u_base;\n"                                         \
-    "layout(location = 13) uniform ivec2 u_rows;\n"                                        \
-    "layout(std430, binding = OIT_BIND_OFFSETS) readonly buffer Offsets { uint offsets[]; };\n" \
-    "layout(std430, binding = OIT_BIND_FRAGS) buffer Frags { uvec4 frags[]; };\n"
-
-/* Both resolves' main: each pixel's segment composited into s, which KEEP
- * (GLSL) puts where the resolve leaves it. */
-#define RESOLVE_MAIN(KEEP)                                                                 \
-    "void main() {\n"                                                                      \
-    "    ivec2 px = ivec2(gl_GlobalInvocationID.xy) + ivec2(0, u_rows.x);\n"               \
-    "    if (px.x >= u_size.x || px.y >= u_rows.y) return;\n"                             \
-    "    uint p = uint(px.y * u_size.x + px.x);\n"                                         \
-    "    oit_state s = oit_state_begin();\n"                                               \
-    "    oit_segment_composite(s, offsets[p] - u_base, offsets[p + 1u] - offsets[p]);\n"  \
-    KEEP                                                                                   \
-    "}\n"
-
-static const char resolve_cs[] =
-    RESOLVE_DECLS
-    "layout(std430, binding = OIT_BIND_OUT) writeonly buffer Out { vec4 out_rgba[]; };\n";
-
-static const char resolve_main_cs[] = RESOLVE_MAIN("    out_rgba[p] = oit_state_final(s);\n");
-
-/* The same resolve, leaving each pixel's (C, T) state in oit_glsl_state_io's
- * buffer instead of its colour over the background. */
-static const char resolve_state_cs[] = RESOLVE_DECLS;
-
-static const char resolve_state_main_cs[] = RESOLVE_MAIN("    oit_state_store(p, s);\n");
+/* The passes' stages, glsl/dfb_*.glsl (CMakeLists.txt). The resolves
+ * composite a band of rows; one leaves colours, the other the state. */
+extern const char oit_dfb_count_fs[], oit_dfb_store_fs[], oit_dfb_resolve_cs[],
+    oit_dfb_resolve_main[], oit_dfb_resolve_state_cs[], oit_dfb_resolve_state_main[];
 
 static const oit_glsl_program programs[PROG_N] = {
-    [PROG_COUNT] = {"DFB count pass", .fs = {count_fs}},
-    [PROG_STORE] = {"DFB store pass", .fs = {store_fs}},
-    [PROG_RESOLVE] = {"DFB resolve", .cs = {oit_glsl_composite, resolve_cs,
-                                            oit_glsl_segment_composite, resolve_main_cs}},
+    [PROG_COUNT] = {"DFB count pass", .fs = {oit_dfb_count_fs}},
+    [PROG_STORE] = {"DFB store pass", .fs = {oit_dfb_store_fs}},
+    [PROG_RESOLVE] = {"DFB resolve", .cs = {oit_glsl_composite, oit_dfb_resolve_cs,
+                                            oit_glsl_segment_composite, oit_dfb_resolve_main}},
     [PROG_STATE] = {"DFB resolve to state",
-                    .cs = {oit_glsl_composite, oit_glsl_state_io, resolve_state_cs,
-                           oit_glsl_segment_composite, resolve_state_main_cs}},
+                    .cs = {oit_glsl_composite, oit_glsl_state_io, oit_dfb_resolve_state_cs,
+                           oit_glsl_segment_composite, oit_dfb_resolve_state_main}},
 };
+
+void oit_dfb_glsl_variants(oit_glsl_visit *visit, void *user)
+{
+    for (int i = 0; i < PROG_N; i++)
+        visit(user, &programs[i]);
+}
 
 oit_status oit_dfb_create(oit_dfb **out, oit_error *err)
 {
@@ -241,14 +193,14 @@ static void band_pass(oit_dfb *d, GLuint resolve, const oit_gpu_mesh *const *mes
     glScissor(0, y0, v->width, y1 - y0);
     glBindBufferRange(GL_SHADER_STORAGE_BUFFER, OIT_BIND_FRAGS, d->buf[BUF_FRAGS], 0,
                       (GLsizeiptr)(frags ? frags * 16 : 16));
-    glProgramUniform1ui(d->prog[PROG_STORE], 12, base);
+    glProgramUniform1ui(d->prog[PROG_STORE], OIT_LOC_BASE, base);
     oit_gpu_timer_mark(d->timer, OIT_GPU_PASS2);
     draw_meshes(d->prog[PROG_STORE], meshes, n);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     oit_gpu_timer_mark(d->timer, OIT_GPU_RESOLVE);
     glUseProgram(resolve);
-    glProgramUniform1ui(resolve, 12, base);
-    glProgramUniform2i(resolve, 13, y0, y1);
+    glProgramUniform1ui(resolve, OIT_LOC_BASE, base);
+    glProgramUniform2i(resolve, OIT_LOC_ROWS, y0, y1);
     glDispatchCompute(oit_gl_groups((uint64_t)v->width, 8), oit_gl_groups((uint64_t)(y1 - y0), 8), 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glDisable(GL_SCISSOR_TEST);

@@ -23,6 +23,8 @@ typedef struct oit_dfb oit_dfb;
 
 oit_status oit_dfb_create(oit_dfb **out, oit_error *err);
 void oit_dfb_destroy(oit_dfb *d);
+/* Its programs, for the offline check (glsl_program.h). */
+void oit_dfb_glsl_variants(oit_glsl_visit *visit, void *user);
 
 /* Renders meshes[0..n) as one scene into out: empty (allocated by the call;
  * free with oit_image_free) or an image of the view's size, written in place

@@ -11,12 +11,13 @@ struct oit_opaque_keys {
     int width, height; /* the frame's */
 };
 
-static const char keys_fs[] =
-    "layout(location = 0) out float o_key;\n"
-    "void main() {\n"
-    "    if (v_opaque == 0u || oit_clipped()) discard;\n"
-    "    o_key = uintBitsToFloat(oit_fragment_key());\n"
-    "}\n";
+extern const char oit_opaque_keys_fs[]; /* glsl/opaque_keys.glsl */
+static const oit_glsl_program program = {"opaque keys", .fs = {oit_opaque_keys_fs}};
+
+void oit_opaque_keys_glsl_variants(oit_glsl_visit *visit, void *user)
+{
+    visit(user, &program);
+}
 
 oit_status oit_opaque_keys_create(oit_opaque_keys **out, oit_error *err)
 {
@@ -24,8 +25,7 @@ oit_status oit_opaque_keys_create(oit_opaque_keys **out, oit_error *err)
     oit_opaque_keys *k = calloc(1, sizeof *k);
     if (!k)
         return oit_error_set(err, OIT_ERR_NOMEM, "opaque keys: out of memory");
-    const oit_glsl_program table[1] = {{"opaque keys", .fs = {keys_fs}}};
-    oit_status st = oit_glsl_programs_build(NULL, table, 1, &k->prog, err);
+    oit_status st = oit_glsl_programs_build(NULL, &program, 1, &k->prog, err);
     if (st != OIT_OK) {
         oit_opaque_keys_destroy(k);
         return st;

@@ -30,6 +30,8 @@ typedef struct oit_opaque_keys oit_opaque_keys;
 
 oit_status oit_opaque_keys_create(oit_opaque_keys **out, oit_error *err);
 void oit_opaque_keys_destroy(oit_opaque_keys *k);
+/* Its program, for the offline check (glsl_program.h). */
+void oit_opaque_keys_glsl_variants(oit_glsl_visit *visit, void *user);
 
 /* Starts a frame of view v. On (returns 1 in *on) when v's shading has
  * opaque triangles (oit_shading_opaque): the keys are cleared to +inf and

@@ -15,25 +15,15 @@ struct oit_opaque_tiles {
     double view[16], proj[16];
 };
 
-static const char tiles_cs[] =
-    "layout(local_size_x = 8, local_size_y = 8) in;\n"
-    "layout(binding = OIT_TEX_OPAQUE_DEPTH) uniform sampler2D u_opaque_depth;\n"
-    "layout(std430, binding = OIT_BIND_OPAQUE_TILES) "
-    "writeonly buffer Tiles { float tile_max[]; };\n"
-    "uniform ivec2 u_size;\n"
-    "uniform ivec2 u_origin;\n"
-    "uniform ivec2 u_tiles;\n"
-    "void main() {\n"
-    "    ivec2 t = ivec2(gl_GlobalInvocationID.xy);\n"
-    "    if (t.x >= u_tiles.x || t.y >= u_tiles.y) return;\n"
-    "    ivec2 p0 = t * " OIT_GLSL_STR(OIT_OPAQUE_TILE) ";\n"
-    "    ivec2 p1 = min(p0 + " OIT_GLSL_STR(OIT_OPAQUE_TILE) ", u_size);\n"
-    "    float m = 0.0;\n"
-    "    for (int y = p0.y; y < p1.y; y++)\n"
-    "        for (int x = p0.x; x < p1.x; x++)\n"
-    "            m = max(m, texelFetch(u_opaque_depth, ivec2(x, y) + u_origin, 0).r);\n"
-    "    tile_max[t.y * u_tiles.x + t.x] = m;\n"
-    "}\n";
+extern const char oit_opaque_tiles_cs[]; /* glsl/opaque_tiles.glsl */
+static const oit_glsl_program program = {
+    "opaque depth tiles",
+    .cs = {"#define OIT_OPAQUE_TILE " OIT_GLSL_STR(OIT_OPAQUE_TILE) "\n", oit_opaque_tiles_cs}};
+
+void oit_opaque_tiles_glsl_variants(oit_glsl_visit *visit, void *user)
+{
+    visit(user, &program);
+}
 
 oit_status oit_opaque_tiles_create(oit_opaque_tiles **out, oit_error *err)
 {
@@ -41,8 +31,7 @@ oit_status oit_opaque_tiles_create(oit_opaque_tiles **out, oit_error *err)
     oit_opaque_tiles *t = calloc(1, sizeof *t);
     if (!t)
         return oit_error_set(err, OIT_ERR_NOMEM, "opaque tiles: out of memory");
-    const char *cs[] = {oit_glsl_version, tiles_cs, NULL};
-    oit_status st = oit_gl_program_compute("opaque depth tiles", cs, &t->prog, err);
+    oit_status st = oit_glsl_programs_build(NULL, &program, 1, &t->prog, err);
     if (st != OIT_OK) {
         free(t);
         return st;

@@ -26,6 +26,8 @@ typedef struct oit_opaque_tiles oit_opaque_tiles;
 
 oit_status oit_opaque_tiles_create(oit_opaque_tiles **out, oit_error *err);
 void oit_opaque_tiles_destroy(oit_opaque_tiles *t);
+/* Its program, for the offline check (glsl_program.h). */
+void oit_opaque_tiles_glsl_variants(oit_glsl_visit *visit, void *user);
 /* Starts a frame of view's size: with o enabled, reads the tiles of the
  * texture bound at unit OIT_TEX_OPAQUE_DEPTH (texel of pixel (0, 0) at
  * o->origin); else nothing is behind. Needs no buffer bindings of the

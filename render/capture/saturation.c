@@ -1,6 +1,7 @@
 /* Saturated screen tiles (saturation.h). */
 #include "render/capture/saturation.h"
 
+#include "render/capture/capture_glsl.h"
 #include "render/gl/frag_glsl.h"
 
 #include <stdlib.h>
@@ -19,26 +20,16 @@ struct oit_saturation {
     int w, h, tx, ty;
 };
 
-/* One workgroup per tile: the largest channel of T over its pixels. T >= 0,
- * so its float bits order like the floats and atomicMax on uint works. */
-static const char tiles_cs[] =
-    "layout(local_size_x = 16, local_size_y = 16) in;\n"
-    "layout(std430, binding = OIT_BIND_SUMS) writeonly buffer Tiles { uint tiles[]; };\n"
-    "layout(location = 0) uniform ivec2 u_size;\n"
-    "layout(location = 1) uniform ivec3 u_tile0;\n" /* x, y of the first tile; tiles a row */
-    "shared uint m;\n"
-    "void main() {\n"
-    "    if (gl_LocalInvocationIndex == 0u) m = 0u;\n"
-    "    barrier();\n"
-    "    ivec2 tile = ivec2(gl_WorkGroupID.xy) + u_tile0.xy;\n"
-    "    ivec2 px = tile * 16 + ivec2(gl_LocalInvocationID.xy);\n"
-    "    if (px.x < u_size.x && px.y < u_size.y) {\n"
-    "        vec3 T = oit_state_T(uint(px.y * u_size.x + px.x));\n"
-    "        atomicMax(m, floatBitsToUint(max(T.x, max(T.y, T.z))));\n"
-    "    }\n"
-    "    barrier();\n"
-    "    if (gl_LocalInvocationIndex == 0u) tiles[tile.y * u_tile0.z + tile.x] = m;\n"
-    "}\n";
+extern const char oit_saturation_cs[]; /* glsl/saturation.glsl */
+static const oit_glsl_program program = {
+    "saturation tiles",
+    .cs = {"#define OIT_SATURATION_TILE " OIT_GLSL_STR(OIT_SATURATION_TILE) "\n", oit_capture_mode,
+           oit_glsl_state_io, oit_saturation_cs}};
+
+void oit_saturation_glsl_variants(oit_glsl_visit *visit, void *user)
+{
+    visit(user, &program);
+}
 
 oit_status oit_saturation_create(oit_saturation **out, oit_error *err)
 {
@@ -46,9 +37,7 @@ oit_status oit_saturation_create(oit_saturation **out, oit_error *err)
     oit_saturation *s = calloc(1, sizeof *s);
     if (!s)
         return oit_error_set(err, OIT_ERR_NOMEM, "saturation tiles: out of memory");
-    const char *cs[] = {oit_glsl_version, "uniform int u_mode;\n", oit_glsl_state_io, tiles_cs,
-                        NULL};
-    oit_status st = oit_gl_program_compute("saturation tiles", cs, &s->prog, err);
+    oit_status st = oit_glsl_programs_build(NULL, &program, 1, &s->prog, err);
     if (st != OIT_OK) {
         oit_saturation_destroy(s);
         return st;
@@ -182,8 +171,8 @@ oit_status oit_saturation_update(oit_saturation *s, unsigned state, const int re
         return OIT_OK;
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(s->prog);
-    glProgramUniform2i(s->prog, 0, s->w, s->h);
-    glProgramUniform3i(s->prog, 1, t[0], t[1], s->tx);
+    glProgramUniform2i(s->prog, OIT_LOC_TILES_SIZE, s->w, s->h);
+    glProgramUniform3i(s->prog, OIT_LOC_TILE0, t[0], t[1], s->tx);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_STATE, state);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_SUMS, s->tiles);
     glDispatchCompute((GLuint)(t[2] - t[0] + 1), (GLuint)(t[3] - t[1] + 1), 1);

@@ -18,6 +18,7 @@
 #define OIT_RENDER_SATURATION_H
 
 #include "render/gl/gl_util.h"
+#include "render/gl/glsl_program.h"
 #include "render/gl/host_wait.h"
 
 #define OIT_SATURATION_TILE 16
@@ -26,6 +27,8 @@ typedef struct oit_saturation oit_saturation;
 
 oit_status oit_saturation_create(oit_saturation **out, oit_error *err);
 void oit_saturation_destroy(oit_saturation *s);
+/* Its program, for the offline check (glsl_program.h). */
+void oit_saturation_glsl_variants(oit_glsl_visit *visit, void *user);
 
 /* Starts a frame of w x h pixels, in the shading whose state layout the
  * capture's buffer has (translucent or not: frag_glsl.h): no tile saturated. */
