@@ -1,9 +1,11 @@
 #!/bin/sh
-# Binding points are named, never numbered (render/gl/glsl_bindings.h): a GLSL
-# layout(binding = N) or a glBindBufferBase(..., N, ...) with a number for N
-# agrees with the other side only until someone renumbers the list. Fails naming each
-# file:line that spells a storage binding, texture unit or image unit as a
-# number.
+# Binding points and locations are named, never numbered
+# (render/gl/glsl_bindings.h, glsl_locations.h): a GLSL layout(binding = N)
+# or layout(location = N), a glBindBufferBase(..., N, ...) or a
+# glProgramUniform*(prog, N, ...) with a number for N agrees with the other
+# side only until someone renumbers the list. Fails naming each file:line,
+# of the C sources and the GLSL files (render/*/glsl/*.glsl), that spells a
+# storage binding, texture unit, image unit or location as a number.
 # usage: test_glsl_bindings.sh SOURCE_DIR [FOLDER...]
 #          FOLDERs under SOURCE_DIR; default: render tests liboit
 #        test_glsl_bindings.sh --self-test TMP_DIR
@@ -19,7 +21,13 @@ if [ "$1" = --self-test ]; then
     mkdir -p "$dir/render"
     # digits through variables: a grep of the tree for numeric GLSL
     # bindings (binding = digit) then finds none in this script
-    three=3 zero=0
+    three=3 zero=0 two=2
+    mkdir -p "$dir/render/glsl"
+    cat >"$dir/render/glsl/planted.glsl" <<EOF
+layout(std430, binding = $three) buffer Frags { uvec4 frags[]; };
+layout(location = $two) uniform int u_k;
+layout(location = OIT_LOC_K) uniform int u_named;
+EOF
     cat >"$dir/render/planted.c" <<EOF
 static const char fs[] =
     "layout(std430, binding = $three) buffer Frags { uvec4 frags[]; };\n"
@@ -32,19 +40,23 @@ void f(void)
     glBindTextureUnit(1, tex);
     glBindSampler(7, sampler);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BIND_OUT, buf); /* named: fine */
+    glProgramUniform1i(prog, $two, 1);
+    glProgramUniform1i(prog, OIT_LOC_K, 1); /* named: fine */
 }
 EOF
     if out=$(sh "$0" "$dir" render 2>&1); then
         die "planted literals passed: $out"
     fi
-    for line in 2 3 6 7 8 9 10; do
+    for at in planted.c:2 planted.c:3 planted.c:6 planted.c:7 planted.c:8 planted.c:9 \
+        planted.c:10 planted.c:12 glsl/planted.glsl:1 glsl/planted.glsl:2; do
         case $out in
-        *"render/planted.c:$line:"*) ;;
-        *) die "planted literal at render/planted.c:$line not named: $out" ;;
+        *"render/$at:"*) ;;
+        *) die "planted literal at render/$at not named: $out" ;;
         esac
     done
     case $out in
-    *"render/planted.c:11:"*) die "a named binding was reported: $out" ;;
+    *"render/planted.c:11:"* | *"render/planted.c:13:"* | *"planted.glsl:3:"*)
+        die "a named binding or location was reported: $out" ;;
     esac
     rm -rf "$dir"
     echo "ok: every planted literal is named"
@@ -61,13 +73,22 @@ done
 # GLSL: layout(..., binding = N). C: the index argument of the calls that
 # bind by number (the first, or the second after the target). One line at a
 # time: a call that breaks before its index is not seen.
-hits=$(grep -rnE --include='*.c' --include='*.h' \
+# Locations too, but not in tests/: a test's own shaders stand for a
+# caller's program (its viewer's), whose locations are its own.
+located=$(for d in "$@"; do case $d in tests | tests/*) ;; *) echo "$d" ;; esac; done)
+hits=$({
+    # shellcheck disable=SC2086
+    [ -z "$located" ] || grep -rnE --include='*.c' --include='*.h' --include='*.glsl' \
+        -e 'location[[:space:]]*=[[:space:]]*[0-9]' \
+        -e 'glProgramUniform[[:alnum:]]*[[:space:]]*\([^,]*,[[:space:]]*[0-9]' $located || true
+    grep -rnE --include='*.c' --include='*.h' --include='*.glsl' \
     -e 'binding[[:space:]]*=[[:space:]]*[0-9]' \
     -e '(glBindBufferBase|glBindBufferRange)[[:space:]]*\([^,]*,[[:space:]]*[0-9]' \
     -e '(glBindImageTexture|glBindTextureUnit|glBindSampler)[[:space:]]*\([[:space:]]*[0-9]' \
-    "$@" || true)
+    "$@" || true
+})
 if [ -n "$hits" ]; then
-    printf '%s\n' "$hits" | sed 's/^\([^:]*:[0-9]*\):[[:space:]]*\(.*\)/FAIL: \1: a binding point as a number (name it in render\/glsl_bindings.h): \2/' >&2
+    printf '%s\n' "$hits" | sed 's/^\([^:]*:[0-9]*\):[[:space:]]*\(.*\)/FAIL: \1: a binding point or location as a number (name it in render\/gl\/glsl_bindings.h or glsl_locations.h): \2/' >&2
     exit 1
 fi
-echo "ok: no numeric binding point in $*"
+echo "ok: no numeric binding point or location in $*"
