@@ -59,7 +59,7 @@
  *                   needs none of the caller's bindings (opaque_tiles.h).
  * OIT_BIND_RECS1..7 the compute capture's triangle records past the first
  *                   binding's (which is OIT_BIND_FRAGS): blocks 1..7 of a
- *                   batch too large for one binding (compute_glsl.c,
+ *                   batch too large for one binding (glsl/compute_recs_*.glsl,
  *                   set-up, scatter and sweep). Consecutive numbers.
  *
  * OIT_TEX_ACCUM     F2B's accumulation (final pass) and its copy after the
