@@ -53,14 +53,3 @@ const char *oit_status_name(oit_status s)
     }
     return "unknown status";
 }
-
-int oit_status_exit_code(oit_status s)
-{
-    switch (s) {
-    case OIT_OK: return 0;
-    case OIT_ERR_ARGUMENT: return 2;
-    case OIT_ERR_FORMAT:
-    case OIT_ERR_UNSUPPORTED: return 3;
-    default: return 1;
-    }
-}

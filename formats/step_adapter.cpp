@@ -107,7 +107,7 @@ oit_status charge(Ctx &c, size_t bytes, const char *what)
 }
 
 // Open CASCADE reports through its default messenger, to stdout: a tool's
-// stdout is its data (oitprep --stats -), so the reports are dropped. The
+// stdout may be its data (oitprep's statistics), so the reports are dropped. The
 // messenger is Open CASCADE's own global, which only this adapter uses.
 void quiet_open_cascade()
 {

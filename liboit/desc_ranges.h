@@ -29,7 +29,6 @@ typedef enum oit_desc_type {
 typedef struct oit_desc_range {
     const char *field;  /* oit_renderer_desc's field, as its error names it */
     size_t offset;      /* offsetof(oit_renderer_desc, field) */
-    size_t name_offset; /* offsetof(oit_renderer_desc_names, field) */
     oit_desc_type type;
     /* accepted: lo..hi (F32: [lo, hi)), and 0 where zero_default */
     double lo, hi;
@@ -40,7 +39,7 @@ typedef struct oit_desc_range {
     const char *expect; /* what the error says was expected */
 } oit_desc_range;
 
-#define OIT_DESC_ROW(f, t) #f, offsetof(oit_renderer_desc, f), offsetof(oit_renderer_desc_names, f), t
+#define OIT_DESC_ROW(f, t) #f, offsetof(oit_renderer_desc, f), t
 
 static const oit_desc_range oit_desc_ranges[] = {
     {OIT_DESC_ROW(K, OIT_DESC_U32), OIT_CAPTURE_K_MIN, OIT_CAPTURE_K_MAX, 1, 0, 1,

@@ -30,12 +30,27 @@ void oit_renderer_destroy(oit_renderer *r)
     free(r);
 }
 
-/* liboit's spelling of the streamer's settings onto oit_streamer_desc, the
- * one place it is built: the streamer checks the values
- * (oit_streamer_desc_check) and each scene adds its K and share. */
+/* How the streamer's errors and figures name its settings: as the fields
+ * of oit_renderer_desc they come from (stream_desc). */
+static const oit_streamer_names field_names = {
+    .upload_budget = "oit_renderer_desc.upload_budget",
+    .slot_budget = "oit_renderer_desc.slot_budget",
+    .cache_budget = "oit_renderer_desc.cache_budget",
+    .gpu_budget = "oit_renderer_desc.gpu_budget",
+    .epsilon = "oit_renderer_desc.epsilon",
+    .pack = "oit_renderer_desc.pack",
+    .schedule = "oit_renderer_desc.schedule",
+    .cache_off = "OIT_RENDER_CACHE_OFF",
+    .store_budget = "oit_renderer_desc.store_budget",
+    .capture = "oit_renderer_desc.capture"};
+
+/* liboit's settings onto oit_streamer_desc, the one place it is built: the
+ * streamer checks the values (oit_streamer_desc_check) and each scene adds
+ * its K and share. */
 static void stream_desc(const oit_renderer_desc *d, oit_streamer_desc *sd)
 {
     memset(sd, 0, sizeof *sd);
+    sd->names = &field_names;
     _Static_assert((int)OIT_RENDER_CAPTURE_ARRAY == (int)OIT_CAPTURE_ARRAY &&
                        (int)OIT_RENDER_CAPTURE_STENCIL == (int)OIT_CAPTURE_STENCIL &&
                        (int)OIT_RENDER_CAPTURE_AUTO == (int)OIT_CAPTURE_AUTO &&
@@ -65,14 +80,9 @@ static void stream_desc(const oit_renderer_desc *d, oit_streamer_desc *sd)
     sd->frames = d->frames;
 }
 
-static const char *spelt(const char *given, const char *field)
-{
-    return given ? given : field;
-}
-
 /* One row of desc_ranges.h that liboit checks, on an integer field. */
 static oit_status check_row(const oit_renderer_desc *d, const oit_desc_range *row,
-                            const oit_renderer_desc_names *n, oit_error *err)
+                            oit_error *err)
 {
     const char *p = (const char *)d + row->offset;
     long long v;
@@ -87,37 +97,21 @@ static oit_status check_row(const oit_renderer_desc *d, const oit_desc_range *ro
     }
     if ((v == 0 && row->zero_default) || (v >= (long long)row->lo && v <= (long long)row->hi))
         return OIT_OK;
-    const char *given;
-    memcpy(&given, (const char *)n + row->name_offset, sizeof given);
-    char own[64];
-    snprintf(own, sizeof own, "oit_renderer_desc.%s", row->field);
-    return oit_error_set(err, OIT_ERR_ARGUMENT, "%s = %lld: expected %s", spelt(given, own), v,
-                         row->expect);
+    return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_desc.%s = %lld: expected %s",
+                         row->field, v, row->expect);
 }
 
 /* liboit's own checks (the rows of desc_ranges.h it owns), then the
  * streamer's (oit_streamer_desc_check) on the descriptor stream_desc
- * spells, under the caller's names. */
-oit_status oit_renderer_desc_check(const oit_renderer_desc *d, const oit_renderer_desc_names *names,
-                                   oit_error *err)
+ * builds, which names the fields as liboit's. */
+oit_status oit_renderer_desc_check(const oit_renderer_desc *d, oit_error *err)
 {
-    static const oit_renderer_desc_names none = {0};
-    const oit_renderer_desc_names *n = names ? names : &none;
     for (size_t i = 0; i < OIT_DESC_RANGES; i++)
-        if (oit_desc_ranges[i].liboit_checks && check_row(d, &oit_desc_ranges[i], n, err) != OIT_OK)
+        if (oit_desc_ranges[i].liboit_checks && check_row(d, &oit_desc_ranges[i], err) != OIT_OK)
             return OIT_ERR_ARGUMENT;
     oit_streamer_desc sd;
     stream_desc(d, &sd);
-    const oit_streamer_names sn = {
-        .upload_budget = spelt(n->upload_budget, "oit_renderer_desc.upload_budget"),
-        .cache_budget = spelt(n->cache_budget, "oit_renderer_desc.cache_budget"),
-        .gpu_budget = spelt(n->gpu_budget, "oit_renderer_desc.gpu_budget"),
-        .epsilon = spelt(n->epsilon, "oit_renderer_desc.epsilon"),
-        .slot_budget = spelt(n->slot_budget, "oit_renderer_desc.slot_budget"),
-        .store_budget = spelt(n->store_budget, "oit_renderer_desc.store_budget"),
-        .schedule = spelt(n->schedule, "oit_renderer_desc.schedule"),
-        .cache_off = spelt(n->cache_off, "OIT_RENDER_CACHE_OFF")};
-    return oit_streamer_desc_check(&sd, &sn, err);
+    return oit_streamer_desc_check(&sd, err);
 }
 
 oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out, oit_error *err)
@@ -128,7 +122,7 @@ oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out
         return oit_error_set(err, OIT_ERR_NOMEM, "oit_renderer_create: out of memory");
     if (desc)
         r->desc = *desc;
-    oit_status bad = oit_renderer_desc_check(&r->desc, NULL, err);
+    oit_status bad = oit_renderer_desc_check(&r->desc, err);
     if (bad != OIT_OK) {
         free(r);
         return bad;

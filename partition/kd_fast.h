@@ -1,5 +1,5 @@
 /* The fast scheme's subdivision of one grid cell into parts (DESIGN.md
- * "Visibility order"; oitprep --scheme fast).
+ * "Visibility order"; OIT_SCHEME_FAST, preprocess/convert.h).
  *
  * Built for streaming speed, not for a layer guarantee: no convex pieces.
  * A node holding more than part_triangles triangles is split by an axis

@@ -31,7 +31,8 @@ typedef struct oit_cell_params {
 
 /* The cell's parts may hold at most this many times its clipped triangles,
  * plus 2^20 (partition/kd.h max_triangles). A fixed ratio, not a share of
- * --memory, so the file stays the same whatever --memory and --threads. */
+ * the memory budget, so the file stays the same whatever the memory and
+ * threads. */
 #define OIT_CELL_MAX_GROWTH 64u
 
 typedef struct oit_cell_counts {

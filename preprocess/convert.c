@@ -234,16 +234,18 @@ static oit_status apply_manage(const oit_convert_options *o, oit_convert_options
     if (o->manage == OIT_MANAGE_GRID)
         return OIT_OK;
     if (o->scheme == OIT_SCHEME_FAST)
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: --scheme fast builds its own kd-trees "
-                             "in a grid; it cannot take --manage %s", o->input,
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: oit_convert_options.scheme = fast "
+                             "builds its own kd-trees in a grid; it cannot take "
+                             "oit_convert_options.manage = %s", o->input,
                              oit_manage_name(o->manage));
     if (o->grid > 1 || (o->manage == OIT_MANAGE_KD_FACETS && o->max_piece_triangles > 1))
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: --manage %s builds one kd-tree over "
-                             "%s; it cannot take --grid %u%s", o->input,
-                             oit_manage_name(o->manage),
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: oit_convert_options.manage = %s builds "
+                             "one kd-tree over %s; it cannot take oit_convert_options.grid = "
+                             "%u%s", o->input, oit_manage_name(o->manage),
                              o->manage == OIT_MANAGE_KD_FACETS ? "single facets" : "the model",
                              o->grid, o->manage == OIT_MANAGE_KD_FACETS
-                                          ? " or --max-piece-triangles above 1" : "");
+                                          ? " or oit_convert_options.max_piece_triangles above 1"
+                                          : "");
     eff->grid = 1;
     if (o->manage == OIT_MANAGE_KD_FACETS)
         eff->max_piece_triangles = 1;

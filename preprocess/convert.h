@@ -23,7 +23,7 @@ typedef enum oit_manage {
     OIT_MANAGE_GRID = 0,  /* a top grid of cells, each kd-subdivided into parts of
                              convex pieces (the default) */
     OIT_MANAGE_KD_PARTS,  /* one kd-tree over the whole model's convex pieces, one
-                             part a leaf: the top grid is --grid 1 (one cell an
+                             part a leaf: the top grid is grid 1 (one cell an
                              axis, two where the model's bounds straddle a
                              power-of-two coordinate, since cells are aligned
                              to their size: the tree's first splits) */
@@ -31,16 +31,16 @@ typedef enum oit_manage {
                              its own (1 layer), leaves of at most K facets */
 } oit_manage;
 
-/* How cells become parts (--scheme). */
+/* How cells become parts. */
 typedef enum oit_scheme {
     OIT_SCHEME_FAST = 0,  /* the default: large parts of at most part_triangles
                              triangles, measured layer counts, no convexity
-                             (partition/kd_fast.h); --manage grid only */
+                             (partition/kd_fast.h); OIT_MANAGE_GRID only */
     OIT_SCHEME_GUARANTEED /* Wang & Xie: convex pieces, at most K layers a part
                              (partition/kd.h), for the paper's comparisons */
 } oit_scheme;
 
-/* Triangles a fast-scheme part may hold unless --part-triangles says
+/* Triangles a fast-scheme part may hold unless part_triangles says
  * otherwise. Measured (bench/fast-scheme-llvmpipe.md, 512x512 llvmpipe):
  * 32K streamed faster than 2K and 8K on the large models, and 128K faster
  * than 32K on the 1M plant in both runs that had it (482 against 559 ms),
@@ -49,11 +49,11 @@ typedef enum oit_scheme {
  * parts either way. */
 #define OIT_FAST_PART_TRIANGLES 131072u
 
-/* The scheme's name as --scheme spells it. */
+/* The scheme's name ("fast", "guaranteed"), as oitprep spells it. */
 const char *oit_scheme_name(oit_scheme s);
-/* The scheme's name as --manage spells it. */
+/* The management's name ("grid", ...), as oitprep spells it. */
 const char *oit_manage_name(oit_manage m);
-/* The slab kinds' name as --slabs spells it. */
+/* The slab kinds' name ("all", ...), as oitprep spells it. */
 const char *oit_slabs_name(oit_kd_slabs s);
 
 typedef struct oit_convert_options {
@@ -67,9 +67,9 @@ typedef struct oit_convert_options {
     uint32_t max_piece_triangles; /* 0: convex.h default */
     oit_manage manage;            /* not GRID: grid must be 0 or 1, and for
                                      KD_FACETS max_piece_triangles 0 or 1 */
-    oit_kd_slabs slabs;           /* --slabs: all (default), separating, none;
+    oit_kd_slabs slabs;           /* all (default), separating, none;
                                      the fast scheme has no slabs */
-    oit_scheme scheme;            /* --scheme */
+    oit_scheme scheme;            /* 0: OIT_SCHEME_FAST */
     uint32_t part_triangles;      /* fast scheme: 0 = OIT_FAST_PART_TRIANGLES */
     int progress;                 /* oit_progress_mode (progress.h): off, a
                                      bar (a terminal) or periodic lines */

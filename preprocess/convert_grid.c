@@ -65,7 +65,7 @@ static uint64_t cell_count(const oit_bin_grid *g)
     return (uint64_t)g->dims[0] * g->dims[1] * g->dims[2];
 }
 
-/* The fast scheme's grid, when the user gave no --grid: a model whose
+/* The fast scheme's grid, when the caller gave no grid: a model whose
  * extent is its power-of-two cell size, or that straddles a face of every
  * shift, still spans two cells an axis (a bounds maximum on a cell face
  * counts in the next cell), more than the `want` cells its triangles need,

@@ -66,7 +66,7 @@ void oit_convert_choose_grid(const float mn[3], const float mx[3], uint64_t tria
  * 8) where that gives fewer cells along an axis. */
 void oit_convert_shift_origin(const float mn[3], const float mx[3], oit_bin_grid *g);
 
-/* The fast scheme's grid without --grid: a cell twice or four times larger
+/* The fast scheme's grid without a grid given: a cell twice or four times larger
  * (origin shifted as above) when it still gives at least want cells and
  * fewer than g has. */
 void oit_convert_fewest_cells(const float mn[3], const float mx[3], uint64_t want,

@@ -1,4 +1,4 @@
-/* `oitprep info FILE --decode`: how fast this machine decodes a part
+/* How fast this machine decodes a part
  * file's encoded parts (version 5) on one thread, the work the streaming
  * reader thread does per part: decode alone (a part already validated) and
  * decode with every check (a part's first use, oit_partfile_part_load). */

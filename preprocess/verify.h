@@ -10,7 +10,7 @@
  * direction; (b) rays in random directions from V viewpoints inside and
  * around the bounds (the centre first), ordered for the viewpoint. Checks:
  * (1) no part yields more hits along a ray than its layer_bound (for a file
- * of measured bounds, oitprep --scheme fast, the hits over it are reported,
+ * of measured bounds, the fast scheme's, the hits over it are reported,
  * not failed: the bound is an estimate there); (2) the
  * parts met along a ray, sorted by distance, never go back in the order that
  * partfile/order.h computes for the ray's origin (hits closer than a tolerance,
@@ -51,7 +51,7 @@ typedef struct oit_verify_report {
     uint32_t worst_part_bound;         /* layer bound of the part that gave most */
     uint64_t parts_at_bound;           /* parts that reached their bound somewhere */
     uint64_t layer_violations, order_violations;
-    /* A file of measured bounds (oitprep --scheme fast) guarantees none:
+    /* A file of measured bounds (the fast scheme's) guarantees none:
      * a part giving a ray more hits than its bound is counted here instead
      * of in layer_violations, with the largest excess, and fails nothing. */
     int measured_bounds;

@@ -191,8 +191,7 @@ static oit_status render_frame(oit_method_state *st, const oit_view *view, oit_i
     oit_status s = oit_clip_check(&view->clip, "section planes", err);
     if (s == OIT_OK && view->clip.count > 0 && !(m->flags & OIT_METHOD_CLIP))
         s = oit_error_set(err, OIT_ERR_UNSUPPORTED,
-                          "method %s cannot clip: section planes (--clip) are not supported "
-                          "by it",
+                          "method %s cannot clip: section planes are not supported by it",
                           m->name);
     if (s == OIT_OK && m->pixel_bytes)
         s = oit_band_rows(view, m->pixel_bytes(st->impl, view), st->store_limit, &rows, err);

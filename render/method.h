@@ -26,7 +26,7 @@ struct oit_gpu_times;
 
 enum {
     OIT_METHOD_GL = 1u << 0,        /* renders with GL (a context is made or borrowed) */
-    OIT_METHOD_COUNTS = 1u << 1,    /* can fill per-pixel fragment counts (--show layers) */
+    OIT_METHOD_COUNTS = 1u << 1,    /* can fill per-pixel fragment counts          */
     OIT_METHOD_AMBIGUITY = 1u << 2, /* can flag raster-vs-ray ambiguous pixels */
     OIT_METHOD_PARTFILE = 1u << 3,  /* renders what options.source names, not the mesh */
     OIT_METHOD_EPSILON = 1u << 4,   /* takes options.threshold (a sweep can vary it) */

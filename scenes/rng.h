@@ -1,7 +1,7 @@
 /* Deterministic PRNG for the scene generators (splitmix64).
  *
  * Scenes must give the same bytes for the same arguments on every run, so
- * every random choice comes from an oit_rng seeded from --seed; the state is
+ * every random choice comes from an oit_rng seeded from the caller's seed; the state is
  * a value owned by the caller (no global state). Independent streams (one per
  * block, per instance...) come from oit_rng_make(seed, stream) so that a
  * change in one part of a scene does not shift the numbers of the others. */

@@ -3,7 +3,7 @@
  * distinct colours, so that from the default camera (azimuth 30, elevation
  * 20, looking at the bounding box centre) every kind of overlap shows:
  * interlocking, nesting and a surface seen from both sides. Fixed geometry:
- * --seed does not change it. */
+ * the seed does not change it. */
 #include "scenes/scene.h"
 
 #include "scenes/shapes.h"

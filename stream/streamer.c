@@ -87,7 +87,7 @@ static oit_status try_routed(void *ctx, int stencil_k, oit_error *err)
                                      err);
 }
 
-/* The pack mode's capture, its K-slot fills as --capture chooses. */
+/* The pack mode's capture, its K-slot fills as desc->capture chooses. */
 static oit_status create_capture(oit_streamer *s, const oit_streamer_desc *desc,
                                  oit_pack_mode mode, oit_error *err)
 {
@@ -97,21 +97,22 @@ static oit_status create_capture(oit_streamer *s, const oit_streamer_desc *desc,
         return oit_capture_create_cached(desc->programs, OIT_CAPTURE_COMPUTE, desc->K, 0,
                                          desc->capture_faults, &s->capture, err);
     }
+    const oit_streamer_names n = oit_streamer_names_resolve(desc->names);
     if (mode == OIT_PACK_COUNTED) {
         s->choice.asked = desc->capture;
         if (desc->capture != OIT_CAPTURE_AUTO && desc->capture != OIT_CAPTURE_ARRAY)
-            return oit_error_set(err, OIT_ERR_ARGUMENT, "--capture %s: counted packs have no "
-                                 "K-slot fill to route (--pack first-k, budget or disjoint)",
-                                 oit_capture_kind_name(desc->capture)
-                                     ? oit_capture_kind_name(desc->capture) : "?");
+            return oit_error_set(err, OIT_ERR_ARGUMENT, "%s = %s: counted packs have no "
+                                 "K-slot fill to route (%s = first-k, budget or disjoint)",
+                                 n.capture, oit_capture_kind_name(desc->capture)
+                                     ? oit_capture_kind_name(desc->capture) : "?", n.pack);
         return oit_capture_create_cached(desc->programs, OIT_CAPTURE_COUNTED, desc->K, 0,
                                          desc->capture_faults, &s->capture, err);
     }
     int firstk = mode == OIT_PACK_FIRSTK;
     routed_try t = {firstk ? OIT_CAPTURE_FIRSTK : OIT_CAPTURE_STENCIL, desc->K,
                     desc->capture_faults, desc->programs, NULL};
-    oit_status st = oit_capture_choose(desc->capture, desc->K, firstk, try_routed, &t,
-                                       &s->choice, err);
+    oit_status st = oit_capture_choose(desc->capture, n.capture, desc->K, firstk, try_routed,
+                                       &t, &s->choice, err);
     if (st != OIT_OK || t.made) {
         s->capture = t.made;
         return st;

@@ -25,9 +25,21 @@
 #include "stream/pack.h"
 #include "stream/reader.h"
 
+/* The names a caller spells oit_streamer_desc's fields in, for the
+ * streamer's errors and figures (liboit's: "oit_renderer_desc.upload_budget";
+ * cache_off spells OIT_STREAM_CACHE_OFF, "OIT_RENDER_CACHE_OFF"). A NULL
+ * name: the streamer's own ("oit_streamer_desc.upload_budget"). */
+typedef struct oit_streamer_names {
+    const char *upload_budget, *slot_budget, *cache_budget, *gpu_budget, *epsilon, *pack,
+        *schedule, *cache_off, *store_budget, *capture;
+} oit_streamer_names;
+
+/* names with every NULL one (or all, names NULL) the streamer's own. */
+oit_streamer_names oit_streamer_names_resolve(const oit_streamer_names *names);
+
 typedef struct oit_streamer_desc {
     int K;                    /* capture layers, 2..16; every part's bound <= K */
-    /* How K-slot fills are made (--capture): OIT_CAPTURE_AUTO (0), _STENCIL
+    /* How K-slot fills are made: OIT_CAPTURE_AUTO (0), _STENCIL
      * or _ARRAY, for the K-slot packs (BUDGET, DISJOINT) and for first-K's
      * first pass (FIRSTK, AUTO); counted packs have none (STENCIL is then
      * refused). AUTO: stencil routing where its self-test passes on this
@@ -112,6 +124,9 @@ typedef struct oit_streamer_desc {
      * demo's one-image run at 1024x1024 on llvmpipe, 0.70 s against 0.93 s;
      * 0 (default): many. A hint: any number of frames may be drawn. */
     uint32_t frames;
+    /* How the errors and figures name the fields above (static, or
+     * outliving the streamer); NULL: the streamer's own names. */
+    const oit_streamer_names *names;
 } oit_streamer_desc;
 
 /* Half the free memory the driver reports: the rest is the embedding
@@ -133,7 +148,8 @@ typedef struct oit_stream_budget {
     uint64_t store;      /* the capture's fragment store budget; 0: none (packs
                             other than counted and first-K) */
     uint64_t free_bytes; /* what the driver reported free; 0: nothing */
-    const char *source;  /* "--gpu-budget", "GL_NVX_gpu_memory_info", "default", ... */
+    const char *source;  /* the gpu_budget field's name (oit_streamer_names:
+                            given), "GL_NVX_gpu_memory_info", "default", ... */
     int resident;        /* every part read once and kept */
 } oit_stream_budget;
 
@@ -150,7 +166,7 @@ typedef struct oit_stream_budget {
 #define OIT_STREAM_SLOTS_DEFAULT (32ull << 20)
 /* The fragment store's: grown to what a frame stores, no further. A deep
  * view past it is stored in bands of rows, each drawing the pack again:
- * at 64 MiB, oitgen hard --case stack at 1024x1024 took 44 bands and
+ * at 64 MiB, oitgen's hard stack case at 1024x1024 took 44 bands and
  * 19-20 s a frame on llvmpipe, at 256 MiB 22 (one binding each there)
  * and 13.4 s, against DFB's 17.4 (bench/never-slower-llvmpipe.md). The
  * room past one binding holds the counted batches' predictions. */
@@ -168,27 +184,16 @@ typedef struct oit_stream_budget {
 #define OIT_STREAM_BUDGET_MIN OIT_STREAM_RING_MIN
 #define OIT_STREAM_BUDGET_MAX (1ull << 40)
 
-/* The names a caller spells oit_streamer_desc's fields in, for the errors
- * of oit_streamer_desc_check: oitstream's options ("--upload-budget"),
- * liboit's fields ("oit_renderer_desc.upload_budget"); cache_off spells
- * OIT_STREAM_CACHE_OFF ("off", "OIT_RENDER_CACHE_OFF"). A NULL name: the
- * streamer's own ("oit_streamer_desc.upload_budget"). */
-typedef struct oit_streamer_names {
-    const char *upload_budget, *slot_budget, *cache_budget, *gpu_budget, *epsilon, *pack,
-        *schedule, *cache_off, *store_budget;
-} oit_streamer_names;
-
 /* The one range check of the settings a caller gives (every zero is the
  * default): upload_budget, slot_budget and store_budget 0 or
  * OIT_STREAM_BUDGET_MIN..MAX,
  * cache_budget that or OIT_STREAM_CACHE_OFF, gpu_budget 0 or
  * OIT_STREAM_GPU_BUDGET_MIN..OIT_STREAM_BUDGET_MAX, epsilon in [0, 1), pack
  * and schedule one of their enums. OIT_ERR_ARGUMENT names the setting (in
- * names' spelling; names may be NULL) and the value. capture and
+ * d->names' spelling) and the value. capture and
  * reader_threads are checked by oit_streamer_create (capture_choice.h,
  * reader.h), K by the capture. */
-oit_status oit_streamer_desc_check(const oit_streamer_desc *d, const oit_streamer_names *names,
-                                   oit_error *err);
+oit_status oit_streamer_desc_check(const oit_streamer_desc *d, oit_error *err);
 
 /* The streamer's own per-frame figures, beside oit_frame_stats. */
 typedef struct oit_stream_frame_stats {
@@ -217,17 +222,17 @@ typedef struct oit_stream_frame_stats {
     double order_ms, pack_ms;
     float epsilon;           /* the early-termination threshold it ran with */
     int first_k;             /* the automatic mode took first-K packs (else
-                                counted, or a fixed --pack: 0) */
+                                counted, or a fixed pack: 0) */
     /* The automatic mode (stream/choice.h): the path it took ("first-k",
      * "counted"), why ("seed", "held", "probe", ...: oit_choice.why), and
      * the costs per path (oit_path) it chose from, measured on this view
-     * before the frame (-1: not measured; both -1 with a fixed --pack,
+     * before the frame (-1: not measured; both -1 with a fixed pack,
      * the strings NULL). */
     const char *choice_path, *choice_why;
     double choice_ms[2];
     int front_first;         /* the packs were cut front first (pack.h): early
                                 termination with counted or first-K packs */
-    /* --capture as asked ("auto", "stencil", "array") and, where auto took
+    /* desc.capture as asked ("auto", "stencil", "array") and, where auto took
      * array slots or fewer samples than K, the self-test's reason ("" where
      * it did not), copied: the figures outlive the streamer. What ran:
      * oit_frame_stats's capture_slots. */
@@ -244,7 +249,7 @@ typedef struct oit_streamer oit_streamer;
 oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
                                oit_streamer **out, oit_error *err);
 void oit_streamer_destroy(oit_streamer *s);
-/* What --capture chose at creation (its reason string lives as long as s). */
+/* What desc.capture chose at creation (its reason string lives as long as s). */
 const oit_capture_choice *oit_streamer_capture_choice(const oit_streamer *s);
 void oit_streamer_budget(const oit_streamer *s, oit_stream_budget *out);
 /* The descriptor s runs with, every default resolved: pack (AUTO stays

@@ -1,15 +1,27 @@
-/* oit_streamer_desc's one range check (streamer.h): every caller (oitstream,
- * oitstream-mpi, liboit) maps its spelling onto the fields and lets this
- * check them, so a range is written once and an error names the caller's
- * spelling. */
+/* oit_streamer_desc's one range check (streamer.h): its caller (liboit)
+ * maps its settings onto the fields and lets this check them, so a range
+ * is written once and an error names the caller's spelling. */
 #include "stream/streamer.h"
 
 #include <inttypes.h>
 #include <stdio.h>
 
-static const char *name_of(const char *given, const char *field)
+oit_streamer_names oit_streamer_names_resolve(const oit_streamer_names *names)
 {
-    return given ? given : field;
+    oit_streamer_names n = names ? *names : (oit_streamer_names){0};
+#define OWN(f) n.f = n.f ? n.f : "oit_streamer_desc." #f
+    OWN(upload_budget);
+    OWN(slot_budget);
+    OWN(cache_budget);
+    OWN(gpu_budget);
+    OWN(epsilon);
+    OWN(pack);
+    OWN(schedule);
+    OWN(store_budget);
+    OWN(capture);
+#undef OWN
+    n.cache_off = n.cache_off ? n.cache_off : "OIT_STREAM_CACHE_OFF";
+    return n;
 }
 
 /* 0 (the default) or a byte count in [lo, OIT_STREAM_BUDGET_MAX]. */
@@ -24,41 +36,31 @@ static oit_status check_bytes(uint64_t v, uint64_t lo, const char *name, const c
                          (uint64_t)OIT_STREAM_BUDGET_MAX, lo >> (mib ? 20 : 10), mib ? 'M' : 'K');
 }
 
-oit_status oit_streamer_desc_check(const oit_streamer_desc *d, const oit_streamer_names *names,
-                                   oit_error *err)
+oit_status oit_streamer_desc_check(const oit_streamer_desc *d, oit_error *err)
 {
-    static const oit_streamer_names none = {0};
-    const oit_streamer_names *n = names ? names : &none;
+    const oit_streamer_names n = oit_streamer_names_resolve(d->names);
     char off[96];
-    snprintf(off, sizeof off, ", %s (no cache)", name_of(n->cache_off, "OIT_STREAM_CACHE_OFF"));
-    oit_status s = check_bytes(d->upload_budget, OIT_STREAM_BUDGET_MIN,
-                               name_of(n->upload_budget, "oit_streamer_desc.upload_budget"), "",
-                               err);
+    snprintf(off, sizeof off, ", %s (no cache)", n.cache_off);
+    oit_status s = check_bytes(d->upload_budget, OIT_STREAM_BUDGET_MIN, n.upload_budget, "", err);
     if (s == OIT_OK)
-        s = check_bytes(d->slot_budget, OIT_STREAM_BUDGET_MIN,
-                        name_of(n->slot_budget, "oit_streamer_desc.slot_budget"), "", err);
+        s = check_bytes(d->slot_budget, OIT_STREAM_BUDGET_MIN, n.slot_budget, "", err);
     if (s == OIT_OK)
-        s = check_bytes(d->store_budget, OIT_STREAM_BUDGET_MIN,
-                        name_of(n->store_budget, "oit_streamer_desc.store_budget"), "", err);
+        s = check_bytes(d->store_budget, OIT_STREAM_BUDGET_MIN, n.store_budget, "", err);
     if (s == OIT_OK && d->cache_budget != OIT_STREAM_CACHE_OFF)
-        s = check_bytes(d->cache_budget, OIT_STREAM_BUDGET_MIN,
-                        name_of(n->cache_budget, "oit_streamer_desc.cache_budget"), off, err);
+        s = check_bytes(d->cache_budget, OIT_STREAM_BUDGET_MIN, n.cache_budget, off, err);
     if (s == OIT_OK)
-        s = check_bytes(d->gpu_budget, OIT_STREAM_GPU_BUDGET_MIN,
-                        name_of(n->gpu_budget, "oit_streamer_desc.gpu_budget"), "", err);
+        s = check_bytes(d->gpu_budget, OIT_STREAM_GPU_BUDGET_MIN, n.gpu_budget, "", err);
     if (s != OIT_OK)
         return s;
     /* written so that NaN fails too */
     if (!(d->epsilon >= 0.0f && d->epsilon < 1.0f))
         return oit_error_set(err, OIT_ERR_ARGUMENT, "%s = %g: expected a transmittance in [0, 1) "
-                             "(0: exact)", name_of(n->epsilon, "oit_streamer_desc.epsilon"),
-                             (double)d->epsilon);
+                             "(0: exact)", n.epsilon, (double)d->epsilon);
     if ((unsigned)d->pack > (unsigned)OIT_PACK_FIRSTK)
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s = %d: not an oit_pack_mode",
-                             name_of(n->pack, "oit_streamer_desc.pack"), (int)d->pack);
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s = %d: not an oit_pack_mode", n.pack,
+                             (int)d->pack);
     if ((unsigned)d->schedule > (unsigned)OIT_SCHEDULE_WAVE)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "%s = %d: not an oit_pack_schedule",
-                             name_of(n->schedule, "oit_streamer_desc.schedule"),
-                             (int)d->schedule);
+                             n.schedule, (int)d->schedule);
     return OIT_OK;
 }

@@ -62,7 +62,7 @@ struct oit_streamer {
     uint8_t *loaded;
     uint64_t loaded_bytes;
     oit_capture *capture;
-    oit_capture_choice choice;      /* --capture: asked, what runs, and why */
+    oit_capture_choice choice;      /* capture: asked, what runs, and why  */
     oit_gpu_timer *timer;           /* oit_streamer_set_gpu_timer; NULL: none */
     oit_saturation *saturation;     /* only with epsilon > 0 */
     oit_opaque_depth opaque;        /* the caller's depth (oit_streamer_set_opaque) */

@@ -37,13 +37,14 @@ oit_status oit_streamer_split_budget(oit_streamer *s, oit_streamer_desc *d, int 
 {
     oit_stream_budget *b = &s->budget;
     const char *src = "default";
+    const oit_streamer_names n = oit_streamer_names_resolve(d->names);
     oit_gpu_free_query query = d->free_query ? d->free_query : oit_gpu_free_bytes;
     b->free_bytes = query(d->free_ctx, &src);
     uint64_t slots = stores ? OIT_STREAM_FIRSTK_SLOTS_DEFAULT : OIT_STREAM_SLOTS_DEFAULT;
     uint64_t store = stores ? OIT_STREAM_STORE_DEFAULT : 0;
     if (d->gpu_budget) {
         b->total = d->gpu_budget;
-        b->source = "--gpu-budget";
+        b->source = n.gpu_budget;
     } else if (b->free_bytes) {
         b->total = b->free_bytes / OIT_STREAM_FREE_SHARE_DEN * OIT_STREAM_FREE_SHARE_NUM;
         b->source = src;
@@ -93,12 +94,13 @@ oit_status oit_streamer_split_budget(oit_streamer *s, oit_streamer_desc *d, int 
     uint64_t sum = held + b->ring + (resident ? 0 : b->cache);
     if (sum > b->total && d->gpu_budget)
         return oit_error_set(err, OIT_ERR_ARGUMENT,
-                             "%s: --upload-budget %llu + --cache-budget "
-                             "%llu + --slot-budget %llu + --store-budget %llu = %llu bytes, "
-                             "more than --gpu-budget %llu",
-                             name, (unsigned long long)b->ring, (unsigned long long)b->cache,
-                             (unsigned long long)b->capture, (unsigned long long)b->store,
-                             (unsigned long long)sum, (unsigned long long)b->total);
+                             "%s: %s %llu + %s %llu + %s %llu + %s %llu = %llu bytes, more "
+                             "than %s %llu",
+                             name, n.upload_budget, (unsigned long long)b->ring, n.cache_budget,
+                             (unsigned long long)b->cache, n.slot_budget,
+                             (unsigned long long)b->capture, n.store_budget,
+                             (unsigned long long)b->store, (unsigned long long)sum, n.gpu_budget,
+                             (unsigned long long)b->total);
     if (sum > b->total)
         b->total = sum; /* finer budgets given past the driver's share win */
     d->slot_budget = b->capture;

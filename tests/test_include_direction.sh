@@ -53,6 +53,6 @@ tools/oitgen oit base formats scenes tools/common tools/oitgen
 tools/oitprep oit base formats partfile preprocess tools/common tools/oitprep
 tools/oitstream oit base formats partfile render plot stream tools/common tools/oitstream
 tools/oitbench oit base formats partfile render plot preprocess stream tools/common tools/oitbench
-tools/oit_meshinfo oit
+tools/oit_meshinfo oit tools/common/exit_code.h
 EOF
 finish "include direction"

@@ -205,9 +205,8 @@ typedef enum oit_render_colour_space {
                                     composited in linear light (Result)          */
 } oit_render_colour_space;
 
-/* The shading that oitstream's --shading, --alpha, --absorption and
- * --colour-space set; zero means default. There is no background: the
- * caller's framebuffer is the background. */
+/* The shading; zero means default. There is no background: the caller's
+ * framebuffer is the background. */
 typedef struct oit_render_shading {
     oit_render_shading_mode mode;
     float alpha;          /* for files without alpha; default 0.35          */
@@ -217,15 +216,14 @@ typedef struct oit_render_shading {
     oit_render_colour_space colour_space; /* default OIT_RENDER_COLOUR_SRGB */
 } oit_render_shading;
 
-/* oitstream --pack spells the same modes: auto, counted, budget, disjoint,
- * first-k. */
+/* How a part file's parts are cut into packs, each captured as one batch. */
 typedef enum oit_render_pack {
     OIT_RENDER_PACK_AUTO = 0,    /* FIRSTK while K slots a pixel hold the view,
-                                    switched to COUNTED for deep views. With
-                                    epsilon > 0, COUNTED and FIRSTK packs are
-                                    cut front first, so that saturated pixels
-                                    skip the parts behind them (oitstream
-                                    --help, --pack) */
+                                    COUNTED for deep views, each kept where it
+                                    measures faster (oit_draw_stats.choice).
+                                    With epsilon > 0, COUNTED and FIRSTK packs
+                                    are cut front first, so that saturated
+                                    pixels skip the parts behind them */
     OIT_RENDER_PACK_COUNTED,     /* packs cut by upload bytes only, each counted,
                                     stored and sorted per pixel (no layer limit) */
     OIT_RENDER_PACK_BUDGET,      /* K slots a pixel: parts share a pack while
@@ -247,22 +245,26 @@ typedef enum oit_render_capture {
     OIT_RENDER_CAPTURE_ARRAY = 1,
     OIT_RENDER_CAPTURE_STENCIL = 2,
     /* every pack captured in compute shaders, no raster pipeline, no
-     * per-pixel limit (oitstream --capture compute) */
+     * per-pixel limit */
     OIT_RENDER_CAPTURE_COMPUTE = 5
 } oit_render_capture;
 
-/* For part files. An in-core scene is drawn with DFB, which stores every
- * fragment of the frame: K, upload_budget, pack, epsilon (the image is the
- * exact one), cache_budget and read_on_draw_thread do not apply to it. */
+/* Zero fields mean the documented default. Grouped by concept: the image,
+ * then (part files only) how packs are cut and captured, the GPU memory,
+ * the host threads and the program cache. An in-core scene is drawn with
+ * DFB, which stores every fragment of the frame: only the image's fields
+ * and binding_limit apply to it (its image is the exact one, whatever
+ * epsilon). */
 typedef struct oit_renderer_desc {
-    uint32_t K;             /* capture layers 2..16; 0: the scene's K        */
-    uint64_t upload_budget; /* GPU bytes of the upload ring, >= 64 KiB;
-                               0: 64 MiB (oitstream --upload-budget alike); a
-                               scene within it and cache_budget is read once
-                               into a ring of its size and kept there, with no
-                               cache buffer beside it */
-    oit_render_pack pack;
+    /* ---- the image ---- */
     oit_render_shading shading;
+    /* 0 (default): a scene's own alpha, and its opaque triangles (alpha
+     * 255 at all three corners where the scene has alpha: glTF OPAQUE and
+     * MASK materials, MTL d 1) hide what is behind them. 1: see-through:
+     * every triangle takes shading.alpha (the scene's colours are kept),
+     * so nothing is opaque and what opaque triangles hid is stored and
+     * composited too. Other values: OIT_ERR_ARGUMENT. */
+    int see_through;
     /* Early termination; 0 (default): exact. In [0, 1): fragments behind
      * pixels whose transmittance fell below epsilon in every channel are
      * dropped, and parts whose whole footprint did are neither uploaded nor
@@ -271,116 +273,100 @@ typedef struct oit_renderer_desc {
      * in linear light for OIT_RENDER_COLOUR_LINEAR, where the encoding can
      * magnify it near black). */
     float epsilon;
-    /* GPU bytes that keep parts drawn in one frame resident for the next
-     * ones, drawn without reading or uploading them again
-     * (oit_draw_stats.cache_hits), >= 64 KiB; 0: 256 MiB (never more than
-     * the scene's parts take); OIT_RENDER_CACHE_OFF: no cache. The cache
-     * (and the upload ring) grow with what the frames draw up to their
-     * budgets rather than start there. oitstream's
-     * --cache-budget means the same: 0 the default, "off" no cache. */
-    uint64_t cache_budget;
-    /* 0 (default): reader threads of the renderer's own (the cores there
-     * are, less one, at least 1) read the parts of later packs while the
-     * GPU draws earlier ones (they never call GL). 1:
-     * parts are read on the drawing thread; for comparison and debugging. */
-    int read_on_draw_thread;
-    /* How a part file's K-slot fills are made (oitstream --capture): for
-     * the K-slot packs (BUDGET, DISJOINT) and the first pass of FIRSTK
-     * packs (AUTO too). OIT_RENDER_CAPTURE_AUTO (0): the stencil-routed
-     * A-buffer where its start-up self-test passes on this GL driver, else
-     * array slots; STENCIL: that or OIT_ERR_UNSUPPORTED at the first draw,
-     * with the self-test's reason; ARRAY: slots through an atomic counter;
-     * COMPUTE: no K-slot fill at all, every pack binned, rasterized, sorted
-     * and composited in compute shaders (AUTO packs then are COUNTED's).
-     * The image is the same; oit_draw_stats says what ran and why. */
-    oit_render_capture capture;
-    /* GPU bytes for the upload ring, the cache and the capture together
-     * (oitstream --gpu-budget alike); 0: half the free memory the driver
-     * reports (GL_NVX_gpu_memory_info, GL_ATI_meminfo), or, where it
-     * reports none, no total (the budgets above alone). upload_budget and
-     * cache_budget stay inside it: given ones that add up to more fail
-     * the first draw. The chosen split is in oit_draw_stats. */
-    uint64_t gpu_budget;
-    /* 0 (default): a scene's own alpha, and its opaque triangles (alpha
-     * 255 at all three corners where the scene has alpha: glTF OPAQUE and
-     * MASK materials, MTL d 1) hide what is behind them. 1: see-through,
-     * oitstream --see-through: every triangle takes shading.alpha (the
-     * scene's colours are kept), so nothing is opaque and what opaque
-     * triangles hid is stored and composited too. Other values:
-     * OIT_ERR_ARGUMENT. Shading in spirit; kept here, at the end, so that
-     * the fields above keep their offsets for callers built before it. */
-    int see_through;
-    /* Appended after see_through, so that the fields above keep their
-     * offsets. The order packs are cut in (oitstream --schedule):
-     * OIT_RENDER_SCHEDULE_TREE (0) the management tree's, WAVE the
-     * wavefront; the image is the same. */
+
+    /* ---- a part file's packs and their capture ---- */
+    uint32_t K;             /* capture layers 2..16; 0: the scene's K        */
+    oit_render_pack pack;
+    /* The order packs are cut in: OIT_RENDER_SCHEDULE_TREE (0) the
+     * management tree's, WAVE the wavefront; the image is the same. */
     oit_render_schedule schedule;
-    /* GPU bytes of the capture's slots a pack (oitstream --slot-budget),
-     * the streamer checks the range; 0: 64 MiB of first-K slots for
-     * counted and first-K packs, 32 MiB of K slots for the others.
-     * Fragment stores are store_budget's. */
+    /* How the K-slot fills are made: for the K-slot packs (BUDGET,
+     * DISJOINT) and the first pass of FIRSTK packs (AUTO too).
+     * OIT_RENDER_CAPTURE_AUTO (0): the stencil-routed A-buffer where its
+     * start-up self-test passes on this GL driver, else array slots;
+     * STENCIL: that or OIT_ERR_UNSUPPORTED at the first draw, with the
+     * self-test's reason; ARRAY: slots through an atomic counter; COMPUTE:
+     * no K-slot fill at all, every pack binned, rasterized, sorted and
+     * composited in compute shaders (AUTO packs then are COUNTED's). The
+     * image is the same; oit_draw_stats says what ran and why. */
+    oit_render_capture capture;
+    /* The frames the caller expects to draw with the renderer: 1, a
+     * one-image run, where OIT_RENDER_PACK_AUTO starts with counted packs,
+     * stored exactly as DFB stores a frame, instead of first-K ones, whose
+     * K-slot store (up to slot_budget) only later frames amortize; 0
+     * (default): many. A hint: any number of frames may be drawn, the
+     * image is the same. */
+    uint32_t frames;
+
+    /* ---- GPU memory (bytes) ---- */
+    /* The upload ring, the cache and the capture together; 0: half the
+     * free memory the driver reports (GL_NVX_gpu_memory_info,
+     * GL_ATI_meminfo), or, where it reports none, no total (the budgets
+     * below alone). The budgets below stay inside it: given ones that add
+     * up to more fail the first draw. The chosen split is in
+     * oit_draw_stats. */
+    uint64_t gpu_budget;
+    /* The upload ring, >= 64 KiB; 0: 64 MiB. A scene within it and
+     * cache_budget is read once into a ring of its size and kept there,
+     * with no cache buffer beside it. */
+    uint64_t upload_budget;
+    /* Keeps parts drawn in one frame resident for the next ones, drawn
+     * without reading or uploading them again (oit_draw_stats.cache_hits),
+     * >= 64 KiB; 0: 256 MiB (never more than the scene's parts take);
+     * OIT_RENDER_CACHE_OFF: no cache. The cache and the upload ring grow
+     * with what the frames draw up to their budgets rather than start
+     * there. */
+    uint64_t cache_budget;
+    /* The capture's slots a pack; 0: 64 MiB of first-K slots for counted
+     * and first-K packs, 32 MiB of K slots for the others. */
     uint64_t slot_budget;
-    /* Threads that read parts ahead of the GPU (oitstream
-     * --upload-threads), 1..64, checked at the first draw; 0: as
-     * read_on_draw_thread says (which, when 1, wins). */
-    uint32_t reader_threads;
-    /* The most bytes a frame puts in one GPU storage buffer binding; 0:
-     * what the driver binds (GL_MAX_SHADER_STORAGE_BLOCK_SIZE). Lower
-     * caps the frame's per-pixel buffers: it is then drawn in more bands
-     * of rows (the image alike but for pixel centres within rounding of a
-     * silhouette at a band's edge). */
+    /* The counted and first-K packs' fragment stores, grown to what a
+     * frame stores and no further: a deep view past it is stored in bands
+     * of rows, each drawing the pack again. 0: 256 MiB, or an eighth of a
+     * smaller gpu_budget. Other packs have none. */
+    uint64_t store_budget;
+    /* The most a frame puts in one GPU storage buffer binding (part files
+     * and in-core scenes); 0: what the driver binds
+     * (GL_MAX_SHADER_STORAGE_BLOCK_SIZE). Lower caps the frame's per-pixel
+     * buffers: it is then drawn in more bands of rows (the image alike but
+     * for pixel centres within rounding of a silhouette at a band's
+     * edge). */
     uint64_t binding_limit;
+
+    /* ---- host threads and the program cache ---- */
+    /* Threads that read a part file's parts ahead of the GPU (they never
+     * call GL), 1..64, checked at the first draw; 0: the cores there are,
+     * less one, at least 1, unless read_on_draw_thread. */
+    uint32_t reader_threads;
+    /* 1: parts are read on the drawing thread, for comparison and
+     * debugging (wins over reader_threads); 0 (default): reader threads. */
+    int read_on_draw_thread;
     /* Where linked GL programs are kept across processes (GL program
-     * binaries; oitstream --program-cache), so a later process with the
-     * same driver loads them instead of compiling: a folder, made if
-     * missing; "off": none. NULL (default): OIT_PROGRAM_CACHE from the
-     * environment where set (a folder or "off"), else
-     * $XDG_CACHE_HOME/oit, else $HOME/.cache/oit. An entry is named by a
-     * hash of the driver's strings and the programs' sources and checked
-     * before use; a bad or refused one is compiled and written again, and
-     * a folder that cannot be written, or a driver without program
-     * binaries, means no cache, never an error. Read at
-     * oit_renderer_create; the string need not outlive that call.
+     * binaries), so a later process with the same driver loads them
+     * instead of compiling: a folder, made if missing; "off": none. NULL
+     * (default): OIT_PROGRAM_CACHE from the environment where set (a
+     * folder or "off"), else $XDG_CACHE_HOME/oit, else $HOME/.cache/oit.
+     * An entry is named by a hash of the driver's strings and the
+     * programs' sources and checked before use; a bad or refused one is
+     * compiled and written again, and a folder that cannot be written, or
+     * a driver without program binaries, means no cache, never an error.
+     * Read at oit_renderer_create; the string need not outlive that call.
      * oit_renderer_get_desc gives the folder in use, or "off". */
     const char *program_cache;
-    /* Appended last, so that the fields above keep their offsets. The
-     * frames the caller expects to draw with the renderer: 1, a one-image
-     * run (oitstream's single view outside --window), where
-     * OIT_RENDER_PACK_AUTO starts with counted packs, stored exactly as DFB
-     * stores a frame, instead of first-K ones, whose K-slot store (up to
-     * slot_budget) only later frames amortize; 0 (default): many. A hint:
-     * any number of frames may be drawn, the image is the same. */
-    uint32_t frames;
-    /* Appended after frames, so that the fields above keep their offsets.
-     * GPU bytes of the counted and first-K packs' fragment stores
-     * (oitstream --store-budget), grown to what a frame stores and no
-     * further: a deep view past it is stored in bands of rows, each
-     * drawing the pack again. The streamer checks the range; 0: 256 MiB,
-     * or an eighth of a smaller gpu_budget. Other packs have none. */
-    uint64_t store_budget;
 } oit_renderer_desc;
 
 #define OIT_RENDER_CACHE_OFF UINT64_MAX
-
-/* The names a caller spells oit_renderer_desc's fields in, for the errors
- * of oit_renderer_desc_check: a command line's options ("--upload-budget");
- * cache_off spells OIT_RENDER_CACHE_OFF ("off"). A NULL name (or names
- * NULL): the field's own ("oit_renderer_desc.upload_budget"). */
-typedef struct oit_renderer_desc_names {
-    const char *K, *upload_budget, *slot_budget, *cache_budget, *gpu_budget, *epsilon, *pack,
-        *schedule, *see_through, *cache_off, *store_budget;
-} oit_renderer_desc_names;
 
 /* The one range check of desc, the one oit_renderer_create runs: K 0 or
  * 2..16; the byte budgets 0 or 64 KiB..1 TiB (cache_budget also
  * OIT_RENDER_CACHE_OFF, gpu_budget at least 1 MiB); epsilon in [0, 1);
  * pack, schedule and see_through their values. For a caller that wants
- * the errors before it makes a renderer, in its own spelling (names may
- * be NULL): OIT_ERR_ARGUMENT naming the setting and the value. capture,
- * reader_threads and the budgets' sum are checked at the first draw of a
- * part file. No GL needed. */
-OIT_API oit_status oit_renderer_desc_check(const oit_renderer_desc *desc,
-                                           const oit_renderer_desc_names *names, oit_error *err);
+ * the errors before it makes a renderer: OIT_ERR_ARGUMENT whose message
+ * starts with the field and the value ("oit_renderer_desc.upload_budget
+ * = 1000: expected ..."), as every error about desc names its field.
+ * capture, reader_threads and the budgets' sum are checked at the first
+ * draw of a part file. No GL needed. */
+OIT_API oit_status oit_renderer_desc_check(const oit_renderer_desc *desc, oit_error *err);
 
 /* Needs a current GL 4.5 core context (GL objects are created lazily, at the
  * first draw of each scene). */
@@ -398,8 +384,7 @@ OIT_API void oit_renderer_destroy(oit_renderer *r);
  * scene drawn last (alpha, colours, absorption, scene_scale, colour
  * space). pack stays as given (AUTO switches frame by frame; the draw's
  * figures say which ran), and so do epsilon and see_through. Before the
- * first draw: the descriptor as given. oitstream --stats prints the same
- * figures (its budget and reader_threads). */
+ * first draw: the descriptor as given. */
 OIT_API void oit_renderer_get_desc(const oit_renderer *r, oit_renderer_desc *out);
 /* Frees r's GPU state for scene and lets the scene go when r drew it last
  * (else does nothing), so that a closed scene's memory is freed while r
@@ -464,18 +449,18 @@ typedef struct oit_frame {
      * space: the scene's coordinates, relative to oit_scene_info.origin,
      * after model), KEEPS the points where a x + b y + c z + d >= 0; a
      * fragment is drawn only when every plane keeps the point where its
-     * pixel centre's ray meets its triangle (exact per pixel, as oitstream
-     * --clip). A part file's parts wholly cut away are neither read,
-     * uploaded nor drawn (oit_draw_stats.parts_clipped). A count above
-     * OIT_FRAME_CLIP_MAX, a number that is not finite or a zero normal
-     * (a, b, c) is OIT_ERR_ARGUMENT. */
+     * pixel centre's ray meets its triangle (exact per pixel). A part
+     * file's parts wholly cut away are neither read, uploaded nor drawn
+     * (oit_draw_stats.parts_clipped). A count above OIT_FRAME_CLIP_MAX, a
+     * number that is not finite or a zero normal (a, b, c) is
+     * OIT_ERR_ARGUMENT. */
     uint32_t clip_count;
     float clip[6][4];
     /* NULL (default): the camera is view and projection. Else the camera
-     * by its parameters, as the tools take it (oitstream --view), and view
-     * and projection are not read: no matrix stands between the caller's
-     * numbers and the rasterizer's, so the image is bit for bit the one
-     * the tools render of the same camera. */
+     * by its parameters, as the tools take it, and view and projection
+     * are not read: no matrix stands between the caller's numbers and the
+     * rasterizer's, so the image is bit for bit the one the tools render
+     * of the same camera. */
     const struct oit_frame_camera *camera;
 } oit_frame;
 
@@ -497,137 +482,141 @@ typedef struct oit_frame_camera {
 #define OIT_FRAME_CLIP_MAX 6
 #define OIT_DRAW_GPU_PHASES 8
 
+/* One draw's figures. Grouped by concept: the call and its time, the
+ * fragments, the parts, the packs and their capture, the per-view choices,
+ * the GPU memory, the shading. An in-core scene fills those
+ * oit_renderer_draw names; the rest are 0 (NULL for strings). The strings
+ * are liboit's, static or valid while the renderer draws the scene. */
 typedef struct oit_draw_stats {
+    /* ---- the call ---- */
+    /* This draw's number (1: the renderer's first oit_renderer_draw or
+     * oit_renderer_draw_image), which its GPU figures carry
+     * (oit_renderer_gpu_poll, gpu_frame below). */
+    uint64_t draw;
     double ms;               /* wall time of the call; the capture is finished
                                 (its totals are read back), the final blend not */
+    /* GPU time from GL timestamp queries, read without waiting: the figures
+     * of draw number gpu_frame (usually an earlier call than this one), 0
+     * and gpu_ms -1 when none is in yet or the driver has no timestamps.
+     * Phases, in this order: other, upload (ring to cache copies), pass 1,
+     * pass 2, resolve, read-back, binning and sweep (the compute capture,
+     * OIT_RENDER_CAPTURE_COMPUTE); they add up to gpu_ms. */
+    uint64_t gpu_frame;
+    double gpu_ms;
+    double gpu_phase_ms[OIT_DRAW_GPU_PHASES];
+    /* host_waits: the times the host waited on the GPU between the draw's
+     * first command and its final read-back (buffer read-backs, fences
+     * that blocked; the final read-back not counted), 0 on warm draws of
+     * the default packs. redraws: the times the draw was captured again
+     * because a store sized ahead of the GPU's need proved short (the
+     * figures are the last capture's, the image exact). */
+    uint32_t host_waits, redraws;
+
+    /* ---- fragments ---- */
     uint64_t fragments;
-    uint32_t max_layers;     /* most fragments on one pixel in one pack         */
-    uint64_t overflow_pixels; /* > K fragments in a pack: 0 for a correct file  */
-    uint32_t packs;
+    uint32_t max_layers;      /* most fragments on one pixel in one pack        */
+    uint64_t overflow_pixels; /* > K fragments in a K-slot pack: 0 for a
+                                 correct file                                   */
+    /* First-K or counted packs: the pixels that got more than capture_k
+     * fragments in one pack (first-K: more than its slots), summed over
+     * the packs. First-K's second pass took exactly these
+     * (second_pass_pixels; second_pass_packs: the packs that had any, so
+     * took a second geometry pass); counted packs count them from their
+     * counts. OIT_RENDER_PACK_AUTO's rule suggests counted packs where any
+     * did, first-K where none did. */
+    uint64_t deep_pixels;
+    uint64_t second_pass_pixels;
+    uint32_t second_pass_packs;
+
+    /* ---- parts ---- */
     uint64_t parts_drawn;
     uint64_t parts_culled;
     uint64_t parts_skipped;  /* epsilon > 0: footprint saturated, not drawn;
                                 with depth_texture: also parts whose box lies
                                 wholly behind it over their screen rectangle
                                 (neither uploaded nor drawn; same image)      */
+    uint64_t parts_clipped;  /* parts in view wholly cut away by
+                                oit_frame.clip: neither uploaded nor drawn    */
+    uint64_t bytes_clipped;  /* the upload bytes of those parts              */
     uint64_t bytes_uploaded; /* part bytes written for the GPU in this call    */
-    uint64_t gpu_bytes_peak; /* all the GPU memory the call held at its peak:
-                                a part file's capture and per-pixel state,
-                                upload ring, cache and tiles together; an
-                                in-core scene's DFB buffers and its mesh   */
     uint64_t cache_hits;     /* parts drawn from the cache, not uploaded again */
     uint64_t cache_bytes;    /* bytes resident in the cache after the call     */
     uint64_t draw_calls;     /* GL geometry draws; a pack's parts go in one
                                 multi-draw per run from the ring or the cache */
-    uint64_t parts_clipped;  /* parts in view wholly cut away by
-                                oit_frame.clip: neither uploaded nor drawn    */
-    uint64_t bytes_clipped;  /* the upload bytes of those parts              */
-    /* Part files: how the K-slot fills were made (oit_renderer_desc.capture):
-     * "stencil" (capture_slots_k samples a pixel) or "array"; NULL where
-     * none ran (counted packs, in-core scenes). capture_fallback: where
-     * AUTO took array slots or fewer samples than K, the self-test's
-     * reason, else ""; NULL for in-core scenes. Both strings are liboit's,
-     * valid while r draws the scene. */
-    const char *capture_slots;
-    uint32_t capture_slots_k;
-    const char *capture_fallback;
-    /* GPU time from GL timestamp queries, read without waiting: the figures
-     * of draw number gpu_frame (1 the renderer's first; usually an earlier
-     * call than this one), 0 and gpu_ms -1 when none is in yet or the
-     * driver has no timestamps. Phases, in this order: other, upload (ring
-     * to cache copies), pass 1, pass 2, resolve, read-back, binning and
-     * sweep (the compute capture, capture=compute); they add up to
-     * gpu_ms. */
-    uint64_t gpu_frame;
-    double gpu_ms;
-    double gpu_phase_ms[OIT_DRAW_GPU_PHASES];
-    /* The memory the renderer chose for a part file (0 for in-core scenes):
-     * the total (0: none), its split, and the driver's free memory (0: it
-     * reports none). */
-    uint64_t gpu_budget, ring_budget, cache_budget, capture_budget, gpu_free_bytes;
-    /* The shading the draw resolved, as oitstream --stats prints it:
-     * see_through is oit_renderer_desc.see_through; opaque is 1 when the
-     * scene's opaque triangles hid what is behind them (transparent
-     * shading, not see-through, a scene with opaque triangles): fragments
-     * behind them were neither stored nor counted. */
-    uint32_t see_through, opaque;
-    /* A part file's per-draw work and choices, the figures oitstream
-     * --stats prints beside the ones above (0, or NULL, for in-core
-     * scenes). order_ms, pack_ms: CPU milliseconds of the parts'
-     * visibility order and of their packing, the per-view work that does
-     * not wait for GL. auto_first_k: OIT_RENDER_PACK_AUTO took first-K
-     * packs (0: counted ones, or a fixed pack). front_first: the packs
-     * were cut front first (epsilon > 0 with counted or first-K packs).
-     * second_pass_pixels: first-K packs' pixels that got more fragments
-     * than their slots hold, summed over the packs; second_pass_packs: the
-     * packs that had any, so took a second geometry pass. capture: the
-     * capture that ran ("counted", "first-k", "array", "stencil"; the
-     * last pack's) and capture_k its K; capture_asked:
-     * oit_renderer_desc.capture as given ("auto", "stencil", "array").
-     * reader_threads: the threads that read parts (0: the drawing
-     * thread). resident: the scene is read once into the ring and kept
-     * (oit_renderer_desc.upload_budget); budget_source: where gpu_budget
-     * came from ("--gpu-budget": given, in oitstream's spelling;
-     * "GL_NVX_gpu_memory_info", "default", ...). The strings are liboit's, valid while r draws the
-     * scene. Appended in this order so that the fields above keep their
-     * offsets for callers built before them. */
-    double order_ms, pack_ms;
-    uint32_t auto_first_k, front_first;
-    uint64_t second_pass_pixels;
-    uint32_t second_pass_packs;
+    uint32_t reader_threads; /* the threads that read parts (0: the drawing
+                                thread)                                        */
+    uint32_t resident;       /* the scene is read once into the ring and kept
+                                (oit_renderer_desc.upload_budget)              */
+
+    /* ---- packs and their capture ---- */
+    uint32_t packs;
+    /* Capture batches: packs, more where a pack's fragments overran the
+     * capture's store (oit_renderer_desc.slot_budget) and it was captured
+     * in several; for an in-core scene, DFB's bands. predicted_batches:
+     * counted packs drawn at the offsets the last draw's counts of the same
+     * view gave (one geometry pass where the view held still, a second for
+     * the pixels whose fragments it did not hold), not counted first. */
+    uint32_t batches, predicted_batches;
+    /* The capture that ran ("counted", "first-k", "array", "stencil",
+     * "compute"; the last pack's) and capture_k its K; capture_asked:
+     * oit_renderer_desc.capture as given ("auto", "stencil", "array",
+     * "compute"). */
     const char *capture;
     uint32_t capture_k;
     const char *capture_asked;
-    uint32_t reader_threads, resident;
-    const char *budget_source;
-    /* This draw's number (1: the renderer's first oit_renderer_draw or
-     * oit_renderer_draw_image), which its GPU figures carry
-     * (oit_renderer_gpu_poll, gpu_frame above). */
-    uint64_t draw;
-    /* Capture batches: packs, more where a pack's fragments overran the
-     * capture's store (oit_renderer_desc.slot_budget) and it was captured
-     * in several; for an in-core scene, DFB's bands. */
-    uint32_t batches;
+    /* How the K-slot fills were made: "stencil" (capture_slots_k samples a
+     * pixel) or "array"; NULL where none ran (counted packs).
+     * capture_fallback: where AUTO took array slots or fewer samples than
+     * K, the self-test's reason, else "". */
+    const char *capture_slots;
+    uint32_t capture_slots_k;
+    const char *capture_fallback;
+
+    /* ---- the view's choices ---- */
+    /* CPU milliseconds of the parts' visibility order and of their
+     * packing, the per-view work that does not wait for GL. */
+    double order_ms, pack_ms;
+    /* auto_first_k: OIT_RENDER_PACK_AUTO took first-K packs (0: counted
+     * ones, or a fixed pack). front_first: the packs were cut front first
+     * (epsilon > 0 with counted or first-K packs). */
+    uint32_t auto_first_k, front_first;
     /* OIT_RENDER_PACK_AUTO's choice of packs for this draw (NULL and -1
      * with a fixed pack, a compute capture or an in-core scene): choice the
      * path taken, "first-k" or "counted"; choice_why why ("seed": the first
      * draw; "new view": the view changed, so the last view's path with no
      * figures; "held"; "probe": tried for one draw, as a fixed rule
      * suggests (deep_pixels above 0 suggests counted, 0 suggests first-K;
-     * counted draws over K try first-K every 256th draw), kept only if it measures faster (a path that
-     * lost is not tried again on any view for 8, 16, ... 256 draws); "kept: measured faster", "back: measured slower", "measured
-     * faster"); and each path's cost as measured on this view before the
-     * draw, the least wall time of its draws (where both paths have GPU
-     * figures: the least over its draws of each one's larger of wall and
-     * GPU time), -1 where not measured. The strings are static. */
+     * counted draws over K try first-K every 256th draw), kept only if it
+     * measures faster (a path that lost is not tried again on any view for
+     * 8, 16, ... 256 draws); "kept: measured faster", "back: measured
+     * slower", "measured faster"); and each path's cost as measured on this
+     * view before the draw, the least wall time of its draws (where both
+     * paths have GPU figures: the least over its draws of each one's larger
+     * of wall and GPU time), -1 where not measured. */
     const char *choice, *choice_why;
     double choice_first_k_ms, choice_counted_ms;
-    /* A part file's draw: host_waits, the times the host waited on the GPU
-     * between the draw's first command and its final read-back (buffer
-     * read-backs, fences that blocked; the final read-back not counted),
-     * 0 on warm draws of the default packs; redraws, the times the draw
-     * was captured again because a store sized ahead of the GPU's need
-     * proved short (the figures are the last capture's, the image exact).
-     * 0 for in-core scenes. */
-    uint32_t host_waits, redraws;
-    /* A part file's draw with first-K or counted packs: the pixels that
-     * got more than capture_k fragments in one pack (first-K: more than
-     * its slots), summed over the packs. First-K's second pass took
-     * exactly these (second_pass_pixels); counted packs count them from
-     * their counts. OIT_RENDER_PACK_AUTO's rule suggests counted packs
-     * where any did (a still view's next counted draw is predicted from
-     * this one's counts: one geometry pass), first-K where none did. 0
-     * otherwise. */
-    uint64_t deep_pixels;
-    /* A part file's draw with counted packs: the packs drawn at the
-     * offsets the last draw's counts of the same view gave (one geometry
-     * pass where the view held still, a second for the pixels whose
-     * fragments it did not hold), not counted first. 0 otherwise. */
-    uint32_t predicted_batches;
-    /* Appended last: the fragment store budget the renderer chose for a
-     * part file (oit_renderer_desc.store_budget; 0: in-core scenes and
-     * packs without a store), the split's fifth share. */
-    uint64_t store_budget;
+
+    /* ---- GPU memory (bytes) ---- */
+    uint64_t gpu_bytes_peak; /* all the GPU memory the call held at its peak:
+                                a part file's capture and per-pixel state,
+                                upload ring, cache and tiles together; an
+                                in-core scene's DFB buffers and its mesh   */
+    /* The memory the renderer chose for a part file: the total (0: none),
+     * its split (store_budget: 0 for packs without a store), the driver's
+     * free memory (0: it reports none), and where the total came from:
+     * budget_source "oit_renderer_desc.gpu_budget" where given, else the
+     * driver's figure ("GL_NVX_gpu_memory_info", "GL_ATI_meminfo") or why
+     * there is none. */
+    uint64_t gpu_budget, ring_budget, cache_budget, capture_budget, store_budget;
+    uint64_t gpu_free_bytes;
+    const char *budget_source;
+
+    /* ---- the shading ---- */
+    /* see_through is oit_renderer_desc.see_through; opaque is 1 when the
+     * scene's opaque triangles hid what is behind them (transparent
+     * shading, not see-through, a scene with opaque triangles): fragments
+     * behind them were neither stored nor counted. */
+    uint32_t see_through, opaque;
 } oit_draw_stats;
 
 /* Draws scene as seen through frame into frame->framebuffer (see Result
@@ -640,8 +629,9 @@ typedef struct oit_draw_stats {
  * each captured and blended in turn (the same image; its figures add up).
  * stats may be NULL; for an in-core scene only ms, fragments, max_layers,
  * packs (DFB's bands of rows, 1 unless the frame's fragments exceed one
- * storage buffer), draw_calls, bytes_uploaded (the triangles, at the first
- * draw) and gpu_bytes_peak are filled, the rest are 0. */
+ * storage buffer), batches, draw_calls, bytes_uploaded (the triangles, at
+ * the first draw), gpu_bytes_peak, draw, the GPU times and the shading's
+ * are filled, the rest are 0. */
 OIT_API oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame *frame,
                                      oit_draw_stats *stats, oit_error *err);
 
@@ -651,7 +641,7 @@ OIT_API oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oi
  * least that many bytes, else OIT_ERR_ARGUMENT), row 0 at the TOP,
  *     rgb = C + T * background,  a = 1
  * with C and T as in Result, computed by the capture's own resolve pass (so
- * the bytes are those of oitstream's PFMs for the same settings and
+ * the bytes are those of the tools' PFMs for the same settings and
  * camera: oit_frame.camera), colour sRGB-encoded in both colour spaces.
  * background: rgb, sRGB-encoded (decoded for OIT_RENDER_COLOUR_LINEAR); a
  * negative component is 0; NULL or all 0: white, the tools' default.

@@ -10,12 +10,11 @@
  * alpha. By default (oit_render_shading.colour_space OIT_RENDER_COLOUR_SRGB,
  * oit/liboit.h) all methods blend them in that encoding, as the OIT papers
  * and most viewers do: 50% red over white is 255,127,127.
- * OIT_RENDER_COLOUR_LINEAR (oitstream --colour-space linear) decodes them
- * with the exact sRGB EOTF, composites in linear light and encodes the
- * result: 255,187,187. Alpha is coverage in both and never converted.
+ * OIT_RENDER_COLOUR_LINEAR decodes them with the exact sRGB EOTF,
+ * composites in linear light and encodes the result: 255,187,187. Alpha is coverage in both and never converted.
  * When the input has no colour (or no alpha) the reader writes 255 and clears
  * the bit in oit_mesh_info.attributes; the renderer then substitutes its
- * default colour or --alpha.
+ * default colour or alpha (oit_render_shading).
  */
 #ifndef OIT_MESH_H
 #define OIT_MESH_H

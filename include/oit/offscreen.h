@@ -79,10 +79,10 @@ typedef struct oit_offscreen_view {
      * - eye != target: a look-at camera; up 0: +y; fovy_deg 0: 45;
      *   znear = zfar = 0: planes fitted to the scene's bounding sphere seen
      *   from eye;
-     * - eye = target = 0: the tools' default view (oitstream without
-     *   --view: the scene's bounds seen from azimuth 0, elevation 20, fovy
-     *   45, the bounding sphere filling the height), turned about up when
-     *   it is given (+x, +y or +z, any length: oitstream --up x|y|z; any
+     * - eye = target = 0: the tools' default view (the scene's bounds
+     *   seen from azimuth 0, elevation 20, fovy 45, the bounding sphere
+     *   filling the height), turned about up when
+     *   it is given (+x, +y or +z, any length, as the tools' up axis; any
      *   other direction is OIT_ERR_ARGUMENT), fovy_deg moving the eye so
      *   the sphere still fills the height, znear/zfar replacing the fitted
      *   planes when given. oit_offscreen_default_view gives the other
@@ -112,12 +112,12 @@ typedef enum oit_up_axis {
 } oit_up_axis;
 
 /* Sets view's camera (eye, target, up, fovy_deg 45, znear, zfar fitted to
- * the bounding sphere; use_matrices 0) to the view oitstream takes of
- * scene's bounds for --up, --azimuth and --elevation without --view;
+ * the bounding sphere; use_matrices 0) to the view the tools take of
+ * scene's bounds for an up axis, azimuth and elevation;
  * width, height, format and background are left as they are. azimuth:
  * any finite angle (0: the eye on the +z side for y or x up, on the -y
  * side for z up; 90 a quarter turn to the right); elevation in [-90, 90]
- * (oitstream's default is 20). */
+ * (the tools' default is 20). */
 OIT_API oit_status oit_offscreen_default_view(const oit_scene *scene, oit_up_axis up,
                                               float azimuth_deg, float elevation_deg,
                                               oit_offscreen_view *view, oit_error *err);

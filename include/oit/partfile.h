@@ -10,7 +10,7 @@
  *
  * A part is at most K/2 convex pieces, so it yields at most K fragments per
  * pixel from any viewpoint (in a file flagged OIT_PARTFILE_FLAG_MEASURED_BOUNDS,
- * oitprep --scheme fast, a part's bound is measured instead, not
+ * oitprep's fast scheme, a part's bound is measured instead, not
  * guaranteed); grids, subgrids and slabs order the parts per
  * view. One part's vertices and indices are one contiguous, aligned byte
  * range, so a streaming loader reads a part with one pread.
@@ -54,8 +54,8 @@ extern "C" {
  * K layers meet at one vertex no box separates them, so the part keeps its
  * bound (up to this) and the renderer captures it over smaller tiles. */
 #define OIT_PARTFILE_MAX_LAYERS 64u
-/* Header flag (version 3): the parts' layer bounds are measured (oitprep
- * --scheme fast counts them along sampled lines), not guaranteed. A part's
+/* Header flag (version 3): the parts' layer bounds are measured (oitprep's
+ * fast scheme counts them along sampled lines), not guaranteed. A part's
  * bound is then 1..OIT_PARTFILE_MAX_LAYERS whatever its pieces, and a ray
  * may meet more of its surfaces. Files without it are Wang & Xie's guarantee.
  * Builds before this flag refuse such a file (unknown flag), which is

@@ -3,8 +3,7 @@
  * Every fallible call returns an oit_status and, when it fails, fills the
  * caller's oit_error (if non-NULL) with one line that names the input and what
  * is wrong ("bunny.off: line 12: vertex index 9000 out of range (8000
- * vertices)"). Library code never prints, exits or aborts; tools print
- * err.message and map the status to an exit code with oit_status_exit_code.
+ * vertices)"). Library code never prints, exits or aborts.
  */
 #ifndef OIT_STATUS_H
 #define OIT_STATUS_H
@@ -19,13 +18,13 @@ extern "C" {
 
 typedef enum oit_status {
     OIT_OK = 0,
-    OIT_ERR_IO,          /* a file could not be opened, read or written     */
-    OIT_ERR_FORMAT,      /* the input is malformed: bad input (exit 3)      */
-    OIT_ERR_NOMEM,       /* an allocation failed or a budget was exceeded   */
-    OIT_ERR_ARGUMENT,    /* the caller passed something invalid (exit 2)    */
-    OIT_ERR_UNSUPPORTED, /* valid input we do not handle (exit 3)           */
-    OIT_ERR_GL,          /* the GL/EGL driver failed or lacks a feature     */
-    OIT_ERR_CALLBACK     /* a caller's callback asked to stop               */
+    OIT_ERR_IO,          /* a file could not be opened, read or written   */
+    OIT_ERR_FORMAT,      /* the input is malformed                        */
+    OIT_ERR_NOMEM,       /* an allocation failed or a budget was exceeded */
+    OIT_ERR_ARGUMENT,    /* the caller passed something invalid           */
+    OIT_ERR_UNSUPPORTED, /* valid input we do not handle                  */
+    OIT_ERR_GL,          /* the GL/EGL driver failed or lacks a feature   */
+    OIT_ERR_CALLBACK     /* a caller's callback asked to stop             */
 } oit_status;
 
 typedef struct oit_error {
@@ -47,10 +46,6 @@ OIT_API oit_status oit_error_setv(oit_error *err, oit_status s, const char *fmt,
 OIT_API void oit_error_prefix(oit_error *err, const char *what);
 
 OIT_API const char *oit_status_name(oit_status s);
-
-/* The tools' exit codes: 0 success, 1 runtime failure, 2 usage error,
- * 3 bad input. */
-OIT_API int oit_status_exit_code(oit_status s);
 
 #ifdef __cplusplus
 }

@@ -50,15 +50,15 @@ class RenderShading(ctypes.Structure):
 
 
 class RendererDesc(ctypes.Structure):
-    _fields_ = [("K", ctypes.c_uint32), ("upload_budget", ctypes.c_uint64),
-                ("pack", ctypes.c_int), ("shading", RenderShading),
-                ("epsilon", ctypes.c_float), ("cache_budget", ctypes.c_uint64),
-                ("read_on_draw_thread", ctypes.c_int), ("capture", ctypes.c_int),
-                ("gpu_budget", ctypes.c_uint64), ("see_through", ctypes.c_int),
-                ("schedule", ctypes.c_int), ("slot_budget", ctypes.c_uint64),
-                ("reader_threads", ctypes.c_uint32), ("binding_limit", ctypes.c_uint64),
-                ("program_cache", ctypes.c_char_p), ("frames", ctypes.c_uint32),
-                ("store_budget", ctypes.c_uint64)]
+    _fields_ = [("shading", RenderShading), ("see_through", ctypes.c_int),
+                ("epsilon", ctypes.c_float),
+                ("K", ctypes.c_uint32), ("pack", ctypes.c_int), ("schedule", ctypes.c_int),
+                ("capture", ctypes.c_int), ("frames", ctypes.c_uint32),
+                ("gpu_budget", ctypes.c_uint64), ("upload_budget", ctypes.c_uint64),
+                ("cache_budget", ctypes.c_uint64), ("slot_budget", ctypes.c_uint64),
+                ("store_budget", ctypes.c_uint64), ("binding_limit", ctypes.c_uint64),
+                ("reader_threads", ctypes.c_uint32), ("read_on_draw_thread", ctypes.c_int),
+                ("program_cache", ctypes.c_char_p)]
 
 
 class OffscreenDesc(ctypes.Structure):
@@ -77,36 +77,32 @@ class OffscreenView(ctypes.Structure):
 
 
 class DrawStats(ctypes.Structure):
-    _fields_ = [("ms", ctypes.c_double), ("fragments", ctypes.c_uint64),
+    _fields_ = [("draw", ctypes.c_uint64), ("ms", ctypes.c_double),
+                ("gpu_frame", ctypes.c_uint64), ("gpu_ms", ctypes.c_double),
+                ("gpu_phase_ms", ctypes.c_double * 8), ("host_waits", ctypes.c_uint32),
+                ("redraws", ctypes.c_uint32), ("fragments", ctypes.c_uint64),
                 ("max_layers", ctypes.c_uint32), ("overflow_pixels", ctypes.c_uint64),
-                ("packs", ctypes.c_uint32), ("parts_drawn", ctypes.c_uint64),
+                ("deep_pixels", ctypes.c_uint64), ("second_pass_pixels", ctypes.c_uint64),
+                ("second_pass_packs", ctypes.c_uint32), ("parts_drawn", ctypes.c_uint64),
                 ("parts_culled", ctypes.c_uint64), ("parts_skipped", ctypes.c_uint64),
-                ("bytes_uploaded", ctypes.c_uint64), ("gpu_bytes_peak", ctypes.c_uint64),
-                ("cache_hits", ctypes.c_uint64), ("cache_bytes", ctypes.c_uint64),
-                ("draw_calls", ctypes.c_uint64), ("parts_clipped", ctypes.c_uint64),
-                ("bytes_clipped", ctypes.c_uint64),
-                ("capture_slots", ctypes.c_char_p),
-                ("capture_slots_k", ctypes.c_uint32), ("capture_fallback", ctypes.c_char_p),
-                ("gpu_frame", ctypes.c_uint64),
-                ("gpu_ms", ctypes.c_double), ("gpu_phase_ms", ctypes.c_double * 8),
+                ("parts_clipped", ctypes.c_uint64), ("bytes_clipped", ctypes.c_uint64),
+                ("bytes_uploaded", ctypes.c_uint64), ("cache_hits", ctypes.c_uint64),
+                ("cache_bytes", ctypes.c_uint64), ("draw_calls", ctypes.c_uint64),
+                ("reader_threads", ctypes.c_uint32), ("resident", ctypes.c_uint32),
+                ("packs", ctypes.c_uint32), ("batches", ctypes.c_uint32),
+                ("predicted_batches", ctypes.c_uint32), ("capture", ctypes.c_char_p),
+                ("capture_k", ctypes.c_uint32), ("capture_asked", ctypes.c_char_p),
+                ("capture_slots", ctypes.c_char_p), ("capture_slots_k", ctypes.c_uint32),
+                ("capture_fallback", ctypes.c_char_p), ("order_ms", ctypes.c_double),
+                ("pack_ms", ctypes.c_double), ("auto_first_k", ctypes.c_uint32),
+                ("front_first", ctypes.c_uint32), ("choice", ctypes.c_char_p),
+                ("choice_why", ctypes.c_char_p), ("choice_first_k_ms", ctypes.c_double),
+                ("choice_counted_ms", ctypes.c_double), ("gpu_bytes_peak", ctypes.c_uint64),
                 ("gpu_budget", ctypes.c_uint64), ("ring_budget", ctypes.c_uint64),
                 ("cache_budget", ctypes.c_uint64), ("capture_budget", ctypes.c_uint64),
-                ("gpu_free_bytes", ctypes.c_uint64),
-                ("see_through", ctypes.c_uint32), ("opaque", ctypes.c_uint32),
-                ("order_ms", ctypes.c_double), ("pack_ms", ctypes.c_double),
-                ("auto_first_k", ctypes.c_uint32), ("front_first", ctypes.c_uint32),
-                ("second_pass_pixels", ctypes.c_uint64),
-                ("second_pass_packs", ctypes.c_uint32), ("capture", ctypes.c_char_p),
-                ("capture_k", ctypes.c_uint32), ("capture_asked", ctypes.c_char_p),
-                ("reader_threads", ctypes.c_uint32), ("resident", ctypes.c_uint32),
-                ("budget_source", ctypes.c_char_p), ("draw", ctypes.c_uint64),
-                ("batches", ctypes.c_uint32),
-                ("choice", ctypes.c_char_p), ("choice_why", ctypes.c_char_p),
-                ("choice_first_k_ms", ctypes.c_double),
-                ("choice_counted_ms", ctypes.c_double),
-                ("host_waits", ctypes.c_uint32), ("redraws", ctypes.c_uint32),
-                ("deep_pixels", ctypes.c_uint64),
-                ("predicted_batches", ctypes.c_uint32), ("store_budget", ctypes.c_uint64)]
+                ("store_budget", ctypes.c_uint64), ("gpu_free_bytes", ctypes.c_uint64),
+                ("budget_source", ctypes.c_char_p), ("see_through", ctypes.c_uint32),
+                ("opaque", ctypes.c_uint32)]
 
 
 # enum values of the headers

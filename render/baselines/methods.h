@@ -1,7 +1,7 @@
 /* The baselines as method tables (render/method.h): the approximate ones
  * (unsorted, wboit, ppll4, guarded, f2b) and the exact ones the papers
  * compare against (pll, dp, ddp, b3d). Each table's name is the one the
- * tools take after --method; each is defined at the end of its baseline's
+ * tools take for a method; each is defined at the end of its baseline's
  * file. */
 #ifndef OIT_RENDER_BASELINES_METHODS_H
 #define OIT_RENDER_BASELINES_METHODS_H

@@ -53,7 +53,7 @@ typedef struct oit_capture oit_capture;
 
 /* The capture's K, fragments a pixel a batch: the one range, and its one
  * check, which the tools and liboit run on the value they were given, named
- * in their spelling (what: "--max-layers", "oit_renderer_desc.K"; NULL:
+ * in their spelling (what: "oit_renderer_desc.K", a tool's flag; NULL:
  * "capture: K"). */
 #define OIT_CAPTURE_K_MIN 2
 #define OIT_CAPTURE_K_MAX 16

@@ -14,15 +14,16 @@ static int next_try(int k)
     return p >= 2 ? p : 0;
 }
 
-oit_status oit_capture_choose(oit_capture_kind asked, int K, int fewer_ok,
+oit_status oit_capture_choose(oit_capture_kind asked, const char *what, int K, int fewer_ok,
                               oit_capture_try try_stencil, void *ctx, oit_capture_choice *out,
                               oit_error *err)
 {
+    what = what ? what : "capture";
     memset(out, 0, sizeof *out);
     out->asked = asked;
     out->slots = OIT_CAPTURE_ARRAY;
     if (asked != OIT_CAPTURE_AUTO && asked != OIT_CAPTURE_ARRAY && asked != OIT_CAPTURE_STENCIL)
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: %d is not auto, stencil or array",
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s = %d: not auto, stencil or array", what,
                              (int)asked);
     oit_status k = oit_capture_k_check(K, NULL, err);
     if (k != OIT_OK)
@@ -46,7 +47,7 @@ oit_status oit_capture_choose(oit_capture_kind asked, int K, int fewer_ok,
             snprintf(out->reason, sizeof out->reason, "%s", why.message);
     }
     if (asked == OIT_CAPTURE_STENCIL)
-        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "--capture stencil at K=%d%s: %s", K,
+        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "%s = stencil at K=%d%s: %s", what, K,
                              fewer_ok && K > 2 ? " (nor fewer samples)" : "", out->reason);
     return OIT_OK;
 }

@@ -1,4 +1,4 @@
-/* Which K-slot fill a capture gets (--capture auto|stencil|array): the
+/* Which K-slot fill a capture gets (auto, stencil or array): the
  * stencil-routed A-buffer where its self-test passes on this driver,
  * array slots otherwise. Decided without GL: the self-test comes in as a
  * function, so that tests can inject its verdicts (capture.h's
@@ -31,8 +31,9 @@ typedef struct oit_capture_choice {
 /* asked: OIT_CAPTURE_AUTO, _ARRAY or _STENCIL (else OIT_ERR_ARGUMENT).
  * ARRAY tries nothing. STENCIL where no try passes: OIT_ERR_UNSUPPORTED
  * whose message gives the self-test's reason at K (no fallback: the caller
- * asked for it). */
-oit_status oit_capture_choose(oit_capture_kind asked, int K, int fewer_ok,
+ * asked for it). what: the setting in the caller's spelling, for the
+ * errors ("oit_renderer_desc.capture"; NULL: "capture"). */
+oit_status oit_capture_choose(oit_capture_kind asked, const char *what, int K, int fewer_ok,
                               oit_capture_try try_stencil, void *ctx, oit_capture_choice *out,
                               oit_error *err);
 

@@ -1,8 +1,7 @@
 /* Linked GL programs kept across processes (GL 4.1 program binaries), so a
  * one-image run does not pay the driver's compiler for programs an earlier
  * run already built. The one owner of the setting "where": a folder given
- * by the caller (liboit's oit_renderer_desc.program_cache, oitstream's
- * --program-cache), else OIT_PROGRAM_CACHE from the environment, else
+ * by the caller (liboit's oit_renderer_desc.program_cache), else OIT_PROGRAM_CACHE from the environment, else
  * $XDG_CACHE_HOME/oit, else $HOME/.cache/oit; the word "off" (either way)
  * turns it off. A file a program is named by a hash of GL_VENDOR,
  * GL_RENDERER, GL_VERSION and the full source of every stage; it carries a

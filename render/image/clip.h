@@ -1,5 +1,5 @@
-/* Section planes: what oitstream --clip, liboit's oit_frame.clip and
- * Python's oit.render(clip=...) set, defined and checked here once.
+/* Section planes: what the tools, liboit's oit_frame.clip and Python's
+ * oit.render(clip=...) set, defined and checked here once.
  *
  * Convention: a plane (a, b, c, d) KEEPS the points p of world space (the
  * camera's space: after oit_view.model, the scene's coordinates less its
@@ -33,7 +33,7 @@ typedef struct oit_clip {
 
 /* The one check: count in 0..OIT_CLIP_MAX, every number finite, every
  * normal (a, b, c) non-zero. what names the setting in the message
- * ("--clip", "oit_frame.clip"). */
+ * ("oit_frame.clip"; a tool its flag). */
 oit_status oit_clip_check(const oit_clip *c, const char *what, oit_error *err);
 
 /* Appends the plane "a,b,c,d" given in the file's coordinates (origin, the

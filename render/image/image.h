@@ -35,7 +35,7 @@ void oit_image_put_rgb(oit_image *img, int x, int y, const float rgb[3]);
  * (view.h) in both colour spaces, so the writer decodes each colour with the
  * exact sRGB EOTF (oit_srgb_decode, render/image/shade.h; odd-symmetric for
  * negative values) and the reader encodes it back. So every image in
- * memory, and every comparison (oit_image_compare, oitstream --compare,
+ * memory, and every comparison (oit_image_compare, the tools' comparisons,
  * PNG against PFM alike), is in the sRGB-encoded space, where the 1/255
  * figures are 8-bit steps; a round trip returns each value to float
  * rounding (a few 1e-8), and its 8-bit encoding exactly. */

@@ -187,7 +187,7 @@ static void check_choose(void)
             want = OIT_ERR_UNSUPPORTED;
         oit_capture_choice ch;
         oit_error err = {0};
-        oit_status s = oit_capture_choose(asked, K, fewer_ok, verdict, &f, &ch, &err);
+        oit_status s = oit_capture_choose(asked, NULL, K, fewer_ok, verdict, &f, &ch, &err);
         int same_tries = f.n == want_n;
         for (int i = 0; same_tries && i < nt && i < f.n; i++)
             same_tries = f.tried[i] == tries[i];

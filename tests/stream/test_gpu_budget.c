@@ -179,7 +179,7 @@ int main(int argc, char **argv)
     CHECK(render_views(pf, &t, &tight, &err), "below the file: %s", err.message);
     print_budget("below the file", &tight.budget);
     CHECK(!tight.budget.resident && tight.budget.total == t.gpu_budget &&
-              !strcmp(tight.budget.source, "--gpu-budget"),
+              !strcmp(tight.budget.source, "oit_streamer_desc.gpu_budget"),
           "below the file: resident %d, total %llu from %s", tight.budget.resident,
           (unsigned long long)tight.budget.total, tight.budget.source);
     /* the store is a share of its own, not taken from the others' */
@@ -240,7 +240,7 @@ int main(int argc, char **argv)
     x.upload_budget = 2ull << 20;
     x.cache_budget = 4ull << 20;
     CHECK(oit_streamer_create(pf, &x, &s, &err) == OIT_ERR_ARGUMENT &&
-              strstr(err.message, "--gpu-budget"),
+              strstr(err.message, "more than oit_streamer_desc.gpu_budget"),
           "finer budgets past the total: %s", s ? "accepted" : err.message);
     printf("refused: %s\n", err.message);
     oit_streamer_destroy(s);

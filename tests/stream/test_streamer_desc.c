@@ -77,7 +77,8 @@ static void check_ranges(void)
             else
                 set_field(&d, c->field, c->value);
             oit_error err = {0};
-            oit_status s = oit_streamer_desc_check(&d, named ? &names : NULL, &err);
+            d.names = named ? &names : NULL;
+            oit_status s = oit_streamer_desc_check(&d, &err);
             const char *name = named ? spelt[c->field] : own[c->field];
             CHECK((s == OIT_OK) == c->ok, "%s = %.17g: %s, expected %s", name, c->value,
                   s == OIT_OK ? "accepted" : err.message, c->ok ? "accepted" : "refused");

@@ -6,6 +6,7 @@
 
 #include "render/gl/gpu_timer.h"
 #include "render/image/image.h"
+#include "tools/common/flag_spelling.h"
 
 typedef struct stream_impl {
     oit_scene *scene;
@@ -123,6 +124,14 @@ static void frame_stats_of(const oit_draw_stats *d, oit_frame_stats *fs)
     fs->gpu_frame = d->draw;
 }
 
+/* liboit's errors as the tools' users give the settings: by flag. */
+static oit_status spelt(oit_status s, oit_error *err)
+{
+    if (s != OIT_OK)
+        oit_flags_spell_error(err);
+    return s;
+}
+
 static oit_status stream_render(void *impl, const oit_method_frame *f, oit_error *err)
 {
     stream_impl *m = impl;
@@ -131,7 +140,7 @@ static oit_status stream_render(void *impl, const oit_method_frame *f, oit_error
     if (s == OIT_OK)
         s = oit_image_alloc(f->out, v->width, v->height, err);
     if (s != OIT_OK)
-        return s;
+        return spelt(s, err);
     oit_frame_camera cam;
     oit_frame fr;
     oit_stream_frame(v, &cam, &fr);
@@ -139,9 +148,10 @@ static oit_status stream_render(void *impl, const oit_method_frame *f, oit_error
     s = oit_renderer_draw_image(m->renderer, m->scene, &fr, v->shading.background,
                                 f->out->rgba, bytes, &m->stats, err);
     m->drawn = s == OIT_OK;
+    m->stats.budget_source = oit_flag_of(m->stats.budget_source);
     if (s == OIT_OK && f->stats)
         frame_stats_of(&m->stats, f->stats);
-    return s;
+    return spelt(s, err);
 }
 
 static int stream_gpu_poll(void *impl, oit_gpu_times *out, int wait)

@@ -6,6 +6,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "tools/common/exit_code.h"
+
 static oit_status discard(void *user, const oit_triangle *t, size_t n, oit_error *err)
 {
     return OIT_OK;
@@ -32,7 +34,7 @@ int main(int argc, char **argv)
         oit_status s = oit_mesh_read(argv[i], NULL, discard, NULL, &m, &err);
         if (s != OIT_OK) {
             fprintf(stderr, "oit_meshinfo: %s\n", err.message);
-            code = oit_status_exit_code(s);
+            code = oit_tool_exit_code(s);
             continue;
         }
         printf("file %s\ntriangles %llu\nfaces %llu\nvertices %llu\nnonfinite_dropped %llu\n"

@@ -5,7 +5,7 @@
  * results.csv, results.json, two PNG charts and
  * report.md; "oitbench plot" draws charts across earlier runs; "oitbench
  * bus" measures the host-to-device rate (bench_bus.c). Errors are
- * one line on stderr; the exit status follows oit_status_exit_code, except
+ * one line on stderr; the exit status follows oit_tool_exit_code, except
  * that a run in which no method could render at all exits 1. */
 #include <stdio.h>
 #include <stdlib.h>
@@ -16,6 +16,8 @@
 #include <signal.h>
 #include <sys/stat.h>
 
+#include "tools/common/exit_code.h"
+#include "tools/common/flag_spelling.h"
 #include "tools/common/heap.h"
 #include "tools/common/paths.h"
 #include "tools/common/progress_mode.h"
@@ -32,8 +34,10 @@
 
 static int fail(const oit_error *err)
 {
-    fprintf(stderr, "oitbench: %s\n", err->message);
-    return oit_status_exit_code(err->status);
+    oit_error e = *err; /* liboit names its fields, a tool its flags */
+    oit_flags_spell_error(&e);
+    fprintf(stderr, "oitbench: %s\n", e.message);
+    return oit_tool_exit_code(err->status);
 }
 
 /* oitprep's conversion options, with the run's --scheme and --part-triangles. */

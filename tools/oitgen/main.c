@@ -6,6 +6,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "tools/common/exit_code.h"
 #include "tools/common/paths.h"
 #include "tools/common/progress_mode.h"
 #include "base/args.h"
@@ -308,7 +309,7 @@ int main(int argc, char **argv)
         s = generate(&c, &st, &err);
     if (s) {
         fprintf(stderr, "oitgen: %s\n", err.message);
-        return oit_status_exit_code(s);
+        return oit_tool_exit_code(s);
     }
     printf("triangles %llu vertices %llu bytes %llu seconds %.3f\n", (unsigned long long)st.faces,
            (unsigned long long)st.vertices, (unsigned long long)st.bytes, oit_time_s() - t0);

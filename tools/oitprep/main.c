@@ -19,6 +19,8 @@
 
 #include "base/args.h"
 #include "base/json.h"
+#include "tools/common/exit_code.h"
+#include "tools/common/flag_spelling.h"
 #include "tools/common/mesh_formats.h"
 #include "tools/common/paths.h"
 #include "tools/common/progress_mode.h"
@@ -29,6 +31,14 @@
 #include "preprocess/stats_json.h"
 #include "preprocess/export_parts.h"
 #include "preprocess/verify.h"
+
+/* The conversion's errors name its options' fields; oitprep's user gave
+ * flags (flag_spelling.h). */
+static void print_error(oit_error *err)
+{
+    oit_flags_spell_error(err);
+    fprintf(stderr, "oitprep: %s\n", err->message);
+}
 
 static void usage(FILE *f)
 {
@@ -219,8 +229,8 @@ static int print_decode_rate(const char *path)
     oit_error err = {0};
     oit_status st = oit_measure_decode(path, 3, &r, &err);
     if (st) {
-        fprintf(stderr, "oitprep: %s\n", err.message);
-        return oit_status_exit_code(st);
+        print_error(&err);
+        return oit_tool_exit_code(st);
     }
     double mb = (double)r.decoded_bytes / 1e6;
     printf("  decode     %llu parts, %llu stored bytes -> %llu decoded, one thread: %.1f ms "
@@ -276,8 +286,8 @@ static int cmd_info(int argc, char **argv)
     oit_error err = {0};
     oit_status st = oit_partfile_open(path, NULL, &pf, &err);
     if (st) {
-        fprintf(stderr, "oitprep: %s\n", err.message);
-        return oit_status_exit_code(st);
+        print_error(&err);
+        return oit_tool_exit_code(st);
     }
     oit_partfile_summary s;
     oit_partfile_get_summary(pf, &s);
@@ -287,8 +297,8 @@ static int cmd_info(int argc, char **argv)
         print_human(pf, &s);
     oit_partfile_close(pf);
     if (st) {
-        fprintf(stderr, "oitprep: %s\n", err.message);
-        return oit_status_exit_code(st);
+        print_error(&err);
+        return oit_tool_exit_code(st);
     }
     return decode ? print_decode_rate(path) : 0;
 }
@@ -435,16 +445,16 @@ static int cmd_convert(int argc, char **argv)
     oit_error err = {0};
     oit_status s = check_outputs(o.input, o.output, stats, &err);
     if (s) {
-        fprintf(stderr, "oitprep: %s\n", err.message);
-        return oit_status_exit_code(s);
+        print_error(&err);
+        return oit_tool_exit_code(s);
     }
     static const char *const tmp[] = {".tmp", NULL}; /* partfile_write.c */
     oit_tool_signals_install("oitprep", o.output, tmp);
     oit_convert_stats st;
     s = oit_convert(&o, &st, &err);
     if (s) {
-        fprintf(stderr, "oitprep: %s\n", err.message);
-        return oit_status_exit_code(s);
+        print_error(&err);
+        return oit_tool_exit_code(s);
     }
     if (o.scheme == OIT_SCHEME_FAST && st.clamped_parts)
         fprintf(stderr, "oitprep: %s: %llu parts measured more than %u layers (most %u) after "
@@ -459,8 +469,8 @@ static int cmd_convert(int argc, char **argv)
             (long long)st.split_added, (unsigned long long)st.pieces,
             (unsigned long long)st.parts, (unsigned long long)st.cells, st.seconds_total);
     if (stats && (s = oit_convert_stats_write_json(stats, &o, &st, &err))) {
-        fprintf(stderr, "oitprep: %s\n", err.message);
-        return oit_status_exit_code(s);
+        print_error(&err);
+        return oit_tool_exit_code(s);
     }
     return 0;
 }
@@ -497,8 +507,8 @@ static int cmd_verify(int argc, char **argv)
     oit_error err = {0};
     oit_status s = oit_verify(path, &o, &rep, &err);
     if (s) {
-        fprintf(stderr, "oitprep: %s\n", err.message);
-        return oit_status_exit_code(s);
+        print_error(&err);
+        return oit_tool_exit_code(s);
     }
     oit_verify_print(stdout, path, &rep);
     return rep.layer_violations || rep.order_violations || rep.slab_violations ||
@@ -542,8 +552,8 @@ static int cmd_parts(int argc, char **argv)
     if (!s)
         s = oit_export_parts(path, out, colour, alpha, &c, &err);
     if (s) {
-        fprintf(stderr, "oitprep: %s\n", err.message);
-        return oit_status_exit_code(s);
+        print_error(&err);
+        return oit_tool_exit_code(s);
     }
     printf("%s: %llu parts, %llu triangles (%llu parts of separating slabs, %llu of cutting "
            "planes, %llu wide)\n", out, (unsigned long long)c.parts,

@@ -46,13 +46,6 @@ static int parse_bytes(const char *s, uint64_t *out)
     return oit_parse_bytes(s, 0, UINT64_MAX, out);
 }
 
-/* What liboit's range errors call its fields here. */
-static const oit_renderer_desc_names option_names = {
-    .upload_budget = "--upload-budget", .slot_budget = "--slot-budget",
-    .store_budget = "--store-budget",
-    .cache_budget = "--cache-budget", .gpu_budget = "--gpu-budget", .epsilon = "--epsilon",
-    .pack = "--pack", .schedule = "--schedule", .cache_off = "off"};
-
 static oit_status bad(oit_error *err, const char *opt, const char *val, const char *want)
 {
     return oit_error_set(err, OIT_ERR_ARGUMENT, "%s '%s': expected %s", opt, val ? val : "",
@@ -231,9 +224,10 @@ static oit_status check_combination(const oit_stream_args *a, oit_error *err)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--window shows one interactive view: "
                              "it excludes --orbit, --out and --ambiguity");
     /* The stream's settings are checked by liboit, before any I/O (every
-     * other method ignores them); which methods take --epsilon, main.c
-     * asks the method's flags (OIT_METHOD_EPSILON). */
-    oit_status s = oit_renderer_desc_check(&a->stream, &option_names, err);
+     * other method ignores them), its errors naming its fields, which
+     * fail() spells as flags (flag_spelling.h); which methods take
+     * --epsilon, main.c asks the method's flags (OIT_METHOD_EPSILON). */
+    oit_status s = oit_renderer_desc_check(&a->stream, err);
     if (s != OIT_OK)
         return s;
     if ((a->have_view != 0) + (a->orbit != 0) + (a->walk != NULL) > 1)

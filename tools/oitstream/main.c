@@ -2,7 +2,7 @@
  * tools/common/methods.h from one view, a given camera or an orbit, and writes the
  * image (or the layer heat map) and per-frame figures; or compares two
  * images (--compare). Errors are one line on stderr; the exit status follows
- * oit_status_exit_code. */
+ * oit_tool_exit_code. */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -19,6 +19,8 @@
 #include "tools/oitstream/cli_args.h"
 #include "partfile/triangles.h"
 #include "tools/common/methods.h"
+#include "tools/common/exit_code.h"
+#include "tools/common/flag_spelling.h"
 #include "tools/common/method_stream.h"
 #include "tools/oitstream/stats_json.h"
 #include "tools/oitstream/viewer.h"
@@ -26,8 +28,10 @@
 
 static int fail(const oit_error *err)
 {
-    fprintf(stderr, "oitstream: %s\n", err->message);
-    return oit_status_exit_code(err->status);
+    oit_error e = *err; /* liboit names its fields, a tool its flags */
+    oit_flags_spell_error(&e);
+    fprintf(stderr, "oitstream: %s\n", e.message);
+    return oit_tool_exit_code(err->status);
 }
 
 /* The stencil method's "unsupported" is the driver's limit (it does not

@@ -2,6 +2,7 @@
 #include "tools/oitstream/stats_json.h"
 
 #include "base/json.h"
+#include "tools/common/flag_spelling.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -151,7 +152,7 @@ static void put_budget(oit_json *w, const oit_draw_stats *b)
     oit_json_uint(w, "store", b->store_budget);
     oit_json_int(w, "resident", (int)b->resident);
     oit_json_uint(w, "driver_free", b->gpu_free_bytes);
-    oit_json_string(w, "source", b->budget_source ? b->budget_source : "");
+    oit_json_string(w, "source", b->budget_source ? oit_flag_of(b->budget_source) : "");
     oit_json_end(w);
 }
 

@@ -51,6 +51,8 @@
 #include "render/image/clip.h"
 #include "render/image/image.h"
 #include "render/image/shade.h"
+#include "tools/common/exit_code.h"
+#include "tools/common/flag_spelling.h"
 #include "tools/common/method_stream.h"
 #include "tools/oitstream/cli_args.h"
 #include "tools/oitstream/stats_json.h"
@@ -77,8 +79,10 @@ typedef struct mpi_run {
 
 static int fail(int rank, const oit_error *err)
 {
-    fprintf(stderr, "oitstream-mpi: rank %d: %s\n", rank, err->message);
-    return oit_status_exit_code(err->status);
+    oit_error e = *err; /* liboit names its fields, a tool its flags */
+    oit_flags_spell_error(&e);
+    fprintf(stderr, "oitstream-mpi: rank %d: %s\n", rank, e.message);
+    return oit_tool_exit_code(err->status);
 }
 
 /* What oitstream does that one composited image cannot. */

@@ -1,0 +1,89 @@
+/* Prints the layout of every structure python/oit/_lib.py mirrors, as the C
+ * compiler lays it out: "Struct size N" and "Struct.field offset" lines,
+ * for check_layout.py to hold the ctypes declarations to. A field missed
+ * here that ctypes declares fails there by name; one ctypes misses fails
+ * by the structure's size. */
+#include <stddef.h>
+#include <stdio.h>
+
+#include "oit/liboit.h"
+#include "oit/offscreen.h"
+
+#define SIZE(py, c) printf(#py " size %zu\n", sizeof(c))
+#define AT(py, c, f) printf(#py "." #f " %zu\n", offsetof(c, f))
+
+static void renderer(void)
+{
+    SIZE(RenderShading, oit_render_shading);
+    AT(RenderShading, oit_render_shading, mode);
+    AT(RenderShading, oit_render_shading, alpha);
+    AT(RenderShading, oit_render_shading, default_rgb);
+    AT(RenderShading, oit_render_shading, absorption);
+    AT(RenderShading, oit_render_shading, scene_scale);
+    AT(RenderShading, oit_render_shading, colour_space);
+    SIZE(RendererDesc, oit_renderer_desc);
+#define D(f) AT(RendererDesc, oit_renderer_desc, f)
+    D(shading); D(see_through); D(epsilon); D(K); D(pack); D(schedule); D(capture);
+    D(frames); D(gpu_budget); D(upload_budget); D(cache_budget); D(slot_budget);
+    D(store_budget); D(binding_limit); D(reader_threads); D(read_on_draw_thread);
+    D(program_cache);
+#undef D
+    SIZE(OffscreenDesc, oit_offscreen_desc);
+    AT(OffscreenDesc, oit_offscreen_desc, renderer);
+}
+
+static void stats(void)
+{
+    SIZE(DrawStats, oit_draw_stats);
+#define S(f) AT(DrawStats, oit_draw_stats, f)
+    S(draw); S(ms); S(gpu_frame); S(gpu_ms); S(gpu_phase_ms); S(host_waits); S(redraws);
+    S(fragments); S(max_layers); S(overflow_pixels); S(deep_pixels); S(second_pass_pixels);
+    S(second_pass_packs); S(parts_drawn); S(parts_culled); S(parts_skipped); S(parts_clipped);
+    S(bytes_clipped); S(bytes_uploaded); S(cache_hits); S(cache_bytes); S(draw_calls);
+    S(reader_threads); S(resident); S(packs); S(batches); S(predicted_batches); S(capture);
+    S(capture_k); S(capture_asked); S(capture_slots); S(capture_slots_k); S(capture_fallback);
+    S(order_ms); S(pack_ms); S(auto_first_k); S(front_first); S(choice); S(choice_why);
+    S(choice_first_k_ms); S(choice_counted_ms); S(gpu_bytes_peak); S(gpu_budget);
+    S(ring_budget); S(cache_budget); S(capture_budget); S(store_budget); S(gpu_free_bytes);
+    S(budget_source); S(see_through); S(opaque);
+#undef S
+}
+
+static void scene(void)
+{
+    SIZE(Error, oit_error);
+    AT(Error, oit_error, status);
+    AT(Error, oit_error, message);
+    SIZE(SceneDesc, oit_scene_desc);
+    AT(SceneDesc, oit_scene_desc, defer_validation);
+    AT(SceneDesc, oit_scene_desc, share_count);
+    AT(SceneDesc, oit_scene_desc, share_index);
+    SIZE(SceneInfo, oit_scene_info);
+#define I(f) AT(SceneInfo, oit_scene_info, f)
+    I(triangles); I(parts); I(bounds_min); I(bounds_max); I(K); I(attributes); I(origin);
+    I(in_core); I(share_count); I(share_index); I(share_parts); I(share_triangles);
+#undef I
+    SIZE(SceneMeshDesc, oit_scene_mesh_desc);
+#define M(f) AT(SceneMeshDesc, oit_scene_mesh_desc, f)
+    M(positions); M(vertex_count); M(indices); M(index_count); M(colours); M(colour_type);
+    M(colour_rate); M(name);
+#undef M
+}
+
+static void offscreen_view(void)
+{
+    SIZE(OffscreenView, oit_offscreen_view);
+#define V(f) AT(OffscreenView, oit_offscreen_view, f)
+    V(width); V(height); V(format); V(use_matrices); V(view); V(projection); V(eye); V(target);
+    V(up); V(fovy_deg); V(znear); V(zfar); V(background); V(clip_count); V(clip);
+#undef V
+}
+
+int main(void)
+{
+    renderer();
+    stats();
+    scene();
+    offscreen_view();
+    return 0;
+}
