@@ -20,102 +20,29 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
-#include <sys/stat.h>
-#include <unistd.h>
-
-#include <cerrno>
-#include <cstdarg>
 #include <cstdint>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <new>
 #include <string>
 #include <vector>
 
+#include "formats/adapter_ctx.h"
 #include "formats/assimp_internal.h"
-#include "formats/gzip_input.h"
 #include "formats/read_isolated.h"
 #include "oit/mesh.h"
 
 namespace {
 
-constexpr size_t kDefaultChunk = 65536;
-constexpr size_t kDefaultBudget = size_t(2) << 30;
+using namespace oit_adapter;
+
 constexpr unsigned kImportFlags = aiProcess_Triangulate | aiProcess_ValidateDataStructure;
 
-// Everything one read needs; errors are formatted as "<name>: <what>".
-struct Ctx {
-    const char *name;
-    size_t budget_limit;
-    size_t budget_used;
-    oit_triangle_sink sink;
-    void *user;
-    oit_mesh_info *info;
-    oit_error *err;
-    bool origin_set; // info->origin picked from the first vertex
-    std::vector<oit_triangle> chunk;
-    size_t chunk_cap;
+struct Ctx : Output {
     uint64_t skipped; // point and line primitives
 };
 
-oit_status fail(Ctx &c, oit_status s, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 3, 4)))
-#endif
-    ;
-
-oit_status fail(Ctx &c, oit_status s, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    oit_error_setv(c.err, s, fmt, ap);
-    va_end(ap);
-    oit_error_prefix(c.err, c.name);
-    return s;
-}
-
-oit_status charge(Ctx &c, size_t bytes, const char *what)
-{
-    if (bytes > c.budget_limit - c.budget_used)
-        return fail(c, OIT_ERR_NOMEM, "%s needs %zu bytes, over the memory budget of %zu (%zu in use)",
-                    what, bytes, c.budget_limit, c.budget_used);
-    c.budget_used += bytes;
-    return OIT_OK;
-}
-
-// ---------------------------------------------------------------- output
-
-oit_status flush(Ctx &c)
-{
-    if (c.chunk.empty())
-        return OIT_OK;
-    oit_mesh_info_add(c.info, c.chunk.data(), c.chunk.size());
-    // ALPHA may come with a later mesh: oit_mesh_info_opaque at the end
-    // clears OPAQUE if it never does
-    for (const oit_triangle &t : c.chunk)
-        if (t.v[0].rgba[3] == 255 && t.v[1].rgba[3] == 255 && t.v[2].rgba[3] == 255) {
-            c.info->attributes |= OIT_ATTR_OPAQUE;
-            break;
-        }
-    oit_status s = c.sink(c.user, c.chunk.data(), c.chunk.size(), c.err);
-    c.chunk.clear();
-    return s;
-}
-
-oit_status emit(Ctx &c, const oit_triangle &t)
-{
-    if (!oit_triangle_is_finite(&t)) {
-        c.info->nonfinite_dropped++;
-        return OIT_OK;
-    }
-    c.chunk.push_back(t);
-    return c.chunk.size() == c.chunk_cap ? flush(c) : OIT_OK;
-}
-
 // ---------------------------------------------------------------- colours
-
-uint8_t unit_u8(double v) { return v > 0.0 ? (v >= 1.0 ? 255 : uint8_t(v * 255.0 + 0.5)) : 0; }
 
 struct Shade {
     double rgb[3] = {1, 1, 1};
@@ -190,11 +117,7 @@ void vertex(Ctx &c, const aiMesh *mesh, const Shade &sh, const Mat4 &world, unsi
 {
     double p[3];
     world.apply(mesh->mVertices[i], p);
-    if (!c.origin_set) {
-        oit_mesh_origin_pick(p, c.info->origin);
-        c.origin_set = true;
-    }
-    oit_mesh_position(c.info->origin, p, out->pos);
+    place(c, p, out->pos);
     double rgb[3] = {sh.rgb[0], sh.rgb[1], sh.rgb[2]}, a = sh.alpha;
     if (mesh->mColors[0]) {
         const aiColor4D &vc = mesh->mColors[0][i];
@@ -307,13 +230,8 @@ oit_status emit_scene(Ctx &c, Assimp::Importer &imp, const aiScene *scene)
     if (!(scene = imp.ApplyPostProcessing(kImportFlags)))
         return import_failed(c, imp);
     oit_status s = charge(c, scene_bytes(scene), "assimp's scene");
-    if (s != OIT_OK)
+    if (s != OIT_OK || (s = reserve_chunk(c)) != OIT_OK)
         return s;
-    if (c.chunk_cap > SIZE_MAX / sizeof(oit_triangle))
-        return fail(c, OIT_ERR_NOMEM, "a chunk of %zu triangles is too large", c.chunk_cap);
-    if ((s = charge(c, c.chunk_cap * sizeof(oit_triangle), "the output chunk")) != OIT_OK)
-        return s;
-    c.chunk.reserve(c.chunk_cap);
     s = walk(c, scene);
     if (s == OIT_OK)
         s = flush(c);
@@ -333,15 +251,10 @@ void configure(Assimp::Importer &imp)
 // Bytes in memory (gzip inflated first, within the budget).
 oit_status read_memory(Ctx &c, const unsigned char *bytes, size_t size, const char *hint)
 {
-    if (oit_gz_magic(bytes, size)) {
-        unsigned char *plain = nullptr;
-        size_t n = 0;
-        oit_status s = oit_gunzip(bytes, size, c.budget_limit - c.budget_used, c.name, &plain, &n, c.err);
-        if (s == OIT_OK && (s = charge(c, n, "the inflated gzip data")) == OIT_OK)
-            s = read_memory(c, plain, n, hint);
-        std::free(plain);
-        return s;
-    }
+    if (oit_gz_magic(bytes, size))
+        return read_gunzipped(c, bytes, size, [&](const unsigned char *plain, size_t n) {
+            return read_memory(c, plain, n, hint);
+        });
     if (size == 0)
         return fail(c, OIT_ERR_FORMAT, "the file is empty");
     Assimp::Importer imp;
@@ -394,18 +307,14 @@ oit_status read_path(Ctx &c, const char *path)
     if (ext.empty() || !imp.IsExtensionSupported(("." + ext).c_str()))
         return fail(c, OIT_ERR_UNSUPPORTED, "unknown mesh format '.%s' (expected .ply .obj .off .stl "
                     ".gltf .glb .vtk .vtp, or through assimp %s)", ext.c_str(), supported_list(imp).c_str());
-    FILE *f = std::fopen(path, "rb");
-    struct stat st;
-    if (!f)
-        return fail(c, OIT_ERR_IO, "cannot open: %s", std::strerror(errno));
-    if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
-        std::fclose(f);
-        return fail(c, OIT_ERR_IO, "not a regular file");
-    }
-    size_t size = size_t(st.st_size);
+    FILE *f;
+    size_t size;
+    oit_status s = open_regular(c, path, &f, &size);
+    if (s != OIT_OK)
+        return s;
     unsigned char magic[2];
     bool gz = std::fread(magic, 1, 2, f) == 2 && oit_gz_magic(magic, 2);
-    oit_status s = charge(c, size, "the file");
+    s = charge(c, size, "the file");
     if (s == OIT_OK && gz) { // assimp reads no gzip: inflate, then read from memory
         std::vector<unsigned char> bytes(size);
         std::rewind(f);
@@ -437,19 +346,6 @@ template <typename Fn> oit_status guarded(Ctx &c, Fn fn)
     }
 }
 
-void init_ctx(Ctx &c, const char *name, const oit_read_desc *desc, oit_triangle_sink sink, void *user,
-              oit_mesh_info *info, oit_error *err)
-{
-    c.name = name;
-    c.budget_limit = desc && desc->memory_budget ? desc->memory_budget : kDefaultBudget;
-    c.chunk_cap = desc && desc->chunk_triangles ? desc->chunk_triangles : kDefaultChunk;
-    c.sink = sink;
-    c.user = user;
-    c.info = info;
-    c.err = err;
-    oit_mesh_info_init(info);
-}
-
 // ------------------------------------------------------------- isolation
 //
 // assimp 5.2 crashes on some malformed files (the fuzz targets find SEGVs
@@ -468,10 +364,7 @@ oit_status run_job(void *a, oit_triangle_sink sink, void *sink_user, oit_mesh_in
                    oit_error *err)
 {
     Job &j = *static_cast<Job *>(a);
-    j.c->sink = sink;
-    j.c->user = sink_user;
-    j.c->info = info;
-    j.c->err = err;
+    redirect(*j.c, sink, sink_user, info, err);
     return j.fn(*j.c, j.arg);
 }
 
@@ -491,7 +384,7 @@ extern "C" oit_status oit_read_assimp_memory(const unsigned char *bytes, size_t 
 {
     oit_mesh_info local;
     Ctx c{};
-    init_ctx(c, name ? name : "(memory)", desc, sink, user, info ? info : &local, err);
+    start(c, name ? name : "(memory)", desc, sink, user, info ? info : &local, err);
     struct Arg {
         const unsigned char *bytes;
         size_t size;
@@ -514,7 +407,7 @@ extern "C" oit_status oit_assimp_read_file(const char *path, const oit_read_desc
         return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_read_assimp: no path given");
     oit_mesh_info local;
     Ctx c{};
-    init_ctx(c, path, desc, sink, user, info ? info : &local, err);
+    start(c, path, desc, sink, user, info ? info : &local, err);
     return isolated(
         c, [](Ctx &cc, const void *) { return guarded(cc, [&] { return read_path(cc, cc.name); }); },
         nullptr);

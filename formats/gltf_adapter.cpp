@@ -27,7 +27,6 @@
 #include <cfloat>
 #include <climits>
 #include <cmath>
-#include <cstdarg>
 #include <cstdio>
 #include <cstring>
 #include <new>
@@ -36,13 +35,9 @@
 #include <vector>
 
 #include "formats/gltf_internal.h"
-#include "formats/gzip_input.h"
 
 namespace oit_gltf {
 namespace {
-
-constexpr size_t kDefaultChunk = 65536;
-constexpr size_t kDefaultBudget = size_t(2) << 30;
 
 // ---------------------------------------------------------------- loading
 
@@ -143,12 +138,8 @@ oit_status read_plain(Ctx &c, const unsigned char *bytes, size_t size)
     if (s != OIT_OK)
         return s;
     c.model = &model;
-    if (c.chunk_cap > SIZE_MAX / sizeof(oit_triangle))
-        return fail(c, OIT_ERR_NOMEM, "a chunk of %zu triangles is too large", c.chunk_cap);
-    s = charge(c, c.chunk_cap * sizeof(oit_triangle), "the output chunk");
-    if (s != OIT_OK)
+    if ((s = reserve_chunk(c)) != OIT_OK)
         return s;
-    c.chunk.reserve(c.chunk_cap);
     s = walk_model(c);
     if (s == OIT_OK)
         s = flush(c);
@@ -161,34 +152,25 @@ oit_status read_plain(Ctx &c, const unsigned char *bytes, size_t size)
 oit_status read_memory(Ctx &c, const unsigned char *bytes, size_t size)
 {
     oit_status s;
-    if (oit_gz_magic(bytes, size)) {
-        unsigned char *plain = nullptr;
-        size_t n = 0;
-        s = oit_gunzip(bytes, size, c.budget_limit - c.budget_used, c.name, &plain, &n, c.err);
-        if (s == OIT_OK && (s = charge(c, n, "the inflated gzip data")) == OIT_OK) {
-            s = read_plain(c, plain, n);
+    if (oit_gz_magic(bytes, size))
+        s = read_gunzipped(c, bytes, size, [&](const unsigned char *plain, size_t n) {
+            oit_status r = read_plain(c, plain, n);
             release(c, n);
-        }
-        std::free(plain);
-    } else {
+            return r;
+        });
+    else
         s = read_plain(c, bytes, size);
-    }
     return s == OIT_OK ? oit_rd_require_triangles(c.name, c.info, c.err) : s;
 }
 
 oit_status read_file(Ctx &c, const char *path, std::vector<unsigned char> *bytes)
 {
-    FILE *f = std::fopen(path, "rb");
-    struct stat st;
-    if (!f)
-        return fail(c, OIT_ERR_IO, "cannot open: %s", std::strerror(errno));
-    if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
-        std::fclose(f);
-        return fail(c, OIT_ERR_IO, "not a regular file");
-    }
-    size_t size = size_t(st.st_size);
-    oit_status s = charge(c, size, "the file");
-    if (s == OIT_OK) {
+    FILE *f;
+    size_t size;
+    oit_status s = open_regular(c, path, &f, &size);
+    if (s != OIT_OK)
+        return s;
+    if ((s = charge(c, size, "the file")) == OIT_OK) {
         bytes->resize(size);
         if (std::fread(bytes->data(), 1, size, f) != size)
             s = fail(c, OIT_ERR_IO, "short read (%zu bytes expected)", size);
@@ -214,15 +196,8 @@ Ctx make_ctx(const char *name, const char *dir, const oit_read_desc *desc, oit_t
              void *user, oit_mesh_info *info, oit_error *err)
 {
     Ctx c{};
-    c.name = name;
+    start(c, name, desc, sink, user, info, err);
     c.dir = dir;
-    c.budget_limit = desc && desc->memory_budget ? desc->memory_budget : kDefaultBudget;
-    c.chunk_cap = desc && desc->chunk_triangles ? desc->chunk_triangles : kDefaultChunk;
-    c.sink = sink;
-    c.user = user;
-    c.info = info;
-    c.err = err;
-    oit_mesh_info_init(info);
     return c;
 }
 

@@ -27,61 +27,24 @@
 #pragma GCC diagnostic pop
 #endif
 
-#include <cstdarg>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
+#include "formats/adapter_ctx.h"
 #include "oit/mesh.h"
 
 namespace oit_gltf {
 
+using namespace oit_adapter;
+
 inline constexpr char kDraco[] = "KHR_draco_mesh_compression";
 
-// Everything one read needs; errors are formatted as "<name>: <what>".
-struct Ctx {
-    const char *name;
+struct Ctx : Output {
     const char *dir; // NULL: external buffers are refused
-    size_t budget_limit;
-    size_t budget_used;
-    oit_triangle_sink sink;
-    void *user;
-    oit_mesh_info *info;
-    oit_error *err;
-    bool origin_set; // info->origin picked from the first vertex
-    std::vector<oit_triangle> chunk;
-    size_t chunk_cap;
     const tinygltf::Model *model;
     bool texture_said; // the unsupported-texture note was printed
 };
-
-// The error s with the message (printf's fmt) prefixed by the file's name.
-inline oit_status fail(Ctx &c, oit_status s, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 3, 4)))
-#endif
-    ;
-
-inline oit_status fail(Ctx &c, oit_status s, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    oit_error_setv(c.err, s, fmt, ap);
-    va_end(ap);
-    oit_error_prefix(c.err, c.name);
-    return s;
-}
-
-// Charges bytes to the read's memory budget; OIT_ERR_NOMEM naming what when
-// it would go over.
-inline oit_status charge(Ctx &c, size_t bytes, const char *what)
-{
-    if (bytes > c.budget_limit - c.budget_used)
-        return fail(c, OIT_ERR_NOMEM, "%s needs %zu bytes, over the memory budget of %zu (%zu in use)",
-                    what, bytes, c.budget_limit, c.budget_used);
-    c.budget_used += bytes;
-    return OIT_OK;
-}
 
 // Gives bytes charged before back to the budget.
 inline void release(Ctx &c, size_t bytes) { c.budget_used -= bytes < c.budget_used ? bytes : c.budget_used; }
@@ -129,10 +92,6 @@ oit_status load_draco(Ctx &c, const tinygltf::Value &ext, const char *what, Geom
 bool patch_draco_json(const unsigned char *bytes, size_t size, std::vector<unsigned char> *out);
 
 // ---- gltf_scene.cpp
-
-// Hands the triangles gathered so far to the sink (none: OIT_OK), counting
-// them into c.info.
-oit_status flush(Ctx &c);
 
 // Every triangle of the model's default scene (without one, of every scene;
 // without scenes, of every node that is nobody's child), in world space,

@@ -12,46 +12,14 @@
 #include <vector>
 
 namespace oit_gltf {
-
-oit_status flush(Ctx &c)
-{
-    if (c.chunk.empty())
-        return OIT_OK;
-    oit_mesh_info_add(c.info, c.chunk.data(), c.chunk.size());
-    // ALPHA may come later (a primitive with a material after one without):
-    // oit_mesh_info_opaque at the end clears OPAQUE if it never does
-    for (const oit_triangle &t : c.chunk)
-        if (t.v[0].rgba[3] == 255 && t.v[1].rgba[3] == 255 && t.v[2].rgba[3] == 255) {
-            c.info->attributes |= OIT_ATTR_OPAQUE;
-            break;
-        }
-    oit_status s = c.sink(c.user, c.chunk.data(), c.chunk.size(), c.err);
-    c.chunk.clear();
-    return s;
-}
-
 namespace {
-
-oit_status emit(Ctx &c, const oit_triangle &t)
-{
-    c.info->faces_in++;
-    if (!oit_triangle_is_finite(&t)) {
-        c.info->nonfinite_dropped++;
-        return OIT_OK;
-    }
-    c.chunk.push_back(t);
-    return c.chunk.size() == c.chunk_cap ? flush(c) : OIT_OK;
-}
 
 // ---------------------------------------------------------------- colours
 
 uint8_t srgb_u8(double linear)
 {
-    double v = linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
-    return v > 0.0 ? (v >= 1.0 ? 255 : uint8_t(v * 255.0 + 0.5)) : 0;
+    return unit_u8(linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055);
 }
-
-uint8_t unit_u8(double v) { return v > 0.0 ? (v >= 1.0 ? 255 : uint8_t(v * 255.0 + 0.5)) : 0; }
 
 // glTF colours are linear and vertex colours multiply baseColorFactor; the
 // triangles carry sRGB-encoded rgb and straight alpha (oit/mesh.h).
@@ -158,11 +126,7 @@ oit_status emit_geometry(Ctx &c, const Geometry &g, const Shade &sh, int mode, c
     for (size_t i = 0; i < g.nverts; i++) {
         double p[3];
         world.apply(&g.xyz[3 * i], p);
-        if (!c.origin_set) {
-            oit_mesh_origin_pick(p, c.info->origin);
-            c.origin_set = true;
-        }
-        oit_mesh_position(c.info->origin, p, verts[i].pos);
+        place(c, p, verts[i].pos);
         shade_vertex(sh, g.rgba.empty() ? nullptr : &g.rgba[4 * i], verts[i].rgba);
     }
     c.info->vertices_in += g.nverts;
@@ -176,6 +140,7 @@ oit_status emit_geometry(Ctx &c, const Geometry &g, const Shade &sh, int mode, c
             size_t corner = k[flip && v ? 3 - v : v];
             tri.v[v] = verts[g.indexed ? g.idx[corner] : corner];
         }
+        c.info->faces_in++;
         oit_status s = emit(c, tri);
         if (s != OIT_OK)
             return s;

@@ -46,65 +46,29 @@
 
 #include <cerrno>
 #include <cmath>
-#include <cstdarg>
 #include <cstdio>
 #include <cstring>
 #include <new>
 #include <sstream>
 #include <string>
-#include <vector>
 
+#include "formats/adapter_ctx.h"
 #include "formats/read_isolated.h"
 #include "formats/step_internal.h"
 
 namespace {
 
-constexpr size_t kDefaultChunk = 65536;
-constexpr size_t kDefaultBudget = size_t(2) << 30;
+using namespace oit_adapter;
+
 constexpr double kAngularDeflection = 0.5; // radians: BRepMesh's default
 
-struct Ctx {
-    const char *name;
+struct Ctx : Output {
     const char *format; // "STEP" or "IGES", for messages
     double deflection;  // as asked: 0 for the default
-    size_t budget_limit;
-    size_t budget_used;
-    oit_triangle_sink sink;
-    void *user;
-    oit_mesh_info *info;
-    oit_error *err;
-    bool origin_set;
-    std::vector<oit_triangle> chunk;
-    size_t chunk_cap;
     bool any_alpha;   // some face colour is transparent
     bool any_colour;  // some face has a colour
     uint64_t untessellated; // faces BRepMesh gave no triangulation
 };
-
-oit_status fail(Ctx &c, oit_status s, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 3, 4)))
-#endif
-    ;
-
-oit_status fail(Ctx &c, oit_status s, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    oit_error_setv(c.err, s, fmt, ap);
-    va_end(ap);
-    oit_error_prefix(c.err, c.name);
-    return s;
-}
-
-oit_status charge(Ctx &c, size_t bytes, const char *what)
-{
-    if (bytes > c.budget_limit - c.budget_used)
-        return fail(c, OIT_ERR_NOMEM, "%s needs %zu bytes, over the memory budget of %zu (%zu in use)",
-                    what, bytes, c.budget_limit, c.budget_used);
-    c.budget_used += bytes;
-    return OIT_OK;
-}
 
 // Open CASCADE reports through its default messenger, to stdout: a tool's
 // stdout may be its data (oitprep's statistics), so the reports are dropped. The
@@ -117,34 +81,6 @@ void quiet_open_cascade()
 }
 
 // ---------------------------------------------------------------- output
-
-oit_status flush(Ctx &c)
-{
-    if (c.chunk.empty())
-        return OIT_OK;
-    oit_mesh_info_add(c.info, c.chunk.data(), c.chunk.size());
-    // ALPHA is known only at the end (some face may be transparent): the
-    // oit_mesh_info_opaque there clears OPAQUE if it never is
-    for (const oit_triangle &t : c.chunk)
-        if (t.v[0].rgba[3] == 255 && t.v[1].rgba[3] == 255 && t.v[2].rgba[3] == 255) {
-            c.info->attributes |= OIT_ATTR_OPAQUE;
-            break;
-        }
-    oit_status s = c.sink(c.user, c.chunk.data(), c.chunk.size(), c.err);
-    c.chunk.clear();
-    return s;
-}
-
-oit_status emit(Ctx &c, const oit_triangle &t)
-{
-    c.info->faces_in++;
-    if (!oit_triangle_is_finite(&t)) {
-        c.info->nonfinite_dropped++;
-        return OIT_OK;
-    }
-    c.chunk.push_back(t);
-    return c.chunk.size() == c.chunk_cap ? flush(c) : OIT_OK;
-}
 
 uint8_t to_byte(double v)
 {
@@ -182,11 +118,7 @@ void vertex(Ctx &c, const RWMesh_FaceIterator &f, int node, const uint8_t rgba[4
 {
     gp_Pnt p = f.NodeTransformed(node);
     double in[3] = {p.X(), p.Y(), p.Z()};
-    if (!c.origin_set) {
-        oit_mesh_origin_pick(in, c.info->origin);
-        c.origin_set = true;
-    }
-    oit_mesh_position(c.info->origin, in, v->pos);
+    place(c, in, v->pos);
     std::memcpy(v->rgba, rgba, 4);
 }
 
@@ -209,6 +141,7 @@ oit_status emit_face(Ctx &c, const RWMesh_FaceIterator &f)
         if (!ok)
             return fail(c, OIT_ERR_FORMAT, "a triangle of the tessellation names node %d, "
                         "outside the face's %d..%d", n[0], lo, hi);
+        c.info->faces_in++;
         oit_status s = emit(c, t);
         if (s != OIT_OK)
             return s;
@@ -348,12 +281,8 @@ oit_status read_doc(Ctx &c, oit_occt_format format, const char *path, std::istre
     oit_status s = load(c, format, path, in, doc);
     if (s == OIT_OK)
         s = tessellate(c, doc);
-    if (s == OIT_OK && c.chunk_cap > SIZE_MAX / sizeof(oit_triangle))
-        s = fail(c, OIT_ERR_NOMEM, "a chunk of %zu triangles is too large", c.chunk_cap);
-    if (s == OIT_OK && (s = charge(c, c.chunk_cap * sizeof(oit_triangle), "the output chunk")) == OIT_OK) {
-        c.chunk.reserve(c.chunk_cap);
+    if (s == OIT_OK && (s = reserve_chunk(c)) == OIT_OK)
         s = walk(c, doc);
-    }
     if (s == OIT_OK)
         s = flush(c);
     app->Close(doc);
@@ -390,16 +319,9 @@ template <class F> oit_status guarded(Ctx &c, F fn)
 oit_status make_ctx(Ctx &c, const char *name, oit_occt_format format, const oit_read_desc *desc,
                     oit_triangle_sink sink, void *user, oit_mesh_info *info, oit_error *err)
 {
-    c.name = name;
+    start(c, name, desc, sink, user, info, err);
     c.format = format == OIT_OCCT_STEP ? "STEP" : "IGES";
     c.deflection = desc ? desc->deflection : 0.0;
-    c.budget_limit = desc && desc->memory_budget ? desc->memory_budget : kDefaultBudget;
-    c.chunk_cap = desc && desc->chunk_triangles ? desc->chunk_triangles : kDefaultChunk;
-    c.sink = sink;
-    c.user = user;
-    c.info = info;
-    c.err = err;
-    oit_mesh_info_init(info);
     if (!(c.deflection >= 0.0) || !std::isfinite(c.deflection))
         return fail(c, OIT_ERR_ARGUMENT, "deflection %g: expected a finite number >= 0 "
                     "(0: the default, %g of the bounding-box diagonal)", c.deflection,
@@ -426,10 +348,7 @@ oit_status run_job(void *a, oit_triangle_sink sink, void *sink_user, oit_mesh_in
 {
     Job &j = *static_cast<Job *>(a);
     Ctx &c = *j.c;
-    c.sink = sink;
-    c.user = sink_user;
-    c.info = info;
-    c.err = err;
+    redirect(c, sink, sink_user, info, err);
     oit_status s = guarded(c, [&] {
         if (j.path)
             return read_doc(c, j.format, j.path, nullptr);
