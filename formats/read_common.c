@@ -473,7 +473,18 @@ oit_status oit_rd_ctx_close(oit_rd_ctx *c, oit_status st)
     return st;
 }
 
-oit_status oit_rd_with_file(const char *path, oit_rd_file_fn fn, const oit_read_desc *desc,
+oit_status oit_rd_ctx_run(FILE *f, const char *name, const oit_read_desc *desc,
+                          oit_triangle_sink sink, void *user, oit_mesh_info *info,
+                          oit_error *err, oit_status (*parse)(oit_rd_ctx *c))
+{
+    oit_rd_ctx c;
+    oit_status st = oit_rd_ctx_open(&c, f, name, desc, sink, user, info, err);
+    if (st == OIT_OK)
+        st = parse(&c);
+    return oit_rd_ctx_close(&c, st);
+}
+
+oit_status oit_rd_with_file(const char *path, oit_rd_file_fn *fn, const oit_read_desc *desc,
                             oit_triangle_sink sink, void *user, oit_mesh_info *info,
                             oit_error *err)
 {

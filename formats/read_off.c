@@ -229,9 +229,5 @@ oit_status oit_read_off_stream(FILE *f, const char *name, const char *dir,
                                const oit_read_desc *desc, oit_triangle_sink sink, void *user,
                                oit_mesh_info *info, oit_error *err)
 {
-    oit_rd_ctx c;
-    oit_status st = oit_rd_ctx_open(&c, f, name, desc, sink, user, info, err);
-    if (st == OIT_OK)
-        st = off_parse(&c);
-    return oit_rd_ctx_close(&c, st);
+    return oit_rd_ctx_run(f, name, desc, sink, user, info, err, off_parse);
 }

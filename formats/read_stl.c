@@ -138,8 +138,9 @@ static int stl_starts_with_solid(const unsigned char *b, size_t n)
     return n - i >= 5 && oit_rd_word_eq_nocase((const char *)b + i, 5, "solid");
 }
 
-static oit_status stl_parse(oit_rd_ctx *c, int64_t size)
+static oit_status stl_parse(oit_rd_ctx *c)
 {
+    int64_t size = oit_rd_file_size(c->in.f); /* -1: gzip */
     const unsigned char *b;
     size_t avail;
     oit_status st = oit_rd_peek(&c->in, STL_HEADER + STL_RECORD, &b, &avail);
@@ -169,10 +170,5 @@ oit_status oit_read_stl_stream(FILE *f, const char *name, const char *dir,
                                const oit_read_desc *desc, oit_triangle_sink sink, void *user,
                                oit_mesh_info *info, oit_error *err)
 {
-    oit_rd_ctx c;
-    oit_status st = oit_rd_ctx_open(&c, f, name, desc, sink, user, info, err);
-    int64_t size = st == OIT_OK ? oit_rd_file_size(c.in.f) : -1; /* -1: gzip */
-    if (st == OIT_OK)
-        st = stl_parse(&c, size);
-    return oit_rd_ctx_close(&c, st);
+    return oit_rd_ctx_run(f, name, desc, sink, user, info, err, stl_parse);
 }

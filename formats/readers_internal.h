@@ -281,36 +281,34 @@ oit_status oit_rd_ctx_open(oit_rd_ctx *c, FILE *f, const char *name, const oit_r
 /* Flushes the last chunk when st is OIT_OK, frees everything, returns the
  * final status. */
 oit_status oit_rd_ctx_close(oit_rd_ctx *c, oit_status st);
+/* A whole read of f by parse, between oit_rd_ctx_open and oit_rd_ctx_close:
+ * the FILE* entry of a reader whose parse needs the context alone. */
+oit_status oit_rd_ctx_run(FILE *f, const char *name, const oit_read_desc *desc,
+                          oit_triangle_sink sink, void *user, oit_mesh_info *info,
+                          oit_error *err, oit_status (*parse)(oit_rd_ctx *c));
+
+/* A reader's FILE* entry; `name` is used in messages only. For OBJ, dir is
+ * the folder where mtllib files are looked up (NULL: material libraries are
+ * skipped, e.g. when reading from memory). The other readers ignore dir. */
+typedef oit_status oit_rd_file_fn(FILE *f, const char *name, const char *dir,
+                                  const oit_read_desc *desc, oit_triangle_sink sink, void *user,
+                                  oit_mesh_info *info, oit_error *err);
 
 /* Opens path for binary reading, runs fn(f, path, folder of path, ...) and
  * closes it; a file that cannot be opened is OIT_ERR_IO naming it. */
-typedef oit_status (*oit_rd_file_fn)(FILE *f, const char *name, const char *dir,
-                                     const oit_read_desc *desc, oit_triangle_sink sink,
-                                     void *user, oit_mesh_info *info, oit_error *err);
-oit_status oit_rd_with_file(const char *path, oit_rd_file_fn fn, const oit_read_desc *desc,
+oit_status oit_rd_with_file(const char *path, oit_rd_file_fn *fn, const oit_read_desc *desc,
                             oit_triangle_sink sink, void *user, oit_mesh_info *info,
                             oit_error *err);
 
-/* FILE* entries; `name` is used in messages only. For OBJ, mtl_dir is the
- * folder where mtllib files are looked up (NULL: material libraries are
- * skipped, e.g. when reading from memory). The other readers ignore dir. */
-oit_status oit_read_ply_stream(FILE *f, const char *name, const char *dir,
-                               const oit_read_desc *desc, oit_triangle_sink sink, void *user,
-                               oit_mesh_info *info, oit_error *err);
-oit_status oit_read_obj_stream(FILE *f, const char *name, const char *mtl_dir,
-                               const oit_read_desc *desc, oit_triangle_sink sink, void *user,
-                               oit_mesh_info *info, oit_error *err);
+oit_rd_file_fn oit_read_ply_stream;
+oit_rd_file_fn oit_read_obj_stream;
 /* oit_read_obj_stream whose every mtllib statement reads mtl, from its
  * start, instead of a file: the MTL parser fed from memory (fuzz targets).
  * mtl_name names it in messages; mtl must be seekable (fmemopen). */
 oit_status oit_read_obj_stream_mtl(FILE *f, const char *name, FILE *mtl, const char *mtl_name,
                                    const oit_read_desc *desc, oit_triangle_sink sink,
                                    void *user, oit_mesh_info *info, oit_error *err);
-oit_status oit_read_off_stream(FILE *f, const char *name, const char *dir,
-                               const oit_read_desc *desc, oit_triangle_sink sink, void *user,
-                               oit_mesh_info *info, oit_error *err);
-oit_status oit_read_stl_stream(FILE *f, const char *name, const char *dir,
-                               const oit_read_desc *desc, oit_triangle_sink sink, void *user,
-                               oit_mesh_info *info, oit_error *err);
+oit_rd_file_fn oit_read_off_stream;
+oit_rd_file_fn oit_read_stl_stream;
 
 #endif

@@ -96,11 +96,8 @@ oit_status vtk_cells_push_id(vtk_cells *cs, oit_rd_budget *b, uint32_t id, const
 oit_status vtk_cells_push_type(vtk_cells *cs, oit_rd_budget *b, uint8_t type,
                                const char *name, oit_error *err);
 
-oit_status oit_read_vtk_stream(FILE *f, const char *name, const char *dir,
-                               const oit_read_desc *desc, oit_triangle_sink sink, void *user,
-                               oit_mesh_info *info, oit_error *err);
-oit_status oit_read_vtp_stream(FILE *f, const char *name, const char *dir,
-                               const oit_read_desc *desc, oit_triangle_sink sink, void *user,
-                               oit_mesh_info *info, oit_error *err);
+/* The readers' FILE* entries (readers_internal.h). */
+oit_rd_file_fn oit_read_vtk_stream;
+oit_rd_file_fn oit_read_vtp_stream;
 
 #endif
