@@ -9,27 +9,16 @@
  * not a finding, and the child's coverage is not seen by the fuzzer: these
  * targets check the parent's side (the pipe, the sink, the status) and
  * that no input takes the caller down. */
-#include <stdlib.h>
-
 #include "formats/assimp_internal.h"
+#include "tests/formats/fuzz_read.h"
 
 #define OIT_STR2(x) #x
 #define OIT_STR(x) OIT_STR2(x)
 
-static oit_status check_finite(void *user, const oit_triangle *t, size_t n, oit_error *err)
-{
-    for (size_t i = 0; i < n; i++)
-        if (!oit_triangle_is_finite(&t[i]))
-            abort();
-    return OIT_OK;
-}
-
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    oit_read_desc desc = {.chunk_triangles = 7, .memory_budget = (size_t)64 << 20};
-    oit_mesh_info info;
-    oit_error err;
+    fuzz_args a = FUZZ_ARGS;
     oit_read_assimp_memory(data, size, "fuzz." OIT_STR(OIT_FUZZ_FORMAT), OIT_STR(OIT_FUZZ_FORMAT),
-                           &desc, check_finite, NULL, &info, &err);
+                           &a.desc, fuzz_check_finite, NULL, &a.info, &a.err);
     return 0;
 }

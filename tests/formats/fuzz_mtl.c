@@ -7,6 +7,7 @@
  * nothing touches the disk. Any status is fine; crashes, hangs, leaks and
  * sanitizer reports are not. */
 #include "formats/readers_internal.h"
+#include "tests/formats/fuzz_read.h"
 
 static oit_status discard(void *user, const oit_triangle *t, size_t n, oit_error *err)
 {
@@ -37,10 +38,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     FILE *f = fmemopen((void *)obj, obj_n, "rb");
     FILE *m = fmemopen((void *)mtl, mtl_n, "rb");
     if (f && m) {
-        oit_read_desc desc = {.chunk_triangles = 7, .memory_budget = (size_t)64 << 20};
-        oit_mesh_info info;
-        oit_error err;
-        oit_read_obj_stream_mtl(f, "fuzz.obj", m, "fuzz.mtl", &desc, discard, NULL, &info, &err);
+        fuzz_args a = FUZZ_ARGS;
+        oit_read_obj_stream_mtl(f, "fuzz.obj", m, "fuzz.mtl", &a.desc, discard, NULL, &a.info,
+                                &a.err);
     }
     if (f)
         fclose(f);

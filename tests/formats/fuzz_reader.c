@@ -4,6 +4,7 @@
  * hangs, leaks and sanitizer reports are not. A small budget and chunk keep
  * the budget-exceeded and chunk-boundary paths in reach. */
 #include "formats/readers_internal.h"
+#include "tests/formats/fuzz_read.h"
 #ifdef OIT_FUZZ_VTK
 #include "formats/vtk_internal.h" /* oit_read_vtk_stream, oit_read_vtp_stream */
 #endif
@@ -25,11 +26,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     FILE *f = fmemopen((void *)data, size, "rb");
     if (!f)
         return 0;
-    oit_read_desc desc = {.chunk_triangles = 7, .memory_budget = (size_t)64 << 20};
-    oit_mesh_info info;
-    oit_error err;
-    OIT_READER(OIT_FUZZ_FORMAT)(f, "fuzz." OIT_STR(OIT_FUZZ_FORMAT), NULL, &desc, discard, NULL,
-                                &info, &err);
+    fuzz_args a = FUZZ_ARGS;
+    OIT_READER(OIT_FUZZ_FORMAT)(f, "fuzz." OIT_STR(OIT_FUZZ_FORMAT), NULL, &a.desc, discard, NULL,
+                                &a.info, &a.err);
     fclose(f);
     return 0;
 }

@@ -6,25 +6,13 @@
  * keeps the chunk-boundary path in reach, and the sink checks that no
  * triangle with a non-finite coordinate is delivered. IGES has no stream
  * reader in Open CASCADE, so it is not fuzzed from memory. */
-#include <stdlib.h>
-
 #include "formats/step_internal.h"
-
-static oit_status check_finite(void *user, const oit_triangle *t, size_t n, oit_error *err)
-{
-    (void)user;
-    (void)err;
-    for (size_t i = 0; i < n; i++)
-        if (!oit_triangle_is_finite(&t[i]))
-            abort();
-    return OIT_OK;
-}
+#include "tests/formats/fuzz_read.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    oit_read_desc desc = {.chunk_triangles = 7, .memory_budget = (size_t)64 << 20};
-    oit_mesh_info info;
-    oit_error err;
-    oit_read_step_memory(data, size, "fuzz.step", &desc, check_finite, NULL, &info, &err);
+    fuzz_args a = FUZZ_ARGS;
+    oit_read_step_memory(data, size, "fuzz.step", &a.desc, fuzz_check_finite, NULL, &a.info,
+                         &a.err);
     return 0;
 }
