@@ -3,6 +3,7 @@
  * coordinates, colours, attribute bits, bounds, chunking and every error path
  * (status, file name and line/offset in the message) are checked. */
 #include "oit/mesh.h"
+#include "tests/formats/test_tmp_files.h"
 #include "tests/lib/test_check.h"
 
 #include <math.h>
@@ -11,31 +12,6 @@
 #include <string.h>
 #include <time.h>
 #include <unistd.h>
-
-
-static char tmpdir[1024];
-
-static const char *tmp_path(const char *name)
-{
-    static char path[2048];
-    snprintf(path, sizeof path, "%s/%s", tmpdir, name);
-    return path;
-}
-
-static void write_bytes(const char *name, const void *data, size_t n)
-{
-    FILE *f = fopen(tmp_path(name), "wb");
-    if (!f || fwrite(data, 1, n, f) != n) {
-        printf("cannot write %s\n", tmp_path(name));
-        exit(1);
-    }
-    fclose(f);
-}
-
-static void write_text(const char *name, const char *text)
-{
-    write_bytes(name, text, strlen(text));
-}
 
 /* Reads a file into m; prints the figures. */
 static oit_status load(const char *name, const oit_read_desc *desc, oit_mesh *m, oit_error *err)
@@ -738,8 +714,6 @@ static void test_far(void)
 
 int main(void)
 {
-    const char *t = getenv("OIT_TEST_TMP");
-    snprintf(tmpdir, sizeof tmpdir, "%s", t ? t : "/tmp");
     test_ply();
     test_obj();
     test_mtl_errors();

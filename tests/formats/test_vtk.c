@@ -10,46 +10,14 @@
  * with the right status and a message naming the file (and, for parse
  * errors, the line or byte offset). Arguments: the two corpus folders. */
 #include "oit/mesh.h"
+#include "tests/formats/test_tmp_files.h"
 #include "tests/lib/test_check.h"
+#include "tests/lib/test_files.h"
 
 #include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static char tmpdir[1024];
-
-static const char *tmp_path(const char *name)
-{
-    static char path[2048];
-    snprintf(path, sizeof path, "%s/%s", tmpdir, name);
-    return path;
-}
-
-static void write_bytes(const char *name, const void *data, size_t n)
-{
-    FILE *f = fopen(tmp_path(name), "wb");
-    if (!f || fwrite(data, 1, n, f) != n) {
-        printf("cannot write %s\n", tmp_path(name));
-        exit(1);
-    }
-    fclose(f);
-}
-
-static unsigned char *read_all(const char *path, size_t *n)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    fseek(f, 0, SEEK_END);
-    long len = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    unsigned char *b = malloc((size_t)len + 1);
-    *n = fread(b, 1, (size_t)len, f);
-    b[*n] = 0;
-    fclose(f);
-    return b;
-}
 
 static int ends_with(const char *s, const char *suffix)
 {
@@ -127,7 +95,7 @@ static int test_folder(const char *dir, const char *ext)
         }
         /* the first half of the file: truncated, never a success */
         size_t n = 0;
-        unsigned char *b = read_all(path, &n);
+        uint8_t *b = test_read_file(path, &n);
         char cut[256];
         snprintf(cut, sizeof cut, "half_%s", e->d_name);
         write_bytes(cut, b, n / 2);
@@ -151,7 +119,7 @@ static int test_folder(const char *dir, const char *ext)
 /* text as name must fail with s, its message holding name and `needle`. */
 static void expect_error(const char *name, const char *text, oit_status s, const char *needle)
 {
-    write_bytes(name, text, strlen(text));
+    write_text(name, text);
     oit_mesh m;
     oit_error err = {0};
     oit_status got = oit_mesh_load(tmp_path(name), NULL, &m, &err);
@@ -224,7 +192,7 @@ static void expect_colour(const char *name, const oit_mesh *m, size_t t, int r, 
 
 static oit_mesh load_ok(const char *name, const char *text)
 {
-    write_bytes(name, text, strlen(text));
+    write_text(name, text);
     oit_mesh m;
     oit_error err = {0};
     oit_status st = oit_mesh_load(tmp_path(name), NULL, &m, &err);
@@ -349,7 +317,7 @@ static void test_vtp_extras(void)
         "<Polys><DataArray type='Int32' Name='connectivity' format='ascii'>3 2 1</DataArray>"
         "<DataArray type='Int32' Name='offsets' format='ascii'>3</DataArray></Polys>\n"
         "</Piece></PolyData></VTKFile>\n";
-    write_bytes("extras.vtp", text, strlen(text));
+    write_text("extras.vtp", text);
     oit_mesh m;
     oit_error err = {0};
     oit_status st = oit_mesh_load(tmp_path("extras.vtp"), NULL, &m, &err);
@@ -397,8 +365,6 @@ static void test_budget(const char *dir)
 
 int main(int argc, char **argv)
 {
-    const char *t = getenv("OIT_TEST_TMP");
-    snprintf(tmpdir, sizeof tmpdir, "%s", t ? t : "/tmp");
     if (argc != 3) {
         fprintf(stderr, "usage: test_vtk CORPUS/vtk CORPUS/vtp\n");
         return 2;
