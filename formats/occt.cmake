@@ -18,13 +18,4 @@ add_library(oit_occt_adapter OBJECT step_adapter.cpp)
 target_link_libraries(oit_occt_adapter PRIVATE oit_occt)
 set_target_properties(oit_occt_adapter PROPERTIES POSITION_INDEPENDENT_CODE ON)
 
-add_library(oit_occt_plugin MODULE $<TARGET_OBJECTS:oit_occt_adapter>)
-target_link_libraries(oit_occt_plugin PRIVATE oit_formats_loaded ${OIT_OCCT_LIBS})
-set_target_properties(oit_occt_plugin PROPERTIES OUTPUT_NAME oit-occt
-                      LIBRARY_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/lib
-                      LINK_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/step_plugin.map)
-target_link_options(oit_occt_plugin PRIVATE
-                    "LINKER:--version-script=${CMAKE_CURRENT_SOURCE_DIR}/step_plugin.map")
-if(NOT OIT_SANITIZE) # as for liboit: the sanitizer runtime is the executable's
-  target_link_options(oit_occt_plugin PRIVATE "LINKER:--no-undefined")
-endif()
+oit_add_reader_plugin(oit_occt_plugin oit-occt oit_occt_adapter step_plugin.map ${OIT_OCCT_LIBS})
