@@ -43,9 +43,9 @@ static oit_status capture_create(oit_capture_kind kind, const oit_method_options
                                  void **impl, oit_error *err)
 {
     oit_capture *c = NULL;
-    oit_status s = oit_capture_create(kind, opt ? opt->max_layers : 0, &c, err);
-    if (s == OIT_OK && opt)
-        oit_capture_set_store_limit(c, opt->store_limit);
+    oit_capture_desc d = {.kind = kind, .K = opt ? opt->max_layers : 0,
+                          .settings.store_limit = opt ? opt->store_limit : 0};
+    oit_status s = oit_capture_create(&d, &c, err);
     *impl = c;
     return s;
 }
@@ -53,7 +53,9 @@ static oit_status capture_create(oit_capture_kind kind, const oit_method_options
 /* The whole mesh as one batch. */
 static oit_status capture_render(void *impl, const oit_method_frame *f, oit_error *err)
 {
-    oit_capture_set_gpu_timer(impl, f->timer);
+    oit_capture_settings cs = oit_capture_get_settings(impl);
+    cs.timer = f->timer;
+    oit_capture_apply(impl, &cs);
     oit_status s = oit_capture_begin(impl, f->view, err);
     if (s == OIT_OK)
         s = oit_capture_batch(impl, &f->gpu, 1, NULL, err);

@@ -73,18 +73,33 @@ const oit_capture_choice *oit_streamer_capture_choice(const oit_streamer *s)
 
 /* A routed capture at stencil_k samples, kept once its self-test passes. */
 typedef struct routed_try {
-    oit_capture_kind kind;
-    int K;
-    unsigned faults;
-    oit_program_cache *programs;
+    oit_capture_desc desc;
     oit_capture *made;
 } routed_try;
 
 static oit_status try_routed(void *ctx, int stencil_k, oit_error *err)
 {
     routed_try *t = ctx;
-    return oit_capture_create_cached(t->programs, t->kind, t->K, stencil_k, t->faults, &t->made,
-                                     err);
+    t->desc.stencil_k = stencil_k;
+    return oit_capture_create(&t->desc, &t->made, err);
+}
+
+/* The capture's settings, from the streamer's: split_budget gave both
+ * budgets their values (the counted and first-K captures store fragments
+ * beside their slots; 32 MiB, 2 a pixel at 1024x1024, split the packs of
+ * dense views, which then drew again: bench/stream-vs-dfb-llvmpipe.md).
+ * first-K's pass 2 and counted batches run without waits (a short frame
+ * is drawn again: render); only auto's counted frames predict from
+ * first-K's counts. */
+static oit_capture_desc capture_desc(const oit_streamer *s, const oit_streamer_desc *desc,
+                                     oit_capture_kind kind)
+{
+    return (oit_capture_desc){
+        .kind = kind, .K = desc->K, .faults = desc->capture_faults,
+        .programs = desc->programs,
+        .settings = {.epsilon = desc->epsilon, .slot_budget = s->budget.capture,
+                     .store_budget = s->budget.store, .store_limit = desc->store_limit,
+                     .timer = s->timer, .no_wait = 1, .no_counts = !s->adaptive}};
 }
 
 /* The pack mode's capture, its K-slot fills as desc->capture chooses. */
@@ -94,8 +109,8 @@ static oit_status create_capture(oit_streamer *s, const oit_streamer_desc *desc,
     /* No K-slot fill and no per-pixel limit: exact with every pack mode. */
     if (desc->capture == OIT_CAPTURE_COMPUTE) {
         s->choice.asked = desc->capture;
-        return oit_capture_create_cached(desc->programs, OIT_CAPTURE_COMPUTE, desc->K, 0,
-                                         desc->capture_faults, &s->capture, err);
+        oit_capture_desc cd = capture_desc(s, desc, OIT_CAPTURE_COMPUTE);
+        return oit_capture_create(&cd, &s->capture, err);
     }
     const oit_streamer_names n = oit_streamer_names_resolve(desc->names);
     if (mode == OIT_PACK_COUNTED) {
@@ -105,20 +120,21 @@ static oit_status create_capture(oit_streamer *s, const oit_streamer_desc *desc,
                                  "K-slot fill to route (%s = first-k, budget or disjoint)",
                                  n.capture, oit_capture_kind_name(desc->capture)
                                      ? oit_capture_kind_name(desc->capture) : "?", n.pack);
-        return oit_capture_create_cached(desc->programs, OIT_CAPTURE_COUNTED, desc->K, 0,
-                                         desc->capture_faults, &s->capture, err);
+        oit_capture_desc cd = capture_desc(s, desc, OIT_CAPTURE_COUNTED);
+        return oit_capture_create(&cd, &s->capture, err);
     }
     int firstk = mode == OIT_PACK_FIRSTK;
-    routed_try t = {firstk ? OIT_CAPTURE_FIRSTK : OIT_CAPTURE_STENCIL, desc->K,
-                    desc->capture_faults, desc->programs, NULL};
+    routed_try t = {capture_desc(s, desc, firstk ? OIT_CAPTURE_FIRSTK : OIT_CAPTURE_STENCIL),
+                    NULL};
     oit_status st = oit_capture_choose(desc->capture, n.capture, desc->K, firstk, try_routed,
                                        &t, &s->choice, err);
     if (st != OIT_OK || t.made) {
         s->capture = t.made;
         return st;
     }
-    return oit_capture_create_cached(desc->programs, firstk ? OIT_CAPTURE_FIRSTK : OIT_CAPTURE_ARRAY,
-                                     desc->K, 0, desc->capture_faults, &s->capture, err);
+    t.desc.kind = firstk ? OIT_CAPTURE_FIRSTK : OIT_CAPTURE_ARRAY;
+    t.desc.stencil_k = 0;
+    return oit_capture_create(&t.desc, &s->capture, err);
 }
 
 /* desc's reader_threads resolved: the render thread draws, the others
@@ -228,27 +244,10 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
     }
     if (st == OIT_OK)
         st = create_capture(s, desc, mode, err);
-    /* The counted and first-K captures store fragments beside their slots;
-     * 32 MiB (2 a pixel at 1024x1024) split the packs of dense views, which
-     * then drew again (bench/stream-vs-dfb-llvmpipe.md). split_budget gave
-     * both budgets their values. */
-    if (st == OIT_OK) {
-        oit_capture_set_slot_budget(s->capture, s->budget.capture);
-        oit_capture_set_store_budget(s->capture, s->budget.store);
-        /* only auto's counted frames predict from first-K's counts */
-        oit_capture_set_keep_counts(s->capture, s->adaptive);
-    }
-    if (st == OIT_OK)
-        oit_capture_set_store_limit(s->capture, desc->store_limit);
-    /* first-K's pass 2 and counted batches without waits; a short frame is
-     * drawn again (render) */
-    if (st == OIT_OK)
-        oit_capture_set_no_wait(s->capture, 1);
     s->ahead = AHEAD_EXACT;
     if (st == OIT_OK && desc->epsilon > 0.0f) {
         s->epsilon = desc->epsilon;
         s->ahead = AHEAD_EPSILON;
-        oit_capture_set_epsilon(s->capture, desc->epsilon);
         st = oit_saturation_create(&s->saturation, err);
     }
     if (st != OIT_OK) {
@@ -263,7 +262,9 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
 void oit_streamer_set_gpu_timer(oit_streamer *s, oit_gpu_timer *t)
 {
     s->timer = t;
-    oit_capture_set_gpu_timer(s->capture, t);
+    oit_capture_settings cs = oit_capture_get_settings(s->capture);
+    cs.timer = t;
+    oit_capture_apply(s->capture, &cs);
 }
 
 void oit_streamer_set_opaque(oit_streamer *s, const oit_opaque_depth *o)

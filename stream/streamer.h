@@ -77,14 +77,14 @@ typedef struct oit_streamer_desc {
                                  once into the ring, every part at a home of its
                                  own, and drawn from there (cache_hits): no cache
                                  buffer beside it */
-    uint64_t slot_budget;     /* capture slot bytes (oit_capture_set_slot_budget);
+    uint64_t slot_budget;     /* capture slot bytes (oit_capture_settings);
                                  0: OIT_STREAM_FIRSTK_SLOTS_DEFAULT for counted
                                  and first-K packs, else OIT_STREAM_SLOTS_DEFAULT */
     uint64_t store_budget;    /* counted and first-K fragment store bytes
-                                 (oit_capture_set_store_budget); 0:
+                                 (oit_capture_settings); 0:
                                  OIT_STREAM_STORE_DEFAULT, or an eighth of a
                                  smaller total; unused by other packs */
-    float epsilon;            /* early termination (oit_capture_set_epsilon), in
+    float epsilon;            /* early termination (oit_capture_settings), in
                                  [0, 1); 0: exact */
     uint64_t cache_budget;    /* residency cache bytes at most; 0:
                                  OIT_STREAM_CACHE_DEFAULT; OIT_STREAM_CACHE_OFF:
@@ -97,7 +97,7 @@ typedef struct oit_streamer_desc {
                                  thread's), at least 1; OIT_STREAM_READ_INLINE:
                                  none, parts are read on the render thread (for
                                  comparison and debugging) */
-    uint64_t store_limit;     /* the capture's (oit_capture_set_store_limit); 0:
+    uint64_t store_limit;     /* the capture's (oit_capture_settings); 0:
                                  the driver's binding; lower only to test */
     /* One total for the ring, the cache and the capture together
      * (oit_stream_budget has the split); 0: OIT_STREAM_FREE_SHARE of the

@@ -32,8 +32,9 @@ void oit_streamer_choose(oit_streamer *s, const oit_view *view)
     oit_capture_set_first_k(s->capture, s->first_k);
     /* a first-K frame keeps its counts for a counted probe of its view
      * where the rule may suggest one */
-    oit_capture_set_keep_counts(s->capture,
-                                !s->frame.adapted || s->frame.suggest == OIT_PATH_COUNTED);
+    oit_capture_settings cs = oit_capture_get_settings(s->capture);
+    cs.no_counts = s->frame.adapted && s->frame.suggest != OIT_PATH_COUNTED;
+    oit_capture_apply(s->capture, &cs);
 }
 
 /* What the frame's path was chosen from (the judge's figures before the

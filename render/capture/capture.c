@@ -65,17 +65,19 @@ const oit_glsl_program oit_capture_end_program = {
     "capture end", .cs = {oit_glsl_composite, oit_glsl_state_io, oit_capture_end_cs}};
 
 /* The shared part, then the backend's (stencil_k: the samples of its
- * routed fills, 0 for none; a routed backend runs the self-test). */
-static oit_status make(oit_program_cache *pc, const oit_capture_ops *ops, int K, int stencil_k,
-                       unsigned faults, oit_capture **out, oit_error *err)
+ * routed fills, 0 for none; a routed backend runs the self-test), then
+ * the settings. */
+static oit_status make(const oit_capture_desc *d, const oit_capture_ops *ops, int stencil_k,
+                       oit_capture **out, oit_error *err)
 {
+    oit_program_cache *pc = d->programs;
     oit_capture *c = calloc(1, sizeof *c);
     if (!c)
         return oit_error_set(err, OIT_ERR_NOMEM, "capture: out of memory");
     c->ops = ops;
     c->programs = pc;
-    c->K = K;
-    c->faults = faults;
+    c->K = d->K;
+    c->faults = d->faults;
     c->be = calloc(1, ops->size);
     if (!c->be) {
         free(c);
@@ -96,6 +98,8 @@ static oit_status make(oit_program_cache *pc, const oit_capture_ops *ops, int K,
         release(c);
         return s;
     }
+    /* after the backend's self-test, which runs with no settings */
+    oit_capture_apply(c, &d->settings);
     *out = c;
     return OIT_OK;
 }
@@ -111,13 +115,10 @@ oit_status oit_capture_k_check(long long K, const char *what, oit_error *err)
                          what ? what : "capture: K", K, OIT_CAPTURE_K_MIN, OIT_CAPTURE_K_MAX);
 }
 
-static oit_status create_routed(oit_program_cache *pc, oit_capture_kind kind, int K,
-                                int stencil_k, unsigned faults, oit_capture **out,
-                                oit_error *err)
+static oit_status create_routed(const oit_capture_desc *d, oit_capture **out, oit_error *err)
 {
-    *out = NULL;
-    if (oit_capture_k_check(K, NULL, err) != OIT_OK)
-        return err ? err->status : OIT_ERR_ARGUMENT;
+    oit_capture_kind kind = d->kind;
+    int K = d->K, stencil_k = d->stencil_k ? d->stencil_k : K;
     if (kind != OIT_CAPTURE_STENCIL && kind != OIT_CAPTURE_FIRSTK)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: only the stencil and first-k "
                              "captures are routed, not %s",
@@ -126,7 +127,7 @@ static oit_status create_routed(oit_program_cache *pc, oit_capture_kind kind, in
         return oit_error_set(err, OIT_ERR_ARGUMENT, "capture: %d routed samples for %s at "
                              "K=%d (2..K; the stencil capture's own K)", stencil_k,
                              oit_capture_kind_name(kind), K);
-    oit_status s = make(pc, ops_of(kind), K, stencil_k, faults, out, err);
+    oit_status s = make(d, ops_of(kind), stencil_k, out, err);
     if (s == OIT_OK)
         return OIT_OK;
     /* A driver error while setting stencil routing up means it is not
@@ -139,36 +140,21 @@ static oit_status create_routed(oit_program_cache *pc, oit_capture_kind kind, in
     return s == OIT_ERR_GL ? OIT_ERR_UNSUPPORTED : s;
 }
 
-static oit_status create_kind(oit_program_cache *pc, oit_capture_kind kind, int K,
-                              unsigned faults, oit_capture **out, oit_error *err)
+oit_status oit_capture_create(const oit_capture_desc *desc, oit_capture **out, oit_error *err)
 {
     *out = NULL;
-    oit_status s = oit_capture_k_check(K, NULL, err);
+    oit_status s = oit_capture_k_check(desc->K, NULL, err);
     if (s != OIT_OK)
         return s;
-    if (kind == OIT_CAPTURE_ARRAY || kind == OIT_CAPTURE_COUNTED || kind == OIT_CAPTURE_FIRSTK ||
-        kind == OIT_CAPTURE_COMPUTE)
-        return make(pc, ops_of(kind), K, 0, faults, out, err);
-    s = create_routed(pc, OIT_CAPTURE_STENCIL, K, K, faults, out, err);
-    if (s != OIT_OK && kind == OIT_CAPTURE_AUTO)
-        return make(pc, &oit_capture_array_ops, K, 0, faults, out, err);
-    return s;
-}
-
-oit_status oit_capture_create_cached(oit_program_cache *pc, oit_capture_kind kind, int K,
-                                     int stencil_k, unsigned faults, oit_capture **out,
-                                     oit_error *err)
-{
-    return stencil_k ? create_routed(pc, kind, K, stencil_k, faults, out, err)
-                     : create_kind(pc, kind, K, faults, out, err);
-}
-
-/* Not through oit_capture_create_cached: there 0 samples means unrouted,
- * here it is a routed capture's argument out of range, and refused. */
-oit_status oit_capture_create_routed(oit_capture_kind kind, int K, int stencil_k,
-                                     unsigned faults, oit_capture **out, oit_error *err)
-{
-    return create_routed(NULL, kind, K, stencil_k, faults, out, err);
+    oit_capture_kind kind = desc->kind;
+    if (desc->stencil_k || kind == OIT_CAPTURE_STENCIL)
+        return create_routed(desc, out, err);
+    if (kind != OIT_CAPTURE_AUTO)
+        return make(desc, ops_of(kind), 0, out, err);
+    oit_capture_desc stencil = *desc;
+    stencil.kind = OIT_CAPTURE_STENCIL;
+    s = create_routed(&stencil, out, err);
+    return s == OIT_OK ? OIT_OK : make(desc, &oit_capture_array_ops, 0, out, err);
 }
 
 int oit_capture_routed_k(const oit_capture *c)
@@ -271,9 +257,8 @@ static void apply_epsilon(oit_capture *c, float e)
     c->ops->epsilon(c, e);
 }
 
-void oit_capture_set_epsilon(oit_capture *c, float epsilon)
+void oit_capture_apply_epsilon(oit_capture *c)
 {
-    c->set.epsilon = epsilon > 0.0f ? epsilon : 0.0f;
     apply_epsilon(c, c->set.epsilon);
 }
 

@@ -59,21 +59,6 @@ typedef struct oit_capture oit_capture;
 #define OIT_CAPTURE_K_MAX 16
 oit_status oit_capture_k_check(long long K, const char *what, oit_error *err);
 
-/* What the three below make (stencil_k 0: oit_capture_create_faulty,
- * else oit_capture_create_routed), with the capture's programs built through pc
- * (render/gl/program_cache.h; NULL: compiled), which must outlive it. */
-oit_status oit_capture_create_cached(oit_program_cache *pc, oit_capture_kind kind, int K,
-                                     int stencil_k, unsigned faults, oit_capture **out,
-                                     oit_error *err);
-/* K in [2, 16]. Fails with OIT_ERR_UNSUPPORTED when STENCIL is asked for and
- * the sample mode or the self-test rules it out at this K; the message says
- * which, with the numbers (and the largest K of true multisamples where the
- * driver tells). AUTO then takes the array backend at the same K. */
-static inline oit_status oit_capture_create(oit_capture_kind kind, int K, oit_capture **out,
-                                            oit_error *err)
-{
-    return oit_capture_create_cached(NULL, kind, K, 0, 0, out, err);
-}
 /* Testing: what a driver may do, forced on the stencil backend's fill (the
  * self-test's and every batch's), so that a test can see the self-test
  * refuse it where the driver itself does not do it. */
@@ -95,25 +80,98 @@ enum {
      * their end (no read-back of the sweep's pending pixels) */
     OIT_CAPTURE_TEST_COMPUTE_NO_PROBE = 1u << 3
 };
-/* oit_capture_create with faults (OIT_CAPTURE_FAULT_*; 0: none). */
-static inline oit_status oit_capture_create_faulty(oit_capture_kind kind, int K,
-                                                   unsigned faults, oit_capture **out,
-                                                   oit_error *err)
-{
-    return oit_capture_create_cached(NULL, kind, K, 0, faults, out, err);
-}
-/* A capture whose K-slot fills are routed by the stencil into stencil_k
- * samples a pixel, after the self-test passed at stencil_k (no fallback:
- * OIT_ERR_UNSUPPORTED with the reason where it does not; capture_choice.h
- * decides what to try):
- *  - OIT_CAPTURE_STENCIL: stencil_k = K;
- *  - OIT_CAPTURE_FIRSTK: its first pass (capture_firstk.h) keeps a pixel's
- *    first stencil_k (2..K) fragments in the samples while it counts every
- *    fragment; pixels that got more take the second pass, as with array
- *    slots. The target holds stencil_k samples of the whole frame, outside
- *    the slot budget (20 bytes a sample: 160 MiB at 1024x1024, 8 samples). */
-oit_status oit_capture_create_routed(oit_capture_kind kind, int K, int stencil_k,
-                                     unsigned faults, oit_capture **out, oit_error *err);
+
+/* The settings a capture takes for every frame, given at creation
+ * (oit_capture_desc.settings) and changed between frames with
+ * oit_capture_apply; zero fields mean the default. The image is the same
+ * whatever the budgets, limits and no_wait. */
+struct oit_gpu_timer;
+typedef struct oit_capture_settings {
+    /* Early termination (DESIGN.md): a pixel whose carried transmittance
+     * is below epsilon in every channel drops its fragments, so the image
+     * differs from the exact one by at most epsilon per channel. 0 (a
+     * negative reads as 0) keeps the image exact. */
+    float epsilon;
+    /* The array backend's slots grow to K for each pixel of the largest
+     * batch rectangle so far, and to one output value a pixel of the
+     * frame, at most K slots for every pixel (K x 16 bytes a pixel: 128 MiB
+     * at 1024x1024, K = 8); they then take at most slot_budget bytes (at
+     * least one row of K): a frame whose full slots exceed it captures
+     * every batch in screen tiles that fit, one draw of the batch per tile,
+     * and writes its output into the idle slots. 0: no limit. */
+    uint64_t slot_budget;
+    /* The most bytes the counted and first-K captures' fragment stores
+     * take: counted's store (a batch whose fragments pass it is stored in
+     * bands of rows) with its predictions, and first-K's second pass store
+     * (whose first bytes are its slots, which slot_budget bounds). Apart
+     * from the slot budget because a deep view's bands each draw the pack
+     * again, while first-K's slots are cleared and resolved every frame
+     * whatever they hold. 0: slot_budget's. */
+    uint64_t store_budget;
+    /* The most bytes the counted, first-K and compute captures put in one
+     * storage buffer: what is stored past it is taken in pieces (a batch's
+     * meshes in halves, then one mesh's rows in bands, as first-K's second
+     * pass). 0: what this driver binds (GL_MAX_SHADER_STORAGE_BLOCK_SIZE);
+     * lower only to test those pieces. */
+    uint64_t store_limit;
+    /* GPU phases are marked on timer (render/gl/gpu_timer.h; NULL: none),
+     * which the capture does not own. */
+    struct oit_gpu_timer *timer;
+    /* OIT_CAPTURE_FIRSTK: 1 drives first-K's second pass on the GPU, so
+     * that the host never waits within a frame (oit_frame_stats.host_waits):
+     * the pass-2 store is sized ahead from what earlier frames' packs
+     * needed (at least what the slots hold; the first frame's, what they
+     * hold), the GPU decides where pass 2 runs, if at all (indirect
+     * dispatches, draws of 0 instances). A pack that needs more than the
+     * store holds leaves pixels out: the frame ends short
+     * (oit_capture_short) and must be drawn again, which the measured need
+     * then fits, within the slot budget and one storage binding (past them
+     * the host splits pass 2 in bands as with 0). 0: the host reads each
+     * pack's overflow back and sizes pass 2 exactly; never short.
+     * OIT_CAPTURE_COUNTED (and first-K's counted packs) likewise, from the
+     * second frame on: each batch's store sized ahead from the most an
+     * earlier frame's batch took, opened by a judge on the GPU; a batch
+     * that needs more ends the frame short (capture_counted.h). */
+    int no_wait;
+    /* OIT_CAPTURE_FIRSTK: 0 has the first frame of a view (oit_view_key)
+     * keep its pass 1 counts, so that a counted frame of the same view
+     * after it is predicted from them (capture_counted.h) instead of
+     * counted first; 1 keeps none (a copy of the counts a batch, for at
+     * most OIT_COUNTED_PREDICTED_BATCHES batches, saved). The streamer's
+     * automatic mode keeps them where its rule suggests counted next. */
+    int no_counts;
+} oit_capture_settings;
+
+/* A capture, resolved once at oit_capture_create; zero fields mean the
+ * default (but K). */
+typedef struct oit_capture_desc {
+    /* The backend; OIT_CAPTURE_AUTO: STENCIL where its self-test passes at
+     * K, else ARRAY at the same K. STENCIL fails with OIT_ERR_UNSUPPORTED
+     * where the sample mode or the self-test rules it out at this K; the
+     * message says which, with the numbers (and the largest K of true
+     * multisamples where the driver tells). */
+    oit_capture_kind kind;
+    int K; /* OIT_CAPTURE_K_MIN..OIT_CAPTURE_K_MAX */
+    /* The samples a pixel the K-slot fills are routed into by the stencil,
+     * after the self-test passed at that count (capture_choice.h decides
+     * what to try; no fallback: OIT_ERR_UNSUPPORTED with the reason where
+     * it does not): OIT_CAPTURE_STENCIL 0 or K; OIT_CAPTURE_FIRSTK 2..K,
+     * its first pass (capture_firstk.h) keeping a pixel's first stencil_k
+     * fragments in the samples while it counts every fragment (pixels that
+     * got more take the second pass, as with array slots; the target holds
+     * stencil_k samples of the whole frame, outside the slot budget: 20
+     * bytes a sample, 160 MiB at 1024x1024, 8 samples), 0 array slots.
+     * Other kinds: 0. */
+    int stencil_k;
+    unsigned faults; /* testing: OIT_CAPTURE_FAULT_* and _TEST_* below */
+    /* The capture's programs are built through programs
+     * (render/gl/program_cache.h; NULL: compiled), which must outlive it. */
+    oit_program_cache *programs;
+    oit_capture_settings settings;
+} oit_capture_desc;
+
+oit_status oit_capture_create(const oit_capture_desc *desc, oit_capture **out, oit_error *err);
+
 /* The samples of c's routed fills; 0: none (array slots). */
 int oit_capture_routed_k(const oit_capture *c);
 /* "array", "stencil", "counted", "first-k", "compute" (NULL for AUTO or
@@ -121,12 +179,6 @@ int oit_capture_routed_k(const oit_capture *c);
 const char *oit_capture_kind_name(oit_capture_kind kind);
 void oit_capture_destroy(oit_capture *c);
 oit_capture_kind oit_capture_backend(const oit_capture *c);
-
-/* Early termination (DESIGN.md): from the next batch on, a pixel whose
- * carried transmittance is below epsilon in every channel drops its
- * fragments, so the image differs from the exact one by at most epsilon per
- * channel. 0 (the default; negatives read as 0) keeps the image exact. */
-void oit_capture_set_epsilon(oit_capture *c, float epsilon);
 
 /* The caller's opaque depth (frag_glsl.h, oit_opaque_depth) from the next
  * oit_capture_begin on; NULL: none (the default). Fragments behind it are
@@ -147,33 +199,11 @@ unsigned oit_capture_state_buffer(const oit_capture *c);
  * a multi-draw counting 1. */
 uint64_t oit_capture_draw_calls(const oit_capture *c);
 
-/* GPU memory: the array backend's slots grow to K for each pixel of the
- * largest batch rectangle so far, and to one output value a pixel of the
- * frame, at most K slots for every pixel (K x 16 bytes a pixel: 128 MiB at
- * 1024x1024, K = 8). From the next frame on they take at most `bytes` (at
- * least one row of K) instead of that most. A frame whose full
- * slots exceed it captures every batch in screen tiles that fit, one draw of
- * the batch per tile, and writes its output into the idle slots. 0 (the
- * default): no limit. The image is the same either way. */
-void oit_capture_set_slot_budget(oit_capture *c, uint64_t bytes);
-
-/* The most bytes the counted and first-K captures' fragment stores take,
- * from the next frame on: counted's store (a batch whose fragments pass it
- * is stored in bands of rows) with its predictions, and first-K's second
- * pass store (whose first bytes are its slots, which the slot budget
- * bounds). Apart from the slot budget because a deep view's bands each
- * draw the pack again, while first-K's slots are cleared and resolved
- * every frame whatever they hold. 0 (the default): the slot budget's. The
- * image is the same either way. */
-void oit_capture_set_store_budget(oit_capture *c, uint64_t bytes);
-
-/* The most bytes the counted and first-K captures put in one storage buffer,
- * from the next frame on: what is stored past it is taken in pieces (a
- * batch's meshes in halves, then one mesh's rows in bands, as first-K's
- * second pass). 0 (the default): what this driver binds
- * (GL_MAX_SHADER_STORAGE_BLOCK_SIZE); lower only to test those pieces. The
- * image is the same either way. */
-void oit_capture_set_store_limit(oit_capture *c, uint64_t bytes);
+/* c's settings (oit_capture_desc.settings as given, or as last applied). */
+oit_capture_settings oit_capture_get_settings(const oit_capture *c);
+/* settings for every frame from the next oit_capture_begin on (epsilon:
+ * from the next batch on). */
+void oit_capture_apply(oit_capture *c, const oit_capture_settings *settings);
 
 /* OIT_CAPTURE_FIRSTK only: 0 captures every batch from the next one on as
  * OIT_CAPTURE_COUNTED does (count, store, sort: no slots), 1 (the default)
@@ -183,38 +213,13 @@ void oit_capture_set_store_limit(oit_capture *c, uint64_t bytes);
  * frame's figures (streamer.h). The image is the same either way. */
 void oit_capture_set_first_k(oit_capture *c, int on);
 
-/* OIT_CAPTURE_FIRSTK only, from the next frame on: 1 (the default) has the
- * first frame of a view (oit_view_key) keep its pass 1 counts, so that a
- * counted frame of the same view after it is predicted from them
- * (capture_counted.h) instead of counted first; 0 keeps none (a copy of
- * the counts a batch, for at most OIT_COUNTED_PREDICTED_BATCHES batches,
- * saved). The streamer's automatic mode keeps them where its rule
- * suggests counted next. The image is the same either way. */
-void oit_capture_set_keep_counts(oit_capture *c, int on);
-
-/* OIT_CAPTURE_FIRSTK, from the next frame on: 1 drives first-K's
- * second pass on the GPU, so that the host never waits within a frame
- * (oit_frame_stats.host_waits): the pass-2 store is sized ahead from what
- * earlier frames' packs needed (at least what the slots hold; the first
- * frame's, what they hold), the GPU decides where pass 2 runs, if at all
- * (indirect dispatches, draws of 0 instances). A pack that needs more than
- * the store holds leaves pixels out: the frame ends short
- * (oit_capture_short) and must be drawn again, which the measured need
- * then fits, within the slot budget and one storage binding (past them
- * the host splits pass 2 in bands as with 0). 0 (the default): the host
- * reads each pack's overflow back and sizes pass 2 exactly; never short.
- * OIT_CAPTURE_COUNTED (and first-K's counted packs) likewise, from the
- * second frame on: each batch's store sized ahead from the most an
- * earlier frame's batch took, opened by a judge on the GPU; a batch that
- * needs more ends the frame short (capture_counted.h). */
-void oit_capture_set_no_wait(oit_capture *c, int on);
 /* OIT_CAPTURE_FIRSTK, after a frame: the counted capture built and sized
  * for that frame's fragments, for a next frame drawn counted
  * (oit_capture_set_first_k 0) to start warm and without waits; nothing
  * once counted packs have been measured, or for other captures. */
 void oit_capture_ready_counted(oit_capture *c);
 /* 1 when the frame that oit_capture_end or _end_gpu just ended is short
- * (oit_capture_set_no_wait): its image is not exact, draw it again. */
+ * (oit_capture_settings.no_wait): its image is not exact, draw it again. */
 int oit_capture_short(const oit_capture *c);
 
 /* Bytes a pixel of v takes in the capture's largest per-pixel buffer that
@@ -223,11 +228,6 @@ int oit_capture_short(const oit_capture *c);
  * pieces (tiles, bands of rows); a frame whose state does not fit is
  * refused by oit_capture_begin, to be rendered in bands (render/gl/band.h). */
 uint64_t oit_capture_pixel_bytes(const oit_view *v);
-
-/* GPU phases of the next frames are marked on t (render/gl/gpu_timer.h;
- * NULL: none). The capture does not own it. */
-struct oit_gpu_timer;
-void oit_capture_set_gpu_timer(oit_capture *c, struct oit_gpu_timer *t);
 
 /* The frame's count of the host's waits on the GPU (render/gl/host_wait.h),
  * zeroed by oit_capture_begin, reported as oit_frame_stats.host_waits: the

@@ -26,18 +26,6 @@
 /* The frame's buffers every backend uses. */
 enum { OIT_CAPTURE_COUNTS, OIT_CAPTURE_STATE, OIT_CAPTURE_TOTALS, OIT_CAPTURE_BUFS };
 
-/* What the caller set (oit_capture_set_*); each from the next frame or
- * batch on. */
-typedef struct oit_capture_settings {
-    float epsilon;        /* early termination threshold; 0: exact */
-    uint64_t slot_budget; /* bytes; 0: K slots for every pixel of the frame */
-    uint64_t store_budget; /* fragment store bytes; 0: slot_budget's */
-    uint64_t store_limit; /* bytes a storage buffer spans; 0: the driver's */
-    oit_gpu_timer *timer; /* phases marked; NULL: none */
-    int no_wait;          /* oit_capture_set_no_wait */
-    int no_counts;        /* !oit_capture_set_keep_counts */
-} oit_capture_settings;
-
 /* This frame's, set by oit_capture_begin. */
 typedef struct oit_capture_frame {
     double t0;
@@ -68,7 +56,7 @@ struct oit_capture {
     int K;
     int routed_k; /* samples a pixel of the routed fills; 0: none */
     unsigned faults;
-    oit_capture_settings set;
+    oit_capture_settings set; /* oit_capture_desc.settings, or as applied */
     oit_opaque_depth opaque; /* the caller's depth; keyed: this frame's opaque triangles */
     oit_opaque_keys *keys;   /* the opaque pre-pass, made on first need */
     GLuint fbo;              /* attachment-less: the fills write buffers */
@@ -168,6 +156,9 @@ void oit_capture_draw_scissored(oit_capture *c, GLuint prog, const oit_gpu_mesh 
 oit_counted_frame oit_capture_counted_frame(oit_capture *c);
 /* The view, the opaque depth, K and the pixel count in progs[0..n). */
 void oit_capture_set_frame_uniforms(const oit_capture *c, GLuint *progs, int n);
+/* c->set.epsilon into every program that tests it, from the next batch on
+ * (oit_capture_apply). */
+void oit_capture_apply_epsilon(oit_capture *c);
 
 /* ---- the counted capture (capture_counted.c), first-K's too ---------------- */
 

@@ -81,7 +81,7 @@ typedef struct oit_firstk {
     oit_program_cache *pc;
     void (*built)(void *built_ctx);
     void *built_ctx;
-    /* Pass 2 driven by the GPU (oit_capture_set_no_wait; its backend sets
+    /* Pass 2 driven by the GPU (oit_capture_settings.no_wait; its backend sets
      * ahead a frame, from the first on, and off while the measured `need`
      * passes the store budget or one binding: the host then splits pass 2
      * in bands): the store sized ahead for `need` fragments (the most an

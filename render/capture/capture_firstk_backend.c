@@ -2,7 +2,7 @@
  * (capture_firstk.h) of each pack, or the counted capture's
  * (capture_counted.h) where fewer than 2 slots a pixel fit the budget or
  * first-K is switched off; its pass 1 routed by the stencil where
- * oit_capture_create_routed asked for it. */
+ * oit_capture_desc.stencil_k asked for it. */
 #include "render/capture/capture_backend.h"
 #include "render/capture/capture_firstk.h"
 
@@ -19,13 +19,13 @@ typedef struct firstk_backend {
     GLuint fill;
     /* Pass 1's counts kept for the counted capture to predict the next
      * frame by (oit_counted_predict) in this frame, at its pack `packs`
-     * (oit_capture_set_keep_counts); the last frame's view. */
+     * (oit_capture_settings.no_counts); the last frame's view. */
     int predict;
     size_t packs;
     uint64_t last_view;
 } firstk_backend;
 
-/* Pass 1 through the stencil target (oit_capture_create_routed). */
+/* Pass 1 through the stencil target (oit_capture_desc.stencil_k). */
 static oit_status firstk_route(oit_capture *c, firstk_backend *b, int stencil_k, oit_error *err)
 {
     oit_status s = oit_capture_route_init(c, &b->target, stencil_k, err);
@@ -112,7 +112,7 @@ static oit_status firstk_begin(oit_capture *c, oit_error *err)
         oit_firstk_begin(&b->k);
     /* A still view's next frame may go counted (auto's try), which then
      * draws once where it would count and store: the first frame of a view
-     * keeps its counts where the caller asks (oit_capture_set_keep_counts),
+     * keeps its counts where the caller asks (oit_capture_settings.no_counts),
      * the others pay nothing. */
     uint64_t view = c->frame.view_key;
     b->predict = c->set.no_wait && !c->set.no_counts && view != b->last_view;

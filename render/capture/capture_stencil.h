@@ -20,7 +20,7 @@ typedef struct oit_stencil_target {
     int width, height;
     int K;       /* fragments routed a pixel: samples 0..K-1 */
     int samples; /* what the target holds: K, or the next count GL has */
-    /* Testing (oit_capture_create_faulty): the fill shaded once per sample,
+    /* Testing (oit_capture_desc.faults): the fill shaded once per sample,
      * as a driver that supersamples runs it more than once a pixel. */
     int sample_shading;
     /* Testing (OIT_CAPTURE_TEST_ROUTE_BY_COPY): no stencil routing; the

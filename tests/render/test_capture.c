@@ -18,6 +18,7 @@
 #include "render/capture/dfb.h"
 #include "render/gl/gl_context.h"
 #include "render/image/image.h"
+#include "tests/lib/capture_set.h"
 #include "tests/lib/test_check.h"
 #include "tests/lib/test_gl.h"
 
@@ -212,7 +213,7 @@ static oit_capture *new_capture(oit_capture_kind kind, int K, const char *name)
 {
     oit_error err = {0};
     oit_capture *c = NULL;
-    if (oit_capture_create(kind, K, &c, &err) != OIT_OK) {
+    if (oit_capture_create(&(oit_capture_desc){.kind = kind, .K = K}, &c, &err) != OIT_OK) {
         CHECK(0, "%s: capture: %s", name, err.message);
         return NULL;
     }
@@ -276,14 +277,14 @@ static void check_waits(const firstk_case *fc, const oit_frame_stats *s)
 }
 
 /* The same frame again with pass 2 driven by the GPU
- * (oit_capture_set_no_wait): the first frame measured the need, so this
+ * (oit_capture_settings.no_wait): the first frame measured the need, so this
  * one fits it, waits 0 times where first-K ran within the slot budget, and
  * is still DFB's image, fragment for fragment. */
 static void test_firstk_no_wait(oit_capture *c, const firstk_case *fc, const oit_view *v,
                                 const quad_spec *q, const int *start, const oit_image *d,
                                 const oit_frame_stats *sd, uint64_t want)
 {
-    oit_capture_set_no_wait(c, 1);
+    CAPTURE_SET(c, no_wait, 1);
     oit_image a = {0};
     oit_frame_stats sa;
     if (!capture_scene(c, v, q, start, fc->nb, NULL, &a, &sa)) {
@@ -303,7 +304,7 @@ static void test_firstk_no_wait(oit_capture *c, const firstk_case *fc, const oit
     CHECK(!fc->W || banded(fc) || sa.host_waits == 0, "%s: no wait: %u host waits",
           fc->name, sa.host_waits);
     oit_image_free(&a);
-    oit_capture_set_no_wait(c, 0);
+    CAPTURE_SET(c, no_wait, 0);
 }
 
 static void test_firstk(const firstk_case *fc)
@@ -311,8 +312,8 @@ static void test_firstk(const firstk_case *fc)
     oit_capture *c = new_capture(OIT_CAPTURE_FIRSTK, fc->K, fc->name);
     if (!c)
         return;
-    oit_capture_set_slot_budget(c, fc->slot_budget);
-    oit_capture_set_store_budget(c, fc->store_budget);
+    CAPTURE_SET(c, slot_budget, fc->slot_budget);
+    CAPTURE_SET(c, store_budget, fc->store_budget);
     quad_spec q[24];
     deep_scene(q);
     for (int i = 0; fc->tiny && i < 24; i += 2)
@@ -417,7 +418,7 @@ static void test_firstk_all(void)
         {"shallow batches", OIT_SHADING_TRANSLUCENT, 12, 8, 3, 0, 8, 3, 0, 0},
         /* fewer than 2 slots fit: counted packs, still exact */
         {"fallback", OIT_SHADING_TRANSPARENT, 24, 8, 2, two_slots / 2, 0, 4, 0, 0},
-        /* the stores apart from the slots (oit_capture_set_store_budget):
+        /* the stores apart from the slots (oit_capture_settings.store_budget):
          * the same slots, but pass 2 and the counted fallback each in one
          * band, no more waits and draws than that */
         {"bands, store apart", OIT_SHADING_TRANSPARENT, 24, 8, 1, two_slots, 2, 2, 0, all},
@@ -436,7 +437,7 @@ static void test_store_limit(oit_capture_kind kind, const char *name)
     oit_capture *c = new_capture(kind, 4, name);
     if (!c)
         return;
-    oit_capture_set_store_limit(c, 48u * 40u * 16u * 2u);
+    CAPTURE_SET(c, store_limit, 48u * 40u * 16u * 2u);
     quad_spec q[24];
     deep_scene(q);
     oit_view v;
@@ -487,7 +488,7 @@ static void test_epsilon_batches(oit_capture_kind kind, int K, int nq, const cha
     oit_image ex = {0}, dfb = {0}, e1 = {0}, e4 = {0};
     oit_frame_stats sx, sd, s1, s4;
     int ok = capture_scene(c, &v, q, one, 1, NULL, &ex, &sx) && dfb_scene(&v, q, nq, &dfb, &sd);
-    oit_capture_set_epsilon(c, 0.05f);
+    CAPTURE_SET(c, epsilon, 0.05f);
     ok = ok && capture_scene(c, &v, q, one, 1, NULL, &e1, &s1) &&
          capture_scene(c, &v, q, four, 4, NULL, &e4, &s4);
     if (ok) {
@@ -580,9 +581,9 @@ static void test_predicted(oit_capture_kind kind, uint64_t budget, uint64_t limi
     oit_capture *c = new_capture(kind, 4, name);
     if (!c)
         return;
-    oit_capture_set_slot_budget(c, budget);
-    oit_capture_set_store_limit(c, limit);
-    oit_capture_set_no_wait(c, 1);
+    CAPTURE_SET(c, slot_budget, budget);
+    CAPTURE_SET(c, store_limit, limit);
+    CAPTURE_SET(c, no_wait, 1);
     quad_spec a[24], b[24];
     deep_scene(a);
     moved_scene(b);
@@ -605,14 +606,16 @@ int main(void)
     oit_gl *gl = test_gl_open();
     oit_error err = {0};
     oit_capture *c = NULL;
-    if (oit_capture_create(OIT_CAPTURE_ARRAY, 8, &c, &err) != OIT_OK) {
+    if (oit_capture_create(&(oit_capture_desc){.kind = OIT_CAPTURE_ARRAY, .K = 8},
+                           &c, &err) != OIT_OK) {
         fprintf(stderr, "FAIL: array capture: %s\n", err.message);
         return 1;
     }
     run_all(c, 8, "array K=8");
     oit_capture_destroy(c);
 
-    oit_status s = oit_capture_create(OIT_CAPTURE_STENCIL, 4, &c, &err);
+    oit_status s = oit_capture_create(&(oit_capture_desc){.kind = OIT_CAPTURE_STENCIL, .K = 4},
+                                      &c, &err);
     int stencil_ok = s == OIT_OK;
     if (s == OIT_ERR_UNSUPPORTED) {
         printf("stencil K=4: UNSUPPORTED: %s\n", err.message);
@@ -624,12 +627,13 @@ int main(void)
     } else {
         CHECK(0, "stencil capture: %s", err.message);
     }
-    s = oit_capture_create(OIT_CAPTURE_STENCIL, 64 / 4, &c, &err);
+    s = oit_capture_create(&(oit_capture_desc){.kind = OIT_CAPTURE_STENCIL, .K = 64 / 4}, &c, &err);
     printf("stencil K=16: %s: %s\n", oit_status_name(s), s == OIT_OK ? "" : err.message);
     oit_capture_destroy(s == OIT_OK ? c : NULL);
 
     oit_capture *a = NULL;
-    CHECK(oit_capture_create(OIT_CAPTURE_AUTO, 4, &a, &err) == OIT_OK, "auto: %s", err.message);
+    CHECK(oit_capture_create(&(oit_capture_desc){.kind = OIT_CAPTURE_AUTO, .K = 4},
+                             &a, &err) == OIT_OK, "auto: %s", err.message);
     if (a) {
         int chose_stencil = oit_capture_backend(a) == OIT_CAPTURE_STENCIL;
         printf("auto K=4 chose %s\n", chose_stencil ? "stencil" : "array");
@@ -643,7 +647,8 @@ int main(void)
     for (int kind = 0; kind < 2; kind++) {
         oit_capture *e = NULL;
         oit_capture_kind k = kind ? OIT_CAPTURE_FIRSTK : OIT_CAPTURE_COUNTED;
-        CHECK(oit_capture_create(k, 8, &e, &err) == OIT_OK, "%s", err.message);
+        CHECK(oit_capture_create(&(oit_capture_desc){.kind = k, .K = 8},
+                                 &e, &err) == OIT_OK, "%s", err.message);
         if (e)
             test_end_in_place(e, kind ? "first-k" : "counted");
         oit_capture_destroy(e);

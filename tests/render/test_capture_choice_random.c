@@ -12,9 +12,10 @@
  *    tried (K, then with fewer_ok each power of two below K down to 2, in
  *    that order), and STENCIL only at the first that passes, at K itself
  *    for K-slot packs;
- *  - oit_capture_create_routed's arguments over every kind, K and
- *    stencil_k: anything but 2 <= stencil_k <= K (the stencil capture's
- *    own K alone) refused before any GL;
+ *  - oit_capture_create's routed samples over every kind, K and
+ *    stencil_k: anything but 0 (unrouted) or 2 <= stencil_k <= K for the
+ *    stencil and first-K captures (the stencil capture's own K alone)
+ *    refused before any GL;
  *  - oit_stencil_probe_verdict on the probe's true fill (samples in any
  *    order, garbage past the covering ones) and on that fill with one
  *    random fault: a count off, a fragment lost, a sample holding a
@@ -230,23 +231,28 @@ static void check_routed_args(void)
     for (size_t i = 0; i < sizeof kinds / sizeof *kinds; i++)
         for (int K = -1; K <= 18; K++)
             for (int sk = -1; sk <= 18; sk++) {
-                int ok = K >= 2 && K <= 16 && sk >= 2 && sk <= K &&
-                         (kinds[i] == OIT_CAPTURE_FIRSTK ||
-                          (kinds[i] == OIT_CAPTURE_STENCIL && sk == K));
+                /* 0: unrouted (STENCIL: at K), any kind */
+                int ok = K >= 2 && K <= 16 &&
+                         (sk == 0 || (sk >= 2 && sk <= K &&
+                                      (kinds[i] == OIT_CAPTURE_FIRSTK ||
+                                       (kinds[i] == OIT_CAPTURE_STENCIL && sk == K))));
                 if (ok) { /* would build GL objects: test_capture_routed's */
                     valid++;
                     continue;
                 }
                 oit_capture *c = (oit_capture *)&valid;
                 oit_error err = {0};
-                oit_status s = oit_capture_create_routed(kinds[i], K, sk, 0, &c, &err);
+                oit_status s = oit_capture_create(&(oit_capture_desc){.kind = kinds[i], .K = K,
+                                                                      .stencil_k = sk}, &c, &err);
                 CHECK(s == OIT_ERR_ARGUMENT && c == NULL,
                       "routed %s at K=%d with %d samples: %s, expected refused",
                       oit_capture_kind_name(kinds[i]) ? oit_capture_kind_name(kinds[i]) : "auto",
                       K, sk, oit_status_name(s));
             }
     printf("routed arguments: %d valid combinations left to test_capture_routed\n", valid);
-    CHECK(valid == 15 + 120, "%d valid combinations, the model says %d", valid, 15 + 120);
+    /* 0 samples for each kind and K; 2..K for first-K; K for stencil */
+    CHECK(valid == 6 * 15 + 120 + 15, "%d valid combinations, the model says %d", valid,
+          6 * 15 + 120 + 15);
 }
 
 /* ---- the probe's verdict ---- */

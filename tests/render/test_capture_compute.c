@@ -23,6 +23,7 @@
 #include "render/image/image.h"
 #include "tests/lib/gl_test_dfb.h"
 #include "tests/lib/gl_test_scene.h"
+#include "tests/lib/capture_set.h"
 #include "tests/lib/test_check.h"
 #include "tests/lib/test_gl.h"
 
@@ -227,7 +228,7 @@ static void meshes_vs_dfb(oit_capture *c, const quad_spec *q, int N, int M, cons
 }
 
 /* One batch of 300 layers in 10 meshes, front to back, with one storage
- * binding capped at 8 KiB (oit_capture_set_store_limit): the 96 000
+ * binding capped at 8 KiB (oit_capture_settings.store_limit): the 96 000
  * bytes of records exceed what 8 blocks of 8 KiB hold, so they go in
  * halves of the meshes (each in 6 blocks), and the image, fragment total
  * and depth stay DFB's. */
@@ -237,9 +238,9 @@ static void test_split(oit_capture *c)
     quad_spec *q = malloc(sizeof *q * N);
     if (q)
         stack_scene(q, N, 0.01f, 7);
-    oit_capture_set_store_limit(c, 8 << 10);
+    CAPTURE_SET(c, store_limit, 8 << 10);
     meshes_vs_dfb(c, q, N, M, "split under an 8 KiB binding");
-    oit_capture_set_store_limit(c, 0);
+    CAPTURE_SET(c, store_limit, 0);
     free(q);
 }
 
@@ -251,7 +252,7 @@ static void test_split(oit_capture *c)
 static void test_blocks(oit_capture *c)
 {
     printf("-- records in blocks of 32 KiB\n");
-    oit_capture_set_store_limit(c, 32 << 10);
+    CAPTURE_SET(c, store_limit, 32 << 10);
     test_deep(c, 300, 24, 20, 1);
     enum { N = 300 };
     quad_spec *q = malloc(sizeof *q * N);
@@ -261,7 +262,7 @@ static void test_blocks(oit_capture *c)
     oit_error err = {0};
     oit_gpu_mesh *m = NULL;
     oit_status s = tris ? oit_gpu_mesh_create(tris, 2 * N, 0, &m, &err) : OIT_ERR_NOMEM;
-    oit_capture_set_store_limit(c, 4 << 10);
+    CAPTURE_SET(c, store_limit, 4 << 10);
     if (s == OIT_OK)
         s = oit_capture_begin(c, &v, &err);
     const oit_gpu_mesh *list[1] = {m};
@@ -270,7 +271,7 @@ static void test_blocks(oit_capture *c)
     printf("600 triangles under 4 KiB bindings: %s\n", err.message);
     CHECK(s == OIT_ERR_UNSUPPORTED && strstr(err.message, "600 triangles take 96000 bytes"),
           "blocks: a batch past its blocks gave %d: %s", (int)s, err.message);
-    oit_capture_set_store_limit(c, 0);
+    CAPTURE_SET(c, store_limit, 0);
     oit_image img = {0};
     oit_frame_stats st;
     if (s == OIT_OK)
@@ -320,9 +321,9 @@ static void test_epsilon(oit_capture *c)
     oit_image ex = {0}, ep = {0};
     oit_frame_stats sx, se;
     int ok = capture_scene(c, &v, q, two, 2, NULL, &ex, &sx);
-    oit_capture_set_epsilon(c, 0.05f);
+    CAPTURE_SET(c, epsilon, 0.05f);
     ok = ok && capture_scene(c, &v, q, two, 2, NULL, &ep, &se);
-    oit_capture_set_epsilon(c, 0.0f);
+    CAPTURE_SET(c, epsilon, 0.0f);
     if (ok) {
         uint64_t want = covered + (pixels - covered) * 8;
         double d = image_diff(&ep, &ex);
@@ -368,8 +369,9 @@ static void test_list_overflow(void)
 {
     oit_error err = {0};
     oit_capture *c = NULL;
-    if (oit_capture_create_faulty(OIT_CAPTURE_COMPUTE, 8, OIT_CAPTURE_TEST_COMPUTE_LIST_SHORT, &c,
-                                  &err) != OIT_OK) {
+    if (oit_capture_create(&(oit_capture_desc){.kind = OIT_CAPTURE_COMPUTE, .K = 8,
+                                               .faults = OIT_CAPTURE_TEST_COMPUTE_LIST_SHORT},
+                           &c, &err) != OIT_OK) {
         fprintf(stderr, "FAIL: compute capture, short lists: %s\n", err.message);
         test_failures++;
         return;
@@ -396,8 +398,9 @@ static void test_no_probe(void)
 {
     oit_error err = {0};
     oit_capture *c = NULL;
-    if (oit_capture_create_faulty(OIT_CAPTURE_COMPUTE, 8, OIT_CAPTURE_TEST_COMPUTE_NO_PROBE, &c,
-                                  &err) != OIT_OK) {
+    if (oit_capture_create(&(oit_capture_desc){.kind = OIT_CAPTURE_COMPUTE, .K = 8,
+                                               .faults = OIT_CAPTURE_TEST_COMPUTE_NO_PROBE},
+                           &c, &err) != OIT_OK) {
         fprintf(stderr, "FAIL: compute capture, no probe: %s\n", err.message);
         test_failures++;
         return;
@@ -418,7 +421,8 @@ int main(void)
     oit_gl *gl = test_gl_open();
     oit_error err = {0};
     oit_capture *c = NULL;
-    if (oit_capture_create(OIT_CAPTURE_COMPUTE, 8, &c, &err) != OIT_OK) {
+    if (oit_capture_create(&(oit_capture_desc){.kind = OIT_CAPTURE_COMPUTE, .K = 8},
+                           &c, &err) != OIT_OK) {
         fprintf(stderr, "FAIL: compute capture: %s\n", err.message);
         return 1;
     }

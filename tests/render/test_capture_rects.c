@@ -6,7 +6,7 @@
  * usage: test_capture_rects bands | epsilon
  *
  * bands: random rectangles and quads inside them, in 1 to 3 batches, under
- *   store limits forced so small (oit_capture_set_store_limit) that the
+ *   store limits forced so small (oit_capture_settings.store_limit) that the
  *   counted capture stores a mesh in bands of rows and first-K's second
  *   pass runs in bands: the image is DFB's and the hand result's, the
  *   fragment total DFB's, and the frame really was taken in more draws
@@ -31,6 +31,7 @@
 #include "render/gl/gl_context.h"
 #include "render/image/image.h"
 #include "tests/lib/gl_test_scene.h"
+#include "tests/lib/capture_set.h"
 #include "tests/lib/test_check.h"
 #include "tests/lib/test_gl.h"
 
@@ -152,12 +153,13 @@ static oit_capture *capture_new(const capture_cfg *cfg)
 {
     oit_error err = {0};
     oit_capture *c = NULL;
-    if (oit_capture_create(cfg->kind, cfg->K, &c, &err) != OIT_OK) {
+    if (oit_capture_create(&(oit_capture_desc){.kind = cfg->kind, .K = cfg->K},
+                           &c, &err) != OIT_OK) {
         CHECK(0, "%s: capture: %s", cfg->name, err.message);
         return NULL;
     }
-    oit_capture_set_slot_budget(c, cfg->slot_budget);
-    oit_capture_set_store_limit(c, cfg->store_limit);
+    CAPTURE_SET(c, slot_budget, cfg->slot_budget);
+    CAPTURE_SET(c, store_limit, cfg->store_limit);
     return c;
 }
 
@@ -166,7 +168,7 @@ static int capture_run(oit_capture *c, const capture_cfg *cfg, const scene *s, i
                        float eps, oit_image *img, oit_frame_stats *st, uint64_t *draws)
 {
     oit_error err = {0};
-    oit_capture_set_epsilon(c, eps);
+    CAPTURE_SET(c, epsilon, eps);
     oit_status r = oit_capture_begin(c, &s->v, &err);
     for (int b = 0; r == OIT_OK && b < nb; b++) {
         oit_gpu_mesh *m[MAXQ] = {0};

@@ -1,5 +1,5 @@
 /* The stencil-routed paths of the capture (capture.h,
- * oit_capture_create_routed) everywhere but the routing draw itself: with
+ * oit_capture_desc.stencil_k) everywhere but the routing draw itself: with
  * OIT_CAPTURE_TEST_ROUTE_BY_COPY each fragment is put in the sample stencil
  * routing would give it, so on llvmpipe, which does not route, the
  * self-test must pass and the routed captures must give the array
@@ -77,13 +77,15 @@ static void stencil_vs_array(const oit_gpu_mesh *m, const oit_view *v, const tru
     oit_capture *routed = NULL, *array = NULL;
     oit_image a = {0}, b = {0};
     oit_frame_stats sa = {0}, sb = {0};
-    oit_status s = oit_capture_create_routed(OIT_CAPTURE_STENCIL, K, K,
-                                             OIT_CAPTURE_TEST_ROUTE_BY_COPY, &routed, &err);
+    oit_status s = oit_capture_create(&(oit_capture_desc){.kind = OIT_CAPTURE_STENCIL, .K = K,
+                                                          .stencil_k = K,
+                                                          .faults = OIT_CAPTURE_TEST_ROUTE_BY_COPY},
+                                      &routed, &err);
     CHECK(s == OIT_OK, "stencil K=%d routed by copies: the self-test refused it: %s", K,
           err.message);
     if (s != OIT_OK)
         return;
-    s = oit_capture_create(OIT_CAPTURE_ARRAY, K, &array, &err);
+    s = oit_capture_create(&(oit_capture_desc){.kind = OIT_CAPTURE_ARRAY, .K = K}, &array, &err);
     if (s == OIT_OK)
         s = render(routed, m, v, &a, &sa, &err);
     if (s == OIT_OK)
@@ -119,8 +121,10 @@ static void firstk_routed(const oit_gpu_mesh *m, const oit_view *v, const truth 
     oit_capture *c = NULL;
     oit_image a = {0};
     oit_frame_stats st = {0};
-    oit_status s = oit_capture_create_routed(OIT_CAPTURE_FIRSTK, K, samples,
-                                             OIT_CAPTURE_TEST_ROUTE_BY_COPY, &c, &err);
+    oit_status s = oit_capture_create(&(oit_capture_desc){.kind = OIT_CAPTURE_FIRSTK, .K = K,
+                                                          .stencil_k = samples,
+                                                          .faults = OIT_CAPTURE_TEST_ROUTE_BY_COPY},
+                                      &c, &err);
     CHECK(s == OIT_OK, "first-k K=%d routed into %d samples: %s", K, samples, err.message);
     if (s != OIT_OK)
         return;
@@ -156,7 +160,8 @@ static void plain(int K, int llvmpipe)
 {
     oit_error err = {0};
     oit_capture *c = NULL;
-    oit_status s = oit_capture_create_routed(OIT_CAPTURE_FIRSTK, K, K, 0, &c, &err);
+    oit_status s = oit_capture_create(&(oit_capture_desc){.kind = OIT_CAPTURE_FIRSTK, .K = K,
+                                                          .stencil_k = K}, &c, &err);
     printf("first-k K=%d routed, no stand-in: %s\n", K, s == OIT_OK ? "accepted" : err.message);
     if (llvmpipe)
         CHECK(s == OIT_ERR_UNSUPPORTED && strstr(err.message, "self-test failed"),

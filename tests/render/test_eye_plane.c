@@ -159,9 +159,11 @@ int main(void)
     oit_error err = {0};
     oit_status s = oit_dfb_create(&p.dfb, &err);
     if (s == OIT_OK)
-        s = oit_capture_create(OIT_CAPTURE_ARRAY, K, &p.array, &err);
+        s = oit_capture_create(&(oit_capture_desc){.kind = OIT_CAPTURE_ARRAY, .K = K},
+                               &p.array, &err);
     if (s == OIT_OK)
-        s = oit_capture_create(OIT_CAPTURE_COMPUTE, K, &p.compute, &err);
+        s = oit_capture_create(&(oit_capture_desc){.kind = OIT_CAPTURE_COMPUTE, .K = K},
+                               &p.compute, &err);
     CHECK(s == OIT_OK, "set-up: %s", err.message);
     uint32_t seed = 0x3c6ef372u;
     int bad = 0, ambiguous = 0;

@@ -81,7 +81,8 @@ static void plain(int K, int llvmpipe)
     snprintf(what, sizeof what, "stencil K=%d", K);
     oit_error err = {0};
     oit_capture *c = NULL;
-    oit_status s = oit_capture_create(OIT_CAPTURE_STENCIL, K, &c, &err);
+    oit_status s = oit_capture_create(&(oit_capture_desc){.kind = OIT_CAPTURE_STENCIL, .K = K},
+                                      &c, &err);
     if (s == OIT_OK) {
         printf("%s: self-test passed\n", what);
         against_dfb(c, K, "stencil", what);
@@ -102,8 +103,9 @@ static void faulty(int K)
     snprintf(what, sizeof what, "stencil K=%d, fill per sample", K);
     oit_error err = {0};
     oit_capture *c = NULL;
-    oit_status s = oit_capture_create_faulty(OIT_CAPTURE_STENCIL, K,
-                                             OIT_CAPTURE_FAULT_SAMPLE_SHADING, &c, &err);
+    oit_capture_desc d = {.kind = OIT_CAPTURE_STENCIL, .K = K,
+                          .faults = OIT_CAPTURE_FAULT_SAMPLE_SHADING};
+    oit_status s = oit_capture_create(&d, &c, &err);
     printf("%s: %s: %s\n", what, oit_status_name(s), s == OIT_OK ? "accepted" : err.message);
     CHECK(s == OIT_ERR_UNSUPPORTED && strstr(err.message, "counted"),
           "%s: the self-test did not refuse a fill shader run once per sample for its "
@@ -111,8 +113,8 @@ static void faulty(int K)
     oit_capture_destroy(s == OIT_OK ? c : NULL);
 
     snprintf(what, sizeof what, "auto K=%d, fill per sample", K);
-    s = oit_capture_create_faulty(OIT_CAPTURE_AUTO, K, OIT_CAPTURE_FAULT_SAMPLE_SHADING, &c,
-                                  &err);
+    d.kind = OIT_CAPTURE_AUTO;
+    s = oit_capture_create(&d, &c, &err);
     CHECK(s == OIT_OK, "%s: %s", what, err.message);
     if (s != OIT_OK)
         return;
