@@ -251,25 +251,42 @@ oit_status oit_rd_bytes_refill(oit_rd_stream *s, size_t n, const char *what,
     return OIT_OK;
 }
 
-oit_status oit_rd_fail_line(oit_rd_stream *s, oit_status st, const char *fmt, ...)
+static oit_status rd_failv(oit_rd_stream *s, int binary, uint64_t offset, oit_status st,
+                           const char *fmt, va_list ap)
 {
     char msg[400];
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    if (binary)
+        return oit_error_set(s->err, st, "%s: byte offset %" PRIu64 ": %s", s->name, offset, msg);
+    return oit_error_set(s->err, st, "%s: line %" PRIu64 ": %s", s->name, s->tok_line, msg);
+}
+
+oit_status oit_rd_fail_line(oit_rd_stream *s, oit_status st, const char *fmt, ...)
+{
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    st = rd_failv(s, 0, 0, st, fmt, ap);
     va_end(ap);
-    return oit_error_set(s->err, st, "%s: line %" PRIu64 ": %s", s->name, s->tok_line, msg);
+    return st;
 }
 
 oit_status oit_rd_fail_offset(oit_rd_stream *s, uint64_t offset, oit_status st,
                               const char *fmt, ...)
 {
-    char msg[400];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    st = rd_failv(s, 1, offset, st, fmt, ap);
     va_end(ap);
-    return oit_error_set(s->err, st, "%s: byte offset %" PRIu64 ": %s", s->name, offset, msg);
+    return st;
+}
+
+oit_status oit_rd_fail_here(oit_rd_stream *s, int binary, oit_status st, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    st = rd_failv(s, binary, oit_rd_offset(s), st, fmt, ap);
+    va_end(ap);
+    return st;
 }
 
 /* ---- text and content checks ------------------------------------------ */

@@ -25,7 +25,6 @@
 
 #include <inttypes.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdlib.h>
 
 #define PLY_MAX_PROPS 64
@@ -71,23 +70,9 @@ typedef struct ply_reader {
     char what[PLY_MAX_NAME + 16];
 } ply_reader;
 
-/* Errors name the line in ascii files and the byte offset in binary ones. */
-static oit_status ply_fail(ply_reader *r, oit_status st, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 3, 4)))
-#endif
-    ;
-static oit_status ply_fail(ply_reader *r, oit_status st, const char *fmt, ...)
-{
-    char msg[400];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
-    if (r->ascii)
-        return oit_rd_fail_line(&r->c->in, st, "%s", msg);
-    return oit_rd_fail_offset(&r->c->in, oit_rd_offset(&r->c->in), st, "%s", msg);
-}
+/* Errors name the line in ascii files and the byte offset in binary ones:
+ * ply_fail(r, st, fmt, ...). */
+#define ply_fail(r, ...) oit_rd_fail_here(&(r)->c->in, !(r)->ascii, __VA_ARGS__)
 
 /* ---- header ----------------------------------------------------------- */
 

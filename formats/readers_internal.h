@@ -105,6 +105,13 @@ oit_status oit_rd_fail_offset(oit_rd_stream *s, uint64_t offset, oit_status st,
     __attribute__((format(printf, 4, 5)))
 #endif
     ;
+/* For the formats with a text and a binary flavour (PLY, legacy VTK): the
+ * byte offset reached when binary, else the line. */
+oit_status oit_rd_fail_here(oit_rd_stream *s, int binary, oit_status st, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
 
 /* The start of a text format: skips a UTF-8 byte-order mark (editors on
  * Windows write one) and refuses, naming the offset, a first block that

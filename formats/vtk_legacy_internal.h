@@ -28,15 +28,11 @@ typedef struct leg {
     int nwords;
 } leg;
 
-/* ---- vtk_legacy_values.c ---- */
-
 /* The error st with the message (printf's fmt), naming the line in an ASCII
- * file, the byte offset in a BINARY one. */
-oit_status leg_fail(leg *L, oit_status st, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 3, 4)))
-#endif
-    ;
+ * file, the byte offset in a BINARY one: leg_fail(L, st, fmt, ...). */
+#define leg_fail(L, ...) oit_rd_fail_here(&(L)->c->in, (L)->binary, __VA_ARGS__)
+
+/* ---- vtk_legacy_values.c ---- */
 
 /* Whether word i is the keyword lit (case-insensitive, as VTK's reader
  * takes them). */

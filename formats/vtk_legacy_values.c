@@ -5,22 +5,9 @@
 #include "formats/vtk_legacy_internal.h"
 
 #include <math.h>
-#include <stdarg.h>
 #include <string.h>
 
 static const unsigned leg_size[] = {0, 0, 1, 1, 2, 2, 4, 4, 8, 8, 4, 8};
-
-oit_status leg_fail(leg *L, oit_status st, const char *fmt, ...)
-{
-    char msg[300];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
-    if (L->binary)
-        return oit_rd_fail_offset(&L->c->in, oit_rd_offset(&L->c->in), st, "%s", msg);
-    return oit_rd_fail_line(&L->c->in, st, "%s", msg);
-}
 
 /* Keywords are case-insensitive, as VTK's reader takes them. */
 int leg_is(const leg *L, int i, const char *lit)
