@@ -21,6 +21,11 @@
 #include "formats/gzip_input.h"
 #include "oit/mesh.h"
 
+// read_common.c's check that a read delivered a triangle (readers_internal.h,
+// which is C).
+extern "C" oit_status oit_rd_require_triangles(const char *name, const oit_mesh_info *info,
+                                               oit_error *err);
+
 namespace oit_adapter {
 
 constexpr size_t kDefaultChunk = 65536;

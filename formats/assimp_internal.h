@@ -43,10 +43,6 @@
 extern "C" {
 #endif
 
-/* read_common.c's check that a read delivered a triangle (readers_internal.h). */
-oit_status oit_rd_require_triangles(const char *name, const oit_mesh_info *info,
-                                    oit_error *err);
-
 /* A file in a format assimp imports: in the tools the adapter, in liboit
  * its plugin (assimp_link.c, assimp_plugin.c). */
 oit_status oit_read_assimp(const char *path, const oit_read_desc *desc, oit_triangle_sink sink,

@@ -32,10 +32,6 @@
 extern "C" {
 #endif
 
-/* read_common.c's check that a read delivered a triangle (readers_internal.h). */
-oit_status oit_rd_require_triangles(const char *name, const oit_mesh_info *info,
-                                    oit_error *err);
-
 #define OIT_GLTF_PLUGIN_ENTRY "oit_gltf_read_file"
 typedef oit_status oit_gltf_read_fn(const char *path, const oit_read_desc *desc,
                                     oit_triangle_sink sink, void *user, oit_mesh_info *info,

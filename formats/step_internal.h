@@ -25,10 +25,6 @@
 extern "C" {
 #endif
 
-/* read_common.c's check that a read delivered a triangle (readers_internal.h). */
-oit_status oit_rd_require_triangles(const char *name, const oit_mesh_info *info,
-                                    oit_error *err);
-
 typedef enum oit_occt_format { OIT_OCCT_STEP, OIT_OCCT_IGES } oit_occt_format;
 
 #define OIT_OCCT_PLUGIN_ENTRY "oit_occt_read_file"
