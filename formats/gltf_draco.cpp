@@ -4,14 +4,7 @@
 // Draco.
 #include "formats/gltf_adapter_internal.h"
 
-#if defined(__clang__)
-#pragma clang diagnostic push
-#pragma clang diagnostic ignored "-Weverything"
-#elif defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wall"
-#pragma GCC diagnostic ignored "-Wextra"
-#endif
+#include "formats/third_party_begin.h"
 #include <draco/compression/decode.h>
 // drop_draco_indices edits the JSON with tinygltf's own nlohmann::json,
 // included as tinygltf's implementation includes it.
@@ -22,11 +15,7 @@
 #ifdef __GNUC__
 #pragma GCC visibility pop
 #endif
-#if defined(__clang__)
-#pragma clang diagnostic pop
-#elif defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
+#include "formats/third_party_end.h"
 
 #include <climits>
 #include <cstdint>
