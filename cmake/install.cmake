@@ -23,6 +23,7 @@ install(FILES
         ${CMAKE_SOURCE_DIR}/include/oit/mesh.h
         ${CMAKE_SOURCE_DIR}/include/oit/partfile.h
         ${CMAKE_SOURCE_DIR}/include/oit/liboit.h
+        ${CMAKE_SOURCE_DIR}/include/oit/render_modes.h
         ${CMAKE_SOURCE_DIR}/include/oit/offscreen.h
         DESTINATION include/oit)
 # The part-file format, which oit/partfile.h cites: the one document a

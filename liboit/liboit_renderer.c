@@ -51,17 +51,8 @@ static void stream_desc(const oit_renderer_desc *d, oit_streamer_desc *sd)
 {
     memset(sd, 0, sizeof *sd);
     sd->names = &field_names;
-    _Static_assert((int)OIT_RENDER_CAPTURE_ARRAY == (int)OIT_CAPTURE_ARRAY &&
-                       (int)OIT_RENDER_CAPTURE_STENCIL == (int)OIT_CAPTURE_STENCIL &&
-                       (int)OIT_RENDER_CAPTURE_AUTO == (int)OIT_CAPTURE_AUTO &&
-                       (int)OIT_RENDER_CAPTURE_COMPUTE == (int)OIT_CAPTURE_COMPUTE,
-                   "liboit's capture values are the streamer's");
-    sd->capture = (oit_capture_kind)d->capture;
-    sd->pack = d->pack == OIT_RENDER_PACK_FIRSTK     ? OIT_PACK_FIRSTK
-               : d->pack == OIT_RENDER_PACK_DISJOINT ? OIT_PACK_DISJOINT
-               : d->pack == OIT_RENDER_PACK_BUDGET   ? OIT_PACK_BUDGET
-               : d->pack == OIT_RENDER_PACK_COUNTED  ? OIT_PACK_COUNTED
-                                                     : OIT_PACK_AUTO;
+    sd->capture = d->capture;
+    sd->pack = d->pack;
     sd->upload_budget = d->upload_budget;
     sd->epsilon = d->epsilon;
     _Static_assert(OIT_RENDER_CACHE_OFF == OIT_STREAM_CACHE_OFF, "one spelling of 'no cache'");
@@ -70,10 +61,7 @@ static void stream_desc(const oit_renderer_desc *d, oit_streamer_desc *sd)
                              ? OIT_STREAM_READ_INLINE
                              : (int)(d->reader_threads > INT_MAX ? INT_MAX : d->reader_threads);
     sd->gpu_budget = d->gpu_budget;
-    _Static_assert((int)OIT_RENDER_SCHEDULE_WAVE == (int)OIT_SCHEDULE_WAVE &&
-                       (int)OIT_RENDER_SCHEDULE_TREE == (int)OIT_SCHEDULE_TREE,
-                   "liboit's schedule values are the packer's");
-    sd->schedule = (oit_pack_schedule)d->schedule;
+    sd->schedule = d->schedule;
     sd->slot_budget = d->slot_budget;
     sd->store_budget = d->store_budget;
     sd->store_limit = d->binding_limit;
@@ -238,6 +226,6 @@ void oit_renderer_get_desc(const oit_renderer *r, oit_renderer_desc *out)
     out->upload_budget = sd.upload_budget;
     out->cache_budget = sd.cache_budget;
     out->gpu_budget = sd.gpu_budget;
-    out->capture = (oit_render_capture)sd.capture;
+    out->capture = sd.capture;
     out->read_on_draw_thread = sd.reader_threads == OIT_STREAM_READ_INLINE;
 }

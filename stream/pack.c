@@ -15,7 +15,7 @@ enum { TILE = 32 };
 
 struct oit_packer {
     const oit_partfile *pf;
-    oit_pack_mode mode;
+    oit_render_pack mode;
     uint32_t K;
     uint64_t budget;
     uint32_t *parts, *pack_first, *layers;
@@ -24,7 +24,7 @@ struct oit_packer {
     uint32_t *tile_sum, *tile_stamp;
     int tiles_x, tiles_y;
     uint32_t stamp;
-    oit_pack_schedule schedule;
+    oit_render_schedule schedule;
     oit_scheduler *scheduler;
     /* the parts that survive culling, in the tree's order */
     uint32_t *kept;
@@ -69,7 +69,7 @@ void oit_packer_destroy(oit_packer *pk)
     free(pk);
 }
 
-void oit_packer_set_schedule(oit_packer *pk, oit_pack_schedule schedule)
+void oit_packer_set_schedule(oit_packer *pk, oit_render_schedule schedule)
 {
     pk->schedule = schedule;
 }
@@ -96,11 +96,11 @@ static oit_status check_parts(const oit_partfile *pf, uint32_t K, uint64_t budge
     return OIT_OK;
 }
 
-oit_status oit_packer_create(const oit_partfile *pf, oit_pack_mode mode, int K,
+oit_status oit_packer_create(const oit_partfile *pf, oit_render_pack mode, int K,
                              uint64_t byte_budget, oit_packer **out, oit_error *err)
 {
     *out = NULL;
-    if (mode == OIT_PACK_AUTO)
+    if (mode == OIT_RENDER_PACK_AUTO)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: the packer needs a resolved pack "
                              "mode, not auto", oit_partfile_name(pf));
     oit_status s = check_parts(pf, (uint32_t)K, byte_budget, err);
@@ -262,7 +262,7 @@ static int tiles_take(oit_packer *pk, const int r[4], uint32_t layers, uint32_t 
 /* The modes whose capture has no per-pixel limit: packs cut by bytes only. */
 static int unbounded(const oit_packer *pk)
 {
-    return pk->mode == OIT_PACK_COUNTED || pk->mode == OIT_PACK_FIRSTK;
+    return pk->mode == OIT_RENDER_PACK_COUNTED || pk->mode == OIT_RENDER_PACK_FIRSTK;
 }
 
 /* Bytes and wide parts: a wide part (layer bound above K) is a pack of its
@@ -289,12 +289,12 @@ static uint32_t front_cap(const oit_packer *pk, uint32_t pack)
 /* The unbounded modes' own tile rule: only front first has one. */
 static int tiled(const oit_packer *pk)
 {
-    return pk->mode == OIT_PACK_BUDGET || (unbounded(pk) && pk->front_first);
+    return pk->mode == OIT_RENDER_PACK_BUDGET || (unbounded(pk) && pk->front_first);
 }
 
 static uint32_t tile_cap(const oit_packer *pk, uint32_t pack)
 {
-    return pk->mode == OIT_PACK_BUDGET ? pk->K : front_cap(pk, pack);
+    return pk->mode == OIT_RENDER_PACK_BUDGET ? pk->K : front_cap(pk, pack);
 }
 
 static int joins(oit_packer *pk, uint32_t pack, const int r[4], uint32_t layers, uint64_t bytes)
@@ -525,11 +525,11 @@ oit_status oit_packer_run(oit_packer *pk, const oit_view *view, const uint32_t *
         return s;
     uint32_t kept = cull(pk, view, order, n, out);
     pk->drawn = pk->packs = 0;
-    if (pk->schedule == OIT_SCHEDULE_WAVE && pk->mode == OIT_PACK_DISJOINT) {
+    if (pk->schedule == OIT_RENDER_SCHEDULE_WAVE && pk->mode == OIT_RENDER_PACK_DISJOINT) {
         s = pack_levels(pk, kept, view->width, view->height, err);
         if (s != OIT_OK)
             return s;
-    } else if (pk->schedule == OIT_SCHEDULE_WAVE) {
+    } else if (pk->schedule == OIT_RENDER_SCHEDULE_WAVE) {
         oit_schedule_packer sp = {pk, wave_open, wave_join};
         s = oit_schedule_run(pk->scheduler, kept, (const int(*)[4])pk->kept_rects,
                              pk->kept_near, view->width, view->height, &sp, NULL, err);

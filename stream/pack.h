@@ -3,22 +3,22 @@
  * along every ray. A K-slot pack is exact when no pixel can receive more
  * than K fragments from it, since the batch's per-pixel sort then orders its
  * fragments as the whole order would.
- *  - OIT_PACK_BUDGET: a screen grid of 32x32-pixel tiles holds the sum of the
+ *  - OIT_RENDER_PACK_BUDGET: a screen grid of 32x32-pixel tiles holds the sum of the
  *    layer bounds of the pack's parts whose rectangle touches the tile; a
  *    part joins while every tile it touches stays <= K.
- *  - OIT_PACK_DISJOINT (the paper's rule, Fig. 6): a part joins while its
+ *  - OIT_RENDER_PACK_DISJOINT (the paper's rule, Fig. 6): a part joins while its
  *    rectangle does not overlap the bounding rectangle of the pack so far;
  *    with the wave schedule, packs by level instead (the paper's "pack of
  *    the unoccluded parts among those remaining", 5.1): no two parts of a
  *    pack share a pixel, and of two parts that do, the earlier one in the
  *    order is in the earlier pack (pack.c says why that is exact, and the
  *    image the same byte for byte as one part a pack).
- *  - OIT_PACK_COUNTED: no layer rule at all, for the counted capture
+ *  - OIT_RENDER_PACK_COUNTED: no layer rule at all, for the counted capture
  *    (render/capture/capture_counted.h), which has no per-pixel limit and measures
  *    each pack's fragments before storing them; wide parts join too.
- *  - OIT_PACK_FIRSTK: the same packs, for the first-K capture
+ *  - OIT_RENDER_PACK_FIRSTK: the same packs, for the first-K capture
  *    (render/capture/capture_firstk.h), also without a per-pixel limit.
- * The parts are first culled; see oit_pack_schedule for the order the packs
+ * The parts are first culled; see oit_render_schedule for the order the packs
  * are then cut from.
  * Rectangles are the projections of the parts' bounding boxes (a box that
  * reaches in front of the near plane covers the screen); a box wholly outside
@@ -32,22 +32,18 @@
 #define OIT_STREAM_PACK_H
 
 #include "oit/partfile.h"
+#include "oit/render_modes.h"
 #include "render/image/view.h"
 
-/* OIT_PACK_COUNTED takes the counted capture, OIT_PACK_FIRSTK the first-K
- * capture, BUDGET and DISJOINT the K-slot array. OIT_PACK_AUTO (0) is for the streamer to resolve (streamer.h); the
+/* The pack modes are liboit's (oit/render_modes.h, oit_render_pack):
+ * OIT_RENDER_PACK_COUNTED takes the counted capture, OIT_RENDER_PACK_FIRSTK
+ * the first-K capture, BUDGET and DISJOINT the K-slot array.
+ * OIT_RENDER_PACK_AUTO (0) is for the streamer to resolve (streamer.h); the
  * packer takes only the others. */
-typedef enum oit_pack_mode {
-    OIT_PACK_AUTO = 0,
-    OIT_PACK_COUNTED,
-    OIT_PACK_BUDGET,
-    OIT_PACK_DISJOINT,
-    OIT_PACK_FIRSTK
-} oit_pack_mode;
 
-/* The order packs are cut from. OIT_SCHEDULE_TREE (default): consecutive
- * parts of partfile/order.h's order. OIT_SCHEDULE_WAVE: packs filled from a
- * front-to-back wavefront over the screen (stream/schedule.h), each tile
+/* The order packs are cut from (oit_render_schedule). OIT_RENDER_SCHEDULE_TREE
+ * (default): consecutive parts of partfile/order.h's order.
+ * OIT_RENDER_SCHEDULE_WAVE: packs filled from a front-to-back wavefront over the screen (stream/schedule.h), each tile
  * holding the layers of the rule above (the disjoint rule: by level, as
  * above, a pack per level of the parts that share pixels; the 1M plant's
  * guaranteed scheme at 512x512: 7,380 packs where the tree cuts 61,790);
@@ -55,7 +51,6 @@ typedef enum oit_pack_mode {
  * parts are scattered, so each pack's resolve rectangle is larger. On
  * llvmpipe, where resolving a rectangle costs more than a pack's fixed
  * overhead, the tree order is faster (bunny and plant100k at 512x512). */
-typedef enum oit_pack_schedule { OIT_SCHEDULE_TREE = 0, OIT_SCHEDULE_WAVE } oit_pack_schedule;
 
 /* GPU bytes a part takes in the upload ring: its triangles expanded to the
  * 48-byte oit_triangle and their 4-byte source indices after them
@@ -87,10 +82,10 @@ typedef struct oit_packer oit_packer;
 
 /* Fails (OIT_ERR_UNSUPPORTED) when a part's layer bound exceeds
  * OIT_PACK_MAX_LAYERS or a part alone exceeds byte_budget, naming the part. */
-oit_status oit_packer_create(const oit_partfile *pf, oit_pack_mode mode, int K,
+oit_status oit_packer_create(const oit_partfile *pf, oit_render_pack mode, int K,
                              uint64_t byte_budget, oit_packer **out, oit_error *err);
 void oit_packer_destroy(oit_packer *pk);
-void oit_packer_set_schedule(oit_packer *pk, oit_pack_schedule schedule);
+void oit_packer_set_schedule(oit_packer *pk, oit_render_schedule schedule);
 /* Front first, for early termination with the unbounded modes (COUNTED,
  * FIRSTK; the tree schedule): packs are also cut by depth, pack i taking at
  * most K * 2^i layer bounds on any 32x32 tile (the budget rule's sums; a

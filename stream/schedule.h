@@ -1,5 +1,5 @@
 /* Packs formed front to back across the screen (stream/pack.h,
- * OIT_SCHEDULE_WAVE).
+ * OIT_RENDER_SCHEDULE_WAVE).
  *
  * The part order of partfile/order.h walks the management tree depth first:
  * everything on the near side of a plane comes before anything on the far

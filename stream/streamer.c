@@ -24,7 +24,7 @@ void oit_streamer_resolved_desc(const oit_streamer *s, oit_streamer_desc *out)
 {
     const oit_stream_budget *b = &s->budget;
     *out = s->desc;
-    out->capture = s->choice.slots;
+    out->capture = s->choice.slots; /* AUTO where none ran: counted packs */
     out->upload_budget = b->ring;
     out->cache_budget = b->cache ? b->cache : OIT_STREAM_CACHE_OFF;
     out->slot_budget = b->capture;
@@ -104,26 +104,26 @@ static oit_capture_desc capture_desc(const oit_streamer *s, const oit_streamer_d
 
 /* The pack mode's capture, its K-slot fills as desc->capture chooses. */
 static oit_status create_capture(oit_streamer *s, const oit_streamer_desc *desc,
-                                 oit_pack_mode mode, oit_error *err)
+                                 oit_render_pack mode, oit_error *err)
 {
     /* No K-slot fill and no per-pixel limit: exact with every pack mode. */
-    if (desc->capture == OIT_CAPTURE_COMPUTE) {
+    if (desc->capture == OIT_RENDER_CAPTURE_COMPUTE) {
         s->choice.asked = desc->capture;
         oit_capture_desc cd = capture_desc(s, desc, OIT_CAPTURE_COMPUTE);
         return oit_capture_create(&cd, &s->capture, err);
     }
     const oit_streamer_names n = oit_streamer_names_resolve(desc->names);
-    if (mode == OIT_PACK_COUNTED) {
+    if (mode == OIT_RENDER_PACK_COUNTED) {
         s->choice.asked = desc->capture;
-        if (desc->capture != OIT_CAPTURE_AUTO && desc->capture != OIT_CAPTURE_ARRAY)
+        if (desc->capture != OIT_RENDER_CAPTURE_AUTO && desc->capture != OIT_RENDER_CAPTURE_ARRAY)
             return oit_error_set(err, OIT_ERR_ARGUMENT, "%s = %s: counted packs have no "
                                  "K-slot fill to route (%s = first-k, budget or disjoint)",
-                                 n.capture, oit_capture_kind_name(desc->capture)
-                                     ? oit_capture_kind_name(desc->capture) : "?", n.pack);
+                                 n.capture, oit_capture_asked_name(desc->capture)
+                                     ? oit_capture_asked_name(desc->capture) : "?", n.pack);
         oit_capture_desc cd = capture_desc(s, desc, OIT_CAPTURE_COUNTED);
         return oit_capture_create(&cd, &s->capture, err);
     }
-    int firstk = mode == OIT_PACK_FIRSTK;
+    int firstk = mode == OIT_RENDER_PACK_FIRSTK;
     routed_try t = {capture_desc(s, desc, firstk ? OIT_CAPTURE_FIRSTK : OIT_CAPTURE_STENCIL),
                     NULL};
     oit_status st = oit_capture_choose(desc->capture, n.capture, desc->K, firstk, try_routed,
@@ -193,10 +193,10 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
     /* The compute capture has no per-pixel limit and no second pass: the
      * counted rule's packs (cut only by the upload budget) are the largest
      * exact ones, and fewer packs are fewer binnings and read-backs. */
-    oit_pack_mode mode = desc->pack != OIT_PACK_AUTO            ? desc->pack
-                         : desc->capture == OIT_CAPTURE_COMPUTE ? OIT_PACK_COUNTED
-                                                                : OIT_PACK_FIRSTK;
-    s->adaptive = desc->pack == OIT_PACK_AUTO && mode == OIT_PACK_FIRSTK;
+    oit_render_pack mode = desc->pack != OIT_RENDER_PACK_AUTO            ? desc->pack
+                         : desc->capture == OIT_RENDER_CAPTURE_COMPUTE ? OIT_RENDER_PACK_COUNTED
+                                                                : OIT_RENDER_PACK_FIRSTK;
+    s->adaptive = desc->pack == OIT_RENDER_PACK_AUTO && mode == OIT_RENDER_PACK_FIRSTK;
     oit_path seed = desc->frames == 1 ? OIT_PATH_COUNTED : OIT_PATH_FIRSTK;
     s->first_k = seed == OIT_PATH_FIRSTK;
     oit_choice_init(&s->judge, 1u << OIT_PATH_FIRSTK | 1u << OIT_PATH_COUNTED, seed);
@@ -208,7 +208,7 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
     if (st == OIT_OK)
         st = oit_streamer_number_triangles(s, &all_bytes, err);
     if (st == OIT_OK)
-        st = oit_streamer_split_budget(s, &eff, mode == OIT_PACK_COUNTED || mode == OIT_PACK_FIRSTK,
+        st = oit_streamer_split_budget(s, &eff, mode == OIT_RENDER_PACK_COUNTED || mode == OIT_RENDER_PACK_FIRSTK,
                           all_bytes, err);
     desc = &eff;
     uint64_t most = desc->upload_budget ? desc->upload_budget : OIT_STREAM_RING_DEFAULT;
@@ -218,7 +218,7 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
      * of GPU memory for it. */
     if (all_bytes < budget)
         budget = all_bytes > OIT_STREAM_RING_MIN ? all_bytes : OIT_STREAM_RING_MIN;
-    if (st == OIT_OK && desc->capture == OIT_CAPTURE_COMPUTE)
+    if (st == OIT_OK && desc->capture == OIT_RENDER_CAPTURE_COMPUTE)
         budget = min_u64(budget, max_u64(oit_streamer_compute_pack_budget(desc->slot_budget),
                                          oit_streamer_largest_part(pf)));
     /* The packer checks every part of the file against the budget, other
@@ -233,7 +233,7 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
         st = oit_packer_create(pf, mode, desc->K, budget, &s->packer, err);
     if (st == OIT_OK)
         oit_packer_set_schedule(s->packer, desc->schedule);
-    s->front_first = desc->epsilon > 0.0f && (mode == OIT_PACK_FIRSTK || mode == OIT_PACK_COUNTED);
+    s->front_first = desc->epsilon > 0.0f && (mode == OIT_RENDER_PACK_FIRSTK || mode == OIT_RENDER_PACK_COUNTED);
     s->front_now = s->front_first;
     if (st == OIT_OK)
         st = oit_streamer_create_upload(s, desc, budget, all_bytes, err);
@@ -413,8 +413,7 @@ static void finish_stats(const oit_streamer *s, const oit_packing *pk, oit_frame
     ss->parts_clipped = pk->clipped;
     ss->bytes_clipped = pk->clipped_bytes;
     ss->epsilon = s->epsilon;
-    ss->capture_asked = s->choice.asked == OIT_CAPTURE_AUTO ? "auto"
-                                                             : oit_capture_kind_name(s->choice.asked);
+    ss->capture_asked = oit_capture_asked_name(s->choice.asked);
     memcpy(ss->capture_fallback, s->choice.reason, sizeof ss->capture_fallback);
     ss->budget = s->budget;
     ss->reader_threads = s->threads;

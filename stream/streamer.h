@@ -39,33 +39,35 @@ oit_streamer_names oit_streamer_names_resolve(const oit_streamer_names *names);
 
 typedef struct oit_streamer_desc {
     int K;                    /* capture layers, 2..16; every part's bound <= K */
-    /* How K-slot fills are made: OIT_CAPTURE_AUTO (0), _STENCIL
-     * or _ARRAY, for the K-slot packs (BUDGET, DISJOINT) and for first-K's
-     * first pass (FIRSTK, AUTO); counted packs have none (STENCIL is then
-     * refused). AUTO: stencil routing where its self-test passes on this
-     * driver (render/capture/capture_choice.h: at K for K-slot packs; first-K also
+    /* How K-slot fills are made (oit/render_modes.h):
+     * OIT_RENDER_CAPTURE_AUTO (0), _STENCIL or _ARRAY, for the K-slot packs
+     * (BUDGET, DISJOINT) and for first-K's first pass (FIRSTK, AUTO);
+     * counted packs have none (STENCIL is then refused). AUTO: stencil
+     * routing where its self-test passes on this driver
+     * (render/capture/capture_choice.h: at K for K-slot packs; first-K also
      * takes the largest power of two below K that passes), else array
      * slots, the self-test's reason kept (oit_stream_frame_stats). STENCIL
-     * where no try passes: OIT_ERR_UNSUPPORTED with the reason. OIT_PACK_
-     * COUNTED always takes OIT_CAPTURE_COUNTED, OIT_PACK_FIRSTK
-     * OIT_CAPTURE_FIRSTK (K: its most slots a pixel). OIT_CAPTURE_COMPUTE
-     * (render/capture/capture_compute.h) captures every pack mode's packs, exactly
-     * (no per-pixel limit); with OIT_PACK_AUTO it takes OIT_PACK_COUNTED's,
-     * the largest */
-    oit_capture_kind capture;
+     * where no try passes: OIT_ERR_UNSUPPORTED with the reason.
+     * OIT_RENDER_PACK_COUNTED always takes the capture OIT_CAPTURE_COUNTED,
+     * OIT_RENDER_PACK_FIRSTK OIT_CAPTURE_FIRSTK (K: its most slots a
+     * pixel). OIT_RENDER_CAPTURE_COMPUTE (render/capture/capture_compute.h)
+     * captures every pack mode's packs, exactly (no per-pixel limit); with
+     * OIT_RENDER_PACK_AUTO it takes OIT_RENDER_PACK_COUNTED's, the
+     * largest */
+    oit_render_capture capture;
     unsigned capture_faults;  /* testing: OIT_CAPTURE_FAULT_* and _TEST_* (capture.h) */
     /* where the capture's programs are built through (the caller's, which
      * outlives the streamer: render/gl/program_cache.h); NULL: compiled */
     oit_program_cache *programs;
-    /* OIT_PACK_AUTO (0): first-K or counted packs, as this process measured
+    /* OIT_RENDER_PACK_AUTO (0): first-K or counted packs, as this process measured
      * them on each view (stream/choice.h): first-K first; counted tried for
      * a frame when any pixel took the second pass, first-K again from
      * counted, each kept only where it measured faster (the
      * image is the same either way). With early termination the counted and first-K
      * packs are cut front first (oit_packer_set_front_first), so that
      * saturated tiles can skip the parts behind them */
-    oit_pack_mode pack;
-    oit_pack_schedule schedule; /* 0: the tree's order (pack.h) */
+    oit_render_pack pack;
+    oit_render_schedule schedule; /* 0: the tree's order (pack.h) */
     uint64_t upload_budget;   /* ring bytes at most; 0: OIT_STREAM_RING_DEFAULT
                                  (or the total's share); never more than
                                  the file's parts take (at least
@@ -118,7 +120,7 @@ typedef struct oit_streamer_desc {
      * oit_streamer_share_order gives. */
     uint32_t share_count, share_index;
     /* The frames the caller expects to draw: 1, a one-image run, where
-     * OIT_PACK_AUTO starts with counted packs (stored exactly, as DFB
+     * OIT_RENDER_PACK_AUTO starts with counted packs (stored exactly, as DFB
      * stores a frame) instead of first-K ones, whose K-slot store (up to
      * the slot budget, 64 MiB at 1024x1024) only later frames amortize: the
      * demo's one-image run at 1024x1024 on llvmpipe, 0.70 s against 0.93 s;

@@ -56,11 +56,11 @@ oit_status oit_streamer_desc_check(const oit_streamer_desc *d, oit_error *err)
     if (!(d->epsilon >= 0.0f && d->epsilon < 1.0f))
         return oit_error_set(err, OIT_ERR_ARGUMENT, "%s = %g: expected a transmittance in [0, 1) "
                              "(0: exact)", n.epsilon, (double)d->epsilon);
-    if ((unsigned)d->pack > (unsigned)OIT_PACK_FIRSTK)
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s = %d: not an oit_pack_mode", n.pack,
+    if ((unsigned)d->pack > (unsigned)OIT_RENDER_PACK_FIRSTK)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s = %d: not an oit_render_pack", n.pack,
                              (int)d->pack);
-    if ((unsigned)d->schedule > (unsigned)OIT_SCHEDULE_WAVE)
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s = %d: not an oit_pack_schedule",
+    if ((unsigned)d->schedule > (unsigned)OIT_RENDER_SCHEDULE_WAVE)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s = %d: not an oit_render_schedule",
                              n.schedule, (int)d->schedule);
     return OIT_OK;
 }

@@ -84,7 +84,7 @@ struct oit_streamer {
     uint64_t fence_every, unfenced; /* ring bytes between fences, and since the last */
     oit_gpu_mesh **views;           /* one per part of the largest pack so far */
     uint32_t view_count;
-    /* OIT_PACK_AUTO without early termination: first-K or counted packs,
+    /* OIT_RENDER_PACK_AUTO without early termination: first-K or counted packs,
      * as the measured costs of each view say (stream/choice.h); the frame
      * is judged when it ends (frame_end). */
     int adaptive, first_k;

@@ -71,7 +71,7 @@ oit_status oit_streamer_split_budget(oit_streamer *s, oit_streamer_desc *d, int 
     /* The compute capture's records and tile lists hold a pack's
      * triangles (its packs are cut to its share, compute_pack_budget): at
      * least those of the largest part, which no pack splits. */
-    if (d->capture == OIT_CAPTURE_COMPUTE && !d->slot_budget)
+    if (d->capture == OIT_RENDER_CAPTURE_COMPUTE && !d->slot_budget)
         b->capture =
             max_u64(b->capture, (oit_streamer_largest_part(s->pf) + sizeof(oit_triangle) - 1) /
                                     sizeof(oit_triangle) * OIT_COMPUTE_CAPTURE_TRIANGLE_BYTES);

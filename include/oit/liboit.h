@@ -76,6 +76,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "render_modes.h"
 #include "status.h"
 
 #ifdef __cplusplus
@@ -215,39 +216,6 @@ typedef struct oit_render_shading {
     float scene_scale;    /* translucent; default: the scene's diagonal     */
     oit_render_colour_space colour_space; /* default OIT_RENDER_COLOUR_SRGB */
 } oit_render_shading;
-
-/* How a part file's parts are cut into packs, each captured as one batch. */
-typedef enum oit_render_pack {
-    OIT_RENDER_PACK_AUTO = 0,    /* FIRSTK while K slots a pixel hold the view,
-                                    COUNTED for deep views, each kept where it
-                                    measures faster (oit_draw_stats.choice).
-                                    With epsilon > 0, COUNTED and FIRSTK packs
-                                    are cut front first, so that saturated
-                                    pixels skip the parts behind them */
-    OIT_RENDER_PACK_COUNTED,     /* packs cut by upload bytes only, each counted,
-                                    stored and sorted per pixel (no layer limit) */
-    OIT_RENDER_PACK_BUDGET,      /* K slots a pixel: parts share a pack while
-                                    their layer bounds per tile stay <= K */
-    OIT_RENDER_PACK_DISJOINT,    /* K slots a pixel: parts with disjoint screen
-                                    rects */
-    OIT_RENDER_PACK_FIRSTK       /* packs as COUNTED, each drawn once into up to
-                                    K slots a pixel; pixels with more take a
-                                    second pass for themselves alone */
-} oit_render_pack;
-
-typedef enum oit_render_schedule {
-    OIT_RENDER_SCHEDULE_TREE = 0, /* the management tree's order (default) */
-    OIT_RENDER_SCHEDULE_WAVE = 1  /* wavefronts of the visibility order     */
-} oit_render_schedule;
-
-typedef enum oit_render_capture {
-    OIT_RENDER_CAPTURE_AUTO = 0,
-    OIT_RENDER_CAPTURE_ARRAY = 1,
-    OIT_RENDER_CAPTURE_STENCIL = 2,
-    /* every pack captured in compute shaders, no raster pipeline, no
-     * per-pixel limit */
-    OIT_RENDER_CAPTURE_COMPUTE = 5
-} oit_render_capture;
 
 /* Zero fields mean the documented default. Grouped by concept: the image,
  * then (part files only) how packs are cut and captured, the GPU memory,

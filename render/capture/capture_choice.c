@@ -14,27 +14,28 @@ static int next_try(int k)
     return p >= 2 ? p : 0;
 }
 
-oit_status oit_capture_choose(oit_capture_kind asked, const char *what, int K, int fewer_ok,
+oit_status oit_capture_choose(oit_render_capture asked, const char *what, int K, int fewer_ok,
                               oit_capture_try try_stencil, void *ctx, oit_capture_choice *out,
                               oit_error *err)
 {
     what = what ? what : "capture";
     memset(out, 0, sizeof *out);
     out->asked = asked;
-    out->slots = OIT_CAPTURE_ARRAY;
-    if (asked != OIT_CAPTURE_AUTO && asked != OIT_CAPTURE_ARRAY && asked != OIT_CAPTURE_STENCIL)
+    out->slots = OIT_RENDER_CAPTURE_ARRAY;
+    if (asked != OIT_RENDER_CAPTURE_AUTO && asked != OIT_RENDER_CAPTURE_ARRAY &&
+        asked != OIT_RENDER_CAPTURE_STENCIL)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "%s = %d: not auto, stencil or array", what,
                              (int)asked);
     oit_status k = oit_capture_k_check(K, NULL, err);
     if (k != OIT_OK)
         return k;
-    if (asked == OIT_CAPTURE_ARRAY)
+    if (asked == OIT_RENDER_CAPTURE_ARRAY)
         return OIT_OK;
     for (int k = K; k >= 2; k = fewer_ok ? next_try(k) : 0) {
         oit_error why = {0};
         oit_status s = try_stencil(ctx, k, &why);
         if (s == OIT_OK) {
-            out->slots = OIT_CAPTURE_STENCIL;
+            out->slots = OIT_RENDER_CAPTURE_STENCIL;
             out->stencil_k = k;
             return OIT_OK;
         }
@@ -46,27 +47,19 @@ oit_status oit_capture_choose(oit_capture_kind asked, const char *what, int K, i
         if (k == K)
             snprintf(out->reason, sizeof out->reason, "%s", why.message);
     }
-    if (asked == OIT_CAPTURE_STENCIL)
+    if (asked == OIT_RENDER_CAPTURE_STENCIL)
         return oit_error_set(err, OIT_ERR_UNSUPPORTED, "%s = stencil at K=%d%s: %s", what, K,
                              fewer_ok && K > 2 ? " (nor fewer samples)" : "", out->reason);
     return OIT_OK;
 }
 
-oit_status oit_capture_parse(const char *value, const char *what, oit_capture_kind *kind,
-                             oit_error *err)
+const char *oit_capture_asked_name(oit_render_capture asked)
 {
-    static const struct {
-        const char *name;
-        oit_capture_kind kind;
-    } names[] = {{"auto", OIT_CAPTURE_AUTO},
-                 {"stencil", OIT_CAPTURE_STENCIL},
-                 {"array", OIT_CAPTURE_ARRAY},
-                 {"compute", OIT_CAPTURE_COMPUTE}};
-    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
-        if (value && !strcmp(value, names[i].name)) {
-            *kind = names[i].kind;
-            return OIT_OK;
-        }
-    return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: '%s' is not auto, stencil, array or compute", what,
-                         value ? value : "");
+    switch (asked) {
+    case OIT_RENDER_CAPTURE_AUTO: return "auto";
+    case OIT_RENDER_CAPTURE_ARRAY: return "array";
+    case OIT_RENDER_CAPTURE_STENCIL: return "stencil";
+    case OIT_RENDER_CAPTURE_COMPUTE: return "compute";
+    }
+    return NULL;
 }

@@ -12,6 +12,7 @@
 #ifndef OIT_RENDER_CAPTURE_CHOICE_H
 #define OIT_RENDER_CAPTURE_CHOICE_H
 
+#include "oit/render_modes.h"
 #include "oit/status.h"
 #include "render/capture/capture.h"
 
@@ -20,26 +21,25 @@
 typedef oit_status (*oit_capture_try)(void *ctx, int stencil_k, oit_error *err);
 
 typedef struct oit_capture_choice {
-    oit_capture_kind asked; /* AUTO, ARRAY or STENCIL */
-    oit_capture_kind slots; /* what runs: ARRAY or STENCIL */
+    oit_render_capture asked; /* AUTO, ARRAY or STENCIL (COMPUTE: no choice) */
+    oit_render_capture slots; /* what runs: ARRAY or STENCIL */
     int stencil_k;          /* STENCIL: the samples routed a pixel; else 0 */
     /* the self-test's reason at K where auto fell back to array slots or
      * took fewer samples than K; "" where it did not */
     char reason[512];
 } oit_capture_choice;
 
-/* asked: OIT_CAPTURE_AUTO, _ARRAY or _STENCIL (else OIT_ERR_ARGUMENT).
+/* asked: OIT_RENDER_CAPTURE_AUTO, _ARRAY or _STENCIL (else OIT_ERR_ARGUMENT).
  * ARRAY tries nothing. STENCIL where no try passes: OIT_ERR_UNSUPPORTED
  * whose message gives the self-test's reason at K (no fallback: the caller
  * asked for it). what: the setting in the caller's spelling, for the
  * errors ("oit_renderer_desc.capture"; NULL: "capture"). */
-oit_status oit_capture_choose(oit_capture_kind asked, const char *what, int K, int fewer_ok,
+oit_status oit_capture_choose(oit_render_capture asked, const char *what, int K, int fewer_ok,
                               oit_capture_try try_stencil, void *ctx, oit_capture_choice *out,
                               oit_error *err);
 
-/* "auto", "stencil", "array", "compute" into *kind; OIT_ERR_ARGUMENT naming the value
- * otherwise (what = the option, for the message). */
-oit_status oit_capture_parse(const char *value, const char *what, oit_capture_kind *kind,
-                             oit_error *err);
+/* "auto", "array", "stencil", "compute": the figures' names of what was
+ * asked (oit_stream_frame_stats.capture_asked); NULL for no such value. */
+const char *oit_capture_asked_name(oit_render_capture asked);
 
 #endif

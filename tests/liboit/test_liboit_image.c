@@ -96,8 +96,8 @@ static void check_stream(oit_scene *scene, oit_partfile *pf, const oit_scene_inf
 
     /* The streamer as the tools drive it, with the descriptor liboit
      * resolved (K the scene's: 16 at most). */
-    static const oit_pack_mode modes[] = {OIT_PACK_AUTO, OIT_PACK_COUNTED, OIT_PACK_BUDGET,
-                                          OIT_PACK_DISJOINT, OIT_PACK_FIRSTK};
+    static const oit_render_pack modes[] = {OIT_RENDER_PACK_AUTO, OIT_RENDER_PACK_COUNTED, OIT_RENDER_PACK_BUDGET,
+                                          OIT_RENDER_PACK_DISJOINT, OIT_RENDER_PACK_FIRSTK};
     oit_streamer_desc sd = {.K = info->K < 16 ? (int)info->K : 16, .pack = modes[pack],
                             .reader_threads = OIT_STREAM_READ_INLINE,
                             .cache_budget = OIT_STREAM_CACHE_OFF};
@@ -139,7 +139,7 @@ static void check_stream(oit_scene *scene, oit_partfile *pf, const oit_scene_inf
               (!st.choice || (!strcmp(st.choice, ss.choice_path) && st.choice_why &&
                               !strcmp(st.choice_why, "seed") && st.choice_first_k_ms == -1.0 &&
                               st.choice_counted_ms == -1.0)) &&
-              (st.choice != NULL) == (modes[pack] == OIT_PACK_AUTO),
+              (st.choice != NULL) == (modes[pack] == OIT_RENDER_PACK_AUTO),
           "%s: choice %s (%s; %.1f, %.1f), the streamer's %s", name,
           st.choice ? st.choice : "NULL", st.choice_why ? st.choice_why : "NULL",
           st.choice_first_k_ms, st.choice_counted_ms,

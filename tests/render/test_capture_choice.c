@@ -3,7 +3,7 @@
  * self-test passes at K, only at fewer samples, or nowhere; that stencil
  * is refused with the self-test's own reason, never silently replaced;
  * that K-slot packs try K alone; that a failure other than "unsupported"
- * stops the choice; and the one spelling of the option's values. */
+ * stops the choice; and the names the figures give what was asked. */
 #include <stdio.h>
 #include <string.h>
 
@@ -44,42 +44,42 @@ int main(void)
     oit_error err = {0};
 
     fake f = {.from = 16};
-    oit_status s = oit_capture_choose(OIT_CAPTURE_AUTO, NULL, 8, 1, verdict, &f, &c, &err);
-    CHECK(s == OIT_OK && c.slots == OIT_CAPTURE_STENCIL && c.stencil_k == 8 && !c.reason[0],
+    oit_status s = oit_capture_choose(OIT_RENDER_CAPTURE_AUTO, NULL, 8, 1, verdict, &f, &c, &err);
+    CHECK(s == OIT_OK && c.slots == OIT_RENDER_CAPTURE_STENCIL && c.stencil_k == 8 && !c.reason[0],
           "auto, self-test passing: %s slots at %d, reason '%s'",
-          oit_capture_kind_name(c.slots), c.stencil_k, c.reason);
+          oit_capture_asked_name(c.slots), c.stencil_k, c.reason);
     tries(&f, (const int[]){8}, 1, "auto, passing");
 
     f = (fake){.from = 0};
-    s = oit_capture_choose(OIT_CAPTURE_AUTO, NULL, 8, 1, verdict, &f, &c, &err);
-    CHECK(s == OIT_OK && c.slots == OIT_CAPTURE_ARRAY && c.stencil_k == 0 &&
+    s = oit_capture_choose(OIT_RENDER_CAPTURE_AUTO, NULL, 8, 1, verdict, &f, &c, &err);
+    CHECK(s == OIT_OK && c.slots == OIT_RENDER_CAPTURE_ARRAY && c.stencil_k == 0 &&
               strstr(c.reason, "failed at K=8"),
           "auto, self-test failing: %s slots, reason '%s' (not K=8's)",
-          oit_capture_kind_name(c.slots), c.reason);
+          oit_capture_asked_name(c.slots), c.reason);
     tries(&f, (const int[]){8, 4, 2}, 3, "auto first-k, failing");
 
     f = (fake){.from = 8};
-    s = oit_capture_choose(OIT_CAPTURE_AUTO, NULL, 16, 1, verdict, &f, &c, &err);
-    CHECK(s == OIT_OK && c.slots == OIT_CAPTURE_STENCIL && c.stencil_k == 8 &&
+    s = oit_capture_choose(OIT_RENDER_CAPTURE_AUTO, NULL, 16, 1, verdict, &f, &c, &err);
+    CHECK(s == OIT_OK && c.slots == OIT_RENDER_CAPTURE_STENCIL && c.stencil_k == 8 &&
               strstr(c.reason, "failed at K=16"),
           "auto first-k, passing at 8 of 16: %s at %d, reason '%s'",
-          oit_capture_kind_name(c.slots), c.stencil_k, c.reason);
+          oit_capture_asked_name(c.slots), c.stencil_k, c.reason);
     tries(&f, (const int[]){16, 8}, 2, "auto first-k, passing at 8");
 
     f = (fake){.from = 4};
-    s = oit_capture_choose(OIT_CAPTURE_AUTO, NULL, 6, 1, verdict, &f, &c, &err);
+    s = oit_capture_choose(OIT_RENDER_CAPTURE_AUTO, NULL, 6, 1, verdict, &f, &c, &err);
     CHECK(s == OIT_OK && c.stencil_k == 4, "auto first-k K=6: %d samples, not 4", c.stencil_k);
     tries(&f, (const int[]){6, 4}, 2, "auto first-k K=6");
 
     /* K-slot packs: a part of K layers in fewer samples would lose fragments */
     f = (fake){.from = 4};
-    s = oit_capture_choose(OIT_CAPTURE_AUTO, NULL, 8, 0, verdict, &f, &c, &err);
-    CHECK(s == OIT_OK && c.slots == OIT_CAPTURE_ARRAY && strstr(c.reason, "failed at K=8"),
-          "auto K-slot, passing at 4 of 8: %s slots", oit_capture_kind_name(c.slots));
+    s = oit_capture_choose(OIT_RENDER_CAPTURE_AUTO, NULL, 8, 0, verdict, &f, &c, &err);
+    CHECK(s == OIT_OK && c.slots == OIT_RENDER_CAPTURE_ARRAY && strstr(c.reason, "failed at K=8"),
+          "auto K-slot, passing at 4 of 8: %s slots", oit_capture_asked_name(c.slots));
     tries(&f, (const int[]){8}, 1, "auto K-slot");
 
     f = (fake){.from = 0};
-    s = oit_capture_choose(OIT_CAPTURE_STENCIL, "caller.capture", 8, 0, verdict, &f, &c, &err);
+    s = oit_capture_choose(OIT_RENDER_CAPTURE_STENCIL, "caller.capture", 8, 0, verdict, &f, &c, &err);
     printf("stencil refused: %s\n", err.message);
     CHECK(s == OIT_ERR_UNSUPPORTED && strstr(err.message, "caller.capture = stencil") &&
               strstr(err.message, "fake self-test failed at K=8"),
@@ -87,34 +87,32 @@ int main(void)
           oit_status_name(s), err.message);
 
     f = (fake){.from = 2};
-    s = oit_capture_choose(OIT_CAPTURE_STENCIL, NULL, 4, 1, verdict, &f, &c, &err);
-    CHECK(s == OIT_OK && c.slots == OIT_CAPTURE_STENCIL && c.stencil_k == 2,
+    s = oit_capture_choose(OIT_RENDER_CAPTURE_STENCIL, NULL, 4, 1, verdict, &f, &c, &err);
+    CHECK(s == OIT_OK && c.slots == OIT_RENDER_CAPTURE_STENCIL && c.stencil_k == 2,
           "stencil first-k passing at 2 of 4: %s", oit_status_name(s));
 
     f = (fake){.from = 16};
-    s = oit_capture_choose(OIT_CAPTURE_ARRAY, NULL, 8, 1, verdict, &f, &c, &err);
-    CHECK(s == OIT_OK && c.slots == OIT_CAPTURE_ARRAY && f.n == 0 && !c.reason[0],
-          "array: %s slots after %d self-tests", oit_capture_kind_name(c.slots), f.n);
+    s = oit_capture_choose(OIT_RENDER_CAPTURE_ARRAY, NULL, 8, 1, verdict, &f, &c, &err);
+    CHECK(s == OIT_OK && c.slots == OIT_RENDER_CAPTURE_ARRAY && f.n == 0 && !c.reason[0],
+          "array: %s slots after %d self-tests", oit_capture_asked_name(c.slots), f.n);
 
     f = (fake){.from = 16, .other = OIT_ERR_NOMEM};
-    s = oit_capture_choose(OIT_CAPTURE_AUTO, NULL, 8, 1, verdict, &f, &c, &err);
+    s = oit_capture_choose(OIT_RENDER_CAPTURE_AUTO, NULL, 8, 1, verdict, &f, &c, &err);
     CHECK(s == OIT_ERR_NOMEM && f.n == 1, "auto, self-test out of memory: %s after %d tries",
           oit_status_name(s), f.n);
 
-    s = oit_capture_choose(OIT_CAPTURE_COUNTED, NULL, 8, 1, verdict, &f, &c, &err);
-    CHECK(s == OIT_ERR_ARGUMENT, "counted asked as a K-slot fill: %s", oit_status_name(s));
-    s = oit_capture_choose(OIT_CAPTURE_AUTO, NULL, 17, 1, verdict, &f, &c, &err);
+    s = oit_capture_choose(OIT_RENDER_CAPTURE_COMPUTE, NULL, 8, 1, verdict, &f, &c, &err);
+    CHECK(s == OIT_ERR_ARGUMENT, "compute asked as a K-slot fill: %s", oit_status_name(s));
+    s = oit_capture_choose(OIT_RENDER_CAPTURE_AUTO, NULL, 17, 1, verdict, &f, &c, &err);
     CHECK(s == OIT_ERR_ARGUMENT, "K=17: %s", oit_status_name(s));
 
-    oit_capture_kind k = OIT_CAPTURE_ARRAY;
-    CHECK(oit_capture_parse("auto", "--capture", &k, &err) == OIT_OK && k == OIT_CAPTURE_AUTO &&
-              oit_capture_parse("stencil", "--capture", &k, &err) == OIT_OK &&
-              k == OIT_CAPTURE_STENCIL &&
-              oit_capture_parse("array", "--capture", &k, &err) == OIT_OK &&
-              k == OIT_CAPTURE_ARRAY,
-          "--capture auto|stencil|array not parsed");
-    s = oit_capture_parse("counted", "--capture", &k, &err);
-    CHECK(s == OIT_ERR_ARGUMENT && strstr(err.message, "'counted'"), "--capture counted: %s",
-          err.message);
+    const char *names[] = {oit_capture_asked_name(OIT_RENDER_CAPTURE_AUTO),
+                           oit_capture_asked_name(OIT_RENDER_CAPTURE_ARRAY),
+                           oit_capture_asked_name(OIT_RENDER_CAPTURE_STENCIL),
+                           oit_capture_asked_name(OIT_RENDER_CAPTURE_COMPUTE)};
+    CHECK(names[0] && !strcmp(names[0], "auto") && names[1] && !strcmp(names[1], "array") &&
+              names[2] && !strcmp(names[2], "stencil") && names[3] &&
+              !strcmp(names[3], "compute") && !oit_capture_asked_name((oit_render_capture)99),
+          "the asked captures' names");
     return test_verdict();
 }

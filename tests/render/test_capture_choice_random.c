@@ -153,8 +153,9 @@ static void check_choose(void)
     for (int c = 0; c < 4000; c++) {
         int K = 2 + (int)(rnd(&seed) % 15);
         int fewer_ok = (int)(rnd(&seed) % 2);
-        oit_capture_kind asked = (oit_capture_kind[]){OIT_CAPTURE_AUTO, OIT_CAPTURE_STENCIL,
-                                                      OIT_CAPTURE_ARRAY}[rnd(&seed) % 3];
+        oit_render_capture asked =
+            (oit_render_capture[]){OIT_RENDER_CAPTURE_AUTO, OIT_RENDER_CAPTURE_STENCIL,
+                                   OIT_RENDER_CAPTURE_ARRAY}[rnd(&seed) % 3];
         fake f = {.pass = rnd(&seed) & rnd(&seed) & 0x1fffcu};
         if (rnd(&seed) % 8 == 0) {
             f.other = OIT_ERR_NOMEM;
@@ -162,7 +163,7 @@ static void check_choose(void)
         }
         /* the model: the tries in order, the first passing one taken */
         int tries[8], nt = 0;
-        for (int k = K; asked != OIT_CAPTURE_ARRAY && k >= 2;) {
+        for (int k = K; asked != OIT_RENDER_CAPTURE_ARRAY && k >= 2;) {
             tries[nt++] = k;
             if (!fewer_ok)
                 break;
@@ -184,7 +185,7 @@ static void check_choose(void)
                 break;
             }
         }
-        if (want == OIT_OK && !want_k && asked == OIT_CAPTURE_STENCIL)
+        if (want == OIT_OK && !want_k && asked == OIT_RENDER_CAPTURE_STENCIL)
             want = OIT_ERR_UNSUPPORTED;
         oit_capture_choice ch;
         oit_error err = {0};
@@ -201,17 +202,17 @@ static void check_choose(void)
             errors++;
             continue;
         }
-        CHECK(ch.slots == (want_k ? OIT_CAPTURE_STENCIL : OIT_CAPTURE_ARRAY) &&
+        CHECK(ch.slots == (want_k ? OIT_RENDER_CAPTURE_STENCIL : OIT_RENDER_CAPTURE_ARRAY) &&
                   ch.stencil_k == want_k,
               "case %d (asked %d, K=%d, fewer_ok %d, passes 0x%x): %s at %d samples, the model "
               "%d", c, (int)asked, K, fewer_ok, f.pass,
-              ch.slots == OIT_CAPTURE_STENCIL ? "stencil" : "array", ch.stencil_k, want_k);
-        CHECK(ch.slots != OIT_CAPTURE_STENCIL || (ch.stencil_k >= 2 && ch.stencil_k <= K &&
+              ch.slots == OIT_RENDER_CAPTURE_STENCIL ? "stencil" : "array", ch.stencil_k, want_k);
+        CHECK(ch.slots != OIT_RENDER_CAPTURE_STENCIL || (ch.stencil_k >= 2 && ch.stencil_k <= K &&
                                                   (fewer_ok || ch.stencil_k == K)),
               "case %d: routed %d samples at K=%d (fewer_ok %d)", c, ch.stencil_k, K, fewer_ok);
         CHECK((ch.reason[0] != 0) == (want_k != K && nt > 0), "case %d: reason '%s' at K=%d, "
               "stencil %d", c, ch.reason, K, want_k);
-        if (ch.slots == OIT_CAPTURE_STENCIL)
+        if (ch.slots == OIT_RENDER_CAPTURE_STENCIL)
             stencil++;
         else
             array++;

@@ -30,8 +30,8 @@ typedef struct run {
     oit_error err;
 } run;
 
-static void render(oit_partfile *pf, const oit_view *v, oit_pack_mode pack, int K,
-                   oit_capture_kind capture, unsigned faults, run *r)
+static void render(oit_partfile *pf, const oit_view *v, oit_render_pack pack, int K,
+                   oit_render_capture capture, unsigned faults, run *r)
 {
     memset(r, 0, sizeof *r);
     oit_streamer_desc d = {.K = K, .capture = capture, .capture_faults = faults, .pack = pack};
@@ -55,12 +55,12 @@ static const char *str(const char *s)
 
 /* pack with capture auto through the stand-in: stencil slots of `samples`,
  * the array image. */
-static void routed_like_array(oit_partfile *pf, const oit_view *v, oit_pack_mode pack,
+static void routed_like_array(oit_partfile *pf, const oit_view *v, oit_render_pack pack,
                               const char *what, int K, int samples)
 {
     run a, b;
-    render(pf, v, pack, K, OIT_CAPTURE_ARRAY, 0, &a);
-    render(pf, v, pack, K, OIT_CAPTURE_AUTO, OIT_CAPTURE_TEST_ROUTE_BY_COPY, &b);
+    render(pf, v, pack, K, OIT_RENDER_CAPTURE_ARRAY, 0, &a);
+    render(pf, v, pack, K, OIT_RENDER_CAPTURE_AUTO, OIT_CAPTURE_TEST_ROUTE_BY_COPY, &b);
     CHECK(a.s == OIT_OK && b.s == OIT_OK, "%s: %s / %s", what, a.err.message, b.err.message);
     if (a.s == OIT_OK && b.s == OIT_OK) {
         printf("%s K=%d: auto ran %s x%u (fallback '%s'), %llu fragments, %llu second-pass "
@@ -92,8 +92,8 @@ static void routed_like_array(oit_partfile *pf, const oit_view *v, oit_pack_mode
 static void driver_verdict(oit_partfile *pf, const oit_view *v)
 {
     run a, s, c;
-    render(pf, v, OIT_PACK_FIRSTK, 4, OIT_CAPTURE_AUTO, 0, &a);
-    render(pf, v, OIT_PACK_FIRSTK, 4, OIT_CAPTURE_STENCIL, 0, &s);
+    render(pf, v, OIT_RENDER_PACK_FIRSTK, 4, OIT_RENDER_CAPTURE_AUTO, 0, &a);
+    render(pf, v, OIT_RENDER_PACK_FIRSTK, 4, OIT_RENDER_CAPTURE_STENCIL, 0, &s);
     printf("llvmpipe auto: %s, fallback '%s'\nllvmpipe stencil: %s\n",
            str(a.fs.capture_slots), str(a.ss.capture_fallback), s.err.message);
     CHECK(a.s == OIT_OK && a.fs.capture_slots && !strcmp(a.fs.capture_slots, "array") &&
@@ -104,7 +104,8 @@ static void driver_verdict(oit_partfile *pf, const oit_view *v)
               strstr(s.err.message, "self-test failed"),
           "llvmpipe, stencil: %s '%s', not refused with the self-test's reason",
           oit_status_name(s.s), s.err.message);
-    render(pf, v, OIT_PACK_COUNTED, 4, OIT_CAPTURE_STENCIL, OIT_CAPTURE_TEST_ROUTE_BY_COPY, &c);
+    render(pf, v, OIT_RENDER_PACK_COUNTED, 4, OIT_RENDER_CAPTURE_STENCIL,
+           OIT_CAPTURE_TEST_ROUTE_BY_COPY, &c);
     CHECK(c.s == OIT_ERR_ARGUMENT && strstr(c.err.message, "counted"),
           "stencil with counted packs: %s '%s'", oit_status_name(c.s), c.err.message);
     oit_image_free(&a.img);
@@ -137,10 +138,10 @@ int main(int argc, char **argv)
     v.height = H;
     v.shading.attributes = sum.attributes;
     if (most >= 4) {
-        routed_like_array(pf, &v, OIT_PACK_FIRSTK, "first-k", 4, 4);
-        routed_like_array(pf, &v, OIT_PACK_BUDGET, "budget", 4, 4);
-        routed_like_array(pf, &v, OIT_PACK_DISJOINT, "disjoint", 4, 4);
-        routed_like_array(pf, &v, OIT_PACK_FIRSTK, "first-k, fewer samples", 16,
+        routed_like_array(pf, &v, OIT_RENDER_PACK_FIRSTK, "first-k", 4, 4);
+        routed_like_array(pf, &v, OIT_RENDER_PACK_BUDGET, "budget", 4, 4);
+        routed_like_array(pf, &v, OIT_RENDER_PACK_DISJOINT, "disjoint", 4, 4);
+        routed_like_array(pf, &v, OIT_RENDER_PACK_FIRSTK, "first-k, fewer samples", 16,
                           most >= 16 ? 16 : most >= 8 ? 8 : 4);
     }
     if (llvmpipe)

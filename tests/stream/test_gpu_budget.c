@@ -113,7 +113,7 @@ static void print_budget(const char *name, const oit_stream_budget *b)
 
 static oit_streamer_desc base_desc(void)
 {
-    return (oit_streamer_desc){.K = 8, .capture = OIT_CAPTURE_ARRAY, .pack = OIT_PACK_AUTO};
+    return (oit_streamer_desc){.K = 8, .capture = OIT_RENDER_CAPTURE_ARRAY, .pack = OIT_RENDER_PACK_AUTO};
 }
 
 int main(int argc, char **argv)
@@ -214,8 +214,8 @@ int main(int argc, char **argv)
      * too; its image is that of the compute capture with the file
      * resident. */
     run comp, comp_fits;
-    t.capture = OIT_CAPTURE_COMPUTE;
-    d.capture = OIT_CAPTURE_COMPUTE;
+    t.capture = OIT_RENDER_CAPTURE_COMPUTE;
+    d.capture = OIT_RENDER_CAPTURE_COMPUTE;
     d.free_ctx = &nvx;
     CHECK(render_views(pf, &t, &comp, &err), "compute, below the file: %s", err.message);
     CHECK(render_views(pf, &d, &comp_fits, &err), "compute, resident: %s", err.message);

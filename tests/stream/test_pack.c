@@ -153,7 +153,7 @@ static void make_view(const scene *sc, oit_view *v)
 /* ---- the model ------------------------------------------------------------------- */
 
 typedef struct config {
-    oit_pack_mode mode;
+    oit_render_pack mode;
     int front_first, wave;
     uint64_t budget;
 } config;
@@ -208,14 +208,14 @@ static int overlaps(const int a[4], const int b[4])
 
 static uint32_t cap_of(const config *c, uint32_t K, uint32_t pack)
 {
-    return c->mode == OIT_PACK_BUDGET ? K : K << (pack < 12 ? pack : 12);
+    return c->mode == OIT_RENDER_PACK_BUDGET ? K : K << (pack < 12 ? pack : 12);
 }
 
 static void run_model(const scene *sc, const config *c, model *m)
 {
     memset(m, 0, sizeof *m);
-    int unbounded = c->mode == OIT_PACK_COUNTED || c->mode == OIT_PACK_FIRSTK;
-    int tiled = c->mode == OIT_PACK_BUDGET || (unbounded && c->front_first);
+    int unbounded = c->mode == OIT_RENDER_PACK_COUNTED || c->mode == OIT_RENDER_PACK_FIRSTK;
+    int tiled = c->mode == OIT_RENDER_PACK_BUDGET || (unbounded && c->front_first);
     for (uint32_t i = 0; i < sc->n; i++) {
         int r[4];
         if (!part_rect(sc, i, r)) {
@@ -229,7 +229,7 @@ static void run_model(const scene *sc, const config *c, model *m)
             join = L <= sc->K && m->layers[p] <= sc->K;
         if (join && tiled)
             join = tiles(m, sc, r, L, 0) <= cap_of(c, sc->K, p);
-        else if (join && c->mode == OIT_PACK_DISJOINT)
+        else if (join && c->mode == OIT_RENDER_PACK_DISJOINT)
             join = !overlaps(m->pack_rect[p], r);
         if (!join) {
             p = m->packs++;
@@ -324,9 +324,9 @@ static void run_model_levels(const scene *sc, const config *c, model *m)
 static const char *mode_name(const config *c)
 {
     static char buf[64];
-    const char *m = c->mode == OIT_PACK_BUDGET     ? "budget"
-                    : c->mode == OIT_PACK_DISJOINT ? "disjoint"
-                    : c->mode == OIT_PACK_COUNTED  ? "counted"
+    const char *m = c->mode == OIT_RENDER_PACK_BUDGET     ? "budget"
+                    : c->mode == OIT_RENDER_PACK_DISJOINT ? "disjoint"
+                    : c->mode == OIT_RENDER_PACK_COUNTED  ? "counted"
                                                    : "first-k";
     snprintf(buf, sizeof buf, "%s%s%s", m, c->front_first ? " front-first" : "",
              c->wave ? " wave" : "");
@@ -369,7 +369,7 @@ static void check_rules(const oit_packing *pk, const scene *sc, const config *c,
     for (uint32_t j = 0; ok && j < pk->part_count; j++)
         ok = pk->parts[j] < sc->n && !seen[pk->parts[j]]++;
     CHECK(ok, "%s: the packs do not hold each of the %u kept parts once", what, m->drawn);
-    int kslots = c->mode == OIT_PACK_BUDGET || c->mode == OIT_PACK_DISJOINT;
+    int kslots = c->mode == OIT_RENDER_PACK_BUDGET || c->mode == OIT_RENDER_PACK_DISJOINT;
     uint32_t tx = (sc->w + TILE - 1) / TILE, ty = (sc->h + TILE - 1) / TILE;
     for (uint32_t p = 0; ok && p < pk->pack_count; p++) {
         uint32_t a = pk->pack_first[p], e = pk->pack_first[p + 1];
@@ -392,12 +392,12 @@ static void check_rules(const oit_packing *pk, const scene *sc, const config *c,
         for (uint32_t t = 0; t < tx * ty; t++)
             worst = sum[t] > worst ? sum[t] : worst;
         /* the disjoint rule: no pixel gets fragments of two parts of a pack */
-        for (uint32_t j = a; c->mode == OIT_PACK_DISJOINT && j < e; j++)
+        for (uint32_t j = a; c->mode == OIT_RENDER_PACK_DISJOINT && j < e; j++)
             for (uint32_t k = a; k < j; k++)
                 crowded += overlaps(pk->part_rects[j], pk->part_rects[k]);
         ok = e > a && bytes <= c->budget && (!kslots || !wide || e - a == 1) &&
-             (c->mode != OIT_PACK_BUDGET || wide || worst <= sc->K) &&
-             (c->mode != OIT_PACK_DISJOINT || crowded == 0);
+             (c->mode != OIT_RENDER_PACK_BUDGET || wide || worst <= sc->K) &&
+             (c->mode != OIT_RENDER_PACK_DISJOINT || crowded == 0);
         CHECK(ok, "%s: pack %u of %u parts: %llu bytes (budget %llu), %u wide, most layers on "
               "a tile %u (K %u); disjoint: %u pairs of rectangles overlap", what, p, e - a,
               (unsigned long long)bytes, (unsigned long long)c->budget, wide, worst, sc->K,
@@ -418,7 +418,7 @@ static void check_rules(const oit_packing *pk, const scene *sc, const config *c,
             if (a >= b || !overlaps(pk->part_rects[j], pk->part_rects[k]))
                 continue;
             reversed += pos[a] > pos[b] ||
-                        (c->mode == OIT_PACK_DISJOINT && pack_of[a] == pack_of[b]);
+                        (c->mode == OIT_RENDER_PACK_DISJOINT && pack_of[a] == pack_of[b]);
         }
     CHECK(reversed == 0, "%s: %u overlapping pairs drawn against the order or (disjoint) in "
           "one pack", what, reversed);
@@ -440,7 +440,7 @@ static uint32_t tree_packs(const oit_partfile *pf, const scene *sc, const config
     uint32_t order[MAX_PARTS];
     for (uint32_t i = 0; i < sc->n; i++)
         order[i] = i;
-    if (oit_packer_create(pf, OIT_PACK_DISJOINT, (int)sc->K, c->budget, &pk, &err) ||
+    if (oit_packer_create(pf, OIT_RENDER_PACK_DISJOINT, (int)sc->K, c->budget, &pk, &err) ||
         oit_packer_run(pk, view, order, sc->n, &out, &err))
         CHECK(0, "tree packer: %s", err.message);
     uint32_t n = out.pack_count;
@@ -463,7 +463,7 @@ static void run_config(tally *t, const oit_partfile *pf, const scene *sc, const 
         return;
     }
     oit_packer_set_front_first(pk, c->front_first);
-    oit_packer_set_schedule(pk, c->wave ? OIT_SCHEDULE_WAVE : OIT_SCHEDULE_TREE);
+    oit_packer_set_schedule(pk, c->wave ? OIT_RENDER_SCHEDULE_WAVE : OIT_RENDER_SCHEDULE_TREE);
     oit_packing out;
     char what[160];
     snprintf(what, sizeof what, "round %d (%ux%u, %u parts, K %u, budget %llu), %s", round,
@@ -475,7 +475,7 @@ static void run_config(tally *t, const oit_partfile *pf, const scene *sc, const 
             break;
         }
         model m;
-        int levels = c->wave && c->mode == OIT_PACK_DISJOINT;
+        int levels = c->wave && c->mode == OIT_RENDER_PACK_DISJOINT;
         if (levels)
             run_model_levels(sc, c, &m);
         else
@@ -521,12 +521,12 @@ static void known_layout(const char *path)
     oit_partfile *pf = NULL;
     oit_packer *tree = NULL, *wave = NULL;
     if (write_scene(path, &sc, &err) || oit_partfile_open(path, NULL, &pf, &err) ||
-        oit_packer_create(pf, OIT_PACK_DISJOINT, 8, 1u << 30, &tree, &err) ||
-        oit_packer_create(pf, OIT_PACK_DISJOINT, 8, 1u << 30, &wave, &err)) {
+        oit_packer_create(pf, OIT_RENDER_PACK_DISJOINT, 8, 1u << 30, &tree, &err) ||
+        oit_packer_create(pf, OIT_RENDER_PACK_DISJOINT, 8, 1u << 30, &wave, &err)) {
         CHECK(0, "known layout: %s", err.message);
         goto done;
     }
-    oit_packer_set_schedule(wave, OIT_SCHEDULE_WAVE);
+    oit_packer_set_schedule(wave, OIT_RENDER_SCHEDULE_WAVE);
     oit_view view;
     make_view(&sc, &view);
     const uint32_t order[4] = {0, 1, 2, 3};
@@ -571,10 +571,10 @@ int main(void)
         }
         uint64_t budget = rnd(&r, 3) ? 256u * (3 + rnd(&r, 24)) : (uint64_t)1 << 30;
         static const config base[] = {
-            {OIT_PACK_BUDGET, 0, 0, 0},  {OIT_PACK_DISJOINT, 0, 0, 0},
-            {OIT_PACK_COUNTED, 1, 0, 0}, {OIT_PACK_FIRSTK, 1, 0, 0},
-            {OIT_PACK_COUNTED, 0, 0, 0}, {OIT_PACK_BUDGET, 0, 1, 0},
-            {OIT_PACK_DISJOINT, 0, 1, 0}, {OIT_PACK_COUNTED, 0, 1, 0}};
+            {OIT_RENDER_PACK_BUDGET, 0, 0, 0},  {OIT_RENDER_PACK_DISJOINT, 0, 0, 0},
+            {OIT_RENDER_PACK_COUNTED, 1, 0, 0}, {OIT_RENDER_PACK_FIRSTK, 1, 0, 0},
+            {OIT_RENDER_PACK_COUNTED, 0, 0, 0}, {OIT_RENDER_PACK_BUDGET, 0, 1, 0},
+            {OIT_RENDER_PACK_DISJOINT, 0, 1, 0}, {OIT_RENDER_PACK_COUNTED, 0, 1, 0}};
         for (size_t k = 0; k < sizeof base / sizeof *base; k++) {
             config c = base[k];
             c.budget = budget;

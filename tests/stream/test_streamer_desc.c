@@ -33,9 +33,9 @@ static void set_field(oit_streamer_desc *d, int field, double v)
     case CB: d->cache_budget = (uint64_t)v; break;
     case GB: d->gpu_budget = (uint64_t)v; break;
     case EPS: d->epsilon = (float)v; break;
-    case PACK: d->pack = (oit_pack_mode)(int)v; break;
+    case PACK: d->pack = (oit_render_pack)(int)v; break;
     case STB: d->store_budget = (uint64_t)v; break;
-    default: d->schedule = (oit_pack_schedule)(int)v; break;
+    default: d->schedule = (oit_render_schedule)(int)v; break;
     }
 }
 
@@ -61,8 +61,8 @@ static void check_ranges(void)
         {CB, (double)OIT_STREAM_CACHE_OFF, 1},
         {GB, 0, 1}, {GB, g, 1}, {GB, g - 1, 0}, {GB, hi, 1}, {GB, hi + 1, 0},
         {EPS, 0, 1}, {EPS, 0.999, 1}, {EPS, 1, 0}, {EPS, -0.001, 0}, {EPS, NAN, 0},
-        {PACK, OIT_PACK_FIRSTK, 1}, {PACK, OIT_PACK_FIRSTK + 1, 0}, {PACK, -1, 0},
-        {SCHED, OIT_SCHEDULE_WAVE, 1}, {SCHED, OIT_SCHEDULE_WAVE + 1, 0}};
+        {PACK, OIT_RENDER_PACK_FIRSTK, 1}, {PACK, OIT_RENDER_PACK_FIRSTK + 1, 0}, {PACK, -1, 0},
+        {SCHED, OIT_RENDER_SCHEDULE_WAVE, 1}, {SCHED, OIT_RENDER_SCHEDULE_WAVE + 1, 0}};
     const oit_streamer_names names = {
         .upload_budget = spelt[UB], .slot_budget = spelt[SB], .cache_budget = spelt[CB],
         .gpu_budget = spelt[GB], .epsilon = spelt[EPS], .pack = spelt[PACK],
@@ -123,7 +123,7 @@ static void check_resolved(oit_partfile *pf)
           (unsigned long long)all);
 
     /* Defaults: no total (the driver reports none), first-K stores. */
-    oit_streamer_desc d = {.K = 8, .capture = OIT_CAPTURE_ARRAY, .epsilon = 0.01f,
+    oit_streamer_desc d = {.K = 8, .capture = OIT_RENDER_CAPTURE_ARRAY, .epsilon = 0.01f,
                            .reader_threads = OIT_STREAM_READ_INLINE,
                            .free_query = silent_driver};
     oit_streamer_desc r;
@@ -148,15 +148,15 @@ static void check_resolved(oit_partfile *pf)
               "resident %d, cache %llu: a file within the ring keeps no cache", b.resident,
               (unsigned long long)r.cache_budget);
         CHECK(r.gpu_budget == 0 && r.reader_threads == OIT_STREAM_READ_INLINE &&
-                  r.epsilon == 0.01f && r.K == 8 && r.pack == OIT_PACK_AUTO &&
-                  r.capture == OIT_CAPTURE_ARRAY,
+                  r.epsilon == 0.01f && r.K == 8 && r.pack == OIT_RENDER_PACK_AUTO &&
+                  r.capture == OIT_RENDER_CAPTURE_ARRAY,
               "gpu %llu threads %d epsilon %g K %d pack %d capture %d",
               (unsigned long long)r.gpu_budget, r.reader_threads, (double)r.epsilon, r.K,
               (int)r.pack, (int)r.capture);
     }
 
     /* Given: a ring below the file, no cache, threads, K-slot packs. */
-    d = (oit_streamer_desc){.K = 8, .capture = OIT_CAPTURE_ARRAY, .pack = OIT_PACK_DISJOINT,
+    d = (oit_streamer_desc){.K = 8, .capture = OIT_RENDER_CAPTURE_ARRAY, .pack = OIT_RENDER_PACK_DISJOINT,
                             .upload_budget = 256u << 10, .cache_budget = OIT_STREAM_CACHE_OFF,
                             .reader_threads = 2, .free_query = silent_driver};
     if (resolve(pf, &d, &r, &b)) {
@@ -170,7 +170,7 @@ static void check_resolved(oit_partfile *pf)
     }
 
     /* A total: its figure, and the split inside it. */
-    d = (oit_streamer_desc){.K = 8, .capture = OIT_CAPTURE_ARRAY, .gpu_budget = 8u << 20,
+    d = (oit_streamer_desc){.K = 8, .capture = OIT_RENDER_CAPTURE_ARRAY, .gpu_budget = 8u << 20,
                             .free_query = silent_driver};
     if (resolve(pf, &d, &r, &b)) {
         uint64_t cache = r.cache_budget == OIT_STREAM_CACHE_OFF ? 0 : r.cache_budget;

@@ -56,7 +56,7 @@ static oit_view make_view(const oit_partfile *pf)
 
 static oit_streamer_desc base_desc(void)
 {
-    return (oit_streamer_desc){.K = 8, .capture = OIT_CAPTURE_ARRAY, .pack = OIT_PACK_DISJOINT};
+    return (oit_streamer_desc){.K = 8, .capture = OIT_RENDER_CAPTURE_ARRAY, .pack = OIT_RENDER_PACK_DISJOINT};
 }
 
 static int same_image(const oit_image *a, const oit_image *b)

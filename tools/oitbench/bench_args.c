@@ -2,7 +2,6 @@
 #include "tools/oitbench/bench_args.h"
 
 #include "render/capture/capture.h"
-#include "render/capture/capture_choice.h"
 
 #include <limits.h>
 #include <stdlib.h>
@@ -11,6 +10,7 @@
 #include "base/args.h"
 #include "tools/oitbench/bench_models.h"
 #include "tools/common/methods.h"
+#include "tools/common/render_args.h"
 
 /* Splits "dfb,pll" in place in buf; every name must exist and appear once. */
 static oit_status split_methods(const char *list, oit_bench_args *a, char *buf, size_t cap,
@@ -122,9 +122,7 @@ static int value_option(oit_bench_args *a, const char *opt, const char *v, char 
         if (oit_parse_int(v, INT_MIN, INT_MAX, &a->max_layers)) *s = bad(err, opt, v, "an integer");
         else *s = oit_capture_k_check(a->max_layers, "--max-layers", err);
     } else if (!strcmp(opt, "--capture")) {
-        oit_capture_kind k = OIT_CAPTURE_AUTO;
-        *s = oit_capture_parse(v, opt, &k, err);
-        a->capture = (int)k;
+        *s = oit_tool_parse_capture(v, opt, &a->capture, err);
     } else if (!strcmp(opt, "--epsilon")) *s = split_epsilons(v, a, err);
     else if (!strcmp(opt, "--shading")) {
         if (!strcmp(v, "transparent")) a->shading = OIT_SHADING_TRANSPARENT;

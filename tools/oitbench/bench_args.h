@@ -36,7 +36,7 @@ typedef struct oit_bench_args {
     int width, height;  /* default 512x512 */
     int frames, warmup; /* per method per view; default 5 and 1 */
     int max_layers;     /* K of the capture backends; default 16 */
-    int capture;        /* --capture: the stream's oit_capture_kind; 0 auto */
+    oit_render_capture capture; /* --capture: the stream's; 0 auto */
     const char *out;    /* folder, created when missing */
     /* which triangles the methods draw (bench_models.h) */
     const char *parts;      /* --parts: MODEL's part file (MODEL a mesh) */

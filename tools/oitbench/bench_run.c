@@ -72,7 +72,7 @@ static void open_methods(const oit_bench_desc *d, oit_bench_result *r, oit_gl **
         snprintf(r->renderer, sizeof r->renderer, "none (no GL context: %.200s)", err.message);
     /* The stream method opens the part file again through liboit. */
     oit_stream_source so = {.path = d->partfile ? oit_partfile_name(d->partfile) : NULL,
-                            .desc = {.capture = (oit_render_capture)d->capture}};
+                            .desc = {.capture = d->capture}};
     oit_method_options opt = {.max_layers = d->max_layers, .gl = *gl, .source = &so};
     for (int i = 0; i < r->method_count; i++) {
         oit_bench_method *m = &r->methods[i];

@@ -10,6 +10,7 @@
 #include <stdint.h>
 
 #include "oit/partfile.h"
+#include "oit/render_modes.h"
 #include "render/image/image.h"
 #include "tools/common/methods.h"
 
@@ -89,7 +90,7 @@ typedef struct oit_bench_desc {
     const oit_bench_entry *entries;
     int entry_count;
     int views, width, height, frames, warmup, max_layers;
-    int capture; /* the stream's --capture (oit_capture_kind); 0: auto */
+    oit_render_capture capture; /* the stream's --capture; 0: auto */
     oit_shading_mode shading;    /* transparent or translucent */
     oit_colour_space colour_space; /* where compositing happens (shade.h) */
     /* progress lines ("oitbench: ...") go here; NULL: silent */

@@ -3,9 +3,9 @@
 
 #include "base/args.h"
 #include "render/capture/capture.h"
-#include "render/capture/capture_choice.h"
 #include "stream/reader.h"
 #include "tools/common/mesh_formats.h"
+#include "tools/common/render_args.h"
 
 #include <float.h>
 #include <limits.h>
@@ -126,10 +126,7 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
         else if (!strcmp(v, "first-k")) a->stream.pack = OIT_RENDER_PACK_FIRSTK;
         else *s = bad(err, opt, v, "auto, counted, first-k, budget or disjoint");
     } else if (!strcmp(opt, "--capture")) {
-        /* liboit's capture values are the capture's (liboit.c) */
-        oit_capture_kind kind = OIT_CAPTURE_AUTO;
-        *s = oit_capture_parse(v, opt, &kind, err);
-        a->stream.capture = (oit_render_capture)kind;
+        *s = oit_tool_parse_capture(v, opt, &a->stream.capture, err);
     } else if (!strcmp(opt, "--schedule")) {
         if (!strcmp(v, "wave")) a->stream.schedule = OIT_RENDER_SCHEDULE_WAVE;
         else if (!strcmp(v, "tree")) a->stream.schedule = OIT_RENDER_SCHEDULE_TREE;

@@ -1,0 +1,50 @@
+/* The renderer's modes, one enum per axis: how a part file's parts are cut
+ * into packs (oit_render_pack), in which order (oit_render_schedule), and
+ * how the K-slot fills are made (oit_render_capture). liboit's descriptor
+ * (oit/liboit.h, oit_renderer_desc) takes them, and the streamer and the
+ * capture inside it work with the same values: no second spelling to keep
+ * in step. */
+#ifndef OIT_RENDER_MODES_H
+#define OIT_RENDER_MODES_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* How a part file's parts are cut into packs, each captured as one batch. */
+typedef enum oit_render_pack {
+    OIT_RENDER_PACK_AUTO = 0,    /* FIRSTK while K slots a pixel hold the view,
+                                    COUNTED for deep views, each kept where it
+                                    measures faster (oit_draw_stats.choice).
+                                    With epsilon > 0, COUNTED and FIRSTK packs
+                                    are cut front first, so that saturated
+                                    pixels skip the parts behind them */
+    OIT_RENDER_PACK_COUNTED,     /* packs cut by upload bytes only, each counted,
+                                    stored and sorted per pixel (no layer limit) */
+    OIT_RENDER_PACK_BUDGET,      /* K slots a pixel: parts share a pack while
+                                    their layer bounds per tile stay <= K */
+    OIT_RENDER_PACK_DISJOINT,    /* K slots a pixel: parts with disjoint screen
+                                    rects */
+    OIT_RENDER_PACK_FIRSTK       /* packs as COUNTED, each drawn once into up to
+                                    K slots a pixel; pixels with more take a
+                                    second pass for themselves alone */
+} oit_render_pack;
+
+typedef enum oit_render_schedule {
+    OIT_RENDER_SCHEDULE_TREE = 0, /* the management tree's order (default) */
+    OIT_RENDER_SCHEDULE_WAVE = 1  /* wavefronts of the visibility order     */
+} oit_render_schedule;
+
+typedef enum oit_render_capture {
+    OIT_RENDER_CAPTURE_AUTO = 0,
+    OIT_RENDER_CAPTURE_ARRAY = 1,
+    OIT_RENDER_CAPTURE_STENCIL = 2,
+    /* every pack captured in compute shaders, no raster pipeline, no
+     * per-pixel limit */
+    OIT_RENDER_CAPTURE_COMPUTE = 5
+} oit_render_capture;
+
+#ifdef __cplusplus
+}
+#endif
+#endif
