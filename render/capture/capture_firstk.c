@@ -15,7 +15,8 @@
 #include <string.h>
 
 /* The programs' stages, glsl/firstk_*.glsl (CMakeLists.txt: with
- * glsl/firstk_totals.glsl, the pass-2 totals, and glsl/rect_index.glsl). */
+ * glsl/firstk_totals.glsl, the pass-2 totals, and glsl/rect_index.glsl);
+ * pass 1's resolves are the slot captures' (glsl/resolve.glsl, OIT_FIRSTK). */
 extern const char oit_firstk_fill_fs[], oit_firstk_store_fs[], oit_firstk_resolve_cs[],
     oit_firstk_alloc_cs[], oit_firstk_segment_cs[], oit_firstk_segment_main[],
     oit_firstk_routed_resolve_cs[], oit_firstk_judge_cs[];
@@ -30,13 +31,15 @@ static const oit_glsl_program programs[OIT_FIRSTK_PROGS] = {
     [OIT_FIRSTK_STORE] = {"first-k capture store",
                           .fs = {oit_glsl_state_io, oit_capture_saturated, oit_firstk_store_fs}},
     [OIT_FIRSTK_RESOLVE] = {"first-k capture resolve",
-                            .cs = {oit_glsl_composite, oit_glsl_state_io, oit_firstk_resolve_cs}},
+                            .cs = {"#define OIT_FIRSTK 1\n", oit_glsl_composite, oit_glsl_state_io,
+                                   oit_firstk_resolve_cs}},
     [OIT_FIRSTK_ALLOC] = {"first-k capture allocation", .cs = {oit_firstk_alloc_cs}},
     [OIT_FIRSTK_SEGMENT] = {"first-k capture segment resolve",
                             .cs = {oit_glsl_composite, oit_glsl_state_io, oit_firstk_segment_cs,
                                    oit_glsl_segment_composite, oit_firstk_segment_main}},
     [OIT_FIRSTK_ROUTED_RESOLVE] = {"first-k capture routed resolve",
-                                   .cs = {oit_glsl_composite, oit_glsl_state_io,
+                                   .cs = {"#define OIT_FIRSTK 1\n#define OIT_STENCIL 1\n",
+                                          oit_glsl_composite, oit_glsl_state_io,
                                           oit_firstk_routed_resolve_cs}},
     [OIT_FIRSTK_JUDGE] = {"first-k capture judge", .cs = {oit_firstk_judge_cs}},
 };

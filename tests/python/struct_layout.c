@@ -15,12 +15,9 @@
 static void renderer(void)
 {
     SIZE(RenderShading, oit_render_shading);
-    AT(RenderShading, oit_render_shading, mode);
-    AT(RenderShading, oit_render_shading, alpha);
-    AT(RenderShading, oit_render_shading, default_rgb);
-    AT(RenderShading, oit_render_shading, absorption);
-    AT(RenderShading, oit_render_shading, scene_scale);
-    AT(RenderShading, oit_render_shading, colour_space);
+#define R(f) AT(RenderShading, oit_render_shading, f)
+    R(mode); R(alpha); R(default_rgb); R(absorption); R(scene_scale); R(colour_space);
+#undef R
     SIZE(RendererDesc, oit_renderer_desc);
 #define D(f) AT(RendererDesc, oit_renderer_desc, f)
     D(shading); D(see_through); D(epsilon); D(K); D(pack); D(schedule); D(capture);
@@ -55,9 +52,9 @@ static void scene(void)
     AT(Error, oit_error, status);
     AT(Error, oit_error, message);
     SIZE(SceneDesc, oit_scene_desc);
-    AT(SceneDesc, oit_scene_desc, defer_validation);
-    AT(SceneDesc, oit_scene_desc, share_count);
-    AT(SceneDesc, oit_scene_desc, share_index);
+#define C(f) AT(SceneDesc, oit_scene_desc, f)
+    C(defer_validation); C(share_count); C(share_index);
+#undef C
     SIZE(SceneInfo, oit_scene_info);
 #define I(f) AT(SceneInfo, oit_scene_info, f)
     I(triangles); I(parts); I(bounds_min); I(bounds_max); I(K); I(attributes); I(origin);
