@@ -19,38 +19,9 @@
 #include "tests/lib/gl_test_scene.h"
 #include "tests/lib/test_check.h"
 #include "tests/lib/test_gl.h"
+#include "tests/render/opaque_scene.h"
 
-/* Front to back: transparent, opaque (smaller), transparent behind it
- * (same batch), two more behind (a later batch), one in front beside. */
-static const quad_spec QUADS[] = {
-    {-2.0f, 1.6f, {200, 40, 40, 120}, 1},  {-3.0f, 1.2f, {40, 200, 40, 255}, 1},
-    {-3.5f, 3.0f, {40, 40, 200, 100}, 0},  {-4.0f, 3.5f, {200, 200, 40, 90}, 1},
-    {-5.0f, 4.5f, {40, 200, 200, 255}, 1}, {-2.5f, 0.5f, {90, 90, 90, 140}, 1},
-};
-#define NQ (int)(sizeof QUADS / sizeof QUADS[0])
-/* batches: quads [0, 1), [1, 3) with [5] first, [3, 5) */
-
-/* Fragments the pixel stores: the quads covering it up to and including
- * the nearest opaque one (see_through: all). */
-static uint64_t expect_stored(const oit_view *v, int see_through)
-{
-    uint64_t total = 0;
-    double tanh = tan(0.5 * v->camera.fovy_deg * 3.14159265358979323846 / 180.0);
-    for (int y = 0; y < v->height; y++)
-        for (int x = 0; x < v->width; x++) {
-            double dx = ((x + 0.5) / v->width * 2 - 1) * tanh * v->width / v->height;
-            double dy = (1 - (y + 0.5) / v->height * 2) * tanh;
-            double nearest = 1e30;
-            for (int i = 0; i < NQ; i++)
-                if (!see_through && QUADS[i].rgba[3] == 255 && fabs(dx * QUADS[i].z) < QUADS[i].half &&
-                    fabs(dy * QUADS[i].z) < QUADS[i].half && -QUADS[i].z < nearest)
-                    nearest = -QUADS[i].z;
-            for (int i = 0; i < NQ; i++)
-                total += fabs(dx * QUADS[i].z) < QUADS[i].half &&
-                         fabs(dy * QUADS[i].z) < QUADS[i].half && -QUADS[i].z <= nearest;
-        }
-    return total;
-}
+/* QUADS in batches: [0, 1), [1, 3) with [5] first, [3, 5) */
 
 static oit_gpu_mesh *upload(const quad_spec *q, int n, uint32_t first_prim)
 {

@@ -17,35 +17,7 @@
 #include "tests/lib/gl_test_scene.h"
 #include "tests/lib/test_check.h"
 #include "tests/lib/test_gl.h"
-
-static const quad_spec QUADS[] = {
-    {-2.0f, 1.6f, {200, 40, 40, 120}, 1},  {-3.0f, 1.2f, {40, 200, 40, 255}, 1},
-    {-3.5f, 3.0f, {40, 40, 200, 100}, 0},  {-4.0f, 3.5f, {200, 200, 40, 90}, 1},
-    {-5.0f, 4.5f, {40, 200, 200, 255}, 1}, {-2.5f, 0.5f, {90, 90, 90, 140}, 1},
-};
-#define NQ (int)(sizeof QUADS / sizeof QUADS[0])
-
-/* Fragments stored: per pixel the quads covering it up to and including
- * the nearest opaque one. */
-static uint64_t expect_stored(const oit_view *v)
-{
-    uint64_t total = 0;
-    double tanh = tan(0.5 * v->camera.fovy_deg * 3.14159265358979323846 / 180.0);
-    for (int y = 0; y < v->height; y++)
-        for (int x = 0; x < v->width; x++) {
-            double dx = ((x + 0.5) / v->width * 2 - 1) * tanh * v->width / v->height;
-            double dy = (1 - (y + 0.5) / v->height * 2) * tanh;
-            double nearest = 1e30;
-            for (int i = 0; i < NQ; i++)
-                if (QUADS[i].rgba[3] == 255 && fabs(dx * QUADS[i].z) < QUADS[i].half &&
-                    fabs(dy * QUADS[i].z) < QUADS[i].half && -QUADS[i].z < nearest)
-                    nearest = -QUADS[i].z;
-            for (int i = 0; i < NQ; i++)
-                total += fabs(dx * QUADS[i].z) < QUADS[i].half &&
-                         fabs(dy * QUADS[i].z) < QUADS[i].half && -QUADS[i].z <= nearest;
-        }
-    return total;
-}
+#include "tests/render/opaque_scene.h"
 
 /* The captures share capture.c's pre-pass; two backends keep it quick. */
 enum { N_CAPTURES = 2 };
@@ -84,7 +56,7 @@ static void check(const char *who, const oit_view *v, oit_status s, const oit_er
 {
     CHECK(s == OIT_OK, "%s at %dx%d: %s", who, v->width, v->height, err->message);
     if (s == OIT_OK) {
-        uint64_t want = expect_stored(v);
+        uint64_t want = expect_stored(v, 0);
         double diff = hand_max_diff(img, v, QUADS, NQ);
         int wrong = st->fragments != want || !(diff <= 1.0 / 255);
         if (wrong && (*bad)++ < 6)
