@@ -22,32 +22,11 @@
 #include "render/image/image.h"
 #include "partfile/triangles.h"
 #include "tests/lib/test_check.h"
+#include "tests/liboit/caller_fbo.h"
 #include "tests/liboit/part_scene.h"
 
 enum { W = 160, H = 120, PAD_X = 8, PAD_Y = 4, FW = W + 2 * PAD_X, FH = H + 2 * PAD_Y };
 static const float kClear[4] = {0.2f, 0.4f, 0.6f, 1.0f};
-
-typedef struct target {
-    GLuint fbo, tex;
-} target;
-
-static target target_make(void)
-{
-    target t;
-    glCreateTextures(GL_TEXTURE_2D, 1, &t.tex);
-    glTextureStorage2D(t.tex, 1, GL_RGBA32F, FW, FH);
-    glCreateFramebuffers(1, &t.fbo);
-    glNamedFramebufferTexture(t.fbo, GL_COLOR_ATTACHMENT0, t.tex, 0);
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE); /* DFB leaves it off */
-    glClearNamedFramebufferfv(t.fbo, GL_COLOR, 0, kClear);
-    return t;
-}
-
-static void target_free(target *t)
-{
-    glDeleteFramebuffers(1, &t->fbo);
-    glDeleteTextures(1, &t->tex);
-}
 
 enum { PROJ_DEFAULT, PROJ_ORTHO, PROJ_OFFCENTRE, PROJ_INFINITE };
 static const char *const kProjName[] = {"", " ortho", " off-centre", " infinite far"};
@@ -119,38 +98,15 @@ static int reference(oit_partfile *pf, const oit_view *v, oit_image *out,
 
 /* Compares the viewport of the target with ref; the border must still hold
  * the clear colour. */
-static void compare(const char *name, const target *t, const oit_image *ref)
+static void compare(const char *name, const caller_fbo *t, const oit_image *ref)
 {
-    float *px = malloc((size_t)FW * FH * 4 * sizeof *px);
-    glGetTextureImage(t->tex, 0, GL_RGBA, GL_FLOAT, FW * FH * 4 * sizeof *px, px);
-    uint64_t over = 0, covered = 0, border_bad = 0;
-    double max_abs = 0.0;
-    for (int y = 0; y < FH; y++)
-        for (int x = 0; x < FW; x++) {
-            const float *p = px + ((size_t)y * FW + x) * 4;
-            int vx = x - PAD_X, vy = y - PAD_Y;
-            if (vx < 0 || vy < 0 || vx >= W || vy >= H) {
-                border_bad += memcmp(p, kClear, sizeof kClear) != 0;
-                continue;
-            }
-            const float *r = ref->rgba + ((size_t)(H - 1 - vy) * W + vx) * 4;
-            double d = 0.0;
-            for (int c = 0; c < 3; c++)
-                d = fmax(d, fabs((double)p[c] - r[c]));
-            max_abs = fmax(max_abs, d);
-            over += d > 1.0 / 255.0;
-            covered += fabsf(r[0] - kClear[0]) + fabsf(r[1] - kClear[1]) +
-                       fabsf(r[2] - kClear[2]) > 1.0f / 255.0f;
-        }
-    free(px);
-    double pct = 100.0 * (double)over / (W * H), cov = 100.0 * (double)covered / (W * H);
-    printf("%s: max_abs %.5f, %.4f%% pixels over 1/255, %.1f%% covered, border pixels "
-           "changed %llu\n", name, max_abs, pct, cov, (unsigned long long)border_bad);
-    CHECK(pct <= 0.1, "%s: %.4f%% of pixels differ from DFB by more than 1/255", name, pct);
-    CHECK(cov >= 10.0, "%s: only %.1f%% of the frame is covered: the view misses the scene",
-          name, cov);
-    CHECK(border_bad == 0, "%s: %llu pixels outside the viewport changed", name,
-          (unsigned long long)border_bad);
+    viewport_diff d = caller_fbo_compare(name, t, PAD_X, PAD_Y, ref, kClear, 0,
+                                         COVER_R | COVER_G | COVER_B);
+    CHECK(d.pct <= 0.1, "%s: %.4f%% of pixels differ from DFB by more than 1/255", name, d.pct);
+    CHECK(d.cov >= 10.0, "%s: only %.1f%% of the frame is covered: the view misses the scene",
+          name, d.cov);
+    CHECK(d.border_bad == 0, "%s: %llu pixels outside the viewport changed", name,
+          (unsigned long long)d.border_bad);
 }
 
 static void check_state_restored(GLuint fbo)
@@ -177,13 +133,14 @@ static void check_gpu_stats(const char *name, oit_renderer *r, oit_scene *scene,
     oit_error err = {0};
     oit_draw_stats st = {0};
     int draws = 2; /* the caller's */
-    target scratch = target_make(); /* liboit blends over what a target holds */
+    /* liboit blends over what a target holds */
+    caller_fbo scratch = caller_fbo_make(FW, FH, kClear);
     oit_frame g = *f;
     g.framebuffer = scratch.fbo;
     for (int i = 0; i < 8 && st.gpu_frame == 0; i++, draws++)
         CHECK(oit_renderer_draw(r, scene, &g, &st, &err) == OIT_OK, "%s: %s", name,
               err.message);
-    target_free(&scratch);
+    caller_fbo_free(&scratch);
     double sum = 0;
     for (int p = 0; p < OIT_DRAW_GPU_PHASES; p++)
         sum += st.gpu_phase_ms[p];
@@ -259,7 +216,7 @@ static void draw_and_compare_proj(const char *base, oit_scene *scene, oit_partfi
     view_and_frame(&info, proj, &v, &f);
     f.viewport_x = PAD_X;
     f.viewport_y = PAD_Y;
-    target t = target_make();
+    caller_fbo t = caller_fbo_make(FW, FH, kClear);
     f.framebuffer = t.fbo;
 
     /* A caller's state that the draw must give back. */
@@ -282,7 +239,7 @@ static void draw_and_compare_proj(const char *base, oit_scene *scene, oit_partfi
 
     /* Again into a fresh target: the parts now come from the residency
      * cache (nothing uploaded), and the image must not change. */
-    target t2 = target_make();
+    caller_fbo t2 = caller_fbo_make(FW, FH, kClear);
     f.framebuffer = t2.fbo;
     oit_draw_stats st2 = {0};
     if (s == OIT_OK && info.in_core) {
@@ -343,8 +300,8 @@ static void draw_and_compare_proj(const char *base, oit_scene *scene, oit_partfi
         compare(name, &t2, &ref);
     }
     oit_image_free(&ref);
-    target_free(&t);
-    target_free(&t2);
+    caller_fbo_free(&t);
+    caller_fbo_free(&t2);
     oit_renderer_destroy(r);
 }
 
@@ -585,16 +542,15 @@ static float *draw_read_stats(oit_renderer *r, oit_scene *scene, const oit_camer
     f.viewport_y = PAD_Y;
     f.viewport_width = W;
     f.viewport_height = H;
-    target t = target_make();
+    caller_fbo t = caller_fbo_make(FW, FH, kClear);
     f.framebuffer = t.fbo;
     /* As draw_and_compare: the program DFB's reference left current was
      * deleted with it, and no caller expects that restored. */
     glUseProgram(0);
     oit_status s = oit_renderer_draw(r, scene, &f, st, &err);
     CHECK(s == OIT_OK, "%s: draw: %s", name, err.message);
-    float *px = malloc((size_t)FW * FH * 4 * sizeof *px);
-    glGetTextureImage(t.tex, 0, GL_RGBA, GL_FLOAT, FW * FH * 4 * sizeof *px, px);
-    target_free(&t);
+    float *px = caller_fbo_read(&t);
+    caller_fbo_free(&t);
     if (s != OIT_OK) {
         free(px);
         return NULL;

@@ -34,24 +34,18 @@
 #include "render/image/view.h"
 #include "partfile/triangles.h"
 #include "tests/lib/test_check.h"
+#include "tests/liboit/caller_fbo.h"
 #include "tests/liboit/part_scene.h"
 
 enum { W = 160, H = 120, PAD_X = 8, PAD_Y = 4, FW = W + 2 * PAD_X, FH = H + 2 * PAD_Y };
 static const float kClear[4] = {0.2f, 0.4f, 0.6f, 1.0f};
 static const uint8_t kOccluder[4] = {200, 60, 60, 255};
 
-typedef struct target {
-    GLuint fbo, colour, depth;
-} target;
-
 /* Colour cleared to kClear, depth (format depth_format, 0: none) to 1. */
-static target target_make(GLenum depth_format)
+static caller_fbo target_make(GLenum depth_format)
 {
-    target t = {0};
-    glCreateTextures(GL_TEXTURE_2D, 1, &t.colour);
-    glTextureStorage2D(t.colour, 1, GL_RGBA32F, FW, FH);
-    glCreateFramebuffers(1, &t.fbo);
-    glNamedFramebufferTexture(t.fbo, GL_COLOR_ATTACHMENT0, t.colour, 0);
+    caller_fbo t = caller_fbo_make(FW, FH, kClear);
+    glDepthMask(GL_TRUE);
     if (depth_format) {
         glCreateTextures(GL_TEXTURE_2D, 1, &t.depth);
         glTextureStorage2D(t.depth, 1, depth_format, FW, FH);
@@ -59,29 +53,10 @@ static target target_make(GLenum depth_format)
                                              ? GL_DEPTH_STENCIL_ATTACHMENT
                                              : GL_DEPTH_ATTACHMENT,
                                   t.depth, 0);
-    }
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glDepthMask(GL_TRUE);
-    glClearNamedFramebufferfv(t.fbo, GL_COLOR, 0, kClear);
-    if (depth_format) {
         float one = 1.0f;
         glClearNamedFramebufferfv(t.fbo, GL_DEPTH, 0, &one);
     }
     return t;
-}
-
-static void target_free(target *t)
-{
-    glDeleteFramebuffers(1, &t->fbo);
-    glDeleteTextures(1, &t->colour);
-    glDeleteTextures(1, &t->depth);
-}
-
-static float *target_read(const target *t)
-{
-    float *px = malloc((size_t)FW * FH * 4 * sizeof *px);
-    glGetTextureImage(t->colour, 0, GL_RGBA, GL_FLOAT, FW * FH * 4 * sizeof *px, px);
-    return px;
 }
 
 /* The caller's opaque pass: the occluder with its own program, depth
@@ -168,7 +143,7 @@ static void occluder_free(occluder *o)
 }
 
 /* The caller's opaque pass into t's viewport, depth tested. */
-static void occluder_draw(const occluder *o, const oit_frame *f, const target *t)
+static void occluder_draw(const occluder *o, const oit_frame *f, const caller_fbo *t)
 {
     float e1[3], e2[3], n[3], nv[3];
     for (int k = 0; k < 3; k++) {
@@ -226,7 +201,7 @@ static void check_depth(const char *name, oit_scene *scene, oit_render_pack pack
         return;
     }
     oit_frame f = *f0;
-    target with = target_make(depth_format), without = target_make(depth_format);
+    caller_fbo with = target_make(depth_format), without = target_make(depth_format);
     occluder_draw(o, &f, &with);
     occluder_draw(o, &f, &without);
 
@@ -260,7 +235,7 @@ static void check_depth(const char *name, oit_scene *scene, oit_render_pack pack
         CHECK(s == OIT_OK, "%s: draw without depth: %s", name, err.message);
     }
     if (s == OIT_OK) {
-        float *a = target_read(&with), *n = target_read(&without);
+        float *a = caller_fbo_read(&with), *n = caller_fbo_read(&without);
         uint64_t over = 0, region = 0, region_over = 0, behind = 0, front = 0, border = 0;
         double max_abs = 0.0;
         for (int y = 0; y < FH; y++)
@@ -335,8 +310,8 @@ static void check_depth(const char *name, oit_scene *scene, oit_render_pack pack
               (unsigned long long)sd.parts_drawn, (unsigned long long)sn.parts_skipped,
               (unsigned long long)sn.parts_drawn);
     }
-    target_free(&with);
-    target_free(&without);
+    caller_fbo_free(&with);
+    caller_fbo_free(&without);
     oit_renderer_destroy(r);
 }
 
@@ -349,7 +324,7 @@ static void check_bad_depth(oit_scene *scene, const oit_frame *f0)
         CHECK(0, "oit_renderer_create: %s", err.message);
         return;
     }
-    target t = target_make(GL_DEPTH_COMPONENT32F);
+    caller_fbo t = target_make(GL_DEPTH_COMPONENT32F);
     GLuint small = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &small);
     glTextureStorage2D(small, 1, GL_DEPTH_COMPONENT32F, W, H); /* the viewport's size */
@@ -366,7 +341,7 @@ static void check_bad_depth(oit_scene *scene, const oit_frame *f0)
               "depth texture %s gave %s", bad[i].what, oit_status_name(s));
     }
     glDeleteTextures(1, &small);
-    target_free(&t);
+    caller_fbo_free(&t);
     oit_renderer_destroy(r);
 }
 
@@ -438,7 +413,7 @@ static int run_projection(oit_scene *scene, oit_partfile *pf, const oit_scene_in
     float *ref = NULL, *occ = NULL;
     {
         oit_renderer *r = NULL;
-        target t = target_make(0), t_occ = target_make(GL_DEPTH_COMPONENT32F);
+        caller_fbo t = target_make(0), t_occ = target_make(GL_DEPTH_COMPONENT32F);
         s = oit_renderer_create(NULL, &r, &err);
         oit_frame fr = f;
         fr.framebuffer = t.fbo;
@@ -446,10 +421,10 @@ static int run_projection(oit_scene *scene, oit_partfile *pf, const oit_scene_in
             s = oit_renderer_draw(r, with_occ, &fr, NULL, &err);
         CHECK(s == OIT_OK, "reference: %s", err.message);
         occluder_draw(&o, &f, &t_occ);
-        ref = target_read(&t);
-        occ = target_read(&t_occ);
-        target_free(&t);
-        target_free(&t_occ);
+        ref = caller_fbo_read(&t);
+        occ = caller_fbo_read(&t_occ);
+        caller_fbo_free(&t);
+        caller_fbo_free(&t_occ);
         oit_renderer_destroy(r);
     }
     uint64_t first = 0; /* every path keeps the first one's fragments */

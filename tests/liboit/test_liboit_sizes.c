@@ -20,6 +20,7 @@
 #include "render/capture/dfb.h"
 #include "render/image/image.h"
 #include "tests/lib/test_check.h"
+#include "tests/liboit/caller_fbo.h"
 #include "tests/liboit/part_scene.h"
 
 enum {
@@ -33,21 +34,11 @@ enum {
 };
 static const float kClear[4] = {0.2f, 0.4f, 0.6f, 1.0f};
 
-typedef struct target {
-    GLuint fbo, colour, depth;
-} target;
-
-/* Colour cleared to kClear; with_depth: a depth texture, 0 in the
- * viewport's first OCCLUDED rows, 1 elsewhere. */
-static target target_make(int with_depth)
+/* Cleared to kClear; with_depth: a depth texture, 0 in the viewport's
+ * first OCCLUDED rows, 1 elsewhere. */
+static caller_fbo target_make(int with_depth)
 {
-    target t = {0};
-    glCreateTextures(GL_TEXTURE_2D, 1, &t.colour);
-    glTextureStorage2D(t.colour, 1, GL_RGBA32F, FW, FH);
-    glCreateFramebuffers(1, &t.fbo);
-    glNamedFramebufferTexture(t.fbo, GL_COLOR_ATTACHMENT0, t.colour, 0);
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glClearNamedFramebufferfv(t.fbo, GL_COLOR, 0, kClear);
+    caller_fbo t = caller_fbo_make(FW, FH, kClear);
     if (with_depth) {
         float *d = malloc(sizeof *d * FW * FH);
         for (int y = 0; y < FH; y++)
@@ -59,13 +50,6 @@ static target target_make(int with_depth)
         free(d);
     }
     return t;
-}
-
-static void target_free(target *t)
-{
-    glDeleteFramebuffers(1, &t->fbo);
-    glDeleteTextures(1, &t->colour);
-    glDeleteTextures(1, &t->depth);
 }
 
 /* The default view from twice as far (the scene on a tenth of the frame:
@@ -113,40 +97,14 @@ static int reference(const oit_mesh *mesh, const oit_view *v, oit_image *out, oi
 /* The viewport against ref (the rows below `occluded` against the clear
  * colour instead): at most 0.01% of pixels over 1/255; the border keeps
  * the clear colour. */
-static void compare(const char *name, const target *t, const oit_image *ref, int occluded)
+static void compare(const char *name, const caller_fbo *t, const oit_image *ref, int occluded)
 {
-    float *px = malloc((size_t)FW * FH * 4 * sizeof *px);
-    glGetTextureImage(t->colour, 0, GL_RGBA, GL_FLOAT, (GLsizei)((size_t)FW * FH * 4 * sizeof *px),
-                      px);
-    uint64_t over = 0, covered = 0, border_bad = 0;
-    double max_abs = 0.0;
-    for (int y = 0; y < FH; y++)
-        for (int x = 0; x < FW; x++) {
-            const float *p = px + ((size_t)y * FW + x) * 4;
-            int vx = x - PAD_X, vy = y - PAD_Y;
-            if (vx < 0 || vy < 0 || vx >= W || vy >= H) {
-                border_bad += memcmp(p, kClear, sizeof kClear) != 0;
-                continue;
-            }
-            const float *r =
-                vy < occluded ? kClear : ref->rgba + ((size_t)(H - 1 - vy) * W + vx) * 4;
-            double d = 0.0;
-            for (int c = 0; c < 3; c++)
-                d = fmax(d, fabs((double)p[c] - r[c]));
-            max_abs = fmax(max_abs, d);
-            over += d > 1.0 / 255.0;
-            covered += fabsf(r[0] - kClear[0]) + fabsf(r[2] - kClear[2]) > 1.0f / 255.0f;
-        }
-    free(px);
-    double pct = 100.0 * (double)over / ((double)W * H),
-           cov = 100.0 * (double)covered / ((double)W * H);
-    printf("%s: max_abs %.5f, %.4f%% pixels over 1/255, %.1f%% covered, border pixels "
-           "changed %llu\n",
-           name, max_abs, pct, cov, (unsigned long long)border_bad);
-    CHECK(pct <= 0.01, "%s: %.4f%% of pixels differ from DFB by more than 1/255", name, pct);
-    CHECK(cov >= 2.0, "%s: only %.1f%% of the frame is covered", name, cov);
-    CHECK(border_bad == 0, "%s: %llu pixels outside the viewport changed", name,
-          (unsigned long long)border_bad);
+    viewport_diff d = caller_fbo_compare(name, t, PAD_X, PAD_Y, ref, kClear, occluded,
+                                         COVER_R | COVER_B);
+    CHECK(d.pct <= 0.01, "%s: %.4f%% of pixels differ from DFB by more than 1/255", name, d.pct);
+    CHECK(d.cov >= 2.0, "%s: only %.1f%% of the frame is covered", name, d.cov);
+    CHECK(d.border_bad == 0, "%s: %llu pixels outside the viewport changed", name,
+          (unsigned long long)d.border_bad);
 }
 
 /* DFB's image of each shading, made once. */
@@ -177,7 +135,7 @@ static void draw_and_compare(const char *name, oit_scene *scene, const oit_mesh 
     f.viewport_y = PAD_Y;
     f.viewport_width = W;
     f.viewport_height = H;
-    target t = target_make(with_depth);
+    caller_fbo t = target_make(with_depth);
     f.framebuffer = t.fbo;
     f.depth_texture = t.depth;
     oit_draw_stats st = {0};
@@ -196,7 +154,7 @@ static void draw_and_compare(const char *name, oit_scene *scene, const oit_mesh 
               (unsigned long long)rs->fragments);
         compare(name, &t, ref, with_depth ? OCCLUDED : 0);
     }
-    target_free(&t);
+    caller_fbo_free(&t);
     oit_renderer_destroy(r);
 }
 
