@@ -206,6 +206,12 @@ gen_hard() {
     "$OIT_BIN/oitgen" hard --case "$1" -o "$2" >/dev/null || die "oitgen hard --case $1"
 }
 
+# gen_plant TRIANGLES OUT: oitgen's plant of about TRIANGLES triangles in
+# OUT, or die.
+gen_plant() {
+    "$OIT_BIN/oitgen" plant --triangles "$1" -o "$2" >/dev/null || die "oitgen plant"
+}
+
 # prep_or_die IN OUT [OPTION...]: oitprep IN -o OUT OPTION..., what it says
 # in $T/prep.txt; dies with its last line when it fails.
 prep_or_die() {

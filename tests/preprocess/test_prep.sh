@@ -54,7 +54,7 @@ stream_vs_dfb() {
 if want plant; then
 # (a) conversion, its figures, info and verify
 M="$T/plant.ply"
-"$G" plant --triangles 10000 -o "$M" >/dev/null || die "oitgen plant"
+gen_plant 10000 "$M"
 expect_rc 0 "$P" "$M" $GUAR -o "$T/t0.oitp" --max-layers 16 --stats "$T/s.json"
 for key in triangles_in triangles_out degenerate_dropped split_added pieces parts slabs \
     cells subgrid_depth seconds stages peak_rss_bytes; do

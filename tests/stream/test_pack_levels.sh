@@ -19,9 +19,8 @@ set -u
 S="$OIT_BIN/oitstream"
 need_tools "$S" "$OIT_BIN/oitgen" "$OIT_BIN/oitprep"
 scratch pack_levels
-"$OIT_BIN/oitgen" plant --triangles 10000 -o "$T/plant.ply" >/dev/null || die "oitgen exited $?"
-"$OIT_BIN/oitprep" "$T/plant.ply" -o "$T/g.oitp" --scheme guaranteed --max-layers 8 \
-    >/dev/null 2>&1 || die "oitprep exited $?"
+gen_plant 10000 "$T/plant.ply"
+prep_or_die "$T/plant.ply" "$T/g.oitp" --scheme guaranteed --max-layers 8
 run() {
     n=$1
     shift

@@ -21,10 +21,9 @@ S="$OIT_BIN/oitstream"
 need_tools "$OIT_BIN/oitgen" "$OIT_BIN/oitprep" "$S"
 scratch warm_cache
 
-"$OIT_BIN/oitgen" plant --triangles 20000 -o "$T/plant.ply" >/dev/null || die "oitgen plant"
+gen_plant 20000 "$T/plant.ply"
 P="$T/plant.oitp"
-"$OIT_BIN/oitprep" "$T/plant.ply" -o "$P" --part-triangles 512 >"$T/prep.txt" 2>&1 ||
-    die "oitprep: $(tail -n 1 "$T/prep.txt")"
+prep_or_die "$T/plant.ply" "$P" --part-triangles 512
 # eye, target, up, fovy: quadrants from above, back to the first twice,
 # then the whole plant
 cat >"$T/walk.txt" <<'EOF'

@@ -23,7 +23,7 @@ scratch oitstream_stats_gpu
     --stats "$T/d.json" >/dev/null || fail "dfb --stats"
 "$OIT_BIN/oitstream" "$T/q.oitp" --method stream --orbit 2 --size 64x64 --quiet \
     --gpu-budget 8M --stats "$T/b.json" >/dev/null || fail "stream --gpu-budget 8M"
-"$OIT_BIN/oitgen" plant --triangles 20000 -o "$T/p.ply" >/dev/null || die "oitgen plant"
+gen_plant 20000 "$T/p.ply"
 "$OIT_BIN/oitprep" "$T/p.ply" -o "$T/p.oitp" >/dev/null || die "oitprep plant"
 "$OIT_BIN/oitstream" "$T/p.oitp" --method stream --orbit 2 --size 16x16 --quiet \
     --stats "$T/p.json" >/dev/null || fail "stream plant --stats"

@@ -23,7 +23,7 @@ bunny)
     need_mesh bunny00.off
     prep_or_die "$MESH" "$P" --part-triangles 512 ;;
 plant)
-    "$OIT_BIN/oitgen" plant --triangles 20000 -o "$T/scene.ply" >/dev/null || die "oitgen plant"
+    gen_plant 20000 "$T/scene.ply"
     prep_or_die "$T/scene.ply" "$P" --part-triangles 1024 ;;
 *) echo "usage: $0 demo|bunny|plant NP" >&2; exit 2 ;;
 esac
