@@ -38,6 +38,7 @@ set -u
 bin=${1:-build/bin} out=${2:-} size=${3:-1024x1024}
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/models.sh"
+. "$here/sweep_lib.sh"
 cache=${OIT_MESH_CACHE:-$here/cache}
 views=${COMPUTE_VIEWS:-3}
 mask_max=${COMPUTE_MASK_MAX:-2000000}
@@ -45,22 +46,17 @@ export EGL_PLATFORM=${EGL_PLATFORM:-surfaceless}
 cmdline="$0 $*"
 
 die() { echo "compute_vs_dfb: $*" >&2; exit 2; }
-for t in oitgen oitprep oitstream; do
-    [ -x "$bin/$t" ] || die "$bin/$t: missing (build with: make build)"
-done
+need_bins "$bin" oitgen oitprep oitstream
 command -v python3 >/dev/null || die "python3: missing (reads the --stats files)"
 bin=$(cd "$bin" && pwd)
-work=$(mktemp -d /tmp/compute_vs_dfb.XXXXXX) || die "mktemp failed"
-trap 'rm -rf "$work"' EXIT
-trap 'exit 130' INT
-trap 'exit 143' TERM
+make_work compute_vs_dfb
 
 "$bin/oitgen" demo -o "$work/demo.ply" >/dev/null || die "oitgen demo failed"
 "$bin/oitstream" "$work/demo.ply" --method compute --size 8x8 --out "$work/probe.png" \
     --stats "$work/probe.json" --quiet 2>"$work/err.txt" ||
     die "oitstream --method compute cannot run here: $(head -c 300 "$work/err.txt")"
-renderer=$(sed -n 's/.*"renderer": "\([^"]*\)".*/\1/p' "$work/probe.json" | head -n 1)
-tag=$(echo "${renderer:-unknown}" | tr 'A-Z' 'a-z' | sed 's/[^a-z0-9]\{1,\}/-/g; s/^-//; s/-$//' | cut -c1-40)
+renderer=$(renderer_of "$work/probe.json")
+tag=$(renderer_tag "${renderer:-unknown}")
 out=${out:-bench/compute-vs-dfb-$tag.md}
 mkdir -p "$(dirname "$out")" || die "$(dirname "$out"): cannot create"
 case $renderer in *llvmpipe*) def12=0 ;; *) def12=1 ;; esac

@@ -60,21 +60,17 @@ set -u
 bin=${1:-build/bin} outdir=${2:-bench}
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/models.sh"
+. "$here/sweep_lib.sh"
 cache=${OIT_MESH_CACHE:-$here/cache}
 size=${GPU_CHECK_SIZE:-1024x1024}
 views=${GPU_CHECK_VIEWS:-4}
 export EGL_PLATFORM=${EGL_PLATFORM:-surfaceless}
 
 die() { echo "gpu_check: $*" >&2; exit 2; }
-for t in oitgen oitprep oitstream oitbench; do
-    [ -x "$bin/$t" ] || die "$bin/$t: missing (build with: make build)"
-done
+need_bins "$bin" oitgen oitprep oitstream oitbench
 bin=$(cd "$bin" && pwd)
 build=$(dirname "$bin")
-work=$(mktemp -d /tmp/gpu_check.XXXXXX) || die "mktemp failed"
-trap 'rm -rf "$work"' EXIT
-trap 'exit 130' INT
-trap 'exit 143' TERM
+make_work gpu_check
 failures=0
 rows="$work/rows"
 caprows="$work/caprows"
@@ -85,9 +81,9 @@ caprows="$work/caprows"
 "$bin/oitgen" demo -o "$work/demo.ply" >/dev/null || die "oitgen demo failed"
 "$bin/oitstream" "$work/demo.ply" --size 8x8 --out "$work/probe.png" --stats "$work/probe.json" \
     --quiet || die "oitstream cannot render here (no GL device?)"
-renderer=$(sed -n 's/.*"renderer": "\([^"]*\)".*/\1/p' "$work/probe.json" | head -n 1)
+renderer=$(renderer_of "$work/probe.json")
 [ -n "$renderer" ] || renderer=unknown
-tag=$(echo "$renderer" | tr 'A-Z' 'a-z' | sed 's/[^a-z0-9]\{1,\}/-/g; s/^-//; s/-$//' | cut -c1-40)
+tag=$(renderer_tag "$renderer")
 mkdir -p "$outdir" || die "$outdir: cannot create"
 report="$outdir/gpu-check-$tag.md"
 case $renderer in *llvmpipe*) def12=0 ;; *) def12=1 ;; esac
