@@ -42,7 +42,7 @@ void oit_dfb_set_opaque(oit_dfb *d, const oit_opaque_depth *o)
 /* The passes' stages, glsl/dfb_*.glsl (CMakeLists.txt). The resolves
  * composite a band of rows; one leaves colours, the other the state. */
 extern const char oit_dfb_count_fs[], oit_dfb_store_fs[], oit_dfb_resolve_cs[],
-    oit_dfb_resolve_main[], oit_dfb_resolve_state_cs[], oit_dfb_resolve_state_main[];
+    oit_dfb_resolve_main[], oit_dfb_resolve_state_cs[];
 
 static const oit_glsl_program programs[PROG_N] = {
     [PROG_COUNT] = {"DFB count pass", .fs = {oit_dfb_count_fs}},
@@ -50,8 +50,9 @@ static const oit_glsl_program programs[PROG_N] = {
     [PROG_RESOLVE] = {"DFB resolve", .cs = {oit_glsl_composite, oit_dfb_resolve_cs,
                                             oit_glsl_segment_composite, oit_dfb_resolve_main}},
     [PROG_STATE] = {"DFB resolve to state",
-                    .cs = {oit_glsl_composite, oit_glsl_state_io, oit_dfb_resolve_state_cs,
-                           oit_glsl_segment_composite, oit_dfb_resolve_state_main}},
+                    .cs = {"#define OIT_TO_STATE 1\n", oit_glsl_composite, oit_glsl_state_io,
+                           oit_dfb_resolve_state_cs, oit_glsl_segment_composite,
+                           oit_dfb_resolve_main}},
 };
 
 void oit_dfb_glsl_variants(oit_glsl_visit *visit, void *user)

@@ -4,9 +4,7 @@
  * counted fragment finds its slot. */
 layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };
 void main() {
-    if (oit_clipped()) discard;
-    uint p = oit_pixel_index();
-    if (oit_behind_opaque()) discard;
-    if (oit_saturated(p)) discard;
+    uint p;
+    if (!oit_capture_keeps(p)) discard;
     atomicAdd(counts[p], 1u);
 }

@@ -7,10 +7,8 @@ layout(std430, binding = OIT_BIND_COUNTS) buffer Counts { uint counts[]; };
 layout(std430, binding = OIT_BIND_OFFSETS) readonly buffer Offsets { uint offsets[]; };
 layout(std430, binding = OIT_BIND_FRAGS) writeonly buffer Frags { uvec4 frags[]; };
 void main() {
-    if (oit_clipped()) discard;
-    uint p = oit_pixel_index();
-    if (oit_behind_opaque()) discard;
-    if (oit_saturated(p)) discard;
+    uint p;
+    if (!oit_capture_keeps(p)) discard;
     /* a pixel without a segment keeps its count (a predicted batch's
      * spill pass: one the prediction held is at 0 already) */
     if (offsets[p + 1u] == offsets[p]) discard;

@@ -4,10 +4,8 @@
  * more come, so that the frame knows it lost fragments. */
 uniform ivec4 u_tile;
 void main() {
-    if (oit_clipped()) discard;
-    uint p = oit_pixel_index();
-    if (oit_behind_opaque()) discard;
-    if (oit_saturated(p)) discard;
+    uint p;
+    if (!oit_capture_keeps(p)) discard;
     ivec2 px = ivec2(gl_FragCoord.xy) - u_tile.xy;
     uint q = uint(px.y * (u_tile.z - u_tile.x) + px.x);
     uint c = atomicAdd(counts[p], 1u);

@@ -7,10 +7,8 @@ layout(std430, binding = OIT_BIND_FRAGS) writeonly buffer Slots { uvec4 slots[];
 uniform int u_W;
 uniform ivec4 u_tile;
 void main() {
-    if (oit_clipped()) discard;
-    if (oit_behind_opaque()) discard;
-    uint p = oit_pixel_index();
-    if (oit_saturated(p)) discard;
+    uint p;
+    if (!oit_capture_keeps(p)) discard;
     uint q = oit_rect_index(ivec2(gl_FragCoord.xy), u_tile);
     uint P = uint((u_tile.z - u_tile.x) * (u_tile.w - u_tile.y));
     uint c = atomicAdd(counts[p], 1u);

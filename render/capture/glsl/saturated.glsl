@@ -9,3 +9,13 @@ bool oit_saturated(uint p) {
     vec3 T = oit_state_T(p);
     return max(T.r, max(T.g, T.b)) < u_epsilon;
 }
+/* The capture fills' first tests of a fragment, in this order: outside a
+ * section plane, behind the caller's opaque depth, on a saturated pixel.
+ * false: the fragment is neither counted nor stored; else p is its
+ * pixel. */
+bool oit_capture_keeps(out uint p) {
+    if (oit_clipped()) return false;
+    p = oit_pixel_index();
+    if (oit_behind_opaque()) return false;
+    return !oit_saturated(p);
+}

@@ -13,10 +13,9 @@ layout(std430, binding = OIT_BIND_FRAGS) writeonly buffer Routed { uvec4 routed[
 layout(location = OIT_OUT_COLOUR) out uvec4 o_frag;
 #endif
 void main() {
-    if (oit_clipped()) discard;
-    if (oit_behind_opaque()) discard;
-    if (oit_saturated(oit_pixel_index())) discard;
-    uint c = atomicAdd(counts[oit_pixel_index()], 1u);
+    uint p;
+    if (!oit_capture_keeps(p)) discard;
+    uint c = atomicAdd(counts[p], 1u);
 #ifndef OIT_FIRSTK_PASS
     if (c == uint(u_K)) atomicAdd(overflow, 1u);
 #endif
