@@ -39,11 +39,13 @@ const oit_method oit_method_dfb = {
     .pixel_bytes = dfb_pixel_bytes,
 };
 
-static oit_status capture_create(oit_capture_kind kind, const oit_method_options *opt,
+/* The whole mesh is one batch of K slots a pixel (a budget cut). */
+static oit_status capture_create(oit_render_capture fill, const oit_method_options *opt,
                                  void **impl, oit_error *err)
 {
     oit_capture *c = NULL;
-    oit_capture_desc d = {.kind = kind, .K = opt ? opt->max_layers : 0,
+    oit_capture_desc d = {.fill = fill, .cut = OIT_RENDER_PACK_BUDGET,
+                          .K = opt ? opt->max_layers : 0,
                           .settings.store_limit = opt ? opt->store_limit : 0};
     oit_status s = oit_capture_create(&d, &c, err);
     *impl = c;
@@ -75,12 +77,13 @@ static uint64_t capture_pixel_bytes(const void *impl, const oit_view *view)
     return oit_capture_pixel_bytes(view);
 }
 
-/* The table of the capture backend KIND, drawing the mesh as one batch. */
-#define CAPTURE_METHOD(NAME, KIND)                                                         \
+/* The table of the capture with the fill FILL, drawing the mesh as one
+ * batch. */
+#define CAPTURE_METHOD(NAME, FILL)                                                         \
     static oit_status NAME##_create(const oit_mesh *mesh, const oit_method_options *opt,  \
                                     void **impl, oit_error *err)                           \
     {                                                                                      \
-        return capture_create(KIND, opt, impl, err);                                       \
+        return capture_create(FILL, opt, impl, err);                                       \
     }                                                                                      \
     const oit_method oit_method_##NAME = {.name = #NAME,                                   \
                                           .flags = OIT_METHOD_GL | OIT_METHOD_CLIP,        \
@@ -89,7 +92,7 @@ static uint64_t capture_pixel_bytes(const void *impl, const oit_view *view)
                                           .destroy = capture_destroy,                      \
                                           .pixel_bytes = capture_pixel_bytes}
 
-CAPTURE_METHOD(array, OIT_CAPTURE_ARRAY);
-CAPTURE_METHOD(stencil, OIT_CAPTURE_STENCIL);
+CAPTURE_METHOD(array, OIT_RENDER_CAPTURE_ARRAY);
+CAPTURE_METHOD(stencil, OIT_RENDER_CAPTURE_STENCIL);
 /* The compute capture (capture_compute.h): no raster pipeline. */
-CAPTURE_METHOD(compute, OIT_CAPTURE_COMPUTE);
+CAPTURE_METHOD(compute, OIT_RENDER_CAPTURE_COMPUTE);

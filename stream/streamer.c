@@ -71,70 +71,29 @@ const oit_capture_choice *oit_streamer_capture_choice(const oit_streamer *s)
     return &s->choice;
 }
 
-/* A routed capture at stencil_k samples, kept once its self-test passes. */
-typedef struct routed_try {
-    oit_capture_desc desc;
-    oit_capture *made;
-} routed_try;
-
-static oit_status try_routed(void *ctx, int stencil_k, oit_error *err)
-{
-    routed_try *t = ctx;
-    t->desc.stencil_k = stencil_k;
-    return oit_capture_create(&t->desc, &t->made, err);
-}
-
-/* The capture's settings, from the streamer's: split_budget gave both
- * budgets their values (the counted and first-K captures store fragments
- * beside their slots; 32 MiB, 2 a pixel at 1024x1024, split the packs of
- * dense views, which then drew again: bench/stream-vs-dfb-llvmpipe.md).
- * first-K's pass 2 and counted batches run without waits (a short frame
- * is drawn again: render); only auto's counted frames predict from
- * first-K's counts. */
-static oit_capture_desc capture_desc(const oit_streamer *s, const oit_streamer_desc *desc,
-                                     oit_capture_kind kind)
-{
-    return (oit_capture_desc){
-        .kind = kind, .K = desc->K, .faults = desc->capture_faults,
-        .programs = desc->programs,
-        .settings = {.epsilon = desc->epsilon, .slot_budget = s->budget.capture,
-                     .store_budget = s->budget.store, .store_limit = desc->store_limit,
-                     .timer = s->timer, .no_wait = 1, .no_counts = !s->adaptive}};
-}
-
-/* The pack mode's capture, its K-slot fills as desc->capture chooses. */
+/* The pack mode's capture (mode: what the packs are cut for), its K-slot
+ * fills as desc->capture asks (render/capture/capture.h's table). The
+ * capture's settings: split_budget gave both budgets their values (the
+ * counted and first-K captures store fragments beside their slots; 32
+ * MiB, 2 a pixel at 1024x1024, split the packs of dense views, which then
+ * drew again: bench/stream-vs-dfb-llvmpipe.md); first-K's pass 2 and
+ * counted batches run without waits (a short frame is drawn again:
+ * render); only auto's counted frames predict from first-K's counts. */
 static oit_status create_capture(oit_streamer *s, const oit_streamer_desc *desc,
                                  oit_render_pack mode, oit_error *err)
 {
-    /* No K-slot fill and no per-pixel limit: exact with every pack mode. */
-    if (desc->capture == OIT_RENDER_CAPTURE_COMPUTE) {
-        s->choice.asked = desc->capture;
-        oit_capture_desc cd = capture_desc(s, desc, OIT_CAPTURE_COMPUTE);
-        return oit_capture_create(&cd, &s->capture, err);
-    }
     const oit_streamer_names n = oit_streamer_names_resolve(desc->names);
-    if (mode == OIT_RENDER_PACK_COUNTED) {
-        s->choice.asked = desc->capture;
-        if (desc->capture != OIT_RENDER_CAPTURE_AUTO && desc->capture != OIT_RENDER_CAPTURE_ARRAY)
-            return oit_error_set(err, OIT_ERR_ARGUMENT, "%s = %s: counted packs have no "
-                                 "K-slot fill to route (%s = first-k, budget or disjoint)",
-                                 n.capture, oit_capture_asked_name(desc->capture)
-                                     ? oit_capture_asked_name(desc->capture) : "?", n.pack);
-        oit_capture_desc cd = capture_desc(s, desc, OIT_CAPTURE_COUNTED);
-        return oit_capture_create(&cd, &s->capture, err);
-    }
-    int firstk = mode == OIT_RENDER_PACK_FIRSTK;
-    routed_try t = {capture_desc(s, desc, firstk ? OIT_CAPTURE_FIRSTK : OIT_CAPTURE_STENCIL),
-                    NULL};
-    oit_status st = oit_capture_choose(desc->capture, n.capture, desc->K, firstk, try_routed,
-                                       &t, &s->choice, err);
-    if (st != OIT_OK || t.made) {
-        s->capture = t.made;
-        return st;
-    }
-    t.desc.kind = firstk ? OIT_CAPTURE_FIRSTK : OIT_CAPTURE_ARRAY;
-    t.desc.stencil_k = 0;
-    return oit_capture_create(&t.desc, &s->capture, err);
+    oit_capture_desc cd = {
+        .fill = desc->capture, .cut = mode, .K = desc->K, .faults = desc->capture_faults,
+        .programs = desc->programs, .fill_name = n.capture, .cut_name = n.pack,
+        .settings = {.epsilon = desc->epsilon, .slot_budget = s->budget.capture,
+                     .store_budget = s->budget.store, .store_limit = desc->store_limit,
+                     .timer = s->timer, .no_wait = 1, .no_counts = !s->adaptive}};
+    s->choice = (oit_capture_choice){.asked = desc->capture};
+    oit_status st = oit_capture_create(&cd, &s->capture, err);
+    if (st == OIT_OK)
+        s->choice = *oit_capture_get_choice(s->capture);
+    return st;
 }
 
 /* desc's reader_threads resolved: the render thread draws, the others

@@ -18,6 +18,7 @@
 #ifndef OIT_RENDER_CAPTURE_H
 #define OIT_RENDER_CAPTURE_H
 
+#include "oit/render_modes.h"
 #include "render/gl/gpu_mesh.h"
 #include "render/gl/frag_glsl.h"
 
@@ -142,31 +143,41 @@ typedef struct oit_capture_settings {
     int no_counts;
 } oit_capture_settings;
 
-/* A capture, resolved once at oit_capture_create; zero fields mean the
- * default (but K). */
+/* A capture, resolved once at oit_capture_create from two independent
+ * axes, the K-slot fill and the cut its batches come in (liboit's modes,
+ * oit/render_modes.h); zero fields mean the default (but K):
+ *   fill \ cut     BUDGET, DISJOINT    COUNTED            FIRSTK, AUTO (0)
+ *   ARRAY           array               counted            first-K
+ *   STENCIL         stencil             refused            first-K, routed
+ *   AUTO (0)        stencil or array    counted            first-K, routed or not
+ *   COMPUTE         compute             compute            compute
+ * Where AUTO may route, stencil routing is taken where its self-test
+ * passes (capture_choice.h: at K for K-slot batches; first-K also takes
+ * the largest power of two below K that passes), else array slots, the
+ * reason kept (oit_capture_get_choice). STENCIL where no try passes:
+ * OIT_ERR_UNSUPPORTED with the reason, the sample mode's numbers where it
+ * is that (and the largest K of true multisamples where the driver
+ * tells). */
 typedef struct oit_capture_desc {
-    /* The backend; OIT_CAPTURE_AUTO: STENCIL where its self-test passes at
-     * K, else ARRAY at the same K. STENCIL fails with OIT_ERR_UNSUPPORTED
-     * where the sample mode or the self-test rules it out at this K; the
-     * message says which, with the numbers (and the largest K of true
-     * multisamples where the driver tells). */
-    oit_capture_kind kind;
+    oit_render_capture fill;
+    oit_render_pack cut;
     int K; /* OIT_CAPTURE_K_MIN..OIT_CAPTURE_K_MAX */
-    /* The samples a pixel the K-slot fills are routed into by the stencil,
-     * after the self-test passed at that count (capture_choice.h decides
-     * what to try; no fallback: OIT_ERR_UNSUPPORTED with the reason where
-     * it does not): OIT_CAPTURE_STENCIL 0 or K; OIT_CAPTURE_FIRSTK 2..K,
-     * its first pass (capture_firstk.h) keeping a pixel's first stencil_k
-     * fragments in the samples while it counts every fragment (pixels that
-     * got more take the second pass, as with array slots; the target holds
+    /* Testing: the samples a pixel the fill is routed into, exactly, after
+     * the self-test passed at that count (no choice, no fallback): fill
+     * STENCIL only; K for K-slot batches, 2..K for first-K's first pass
+     * (capture_firstk.h), which keeps a pixel's first stencil_k fragments
+     * in the samples while it counts every fragment (pixels that got more
+     * take the second pass, as with array slots; the target holds
      * stencil_k samples of the whole frame, outside the slot budget: 20
-     * bytes a sample, 160 MiB at 1024x1024, 8 samples), 0 array slots.
-     * Other kinds: 0. */
+     * bytes a sample, 160 MiB at 1024x1024, 8 samples). 0: chosen. */
     int stencil_k;
-    unsigned faults; /* testing: OIT_CAPTURE_FAULT_* and _TEST_* below */
+    unsigned faults; /* testing: OIT_CAPTURE_FAULT_* and _TEST_* above */
     /* The capture's programs are built through programs
      * (render/gl/program_cache.h; NULL: compiled), which must outlive it. */
     oit_program_cache *programs;
+    /* How the errors name fill and cut, in the caller's spelling
+     * ("oit_renderer_desc.capture"); NULL: "capture fill", "capture cut". */
+    const char *fill_name, *cut_name;
     oit_capture_settings settings;
 } oit_capture_desc;
 
@@ -174,6 +185,11 @@ oit_status oit_capture_create(const oit_capture_desc *desc, oit_capture **out, o
 
 /* The samples of c's routed fills; 0: none (array slots). */
 int oit_capture_routed_k(const oit_capture *c);
+/* What oit_capture_create chose for the fill (capture_choice.h): asked,
+ * the slots that run (AUTO where no K-slot fill does: counted, compute),
+ * the samples routed, the self-test's reason where AUTO fell back. */
+struct oit_capture_choice;
+const struct oit_capture_choice *oit_capture_get_choice(const oit_capture *c);
 /* "array", "stencil", "counted", "first-k", "compute" (NULL for AUTO or
  * unknown). */
 const char *oit_capture_kind_name(oit_capture_kind kind);

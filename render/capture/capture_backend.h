@@ -10,13 +10,14 @@
  *                                      overflow (capture_firstk.c)
  *   compute  capture_compute.c         binning, coverage, order and compositing
  *                                      in compute shaders
- * capture.c picks the table once, at creation; nothing else asks which
+ * capture_create.c picks the table once, at creation; nothing else asks which
  * backend runs (tests/render/test_render_layout.sh). Internal to
  * render/capture/. */
 #ifndef OIT_RENDER_CAPTURE_BACKEND_H
 #define OIT_RENDER_CAPTURE_BACKEND_H
 
 #include "render/capture/capture.h"
+#include "render/capture/capture_choice.h"
 #include "render/capture/capture_counted.h"
 #include "render/capture/capture_stencil.h"
 #include "render/capture/opaque_keys.h"
@@ -55,6 +56,7 @@ struct oit_capture {
     oit_program_cache *programs; /* where its programs are built through; NULL: none */
     int K;
     int routed_k; /* samples a pixel of the routed fills; 0: none */
+    oit_capture_choice choice; /* the fill creation chose (oit_capture_get_choice) */
     unsigned faults;
     oit_capture_settings set; /* oit_capture_desc.settings, or as applied */
     oit_opaque_depth opaque; /* the caller's depth; keyed: this frame's opaque triangles */
@@ -75,7 +77,7 @@ struct oit_capture {
 struct oit_capture_ops {
     oit_capture_kind kind;
     const char *name; /* oit_capture_kind_name */
-    size_t size;      /* of its state, which capture.c allocates zeroed as c->be */
+    size_t size;      /* of its state, which capture_create.c allocates zeroed as c->be */
     /* Sets c->be up; stencil_k: the samples of routed fills (0: none). */
     oit_status (*create)(oit_capture *c, int stencil_k, oit_error *err);
     /* Releases what c->be holds, however far create got. */

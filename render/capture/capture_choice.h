@@ -2,7 +2,7 @@
  * stencil-routed A-buffer where its self-test passes on this driver,
  * array slots otherwise. Decided without GL: the self-test comes in as a
  * function, so that tests can inject its verdicts (capture.h's
- * oit_capture_create with a stencil_k is the real one).
+ * oit_capture_create runs it with the real one).
  *
  * The tries: K first; where the capture may route fewer samples than K
  * (first-K's pass 1: pixels of more take the second pass, exact either

@@ -213,7 +213,9 @@ static oit_capture *new_capture(oit_capture_kind kind, int K, const char *name)
 {
     oit_error err = {0};
     oit_capture *c = NULL;
-    if (oit_capture_create(&(oit_capture_desc){.kind = kind, .K = K}, &c, &err) != OIT_OK) {
+    if (oit_capture_create(&(oit_capture_desc){.fill = capture_fill(kind),
+                                               .cut = capture_cut(kind), .K = K},
+        &c, &err) != OIT_OK) {
         CHECK(0, "%s: capture: %s", name, err.message);
         return NULL;
     }
@@ -606,7 +608,8 @@ int main(void)
     oit_gl *gl = test_gl_open();
     oit_error err = {0};
     oit_capture *c = NULL;
-    if (oit_capture_create(&(oit_capture_desc){.kind = OIT_CAPTURE_ARRAY, .K = 8},
+    if (oit_capture_create(&(oit_capture_desc){.fill = OIT_RENDER_CAPTURE_ARRAY,
+                                               .cut = OIT_RENDER_PACK_BUDGET, .K = 8},
                            &c, &err) != OIT_OK) {
         fprintf(stderr, "FAIL: array capture: %s\n", err.message);
         return 1;
@@ -614,7 +617,8 @@ int main(void)
     run_all(c, 8, "array K=8");
     oit_capture_destroy(c);
 
-    oit_status s = oit_capture_create(&(oit_capture_desc){.kind = OIT_CAPTURE_STENCIL, .K = 4},
+    oit_status s = oit_capture_create(&(oit_capture_desc){.fill = OIT_RENDER_CAPTURE_STENCIL,
+                                                          .cut = OIT_RENDER_PACK_BUDGET, .K = 4},
                                       &c, &err);
     int stencil_ok = s == OIT_OK;
     if (s == OIT_ERR_UNSUPPORTED) {
@@ -627,12 +631,14 @@ int main(void)
     } else {
         CHECK(0, "stencil capture: %s", err.message);
     }
-    s = oit_capture_create(&(oit_capture_desc){.kind = OIT_CAPTURE_STENCIL, .K = 64 / 4}, &c, &err);
+    s = oit_capture_create(&(oit_capture_desc){.fill = OIT_RENDER_CAPTURE_STENCIL,
+                                               .cut = OIT_RENDER_PACK_BUDGET, .K = 64 / 4},
+        &c, &err);
     printf("stencil K=16: %s: %s\n", oit_status_name(s), s == OIT_OK ? "" : err.message);
     oit_capture_destroy(s == OIT_OK ? c : NULL);
 
     oit_capture *a = NULL;
-    CHECK(oit_capture_create(&(oit_capture_desc){.kind = OIT_CAPTURE_AUTO, .K = 4},
+    CHECK(oit_capture_create(&(oit_capture_desc){.cut = OIT_RENDER_PACK_BUDGET, .K = 4},
                              &a, &err) == OIT_OK, "auto: %s", err.message);
     if (a) {
         int chose_stencil = oit_capture_backend(a) == OIT_CAPTURE_STENCIL;
@@ -647,7 +653,8 @@ int main(void)
     for (int kind = 0; kind < 2; kind++) {
         oit_capture *e = NULL;
         oit_capture_kind k = kind ? OIT_CAPTURE_FIRSTK : OIT_CAPTURE_COUNTED;
-        CHECK(oit_capture_create(&(oit_capture_desc){.kind = k, .K = 8},
+        CHECK(oit_capture_create(&(oit_capture_desc){.fill = capture_fill(k),
+                                                     .cut = capture_cut(k), .K = 8},
                                  &e, &err) == OIT_OK, "%s", err.message);
         if (e)
             test_end_in_place(e, kind ? "first-k" : "counted");

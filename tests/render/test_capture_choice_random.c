@@ -12,10 +12,11 @@
  *    tried (K, then with fewer_ok each power of two below K down to 2, in
  *    that order), and STENCIL only at the first that passes, at K itself
  *    for K-slot packs;
- *  - oit_capture_create's routed samples over every kind, K and
- *    stencil_k: anything but 0 (unrouted) or 2 <= stencil_k <= K for the
- *    stencil and first-K captures (the stencil capture's own K alone)
- *    refused before any GL;
+ *  - oit_capture_create's arguments over every fill, cut, K and
+ *    stencil_k: a fill or cut out of its enum, a stencil fill of counted
+ *    batches, samples routed exactly by anything but a stencil fill, or
+ *    other than 2..K for first-K and K for K-slot batches: refused
+ *    before any GL;
  *  - oit_stencil_probe_verdict on the probe's true fill (samples in any
  *    order, garbage past the covering ones) and on that fill with one
  *    random fault: a count off, a fragment lost, a sample holding a
@@ -225,35 +226,39 @@ static void check_choose(void)
 
 static void check_routed_args(void)
 {
-    const oit_capture_kind kinds[] = {OIT_CAPTURE_AUTO,    OIT_CAPTURE_ARRAY,
-                                      OIT_CAPTURE_STENCIL, OIT_CAPTURE_COUNTED,
-                                      OIT_CAPTURE_FIRSTK,  OIT_CAPTURE_COMPUTE};
     int valid = 0;
-    for (size_t i = 0; i < sizeof kinds / sizeof *kinds; i++)
-        for (int K = -1; K <= 18; K++)
-            for (int sk = -1; sk <= 18; sk++) {
-                /* 0: unrouted (STENCIL: at K), any kind */
-                int ok = K >= 2 && K <= 16 &&
-                         (sk == 0 || (sk >= 2 && sk <= K &&
-                                      (kinds[i] == OIT_CAPTURE_FIRSTK ||
-                                       (kinds[i] == OIT_CAPTURE_STENCIL && sk == K))));
-                if (ok) { /* would build GL objects: test_capture_routed's */
-                    valid++;
-                    continue;
+    for (int fill = -1; fill <= 6; fill++)
+        for (int cut = -1; cut <= 5; cut++)
+            for (int K = -1; K <= 18; K++)
+                for (int sk = -1; sk <= 18; sk++) {
+                    /* the model of capture.h's table, written here */
+                    int fill_ok = fill == 0 || fill == 1 || fill == 2 || fill == 5;
+                    int cut_ok = cut >= 0 && cut <= 4;
+                    int firstk = cut == OIT_RENDER_PACK_FIRSTK || cut == OIT_RENDER_PACK_AUTO;
+                    int routed_ok = sk == 0 || (fill == OIT_RENDER_CAPTURE_STENCIL && sk >= 2 &&
+                                                sk <= K && (firstk || sk == K));
+                    int ok = K >= 2 && K <= 16 && fill_ok && cut_ok && routed_ok &&
+                             !(fill == OIT_RENDER_CAPTURE_STENCIL &&
+                               cut == OIT_RENDER_PACK_COUNTED);
+                    if (ok) { /* would build GL objects: test_capture_routed's */
+                        valid++;
+                        continue;
+                    }
+                    oit_capture *c = (oit_capture *)&valid;
+                    oit_error err = {0};
+                    oit_capture_desc d = {.fill = (oit_render_capture)fill,
+                                          .cut = (oit_render_pack)cut, .K = K, .stencil_k = sk};
+                    oit_status s = oit_capture_create(&d, &c, &err);
+                    CHECK(s == OIT_ERR_ARGUMENT && c == NULL,
+                          "fill %d, cut %d at K=%d with %d samples: %s, expected refused", fill,
+                          cut, K, sk, oit_status_name(s));
                 }
-                oit_capture *c = (oit_capture *)&valid;
-                oit_error err = {0};
-                oit_status s = oit_capture_create(&(oit_capture_desc){.kind = kinds[i], .K = K,
-                                                                      .stencil_k = sk}, &c, &err);
-                CHECK(s == OIT_ERR_ARGUMENT && c == NULL,
-                      "routed %s at K=%d with %d samples: %s, expected refused",
-                      oit_capture_kind_name(kinds[i]) ? oit_capture_kind_name(kinds[i]) : "auto",
-                      K, sk, oit_status_name(s));
-            }
-    printf("routed arguments: %d valid combinations left to test_capture_routed\n", valid);
-    /* 0 samples for each kind and K; 2..K for first-K; K for stencil */
-    CHECK(valid == 6 * 15 + 120 + 15, "%d valid combinations, the model says %d", valid,
-          6 * 15 + 120 + 15);
+    printf("capture arguments: %d valid combinations left to test_capture_routed\n", valid);
+    /* K 2..16 (15 values), 0 samples: 4 fills x 5 cuts less stencil x
+     * counted; stencil routed exactly: first-K's two cuts 2..K samples
+     * (120 a cut), the two K-slot cuts (budget, disjoint) K samples */
+    int want = 15 * (4 * 5 - 1) + 2 * 120 + 2 * 15;
+    CHECK(valid == want, "%d valid combinations, the model says %d", valid, want);
 }
 
 /* ---- the probe's verdict ---- */

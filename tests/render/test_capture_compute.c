@@ -369,7 +369,7 @@ static void test_list_overflow(void)
 {
     oit_error err = {0};
     oit_capture *c = NULL;
-    if (oit_capture_create(&(oit_capture_desc){.kind = OIT_CAPTURE_COMPUTE, .K = 8,
+    if (oit_capture_create(&(oit_capture_desc){.fill = OIT_RENDER_CAPTURE_COMPUTE, .K = 8,
                                                .faults = OIT_CAPTURE_TEST_COMPUTE_LIST_SHORT},
                            &c, &err) != OIT_OK) {
         fprintf(stderr, "FAIL: compute capture, short lists: %s\n", err.message);
@@ -398,7 +398,7 @@ static void test_no_probe(void)
 {
     oit_error err = {0};
     oit_capture *c = NULL;
-    if (oit_capture_create(&(oit_capture_desc){.kind = OIT_CAPTURE_COMPUTE, .K = 8,
+    if (oit_capture_create(&(oit_capture_desc){.fill = OIT_RENDER_CAPTURE_COMPUTE, .K = 8,
                                                .faults = OIT_CAPTURE_TEST_COMPUTE_NO_PROBE},
                            &c, &err) != OIT_OK) {
         fprintf(stderr, "FAIL: compute capture, no probe: %s\n", err.message);
@@ -421,7 +421,7 @@ int main(void)
     oit_gl *gl = test_gl_open();
     oit_error err = {0};
     oit_capture *c = NULL;
-    if (oit_capture_create(&(oit_capture_desc){.kind = OIT_CAPTURE_COMPUTE, .K = 8},
+    if (oit_capture_create(&(oit_capture_desc){.fill = OIT_RENDER_CAPTURE_COMPUTE, .K = 8},
                            &c, &err) != OIT_OK) {
         fprintf(stderr, "FAIL: compute capture: %s\n", err.message);
         return 1;

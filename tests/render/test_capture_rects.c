@@ -153,7 +153,8 @@ static oit_capture *capture_new(const capture_cfg *cfg)
 {
     oit_error err = {0};
     oit_capture *c = NULL;
-    if (oit_capture_create(&(oit_capture_desc){.kind = cfg->kind, .K = cfg->K},
+    if (oit_capture_create(&(oit_capture_desc){.fill = capture_fill(cfg->kind),
+                                               .cut = capture_cut(cfg->kind), .K = cfg->K},
                            &c, &err) != OIT_OK) {
         CHECK(0, "%s: capture: %s", cfg->name, err.message);
         return NULL;

@@ -77,15 +77,18 @@ static void stencil_vs_array(const oit_gpu_mesh *m, const oit_view *v, const tru
     oit_capture *routed = NULL, *array = NULL;
     oit_image a = {0}, b = {0};
     oit_frame_stats sa = {0}, sb = {0};
-    oit_status s = oit_capture_create(&(oit_capture_desc){.kind = OIT_CAPTURE_STENCIL, .K = K,
-                                                          .stencil_k = K,
+    oit_status s = oit_capture_create(&(oit_capture_desc){.fill = OIT_RENDER_CAPTURE_STENCIL,
+                                                          .cut = OIT_RENDER_PACK_BUDGET,
+                                                          .K = K, .stencil_k = K,
                                                           .faults = OIT_CAPTURE_TEST_ROUTE_BY_COPY},
                                       &routed, &err);
     CHECK(s == OIT_OK, "stencil K=%d routed by copies: the self-test refused it: %s", K,
           err.message);
     if (s != OIT_OK)
         return;
-    s = oit_capture_create(&(oit_capture_desc){.kind = OIT_CAPTURE_ARRAY, .K = K}, &array, &err);
+    s = oit_capture_create(&(oit_capture_desc){.fill = OIT_RENDER_CAPTURE_ARRAY,
+                                               .cut = OIT_RENDER_PACK_BUDGET, .K = K},
+        &array, &err);
     if (s == OIT_OK)
         s = render(routed, m, v, &a, &sa, &err);
     if (s == OIT_OK)
@@ -121,8 +124,9 @@ static void firstk_routed(const oit_gpu_mesh *m, const oit_view *v, const truth 
     oit_capture *c = NULL;
     oit_image a = {0};
     oit_frame_stats st = {0};
-    oit_status s = oit_capture_create(&(oit_capture_desc){.kind = OIT_CAPTURE_FIRSTK, .K = K,
-                                                          .stencil_k = samples,
+    oit_status s = oit_capture_create(&(oit_capture_desc){.fill = OIT_RENDER_CAPTURE_STENCIL,
+                                                          .cut = OIT_RENDER_PACK_FIRSTK,
+                                                          .K = K, .stencil_k = samples,
                                                           .faults = OIT_CAPTURE_TEST_ROUTE_BY_COPY},
                                       &c, &err);
     CHECK(s == OIT_OK, "first-k K=%d routed into %d samples: %s", K, samples, err.message);
@@ -160,8 +164,9 @@ static void plain(int K, int llvmpipe)
 {
     oit_error err = {0};
     oit_capture *c = NULL;
-    oit_status s = oit_capture_create(&(oit_capture_desc){.kind = OIT_CAPTURE_FIRSTK, .K = K,
-                                                          .stencil_k = K}, &c, &err);
+    oit_status s = oit_capture_create(&(oit_capture_desc){.fill = OIT_RENDER_CAPTURE_STENCIL,
+                                                          .cut = OIT_RENDER_PACK_FIRSTK,
+                                                          .K = K, .stencil_k = K}, &c, &err);
     printf("first-k K=%d routed, no stand-in: %s\n", K, s == OIT_OK ? "accepted" : err.message);
     if (llvmpipe)
         CHECK(s == OIT_ERR_UNSUPPORTED && strstr(err.message, "self-test failed"),

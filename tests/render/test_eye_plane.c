@@ -159,10 +159,11 @@ int main(void)
     oit_error err = {0};
     oit_status s = oit_dfb_create(&p.dfb, &err);
     if (s == OIT_OK)
-        s = oit_capture_create(&(oit_capture_desc){.kind = OIT_CAPTURE_ARRAY, .K = K},
+        s = oit_capture_create(&(oit_capture_desc){.fill = OIT_RENDER_CAPTURE_ARRAY,
+                                                   .cut = OIT_RENDER_PACK_BUDGET, .K = K},
                                &p.array, &err);
     if (s == OIT_OK)
-        s = oit_capture_create(&(oit_capture_desc){.kind = OIT_CAPTURE_COMPUTE, .K = K},
+        s = oit_capture_create(&(oit_capture_desc){.fill = OIT_RENDER_CAPTURE_COMPUTE, .K = K},
                                &p.compute, &err);
     CHECK(s == OIT_OK, "set-up: %s", err.message);
     uint32_t seed = 0x3c6ef372u;

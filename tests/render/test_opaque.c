@@ -17,6 +17,7 @@
 #include "render/reference/reference.h"
 #include "render/image/shade.h"
 #include "tests/lib/gl_test_scene.h"
+#include "tests/lib/capture_set.h"
 #include "tests/lib/test_check.h"
 #include "tests/lib/test_gl.h"
 #include "tests/render/opaque_scene.h"
@@ -75,9 +76,8 @@ static void check_capture(oit_capture_kind kind, const oit_view *v)
     oit_gpu_mesh *m[3] = {upload(&QUADS[0], 1, 0), upload(b1, 3, 0), upload(&QUADS[3], 2, 6)};
     oit_image img = {0};
     oit_frame_stats st = {0};
-    oit_status s = m[0] && m[1] && m[2] ? oit_capture_create(&(oit_capture_desc){.kind = kind,
-                                                                                 .K = 8},
-                                                             &c, &err) : OIT_ERR_GL;
+    oit_capture_desc d = {.fill = capture_fill(kind), .cut = capture_cut(kind), .K = 8};
+    oit_status s = m[0] && m[1] && m[2] ? oit_capture_create(&d, &c, &err) : OIT_ERR_GL;
     if (s == OIT_OK)
         s = oit_capture_begin(c, v, &err);
     for (int b = 0; b < 3 && s == OIT_OK; b++) {

@@ -15,6 +15,7 @@
 #include "render/capture/dfb.h"
 #include "render/image/image.h"
 #include "tests/lib/gl_test_scene.h"
+#include "tests/lib/capture_set.h"
 #include "tests/lib/test_check.h"
 #include "tests/lib/test_gl.h"
 #include "tests/render/opaque_scene.h"
@@ -102,7 +103,9 @@ int main(void)
     if (s == OIT_OK)
         s = oit_dfb_create(&k.dfb, &err);
     for (int i = 0; i < N_CAPTURES && s == OIT_OK; i++)
-        s = oit_capture_create(&(oit_capture_desc){.kind = KINDS[i], .K = 8}, &k.cap[i], &err);
+        s = oit_capture_create(&(oit_capture_desc){.fill = capture_fill(KINDS[i]),
+                                                   .cut = capture_cut(KINDS[i]), .K = 8},
+            &k.cap[i], &err);
     CHECK(s == OIT_OK, "set-up: %s", err.message);
     /* grow, shrink, taller only, wider only, odd, then both down and up */
     static const int sizes[][2] = {{32, 24}, {48, 40}, {20, 16}, {20, 60}, {64, 60},

@@ -1,8 +1,8 @@
 #!/bin/sh
 # The shape issue 32 gave render/: no source file over 600 lines (one
 # concern a file; split by concern, not in halves), and the capture's
-# backend kind told apart in one place only, capture.c's table lookup and
-# the create calls: every other file of render/capture/ reaches a backend
+# backend kind told apart in one place only, capture_create.c's table lookup
+# and the create calls: every other file of render/capture/ reaches a backend
 # through its table of operations (capture_backend.h). Fails naming each
 # file over the limit and each line that names a backend kind elsewhere.
 # usage: test_render_layout.sh SOURCE_DIR [TMP_DIR]
@@ -19,7 +19,7 @@ if [ $# -ge 2 ]; then
     mkdir -p "$dir/render/capture"
     i=0
     while [ $i -le $MAX_LINES ]; do echo "/* $i */"; i=$((i + 1)); done >"$dir/render/long.c"
-    printf '%s\n' '/* fine */' >"$dir/render/capture/capture.c"
+    printf '%s\n' '/* fine */' >"$dir/render/capture/capture_create.c"
     printf '%s\n' '/* a backend */' 'OIT_CAPTURE_OPS(x, OIT_CAPTURE_ARRAY, "x", int, NULL);' '' \
         'static int f(const oit_capture *c) { return c->ops->kind == OIT_CAPTURE_STENCIL; }' \
         >"$dir/render/capture/capture_x.c"
@@ -39,9 +39,10 @@ for f in $(find render -name '*.[ch]' | sort); do
     n=$(wc -l <"$f")
     [ "$n" -le $MAX_LINES ] || fail "$f: $n lines, more than $MAX_LINES: split it by concern"
 done
-# capture_choice.c decides which kind to create; capture.c looks the table up.
+# capture_choice.c decides which fill to make; capture_create.c looks the
+# table up.
 for f in render/capture/*.c; do
-    case $f in render/capture/capture.c | render/capture/capture_choice.c) continue ;; esac
+    case $f in render/capture/capture_create.c | render/capture/capture_choice.c) continue ;; esac
     # comment lines and the tables (OIT_CAPTURE_OPS) are not branches
     hits=$(grep -nE 'OIT_CAPTURE_(ARRAY|STENCIL|COUNTED|FIRSTK|COMPUTE)|->kind|oit_capture_backend\(' "$f" |
         grep -vE '^[0-9]+:OIT_CAPTURE_OPS\(|^[0-9]+:/?[[:space:]]*\*') || true

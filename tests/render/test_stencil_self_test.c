@@ -18,6 +18,7 @@
 #include "render/gl/gl_context.h"
 #include "render/gl/gl_util.h"
 #include "render/image/image.h"
+#include "tests/lib/capture_set.h"
 #include "tests/lib/test_check.h"
 #include "tests/lib/test_gl.h"
 
@@ -81,7 +82,8 @@ static void plain(int K, int llvmpipe)
     snprintf(what, sizeof what, "stencil K=%d", K);
     oit_error err = {0};
     oit_capture *c = NULL;
-    oit_status s = oit_capture_create(&(oit_capture_desc){.kind = OIT_CAPTURE_STENCIL, .K = K},
+    oit_status s = oit_capture_create(&(oit_capture_desc){.fill = OIT_RENDER_CAPTURE_STENCIL,
+                                                          .cut = OIT_RENDER_PACK_BUDGET, .K = K},
                                       &c, &err);
     if (s == OIT_OK) {
         printf("%s: self-test passed\n", what);
@@ -103,8 +105,8 @@ static void faulty(int K)
     snprintf(what, sizeof what, "stencil K=%d, fill per sample", K);
     oit_error err = {0};
     oit_capture *c = NULL;
-    oit_capture_desc d = {.kind = OIT_CAPTURE_STENCIL, .K = K,
-                          .faults = OIT_CAPTURE_FAULT_SAMPLE_SHADING};
+    oit_capture_desc d = {.fill = OIT_RENDER_CAPTURE_STENCIL, .cut = OIT_RENDER_PACK_BUDGET,
+                          .K = K, .faults = OIT_CAPTURE_FAULT_SAMPLE_SHADING};
     oit_status s = oit_capture_create(&d, &c, &err);
     printf("%s: %s: %s\n", what, oit_status_name(s), s == OIT_OK ? "accepted" : err.message);
     CHECK(s == OIT_ERR_UNSUPPORTED && strstr(err.message, "counted"),
@@ -113,7 +115,7 @@ static void faulty(int K)
     oit_capture_destroy(s == OIT_OK ? c : NULL);
 
     snprintf(what, sizeof what, "auto K=%d, fill per sample", K);
-    d.kind = OIT_CAPTURE_AUTO;
+    d.fill = OIT_RENDER_CAPTURE_AUTO;
     s = oit_capture_create(&d, &c, &err);
     CHECK(s == OIT_OK, "%s: %s", what, err.message);
     if (s != OIT_OK)
