@@ -168,14 +168,13 @@ class Scene(_Closable):
 
 
 _SHADINGS = {"transparent": L.RENDER_TRANSPARENT, "translucent": L.RENDER_TRANSLUCENT}
-# oit_render_colour_space (liboit.h): where compositing happens
-_COLOUR_SPACES = {"srgb": 0, "linear": 1}
-# oit_up_axis (offscreen.h), spelt as oitstream --up spells it
-_UP_AXES = {"y": 0, "z": 1, "x": 2}
-# oit_render_pack, spelt as oitstream --pack spells it
-_PACKS = {"auto": 0, "counted": 1, "budget": 2, "disjoint": 3, "first-k": 4}
-# oit_render_capture, spelt as oitstream --capture spells it
-_CAPTURES = {"auto": 0, "array": 1, "stencil": 2, "compute": 5}
+# oit_render_colour_space (liboit.h), oit_up_axis (offscreen.h),
+# oit_render_pack and oit_render_capture (render_modes.h), spelt as the
+# tools spell them (_lib.py holds the values, checked against C)
+_COLOUR_SPACES = L.COLOUR_SPACES
+_UP_AXES = L.UP_AXES
+_PACKS = L.PACKS
+_CAPTURES = L.CAPTURES
 
 
 class Renderer(_Closable):

@@ -113,6 +113,15 @@ PIXELS_RGBA8, PIXELS_RGBA32F = 0, 1
 RENDER_TRANSPARENT, RENDER_TRANSLUCENT = 0, 1
 RENDER_CACHE_OFF = 2**64 - 1
 ATTR_COLOUR, ATTR_ALPHA = 1, 2
+# The modes by the tools' spelling of their values; ENUMS gives each one's
+# C prefix (the C name: prefix + the key upper-cased, "-" dropped), which
+# tests/python/check_layout.py holds to the C compiler's values.
+PACKS = {"auto": 0, "counted": 1, "budget": 2, "disjoint": 3, "first-k": 4}
+CAPTURES = {"auto": 0, "array": 1, "stencil": 2, "compute": 5}
+COLOUR_SPACES = {"srgb": 0, "linear": 1}
+UP_AXES = {"y": 0, "z": 1, "x": 2}
+ENUMS = {"PACKS": "OIT_RENDER_PACK_", "CAPTURES": "OIT_RENDER_CAPTURE_",
+         "COLOUR_SPACES": "OIT_RENDER_COLOUR_", "UP_AXES": "OIT_UP_"}
 
 
 class LibraryNotFound(OSError):

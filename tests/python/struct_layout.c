@@ -1,12 +1,14 @@
 /* Prints the layout of every structure python/oit/_lib.py mirrors, as the C
  * compiler lays it out: "Struct size N" and "Struct.field offset" lines,
- * for check_layout.py to hold the ctypes declarations to. A field missed
+ * and "enum NAME value" lines of the enums it spells, for check_layout.py
+ * to hold the ctypes declarations and constants to. A field missed
  * here that ctypes declares fails there by name; one ctypes misses fails
  * by the structure's size. */
 #include <stddef.h>
 #include <stdio.h>
 
 #include "oit/liboit.h"
+#include "oit/mesh.h"
 #include "oit/offscreen.h"
 
 #define SIZE(py, c) printf(#py " size %zu\n", sizeof(c))
@@ -76,11 +78,30 @@ static void offscreen_view(void)
 #undef V
 }
 
+/* Every value of the enums _lib.py spells (its ENUMS) and of its
+ * module-level constants: "enum NAME value". */
+#define E(name) printf("enum " #name " %d\n", (int)(name))
+static void enums(void)
+{
+    E(OIT_RENDER_PACK_AUTO); E(OIT_RENDER_PACK_COUNTED); E(OIT_RENDER_PACK_BUDGET);
+    E(OIT_RENDER_PACK_DISJOINT); E(OIT_RENDER_PACK_FIRSTK);
+    E(OIT_RENDER_CAPTURE_AUTO); E(OIT_RENDER_CAPTURE_ARRAY); E(OIT_RENDER_CAPTURE_STENCIL);
+    E(OIT_RENDER_CAPTURE_COMPUTE);
+    E(OIT_RENDER_COLOUR_SRGB); E(OIT_RENDER_COLOUR_LINEAR);
+    E(OIT_UP_Y); E(OIT_UP_Z); E(OIT_UP_X);
+    E(OIT_OK); E(OIT_COLOUR_UINT8); E(OIT_COLOUR_FLOAT); E(OIT_COLOUR_PER_VERTEX);
+    E(OIT_COLOUR_PER_TRIANGLE); E(OIT_PIXELS_RGBA8); E(OIT_PIXELS_RGBA32F);
+    E(OIT_RENDER_TRANSPARENT); E(OIT_RENDER_TRANSLUCENT); E(OIT_ATTR_COLOUR);
+    E(OIT_ATTR_ALPHA);
+}
+#undef E
+
 int main(void)
 {
     renderer();
     stats();
     scene();
     offscreen_view();
+    enums();
     return 0;
 }
