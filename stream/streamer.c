@@ -89,7 +89,6 @@ static oit_status create_capture(oit_streamer *s, const oit_streamer_desc *desc,
         .settings = {.epsilon = desc->epsilon, .slot_budget = s->budget.capture,
                      .store_budget = s->budget.store, .store_limit = desc->store_limit,
                      .timer = s->timer, .no_wait = 1, .no_counts = !s->adaptive}};
-    s->choice = (oit_capture_choice){.asked = desc->capture};
     oit_status st = oit_capture_create(&cd, &s->capture, err);
     if (st == OIT_OK)
         s->choice = *oit_capture_get_choice(s->capture);
@@ -153,8 +152,10 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
      * counted rule's packs (cut only by the upload budget) are the largest
      * exact ones, and fewer packs are fewer binnings and read-backs. */
     oit_render_pack mode = desc->pack != OIT_RENDER_PACK_AUTO            ? desc->pack
-                         : desc->capture == OIT_RENDER_CAPTURE_COMPUTE ? OIT_RENDER_PACK_COUNTED
-                                                                : OIT_RENDER_PACK_FIRSTK;
+                           : desc->capture == OIT_RENDER_CAPTURE_COMPUTE ? OIT_RENDER_PACK_COUNTED
+                                                                         : OIT_RENDER_PACK_FIRSTK;
+    /* counted and first-K packs store fragments and are cut front first */
+    int stores = mode == OIT_RENDER_PACK_COUNTED || mode == OIT_RENDER_PACK_FIRSTK;
     s->adaptive = desc->pack == OIT_RENDER_PACK_AUTO && mode == OIT_RENDER_PACK_FIRSTK;
     oit_path seed = desc->frames == 1 ? OIT_PATH_COUNTED : OIT_PATH_FIRSTK;
     s->first_k = seed == OIT_PATH_FIRSTK;
@@ -167,8 +168,7 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
     if (st == OIT_OK)
         st = oit_streamer_number_triangles(s, &all_bytes, err);
     if (st == OIT_OK)
-        st = oit_streamer_split_budget(s, &eff, mode == OIT_RENDER_PACK_COUNTED || mode == OIT_RENDER_PACK_FIRSTK,
-                          all_bytes, err);
+        st = oit_streamer_split_budget(s, &eff, stores, all_bytes, err);
     desc = &eff;
     uint64_t most = desc->upload_budget ? desc->upload_budget : OIT_STREAM_RING_DEFAULT;
     uint64_t budget = most;
@@ -192,7 +192,7 @@ oit_status oit_streamer_create(oit_partfile *pf, const oit_streamer_desc *desc,
         st = oit_packer_create(pf, mode, desc->K, budget, &s->packer, err);
     if (st == OIT_OK)
         oit_packer_set_schedule(s->packer, desc->schedule);
-    s->front_first = desc->epsilon > 0.0f && (mode == OIT_RENDER_PACK_FIRSTK || mode == OIT_RENDER_PACK_COUNTED);
+    s->front_first = desc->epsilon > 0.0f && stores;
     s->front_now = s->front_first;
     if (st == OIT_OK)
         st = oit_streamer_create_upload(s, desc, budget, all_bytes, err);

@@ -148,6 +148,13 @@ static const char *fill_name(const oit_capture_desc *d)
     return d->fill_name ? d->fill_name : "capture fill";
 }
 
+/* A cut whose batches the first-K capture takes (AUTO: as the streamer
+ * resolves it). */
+static int cut_firstk(oit_render_pack cut)
+{
+    return cut == OIT_RENDER_PACK_FIRSTK || cut == OIT_RENDER_PACK_AUTO;
+}
+
 /* fill and cut as the table in capture.h has them, before any GL. */
 static oit_status check_axes(const oit_capture_desc *d, oit_error *err)
 {
@@ -163,7 +170,7 @@ static oit_status check_axes(const oit_capture_desc *d, oit_error *err)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "%s = stencil: counted packs have no K-slot "
                              "fill to route (%s = first-k, budget or disjoint)", fill_name(d),
                              cut);
-    int firstk = d->cut == OIT_RENDER_PACK_FIRSTK || d->cut == OIT_RENDER_PACK_AUTO;
+    int firstk = cut_firstk(d->cut);
     int sk = d->stencil_k;
     if (sk && (d->fill != OIT_RENDER_CAPTURE_STENCIL || sk < 2 || sk > d->K ||
                (!firstk && sk != d->K)))
@@ -206,8 +213,7 @@ oit_status oit_capture_create(const oit_capture_desc *desc, oit_capture **out, o
     if (s != OIT_OK)
         return s;
     if (desc->fill != OIT_RENDER_CAPTURE_COMPUTE && desc->cut != OIT_RENDER_PACK_COUNTED)
-        return create_slots(desc, desc->cut == OIT_RENDER_PACK_FIRSTK ||
-                                      desc->cut == OIT_RENDER_PACK_AUTO, out, err);
+        return create_slots(desc, cut_firstk(desc->cut), out, err);
     s = make(desc, ops_of(desc->fill == OIT_RENDER_CAPTURE_COMPUTE ? OIT_CAPTURE_COMPUTE
                                                                    : OIT_CAPTURE_COUNTED),
              0, out, err);

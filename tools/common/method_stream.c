@@ -148,7 +148,6 @@ static oit_status stream_render(void *impl, const oit_method_frame *f, oit_error
     s = oit_renderer_draw_image(m->renderer, m->scene, &fr, v->shading.background,
                                 f->out->rgba, bytes, &m->stats, err);
     m->drawn = s == OIT_OK;
-    m->stats.budget_source = oit_flag_of(m->stats.budget_source);
     if (s == OIT_OK && f->stats)
         frame_stats_of(&m->stats, f->stats);
     return spelt(s, err);
