@@ -16,6 +16,9 @@ install(TARGETS oit_gltf_plugin LIBRARY DESTINATION lib)
 # The assimp plugin likewise, for every other mesh format (formats/assimp_plugin.c).
 install(TARGETS oit_assimp_plugin LIBRARY DESTINATION lib)
 install(TARGETS oit_occt_plugin LIBRARY DESTINATION lib) # STEP/IGES, formats/step_plugin.c
+# The Embree reference likewise, which liboit loads to offer the reference
+# method (render/reference/reference_plugin.h).
+install(TARGETS oit_reference_plugin LIBRARY DESTINATION lib)
 install(FILES
         ${CMAKE_SOURCE_DIR}/include/oit/oit.h
         ${CMAKE_SOURCE_DIR}/include/oit/status.h
@@ -24,6 +27,7 @@ install(FILES
         ${CMAKE_SOURCE_DIR}/include/oit/partfile.h
         ${CMAKE_SOURCE_DIR}/include/oit/liboit.h
         ${CMAKE_SOURCE_DIR}/include/oit/render_modes.h
+        ${CMAKE_SOURCE_DIR}/include/oit/draw_stats.h
         ${CMAKE_SOURCE_DIR}/include/oit/offscreen.h
         DESTINATION include/oit)
 # The part-file format, which oit/partfile.h cites: the one document a

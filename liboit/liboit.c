@@ -24,7 +24,8 @@ static oit_status render_state(oit_renderer *r, const oit_scene *scene, const oi
     ss->packs = fs->batches;
     ss->draw_calls = 1 + (uint64_t)fs->batches; /* the count pass; a store a band */
     ss->bytes_uploaded = r->pending_upload;
-    ss->gpu_bytes_peak = fs->gpu_bytes_peak + oit_gpu_mesh_bytes(r->gpu_mesh);
+    fs->gpu_mesh_bytes = oit_gpu_mesh_bytes(r->gpu_mesh);
+    ss->gpu_bytes_peak = fs->gpu_bytes_peak + fs->gpu_mesh_bytes;
     r->pending_upload = 0;
     return st;
 }
@@ -160,6 +161,8 @@ const char *oit_renderer_gpu_absent(const oit_renderer *r)
 {
     if (!r)
         return "no renderer";
+    if (r->method && !(r->method->flags & OIT_RENDER_METHOD_GL))
+        return "the method draws without GL";
     return r->timer ? oit_gpu_timer_absent(r->timer) : NULL;
 }
 
@@ -185,10 +188,11 @@ oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oit_frame 
     oit_frame_stats fs = {0};
     oit_stream_frame_stats ss = {0};
     int empty = !scene->pf && scene->info.triangles == 0; /* in core: nothing to draw */
-    if (!r->timer)
-        st = oit_gpu_timer_create(NULL, &r->timer, err);
+    st = oit_lib_method_for(r, scene, &r->method, err);
     if (st == OIT_OK)
-        st = empty ? OIT_OK : oit_lib_bind_scene(r, scene, err);
+        st = oit_lib_gl_ready(r, err);
+    if (st == OIT_OK)
+        st = empty ? OIT_OK : oit_lib_bind_scene(r, scene, 0, err);
     oit_gpu_timer_begin_frame(r->timer);
     r->bands = 0;
     if (st == OIT_OK && !empty)
@@ -240,6 +244,10 @@ static void fill_stats(const oit_renderer *r, const oit_scene *scene, const oit_
                                       r->streamer ? oit_streamer_capture_choice(r->streamer)->reason
                                                   : NULL,
                                   .gpu_frame = r->gpu.frame, .draw = r->draws,
+                                  .method = r->method->name,
+                                  .device = r->run ? oit_method_renderer(r->run) : r->device,
+                                  .fragments_saturated = fs.fragments_saturated,
+                                  .gpu_mesh_bytes = fs.gpu_mesh_bytes,
                                   .gpu_ms = r->gpu.frame ? r->gpu.ms : -1.0};
         memcpy(stats->gpu_phase_ms, r->gpu.phase_ms, sizeof stats->gpu_phase_ms);
         oit_stream_budget b = {0};
@@ -259,39 +267,25 @@ static void fill_stats(const oit_renderer *r, const oit_scene *scene, const oit_
     }
 }
 
-/* One band's (or the whole frame's) image through the capture's resolve:
- * the streamer's or DFB's, as the tools' methods render it. */
-static oit_status render_image(oit_renderer *r, const oit_scene *scene, const oit_view *v,
-                               oit_image *out, oit_frame_stats *fs, oit_stream_frame_stats *ss,
-                               oit_error *err)
+/* One band's (or the whole frame's) image through the streamer's resolve,
+ * as the tools' stream method renders it. */
+static oit_status render_image(oit_renderer *r, const oit_view *v, oit_image *out,
+                               oit_frame_stats *fs, oit_stream_frame_stats *ss, oit_error *err)
 {
     static const oit_opaque_depth none = {0};
-    if (scene->pf) {
-        r->bands++;
-        oit_streamer_set_gpu_timer(r->streamer, r->timer);
-        oit_streamer_set_opaque(r->streamer, &none);
-        return oit_streamer_render(r->streamer, v, out, fs, ss, err);
-    }
-    const oit_gpu_mesh *list[1] = {r->gpu_mesh};
-    oit_dfb_set_opaque(r->dfb, &none);
-    oit_dfb_set_gpu_timer(r->dfb, r->timer);
-    oit_status st = oit_dfb_render(r->dfb, list, 1, v, out, NULL, fs, err);
-    ss->packs = fs->batches;
-    ss->draw_calls = 1 + (uint64_t)fs->batches;
-    ss->bytes_uploaded = r->pending_upload;
-    ss->gpu_bytes_peak = fs->gpu_bytes_peak + oit_gpu_mesh_bytes(r->gpu_mesh);
-    r->pending_upload = 0;
-    return st;
+    r->bands++;
+    oit_streamer_set_gpu_timer(r->streamer, r->timer);
+    oit_streamer_set_opaque(r->streamer, &none);
+    return oit_streamer_render(r->streamer, v, out, fs, ss, err);
 }
 
-/* The image in bands of rows whose per-pixel state fits one storage
- * binding (render/gl/band.h), each copied into its rows of rgba, as the
- * tools' method interface does (render/method.c). */
-static oit_status image_bands(oit_renderer *r, const oit_scene *scene, const oit_view *view,
-                              float *rgba, oit_frame_stats *fs, oit_stream_frame_stats *ss,
-                              oit_error *err)
+/* A part file's image in bands of rows whose per-pixel state fits one
+ * storage binding (render/gl/band.h), each copied into its rows of rgba,
+ * as the method interface bands an in-core method's (render/method.c). */
+static oit_status image_bands(oit_renderer *r, const oit_view *view, float *rgba,
+                              oit_frame_stats *fs, oit_stream_frame_stats *ss, oit_error *err)
 {
-    uint64_t px = scene->pf ? oit_streamer_pixel_bytes(view) : oit_dfb_pixel_bytes(view, 0);
+    uint64_t px = oit_streamer_pixel_bytes(view);
     int rows = 0, w = view->width, h = view->height;
     oit_status st = oit_band_rows(view, px, r->desc.binding_limit, &rows, err);
     for (int y0 = 0; st == OIT_OK && y0 < h; y0 += rows) {
@@ -300,16 +294,16 @@ static oit_status image_bands(oit_renderer *r, const oit_scene *scene, const oit
         if (rows < h)
             oit_view_band(view, y0, y1, &band);
         /* A frame of one band is read back into rgba itself (the stream
-         * and DFB write a given image in place, oit_image_reserve): no
-         * second image to fault in and copy (the 1M plant at 1024x1024:
-         * ~50 ms a frame on llvmpipe). */
+         * writes a given image in place, oit_image_reserve): no second
+         * image to fault in and copy (the 1M plant at 1024x1024: ~50 ms a
+         * frame on llvmpipe). */
         int direct = y0 == 0 && y1 == h;
         oit_image part = {0};
         if (direct)
             part = (oit_image){.width = w, .height = h, .rgba = rgba};
         oit_frame_stats bfs = {0};
         oit_stream_frame_stats bss = {0};
-        st = render_image(r, scene, &band, &part, &bfs, &bss, err);
+        st = render_image(r, &band, &part, &bfs, &bss, err);
         if (st == OIT_OK && !direct)
             memcpy(rgba + (size_t)y0 * w * 4, part.rgba,
                    (size_t)w * (size_t)(y1 - y0) * 4 * sizeof *rgba);
@@ -321,63 +315,154 @@ static oit_status image_bands(oit_renderer *r, const oit_scene *scene, const oit
     return st;
 }
 
-/* The background alone, as a pixel no fragment reached resolves. */
-static void empty_image(const oit_view *view, float *rgba)
+/* An in-core scene's image through its method (render/method.h, which
+ * bands it and times it on r's timer), written in place where the method
+ * takes a given image (DFB, the capture), else copied. */
+static oit_status run_pixels(oit_renderer *r, const oit_view *v, const oit_pixels_desc *px,
+                             oit_frame_stats *fs, oit_stream_frame_stats *ss, oit_error *err)
 {
-    oit_pixel_state px;
+    oit_image img = {.width = v->width, .height = v->height, .rgba = px->rgba};
+    oit_status st = oit_method_render(r->run, v, &img, px->counts, px->ambiguous, fs, err);
+    if (st == OIT_OK && img.rgba != px->rgba)
+        memcpy(px->rgba, img.rgba, (size_t)v->width * (size_t)v->height * 4 * sizeof *img.rgba);
+    if (img.rgba != px->rgba)
+        oit_image_free(&img);
+    ss->packs = fs->batches;
+    if (!strcmp(r->method->name, "dfb"))
+        ss->draw_calls = 1 + (uint64_t)fs->batches; /* the count pass; a store a band */
+    ss->bytes_uploaded = r->pending_upload;
+    ss->gpu_bytes_peak = fs->gpu_bytes_peak; /* the mesh's included */
+    r->pending_upload = 0;
+    return st;
+}
+
+/* The background alone, as a pixel no fragment reached resolves, with no
+ * fragment counted and no pixel ambiguous. */
+static void empty_image(const oit_view *view, const oit_pixels_desc *px)
+{
+    oit_pixel_state ps;
     float rgb[3];
-    oit_pixel_begin(&px);
-    oit_pixel_end(&px, &view->shading, rgb);
-    for (size_t i = 0; i < (size_t)view->width * (size_t)view->height; i++) {
-        memcpy(rgba + 4 * i, rgb, sizeof rgb);
-        rgba[4 * i + 3] = 1.0f;
+    oit_pixel_begin(&ps);
+    oit_pixel_end(&ps, &view->shading, rgb);
+    size_t n = (size_t)view->width * (size_t)view->height;
+    for (size_t i = 0; i < n; i++) {
+        memcpy(px->rgba + 4 * i, rgb, sizeof rgb);
+        px->rgba[4 * i + 3] = 1.0f;
     }
+    if (px->counts)
+        memset(px->counts, 0, n * sizeof *px->counts);
+    if (px->ambiguous)
+        memset(px->ambiguous, 0, n);
+}
+
+/* What a draw into memory is refused before any work: a depth texture, an
+ * image too small, per-pixel figures the method has not. */
+static oit_status pixels_check(const oit_renderer *r, const oit_frame *frame, const oit_view *v,
+                               const oit_pixels_desc *px, oit_error *err)
+{
+    if (frame->depth_texture)
+        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "oit_renderer_draw_image: "
+                             "oit_frame.depth_texture = %u: an image has no opaque depth; "
+                             "draw into the caller's framebuffer (oit_renderer_draw)",
+                             frame->depth_texture);
+    size_t need = (size_t)v->width * (size_t)v->height * 4 * sizeof *px->rgba;
+    if (px->rgba_bytes < need)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_draw_image: a %dx%d image "
+                             "needs %zu bytes, rgba has %zu", v->width, v->height, need,
+                             px->rgba_bytes);
+    unsigned f = r->method->flags;
+    if (px->counts && !(f & OIT_RENDER_METHOD_COUNTS))
+        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "oit_pixels_desc.counts: method \"%s\" "
+                             "does not count fragments per pixel", r->method->name);
+    if (px->ambiguous && !(f & OIT_RENDER_METHOD_AMBIGUITY))
+        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "oit_pixels_desc.ambiguous: method "
+                             "\"%s\" does not flag ambiguous pixels", r->method->name);
+    return OIT_OK;
+}
+
+/* The image of a GL method, the caller's GL state kept. */
+static oit_status gl_pixels(oit_renderer *r, oit_scene *scene, const oit_view *view,
+                            const oit_pixels_desc *px, double t0, oit_frame_stats *fs,
+                            oit_stream_frame_stats *ss, oit_error *err)
+{
+    gl_saved saved;
+    oit_lib_gl_save(&saved);
+    oit_status st = oit_lib_gl_ready(r, err);
+    if (st == OIT_OK)
+        st = oit_lib_bind_scene(r, scene, 1, err);
+    if (st == OIT_OK && scene->pf) {
+        oit_gpu_timer_begin_frame(r->timer);
+        r->bands = 0;
+        st = image_bands(r, view, px->rgba, fs, ss, err);
+        frame_end(r, scene, st, t0, oit_gpu_timer_end_frame(r->timer));
+    } else if (st == OIT_OK) {
+        st = run_pixels(r, view, px, fs, ss, err);
+    }
+    gpu_take(r);
+    oit_lib_gl_restore(&saved);
+    return st;
+}
+
+oit_status oit_renderer_draw_pixels(oit_renderer *r, oit_scene *scene, const oit_frame *frame,
+                                    const oit_pixels_desc *px, oit_draw_stats *stats,
+                                    oit_error *err)
+{
+    if (!r || !scene || !frame || !px || !px->rgba)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_draw_image: NULL argument");
+    double t0 = oit_time_ms();
+    oit_view view;
+    oit_status st = oit_lib_method_for(r, scene, &r->method, err);
+    if (st == OIT_OK)
+        st = oit_lib_frame_view(r, scene, frame, px->background, &view, err);
+    if (st == OIT_OK)
+        st = pixels_check(r, frame, &view, px, err);
+    if (st != OIT_OK)
+        return st;
+    oit_frame_stats fs = {0};
+    oit_stream_frame_stats ss = {0};
+    if (!scene->pf && scene->info.triangles == 0) { /* nothing in front of the background */
+        r->draws++;
+        empty_image(&view, px);
+    } else if (r->method->flags & OIT_RENDER_METHOD_GL) {
+        st = gl_pixels(r, scene, &view, px, t0, &fs, &ss, err);
+    } else {
+        st = oit_lib_bind_scene(r, scene, 1, err);
+        if (st == OIT_OK)
+            st = run_pixels(r, &view, px, &fs, &ss, err);
+        r->draws++;
+    }
+    if (st != OIT_OK)
+        return name_scene(scene, st, err);
+    if (stats)
+        fill_stats(r, scene, &view, &fs, &ss, t0, stats);
+    return OIT_OK;
+}
+
+oit_status oit_renderer_prepare(oit_renderer *r, oit_scene *scene, oit_error *err)
+{
+    if (!r || !scene)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_prepare: NULL argument");
+    oit_status st = oit_lib_method_for(r, scene, &r->method, err);
+    int gl = st == OIT_OK && (r->method->flags & OIT_RENDER_METHOD_GL);
+    gl_saved saved;
+    if (gl)
+        oit_lib_gl_save(&saved);
+    if (gl)
+        st = oit_lib_gl_ready(r, err);
+    if (st == OIT_OK && (scene->pf || scene->info.triangles > 0))
+        st = oit_lib_bind_scene(r, scene, 1, err);
+    if (gl)
+        oit_lib_gl_restore(&saved);
+    return st == OIT_OK ? OIT_OK : name_scene(scene, st, err);
 }
 
 oit_status oit_renderer_draw_image(oit_renderer *r, oit_scene *scene, const oit_frame *frame,
                                    const float background[3], float *rgba, size_t rgba_bytes,
                                    oit_draw_stats *stats, oit_error *err)
 {
-    if (!r || !scene || !frame || !rgba)
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_draw_image: NULL argument");
-    double t0 = oit_time_ms();
-    oit_view view;
-    oit_status st = oit_lib_frame_view(r, scene, frame, background, &view, err);
-    if (st != OIT_OK)
-        return st;
-    if (frame->depth_texture)
-        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "oit_renderer_draw_image: "
-                             "oit_frame.depth_texture = %u: an image has no opaque depth; "
-                             "draw into the caller's framebuffer (oit_renderer_draw)",
-                             frame->depth_texture);
-    size_t need = (size_t)view.width * (size_t)view.height * 4 * sizeof *rgba;
-    if (rgba_bytes < need)
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_draw_image: a %dx%d image "
-                             "needs %zu bytes, rgba has %zu", view.width, view.height, need,
-                             rgba_bytes);
-    gl_saved saved;
-    oit_lib_gl_save(&saved);
-    oit_frame_stats fs = {0};
-    oit_stream_frame_stats ss = {0};
-    if (!r->timer)
-        st = oit_gpu_timer_create(NULL, &r->timer, err);
-    int empty = !scene->pf && scene->info.triangles == 0;
-    if (st == OIT_OK && !empty)
-        st = oit_lib_bind_scene(r, scene, err);
-    oit_gpu_timer_begin_frame(r->timer);
-    r->bands = 0;
-    if (st == OIT_OK && !empty)
-        st = image_bands(r, scene, &view, rgba, &fs, &ss, err);
-    frame_end(r, scene, st, t0, oit_gpu_timer_end_frame(r->timer));
-    gpu_take(r);
-    oit_lib_gl_restore(&saved);
-    if (st == OIT_OK && empty) /* nothing in front of the background */
-        empty_image(&view, rgba);
-    if (st != OIT_OK)
-        return name_scene(scene, st, err);
-    if (stats)
-        fill_stats(r, scene, &view, &fs, &ss, t0, stats);
-    return OIT_OK;
+    const oit_pixels_desc px = {.background = background, .rgba = rgba,
+                                .rgba_bytes = rgba_bytes};
+    return oit_renderer_draw_pixels(r, scene, frame, &px, stats, err);
 }
 
 oit_status oit_scene_share_order(oit_scene *scene, const oit_frame *frame, uint32_t *order,

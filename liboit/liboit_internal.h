@@ -27,12 +27,16 @@
 #include "render/gl/gpu_timer.h"
 #include "render/image/image.h"
 #include "render/image/shade.h"
+#include "render/gl/gl_context.h"
+#include "render/method.h"
+#include "formats/plugin_load.h"
 #include "stream/streamer.h"
 #include "liboit/desc_ranges.h"
 
 struct oit_scene {
     oit_partfile *pf; /* a part file, or NULL: in core */
     oit_mesh mesh;    /* in core: the triangles */
+    int mesh_borrowed; /* mesh is the caller's (oit_scene_borrow_mesh): not freed here */
     char *name;       /* in core: the file or the descriptor's name */
     oit_scene_info info;
     /* oit_scene_desc.share_*: the shares of the file and the order that
@@ -49,13 +53,29 @@ struct oit_scene {
 
 enum { GPU_QUEUE = 64 };
 
+/* A method of liboit's table (liboit_methods.c), as oit_render_methods
+ * lists it. */
+typedef oit_render_method_info oit_lib_method;
+
+/* K of the in-core methods where oit_renderer_desc.K is 0, as the tools'. */
+#define OIT_LIB_IN_CORE_K 16
+
 struct oit_renderer {
     oit_renderer_desc desc;
     oit_streamer_desc stream;    /* desc spelt for the streamer (stream_desc); K per scene */
     oit_scene *scene;            /* the scene the streamer or gpu_mesh holds: a share */
     oit_streamer *streamer;      /* part files */
     oit_dfb *dfb;                /* in-core scenes; kept across scenes */
-    oit_gpu_mesh *gpu_mesh;      /* the in-core scene's triangles */
+    oit_gpu_mesh *gpu_mesh;      /* the in-core scene's triangles (oit_renderer_draw) */
+    /* An in-core scene's image path (oit_renderer_draw_pixels): the method
+     * drawing it (`method`, resolved at the draw), opened in the caller's
+     * context (run_gl), with the reference's plugin where it is the one. */
+    const oit_lib_method *method;
+    oit_method_state *run;
+    struct oit_gl *run_gl;
+    oit_plugin reference_plugin;
+    const oit_method *reference;
+    char device[256];            /* oit_draw_stats.device: the GL renderer's */
     uint64_t pending_upload;     /* bytes uploaded by bind_scene, for the stats */
     GLuint blend_prog, vao;      /* blend_prog: made at the first oit_renderer_draw */
     oit_program_cache *programs; /* desc.program_cache's, NULL: none */
@@ -97,8 +117,17 @@ oit_status oit_lib_frame_camera(const oit_frame *f, oit_view *v, oit_error *err)
 oit_status oit_lib_frame_view(const oit_renderer *r, const oit_scene *scene, const oit_frame *f,
                               const float *bg, oit_view *v, oit_error *err);
 
+/* liboit_methods.c */
+const oit_lib_method *oit_lib_method_find(const char *name);
+oit_status oit_lib_method_check(const char *name, oit_error *err);
+oit_status oit_lib_method_for(const oit_renderer *r, const oit_scene *scene,
+                              const oit_lib_method **out, oit_error *err);
+oit_status oit_lib_method_open(oit_renderer *r, const oit_lib_method *m, const oit_scene *scene,
+                               oit_error *err);
+
 /* liboit_renderer.c */
-oit_status oit_lib_bind_scene(oit_renderer *r, oit_scene *scene, oit_error *err);
+oit_status oit_lib_bind_scene(oit_renderer *r, oit_scene *scene, int image, oit_error *err);
+oit_status oit_lib_gl_ready(oit_renderer *r, oit_error *err);
 void oit_lib_make_shading(const oit_renderer *r, const oit_scene *scene, const float *bg,
                           oit_shading *s);
 

@@ -8,6 +8,8 @@
  * reads the scene's part file until it is destroyed). */
 static void drop_scene(oit_renderer *r)
 {
+    oit_method_close(r->run);
+    r->run = NULL;
     oit_streamer_destroy(r->streamer);
     r->streamer = NULL;
     oit_gpu_mesh_destroy(r->gpu_mesh);
@@ -21,6 +23,8 @@ void oit_renderer_destroy(oit_renderer *r)
     if (!r)
         return;
     drop_scene(r);
+    oit_gl_destroy(r->run_gl);
+    oit_plugin_close(&r->reference_plugin);
     oit_dfb_destroy(r->dfb);
     oit_gpu_timer_destroy(r->timer);
     glDeleteProgram(r->blend_prog);
@@ -54,7 +58,7 @@ static void stream_desc(const oit_renderer_desc *d, oit_streamer_desc *sd)
     sd->capture = d->capture;
     sd->pack = d->pack;
     sd->upload_budget = d->upload_budget;
-    sd->epsilon = d->epsilon;
+    sd->epsilon = d->epsilon == OIT_RENDER_EPSILON_ZERO ? 0.0f : d->epsilon;
     _Static_assert(OIT_RENDER_CACHE_OFF == OIT_STREAM_CACHE_OFF, "one spelling of 'no cache'");
     sd->cache_budget = d->cache_budget;
     sd->reader_threads = d->read_on_draw_thread
@@ -94,6 +98,8 @@ static oit_status check_row(const oit_renderer_desc *d, const oit_desc_range *ro
  * builds, which names the fields as liboit's. */
 oit_status oit_renderer_desc_check(const oit_renderer_desc *d, oit_error *err)
 {
+    if (oit_lib_method_check(d->method, err) != OIT_OK)
+        return OIT_ERR_ARGUMENT;
     for (size_t i = 0; i < OIT_DESC_RANGES; i++)
         if (oit_desc_ranges[i].liboit_checks && check_row(d, &oit_desc_ranges[i], err) != OIT_OK)
             return OIT_ERR_ARGUMENT;
@@ -115,27 +121,32 @@ oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out
         free(r);
         return bad;
     }
+    /* the caller's strings are not kept: the method's static name and the
+     * cache's folder in use are read back */
+    if (r->desc.method)
+        r->desc.method = r->desc.method[0] ? oit_lib_method_find(r->desc.method)->name : NULL;
     stream_desc(&r->desc, &r->stream);
     oit_status st = oit_program_cache_open(r->desc.program_cache, &r->programs, err);
-    /* the caller's string is not kept: the folder in use is read back */
     r->desc.program_cache = r->programs ? oit_program_cache_dir(r->programs) : "off";
     r->stream.programs = r->programs;
-    if (st == OIT_OK) {
-        glCreateVertexArrays(1, &r->vao);
-        glCreateSamplers(1, &r->depth_sampler);
-        glSamplerParameteri(r->depth_sampler, GL_TEXTURE_COMPARE_MODE, GL_NONE);
-        glSamplerParameteri(r->depth_sampler, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glSamplerParameteri(r->depth_sampler, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        glSamplerParameteri(r->depth_sampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-        glSamplerParameteri(r->depth_sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-        st = oit_gl_check("oit_renderer_create", err);
-    }
     if (st != OIT_OK) {
         oit_renderer_destroy(r);
         return st;
     }
     *out = r;
     return OIT_OK;
+}
+
+oit_status oit_renderer_set_shading(oit_renderer *r, const oit_render_shading *shading,
+                                    int see_through, oit_error *err)
+{
+    oit_renderer_desc d = r->desc;
+    d.shading = *shading;
+    d.see_through = see_through;
+    oit_status st = oit_renderer_desc_check(&d, err);
+    if (st == OIT_OK)
+        r->desc = d;
+    return st;
 }
 
 void oit_renderer_release_scene(oit_renderer *r, const oit_scene *scene)
@@ -152,21 +163,60 @@ static void hold_scene(oit_renderer *r, oit_scene *scene)
     r->scene = scene;
 }
 
-/* (Re)builds the streamer when r draws a scene it was not built for. r's
- * share keeps the scene it holds alive, so the address names one scene. */
-oit_status oit_lib_bind_scene(oit_renderer *r, oit_scene *scene, oit_error *err)
+/* The GL objects of r's GL draws, made at the first (GL current): the
+ * GPU timer that numbers them, the blend's vertex array and the depth
+ * texture's sampler, and the device's name. */
+oit_status oit_lib_gl_ready(oit_renderer *r, oit_error *err)
 {
-    if (r->scene == scene && (r->streamer || r->gpu_mesh))
+    if (r->timer)
         return OIT_OK;
-    drop_scene(r);
+    oit_status st = oit_gpu_timer_create(NULL, &r->timer, err);
+    if (st != OIT_OK)
+        return st;
+    const char *dev = (const char *)glGetString(GL_RENDERER);
+    snprintf(r->device, sizeof r->device, "%s", dev ? dev : "unknown");
+    glCreateVertexArrays(1, &r->vao);
+    glCreateSamplers(1, &r->depth_sampler);
+    glSamplerParameteri(r->depth_sampler, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+    glSamplerParameteri(r->depth_sampler, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glSamplerParameteri(r->depth_sampler, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glSamplerParameteri(r->depth_sampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glSamplerParameteri(r->depth_sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return oit_gl_check("oit_renderer: its GL objects", err);
+}
+
+/* An in-core scene's GPU state: its method opened for images, or DFB and
+ * the triangles for a blend into the caller's framebuffer (dfb only). */
+static oit_status bind_in_core(oit_renderer *r, oit_scene *scene, int image, oit_error *err)
+{
+    if (image)
+        return oit_lib_method_open(r, r->method, scene, err);
+    if (strcmp(r->method->name, "dfb") != 0)
+        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "oit_renderer_desc.method = \"%s\" "
+                             "draws images only (oit_renderer_draw_pixels); \"dfb\" blends "
+                             "an in-core scene into a framebuffer", r->method->name);
+    oit_status st = r->dfb ? OIT_OK : oit_dfb_create(&r->dfb, err);
+    if (st == OIT_OK)
+        st = oit_gpu_mesh_create(scene->mesh.tris, scene->mesh.count, 0, &r->gpu_mesh, err);
+    return st;
+}
+
+/* (Re)builds the streamer, or an in-core scene's state for the draw's kind
+ * (image or not), when r draws a scene it was not built for. r's share
+ * keeps the scene it holds alive, so the address names one scene. */
+oit_status oit_lib_bind_scene(oit_renderer *r, oit_scene *scene, int image, oit_error *err)
+{
+    if (r->scene == scene && (r->streamer || (image ? !!r->run : !!r->gpu_mesh)))
+        return OIT_OK;
+    if (r->scene != scene)
+        drop_scene(r);
     if (!scene->pf) {
-        oit_status st = r->dfb ? OIT_OK : oit_dfb_create(&r->dfb, err);
-        if (st == OIT_OK)
-            st = oit_gpu_mesh_create(scene->mesh.tris, scene->mesh.count, 0, &r->gpu_mesh, err);
-        if (st == OIT_OK) {
+        oit_status st = bind_in_core(r, scene, image, err);
+        if (st == OIT_OK && r->scene != scene)
             hold_scene(r, scene);
+        /* the triangles went up: the next draw's bytes_uploaded */
+        if (st == OIT_OK && (!image || r->method->flags & OIT_RENDER_METHOD_GL))
             r->pending_upload = (uint64_t)scene->mesh.count * sizeof(oit_triangle);
-        }
         return st;
     }
     oit_streamer_desc sd = r->stream;
@@ -208,6 +258,8 @@ void oit_lib_make_shading(const oit_renderer *r, const oit_scene *scene, const f
 void oit_renderer_get_desc(const oit_renderer *r, oit_renderer_desc *out)
 {
     *out = r->desc;
+    if (r->method)
+        out->method = r->method->name;
     if (r->scene) {
         oit_shading s;
         oit_lib_make_shading(r, r->scene, NULL, &s);

@@ -39,7 +39,8 @@ void oit_lib_scene_unshare(oit_scene *s)
     oit_order_destroy(s->order);
     free(s->ordered);
     oit_partfile_close(s->pf);
-    oit_mesh_free(&s->mesh);
+    if (!s->mesh_borrowed)
+        oit_mesh_free(&s->mesh);
     free(s->name);
     free(s);
 }
@@ -68,6 +69,20 @@ static oit_status mesh_scene(oit_mesh *mesh, const char *name, oit_scene **out, 
     s->info.share_triangles = mesh->count;
     *out = s;
     return OIT_OK;
+}
+
+oit_status oit_scene_borrow_mesh(const oit_mesh *mesh, const char *name, oit_scene **out,
+                                 oit_error *err)
+{
+    *out = NULL;
+    if (!mesh || (mesh->count && !mesh->tris))
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_scene_borrow_mesh: %s",
+                             mesh ? "mesh->tris is NULL" : "NULL mesh");
+    oit_mesh view = *mesh;
+    oit_status s = mesh_scene(&view, name ? name : "mesh", out, err);
+    if (s == OIT_OK)
+        (*out)->mesh_borrowed = 1;
+    return s;
 }
 
 /* oit_scene_desc.share_*, checked by the shares' owner (partfile/share.h);

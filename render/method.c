@@ -21,6 +21,7 @@ struct oit_method_state {
     void *impl;
     uint64_t store_limit; /* oit_method_options.store_limit */
     oit_gpu_timer *timer; /* GL methods only */
+    int timer_borrowed;   /* timer is oit_method_options.timer: not ours to destroy */
 };
 
 void oit_method_close(oit_method_state *st)
@@ -30,7 +31,8 @@ void oit_method_close(oit_method_state *st)
     /* GL objects go before the context that owns them. */
     if (st->impl)
         st->method->destroy(st->impl);
-    oit_gpu_timer_destroy(st->timer);
+    if (!st->timer_borrowed)
+        oit_gpu_timer_destroy(st->timer);
     if (st->gpu)
         oit_gpu_mesh_destroy(st->gpu);
     if (st->gl && !st->gl_borrowed)
@@ -49,10 +51,13 @@ static oit_status prepare_gl(oit_method_state *st, const oit_method_options *opt
     } else {
         s = oit_gl_create(&(oit_gl_desc){0}, &st->gl, err);
     }
-    if (s == OIT_OK && !st->method->gpu_poll)
+    st->timer_borrowed = opt && opt->timer;
+    if (st->timer_borrowed)
+        st->timer = opt->timer;
+    else if (s == OIT_OK && !st->method->gpu_poll)
         s = oit_gpu_timer_create(&(oit_gpu_timer_desc){.no_queries = opt && opt->no_gpu_timer},
                                  &st->timer, err);
-    if (s == OIT_OK && !(st->method->flags & OIT_METHOD_PARTFILE))
+    if (s == OIT_OK && !(st->method->flags & OIT_RENDER_METHOD_PART_FILE))
         s = oit_gpu_mesh_create(st->mesh->tris, st->mesh->count, 0, &st->gpu, err);
     return s;
 }
@@ -68,7 +73,7 @@ oit_status oit_method_open(const oit_method *m, const oit_mesh *mesh,
     st->method = m;
     st->mesh = mesh;
     st->store_limit = opt ? opt->store_limit : 0;
-    oit_status s = m->flags & OIT_METHOD_GL ? prepare_gl(st, opt, err) : OIT_OK;
+    oit_status s = m->flags & OIT_RENDER_METHOD_GL ? prepare_gl(st, opt, err) : OIT_OK;
     if (s == OIT_OK)
         s = m->create(mesh, opt, &st->impl, err);
     if (s != OIT_OK) {
@@ -85,13 +90,13 @@ static oit_status render_once(oit_method_state *st, const oit_view *view, oit_im
                               int band, int *split, oit_error *err)
 {
     unsigned f = st->method->flags;
-    uint64_t bind = f & OIT_METHOD_GL ? oit_gl_ssbo_max_bytes() : UINT64_MAX;
+    uint64_t bind = f & OIT_RENDER_METHOD_GL ? oit_gl_ssbo_max_bytes() : UINT64_MAX;
     if (st->store_limit && st->store_limit < bind)
         bind = st->store_limit;
     *split = 0;
     oit_method_frame frame = {.mesh = st->mesh, .gpu = st->gpu, .view = view, .out = out,
-                              .counts = f & OIT_METHOD_COUNTS ? counts : NULL,
-                              .ambiguous = f & OIT_METHOD_AMBIGUITY ? ambiguous : NULL,
+                              .counts = f & OIT_RENDER_METHOD_COUNTS ? counts : NULL,
+                              .ambiguous = f & OIT_RENDER_METHOD_AMBIGUITY ? ambiguous : NULL,
                               .stats = stats, .band = band, .store_limit = bind,
                               .split = split, .timer = st->timer};
     oit_status s = st->method->render(st->impl, &frame, err);
@@ -189,7 +194,7 @@ static oit_status render_frame(oit_method_state *st, const oit_view *view, oit_i
     const oit_method *m = st->method;
     int rows = view->height, split = 0;
     oit_status s = oit_clip_check(&view->clip, "section planes", err);
-    if (s == OIT_OK && view->clip.count > 0 && !(m->flags & OIT_METHOD_CLIP))
+    if (s == OIT_OK && view->clip.count > 0 && !(m->flags & OIT_RENDER_METHOD_CLIP))
         s = oit_error_set(err, OIT_ERR_UNSUPPORTED,
                           "method %s cannot clip: section planes are not supported by it",
                           m->name);

@@ -5,7 +5,7 @@
  * tools drive any of them through oit_method_open / _render / _close.
  *
  * What the interface does for every method, so no method repeats it: a GL
- * method (OIT_METHOD_GL) gets the caller's context or a headless one of its
+ * method (OIT_RENDER_METHOD_GL) gets the caller's context or a headless one of its
  * own, and an in-core GL method gets the mesh uploaded once at open; GL
  * objects are released before the context that owns them.
  *
@@ -17,6 +17,7 @@
 #include <stdint.h>
 
 #include "oit/mesh.h"
+#include "oit/render_modes.h"
 #include "render/gl/gpu_mesh.h"
 #include "render/image/view.h"
 
@@ -24,15 +25,11 @@ struct oit_gl;
 struct oit_gpu_timer;
 struct oit_gpu_times;
 
-enum {
-    OIT_METHOD_GL = 1u << 0,        /* renders with GL (a context is made or borrowed) */
-    OIT_METHOD_COUNTS = 1u << 1,    /* can fill per-pixel fragment counts          */
-    OIT_METHOD_AMBIGUITY = 1u << 2, /* can flag raster-vs-ray ambiguous pixels */
-    OIT_METHOD_PARTFILE = 1u << 3,  /* renders what options.source names, not the mesh */
-    OIT_METHOD_EPSILON = 1u << 4,   /* takes options.threshold (a sweep can vary it) */
-    OIT_METHOD_CLIP = 1u << 5       /* honours oit_view.clip (clip.h); oit_method_render
-                                       refuses planes to a method without it */
-};
+/* A method's flags are the public oit_render_method_flag (oit/render_modes.h),
+ * which liboit's list of methods gives its callers as they are. Beside
+ * what the public header says: a PART_FILE method renders what
+ * options.source names, not the mesh; oit_method_render refuses section
+ * planes to a method without CLIP. */
 
 typedef struct oit_method_options {
     int max_layers; /* K of the capture backends and the streamer */
@@ -40,13 +37,13 @@ typedef struct oit_method_options {
      * this one, current on the calling thread (the viewer's window), and do
      * not destroy it. */
     struct oit_gl *gl;
-    /* The threshold of a method flagged OIT_METHOD_EPSILON, in [0, 1); its
+    /* The threshold of a method flagged OIT_RENDER_METHOD_EPSILON, in [0, 1); its
      * table's file says what it means (the streamer's early termination,
      * f2b's alpha, guarded's contribution, what the reference counts as
      * saturated). NULL: the method's own default. Other methods ignore it. */
     const float *threshold;
     float ambiguity_px; /* the reference's ambiguity radius, pixels; 0: 1/64 */
-    /* OIT_METHOD_PARTFILE methods: what they render and how, in the
+    /* OIT_RENDER_METHOD_PART_FILE methods: what they render and how, in the
      * method's own type (liboit's: tools/common/method_stream.h), which
      * this floor does not name; NULL for the others. */
     const void *source;
@@ -54,6 +51,10 @@ typedef struct oit_method_options {
      * 0, what the driver binds (GL_MAX_SHADER_STORAGE_BLOCK_SIZE); lower
      * only to test the bands. The image is the same either way. */
     uint64_t store_limit;
+    /* NULL: a GL method's frames are timed by a GPU timer of the
+     * interface's own. Else by this one (the caller's, which outlives the
+     * method; liboit's renderer, whose draws of every path it numbers). */
+    struct oit_gpu_timer *timer;
     /* Testing: the GPU timer behaves as on a driver without timestamp
      * queries (render/gl/gpu_timer.h): no gpu_ms, and it says why. */
     int no_gpu_timer;
@@ -65,8 +66,8 @@ typedef struct oit_method_frame {
     const oit_gpu_mesh *gpu;  /* the same on the GPU (in-core GL methods) */
     const oit_view *view;
     oit_image *out;           /* allocated by the method */
-    uint32_t *counts;         /* width*height, or NULL; only with OIT_METHOD_COUNTS */
-    uint8_t *ambiguous;       /* width*height, or NULL; only with OIT_METHOD_AMBIGUITY */
+    uint32_t *counts;         /* width*height, or NULL; only with OIT_RENDER_METHOD_COUNTS */
+    uint8_t *ambiguous;       /* width*height, or NULL; only with OIT_RENDER_METHOD_AMBIGUITY */
     oit_frame_stats *stats;
     /* A frame too large for one storage binding is rendered as bands of
      * rows (render/gl/band.h), each a frame of its own: band is its index in
@@ -115,7 +116,7 @@ typedef struct oit_method {
 
 typedef struct oit_method_state oit_method_state;
 
-/* Opens m for mesh (empty for OIT_METHOD_PARTFILE methods, whose part file
+/* Opens m for mesh (empty for OIT_RENDER_METHOD_PART_FILE methods, whose part file
  * comes in opt->source). opt may be NULL for methods that need none. */
 oit_status oit_method_open(const oit_method *m, const oit_mesh *mesh,
                            const oit_method_options *opt, oit_method_state **out,

@@ -32,7 +32,7 @@ static uint64_t dfb_pixel_bytes(const void *impl, const oit_view *view)
 
 const oit_method oit_method_dfb = {
     .name = "dfb",
-    .flags = OIT_METHOD_GL | OIT_METHOD_COUNTS | OIT_METHOD_CLIP,
+    .flags = OIT_RENDER_METHOD_GL | OIT_RENDER_METHOD_COUNTS | OIT_RENDER_METHOD_CLIP,
     .create = dfb_create,
     .render = dfb_render,
     .destroy = dfb_destroy,
@@ -86,7 +86,7 @@ static uint64_t capture_pixel_bytes(const void *impl, const oit_view *view)
         return capture_create(FILL, opt, impl, err);                                       \
     }                                                                                      \
     const oit_method oit_method_##NAME = {.name = #NAME,                                   \
-                                          .flags = OIT_METHOD_GL | OIT_METHOD_CLIP,        \
+                                          .flags = OIT_RENDER_METHOD_GL | OIT_RENDER_METHOD_CLIP,        \
                                           .create = NAME##_create,                         \
                                           .render = capture_render,                        \
                                           .destroy = capture_destroy,                      \

@@ -37,10 +37,11 @@
 #include <stdint.h>
 
 #include "oit/partfile.h"
+#include "oit/render_modes.h"
 
 #define OIT_READER_QUEUE 16u
-/* The most threads a reader starts. */
-#define OIT_READER_MAX_THREADS 64
+/* The most threads a reader starts (oit_renderer_desc.reader_threads). */
+#define OIT_READER_MAX_THREADS OIT_RENDER_READER_THREADS_MAX
 
 typedef struct oit_read_item {
     uint32_t part;

@@ -4,10 +4,12 @@
  *
  *   oit_scene_open     opens a part file, or loads a mesh file (no GL needed)
  *   oit_scene_create_mesh  an in-core scene from the caller's arrays
- *   oit_renderer_create needs the caller's current GL 4.5 core context
+ *   oit_renderer_create a renderer running one method (oit_render_methods)
  *   oit_renderer_draw  composites the scene over the caller's framebuffer
+ *                      (needs the caller's current GL 4.5 core context)
  *   oit_renderer_draw_image  the same frame resolved into memory over a
  *                      background, bit for bit the tools' images
+ *   oit_renderer_draw_pixels  that, with per-pixel counts or ambiguity
  *
  * Both kinds of scene go through the same handle and the same draw: a part
  * file is streamed (parts read, uploaded and captured pack by pack); an
@@ -23,8 +25,9 @@
  * failure, fills err (when non-NULL) with one line naming the input.
  *
  * Threads: no global state. A scene may be shared by renderers of one thread;
- * a renderer belongs to the GL context that was current at its creation and
- * must be used and destroyed on a thread where that context is current. A
+ * a renderer belongs to the GL context that was current at its first GL
+ * draw and must be used and destroyed on a thread where that context is
+ * current (a renderer that never drew with GL, anywhere). A
  * renderer starts reader threads of its own at its first draw (the cores
  * there are, less one, at least 1; see read_on_draw_thread), which touch
  * only the scene's file and memory the renderer mapped, never GL; they are
@@ -76,6 +79,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "draw_stats.h"
+#include "mesh.h"
 #include "render_modes.h"
 #include "status.h"
 
@@ -179,6 +184,13 @@ typedef struct oit_scene_mesh_desc {
  * vertex_count 9"); OIT_ERR_NOMEM when the copy does not fit. No GL needed. */
 OIT_API oit_status oit_scene_create_mesh(const oit_scene_mesh_desc *desc, oit_scene **out,
                                          oit_error *err);
+/* An in-core scene over the caller's mesh (oit/mesh.h: oit_mesh_load's or
+ * a generator's), not copied, as Embree shares a caller's buffers: the
+ * mesh must stay as it is until the scene is freed (oit_scene_close, and
+ * the last renderer holding it letting it go). name: the scene in
+ * messages; NULL: "mesh". No GL needed. */
+OIT_API oit_status oit_scene_borrow_mesh(const oit_mesh *mesh, const char *name, oit_scene **out,
+                                         oit_error *err);
 OIT_API oit_status oit_scene_get_info(const oit_scene *scene, oit_scene_info *info, oit_error *err);
 /* Lifetime: a renderer holds the last scene it drew (the scene and the GPU
  * state it built for it) until it draws another scene, releases it
@@ -224,6 +236,24 @@ typedef struct oit_render_shading {
  * and binding_limit apply to it (its image is the exact one, whatever
  * epsilon). */
 typedef struct oit_renderer_desc {
+    /* ---- the method ---- */
+    /* NULL (default): a part file is streamed ("stream"), an in-core scene
+     * drawn by DFB ("dfb"). Else a name oit_render_methods lists: "stream"
+     * for part files; for in-core scenes the exact "dfb", "array",
+     * "stencil" and "compute" (the capture's fills drawing the mesh as one
+     * batch of K slots a pixel), "reference" (Embree's ray tracer on the
+     * CPU, no GL, loaded from liboit-reference.so beside liboit) and the
+     * baselines the papers compare with ("unsorted", "wboit", "pll", "dp",
+     * "ppll4", "b3d", "ddp", "guarded", "f2b"). An unknown name fails at
+     * create (OIT_ERR_ARGUMENT), one that does not draw the scene's kind at
+     * draw (OIT_ERR_UNSUPPORTED). Only stream and dfb blend into a
+     * framebuffer (oit_renderer_draw); every method draws images
+     * (oit_renderer_draw_pixels). The string need not outlive create. */
+    const char *method;
+    /* The reference's ambiguity radius in pixels (oit_pixels_desc.ambiguous);
+     * 0: 1/64. */
+    float ambiguity_px;
+
     /* ---- the image ---- */
     oit_render_shading shading;
     /* 0 (default): a scene's own alpha, and its opaque triangles (alpha
@@ -239,11 +269,16 @@ typedef struct oit_renderer_desc {
      * drawn (oit_draw_stats.parts_skipped); the image then differs from the
      * exact one by at most epsilon per channel (in the compositing space:
      * in linear light for OIT_RENDER_COLOUR_LINEAR, where the encoding can
-     * magnify it near black). */
+     * magnify it near black). The other methods flagged
+     * OIT_RENDER_METHOD_EPSILON read it as their threshold: f2b's alpha
+     * and guarded's contribution (0: their defaults, 0.02 and 0.0025;
+     * OIT_RENDER_EPSILON_ZERO: a threshold of exactly 0), the reference's
+     * saturation, below which it counts fragments as saturated
+     * (oit_draw_stats.fragments_saturated; no pixel changes). */
     float epsilon;
 
     /* ---- a part file's packs and their capture ---- */
-    uint32_t K;             /* capture layers 2..16; 0: the scene's K        */
+    uint32_t K; /* capture layers 2..16; 0: the scene's K (in-core methods: 16) */
     oit_render_pack pack;
     /* The order packs are cut in: OIT_RENDER_SCHEDULE_TREE (0) the
      * management tree's, WAVE the wavefront; the image is the same. */
@@ -324,6 +359,19 @@ typedef struct oit_renderer_desc {
 } oit_renderer_desc;
 
 #define OIT_RENDER_CACHE_OFF UINT64_MAX
+/* oit_renderer_desc.epsilon: a threshold of exactly 0 for a method whose
+ * default is not 0 (f2b, guarded); for the others, the same as 0. */
+#define OIT_RENDER_EPSILON_ZERO (-1.0f)
+
+/* A method a renderer runs (oit_renderer_desc.method). */
+typedef struct oit_render_method_info {
+    const char *name;
+    uint32_t flags; /* oit_render_method_flag (oit/render_modes.h) */
+} oit_render_method_info;
+
+/* Every method, in the order the tools list them: *count of them (count
+ * may be NULL), static. No GL needed. */
+OIT_API const oit_render_method_info *oit_render_methods(uint32_t *count);
 
 /* The one range check of desc, the one oit_renderer_create runs: K 0 or
  * 2..16; the byte budgets 0 or 64 KiB..1 TiB (cache_budget also
@@ -336,8 +384,9 @@ typedef struct oit_renderer_desc {
  * draw of a part file. No GL needed. */
 OIT_API oit_status oit_renderer_desc_check(const oit_renderer_desc *desc, oit_error *err);
 
-/* Needs a current GL 4.5 core context (GL objects are created lazily, at the
- * first draw of each scene). */
+/* No GL needed: a renderer's GL objects are made at its first draw of a
+ * method that uses GL (OIT_RENDER_METHOD_GL), in the GL 4.5 core context
+ * current then, which every later draw must have current too. */
 OIT_API oit_status oit_renderer_create(const oit_renderer_desc *desc, oit_renderer **out,
                                        oit_error *err);
 OIT_API void oit_renderer_destroy(oit_renderer *r);
@@ -348,12 +397,24 @@ OIT_API void oit_renderer_destroy(oit_renderer *r);
  * OIT_RENDER_CACHE_OFF where there is no cache, a resident scene
  * included), gpu_budget (the total, 0: none), capture (what the K-slot
  * fills use, ARRAY or STENCIL; AUTO where none do: COUNTED packs) and
- * read_on_draw_thread; after any draw, the shading's defaults for the
+ * read_on_draw_thread; after any draw, the method (its name where NULL
+ * was given) and the shading's defaults for the
  * scene drawn last (alpha, colours, absorption, scene_scale, colour
  * space). pack stays as given (AUTO switches frame by frame; the draw's
  * figures say which ran), and so do epsilon and see_through. Before the
  * first draw: the descriptor as given. */
 OIT_API void oit_renderer_get_desc(const oit_renderer *r, oit_renderer_desc *out);
+/* The shading and see_through of r's later draws (oit_renderer_desc's),
+ * checked as oit_renderer_create checks them; r keeps the GPU state it
+ * built, so a viewer switches shading without building it again. */
+OIT_API oit_status oit_renderer_set_shading(oit_renderer *r, const oit_render_shading *shading,
+                                            int see_through, oit_error *err);
+/* Builds what r's first draw of scene into memory (oit_renderer_draw_pixels)
+ * builds: the part file's streamer, or the in-core method opened (its
+ * programs, its self-tests, the triangles uploaded), so that a method the
+ * driver cannot run fails here (OIT_ERR_UNSUPPORTED) rather than at a
+ * draw. A GL method needs its context current. */
+OIT_API oit_status oit_renderer_prepare(oit_renderer *r, oit_scene *scene, oit_error *err);
 /* Frees r's GPU state for scene and lets the scene go when r drew it last
  * (else does nothing), so that a closed scene's memory is freed while r
  * lives on (Lifetime); the next draw of any scene builds its state anew.
@@ -448,144 +509,6 @@ typedef struct oit_frame_camera {
 } oit_frame_camera;
 
 #define OIT_FRAME_CLIP_MAX 6
-#define OIT_DRAW_GPU_PHASES 8
-
-/* One draw's figures. Grouped by concept: the call and its time, the
- * fragments, the parts, the packs and their capture, the per-view choices,
- * the GPU memory, the shading. An in-core scene fills those
- * oit_renderer_draw names; the rest are 0 (NULL for strings). The strings
- * are liboit's, static or valid while the renderer draws the scene. */
-typedef struct oit_draw_stats {
-    /* ---- the call ---- */
-    /* This draw's number (1: the renderer's first oit_renderer_draw or
-     * oit_renderer_draw_image), which its GPU figures carry
-     * (oit_renderer_gpu_poll, gpu_frame below). */
-    uint64_t draw;
-    double ms;               /* wall time of the call; the capture is finished
-                                (its totals are read back), the final blend not */
-    /* GPU time from GL timestamp queries, read without waiting: the figures
-     * of draw number gpu_frame (usually an earlier call than this one), 0
-     * and gpu_ms -1 when none is in yet or the driver has no timestamps.
-     * Phases, in this order: other, upload (ring to cache copies), pass 1,
-     * pass 2, resolve, read-back, binning and sweep (the compute capture,
-     * OIT_RENDER_CAPTURE_COMPUTE); they add up to gpu_ms. */
-    uint64_t gpu_frame;
-    double gpu_ms;
-    double gpu_phase_ms[OIT_DRAW_GPU_PHASES];
-    /* host_waits: the times the host waited on the GPU between the draw's
-     * first command and its final read-back (buffer read-backs, fences
-     * that blocked; the final read-back not counted), 0 on warm draws of
-     * the default packs. redraws: the times the draw was captured again
-     * because a store sized ahead of the GPU's need proved short (the
-     * figures are the last capture's, the image exact). */
-    uint32_t host_waits, redraws;
-
-    /* ---- fragments ---- */
-    uint64_t fragments;
-    uint32_t max_layers;      /* most fragments on one pixel in one pack        */
-    uint64_t overflow_pixels; /* > K fragments in a K-slot pack: 0 for a
-                                 correct file                                   */
-    /* First-K or counted packs: the pixels that got more than capture_k
-     * fragments in one pack (first-K: more than its slots), summed over
-     * the packs. First-K's second pass took exactly these
-     * (second_pass_pixels; second_pass_packs: the packs that had any, so
-     * took a second geometry pass); counted packs count them from their
-     * counts. OIT_RENDER_PACK_AUTO's rule suggests counted packs where any
-     * did, first-K where none did. */
-    uint64_t deep_pixels;
-    uint64_t second_pass_pixels;
-    uint32_t second_pass_packs;
-
-    /* ---- parts ---- */
-    uint64_t parts_drawn;
-    uint64_t parts_culled;
-    uint64_t parts_skipped;  /* epsilon > 0: footprint saturated, not drawn;
-                                with depth_texture: also parts whose box lies
-                                wholly behind it over their screen rectangle
-                                (neither uploaded nor drawn; same image)      */
-    uint64_t parts_clipped;  /* parts in view wholly cut away by
-                                oit_frame.clip: neither uploaded nor drawn    */
-    uint64_t bytes_clipped;  /* the upload bytes of those parts              */
-    uint64_t bytes_uploaded; /* part bytes written for the GPU in this call    */
-    uint64_t cache_hits;     /* parts drawn from the cache, not uploaded again */
-    uint64_t cache_bytes;    /* bytes resident in the cache after the call     */
-    uint64_t draw_calls;     /* GL geometry draws; a pack's parts go in one
-                                multi-draw per run from the ring or the cache */
-    uint32_t reader_threads; /* the threads that read parts (0: the drawing
-                                thread)                                        */
-    uint32_t resident;       /* the scene is read once into the ring and kept
-                                (oit_renderer_desc.upload_budget)              */
-
-    /* ---- packs and their capture ---- */
-    uint32_t packs;
-    /* Capture batches: packs, more where a pack's fragments overran the
-     * capture's store (oit_renderer_desc.slot_budget) and it was captured
-     * in several; for an in-core scene, DFB's bands. predicted_batches:
-     * counted packs drawn at the offsets the last draw's counts of the same
-     * view gave (one geometry pass where the view held still, a second for
-     * the pixels whose fragments it did not hold), not counted first. */
-    uint32_t batches, predicted_batches;
-    /* The capture that ran ("counted", "first-k", "array", "stencil",
-     * "compute"; the last pack's) and capture_k its K; capture_asked:
-     * oit_renderer_desc.capture as given ("auto", "stencil", "array",
-     * "compute"). */
-    const char *capture;
-    uint32_t capture_k;
-    const char *capture_asked;
-    /* How the K-slot fills were made: "stencil" (capture_slots_k samples a
-     * pixel) or "array"; NULL where none ran (counted packs).
-     * capture_fallback: where AUTO took array slots or fewer samples than
-     * K, the self-test's reason, else "". */
-    const char *capture_slots;
-    uint32_t capture_slots_k;
-    const char *capture_fallback;
-
-    /* ---- the view's choices ---- */
-    /* CPU milliseconds of the parts' visibility order and of their
-     * packing, the per-view work that does not wait for GL. */
-    double order_ms, pack_ms;
-    /* auto_first_k: OIT_RENDER_PACK_AUTO took first-K packs (0: counted
-     * ones, or a fixed pack). front_first: the packs were cut front first
-     * (epsilon > 0 with counted or first-K packs). */
-    uint32_t auto_first_k, front_first;
-    /* OIT_RENDER_PACK_AUTO's choice of packs for this draw (NULL and -1
-     * with a fixed pack, a compute capture or an in-core scene): choice the
-     * path taken, "first-k" or "counted"; choice_why why ("seed": the first
-     * draw; "new view": the view changed, so the last view's path with no
-     * figures; "held"; "probe": tried for one draw, as a fixed rule
-     * suggests (deep_pixels above 0 suggests counted, 0 suggests first-K;
-     * counted draws over K try first-K every 256th draw), kept only if it
-     * measures faster (a path that lost is not tried again on any view for
-     * 8, 16, ... 256 draws); "kept: measured faster", "back: measured
-     * slower", "measured faster"); and each path's cost as measured on this
-     * view before the draw, the least wall time of its draws (where both
-     * paths have GPU figures: the least over its draws of each one's larger
-     * of wall and GPU time), -1 where not measured. */
-    const char *choice, *choice_why;
-    double choice_first_k_ms, choice_counted_ms;
-
-    /* ---- GPU memory (bytes) ---- */
-    uint64_t gpu_bytes_peak; /* all the GPU memory the call held at its peak:
-                                a part file's capture and per-pixel state,
-                                upload ring, cache and tiles together; an
-                                in-core scene's DFB buffers and its mesh   */
-    /* The memory the renderer chose for a part file: the total (0: none),
-     * its split (store_budget: 0 for packs without a store), the driver's
-     * free memory (0: it reports none), and where the total came from:
-     * budget_source "oit_renderer_desc.gpu_budget" where given, else the
-     * driver's figure ("GL_NVX_gpu_memory_info", "GL_ATI_meminfo") or why
-     * there is none. */
-    uint64_t gpu_budget, ring_budget, cache_budget, capture_budget, store_budget;
-    uint64_t gpu_free_bytes;
-    const char *budget_source;
-
-    /* ---- the shading ---- */
-    /* see_through is oit_renderer_desc.see_through; opaque is 1 when the
-     * scene's opaque triangles hid what is behind them (transparent
-     * shading, not see-through, a scene with opaque triangles): fragments
-     * behind them were neither stored nor counted. */
-    uint32_t see_through, opaque;
-} oit_draw_stats;
 
 /* Draws scene as seen through frame into frame->framebuffer (see Result
  * above). The scene must stay open while r draws it; drawing a different
@@ -616,19 +539,33 @@ OIT_API oit_status oit_renderer_draw(oit_renderer *r, oit_scene *scene, const oi
  * frame's framebuffer, viewport_x and viewport_y are not read; a
  * depth_texture is OIT_ERR_UNSUPPORTED here. stats as oit_renderer_draw's
  * (ms includes the read-back). The GL state is kept as by
- * oit_renderer_draw. */
+ * oit_renderer_draw. Every method draws images (oit_renderer_desc.method:
+ * an in-core scene's methods other than dfb fill the figures they have). */
 OIT_API oit_status oit_renderer_draw_image(oit_renderer *r, oit_scene *scene,
                                            const oit_frame *frame, const float background[3],
                                            float *rgba, size_t rgba_bytes,
                                            oit_draw_stats *stats, oit_error *err);
 
-/* One draw's GPU time (oit_draw_stats.gpu_ms alike): its number
- * (oit_draw_stats.draw), the total and the phases. */
-typedef struct oit_draw_gpu {
-    uint64_t draw;
-    double ms;
-    double phase_ms[OIT_DRAW_GPU_PHASES];
-} oit_draw_gpu;
+/* Where oit_renderer_draw_pixels writes; zero means none. */
+typedef struct oit_pixels_desc {
+    const float *background; /* rgb as oit_renderer_draw_image's          */
+    float *rgba;             /* the image as oit_renderer_draw_image's      */
+    size_t rgba_bytes;
+    /* width * height each, row 0 at the top, or NULL. counts: the
+     * fragments each pixel got (a method flagged OIT_RENDER_METHOD_COUNTS);
+     * ambiguous: 1 where the pixel's centre lies within the ambiguity
+     * radius of an edge, where rasterization and rays may disagree, else 0
+     * (OIT_RENDER_METHOD_AMBIGUITY). Asked of a method without the flag:
+     * OIT_ERR_UNSUPPORTED naming the field. */
+    uint32_t *counts;
+    uint8_t *ambiguous;
+} oit_pixels_desc;
+
+/* oit_renderer_draw_image with the per-pixel figures a method has. */
+OIT_API oit_status oit_renderer_draw_pixels(oit_renderer *r, oit_scene *scene,
+                                            const oit_frame *frame, const oit_pixels_desc *out,
+                                            oit_draw_stats *stats, oit_error *err);
+
 
 /* Every draw's GPU figures, oldest first, each once (a tool that prints
  * every frame's; oit_draw_stats has only the newest): 1 and *out when the

@@ -11,6 +11,13 @@
 extern "C" {
 #endif
 
+/* The capture's layers a pixel, K (oit_renderer_desc.K). */
+#define OIT_RENDER_K_MIN 2
+#define OIT_RENDER_K_MAX 16
+/* The most threads that read a part file's parts
+ * (oit_renderer_desc.reader_threads). */
+#define OIT_RENDER_READER_THREADS_MAX 64
+
 /* How a part file's parts are cut into packs, each captured as one batch. */
 typedef enum oit_render_pack {
     OIT_RENDER_PACK_AUTO = 0,    /* FIRSTK while K slots a pixel hold the view,
@@ -43,6 +50,17 @@ typedef enum oit_render_capture {
      * per-pixel limit */
     OIT_RENDER_CAPTURE_COMPUTE = 5
 } oit_render_capture;
+
+/* What a rendering method does (oit_render_method_info.flags). */
+typedef enum oit_render_method_flag {
+    OIT_RENDER_METHOD_GL = 1u << 0,        /* draws with GL: a context must be current */
+    OIT_RENDER_METHOD_COUNTS = 1u << 1,    /* fills per-pixel fragment counts        */
+    OIT_RENDER_METHOD_AMBIGUITY = 1u << 2, /* flags pixels where raster and ray
+                                              disagree within the ambiguity radius */
+    OIT_RENDER_METHOD_PART_FILE = 1u << 3, /* draws part files (else in-core scenes) */
+    OIT_RENDER_METHOD_EPSILON = 1u << 4,   /* reads a threshold: epsilon            */
+    OIT_RENDER_METHOD_CLIP = 1u << 5       /* honours section planes (oit_frame.clip) */
+} oit_render_method_flag;
 
 #ifdef __cplusplus
 }

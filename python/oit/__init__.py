@@ -177,6 +177,13 @@ _PACKS = L.PACKS
 _CAPTURES = L.CAPTURES
 
 
+def methods():
+    """The methods a Renderer runs (oit_render_methods), in oitstream's order."""
+    n = ctypes.c_uint32()
+    m = L.lib().oit_render_methods(ctypes.byref(n))
+    return [m[i].name.decode() for i in range(n.value)]
+
+
 class Renderer(_Closable):
     """An offscreen renderer: its own headless GL context and an oit_renderer
     (oit_offscreen_create). Options as in oit_renderer_desc; 0/None means the
@@ -184,8 +191,14 @@ class Renderer(_Closable):
 
     def __init__(self, shading="transparent", alpha=None, default_rgb=None, absorption=None,
                  K=0, epsilon=0.0, pack="auto", upload_budget=0, cache_budget=0,
-                 colour_space="srgb", gpu_budget=0, capture="auto", see_through=False):
-        """pack, upload_budget, cache_budget, gpu_budget, K and epsilon take
+                 colour_space="srgb", gpu_budget=0, capture="auto", see_through=False,
+                 method=None):
+        """method: what draws (oit_renderer_desc.method, oitstream --method):
+        None (default) streams a part file and draws a mesh with DFB; else a
+        name of methods(): "reference" (Embree, on the CPU), "dfb", "wboit",
+        ... for meshes, "stream" for part files. stats["method"] and
+        stats["device"] say what drew.
+        pack, upload_budget, cache_budget, gpu_budget, K and epsilon take
         what oitstream's --pack, --upload-budget, --cache-budget, --gpu-budget,
         --max-layers and --epsilon take: 0 is the default, cache_budget="off"
         no cache.
@@ -214,6 +227,9 @@ class Renderer(_Closable):
         if capture not in _CAPTURES:
             raise ValueError(f"capture: {capture!r}, expected one of {', '.join(_CAPTURES)}")
         d = L.OffscreenDesc()
+        if method is not None and method not in methods():
+            raise ValueError(f"method: {method!r}, expected one of {', '.join(methods())}")
+        d.renderer.method = method.encode() if method else None
         d.renderer.capture = _CAPTURES[capture]
         d.renderer.K = K
         d.renderer.epsilon = epsilon

@@ -50,7 +50,8 @@ class RenderShading(ctypes.Structure):
 
 
 class RendererDesc(ctypes.Structure):
-    _fields_ = [("shading", RenderShading), ("see_through", ctypes.c_int),
+    _fields_ = [("method", ctypes.c_char_p), ("ambiguity_px", ctypes.c_float),
+                ("shading", RenderShading), ("see_through", ctypes.c_int),
                 ("epsilon", ctypes.c_float),
                 ("K", ctypes.c_uint32), ("pack", ctypes.c_int), ("schedule", ctypes.c_int),
                 ("capture", ctypes.c_int), ("frames", ctypes.c_uint32),
@@ -59,6 +60,10 @@ class RendererDesc(ctypes.Structure):
                 ("store_budget", ctypes.c_uint64), ("binding_limit", ctypes.c_uint64),
                 ("reader_threads", ctypes.c_uint32), ("read_on_draw_thread", ctypes.c_int),
                 ("program_cache", ctypes.c_char_p)]
+
+
+class RenderMethodInfo(ctypes.Structure):
+    _fields_ = [("name", ctypes.c_char_p), ("flags", ctypes.c_uint32)]
 
 
 class OffscreenDesc(ctypes.Structure):
@@ -78,10 +83,12 @@ class OffscreenView(ctypes.Structure):
 
 class DrawStats(ctypes.Structure):
     _fields_ = [("draw", ctypes.c_uint64), ("ms", ctypes.c_double),
+                ("method", ctypes.c_char_p), ("device", ctypes.c_char_p),
                 ("gpu_frame", ctypes.c_uint64), ("gpu_ms", ctypes.c_double),
                 ("gpu_phase_ms", ctypes.c_double * 8), ("host_waits", ctypes.c_uint32),
                 ("redraws", ctypes.c_uint32), ("fragments", ctypes.c_uint64),
-                ("max_layers", ctypes.c_uint32), ("overflow_pixels", ctypes.c_uint64),
+                ("max_layers", ctypes.c_uint32), ("fragments_saturated", ctypes.c_uint64),
+                ("overflow_pixels", ctypes.c_uint64),
                 ("deep_pixels", ctypes.c_uint64), ("second_pass_pixels", ctypes.c_uint64),
                 ("second_pass_packs", ctypes.c_uint32), ("parts_drawn", ctypes.c_uint64),
                 ("parts_culled", ctypes.c_uint64), ("parts_skipped", ctypes.c_uint64),
@@ -98,6 +105,7 @@ class DrawStats(ctypes.Structure):
                 ("front_first", ctypes.c_uint32), ("choice", ctypes.c_char_p),
                 ("choice_why", ctypes.c_char_p), ("choice_first_k_ms", ctypes.c_double),
                 ("choice_counted_ms", ctypes.c_double), ("gpu_bytes_peak", ctypes.c_uint64),
+                ("gpu_mesh_bytes", ctypes.c_uint64),
                 ("gpu_budget", ctypes.c_uint64), ("ring_budget", ctypes.c_uint64),
                 ("cache_budget", ctypes.c_uint64), ("capture_budget", ctypes.c_uint64),
                 ("store_budget", ctypes.c_uint64), ("gpu_free_bytes", ctypes.c_uint64),
@@ -165,6 +173,7 @@ def _declare(lib):
         "oit_offscreen_default_view": (ctypes.c_int, [vp, ctypes.c_int, ctypes.c_float,
                                                       ctypes.c_float, P(OffscreenView), err]),
         "oit_status_name": (ctypes.c_char_p, [ctypes.c_int]),
+        "oit_render_methods": (P(RenderMethodInfo), [P(ctypes.c_uint32)]),
     }
     for name, (res, args) in sigs.items():
         fn = getattr(lib, name)

@@ -245,4 +245,4 @@ static oit_status oit_f2b_render(oit_f2b *f, const oit_gpu_mesh *const *meshes, 
     return oit_blend_passes_end(&f->p, TEX_OUT, f->b.peak, out, stats, err);
 }
 
-OIT_BASELINE_METHOD(f2b, oit_f2b, "F2B", OIT_METHOD_EPSILON, OIT_THRESHOLD);
+OIT_BASELINE_METHOD(f2b, oit_f2b, "F2B", OIT_RENDER_METHOD_EPSILON, OIT_THRESHOLD);

@@ -45,4 +45,4 @@ oit_status oit_guarded_set_threshold(oit_guarded *g, float threshold, oit_error 
 
 OIT_BASELINE_METHOD_FRAMED(guarded, oit_guarded, desc.method, oit_guarded_init,
                            oit_list_store_release, oit_list_store_render, OIT_LIST_FRAME,
-                           OIT_METHOD_EPSILON, OIT_THRESHOLD);
+                           OIT_RENDER_METHOD_EPSILON, OIT_THRESHOLD);

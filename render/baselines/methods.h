@@ -86,7 +86,7 @@ extern const oit_method oit_method_f2b;
         return oit_baseline_end(&fr, f->stats, s);                                          \
     }                                                                                       \
     const oit_method oit_method_##NAME = {.name = #NAME,                                    \
-                                          .flags = OIT_METHOD_GL | OIT_METHOD_CLIP | (FLAGS), \
+                                          .flags = OIT_RENDER_METHOD_GL | OIT_RENDER_METHOD_CLIP | (FLAGS), \
                                           .create = NAME##_method_create,                   \
                                           .render = NAME##_method_render,                   \
                                           .destroy = NAME##_method_destroy,                 \

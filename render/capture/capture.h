@@ -56,8 +56,8 @@ typedef struct oit_capture oit_capture;
  * check, which the tools and liboit run on the value they were given, named
  * in their spelling (what: "oit_renderer_desc.K", a tool's flag; NULL:
  * "capture: K"). */
-#define OIT_CAPTURE_K_MIN 2
-#define OIT_CAPTURE_K_MAX 16
+#define OIT_CAPTURE_K_MIN OIT_RENDER_K_MIN
+#define OIT_CAPTURE_K_MAX OIT_RENDER_K_MAX
 oit_status oit_capture_k_check(long long K, const char *what, oit_error *err);
 
 /* Testing: what a driver may do, forced on the stencil backend's fill (the

@@ -19,6 +19,7 @@ struct oit_gl {
     EGLDisplay dpy;
     EGLContext ctx;
     void *window; /* an adopted window, or NULL when headless */
+    int borrowed; /* the caller's current context (oit_gl_borrow_current) */
     const oit_gl_window_ops *ops;
     char renderer[256];
     /* Debug contexts (oit_gl_debug_wanted): error and undefined-behaviour
@@ -190,6 +191,17 @@ oit_status oit_gl_create(const oit_gl_desc *desc, oit_gl **out, oit_error *err)
     return OIT_OK;
 }
 
+oit_status oit_gl_borrow_current(oit_gl **out, oit_error *err)
+{
+    *out = gl_new();
+    if (!*out)
+        return oit_error_set(err, OIT_ERR_NOMEM, "GL context: out of memory");
+    (*out)->borrowed = 1;
+    const char *r = (const char *)glGetString(GL_RENDERER);
+    strncpy((*out)->renderer, r ? r : "unknown", sizeof (*out)->renderer - 1);
+    return OIT_OK;
+}
+
 oit_status oit_gl_adopt_window(void *window, const oit_gl_window_ops *ops, oit_gl **out,
                                oit_error *err)
 {
@@ -224,6 +236,8 @@ void oit_gl_destroy(oit_gl *gl)
 
 oit_status oit_gl_make_current(oit_gl *gl, oit_error *err)
 {
+    if (gl->borrowed)
+        return OIT_OK;
     if (gl->window) {
         gl->ops->make_current(gl->window);
         return OIT_OK;

@@ -41,6 +41,11 @@ int oit_gl_debug_wanted(const oit_gl_desc *desc);
  * whose GL calls the driver flagged fails instead of passing silently. */
 oit_status oit_gl_debug_check(oit_gl *gl, const char *what, oit_error *err);
 
+/* An oit_gl for the context current on the calling thread, whatever made
+ * it (a library's caller: liboit), so the GL methods draw in it: making
+ * it current does nothing, destroying it frees the handle only, and no
+ * debug callback replaces the caller's (oit_gl_debug_check: OK). */
+oit_status oit_gl_borrow_current(oit_gl **out, oit_error *err);
 /* Window only (NULL when headless): the GLFWwindow*. */
 void *oit_gl_window(oit_gl *gl);
 

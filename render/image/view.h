@@ -98,7 +98,7 @@ typedef struct oit_view {
      * the streamer culls and orders parts through it. */
     float model[16];
     /* Section planes in world space (clip.h); count 0: none. A method
-     * without OIT_METHOD_CLIP refuses a view with planes (method.h). */
+     * without OIT_RENDER_METHOD_CLIP refuses a view with planes (method.h). */
     oit_clip clip;
 } oit_view;
 

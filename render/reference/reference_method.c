@@ -1,6 +1,6 @@
 /* The Embree reference as a method table (method.h): no GL; it fills
  * per-pixel counts and flags the pixels where rasterization and rays may
- * disagree. Its threshold (OIT_METHOD_EPSILON) changes no pixel: it counts
+ * disagree. Its threshold (OIT_RENDER_METHOD_EPSILON) changes no pixel: it counts
  * the fragments an early termination at it would drop
  * (oit_reference_desc.saturation_epsilon). */
 #include "render/method.h"
@@ -38,7 +38,7 @@ static const char *reference_renderer(const void *impl)
 
 const oit_method oit_method_reference = {
     .name = "reference",
-    .flags = OIT_METHOD_COUNTS | OIT_METHOD_AMBIGUITY | OIT_METHOD_EPSILON | OIT_METHOD_CLIP,
+    .flags = OIT_RENDER_METHOD_COUNTS | OIT_RENDER_METHOD_AMBIGUITY | OIT_RENDER_METHOD_EPSILON | OIT_RENDER_METHOD_CLIP,
     .create = reference_create,
     .render = reference_render,
     .destroy = free,

@@ -42,7 +42,7 @@ done
 cmake --build "$build" --target oit $tools > "$tmp/build.log" 2>&1 || { cat "$tmp/build.log"; exit 1; }
 cmake --install "$build" --prefix "$tmp/prefix" > "$tmp/install.log"
 for f in include/oit/oit.h include/oit/liboit.h include/oit/offscreen.h include/oit/partfile.h \
-         share/doc/oit/part-file.md lib/liboit-gltf.so lib/liboit-assimp.so lib/liboit-occt.so lib/pkgconfig/oit.pc lib/cmake/oit/oitConfig.cmake \
+         share/doc/oit/part-file.md lib/liboit-gltf.so lib/liboit-assimp.so lib/liboit-occt.so lib/liboit-reference.so lib/pkgconfig/oit.pc lib/cmake/oit/oitConfig.cmake \
          lib/cmake/oit/oitConfigVersion.cmake \
          lib/python3/dist-packages/oit/__init__.py \
          lib/python3/dist-packages/oit/_install_paths.py; do
@@ -76,7 +76,7 @@ C
 cat > "$tmp/src/CMakeLists.txt" <<'C'
 cmake_minimum_required(VERSION 3.20)
 project(outside C)
-find_package(oit 0.3 REQUIRED)
+find_package(oit 0.4 REQUIRED)
 add_executable(outside main.c)
 target_link_libraries(outside PRIVATE oit::oit)
 C
@@ -138,7 +138,7 @@ cp "$src_dir/examples/embed_liboit.c" "$tmp/ex/"
 cat > "$tmp/ex/CMakeLists.txt" <<'C'
 cmake_minimum_required(VERSION 3.20)
 project(embed C)
-find_package(oit 0.3 REQUIRED)
+find_package(oit 0.4 REQUIRED)
 find_package(OpenGL REQUIRED COMPONENTS OpenGL EGL)
 add_executable(embed_liboit embed_liboit.c)
 target_link_libraries(embed_liboit PRIVATE oit::oit OpenGL::OpenGL OpenGL::EGL m)

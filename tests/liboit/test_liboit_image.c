@@ -22,7 +22,7 @@
 #include "stream/streamer.h"
 #include "tests/lib/test_check.h"
 #include "tests/liboit/part_scene.h"
-#include "tools/common/method_stream.h"
+#include "tools/common/method_run.h"
 
 enum { W = 96, H = 72 };
 
@@ -87,7 +87,7 @@ static void check_stream(oit_scene *scene, oit_partfile *pf, const oit_scene_inf
     oit_renderer *r = NULL;
     CHECK(oit_renderer_create(&rd, &r, &err) == OIT_OK, "%s: %s", name, err.message);
     oit_camera cam = camera_of(info, ortho);
-    oit_frame_camera fc = oit_stream_camera(&cam);
+    oit_frame_camera fc = oit_run_camera(&cam);
     oit_frame f = {.viewport_width = W, .viewport_height = H, .camera = &fc};
     float *got = malloc((size_t)W * H * 4 * sizeof *got);
     oit_draw_stats st = {0};
@@ -162,7 +162,7 @@ static void check_draw_camera(oit_scene *scene, const oit_scene_info *info)
     oit_renderer *r = NULL;
     CHECK(oit_renderer_create(NULL, &r, &err) == OIT_OK, "draw camera: %s", err.message);
     oit_camera cam = camera_of(info, 1);
-    oit_frame_camera fc = oit_stream_camera(&cam);
+    oit_frame_camera fc = oit_run_camera(&cam);
     oit_frame f = {.viewport_width = W, .viewport_height = H, .camera = &fc};
     const float bg[4] = {0.2f, 0.4f, 0.6f, 1.0f};
     size_t n = (size_t)W * H * 4;
@@ -212,7 +212,7 @@ static void check_in_core(oit_partfile *pf, const oit_scene_info *info)
     oit_renderer *r = NULL;
     CHECK(oit_renderer_create(NULL, &r, &err) == OIT_OK, "in core: %s", err.message);
     oit_camera cam = camera_of(info, 0);
-    oit_frame_camera fc = oit_stream_camera(&cam);
+    oit_frame_camera fc = oit_run_camera(&cam);
     oit_frame f = {.viewport_width = W, .viewport_height = H, .camera = &fc};
     float *got = malloc((size_t)W * H * 4 * sizeof *got);
     oit_draw_stats st = {0};
@@ -262,7 +262,7 @@ static void check_errors(oit_scene *scene, const oit_scene_info *info)
     }
     CHECK(oit_renderer_create(NULL, &r, &err) == OIT_OK, "%s", err.message);
     oit_camera cam = camera_of(info, 0);
-    oit_frame_camera fc = oit_stream_camera(&cam);
+    oit_frame_camera fc = oit_run_camera(&cam);
     oit_frame f = {.viewport_width = W, .viewport_height = H, .camera = &fc};
     float px[4];
     oit_status s = oit_renderer_draw_image(r, scene, &f, NULL, px, sizeof px, NULL, &err);

@@ -22,11 +22,14 @@ static void renderer(void)
 #undef R
     SIZE(RendererDesc, oit_renderer_desc);
 #define D(f) AT(RendererDesc, oit_renderer_desc, f)
-    D(shading); D(see_through); D(epsilon); D(K); D(pack); D(schedule); D(capture);
+    D(method); D(ambiguity_px); D(shading); D(see_through); D(epsilon); D(K); D(pack); D(schedule); D(capture);
     D(frames); D(gpu_budget); D(upload_budget); D(cache_budget); D(slot_budget);
     D(store_budget); D(binding_limit); D(reader_threads); D(read_on_draw_thread);
     D(program_cache);
 #undef D
+    SIZE(RenderMethodInfo, oit_render_method_info);
+    AT(RenderMethodInfo, oit_render_method_info, name);
+    AT(RenderMethodInfo, oit_render_method_info, flags);
     SIZE(OffscreenDesc, oit_offscreen_desc);
     AT(OffscreenDesc, oit_offscreen_desc, renderer);
 }
@@ -35,14 +38,14 @@ static void stats(void)
 {
     SIZE(DrawStats, oit_draw_stats);
 #define S(f) AT(DrawStats, oit_draw_stats, f)
-    S(draw); S(ms); S(gpu_frame); S(gpu_ms); S(gpu_phase_ms); S(host_waits); S(redraws);
-    S(fragments); S(max_layers); S(overflow_pixels); S(deep_pixels); S(second_pass_pixels);
+    S(draw); S(ms); S(method); S(device); S(gpu_frame); S(gpu_ms); S(gpu_phase_ms); S(host_waits); S(redraws);
+    S(fragments); S(max_layers); S(fragments_saturated); S(overflow_pixels); S(deep_pixels); S(second_pass_pixels);
     S(second_pass_packs); S(parts_drawn); S(parts_culled); S(parts_skipped); S(parts_clipped);
     S(bytes_clipped); S(bytes_uploaded); S(cache_hits); S(cache_bytes); S(draw_calls);
     S(reader_threads); S(resident); S(packs); S(batches); S(predicted_batches); S(capture);
     S(capture_k); S(capture_asked); S(capture_slots); S(capture_slots_k); S(capture_fallback);
     S(order_ms); S(pack_ms); S(auto_first_k); S(front_first); S(choice); S(choice_why);
-    S(choice_first_k_ms); S(choice_counted_ms); S(gpu_bytes_peak); S(gpu_budget);
+    S(choice_first_k_ms); S(choice_counted_ms); S(gpu_bytes_peak); S(gpu_mesh_bytes); S(gpu_budget);
     S(ring_budget); S(cache_budget); S(capture_budget); S(store_budget); S(gpu_free_bytes);
     S(budget_source); S(see_through); S(opaque);
 #undef S

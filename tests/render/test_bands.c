@@ -28,7 +28,8 @@
 #include "render/image/image.h"
 #include "render/method.h"
 #include "stream/streamer.h"
-#include "tools/common/method_stream.h"
+#include "render/baselines/methods.h"
+#include "tools/common/method_run.h"
 #include "tests/lib/test_check.h"
 #include "tests/lib/test_gl.h"
 #include "tools/common/methods.h"
@@ -111,16 +112,38 @@ typedef struct frame {
     int ok;
 } frame;
 
+/* The stream, which liboit runs (the tools' oit_run), in this test's
+ * list of the method interface's tables. */
+static const oit_method stream = {.name = "stream"};
+
+static oit_status render_stream(const oit_method_options *opt, const oit_view *v, frame *f,
+                                oit_error *err)
+{
+    oit_run *run = NULL;
+    oit_run_options ro = {.max_layers = opt->max_layers, .gl = opt->gl, .source = opt->source,
+                          .store_limit = opt->store_limit};
+    oit_status s = oit_run_open(oit_method_find("stream"), NULL, &ro, &run, err);
+    if (s == OIT_OK)
+        s = oit_run_render(run, v, &f->img, NULL, NULL, &f->st, err);
+    oit_run_close(run);
+    return s;
+}
+
 static void render(const oit_method *m, const oit_mesh *mesh, const oit_method_options *opt,
                    const oit_view *v, frame *f)
 {
     oit_error err = {0};
     oit_method_state *st = NULL;
     memset(f, 0, sizeof *f);
-    oit_status s = oit_method_open(m, mesh, opt, &st, &err);
-    if (s == OIT_OK)
-        s = oit_method_render(st, v, &f->img, f->counts, NULL, &f->st, &err);
-    oit_method_close(st);
+    oit_status s = OIT_OK;
+    if (m == &stream) {
+        s = render_stream(opt, v, f, &err);
+    } else {
+        s = oit_method_open(m, mesh, opt, &st, &err);
+        if (s == OIT_OK)
+            s = oit_method_render(st, v, &f->img, f->counts, NULL, &f->st, &err);
+        oit_method_close(st);
+    }
     f->ok = s == OIT_OK;
     CHECK(f->ok, "%s (store limit %llu): %s", m->name, (unsigned long long)opt->store_limit,
           err.message);
@@ -166,7 +189,7 @@ static void compare(const char *what, const oit_method *m, const oit_view *v, co
           banded->st.max_layers, whole->st.max_layers);
     CHECK(banded->st.batches >= (uint32_t)bands, "%s: %u batches in %d bands", what,
           banded->st.batches, bands);
-    if (m->flags & OIT_METHOD_COUNTS) {
+    if (m->flags & OIT_RENDER_METHOD_COUNTS) {
         int off = 0;
         for (int i = 0; i < W * H; i++)
             off += whole->counts[i] != banded->counts[i];
@@ -226,28 +249,31 @@ static void check_method(const oit_method *m, const oit_mesh *mesh, oit_method_o
 
 static void in_core(oit_gl *gl, const oit_mesh *mesh, const oit_view *v, const char *view_name)
 {
-    static const char *const names[] = {"dfb",   "array", "stencil", "pll",
-                                        "ppll4", "b3d",   "dp",      "ddp"};
+    static const oit_method *const tables[] = {&oit_method_dfb,   &oit_method_array,
+                                               &oit_method_stencil, &oit_method_pll,
+                                               &oit_method_ppll4, &oit_method_b3d,
+                                               &oit_method_dp,    &oit_method_ddp};
     oit_method_options dfb_opt = {.gl = gl};
     check_deep_enough(mesh, &dfb_opt, v);
-    for (size_t i = 0; i < sizeof names / sizeof *names; i++) {
+    for (size_t i = 0; i < sizeof tables / sizeof *tables; i++) {
+        const oit_method *m = tables[i];
+        const char *name = m->name;
         /* dual peeling composites its back half back to front: no
          * absorption (dual_peel.h) */
-        if (v->shading.mode == OIT_SHADING_TRANSLUCENT && !strcmp(names[i], "ddp"))
+        if (v->shading.mode == OIT_SHADING_TRANSLUCENT && !strcmp(name, "ddp"))
             continue;
-        const oit_method *m = oit_method_find(names[i]);
         oit_method_options opt = {.max_layers = 8, .gl = gl};
         oit_method_state *probe = NULL;
         oit_error err = {0};
         /* Stencil routing is offered only where the driver routes per
          * sample (capture.h). */
         if (oit_method_open(m, mesh, &opt, &probe, &err) == OIT_ERR_UNSUPPORTED) {
-            printf("%-24s skipped: %s\n", names[i], err.message);
+            printf("%-24s skipped: %s\n", name, err.message);
             continue;
         }
         oit_method_close(probe);
         char what[64];
-        snprintf(what, sizeof what, "%s %s", names[i], view_name);
+        snprintf(what, sizeof what, "%s %s", name, view_name);
         check_method(m, mesh, &opt, v, what);
     }
 }
@@ -264,11 +290,11 @@ static void streamed(oit_gl *gl, const char *path, const oit_view *v, const char
                  {"first-k", OIT_RENDER_PACK_FIRSTK}};
     static const oit_mesh empty;
     for (size_t i = 0; i < sizeof packs / sizeof *packs; i++) {
-        oit_stream_source so = {.path = path, .desc = {.pack = packs[i].pack}};
+        oit_run_source so = {.path = path, .desc = {.pack = packs[i].pack}};
         oit_method_options opt = {.max_layers = 8, .source = &so, .gl = gl};
         char what[64];
         snprintf(what, sizeof what, "stream %s %s", packs[i].name, view_name);
-        check_method(&oit_method_stream, &empty, &opt, v, what);
+        check_method(&stream, &empty, &opt, v, what);
     }
 }
 

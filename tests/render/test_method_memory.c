@@ -2,7 +2,7 @@
  * oit_frame_stats.gpu_bytes_peak): each method of the registry but the
  * stream (a part file; tests/tools/oitstream/test_stats_gpu.sh checks its
  * ring and capture) renders the same few visible quads twice through
- * oit_method_open/_render, once with N and once with 4N more triangles
+ * oit_run_open/_render, once with N and once with 4N more triangles
  * lying outside the view (clipped: no fragment, so the method's own
  * per-pixel and per-fragment buffers are the same for both). An in-core GL
  * method holds its mesh on the GPU for as long as it is open, so:
@@ -19,7 +19,7 @@
 #include <string.h>
 
 #include "render/image/image.h"
-#include "render/method.h"
+#include "tools/common/method_run.h"
 #include "tests/lib/test_check.h"
 #include "tests/lib/test_gl.h"
 #include "tools/common/methods.h"
@@ -80,29 +80,29 @@ static void scene(oit_mesh *m, size_t hidden, oit_view *view)
 
 /* One frame of method m on mesh; 0 with *skip set where the driver does
  * not offer it (stencil routing). */
-static int frame_of(oit_gl *gl, const oit_method *m, const oit_mesh *mesh, const oit_view *v,
+static int frame_of(oit_gl *gl, const oit_render_method_info *m, const oit_mesh *mesh, const oit_view *v,
                     oit_frame_stats *st, int *skip)
 {
-    oit_method_options opt = {.max_layers = 4, .gl = gl};
-    oit_method_state *state = NULL;
+    oit_run_options opt = {.max_layers = 4, .gl = gl};
+    oit_run *state = NULL;
     oit_image img = {0};
     oit_error err = {0};
     memset(st, 0, sizeof *st);
-    oit_status s = oit_method_open(m, mesh, &opt, &state, &err);
+    oit_status s = oit_run_open(m, mesh, &opt, &state, &err);
     if (s == OIT_ERR_UNSUPPORTED) {
         printf("%-10s skipped: %s\n", m->name, err.message);
         *skip = 1;
         return 0;
     }
     if (s == OIT_OK)
-        s = oit_method_render(state, v, &img, NULL, NULL, st, &err);
+        s = oit_run_render(state, v, &img, NULL, NULL, st, &err);
     oit_image_free(&img);
-    oit_method_close(state);
+    oit_run_close(state);
     CHECK(s == OIT_OK, "%s: %s", m->name, err.message);
     return s == OIT_OK;
 }
 
-static void check_method(oit_gl *gl, const oit_method *m, const oit_mesh small[1],
+static void check_method(oit_gl *gl, const oit_render_method_info *m, const oit_mesh small[1],
                          const oit_mesh large[1], const oit_view *v)
 {
     oit_frame_stats a, b;
@@ -118,7 +118,7 @@ static void check_method(oit_gl *gl, const oit_method *m, const oit_mesh small[1
     CHECK(a.fragments > 0 && a.fragments == b.fragments, "%s: %llu and %llu fragments: the "
           "hidden triangles must add none", m->name, (unsigned long long)a.fragments,
           (unsigned long long)b.fragments);
-    if (!(m->flags & OIT_METHOD_GL)) {
+    if (!(m->flags & OIT_RENDER_METHOD_GL)) {
         CHECK(a.gpu_bytes_peak == 0 && a.gpu_mesh_bytes == 0 && b.gpu_bytes_peak == 0,
               "%s: no GL, yet %llu GPU bytes (%llu mesh)", m->name,
               (unsigned long long)a.gpu_bytes_peak, (unsigned long long)a.gpu_mesh_bytes);
@@ -150,8 +150,8 @@ int main(void)
     int tried = 0;
     for (char *save = NULL, *name = strtok_r(names, "|", &save); name && small.count;
          name = strtok_r(NULL, "|", &save)) {
-        const oit_method *m = oit_method_find(name);
-        if (!m || (m->flags & OIT_METHOD_PARTFILE))
+        const oit_render_method_info *m = oit_method_find(name);
+        if (!m || (m->flags & OIT_RENDER_METHOD_PART_FILE))
             continue;
         check_method(gl, m, &small, &large, &v);
         tried++;

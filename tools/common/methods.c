@@ -4,29 +4,22 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "render/baselines/methods.h"
-#include "render/reference/reference.h"
-#include "tools/common/method_stream.h"
-
-static const oit_method *const methods[] = {
-    &oit_method_dfb,      &oit_method_reference, &oit_method_array, &oit_method_stencil,
-    &oit_method_stream,   &oit_method_unsorted,  &oit_method_wboit, &oit_method_pll,
-    &oit_method_dp,       &oit_method_ppll4,     &oit_method_b3d,   &oit_method_ddp,
-    &oit_method_guarded,  &oit_method_f2b,       &oit_method_compute,
-};
-
-const oit_method *oit_method_find(const char *name)
+const oit_render_method_info *oit_method_find(const char *name)
 {
-    for (size_t i = 0; i < sizeof methods / sizeof methods[0]; i++)
-        if (!strcmp(methods[i]->name, name))
-            return methods[i];
+    uint32_t n = 0;
+    const oit_render_method_info *m = oit_render_methods(&n);
+    for (uint32_t i = 0; i < n; i++)
+        if (!strcmp(m[i].name, name))
+            return &m[i];
     return NULL;
 }
 
 void oit_method_names(char *buf, size_t cap)
 {
+    uint32_t n = 0;
+    const oit_render_method_info *m = oit_render_methods(&n);
     size_t used = 0;
     buf[0] = 0;
-    for (size_t i = 0; i < sizeof methods / sizeof methods[0] && used < cap; i++)
-        used += (size_t)snprintf(buf + used, cap - used, "%s%s", i ? "|" : "", methods[i]->name);
+    for (uint32_t i = 0; i < n && used < cap; i++)
+        used += (size_t)snprintf(buf + used, cap - used, "%s%s", i ? "|" : "", m[i].name);
 }

@@ -21,3 +21,11 @@ oit_status oit_tool_parse_capture(const char *value, const char *flag, oit_rende
     return oit_error_set(err, OIT_ERR_ARGUMENT, "%s: '%s' is not auto, stencil, array or compute",
                          flag, value ? value : "");
 }
+
+oit_status oit_tool_check_k(long long k, const char *flag, oit_error *err)
+{
+    if (k >= OIT_RENDER_K_MIN && k <= OIT_RENDER_K_MAX)
+        return OIT_OK;
+    return oit_error_set(err, OIT_ERR_ARGUMENT, "%s = %lld is outside [%d, %d]", flag, k,
+                         OIT_RENDER_K_MIN, OIT_RENDER_K_MAX);
+}

@@ -10,4 +10,8 @@
 oit_status oit_tool_parse_capture(const char *value, const char *flag, oit_render_capture *out,
                                   oit_error *err);
 
+/* flag's K: OIT_ERR_ARGUMENT naming it outside [OIT_RENDER_K_MIN,
+ * OIT_RENDER_K_MAX]. */
+oit_status oit_tool_check_k(long long k, const char *flag, oit_error *err);
+
 #endif

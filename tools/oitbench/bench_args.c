@@ -1,7 +1,6 @@
 /* oitbench's command line (bench_args.h). */
 #include "tools/oitbench/bench_args.h"
 
-#include "render/capture/capture.h"
 
 #include <limits.h>
 #include <stdlib.h>
@@ -92,7 +91,7 @@ static oit_status expand_entries(oit_bench_args *a, oit_error *err)
     oit_status s = OIT_OK;
     a->entry_count = 0;
     for (int i = 0; i < a->method_count && s == OIT_OK; i++) {
-        int sweep = a->epsilon_count > 0 && !!(oit_method_find(a->methods[i])->flags & OIT_METHOD_EPSILON);
+        int sweep = a->epsilon_count > 0 && !!(oit_method_find(a->methods[i])->flags & OIT_RENDER_METHOD_EPSILON);
         swept |= sweep;
         for (int k = 0; k < (sweep ? a->epsilon_count : 1) && s == OIT_OK; k++)
             s = add_entry(a, a->methods[i], sweep ? a->epsilons[k] : -1.0f, err);
@@ -120,7 +119,7 @@ static int value_option(oit_bench_args *a, const char *opt, const char *v, char 
         if (oit_parse_int(v, 0, 100000, &a->warmup)) *s = bad(err, opt, v, "a frame count >= 0");
     } else if (!strcmp(opt, "--max-layers")) {
         if (oit_parse_int(v, INT_MIN, INT_MAX, &a->max_layers)) *s = bad(err, opt, v, "an integer");
-        else *s = oit_capture_k_check(a->max_layers, "--max-layers", err);
+        else *s = oit_tool_check_k(a->max_layers, "--max-layers", err);
     } else if (!strcmp(opt, "--capture")) {
         *s = oit_tool_parse_capture(v, opt, &a->capture, err);
     } else if (!strcmp(opt, "--epsilon")) *s = split_epsilons(v, a, err);
@@ -161,7 +160,7 @@ static oit_status check_geometry_options(const oit_bench_args *a, oit_error *err
     int streams = 0;
     const char *conv = conversion_option(a);
     for (int i = 0; i < a->method_count; i++)
-        streams |= !!(oit_method_find(a->methods[i])->flags & OIT_METHOD_PARTFILE);
+        streams |= !!(oit_method_find(a->methods[i])->flags & OIT_RENDER_METHOD_PART_FILE);
     if (oit_bench_is_part_file(a->model)) {
         const char *o = a->parts ? "--parts" : conv;
         if (o)

@@ -62,7 +62,7 @@ typedef struct oit_bench_models {
     uint64_t part_triangles;     /* stored in the part file (after clipping) */
     oit_bench_conversion conv;
     /* The temporary part file (output_is_temp), kept until close: the
-     * stream method opens it again by name (tools/common/method_stream.h). */
+     * stream method opens it again by name (tools/common/method_run.h). */
     char temp_path[OIT_BENCH_PATH_MAX];
     /* what a reader must know: a source not found, a different name */
     char notes[OIT_BENCH_NOTES_MAX][600];

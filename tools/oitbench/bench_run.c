@@ -8,7 +8,7 @@
 
 #include "render/gl/gl_context.h"
 #include "render/gl/gpu_timer.h"
-#include "tools/common/method_stream.h"
+#include "tools/common/method_run.h"
 
 const char *oit_bench_geometry_label(oit_bench_geometry g, uint64_t drawn, uint64_t source)
 {
@@ -63,7 +63,7 @@ static void open_methods(const oit_bench_desc *d, oit_bench_result *r, oit_gl **
     oit_error err = {0};
     int need_gl = 0;
     for (int i = 0; i < r->method_count; i++)
-        need_gl |= (r->methods[i].method->flags & OIT_METHOD_GL);
+        need_gl |= (r->methods[i].method->flags & OIT_RENDER_METHOD_GL);
     oit_status gs = OIT_OK;
     snprintf(r->renderer, sizeof r->renderer, "none (no GL method requested)");
     if (need_gl && (gs = oit_gl_create(&(oit_gl_desc){0}, gl, &err)) == OIT_OK)
@@ -71,18 +71,18 @@ static void open_methods(const oit_bench_desc *d, oit_bench_result *r, oit_gl **
     else if (need_gl)
         snprintf(r->renderer, sizeof r->renderer, "none (no GL context: %.200s)", err.message);
     /* The stream method opens the part file again through liboit. */
-    oit_stream_source so = {.path = d->partfile ? oit_partfile_name(d->partfile) : NULL,
+    oit_run_source so = {.path = d->partfile ? oit_partfile_name(d->partfile) : NULL,
                             .desc = {.capture = d->capture}};
-    oit_method_options opt = {.max_layers = d->max_layers, .gl = *gl, .source = &so};
+    oit_run_options opt = {.max_layers = d->max_layers, .gl = *gl, .source = &so};
     for (int i = 0; i < r->method_count; i++) {
         oit_bench_method *m = &r->methods[i];
         m->runnable = 1;
         opt.threshold = m->epsilon >= 0.0f ? &m->epsilon : NULL;
-        if ((m->method->flags & OIT_METHOD_GL) && gs != OIT_OK)
+        if ((m->method->flags & OIT_RENDER_METHOD_GL) && gs != OIT_OK)
             mark_failed(m, -1, r->renderer);
-        else if ((m->method->flags & OIT_METHOD_PARTFILE) && !d->partfile)
+        else if ((m->method->flags & OIT_RENDER_METHOD_PART_FILE) && !d->partfile)
             mark_failed(m, -1, "renders a part file (.oitp), and this run has none");
-        else if (oit_method_open(m->method, d->mesh, &opt, &m->state, &err) != OIT_OK)
+        else if (oit_run_open(m->method, d->mesh, &opt, &m->state, &err) != OIT_OK)
             mark_failed(m, -1, err.message);
     }
 }
@@ -105,9 +105,9 @@ static oit_status render_frame(oit_bench_method *m, const oit_view *view, oit_fr
 {
     oit_image img = {0};
     memset(st, 0, sizeof *st);
-    oit_status s = oit_method_render(m->state, view, &img, NULL, NULL, st, err);
-    if (s == OIT_OK && oit_method_stream_stats(m->state)) {
-        uint64_t b = oit_method_stream_stats(m->state)->gpu_bytes_peak;
+    oit_status s = oit_run_render(m->state, view, &img, NULL, NULL, st, err);
+    if (s == OIT_OK && oit_run_stream_stats(m->state)) {
+        uint64_t b = oit_run_stream_stats(m->state)->gpu_bytes_peak;
         st->gpu_bytes_peak = b > st->gpu_bytes_peak ? b : st->gpu_bytes_peak;
     }
     if (s == OIT_OK && keep) {
@@ -138,7 +138,7 @@ static void record(oit_bench_method *m, oit_bench_cell *c, const oit_frame_stats
 static void take_gpu_times(oit_bench_method *m, size_t first)
 {
     oit_gpu_times t;
-    while (m->state && oit_method_gpu_poll(m->state, &t, 1))
+    while (m->state && oit_run_gpu_poll(m->state, &t, 1))
         for (size_t k = first; k < m->ms_count; k++)
             if (m->gpu_frame[k] == t.frame)
                 m->gpu_ms[k] = t.ms;
@@ -261,7 +261,7 @@ static oit_status alloc_result(const oit_bench_desc *d, oit_bench_result *r, oit
         m->method = oit_method_find(d->entries[i].method);
         m->epsilon = d->entries[i].epsilon;
         snprintf(m->name, sizeof m->name, "%s", d->entries[i].name);
-        int parts = m->method && (m->method->flags & OIT_METHOD_PARTFILE);
+        int parts = m->method && (m->method->flags & OIT_RENDER_METHOD_PART_FILE);
         m->geometry = parts ? OIT_BENCH_GEOMETRY_PART_FILE : d->mesh_geometry;
         m->triangles = parts ? d->partfile_triangles : (uint64_t)d->mesh->count;
         m->source_triangles = d->source_triangles;
@@ -280,11 +280,11 @@ static oit_status alloc_result(const oit_bench_desc *d, oit_bench_result *r, oit
 
 static oit_status run_views(const oit_bench_desc *d, oit_bench_result *r, oit_error *err)
 {
-    const oit_method *refm = oit_method_find("reference");
+    const oit_render_method_info *refm = oit_method_find("reference");
     const oit_mesh *refmesh = d->reference_mesh ? d->reference_mesh : d->mesh;
-    oit_method_state *ref_state = NULL;
+    oit_run *ref_state = NULL;
     oit_image *last = calloc((size_t)r->method_count, sizeof *last);
-    oit_status s = last ? oit_method_open(refm, refmesh, NULL, &ref_state, err)
+    oit_status s = last ? oit_run_open(refm, refmesh, NULL, &ref_state, err)
                         : oit_error_set(err, OIT_ERR_NOMEM, "cannot allocate image slots");
     /* one view for every method, framed on the reference's mesh */
     oit_view view = {.width = d->width, .height = d->height,
@@ -294,7 +294,7 @@ static oit_status run_views(const oit_bench_desc *d, oit_bench_result *r, oit_er
         oit_frame_stats st = {0};
         oit_camera_default(&view.camera, refmesh->info.bounds_min, refmesh->info.bounds_max,
                            (float)(v * 360.0 / d->views), 20.0f);
-        s = oit_method_render(ref_state, &view, &ref, NULL, NULL, &st, err);
+        s = oit_run_render(ref_state, &view, &ref, NULL, NULL, &st, err);
         if (s != OIT_OK) {
             oit_error_prefix(err, "reference");
             break;
@@ -307,7 +307,7 @@ static oit_status run_views(const oit_bench_desc *d, oit_bench_result *r, oit_er
         print_view(d->progress, r, v);
     }
     if (ref_state)
-        oit_method_close(ref_state);
+        oit_run_close(ref_state);
     free(last);
     return s;
 }
@@ -325,7 +325,7 @@ oit_status oit_bench_run(const oit_bench_desc *d, oit_bench_result *r, oit_error
     /* GL objects go before the context they live in. */
     for (int i = 0; r->methods && i < r->method_count; i++)
         if (r->methods[i].state) {
-            oit_method_close(r->methods[i].state);
+            oit_run_close(r->methods[i].state);
             r->methods[i].state = NULL;
         }
     if (gl)

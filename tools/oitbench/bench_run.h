@@ -12,6 +12,7 @@
 #include "oit/partfile.h"
 #include "oit/render_modes.h"
 #include "render/image/image.h"
+#include "tools/common/method_run.h"
 #include "tools/common/methods.h"
 
 /* Which triangles a method drew (bench_models.h): the source mesh in core,
@@ -44,7 +45,7 @@ typedef struct oit_bench_cell {
     uint32_t host_waits_max;
 } oit_bench_cell;
 
-/* What to run: a method, and the threshold oit_method_options.threshold
+/* What to run: a method, and the threshold oit_run_options.threshold
  * passes it (< 0: none, the method's default); name labels it in every output
  * ("stream", "stream@0.01"). */
 #define OIT_BENCH_NAME_MAX 64
@@ -55,13 +56,13 @@ typedef struct oit_bench_entry {
 } oit_bench_entry;
 
 typedef struct oit_bench_method {
-    const oit_method *method;
+    const oit_render_method_info *method;
     char name[OIT_BENCH_NAME_MAX];
     float epsilon;           /* as oit_bench_entry */
     oit_bench_geometry geometry; /* what it draws */
     uint64_t triangles;      /* how many triangles that is */
     uint64_t source_triangles; /* the source model's (oit_bench_desc) */
-    oit_method_state *state;
+    oit_run *state;
     int runnable;            /* opened and rendered every view */
     char reason[512];        /* why not, when !runnable */
     double *ms;              /* every timed frame, all views */

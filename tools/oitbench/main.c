@@ -62,7 +62,7 @@ static int streams(const oit_bench_args *a)
 {
     int any = 0;
     for (int i = 0; i < a->method_count; i++)
-        any |= !!(oit_method_find(a->methods[i])->flags & OIT_METHOD_PARTFILE);
+        any |= !!(oit_method_find(a->methods[i])->flags & OIT_RENDER_METHOD_PART_FILE);
     return any;
 }
 

@@ -2,8 +2,6 @@
 #include "tools/oitstream/cli_args.h"
 
 #include "base/args.h"
-#include "render/capture/capture.h"
-#include "stream/reader.h"
 #include "tools/common/mesh_formats.h"
 #include "tools/common/render_args.h"
 
@@ -114,7 +112,7 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
         if (parse_rgb(v, a->shading.background)) *s = bad(err, opt, v, "r,g,b in [0, 1]");
     } else if (!strcmp(opt, "--max-layers")) {
         if (oit_parse_int(v, INT_MIN, INT_MAX, &a->max_layers)) *s = bad(err, opt, v, "an integer");
-        else *s = oit_capture_k_check(a->max_layers, "--max-layers", err);
+        else *s = oit_tool_check_k(a->max_layers, "--max-layers", err);
     } else if (!strcmp(opt, "--show")) {
         if (!strcmp(v, "layers")) a->show_layers = 1;
         else if (strcmp(v, "colour") && strcmp(v, "color")) *s = bad(err, opt, v, "layers or colour");
@@ -147,7 +145,7 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
     } else if (!strcmp(opt, "--upload-threads")) {
         /* 0 read on the render thread before threads were counted */
         int n = 0;
-        if (oit_parse_int(v, 0, OIT_READER_MAX_THREADS, &n))
+        if (oit_parse_int(v, 0, OIT_RENDER_READER_THREADS_MAX, &n))
             *s = bad(err, opt, v, "0..64 threads");
         a->stream.reader_threads = (uint32_t)n;
         a->stream.read_on_draw_thread = n == 0;
@@ -159,8 +157,11 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
             *s = bad(err, opt, v, "bytes, with an optional K, M or G suffix");
     } else if (!strcmp(opt, "--epsilon")) {
         a->have_epsilon = 1;
-        if (parse_float(v, &a->stream.epsilon))
-            *s = bad(err, opt, v, "a number");
+        /* in [0, 1): liboit's OIT_RENDER_EPSILON_ZERO (-1) is not for users,
+         * whose 0 is the method's own zero */
+        if (parse_float(v, &a->stream.epsilon) || !(a->stream.epsilon >= 0.0f) ||
+            !(a->stream.epsilon < 1.0f))
+            *s = bad(err, opt, v, "a threshold in [0, 1)");
     } else if (!strcmp(opt, "--window-frames")) {
         if (oit_parse_int(v, 1, 100000000, &a->window_frames))
             *s = bad(err, opt, v, "a frame count >= 1");
@@ -223,7 +224,7 @@ static oit_status check_combination(const oit_stream_args *a, oit_error *err)
     /* The stream's settings are checked by liboit, before any I/O (every
      * other method ignores them), its errors naming its fields, which
      * fail() spells as flags (flag_spelling.h); which methods take
-     * --epsilon, main.c asks the method's flags (OIT_METHOD_EPSILON). */
+     * --epsilon, main.c asks the method's flags (OIT_RENDER_METHOD_EPSILON). */
     oit_status s = oit_renderer_desc_check(&a->stream, err);
     if (s != OIT_OK)
         return s;

@@ -46,7 +46,7 @@ typedef struct oit_stream_args {
      * --max-layers (or the file's), the shading the view's; the rest 0. */
     oit_renderer_desc stream;
     /* --epsilon was given: stream.epsilon is also the threshold of the
-     * other methods flagged OIT_METHOD_EPSILON (render/method.h) */
+     * other methods flagged OIT_RENDER_METHOD_EPSILON (oit/render_modes.h) */
     int have_epsilon;
     /* --window: the interactive viewer (viewer.h) */
     int window;

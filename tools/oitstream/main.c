@@ -21,7 +21,7 @@
 #include "tools/common/methods.h"
 #include "tools/common/exit_code.h"
 #include "tools/common/flag_spelling.h"
-#include "tools/common/method_stream.h"
+#include "tools/common/method_run.h"
 #include "tools/oitstream/stats_json.h"
 #include "tools/oitstream/viewer.h"
 #include "tools/oitstream/views.h"
@@ -38,7 +38,7 @@ static int fail(const oit_error *err)
  * route per sample, or has fewer samples than K), not bad input: a runtime
  * failure, exit 1. The capture layer keeps UNSUPPORTED, which its callers
  * read as "not offered here". */
-static int fail_rendering(const oit_error *err, const oit_method *m)
+static int fail_rendering(const oit_error *err, const oit_render_method_info *m)
 {
     int code = fail(err);
     return err->status == OIT_ERR_UNSUPPORTED && m && !strcmp(m->name, "stencil") ? 1 : code;
@@ -233,8 +233,8 @@ static oit_status write_ambiguity(const oit_stream_args *a, int index, int views
 
 typedef struct run_ctx {
     const oit_stream_args *args;
-    const oit_method *method;
-    oit_method_state *state;
+    const oit_render_method_info *method;
+    oit_run *state;
     oit_view view;
     const double *origin; /* the model's (oit_mesh_info): views print in file coordinates */
     uint32_t *counts;
@@ -265,7 +265,7 @@ static oit_status render_one(run_ctx *rc, int index, int views, oit_stats_frame 
 {
     oit_image img = {0};
     memset(&fr->st, 0, sizeof fr->st);
-    oit_status s = oit_method_render(rc->state, &rc->view, &img, rc->counts, rc->ambiguous,
+    oit_status s = oit_run_render(rc->state, &rc->view, &img, rc->counts, rc->ambiguous,
                                      &fr->st, err);
     if (s == OIT_OK && rc->args->out)
         s = write_frame(rc->args, index, views, &img, rc->counts, err);
@@ -276,10 +276,10 @@ static oit_status render_one(run_ctx *rc, int index, int views, oit_stats_frame 
     oit_stats_format_view(&rc->view.camera, rc->origin, fr->view, sizeof fr->view);
     oit_stats_format_clip(&rc->view.clip, rc->origin, fr->clip, sizeof fr->clip);
     oit_renderer_desc used;
-    if (s == OIT_OK && oit_method_stream_stats(rc->state) &&
-        oit_method_stream_desc(rc->state, &used)) {
+    if (s == OIT_OK && oit_run_stream_stats(rc->state) &&
+        oit_run_stream_desc(rc->state, &used)) {
         fr->has_stream = 1;
-        fr->stream = *oit_method_stream_stats(rc->state);
+        fr->stream = *oit_run_stream_stats(rc->state);
         fr->epsilon = used.epsilon;
     }
     if (s == OIT_OK && !rc->args->quiet)
@@ -327,7 +327,7 @@ static oit_status render_one(run_ctx *rc, int index, int views, oit_stats_frame 
 static void take_gpu_times(run_ctx *rc, oit_stats_frame *frames, int n, int wait)
 {
     oit_gpu_times t;
-    while (oit_method_gpu_poll(rc->state, &t, wait))
+    while (oit_run_gpu_poll(rc->state, &t, wait))
         for (int i = 0; i < n; i++)
             if (frames[i].st.gpu_frame == t.frame) {
                 frames[i].has_gpu = 1;
@@ -338,7 +338,7 @@ static void take_gpu_times(run_ctx *rc, oit_stats_frame *frames, int n, int wait
 /* One line: each frame's GPU time, known only once the frames are done. */
 static void print_gpu_summary(const run_ctx *rc, const oit_stats_frame *frames, int n)
 {
-    const char *why = oit_method_gpu_absent(rc->state);
+    const char *why = oit_run_gpu_absent(rc->state);
     if (why) {
         printf("gpu: no GPU time (%s)\n", why);
         return;
@@ -379,10 +379,10 @@ static oit_status render_all(run_ctx *rc, const oit_mesh *mesh, const oit_camera
                 "written\n", a->model, n, n == 1 ? "" : "s");
     if (s == OIT_OK && a->stats_path) {
         oit_stats_run run = {a->model, (unsigned long long)mesh->info.triangles,
-                             oit_method_renderer(rc->state), a->width, a->height, frames,
+                             oit_run_renderer(rc->state), a->width, a->height, frames,
                              (size_t)n, oit_shading_opaque(&rc->view.shading),
                              rc->view.shading.see_through,
-                             oit_method_gpu_absent(rc->state)};
+                             oit_run_gpu_absent(rc->state)};
         s = oit_stats_json_write(a->stats_path, &run, err);
     }
     free(frames);
@@ -395,7 +395,7 @@ static int is_part_file(const char *path)
     return n > 5 && !strcasecmp(path + n - 5, ".oitp");
 }
 
-static oit_status check_method(const oit_stream_args *a, const oit_method **out,
+static oit_status check_method(const oit_stream_args *a, const oit_render_method_info **out,
                                oit_error *err)
 {
     char names[OIT_METHOD_NAMES_MAX];
@@ -404,11 +404,11 @@ static oit_status check_method(const oit_stream_args *a, const oit_method **out,
     if (!*out)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--method '%s': expected one of %s", a->method,
                              names);
-    if (a->show_layers && !((*out)->flags & OIT_METHOD_COUNTS))
+    if (a->show_layers && !((*out)->flags & OIT_RENDER_METHOD_COUNTS))
         return oit_error_set(err, OIT_ERR_ARGUMENT,
                              "--show layers needs a method that counts fragments per pixel "
                              "(dfb or reference), not %s", a->method);
-    if (a->ambiguity_out && !((*out)->flags & OIT_METHOD_AMBIGUITY))
+    if (a->ambiguity_out && !((*out)->flags & OIT_RENDER_METHOD_AMBIGUITY))
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--ambiguity needs --method reference, not %s",
                              a->method);
     return OIT_OK;
@@ -416,22 +416,22 @@ static oit_status check_method(const oit_stream_args *a, const oit_method **out,
 
 /* The scene: a mesh file loaded in core, or a part file, which the streamer
  * reads part by part and the other methods load in core. */
-static oit_status load_scene(const oit_stream_args *a, const oit_method *m,
+static oit_status load_scene(const oit_stream_args *a, const oit_render_method_info *m,
                              oit_partfile **pf, oit_mesh *mesh, oit_error *err)
 {
     memset(mesh, 0, sizeof *mesh);
     *pf = NULL;
     if (!is_part_file(a->model)) {
-        if ((m->flags & OIT_METHOD_PARTFILE))
+        if ((m->flags & OIT_RENDER_METHOD_PART_FILE))
             return oit_error_set(err, OIT_ERR_ARGUMENT, "--method %s renders a part file "
                                  "(.oitp); convert %s with oitprep first", m->name, a->model);
         return oit_mesh_load(a->model, NULL, mesh, err);
     }
     /* The viewer switches between the streamer and the in-core methods, so
      * it wants both the streamable file and its triangles. */
-    oit_partfile_open_desc desc = {(m->flags & OIT_METHOD_PARTFILE) || a->window};
+    oit_partfile_open_desc desc = {(m->flags & OIT_RENDER_METHOD_PART_FILE) || a->window};
     oit_status s = oit_partfile_open(a->model, &desc, pf, err);
-    if (s == OIT_OK && (m->flags & OIT_METHOD_PARTFILE) && !a->window)
+    if (s == OIT_OK && (m->flags & OIT_RENDER_METHOD_PART_FILE) && !a->window)
         oit_partfile_mesh_info(*pf, &mesh->info);
     else if (s == OIT_OK)
         s = oit_partfile_load_mesh(*pf, mesh, err);
@@ -447,7 +447,7 @@ static oit_status window_open_model(void *ctx, const char *path, oit_viewer_scen
     oit_stream_args one = *a;
     one.model = path;
     memset(out, 0, sizeof *out);
-    const oit_method *m = oit_method_find(is_part_file(path) ? "stream" : "dfb");
+    const oit_render_method_info *m = oit_method_find(is_part_file(path) ? "stream" : "dfb");
     oit_status s = load_scene(&one, m, &out->partfile, &out->mesh, err);
     if (s != OIT_OK) {
         oit_mesh_free(&out->mesh);
@@ -468,7 +468,7 @@ static void window_close_model(void *ctx, oit_viewer_scene *scene)
 }
 
 static oit_status run_window(const run_ctx *rc, const oit_mesh *mesh, oit_partfile *pf,
-                             const oit_method_options *opt, const oit_camera *cam,
+                             const oit_run_options *opt, const oit_camera *cam,
                              oit_error *err)
 {
     const oit_stream_args *a = rc->args;
@@ -495,7 +495,7 @@ static int run_render(const oit_stream_args *args)
     run_ctx rc = {.args = a};
     oit_status s = check_method(a, &rc.method, &err);
     if (s == OIT_OK && args->method && a->stream.epsilon > 0.0f &&
-        !(rc.method->flags & OIT_METHOD_EPSILON))
+        !(rc.method->flags & OIT_RENDER_METHOD_EPSILON))
         s = oit_error_set(&err, OIT_ERR_ARGUMENT, "--epsilon is the early termination of "
                           "--method stream, the threshold of f2b and guarded and what "
                           "reference counts; method '%s' has none", a->method);
@@ -511,8 +511,8 @@ static int run_render(const oit_stream_args *args)
     oit_camera *cams = NULL;
     int n = 0;
     int K = stream_max_layers(a, pf);
-    oit_stream_source so = {.path = a->model};
-    oit_method_options opt = {.max_layers = K,
+    oit_run_source so = {.path = a->model};
+    oit_run_options opt = {.max_layers = K,
                               .threshold = a->have_epsilon ? &a->stream.epsilon : NULL,
                               .ambiguity_px = a->ambiguity_px, .source = &so};
     rc.view.width = a->width;
@@ -533,10 +533,10 @@ static int run_render(const oit_stream_args *args)
     if (s == OIT_OK && a->window)
         s = run_window(&rc, &mesh, pf, &opt, &cams[0], &err);
     else if (s == OIT_OK)
-        s = oit_method_open(rc.method, &mesh, &opt, &rc.state, &err);
+        s = oit_run_open(rc.method, &mesh, &opt, &rc.state, &err);
     if (s == OIT_OK && !a->window) {
         s = render_all(&rc, &mesh, cams, n, &err);
-        oit_method_close(rc.state);
+        oit_run_close(rc.state);
     }
     free(rc.counts);
     free(rc.ambiguous);

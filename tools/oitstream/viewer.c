@@ -31,7 +31,7 @@ static oit_status open_viewer(viewer *v, oit_error *err)
     const oit_viewer_desc *d = v->desc;
     v->options = d->options;
     if (d->options.source)
-        v->stream = *(const oit_stream_source *)d->options.source;
+        v->stream = *(const oit_run_source *)d->options.source;
     snprintf(v->stream_path, sizeof v->stream_path, "%s", v->stream.path ? v->stream.path : "");
     v->stream.path = v->stream_path;
     v->options.source = &v->stream;
@@ -85,7 +85,7 @@ static void close_viewer(viewer *v)
 {
     viewer_close_preview_method(v);
     if (v->state)
-        oit_method_close(v->state);
+        oit_run_close(v->state);
     if (v->gl) {
         glDeleteFramebuffers(1, &v->fbo);
         glDeleteTextures(1, &v->tex);

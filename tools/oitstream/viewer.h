@@ -31,6 +31,7 @@
 #define OIT_OITSTREAM_VIEWER_H
 
 #include "oit/partfile.h"
+#include "tools/common/method_run.h"
 #include "tools/common/methods.h"
 
 /* A model the viewer shows: its triangles in core (every method but
@@ -59,7 +60,7 @@ typedef enum oit_viewer_preview {
 typedef struct oit_viewer_desc {
     const oit_mesh *mesh;         /* in core (every method but stream)       */
     oit_partfile *partfile;       /* NULL: the stream method is not offered  */
-    oit_method_options options;   /* .gl is set to the window's context      */
+    oit_run_options options;   /* .gl is set to the window's context      */
     const char *method;           /* first method                            */
     int width, height;            /* window size                             */
     oit_camera camera;            /* first view, and R's (until U or O frame anew) */

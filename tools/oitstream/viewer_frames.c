@@ -89,13 +89,13 @@ static oit_status open_preview_method(viewer *v, oit_error *err)
 {
     if (v->pv_state)
         return OIT_OK;
-    const oit_method *m = oit_method_find(preview_method_name(v->desc->preview));
+    const oit_render_method_info *m = oit_method_find(preview_method_name(v->desc->preview));
     if (!m)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "viewer: no preview method");
-    oit_method_options opt = v->options;
+    oit_run_options opt = v->options;
     opt.gl = v->gl;
     opt.threshold = NULL;
-    oit_status s = oit_method_open(m, v->mesh, &opt, &v->pv_state, err);
+    oit_status s = oit_run_open(m, v->mesh, &opt, &v->pv_state, err);
     if (s == OIT_OK)
         v->pv_method = m;
     return s;
@@ -133,8 +133,8 @@ static void adapt_preview_scale(viewer *v, double wall_ms)
  * (kind SHOWN_PREVIEW) the preview. */
 static oit_status render_frame(viewer *v, int fb_w, int fb_h, int kind, oit_error *err)
 {
-    const oit_method *m = v->methods[v->current];
-    oit_method_state *state = v->state;
+    const oit_render_method_info *m = v->methods[v->current];
+    oit_run *state = v->state;
     int pk = kind == SHOWN_PREVIEW ? preview_kind(v) : 0, scale = 1;
     if (kind == SHOWN_PREVIEW && pk == 0)
         kind = SHOWN_EXACT;
@@ -150,7 +150,7 @@ static oit_status render_frame(viewer *v, int fb_w, int fb_h, int kind, oit_erro
         scale = v->preview_scale;
     }
     int w = fb_w / scale > 0 ? fb_w / scale : 1, h = fb_h / scale > 0 ? fb_h / scale : 1;
-    int heat = v->show_layers && (m->flags & OIT_METHOD_COUNTS);
+    int heat = v->show_layers && (m->flags & OIT_RENDER_METHOD_COUNTS);
     oit_status s = heat ? ensure_counts(v, w, h, err) : OIT_OK;
     if (s != OIT_OK)
         return s;
@@ -160,12 +160,12 @@ static oit_status render_frame(viewer *v, int fb_w, int fb_h, int kind, oit_erro
     double t0 = glfwGetTime();
     oit_image_free(&v->frame);
     memset(&v->st, 0, sizeof v->st);
-    s = oit_method_render(state, &v->view, &v->frame, heat ? v->counts : NULL, NULL, &v->st, err);
+    s = oit_run_render(state, &v->view, &v->frame, heat ? v->counts : NULL, NULL, &v->st, err);
     if (v->gpu_state != state)
         memset(&v->gpu, 0, sizeof v->gpu);
     v->gpu_state = state;
-    v->gpu_absent = oit_method_gpu_absent(state);
-    for (oit_gpu_times g; oit_method_gpu_poll(state, &g, 0);)
+    v->gpu_absent = oit_run_gpu_absent(state);
+    for (oit_gpu_times g; oit_run_gpu_poll(state, &g, 0);)
         v->gpu = g;
     oit_image img = {0};
     if (s == OIT_OK && heat) {

@@ -140,19 +140,19 @@ void viewer_list_methods(viewer *v)
     oit_method_names(names, sizeof names);
     for (char *tok = strtok(names, "|"); tok && v->method_count < MAX_METHODS;
          tok = strtok(NULL, "|")) {
-        const oit_method *m = oit_method_find(tok);
+        const oit_render_method_info *m = oit_method_find(tok);
         if (m)
             v->methods[v->method_count++] = m;
     }
 }
 
 /* Why this input cannot use m, or NULL when it can. */
-const char *viewer_unavailable(const viewer *v, const oit_method *m)
+const char *viewer_unavailable(const viewer *v, const oit_render_method_info *m)
 {
-    if ((m->flags & OIT_METHOD_PARTFILE) && !v->pf)
+    if ((m->flags & OIT_RENDER_METHOD_PART_FILE) && !v->pf)
         return "needs a part file (.oitp): convert the model with oitprep, then open "
                "the .oitp with O";
-    if (!(m->flags & OIT_METHOD_PARTFILE) && v->mesh->count == 0)
+    if (!(m->flags & OIT_RENDER_METHOD_PART_FILE) && v->mesh->count == 0)
         return "renders triangles in core, and this input has none";
     return NULL;
 }
@@ -168,7 +168,7 @@ void viewer_key_label(int i, char *buf, size_t cap)
 void viewer_close_preview_method(viewer *v)
 {
     if (v->pv_state)
-        oit_method_close(v->pv_state);
+        oit_run_close(v->pv_state);
     v->pv_state = NULL;
     v->pv_method = NULL;
     v->gpu_state = NULL;
@@ -180,15 +180,15 @@ oit_status viewer_switch_method(viewer *v, int i, oit_error *err)
     const char *why = viewer_unavailable(v, v->methods[i]);
     if (why)
         return oit_error_set(err, OIT_ERR_UNSUPPORTED, "%s", why);
-    oit_method_options opt = v->options;
+    oit_run_options opt = v->options;
     opt.gl = v->gl;
     opt.threshold = v->has_epsilon ? &v->epsilon : NULL;
-    oit_method_state *st = NULL;
-    oit_status s = oit_method_open(v->methods[i], v->mesh, &opt, &st, err);
+    oit_run *st = NULL;
+    oit_status s = oit_run_open(v->methods[i], v->mesh, &opt, &st, err);
     if (s != OIT_OK)
         return s;
     if (v->state)
-        oit_method_close(v->state);
+        oit_run_close(v->state);
     v->state = st;
     v->gpu_state = NULL; /* a new state may take the old one's address */
     v->current = i;
@@ -198,7 +198,7 @@ oit_status viewer_switch_method(viewer *v, int i, oit_error *err)
     v->changed = 1;
     char key[8];
     viewer_key_label(i, key, sizeof key);
-    printf("viewer: method %s: %s (%s)\n", key, v->methods[i]->name, oit_method_renderer(st));
+    printf("viewer: method %s: %s (%s)\n", key, v->methods[i]->name, oit_run_renderer(st));
     fflush(stdout);
     return OIT_OK;
 }
@@ -270,7 +270,7 @@ static void toggle_epsilon(viewer *v)
         v->epsilon = was;
         v->has_epsilon = had;
         viewer_say(v, "early termination: %s", err.message);
-    } else if (v->epsilon > 0.0f && !(v->methods[v->current]->flags & OIT_METHOD_PARTFILE)) {
+    } else if (v->epsilon > 0.0f && !(v->methods[v->current]->flags & OIT_RENDER_METHOD_PART_FILE)) {
         viewer_say(v, "early termination on, epsilon %g (used by the stream method only)",
                    v->epsilon);
     } else if (v->epsilon > 0.0f) {
@@ -345,7 +345,7 @@ void viewer_open_entry(viewer *v)
     /* Methods go before the triangles and the file they read. */
     viewer_close_preview_method(v);
     if (v->state)
-        oit_method_close(v->state);
+        oit_run_close(v->state);
     v->state = NULL;
     if (v->have_owned)
         v->desc->close_model(v->desc->model_ctx, &v->owned);
@@ -443,7 +443,7 @@ void viewer_handle_key(viewer *v, char key)
     case 'L':
         v->show_layers = !v->show_layers;
         v->changed = 1;
-        if (v->show_layers && !(v->methods[v->current]->flags & OIT_METHOD_COUNTS))
+        if (v->show_layers && !(v->methods[v->current]->flags & OIT_RENDER_METHOD_COUNTS))
             viewer_say(v,
                        "layer heat map: %s counts no layers per pixel (1 dfb and 2 reference do)",
                        v->methods[v->current]->name);

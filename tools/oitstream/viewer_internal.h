@@ -26,7 +26,7 @@
 #include "tools/oitstream/stats_json.h"
 #include "tools/oitstream/viewer_clip.h"
 #include "plot/text_overlay.h"
-#include "tools/common/method_stream.h"
+#include "tools/common/method_run.h"
 
 #define GLFW_INCLUDE_NONE /* GL comes from gl_util.h (core profile prototypes) */
 #include <GLFW/glfw3.h>
@@ -41,16 +41,16 @@ enum { DEFAULT_STILL_MS = 200, PREVIEW_MAX_SCALE = 4 };
 
 typedef struct viewer {
     const oit_viewer_desc *desc;
-    oit_method_options options; /* desc's, with the current scene's part file and K */
-    oit_stream_source stream;   /* options.source points here */
+    oit_run_options options; /* desc's, with the current scene's part file and K */
+    oit_run_source stream;   /* options.source points here */
     char stream_path[4096];     /* stream.path: the part file shown */
     oit_gl *gl;
     GLFWwindow *win;
-    const oit_method *methods[MAX_METHODS]; /* the whole table, in its order */
+    const oit_render_method_info *methods[MAX_METHODS]; /* the whole table, in its order */
     int method_count, current;
-    oit_method_state *state;
-    const oit_method *pv_method; /* wboit/unsorted preview, opened when first needed */
-    oit_method_state *pv_state;
+    oit_run *state;
+    const oit_render_method_info *pv_method; /* wboit/unsorted preview, opened when first needed */
+    oit_run *pv_state;
     /* the scene shown: the caller's, or one O opened (owned) */
     const oit_mesh *mesh;
     oit_partfile *pf;
@@ -75,7 +75,7 @@ typedef struct viewer {
     /* The newest GPU time polled from gpu_state (a frame or two behind the
      * one shown: timer queries are read without waiting); frame 0: none. */
     oit_gpu_times gpu;
-    const oit_method_state *gpu_state;
+    const oit_run *gpu_state;
     const char *gpu_absent;
     int frames, exact_frames, preview_frames, presents, screenshots;
     int save_pending; /* P: save the next presented image */
@@ -118,7 +118,7 @@ void viewer_orbit(viewer *v, double dx, double dy);
 void viewer_zoom(viewer *v, double factor);
 
 /* viewer_input.c: keys, the mouse, dropped files and the methods they switch */
-const char *viewer_unavailable(const viewer *v, const oit_method *m);
+const char *viewer_unavailable(const viewer *v, const oit_render_method_info *m);
 oit_status viewer_switch_method(viewer *v, int i, oit_error *err);
 void viewer_close_preview_method(viewer *v);
 void viewer_fit_scene(viewer *v);

@@ -40,7 +40,7 @@ static void field(fields *f, const char *fmt, ...)
 /* The named figures of the last rendered frame. */
 static void status_fields(viewer *v, fields *f)
 {
-    const oit_method *m = v->methods[v->current];
+    const oit_render_method_info *m = v->methods[v->current];
     char key[8], num[16];
     viewer_key_label(v->current, key, sizeof key);
     f->n = 0;
@@ -66,11 +66,11 @@ static void status_fields(viewer *v, fields *f)
         field(f, "overflow %llu", (unsigned long long)v->st.overflow_pixels);
     }
     const oit_draw_stats *ss = v->state && !(v->shown_kind == SHOWN_PREVIEW && v->pv_method)
-                                   ? oit_method_stream_stats(v->state)
+                                   ? oit_run_stream_stats(v->state)
                                    : NULL;
     oit_renderer_desc ran = {0};
     if (ss)
-        oit_method_stream_desc(v->state, &ran);
+        oit_run_stream_desc(v->state, &ran);
     if (ss) {
         field(f, "packs %u", ss->packs);
         /* which K-slot fill ran (--capture): "slots stencil x8", "slots array" */
@@ -92,7 +92,7 @@ static void status_fields(viewer *v, fields *f)
             field(f, "skipped %llu", (unsigned long long)ss->parts_skipped);
         }
     }
-    if (v->show_layers && (m->flags & OIT_METHOD_COUNTS))
+    if (v->show_layers && (m->flags & OIT_RENDER_METHOD_COUNTS))
         field(f, "heat map");
     if (v->view.clip.count > 0)
         field(f, "section planes %d", v->view.clip.count);

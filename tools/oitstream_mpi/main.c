@@ -53,7 +53,7 @@
 #include "render/image/shade.h"
 #include "tools/common/exit_code.h"
 #include "tools/common/flag_spelling.h"
-#include "tools/common/method_stream.h"
+#include "tools/common/method_run.h"
 #include "tools/oitstream/cli_args.h"
 #include "tools/oitstream/stats_json.h"
 #include "tools/oitstream/views.h"
@@ -137,7 +137,7 @@ static oit_status open_share(mpi_run *r, int views, oit_error *err)
      * view's shading */
     oit_renderer_desc d = stream_renderer_desc(a, views);
     d.K = (uint32_t)r->K;
-    oit_stream_shading(&r->view.shading, &d);
+    oit_run_shading(&r->view.shading, &d);
     if (s == OIT_OK)
         s = oit_renderer_create(&d, &r->renderer, err);
     return s == OIT_OK ? make_target(r, err) : s;
@@ -220,7 +220,7 @@ static oit_status render_frame(mpi_run *r, int index, int views, frame_figs *ff,
     _Static_assert(sizeof(IceTInt) == sizeof(uint32_t), "IceT's ranks are 32-bit");
     oit_frame_camera cam;
     oit_frame fr;
-    oit_stream_frame(&r->view, &cam, &fr);
+    oit_run_frame(&r->view, &cam, &fr);
     oit_status s = oit_scene_share_order(r->scene, &fr, (uint32_t *)r->order,
                                          (uint32_t)r->ranks, err);
     oit_draw_stats ds = {0};
