@@ -13,7 +13,7 @@
 _Static_assert(OIT_COMPUTE_SWEEP == 16,
                "compute_tiles.glsl's cs_consider shifts 15 slots, written out");
 _Static_assert(OIT_COMPUTE_BLOCKS == 8,
-               "compute_recs_read.glsl and compute_recs_write.glsl name 8 blocks");
+               "compute_recs.glsl names 8 blocks");
 _Static_assert(OIT_BIND_RECS7 - OIT_BIND_RECS1 == 6, "glsl_bindings.h: 7 record bindings");
 
 /* The C constants that the stages of compute_common.glsl name. */

@@ -9,7 +9,7 @@
 /* uvec4s a triangle record takes (glsl/compute_common.glsl has the
  * layout). */
 #define OIT_COMPUTE_RECORD_WORDS 10
-/* Storage blocks a batch's records may span (glsl/compute_recs_read.glsl:
+/* Storage blocks a batch's records may span (glsl/compute_recs.glsl:
  * the block of a record by an if-chain); a program that reads or writes
  * records gets oit_compute_blocks_define's "#define CS_BLOCKS n\n" (n <=
  * this, what the driver's limits allow) before its other parts. */
