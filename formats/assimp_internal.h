@@ -38,6 +38,7 @@
 
 #include "oit/export.h"
 #include "oit/mesh.h"
+#include "formats/plugin_load.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -49,12 +50,9 @@ oit_status oit_read_assimp(const char *path, const oit_read_desc *desc, oit_tria
                            void *user, oit_mesh_info *info, oit_error *err);
 
 #define OIT_ASSIMP_PLUGIN_ENTRY "oit_assimp_read_file"
-typedef oit_status oit_assimp_read_fn(const char *path, const oit_read_desc *desc,
-                                      oit_triangle_sink sink, void *user, oit_mesh_info *info,
-                                      oit_error *err);
 /* Visible although the build hides symbols by default: the plugin's one
  * export (assimp_plugin.map), which liboit finds with dlsym. */
-OIT_API oit_assimp_read_fn oit_assimp_read_file;
+OIT_API oit_plugin_read_fn oit_assimp_read_file;
 
 oit_status oit_read_assimp_memory(const unsigned char *bytes, size_t size, const char *name,
                                   const char *hint, const oit_read_desc *desc,

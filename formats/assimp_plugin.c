@@ -15,11 +15,5 @@ oit_status oit_read_assimp(const char *path, const oit_read_desc *desc, oit_tria
         return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_read_assimp: no path given");
     static const oit_plugin_desc d = {OIT_ASSIMP_PLUGIN_FILE, OIT_ASSIMP_PLUGIN_ENTRY, "assimp",
                                       0};
-    oit_plugin p;
-    oit_status s = oit_plugin_open(&d, path, "it through assimp", &p, err);
-    if (s != OIT_OK)
-        return s;
-    s = ((oit_assimp_read_fn *)p.entry)(path, desc, sink, user, info, err);
-    oit_plugin_close(&p);
-    return s;
+    return oit_plugin_read(&d, "it through assimp", path, desc, sink, user, info, err);
 }

@@ -27,18 +27,16 @@
 
 #include "oit/export.h"
 #include "oit/mesh.h"
+#include "formats/plugin_load.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
 #define OIT_GLTF_PLUGIN_ENTRY "oit_gltf_read_file"
-typedef oit_status oit_gltf_read_fn(const char *path, const oit_read_desc *desc,
-                                    oit_triangle_sink sink, void *user, oit_mesh_info *info,
-                                    oit_error *err);
 /* Visible although the build hides symbols by default: the plugin's one
  * export (gltf_plugin.map), which liboit finds with dlsym. */
-OIT_API oit_gltf_read_fn oit_gltf_read_file;
+OIT_API oit_plugin_read_fn oit_gltf_read_file;
 
 oit_status oit_read_gltf_memory(const unsigned char *bytes, size_t size, const char *name,
                                 const char *dir, const oit_read_desc *desc,

@@ -15,11 +15,5 @@ oit_status oit_read_gltf(const char *path, const oit_read_desc *desc, oit_triang
     if (!path)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_read_gltf: no path given");
     static const oit_plugin_desc d = {OIT_GLTF_PLUGIN_FILE, OIT_GLTF_PLUGIN_ENTRY, "glTF", 0};
-    oit_plugin p;
-    oit_status s = oit_plugin_open(&d, path, "glTF", &p, err);
-    if (s != OIT_OK)
-        return s;
-    s = ((oit_gltf_read_fn *)p.entry)(path, desc, sink, user, info, err);
-    oit_plugin_close(&p);
-    return s;
+    return oit_plugin_read(&d, "glTF", path, desc, sink, user, info, err);
 }

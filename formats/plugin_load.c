@@ -74,3 +74,16 @@ void oit_plugin_close(oit_plugin *p)
         dlclose(p->handle);
     memset(p, 0, sizeof *p);
 }
+
+oit_status oit_plugin_read(const oit_plugin_desc *d, const char *what, const char *path,
+                           const oit_read_desc *desc, oit_triangle_sink sink, void *user,
+                           oit_mesh_info *info, oit_error *err)
+{
+    oit_plugin p;
+    oit_status s = oit_plugin_open(d, path, what, &p, err);
+    if (s != OIT_OK)
+        return s;
+    s = ((oit_plugin_read_fn *)p.entry)(path, desc, sink, user, info, err);
+    oit_plugin_close(&p);
+    return s;
+}

@@ -6,6 +6,7 @@
 #ifndef OIT_FORMATS_PLUGIN_LOAD_H
 #define OIT_FORMATS_PLUGIN_LOAD_H
 
+#include "oit/mesh.h"
 #include "oit/status.h"
 
 typedef struct oit_plugin {
@@ -28,5 +29,17 @@ typedef struct oit_plugin_desc {
 oit_status oit_plugin_open(const oit_plugin_desc *d, const char *path, const char *what,
                            oit_plugin *out, oit_error *err);
 void oit_plugin_close(oit_plugin *p);
+
+/* The entry of a plugin that reads a mesh file as oit_read_gltf does
+ * (mesh.h): the glTF and assimp adapters'. */
+typedef oit_status oit_plugin_read_fn(const char *path, const oit_read_desc *desc,
+                                      oit_triangle_sink sink, void *user, oit_mesh_info *info,
+                                      oit_error *err);
+
+/* One read through d's plugin, whose entry is an oit_plugin_read_fn: loaded
+ * for the read and closed after it (what: as for oit_plugin_open). */
+oit_status oit_plugin_read(const oit_plugin_desc *d, const char *what, const char *path,
+                           const oit_read_desc *desc, oit_triangle_sink sink, void *user,
+                           oit_mesh_info *info, oit_error *err);
 
 #endif
