@@ -51,15 +51,10 @@ command -v python3 >/dev/null || die "python3: missing (reads the --stats files)
 bin=$(cd "$bin" && pwd)
 make_work compute_vs_dfb
 
-"$bin/oitgen" demo -o "$work/demo.ply" >/dev/null || die "oitgen demo failed"
-"$bin/oitstream" "$work/demo.ply" --method compute --size 8x8 --out "$work/probe.png" \
-    --stats "$work/probe.json" --quiet 2>"$work/err.txt" ||
+probe_renderer --method compute ||
     die "oitstream --method compute cannot run here: $(head -c 300 "$work/err.txt")"
-renderer=$(renderer_of "$work/probe.json")
-tag=$(renderer_tag "${renderer:-unknown}")
 out=${out:-bench/compute-vs-dfb-$tag.md}
 mkdir -p "$(dirname "$out")" || die "$(dirname "$out"): cannot create"
-case $renderer in *llvmpipe*) def12=0 ;; *) def12=1 ;; esac
 
 hard="coplanar coplanar_tiny coplanar_far decal touching rings sticks moebius degenerate nearflat far tiny thin nonmanifold stack dense mixed"
 models=${COMPUTE_MODELS:-$hard $(check_models "$cache" "${COMPUTE_12M:-$def12}")}
@@ -78,21 +73,12 @@ for model in $models; do
     name=${model%.*}
     is_hard=0
     case " $hard " in *" $model "*) is_hard=1 ;; esac
-    case $model in
-    demo) mesh=$work/demo.ply ;;
-    plant*)
-        n=$(echo "${model#plant}" | sed 's/M$/000000/; s/K$/000/')
+    if [ $is_hard = 1 ]; then
         mesh=$work/$model.ply
-        "$bin/oitgen" plant --triangles "$n" -o "$mesh" >/dev/null || die "$model: oitgen failed" ;;
-    *)
-        if [ $is_hard = 1 ]; then
-            mesh=$work/$model.ply
-            "$bin/oitgen" hard --case "$model" -o "$mesh" >/dev/null || die "$model: oitgen failed"
-        else
-            mesh=$cache/$model
-            [ -f "$mesh" ] || die "$model: not in $cache"
-        fi ;;
-    esac
+        "$bin/oitgen" hard --case "$model" -o "$mesh" >/dev/null || die "$model: oitgen failed"
+    else
+        model_mesh "$model"
+    fi
     echo "compute_vs_dfb: $name" >&2
     nv=$views
     [ "$model" != stack ] || nv=1

@@ -78,15 +78,11 @@ caprows="$work/caprows"
 : >"$caprows"
 
 # The renderer string, from a one-pixel frame of the demo.
-"$bin/oitgen" demo -o "$work/demo.ply" >/dev/null || die "oitgen demo failed"
-"$bin/oitstream" "$work/demo.ply" --size 8x8 --out "$work/probe.png" --stats "$work/probe.json" \
-    --quiet || die "oitstream cannot render here (no GL device?)"
-renderer=$(renderer_of "$work/probe.json")
+probe_renderer ||
+    die "oitstream cannot render here (no GL device?): $(head -c 300 "$work/err.txt")"
 [ -n "$renderer" ] || renderer=unknown
-tag=$(renderer_tag "$renderer")
 mkdir -p "$outdir" || die "$outdir: cannot create"
 report="$outdir/gpu-check-$tag.md"
-case $renderer in *llvmpipe*) def12=0 ;; *) def12=1 ;; esac
 
 # ---- 1. ctest ------------------------------------------------------------
 ctest_line="not run (GPU_CHECK_CTEST=0)"
@@ -196,14 +192,7 @@ smallest_budget() {
 models=${GPU_CHECK_MODELS:-$(check_models "$cache" "${GPU_CHECK_12M:-$def12}")}
 for model in $models; do
     name=${model%.*}
-    case $model in
-    demo) mesh=$work/demo.ply ;;
-    plant*)
-        n=$(echo "${model#plant}" | sed 's/M$/000000/; s/K$/000/')
-        mesh=$work/$model.ply
-        "$bin/oitgen" plant --triangles "$n" -o "$mesh" >/dev/null || die "$model: oitgen failed" ;;
-    *) mesh=$cache/$model; [ -f "$mesh" ] || die "$model: not in $cache" ;;
-    esac
+    model_mesh "$model"
     "$bin/oitstream" "$mesh" --method unsorted --orbit "$views" --size 16x16 --out "$work/v/" \
         --stats "$work/v.json" --quiet || die "$model: framing the views failed"
     tin=$(sed -n 's/.*"triangles": *\([0-9]*\).*/\1/p' "$work/v.json" | head -n 1)
