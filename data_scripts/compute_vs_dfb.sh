@@ -39,10 +39,8 @@ bin=${1:-build/bin} out=${2:-} size=${3:-1024x1024}
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/models.sh"
 . "$here/sweep_lib.sh"
-cache=${OIT_MESH_CACHE:-$here/cache}
 views=${COMPUTE_VIEWS:-3}
 mask_max=${COMPUTE_MASK_MAX:-2000000}
-export EGL_PLATFORM=${EGL_PLATFORM:-surfaceless}
 cmdline="$0 $*"
 
 die() { echo "compute_vs_dfb: $*" >&2; exit 2; }

@@ -61,10 +61,8 @@ bin=${1:-build/bin} outdir=${2:-bench}
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/models.sh"
 . "$here/sweep_lib.sh"
-cache=${OIT_MESH_CACHE:-$here/cache}
 size=${GPU_CHECK_SIZE:-1024x1024}
 views=${GPU_CHECK_VIEWS:-4}
-export EGL_PLATFORM=${EGL_PLATFORM:-surfaceless}
 
 die() { echo "gpu_check: $*" >&2; exit 2; }
 need_bins "$bin" oitgen oitprep oitstream oitbench

@@ -2,6 +2,11 @@
 # copy: sourced after each defines die(), as . "$here/sweep_lib.sh".
 # probe_renderer and model_mesh read $bin, $work (make_work's) and $cache.
 
+# Both sweep the fetched meshes (in $here/cache unless OIT_MESH_CACHE says)
+# and render headless.
+cache=${OIT_MESH_CACHE:-$here/cache}
+export EGL_PLATFORM=${EGL_PLATFORM:-surfaceless}
+
 # need_bins BIN TOOL...: dies unless each TOOL is built in BIN.
 need_bins() {
     _b=$1 && shift
