@@ -18,7 +18,7 @@ shift 2
 if [ $# = 0 ]; then
     set -- $(generated_paths "$new" "$work" 100000) $(fetched_paths "$here/cache")
 fi
-methods="dfb reference array unsorted wboit pll dp ppll4 b3d ddp guarded f2b"
+methods="dfb reference array compute unsorted wboit pll dp ppll4 b3d ddp guarded f2b"
 size=192x160
 same=0 differ=0 refused=0
 
