@@ -53,6 +53,18 @@ static const char *why_next(oit_choice *c, uint64_t key, oit_path *p, double ms)
     return why;
 }
 
+/* Past the start-up frame (of another view), on view key: a frame whose
+ * fixed rule suggests counted, then counted's probe, ended with suggest. */
+static void start_probing_counted(oit_choice *c, uint64_t key, const double ms[2],
+                                  oit_path suggest)
+{
+    oit_choice_init(c, BOTH, FK);
+    frame(c, 1000, ms, NONE);
+    frame(c, key, ms, CT);
+    CHECK(frame(c, key, ms, suggest) == CT, "view %llu: counted not probed",
+          (unsigned long long)key);
+}
+
 static void test_slower_probe_never_kept(void)
 {
     oit_choice c;
@@ -91,11 +103,8 @@ static void test_slower_probe_never_kept(void)
 static void test_faster_probe_kept(void)
 {
     oit_choice c;
-    oit_choice_init(&c, BOTH, FK);
     const double ms[2] = {200.0, 120.0};
-    frame(&c, 1000, ms, NONE); /* the start-up frame, of another view */
-    frame(&c, 7, ms, CT);
-    CHECK(frame(&c, 7, ms, FK) == CT, "the probe");
+    start_probing_counted(&c, 7, ms, FK);
     oit_path p;
     const char *why = why_next(&c, 7, &p, ms[CT]);
     CHECK(p == CT && !strcmp(why, "kept: measured faster"), "after a faster probe: %s %s",
@@ -149,11 +158,8 @@ static void test_cold_start(void)
 static void test_bar_crosses_views(void)
 {
     oit_choice c;
-    oit_choice_init(&c, BOTH, FK);
     const double ms[2] = {100.0, 250.0};
-    frame(&c, 1000, ms, NONE); /* the start-up frame, of another view */
-    frame(&c, 1, ms, CT);
-    CHECK(frame(&c, 1, ms, CT) == CT, "view 1 probes counted");
+    start_probing_counted(&c, 1, ms, CT);
     int probes = 0;
     for (uint64_t v = 2; v < 2 + OIT_CHOICE_BAR_FIRST / 2; v++) { /* its 8 frames */
         probes += frame(&c, v, ms, CT) == CT;
