@@ -69,21 +69,11 @@ static int stamped(const unsigned char *dst, uint32_t part)
 }
 
 /* Jobs of 0..MOST items over parts 0..ITEMS: order, completeness, once. */
-static void order_and_once(oit_partfile *pf, int threads)
+static void order_and_once(oit_reader *r, plan *pl, unsigned char *dst, int threads)
 {
-    static plan pl;
-    memset(&pl, 0, sizeof pl);
-    unsigned char *dst = calloc(ITEMS, STAMP);
     oit_read_item items[JOBS][MOST];
     uint32_t count[JOBS];
-    oit_reader *r = NULL;
     oit_error err = {0};
-    CHECK(dst && oit_reader_create_with(pf, dst, threads, stamp, &pl, &r, &err) == OIT_OK,
-          "%d threads: create: %s", threads, err.message);
-    if (!r) {
-        free(dst);
-        return;
-    }
     CHECK(oit_reader_threads(r) == threads, "%d threads: it runs %d", threads,
           oit_reader_threads(r));
     uint32_t collected_items = 0;
@@ -102,10 +92,10 @@ static void order_and_once(oit_partfile *pf, int threads)
               err.message);
         for (uint32_t i = 0; i < count[j]; i++) {
             uint32_t part = j * MOST + i;
-            CHECK(stamped(dst, part) && atomic_load(&pl.runs[part]) == 1,
+            CHECK(stamped(dst, part) && atomic_load(&pl->runs[part]) == 1,
                   "%d threads: job %u collected with item %u unstamped or run %d times",
-                  threads, j, i, atomic_load(&pl.runs[part]));
-            if (i > 0 && atomic_load(&pl.done_seq[part]) < atomic_load(&pl.done_seq[part - 1]))
+                  threads, j, i, atomic_load(&pl->runs[part]));
+            if (i > 0 && atomic_load(&pl->done_seq[part]) < atomic_load(&pl->done_seq[part - 1]))
                 out_of_order++;
         }
         collected_items += count[j];
@@ -116,7 +106,7 @@ static void order_and_once(oit_partfile *pf, int threads)
           "never submitted", threads);
     int runs = 0;
     for (uint32_t p = 0; p < ITEMS; p++)
-        runs += atomic_load(&pl.runs[p]);
+        runs += atomic_load(&pl->runs[p]);
     CHECK((uint32_t)runs == collected_items, "%d threads: %d item runs for %u items", threads,
           runs, collected_items);
     CHECK(threads < 2 ? out_of_order == 0 : out_of_order > 0, "%d threads: %d items finished "
@@ -124,27 +114,16 @@ static void order_and_once(oit_partfile *pf, int threads)
           threads < 2 ? "keep the order on one thread" : "shuffle them");
     printf("%d threads: %u items in %d jobs, exactly once, collected in order; %d finished "
            "before the item ahead\n", threads, collected_items, JOBS, out_of_order);
-    oit_reader_destroy(r);
-    free(dst);
 }
 
 /* A job whose item 1 fails slowly and item 3 fast: the error is item 1's
  * (the first in the job's order, though it fails last); the next job still
  * completes. */
-static void first_error(oit_partfile *pf, int threads)
+static void first_error(oit_reader *r, plan *pl, unsigned char *dst, int threads)
 {
-    static plan pl;
-    memset(&pl, 0, sizeof pl);
-    unsigned char *dst = calloc(ITEMS, STAMP);
     oit_read_item bad[6] = {{0, 0}, {FAIL_SLOW, 8}, {2, 16}, {FAIL_FAST, 24}, {4, 32}, {5, 40}};
     oit_read_item good[2] = {{6, 48}, {7, 56}};
-    oit_reader *r = NULL;
     oit_error err = {0};
-    if (!dst || oit_reader_create_with(pf, dst, threads, stamp, &pl, &r, &err) != OIT_OK) {
-        CHECK(0, "%d threads: create: %s", threads, err.message);
-        free(dst);
-        return;
-    }
     CHECK(oit_reader_submit(r, bad, 6, &err) == OIT_OK, "submit: %s", err.message);
     CHECK(oit_reader_submit(r, good, 2, &err) == OIT_OK, "submit: %s", err.message);
     oit_status s = oit_reader_collect(r, &err);
@@ -158,41 +137,46 @@ static void first_error(oit_partfile *pf, int threads)
      * runs; with them, it may have run before item 1 failed. Up to 3
      * threads are all busy (items 0 and 1 sleep) until item 3 fails, so
      * items 4 and 5 are never claimed; more threads may take them at once. */
-    CHECK(threads > 3 || (atomic_load(&pl.runs[4]) == 0 && atomic_load(&pl.runs[5]) == 0 &&
-                          (threads > 0 || atomic_load(&pl.runs[FAIL_FAST]) == 0)),
+    CHECK(threads > 3 || (atomic_load(&pl->runs[4]) == 0 && atomic_load(&pl->runs[5]) == 0 &&
+                          (threads > 0 || atomic_load(&pl->runs[FAIL_FAST]) == 0)),
           "%d threads: items after the failing ones ran (item 4: %d, item 5: %d)", threads,
-          atomic_load(&pl.runs[4]), atomic_load(&pl.runs[5]));
-    oit_reader_destroy(r);
-    free(dst);
+          atomic_load(&pl->runs[4]), atomic_load(&pl->runs[5]));
 }
 
 /* Cancel with a full queue: returns, and nothing starts afterwards. */
-static void cancel_stops(oit_partfile *pf, int threads)
+static void cancel_stops(oit_reader *r, plan *pl, unsigned char *dst, int threads)
 {
-    static plan pl;
-    memset(&pl, 0, sizeof pl);
-    unsigned char *dst = calloc(ITEMS, STAMP);
     oit_read_item items[MOST];
     for (uint32_t i = 0; i < MOST; i++)
         items[i] = (oit_read_item){i, (uint64_t)i * STAMP};
-    oit_reader *r = NULL;
     oit_error err = {0};
-    if (!dst || oit_reader_create_with(pf, dst, threads, stamp, &pl, &r, &err) != OIT_OK) {
-        CHECK(0, "%d threads: create: %s", threads, err.message);
-        free(dst);
-        return;
-    }
     /* the same parts in each job: only the count of runs matters here */
     for (uint32_t q = 0; q < OIT_READER_QUEUE; q++)
         oit_reader_submit(r, items, MOST, &err);
     oit_reader_cancel(r);
-    int started = atomic_load(&pl.started);
+    int started = atomic_load(&pl->started);
     sleep_ms(40);
-    CHECK(atomic_load(&pl.started) == started && oit_reader_outstanding(r) == 0,
+    CHECK(atomic_load(&pl->started) == started && oit_reader_outstanding(r) == 0,
           "%d threads: %d items started after cancel returned, %u jobs outstanding", threads,
-          atomic_load(&pl.started) - started, oit_reader_outstanding(r));
+          atomic_load(&pl->started) - started, oit_reader_outstanding(r));
     CHECK(threads == 0 || started < (int)(OIT_READER_QUEUE * MOST),
           "%d threads: cancel dropped nothing (%d items started)", threads, started);
+}
+
+/* test on a fresh reader of `threads` threads over stamp, its runs counted
+ * in pl and its items stamped into dst (room for ITEMS). */
+typedef void reader_test(oit_reader *r, plan *pl, unsigned char *dst, int threads);
+static void run_rigged(oit_partfile *pf, int threads, reader_test *test)
+{
+    static plan pl;
+    memset(&pl, 0, sizeof pl);
+    unsigned char *dst = calloc(ITEMS, STAMP);
+    oit_reader *r = NULL;
+    oit_error err = {0};
+    if (!dst || oit_reader_create_with(pf, dst, threads, stamp, &pl, &r, &err) != OIT_OK)
+        CHECK(0, "%d threads: create: %s", threads, err.message);
+    else
+        test(r, &pl, dst, threads);
     oit_reader_destroy(r);
     free(dst);
 }
@@ -211,9 +195,9 @@ int main(int argc, char **argv)
     }
     static const int threads[] = {0, 1, 2, 3, 8};
     for (size_t t = 0; t < sizeof threads / sizeof *threads; t++) {
-        order_and_once(pf, threads[t]);
-        first_error(pf, threads[t]);
-        cancel_stops(pf, threads[t]);
+        run_rigged(pf, threads[t], order_and_once);
+        run_rigged(pf, threads[t], first_error);
+        run_rigged(pf, threads[t], cancel_stops);
     }
     oit_reader *r = NULL;
     CHECK(oit_reader_create(pf, NULL, OIT_READER_MAX_THREADS + 1, &r, &err) ==
