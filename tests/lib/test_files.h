@@ -1,10 +1,18 @@
-/* Whole-file reads for tests that compare files byte for byte. */
+/* The tests' files: where scratch files go, and whole-file reads for tests
+ * that compare files byte for byte. */
 #ifndef OIT_TESTS_TEST_FILES_H
 #define OIT_TESTS_TEST_FILES_H
 
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
+
+/* name's path in the tests' scratch folder: $OIT_TEST_TMP, else /tmp. */
+static inline void test_tmp_path(char *path, size_t size, const char *name)
+{
+    const char *tmp = getenv("OIT_TEST_TMP");
+    snprintf(path, size, "%s/%s", tmp ? tmp : "/tmp", name);
+}
 
 /* The file's bytes (free them), or NULL with *size = 0 when it cannot be
  * read whole. */

@@ -31,6 +31,7 @@
 #include "render/image/view.h"
 #include "tests/lib/test_rng.h"
 #include "tests/lib/test_check.h"
+#include "tests/lib/test_files.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -467,9 +468,8 @@ static void check_chains(tally *t, const char *path)
 
 int main(void)
 {
-    const char *tmp = getenv("OIT_TEST_TMP") ? getenv("OIT_TEST_TMP") : "/tmp";
     char path[600];
-    snprintf(path, sizeof path, "%s/order_cull.oitp", tmp);
+    test_tmp_path(path, sizeof path, "order_cull.oitp");
     static scene sc;
     rng r = {7201u};
     tally t = {0};

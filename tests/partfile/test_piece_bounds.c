@@ -343,9 +343,8 @@ static void check_good(const uint8_t *b, size_t n, const part_in *parts, uint32_
 
 int main(void)
 {
-    const char *tmp = getenv("OIT_TEST_TMP") ? getenv("OIT_TEST_TMP") : "/tmp";
     char path[600];
-    snprintf(path, sizeof path, "%s/piece_bounds.oitp", tmp);
+    test_tmp_path(path, sizeof path, "piece_bounds.oitp");
     static part_in parts[MAX_PARTS];
     rng r = {20240917u};
     tally t = {{0}, 0};

@@ -12,6 +12,7 @@
 #include "tests/lib/scene_ply_check.h"
 #include "scenes/shapes.h"
 #include "tests/lib/test_check.h"
+#include "tests/lib/test_files.h"
 
 
 typedef void (*shape_fn)(oit_emit *e, int seg);
@@ -72,8 +73,7 @@ static void check_shape(const char *name, shape_fn fn, int seg, uint64_t cost, s
 
 int main(void)
 {
-    const char *t = getenv("OIT_TEST_TMP");
-    snprintf(path, sizeof path, "%s/scene_shape.ply", t ? t : "/tmp");
+    test_tmp_path(path, sizeof path, "scene_shape.ply");
     check_shape("box", box_fn, 0, OIT_BOX_TRIS, 1, 2 * 0.5 * 4, 1e-6);
     /* flanges 0.15 of the height each, web 0.12 of the width, 4 long */
     check_shape("ibeam", ibeam_fn, 0, OIT_IBEAM_TRIS, 1, 4 * (2 * 0.15 * 2 + 0.7 * 0.12 * 2), 1e-5);

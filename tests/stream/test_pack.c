@@ -32,6 +32,7 @@
 #include "stream/pack.h"
 #include "tests/lib/test_rng.h"
 #include "tests/lib/test_check.h"
+#include "tests/lib/test_files.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -555,9 +556,8 @@ done:
 
 int main(void)
 {
-    const char *tmp = getenv("OIT_TEST_TMP") ? getenv("OIT_TEST_TMP") : "/tmp";
     char path[600];
-    snprintf(path, sizeof path, "%s/test_pack.oitp", tmp);
+    test_tmp_path(path, sizeof path, "test_pack.oitp");
     static scene sc;
     rng r = {1234567u};
     tally t = {0};
