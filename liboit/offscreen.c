@@ -295,6 +295,40 @@ static unsigned char to_byte(float v)
     return (unsigned char)lrintf(v * 255.0f);
 }
 
+/* A method that draws images only (oit_renderer_desc.method: neither the
+ * stream nor DFB, which blend into the target). */
+static int image_only(const oit_offscreen *o)
+{
+    oit_renderer_desc d;
+    oit_renderer_get_desc(o->renderer, &d);
+    return d.method && strcmp(d.method, "stream") != 0 && strcmp(d.method, "dfb") != 0;
+}
+
+/* Such a method's frame through oit_renderer_draw_image (row 0 at the
+ * top, sRGB-encoded, over an opaque background) into the pixels. */
+static oit_status render_image(oit_offscreen *o, oit_scene *scene, const oit_offscreen_view *view,
+                               const oit_frame *frame, void *pixels, oit_draw_stats *stats,
+                               oit_error *err)
+{
+    int w = view->width, h = view->height;
+    if (view->format == OIT_PIXELS_PREMUL32F ||
+        (!is_zero(view->background, 4) && view->background[3] < 1.0f))
+        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "oit_offscreen_view: this method draws "
+                             "images over an opaque background only, not %s",
+                             view->format == OIT_PIXELS_PREMUL32F ? "OIT_PIXELS_PREMUL32F"
+                                                                 : "background[3] < 1");
+    size_t n = (size_t)w * h * 4;
+    oit_status s = oit_renderer_draw_image(o->renderer, scene, frame,
+                                           is_zero(view->background, 4) ? NULL : view->background,
+                                           o->readback, n * sizeof *o->readback, stats, err);
+    if (s == OIT_OK && view->format == OIT_PIXELS_RGBA8)
+        for (size_t i = 0; i < n; i++)
+            ((unsigned char *)pixels)[i] = to_byte(o->readback[i]);
+    else if (s == OIT_OK)
+        memcpy(pixels, o->readback, n * sizeof *o->readback);
+    return s;
+}
+
 oit_status oit_offscreen_render(oit_offscreen *o, oit_scene *scene,
                                 const oit_offscreen_view *view, void *pixels,
                                 size_t pixels_bytes, oit_draw_stats *stats, oit_error *err)
@@ -330,6 +364,8 @@ oit_status oit_offscreen_render(oit_offscreen *o, oit_scene *scene,
         s = ensure_target(o, w, h, err);
     if (s != OIT_OK)
         return s;
+    if (image_only(o))
+        return render_image(o, scene, view, &frame, pixels, stats, err);
     /* The frame alone: over transparent black, liboit.h's Result leaves
      * C and 1 - t. */
     int premul = view->format == OIT_PIXELS_PREMUL32F;

@@ -129,7 +129,10 @@ OIT_API oit_status oit_offscreen_default_view(const oit_scene *scene, oit_up_axi
  * row 0 at the TOP (image order, unlike GL), pixels_bytes the buffer's size
  * (at least width * height * 4 * component size, else OIT_ERR_ARGUMENT).
  * stats may be NULL (see oit_renderer_draw). Errors name the scene or the
- * field of view that is wrong. */
+ * field of view that is wrong. A method that draws images only
+ * (oit_renderer_desc.method other than stream and dfb) renders through
+ * oit_renderer_draw_image: RGBA8 and RGBA32F over an opaque background
+ * (alpha 1), else OIT_ERR_UNSUPPORTED. */
 OIT_API oit_status oit_offscreen_render(oit_offscreen *o, oit_scene *scene,
                                         const oit_offscreen_view *view, void *pixels,
                                         size_t pixels_bytes, oit_draw_stats *stats, oit_error *err);
