@@ -33,3 +33,19 @@ function(oit_glsl_embed target symbol)
   endif()
   target_sources(${target} PRIVATE ${out})
 endfunction()
+
+# oit_glsl_embed_each(TARGET DIR SYMBOL NAME [SYMBOL NAME...]): for the
+# shaders that are one file each, oit_glsl_embed of each SYMBOL from
+# DIR/NAME.glsl.
+function(oit_glsl_embed_each target dir)
+  set(pairs ${ARGN})
+  list(LENGTH pairs n)
+  math(EXPR odd "${n} % 2")
+  if(n EQUAL 0 OR odd)
+    message(FATAL_ERROR "oit_glsl_embed_each: SYMBOL NAME pairs, got: ${pairs}")
+  endif()
+  while(pairs)
+    list(POP_FRONT pairs symbol name)
+    oit_glsl_embed(${target} ${symbol} ${dir}/${name}.glsl)
+  endwhile()
+endfunction()
