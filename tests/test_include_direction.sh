@@ -10,7 +10,8 @@ cd "$1"
 # Each line: a folder, then the folders whose headers it may include
 # ("oit" is include/oit/; a folder allows its headers, a header path that
 # header alone; "!path" forbids a folder or header that an entry before it
-# allowed, e.g. the baselines below their parent render/).
+# allowed, e.g. the baselines below their parent render/; the tools reach
+# the renderer through liboit alone: tools/common/method_run.h).
 while read -r dir ok; do
     if [ ! -d "$dir" ]; then # a moved folder must move in this table too
         fail "no folder $dir: update this table"
@@ -48,11 +49,12 @@ partition oit base formats partfile partition
 preprocess oit base formats partfile partition preprocess
 stream oit base formats partfile render stream
 liboit oit base formats partfile render stream liboit
-tools/common oit base formats partfile render stream tools/common
+tools/common oit base formats partfile render !render/capture !render/baselines !render/reference !render/method.h tools/common
 tools/oitgen oit base formats scenes tools/common tools/oitgen
 tools/oitprep oit base formats partfile preprocess tools/common tools/oitprep
-tools/oitstream oit base formats partfile render plot stream tools/common tools/oitstream
-tools/oitbench oit base formats partfile render plot preprocess stream tools/common tools/oitbench
+tools/oitstream oit base formats partfile render !render/capture !render/baselines !render/reference !render/method.h plot tools/common tools/oitstream
+tools/oitbench oit base formats partfile render !render/capture !render/baselines !render/reference !render/method.h plot preprocess tools/common tools/oitbench
 tools/oit_meshinfo oit tools/common/exit_code.h
+tools/oitstream_mpi oit base formats partfile render !render/capture !render/baselines !render/reference !render/method.h tools/common tools/oitstream tools/oitstream_mpi
 EOF
 finish "include direction"
