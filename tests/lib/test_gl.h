@@ -4,10 +4,10 @@
 
 #include <stdio.h>
 #include <stdlib.h>
-#include "oit/partfile.h"
 
 #include "render/gl/gl_context.h"
 #include "tests/lib/test_check.h"
+#include "tests/lib/test_partfile.h"
 
 /* The context (EGL; surfaceless under ctest), its renderer printed so that a
  * log says which driver its figures come from. Without one nothing can be
@@ -32,16 +32,12 @@ static inline oit_gl *test_gl_open(void)
  * naming what failed to open. */
 static inline oit_gl *test_gl_open_partfile(int argc, char **argv, oit_partfile **pf)
 {
-    if (argc != 2) {
-        fprintf(stderr, "usage: %s FILE.oitp\n", argv[0]);
-        exit(2);
-    }
+    *pf = test_partfile_arg(argc, argv);
     oit_error err = {0};
     oit_gl *gl = NULL;
-    if (oit_gl_create(NULL, &gl, &err) != OIT_OK ||
-        oit_partfile_open(argv[1], NULL, pf, &err) != OIT_OK) {
+    if (oit_gl_create(NULL, &gl, &err) != OIT_OK) {
         fprintf(stderr, "FAIL: %s\n", err.message);
-        oit_gl_destroy(gl);
+        oit_partfile_close(*pf);
         exit(1);
     }
     return gl;

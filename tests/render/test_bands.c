@@ -300,19 +300,10 @@ static void streamed(oit_gl *gl, const char *path, const oit_view *v, const char
 
 int main(int argc, char **argv)
 {
-    if (argc != 2) {
-        fprintf(stderr, "usage: %s GRID.oitp\n", argv[0]);
-        return 2;
-    }
+    oit_partfile *pf = test_partfile_arg(argc, argv);
     oit_gl *gl = test_gl_open();
     oit_mesh mesh;
     scene(&mesh);
-    oit_error err = {0};
-    oit_partfile *pf = NULL;
-    if (oit_partfile_open(argv[1], NULL, &pf, &err) != OIT_OK) {
-        fprintf(stderr, "FAIL: %s\n", err.message);
-        return 1;
-    }
     oit_partfile_summary sum;
     oit_partfile_get_summary(pf, &sum);
     for (int ortho = 0; ortho < 2; ortho++) {

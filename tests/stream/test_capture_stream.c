@@ -115,20 +115,11 @@ static void driver_verdict(oit_partfile *pf, const oit_view *v)
 
 int main(int argc, char **argv)
 {
-    if (argc != 2) {
-        fprintf(stderr, "usage: test_capture_stream GRID.oitp\n");
-        return 2;
-    }
+    oit_partfile *pf = test_partfile_arg(argc, argv);
     oit_gl *gl = test_gl_open();
     int llvmpipe = strstr(oit_gl_renderer(gl), "llvmpipe") != NULL;
     GLint most = 0;
     glGetIntegerv(GL_MAX_INTEGER_SAMPLES, &most);
-    oit_error err = {0};
-    oit_partfile *pf = NULL;
-    if (oit_partfile_open(argv[1], NULL, &pf, &err) != OIT_OK) {
-        fprintf(stderr, "FAIL: %s\n", err.message);
-        return 1;
-    }
     oit_partfile_summary sum;
     oit_partfile_get_summary(pf, &sum);
     oit_view v;

@@ -22,6 +22,7 @@
 
 #include "stream/reader.h"
 #include "tests/lib/test_check.h"
+#include "tests/lib/test_partfile.h"
 
 enum { JOBS = 12, MOST = 9, ITEMS = JOBS * MOST, STAMP = 8, FAIL_SLOW = 1000, FAIL_FAST = 1001 };
 
@@ -183,16 +184,8 @@ static void run_rigged(oit_partfile *pf, int threads, reader_test *test)
 
 int main(int argc, char **argv)
 {
-    if (argc != 2) {
-        fprintf(stderr, "usage: test_reader FILE.oitp\n");
-        return 2;
-    }
+    oit_partfile *pf = test_partfile_arg(argc, argv);
     oit_error err = {0};
-    oit_partfile *pf = NULL;
-    if (oit_partfile_open(argv[1], NULL, &pf, &err) != OIT_OK) {
-        fprintf(stderr, "FAIL: %s\n", err.message);
-        return 1;
-    }
     static const int threads[] = {0, 1, 2, 3, 8};
     for (size_t t = 0; t < sizeof threads / sizeof *threads; t++) {
         run_rigged(pf, threads[t], order_and_once);
