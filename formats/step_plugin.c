@@ -1,4 +1,4 @@
-/* oit_read_step and oit_read_iges for liboit: the Open CASCADE adapter is
+/* oit_occt_read for liboit: the Open CASCADE adapter is
  * the plugin liboit-occt.so (plugin_load.h), loaded on the first read, as
  * the glTF plugin is (gltf_plugin.c, step_internal.h). Unlike glTF's it
  * stays loaded (RTLD_NODELETE): Open CASCADE's libraries keep process-wide
@@ -11,9 +11,8 @@
 #error "OIT_OCCT_PLUGIN_FILE (the STEP/IGES plugin's file name) is not defined"
 #endif
 
-static oit_status read_through_plugin(const char *path, oit_occt_format format,
-                                      const oit_read_desc *desc, oit_triangle_sink sink,
-                                      void *user, oit_mesh_info *info, oit_error *err)
+oit_status oit_occt_read(const char *path, oit_occt_format format, const oit_read_desc *desc,
+                         oit_triangle_sink sink, void *user, oit_mesh_info *info, oit_error *err)
 {
     const char *what = format == OIT_OCCT_STEP ? "STEP" : "IGES";
     if (!path)
@@ -28,16 +27,4 @@ static oit_status read_through_plugin(const char *path, oit_occt_format format,
     s = ((oit_occt_read_fn *)p.entry)(path, format, desc, sink, user, info, err);
     oit_plugin_close(&p);
     return s;
-}
-
-oit_status oit_read_step(const char *path, const oit_read_desc *desc, oit_triangle_sink sink,
-                         void *user, oit_mesh_info *info, oit_error *err)
-{
-    return read_through_plugin(path, OIT_OCCT_STEP, desc, sink, user, info, err);
-}
-
-oit_status oit_read_iges(const char *path, const oit_read_desc *desc, oit_triangle_sink sink,
-                         void *user, oit_mesh_info *info, oit_error *err)
-{
-    return read_through_plugin(path, OIT_OCCT_IGES, desc, sink, user, info, err);
 }
