@@ -362,20 +362,31 @@ static int deep_frame(oit_capture *c)
     return ok;
 }
 
+/* The compute capture (K = 8) with the test faults given planted; NULL,
+ * the failure counted and named (what: which capture), when it cannot be
+ * made. */
+static oit_capture *compute_capture(unsigned faults, const char *what)
+{
+    oit_error err = {0};
+    oit_capture *c = NULL;
+    if (oit_capture_create(&(oit_capture_desc){.fill = OIT_RENDER_CAPTURE_COMPUTE, .K = 8,
+                                               .faults = faults},
+                           &c, &err) != OIT_OK) {
+        fprintf(stderr, "FAIL: compute capture%s: %s\n", what, err.message);
+        test_failures++;
+        return NULL;
+    }
+    return c;
+}
+
 /* Tile lists one entry long and never grown: every tile's list
  * overflows, so every tile finds its triangles among all the batch's
  * records; the images, counts and depths stay DFB's and the hand's. */
 static void test_list_overflow(void)
 {
-    oit_error err = {0};
-    oit_capture *c = NULL;
-    if (oit_capture_create(&(oit_capture_desc){.fill = OIT_RENDER_CAPTURE_COMPUTE, .K = 8,
-                                               .faults = OIT_CAPTURE_TEST_COMPUTE_LIST_SHORT},
-                           &c, &err) != OIT_OK) {
-        fprintf(stderr, "FAIL: compute capture, short lists: %s\n", err.message);
-        test_failures++;
+    oit_capture *c = compute_capture(OIT_CAPTURE_TEST_COMPUTE_LIST_SHORT, ", short lists");
+    if (!c)
         return;
-    }
     printf("-- tile lists one entry long\n");
     test_one_batch(c);
     quad_spec q[8];
@@ -396,15 +407,9 @@ static void test_list_overflow(void)
  * the frames after it read back and are exact again. */
 static void test_no_probe(void)
 {
-    oit_error err = {0};
-    oit_capture *c = NULL;
-    if (oit_capture_create(&(oit_capture_desc){.fill = OIT_RENDER_CAPTURE_COMPUTE, .K = 8,
-                                               .faults = OIT_CAPTURE_TEST_COMPUTE_NO_PROBE},
-                           &c, &err) != OIT_OK) {
-        fprintf(stderr, "FAIL: compute capture, no probe: %s\n", err.message);
-        test_failures++;
+    oit_capture *c = compute_capture(OIT_CAPTURE_TEST_COMPUTE_NO_PROBE, ", no probe");
+    if (!c)
         return;
-    }
     printf("-- no loop probe\n");
     test_one_batch(c);
     expect_failure = 1;
@@ -419,13 +424,9 @@ int main(void)
 {
     setenv("OIT_GL_POISON", "1", 1);
     oit_gl *gl = test_gl_open();
-    oit_error err = {0};
-    oit_capture *c = NULL;
-    if (oit_capture_create(&(oit_capture_desc){.fill = OIT_RENDER_CAPTURE_COMPUTE, .K = 8},
-                           &c, &err) != OIT_OK) {
-        fprintf(stderr, "FAIL: compute capture: %s\n", err.message);
+    oit_capture *c = compute_capture(0, "");
+    if (!c)
         return 1;
-    }
     CHECK(oit_capture_backend(c) == OIT_CAPTURE_COMPUTE, "backend");
     test_one_batch(c);
     quad_spec q[8];
