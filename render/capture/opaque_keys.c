@@ -2,6 +2,7 @@
 #include "render/capture/opaque_keys.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 
 struct oit_opaque_keys {
@@ -10,6 +11,8 @@ struct oit_opaque_keys {
     int on;    /* this frame has opaque triangles */
     int width, height; /* the frame's */
 };
+_Static_assert(offsetof(struct oit_opaque_keys, prog) == 0,
+               "oit_glsl_module_create builds the first member");
 
 extern const char oit_opaque_keys_fs[]; /* glsl/opaque_keys.glsl */
 static const oit_glsl_program program = {"opaque keys", .fs = {oit_opaque_keys_fs}};
@@ -21,18 +24,12 @@ void oit_opaque_keys_glsl_variants(oit_glsl_visit *visit, void *user)
 
 oit_status oit_opaque_keys_create(oit_opaque_keys **out, oit_error *err)
 {
-    *out = NULL;
-    oit_opaque_keys *k = calloc(1, sizeof *k);
-    if (!k)
-        return oit_error_set(err, OIT_ERR_NOMEM, "opaque keys: out of memory");
-    oit_status st = oit_glsl_programs_build(NULL, &program, 1, &k->prog, err);
-    if (st != OIT_OK) {
-        oit_opaque_keys_destroy(k);
-        return st;
-    }
-    glCreateFramebuffers(1, &k->fbo);
+    oit_status st;
+    oit_opaque_keys *k = oit_glsl_module_create(sizeof *k, &program, "opaque keys", &st, err);
+    if (k)
+        glCreateFramebuffers(1, &k->fbo);
     *out = k;
-    return OIT_OK;
+    return st;
 }
 
 void oit_opaque_keys_destroy(oit_opaque_keys *k)

@@ -3,6 +3,7 @@
 #include "base/minmax.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -14,6 +15,8 @@ struct oit_opaque_tiles {
     int on;
     double view[16], proj[16];
 };
+_Static_assert(offsetof(struct oit_opaque_tiles, prog) == 0,
+               "oit_glsl_module_create builds the first member");
 
 extern const char oit_opaque_tiles_cs[]; /* glsl/opaque_tiles.glsl */
 static const oit_glsl_program program = {
@@ -27,17 +30,9 @@ void oit_opaque_tiles_glsl_variants(oit_glsl_visit *visit, void *user)
 
 oit_status oit_opaque_tiles_create(oit_opaque_tiles **out, oit_error *err)
 {
-    *out = NULL;
-    oit_opaque_tiles *t = calloc(1, sizeof *t);
-    if (!t)
-        return oit_error_set(err, OIT_ERR_NOMEM, "opaque tiles: out of memory");
-    oit_status st = oit_glsl_programs_build(NULL, &program, 1, &t->prog, err);
-    if (st != OIT_OK) {
-        free(t);
-        return st;
-    }
-    *out = t;
-    return OIT_OK;
+    oit_status st;
+    *out = oit_glsl_module_create(sizeof **out, &program, "opaque tiles", &st, err);
+    return st;
 }
 
 void oit_opaque_tiles_destroy(oit_opaque_tiles *t)

@@ -4,6 +4,7 @@
 #include "render/capture/capture_glsl.h"
 #include "render/gl/frag_glsl.h"
 
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -19,6 +20,8 @@ struct oit_saturation {
     size_t cpu_cap;
     int w, h, tx, ty;
 };
+_Static_assert(offsetof(struct oit_saturation, prog) == 0,
+               "oit_glsl_module_create builds the first member");
 
 extern const char oit_saturation_cs[]; /* glsl/saturation.glsl */
 static const oit_glsl_program program = {
@@ -33,17 +36,9 @@ void oit_saturation_glsl_variants(oit_glsl_visit *visit, void *user)
 
 oit_status oit_saturation_create(oit_saturation **out, oit_error *err)
 {
-    *out = NULL;
-    oit_saturation *s = calloc(1, sizeof *s);
-    if (!s)
-        return oit_error_set(err, OIT_ERR_NOMEM, "saturation tiles: out of memory");
-    oit_status st = oit_glsl_programs_build(NULL, &program, 1, &s->prog, err);
-    if (st != OIT_OK) {
-        oit_saturation_destroy(s);
-        return st;
-    }
-    *out = s;
-    return OIT_OK;
+    oit_status st;
+    *out = oit_glsl_module_create(sizeof **out, &program, "saturation tiles", &st, err);
+    return st;
 }
 
 static void drop_readback(oit_saturation *s)

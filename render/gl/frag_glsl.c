@@ -126,6 +126,22 @@ void oit_glsl_programs_delete(GLuint *progs, int n)
     }
 }
 
+void *oit_glsl_module_create(size_t size, const oit_glsl_program *p, const char *what,
+                             oit_status *st, oit_error *err)
+{
+    GLuint *prog = calloc(1, size);
+    if (!prog) {
+        *st = oit_error_set(err, OIT_ERR_NOMEM, "%s: out of memory", what);
+        return NULL;
+    }
+    *st = oit_glsl_programs_build(NULL, p, 1, prog, err);
+    if (*st != OIT_OK) {
+        free(prog);
+        return NULL;
+    }
+    return prog;
+}
+
 static GLint loc(GLuint prog, const char *name)
 {
     return glGetUniformLocation(prog, name);

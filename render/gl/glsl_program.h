@@ -65,6 +65,12 @@ oit_status oit_glsl_programs_build(oit_program_cache *pc, const oit_glsl_program
                                    oit_error *err);
 /* Deletes progs[0..n) (0 is fine) and sets them to 0. */
 void oit_glsl_programs_delete(GLuint *progs, int n);
+/* The state of a module of one program (opaque keys, opaque tiles,
+ * saturated tiles): `size` bytes, zeroed, whose first member is the GLuint
+ * that p is built into. NULL with *st set when memory (the error naming
+ * what) or the build fails; nothing is left allocated then. */
+void *oit_glsl_module_create(size_t size, const oit_glsl_program *p, const char *what,
+                             oit_status *st, oit_error *err);
 
 #ifdef __cplusplus
 }
