@@ -182,6 +182,17 @@ static inline void hand_end(const hand_state *s, const oit_view *v, double rgb[3
         rgb[c] = s->C[c] + s->T[c] * fmax(v->shading.background[c], 0.0);
 }
 
+/* The hand result at pixel (x, y): quads q[0..n) composited over v's
+ * background. */
+static inline void hand_pixel(const oit_view *v, const quad_spec *q, int n, int x, int y,
+                              double rgb[3])
+{
+    hand_state s;
+    hand_begin(&s);
+    hand_add(&s, v, q, n, x, y);
+    hand_end(&s, v, rgb);
+}
+
 /* Largest channel difference over the image between it and the hand result. */
 static inline double hand_max_diff(const oit_image *img, const oit_view *v, const quad_spec *q,
                             int n)
@@ -189,11 +200,8 @@ static inline double hand_max_diff(const oit_image *img, const oit_view *v, cons
     double worst = 0.0;
     for (int y = 0; y < img->height; y++)
         for (int x = 0; x < img->width; x++) {
-            hand_state s;
             double rgb[3];
-            hand_begin(&s);
-            hand_add(&s, v, q, n, x, y);
-            hand_end(&s, v, rgb);
+            hand_pixel(v, q, n, x, y, rgb);
             const float *p = &img->rgba[4 * ((size_t)y * img->width + x)];
             for (int c = 0; c < 3; c++)
                 worst = fmax(worst, fabs(p[c] - rgb[c]));

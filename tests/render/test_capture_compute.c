@@ -132,11 +132,8 @@ static void test_rect_cut(oit_capture *c)
     for (int y = 0; y < v.height; y++)
         for (int x = 0; x < v.width; x++) {
             int in = x >= rect[0][0] && x < rect[0][2] && y >= rect[0][1] && y < rect[0][3];
-            hand_state s;
             double rgb[3];
-            hand_begin(&s);
-            hand_add(&s, &v, q, in ? 6 : 0, x, y);
-            hand_end(&s, &v, rgb);
+            hand_pixel(&v, q, in ? 6 : 0, x, y, rgb);
             for (int ch = 0; ch < 3; ch++)
                 worst = fmax(worst, fabs(img.rgba[4 * ((size_t)y * v.width + x) + ch] - rgb[ch]));
         }

@@ -125,11 +125,8 @@ static void check_reference(const oit_view *v)
         int masked = 0;
         for (int y = 0; y < v->height; y++)
             for (int x = 0; x < v->width; x++) {
-                hand_state hs;
                 double rgb[3];
-                hand_begin(&hs);
-                hand_add(&hs, v, QUADS, NQ, x, y);
-                hand_end(&hs, v, rgb);
+                hand_pixel(v, QUADS, NQ, x, y, rgb);
                 const float *p = &img.rgba[4 * ((size_t)y * img.width + x)];
                 masked += amb[(size_t)y * v->width + x];
                 for (int c = 0; c < 3 && !amb[(size_t)y * v->width + x]; c++)
