@@ -5,7 +5,7 @@
  * own copy for one of these computes the same bits: images and part files
  * do not move. A copy whose arithmetic differs (a float product summed in
  * double, a normalize without the zero guard, an exact predicate of
- * partition/) is not one of these and stays where it is.
+ * prepare/partition/) is not one of these and stays where it is.
  *
  * For S = d (double, sqrt) and S = f (float, sqrtf), with T its type:
  *

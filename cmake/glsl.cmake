@@ -1,6 +1,6 @@
-# Shaders are files (render/*/glsl/*.glsl), embedded at build time: each
+# Shaders are files (view/render/*/glsl/*.glsl), embedded at build time: each
 # becomes a C array of its text, so the library needs no file at run time
-# and a shader is edited, diffed and checked (glslang, tests/render/
+# and a shader is edited, diffed and checked (glslang, tests/view/render/
 # test_glsl_offline.sh) as GLSL, not as C string literals.
 #
 # oit_glsl_embed(TARGET SYMBOL FILE...): `const char SYMBOL[]`, the text of

@@ -17,7 +17,7 @@ install(TARGETS oit_gltf_plugin LIBRARY DESTINATION lib)
 install(TARGETS oit_assimp_plugin LIBRARY DESTINATION lib)
 install(TARGETS oit_occt_plugin LIBRARY DESTINATION lib) # STEP/IGES, formats/step_plugin.c
 # The Embree reference likewise, which liboit loads to offer the reference
-# method (render/reference/reference_plugin.h).
+# method (view/render/reference/reference_plugin.h).
 install(TARGETS oit_reference_plugin LIBRARY DESTINATION lib)
 install(FILES
         ${CMAKE_SOURCE_DIR}/include/oit/oit.h

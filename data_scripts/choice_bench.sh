@@ -1,5 +1,5 @@
 #!/bin/sh
-# Issue 44 item 2: does --pack auto's measured choice (stream/choice.h) end
+# Issue 44 item 2: does --pack auto's measured choice (view/stream/choice.h) end
 # where the faster path is? Per scene and size, one view seen from 20 degrees
 # above (oitstream's default framing of the source mesh), FRAMES frames of it
 # in one process, for: the stream's default (auto), --pack first-k, --pack

@@ -31,7 +31,7 @@ mkdir -p "$(dirname "$out")"
     echo 'verify: `oitprep verify` (64 directions, 16 viewpoints): layer, order and'
     echo 'slab violations.'
     echo 'slabs: kd leaves split by a slab instead of an axis plane, of them (cut)'
-    echo 'cutting planes that clip (partition/kd_cut.h); the rest separate with a gap.'
+    echo 'cutting planes that clip (prepare/partition/kd_cut.h); the rest separate with a gap.'
     echo 'out, separating: triangles out of the same conversion with `--slabs'
     echo 'separating` (no cutting planes), for comparison.'
     echo

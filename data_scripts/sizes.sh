@@ -7,7 +7,7 @@
 # where the driver routes per sample, pll, ppll4, b3d, dp, ddp), compared
 # with DFB of the source mesh at the same size (oitstream --compare: the
 # pixels more than 1/255 apart). Frames past one storage binding are drawn
-# in bands of rows (render/gl/band.h); the frames of 2^22 pixels and more
+# in bands of rows (view/render/gl/band.h); the frames of 2^22 pixels and more
 # failed before (a dispatch of more work groups than GL promises).
 #
 # Usage: data_scripts/sizes.sh [BINDIR] [OUTDIR]

@@ -20,7 +20,7 @@
 # over all frames), second-pass pixels and packs (stats keys
 # second_pass_pixels / second_pass_packs, worst frame; '-' when this build's
 # oitstream does not write them), ms of each method, stream/DFB and
-# stream/unsorted, and "off %": the worst view's share of pixels off by more
+# view/stream/unsorted, and "off %": the worst view's share of pixels off by more
 # than 1/255 between a method and DFB on the source mesh, with the largest
 # absolute difference (in 1/255) beside it.
 #

@@ -25,7 +25,7 @@ oitstream --stats prints as "view"); each line is rendered once, in order,
 and timed (Render() plus WaitForCompletion(): the GPU work included, as
 oitstream's ms); a walk that repeats each view gives warm frames to time.
 
-Matching oitstream's conventions (render/image/view.h, render/image/shade.h):
+Matching oitstream's conventions (view/render/image/view.h, view/render/image/shade.h):
   camera    vtkCamera position/focal point/view up from the line, view angle
             = fovy (VTK's is vertical too), clipping range = znear,zfar
             (checked after each render: VTK must not have reset it);

@@ -46,7 +46,7 @@ oit_status material_shade(Ctx &c, int material, const char *what, Shade *sh)
     sh->mode = m.alphaMode == "BLEND" ? Shade::BLEND : m.alphaMode == "MASK" ? Shade::MASK : Shade::OPAQUE;
     sh->cutoff = m.alphaCutoff;
     // Every material gives alpha, OPAQUE's being 1: its triangles are
-    // opaque (render/image/shade.h); a file without materials takes the default.
+    // opaque (view/render/image/shade.h); a file without materials takes the default.
     c.info->attributes |= OIT_ATTR_COLOUR | OIT_ATTR_ALPHA;
     if (m.pbrMetallicRoughness.baseColorTexture.index >= 0 && !c.texture_said) {
         c.texture_said = true; // once per file

@@ -21,7 +21,7 @@
  * once on stderr. A face of a
  * material with d or Tr carries that alpha, one of a material without
  * (or of no material) alpha 1, MTL's default: with alpha in the file,
- * those are opaque (render/image/shade.h, "Opaque triangles").
+ * those are opaque (view/render/image/shade.h, "Opaque triangles").
  *
  * Triangles touching a NaN/inf vertex are dropped and counted in
  * info->nonfinite_dropped.

@@ -16,8 +16,8 @@
 #include <stdint.h>
 
 #include "oit/liboit.h"
-#include "render/capture/capture.h"
-#include "stream/streamer.h"
+#include "view/render/capture/capture.h"
+#include "view/stream/streamer.h"
 
 typedef enum oit_desc_type {
     OIT_DESC_U32, /* uint32_t */

@@ -31,7 +31,7 @@ static oit_status render_state(oit_renderer *r, const oit_scene *scene, const oi
 }
 
 /* The frame in bands of rows whose state fits one storage binding
- * (render/gl/band.h; one band where it all fits, the view unchanged), each
+ * (view/render/gl/band.h; one band where it all fits, the view unchanged), each
  * rendered and blended over its rows of the viewport before the next
  * overwrites the state. The opaque depth's projection is narrowed to the
  * band as the camera is; the depth unit is bound only while a band is
@@ -111,7 +111,7 @@ static void draw_stats_work(const oit_frame_stats *fs, const oit_stream_frame_st
 
 /* A part file's draw in one band is one streamer frame: the automatic
  * pack mode judges it on the draw's whole wall time and its GPU figure
- * (stream/choice.h); bands are judged each on its own time. */
+ * (view/stream/choice.h); bands are judged each on its own time. */
 static void frame_end(oit_renderer *r, const oit_scene *scene, oit_status st, double t0,
                       uint64_t gpu_tag)
 {
@@ -280,8 +280,8 @@ static oit_status render_image(oit_renderer *r, const oit_view *v, oit_image *ou
 }
 
 /* A part file's image in bands of rows whose per-pixel state fits one
- * storage binding (render/gl/band.h), each copied into its rows of rgba,
- * as the method interface bands an in-core method's (render/method.c). */
+ * storage binding (view/render/gl/band.h), each copied into its rows of rgba,
+ * as the method interface bands an in-core method's (view/render/method.c). */
 static oit_status image_bands(oit_renderer *r, const oit_view *view, float *rgba,
                               oit_frame_stats *fs, oit_stream_frame_stats *ss, oit_error *err)
 {
@@ -315,7 +315,7 @@ static oit_status image_bands(oit_renderer *r, const oit_view *view, float *rgba
     return st;
 }
 
-/* An in-core scene's image through its method (render/method.h, which
+/* An in-core scene's image through its method (view/render/method.h, which
  * bands it and times it on r's timer), written in place where the method
  * takes a given image (DFB, the capture), else copied. */
 static oit_status run_pixels(oit_renderer *r, const oit_view *v, const oit_pixels_desc *px,

@@ -139,7 +139,7 @@ void oit_lib_depth_unit_bind(const oit_renderer *r, GLuint tex, depth_unit *u)
 }
 
 /* Texture unit 6 (OIT_TEX_OPAQUE_KEYS), which the opaque pre-pass binds
- * (render/capture/opaque_keys.h): liboit.h promises it back. */
+ * (view/render/capture/opaque_keys.h): liboit.h promises it back. */
 _Static_assert(OIT_TEX_OPAQUE_KEYS == 6, "liboit.h documents texture unit 6");
 GLint oit_lib_keys_unit_save(void)
 {

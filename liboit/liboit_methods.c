@@ -1,13 +1,13 @@
 /* liboit's methods (liboit_internal.h): the one table of every method a
  * renderer runs, in the order oit_render_methods lists them, and the
- * in-core ones opened behind the method interface (render/method.h) in the
+ * in-core ones opened behind the method interface (view/render/method.h) in the
  * caller's context. The stream is the streamer (liboit.c); the reference
  * is Embree's, loaded as a plugin (liboit_reference.h) so that liboit
  * links no C++. */
 #include "liboit/liboit_internal.h"
 
-#include "render/baselines/methods.h"
-#include "render/gl/gl_context.h"
+#include "view/render/baselines/methods.h"
+#include "view/render/gl/gl_context.h"
 #include "liboit/liboit_reference.h"
 
 #define GL OIT_RENDER_METHOD_GL

@@ -1,7 +1,7 @@
 /* oit_lib_reference_load (liboit_reference.h). */
 #include "liboit/liboit_reference.h"
 
-#include "render/reference/reference_plugin.h"
+#include "view/render/reference/reference_plugin.h"
 
 #ifndef OIT_REFERENCE_PLUGIN_FILE /* the plugin's file name, from CMake */
 #error "OIT_REFERENCE_PLUGIN_FILE (the reference plugin's file name) is not defined"

@@ -1,11 +1,11 @@
 /* The Embree reference method for liboit, from its plugin
- * liboit-reference.so (render/reference/reference_plugin.h): loaded, not
+ * liboit-reference.so (view/render/reference/reference_plugin.h): loaded, not
  * linked, so that liboit links no C++, Embree or TBB. */
 #ifndef OIT_LIBOIT_REFERENCE_H
 #define OIT_LIBOIT_REFERENCE_H
 
 #include "formats/plugin_load.h"
-#include "render/method.h"
+#include "view/render/method.h"
 
 /* Loads the plugin beside liboit.so (formats/plugin_load.h) and gives its
  * method table in *out, valid until oit_plugin_close(plugin). The plugin is

@@ -147,7 +147,7 @@ static oit_status model_from_frame(const float *m, oit_view *v, oit_error *err)
     return OIT_OK;
 }
 
-/* oit_frame.clip: checked once, by its owner (render/image/clip.h). */
+/* oit_frame.clip: checked once, by its owner (view/render/image/clip.h). */
 _Static_assert(OIT_FRAME_CLIP_MAX == OIT_CLIP_MAX, "oit_frame.clip holds OIT_CLIP_MAX planes");
 static oit_status clip_from_frame(const oit_frame *f, oit_view *v, oit_error *err)
 {

@@ -7,10 +7,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "render/gl/gl_context.h"
-#include "render/gl/gl_util.h"
-#include "render/image/shade.h"
-#include "render/image/view.h"
+#include "view/render/gl/gl_context.h"
+#include "view/render/gl/gl_util.h"
+#include "view/render/image/shade.h"
+#include "view/render/image/view.h"
 
 struct oit_offscreen {
     oit_gl *gl;
@@ -126,7 +126,7 @@ static int is_zero(const float *v, int n)
     return 1;
 }
 
-/* The internal axis number (render/image/view.h: 0 x, 1 y, 2 z) of a public one. */
+/* The internal axis number (view/render/image/view.h: 0 x, 1 y, 2 z) of a public one. */
 static int axis_of(oit_up_axis up)
 {
     return up == OIT_UP_Z ? 2 : up == OIT_UP_X ? 0 : 1;

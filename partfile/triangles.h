@@ -1,5 +1,5 @@
 /* A part's indexed blob (docs/part-file.md) as the triangle soup that
- * render/gl/gpu_mesh draws, and a whole part file as an in-core oit_mesh, so
+ * view/render/gl/gpu_mesh draws, and a whole part file as an in-core oit_mesh, so
  * that every method renders the same triangles with the same primitive ids
  * (the tie-break key): each triangle's source index (its position among
  * the triangles the reader delivered for the source file). The streamer

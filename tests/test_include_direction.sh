@@ -10,7 +10,7 @@ cd "$1"
 # Each line: a folder, then the folders whose headers it may include
 # ("oit" is include/oit/; a folder allows its headers, a header path that
 # header alone; "!path" forbids a folder or header that an entry before it
-# allowed, e.g. the baselines below their parent render/; the tools reach
+# allowed, e.g. the baselines below their parent view/render/; the tools reach
 # the renderer through liboit alone: tools/common/method_run.h).
 while read -r dir ok; do
     if [ ! -d "$dir" ]; then # a moved folder must move in this table too
@@ -19,7 +19,7 @@ while read -r dir ok; do
     fi
     for f in "$dir"/*.c "$dir"/*.h "$dir"/*.cpp; do
         [ -f "$f" ] || continue
-        # quoted includes that name a folder: "render/capture/dfb.h"
+        # quoted includes that name a folder: "view/render/capture/dfb.h"
         for inc in $(sed -n 's/^[[:space:]]*#[[:space:]]*include[[:space:]]*"\([a-z_]*\/[^"]*\)".*/\1/p' "$f"); do
             hit=0
             for a in $ok; do
@@ -37,24 +37,24 @@ include/oit oit
 base oit base
 formats oit base formats
 partfile oit base formats partfile
-render/image oit base formats render/image
-render/gl oit base formats render/image render/gl
-render/capture oit base formats render/image render/gl render/capture
-render oit base formats render !render/baselines !render/reference
-render/reference oit base formats render/image render/method.h render/reference
-render/baselines oit base formats render !render/reference
-plot oit base formats render/image plot
-scenes oit base formats scenes
-partition oit base formats partfile partition
-preprocess oit base formats partfile partition preprocess
-stream oit base formats partfile render stream
-liboit oit base formats partfile render stream liboit
-tools/common oit base formats partfile render !render/capture !render/baselines !render/reference !render/method.h tools/common
-tools/oitgen oit base formats scenes tools/common tools/oitgen
-tools/oitprep oit base formats partfile preprocess tools/common tools/oitprep
-tools/oitstream oit base formats partfile render !render/capture !render/baselines !render/reference !render/method.h plot tools/common tools/oitstream
-tools/oitbench oit base formats partfile render !render/capture !render/baselines !render/reference !render/method.h plot preprocess tools/common tools/oitbench
+view/render/image oit base formats view/render/image
+view/render/gl oit base formats view/render/image view/render/gl
+view/render/capture oit base formats view/render/image view/render/gl view/render/capture
+view/render oit base formats view/render !view/render/baselines !view/render/reference
+view/render/reference oit base formats view/render/image view/render/method.h view/render/reference
+view/render/baselines oit base formats view/render !view/render/reference
+view/plot oit base formats view/render/image view/plot
+prepare/scenes oit base formats prepare/scenes
+prepare/partition oit base formats partfile prepare/partition
+prepare/convert oit base formats partfile prepare/partition prepare/convert
+view/stream oit base formats partfile view/render view/stream
+liboit oit base formats partfile view/render view/stream liboit
+tools/common oit base formats partfile view/render !view/render/capture !view/render/baselines !view/render/reference !view/render/method.h tools/common
+tools/oitgen oit base formats prepare/scenes tools/common tools/oitgen
+tools/oitprep oit base formats partfile prepare/convert tools/common tools/oitprep
+tools/oitstream oit base formats partfile view/render !view/render/capture !view/render/baselines !view/render/reference !view/render/method.h view/plot tools/common tools/oitstream
+tools/oitbench oit base formats partfile view/render !view/render/capture !view/render/baselines !view/render/reference !view/render/method.h view/plot prepare/convert tools/common tools/oitbench
 tools/oit_meshinfo oit tools/common/exit_code.h
-tools/oitstream_mpi oit base formats partfile render !render/capture !render/baselines !render/reference !render/method.h tools/common tools/oitstream tools/oitstream_mpi
+tools/oitstream_mpi oit base formats partfile view/render !view/render/capture !view/render/baselines !view/render/reference !view/render/method.h tools/common tools/oitstream tools/oitstream_mpi
 EOF
 finish "include direction"

@@ -12,7 +12,7 @@
 #          and checks that both are named and that decrements are not.
 set -eu
 . "${OIT_TEST_LIB:-$(dirname "$0")/lib.sh}"
-FOLDERS="base formats partfile render plot scenes partition preprocess stream liboit include"
+FOLDERS="base formats partfile view/render view/plot prepare/scenes prepare/partition prepare/convert view/stream liboit include"
 
 # flags DIR: "path:line: flag" of each flag in DIR's library folders.
 flags() {
@@ -34,8 +34,8 @@ for path in sys.stdin.read().split():
 if [ $# -ge 2 ]; then
     dir="$2/library_flags_selftest"
     rm -rf "$dir"
-    mkdir -p "$dir/stream" "$dir/include/oit"
-    cat >"$dir/stream/planted.c" <<'C'
+    mkdir -p "$dir/view/stream" "$dir/include/oit"
+    cat >"$dir/view/stream/planted.c" <<'C'
 /* what --upload-budget says */
 static int f(int *s, int top, int *a) { return a[--top] + --s[0] + (--top); }
 static const char *m = "more than --gpu-budget %llu";

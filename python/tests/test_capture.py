@@ -68,7 +68,7 @@ def test_capture_bad_name():
 
 def test_auto_choice_stats(part_file):
     """pack="auto" reports its measured choice (liboit oit_draw_stats.choice,
-    stream/choice.h): the first draw the seed with no costs, the same view
+    view/stream/choice.h): the first draw the seed with no costs, the same view
     again first-k held (two squares: no second pass, nothing to probe) with
     first-k's measured cost; a fixed pack reports none."""
     r = oit.Renderer(pack="auto")

@@ -212,7 +212,7 @@ static void check_scene(const char *label, const collect *c, const oit_mesh_info
            c->mesh.count, c->calls, c->max_chunk, (unsigned long long)info->vertices_in,
            info->attributes);
     CHECK(c->mesh.count == 5 && info->triangles == 5, "%s: %zu triangles, want 5", label, c->mesh.count);
-    /* the OPAQUE material gives alpha 1: opaque triangles (render/image/shade.h) */
+    /* the OPAQUE material gives alpha 1: opaque triangles (view/render/image/shade.h) */
     CHECK(info->attributes == (OIT_ATTR_COLOUR | OIT_ATTR_ALPHA | OIT_ATTR_OPAQUE),
           "%s: attributes %u", label, info->attributes);
     CHECK(info->bounds_min[0] == 9 && info->bounds_max[0] == 12 && info->bounds_max[2] == 5,

@@ -1,5 +1,5 @@
 #!/bin/sh
-# The compute capture (render/capture/capture_compute.h) end to end, in core
+# The compute capture (view/render/capture/capture_compute.h) end to end, in core
 # (oitstream --method compute: the mesh as one batch) and streamed
 # (--method stream --capture compute, many packs under a small upload
 # budget), against the Embree reference and DFB on the same triangles (the

@@ -14,7 +14,7 @@
 #     dual depth peeling == DFB on the source mesh except on the cases that
 #     hold depth ties (TIE_CASES), which it cannot order (dual_peel.h): on
 #     coplanar it must DIFFER, showing that the views really hold ties;
-#   the tie rule (render/image/shade.h, docs/ties.md) across conversion and
+#   the tie rule (view/render/image/shade.h, docs/ties.md) across conversion and
 #     methods: the stream (part file), DFB on the part file and on the
 #     source mesh and the Embree reference on the source mesh all agree
 #     outside the reference's ambiguity mask, which flags pixel centres on
@@ -243,7 +243,7 @@ view() {
 for name in $NAMES; do view "$name"; done
 
 if [ "$CASE" = mixed ]; then
-    # Opaque boxes (render/image/shade.h, "Opaque triangles"): every pack mode of
+    # Opaque boxes (view/render/image/shade.h, "Opaque triangles"): every pack mode of
     # the stream stores exactly what DFB stores (a pack's pre-pass and the
     # packs before it cull what lies behind), and --see-through stores more.
     draw see "$T/in.oitp" --method stream --see-through || fail "mixed: --see-through"

@@ -1,12 +1,12 @@
 /* One setting of a capture changed between frames, the rest kept:
  * CAPTURE_SET(c, store_limit, 8 << 10) for the tests that drive a setting
- * on a capture they keep (oit_capture_apply, render/capture/capture.h);
+ * on a capture they keep (oit_capture_apply, view/render/capture/capture.h);
  * and the tests' backends as the capture's two axes (capture.h's table):
  * {.fill = capture_fill(k), .cut = capture_cut(k)}. */
 #ifndef OIT_TESTS_LIB_CAPTURE_SET_H
 #define OIT_TESTS_LIB_CAPTURE_SET_H
 
-#include "render/capture/capture.h"
+#include "view/render/capture/capture.h"
 
 #define CAPTURE_SET(c, field, value)                                    \
     do {                                                                \

@@ -7,9 +7,9 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "render/capture/capture.h"
-#include "render/capture/dfb.h"
-#include "render/image/image.h"
+#include "view/render/capture/capture.h"
+#include "view/render/capture/dfb.h"
+#include "view/render/image/image.h"
 #include "tests/lib/gl_test_scene.h"
 
 /* DFB's image and figures of the n quads q (one mesh), into img and st;

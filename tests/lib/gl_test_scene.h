@@ -1,7 +1,7 @@
 /* Test scenes for the GL methods: camera at the origin looking down -z with
  * a 90-degree field of view, and stacks of screen-aligned quads whose exact
  * per-pixel result the tests compute by hand from shade.h (without
- * render/image/shade.c, so that a mistake there and in the GLSL cannot cancel). */
+ * view/render/image/shade.c, so that a mistake there and in the GLSL cannot cancel). */
 #ifndef OIT_TESTS_GL_TEST_SCENE_H
 #define OIT_TESTS_GL_TEST_SCENE_H
 
@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "render/image/view.h"
+#include "view/render/image/view.h"
 
 typedef struct quad_spec {
     float z;          /* plane z (< 0) */

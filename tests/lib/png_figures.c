@@ -17,8 +17,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "render/image/image.h"
-#include "render/image/shade.h"
+#include "view/render/image/image.h"
+#include "view/render/image/shade.h"
 
 enum { MAX_COLOURS = 4096 };
 

@@ -5,7 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "render/gl/gl_context.h"
+#include "view/render/gl/gl_context.h"
 #include "tests/lib/test_check.h"
 #include "tests/lib/test_partfile.h"
 

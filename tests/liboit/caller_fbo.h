@@ -11,8 +11,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "render/gl/gl_util.h"
-#include "render/image/view.h"
+#include "view/render/gl/gl_util.h"
+#include "view/render/image/view.h"
 
 typedef struct caller_fbo {
     GLuint fbo, colour, depth; /* depth: 0 unless the test makes one */

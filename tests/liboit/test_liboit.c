@@ -16,10 +16,10 @@
 #include <string.h>
 
 #include "oit/liboit.h"
-#include "render/capture/dfb.h"
-#include "render/gl/gl_context.h"
-#include "render/gl/gl_util.h"
-#include "render/image/image.h"
+#include "view/render/capture/dfb.h"
+#include "view/render/gl/gl_context.h"
+#include "view/render/gl/gl_util.h"
+#include "view/render/image/image.h"
 #include "partfile/triangles.h"
 #include "tests/lib/test_check.h"
 #include "tests/liboit/caller_fbo.h"

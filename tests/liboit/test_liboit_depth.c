@@ -28,10 +28,10 @@
 #include <string.h>
 
 #include "oit/liboit.h"
-#include "render/gl/gl_context.h"
-#include "render/gl/gl_util.h"
-#include "render/gl/glsl_bindings.h"
-#include "render/image/view.h"
+#include "view/render/gl/gl_context.h"
+#include "view/render/gl/gl_util.h"
+#include "view/render/gl/glsl_bindings.h"
+#include "view/render/image/view.h"
 #include "partfile/triangles.h"
 #include "tests/lib/test_check.h"
 #include "tests/liboit/caller_fbo.h"

@@ -35,7 +35,7 @@ unmarked=$(grep -n '^[a-z].*\boit_[a-z0-9_]*(' "$inc"/*.h | grep -v -E ':(static
 # the headers'), never color, in any name (GL's own GL_*_COLOR* aside).
 spelt=$(grep -n -E '[A-Za-z_]*(color|COLOR)[A-Za-z0-9_]*' "$inc"/*.h | grep -v -E 'GL_[A-Z0-9_]*COLOR' || true)
 [ -z "$spelt" ] || die "the public API spells colour as color: $spelt"
-# Source-tree paths in comments ("render/dfb.h", "docs/design.md"): say it in
+# Source-tree paths in comments ("view/render/dfb.h", "docs/design.md"): say it in
 # words or cite a public header (oit/*.h) or the installed part-file.md.
 cited=$(grep -noE '[A-Za-z0-9_.-]*/[A-Za-z0-9_.-]+\.(c|h|cpp|md|map|sh|txt|py)\b|\b[A-Za-z0-9_-]+\.md\b' "$inc"/*.h |
     grep -v -E ':(oit/[a-z_]+\.h|part-file\.md)$' || true)

@@ -17,9 +17,9 @@
 
 #include "oit/liboit.h"
 #include "partfile/triangles.h"
-#include "render/capture/dfb.h"
-#include "render/image/image.h"
-#include "stream/streamer.h"
+#include "view/render/capture/dfb.h"
+#include "view/render/image/image.h"
+#include "view/stream/streamer.h"
 #include "tests/lib/test_check.h"
 #include "tests/liboit/part_scene.h"
 #include "tools/common/method_run.h"

@@ -1,7 +1,7 @@
 /* liboit runs every method (oit_renderer_desc.method): each in-core
  * method's image, counts and ambiguity through oit_renderer_draw_pixels
  * are byte for byte what its table renders behind the method interface
- * (render/method.h) in the same context, so the tools, which reach every
+ * (view/render/method.h) in the same context, so the tools, which reach every
  * method through liboit, draw what the methods draw; the reference's is
  * liboit-reference.so's, loaded (liboit links no Embree), against the
  * linked table. Also: the list
@@ -16,10 +16,10 @@
 #include <string.h>
 
 #include "oit/liboit.h"
-#include "render/baselines/methods.h"
-#include "render/image/image.h"
-#include "render/method.h"
-#include "render/reference/reference.h"
+#include "view/render/baselines/methods.h"
+#include "view/render/image/image.h"
+#include "view/render/method.h"
+#include "view/render/reference/reference.h"
 #include "tests/lib/test_check.h"
 #include "tests/lib/test_gl.h"
 

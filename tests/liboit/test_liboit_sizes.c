@@ -17,8 +17,8 @@
 
 #include "oit/liboit.h"
 #include "partfile/triangles.h"
-#include "render/capture/dfb.h"
-#include "render/image/image.h"
+#include "view/render/capture/dfb.h"
+#include "view/render/image/image.h"
 #include "tests/lib/test_check.h"
 #include "tests/liboit/caller_fbo.h"
 #include "tests/liboit/part_scene.h"

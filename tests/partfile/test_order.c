@@ -19,7 +19,7 @@
 
 #include "oit/partfile.h"
 #include "partfile/write.h"
-#include "render/image/view.h"
+#include "view/render/image/view.h"
 #include "partfile/order.h"
 
 #define MAX_PARTS 64

@@ -28,7 +28,7 @@
 #include "oit/partfile.h"
 #include "partfile/write.h"
 #include "partfile/order.h"
-#include "render/image/view.h"
+#include "view/render/image/view.h"
 #include "tests/lib/test_rng.h"
 #include "tests/lib/test_check.h"
 #include "tests/lib/test_files.h"

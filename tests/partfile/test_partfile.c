@@ -877,7 +877,7 @@ static void check_tool(const char *tmp, const char *good, const uint8_t *bytes, 
     CHECK(rc == 3 && strstr(text, bad), "bad file: exit %d", rc);
     rc = run_tool("info", out, text, sizeof text);
     CHECK(rc == 2, "no FILE: exit %d", rc);
-    /* Conversion itself is tested in tests/preprocess/; here only that a
+    /* Conversion itself is tested in tests/prepare/convert/; here only that a
      * missing input is an I/O failure that names the file. */
     rc = run_tool("no-such-model.ply -o x.oitp", out, text, sizeof text);
     CHECK(rc == 1 && strstr(text, "no-such-model.ply"), "conversion of a missing file: exit %d",

@@ -25,7 +25,7 @@ static const spelling spellings[] = {
     {"oit_renderer_desc.program_cache", "--program-cache"},
     {"OIT_RENDER_CACHE_OFF", "off"},
     {"oit_frame.clip", "--clip"},
-    /* oitprep's, for preprocess/convert.h's options */
+    /* oitprep's, for prepare/convert/convert.h's options */
     {"oit_convert_options.scheme", "--scheme"},
     {"oit_convert_options.manage", "--manage"},
     {"oit_convert_options.grid", "--grid"},

@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "render/gl/gl_context.h"
+#include "view/render/gl/gl_context.h"
 #include "tools/common/flag_spelling.h"
 
 struct oit_run {

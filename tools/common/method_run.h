@@ -11,9 +11,9 @@
 #define OIT_TOOLS_COMMON_METHOD_RUN_H
 
 #include "oit/liboit.h"
-#include "render/gl/gpu_timer.h"
-#include "render/image/image.h"
-#include "render/image/view.h"
+#include "view/render/gl/gpu_timer.h"
+#include "view/render/image/image.h"
+#include "view/render/image/view.h"
 
 struct oit_gl;
 

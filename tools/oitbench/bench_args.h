@@ -31,7 +31,7 @@ typedef struct oit_bench_args {
     oit_bench_entry entries[OIT_BENCH_MAX_ENTRIES];
     int entry_count;
     oit_shading_mode shading; /* default transparent */
-    oit_colour_space colour_space; /* default srgb (render/image/shade.h) */
+    oit_colour_space colour_space; /* default srgb (view/render/image/shade.h) */
     int orbit;          /* views around the model; default 8 */
     int width, height;  /* default 512x512 */
     int frames, warmup; /* per method per view; default 5 and 1 */
@@ -56,7 +56,7 @@ oit_status oit_bench_args_parse(int argc, char **argv, oit_bench_args *args, cha
                                 size_t cap, oit_error *err);
 
 /* default_scheme and default_part_triangles: the conversion's, as oitprep
- * has them (preprocess/convert.h). */
+ * has them (prepare/convert/convert.h). */
 void oit_bench_usage(FILE *f, const char *method_list, const char *default_scheme,
                      unsigned default_part_triangles);
 

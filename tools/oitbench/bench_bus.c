@@ -15,8 +15,8 @@
 
 #include "base/clock.h"
 #include "base/args.h"
-#include "render/gl/gl_context.h"
-#include "render/gl/gl_util.h"
+#include "view/render/gl/gl_context.h"
+#include "view/render/gl/gl_util.h"
 
 typedef struct bus_figures {
     double gpu_ms, wall_ms; /* medians; gpu -1: not timed */

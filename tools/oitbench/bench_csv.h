@@ -17,7 +17,7 @@
  * it would have drawn).
  *
  * gpu_ms_median is the median GPU time of the timed frames (GL timestamp
- * queries, render/gl/gpu_timer.h), empty where the method was not timed on
+ * queries, view/render/gl/gpu_timer.h), empty where the method was not timed on
  * the GPU (no GL, no timestamps, or not run).
  *
  * gpu_bytes_peak is every GPU buffer and texture the entry held at its

@@ -22,7 +22,7 @@
 
 #include "oit/mesh.h"
 #include "oit/partfile.h"
-#include "preprocess/convert.h"
+#include "prepare/convert/convert.h"
 #include "tools/oitbench/bench_run.h"
 
 #define OIT_BENCH_NOTES_MAX 4

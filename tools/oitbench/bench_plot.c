@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "base/grow.h"
-#include "plot/chart.h"
+#include "view/plot/chart.h"
 
 enum {
     WIDTH = 1100,

@@ -6,8 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "render/gl/gl_context.h"
-#include "render/gl/gpu_timer.h"
+#include "view/render/gl/gl_context.h"
+#include "view/render/gl/gpu_timer.h"
 #include "tools/common/method_run.h"
 
 const char *oit_bench_geometry_label(oit_bench_geometry g, uint64_t drawn, uint64_t source)

@@ -11,7 +11,7 @@
 
 #include "oit/partfile.h"
 #include "oit/render_modes.h"
-#include "render/image/image.h"
+#include "view/render/image/image.h"
 #include "tools/common/method_run.h"
 #include "tools/common/methods.h"
 
@@ -39,7 +39,7 @@ typedef struct oit_bench_cell {
     uint32_t max_layers;
     uint64_t fragments;      /* of the last timed frame */
     oit_image_diff diff;     /* last timed frame against the reference */
-    double gpu_ms_median;    /* GPU time (render/gl/gpu_timer.h); -1: not timed */
+    double gpu_ms_median;    /* GPU time (view/render/gl/gpu_timer.h); -1: not timed */
     /* the most host waits on the GPU of a timed frame
      * (oit_frame_stats.host_waits: the stream's; 0 where not counted) */
     uint32_t host_waits_max;

@@ -13,7 +13,7 @@
 #include "base/clock.h"
 #include "tools/common/signals.h"
 #include "formats/ply_writer.h"
-#include "scenes/scene.h"
+#include "prepare/scenes/scene.h"
 
 static const char USAGE[] =
     "usage: oitgen SCENE [options] -o FILE.ply\n"

@@ -3,7 +3,7 @@
  *   oitprep info FILE [--json]          validate FILE and print its summary
  *   oitprep verify FILE [options]       check layer bounds and visibility order
  *   oitprep parts FILE -o OUT.ply       the parts as a coloured PLY to look at
- *   oitprep INPUT -o OUT [options]      convert a mesh (preprocess/convert.h)
+ *   oitprep INPUT -o OUT [options]      convert a mesh (prepare/convert/convert.h)
  *
  * Exit codes follow DESIGN.md: 0 ok, 1 I/O, 2 usage, 3 bad input.
  */
@@ -25,12 +25,12 @@
 #include "tools/common/paths.h"
 #include "tools/common/progress_mode.h"
 #include "tools/common/signals.h"
-#include "preprocess/convert.h"
-#include "preprocess/progress.h"
-#include "preprocess/decode_rate.h"
-#include "preprocess/stats_json.h"
-#include "preprocess/export_parts.h"
-#include "preprocess/verify.h"
+#include "prepare/convert/convert.h"
+#include "prepare/convert/progress.h"
+#include "prepare/convert/decode_rate.h"
+#include "prepare/convert/stats_json.h"
+#include "prepare/convert/export_parts.h"
+#include "prepare/convert/verify.h"
 
 /* The conversion's errors name its options' fields; oitprep's user gave
  * flags (flag_spelling.h). */
@@ -94,7 +94,7 @@ static void usage(FILE *f)
           "                part (depth ties resolve as in the source mesh). A part's layer\n"
           "                bound is MEASURED, not guaranteed: the most triangles one line\n"
           "                crosses among 64x64 parallel lines in each of 13 fixed\n"
-          "                directions (partition/layers_measured.h); a part measured above\n"
+          "                directions (prepare/partition/layers_measured.h); a part measured above\n"
           "                64 is split further (up to 12 levels), else stored as 64 and\n"
           "                counted (clamped_parts in --stats). oitstream's default\n"
           "                captures (first-k and counted packs) need no bound; --pack\n"

@@ -7,8 +7,8 @@
 #include <stdio.h>
 
 #include "oit/liboit.h"
-#include "render/image/clip.h"
-#include "render/image/view.h"
+#include "view/render/image/clip.h"
+#include "view/render/image/view.h"
 
 typedef struct oit_stream_args {
     int help;
@@ -58,7 +58,7 @@ typedef struct oit_stream_args {
     int still_ms;                  /* --still MS: stillness before the exact frame; 0: 200 */
     int up_axis;                   /* --up x|y|z: 0, 1 (default), 2 */
     /* --clip (repeatable): the planes as given, parsed and checked once,
-     * placed at the model's origin once it is read (render/image/clip.h) */
+     * placed at the model's origin once it is read (view/render/image/clip.h) */
     oit_clip_given clip;
     int have_preview;              /* --preview was given */
 } oit_stream_args;

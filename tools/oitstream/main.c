@@ -15,7 +15,7 @@
 #include "base/json.h"
 #include "tools/common/heap.h"
 #include "tools/common/paths.h"
-#include "render/image/image.h"
+#include "view/render/image/image.h"
 #include "tools/oitstream/cli_args.h"
 #include "partfile/triangles.h"
 #include "tools/common/methods.h"

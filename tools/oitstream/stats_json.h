@@ -5,8 +5,8 @@
 
 #include <stddef.h>
 
-#include "render/gl/gpu_timer.h"
-#include "render/image/view.h"
+#include "view/render/gl/gpu_timer.h"
+#include "view/render/image/view.h"
 #include "oit/liboit.h"
 
 typedef struct oit_stats_frame {
@@ -18,7 +18,7 @@ typedef struct oit_stats_frame {
     oit_draw_stats stream;
     float epsilon;        /* the early termination the stream ran with */
     int has_gpu;       /* the GPU timer's figures of this frame follow */
-    oit_gpu_times gpu; /* render/gl/gpu_timer.h */
+    oit_gpu_times gpu; /* view/render/gl/gpu_timer.h */
 } oit_stats_frame;
 
 typedef struct oit_stats_run {

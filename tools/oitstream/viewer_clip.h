@@ -1,4 +1,4 @@
-/* The viewer's section-plane keys (viewer.h; planes: render/image/clip.h).
+/* The viewer's section-plane keys (viewer.h; planes: view/render/image/clip.h).
  *   X  no plane yet: one through the model's centre, facing the viewer
  *      (the near half is cut away); else the planes off, and on again
  *   ]  the first plane moves along its normal, cutting more away
@@ -10,7 +10,7 @@
 
 #include <stddef.h>
 
-#include "render/image/view.h"
+#include "view/render/image/view.h"
 
 typedef struct oit_viewer_clip {
     oit_clip planes; /* as set (--clip, X, [ and ]) */

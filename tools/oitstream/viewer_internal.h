@@ -17,15 +17,15 @@
 
 #include "base/json.h"
 #include "base/vec.h"
-#include "render/gl/gl_context.h"
-#include "render/gl/gl_util.h"
-#include "render/gl/gl_window.h"
-#include "render/gl/gpu_timer.h"
-#include "render/image/image.h"
+#include "view/render/gl/gl_context.h"
+#include "view/render/gl/gl_util.h"
+#include "view/render/gl/gl_window.h"
+#include "view/render/gl/gpu_timer.h"
+#include "view/render/image/image.h"
 #include "tools/common/paths.h"
 #include "tools/oitstream/stats_json.h"
 #include "tools/oitstream/viewer_clip.h"
-#include "plot/text_overlay.h"
+#include "view/plot/text_overlay.h"
 #include "tools/common/method_run.h"
 
 #define GLFW_INCLUDE_NONE /* GL comes from gl_util.h (core profile prototypes) */

@@ -10,7 +10,7 @@
 #include "oit/liboit.h"
 #include "oit/mesh.h"
 #include "oit/partfile.h"
-#include "render/image/view.h"
+#include "view/render/image/view.h"
 #include "tools/oitstream/cli_args.h"
 
 /* The cameras of --view, --orbit, --walk or --azimuth/--elevation (with

@@ -8,8 +8,8 @@
 # Usage: test_tools_nm.sh BUILD_DIR
 set -eu
 build=$1
-libs="render/capture/liboit_capture.a stream/liboit_stream.a render/liboit_render.a
-render/liboit_baselines.a render/reference/liboit_reference.a"
+libs="view/render/capture/liboit_capture.a view/stream/liboit_stream.a view/render/liboit_render.a
+view/render/liboit_baselines.a view/render/reference/liboit_reference.a"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
@@ -27,7 +27,7 @@ held() {
 }
 
 # self-test: the capture's own archive holds them
-[ -n "$(held "$build/render/capture/liboit_capture.a")" ] ||
+[ -n "$(held "$build/view/render/capture/liboit_capture.a")" ] ||
     { echo "FAIL: the check finds none of the capture's functions in its own archive"; exit 1; }
 
 fail=0

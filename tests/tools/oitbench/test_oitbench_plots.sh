@@ -19,7 +19,7 @@ scratch oitbench_plots
 # methods on the mesh (found through the file's META). Wang & Xie's scheme:
 # its many small parts let early termination drop whole parts between
 # packs, where the fast scheme makes one part of the quads. 24 quads: the
-# first front-first pack (stream/pack.h) takes up to K = 8 layers a tile
+# first front-first pack (view/stream/pack.h) takes up to K = 8 layers a tile
 # exactly, so fewer would give E = 0.1 nothing behind a saturated pixel.
 prep() {
     "$OIT_BIN/oitgen" quads --count "$1" -o "$T/q$1.ply" >/dev/null || die "oitgen quads --count $1"

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Section planes (oitstream --clip, render/image/clip.h) through every method, on
+# Section planes (oitstream --clip, view/render/image/clip.h) through every method, on
 # 12 translucent quads at 12 depths (z symmetric about 0, one part each in
 # the part file):
 #   agree    an oblique plane: every exact method and the stream equal the
@@ -35,7 +35,7 @@ ALL="$EXACT unsorted wboit f2b"
 
 # render NAME METHOD CLIP...: q.ply (q.oitp for stream) into NAME.png;
 # returns 1 when the method cannot run on this driver (stencil routing
-# where its self-test fails, as on llvmpipe: render/capture/capture_stencil_probe.h)
+# where its self-test fails, as on llvmpipe: view/render/capture/capture_stencil_probe.h)
 render() {
     _n=$1 _m=$2
     shift 2

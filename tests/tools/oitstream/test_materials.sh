@@ -1,5 +1,5 @@
 #!/bin/sh
-# Materials (issue 37; render/image/shade.h, "Opaque triangles") from the command
+# Materials (issue 37; view/render/image/shade.h, "Opaque triangles") from the command
 # line: the OBJ assembly of tests/corpus/obj (three groups, MTL Kd and d,
 # a texture map) and the glTF engine when it is fetched.
 #   assembly.obj: its groups show their MTL colours (blue and red pixels

@@ -41,7 +41,7 @@ for size in 2048x2048 4096x2160; do
     same_figures "stream-$size" "$size"
 done
 # The K-slot array capture in core; the stream's counted packs translucent
-# (48 bytes a pixel of state). Every exact method in bands: tests/render's
+# (48 bytes a pixel of state). Every exact method in bands: tests/view/render's
 # test_bands.c; all of them at 8192x8192: data_scripts/sizes.sh.
 render array-2048x2048 "$T/rings.ply" 2048x2048 --method array
 compare "array 2048x2048" "$T/dfb-2048x2048.png" "$T/array-2048x2048.png" 0.01
