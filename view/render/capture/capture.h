@@ -19,6 +19,7 @@
 #define OIT_RENDER_CAPTURE_H
 
 #include "oit/render_modes.h"
+#include "view/render/capture/capture_choice.h"
 #include "view/render/gl/gpu_mesh.h"
 #include "view/render/gl/frag_glsl.h"
 
@@ -51,14 +52,6 @@ typedef enum oit_capture_kind {
 #define OIT_COMPUTE_CAPTURE_TRIANGLE_BYTES 176u
 
 typedef struct oit_capture oit_capture;
-
-/* The capture's K, fragments a pixel a batch: the one range, and its one
- * check, which the tools and liboit run on the value they were given, named
- * in their spelling (what: "oit_renderer_desc.K", a tool's flag; NULL:
- * "capture: K"). */
-#define OIT_CAPTURE_K_MIN OIT_RENDER_K_MIN
-#define OIT_CAPTURE_K_MAX OIT_RENDER_K_MAX
-oit_status oit_capture_k_check(long long K, const char *what, oit_error *err);
 
 /* Testing: what a driver may do, forced on the stencil backend's fill (the
  * self-test's and every batch's), so that a test can see the self-test

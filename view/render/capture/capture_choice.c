@@ -14,6 +14,9 @@ static int next_try(int k)
     return p >= 2 ? p : 0;
 }
 
+/* AUTO keeps the caller's K and takes the array backend where stencil
+ * routing is refused; STENCIL refuses with the reason: the caller asked for
+ * that method, and a lower K would lose fragments (an inexact image). */
 oit_status oit_capture_choose(oit_render_capture asked, const char *what, int K, int fewer_ok,
                               oit_capture_try try_stencil, void *ctx, oit_capture_choice *out,
                               oit_error *err)
@@ -62,4 +65,12 @@ const char *oit_capture_asked_name(oit_render_capture asked)
     case OIT_RENDER_CAPTURE_COMPUTE: return "compute";
     }
     return NULL;
+}
+
+oit_status oit_capture_k_check(long long K, const char *what, oit_error *err)
+{
+    if (K >= OIT_CAPTURE_K_MIN && K <= OIT_CAPTURE_K_MAX)
+        return OIT_OK;
+    return oit_error_set(err, OIT_ERR_ARGUMENT, "%s = %lld is outside [%d, %d]",
+                         what ? what : "capture: K", K, OIT_CAPTURE_K_MIN, OIT_CAPTURE_K_MAX);
 }

@@ -14,7 +14,14 @@
 
 #include "oit/render_modes.h"
 #include "oit/status.h"
-#include "view/render/capture/capture.h"
+
+/* The capture's K, fragments a pixel a batch: the one range, and its one
+ * check, which liboit runs on the value it was given, named in its
+ * spelling (what: "oit_renderer_desc.K", a tool's flag; NULL:
+ * "capture: K"). */
+#define OIT_CAPTURE_K_MIN OIT_RENDER_K_MIN
+#define OIT_CAPTURE_K_MAX OIT_RENDER_K_MAX
+oit_status oit_capture_k_check(long long K, const char *what, oit_error *err);
 
 /* The self-test at stencil_k samples: OIT_OK when it passes (the try may
  * keep what it built), else the reason in err. */

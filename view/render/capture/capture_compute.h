@@ -79,6 +79,7 @@
 #include "view/render/gl/frag_glsl.h"
 #include "view/render/gl/gpu_mesh.h"
 #include "view/render/gl/scan_glsl.h"
+#include "view/render/capture/compute_glsl.h"
 
 /* Where the driver cuts long shader loops (llvmpipe), a batch of several
  * meshes is captured in halves of them down to this many triangles, so that
@@ -87,9 +88,6 @@
  * every triangle), and such a tile is refused, not rendered short. Exact:
  * a batch's meshes are in visibility order. One mesh alone is not split. */
 #define OIT_COMPUTE_CUT_BATCH 65536
-
-enum { OIT_COMPUTE_SETUP, OIT_COMPUTE_SCATTER, OIT_COMPUTE_LIVE, OIT_COMPUTE_TILES,
-       OIT_COMPUTE_WORK, OIT_COMPUTE_ARGS, OIT_COMPUTE_PROBE, OIT_COMPUTE_PROGS };
 
 typedef struct oit_compute {
     GLuint prog[OIT_COMPUTE_PROGS]; /* the frame's view and opaque uniforms set by compute_uniforms */
@@ -131,13 +129,6 @@ typedef struct oit_compute_frame {
  * records may span (1..OIT_COMPUTE_BLOCKS, compute_glsl.h), which the
  * programs that read or write records take first. */
 void oit_compute_blocks_define(int blocks, char *buf, size_t size);
-/* The capture's programs into table, those with records after
- * blocks_define (compute_glsl.c); what compute_create builds. */
-void oit_compute_programs(const char *blocks_define, oit_glsl_program table[OIT_COMPUTE_PROGS]);
-/* Every program the compute capture can build, for every count of
- * blocks, each once (glsl_program.h). */
-void oit_compute_glsl_variants(oit_glsl_visit *visit, void *user);
-
 /* Captures meshes[0..n) over the GL rect r (bottom rows first, exclusive
  * ends) and composites them behind the state. The records span up to
  * k->blocks storage bindings of f->bind bytes each, so that one batch

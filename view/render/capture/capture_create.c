@@ -100,17 +100,6 @@ static oit_status make(const oit_capture_desc *d, const oit_capture_ops *ops, in
     return OIT_OK;
 }
 
-/* AUTO keeps the caller's K and takes the array backend where stencil
- * routing is refused; STENCIL refuses with the reason: the caller asked for
- * that method, and a lower K would lose fragments (an inexact image). */
-oit_status oit_capture_k_check(long long K, const char *what, oit_error *err)
-{
-    if (K >= OIT_CAPTURE_K_MIN && K <= OIT_CAPTURE_K_MAX)
-        return OIT_OK;
-    return oit_error_set(err, OIT_ERR_ARGUMENT, "%s = %lld is outside [%d, %d]",
-                         what ? what : "capture: K", K, OIT_CAPTURE_K_MIN, OIT_CAPTURE_K_MAX);
-}
-
 /* A capture of kind (STENCIL or FIRSTK) routed into stencil_k samples a
  * pixel, after its self-test passed there. */
 static oit_status create_routed(const oit_capture_desc *d, oit_capture_kind kind, int stencil_k,

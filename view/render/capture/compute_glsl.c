@@ -1,11 +1,11 @@
 /* The compute capture's programs (capture_compute.h has the design): its
  * stages are the files glsl/compute_*.glsl (compute_glsl.h); the fragment
  * maths come from frag_glsl.h's libraries, not copies of them. */
-#include "view/render/capture/capture_compute.h"
 
 #include "view/render/capture/capture_glsl.h"
 #include "view/render/capture/compute_glsl.h"
 #include "view/render/gl/glsl_bindings.h"
+#include "view/render/gl/frag_glsl.h"
 
 #include <stdio.h>
 #include <string.h>

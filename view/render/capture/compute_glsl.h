@@ -4,6 +4,8 @@
 #ifndef OIT_RENDER_COMPUTE_GLSL_H
 #define OIT_RENDER_COMPUTE_GLSL_H
 
+#include "view/render/gl/glsl_program.h"
+
 /* Tile side in pixels: a work group of the tile pass. */
 #define OIT_COMPUTE_TILE 16
 /* uvec4s a triangle record takes (glsl/compute_common.glsl has the
@@ -37,5 +39,16 @@ extern const char oit_compute_live_cs[];
  * compositing per pixel. */
 extern const char oit_compute_frag_inputs[];
 extern const char oit_compute_tiles_cs[];
+
+/* The capture's programs, one a step of its frame (capture_compute.h). */
+enum { OIT_COMPUTE_SETUP, OIT_COMPUTE_SCATTER, OIT_COMPUTE_LIVE, OIT_COMPUTE_TILES,
+       OIT_COMPUTE_WORK, OIT_COMPUTE_ARGS, OIT_COMPUTE_PROBE, OIT_COMPUTE_PROGS };
+
+/* The capture's programs into table, those with records after
+ * blocks_define (compute_glsl.c); what compute_create builds. */
+void oit_compute_programs(const char *blocks_define, oit_glsl_program table[OIT_COMPUTE_PROGS]);
+/* Every program the compute capture can build, for every count of
+ * blocks, each once (glsl_program.h). */
+void oit_compute_glsl_variants(oit_glsl_visit *visit, void *user);
 
 #endif

@@ -2,8 +2,6 @@
  * mirrors shade.h / shade.c; keep them in step. */
 #include "view/render/gl/frag_glsl.h"
 
-#include "view/render/gl/gpu_mesh.h"
-#include "view/render/gl/scan_glsl.h"
 #include "view/render/image/shade.h"
 
 #include <fcntl.h>
@@ -110,12 +108,6 @@ oit_status oit_glsl_programs_build(oit_program_cache *pc, const oit_glsl_program
             log_built(&table[i]);
     }
     return s;
-}
-
-void oit_gl_glsl_variants(oit_glsl_visit *visit, void *user)
-{
-    oit_scan_glsl_variants(visit, user);
-    oit_gpu_draws_glsl_variants(visit, user);
 }
 
 void oit_glsl_programs_delete(GLuint *progs, int n)
@@ -244,29 +236,4 @@ void oit_glsl_raster_begin_sized(GLuint fbo, int w, int h)
     glNamedFramebufferParameteri(fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH, w);
     glNamedFramebufferParameteri(fbo, GL_FRAMEBUFFER_DEFAULT_HEIGHT, h);
     oit_glsl_raster_begin(fbo, w, h);
-}
-
-
-void oit_glsl_draw_scissored(GLuint fbo, int w, int h, GLuint prog, struct oit_gpu_draws *draws,
-                             const struct oit_gpu_mesh *const *meshes, int n, const int r[4])
-{
-    oit_glsl_raster_begin(fbo, w, h);
-    glEnable(GL_SCISSOR_TEST);
-    glScissor(r[0], r[1], r[2] - r[0], r[3] - r[1]);
-    glUseProgram(prog);
-    oit_gpu_mesh_draw_many(draws, meshes, n);
-    glDisable(GL_SCISSOR_TEST);
-}
-
-void oit_glsl_draw_scissored_gated(GLuint fbo, int w, int h, GLuint prog,
-                                   struct oit_gpu_draws *draws,
-                                   const struct oit_gpu_mesh *const *meshes, int n,
-                                   const int r[4], GLuint gate, unsigned word)
-{
-    oit_glsl_raster_begin(fbo, w, h);
-    glEnable(GL_SCISSOR_TEST);
-    glScissor(r[0], r[1], r[2] - r[0], r[3] - r[1]);
-    glUseProgram(prog);
-    oit_gpu_mesh_draw_many_gated(draws, meshes, n, gate, word);
-    glDisable(GL_SCISSOR_TEST);
 }

@@ -164,19 +164,6 @@ void oit_glsl_raster_begin(GLuint fbo, int w, int h);
  * w x h first. */
 void oit_glsl_raster_begin_sized(GLuint fbo, int w, int h);
 
-struct oit_gpu_mesh;
-struct oit_gpu_draws;
-/* oit_glsl_raster_begin, then draws meshes[0..n) with prog clipped to the
- * GL rect r (bottom rows first, exclusive ends), in as few draw calls as
- * oit_gpu_mesh_draw_many makes of them with the scratch of draws. */
-void oit_glsl_draw_scissored(GLuint fbo, int w, int h, GLuint prog, struct oit_gpu_draws *draws,
-                             const struct oit_gpu_mesh *const *meshes, int n, const int r[4]);
-/* The same, drawn only where the uint `word` of the buffer `gate` is
- * nonzero when the GPU reaches it (oit_gpu_mesh_draw_many_gated). */
-void oit_glsl_draw_scissored_gated(GLuint fbo, int w, int h, GLuint prog,
-                                   struct oit_gpu_draws *draws,
-                                   const struct oit_gpu_mesh *const *meshes, int n,
-                                   const int r[4], GLuint gate, unsigned word);
 
 #ifdef __cplusplus
 }

@@ -136,6 +136,18 @@ size_t oit_gpu_triangle_window(void);
  * offset aligned. */
 size_t oit_gpu_triangle_step(uint64_t align);
 
+/* oit_glsl_raster_begin, then draws meshes[0..n) with prog clipped to the
+ * GL rect r (bottom rows first, exclusive ends), in as few draw calls as
+ * oit_gpu_mesh_draw_many makes of them with the scratch of draws. */
+void oit_glsl_draw_scissored(unsigned fbo, int w, int h, unsigned prog, oit_gpu_draws *draws,
+                             const oit_gpu_mesh *const *meshes, int n, const int r[4]);
+/* The same, drawn only where the uint `word` of the buffer `gate` is
+ * nonzero when the GPU reaches it (oit_gpu_mesh_draw_many_gated). */
+void oit_glsl_draw_scissored_gated(unsigned fbo, int w, int h, unsigned prog,
+                                   oit_gpu_draws *draws,
+                                   const oit_gpu_mesh *const *meshes, int n,
+                                   const int r[4], unsigned gate, unsigned word);
+
 #ifdef __cplusplus
 }
 #endif

@@ -398,3 +398,27 @@ void oit_gpu_mesh_draw_many_gated(oit_gpu_draws *d, const oit_gpu_mesh *const *m
 {
     draw_many(d, meshes, n, gate, word);
 }
+
+void oit_glsl_draw_scissored(GLuint fbo, int w, int h, GLuint prog, oit_gpu_draws *draws,
+                             const oit_gpu_mesh *const *meshes, int n, const int r[4])
+{
+    oit_glsl_raster_begin(fbo, w, h);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(r[0], r[1], r[2] - r[0], r[3] - r[1]);
+    glUseProgram(prog);
+    oit_gpu_mesh_draw_many(draws, meshes, n);
+    glDisable(GL_SCISSOR_TEST);
+}
+
+void oit_glsl_draw_scissored_gated(GLuint fbo, int w, int h, GLuint prog,
+                                   oit_gpu_draws *draws,
+                                   const oit_gpu_mesh *const *meshes, int n,
+                                   const int r[4], GLuint gate, unsigned word)
+{
+    oit_glsl_raster_begin(fbo, w, h);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(r[0], r[1], r[2] - r[0], r[3] - r[1]);
+    glUseProgram(prog);
+    oit_gpu_mesh_draw_many_gated(draws, meshes, n, gate, word);
+    glDisable(GL_SCISSOR_TEST);
+}
