@@ -8,7 +8,8 @@
  * (names unique, stream the one part-file method, the reference the one
  * without GL, every in-core table's flags its entry's), the reference
  * drawn with no GL context current, a borrowed mesh left to its owner,
- * OIT_RENDER_EPSILON_ZERO as a threshold of 0, and the refusals: an
+ * OIT_RENDER_EPSILON_ZERO as a threshold of 0, set_shading and prepare
+ * against a renderer made so, and the refusals: an
  * unknown name at create, a method of the other kind of scene, per-pixel
  * figures a method has not, a framebuffer draw of an image-only method. */
 #include <stdio.h>
@@ -244,6 +245,42 @@ static void check_reference_without_gl(const oit_mesh *mesh, pixels *p)
     oit_scene_close(scene);
 }
 
+/* oit_renderer_set_shading keeps the GPU state and draws what a renderer
+ * made with that shading draws; oit_renderer_prepare builds what the first
+ * draw would, and the draw after it is the same. */
+static void check_set_shading(const oit_mesh *mesh, const char *method, pixels *a, pixels *b)
+{
+    oit_error err = {0};
+    oit_scene *scene = NULL;
+    oit_renderer *r1 = NULL, *r2 = NULL;
+    oit_frame_camera cam = camera();
+    oit_frame fr = {.viewport_width = W, .viewport_height = H, .camera = &cam};
+    oit_render_shading tl = {.mode = OIT_RENDER_TRANSLUCENT};
+    oit_status s = oit_scene_borrow_mesh(mesh, NULL, &scene, &err);
+    if (s == OIT_OK)
+        s = oit_renderer_create(&(oit_renderer_desc){.method = method}, &r1, &err);
+    if (s == OIT_OK)
+        s = oit_renderer_prepare(r1, scene, &err);
+    if (s == OIT_OK) /* transparent first, then switched */
+        s = oit_renderer_draw_image(r1, scene, &fr, NULL, a->rgba, sizeof a->rgba, NULL, &err);
+    if (s == OIT_OK)
+        s = oit_renderer_set_shading(r1, &tl, 0, &err);
+    if (s == OIT_OK)
+        s = oit_renderer_draw_image(r1, scene, &fr, NULL, a->rgba, sizeof a->rgba, NULL, &err);
+    if (s == OIT_OK)
+        s = oit_renderer_create(&(oit_renderer_desc){.method = method, .shading = tl}, &r2, &err);
+    if (s == OIT_OK)
+        s = oit_renderer_draw_image(r2, scene, &fr, NULL, b->rgba, sizeof b->rgba, NULL, &err);
+    CHECK(s == OIT_OK, "%s, set_shading: %s", method, err.message);
+    CHECK(s != OIT_OK || !memcmp(a->rgba, b->rgba, sizeof a->rgba),
+          "%s: translucent after set_shading differs from a translucent renderer's", method);
+    refused(oit_renderer_set_shading(r1, &tl, 2, &err), OIT_ERR_ARGUMENT, &err,
+            "oit_renderer_desc.see_through");
+    oit_renderer_destroy(r1);
+    oit_renderer_destroy(r2);
+    oit_scene_close(scene);
+}
+
 int main(void)
 {
     static pixels a, b;
@@ -272,6 +309,8 @@ int main(void)
         if (!strcmp(m[i].name, "stencil") || !strcmp(m[i].name, "array"))
             compare(gl, &mesh, &m[i], (oit_renderer_desc){.K = 4}, NULL, &a, &b);
     check_refusals(gl, &mesh, &a);
+    check_set_shading(&mesh, "dfb", &a, &b);
+    check_set_shading(&mesh, "wboit", &a, &b);
     /* the scenes borrowed the mesh: it is still whole, and freed once here */
     CHECK(mesh.count == 6 && mesh.tris, "the borrowed mesh changed");
     oit_mesh_free(&mesh);
