@@ -408,7 +408,8 @@ oit_status oit_renderer_draw_pixels(oit_renderer *r, oit_scene *scene, const oit
                                     oit_error *err)
 {
     if (!r || !scene || !frame || !px || !px->rgba)
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_draw_image: NULL argument");
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_renderer_draw_pixels: NULL argument "
+                             "(or a NULL rgba)");
     double t0 = oit_time_ms();
     oit_view view;
     oit_status st = oit_lib_method_for(r, scene, &r->method, err);
