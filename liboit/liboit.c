@@ -5,6 +5,21 @@
  * framebuffer. */
 #include "liboit/liboit_internal.h"
 
+/* An in-core draw's figures beside the capture's, for oit_draw_stats: its
+ * packs are DFB's bands (dfb: a count pass and a store a band), the
+ * triangles uploaded since the last draw, the peak with the mesh (which
+ * fs->gpu_bytes_peak holds already). */
+static void in_core_figures(oit_renderer *r, int dfb, const oit_frame_stats *fs,
+                            oit_stream_frame_stats *ss)
+{
+    ss->packs = fs->batches;
+    if (dfb)
+        ss->draw_calls = 1 + (uint64_t)fs->batches;
+    ss->bytes_uploaded = r->pending_upload;
+    ss->gpu_bytes_peak = fs->gpu_bytes_peak;
+    r->pending_upload = 0;
+}
+
 /* One band's (or the whole frame's) state: the scene through the streamer
  * or DFB into *state, its figures in *fs and *ss. */
 static oit_status render_state(oit_renderer *r, const oit_scene *scene, const oit_view *v,
@@ -21,12 +36,9 @@ static oit_status render_state(oit_renderer *r, const oit_scene *scene, const oi
     oit_dfb_set_opaque(r->dfb, opaque);
     oit_dfb_set_gpu_timer(r->dfb, r->timer);
     oit_status st = oit_dfb_render_state(r->dfb, list, 1, v, state, fs, err);
-    ss->packs = fs->batches;
-    ss->draw_calls = 1 + (uint64_t)fs->batches; /* the count pass; a store a band */
-    ss->bytes_uploaded = r->pending_upload;
     fs->gpu_mesh_bytes = oit_gpu_mesh_bytes(r->gpu_mesh);
-    ss->gpu_bytes_peak = fs->gpu_bytes_peak + fs->gpu_mesh_bytes;
-    r->pending_upload = 0;
+    fs->gpu_bytes_peak += fs->gpu_mesh_bytes;
+    in_core_figures(r, 1, fs, ss);
     return st;
 }
 
@@ -327,12 +339,7 @@ static oit_status run_pixels(oit_renderer *r, const oit_view *v, const oit_pixel
         memcpy(px->rgba, img.rgba, (size_t)v->width * (size_t)v->height * 4 * sizeof *img.rgba);
     if (img.rgba != px->rgba)
         oit_image_free(&img);
-    ss->packs = fs->batches;
-    if (!strcmp(r->method->name, "dfb"))
-        ss->draw_calls = 1 + (uint64_t)fs->batches; /* the count pass; a store a band */
-    ss->bytes_uploaded = r->pending_upload;
-    ss->gpu_bytes_peak = fs->gpu_bytes_peak; /* the mesh's included */
-    r->pending_upload = 0;
+    in_core_figures(r, !strcmp(r->method->name, "dfb"), fs, ss);
     return st;
 }
 
