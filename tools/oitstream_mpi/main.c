@@ -75,14 +75,33 @@ typedef struct mpi_run {
     float *rgba;       /* the rank's premultiplied colour and 1 - T, GL rows */
     IceTInt *order;
     double *figs;    /* rank 0: ranks x FIGS of the current frame */
+    int follows;     /* stopped because another rank failed: nothing to say */
 } mpi_run;
 
-static int fail(int rank, const oit_error *err)
+/* One line for the run, not one a rank: the lowest rank whose failure is
+ * its own says it (naming the rank unless every rank failed alike, as on a
+ * bad file), and every rank exits with that failure's code, so mpirun sees
+ * one status and prints no abort of its own (its note on a non-zero exit
+ * remains; `mpirun -q` keeps it away). */
+static int report(const mpi_run *r, oit_status s, const oit_error *err)
 {
-    oit_error e = *err; /* liboit names its fields, a tool its flags */
-    oit_flags_spell_error(&e);
-    fprintf(stderr, "oitstream-mpi: rank %d: %s\n", rank, e.message);
-    return oit_tool_exit_code(err->status);
+    int own = s != OIT_OK && !r->follows, mine = own ? r->rank : r->ranks;
+    int first = r->ranks, owners = 0;
+    MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+    MPI_Allreduce(&own, &owners, 1, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
+    int code = s == OIT_OK ? 0 : oit_tool_exit_code(err->status);
+    if (first == r->ranks) /* no rank failed */
+        return 0;
+    if (r->rank == first) {
+        oit_error e = *err; /* liboit names its fields, a tool its flags */
+        oit_flags_spell_error(&e);
+        if (owners == r->ranks)
+            fprintf(stderr, "oitstream-mpi: %s\n", e.message);
+        else
+            fprintf(stderr, "oitstream-mpi: rank %d: %s\n", r->rank, e.message);
+    }
+    MPI_Bcast(&code, 1, MPI_INT, first, MPI_COMM_WORLD);
+    return code;
 }
 
 /* What oitstream does that one composited image cannot. */
@@ -141,6 +160,18 @@ static oit_status open_share(mpi_run *r, int views, oit_error *err)
     if (s == OIT_OK)
         s = oit_renderer_create(&d, &r->renderer, err);
     return s == OIT_OK ? make_target(r, err) : s;
+}
+
+/* All ranks learn whether any failed, so each stops at the same point and
+ * meets the same collectives after. */
+static oit_status agree(mpi_run *r, oit_status s, oit_error *err)
+{
+    int ok = s == OIT_OK, all_ok = 0;
+    MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+    if (s != OIT_OK || all_ok)
+        return s;
+    r->follows = 1;
+    return oit_error_set(err, OIT_ERR_IO, "another rank failed");
 }
 
 /* This rank's share of the frame: C and 1 - T, read back in GL rows. */
@@ -236,10 +267,9 @@ static oit_status render_frame(mpi_run *r, int index, int views, frame_figs *ff,
                          (double)ds.parts_drawn, (double)ru.ru_maxrss * 1024.0, /* KiB */
                          (double)ds.gpu_bytes_peak};
     /* Every rank reaches the collectives, failed or not, so none hangs. */
-    int ok = s == OIT_OK, all_ok = 0;
-    MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
-    if (!all_ok)
-        return s != OIT_OK ? s : oit_error_set(err, OIT_ERR_IO, "another rank failed");
+    s = agree(r, s, err);
+    if (s != OIT_OK)
+        return s;
     MPI_Gather(mine, FIGS, MPI_DOUBLE, r->figs, FIGS, MPI_DOUBLE, 0, MPI_COMM_WORLD);
     /* The shares' order is rank order: share i is rank i. */
     icetCompositeOrder(r->order);
@@ -368,10 +398,7 @@ static oit_status run(mpi_run *r, oit_error *err)
             s = oit_error_set(err, OIT_ERR_NOMEM, "cannot allocate %dx%d frame buffers",
                               a->width, a->height);
     }
-    int ok = s == OIT_OK, all_ok = 0;
-    MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
-    if (s == OIT_OK && !all_ok)
-        s = oit_error_set(err, OIT_ERR_IO, "another rank failed to start");
+    s = agree(r, s, err);
     IceTCommunicator comm = NULL;
     IceTContext ctx = NULL;
     if (s == OIT_OK) {
@@ -381,7 +408,8 @@ static oit_status run(mpi_run *r, oit_error *err)
     }
     for (int i = 0; i < n && s == OIT_OK; i++) {
         r->view.camera = cams[i];
-        s = render_frame(r, i, n, &ff[i], err);
+        /* rank 0 may fail alone writing the image: the others stop too */
+        s = agree(r, render_frame(r, i, n, &ff[i], err), err);
     }
     if (s == OIT_OK && r->rank == 0 && a->stats_path)
         s = write_stats(r, ff, n, err);
@@ -425,7 +453,10 @@ int main(int argc, char **argv)
                    "each of N ranks streams one share of the part file, IceT blends them in "
                    "order, rank 0 writes --out and --stats. The options are oitstream's "
                    "below; --method is stream, and --compare, --window, --show, --ambiguity "
-                   "(and, with more than one rank, --shading translucent) are refused.\n\n");
+                   "(and, with more than one rank, --shading translucent) are refused. An "
+                   "error is said once, by the first rank that met it, and every rank exits "
+                   "with its code (3 bad input); mpirun adds a note of its own on a non-zero "
+                   "exit, which `mpirun -q` leaves out.\n\n");
             oit_stream_usage(stdout, "stream");
         }
         return 0;
@@ -439,9 +470,7 @@ int main(int argc, char **argv)
     r.args = &a;
     if (s == OIT_OK)
         s = run(&r, &err);
-    int code = s == OIT_OK ? 0 : fail(r.rank, &err);
-    int worst = 0;
-    MPI_Allreduce(&code, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+    int code = report(&r, s, &err);
     MPI_Finalize();
-    return worst;
+    return code;
 }

@@ -87,6 +87,18 @@ if [ "$MODE" = demo ]; then
         --shading translucent >"$T/tl.txt" 2>&1 && fail "translucent shading was not refused"
     grep -q 'translucent.*cross share boundaries' "$T/tl.txt" ||
         fail "translucent refusal does not say why: $(head -n 1 "$T/tl.txt")"
+    # A bad file: every rank sees it, one says it, all exit 3 (bad input).
+    # mpirun prints its own box for any non-zero exit; -q (documented in
+    # --help) keeps it away, so stderr is the one line.
+    printf 'not a part file' >"$T/bad.oitp"
+    # shellcheck disable=SC2086
+    LSAN_OPTIONS=$mpi_lsan mpirun $root -q --oversubscribe -np "$NP" "$OIT_BIN/oitstream-mpi" \
+        "$T/bad.oitp" --size 32x32 >"$T/bad_out.txt" 2>"$T/bad_err.txt"
+    rc=$?
+    [ "$rc" -eq 3 ] || fail "a bad file: exit $rc, expected 3 (bad input)"
+    lines=$(grep -c . "$T/bad_err.txt")
+    [ "$lines" -eq 1 ] && grep -q "^oitstream-mpi: .*bad.oitp: " "$T/bad_err.txt" ||
+        fail "a bad file: stderr is not one line naming it ($lines lines: $(head -c 600 "$T/bad_err.txt"))"
 fi
 # Section planes reach every rank: the cut equals oitstream's (checked on
 # the plant only, one MPI start more).
