@@ -180,6 +180,17 @@ static oit_status check_geometry_options(const oit_bench_args *a, oit_error *err
     return OIT_OK;
 }
 
+/* "oitbench-STEM" in the working folder: STEM is MODEL's file name
+ * without its extension, so that runs on two models land apart. */
+static const char *default_out(const char *model, char *buf, size_t cap)
+{
+    const char *name = strrchr(model, '/') ? strrchr(model, '/') + 1 : model;
+    const char *dot = strrchr(name, '.');
+    size_t n = dot && dot != name ? (size_t)(dot - name) : strlen(name);
+    snprintf(buf, cap, "oitbench-%.*s", (int)n, name);
+    return buf;
+}
+
 /* oitbench plot OUT_DIR RUN_DIR... */
 static oit_status parse_plot(int argc, char **argv, oit_bench_args *a, oit_error *err)
 {
@@ -241,11 +252,15 @@ oit_status oit_bench_args_parse(int argc, char **argv, oit_bench_args *a, char *
         return OIT_OK;
     if (!a->model)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "no model given (see --help)");
-    if (a->method_count == 0)
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "--methods is required (see --help)");
+    oit_status s = OIT_OK;
+    if (a->method_count == 0) {
+        a->methods_defaulted = 1;
+        s = split_methods(OIT_BENCH_DEFAULT_METHODS, a, buf, cap, err);
+    }
     if (!a->out)
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "--out DIR is required (see --help)");
-    oit_status s = expand_entries(a, err);
+        a->out = default_out(a->model, a->out_buf, sizeof a->out_buf);
+    if (s == OIT_OK)
+        s = expand_entries(a, err);
     return s == OIT_OK ? check_geometry_options(a, err) : s;
 }
 
@@ -253,7 +268,7 @@ void oit_bench_usage(FILE *f, const char *method_list, const char *default_schem
                      unsigned default_part_triangles)
 {
     fprintf(f,
-        "usage: oitbench MODEL_OR_PARTFILE --methods LIST --out DIR [options]\n"
+        "usage: oitbench MODEL_OR_PARTFILE [--methods LIST] [--out DIR] [options]\n"
         "       oitbench plot OUT_DIR RUN_DIR [RUN_DIR...]\n"
         "       oitbench bus [--bytes B] [--repeat N]\n"
         "  Renders MODEL (a mesh, or a .oitp part file) from an orbit of views with\n"
@@ -283,7 +298,12 @@ void oit_bench_usage(FILE *f, const char *method_list, const char *default_schem
         "options:\n"
         "  --methods LIST   comma-separated, from %s\n"
         "                   (guarded and f2b run at their seeds' thresholds, 0.0025\n"
-        "                   and 0.02, unless --epsilon; see oitstream --help)\n"
+        "                   and 0.02, unless --epsilon; see oitstream --help).\n"
+        "                   default: " OIT_BENCH_DEFAULT_METHODS ": the exact\n"
+        "                   methods (the stream on a part file converted now, or\n"
+        "                   MODEL itself when it is one) and the common approximate\n"
+        "                   baselines; a method this driver cannot run is skipped\n"
+        "                   with its reason (a not_runnable row, a line on stderr)\n"
         "  --epsilon LIST   comma-separated thresholds, each in [0, 1): every method\n"
         "                   of LIST that takes one (stream: early termination at\n"
         "                   transmittance E, exact at 0; guarded: contribution\n"
@@ -293,7 +313,9 @@ void oit_bench_usage(FILE *f, const char *method_list, const char *default_schem
         "                   a point on the speed-against-error chart. Default: each\n"
         "                   method once at its default (stream exact)\n"
         "  --out DIR        writes DIR/results.csv, results.json, speed_vs_error.png,\n"
-        "                   memory_vs_depth.png and report.md (which shows the PNGs)\n"
+        "                   memory_vs_depth.png and report.md (which shows the PNGs);\n"
+        "                   default: ./oitbench-MODEL (MODEL's name without its\n"
+        "                   extension), created when missing\n"
         "  --orbit N        N views around the model, 1..100000, elevation 20 deg (default 8)\n"
         "  --size WxH       image size, W and H in 1..16384 (default 512x512)\n"
         "  --frames F       timed frames per method per view, 1..100000 (default 5)\n"
@@ -318,7 +340,10 @@ void oit_bench_usage(FILE *f, const char *method_list, const char *default_schem
         "method's working memory and the mesh it uploaded, gpu_mesh_bytes of it; the\n"
         "stream's ring, cache, capture and per-pixel state), most layers seen, and\n"
         "against the reference per\n"
-        "view: mean rmse, worst max_abs, worst %% of pixels off by > 1/255, least PSNR;\n"
+        "view: mean rmse, worst max_abs, worst %% of pixels off by > 1/255\n"
+        "(pct_over_1_255) and the same over the pixels outside the reference's\n"
+        "ambiguity mask (pct_over_1_255_outside_ambiguity: edge pixels, where\n"
+        "raster and ray may disagree, left out; ~0 for exact methods), least PSNR;\n"
         "per view its depth complexity (the most surfaces the reference ray met at\n"
         "one pixel); results.csv carries the source model's triangle count on every\n"
         "row, and per entry which triangles it drew (geometry: source_mesh or\n"

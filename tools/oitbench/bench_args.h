@@ -1,6 +1,6 @@
 /* oitbench's command line, validated, with no I/O done yet. Parsing never
  * prints; a usage error comes back as OIT_ERR_ARGUMENT with one line.
- * Two forms: a measurement (MODEL --methods LIST --out DIR ...) and
+ * Two forms: a measurement (MODEL [--methods LIST] [--out DIR] ...) and
  * "plot OUT_DIR RUN_DIR..." (charts across earlier runs). */
 #ifndef OIT_OITBENCH_BENCH_ARGS_H
 #define OIT_OITBENCH_BENCH_ARGS_H
@@ -15,6 +15,10 @@
 #define OIT_BENCH_MAX_EPSILONS 16
 #define OIT_BENCH_MAX_ENTRIES 64
 #define OIT_BENCH_MAX_RUNS 256
+/* What runs without --methods: the exact methods and the common
+ * approximate baselines (a method the driver cannot run becomes a row with
+ * its reason, bench_run.h). */
+#define OIT_BENCH_DEFAULT_METHODS "dfb,stream,compute,pll,wboit,unsorted"
 
 typedef struct oit_bench_args {
     int help;
@@ -23,6 +27,7 @@ typedef struct oit_bench_args {
     /* names checked against tools/common/methods.h; no duplicates */
     const char *methods[OIT_BENCH_MAX_METHODS];
     int method_count;
+    int methods_defaulted; /* no --methods: OIT_BENCH_DEFAULT_METHODS */
     /* --epsilon: thresholds in [0, 1), no duplicates; none: defaults */
     float epsilons[OIT_BENCH_MAX_EPSILONS];
     int epsilon_count;
@@ -37,7 +42,8 @@ typedef struct oit_bench_args {
     int frames, warmup; /* per method per view; default 5 and 1 */
     int max_layers;     /* K of the capture backends; default 16 */
     oit_render_capture capture; /* --capture: the stream's; 0 auto */
-    const char *out;    /* folder, created when missing */
+    const char *out;    /* folder, created when missing; default out_buf */
+    char out_buf[512];  /* "oitbench-STEM", MODEL's name without extension */
     /* which triangles the methods draw (bench_models.h) */
     const char *parts;      /* --parts: MODEL's part file (MODEL a mesh) */
     const char *mesh;       /* --mesh: the part file's source (MODEL a .oitp) */

@@ -10,7 +10,7 @@
 
 #include "base/args.h"
 
-enum { FIELDS = 19, FIELDS_18 = 18, FIELDS_17 = 17, OLD_FIELDS = 15, LINE_MAX_BYTES = 4096, ROWS_MAX = 1 << 20 };
+enum { FIELDS = 20, FIELDS_19 = 19, FIELDS_18 = 18, FIELDS_17 = 17, OLD_FIELDS = 15, LINE_MAX_BYTES = 4096, ROWS_MAX = 1 << 20 };
 
 /* ---- writing ---- */
 
@@ -43,6 +43,7 @@ typedef struct row_figures {
     uint32_t view_layers;
     double gpu_ms; /* < 0: none */
     uint64_t mesh;
+    double pct_outside; /* pct outside the reference's ambiguity mask */
 } row_figures;
 
 static const char *geometry_token(oit_bench_geometry g)
@@ -71,7 +72,7 @@ static void csv_row(FILE *f, const char *row, const oit_bench_method *m, int vie
             geometry_token(m->geometry), (unsigned long long)m->triangles,
             oit_bench_number(b[6], 40, ok && x->gpu_ms >= 0 ? x->gpu_ms : NAN, "%.4f", ""));
     if (ok) fprintf(f, "%llu", (unsigned long long)x->mesh);
-    fprintf(f, "\n");
+    fprintf(f, ",%s\n", oit_bench_number(b[7], 40, ok ? x->pct_outside : NAN, "%.6f", ""));
 }
 
 void oit_bench_csv_write(FILE *f, const oit_bench_result *r, uint64_t triangles)
@@ -86,7 +87,8 @@ void oit_bench_csv_write(FILE *f, const oit_bench_result *r, uint64_t triangles)
             row_figures x = {c->ok, c->ok ? c->ms_median : NAN, c->ok ? c->ms_p95 : NAN,
                              c->gpu_bytes_peak, c->max_layers, c->diff.rmse, c->diff.max_abs,
                              c->diff.pct_over_1_255, c->diff.psnr, r->ref_layers[v],
-                             c->gpu_ms_median, c->gpu_mesh_bytes};
+                             c->gpu_ms_median, c->gpu_mesh_bytes,
+                             c->pct_over_outside_ambiguity};
             csv_row(f, "view", m, v, &x, triangles);
         }
     }
@@ -94,7 +96,8 @@ void oit_bench_csv_write(FILE *f, const oit_bench_result *r, uint64_t triangles)
         const oit_bench_method *m = &r->methods[i];
         row_figures x = {m->runnable, m->ms_median, m->ms_p95, m->gpu_bytes_peak, m->max_layers,
                          m->rmse_mean, m->max_abs_worst, m->pct_over_worst, m->psnr_min, deepest,
-                         m->gpu_ms_median, m->gpu_mesh_bytes};
+                         m->gpu_ms_median, m->gpu_mesh_bytes,
+                         m->pct_over_outside_ambiguity_worst};
         csv_row(f, "summary", m, -1, &x, triangles);
     }
 }
@@ -110,7 +113,7 @@ typedef struct reader {
     const char *name;
     size_t line;
     oit_error *err;
-    int fields; /* FIELDS, or FIELDS_18, FIELDS_17, OLD_FIELDS after an older header */
+    int fields; /* FIELDS, or FIELDS_19 ... OLD_FIELDS after an older header */
 } reader;
 
 static oit_status bad(const reader *rd, const char *fmt, ...)
@@ -313,8 +316,8 @@ static oit_status row_tail(const field *fs, oit_bench_row *row, const reader *rd
  * it); none on a not_runnable one. */
 static oit_status row_mesh(const field *fs, oit_bench_row *row, const reader *rd)
 {
-    row->mesh_counted = rd->fields == FIELDS;
-    if (rd->fields != FIELDS)
+    row->mesh_counted = rd->fields >= FIELDS_19;
+    if (rd->fields < FIELDS_19)
         return OIT_OK;
     if (!row->ok && *fs[18].s)
         return bad(rd, "column gpu_mesh_bytes: '%.40s' on a not_runnable row (expected empty)",
@@ -322,6 +325,23 @@ static oit_status row_mesh(const field *fs, oit_bench_row *row, const reader *rd
     if (row->ok && !parse_uint(fs[18].s, row->gpu_bytes_peak, &row->gpu_mesh_bytes))
         return bad(rd, "column gpu_mesh_bytes: '%.40s' is not a byte count within "
                    "gpu_bytes_peak (%llu)", fs[18].s, (unsigned long long)row->gpu_bytes_peak);
+    return OIT_OK;
+}
+
+/* pct_over_1_255_outside_ambiguity: a figure on an ok row, empty on a
+ * not_runnable one; NAN from a file before the column. */
+static oit_status row_ambiguity(const field *fs, oit_bench_row *row, const reader *rd)
+{
+    row->pct_over_outside_ambiguity = NAN;
+    if (rd->fields != FIELDS)
+        return OIT_OK;
+    if (!row->ok && *fs[19].s)
+        return bad(rd, "column pct_over_1_255_outside_ambiguity: '%.40s' on a not_runnable "
+                   "row (expected empty)", fs[19].s);
+    if (row->ok && (!parse_figure(fs[19].s, 0, &row->pct_over_outside_ambiguity) ||
+                    row->pct_over_outside_ambiguity > 100.0))
+        return bad(rd, "column pct_over_1_255_outside_ambiguity: '%.40s' is not a "
+                   "percentage on an ok row", fs[19].s);
     return OIT_OK;
 }
 
@@ -354,6 +374,7 @@ static oit_status parse_row(char *line, oit_bench_row *row, const reader *rd)
     if (n != rd->fields)
         return bad(rd, "%d fields, expected %d (%s)", n, rd->fields,
                    rd->fields == FIELDS      ? OIT_BENCH_CSV_HEADER
+                   : rd->fields == FIELDS_19 ? OIT_BENCH_CSV_HEADER_19
                    : rd->fields == FIELDS_18 ? OIT_BENCH_CSV_HEADER_18
                    : rd->fields == FIELDS_17 ? OIT_BENCH_CSV_HEADER_17
                                              : OIT_BENCH_CSV_HEADER_15);
@@ -365,6 +386,8 @@ static oit_status parse_row(char *line, oit_bench_row *row, const reader *rd)
         s = row_geometry(fs, row, rd);
     if (s == OIT_OK)
         s = row_mesh(fs, row, rd);
+    if (s == OIT_OK)
+        s = row_ambiguity(fs, row, rd);
     return s;
 }
 
@@ -393,6 +416,7 @@ static oit_status check_header(FILE *f, char *buf, size_t cap, reader *rd)
         return s != OIT_OK ? s : bad(rd, "empty file, expected the header '%s'",
                                      OIT_BENCH_CSV_HEADER);
     rd->fields = !strcmp(buf, OIT_BENCH_CSV_HEADER)      ? FIELDS
+                 : !strcmp(buf, OIT_BENCH_CSV_HEADER_19) ? FIELDS_19
                  : !strcmp(buf, OIT_BENCH_CSV_HEADER_18) ? FIELDS_18
                  : !strcmp(buf, OIT_BENCH_CSV_HEADER_17) ? FIELDS_17
                  : !strcmp(buf, OIT_BENCH_CSV_HEADER_15) ? OLD_FIELDS

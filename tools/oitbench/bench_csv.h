@@ -26,12 +26,23 @@
  * mesh's part of it (0 for the stream and the reference), both empty
  * where the entry did not run.
  *
+ * pct_over_1_255 is the % of all pixels with a channel off the reference by
+ * more than 1/255; pct_over_1_255_outside_ambiguity the same % over the
+ * pixels outside the reference's ambiguity mask (a pixel centre within the
+ * ambiguity radius of an edge, where rasterization and the ray may
+ * disagree: oit_pixels_desc.ambiguous), ~0 for an exact method, whose
+ * pct_over_1_255 counts those edge pixels too; a summary row has the worst
+ * view's of both.
+ *
  * The reader also takes the file of the oitbench before geometry
  * (OIT_BENCH_CSV_HEADER_15, 15 fields); its rows read with geometry -1 and
  * drawn_triangles = triangles; the one before gpu_ms_median
  * (OIT_BENCH_CSV_HEADER_17), read with gpu_ms_median -1; and the one
  * before gpu_mesh_bytes (OIT_BENCH_CSV_HEADER_18), whose in-core methods'
- * gpu_bytes_peak left their mesh out: read with mesh_counted 0. */
+ * gpu_bytes_peak left their mesh out: read with mesh_counted 0; and the
+ * one before pct_over_1_255_outside_ambiguity (OIT_BENCH_CSV_HEADER_19),
+ * read with it NAN. The new column is the last, so that a reader of the
+ * older file that picks columns by position still finds the others. */
 #ifndef OIT_OITBENCH_BENCH_CSV_H
 #define OIT_OITBENCH_BENCH_CSV_H
 
@@ -45,7 +56,8 @@
     "pct_over_1_255,psnr,reason,triangles,view_max_layers"
 #define OIT_BENCH_CSV_HEADER_17 OIT_BENCH_CSV_HEADER_15 ",geometry,drawn_triangles"
 #define OIT_BENCH_CSV_HEADER_18 OIT_BENCH_CSV_HEADER_17 ",gpu_ms_median"
-#define OIT_BENCH_CSV_HEADER OIT_BENCH_CSV_HEADER_18 ",gpu_mesh_bytes"
+#define OIT_BENCH_CSV_HEADER_19 OIT_BENCH_CSV_HEADER_18 ",gpu_mesh_bytes"
+#define OIT_BENCH_CSV_HEADER OIT_BENCH_CSV_HEADER_19 ",pct_over_1_255_outside_ambiguity"
 
 #define OIT_BENCH_CSV_REASON_MAX 512
 
@@ -72,6 +84,9 @@ typedef struct oit_bench_row {
      * a file older than the column, whose in-core figures leave it out. */
     int mesh_counted;
     uint64_t gpu_mesh_bytes;
+    /* pct_over_1_255 outside the reference's ambiguity mask; NAN where
+     * empty or the file is older than the column */
+    double pct_over_outside_ambiguity;
 } oit_bench_row;
 
 typedef struct oit_bench_table {
@@ -87,7 +102,7 @@ const char *oit_bench_number(char *buf, size_t cap, double x, const char *fmt,
                              const char *nonfinite);
 
 /* Reads a file as oit_bench_csv_write writes it, and nothing else: the
- * exact header, 19 fields a row (18, 17 or 15 after the older headers), every field checked (row kind, method
+ * exact header, 20 fields a row (19, 18, 17 or 15 after the older headers), every field checked (row kind, method
  * name, view number, status, numbers finite and >= 0, figures present
  * exactly where the status says, reason quoted, one triangle count in the
  * whole file). A failure is OIT_ERR_FORMAT (OIT_ERR_IO when reading fails)

@@ -191,13 +191,37 @@ static void measure_view(const oit_bench_desc *d, oit_bench_result *r, int v,
     free(first);
 }
 
-static void compare_view(oit_bench_result *r, int v, const oit_image *ref, oit_image *last)
+/* img's % of pixels off by > 1/255 among those outside the mask
+ * (ambiguous: 1 inside): img's masked pixels take ref's values, so that
+ * they count as equal, and the count is over the rest (0 when none). */
+static oit_status compare_outside(const oit_image *ref, oit_image *img, const uint8_t *ambiguous,
+                                  uint64_t masked, double *pct, oit_error *err)
+{
+    size_t n = (size_t)ref->width * (size_t)ref->height;
+    oit_image_diff d;
+    for (size_t p = 0; p < n; p++)
+        if (ambiguous[p])
+            memcpy(img->rgba + p * 4, ref->rgba + p * 4, 4 * sizeof(float));
+    oit_status s = oit_image_compare(ref, img, &d, NULL, 1.0f, err);
+    *pct = n > masked ? 100.0 * (double)d.pixels_over / (double)(n - masked) : 0.0;
+    return s;
+}
+
+static void compare_view(oit_bench_result *r, int v, const oit_image *ref,
+                         const uint8_t *ambiguous, oit_image *last)
 {
     oit_error err = {0};
+    size_t n = (size_t)ref->width * (size_t)ref->height;
+    uint64_t masked = 0;
+    for (size_t p = 0; p < n; p++)
+        masked += ambiguous[p] != 0;
+    r->ref_ambiguous_pct[v] = n ? 100.0 * (double)masked / (double)n : 0.0;
     for (int i = 0; i < r->method_count; i++) {
         oit_bench_method *m = &r->methods[i];
         oit_bench_cell *c = &m->cells[v];
-        if (c->ok && oit_image_compare(ref, &last[i], &c->diff, NULL, 1.0f, &err) != OIT_OK) {
+        if (c->ok && (oit_image_compare(ref, &last[i], &c->diff, NULL, 1.0f, &err) != OIT_OK ||
+                      compare_outside(ref, &last[i], ambiguous, masked,
+                                      &c->pct_over_outside_ambiguity, &err) != OIT_OK)) {
             c->ok = 0;
             mark_failed(m, v, err.message);
         }
@@ -233,6 +257,8 @@ static void summarise(oit_bench_method *m, int views)
         m->rmse_mean += c->diff.rmse;
         m->max_abs_worst = fmax(m->max_abs_worst, c->diff.max_abs);
         m->pct_over_worst = fmax(m->pct_over_worst, c->diff.pct_over_1_255);
+        m->pct_over_outside_ambiguity_worst =
+            fmax(m->pct_over_outside_ambiguity_worst, c->pct_over_outside_ambiguity);
         m->psnr_min = fmin(m->psnr_min, c->diff.psnr);
         m->gpu_bytes_peak = c->gpu_bytes_peak > m->gpu_bytes_peak ? c->gpu_bytes_peak
                                                                    : m->gpu_bytes_peak;
@@ -255,7 +281,8 @@ static oit_status alloc_result(const oit_bench_desc *d, oit_bench_result *r, oit
     r->methods = calloc((size_t)d->entry_count, sizeof *r->methods);
     r->ref_ms = calloc((size_t)d->views, sizeof *r->ref_ms);
     r->ref_layers = calloc((size_t)d->views, sizeof *r->ref_layers);
-    int ok = r->methods && r->ref_ms && r->ref_layers;
+    r->ref_ambiguous_pct = calloc((size_t)d->views, sizeof *r->ref_ambiguous_pct);
+    int ok = r->methods && r->ref_ms && r->ref_layers && r->ref_ambiguous_pct;
     for (int i = 0; ok && i < d->entry_count; i++) {
         oit_bench_method *m = &r->methods[i];
         m->method = oit_method_find(d->entries[i].method);
@@ -284,8 +311,11 @@ static oit_status run_views(const oit_bench_desc *d, oit_bench_result *r, oit_er
     const oit_mesh *refmesh = d->reference_mesh ? d->reference_mesh : d->mesh;
     oit_run *ref_state = NULL;
     oit_image *last = calloc((size_t)r->method_count, sizeof *last);
-    oit_status s = last ? oit_run_open(refm, refmesh, NULL, &ref_state, err)
-                        : oit_error_set(err, OIT_ERR_NOMEM, "cannot allocate image slots");
+    uint8_t *ambiguous = calloc((size_t)d->width * (size_t)d->height, 1);
+    oit_status s = last && ambiguous
+                       ? oit_run_open(refm, refmesh, NULL, &ref_state, err)
+                       : oit_error_set(err, OIT_ERR_NOMEM, "cannot allocate image slots and "
+                                       "a %dx%d ambiguity mask", d->width, d->height);
     /* one view for every method, framed on the reference's mesh */
     oit_view view = {.width = d->width, .height = d->height,
                      .shading = bench_shading(&refmesh->info, d->shading, d->colour_space)};
@@ -294,7 +324,7 @@ static oit_status run_views(const oit_bench_desc *d, oit_bench_result *r, oit_er
         oit_frame_stats st = {0};
         oit_camera_default(&view.camera, refmesh->info.bounds_min, refmesh->info.bounds_max,
                            (float)(v * 360.0 / d->views), 20.0f);
-        s = oit_run_render(ref_state, &view, &ref, NULL, NULL, &st, err);
+        s = oit_run_render(ref_state, &view, &ref, NULL, ambiguous, &st, err);
         if (s != OIT_OK) {
             oit_error_prefix(err, "reference");
             break;
@@ -302,12 +332,13 @@ static oit_status run_views(const oit_bench_desc *d, oit_bench_result *r, oit_er
         r->ref_ms[v] = st.ms;
         r->ref_layers[v] = st.max_layers;
         measure_view(d, r, v, &view, last);
-        compare_view(r, v, &ref, last);
+        compare_view(r, v, &ref, ambiguous, last);
         oit_image_free(&ref);
         print_view(d->progress, r, v);
     }
     if (ref_state)
         oit_run_close(ref_state);
+    free(ambiguous);
     free(last);
     return s;
 }
@@ -344,5 +375,6 @@ void oit_bench_result_free(oit_bench_result *r)
     free(r->methods);
     free(r->ref_ms);
     free(r->ref_layers);
+    free(r->ref_ambiguous_pct);
     memset(r, 0, sizeof *r);
 }

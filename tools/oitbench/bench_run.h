@@ -39,6 +39,11 @@ typedef struct oit_bench_cell {
     uint32_t max_layers;
     uint64_t fragments;      /* of the last timed frame */
     oit_image_diff diff;     /* last timed frame against the reference */
+    /* diff's % of pixels off by > 1/255 over the pixels outside the
+     * reference's ambiguity mask (OIT_RENDER_METHOD_AMBIGUITY: a pixel
+     * centre within the ambiguity radius of an edge, where raster and ray
+     * may disagree): ~0 for an exact method, whose diff may not be */
+    double pct_over_outside_ambiguity;
     double gpu_ms_median;    /* GPU time (view/render/gl/gpu_timer.h); -1: not timed */
     /* the most host waits on the GPU of a timed frame
      * (oit_frame_stats.host_waits: the stream's; 0 where not counted) */
@@ -77,6 +82,7 @@ typedef struct oit_bench_method {
     uint32_t max_layers;
     uint32_t host_waits_max; /* the cells' most */
     double rmse_mean, max_abs_worst, pct_over_worst, psnr_min;
+    double pct_over_outside_ambiguity_worst; /* the cells' most */
 } oit_bench_method;
 
 typedef struct oit_bench_desc {
@@ -106,6 +112,8 @@ typedef struct oit_bench_result {
     /* per view, the most hits the reference ray met at one pixel: the
      * view's depth complexity, whatever the methods report */
     uint32_t *ref_layers;
+    /* per view, % of pixels in the reference's ambiguity mask */
+    double *ref_ambiguous_pct;
 } oit_bench_result;
 
 /* Fails only when the reference cannot render (nothing to measure against)

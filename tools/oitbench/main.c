@@ -164,6 +164,9 @@ static int run(const oit_bench_args *a, const char *command_line)
                         .max_layers = a->max_layers, .capture = a->capture,
                         .shading = a->shading,
                         .colour_space = a->colour_space, .progress = stderr};
+    if (a->methods_defaulted)
+        fprintf(stderr, "oitbench: no --methods: the default set %s\n",
+                OIT_BENCH_DEFAULT_METHODS);
     print_geometry(&models, a);
     fprintf(stderr, "oitbench: %s: %llu triangles, %d entries, %d views\n", a->model,
             (unsigned long long)models.source_triangles, a->entry_count, a->orbit);

@@ -47,8 +47,8 @@ cat "$T/err1.txt"
 CSV="$T/R1/results.csv"
 [ -s "$CSV" ] || { fail "no results.csv"; exit 1; }
 cat "$CSV"
-head -n 1 "$CSV" | grep -q ',reason,triangles,view_max_layers,geometry,drawn_triangles,gpu_ms_median,gpu_mesh_bytes$' ||
-    fail "header lacks triangles, view_max_layers, geometry, drawn_triangles, gpu_ms_median, gpu_mesh_bytes"
+head -n 1 "$CSV" | grep -q ',reason,triangles,view_max_layers,geometry,drawn_triangles,gpu_ms_median,gpu_mesh_bytes,pct_over_1_255_outside_ambiguity$' ||
+    fail "header lacks triangles, view_max_layers, geometry, drawn_triangles, gpu_ms_median, gpu_mesh_bytes, pct_over_1_255_outside_ambiguity"
 for m in stream@0 stream@0.1 dfb; do
     [ "$(grep -c "^view,$m,[01],ok," "$CSV")" -eq 2 ] || fail "expected 2 ok view rows of $m"
     grep -q "^summary,$m,,ok," "$CSV" || fail "no ok summary row of $m"

@@ -289,7 +289,8 @@ static void fake_result(oit_bench_result *r, oit_bench_method m[2], oit_bench_ce
                                     .gpu_mesh_bytes = 600000u, .max_layers = 7 + 5 * v,
                                     .fragments = 10,
                                     .diff = {v ? 0.002 : 0.0, 0.5, 0.1, v ? 40.0 : INFINITY, 3},
-                                    .gpu_ms_median = -1.0};
+                                    .gpu_ms_median = -1.0,
+                                    .pct_over_outside_ambiguity = v ? 0.0 : 0.05};
     }
     m[0].ms_median = 2.0;
     m[0].ms_p95 = 4.0;
@@ -298,6 +299,7 @@ static void fake_result(oit_bench_result *r, oit_bench_method m[2], oit_bench_ce
     m[0].max_layers = 12;
     m[0].rmse_mean = 0.001;
     m[0].psnr_min = 40.0;
+    m[0].pct_over_outside_ambiguity_worst = 0.05;
     m[0].triangles = 1234;
     snprintf(m[1].name, sizeof m[1].name, "stream@0.1");
     m[1].geometry = OIT_BENCH_GEOMETRY_PART_FILE;
@@ -359,13 +361,20 @@ static void test_csv_round_trip(void)
           t.rows[4].gpu_mesh_bytes == 600000 && sum_stream->gpu_mesh_bytes == 0,
           "gpu_mesh_bytes read back wrong (%d %llu, summary %llu)", v1->mesh_counted,
           (unsigned long long)v1->gpu_mesh_bytes, (unsigned long long)t.rows[4].gpu_mesh_bytes);
+    CHECK(t.rows[0].pct_over_outside_ambiguity == 0.05 && v1->pct_over_outside_ambiguity == 0.0 &&
+          t.rows[4].pct_over_outside_ambiguity == 0.05 &&
+          isnan(sum_stream->pct_over_outside_ambiguity),
+          "pct_over_1_255_outside_ambiguity read back wrong (%g %g, summary %g %g)",
+          t.rows[0].pct_over_outside_ambiguity, v1->pct_over_outside_ambiguity,
+          t.rows[4].pct_over_outside_ambiguity, sum_stream->pct_over_outside_ambiguity);
     CHECK(oit_bench_rmse_floor(&t) == 1e-4, "rmse floor %g, expected 1e-4 (least 0.001)",
           oit_bench_rmse_floor(&t));
     oit_bench_table_free(&t);
 }
 
 #define HDR OIT_BENCH_CSV_HEADER "\n"
-#define OK_ROW "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16,2.5,40\n"
+#define OK_ROW "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16,2.5,40,0.25\n"
+#define ROW_19 "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16,2.5,40\n"
 #define ROW_18 "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16,2.5\n"
 #define OLD_ROW "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3\n"
 
@@ -414,20 +423,24 @@ static void test_csv_malformed(void)
         {"row,method\n", 0, 1, "header"},
         {HDR, 0, 2, "no rows"},
         {HDR "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16\n", 0, 2, "14 fields"},
-        {HDR "view,pll,0,not_runnable,,,100,3,,,,,\"no\",16,3,source_mesh,16,2.5,\n", 0, 2, "gpu_bytes_peak"},
-        {HDR "view,pll,0,not_runnable,,,,,,,,,\"no\",16,3,source_mesh,16,,40\n", 0, 2,
+        {HDR "view,pll,0,not_runnable,,,100,3,,,,,\"no\",16,3,source_mesh,16,2.5,,\n", 0, 2, "gpu_bytes_peak"},
+        {HDR "view,pll,0,not_runnable,,,,,,,,,\"no\",16,3,source_mesh,16,,40,\n", 0, 2,
          "gpu_mesh_bytes"},
-        {HDR OK_ROW "view,pll,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,inf,\"\",17,3,source_mesh,16,2.5,0\n", 0, 3, "triangles"},
+        {HDR OK_ROW "view,pll,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,inf,\"\",17,3,source_mesh,16,2.5,0,0\n", 0, 3, "triangles"},
         {HDR OK_ROW "\n", 0, 3, "empty line"},
-        {HDR "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,part_file,-4,,40\n", 0, 2,
+        {HDR "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,part_file,-4,,40,0\n", 0, 2,
          "drawn_triangles"},
         {HDR ROW_18, 0, 2, "18 fields"},
+        {HDR ROW_19, 0, 2, "19 fields"},
+        {OIT_BENCH_CSV_HEADER_19 "\n" OK_ROW, 0, 2, "more than 19 fields"},
+        {HDR "view,pll,0,not_runnable,,,,,,,,,\"no\",16,3,source_mesh,16,,,5\n", 0, 2,
+         "pct_over_1_255_outside_ambiguity"},
         {OIT_BENCH_CSV_HEADER_18 "\n" OK_ROW, 0, 2, "more than 18 fields"},
         {HDR "view,dfb,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3\n", 0, 2, "15 fields"},
         {OIT_BENCH_CSV_HEADER_15 "\n" OLD_ROW "view,pll,0,ok,1.0,2.0,100,3,0.01,0.1,0.5,inf,\"\",16,3,"
          "source_mesh,16,2.5\n", 0, 3, "more than 15 fields"},
-        {HDR "view,dfb,0,ok,1.0\0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16,2.5,40\n",
-         sizeof(HDR "view,dfb,0,ok,1.0\0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16,2.5,40\n") - 1, 2, "NUL"},
+        {HDR "view,dfb,0,ok,1.0\0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16,2.5,40,0\n",
+         sizeof(HDR "view,dfb,0,ok,1.0\0,2.0,100,3,0.01,0.1,0.5,40.0,\"\",16,3,source_mesh,16,2.5,40,0\n") - 1, 2, "NUL"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         char what[32];
@@ -455,6 +468,10 @@ static void test_csv_malformed(void)
         {18, "101", "gpu_mesh_bytes"}, /* more than its gpu_bytes_peak, which holds it */
         {18, "-1", "gpu_mesh_bytes"},
         {18, "4k", "gpu_mesh_bytes"},
+        {19, "", "pct_over_1_255_outside_ambiguity"},
+        {19, "-1", "pct_over_1_255_outside_ambiguity"},
+        {19, "100.5", "pct_over_1_255_outside_ambiguity"},
+        {19, "nan", "pct_over_1_255_outside_ambiguity"},
     };
     for (size_t i = 0; i < sizeof fields / sizeof fields[0]; i++) {
         char text[1024], what[64];
@@ -511,9 +528,16 @@ static void test_csv_old_format(void)
           t.rows[0].gpu_mesh_bytes == 0,
           "results.csv before gpu_mesh_bytes: status %d '%s'", (int)s, err.message);
     oit_bench_table_free(&t);
+    s = read_text(OIT_BENCH_CSV_HEADER_19 "\n" ROW_19, "old19.csv", &t, &err);
+    CHECK(s == OIT_OK && t.count == 1 && t.rows[0].mesh_counted &&
+          t.rows[0].gpu_mesh_bytes == 40 && isnan(t.rows[0].pct_over_outside_ambiguity),
+          "results.csv before pct_over_1_255_outside_ambiguity: status %d '%s'", (int)s,
+          err.message);
+    oit_bench_table_free(&t);
     s = read_text(HDR OK_ROW, "new.csv", &t, &err);
     CHECK(s == OIT_OK && t.count == 1 && t.rows[0].mesh_counted &&
-          t.rows[0].gpu_mesh_bytes == 40, "results.csv: status %d '%s'", (int)s, err.message);
+          t.rows[0].gpu_mesh_bytes == 40 && t.rows[0].pct_over_outside_ambiguity == 0.25,
+          "results.csv: status %d '%s'", (int)s, err.message);
     oit_bench_table_free(&t);
 }
 
