@@ -28,6 +28,8 @@ install(FILES
         ${CMAKE_SOURCE_DIR}/include/oit/liboit.h
         ${CMAKE_SOURCE_DIR}/include/oit/render_modes.h
         ${CMAKE_SOURCE_DIR}/include/oit/draw_stats.h
+        ${CMAKE_SOURCE_DIR}/include/oit/pick.h
+        ${CMAKE_SOURCE_DIR}/include/oit/frame.h
         ${CMAKE_SOURCE_DIR}/include/oit/offscreen.h
         DESTINATION include/oit)
 # The part-file format, which oit/partfile.h cites: the one document a

@@ -124,6 +124,8 @@ oit_status oit_lib_method_for(const oit_renderer *r, const oit_scene *scene,
                               const oit_lib_method **out, oit_error *err);
 oit_status oit_lib_method_open(oit_renderer *r, const oit_lib_method *m, const oit_scene *scene,
                                oit_error *err);
+oit_status oit_lib_method_table(oit_renderer *r, const oit_lib_method *m,
+                                const oit_method **out, oit_error *err);
 
 /* liboit_renderer.c */
 oit_status oit_lib_bind_scene(oit_renderer *r, oit_scene *scene, int image, oit_error *err);

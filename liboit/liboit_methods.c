@@ -91,8 +91,8 @@ oit_status oit_lib_method_for(const oit_renderer *r, const oit_scene *scene,
 
 /* The table m runs with: its own, or the reference's from its plugin,
  * loaded once a renderer and kept until it is destroyed. */
-static oit_status table_of(oit_renderer *r, const oit_lib_method *m, const oit_method **out,
-                           oit_error *err)
+oit_status oit_lib_method_table(oit_renderer *r, const oit_lib_method *m,
+                                const oit_method **out, oit_error *err)
 {
     *out = tables[m - methods];
     if (!*out && !r->reference) {
@@ -123,7 +123,7 @@ oit_status oit_lib_method_open(oit_renderer *r, const oit_lib_method *m, const o
                                oit_error *err)
 {
     const oit_method *table = NULL;
-    oit_status s = table_of(r, m, &table, err);
+    oit_status s = oit_lib_method_table(r, m, &table, err);
     if (s == OIT_OK && (table->flags & OIT_RENDER_METHOD_GL) && !r->run_gl)
         s = oit_gl_borrow_current(&r->run_gl, err);
     if (s != OIT_OK)

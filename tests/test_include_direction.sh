@@ -38,10 +38,11 @@ base oit base
 formats oit base formats
 partfile oit base formats partfile
 view/render/image oit base formats view/render/image
+view/render/pick oit base formats partfile view/render/image view/render/pick
 view/render/gl oit base formats view/render/image view/render/gl
 view/render/capture oit base formats view/render/image view/render/gl view/render/capture
 view/render oit base formats view/render !view/render/baselines !view/render/reference
-view/render/reference oit base formats view/render/image view/render/method.h view/render/reference
+view/render/reference oit base formats view/render/image view/render/method.h view/render/pick/pick.h view/render/reference
 view/render/baselines oit base formats view/render !view/render/reference
 view/plot oit base formats view/render/image view/plot
 prepare/scenes oit base formats prepare/scenes

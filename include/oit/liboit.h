@@ -80,6 +80,8 @@
 #include <stdint.h>
 
 #include "draw_stats.h"
+#include "frame.h"
+#include "pick.h"
 #include "mesh.h"
 #include "render_modes.h"
 #include "status.h"
@@ -287,11 +289,13 @@ typedef struct oit_renderer_desc {
      * DISJOINT) and the first pass of FIRSTK packs (AUTO too).
      * OIT_RENDER_CAPTURE_AUTO (0): the stencil-routed A-buffer where its
      * start-up self-test passes on this GL driver, else array slots;
-     * STENCIL: that or OIT_ERR_UNSUPPORTED at the first draw, with the
-     * self-test's reason; ARRAY: slots through an atomic counter; COMPUTE:
-     * no K-slot fill at all, every pack binned, rasterized, sorted and
-     * composited in compute shaders (AUTO packs then are COUNTED's). The
-     * image is the same; oit_draw_stats says what ran and why. */
+     * STENCIL: that or OIT_ERR_GL (the driver's limit) at the first draw,
+     * with the self-test's reason; ARRAY: slots through an atomic counter;
+     * COMPUTE: no K-slot fill at all, every pack binned, rasterized, sorted
+     * and composited in compute shaders (AUTO packs then are COUNTED's;
+     * BUDGET and DISJOINT packs are cut by their rule; FIRSTK, whose first
+     * pass is a K-slot fill, is OIT_ERR_ARGUMENT). The image is the same;
+     * oit_draw_stats says what ran and why. */
     oit_render_capture capture;
     /* The frames the caller expects to draw with the renderer: 1, a
      * one-image run, where OIT_RENDER_PACK_AUTO starts with counted packs,
@@ -412,8 +416,9 @@ OIT_API oit_status oit_renderer_set_shading(oit_renderer *r, const oit_render_sh
 /* Builds what r's first draw of scene into memory (oit_renderer_draw_pixels)
  * builds: the part file's streamer, or the in-core method opened (its
  * programs, its self-tests, the triangles uploaded), so that a method the
- * driver cannot run fails here (OIT_ERR_UNSUPPORTED) rather than at a
- * draw. A GL method needs its context current. */
+ * driver cannot run fails here (OIT_ERR_GL where it lacks a feature, as
+ * stencil routing; OIT_ERR_UNSUPPORTED where a limit refuses this input)
+ * rather than at a draw. A GL method needs its context current. */
 OIT_API oit_status oit_renderer_prepare(oit_renderer *r, oit_scene *scene, oit_error *err);
 /* Frees r's GPU state for scene and lets the scene go when r drew it last
  * (else does nothing), so that a closed scene's memory is freed while r
@@ -422,93 +427,6 @@ OIT_API oit_status oit_renderer_prepare(oit_renderer *r, oit_scene *scene, oit_e
  * nothing. */
 OIT_API void oit_renderer_release_scene(oit_renderer *r, const oit_scene *scene);
 
-typedef struct oit_frame {
-    /* Column-major 4x4, as glUniformMatrix4fv(..., GL_FALSE, m) takes.
-     * view: a rigid world-to-eye transform (rotation and translation; no
-     * scale: that belongs in model).
-     * projection, classified from the matrix (m[i] = column i / 4, row
-     * i % 4); m[1], m[2], m[3], m[4], m[6], m[7] must be 0, m[0], m[5] > 0:
-     * - perspective: m[11] = -1, m[15] = 0, m[12] = m[13] = 0 (glFrustum,
-     *   gluPerspective, glm::perspective / frustum / infinitePerspective).
-     *   Off-centre (stereo, tiles) through m[8], m[9]; the aspect need not
-     *   match the viewport's. Far plane finite (0 < near < far, from m[10],
-     *   m[14]) or infinite: m[10] = -1 exactly, m[14] = -2 near.
-     * - orthographic: m[11] = 0, m[15] = 1, m[8] = m[9] = 0 (glOrtho,
-     *   glm::ortho): any window (m[0], m[5], m[12], m[13]), near < far, both
-     *   finite, near may be <= 0.
-     * Anything else (reversed or [0,1] depth, oblique, skewed) is
-     * OIT_ERR_UNSUPPORTED, with the entries seen in the message. */
-    float view[16];
-    float projection[16];
-    int viewport_x, viewport_y; /* lower-left corner in the target, pixels */
-    int viewport_width, viewport_height;
-    unsigned framebuffer;       /* GL framebuffer name; 0: the default one */
-    /* The caller's opaque depth: the GL name of a single-sample
-     * GL_TEXTURE_2D depth texture (a depth or depth-stencil format, level
-     * 0, GL_DEPTH_STENCIL_TEXTURE_MODE left at GL_DEPTH_COMPONENT) of the
-     * TARGET's size: texel (x, y) is the target's pixel (x, y), and it must
-     * cover the viewport (else OIT_ERR_ARGUMENT). 0 (default): none.
-     * Transparent fragments whose window depth is >= the texel under them
-     * are dropped before they are stored or counted (streamed and in-core
-     * scenes alike), so the result is the transparent scene composited
-     * over the caller's opaque geometry as if that geometry were part of
-     * it. Window depth is gl_FragCoord.z of `projection` applied to the
-     * eye-space position (liboit then uses `projection` itself as its
-     * projection), with the default glDepthRange(0, 1) and
-     * glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE) assumed; a
-     * transparent surface within rounding (about 1e-6 of the depth range,
-     * the caller's own depth test alike) of an opaque one may go either
-     * way. liboit only reads the texture, through a sampler object of its
-     * own (nearest, no depth compare), so its filtering and compare mode do
-     * not matter; it may be the depth attachment of `framebuffer`. A part
-     * file's draw reads back the texture's largest depth per 16x16 tile at
-     * its start (so waits for the caller's opaque pass) to skip parts
-     * wholly behind it (oit_draw_stats.parts_skipped). */
-    unsigned depth_texture;
-    /* Model to world, column-major like view; all 16 zero: the identity.
-     * Affine (m[3] = m[7] = m[11] = 0, m[15] = 1), finite, with an
-     * invertible linear part: rotation, translation and uniform or
-     * non-uniform scale (a mirror too). It is applied to the vertices on the
-     * GPU before the tie rule, so the image is that of vertices transformed
-     * beforehand (in float), and the streamer culls and orders parts
-     * through it; anything else is OIT_ERR_UNSUPPORTED. */
-    float model[16];
-    /* Section planes, 0..OIT_FRAME_CLIP_MAX (0, default: none). Plane i,
-     * clip[i] = (a, b, c, d) in world space (the space view maps to eye
-     * space: the scene's coordinates, relative to oit_scene_info.origin,
-     * after model), KEEPS the points where a x + b y + c z + d >= 0; a
-     * fragment is drawn only when every plane keeps the point where its
-     * pixel centre's ray meets its triangle (exact per pixel). A part
-     * file's parts wholly cut away are neither read, uploaded nor drawn
-     * (oit_draw_stats.parts_clipped). A count above OIT_FRAME_CLIP_MAX, a
-     * number that is not finite or a zero normal (a, b, c) is
-     * OIT_ERR_ARGUMENT. */
-    uint32_t clip_count;
-    float clip[6][4];
-    /* NULL (default): the camera is view and projection. Else the camera
-     * by its parameters, as the tools take it, and view and projection
-     * are not read: no matrix stands between the caller's numbers and the
-     * rasterizer's, so the image is bit for bit the one the tools render
-     * of the same camera. */
-    const struct oit_frame_camera *camera;
-} oit_frame;
-
-/* oit_frame.camera: a look-at camera. Perspective (ortho_height 0):
- * fovy_deg in (0, 180), 0 < znear < zfar, zfar INFINITY for an infinite far
- * plane. Orthographic (ortho_height > 0, the view volume's height):
- * znear < zfar, both finite, znear may be <= 0. window: an off-centre
- * window (left, right, bottom, top; at distance 1 for a perspective, in
- * eye units for an orthographic one); all 0: symmetric about the view
- * direction. up need not be orthogonal to the view direction, only not
- * parallel to it. Anything else is OIT_ERR_ARGUMENT naming the field. */
-typedef struct oit_frame_camera {
-    float eye[3], target[3], up[3];
-    float fovy_deg, znear, zfar;
-    float ortho_height;
-    float window[4];
-} oit_frame_camera;
-
-#define OIT_FRAME_CLIP_MAX 6
 
 /* Draws scene as seen through frame into frame->framebuffer (see Result
  * above). The scene must stay open while r draws it; drawing a different
@@ -566,6 +484,30 @@ OIT_API oit_status oit_renderer_draw_pixels(oit_renderer *r, oit_scene *scene,
                                             const oit_frame *frame, const oit_pixels_desc *out,
                                             oit_draw_stats *stats, oit_error *err);
 
+
+/* Every fragment the exact image composites at pixel (x, y) of frame's
+ * viewport (y = 0 the TOP row, as oit_renderer_draw_image's rows), front
+ * to back: its depth, colour, alpha, the transmittance in front of it,
+ * its part and source triangle (include/oit/pick.h). The ray through the
+ * pixel's centre is the Embree reference's, and the layers are ordered by
+ * the tie rule every exact method follows (by depth key, then source
+ * triangle), so for every exact method they are the fragments its image
+ * composites there, except on the reference's ambiguity mask
+ * (oit_pixels_desc.ambiguous), where the centre lies on an edge and
+ * rasterization may take one triangle more or less. They do not depend on
+ * the method: an approximate one (wboit, unsorted) lists the exact layers
+ * too. An in-core scene drawn by the reference is picked through Embree
+ * (its own hits); other in-core scenes and part files by walking the
+ * triangles the ray may meet, a part file's one part at a time (bounded
+ * memory). The first `capacity` layers go to layers (NULL with 0: only
+ * count); *count says how many there are in all, so a second call with
+ * room for them gets every one. Needs no GL context and draws nothing.
+ * frame's depth_texture is OIT_ERR_UNSUPPORTED (the pick lists the
+ * transparent scene alone), a model matrix too; a pixel outside the
+ * viewport is OIT_ERR_ARGUMENT. */
+OIT_API oit_status oit_renderer_pick(oit_renderer *r, oit_scene *scene, const oit_frame *frame,
+                                     int x, int y, oit_pick_layer *layers, size_t capacity,
+                                     size_t *count, oit_error *err);
 
 /* Every draw's GPU figures, oldest first, each once (a tool that prints
  * every frame's; oit_draw_stats has only the newest): 1 and *out when the

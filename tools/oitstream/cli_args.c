@@ -69,6 +69,13 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
         else
             a->ambiguity_px = (float)px;
     }
+    else if (!strcmp(opt, "--pick")) {
+        char tail;
+        a->pick = 1;
+        if (sscanf(v, "%d,%d%c", &a->pick_x, &a->pick_y, &tail) != 2 || a->pick_x < 0 ||
+            a->pick_y < 0)
+            *s = bad(err, opt, v, "X,Y: a pixel, 0,0 the top left");
+    }
     else if (!strcmp(opt, "--size")) {
         if (oit_parse_size(v, 1, 16384, &a->width, &a->height))
             *s = bad(err, opt, v, "WxH, 1..16384");
@@ -228,6 +235,14 @@ static oit_status check_combination(const oit_stream_args *a, oit_error *err)
     oit_status s = oit_renderer_desc_check(&a->stream, err);
     if (s != OIT_OK)
         return s;
+    if (a->pick && (a->window || a->orbit || a->walk || a->out || a->ambiguity_out ||
+                    a->show_layers))
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "--pick prints the layers of one pixel of "
+                             "one view: it excludes --window, --orbit, --walk, --out, "
+                             "--ambiguity and --show");
+    if (a->pick && (a->pick_x >= a->width || a->pick_y >= a->height))
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "--pick %d,%d lies outside the %dx%d "
+                             "image (--size)", a->pick_x, a->pick_y, a->width, a->height);
     if ((a->have_view != 0) + (a->orbit != 0) + (a->walk != NULL) > 1)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--view, --orbit and --walk exclude each "
                              "other");
@@ -482,6 +497,17 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "                      the hit set changes within 1/64 pixel of the centre\n"
         "                      (depth ties are not ambiguous: the tie rule orders them)\n"
         "  --ambiguity-px P    that radius in pixels instead, in (0, 4]\n"
+        "  --pick X,Y          instead of an image, print as JSON every layer of pixel\n"
+        "                      X,Y (0,0 the top left) front to back: depth (the tie\n"
+        "                      rule's key along the pixel's ray), alpha, colour,\n"
+        "                      transmittance in front of it, part (null in core),\n"
+        "                      source_triangle, group and material (null: no reader\n"
+        "                      keeps names yet). The layers of the exact image: the\n"
+        "                      reference's ray and tie rule (through Embree for\n"
+        "                      --method reference on a mesh); a rasterizing method\n"
+        "                      may differ by a triangle on edge pixels only\n"
+        "                      (--ambiguity shows them). A part file is walked a part\n"
+        "                      at a time. Needs no GL.\n"
         "  --quiet             no per-frame lines\n"
         "  --up x|y|z          the model's up axis for the default views (default y;\n"
         "                      z for CAD models: seen from -y, x to the right)\n"

@@ -61,6 +61,9 @@ typedef struct oit_stream_args {
      * placed at the model's origin once it is read (view/render/image/clip.h) */
     oit_clip_given clip;
     int have_preview;              /* --preview was given */
+    /* --pick X,Y: the layers of pixel (X, Y), y = 0 the top row, as JSON
+     * on stdout instead of an image (pick_json.h) */
+    int pick, pick_x, pick_y;
 } oit_stream_args;
 
 oit_status oit_stream_args_parse(int argc, char **argv, oit_stream_args *a, oit_error *err);

@@ -16,6 +16,7 @@
 #include "tools/common/heap.h"
 #include "tools/common/paths.h"
 #include "view/render/image/image.h"
+#include "tools/oitstream/pick_json.h"
 #include "tools/oitstream/cli_args.h"
 #include "partfile/triangles.h"
 #include "tools/common/methods.h"
@@ -530,11 +531,17 @@ static int run_render(const oit_stream_args *args)
     if (s == OIT_OK && a->ambiguity_out &&
         !(rc.ambiguous = calloc((size_t)a->width * (size_t)a->height, 1)))
         s = oit_error_set(&err, OIT_ERR_NOMEM, "cannot allocate the ambiguity mask");
-    if (s == OIT_OK && a->window)
+    if (s == OIT_OK && a->pick) {
+        rc.view.camera = cams[0];
+        oit_pick_request rq = {.model = a->model, .part_file = pf != NULL, .mesh = &mesh,
+                               .method = rc.method->name, .view = &rc.view, .x = a->pick_x,
+                               .y = a->pick_y};
+        s = oit_pick_print(&rq, stdout, &err);
+    } else if (s == OIT_OK && a->window)
         s = run_window(&rc, &mesh, pf, &opt, &cams[0], &err);
     else if (s == OIT_OK)
         s = oit_run_open(rc.method, &mesh, &opt, &rc.state, &err);
-    if (s == OIT_OK && !a->window) {
+    if (s == OIT_OK && !a->window && !a->pick) {
         s = render_all(&rc, &mesh, cams, n, &err);
         oit_run_close(rc.state);
     }

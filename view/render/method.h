@@ -24,6 +24,8 @@
 struct oit_gl;
 struct oit_gpu_timer;
 struct oit_gpu_times;
+struct oit_pick_ray;
+struct oit_pick_hits;
 
 /* A method's flags are the public oit_render_method_flag (oit/render_modes.h),
  * which liboit's list of methods gives its callers as they are. Beside
@@ -112,6 +114,11 @@ typedef struct oit_method {
      * oit_frame_stats.gpu_frame. NULL: the interface's timer. */
     int (*gpu_poll)(void *impl, struct oit_gpu_times *out, int wait);
     const char *(*gpu_absent)(const void *impl);
+    /* Appends to hits what the pixel ray (view/render/pick/pick.h) meets
+     * in mesh, found the method's own way: the Embree reference's, so
+     * that a pick of the reference is its hits. NULL: the pick's walk. */
+    oit_status (*pick)(const oit_mesh *mesh, const struct oit_pick_ray *ray,
+                       struct oit_pick_hits *hits, oit_error *err);
 } oit_method;
 
 typedef struct oit_method_state oit_method_state;

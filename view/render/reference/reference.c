@@ -12,15 +12,7 @@
 #include <string.h>
 #include <unistd.h>
 
-/* Embree errors arrive through a callback on any thread; the first one is
- * kept for the caller. */
-typedef struct embree_errors {
-    pthread_mutex_t lock;
-    int failed;
-    char message[256];
-} embree_errors;
-
-static void on_embree_error(void *user, enum RTCError code, const char *str)
+void oit_reference_on_error(void *user, enum RTCError code, const char *str)
 {
     embree_errors *e = user;
     pthread_mutex_lock(&e->lock);
@@ -32,49 +24,9 @@ static void on_embree_error(void *user, enum RTCError code, const char *str)
     pthread_mutex_unlock(&e->lock);
 }
 
-/* 1 when v had a finite, non-zero length and is now a unit vector; else 0
- * and v unchanged (an infinite v is refused, not divided into zeros). */
-static int unit3(double v[3])
-{
-    return isfinite(oit_dot3d(v, v)) && oit_normalize3d(v) > 0.0;
-}
-
-/* The same frame as a GL look-at: right = forward x up, up' = right x forward. */
-static oit_status make_basis(const oit_view *view, ray_basis *b, oit_error *err)
-{
-    const oit_camera *c = &view->camera;
-    int ortho = c->projection == OIT_PROJ_ORTHOGRAPHIC;
-    if (!(ortho || (c->fovy_deg > 0.0f && c->fovy_deg < 180.0f)) ||
-        !(ortho || c->znear > 0.0f) || !(c->zfar > c->znear) || (ortho && isinf(c->zfar)))
-        return oit_error_set(err, OIT_ERR_ARGUMENT,
-                             "reference: bad camera (fovy %g, znear %g, zfar %g)",
-                             c->fovy_deg, c->znear, c->zfar);
-    double up[3];
-    for (int k = 0; k < 3; k++) {
-        b->eye[k] = c->eye[k];
-        b->forward[k] = (double)c->target[k] - c->eye[k];
-        up[k] = c->up[k];
-    }
-    oit_cross3d(b->forward, up, b->right);
-    if (!unit3(b->forward) || !unit3(b->right))
-        return oit_error_set(err, OIT_ERR_ARGUMENT,
-                             "reference: camera eye equals target or up is parallel to the view");
-    oit_cross3d(b->right, b->forward, b->up);
-    b->tan_half_y = tan(c->fovy_deg * (3.14159265358979323846 / 360.0));
-    b->aspect = (double)view->width / (double)view->height;
-    b->ortho = ortho;
-    b->windowed = c->window[0] != 0.0f || c->window[1] != 0.0f || c->window[2] != 0.0f ||
-                  c->window[3] != 0.0f;
-    oit_camera_window(c, b->aspect, b->win);
-    b->znear = c->znear;
-    if (!(b->win[0] < b->win[1] && b->win[2] < b->win[3]))
-        return oit_error_set(err, OIT_ERR_ARGUMENT, "reference: empty camera window");
-    return OIT_OK;
-}
-
 /* The mesh's own vertices are the vertex buffer (pos is the first 12 bytes
  * of each 16-byte oit_vertex), so only the trivial index buffer is built. */
-static oit_status build_scene(RTCDevice dev, const oit_mesh *mesh, RTCScene *out,
+oit_status oit_reference_build_scene(RTCDevice dev, const oit_mesh *mesh, RTCScene *out,
                               oit_error *err)
 {
     if (mesh->count > UINT32_MAX / 3)
@@ -167,8 +119,8 @@ static oit_status trace_with_embree(ref_job *job, int nthreads, oit_frame_stats 
         s = oit_error_set(err, OIT_ERR_UNSUPPORTED, "reference: cannot create an Embree device (%s)",
                           config);
     } else {
-        rtcSetDeviceErrorFunction(dev, on_embree_error, &eerr);
-        s = build_scene(dev, job->mesh, &job->scene, err);
+        rtcSetDeviceErrorFunction(dev, oit_reference_on_error, &eerr);
+        s = oit_reference_build_scene(dev, job->mesh, &job->scene, err);
         if (s == OIT_OK && !eerr.failed && !run_workers(job, nthreads, fs))
             s = oit_error_set(err, OIT_ERR_NOMEM, "reference: cannot grow a per-pixel hit list");
         if (job->scene)
@@ -198,11 +150,7 @@ oit_status oit_reference_render(const oit_mesh *mesh, const oit_view *view,
     job.ambiguous = desc ? desc->ambiguous : NULL;
     job.ties = desc ? desc->ties : NULL;
     job.saturation_epsilon = desc && desc->saturation_epsilon > 0.0f ? desc->saturation_epsilon : 0.0;
-    oit_camera_view_matrix(&view->camera, job.view_matrix);
-    job.clip_count = view->clip.count;
-    oit_clip_eye(&view->clip, job.view_matrix, job.clip_eye);
-    oit_view_ray_map(view, job.ray_map);
-    oit_view_origin_map(view, job.org_map, &job.org_z);
+    oit_ray_keying_init(view, &job.keying);
     job.ambiguity_px = desc && desc->ambiguity_px > 0.0f ? desc->ambiguity_px : 1.0 / 64.0;
     atomic_init(&job.next_row, 0);
     atomic_init(&job.oom, 0);
@@ -214,7 +162,7 @@ oit_status oit_reference_render(const oit_mesh *mesh, const oit_view *view,
     if (oit_view_model(view, model))
         return oit_error_set(err, OIT_ERR_UNSUPPORTED,
                              "reference: a model matrix (pre-transform the mesh instead)");
-    oit_status s = make_basis(view, &job.basis, err);
+    oit_status s = oit_ray_basis_make(view, "reference", &job.basis, err);
     if (s == OIT_OK)
         s = oit_image_alloc(out, view->width, view->height, err);
     if (s != OIT_OK)

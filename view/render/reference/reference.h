@@ -41,6 +41,14 @@ oit_status oit_reference_render(const oit_mesh *mesh, const oit_view *view,
                                 uint32_t *counts, oit_frame_stats *stats,
                                 oit_error *err);
 
+/* The hits of a pick's ray (view/render/pick/pick.h) in mesh, by Embree as
+ * the frame finds them (every hit, de-duplicated), each triangle's position
+ * its source; the method's pick operation. */
+struct oit_pick_ray;
+struct oit_pick_hits;
+oit_status oit_reference_pick(const oit_mesh *mesh, const struct oit_pick_ray *ray,
+                              struct oit_pick_hits *hits, oit_error *err);
+
 /* The reference as a method (view/render/method.h), named "reference". */
 extern const oit_method oit_method_reference;
 

@@ -5,6 +5,7 @@
 #define OIT_RENDER_REFERENCE_JOB_H
 
 #include "view/render/image/image.h"
+#include "view/render/image/ray.h"
 #include "view/render/image/shade.h"
 #include "view/render/reference/reference.h"
 
@@ -28,20 +29,12 @@ typedef struct ray_ctx {
     int oom;
 } ray_ctx;
 
-typedef struct ray_basis {
-    double eye[3], forward[3], right[3], up[3];
-    double tan_half_y, aspect;
-    /* Off-centre or orthographic (oit_camera_window): the window; ortho:
-     * rays along forward from the near plane (znear from the eye). */
-    int windowed, ortho;
-    double win[4], znear;
-} ray_basis;
 
 typedef struct ref_job {
     const oit_mesh *mesh;
     const oit_camera *cam;
     oit_shading shading;
-    ray_basis basis;
+    oit_ray_basis basis;
     RTCScene scene;
     oit_image *out;
     uint32_t *counts;
@@ -49,9 +42,7 @@ typedef struct ref_job {
     double ambiguity_px;
     uint32_t *ties;
     double saturation_epsilon;
-    float view_matrix[16], ray_map[4], org_map[4], org_z;
-    float clip_eye[OIT_CLIP_MAX][4]; /* the view's section planes in view space */
-    int clip_count;
+    oit_ray_keying keying; /* the hits' keys and section planes (ray.h) */
     atomic_int next_row;
     atomic_int oom;
 } ref_job;
@@ -65,6 +56,23 @@ typedef struct ref_worker {
     uint32_t max_layers;
     pthread_t thread;
 } ref_worker;
+
+/* Embree errors arrive through a callback on any thread; the first one is
+ * kept for the caller (oit_reference_on_error, user: an embree_errors). */
+typedef struct embree_errors {
+    pthread_mutex_t lock;
+    int failed;
+    char message[256];
+} embree_errors;
+void oit_reference_on_error(void *user, enum RTCError code, const char *str);
+
+/* The scene of mesh's triangles, each hit recorded by
+ * oit_reference_record_hit. */
+oit_status oit_reference_build_scene(RTCDevice dev, const oit_mesh *mesh, RTCScene *out,
+                                     oit_error *err);
+/* Traces one ray from org along the unit dir through scene; leaves its
+ * hits in rc, de-duplicated and sorted by prim, and returns their count. */
+size_t oit_reference_trace(RTCScene scene, ray_ctx *rc, const double org[3], const double dir[3]);
 
 /* Embree's intersect filter: records every hit of the ray and rejects it,
  * so that traversal visits the whole ray. */

@@ -43,4 +43,5 @@ const oit_method oit_method_reference = {
     .render = reference_render,
     .destroy = free,
     .renderer = reference_renderer,
+    .pick = oit_reference_pick,
 };

@@ -79,38 +79,6 @@ static size_t dedupe_hits(hit_rec *h, size_t n)
     return m;
 }
 
-/* The ray through image point (px, py) in pixels, the centre of pixel
- * (x, y) being (x + 0.5, y + 0.5): its origin (the eye; orthographic: the
- * point of the near plane) and unit direction. */
-static void pixel_ray(const ray_basis *b, double px, double py, int w, int h, double org[3],
-                      double dir[3])
-{
-    double sx, sy;
-    if (b->windowed || b->ortho) {
-        sx = b->win[0] + (b->win[1] - b->win[0]) * (px / w);
-        sy = b->win[3] - (b->win[3] - b->win[2]) * (py / h);
-    } else {
-        sx = (px / w * 2.0 - 1.0) * b->tan_half_y * b->aspect;
-        sy = (1.0 - py / h * 2.0) * b->tan_half_y;
-    }
-    if (b->ortho) {
-        for (int k = 0; k < 3; k++) {
-            org[k] = b->eye[k] + b->znear * b->forward[k] + sx * b->right[k] + sy * b->up[k];
-            dir[k] = b->forward[k];
-        }
-        return;
-    }
-    double len2 = 0.0;
-    for (int k = 0; k < 3; k++) {
-        org[k] = b->eye[k];
-        dir[k] = b->forward[k] + sx * b->right[k] + sy * b->up[k];
-        len2 += dir[k] * dir[k];
-    }
-    double inv = 1.0 / sqrt(len2);
-    for (int k = 0; k < 3; k++)
-        dir[k] *= inv;
-}
-
 static void make_ray(const double org[3], const double dir[3], struct RTCRayHit *rh)
 {
     memset(rh, 0, sizeof *rh);
@@ -129,11 +97,7 @@ static void make_ray(const double org[3], const double dir[3], struct RTCRayHit 
 
 static int depth_kept(const ref_job *job, double t, const double dir[3])
 {
-    const ray_basis *b = &job->basis;
-    double depth = t * (dir[0] * b->forward[0] + dir[1] * b->forward[1] + dir[2] * b->forward[2]);
-    if (b->ortho)
-        depth += b->znear;
-    return depth >= job->cam->znear && depth <= job->cam->zfar;
+    return oit_ray_depth_kept(&job->basis, t, dir);
 }
 
 /* The transmittance a fragment arriving now would be tested against by an
@@ -180,17 +144,22 @@ static uint32_t composite_hits(const ref_job *job, const hit_rec *hits, size_t n
     return kept;
 }
 
+size_t oit_reference_trace(RTCScene scene, ray_ctx *rc, const double org[3], const double dir[3])
+{
+    struct RTCRayHit rh;
+    make_ray(org, dir, &rh);
+    rc->n = 0;
+    rtcIntersect1(scene, &rc->rtc, &rh);
+    return dedupe_hits(rc->hits, rc->n);
+}
+
 /* Traces one ray; leaves its de-duplicated hits in wk->ray sorted by prim
  * and returns their count. */
 static size_t trace_ray(ref_worker *wk, double px, double py, double org[3], double dir[3])
 {
     ref_job *job = wk->job;
-    pixel_ray(&job->basis, px, py, job->out->width, job->out->height, org, dir);
-    struct RTCRayHit rh;
-    make_ray(org, dir, &rh);
-    wk->ray.n = 0;
-    rtcIntersect1(job->scene, &wk->ray.rtc, &rh);
-    return dedupe_hits(wk->ray.hits, wk->ray.n);
+    oit_ray_basis_pixel(&job->basis, px, py, job->out->width, job->out->height, org, dir);
+    return oit_reference_trace(job->scene, &wk->ray, org, dir);
 }
 
 /* Kept prims of the hits (sorted by prim) into wk->prims; returns the count
@@ -237,44 +206,17 @@ static int hit_set_changes(ref_worker *wk, int x, int y, size_t centre_n)
     return 0;
 }
 
-/* Whether the section planes keep the hit: its point is where the pixel's
- * ray meets the triangle's plane at the t the key is made of (shade.c
- * oit_depth_key, before quantising), as the fragment stage's oit_clipped()
- * finds it, so that both test the same float point. */
-static int clip_keeps(const ref_job *job, const float n[3], float d, const float o[3],
-                      const float dir[3], float t_hit)
-{
-    float nd = n[0] * dir[0] + n[1] * dir[1] + n[2] * dir[2];
-    float t = t_hit;
-    if (fabsf(nd) >= OIT_DEPTH_GRAZING) {
-        float tp = d / nd;
-        if (tp > 0.0f && isfinite(tp))
-            t = tp;
-    }
-    return oit_clip_keeps(job->clip_count, job->clip_eye, o, dir, t);
-}
-
 /* Each hit's sort key from its triangle's plane (shade.h), computed as the
  * GL methods do: the normal rotated into view space by the float view
  * matrix, the pixel's view-space ray from the ray map, so that both sides
  * round alike where they can. */
 static void key_hits(const ref_job *job, hit_rec *h, size_t n, int x, int y)
 {
-    float dir[3], o[3];
-    oit_view_pixel_ray(job->ray_map, x, y, job->out->height, dir);
-    oit_view_pixel_origin(job->org_map, job->org_z, x, y, job->out->height, o);
-    const float *m = job->view_matrix;
-    for (size_t i = 0; i < n; i++) {
-        float nw[3], nv[3], d;
-        oit_depth_plane(&job->mesh->tris[h[i].prim], job->cam->eye, nw, &d);
-        for (int r = 0; r < 3; r++)
-            nv[r] = m[r] * nw[0] + m[4 + r] * nw[1] + m[8 + r] * nw[2];
-        /* d - n . o as the shaders compute it: d itself for a perspective
-         * (o = 0). */
-        float no = nv[0] * o[0] + nv[1] * o[1] + nv[2] * o[2];
-        h[i].key = oit_depth_key(nv, d - no, dir, h[i].t);
-        h[i].clipped = job->clip_count > 0 && !clip_keeps(job, nv, d - no, o, dir, h[i].t);
-    }
+    oit_ray_pixel p;
+    oit_ray_pixel_at(&job->keying, x, y, &p);
+    for (size_t i = 0; i < n; i++)
+        h[i].clipped = !oit_ray_key_hit(&job->keying, &p, &job->mesh->tris[h[i].prim], h[i].t,
+                                        &h[i].key);
 }
 
 /* Drops the hits a section plane removes; returns how many are left. */
@@ -297,7 +239,7 @@ static void trace_pixel(ref_worker *wk, int x, int y)
     if (job->ambiguous && !save_centre_prims(wk, n, dir))
         wk->ray.oom = 1;
     key_hits(job, wk->ray.hits, n, x, y);
-    if (job->clip_count > 0)
+    if (job->keying.clip_count > 0)
         n = drop_clipped(wk->ray.hits, n);
     if (n > 1)
         sort_key_prim(wk->ray.hits, n);
