@@ -187,37 +187,74 @@ def methods():
 class Renderer(_Closable):
     """An offscreen renderer: its own headless GL context and an oit_renderer
     (oit_offscreen_create). Options as in oit_renderer_desc; 0/None means the
-    library's default. Use it from one thread."""
+    library's default. Use it from one thread.
+
+    stats: None before the first render, then a dict of the last render's
+    figures (liboit's oit_draw_stats, include/oit/draw_stats.h, field for
+    field): numbers as int or
+    float, gpu_phase_ms a list, and names as str, None where the library
+    has none: stats["method"] and stats["device"] what drew ("dfb",
+    "llvmpipe (...)"), stats["capture"] the capture that ran,
+    stats["capture_asked"] the capture= given, stats["capture_slots"]
+    "stencil" or "array" (None: no K-slot fill ran), stats["capture_fallback"]
+    why auto did not take stencil ("" when it did), stats["choice"] and
+    stats["choice_why"] pack="auto"'s choice, stats["budget_source"] where
+    the GPU budget came from."""
 
     def __init__(self, shading="transparent", alpha=None, default_rgb=None, absorption=None,
                  K=0, epsilon=0.0, pack="auto", upload_budget=0, cache_budget=0,
                  colour_space="srgb", gpu_budget=0, capture="auto", see_through=False,
                  method=None):
-        """method: what draws (oit_renderer_desc.method, oitstream --method):
-        None (default) streams a part file and draws a mesh with DFB; else a
-        name of methods(): "reference" (Embree, on the CPU), "dfb", "wboit",
-        ... for meshes, "stream" for part files. stats["method"] and
-        stats["device"] say what drew.
-        pack, upload_budget, cache_budget, gpu_budget, K and epsilon take
-        what oitstream's --pack, --upload-budget, --cache-budget, --gpu-budget,
-        --max-layers and --epsilon take: 0 is the default, cache_budget="off"
-        no cache.
+        """method: what draws (oit_renderer_desc.method): None (default)
+        streams a part file and draws a mesh with DFB; else a name of
+        methods(): "reference" (Embree, on the CPU), "dfb", "wboit", ... for
+        meshes, "stream" for part files. stats["method"] and stats["device"]
+        say what drew.
+        shading: "transparent" (default) or "translucent" (Beer-Lambert
+        absorption and Fresnel); alpha, default_rgb (r, g, b) and absorption
+        its constants, None for the library's (desc has them after a render).
         colour_space: "srgb" (default) composites the sRGB-encoded colours as
         given; "linear" decodes them (exact sRGB EOTF), composites in linear
-        light and returns the result sRGB-encoded (oitstream --colour-space).
-        capture: how a part file's K-slot fills are made (oitstream
-        --capture): "auto" (default: the stencil-routed A-buffer where its
-        self-test passes on this driver, else array slots), "stencil" (that
-        or an error at the first render, with the self-test's reason),
-        "array", or "compute" (no K-slot fill: every pack rasterized, sorted
-        and composited in compute shaders); the image is the same, and stats["capture_slots"] and
-        stats["capture_fallback"] say what ran and why.
+        light and returns the result sRGB-encoded.
+        K: fragments a pixel per batch of the K-slot captures, 2..16 (0, the
+        default: the part file's K, else 16).
+        epsilon: in [0, 1); the stream drops fragments behind pixels whose
+        transmittance fell below it and skips parts whose whole footprint
+        did (error <= epsilon a channel); 0 (default): exact. For method
+        "f2b" and "guarded", their thresholds (0: theirs, 0.02 and 0.0025).
+        pack: how a part file's parts are cut into packs, each captured as
+        one batch: "auto" (default: "first-k" or "counted", whichever
+        measures faster on the view), "counted" (cut by upload bytes, each
+        counted, stored and sorted per pixel: no layer limit), "first-k"
+        (as counted, drawn once into K slots a pixel, a second pass only for
+        pixels that got more), "disjoint" (K slots a pixel: parts whose
+        screen rectangles miss each other) or "budget" (K slots a pixel: the
+        layer bounds per tile stay <= K); stats["choice"] says what auto took.
+        upload_budget, cache_budget, gpu_budget: bytes of the upload ring
+        (>= 64K), of the cache that keeps uploaded parts for later renders
+        (>= 64K; "off": no cache) and of the GPU memory of both and the
+        capture together (>= 1M); 0 (default): the library's choice
+        (stats["ring_budget"], stats["cache_budget"], stats["gpu_budget"]).
+        capture: how a part file's K-slot fills are made, for "disjoint" and
+        "budget" packs and the first pass of "first-k" (a "counted" pack has
+        none): "auto" (default): "stencil" where its self-test passes on
+        this driver at K, else "array"; "stencil": the stencil-routed
+        A-buffer (MSAA samples filled in order by the stencil), or an
+        OitError at the first render with the self-test's reason (llvmpipe
+        does not route per sample); "array": slots through an atomic
+        counter; "compute": no K-slot fill and no layer limit, every pack
+        binned into tiles, rasterized, ordered and composited in compute
+        shaders (pack="auto" then cuts counted packs). The image is the same
+        whichever runs; stats["capture_slots"] says which fill ran and
+        stats["capture_fallback"] why auto did not take stencil.
         see_through: False (default): a model's own alpha, and its opaque
         triangles (glTF OPAQUE and MASK materials, MTL d 1) hide what is
         behind them; True: every triangle takes alpha (its colours kept),
-        as oitstream --see-through, so what they hid is drawn too.
-        stats["see_through"] and stats["opaque"] (1 when opaque triangles
-        hid what is behind them) say what the last render did."""
+        so what they hid is drawn too. stats["see_through"] and
+        stats["opaque"] (1 when opaque triangles hid what is behind them)
+        say what the last render did.
+        Each option is oitstream's of the same name (K: --max-layers), so a
+        command line carries over."""
         if colour_space not in _COLOUR_SPACES:
             raise ValueError(f"colour_space: {colour_space!r}, expected srgb or linear")
         if shading not in _SHADINGS:
@@ -282,20 +319,21 @@ class Renderer(_Closable):
     def render(self, scene, size=(512, 512), view=None, dtype=np.uint8, background=None,
                clip=None, up=None, azimuth=None, elevation=None):
         """The image of scene (a Scene) as a (height, width, 4) array, uint8
-        or float32 (dtype); size is (width, height), as oitstream --size WxH.
+        or float32 (dtype); size is (width, height). Afterwards, self.stats
+        holds the render's figures (the class's docstring says which).
         view: None (the tools' default view of the scene's bounds), a dict
         with eye, target and optional up, fovy, znear, zfar (the scene's
         coordinates; without eye and target the default view about up,
         which must then be +x, +y or +z), or a dict with view and
         projection 4x4 matrices as numpy writes them (v' = M @ v).
-        up ("x", "y" or "z"), azimuth and elevation (degrees) are
-        oitstream's --up, --azimuth and --elevation: the default view
-        (up "y", azimuth 0, elevation 20) turned, computed by liboit
-        (oit_offscreen_default_view); they take view=None.
+        up ("x", "y" or "z": the model's up axis), azimuth and elevation
+        (degrees) turn the default view (up "y", azimuth 0, elevation 20),
+        computed by liboit (oit_offscreen_default_view), as oitstream's
+        options of those names do; they take view=None.
         background: RGBA, default opaque white. clip: section planes, a
         list of up to 6 (nx, ny, nz, d) in the scene's coordinates, each
-        keeping what lies where nx*x + ny*y + nz*z + d >= 0 (oitstream
-        --clip; liboit checks them: oit_frame.clip)."""
+        keeping what lies where nx*x + ny*y + nz*z + d >= 0 (liboit checks
+        them: oit_frame.clip)."""
         w, h = (int(size[0]), int(size[1]))
         v = L.OffscreenView()
         v.width, v.height = w, h
@@ -324,8 +362,7 @@ class Renderer(_Closable):
         _check(L.lib().oit_offscreen_render(self._h, scene._handle(), ctypes.byref(v),
                                             out.ctypes.data, out.nbytes, ctypes.byref(stats),
                                             ctypes.byref(err)), err)
-        self.stats = {name: getattr(stats, name) for name, _ in L.DrawStats._fields_}
-        self.stats["gpu_phase_ms"] = list(stats.gpu_phase_ms)
+        self.stats = _stats_dict(stats)
         return out
 
     def _release(self, scene):
@@ -336,6 +373,17 @@ class Renderer(_Closable):
         if self._h:
             L.lib().oit_offscreen_destroy(self._h)
             self._h = None
+
+
+def _stats_dict(stats):
+    """oit_draw_stats as a dict: its strings (bytes through ctypes) as str,
+    NULL as None, gpu_phase_ms a list."""
+    out = {}
+    for name, _ in L.DrawStats._fields_:
+        v = getattr(stats, name)
+        out[name] = v.decode(errors="replace") if isinstance(v, bytes) else v
+    out["gpu_phase_ms"] = list(stats.gpu_phase_ms)
+    return out
 
 
 def _set_view(v, view):
@@ -381,7 +429,7 @@ def _set_clip(v, clip):
 
 
 def _set_default_view(v, scene, view, up, azimuth, elevation):
-    """v's camera as oitstream --up/--azimuth/--elevation set it."""
+    """v's camera: the default view turned by up, azimuth and elevation."""
     if view is not None:
         raise ValueError("up/azimuth/elevation turn the default view: give them with "
                          "view=None (a view dict's own up turns it too)")
@@ -414,10 +462,12 @@ def render(model_path, size=(512, 512), view=None, dtype=np.uint8, background=No
            elevation=None, capture="auto", see_through=False):
     """Renders a mesh file (in core) or part file (streamed) into a
     (height, width, 4) array; see Renderer.render for view, background, up,
-    azimuth and elevation (oitstream's --up, --azimuth, --elevation),
-    Renderer for colour_space, capture and see_through (oitstream
-    --see-through: opaque materials drawn with the default alpha too);
-    clip: section planes."""
+    azimuth, elevation and clip (section planes), and Renderer for shading,
+    colour_space and see_through (True: opaque materials drawn with the
+    default alpha too). capture: how a part file's K-slot fills are made,
+    "auto" (default: "stencil" where its self-test passes on this driver,
+    else "array"), "stencil", "array" or "compute" (Renderer says what each
+    does); the same image whichever."""
     r = _default_renderer(shading, colour_space, capture, see_through)
     with Scene.open(model_path) as s:
         return r.render(s, size=size, view=view, dtype=dtype, background=background, up=up,
