@@ -91,17 +91,16 @@ gen() {
 # ---- reading results -----------------------------------------------------
 
 # col RUN METHOD COLUMN: a summary figure of results.csv ("" when absent).
-# Columns 1-12 hold no commas; reason (13) may, so the last two count from
-# the end.
+# Columns 1-12 hold no commas; reason (13) may, so the columns after it
+# count from the end (the header's own count, whatever columns it has).
 col() {
     f="$RUNS/$1/results.csv"
     [ -s "$f" ] || return 0
     awk -F, -v m="$2" -v name="$3" '
-        NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
+        NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; h = NF; next }
         $1 == "summary" && $2 == m {
-            if (name == "triangles") print $(NF - 1)
-            else if (name == "view_max_layers") print $NF
-            else print $c[name]
+            if (!(name in c)) exit
+            print (c[name] > 13 ? $(NF - (h - c[name])) : $c[name])
             exit
         }' "$f"
 }
@@ -110,7 +109,8 @@ col() {
 avg_layers() {
     f="$RUNS/$1/results.csv"
     [ -s "$f" ] || return 0
-    awk -F, '$1 == "view" && !($3 in d) { d[$3] = $NF; s += $NF; n++ }
+    awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "view_max_layers") k = NF - i; next }
+             $1 == "view" && !($3 in d) { d[$3] = $(NF - k); s += $(NF - k); n++ }
              END { if (n) printf "%.1f", s / n }' "$f"
 }
 
@@ -146,7 +146,7 @@ json() { sed -n "s/.*\"$1\": *\([-0-9.eE]*\).*/\1/p" "$2" | head -n 1; }
 # why RUN METHOD: the reason a method did not run, short
 why() {
     f="$RUNS/$1/results.csv"
-    [ -s "$f" ] && grep "^summary,$2,,not_runnable," "$f" | sed 's/^[^"]*"//; s/",[0-9]*,[0-9]*$//' |
+    [ -s "$f" ] && grep "^summary,$2,,not_runnable," "$f" | sed 's/^[^"]*"//; s/",[0-9][^"]*$//' |
         cut -c1-110
 }
 

@@ -12,6 +12,10 @@
 #    another model (other count, other box, same count and box but another
 #    surface) is refused with exit 3 and names both files.
 #  - FILE.oitp with its source beside it, without it, and with --mesh.
+#  - beside pct_over_1_255, pct_over_1_255_outside_ambiguity (the reference's
+#    ambiguity mask left out): ~0 for the exact methods, not for wboit, in
+#    results.csv, results.json and report.md with what each means.
+#  - MODEL alone: the default methods into ./oitbench-MODEL.
 #  - --scheme fast and --save-parts; usage errors exit 2.
 # Prints the summary rows.
 set -u
