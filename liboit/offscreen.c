@@ -409,3 +409,16 @@ oit_status oit_offscreen_render(oit_offscreen *o, oit_scene *scene,
     }
     return OIT_OK;
 }
+
+oit_status oit_offscreen_pick(oit_offscreen *o, oit_scene *scene, const oit_offscreen_view *view,
+                              int x, int y, oit_pick_layer *layers, size_t capacity,
+                              size_t *count, oit_error *err)
+{
+    if (!o || !scene || !view)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "oit_offscreen_pick: NULL argument");
+    oit_frame frame = {0};
+    oit_status s = make_frame(scene, view, &frame, err);
+    if (s == OIT_OK)
+        s = oit_renderer_pick(o->renderer, scene, &frame, x, y, layers, capacity, count, err);
+    return s;
+}

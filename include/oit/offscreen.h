@@ -137,6 +137,14 @@ OIT_API oit_status oit_offscreen_render(oit_offscreen *o, oit_scene *scene,
                                         const oit_offscreen_view *view, void *pixels,
                                         size_t pixels_bytes, oit_draw_stats *stats, oit_error *err);
 
+/* The layers of pixel (x, y) of view (y = 0 the top row, as the rendered
+ * image's): oit_renderer_pick (liboit.h) on view's camera and section
+ * planes. Needs no GL; renders nothing. */
+OIT_API oit_status oit_offscreen_pick(oit_offscreen *o, oit_scene *scene,
+                                      const oit_offscreen_view *view, int x, int y,
+                                      oit_pick_layer *layers, size_t capacity, size_t *count,
+                                      oit_error *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -81,14 +81,15 @@ static oit_status pick_all(const oit_pick_request *rq, oit_renderer *r, oit_scen
     return oit_renderer_pick(r, scene, &fr, rq->x, rq->y, *layers, *n, &again, err);
 }
 
-oit_status oit_pick_print(const oit_pick_request *rq, FILE *out, oit_error *err)
+oit_status oit_pick_get(const oit_pick_request *rq, oit_pick_layer **layers, size_t *n,
+                        oit_error *err)
 {
     oit_renderer_desc d = {.method = rq->part_file ? NULL : rq->method};
     oit_run_shading(&rq->view->shading, &d);
     oit_scene *scene = NULL;
     oit_renderer *r = NULL;
-    oit_pick_layer *layers = NULL;
-    size_t n = 0;
+    *layers = NULL;
+    *n = 0;
     oit_status s = rq->part_file
                        ? oit_scene_open(rq->model, &(oit_scene_desc){.defer_validation = 1},
                                         &scene, err)
@@ -96,11 +97,24 @@ oit_status oit_pick_print(const oit_pick_request *rq, FILE *out, oit_error *err)
     if (s == OIT_OK)
         s = oit_renderer_create(&d, &r, err);
     if (s == OIT_OK)
-        s = pick_all(rq, r, scene, &layers, &n, err);
+        s = pick_all(rq, r, scene, layers, n, err);
+    oit_renderer_destroy(r);
+    oit_scene_close(scene);
+    if (s != OIT_OK) {
+        free(*layers);
+        *layers = NULL;
+        *n = 0;
+    }
+    return s;
+}
+
+oit_status oit_pick_print(const oit_pick_request *rq, FILE *out, oit_error *err)
+{
+    oit_pick_layer *layers = NULL;
+    size_t n = 0;
+    oit_status s = oit_pick_get(rq, &layers, &n, err);
     if (s == OIT_OK)
         s = write_json(rq, layers, n, out, err);
     free(layers);
-    oit_renderer_destroy(r);
-    oit_scene_close(scene);
     return s;
 }

@@ -1,5 +1,5 @@
-/* oitstream --pick X,Y: the layers of one pixel (oit_renderer_pick,
- * oit/liboit.h) as JSON on stdout. */
+/* The layers of one pixel (oit_renderer_pick, oit/liboit.h) for
+ * oitstream --pick X,Y, as JSON, and for the viewer's I key and click. */
 #ifndef OIT_OITSTREAM_PICK_JSON_H
 #define OIT_OITSTREAM_PICK_JSON_H
 
@@ -17,6 +17,10 @@ typedef struct oit_pick_request {
     int x, y;
 } oit_pick_request;
 
+/* Every layer into *layers (allocated, n of them; NULL when none); errors
+ * name the model. */
+oit_status oit_pick_get(const oit_pick_request *rq, oit_pick_layer **layers, size_t *n,
+                        oit_error *err);
 /* Picks and prints; errors name the model. */
 oit_status oit_pick_print(const oit_pick_request *rq, FILE *out, oit_error *err);
 

@@ -13,6 +13,7 @@ void viewer_push_key(viewer *v, char key)
 
 void viewer_moved(viewer *v)
 {
+    v->picked = 0; /* its layers were another view's */
     v->moved = 1;
     v->last_move = glfwGetTime();
 }
@@ -90,6 +91,8 @@ void viewer_on_button(GLFWwindow *w, int button, int action, int mods)
     (void)mods;
     viewer *v = glfwGetWindowUserPointer(w);
     int which = button == GLFW_MOUSE_BUTTON_LEFT ? 1 : button == GLFW_MOUSE_BUTTON_RIGHT ? 2 : 0;
+    if (which == 1 && (action == GLFW_PRESS || action == GLFW_RELEASE))
+        viewer_pick_button(v, action == GLFW_PRESS);
     if (action == GLFW_PRESS && which)
         v->drag = which;
     else if (action == GLFW_RELEASE && which == v->drag)
@@ -439,6 +442,9 @@ void viewer_handle_key(viewer *v, char key)
         v->entry_len = 0;
         v->entry[0] = '\0';
         v->recompose = 1;
+        break;
+    case 'I':
+        viewer_pick_at(v, v->mouse_x, v->mouse_y);
         break;
     case 'L':
         v->show_layers = !v->show_layers;

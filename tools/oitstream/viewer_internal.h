@@ -35,6 +35,7 @@
 enum { MAX_METHODS = 16, KEYED_METHODS = 10, KEY_QUEUE = 64, KEY_ESC = 27 };
 enum { SHOWN_NONE = 0, SHOWN_EXACT = 1, SHOWN_PREVIEW = 2 };
 enum { DEFAULT_STILL_MS = 200, PREVIEW_MAX_SCALE = 4 };
+enum { VIEWER_PICK_ROWS = 12 }; /* layers the pick's panel lists */
 /* auto: preview when an exact frame takes longer than this (25 fps) */
 #define AUTO_PREVIEW_MS 40.0
 #define MESSAGE_SECONDS 5.0
@@ -93,6 +94,12 @@ typedef struct viewer {
     double last_exact_wall_ms, last_preview_wall_ms, last_wall_ms;
     double last_present_ms; /* overlays, upload, blit and swap of the last image shown */
     int help;
+    /* I, or a click: the layers under the cursor (viewer_pick.c);
+     * press_time when the left button went down */
+    double press_time;
+    int picked, pick_x, pick_y;
+    size_t pick_count;
+    oit_pick_layer pick[VIEWER_PICK_ROWS];
     int entering, skip_char, open_pending;
     char entry[512];
     size_t entry_len;
@@ -137,6 +144,10 @@ void viewer_on_scroll(GLFWwindow *w, double dx, double dy);
 void viewer_open_entry(viewer *v);
 void viewer_push_key(viewer *v, char key);
 void viewer_save_screenshot(viewer *v);
+
+/* viewer_pick.c: the layers under the cursor */
+void viewer_pick_at(viewer *v, double wx, double wy);
+void viewer_pick_button(viewer *v, int pressed);
 
 /* viewer_overlay.c: the status line and the panels drawn over the image */
 oit_status viewer_compose(viewer *v, oit_error *err);

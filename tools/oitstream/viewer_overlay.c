@@ -206,6 +206,7 @@ static void help_panel(const viewer *v, panel *p)
     panel_add(p, kWhite, "X               section plane: one through the centre facing");
     panel_add(p, kWhite, "                you, or the planes off / on");
     panel_add(p, kWhite, "[, ]            move section plane 1 back, forward");
+    panel_add(p, kWhite, "I, left click   the layers under the cursor (stdout too)");
     panel_add(p, kWhite, "R               reset the camera");
     panel_add(p, kWhite, "O               open a file: type its path, Enter");
     panel_add(p, kWhite, "                (or drop a file on the window)");
@@ -213,6 +214,37 @@ static void help_panel(const viewer *v, panel *p)
     panel_add(p, kWhite, "Q, Esc          quit");
     panel_add(p, kGrey, "moving shows a preview; still for %d ms, the exact image",
               v->desc->still_ms > 0 ? v->desc->still_ms : DEFAULT_STILL_MS);
+}
+
+/* The pick's layers (viewer_pick.c), each row in its layer's colour. */
+static void pick_panel(const viewer *v, panel *p)
+{
+    p->n = 0;
+    panel_add(p, kAmber, "pick %d,%d: %zu layer%s (I or click; stdout lists all)", v->pick_x,
+              v->pick_y, v->pick_count, v->pick_count == 1 ? "" : "s");
+    panel_add(p, kGrey, "  #  depth      alpha  T before  part   source");
+    size_t rows = v->pick_count < VIEWER_PICK_ROWS ? v->pick_count : VIEWER_PICK_ROWS;
+    for (size_t i = 0; i < rows; i++) {
+        const oit_pick_layer *l = &v->pick[i];
+        char part[16] = "-";
+        if (l->part != OIT_PICK_NO_PART)
+            snprintf(part, sizeof part, "%u", l->part);
+        panel_add(p, l->colour, "%3zu  %-9.5g  %.3f  %.4f    %-6s %llu", i, l->depth, l->alpha,
+                  l->transmittance[0], part, (unsigned long long)l->source_triangle);
+    }
+    if (v->pick_count > rows)
+        panel_add(p, kGrey, "  ... %zu more", v->pick_count - rows);
+}
+
+/* A cross on the picked pixel, in the shown image's scale. */
+static void pick_marker(const viewer *v, oit_image *img)
+{
+    int x = (int)((v->pick_x + 0.5) * img->width / v->view.width);
+    int y = (int)((v->pick_y + 0.5) * img->height / v->view.height);
+    oit_text_box(img, x - 6, y, 5, 1, kAmber);
+    oit_text_box(img, x + 2, y, 5, 1, kAmber);
+    oit_text_box(img, x, y - 6, 1, 5, kAmber);
+    oit_text_box(img, x, y + 2, 1, 5, kAmber);
 }
 
 /* v->shown: v->base with the status line, the help, the open prompt and
@@ -242,6 +274,13 @@ oit_status viewer_compose(viewer *v, oit_error *err)
     if (v->help) {
         help_panel(v, &p);
         panel_draw(img, &p, 4 * scale, v->status_rows + 4 * scale, 0);
+    }
+    if (v->picked) {
+        pick_marker(v, img);
+        if (!v->help) {
+            pick_panel(v, &p);
+            panel_draw(img, &p, 4 * scale, v->status_rows + 4 * scale, 0);
+        }
     }
     int bottom = img->height - 4 * scale;
     if (v->entering) {
