@@ -282,20 +282,22 @@ static void fill_stats(const oit_renderer *r, const oit_scene *scene, const oit_
 /* One band's (or the whole frame's) image through the streamer's resolve,
  * as the tools' stream method renders it. */
 static oit_status render_image(oit_renderer *r, const oit_view *v, oit_image *out,
-                               oit_frame_stats *fs, oit_stream_frame_stats *ss, oit_error *err)
+                               uint32_t *counts, oit_frame_stats *fs,
+                               oit_stream_frame_stats *ss, oit_error *err)
 {
     static const oit_opaque_depth none = {0};
     r->bands++;
     oit_streamer_set_gpu_timer(r->streamer, r->timer);
     oit_streamer_set_opaque(r->streamer, &none);
-    return oit_streamer_render(r->streamer, v, out, fs, ss, err);
+    return oit_streamer_render_counts(r->streamer, v, out, counts, fs, ss, err);
 }
 
 /* A part file's image in bands of rows whose per-pixel state fits one
  * storage binding (view/render/gl/band.h), each copied into its rows of rgba,
  * as the method interface bands an in-core method's (view/render/method.c). */
 static oit_status image_bands(oit_renderer *r, const oit_view *view, float *rgba,
-                              oit_frame_stats *fs, oit_stream_frame_stats *ss, oit_error *err)
+                              uint32_t *counts, oit_frame_stats *fs, oit_stream_frame_stats *ss,
+                              oit_error *err)
 {
     uint64_t px = oit_streamer_pixel_bytes(view);
     int rows = 0, w = view->width, h = view->height;
@@ -315,7 +317,8 @@ static oit_status image_bands(oit_renderer *r, const oit_view *view, float *rgba
             part = (oit_image){.width = w, .height = h, .rgba = rgba};
         oit_frame_stats bfs = {0};
         oit_stream_frame_stats bss = {0};
-        st = render_image(r, &band, &part, &bfs, &bss, err);
+        st = render_image(r, &band, &part, counts ? counts + (size_t)y0 * w : NULL, &bfs,
+                          &bss, err);
         if (st == OIT_OK && !direct)
             memcpy(rgba + (size_t)y0 * w * 4, part.rgba,
                    (size_t)w * (size_t)(y1 - y0) * 4 * sizeof *rgba);
@@ -400,7 +403,7 @@ static oit_status gl_pixels(oit_renderer *r, oit_scene *scene, const oit_view *v
     if (st == OIT_OK && scene->pf) {
         oit_gpu_timer_begin_frame(r->timer);
         r->bands = 0;
-        st = image_bands(r, view, px->rgba, fs, ss, err);
+        st = image_bands(r, view, px->rgba, px->counts, fs, ss, err);
         frame_end(r, scene, st, t0, oit_gpu_timer_end_frame(r->timer));
     } else if (st == OIT_OK) {
         st = run_pixels(r, view, px, fs, ss, err);

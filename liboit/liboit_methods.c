@@ -24,7 +24,7 @@ static const oit_render_method_info methods[] = {
     {"reference", COUNTS | OIT_RENDER_METHOD_AMBIGUITY | EPS | CLIP},
     {"array", GL | CLIP},
     {"stencil", GL | CLIP},
-    {"stream", GL | OIT_RENDER_METHOD_PART_FILE | EPS | CLIP},
+    {"stream", GL | COUNTS | OIT_RENDER_METHOD_PART_FILE | EPS | CLIP},
     {"unsorted", GL | CLIP},
     {"wboit", GL | CLIP},
     {"pll", GL | CLIP},

@@ -6,7 +6,7 @@
  * and the default white. Its oit_draw_stats carry the streamer's own
  * figures of the frame (order and pack time aside, which are clocks): the
  * second pass, the capture that ran and was asked for, the automatic
- * mode's choice, the readers. A program the caller deleted while current
+ * mode's choice, the readers; its per-pixel counts are DFB's. A program the caller deleted while current
  * (the streamer's here) is not bound again when liboit gives the GL state
  * back. Bad inputs fail with the documented status.
  *
@@ -196,6 +196,77 @@ static void check_draw_camera(oit_scene *scene, const oit_scene_info *info)
     oit_renderer_destroy(r);
 }
 
+/* The stream's per-pixel fragment counts (oit_pixels_desc.counts, the
+ * viewer's heat map): in each pack mode those DFB gives the file's
+ * triangles in core, pixel for pixel, adding up to the draw's fragments. */
+static void check_counts(oit_scene *scene, oit_partfile *pf, const oit_scene_info *info)
+{
+    oit_error err = {0};
+    oit_mesh mesh = {0};
+    CHECK(oit_partfile_load_mesh(pf, &mesh, &err) == OIT_OK, "counts: load: %s", err.message);
+    oit_camera cam = camera_of(info, 0);
+    oit_view v = tool_view(info, &cam, 0, NULL);
+    size_t n = (size_t)W * H;
+    uint32_t *want = calloc(n, sizeof *want), *got = malloc(n * sizeof *got);
+    float *rgba = malloc(n * 4 * sizeof *rgba);
+    oit_dfb *d = NULL;
+    oit_gpu_mesh *gm = NULL;
+    oit_image img = {0};
+    oit_frame_stats fs = {0};
+    CHECK(oit_dfb_create(&d, &err) == OIT_OK &&
+              oit_gpu_mesh_create(mesh.tris, mesh.count, 0, &gm, &err) == OIT_OK &&
+              oit_dfb_render(d, (const oit_gpu_mesh *const[]){gm}, 1, &v, &img, want, &fs,
+                             &err) == OIT_OK,
+          "counts: DFB: %s", err.message);
+    /* the last in bands of 20 rows, each band's counts in its rows (but
+     * for a pixel centre on a silhouette at a band's edge) */
+    static const oit_render_pack packs[] = {OIT_RENDER_PACK_AUTO, OIT_RENDER_PACK_COUNTED,
+                                            OIT_RENDER_PACK_FIRSTK, OIT_RENDER_PACK_BUDGET,
+                                            OIT_RENDER_PACK_AUTO};
+    size_t cases = sizeof packs / sizeof *packs;
+    for (size_t k = 0; k < cases; k++) {
+        oit_renderer *r = NULL;
+        oit_renderer_desc rd = {.pack = packs[k], .read_on_draw_thread = 1};
+        size_t allowed = 0;
+        if (k == cases - 1) {
+            rd.binding_limit = (uint64_t)W * oit_streamer_pixel_bytes(&v) * 20;
+            allowed = n / 200;
+        }
+        oit_frame_camera fc = oit_run_camera(&cam);
+        oit_frame f = {.viewport_width = W, .viewport_height = H, .camera = &fc};
+        oit_pixels_desc px = {.rgba = rgba, .rgba_bytes = n * 4 * sizeof *rgba, .counts = got};
+        oit_draw_stats st = {0};
+        memset(got, 0xff, n * sizeof *got);
+        oit_status s = oit_renderer_create(&rd, &r, &err);
+        if (s == OIT_OK)
+            s = oit_renderer_draw_pixels(r, scene, &f, &px, &st, &err);
+        CHECK(s == OIT_OK, "counts, pack %d: %s", (int)packs[k], err.message);
+        size_t differ = 0, first = n;
+        uint64_t sum = 0;
+        for (size_t i = 0; s == OIT_OK && i < n; i++) {
+            sum += got[i];
+            if (got[i] != want[i] && differ++ == 0)
+                first = i;
+        }
+        CHECK(s != OIT_OK || (differ <= allowed && sum == st.fragments && sum > 0 &&
+                              (allowed || sum == fs.fragments)),
+              "counts, pack %d%s: %zu of %zu pixels differ from DFB's (first %zu: %u against "
+              "%u); they add up to %llu, the draw's fragments %llu, DFB's %llu",
+              (int)packs[k], allowed ? " in bands" : "", differ, n, first,
+              first < n ? got[first] : 0,
+              first < n ? want[first] : 0, (unsigned long long)sum,
+              (unsigned long long)st.fragments, (unsigned long long)fs.fragments);
+        oit_renderer_destroy(r);
+    }
+    oit_image_free(&img);
+    oit_gpu_mesh_destroy(gm);
+    oit_dfb_destroy(d);
+    oit_mesh_free(&mesh);
+    free(want);
+    free(got);
+    free(rgba);
+}
+
 /* The file's triangles in core: liboit's image against DFB's. */
 static void check_in_core(oit_partfile *pf, const oit_scene_info *info)
 {
@@ -301,6 +372,7 @@ int main(int argc, char **argv)
     check_stream(ps.scene, ps.pf, &ps.info, OIT_RENDER_PACK_BUDGET, 0, 0, NULL);
     check_draw_camera(ps.scene, &ps.info);
     check_in_core(ps.pf, &ps.info);
+    check_counts(ps.scene, ps.pf, &ps.info);
     oit_partfile_close(ps.pf);
     oit_scene_close(ps.scene);
     return test_gl_verdict(ps.gl);

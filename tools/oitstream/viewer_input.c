@@ -296,6 +296,30 @@ static void toggle_shading(viewer *v)
 }
 
 
+/* L: the fragments-per-pixel heat map of the methods that count them; on
+ * one that counts none the image stays and the overlay says so, naming
+ * the keys of those that do. */
+static void toggle_heat_map(viewer *v)
+{
+    v->show_layers = !v->show_layers;
+    v->changed = 1;
+    if (!v->show_layers || (v->methods[v->current]->flags & OIT_RENDER_METHOD_COUNTS)) {
+        printf("viewer: layer heat map %s\n", v->show_layers ? "on" : "off");
+        return;
+    }
+    char which[160] = "", key[8];
+    size_t used = 0;
+    for (int i = 0; i < v->method_count && used < sizeof which; i++) {
+        if (!(v->methods[i]->flags & OIT_RENDER_METHOD_COUNTS))
+            continue;
+        viewer_key_label(i, key, sizeof key);
+        used += (size_t)snprintf(which + used, sizeof which - used, "%s%s %s", used ? ", " : "",
+                                 key, v->methods[i]->name);
+    }
+    viewer_say(v, "layer heat map: %s counts no fragments per pixel (%s do)",
+               v->methods[v->current]->name, which);
+}
+
 /* The bounding sphere and the framing of the current scene. */
 void viewer_fit_scene(viewer *v)
 {
@@ -447,14 +471,7 @@ void viewer_handle_key(viewer *v, char key)
         viewer_pick_at(v, v->mouse_x, v->mouse_y);
         break;
     case 'L':
-        v->show_layers = !v->show_layers;
-        v->changed = 1;
-        if (v->show_layers && !(v->methods[v->current]->flags & OIT_RENDER_METHOD_COUNTS))
-            viewer_say(v,
-                       "layer heat map: %s counts no layers per pixel (1 dfb and 2 reference do)",
-                       v->methods[v->current]->name);
-        else
-            printf("viewer: layer heat map %s\n", v->show_layers ? "on" : "off");
+        toggle_heat_map(v);
         break;
     case 'E':
         toggle_epsilon(v);

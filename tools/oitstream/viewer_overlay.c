@@ -94,6 +94,8 @@ static void status_fields(viewer *v, fields *f)
     }
     if (v->show_layers && (m->flags & OIT_RENDER_METHOD_COUNTS))
         field(f, "heat map");
+    else if (v->show_layers) /* L on, kept for a method that counts */
+        field(f, "heat map n/a");
     if (v->view.clip.count > 0)
         field(f, "section planes %d", v->view.clip.count);
     field(f, "%c up", viewer_axis_name(v->up_axis));
@@ -199,7 +201,7 @@ static void help_panel(const viewer *v, panel *p)
                                  v->methods[j]->name, j == v->current ? " *" : "");
     panel_add(p, kWhite, "M, N            next, previous method%s%s%s", used ? " (also " : "", more,
               used ? ")" : "");
-    panel_add(p, kWhite, "L               layer heat map (dfb, reference)");
+    panel_add(p, kWhite, "L               layer heat map (dfb, reference, stream)");
     panel_add(p, kWhite, "T               transparent / translucent");
     panel_add(p, kWhite, "E               early termination (stream)");
     panel_add(p, kWhite, "U               up axis y, z, x (now %c)", viewer_axis_name(v->up_axis));

@@ -391,7 +391,8 @@ static void finish_stats(const oit_streamer *s, const oit_packing *pk, oit_frame
 /* A frame that ends in the image out, or (state set) in the capture's state
  * buffer, *state. */
 static oit_status render(oit_streamer *s, const oit_view *view, oit_image *out, unsigned *state,
-                         oit_frame_stats *fs, oit_stream_frame_stats *ss, oit_error *err)
+                         uint32_t *counts, oit_frame_stats *fs, oit_stream_frame_stats *ss,
+                         oit_error *err)
 {
     oit_stream_frame_stats local;
     oit_frame_stats flocal;
@@ -426,7 +427,7 @@ static oit_status render(oit_streamer *s, const oit_view *view, oit_image *out, 
         oit_streamer_choice_stats(s, ss);
         if (st == OIT_OK)
             st = state ? oit_capture_end_gpu(s->capture, state, fs, err)
-                       : oit_capture_end(s->capture, out, fs, err);
+                       : oit_capture_end_counts(s->capture, out, counts, fs, err);
         again = st == OIT_OK && oit_capture_short(s->capture);
         waits += st == OIT_OK ? fs->host_waits + (uint32_t)again : 0;
         /* First-K's first frame sizes its pass-2 store by what the slots
@@ -478,12 +479,19 @@ void oit_stream_frame_stats_add(oit_stream_frame_stats *acc, const oit_stream_fr
 oit_status oit_streamer_render(oit_streamer *s, const oit_view *view, oit_image *out,
                                oit_frame_stats *fs, oit_stream_frame_stats *ss, oit_error *err)
 {
-    return render(s, view, out, NULL, fs, ss, err);
+    return render(s, view, out, NULL, NULL, fs, ss, err);
+}
+
+oit_status oit_streamer_render_counts(oit_streamer *s, const oit_view *view, oit_image *out,
+                                      uint32_t *counts, oit_frame_stats *fs,
+                                      oit_stream_frame_stats *ss, oit_error *err)
+{
+    return render(s, view, out, NULL, counts, fs, ss, err);
 }
 
 oit_status oit_streamer_render_gpu(oit_streamer *s, const oit_view *view, unsigned *state,
                                    oit_frame_stats *fs, oit_stream_frame_stats *ss,
                                    oit_error *err)
 {
-    return render(s, view, NULL, state, fs, ss, err);
+    return render(s, view, NULL, state, NULL, fs, ss, err);
 }

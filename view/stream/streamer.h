@@ -312,6 +312,11 @@ void oit_streamer_gpu_figure(oit_streamer *s, uint64_t gpu_tag, double gpu_ms);
  * may be NULL. */
 oit_status oit_streamer_render(oit_streamer *s, const oit_view *view, oit_image *out,
                                oit_frame_stats *fs, oit_stream_frame_stats *ss, oit_error *err);
+/* The same, with each pixel's fragment count (oit_capture_end_counts:
+ * width*height, row 0 at the top) into counts; NULL: none. */
+oit_status oit_streamer_render_counts(oit_streamer *s, const oit_view *view, oit_image *out,
+                                      uint32_t *counts, oit_frame_stats *fs,
+                                      oit_stream_frame_stats *ss, oit_error *err);
 /* The same without the read-back: *state receives the capture's per-pixel
  * state buffer (oit_capture_end_gpu), valid until the next render. */
 oit_status oit_streamer_render_gpu(oit_streamer *s, const oit_view *view, unsigned *state,

@@ -4,7 +4,7 @@
 # changes the frame the way the matching command-line option does:
 #   - the window's screenshot (no overlay) equals `--out` of the same view
 #   - the status line changes the top rows only, and some of them
-#   - L equals `--show layers`, T equals `--shading translucent`, the key
+#   - L equals `--show layers` (on the stream too), T equals `--shading translucent`, the key
 #     of "array" equals `--method array`, W moves the view and R restores it
 #   - Q stops the loop early with exit status 0; E reports no early termination
 #   - one key map for meshes and part files: key 1 is dfb and key 5 stream for
@@ -159,5 +159,22 @@ expect_equal "U vs --up z" upkey.png upz_ref.png
     --window-screenshot big.png >big.txt 2>&1 || { cat big.txt; fail "the 2048x2048 window exited with $?"; }
 "$S" big.oitp --size 2048x2048 --quiet --shading translucent --out big_ref.png || fail "headless 2048x2048"
 expect_equal "2048x2048 window vs headless" big.png big_ref.png
+
+# 8. L on a part file: the stream counts fragments per pixel, so its heat
+#    map is DFB's of the same triangles (000 stream, 001 its heat map); a
+#    method that counts none (wboit, key 7) says so on the image (002
+#    before L, 003 after).
+mkdir -p heat && cd heat || exit 1
+"$S" ../quads.oitp --window --no-overlay --size $SIZE --window-script "PLP" >heat.txt 2>&1 ||
+    { cat heat.txt; fail "the heat-map run exited with $?"; }
+"$S" ../quads.ply --window --no-overlay --size $SIZE --window-script "7PLP" >heat_wboit.txt 2>&1 ||
+    { cat heat_wboit.txt; fail "the wboit heat-map run exited with $?"; }
+cat heat.txt heat_wboit.txt
+expect_equal "L on the stream vs DFB's --show layers" oitstream_001.png ../heat.png
+expect_differ "L on the stream vs its colours" oitstream_001.png oitstream_000.png 1000
+grep -q "^viewer: layer heat map: wboit counts no fragments per pixel" heat_wboit.txt ||
+    fail "L on wboit does not say it counts none"
+expect_differ "the message of L on wboit on the image" oitstream_003.png oitstream_002.png 100
+cd .. || exit 1
 
 finish viewer

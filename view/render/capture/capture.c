@@ -316,8 +316,10 @@ oit_status oit_capture_batch_layers(oit_capture *c, const oit_gpu_mesh *const *m
 
 /* ---- the frame's end ------------------------------------------------------------ */
 
-/* Totals (and with write_out the final colours, into the output buffer
- * from its start) of the pixels [first, first + count). */
+/* Totals (and with write_out 1 the final colours, into the output buffer
+ * from its start) of the pixels [first, first + count); write_out 2: their
+ * fragment counts instead (a float in the first word of each 16 bytes), no
+ * totals. */
 static void end_pass(oit_capture *c, uint64_t first, uint64_t count, int write_out)
 {
     GLuint p = c->end_prog;
@@ -330,10 +332,32 @@ static void end_pass(oit_capture *c, uint64_t first, uint64_t count, int write_o
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
+/* The fragment counts of GL rows [y0, y1) into counts (row 0 at the top),
+ * through the output buffer buf (16 bytes a pixel, the count a float in
+ * the first word), after the band's colours were read. */
+static oit_status read_counts(oit_capture *c, GLuint buf, int y0, int y1, uint32_t *counts,
+                              oit_error *err)
+{
+    int w = c->view.width, h = c->view.height;
+    size_t row = (size_t)w * 16, words = (size_t)w * 4 * (size_t)(y1 - y0);
+    end_pass(c, (uint64_t)y0 * w, (uint64_t)(y1 - y0) * w, 2);
+    float *f = malloc(words * sizeof *f);
+    if (!f)
+        return oit_error_set(err, OIT_ERR_NOMEM, "capture: no memory to read %dx%d fragment "
+                             "counts", w, y1 - y0);
+    glGetNamedBufferSubData(buf, 0, (GLsizeiptr)(row * (size_t)(y1 - y0)), f);
+    for (int y = y0; y < y1; y++)
+        for (int x = 0; x < w; x++)
+            counts[(size_t)(h - 1 - y) * w + x] = (uint32_t)f[((size_t)(y - y0) * w + x) * 4];
+    free(f);
+    return OIT_OK;
+}
+
 /* Resolves the carried state against the background into out (oit_image_reserve: written in
  * place where it holds an image of the frame's size, else allocated), in bands of GL rows, as
  * many as the backend's output buffer holds, then reads the totals. */
-static oit_status read_output(oit_capture *c, oit_image *out, GLuint totals[4], oit_error *err)
+static oit_status read_output(oit_capture *c, oit_image *out, uint32_t *counts,
+                              GLuint totals[4], oit_error *err)
 {
     int w = c->view.width, h = c->view.height, made = 0;
     oit_status s = oit_image_reserve(out, w, h, &made, err);
@@ -351,7 +375,7 @@ static oit_status read_output(oit_capture *c, oit_image *out, GLuint totals[4], 
     uint64_t held = oit_capture_within_binding(c, o.cap, row);
     oit_capture_bind_within(c, OIT_BIND_OUT, o.buf, held);
     int band = (int)(held / row < (uint64_t)h ? held / row : (uint64_t)h);
-    for (int y0 = 0; y0 < h; y0 += band) {
+    for (int y0 = 0; s == OIT_OK && y0 < h; y0 += band) {
         int y1 = y0 + band < h ? y0 + band : h;
         oit_gpu_timer_mark(c->set.timer, OIT_GPU_RESOLVE);
         end_pass(c, (uint64_t)y0 * w, (uint64_t)(y1 - y0) * w, 1);
@@ -360,9 +384,12 @@ static oit_status read_output(oit_capture *c, oit_image *out, GLuint totals[4], 
         for (int y = y0; y < y1; y++)
             glGetNamedBufferSubData(o.buf, (GLintptr)((size_t)(y - y0) * row),
                                     (GLsizeiptr)row, out->rgba + (size_t)(h - 1 - y) * w * 4);
+        if (counts)
+            s = read_counts(c, o.buf, y0, y1, counts, err);
     }
     glGetNamedBufferSubData(c->buf[OIT_CAPTURE_TOTALS], 0, 16, totals);
-    s = oit_gl_check("capture: readback", err);
+    if (s == OIT_OK)
+        s = oit_gl_check("capture: readback", err);
     if (s != OIT_OK && made)
         oit_image_free(out);
     return s;
@@ -404,11 +431,17 @@ static void fill_stats(const oit_capture *c, const GLuint totals[4], oit_frame_s
 oit_status oit_capture_end(oit_capture *c, oit_image *out, oit_frame_stats *stats,
                            oit_error *err)
 {
+    return oit_capture_end_counts(c, out, NULL, stats, err);
+}
+
+oit_status oit_capture_end_counts(oit_capture *c, oit_image *out, uint32_t *counts,
+                                  oit_frame_stats *stats, oit_error *err)
+{
     oit_status s = finish_frame(c, err);
     if (s != OIT_OK)
         return s;
     GLuint totals[4];
-    s = read_output(c, out, totals, err);
+    s = read_output(c, out, counts, totals, err);
     glFinish();
     if (s == OIT_OK)
         c->frame.fragments = (uint64_t)totals[2] << 32 | totals[1];

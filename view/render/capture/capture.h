@@ -268,6 +268,11 @@ oit_status oit_capture_batch_layers(oit_capture *c, const oit_gpu_mesh *const *m
  * written in place and which the call never frees (oit_image_reserve). */
 oit_status oit_capture_end(oit_capture *c, oit_image *out,
                            oit_frame_stats *stats, oit_error *err);
+/* oit_capture_end that also writes each pixel's fragment count (those its
+ * state took: oit_frame_stats.fragments pixel by pixel) into counts,
+ * width*height, row 0 at the top; NULL: none. */
+oit_status oit_capture_end_counts(oit_capture *c, oit_image *out, uint32_t *counts,
+                                  oit_frame_stats *stats, oit_error *err);
 /* Ends the frame without reading the image back: *state receives the GL
  * buffer holding width*height per-pixel states (oit_glsl_state_io reads
  * them: C and T before the background; GL rows, bottom first), owned by c
