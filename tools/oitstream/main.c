@@ -415,19 +415,6 @@ static oit_status check_method(const oit_stream_args *a, const oit_render_method
     return OIT_OK;
 }
 
-/* The readers drop a triangle with a NaN or inf coordinate and go on (the
- * rest is drawn), so the image alone would not show it; oitprep says the
- * same of a conversion. */
-static void note_dropped(const char *path, const oit_mesh_info *in)
-{
-    if (in->nonfinite_dropped)
-        fprintf(stderr, "oitstream: %s: %llu triangles in, %llu drawn (dropped %llu with a "
-                "non-finite coordinate, NaN or inf; %llu of zero area kept)\n", path,
-                (unsigned long long)(in->triangles + in->nonfinite_dropped),
-                (unsigned long long)in->triangles, (unsigned long long)in->nonfinite_dropped,
-                (unsigned long long)in->zero_area);
-}
-
 /* The scene: a mesh file loaded in core, or a part file, which the streamer
  * reads part by part and the other methods load in core. */
 static oit_status load_scene(const oit_stream_args *a, const oit_render_method_info *m,
