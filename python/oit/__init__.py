@@ -334,9 +334,8 @@ class Renderer(_Closable):
         list of up to 6 (nx, ny, nz, d) in the scene's coordinates, each
         keeping what lies where nx*x + ny*y + nz*z + d >= 0 (liboit checks
         them: oit_frame.clip)."""
-        w, h = (int(size[0]), int(size[1]))
-        v = L.OffscreenView()
-        v.width, v.height = w, h
+        v = _camera_view(scene, size, view, clip, up, azimuth, elevation)
+        w, h = v.width, v.height
         dtype = np.dtype(dtype)
         if dtype == np.uint8:
             v.format = L.PIXELS_RGBA8
@@ -344,10 +343,6 @@ class Renderer(_Closable):
             v.format = L.PIXELS_RGBA32F
         else:
             raise ValueError(f"dtype: {dtype}, expected uint8 or float32")
-        _set_view(v, view)
-        if up is not None or azimuth is not None or elevation is not None:
-            _set_default_view(v, scene, view, up, azimuth, elevation)
-        _set_clip(v, clip)
         if background is not None:
             bg = [float(c) for c in background]
             if len(bg) == 3:
@@ -364,6 +359,36 @@ class Renderer(_Closable):
                                             ctypes.byref(err)), err)
         self.stats = _stats_dict(stats)
         return out
+
+    def pick(self, scene, x, y, size=(512, 512), view=None, clip=None, up=None, azimuth=None,
+             elevation=None):
+        """Every layer of pixel (x, y) (0, 0 the top left, as render's
+        rows) of the view render would draw with the same size, view, clip,
+        up, azimuth and elevation, front to back: a list of dicts with
+        depth (the tie rule's key along the pixel's ray, scene units),
+        alpha, colour (rgb as composited), transmittance (rgb, of the light
+        in front of the layer), front (the face turns towards the viewer),
+        part (None in core), source_triangle, group and material (None: no
+        reader keeps names yet). They are the layers of the exact image:
+        the reference's ray and the tie rule (oit_renderer_pick; through
+        Embree for method="reference" on a mesh); a rasterizing method
+        may differ by a triangle on edge pixels only. Needs no GL and
+        draws nothing (as oitstream --pick)."""
+        v = _camera_view(scene, size, view, clip, up, azimuth, elevation)
+        count, err = ctypes.c_size_t(), L.Error()
+        scene._renderers.add(self)
+        args = (self._h, scene._handle(), ctypes.byref(v), int(x), int(y))
+        _check(L.lib().oit_offscreen_pick(*args, None, 0, ctypes.byref(count),
+                                          ctypes.byref(err)), err)
+        layers = (L.PickLayer * max(count.value, 1))()
+        _check(L.lib().oit_offscreen_pick(*args, layers, count.value, ctypes.byref(count),
+                                          ctypes.byref(err)), err)
+        name = lambda b: b.decode() if b is not None else None
+        return [{"depth": l.depth, "alpha": l.alpha, "colour": list(l.colour),
+                 "transmittance": list(l.transmittance), "front": bool(l.front),
+                 "part": None if l.part == L.PICK_NO_PART else l.part,
+                 "source_triangle": l.source_triangle, "group": name(l.group),
+                 "material": name(l.material)} for l in layers[:count.value]]
 
     def _release(self, scene):
         if self._h and scene._h:
@@ -384,6 +409,17 @@ def _stats_dict(stats):
         out[name] = v.decode(errors="replace") if isinstance(v, bytes) else v
     out["gpu_phase_ms"] = list(stats.gpu_phase_ms)
     return out
+
+
+def _camera_view(scene, size, view, clip, up, azimuth, elevation):
+    """The OffscreenView of render's and pick's size, camera and planes."""
+    v = L.OffscreenView()
+    v.width, v.height = (int(size[0]), int(size[1]))
+    _set_view(v, view)
+    if up is not None or azimuth is not None or elevation is not None:
+        _set_default_view(v, scene, view, up, azimuth, elevation)
+    _set_clip(v, clip)
+    return v
 
 
 def _set_view(v, view):

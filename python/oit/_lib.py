@@ -81,6 +81,17 @@ class OffscreenView(ctypes.Structure):
                 ("clip_count", ctypes.c_uint32), ("clip", (ctypes.c_float * 4) * 6)]
 
 
+class PickLayer(ctypes.Structure):
+    _fields_ = [("depth", ctypes.c_double), ("colour", ctypes.c_float * 3),
+                ("alpha", ctypes.c_float), ("transmittance", ctypes.c_float * 3),
+                ("front", ctypes.c_int), ("part", ctypes.c_uint32),
+                ("source_triangle", ctypes.c_uint64), ("group", ctypes.c_char_p),
+                ("material", ctypes.c_char_p)]
+
+
+PICK_NO_PART = 0xFFFFFFFF
+
+
 class DrawStats(ctypes.Structure):
     _fields_ = [("draw", ctypes.c_uint64), ("ms", ctypes.c_double),
                 ("method", ctypes.c_char_p), ("device", ctypes.c_char_p),
@@ -170,6 +181,9 @@ def _declare(lib):
         "oit_offscreen_get_desc": (None, [vp, P(OffscreenDesc)]),
         "oit_offscreen_render": (ctypes.c_int, [vp, vp, P(OffscreenView), vp, ctypes.c_size_t,
                                                 P(DrawStats), err]),
+        "oit_offscreen_pick": (ctypes.c_int, [vp, vp, P(OffscreenView), ctypes.c_int,
+                                              ctypes.c_int, P(PickLayer), ctypes.c_size_t,
+                                              P(ctypes.c_size_t), err]),
         "oit_offscreen_default_view": (ctypes.c_int, [vp, ctypes.c_int, ctypes.c_float,
                                                       ctypes.c_float, P(OffscreenView), err]),
         "oit_status_name": (ctypes.c_char_p, [ctypes.c_int]),
