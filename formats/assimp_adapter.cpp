@@ -280,7 +280,8 @@ std::string format_ext(const char *path)
 // the message of an unknown extension adds to our readers' list.
 std::string supported_list(Assimp::Importer &imp)
 {
-    static const char *const ours[] = {"ply", "obj", "off", "stl", "gltf", "glb", "vtk", "vtp"};
+    static const char *const ours[] = {"ply", "obj", "off", "stl", "gltf", "glb",
+                                       "vtk", "vtp", "step", "stp", "iges", "igs"};
     std::string list, out;
     imp.GetExtensionList(list);
     for (size_t at = 0; at < list.size();) {
@@ -306,7 +307,7 @@ oit_status read_path(Ctx &c, const char *path)
     Assimp::Importer imp;
     if (ext.empty() || !imp.IsExtensionSupported(("." + ext).c_str()))
         return fail(c, OIT_ERR_UNSUPPORTED, "unknown mesh format '.%s' (expected .ply .obj .off .stl "
-                    ".gltf .glb .vtk .vtp, or through assimp %s)", ext.c_str(), supported_list(imp).c_str());
+                    ".gltf .glb .vtk .vtp .step .stp .iges .igs, or through assimp %s)", ext.c_str(), supported_list(imp).c_str());
     FILE *f;
     size_t size;
     oit_status s = open_regular(c, path, &f, &size);

@@ -16,7 +16,8 @@ static int ext_is(const char *ext, const char *want)
     return *ext == '\0' && *want == '\0';
 }
 
-/* The extension that names the format, a trailing ".gz" set aside. */
+/* The extension that names the format, a trailing ".gz" set aside; NULL
+ * where the name has none (no dot, or nothing after the last). */
 static const char *mesh_ext(const char *path, char *buf, size_t cap)
 {
     const char *slash = strrchr(path, '/'), *base = slash ? slash + 1 : path;
@@ -27,7 +28,9 @@ static const char *mesh_ext(const char *path, char *buf, size_t cap)
     size_t d = n;
     while (d > 0 && base[d - 1] != '.')
         d--;
-    if (d == 0 || n - d >= cap)
+    if (d == 0 || d == n)
+        return NULL;
+    if (n - d >= cap)
         return "";
     memcpy(buf, base + d, n - d);
     buf[n - d] = '\0';
@@ -42,6 +45,11 @@ oit_status oit_mesh_read(const char *path, const oit_read_desc *desc, oit_triang
     /* NAME.obj.gz is an OBJ: the readers inflate gzip whatever the name. */
     char ext_buf[16];
     const char *ext = mesh_ext(path, ext_buf, sizeof ext_buf);
+    if (!ext)
+        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "%s: no file extension to tell its "
+                             "format by (expected .ply .obj .off .stl .gltf .glb .vtk .vtp "
+                             ".step .stp .iges .igs, or one that assimp imports: .fbx .dae "
+                             ".3ds .3mf ...; NAME.EXT.gz for gzip)", path);
     if (ext_is(ext, "ply"))
         return oit_read_ply(path, desc, sink, user, info, err);
     if (ext_is(ext, "obj"))

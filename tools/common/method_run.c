@@ -54,9 +54,10 @@ static void run_desc(const oit_render_method_info *m, const oit_run_options *opt
 static oit_status open_scene(oit_run *run, const oit_mesh *mesh, const oit_run_options *opt,
                              oit_error *err)
 {
-    if (!(run->method->flags & OIT_RENDER_METHOD_PART_FILE))
-        return oit_scene_borrow_mesh(mesh, NULL, &run->scene, err);
     const char *path = opt && opt->source ? opt->source->path : NULL;
+    /* the file the mesh came from names it in a method's errors */
+    if (!(run->method->flags & OIT_RENDER_METHOD_PART_FILE))
+        return oit_scene_borrow_mesh(mesh, path, &run->scene, err);
     if (!path)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--method %s renders a part file "
                              "(.oitp, made by oitprep); convert the model first",

@@ -18,7 +18,9 @@
 struct oit_gl;
 
 typedef struct oit_run_source {
-    const char *path;       /* the part file (.oitp) of a PART_FILE method */
+    /* the part file (.oitp) of a PART_FILE method; for the others, the
+     * file the mesh was read from, which names it in their errors */
+    const char *path;
     /* liboit's settings, zero meaning default; the method, K, epsilon,
      * ambiguity_px and binding_limit come from the options, the shading
      * from each frame's view. */

@@ -35,16 +35,6 @@ static int fail(const oit_error *err)
     return oit_tool_exit_code(err->status);
 }
 
-/* The stencil method's "unsupported" is the driver's limit (it does not
- * route per sample, or has fewer samples than K), not bad input: a runtime
- * failure, exit 1. The capture layer keeps UNSUPPORTED, which its callers
- * read as "not offered here". */
-static int fail_rendering(const oit_error *err, const oit_render_method_info *m)
-{
-    int code = fail(err);
-    return err->status == OIT_ERR_UNSUPPORTED && m && !strcmp(m->name, "stencil") ? 1 : code;
-}
-
 /* ---- --compare ---- */
 
 static oit_status print_diff(const oit_image_diff *d, uint64_t pixels, int json, oit_error *err)
@@ -415,6 +405,19 @@ static oit_status check_method(const oit_stream_args *a, const oit_render_method
     return OIT_OK;
 }
 
+/* The readers drop a triangle with a NaN or inf coordinate and go on (the
+ * rest is drawn), so the image alone would not show it; oitprep says the
+ * same of a conversion. */
+static void note_dropped(const char *path, const oit_mesh_info *in)
+{
+    if (in->nonfinite_dropped)
+        fprintf(stderr, "oitstream: %s: %llu triangles in, %llu drawn (dropped %llu with a "
+                "non-finite coordinate, NaN or inf; %llu of zero area kept)\n", path,
+                (unsigned long long)(in->triangles + in->nonfinite_dropped),
+                (unsigned long long)in->triangles, (unsigned long long)in->nonfinite_dropped,
+                (unsigned long long)in->zero_area);
+}
+
 /* The scene: a mesh file loaded in core, or a part file, which the streamer
  * reads part by part and the other methods load in core. */
 static oit_status load_scene(const oit_stream_args *a, const oit_render_method_info *m,
@@ -426,7 +429,10 @@ static oit_status load_scene(const oit_stream_args *a, const oit_render_method_i
         if ((m->flags & OIT_RENDER_METHOD_PART_FILE))
             return oit_error_set(err, OIT_ERR_ARGUMENT, "--method %s renders a part file "
                                  "(.oitp); convert %s with oitprep first", m->name, a->model);
-        return oit_mesh_load(a->model, NULL, mesh, err);
+        oit_status s = oit_mesh_load(a->model, NULL, mesh, err);
+        if (s == OIT_OK)
+            note_dropped(a->model, &mesh->info);
+        return s;
     }
     /* The viewer switches between the streamer and the in-core methods, so
      * it wants both the streamable file and its triangles. */
@@ -550,7 +556,7 @@ static int run_render(const oit_stream_args *args)
     free(cams);
     oit_mesh_free(&mesh);
     oit_partfile_close(pf);
-    return s == OIT_OK ? 0 : fail_rendering(&err, rc.method);
+    return s == OIT_OK ? 0 : fail(&err);
 }
 
 int main(int argc, char **argv)

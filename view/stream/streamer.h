@@ -47,13 +47,14 @@ typedef struct oit_streamer_desc {
      * (view/render/capture/capture_choice.h: at K for K-slot packs; first-K also
      * takes the largest power of two below K that passes), else array
      * slots, the self-test's reason kept (oit_stream_frame_stats). STENCIL
-     * where no try passes: OIT_ERR_UNSUPPORTED with the reason.
+     * where no try passes: OIT_ERR_GL (the driver's limit) with the reason.
      * OIT_RENDER_PACK_COUNTED always takes the capture OIT_CAPTURE_COUNTED,
      * OIT_RENDER_PACK_FIRSTK OIT_CAPTURE_FIRSTK (K: its most slots a
      * pixel). OIT_RENDER_CAPTURE_COMPUTE (view/render/capture/capture_compute.h)
-     * captures every pack mode's packs, exactly (no per-pixel limit); with
-     * OIT_RENDER_PACK_AUTO it takes OIT_RENDER_PACK_COUNTED's, the
-     * largest */
+     * captures the packs of BUDGET, DISJOINT and COUNTED, exactly (no
+     * per-pixel limit); with OIT_RENDER_PACK_AUTO it takes
+     * OIT_RENDER_PACK_COUNTED's, the largest; FIRSTK, whose first pass is a
+     * K-slot fill, is refused (oit_streamer_desc_check) */
     oit_render_capture capture;
     unsigned capture_faults;  /* testing: OIT_CAPTURE_FAULT_* and _TEST_* (capture.h) */
     /* where the capture's programs are built through (the caller's, which
@@ -191,7 +192,8 @@ typedef struct oit_stream_budget {
  * OIT_STREAM_BUDGET_MIN..MAX,
  * cache_budget that or OIT_STREAM_CACHE_OFF, gpu_budget 0 or
  * OIT_STREAM_GPU_BUDGET_MIN..OIT_STREAM_BUDGET_MAX, epsilon in [0, 1), pack
- * and schedule one of their enums. OIT_ERR_ARGUMENT names the setting (in
+ * and schedule one of their enums, capture COMPUTE not with pack FIRSTK
+ * (no K-slot first pass). OIT_ERR_ARGUMENT names the setting (in
  * d->names' spelling) and the value. capture and
  * reader_threads are checked by oit_streamer_create (capture_choice.h,
  * reader.h), K by the capture. */

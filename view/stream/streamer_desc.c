@@ -62,5 +62,12 @@ oit_status oit_streamer_desc_check(const oit_streamer_desc *d, oit_error *err)
     if ((unsigned)d->schedule > (unsigned)OIT_RENDER_SCHEDULE_WAVE)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "%s = %d: not an oit_render_schedule",
                              n.schedule, (int)d->schedule);
+    /* Asked for together, first-k would silently run as counted: its
+     * first pass is a K-slot fill, which compute does not make. */
+    if (d->capture == OIT_RENDER_CAPTURE_COMPUTE && d->pack == OIT_RENDER_PACK_FIRSTK)
+        return oit_error_set(err, OIT_ERR_ARGUMENT, "%s = compute and %s = first-k: the "
+                             "compute capture has no K-slot fill for first-k's first pass "
+                             "(its packs would be counted's); take %s = counted or auto with "
+                             "it, or another capture with first-k", n.capture, n.pack, n.pack);
     return OIT_OK;
 }

@@ -267,7 +267,7 @@ static void in_core(oit_gl *gl, const oit_mesh *mesh, const oit_view *v, const c
         oit_error err = {0};
         /* Stencil routing is offered only where the driver routes per
          * sample (capture.h). */
-        if (oit_method_open(m, mesh, &opt, &probe, &err) == OIT_ERR_UNSUPPORTED) {
+        if (oit_method_open(m, mesh, &opt, &probe, &err) == OIT_ERR_GL) {
             printf("%-24s skipped: %s\n", name, err.message);
             continue;
         }

@@ -187,7 +187,7 @@ static void check_choose(void)
             }
         }
         if (want == OIT_OK && !want_k && asked == OIT_RENDER_CAPTURE_STENCIL)
-            want = OIT_ERR_UNSUPPORTED;
+            want = OIT_ERR_GL; /* the driver's limit */
         oit_capture_choice ch;
         oit_error err = {0};
         oit_status s = oit_capture_choose(asked, NULL, K, fewer_ok, verdict, &f, &ch, &err);

@@ -89,7 +89,7 @@ static int frame_of(oit_gl *gl, const oit_render_method_info *m, const oit_mesh 
     oit_error err = {0};
     memset(st, 0, sizeof *st);
     oit_status s = oit_run_open(m, mesh, &opt, &state, &err);
-    if (s == OIT_ERR_UNSUPPORTED) {
+    if (s == OIT_ERR_UNSUPPORTED || s == OIT_ERR_GL) {
         printf("%-10s skipped: %s\n", m->name, err.message);
         *skip = 1;
         return 0;

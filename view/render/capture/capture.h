@@ -148,7 +148,7 @@ typedef struct oit_capture_settings {
  * passes (capture_choice.h: at K for K-slot batches; first-K also takes
  * the largest power of two below K that passes), else array slots, the
  * reason kept (oit_capture_get_choice). STENCIL where no try passes:
- * OIT_ERR_UNSUPPORTED with the reason, the sample mode's numbers where it
+ * OIT_ERR_GL (the driver's limit) with the reason, the sample mode's numbers where it
  * is that (and the largest K of true multisamples where the driver
  * tells). */
 typedef struct oit_capture_desc {

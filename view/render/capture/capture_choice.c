@@ -16,7 +16,9 @@ static int next_try(int k)
 
 /* AUTO keeps the caller's K and takes the array backend where stencil
  * routing is refused; STENCIL refuses with the reason: the caller asked for
- * that method, and a lower K would lose fragments (an inexact image). */
+ * that method, and a lower K would lose fragments (an inexact image). The
+ * refusal is the driver's limit, not the caller's input: OIT_ERR_GL, as a
+ * feature the driver lacks (the tools' runtime failure, exit 1). */
 oit_status oit_capture_choose(oit_render_capture asked, const char *what, int K, int fewer_ok,
                               oit_capture_try try_stencil, void *ctx, oit_capture_choice *out,
                               oit_error *err)
@@ -51,7 +53,7 @@ oit_status oit_capture_choose(oit_render_capture asked, const char *what, int K,
             snprintf(out->reason, sizeof out->reason, "%s", why.message);
     }
     if (asked == OIT_RENDER_CAPTURE_STENCIL)
-        return oit_error_set(err, OIT_ERR_UNSUPPORTED, "%s = stencil at K=%d%s: %s", what, K,
+        return oit_error_set(err, OIT_ERR_GL, "%s = stencil at K=%d%s: %s", what, K,
                              fewer_ok && K > 2 ? " (nor fewer samples)" : "", out->reason);
     return OIT_OK;
 }

@@ -37,9 +37,10 @@ typedef struct oit_capture_choice {
 } oit_capture_choice;
 
 /* asked: OIT_RENDER_CAPTURE_AUTO, _ARRAY or _STENCIL (else OIT_ERR_ARGUMENT).
- * ARRAY tries nothing. STENCIL where no try passes: OIT_ERR_UNSUPPORTED
- * whose message gives the self-test's reason at K (no fallback: the caller
- * asked for it). what: the setting in the caller's spelling, for the
+ * ARRAY tries nothing. STENCIL where no try passes: OIT_ERR_GL (the driver
+ * lacks the routing; each try's refusal is OIT_ERR_UNSUPPORTED) whose
+ * message gives the self-test's reason at K (no fallback: the caller asked
+ * for it). what: the setting in the caller's spelling, for the
  * errors ("oit_renderer_desc.capture"; NULL: "capture"). */
 oit_status oit_capture_choose(oit_render_capture asked, const char *what, int K, int fewer_ok,
                               oit_capture_try try_stencil, void *ctx, oit_capture_choice *out,
