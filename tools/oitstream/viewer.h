@@ -16,7 +16,8 @@
  * or this machine cannot run says why on screen) and M/N cycle through all
  * of them; L toggles the layer heat map; T transparent/translucent; E early
  * termination (where the method has it); U cycles the up axis (y, z, x) and
- * frames the model for it; X makes a section plane through the model's
+ * frames the model for it; V toggles perspective and orthographic (as high
+ * as the perspective view at the target: the model keeps its size); X makes a section plane through the model's
  * centre facing the viewer, or turns the planes off and on, and [ and ]
  * move the first plane along its normal (viewer_clip.h); R resets the camera; O opens another file (type
  * its path, Enter loads, Esc cancels; a file dropped on the window opens

@@ -27,6 +27,27 @@ void viewer_fit_clip(viewer *v)
     float r = 1.05f * v->radius;
     c->zfar = dc + r > 0.0f ? dc + r : r;
     c->znear = fmaxf(dc - r, 1e-4f * c->zfar);
+    if (c->projection == OIT_PROJ_ORTHOGRAPHIC) /* parallel rays: behind the eye too */
+        c->znear = dc - r;
+}
+
+/* V: orthographic as high as the perspective frustum at the target, so
+ * that what lies there keeps its size on screen; V again: perspective. */
+void viewer_toggle_ortho(viewer *v)
+{
+    oit_camera *c = &v->view.camera;
+    if (c->projection == OIT_PROJ_ORTHOGRAPHIC) {
+        c->projection = OIT_PROJ_PERSPECTIVE;
+        printf("viewer: projection perspective\n");
+        return;
+    }
+    float d[3];
+    oit_sub3f(c->target, c->eye, d);
+    double fovy = c->fovy_deg > 0.0f ? c->fovy_deg : 45.0;
+    c->projection = OIT_PROJ_ORTHOGRAPHIC;
+    c->ortho_height = (float)(2.0 * sqrt((double)oit_dot3f(d, d)) *
+                              tan(0.5 * fovy * 3.14159265358979323846 / 180.0));
+    printf("viewer: projection orthographic, %.6g high\n", c->ortho_height);
 }
 
 /* Left drag: azimuth about the up axis, elevation about the right axis,
@@ -53,6 +74,8 @@ void viewer_orbit(viewer *v, double dx, double dy)
 void viewer_zoom(viewer *v, double factor)
 {
     oit_camera *c = &v->view.camera;
+    if (c->projection == OIT_PROJ_ORTHOGRAPHIC) /* the distance alone would not show */
+        c->ortho_height *= (float)factor;
     for (int k = 0; k < 3; k++)
         c->eye[k] = c->target[k] + (c->eye[k] - c->target[k]) * (float)factor;
 }

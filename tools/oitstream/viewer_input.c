@@ -446,6 +446,10 @@ void viewer_handle_key(viewer *v, char key)
     case 'U':
         cycle_up(v);
         break;
+    case 'V':
+        viewer_toggle_ortho(v);
+        v->changed = 1;
+        break;
     case 'P':
         v->save_pending = 1;
         v->recompose = 1;

@@ -122,6 +122,7 @@ void viewer_say(viewer *v, const char *fmt, ...) __attribute__((format(printf, 2
 void viewer_fit_clip(viewer *v);
 void viewer_fly(viewer *v, int forward, int right, int up_dir);
 void viewer_orbit(viewer *v, double dx, double dy);
+void viewer_toggle_ortho(viewer *v);
 void viewer_zoom(viewer *v, double factor);
 
 /* viewer_input.c: keys, the mouse, dropped files and the methods they switch */

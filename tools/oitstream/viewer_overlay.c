@@ -96,6 +96,8 @@ static void status_fields(viewer *v, fields *f)
         field(f, "heat map");
     else if (v->show_layers) /* L on, kept for a method that counts */
         field(f, "heat map n/a");
+    if (v->view.camera.projection == OIT_PROJ_ORTHOGRAPHIC)
+        field(f, "ortho");
     if (v->view.clip.count > 0)
         field(f, "section planes %d", v->view.clip.count);
     field(f, "%c up", viewer_axis_name(v->up_axis));
@@ -205,6 +207,8 @@ static void help_panel(const viewer *v, panel *p)
     panel_add(p, kWhite, "T               transparent / translucent");
     panel_add(p, kWhite, "E               early termination (stream)");
     panel_add(p, kWhite, "U               up axis y, z, x (now %c)", viewer_axis_name(v->up_axis));
+    panel_add(p, kWhite, "V               perspective / orthographic (now %s)",
+              v->view.camera.projection == OIT_PROJ_ORTHOGRAPHIC ? "ortho" : "perspective");
     panel_add(p, kWhite, "X               section plane: one through the centre facing");
     panel_add(p, kWhite, "                you, or the planes off / on");
     panel_add(p, kWhite, "[, ]            move section plane 1 back, forward");

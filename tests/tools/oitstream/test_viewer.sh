@@ -10,6 +10,7 @@
 #   - one key map for meshes and part files: key 1 is dfb and key 5 stream for
 #     both; on a mesh, 5 puts a message on the image saying why it cannot run
 #   - --up z equals `--up z --out` and changes the default view
+#   - V toggles orthographic (equal to --ortho fit) and back
 #   - P writes the first free oitstream_NNN.png and never replaces a file
 #   - the status line of named fields wraps to the window's width
 # Equal means within half an 8-bit step (the window quantises to 8 bits).
@@ -175,6 +176,24 @@ expect_differ "L on the stream vs its colours" oitstream_001.png oitstream_000.p
 grep -q "^viewer: layer heat map: wboit counts no fragments per pixel" heat_wboit.txt ||
     fail "L on wboit does not say it counts none"
 expect_differ "the message of L on wboit on the image" oitstream_003.png oitstream_002.png 100
+cd .. || exit 1
+
+# 9. V toggles the projection: orthographic as high as the perspective
+#    frustum at the target (the model keeps its size there), the headless
+#    --ortho fit view; V again gives the perspective image back (000
+#    perspective, 001 orthographic, 002 perspective); the status line says
+#    ortho (a third V, the last frame).
+mkdir -p ortho && cd ortho || exit 1
+"$S" ../quads.ply --window --no-overlay --size $SIZE --window-script "PVPVPV" >ortho.txt 2>&1 ||
+    { cat ortho.txt; fail "the V run exited with $?"; }
+cat ortho.txt
+"$S" ../quads.ply --size $SIZE --quiet --ortho fit --out ortho_ref.png || fail "headless --ortho fit"
+grep -q "^viewer: projection orthographic, [0-9.e+-]* high$" ortho.txt &&
+    grep -q "^viewer: projection perspective$" ortho.txt || fail "V does not say the projection"
+grep -q "last: .*  ortho  " ortho.txt || fail "the status line does not say ortho"
+expect_equal "V vs --ortho fit" oitstream_001.png ortho_ref.png
+expect_differ "V vs perspective" oitstream_001.png ../ref.png 100
+expect_equal "V twice vs perspective" oitstream_002.png ../ref.png
 cd .. || exit 1
 
 finish viewer
