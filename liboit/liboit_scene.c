@@ -2,6 +2,9 @@
  * mesh made from the caller's arrays, checked and kept for drawing. */
 #include "liboit/liboit_internal.h"
 
+#include "formats/up_axis.h"
+#include "oit/offscreen.h"
+
 /* ---- scene ------------------------------------------------------------- */
 
 /* 1 when path names a part file: its first bytes are the part-file magic,
@@ -45,6 +48,14 @@ void oit_lib_scene_unshare(oit_scene *s)
     free(s);
 }
 
+/* oit_scene_info.up_axis: formats/up_axis.h's 0 x, 1 y, 2 z as an
+ * oit_up_axis. */
+static uint32_t scene_up(const char *name, const float bmin[3], const float bmax[3])
+{
+    static const oit_up_axis of[3] = {OIT_UP_X, OIT_UP_Y, OIT_UP_Z};
+    return (uint32_t)of[oit_up_axis_guess(name, bmin, bmax, NULL)];
+}
+
 static oit_status mesh_scene(oit_mesh *mesh, const char *name, oit_scene **out, oit_error *err)
 {
     oit_scene *s = scene_new();
@@ -67,6 +78,7 @@ static oit_status mesh_scene(oit_mesh *mesh, const char *name, oit_scene **out, 
     s->info.share_count = 1;
     s->info.share_parts = 0;
     s->info.share_triangles = mesh->count;
+    s->info.up_axis = scene_up(name, mi->bounds_min, mi->bounds_max);
     *out = s;
     return OIT_OK;
 }
@@ -152,6 +164,7 @@ oit_status oit_scene_open(const char *path, const oit_scene_desc *desc, oit_scen
     s->info.K = sum.K;
     s->info.attributes = sum.attributes;
     memcpy(s->info.origin, sum.origin, sizeof s->info.origin);
+    s->info.up_axis = scene_up(oit_partfile_source_name(s->pf), sum.bounds_min, sum.bounds_max);
     st = open_share(s, desc, err);
     if (st != OIT_OK) {
         oit_lib_scene_unshare(s);

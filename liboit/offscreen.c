@@ -229,8 +229,9 @@ static oit_status make_frame(const oit_scene *scene, const oit_offscreen_view *v
     oit_camera cam;
     int look_at = !is_zero(v->eye, 3) || !is_zero(v->target, 3);
     if (!look_at) {
-        oit_up_axis up;
-        s = up_axis_of_vector(v->up, &up, err);
+        oit_up_axis up = (oit_up_axis)info.up_axis;
+        if (!is_zero(v->up, 3))
+            s = up_axis_of_vector(v->up, &up, err);
         if (s != OIT_OK)
             return s;
         default_camera(&info, up, 0.0f, 20.0f, &cam);

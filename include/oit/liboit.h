@@ -136,6 +136,12 @@ typedef struct oit_scene_info {
      * (triangles and parts above are the whole file's). */
     uint32_t share_count, share_index;
     uint64_t share_parts, share_triangles;
+    /* The up axis (an oit_up_axis, oit/offscreen.h) the file's format says
+     * or its bounds suggest: y for glTF, z for STEP and IGES, else z for a
+     * model flat in z (its z extent under half its x and y extents), else
+     * y; a part file by its source's name. The offscreen API's default
+     * view turns about it when oit_offscreen_view.up is 0. */
+    uint32_t up_axis;
 } oit_scene_info;
 
 /* path: a part file (its content starts with the part-file magic, or its

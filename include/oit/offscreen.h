@@ -83,7 +83,8 @@ typedef struct oit_offscreen_view {
      *   seen from azimuth 0, elevation 20, fovy 45, the bounding sphere
      *   filling the height), turned about up when
      *   it is given (+x, +y or +z, any length, as the tools' up axis; any
-     *   other direction is OIT_ERR_ARGUMENT), fovy_deg moving the eye so
+     *   other direction is OIT_ERR_ARGUMENT), else about the scene's own
+     *   (oit_scene_info.up_axis: z for a STEP file), fovy_deg moving the eye so
      *   the sphere still fills the height, znear/zfar replacing the fitted
      *   planes when given. oit_offscreen_default_view gives the other
      *   azimuths and elevations. */

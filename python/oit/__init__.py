@@ -145,14 +145,18 @@ class Scene(_Closable):
 
     @property
     def info(self):
-        """oit_scene_info as a dict."""
+        """oit_scene_info as a dict; "up": the up axis ("x", "y" or "z") the
+        file's format says or its bounds suggest (z for STEP and IGES and
+        for a model flat in z, y for glTF), which the default view turns
+        about."""
         info, err = L.SceneInfo(), L.Error()
         _check(L.lib().oit_scene_get_info(self._handle(), ctypes.byref(info),
                                           ctypes.byref(err)), err)
         return {"triangles": info.triangles, "parts": info.parts,
                 "bounds_min": tuple(info.bounds_min), "bounds_max": tuple(info.bounds_max),
                 "K": info.K, "attributes": info.attributes, "origin": tuple(info.origin),
-                "in_core": bool(info.in_core)}
+                "in_core": bool(info.in_core),
+                "up": next(k for k, x in _UP_AXES.items() if x == info.up_axis)}
 
     def _handle(self):
         if not self._h:
@@ -327,7 +331,9 @@ class Renderer(_Closable):
         which must then be +x, +y or +z), or a dict with view and
         projection 4x4 matrices as numpy writes them (v' = M @ v).
         up ("x", "y" or "z": the model's up axis), azimuth and elevation
-        (degrees) turn the default view (up "y", azimuth 0, elevation 20),
+        (degrees) turn the default view (up: scene.info["up"], z for STEP
+        and IGES and for a model flat in z, else y; azimuth 0, elevation
+        20),
         computed by liboit (oit_offscreen_default_view), as oitstream's
         options of those names do; they take view=None.
         background: RGBA, default opaque white. clip: section planes, a
@@ -470,7 +476,7 @@ def _set_default_view(v, scene, view, up, azimuth, elevation):
         raise ValueError("up/azimuth/elevation turn the default view: give them with "
                          "view=None (a view dict's own up turns it too)")
     if up is None:
-        up = "y"
+        up = scene.info["up"]
     if up not in _UP_AXES:
         raise ValueError(f"up: {up!r}, expected x, y or z")
     err = L.Error()

@@ -33,7 +33,8 @@ class SceneInfo(ctypes.Structure):
                 ("K", ctypes.c_uint32), ("attributes", ctypes.c_uint32),
                 ("origin", ctypes.c_double * 3), ("in_core", ctypes.c_uint32),
                 ("share_count", ctypes.c_uint32), ("share_index", ctypes.c_uint32),
-                ("share_parts", ctypes.c_uint64), ("share_triangles", ctypes.c_uint64)]
+                ("share_parts", ctypes.c_uint64), ("share_triangles", ctypes.c_uint64),
+                ("up_axis", ctypes.c_uint32)]
 
 
 class SceneMeshDesc(ctypes.Structure):

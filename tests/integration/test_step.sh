@@ -58,7 +58,10 @@ fine=$(json_num triangles_in "$T/parts.json") coarse=$(json_num triangles_in "$T
 # then the white background: with the file's alpha 0.4, sRGB compositing
 # leaves green (1 - 0.4)^2 = 0.36, 0.1065 in the PFM's linear light.
 # --alpha 1: were the file's alpha lost, the glass would be opaque red.
-"$S" "$T/parts.oitp" --method dfb --elevation 90 --size 64x64 --alpha 1 --out "$T/top.pfm" \
+# (--up y: the view this test was written for; the default, z, sees the
+# STEP file upright, test_up.sh)
+"$S" "$T/parts.oitp" --method dfb --up y --elevation 90 --size 64x64 --alpha 1 \
+    --out "$T/top.pfm" \
     --quiet || fail "top view"
 px=$(python3 - "$T/top.pfm" <<'PY'
 import struct, sys

@@ -76,7 +76,7 @@ C
 cat > "$tmp/src/CMakeLists.txt" <<'C'
 cmake_minimum_required(VERSION 3.20)
 project(outside C)
-find_package(oit 0.4 REQUIRED)
+find_package(oit 0.5 REQUIRED)
 add_executable(outside main.c)
 target_link_libraries(outside PRIVATE oit::oit)
 C
@@ -138,7 +138,7 @@ cp "$src_dir/examples/embed_liboit.c" "$tmp/ex/"
 cat > "$tmp/ex/CMakeLists.txt" <<'C'
 cmake_minimum_required(VERSION 3.20)
 project(embed C)
-find_package(oit 0.4 REQUIRED)
+find_package(oit 0.5 REQUIRED)
 find_package(OpenGL REQUIRED COMPONENTS OpenGL EGL)
 add_executable(embed_liboit embed_liboit.c)
 target_link_libraries(embed_liboit PRIVATE oit::oit OpenGL::OpenGL OpenGL::EGL m)

@@ -63,7 +63,7 @@ static void scene(void)
     SIZE(SceneInfo, oit_scene_info);
 #define I(f) AT(SceneInfo, oit_scene_info, f)
     I(triangles); I(parts); I(bounds_min); I(bounds_max); I(K); I(attributes); I(origin);
-    I(in_core); I(share_count); I(share_index); I(share_parts); I(share_triangles);
+    I(in_core); I(share_count); I(share_index); I(share_parts); I(share_triangles); I(up_axis);
 #undef I
     SIZE(SceneMeshDesc, oit_scene_mesh_desc);
 #define M(f) AT(SceneMeshDesc, oit_scene_mesh_desc, f)

@@ -190,10 +190,11 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
         if (oit_parse_int(v, 1, 60000, &a->still_ms))
             *s = bad(err, opt, v, "milliseconds, 1..60000");
     } else if (!strcmp(opt, "--up")) {
-        if (!strcmp(v, "x")) a->up_axis = 0;
+        if (!strcmp(v, "auto")) a->up_axis = -1;
+        else if (!strcmp(v, "x")) a->up_axis = 0;
         else if (!strcmp(v, "y")) a->up_axis = 1;
         else if (!strcmp(v, "z")) a->up_axis = 2;
-        else *s = bad(err, opt, v, "x, y or z");
+        else *s = bad(err, opt, v, "auto, x, y or z");
     }
     else if (!strcmp(opt, "--gain")) {
         if (parse_float(v, &a->gain) || !(a->gain > 0.0f)) *s = bad(err, opt, v, "a number > 0");
@@ -260,7 +261,7 @@ oit_status oit_stream_args_parse(int argc, char **argv, oit_stream_args *a, oit_
     a->elevation = 20.0f;
     a->gain = 1.0f;
     a->max_layers = 0; /* the part file's K, else 16 */
-    a->up_axis = 1;
+    a->up_axis = -1; /* auto: the model's (formats/up_axis.h) */
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i];
         oit_status s = OIT_OK;
@@ -518,8 +519,13 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "                      (--ambiguity shows them). A part file is walked a part\n"
         "                      at a time. Needs no GL.\n"
         "  --quiet             no per-frame lines\n"
-        "  --up x|y|z          the model's up axis for the default views (default y;\n"
-        "                      z for CAD models: seen from -y, x to the right)\n"
+        "  --up auto|x|y|z     the model's up axis for the default views; z: seen\n"
+        "                      from -y, x to the right. auto (default): y for glTF\n"
+        "                      (its specification), z for STEP and IGES (as CAD\n"
+        "                      writes them), else z where the model is flat in z\n"
+        "                      (its z extent under half its x and y extents: a\n"
+        "                      Z-up plant or building), else y; a part file by its\n"
+        "                      source's name. Said on stderr when it is not y\n"
         "  --clip nx,ny,nz,d   a section plane, in file coordinates: keeps what lies\n"
         "                      where nx*x + ny*y + nz*z + d >= 0 and cuts the rest\n"
         "                      away, exactly per pixel (a fragment is kept when its\n"

@@ -56,7 +56,7 @@ typedef struct oit_stream_args {
     int no_overlay;                /* --no-overlay: no status line in the image */
     int preview;                   /* --preview: oit_viewer_preview (viewer.h); 0 auto */
     int still_ms;                  /* --still MS: stillness before the exact frame; 0: 200 */
-    int up_axis;                   /* --up x|y|z: 0, 1 (default), 2 */
+    int up_axis;                   /* --up x|y|z: 0, 1, 2; auto (default): -1 */
     /* --clip (repeatable): the planes as given, parsed and checked once,
      * placed at the model's origin once it is read (view/render/image/clip.h) */
     oit_clip_given clip;

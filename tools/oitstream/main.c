@@ -515,6 +515,8 @@ static int run_render(const oit_stream_args *args)
         oit_partfile_close(pf);
         return fail(&err);
     }
+    if (resolved.up_axis < 0)
+        resolved.up_axis = stream_up_axis(a, pf, &mesh.info);
     oit_camera *cams = NULL;
     int n = 0;
     int K = stream_max_layers(a, pf);

@@ -1,6 +1,8 @@
 /* oitstream's views, shading, output names and stream settings (views.h). */
 #include "tools/oitstream/views.h"
 
+#include "formats/up_axis.h"
+
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -198,4 +200,17 @@ oit_renderer_desc stream_renderer_desc(const oit_stream_args *a, int views)
     if (views == 1 && !a->window)
         d.frames = 1;
     return d;
+}
+
+/* --up auto: the model's up axis (formats/up_axis.h), said where it is not
+ * y and the default views use it. */
+int stream_up_axis(const oit_stream_args *a, oit_partfile *pf, const oit_mesh_info *info)
+{
+    const char *why = NULL;
+    const char *name = pf ? oit_partfile_source_name(pf) : a->model;
+    int axis = oit_up_axis_guess(name, info->bounds_min, info->bounds_max, &why);
+    if (axis != 1 && !a->quiet && !a->have_view && !a->walk)
+        fprintf(stderr, "oitstream: %s: up axis %c (%s; --up overrides)\n", a->model,
+                "xyz"[axis], why);
+    return axis;
 }

@@ -23,6 +23,10 @@ oit_shading make_shading(const oit_stream_args *a, const oit_mesh_info *info);
  * for several, DIR/frame_007.png for a folder (created when missing). */
 oit_status output_path(const char *out, int index, int views, char *buf, size_t cap,
                        oit_error *err);
+/* --up auto resolved: the model's up axis (formats/up_axis.h; a part file
+ * by its source's name), said on stderr where it is not y and the
+ * default views use it. */
+int stream_up_axis(const oit_stream_args *a, oit_partfile *pf, const oit_mesh_info *info);
 /* The captures' K: --max-layers, else the part file's (its parts were cut
  * for it), else 16; pf may be NULL (a mesh). */
 int stream_max_layers(const oit_stream_args *a, oit_partfile *pf);
