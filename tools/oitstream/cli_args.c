@@ -174,6 +174,10 @@ static int value_option(oit_stream_args *a, const char *opt, const char *v, oit_
             *s = bad(err, opt, v, "a frame count >= 1");
     } else if (!strcmp(opt, "--window-script")) a->window_script = v;
     else if (!strcmp(opt, "--window-screenshot")) a->window_screenshot = v;
+    else if (!strcmp(opt, "--shot-size")) {
+        if (oit_parse_size(v, 1, 16384, &a->shot_width, &a->shot_height))
+            *s = bad(err, opt, v, "WxH, each 1..16384");
+    }
     else if (!strcmp(opt, "--preview")) {
         /* the values of oit_viewer_preview, in its order */
         static const char *const names[] = {"auto", "lowres", "wboit", "unsorted", "off"};
@@ -221,11 +225,11 @@ static oit_status check_combination(const oit_stream_args *a, oit_error *err)
     if (!a->compare && !a->model)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "no model given (see --help)");
     if ((a->window_frames || a->window_script || a->window_screenshot || a->no_overlay ||
-         a->have_preview || a->still_ms) &&
+         a->have_preview || a->still_ms || a->shot_width) &&
         !a->window)
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--window-frames, --window-script, "
-                             "--window-screenshot, --no-overlay, --preview and --still need "
-                             "--window");
+                             "--window-screenshot, --shot-size, --no-overlay, --preview and "
+                             "--still need --window");
     if (a->window && (a->orbit || a->out || a->ambiguity_out))
         return oit_error_set(err, OIT_ERR_ARGUMENT, "--window shows one interactive view: "
                              "it excludes --orbit, --out and --ambiguity");
@@ -552,7 +556,10 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "                      [ and ] move section plane 1, R resets the view, O\n"
         "                      opens another file (type its path, Enter; or drop a\n"
         "                      file on the window), P saves the first free\n"
-        "                      oitstream_NNN.png (never replacing one), Esc/Q quits\n"
+        "                      oitstream_NNN.png (never replacing one): the view\n"
+        "                      rendered offscreen at --shot-size, exact, without\n"
+        "                      the overlay, its name, size and --view on stdout;\n"
+        "                      G the same of the window as shown; Esc/Q quits\n"
         "  --preview P         --window, while the camera moves: lowres (the same\n"
         "                      method at 1/2..1/4 of the resolution, upscaled, the\n"
         "                      scale adapted to frames near 30 ms), wboit or\n"
@@ -568,6 +575,8 @@ void oit_stream_usage(FILE *f, const char *method_list)
         "  --window-script K   press the keys K, one per exact frame (e.g. 2LT), then\n"
         "                      stop\n"
         "  --window-screenshot PATH  write the last frame shown (PNG) when stopping\n"
+        "  --shot-size WxH     --window: the size of P's screenshots, each side\n"
+        "                      1..16384 (default: the window's)\n"
         "  --no-overlay        no status line in the window's image\n"
         "  --compare A B       print RMSE, max abs error, %% of pixels off by more than\n"
         "                      1/255 and PSNR of two images (.png/.pfm), both in the\n"

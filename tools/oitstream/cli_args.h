@@ -53,6 +53,7 @@ typedef struct oit_stream_args {
     int window_frames;             /* --window-frames N; 0: until quit */
     const char *window_script;     /* --window-script KEYS */
     const char *window_screenshot; /* --window-screenshot PATH */
+    int shot_width, shot_height;   /* --shot-size WxH: P's screenshots; 0: the window's */
     int no_overlay;                /* --no-overlay: no status line in the image */
     int preview;                   /* --preview: oit_viewer_preview (viewer.h); 0 auto */
     int still_ms;                  /* --still MS: stillness before the exact frame; 0: 200 */

@@ -486,6 +486,7 @@ static oit_status run_window(const run_ctx *rc, const oit_mesh *mesh, oit_partfi
         .shading = rc->view.shading, .clip = rc->view.clip, .show_layers = a->show_layers, .overlay = !a->no_overlay,
         .frames = a->window_frames, .script = a->window_script,
         .screenshot = a->window_screenshot, .preview = (oit_viewer_preview)a->preview,
+        .shot_width = a->shot_width, .shot_height = a->shot_height,
         .still_ms = a->still_ms, .stats_path = a->stats_path, .model_path = a->model,
         .open_model = window_open_model, .close_model = window_close_model,
         .model_ctx = (void *)a};

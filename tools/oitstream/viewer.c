@@ -132,7 +132,7 @@ static oit_status run_bounded(viewer *v, int limit, oit_error *err)
         handle_input(v);
         if (v->quit || glfwWindowShouldClose(v->win))
             break;
-        s = viewer_one_frame(v, SHOWN_EXACT, desc->screenshot != NULL, err);
+        s = viewer_one_frame(v, SHOWN_EXACT, err);
     }
     return s;
 }
@@ -143,7 +143,7 @@ static oit_status run_bounded(viewer *v, int limit, oit_error *err)
 static oit_status run_interactive(viewer *v, oit_error *err)
 {
     double still = (v->desc->still_ms > 0 ? v->desc->still_ms : DEFAULT_STILL_MS) / 1000.0;
-    oit_status s = viewer_one_frame(v, SHOWN_EXACT, 0, err);
+    oit_status s = viewer_one_frame(v, SHOWN_EXACT, err);
     while (s == OIT_OK && !v->quit && !glfwWindowShouldClose(v->win)) {
         if (!v->moved && !v->changed && !v->recompose && !v->open_pending) {
             double now = glfwGetTime(), wake = INFINITY;
@@ -167,13 +167,13 @@ static oit_status run_interactive(viewer *v, oit_error *err)
             v->recompose = 1;
         }
         if (v->changed)
-            s = viewer_one_frame(v, SHOWN_EXACT, 0, err);
+            s = viewer_one_frame(v, SHOWN_EXACT, err);
         else if (v->moved)
-            s = viewer_one_frame(v, SHOWN_PREVIEW, 0, err);
+            s = viewer_one_frame(v, SHOWN_PREVIEW, err);
         else if (v->shown_kind == SHOWN_PREVIEW && now >= v->last_move + still)
-            s = viewer_one_frame(v, SHOWN_EXACT, 0, err);
-        else if (v->recompose || v->save_pending)
-            s = viewer_present(v, 0, err);
+            s = viewer_one_frame(v, SHOWN_EXACT, err);
+        else if (v->recompose || v->grab_pending)
+            s = viewer_present(v, err);
     }
     return s;
 }

@@ -21,7 +21,9 @@
  * centre facing the viewer, or turns the planes off and on, and [ and ]
  * move the first plane along its normal (viewer_clip.h); R resets the camera; O opens another file (type
  * its path, Enter loads, Esc cancels; a file dropped on the window opens
- * too); H or ? toggles the help overlay; P saves a screenshot; Esc or Q
+ * too); H or ? toggles the help overlay; P saves a screenshot (the view
+ * rendered offscreen at shot_width x shot_height), G one of the window as
+ * shown; Esc or Q
  * quits.
  *
  * For tests the loop is also scriptable: one key of `script` is pressed
@@ -74,6 +76,7 @@ typedef struct oit_viewer_desc {
     int frames;                   /* > 0: stop after that many frames        */
     const char *script;           /* keys, one per frame; NULL: none         */
     const char *screenshot;       /* PNG of the last presented frame, or NULL */
+    int shot_width, shot_height;  /* P's screenshots; 0: the window's size   */
     oit_viewer_preview preview;   /* what moving shows                       */
     int still_ms;                 /* stillness before the exact frame; 0: 200 */
     const char *stats_path;       /* JSON of the frame counters, rewritten after each frame */

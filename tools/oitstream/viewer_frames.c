@@ -205,6 +205,34 @@ static oit_status render_frame(viewer *v, int fb_w, int fb_h, int kind, oit_erro
     return OIT_OK;
 }
 
+/* P's image: the current view with the current method at width x height,
+ * rendered offscreen (not the window's image: exact even while a preview
+ * is shown, no overlay; the heat map where it is on), as oitstream --size
+ * --view of that view renders it. */
+oit_status viewer_render_shot(viewer *v, int width, int height, oit_image *out, oit_error *err)
+{
+    const oit_render_method_info *m = v->methods[v->current];
+    int heat = v->show_layers && (m->flags & OIT_RENDER_METHOD_COUNTS);
+    uint32_t *counts = heat ? malloc((size_t)width * (size_t)height * sizeof *counts) : NULL;
+    if (heat && !counts)
+        return oit_error_set(err, OIT_ERR_NOMEM, "cannot allocate %dx%d layer counts", width,
+                             height);
+    viewer_fit_clip(v); /* the camera may have moved since the last frame */
+    oit_view view = v->view;
+    view.width = width;
+    view.height = height;
+    oit_image img = {0};
+    oit_status s = oit_run_render(v->state, &view, &img, counts, NULL, NULL, err);
+    if (s == OIT_OK && heat) {
+        s = oit_image_heatmap(counts, width, height, out, err);
+        oit_image_free(&img);
+    } else if (s == OIT_OK) {
+        *out = img;
+    }
+    free(counts);
+    return s;
+}
+
 static void upload_texture(viewer *v, const oit_image *img)
 {
     if (!v->tex || v->tex_w != img->width || v->tex_h != img->height) {
@@ -253,8 +281,9 @@ static oit_status read_back(viewer *v, int w, int h, oit_error *err)
 }
 
 /* Composes the overlays over the last rendered image and shows it; no
- * rendering. */
-oit_status viewer_present(viewer *v, int want_shot, oit_error *err)
+ * rendering. With --window-screenshot each image shown is read back, so
+ * that the last one is there to write when the loop stops; G's, once. */
+oit_status viewer_present(viewer *v, oit_error *err)
 {
     if (!v->base.rgba)
         return OIT_OK;
@@ -274,7 +303,7 @@ oit_status viewer_present(viewer *v, int want_shot, oit_error *err)
     glBlitFramebuffer(0, 0, v->shown.width, v->shown.height, 0, 0, fb_w, fb_h, GL_COLOR_BUFFER_BIT,
                       GL_NEAREST);
     s = oit_gl_check("viewer: presenting the frame", err);
-    if (s == OIT_OK && (want_shot || v->save_pending))
+    if (s == OIT_OK && (v->desc->screenshot || v->grab_pending))
         s = read_back(v, fb_w, fb_h, err);
     char title[sizeof v->model_name + sizeof v->status + 16];
     snprintf(title, sizeof title, "oitstream %s: %s", v->model_name, v->status);
@@ -283,8 +312,8 @@ oit_status viewer_present(viewer *v, int want_shot, oit_error *err)
     v->last_present_ms = (glfwGetTime() - t0) * 1000.0;
     v->presents++;
     v->recompose = 0;
-    if (s == OIT_OK && v->save_pending && v->shot.rgba)
-        viewer_save_screenshot(v);
+    if (s == OIT_OK && v->grab_pending && v->shot.rgba)
+        viewer_save_window(v);
     return s;
 }
 
@@ -329,7 +358,7 @@ void viewer_write_stats(viewer *v)
 }
 
 /* Renders (kind) and shows the frame. */
-oit_status viewer_one_frame(viewer *v, int kind, int want_shot, oit_error *err)
+oit_status viewer_one_frame(viewer *v, int kind, oit_error *err)
 {
     int fb_w = 0, fb_h = 0;
     glfwGetFramebufferSize(v->win, &fb_w, &fb_h);
@@ -340,7 +369,7 @@ oit_status viewer_one_frame(viewer *v, int kind, int want_shot, oit_error *err)
                         */
     oit_status s = render_frame(v, fb_w, fb_h, kind, err);
     if (s == OIT_OK)
-        s = viewer_present(v, want_shot, err);
+        s = viewer_present(v, err);
     if (s == OIT_OK)
         viewer_write_stats(v);
     return s;

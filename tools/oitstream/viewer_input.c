@@ -236,24 +236,50 @@ static void cycle_method(viewer *v, int dir)
     }
 }
 
-/* P: the next oitstream_NNN.png that does not exist yet, so that no run
- * of the viewer replaces an earlier one's screenshot. */
+/* P: the current view rendered offscreen at --shot-size (the window's size
+ * without it) into the next oitstream_NNN.png that does not exist yet, so
+ * that no run of the viewer replaces an earlier one's screenshot; stdout
+ * names it with its size and the view as --view takes it. */
 void viewer_save_screenshot(viewer *v)
 {
-    char path[64];
+    int w = v->desc->shot_width, h = v->desc->shot_height;
+    if (w <= 0 || h <= 0)
+        glfwGetFramebufferSize(v->win, &w, &h);
+    char path[64], view[512];
     oit_error err = {0};
-    v->save_pending = 0;
-    if (oit_output_reserve_numbered("oitstream", "png", &v->screenshots, path, sizeof path, &err) !=
-        OIT_OK) {
+    oit_image img = {0};
+    oit_status s = viewer_render_shot(v, w, h, &img, &err);
+    if (s == OIT_OK)
+        s = oit_output_reserve_numbered("oitstream", "png", &v->screenshots, path, sizeof path,
+                                        &err);
+    if (s == OIT_OK && (s = oit_image_write_png(&img, path, &err)) != OIT_OK)
+        remove(path);
+    oit_image_free(&img);
+    if (s != OIT_OK) {
         viewer_say(v, "screenshot: %s", err.message);
         return;
     }
-    if (oit_image_write_png(&v->shot, path, &err) != OIT_OK) {
+    oit_stats_format_view(&v->view.camera, v->mesh->info.origin, view, sizeof view);
+    printf("viewer: screenshot %s %dx%d --view %s\n", path, w, h, view);
+    fflush(stdout);
+}
+
+/* G: the window's next image as shown (overlays, a preview) into the next
+ * free oitstream_NNN.png, as P names its. */
+void viewer_save_window(viewer *v)
+{
+    char path[64];
+    oit_error err = {0};
+    v->grab_pending = 0;
+    oit_status s = oit_output_reserve_numbered("oitstream", "png", &v->screenshots, path,
+                                               sizeof path, &err);
+    if (s == OIT_OK && (s = oit_image_write_png(&v->shot, path, &err)) != OIT_OK)
         remove(path);
-        viewer_say(v, "screenshot: %s", err.message);
-    } else {
-        printf("viewer: screenshot %s\n", path);
-    }
+    if (s != OIT_OK)
+        viewer_say(v, "window screenshot: %s", err.message);
+    else
+        printf("viewer: screenshot %s %dx%d (the window)\n", path, v->shot.width,
+               v->shot.height);
     fflush(stdout);
 }
 
@@ -451,7 +477,10 @@ void viewer_handle_key(viewer *v, char key)
         v->changed = 1;
         break;
     case 'P':
-        v->save_pending = 1;
+        viewer_save_screenshot(v);
+        break;
+    case 'G':
+        v->grab_pending = 1;
         v->recompose = 1;
         break;
     case 'M':

@@ -79,7 +79,7 @@ typedef struct viewer {
     const oit_run *gpu_state;
     const char *gpu_absent;
     int frames, exact_frames, preview_frames, presents, screenshots;
-    int save_pending; /* P: save the next presented image */
+    int grab_pending; /* G: save the next presented image, as the window shows it */
     /* The threshold the methods open with (options.threshold; E toggles
      * it): has_epsilon 0, none given, each method's default. */
     float epsilon;
@@ -145,6 +145,7 @@ void viewer_on_scroll(GLFWwindow *w, double dx, double dy);
 void viewer_open_entry(viewer *v);
 void viewer_push_key(viewer *v, char key);
 void viewer_save_screenshot(viewer *v);
+void viewer_save_window(viewer *v);
 
 /* viewer_pick.c: the layers under the cursor */
 void viewer_pick_at(viewer *v, double wx, double wy);
@@ -154,8 +155,9 @@ void viewer_pick_button(viewer *v, int pressed);
 oit_status viewer_compose(viewer *v, oit_error *err);
 
 /* viewer_frames.c: rendering, previews, presenting and the stats file */
-oit_status viewer_one_frame(viewer *v, int kind, int want_shot, oit_error *err);
-oit_status viewer_present(viewer *v, int want_shot, oit_error *err);
+oit_status viewer_one_frame(viewer *v, int kind, oit_error *err);
+oit_status viewer_present(viewer *v, oit_error *err);
+oit_status viewer_render_shot(viewer *v, int width, int height, oit_image *out, oit_error *err);
 void viewer_write_stats(viewer *v);
 
 #endif

@@ -216,7 +216,9 @@ static void help_panel(const viewer *v, panel *p)
     panel_add(p, kWhite, "R               reset the camera");
     panel_add(p, kWhite, "O               open a file: type its path, Enter");
     panel_add(p, kWhite, "                (or drop a file on the window)");
-    panel_add(p, kWhite, "P               save the next free oitstream_NNN.png");
+    panel_add(p, kWhite, "P               save the view, offscreen at --shot-size, to");
+    panel_add(p, kWhite, "                the next free oitstream_NNN.png");
+    panel_add(p, kWhite, "G               the same of the window as shown (overlays)");
     panel_add(p, kWhite, "Q, Esc          quit");
     panel_add(p, kGrey, "moving shows a preview; still for %d ms, the exact image",
               v->desc->still_ms > 0 ? v->desc->still_ms : DEFAULT_STILL_MS);

@@ -11,7 +11,8 @@
 #     both; on a mesh, 5 puts a message on the image saying why it cannot run
 #   - --up z equals `--up z --out` and changes the default view
 #   - V toggles orthographic (equal to --ortho fit) and back
-#   - P writes the first free oitstream_NNN.png and never replaces a file
+#   - P writes the first free oitstream_NNN.png and never replaces a file,
+#     rendered offscreen from the current view at --shot-size
 #   - the status line of named fields wraps to the window's width
 # Equal means within half an 8-bit step (the window quantises to 8 bits).
 set -u
@@ -119,7 +120,10 @@ grep -q "^viewer: method 5" keys_mesh.txt && fail "key 5 on a mesh switched meth
 grep -q "^viewer: method 4: stencil\|^viewer: 4 stencil cannot run here: ." keys_mesh.txt ||
     fail "key 4 neither switched to stencil nor said why it cannot"
 expect_equal "before 5 vs headless" oitstream_000.png ref.png
-expect_differ "the message of 5 on the image" oitstream_001.png oitstream_000.png 100
+#    the message is on the window's image (P renders the view alone)
+"$S" quads.ply --window --no-overlay --size $SIZE --window-script "5" --window-screenshot msg5.png \
+    >msg5.txt 2>&1 || { cat msg5.txt; fail "the message run exited with $?"; }
+expect_differ "the message of 5 on the image" msg5.png ref.png 100
 
 # 5b. P never overwrites: a later run numbers on from the first free name
 #     (000 and 001 are section 5's), skips a file someone else made, and
@@ -129,8 +133,8 @@ before=$(cksum oitstream_000.png oitstream_001.png)
 "$S" quads.ply --window --no-overlay --size $SIZE --window-script "PWPR" >shots.txt 2>&1 ||
     { cat shots.txt; fail "the screenshot run exited with $?"; }
 cat shots.txt
-grep -q "^viewer: screenshot oitstream_002.png$" shots.txt &&
-    grep -q "^viewer: screenshot oitstream_004.png$" shots.txt ||
+grep -q "^viewer: screenshot oitstream_002.png " shots.txt &&
+    grep -q "^viewer: screenshot oitstream_004.png " shots.txt ||
     fail "P did not write oitstream_002.png then oitstream_004.png (the first free names)"
 [ "$(cksum oitstream_000.png oitstream_001.png)" = "$before" ] ||
     fail "P replaced an earlier run's screenshot"
@@ -163,19 +167,22 @@ expect_equal "2048x2048 window vs headless" big.png big_ref.png
 
 # 8. L on a part file: the stream counts fragments per pixel, so its heat
 #    map is DFB's of the same triangles (000 stream, 001 its heat map); a
-#    method that counts none (wboit, key 7) says so on the image (002
-#    before L, 003 after).
+#    method that counts none (wboit, key 7) says so on the window's image
+#    (before L and after).
 mkdir -p heat && cd heat || exit 1
 "$S" ../quads.oitp --window --no-overlay --size $SIZE --window-script "PLP" >heat.txt 2>&1 ||
     { cat heat.txt; fail "the heat-map run exited with $?"; }
-"$S" ../quads.ply --window --no-overlay --size $SIZE --window-script "7PLP" >heat_wboit.txt 2>&1 ||
+"$S" ../quads.ply --window --no-overlay --size $SIZE --window-script "7" \
+    --window-screenshot wboit.png >/dev/null 2>&1 || fail "the wboit run exited with $?"
+"$S" ../quads.ply --window --no-overlay --size $SIZE --window-script "7L" \
+    --window-screenshot wboit_l.png >heat_wboit.txt 2>&1 ||
     { cat heat_wboit.txt; fail "the wboit heat-map run exited with $?"; }
 cat heat.txt heat_wboit.txt
 expect_equal "L on the stream vs DFB's --show layers" oitstream_001.png ../heat.png
 expect_differ "L on the stream vs its colours" oitstream_001.png oitstream_000.png 1000
 grep -q "^viewer: layer heat map: wboit counts no fragments per pixel" heat_wboit.txt ||
     fail "L on wboit does not say it counts none"
-expect_differ "the message of L on wboit on the image" oitstream_003.png oitstream_002.png 100
+expect_differ "the message of L on wboit on the image" wboit_l.png wboit.png 100
 cd .. || exit 1
 
 # 9. V toggles the projection: orthographic as high as the perspective
@@ -194,6 +201,38 @@ grep -q "last: .*  ortho  " ortho.txt || fail "the status line does not say orth
 expect_equal "V vs --ortho fit" oitstream_001.png ortho_ref.png
 expect_differ "V vs perspective" oitstream_001.png ../ref.png 100
 expect_equal "V twice vs perspective" oitstream_002.png ../ref.png
+cd .. || exit 1
+
+# 10. P renders the current view offscreen, without the overlay, at
+#     --shot-size (default the window's size), with the current method
+#     (stream here, after a fly, V and a fly back), and prints the file,
+#     its size and the view as --view takes it: the image equals oitstream
+#     --size --view of that view.
+png_size() { od -An -tu1 -j16 -N8 "$1" | awk '{ print $3 * 256 + $4 "x" $7 * 256 + $8 }'; }
+mkdir -p shot && cd shot || exit 1
+"$S" ../quads.oitp --window --size $SIZE --shot-size 200x90 --window-script "DVAP" >shot.txt 2>&1 ||
+    { cat shot.txt; fail "the --shot-size run exited with $?"; }
+cat shot.txt
+VIEW=$(sed -n 's/^viewer: screenshot oitstream_000.png 200x90 --view \(.*\)$/\1/p' shot.txt)
+[ -n "$VIEW" ] || fail "P does not print the screenshot's name, size and view"
+[ "$(png_size oitstream_000.png)" = 200x90 ] ||
+    fail "the screenshot is $(png_size oitstream_000.png), not --shot-size 200x90"
+"$S" ../quads.oitp --size 200x90 --view "$VIEW" --quiet --out shot_ref.png ||
+    fail "headless --view $VIEW"
+expect_equal "P at --shot-size vs --size --view" oitstream_000.png shot_ref.png
+"$S" ../quads.oitp --size 200x90 --quiet --out home.png || fail "headless home view"
+expect_differ "that view vs the home view" shot_ref.png home.png 100
+"$S" ../quads.ply --window --size $SIZE --window-script "P" >shot_default.txt 2>&1 ||
+    { cat shot_default.txt; fail "the default-size run exited with $?"; }
+[ "$(png_size oitstream_001.png)" = "$(echo $SIZE)" ] ||
+    fail "without --shot-size the screenshot is $(png_size oitstream_001.png), not the window's $SIZE"
+expect_equal "P at the window's size vs headless (no overlay)" oitstream_001.png ../ref.png
+#     the window's own image is --window-screenshot's: H's help shows there
+"$S" ../quads.ply --window --no-overlay --size $SIZE --window-script "H" --window-screenshot help.png \
+    >help.txt 2>&1 || { cat help.txt; fail "the help run exited with $?"; }
+expect_differ "the help overlay on the window's image" help.png ../ref.png 1000
+"$S" ../quads.ply --shot-size 200x90 >/dev/null 2>&1; rc=$?
+[ "$rc" -eq 2 ] || fail "--shot-size without --window: exit $rc, want 2"
 cd .. || exit 1
 
 finish viewer

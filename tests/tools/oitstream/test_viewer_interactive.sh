@@ -6,6 +6,9 @@
 #     image), and after --still ms of stillness the exact image (status
 #     "exact"), which equals `oitstream --out` of the view the window reports;
 #   - H shows the help overlay (pixels change), H again hides it;
+#   - G saves the window's image as shown (the preview, the help), P the
+#     view rendered offscreen: the exact image even while the preview
+#     shows, and no overlay;
 #   - O, a typed path and Enter open another file (a part file: stream),
 #     which idles too, and after a drag shows the headless stream's image;
 #   - Q quits with exit status 0 and the counters on stdout.
@@ -80,8 +83,10 @@ if start quads.ply --preview lowres --still $STILL; then
     TITLE=$(xdotool getwindowname "$WIN")
     echo "title while moving: $TITLE"
     echo "$TITLE" | grep -q "  preview 1/[2-8] res  " || fail "the status line does not say preview: $TITLE"
+    xdotool key --window "$WIN" g
+    wait_for 10 sh -c '[ "$(grep -c "^viewer: screenshot" log.txt)" -ge 1 ]' || fail "G saved no screenshot of the preview"
     xdotool key --window "$WIN" p
-    wait_for 10 sh -c '[ "$(grep -c "^viewer: screenshot" log.txt)" -ge 1 ]' || fail "P saved no preview screenshot"
+    wait_for 10 sh -c '[ "$(grep -c "^viewer: screenshot" log.txt)" -ge 2 ]' || fail "P saved no screenshot while the preview shows"
     [ "$(stat_of exact_frames)" -eq "$e0" ] || fail "the exact frame came before the screenshot of the preview (--still $STILL)"
     # the exact frame, within --still of the last motion (and some slack for ASan)
     wait_for 30 stat_at_least exact_frames $((e0 + 1)) || fail "no exact frame after the drag"
@@ -91,17 +96,23 @@ if start quads.ply --preview lowres --still $STILL; then
     echo "$TITLE" | grep -q "  exact  " || fail "the status line does not say exact: $TITLE"
     VIEW=$(json_str view <st.json)
     xdotool key --window "$WIN" p
-    wait_for 10 sh -c '[ "$(grep -c "^viewer: screenshot" log.txt)" -ge 2 ]' || fail "P saved no exact screenshot"
-    xdotool key --window "$WIN" h p
-    wait_for 10 sh -c '[ "$(grep -c "^viewer: screenshot" log.txt)" -ge 3 ]' || fail "P saved no help screenshot"
+    wait_for 10 sh -c '[ "$(grep -c "^viewer: screenshot" log.txt)" -ge 3 ]' || fail "P saved no exact screenshot"
+    xdotool key --window "$WIN" h g
+    wait_for 10 sh -c '[ "$(grep -c "^viewer: screenshot" log.txt)" -ge 4 ]' || fail "G saved no help screenshot"
+    xdotool key --window "$WIN" p
+    wait_for 10 sh -c '[ "$(grep -c "^viewer: screenshot" log.txt)" -ge 5 ]' || fail "P saved no screenshot under the help"
     xdotool key --window "$WIN" h
     idle "mesh after the drag"
     quit mesh
     "$S" quads.ply --size ${W}x$H --quiet --view "$VIEW" --out ref.png || fail "headless dfb of $VIEW"
-    expect_equal "exact after the drag vs headless of its view" oitstream_001.png ref.png
-    expect_differ "preview vs exact" oitstream_000.png oitstream_001.png 100
+    # 000 G of the preview, 001 P then, 002 P of the exact frame, 003 G of
+    # the help, 004 P under the help
+    expect_equal "exact after the drag vs headless of its view" oitstream_002.png ref.png
+    expect_differ "preview vs exact" oitstream_000.png oitstream_002.png 100
     awk "BEGIN{exit !($RMSE < 0.05)}" || fail "the preview is not the exact image at a lower resolution (rmse $RMSE)"
-    expect_differ "help overlay vs none" oitstream_002.png oitstream_001.png 1000
+    expect_equal "P while the preview shows: the exact image" oitstream_001.png ref.png
+    expect_differ "help overlay vs none" oitstream_003.png oitstream_002.png 1000
+    expect_equal "P leaves the help overlay out" oitstream_004.png ref.png
     grep -q "^viewer: [0-9]* frames rendered (2 exact, [1-9][0-9]* preview)" log.txt ||
         fail "want 2 exact frames (the first, and after the drag) and some previews"
 fi
@@ -134,8 +145,8 @@ if start quads.ply --preview lowres --still 1000; then
     "$S" quads.oitp --size ${W}x$H --quiet --view "$VIEW" --out ref_stream.png || fail "headless stream of $VIEW"
     # P never replaces a screenshot (section 1's are there): the name is
     # the one the viewer says it wrote.
-    shot=$(sed -n 's/^viewer: screenshot //p' log.txt | tail -n 1)
-    [ "$shot" = oitstream_003.png ] || fail "P wrote '$shot', want oitstream_003.png (000-002 are section 1's)"
+    shot=$(sed -n 's/^viewer: screenshot \([^ ]*\) .*/\1/p' log.txt | tail -n 1)
+    [ "$shot" = oitstream_005.png ] || fail "P wrote '$shot', want oitstream_005.png (000-004 are section 1's)"
     expect_equal "stream exact after the drag vs headless" "$shot" ref_stream.png
 fi
 

@@ -4,9 +4,10 @@
 # under the cursor on stdout, the same source triangles in the same order
 # (and parts, for a part file) as `oitstream --pick` of the view the window
 # reports, for a mesh (dfb) and a part file (stream); the panel and the
-# marker change the image (P screenshots before and after differ), and a
-# drag (even one back to where it began) picks nothing and clears them (the
-# screenshot after it equals the headless image of the window's view).
+# marker change the image (G screenshots of the window before and after
+# differ), and a drag (even one back to where it began) picks nothing and
+# clears them (the window's screenshot after it equals the headless image of
+# the window's view).
 set -u
 . "${OIT_TEST_LIB:-$(dirname "$0")/../../lib.sh}"
 [ -n "${DISPLAY:-}" ] || skip "no DISPLAY (run under xvfb-run)"
@@ -69,13 +70,13 @@ check() {
 
 for model in quads.ply quads.oitp; do
     start "$model" || continue
-    xdotool key --window "$WIN" p
-    wait_for 10 lines_at_least "^viewer: screenshot" 1 || fail "$model: P saved no screenshot"
+    xdotool key --window "$WIN" g
+    wait_for 10 lines_at_least "^viewer: screenshot" 1 || fail "$model: G saved no screenshot"
     xdotool mousemove --window "$WIN" 100 75 click 1
     wait_for 20 lines_at_least "^viewer: pick 100,75: " 1 || { cat log.txt; fail "$model: a click at 100,75 picked nothing"; }
     check "$model click" "$model" 1 100 75
-    xdotool key --window "$WIN" p
-    wait_for 10 lines_at_least "^viewer: screenshot" 2 || fail "$model: P saved no screenshot"
+    xdotool key --window "$WIN" g
+    wait_for 10 lines_at_least "^viewer: screenshot" 2 || fail "$model: G saved no screenshot"
     expect_differ "$model: the pick's panel vs none" oitstream_001.png oitstream_000.png 200
     xdotool mousemove --window "$WIN" 110 70 key --window "$WIN" i
     wait_for 20 lines_at_least "^viewer: pick 110,70: " 1 || fail "$model: I at 110,70 picked nothing"
@@ -86,8 +87,8 @@ for model in quads.ply quads.oitp; do
         mousemove --window "$WIN" 100 75 mouseup 1
     wait_for 30 stat_at_least exact_frames $((e + 1)) || fail "$model: no exact frame after the drag"
     [ "$(grep -c '^viewer: pick ' log.txt)" -eq 2 ] || fail "$model: a drag picked"
-    xdotool key --window "$WIN" p
-    wait_for 10 lines_at_least "^viewer: screenshot" 3 || fail "$model: P saved no screenshot"
+    xdotool key --window "$WIN" g
+    wait_for 10 lines_at_least "^viewer: screenshot" 3 || fail "$model: G saved no screenshot"
     quit "$model"
     "$S" "$model" --size ${W}x$H --quiet --view "$(json_str view <st.json)" --out ref.png ||
         fail "$model: headless image of the window's view"
