@@ -15,7 +15,8 @@
  *     y extent (a plant, a building, a board modelled Z-up: wide, flat in
  *     z), else y. A Y-up model is never flat in z alone by that test unless
  *     it is deep and low (then a z-up view shows it from above, which is
- *     what such a model needs too); a tall Z-up model keeps y (--up). */
+ *     what such a model needs too); a tall Z-up model keeps y (the caller's
+ *     choice overrides: the tools' up axis option). */
 int oit_up_axis_guess(const char *path, const float bmin[3], const float bmax[3],
                       const char **why);
 
