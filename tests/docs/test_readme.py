@@ -1,8 +1,8 @@
 """The README's shell commands, run: every block fenced ```sh is taken
 command by command (backslash continuations joined) and run in a temporary
 folder from the built tools, each must exit 0 and write what it names
-(the path after -o, --out, --stats or --save-parts, and oit.save_png's
-file; a folder must hold files; an oitstream command that names no
+(the path after -o, --out, --stats or --save-parts, oit.save_png's file,
+and where --pick's stdout is sent; a folder must hold files; an oitstream command that names no
 --out writes nothing, and fails). A block fenced
 ```sh notest: REASON is skipped, saying why (a display, big data, minutes);
 a fence of build/bin commands that is neither fails the test, so no
@@ -78,6 +78,9 @@ def outputs(cmd):
     code = cmd.split(" #")[0]
     named = re.findall(r"(?:^|\s)(?:-o|--out|--stats|--save-parts)\s+(\S+)", code)
     named += re.findall(r'save_png\("([^"]+)"', code)
+    # oitstream --pick prints JSON: the file its stdout is sent to
+    if "--pick" in code:
+        named += re.findall(r"(?:^|\s)>\s*(\S+)", code)
     # oitbench plot OUT RUN...: OUT gets the charts
     m = re.search(r"oitbench plot (\S+)", code)
     if m:
