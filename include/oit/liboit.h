@@ -493,7 +493,7 @@ OIT_API oit_status oit_renderer_draw_pixels(oit_renderer *r, oit_scene *scene,
 
 /* Every fragment the exact image composites at pixel (x, y) of frame's
  * viewport (y = 0 the TOP row, as oit_renderer_draw_image's rows), front
- * to back: its depth, colour, alpha, the transmittance in front of it,
+ * to back: its depth, point, colour, alpha, the transmittance in front of it,
  * its part and source triangle (include/oit/pick.h). The ray through the
  * pixel's centre is the Embree reference's, and the layers are ordered by
  * the tie rule every exact method follows (by depth key, then source

@@ -22,6 +22,9 @@ typedef struct oit_pick_layer {
      * origin (the eye; orthographic: the near plane) to the triangle's
      * plane, its lowest mantissa bits cleared; scene units. */
     double depth;
+    /* Where the pixel centre's ray meets the triangle, in the scene's
+     * coordinates (relative to oit_scene_info.origin, as its positions). */
+    double point[3];
     float colour[3];        /* shaded, as composited */
     float alpha;            /* coverage (translucent: Fresnel's)  */
     float transmittance[3]; /* of the light before this layer: 1 for the front one */

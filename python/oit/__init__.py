@@ -372,6 +372,7 @@ class Renderer(_Closable):
         rows) of the view render would draw with the same size, view, clip,
         up, azimuth and elevation, front to back: a list of dicts with
         depth (the tie rule's key along the pixel's ray, scene units),
+        point (where the ray meets the layer, in the file's coordinates),
         alpha, colour (rgb as composited), transmittance (rgb, of the light
         in front of the layer), front (the face turns towards the viewer),
         part (None in core), source_triangle, group and material (None: no
@@ -390,7 +391,9 @@ class Renderer(_Closable):
         _check(L.lib().oit_offscreen_pick(*args, layers, count.value, ctypes.byref(count),
                                           ctypes.byref(err)), err)
         name = lambda b: b.decode() if b is not None else None
-        return [{"depth": l.depth, "alpha": l.alpha, "colour": list(l.colour),
+        origin = scene.info["origin"]
+        return [{"depth": l.depth, "point": [p + o for p, o in zip(l.point, origin)],
+                 "alpha": l.alpha, "colour": list(l.colour),
                  "transmittance": list(l.transmittance), "front": bool(l.front),
                  "part": None if l.part == L.PICK_NO_PART else l.part,
                  "source_triangle": l.source_triangle, "group": name(l.group),

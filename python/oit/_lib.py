@@ -83,7 +83,8 @@ class OffscreenView(ctypes.Structure):
 
 
 class PickLayer(ctypes.Structure):
-    _fields_ = [("depth", ctypes.c_double), ("colour", ctypes.c_float * 3),
+    _fields_ = [("depth", ctypes.c_double), ("point", ctypes.c_double * 3),
+                ("colour", ctypes.c_float * 3),
                 ("alpha", ctypes.c_float), ("transmittance", ctypes.c_float * 3),
                 ("front", ctypes.c_int), ("part", ctypes.c_uint32),
                 ("source_triangle", ctypes.c_uint64), ("group", ctypes.c_char_p),

@@ -9,7 +9,8 @@
  * - composited (C += T a c over the layers, then T (1 - a) of the last over
  *   white) they give the reference's pixel within 1e-4, and every layer's
  *   transmittance is the product of (1 - alpha) of the layers before it;
- * - they give DFB's pixel (GL) within 1.5/255;
+ * - they give DFB's pixel (GL) within 1.5/255, and each layer's point lies
+ *   its depth from the eye;
  * - the model's part file (oitprep) lists the same source triangles, each
  *   with its part; in core the part is OIT_PICK_NO_PART;
  * - capacity: a call with less room gets the front layers and the count;
@@ -134,8 +135,14 @@ static void check_pixel(const model *m, oit_renderer *walk, oit_renderer *ref, i
     size_t nb = pick(ref, m->in_core, m, x, y, b);
     CHECK(same_layers(a, na, b, nb), "%s %d,%d: the walk's %zu layers are not the "
           "reference's %zu", m->mesh, x, y, na, nb);
-    for (size_t i = 0; i < na; i++)
+    for (size_t i = 0; i < na; i++) {
         CHECK(a[i].part == OIT_PICK_NO_PART, "%s: a part in core", m->mesh);
+        double d2 = 0.0;
+        for (int k = 0; k < 3; k++)
+            d2 += (a[i].point[k] - m->cam.eye[k]) * (a[i].point[k] - m->cam.eye[k]);
+        CHECK(fabs(sqrt(d2) - a[i].depth) <= 1e-4 * a[i].depth, "%s %d,%d: layer %zu's point "
+              "lies %g from the eye, its depth is %g", m->mesh, x, y, i, sqrt(d2), a[i].depth);
+    }
     float rgb[3];
     composite(a, na, rgb, m->mesh);
     const float *r = m->ref_rgba + ((size_t)y * W + x) * 4, *d = m->dfb_rgba + ((size_t)y * W + x) * 4;

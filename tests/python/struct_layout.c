@@ -81,11 +81,21 @@ static void offscreen_view(void)
 #undef V
 }
 
+static void pick_layer(void)
+{
+    SIZE(PickLayer, oit_pick_layer);
+#define P(f) AT(PickLayer, oit_pick_layer, f)
+    P(depth); P(point); P(colour); P(alpha); P(transmittance); P(front); P(part);
+    P(source_triangle); P(group); P(material);
+#undef P
+}
+
 /* Every value of the enums _lib.py spells (its ENUMS) and of its
  * module-level constants: "enum NAME value". */
 #define E(name) printf("enum " #name " %d\n", (int)(name))
 static void enums(void)
 {
+    printf("enum OIT_PICK_NO_PART %u\n", (unsigned)OIT_PICK_NO_PART); /* past int */
     E(OIT_RENDER_PACK_AUTO); E(OIT_RENDER_PACK_COUNTED); E(OIT_RENDER_PACK_BUDGET);
     E(OIT_RENDER_PACK_DISJOINT); E(OIT_RENDER_PACK_FIRSTK);
     E(OIT_RENDER_CAPTURE_AUTO); E(OIT_RENDER_CAPTURE_ARRAY); E(OIT_RENDER_CAPTURE_STENCIL);
@@ -105,6 +115,7 @@ int main(void)
     stats();
     scene();
     offscreen_view();
+    pick_layer();
     enums();
     return 0;
 }

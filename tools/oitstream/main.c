@@ -544,7 +544,7 @@ static int run_render(const oit_stream_args *args)
         rc.view.camera = cams[0];
         oit_pick_request rq = {.model = a->model, .part_file = pf != NULL, .mesh = &mesh,
                                .method = rc.method->name, .view = &rc.view, .x = a->pick_x,
-                               .y = a->pick_y};
+                               .y = a->pick_y, .origin = mesh.info.origin};
         s = oit_pick_print(&rq, stdout, &err);
     } else if (s == OIT_OK && a->window)
         s = run_window(&rc, &mesh, pf, &opt, &cams[0], &err);

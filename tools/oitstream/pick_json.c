@@ -22,10 +22,14 @@ static void name_or_null(oit_json *w, const char *key, const char *s)
         oit_json_null(w, key);
 }
 
-static void write_layer(oit_json *w, const oit_pick_layer *l)
+static void write_layer(oit_json *w, const oit_pick_layer *l, const double *origin)
 {
     oit_json_begin_object(w, NULL, OIT_JSON_INLINE);
     oit_json_general(w, "depth", l->depth, 9);
+    oit_json_begin_array(w, "point", OIT_JSON_INLINE);
+    for (int k = 0; k < 3; k++)
+        oit_json_general(w, NULL, l->point[k] + (origin ? origin[k] : 0.0), 10);
+    oit_json_end(w);
     oit_json_general(w, "alpha", l->alpha, 7);
     floats(w, "colour", l->colour, 3);
     floats(w, "transmittance", l->transmittance, 3);
@@ -59,7 +63,7 @@ static oit_status write_json(const oit_pick_request *rq, const oit_pick_layer *l
     oit_json_uint(&w, "count", n);
     oit_json_begin_array(&w, "layers", OIT_JSON_BLOCK);
     for (size_t i = 0; i < n; i++)
-        write_layer(&w, &layers[i]);
+        write_layer(&w, &layers[i], rq->origin);
     oit_json_end(&w);
     oit_json_end(&w);
     return oit_json_close(&w, err);

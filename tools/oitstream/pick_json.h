@@ -15,6 +15,8 @@ typedef struct oit_pick_request {
     const char *method; /* liboit's name: the reference picks through Embree */
     const oit_view *view;
     int x, y;
+    const double *origin; /* the model's (oit_mesh_info.origin): points in file
+                             coordinates; NULL: the scene's own */
 } oit_pick_request;
 
 /* Every layer into *layers (allocated, n of them; NULL when none); errors

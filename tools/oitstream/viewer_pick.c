@@ -29,7 +29,9 @@ static void print_layers(const viewer *v, const oit_pick_layer *l, size_t n)
             printf("-");
         else
             printf("%u", l[i].part);
-        printf(" source %llu\n", (unsigned long long)l[i].source_triangle);
+        const double *o = v->mesh->info.origin;
+        printf(" source %llu point %.9g,%.9g,%.9g\n", (unsigned long long)l[i].source_triangle,
+               l[i].point[0] + o[0], l[i].point[1] + o[1], l[i].point[2] + o[2]);
     }
     fflush(stdout);
 }
@@ -44,7 +46,7 @@ void viewer_pick_at(viewer *v, double wx, double wy)
     oit_pick_request rq = {.model = v->pf ? v->stream_path : v->model_name,
                            .part_file = v->pf != NULL, .mesh = v->mesh,
                            .method = v->methods[v->current]->name, .view = &v->view, .x = x,
-                           .y = y};
+                           .y = y, .origin = v->mesh->info.origin};
     oit_pick_layer *layers = NULL;
     size_t n = 0;
     oit_error err = {0};

@@ -208,8 +208,9 @@ static size_t key_and_keep(const oit_pick_ray *ray, oit_pick_hit *h, size_t n)
     return u;
 }
 
-static void layer_of(const oit_shaded_fragment *f, const oit_pixel_state *before,
-                     const oit_shading *s, const oit_pick_hit *h, oit_pick_layer *out)
+static void layer_of(const oit_pick_ray *ray, const oit_shaded_fragment *f,
+                     const oit_pixel_state *before, const oit_shading *s,
+                     const oit_pick_hit *h, oit_pick_layer *out)
 {
     /* The transmittance in front of the fragment, after the medium it
      * crosses (translucent) but before its own alpha: the state's after a
@@ -220,6 +221,8 @@ static void layer_of(const oit_shaded_fragment *f, const oit_pixel_state *before
     oit_pixel_add(&st, s, &clear);
     memset(out, 0, sizeof *out);
     out->depth = f->t;
+    for (int k = 0; k < 3; k++)
+        out->point[k] = ray->org[k] + (double)h->t * ray->dir[k];
     for (int c = 0; c < 3; c++) {
         out->colour[c] = f->colour[c];
         out->transmittance[c] = (float)st.T[c];
@@ -253,7 +256,7 @@ oit_status oit_pick_compose(const oit_pick_ray *ray, oit_pick_hits *hits, oit_pi
         oit_shaded_fragment f;
         oit_shade_fragment(&s, &h->tri, (uint32_t)h->source, bary, from, h->key, &f);
         if (i < capacity)
-            layer_of(&f, &st, &s, h, &layers[i]);
+            layer_of(ray, &f, &st, &s, h, &layers[i]);
         oit_pixel_add(&st, &s, &f);
     }
     if (rgb)
