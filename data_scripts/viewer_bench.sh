@@ -69,7 +69,7 @@ for mode in $MODES; do
         y=$(awk "BEGIN{printf \"%d\", $H / 2 + $H / 10 * sin($i / 8)}")
         xdotool mousemove --window "$WIN" "$x" "$y"
         if [ "$mode" != off ] && [ $shot -eq 0 ] && [ $(( $(now_ms) - t0 )) -ge 2000 ]; then
-            xdotool key --window "$WIN" p # the preview
+            xdotool key --window "$WIN" g # the preview, as the window shows it
             shot=1
         fi
         sleep 0.04
@@ -92,10 +92,10 @@ for mode in $MODES; do
     fi
     if [ "$mode" = lowres ]; then
         sleep 0.5
-        xdotool key --window "$WIN" p
+        xdotool key --window "$WIN" g
         until_shots 2
         cp oitstream_001.png "$OUT/exact.png"
-        xdotool key --window "$WIN" h p
+        xdotool key --window "$WIN" h g
         until_shots 3
         cp oitstream_002.png "$OUT/help.png"
     fi
