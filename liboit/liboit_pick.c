@@ -19,7 +19,8 @@ static oit_status find_hits(oit_renderer *r, oit_scene *scene, const oit_pick_ra
         s = oit_lib_method_table(r, m, &table, err);
     if (s != OIT_OK)
         return s;
-    if (table->pick)
+    /* the reference takes no model matrix (its frames refuse one) */
+    if (table->pick && !ray->has_model)
         return table->pick(&scene->mesh, ray, hits, err);
     return oit_pick_mesh(ray, &scene->mesh, NULL, hits, err);
 }

@@ -508,9 +508,10 @@ OIT_API oit_status oit_renderer_draw_pixels(oit_renderer *r, oit_scene *scene,
  * memory). The first `capacity` layers go to layers (NULL with 0: only
  * count); *count says how many there are in all, so a second call with
  * room for them gets every one. Needs no GL context and draws nothing.
- * frame's depth_texture is OIT_ERR_UNSUPPORTED (the pick lists the
- * transparent scene alone), a model matrix too; a pixel outside the
- * viewport is OIT_ERR_ARGUMENT. */
+ * A model matrix places the triangles as the draws do (the walk then
+ * serves the reference too). frame's depth_texture is
+ * OIT_ERR_UNSUPPORTED (the pick lists the transparent scene alone); a
+ * pixel outside the viewport is OIT_ERR_ARGUMENT. */
 OIT_API oit_status oit_renderer_pick(oit_renderer *r, oit_scene *scene, const oit_frame *frame,
                                      int x, int y, oit_pick_layer *layers, size_t capacity,
                                      size_t *count, oit_error *err);

@@ -13,6 +13,8 @@
  *   its depth from the eye;
  * - the model's part file (oitprep) lists the same source triangles, each
  *   with its part; in core the part is OIT_PICK_NO_PART;
+ * - a model matrix: the pick of a frame with one lists what the pick of
+ *   the mesh placed beforehand lists, and composes to DFB's pixel with it;
  * - capacity: a call with less room gets the front layers and the count;
  *   a pixel outside the view and a NULL count are refused.
  *
@@ -54,11 +56,11 @@ static void frame_of(const model *m, oit_frame *f)
     f->camera = &m->cam;
 }
 
-static void open_model(model *m)
+/* m's in-core scene and the default camera of its bounds. */
+static void open_model_scene(model *m, const char *path)
 {
     oit_error err = {0};
-    CHECK(oit_scene_open(m->mesh, NULL, &m->in_core, &err) == OIT_OK, "%s", err.message);
-    CHECK(oit_scene_open(m->part_file, NULL, &m->parts, &err) == OIT_OK, "%s", err.message);
+    CHECK(oit_scene_open(path, NULL, &m->in_core, &err) == OIT_OK, "%s", err.message);
     oit_scene_info info;
     CHECK(oit_scene_get_info(m->in_core, &info, &err) == OIT_OK, "%s", err.message);
     oit_camera c;
@@ -67,6 +69,13 @@ static void open_model(model *m)
     memcpy(m->cam.eye, c.eye, sizeof c.eye);
     memcpy(m->cam.target, c.target, sizeof c.target);
     memcpy(m->cam.up, c.up, sizeof c.up);
+}
+
+static void open_model(model *m)
+{
+    open_model_scene(m, m->mesh);
+    oit_error err = {0};
+    CHECK(oit_scene_open(m->part_file, NULL, &m->parts, &err) == OIT_OK, "%s", err.message);
 }
 
 /* The reference's image and ambiguity mask (no GL), DFB's image (GL). */
@@ -224,6 +233,72 @@ static void check_capacity(oit_renderer *walk, const char *mesh)
     oit_scene_close(m.in_core);
 }
 
+/* A model matrix (a turn about y, a scale and a shift): the pick of the
+ * frame with it lists what the pick of the mesh placed beforehand lists,
+ * and composes to DFB's pixel of the frame with it (GL) wherever the
+ * placed mesh's layers are the reference's own. */
+static void check_model_matrix(oit_renderer *walk, oit_renderer *ref, oit_renderer *dfb,
+                               const char *mesh)
+{
+    static const float M[16] = {0.8f, 0, -0.6f, 0, 0, 1.5f, 0, 0, 0.6f, 0, 0.8f, 0,
+                                0.25f, -0.5f, 0.1f, 1};
+    oit_mesh placed = {0};
+    oit_error err = {0};
+    CHECK(oit_mesh_load(mesh, NULL, &placed, &err) == OIT_OK, "%s", err.message);
+    for (size_t i = 0; i < placed.count; i++)
+        for (int v = 0; v < 3; v++) {
+            float *p = placed.tris[i].v[v].pos, q[3];
+            for (int k = 0; k < 3; k++)
+                q[k] = (float)((double)M[k] * p[0] + (double)M[4 + k] * p[1] +
+                               (double)M[8 + k] * p[2] + M[12 + k]);
+            memcpy(p, q, sizeof q);
+        }
+    oit_mesh_info_init(&placed.info);
+    oit_mesh_info_add(&placed.info, placed.tris, placed.count);
+    placed.info.attributes = OIT_ATTR_COLOUR | OIT_ATTR_ALPHA;
+    model m = {.mesh = mesh, .part_file = mesh};
+    open_model_scene(&m, mesh);
+    oit_scene *pre = NULL;
+    CHECK(oit_scene_borrow_mesh(&placed, "placed", &pre, &err) == OIT_OK, "%s", err.message);
+    oit_frame f, g;
+    frame_of(&m, &f);
+    frame_of(&m, &g);
+    memcpy(g.model, M, sizeof M);
+    size_t px = (size_t)W * H;
+    float *img = calloc(px * 4, sizeof(float));
+    CHECK(img != NULL, "out of memory");
+    oit_pixels_desc d = {.rgba = img, .rgba_bytes = px * 4 * sizeof(float)};
+    CHECK(oit_renderer_draw_pixels(dfb, m.in_core, &g, &d, NULL, &err) == OIT_OK, "%s",
+          err.message);
+    oit_pick_layer a[64], b[64], c[64];
+    unsigned compared = 0;
+    for (int y = 1; y < H; y += 3)
+        for (int x = 0; x < W; x += 3) {
+            size_t na = 0, nb = 0, nc = 0;
+            CHECK(oit_renderer_pick(walk, m.in_core, &g, x, y, a, 64, &na, &err) == OIT_OK &&
+                      oit_renderer_pick(walk, pre, &f, x, y, b, 64, &nb, &err) == OIT_OK &&
+                      oit_renderer_pick(ref, pre, &f, x, y, c, 64, &nc, &err) == OIT_OK,
+                  "pick %d,%d: %s", x, y, err.message);
+            CHECK(same_layers(a, na, b, nb), "%d,%d: with the model matrix %zu layers, placed "
+                  "beforehand %zu, or another order", x, y, na, nb);
+            if (!same_layers(b, nb, c, nc) || na == 0)
+                continue; /* an edge of the placed mesh */
+            float rgb[3];
+            composite(a, na, rgb, "model matrix");
+            for (int k = 0; k < 3; k++)
+                CHECK(fabsf(rgb[k] - img[((size_t)y * W + x) * 4 + k]) <= 1.5f / 255.0f,
+                      "%d,%d: the layers compose to %g, DFB's pixel with the model is %g", x, y,
+                      rgb[k], img[((size_t)y * W + x) * 4 + k]);
+            compared++;
+        }
+    printf("model matrix: %u pixels with layers compared\n", compared);
+    CHECK(compared >= 20, "model matrix: %u pixels compared", compared);
+    free(img);
+    oit_scene_close(pre);
+    oit_scene_close(m.in_core);
+    oit_mesh_free(&placed);
+}
+
 static void run(const char *cmd)
 {
     printf("%s\n", cmd);
@@ -259,6 +334,7 @@ int main(int argc, char **argv)
         check_model(&m, walk, ref, dfb);
     }
     check_capacity(walk, meshes[0]);
+    check_model_matrix(walk, ref, dfb, meshes[0]);
     oit_renderer_destroy(walk);
     oit_renderer_destroy(ref);
     oit_renderer_destroy(dfb);

@@ -16,10 +16,7 @@ oit_status oit_pick_ray_make(const oit_view *view, int x, int y, oit_pick_ray *o
         return oit_error_set(err, OIT_ERR_ARGUMENT,
                              "pick: pixel %d,%d lies outside the %dx%d view", x, y, view->width,
                              view->height);
-    double model[16];
-    if (oit_view_model(view, model))
-        return oit_error_set(err, OIT_ERR_UNSUPPORTED,
-                             "pick: a model matrix (pre-transform the mesh instead)");
+    out->has_model = oit_view_model(view, out->model);
     oit_status s = oit_ray_basis_make(view, "pick", &out->basis, err);
     if (s != OIT_OK)
         return s;
@@ -49,10 +46,28 @@ static double dot3(const double a[3], const double b[3])
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
+/* tri as the GL methods see it: through the model matrix, in float. */
+static const oit_triangle *placed(const oit_pick_ray *r, const oit_triangle *tri,
+                                  oit_triangle *buf)
+{
+    if (!r->has_model)
+        return tri;
+    const double *m = r->model;
+    *buf = *tri;
+    for (int v = 0; v < 3; v++) {
+        const float *p = tri->v[v].pos;
+        for (int k = 0; k < 3; k++)
+            buf->v[v].pos[k] = (float)(m[k] * p[0] + m[4 + k] * p[1] + m[8 + k] * p[2] + m[12 + k]);
+    }
+    return buf;
+}
+
 /* Möller and Trumbore's test in double, edges included (a centre exactly
  * on an edge is on the ambiguity mask, where either answer is allowed). */
-static int ray_meets(const oit_pick_ray *r, const oit_triangle *tri, oit_pick_hit *hit)
+static int ray_meets(const oit_pick_ray *r, const oit_triangle *given, oit_pick_hit *hit)
 {
+    oit_triangle buf;
+    const oit_triangle *tri = placed(r, given, &buf);
     double e1[3], e2[3], pv[3], tv[3], qv[3];
     sub3(tri->v[1].pos, tri->v[0].pos, e1);
     sub3(tri->v[2].pos, tri->v[0].pos, e2);
@@ -96,10 +111,38 @@ oit_status oit_pick_mesh(const oit_pick_ray *ray, const oit_mesh *mesh, const ui
     return OIT_OK;
 }
 
-/* The slab test against a part's bounds, widened by a millionth of their
- * size so that rounding never skips a part the ray grazes. */
-static int ray_crosses_box(const oit_pick_ray *r, const float lo[3], const float hi[3])
+/* A part's box through the model matrix: the box of its corners'
+ * images. */
+static void placed_box(const oit_pick_ray *r, const float lo[3], const float hi[3], float out_lo[3],
+                       float out_hi[3])
 {
+    for (int k = 0; k < 3; k++) {
+        out_lo[k] = INFINITY;
+        out_hi[k] = -INFINITY;
+    }
+    for (int c = 0; c < 8; c++) {
+        double p[3] = {c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1], c & 4 ? hi[2] : lo[2]};
+        for (int k = 0; k < 3; k++) {
+            const double *m = r->model;
+            float q = (float)(m[k] * p[0] + m[4 + k] * p[1] + m[8 + k] * p[2] + m[12 + k]);
+            out_lo[k] = q < out_lo[k] ? q : out_lo[k];
+            out_hi[k] = q > out_hi[k] ? q : out_hi[k];
+        }
+    }
+}
+
+/* The slab test against a part's bounds (through the model matrix),
+ * widened by a millionth of their size so that rounding never skips a part
+ * the ray grazes. */
+static int ray_crosses_box(const oit_pick_ray *r, const float in_lo[3], const float in_hi[3])
+{
+    float plo[3], phi[3];
+    const float *lo = in_lo, *hi = in_hi;
+    if (r->has_model) {
+        placed_box(r, in_lo, in_hi, plo, phi);
+        lo = plo;
+        hi = phi;
+    }
     double t0 = 0.0, t1 = INFINITY;
     for (int k = 0; k < 3; k++) {
         double pad = 1e-6 * ((double)hi[k] - lo[k]) + 1e-30;

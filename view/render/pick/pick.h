@@ -44,14 +44,20 @@ typedef struct oit_pick_ray {
     int x, y;
     oit_ray_basis basis;
     double org[3], dir[3];
+    /* The view's model matrix (view.h): the walk meets each triangle as
+     * the GL methods draw it, its vertices transformed and rounded to
+     * float; has_model 0: the identity. */
+    int has_model;
+    double model[16];
 } oit_pick_ray;
 
-/* A pixel outside the view, a camera no ray can be cast from or a model
- * matrix (pre-transform the mesh) is refused, naming what is wrong. */
+/* A pixel outside the view or a camera no ray can be cast from is
+ * refused, naming what is wrong. */
 oit_status oit_pick_ray_make(const oit_view *view, int x, int y, oit_pick_ray *out,
                              oit_error *err);
 
-/* Appends to hits every triangle of mesh the ray meets at t > 0; source:
+/* Appends to hits every triangle of mesh the ray meets at t > 0 (through
+ * the model matrix: the hit's triangle is the transformed one); source:
  * the triangles' source indices, NULL for their positions. */
 oit_status oit_pick_mesh(const oit_pick_ray *ray, const oit_mesh *mesh, const uint32_t *source,
                          oit_pick_hits *hits, oit_error *err);
