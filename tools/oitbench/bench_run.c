@@ -322,8 +322,8 @@ static oit_status run_views(const oit_bench_desc *d, oit_bench_result *r, oit_er
     for (int v = 0; v < d->views && s == OIT_OK; v++) {
         oit_image ref = {0};
         oit_frame_stats st = {0};
-        oit_camera_default(&view.camera, refmesh->info.bounds_min, refmesh->info.bounds_max,
-                           (float)(v * 360.0 / d->views), 20.0f);
+        oit_camera_default_up(&view.camera, refmesh->info.bounds_min, refmesh->info.bounds_max,
+                              (float)(v * 360.0 / d->views), 20.0f, d->up_axis);
         s = oit_run_render(ref_state, &view, &ref, NULL, ambiguous, &st, err);
         if (s != OIT_OK) {
             oit_error_prefix(err, "reference");

@@ -100,6 +100,7 @@ typedef struct oit_bench_desc {
     oit_render_capture capture; /* the stream's --capture; 0: auto */
     oit_shading_mode shading;    /* transparent or translucent */
     oit_colour_space colour_space; /* where compositing happens (shade.h) */
+    int up_axis; /* the views' up axis: 0 x, 1 y, 2 z (formats/up_axis.h) */
     /* progress lines ("oitbench: ...") go here; NULL: silent */
     FILE *progress;
 } oit_bench_desc;

@@ -24,6 +24,7 @@
 #include "tools/common/signals.h"
 #include "prepare/convert/convert.h"
 #include "prepare/convert/progress.h"
+#include "formats/up_axis.h"
 #include "tools/oitbench/bench_args.h"
 #include "tools/oitbench/bench_bus.h"
 #include "tools/oitbench/bench_csv.h"
@@ -164,6 +165,12 @@ static int run(const oit_bench_args *a, const char *command_line)
                         .max_layers = a->max_layers, .capture = a->capture,
                         .shading = a->shading,
                         .colour_space = a->colour_space, .progress = stderr};
+    const char *why = NULL;
+    d.up_axis = oit_up_axis_guess(models.pf ? oit_partfile_source_name(models.pf) : a->model,
+                                  mesh->info.bounds_min, mesh->info.bounds_max, &why);
+    if (d.up_axis != 1)
+        fprintf(stderr, "oitbench: %s: the views turn about %c (%s)\n", a->model,
+                "xyz"[d.up_axis], why);
     if (a->methods_defaulted)
         fprintf(stderr, "oitbench: no --methods: the default set %s\n",
                 OIT_BENCH_DEFAULT_METHODS);

@@ -259,4 +259,12 @@ usage "$T/Q.ply" --methods stream --scheme slow
 "$B" --help | grep -q -- '--warmup' || fail "--help does not document --warmup"
 "$B" --help | grep -q -- '--parts FILE' || fail "--help does not document --parts"
 
+# A STEP file's views turn about z, as oitstream's default views do, and
+# oitbench says so.
+STEP="$(cd "$(dirname "$0")/../../corpus/step" && pwd)/parts.step"
+"$B" "$STEP" --methods dfb --orbit 1 --size 32x24 --frames 1 --warmup 0 --out "$T/S" \
+    >/dev/null 2>"$T/errs.txt" || fail "oitbench on a STEP file: $(cat "$T/errs.txt")"
+grep -q "the views turn about z (STEP and IGES are Z-up)" "$T/errs.txt" ||
+    fail "oitbench does not say the STEP file's views turn about z: $(cat "$T/errs.txt")"
+
 finish test_oitbench
