@@ -158,6 +158,17 @@ static int overlay_scale(const oit_image *img)
     return img->height >= 480 && img->width >= 640 ? 2 : 1;
 }
 
+/* The panel's width as panel_draw draws it. */
+static int panel_width(const oit_image *img, const panel *p)
+{
+    int scale = overlay_scale(img), w = 0;
+    for (int i = 0; i < p->n; i++) {
+        int tw = oit_text_width(p->line[i], scale);
+        w = tw > w ? tw : w;
+    }
+    return w + 6 * scale;
+}
+
 /* Draws the panel's lines on a dark box at (x, y); bottom: y is its lower edge. */
 static void panel_draw(oit_image *img, const panel *p, int x, int y, int bottom)
 {
@@ -224,14 +235,17 @@ static void help_panel(const viewer *v, panel *p)
               v->desc->still_ms > 0 ? v->desc->still_ms : DEFAULT_STILL_MS);
 }
 
-/* The pick's layers (viewer_pick.c), each row in its layer's colour. */
-static void pick_panel(const viewer *v, panel *p)
+/* The pick's layers (viewer_pick.c), each row in its layer's colour, as
+ * many as max_rows (at least 1) leaves room for. */
+static void pick_panel(const viewer *v, panel *p, int max_rows)
 {
     p->n = 0;
-    panel_add(p, kAmber, "pick %d,%d: %zu layer%s (I or click; stdout lists all)", v->pick_x,
+    panel_add(p, kAmber, "pick %d,%d: %zu layer%s (all on stdout)", v->pick_x,
               v->pick_y, v->pick_count, v->pick_count == 1 ? "" : "s");
     panel_add(p, kGrey, "  #  depth      alpha  T before  part   source");
-    size_t rows = v->pick_count < VIEWER_PICK_ROWS ? v->pick_count : VIEWER_PICK_ROWS;
+    size_t most = max_rows < 1 ? 1 : max_rows < VIEWER_PICK_ROWS ? (size_t)max_rows
+                                                                  : VIEWER_PICK_ROWS;
+    size_t rows = v->pick_count < most ? v->pick_count : most;
     for (size_t i = 0; i < rows; i++) {
         const oit_pick_layer *l = &v->pick[i];
         char part[16] = "-";
@@ -286,8 +300,14 @@ oit_status viewer_compose(viewer *v, oit_error *err)
     if (v->picked) {
         pick_marker(v, img);
         if (!v->help) {
-            pick_panel(v, &p);
-            panel_draw(img, &p, 4 * scale, v->status_rows + 4 * scale, 0);
+            /* the rows the image's height leaves below the status line,
+             * less the panel's title, header and "more" lines */
+            int line_h = oit_text_line_height(scale);
+            pick_panel(v, &p, (img->height - v->status_rows - 12 * scale) / line_h - 3);
+            /* at the side of the image away from the picked pixel */
+            int left = (v->pick_x + 0.5) * 2.0 >= v->view.width;
+            int x = left ? 4 * scale : img->width - panel_width(img, &p) - 4 * scale;
+            panel_draw(img, &p, x > 0 ? x : 0, v->status_rows + 4 * scale, 0);
         }
     }
     int bottom = img->height - 4 * scale;
