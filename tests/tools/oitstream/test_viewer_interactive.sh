@@ -15,9 +15,7 @@
 # Equal means within half an 8-bit step (the window quantises to 8 bits).
 set -u
 . "${OIT_TEST_LIB:-$(dirname "$0")/../../lib.sh}"
-[ -n "${DISPLAY:-}" ] || skip "no DISPLAY (run under xvfb-run)"
-command -v xdotool >/dev/null 2>&1 ||
-    skip "xdotool not installed (setup/debian-packages.txt lists it; run setup/install-deps.sh)"
+. "$(dirname "$0")/viewer_x11.sh"
 S="$OIT_BIN/oitstream"
 scratch viewer_interactive
 cd "$T" || exit 1
@@ -27,37 +25,8 @@ EQUAL=0.002 # 0.5/255 plus float slack
 STILL=4000  # ms: long enough to look at the preview under ASan, short enough to wait for
 TICKS=$(getconf CLK_TCK)
 
-stat_of() { json_num "$1" <st.json; }
-# wait_for SECONDS CONDITION...: polls the condition every 0.1 s
-wait_for() {
-    n=$(($1 * 10)); shift
-    while [ "$n" -gt 0 ]; do
-        "$@" && return 0
-        sleep 0.1
-        n=$((n - 1))
-    done
-    return 1
-}
-stat_at_least() { [ -f st.json ] && [ "$(stat_of "$1")" -ge "$2" ] 2>/dev/null; }
 cpu_ticks() { awk '{print $14 + $15}' "/proc/$1/stat"; }
 shots() { grep -c "^viewer: screenshot" log.txt; }
-# start ARGS...: the viewer in the background, its window id in WIN
-start() {
-    rm -f st.json
-    "$S" "$@" --window --no-overlay --size ${W}x$H --stats st.json >log.txt 2>&1 &
-    PID=$!
-    wait_for 120 stat_at_least exact_frames 1 || { cat log.txt; fail "$1: no first frame"; return 1; }
-    WIN=$(timeout 20 xdotool search --sync --pid "$PID" 2>/dev/null | head -n 1)
-    [ -n "$WIN" ] || { fail "$1: xdotool finds no window of pid $PID"; return 1; }
-}
-quit() {
-    xdotool key --window "$WIN" q 2>/dev/null # the key release may find the window gone
-    wait "$PID"; rc=$?
-    cat log.txt
-    [ "$rc" -eq 0 ] || fail "$1: the viewer exited with $rc after Q"
-    grep -q "^viewer: [0-9]* frames rendered ([0-9]* exact, [0-9]* preview)" log.txt ||
-        fail "$1: no frame counters on exit"
-}
 # idle NAME: nothing rendered, nothing presented, < 0.3 s of CPU in 5 s
 idle() {
     f0=$(stat_of frames_rendered) p0=$(stat_of presented) c0=$(cpu_ticks "$PID")

@@ -10,9 +10,7 @@
 # the window's view).
 set -u
 . "${OIT_TEST_LIB:-$(dirname "$0")/../../lib.sh}"
-[ -n "${DISPLAY:-}" ] || skip "no DISPLAY (run under xvfb-run)"
-command -v xdotool >/dev/null 2>&1 ||
-    skip "xdotool not installed (setup/debian-packages.txt lists it; run setup/install-deps.sh)"
+. "$(dirname "$0")/viewer_x11.sh"
 S="$OIT_BIN/oitstream"
 EQUAL=0.002 # 0.5/255 plus float slack: the window quantises to 8 bits
 scratch viewer_pick
@@ -20,30 +18,7 @@ cd "$T" || exit 1
 W=200
 H=150
 
-stat_of() { json_num "$1" <st.json; }
-wait_for() {
-    n=$(($1 * 10)); shift
-    while [ "$n" -gt 0 ]; do
-        "$@" && return 0
-        sleep 0.1
-        n=$((n - 1))
-    done
-    return 1
-}
-stat_at_least() { [ -f st.json ] && [ "$(stat_of "$1")" -ge "$2" ] 2>/dev/null; }
 lines_at_least() { [ "$(grep -c "$1" log.txt)" -ge "$2" ]; }
-start() {
-    rm -f st.json oitstream_*.png
-    "$S" "$@" --window --no-overlay --size ${W}x$H --stats st.json >log.txt 2>&1 &
-    PID=$!
-    wait_for 120 stat_at_least exact_frames 1 || { cat log.txt; fail "$1: no first frame"; return 1; }
-    WIN=$(timeout 20 xdotool search --sync --pid "$PID" 2>/dev/null | head -n 1)
-    [ -n "$WIN" ] || { fail "$1: xdotool finds no window of pid $PID"; return 1; }
-}
-quit() {
-    xdotool key --window "$WIN" q 2>/dev/null
-    wait "$PID" || fail "$1: the viewer exited with $?"
-}
 # the viewer's Nth pick (1-based) as "part:source" lines
 viewer_layers() {
     awk -v want="$1" '/^viewer: pick [0-9]+,[0-9]+: /{k++; next}
@@ -69,6 +44,7 @@ check() {
 "$OIT_BIN/oitprep" quads.ply -o quads.oitp >/dev/null 2>&1 || { fail "oitprep quads"; exit 1; }
 
 for model in quads.ply quads.oitp; do
+    rm -f oitstream_*.png
     start "$model" || continue
     xdotool key --window "$WIN" g
     wait_for 10 lines_at_least "^viewer: screenshot" 1 || fail "$model: G saved no screenshot"
