@@ -3,7 +3,6 @@
  * an atomic row counter. Embree's device and scene live for one frame. */
 #include "view/render/reference/reference.h"
 #include "base/clock.h"
-#include "base/vec.h"
 #include "view/render/reference/reference_job.h"
 
 #include <math.h>
@@ -12,7 +11,15 @@
 #include <string.h>
 #include <unistd.h>
 
-void oit_reference_on_error(void *user, enum RTCError code, const char *str)
+/* Embree errors arrive through a callback on any thread; the first one is
+ * kept for the caller. */
+typedef struct embree_errors {
+    pthread_mutex_t lock;
+    int failed;
+    char message[256];
+} embree_errors;
+
+static void on_embree_error(void *user, enum RTCError code, const char *str)
 {
     embree_errors *e = user;
     pthread_mutex_lock(&e->lock);
@@ -26,7 +33,7 @@ void oit_reference_on_error(void *user, enum RTCError code, const char *str)
 
 /* The mesh's own vertices are the vertex buffer (pos is the first 12 bytes
  * of each 16-byte oit_vertex), so only the trivial index buffer is built. */
-oit_status oit_reference_build_scene(RTCDevice dev, const oit_mesh *mesh, RTCScene *out,
+static oit_status build_scene(RTCDevice dev, const oit_mesh *mesh, RTCScene *out,
                               oit_error *err)
 {
     if (mesh->count > UINT32_MAX / 3)
@@ -105,32 +112,49 @@ static int run_workers(ref_job *job, int nthreads, oit_frame_stats *stats)
 /* Creates the device and scene, traces the frame and releases both. Embree
  * reports errors through the device callback, so they are checked after
  * every step that can raise one. */
-static oit_status trace_with_embree(ref_job *job, int nthreads, oit_frame_stats *fs,
-                                    oit_error *err)
+oit_status oit_reference_with_scene(const oit_mesh *mesh, int threads, oit_reference_work work,
+                                    void *ctx, oit_error *err)
 {
     embree_errors eerr;
     memset(&eerr, 0, sizeof eerr);
     pthread_mutex_init(&eerr.lock, NULL);
     char config[32];
-    snprintf(config, sizeof config, "threads=%d", nthreads);
+    snprintf(config, sizeof config, "threads=%d", threads);
     oit_status s = OIT_OK;
     RTCDevice dev = rtcNewDevice(config);
     if (!dev) {
         s = oit_error_set(err, OIT_ERR_UNSUPPORTED, "reference: cannot create an Embree device (%s)",
                           config);
     } else {
-        rtcSetDeviceErrorFunction(dev, oit_reference_on_error, &eerr);
-        s = oit_reference_build_scene(dev, job->mesh, &job->scene, err);
-        if (s == OIT_OK && !eerr.failed && !run_workers(job, nthreads, fs))
-            s = oit_error_set(err, OIT_ERR_NOMEM, "reference: cannot grow a per-pixel hit list");
-        if (job->scene)
-            rtcReleaseScene(job->scene);
+        rtcSetDeviceErrorFunction(dev, on_embree_error, &eerr);
+        RTCScene scene = NULL;
+        s = build_scene(dev, mesh, &scene, err);
+        if (s == OIT_OK && !eerr.failed)
+            s = work(scene, ctx, err);
+        if (scene)
+            rtcReleaseScene(scene);
         if (s == OIT_OK && eerr.failed)
             s = oit_error_set(err, OIT_ERR_UNSUPPORTED, "reference: %s", eerr.message);
         rtcReleaseDevice(dev);
     }
     pthread_mutex_destroy(&eerr.lock);
     return s;
+}
+
+/* The frame's rows on the scene (oit_reference_work). */
+typedef struct frame_work {
+    ref_job *job;
+    int threads;
+    oit_frame_stats *stats;
+} frame_work;
+
+static oit_status trace_rows(RTCScene scene, void *ctx, oit_error *err)
+{
+    frame_work *fw = ctx;
+    fw->job->scene = scene;
+    if (!run_workers(fw->job, fw->threads, fw->stats))
+        return oit_error_set(err, OIT_ERR_NOMEM, "reference: cannot grow a per-pixel hit list");
+    return OIT_OK;
 }
 
 oit_status oit_reference_render(const oit_mesh *mesh, const oit_view *view,
@@ -170,7 +194,8 @@ oit_status oit_reference_render(const oit_mesh *mesh, const oit_view *view,
     job.out = out;
     oit_frame_stats fs;
     memset(&fs, 0, sizeof fs);
-    s = trace_with_embree(&job, thread_count(desc, view->height), &fs, err);
+    frame_work fw = {&job, thread_count(desc, view->height), &fs};
+    s = oit_reference_with_scene(mesh, fw.threads, trace_rows, &fw, err);
     if (s != OIT_OK) {
         oit_image_free(out);
         return s;

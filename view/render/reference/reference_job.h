@@ -57,19 +57,14 @@ typedef struct ref_worker {
     pthread_t thread;
 } ref_worker;
 
-/* Embree errors arrive through a callback on any thread; the first one is
- * kept for the caller (oit_reference_on_error, user: an embree_errors). */
-typedef struct embree_errors {
-    pthread_mutex_t lock;
-    int failed;
-    char message[256];
-} embree_errors;
-void oit_reference_on_error(void *user, enum RTCError code, const char *str);
-
-/* The scene of mesh's triangles, each hit recorded by
- * oit_reference_record_hit. */
-oit_status oit_reference_build_scene(RTCDevice dev, const oit_mesh *mesh, RTCScene *out,
-                                     oit_error *err);
+/* Builds an Embree scene of mesh's triangles (each hit recorded by
+ * oit_reference_record_hit) on a device of `threads` threads, runs
+ * work(scene, ctx) on it and releases both; an Embree error on the way is
+ * the call's, the message opening "reference:". The frame's rows and the
+ * pick's one ray both run here. */
+typedef oit_status (*oit_reference_work)(RTCScene scene, void *ctx, oit_error *err);
+oit_status oit_reference_with_scene(const oit_mesh *mesh, int threads, oit_reference_work work,
+                                    void *ctx, oit_error *err);
 /* Traces one ray from org along the unit dir through scene; leaves its
  * hits in rc, de-duplicated and sorted by prim, and returns their count. */
 size_t oit_reference_trace(RTCScene scene, ray_ctx *rc, const double org[3], const double dir[3]);

@@ -5,7 +5,7 @@
 
 #include "view/render/pick/pick.h"
 
-#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* The hits (sorted by prim) as the pick's: the triangle copied, its
@@ -28,36 +28,30 @@ static oit_status hand_over(const oit_mesh *mesh, const ray_ctx *rc, size_t n,
     return s;
 }
 
+/* The pick's one ray on the scene (oit_reference_work). */
+typedef struct pick_work {
+    const oit_mesh *mesh;
+    const oit_pick_ray *ray;
+    oit_pick_hits *hits;
+} pick_work;
+
+static oit_status trace_pick(RTCScene scene, void *ctx, oit_error *err)
+{
+    pick_work *pw = ctx;
+    ray_ctx rc;
+    memset(&rc, 0, sizeof rc);
+    rtcInitIntersectContext(&rc.rtc);
+    size_t n = oit_reference_trace(scene, &rc, pw->ray->org, pw->ray->dir);
+    oit_status s = rc.oom ? oit_error_set(err, OIT_ERR_NOMEM,
+                                          "reference: cannot grow the pick's hit list")
+                          : hand_over(pw->mesh, &rc, n, pw->hits, err);
+    free(rc.hits);
+    return s;
+}
+
 oit_status oit_reference_pick(const oit_mesh *mesh, const oit_pick_ray *ray, oit_pick_hits *hits,
                               oit_error *err)
 {
-    embree_errors eerr;
-    memset(&eerr, 0, sizeof eerr);
-    pthread_mutex_init(&eerr.lock, NULL);
-    RTCDevice dev = rtcNewDevice("threads=1");
-    oit_status s = OIT_OK;
-    if (!dev) {
-        s = oit_error_set(err, OIT_ERR_UNSUPPORTED, "reference: cannot create an Embree device");
-    } else {
-        rtcSetDeviceErrorFunction(dev, oit_reference_on_error, &eerr);
-        RTCScene scene = NULL;
-        s = oit_reference_build_scene(dev, mesh, &scene, err);
-        ray_ctx rc;
-        memset(&rc, 0, sizeof rc);
-        rtcInitIntersectContext(&rc.rtc);
-        size_t n = s == OIT_OK && !eerr.failed ? oit_reference_trace(scene, &rc, ray->org, ray->dir)
-                                              : 0;
-        if (s == OIT_OK && rc.oom)
-            s = oit_error_set(err, OIT_ERR_NOMEM, "reference: cannot grow the pick's hit list");
-        if (s == OIT_OK && eerr.failed)
-            s = oit_error_set(err, OIT_ERR_UNSUPPORTED, "reference: %s", eerr.message);
-        if (s == OIT_OK)
-            s = hand_over(mesh, &rc, n, hits, err);
-        free(rc.hits);
-        if (scene)
-            rtcReleaseScene(scene);
-        rtcReleaseDevice(dev);
-    }
-    pthread_mutex_destroy(&eerr.lock);
-    return s;
+    pick_work pw = {mesh, ray, hits};
+    return oit_reference_with_scene(mesh, 1, trace_pick, &pw, err);
 }
