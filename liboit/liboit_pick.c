@@ -61,7 +61,7 @@ oit_status oit_renderer_pick(oit_renderer *r, oit_scene *scene, const oit_frame 
     if (s == OIT_OK)
         s = find_hits(r, scene, &ray, &hits, err);
     if (s == OIT_OK)
-        s = oit_pick_compose(&ray, &hits, layers, capacity, count, NULL, err);
+        *count = oit_pick_compose(&ray, &hits, layers, capacity);
     oit_pick_hits_free(&hits);
     return s;
 }

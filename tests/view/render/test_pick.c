@@ -54,10 +54,7 @@ static oit_pick_hit hit(const oit_pick_ray *r, float z, uint64_t source, uint32_
 
 static size_t compose(const oit_pick_ray *r, oit_pick_hits *hits, oit_pick_layer *out, size_t cap)
 {
-    size_t n = 0;
-    oit_error err = {0};
-    CHECK(oit_pick_compose(r, hits, out, cap, &n, NULL, &err) == OIT_OK, "%s", err.message);
-    return n;
+    return oit_pick_compose(r, hits, out, cap);
 }
 
 static void check_pieces_and_ties(const oit_pick_ray *r)

@@ -276,10 +276,9 @@ static void layer_of(const oit_pick_ray *ray, const oit_shaded_fragment *f,
     out->source_triangle = h->source;
 }
 
-oit_status oit_pick_compose(const oit_pick_ray *ray, oit_pick_hits *hits, oit_pick_layer *layers,
-                            size_t capacity, size_t *count, float rgb[3], oit_error *err)
+size_t oit_pick_compose(const oit_pick_ray *ray, oit_pick_hits *hits, oit_pick_layer *layers,
+                        size_t capacity)
 {
-    (void)err;
     oit_shading s = ray->view->shading;
     oit_shading_resolve_defaults(&s);
     size_t n = key_and_keep(ray, hits->h, hits->n);
@@ -293,17 +292,14 @@ oit_status oit_pick_compose(const oit_pick_ray *ray, oit_pick_hits *hits, oit_pi
         from[k] = ray->basis.ortho ? (float)ray->org[k] : ray->view->camera.eye[k];
     oit_pixel_state st;
     oit_pixel_begin(&st);
-    for (size_t i = 0; i < n; i++) {
+    /* only the layers asked for are shaded: those behind change none of them */
+    for (size_t i = 0; i < n && i < capacity; i++) {
         const oit_pick_hit *h = &hits->h[i];
         float bary[3] = {1.0f - h->u - h->v, h->u, h->v};
         oit_shaded_fragment f;
         oit_shade_fragment(&s, &h->tri, (uint32_t)h->source, bary, from, h->key, &f);
-        if (i < capacity)
-            layer_of(ray, &f, &st, &s, h, &layers[i]);
+        layer_of(ray, &f, &st, &s, h, &layers[i]);
         oit_pixel_add(&st, &s, &f);
     }
-    if (rgb)
-        oit_pixel_end(&st, &s, rgb);
-    *count = n;
-    return OIT_OK;
+    return n;
 }

@@ -94,10 +94,9 @@ static inline void oit_pick_hits_free(oit_pick_hits *hits)
  * view's depth range and section planes, one a source triangle (the
  * nearest: a triangle cut into pieces lies in one plane), sorted by (key,
  * source) and shaded (shade.h). The first `capacity` layers go to layers
- * (NULL with 0: none); *count is how many there are in all; rgb (may be
- * NULL) the pixel's final colour over the view's background. hits is
+ * (NULL with 0: none); returns how many there are in all. hits is
  * reordered. */
-oit_status oit_pick_compose(const oit_pick_ray *ray, oit_pick_hits *hits, oit_pick_layer *layers,
-                            size_t capacity, size_t *count, float rgb[3], oit_error *err);
+size_t oit_pick_compose(const oit_pick_ray *ray, oit_pick_hits *hits, oit_pick_layer *layers,
+                        size_t capacity);
 
 #endif
