@@ -94,7 +94,6 @@ static void close_viewer(viewer *v)
     if (v->have_owned)
         v->desc->close_model(v->desc->model_ctx, &v->owned);
     free(v->counts);
-    oit_image_free(&v->frame);
     oit_image_free(&v->base);
     oit_image_free(&v->shown);
     oit_image_free(&v->shot);

@@ -129,6 +129,22 @@ static void adapt_preview_scale(viewer *v, double wall_ms)
         v->preview_scale = f - 1;
 }
 
+/* view through state: its image into *out, or with counts (a method that
+ * counts) its layer heat map; the frame's figures into st (may be NULL). */
+static oit_status render_shown(oit_run *state, const oit_view *view, uint32_t *counts,
+                               oit_frame_stats *st, oit_image *out, oit_error *err)
+{
+    oit_image img = {0};
+    oit_status s = oit_run_render(state, view, &img, counts, NULL, st, err);
+    if (s == OIT_OK && counts) {
+        s = oit_image_heatmap(counts, img.width, img.height, out, err);
+        oit_image_free(&img);
+    } else if (s == OIT_OK) {
+        *out = img;
+    }
+    return s;
+}
+
 /* Renders the current view into v->base at the window's size: exact, or
  * (kind SHOWN_PREVIEW) the preview. */
 static oit_status render_frame(viewer *v, int fb_w, int fb_h, int kind, oit_error *err)
@@ -158,22 +174,15 @@ static oit_status render_frame(viewer *v, int fb_w, int fb_h, int kind, oit_erro
     v->view.height = h;
     viewer_fit_clip(v);
     double t0 = glfwGetTime();
-    oit_image_free(&v->frame);
     memset(&v->st, 0, sizeof v->st);
-    s = oit_run_render(state, &v->view, &v->frame, heat ? v->counts : NULL, NULL, &v->st, err);
+    oit_image img = {0};
+    s = render_shown(state, &v->view, heat ? v->counts : NULL, &v->st, &img, err);
     if (v->gpu_state != state)
         memset(&v->gpu, 0, sizeof v->gpu);
     v->gpu_state = state;
     v->gpu_absent = oit_run_gpu_absent(state);
     for (oit_gpu_times g; oit_run_gpu_poll(state, &g, 0);)
         v->gpu = g;
-    oit_image img = {0};
-    if (s == OIT_OK && heat) {
-        s = oit_image_heatmap(v->counts, v->frame.width, v->frame.height, &img, err);
-    } else if (s == OIT_OK) {
-        img = v->frame;
-        memset(&v->frame, 0, sizeof v->frame);
-    }
     if (s == OIT_OK && scale > 1) {
         oit_image big = {0};
         s = upscale(&img, fb_w, fb_h, &big, err);
@@ -221,14 +230,7 @@ oit_status viewer_render_shot(viewer *v, int width, int height, oit_image *out, 
     oit_view view = v->view;
     view.width = width;
     view.height = height;
-    oit_image img = {0};
-    oit_status s = oit_run_render(v->state, &view, &img, counts, NULL, NULL, err);
-    if (s == OIT_OK && heat) {
-        s = oit_image_heatmap(counts, width, height, out, err);
-        oit_image_free(&img);
-    } else if (s == OIT_OK) {
-        *out = img;
-    }
+    oit_status s = render_shown(v->state, &view, counts, NULL, out, err);
     free(counts);
     return s;
 }

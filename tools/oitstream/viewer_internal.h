@@ -69,7 +69,7 @@ typedef struct viewer {
     int key_count;
     uint32_t *counts;
     size_t counts_cap;
-    oit_image frame, base, shown, shot;
+    oit_image base, shown, shot;
     GLuint tex, fbo;
     int tex_w, tex_h;
     oit_frame_stats st;
